@@ -1,0 +1,51 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Torrance: a physically based path tracer for Blender, with a C++ core."""
+
+bl_info = {
+    "name": "Torrance",
+    "author": "The Torrance authors",
+    "version": (0, 1, 0),
+    "blender": (3, 4, 0),
+    "location": "Properties > Render > Render Engine",
+    "description": "Physically based path tracing render engine with a C++ core",
+    "warning": "",
+    "doc_url": "",
+    "tracker_url": "",
+    "category": "Render",
+}
+
+# Support reloading the add-on (F3 > Reload Scripts).
+if "bpy" in locals():
+    import importlib
+    for _name in ("materials", "export", "render", "properties", "engine", "ui"):
+        if _name in locals():
+            importlib.reload(locals()[_name])
+
+import bpy
+
+from . import (
+    materials,
+    export,
+    render,
+    properties,
+    engine,
+    ui,
+)
+
+
+def register():
+    properties.register()
+    engine.register()
+    ui.register()
+    # The native module is loaded lazily by the first render; check it now so a broken
+    # build is reported at once. The add-on stays registered: renders report the error.
+    try:
+        render.load_core()
+    except RuntimeError as exc:
+        print(f"Torrance: {exc}")
+
+
+def unregister():
+    ui.unregister()
+    engine.unregister()
+    properties.unregister()

@@ -1,0 +1,100 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Torrance's settings, stored on Blender datablocks.
+
+One PropertyGroup per datablock type; each is reached as ``<datablock>.torrance``
+(``scene.torrance``, ``material.torrance``, ...).
+"""
+
+import bpy
+from bpy.props import (
+    BoolProperty,
+    EnumProperty,
+    FloatProperty,
+    IntProperty,
+    PointerProperty,
+)
+
+# (identifier, name, description). Add 'PRINCIPLED' here when the core supports it.
+BRDF_MODELS = (
+    ('PAPER', "Paper",
+     "Lambertian diffuse plus a Cook-Torrance GGX specular lobe with Schlick's Fresnel "
+     "(metallic/roughness workflow)"),
+)
+
+
+class TorranceSceneSettings(bpy.types.PropertyGroup):
+    samples: IntProperty(
+        name="Samples",
+        description="Number of samples per pixel for the final render",
+        default=64, min=1, max=1 << 20, soft_max=4096,
+    )
+    max_bounces: IntProperty(
+        name="Max Bounces",
+        description="Maximum number of bounces of a light path, as Cycles' Max Bounces: "
+                    "0 gives direct lighting only",
+        default=8, min=0, max=1024, soft_max=64,
+    )
+    seed: IntProperty(
+        name="Seed",
+        description="Seed of the random sequences; renders with the same seed and settings "
+                    "give the same noise",
+        default=0, min=0, max=(1 << 31) - 1,
+    )
+    brdf_model: EnumProperty(
+        name="BRDF Model",
+        description="Reflection model used for all materials",
+        items=BRDF_MODELS,
+        default='PAPER',
+    )
+    filter_width: FloatProperty(
+        name="Filter Width",
+        description="Width of the Blackman-Harris pixel filter in pixels (as Cycles' Pixel Filter Width)",
+        default=1.5, min=0.01, max=10.0, soft_max=3.0,
+        subtype='PIXEL',
+    )
+    use_progressive_display: BoolProperty(
+        name="Progressive Display",
+        description="Show the image after every pass of samples while rendering",
+        default=True,
+    )
+
+
+class TorranceMaterialSettings(bpy.types.PropertyGroup):
+    # Nothing yet: the material is read from its Principled BSDF node.
+    pass
+
+
+class TorranceLightSettings(bpy.types.PropertyGroup):
+    # Nothing yet: the light is read from Blender's own light settings.
+    pass
+
+
+class TorranceCameraSettings(bpy.types.PropertyGroup):
+    # Nothing yet: the camera is read from Blender's own camera settings.
+    pass
+
+
+class TorranceWorldSettings(bpy.types.PropertyGroup):
+    # Nothing yet: the world is read from its Background node or its colour.
+    pass
+
+
+_GROUPS = (
+    (bpy.types.Scene, TorranceSceneSettings, "Torrance Render Settings"),
+    (bpy.types.Material, TorranceMaterialSettings, "Torrance Material Settings"),
+    (bpy.types.Light, TorranceLightSettings, "Torrance Light Settings"),
+    (bpy.types.Camera, TorranceCameraSettings, "Torrance Camera Settings"),
+    (bpy.types.World, TorranceWorldSettings, "Torrance World Settings"),
+)
+
+
+def register():
+    for id_type, group, description in _GROUPS:
+        bpy.utils.register_class(group)
+        id_type.torrance = PointerProperty(name="Torrance", type=group, description=description)
+
+
+def unregister():
+    for id_type, group, _description in reversed(_GROUPS):
+        del id_type.torrance
+        bpy.utils.unregister_class(group)

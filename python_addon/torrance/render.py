@@ -1,0 +1,195 @@
+# SPDX-License-Identifier: Apache-2.0
+"""A final render: export the depsgraph, run the core, hand the pixels to Blender."""
+
+import time
+import traceback
+
+import numpy as np
+
+from . import export
+from .materials import Reporter
+
+_core = None
+_core_error = None
+
+
+def load_core():
+    """The native module torrance_core; raises RuntimeError with a clear message if missing."""
+    global _core, _core_error
+    if _core is None:
+        try:
+            from . import torrance_core
+        except Exception as exc:             # ImportError, or a broken .so (OSError, ...)
+            _core_error = f"{type(exc).__name__}: {exc}"
+            raise RuntimeError(
+                "Torrance's native module 'torrance_core' could not be loaded "
+                f"({_core_error}). Rebuild the add-on (scripts/build) and reinstall it.") from exc
+        _core = torrance_core
+        _core_error = None
+    return _core
+
+
+def render_window(scene_render, width, height):
+    """The pixels to render, (x0, y0, x1, y1) with y counted from the BOTTOM row, as Blender.
+
+    The full frame without a border; the truncated border rectangle with one.
+    """
+    if not scene_render.use_border:
+        return 0, 0, width, height
+    x0 = int(scene_render.border_min_x * width)
+    x1 = int(scene_render.border_max_x * width)
+    y0 = int(scene_render.border_min_y * height)
+    y1 = int(scene_render.border_max_y * height)
+    x0, x1 = max(0, min(x0, width)), max(0, min(x1, width))
+    y0, y1 = max(0, min(y0, height)), max(0, min(y1, height))
+    return x0, y0, x1, y1
+
+
+def _format_time(seconds):
+    minutes, sec = divmod(max(0.0, seconds), 60.0)
+    return f"{int(minutes):02d}:{sec:05.2f}"
+
+
+class _Session:
+    """State of one render() call: the Blender result and the callbacks given to the core."""
+
+    def __init__(self, engine, layer_name, window, full_size, progressive):
+        self.engine = engine
+        self.layer_name = layer_name
+        self.x0, self.y0, self.x1, self.y1 = window
+        self.width, self.height = full_size
+        self.w = self.x1 - self.x0
+        self.h = self.y1 - self.y0
+        self.progressive = progressive
+        self.result = None
+        self.t0 = time.perf_counter()
+        self.callback_error = None
+        self.stop_requested = False
+        self.last_samples = 0
+
+    # -- pixels --------------------------------------------------------------------------
+    def _window_pixels(self, image):
+        """(h*w, 4) float32 rows bottom-up for the window, from the core's top-down image."""
+        img = np.asarray(image, dtype=np.float32)
+        if img.ndim != 3 or img.shape[2] < 4:
+            raise ValueError(f"unexpected image shape {img.shape} from the core")
+        if img.shape[0] == self.h and img.shape[1] == self.w:
+            win = img
+        elif img.shape[0] == self.height and img.shape[1] == self.width:
+            top = self.height - self.y1                   # the core counts rows from the top
+            win = img[top:top + self.h, self.x0:self.x1]
+        else:
+            raise ValueError(f"the core returned a {img.shape[1]}x{img.shape[0]} image for a "
+                             f"{self.w}x{self.h} window")
+        win = np.flipud(win[:, :, :4])
+        win = np.nan_to_num(win, nan=0.0, posinf=0.0, neginf=0.0)
+        return np.ascontiguousarray(win, dtype=np.float32).reshape(-1, 4)
+
+    def begin(self):
+        self.result = self.engine.begin_result(0, 0, self.w, self.h, layer=self.layer_name)
+
+    def write(self, image):
+        pixels = self._window_pixels(image)
+        for layer in self.result.layers:
+            layer.passes["Combined"].rect.foreach_set(pixels)
+        self.engine.update_result(self.result)
+
+    def end(self):
+        if self.result is not None:
+            self.engine.end_result(self.result)
+            self.result = None
+
+    # -- callbacks given to the core -------------------------------------------------------
+    def on_pass(self, image, samples_done, samples_total):
+        try:
+            self.last_samples = samples_done
+            if self.progressive and samples_done < samples_total:
+                self.write(image)
+            elapsed = time.perf_counter() - self.t0
+            self.engine.update_progress(samples_done / max(1, samples_total))
+            self.engine.update_stats("", f"Torrance | Sample {samples_done}/{samples_total} | "
+                                         f"Time {_format_time(elapsed)}")
+        except Exception as exc:            # never let an exception into the core
+            if self.callback_error is None:
+                self.callback_error = exc
+                traceback.print_exc()
+            self.stop_requested = True
+
+    def should_stop(self):
+        try:
+            if self.stop_requested:
+                return True
+            if self.engine.test_break():
+                self.stop_requested = True
+            return self.stop_requested
+        except Exception as exc:
+            if self.callback_error is None:
+                self.callback_error = exc
+            return True
+
+
+def render(engine, depsgraph):
+    """RenderEngine.render(): never raises; problems become engine reports."""
+    reporter = Reporter(engine)
+    try:
+        _render(engine, depsgraph, reporter)
+    except export.Cancelled:
+        pass
+    except Exception as exc:
+        traceback.print_exc()
+        reporter.error(f"Torrance: {exc}")
+
+
+def _render(engine, depsgraph, reporter):
+    scene = depsgraph.scene
+    ts = scene.torrance
+    rd = scene.render
+    width, height = int(engine.resolution_x), int(engine.resolution_y)
+    window = render_window(rd, width, height)
+    x0, y0, x1, y1 = window
+    if x1 <= x0 or y1 <= y0:
+        reporter.info("Torrance: the render border is empty, nothing to render")
+        return
+
+    tc = load_core()
+    engine.update_stats("", "Torrance | Exporting scene")
+    session = _Session(engine, depsgraph.view_layer.name, window, (width, height),
+                       bool(ts.use_progressive_display))
+    tc_scene, stats = export.export_scene(tc, depsgraph, reporter, engine=engine,
+                                          should_stop=session.should_stop)
+    print(f"Torrance: {stats}")
+
+    threads = int(rd.threads) if rd.threads_mode == 'FIXED' else 0
+    settings = tc.RenderSettings(
+        width=width, height=height,
+        samples=int(ts.samples), max_bounces=int(ts.max_bounces), seed=int(ts.seed),
+        pixel_aspect_x=float(rd.pixel_aspect_x), pixel_aspect_y=float(rd.pixel_aspect_y),
+        filter_width=float(ts.filter_width),
+        transparent_background=bool(rd.film_transparent),
+        brdf_model=ts.brdf_model,
+        # The core counts rows from the top, Blender from the bottom.
+        window=None if (x0, y0, x1, y1) == (0, 0, width, height)
+        else (x0, height - y1, x1, height - y0),
+        threads=threads,
+    )
+
+    session.begin()
+    try:
+        session.t0 = time.perf_counter()
+        result = tc.render(tc_scene, settings, on_pass=session.on_pass,
+                           should_stop=session.should_stop)
+        if session.callback_error is not None and not engine.test_break():
+            raise RuntimeError(f"while showing the render: {session.callback_error}")
+        session.write(result.image)
+    finally:
+        session.end()
+
+    msg = f"Torrance | {result.samples_done}/{ts.samples} samples | Time {_format_time(result.seconds)}"
+    if result.stopped:
+        msg += " | stopped"
+    engine.update_progress(1.0)
+    engine.update_stats("", msg)
+    print(msg)
+    nonfinite = int(getattr(result, "nonfinite_samples", 0))
+    if nonfinite:
+        reporter.warning(f"Torrance discarded {nonfinite} NaN/Inf samples")
