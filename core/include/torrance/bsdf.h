@@ -1,0 +1,41 @@
+// The BSDF interface of Torrance.
+//
+// Conventions shared by every BSDF in the core:
+//  * Directions are in the local shading frame (z = shading normal), unit length, and both point
+//    AWAY from the surface: wo towards the viewer, wi towards the light.
+//  * eval(wo, wi) returns f(wo, wi) * cos(theta_i): it INCLUDES the cosine foreshortening term,
+//    so NEE computes L += throughput * eval * Le / pdf_light.
+//  * pdf(wo, wi) is the solid-angle density with which sample() produces wi (continuous lobes
+//    only; a delta lobe has no density and is never returned by eval or pdf).
+//  * sample() returns weight = eval / pdf for continuous lobes, and the delta lobe's weight
+//    (its reflectance) for a delta direction.
+//  * Reflection only: eval and pdf are 0 unless wo.z > 0 and wi.z > 0.
+#pragma once
+
+#include "torrance/math.h"
+
+namespace torrance {
+
+// Which Cook-Torrance variant shades the scene.
+enum class BrdfModel {
+  Paper,  // exactly the brief's equations (GGX D, Schlick F, Schlick-GGX G, Lambert diffuse)
+};
+
+// The metallic/roughness material, as Blender's Principled BSDF names its inputs.
+struct Material {
+  Vec3 base_color{0.8f, 0.8f, 0.8f};
+  float metallic = 0.0f;
+  float roughness = 0.5f;
+  float specular = 0.5f;  // dielectric F0 = 0.08 * specular (0.5 -> 0.04)
+  Vec3 emission{0.0f};    // radiance emitted by both faces = emission colour * strength
+};
+
+struct BsdfSample {
+  Vec3 wi{0.0f};
+  Vec3 weight{0.0f};  // eval / pdf, or the delta lobe's reflectance
+  float pdf = 0.0f;   // 0 for a delta lobe
+  bool is_delta = false;
+  bool valid() const { return pdf > 0.0f || is_delta; }
+};
+
+}  // namespace torrance

@@ -1,0 +1,47 @@
+// The GGX (Trowbridge-Reitz) microfacet distribution, isotropic, in the local frame (z = normal).
+#pragma once
+
+#include "torrance/math.h"
+
+namespace torrance::ggx {
+
+// Below this alpha the distribution is treated as a perfect mirror (a delta lobe): the same
+// threshold as Cycles (alpha^2 <= 1e-7), i.e. roughness <= ~0.0178 with alpha = roughness^2.
+inline constexpr float kDeltaAlpha = 3.1622776e-4f;
+
+// D(h) = alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2), written with sin^2 = x^2 + y^2 so it stays
+// accurate when h is close to n and alpha is tiny.
+inline float D(const Vec3& h, float alpha) {
+  if (h.z <= 0.0f) return 0.0f;
+  const float a2 = alpha * alpha;
+  const float d = (h.x * h.x + h.y * h.y) + a2 * h.z * h.z;
+  return d > 0.0f ? a2 / (kPi * d * d) : 0.0f;
+}
+
+// Exact Smith masking for GGX: G1 = 2 cos / (cos + sqrt(alpha^2 + (1 - alpha^2) cos^2)).
+inline float smith_G1(float cos_theta, float alpha) {
+  if (cos_theta <= 0.0f) return 0.0f;
+  const float a2 = alpha * alpha;
+  return 2.0f * cos_theta / (cos_theta + std::sqrt(a2 + (1.0f - a2) * cos_theta * cos_theta));
+}
+
+// Samples a microfacet normal from the distribution of normals visible from wo (wo.z > 0),
+// using the spherical-cap construction (Dupuy & Benyoub 2023). Density of h: G1(wo) max(0, wo.h) D(h) / wo.z.
+inline Vec3 sample_visible_normal(const Vec3& wo, float alpha, const Vec2& u) {
+  const Vec3 wo_std = glm::normalize(Vec3(alpha * wo.x, alpha * wo.y, wo.z));
+  const float phi = kTwoPi * u.x;
+  const float z = (1.0f - u.y) * (1.0f + wo_std.z) - wo_std.z;
+  const float sin_theta = safe_sqrt(1.0f - z * z);
+  const Vec3 h_std = Vec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), z) + wo_std;
+  return glm::normalize(Vec3(alpha * h_std.x, alpha * h_std.y, std::max(h_std.z, 1e-9f)));
+}
+
+// Solid-angle density of the reflected direction produced by sample_visible_normal.
+inline float reflected_pdf(const Vec3& wo, const Vec3& h, float alpha) {
+  if (wo.z <= 0.0f) return 0.0f;
+  return smith_G1(wo.z, alpha) * D(h, alpha) / (4.0f * wo.z);
+}
+
+inline Vec3 reflect(const Vec3& w, const Vec3& n) { return 2.0f * glm::dot(w, n) * n - w; }
+
+}  // namespace torrance::ggx

@@ -1,0 +1,106 @@
+#include "bindings.h"
+
+#include <pybind11/functional.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+
+namespace torrance::python {
+namespace {
+
+std::string model_name(BrdfModel m) {
+  switch (m) {
+    case BrdfModel::Paper: return "PAPER";
+  }
+  return "PAPER";
+}
+BrdfModel parse_model(const std::string& s) {
+  if (s == "PAPER") return BrdfModel::Paper;
+  throw py::value_error("brdf_model must be 'PAPER', got '" + s + "'");
+}
+
+}  // namespace
+
+py::array_t<float> to_numpy(const Image& image) {
+  py::array_t<float> a({py::ssize_t(image.height), py::ssize_t(image.width), py::ssize_t(4)});
+  std::copy(image.rgba.begin(), image.rgba.end(), a.mutable_data());
+  return a;
+}
+
+void init_render(py::module_& m) {
+  py::class_<RenderSettings>(m, "RenderSettings")
+      .def(py::init([](int width, int height, int samples, int max_bounces, uint32_t seed, float pixel_aspect_x,
+                       float pixel_aspect_y, float filter_width, bool transparent_background,
+                       const std::string& brdf_model, std::optional<std::array<int, 4>> window, int threads) {
+             RenderSettings s;
+             s.width = width;
+             s.height = height;
+             s.samples = samples;
+             s.max_bounces = max_bounces;
+             s.seed = seed;
+             s.pixel_aspect_x = pixel_aspect_x;
+             s.pixel_aspect_y = pixel_aspect_y;
+             s.filter_width = filter_width;
+             s.transparent_background = transparent_background;
+             s.brdf_model = parse_model(brdf_model);
+             s.window = window;
+             s.threads = threads;
+             s.validate();
+             return s;
+           }),
+           py::arg("width") = 640, py::arg("height") = 480, py::arg("samples") = 64, py::arg("max_bounces") = 8,
+           py::arg("seed") = 0, py::arg("pixel_aspect_x") = 1.0f, py::arg("pixel_aspect_y") = 1.0f,
+           py::arg("filter_width") = 1.5f, py::arg("transparent_background") = false,
+           py::arg("brdf_model") = "PAPER", py::arg("window") = py::none(), py::arg("threads") = 0)
+      .def_readwrite("width", &RenderSettings::width)
+      .def_readwrite("height", &RenderSettings::height)
+      .def_readwrite("samples", &RenderSettings::samples)
+      .def_readwrite("max_bounces", &RenderSettings::max_bounces)
+      .def_readwrite("seed", &RenderSettings::seed)
+      .def_readwrite("filter_width", &RenderSettings::filter_width)
+      .def_readwrite("transparent_background", &RenderSettings::transparent_background)
+      .def_readwrite("window", &RenderSettings::window)
+      .def_readwrite("threads", &RenderSettings::threads)
+      .def_property(
+          "brdf_model", [](const RenderSettings& s) { return model_name(s.brdf_model); },
+          [](RenderSettings& s, const std::string& v) { s.brdf_model = parse_model(v); });
+
+  py::class_<RenderResult, std::shared_ptr<RenderResult>>(m, "RenderResult")
+      .def_property_readonly("image",
+                             [](py::object self) {
+                               const auto& r = self.cast<const RenderResult&>();
+                               return py::array_t<float>({py::ssize_t(r.image.height), py::ssize_t(r.image.width),
+                                                          py::ssize_t(4)},
+                                                         r.image.rgba.data(), self);
+                             })
+      .def_readonly("samples_done", &RenderResult::samples_done)
+      .def_readonly("stopped", &RenderResult::stopped)
+      .def_readonly("seconds", &RenderResult::seconds)
+      .def_readonly("nonfinite_samples", &RenderResult::nonfinite_samples);
+
+  m.def(
+      "render",
+      [](Scene& scene, const RenderSettings& settings, const py::object& on_pass, const py::object& should_stop) {
+        RenderCallbacks callbacks;
+        if (!on_pass.is_none())
+          callbacks.on_pass = [on_pass](const Image& image, int done, int total) {
+            py::gil_scoped_acquire gil;
+            on_pass(to_numpy(image), done, total);
+          };
+        if (!should_stop.is_none())
+          callbacks.should_stop = [should_stop]() {
+            py::gil_scoped_acquire gil;
+            return py::bool_(should_stop());
+          };
+        auto result = std::make_shared<RenderResult>();
+        {
+          py::gil_scoped_release release;
+          *result = render(scene, settings, callbacks);
+        }
+        return result;
+      },
+      py::arg("scene"), py::arg("settings"), py::arg("on_pass") = py::none(), py::arg("should_stop") = py::none(),
+      "Renders progressively with the GIL released; returns a RenderResult.");
+}
+
+}  // namespace torrance::python

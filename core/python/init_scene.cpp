@@ -1,0 +1,146 @@
+#include "bindings.h"
+
+#include <pybind11/stl.h>
+
+#include <stdexcept>
+#include <string>
+
+namespace torrance::python {
+namespace {
+
+using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
+using IndexArray = py::array_t<int64_t, py::array::c_style | py::array::forcecast>;
+
+std::string shape_of(const py::array& a) {
+  std::string s = "(";
+  for (py::ssize_t i = 0; i < a.ndim(); ++i) s += (i ? ", " : "") + std::to_string(a.shape(i));
+  return s + (a.ndim() == 1 ? ",)" : ")");
+}
+
+FloatArray as_float_rows(const py::object& obj, const char* name, py::ssize_t rows, int cols) {
+  FloatArray a = FloatArray::ensure(obj);
+  if (!a) throw py::type_error(std::string(name) + " must be a numeric array");
+  const bool ok = (a.ndim() == 2 && a.shape(1) == cols && (rows < 0 || a.shape(0) == rows)) ||
+                  (a.size() == 0 && rows <= 0);
+  if (!ok)
+    throw py::value_error(std::string(name) + " must have shape (" + (rows < 0 ? "N" : std::to_string(rows)) +
+                          ", " + std::to_string(cols) + "), got " + shape_of(a));
+  return a;
+}
+
+IndexArray as_indices(const py::object& obj, const char* name) {
+  const py::array raw = py::array::ensure(obj);
+  if (!raw) throw py::type_error(std::string(name) + " must be an array of integers");
+  if (raw.size() > 0 && raw.dtype().kind() != 'i' && raw.dtype().kind() != 'u')
+    throw py::type_error(std::string(name) + " must hold integers, got dtype " + std::string(py::str(raw.dtype())));
+  return IndexArray::ensure(raw);
+}
+
+Vec3 vec3(const std::array<float, 3>& a) { return Vec3(a[0], a[1], a[2]); }
+
+SensorFit parse_fit(const std::string& s) {
+  if (s == "AUTO") return SensorFit::Auto;
+  if (s == "HORIZONTAL") return SensorFit::Horizontal;
+  if (s == "VERTICAL") return SensorFit::Vertical;
+  throw py::value_error("sensor_fit must be 'AUTO', 'HORIZONTAL' or 'VERTICAL', got '" + s + "'");
+}
+
+}  // namespace
+
+void init_scene(py::module_& m) {
+  py::class_<Scene>(m, "Scene", "Meshes, materials, lights and camera, in Blender's world space and units.")
+      .def(py::init<>())
+      .def(
+          "add_material",
+          [](Scene& s, std::array<float, 3> base_color, float metallic, float roughness, float specular,
+             std::array<float, 3> emission, float emission_strength) {
+            Material mat;
+            mat.base_color = vec3(base_color);
+            mat.metallic = metallic;
+            mat.roughness = roughness;
+            mat.specular = specular;
+            mat.emission = vec3(emission) * emission_strength;
+            return s.add_material(mat);
+          },
+          py::arg("base_color") = std::array<float, 3>{0.8f, 0.8f, 0.8f}, py::arg("metallic") = 0.0f,
+          py::arg("roughness") = 0.5f, py::arg("specular") = 0.5f,
+          py::arg("emission") = std::array<float, 3>{0.0f, 0.0f, 0.0f}, py::arg("emission_strength") = 0.0f,
+          "Adds a metallic/roughness material; returns its index.")
+      .def(
+          "add_mesh",
+          [](Scene& s, const py::object& positions, const py::object& triangles, const py::object& corner_normals,
+             const py::object& material_indices) {
+            const FloatArray p = as_float_rows(positions, "positions", -1, 3);
+            const IndexArray t = as_indices(triangles, "triangles");
+            if (!((t.ndim() == 2 && t.shape(1) == 3) || t.size() == 0))
+              throw py::value_error("triangles must have shape (M, 3), got " + shape_of(t));
+            const py::ssize_t num_tris = t.size() / 3;
+            FloatArray n;
+            if (!corner_normals.is_none()) {
+              n = FloatArray::ensure(corner_normals);
+              if (!n || n.size() != num_tris * 9)
+                throw py::value_error("corner_normals must have shape (M, 3, 3) with M = " +
+                                      std::to_string(num_tris) + " triangles");
+            }
+            IndexArray mi;
+            if (!material_indices.is_none()) {
+              mi = as_indices(material_indices, "material_indices");
+              if (mi.size() != num_tris)
+                throw py::value_error("material_indices must have shape (M,) with M = " + std::to_string(num_tris) +
+                                      ", got " + shape_of(mi));
+            }
+            return s.add_mesh(p.data(), size_t(p.size() / 3), t.data(), size_t(num_tris),
+                              corner_normals.is_none() ? nullptr : n.data(),
+                              material_indices.is_none() ? nullptr : mi.data());
+          },
+          py::arg("positions"), py::arg("triangles"), py::arg("corner_normals") = py::none(),
+          py::arg("material_indices") = py::none(),
+          "Adds a triangle mesh in world space; raises ValueError for malformed input.")
+      .def(
+          "add_sun",
+          [](Scene& s, std::array<float, 3> direction, float strength, std::array<float, 3> color, float angle) {
+            s.lights().add_sun(vec3(direction), strength, vec3(color), angle);
+          },
+          py::arg("direction") = std::array<float, 3>{0, 0, -1}, py::arg("strength") = 1.0f,
+          py::arg("color") = std::array<float, 3>{1, 1, 1}, py::arg("angle") = 0.00918f,
+          "Sun: direction of travel, strength in W/m^2, angular diameter in radians.")
+      .def(
+          "add_point_light",
+          [](Scene& s, std::array<float, 3> position, float power, std::array<float, 3> color, float radius) {
+            s.lights().add_point(vec3(position), power, vec3(color), radius);
+          },
+          py::arg("position"), py::arg("power") = 1000.0f, py::arg("color") = std::array<float, 3>{1, 1, 1},
+          py::arg("radius") = 0.1f, "Point light: power in W, radius in m.")
+      .def(
+          "set_world",
+          [](Scene& s, std::array<float, 3> color, float strength) { s.lights().set_world(vec3(color), strength); },
+          py::arg("color"), py::arg("strength") = 1.0f, "Uniform world radiance = color * strength.")
+      .def(
+          "set_camera",
+          [](Scene& s, const py::object& matrix, float lens, float sensor_width, float sensor_height,
+             const std::string& sensor_fit, float shift_x, float shift_y, float clip_start, float clip_end) {
+            const FloatArray mat = FloatArray::ensure(matrix);
+            if (!mat || mat.size() != 16) throw py::value_error("camera matrix must be a 4x4 array");
+            CameraParams c;
+            std::copy_n(mat.data(), 16, c.camera_to_world.begin());
+            c.lens_mm = lens;
+            c.sensor_width_mm = sensor_width;
+            c.sensor_height_mm = sensor_height;
+            c.sensor_fit = parse_fit(sensor_fit);
+            c.shift_x = shift_x;
+            c.shift_y = shift_y;
+            c.clip_start = clip_start;
+            c.clip_end = clip_end;
+            Camera(c, 2, 2, 1.0f, 1.0f);  // validates now, so the error names the call that caused it
+            s.set_camera(c);
+          },
+          py::arg("matrix"), py::arg("lens") = 50.0f, py::arg("sensor_width") = 36.0f,
+          py::arg("sensor_height") = 24.0f, py::arg("sensor_fit") = "AUTO", py::arg("shift_x") = 0.0f,
+          py::arg("shift_y") = 0.0f, py::arg("clip_start") = 0.1f, py::arg("clip_end") = 100.0f,
+          "Blender perspective camera; matrix is camera-to-world (row-major, like matrix_world).")
+      .def_property_readonly("num_triangles", &Scene::num_triangles)
+      .def_property_readonly("num_materials", &Scene::num_materials)
+      .def_property_readonly("num_lights", [](const Scene& s) { return s.lights().count(); });
+}
+
+}  // namespace torrance::python

@@ -1,0 +1,149 @@
+"""Tests of the pybind11 module from Debian's /usr/bin/python3: numpy in, clear errors out."""
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import torrance_core as tc
+
+
+def plane_scene(half=50.0, albedo=0.5):
+    scene = tc.Scene()
+    scene.add_material(base_color=(albedo,) * 3, specular=0.0, roughness=1.0)
+    positions = np.array([[-half, -half, 0], [half, -half, 0], [half, half, 0], [-half, half, 0]], np.float32)
+    scene.add_mesh(positions, np.array([[0, 1, 2], [0, 2, 3]], np.int32))
+    matrix = np.eye(4)
+    matrix[2, 3] = 5.0
+    scene.set_camera(matrix, lens=2000.0)
+    return scene
+
+
+def test_sun_on_lambert_plane_in_blender_units():
+    scene = plane_scene()
+    scene.add_sun(direction=(0, 0, -1), strength=2.0, angle=0.0)
+    result = tc.render(scene, tc.RenderSettings(width=8, height=8, samples=4))
+    assert result.image.shape == (8, 8, 4)
+    assert result.image.dtype == np.float32
+    assert result.image[..., 1].mean() == pytest.approx(0.5 * 2.0 / np.pi, rel=0.01)
+    assert np.all(result.image[..., 3] == 1.0)
+    assert result.nonfinite_samples == 0 and result.samples_done == 4 and not result.stopped
+
+
+def test_mesh_input_errors_are_value_errors_with_messages():
+    scene = tc.Scene()
+    scene.add_material()
+    good = np.zeros((3, 3), np.float32)
+    tri = np.array([[0, 1, 2]])
+    with pytest.raises(ValueError, match=r"positions must have shape \(N, 3\)"):
+        scene.add_mesh(np.zeros((3, 2), np.float32), tri)
+    with pytest.raises(ValueError, match="outside"):
+        scene.add_mesh(good, np.array([[0, 1, 5]]))
+    with pytest.raises(ValueError, match="outside"):
+        scene.add_mesh(good, np.array([[0, -1, 2]]))
+    bad = good.copy()
+    bad[2, 1] = np.nan
+    with pytest.raises(ValueError, match="vertex 2 has a NaN"):
+        scene.add_mesh(bad, tri)
+    bad[2, 1] = np.inf
+    with pytest.raises(ValueError, match="NaN or Inf"):
+        scene.add_mesh(bad, tri)
+    with pytest.raises(TypeError, match="integers"):
+        scene.add_mesh(good, tri.astype(np.float32))
+    with pytest.raises(ValueError, match="corner_normals"):
+        scene.add_mesh(good, tri, corner_normals=np.zeros((2, 3, 3), np.float32))
+    with pytest.raises(ValueError, match="material"):
+        scene.add_mesh(good, tri, material_indices=np.array([4]))
+    with pytest.raises(ValueError, match="material_indices must have shape"):
+        scene.add_mesh(good, tri, material_indices=np.array([0, 0]))
+    scene.add_mesh(good, np.zeros((0, 3), np.int32))  # a mesh without faces is fine
+    assert scene.num_triangles == 0
+
+
+def test_other_bad_inputs():
+    scene = tc.Scene()
+    with pytest.raises(ValueError, match="roughness"):
+        scene.add_material(roughness=2.0)
+    with pytest.raises(ValueError, match="NaN"):
+        scene.add_material(base_color=(float("nan"), 0, 0))
+    with pytest.raises(ValueError, match="power"):
+        scene.add_point_light(position=(0, 0, 1), power=-5.0)
+    with pytest.raises(ValueError, match="sun angle"):
+        scene.add_sun(angle=-1.0)
+    with pytest.raises(ValueError, match="positive"):
+        scene.set_camera(np.eye(4), lens=-1.0)
+    with pytest.raises(ValueError, match="sensor_fit"):
+        scene.set_camera(np.eye(4), sensor_fit="DIAGONAL")
+    with pytest.raises(ValueError, match="4x4"):
+        scene.set_camera(np.eye(3))
+    with pytest.raises(ValueError, match="samples"):
+        tc.RenderSettings(samples=0)
+    with pytest.raises(ValueError, match="width"):
+        tc.RenderSettings(width=-3)
+    with pytest.raises(ValueError, match="window"):
+        tc.RenderSettings(width=10, height=10, window=(5, 0, 20, 10))
+    with pytest.raises(ValueError, match="brdf_model"):
+        tc.RenderSettings(brdf_model="PHONG")
+
+
+def test_empty_scene_renders_the_world():
+    scene = tc.Scene()
+    scene.set_world(color=(0.2, 0.3, 0.4), strength=2.0)
+    image = tc.render(scene, tc.RenderSettings(width=4, height=4, samples=1)).image
+    assert np.allclose(image[..., :3], [0.4, 0.6, 0.8])
+
+
+def test_progress_callback_and_stop_release_the_gil():
+    scene = plane_scene()
+    scene.set_world(color=(1, 1, 1))
+    passes = []
+    ticks = []
+    stop_at = time.monotonic() + 1.0
+
+    def ticker():  # runs only if render() released the GIL
+        while time.monotonic() < stop_at:
+            ticks.append(1)
+            time.sleep(0.01)
+
+    thread = threading.Thread(target=ticker)
+    thread.start()
+    result = tc.render(scene, tc.RenderSettings(width=128, height=128, samples=1 << 20),
+                       on_pass=lambda img, done, total: passes.append((img.shape, done, total)),
+                       should_stop=lambda: time.monotonic() > stop_at)
+    elapsed_after_stop = time.monotonic() - stop_at
+    thread.join()
+    assert result.stopped and result.samples_done < (1 << 20)
+    assert passes and passes[0][0] == (128, 128, 4) and passes[-1][2] == 1 << 20
+    assert len(ticks) > 20, "the GIL was held while rendering"
+    assert elapsed_after_stop < 1.0
+    assert np.isfinite(result.image).all()
+
+
+def test_callback_exception_propagates_without_crashing():
+    scene = plane_scene()
+    scene.set_world(color=(1, 1, 1))
+
+    def boom(*_):
+        raise RuntimeError("from the callback")
+
+    with pytest.raises(RuntimeError, match="from the callback"):
+        tc.render(scene, tc.RenderSettings(width=16, height=16, samples=8), on_pass=boom)
+
+
+def test_write_and_read_images(tmp_path):
+    image = np.zeros((3, 5, 4), np.float32)
+    image[..., 0] = 0.25
+    image[..., 3] = 1.0
+    image[1, 2, 1] = 7.5  # HDR survives in EXR
+    tc.write_image(str(tmp_path / "a.exr"), image)
+    back = tc.read_image(str(tmp_path / "a.exr"))
+    assert back.shape == (3, 5, 4) and np.allclose(back, image)
+    tc.write_image(str(tmp_path / "a.png"), image)
+    png = tc.read_image(str(tmp_path / "a.png"))
+    assert png.shape == (3, 5, 4)
+    assert png[0, 0, 0] == pytest.approx(137 / 255, abs=1 / 255)  # sRGB(0.25) = 0.537
+    assert png[1, 2, 1] == 1.0
+    with pytest.raises(RuntimeError, match="cannot"):
+        tc.read_image(str(tmp_path / "missing.exr"))
+    with pytest.raises(ValueError, match="shape"):
+        tc.write_image(str(tmp_path / "b.exr"), np.zeros((4, 4), np.float32))

@@ -1,0 +1,6 @@
+"""Torrance's C++ shading core (Embree + Cook-Torrance path tracer), for Python and Blender."""
+from ._core import (RenderResult, RenderSettings, Scene, __version__, read_image, render,
+                    write_image)
+
+__all__ = ["RenderResult", "RenderSettings", "Scene", "read_image", "render", "write_image",
+           "__version__"]

@@ -1,0 +1,86 @@
+#include "torrance/cook_torrance.h"
+
+#include "torrance/sampling.h"
+
+namespace torrance {
+
+CookTorranceBsdf::CookTorranceBsdf(const Material& m) {
+  const Vec3 base = glm::clamp(m.base_color, Vec3(0.0f), Vec3(1.0f));
+  const float metallic = clamp01(m.metallic);
+  const float roughness = clamp01(m.roughness);
+  const float dielectric_f0 = 0.08f * std::max(m.specular, 0.0f);
+  diffuse_color_ = (1.0f - metallic) * base;
+  f0_ = glm::clamp(glm::mix(Vec3(dielectric_f0), base, metallic), Vec3(0.0f), Vec3(1.0f));
+  alpha_ = roughness * roughness;
+  k_ = sqr(alpha_ + 1.0f) / 8.0f;
+}
+
+Vec3 CookTorranceBsdf::fresnel(float cos_theta) const {
+  const float m = 1.0f - clamp01(cos_theta);
+  const float m5 = (m * m) * (m * m) * m;
+  return f0_ + (Vec3(1.0f) - f0_) * m5;
+}
+
+float CookTorranceBsdf::geometry_G1(float cos_theta) const {
+  if (cos_theta <= 0.0f) return 0.0f;
+  return cos_theta / (cos_theta * (1.0f - k_) + k_);
+}
+
+float CookTorranceBsdf::specular_probability(const Vec3& wo) const {
+  const float spec = luminance(fresnel(wo.z));
+  const float diff = luminance(diffuse_color_) * (1.0f - spec);
+  if (!(diff > 0.0f)) return 1.0f;
+  if (!(spec > 0.0f)) return 0.0f;
+  return std::min(std::max(spec / (spec + diff), 0.1f), 0.9f);
+}
+
+Vec3 CookTorranceBsdf::eval(const Vec3& wo, const Vec3& wi) const {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return Vec3(0.0f);
+  const Vec3 half = wo + wi;
+  const float half_len2 = glm::dot(half, half);
+  if (!(half_len2 > 0.0f)) return Vec3(0.0f);
+  const Vec3 h = half / std::sqrt(half_len2);
+  const Vec3 F = fresnel(glm::dot(wi, h));
+  Vec3 f_cos = (Vec3(1.0f) - F) * diffuse_color_ * (kInvPi * wi.z);
+  if (!has_delta()) {
+    // D F G / (4 cos_o cos_i) * cos_i; G1(wo)/cos_o stays bounded (<= 1/k) at grazing wo.
+    const float dg = ggx::D(h, alpha_) * geometry_G1(wo.z) * geometry_G1(wi.z) / (4.0f * wo.z);
+    f_cos += F * dg;
+  }
+  return f_cos;
+}
+
+float CookTorranceBsdf::pdf(const Vec3& wo, const Vec3& wi) const {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
+  const float p_spec = specular_probability(wo);
+  float pdf = (1.0f - p_spec) * cosine_hemisphere_pdf(wi.z);
+  if (!has_delta() && p_spec > 0.0f) {
+    const Vec3 h = glm::normalize(wo + wi);
+    pdf += p_spec * ggx::reflected_pdf(wo, h, alpha_);
+  }
+  return pdf;
+}
+
+BsdfSample CookTorranceBsdf::sample(const Vec3& wo, float u_lobe, const Vec2& u) const {
+  BsdfSample s;
+  if (wo.z <= 0.0f) return s;
+  const float p_spec = specular_probability(wo);
+  if (u_lobe < p_spec) {
+    if (has_delta()) {
+      s.wi = Vec3(-wo.x, -wo.y, wo.z);
+      s.weight = fresnel(wo.z) * sqr(geometry_G1(wo.z)) / p_spec;
+      s.is_delta = true;
+      return s;
+    }
+    s.wi = ggx::reflect(wo, ggx::sample_visible_normal(wo, alpha_, u));
+  } else {
+    s.wi = sample_cosine_hemisphere(u);
+  }
+  if (s.wi.z <= 0.0f) return BsdfSample{};
+  s.pdf = pdf(wo, s.wi);
+  if (!(s.pdf > 0.0f)) return BsdfSample{};
+  s.weight = eval(wo, s.wi) / s.pdf;
+  return s;
+}
+
+}  // namespace torrance

@@ -1,0 +1,331 @@
+#include "torrance/integrator.h"
+
+#include "torrance/cook_torrance.h"
+#include "torrance/sampling.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <xmmintrin.h>
+#include <pmmintrin.h>
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+namespace torrance {
+
+void RenderSettings::validate() const {
+  if (width <= 0 || height <= 0 || width > 65536 || height > 65536)
+    throw std::invalid_argument("image width and height must be in [1, 65536]");
+  if (samples <= 0) throw std::invalid_argument("samples must be >= 1");
+  if (max_bounces < 0 || max_bounces > 1024) throw std::invalid_argument("max_bounces must be in [0, 1024]");
+  if (!(filter_width > 0.0f) || !std::isfinite(filter_width) || filter_width > 64.0f)
+    throw std::invalid_argument("filter_width must be in (0, 64] pixels");
+  if (threads < 0) throw std::invalid_argument("threads must be >= 0 (0 = all cores)");
+  if (window) {
+    const auto& w = *window;
+    if (w[0] < 0 || w[1] < 0 || w[2] > width || w[3] > height || w[0] >= w[2] || w[1] >= w[3])
+      throw std::invalid_argument("window must satisfy 0 <= x0 < x1 <= width and 0 <= y0 < y1 <= height");
+  }
+}
+
+namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+// Offsets a ray origin off the surface along the geometric normal, on the side `dir` leaves to.
+Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& dir) {
+  const float scale = std::max(1.0f, std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))));
+  const float eps = 2e-5f * scale;
+  return p + (glm::dot(ng, dir) >= 0.0f ? eps : -eps) * ng;
+}
+
+// A shading normal with which the mirror reflection of wo stays above the geometric surface
+// (ng faces wo). Interpolated normals that fail are tilted towards ng, just enough.
+Vec3 valid_shading_normal(const Vec3& ng, const Vec3& ns, const Vec3& wo) {
+  const float threshold = std::min(0.9f * glm::dot(ng, wo), 0.01f);
+  auto reflection_ok = [&](const Vec3& n) { return glm::dot(ng, 2.0f * glm::dot(wo, n) * n - wo) >= threshold; };
+  if (reflection_ok(ns)) return ns;
+  float lo = 0.0f, hi = 1.0f;
+  for (int i = 0; i < 16; ++i) {
+    const float mid = 0.5f * (lo + hi);
+    const Vec3 n = glm::mix(ns, ng, mid);
+    const float len = glm::length(n);
+    if (len > 1e-6f && reflection_ok(n / len)) hi = mid;
+    else lo = mid;
+  }
+  const Vec3 n = glm::mix(ns, ng, hi);
+  const float len = glm::length(n);
+  return len > 1e-6f ? n / len : ng;
+}
+
+struct PathContext {
+  const Scene& scene;
+  const Lights& lights;
+  const RenderSettings& settings;
+  std::vector<CookTorranceBsdf> bsdfs;  // one per material, built once per render
+};
+
+// Radiance along a camera ray; alpha is 0 where the background is transparent and seen directly.
+Vec3 trace_path(const PathContext& ctx, Ray ray, Rng& rng, float& alpha) {
+  const Lights& lights = ctx.lights;
+  const size_t num_lights = lights.count();
+  const float light_selection = lights.selection_probability();
+  Vec3 L(0.0f), throughput(1.0f);
+  Vec3 prev_position(0.0f), prev_normal(0.0f);
+  float prev_pdf = 0.0f;
+  bool prev_delta = true;
+  alpha = 1.0f;
+
+  for (int bounce = 0;; ++bounce) {
+    SurfaceHit hit;
+    const bool found = ctx.scene.intersect(ray, hit);
+    if (bounce == 0) {
+      if (!found) {
+        if (ctx.settings.transparent_background) {
+          alpha = 0.0f;
+          return Vec3(0.0f);
+        }
+        return lights.world_radiance();
+      }
+    } else {
+      L += throughput * lights.emission_along_ray(prev_position, prev_normal, ray.dir, found ? hit.t : kInfinity,
+                                                   !found, prev_pdf, prev_delta);
+      if (!found) break;
+    }
+
+    // Orient the frame towards the viewer (two-sided surfaces) and keep reflections valid.
+    const Vec3 wo_world = -ray.dir;
+    Vec3 ng = hit.geometric_normal, ns = hit.shading_normal;
+    if (glm::dot(ng, wo_world) < 0.0f) {
+      ng = -ng;
+      ns = -ns;
+    }
+    ns = valid_shading_normal(ng, ns, wo_world);
+
+    // Emissive surfaces emit from both faces; they are found by BSDF sampling only (full weight).
+    const Material& material = ctx.scene.material(hit.material);
+    L += throughput * material.emission;
+    if (bounce > ctx.settings.max_bounces) break;
+
+    const Frame frame(ns);
+    const Vec3 wo = frame.to_local(wo_world);
+    const CookTorranceBsdf& bsdf = ctx.bsdfs[hit.material];
+
+    // Next-event estimation: one light, chosen uniformly, MIS-weighted against BSDF sampling.
+    if (num_lights > 0) {
+      const size_t index = std::min(size_t(rng.next_1d() * float(num_lights)), num_lights - 1);
+      const LightSample ls = lights.sample(index, hit.position, ns, rng.next_2d());
+      if (ls.valid() && glm::dot(ls.wi, ng) > 0.0f) {
+        const Vec3 wi = frame.to_local(ls.wi);
+        const Vec3 f = bsdf.eval(wo, wi);
+        if (max_component(f) > 0.0f) {
+          const Vec3 origin = offset_origin(hit.position, ng, ls.wi);
+          const float tmax = std::isinf(ls.distance) ? kInfinity : ls.distance * (1.0f - 1e-4f);
+          if (!ctx.scene.occluded(origin, ls.wi, 0.0f, tmax)) {
+            const float mis = ls.pdf > 0.0f ? power_heuristic(light_selection * ls.pdf, bsdf.pdf(wo, wi)) : 1.0f;
+            L += throughput * f * ls.weight * (mis / light_selection);
+          }
+        }
+      }
+    }
+
+    // Continue the path by sampling the BSDF.
+    const float u_lobe = rng.next_1d();
+    const BsdfSample bs = bsdf.sample(wo, u_lobe, rng.next_2d());
+    if (!bs.valid()) break;
+    const Vec3 wi_world = frame.to_world(bs.wi);
+    if (glm::dot(wi_world, ng) <= 0.0f) break;  // below the geometric surface: no transmission
+    throughput *= bs.weight;
+
+    // Russian roulette, from the third vertex on, continuing with probability sqrt(max throughput).
+    if (bounce >= 2) {
+      const float q = std::min(std::sqrt(max_component(throughput)), 1.0f);
+      if (!(q > 0.0f) || rng.next_1d() >= q) break;
+      throughput /= q;
+    }
+    if (!(max_component(throughput) > 0.0f)) break;
+
+    prev_pdf = bs.pdf;
+    prev_delta = bs.is_delta;
+    prev_normal = ns;
+    ray.origin = offset_origin(hit.position, ng, wi_world);
+    prev_position = ray.origin;
+    ray.dir = wi_world;
+    ray.tmin = 0.0f;
+    ray.tmax = kInfinity;
+  }
+  return L;
+}
+
+struct Tile {
+  int x0, y0, x1, y1;
+};
+
+// Per-pixel accumulation of RGBA sums and sample counts, for a window of the frame.
+struct Film {
+  int width, height;
+  std::vector<double> sums;  // r, g, b, a, count
+
+  Film(int w, int h) : width(w), height(h), sums(size_t(w) * h * 5, 0.0) {}
+  Image resolve() const {
+    Image img{width, height, std::vector<float>(size_t(width) * height * 4, 0.0f)};
+    for (size_t i = 0, n = size_t(width) * height; i < n; ++i) {
+      const double count = sums[5 * i + 4];
+      if (count > 0)
+        for (int c = 0; c < 4; ++c) img.rgba[4 * i + c] = float(sums[5 * i + c] / count);
+    }
+    return img;
+  }
+};
+
+class FlushDenormals {  // FTZ/DAZ for the render threads: denormals cost a lot and mean nothing here
+ public:
+  FlushDenormals() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | 0x8040); }
+  ~FlushDenormals() { _mm_setcsr(saved_); }
+
+ private:
+  unsigned saved_;
+};
+
+}  // namespace
+
+RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCallbacks& callbacks) {
+  settings.validate();
+  const auto start = std::chrono::steady_clock::now();
+  const Camera camera(scene.camera(), settings.width, settings.height, settings.pixel_aspect_x,
+                      settings.pixel_aspect_y);
+  if (scene.num_materials() == 0) scene.add_material(Material{});
+  scene.commit();
+
+  PathContext ctx{scene, scene.lights(), settings, {}};
+  ctx.bsdfs.reserve(scene.num_materials());
+  for (size_t i = 0; i < scene.num_materials(); ++i) ctx.bsdfs.emplace_back(scene.material(uint32_t(i)));
+  const PixelFilter filter(settings.filter_width);
+
+  const std::array<int, 4> window = settings.window.value_or(std::array<int, 4>{0, 0, settings.width, settings.height});
+  Film film(window[2] - window[0], window[3] - window[1]);
+  constexpr int kTileSize = 16;
+  std::vector<Tile> tiles;
+  for (int y = window[1]; y < window[3]; y += kTileSize)
+    for (int x = window[0]; x < window[2]; x += kTileSize)
+      tiles.push_back({x, y, std::min(x + kTileSize, window[2]), std::min(y + kTileSize, window[3])});
+
+  std::atomic<bool> stop{false};
+  std::atomic<uint64_t> nonfinite{0};
+  RenderResult result;
+
+  auto render_pass = [&](int first_sample, int num_samples) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
+      FlushDenormals ftz;
+      uint64_t bad = 0;
+      for (size_t t = r.begin(); t != r.end() && !stop.load(std::memory_order_relaxed); ++t) {
+        const Tile& tile = tiles[t];
+        for (int y = tile.y0; y < tile.y1; ++y)
+          for (int x = tile.x0; x < tile.x1; ++x) {
+            double* acc = &film.sums[5 * (size_t(y - window[1]) * film.width + (x - window[0]))];
+            const uint32_t pixel = uint32_t(y) * uint32_t(settings.width) + uint32_t(x);
+            for (int s = first_sample; s < first_sample + num_samples; ++s) {
+              Rng rng(pixel, uint32_t(s), settings.seed);
+              const float dx = filter.sample_offset(rng.next_1d());
+              const float dy = filter.sample_offset(rng.next_1d());
+              float alpha = 1.0f;
+              Vec3 L = trace_path(ctx, camera.generate_ray(x + 0.5f + dx, y + 0.5f + dy), rng, alpha);
+              if (!is_finite(L)) {  // never expected; counted so tests can prove it never happens
+                ++bad;
+                L = Vec3(0.0f);
+              }
+              acc[0] += L.r;
+              acc[1] += L.g;
+              acc[2] += L.b;
+              acc[3] += alpha;
+              acc[4] += 1.0;
+            }
+          }
+      }
+      if (bad) nonfinite += bad;
+    });
+  };
+
+  std::mutex mutex;
+  std::condition_variable wake;
+  bool finished = false;
+  bool have_pass = false;
+  Image pass_image;
+  int pass_samples = 0;
+  std::exception_ptr worker_error;
+
+  std::thread worker([&] {
+    try {
+      tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
+      int done = 0, pass_size = 1;
+      while (done < settings.samples && !stop) {
+        const int n = std::min(pass_size, settings.samples - done);
+        const auto t0 = std::chrono::steady_clock::now();
+        arena.execute([&] { render_pass(done, n); });
+        if (stop) break;
+        done += n;
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        // Aim for passes of about half a second, growing at most twofold.
+        const double per_sample = std::max(seconds / n, 1e-6);
+        pass_size = std::max(1, std::min(2 * n, int(0.5 / per_sample)));
+        Image snapshot = film.resolve();
+        std::lock_guard<std::mutex> lock(mutex);
+        pass_image = std::move(snapshot);
+        pass_samples = done;
+        have_pass = true;
+        wake.notify_all();
+      }
+      std::lock_guard<std::mutex> lock(mutex);
+      result.samples_done = done;
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(mutex);
+      worker_error = std::current_exception();
+    }
+    std::lock_guard<std::mutex> lock(mutex);
+    finished = true;
+    wake.notify_all();
+  });
+
+  try {
+    for (;;) {
+      std::unique_lock<std::mutex> lock(mutex);
+      wake.wait_for(lock, std::chrono::milliseconds(50), [&] { return finished || have_pass; });
+      const bool worker_done = finished;
+      Image image;
+      int samples = 0;
+      const bool deliver = have_pass;
+      if (deliver) {
+        image = std::move(pass_image);
+        samples = pass_samples;
+        have_pass = false;
+      }
+      lock.unlock();
+      if (deliver && callbacks.on_pass) callbacks.on_pass(image, samples, settings.samples);
+      if (!stop && callbacks.should_stop && callbacks.should_stop()) {
+        stop = true;
+        result.stopped = true;
+      }
+      if (worker_done) break;
+    }
+  } catch (...) {
+    stop = true;
+    worker.join();
+    throw;
+  }
+  worker.join();
+  if (worker_error) std::rethrow_exception(worker_error);
+
+  result.image = film.resolve();
+  result.nonfinite_samples = nonfinite.load();
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace torrance

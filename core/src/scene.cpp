@@ -1,0 +1,212 @@
+#include "torrance/scene.h"
+
+#include <embree3/rtcore.h>
+
+#include <stdexcept>
+
+namespace torrance {
+
+struct Scene::Mesh {
+  std::vector<Vec3> positions;
+  std::vector<glm::uvec3> triangles;
+  std::vector<Vec3> corner_normals;  // empty => flat
+  std::vector<uint32_t> material_ids;
+};
+
+void embree_error_callback(void* user, int code, const char* message) {
+  auto* scene = static_cast<Scene*>(user);
+  scene->embree_error_ = "Embree error " + std::to_string(code) + ": " + (message ? message : "");
+}
+
+namespace {
+RTCDevice device_of(void* d) { return static_cast<RTCDevice>(d); }
+RTCScene scene_of(void* s) { return static_cast<RTCScene>(s); }
+void error_trampoline(void* user, RTCError code, const char* message) {
+  embree_error_callback(user, int(code), message);
+}
+}  // namespace
+
+Scene::Scene() {
+  device_ = rtcNewDevice("verbose=0");
+  if (!device_) throw std::runtime_error("Embree: could not create a device (rtcNewDevice failed)");
+  rtcSetDeviceErrorFunction(device_of(device_), error_trampoline, this);
+  scene_ = rtcNewScene(device_of(device_));
+  rtcSetSceneFlags(scene_of(scene_), RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(scene_of(scene_), RTC_BUILD_QUALITY_MEDIUM);
+  check_device("creating the scene");
+}
+
+Scene::~Scene() {
+  if (scene_) rtcReleaseScene(scene_of(scene_));
+  if (device_) rtcReleaseDevice(device_of(device_));
+}
+
+void Scene::check_device(const char* during) const {
+  if (!embree_error_.empty()) {
+    std::string message = embree_error_ + " (while " + during + ")";
+    embree_error_.clear();
+    throw std::runtime_error(message);
+  }
+}
+
+uint32_t Scene::add_material(const Material& m) {
+  if (!is_finite(m.base_color) || !is_finite(m.emission) || !std::isfinite(m.metallic) ||
+      !std::isfinite(m.roughness) || !std::isfinite(m.specular))
+    throw std::invalid_argument("material values must be finite (no NaN or Inf)");
+  if (m.metallic < 0.0f || m.metallic > 1.0f || m.roughness < 0.0f || m.roughness > 1.0f)
+    throw std::invalid_argument("material metallic and roughness must lie in [0, 1]");
+  if (m.specular < 0.0f) throw std::invalid_argument("material specular must be >= 0");
+  Material clean = m;
+  clean.base_color = glm::clamp(m.base_color, Vec3(0.0f), Vec3(1.0f));
+  clean.emission = glm::max(m.emission, Vec3(0.0f));
+  materials_.push_back(clean);
+  return uint32_t(materials_.size() - 1);
+}
+
+uint32_t Scene::add_mesh(const float* positions, size_t num_vertices, const int64_t* triangles,
+                         size_t num_triangles, const float* corner_normals, const int64_t* material_ids) {
+  auto mesh = std::make_unique<Mesh>();
+  if (num_triangles > 0 && num_vertices == 0) throw std::invalid_argument("mesh has triangles but no vertices");
+  if (num_vertices > UINT32_MAX || num_triangles > UINT32_MAX)
+    throw std::invalid_argument("mesh is too large (more than 2^32 vertices or triangles)");
+  mesh->positions.resize(num_vertices);
+  for (size_t i = 0; i < num_vertices; ++i) {
+    const Vec3 p(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
+    if (!is_finite(p))
+      throw std::invalid_argument("mesh vertex " + std::to_string(i) + " has a NaN or Inf coordinate");
+    mesh->positions[i] = p;
+  }
+  mesh->triangles.resize(num_triangles);
+  for (size_t i = 0; i < num_triangles; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      const int64_t v = triangles[3 * i + k];
+      if (v < 0 || uint64_t(v) >= num_vertices)
+        throw std::invalid_argument("triangle " + std::to_string(i) + " uses vertex index " + std::to_string(v) +
+                                    ", outside [0, " + std::to_string(num_vertices) + ")");
+      mesh->triangles[i][k] = uint32_t(v);
+    }
+  }
+  if (corner_normals) {
+    mesh->corner_normals.resize(3 * num_triangles);
+    for (size_t i = 0; i < 3 * num_triangles; ++i) {
+      const Vec3 n(corner_normals[3 * i], corner_normals[3 * i + 1], corner_normals[3 * i + 2]);
+      if (!is_finite(n))
+        throw std::invalid_argument("normal of triangle corner " + std::to_string(i) + " has NaN or Inf");
+      const float len = glm::length(n);
+      mesh->corner_normals[i] = len > 1e-12f ? n / len : Vec3(0.0f);  // zero => flat at that point
+    }
+  }
+  mesh->material_ids.assign(num_triangles, 0);
+  if (material_ids) {
+    for (size_t i = 0; i < num_triangles; ++i) {
+      const int64_t m = material_ids[i];
+      if (m < 0 || uint64_t(m) >= materials_.size())
+        throw std::invalid_argument("triangle " + std::to_string(i) + " uses material " + std::to_string(m) +
+                                    " but the scene has " + std::to_string(materials_.size()) + " materials");
+      mesh->material_ids[i] = uint32_t(m);
+    }
+  } else if (num_triangles > 0 && materials_.empty()) {
+    throw std::invalid_argument("add a material before adding a mesh");
+  }
+
+  const uint32_t id = uint32_t(meshes_.size());
+  if (num_triangles > 0) {
+    RTCGeometry geom = rtcNewGeometry(device_of(device_), RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                           3 * sizeof(float), num_vertices));
+    auto* ib = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                              3 * sizeof(uint32_t), num_triangles));
+    if (!vb || !ib) {
+      rtcReleaseGeometry(geom);
+      check_device("allocating mesh buffers");
+      throw std::runtime_error("Embree could not allocate mesh buffers");
+    }
+    std::copy_n(&mesh->positions[0].x, 3 * num_vertices, vb);
+    std::copy_n(&mesh->triangles[0].x, 3 * num_triangles, ib);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometryByID(scene_of(scene_), geom, id);
+    rtcReleaseGeometry(geom);
+    check_device("committing a mesh");
+    dirty_ = true;
+  }
+  meshes_.push_back(std::move(mesh));
+  return id;
+}
+
+size_t Scene::num_triangles() const {
+  size_t n = 0;
+  for (const auto& m : meshes_) n += m->triangles.size();
+  return n;
+}
+
+void Scene::commit() {
+  if (!dirty_) return;
+  rtcCommitScene(scene_of(scene_));
+  check_device("building the BVH");
+  dirty_ = false;
+}
+
+bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  rh.ray.org_x = ray.origin.x;
+  rh.ray.org_y = ray.origin.y;
+  rh.ray.org_z = ray.origin.z;
+  rh.ray.dir_x = ray.dir.x;
+  rh.ray.dir_y = ray.dir.y;
+  rh.ray.dir_z = ray.dir.z;
+  rh.ray.tnear = ray.tmin;
+  rh.ray.tfar = ray.tmax;
+  rh.ray.time = 0.0f;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_of(scene_), &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+
+  const Mesh& mesh = *meshes_[rh.hit.geomID];
+  const uint32_t prim = rh.hit.primID;
+  const glm::uvec3 tri = mesh.triangles[prim];
+  const Vec3 &p0 = mesh.positions[tri.x], &p1 = mesh.positions[tri.y], &p2 = mesh.positions[tri.z];
+  const float u = rh.hit.u, v = rh.hit.v, w = 1.0f - u - v;
+  hit.t = rh.ray.tfar;
+  hit.position = w * p0 + u * p1 + v * p2;  // interpolated, more accurate than origin + t * dir
+  Vec3 ng = glm::cross(p1 - p0, p2 - p0);
+  const float ng_len = glm::length(ng);
+  ng = ng_len > 0.0f ? ng / ng_len : -ray.dir;
+  hit.geometric_normal = ng;
+  hit.shading_normal = ng;
+  if (!mesh.corner_normals.empty()) {
+    const Vec3 n = w * mesh.corner_normals[3 * prim] + u * mesh.corner_normals[3 * prim + 1] +
+                   v * mesh.corner_normals[3 * prim + 2];
+    const float len = glm::length(n);
+    if (len > 1e-6f && std::isfinite(len)) hit.shading_normal = n / len;
+  }
+  hit.material = mesh.material_ids[prim];
+  return true;
+}
+
+bool Scene::occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray;
+  ray.org_x = origin.x;
+  ray.org_y = origin.y;
+  ray.org_z = origin.z;
+  ray.dir_x = dir.x;
+  ray.dir_y = dir.y;
+  ray.dir_z = dir.z;
+  ray.tnear = tmin;
+  ray.tfar = tmax;
+  ray.time = 0.0f;
+  ray.mask = 0xFFFFFFFFu;
+  ray.id = 0;
+  ray.flags = 0;
+  rtcOccluded1(scene_of(scene_), &context, &ray);
+  return ray.tfar < 0.0f;
+}
+
+}  // namespace torrance
