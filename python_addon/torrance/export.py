@@ -13,8 +13,11 @@ import numpy as np
 
 from .materials import MaterialTable
 
+# Types whose geometry is a mesh. Only 'MESH' entries of the depsgraph are exported; the
+# others reach us as MESH instances of their evaluated geometry (see export_scene).
 MESH_TYPES = {'MESH', 'CURVE', 'SURFACE', 'META', 'FONT'}
 SUPPORTED_LIGHTS = {'SUN', 'POINT'}
+MAX_COORDINATE = 1e18          # metres; anything farther is treated like Inf
 _VISIBILITY = ("visible_camera", "visible_diffuse", "visible_glossy",
                "visible_transmission", "visible_shadow")
 
@@ -26,6 +29,7 @@ class ExportStats:
         self.lights = 0
         self.materials = 0
         self.seconds = 0.0
+        self.names = []          # exported mesh objects, one entry per instance
 
     def __str__(self):
         return (f"{self.objects} objects, {self.triangles} triangles, {self.lights} lights, "
@@ -109,8 +113,10 @@ def world_mesh(local, matrix):
         pos = local.positions @ lin.T + m[:3, 3]
     tris = local.triangles
 
-    # Triangles touching a NaN/Inf vertex (before or after the transform) are dropped.
-    bad_vertex = ~np.isfinite(pos).all(axis=1)
+    # Triangles touching a NaN/Inf vertex (before or after the transform) are dropped, and
+    # so are absurdly far vertices (Blender clamps an Inf typed into a field to FLT_MAX).
+    with np.errstate(all="ignore"):
+        bad_vertex = ~(np.abs(pos) < MAX_COORDINATE).all(axis=1)
     keep = np.ones(len(tris), dtype=bool)
     dropped_nonfinite = 0
     if bad_vertex.any():
@@ -330,6 +336,11 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
                 reporter.warning(f"Torrance does not render objects of type {kind} "
                                  f"(e.g. '{obj.name}')")
             continue
+        if kind != 'MESH':
+            # As Cycles 3.x: curves, surfaces, metaballs and text are evaluated to a mesh that
+            # the depsgraph lists as a separate MESH instance (parent = the object). Only that
+            # one is exported, or the geometry would be there twice.
+            continue
         if not inst.is_instance and not inst.show_self:
             continue
         if not _is_visible(obj):
@@ -338,20 +349,20 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
         matrix = inst.matrix_world.copy()        # the instance struct dies after this step
         name = obj.name
         slots = [slot.material for slot in obj.material_slots]
+        # Instances of one mesh (collection instances, particles, geometry nodes) are read once.
         key = (obj.as_pointer(), obj.data.as_pointer() if obj.data is not None else 0)
         if key in geometry_cache:
             local = geometry_cache[key]
         else:
             local = read_local_mesh(obj)
-            if kind == 'MESH':
-                geometry_cache[key] = local
+            geometry_cache[key] = local
         if local is None:
             continue
 
         pos, tris, corner, keep, dropped = world_mesh(local, matrix)
         if dropped:
             reporter.warning(f"Object '{name}': {dropped} triangle(s) with NaN/Inf vertex "
-                             f"positions dropped")
+                             f"positions dropped (or vertices beyond {MAX_COORDINATE:g} m)")
         if len(tris) == 0:
             continue
 
@@ -365,6 +376,7 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
         tc_scene.add_mesh(pos, tris, corner_normals=corner,
                           material_indices=np.ascontiguousarray(mat_idx, dtype=np.int32))
         stats.objects += 1
+        stats.names.append(name)
         stats.triangles += len(tris)
 
     stats.materials = len(materials.indices) + (1 if materials._default is not None else 0)

@@ -119,7 +119,11 @@ def _follow(socket):
 
 
 def _node_label(node):
-    return node.label or node.name
+    """'Name' or 'Name' (Type) when the name does not say the type."""
+    name = node.label or node.name
+    if name == node.bl_label or name.startswith(node.bl_label + "."):
+        return f"'{name}'"
+    return f"'{name}' ({node.bl_label})"
 
 
 class MaterialReader:
@@ -139,9 +143,9 @@ class MaterialReader:
             if src_node.type in _CONSTANT_NODES and not src_node.mute:
                 return source.default_value
             self.reporter.warning(
-                f"Material '{mat.name}': input '{name}' of '{_node_label(node)}' is linked to "
-                f"'{_node_label(src_node)}' ({src_node.bl_label}), which Torrance does not "
-                f"support; using the socket's own value")
+                f"Material '{mat.name}': input '{name}' of {_node_label(node)} is linked to "
+                f"{_node_label(src_node)}, which Torrance does not support; using the "
+                f"socket's own value")
         return socket.default_value
 
     def read(self, mat):
@@ -177,7 +181,7 @@ class MaterialReader:
 
         node = source.node
         if node.mute:
-            return self._neutral(mat, f"the surface node '{_node_label(node)}' is muted")
+            return self._neutral(mat, f"the surface node {_node_label(node)} is muted")
         kind = node.bl_idname
         if kind == 'ShaderNodeBsdfPrincipled':
             return self._principled(mat, node)
@@ -186,7 +190,7 @@ class MaterialReader:
         if kind == 'ShaderNodeEmission':
             return self._emission(mat, node)
         return self._neutral(
-            mat, f"the surface shader '{_node_label(node)}' ({node.bl_label}) is not supported "
+            mat, f"the surface shader {_node_label(node)} is not supported "
                  f"(Torrance reads Principled BSDF, Diffuse BSDF and Emission)")
 
     def _principled(self, mat, node):

@@ -12,6 +12,11 @@ from .materials import Reporter
 _core = None
 _core_error = None
 
+# (level, message) pairs reported by the last render (for tests and scripting); also
+# its stats: samples_done, stopped, seconds, export statistics.
+last_messages = []
+last_stats = {}
+
 
 def load_core():
     """The native module torrance_core; raises RuntimeError with a clear message if missing."""
@@ -131,6 +136,9 @@ class _Session:
 def render(engine, depsgraph):
     """RenderEngine.render(): never raises; problems become engine reports."""
     reporter = Reporter(engine)
+    last_messages.clear()
+    last_stats.clear()
+    reporter.messages = last_messages
     try:
         _render(engine, depsgraph, reporter)
     except export.Cancelled:
@@ -158,6 +166,9 @@ def _render(engine, depsgraph, reporter):
     tc_scene, stats = export.export_scene(tc, depsgraph, reporter, engine=engine,
                                           should_stop=session.should_stop)
     print(f"Torrance: {stats}")
+    last_stats.update(objects=stats.objects, triangles=stats.triangles, lights=stats.lights,
+                      materials=stats.materials, export_seconds=stats.seconds,
+                      object_names=list(stats.names))
 
     threads = int(rd.threads) if rd.threads_mode == 'FIXED' else 0
     settings = tc.RenderSettings(
@@ -187,6 +198,8 @@ def _render(engine, depsgraph, reporter):
     msg = f"Torrance | {result.samples_done}/{ts.samples} samples | Time {_format_time(result.seconds)}"
     if result.stopped:
         msg += " | stopped"
+    last_stats.update(samples_done=int(result.samples_done), stopped=bool(result.stopped),
+                      seconds=float(result.seconds))
     engine.update_progress(1.0)
     engine.update_stats("", msg)
     print(msg)

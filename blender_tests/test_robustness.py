@@ -1,0 +1,257 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Awkward scenes render without crashing, without NaN/Inf, and say what they skipped.
+
+Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_tests/test_robustness.py
+"""
+
+import math
+import os
+import sys
+
+import bpy
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import tutil  # noqa: E402
+from tutil import check  # noqa: E402
+
+W, H, SAMPLES = 64, 48, 4
+
+
+def base_scene(world=(0.2, 0.3, 0.4)):
+    scene = tutil.clear_scene()
+    tutil.setup_render(scene, width=W, height=H, samples=SAMPLES)
+    tutil.add_camera(scene)
+    if world is not None:
+        tutil.set_world(scene, world)
+    return scene
+
+
+def render_case(name, scene, directory, expect=(), levels=('WARNING', 'INFO'), expect_error=None):
+    """Renders; checks the result is finite and that each `expect` substring was reported."""
+    error = None
+    try:
+        img, seconds = tutil.render(scene, directory, name)
+    except RuntimeError as exc:       # an ERROR report makes the operator raise
+        error = str(exc)
+        img, seconds = None, 0.0
+    messages = tutil.last_messages()
+    print(f"[{name}] {seconds:.2f} s, reports: {messages}" + (f", error: {error}" if error else ""))
+    if expect_error is not None:
+        check(error is not None and expect_error in error,
+              f"{name}: expected an error containing {expect_error!r}, got {error!r}")
+        return None
+    check(error is None, f"{name}: the render failed: {error}")
+    check(img.shape == (H, W, 4), f"{name}: image shape {img.shape}")
+    check(np.isfinite(img).all(), f"{name}: NaN/Inf in the image")
+    for text in expect:
+        check(any(text in m for level, m in messages if level in levels),
+              f"{name}: no report containing {text!r} in {messages}")
+    stats = tutil.addon().render.last_stats
+    check(stats.get("samples_done") == SAMPLES, f"{name}: samples_done {stats}")
+    return img
+
+
+def main():
+    tutil.addon()
+    d = tutil.tempdir()
+    world = np.array([0.2, 0.3, 0.4])
+
+    # 1. Empty scene: only the world.
+    scene = base_scene()
+    img = render_case("empty", scene, d)
+    check(np.allclose(img[:, :, :3], world, atol=2e-3), f"empty: not the world colour {img.mean((0, 1))}")
+    check(np.allclose(img[:, :, 3], 1.0), "empty: alpha is not 1")
+
+    # 1b. Empty scene, world without nodes; film transparent.
+    scene = base_scene(world=None)
+    tutil.set_world(scene, (0.5, 0.25, 0.125), use_nodes=False)
+    img = render_case("world_no_nodes", scene, d)
+    check(np.allclose(img[:, :, :3], (0.5, 0.25, 0.125), atol=2e-3), f"world colour {img.mean((0, 1))}")
+    scene.render.film_transparent = True
+    img = render_case("transparent", scene, d)
+    check(np.abs(img).max() < 1e-6, "transparent: the background is not RGBA 0")
+
+    # 1c. No world at all: black.
+    scene = base_scene(world=None)
+    img = render_case("no_world", scene, d)
+    check(np.abs(img[:, :, :3]).max() < 1e-6, "no world: not black")
+
+    # 1d. World with a Sky Texture: unsupported, reported.
+    scene = base_scene()
+    nt = scene.world.node_tree
+    sky = nt.nodes.new("ShaderNodeTexSky")
+    nt.links.new(sky.outputs["Color"], nt.nodes["Background"].inputs["Color"])
+    render_case("world_sky", scene, d, expect=["Sky Texture"])
+
+    # 2. A mesh without faces (vertices and edges only): skipped.
+    scene = base_scene()
+    me = bpy.data.meshes.new("Edges")
+    me.from_pydata([(0, 0, 0), (1, 0, 0), (1, 1, 0)], [(0, 1), (1, 2)], [])
+    ob = bpy.data.objects.new("Edges", me)
+    scene.collection.objects.link(ob)
+    empty_mesh = bpy.data.objects.new("NoGeometry", bpy.data.meshes.new("NoGeometry"))
+    scene.collection.objects.link(empty_mesh)
+    img = render_case("no_faces", scene, d)
+    check(np.allclose(img[:, :, :3], world, atol=2e-3), "no_faces: something was rendered")
+
+    # 3. An object without material, one with an empty slot, a material index past the slots.
+    scene = base_scene()
+    tutil.add_sun(scene, strength=3.0)
+    tutil.uv_sphere(scene, "NoMaterial", (-1.2, 0, 0.6), 0.6)
+    ob = tutil.uv_sphere(scene, "EmptySlot", (1.2, 0, 0.6), 0.6)
+    ob.data.materials.append(None)
+    ob2 = tutil.plane(scene, "Floor", 8.0, material=tutil.principled("Floor"))
+    ob2.data.polygons[0].material_index = 5          # Cycles clamps it to the last slot
+    img = render_case("no_material", scene, d)
+    check(img[:, :, :3].mean() > world.mean() * 0.5, "no_material: implausibly dark")
+
+    # 4. A mesh with a NaN vertex (and one with an Inf vertex): its triangles are dropped.
+    scene = base_scene()
+    tutil.add_sun(scene)
+    ob = tutil.uv_sphere(scene, "NaNSphere", (0, 0, 0.6), 0.6, tutil.principled("Red", (0.8, 0.1, 0.1)))
+    me = ob.data
+    co = np.empty(len(me.vertices) * 3, dtype=np.float32)
+    me.vertices.foreach_get("co", co)
+    co[3 * 10] = math.nan
+    co[3 * 40 + 1] = math.inf       # foreach_set keeps Inf (typing it in a field clamps it)
+    co[3 * 70 + 2] = -3.0e38        # a finite but absurd coordinate counts as Inf
+    me.vertices.foreach_set("co", co)
+    me.update()
+    me.calc_loop_triangles()
+    tris = np.empty(len(me.loop_triangles) * 3, dtype=np.int32)
+    me.loop_triangles.foreach_get("vertices", tris)
+    expected = int(np.isin(tris.reshape(-1, 3), [10, 40, 70]).any(axis=1).sum())
+    img = render_case("nan_vertex", scene, d, expect=["NaN/Inf vertex"])
+    msg = [m for _, m in tutil.last_messages() if "NaN/Inf vertex" in m][0]
+    check(f"'NaNSphere': {expected} triangle(s)" in msg,
+          f"nan_vertex: expected {expected} dropped triangles: {msg}")
+    centre = img[H // 2 - 2:H // 2 + 2, W // 2 - 2:W // 2 + 2, :3].mean(axis=(0, 1))
+    check(centre[0] > 2 * centre[2], f"nan_vertex: the red sphere is missing: {centre}")
+
+    # 5. Unsupported nodes: a Principled Base Color from a Noise Texture; a Glass BSDF surface;
+    #    an Emission surface (supported); a material without output; a Mix Shader.
+    scene = base_scene()
+    tutil.add_sun(scene)
+    noise_mat = tutil.principled("NoiseMat", (0.2, 0.6, 0.2))
+    nt = noise_mat.node_tree
+    noise = nt.nodes.new("ShaderNodeTexNoise")
+    nt.links.new(noise.outputs["Color"], nt.nodes["Principled BSDF"].inputs["Base Color"])
+    nt.links.new(noise.outputs["Fac"], nt.nodes["Principled BSDF"].inputs["Roughness"])
+    glass_mat = bpy.data.materials.new("GlassMat")
+    glass_mat.use_nodes = True
+    nt = glass_mat.node_tree
+    nt.nodes.remove(nt.nodes["Principled BSDF"])
+    glass = nt.nodes.new("ShaderNodeBsdfGlass")
+    nt.links.new(glass.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
+    emit_mat = bpy.data.materials.new("EmitMat")
+    emit_mat.use_nodes = True
+    nt = emit_mat.node_tree
+    nt.nodes.remove(nt.nodes["Principled BSDF"])
+    emit = nt.nodes.new("ShaderNodeEmission")
+    emit.inputs["Color"].default_value = (1.0, 0.5, 0.25, 1.0)
+    emit.inputs["Strength"].default_value = 2.0
+    nt.links.new(emit.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
+    no_output = bpy.data.materials.new("NoOutputMat")
+    no_output.use_nodes = True
+    no_output.node_tree.nodes.remove(no_output.node_tree.nodes["Material Output"])
+    mix_mat = bpy.data.materials.new("MixMat")
+    mix_mat.use_nodes = True
+    nt = mix_mat.node_tree
+    mix = nt.nodes.new("ShaderNodeMixShader")
+    nt.links.new(nt.nodes["Principled BSDF"].outputs[0], mix.inputs[1])
+    nt.links.new(mix.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
+    for i, mat in enumerate((noise_mat, glass_mat, emit_mat, no_output, mix_mat)):
+        tutil.uv_sphere(scene, mat.name + "Sphere", (-2.4 + 1.2 * i, 0, 0.5), 0.5, mat,
+                        segments=16, rings=8)
+    img = render_case("unsupported_nodes", scene, d, expect=[
+        "'NoiseMat': input 'Base Color'", "Noise Texture", "'NoiseMat': input 'Roughness'",
+        "'GlassMat': the surface shader", "Glass BSDF",
+        "'NoOutputMat': no active Material Output", "'MixMat'", "Mix Shader"])
+    messages = tutil.last_messages()
+    check(not any("EmitMat" in m for _, m in messages), "EmitMat must not be reported")
+    check(sum("'NoiseMat': input 'Base Color'" in m for _, m in messages) == 1,
+          "each material/socket must be reported once")
+    # The emitter is visible: its pixels are at least its radiance (1, .5, .25) x 2.
+    check(img[:, :, 0].max() >= 1.9, f"emission not visible: max R {img[:, :, 0].max()}")
+
+    # 6. Unsupported lights and object types, a negative-scale object, a text and a curve.
+    scene = base_scene()
+    tutil.add_sun(scene)
+    spot = bpy.data.lights.new("Spot", 'SPOT')
+    scene.collection.objects.link(bpy.data.objects.new("Spot", spot))
+    area = bpy.data.lights.new("Area", 'AREA')
+    scene.collection.objects.link(bpy.data.objects.new("Area", area))
+    ob = tutil.uv_sphere(scene, "Mirrored", (0, 0, 0.6), 0.6, tutil.principled("M"))
+    ob.scale = (-1, 1, 1)
+    font = bpy.data.curves.new("Text", 'FONT')
+    font.body = "T"
+    tob = bpy.data.objects.new("Text", font)
+    tob.location = (1.5, 0, 0.2)
+    tob.rotation_euler = (math.radians(90), 0, 0)
+    scene.collection.objects.link(tob)
+    curve = bpy.data.curves.new("Curve", 'CURVE')
+    curve.dimensions = '3D'
+    curve.bevel_depth = 0.1
+    spline = curve.splines.new('POLY')
+    spline.points.add(1)
+    spline.points[0].co = (-2, 0, 0.5, 1)
+    spline.points[1].co = (-1.2, 0, 1.2, 1)
+    scene.collection.objects.link(bpy.data.objects.new("Curve", curve))
+    render_case("lights_and_types", scene, d, expect=["spot lights", "area lights"])
+    stats = tutil.addon().render.last_stats
+    check(sorted(stats["object_names"]) == ["Curve", "Mirrored", "Text"], f"expected 3 mesh objects (sphere, text, curve): {stats}")
+    check(stats["lights"] == 1, f"expected 1 light: {stats}")
+
+    # 7. Hidden objects are not exported; collection instances are.
+    scene = base_scene()
+    hidden = tutil.uv_sphere(scene, "Hidden", (0, 0, 0.6), 0.6)
+    hidden.hide_render = True
+    coll = bpy.data.collections.new("Instanced")
+    src = tutil.uv_sphere(scene, "Source", (0, 0, 0), 0.3, segments=8, rings=4)
+    scene.collection.objects.unlink(src)
+    coll.objects.link(src)
+    for i in range(3):
+        inst = bpy.data.objects.new(f"Instance{i}", None)
+        inst.instance_type = 'COLLECTION'
+        inst.instance_collection = coll
+        inst.location = (i - 1.0, 0, 0.3)
+        scene.collection.objects.link(inst)
+    render_case("instances", scene, d)
+    stats = tutil.addon().render.last_stats
+    check(stats["objects"] == 3, f"expected the 3 instances only: {stats}")
+
+    # 8. Border render: a window of the frame, same pixels as the full render there.
+    scene = base_scene()
+    tutil.add_sun(scene)
+    tutil.uv_sphere(scene, "Ball", (0, 0, 0.6), 0.8, tutil.principled("B", (0.7, 0.3, 0.2)))
+    tutil.plane(scene, "Floor", 8.0, material=tutil.principled("F"))
+    scene.torrance.samples = SAMPLES
+    full = render_case("full_frame", scene, d)
+    rd = scene.render
+    rd.use_border = True
+    rd.use_crop_to_border = False
+    rd.border_min_x, rd.border_max_x = 0.25, 0.75
+    rd.border_min_y, rd.border_max_y = 0.1, 0.6
+    part = render_case("border", scene, d)
+    x0, x1 = int(0.25 * W), int(0.75 * W)
+    y0, y1 = int(0.1 * H), int(0.6 * H)            # from the bottom
+    top0, top1 = H - y1, H - y0                    # rows counted from the top
+    inside = part[top0:top1, x0:x1, :3]
+    ref = full[top0:top1, x0:x1, :3]
+    outside = part.copy()
+    outside[top0:top1, x0:x1] = 0
+    diff = abs(inside.mean() - ref.mean()) / max(ref.mean(), 1e-6)
+    print(f"[border] window mean {inside.mean():.4f} vs full frame {ref.mean():.4f} "
+          f"(rel. diff {diff:.3f}); outside max {np.abs(outside).max():.4f}")
+    check(diff < 0.1, "border: the window differs from the full frame")
+    check(np.abs(outside).max() < 1e-6, "border: pixels outside the border were written")
+    rd.use_border = False
+
+    # 9. No camera: a clear error, no crash.
+    scene = base_scene()
+    bpy.data.objects.remove(scene.camera)
+    render_case("no_camera", scene, d, expect_error="camera")
+
+
+tutil.run(main)
