@@ -11,12 +11,14 @@ namespace {
 std::string model_name(BrdfModel m) {
   switch (m) {
     case BrdfModel::Paper: return "PAPER";
+    case BrdfModel::Principled: return "PRINCIPLED";
   }
   return "PAPER";
 }
 BrdfModel parse_model(const std::string& s) {
   if (s == "PAPER") return BrdfModel::Paper;
-  throw py::value_error("brdf_model must be 'PAPER', got '" + s + "'");
+  if (s == "PRINCIPLED") return BrdfModel::Principled;
+  throw py::value_error("brdf_model must be 'PAPER' or 'PRINCIPLED', got '" + s + "'");
 }
 
 }  // namespace

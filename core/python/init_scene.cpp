@@ -53,19 +53,20 @@ void init_scene(py::module_& m) {
       .def(
           "add_material",
           [](Scene& s, std::array<float, 3> base_color, float metallic, float roughness, float specular,
-             std::array<float, 3> emission, float emission_strength) {
+             std::array<float, 3> emission, float emission_strength, float specular_tint) {
             Material mat;
             mat.base_color = vec3(base_color);
             mat.metallic = metallic;
             mat.roughness = roughness;
             mat.specular = specular;
             mat.emission = vec3(emission) * emission_strength;
+            mat.specular_tint = specular_tint;
             return s.add_material(mat);
           },
           py::arg("base_color") = std::array<float, 3>{0.8f, 0.8f, 0.8f}, py::arg("metallic") = 0.0f,
           py::arg("roughness") = 0.5f, py::arg("specular") = 0.5f,
           py::arg("emission") = std::array<float, 3>{0.0f, 0.0f, 0.0f}, py::arg("emission_strength") = 0.0f,
-          "Adds a metallic/roughness material; returns its index.")
+          py::arg("specular_tint") = 0.0f, "Adds a metallic/roughness material; returns its index.")
       .def(
           "add_mesh",
           [](Scene& s, const py::object& positions, const py::object& triangles, const py::object& corner_normals,

@@ -1,6 +1,6 @@
 #include "torrance/integrator.h"
 
-#include "torrance/cook_torrance.h"
+#include "torrance/material_bsdf.h"
 #include "torrance/sampling.h"
 
 #include <tbb/blocked_range.h>
@@ -69,7 +69,7 @@ struct PathContext {
   const Scene& scene;
   const Lights& lights;
   const RenderSettings& settings;
-  std::vector<CookTorranceBsdf> bsdfs;  // one per material, built once per render
+  std::vector<MaterialBsdf> bsdfs;  // one per material, built once per render
 };
 
 // Radiance along a camera ray; alpha is 0 where the background is transparent and seen directly.
@@ -116,7 +116,7 @@ Vec3 trace_path(const PathContext& ctx, Ray ray, Rng& rng, float& alpha) {
 
     const Frame frame(ns);
     const Vec3 wo = frame.to_local(wo_world);
-    const CookTorranceBsdf& bsdf = ctx.bsdfs[hit.material];
+    const MaterialBsdf& bsdf = ctx.bsdfs[hit.material];
 
     // Next-event estimation: one light, chosen uniformly, MIS-weighted against BSDF sampling.
     if (num_lights > 0) {
@@ -206,7 +206,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
 
   PathContext ctx{scene, scene.lights(), settings, {}};
   ctx.bsdfs.reserve(scene.num_materials());
-  for (size_t i = 0; i < scene.num_materials(); ++i) ctx.bsdfs.emplace_back(scene.material(uint32_t(i)));
+  for (size_t i = 0; i < scene.num_materials(); ++i) ctx.bsdfs.emplace_back(scene.material(uint32_t(i)), settings.brdf_model);
   const PixelFilter filter(settings.filter_width);
 
   const std::array<int, 4> window = settings.window.value_or(std::array<int, 4>{0, 0, settings.width, settings.height});

@@ -51,7 +51,7 @@ void Scene::check_device(const char* during) const {
 
 uint32_t Scene::add_material(const Material& m) {
   if (!is_finite(m.base_color) || !is_finite(m.emission) || !std::isfinite(m.metallic) ||
-      !std::isfinite(m.roughness) || !std::isfinite(m.specular))
+      !std::isfinite(m.roughness) || !std::isfinite(m.specular) || !std::isfinite(m.specular_tint))
     throw std::invalid_argument("material values must be finite (no NaN or Inf)");
   if (m.metallic < 0.0f || m.metallic > 1.0f || m.roughness < 0.0f || m.roughness > 1.0f)
     throw std::invalid_argument("material metallic and roughness must lie in [0, 1]");

@@ -18,7 +18,8 @@ namespace torrance {
 
 // Which Cook-Torrance variant shades the scene.
 enum class BrdfModel {
-  Paper,  // exactly the brief's equations (GGX D, Schlick F, Schlick-GGX G, Lambert diffuse)
+  Paper,       // exactly the brief's equations (GGX D, Schlick F, Schlick-GGX G, Lambert diffuse)
+  Principled,  // Blender 3.4's Principled BSDF v1 as Cycles renders it (Burley, exact Fresnel, Smith G)
 };
 
 // The metallic/roughness material, as Blender's Principled BSDF names its inputs.
@@ -27,6 +28,7 @@ struct Material {
   float metallic = 0.0f;
   float roughness = 0.5f;
   float specular = 0.5f;  // dielectric F0 = 0.08 * specular (0.5 -> 0.04)
+  float specular_tint = 0.0f;  // PRINCIPLED only: tints dielectric reflection towards the base hue
   Vec3 emission{0.0f};    // radiance emitted by both faces = emission colour * strength
 };
 

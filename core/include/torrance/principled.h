@@ -1,0 +1,43 @@
+// Principled BSDF, "PRINCIPLED" model: Blender 3.4's Principled BSDF (v1) as Cycles 3.4 renders it
+// with the GGX distribution (no transmission, sheen, clearcoat or anisotropy), so that Torrance
+// and Cycles differ by noise only.
+//
+//   diffuse  Burley's lobe weighted by (1 - metallic), using the unsquared roughness for
+//            retro-reflection; it is NOT scaled by (1 - F): the lobes add (and can exceed 1).
+//   specular GGX, alpha = roughness^2, separable exact Smith G = G1(wo) G1(wi) with
+//            G1 = 2 / (1 + sqrt(1 + alpha^2 tan^2)),
+//            F = cspec0 (1 - F_H) + F_H, F_H = (F_dielectric(wi.h, eta) - F0) / (1 - F0),
+//            F0 = 0.08 specular, eta from F0, and
+//            cspec0 = 0.08 specular mix(1, tint colour, specular_tint) (1 - metallic) + base metallic.
+//   mirror   below ggx::kDeltaAlpha the specular lobe is a delta with reflectance F(n.wo).
+// Sampling picks a lobe by estimated reflectance, then visible GGX normals or the cosine.
+// See bsdf.h for the conventions (eval includes the cosine).
+#pragma once
+
+#include "torrance/bsdf.h"
+#include "torrance/microfacet.h"
+
+namespace torrance {
+
+// Unpolarised Fresnel reflectance of a dielectric interface with relative IOR eta (> 0).
+float fresnel_dielectric(float cos_i, float eta);
+
+class PrincipledBsdf {
+ public:
+  explicit PrincipledBsdf(const Material& m);
+
+  Vec3 eval(const Vec3& wo, const Vec3& wi) const;
+  float pdf(const Vec3& wo, const Vec3& wi) const;
+  BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const;
+
+  bool has_delta() const { return alpha_ < ggx::kDeltaAlpha; }
+  float specular_probability(const Vec3& wo) const;
+  Vec3 fresnel(float cos_ih) const;
+
+ private:
+  Vec3 diffuse_color_;  // (1 - metallic) * base colour
+  Vec3 cspec0_;
+  float roughness_, alpha_, eta_, f0_;
+};
+
+}  // namespace torrance

@@ -1,0 +1,101 @@
+#include "torrance/principled.h"
+
+#include "torrance/sampling.h"
+
+namespace torrance {
+
+float fresnel_dielectric(float cos_i, float eta) {
+  const float c = std::abs(cos_i);
+  const float g2 = eta * eta - 1.0f + c * c;
+  if (g2 <= 0.0f) return 1.0f;  // total internal reflection
+  const float g = std::sqrt(g2);
+  const float a = (g - c) / (g + c);
+  const float b = (c * (g + c) - 1.0f) / (c * (g - c) + 1.0f);
+  return 0.5f * a * a * (1.0f + b * b);
+}
+
+PrincipledBsdf::PrincipledBsdf(const Material& m) {
+  const Vec3 base = glm::clamp(m.base_color, Vec3(0.0f), Vec3(1.0f));
+  const float metallic = clamp01(m.metallic);
+  roughness_ = clamp01(m.roughness);
+  alpha_ = roughness_ * roughness_;
+  diffuse_color_ = (1.0f - metallic) * base;
+  f0_ = std::min(0.08f * std::max(m.specular, 0.0f), 0.99f);
+  const float sqrt_f0 = std::sqrt(f0_);
+  eta_ = 2.0f / (1.0f - sqrt_f0) - 1.0f;
+  const float lum = 0.3f * base.r + 0.6f * base.g + 0.1f * base.b;  // Cycles' tint luminance weights
+  const Vec3 tint = lum > 0.0f ? base / lum : Vec3(1.0f);
+  const Vec3 dielectric = f0_ * glm::mix(Vec3(1.0f), tint, clamp01(m.specular_tint)) * (1.0f - metallic);
+  cspec0_ = glm::clamp(dielectric + base * metallic, Vec3(0.0f), Vec3(1.0f));
+}
+
+Vec3 PrincipledBsdf::fresnel(float cos_ih) const {
+  if (f0_ <= 0.0f) return cspec0_;
+  const float fh = (fresnel_dielectric(cos_ih, eta_) - f0_) / (1.0f - f0_);
+  return cspec0_ * (1.0f - fh) + Vec3(fh);
+}
+
+float PrincipledBsdf::specular_probability(const Vec3& wo) const {
+  const float spec = luminance(fresnel(wo.z));
+  const float diff = luminance(diffuse_color_);
+  if (!(diff > 0.0f)) return 1.0f;
+  if (!(spec > 0.0f)) return 0.0f;
+  return std::min(std::max(spec / (spec + diff), 0.1f), 0.9f);
+}
+
+Vec3 PrincipledBsdf::eval(const Vec3& wo, const Vec3& wi) const {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return Vec3(0.0f);
+  const Vec3 half = wo + wi;
+  const float half_len2 = glm::dot(half, half);
+  if (!(half_len2 > 0.0f)) return Vec3(0.0f);
+  const Vec3 h = half / std::sqrt(half_len2);
+  const float cos_d = clamp01(glm::dot(wi, h));
+
+  // Burley diffuse (Cycles 3.4's principled diffuse, roughness unsquared).
+  auto schlick_weight = [](float c) {
+    const float m = 1.0f - clamp01(c);
+    return (m * m) * (m * m) * m;
+  };
+  const float fl = schlick_weight(wi.z), fv = schlick_weight(wo.z);
+  const float rr = 2.0f * roughness_ * cos_d * cos_d;
+  const float burley = (1.0f - 0.5f * fl) * (1.0f - 0.5f * fv) + rr * (fl + fv + fl * fv * (rr - 1.0f));
+  Vec3 f_cos = diffuse_color_ * (kInvPi * burley * wi.z);
+
+  if (!has_delta()) {
+    const float g = ggx::smith_G1(wo.z, alpha_) * ggx::smith_G1(wi.z, alpha_);
+    f_cos += fresnel(cos_d) * (ggx::D(h, alpha_) * g / (4.0f * wo.z));
+  }
+  return f_cos;
+}
+
+float PrincipledBsdf::pdf(const Vec3& wo, const Vec3& wi) const {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
+  const float p_spec = specular_probability(wo);
+  float pdf = (1.0f - p_spec) * cosine_hemisphere_pdf(wi.z);
+  if (!has_delta() && p_spec > 0.0f) pdf += p_spec * ggx::reflected_pdf(wo, glm::normalize(wo + wi), alpha_);
+  return pdf;
+}
+
+BsdfSample PrincipledBsdf::sample(const Vec3& wo, float u_lobe, const Vec2& u) const {
+  BsdfSample s;
+  if (wo.z <= 0.0f) return s;
+  const float p_spec = specular_probability(wo);
+  if (u_lobe < p_spec) {
+    if (has_delta()) {
+      s.wi = Vec3(-wo.x, -wo.y, wo.z);
+      s.weight = fresnel(wo.z) / p_spec;
+      s.is_delta = true;
+      return s;
+    }
+    s.wi = ggx::reflect(wo, ggx::sample_visible_normal(wo, alpha_, u));
+  } else {
+    s.wi = sample_cosine_hemisphere(u);
+  }
+  if (s.wi.z <= 0.0f) return BsdfSample{};
+  s.pdf = pdf(wo, s.wi);
+  if (!(s.pdf > 0.0f)) return BsdfSample{};
+  s.weight = eval(wo, s.wi) / s.pdf;
+  return s;
+}
+
+}  // namespace torrance
