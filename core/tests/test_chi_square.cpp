@@ -1,0 +1,193 @@
+// Chi-square goodness-of-fit: does sample() draw directions with the density pdf() reports?
+//
+// Directions are binned around the mirror direction R of wo: the polar angle t from R is mapped to
+// s = t / (t + c) with c proportional to alpha, so a glossy lobe of any width spreads over many
+// bins, and the azimuth around R is binned uniformly. Expected counts integrate pdf() over each bin
+// (16 x 16 midpoint sub-cells); bins expecting fewer than 5 samples are pooled; delta samples get a
+// bin of their own. Significance 0.01, Bonferroni-corrected for the number of cases.
+#include "torrance/material_bsdf.h"
+
+#include "test_helpers.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+namespace torrance {
+namespace {
+
+constexpr int kThetaBins = 20, kPhiBins = 24, kSub = 64;   // sub-cells per side where the integrand is not smooth
+constexpr int kSamples = 200000;
+
+struct ChiCase {
+  BrdfModel model;
+  float roughness, metallic, specular, cos_o;
+};
+
+std::vector<ChiCase> grid() {
+  std::vector<ChiCase> cases;
+  for (BrdfModel model : {BrdfModel::Paper, BrdfModel::Principled})
+    for (float r : {0.0f, 1e-4f, 0.01f, 0.05f, 0.1f, 0.3f, 0.6f, 1.0f})
+      for (float m : {0.0f, 0.5f, 1.0f})
+        for (float spec : {0.0f, 0.5f, 1.0f})
+          for (float cos_o : {1.0f, 0.5f, 0.05f}) {
+            if (m == 1.0f && spec != 0.5f) continue;  // specular does not act on pure metals
+            // A lobe under 0.01 rad wide lying on the horizon is beyond this binning's quadrature
+            // (it fails even for exact sampling); VisibleNormalSamplingMatchesPdf covers r = 0.05
+            // down to cos_o = 0.05 at the lobe's own scale.
+            if (r > 0.0f && r <= 0.05f && cos_o < 0.1f) continue;
+            cases.push_back({model, r, m, spec, cos_o});
+          }
+  return cases;
+}
+
+std::string name(const ChiCase& c) {
+  std::ostringstream os;
+  os << (c.model == BrdfModel::Paper ? "PAPER" : "PRINCIPLED") << " r=" << c.roughness << " m=" << c.metallic
+     << " spec=" << c.specular << " cos_o=" << c.cos_o;
+  return os.str();
+}
+
+// Upper tail of the chi-square distribution (Wilson-Hilferty approximation, fine for dof > 20).
+double chi_square_p_value(double x, int dof) {
+  const double k = dof, z = (std::cbrt(x / k) - (1.0 - 2.0 / (9.0 * k))) / std::sqrt(2.0 / (9.0 * k));
+  return 0.5 * std::erfc(z / std::sqrt(2.0));
+}
+
+struct Sampled {
+  Vec3 wi;
+  bool valid, is_delta;
+};
+
+// Runs the test for one wo; returns a failure message, or "" when sampling agrees with the pdf.
+template <typename SampleFn, typename PdfFn>
+std::string chi_square(const Vec3& wo, float scale, uint32_t seed, double significance, SampleFn sample, PdfFn pdf) {
+  const Frame around_mirror(Vec3(-wo.x, -wo.y, wo.z));
+  auto bin_of = [&](const Vec3& wi) {
+    const Vec3 l = around_mirror.to_local(wi);
+    const float t = std::atan2(std::sqrt(l.x * l.x + l.y * l.y), l.z);  // accurate for tiny angles
+    const float s = t / (t + scale);
+    float phi = std::atan2(l.y, l.x);
+    if (phi < 0) phi += kTwoPi;
+    const int i = std::min(int(s * kThetaBins), kThetaBins - 1);
+    const int j = std::min(int(phi / kTwoPi * kPhiBins), kPhiBins - 1);
+    return i * kPhiBins + j;
+  };
+
+  // The last bin collects samples without a density: delta directions and rejected samples
+  // (visible normals whose reflection falls below the horizon).
+  std::vector<double> observed(kThetaBins * kPhiBins + 1, 0.0);
+  Rng rng(seed, 0, 1234);
+  for (int n = 0; n < kSamples; ++n) {
+    const Sampled s = sample(rng);
+    if (!s.valid || s.is_delta) observed.back() += 1;
+    else observed[bin_of(s.wi)] += 1;
+  }
+
+  // Expected counts: integrate pdf over each bin in (s, phi) with the Jacobian of t(s), by the
+  // midpoint rule, refined where 8 and 16 sub-cells per side disagree (peaks and the horizon).
+  auto integrate_bin = [&](int i, int j, int sub) {
+    double sum = 0.0;
+    for (int a = 0; a < sub; ++a)
+      for (int b = 0; b < sub; ++b) {
+        const double s = (i + (a + 0.5) / sub) / kThetaBins;
+        const double phi = (j + (b + 0.5) / sub) / kPhiBins * 2 * M_PI;
+        const double t = scale * s / (1.0 - s);
+        if (t >= M_PI) continue;
+        const double dt_ds = scale / ((1.0 - s) * (1.0 - s));
+        const Vec3 l(float(std::sin(t) * std::cos(phi)), float(std::sin(t) * std::sin(phi)), float(std::cos(t)));
+        sum += double(pdf(around_mirror.to_world(l))) * std::sin(t) * dt_ds;
+      }
+    return sum * (1.0 / kThetaBins) * (2 * M_PI / kPhiBins) / (sub * sub);
+  };
+  std::vector<double> expected(kThetaBins * kPhiBins + 1, 0.0);
+  double continuous_mass = 0.0;
+  for (int i = 0; i < kThetaBins; ++i)
+    for (int j = 0; j < kPhiBins; ++j) {
+      const double coarse = integrate_bin(i, j, 8), fine = integrate_bin(i, j, 16);
+      const double e = std::abs(fine - coarse) > 1e-3 * fine + 1e-7 ? integrate_bin(i, j, kSub) : fine;
+      expected[i * kPhiBins + j] = e;
+      continuous_mass += e;
+    }
+  // The last bin expects whatever probability the continuous part does not account for.
+  if (continuous_mass > 1.02) return "pdf integrates to " + std::to_string(continuous_mass) + ", more than 1";
+  expected.back() = std::max(0.0, 1.0 - continuous_mass);
+  for (double& e : expected) e *= kSamples;
+
+  double chi2 = 0.0, pooled_obs = 0.0, pooled_exp = 0.0;
+  int dof = -1;
+  for (size_t k = 0; k < expected.size(); ++k) {
+    if (expected[k] < 5.0) {
+      pooled_obs += observed[k];
+      pooled_exp += expected[k];
+      continue;
+    }
+    chi2 += (observed[k] - expected[k]) * (observed[k] - expected[k]) / expected[k];
+    ++dof;
+  }
+  if (pooled_exp >= 5.0) {
+    chi2 += (pooled_obs - pooled_exp) * (pooled_obs - pooled_exp) / pooled_exp;
+    ++dof;
+  } else if (pooled_obs > 5.0 + 10.0 * pooled_exp) {
+    return std::to_string(pooled_obs) + " samples where the pdf expects " + std::to_string(pooled_exp);
+  }
+  if (dof < 1) return "";
+  const double p = chi_square_p_value(chi2, dof);
+  if (p > significance) return "";
+  return "chi2 = " + std::to_string(chi2) + " with " + std::to_string(dof) + " dof (p = " + std::to_string(p) + ")";
+}
+
+TEST(ChiSquare, WholeBsdfSamplingMatchesPdfOverTheGrid) {
+  const std::vector<ChiCase> cases = grid();
+  const double significance = 0.01 / double(cases.size());
+  uint32_t seed = 0;
+  for (const ChiCase& c : cases) {
+    Material mat;
+    mat.base_color = Vec3(0.8f, 0.5f, 0.2f);
+    mat.roughness = c.roughness;
+    mat.metallic = c.metallic;
+    mat.specular = c.specular;
+    const MaterialBsdf bsdf(mat, c.model);
+    const Vec3 wo = test::direction(c.cos_o, 0.4f);
+    const float scale = std::max(3.0f * c.roughness * c.roughness, 0.25f);
+    const std::string failure = chi_square(
+        wo, scale, seed++, significance,
+        [&](Rng& rng) {
+          const float u = rng.next_1d();
+          const BsdfSample s = bsdf.sample(wo, u, rng.next_2d());
+          return Sampled{s.wi, s.valid(), s.is_delta};
+        },
+        [&](const Vec3& wi) { return bsdf.pdf(wo, wi); });
+    EXPECT_EQ(failure, "") << name(c);
+  }
+}
+
+// The GGX lobe alone, binned at its own width: visible-normal sampling against reflected_pdf.
+TEST(ChiSquare, VisibleNormalSamplingMatchesPdf) {
+  const float roughnesses[] = {0.02f, 0.05f, 0.1f, 0.3f, 0.6f, 1.0f};
+  const float cosines[] = {1.0f, 0.7f, 0.3f, 0.05f, 1e-3f};  // 1e-3 only from r = 0.1 (see the grid)
+  const double significance = 0.01 / 30.0;
+  uint32_t seed = 1000;
+  for (float r : roughnesses)
+    for (float cos_o : cosines) {
+      if (cos_o < 0.01f && r < 0.1f) continue;
+      const float alpha = r * r;
+      const Vec3 wo = test::direction(cos_o, 1.1f);
+      const std::string failure = chi_square(
+          wo, 3.0f * alpha, seed++, significance,
+          [&](Rng& rng) {
+            const Vec3 wi = ggx::reflect(wo, ggx::sample_visible_normal(wo, alpha, rng.next_2d()));
+            return Sampled{wi, true, false};
+          },
+          [&](const Vec3& wi) {
+            // Directions below the horizon are generated too (and discarded by the BSDF): their
+            // density is the same expression, so count them rather than clip them.
+            const Vec3 h = glm::normalize(wo + wi);
+            return ggx::reflected_pdf(wo, h, alpha);
+          });
+      EXPECT_EQ(failure, "") << "r=" << r << " cos_o=" << cos_o;
+    }
+}
+
+}  // namespace
+}  // namespace torrance
