@@ -270,3 +270,35 @@ def rss_mb():
             if line.startswith("VmRSS:"):
                 return int(line.split()[1]) / 1024.0
     return float("nan")
+
+
+def luminance(img):
+    return img[:, :, :3] @ np.array([0.2126, 0.7152, 0.0722], dtype=np.float32)
+
+
+def image_offset(img, ref, radius=3):
+    """Estimated (dx, dy) in pixels by which img's content is displaced from ref's.
+
+    Compares log luminance (robust to brightness differences) over integer shifts within
+    `radius`, then refines the best one with a parabola through its neighbours.
+    dy counts rows downwards (row 0 = top).
+    """
+    a = np.log1p(np.maximum(luminance(img), 0.0))
+    b = np.log1p(np.maximum(luminance(ref), 0.0))
+    a *= b.mean() / max(a.mean(), 1e-12)
+    h, w = b.shape
+    r = radius
+    core = b[r:h - r, r:w - r]
+    err = np.empty((2 * r + 1, 2 * r + 1))
+    for dy in range(-r, r + 1):
+        for dx in range(-r, r + 1):
+            err[dy + r, dx + r] = np.mean((a[r + dy:h - r + dy, r + dx:w - r + dx] - core) ** 2)
+    iy, ix = np.unravel_index(np.argmin(err), err.shape)
+
+    def refine(e0, e1, e2):
+        denom = e0 - 2 * e1 + e2
+        return 0.0 if denom <= 0 else 0.5 * (e0 - e2) / denom
+
+    dx = ix - r + (refine(*err[iy, ix - 1:ix + 2]) if 0 < ix < 2 * r else 0.0)
+    dy = iy - r + (refine(*err[iy - 1:iy + 2, ix]) if 0 < iy < 2 * r else 0.0)
+    return float(dx), float(dy)
