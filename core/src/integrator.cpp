@@ -2,6 +2,7 @@
 
 #include "torrance/material_bsdf.h"
 #include "torrance/sampling.h"
+#include "torrance/shading_normal.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -44,25 +45,6 @@ Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& dir) {
   const float scale = std::max(1.0f, std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))));
   const float eps = 2e-5f * scale;
   return p + (glm::dot(ng, dir) >= 0.0f ? eps : -eps) * ng;
-}
-
-// A shading normal with which the mirror reflection of wo stays above the geometric surface
-// (ng faces wo). Interpolated normals that fail are tilted towards ng, just enough.
-Vec3 valid_shading_normal(const Vec3& ng, const Vec3& ns, const Vec3& wo) {
-  const float threshold = std::min(0.9f * glm::dot(ng, wo), 0.01f);
-  auto reflection_ok = [&](const Vec3& n) { return glm::dot(ng, 2.0f * glm::dot(wo, n) * n - wo) >= threshold; };
-  if (reflection_ok(ns)) return ns;
-  float lo = 0.0f, hi = 1.0f;
-  for (int i = 0; i < 16; ++i) {
-    const float mid = 0.5f * (lo + hi);
-    const Vec3 n = glm::mix(ns, ng, mid);
-    const float len = glm::length(n);
-    if (len > 1e-6f && reflection_ok(n / len)) hi = mid;
-    else lo = mid;
-  }
-  const Vec3 n = glm::mix(ns, ng, hi);
-  const float len = glm::length(n);
-  return len > 1e-6f ? n / len : ng;
 }
 
 struct PathContext {

@@ -31,7 +31,8 @@ PrincipledBsdf::PrincipledBsdf(const Material& m) {
 
 Vec3 PrincipledBsdf::fresnel(float cos_ih) const {
   if (f0_ <= 0.0f) return cspec0_;
-  const float fh = (fresnel_dielectric(cos_ih, eta_) - f0_) / (1.0f - f0_);
+  // Clamped: at normal incidence rounding makes F_dielectric - F0 a tiny negative number.
+  const float fh = clamp01((fresnel_dielectric(cos_ih, eta_) - f0_) / (1.0f - f0_));
   return cspec0_ * (1.0f - fh) + Vec3(fh);
 }
 
