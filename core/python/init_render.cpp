@@ -15,13 +15,13 @@ std::string model_name(BrdfModel m) {
   }
   return "PAPER";
 }
+}  // namespace
+
 BrdfModel parse_model(const std::string& s) {
   if (s == "PAPER") return BrdfModel::Paper;
   if (s == "PRINCIPLED") return BrdfModel::Principled;
   throw py::value_error("brdf_model must be 'PAPER' or 'PRINCIPLED', got '" + s + "'");
 }
-
-}  // namespace
 
 py::array_t<float> to_numpy(const Image& image) {
   py::array_t<float> a({py::ssize_t(image.height), py::ssize_t(image.width), py::ssize_t(4)});

@@ -147,3 +147,44 @@ def test_write_and_read_images(tmp_path):
         tc.read_image(str(tmp_path / "missing.exr"))
     with pytest.raises(ValueError, match="shape"):
         tc.write_image(str(tmp_path / "b.exr"), np.zeros((4, 4), np.float32))
+
+
+def test_directional_albedo_matches_the_models_known_values():
+    # Principled rough white metal loses energy (0.307 at normal incidence); PAPER's Lambert-like
+    # white dielectric (specular 0) stays within a few percent of 1.
+    assert tc.directional_albedo("PRINCIPLED", (1, 1, 1), 1.0, 1.0, 0.5, 1.0) == pytest.approx(0.307, abs=0.004)
+    assert tc.directional_albedo("PAPER", (1, 1, 1), 0.0, 1.0, 0.0, 1.0) == pytest.approx(1.0, abs=0.03)
+    assert tc.directional_albedo("PAPER", (1, 1, 1), 1.0, 0.0, 0.5, 1.0) == pytest.approx(1.0, abs=0.01)
+    with pytest.raises(ValueError, match="brdf_model"):
+        tc.directional_albedo("PHONG", (1, 1, 1), 0.0, 0.5)
+    with pytest.raises(ValueError, match="cos_o"):
+        tc.directional_albedo("PAPER", (1, 1, 1), 0.0, 0.5, 0.5, 0.0)
+
+
+def test_image_furnace_sphere_in_uniform_world():
+    """A convex object under a uniform world: every pixel is albedo(cos_o) x L, no interreflection."""
+    import sys, pathlib
+    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[3] / "scripts"))
+    from analysis import uv_sphere
+    for model, metallic, spec in [("PAPER", 0.0, 0.0), ("PRINCIPLED", 1.0, 0.5)]:
+        scene = tc.Scene()
+        m = scene.add_material(base_color=(1, 1, 1), metallic=metallic, roughness=1.0, specular=spec)
+        p, t, n = uv_sphere(np.zeros(3), 1.0, rings=64, segments=128)
+        scene.add_mesh(p, t, n, np.full(len(t), m, np.int32))
+        scene.set_world(color=(1, 1, 1), strength=0.5)
+        cam = np.eye(4, dtype=np.float32)
+        cam[2, 3] = 50.0
+        scene.set_camera(cam, lens=1500.0)  # nearly orthographic: the sphere fills the frame's centre
+        img = tc.render(scene, tc.RenderSettings(width=48, height=48, samples=64, brdf_model=model)).image
+        # Expected mean over the visible disk: 2 * integral of albedo(mu) mu dmu (pixels inside r < 0.8).
+        mus = np.linspace(0.6, 1.0, 9)
+        albedo = np.array([tc.directional_albedo(model, (1, 1, 1), metallic, 1.0, spec, mu) for mu in mus])
+        expected = 0.5 * np.trapz(albedo * mus, mus) / np.trapz(mus, mus)
+        yy, xx = np.mgrid[0:48, 0:48]
+        half_width = 18.0 / 1500.0 * 50.0  # view-plane half extent at the sphere, metres
+        rho = np.hypot((xx + 0.5 - 24) / 24, (yy + 0.5 - 24) / 24) * half_width
+        inside = rho < 0.8
+        measured = img[inside, 0].mean()
+        print(f"furnace {model} metallic={metallic}: measured {measured:.4f} expected {expected:.4f}")
+        assert measured == pytest.approx(expected, rel=0.03), (model, measured, expected)
+        assert np.isfinite(img).all()
