@@ -55,7 +55,7 @@ struct PathContext {
 };
 
 // Radiance along a camera ray; alpha is 0 where the background is transparent and seen directly.
-Vec3 trace_path(const PathContext& ctx, Ray ray, Rng& rng, float& alpha) {
+Vec3 trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, float& alpha) {
   const Lights& lights = ctx.lights;
   const size_t num_lights = lights.count();
   const float light_selection = lights.selection_probability();
@@ -101,9 +101,11 @@ Vec3 trace_path(const PathContext& ctx, Ray ray, Rng& rng, float& alpha) {
     const MaterialBsdf& bsdf = ctx.bsdfs[hit.material];
 
     // Next-event estimation: one light, chosen uniformly, MIS-weighted against BSDF sampling.
+    const glm::vec4 u_light = sampler.next_4d();  // light choice, position on the light
+    const glm::vec4 u_bsdf = sampler.next_4d();   // lobe, direction, roulette
     if (num_lights > 0) {
-      const size_t index = std::min(size_t(rng.next_1d() * float(num_lights)), num_lights - 1);
-      const LightSample ls = lights.sample(index, hit.position, ns, rng.next_2d());
+      const size_t index = std::min(size_t(u_light.x * float(num_lights)), num_lights - 1);
+      const LightSample ls = lights.sample(index, hit.position, ns, Vec2(u_light.y, u_light.z));
       if (ls.valid() && glm::dot(ls.wi, ng) > 0.0f) {
         const Vec3 wi = frame.to_local(ls.wi);
         const Vec3 f = bsdf.eval(wo, wi);
@@ -119,8 +121,7 @@ Vec3 trace_path(const PathContext& ctx, Ray ray, Rng& rng, float& alpha) {
     }
 
     // Continue the path by sampling the BSDF.
-    const float u_lobe = rng.next_1d();
-    const BsdfSample bs = bsdf.sample(wo, u_lobe, rng.next_2d());
+    const BsdfSample bs = bsdf.sample(wo, u_bsdf.x, Vec2(u_bsdf.y, u_bsdf.z));
     if (!bs.valid()) break;
     const Vec3 wi_world = frame.to_world(bs.wi);
     if (glm::dot(wi_world, ng) <= 0.0f) break;  // below the geometric surface: no transmission
@@ -129,7 +130,7 @@ Vec3 trace_path(const PathContext& ctx, Ray ray, Rng& rng, float& alpha) {
     // Russian roulette, from the third vertex on, continuing with probability sqrt(max throughput).
     if (bounce >= 2) {
       const float q = std::min(std::sqrt(max_component(throughput)), 1.0f);
-      if (!(q > 0.0f) || rng.next_1d() >= q) break;
+      if (!(q > 0.0f) || u_bsdf.w >= q) break;
       throughput /= q;
     }
     if (!(max_component(throughput) > 0.0f)) break;
@@ -214,11 +215,12 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
             double* acc = &film.sums[5 * (size_t(y - window[1]) * film.width + (x - window[0]))];
             const uint32_t pixel = uint32_t(y) * uint32_t(settings.width) + uint32_t(x);
             for (int s = first_sample; s < first_sample + num_samples; ++s) {
-              Rng rng(pixel, uint32_t(s), settings.seed);
-              const float dx = filter.sample_offset(rng.next_1d());
-              const float dy = filter.sample_offset(rng.next_1d());
+              SobolSampler sampler(pixel, uint32_t(s), settings.seed);
+              const glm::vec4 u_pixel = sampler.next_4d();
+              const float dx = filter.sample_offset(u_pixel.x);
+              const float dy = filter.sample_offset(u_pixel.y);
               float alpha = 1.0f;
-              Vec3 L = trace_path(ctx, camera.generate_ray(x + 0.5f + dx, y + 0.5f + dy), rng, alpha);
+              Vec3 L = trace_path(ctx, camera.generate_ray(x + 0.5f + dx, y + 0.5f + dy), sampler, alpha);
               if (!is_finite(L)) {  // never expected; counted so tests can prove it never happens
                 ++bad;
                 L = Vec3(0.0f);

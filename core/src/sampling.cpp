@@ -1,6 +1,75 @@
 #include "torrance/sampling.h"
 
+#include <array>
+
 namespace torrance {
+namespace {
+
+// Sobol generator matrices for 4 dimensions (direction numbers of Joe & Kuo: dimension 0 is van
+// der Corput; then the primitive polynomials x + 1, x^2 + x + 1, x^3 + x + 1 with initial
+// m = {1}, {1, 3}, {1, 3, 1}), built once by the standard recurrence.
+struct SobolMatrices {
+  std::array<std::array<uint32_t, 32>, 4> v{};
+  SobolMatrices() {
+    for (int k = 0; k < 32; ++k) v[0][k] = 1u << (31 - k);
+    const int degree[3] = {1, 2, 3};
+    const uint32_t poly_a[3] = {0, 1, 1};  // inner coefficients of the polynomials, as bits
+    const std::array<uint32_t, 3> initial_m[3] = {{1, 0, 0}, {1, 3, 0}, {1, 3, 1}};
+    for (int d = 0; d < 3; ++d) {
+      const int s = degree[d];
+      uint32_t m[32];
+      for (int k = 0; k < s; ++k) m[k] = initial_m[d][k];
+      for (int k = s; k < 32; ++k) {
+        uint32_t value = m[k - s] ^ (m[k - s] << s);
+        for (int j = 1; j < s; ++j)
+          if ((poly_a[d] >> (s - 1 - j)) & 1u) value ^= m[k - j] << j;
+        m[k] = value;
+      }
+      for (int k = 0; k < 32; ++k) v[d + 1][k] = m[k] << (31 - k);
+    }
+  }
+};
+const SobolMatrices kSobol;
+
+uint32_t sobol(uint32_t index, int dim) {
+  uint32_t x = 0;
+  for (int bit = 0; index; index >>= 1, ++bit)
+    if (index & 1u) x ^= kSobol.v[dim][bit];
+  return x;
+}
+
+uint32_t reverse_bits(uint32_t x) {
+  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+  return (x >> 16) | (x << 16);
+}
+
+// Nested uniform (Owen) scramble in base 2: a hash in which each bit depends only on higher bits
+// (the Laine-Karras construction), applied to the bit-reversed value.
+uint32_t owen_scramble(uint32_t x, uint32_t seed) {
+  x = reverse_bits(x);
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return reverse_bits(x);
+}
+
+}  // namespace
+
+glm::vec4 SobolSampler::next_4d() {
+  const uint32_t group_seed = hash_combine(pixel_seed_, group_++);
+  const uint32_t shuffled = owen_scramble(index_, group_seed);
+  glm::vec4 u;
+  for (int d = 0; d < 4; ++d) {
+    const uint32_t x = owen_scramble(sobol(shuffled, d), hash_combine(group_seed, uint32_t(d) + 1u));
+    u[d] = float(x >> 8) * 0x1p-24f;
+  }
+  return u;
+}
 
 Vec2 sample_concentric_disk(const Vec2& u) {
   const Vec2 p = 2.0f * u - Vec2(1.0f);

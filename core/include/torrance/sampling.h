@@ -49,6 +49,23 @@ class Rng {
   uint64_t state_ = 0, inc_ = 1;
 };
 
+// The renderer's sample sequence: a padded, hash-shuffled, Owen-scrambled Sobol sequence
+// (Burley 2020, "Practical Hash-based Owen Scrambling"). Each call to next_4d() returns the next
+// 4-D point of this (pixel, sample) path; the 4 dimensions of one point are stratified jointly
+// over the pixel's samples, and successive points are decorrelated by independent shuffles.
+// Any power-of-two run of sample indices is well stratified, so progressive passes stay good.
+class SobolSampler {
+ public:
+  SobolSampler(uint32_t pixel, uint32_t sample_index, uint32_t seed)
+      : pixel_seed_(hash_combine(hash_u32(seed ^ 0xa511e9b3U), pixel)), index_(sample_index) {}
+  glm::vec4 next_4d();
+
+ private:
+  uint32_t pixel_seed_;
+  uint32_t index_;
+  uint32_t group_ = 0;
+};
+
 // Cosine-weighted hemisphere around +z; pdf = cos(theta) / pi.
 Vec3 sample_cosine_hemisphere(const Vec2& u);
 inline float cosine_hemisphere_pdf(float cos_theta) { return cos_theta > 0.0f ? cos_theta * kInvPi : 0.0f; }
