@@ -15,6 +15,12 @@ std::string model_name(BrdfModel m) {
   }
   return "PAPER";
 }
+LightSelection parse_light_selection(const std::string& s) {
+  if (s == "CONTRIBUTION") return LightSelection::Contribution;
+  if (s == "UNIFORM") return LightSelection::Uniform;
+  throw py::value_error("light_selection must be 'CONTRIBUTION' or 'UNIFORM', got '" + s + "'");
+}
+
 }  // namespace
 
 BrdfModel parse_model(const std::string& s) {
@@ -33,7 +39,8 @@ void init_render(py::module_& m) {
   py::class_<RenderSettings>(m, "RenderSettings")
       .def(py::init([](int width, int height, int samples, int max_bounces, uint32_t seed, float pixel_aspect_x,
                        float pixel_aspect_y, float filter_width, bool transparent_background,
-                       const std::string& brdf_model, std::optional<std::array<int, 4>> window, int threads) {
+                       const std::string& brdf_model, std::optional<std::array<int, 4>> window, int threads,
+                       const std::string& light_selection) {
              RenderSettings s;
              s.width = width;
              s.height = height;
@@ -47,13 +54,15 @@ void init_render(py::module_& m) {
              s.brdf_model = parse_model(brdf_model);
              s.window = window;
              s.threads = threads;
+             s.light_selection = parse_light_selection(light_selection);
              s.validate();
              return s;
            }),
            py::arg("width") = 640, py::arg("height") = 480, py::arg("samples") = 64, py::arg("max_bounces") = 8,
            py::arg("seed") = 0, py::arg("pixel_aspect_x") = 1.0f, py::arg("pixel_aspect_y") = 1.0f,
            py::arg("filter_width") = 1.5f, py::arg("transparent_background") = false,
-           py::arg("brdf_model") = "PAPER", py::arg("window") = py::none(), py::arg("threads") = 0)
+           py::arg("brdf_model") = "PAPER", py::arg("window") = py::none(), py::arg("threads") = 0,
+           py::arg("light_selection") = "CONTRIBUTION")
       .def_readwrite("width", &RenderSettings::width)
       .def_readwrite("height", &RenderSettings::height)
       .def_readwrite("samples", &RenderSettings::samples)
@@ -63,6 +72,12 @@ void init_render(py::module_& m) {
       .def_readwrite("transparent_background", &RenderSettings::transparent_background)
       .def_readwrite("window", &RenderSettings::window)
       .def_readwrite("threads", &RenderSettings::threads)
+      .def_property(
+          "light_selection",
+          [](const RenderSettings& s) {
+            return std::string(s.light_selection == LightSelection::Uniform ? "UNIFORM" : "CONTRIBUTION");
+          },
+          [](RenderSettings& s, const std::string& v) { s.light_selection = parse_light_selection(v); })
       .def_property(
           "brdf_model", [](const RenderSettings& s) { return model_name(s.brdf_model); },
           [](RenderSettings& s, const std::string& v) { s.brdf_model = parse_model(v); });

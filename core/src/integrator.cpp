@@ -57,8 +57,6 @@ struct PathContext {
 // Radiance along a camera ray; alpha is 0 where the background is transparent and seen directly.
 Vec3 trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, float& alpha) {
   const Lights& lights = ctx.lights;
-  const size_t num_lights = lights.count();
-  const float light_selection = lights.selection_probability();
   Vec3 L(0.0f), throughput(1.0f);
   Vec3 prev_position(0.0f), prev_normal(0.0f);
   float prev_pdf = 0.0f;
@@ -100,12 +98,13 @@ Vec3 trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, float& a
     const Vec3 wo = frame.to_local(wo_world);
     const MaterialBsdf& bsdf = ctx.bsdfs[hit.material];
 
-    // Next-event estimation: one light, chosen uniformly, MIS-weighted against BSDF sampling.
+    // Next-event estimation: one light, chosen by its expected contribution, MIS-weighted against
+    // BSDF sampling.
     const glm::vec4 u_light = sampler.next_4d();  // light choice, position on the light
     const glm::vec4 u_bsdf = sampler.next_4d();   // lobe, direction, roulette
-    if (num_lights > 0) {
-      const size_t index = std::min(size_t(u_light.x * float(num_lights)), num_lights - 1);
-      const LightSample ls = lights.sample(index, hit.position, ns, Vec2(u_light.y, u_light.z));
+    const Lights::Choice choice = lights.select(hit.position, ns, u_light.x);
+    if (choice.probability > 0.0f) {
+      const LightSample ls = lights.sample(choice.index, hit.position, ns, Vec2(u_light.y, u_light.z));
       if (ls.valid() && glm::dot(ls.wi, ng) > 0.0f) {
         const Vec3 wi = frame.to_local(ls.wi);
         const Vec3 f = bsdf.eval(wo, wi);
@@ -113,8 +112,8 @@ Vec3 trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, float& a
           const Vec3 origin = offset_origin(hit.position, ng, ls.wi);
           const float tmax = std::isinf(ls.distance) ? kInfinity : ls.distance * (1.0f - 1e-4f);
           if (!ctx.scene.occluded(origin, ls.wi, 0.0f, tmax)) {
-            const float mis = ls.pdf > 0.0f ? power_heuristic(light_selection * ls.pdf, bsdf.pdf(wo, wi)) : 1.0f;
-            L += throughput * f * ls.weight * (mis / light_selection);
+            const float mis = ls.pdf > 0.0f ? power_heuristic(choice.probability * ls.pdf, bsdf.pdf(wo, wi)) : 1.0f;
+            L += throughput * f * ls.weight * (mis / choice.probability);
           }
         }
       }
@@ -186,6 +185,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
                       settings.pixel_aspect_y);
   if (scene.num_materials() == 0) scene.add_material(Material{});
   scene.commit();
+  scene.lights().set_selection(settings.light_selection);
 
   PathContext ctx{scene, scene.lights(), settings, {}};
   ctx.bsdfs.reserve(scene.num_materials());

@@ -105,29 +105,84 @@ LightSample Lights::sample(size_t index, const Vec3& p, const Vec3& shading_norm
   return s;
 }
 
+float Lights::importance(size_t index, const Vec3& p, const Vec3& n) const {
+  if (selection_ == LightSelection::Uniform) return 1.0f;
+  if (index < suns_.size()) {
+    const SunLight& sun = suns_[index];
+    const float sin_half = std::sqrt(sun.one_minus_cos * (2.0f - sun.one_minus_cos));
+    return luminance(sun.irradiance) * std::max(glm::dot(n, sun.to_light) + sin_half, 0.0f);
+  }
+  index -= suns_.size();
+  if (index < points_.size()) {
+    const PointLight& light = points_[index];
+    const Vec3 d = light.position - p;
+    const float d2 = std::max(glm::dot(d, d), light.radius * light.radius + 1e-8f);
+    const float cos_bound = glm::dot(n, d) / std::sqrt(d2) + std::min(light.radius / std::sqrt(d2), 1.0f);
+    return luminance(light.intensity) / d2 * std::max(cos_bound, 0.0f);
+  }
+  return luminance(world_) * kPi;
+}
+
+Lights::Choice Lights::select(const Vec3& p, const Vec3& n, float u) const {
+  const size_t n_lights = count();
+  float weights[64];
+  const bool small = n_lights <= 64;
+  float total = 0.0f;
+  for (size_t i = 0; i < n_lights; ++i) {
+    const float w = importance(i, p, n);
+    if (small) weights[i] = w;
+    total += w;
+  }
+  if (!(total > 0.0f) || !std::isfinite(total)) return {};
+  float target = u * total, running = 0.0f;
+  for (size_t i = 0; i < n_lights; ++i) {
+    const float w = small ? weights[i] : importance(i, p, n);
+    running += w;
+    if (w > 0.0f && (target < running || i + 1 == n_lights)) return {i, w / total};
+  }
+  for (size_t i = n_lights; i-- > 0;) {  // rounding left target at the end: the last positive weight
+    const float w = small ? weights[i] : importance(i, p, n);
+    if (w > 0.0f) return {i, w / total};
+  }
+  return {};
+}
+
+float Lights::selection_probability(size_t index, const Vec3& p, const Vec3& n) const {
+  float total = 0.0f;
+  for (size_t i = 0, n_lights = count(); i < n_lights; ++i) total += importance(i, p, n);
+  return total > 0.0f ? importance(index, p, n) / total : 0.0f;
+}
+
 float Lights::mis_weight(float bsdf_pdf, bool bsdf_delta, float light_pdf) const {
   if (bsdf_delta) return 1.0f;
-  return power_heuristic(bsdf_pdf, selection_probability() * light_pdf);
+  return power_heuristic(bsdf_pdf, light_pdf);
 }
 
 Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max,
                                 bool escaped, float bsdf_pdf, bool bsdf_delta) const {
   Vec3 L(0.0f);
-  for (const PointLight& light : points_) {
+  for (size_t k = 0; k < points_.size(); ++k) {
+    const PointLight& light = points_[k];
     if (light.radius <= 0.0f) continue;
     const float t = sphere_entry(p_prev, dir, light.position, light.radius);
     if (t < 0.0f || t >= t_max) continue;
     const Vec3 d = light.position - p_prev;
     const float r2 = light.radius * light.radius;
-    const float light_pdf = 1.0f / cone_solid_angle(sphere_one_minus_cos(r2, glm::dot(d, d)));
+    const float light_pdf = selection_probability(suns_.size() + k, p_prev, n_prev) /
+                            cone_solid_angle(sphere_one_minus_cos(r2, glm::dot(d, d)));
     L += light.intensity / (kPi * r2) * mis_weight(bsdf_pdf, bsdf_delta, light_pdf);
   }
   if (!escaped) return L;
-  if (has_world()) L += world_ * mis_weight(bsdf_pdf, bsdf_delta, cosine_hemisphere_pdf(glm::dot(n_prev, dir)));
-  for (const SunLight& sun : suns_) {
+  if (has_world()) {
+    const float select = selection_probability(suns_.size() + points_.size(), p_prev, n_prev);
+    L += world_ * mis_weight(bsdf_pdf, bsdf_delta, select * cosine_hemisphere_pdf(glm::dot(n_prev, dir)));
+  }
+  for (size_t k = 0; k < suns_.size(); ++k) {
+    const SunLight& sun = suns_[k];
     if (sun.one_minus_cos <= 0.0f || 1.0f - glm::dot(dir, sun.to_light) > sun.one_minus_cos) continue;
     const float solid_angle = cone_solid_angle(sun.one_minus_cos);
-    L += sun.irradiance / solid_angle * mis_weight(bsdf_pdf, bsdf_delta, 1.0f / solid_angle);
+    const float select = selection_probability(k, p_prev, n_prev);
+    L += sun.irradiance / solid_angle * mis_weight(bsdf_pdf, bsdf_delta, select / solid_angle);
   }
   return L;
 }

@@ -139,3 +139,40 @@ TEST(Render, ProgressivePassesAndPromptStop) {
 
 }  // namespace
 }  // namespace torrance
+
+namespace torrance {
+namespace {
+
+// Both light-selection strategies are unbiased: the same scene converges to the same image, and
+// choosing by contribution is less noisy when lights differ greatly.
+TEST(Render, LightSelectionStrategiesAgreeAndContributionIsLessNoisy) {
+  Scene scene;
+  build_plane(scene, lambert(0.6f));
+  scene.lights().add_sun(Vec3(0.3f, 0.2f, -1.0f), 5.0f, Vec3(1.0f), 0.1f);
+  scene.lights().add_point(Vec3(0.2f, 0.1f, 1.0f), 30.0f, Vec3(1.0f, 0.5f, 0.2f), 0.2f);
+  scene.lights().add_point(Vec3(0.0f, 0.0f, -3.0f), 1e4f, Vec3(1.0f), 0.1f);  // below the plane: useless
+  scene.lights().set_world(Vec3(0.02f), 1.0f);
+  RenderSettings s = small(256);
+  s.light_selection = LightSelection::Uniform;
+  const Vec3 uniform = mean_rgb(render(scene, s).image);
+  s.light_selection = LightSelection::Contribution;
+  const Vec3 contribution = mean_rgb(render(scene, s).image);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(contribution[c], uniform[c], 0.01f * uniform[c]);
+
+  auto pixel_variance = [&](LightSelection sel) {
+    RenderSettings one = small(1);
+    one.light_selection = sel;
+    const Image img = render(scene, one).image;
+    double sum = 0, sum2 = 0;
+    const size_t n = img.rgba.size() / 4;
+    for (size_t i = 0; i < n; ++i) {
+      sum += img.rgba[4 * i];
+      sum2 += double(img.rgba[4 * i]) * img.rgba[4 * i];
+    }
+    return sum2 / n - sqr(float(sum / n));
+  };
+  EXPECT_LT(pixel_variance(LightSelection::Contribution), 0.5 * pixel_variance(LightSelection::Uniform));
+}
+
+}  // namespace
+}  // namespace torrance

@@ -22,6 +22,7 @@ struct RenderSettings {
   float filter_width = 1.5f;      // Blackman-Harris, in pixels (Cycles' default)
   bool transparent_background = false;
   BrdfModel brdf_model = BrdfModel::Paper;
+  LightSelection light_selection = LightSelection::Contribution;
   // Optional window [x0, x1) x [y0, y1) of the frame to render, y counted from the top row.
   std::optional<std::array<int, 4>> window;
   int threads = 0;  // 0 = all cores

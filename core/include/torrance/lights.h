@@ -36,15 +36,30 @@ struct PointLight {
   float radius;
 };
 
+// How next-event estimation chooses a light at a shading point.
+enum class LightSelection {
+  Uniform,       // every light equally often (Cycles 3.4)
+  Contribution,  // in proportion to an unshadowed estimate of the irradiance each light brings
+};
+
 class Lights {
  public:
   void add_sun(const Vec3& direction, float strength, const Vec3& color, float angle);
   void add_point(const Vec3& position, float power, const Vec3& color, float radius);
   void set_world(const Vec3& color, float strength);
 
-  // Next-event estimation picks one of count() strategies uniformly (each sun, each point, world).
+  // The NEE strategies: each sun, each point light, then the world (if not black).
   size_t count() const { return suns_.size() + points_.size() + (has_world() ? 1 : 0); }
-  float selection_probability() const { return count() ? 1.0f / float(count()) : 0.0f; }
+  void set_selection(LightSelection s) { selection_ = s; }
+
+  struct Choice {
+    size_t index = 0;
+    float probability = 0.0f;  // 0: no light can contribute here
+  };
+  // Chooses the light for NEE at point p with shading normal n.
+  Choice select(const Vec3& p, const Vec3& n, float u) const;
+  float selection_probability(size_t index, const Vec3& p, const Vec3& n) const;
+
   LightSample sample(size_t index, const Vec3& p, const Vec3& shading_normal, const Vec2& u) const;
 
   // Radiance, MIS-weighted against NEE, that a BSDF-sampled ray leaving p_prev (where NEE used
@@ -57,11 +72,15 @@ class Lights {
   bool has_world() const { return world_.x > 0.0f || world_.y > 0.0f || world_.z > 0.0f; }
 
  private:
+  // Unnormalised selection weight of light `index` at (p, n): its irradiance there, unshadowed,
+  // bounded above so that lights partly above the horizon keep a chance.
+  float importance(size_t index, const Vec3& p, const Vec3& n) const;
   float mis_weight(float bsdf_pdf, bool bsdf_delta, float light_pdf) const;
 
   std::vector<SunLight> suns_;
   std::vector<PointLight> points_;
   Vec3 world_{0.0f};
+  LightSelection selection_ = LightSelection::Contribution;
 };
 
 }  // namespace torrance
