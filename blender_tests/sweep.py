@@ -410,6 +410,44 @@ def compute_masks(scene, path):
     return path
 
 
+def scene_info(scene):
+    """Lights, world and Principled materials of the scene (for the plan: analyses use them)."""
+    lights = []
+    for ob in scene.objects:
+        if ob.type != 'LIGHT' or ob.hide_render:
+            continue
+        light = ob.data
+        m = ob.matrix_world
+        lights.append(dict(name=ob.name, type=light.type, energy=float(light.energy),
+                           color=list(light.color),
+                           direction=[-m[0][2], -m[1][2], -m[2][2]],    # the way light travels
+                           angle=float(getattr(light, "angle", 0.0))))
+    world = None
+    if scene.world is not None:
+        w = scene.world
+        color, strength = list(w.color), 1.0
+        if w.use_nodes and w.node_tree is not None:
+            bg = next((n for n in w.node_tree.nodes if n.bl_idname == 'ShaderNodeBackground'), None)
+            if bg is not None:
+                color = list(bg.inputs["Color"].default_value)[:3]
+                strength = float(bg.inputs["Strength"].default_value)
+        world = dict(name=w.name, color=color, strength=strength)
+    materials = {}
+    for mat in bpy.data.materials:
+        if not mat.use_nodes or mat.node_tree is None:
+            continue
+        node = next((n for n in mat.node_tree.nodes if n.bl_idname == 'ShaderNodeBsdfPrincipled'),
+                    None)
+        if node is None:
+            continue
+        vals = {}
+        for name in ("Base Color", "Metallic", "Roughness", "Specular"):
+            v = node.inputs[name].default_value
+            vals[name] = list(v)[:3] if name == "Base Color" else float(v)
+        materials[mat.name] = vals
+    return dict(lights=lights, world=world, materials=materials)
+
+
 # --------------------------------------------------------------------------------------------
 # Recording frames
 
@@ -552,7 +590,7 @@ def run(args):
     plan = dict(version=1, material=mat and mat.name, node=node and node.name, inputs=names,
                 constants=constants, frames=frames, engine=rd.engine, samples=samples,
                 resolution=[width, height], exposure=exposure, title=title, columns=args.columns,
-                blend=bpy.data.filepath, scene=scene.name,
+                blend=bpy.data.filepath, scene=scene.name, scene_info=scene_info(scene),
                 grid=(dict(input1=names[0], values1=axes[0], input2=names[1], values2=axes[1])
                       if len(names) == 2 else None))
     os.makedirs(out_dir, exist_ok=True)

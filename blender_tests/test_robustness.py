@@ -49,6 +49,7 @@ def render_case(name, scene, directory, expect=(), levels=('WARNING', 'INFO'), e
               f"{name}: no report containing {text!r} in {messages}")
     stats = tutil.addon().render.last_stats
     check(stats.get("samples_done") == SAMPLES, f"{name}: samples_done {stats}")
+    check(stats.get("nonfinite_pixels") == 0, f"{name}: NaN/Inf in the core's image {stats}")
     return img
 
 

@@ -320,9 +320,12 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
 
     geometry_cache = {}
     unsupported_types = set()
+    last_poll = time.perf_counter()
     for inst in depsgraph.object_instances:
-        if should_stop is not None and should_stop():
-            raise Cancelled()
+        if should_stop is not None and time.perf_counter() - last_poll > 0.1:
+            last_poll = time.perf_counter()       # Esc during a long export, polled at 10 Hz
+            if should_stop():
+                raise Cancelled()
         obj = inst.object
         kind = obj.type
         if kind == 'LIGHT':

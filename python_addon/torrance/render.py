@@ -17,6 +17,10 @@ _core_error = None
 last_messages = []
 last_stats = {}
 
+# Testing hook: when set, called as test_break_override(engine) instead of
+# engine.test_break() (RNA methods of a RenderEngine can not be monkeypatched).
+test_break_override = None
+
 
 def load_core():
     """The native module torrance_core; raises RuntimeError with a clear message if missing."""
@@ -124,7 +128,8 @@ class _Session:
         try:
             if self.stop_requested:
                 return True
-            if self.engine.test_break():
+            hook = test_break_override
+            if hook(self.engine) if hook is not None else self.engine.test_break():
                 self.stop_requested = True
             return self.stop_requested
         except Exception as exc:
@@ -189,9 +194,15 @@ def _render(engine, depsgraph, reporter):
         session.t0 = time.perf_counter()
         result = tc.render(tc_scene, settings, on_pass=session.on_pass,
                            should_stop=session.should_stop)
-        if session.callback_error is not None and not engine.test_break():
+        if session.callback_error is not None:
             raise RuntimeError(f"while showing the render: {session.callback_error}")
-        session.write(result.image)
+        image = np.asarray(result.image)
+        nonfinite = int(image.size - np.count_nonzero(np.isfinite(image)))
+        last_stats["nonfinite_pixels"] = nonfinite
+        if nonfinite:
+            reporter.warning(f"Torrance: {nonfinite} NaN/Inf pixel values in the result "
+                             f"were replaced by 0")
+        session.write(image)
     finally:
         session.end()
 
@@ -204,5 +215,6 @@ def _render(engine, depsgraph, reporter):
     engine.update_stats("", msg)
     print(msg)
     nonfinite = int(getattr(result, "nonfinite_samples", 0))
+    last_stats["nonfinite_samples"] = nonfinite
     if nonfinite:
         reporter.warning(f"Torrance discarded {nonfinite} NaN/Inf samples")
