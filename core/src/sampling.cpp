@@ -27,15 +27,24 @@ struct SobolMatrices {
       }
       for (int k = 0; k < 32; ++k) v[d + 1][k] = m[k] << (31 - k);
     }
+    // The matrix-vector product one index byte at a time: table[dim][byte][value] is the XOR of
+    // the columns selected by that byte's bits.
+    for (int d = 0; d < 4; ++d)
+      for (int byte = 0; byte < 4; ++byte)
+        for (uint32_t value = 0; value < 256; ++value) {
+          uint32_t x = 0;
+          for (int bit = 0; bit < 8; ++bit)
+            if ((value >> bit) & 1u) x ^= v[d][8 * byte + bit];
+          table[d][byte][value] = x;
+        }
   }
+  uint32_t table[4][4][256];
 };
 const SobolMatrices kSobol;
 
 uint32_t sobol(uint32_t index, int dim) {
-  uint32_t x = 0;
-  for (int bit = 0; index; index >>= 1, ++bit)
-    if (index & 1u) x ^= kSobol.v[dim][bit];
-  return x;
+  const auto& t = kSobol.table[dim];
+  return t[0][index & 0xffu] ^ t[1][(index >> 8) & 0xffu] ^ t[2][(index >> 16) & 0xffu] ^ t[3][index >> 24];
 }
 
 uint32_t reverse_bits(uint32_t x) {
