@@ -591,6 +591,8 @@ def run(args):
                 constants=constants, frames=frames, engine=rd.engine, samples=samples,
                 resolution=[width, height], exposure=exposure, title=title, columns=args.columns,
                 blend=bpy.data.filepath, scene=scene.name, scene_info=scene_info(scene),
+                brdf_model=(str(scene.torrance.brdf_model)
+                            if rd.engine == 'TORRANCE' and hasattr(scene, "torrance") else None),
                 grid=(dict(input1=names[0], values1=axes[0], input2=names[1], values2=axes[1])
                       if len(names) == 2 else None))
     os.makedirs(out_dir, exist_ok=True)

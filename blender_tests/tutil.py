@@ -8,6 +8,7 @@ and exits non-zero on failure.
 
 import math
 import os
+import shutil
 import sys
 import tempfile
 import time
@@ -18,17 +19,32 @@ import numpy as np
 from mathutils import Vector
 
 
+_tempdirs = []
+
+
 def run(main):
-    """Runs main(); prints the traceback and exits 1 on any failure, 0 on success."""
+    """Runs main(); prints the traceback and exits 1 on any failure, 0 on success.
+
+    Temporary folders from tempdir() are removed unless TORRANCE_KEEP_TEST_FILES is set.
+    """
     t0 = time.perf_counter()
+    ok = False
     try:
         main()
+        ok = True
     except SystemExit:
         raise
     except BaseException:
         traceback.print_exc()
+    finally:
+        if os.environ.get("TORRANCE_KEEP_TEST_FILES"):
+            for d in _tempdirs:
+                print(f"kept {d}")
+        else:
+            for d in _tempdirs:
+                shutil.rmtree(d, ignore_errors=True)
+    if not ok:
         print(f"FAILED after {time.perf_counter() - t0:.1f} s", flush=True)
-        sys.stdout.flush()
         sys.exit(1)
     print(f"PASSED in {time.perf_counter() - t0:.1f} s", flush=True)
     sys.exit(0)
@@ -56,6 +72,7 @@ def core():
 
 def tempdir():
     d = tempfile.mkdtemp(prefix="torrance_test_")
+    _tempdirs.append(d)
     return d
 
 
