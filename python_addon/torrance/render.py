@@ -22,6 +22,10 @@ last_stats = {}
 test_break_override = None
 
 
+class CoreMissing(RuntimeError):
+    pass
+
+
 def load_core():
     """The native module torrance_core; raises RuntimeError with a clear message if missing."""
     global _core, _core_error
@@ -30,7 +34,7 @@ def load_core():
             from . import torrance_core
         except Exception as exc:             # ImportError, or a broken .so (OSError, ...)
             _core_error = f"{type(exc).__name__}: {exc}"
-            raise RuntimeError(
+            raise CoreMissing(
                 "Torrance's native module 'torrance_core' could not be loaded "
                 f"({_core_error}). Rebuild the add-on (scripts/build) and reinstall it.") from exc
         _core = torrance_core
@@ -148,6 +152,8 @@ def render(engine, depsgraph):
         _render(engine, depsgraph, reporter)
     except export.Cancelled:
         pass
+    except CoreMissing as exc:
+        reporter.error(str(exc))
     except Exception as exc:
         traceback.print_exc()
         reporter.error(f"Torrance: {exc}")
