@@ -113,6 +113,32 @@ void init_scene(py::module_& m) {
           py::arg("position"), py::arg("power") = 1000.0f, py::arg("color") = std::array<float, 3>{1, 1, 1},
           py::arg("radius") = 0.1f, "Point light: power in W, radius in m.")
       .def(
+          "add_spot_light",
+          [](Scene& s, std::array<float, 3> position, std::array<float, 3> direction, float power,
+             std::array<float, 3> color, float radius, float spot_size, float spot_blend) {
+            s.lights().add_spot(vec3(position), vec3(direction), power, vec3(color), radius, spot_size, spot_blend);
+          },
+          py::arg("position"), py::arg("direction") = std::array<float, 3>{0, 0, -1}, py::arg("power") = 1000.0f,
+          py::arg("color") = std::array<float, 3>{1, 1, 1}, py::arg("radius") = 0.1f,
+          py::arg("spot_size") = 0.785398f, py::arg("spot_blend") = 0.15f,
+          "Spot light: a point light (W, m) limited to a cone of full angle spot_size (radians), "
+          "pointing along direction (Blender: the light's -Z).")
+      .def(
+          "add_area_light",
+          [](Scene& s, std::array<float, 3> center, std::array<float, 3> edge_u, std::array<float, 3> edge_v,
+             std::array<float, 3> direction, const std::string& shape, float power, std::array<float, 3> color,
+             float spread) {
+            if (shape != "RECTANGLE" && shape != "ELLIPSE")
+              throw py::value_error("area light shape must be 'RECTANGLE' or 'ELLIPSE', got '" + shape + "'");
+            s.lights().add_area(vec3(center), vec3(edge_u), vec3(edge_v), vec3(direction), shape == "ELLIPSE", power,
+                                vec3(color), spread);
+          },
+          py::arg("center"), py::arg("edge_u"), py::arg("edge_v"), py::arg("direction") = std::array<float, 3>{0, 0, -1},
+          py::arg("shape") = "RECTANGLE", py::arg("power") = 10.0f, py::arg("color") = std::array<float, 3>{1, 1, 1},
+          py::arg("spread") = 3.14159265f,
+          "Area light: edges are full-size vectors (object X * size, Y * size_y, scale included); "
+          "it emits one-sided along direction with radiance power / (4 area), like Cycles.")
+      .def(
           "set_world",
           [](Scene& s, std::array<float, 3> color, float strength) { s.lights().set_world(vec3(color), strength); },
           py::arg("color"), py::arg("strength") = 1.0f, "Uniform world radiance = color * strength.")

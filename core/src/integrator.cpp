@@ -76,7 +76,7 @@ Vec3 trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, float& a
       }
     } else {
       L += throughput * lights.emission_along_ray(prev_position, prev_normal, ray.dir, found ? hit.t : kInfinity,
-                                                   !found, prev_pdf, prev_delta);
+                                                   prev_pdf, prev_delta);
       if (!found) break;
     }
 

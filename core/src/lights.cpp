@@ -3,9 +3,12 @@
 #include "torrance/sampling.h"
 
 #include <stdexcept>
+#include <string>
 
 namespace torrance {
 namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 void require_finite(const Vec3& v, const char* what) {
   if (!is_finite(v)) throw std::invalid_argument(std::string(what) + " contains NaN or Inf");
@@ -16,6 +19,12 @@ void require_non_negative(float v, const char* what) {
 Vec3 checked_color(const Vec3& c, const char* what) {
   require_finite(c, what);
   return glm::max(c, Vec3(0.0f));
+}
+Vec3 unit_direction(const Vec3& d, const char* what) {
+  require_finite(d, what);
+  const float len = glm::length(d);
+  if (!(len > 0.0f)) throw std::invalid_argument(std::string(what) + " must not be zero");
+  return d / len;
 }
 
 // Ray/sphere intersection for a ray starting outside the sphere; returns the entry distance or -1.
@@ -34,117 +43,329 @@ float sphere_one_minus_cos(float r2, float d2) {
   return sin2 / (1.0f + safe_sqrt(1.0f - sin2));
 }
 
+// A rectangle as seen from a point: the spherical rectangle of Urena, Fajardo and King (2013),
+// sampled uniformly in solid angle. Double precision keeps small, distant rectangles accurate.
+struct SphericalRect {
+  glm::dvec3 o, x, y, z;
+  double x0, y0, z0, x1, y1, b0, b1, k, solid_angle;
+
+  SphericalRect(const Vec3& origin, const Vec3& corner, const Vec3& ex, const Vec3& ey) : o(origin) {
+    const double exl = glm::length(glm::dvec3(ex)), eyl = glm::length(glm::dvec3(ey));
+    x = glm::dvec3(ex) / exl;
+    y = glm::dvec3(ey) / eyl;
+    z = glm::cross(x, y);
+    const glm::dvec3 d = glm::dvec3(corner) - o;
+    x0 = glm::dot(d, x);
+    y0 = glm::dot(d, y);
+    z0 = glm::dot(d, z);
+    if (z0 > 0.0) {
+      z0 = -z0;
+      z = -z;
+    }
+    x1 = x0 + exl;
+    y1 = y0 + eyl;
+    const glm::dvec3 v00(x0, y0, z0), v01(x0, y1, z0), v10(x1, y0, z0), v11(x1, y1, z0);
+    const glm::dvec3 n0 = glm::normalize(glm::cross(v00, v10)), n1 = glm::normalize(glm::cross(v10, v11));
+    const glm::dvec3 n2 = glm::normalize(glm::cross(v11, v01)), n3 = glm::normalize(glm::cross(v01, v00));
+    auto angle = [](const glm::dvec3& a, const glm::dvec3& b) { return std::acos(std::clamp(-glm::dot(a, b), -1.0, 1.0)); };
+    const double g0 = angle(n0, n1), g1 = angle(n1, n2), g2 = angle(n2, n3), g3 = angle(n3, n0);
+    b0 = n0.z;
+    b1 = n2.z;
+    k = 2.0 * M_PI - g2 - g3;
+    solid_angle = g0 + g1 - k;
+  }
+
+  Vec3 sample(const Vec2& u) const {
+    const double au = u.x * solid_angle + k;
+    const double fu = (std::cos(au) * b0 - b1) / std::sin(au);
+    const double cu = std::clamp(std::copysign(1.0, fu) / std::sqrt(fu * fu + b0 * b0), -1.0, 1.0);
+    const double xu = std::clamp(-(cu * z0) / std::max(std::sqrt(1.0 - cu * cu), 1e-12), x0, x1);
+    const double d = std::sqrt(xu * xu + z0 * z0);
+    const double h0 = y0 / std::sqrt(d * d + y0 * y0), h1 = y1 / std::sqrt(d * d + y1 * y1);
+    const double hv = h0 + u.y * (h1 - h0), hv2 = hv * hv;
+    const double yv = hv2 < 1.0 - 1e-12 ? hv * d / std::sqrt(1.0 - hv2) : y1;
+    return Vec3(o + xu * x + std::clamp(yv, y0, y1) * y + z0 * z);
+  }
+};
+
+// Below this solid angle a rectangle is sampled by area: the spherical construction loses precision.
+constexpr double kMinSphericalSolidAngle = 1e-5;
+
 }  // namespace
 
-void Lights::add_sun(const Vec3& direction, float strength, const Vec3& color, float angle) {
-  require_finite(direction, "sun direction");
+// ---- sun ------------------------------------------------------------------------------------
+
+SunLight::SunLight(const Vec3& direction, float strength, const Vec3& color, float angle) {
   require_non_negative(strength, "sun strength");
   require_non_negative(angle, "sun angle");
-  const float len = glm::length(direction);
-  if (!(len > 0.0f)) throw std::invalid_argument("sun direction must not be zero");
-  const float half = std::min(angle, kPi) * 0.5f;
-  const float s = std::sin(half * 0.5f);
-  suns_.push_back({-direction / len, checked_color(color, "sun color") * strength, 2.0f * s * s});
+  to_light_ = -unit_direction(direction, "sun direction");
+  irradiance_ = checked_color(color, "sun color") * strength;
+  const float s = std::sin(std::min(angle, kPi) * 0.25f);
+  one_minus_cos_ = 2.0f * s * s;
 }
 
-void Lights::add_point(const Vec3& position, float power, const Vec3& color, float radius) {
-  require_finite(position, "point light position");
-  require_non_negative(power, "point light power");
-  require_non_negative(radius, "point light radius");
-  points_.push_back({position, checked_color(color, "point light color") * (power / (4.0f * kPi)), radius});
-}
-
-void Lights::set_world(const Vec3& color, float strength) {
-  require_non_negative(strength, "world strength");
-  world_ = checked_color(color, "world color") * strength;
-}
-
-LightSample Lights::sample(size_t index, const Vec3& p, const Vec3& shading_normal, const Vec2& u) const {
+LightSample SunLight::sample(const Vec3&, const Vec3&, const Vec2& u) const {
   LightSample s;
-  if (index < suns_.size()) {
-    const SunLight& sun = suns_[index];
-    s.weight = sun.irradiance;  // Le / pdf = (E / solid angle) / (1 / solid angle)
-    if (sun.one_minus_cos > 0.0f) {
-      s.wi = Frame(sun.to_light).to_world(sample_uniform_cone(u, sun.one_minus_cos));
-      s.pdf = 1.0f / cone_solid_angle(sun.one_minus_cos);
-    } else {
-      s.wi = sun.to_light;
-    }
-    return s;
-  }
-  index -= suns_.size();
-  if (index < points_.size()) {
-    const PointLight& light = points_[index];
-    const Vec3 d = light.position - p;
-    const float d2 = glm::dot(d, d);
-    if (!(d2 > 0.0f)) return s;
-    const float dist = std::sqrt(d2);
-    const float r2 = light.radius * light.radius;
-    if (light.radius <= 0.0f || d2 <= r2 * 1.0001f) {  // a delta light, or a point inside the sphere
-      s.wi = d / dist;
-      s.distance = dist;
-      s.weight = light.intensity / std::max(d2, r2);
-      return s;
-    }
-    const float omc = sphere_one_minus_cos(r2, d2);
-    s.wi = Frame(d / dist).to_world(sample_uniform_cone(u, omc));
-    const float t = sphere_entry(p, s.wi, light.position, light.radius);
-    s.distance = t > 0.0f ? t : dist - light.radius;
-    const float solid_angle = cone_solid_angle(omc);
-    s.weight = light.intensity * (solid_angle / (kPi * r2));
-    s.pdf = 1.0f / solid_angle;
-    return s;
-  }
-  if (has_world()) {
-    const Vec3 local = sample_cosine_hemisphere(u);
-    s.pdf = cosine_hemisphere_pdf(local.z);
-    if (!(s.pdf > 0.0f)) return LightSample{};
-    s.wi = Frame(shading_normal).to_world(local);
-    s.weight = world_ / s.pdf;
+  s.weight = irradiance_;  // Le / pdf = (E / solid angle) / (1 / solid angle)
+  if (one_minus_cos_ > 0.0f) {
+    s.wi = Frame(to_light_).to_world(sample_uniform_cone(u, one_minus_cos_));
+    s.pdf = 1.0f / cone_solid_angle(one_minus_cos_);
+  } else {
+    s.wi = to_light_;
   }
   return s;
 }
 
+float SunLight::importance(const Vec3&, const Vec3& n) const {
+  const float sin_half = std::sqrt(one_minus_cos_ * (2.0f - one_minus_cos_));
+  return luminance(irradiance_) * std::max(glm::dot(n, to_light_) + sin_half, 0.0f);
+}
+
+bool SunLight::hit(const Vec3&, const Vec3&, const Vec3& dir, float t_max, LightHit& out) const {
+  if (t_max < kInfinity || one_minus_cos_ <= 0.0f || 1.0f - glm::dot(dir, to_light_) > one_minus_cos_) return false;
+  const float solid_angle = cone_solid_angle(one_minus_cos_);
+  out.radiance = irradiance_ / solid_angle;
+  out.pdf = 1.0f / solid_angle;
+  return true;
+}
+
+// ---- point and spot -------------------------------------------------------------------------
+
+PointLight::PointLight(const Vec3& position, float power, const Vec3& color, float radius, const SpotShape& spot)
+    : position_(position), radius_(radius), spot_(spot) {
+  require_finite(position, "light position");
+  require_non_negative(power, "light power");
+  require_non_negative(radius, "light radius");
+  intensity_ = checked_color(color, "light color") * (power / (4.0f * kPi));
+}
+
+float PointLight::spot_attenuation(const Vec3& p) const {
+  if (spot_.cos_half_angle <= -1.0f) return 1.0f;
+  const Vec3 d = p - position_;
+  const float len = glm::length(d);
+  if (!(len > 0.0f)) return 0.0f;
+  const float c = glm::dot(d / len, spot_.axis);
+  const float over = c - spot_.cos_half_angle;
+  if (over <= 0.0f) return 0.0f;
+  if (over < spot_.blend_width) {
+    const float t = over / spot_.blend_width;
+    return c * t * t * (3.0f - 2.0f * t);
+  }
+  return c;
+}
+
+LightSample PointLight::sample(const Vec3& p, const Vec3&, const Vec2& u) const {
+  LightSample s;
+  const Vec3 d = position_ - p;
+  const float d2 = glm::dot(d, d);
+  if (!(d2 > 0.0f)) return s;
+  const float attenuation = spot_attenuation(p);
+  if (attenuation <= 0.0f) return s;
+  const float dist = std::sqrt(d2);
+  const float r2 = radius_ * radius_;
+  if (radius_ <= 0.0f || d2 <= r2 * 1.0001f) {  // a delta light, or a point inside the sphere
+    s.wi = d / dist;
+    s.distance = dist;
+    s.weight = intensity_ * (attenuation / std::max(d2, r2));
+    return s;
+  }
+  const float omc = sphere_one_minus_cos(r2, d2);
+  s.wi = Frame(d / dist).to_world(sample_uniform_cone(u, omc));
+  const float t = sphere_entry(p, s.wi, position_, radius_);
+  s.distance = t > 0.0f ? t : dist - radius_;
+  const float solid_angle = cone_solid_angle(omc);
+  s.weight = intensity_ * (attenuation * solid_angle / (kPi * r2));
+  s.pdf = 1.0f / solid_angle;
+  return s;
+}
+
+float PointLight::importance(const Vec3& p, const Vec3& n) const {
+  const Vec3 d = position_ - p;
+  const float d2 = std::max(glm::dot(d, d), radius_ * radius_ + 1e-8f);
+  const float inv_d = 1.0f / std::sqrt(d2);
+  const float cos_bound = glm::dot(n, d) * inv_d + std::min(radius_ * inv_d, 1.0f);
+  return luminance(intensity_) * spot_attenuation(p) / d2 * std::max(cos_bound, 0.0f);
+}
+
+bool PointLight::hit(const Vec3& p, const Vec3&, const Vec3& dir, float t_max, LightHit& out) const {
+  if (radius_ <= 0.0f) return false;
+  const float t = sphere_entry(p, dir, position_, radius_);
+  if (t < 0.0f || t >= t_max) return false;
+  const Vec3 d = position_ - p;
+  const float r2 = radius_ * radius_;
+  out.radiance = intensity_ * (spot_attenuation(p) / (kPi * r2));
+  out.pdf = 1.0f / cone_solid_angle(sphere_one_minus_cos(r2, glm::dot(d, d)));
+  return true;
+}
+
+// ---- area -----------------------------------------------------------------------------------
+
+AreaLight::AreaLight(const Vec3& center, const Vec3& edge_u, const Vec3& edge_v, const Vec3& normal, bool ellipse,
+                     float power, const Vec3& color, float spread)
+    : center_(center), edge_u_(edge_u), edge_v_(edge_v), ellipse_(ellipse) {
+  require_finite(center, "area light position");
+  require_finite(edge_u, "area light size");
+  require_finite(edge_v, "area light size");
+  require_non_negative(power, "area light power");
+  normal_ = unit_direction(normal, "area light direction");
+  area_ = glm::length(edge_u) * glm::length(edge_v) * (ellipse ? kPi / 4.0f : 1.0f);
+  if (!(area_ > 0.0f)) throw std::invalid_argument("area light must have a non-zero size");
+  radiance_ = checked_color(color, "area light color") * (power / (4.0f * area_));
+  if (std::isfinite(spread) && spread < kPi) {  // Cycles' spread attenuation, normalised
+    const float half = (kPi - std::max(spread, kPi / 180.0f)) * 0.5f;
+    tan_half_spread_ = std::tan(half);
+    spread_norm_ = 2.0f / (2.0f + (2.0f * half - kPi) * tan_half_spread_);
+    has_spread_ = true;
+  }
+}
+
+float AreaLight::spread_attenuation(float cos_emit) const {
+  if (!has_spread_) return 1.0f;
+  const float tan_a = safe_sqrt(1.0f - cos_emit * cos_emit) / std::max(cos_emit, 1e-7f);
+  return std::max((1.0f - tan_half_spread_ * tan_a) * spread_norm_, 0.0f);
+}
+
+LightSample AreaLight::sample(const Vec3& p, const Vec3&, const Vec2& u) const {
+  LightSample s;
+  if (glm::dot(p - center_, normal_) <= 0.0f) return s;  // behind the emitting side
+  Vec3 q;
+  float pdf = 0.0f;
+  bool by_area = ellipse_;
+  if (!ellipse_) {
+    const SphericalRect rect(p, center_ - 0.5f * edge_u_ - 0.5f * edge_v_, edge_u_, edge_v_);
+    if (rect.solid_angle > kMinSphericalSolidAngle) {
+      q = rect.sample(u);
+      pdf = float(1.0 / rect.solid_angle);
+    } else {
+      by_area = true;
+    }
+  }
+  if (by_area) {
+    const Vec2 d = ellipse_ ? sample_concentric_disk(u) : 2.0f * u - Vec2(1.0f);
+    q = center_ + 0.5f * d.x * edge_u_ + 0.5f * d.y * edge_v_;
+  }
+  const Vec3 to_q = q - p;
+  const float dist2 = glm::dot(to_q, to_q);
+  if (!(dist2 > 0.0f)) return s;
+  const float dist = std::sqrt(dist2);
+  s.wi = to_q / dist;
+  const float cos_emit = -glm::dot(s.wi, normal_);
+  if (cos_emit <= 0.0f) return LightSample{};
+  if (by_area) pdf = dist2 / (area_ * cos_emit);
+  s.distance = dist;
+  s.pdf = pdf;
+  s.weight = radiance_ * (spread_attenuation(cos_emit) / pdf);
+  return s;
+}
+
+float AreaLight::importance(const Vec3& p, const Vec3& n) const {
+  const Vec3 d = center_ - p;
+  const float d2 = glm::dot(d, d);
+  const float facing = -glm::dot(d, normal_);
+  if (facing <= 0.0f) return 0.0f;
+  const float extent = 0.5f * std::max(glm::length(edge_u_), glm::length(edge_v_));
+  const float inv_d = 1.0f / std::sqrt(std::max(d2, 1e-12f));
+  const float cos_bound = std::max(glm::dot(n, d) * inv_d + std::min(extent * inv_d, 1.0f), 0.0f);
+  return luminance(radiance_) * area_ * cos_bound / std::max(d2, area_);
+}
+
+bool AreaLight::hit(const Vec3& p, const Vec3&, const Vec3& dir, float t_max, LightHit& out) const {
+  const float denom = glm::dot(dir, normal_);
+  if (denom >= 0.0f) return false;  // one-sided: only rays travelling against the normal
+  const float t = glm::dot(center_ - p, normal_) / denom;
+  if (!(t > 0.0f) || t >= t_max) return false;
+  const Vec3 q = p + t * dir - center_;
+  const float a = 2.0f * glm::dot(q, edge_u_) / glm::dot(edge_u_, edge_u_);
+  const float b = 2.0f * glm::dot(q, edge_v_) / glm::dot(edge_v_, edge_v_);
+  if (ellipse_ ? a * a + b * b > 1.0f : (std::abs(a) > 1.0f || std::abs(b) > 1.0f)) return false;
+  const float cos_emit = -denom;
+  out.radiance = radiance_ * spread_attenuation(cos_emit);
+  out.pdf = t * t / (area_ * cos_emit);
+  if (!ellipse_) {
+    const SphericalRect rect(p, center_ - 0.5f * edge_u_ - 0.5f * edge_v_, edge_u_, edge_v_);
+    if (rect.solid_angle > kMinSphericalSolidAngle) out.pdf = float(1.0 / rect.solid_angle);
+  }
+  return true;
+}
+
+// ---- world ----------------------------------------------------------------------------------
+
+LightSample WorldLight::sample(const Vec3&, const Vec3& n, const Vec2& u) const {
+  LightSample s;
+  const Vec3 local = sample_cosine_hemisphere(u);
+  s.pdf = cosine_hemisphere_pdf(local.z);
+  if (!(s.pdf > 0.0f)) return LightSample{};
+  s.wi = Frame(n).to_world(local);
+  s.weight = radiance_ / s.pdf;
+  return s;
+}
+
+bool WorldLight::hit(const Vec3&, const Vec3& n, const Vec3& dir, float t_max, LightHit& out) const {
+  if (t_max < kInfinity) return false;
+  out.radiance = radiance_;
+  out.pdf = cosine_hemisphere_pdf(glm::dot(n, dir));
+  return true;
+}
+
+// ---- the set of lights ----------------------------------------------------------------------
+
+void Lights::add_sun(const Vec3& direction, float strength, const Vec3& color, float angle) {
+  lights_.emplace_back(SunLight(direction, strength, color, angle));
+}
+
+void Lights::add_point(const Vec3& position, float power, const Vec3& color, float radius) {
+  lights_.emplace_back(PointLight(position, power, color, radius));
+}
+
+void Lights::add_spot(const Vec3& position, const Vec3& direction, float power, const Vec3& color, float radius,
+                      float spot_size, float spot_blend) {
+  if (!(spot_size >= 0.0f) || !std::isfinite(spot_size)) throw std::invalid_argument("spot size must be >= 0");
+  if (!(spot_blend >= 0.0f && spot_blend <= 1.0f)) throw std::invalid_argument("spot blend must be in [0, 1]");
+  SpotShape spot;
+  spot.axis = unit_direction(direction, "spot direction");
+  spot.cos_half_angle = std::cos(std::min(spot_size, kPi) * 0.5f);
+  spot.blend_width = (1.0f - spot.cos_half_angle) * spot_blend;
+  lights_.emplace_back(PointLight(position, power, color, radius, spot));
+}
+
+void Lights::add_area(const Vec3& center, const Vec3& edge_u, const Vec3& edge_v, const Vec3& direction,
+                      bool ellipse, float power, const Vec3& color, float spread) {
+  lights_.emplace_back(AreaLight(center, edge_u, edge_v, direction, ellipse, power, color, spread));
+}
+
+void Lights::set_world(const Vec3& color, float strength) {
+  require_non_negative(strength, "world strength");
+  world_ = WorldLight(checked_color(color, "world color") * strength);
+}
+
 float Lights::importance(size_t index, const Vec3& p, const Vec3& n) const {
   if (selection_ == LightSelection::Uniform) return 1.0f;
-  if (index < suns_.size()) {
-    const SunLight& sun = suns_[index];
-    const float sin_half = std::sqrt(sun.one_minus_cos * (2.0f - sun.one_minus_cos));
-    return luminance(sun.irradiance) * std::max(glm::dot(n, sun.to_light) + sin_half, 0.0f);
-  }
-  index -= suns_.size();
-  if (index < points_.size()) {
-    const PointLight& light = points_[index];
-    const Vec3 d = light.position - p;
-    const float d2 = std::max(glm::dot(d, d), light.radius * light.radius + 1e-8f);
-    const float cos_bound = glm::dot(n, d) / std::sqrt(d2) + std::min(light.radius / std::sqrt(d2), 1.0f);
-    return luminance(light.intensity) / d2 * std::max(cos_bound, 0.0f);
-  }
-  return luminance(world_) * kPi;
+  return visit(index, [&](const auto& light) { return light.importance(p, n); });
 }
 
 Lights::Choice Lights::select(const Vec3& p, const Vec3& n, float u) const {
   const size_t n_lights = count();
-  float weights[64];
-  const bool small = n_lights <= 64;
+  constexpr size_t kCached = 64;
+  float cached[kCached];
+  auto weight = [&](size_t i) { return i < kCached ? cached[i] : importance(i, p, n); };
   float total = 0.0f;
   for (size_t i = 0; i < n_lights; ++i) {
     const float w = importance(i, p, n);
-    if (small) weights[i] = w;
+    if (i < kCached) cached[i] = w;
     total += w;
   }
   if (!(total > 0.0f) || !std::isfinite(total)) return {};
-  float target = u * total, running = 0.0f;
+  const float target = u * total;
+  float running = 0.0f;
+  size_t last_positive = 0;
   for (size_t i = 0; i < n_lights; ++i) {
-    const float w = small ? weights[i] : importance(i, p, n);
+    const float w = weight(i);
+    if (!(w > 0.0f)) continue;
+    last_positive = i;
     running += w;
-    if (w > 0.0f && (target < running || i + 1 == n_lights)) return {i, w / total};
+    if (target < running) return {i, w / total};
   }
-  for (size_t i = n_lights; i-- > 0;) {  // rounding left target at the end: the last positive weight
-    const float w = small ? weights[i] : importance(i, p, n);
-    if (w > 0.0f) return {i, w / total};
-  }
-  return {};
+  return {last_positive, weight(last_positive) / total};  // rounding left the target at the end
 }
 
 float Lights::selection_probability(size_t index, const Vec3& p, const Vec3& n) const {
@@ -153,36 +374,19 @@ float Lights::selection_probability(size_t index, const Vec3& p, const Vec3& n) 
   return total > 0.0f ? importance(index, p, n) / total : 0.0f;
 }
 
-float Lights::mis_weight(float bsdf_pdf, bool bsdf_delta, float light_pdf) const {
-  if (bsdf_delta) return 1.0f;
-  return power_heuristic(bsdf_pdf, light_pdf);
+LightSample Lights::sample(size_t index, const Vec3& p, const Vec3& shading_normal, const Vec2& u) const {
+  return visit(index, [&](const auto& light) { return light.sample(p, shading_normal, u); });
 }
 
 Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max,
-                                bool escaped, float bsdf_pdf, bool bsdf_delta) const {
+                                float bsdf_pdf, bool bsdf_delta) const {
   Vec3 L(0.0f);
-  for (size_t k = 0; k < points_.size(); ++k) {
-    const PointLight& light = points_[k];
-    if (light.radius <= 0.0f) continue;
-    const float t = sphere_entry(p_prev, dir, light.position, light.radius);
-    if (t < 0.0f || t >= t_max) continue;
-    const Vec3 d = light.position - p_prev;
-    const float r2 = light.radius * light.radius;
-    const float light_pdf = selection_probability(suns_.size() + k, p_prev, n_prev) /
-                            cone_solid_angle(sphere_one_minus_cos(r2, glm::dot(d, d)));
-    L += light.intensity / (kPi * r2) * mis_weight(bsdf_pdf, bsdf_delta, light_pdf);
-  }
-  if (!escaped) return L;
-  if (has_world()) {
-    const float select = selection_probability(suns_.size() + points_.size(), p_prev, n_prev);
-    L += world_ * mis_weight(bsdf_pdf, bsdf_delta, select * cosine_hemisphere_pdf(glm::dot(n_prev, dir)));
-  }
-  for (size_t k = 0; k < suns_.size(); ++k) {
-    const SunLight& sun = suns_[k];
-    if (sun.one_minus_cos <= 0.0f || 1.0f - glm::dot(dir, sun.to_light) > sun.one_minus_cos) continue;
-    const float solid_angle = cone_solid_angle(sun.one_minus_cos);
-    const float select = selection_probability(k, p_prev, n_prev);
-    L += sun.irradiance / solid_angle * mis_weight(bsdf_pdf, bsdf_delta, select / solid_angle);
+  for (size_t i = 0, n_lights = count(); i < n_lights; ++i) {
+    LightHit h;
+    if (!visit(i, [&](const auto& light) { return light.hit(p_prev, n_prev, dir, t_max, h); })) continue;
+    const float mis =
+        bsdf_delta ? 1.0f : power_heuristic(bsdf_pdf, selection_probability(i, p_prev, n_prev) * h.pdf);
+    L += h.radiance * mis;
   }
   return L;
 }

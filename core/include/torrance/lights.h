@@ -4,6 +4,12 @@
 //    `angle` is a cone of uniform radiance S / (solid angle); angle 0 makes it a delta light.
 //  * Point: power P in W, I = P / (4 pi) W/sr. With radius r > 0 it is a sphere of uniform radiance
 //    I / (pi r^2) (so soft shadows); r = 0 makes it a delta light.
+//  * Spot: a point light times Blender 3.4's spot attenuation: 0 outside the cone, c inside it and
+//    c * smoothstep in the blend band (c = cosine to the axis; the extra factor c is Cycles 3.4's).
+//    Power is not renormalised to the cone.
+//  * Area: rectangle (square) or ellipse (disk) of power P, one-sided along its normal, with
+//    radiance P / (4 A): Cycles' convention. Rectangles are sampled by solid angle (spherical
+//    rectangles, Urena et al. 2013), ellipses by area.
 //  * World: uniform radiance colour * strength from every direction.
 // Lights are invisible to camera rays (Blender's default), but BSDF-sampled rays see them, weighted
 // by multiple importance sampling against next-event estimation.
@@ -12,28 +18,89 @@
 #include "torrance/math.h"
 
 #include <limits>
+#include <variant>
 #include <vector>
 
 namespace torrance {
 
 struct LightSample {
-  Vec3 wi{0.0f};                                       // unit direction towards the light
+  Vec3 wi{0.0f};                                            // unit direction towards the light
   float distance = std::numeric_limits<float>::infinity();  // to the light's surface
-  Vec3 weight{0.0f};                                   // Le / pdf (or irradiance for delta lights)
-  float pdf = 0.0f;                                    // solid-angle density; 0 for delta lights
+  Vec3 weight{0.0f};                                        // Le / pdf (or irradiance for delta lights)
+  float pdf = 0.0f;                                         // solid-angle density; 0 for delta lights
   bool valid() const { return weight.x > 0.0f || weight.y > 0.0f || weight.z > 0.0f; }
 };
 
-struct SunLight {
-  Vec3 to_light;          // unit, opposite to the direction the light travels
-  Vec3 irradiance;        // colour * strength
-  float one_minus_cos;    // of the cone's half-angle; 0 for a delta sun
+// What a ray from p (shading normal n) along dir sees of one light: its radiance and the
+// solid-angle density with which that light's sample(p, n, .) would have produced dir (for MIS).
+// Every light type has sample(p, n, u), importance(p, n) and hit(p, n, dir, t_max, out).
+struct LightHit {
+  Vec3 radiance{0.0f};
+  float pdf = 0.0f;
 };
 
-struct PointLight {
-  Vec3 position;
-  Vec3 intensity;  // colour * power / (4 pi), W/sr
-  float radius;
+class SunLight {
+ public:
+  SunLight(const Vec3& direction, float strength, const Vec3& color, float angle);
+  LightSample sample(const Vec3& p, const Vec3& n, const Vec2& u) const;
+  float importance(const Vec3& p, const Vec3& n) const;
+  bool hit(const Vec3& p, const Vec3& n, const Vec3& dir, float t_max, LightHit& out) const;
+
+ private:
+  Vec3 to_light_, irradiance_;
+  float one_minus_cos_;  // of the cone's half-angle; 0 for a delta sun
+};
+
+struct SpotShape {
+  Vec3 axis{0.0f, 0.0f, -1.0f};  // unit, the direction the spot points
+  float cos_half_angle = -1.0f;  // cos(spot_size / 2); -1 = not a spot
+  float blend_width = 0.0f;      // (1 - cos_half_angle) * spot_blend
+};
+
+class PointLight {
+ public:
+  PointLight(const Vec3& position, float power, const Vec3& color, float radius, const SpotShape& spot = {});
+  LightSample sample(const Vec3& p, const Vec3& n, const Vec2& u) const;
+  float importance(const Vec3& p, const Vec3& n) const;
+  bool hit(const Vec3& p, const Vec3& n, const Vec3& dir, float t_max, LightHit& out) const;
+
+ private:
+  float spot_attenuation(const Vec3& p) const;
+  Vec3 position_, intensity_;
+  float radius_;
+  SpotShape spot_;
+};
+
+class AreaLight {
+ public:
+  // centre; full-size edge vectors (object X * size, object Y * size_y, scale included); the
+  // emitting side is along `normal` (Blender: the light's -Z).
+  AreaLight(const Vec3& center, const Vec3& edge_u, const Vec3& edge_v, const Vec3& normal, bool ellipse,
+            float power, const Vec3& color, float spread);
+  LightSample sample(const Vec3& p, const Vec3& n, const Vec2& u) const;
+  float importance(const Vec3& p, const Vec3& n) const;
+  bool hit(const Vec3& p, const Vec3& n, const Vec3& dir, float t_max, LightHit& out) const;
+  float area() const { return area_; }
+
+ private:
+  float spread_attenuation(float cos_emit) const;
+  Vec3 center_, edge_u_, edge_v_, normal_, radiance_;
+  float area_;
+  bool ellipse_;
+  float tan_half_spread_ = 0.0f, spread_norm_ = 1.0f;  // unused at the default 180 degrees
+  bool has_spread_ = false;
+};
+
+class WorldLight {
+ public:
+  explicit WorldLight(const Vec3& radiance) : radiance_(radiance) {}
+  LightSample sample(const Vec3& p, const Vec3& n, const Vec2& u) const;
+  float importance(const Vec3&, const Vec3&) const { return luminance(radiance_) * kPi; }
+  bool hit(const Vec3& p, const Vec3& n, const Vec3& dir, float t_max, LightHit& out) const;
+  const Vec3& radiance() const { return radiance_; }
+
+ private:
+  Vec3 radiance_;
 };
 
 // How next-event estimation chooses a light at a shading point.
@@ -46,10 +113,14 @@ class Lights {
  public:
   void add_sun(const Vec3& direction, float strength, const Vec3& color, float angle);
   void add_point(const Vec3& position, float power, const Vec3& color, float radius);
+  void add_spot(const Vec3& position, const Vec3& direction, float power, const Vec3& color, float radius,
+                float spot_size, float spot_blend);
+  void add_area(const Vec3& center, const Vec3& edge_u, const Vec3& edge_v, const Vec3& direction, bool ellipse,
+                float power, const Vec3& color, float spread);
   void set_world(const Vec3& color, float strength);
 
-  // The NEE strategies: each sun, each point light, then the world (if not black).
-  size_t count() const { return suns_.size() + points_.size() + (has_world() ? 1 : 0); }
+  // The NEE strategies: each light in the order added, then the world (if not black).
+  size_t count() const { return lights_.size() + (has_world() ? 1 : 0); }
   void set_selection(LightSelection s) { selection_ = s; }
 
   struct Choice {
@@ -63,23 +134,26 @@ class Lights {
   LightSample sample(size_t index, const Vec3& p, const Vec3& shading_normal, const Vec2& u) const;
 
   // Radiance, MIS-weighted against NEE, that a BSDF-sampled ray leaving p_prev (where NEE used
-  // shading normal n_prev) receives from lights it passes before distance t_max:
-  // point-light spheres along the segment and, if escaped, the world and visible suns.
-  Vec3 emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max,
-                          bool escaped, float bsdf_pdf, bool bsdf_delta) const;
+  // shading normal n_prev) receives from lights it passes before distance t_max (infinite if
+  // the ray escaped): spheres, area lights and, if escaped, the world and visible suns.
+  Vec3 emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max, float bsdf_pdf,
+                          bool bsdf_delta) const;
 
-  const Vec3& world_radiance() const { return world_; }
-  bool has_world() const { return world_.x > 0.0f || world_.y > 0.0f || world_.z > 0.0f; }
+  Vec3 world_radiance() const { return world_.radiance(); }
+  bool has_world() const { return max_component(world_.radiance()) > 0.0f; }
 
  private:
-  // Unnormalised selection weight of light `index` at (p, n): its irradiance there, unshadowed,
+  // Calls f with the concrete light of NEE strategy `index` (the world comes last).
+  template <typename F>
+  auto visit(size_t index, F&& f) const {
+    return index < lights_.size() ? std::visit(f, lights_[index]) : f(world_);
+  }
+  // Unnormalised selection weight of light `index` at (p, n): its unshadowed irradiance there,
   // bounded above so that lights partly above the horizon keep a chance.
   float importance(size_t index, const Vec3& p, const Vec3& n) const;
-  float mis_weight(float bsdf_pdf, bool bsdf_delta, float light_pdf) const;
 
-  std::vector<SunLight> suns_;
-  std::vector<PointLight> points_;
-  Vec3 world_{0.0f};
+  std::vector<std::variant<SunLight, PointLight, AreaLight>> lights_;
+  WorldLight world_{Vec3(0.0f)};
   LightSelection selection_ = LightSelection::Contribution;
 };
 
