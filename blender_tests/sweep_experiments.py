@@ -3,11 +3,13 @@
 
 Run through scripts/experiments (which builds first); by hand:
     /usr/bin/python3 blender_tests/sweep_experiments.py [--out DIR] [--final] [--publish]
-                     [--no-cycles] [--size WxH] [--samples N] [--only ID,...] [--report-only]
+                     [--no-cycles] [--no-principled] [--brdf-model M] [--size WxH] [--samples N]
+                     [--only ID,...] [--report-only]
 
 For each experiment it runs blender_tests/sweep.py in a Blender process on a scene built by
-scenes/make_<scene>.py — with Torrance, and (unless --no-cycles) the same sweep with Cycles for a
-side-by-side — then blender_tests/sweep_report.py measures the images and writes report.md.
+scenes/make_<scene>.py — with Torrance (its PAPER model: the paper's Cook-Torrance), with Torrance's
+PRINCIPLED model when the add-on offers it, and with Cycles, side by side — then
+blender_tests/sweep_report.py measures the images and writes report.md.
 """
 
 import argparse
@@ -45,7 +47,54 @@ EXPERIMENTS = [
          title="Sphere chart: metallic 1..0 (rows, back to front) x roughness 0.1..1 (columns)"),
 ]
 
-ENGINES = (("TORRANCE", "torrance", "Torrance"), ("CYCLES", "cycles", "Cycles"))
+
+def brdf_models():
+    """The BRDF models the built add-on offers (scene.torrance.brdf_model), asked of Blender."""
+    expr = ("import bpy; p = bpy.types.Scene.bl_rna.properties['torrance'].fixed_type"
+            ".properties['brdf_model']; print('MODELS=' + ','.join(i.identifier for i in "
+            "p.enum_items))")
+    try:
+        proc = subprocess.run(blender_cmd() + ["--factory-startup", "--python-expr", expr],
+                              capture_output=True, text=True, timeout=120,
+                              env=dict(os.environ, TORRANCE_NO_AUTOBUILD="1"))
+        line = next(l for l in proc.stdout.splitlines() if l.startswith("MODELS="))
+        return line[len("MODELS="):].split(",")
+    except Exception:
+        return ["PAPER"]
+
+
+def make_runs(args):
+    """(key, label, engine, brdf_model or None) of each renderer the sweeps are rendered with."""
+    models = brdf_models()
+    model = (args.brdf_model or "PAPER").upper()
+    runs = [("torrance", f"Torrance {model}", "TORRANCE", model)]
+    if not args.no_principled and model != "PRINCIPLED" and "PRINCIPLED" in models:
+        runs.append(("torrance_principled", "Torrance PRINCIPLED", "TORRANCE", "PRINCIPLED"))
+    if not args.no_cycles:
+        runs.append(("cycles", "Cycles", "CYCLES", None))
+    return runs
+
+
+def runs_on_disk(out):
+    """The runs whose outputs are in `out` (for --report-only)."""
+    runs = []
+    for key, engine in (("torrance", "TORRANCE"), ("torrance_principled", "TORRANCE"),
+                        ("cycles", "CYCLES")):
+        d = os.path.join(out, key)
+        if not os.path.isdir(d):
+            continue
+        label = "Cycles"
+        if engine == "TORRANCE":
+            model = None
+            for exp in sorted(os.listdir(d)):
+                plan = os.path.join(d, exp, "sweep.json")
+                if os.path.exists(plan):
+                    with open(plan) as f:
+                        model = json.load(f).get("brdf_model")
+                    break
+            label = f"Torrance {model}" if model else "Torrance"
+        runs.append((key, label, engine, None))
+    return runs
 
 
 def parse_args(argv):
@@ -56,6 +105,11 @@ def parse_args(argv):
                    help="full quality: 640x480, 128 samples per pixel (long: see docs)")
     p.add_argument("--size", help="WxH of the sweeps (default 160x120; --final 640x480)")
     p.add_argument("--samples", type=int, help="samples per pixel (default 32; --final 128)")
+    p.add_argument("--brdf-model", help="Torrance's BRDF model (default PAPER, the paper's "
+                                        "Cook-Torrance)")
+    p.add_argument("--no-principled", action="store_true",
+                   help="no extra Torrance run with its PRINCIPLED model (made when the add-on "
+                        "offers it: it matches Cycles' Principled BSDF)")
     p.add_argument("--no-cycles", action="store_true", help="Torrance only, no Cycles side-by-side")
     p.add_argument("--only", help="comma-separated experiment ids")
     p.add_argument("--publish", action="store_true",
@@ -112,7 +166,7 @@ def main(argv=None):
             raise SystemExit(f"experiments: unknown id(s) {unknown}; known: "
                              f"{', '.join(e['id'] for e in EXPERIMENTS)}")
         experiments = [e for e in EXPERIMENTS if e["id"] in wanted]
-    engines = ENGINES[:1] if args.no_cycles else ENGINES
+    runs = runs_on_disk(out) if args.report_only else make_runs(args)
     os.makedirs(os.path.join(out, "logs"), exist_ok=True)
     timings_path = os.path.join(out, "timings.json")
     timings = {}
@@ -135,7 +189,7 @@ def main(argv=None):
         for exp in experiments:
             f = exp.get("size_factor", 1.0)
             w, h = int(round(width * f)), int(round(height * f))
-            for engine, key, label in engines:
+            for key, label, engine, model in runs:
                 print(f"experiments: Fig. {exp['figure']} {exp['id']} with {label} "
                       f"({w}x{h}, {samples} spp)", flush=True)
                 cmd = blender_cmd() + [
@@ -150,6 +204,8 @@ def main(argv=None):
                 if exp["input"]:
                     cmd += ["--input", exp["input"], "--values",
                             ",".join(f"{v:g}" for v in exp["values"])]
+                if model:
+                    cmd += ["--brdf-model", model]
                 for sock, value in exp["set"].items():
                     cmd += ["--set", f"{sock}={value:g}"]
                 timings["sweeps"][f"{key}/{exp['id']}"] = run_logged(
@@ -159,8 +215,8 @@ def main(argv=None):
             json.dump(timings, f, indent=1)
 
     publish = os.path.join(ROOT, "docs", "experiments") if args.publish else None
-    report = sweep_report.write_report(out, experiments, [e[1] for e in engines], timings,
-                                       publish_dir=publish)
+    report = sweep_report.write_report(out, experiments, [r[0] for r in runs], timings,
+                                       publish_dir=publish, labels={r[0]: r[1] for r in runs})
     total = time.perf_counter() - t_start
     print(f"experiments: report {report}" + (f" (published to {publish})" if publish else ""))
     print(f"experiments: done in {total:.0f} s")

@@ -204,7 +204,7 @@ def analyse_chart(data):
         hl = rgb[top].mean(axis=0)
         sat = 1.0 - hl.min() / max(hl.max(), 1e-12)
         yy, xx = np.nonzero(mask)
-        spheres[(m, r)] = dict(peak=float(np.percentile(y, 99)), median=float(np.median(y)),
+        spheres[(m, r)] = dict(peak=float(y.max()), median=float(np.median(y)),
                                highlight_saturation=float(sat), pixels=int(mask.sum()),
                                center=[float(xx.mean()) / w, float(yy.mean()) / h])
     return spheres
@@ -224,7 +224,11 @@ def claims_for(exp, stats_by_engine, extra):
             x = [row[xkey] for row in st["rows"]]
             y = [row[key] for row in st["rows"]]
             res[engine] = verdict(x, y, sign)
-            res[engine]["ends"] = (y[int(np.argmax(x))], y[int(np.argmin(x))])
+            res[engine]["ends"] = (y[0], y[-1])          # first and last frame (paper's order)
+            # Steps between neighbouring values that go against the expected direction.
+            order = np.argsort(x)
+            res[engine]["against"] = [f"{x[i]:g}→{x[j]:g}" for i, j in zip(order[:-1], order[1:])
+                                      if (y[j] - y[i]) * sign < 0]
         out.append(dict(figure=fig, claim=claim, source=source, statistic=stat_label,
                         key=key, sign=sign, results=res))
 
@@ -267,17 +271,19 @@ def chart_claims(spheres_by_engine):
     """Claims on the sphere chart, each over all rows/columns."""
     out = []
     specs = [("highlights dim as roughness rises (every metallic row)", "peak", "roughness", -1,
-              "peak Y (99th pct.) per sphere"),
+              "brightest pixel per sphere", None),
              ("metal highlights take the base colour, dielectric ones stay white (every "
-              "roughness column)", "highlight_saturation", "metallic", +1,
-              "saturation of the brightest 3 % of the sphere"),
+              "roughness column up to 0.4, where a highlight stands out)", "highlight_saturation",
+              "metallic", +1, "saturation of the brightest 3 % of the sphere", 0.4),
              ("the body darkens as metallic rises (every roughness column)", "median", "metallic",
-              -1, "median Y per sphere")]
-    for claim, key, along, sign, label in specs:
+              -1, "median Y per sphere", None)]
+    for claim, key, along, sign, label, max_roughness in specs:
         res = {}
         for engine, spheres in spheres_by_engine.items():
             ms = sorted({k[0] for k in spheres})
             rs = sorted({k[1] for k in spheres})
+            if max_roughness is not None:
+                rs = [r for r in rs if r <= max_roughness + 1e-9]
             groups = ms if along == "roughness" else rs
             verdicts = []
             for g in groups:
@@ -307,11 +313,14 @@ def _plt():
     return plt
 
 
-STYLE = {"torrance": dict(color="tab:green", marker="o", ls="-", label="Torrance"),
-         "cycles": dict(color="tab:blue", marker="s", ls="--", label="Cycles")}
+DEFAULT_LABELS = {"torrance": "Torrance", "torrance_principled": "Torrance PRINCIPLED",
+                  "cycles": "Cycles"}
+STYLE = {"torrance": dict(color="tab:green", marker="o", ls="-"),
+         "torrance_principled": dict(color="tab:orange", marker="^", ls=":"),
+         "cycles": dict(color="tab:blue", marker="s", ls="--")}
 
 
-def plot_sweep(exp, stats_by_engine, path):
+def plot_sweep(exp, stats_by_engine, path, labels):
     plt = _plt()
     keys = [("highlight", "highlight area (share of pixels)"), ("peak", "peak Y (99.9th pct.)"),
             ("concentration", "glint concentration"), ("median", "median Y")]
@@ -324,7 +333,7 @@ def plot_sweep(exp, stats_by_engine, path):
         for engine, st in stats_by_engine.items():
             x = [row["value"] for row in st["rows"]]
             y = [row[key] for row in st["rows"]]
-            ax.plot(x, y, **STYLE.get(engine, {}))
+            ax.plot(x, y, label=labels.get(engine, engine), **STYLE.get(engine, {}))
         ax.set_xlabel(exp["input"])
         ax.set_title(label, fontsize=9)
         ax.tick_params(labelsize=8)
@@ -341,11 +350,11 @@ def plot_sweep(exp, stats_by_engine, path):
     plt.close(fig)
 
 
-def plot_chart(data_by_engine, spheres_by_engine, path):
+def plot_chart(data_by_engine, spheres_by_engine, path, labels):
     plt = _plt()
     n = len(data_by_engine)
-    fig, axes = plt.subplots(1, n, figsize=(5.2 * n, 4.4))
-    axes = np.atleast_1d(axes)
+    fig, axes = plt.subplots(1, n, figsize=(5.2 * n, 4.4), squeeze=False)
+    axes = axes[0]
     for ax, (engine, data) in zip(axes, data_by_engine.items()):
         img = sheet.to_display(data.image(data.frames[0]))
         h, w = img.shape[:2]
@@ -355,7 +364,7 @@ def plot_chart(data_by_engine, spheres_by_engine, path):
             cx, cy = s["center"][0] * w, s["center"][1] * h
             ax.text(cx, cy + 0.055 * h, f"M{m:g}\nR{r:g}", color="white", fontsize=5,
                     ha="center", va="top")
-        ax.set_title(f"{STYLE.get(engine, {}).get('label', engine)}: rows metallic 1 (back) .. 0 "
+        ax.set_title(f"{labels.get(engine, engine)}: rows metallic 1 (back) .. 0 "
                      f"(front); columns roughness 0.1 .. 1", fontsize=8)
         ax.axis("off")
     fig.tight_layout()
@@ -403,19 +412,22 @@ def _verdict_cell(res):
         return f"{mark} ({res['agreeing']}/{res['groups']}, mean ρ {res['rho']:+.2f})"
     if "deviation" in res:
         return f"{mark} (±{100 * res['deviation']:.1f} %)"
-    a, b = res["ends"]
-    return f"{mark} (ρ {res['rho']:+.2f}; {_fmt(b)} → {_fmt(a)})"
+    first, last = res["ends"]
+    against = res.get("against")
+    return (f"{mark} (ρ {res['rho']:+.2f}; {_fmt(first)} → {_fmt(last)}"
+            + (f"; against between {', '.join(against)}" if against else "") + ")")
 
 
-def write_report(out, experiments, engines, timings, publish_dir=None):
+def write_report(out, experiments, engines, timings, publish_dir=None, labels=None):
     """Measures the sweeps in `out`, writes out/report.md (+ plots); returns its path."""
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     plots = os.path.join(out, "plots")
     os.makedirs(plots, exist_ok=True)
     images = []            # (path relative to out, published name)
     claims, sections, summary = [], [], dict(experiments={})
-    engine_label = {"torrance": "Torrance", "cycles": "Cycles"}
+    engine_label = dict(DEFAULT_LABELS, **(labels or {}))
     first = None
+    brdf_models = {}
     for exp in experiments:
         data_by_engine = {}
         for engine in engines:
@@ -425,6 +437,9 @@ def write_report(out, experiments, engines, timings, publish_dir=None):
         if not data_by_engine:
             continue
         first = first or next(iter(data_by_engine.values()))
+        for e, d in data_by_engine.items():
+            if d.plan.get("brdf_model"):
+                brdf_models.setdefault(e, d.plan["brdf_model"])
         lines = [f"## Fig. {exp['figure']} — {exp['title']}", ""]
         for engine, data in data_by_engine.items():
             rel = os.path.relpath(os.path.join(data.dir, "sheet.png"), out)
@@ -433,12 +448,12 @@ def write_report(out, experiments, engines, timings, publish_dir=None):
         if exp["input"] is None:      # the sphere chart
             spheres = {e: analyse_chart(d) for e, d in data_by_engine.items()}
             plot = os.path.join(plots, f"{exp['id']}.png")
-            plot_chart(data_by_engine, spheres, plot)
+            plot_chart(data_by_engine, spheres, plot, engine_label)
             images.append((os.path.relpath(plot, out), f"{exp['id']}_labeled.png"))
             lines += [f"![{exp['id']} labeled]({os.path.relpath(plot, out)})", ""]
             cl = chart_claims(spheres)
             claims += cl
-            for key, label in (("peak", "peak Y (99th percentile)"),
+            for key, label in (("peak", "brightest pixel Y"),
                                ("highlight_saturation", "highlight saturation (1 − min/max of "
                                                         "the brightest 3 %)"),
                                ("median", "median Y")):
@@ -458,7 +473,7 @@ def write_report(out, experiments, engines, timings, publish_dir=None):
         else:
             stats = {e: analyse_sweep(d, exp) for e, d in data_by_engine.items()}
             plot = os.path.join(plots, f"{exp['id']}.png")
-            plot_sweep(exp, stats, plot)
+            plot_sweep(exp, stats, plot, engine_label)
             images.append((os.path.relpath(plot, out), f"{exp['id']}_trends.png"))
             lines += [f"![{exp['id']} trends]({os.path.relpath(plot, out)})", ""]
             cl = claims_for(exp, stats, None)
@@ -502,11 +517,12 @@ def write_report(out, experiments, engines, timings, publish_dir=None):
                 lines += _claim_lines([cross], engines, engine_label)
 
     res = first.plan["resolution"]
+    models = ", ".join(f"{model}" for e, model in brdf_models.items()) or "–"
     head = ["# The paper's experiments: grass, stone and water under the sun", "",
             f"Generated by `scripts/experiments` on {time.strftime('%Y-%m-%d %H:%M')} from commit "
             f"{_git_commit(root)}. Sweeps {res[0]}x{res[1]} (sphere chart 1.5x), "
             f"{first.plan['samples']} samples per pixel, seed 0, max bounces 8; Torrance's BRDF "
-            f"model {first.plan.get('brdf_model') or '–'}; "
+            f"model(s): {models}; "
             + ("Cycles renders the same .blend side by side (GGX, no denoising, no clamping, "
                "no glossy blur)." if "cycles" in engines else "Torrance only.")
             + " Scenes: `scenes/make_grass_stone.py`, `make_water.py`, `make_sphere_chart.py` "
@@ -516,13 +532,15 @@ def write_report(out, experiments, engines, timings, publish_dir=None):
              "Each row is a claim — from the paper (as issue 5 states it) or what the paper's "
              "figures show by physics (\"expected\") — the statistic that tests it, and per renderer "
              "whether the measurement agrees: Spearman ρ of the statistic against the swept "
-             "value, and the statistic at the first → last value of the paper's order.", "",
+             "value, the statistic at the first → last value of the paper's order, and the steps "
+             "between neighbouring values that go against the claimed direction, if any.", "",
              "| Fig. | claim | source | statistic | " + " | ".join(engine_label.get(e, e) for e in engines)
              + " |", "|---|---|---|---|" + "---|" * len(engines)]
     for c in claims:
         head.append(f"| {c['figure']} | {c['claim']} | {c['source']} | {c['statistic']} | "
                     + " | ".join(_verdict_cell(c["results"].get(e)) for e in engines) + " |")
     head += ["", _disagreement_text(claims, engines, engine_label), ""]
+    head += _side_by_side(summary, engines, engine_label)
     method = ["## Method", "", __doc__.split("\n\n", 1)[1].strip(), "",
               "Reproduce: `scripts/experiments` (add `--final` for 640x480 at 128 spp, "
               "`--no-cycles` for Torrance alone, `--publish` to copy this report to "
@@ -541,9 +559,45 @@ def write_report(out, experiments, engines, timings, publish_dir=None):
         for rel, name in images:
             shutil.copyfile(os.path.join(out, rel), os.path.join(publish_dir, name))
             pub = pub.replace(f"]({rel})", f"]({name})")
-        with open(os.path.join(publish_dir, "README.md"), "w") as f:
+        with open(os.path.join(publish_dir, "report.md"), "w") as f:
             f.write(pub)
     return path
+
+
+def _side_by_side(summary, engines, engine_label):
+    """Each Torrance run / Cycles: ratios of the regions' mean (sweeps) or median (chart) Y."""
+    lines = []
+    for run in [e for e in engines if e.startswith("torrance")]:
+        for exp_id, stats in summary["experiments"].items():
+            t, c = stats.get(run), stats.get("cycles")
+            if not t or not c:
+                continue
+            who = engine_label.get(run, run)
+            if exp_id == "sphere_chart":
+                rows = {}
+                for key, tv in t.items():
+                    if key in c:
+                        rows.setdefault(key.split()[0], []).append(tv["median"] / c[key]["median"])
+                cells = ", ".join(f"{m[1:]}: {np.mean(v):.2f}" for m, v in
+                                  sorted(rows.items(), key=lambda kv: -float(kv[0][1:])))
+                lines.append(f"| {who} | {exp_id} | per metallic row — {cells} | |")
+                continue
+            r = [a["mean"] / b["mean"] for a, b in zip(t["rows"], c["rows"])]
+            stone = ""
+            if "stone_mean" in t["rows"][0]:
+                rs = [a["stone_mean"] / b["stone_mean"] for a, b in zip(t["rows"], c["rows"])]
+                stone = f"{min(rs):.2f} – {max(rs):.2f}"
+            lines.append(f"| {who} | {exp_id} | {min(r):.2f} – {max(r):.2f} | {stone} |")
+    if not lines:
+        return []
+    return ["## Torrance and Cycles side by side", "",
+            "Torrance / Cycles ratio of the mean luminance of each region over a sweep's frames "
+            "(sphere chart: of each sphere's median Y, averaged over a metallic row). Cycles renders "
+            "its Principled BSDF v1 (Burley diffuse, the specular lobe's Fresnel from the IOR, the "
+            "lobes simply added); Torrance's PRINCIPLED model is that BSDF, its PAPER model the "
+            "paper's Cook-Torrance (Lambert diffuse, Schlick Fresnel). The claims above compare "
+            "trends within each renderer; these ratios show how far the absolute levels differ.", "",
+            "| Torrance run | sweep | swept material | stone |", "|---|---|---|---|"] + lines + [""]
 
 
 def _json_default(o):
