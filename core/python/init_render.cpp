@@ -21,6 +21,24 @@ LightSelection parse_light_selection(const std::string& s) {
   throw py::value_error("light_selection must be 'CONTRIBUTION' or 'UNIFORM', got '" + s + "'");
 }
 
+uint32_t parse_passes(const std::vector<std::string>& names) {
+  uint32_t mask = 0;
+  for (const std::string& name : names) {
+    bool known = false;
+    for (const PassInfo& p : kPasses)
+      if (name == p.name) {
+        mask |= p.pass;
+        known = true;
+      }
+    if (!known) {
+      std::string all;
+      for (const PassInfo& p : kPasses) all += std::string(all.empty() ? "" : ", ") + p.name;
+      throw py::value_error("unknown pass '" + name + "'; available: " + all);
+    }
+  }
+  return mask;
+}
+
 }  // namespace
 
 BrdfModel parse_model(const std::string& s) {
@@ -30,7 +48,7 @@ BrdfModel parse_model(const std::string& s) {
 }
 
 py::array_t<float> to_numpy(const Image& image) {
-  py::array_t<float> a({py::ssize_t(image.height), py::ssize_t(image.width), py::ssize_t(4)});
+  py::array_t<float> a({py::ssize_t(image.height), py::ssize_t(image.width), py::ssize_t(image.channels)});
   std::copy(image.rgba.begin(), image.rgba.end(), a.mutable_data());
   return a;
 }
@@ -40,7 +58,7 @@ void init_render(py::module_& m) {
       .def(py::init([](int width, int height, int samples, int max_bounces, uint32_t seed, float pixel_aspect_x,
                        float pixel_aspect_y, float filter_width, bool transparent_background,
                        const std::string& brdf_model, std::optional<std::array<int, 4>> window, int threads,
-                       const std::string& light_selection) {
+                       const std::string& light_selection, const std::vector<std::string>& passes) {
              RenderSettings s;
              s.width = width;
              s.height = height;
@@ -55,6 +73,7 @@ void init_render(py::module_& m) {
              s.window = window;
              s.threads = threads;
              s.light_selection = parse_light_selection(light_selection);
+             s.passes = parse_passes(passes);
              s.validate();
              return s;
            }),
@@ -62,7 +81,7 @@ void init_render(py::module_& m) {
            py::arg("seed") = 0, py::arg("pixel_aspect_x") = 1.0f, py::arg("pixel_aspect_y") = 1.0f,
            py::arg("filter_width") = 1.5f, py::arg("transparent_background") = false,
            py::arg("brdf_model") = "PAPER", py::arg("window") = py::none(), py::arg("threads") = 0,
-           py::arg("light_selection") = "CONTRIBUTION")
+           py::arg("light_selection") = "CONTRIBUTION", py::arg("passes") = std::vector<std::string>{})
       .def_readwrite("width", &RenderSettings::width)
       .def_readwrite("height", &RenderSettings::height)
       .def_readwrite("samples", &RenderSettings::samples)
@@ -90,10 +109,20 @@ void init_render(py::module_& m) {
                                                           py::ssize_t(4)},
                                                          r.image.rgba.data(), self);
                              })
+      .def_property_readonly("passes",
+                             [](const RenderResult& r) {
+                               py::dict d;
+                               for (const auto& [name, image] : r.passes) d[py::str(name)] = to_numpy(image);
+                               return d;
+                             })
       .def_readonly("samples_done", &RenderResult::samples_done)
       .def_readonly("stopped", &RenderResult::stopped)
       .def_readonly("seconds", &RenderResult::seconds)
       .def_readonly("nonfinite_samples", &RenderResult::nonfinite_samples);
+
+  py::list pass_names;
+  for (const PassInfo& p : kPasses) pass_names.append(py::make_tuple(p.name, p.channels));
+  m.attr("PASSES") = pass_names;
 
   m.def(
       "render",

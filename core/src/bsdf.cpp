@@ -34,18 +34,19 @@ float CookTorranceBsdf::specular_probability(const Vec3& wo) const {
   return std::min(std::max(spec / (spec + diff), 0.1f), 0.9f);
 }
 
-Vec3 CookTorranceBsdf::eval(const Vec3& wo, const Vec3& wi) const {
-  if (wo.z <= 0.0f || wi.z <= 0.0f) return Vec3(0.0f);
+LobeEval CookTorranceBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return {};
   const Vec3 half = wo + wi;
   const float half_len2 = glm::dot(half, half);
-  if (!(half_len2 > 0.0f)) return Vec3(0.0f);
+  if (!(half_len2 > 0.0f)) return {};
   const Vec3 h = half / std::sqrt(half_len2);
   const Vec3 F = fresnel(glm::dot(wi, h));
-  Vec3 f_cos = (Vec3(1.0f) - F) * diffuse_color_ * (kInvPi * wi.z);
+  LobeEval f_cos;
+  f_cos.diffuse = (Vec3(1.0f) - F) * diffuse_color_ * (kInvPi * wi.z);
   if (!has_delta()) {
     // D F G / (4 cos_o cos_i) * cos_i; G1(wo)/cos_o stays bounded (<= 1/k) at grazing wo.
     const float dg = ggx::D(h, alpha_) * geometry_G1(wo.z) * geometry_G1(wi.z) / (4.0f * wo.z);
-    f_cos += F * dg;
+    f_cos.glossy = F * dg;
   }
   return f_cos;
 }

@@ -52,31 +52,54 @@ struct PathContext {
   const Lights& lights;
   const RenderSettings& settings;
   std::vector<MaterialBsdf> bsdfs;  // one per material, built once per render
+  Vec3 camera_forward;
+  bool split_lobes;  // light passes requested: track the first hit's diffuse/glossy shares
 };
 
-// Radiance along a camera ray; alpha is 0 where the background is transparent and seen directly.
-Vec3 trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, float& alpha) {
+// Everything one camera sample brings back, split as Blender's passes.
+struct PathRadiance {
+  Vec3 emission{0.0f}, environment{0.0f};
+  Vec3 diffuse_direct{0.0f}, diffuse_indirect{0.0f}, glossy_direct{0.0f}, glossy_indirect{0.0f};
+  float alpha = 1.0f;
+  float depth = 1e10f;
+  Vec3 normal{0.0f}, albedo{0.0f};
+
+  Vec3 combined() const {
+    return emission + environment + diffuse_direct + diffuse_indirect + glossy_direct + glossy_indirect;
+  }
+};
+
+// Radiance along a camera ray. Contributions are filed by the lobe the path left its first hit
+// through (NEE at the first hit by each lobe's share of eval), and as direct (one bounce) or
+// indirect; alpha is 0 where a transparent background is seen directly.
+PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) {
   const Lights& lights = ctx.lights;
-  Vec3 L(0.0f), throughput(1.0f);
+  PathRadiance out;
+  Vec3 throughput(1.0f);
+  Vec3 diffuse_share(0.0f);  // per channel, of the energy that left the first hit
   Vec3 prev_position(0.0f), prev_normal(0.0f);
   float prev_pdf = 0.0f;
   bool prev_delta = true;
-  alpha = 1.0f;
+  auto deposit = [&](const Vec3& c, bool direct) {  // a contribution arriving after the first hit
+    const Vec3 diffuse = c * diffuse_share, glossy = c - diffuse;
+    (direct ? out.diffuse_direct : out.diffuse_indirect) += diffuse;
+    (direct ? out.glossy_direct : out.glossy_indirect) += glossy;
+  };
 
   for (int bounce = 0;; ++bounce) {
     SurfaceHit hit;
     const bool found = ctx.scene.intersect(ray, hit);
     if (bounce == 0) {
       if (!found) {
-        if (ctx.settings.transparent_background) {
-          alpha = 0.0f;
-          return Vec3(0.0f);
-        }
-        return lights.world_radiance();
+        if (ctx.settings.transparent_background) out.alpha = 0.0f;
+        else out.environment = lights.world_radiance();
+        return out;
       }
+      out.depth = hit.t * glm::dot(ray.dir, ctx.camera_forward);
     } else {
-      L += throughput * lights.emission_along_ray(prev_position, prev_normal, ray.dir, found ? hit.t : kInfinity,
-                                                   prev_pdf, prev_delta);
+      deposit(throughput * lights.emission_along_ray(prev_position, prev_normal, ray.dir,
+                                                      found ? hit.t : kInfinity, prev_pdf, prev_delta),
+              bounce == 1);
       if (!found) break;
     }
 
@@ -91,7 +114,13 @@ Vec3 trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, float& a
 
     // Emissive surfaces emit from both faces; they are found by BSDF sampling only (full weight).
     const Material& material = ctx.scene.material(hit.material);
-    L += throughput * material.emission;
+    if (bounce == 0) {
+      out.normal = ns;
+      out.albedo = material.base_color * (1.0f - material.metallic);
+      out.emission = material.emission;
+    } else {
+      deposit(throughput * material.emission, bounce == 1);
+    }
     if (bounce > ctx.settings.max_bounces) break;
 
     const Frame frame(ns);
@@ -107,13 +136,19 @@ Vec3 trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, float& a
       const LightSample ls = lights.sample(choice.index, hit.position, ns, Vec2(u_light.y, u_light.z));
       if (ls.valid() && glm::dot(ls.wi, ng) > 0.0f) {
         const Vec3 wi = frame.to_local(ls.wi);
-        const Vec3 f = bsdf.eval(wo, wi);
-        if (max_component(f) > 0.0f) {
+        const LobeEval f = bsdf.eval_lobes(wo, wi);
+        if (max_component(f.total()) > 0.0f) {
           const Vec3 origin = offset_origin(hit.position, ng, ls.wi);
           const float tmax = std::isinf(ls.distance) ? kInfinity : ls.distance * (1.0f - 1e-4f);
           if (!ctx.scene.occluded(origin, ls.wi, 0.0f, tmax)) {
             const float mis = ls.pdf > 0.0f ? power_heuristic(choice.probability * ls.pdf, bsdf.pdf(wo, wi)) : 1.0f;
-            L += throughput * f * ls.weight * (mis / choice.probability);
+            const Vec3 light = throughput * ls.weight * (mis / choice.probability);
+            if (bounce == 0) {
+              out.diffuse_direct += light * f.diffuse;
+              out.glossy_direct += light * f.glossy;
+            } else {
+              deposit(light * f.total(), false);
+            }
           }
         }
       }
@@ -125,6 +160,11 @@ Vec3 trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, float& a
     const Vec3 wi_world = frame.to_world(bs.wi);
     if (glm::dot(wi_world, ng) <= 0.0f) break;  // below the geometric surface: no transmission
     throughput *= bs.weight;
+    if (bounce == 0 && ctx.split_lobes && !bs.is_delta) {
+      const LobeEval f = bsdf.eval_lobes(wo, bs.wi);
+      const Vec3 total = f.total();
+      for (int c = 0; c < 3; ++c) diffuse_share[c] = total[c] > 0.0f ? f.diffuse[c] / total[c] : 0.0f;
+    }
 
     // Russian roulette, from the third vertex on, continuing with probability sqrt(max throughput).
     if (bounce >= 2) {
@@ -143,28 +183,90 @@ Vec3 trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, float& a
     ray.tmin = 0.0f;
     ray.tmax = kInfinity;
   }
-  return L;
+  return out;
 }
 
 struct Tile {
   int x0, y0, x1, y1;
 };
 
-// Per-pixel accumulation of RGBA sums and sample counts, for a window of the frame.
-struct Film {
-  int width, height;
-  std::vector<double> sums;  // r, g, b, a, count
+// Per-pixel accumulation of sums for Combined (RGBA) and the requested passes, and sample counts,
+// for a window of the frame.
+class Film {
+ public:
+  Film(int w, int h, uint32_t passes) : width_(w), height_(h), passes_(passes) {
+    stride_ = 4;
+    for (const PassInfo& p : kPasses)
+      if (passes & p.pass) stride_ += p.channels;
+    stride_ += 1;  // the sample count
+    sums_.assign(size_t(w) * h * stride_, 0.0);
+  }
 
-  Film(int w, int h) : width(w), height(h), sums(size_t(w) * h * 5, 0.0) {}
-  Image resolve() const {
-    Image img{width, height, std::vector<float>(size_t(width) * height * 4, 0.0f)};
-    for (size_t i = 0, n = size_t(width) * height; i < n; ++i) {
-      const double count = sums[5 * i + 4];
+  void add(int x, int y, const PathRadiance& r) {
+    double* acc = &sums_[(size_t(y) * width_ + x) * stride_];
+    const Vec3 c = r.combined();
+    acc[0] += c.r;
+    acc[1] += c.g;
+    acc[2] += c.b;
+    acc[3] += r.alpha;
+    int k = 4;
+    for (const PassInfo& p : kPasses) {
+      if (!(passes_ & p.pass)) continue;
+      if (p.channels == 1) {
+        acc[k++] += pass_scalar(p.pass, r);
+      } else {
+        const Vec3 v = pass_color(p.pass, r);
+        acc[k++] += v.x;
+        acc[k++] += v.y;
+        acc[k++] += v.z;
+      }
+    }
+    acc[stride_ - 1] += 1.0;
+  }
+
+  Image resolve_combined() const { return resolve(0, 4); }
+
+  std::vector<std::pair<std::string, Image>> resolve_passes() const {
+    std::vector<std::pair<std::string, Image>> out;
+    int k = 4;
+    for (const PassInfo& p : kPasses) {
+      if (!(passes_ & p.pass)) continue;
+      out.emplace_back(p.name, resolve(k, p.channels));
+      k += p.channels;
+    }
+    return out;
+  }
+
+ private:
+  static float pass_scalar(Pass, const PathRadiance& r) { return r.depth; }
+  static Vec3 pass_color(Pass pass, const PathRadiance& r) {
+    switch (pass) {
+      case kPassNormal: return r.normal;
+      case kPassAlbedo: return r.albedo;
+      case kPassDiffuseDirect: return r.diffuse_direct;
+      case kPassDiffuseIndirect: return r.diffuse_indirect;
+      case kPassGlossyDirect: return r.glossy_direct;
+      case kPassGlossyIndirect: return r.glossy_indirect;
+      case kPassEmission: return r.emission;
+      case kPassEnvironment: return r.environment;
+      default: return Vec3(0.0f);
+    }
+  }
+  Image resolve(int offset, int channels) const {
+    Image img{width_, height_, std::vector<float>(size_t(width_) * height_ * channels, 0.0f), channels};
+    for (size_t i = 0, n = size_t(width_) * height_; i < n; ++i) {
+      const double* acc = &sums_[i * stride_];
+      const double count = acc[stride_ - 1];
       if (count > 0)
-        for (int c = 0; c < 4; ++c) img.rgba[4 * i + c] = float(sums[5 * i + c] / count);
+        for (int c = 0; c < channels; ++c) img.rgba[i * channels + c] = float(acc[offset + c] / count);
     }
     return img;
   }
+
+  int width_, height_;
+  uint32_t passes_;
+  int stride_;
+  std::vector<double> sums_;
 };
 
 class FlushDenormals {  // FTZ/DAZ for the render threads: denormals cost a lot and mean nothing here
@@ -187,13 +289,15 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   scene.commit();
   scene.lights().set_selection(settings.light_selection);
 
-  PathContext ctx{scene, scene.lights(), settings, {}};
+  const bool light_passes = settings.passes & (kPassDiffuseDirect | kPassDiffuseIndirect | kPassGlossyDirect |
+                                                kPassGlossyIndirect);
+  PathContext ctx{scene, scene.lights(), settings, {}, camera.forward(), light_passes};
   ctx.bsdfs.reserve(scene.num_materials());
   for (size_t i = 0; i < scene.num_materials(); ++i) ctx.bsdfs.emplace_back(scene.material(uint32_t(i)), settings.brdf_model);
   const PixelFilter filter(settings.filter_width);
 
   const std::array<int, 4> window = settings.window.value_or(std::array<int, 4>{0, 0, settings.width, settings.height});
-  Film film(window[2] - window[0], window[3] - window[1]);
+  Film film(window[2] - window[0], window[3] - window[1], settings.passes);
   constexpr int kTileSize = 16;
   std::vector<Tile> tiles;
   for (int y = window[1]; y < window[3]; y += kTileSize)
@@ -212,24 +316,20 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
         const Tile& tile = tiles[t];
         for (int y = tile.y0; y < tile.y1; ++y)
           for (int x = tile.x0; x < tile.x1; ++x) {
-            double* acc = &film.sums[5 * (size_t(y - window[1]) * film.width + (x - window[0]))];
             const uint32_t pixel = uint32_t(y) * uint32_t(settings.width) + uint32_t(x);
             for (int s = first_sample; s < first_sample + num_samples; ++s) {
               SobolSampler sampler(pixel, uint32_t(s), settings.seed);
               const glm::vec4 u_pixel = sampler.next_4d();
               const float dx = filter.sample_offset(u_pixel.x);
               const float dy = filter.sample_offset(u_pixel.y);
-              float alpha = 1.0f;
-              Vec3 L = trace_path(ctx, camera.generate_ray(x + 0.5f + dx, y + 0.5f + dy), sampler, alpha);
-              if (!is_finite(L)) {  // never expected; counted so tests can prove it never happens
+              PathRadiance r = trace_path(ctx, camera.generate_ray(x + 0.5f + dx, y + 0.5f + dy), sampler);
+              if (!is_finite(r.combined())) {  // never expected; counted so tests can prove it never happens
                 ++bad;
-                L = Vec3(0.0f);
+                const float alpha = r.alpha;
+                r = PathRadiance{};
+                r.alpha = alpha;
               }
-              acc[0] += L.r;
-              acc[1] += L.g;
-              acc[2] += L.b;
-              acc[3] += alpha;
-              acc[4] += 1.0;
+              film.add(x - window[0], y - window[1], r);
             }
           }
       }
@@ -259,7 +359,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
         // Aim for passes of about half a second, growing at most twofold.
         const double per_sample = std::max(seconds / n, 1e-6);
         pass_size = std::max(1, std::min(2 * n, int(0.5 / per_sample)));
-        Image snapshot = film.resolve();
+        Image snapshot = film.resolve_combined();
         std::lock_guard<std::mutex> lock(mutex);
         pass_image = std::move(snapshot);
         pass_samples = done;
@@ -306,7 +406,8 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   worker.join();
   if (worker_error) std::rethrow_exception(worker_error);
 
-  result.image = film.resolve();
+  result.image = film.resolve_combined();
+  result.passes = film.resolve_passes();
   result.nonfinite_samples = nonfinite.load();
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -44,11 +44,11 @@ float PrincipledBsdf::specular_probability(const Vec3& wo) const {
   return std::min(std::max(spec / (spec + diff), 0.1f), 0.9f);
 }
 
-Vec3 PrincipledBsdf::eval(const Vec3& wo, const Vec3& wi) const {
-  if (wo.z <= 0.0f || wi.z <= 0.0f) return Vec3(0.0f);
+LobeEval PrincipledBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return {};
   const Vec3 half = wo + wi;
   const float half_len2 = glm::dot(half, half);
-  if (!(half_len2 > 0.0f)) return Vec3(0.0f);
+  if (!(half_len2 > 0.0f)) return {};
   const Vec3 h = half / std::sqrt(half_len2);
   const float cos_d = clamp01(glm::dot(wi, h));
 
@@ -60,11 +60,11 @@ Vec3 PrincipledBsdf::eval(const Vec3& wo, const Vec3& wi) const {
   const float fl = schlick_weight(wi.z), fv = schlick_weight(wo.z);
   const float rr = 2.0f * roughness_ * cos_d * cos_d;
   const float burley = (1.0f - 0.5f * fl) * (1.0f - 0.5f * fv) + rr * (fl + fv + fl * fv * (rr - 1.0f));
-  Vec3 f_cos = diffuse_color_ * (kInvPi * burley * wi.z);
-
+  LobeEval f_cos;
+  f_cos.diffuse = diffuse_color_ * (kInvPi * burley * wi.z);
   if (!has_delta()) {
     const float g = ggx::smith_G1(wo.z, alpha_) * ggx::smith_G1(wi.z, alpha_);
-    f_cos += fresnel(cos_d) * (ggx::D(h, alpha_) * g / (4.0f * wo.z));
+    f_cos.glossy = fresnel(cos_d) * (ggx::D(h, alpha_) * g / (4.0f * wo.z));
   }
   return f_cos;
 }

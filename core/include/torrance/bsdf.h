@@ -4,7 +4,8 @@
 //  * Directions are in the local shading frame (z = shading normal), unit length, and both point
 //    AWAY from the surface: wo towards the viewer, wi towards the light.
 //  * eval(wo, wi) returns f(wo, wi) * cos(theta_i): it INCLUDES the cosine foreshortening term,
-//    so NEE computes L += throughput * eval * Le / pdf_light.
+//    so NEE computes L += throughput * eval * Le / pdf_light. eval_lobes() is the same value
+//    split into its diffuse and glossy parts (eval = eval_lobes().total()).
 //  * pdf(wo, wi) is the solid-angle density with which sample() produces wi (continuous lobes
 //    only; a delta lobe has no density and is never returned by eval or pdf).
 //  * sample() returns weight = eval / pdf for continuous lobes, and the delta lobe's weight
@@ -30,6 +31,13 @@ struct Material {
   float specular = 0.5f;  // dielectric F0 = 0.08 * specular (0.5 -> 0.04)
   float specular_tint = 0.0f;  // PRINCIPLED only: tints dielectric reflection towards the base hue
   Vec3 emission{0.0f};    // radiance emitted by both faces = emission colour * strength
+};
+
+// eval() split by lobe, for Blender's diffuse and glossy light passes.
+struct LobeEval {
+  Vec3 diffuse{0.0f};
+  Vec3 glossy{0.0f};
+  Vec3 total() const { return diffuse + glossy; }
 };
 
 struct BsdfSample {

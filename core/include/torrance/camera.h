@@ -34,6 +34,7 @@ class Camera {
 
   // A ray through raster position (x from the left edge, y from the TOP edge), in pixels.
   Ray generate_ray(float x, float y_from_top) const;
+  const Vec3& forward() const { return forward_; }
 
  private:
   Vec3 origin_, right_, up_, forward_;

@@ -8,10 +8,37 @@
 #include "torrance/scene.h"
 
 #include <functional>
+#include <string>
+#include <utility>
 #include <optional>
 #include <vector>
 
 namespace torrance {
+
+// Blender's render passes beyond Combined. The light passes hold the full contribution (surface
+// colour included, unlike Cycles' colour-divided ones), so that
+// Combined = Emit + Env + DiffDir + DiffInd + GlossDir + GlossInd exactly.
+enum Pass : uint32_t {
+  kPassDepth = 1u << 0,             // distance from the camera plane (1e10 for the background)
+  kPassNormal = 1u << 1,            // world-space shading normal at the first hit
+  kPassAlbedo = 1u << 2,            // diffuse colour at the first hit: base colour * (1 - metallic)
+  kPassDiffuseDirect = 1u << 3,     // light reflected by the first hit's diffuse lobe, one bounce
+  kPassDiffuseIndirect = 1u << 4,   // ... more bounces
+  kPassGlossyDirect = 1u << 5,      // the same for the specular lobe
+  kPassGlossyIndirect = 1u << 6,
+  kPassEmission = 1u << 7,          // emission seen directly
+  kPassEnvironment = 1u << 8,       // the world seen directly
+};
+struct PassInfo {
+  Pass pass;
+  const char* name;  // Blender's short pass names (Cycles' "DiffDir" etc.; "Albedo" for DiffCol)
+  int channels;
+};
+inline constexpr PassInfo kPasses[] = {
+    {kPassDepth, "Depth", 1},          {kPassNormal, "Normal", 3},         {kPassAlbedo, "Albedo", 3},
+    {kPassDiffuseDirect, "DiffDir", 3}, {kPassDiffuseIndirect, "DiffInd", 3}, {kPassGlossyDirect, "GlossDir", 3},
+    {kPassGlossyIndirect, "GlossInd", 3}, {kPassEmission, "Emit", 3},       {kPassEnvironment, "Env", 3},
+};
 
 struct RenderSettings {
   int width = 640, height = 480;  // the full frame, in pixels
@@ -26,14 +53,16 @@ struct RenderSettings {
   // Optional window [x0, x1) x [y0, y1) of the frame to render, y counted from the top row.
   std::optional<std::array<int, 4>> window;
   int threads = 0;  // 0 = all cores
+  uint32_t passes = 0;  // a set of Pass flags, rendered besides Combined
 
   void validate() const;  // throws std::invalid_argument
 };
 
-// Linear RGBA, row-major, row 0 = top of the image.
+// Row-major pixels, row 0 = top of the image; linear RGBA unless a pass says otherwise.
 struct Image {
   int width = 0, height = 0;
-  std::vector<float> rgba;
+  std::vector<float> rgba;  // width * height * channels values
+  int channels = 4;
 };
 
 struct RenderCallbacks {
@@ -45,6 +74,7 @@ struct RenderCallbacks {
 
 struct RenderResult {
   Image image;
+  std::vector<std::pair<std::string, Image>> passes;  // the requested passes, in kPasses order
   int samples_done = 0;
   bool stopped = false;
   double seconds = 0.0;

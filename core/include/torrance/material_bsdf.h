@@ -13,8 +13,9 @@ class MaterialBsdf {
  public:
   MaterialBsdf(const Material& m, BrdfModel model) : bsdf_(make(m, model)) {}
 
-  Vec3 eval(const Vec3& wo, const Vec3& wi) const {
-    return std::visit([&](const auto& b) { return b.eval(wo, wi); }, bsdf_);
+  Vec3 eval(const Vec3& wo, const Vec3& wi) const { return eval_lobes(wo, wi).total(); }
+  LobeEval eval_lobes(const Vec3& wo, const Vec3& wi) const {
+    return std::visit([&](const auto& b) { return b.eval_lobes(wo, wi); }, bsdf_);
   }
   float pdf(const Vec3& wo, const Vec3& wi) const {
     return std::visit([&](const auto& b) { return b.pdf(wo, wi); }, bsdf_);

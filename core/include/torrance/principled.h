@@ -26,7 +26,8 @@ class PrincipledBsdf {
  public:
   explicit PrincipledBsdf(const Material& m);
 
-  Vec3 eval(const Vec3& wo, const Vec3& wi) const;
+  LobeEval eval_lobes(const Vec3& wo, const Vec3& wi) const;
+  Vec3 eval(const Vec3& wo, const Vec3& wi) const { return eval_lobes(wo, wi).total(); }
   float pdf(const Vec3& wo, const Vec3& wi) const;
   BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const;
 

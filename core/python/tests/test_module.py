@@ -188,3 +188,27 @@ def test_image_furnace_sphere_in_uniform_world():
         print(f"furnace {model} metallic={metallic}: measured {measured:.4f} expected {expected:.4f}")
         assert measured == pytest.approx(expected, rel=0.03), (model, measured, expected)
         assert np.isfinite(img).all()
+
+
+def test_render_passes_sum_to_combined_and_albedo_is_base_color():
+    scene = plane_scene(albedo=0.6)
+    scene.add_material(base_color=(0.9, 0.2, 0.1), metallic=0.25, roughness=0.4)
+    # A mirror-ish second object above the plane makes indirect glossy and diffuse light.
+    scene.add_mesh(np.array([[0.5, -3, 1.5], [4, -3, 1.5], [4, 3, 1.5]], np.float32), np.array([[0, 2, 1]]),
+                   material_indices=np.array([1]))
+    scene.add_sun(direction=(0.3, 0.1, -1), strength=3.0, angle=0.02)
+    scene.add_point_light(position=(0.2, 0.0, 1.0), power=50.0, radius=0.05)
+    scene.set_world(color=(0.1, 0.2, 0.3))
+    names = [name for name, _ in tc.PASSES]
+    result = tc.render(scene, tc.RenderSettings(width=16, height=16, samples=32, passes=names))
+    p = result.passes
+    assert set(p) == set(names)
+    assert p["Depth"].shape == (16, 16, 1) and p["Normal"].shape == (16, 16, 3)
+    total = sum(p[k] for k in ["Emit", "Env", "DiffDir", "DiffInd", "GlossDir", "GlossInd"])
+    assert np.allclose(total, result.image[..., :3], rtol=1e-4, atol=1e-5)
+    assert p["DiffDir"].mean() > 0 and p["GlossDir"].mean() > 0 and p["DiffInd"].mean() > 0
+    assert np.allclose(p["Albedo"], 0.6, atol=1e-5)      # the camera sees only the plane
+    assert np.allclose(p["Depth"], 5.0, atol=1e-3)       # planar depth from z = 5 to the plane
+    assert np.allclose(p["Normal"], [0, 0, 1], atol=1e-5)
+    with pytest.raises(ValueError, match="unknown pass 'Shadow'"):
+        tc.RenderSettings(passes=["Shadow"])
