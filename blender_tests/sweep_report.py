@@ -12,7 +12,7 @@ Statistics of a region (all in sweep_report.region_stats):
   to the sun, facing it) plus Y_sky (a perfect mirror of the uniform sky): a pixel above T shows the
   sun reflected specularly. The 1.5 margin covers noise and Burley's brighter grazing response
   (Cycles).
-* peak: the 99.9th percentile of Y;
+* peak: the mean Y of the region's 5 brightest pixels (the glints' brightness, however few);
 * glint concentration: the share of the region's light in its brightest 1 % of pixels (1 % for an
   evenly lit region; near 100 % for a few mirror glints), the "mirror-like" measure;
 * median Y (the body of the material), mean Y;
@@ -35,6 +35,7 @@ import sweep_sheet as sheet
 
 LUMA = np.array([0.2126, 0.7152, 0.0722])
 MARGIN = 1.5
+PEAK_PIXELS = 5
 
 
 # --------------------------------------------------------------------------------------------
@@ -101,10 +102,11 @@ def region_stats(img, mask, threshold):
     if y.size == 0:
         return None
     total = y.sum()
-    top = np.sort(y)[::-1][:max(1, int(round(0.01 * y.size)))]
+    ranked = np.sort(y)[::-1]
+    top = ranked[:max(1, int(round(0.01 * y.size)))]
     rgb = np.asarray(img, float)[..., :3][mask].mean(axis=0)
     return dict(pixels=int(y.size), mean=float(y.mean()), median=float(np.median(y)),
-                peak=float(np.percentile(y, 99.9)), max=float(y.max()),
+                peak=float(ranked[:PEAK_PIXELS].mean()), max=float(y.max()),
                 highlight=float(np.mean(y > threshold)),
                 concentration=float(top.sum() / total) if total > 0 else float("nan"),
                 green_share=float(rgb[1] / max(rgb.sum(), 1e-12)), rgb=[float(c) for c in rgb])
@@ -322,7 +324,7 @@ STYLE = {"torrance": dict(color="tab:green", marker="o", ls="-"),
 
 def plot_sweep(exp, stats_by_engine, path, labels):
     plt = _plt()
-    keys = [("highlight", "highlight area (share of pixels)"), ("peak", "peak Y (99.9th pct.)"),
+    keys = [("highlight", "highlight area (share of pixels)"), ("peak", "peak Y (5 brightest px)"),
             ("concentration", "glint concentration"), ("median", "median Y")]
     if exp["material"] == "Water":
         keys[0] = ("spread", "glitter spread (width fraction)")
@@ -486,7 +488,7 @@ def write_report(out, experiments, engines, timings, publish_dir=None, labels=No
             for engine, st in stats.items():
                 has_stone = "stone_mean" in st["rows"][0]
                 is_water = exp["material"] == "Water"
-                head = (f"| {exp['input']} | highlight area | peak Y | glint concentration | "
+                head = (f"| {exp['input']} | highlight area | peak Y | max Y | glint concentration | "
                         f"median Y | mean RGB |" + (" glitter spread |" if is_water else "")
                         + (" stone mean Y |" if has_stone else "") + " render s |")
                 lines += [f"**{engine_label.get(engine, engine)}** — {exp['material']} region "
@@ -495,6 +497,7 @@ def write_report(out, experiments, engines, timings, publish_dir=None, labels=No
                 for row in st["rows"]:
                     lines.append(
                         f"| {row['value']:g} | {_pct(row['highlight'])} | {_fmt(row['peak'])} | "
+                        f"{_fmt(row['max'])} | "
                         f"{_pct(row['concentration'])} | {_fmt(row['median'])} | "
                         + ", ".join(f"{c:.3f}" for c in row["rgb"]) + " |"
                         + (f" {_pct(row['spread'])} |" if is_water else "")
