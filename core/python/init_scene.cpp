@@ -38,6 +38,18 @@ IndexArray as_indices(const py::object& obj, const char* name) {
 
 Vec3 vec3(const std::array<float, 3>& a) { return Vec3(a[0], a[1], a[2]); }
 
+ColorSpace parse_colorspace(const std::string& s) {
+  if (s == "sRGB") return ColorSpace::SRGB;
+  if (s == "Non-Color" || s == "Linear" || s == "Raw") return ColorSpace::Linear;
+  throw py::value_error("colorspace must be 'sRGB', 'Non-Color', 'Linear' or 'Raw', got '" + s + "'");
+}
+
+Interpolation parse_interpolation(const std::string& s) {
+  if (s == "Linear") return Interpolation::Linear;
+  if (s == "Closest") return Interpolation::Closest;
+  throw py::value_error("interpolation must be 'Linear' or 'Closest', got '" + s + "'");
+}
+
 SensorFit parse_fit(const std::string& s) {
   if (s == "AUTO") return SensorFit::Auto;
   if (s == "HORIZONTAL") return SensorFit::Horizontal;
@@ -53,7 +65,9 @@ void init_scene(py::module_& m) {
       .def(
           "add_material",
           [](Scene& s, std::array<float, 3> base_color, float metallic, float roughness, float specular,
-             std::array<float, 3> emission, float emission_strength, float specular_tint) {
+             std::array<float, 3> emission, float emission_strength, float specular_tint, int base_color_texture,
+             int metallic_texture, int roughness_texture, int emission_texture, int normal_texture,
+             float normal_strength) {
             Material mat;
             mat.base_color = vec3(base_color);
             mat.metallic = metallic;
@@ -61,16 +75,50 @@ void init_scene(py::module_& m) {
             mat.specular = specular;
             mat.emission = vec3(emission) * emission_strength;
             mat.specular_tint = specular_tint;
-            return s.add_material(mat);
+            MaterialTextures tex;
+            tex.base_color = base_color_texture;
+            tex.metallic = metallic_texture;
+            tex.roughness = roughness_texture;
+            tex.emission = emission_texture;
+            tex.emission_strength = emission_strength;
+            tex.normal = normal_texture;
+            tex.normal_strength = normal_strength;
+            return s.add_material(mat, tex);
           },
           py::arg("base_color") = std::array<float, 3>{0.8f, 0.8f, 0.8f}, py::arg("metallic") = 0.0f,
           py::arg("roughness") = 0.5f, py::arg("specular") = 0.5f,
           py::arg("emission") = std::array<float, 3>{0.0f, 0.0f, 0.0f}, py::arg("emission_strength") = 0.0f,
-          py::arg("specular_tint") = 0.0f, "Adds a metallic/roughness material; returns its index.")
+          py::arg("specular_tint") = 0.0f, py::arg("base_color_texture") = -1, py::arg("metallic_texture") = -1,
+          py::arg("roughness_texture") = -1, py::arg("emission_texture") = -1, py::arg("normal_texture") = -1,
+          py::arg("normal_strength") = 1.0f,
+          "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
+          "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength).")
+      .def(
+          "add_texture",
+          [](Scene& s, const py::object& pixels, const std::string& colorspace, const std::string& interpolation) {
+            const FloatArray a = FloatArray::ensure(pixels);
+            if (!a || a.ndim() != 3 || a.shape(0) < 1 || a.shape(1) < 1 || a.shape(2) < 1 || a.shape(2) > 4)
+              throw py::value_error("texture pixels must have shape (height, width, 1..4)");
+            return s.add_texture(Texture(int(a.shape(1)), int(a.shape(0)), int(a.shape(2)), a.data(),
+                                         parse_colorspace(colorspace), parse_interpolation(interpolation)));
+          },
+          py::arg("pixels"), py::arg("colorspace") = "sRGB", py::arg("interpolation") = "Linear",
+          "Adds an image texture from pixels with row 0 = BOTTOM (Blender's Image.pixels order); "
+          "sRGB images are decoded to linear. Returns its id.")
+      .def(
+          "add_texture_file",
+          [](Scene& s, const std::string& path, const std::string& colorspace, const std::string& interpolation) {
+            const ColorSpace space = parse_colorspace(colorspace);
+            const Interpolation interp = parse_interpolation(interpolation);
+            py::gil_scoped_release release;
+            return s.add_texture(Texture::from_file(path, space, interp));
+          },
+          py::arg("path"), py::arg("colorspace") = "sRGB", py::arg("interpolation") = "Linear",
+          "Adds an image texture read with OpenImageIO; returns its id.")
       .def(
           "add_mesh",
           [](Scene& s, const py::object& positions, const py::object& triangles, const py::object& corner_normals,
-             const py::object& material_indices) {
+             const py::object& material_indices, const py::object& corner_uvs) {
             const FloatArray p = as_float_rows(positions, "positions", -1, 3);
             const IndexArray t = as_indices(triangles, "triangles");
             if (!((t.ndim() == 2 && t.shape(1) == 3) || t.size() == 0))
@@ -90,12 +138,20 @@ void init_scene(py::module_& m) {
                 throw py::value_error("material_indices must have shape (M,) with M = " + std::to_string(num_tris) +
                                       ", got " + shape_of(mi));
             }
+            FloatArray uv;
+            if (!corner_uvs.is_none()) {
+              uv = FloatArray::ensure(corner_uvs);
+              if (!uv || uv.size() != num_tris * 6)
+                throw py::value_error("corner_uvs must have shape (M, 3, 2) with M = " + std::to_string(num_tris) +
+                                      " triangles");
+            }
             return s.add_mesh(p.data(), size_t(p.size() / 3), t.data(), size_t(num_tris),
                               corner_normals.is_none() ? nullptr : n.data(),
-                              material_indices.is_none() ? nullptr : mi.data());
+                              material_indices.is_none() ? nullptr : mi.data(),
+                              corner_uvs.is_none() ? nullptr : uv.data());
           },
           py::arg("positions"), py::arg("triangles"), py::arg("corner_normals") = py::none(),
-          py::arg("material_indices") = py::none(),
+          py::arg("material_indices") = py::none(), py::arg("corner_uvs") = py::none(),
           "Adds a triangle mesh in world space; raises ValueError for malformed input.")
       .def(
           "add_sun",
@@ -167,6 +223,7 @@ void init_scene(py::module_& m) {
           "Blender perspective camera; matrix is camera-to-world (row-major, like matrix_world).")
       .def_property_readonly("num_triangles", &Scene::num_triangles)
       .def_property_readonly("num_materials", &Scene::num_materials)
+      .def_property_readonly("num_textures", &Scene::num_textures)
       .def_property_readonly("num_lights", [](const Scene& s) { return s.lights().count(); });
 }
 

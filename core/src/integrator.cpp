@@ -103,9 +103,18 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
       if (!found) break;
     }
 
+    // Textures: the material's inputs and its normal map at this hit.
+    const bool textured = ctx.scene.material_textures(hit.material).any();
+    const Material material =
+        textured ? ctx.scene.textured_material(hit.material, hit.uv) : ctx.scene.material(hit.material);
+    std::optional<MaterialBsdf> textured_bsdf;
+    if (textured) textured_bsdf.emplace(material, ctx.settings.brdf_model);
+    const MaterialBsdf& bsdf = textured ? *textured_bsdf : ctx.bsdfs[hit.material];
+
     // Orient the frame towards the viewer (two-sided surfaces) and keep reflections valid.
     const Vec3 wo_world = -ray.dir;
-    Vec3 ng = hit.geometric_normal, ns = hit.shading_normal;
+    Vec3 ng = hit.geometric_normal;
+    Vec3 ns = textured ? ctx.scene.normal_mapped(hit.material, hit, hit.shading_normal) : hit.shading_normal;
     if (glm::dot(ng, wo_world) < 0.0f) {
       ng = -ng;
       ns = -ns;
@@ -113,7 +122,6 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     ns = valid_shading_normal(ng, ns, wo_world);
 
     // Emissive surfaces emit from both faces; they are found by BSDF sampling only (full weight).
-    const Material& material = ctx.scene.material(hit.material);
     if (bounce == 0) {
       out.normal = ns;
       out.albedo = material.base_color * (1.0f - material.metallic);
@@ -125,7 +133,6 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
 
     const Frame frame(ns);
     const Vec3 wo = frame.to_local(wo_world);
-    const MaterialBsdf& bsdf = ctx.bsdfs[hit.material];
 
     // Next-event estimation: one light, chosen by its expected contribution, MIS-weighted against
     // BSDF sampling.

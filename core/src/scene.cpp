@@ -11,6 +11,7 @@ struct Scene::Mesh {
   std::vector<glm::uvec3> triangles;
   std::vector<Vec3> corner_normals;  // empty => flat
   std::vector<uint32_t> material_ids;
+  std::vector<Vec2> corner_uvs;  // empty => no UVs
 };
 
 void embree_error_callback(void* user, int code, const char* message) {
@@ -49,7 +50,40 @@ void Scene::check_device(const char* during) const {
   }
 }
 
-uint32_t Scene::add_material(const Material& m) {
+uint32_t Scene::add_texture(Texture texture) {
+  textures_.push_back(std::move(texture));
+  return uint32_t(textures_.size() - 1);
+}
+
+Material Scene::textured_material(uint32_t id, const Vec2& uv) const {
+  Material m = materials_[id];
+  const MaterialTextures& t = material_textures_[id];
+  if (t.base_color >= 0) m.base_color = glm::clamp(Vec3(textures_[t.base_color].lookup(uv)), Vec3(0.0f), Vec3(1.0f));
+  if (t.metallic >= 0) m.metallic = clamp01(blender_luminance(Vec3(textures_[t.metallic].lookup(uv))));
+  if (t.roughness >= 0) m.roughness = clamp01(blender_luminance(Vec3(textures_[t.roughness].lookup(uv))));
+  if (t.emission >= 0) m.emission = glm::max(Vec3(textures_[t.emission].lookup(uv)), Vec3(0.0f)) * t.emission_strength;
+  return m;
+}
+
+Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns) const {
+  const MaterialTextures& t = material_textures_[id];
+  if (t.normal < 0 || glm::dot(hit.tangent, hit.tangent) == 0.0f) return ns;
+  const Vec3 tangent = glm::normalize(hit.tangent - glm::dot(hit.tangent, ns) * ns);
+  const Vec3 bitangent = hit.bitangent_sign * glm::cross(ns, tangent);
+  const Vec3 c = 2.0f * Vec3(textures_[t.normal].lookup(hit.uv)) - Vec3(1.0f);
+  const Vec3 mapped = c.x * tangent + c.y * bitangent + c.z * ns;
+  const Vec3 n = ns + (mapped - ns) * t.normal_strength;
+  const float len = glm::length(n);
+  return len > 1e-6f && std::isfinite(len) ? n / len : ns;
+}
+
+uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures) {
+  for (int id : {textures.base_color, textures.metallic, textures.roughness, textures.emission, textures.normal})
+    if (id < -1 || id >= int(textures_.size()))
+      throw std::invalid_argument("material uses texture " + std::to_string(id) + " but the scene has " +
+                                  std::to_string(textures_.size()) + " textures");
+  if (!std::isfinite(textures.emission_strength) || !std::isfinite(textures.normal_strength))
+    throw std::invalid_argument("texture strengths must be finite");
   if (!is_finite(m.base_color) || !is_finite(m.emission) || !std::isfinite(m.metallic) ||
       !std::isfinite(m.roughness) || !std::isfinite(m.specular) || !std::isfinite(m.specular_tint))
     throw std::invalid_argument("material values must be finite (no NaN or Inf)");
@@ -60,11 +94,13 @@ uint32_t Scene::add_material(const Material& m) {
   clean.base_color = glm::clamp(m.base_color, Vec3(0.0f), Vec3(1.0f));
   clean.emission = glm::max(m.emission, Vec3(0.0f));
   materials_.push_back(clean);
+  material_textures_.push_back(textures);
   return uint32_t(materials_.size() - 1);
 }
 
 uint32_t Scene::add_mesh(const float* positions, size_t num_vertices, const int64_t* triangles,
-                         size_t num_triangles, const float* corner_normals, const int64_t* material_ids) {
+                         size_t num_triangles, const float* corner_normals, const int64_t* material_ids,
+                         const float* corner_uvs) {
   auto mesh = std::make_unique<Mesh>();
   if (num_triangles > 0 && num_vertices == 0) throw std::invalid_argument("mesh has triangles but no vertices");
   if (num_vertices > UINT32_MAX || num_triangles > UINT32_MAX)
@@ -94,6 +130,13 @@ uint32_t Scene::add_mesh(const float* positions, size_t num_vertices, const int6
         throw std::invalid_argument("normal of triangle corner " + std::to_string(i) + " has NaN or Inf");
       const float len = glm::length(n);
       mesh->corner_normals[i] = len > 1e-12f ? n / len : Vec3(0.0f);  // zero => flat at that point
+    }
+  }
+  if (corner_uvs) {
+    mesh->corner_uvs.resize(3 * num_triangles);
+    for (size_t i = 0; i < 3 * num_triangles; ++i) {
+      const Vec2 uv(corner_uvs[2 * i], corner_uvs[2 * i + 1]);
+      mesh->corner_uvs[i] = std::isfinite(uv.x) && std::isfinite(uv.y) ? uv : Vec2(0.0f);
     }
   }
   mesh->material_ids.assign(num_triangles, 0);
@@ -186,6 +229,24 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
     if (len > 1e-6f && std::isfinite(len)) hit.shading_normal = n / len;
   }
   hit.material = mesh.material_ids[prim];
+  if (!mesh.corner_uvs.empty()) {
+    const Vec2 &t0 = mesh.corner_uvs[3 * prim], &t1 = mesh.corner_uvs[3 * prim + 1], &t2 = mesh.corner_uvs[3 * prim + 2];
+    hit.uv = w * t0 + u * t1 + v * t2;
+    // dP/du from the triangle's UV parametrisation, for tangent-space normal maps.
+    const Vec2 d1 = t1 - t0, d2 = t2 - t0;
+    const float det = d1.x * d2.y - d1.y * d2.x;
+    if (std::abs(det) > 1e-12f) {
+      const Vec3 dpdu = ((p1 - p0) * d2.y - (p2 - p0) * d1.y) / det;
+      const float len = glm::length(dpdu);
+      if (len > 0.0f && std::isfinite(len)) {
+        hit.tangent = dpdu / len;
+        hit.bitangent_sign = det > 0.0f ? 1.0f : -1.0f;
+      }
+    }
+  } else {
+    hit.uv = Vec2(0.0f);
+    hit.tangent = Vec3(0.0f);
+  }
   return true;
 }
 

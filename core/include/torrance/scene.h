@@ -8,6 +8,7 @@
 #include "torrance/bsdf.h"
 #include "torrance/camera.h"
 #include "torrance/lights.h"
+#include "torrance/texture.h"
 
 #include <cstdint>
 #include <memory>
@@ -16,12 +17,25 @@
 
 namespace torrance {
 
+// Image textures driving a material's inputs (indices from Scene::add_texture; -1 = none), like
+// Image Texture nodes linked to Principled BSDF sockets. Float inputs read the colour's luminance.
+struct MaterialTextures {
+  int base_color = -1, metallic = -1, roughness = -1, emission = -1;
+  int normal = -1;                 // a tangent-space normal map (Normal Map node)
+  float emission_strength = 1.0f;  // emission = texture colour * strength
+  float normal_strength = 1.0f;
+  bool any() const { return base_color >= 0 || metallic >= 0 || roughness >= 0 || emission >= 0 || normal >= 0; }
+};
+
 struct SurfaceHit {
   float t = 0.0f;
   Vec3 position{0.0f};
   Vec3 geometric_normal{0.0f};  // unit, as wound (counter-clockwise), not yet facing the ray
   Vec3 shading_normal{0.0f};    // unit, interpolated corner normal (= geometric for flat meshes)
   uint32_t material = 0;
+  Vec2 uv{0.0f};              // interpolated corner UVs (0 without UVs)
+  Vec3 tangent{0.0f};         // unit dP/du from the triangle's UVs (0 without usable UVs)
+  float bitangent_sign = 1.0f;
 };
 
 class Scene {
@@ -31,14 +45,22 @@ class Scene {
   Scene(const Scene&) = delete;
   Scene& operator=(const Scene&) = delete;
 
-  uint32_t add_material(const Material& material);
+  uint32_t add_material(const Material& material, const MaterialTextures& textures = {});
+  uint32_t add_texture(Texture texture);
+  size_t num_textures() const { return textures_.size(); }
+  const MaterialTextures& material_textures(uint32_t i) const { return material_textures_[i]; }
+  // The material at a hit with its textures applied (base colour, metallic, roughness, emission).
+  Material textured_material(uint32_t material, const Vec2& uv) const;
+  // The shading normal ns perturbed by the material's normal map at the hit (ns when none).
+  Vec3 normal_mapped(uint32_t material, const SurfaceHit& hit, const Vec3& ns) const;
 
   // positions: num_vertices xyz; triangles: num_triangles vertex-index triples;
-  // corner_normals: nullptr or num_triangles * 3 xyz normals; material_ids: nullptr or num_triangles.
+  // corner_normals: nullptr or num_triangles * 3 xyz normals; material_ids: nullptr or num_triangles;
+  // corner_uvs: nullptr or num_triangles * 3 uv pairs.
   // Degenerate triangles and zero-length normals are tolerated (the latter fall back to flat).
   // Returns the mesh id; a mesh without triangles is accepted and ignored.
   uint32_t add_mesh(const float* positions, size_t num_vertices, const int64_t* triangles, size_t num_triangles,
-                    const float* corner_normals, const int64_t* material_ids);
+                    const float* corner_normals, const int64_t* material_ids, const float* corner_uvs = nullptr);
 
   Lights& lights() { return lights_; }
   const Lights& lights() const { return lights_; }
@@ -59,6 +81,8 @@ class Scene {
   void check_device(const char* during) const;
 
   std::vector<Material> materials_;
+  std::vector<MaterialTextures> material_textures_;
+  std::vector<Texture> textures_;
   std::vector<std::unique_ptr<Mesh>> meshes_;  // indexed by Embree geometry id
   Lights lights_;
   CameraParams camera_;

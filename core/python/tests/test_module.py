@@ -212,3 +212,63 @@ def test_render_passes_sum_to_combined_and_albedo_is_base_color():
     assert np.allclose(p["Normal"], [0, 0, 1], atol=1e-5)
     with pytest.raises(ValueError, match="unknown pass 'Shadow'"):
         tc.RenderSettings(passes=["Shadow"])
+
+
+def test_textures_drive_base_color_and_roughness_by_uv():
+    scene = tc.Scene()
+    # A 2x1 texture: left half red, right half blue (sRGB 1.0 -> linear 1.0), row 0 = bottom.
+    red_blue = scene.add_texture(np.array([[[1, 0, 0], [0, 0, 1]]], np.float32), colorspace="sRGB",
+                                 interpolation="Closest")
+    mat = scene.add_material(base_color=(0.5, 0.5, 0.5), specular=0.0, roughness=1.0, base_color_texture=red_blue)
+    half = 50.0
+    positions = np.array([[-half, -half, 0], [half, -half, 0], [half, half, 0], [-half, half, 0]], np.float32)
+    uvs = np.array([[[0, 0], [1, 0], [1, 1]], [[0, 0], [1, 1], [0, 1]]], np.float32)
+    scene.add_mesh(positions, np.array([[0, 1, 2], [0, 2, 3]]), material_indices=np.array([mat, mat]),
+                   corner_uvs=uvs)
+    scene.add_sun(direction=(0, 0, -1), strength=np.pi, angle=0.0)
+    matrix = np.eye(4)
+    matrix[2, 3] = 5.0
+    scene.set_camera(matrix, lens=5.0)   # wide: sees both halves of the centre
+    img = tc.render(scene, tc.RenderSettings(width=32, height=8, samples=4, filter_width=0.01)).image
+    left, right = img[:, :12, :3].mean(axis=(0, 1)), img[:, 20:, :3].mean(axis=(0, 1))
+    assert left == pytest.approx([1, 0, 0], abs=0.02) and right == pytest.approx([0, 0, 1], abs=0.02)
+    with pytest.raises(ValueError, match="texture 7"):
+        scene.add_material(base_color_texture=7)
+    with pytest.raises(ValueError, match="colorspace"):
+        scene.add_texture(np.zeros((2, 2, 3), np.float32), colorspace="ACEScg")
+    with pytest.raises(ValueError, match="corner_uvs"):
+        scene.add_mesh(positions, np.array([[0, 1, 2]]), corner_uvs=np.zeros((2, 3, 2), np.float32))
+
+
+def test_texture_file_and_normal_map(tmp_path):
+    path = str(tmp_path / "grey.exr")
+    tc.write_image(path, np.full((4, 4, 4), 0.25, np.float32))
+    scene = tc.Scene()
+    tid = scene.add_texture_file(path, colorspace="Non-Color")
+    flat = scene.add_texture(np.full((1, 1, 3), 0.5, np.float32) + np.array([0, 0, 0.5], np.float32),
+                             colorspace="Non-Color")   # (0.5, 0.5, 1) = the unperturbed normal
+    gentle = scene.add_texture(np.array([[[0.6, 0.5, 0.9]]], np.float32), colorspace="Non-Color")
+    steep = scene.add_texture(np.array([[[0.9, 0.5, 0.8]]], np.float32), colorspace="Non-Color")
+    results = []
+    for normal in [flat, gentle, steep]:
+        s = tc.Scene()
+        s.add_texture_file(path, colorspace="Non-Color")
+        s.add_texture(np.array([[[0.5, 0.5, 1.0]]], np.float32), colorspace="Non-Color")
+        s.add_texture(np.array([[[0.6, 0.5, 0.9]]], np.float32), colorspace="Non-Color")
+        s.add_texture(np.array([[[0.9, 0.5, 0.8]]], np.float32), colorspace="Non-Color")
+        m = s.add_material(base_color=(1, 1, 1), specular=0.0, roughness=1.0, base_color_texture=tid,
+                           normal_texture=normal)
+        positions = np.array([[-50, -50, 0], [50, -50, 0], [50, 50, 0], [-50, 50, 0]], np.float32)
+        uvs = np.array([[[0, 0], [1, 0], [1, 1]], [[0, 0], [1, 1], [0, 1]]], np.float32)
+        s.add_mesh(positions, np.array([[0, 1, 2], [0, 2, 3]]), material_indices=np.array([m, m]), corner_uvs=uvs)
+        s.add_sun(direction=(0, 0, -1), strength=np.pi, angle=0.0)
+        matrix = np.eye(4)
+        matrix[2, 3] = 5.0
+        s.set_camera(matrix, lens=2000.0)
+        results.append(tc.render(s, tc.RenderSettings(width=4, height=4, samples=1)).image[..., 0].mean())
+    assert results[0] == pytest.approx(0.25, abs=1e-3)      # texture value, Lambert, E = pi
+    # (0.2, 0, 0.8) normalised sees the overhead sun at cos 0.970.
+    assert results[1] == pytest.approx(0.25 * 0.8 / np.hypot(0.2, 0.8), rel=0.01)
+    # (0.8, 0, 0.6) would reflect the view below the surface: like Cycles, the normal is tilted back
+    # until the reflection clears it (R.ng = 0.01), i.e. to 44.7 degrees: cos = 0.7106.
+    assert results[2] == pytest.approx(0.25 * np.cos(np.arccos(0.01) / 2), rel=0.01)

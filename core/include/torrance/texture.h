@@ -1,0 +1,37 @@
+// Image textures as Blender's Image Texture node samples them: UV (0,0) is the image's bottom-left
+// corner, REPEAT extension, Linear (bilinear) or Closest interpolation. Pixels are stored linear:
+// sRGB-encoded images are decoded once on the way in.
+#pragma once
+
+#include "torrance/math.h"
+
+#include <string>
+#include <vector>
+
+namespace torrance {
+
+enum class ColorSpace { Linear, SRGB };
+enum class Interpolation { Linear, Closest };
+
+class Texture {
+ public:
+  // pixels: width * height * channels floats, row 0 = BOTTOM (Blender's Image.pixels order).
+  Texture(int width, int height, int channels, const float* pixels, ColorSpace space, Interpolation interpolation);
+  // Loads any file OpenImageIO reads (row 0 = top in the file; flipped to Blender's order).
+  static Texture from_file(const std::string& path, ColorSpace space, Interpolation interpolation);
+
+  glm::vec4 lookup(const Vec2& uv) const;  // RGBA; a grey image gives (v, v, v, 1)
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  glm::vec4 texel(int x, int y) const;
+  int width_, height_;
+  Interpolation interpolation_;
+  std::vector<glm::vec4> texels_;
+};
+
+// The scene-linear luminance Blender uses to turn a colour into a float socket value.
+inline float blender_luminance(const Vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+
+}  // namespace torrance
