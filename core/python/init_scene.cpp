@@ -198,6 +198,9 @@ void init_scene(py::module_& m) {
           "set_world",
           [](Scene& s, std::array<float, 3> color, float strength) { s.lights().set_world(vec3(color), strength); },
           py::arg("color"), py::arg("strength") = 1.0f, "Uniform world radiance = color * strength.")
+      .def("set_world_texture", &Scene::set_world_texture, py::arg("texture"), py::arg("strength") = 1.0f,
+           "HDRI world: an equirectangular texture (from add_texture*) around the scene, mapped like "
+           "Cycles' Environment Texture, importance-sampled.")
       .def(
           "set_camera",
           [](Scene& s, const py::object& matrix, float lens, float sensor_width, float sensor_height,

@@ -92,7 +92,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     if (bounce == 0) {
       if (!found) {
         if (ctx.settings.transparent_background) out.alpha = 0.0f;
-        else out.environment = lights.world_radiance();
+        else out.environment = lights.world_radiance(ray.dir);
         return out;
       }
       out.depth = hit.t * glm::dot(ray.dir, ctx.camera_forward);

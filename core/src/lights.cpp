@@ -292,6 +292,12 @@ bool AreaLight::hit(const Vec3& p, const Vec3&, const Vec3& dir, float t_max, Li
 
 LightSample WorldLight::sample(const Vec3&, const Vec3& n, const Vec2& u) const {
   LightSample s;
+  if (map_) {
+    s.wi = map_->sample(u, s.pdf);
+    if (!(s.pdf > 0.0f) || glm::dot(s.wi, n) <= 0.0f) return LightSample{};
+    s.weight = map_->radiance(s.wi) / s.pdf;
+    return s;
+  }
   const Vec3 local = sample_cosine_hemisphere(u);
   s.pdf = cosine_hemisphere_pdf(local.z);
   if (!(s.pdf > 0.0f)) return LightSample{};
@@ -302,6 +308,11 @@ LightSample WorldLight::sample(const Vec3&, const Vec3& n, const Vec2& u) const 
 
 bool WorldLight::hit(const Vec3&, const Vec3& n, const Vec3& dir, float t_max, LightHit& out) const {
   if (t_max < kInfinity) return false;
+  if (map_) {
+    out.radiance = map_->radiance(dir);
+    out.pdf = map_->pdf(dir);
+    return true;
+  }
   out.radiance = radiance_;
   out.pdf = cosine_hemisphere_pdf(glm::dot(n, dir));
   return true;
@@ -336,6 +347,10 @@ void Lights::add_area(const Vec3& center, const Vec3& edge_u, const Vec3& edge_v
 void Lights::set_world(const Vec3& color, float strength) {
   require_non_negative(strength, "world strength");
   world_ = WorldLight(checked_color(color, "world color") * strength);
+}
+
+void Lights::set_world_map(std::shared_ptr<const Texture> image, float strength) {
+  world_ = WorldLight(std::make_shared<EnvironmentMap>(std::move(image), strength));
 }
 
 float Lights::importance(size_t index, const Vec3& p, const Vec3& n) const {

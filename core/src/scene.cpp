@@ -51,17 +51,24 @@ void Scene::check_device(const char* during) const {
 }
 
 uint32_t Scene::add_texture(Texture texture) {
-  textures_.push_back(std::move(texture));
+  textures_.push_back(std::make_shared<const Texture>(std::move(texture)));
   return uint32_t(textures_.size() - 1);
+}
+
+void Scene::set_world_texture(uint32_t id, float strength) {
+  if (id >= textures_.size())
+    throw std::invalid_argument("world uses texture " + std::to_string(id) + " but the scene has " +
+                                std::to_string(textures_.size()) + " textures");
+  lights_.set_world_map(textures_[id], strength);
 }
 
 Material Scene::textured_material(uint32_t id, const Vec2& uv) const {
   Material m = materials_[id];
   const MaterialTextures& t = material_textures_[id];
-  if (t.base_color >= 0) m.base_color = glm::clamp(Vec3(textures_[t.base_color].lookup(uv)), Vec3(0.0f), Vec3(1.0f));
-  if (t.metallic >= 0) m.metallic = clamp01(blender_luminance(Vec3(textures_[t.metallic].lookup(uv))));
-  if (t.roughness >= 0) m.roughness = clamp01(blender_luminance(Vec3(textures_[t.roughness].lookup(uv))));
-  if (t.emission >= 0) m.emission = glm::max(Vec3(textures_[t.emission].lookup(uv)), Vec3(0.0f)) * t.emission_strength;
+  if (t.base_color >= 0) m.base_color = glm::clamp(Vec3(textures_[t.base_color]->lookup(uv)), Vec3(0.0f), Vec3(1.0f));
+  if (t.metallic >= 0) m.metallic = clamp01(blender_luminance(Vec3(textures_[t.metallic]->lookup(uv))));
+  if (t.roughness >= 0) m.roughness = clamp01(blender_luminance(Vec3(textures_[t.roughness]->lookup(uv))));
+  if (t.emission >= 0) m.emission = glm::max(Vec3(textures_[t.emission]->lookup(uv)), Vec3(0.0f)) * t.emission_strength;
   return m;
 }
 
@@ -70,7 +77,7 @@ Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns) co
   if (t.normal < 0 || glm::dot(hit.tangent, hit.tangent) == 0.0f) return ns;
   const Vec3 tangent = glm::normalize(hit.tangent - glm::dot(hit.tangent, ns) * ns);
   const Vec3 bitangent = hit.bitangent_sign * glm::cross(ns, tangent);
-  const Vec3 c = 2.0f * Vec3(textures_[t.normal].lookup(hit.uv)) - Vec3(1.0f);
+  const Vec3 c = 2.0f * Vec3(textures_[t.normal]->lookup(hit.uv)) - Vec3(1.0f);
   const Vec3 mapped = c.x * tangent + c.y * bitangent + c.z * ns;
   const Vec3 n = ns + (mapped - ns) * t.normal_strength;
   const float len = glm::length(n);

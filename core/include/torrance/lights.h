@@ -15,6 +15,7 @@
 // by multiple importance sampling against next-event estimation.
 #pragma once
 
+#include "torrance/environment.h"
 #include "torrance/math.h"
 
 #include <limits>
@@ -91,16 +92,23 @@ class AreaLight {
   bool has_spread_ = false;
 };
 
+// The world: a uniform colour (NEE samples the cosine around the shading normal) or an HDRI
+// (NEE samples the map's own distribution).
 class WorldLight {
  public:
   explicit WorldLight(const Vec3& radiance) : radiance_(radiance) {}
+  explicit WorldLight(std::shared_ptr<const EnvironmentMap> map) : map_(std::move(map)) {}
   LightSample sample(const Vec3& p, const Vec3& n, const Vec2& u) const;
-  float importance(const Vec3&, const Vec3&) const { return luminance(radiance_) * kPi; }
+  float importance(const Vec3&, const Vec3&) const {
+    return (map_ ? map_->average_luminance() : luminance(radiance_)) * kPi;
+  }
   bool hit(const Vec3& p, const Vec3& n, const Vec3& dir, float t_max, LightHit& out) const;
-  const Vec3& radiance() const { return radiance_; }
+  Vec3 radiance(const Vec3& dir) const { return map_ ? map_->radiance(dir) : radiance_; }
+  bool black() const { return map_ ? !(map_->average_luminance() > 0.0f) : !(max_component(radiance_) > 0.0f); }
 
  private:
-  Vec3 radiance_;
+  Vec3 radiance_{0.0f};
+  std::shared_ptr<const EnvironmentMap> map_;
 };
 
 // How next-event estimation chooses a light at a shading point.
@@ -118,6 +126,7 @@ class Lights {
   void add_area(const Vec3& center, const Vec3& edge_u, const Vec3& edge_v, const Vec3& direction, bool ellipse,
                 float power, const Vec3& color, float spread);
   void set_world(const Vec3& color, float strength);
+  void set_world_map(std::shared_ptr<const Texture> image, float strength);
 
   // The NEE strategies: each light in the order added, then the world (if not black).
   size_t count() const { return lights_.size() + (has_world() ? 1 : 0); }
@@ -139,8 +148,8 @@ class Lights {
   Vec3 emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max, float bsdf_pdf,
                           bool bsdf_delta) const;
 
-  Vec3 world_radiance() const { return world_.radiance(); }
-  bool has_world() const { return max_component(world_.radiance()) > 0.0f; }
+  Vec3 world_radiance(const Vec3& dir) const { return world_.radiance(dir); }
+  bool has_world() const { return !world_.black(); }
 
  private:
   // Calls f with the concrete light of NEE strategy `index` (the world comes last).

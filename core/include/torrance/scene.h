@@ -62,6 +62,8 @@ class Scene {
   uint32_t add_mesh(const float* positions, size_t num_vertices, const int64_t* triangles, size_t num_triangles,
                     const float* corner_normals, const int64_t* material_ids, const float* corner_uvs = nullptr);
 
+  // An HDRI world: texture `id` as an equirectangular environment, times strength.
+  void set_world_texture(uint32_t id, float strength);
   Lights& lights() { return lights_; }
   const Lights& lights() const { return lights_; }
   void set_camera(const CameraParams& camera) { camera_ = camera; }
@@ -82,7 +84,7 @@ class Scene {
 
   std::vector<Material> materials_;
   std::vector<MaterialTextures> material_textures_;
-  std::vector<Texture> textures_;
+  std::vector<std::shared_ptr<const Texture>> textures_;
   std::vector<std::unique_ptr<Mesh>> meshes_;  // indexed by Embree geometry id
   Lights lights_;
   CameraParams camera_;

@@ -272,3 +272,40 @@ def test_texture_file_and_normal_map(tmp_path):
     # (0.8, 0, 0.6) would reflect the view below the surface: like Cycles, the normal is tilted back
     # until the reflection clears it (R.ng = 0.01), i.e. to 44.7 degrees: cos = 0.7106.
     assert results[2] == pytest.approx(0.25 * np.cos(np.arccos(0.01) / 2), rel=0.01)
+
+
+def test_hdri_world_mapping_and_importance_sampling():
+    # An equirectangular map black except a small bright patch around the direction +X, slightly up.
+    h, w = 64, 128
+    env = np.full((h, w, 3), 0.0, np.float32)
+    # Cycles' mapping: u = 0.5 - atan2(y, x) / 2pi -> +X is u = 0.5; v = 1 - acos(z)/pi -> z = 0.5 is v = 2/3.
+    env[40:46, 62:66] = 2000.0
+    scene = tc.Scene()
+    tex = scene.add_texture(env, colorspace="Linear")
+    m = scene.add_material(base_color=(1, 1, 1), specular=0.0, roughness=1.0)
+    # A floor facing +X (plane x = 0), seen from +X: lit only by the patch.
+    scene.add_mesh(np.array([[0, -50, -50], [0, 50, -50], [0, 50, 50], [0, -50, 50]], np.float32),
+                   np.array([[0, 1, 2], [0, 2, 3]]), material_indices=np.array([m, m]))
+    scene.set_world_texture(tex, strength=1.0)
+    cam = np.array([[0, 0, 1, 5], [1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 0, 1]], np.float32)  # at +X looking -X
+    scene.set_camera(cam, lens=2000.0)
+    # Expected irradiance from the patch: sum over its texels of L * cos(angle to +X) * solid angle.
+    E = 0.0
+    for j in range(40, 46):
+        for i in range(62, 66):
+            u, v = (i + 0.5) / w, (j + 0.5) / h
+            phi, theta = 2 * np.pi * (0.5 - u), np.pi * (1 - v)
+            d = np.array([np.sin(theta) * np.cos(phi), np.sin(theta) * np.sin(phi), np.cos(theta)])
+            E += 2000.0 * max(d[0], 0) * np.sin(theta) * (2 * np.pi / w) * (np.pi / h)
+    img = tc.render(scene, tc.RenderSettings(width=4, height=4, samples=256)).image
+    assert img[..., 0].mean() == pytest.approx(E / np.pi, rel=0.03)
+    # The camera looking at empty sky sees the map itself.
+    sky = tc.Scene()
+    sky.add_texture(env, colorspace="Linear")
+    sky.set_world_texture(0)
+    look = np.array([[0, 0, -1, 0], [-1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 0, 1]], np.float32)  # looks +X
+    sky.set_camera(look, lens=12.0)  # +-56 degrees: the patch sits 30 degrees up
+    view = tc.render(sky, tc.RenderSettings(width=64, height=64, samples=1, filter_width=0.01)).image
+    assert view[..., 0].max() == pytest.approx(2000.0) and view[..., 0].min() == 0.0
+    with pytest.raises(ValueError, match="texture 5"):
+        sky.set_world_texture(5)
