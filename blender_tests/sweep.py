@@ -480,7 +480,7 @@ class Recorder:
             record["samples_done"] = int(scene.cycles.samples)
         with open(meta, "w") as f:
             json.dump(record, f, indent=1)
-        sheet.write_png8(png, sheet.to_display(sheet.read_image(exr), self.plan["exposure"]))
+        sheet.write_png(png, sheet.read_image(exr), self.plan["exposure"])
         self.done += 1
         label = sheet.frame_label(record["inputs"]) or "as is"
         spp = f", {record['samples_done']} spp" if record["samples_done"] is not None else ""

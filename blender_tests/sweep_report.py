@@ -645,16 +645,23 @@ def _compare_r02_r04(experiments, engines):
 
 
 def _disagreement_text(claims, engines, engine_label):
-    bad = []
+    bad, steps = [], []
     for c in claims:
         for e in engines:
             r = c["results"].get(e)
-            if r and r["verdict"] not in ("agrees",):
+            if r and r["verdict"] != "agrees":
                 bad.append(f"{engine_label.get(e, e)} on Fig. {c['figure']} ({c['claim']}: "
                            f"{r['verdict']})")
-    if not bad:
-        return ("Every claim is borne out by the measurements, for every renderer listed.")
-    return "Not (fully) borne out: " + "; ".join(bad) + "."
+            elif r and r.get("against"):
+                steps.append(f"{engine_label.get(e, e)}, Fig. {c['figure']} {c['statistic']} "
+                             f"between {', '.join(r['against'])}")
+    text = ("Not (fully) borne out: " + "; ".join(bad) + "." if bad else
+            "Every claim is borne out by the measurements (the trend over the whole sweep), for "
+            "every renderer listed.")
+    if steps:
+        text += (" Single steps between neighbouring values that go the other way: "
+                 + "; ".join(steps) + ".")
+    return text
 
 
 def _runtime_lines(out, experiments, engines, timings, engine_label):

@@ -8,7 +8,8 @@ run on its own, e.g. after a render farm rendered a sweep's .blend (`blender -b 
                                                                  #     blender_tests/sweep.py -- --collect OUT_DIR
 OUT_DIR holds sweep.json (the plan written by sweep.py) and frames/frame_####.exr; per frame
 frames/frame_####.json (written when sweep.py rendered it: samples, time) is optional. It writes
-    frames/frame_####.png   sRGB 8 bit of each EXR (x 2^exposure of the scene's view settings)
+    frames/frame_####.png   sRGB 8 bit of each EXR (x 2^exposure of the scene's view settings),
+                            written by torrance_core.write_image (OpenImageIO) when available
     sheet.png               the labeled contact sheet (value under each panel), sheet.json its layout
     results.csv, results.json   each frame's inputs, engine, samples, render time, files
 
@@ -82,6 +83,18 @@ def to_display(linear, exposure=0.0):
     return np.round(srgb_encode(rgb * (2.0 ** exposure)) * 255.0).astype(np.uint8)
 
 
+def write_png(path, linear, exposure=0.0):
+    """A linear image as an sRGB 8-bit PNG: torrance_core.write_image (OpenImageIO) when
+    available, else our own encoding (write_png8)."""
+    tc = _torrance_core()
+    if tc is not None:
+        img = np.ascontiguousarray(np.asarray(linear, dtype=np.float32)[:, :, :3]
+                                   * np.float32(2.0 ** exposure))
+        tc.write_image(path, img)
+    else:
+        write_png8(path, to_display(linear, exposure))
+
+
 def write_png8(path, rgb8):
     """Writes a uint8 (h, w, 3) sRGB image as PNG."""
     rgb8 = np.ascontiguousarray(rgb8, dtype=np.uint8)
@@ -143,6 +156,8 @@ _GLYPHS = {
     "(": "00010 00100 01000 01000 01000 00100 00010", ")": "01000 00100 00010 00010 00010 00100 01000",
     "_": "00000 00000 00000 00000 00000 00000 11111", "%": "11001 11010 00010 00100 01000 01011 10011",
     "x": "00000 10001 01010 00100 01010 10001 00000", "?": "01110 10001 00001 00010 00100 00000 00100",
+    "|": "00100 00100 00100 00100 00100 00100 00100", "'": "00100 00100 01000 00000 00000 00000 00000",
+    "#": "01010 01010 11111 01010 11111 01010 01010", "*": "00000 10101 01110 11111 01110 10101 00000",
 }
 
 
@@ -326,9 +341,10 @@ def collect(out_dir, quiet=False):
                         row[key] = meta[key]
             else:
                 row["seconds"] = _exr_render_time(exr)
-            img8 = to_display(read_image(exr), exposure)
+            linear = read_image(exr)
+            img8 = to_display(linear, exposure)
             if (not os.path.exists(png)) or os.path.getmtime(png) < os.path.getmtime(exr):
-                write_png8(png, img8)
+                write_png(png, linear, exposure)
             row["exr"] = os.path.relpath(exr, out_dir)
             row["png"] = os.path.relpath(png, out_dir)
         rows.append(row)
