@@ -121,13 +121,17 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     }
     ns = valid_shading_normal(ng, ns, wo_world);
 
-    // Emissive surfaces emit from both faces; they are found by BSDF sampling only (full weight).
+    // Emissive surfaces emit from both faces; NEE samples them too (the mesh light).
     if (bounce == 0) {
       out.normal = ns;
       out.albedo = material.base_color * (1.0f - material.metallic);
       out.emission = material.emission;
-    } else {
-      deposit(throughput * material.emission, bounce == 1);
+    } else if (hit.emitter >= 0) {
+      // An emissive triangle found by BSDF sampling: MIS against NEE's choice of it.
+      const float mis = prev_delta ? 1.0f
+                                   : power_heuristic(prev_pdf, lights.mesh_light_pdf(size_t(hit.emitter), prev_position,
+                                                                                     prev_normal, hit.position));
+      deposit(throughput * material.emission * mis, bounce == 1);
     }
     if (bounce > ctx.settings.max_bounces) break;
 

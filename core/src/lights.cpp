@@ -353,6 +353,11 @@ void Lights::set_world_map(std::shared_ptr<const Texture> image, float strength)
   world_ = WorldLight(std::make_shared<EnvironmentMap>(std::move(image), strength));
 }
 
+float Lights::mesh_light_pdf(size_t triangle, const Vec3& p, const Vec3& n, const Vec3& q) const {
+  if (!mesh_) return 0.0f;
+  return selection_probability(lights_.size(), p, n) * mesh_->pdf(triangle, p, q);
+}
+
 float Lights::importance(size_t index, const Vec3& p, const Vec3& n) const {
   if (selection_ == LightSelection::Uniform) return 1.0f;
   return visit(index, [&](const auto& light) { return light.importance(p, n); });

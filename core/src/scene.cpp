@@ -12,6 +12,7 @@ struct Scene::Mesh {
   std::vector<Vec3> corner_normals;  // empty => flat
   std::vector<uint32_t> material_ids;
   std::vector<Vec2> corner_uvs;  // empty => no UVs
+  std::vector<int32_t> emitter_index;  // per triangle: index in the mesh light, or -1
 };
 
 void embree_error_callback(void* user, int code, const char* message) {
@@ -102,6 +103,7 @@ uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures
   clean.emission = glm::max(m.emission, Vec3(0.0f));
   materials_.push_back(clean);
   material_textures_.push_back(textures);
+  emitters_dirty_ = true;
   return uint32_t(materials_.size() - 1);
 }
 
@@ -178,6 +180,7 @@ uint32_t Scene::add_mesh(const float* positions, size_t num_vertices, const int6
     rtcReleaseGeometry(geom);
     check_device("committing a mesh");
     dirty_ = true;
+    emitters_dirty_ = true;
   }
   meshes_.push_back(std::move(mesh));
   return id;
@@ -190,10 +193,55 @@ size_t Scene::num_triangles() const {
 }
 
 void Scene::commit() {
-  if (!dirty_) return;
-  rtcCommitScene(scene_of(scene_));
-  check_device("building the BVH");
-  dirty_ = false;
+  if (dirty_) {
+    rtcCommitScene(scene_of(scene_));
+    check_device("building the BVH");
+    dirty_ = false;
+  }
+  if (emitters_dirty_) {
+    build_mesh_light();
+    emitters_dirty_ = false;
+  }
+}
+
+void Scene::build_mesh_light() {
+  std::vector<EmissiveTriangle> triangles;
+  std::vector<float> power;
+  for (auto& mesh : meshes_) {
+    mesh->emitter_index.assign(mesh->triangles.size(), -1);
+    for (size_t i = 0; i < mesh->triangles.size(); ++i) {
+      const uint32_t m = mesh->material_ids[i];
+      const MaterialTextures& tex = material_textures_[m];
+      // Power estimate for choosing among emitters: a textured emission counts as its strength.
+      const float radiance = tex.emission >= 0 ? tex.emission_strength : luminance(materials_[m].emission);
+      if (!(radiance > 0.0f)) continue;
+      const glm::uvec3 t = mesh->triangles[i];
+      EmissiveTriangle e;
+      e.p0 = mesh->positions[t.x];
+      e.edge1 = mesh->positions[t.y] - e.p0;
+      e.edge2 = mesh->positions[t.z] - e.p0;
+      const Vec3 cross = glm::cross(e.edge1, e.edge2);
+      e.area = 0.5f * glm::length(cross);
+      if (!(e.area > 0.0f) || !std::isfinite(e.area)) continue;
+      e.normal = cross / (2.0f * e.area);
+      const bool has_uv = !mesh->corner_uvs.empty();
+      e.uv0 = has_uv ? mesh->corner_uvs[3 * i] : Vec2(0.0f);
+      e.uv1 = has_uv ? mesh->corner_uvs[3 * i + 1] : Vec2(0.0f);
+      e.uv2 = has_uv ? mesh->corner_uvs[3 * i + 2] : Vec2(0.0f);
+      e.material = m;
+      mesh->emitter_index[i] = int32_t(triangles.size());
+      triangles.push_back(e);
+      power.push_back(e.area * radiance);
+    }
+  }
+  if (triangles.empty()) {
+    lights_.set_mesh_light(std::nullopt);
+    return;
+  }
+  lights_.set_mesh_light(MeshLight(std::move(triangles), power, [this](uint32_t material, const Vec2& uv) {
+    return material_textures_[material].emission >= 0 ? textured_material(material, uv).emission
+                                                      : materials_[material].emission;
+  }));
 }
 
 bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
@@ -236,6 +284,7 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
     if (len > 1e-6f && std::isfinite(len)) hit.shading_normal = n / len;
   }
   hit.material = mesh.material_ids[prim];
+  hit.emitter = mesh.emitter_index.empty() ? -1 : mesh.emitter_index[prim];
   if (!mesh.corner_uvs.empty()) {
     const Vec2 &t0 = mesh.corner_uvs[3 * prim], &t1 = mesh.corner_uvs[3 * prim + 1], &t2 = mesh.corner_uvs[3 * prim + 2];
     hit.uv = w * t0 + u * t1 + v * t2;

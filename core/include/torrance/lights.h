@@ -16,29 +16,16 @@
 #pragma once
 
 #include "torrance/environment.h"
-#include "torrance/math.h"
+#include "torrance/lights_common.h"
+#include "torrance/mesh_light.h"
+
+#include <optional>
 
 #include <limits>
 #include <variant>
 #include <vector>
 
 namespace torrance {
-
-struct LightSample {
-  Vec3 wi{0.0f};                                            // unit direction towards the light
-  float distance = std::numeric_limits<float>::infinity();  // to the light's surface
-  Vec3 weight{0.0f};                                        // Le / pdf (or irradiance for delta lights)
-  float pdf = 0.0f;                                         // solid-angle density; 0 for delta lights
-  bool valid() const { return weight.x > 0.0f || weight.y > 0.0f || weight.z > 0.0f; }
-};
-
-// What a ray from p (shading normal n) along dir sees of one light: its radiance and the
-// solid-angle density with which that light's sample(p, n, .) would have produced dir (for MIS).
-// Every light type has sample(p, n, u), importance(p, n) and hit(p, n, dir, t_max, out).
-struct LightHit {
-  Vec3 radiance{0.0f};
-  float pdf = 0.0f;
-};
 
 class SunLight {
  public:
@@ -127,9 +114,14 @@ class Lights {
                 float power, const Vec3& color, float spread);
   void set_world(const Vec3& color, float strength);
   void set_world_map(std::shared_ptr<const Texture> image, float strength);
+  // Emissive triangles (replaces any previous set); nullopt removes them.
+  void set_mesh_light(std::optional<MeshLight> emitters) { mesh_ = std::move(emitters); }
+  // MIS density of NEE producing point q on emissive triangle `triangle` from (p, n).
+  float mesh_light_pdf(size_t triangle, const Vec3& p, const Vec3& n, const Vec3& q) const;
 
-  // The NEE strategies: each light in the order added, then the world (if not black).
-  size_t count() const { return lights_.size() + (has_world() ? 1 : 0); }
+  // The NEE strategies: each light in the order added, the emissive triangles (as one), then the
+  // world (if not black).
+  size_t count() const { return lights_.size() + (mesh_ ? 1 : 0) + (has_world() ? 1 : 0); }
   void set_selection(LightSelection s) { selection_ = s; }
 
   struct Choice {
@@ -152,16 +144,19 @@ class Lights {
   bool has_world() const { return !world_.black(); }
 
  private:
-  // Calls f with the concrete light of NEE strategy `index` (the world comes last).
+  // Calls f with the concrete light of NEE strategy `index` (see count()).
   template <typename F>
   auto visit(size_t index, F&& f) const {
-    return index < lights_.size() ? std::visit(f, lights_[index]) : f(world_);
+    if (index < lights_.size()) return std::visit(f, lights_[index]);
+    if (mesh_ && index == lights_.size()) return f(*mesh_);
+    return f(world_);
   }
   // Unnormalised selection weight of light `index` at (p, n): its unshadowed irradiance there,
   // bounded above so that lights partly above the horizon keep a chance.
   float importance(size_t index, const Vec3& p, const Vec3& n) const;
 
   std::vector<std::variant<SunLight, PointLight, AreaLight>> lights_;
+  std::optional<MeshLight> mesh_;
   WorldLight world_{Vec3(0.0f)};
   LightSelection selection_ = LightSelection::Contribution;
 };

@@ -33,6 +33,7 @@ struct SurfaceHit {
   Vec3 geometric_normal{0.0f};  // unit, as wound (counter-clockwise), not yet facing the ray
   Vec3 shading_normal{0.0f};    // unit, interpolated corner normal (= geometric for flat meshes)
   uint32_t material = 0;
+  int32_t emitter = -1;       // index among the emissive triangles (Lights' mesh light), or -1
   Vec2 uv{0.0f};              // interpolated corner UVs (0 without UVs)
   Vec3 tangent{0.0f};         // unit dP/du from the triangle's UVs (0 without usable UVs)
   float bitangent_sign = 1.0f;
@@ -73,7 +74,8 @@ class Scene {
   size_t num_materials() const { return materials_.size(); }
   const Material& material(uint32_t i) const { return materials_[i]; }
 
-  // Builds the BVH if geometry changed since the last commit. Must precede intersect/occluded.
+  // Builds the BVH and the emissive-triangle light if the scene changed since the last commit.
+  // Must precede intersect/occluded.
   void commit();
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
   bool occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax) const;
@@ -90,7 +92,9 @@ class Scene {
   CameraParams camera_;
   void* device_ = nullptr;  // RTCDevice
   void* scene_ = nullptr;   // RTCScene
+  void build_mesh_light();
   bool dirty_ = true;
+  bool emitters_dirty_ = true;
   mutable std::string embree_error_;
   friend void embree_error_callback(void*, int, const char*);
 };
