@@ -5,6 +5,8 @@
 
 #include <memory>
 
+#include "torrance/session.h"
+
 namespace torrance::python {
 namespace {
 
@@ -119,6 +121,27 @@ void init_render(py::module_& m) {
       .def_readonly("stopped", &RenderResult::stopped)
       .def_readonly("seconds", &RenderResult::seconds)
       .def_readonly("nonfinite_samples", &RenderResult::nonfinite_samples);
+
+  py::class_<RenderSession>(m, "RenderSession",
+                            "A render on a background thread for interactive use: start(), poll latest(), stop().")
+      .def(py::init<std::shared_ptr<Scene>, RenderSettings>(), py::arg("scene"), py::arg("settings"))
+      .def("start", &RenderSession::start)
+      .def("stop", &RenderSession::stop, py::call_guard<py::gil_scoped_release>(),
+           "Stops the render and waits for its thread (well under a second).")
+      .def(
+          "latest",
+          [](const RenderSession& s, uint64_t since_version) -> py::object {
+            Image image;
+            int done = 0;
+            uint64_t version = since_version;
+            if (!s.latest(image, done, version)) return py::none();
+            return py::make_tuple(to_numpy(image), done, version);
+          },
+          py::arg("since_version") = 0,
+          "(image, samples_done, version) if a newer image than since_version exists, else None.")
+      .def_property_readonly("running", &RenderSession::running)
+      .def_property_readonly("finished", &RenderSession::finished)
+      .def_property_readonly("error", &RenderSession::error);
 
   py::list pass_names;
   for (const PassInfo& p : kPasses) pass_names.append(py::make_tuple(p.name, p.channels));

@@ -60,7 +60,7 @@ SensorFit parse_fit(const std::string& s) {
 }  // namespace
 
 void init_scene(py::module_& m) {
-  py::class_<Scene>(m, "Scene", "Meshes, materials, lights and camera, in Blender's world space and units.")
+  py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "Meshes, materials, lights and camera, in Blender's world space and units.")
       .def(py::init<>())
       .def(
           "add_material",

@@ -309,3 +309,24 @@ def test_hdri_world_mapping_and_importance_sampling():
     assert view[..., 0].max() == pytest.approx(2000.0) and view[..., 0].min() == 0.0
     with pytest.raises(ValueError, match="texture 5"):
         sky.set_world_texture(5)
+
+
+def test_render_session_runs_in_background_and_stops_promptly():
+    scene = plane_scene()
+    scene.set_world(color=(1, 1, 1))
+    session = tc.RenderSession(scene, tc.RenderSettings(width=64, height=48, samples=1 << 20))
+    del scene  # the session keeps the scene alive
+    start = time.monotonic()
+    session.start()
+    first = None
+    while first is None and time.monotonic() - start < 5:
+        first = session.latest(0)
+        time.sleep(0.005)
+    assert first is not None, "no image within 5 s"
+    image, samples, version = first
+    assert image.shape == (48, 64, 4) and samples >= 1 and version >= 1
+    assert session.latest(version) is None or session.latest(version)[2] > version
+    assert session.running
+    t = time.monotonic()
+    session.stop()
+    assert time.monotonic() - t < 1.0 and not session.running and session.error == ""

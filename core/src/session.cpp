@@ -1,0 +1,61 @@
+#include "torrance/session.h"
+
+namespace torrance {
+
+RenderSession::RenderSession(std::shared_ptr<Scene> scene, RenderSettings settings)
+    : scene_(std::move(scene)), settings_(std::move(settings)) {
+  settings_.validate();
+}
+
+RenderSession::~RenderSession() { stop(); }
+
+void RenderSession::start() {
+  if (thread_.joinable() || finished_) return;
+  running_ = true;
+  thread_ = std::thread([this] {
+    RenderCallbacks callbacks;
+    callbacks.on_pass = [this](const Image& image, int done, int) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      image_ = image;
+      samples_done_ = done;
+      ++version_;
+    };
+    callbacks.should_stop = [this] { return stop_.load(); };
+    try {
+      RenderResult result = render(*scene_, settings_, callbacks);
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (result.samples_done > samples_done_ || version_ == 0) {
+        image_ = std::move(result.image);
+        samples_done_ = result.samples_done;
+        ++version_;
+      }
+    } catch (const std::exception& e) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      error_ = e.what();
+    }
+    finished_ = true;
+    running_ = false;
+  });
+}
+
+void RenderSession::stop() {
+  stop_ = true;
+  if (thread_.joinable()) thread_.join();
+  running_ = false;
+}
+
+bool RenderSession::latest(Image& image, int& samples_done, uint64_t& version) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (version_ == version) return false;
+  image = image_;
+  samples_done = samples_done_;
+  version = version_;
+  return true;
+}
+
+std::string RenderSession::error() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return error_;
+}
+
+}  // namespace torrance
