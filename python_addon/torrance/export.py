@@ -40,19 +40,27 @@ class ExportStats:
 # Meshes
 
 class LocalMesh:
-    """A mesh in object space: what to_mesh() gives, as numpy arrays."""
-    __slots__ = ("positions", "triangles", "corner_normals", "smooth", "material_slots")
+    """A mesh in object space, as to_mesh() gives it, in numpy arrays."""
+    __slots__ = ("positions", "triangles", "vertex_normals", "corner_normals", "smooth",
+                 "material_slots")
 
-    def __init__(self, positions, triangles, corner_normals, smooth, material_slots):
-        self.positions = positions            # float64 (N,3)
-        self.triangles = triangles            # int64 (M,3)
-        self.corner_normals = corner_normals  # None or float64 (M,3,3), object space
-        self.smooth = smooth                  # None or bool (M,): False = flat triangle
-        self.material_slots = material_slots  # int64 (M,) raw material_index
+    def __init__(self, positions, triangles, vertex_normals, corner_normals, smooth,
+                 material_slots):
+        self.positions = positions            # float32 (N,3)
+        self.triangles = triangles            # int32 (M,3)
+        self.vertex_normals = vertex_normals  # None or float32 (N,3): smooth shading
+        self.corner_normals = corner_normals  # None or float32 (M,3,3): split normals
+        self.smooth = smooth                  # None (all alike) or bool (M,): False = flat
+        self.material_slots = material_slots  # int32 (M,) raw material_index
 
 
 def read_local_mesh(obj):
-    """The evaluated object's mesh as a LocalMesh, or None when it has no triangles."""
+    """The evaluated object's mesh as a LocalMesh, or None when it has no triangles.
+
+    Normals as Cycles 3.4 takes them: with auto smooth the split normals (sharp edges,
+    custom normals) and every triangle smooth; otherwise vertex normals on smooth faces
+    and the geometric normal on flat ones.
+    """
     mesh = obj.to_mesh()
     if mesh is None:
         return None
@@ -68,49 +76,50 @@ def read_local_mesh(obj):
         mesh.loop_triangles.foreach_get("vertices", tris)
         mat = np.empty(nt, dtype=np.int32)
         mesh.loop_triangles.foreach_get("material_index", mat)
-        tris = tris.reshape(nt, 3).astype(np.int64)
 
-        corner_normals = None
-        smooth = None
+        vertex_normals = corner_normals = smooth = None
         if mesh.use_auto_smooth:
-            # As Cycles: split normals (auto smooth angle, sharp edges, custom normals), all smooth.
-            mesh.calc_normals_split()
+            mesh.calc_normals_split()       # split_normals are zeros until this is called
             sn = np.empty(nt * 9, dtype=np.float32)
             mesh.loop_triangles.foreach_get("split_normals", sn)
-            corner_normals = sn.reshape(nt, 3, 3).astype(np.float64)
+            corner_normals = sn.reshape(nt, 3, 3)
         else:
             smooth = np.empty(nt, dtype=bool)
             mesh.loop_triangles.foreach_get("use_smooth", smooth)
             if smooth.any():
                 vn = np.empty(nv * 3, dtype=np.float32)
                 mesh.vertices.foreach_get("normal", vn)
-                corner_normals = vn.reshape(nv, 3).astype(np.float64)[tris]
+                vertex_normals = vn.reshape(nv, 3)
+                if smooth.all():
+                    smooth = None
             else:
                 smooth = None
-        return LocalMesh(co.reshape(nv, 3).astype(np.float64), tris, corner_normals, smooth,
-                         mat.astype(np.int64))
+        return LocalMesh(co.reshape(nv, 3), tris.reshape(nt, 3), vertex_normals,
+                         corner_normals, smooth, mat)
     finally:
         obj.to_mesh_clear()
 
 
 def _normalize(v):
+    """Unit vectors (float32) and a mask of those that could be normalised."""
     length = np.sqrt(np.einsum("...i,...i->...", v, v))
-    ok = length > 1e-30
+    ok = (length > 1e-30) & np.isfinite(length)
     out = np.zeros_like(v)
     np.divide(v, length[..., None], out=out, where=ok[..., None])
     return out, ok
 
 
 def world_mesh(local, matrix):
-    """World-space arrays for add_mesh, plus the number of triangles dropped for bad vertices.
+    """World-space arrays for add_mesh.
 
-    Returns (positions float32 (N,3), triangles int32 (M,3), corner_normals float32 (M,3,3)
-    or None, kept-triangle mask (over local triangles), dropped_nonfinite).
+    Returns (positions float32 (N,3), triangles int32 (M',3), corner_normals float32
+    (M',3,3) or None, kept-triangle mask over the local triangles, number of triangles
+    dropped for NaN/Inf vertices).
     """
     m = np.asarray(matrix, dtype=np.float64).reshape(4, 4)
     lin = m[:3, :3]
     with np.errstate(all="ignore"):
-        pos = local.positions @ lin.T + m[:3, 3]
+        pos = (local.positions.astype(np.float64) @ lin.T + m[:3, 3]).astype(np.float32)
     tris = local.triangles
 
     # Triangles touching a NaN/Inf vertex (before or after the transform) are dropped, and
@@ -121,48 +130,55 @@ def world_mesh(local, matrix):
     dropped_nonfinite = 0
     if bad_vertex.any():
         keep &= ~bad_vertex[tris].any(axis=1)
-        dropped_nonfinite = int(len(tris) - keep.sum())
-        pos = pos.copy()
+        dropped_nonfinite = int(len(tris) - np.count_nonzero(keep))
         pos[bad_vertex] = 0.0            # unused now; the core rejects any non-finite value
 
     # Geometric normals; zero-area triangles can never be hit and are dropped silently.
     p0 = pos[tris[:, 0]]
     with np.errstate(all="ignore"):
         ng = np.cross(pos[tris[:, 1]] - p0, pos[tris[:, 2]] - p0)
+    del p0
     ng, ng_ok = _normalize(ng)
-    keep &= ng_ok & np.isfinite(ng).all(axis=1)
+    keep &= ng_ok
 
-    # A mirroring transform turns the winding around: swap two corners so that the
-    # geometric normal keeps its side (as Cycles does for negative scale).
-    det = np.linalg.det(lin)
+    # A mirroring transform turns the winding around: two corners are swapped below so that
+    # the geometric normal keeps its side (as Cycles does for negative scale).
+    det = float(np.linalg.det(lin))
     flip = det < 0.0
     if flip:
-        ng = -ng   # the transformed winding gives the opposite normal; after the swap it's right
+        ng = -ng
 
     corner = None
-    if local.corner_normals is not None:
+    if local.vertex_normals is not None or local.corner_normals is not None:
         with np.errstate(all="ignore"):
-            normal_matrix = np.linalg.inv(lin).T if abs(det) > 1e-300 else lin
-            cn = local.corner_normals @ normal_matrix.T
-        cn, cn_ok = _normalize(cn)
-        cn_ok &= np.isfinite(cn).all(axis=-1)
+            normal_matrix = (np.linalg.inv(lin).T if abs(det) > 1e-300 else lin)
+        normal_matrix = normal_matrix.astype(np.float32)
+        with np.errstate(all="ignore"):
+            if local.vertex_normals is not None:
+                vn, vn_ok = _normalize(local.vertex_normals @ normal_matrix.T)
+                corner = vn[tris]
+                corner_ok = vn_ok[tris]
+            else:
+                corner, corner_ok = _normalize(local.corner_normals @ normal_matrix.T)
         # Corners without a usable normal, and flat triangles, use the geometric normal.
-        use_ng = ~cn_ok
+        use_ng = ~corner_ok
         if local.smooth is not None:
             use_ng |= ~local.smooth[:, None]
-        cn = np.where(use_ng[..., None], ng[:, None, :], cn)
-        corner = cn
+        if use_ng.any():
+            rows, cols = np.nonzero(use_ng)
+            corner[rows, cols] = ng[rows]
 
-    tris_out = tris[keep]
-    if corner is not None:
-        corner = corner[keep]
+    if not keep.all():
+        tris = tris[keep]
+        if corner is not None:
+            corner = corner[keep]
     if flip:
-        tris_out = tris_out[:, [0, 2, 1]]
+        tris = tris[:, [0, 2, 1]]
         if corner is not None:
             corner = corner[:, [0, 2, 1], :]
 
     return (np.ascontiguousarray(pos, dtype=np.float32),
-            np.ascontiguousarray(tris_out, dtype=np.int32),
+            np.ascontiguousarray(tris, dtype=np.int32),
             None if corner is None else np.ascontiguousarray(corner, dtype=np.float32),
             keep, dropped_nonfinite)
 
