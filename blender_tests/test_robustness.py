@@ -222,6 +222,53 @@ def main():
     stats = tutil.addon().render.last_stats
     check(stats["objects"] == 3, f"expected the 3 instances only: {stats}")
 
+    # 7b. Particles instancing a cube from a plane whose own render is off (show_self).
+    scene = base_scene()
+    tutil.add_sun(scene)
+    cube = tutil.mesh_object(scene, "ParticleCube", [(x, y, z) for x in (-.1, .1) for y in (-.1, .1)
+                                                     for z in (-.1, .1)],
+                             [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6),
+                              (0, 2, 6, 4), (1, 5, 7, 3)])
+    cube.location = (0, 0, -50)
+    emitter = tutil.plane(scene, "Emitter", 2.0, z=0.2)
+    emitter.modifiers.new("Particles", 'PARTICLE_SYSTEM')
+    pset = emitter.particle_systems[0].settings
+    pset.count = 4
+    pset.frame_start = pset.frame_end = 1
+    pset.physics_type = 'NO'
+    pset.render_type = 'OBJECT'
+    pset.instance_object = cube
+    pset.particle_size = 1.0
+    emitter.show_instancer_for_render = False
+    render_case("particles", scene, d)
+    names = tutil.addon().render.last_stats["object_names"]
+    check(sorted(names) == ["ParticleCube"] * 5,
+          f"expected the cube and its 4 particle instances, not the emitter: {names}")
+
+    # 7c. Normals: an auto-smooth cube (30 deg) renders like a flat one; a mesh with smooth
+    #     and flat faces, and one with custom split normals, render without trouble.
+    scene = base_scene()
+    tutil.add_sun(scene, rotation=(math.radians(30), 0, math.radians(40)))
+    verts = [(x, y, z) for x in (-.6, .6) for y in (-.6, .6) for z in (0, 1.2)]
+    faces = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
+    cube = tutil.mesh_object(scene, "Cube", verts, faces, tutil.principled("C", (0.6, 0.6, 0.6)))
+    flat = render_case("flat_cube", scene, d)
+    cube.data.polygons.foreach_set("use_smooth", [True] * 6)
+    cube.data.use_auto_smooth = True
+    cube.data.update()
+    auto = render_case("auto_smooth_cube", scene, d)
+    diff = np.abs(auto - flat).max()
+    print(f"[auto_smooth_cube] max |auto smooth - flat| = {diff:.2e}")
+    check(diff < 1e-3 * max(1.0, flat.max()), "an auto-smooth cube must render like a flat one")
+    cube.data.use_auto_smooth = False
+    smooth = render_case("smooth_cube", scene, d)
+    check(np.abs(smooth - flat).max() > 1e-2, "a smooth-shaded cube must differ from a flat one")
+    cube.data.polygons[0].use_smooth = False
+    render_case("mixed_cube", scene, d)
+    cube.data.use_auto_smooth = True
+    cube.data.normals_split_custom_set_from_vertices([(0.0, 0.0, 1.0)] * 8)
+    render_case("custom_normals_cube", scene, d)
+
     # 8. Border render: a window of the frame, same pixels as the full render there.
     scene = base_scene()
     tutil.add_sun(scene)
