@@ -60,7 +60,8 @@ void init_render(py::module_& m) {
       .def(py::init([](int width, int height, int samples, int max_bounces, uint32_t seed, float pixel_aspect_x,
                        float pixel_aspect_y, float filter_width, bool transparent_background,
                        const std::string& brdf_model, std::optional<std::array<int, 4>> window, int threads,
-                       const std::string& light_selection, const std::vector<std::string>& passes) {
+                       const std::string& light_selection, const std::vector<std::string>& passes,
+                       const std::string& sampler, bool specialize) {
              RenderSettings s;
              s.width = width;
              s.height = height;
@@ -76,6 +77,10 @@ void init_render(py::module_& m) {
              s.threads = threads;
              s.light_selection = parse_light_selection(light_selection);
              s.passes = parse_passes(passes);
+             if (sampler != "SOBOL" && sampler != "RANDOM")
+               throw py::value_error("sampler must be 'SOBOL' or 'RANDOM', got '" + sampler + "'");
+             s.sobol = sampler == "SOBOL";
+             s.specialize = specialize;
              s.validate();
              return s;
            }),
@@ -83,7 +88,9 @@ void init_render(py::module_& m) {
            py::arg("seed") = 0, py::arg("pixel_aspect_x") = 1.0f, py::arg("pixel_aspect_y") = 1.0f,
            py::arg("filter_width") = 1.5f, py::arg("transparent_background") = false,
            py::arg("brdf_model") = "PAPER", py::arg("window") = py::none(), py::arg("threads") = 0,
-           py::arg("light_selection") = "CONTRIBUTION", py::arg("passes") = std::vector<std::string>{})
+           py::arg("light_selection") = "CONTRIBUTION", py::arg("passes") = std::vector<std::string>{},
+           py::arg("sampler") = "SOBOL", py::arg("specialize") = true)
+      .def_readwrite("specialize", &RenderSettings::specialize)
       .def_readwrite("width", &RenderSettings::width)
       .def_readwrite("height", &RenderSettings::height)
       .def_readwrite("samples", &RenderSettings::samples)

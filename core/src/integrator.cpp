@@ -53,7 +53,6 @@ struct PathContext {
   const RenderSettings& settings;
   std::vector<MaterialBsdf> bsdfs;  // one per material, built once per render
   Vec3 camera_forward;
-  bool split_lobes;  // light passes requested: track the first hit's diffuse/glossy shares
 };
 
 // Everything one camera sample brings back, split as Blender's passes.
@@ -72,6 +71,9 @@ struct PathRadiance {
 // Radiance along a camera ray. Contributions are filed by the lobe the path left its first hit
 // through (NEE at the first hit by each lobe's share of eval), and as direct (one bounce) or
 // indirect; alpha is 0 where a transparent background is seen directly.
+// Compiled per scene feature set: kTextures (some material has textures), kSplitLobes (light
+// passes requested), kHittable (a BSDF-sampled ray can see a light). The generic path has all three.
+template <bool kTextures, bool kSplitLobes, bool kHittable>
 PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) {
   const Lights& lights = ctx.lights;
   PathRadiance out;
@@ -97,14 +99,15 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
       }
       out.depth = hit.t * glm::dot(ray.dir, ctx.camera_forward);
     } else {
-      deposit(throughput * lights.emission_along_ray(prev_position, prev_normal, ray.dir,
-                                                      found ? hit.t : kInfinity, prev_pdf, prev_delta),
-              bounce == 1);
+      if (kHittable)
+        deposit(throughput * lights.emission_along_ray(prev_position, prev_normal, ray.dir,
+                                                        found ? hit.t : kInfinity, prev_pdf, prev_delta),
+                bounce == 1);
       if (!found) break;
     }
 
     // Textures: the material's inputs and its normal map at this hit.
-    const bool textured = ctx.scene.material_textures(hit.material).any();
+    const bool textured = kTextures && ctx.scene.material_textures(hit.material).any();
     const Material material =
         textured ? ctx.scene.textured_material(hit.material, hit.uv) : ctx.scene.material(hit.material);
     std::optional<MaterialBsdf> textured_bsdf;
@@ -171,7 +174,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     const Vec3 wi_world = frame.to_world(bs.wi);
     if (glm::dot(wi_world, ng) <= 0.0f) break;  // below the geometric surface: no transmission
     throughput *= bs.weight;
-    if (bounce == 0 && ctx.split_lobes && !bs.is_delta) {
+    if (kSplitLobes && bounce == 0 && !bs.is_delta) {
       const LobeEval f = bsdf.eval_lobes(wo, bs.wi);
       const Vec3 total = f.total();
       for (int c = 0; c < 3; ++c) diffuse_share[c] = total[c] > 0.0f ? f.diffuse[c] / total[c] : 0.0f;
@@ -300,12 +303,24 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   scene.commit();
   scene.lights().set_selection(settings.light_selection);
 
-  const bool light_passes = settings.passes & (kPassDiffuseDirect | kPassDiffuseIndirect | kPassGlossyDirect |
-                                                kPassGlossyIndirect);
-  PathContext ctx{scene, scene.lights(), settings, {}, camera.forward(), light_passes};
+  PathContext ctx{scene, scene.lights(), settings, {}, camera.forward()};
   ctx.bsdfs.reserve(scene.num_materials());
   for (size_t i = 0; i < scene.num_materials(); ++i) ctx.bsdfs.emplace_back(scene.material(uint32_t(i)), settings.brdf_model);
   const PixelFilter filter(settings.filter_width);
+
+  // The path tracer for this scene's features (or the generic one).
+  bool has_textures = false;
+  for (size_t i = 0; i < scene.num_materials(); ++i) has_textures |= scene.material_textures(uint32_t(i)).any();
+  const bool split_lobes =
+      settings.passes & (kPassDiffuseDirect | kPassDiffuseIndirect | kPassGlossyDirect | kPassGlossyIndirect);
+  const bool hittable = scene.lights().any_hittable();
+  using TraceFn = PathRadiance (*)(const PathContext&, Ray, SobolSampler&);
+  static constexpr TraceFn kTracers[8] = {
+      trace_path<false, false, false>, trace_path<false, false, true>, trace_path<false, true, false>,
+      trace_path<false, true, true>,   trace_path<true, false, false>, trace_path<true, false, true>,
+      trace_path<true, true, false>,   trace_path<true, true, true>};
+  const TraceFn trace = settings.specialize ? kTracers[(has_textures << 2) | (split_lobes << 1) | int(hittable)]
+                                            : kTracers[7];
 
   const std::array<int, 4> window = settings.window.value_or(std::array<int, 4>{0, 0, settings.width, settings.height});
   Film film(window[2] - window[0], window[3] - window[1], settings.passes);
@@ -329,11 +344,11 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
           for (int x = tile.x0; x < tile.x1; ++x) {
             const uint32_t pixel = uint32_t(y) * uint32_t(settings.width) + uint32_t(x);
             for (int s = first_sample; s < first_sample + num_samples; ++s) {
-              SobolSampler sampler(pixel, uint32_t(s), settings.seed);
+              SobolSampler sampler(pixel, uint32_t(s), settings.seed, !settings.sobol);
               const glm::vec4 u_pixel = sampler.next_4d();
               const float dx = filter.sample_offset(u_pixel.x);
               const float dy = filter.sample_offset(u_pixel.y);
-              PathRadiance r = trace_path(ctx, camera.generate_ray(x + 0.5f + dx, y + 0.5f + dy), sampler);
+              PathRadiance r = trace(ctx, camera.generate_ray(x + 0.5f + dx, y + 0.5f + dy), sampler);
               if (!is_finite(r.combined())) {  // never expected; counted so tests can prove it never happens
                 ++bad;
                 const float alpha = r.alpha;

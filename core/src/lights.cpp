@@ -353,6 +353,16 @@ void Lights::set_world_map(std::shared_ptr<const Texture> image, float strength)
   world_ = WorldLight(std::make_shared<EnvironmentMap>(std::move(image), strength));
 }
 
+bool Lights::any_hittable() const {
+  if (has_world()) return true;
+  for (const auto& light : lights_) {
+    if (std::holds_alternative<AreaLight>(light)) return true;
+    if (const auto* sun = std::get_if<SunLight>(&light); sun && !sun->is_delta()) return true;
+    if (const auto* point = std::get_if<PointLight>(&light); point && !point->is_delta()) return true;
+  }
+  return false;
+}
+
 float Lights::mesh_light_pdf(size_t triangle, const Vec3& p, const Vec3& n, const Vec3& q) const {
   if (!mesh_) return 0.0f;
   return selection_probability(lights_.size(), p, n) * mesh_->pdf(triangle, p, q);
@@ -365,6 +375,7 @@ float Lights::importance(size_t index, const Vec3& p, const Vec3& n) const {
 
 Lights::Choice Lights::select(const Vec3& p, const Vec3& n, float u) const {
   const size_t n_lights = count();
+  if (n_lights == 1 && selection_ == LightSelection::Uniform) return {0, 1.0f};
   constexpr size_t kCached = 64;
   float cached[kCached];
   auto weight = [&](size_t i) { return i < kCached ? cached[i] : importance(i, p, n); };

@@ -70,6 +70,10 @@ uint32_t owen_scramble(uint32_t x, uint32_t seed) {
 }  // namespace
 
 glm::vec4 SobolSampler::next_4d() {
+  if (random_) {
+    const Vec2 a = rng_.next_2d(), b = rng_.next_2d();
+    return glm::vec4(a.x, a.y, b.x, b.y);
+  }
   const uint32_t group_seed = hash_combine(pixel_seed_, group_++);
   const uint32_t shuffled = owen_scramble(index_, group_seed);
   glm::vec4 u;

@@ -50,6 +50,9 @@ struct RenderSettings {
   bool transparent_background = false;
   BrdfModel brdf_model = BrdfModel::Paper;
   LightSelection light_selection = LightSelection::Contribution;
+  bool sobol = true;       // Owen-scrambled Sobol samples; false: independent random numbers
+  bool specialize = true;  // compile-time paths for what the scene lacks (textures, passes, hittable
+                           // lights) and no light choice when there is one light; false: generic path
   // Optional window [x0, x1) x [y0, y1) of the frame to render, y counted from the top row.
   std::optional<std::array<int, 4>> window;
   int threads = 0;  // 0 = all cores

@@ -33,6 +33,7 @@ class SunLight {
   LightSample sample(const Vec3& p, const Vec3& n, const Vec2& u) const;
   float importance(const Vec3& p, const Vec3& n) const;
   bool hit(const Vec3& p, const Vec3& n, const Vec3& dir, float t_max, LightHit& out) const;
+  bool is_delta() const { return one_minus_cos_ <= 0.0f; }
 
  private:
   Vec3 to_light_, irradiance_;
@@ -51,6 +52,7 @@ class PointLight {
   LightSample sample(const Vec3& p, const Vec3& n, const Vec2& u) const;
   float importance(const Vec3& p, const Vec3& n) const;
   bool hit(const Vec3& p, const Vec3& n, const Vec3& dir, float t_max, LightHit& out) const;
+  bool is_delta() const { return radius_ <= 0.0f; }
 
  private:
   float spot_attenuation(const Vec3& p) const;
@@ -140,6 +142,9 @@ class Lights {
   Vec3 emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max, float bsdf_pdf,
                           bool bsdf_delta) const;
 
+  // False when no BSDF-sampled ray can ever see a light (only delta lights, no world or
+  // emitting shapes), so emission_along_ray can be skipped.
+  bool any_hittable() const;
   Vec3 world_radiance(const Vec3& dir) const { return world_.radiance(dir); }
   bool has_world() const { return !world_.black(); }
 

@@ -54,16 +54,20 @@ class Rng {
 // 4-D point of this (pixel, sample) path; the 4 dimensions of one point are stratified jointly
 // over the pixel's samples, and successive points are decorrelated by independent shuffles.
 // Any power-of-two run of sample indices is well stratified, so progressive passes stay good.
+// With `random` set it returns independent uniform numbers instead (for comparisons).
 class SobolSampler {
  public:
-  SobolSampler(uint32_t pixel, uint32_t sample_index, uint32_t seed)
-      : pixel_seed_(hash_combine(hash_u32(seed ^ 0xa511e9b3U), pixel)), index_(sample_index) {}
+  SobolSampler(uint32_t pixel, uint32_t sample_index, uint32_t seed, bool random = false)
+      : pixel_seed_(hash_combine(hash_u32(seed ^ 0xa511e9b3U), pixel)), index_(sample_index), random_(random),
+        rng_(pixel, sample_index, seed) {}
   glm::vec4 next_4d();
 
  private:
   uint32_t pixel_seed_;
   uint32_t index_;
   uint32_t group_ = 0;
+  bool random_;
+  Rng rng_;
 };
 
 // Cosine-weighted hemisphere around +z; pdf = cos(theta) / pi.

@@ -330,3 +330,23 @@ def test_render_session_runs_in_background_and_stops_promptly():
     t = time.monotonic()
     session.stop()
     assert time.monotonic() - t < 1.0 and not session.running and session.error == ""
+
+
+def test_specialised_paths_give_the_generic_image_and_sobol_beats_random():
+    scene = plane_scene(albedo=0.7)
+    scene.add_sun(direction=(0.3, 0.2, -1), strength=2.0, angle=0.0)        # delta light only:
+    scene.add_point_light(position=(0.1, 0, 1), power=20.0, radius=0.0)     # nothing is hittable
+    generic = tc.render(scene, tc.RenderSettings(width=16, height=16, samples=8, specialize=False)).image
+    special = tc.render(scene, tc.RenderSettings(width=16, height=16, samples=8, specialize=True)).image
+    assert np.array_equal(generic, special)
+    # Soft lights: error against a converged image, Sobol vs independent random numbers.
+    soft = plane_scene(albedo=0.7)
+    soft.add_sun(direction=(0.3, 0.2, -1), strength=2.0, angle=0.3)
+    soft.add_point_light(position=(0.1, 0, 1), power=20.0, radius=0.5)
+    soft.set_world(color=(0.2, 0.2, 0.2))
+    reference = tc.render(soft, tc.RenderSettings(width=16, height=16, samples=2048)).image[..., :3]
+    errors = {}
+    for sampler in ["SOBOL", "RANDOM"]:
+        img = tc.render(soft, tc.RenderSettings(width=16, height=16, samples=16, sampler=sampler)).image[..., :3]
+        errors[sampler] = float(np.mean((img - reference) ** 2))
+    assert errors["SOBOL"] < 0.5 * errors["RANDOM"], errors
