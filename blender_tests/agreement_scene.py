@@ -4,6 +4,7 @@
 import math
 
 import bpy
+import numpy as np
 
 import tutil
 
@@ -61,7 +62,8 @@ def setup_cycles(scene, samples, max_bounces, seed=0):
     cy.pixel_filter_type = 'BLACKMAN_HARRIS'
     cy.filter_width = 1.5
     cy.film_exposure = 1.0
-    cy.use_light_tree = False if hasattr(cy, "use_light_tree") else None
+    if hasattr(cy, "use_light_tree"):     # Blender 3.5+
+        cy.use_light_tree = False
     for mat in bpy.data.materials:
         if mat.use_nodes:
             for node in mat.node_tree.nodes:
@@ -77,3 +79,48 @@ def setup_torrance(scene, samples, max_bounces, seed=0):
     ts.seed = seed
     ts.filter_width = 1.5
     ts.brdf_model = 'PAPER'
+
+
+# Agreement criteria (see test_cycles_agreement.py for the measurements behind them).
+THRESHOLDS = dict(
+    ratio=(0.93, 1.06),          # overall and per channel
+    block_mean=0.045,
+    block_p90=0.12,
+    offset=0.5,                  # pixels, each axis
+)
+
+
+def metrics(img, ref):
+    rgb, ref_rgb = img[:, :, :3], ref[:, :, :3]
+    ratio = float(rgb.mean() / ref_rgb.mean())
+    channels = rgb.mean(axis=(0, 1)) / ref_rgb.mean(axis=(0, 1))
+    bi, br = tutil.block_means(img, 8), tutil.block_means(ref, 8)
+    rel = np.abs(bi - br) / np.maximum(br, 0.1 * br.mean())
+    offset = tutil.image_offset(img, ref)
+    return dict(ratio=ratio, channels=channels, block_mean=float(rel.mean()),
+                block_p90=float(np.percentile(rel, 90)), offset=offset)
+
+
+def format_metrics(m):
+    ch = "/".join(f"{c:.3f}" for c in m["channels"])
+    return (f"ratio {m['ratio']:.4f} ({ch}), block mean {m['block_mean']:.4f}, "
+            f"p90 {m['block_p90']:.4f}, offset ({m['offset'][0]:+.2f}, {m['offset'][1]:+.2f}) px")
+
+
+def failures(m):
+    """The thresholds a result violates (empty = agreement)."""
+    lo, hi = THRESHOLDS["ratio"]
+    out = []
+    if not lo <= m["ratio"] <= hi:
+        out.append(f"ratio {m['ratio']:.3f} outside [{lo}, {hi}]")
+    for name, c in zip("RGB", m["channels"]):
+        if not lo <= c <= hi:
+            out.append(f"{name} ratio {c:.3f} outside [{lo}, {hi}]")
+    if m["block_mean"] > THRESHOLDS["block_mean"]:
+        out.append(f"block mean {m['block_mean']:.3f} > {THRESHOLDS['block_mean']}")
+    if m["block_p90"] > THRESHOLDS["block_p90"]:
+        out.append(f"block p90 {m['block_p90']:.3f} > {THRESHOLDS['block_p90']}")
+    if max(abs(m["offset"][0]), abs(m["offset"][1])) > THRESHOLDS["offset"]:
+        out.append(f"offset ({m['offset'][0]:+.2f}, {m['offset'][1]:+.2f}) px > "
+                   f"{THRESHOLDS['offset']}")
+    return out

@@ -20,7 +20,7 @@ import bpy
 import numpy as np
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-REFERENCE_DIR = os.path.join(REPO, "references")
+REFERENCE_DIR = os.environ.get("TORRANCE_REFERENCE_DIR") or os.path.join(REPO, "references")
 sys.path.insert(0, os.path.join(REPO, "scenes"))
 import cmp_util  # noqa: E402
 
