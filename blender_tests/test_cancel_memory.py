@@ -68,9 +68,11 @@ def cancel_test(addon, scene, d):
     stop = t_end - breaker.first_true
     print(f"cancel: test_break called {breaker.calls} times, first True after "
           f"{breaker.first_true - t0:.3f} s; render returned {stop:.3f} s later; "
-          f"{stats.get('samples_done')} samples done, stopped={stats.get('stopped')}", flush=True)
+          f"{stats.get('samples_done')} samples done in {stats.get('passes')} passes, "
+          f"stopped={stats.get('stopped')}", flush=True)
     check(stop < MAX_STOP_SECONDS, f"the render took {stop:.2f} s to stop (limit {MAX_STOP_SECONDS} s)")
     check(stats.get("stopped") is True, f"the core did not report a stopped render: {stats}")
+    check(stats.get("passes", 0) >= 2, f"expected progressive passes before the stop: {stats}")
     check(stats.get("samples_done", 0) < LONG_SAMPLES, "the render was not cut short")
     path = os.path.join(d, "cancelled.exr")
     bpy.data.images["Render Result"].save_render(path, scene=scene)

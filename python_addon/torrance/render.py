@@ -79,6 +79,7 @@ class _Session:
         self.callback_error = None
         self.stop_requested = False
         self.last_samples = 0
+        self.passes = 0
 
     # -- pixels --------------------------------------------------------------------------
     def _window_pixels(self, image):
@@ -116,6 +117,7 @@ class _Session:
     def on_pass(self, image, samples_done, samples_total):
         try:
             self.last_samples = samples_done
+            self.passes += 1
             if self.progressive and samples_done < samples_total:
                 self.write(image)
             elapsed = time.perf_counter() - self.t0
@@ -216,7 +218,7 @@ def _render(engine, depsgraph, reporter):
     if result.stopped:
         msg += " | stopped"
     last_stats.update(samples_done=int(result.samples_done), stopped=bool(result.stopped),
-                      seconds=float(result.seconds))
+                      seconds=float(result.seconds), passes=session.passes)
     engine.update_progress(1.0)
     engine.update_stats("", msg)
     print(msg)
