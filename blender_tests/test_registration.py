@@ -36,7 +36,7 @@ def check_registered():
     cls = engines['TORRANCE']
     check(cls.bl_label == "Torrance" and cls.bl_use_postprocess, "engine class attributes")
     ts = bpy.context.scene.torrance
-    check((ts.samples, ts.max_bounces, ts.seed, ts.brdf_model) == (64, 8, 0, 'PAPER'),
+    check((ts.samples, ts.max_bounces, ts.seed, ts.brdf_model) == (64, 8, 0, 'PRINCIPLED'),
           f"scene.torrance defaults: {ts.samples} {ts.max_bounces} {ts.seed} {ts.brdf_model}")
     for prop in ("samples", "max_bounces", "seed", "brdf_model"):
         check(ts.bl_rna.properties[prop].description, f"scene.torrance.{prop} has no tooltip")

@@ -27,12 +27,12 @@ DEFAULT_MATERIAL = dict(
     specular=0.5,
     emission=(0.0, 0.0, 0.0),
     emission_strength=0.0,
+    specular_tint=0.0,
 )
 
 # Principled inputs that Torrance ignores, with the value at which ignoring them is exact.
 _IGNORED_PRINCIPLED_INPUTS = (
     ("Subsurface", 0.0),
-    ("Specular Tint", 0.0),
     ("Anisotropic", 0.0),
     ("Sheen", 0.0),
     ("Clearcoat", 0.0),
@@ -203,6 +203,7 @@ class MaterialReader:
             specular=max(0.0, _finite_or(v(mat, node, "Specular", d['specular']), d['specular'])),
             emission=_color3(v(mat, node, "Emission", d['emission']), d['emission']),
             emission_strength=_finite_or(v(mat, node, "Emission Strength", 1.0), 0.0),
+            specular_tint=_clamp(_finite_or(v(mat, node, "Specular Tint", 0.0), 0.0), 0.0, 1.0),
         )
         ignored = []
         for name, neutral in _IGNORED_PRINCIPLED_INPUTS:

@@ -14,11 +14,14 @@ from bpy.props import (
     PointerProperty,
 )
 
-# (identifier, name, description). Add 'PRINCIPLED' here when the core supports it.
+# (identifier, name, description)
 BRDF_MODELS = (
+    ('PRINCIPLED', "Principled",
+     "Blender's Principled BSDF as Cycles renders it with GGX: Burley diffuse, exact Fresnel, "
+     "Smith masking. Matches Cycles"),
     ('PAPER', "Paper",
-     "Lambertian diffuse plus a Cook-Torrance GGX specular lobe with Schlick's Fresnel "
-     "(metallic/roughness workflow)"),
+     "The paper's Cook-Torrance model: Lambertian diffuse weighted by (1 - F)(1 - metallic), GGX, "
+     "Schlick's Fresnel and Schlick-GGX geometry (metallic/roughness workflow)"),
 )
 
 
@@ -44,7 +47,7 @@ class TorranceSceneSettings(bpy.types.PropertyGroup):
         name="BRDF Model",
         description="Reflection model used for all materials",
         items=BRDF_MODELS,
-        default='PAPER',
+        default='PRINCIPLED',
     )
     filter_width: FloatProperty(
         name="Filter Width",
