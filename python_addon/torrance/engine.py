@@ -1,9 +1,10 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The RenderEngine subclass. Its callbacks only forward to render.py."""
+"""The RenderEngine subclass. Its callbacks only forward: final renders to render.py, the
+interactive viewport to viewport.py, render-pass registration to passes.py."""
 
 import bpy
 
-from . import render
+from . import passes, render, viewport
 
 
 class TorranceRenderEngine(bpy.types.RenderEngine):
@@ -16,6 +17,18 @@ class TorranceRenderEngine(bpy.types.RenderEngine):
 
     def render(self, depsgraph):
         render.render(self, depsgraph)
+
+    def update_render_passes(self, scene=None, renderlayer=None):
+        passes.update_render_passes(self, scene, renderlayer)
+
+    def view_update(self, context, depsgraph):
+        viewport.view_update(self, context, depsgraph)
+
+    def view_draw(self, context, depsgraph):
+        viewport.view_draw(self, context, depsgraph)
+
+    def __del__(self):
+        viewport.free(self)
 
 
 classes = (TorranceRenderEngine,)
