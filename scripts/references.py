@@ -1,0 +1,99 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Renders the converged Cycles references of the comparison scenes (run by scripts/references).
+
+For each scene scenes/cmp_<name>.py: Cycles renders it twice with REFERENCE_SAMPLES/2 samples
+(seeds 1 and 2, the settings of cmp_util.cycles_settings); the reference is their mean, written as
+references/cmp_<name>.exr (half float, lossless ZIP) with references/cmp_<name>.json beside it:
+Blender's version, the settings, render times, the scene digest (the test refuses a reference of
+another scene) and the reference's own noise, measured from the two halves:
+
+    noise_rel_mse      mean of ((A - B)/2)^2 / (R^2 + 0.01): the relMSE floor the reference adds
+                       to any comparison with it;
+    noise_block_mean   mean over 8x8 blocks of |B_A - B_B| / 2 / max(B_R, 0.1 mean(B_R)) (the
+                       same statistic the test thresholds, at the reference's noise);
+    noise_block_p90    its 90th percentile;
+    half_ratio         mean(A) / mean(B).
+
+    scripts/blender -b --factory-startup --python-exit-code 1 --python scripts/references.py -- [NAME ...]
+"""
+
+import datetime
+import json
+import os
+import sys
+import time
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
+                                "blender_tests"))
+import cmp_lib as cl  # noqa: E402
+import cmp_util as cu  # noqa: E402
+
+SEEDS = (1, 2)
+
+
+def make_reference(name):
+    scene, mod = cu.build(name)
+    digest = cu.scene_digest(scene)
+    half = mod.REFERENCE_SAMPLES // 2
+    images, seconds = [], []
+    for seed in SEEDS:
+        print(f"references: {name}: Cycles {half} samples, seed {seed}", flush=True)
+        img, t = cl.render_cycles(scene, half, seed, mod.BOUNCES, name=f"ref_{name}_{seed}")
+        if not cl.finite(img):
+            raise RuntimeError(f"{name}: NaN/Inf in Cycles' render")
+        images.append(img.astype(np.float64))
+        seconds.append(round(t, 2))
+    a, b = images
+    ref = (a + b) / 2
+    exr, meta_path = cl.reference_paths(name)
+    os.makedirs(os.path.dirname(exr), exist_ok=True)
+    cl.write_exr_half(exr, ref)
+    stored = cl.read_exr(exr)
+    ba, bb, br = cl.block_means(a), cl.block_means(b), cl.block_means(stored)
+    block_noise = np.abs(ba - bb) / 2 / np.maximum(br, 0.1 * br.mean())
+    # the settings as Cycles holds them after the renders (what was used, not what was asked)
+    keys = [k for k in cu.cycles_settings(half, 0, mod.BOUNCES) if k != "seed"]
+    keys += ["sampling_pattern", "min_light_bounces", "min_transparent_bounces"]
+    settings = {k: getattr(scene.cycles, k) for k in keys if hasattr(scene.cycles, k)}
+    settings = {k: (v if isinstance(v, (bool, int, float, str)) else str(v)) for k, v in settings.items()}
+    meta = dict(
+        scene=name, title=mod.TITLE, script=f"scenes/cmp_{name}.py",
+        scene_digest=digest,
+        made=datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+        command="scripts/references " + name,
+        **cl.versions(),
+        engine="CYCLES", width=scene.render.resolution_x, height=scene.render.resolution_y,
+        bounces=mod.BOUNCES, samples=2 * half, seeds=list(SEEDS), samples_per_seed=half,
+        cycles=settings, render_seconds=seconds,
+        file=os.path.basename(exr), format="OpenEXR RGB half float, ZIP (lossless), row 0 = top",
+        mean=[float(x) for x in stored.mean(axis=(0, 1))],
+        noise_rel_mse=float(np.mean(((a - b) / 2) ** 2 / (ref ** 2 + 1e-2))),
+        noise_block_mean=float(block_noise.mean()),
+        noise_block_p90=float(np.percentile(block_noise, 90)),
+        half_ratio=float(a.mean() / b.mean()),
+        half_float_max_rel_error=float(np.max(np.abs(stored - ref) / np.maximum(np.abs(ref), 1e-3))),
+    )
+    with open(meta_path, "w") as f:
+        json.dump(meta, f, indent=2)
+        f.write("\n")
+    print(f"references: {name}: wrote {exr} ({os.path.getsize(exr) // 1024} KiB), "
+          f"{2 * half} samples in {sum(seconds):.0f} s; noise relMSE {meta['noise_rel_mse']:.2e}, "
+          f"block mean {meta['noise_block_mean']:.4f}, p90 {meta['noise_block_p90']:.4f}, "
+          f"halves' ratio {meta['half_ratio']:.4f}", flush=True)
+
+
+def main():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    names = argv or list(cu.SCENES)
+    for name in names:
+        if name not in cu.SCENES:
+            raise SystemExit(f"references: unknown scene {name!r}; known: {', '.join(cu.SCENES)}")
+    t0 = time.perf_counter()
+    for name in names:
+        make_reference(name)
+    print(f"references: done in {time.perf_counter() - t0:.0f} s", flush=True)
+
+
+main()
