@@ -91,6 +91,12 @@ void init_render(py::module_& m) {
            py::arg("light_selection") = "CONTRIBUTION", py::arg("passes") = std::vector<std::string>{},
            py::arg("sampler") = "SOBOL", py::arg("specialize") = true)
       .def_readwrite("specialize", &RenderSettings::specialize)
+      .def_property(
+          "sampler", [](const RenderSettings& s) { return std::string(s.sobol ? "SOBOL" : "RANDOM"); },
+          [](RenderSettings& s, const std::string& v) {
+            if (v != "SOBOL" && v != "RANDOM") throw py::value_error("sampler must be 'SOBOL' or 'RANDOM'");
+            s.sobol = v == "SOBOL";
+          })
       .def_readwrite("width", &RenderSettings::width)
       .def_readwrite("height", &RenderSettings::height)
       .def_readwrite("samples", &RenderSettings::samples)

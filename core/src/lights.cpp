@@ -412,13 +412,17 @@ LightSample Lights::sample(size_t index, const Vec3& p, const Vec3& shading_norm
 Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max,
                                 float bsdf_pdf, bool bsdf_delta) const {
   Vec3 L(0.0f);
-  for (size_t i = 0, n_lights = count(); i < n_lights; ++i) {
+  auto add = [&](size_t index, const LightHit& h, bool in_nee) {
+    const float nee_pdf = in_nee ? selection_probability(index, p_prev, n_prev) * h.pdf : 0.0f;
+    L += h.radiance * (bsdf_delta ? 1.0f : power_heuristic(bsdf_pdf, nee_pdf));
+  };
+  for (size_t i = 0; i < lights_.size(); ++i) {
     LightHit h;
-    if (!visit(i, [&](const auto& light) { return light.hit(p_prev, n_prev, dir, t_max, h); })) continue;
-    const float mis =
-        bsdf_delta ? 1.0f : power_heuristic(bsdf_pdf, selection_probability(i, p_prev, n_prev) * h.pdf);
-    L += h.radiance * mis;
+    if (std::visit([&](const auto& light) { return light.hit(p_prev, n_prev, dir, t_max, h); }, lights_[i]))
+      add(i, h, true);
   }
+  LightHit h;
+  if (has_world() && world_.hit(p_prev, n_prev, dir, t_max, h)) add(count() - 1, h, world_in_nee());
   return L;
 }
 

@@ -94,6 +94,7 @@ class WorldLight {
   bool hit(const Vec3& p, const Vec3& n, const Vec3& dir, float t_max, LightHit& out) const;
   Vec3 radiance(const Vec3& dir) const { return map_ ? map_->radiance(dir) : radiance_; }
   bool black() const { return map_ ? !(map_->average_luminance() > 0.0f) : !(max_component(radiance_) > 0.0f); }
+  bool is_map() const { return map_ != nullptr; }
 
  private:
   Vec3 radiance_{0.0f};
@@ -122,8 +123,9 @@ class Lights {
   float mesh_light_pdf(size_t triangle, const Vec3& p, const Vec3& n, const Vec3& q) const;
 
   // The NEE strategies: each light in the order added, the emissive triangles (as one), then the
-  // world (if not black).
-  size_t count() const { return lights_.size() + (mesh_ ? 1 : 0) + (has_world() ? 1 : 0); }
+  // world if it is an HDRI. A uniform world is left to BSDF sampling, which already draws
+  // directions in proportion to f cos: NEE could only match it, at the cost of a shadow ray.
+  size_t count() const { return lights_.size() + (mesh_ ? 1 : 0) + (world_in_nee() ? 1 : 0); }
   void set_selection(LightSelection s) { selection_ = s; }
 
   struct Choice {
@@ -147,6 +149,7 @@ class Lights {
   bool any_hittable() const;
   Vec3 world_radiance(const Vec3& dir) const { return world_.radiance(dir); }
   bool has_world() const { return !world_.black(); }
+  bool world_in_nee() const { return has_world() && world_.is_map(); }
 
  private:
   // Calls f with the concrete light of NEE strategy `index` (see count()).
