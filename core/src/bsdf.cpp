@@ -1,6 +1,6 @@
 #include "torrance/cook_torrance.h"
 
-#include "torrance/sampling.h"
+#include "torrance/lobe_mixture.h"
 
 namespace torrance {
 
@@ -51,37 +51,10 @@ LobeEval CookTorranceBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
   return f_cos;
 }
 
-float CookTorranceBsdf::pdf(const Vec3& wo, const Vec3& wi) const {
-  if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
-  const float p_spec = specular_probability(wo);
-  float pdf = (1.0f - p_spec) * cosine_hemisphere_pdf(wi.z);
-  if (!has_delta() && p_spec > 0.0f) {
-    const Vec3 h = glm::normalize(wo + wi);
-    pdf += p_spec * ggx::reflected_pdf(wo, h, alpha_);
-  }
-  return pdf;
-}
+float CookTorranceBsdf::pdf(const Vec3& wo, const Vec3& wi) const { return lobe_mixture::pdf(*this, wo, wi, alpha_); }
 
 BsdfSample CookTorranceBsdf::sample(const Vec3& wo, float u_lobe, const Vec2& u) const {
-  BsdfSample s;
-  if (wo.z <= 0.0f) return s;
-  const float p_spec = specular_probability(wo);
-  if (u_lobe < p_spec) {
-    if (has_delta()) {
-      s.wi = Vec3(-wo.x, -wo.y, wo.z);
-      s.weight = fresnel(wo.z) * sqr(geometry_G1(wo.z)) / p_spec;
-      s.is_delta = true;
-      return s;
-    }
-    s.wi = ggx::reflect(wo, ggx::sample_visible_normal(wo, alpha_, u));
-  } else {
-    s.wi = sample_cosine_hemisphere(u);
-  }
-  if (s.wi.z <= 0.0f) return BsdfSample{};
-  s.pdf = pdf(wo, s.wi);
-  if (!(s.pdf > 0.0f)) return BsdfSample{};
-  s.weight = eval(wo, s.wi) / s.pdf;
-  return s;
+  return lobe_mixture::sample(*this, wo, u_lobe, u, alpha_);
 }
 
 }  // namespace torrance

@@ -27,6 +27,7 @@ class CookTorranceBsdf {
   BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const;
 
   bool has_delta() const { return alpha_ < ggx::kDeltaAlpha; }
+  Vec3 mirror_reflectance(const Vec3& wo) const { return fresnel(wo.z) * sqr(geometry_G1(wo.z)); }
   float alpha() const { return alpha_; }
   // Probability of choosing the specular lobe for this wo (exposed for tests).
   float specular_probability(const Vec3& wo) const;

@@ -32,6 +32,7 @@ class PrincipledBsdf {
   BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const;
 
   bool has_delta() const { return alpha_ < ggx::kDeltaAlpha; }
+  Vec3 mirror_reflectance(const Vec3& wo) const { return fresnel(wo.z); }
   float specular_probability(const Vec3& wo) const;
   Vec3 fresnel(float cos_ih) const;
 

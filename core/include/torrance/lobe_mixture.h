@@ -1,0 +1,46 @@
+// Sampling shared by the metallic/roughness BSDFs (PAPER and PRINCIPLED): a diffuse lobe sampled
+// by the cosine and a GGX lobe sampled by visible normals, chosen with the BSDF's
+// specular_probability(wo) (one-sample MIS: the pdf is the mixture of both); below
+// ggx::kDeltaAlpha the GGX lobe is a mirror whose reflectance the BSDF gives as
+// mirror_reflectance(wo). Only the models' eval() and lobe weights differ.
+#pragma once
+
+#include "torrance/bsdf.h"
+#include "torrance/microfacet.h"
+#include "torrance/sampling.h"
+
+namespace torrance::lobe_mixture {
+
+template <typename Bsdf>
+float pdf(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi, float alpha) {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
+  const float p_spec = bsdf.specular_probability(wo);
+  float pdf = (1.0f - p_spec) * cosine_hemisphere_pdf(wi.z);
+  if (!bsdf.has_delta() && p_spec > 0.0f) pdf += p_spec * ggx::reflected_pdf(wo, glm::normalize(wo + wi), alpha);
+  return pdf;
+}
+
+template <typename Bsdf>
+BsdfSample sample(const Bsdf& bsdf, const Vec3& wo, float u_lobe, const Vec2& u, float alpha) {
+  BsdfSample s;
+  if (wo.z <= 0.0f) return s;
+  const float p_spec = bsdf.specular_probability(wo);
+  if (u_lobe < p_spec) {
+    if (bsdf.has_delta()) {
+      s.wi = Vec3(-wo.x, -wo.y, wo.z);
+      s.weight = bsdf.mirror_reflectance(wo) / p_spec;
+      s.is_delta = true;
+      return s;
+    }
+    s.wi = ggx::reflect(wo, ggx::sample_visible_normal(wo, alpha, u));
+  } else {
+    s.wi = sample_cosine_hemisphere(u);
+  }
+  if (s.wi.z <= 0.0f) return BsdfSample{};
+  s.pdf = pdf(bsdf, wo, s.wi, alpha);
+  if (!(s.pdf > 0.0f)) return BsdfSample{};
+  s.weight = bsdf.eval(wo, s.wi) / s.pdf;
+  return s;
+}
+
+}  // namespace torrance::lobe_mixture
