@@ -23,6 +23,11 @@ LightSelection parse_light_selection(const std::string& s) {
   throw py::value_error("light_selection must be 'CONTRIBUTION' or 'UNIFORM', got '" + s + "'");
 }
 
+bool parse_sampler_is_sobol(const std::string& s) {
+  if (s != "SOBOL" && s != "RANDOM") throw py::value_error("sampler must be 'SOBOL' or 'RANDOM', got '" + s + "'");
+  return s == "SOBOL";
+}
+
 uint32_t parse_passes(const std::vector<std::string>& names) {
   uint32_t mask = 0;
   for (const std::string& name : names) {
@@ -77,9 +82,7 @@ void init_render(py::module_& m) {
              s.threads = threads;
              s.light_selection = parse_light_selection(light_selection);
              s.passes = parse_passes(passes);
-             if (sampler != "SOBOL" && sampler != "RANDOM")
-               throw py::value_error("sampler must be 'SOBOL' or 'RANDOM', got '" + sampler + "'");
-             s.sobol = sampler == "SOBOL";
+             s.sobol = parse_sampler_is_sobol(sampler);
              s.specialize = specialize;
              s.validate();
              return s;
@@ -93,10 +96,7 @@ void init_render(py::module_& m) {
       .def_readwrite("specialize", &RenderSettings::specialize)
       .def_property(
           "sampler", [](const RenderSettings& s) { return std::string(s.sobol ? "SOBOL" : "RANDOM"); },
-          [](RenderSettings& s, const std::string& v) {
-            if (v != "SOBOL" && v != "RANDOM") throw py::value_error("sampler must be 'SOBOL' or 'RANDOM'");
-            s.sobol = v == "SOBOL";
-          })
+          [](RenderSettings& s, const std::string& v) { s.sobol = parse_sampler_is_sobol(v); })
       .def_readwrite("width", &RenderSettings::width)
       .def_readwrite("height", &RenderSettings::height)
       .def_readwrite("samples", &RenderSettings::samples)
