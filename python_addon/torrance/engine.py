@@ -10,7 +10,7 @@ from . import passes, render, viewport
 class TorranceRenderEngine(bpy.types.RenderEngine):
     bl_idname = 'TORRANCE'
     bl_label = "Torrance"
-    bl_use_preview = False            # no material preview renders yet
+    bl_use_preview = True             # material/light/world previews (policy: preview.py)
     bl_use_postprocess = True         # compositing and sequencer run on our results
     bl_use_shading_nodes_custom = False   # Blender's shader nodes are our materials
     bl_use_eevee_viewport = True      # Material Preview shading in the viewport uses EEVEE

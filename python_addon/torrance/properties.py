@@ -55,6 +55,31 @@ class TorranceSceneSettings(bpy.types.PropertyGroup):
         default=1.5, min=0.01, max=10.0, soft_max=3.0,
         subtype='PIXEL',
     )
+    viewport_samples: IntProperty(
+        name="Viewport Samples",
+        description="Samples per pixel of the Rendered viewport; the image refines up to this "
+                    "number and then stops. 0 refines until the view or the scene changes",
+        default=64, min=0, max=1 << 16, soft_max=4096,
+    )
+    viewport_start_resolution: IntProperty(
+        name="Start Resolution",
+        description="Longer side, in pixels, of the coarse first image the Rendered viewport "
+                    "shows after every change (drawn upscaled until the full resolution "
+                    "arrives). Smaller appears faster",
+        default=128, min=16, max=2048, soft_max=512,
+        subtype='PIXEL',
+    )
+    preview_samples: IntProperty(
+        name="Preview Samples",
+        description="Samples per pixel of material, light and world previews (the Preview "
+                    "panel and thumbnails); kept low so previews are quick",
+        default=16, min=1, max=4096, soft_max=256,
+    )
+    preview_max_bounces: IntProperty(
+        name="Preview Bounces",
+        description="Maximum bounces of light paths in material previews",
+        default=4, min=0, max=1024, soft_max=16,
+    )
     use_progressive_display: BoolProperty(
         name="Progressive Display",
         description="Show the image after every pass of samples while rendering",
