@@ -1,8 +1,17 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Torrance's panels, and Blender's own panels enabled for the TORRANCE engine."""
+"""Torrance's panels, and Blender's own panels enabled for the TORRANCE engine.
+
+Render tab: Sampling (Viewport / Render / Preview), Light Paths, Shading, Film, Performance,
+and Compatibility (what in this scene Torrance does not render). Material, World, Light and
+Camera tabs: Blender's panels plus a Torrance panel that lists, for the datablock shown,
+what Torrance ignores or approximates (the same messages a render reports).
+"""
 
 import bpy
 from bpy.types import Panel
+
+from . import export
+from .materials import Reporter
 
 ENGINE = 'TORRANCE'
 
@@ -18,18 +27,226 @@ class TorrancePanel:
         return context.engine in cls.COMPAT_ENGINES
 
 
+def _split(layout):
+    layout.use_property_split = True
+    layout.use_property_decorate = False
+    return layout
+
+
+def _messages(layout, messages, limit=8, ok_text=None):
+    """Warnings (and notes) as labels; `ok_text` when there are none."""
+    shown = 0
+    col = layout.column(align=True)
+    for level, text in messages:
+        if shown == limit:
+            col.label(text=f"... and {len(messages) - limit} more", icon='BLANK1')
+            break
+        icon = 'ERROR' if level in {'WARNING', 'ERROR'} else 'INFO'
+        # Long messages: the first line with the icon, the rest wrapped below it.
+        for i, line in enumerate(_wrap(text, 60)):
+            col.label(text=line, icon=icon if i == 0 else 'BLANK1')
+        shown += 1
+    if not messages and ok_text:
+        col.label(text=ok_text, icon='CHECKMARK')
+
+
+def _note(layout, text, icon='INFO', width=60):
+    col = layout.column(align=True)
+    for i, line in enumerate(_wrap(text, width)):
+        col.label(text=line, icon=icon if i == 0 else 'BLANK1')
+
+
+def _wrap(text, width):
+    lines, line = [], ""
+    for word in text.split():
+        if line and len(line) + 1 + len(word) > width:
+            lines.append(line)
+            line = word
+        else:
+            line = f"{line} {word}" if line else word
+    if line:
+        lines.append(line)
+    return lines or [""]
+
+
+class _DryTextures:
+    """Stands in for export's TextureTable when only the messages of a material are wanted:
+    every image 'loads' (id 0), so only real limitations are reported."""
+
+    def texture(self, image, interpolation="Linear"):
+        return 0 if image is not None else None
+
+
+def material_messages(mat):
+    """(level, text) messages Torrance gives for a material, as a render would report them."""
+    from .materials import MaterialReader
+    reporter = Reporter(None)
+    reporter.report = _collect(reporter)
+    try:
+        try:
+            reader = MaterialReader(reporter, _DryTextures())
+        except TypeError:
+            reader = MaterialReader(reporter)
+        reader.read(mat)
+    except Exception as exc:
+        reporter.messages.append(('WARNING', f"could not be read: {exc}"))
+    return _strip(reporter.messages, f"Material '{mat.name}': ")
+
+
+def world_messages(world):
+    reporter = Reporter(None)
+    reporter.report = _collect(reporter)
+    try:
+        if hasattr(export, "world_background"):
+            export.world_background(world, reporter, _DryTextures())
+        else:
+            export.world_radiance(world, reporter)
+    except Exception as exc:
+        reporter.messages.append(('WARNING', f"could not be read: {exc}"))
+    return _strip(reporter.messages, f"World '{world.name}': ")
+
+
+def _collect(reporter):
+    def report(level, text):            # no printing: collected for the panel only
+        if (level, text) not in reporter.seen:
+            reporter.seen.add((level, text))
+            reporter.messages.append((level, text))
+    return report
+
+
+def _strip(messages, prefix):
+    return [(level, text[len(prefix):] if text.startswith(prefix) else text)
+            for level, text in messages]
+
+
+def light_messages(light):
+    messages = []
+    supported = getattr(export, "SUPPORTED_LIGHTS", {'SUN', 'POINT'})
+    if light.type not in supported:
+        names = ", ".join(sorted(t.title() for t in supported))
+        messages.append(('WARNING', f"{light.type.title()} lights are not rendered by Torrance "
+                                    f"(supported: {names})"))
+    if light.use_nodes and light.node_tree is not None and hasattr(export, "light_node_factor"):
+        reporter = Reporter(None)
+        reporter.report = _collect(reporter)
+
+        class _Obj:
+            name = light.name
+        try:
+            export.light_node_factor(_Obj(), light, reporter)
+        except Exception:
+            pass
+        messages += _strip(reporter.messages, f"Light '{light.name}': ")
+    elif light.use_nodes and light.node_tree is not None:
+        messages.append(('INFO', "Light node trees are ignored"))
+    if light.type == 'AREA' and getattr(getattr(light, "cycles", None), "is_portal", False):
+        messages.append(('INFO', "Portals are not used (they emit no light)"))
+    return messages
+
+
+def camera_messages(cam):
+    messages = []
+    if cam.type != 'PERSP':
+        messages.append(('WARNING', f"{cam.type.title()} cameras are not supported: "
+                                    f"rendered as a perspective camera of the same lens"))
+    if cam.dof.use_dof:
+        messages.append(('INFO', "Depth of field is ignored"))
+    return messages
+
+
+_SCENE_LIMIT = 5000       # objects scanned by the Compatibility panel
+
+
+def scene_messages(scene):
+    """Scene-level limitations: unsupported object and light types, features not rendered."""
+    messages = []
+    rd = scene.render
+    supported_lights = getattr(export, "SUPPORTED_LIGHTS", {'SUN', 'POINT'})
+    skipped_types = {'CAMERA', 'EMPTY', 'ARMATURE', 'LATTICE', 'LIGHT_PROBE', 'SPEAKER'}
+    unsupported, lights = {}, {}
+    for i, ob in enumerate(scene.objects):
+        if i >= _SCENE_LIMIT:
+            break
+        if ob.hide_render:
+            continue
+        if ob.type == 'LIGHT':
+            if ob.data is not None and ob.data.type not in supported_lights:
+                lights.setdefault(ob.data.type, ob.name)
+        elif ob.type not in export.MESH_TYPES and ob.type not in skipped_types:
+            unsupported.setdefault(ob.type, ob.name)
+    for kind, name in sorted(lights.items()):
+        messages.append(('WARNING', f"{kind.title()} lights are not rendered (e.g. '{name}')"))
+    for kind, name in sorted(unsupported.items()):
+        messages.append(('WARNING', f"Objects of type {kind.replace('_', ' ').title()} are not "
+                                    f"rendered (e.g. '{name}')"))
+    if rd.use_motion_blur:
+        messages.append(('INFO', "Motion blur is not rendered"))
+    if scene.camera is not None and scene.camera.type == 'CAMERA':
+        messages += camera_messages(scene.camera.data)
+    elif scene.camera is None:
+        messages.append(('WARNING', "The scene has no camera: final renders need one "
+                                    "(the viewport works without)"))
+    return messages
+
+
+# --------------------------------------------------------------------------------------------
+# Render tab
+
 class TORRANCE_RENDER_PT_sampling(TorrancePanel, Panel):
     bl_label = "Sampling"
     bl_context = "render"
 
     def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
+        pass
+
+
+class TORRANCE_RENDER_PT_sampling_viewport(TorrancePanel, Panel):
+    bl_label = "Viewport"
+    bl_context = "render"
+    bl_parent_id = "TORRANCE_RENDER_PT_sampling"
+
+    def draw(self, context):
+        layout = _split(self.layout)
         ts = context.scene.torrance
-        col = layout.column()
-        col.prop(ts, "samples")
-        col.prop(ts, "seed")
+        col = layout.column(align=True)
+        col.prop(ts, "viewport_samples", text="Samples")
+        col.prop(ts, "viewport_start_resolution")
+        layout.prop(context.scene.render, "preview_pixel_size", text="Pixel Size")
+
+
+class TORRANCE_RENDER_PT_sampling_render(TorrancePanel, Panel):
+    bl_label = "Render"
+    bl_context = "render"
+    bl_parent_id = "TORRANCE_RENDER_PT_sampling"
+
+    def draw(self, context):
+        layout = _split(self.layout)
+        layout.prop(context.scene.torrance, "samples")
+
+
+class TORRANCE_RENDER_PT_sampling_preview(TorrancePanel, Panel):
+    bl_label = "Material Previews"
+    bl_context = "render"
+    bl_parent_id = "TORRANCE_RENDER_PT_sampling"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    def draw(self, context):
+        layout = _split(self.layout)
+        ts = context.scene.torrance
+        col = layout.column(align=True)
+        col.prop(ts, "preview_samples", text="Samples")
+        col.prop(ts, "preview_max_bounces", text="Max Bounces")
+
+
+class TORRANCE_RENDER_PT_sampling_advanced(TorrancePanel, Panel):
+    bl_label = "Advanced"
+    bl_context = "render"
+    bl_parent_id = "TORRANCE_RENDER_PT_sampling"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    def draw(self, context):
+        layout = _split(self.layout)
+        layout.prop(context.scene.torrance, "seed")
 
 
 class TORRANCE_RENDER_PT_light_paths(TorrancePanel, Panel):
@@ -37,9 +254,7 @@ class TORRANCE_RENDER_PT_light_paths(TorrancePanel, Panel):
     bl_context = "render"
 
     def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
+        layout = _split(self.layout)
         layout.prop(context.scene.torrance, "max_bounces")
 
 
@@ -48,10 +263,14 @@ class TORRANCE_RENDER_PT_shading(TorrancePanel, Panel):
     bl_context = "render"
 
     def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
-        layout.prop(context.scene.torrance, "brdf_model")
+        layout = _split(self.layout)
+        ts = context.scene.torrance
+        layout.prop(ts, "brdf_model")
+        col = layout.column(align=True)
+        if ts.brdf_model == 'PRINCIPLED':
+            col.label(text="Matches Cycles' Principled BSDF (GGX)", icon='INFO')
+        else:
+            col.label(text="The paper's Cook-Torrance model: differs from Cycles", icon='INFO')
 
 
 class TORRANCE_RENDER_PT_film(TorrancePanel, Panel):
@@ -60,9 +279,7 @@ class TORRANCE_RENDER_PT_film(TorrancePanel, Panel):
     bl_options = {'DEFAULT_CLOSED'}
 
     def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
+        layout = _split(self.layout)
         col = layout.column()
         col.prop(context.scene.torrance, "filter_width")
         col.prop(context.scene.render, "film_transparent", text="Transparent")
@@ -74,9 +291,7 @@ class TORRANCE_RENDER_PT_performance(TorrancePanel, Panel):
     bl_options = {'DEFAULT_CLOSED'}
 
     def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
+        layout = _split(self.layout)
         rd = context.scene.render
         col = layout.column()
         col.prop(rd, "threads_mode")
@@ -84,6 +299,84 @@ class TORRANCE_RENDER_PT_performance(TorrancePanel, Panel):
         sub.enabled = rd.threads_mode == 'FIXED'
         sub.prop(rd, "threads")
         col.prop(context.scene.torrance, "use_progressive_display")
+
+
+class TORRANCE_RENDER_PT_compatibility(TorrancePanel, Panel):
+    bl_label = "Compatibility"
+    bl_context = "render"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    def draw_header(self, context):
+        if scene_messages(context.scene):
+            self.layout.label(icon='ERROR')
+
+    def draw(self, context):
+        _messages(self.layout, scene_messages(context.scene), limit=12,
+                  ok_text="Everything in this scene is supported")
+        col = self.layout.column(align=True)
+        col.label(text="Not rendered by Torrance:")
+        for text in ("Volumes, subsurface, transmission, sheen, clearcoat",
+                     "Shader nodes other than Principled / Diffuse / Emission",
+                     "Motion blur, depth of field, panoramic cameras"):
+            col.label(text=text, icon='DOT')
+
+
+# --------------------------------------------------------------------------------------------
+# Data tabs: material, world, light, camera
+
+class TORRANCE_MATERIAL_PT_compatibility(TorrancePanel, Panel):
+    bl_label = "Torrance"
+    bl_context = "material"
+
+    @classmethod
+    def poll(cls, context):
+        return context.material is not None and super().poll(context)
+
+    def draw_header(self, context):
+        if material_messages(context.material):
+            self.layout.label(icon='ERROR')
+
+    def draw(self, context):
+        layout = self.layout
+        _note(layout, "Torrance reads the Principled BSDF (or a Diffuse BSDF or Emission) "
+                      "feeding the Material Output: base colour, metallic, roughness, specular, "
+                      "specular tint, emission, image textures on them, and a tangent-space "
+                      "normal map")
+        _messages(layout, material_messages(context.material),
+                  ok_text="Torrance renders this material as it is")
+
+
+class TORRANCE_WORLD_PT_preview(TorrancePanel, Panel):
+    bl_label = "Preview"
+    bl_context = "world"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    @classmethod
+    def poll(cls, context):
+        return context.world is not None and super().poll(context)
+
+    def draw(self, context):
+        self.layout.template_preview(context.world)
+
+
+class TORRANCE_WORLD_PT_compatibility(TorrancePanel, Panel):
+    bl_label = "Torrance"
+    bl_context = "world"
+
+    @classmethod
+    def poll(cls, context):
+        return context.world is not None and super().poll(context)
+
+    def draw_header(self, context):
+        if world_messages(context.world):
+            self.layout.label(icon='ERROR')
+
+    def draw(self, context):
+        layout = self.layout
+        _note(layout, "Torrance reads the Background node: its colour (or an equirectangular "
+                      "Environment Texture) and strength")
+        _messages(layout, world_messages(context.world),
+                  ok_text="Torrance renders this world as it is")
 
 
 class TORRANCE_LIGHT_PT_light(TorrancePanel, Panel):
@@ -98,40 +391,90 @@ class TORRANCE_LIGHT_PT_light(TorrancePanel, Panel):
         layout = self.layout
         light = context.light
         layout.row().prop(light, "type", expand=True)
-        layout.use_property_split = True
-        layout.use_property_decorate = False
+        _split(layout)
+        _messages(layout, light_messages(light))
         col = layout.column()
-        if light.type not in {'SUN', 'POINT'}:
-            col.label(text="Torrance renders only Sun and Point lights", icon='ERROR')
         col.prop(light, "color")
         col.prop(light, "energy")
-        if light.type == 'POINT':
+        if light.type in {'POINT', 'SPOT'}:
             col.prop(light, "shadow_soft_size", text="Radius")
         elif light.type == 'SUN':
             col.prop(light, "angle")
+        elif light.type == 'AREA':
+            col.prop(light, "shape")
+            sub = col.column(align=True)
+            if light.shape in {'SQUARE', 'DISK'}:
+                sub.prop(light, "size")
+            else:
+                sub.prop(light, "size", text="Size X")
+                sub.prop(light, "size_y", text="Y")
+            col.prop(light, "spread")
+
+
+class TORRANCE_LIGHT_PT_spot(TorrancePanel, Panel):
+    bl_label = "Spot Shape"
+    bl_context = "data"
+    bl_parent_id = "TORRANCE_LIGHT_PT_light"
+
+    @classmethod
+    def poll(cls, context):
+        return (context.light is not None and context.light.type == 'SPOT'
+                and super().poll(context))
+
+    def draw(self, context):
+        layout = _split(self.layout)
+        light = context.light
+        col = layout.column()
+        col.prop(light, "spot_size", text="Size")
+        col.prop(light, "spot_blend", text="Blend", slider=True)
+        col.prop(light, "show_cone")
+
+
+class TORRANCE_CAMERA_PT_compatibility(TorrancePanel, Panel):
+    bl_label = "Torrance"
+    bl_context = "data"
+
+    @classmethod
+    def poll(cls, context):
+        return context.camera is not None and super().poll(context)
+
+    def draw(self, context):
+        _messages(self.layout, camera_messages(context.camera),
+                  ok_text="Torrance renders this camera as it is")
 
 
 classes = (
     TORRANCE_RENDER_PT_sampling,
+    TORRANCE_RENDER_PT_sampling_viewport,
+    TORRANCE_RENDER_PT_sampling_render,
+    TORRANCE_RENDER_PT_sampling_preview,
+    TORRANCE_RENDER_PT_sampling_advanced,
     TORRANCE_RENDER_PT_light_paths,
     TORRANCE_RENDER_PT_shading,
     TORRANCE_RENDER_PT_film,
     TORRANCE_RENDER_PT_performance,
+    TORRANCE_RENDER_PT_compatibility,
+    TORRANCE_MATERIAL_PT_compatibility,
+    TORRANCE_WORLD_PT_preview,
+    TORRANCE_WORLD_PT_compatibility,
     TORRANCE_LIGHT_PT_light,
+    TORRANCE_LIGHT_PT_spot,
+    TORRANCE_CAMERA_PT_compatibility,
 )
 
 # Blender's own panels that Torrance uses as they are. Panels written for every engine
 # (those listing 'BLENDER_RENDER') are added too, except these:
 _EXCLUDED_PANELS = {
     'DATA_PT_light',                # replaced by TORRANCE_LIGHT_PT_light
-    'DATA_PT_area',                 # light types Torrance does not render
-    'DATA_PT_spot',
-    'DATA_PT_falloff_curve',
+    'DATA_PT_area',                 # in TORRANCE_LIGHT_PT_light
+    'DATA_PT_spot',                 # TORRANCE_LIGHT_PT_spot
+    'DATA_PT_falloff_curve',        # custom falloff: not rendered
 }
 _EXTRA_PANELS = (
     'EEVEE_MATERIAL_PT_context_material',   # material slots
     'EEVEE_MATERIAL_PT_surface',            # the node view of the surface
     'EEVEE_WORLD_PT_surface',               # world colour / Background node
+    'MATERIAL_PT_preview',                  # the material preview (rendered by Torrance)
 )
 
 _patched_panels = []
