@@ -1,0 +1,455 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Torrance in Blender's GUI, as an artist uses it: Rendered shading in the 3D viewport,
+edits while it refines, camera view, a material preview, and the Properties panels.
+
+Run (as CTest does) in background Blender; it then
+1. builds a small scene (red sphere on a grey floor, sun, 0.18 grey world) and saves it;
+2. starts an X server (Xvfb, software OpenGL: Mesa llvmpipe) and Blender's GUI on that file,
+   with this same script as the driver (bpy.app.timers steps through the checks);
+3. reads the driver's results and screenshots and checks them.
+
+No X server (Xvfb missing or unable to start): prints SKIPPED and exits with 77 (CTest:
+SKIP_RETURN_CODE 77). Screenshots are kept in build/test_gui_viewport/ (or
+$TORRANCE_GUI_SHOTS) and their paths printed.
+"""
+
+import json
+import os
+import subprocess
+import sys
+import time
+
+import bpy
+
+SKIP_CODE = 77
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+SCREEN = (800, 600)
+
+
+# ============================================================================================
+# The GUI side (Blender with a window): the driver
+
+def _driver(result_path, shots_dir):
+    import numpy as np
+    from bpy_extras import view3d_utils
+
+    import torrance
+    viewport = torrance.viewport
+
+    results = {"checks": [], "shots": {}, "errors": []}
+    t_start = time.perf_counter()
+
+    def log(*args):
+        print("gui-driver:", *args, flush=True)
+
+    def view3d():
+        win = bpy.context.window_manager.windows[0]
+        for area in win.screen.areas:
+            if area.type == 'VIEW_3D':
+                region = next(r for r in area.regions if r.type == 'WINDOW')
+                return win, area, area.spaces.active, region
+        raise RuntimeError("no 3D view in the window")
+
+    def screenshot(name):
+        win, area, space, region = view3d()
+        path = os.path.join(shots_dir, name + ".png")
+        with bpy.context.temp_override(window=win, area=area, region=region):
+            bpy.ops.screen.screenshot(filepath=path)
+        img = bpy.data.images.load(path, check_existing=False)
+        w, h = img.size
+        buf = np.empty(w * h * img.channels, dtype=np.float32)
+        img.pixels.foreach_get(buf)
+        bpy.data.images.remove(img)
+        pixels = buf.reshape(h, w, -1)[:, :, :3] * 255.0      # row 0 = bottom, as Blender
+        results["shots"][name] = path
+        log(f"screenshot {path}")
+        return pixels
+
+    def screenshot_window(name):
+        win = bpy.context.window_manager.windows[0]
+        path = os.path.join(shots_dir, name + ".png")
+        with bpy.context.temp_override(window=win):
+            bpy.ops.screen.screenshot(filepath=path)
+        results["shots"][name] = path
+
+    def region_pixel(pixels, region, x, y, radius=3):
+        """Mean colour around region coordinates (x, y) (origin bottom-left of the region)."""
+        wx, wy = int(region.x + x), int(region.y + y)
+        patch = pixels[wy - radius:wy + radius + 1, wx - radius:wx + radius + 1]
+        return [float(v) for v in patch.reshape(-1, 3).mean(axis=0)]
+
+    def project(point):
+        win, area, space, region = view3d()
+        co = view3d_utils.location_3d_to_region_2d(region, space.region_3d, point)
+        return (float(co.x), float(co.y)) if co is not None else None
+
+    def check(name, ok, detail):
+        results["checks"].append({"name": name, "ok": bool(ok), "detail": detail})
+        log(("ok  " if ok else "FAIL"), name, detail)
+
+    def wait_samples(min_samples, timeout):
+        """Yields until the viewport render reached min_samples at full resolution."""
+        end = time.perf_counter() + timeout
+        while time.perf_counter() < end:
+            st = viewport.last_stats
+            levels = st.get("levels") or []
+            if st.get("error"):
+                break
+            if levels and st.get("level") == len(levels) - 1 \
+                    and st.get("samples_done", 0) >= min(min_samples, st.get("samples_total", 1)):
+                break
+            yield 0.1
+        yield 0.3                    # one more redraw so the newest image is on screen
+
+    sphere_center = (0.0, 0.0, 0.8)
+
+    def steps():
+        win, area, space, region = view3d()
+        scene = bpy.context.scene
+        # Frame the scene: a fixed user view looking at the sphere.
+        rv3d = space.region_3d
+        from mathutils import Euler, Vector
+        rv3d.view_perspective = 'PERSP'
+        rv3d.view_location = Vector((0.0, 0.0, 0.8))
+        rv3d.view_rotation = Euler((1.25, 0.0, 0.0)).to_quaternion()
+        rv3d.view_distance = 7.0
+        space.overlay.show_overlays = False            # clean pixels
+        yield 0.5
+
+        # -- Solid mode: the sphere is the grey default viewport colour
+        space.shading.type = 'SOLID'
+        yield 0.5
+        pixels = screenshot("1_solid")
+        c = project(sphere_center)
+        solid = region_pixel(pixels, region, *c)
+        results["solid_sphere"] = solid
+
+        # -- Rendered shading with Torrance
+        t0 = time.perf_counter()
+        space.shading.type = 'RENDERED'
+        yield from wait_samples(8, 60)
+        results["switch_to_8_samples_seconds"] = time.perf_counter() - t0
+        stats = dict(viewport.last_stats)
+        results["stats_rendered"] = stats
+        pixels = screenshot("2_rendered_red")
+        c = project(sphere_center)
+        red = region_pixel(pixels, region, *c)
+        # The sky above the floor's far edge (the view looks slightly down at the floor).
+        background = region_pixel(pixels, region, region.width * 0.3, region.height * 0.88)
+        results["rendered_sphere"] = red
+        results["rendered_background"] = background
+        check("rendered sphere is red", red[0] > 90 and red[0] > 2.0 * red[1] and red[0] > 2.0 * red[2],
+              f"sphere pixel {red}, solid mode {solid}")
+        check("rendered differs from solid", abs(red[0] - solid[0]) + abs(red[1] - solid[1]) > 60,
+              f"{red} vs {solid}")
+        # World 0.18, Standard view transform: 118/255 when the viewport is colour managed.
+        check("background colour managed (0.18 -> ~118)",
+              background is not None and all(abs(v - 118) <= 8 for v in background),
+              f"background {background}")
+        check("first image drawn", stats.get("engine_first_draw_seconds") is not None,
+              f"engine created -> first image drawn {stats.get('engine_first_draw_seconds')} s, "
+              f"restart -> first draw {stats.get('first_draw_seconds')} s")
+
+        # -- Selecting an object changes nothing rendered: no restart
+        restarts = stats.get("restarts")
+        builds = stats.get("scene_builds")
+        floor = bpy.data.objects["Floor"]
+        floor.select_set(True)
+        bpy.context.view_layer.objects.active = floor
+        yield 0.5
+        st = dict(viewport.last_stats)
+        check("selection does not restart", st.get("restarts") == restarts and
+              st.get("scene_builds") == builds,
+              f"restarts {restarts} -> {st.get('restarts')}, builds {builds} -> {st.get('scene_builds')}")
+
+        # -- Material edit while refining: the sphere turns green, no mesh is re-read
+        mat = bpy.data.materials["Red"]
+        mat.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = (0.02, 0.6, 0.02, 1)
+        yield 0.2
+        yield from wait_samples(4, 60)
+        st = dict(viewport.last_stats)
+        pixels = screenshot("3_rendered_green")
+        green = region_pixel(pixels, region, *project(sphere_center))
+        results["green_sphere"] = green
+        check("material edit shows", green[1] > 70 and green[1] > 2.0 * green[0], f"sphere pixel {green}")
+        check("material edit rebuilt the scene without reading meshes",
+              st.get("scene_builds", 0) > builds and st.get("build_meshes_read") == 0,
+              f"builds {builds} -> {st.get('scene_builds')}, meshes read {st.get('build_meshes_read')}")
+
+        # -- Moving the object: transform only, no mesh read
+        builds = st.get("scene_builds")
+        sphere = bpy.data.objects["Sphere"]
+        sphere.location.x += 0.3
+        yield 0.3
+        yield from wait_samples(2, 60)
+        st = dict(viewport.last_stats)
+        check("moving an object re-uses its cached mesh",
+              st.get("scene_builds", 0) > builds and st.get("build_meshes_read") == 0,
+              f"builds {builds} -> {st.get('scene_builds')}, meshes read {st.get('build_meshes_read')}")
+        sphere.location.x -= 0.3
+        yield 0.3
+
+        # -- Changing the view restarts the render, without rebuilding the scene
+        yield from wait_samples(2, 60)
+        st = dict(viewport.last_stats)
+        restarts, builds = st.get("restarts"), st.get("scene_builds")
+        rv3d.view_distance = 6.0
+        yield 0.5
+        st = dict(viewport.last_stats)
+        check("view change restarts without rebuilding",
+              st.get("restarts", 0) > restarts and st.get("scene_builds") == builds,
+              f"restarts {restarts} -> {st.get('restarts')}, builds {builds} -> {st.get('scene_builds')}")
+        results["view_change_first_draw_seconds"] = st.get("first_draw_seconds")
+
+        # -- Camera view: the scene camera with Blender's camera-view zoom and offset
+        rv3d.view_perspective = 'CAMERA'
+        rv3d.view_camera_zoom = 10.0
+        rv3d.view_camera_offset = (0.05, -0.03)
+        yield 0.3
+        yield from wait_samples(4, 60)
+        pixels = screenshot("4_camera_view")
+        green = region_pixel(pixels, region, *project(sphere_center))
+        results["camera_view_sphere"] = green
+        check("camera view shows the sphere where Blender projects it",
+              green[1] > 70 and green[1] > 2.0 * green[0], f"sphere pixel {green}")
+
+        # -- Leave Rendered mode: the engine is freed and its render thread stopped
+        space.shading.type = 'SOLID'
+        for _ in range(30):
+            yield 0.1
+            if viewport.open_states() == 0:
+                break
+        check("leaving Rendered mode stops the render",
+              viewport.open_states() == 0 and viewport.running_renders() == 0,
+              f"{viewport.open_states()} viewport states open, "
+              f"{viewport.running_renders()} render threads running")
+
+        # -- Properties editor (maximised): Torrance's panels draw without errors
+        props = next(a for a in win.screen.areas if a.type == 'PROPERTIES')
+        sphere = bpy.data.objects["Sphere"]
+        for ob in bpy.context.view_layer.objects:
+            ob.select_set(ob == sphere)
+        bpy.context.view_layer.objects.active = sphere
+        with bpy.context.temp_override(window=win, area=props,
+                                       region=next(r for r in props.regions if r.type == 'WINDOW')):
+            bpy.ops.screen.screen_full_area()
+        yield 0.3
+        for tab in ("RENDER", "MATERIAL", "WORLD"):
+            full = next(a for a in win.screen.areas if a.type == 'PROPERTIES')
+            full.spaces.active.context = tab
+            full.tag_redraw()
+            yield 0.5
+            screenshot_window(f"5_properties_{tab.lower()}")
+        full = next(a for a in win.screen.areas if a.type == 'PROPERTIES')
+        with bpy.context.temp_override(window=win, area=full,
+                                       region=next(r for r in full.regions if r.type == 'WINDOW')):
+            bpy.ops.screen.back_to_previous()
+        yield 0.3
+        win, area, space, region = view3d()
+
+        # -- Material preview (thumbnail) rendered by Torrance
+        t0 = time.perf_counter()
+        with bpy.context.temp_override(window=win, area=area, region=region, id=mat):
+            bpy.ops.ed.lib_id_generate_preview()
+        preview = mat.preview
+        px = None
+        end = time.perf_counter() + 60
+        while time.perf_counter() < end:
+            w, h = preview.image_size
+            if w and h:
+                buf = np.empty(w * h * 4, dtype=np.float32)
+                preview.image_pixels_float.foreach_get(buf)
+                if buf.any():
+                    px = buf.reshape(h, w, 4)
+                    break
+            yield 0.2
+        results["preview_seconds"] = time.perf_counter() - t0
+        if px is None:
+            check("material preview rendered", False, "no preview pixels after 60 s")
+        else:
+            h, w = px.shape[:2]
+            centre = px[h // 2 - 4:h // 2 + 4, w // 2 - 4:w // 2 + 4, :3].reshape(-1, 3).mean(axis=0)
+            results["preview_centre"] = [float(v) for v in centre]
+            results["preview_size"] = [w, h]
+            check("material preview is green", centre[1] > 1.5 * centre[0] and centre[1] > 0.1,
+                  f"{w}x{h}, centre {centre}")
+            # Keep it as a picture too.
+            img = bpy.data.images.new("preview", w, h, alpha=True)
+            img.pixels.foreach_set(px.reshape(-1))
+            img.filepath_raw = os.path.join(shots_dir, "7_material_preview.png")
+            img.file_format = 'PNG'
+            img.save()
+            results["shots"]["7_material_preview"] = img.filepath_raw
+
+    gen = steps()
+
+    def tick():
+        try:
+            delay = next(gen)
+            return delay
+        except StopIteration:
+            pass
+        except Exception:
+            import traceback
+            traceback.print_exc()
+            results["errors"].append(traceback.format_exc())
+        results["seconds"] = time.perf_counter() - t_start
+        with open(result_path, "w") as f:
+            json.dump(results, f, indent=1)
+        log("done")
+        bpy.ops.wm.quit_blender()
+        return None
+
+    bpy.app.timers.register(tick, first_interval=1.0)
+
+
+# ============================================================================================
+# The background side (CTest): scene, X server, GUI run, verdict
+
+def _build_scene(path):
+    sys.path.insert(0, HERE)
+    import tutil
+    scene = tutil.clear_scene()
+    tutil.setup_render(scene, width=160, height=120, samples=16)
+    scene.torrance.viewport_samples = 16
+    red = tutil.principled("Red", base_color=(0.8, 0.02, 0.02))
+    tutil.uv_sphere(scene, "Sphere", (0, 0, 0.8), 0.8, red)
+    tutil.plane(scene, "Floor", 10, material=tutil.principled("Grey", base_color=(0.3, 0.3, 0.3)))
+    tutil.add_sun(scene)
+    tutil.set_world(scene, (0.18, 0.18, 0.18))
+    tutil.add_camera(scene)
+    bpy.ops.wm.save_as_mainfile(filepath=path)
+
+
+def _start_xvfb():
+    """(process, display) of a fresh Xvfb, or (None, reason)."""
+    import shutil
+    xvfb = shutil.which("Xvfb")
+    if xvfb is None:
+        return None, "Xvfb is not installed (Debian package: xvfb)"
+    r, w = os.pipe()
+    try:
+        proc = subprocess.Popen(
+            [xvfb, "-displayfd", str(w), "-screen", "0", f"{SCREEN[0]}x{SCREEN[1]}x24",
+             "-nolisten", "tcp", "-ac", "+extension", "GLX"],
+            pass_fds=(w,), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    except OSError as exc:
+        os.close(r)
+        os.close(w)
+        return None, f"Xvfb could not be started: {exc}"
+    os.close(w)
+    import select
+    data = b""
+    end = time.time() + 20
+    while time.time() < end and not data.endswith(b"\n"):
+        ready, _, _ = select.select([r], [], [], 0.5)
+        if ready:
+            chunk = os.read(r, 64)
+            if not chunk:
+                break
+            data += chunk
+        elif proc.poll() is not None:
+            break
+    os.close(r)
+    if not data.strip().isdigit():
+        err = b""
+        if proc.poll() is None:
+            proc.kill()
+        try:
+            err = proc.communicate(timeout=5)[1] or b""
+        except Exception:
+            pass
+        return None, f"Xvfb did not start: {err.decode(errors='replace').strip()[-300:]}"
+    return proc, ":" + data.strip().decode()
+
+
+def _main():
+    build = os.environ.get("TORRANCE_BUILD_DIR", os.path.join(ROOT, "build"))
+    shots = os.environ.get("TORRANCE_GUI_SHOTS", os.path.join(build, "test_gui_viewport"))
+    os.makedirs(shots, exist_ok=True)
+    blend = os.path.join(shots, "scene.blend")
+    result_path = os.path.join(shots, "results.json")
+    if os.path.exists(result_path):
+        os.remove(result_path)
+    _build_scene(blend)
+
+    xvfb, display = _start_xvfb()
+    if xvfb is None:
+        print(f"SKIPPED: no X server for the GUI test: {display}", flush=True)
+        sys.exit(SKIP_CODE)
+    log_path = os.path.join(shots, "blender_gui.log")
+    try:
+        env = dict(os.environ, DISPLAY=display, LIBGL_ALWAYS_SOFTWARE="1",
+                   GALLIUM_DRIVER="llvmpipe")
+        env.pop("WAYLAND_DISPLAY", None)
+        cmd = [os.path.join(ROOT, "scripts", "blender"), "--factory-startup", blend,
+               "--python", os.path.abspath(__file__), "--", "--gui-driver", result_path, shots]
+        t0 = time.time()
+        with open(log_path, "w") as log:
+            try:
+                proc = subprocess.run(cmd, env=env, stdout=log, stderr=subprocess.STDOUT,
+                                      timeout=400)
+                code = proc.returncode
+            except subprocess.TimeoutExpired:
+                code = "timeout"
+        seconds = time.time() - t0
+    finally:
+        xvfb.terminate()
+        try:
+            xvfb.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            xvfb.kill()
+
+    with open(log_path) as f:
+        log_text = f.read()
+    if not os.path.exists(result_path):
+        print(log_text[-6000:])
+        if "GLX" in log_text and "Unable to" in log_text or "failed to create" in log_text.lower() \
+                and "context" in log_text.lower():
+            print(f"SKIPPED: Blender could not open an OpenGL window on Xvfb (see {log_path})")
+            sys.exit(SKIP_CODE)
+        raise SystemExit(f"FAILED: the GUI run ended ({code}) without results; log {log_path}")
+    with open(result_path) as f:
+        results = json.load(f)
+
+    print(f"GUI run: {seconds:.1f} s (exit {code}); log {log_path}")
+    for name, path in sorted(results["shots"].items()):
+        print(f"screenshot {name}: {path}")
+    st = results.get("stats_rendered", {})
+    print(f"first image: engine created -> drawn {st.get('engine_first_draw_seconds')} s; "
+          f"start -> first image {st.get('first_image_seconds')} s; "
+          f"full resolution {st.get('full_image_seconds')} s at {st.get('width')}x{st.get('height')}")
+    print(f"view change -> first draw {results.get('view_change_first_draw_seconds')} s; "
+          f"material preview {results.get('preview_seconds')} s")
+    failures = [c for c in results["checks"] if not c["ok"]]
+    for c in results["checks"]:
+        print(("ok    " if c["ok"] else "FAIL  ") + c["name"] + ": " + c["detail"])
+    tracebacks = log_text.count("Traceback (most recent call last)")
+    if results["errors"]:
+        print("driver errors:\n" + "\n".join(results["errors"]))
+    if tracebacks:
+        print(log_text[-6000:])
+    if failures or results["errors"] or tracebacks or len(results["checks"]) < 10:
+        print(f"FAILED: {len(failures)} failed checks, {len(results['errors'])} driver errors, "
+              f"{tracebacks} Python tracebacks in the GUI log ({log_path})")
+        sys.exit(1)
+    print(f"PASSED: {len(results['checks'])} checks")
+    sys.exit(0)
+
+
+if __name__ == "__main__":
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    if "--gui-driver" in argv:
+        i = argv.index("--gui-driver")
+        _driver(argv[i + 1], argv[i + 2])
+    else:
+        try:
+            _main()
+        except SystemExit:
+            raise
+        except BaseException:
+            import traceback
+            traceback.print_exc()
+            print("FAILED")
+            sys.exit(1)

@@ -1,0 +1,433 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The interactive viewport without a window (viewport.py driven directly):
+
+* the camera derived from a 3D view's matrices projects like Blender (camera views with every
+  sensor fit, shifts and camera-view zoom/offset, free perspective views; orthographic views
+  approximated within 1 %), and renders the same image as the final-render camera;
+* the viewport's image equals the final render of the same view;
+* the progressive render shows a coarse image first, then the full resolution;
+* it restarts when the view, the settings or the scene change, and not otherwise;
+  moving an object or editing a material re-reads no mesh, editing a mesh re-reads that one;
+* the viewport's studio HDRI (Scene World off) lights the scene;
+* the preview policy; the panels' messages.
+"""
+
+import math
+import os
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+import bpy
+import numpy as np
+from mathutils import Matrix, Vector
+
+import tutil
+from tutil import check
+
+
+def build_scene():
+    scene = tutil.clear_scene()
+    tutil.setup_render(scene, width=96, height=72, samples=4)
+    scene.torrance.viewport_samples = 4
+    red = tutil.principled("Red", base_color=(0.8, 0.05, 0.05), roughness=0.4)
+    tutil.uv_sphere(scene, "Sphere", (0, 0, 0.8), 0.8, red, segments=24, rings=12)
+    tutil.uv_sphere(scene, "Ball", (1.6, 0.5, 0.4), 0.4, tutil.principled("Blue", (0.05, 0.1, 0.8)),
+                    segments=16, rings=8)
+    tutil.plane(scene, "Floor", 10, material=tutil.principled("Grey", (0.3, 0.3, 0.3)))
+    tutil.add_sun(scene)
+    tutil.set_world(scene, (0.1, 0.1, 0.12))
+    tutil.add_camera(scene)
+    bpy.context.view_layer.update()
+    return scene
+
+
+# --------------------------------------------------------------------------------------------
+# Projection helpers
+
+def torrance_pixel(cam, width, height, point):
+    """Where the core's camera (set_camera keywords) images a world point: (px from the left,
+    py from the bottom), by the projection in docs (Cycles' viewplane)."""
+    m = np.asarray(cam["matrix"], dtype=np.float64)
+    local = np.linalg.inv(m) @ np.array([*point, 1.0])
+    x, y, z = local[:3] / -local[2]                  # on the plane at unit distance (-Z)
+    fit = cam["sensor_fit"]
+    horizontal = fit == 'HORIZONTAL' or (fit == 'AUTO' and width > height)
+    sensor = cam["sensor_height"] if fit == 'VERTICAL' else cam["sensor_width"]
+    h = sensor / (2.0 * cam["lens"])
+    x -= 2 * h * cam["shift_x"]
+    y -= 2 * h * cam["shift_y"]
+    if horizontal:
+        a = width / height
+        return (x / h + 1) * width / 2, (y * a / h + 1) * height / 2
+    a = height / width
+    return (x * a / h + 1) * width / 2, (y / h + 1) * height / 2
+
+
+def blender_pixel(view_matrix, window_matrix, width, height, point):
+    """Where Blender's matrices put a world point (px from the left, py from the bottom)."""
+    clip = Matrix(window_matrix) @ Matrix(view_matrix) @ Vector((*point, 1.0))
+    return (clip.x / clip.w + 1) * width / 2, (clip.y / clip.w + 1) * height / 2
+
+
+def sample_points(view_matrix, depth_range=(2.0, 12.0), n=40, spread=0.6, seed=1):
+    """World points in front of the view (through the middle of it, at various depths)."""
+    rng = np.random.default_rng(seed)
+    cam = np.array(Matrix(view_matrix).inverted())
+    pts = []
+    for _ in range(n):
+        d = rng.uniform(*depth_range)
+        x, y = rng.uniform(-spread, spread, 2) * d
+        pts.append(tuple((cam @ np.array([x, y, -d, 1.0]))[:3]))
+    return pts
+
+
+def camera_matrices(cam_obj, depsgraph, width, height):
+    ev = cam_obj.evaluated_get(depsgraph)
+    window = ev.calc_matrix_camera(depsgraph, x=width, y=height)
+    view = ev.matrix_world.normalized().inverted()
+    return view, window
+
+
+def render_core(tc, tc_scene, cam, width, height, samples=2):
+    tc_scene.set_camera(**cam)
+    settings = tc.RenderSettings(width=width, height=height, samples=samples, seed=0,
+                                 max_bounces=2, brdf_model="PRINCIPLED")
+    return np.asarray(tc.render(tc_scene, settings).image)
+
+
+# --------------------------------------------------------------------------------------------
+
+def test_camera_derivation(tv, tc, scene):
+    dg = bpy.context.evaluated_depsgraph_get()
+    cam_obj = scene.camera
+    cam = cam_obj.data
+    worst = 0.0
+    cases = 0
+    for (w, h) in ((96, 72), (60, 100)):
+        for fit in ('AUTO', 'HORIZONTAL', 'VERTICAL'):
+            for shift in ((0.0, 0.0), (0.12, -0.07)):
+                cam.sensor_fit = fit
+                cam.shift_x, cam.shift_y = shift
+                cam.lens = 35.0 if fit == 'VERTICAL' else 50.0
+                bpy.context.view_layer.update()
+                view_m, window_m = camera_matrices(cam_obj, dg, w, h)
+                derived = tv.camera_from_matrices(view_m, window_m, w, h)
+                for p in sample_points(view_m, spread=0.25):
+                    a = np.array(torrance_pixel(derived, w, h, p))
+                    b = np.array(blender_pixel(view_m, window_m, w, h, p))
+                    worst = max(worst, float(np.abs(a - b).max()))
+                cases += 1
+    print(f"camera views ({cases} cases: fits, shifts, portrait): worst projection error "
+          f"{worst:.2e} px")
+    check(worst < 2e-3, f"derived camera projects {worst} px away from Blender's")
+    cam.sensor_fit = 'AUTO'
+    cam.shift_x = cam.shift_y = 0.0
+    cam.lens = 40.0
+
+    # A free 3D view: an off-centre frustum like the viewport's (clip 0.01 .. 1000), and the
+    # camera view's zoom/offset, which Blender folds into the window matrix the same way.
+    worst = 0.0
+    for (w, h) in ((640, 480), (300, 500)):
+        for (tx, cx, cy) in ((0.6, 0.0, 0.0), (0.8, 0.25, -0.15)):
+            ty = tx * h / w                          # square pixels, as in every 3D view
+            l, r, b, t = cx - tx, cx + tx, cy - ty, cy + ty
+            n, f = 0.01, 1000.0
+            win = Matrix(((2 * n / ((r - l) * n), 0, (r + l) / (r - l), 0),
+                          (0, 2 * n / ((t - b) * n), (t + b) / (t - b), 0),
+                          (0, 0, -(f + n) / (f - n), -2 * f * n / (f - n)),
+                          (0, 0, -1, 0)))
+            view_m = (Matrix.Translation((0.3, -5.0, 1.2)) @
+                      Matrix.Rotation(1.2, 4, 'X') @ Matrix.Rotation(0.3, 4, 'Y')).inverted()
+            derived = tv.camera_from_matrices(view_m, win, w, h)
+            check(abs(derived["clip_start"] - n) < 1e-6 and abs(derived["clip_end"] - f) < 0.01 * f,
+                  f"clipping {derived['clip_start']}, {derived['clip_end']}")
+            for p in sample_points(view_m, spread=0.5):
+                a = np.array(torrance_pixel(derived, w, h, p))
+                bb = np.array(blender_pixel(view_m, win, w, h, p))
+                worst = max(worst, float(np.abs(a - bb).max()))
+    print(f"free perspective views: worst projection error {worst:.2e} px")
+    check(worst < 2e-2, f"free view projects {worst} px away from Blender's")
+
+    # Orthographic: approximated by a distant perspective camera.
+    cam.type = 'ORTHO'
+    cam.ortho_scale = 6.0
+    bpy.context.view_layer.update()
+    w, h = 96, 72
+    view_m, window_m = camera_matrices(cam_obj, dg, w, h)
+    focus = (Matrix(view_m) @ Vector((0, 0, 0.6, 1.0))).z
+    derived = tv.camera_from_matrices(view_m, window_m, w, h, is_perspective=False,
+                                      view_distance=-focus)
+    worst = 0.0
+    for p in [(x, y, z) for x in (-2.5, 0, 2.5) for y in (-1.5, 0, 1.5) for z in (0.0, 1.2)]:
+        a = np.array(torrance_pixel(derived, w, h, p))
+        bb = np.array(blender_pixel(view_m, window_m, w, h, p))
+        worst = max(worst, float(np.abs(a - bb).max()))
+    print(f"orthographic view: worst projection error {worst:.3f} px of {w} ({100 * worst / w:.2f} %)")
+    check(worst < 0.01 * w, f"orthographic approximation off by {worst} px")
+    cam.type = 'PERSP'
+    bpy.context.view_layer.update()
+
+    # Image level: the derived camera renders what the final-render camera renders.
+    from torrance import export
+    from torrance.materials import Reporter
+    tc_scene, _stats = export.export_scene(tc, dg, Reporter(None))
+    view_m, window_m = camera_matrices(cam_obj, dg, 96, 72)
+    img_final = render_core(tc, tc_scene, _final_camera(tc, dg), 96, 72)
+    img_view = render_core(tc, tc_scene, tv.camera_from_matrices(view_m, window_m, 96, 72), 96, 72)
+    diff = float(np.abs(img_final - img_view).max())
+    print(f"derived vs final-render camera, 96x72 image: max difference {diff:.2e}")
+    check(diff < 2e-3, f"images differ by {diff}")
+
+
+def _final_camera(tc, depsgraph):
+    """The set_camera keywords export.export_camera uses, captured from a stand-in scene."""
+    from torrance import export
+    from torrance.materials import Reporter
+    captured = {}
+
+    class Capture:
+        def set_camera(self, **kw):
+            captured.update(kw)
+    cam_obj = depsgraph.scene.camera.evaluated_get(depsgraph)
+    export.export_camera(Capture(), cam_obj, Reporter(None))
+    return captured
+
+
+def wait_done(state, timeout=60.0):
+    end = time.perf_counter() + timeout
+    seen_levels = []
+    while time.perf_counter() < end:
+        if state.poll():
+            seen_levels.append((state.render.image_level, state.render.image.shape[:2]))
+        if state.render.finished:
+            state.poll()
+            return seen_levels
+        time.sleep(0.002)
+    raise AssertionError(f"the viewport render did not finish in {timeout} s: {state.render.stats()}")
+
+
+def camera_view(tv, scene, width, height):
+    dg = bpy.context.evaluated_depsgraph_get()
+    view_m, window_m = camera_matrices(scene.camera, dg, width, height)
+    return tv.View.from_matrices(view_m, window_m, width, height)
+
+
+def test_viewport_matches_final_render(tv, tc, scene):
+    state = tv.ViewportState(tc)
+    dg = bpy.context.evaluated_depsgraph_get()
+    check(state.sync(dg), "first sync builds a scene")
+    # Large enough for a coarse level (longer side > 1.5 x start resolution).
+    w, h = 192, 144
+    scene.render.resolution_x, scene.render.resolution_y = w, h
+    settings = tv.viewport_settings(scene)
+    t0 = time.perf_counter()
+    state.ensure_render(camera_view(tv, scene, w, h), settings, start_res=64)
+    levels = wait_done(state)
+    seconds = time.perf_counter() - t0
+    st = state.render.stats()
+    print(f"viewport {w}x{h}: images {levels}; first image {st['first_image_seconds']:.3f} s, "
+          f"full resolution {st['full_image_seconds']:.3f} s, {settings['samples']} samples "
+          f"{st['done_seconds']:.3f} s")
+    check(levels[0][0] == 0 and levels[0][1] == (48, 64), f"first image is the coarse one: {levels}")
+    check(levels[-1][0] == 1 and levels[-1][1] == (h, w), f"last image full size: {levels}")
+    check(state.render.samples_done == settings["samples"], "all samples rendered")
+    check(st["first_image_seconds"] < 2.0, "coarse image within 2 s")
+    img_view = state.render.image
+    img_final, _ = tutil.render(scene, tutil.tempdir())
+    diff = float(np.abs(img_view - img_final).max())
+    print(f"viewport image vs final render (same view, {settings['samples']} samples): "
+          f"max difference {diff:.2e}")
+    check(diff < 2e-3, f"viewport and final render differ by {diff}")
+    state.close()
+    check(tv.running_renders() == 0, "closing stops the render")
+
+
+def test_restarts_and_cache(tv, tc, scene):
+    """Edits arrive as depsgraph updates: driven through depsgraph_update_post, like view_update."""
+    state = tv.ViewportState(tc)
+    state.sync(bpy.context.evaluated_depsgraph_get())
+    log = []
+
+    def handler(_scene, depsgraph):
+        log.append(state.sync(depsgraph))
+    bpy.app.handlers.depsgraph_update_post.append(handler)
+    try:
+        w, h = 96, 72
+        settings = tv.viewport_settings(scene)
+        view = camera_view(tv, scene, w, h)
+        check(state.ensure_render(view, settings), "first render starts")
+        check(not state.ensure_render(camera_view(tv, scene, w, h), settings),
+              "the same view does not restart")
+        # A changed view restarts (without a new scene).
+        builds = state.cache.builds
+        scene.camera.location.x += 0.05
+        bpy.context.view_layer.update()
+        view2 = camera_view(tv, scene, w, h)
+        check(view2 != view, "moving the camera changes the view")
+        t0 = time.perf_counter()
+        check(state.ensure_render(view2, settings), "a changed view restarts")
+        restart = time.perf_counter() - t0
+        check(state.wait_first_image(2.0), "an image after the restart")
+        print(f"view change: restart {1000 * restart:.1f} ms, first image "
+              f"{1000 * state.render.first_image_seconds:.1f} ms")
+        # Settings restart.
+        changed = dict(settings, max_bounces=settings["max_bounces"] - 1)
+        check(state.ensure_render(view2, changed), "changed settings restart")
+        check(not state.ensure_render(view2, changed), "same settings do not")
+
+        def edit(what, fn):
+            log.clear()
+            fn()
+            bpy.context.view_layer.update()
+            rebuilt = any(log)
+            reads = state.cache.last_build.get("meshes_read") if rebuilt else None
+            print(f"{what}: scene rebuilt {rebuilt}, meshes read {reads}")
+            return rebuilt, reads
+
+        sphere = bpy.data.objects["Sphere"]
+        floor = bpy.data.objects["Floor"]
+        rebuilt, _ = edit("select", lambda: floor.select_set(True))
+        check(not rebuilt, "selecting rebuilds nothing")
+        rebuilt, reads = edit("move object", lambda: setattr(sphere, "location",
+                                                             sphere.location + Vector((0.1, 0, 0))))
+        check(rebuilt and reads == 0, "moving an object re-transforms its cached mesh")
+        node = bpy.data.materials["Red"].node_tree.nodes["Principled BSDF"]
+        rebuilt, reads = edit("material colour", lambda: node.inputs["Base Color"].default_value
+                              .__setitem__(slice(0, 3), (0.1, 0.7, 0.1)))
+        check(rebuilt and reads == 0, "a material edit re-reads no mesh")
+
+        def move_vertex():
+            sphere.data.vertices[0].co.z += 0.05
+            sphere.data.update()
+        rebuilt, reads = edit("edit mesh", move_vertex)
+        check(rebuilt and reads == 1, "editing a mesh re-reads that mesh only")
+        rebuilt, reads = edit("hide object", lambda: setattr(floor, "hide_viewport", True))
+        check(rebuilt and state.cache.last_build["objects"] == 2, "hiding an object drops it")
+        rebuilt, reads = edit("unhide object", lambda: setattr(floor, "hide_viewport", False))
+        # (Blender re-evaluates an object shown again and reports its geometry as updated.)
+        check(rebuilt and state.cache.last_build["objects"] == 3 and reads <= 1,
+              "unhiding brings it back")
+        light = bpy.data.lights["Sun"]
+        rebuilt, reads = edit("light strength", lambda: setattr(light, "energy", 5.0))
+        check(rebuilt and reads == 0, "a light edit rebuilds without reading meshes")
+        rebuilt, reads = edit("delete object", lambda: bpy.data.objects.remove(
+            bpy.data.objects["Ball"]))
+        check(rebuilt and state.cache.last_build["objects"] == 2, "a deleted object disappears")
+        # The rebuilt scene restarts the render.
+        serial = state.scene_serial
+        check(state.ensure_render(view2, changed), "a rebuilt scene restarts the render")
+        check(state.render_key[0] == serial, "the render uses the newest scene")
+        wait_done(state)
+        check(state.render.error is None, f"render error {state.render.error}")
+    finally:
+        bpy.app.handlers.depsgraph_update_post.remove(handler)
+        state.close()
+
+
+def test_studio_world(tv, tc, scene):
+    import glob
+    paths = sorted(glob.glob("/usr/share/blender/*/datafiles/studiolights/world/*.exr") +
+                   glob.glob("/usr/share/blender/datafiles/studiolights/world/*.exr"))
+    if not paths:
+        print("no studio lights found: studio world test skipped")
+        return
+    dg = bpy.context.evaluated_depsgraph_get()
+    images = []
+    for rotation in (0.0, 1.0):
+        state = tv.ViewportState(tc)
+        options = dict(use_scene_world=False, use_scene_lights=False, studio_path=paths[0],
+                       studio_strength=1.0, studio_rotation=rotation)
+        state.sync(dg, options)
+        state.ensure_render(camera_view(tv, scene, 64, 48), dict(tv.viewport_settings(scene),
+                                                                 samples=2))
+        wait_done(state)
+        check(state.render.error is None, f"render error {state.render.error}")
+        images.append(state.render.image)
+        check(state.cache.last_build["lights"] == 0, "scene lights off")
+        if rotation == 0.0:
+            # The same file read by the core as a world texture gives the same image: the
+            # studio map is the right way up.
+            state.stop_render()
+            state.tc_scene.set_world_texture(
+                state.tc_scene.add_texture_file(paths[0], colorspace="Linear"), strength=1.0)
+            state.scene_serial += 1
+            state.ensure_render(camera_view(tv, scene, 64, 48),
+                                dict(tv.viewport_settings(scene), samples=2))
+            wait_done(state)
+            same = float(np.abs(state.render.image - images[0]).max())
+            print(f"studio HDRI vs the core reading the file: max difference {same:.2e}")
+            check(same < 1e-4, f"studio map orientation: images differ by {same}")
+        state.close()
+    mean = float(images[0][:, :, :3].mean())
+    change = float(np.abs(images[0] - images[1]).mean())
+    print(f"studio HDRI {os.path.basename(paths[0])}: mean {mean:.3f}; rotating it changes the "
+          f"image by {change:.3f} on average")
+    check(mean > 0.01, "the studio HDRI lights the scene")
+    check(change > 1e-3, "its rotation counts")
+
+
+def test_preview_policy(addon, scene):
+    import importlib
+    preview = importlib.import_module("torrance.preview")
+    ts = scene.torrance
+    ts.samples, ts.max_bounces = 64, 8
+    ts.preview_samples, ts.preview_max_bounces = 12, 3
+
+    class Engine:
+        is_preview = False
+    check(preview.render_settings(Engine(), ts) is ts, "final renders use the scene settings")
+    Engine.is_preview = True
+    p = preview.render_settings(Engine(), ts)
+    check(p.samples == 12 and p.max_bounces == 3, f"preview caps: {p.samples}, {p.max_bounces}")
+    check(p.brdf_model == ts.brdf_model and p.seed == ts.seed and p.filter_width == ts.filter_width,
+          "other settings are the artist's")
+    # The preview scene's own settings are defaults: the artist's (context) scene wins.
+
+    class Defaults:
+        samples, max_bounces, preview_samples, preview_max_bounces = 64, 8, 16, 4
+        brdf_model, seed, filter_width, use_progressive_display = 'PAPER', 0, 1.5, True
+    p = preview.render_settings(Engine(), Defaults())
+    check(p.samples == 12, "the artist's preview samples are used in the preview scene")
+    print(f"preview policy: {p.samples} samples, {p.max_bounces} bounces")
+
+
+def test_messages(addon, scene):
+    ui = addon.ui
+    mat = tutil.principled("Waxy")
+    mat.node_tree.nodes["Principled BSDF"].inputs["Subsurface"].default_value = 0.5
+    msgs = ui.material_messages(mat)
+    check(any("Subsurface" in t for _l, t in msgs), f"subsurface reported: {msgs}")
+    check(ui.material_messages(bpy.data.materials["Grey"]) == [], "a plain material has none")
+    cam = scene.camera.data
+    cam.dof.use_dof = True
+    check(any("Depth of field" in t for _l, t in ui.camera_messages(cam)), "DOF reported")
+    cam.dof.use_dof = False
+    scene.render.use_motion_blur = True
+    check(any("Motion blur" in t for _l, t in ui.scene_messages(scene)), "motion blur reported")
+    scene.render.use_motion_blur = False
+    check(ui.world_messages(scene.world) == [], "a Background world has no messages")
+    print("panel messages: material", msgs[0][1][:60], "...")
+
+
+def main():
+    addon = tutil.addon()
+    tv = addon.viewport
+    tc = tutil.core()
+    scene = build_scene()
+    for name, fn, args in (
+            ("camera derivation", test_camera_derivation, (tv, tc, scene)),
+            ("viewport = final render", test_viewport_matches_final_render, (tv, tc, scene)),
+            ("restarts and mesh cache", test_restarts_and_cache, (tv, tc, scene)),
+            ("studio world", test_studio_world, (tv, tc, scene)),
+            ("preview policy", test_preview_policy, (addon, scene)),
+            ("panel messages", test_messages, (addon, scene))):
+        t0 = time.perf_counter()
+        print(f"--- {name}")
+        fn(*args)
+        print(f"    ({time.perf_counter() - t0:.2f} s)")
+
+
+if __name__ == "__main__":
+    tutil.run(main)
