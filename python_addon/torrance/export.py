@@ -11,12 +11,12 @@ import time
 
 import numpy as np
 
-from .materials import MaterialTable
+from .materials import MaterialTable, TextureTable, _follow, _node_label
 
 # Types whose geometry is a mesh. Only 'MESH' entries of the depsgraph are exported; the
 # others reach us as MESH instances of their evaluated geometry (see export_scene).
 MESH_TYPES = {'MESH', 'CURVE', 'SURFACE', 'META', 'FONT'}
-SUPPORTED_LIGHTS = {'SUN', 'POINT'}
+SUPPORTED_LIGHTS = {'SUN', 'POINT', 'SPOT', 'AREA'}
 MAX_COORDINATE = 1e18          # metres; anything farther is treated like Inf
 _VISIBILITY = ("visible_camera", "visible_diffuse", "visible_glossy",
                "visible_transmission", "visible_shadow")
@@ -28,12 +28,14 @@ class ExportStats:
         self.triangles = 0
         self.lights = 0
         self.materials = 0
+        self.textures = 0
         self.seconds = 0.0
         self.names = []          # exported mesh objects, one entry per instance
 
     def __str__(self):
         return (f"{self.objects} objects, {self.triangles} triangles, {self.lights} lights, "
-                f"{self.materials} materials, exported in {self.seconds:.2f} s")
+                f"{self.materials} materials, {self.textures} textures, "
+                f"exported in {self.seconds:.2f} s")
 
 
 # --------------------------------------------------------------------------------------------
@@ -42,24 +44,52 @@ class ExportStats:
 class LocalMesh:
     """A mesh in object space, as to_mesh() gives it, in numpy arrays."""
     __slots__ = ("positions", "triangles", "vertex_normals", "corner_normals", "smooth",
-                 "material_slots")
+                 "material_slots", "corner_uvs", "uv_name")
 
     def __init__(self, positions, triangles, vertex_normals, corner_normals, smooth,
-                 material_slots):
+                 material_slots, corner_uvs=None, uv_name=None):
         self.positions = positions            # float32 (N,3)
         self.triangles = triangles            # int32 (M,3)
         self.vertex_normals = vertex_normals  # None or float32 (N,3): smooth shading
         self.corner_normals = corner_normals  # None or float32 (M,3,3): split normals
         self.smooth = smooth                  # None (all alike) or bool (M,): False = flat
         self.material_slots = material_slots  # int32 (M,) raw material_index
+        self.corner_uvs = corner_uvs          # None or float32 (M,3,2): active render UV map
+        self.uv_name = uv_name                # that UV map's name (None without one)
 
 
-def read_local_mesh(obj):
+def render_uv_layer(mesh):
+    """The UV map Cycles renders with: the active render one, else the active one, else None."""
+    layers = mesh.uv_layers
+    for layer in layers:
+        if layer.active_render:
+            return layer
+    return layers.active if len(layers) else None
+
+
+def read_corner_uvs(mesh, nt):
+    """(float32 (M,3,2) UVs of the loop triangles' corners, layer name), or (None, None)."""
+    layer = render_uv_layer(mesh)
+    if layer is None:
+        return None, None
+    nl = len(mesh.loops)
+    uv = np.empty(nl * 2, dtype=np.float32)
+    layer.data.foreach_get("uv", uv)
+    loops = np.empty(nt * 3, dtype=np.int32)
+    mesh.loop_triangles.foreach_get("loops", loops)
+    corner = uv.reshape(nl, 2)[loops].reshape(nt, 3, 2)
+    if not np.isfinite(corner).all():
+        corner = np.nan_to_num(corner, nan=0.0, posinf=0.0, neginf=0.0)
+    return np.ascontiguousarray(corner), layer.name
+
+
+def read_local_mesh(obj, uvs=False):
     """The evaluated object's mesh as a LocalMesh, or None when it has no triangles.
 
     Normals as Cycles 3.4 takes them: with auto smooth the split normals (sharp edges,
     custom normals) and every triangle smooth; otherwise vertex normals on smooth faces
-    and the geometric normal on flat ones.
+    and the geometric normal on flat ones. With `uvs`, also the corner UVs of the active
+    render UV map (for textures and normal maps).
     """
     mesh = obj.to_mesh()
     if mesh is None:
@@ -94,8 +124,11 @@ def read_local_mesh(obj):
                     smooth = None
             else:
                 smooth = None
+        corner_uvs = uv_name = None
+        if uvs:
+            corner_uvs, uv_name = read_corner_uvs(mesh, nt)
         return LocalMesh(co.reshape(nv, 3), tris.reshape(nt, 3), vertex_normals,
-                         corner_normals, smooth, mat)
+                         corner_normals, smooth, mat, corner_uvs, uv_name)
     finally:
         obj.to_mesh_clear()
 
@@ -183,6 +216,18 @@ def world_mesh(local, matrix):
             keep, dropped_nonfinite)
 
 
+def world_uvs(local, matrix, keep):
+    """The corner UVs matching world_mesh()'s triangles (kept ones, corners swapped for a
+    mirroring transform), or None."""
+    if local.corner_uvs is None:
+        return None
+    uv = local.corner_uvs if keep.all() else local.corner_uvs[keep]
+    m = np.asarray(matrix, dtype=np.float64).reshape(4, 4)
+    if np.linalg.det(m[:3, :3]) < 0.0:
+        uv = uv[:, [0, 2, 1], :]
+    return np.ascontiguousarray(uv, dtype=np.float32)
+
+
 def _is_visible(obj):
     vis = [getattr(obj, name, True) for name in _VISIBILITY]
     return any(vis)
@@ -191,12 +236,76 @@ def _is_visible(obj):
 # --------------------------------------------------------------------------------------------
 # Lights, world, camera
 
+def _unit(v):
+    v = np.asarray(v, dtype=np.float64)
+    n = float(np.linalg.norm(v))
+    if not (n > 0.0 and math.isfinite(n)):
+        return None
+    return v / n
+
+
+def _vec(v):
+    return tuple(float(x) for x in v)
+
+
+def light_node_factor(obj, light, reporter):
+    """The colour factor of a light's node tree, as Cycles multiplies it onto colour x energy.
+
+    A tree whose Light Output is fed by an Emission node with constant Color and Strength
+    (what "Use Nodes" creates) is supported; anything else is reported once and ignored.
+    """
+    if not light.use_nodes or light.node_tree is None:
+        return (1.0, 1.0, 1.0)
+    tree = light.node_tree
+    unsupported = f"Light '{light.name}': Torrance does not support its node tree"
+    output = tree.get_output_node('CYCLES')
+    surface = output.inputs.get("Surface") if output is not None else None
+    source = _follow(surface) if surface is not None else None
+    if source is None:
+        reporter.warning(f"{unsupported} (nothing feeds the Light Output); the nodes are ignored")
+        return (1.0, 1.0, 1.0)
+    node = source.node
+    if node.bl_idname != 'ShaderNodeEmission' or node.mute:
+        reporter.warning(f"{unsupported} ({_node_label(node)} feeds the Light Output; Torrance "
+                         f"reads an Emission node); the nodes are ignored")
+        return (1.0, 1.0, 1.0)
+    values = []
+    for name in ("Color", "Strength"):
+        socket = node.inputs[name]
+        src = _follow(socket)
+        if src is None:
+            values.append(socket.default_value)
+        elif src.node.type in {'RGB', 'VALUE'} and not src.node.mute:
+            values.append(src.default_value)
+        else:
+            reporter.warning(f"{unsupported} (the Emission {name} is linked to "
+                             f"{_node_label(src.node)}); using the socket's own value")
+            values.append(socket.default_value)
+    color, strength = values
+    try:
+        color = tuple(float(c) for c in tuple(color)[:3])
+    except TypeError:
+        color = (float(color),) * 3
+    strength = float(strength)
+    factor = tuple(c * strength for c in color)
+    if not all(math.isfinite(c) for c in factor):
+        reporter.warning(f"Light '{light.name}': its Emission node is not finite; the nodes "
+                         f"are ignored")
+        return (1.0, 1.0, 1.0)
+    return tuple(max(0.0, c) for c in factor)
+
+
 def export_light(tc_scene, obj, matrix, reporter):
-    """Adds a SUN or POINT light; returns True when a light was added."""
+    """Adds a SUN, POINT, SPOT or AREA light; returns True when a light was added.
+
+    Units as Cycles 3.4: colour x energy (x an Emission node's colour x strength), W for
+    point, spot and area lights, W/m^2 for suns. Sun, spot and area lights emit along the
+    object's -Z axis; area light edges are the object's X and Y axes x size (scale counts).
+    """
     light = obj.data
     kind = light.type
     if kind not in SUPPORTED_LIGHTS:
-        reporter.warning(f"Torrance does not support {kind.lower()} lights yet: "
+        reporter.warning(f"Torrance does not support {kind.lower()} lights: "
                          f"'{obj.name}' is skipped")
         return False
     energy = float(light.energy)
@@ -207,32 +316,60 @@ def export_light(tc_scene, obj, matrix, reporter):
     if energy < 0.0 or min(color) < 0.0:
         reporter.warning(f"Light '{obj.name}' has a negative colour or strength: skipped")
         return False
+    if kind == 'AREA' and getattr(getattr(light, "cycles", None), "is_portal", False):
+        reporter.info(f"Area light '{obj.name}' is a portal, which Torrance does not use "
+                      f"(portals emit no light): skipped")
+        return False
+    factor = light_node_factor(obj, light, reporter)
+    color = tuple(c * f for c, f in zip(color, factor))
     if energy == 0.0 or max(color) == 0.0:
         return False
-    if light.use_nodes and light.node_tree is not None and len(light.node_tree.nodes) > 0:
-        reporter.info(f"Light '{obj.name}': Torrance ignores light node trees")
     m = np.asarray(matrix, dtype=np.float64).reshape(4, 4)
+    p = m[:3, 3]
+    if kind != 'SUN' and not np.isfinite(p).all():
+        reporter.warning(f"Light '{obj.name}' has a non-finite position: skipped")
+        return False
+    d = _unit(-m[:3, 2])
     if kind == 'SUN':
-        d = -m[:3, 2]
-        n = float(np.linalg.norm(d))
-        if not (n > 0.0 and math.isfinite(n)):
+        if d is None:
             reporter.warning(f"Sun '{obj.name}' has a degenerate orientation: skipped")
             return False
-        d = d / n
-        tc_scene.add_sun(direction=tuple(float(x) for x in d), strength=energy, color=color,
+        tc_scene.add_sun(direction=_vec(d), strength=energy, color=color,
                          angle=float(max(0.0, light.angle)))
-    else:
-        p = m[:3, 3]
-        if not np.isfinite(p).all():
-            reporter.warning(f"Light '{obj.name}' has a non-finite position: skipped")
-            return False
-        tc_scene.add_point_light(position=tuple(float(x) for x in p), power=energy, color=color,
+    elif kind == 'POINT':
+        tc_scene.add_point_light(position=_vec(p), power=energy, color=color,
                                  radius=float(max(0.0, light.shadow_soft_size)))
+    elif kind == 'SPOT':
+        if d is None:
+            reporter.warning(f"Spot light '{obj.name}' has a degenerate orientation: skipped")
+            return False
+        tc_scene.add_spot_light(position=_vec(p), direction=_vec(d), power=energy, color=color,
+                                radius=float(max(0.0, light.shadow_soft_size)),
+                                spot_size=float(min(max(light.spot_size, 0.0), math.pi)),
+                                spot_blend=float(min(max(light.spot_blend, 0.0), 1.0)))
+    else:
+        shape = light.shape
+        size_u = float(light.size)
+        size_v = float(light.size_y) if shape in {'RECTANGLE', 'ELLIPSE'} else size_u
+        edge_u = m[:3, 0] * size_u
+        edge_v = m[:3, 1] * size_v
+        area = float(np.linalg.norm(edge_u) * np.linalg.norm(edge_v))
+        if not (area > 0.0 and math.isfinite(area)):
+            reporter.warning(f"Area light '{obj.name}' has no area (size or scale 0): skipped")
+            return False
+        if d is None:                         # Z scaled to 0: the normal of the X/Y plane
+            d = _unit(-np.cross(m[:3, 0], m[:3, 1]))
+        if d is None:
+            reporter.warning(f"Area light '{obj.name}' has a degenerate orientation: skipped")
+            return False
+        tc_scene.add_area_light(center=_vec(p), edge_u=_vec(edge_u), edge_v=_vec(edge_v),
+                                direction=_vec(d),
+                                shape="ELLIPSE" if shape in {'DISK', 'ELLIPSE'} else "RECTANGLE",
+                                power=energy, color=color, spread=float(light.spread))
     return True
 
 
 def _background_value(socket, world, what, reporter):
-    from .materials import _follow
     source = _follow(socket)
     if source is not None:
         if source.node.type in {'RGB', 'VALUE'} and not source.node.mute:
@@ -243,43 +380,91 @@ def _background_value(socket, world, what, reporter):
     return socket.default_value
 
 
-def world_radiance(world, reporter):
-    """(color, strength) of the uniform background."""
+def _environment_texture(world, node, output, textures, reporter):
+    """The texture id of an Environment Texture node feeding the Background Color, or None."""
+    what = f"World '{world.name}': {_node_label(node)}"
+    if textures is None:
+        return None
+    if output.identifier != "Color":
+        reporter.warning(f"{what}: only its Color output is supported; using the Background "
+                         f"colour")
+        return None
+    if node.image is None:
+        reporter.warning(f"{what} has no image; using the Background colour")
+        return None
+    if node.projection != 'EQUIRECTANGULAR':
+        reporter.warning(f"{what}: the {node.projection.replace('_', ' ').lower()} projection is "
+                         f"not supported (only equirectangular); using the Background colour")
+        return None
+    vector = node.inputs.get("Vector")
+    src = _follow(vector) if vector is not None else None
+    if src is not None:
+        reporter.warning(f"{what}: the Vector input is linked to {_node_label(src.node)}; "
+                         f"Torrance does not support a mapping or rotation of the environment "
+                         f"and uses the default one")
+    interpolation = node.interpolation
+    if interpolation not in ("Linear", "Closest"):
+        interpolation = "Linear"          # Cubic/Smart: a smooth lookup either way
+    return textures.texture(node.image, interpolation)
+
+
+def world_background(world, reporter, textures=None):
+    """(color, strength, texture id or None) of the world's background.
+
+    The texture is an equirectangular Environment Texture linked to the Background Color
+    (with `textures`, a TextureTable); color is then the socket's own value (unused).
+    """
     if world is None:
-        return (0.0, 0.0, 0.0), 0.0
-    fallback = (tuple(float(c) for c in world.color), 1.0)
+        return (0.0, 0.0, 0.0), 0.0, None
+    fallback = (tuple(float(c) for c in world.color), 1.0, None)
     if not world.use_nodes or world.node_tree is None:
         return fallback
-    from .materials import _follow
     output = world.node_tree.get_output_node('CYCLES')
     if output is None:
         reporter.info(f"World '{world.name}' has no World Output node: black background")
-        return (0.0, 0.0, 0.0), 0.0
+        return (0.0, 0.0, 0.0), 0.0, None
     surface = output.inputs.get("Surface")
     source = _follow(surface) if surface is not None else None
     if source is None:
-        return (0.0, 0.0, 0.0), 0.0
+        return (0.0, 0.0, 0.0), 0.0, None
     node = source.node
     if node.bl_idname != 'ShaderNodeBackground' or node.mute:
         reporter.warning(f"World '{world.name}': '{node.bl_label}' is not supported (Torrance reads "
                          f"a Background node); using the world colour")
         return fallback
-    color = _background_value(node.inputs["Color"], world, "Color", reporter)
+    texture = None
+    color_socket = node.inputs["Color"]
+    color_source = _follow(color_socket)
+    if (textures is not None and color_source is not None and not color_source.node.mute
+            and color_source.node.bl_idname == 'ShaderNodeTexEnvironment'):
+        texture = _environment_texture(world, color_source.node, color_source, textures, reporter)
+        color = color_socket.default_value
+    else:
+        color = _background_value(color_socket, world, "Color", reporter)
     strength = _background_value(node.inputs["Strength"], world, "Strength", reporter)
     try:
         color = tuple(float(c) for c in tuple(color)[:3])
     except TypeError:
         color = (float(color),) * 3
-    return color, float(strength)
+    return color, float(strength), texture
 
 
-def export_world(tc_scene, world, reporter):
-    color, strength = world_radiance(world, reporter)
-    if not all(math.isfinite(c) for c in color) or not math.isfinite(strength):
+def world_radiance(world, reporter):
+    """(color, strength) of the uniform background (textures not considered)."""
+    color, strength, _texture = world_background(world, reporter)
+    return color, strength
+
+
+def export_world(tc_scene, world, reporter, textures=None):
+    color, strength, texture = world_background(world, reporter, textures)
+    if not math.isfinite(strength) or (texture is None and not all(math.isfinite(c) for c in color)):
         reporter.warning("The world colour is not finite: black background")
-        color, strength = (0.0, 0.0, 0.0), 0.0
-    color = tuple(max(0.0, c) for c in color)
+        color, strength, texture = (0.0, 0.0, 0.0), 0.0, None
     strength = max(0.0, strength)
+    if texture is not None:
+        tc_scene.set_world_texture(texture, strength=strength)
+        return
+    color = tuple(max(0.0, c) for c in color)
     tc_scene.set_world(color=color, strength=strength)
 
 
@@ -320,7 +505,8 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
     stats = ExportStats()
     scene = depsgraph.scene
     tc_scene = tc.Scene()
-    materials = MaterialTable(tc_scene, reporter)
+    textures = TextureTable(tc_scene, reporter)
+    materials = MaterialTable(tc_scene, reporter, textures)
 
     cam_obj = None
     if engine is not None:
@@ -332,7 +518,7 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
     if not cam_obj.is_evaluated:
         cam_obj = cam_obj.evaluated_get(depsgraph)
     export_camera(tc_scene, cam_obj, reporter, engine)
-    export_world(tc_scene, scene.world, reporter)
+    export_world(tc_scene, scene.world, reporter, textures)
 
     geometry_cache = {}
     unsupported_types = set()
@@ -368,13 +554,22 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
         matrix = inst.matrix_world.copy()        # the instance struct dies after this step
         name = obj.name
         slots = [slot.material for slot in obj.material_slots]
+        # Material per slot (read before the mesh: textured materials need the UVs).
+        if slots:
+            slot_to_material = np.array([materials.index(m) for m in slots], dtype=np.int32)
+        else:
+            slot_to_material = np.array([materials.default_index()], dtype=np.int32)
+        needs_uvs = materials.needs_uvs(slot_to_material.tolist())
         # Instances of one mesh (collection instances, particles, geometry nodes) are read once.
         key = (obj.as_pointer(), obj.data.as_pointer() if obj.data is not None else 0)
         if key in geometry_cache:
             local = geometry_cache[key]
         else:
-            local = read_local_mesh(obj)
+            local = read_local_mesh(obj, uvs=needs_uvs)
             geometry_cache[key] = local
+            if local is not None and needs_uvs and local.corner_uvs is None:
+                reporter.warning(f"Object '{name}' has textured materials but no UV map: "
+                                 f"its textures are read at UV (0, 0)")
         if local is None:
             continue
 
@@ -386,18 +581,20 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
             continue
 
         # Material per triangle: material_index clamped to the slots, like Cycles.
-        if slots:
-            slot_to_material = np.array([materials.index(m) for m in slots], dtype=np.int32)
-            idx = np.clip(local.material_slots[keep], 0, len(slots) - 1)
-            mat_idx = slot_to_material[idx]
-        else:
-            mat_idx = np.full(len(tris), materials.default_index(), dtype=np.int32)
+        idx = np.clip(local.material_slots[keep], 0, len(slot_to_material) - 1)
+        mat_idx = slot_to_material[idx]
+        extra = {}
+        uvs = world_uvs(local, matrix, keep) if needs_uvs else None
+        if uvs is not None:
+            extra["corner_uvs"] = uvs          # only when used: the API before textures had none
         tc_scene.add_mesh(pos, tris, corner_normals=corner,
-                          material_indices=np.ascontiguousarray(mat_idx, dtype=np.int32))
+                          material_indices=np.ascontiguousarray(mat_idx, dtype=np.int32),
+                          **extra)
         stats.objects += 1
         stats.names.append(name)
         stats.triangles += len(tris)
 
     stats.materials = len(materials.indices) + (1 if materials._default is not None else 0)
+    stats.textures = textures.loaded
     stats.seconds = time.perf_counter() - t0
     return tc_scene, stats

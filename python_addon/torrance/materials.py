@@ -6,17 +6,25 @@ emission). It is read from the node that feeds the Surface of the material's
 output node (the output Cycles would use):
 
 * Principled BSDF: the sockets Base Color, Metallic, Roughness, Specular,
-  Emission and Emission Strength;
+  Emission and Emission Strength, and Normal (from a tangent-space Normal Map);
 * Diffuse BSDF: a pure diffuse material (specular 0);
 * Emission: a black emitter.
 
-A socket linked to something Torrance can not evaluate keeps its own default
-value and the render reports it once per material and socket. Anything else
-(another shader node, no output, nothing linked) becomes the neutral default
-material and is reported.
+Base Color, Metallic, Roughness, Emission (and the Color of Diffuse BSDF and
+Emission) may come from an Image Texture node (its Color output; float sockets
+take the colour's luminance, as Blender converts them), the Normal from a Normal
+Map node in tangent space whose Color is an Image Texture. Textures are looked
+up with the mesh's active render UV map; each image is loaded once per render
+(TextureTable). A socket linked to something Torrance can not evaluate keeps its
+own default value and the render reports it once per material and socket.
+Anything else (another shader node, no output, nothing linked) becomes the
+neutral default material and is reported.
 """
 
 import math
+import os
+
+import numpy as np
 
 # Cycles' surface for objects without material or with an empty slot is a 0.8 grey diffuse;
 # ours is the neutral Principled default.
@@ -126,27 +134,255 @@ def _node_label(node):
     return f"'{name}' ({node.bl_label})"
 
 
+# --------------------------------------------------------------------------------------------
+# Image textures
+
+# Blender 3.4's colour spaces read as the core's "sRGB" / "Non-Color" / "Linear" / "Raw";
+# the others are approximated (and reported): scene-linear ones as Linear, display ones as sRGB.
+_COLORSPACES = {'sRGB': "sRGB", 'Non-Color': "Non-Color", 'Linear': "Linear", 'Raw': "Raw"}
+_LINEAR_LIKE = {'Linear ACES', 'Linear ACEScg', 'XYZ'}
+
+
+def image_colorspace(image, reporter, from_pixels=False):
+    """The core's colorspace name for an image.
+
+    Image.pixels of a float image are already scene-linear (Blender converts float buffers on
+    load), so pixel data of float images is always "Linear"; byte pixels keep the encoding
+    named by the image's colour space, as do files (which the core decodes itself).
+    """
+    name = image.colorspace_settings.name
+    if from_pixels and image.is_float:
+        return "Linear"
+    mapped = _COLORSPACES.get(name)
+    if mapped is not None:
+        return mapped
+    guess = "Linear" if name in _LINEAR_LIKE or "linear" in name.lower() else "sRGB"
+    reporter.warning(f"Image '{image.name}': colour space '{name}' is not supported by "
+                     f"Torrance; read as {guess}")
+    return guess
+
+
+def image_file_path(image):
+    """The absolute path of a file image (relative and library paths resolved), or ''."""
+    import bpy
+    try:
+        path = image.filepath_from_user()
+    except Exception:
+        path = image.filepath
+    if not path:
+        return ""
+    try:
+        path = bpy.path.abspath(path, library=image.library)
+    except Exception:
+        path = bpy.path.abspath(path)
+    return os.path.normpath(path)
+
+
+def image_pixels(image):
+    """Image.pixels as float32 (h, w, channels), row 0 = bottom; None without pixels."""
+    w, h = (int(x) for x in image.size)
+    channels = int(image.channels)
+    if w <= 0 or h <= 0 or channels <= 0:
+        return None
+    buf = np.empty(w * h * channels, dtype=np.float32)
+    image.pixels.foreach_get(buf)
+    pixels = buf.reshape(h, w, channels)
+    if channels > 4:
+        pixels = pixels[:, :, :4]
+    return np.ascontiguousarray(pixels)
+
+
+class TextureTable:
+    """Adds each Blender image to a tc.Scene once per render; maps images to texture ids.
+
+    Files are read by the core (OpenImageIO); packed and generated images, and files the core
+    can not read, go through Image.pixels. An image that can not be loaded is reported once
+    and gives None: the socket then keeps its own value.
+    """
+
+    def __init__(self, tc_scene, reporter):
+        self.scene = tc_scene
+        self.reporter = reporter
+        self.ids = {}              # (image key, interpolation) -> texture id or None
+        self.seconds = 0.0
+        self.loaded = 0            # textures added to the scene
+
+    @staticmethod
+    def _key(image):
+        original = getattr(image, "original", None) or image
+        try:
+            return original.as_pointer()
+        except Exception:
+            return image.name_full
+
+    def texture(self, image, interpolation="Linear"):
+        """The texture id of a Blender image (None when it can not be used)."""
+        if image is None:
+            return None
+        if interpolation not in ("Linear", "Closest"):
+            interpolation = "Linear"
+        key = (self._key(image), interpolation)
+        if key in self.ids:
+            return self.ids[key]
+        import time
+        t0 = time.perf_counter()
+        try:
+            tid = self._load(image, interpolation)
+        except Exception as exc:          # never let an image break the render
+            self.reporter.warning(f"Image '{image.name}' could not be loaded ({exc}); "
+                                  f"using the socket's own value")
+            tid = None
+        self.seconds += time.perf_counter() - t0
+        self.ids[key] = tid
+        if tid is not None:
+            self.loaded += 1
+        return tid
+
+    def _load(self, image, interpolation):
+        source = image.source
+        if source not in {'FILE', 'GENERATED'}:
+            self.reporter.warning(f"Image '{image.name}': {source.lower()} images are not "
+                                  f"supported by Torrance; using the socket's own value")
+            return None
+        packed = image.packed_file is not None or len(getattr(image, "packed_files", ())) > 0
+        if source == 'FILE' and not packed and not image.is_dirty:   # dirty: painted, unsaved
+            path = image_file_path(image)
+            if not path or not os.path.isfile(path):
+                self.reporter.warning(f"Image '{image.name}': file '{path or image.filepath}' "
+                                      f"not found; using the socket's own value")
+                return None
+            colorspace = image_colorspace(image, self.reporter)
+            try:
+                return self.scene.add_texture_file(path, colorspace=colorspace,
+                                                   interpolation=interpolation)
+            except (RuntimeError, ValueError) as exc:
+                # A format Blender reads but OpenImageIO does not: take Blender's pixels.
+                print(f"Torrance: '{path}' via OpenImageIO failed ({exc}); using Image.pixels")
+        pixels = image_pixels(image)
+        if pixels is None:
+            self.reporter.warning(f"Image '{image.name}' has no pixels (missing or unreadable); "
+                                  f"using the socket's own value")
+            return None
+        if not np.isfinite(pixels).all():
+            pixels = np.nan_to_num(pixels, nan=0.0, posinf=0.0, neginf=0.0)
+            self.reporter.warning(f"Image '{image.name}': NaN/Inf pixels replaced by 0")
+        colorspace = image_colorspace(image, self.reporter, from_pixels=True)
+        return self.scene.add_texture(pixels, colorspace=colorspace, interpolation=interpolation)
+
+
 class MaterialReader:
     """Reads one Blender material into a dict of add_material() arguments."""
 
-    def __init__(self, reporter):
+    def __init__(self, reporter, textures=None):
         self.reporter = reporter
+        self.textures = textures         # TextureTable, or None: image textures unsupported
 
     def _socket_value(self, mat, node, name, fallback):
         """The value of input `name` of `node`: its default, or a constant node it is linked to."""
+        value, _texture = self._socket_input(mat, node, name, fallback, textures=False)
+        return value
+
+    def _socket_input(self, mat, node, name, fallback, textures=True):
+        """(value, texture id or -1) of input `name` of `node`.
+
+        The value is the socket's default or a constant node's; the texture, when `textures`,
+        comes from an Image Texture node linked to the socket (the value then stays the
+        socket's default, used when the image can not be loaded).
+        """
         socket = node.inputs.get(name)
         if socket is None:
-            return fallback
+            return fallback, -1
         source = _follow(socket)
-        if source is not None:
-            src_node = source.node
-            if src_node.type in _CONSTANT_NODES and not src_node.mute:
-                return source.default_value
+        if source is None:
+            return socket.default_value, -1
+        src_node = source.node
+        if src_node.mute:
             self.reporter.warning(
-                f"Material '{mat.name}': input '{name}' of {_node_label(node)} is linked to "
-                f"{_node_label(src_node)}, which Torrance does not support; using the "
-                f"socket's own value")
-        return socket.default_value
+                f"Material '{mat.name}': input '{name}' of {_node_label(node)} is linked to the "
+                f"muted node {_node_label(src_node)}; using the socket's own value")
+            return socket.default_value, -1
+        if src_node.type in _CONSTANT_NODES:
+            return source.default_value, -1
+        if textures and src_node.bl_idname == 'ShaderNodeTexImage':
+            tid = self._image_node(mat, src_node, source, f"input '{name}' of {_node_label(node)}")
+            return socket.default_value, (-1 if tid is None else tid)
+        self.reporter.warning(
+            f"Material '{mat.name}': input '{name}' of {_node_label(node)} is linked to "
+            f"{_node_label(src_node)}, which Torrance does not support; using the "
+            f"socket's own value")
+        return socket.default_value, -1
+
+    def _image_node(self, mat, node, output, where):
+        """The texture id of an Image Texture node feeding `where` (None when unusable)."""
+        what = f"Material '{mat.name}': {_node_label(node)} (feeding {where})"
+        if self.textures is None:
+            self.reporter.warning(f"{what}: image textures are not supported here; using the "
+                                  f"socket's own value")
+            return None
+        if output.identifier != "Color":
+            self.reporter.warning(f"{what}: only the Color output of an Image Texture is "
+                                  f"supported, not '{output.name}'; using the socket's own value")
+            return None
+        if node.image is None:
+            self.reporter.warning(f"{what} has no image; using the socket's own value")
+            return None
+        if node.projection != 'FLAT':
+            self.reporter.warning(f"{what}: {node.projection.lower()} projection is not supported; "
+                                  f"using flat UV mapping")
+        if node.extension != 'REPEAT':
+            self.reporter.warning(f"{what}: extension '{node.extension.title()}' is not supported; "
+                                  f"the image repeats")
+        interpolation = node.interpolation
+        if interpolation not in ("Linear", "Closest"):
+            self.reporter.info(f"{what}: '{interpolation}' interpolation is rendered as Linear")
+            interpolation = "Linear"
+        vector = node.inputs.get("Vector")
+        if vector is not None:
+            src = _follow(vector)
+            if src is not None and not _is_default_uv(src):
+                self.reporter.warning(
+                    f"{what}: the Vector input is linked to {_node_label(src.node)}, which Torrance "
+                    f"does not support; using the mesh's active render UV map")
+            elif src is not None and src.node.bl_idname == 'ShaderNodeUVMap' and src.node.uv_map:
+                self.reporter.info(
+                    f"{what}: {_node_label(src.node)} names UV map '{src.node.uv_map}'; Torrance "
+                    f"uses each mesh's active render UV map")
+        return self.textures.texture(node.image, interpolation)
+
+    def _normal_map(self, mat, node):
+        """(texture id, strength) of a Normal Map node feeding the Normal of `node`, or None."""
+        socket = node.inputs.get("Normal")
+        source = _follow(socket) if socket is not None else None
+        if source is None:
+            return None
+        src = source.node
+        where = f"Material '{mat.name}': input 'Normal' of {_node_label(node)}"
+        if src.mute or src.bl_idname != 'ShaderNodeNormalMap':
+            self.reporter.warning(f"{where} is linked to {_node_label(src)}, which Torrance does not "
+                                  f"support (only a tangent-space Normal Map); the normal is ignored")
+            return None
+        if src.space != 'TANGENT':
+            self.reporter.warning(f"{where}: {_node_label(src)} in {src.space.lower()} space is not "
+                                  f"supported (only tangent space); the normal is ignored")
+            return None
+        if src.uv_map:
+            self.reporter.info(f"{where}: {_node_label(src)} names UV map '{src.uv_map}'; Torrance "
+                               f"uses each mesh's active render UV map")
+        strength = _finite_or(self._socket_value(mat, src, "Strength", 1.0), 1.0)
+        color = src.inputs.get("Color")
+        color_source = _follow(color) if color is not None else None
+        if color_source is None:
+            return None                  # the default colour (0.5, 0.5, 1) is the unperturbed normal
+        if color_source.node.mute or color_source.node.bl_idname != 'ShaderNodeTexImage':
+            self.reporter.warning(f"{where}: the Color of {_node_label(src)} is linked to "
+                                  f"{_node_label(color_source.node)}, which Torrance does not "
+                                  f"support; the normal is ignored")
+            return None
+        tid = self._image_node(mat, color_source.node, color_source,
+                               f"input 'Color' of {_node_label(src)}")
+        if tid is None or strength == 0.0:
+            return None
+        return tid, strength
 
     def read(self, mat):
         """add_material() keyword arguments for a Blender material (None = default material)."""
@@ -196,14 +432,21 @@ class MaterialReader:
     def _principled(self, mat, node):
         d = DEFAULT_MATERIAL
         v = self._socket_value
+        t = self._socket_input
+        base, base_tex = t(mat, node, "Base Color", d['base_color'])
+        metallic, metallic_tex = t(mat, node, "Metallic", d['metallic'])
+        roughness, roughness_tex = t(mat, node, "Roughness", d['roughness'])
+        emission, emission_tex = t(mat, node, "Emission", d['emission'])
         out = dict(
-            base_color=_color3(v(mat, node, "Base Color", d['base_color']), d['base_color']),
-            metallic=_clamp(_finite_or(v(mat, node, "Metallic", d['metallic']), d['metallic']), 0.0, 1.0),
-            roughness=_clamp(_finite_or(v(mat, node, "Roughness", d['roughness']), d['roughness']), 0.0, 1.0),
+            base_color=_color3(base, d['base_color']),
+            metallic=_clamp(_finite_or(metallic, d['metallic']), 0.0, 1.0),
+            roughness=_clamp(_finite_or(roughness, d['roughness']), 0.0, 1.0),
             specular=max(0.0, _finite_or(v(mat, node, "Specular", d['specular']), d['specular'])),
-            emission=_color3(v(mat, node, "Emission", d['emission']), d['emission']),
+            emission=_color3(emission, d['emission']),
             emission_strength=_finite_or(v(mat, node, "Emission Strength", 1.0), 0.0),
             specular_tint=_clamp(_finite_or(v(mat, node, "Specular Tint", 0.0), 0.0), 0.0, 1.0),
+            base_color_texture=base_tex, metallic_texture=metallic_tex,
+            roughness_texture=roughness_tex, emission_texture=emission_tex,
         )
         ignored = []
         for name, neutral in _IGNORED_PRINCIPLED_INPUTS:
@@ -212,46 +455,83 @@ class MaterialReader:
                 continue
             if socket.is_linked or abs(_finite_or(socket.default_value, neutral) - neutral) > 1e-6:
                 ignored.append(name)
-        normal = node.inputs.get("Normal")
-        if normal is not None and _follow(normal) is not None:
-            ignored.append("Normal")
         if ignored:
             self.reporter.warning(
                 f"Material '{mat.name}': Torrance ignores the Principled BSDF input(s) "
                 f"{', '.join(ignored)}")
+        normal = self._normal_map(mat, node)
+        if normal is not None:
+            out['normal_texture'], out['normal_strength'] = normal
         return _sanitize(out)
 
     def _diffuse(self, mat, node):
         d = DEFAULT_MATERIAL
-        color = _color3(self._socket_value(mat, node, "Color", d['base_color']), d['base_color'])
-        return _sanitize(dict(d, base_color=color, metallic=0.0, specular=0.0, roughness=1.0))
+        color, tex = self._socket_input(mat, node, "Color", d['base_color'])
+        color = _color3(color, d['base_color'])
+        out = dict(d, base_color=color, metallic=0.0, specular=0.0, roughness=1.0,
+                   base_color_texture=tex)
+        normal = self._normal_map(mat, node)
+        if normal is not None:
+            out['normal_texture'], out['normal_strength'] = normal
+        return _sanitize(out)
 
     def _emission(self, mat, node):
         d = DEFAULT_MATERIAL
-        color = _color3(self._socket_value(mat, node, "Color", (1.0, 1.0, 1.0)), (1.0, 1.0, 1.0))
+        color, tex = self._socket_input(mat, node, "Color", (1.0, 1.0, 1.0))
+        color = _color3(color, (1.0, 1.0, 1.0))
         strength = _finite_or(self._socket_value(mat, node, "Strength", 1.0), 1.0)
         return _sanitize(dict(d, base_color=(0.0, 0.0, 0.0), metallic=0.0, specular=0.0,
-                              emission=color, emission_strength=strength))
+                              emission=color, emission_strength=strength,
+                              emission_texture=tex))
+
+
+def _is_default_uv(output):
+    """Whether a Vector input's source gives the default UVs (Texture Coordinate UV, UV Map
+    node without a named map)."""
+    node = output.node
+    if node.mute:
+        return False
+    if node.bl_idname == 'ShaderNodeTexCoord':
+        return output.identifier == "UV" and node.object is None
+    if node.bl_idname == 'ShaderNodeUVMap':
+        return not node.from_instancer
+    return False
 
 
 def _sanitize(m):
-    """Keep values in the ranges the core accepts."""
+    """Keep values in the ranges the core accepts; drop textures that can not matter."""
     m['base_color'] = tuple(_clamp(c, 0.0, 1.0) for c in m['base_color'])
     m['emission'] = tuple(max(0.0, c) for c in m['emission'])
     m['emission_strength'] = max(0.0, m['emission_strength'])
-    if m['emission_strength'] == 0.0 or max(m['emission']) == 0.0:
+    if m.get('emission_texture', -1) >= 0:
+        # The texture replaces the Emission colour; the core multiplies it by the strength.
+        if m['emission_strength'] == 0.0:
+            m['emission_texture'] = -1
+            m['emission'] = (0.0, 0.0, 0.0)
+    elif m['emission_strength'] == 0.0 or max(m['emission']) == 0.0:
         m['emission'] = (0.0, 0.0, 0.0)
         m['emission_strength'] = 0.0
     return m
 
 
+_TEXTURE_KEYS = ('base_color_texture', 'metallic_texture', 'roughness_texture',
+                 'emission_texture', 'normal_texture')
+
+
+def uses_textures(m):
+    """Whether add_material() arguments use any texture (the mesh then needs its UVs)."""
+    return any(m.get(k, -1) >= 0 for k in _TEXTURE_KEYS)
+
+
 class MaterialTable:
     """Adds each Blender material to a tc.Scene once; maps materials to indices."""
 
-    def __init__(self, tc_scene, reporter):
+    def __init__(self, tc_scene, reporter, textures=None):
         self.scene = tc_scene
-        self.reader = MaterialReader(reporter)
+        self.textures = textures if textures is not None else TextureTable(tc_scene, reporter)
+        self.reader = MaterialReader(reporter, self.textures)
         self.indices = {}
+        self.textured = set()     # indices of materials that use textures
         self._default = None
 
     def default_index(self):
@@ -265,6 +545,18 @@ class MaterialTable:
         key = mat.original.name_full if mat.original is not None else mat.name_full
         idx = self.indices.get(key)
         if idx is None:
-            idx = self.scene.add_material(**self.reader.read(mat))
+            args = self.reader.read(mat)
+            if uses_textures(args):
+                idx = self.scene.add_material(**args)
+                self.textured.add(idx)
+            else:
+                # Without textures only the plain arguments (the API before textures).
+                idx = self.scene.add_material(**{k: v for k, v in args.items()
+                                                 if k not in _TEXTURE_KEYS
+                                                 and k != 'normal_strength'})
             self.indices[key] = idx
         return idx
+
+    def needs_uvs(self, indices):
+        """Whether any of these material indices uses a texture."""
+        return any(i in self.textured for i in indices)
