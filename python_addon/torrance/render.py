@@ -6,7 +6,7 @@ import traceback
 
 import numpy as np
 
-from . import export
+from . import export, passes
 from .materials import Reporter
 
 _core = None
@@ -80,12 +80,16 @@ class _Session:
         self.stop_requested = False
         self.last_samples = 0
         self.passes = 0
+        self.missing_passes = []
 
     # -- pixels --------------------------------------------------------------------------
-    def _window_pixels(self, image):
-        """(h*w, 4) float32 rows bottom-up for the window, from the core's top-down image."""
+    def _window_pixels(self, image, channels=4):
+        """(h*w, channels) float32 rows bottom-up for the window, from the core's top-down
+        image (the full frame or the window already)."""
         img = np.asarray(image, dtype=np.float32)
-        if img.ndim != 3 or img.shape[2] < 4:
+        if img.ndim == 2:
+            img = img[:, :, None]
+        if img.ndim != 3 or img.shape[2] < channels:
             raise ValueError(f"unexpected image shape {img.shape} from the core")
         if img.shape[0] == self.h and img.shape[1] == self.w:
             win = img
@@ -95,17 +99,32 @@ class _Session:
         else:
             raise ValueError(f"the core returned a {img.shape[1]}x{img.shape[0]} image for a "
                              f"{self.w}x{self.h} window")
-        win = np.flipud(win[:, :, :4])
+        win = np.flipud(win[:, :, :channels])
         win = np.nan_to_num(win, nan=0.0, posinf=0.0, neginf=0.0)
-        return np.ascontiguousarray(win, dtype=np.float32).reshape(-1, 4)
+        return np.ascontiguousarray(win, dtype=np.float32).reshape(-1, channels)
 
     def begin(self):
         self.result = self.engine.begin_result(0, 0, self.w, self.h, layer=self.layer_name)
 
-    def write(self, image):
+    def write(self, image, extra_passes=None):
+        """Writes Combined and, given {tc name: array}, the other passes into the result."""
         pixels = self._window_pixels(image)
         for layer in self.result.layers:
             layer.passes["Combined"].rect.foreach_set(pixels)
+        if extra_passes:
+            missing = []
+            for core_name, data in extra_passes.items():
+                info = passes.BY_CORE_NAME.get(core_name)
+                if info is None:
+                    continue
+                layer = self.result.layers[0]
+                target = layer.passes.find_by_name(info.name, "")
+                if target is None:
+                    missing.append(info.name)
+                    continue
+                target.rect.foreach_set(self._window_pixels(data, target.channels))
+            if missing:
+                self.missing_passes = missing
         self.engine.update_result(self.result)
 
     def end(self):
@@ -164,6 +183,11 @@ def render(engine, depsgraph):
 def _render(engine, depsgraph, reporter):
     scene = depsgraph.scene
     ts = scene.torrance
+    try:                                  # material/world/light previews: capped samples, bounces
+        from . import preview
+        ts = preview.render_settings(engine, ts)
+    except ImportError:
+        pass
     rd = scene.render
     width, height = int(engine.resolution_x), int(engine.resolution_y)
     window = render_window(rd, width, height)
@@ -180,8 +204,20 @@ def _render(engine, depsgraph, reporter):
                                           should_stop=session.should_stop)
     print(f"Torrance: {stats}")
     last_stats.update(objects=stats.objects, triangles=stats.triangles, lights=stats.lights,
-                      materials=stats.materials, export_seconds=stats.seconds,
+                      materials=stats.materials, textures=stats.textures,
+                      export_seconds=stats.seconds,
                       object_names=list(stats.names))
+
+    view_layer = depsgraph.view_layer
+    wanted = passes.enabled_passes(view_layer)
+    available = {name for name, _channels in getattr(tc, "PASSES", ())}
+    core_passes = [p.core for p in wanted if p.core in available]
+    unsupported = passes.unsupported_enabled(view_layer)
+    if unsupported:
+        names = ", ".join(f.replace("use_pass_", "").replace("_", " ") for f in unsupported)
+        reporter.info(f"Torrance does not render these passes of view layer "
+                      f"'{view_layer.name}': {names}")
+    extra = {"passes": core_passes} if core_passes else {}
 
     threads = int(rd.threads) if rd.threads_mode == 'FIXED' else 0
     settings = tc.RenderSettings(
@@ -195,6 +231,7 @@ def _render(engine, depsgraph, reporter):
         window=None if (x0, y0, x1, y1) == (0, 0, width, height)
         else (x0, height - y1, x1, height - y0),
         threads=threads,
+        **extra,
     )
 
     session.begin()
@@ -210,7 +247,11 @@ def _render(engine, depsgraph, reporter):
         if nonfinite:
             reporter.warning(f"Torrance: {nonfinite} NaN/Inf pixel values in the result "
                              f"were replaced by 0")
-        session.write(image)
+        result_passes = dict(getattr(result, "passes", {}) or {}) if core_passes else {}
+        session.write(image, result_passes)
+        if session.missing_passes:
+            reporter.warning(f"Torrance: the render result has no pass(es) "
+                             f"{', '.join(session.missing_passes)}; they were not written")
     finally:
         session.end()
 
@@ -218,7 +259,8 @@ def _render(engine, depsgraph, reporter):
     if result.stopped:
         msg += " | stopped"
     last_stats.update(samples_done=int(result.samples_done), stopped=bool(result.stopped),
-                      seconds=float(result.seconds), passes=session.passes)
+                      seconds=float(result.seconds), passes=session.passes,
+                      render_passes=list(core_passes))
     engine.update_progress(1.0)
     engine.update_stats("", msg)
     print(msg)
