@@ -9,7 +9,7 @@ Run (as CTest does) in background Blender; it then
 3. reads the driver's results and screenshots and checks them.
 
 No X server (Xvfb missing or unable to start): prints SKIPPED and exits with 77 (CTest:
-SKIP_RETURN_CODE 77). Screenshots are kept in build/test_gui_viewport/ (or
+SKIP_RETURN_CODE 77). TORRANCE_XVFB names the Xvfb binary (default: Xvfb on PATH). Screenshots are kept in build/test_gui_viewport/ (or
 $TORRANCE_GUI_SHOTS) and their paths printed.
 """
 
@@ -325,9 +325,9 @@ def _build_scene(path):
 def _start_xvfb():
     """(process, display) of a fresh Xvfb, or (None, reason)."""
     import shutil
-    xvfb = shutil.which("Xvfb")
-    if xvfb is None:
-        return None, "Xvfb is not installed (Debian package: xvfb)"
+    xvfb = os.environ.get("TORRANCE_XVFB") or shutil.which("Xvfb")
+    if xvfb is None or not os.access(xvfb, os.X_OK):
+        return None, f"Xvfb is not installed (Debian package: xvfb){f' ({xvfb})' if xvfb else ''}"
     r, w = os.pipe()
     try:
         proc = subprocess.Popen(

@@ -22,6 +22,7 @@ can be driven without a window; the tests and scripts/bench_viewport do so.
 """
 
 import math
+import threading
 import time
 import traceback
 import weakref
@@ -48,9 +49,11 @@ def open_states():
 
 
 def running_renders():
-    """Viewport renders whose thread is still running."""
-    return sum(1 for r in list(_renders)
-               if r.session is not None and not r.stopped and r.session.running)
+    """Viewport renders whose thread is still running (or still stopping)."""
+    with _stopping_lock:
+        stopping = len(_stopping)
+    return stopping + sum(1 for r in list(_renders)
+                          if r.session is not None and not r.stopped and r.session.running)
 
 POLL_INTERVAL = 0.05            # seconds between polls of a running session (timer)
 UNLIMITED_SAMPLES = 1 << 16     # "0 = unlimited" viewport samples
@@ -207,14 +210,51 @@ def start_resolution(scene):
     return max(8, int(getattr(scene.torrance, "viewport_start_resolution", 128)))
 
 
-def coarse_size(width, height, start_res):
-    """The size of the first, coarse image: the longer side start_res pixels (never larger
-    than the view); None when the view is no larger than that."""
+def coarse_sizes(width, height, start_res):
+    """The sizes of the coarse images shown before the full resolution: the longer side
+    start_res pixels, then doubled while the image stays below 0.35 of the view's side
+    (about 1/8 of its pixels, so they add ~10 % to the first full-resolution image). Empty
+    when the view is not much larger than start_res."""
     longest = max(width, height)
-    if longest <= start_res * 1.5:
-        return None
-    f = start_res / float(longest)
-    return max(1, int(round(width * f))), max(1, int(round(height * f)))
+    sizes = []
+    side = float(start_res)
+    while side <= 0.35 * longest or (not sizes and side * 1.5 < longest):
+        f = side / float(longest)
+        sizes.append((max(1, int(round(width * f))), max(1, int(round(height * f)))))
+        side *= 2.0
+    return sizes
+
+
+# Sessions being stopped in the background (a stop waits for the core's next poll, up to
+# ~50 ms; the viewport does not wait for it).
+_stopping = set()
+_stopping_lock = threading.Lock()
+
+
+def _stop_async(session):
+    """Stops a RenderSession on a helper thread (the GIL is released while it waits)."""
+    def run():
+        try:
+            session.stop()
+        except Exception:
+            traceback.print_exc()
+        finally:
+            with _stopping_lock:
+                _stopping.discard(session)
+    with _stopping_lock:
+        _stopping.add(session)
+    threading.Thread(target=run, name="torrance-viewport-stop", daemon=True).start()
+
+
+def wait_stopped(timeout=5.0):
+    """Waits until the background stops finished (True) or the timeout passed."""
+    end = time.perf_counter() + timeout
+    while time.perf_counter() < end:
+        with _stopping_lock:
+            if not _stopping:
+                return True
+        time.sleep(0.002)
+    return False
 
 
 # --------------------------------------------------------------------------------------------
@@ -230,9 +270,8 @@ class ProgressiveRender:
         self.view = view
         self.settings = dict(settings)
         self.levels = []                       # (width, height, samples)
-        coarse = coarse_size(view.width, view.height, start_res)
-        if coarse is not None:
-            self.levels.append((coarse[0], coarse[1], 1))
+        for w, h in coarse_sizes(view.width, view.height, start_res):
+            self.levels.append((w, h, 1))
         self.levels.append((view.width, view.height, int(self.settings["samples"])))
         self.level = -1
         self.session = None
@@ -311,10 +350,14 @@ class ProgressiveRender:
                 self.done_seconds = time.perf_counter() - self.t_start
         return new
 
-    def stop(self):
+    def stop(self, wait=True):
+        """Stops the render; with wait=False the core's thread ends in the background."""
         self.stopped = True
         if self.session is not None:
-            self.session.stop()
+            if wait:
+                self.session.stop()
+            else:
+                _stop_async(self.session)
             self.session = None
 
     def stats(self):
@@ -657,15 +700,15 @@ class ViewportState:
     def refining(self):
         return self.render is not None and not self.render.finished
 
-    def stop_render(self):
+    def stop_render(self, wait=False):
         if self.render is not None:
-            self.render.stop()
+            self.render.stop(wait)
             self.render = None
             self.render_key = None
 
     def close(self):
         self.closed = True
-        self.stop_render()
+        self.stop_render(wait=True)
         self.tc_scene = None
         self.texture = None
         if self.timer is not None:
