@@ -79,6 +79,37 @@ def _driver(result_path, shots_dir):
         patch = pixels[wy - radius:wy + radius + 1, wx - radius:wx + radius + 1]
         return [float(v) for v in patch.reshape(-1, 3).mean(axis=0)]
 
+    def sphere_fit(pixels, region, channel):
+        """(centre x, centre y, radius) in region pixels of the pixels where colour `channel`
+        (0 red, 1 green) dominates: the rendered sphere's silhouette."""
+        sub = pixels[region.y:region.y + region.height, region.x:region.x + region.width]
+        main = sub[:, :, channel]
+        other = sub[:, :, 1 - channel]
+        mask = (main > 90) & (main > 2.0 * other) & (main > 2.0 * sub[:, :, 2])
+        ys, xs = np.nonzero(mask)
+        if len(xs) < 20:
+            return None
+        return (float(xs.mean()) + 0.5, float(ys.mean()) + 0.5, float(np.sqrt(len(xs) / np.pi)))
+
+    def check_silhouette(name, pixels, region, channel, radius_world=0.8):
+        """The rendered sphere sits where Blender projects it, at the projected size."""
+        fit = sphere_fit(pixels, region, channel)
+        win, area, space, region_ = view3d()
+        rv3d = space.region_3d
+        c = project(sphere_center)
+        right = rv3d.view_rotation @ Vector((1.0, 0.0, 0.0))
+        edge = project(tuple(Vector(sphere_center) + right * radius_world))
+        if fit is None or c is None or edge is None:
+            check(name, False, f"sphere not found (fit {fit}, projection {c})")
+            return
+        r_proj = float(np.hypot(edge[0] - c[0], edge[1] - c[1]))
+        dist = float(np.hypot(fit[0] - c[0], fit[1] - c[1]))
+        ok = dist < 2.0 + 0.03 * r_proj and abs(fit[2] - r_proj) < 2.0 + 0.05 * r_proj
+        results.setdefault("silhouettes", {})[name] = dict(
+            rendered=fit, projected=(c[0], c[1], r_proj))
+        check(name, ok, f"rendered centre ({fit[0]:.1f}, {fit[1]:.1f}) radius {fit[2]:.1f} px; "
+                        f"Blender projects ({c[0]:.1f}, {c[1]:.1f}) radius {r_proj:.1f} px")
+
     def project(point):
         win, area, space, region = view3d()
         co = view3d_utils.location_3d_to_region_2d(region, space.region_3d, point)
@@ -103,18 +134,19 @@ def _driver(result_path, shots_dir):
         yield 0.3                    # one more redraw so the newest image is on screen
 
     sphere_center = (0.0, 0.0, 0.8)
+    from mathutils import Euler, Vector
 
     def steps():
         win, area, space, region = view3d()
         scene = bpy.context.scene
         # Frame the scene: a fixed user view looking at the sphere.
         rv3d = space.region_3d
-        from mathutils import Euler, Vector
         rv3d.view_perspective = 'PERSP'
         rv3d.view_location = Vector((0.0, 0.0, 0.8))
         rv3d.view_rotation = Euler((1.25, 0.0, 0.0)).to_quaternion()
         rv3d.view_distance = 7.0
-        space.overlay.show_overlays = False            # clean pixels
+        space.overlay.show_overlays = False            # clean pixels: no overlays,
+        space.show_gizmo = False                       # no navigation gizmo
         yield 0.5
 
         # -- Solid mode: the sphere is the grey default viewport colour
@@ -141,6 +173,7 @@ def _driver(result_path, shots_dir):
         results["rendered_background"] = background
         check("rendered sphere is red", red[0] > 90 and red[0] > 2.0 * red[1] and red[0] > 2.0 * red[2],
               f"sphere pixel {red}, solid mode {solid}")
+        check_silhouette("user view: sphere where Blender projects it", pixels, region, 0)
         check("rendered differs from solid", abs(red[0] - solid[0]) + abs(red[1] - solid[1]) > 60,
               f"{red} vs {solid}")
         # World 0.18, Standard view transform: 118/255 when the viewport is colour managed.
@@ -202,6 +235,14 @@ def _driver(result_path, shots_dir):
               f"restarts {restarts} -> {st.get('restarts')}, builds {builds} -> {st.get('scene_builds')}")
         results["view_change_first_draw_seconds"] = st.get("first_draw_seconds")
 
+        # -- Orthographic user view (approximated by a distant perspective camera)
+        rv3d.view_perspective = 'ORTHO'
+        yield 0.3
+        yield from wait_samples(2, 60)
+        pixels = screenshot("4_ortho_view")
+        check_silhouette("orthographic view: sphere where Blender projects it", pixels, region, 1)
+        rv3d.view_perspective = 'PERSP'
+
         # -- Camera view: the scene camera with Blender's camera-view zoom and offset
         rv3d.view_perspective = 'CAMERA'
         rv3d.view_camera_zoom = 10.0
@@ -209,6 +250,8 @@ def _driver(result_path, shots_dir):
         yield 0.3
         yield from wait_samples(4, 60)
         pixels = screenshot("4_camera_view")
+        check_silhouette("camera view (zoom, offset): sphere where Blender projects it",
+                         pixels, region, 1)
         green = region_pixel(pixels, region, *project(sphere_center))
         results["camera_view_sphere"] = green
         check("camera view shows the sphere where Blender projects it",
@@ -430,7 +473,7 @@ def _main():
         print("driver errors:\n" + "\n".join(results["errors"]))
     if tracebacks:
         print(log_text[-6000:])
-    if failures or results["errors"] or tracebacks or len(results["checks"]) < 10:
+    if failures or results["errors"] or tracebacks or len(results["checks"]) < 15:
         print(f"FAILED: {len(failures)} failed checks, {len(results['errors'])} driver errors, "
               f"{tracebacks} Python tracebacks in the GUI log ({log_path})")
         sys.exit(1)
