@@ -257,6 +257,37 @@ def _driver(result_path, shots_dir):
         check("camera view shows the sphere where Blender projects it",
               green[1] > 70 and green[1] > 2.0 * green[0], f"sphere pixel {green}")
 
+        # -- The viewport's studio HDRI (Scene World off), as Cycles shows it
+        shading = space.shading
+        shading.use_scene_world_render = False
+        shading.use_scene_lights_render = False
+        shading.studio_light = 'forest.exr'
+        shading.studiolight_rotate_z = 1.0
+        shading.studiolight_background_alpha = 1.0
+        yield 0.3
+        yield from wait_samples(16, 90)
+        torrance_px = screenshot("4b_studio_torrance")
+        scene.render.engine = 'CYCLES'
+        yield 12.0                                        # Cycles: 16 samples, no stats to poll
+        cycles_px = screenshot("4c_studio_cycles")
+        scene.render.engine = 'TORRANCE'
+        sub = (slice(region.y, region.y + region.height), slice(region.x, region.x + region.width))
+        # 8x8 block means: the two renders' noise (16 samples each) averages out.
+        a, b = torrance_px[sub].mean(axis=2), cycles_px[sub].mean(axis=2)
+        hh, ww = (a.shape[0] // 8) * 8, (a.shape[1] // 8) * 8
+        blocks = lambda x: x[:hh, :ww].reshape(hh // 8, 8, ww // 8, 8).mean(axis=(1, 3))  # noqa: E731
+        diff = np.abs(blocks(a) - blocks(b))
+        ratio = float(a.mean() / max(b.mean(), 1e-6))
+        results["studio_vs_cycles"] = dict(mean=float(diff.mean()), p95=float(np.percentile(diff, 95)),
+                                           brightness_ratio=ratio)
+        check("studio HDRI world as Cycles shows it (rotation, strength)",
+              diff.mean() < 2.5 and np.percentile(diff, 95) < 8.0 and abs(ratio - 1) < 0.03,
+              f"|Torrance - Cycles| of 8x8 block means: mean {diff.mean():.2f}, 95th percentile "
+              f"{np.percentile(diff, 95):.2f} (of 255); brightness ratio {ratio:.4f}")
+        shading.use_scene_world_render = True
+        shading.use_scene_lights_render = True
+        yield 0.5
+
         # -- Leave Rendered mode: the engine is freed and its render thread stopped
         space.shading.type = 'SOLID'
         for _ in range(30):
@@ -356,6 +387,9 @@ def _build_scene(path):
     scene = tutil.clear_scene()
     tutil.setup_render(scene, width=160, height=120, samples=16)
     scene.torrance.viewport_samples = 16
+    scene.cycles.preview_samples = 16                 # for the studio HDRI comparison
+    scene.cycles.use_preview_denoising = False
+    scene.cycles.use_preview_adaptive_sampling = False
     red = tutil.principled("Red", base_color=(0.8, 0.02, 0.02))
     tutil.uv_sphere(scene, "Sphere", (0, 0, 0.8), 0.8, red)
     tutil.plane(scene, "Floor", 10, material=tutil.principled("Grey", base_color=(0.3, 0.3, 0.3)))
@@ -473,7 +507,7 @@ def _main():
         print("driver errors:\n" + "\n".join(results["errors"]))
     if tracebacks:
         print(log_text[-6000:])
-    if failures or results["errors"] or tracebacks or len(results["checks"]) < 15:
+    if failures or results["errors"] or tracebacks or len(results["checks"]) < 16:
         print(f"FAILED: {len(failures)} failed checks, {len(results['errors'])} driver errors, "
               f"{tracebacks} Python tracebacks in the GUI log ({log_path})")
         sys.exit(1)

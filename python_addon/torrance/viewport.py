@@ -610,7 +610,8 @@ def shading_options(context):
         except Exception:
             path = ""
         options.update(studio_path=path, studio_strength=float(shading.studiolight_intensity),
-                       studio_rotation=float(shading.studiolight_rotate_z))
+                       studio_rotation=float(shading.studiolight_rotate_z),
+                       studio_background=float(shading.studiolight_background_alpha) >= 0.5)
     return options
 
 
@@ -633,6 +634,8 @@ class ViewportState:
         self.reporter = Reporter(None)
         self.error = None
         self.restarts = 0
+        self.options = {}
+        self.opaque = False       # draw the image opaque (background pixels black)
         self.t_created = time.perf_counter()
         self.first_draw_seconds = None      # engine created -> first image drawn
         self.drawn_render = None            # the render whose image was drawn last
@@ -647,6 +650,7 @@ class ViewportState:
         new_scene = self.cache.sync(self.tc, depsgraph, reporter or self.reporter, options,
                                     force=force)
         self.options_key = okey
+        self.options = dict(options)
         if new_scene is None:
             return False
         self.stop_render()                  # the old scene is dropped with its session
@@ -730,6 +734,8 @@ class ViewportState:
         if self.texture is not None and self.texture_serial == (id(r), r.image_serial):
             return self.texture
         img = np.ascontiguousarray(r.image[::-1, :, :4], dtype=np.float32)  # row 0 = bottom
+        if self.opaque:
+            img[:, :, 3] = 1.0       # premultiplied RGBA over black
         h, w = img.shape[:2]
         buf = gpu.types.Buffer('FLOAT', h * w * 4, img.reshape(-1))
         self.texture = gpu.types.GPUTexture((w, h), format='RGBA32F', data=buf)
@@ -867,7 +873,15 @@ def view_draw(engine, context, depsgraph):
         except Exception:
             pass
         view = region_view(context, pixel_size)
-        if state.ensure_render(view, viewport_settings(scene), start_resolution(scene)):
+        settings = viewport_settings(scene)
+        state.opaque = False
+        options = state.options
+        if not options.get("use_scene_world", True) and not options.get("studio_background"):
+            # The studio HDRI lights the scene but is not seen behind it (Background Opacity
+            # below 0.5; Cycles shows Opacity x HDRI, black at the default 0).
+            state.opaque = not settings["transparent_background"]
+            settings["transparent_background"] = True
+        if state.ensure_render(view, settings, start_resolution(scene)):
             state.wait_first_image(FIRST_IMAGE_WAIT)
         state.poll()
         region = context.region
