@@ -144,10 +144,16 @@ def bias_metrics(img, ref, block=8):
                 block_p90=float(np.percentile(rel, 90)), block_max=float(rel.max()))
 
 
-def rel_mse(img, ref, eps=1e-2):
-    """Relative MSE: mean over pixels and channels of (img - ref)^2 / (ref^2 + eps)."""
+def rel_mse(img, ref, eps=1e-2, trim=0.0):
+    """Relative MSE: mean over pixels and channels of (img - ref)^2 / (ref^2 + eps).
+    trim: the fraction of pixels with the largest errors left out (e.g. 0.001 drops the worst
+    0.1 %: a firefly-robust variant)."""
     d = img[:, :, :3].astype(np.float64) - ref[:, :, :3]
-    return float(np.mean(d * d / (ref[:, :, :3].astype(np.float64) ** 2 + eps)))
+    per_pixel = np.mean(d * d / (ref[:, :, :3].astype(np.float64) ** 2 + eps), axis=2).ravel()
+    if trim > 0.0:
+        keep = per_pixel.size - int(round(trim * per_pixel.size))
+        per_pixel = np.partition(per_pixel, keep - 1)[:keep]
+    return float(per_pixel.mean())
 
 
 def tonemap(img):

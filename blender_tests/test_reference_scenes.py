@@ -17,7 +17,8 @@ beside it). The test fails on
   and the core every run, each must fail.
 
 Measurement mode (`TORRANCE_CMP_MEASURE=1`): renders every scene with several seeds and every
-fault on every scene, prints the table recorded in MEASURED, asserts nothing.
+fault on every scene, prints the figures recorded in MEASURED, asserts nothing.
+`TORRANCE_CMP_SCENES=water,mirror` limits a run to some scenes.
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_tests/test_reference_scenes.py
 """
@@ -27,6 +28,7 @@ import os
 import sys
 import time
 
+import bpy
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -35,30 +37,68 @@ import cmp_util as cu  # noqa: E402
 import tutil  # noqa: E402
 from tutil import check  # noqa: E402
 
-# Per scene: Torrance samples and thresholds (ratio band; block mean; block p90).
+# Per scene: Torrance samples and thresholds: mean ratio band (overall and per channel), block
+# mean, block p90. Set from MEASURED: about 1.6-3x above the worst of 4 seeds of the correct render
+# and below the figures of the faults that scene can see.
 CONFIG = {
-    "sphere_chart": dict(samples=256, ratio=(0.97, 1.03), block_mean=0.03, block_p90=0.06),
-    "grass_stone": dict(samples=128, ratio=(0.97, 1.03), block_mean=0.03, block_p90=0.06),
-    "water": dict(samples=512, ratio=(0.95, 1.05), block_mean=0.03, block_p90=0.06),
-    "suzanne": dict(samples=128, ratio=(0.97, 1.03), block_mean=0.03, block_p90=0.06),
-    "mirror": dict(samples=1024, ratio=(0.97, 1.03), block_mean=0.05, block_p90=0.06),
-    "interior": dict(samples=256, ratio=(0.97, 1.03), block_mean=0.04, block_p90=0.08),
+    "sphere_chart": dict(samples=256, ratio=(0.98, 1.02), block_mean=0.022, block_p90=0.045),
+    "grass_stone": dict(samples=128, ratio=(0.98, 1.02), block_mean=0.018, block_p90=0.045),
+    "water": dict(samples=512, ratio=(0.975, 1.03), block_mean=0.008, block_p90=0.006),
+    "suzanne": dict(samples=128, ratio=(0.99, 1.01), block_mean=0.006, block_p90=0.012),
+    "mirror": dict(samples=1024, ratio=(0.985, 1.015), block_mean=0.014, block_p90=0.055),
+    # Torrance is 1.4 % brighter here (known, see MEASURED): the band leaves room for it.
+    "interior": dict(samples=256, ratio=(0.975, 1.025), block_mean=0.025, block_p90=0.048),
 }
 SEED = 0
 
-# Faults re-run every time: (scene, fault, samples). Each must violate a threshold.
+# Faults re-run every time, at the scene's own sample count: (scene, fault). Each must fail.
 FAULTS = (
-    ("suzanne", "sun_x1.2", 64),
-    ("suzanne", "camera_shift_1px", 64),
-    ("suzanne", "flat_normals", 64),
-    ("sphere_chart", "paper_brdf", 128),
-    ("sphere_chart", "roughness_squared", 128),
-    ("mirror", "paper_brdf", 256),
-    ("interior", "point_x0.85", 128),
-    ("interior", "missing_bounce", 128),
+    ("suzanne", "sun_x0.85"),
+    ("suzanne", "point_x0.85"),
+    ("suzanne", "camera_shift_1px"),
+    ("suzanne", "roughness_squared"),
+    ("sphere_chart", "lens_x1.03"),
+    ("water", "flat_normals"),
+    ("mirror", "paper_brdf"),
 )
 
-MEASURED = """(filled in from a TORRANCE_CMP_MEASURE=1 run)"""
+MEASURED = """
+Measured 2026-11-22 with TORRANCE_CMP_MEASURE=1 (core 053e717, PRINCIPLED model).
+Correct renders, 4 seeds (ratio range; block mean and p90: the worst seed):
+    sphere_chart    256 spp: ratio 0.9973-1.0010, block mean 0.0109, p90 0.0268
+    grass_stone     128 spp: ratio 0.9992-0.9998, block mean 0.0050, p90 0.0136
+    water           512 spp: ratio 0.9972-1.0023, block mean 0.0013, p90 0.0015
+    suzanne         128 spp: ratio 1.0004-1.0006, block mean 0.0015, p90 0.0036
+    mirror         1024 spp: ratio 0.9969-1.0046, block mean 0.0084, p90 0.0340
+    interior        256 spp: ratio 1.0124-1.0144, block mean 0.0155, p90 0.0278
+Faults, seed 0, each scene at its own samples: ratio / block mean / p90, * = caught:
+                                     sphere_chart       grass_stone        water              suzanne            mirror             interior           
+    sun strength x 1.2               1.151/0.152/0.168* 1.087/0.077/0.168* 1.132/0.025/0.064* 1.096/0.083/0.136* 1.032/0.019/0.084* 1.014/0.015/0.026 
+    sun strength x 0.85              0.882/0.116/0.130* 0.933/0.058/0.131* 0.896/0.019/0.053* 0.929/0.062/0.102* 0.970/0.018/0.088* 1.014/0.015/0.026 
+    sun 3 degrees lower              0.995/0.032/0.059* 1.009/0.060/0.136* 1.663/0.081/0.065* 0.973/0.028/0.049* 0.995/0.009/0.040  1.014/0.015/0.026 
+    world strength x 1.5             1.113/0.118/0.145* 1.278/0.307/0.500* 1.160/0.418/0.500* 1.191/0.233/0.500* 1.407/0.446/0.500* 1.014/0.015/0.026 
+    point power x 0.85               0.997/0.011/0.024  0.999/0.004/0.013  0.997/0.001/0.001  0.980/0.018/0.049* 0.997/0.008/0.031  0.862/0.138/0.148*
+    point power x 4 pi               0.997/0.011/0.024  0.999/0.004/0.013  0.997/0.001/0.001  2.615/1.392/3.735* 0.997/0.008/0.031  12.746/11.749/11.899*
+    PAPER BRDF instead of PRINCIPLED 0.920/0.089/0.192* 0.798/0.179/0.371* 0.614/0.230/0.531* 0.923/0.071/0.133* 0.665/0.318/0.709* 0.837/0.172/0.235*
+    roughness squared                1.014/0.043/0.097* 1.226/0.344/0.496* 0.820/0.076/0.203* 0.983/0.018/0.042* 0.991/0.010/0.041* 1.006/0.016/0.036 
+    specular 0 (no dielectric lobe)  0.943/0.061/0.102* 0.547/0.397/0.868* 0.239/0.446/0.913* 0.946/0.053/0.123* 0.962/0.036/0.106* 0.910/0.102/0.149*
+    flat shading (no smooth normals) 0.995/0.011/0.025  0.999/0.011/0.032  1.045/0.011/0.017* 1.000/0.002/0.004  0.998/0.008/0.030  1.011/0.016/0.028 
+    shading normals negated          0.729/0.296/0.971* 0.491/0.533/0.954* 0.216/0.592/1.000* 0.841/0.152/0.842* 0.945/0.051/0.091* 0.923/0.072/0.123*
+    camera shifted 1 px              1.002/0.034/0.075* 0.998/0.039/0.104* 1.005/0.034/0.068* 1.002/0.009/0.030* 0.999/0.026/0.113* 1.015/0.030/0.061*
+    focal length x 1.03              0.995/0.044/0.071* 1.012/0.052/0.162* 1.039/0.040/0.097* 0.997/0.014/0.049* 1.003/0.015/0.065* 1.021/0.032/0.067*
+    one bounce less                  0.997/0.011/0.024  0.999/0.004/0.013  0.997/0.001/0.001  1.000/0.002/0.004  0.997/0.008/0.031  1.012/0.013/0.025 
+Notes:
+* interior: Torrance is 1.4 % brighter everywhere, for every seed (a bias, not noise). The cause is
+  the point light's radius (0.1 m, 0.35 m under the ceiling): Cycles 3.4 samples a disk facing the
+  shading point, whose on-axis irradiance is (P/4pi) 2d(1/d - 1/sqrt(d^2+r^2))/r^2, 6 % below
+  Torrance's P/(4 pi d^2) at the ceiling; the ceiling lights the room. With radius 0 the two agree
+  (direct only 1.0001, 12 bounces 1.0004). The ratio band leaves room for it until the core
+  matches Cycles' disk.
+* "one bounce less" is invisible at 8-12 bounces (< 0.3 %); test_cycles_agreement.py checks
+  bounce counts at 0 and 1. Flat shading matters only on the water (dense smooth meshes elsewhere).
+* Scenes without a point light (or sun) can not see its faults: those cells repeat the correct
+  render's figures.
+"""
 
 
 # ------------------------------------------------------------------------------------------
@@ -139,10 +179,6 @@ def _sun_lower(method, args, kwargs):
     return args, kwargs
 
 
-def _settings(fn):
-    return fn
-
-
 def _missing_bounce(s):
     s.max_bounces = max(0, s.max_bounces - 1)
 
@@ -208,7 +244,6 @@ class Scenes:
                 check(cl.finite(ref), f"{name}: NaN/Inf in the reference")
                 check(ref.shape[:2] == (cu.HEIGHT, cu.WIDTH), f"{name}: reference shape {ref.shape}")
                 self.refs[name] = (ref, meta)
-        import bpy
         return bpy.context.scene, self.mod, self.refs[name][0], self.refs[name][1]
 
 
@@ -238,7 +273,8 @@ def main():
     scenes = Scenes()
     problems, missed = [], []
     t0 = time.perf_counter()
-    names = os.environ.get("TORRANCE_CMP_SCENES", "").split(",") if os.environ.get("TORRANCE_CMP_SCENES") else list(cu.SCENES)
+    only = os.environ.get("TORRANCE_CMP_SCENES")
+    names = only.split(",") if only else list(cu.SCENES)
     for name in names:
         c = CONFIG[name]
         seeds = (SEED, 1, 2, 3) if measure else (SEED,)
@@ -255,10 +291,11 @@ def main():
 
     t1 = time.perf_counter()
     if measure:
-        faults = [(n, f, CONFIG[n]["samples"]) for n in names for f in FAULT_KINDS]
+        faults = [(n, f) for n in names for f in FAULT_KINDS]
     else:
         faults = [f for f in FAULTS if f[0] in names]
-    for name, fault, samples in faults:
+    for name, fault in faults:
+        samples = CONFIG[name]["samples"]
         img, seconds, ref = render(scenes, name, samples, SEED, fault)
         m = cl.bias_metrics(img, ref)
         bad = failures(name, m)
