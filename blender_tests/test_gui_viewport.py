@@ -315,6 +315,15 @@ def _driver(result_path, shots_dir):
             full.tag_redraw()
             yield 0.5
             screenshot_window(f"5_properties_{tab.lower()}")
+        sun = bpy.data.objects["Sun"]
+        for ob in bpy.context.view_layer.objects:
+            ob.select_set(ob == sun)
+        bpy.context.view_layer.objects.active = sun
+        full = next(a for a in win.screen.areas if a.type == 'PROPERTIES')
+        full.spaces.active.context = 'DATA'
+        full.tag_redraw()
+        yield 0.5
+        screenshot_window("5_properties_light")
         full = next(a for a in win.screen.areas if a.type == 'PROPERTIES')
         with bpy.context.temp_override(window=win, area=full,
                                        region=next(r for r in full.regions if r.type == 'WINDOW')):

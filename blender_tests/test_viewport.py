@@ -411,6 +411,25 @@ def test_messages(addon, scene):
     print("panel messages: material", msgs[0][1][:60], "...")
 
 
+def test_panels(addon):
+    """Blender's panels for materials, lights, world, camera and output are enabled, Torrance's
+    own are registered, and the replaced ones stay off (also via subclasses sharing the set)."""
+    enabled = ("MATERIAL_PT_preview", "EEVEE_MATERIAL_PT_context_material",
+               "EEVEE_MATERIAL_PT_surface", "DATA_PT_preview", "DATA_PT_context_light",
+               "EEVEE_WORLD_PT_surface", "WORLD_PT_context_world", "DATA_PT_camera",
+               "DATA_PT_lens", "RENDER_PT_format", "RENDER_PT_output",
+               "RENDER_PT_color_management")
+    for name in enabled:
+        check('TORRANCE' in getattr(bpy.types, name).COMPAT_ENGINES, f"{name} not enabled")
+    for name in ("DATA_PT_light", "DATA_PT_spot", "DATA_PT_area", "DATA_PT_falloff_curve"):
+        check('TORRANCE' not in getattr(bpy.types, name).COMPAT_ENGINES,
+              f"{name} enabled (Torrance draws its own)")
+    own = [cls.__name__ for cls in addon.ui.classes]
+    for name in own:
+        check(getattr(bpy.types, name, None) is not None, f"{name} not registered")
+    print(f"{len(enabled)} Blender panels checked; {len(own)} Torrance panels registered")
+
+
 def main():
     addon = tutil.addon()
     tv = addon.viewport
@@ -422,7 +441,8 @@ def main():
             ("restarts and mesh cache", test_restarts_and_cache, (tv, tc, scene)),
             ("studio world", test_studio_world, (tv, tc, scene)),
             ("preview policy", test_preview_policy, (addon, scene)),
-            ("panel messages", test_messages, (addon, scene))):
+            ("panel messages", test_messages, (addon, scene)),
+            ("panels", test_panels, (addon,))):
         t0 = time.perf_counter()
         print(f"--- {name}")
         fn(*args)

@@ -481,6 +481,10 @@ _patched_panels = []
 
 
 def _blender_panels():
+    # Subclasses share their parent's COMPAT_ENGINES set (NODE_DATA_PT_light is a
+    # DATA_PT_light): enabling one would enable an excluded panel too.
+    excluded_sets = {id(getattr(bpy.types, name).COMPAT_ENGINES)
+                     for name in _EXCLUDED_PANELS if hasattr(bpy.types, name)}
     panels = []
     for name in dir(bpy.types):
         cls = getattr(bpy.types, name, None)
@@ -489,7 +493,7 @@ def _blender_panels():
         compat = getattr(cls, "COMPAT_ENGINES", None)
         if not isinstance(compat, set):
             continue
-        if name.startswith("TORRANCE_"):
+        if name.startswith("TORRANCE_") or id(compat) in excluded_sets:
             continue
         if name in _EXTRA_PANELS:
             panels.append(cls)
