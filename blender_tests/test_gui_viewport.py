@@ -235,6 +235,22 @@ def _driver(result_path, shots_dir):
               f"restarts {restarts} -> {st.get('restarts')}, builds {builds} -> {st.get('scene_builds')}")
         results["view_change_first_draw_seconds"] = st.get("first_draw_seconds")
 
+        # -- A render border (Ctrl+B) through the middle of the sphere: only its left half
+        c = project(sphere_center)
+        space.use_render_border = True
+        space.render_border_min_x, space.render_border_max_x = 0.0, c[0] / region.width
+        space.render_border_min_y, space.render_border_max_y = 0.0, 1.0
+        yield 0.3
+        yield from wait_samples(2, 60)
+        pixels = screenshot("4a_render_border")
+        left = region_pixel(pixels, region, c[0] - 25, c[1])
+        right = region_pixel(pixels, region, c[0] + 25, c[1])
+        check("render border: rendered inside only",
+              left[1] > 2 * left[0] and not right[1] > 1.5 * right[0],
+              f"inside {left}, outside {right}")
+        space.use_render_border = False
+        yield 0.3
+
         # -- Orthographic user view (approximated by a distant perspective camera)
         rv3d.view_perspective = 'ORTHO'
         yield 0.3
@@ -516,7 +532,7 @@ def _main():
         print("driver errors:\n" + "\n".join(results["errors"]))
     if tracebacks:
         print(log_text[-6000:])
-    if failures or results["errors"] or tracebacks or len(results["checks"]) < 16:
+    if failures or results["errors"] or tracebacks or len(results["checks"]) < 17:
         print(f"FAILED: {len(failures)} failed checks, {len(results['errors'])} driver errors, "
               f"{tracebacks} Python tracebacks in the GUI log ({log_path})")
         sys.exit(1)

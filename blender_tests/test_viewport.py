@@ -235,6 +235,22 @@ def test_viewport_matches_final_render(tv, tc, scene):
     check(state.render.samples_done == settings["samples"], "all samples rendered")
     check(st["first_image_seconds"] < 2.0, "coarse image within 2 s")
     img_view = state.render.image
+
+    # A render border (Ctrl+B): only those pixels, the same values as the full image.
+    x0, y0, x1, y1 = 50, 30, 150, 100                   # y from the bottom
+    state.ensure_render(camera_view(tv, scene, w, h).with_window((x0, y0, x1, y1)), settings,
+                        start_res=16)
+    levels = wait_done(state)
+    crop = img_view[h - y1:h - y0, x0:x1]
+    diff = float(np.abs(state.render.image - crop).max())
+    print(f"render border {x1 - x0}x{y1 - y0}: images {levels}; window "
+          f"{state.render.image_window}; max difference to the full image's crop {diff:.2e}")
+    check(levels[-1][1] == (y1 - y0, x1 - x0), "the border's size")
+    check(levels[0][1][1] < x1 - x0, "a coarse image of the border first")
+    check(diff < 1e-5, f"border pixels differ from the full image's by {diff}")
+    fx = state.render.image_window
+    check(np.allclose(fx, (x0 / w, y0 / h, x1 / w, y1 / h)), f"drawn where it belongs: {fx}")
+
     img_final, _ = tutil.render(scene, tutil.tempdir())
     diff = float(np.abs(img_view - img_final).max())
     print(f"viewport image vs final render (same view, {settings['samples']} samples): "

@@ -131,17 +131,35 @@ def camera_from_matrices(view_matrix, window_matrix, width, height, is_perspecti
 
 
 class View:
-    """What the render depends on from the 3D view: the image size and the camera."""
-    __slots__ = ("width", "height", "camera", "key")
+    """What the render depends on from the 3D view: the image size, the camera, and the
+    render border: window = None (everything) or (x0, y0, x1, y1), pixels [x0, x1) x [y0, y1)
+    with y counted from the BOTTOM."""
+    __slots__ = ("width", "height", "camera", "window", "key")
 
-    def __init__(self, width, height, camera):
+    def __init__(self, width, height, camera, window=None):
         self.width = int(width)
         self.height = int(height)
         self.camera = camera
+        if window is not None:
+            x0, y0, x1, y1 = (int(v) for v in window)
+            x0, x1 = max(0, min(x0, self.width)), max(0, min(x1, self.width))
+            y0, y1 = max(0, min(y0, self.height)), max(0, min(y1, self.height))
+            window = (x0, y0, x1, y1)
+            if window == (0, 0, self.width, self.height):
+                window = None
+        self.window = window
         m = camera["matrix"]
         self.key = (self.width, self.height, tuple(np.round(m, 9).ravel().tolist()),
                     tuple((k, round(float(x), 9)) for k, x in sorted(camera.items())
-                          if k not in ("matrix", "sensor_fit")), camera["sensor_fit"])
+                          if k not in ("matrix", "sensor_fit")), camera["sensor_fit"], window)
+
+    @property
+    def empty(self):
+        w = self.window
+        return w is not None and (w[2] <= w[0] or w[3] <= w[1])
+
+    def with_window(self, window):
+        return View(self.width, self.height, self.camera, window)
 
     def __eq__(self, other):
         return isinstance(other, View) and self.key == other.key
@@ -182,9 +200,71 @@ def region_view(context, pixel_size=1):
     width = max(1, region.width // pixel_size)
     height = max(1, region.height // pixel_size)
     perspective = bool(rv3d.is_perspective)
-    return View.from_matrices(rv3d.view_matrix, rv3d.window_matrix, width, height,
+    view = View.from_matrices(rv3d.view_matrix, rv3d.window_matrix, width, height,
                               perspective, float(rv3d.view_distance),
                               view_clip(context) if perspective else None)
+    border = region_border(context)
+    if border is not None:
+        sx, sy = width / float(region.width), height / float(region.height)
+        x0, y0, x1, y1 = border
+        view = view.with_window((int(math.floor(x0 * sx)), int(math.floor(y0 * sy)),
+                                 int(math.ceil(x1 * sx)), int(math.ceil(y1 * sy))))
+    return view
+
+
+def region_border(context):
+    """The render border of the 3D view in region pixels (x0, y0, x1, y1; y from the bottom),
+    or None: the view's own border (Ctrl+B) in a user view, the scene's render border inside
+    the camera frame in camera view (as Cycles)."""
+    space = getattr(context, "space_data", None)
+    region = context.region
+    rv3d = context.region_data
+    if space is None or rv3d is None:
+        return None
+    if rv3d.view_perspective != 'CAMERA':
+        if not space.use_render_border:
+            return None
+        fx0, fy0, fx1, fy1 = 0.0, 0.0, float(region.width), float(region.height)
+        bx = (space.render_border_min_x, space.render_border_max_x)
+        by = (space.render_border_min_y, space.render_border_max_y)
+    else:
+        scene = context.scene
+        rd = scene.render
+        if not rd.use_border:
+            return None
+        frame = camera_frame(context)
+        if frame is None:
+            return None
+        fx0, fy0, fx1, fy1 = frame
+        bx = (rd.border_min_x, rd.border_max_x)
+        by = (rd.border_min_y, rd.border_max_y)
+    x0, x1 = fx0 + bx[0] * (fx1 - fx0), fx0 + bx[1] * (fx1 - fx0)
+    y0, y1 = fy0 + by[0] * (fy1 - fy0), fy0 + by[1] * (fy1 - fy0)
+    x0, x1 = max(0.0, x0), min(float(region.width), x1)
+    y0, y1 = max(0.0, y0), min(float(region.height), y1)
+    return x0, y0, max(x0, x1), max(y0, y1)
+
+
+def camera_frame(context):
+    """The camera frame (as drawn in camera view) in region pixels: (x0, y0, x1, y1)."""
+    space = context.space_data
+    rv3d = context.region_data
+    region = context.region
+    scene = context.scene
+    cam = space.camera if (space.use_local_camera and space.camera) else scene.camera
+    if cam is None or cam.type != 'CAMERA':
+        return None
+    corners = cam.data.view_frame(scene=scene)
+    mw = cam.matrix_world
+    pm = rv3d.perspective_matrix
+    xs, ys = [], []
+    for c in corners:
+        clip = pm @ (mw @ c).to_4d()
+        if clip.w <= 0.0:
+            return None
+        xs.append((clip.x / clip.w + 1.0) * 0.5 * region.width)
+        ys.append((clip.y / clip.w + 1.0) * 0.5 * region.height)
+    return min(xs), min(ys), max(xs), max(ys)
 
 
 # --------------------------------------------------------------------------------------------
@@ -269,10 +349,14 @@ class ProgressiveRender:
         self.scene = tc_scene
         self.view = view
         self.settings = dict(settings)
-        self.levels = []                       # (width, height, samples)
-        for w, h in coarse_sizes(view.width, view.height, start_res):
-            self.levels.append((w, h, 1))
-        self.levels.append((view.width, view.height, int(self.settings["samples"])))
+        self.levels = []                       # (width, height, samples, window or None)
+        win = view.window
+        ww, wh = (win[2] - win[0], win[3] - win[1]) if win else (view.width, view.height)
+        for w, h in coarse_sizes(ww, wh, start_res):
+            f = w / float(ww)
+            self.levels.append((max(1, int(round(view.width * f))),
+                                max(1, int(round(view.height * f))), 1, self._scaled(win, f)))
+        self.levels.append((view.width, view.height, int(self.settings["samples"]), win))
         self.level = -1
         self.session = None
         self.version = 0
@@ -290,9 +374,31 @@ class ProgressiveRender:
         self.stopped = False
         self._drained = False
 
+    def _scaled(self, window, f):
+        """The window at a level f times the view's size (at least a pixel)."""
+        if window is None:
+            return None
+        w = max(1, int(round(self.view.width * f)))
+        h = max(1, int(round(self.view.height * f)))
+        x0 = min(int(math.floor(window[0] * f)), w - 1)
+        y0 = min(int(math.floor(window[1] * f)), h - 1)
+        x1 = max(min(int(math.ceil(window[2] * f)), w), x0 + 1)
+        y1 = max(min(int(math.ceil(window[3] * f)), h), y0 + 1)
+        return (x0, y0, x1, y1)
+
     @property
     def samples_total(self):
         return self.levels[-1][2]
+
+    @property
+    def image_window(self):
+        """Where the current image goes, as fractions of the view: (x0, y0, x1, y1), bottom-up."""
+        if self.image_level < 0:
+            return (0.0, 0.0, 1.0, 1.0)
+        w, h, _samples, win = self.levels[self.image_level]
+        if win is None:
+            return (0.0, 0.0, 1.0, 1.0)
+        return (win[0] / w, win[1] / h, win[2] / w, win[3] / h)
 
     @property
     def finished(self):
@@ -309,9 +415,11 @@ class ProgressiveRender:
 
     def _start_level(self, level):
         self.level = level
-        w, h, samples = self.levels[level]
+        w, h, samples, win = self.levels[level]
         kw = dict(self.settings)
         kw.update(width=int(w), height=int(h), samples=int(samples))
+        if win is not None:               # the core counts rows from the top
+            kw["window"] = (win[0], h - win[3], win[2], h - win[1])
         self.scene.set_camera(**self.view.camera)
         self.session = self.tc.RenderSession(self.scene, self.tc.RenderSettings(**kw))
         self.version = 0
@@ -328,7 +436,11 @@ class ProgressiveRender:
         got = session.latest(self.version)
         if got is not None:
             image, done, self.version = got
-            self.image = np.asarray(image)
+            image = np.asarray(image)
+            w, h, _samples, win = self.levels[self.level]
+            if win is not None and image.shape[:2] == (h, w):     # a full frame: crop it
+                image = image[h - win[3]:h - win[1], win[0]:win[2]]
+            self.image = image
             self.samples_done = int(done)
             self.image_level = self.level
             self.image_serial += 1
@@ -361,8 +473,8 @@ class ProgressiveRender:
             self.session = None
 
     def stats(self):
-        return dict(width=self.view.width, height=self.view.height,
-                    levels=[tuple(level) for level in self.levels], level=self.level,
+        return dict(width=self.view.width, height=self.view.height, window=self.view.window,
+                    levels=[tuple(level[:3]) for level in self.levels], level=self.level,
                     samples_done=self.samples_done, samples_total=self.samples_total,
                     first_image_seconds=self.first_image_seconds,
                     full_image_seconds=self.full_image_seconds,
@@ -663,6 +775,10 @@ class ViewportState:
         """Restarts the progressive render if the scene, view or settings changed."""
         if self.tc_scene is None:
             return False
+        if view.empty:                    # an empty render border: nothing to render
+            self.stop_render()
+            self.texture = None
+            return False
         key = (self.scene_serial, view.key, tuple(sorted(settings.items())), start_res)
         if self.render is not None and key == self.render_key:
             return False
@@ -748,9 +864,13 @@ class ViewportState:
         texture = self.upload()
         if texture is None:
             return False
+        x0, y0, x1, y1 = (0.0, 0.0, 1.0, 1.0)
+        if self.render is not None:
+            x0, y0, x1, y1 = self.render.image_window
         gpu.state.blend_set('ALPHA_PREMULT')
         try:
-            draw_texture_2d(texture, (0, 0), width, height)
+            draw_texture_2d(texture, (x0 * width, y0 * height), (x1 - x0) * width,
+                            (y1 - y0) * height)
         finally:
             gpu.state.blend_set('NONE')
         self.note_drawn()
