@@ -982,8 +982,11 @@ def view_draw(engine, context, depsgraph):
     try:
         state = _state(engine)
         scene = depsgraph.scene
-        if state.tc_scene is None:
-            state.sync(depsgraph, shading_options(context))
+        options = shading_options(context)
+        if state.tc_scene is None or options != state.options:
+            # First draw, or the view's shading choices (scene world/lights, studio HDRI)
+            # changed, which need not come with a depsgraph update.
+            state.sync(depsgraph, options)
         if state.error:
             _status(engine, f"Torrance: {state.error}")
             return
