@@ -472,8 +472,9 @@ def _main():
     os.makedirs(shots, exist_ok=True)
     blend = os.path.join(shots, "scene.blend")
     result_path = os.path.join(shots, "results.json")
-    if os.path.exists(result_path):
-        os.remove(result_path)
+    for name in os.listdir(shots):                  # no stale results or screenshots
+        if name.endswith(".png") or name == "results.json":
+            os.remove(os.path.join(shots, name))
     _build_scene(blend)
 
     xvfb, display = _start_xvfb()
