@@ -47,6 +47,35 @@ Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& dir) {
   return p + (glm::dot(ng, dir) >= 0.0f ? eps : -eps) * ng;
 }
 
+// Whether the light sample is blocked. The shadow ray runs from the offset origin to the sampled
+// point on the light, stopping short of it by the same kind of offset, so that a light close to
+// and nearly parallel with the surface is neither missed nor self-occluding.
+bool shadowed(const Scene& scene, const Vec3& p, const Vec3& ng, const LightSample& ls) {
+  const Vec3 origin = offset_origin(p, ng, ls.wi);
+  if (std::isinf(ls.distance)) return scene.occluded(origin, ls.wi, 0.0f, kInfinity);
+  const Vec3 target = p + ls.wi * ls.distance;
+  const Vec3 d = target - origin;
+  const float len = glm::length(d);
+  const float end_offset = 2e-5f * std::max(1.0f, std::max(std::abs(target.x), std::max(std::abs(target.y),
+                                                                                          std::abs(target.z))));
+  const float tmax = len * (1.0f - 1e-4f) - end_offset;
+  return tmax > 0.0f && scene.occluded(origin, d / len, 0.0f, tmax);
+}
+
+// Cycles 3.4's smoothing of diffuse light on bump- or normal-mapped surfaces near the terminator
+// ("Taming the Shadow Terminator", Chiang et al. 2019): n_smooth is the interpolated normal,
+// n_mapped the normal-mapped one, wi the light direction.
+float bump_shadowing(Vec3 n_smooth, const Vec3& n_mapped, const Vec3& wi) {
+  const float cos_mapped = glm::dot(n_mapped, wi);
+  if (cos_mapped < 0.0f) n_smooth = -n_smooth;
+  const float denom = cos_mapped * glm::dot(n_smooth, n_mapped);
+  if (denom == 0.0f) return 1.0f;
+  const float g = glm::dot(n_smooth, wi) / denom;
+  if (g >= 1.0f) return 1.0f;
+  if (g < 0.0f) return 0.0f;
+  return g + g * g - g * g * g;
+}
+
 struct PathContext {
   const Scene& scene;
   const Lights& lights;
@@ -117,10 +146,13 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     // Orient the frame towards the viewer (two-sided surfaces) and keep reflections valid.
     const Vec3 wo_world = -ray.dir;
     Vec3 ng = hit.geometric_normal;
-    Vec3 ns = textured ? ctx.scene.normal_mapped(hit.material, hit, hit.shading_normal) : hit.shading_normal;
+    Vec3 n_smooth = hit.shading_normal;
+    Vec3 ns = textured ? ctx.scene.normal_mapped(hit.material, hit, n_smooth) : n_smooth;
+    const bool normal_mapped = textured && ns != n_smooth;
     if (glm::dot(ng, wo_world) < 0.0f) {
       ng = -ng;
       ns = -ns;
+      n_smooth = -n_smooth;
     }
     ns = valid_shading_normal(ng, ns, wo_world);
 
@@ -150,11 +182,10 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
       const LightSample ls = lights.sample(choice.index, hit.position, ns, Vec2(u_light.y, u_light.z));
       if (ls.valid() && glm::dot(ls.wi, ng) > 0.0f) {
         const Vec3 wi = frame.to_local(ls.wi);
-        const LobeEval f = bsdf.eval_lobes(wo, wi);
+        LobeEval f = bsdf.eval_lobes(wo, wi);
+        if (normal_mapped) f.diffuse *= bump_shadowing(n_smooth, ns, ls.wi);
         if (max_component(f.total()) > 0.0f) {
-          const Vec3 origin = offset_origin(hit.position, ng, ls.wi);
-          const float tmax = std::isinf(ls.distance) ? kInfinity : ls.distance * (1.0f - 1e-4f);
-          if (!ctx.scene.occluded(origin, ls.wi, 0.0f, tmax)) {
+          if (!shadowed(ctx.scene, hit.position, ng, ls)) {
             const float mis = ls.pdf > 0.0f ? power_heuristic(choice.probability * ls.pdf, bsdf.pdf(wo, wi)) : 1.0f;
             const Vec3 light = throughput * ls.weight * (mis / choice.probability);
             if (bounce == 0) {
@@ -169,10 +200,15 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     }
 
     // Continue the path by sampling the BSDF.
-    const BsdfSample bs = bsdf.sample(wo, u_bsdf.x, Vec2(u_bsdf.y, u_bsdf.z));
+    BsdfSample bs = bsdf.sample(wo, u_bsdf.x, Vec2(u_bsdf.y, u_bsdf.z));
     if (!bs.valid()) break;
     const Vec3 wi_world = frame.to_world(bs.wi);
     if (glm::dot(wi_world, ng) <= 0.0f) break;  // below the geometric surface: no transmission
+    if (normal_mapped && !bs.is_delta) {
+      LobeEval f = bsdf.eval_lobes(wo, bs.wi);
+      f.diffuse *= bump_shadowing(n_smooth, ns, wi_world);
+      bs.weight = f.total() / bs.pdf;
+    }
     throughput *= bs.weight;
     if (kSplitLobes && bounce == 0 && !bs.is_delta) {
       const LobeEval f = bsdf.eval_lobes(wo, bs.wi);

@@ -292,3 +292,52 @@ TEST(Render, EmissiveMeshesAreLightsWithMis) {
 
 }  // namespace
 }  // namespace torrance
+
+namespace torrance {
+namespace {
+
+// A light close to and nearly parallel with the lit surface: an emitter 0.1 m above the floor,
+// whose nearest edge is 0.2 m from the shaded point. Shadow rays must neither stop short of it
+// nor hit it early; both the emissive mesh and the equivalent area light give the quadrature.
+TEST(Render, LightsCloseToAndGrazingTheSurface) {
+  const float L = 10.0f, height = 0.1f, cx = -0.5f, half = 0.3f;
+  double irradiance = 0.0;  // midpoint rule over the emitter: L cos_floor cos_light / d^2 dA
+  const int n = 300;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double x = cx - half + 2 * half * (i + 0.5) / n, y = -half + 2 * half * (j + 0.5) / n;
+      const double d2 = x * x + y * y + height * height;
+      irradiance += L * height * height / (d2 * d2) * (4.0 * half * half / (n * n));
+    }
+  const float expected = float(irradiance / kPi);
+
+  auto narrow = [](Scene& scene) {  // +-2 mm: the irradiance changes fast with position here
+    CameraParams c = scene.camera();
+    c.lens_mm = 50000.0f;
+    scene.set_camera(c);
+  };
+  Scene mesh_scene;
+  build_plane(mesh_scene, lambert(1.0f));
+  narrow(mesh_scene);
+  Material emitter;
+  emitter.base_color = Vec3(0.0f);
+  emitter.specular = 0.0f;
+  emitter.emission = Vec3(L);
+  const uint32_t id = mesh_scene.add_material(emitter);
+  const float quad[] = {cx - half, -half, height, cx + half, -half, height,
+                        cx + half, half,  height, cx - half, half,  height};
+  const int64_t tris[] = {0, 1, 2, 0, 2, 3};
+  const int64_t mats[] = {id, id};
+  mesh_scene.add_mesh(quad, 4, tris, 2, nullptr, mats);
+  EXPECT_NEAR(mean_rgb(render(mesh_scene, small(64)).image).g, expected, 0.02f * expected);
+
+  Scene area_scene;
+  build_plane(area_scene, lambert(1.0f));
+  narrow(area_scene);
+  area_scene.lights().add_area(Vec3(cx, 0, height), Vec3(2 * half, 0, 0), Vec3(0, 2 * half, 0), Vec3(0, 0, -1), false,
+                               4.0f * (2 * half) * (2 * half) * L, Vec3(1.0f), kPi);
+  EXPECT_NEAR(mean_rgb(render(area_scene, small(64)).image).g, expected, 0.02f * expected);
+}
+
+}  // namespace
+}  // namespace torrance
