@@ -17,7 +17,8 @@ bl_info = {
 # Support reloading the add-on (F3 > Reload Scripts).
 if "bpy" in locals():
     import importlib
-    for _name in ("materials", "export", "render", "properties", "engine", "ui"):
+    for _name in ("materials", "export", "passes", "preview", "viewport", "render", "properties",
+                  "engine", "ui"):
         if _name in locals():
             importlib.reload(locals()[_name])
 
@@ -26,6 +27,9 @@ import bpy
 from . import (
     materials,
     export,
+    passes,
+    preview,
+    viewport,
     render,
     properties,
     engine,

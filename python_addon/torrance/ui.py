@@ -443,7 +443,27 @@ class TORRANCE_CAMERA_PT_compatibility(TorrancePanel, Panel):
                   ok_text="Torrance renders this camera as it is")
 
 
+class TORRANCE_VIEW_LAYER_PT_passes(TorrancePanel, Panel):
+    bl_label = "Passes"
+    bl_context = "view_layer"
+
+    def draw(self, context):
+        from . import passes
+        layout = _split(self.layout)
+        view_layer = context.view_layer
+        col = layout.column(heading="Include", align=True)
+        for p in passes.PASSES:
+            col.prop(view_layer, p.flag, text=p.label)
+        layout.label(text="Light passes include the surface colour: they sum to Combined",
+                     icon='INFO')
+        unsupported = passes.unsupported_enabled(view_layer)
+        if unsupported:
+            layout.label(text="Not rendered by Torrance: " +
+                         ", ".join(f.replace("use_pass_", "") for f in unsupported), icon='ERROR')
+
+
 classes = (
+    TORRANCE_VIEW_LAYER_PT_passes,
     TORRANCE_RENDER_PT_sampling,
     TORRANCE_RENDER_PT_sampling_viewport,
     TORRANCE_RENDER_PT_sampling_render,
