@@ -141,6 +141,8 @@ void init_render(py::module_& m) {
       .def("start", &RenderSession::start)
       .def("stop", &RenderSession::stop, py::call_guard<py::gil_scoped_release>(),
            "Stops the render and waits for its thread (well under a second).")
+      .def("request_stop", &RenderSession::request_stop,
+           "Asks the render to stop without waiting; stop() (or dropping the session) joins it.")
       .def(
           "latest",
           [](const RenderSession& s, uint64_t since_version) -> py::object {

@@ -38,6 +38,8 @@ void RenderSession::start() {
   });
 }
 
+void RenderSession::request_stop() { stop_ = true; }
+
 void RenderSession::stop() {
   stop_ = true;
   if (thread_.joinable()) thread_.join();

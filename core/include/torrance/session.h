@@ -20,7 +20,8 @@ class RenderSession {
   RenderSession& operator=(const RenderSession&) = delete;
 
   void start();  // no-op if already started
-  void stop();   // asks the render to stop and waits for it (well under a second)
+  void stop();          // asks the render to stop and waits for it (well under a second)
+  void request_stop();  // asks the render to stop and returns at once (stop() or the destructor joins)
 
   // The newest image if it changed since the last call (version increases with every pass).
   bool latest(Image& image, int& samples_done, uint64_t& version) const;

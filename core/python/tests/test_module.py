@@ -328,6 +328,8 @@ def test_render_session_runs_in_background_and_stops_promptly():
     assert session.latest(version) is None or session.latest(version)[2] > version
     assert session.running
     t = time.monotonic()
+    session.request_stop()
+    assert time.monotonic() - t < 0.01  # does not wait
     session.stop()
     assert time.monotonic() - t < 1.0 and not session.running and session.error == ""
 
