@@ -27,22 +27,6 @@ Vec3 unit_direction(const Vec3& d, const char* what) {
   return d / len;
 }
 
-// Ray/sphere intersection for a ray starting outside the sphere; returns the entry distance or -1.
-float sphere_entry(const Vec3& origin, const Vec3& dir, const Vec3& centre, float radius) {
-  const Vec3 oc = centre - origin;
-  const float b = glm::dot(dir, oc);
-  const float c = glm::dot(oc, oc) - radius * radius;
-  const float disc = b * b - c;
-  if (c <= 0.0f || b <= 0.0f || disc < 0.0f) return -1.0f;
-  return b - std::sqrt(disc);
-}
-
-// 1 - cos of the half-angle under which a sphere of squared radius r2 is seen from squared distance d2.
-float sphere_one_minus_cos(float r2, float d2) {
-  const float sin2 = std::min(r2 / d2, 1.0f);
-  return sin2 / (1.0f + safe_sqrt(1.0f - sin2));
-}
-
 // A rectangle as seen from a point: the spherical rectangle of Urena, Fajardo and King (2013),
 // sampled uniformly in solid angle. Double precision keeps small, distant rectangles accurate.
 struct SphericalRect {
@@ -163,19 +147,24 @@ LightSample PointLight::sample(const Vec3& p, const Vec3&, const Vec2& u) const 
   if (attenuation <= 0.0f) return s;
   const float dist = std::sqrt(d2);
   const float r2 = radius_ * radius_;
-  if (radius_ <= 0.0f || d2 <= r2 * 1.0001f) {  // a delta light, or a point inside the sphere
+  if (radius_ <= 0.0f || d2 <= r2 * 1.0001f) {  // a delta light, or a point inside the light
     s.wi = d / dist;
     s.distance = dist;
     s.weight = intensity_ * (attenuation / std::max(d2, r2));
     return s;
   }
-  const float omc = sphere_one_minus_cos(r2, d2);
-  s.wi = Frame(d / dist).to_world(sample_uniform_cone(u, omc));
-  const float t = sphere_entry(p, s.wi, position_, radius_);
-  s.distance = t > 0.0f ? t : dist - radius_;
-  const float solid_angle = cone_solid_angle(omc);
-  s.weight = intensity_ * (attenuation * solid_angle / (kPi * r2));
-  s.pdf = 1.0f / solid_angle;
+  // A uniform point on the disk of radius r facing p (Cycles 3.4's point light), by area.
+  const Frame disk(-d / dist);
+  const Vec2 e = radius_ * sample_concentric_disk(u);
+  const Vec3 to_q = d + e.x * disk.s + e.y * disk.t;
+  const float dist_q2 = glm::dot(to_q, to_q);
+  const float dist_q = std::sqrt(dist_q2);
+  s.wi = to_q / dist_q;
+  const float cos_light = -glm::dot(s.wi, disk.n);
+  if (!(cos_light > 0.0f)) return LightSample{};
+  s.distance = dist_q;
+  s.pdf = dist_q2 / (kPi * r2 * cos_light);
+  s.weight = intensity_ * (attenuation / (kPi * r2) / s.pdf);
   return s;
 }
 
@@ -189,12 +178,19 @@ float PointLight::importance(const Vec3& p, const Vec3& n) const {
 
 bool PointLight::hit(const Vec3& p, const Vec3&, const Vec3& dir, float t_max, LightHit& out) const {
   if (radius_ <= 0.0f) return false;
-  const float t = sphere_entry(p, dir, position_, radius_);
-  if (t < 0.0f || t >= t_max) return false;
   const Vec3 d = position_ - p;
+  const float dist = glm::length(d);
+  if (!(dist > radius_)) return false;
+  const Vec3 normal = -d / dist;  // the disk faces p
+  const float denom = glm::dot(dir, normal);
+  if (denom >= 0.0f) return false;
+  const float t = dist / -denom;  // the plane through the centre, at distance dist along -normal
+  if (t >= t_max) return false;
+  const Vec3 offset = p + t * dir - position_;
   const float r2 = radius_ * radius_;
+  if (glm::dot(offset, offset) > r2) return false;
   out.radiance = intensity_ * (spot_attenuation(p) / (kPi * r2));
-  out.pdf = 1.0f / cone_solid_angle(sphere_one_minus_cos(r2, glm::dot(d, d)));
+  out.pdf = t * t / (kPi * r2 * -denom);
   return true;
 }
 

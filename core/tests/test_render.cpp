@@ -341,3 +341,24 @@ TEST(Render, LightsCloseToAndGrazingTheSurface) {
 
 }  // namespace
 }  // namespace torrance
+
+namespace torrance {
+namespace {
+
+// Cycles 3.4 renders a point light of radius r as a disk facing the shaded point: on axis at
+// distance d, E = I / (d^2 + r^2), not the sphere's I / d^2 (here 20% less).
+TEST(Render, PointLightRadiusIsADiskFacingThePointLikeCycles) {
+  Scene scene;
+  build_plane(scene, lambert(1.0f));
+  CameraParams c = scene.camera();
+  c.lens_mm = 50000.0f;
+  c.clip_start = 4.5f;  // start below the light
+  scene.set_camera(c);
+  const float power = 100.0f, d = 1.0f, r = 0.5f;
+  scene.lights().add_point(Vec3(0, 0, d), power, Vec3(1.0f), r);
+  const float expected = power / (4.0f * kPi) / (d * d + r * r) / kPi;
+  EXPECT_NEAR(mean_rgb(render(scene, small(256)).image).r, expected, 0.01f * expected);
+}
+
+}  // namespace
+}  // namespace torrance

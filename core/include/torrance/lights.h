@@ -2,8 +2,9 @@
 //
 //  * Sun: strength S in W/m^2 is the irradiance on a surface facing it. Its disk of angular diameter
 //    `angle` is a cone of uniform radiance S / (solid angle); angle 0 makes it a delta light.
-//  * Point: power P in W, I = P / (4 pi) W/sr. With radius r > 0 it is a sphere of uniform radiance
-//    I / (pi r^2) (so soft shadows); r = 0 makes it a delta light.
+//  * Point: power P in W, I = P / (4 pi) W/sr. With radius r > 0 it is, as in Cycles 3.4, a disk of
+//    radius r facing the shaded point, of radiance I / (pi r^2) (so soft shadows; near the light it
+//    gives less than a sphere would: E = pi L r^2 / (d^2 + r^2) on axis); r = 0: a delta light.
 //  * Spot: a point light times Blender 3.4's spot attenuation: 0 outside the cone, c inside it and
 //    c * smoothstep in the blend band (c = cosine to the axis; the extra factor c is Cycles 3.4's).
 //    Power is not renormalised to the cone.
