@@ -82,6 +82,7 @@ struct PathContext {
   const RenderSettings& settings;
   std::vector<MaterialBsdf> bsdfs;  // one per material, built once per render
   Vec3 camera_forward;
+  float pixel_spread;  // radians per pixel: texture footprints grow with the path's length
 };
 
 // Everything one camera sample brings back, split as Blender's passes.
@@ -111,6 +112,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
   Vec3 prev_position(0.0f), prev_normal(0.0f);
   float prev_pdf = 0.0f;
   bool prev_delta = true;
+  float path_length = 0.0f;  // for texture footprints (a ray cone of the pixel's spread)
   auto deposit = [&](const Vec3& c, bool direct) {  // a contribution arriving after the first hit
     const Vec3 diffuse = c * diffuse_share, glossy = c - diffuse;
     (direct ? out.diffuse_direct : out.diffuse_indirect) += diffuse;
@@ -135,10 +137,15 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
       if (!found) break;
     }
 
-    // Textures: the material's inputs and its normal map at this hit.
+    // Textures: the material's inputs and its normal map at this hit, averaged over the pixel's
+    // footprint (wider where the surface is seen at a grazing angle, capped at 4x).
+    path_length += hit.t;
     const bool textured = kTextures && ctx.scene.material_textures(hit.material).any();
-    const Material material =
-        textured ? ctx.scene.textured_material(hit.material, hit.uv) : ctx.scene.material(hit.material);
+    const float cos_view = std::abs(glm::dot(ray.dir, hit.geometric_normal));
+    const float footprint =
+        textured ? ctx.pixel_spread * path_length / std::max(cos_view, 0.25f) * hit.uv_per_metre : 0.0f;
+    const Material material = textured ? ctx.scene.textured_material(hit.material, hit.uv, footprint)
+                                       : ctx.scene.material(hit.material);
     std::optional<MaterialBsdf> textured_bsdf;
     if (textured) textured_bsdf.emplace(material, ctx.settings.brdf_model);
     const MaterialBsdf& bsdf = textured ? *textured_bsdf : ctx.bsdfs[hit.material];
@@ -147,7 +154,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     const Vec3 wo_world = -ray.dir;
     Vec3 ng = hit.geometric_normal;
     Vec3 n_smooth = hit.shading_normal;
-    Vec3 ns = textured ? ctx.scene.normal_mapped(hit.material, hit, n_smooth) : n_smooth;
+    Vec3 ns = textured ? ctx.scene.normal_mapped(hit.material, hit, n_smooth, footprint) : n_smooth;
     const bool normal_mapped = textured && ns != n_smooth;
     if (glm::dot(ng, wo_world) < 0.0f) {
       ng = -ng;
@@ -342,7 +349,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   scene.commit();
   scene.lights().set_selection(settings.light_selection);
 
-  PathContext ctx{scene, scene.lights(), settings, {}, camera.forward()};
+  PathContext ctx{scene, scene.lights(), settings, {}, camera.forward(), camera.pixel_spread()};
   ctx.bsdfs.reserve(scene.num_materials());
   for (size_t i = 0; i < scene.num_materials(); ++i) ctx.bsdfs.emplace_back(scene.material(uint32_t(i)), settings.brdf_model);
   const PixelFilter filter(settings.filter_width);

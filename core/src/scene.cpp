@@ -63,22 +63,22 @@ void Scene::set_world_texture(uint32_t id, float strength) {
   lights_.set_world_map(textures_[id], strength);
 }
 
-Material Scene::textured_material(uint32_t id, const Vec2& uv) const {
+Material Scene::textured_material(uint32_t id, const Vec2& uv, float footprint) const {
   Material m = materials_[id];
   const MaterialTextures& t = material_textures_[id];
-  if (t.base_color >= 0) m.base_color = glm::clamp(Vec3(textures_[t.base_color]->lookup(uv)), Vec3(0.0f), Vec3(1.0f));
-  if (t.metallic >= 0) m.metallic = clamp01(blender_luminance(Vec3(textures_[t.metallic]->lookup(uv))));
-  if (t.roughness >= 0) m.roughness = clamp01(blender_luminance(Vec3(textures_[t.roughness]->lookup(uv))));
-  if (t.emission >= 0) m.emission = glm::max(Vec3(textures_[t.emission]->lookup(uv)), Vec3(0.0f)) * t.emission_strength;
+  if (t.base_color >= 0) m.base_color = glm::clamp(Vec3(textures_[t.base_color]->lookup(uv, footprint)), Vec3(0.0f), Vec3(1.0f));
+  if (t.metallic >= 0) m.metallic = clamp01(blender_luminance(Vec3(textures_[t.metallic]->lookup(uv, footprint))));
+  if (t.roughness >= 0) m.roughness = clamp01(blender_luminance(Vec3(textures_[t.roughness]->lookup(uv, footprint))));
+  if (t.emission >= 0) m.emission = glm::max(Vec3(textures_[t.emission]->lookup(uv, footprint)), Vec3(0.0f)) * t.emission_strength;
   return m;
 }
 
-Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns) const {
+Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, float footprint) const {
   const MaterialTextures& t = material_textures_[id];
   if (t.normal < 0 || glm::dot(hit.tangent, hit.tangent) == 0.0f) return ns;
   const Vec3 tangent = glm::normalize(hit.tangent - glm::dot(hit.tangent, ns) * ns);
   const Vec3 bitangent = hit.bitangent_sign * glm::cross(ns, tangent);
-  const Vec3 c = 2.0f * Vec3(textures_[t.normal]->lookup(hit.uv)) - Vec3(1.0f);
+  const Vec3 c = 2.0f * Vec3(textures_[t.normal]->lookup(hit.uv, footprint)) - Vec3(1.0f);
   const Vec3 mapped = c.x * tangent + c.y * bitangent + c.z * ns;
   const Vec3 n = ns + (mapped - ns) * t.normal_strength;
   const float len = glm::length(n);
@@ -291,6 +291,8 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
     // dP/du from the triangle's UV parametrisation, for tangent-space normal maps.
     const Vec2 d1 = t1 - t0, d2 = t2 - t0;
     const float det = d1.x * d2.y - d1.y * d2.x;
+    const float area2 = glm::length(glm::cross(p1 - p0, p2 - p0));
+    hit.uv_per_metre = area2 > 0.0f ? std::sqrt(std::abs(det) / area2) : 0.0f;
     if (std::abs(det) > 1e-12f) {
       const Vec3 dpdu = ((p1 - p0) * d2.y - (p2 - p0) * d1.y) / det;
       const float len = glm::length(dpdu);
@@ -302,6 +304,7 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   } else {
     hit.uv = Vec2(0.0f);
     hit.tangent = Vec3(0.0f);
+    hit.uv_per_metre = 0.0f;
   }
   return true;
 }

@@ -20,8 +20,9 @@ Texture::Texture(int width, int height, int channels, const float* pixels, Color
     : width_(width), height_(height), interpolation_(interpolation) {
   if (width <= 0 || height <= 0) throw std::invalid_argument("texture size must be positive");
   if (channels < 1 || channels > 4) throw std::invalid_argument("texture must have 1 to 4 channels");
-  texels_.resize(size_t(width) * height);
-  for (size_t i = 0; i < texels_.size(); ++i) {
+  if (size_t(width) * height > (size_t(1) << 28)) throw std::invalid_argument("texture is too large");
+  std::vector<glm::vec4> texels(size_t(width) * height);
+  for (size_t i = 0; i < texels.size(); ++i) {
     const float* p = pixels + i * channels;
     glm::vec4 t(0.0f, 0.0f, 0.0f, 1.0f);
     if (channels <= 2) t = glm::vec4(p[0], p[0], p[0], channels == 2 ? p[1] : 1.0f);
@@ -30,7 +31,21 @@ Texture::Texture(int width, int height, int channels, const float* pixels, Color
       if (!std::isfinite(t[c])) t[c] = 0.0f;  // a broken pixel must not poison the render
     if (space == ColorSpace::SRGB)
       for (int c = 0; c < 3; ++c) t[c] = srgb_to_linear(t[c]);
-    texels_[i] = t;
+    texels[i] = t;
+  }
+  levels_.push_back({width, height, std::move(texels)});
+  while (levels_.back().width > 1 || levels_.back().height > 1) {  // 2x2 box-filtered mip levels
+    const Level& fine = levels_.back();
+    Level coarse{std::max(fine.width / 2, 1), std::max(fine.height / 2, 1), {}};
+    coarse.texels.resize(size_t(coarse.width) * coarse.height);
+    for (int y = 0; y < coarse.height; ++y)
+      for (int x = 0; x < coarse.width; ++x) {
+        const int x0 = std::min(2 * x, fine.width - 1), x1 = std::min(2 * x + 1, fine.width - 1);
+        const int y0 = std::min(2 * y, fine.height - 1), y1 = std::min(2 * y + 1, fine.height - 1);
+        coarse.texels[size_t(y) * coarse.width + x] =
+            0.25f * (fine.texel(x0, y0) + fine.texel(x1, y0) + fine.texel(x0, y1) + fine.texel(x1, y1));
+      }
+    levels_.push_back(std::move(coarse));
   }
 }
 
@@ -46,17 +61,33 @@ Texture Texture::from_file(const std::string& path, ColorSpace space, Interpolat
   return Texture(data.width, data.height, channels, flipped.data(), space, interpolation);
 }
 
-glm::vec4 Texture::texel(int x, int y) const { return texels_[size_t(wrap(y, height_)) * width_ + wrap(x, width_)]; }
+glm::vec4 Texture::Level::texel(int x, int y) const {
+  return texels[size_t(wrap(y, height)) * width + wrap(x, width)];
+}
 
-glm::vec4 Texture::lookup(const Vec2& uv) const {
-  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return texel(0, 0);
-  const float fx = (uv.x - std::floor(uv.x)) * width_, fy = (uv.y - std::floor(uv.y)) * height_;
-  if (interpolation_ == Interpolation::Closest) return texel(int(fx), int(fy));
-  const float x = fx - 0.5f, y = fy - 0.5f;
+glm::vec4 Texture::Level::bilinear(const Vec2& uv) const {
+  const float x = (uv.x - std::floor(uv.x)) * width - 0.5f, y = (uv.y - std::floor(uv.y)) * height - 0.5f;
   const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
   const float tx = x - float(x0), ty = y - float(y0);
   return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), tx), glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), tx),
                   ty);
+}
+
+glm::vec4 Texture::lookup(const Vec2& uv, float footprint) const {
+  const Level& base = levels_[0];
+  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return base.texel(0, 0);
+  // Level of detail: log2 of the footprint in texels of the finest level.
+  const float texels = std::isfinite(footprint) ? footprint * float(std::max(width_, height_)) : 0.0f;
+  if (texels <= 1.0f) {
+    if (interpolation_ == Interpolation::Closest)
+      return base.texel(int((uv.x - std::floor(uv.x)) * width_), int((uv.y - std::floor(uv.y)) * height_));
+    return base.bilinear(uv);
+  }
+  const float lod = std::min(std::log2(texels), float(levels_.size() - 1));
+  const int l0 = int(lod);
+  const int l1 = std::min(l0 + 1, int(levels_.size()) - 1);
+  const float t = lod - float(l0);
+  return glm::mix(levels_[l0].bilinear(uv), levels_[l1].bilinear(uv), t);
 }
 
 }  // namespace torrance

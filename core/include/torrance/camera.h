@@ -35,6 +35,8 @@ class Camera {
   // A ray through raster position (x from the left edge, y from the TOP edge), in pixels.
   Ray generate_ray(float x, float y_from_top) const;
   const Vec3& forward() const { return forward_; }
+  // The angle one pixel spans at the image centre (radians), for texture footprints.
+  float pixel_spread() const { return 2.0f * half_h_ / float(height_); }
 
  private:
   Vec3 origin_, right_, up_, forward_;

@@ -36,6 +36,7 @@ struct SurfaceHit {
   int32_t emitter = -1;       // index among the emissive triangles (Lights' mesh light), or -1
   Vec2 uv{0.0f};              // interpolated corner UVs (0 without UVs)
   Vec3 tangent{0.0f};         // unit dP/du from the triangle's UVs (0 without usable UVs)
+  float uv_per_metre = 0.0f;  // how fast UVs change across the triangle (sqrt of UV area / area)
   float bitangent_sign = 1.0f;
 };
 
@@ -50,10 +51,11 @@ class Scene {
   uint32_t add_texture(Texture texture);
   size_t num_textures() const { return textures_.size(); }
   const MaterialTextures& material_textures(uint32_t i) const { return material_textures_[i]; }
-  // The material at a hit with its textures applied (base colour, metallic, roughness, emission).
-  Material textured_material(uint32_t material, const Vec2& uv) const;
+  // The material at a hit with its textures applied (base colour, metallic, roughness, emission),
+  // averaged over a footprint of that many UV units (0: the finest texels).
+  Material textured_material(uint32_t material, const Vec2& uv, float footprint = 0.0f) const;
   // The shading normal ns perturbed by the material's normal map at the hit (ns when none).
-  Vec3 normal_mapped(uint32_t material, const SurfaceHit& hit, const Vec3& ns) const;
+  Vec3 normal_mapped(uint32_t material, const SurfaceHit& hit, const Vec3& ns, float footprint = 0.0f) const;
 
   // positions: num_vertices xyz; triangles: num_triangles vertex-index triples;
   // corner_normals: nullptr or num_triangles * 3 xyz normals; material_ids: nullptr or num_triangles;

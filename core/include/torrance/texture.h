@@ -1,6 +1,7 @@
 // Image textures as Blender's Image Texture node samples them: UV (0,0) is the image's bottom-left
 // corner, REPEAT extension, Linear (bilinear) or Closest interpolation. Pixels are stored linear:
-// sRGB-encoded images are decoded once on the way in.
+// sRGB-encoded images are decoded once on the way in. A mip pyramid (2x2 box filter) lets lookups
+// with a footprint average what a pixel covers (trilinear), so distant detail does not alias.
 #pragma once
 
 #include "torrance/math.h"
@@ -20,15 +21,22 @@ class Texture {
   // Loads any file OpenImageIO reads (row 0 = top in the file; flipped to Blender's order).
   static Texture from_file(const std::string& path, ColorSpace space, Interpolation interpolation);
 
-  glm::vec4 lookup(const Vec2& uv) const;  // RGBA; a grey image gives (v, v, v, 1)
+  // RGBA; a grey image gives (v, v, v, 1). footprint: the size, in UV units, of the area to
+  // average (0 = the finest level, as Blender's node without filtering).
+  glm::vec4 lookup(const Vec2& uv, float footprint = 0.0f) const;
   int width() const { return width_; }
   int height() const { return height_; }
 
  private:
-  glm::vec4 texel(int x, int y) const;
+  struct Level {
+    int width, height;
+    std::vector<glm::vec4> texels;
+    glm::vec4 texel(int x, int y) const;
+    glm::vec4 bilinear(const Vec2& uv) const;
+  };
   int width_, height_;
   Interpolation interpolation_;
-  std::vector<glm::vec4> texels_;
+  std::vector<Level> levels_;  // levels_[0] = the image
 };
 
 // The scene-linear luminance Blender uses to turn a colour into a float socket value.
