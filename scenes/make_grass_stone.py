@@ -40,7 +40,7 @@ def ground_height(x, y):
 def make_ground(scene, grass):
     xs = np.linspace(-45.0, 45.0, 121)
     ys = np.concatenate([np.linspace(-8.0, 12.0, 81)[:-1], np.linspace(12.0, 80.0, 41)])
-    verts, tris = su.grid(len(xs), len(ys), xs, ys)
+    verts, tris = su.grid(xs, ys)
     verts[:, 2] = ground_height(verts[:, 0], verts[:, 1])
     return su.mesh_object(scene, "Ground", verts, tris, material=grass, smooth=True)
 
@@ -111,7 +111,7 @@ def main():
     make_blades(scene, grass, rng)
     make_stone(scene, stone, rng)
     su.sun(scene, elevation_deg=24.0, azimuth_deg=-18.0, strength=4.0, color=(1.0, 0.96, 0.9))
-    su.world_color(scene, (0.30, 0.45, 0.75), strength=0.8)
+    su.world(scene, (0.30, 0.45, 0.75), strength=0.8, name="Sky")
     su.camera(scene, CAMERA, CAMERA_TARGET, lens=32.0)
     su.save(path)
 

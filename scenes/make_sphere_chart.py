@@ -45,10 +45,10 @@ def main():
                                 smooth=True)
             ob.location = sphere_center(r, c)
     floor = su.principled("Floor", (0.45, 0.45, 0.45), metallic=0.0, roughness=0.9)
-    fv, ft = su.grid(2, 2, np.array([-30.0, 30.0]), np.array([-20.0, 40.0]))
+    fv, ft = su.grid(np.array([-30.0, 30.0]), np.array([-20.0, 40.0]))
     su.mesh_object(scene, "Floor", fv, ft, material=floor)
     su.sun(scene, elevation_deg=40.0, azimuth_deg=200.0, strength=4.0)
-    su.world_color(scene, (0.30, 0.45, 0.75), strength=0.8)
+    su.world(scene, (0.30, 0.45, 0.75), strength=0.8, name="Sky")
     su.camera(scene, (0.0, -8.5, 9.5), (0.0, 2.45, 0.0), lens=68.0)
     su.save(path)
 

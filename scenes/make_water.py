@@ -58,14 +58,14 @@ def make_water(scene, water, rng):
         fade = t * t * (3 - 2 * t)
         Z += fade * amp * np.sin(k * (np.cos(ang) * X + np.sin(ang) * Y) + ph)
     verts = np.stack([X.ravel(), Y.ravel(), Z.ravel()], 1)
-    _, tris = su.grid(nx, ny, u, d)
+    _, tris = su.grid(u, d)
     return su.mesh_object(scene, "Water", verts, tris, material=water, smooth=True)
 
 
 def make_shore(scene, shore):
     xs = np.linspace(-90.0, 90.0, 181)
     ys = np.linspace(58.0, 80.0, 12)
-    verts, tris = su.grid(len(xs), len(ys), xs, ys)
+    verts, tris = su.grid(xs, ys)
     x, y = verts[:, 0], verts[:, 1]
     ridge = 4.5 + 1.6 * np.sin(0.09 * x + 0.5) + 0.9 * np.sin(0.23 * x + 2.0) + 0.4 * np.sin(0.61 * x)
     rise = np.clip((y - 58.0) / 9.0, 0.0, 1.0)
@@ -84,7 +84,7 @@ def main():
     make_water(scene, water, rng)
     make_shore(scene, shore)
     su.sun(scene, elevation_deg=12.0, azimuth_deg=0.0, strength=6.0, color=(1.0, 0.86, 0.7))
-    su.world_color(scene, (0.35, 0.5, 0.8), strength=1.0)
+    su.world(scene, (0.35, 0.5, 0.8), strength=1.0, name="Sky")
     target = (0.0, 10.0, CAMERA_HEIGHT + 10.0 * math.tan(math.radians(PITCH_DEG)))
     su.camera(scene, (0.0, 0.0, CAMERA_HEIGHT), target, lens=35.0)
     su.save(path)
