@@ -18,6 +18,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cmp_util as cu  # noqa: E402
+import scene_util as su  # noqa: E402
 
 TITLE = "grass and stone under the sun"
 BOUNCES = 8
@@ -59,35 +60,8 @@ def blades(scene, grass, rng, n=5000):
     return cu.mesh(scene, "Grass Blades", verts.reshape(-1, 3), tris, grass)
 
 
-def icosphere(subdivisions):
-    t = (1.0 + 5 ** 0.5) / 2
-    v = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t), (0, -1, -t),
-         (0, 1, -t), (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
-    faces = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4),
-             (11, 10, 2), (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8),
-             (3, 8, 9), (4, 9, 5), (2, 4, 11), (6, 2, 10), (8, 6, 7), (9, 8, 1)]
-    verts = [np.array(p, dtype=np.float64) / np.linalg.norm(p) for p in v]
-    for _ in range(subdivisions):
-        cache = {}
-
-        def mid(a, b):
-            key = (min(a, b), max(a, b))
-            if key not in cache:
-                p = verts[a] + verts[b]
-                verts.append(p / np.linalg.norm(p))
-                cache[key] = len(verts) - 1
-            return cache[key]
-
-        new = []
-        for a, b, c in faces:
-            ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
-            new += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
-        faces = new
-    return np.array(verts), np.array(faces)
-
-
 def stone(scene, mat, rng):
-    verts, tris = icosphere(3)
+    verts, tris = su.icosphere(3)
     r = np.ones(len(verts))
     for _ in range(20):
         direction = rng.normal(size=3)

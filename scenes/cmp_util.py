@@ -19,19 +19,26 @@ All materials are Principled BSDF v1 with the GGX distribution and inputs Torran
 (no transmission, sheen, clearcoat, subsurface or specular tint).
 """
 
+import functools
 import hashlib
 import importlib
-import math
 import os
 import sys
 
 import bpy
 import numpy as np
-from mathutils import Vector
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 if HERE not in sys.path:
     sys.path.insert(0, HERE)
+import scene_util as su  # noqa: E402
+# The building primitives (scenes/scene_util.py), under the names the scene modules use.
+from scene_util import box, cycles_settings, empty_scene, grid, point_light, quad, sun  # noqa: E402,F401
+material = su.principled
+mesh = su.mesh_object
+uv_sphere = su.sphere_object
+world = su.world
+camera = functools.partial(su.camera, clip_end=1000.0)
 
 # The scenes, in report order.
 SCENES = ("sphere_chart", "grass_stone", "water", "suzanne", "mirror", "interior")
@@ -123,37 +130,10 @@ def build(name, scene=None):
 
 def setup_common(scene, width=WIDTH, height=HEIGHT):
     """Resolution, plain output (no compositing, Standard view, no dither), frame 1."""
-    rd = scene.render
-    rd.resolution_x, rd.resolution_y = width, height
-    rd.resolution_percentage = 100
-    rd.pixel_aspect_x = rd.pixel_aspect_y = 1.0
-    rd.use_border = False
-    rd.film_transparent = False
-    rd.use_compositing = False
-    rd.use_sequencer = False
-    rd.dither_intensity = 0.0
-    rd.use_persistent_data = False
-    rd.threads_mode = 'AUTO'
-    vs = scene.view_settings
-    vs.view_transform = 'Standard'
-    vs.look = 'None'
-    vs.exposure = 0.0
-    vs.gamma = 1.0
+    su.plain_output(scene, width, height)
+    scene.render.use_persistent_data = False
+    scene.render.threads_mode = 'AUTO'
     scene.frame_start = scene.frame_end = scene.frame_current = 1
-
-
-def cycles_settings(samples, seed, bounces):
-    """The Cycles settings of a reference or benchmark render (recorded in the references' JSON):
-    unbiased, no denoising (Debian's Blender has no OIDN), no adaptive sampling, no clamping, no
-    glossy blur, no light threshold, Blackman-Harris 1.5 px like Torrance, all bounce types
-    limited by `bounces`."""
-    return dict(device='CPU', samples=int(samples), seed=int(seed), use_animated_seed=False,
-                use_adaptive_sampling=False, use_denoising=False,
-                max_bounces=bounces, diffuse_bounces=bounces, glossy_bounces=bounces,
-                transmission_bounces=bounces, transparent_max_bounces=bounces, volume_bounces=0,
-                sample_clamp_direct=0.0, sample_clamp_indirect=0.0, blur_glossy=0.0,
-                light_sampling_threshold=0.0, caustics_reflective=True, caustics_refractive=True,
-                pixel_filter_type='BLACKMAN_HARRIS', filter_width=1.5, film_exposure=1.0)
 
 
 def setup_cycles(scene, samples, seed=0, bounces=8):
@@ -163,22 +143,14 @@ def setup_cycles(scene, samples, seed=0, bounces=8):
             setattr(scene.cycles, key, value)
     for layer in scene.view_layers:
         layer.cycles.use_denoising = False
-    for mat in bpy.data.materials:           # GGX everywhere (the Principled default, enforced)
-        if mat.use_nodes and mat.node_tree is not None:
-            for node in mat.node_tree.nodes:
-                if node.bl_idname == 'ShaderNodeBsdfPrincipled':
-                    node.distribution = 'GGX'
+    su.ggx_everywhere()
 
 
 def setup_torrance(scene, samples, seed=0, bounces=8, brdf_model=None):
     """Torrance with the same samples/seed/bounces/filter. brdf_model: None = 'PRINCIPLED' when
     the add-on offers it, else left as it is."""
     scene.render.engine = 'TORRANCE'
-    ts = scene.torrance
-    ts.samples = int(samples)
-    ts.seed = int(seed)
-    ts.max_bounces = int(bounces)
-    ts.filter_width = 1.5
+    ts = su.torrance_settings(scene, samples, bounces, seed)
     if hasattr(ts, "use_progressive_display"):
         ts.use_progressive_display = False
     models = {item.identifier for item in ts.bl_rna.properties['brdf_model'].enum_items}
@@ -186,159 +158,6 @@ def setup_torrance(scene, samples, seed=0, bounces=8, brdf_model=None):
         brdf_model = 'PRINCIPLED' if 'PRINCIPLED' in models else None
     if brdf_model is not None:
         ts.brdf_model = brdf_model
-
-
-# --------------------------------------------------------------------------------------------
-# Building
-
-def empty_scene(scene=None):
-    scene = scene or bpy.context.scene
-    for ob in list(bpy.data.objects):
-        bpy.data.objects.remove(ob, do_unlink=True)
-    for coll in (bpy.data.meshes, bpy.data.materials, bpy.data.lights, bpy.data.cameras,
-                 bpy.data.worlds, bpy.data.curves):
-        for block in list(coll):
-            coll.remove(block)
-    scene.world = None
-    return scene
-
-
-def world(scene, color, strength=1.0):
-    w = bpy.data.worlds.new("World")
-    w.use_nodes = True
-    bg = w.node_tree.nodes.get("Background")
-    bg.inputs["Color"].default_value = (*color, 1.0)
-    bg.inputs["Strength"].default_value = strength
-    w.color = color
-    scene.world = w
-    return w
-
-
-def sun(scene, elevation_deg, azimuth_deg, strength, angle_deg=2.0, color=(1.0, 1.0, 1.0)):
-    """A sun `elevation_deg` above the horizon in compass direction `azimuth_deg` (0 = +Y,
-    90 = +X) seen from the scene; its light travels the opposite way."""
-    light = bpy.data.lights.new("Sun", 'SUN')
-    light.energy = strength
-    light.angle = math.radians(angle_deg)
-    light.color = color
-    ob = bpy.data.objects.new("Sun", light)
-    scene.collection.objects.link(ob)
-    el, az = math.radians(elevation_deg), math.radians(azimuth_deg)
-    to_sun = Vector((math.cos(el) * math.sin(az), math.cos(el) * math.cos(az), math.sin(el)))
-    ob.rotation_euler = to_sun.to_track_quat('Z', 'Y').to_euler()   # shines along local -Z
-    return ob
-
-
-def point_light(scene, location, power, radius=0.1, color=(1.0, 1.0, 1.0)):
-    light = bpy.data.lights.new("Point", 'POINT')
-    light.energy = power
-    light.shadow_soft_size = radius
-    light.color = color
-    ob = bpy.data.objects.new("Point", light)
-    ob.location = location
-    scene.collection.objects.link(ob)
-    return ob
-
-
-def camera(scene, location, target, lens=35.0):
-    cam = bpy.data.cameras.new("Camera")
-    cam.lens = lens
-    cam.sensor_fit = 'AUTO'
-    cam.sensor_width = 36.0
-    cam.clip_start = 0.05
-    cam.clip_end = 1000.0
-    ob = bpy.data.objects.new("Camera", cam)
-    scene.collection.objects.link(ob)
-    ob.location = location
-    ob.rotation_euler = (Vector(target) - Vector(location)).to_track_quat('-Z', 'Y').to_euler()
-    scene.camera = ob
-    return ob
-
-
-def material(name, base_color, metallic=0.0, roughness=0.5, specular=0.5):
-    mat = bpy.data.materials.new(name)
-    mat.use_nodes = True
-    node = mat.node_tree.nodes.get("Principled BSDF")
-    node.distribution = 'GGX'
-    node.inputs["Base Color"].default_value = (*base_color, 1.0)
-    node.inputs["Metallic"].default_value = metallic
-    node.inputs["Roughness"].default_value = roughness
-    node.inputs["Specular"].default_value = specular
-    mat.diffuse_color = (*base_color, 1.0)
-    return mat
-
-
-def mesh(scene, name, verts, tris, material=None, smooth=False):
-    """An object from numpy vertices (N,3) and polygons (M,k) (triangles or quads)."""
-    verts = np.ascontiguousarray(verts, dtype=np.float32).reshape(-1, 3)
-    polys = np.ascontiguousarray(tris, dtype=np.int32)
-    k = polys.shape[1]
-    me = bpy.data.meshes.new(name)
-    me.vertices.add(len(verts))
-    me.vertices.foreach_set("co", verts.ravel())
-    me.loops.add(polys.size)
-    me.loops.foreach_set("vertex_index", polys.ravel())
-    me.polygons.add(len(polys))
-    me.polygons.foreach_set("loop_start", np.arange(0, polys.size, k, dtype=np.int32))
-    me.polygons.foreach_set("loop_total", np.full(len(polys), k, dtype=np.int32))
-    if smooth:
-        me.polygons.foreach_set("use_smooth", np.ones(len(polys), dtype=bool))
-    if material is not None:
-        me.materials.append(material)
-    me.update(calc_edges=True)
-    me.validate(verbose=False)
-    ob = bpy.data.objects.new(name, me)
-    scene.collection.objects.link(ob)
-    return ob
-
-
-def grid(xs, ys):
-    """Vertices (nx*ny, 3) at z = 0 over coordinate arrays xs, ys and two triangles per cell."""
-    nx, ny = len(xs), len(ys)
-    X, Y = np.meshgrid(xs, ys)
-    verts = np.stack([X.ravel(), Y.ravel(), np.zeros(X.size)], axis=1)
-    i, j = np.meshgrid(np.arange(nx - 1), np.arange(ny - 1))
-    a = (j * nx + i).ravel()
-    tris = np.concatenate([np.stack([a, a + 1, a + nx + 1], 1), np.stack([a, a + nx + 1, a + nx], 1)])
-    return verts, tris
-
-
-def quad(scene, name, corners, material=None):
-    """One quad from 4 corners (counter-clockwise seen from the side its normal points to)."""
-    return mesh(scene, name, np.array(corners, dtype=np.float64), np.array([[0, 1, 2, 3]]), material)
-
-
-def box(scene, name, center, size, material=None, rotation_z_deg=0.0):
-    """An axis-aligned box (then rotated about Z) with outward faces."""
-    sx, sy, sz = (s / 2 for s in size)
-    v = np.array([(-sx, -sy, -sz), (sx, -sy, -sz), (sx, sy, -sz), (-sx, sy, -sz),
-                  (-sx, -sy, sz), (sx, -sy, sz), (sx, sy, sz), (-sx, sy, sz)])
-    f = np.array([(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)])
-    ob = mesh(scene, name, v, f, material)
-    ob.location = center
-    ob.rotation_euler = (0.0, 0.0, math.radians(rotation_z_deg))
-    return ob
-
-
-def uv_sphere(scene, name, center, radius, material=None, segments=48, rings=24):
-    """A smooth-shaded UV sphere."""
-    theta = np.pi * np.arange(1, rings) / rings
-    phi = 2 * np.pi * np.arange(segments) / segments
-    T, P = np.meshgrid(theta, phi, indexing="ij")
-    ring = np.stack([np.sin(T) * np.cos(P), np.sin(T) * np.sin(P), np.cos(T)], -1).reshape(-1, 3)
-    verts = np.concatenate([[[0, 0, 1]], ring, [[0, 0, -1]]]) * radius
-    top, bottom = 0, len(verts) - 1
-    s = np.arange(segments)
-    s1 = (s + 1) % segments
-    tris = [np.stack([np.full(segments, top), 1 + s, 1 + s1], 1)]
-    for r in range(rings - 2):
-        a, b = 1 + r * segments + s, 1 + r * segments + s1
-        tris += [np.stack([a, a + segments, b + segments], 1), np.stack([a, b + segments, b], 1)]
-    last = 1 + (rings - 2) * segments
-    tris.append(np.stack([last + s, np.full(segments, bottom), last + s1], 1))
-    ob = mesh(scene, name, verts, np.concatenate(tris), material, smooth=True)
-    ob.location = center
-    return ob
 
 
 def script_main(build_fn):
