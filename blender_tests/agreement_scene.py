@@ -3,7 +3,6 @@
 
 import math
 
-import bpy
 import numpy as np
 
 import tutil
@@ -41,43 +40,16 @@ def setup_cycles(scene, samples, max_bounces, seed=0):
     """Cycles settings that make it an unbiased reference comparable with Torrance."""
     scene.render.engine = 'CYCLES'
     cy = scene.cycles
-    cy.device = 'CPU'
-    cy.samples = samples
-    cy.seed = seed
-    cy.use_animated_seed = False
-    cy.use_adaptive_sampling = False
-    cy.use_denoising = False             # Debian's Blender has no OpenImageDenoise
-    cy.max_bounces = max_bounces
-    cy.diffuse_bounces = max_bounces
-    cy.glossy_bounces = max_bounces
-    cy.transmission_bounces = max_bounces
-    cy.transparent_max_bounces = max_bounces
-    cy.volume_bounces = 0
-    cy.sample_clamp_direct = 0.0
-    cy.sample_clamp_indirect = 0.0
-    cy.blur_glossy = 0.0
-    cy.light_sampling_threshold = 0.0
-    cy.caustics_reflective = True
-    cy.caustics_refractive = True
-    cy.pixel_filter_type = 'BLACKMAN_HARRIS'
-    cy.filter_width = 1.5
-    cy.film_exposure = 1.0
+    for key, value in tutil.su.cycles_settings(samples, seed, max_bounces).items():
+        setattr(cy, key, value)
     if hasattr(cy, "use_light_tree"):     # Blender 3.5+
         cy.use_light_tree = False
-    for mat in bpy.data.materials:
-        if mat.use_nodes:
-            for node in mat.node_tree.nodes:
-                if node.bl_idname == 'ShaderNodeBsdfPrincipled':
-                    node.distribution = 'GGX'
+    tutil.su.ggx_everywhere()
 
 
 def setup_torrance(scene, samples, max_bounces, seed=0):
     scene.render.engine = 'TORRANCE'
-    ts = scene.torrance
-    ts.samples = samples
-    ts.max_bounces = max_bounces
-    ts.seed = seed
-    ts.filter_width = 1.5
+    ts = tutil.su.torrance_settings(scene, samples, max_bounces, seed)
     ts.brdf_model = 'PAPER'
 
 

@@ -13,7 +13,6 @@ import math
 import os
 import sys
 import tempfile
-import time
 import types
 
 import bpy
@@ -80,15 +79,7 @@ def render(scene, name="render"):
     """Renders the scene with its current engine: (float32 (H, W, 3), seconds of
     bpy.ops.render.render, i.e. scene sync/export + render, the same for both engines)."""
     path = os.path.join(_tmpdir(), name + ".exr")
-    settings = scene.render.image_settings
-    settings.file_format = 'OPEN_EXR'
-    settings.color_depth = '32'
-    settings.exr_codec = 'ZIP'
-    settings.color_mode = 'RGB'
-    t0 = time.perf_counter()
-    bpy.ops.render.render(write_still=False)
-    seconds = time.perf_counter() - t0
-    bpy.data.images["Render Result"].save_render(path, scene=scene)
+    seconds = cmp_util.su.render_exr(scene, path, 'RGB')
     img = read_exr(path)
     os.remove(path)
     return img, seconds

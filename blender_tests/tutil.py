@@ -16,7 +16,11 @@ import traceback
 
 import bpy
 import numpy as np
-from mathutils import Vector
+
+# The scene-building primitives are shared with the scene scripts: scenes/scene_util.py.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
+                                "scenes"))
+import scene_util as su  # noqa: E402
 
 
 _tempdirs = []
@@ -81,89 +85,30 @@ def tempdir():
 # Scene building
 
 def clear_scene(scene=None):
-    scene = scene or bpy.context.scene
-    for ob in list(bpy.data.objects):
-        bpy.data.objects.remove(ob, do_unlink=True)
-    for coll in (bpy.data.meshes, bpy.data.materials, bpy.data.lights, bpy.data.cameras,
-                 bpy.data.curves, bpy.data.worlds):
-        for block in list(coll):
-            coll.remove(block)
-    for img in list(bpy.data.images):
-        if img.type != 'RENDER_RESULT':
-            bpy.data.images.remove(img)
-    scene.world = None
-    return scene
+    return su.empty_scene(scene, images=True)
 
 
 def setup_render(scene, engine='TORRANCE', width=96, height=72, samples=16, seed=0,
                  max_bounces=8):
-    rd = scene.render
-    rd.engine = engine
-    rd.resolution_x = width
-    rd.resolution_y = height
-    rd.resolution_percentage = 100
-    rd.pixel_aspect_x = rd.pixel_aspect_y = 1.0
-    rd.use_border = False
-    rd.film_transparent = False
-    rd.use_compositing = False
-    rd.use_sequencer = False
-    vs = scene.view_settings
-    vs.view_transform = 'Standard'
-    vs.look = 'None'
-    vs.exposure = 0.0
-    vs.gamma = 1.0
-    rd.dither_intensity = 0.0
-    ts = scene.torrance
-    ts.samples = samples
-    ts.seed = seed
-    ts.max_bounces = max_bounces
-    ts.filter_width = 1.5
+    scene.render.engine = engine
+    su.plain_output(scene, width, height)
+    su.torrance_settings(scene, samples, max_bounces, seed)
 
 
-def look_at(obj, target):
-    direction = Vector(target) - obj.location
-    obj.rotation_euler = direction.to_track_quat('-Z', 'Y').to_euler()
+look_at = su.look_at
 
 
 def add_camera(scene, location=(0, -6, 2.2), target=(0, 0, 0.6), lens=40.0):
-    cam = bpy.data.cameras.new("Camera")
-    cam.lens = lens
-    cam.clip_start = 0.1
-    cam.clip_end = 100.0
-    ob = bpy.data.objects.new("Camera", cam)
-    scene.collection.objects.link(ob)
-    ob.location = location
-    look_at(ob, target)
-    scene.camera = ob
-    return ob
+    return su.camera(scene, location, target, lens, clip_start=0.1, clip_end=100.0)
 
 
 def principled(name, base_color=(0.8, 0.8, 0.8), metallic=0.0, roughness=0.5, specular=0.5,
                emission=(0, 0, 0), emission_strength=0.0):
-    mat = bpy.data.materials.new(name)
-    mat.use_nodes = True
-    node = mat.node_tree.nodes.get("Principled BSDF")
-    node.distribution = 'GGX'
-    node.inputs["Base Color"].default_value = (*base_color, 1.0)
-    node.inputs["Metallic"].default_value = metallic
-    node.inputs["Roughness"].default_value = roughness
-    node.inputs["Specular"].default_value = specular
-    node.inputs["Emission"].default_value = (*emission, 1.0)
-    node.inputs["Emission Strength"].default_value = emission_strength
-    return mat
+    return su.principled(name, base_color, metallic, roughness, specular, emission,
+                         emission_strength, viewport_color=False)
 
 
-def mesh_object(scene, name, verts, faces, material=None, smooth=False):
-    me = bpy.data.meshes.new(name)
-    me.from_pydata([tuple(v) for v in verts], [], [tuple(f) for f in faces])
-    me.update()
-    if smooth:
-        me.polygons.foreach_set("use_smooth", [True] * len(me.polygons))
-    ob = bpy.data.objects.new(name, me)
-    scene.collection.objects.link(ob)
-    if material is not None:
-        me.materials.append(material)
-    return ob
+mesh_object = su.mesh_object
 
 
 def uv_sphere(scene, name, center, radius, material=None, segments=48, rings=24):
@@ -196,45 +141,20 @@ def uv_sphere(scene, name, center, radius, material=None, segments=48, rings=24)
 
 def plane(scene, name, size, z=0.0, material=None):
     h = size / 2
-    return mesh_object(scene, name, [(-h, -h, z), (h, -h, z), (h, h, z), (-h, h, z)],
-                       [(0, 1, 2, 3)], material)
+    return su.quad(scene, name, [(-h, -h, z), (h, -h, z), (h, h, z), (-h, h, z)], material)
 
 
 def add_sun(scene, strength=3.0, rotation=(math.radians(40), 0, math.radians(30)),
             angle=math.radians(2.0), color=(1, 1, 1)):
-    light = bpy.data.lights.new("Sun", 'SUN')
-    light.energy = strength
-    light.angle = angle
-    light.color = color
-    ob = bpy.data.objects.new("Sun", light)
-    ob.rotation_euler = rotation
-    scene.collection.objects.link(ob)
-    return ob
+    return su.light(scene, 'SUN', "Sun", strength, color, rotation=rotation, angle=angle)
 
 
 def add_point(scene, location, power=300.0, radius=0.1, color=(1, 1, 1)):
-    light = bpy.data.lights.new("Point", 'POINT')
-    light.energy = power
-    light.shadow_soft_size = radius
-    light.color = color
-    ob = bpy.data.objects.new("Point", light)
-    ob.location = location
-    scene.collection.objects.link(ob)
-    return ob
+    return su.point_light(scene, location, power, radius, color)
 
 
 def set_world(scene, color, strength=1.0, use_nodes=True):
-    world = bpy.data.worlds.new("World")
-    scene.world = world
-    if use_nodes:
-        world.use_nodes = True
-        bg = world.node_tree.nodes.get("Background")
-        bg.inputs["Color"].default_value = (*color, 1.0)
-        bg.inputs["Strength"].default_value = strength
-    else:
-        world.use_nodes = False
-        world.color = color
-    return world
+    return su.world(scene, color, strength, use_nodes=use_nodes, viewport_color=False)
 
 
 # --------------------------------------------------------------------------------------------
@@ -244,15 +164,7 @@ def render(scene, directory, name="render"):
     """Renders the scene with its engine; returns (float32 (H, W, 4) linear RGBA, row 0 = TOP,
     seconds). The result goes through a 32-bit EXR, read back by Blender."""
     path = os.path.join(directory, name + ".exr")
-    settings = scene.render.image_settings
-    settings.file_format = 'OPEN_EXR'
-    settings.color_depth = '32'
-    settings.exr_codec = 'ZIP'
-    settings.color_mode = 'RGBA'
-    t0 = time.perf_counter()
-    bpy.ops.render.render(write_still=False)
-    seconds = time.perf_counter() - t0
-    bpy.data.images["Render Result"].save_render(path, scene=scene)
+    seconds = su.render_exr(scene, path, 'RGBA')
     return read_exr(path), seconds
 
 
