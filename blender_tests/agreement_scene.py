@@ -79,20 +79,30 @@ def format_metrics(m):
             f"p90 {m['block_p90']:.4f}, offset ({m['offset'][0]:+.2f}, {m['offset'][1]:+.2f}) px")
 
 
-def failures(m):
-    """The thresholds a result violates (empty = agreement)."""
-    lo, hi = THRESHOLDS["ratio"]
+def failures(m, thresholds=THRESHOLDS):
+    """The thresholds a result violates (empty = agreement). `thresholds`: the ratio band (overall
+    and per channel), block_mean, block_p90 and, if given, the offset in pixels."""
+    lo, hi = thresholds["ratio"]
     out = []
     if not lo <= m["ratio"] <= hi:
         out.append(f"ratio {m['ratio']:.3f} outside [{lo}, {hi}]")
     for name, c in zip("RGB", m["channels"]):
         if not lo <= c <= hi:
             out.append(f"{name} ratio {c:.3f} outside [{lo}, {hi}]")
-    if m["block_mean"] > THRESHOLDS["block_mean"]:
-        out.append(f"block mean {m['block_mean']:.3f} > {THRESHOLDS['block_mean']}")
-    if m["block_p90"] > THRESHOLDS["block_p90"]:
-        out.append(f"block p90 {m['block_p90']:.3f} > {THRESHOLDS['block_p90']}")
-    if max(abs(m["offset"][0]), abs(m["offset"][1])) > THRESHOLDS["offset"]:
+    if m["block_mean"] > thresholds["block_mean"]:
+        out.append(f"block mean {m['block_mean']:.3f} > {thresholds['block_mean']}")
+    if m["block_p90"] > thresholds["block_p90"]:
+        out.append(f"block p90 {m['block_p90']:.3f} > {thresholds['block_p90']}")
+    if "offset" in thresholds and max(abs(m["offset"][0]), abs(m["offset"][1])) > thresholds["offset"]:
         out.append(f"offset ({m['offset'][0]:+.2f}, {m['offset'][1]:+.2f}) px > "
-                   f"{THRESHOLDS['offset']}")
+                   f"{thresholds['offset']}")
     return out
+
+
+def render_torrance(scene, directory, name, samples, max_bounces, model='PRINCIPLED'):
+    """Renders with Torrance's `model`; (image, seconds), the image checked for NaN/Inf."""
+    setup_torrance(scene, samples, max_bounces)
+    scene.torrance.brdf_model = model
+    img, seconds = tutil.render(scene, directory, name)
+    tutil.check(np.isfinite(img).all(), f"{name}: NaN/Inf in Torrance's image")
+    return img, seconds

@@ -110,11 +110,7 @@ def build(d, pixels):
 
 
 def render_torrance(scene, d, name):
-    agreement_scene.setup_torrance(scene, SAMPLES, BOUNCES)
-    scene.torrance.brdf_model = 'PRINCIPLED'
-    img, seconds = tutil.render(scene, d, name)
-    check(np.isfinite(img).all(), f"{name}: NaN/Inf")
-    return img, seconds
+    return agreement_scene.render_torrance(scene, d, name, SAMPLES, BOUNCES)
 
 
 def main():

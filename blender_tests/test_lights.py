@@ -169,32 +169,12 @@ CASES = {
 
 # ------------------------------------------------------------------------------------------
 
-def metrics(img, ref):
-    m = agreement_scene.metrics(img, ref)
-    return m
-
-
 def failures(m):
-    lo, hi = RATIO
-    out = []
-    if not lo <= m["ratio"] <= hi:
-        out.append(f"ratio {m['ratio']:.3f} outside [{lo}, {hi}]")
-    for name, c in zip("RGB", m["channels"]):
-        if not lo <= c <= hi:
-            out.append(f"{name} ratio {c:.3f} outside [{lo}, {hi}]")
-    if m["block_mean"] > BLOCK_MEAN:
-        out.append(f"block mean {m['block_mean']:.3f} > {BLOCK_MEAN}")
-    if m["block_p90"] > BLOCK_P90:
-        out.append(f"block p90 {m['block_p90']:.3f} > {BLOCK_P90}")
-    return out
+    return agreement_scene.failures(m, dict(ratio=RATIO, block_mean=BLOCK_MEAN, block_p90=BLOCK_P90))
 
 
 def render_torrance(scene, d, name, samples=SAMPLES):
-    agreement_scene.setup_torrance(scene, samples, BOUNCES)
-    scene.torrance.brdf_model = 'PRINCIPLED'
-    img, seconds = tutil.render(scene, d, name)
-    check(np.isfinite(img).all(), f"{name}: NaN/Inf in Torrance's image")
-    return img, seconds
+    return agreement_scene.render_torrance(scene, d, name, samples, BOUNCES)
 
 
 def main():
@@ -216,7 +196,7 @@ def main():
         check(stats["lights"] == expected_lights, f"{case}: {stats['lights']} lights exported")
         check(not any(level == 'WARNING' for level, _ in messages),
               f"{case}: unexpected warnings {messages}")
-        m = metrics(img, ref)
+        m = agreement_scene.metrics(img, ref)
         bad = failures(m)
         refs[case] = ref
         print(f"{case:15s} Cycles {ref[:, :, :3].mean():.4f} ({t_ref:.1f} s), Torrance "
@@ -242,7 +222,7 @@ def main():
         CASES[case](scene)
         alter(scene)
         img, _ = render_torrance(scene, d, f"fault_{case}", CASE_SAMPLES.get(case, SAMPLES))
-        m = metrics(img, refs[case])
+        m = agreement_scene.metrics(img, refs[case])
         bad = failures(m)
         print(f"fault '{description}': {agreement_scene.format_metrics(m)} -> "
               f"{'caught: ' + '; '.join(bad) if bad else 'NOT CAUGHT'}", flush=True)

@@ -35,6 +35,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cmp_lib as cl  # noqa: E402
 import cmp_util as cu  # noqa: E402
 import tutil  # noqa: E402
+import agreement_scene  # noqa: E402
 from tutil import check  # noqa: E402
 
 # Per scene: Torrance samples and thresholds: mean ratio band (overall and per channel), block
@@ -210,17 +211,7 @@ FAULT_KINDS = {
 # ------------------------------------------------------------------------------------------
 
 def failures(name, m):
-    c = CONFIG[name]
-    lo, hi = c["ratio"]
-    out = []
-    for label, r in [("ratio", m["ratio"])] + list(zip(("R ratio", "G ratio", "B ratio"), m["channels"])):
-        if not lo <= r <= hi:
-            out.append(f"{label} {r:.3f} outside [{lo}, {hi}]")
-    if m["block_mean"] > c["block_mean"]:
-        out.append(f"block mean {m['block_mean']:.3f} > {c['block_mean']}")
-    if m["block_p90"] > c["block_p90"]:
-        out.append(f"block p90 {m['block_p90']:.3f} > {c['block_p90']}")
-    return out
+    return agreement_scene.failures(m, CONFIG[name])
 
 
 class Scenes:
