@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 namespace torrance {
 namespace {
 
@@ -88,38 +90,21 @@ TEST_P(CookTorranceRough, SampledAlbedoMatchesIndependentQuadrature) {
   }
 }
 
+// Each (roughness, metallic) pair under both models.
+std::vector<Case> both_models(std::initializer_list<std::pair<float, float>> pairs) {
+  std::vector<Case> cases;
+  for (BrdfModel model : {BrdfModel::Paper, BrdfModel::Principled})
+    for (const auto& [roughness, metallic] : pairs) cases.push_back({roughness, metallic, model});
+  return cases;
+}
+
 INSTANTIATE_TEST_SUITE_P(Models, CookTorranceGrid,
-                         ::testing::Values(Case{0.0f, 0.0f, BrdfModel::Paper},
-                                           Case{0.0f, 1.0f, BrdfModel::Paper},
-                                           Case{0.01f, 0.5f, BrdfModel::Paper},
-                                           Case{0.1f, 0.0f, BrdfModel::Paper},
-                                           Case{0.3f, 1.0f, BrdfModel::Paper},
-                                           Case{0.5f, 0.5f, BrdfModel::Paper},
-                                           Case{0.6f, 0.0f, BrdfModel::Paper},
-                                           Case{1.0f, 1.0f, BrdfModel::Paper},
-                                           Case{1.0f, 0.0f, BrdfModel::Paper},
-                                           Case{0.0f, 0.0f, BrdfModel::Principled},
-                                           Case{0.0f, 1.0f, BrdfModel::Principled},
-                                           Case{0.01f, 0.5f, BrdfModel::Principled},
-                                           Case{0.1f, 0.0f, BrdfModel::Principled},
-                                           Case{0.3f, 1.0f, BrdfModel::Principled},
-                                           Case{0.5f, 0.5f, BrdfModel::Principled},
-                                           Case{0.6f, 0.0f, BrdfModel::Principled},
-                                           Case{1.0f, 1.0f, BrdfModel::Principled},
-                                           Case{1.0f, 0.0f, BrdfModel::Principled}));
+                         ::testing::ValuesIn(both_models({{0.0f, 0.0f}, {0.0f, 1.0f}, {0.01f, 0.5f}, {0.1f, 0.0f},
+                                                          {0.3f, 1.0f}, {0.5f, 0.5f}, {0.6f, 0.0f}, {1.0f, 1.0f},
+                                                          {1.0f, 0.0f}})));
 INSTANTIATE_TEST_SUITE_P(Models, CookTorranceRough,
-                         ::testing::Values(Case{0.1f, 0.0f, BrdfModel::Paper},
-                                           Case{0.3f, 1.0f, BrdfModel::Paper},
-                                           Case{0.5f, 0.5f, BrdfModel::Paper},
-                                           Case{0.6f, 0.0f, BrdfModel::Paper},
-                                           Case{1.0f, 1.0f, BrdfModel::Paper},
-                                           Case{1.0f, 0.0f, BrdfModel::Paper},
-                                           Case{0.1f, 0.0f, BrdfModel::Principled},
-                                           Case{0.3f, 1.0f, BrdfModel::Principled},
-                                           Case{0.5f, 0.5f, BrdfModel::Principled},
-                                           Case{0.6f, 0.0f, BrdfModel::Principled},
-                                           Case{1.0f, 1.0f, BrdfModel::Principled},
-                                           Case{1.0f, 0.0f, BrdfModel::Principled}));
+                         ::testing::ValuesIn(both_models({{0.1f, 0.0f}, {0.3f, 1.0f}, {0.5f, 0.5f}, {0.6f, 0.0f},
+                                                          {1.0f, 1.0f}, {1.0f, 0.0f}})));
 
 TEST(CookTorrance, PaperEquationsAtNormalIncidence) {
   // wo = wi = n: h = n, F = F0, D = 1/(pi alpha^2), G1 = 1.
