@@ -1,6 +1,10 @@
 """Tests of the pybind11 module from Debian's /usr/bin/python3: numpy in, clear errors out."""
+import ast
+import re
 import threading
 import time
+import zipfile
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -374,3 +378,23 @@ def test_distant_texture_detail_is_filtered_not_aliased():
     centre = img[8:24, 8:24, 0]
     assert centre.mean() == pytest.approx(0.5, abs=0.05)
     assert centre.std() < 0.1, f"aliasing: per-pixel std {centre.std():.3f} (unfiltered: 0.15)"
+
+
+def _bl_info_version(init_py_source):
+    """bl_info["version"] read the way Blender reads it: by parsing the file, not running it."""
+    for node in ast.parse(init_py_source).body:
+        if isinstance(node, ast.Assign) and any(getattr(t, "id", None) == "bl_info" for t in node.targets):
+            return ast.literal_eval(node.value)["version"]
+    raise AssertionError("no bl_info assignment")
+
+
+def test_one_version_from_cmake_in_module_and_built_addon():
+    cmakelists = (Path(__file__).resolve().parents[3] / "CMakeLists.txt").read_text()
+    cmake_version = re.search(r"project\(\w+\s+VERSION\s+([0-9.]+)", cmakelists).group(1)
+    assert tc.__version__ == cmake_version
+    # The module is imported from the assembled add-on: <build>/addon/torrance/torrance_core/.
+    addon = Path(tc.__file__).resolve().parents[1]
+    expected = tuple(int(x) for x in cmake_version.split("."))
+    assert _bl_info_version((addon / "__init__.py").read_text()) == expected
+    with zipfile.ZipFile(addon.parents[1] / "torrance-addon.zip") as z:
+        assert _bl_info_version(z.read("torrance/__init__.py").decode()) == expected
