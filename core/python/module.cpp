@@ -1,8 +1,12 @@
 #include "bindings.h"
 
+#ifndef TORRANCE_VERSION
+#error "TORRANCE_VERSION (CMake's project version) must be defined by the build"
+#endif
+
 PYBIND11_MODULE(_core, m) {
   m.doc() = "Torrance's C++ core: an Embree path tracer with a Cook-Torrance BSDF (see docs/python_api.md)";
-  m.attr("__version__") = "0.1.0";
+  m.attr("__version__") = TORRANCE_VERSION;  // CMake's project(VERSION)
   torrance::python::init_scene(m);
   torrance::python::init_render(m);
   torrance::python::init_image(m);

@@ -39,9 +39,7 @@ Vec3 PrincipledBsdf::fresnel(float cos_ih) const {
 float PrincipledBsdf::specular_probability(const Vec3& wo) const {
   const float spec = luminance(fresnel(wo.z));
   const float diff = luminance(diffuse_color_);
-  if (!(diff > 0.0f)) return 1.0f;
-  if (!(spec > 0.0f)) return 0.0f;
-  return std::min(std::max(spec / (spec + diff), 0.1f), 0.9f);
+  return lobe_mixture::specular_probability(spec, diff);
 }
 
 LobeEval PrincipledBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {

@@ -4,7 +4,7 @@
 bl_info = {
     "name": "Torrance",
     "author": "The Torrance authors",
-    "version": (0, 1, 0),
+    "version": (0, 0, 0),  # the build writes CMake's project(VERSION) here
     "blender": (3, 4, 0),
     "location": "Properties > Render > Render Engine",
     "description": "Physically based path tracing render engine with a C++ core",

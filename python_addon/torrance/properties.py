@@ -47,6 +47,10 @@ class TorranceSceneSettings(bpy.types.PropertyGroup):
         name="BRDF Model",
         description="Reflection model used for all materials",
         items=BRDF_MODELS,
+        # PRINCIPLED here, PAPER in the core (RenderSettings in core/include/torrance/integrator.h),
+        # on purpose: Blender users expect F12 to look like Cycles' Principled BSDF on the same
+        # scene, while callers of the core check renders against closed forms of the brief's
+        # equations (a Lambert plane under a sun gives albedo * E / pi).
         default='PRINCIPLED',
     )
     filter_width: FloatProperty(

@@ -48,6 +48,10 @@ struct RenderSettings {
   float pixel_aspect_x = 1.0f, pixel_aspect_y = 1.0f;
   float filter_width = 1.5f;      // Blackman-Harris, in pixels (Cycles' default)
   bool transparent_background = false;
+  // PAPER here, PRINCIPLED in the add-on (python_addon/torrance/properties.py), on purpose: callers of
+  // the core (C++ and module tests, scripts) check renders against closed forms of the brief's
+  // equations (a Lambert plane under a sun gives albedo * E / pi), while Blender users expect F12 to
+  // look like Cycles' Principled BSDF on the same scene.
   BrdfModel brdf_model = BrdfModel::Paper;
   LightSelection light_selection = LightSelection::Contribution;
   bool sobol = true;       // Owen-scrambled Sobol samples; false: independent random numbers

@@ -9,7 +9,19 @@
 #include "torrance/microfacet.h"
 #include "torrance/sampling.h"
 
+#include <algorithm>
+
 namespace torrance::lobe_mixture {
+
+// The probability of choosing the specular lobe, from the estimated reflectances (luminances) of
+// the specular and diffuse lobes for this wo: spec / (spec + diff), clamped to [0.1, 0.9] so that
+// neither lobe's density becomes tiny while it reflects; 1 or 0 when only one lobe reflects.
+// Each BSDF's specular_probability(wo) estimates spec and diff its own way and calls this.
+inline float specular_probability(float spec, float diff) {
+  if (!(diff > 0.0f)) return 1.0f;
+  if (!(spec > 0.0f)) return 0.0f;
+  return std::min(std::max(spec / (spec + diff), 0.1f), 0.9f);
+}
 
 template <typename Bsdf>
 float pdf(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi, float alpha) {

@@ -1,6 +1,10 @@
 """Tests of the pybind11 module from Debian's /usr/bin/python3: numpy in, clear errors out."""
+import ast
+import re
 import threading
 import time
+import zipfile
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -11,7 +15,8 @@ import torrance_core as tc
 def plane_scene(half=50.0, albedo=0.5):
     scene = tc.Scene()
     scene.add_material(base_color=(albedo,) * 3, specular=0.0, roughness=1.0)
-    positions = np.array([[-half, -half, 0], [half, -half, 0], [half, half, 0], [-half, half, 0]], np.float32)
+    positions = np.array([[-half, -half, 0], [half, -half, 0], [half, half, 0], [-half, half, 0]],
+                         np.float32)
     scene.add_mesh(positions, np.array([[0, 1, 2], [0, 2, 3]], np.int32))
     matrix = np.eye(4)
     matrix[2, 3] = 5.0
@@ -152,9 +157,11 @@ def test_write_and_read_images(tmp_path):
 def test_directional_albedo_matches_the_models_known_values():
     # Principled rough white metal loses energy (0.307 at normal incidence); PAPER's Lambert-like
     # white dielectric (specular 0) stays within a few percent of 1.
-    assert tc.directional_albedo("PRINCIPLED", (1, 1, 1), 1.0, 1.0, 0.5, 1.0) == pytest.approx(0.307, abs=0.004)
-    assert tc.directional_albedo("PAPER", (1, 1, 1), 0.0, 1.0, 0.0, 1.0) == pytest.approx(1.0, abs=0.03)
-    assert tc.directional_albedo("PAPER", (1, 1, 1), 1.0, 0.0, 0.5, 1.0) == pytest.approx(1.0, abs=0.01)
+    white = (1, 1, 1)
+    rough_metal = tc.directional_albedo("PRINCIPLED", white, 1.0, 1.0, 0.5, 1.0)
+    assert rough_metal == pytest.approx(0.307, abs=0.004)
+    assert tc.directional_albedo("PAPER", white, 0.0, 1.0, 0.0, 1.0) == pytest.approx(1.0, abs=0.03)
+    assert tc.directional_albedo("PAPER", white, 1.0, 0.0, 0.5, 1.0) == pytest.approx(1.0, abs=0.01)
     with pytest.raises(ValueError, match="brdf_model"):
         tc.directional_albedo("PHONG", (1, 1, 1), 0.0, 0.5)
     with pytest.raises(ValueError, match="cos_o"):
@@ -162,30 +169,37 @@ def test_directional_albedo_matches_the_models_known_values():
 
 
 def test_image_furnace_sphere_in_uniform_world():
-    """A convex object under a uniform world: every pixel is albedo(cos_o) x L, no interreflection."""
-    import sys, pathlib
+    """A convex object under a uniform world: every pixel is albedo(cos_o) x L, without
+    interreflection."""
+    import pathlib
+    import sys
     sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[3] / "scripts"))
     from analysis import uv_sphere
     for model, metallic, spec in [("PAPER", 0.0, 0.0), ("PRINCIPLED", 1.0, 0.5)]:
         scene = tc.Scene()
-        m = scene.add_material(base_color=(1, 1, 1), metallic=metallic, roughness=1.0, specular=spec)
+        m = scene.add_material(base_color=(1, 1, 1), metallic=metallic, roughness=1.0,
+                               specular=spec)
         p, t, n = uv_sphere(np.zeros(3), 1.0, rings=96, segments=192)
         scene.add_mesh(p, t, n, np.full(len(t), m, np.int32))
         scene.set_world(color=(1, 1, 1), strength=0.5)
         cam = np.eye(4, dtype=np.float32)
         cam[2, 3] = 50.0
-        scene.set_camera(cam, lens=1500.0)  # nearly orthographic: the sphere fills the frame's centre
-        img = tc.render(scene, tc.RenderSettings(width=48, height=48, samples=64, brdf_model=model)).image
-        # Expected mean over the disk r < 0.7: pixels are uniform in the disk, so weight albedo(mu) by mu.
+        scene.set_camera(cam, lens=1500.0)  # nearly orthographic: the sphere fills the centre
+        settings = tc.RenderSettings(width=48, height=48, samples=64, brdf_model=model)
+        img = tc.render(scene, settings).image
+        # Expected mean over the disk r < 0.7: pixels are uniform in the disk, so weight
+        # albedo(mu) by mu.
         mus = np.linspace(np.sqrt(1 - 0.7 ** 2), 1.0, 9)
-        albedo = np.array([tc.directional_albedo(model, (1, 1, 1), metallic, 1.0, spec, mu) for mu in mus])
+        albedo = np.array([tc.directional_albedo(model, (1, 1, 1), metallic, 1.0, spec, mu)
+                           for mu in mus])
         expected = 0.5 * np.trapz(albedo * mus, mus) / np.trapz(mus, mus)
         yy, xx = np.mgrid[0:48, 0:48]
         half_width = 18.0 / 1500.0 * 50.0  # view-plane half extent at the sphere, metres
         rho = np.hypot((xx + 0.5 - 24) / 24, (yy + 0.5 - 24) / 24) * half_width
         inside = rho < 0.7
         measured = img[inside, 0].mean()
-        print(f"furnace {model} metallic={metallic}: measured {measured:.4f} expected {expected:.4f}")
+        print(f"furnace {model} metallic={metallic}: "
+              f"measured {measured:.4f} expected {expected:.4f}")
         assert measured == pytest.approx(expected, rel=0.03), (model, measured, expected)
         assert np.isfinite(img).all()
 
@@ -194,8 +208,8 @@ def test_render_passes_sum_to_combined_and_albedo_is_base_color():
     scene = plane_scene(albedo=0.6)
     scene.add_material(base_color=(0.9, 0.2, 0.1), metallic=0.25, roughness=0.4)
     # A mirror-ish second object above the plane makes indirect glossy and diffuse light.
-    scene.add_mesh(np.array([[0.5, -3, 1.5], [4, -3, 1.5], [4, 3, 1.5]], np.float32), np.array([[0, 2, 1]]),
-                   material_indices=np.array([1]))
+    scene.add_mesh(np.array([[0.5, -3, 1.5], [4, -3, 1.5], [4, 3, 1.5]], np.float32),
+                   np.array([[0, 2, 1]]), material_indices=np.array([1]))
     scene.add_sun(direction=(0.3, 0.1, -1), strength=3.0, angle=0.02)
     scene.add_point_light(position=(0.2, 0.0, 1.0), power=50.0, radius=0.05)
     scene.set_world(color=(0.1, 0.2, 0.3))
@@ -219,19 +233,23 @@ def test_textures_drive_base_color_and_roughness_by_uv():
     # A 2x1 texture: left half red, right half blue (sRGB 1.0 -> linear 1.0), row 0 = bottom.
     red_blue = scene.add_texture(np.array([[[1, 0, 0], [0, 0, 1]]], np.float32), colorspace="sRGB",
                                  interpolation="Closest")
-    mat = scene.add_material(base_color=(0.5, 0.5, 0.5), specular=0.0, roughness=1.0, base_color_texture=red_blue)
+    mat = scene.add_material(base_color=(0.5, 0.5, 0.5), specular=0.0, roughness=1.0,
+                             base_color_texture=red_blue)
     half = 50.0
-    positions = np.array([[-half, -half, 0], [half, -half, 0], [half, half, 0], [-half, half, 0]], np.float32)
+    positions = np.array([[-half, -half, 0], [half, -half, 0], [half, half, 0], [-half, half, 0]],
+                         np.float32)
     uvs = np.array([[[0, 0], [1, 0], [1, 1]], [[0, 0], [1, 1], [0, 1]]], np.float32)
-    scene.add_mesh(positions, np.array([[0, 1, 2], [0, 2, 3]]), material_indices=np.array([mat, mat]),
-                   corner_uvs=uvs)
+    scene.add_mesh(positions, np.array([[0, 1, 2], [0, 2, 3]]),
+                   material_indices=np.array([mat, mat]), corner_uvs=uvs)
     scene.add_sun(direction=(0, 0, -1), strength=np.pi, angle=0.0)
     matrix = np.eye(4)
     matrix[2, 3] = 5.0
     scene.set_camera(matrix, lens=5.0)   # wide: sees both halves of the centre
-    img = tc.render(scene, tc.RenderSettings(width=32, height=8, samples=4, filter_width=0.01)).image
+    settings = tc.RenderSettings(width=32, height=8, samples=4, filter_width=0.01)
+    img = tc.render(scene, settings).image
     left, right = img[:, :12, :3].mean(axis=(0, 1)), img[:, 20:, :3].mean(axis=(0, 1))
-    assert left == pytest.approx([1, 0, 0], abs=0.02) and right == pytest.approx([0, 0, 1], abs=0.02)
+    assert left == pytest.approx([1, 0, 0], abs=0.02)
+    assert right == pytest.approx([0, 0, 1], abs=0.02)
     with pytest.raises(ValueError, match="texture 7"):
         scene.add_material(base_color_texture=7)
     with pytest.raises(ValueError, match="colorspace"):
@@ -245,8 +263,8 @@ def test_texture_file_and_normal_map(tmp_path):
     tc.write_image(path, np.full((4, 4, 4), 0.25, np.float32))
     scene = tc.Scene()
     tid = scene.add_texture_file(path, colorspace="Non-Color")
-    flat = scene.add_texture(np.full((1, 1, 3), 0.5, np.float32) + np.array([0, 0, 0.5], np.float32),
-                             colorspace="Non-Color")   # (0.5, 0.5, 1) = the unperturbed normal
+    # (0.5, 0.5, 1) = the unperturbed normal
+    flat = scene.add_texture(np.array([[[0.5, 0.5, 1.0]]], np.float32), colorspace="Non-Color")
     gentle = scene.add_texture(np.array([[[0.6, 0.5, 0.9]]], np.float32), colorspace="Non-Color")
     steep = scene.add_texture(np.array([[[0.9, 0.5, 0.8]]], np.float32), colorspace="Non-Color")
     results = []
@@ -256,16 +274,18 @@ def test_texture_file_and_normal_map(tmp_path):
         s.add_texture(np.array([[[0.5, 0.5, 1.0]]], np.float32), colorspace="Non-Color")
         s.add_texture(np.array([[[0.6, 0.5, 0.9]]], np.float32), colorspace="Non-Color")
         s.add_texture(np.array([[[0.9, 0.5, 0.8]]], np.float32), colorspace="Non-Color")
-        m = s.add_material(base_color=(1, 1, 1), specular=0.0, roughness=1.0, base_color_texture=tid,
-                           normal_texture=normal)
+        m = s.add_material(base_color=(1, 1, 1), specular=0.0, roughness=1.0,
+                           base_color_texture=tid, normal_texture=normal)
         positions = np.array([[-50, -50, 0], [50, -50, 0], [50, 50, 0], [-50, 50, 0]], np.float32)
         uvs = np.array([[[0, 0], [1, 0], [1, 1]], [[0, 0], [1, 1], [0, 1]]], np.float32)
-        s.add_mesh(positions, np.array([[0, 1, 2], [0, 2, 3]]), material_indices=np.array([m, m]), corner_uvs=uvs)
+        s.add_mesh(positions, np.array([[0, 1, 2], [0, 2, 3]]), material_indices=np.array([m, m]),
+                   corner_uvs=uvs)
         s.add_sun(direction=(0, 0, -1), strength=np.pi, angle=0.0)
         matrix = np.eye(4)
         matrix[2, 3] = 5.0
         s.set_camera(matrix, lens=2000.0)
-        results.append(tc.render(s, tc.RenderSettings(width=4, height=4, samples=1)).image[..., 0].mean())
+        image = tc.render(s, tc.RenderSettings(width=4, height=4, samples=1)).image
+        results.append(image[..., 0].mean())
     assert results[0] == pytest.approx(0.25, abs=1e-3)      # texture value, Lambert, E = pi
     # (0.2, 0, 0.8) normalised sees the overhead sun at cos 0.970.
     assert results[1] == pytest.approx(0.25 * 0.8 / np.hypot(0.2, 0.8), rel=0.01)
@@ -278,7 +298,8 @@ def test_hdri_world_mapping_and_importance_sampling():
     # An equirectangular map black except a small bright patch around the direction +X, slightly up.
     h, w = 64, 128
     env = np.full((h, w, 3), 0.0, np.float32)
-    # Cycles' mapping: u = 0.5 - atan2(y, x) / 2pi -> +X is u = 0.5; v = 1 - acos(z)/pi -> z = 0.5 is v = 2/3.
+    # Cycles' mapping: u = 0.5 - atan2(y, x) / 2pi -> +X is u = 0.5;
+    # v = 1 - acos(z)/pi -> z = 0.5 is v = 2/3.
     env[40:46, 62:66] = 2000.0
     scene = tc.Scene()
     tex = scene.add_texture(env, colorspace="Linear")
@@ -287,7 +308,8 @@ def test_hdri_world_mapping_and_importance_sampling():
     scene.add_mesh(np.array([[0, -50, -50], [0, 50, -50], [0, 50, 50], [0, -50, 50]], np.float32),
                    np.array([[0, 1, 2], [0, 2, 3]]), material_indices=np.array([m, m]))
     scene.set_world_texture(tex, strength=1.0)
-    cam = np.array([[0, 0, 1, 5], [1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 0, 1]], np.float32)  # at +X looking -X
+    # At +X looking -X.
+    cam = np.array([[0, 0, 1, 5], [1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 0, 1]], np.float32)
     scene.set_camera(cam, lens=2000.0)
     # Expected irradiance from the patch: sum over its texels of L * cos(angle to +X) * solid angle.
     E = 0.0
@@ -303,9 +325,11 @@ def test_hdri_world_mapping_and_importance_sampling():
     sky = tc.Scene()
     sky.add_texture(env, colorspace="Linear")
     sky.set_world_texture(0)
-    look = np.array([[0, 0, -1, 0], [-1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 0, 1]], np.float32)  # looks +X
+    # Looks +X.
+    look = np.array([[0, 0, -1, 0], [-1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 0, 1]], np.float32)
     sky.set_camera(look, lens=12.0)  # +-56 degrees: the patch sits 30 degrees up
-    view = tc.render(sky, tc.RenderSettings(width=64, height=64, samples=1, filter_width=0.01)).image
+    view = tc.render(sky, tc.RenderSettings(width=64, height=64, samples=1,
+                                            filter_width=0.01)).image
     assert view[..., 0].max() == pytest.approx(2000.0) and view[..., 0].min() == 0.0
     with pytest.raises(ValueError, match="texture 5"):
         sky.set_world_texture(5)
@@ -338,8 +362,10 @@ def test_specialised_paths_give_the_generic_image_and_sobol_beats_random():
     scene = plane_scene(albedo=0.7)
     scene.add_sun(direction=(0.3, 0.2, -1), strength=2.0, angle=0.0)        # delta light only:
     scene.add_point_light(position=(0.1, 0, 1), power=20.0, radius=0.0)     # nothing is hittable
-    generic = tc.render(scene, tc.RenderSettings(width=16, height=16, samples=8, specialize=False)).image
-    special = tc.render(scene, tc.RenderSettings(width=16, height=16, samples=8, specialize=True)).image
+    def render(specialize):
+        settings = tc.RenderSettings(width=16, height=16, samples=8, specialize=specialize)
+        return tc.render(scene, settings).image
+    generic, special = render(False), render(True)
     assert np.array_equal(generic, special)
     # Soft lights: error against a converged image, Sobol vs independent random numbers.
     soft = plane_scene(albedo=0.7)
@@ -349,7 +375,8 @@ def test_specialised_paths_give_the_generic_image_and_sobol_beats_random():
     reference = tc.render(soft, tc.RenderSettings(width=16, height=16, samples=2048)).image[..., :3]
     errors = {}
     for sampler in ["SOBOL", "RANDOM"]:
-        img = tc.render(soft, tc.RenderSettings(width=16, height=16, samples=16, sampler=sampler)).image[..., :3]
+        settings = tc.RenderSettings(width=16, height=16, samples=16, sampler=sampler)
+        img = tc.render(soft, settings).image[..., :3]
         errors[sampler] = float(np.mean((img - reference) ** 2))
     assert errors["SOBOL"] < 0.5 * errors["RANDOM"], errors
 
@@ -360,9 +387,11 @@ def test_distant_texture_detail_is_filtered_not_aliased():
     checker = ((np.indices((n, n)).sum(axis=0) % 2).astype(np.float32))[..., None].repeat(3, axis=2)
     scene = tc.Scene()
     tex = scene.add_texture(checker, colorspace="Non-Color")
-    m = scene.add_material(base_color=(1, 1, 1), specular=0.0, roughness=1.0, base_color_texture=tex)
+    m = scene.add_material(base_color=(1, 1, 1), specular=0.0, roughness=1.0,
+                           base_color_texture=tex)
     half = 5.0
-    positions = np.array([[-half, -half, 0], [half, -half, 0], [half, half, 0], [-half, half, 0]], np.float32)
+    positions = np.array([[-half, -half, 0], [half, -half, 0], [half, half, 0], [-half, half, 0]],
+                         np.float32)
     uvs = np.array([[[0, 0], [1, 0], [1, 1]], [[0, 0], [1, 1], [0, 1]]], np.float32)
     scene.add_mesh(positions, np.array([[0, 1, 2], [0, 2, 3]]), material_indices=np.array([m, m]),
                    corner_uvs=uvs)
@@ -370,7 +399,29 @@ def test_distant_texture_detail_is_filtered_not_aliased():
     matrix = np.eye(4)
     matrix[2, 3] = 5.0
     scene.set_camera(matrix, lens=20.0)   # 9 m across 32 px: ~7 texels per pixel
-    img = tc.render(scene, tc.RenderSettings(width=32, height=32, samples=1, filter_width=0.01)).image
+    settings = tc.RenderSettings(width=32, height=32, samples=1, filter_width=0.01)
+    img = tc.render(scene, settings).image
     centre = img[8:24, 8:24, 0]
     assert centre.mean() == pytest.approx(0.5, abs=0.05)
     assert centre.std() < 0.1, f"aliasing: per-pixel std {centre.std():.3f} (unfiltered: 0.15)"
+
+
+def _bl_info_version(init_py_source):
+    """bl_info["version"] read the way Blender reads it: by parsing the file, not running it."""
+    for node in ast.parse(init_py_source).body:
+        names = [getattr(t, "id", None) for t in getattr(node, "targets", [])]
+        if isinstance(node, ast.Assign) and "bl_info" in names:
+            return ast.literal_eval(node.value)["version"]
+    raise AssertionError("no bl_info assignment")
+
+
+def test_one_version_from_cmake_in_module_and_built_addon():
+    cmakelists = (Path(__file__).resolve().parents[3] / "CMakeLists.txt").read_text()
+    cmake_version = re.search(r"project\(\w+\s+VERSION\s+([0-9.]+)", cmakelists).group(1)
+    assert tc.__version__ == cmake_version
+    # The module is imported from the assembled add-on: <build>/addon/torrance/torrance_core/.
+    addon = Path(tc.__file__).resolve().parents[1]
+    expected = tuple(int(x) for x in cmake_version.split("."))
+    assert _bl_info_version((addon / "__init__.py").read_text()) == expected
+    with zipfile.ZipFile(addon.parents[1] / "torrance-addon.zip") as z:
+        assert _bl_info_version(z.read("torrance/__init__.py").decode()) == expected

@@ -29,9 +29,7 @@ float CookTorranceBsdf::geometry_G1(float cos_theta) const {
 float CookTorranceBsdf::specular_probability(const Vec3& wo) const {
   const float spec = luminance(fresnel(wo.z));
   const float diff = luminance(diffuse_color_) * (1.0f - spec);
-  if (!(diff > 0.0f)) return 1.0f;
-  if (!(spec > 0.0f)) return 0.0f;
-  return std::min(std::max(spec / (spec + diff), 0.1f), 0.9f);
+  return lobe_mixture::specular_probability(spec, diff);
 }
 
 LobeEval CookTorranceBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
