@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """Headless parameter sweeps of a material input, as ordinary Blender animations.
 
-    scripts/blender -b SCENE.blend --python blender_tests/sweep.py -- --material Grass \\
+    scripts/blender -b SCENE.blend --python torrance_tools/sweep/runner.py -- --material Grass \\
         --input Metallic --values 1,0.8,0.6,0.4,0.2,0 --out DIR [options]
 
 Each value of the swept input is one frame: the input's socket is keyframed (constant
@@ -12,13 +12,13 @@ frames in row-major order.
 How the frames get rendered:
 * by default this script renders every frame itself (or those of --frames), one progress line each;
 * Blender's own render flags after the script render only what they name, e.g.
-      scripts/blender -b SCENE.blend --python blender_tests/sweep.py -f 3 -- ...   (frame 3 only)
-      scripts/blender -b SCENE.blend --python blender_tests/sweep.py -s 2 -e 4 -a -- ...
+      scripts/blender -b SCENE.blend --python torrance_tools/sweep/runner.py -f 3 -- ...   (frame 3 only)
+      scripts/blender -b SCENE.blend --python torrance_tools/sweep/runner.py -s 2 -e 4 -a -- ...
   (the script then only sets the sweep up; handlers write each frame's PNG and record, and the
   sheet of the frames present when the render completes);
 * --save OUT.blend only writes the keyframed .blend (output path relative to it): any render farm
   renders it with `blender -b OUT.blend -a` (or splits it by frames), after which
-  `python3 blender_tests/sweep_sheet.py DIR` (or this script with --collect DIR) assembles the sheet.
+  `python3 -m torrance_tools.sweep.sheet DIR` (or this script with --collect DIR) assembles the sheet.
 
 Outputs in --out DIR:
     sweep.json                  the plan: material, inputs, each frame's values, engine, samples
@@ -59,8 +59,8 @@ import time
 import bpy
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import sweep_sheet as sheet  # noqa: E402
+from torrance_tools.compare import read_exr
+from torrance_tools.sweep import sheet
 
 RENDER_FLAGS = {"-f", "--render-frame", "-a", "--render-anim"}
 
@@ -123,9 +123,9 @@ def parse_frames(text):
 
 
 def build_parser():
-    p = argparse.ArgumentParser(prog="sweep.py", add_help=True,
+    p = argparse.ArgumentParser(prog="runner.py", add_help=True,
                                 description="Parameter sweeps of a material input (see the module "
-                                            "docstring of blender_tests/sweep.py)")
+                                            "docstring of torrance_tools/sweep/runner.py)")
     p.add_argument("--material")
     p.add_argument("--node")
     p.add_argument("--input")
@@ -480,7 +480,7 @@ class Recorder:
             record["samples_done"] = int(scene.cycles.samples)
         with open(meta, "w") as f:
             json.dump(record, f, indent=1)
-        sheet.write_png(png, sheet.read_image(exr), self.plan["exposure"])
+        sheet.write_png(png, read_exr(exr), self.plan["exposure"])
         self.done += 1
         label = sheet.frame_label(record["inputs"]) or "as is"
         spp = f", {record['samples_done']} spp" if record["samples_done"] is not None else ""
@@ -608,7 +608,7 @@ def run(args):
         rd.filepath = "//" + rel if not rel.startswith("..") else os.path.join(frames_dir, "frame_####")
         bpy.ops.wm.save_as_mainfile(filepath=save, copy=True, relative_remap=False, compress=True)
         print(f"sweep: saved {save}; render it with: blender -b {save} -a  (or -f N, -s A -e B -a); "
-              f"then: python3 blender_tests/sweep_sheet.py {out_dir}", flush=True)
+              f"then: python3 -m torrance_tools.sweep.sheet {out_dir}", flush=True)
         rd.filepath = os.path.join(frames_dir, "frame_####")
         return
 
