@@ -12,8 +12,6 @@ Measured: offsets within 0.04 px and ratios 0.980-0.988 for all variants.
 Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_tests/test_camera_agreement.py
 """
 
-import os
-
 import numpy as np
 
 from torrance_tools import agreement, render_settings, testing

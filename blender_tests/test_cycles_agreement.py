@@ -43,7 +43,6 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_
 """
 
 import math
-import os
 import types
 
 import numpy as np

@@ -12,7 +12,6 @@ interreflection (a sphere is convex). So
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_tests/test_furnace.py
 """
-import os
 
 import numpy as np
 

@@ -36,7 +36,6 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_
 """
 
 import math
-import os
 import time
 
 import bpy

@@ -8,7 +8,6 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_
 import os
 import shutil
 import subprocess
-import sys
 import textwrap
 
 import addon_utils

@@ -5,7 +5,6 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_
 """
 
 import math
-import os
 
 import bpy
 import numpy as np

@@ -107,8 +107,12 @@ def finite(img):
     return bool(np.isfinite(img).all())
 
 
+REC709_LUMA = np.array([0.2126, 0.7152, 0.0722])
+
+
 def luminance(img):
-    return img[:, :, :3] @ np.array([0.2126, 0.7152, 0.0722], dtype=np.float32)
+    """Rec. 709 Y of the RGB channels, float64 (H, W)."""
+    return np.asarray(img, dtype=np.float64)[..., :3] @ REC709_LUMA
 
 
 def image_offset(img, ref, radius=3):

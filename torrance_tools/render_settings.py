@@ -81,58 +81,6 @@ def ggx_everywhere():
                     node.distribution = 'GGX'
 
 
-def plain_output(scene, width, height):
-    """Resolution at 100 %, square pixels, whole frame, opaque film, no compositing, sequencer
-    or dither, Standard view transform."""
-    rd = scene.render
-    rd.resolution_x, rd.resolution_y = width, height
-    rd.resolution_percentage = 100
-    rd.pixel_aspect_x = rd.pixel_aspect_y = 1.0
-    rd.use_border = False
-    rd.film_transparent = False
-    rd.use_compositing = False
-    rd.use_sequencer = False
-    rd.dither_intensity = 0.0
-    vs = scene.view_settings
-    vs.view_transform = 'Standard'
-    vs.look = 'None'
-    vs.exposure = 0.0
-    vs.gamma = 1.0
-
-
-def torrance_settings(scene, samples, max_bounces, seed=0):
-    """Torrance's samples, bounces and seed, and the 1.5 px filter (as Cycles')."""
-    ts = scene.torrance
-    ts.samples = int(samples)
-    ts.max_bounces = int(max_bounces)
-    ts.seed = int(seed)
-    ts.filter_width = 1.5
-    return ts
-
-
-def cycles_settings(samples, seed, bounces):
-    """The Cycles settings of an unbiased render comparable with Torrance (recorded in the
-    references' JSON): no denoising (Debian's Blender has no OIDN), no adaptive sampling, no
-    clamping, no glossy blur, no light threshold, Blackman-Harris 1.5 px like Torrance, all
-    bounce types limited by `bounces`."""
-    return dict(device='CPU', samples=int(samples), seed=int(seed), use_animated_seed=False,
-                use_adaptive_sampling=False, use_denoising=False,
-                max_bounces=bounces, diffuse_bounces=bounces, glossy_bounces=bounces,
-                transmission_bounces=bounces, transparent_max_bounces=bounces, volume_bounces=0,
-                sample_clamp_direct=0.0, sample_clamp_indirect=0.0, blur_glossy=0.0,
-                light_sampling_threshold=0.0, caustics_reflective=True, caustics_refractive=True,
-                pixel_filter_type='BLACKMAN_HARRIS', filter_width=1.5, film_exposure=1.0)
-
-
-def ggx_everywhere():
-    """Every Principled BSDF of every material set to GGX (the default, enforced)."""
-    for mat in bpy.data.materials:
-        if mat.use_nodes and mat.node_tree is not None:
-            for node in mat.node_tree.nodes:
-                if node.bl_idname == 'ShaderNodeBsdfPrincipled':
-                    node.distribution = 'GGX'
-
-
 def setup_torrance(scene, samples, max_bounces, seed=0, brdf_model='PRINCIPLED',
                    progressive_display=None):
     """Torrance as the engine with the given samples, bounces, seed and BRDF model (the 1.5 px

@@ -9,7 +9,7 @@ Run through scripts/experiments (which builds first); by hand:
 For each experiment it runs torrance_tools/sweep/runner.py in a Blender process on a scene built
 by scenes/make_<scene>.py — with Torrance (its PAPER model: the paper's Cook-Torrance), with Torrance's
 PRINCIPLED model when the add-on offers it, and with Cycles, side by side — then
-torrance_tools/sweep/report.py measures the images and writes report.md.
+torrance_tools/sweep/measure.py measures the images and report.py writes report.md.
 """
 
 import argparse
