@@ -88,7 +88,7 @@ def principled(name, base_color=(0.8, 0.8, 0.8), metallic=0.0, roughness=0.5, sp
                emission=(0, 0, 0), emission_strength=0.0):
     """scene.principled with emission set (black, strength 0 unless given), no viewport colour."""
     return make.principled(name, base_color, metallic, roughness, specular, emission,
-                         emission_strength, viewport_color=False)
+                           emission_strength, viewport_color=False)
 
 
 def plane(scene, name, size, z=0.0, material=None):
