@@ -18,9 +18,8 @@ import zipfile
 
 import bpy
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import tutil  # noqa: E402
-from tutil import check  # noqa: E402
+from torrance_tools import testing
+from torrance_tools.testing import check
 
 
 def find_zip():
@@ -90,7 +89,7 @@ def main():
     if stale:
         print(f"note: the zip contains {len(stale)} __pycache__ entries")
 
-    d = tutil.tempdir()
+    d = testing.tempdir()
     user_scripts = os.path.join(d, "user_scripts")
     os.makedirs(user_scripts)
     script = os.path.join(d, "child.py")
@@ -108,4 +107,4 @@ def main():
           f"the child Blender failed (exit code {proc.returncode}):\n{out[-3000:]}")
 
 
-tutil.run(main)
+testing.run(main)

@@ -4,7 +4,7 @@ resolution percentage.
 
 The scene of test_cycles_agreement.py, direct light only (max bounces 0), 64 spp, rendered
 by both engines per camera variant. Each must meet the agreement thresholds of
-agreement_scene.THRESHOLDS, notably a sub-pixel image offset below 0.5 px (a wrong fit or
+agreement.THRESHOLDS, notably a sub-pixel image offset below 0.5 px (a wrong fit or
 shift moves or scales the image by pixels).
 
 Measured: offsets within 0.04 px and ratios 0.980-0.988 for all variants.
@@ -12,16 +12,11 @@ Measured: offsets within 0.04 px and ratios 0.980-0.988 for all variants.
 Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_tests/test_camera_agreement.py
 """
 
-import os
-import sys
-
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import tutil  # noqa: E402
-import agreement_scene  # noqa: E402
-from agreement_scene import failures, format_metrics, metrics  # noqa: E402
-from tutil import check  # noqa: E402
+from torrance_tools import agreement, render_settings, testing
+from torrance_tools.agreement import failures, format_metrics, metrics
+from torrance_tools.testing import check
 
 SAMPLES = 64
 
@@ -37,11 +32,11 @@ VARIANTS = (
 
 
 def main():
-    tutil.addon()
-    d = tutil.tempdir()
-    scene = tutil.clear_scene()
-    tutil.setup_render(scene)
-    agreement_scene.build(scene)
+    testing.addon()
+    d = testing.tempdir()
+    scene = testing.clear_scene()
+    testing.setup_render(scene)
+    agreement.build(scene)
     cam = scene.camera.data
     rd = scene.render
     problems = []
@@ -51,10 +46,10 @@ def main():
         cam.sensor_fit = fit
         cam.shift_x, cam.shift_y = shift
         cam.lens = lens
-        agreement_scene.setup_cycles(scene, SAMPLES, 0)
-        ref, _ = tutil.render(scene, d, "cycles")
-        agreement_scene.setup_torrance(scene, SAMPLES, 0)
-        img, _ = tutil.render(scene, d, "torrance")
+        render_settings.setup_cycles(scene, SAMPLES, 0)
+        ref, _ = testing.render(scene, d, "cycles")
+        render_settings.setup_torrance(scene, SAMPLES, 0, brdf_model='PAPER')
+        img, _ = testing.render(scene, d, "torrance")
         expected = (h * pct // 100, w * pct // 100, 4)
         check(img.shape == expected and ref.shape == expected,
               f"{label}: image sizes {img.shape} / {ref.shape}, expected {expected}")
@@ -68,4 +63,4 @@ def main():
     check(not problems, "camera disagreements: " + " | ".join(problems))
 
 
-tutil.run(main)
+testing.run(main)

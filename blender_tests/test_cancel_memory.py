@@ -16,16 +16,13 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_
 """
 
 import os
-import sys
 import time
 
 import bpy
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import tutil  # noqa: E402
-import agreement_scene  # noqa: E402
-from tutil import check  # noqa: E402
+from torrance_tools import agreement, compare, testing
+from torrance_tools.testing import check
 
 BREAK_AFTER_CALLS = 5
 MAX_STOP_SECONDS = 1.0
@@ -76,7 +73,7 @@ def cancel_test(addon, scene, d):
     check(stats.get("samples_done", 0) < LONG_SAMPLES, "the render was not cut short")
     path = os.path.join(d, "cancelled.exr")
     bpy.data.images["Render Result"].save_render(path, scene=scene)
-    img = tutil.read_exr(path)
+    img = compare.read_exr(path)
     check(np.isfinite(img).all(), "NaN/Inf in the cancelled render")
     print(f"cancel: partial image mean {img[:, :, :3].mean():.4f}")
     if stats.get("samples_done", 0) > 0:
@@ -88,13 +85,13 @@ def memory_test(addon, scene, d):
     rss = []
     times = []
     for i in range(RENDERS):
-        img, seconds = tutil.render(scene, d, "repeat")
+        img, seconds = testing.render(scene, d, "repeat")
         stats = addon.render.last_stats
         check(np.isfinite(img).all(), f"render {i + 1}: NaN/Inf in the image")
         check(stats.get("nonfinite_pixels") == 0 and stats.get("nonfinite_samples") == 0,
               f"render {i + 1}: non-finite values from the core: {stats}")
         check(stats.get("samples_done") == 8, f"render {i + 1}: {stats}")
-        rss.append(tutil.rss_mb())
+        rss.append(testing.rss_mb())
         times.append(seconds)
     print("memory: VmRSS after each render (MB): " + " ".join(f"{r:.1f}" for r in rss))
     # Mean of renders 3-7 against mean of renders 16-20: robust to allocator jitter (+-10 MB).
@@ -106,14 +103,14 @@ def memory_test(addon, scene, d):
 
 
 def main():
-    addon = tutil.addon()
-    d = tutil.tempdir()
-    scene = tutil.clear_scene()
-    tutil.setup_render(scene, width=96, height=72, samples=8)
-    agreement_scene.build(scene)
+    addon = testing.addon()
+    d = testing.tempdir()
+    scene = testing.clear_scene()
+    testing.setup_render(scene, width=96, height=72, samples=8)
+    agreement.build(scene)
     # A dense mesh (~200k triangles, tens of MB in the core with its BVH), so that leaking
     # a scene per render would show in the RSS.
-    dense = tutil.uv_sphere(scene, "Dense", (0.0, -1.2, 0.25), 0.25, segments=400, rings=250)
+    dense = testing.sphere_object(scene, "Dense", (0.0, -1.2, 0.25), 0.25, segments=400, rings=250)
     check(len(dense.data.polygons) > 99_000, "the dense sphere is not dense")
     scene.render.image_settings.file_format = 'OPEN_EXR'
     scene.render.image_settings.color_depth = '32'
@@ -121,4 +118,4 @@ def main():
     memory_test(addon, scene, d)
 
 
-tutil.run(main)
+testing.run(main)

@@ -33,7 +33,7 @@ Faults injected at B=1 between the add-on and the core (the same proxy as FAULTS
     lens x 1.05               block mean 0.049, p90 0.156
     missing bounce (B-1)      ratio 0.857  block mean 0.172
     extra bounce (B+1)        ratio 1.006  block mean 0.025  (undetectable at B=1; B=0 catches it)
-Thresholds (agreement_scene.THRESHOLDS: ratio in [0.93, 1.06] overall and per channel,
+Thresholds (agreement.THRESHOLDS: ratio in [0.93, 1.06] overall and per channel,
 block mean <= 0.045, p90 <= 0.12, |offset| <= 0.5 px) sit between the two groups. The test
 re-runs a few faults every time (FAULTS) and requires each to fail, so the thresholds keep
 their teeth; the bounce count off by one either way is checked by comparing Torrance at
@@ -43,17 +43,13 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_
 """
 
 import math
-import os
-import sys
 import types
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import tutil  # noqa: E402
-import agreement_scene  # noqa: E402
-from tutil import check  # noqa: E402
-from agreement_scene import THRESHOLDS, failures, format_metrics, metrics  # noqa: E402,F401
+from torrance_tools import agreement, render_settings, testing
+from torrance_tools.agreement import THRESHOLDS, failures, format_metrics, metrics  # noqa: F401
+from torrance_tools.testing import check
 
 W, H, SAMPLES = 128, 96, 256
 BOUNCES = (0, 1, 8)
@@ -123,21 +119,21 @@ def faulty_core(core, fault):
 # ------------------------------------------------------------------------------------------
 
 def main():
-    addon = tutil.addon()
+    addon = testing.addon()
     core = addon.render.load_core()
-    d = tutil.tempdir()
-    scene = tutil.clear_scene()
-    tutil.setup_render(scene, width=W, height=H)
-    agreement_scene.build(scene)
+    d = testing.tempdir()
+    scene = testing.clear_scene()
+    testing.setup_render(scene, width=W, height=H)
+    agreement.build(scene)
 
     problems = []
     cycles_ref = {}
     torrance = {}
     for bounces in BOUNCES:
-        agreement_scene.setup_cycles(scene, SAMPLES, bounces)
-        ref, t_ref = tutil.render(scene, d, f"cycles_b{bounces}")
-        agreement_scene.setup_torrance(scene, SAMPLES, bounces)
-        img, t_img = tutil.render(scene, d, f"torrance_b{bounces}")
+        render_settings.setup_cycles(scene, SAMPLES, bounces)
+        ref, t_ref = testing.render(scene, d, f"cycles_b{bounces}")
+        render_settings.setup_torrance(scene, SAMPLES, bounces, brdf_model='PAPER')
+        img, t_img = testing.render(scene, d, f"torrance_b{bounces}")
         check(np.isfinite(img).all(), "NaN/Inf in Torrance's image")
         check(np.isfinite(ref).all(), "NaN/Inf in Cycles' image")
         cycles_ref[bounces] = ref
@@ -161,11 +157,11 @@ def main():
               f"{'caught: ' + '; '.join(bad) if bad else 'NOT CAUGHT'}", flush=True)
         if not bad:
             missed.append(description)
-    agreement_scene.setup_torrance(scene, SAMPLES, FAULT_BOUNCES)
+    render_settings.setup_torrance(scene, SAMPLES, FAULT_BOUNCES, brdf_model='PAPER')
     try:
         for fault, description in FAULTS.items():
             addon.render._core = faulty_core(core, fault)
-            img, t_img = tutil.render(scene, d, f"fault_{fault}")
+            img, t_img = testing.render(scene, d, f"fault_{fault}")
             m = metrics(img, cycles_ref[FAULT_BOUNCES])
             bad = failures(m)
             print(f"fault '{description}': {format_metrics(m)} -> "
@@ -179,4 +175,4 @@ def main():
     check(not missed, "the thresholds miss these faults: " + ", ".join(missed))
 
 
-tutil.run(main)
+testing.run(main)

@@ -12,30 +12,27 @@ interreflection (a sphere is convex). So
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_tests/test_furnace.py
 """
-import os
-import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import tutil  # noqa: E402
-from tutil import check  # noqa: E402
+from torrance_tools import testing
+from torrance_tools.testing import check
 
 WORLD = 0.5
 SIZE = 64
 
 
 def render_sphere(model, metallic, specular, roughness, directory):
-    scene = tutil.clear_scene()
-    tutil.setup_render(scene, width=SIZE, height=SIZE, samples=64)
+    scene = testing.clear_scene()
+    testing.setup_render(scene, width=SIZE, height=SIZE, samples=64)
     scene.torrance.brdf_model = model
-    mat = tutil.principled("White", base_color=(1, 1, 1), metallic=metallic, roughness=roughness,
-                           specular=specular)
-    tutil.uv_sphere(scene, "Sphere", (0, 0, 0), 1.0, mat, segments=128, rings=64)
-    tutil.set_world(scene, (WORLD, WORLD, WORLD))
+    mat = testing.principled("White", base_color=(1, 1, 1), metallic=metallic, roughness=roughness,
+                             specular=specular)
+    testing.sphere_object(scene, "Sphere", (0, 0, 0), 1.0, mat, segments=128, rings=64)
+    testing.set_world(scene, (WORLD, WORLD, WORLD))
     # Far and long: nearly orthographic, the sphere spans the central 60% of the frame.
-    tutil.add_camera(scene, location=(0, -60, 0), target=(0, 0, 0), lens=36 * 60 / (2 / 0.6))
-    image, _ = tutil.render(scene, directory, f"{model}_{metallic}_{specular}")
+    testing.add_camera(scene, location=(0, -60, 0), target=(0, 0, 0), lens=36 * 60 / (2 / 0.6))
+    image, _ = testing.render(scene, directory, f"{model}_{metallic}_{specular}")
     check(np.isfinite(image).all(), "NaN/Inf in the furnace render")
     return image
 
@@ -58,8 +55,8 @@ def expected_disk_mean(core, model, metallic, specular, roughness, radius_fracti
 
 
 def main():
-    core = tutil.core()
-    directory = tutil.tempdir()
+    core = testing.core()
+    directory = testing.tempdir()
     inner = disk_mask(0.75)
     cases = [("PAPER", 0.0, 0.0, 1.0, 0.02),        # Lambert-like: the world colour
              ("PRINCIPLED", 1.0, 0.5, 1.0, 0.03),   # rough metal: loses ~60%
@@ -78,4 +75,4 @@ def main():
             check(abs(measured - WORLD) < 0.02 * WORLD, "a white Lambert sphere must vanish into the world")
 
 
-tutil.run(main)
+testing.run(main)

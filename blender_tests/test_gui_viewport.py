@@ -407,20 +407,19 @@ def _driver(result_path, shots_dir):
 # The background side (CTest): scene, X server, GUI run, verdict
 
 def _build_scene(path):
-    sys.path.insert(0, HERE)
-    import tutil
-    scene = tutil.clear_scene()
-    tutil.setup_render(scene, width=160, height=120, samples=16)
+    from torrance_tools import testing
+    scene = testing.clear_scene()
+    testing.setup_render(scene, width=160, height=120, samples=16)
     scene.torrance.viewport_samples = 16
     scene.cycles.preview_samples = 16                 # for the studio HDRI comparison
     scene.cycles.use_preview_denoising = False
     scene.cycles.use_preview_adaptive_sampling = False
-    red = tutil.principled("Red", base_color=(0.8, 0.02, 0.02))
-    tutil.uv_sphere(scene, "Sphere", (0, 0, 0.8), 0.8, red)
-    tutil.plane(scene, "Floor", 10, material=tutil.principled("Grey", base_color=(0.3, 0.3, 0.3)))
-    tutil.add_sun(scene)
-    tutil.set_world(scene, (0.18, 0.18, 0.18))
-    tutil.add_camera(scene)
+    red = testing.principled("Red", base_color=(0.8, 0.02, 0.02))
+    testing.sphere_object(scene, "Sphere", (0, 0, 0.8), 0.8, red)
+    testing.plane(scene, "Floor", 10, material=testing.principled("Grey", base_color=(0.3, 0.3, 0.3)))
+    testing.add_sun(scene)
+    testing.set_world(scene, (0.18, 0.18, 0.18))
+    testing.add_camera(scene)
     bpy.ops.wm.save_as_mainfile(filepath=path)
 
 

@@ -7,7 +7,7 @@ and to one side, so both the lighting (shadows, the sun's highlight) and the dir
 sky seen by the camera) must come out as in Cycles. Background Strength 1.5.
 
 1. Agreement with Cycles (PRINCIPLED, 96x72, 128 spp, 2 bounces) with the file image: ratio
-   within 3% overall and per channel, agreement_scene's block thresholds and camera offset.
+   within 3% overall and per channel, torrance_tools.agreement's block thresholds and camera offset.
    Teeth: the environment mirrored left-right, and the strength ignored, must both fail.
 2. The same image held in memory (a generated float image: Image.pixels, already linear)
    renders like the file (through OpenImageIO).
@@ -19,15 +19,12 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_
 
 import math
 import os
-import sys
 
 import bpy
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import tutil  # noqa: E402
-import agreement_scene  # noqa: E402
-from tutil import check  # noqa: E402
+from torrance_tools import agreement, render_settings, testing
+from torrance_tools.testing import check
 
 W, H, SAMPLES, BOUNCES = 96, 72, 128, 2
 STRENGTH = 1.5
@@ -68,7 +65,7 @@ def exr_image(d, name, pixels):
     """The pixels written to an OpenEXR file (exactly, by the core's writer: Image.save()
     would pass a float image through colour management) and loaded as a file image."""
     path = os.path.join(d, name + ".exr")
-    tutil.core().write_image(path, np.ascontiguousarray(pixels[::-1]))   # files: row 0 = top
+    testing.core().write_image(path, np.ascontiguousarray(pixels[::-1]))   # files: row 0 = top
     img = bpy.data.images.load(path, check_existing=False)
     check(img.source == 'FILE' and img.packed_file is None, "the test needs a file image")
     check(img.colorspace_settings.name == 'Linear', "an EXR file loads as Linear")
@@ -95,40 +92,40 @@ def set_hdri(scene, image, strength=STRENGTH):
 
 
 def build(d, pixels):
-    scene = tutil.clear_scene()
-    tutil.setup_render(scene, width=W, height=H, samples=SAMPLES)
+    scene = testing.clear_scene()
+    testing.setup_render(scene, width=W, height=H, samples=SAMPLES)
     # The camera looks a little up so that the sky fills the top of the frame.
-    tutil.add_camera(scene, location=(0.0, -6.0, 1.6), target=(0.0, 0.0, 1.0), lens=30.0)
-    tutil.plane(scene, "Floor", 8.0, material=tutil.principled("Floor", (0.5, 0.5, 0.5), 0.0, 0.5))
-    tutil.uv_sphere(scene, "Chrome", (-1.2, 0.3, 0.7), 0.7,
-                    tutil.principled("Chrome", (0.9, 0.9, 0.9), 1.0, 0.15), segments=32, rings=16)
-    tutil.uv_sphere(scene, "Matte", (1.2, 0.0, 0.7), 0.7,
-                    tutil.principled("Matte", (0.8, 0.8, 0.8), 0.0, 0.6), segments=32, rings=16)
+    testing.add_camera(scene, location=(0.0, -6.0, 1.6), target=(0.0, 0.0, 1.0), lens=30.0)
+    testing.plane(scene, "Floor", 8.0, material=testing.principled("Floor", (0.5, 0.5, 0.5), 0.0, 0.5))
+    testing.sphere_object(scene, "Chrome", (-1.2, 0.3, 0.7), 0.7,
+                          testing.principled("Chrome", (0.9, 0.9, 0.9), 1.0, 0.15), segments=32, rings=16)
+    testing.sphere_object(scene, "Matte", (1.2, 0.0, 0.7), 0.7,
+                          testing.principled("Matte", (0.8, 0.8, 0.8), 0.0, 0.6), segments=32, rings=16)
     image = exr_image(d, "sky", pixels)         # after clear_scene(), which removes images
     set_hdri(scene, image)
     return scene, image
 
 
 def render_torrance(scene, d, name):
-    return agreement_scene.render_torrance(scene, d, name, SAMPLES, BOUNCES)
+    return agreement.render_torrance(scene, d, name, SAMPLES, BOUNCES)
 
 
 def main():
-    tutil.addon()
-    d = tutil.tempdir()
+    testing.addon()
+    d = testing.tempdir()
     pixels = environment()
     scene, file_img = build(d, pixels)
 
     # 1. Cycles
-    agreement_scene.setup_cycles(scene, SAMPLES, BOUNCES)
-    ref, t_ref = tutil.render(scene, d, "cycles")
+    render_settings.setup_cycles(scene, SAMPLES, BOUNCES)
+    ref, t_ref = testing.render(scene, d, "cycles")
     img, t_img = render_torrance(scene, d, "torrance_file")
-    check(not tutil.last_messages(), f"unexpected reports: {tutil.last_messages()}")
-    check(tutil.addon().render.last_stats["textures"] == 1, "the HDRI must be loaded once")
-    m = agreement_scene.metrics(img, ref)
-    bad = agreement_scene.failures(m)
+    check(not testing.last_messages(), f"unexpected reports: {testing.last_messages()}")
+    check(testing.addon().render.last_stats["textures"] == 1, "the HDRI must be loaded once")
+    m = agreement.metrics(img, ref)
+    bad = agreement.failures(m)
     print(f"[cycles] Cycles {ref[:, :, :3].mean():.4f} ({t_ref:.1f} s), Torrance "
-          f"{img[:, :, :3].mean():.4f} ({t_img:.1f} s): {agreement_scene.format_metrics(m)}",
+          f"{img[:, :, :3].mean():.4f} ({t_img:.1f} s): {agreement.format_metrics(m)}",
           flush=True)
     check(all(0.97 <= r <= 1.03 for r in [m["ratio"], *m["channels"]]),
           f"ratio {m['ratio']:.3f} / {m['channels']}")
@@ -143,9 +140,9 @@ def main():
     faults["strength ignored"], _ = render_torrance(scene, d, "fault_strength")
     scene.world.node_tree.nodes["Background"].inputs["Strength"].default_value = STRENGTH
     for name, fault in faults.items():
-        fm = agreement_scene.metrics(fault, ref)
-        fbad = agreement_scene.failures(fm)
-        print(f"[fault] {name}: {agreement_scene.format_metrics(fm)} -> "
+        fm = agreement.metrics(fault, ref)
+        fbad = agreement.failures(fm)
+        print(f"[fault] {name}: {agreement.format_metrics(fm)} -> "
               f"{'caught' if fbad else 'NOT CAUGHT'}")
         check(fbad, f"the comparison misses the fault '{name}'")
 
@@ -154,8 +151,8 @@ def main():
     mem, _ = render_torrance(scene, d, "torrance_memory")
     diff = float(np.abs(mem - img).max())
     print(f"[memory] max |memory - file| = {diff:.2e}; vs Cycles: "
-          f"{agreement_scene.format_metrics(agreement_scene.metrics(mem, ref))}; vs file: "
-          f"{agreement_scene.format_metrics(agreement_scene.metrics(mem, img))}")
+          f"{agreement.format_metrics(agreement.metrics(mem, ref))}; vs file: "
+          f"{agreement.format_metrics(agreement.metrics(mem, img))}")
     check(diff < 1e-3 * max(1.0, float(img.max())), "the in-memory HDRI renders differently")
 
     # 3. Unsupported set-ups are reported.
@@ -166,15 +163,15 @@ def main():
     nt.links.new(coords.outputs["Generated"], mapping.inputs["Vector"])
     nt.links.new(mapping.outputs["Vector"], env.inputs["Vector"])
     scene.torrance.samples = 4
-    tutil.render(scene, d, "mapping")
-    check(any("Mapping" in m and "rotation" in m for _, m in tutil.last_messages()),
-          f"the Mapping node must be reported: {tutil.last_messages()}")
+    testing.render(scene, d, "mapping")
+    check(any("Mapping" in m and "rotation" in m for _, m in testing.last_messages()),
+          f"the Mapping node must be reported: {testing.last_messages()}")
     env.projection = 'MIRROR_BALL'
-    ball, _ = tutil.render(scene, d, "mirror_ball")
-    check(any("mirror ball" in m for _, m in tutil.last_messages()),
-          f"the mirror-ball projection must be reported: {tutil.last_messages()}")
+    ball, _ = testing.render(scene, d, "mirror_ball")
+    check(any("mirror ball" in m for _, m in testing.last_messages()),
+          f"the mirror-ball projection must be reported: {testing.last_messages()}")
     top = ball[0, :, :3].mean(axis=0)            # the sky at the top of the frame: the green
     check(top[1] > 5 * top[0], f"mirror ball: expected the socket's green, got {top}")
 
 
-tutil.run(main)
+testing.run(main)

@@ -36,17 +36,13 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_
 """
 
 import math
-import os
-import sys
 import time
 
 import bpy
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import tutil  # noqa: E402
-import agreement_scene  # noqa: E402
-from tutil import check  # noqa: E402
+from torrance_tools import agreement, render_settings, testing
+from torrance_tools.testing import check
 
 W, H, SAMPLES, BOUNCES = 80, 60, 128, 2
 WORLD = 0.03
@@ -55,19 +51,19 @@ BLOCK_MEAN, BLOCK_P90 = 0.04, 0.09
 
 
 def base_scene():
-    scene = tutil.clear_scene()
-    tutil.setup_render(scene, width=W, height=H, samples=SAMPLES)
-    tutil.add_camera(scene, location=(0.0, -5.0, 3.2), target=(0.0, 0.2, 0.4), lens=32.0)
-    floor = tutil.principled("Floor", (0.5, 0.5, 0.5), 0.0, 0.5, specular=0.5)
-    wall = tutil.principled("Wall", (0.55, 0.5, 0.4), 0.0, 0.6, specular=0.3)
-    tutil.plane(scene, "Floor", 10.0, material=floor)
-    tutil.mesh_object(scene, "Wall", [(-5, 2.5, 0), (5, 2.5, 0), (5, 2.5, 4), (-5, 2.5, 4)],
-                      [(0, 1, 2, 3)], wall)
-    tutil.uv_sphere(scene, "Ball", (0.3, 0.2, 0.55), 0.55,
-                    tutil.principled("Red", (0.8, 0.12, 0.08), 0.0, 0.3), segments=32, rings=16)
+    scene = testing.clear_scene()
+    testing.setup_render(scene, width=W, height=H, samples=SAMPLES)
+    testing.add_camera(scene, location=(0.0, -5.0, 3.2), target=(0.0, 0.2, 0.4), lens=32.0)
+    floor = testing.principled("Floor", (0.5, 0.5, 0.5), 0.0, 0.5, specular=0.5)
+    wall = testing.principled("Wall", (0.55, 0.5, 0.4), 0.0, 0.6, specular=0.3)
+    testing.plane(scene, "Floor", 10.0, material=floor)
+    testing.mesh_object(scene, "Wall", [(-5, 2.5, 0), (5, 2.5, 0), (5, 2.5, 4), (-5, 2.5, 4)],
+                        [(0, 1, 2, 3)], wall)
+    testing.sphere_object(scene, "Ball", (0.3, 0.2, 0.55), 0.55,
+                          testing.principled("Red", (0.8, 0.12, 0.08), 0.0, 0.3), segments=32, rings=16)
     # A dim uniform world: it keeps the blocks the light does not reach from being pure
     # bounce-light noise (which would dominate the block figures) and is the same on both sides.
-    tutil.set_world(scene, (WORLD, WORLD, WORLD))
+    testing.set_world(scene, (WORLD, WORLD, WORLD))
     return scene
 
 
@@ -144,11 +140,11 @@ def case_area_ellipse(scene):
 def case_emissive(scene):
     # A quad with an Emission node and a small sphere with Principled emission, both in view.
     quad = emission_material("Panel", (1.0, 0.7, 0.4), 6.0)
-    tutil.mesh_object(scene, "Panel", [(-2.2, 1.2, 0.4), (-1.2, 1.2, 0.4), (-1.2, 1.6, 1.8),
-                                       (-2.2, 1.6, 1.8)], [(0, 1, 2, 3)], quad)
-    glow = tutil.principled("Glow", (0.1, 0.1, 0.1), 0.0, 0.5, emission=(0.5, 0.8, 1.0),
-                            emission_strength=12.0)
-    tutil.uv_sphere(scene, "Glow", (1.6, -0.6, 0.35), 0.3, glow, segments=24, rings=12)
+    testing.mesh_object(scene, "Panel", [(-2.2, 1.2, 0.4), (-1.2, 1.2, 0.4), (-1.2, 1.6, 1.8),
+                                         (-2.2, 1.6, 1.8)], [(0, 1, 2, 3)], quad)
+    glow = testing.principled("Glow", (0.1, 0.1, 0.1), 0.0, 0.5, emission=(0.5, 0.8, 1.0),
+                              emission_strength=12.0)
+    testing.sphere_object(scene, "Glow", (1.6, -0.6, 0.35), 0.3, glow, segments=24, rings=12)
     return None
 
 
@@ -170,16 +166,16 @@ CASES = {
 # ------------------------------------------------------------------------------------------
 
 def failures(m):
-    return agreement_scene.failures(m, dict(ratio=RATIO, block_mean=BLOCK_MEAN, block_p90=BLOCK_P90))
+    return agreement.failures(m, dict(ratio=RATIO, block_mean=BLOCK_MEAN, block_p90=BLOCK_P90))
 
 
 def render_torrance(scene, d, name, samples=SAMPLES):
-    return agreement_scene.render_torrance(scene, d, name, samples, BOUNCES)
+    return agreement.render_torrance(scene, d, name, samples, BOUNCES)
 
 
 def main():
-    tutil.addon()
-    d = tutil.tempdir()
+    testing.addon()
+    d = testing.tempdir()
     problems, missed = [], []
     refs = {}
     for case, build in CASES.items():
@@ -187,21 +183,21 @@ def main():
         scene = base_scene()
         build(scene)
         samples = CASE_SAMPLES.get(case, SAMPLES)
-        agreement_scene.setup_cycles(scene, samples, BOUNCES)
-        ref, t_ref = tutil.render(scene, d, f"{case}_cycles")
+        render_settings.setup_cycles(scene, samples, BOUNCES)
+        ref, t_ref = testing.render(scene, d, f"{case}_cycles")
         img, t_img = render_torrance(scene, d, f"{case}_torrance", samples)
-        messages = tutil.last_messages()
-        stats = tutil.addon().render.last_stats
+        messages = testing.last_messages()
+        stats = testing.addon().render.last_stats
         expected_lights = 0 if case == "emissive" else 1
         check(stats["lights"] == expected_lights, f"{case}: {stats['lights']} lights exported")
         check(not any(level == 'WARNING' for level, _ in messages),
               f"{case}: unexpected warnings {messages}")
-        m = agreement_scene.metrics(img, ref)
+        m = agreement.metrics(img, ref)
         bad = failures(m)
         refs[case] = ref
         print(f"{case:15s} Cycles {ref[:, :, :3].mean():.4f} ({t_ref:.1f} s), Torrance "
               f"{img[:, :, :3].mean():.4f} ({t_img:.1f} s): "
-              f"{agreement_scene.format_metrics(m)}" + (f"  FAIL: {'; '.join(bad)}" if bad else "  ok")
+              f"{agreement.format_metrics(m)}" + (f"  FAIL: {'; '.join(bad)}" if bad else "  ok")
               + f"  [{time.perf_counter() - t0:.1f} s]", flush=True)
         if bad:
             problems.append(f"{case}: {'; '.join(bad)}")
@@ -222,9 +218,9 @@ def main():
         CASES[case](scene)
         alter(scene)
         img, _ = render_torrance(scene, d, f"fault_{case}", CASE_SAMPLES.get(case, SAMPLES))
-        m = agreement_scene.metrics(img, refs[case])
+        m = agreement.metrics(img, refs[case])
         bad = failures(m)
-        print(f"fault '{description}': {agreement_scene.format_metrics(m)} -> "
+        print(f"fault '{description}': {agreement.format_metrics(m)} -> "
               f"{'caught: ' + '; '.join(bad) if bad else 'NOT CAUGHT'}", flush=True)
         if not bad:
             missed.append(description)
@@ -242,13 +238,13 @@ def main():
     twin.location = (1.0, -1.0, 2.5)
     scene.collection.objects.link(twin)
     render_torrance(scene, d, "light_nodes")
-    messages = [m for _, m in tutil.last_messages() if "Light 'Hot'" in m]
+    messages = [m for _, m in testing.last_messages() if "Light 'Hot'" in m]
     check(len(messages) == 1 and "Blackbody" in messages[0],
-          f"the Blackbody light tree must be reported once: {tutil.last_messages()}")
-    check(tutil.addon().render.last_stats["lights"] == 2, "both point lights must render")
+          f"the Blackbody light tree must be reported once: {testing.last_messages()}")
+    check(testing.addon().render.last_stats["lights"] == 2, "both point lights must render")
 
     check(not problems, "Torrance disagrees with Cycles: " + " | ".join(problems))
     check(not missed, "the thresholds miss these faults: " + ", ".join(missed))
 
 
-tutil.run(main)
+testing.run(main)

@@ -23,14 +23,12 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_
 import glob
 import os
 import struct
-import sys
 
 import bpy
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import tutil  # noqa: E402
-from tutil import check  # noqa: E402
+from torrance_tools import compare, testing
+from torrance_tools.testing import check
 
 W, H, SAMPLES = 64, 48, 16
 HEIGHT = 4.0
@@ -53,8 +51,8 @@ LIGHT_PASSES = ("Emit", "Env", "DiffDir", "DiffInd", "GlossDir", "GlossInd")
 
 
 def build():
-    scene = tutil.clear_scene()
-    tutil.setup_render(scene, width=W, height=H, samples=SAMPLES)
+    scene = testing.clear_scene()
+    testing.setup_render(scene, width=W, height=H, samples=SAMPLES)
     cam = bpy.data.cameras.new("Top")
     cam.lens = 20.0
     ob = bpy.data.objects.new("Top", cam)
@@ -62,18 +60,18 @@ def build():
     scene.collection.objects.link(ob)
     scene.camera = ob
     # The plane ends at x = 2.5 m: the frame's right edge (x > 2.5 of +-3.6 m) sees the world.
-    tutil.mesh_object(scene, "Plane", [(-20, -20, 0), (2.5, -20, 0), (2.5, 20, 0), (-20, 20, 0)],
-                      [(0, 1, 2, 3)], tutil.principled("Plane", PLANE_COLOR, 0.0, 0.4))
-    tutil.uv_sphere(scene, "Ball", (0.0, 0.9, 0.5), 0.5,
-                    tutil.principled("Ball", SPHERE_COLOR, SPHERE_METALLIC, 0.3),
-                    segments=24, rings=12)
-    glow = tutil.principled("Glow", (0.2, 0.2, 0.2), 0.0, 0.5, emission=(1.0, 0.8, 0.5),
-                            emission_strength=3.0)
-    tutil.mesh_object(scene, "Panel", [(-2.0, -1.4, 0.3), (-1.2, -1.4, 0.3), (-1.2, -0.8, 0.3),
-                                       (-2.0, -0.8, 0.3)], [(0, 1, 2, 3)], glow)
-    tutil.add_sun(scene, strength=2.0)
-    tutil.add_point(scene, (1.0, -0.5, 1.5), power=80.0, radius=0.1)
-    tutil.set_world(scene, (0.3, 0.35, 0.45))
+    testing.mesh_object(scene, "Plane", [(-20, -20, 0), (2.5, -20, 0), (2.5, 20, 0), (-20, 20, 0)],
+                        [(0, 1, 2, 3)], testing.principled("Plane", PLANE_COLOR, 0.0, 0.4))
+    testing.sphere_object(scene, "Ball", (0.0, 0.9, 0.5), 0.5,
+                          testing.principled("Ball", SPHERE_COLOR, SPHERE_METALLIC, 0.3),
+                          segments=24, rings=12)
+    glow = testing.principled("Glow", (0.2, 0.2, 0.2), 0.0, 0.5, emission=(1.0, 0.8, 0.5),
+                              emission_strength=3.0)
+    testing.mesh_object(scene, "Panel", [(-2.0, -1.4, 0.3), (-1.2, -1.4, 0.3), (-1.2, -0.8, 0.3),
+                                         (-2.0, -0.8, 0.3)], [(0, 1, 2, 3)], glow)
+    testing.add_sun(scene, strength=2.0)
+    testing.add_point(scene, (1.0, -0.5, 1.5), power=80.0, radius=0.1)
+    testing.set_world(scene, (0.3, 0.35, 0.45))
     scene.torrance.brdf_model = 'PRINCIPLED'
     return scene
 
@@ -111,7 +109,7 @@ def render_passes(scene, d, tag):
     out = {}
     for path in glob.glob(os.path.join(directory, "*.exr")):
         name = os.path.basename(path)[:-len("0001.exr")]
-        out[name] = tutil.read_exr(path)
+        out[name] = compare.read_exr(path)
     return out, outputs
 
 
@@ -141,17 +139,17 @@ def exr_channels(path):
 
 
 def main():
-    tutil.addon()
-    d = tutil.tempdir()
+    testing.addon()
+    d = testing.tempdir()
     scene = build()
     vl = scene.view_layers[0]
     for toggle in TOGGLES:
         setattr(vl, toggle, True)
     vl.use_pass_mist = True                         # not rendered by Torrance: reported
     p, outputs = render_passes(scene, d, "all")
-    messages = tutil.last_messages()
+    messages = testing.last_messages()
     check(any("mist" in m for _, m in messages), f"the Mist pass must be reported: {messages}")
-    check(tutil.addon().render.last_stats["nonfinite_pixels"] == 0, "NaN/Inf pixels")
+    check(testing.addon().render.last_stats["nonfinite_pixels"] == 0, "NaN/Inf pixels")
     expected = {"Image", "Alpha", *TOGGLES.values()}
     print(f"[sockets] Render Layers outputs: {outputs}")
     check(set(outputs) - {"Mist"} == expected,
@@ -235,10 +233,10 @@ def main():
     vl.use_pass_mist = False
     q, outputs = render_passes(scene, d, "none")
     check(set(outputs) == {"Image", "Alpha"}, f"with no passes enabled: outputs {outputs}")
-    check(tutil.addon().render.last_stats["render_passes"] == [],
+    check(testing.addon().render.last_stats["render_passes"] == [],
           "no passes must be asked from the core")
     check(np.abs(q["Image"] - p["Image"]).max() < 1e-5 * max(1.0, float(p["Image"].max())),
           "asking for passes must not change Combined")
 
 
-tutil.run(main)
+testing.run(main)

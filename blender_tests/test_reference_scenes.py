@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """Torrance against the stored converged Cycles references of the comparison scenes.
 
-For each scene scenes/cmp_<name>.py (see scenes/cmp_util.py) Torrance (PRINCIPLED model, the
+For each scene scenes/cmp_<name>.py (see torrance_tools/comparison_scenes.py) Torrance (PRINCIPLED model, the
 Blender 3.4 Principled v1 that Cycles renders) renders it at a fixed modest sample count through
 the add-on (bpy.ops.render.render), and the image is compared with references/cmp_<name>.exr
 (Cycles 3.4, 8192-16384 samples; made by scripts/references, settings and noise in the JSON
@@ -25,18 +25,13 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_
 
 import math
 import os
-import sys
 import time
 
 import bpy
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import cmp_lib as cl  # noqa: E402
-import cmp_util as cu  # noqa: E402
-import tutil  # noqa: E402
-import agreement_scene  # noqa: E402
-from tutil import check  # noqa: E402
+from torrance_tools import agreement, comparison_scenes, compare, references, testing
+from torrance_tools.testing import check
 
 # Per scene: Torrance samples and thresholds: mean ratio band (overall and per channel), block
 # mean, block p90. Set from MEASURED: about 1.6-3x above the worst of 4 seeds of the correct render
@@ -104,7 +99,7 @@ Notes:
 
 
 # ------------------------------------------------------------------------------------------
-# Faults: what the add-on passes to the core, altered (core_proxy), or the settings.
+# Faults: what the add-on passes to the core, altered (addon_access.core_proxy), or the settings.
 
 def _scale_kw(key, factor):
     def edit(method, args, kwargs):
@@ -123,7 +118,7 @@ def _only(method_name, edit):
 def _camera_shift(px):
     def edit(method, args, kwargs):
         if method == "set_camera":
-            kwargs = dict(kwargs, shift_x=kwargs.get("shift_x", 0.0) + px / cu.WIDTH)
+            kwargs = dict(kwargs, shift_x=kwargs.get("shift_x", 0.0) + px / comparison_scenes.WIDTH)
         return args, kwargs
     return edit
 
@@ -211,7 +206,7 @@ FAULT_KINDS = {
 # ------------------------------------------------------------------------------------------
 
 def failures(name, m):
-    return agreement_scene.failures(m, CONFIG[name])
+    return agreement.failures(m, CONFIG[name])
 
 
 class Scenes:
@@ -224,17 +219,17 @@ class Scenes:
 
     def get(self, name):
         if self.name != name:
-            scene, self.mod = cu.build(name)
+            scene, self.mod = comparison_scenes.build(name)
             self.name = name
             if name not in self.refs:
-                ref, meta = cl.load_reference(name)
-                check(cl.reference_is_current(scene, meta),
+                ref, meta = references.load_reference(name)
+                check(references.reference_is_current(scene, meta),
                       f"{name}: the stored reference was made of another version of the scene "
                       f"(digest {meta.get('scene_digest', '?')[:12]} != "
-                      f"{cu.scene_digest(scene)[:12]}): regenerate it with "
+                      f"{comparison_scenes.scene_digest(scene)[:12]}): regenerate it with "
                       f"scripts/references {name}")
-                check(cl.finite(ref), f"{name}: NaN/Inf in the reference")
-                check(ref.shape[:2] == (cu.HEIGHT, cu.WIDTH), f"{name}: reference shape {ref.shape}")
+                check(compare.finite(ref), f"{name}: NaN/Inf in the reference")
+                check(ref.shape[:2] == (comparison_scenes.HEIGHT, comparison_scenes.WIDTH), f"{name}: reference shape {ref.shape}")
                 self.refs[name] = (ref, meta)
         return bpy.context.scene, self.mod, self.refs[name][0], self.refs[name][1]
 
@@ -244,15 +239,15 @@ def render(scenes, name, samples, seed, fault=None):
     scene_edit = settings_edit = None
     if fault is not None:
         _desc, scene_edit, settings_edit = FAULT_KINDS[fault]
-    img, seconds = cl.render_torrance(scene, samples, seed, mod.BOUNCES,
-                                      name=f"t_{name}_{fault}", settings_edit=settings_edit,
-                                      scene_edit=scene_edit)
+    img, seconds = references.render_torrance(scene, samples, seed, mod.BOUNCES,
+                                              name=f"t_{name}_{fault}",
+                                              settings_edit=settings_edit, scene_edit=scene_edit)
     return img, seconds, ref
 
 
 def check_finite(name, img):
-    stats = cl.addon().render.last_stats
-    check(cl.finite(img), f"{name}: NaN/Inf in Torrance's image")
+    stats = testing.addon().render.last_stats
+    check(compare.finite(img), f"{name}: NaN/Inf in Torrance's image")
     check(stats.get("nonfinite_pixels", 0) == 0,
           f"{name}: {stats.get('nonfinite_pixels')} NaN/Inf pixel values from the core")
     check(stats.get("nonfinite_samples", 0) == 0,
@@ -260,22 +255,22 @@ def check_finite(name, img):
 
 
 def main():
-    cl.addon()
+    testing.addon()
     measure = bool(os.environ.get("TORRANCE_CMP_MEASURE"))
     scenes = Scenes()
     problems, missed = [], []
     t0 = time.perf_counter()
     only = os.environ.get("TORRANCE_CMP_SCENES")
-    names = only.split(",") if only else list(cu.SCENES)
+    names = only.split(",") if only else list(comparison_scenes.SCENES)
     for name in names:
         c = CONFIG[name]
         seeds = (SEED, 1, 2, 3) if measure else (SEED,)
         for seed in seeds:
             img, seconds, ref = render(scenes, name, c["samples"], seed)
             check_finite(name, img)
-            m = cl.bias_metrics(img, ref)
+            m = compare.bias_metrics(img, ref)
             bad = failures(name, m)
-            print(f"{name:13s} {c['samples']:5d} spp seed {seed}: {cl.fmt(m)} ({seconds:.1f} s)"
+            print(f"{name:13s} {c['samples']:5d} spp seed {seed}: {compare.format_bias(m)} ({seconds:.1f} s)"
                   + (f"  FAIL: {'; '.join(bad)}" if bad else "  ok"), flush=True)
             if bad and seed == SEED:
                 problems.append(f"{name}: {'; '.join(bad)}")
@@ -289,9 +284,9 @@ def main():
     for name, fault in faults:
         samples = CONFIG[name]["samples"]
         img, seconds, ref = render(scenes, name, samples, SEED, fault)
-        m = cl.bias_metrics(img, ref)
+        m = compare.bias_metrics(img, ref)
         bad = failures(name, m)
-        print(f"fault {name:13s} {FAULT_KINDS[fault][0]:34s} {samples:4d} spp: {cl.fmt(m)} -> "
+        print(f"fault {name:13s} {FAULT_KINDS[fault][0]:34s} {samples:4d} spp: {compare.format_bias(m)} -> "
               + ("caught" if bad else "NOT CAUGHT"), flush=True)
         if not bad:
             missed.append(f"{name}: {FAULT_KINDS[fault][0]}")
@@ -302,4 +297,4 @@ def main():
     check(not missed, "the thresholds miss these faults: " + ", ".join(missed))
 
 
-tutil.run(main)
+testing.run(main)

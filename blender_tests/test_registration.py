@@ -8,15 +8,13 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_
 import os
 import shutil
 import subprocess
-import sys
 import textwrap
 
 import addon_utils
 import bpy
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import tutil  # noqa: E402
-from tutil import check  # noqa: E402
+from torrance_tools import testing
+from torrance_tools.testing import check
 
 PANELS = ("RENDER_PT_format", "RENDER_PT_output", "RENDER_PT_frame_range",
           "RENDER_PT_color_management", "DATA_PT_lens", "DATA_PT_camera",
@@ -27,7 +25,7 @@ OWN_PANELS = ("TORRANCE_RENDER_PT_sampling", "TORRANCE_RENDER_PT_light_paths",
 
 
 def check_registered():
-    addon = tutil.addon()
+    addon = testing.addon()
     info = addon.bl_info
     check(info["name"] == "Torrance" and info["blender"] == (3, 4, 0)
           and info["category"] == "Render", f"bl_info: {info}")
@@ -68,8 +66,8 @@ CHILD = textwrap.dedent('''
 
 def check_missing_core():
     """A copy of the add-on without torrance_core: registration works, renders report it."""
-    d = tutil.tempdir()
-    src = os.path.dirname(os.path.realpath(tutil.addon().__file__))
+    d = testing.tempdir()
+    src = os.path.dirname(os.path.realpath(testing.addon().__file__))
     dst = os.path.join(d, "scripts", "addons", "torrance")
     shutil.copytree(src, dst, ignore=shutil.ignore_patterns("torrance_core", "__pycache__"))
     script = os.path.join(d, "child.py")
@@ -102,4 +100,4 @@ def main():
     check_missing_core()
 
 
-tutil.run(main)
+testing.run(main)

@@ -5,25 +5,22 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_
 """
 
 import math
-import os
-import sys
 
 import bpy
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import tutil  # noqa: E402
-from tutil import check  # noqa: E402
+from torrance_tools import testing
+from torrance_tools.testing import check
 
 W, H, SAMPLES = 64, 48, 4
 
 
 def base_scene(world=(0.2, 0.3, 0.4)):
-    scene = tutil.clear_scene()
-    tutil.setup_render(scene, width=W, height=H, samples=SAMPLES)
-    tutil.add_camera(scene)
+    scene = testing.clear_scene()
+    testing.setup_render(scene, width=W, height=H, samples=SAMPLES)
+    testing.add_camera(scene)
     if world is not None:
-        tutil.set_world(scene, world)
+        testing.set_world(scene, world)
     return scene
 
 
@@ -31,11 +28,11 @@ def render_case(name, scene, directory, expect=(), levels=('WARNING', 'INFO'), e
     """Renders; checks the result is finite and that each `expect` substring was reported."""
     error = None
     try:
-        img, seconds = tutil.render(scene, directory, name)
+        img, seconds = testing.render(scene, directory, name)
     except RuntimeError as exc:       # an ERROR report makes the operator raise
         error = str(exc)
         img, seconds = None, 0.0
-    messages = tutil.last_messages()
+    messages = testing.last_messages()
     print(f"[{name}] {seconds:.2f} s, reports: {messages}" + (f", error: {error}" if error else ""))
     if expect_error is not None:
         check(error is not None and expect_error in error,
@@ -47,15 +44,15 @@ def render_case(name, scene, directory, expect=(), levels=('WARNING', 'INFO'), e
     for text in expect:
         check(any(text in m for level, m in messages if level in levels),
               f"{name}: no report containing {text!r} in {messages}")
-    stats = tutil.addon().render.last_stats
+    stats = testing.addon().render.last_stats
     check(stats.get("samples_done") == SAMPLES, f"{name}: samples_done {stats}")
     check(stats.get("nonfinite_pixels") == 0, f"{name}: NaN/Inf in the core's image {stats}")
     return img
 
 
 def main():
-    tutil.addon()
-    d = tutil.tempdir()
+    testing.addon()
+    d = testing.tempdir()
     world = np.array([0.2, 0.3, 0.4])
 
     # 1. Empty scene: only the world.
@@ -66,7 +63,7 @@ def main():
 
     # 1b. Empty scene, world without nodes; film transparent.
     scene = base_scene(world=None)
-    tutil.set_world(scene, (0.5, 0.25, 0.125), use_nodes=False)
+    testing.set_world(scene, (0.5, 0.25, 0.125), use_nodes=False)
     img = render_case("world_no_nodes", scene, d)
     check(np.allclose(img[:, :, :3], (0.5, 0.25, 0.125), atol=2e-3), f"world colour {img.mean((0, 1))}")
     scene.render.film_transparent = True
@@ -98,19 +95,19 @@ def main():
 
     # 3. An object without material, one with an empty slot, a material index past the slots.
     scene = base_scene()
-    tutil.add_sun(scene, strength=3.0)
-    tutil.uv_sphere(scene, "NoMaterial", (-1.2, 0, 0.6), 0.6)
-    ob = tutil.uv_sphere(scene, "EmptySlot", (1.2, 0, 0.6), 0.6)
+    testing.add_sun(scene, strength=3.0)
+    testing.sphere_object(scene, "NoMaterial", (-1.2, 0, 0.6), 0.6)
+    ob = testing.sphere_object(scene, "EmptySlot", (1.2, 0, 0.6), 0.6)
     ob.data.materials.append(None)
-    ob2 = tutil.plane(scene, "Floor", 8.0, material=tutil.principled("Floor"))
+    ob2 = testing.plane(scene, "Floor", 8.0, material=testing.principled("Floor"))
     ob2.data.polygons[0].material_index = 5          # Cycles clamps it to the last slot
     img = render_case("no_material", scene, d)
     check(img[:, :, :3].mean() > world.mean() * 0.5, "no_material: implausibly dark")
 
     # 4. A mesh with a NaN vertex (and one with an Inf vertex): its triangles are dropped.
     scene = base_scene()
-    tutil.add_sun(scene)
-    ob = tutil.uv_sphere(scene, "NaNSphere", (0, 0, 0.6), 0.6, tutil.principled("Red", (0.8, 0.1, 0.1)))
+    testing.add_sun(scene)
+    ob = testing.sphere_object(scene, "NaNSphere", (0, 0, 0.6), 0.6, testing.principled("Red", (0.8, 0.1, 0.1)))
     me = ob.data
     co = np.empty(len(me.vertices) * 3, dtype=np.float32)
     me.vertices.foreach_get("co", co)
@@ -124,7 +121,7 @@ def main():
     me.loop_triangles.foreach_get("vertices", tris)
     expected = int(np.isin(tris.reshape(-1, 3), [10, 40, 70]).any(axis=1).sum())
     img = render_case("nan_vertex", scene, d, expect=["NaN/Inf vertex"])
-    msg = [m for _, m in tutil.last_messages() if "NaN/Inf vertex" in m][0]
+    msg = [m for _, m in testing.last_messages() if "NaN/Inf vertex" in m][0]
     check(f"'NaNSphere': {expected} triangle(s)" in msg,
           f"nan_vertex: expected {expected} dropped triangles: {msg}")
     centre = img[H // 2 - 2:H // 2 + 2, W // 2 - 2:W // 2 + 2, :3].mean(axis=(0, 1))
@@ -133,8 +130,8 @@ def main():
     # 5. Unsupported nodes: a Principled Base Color from a Noise Texture; a Glass BSDF surface;
     #    an Emission surface (supported); a material without output; a Mix Shader.
     scene = base_scene()
-    tutil.add_sun(scene)
-    noise_mat = tutil.principled("NoiseMat", (0.2, 0.6, 0.2))
+    testing.add_sun(scene)
+    noise_mat = testing.principled("NoiseMat", (0.2, 0.6, 0.2))
     nt = noise_mat.node_tree
     noise = nt.nodes.new("ShaderNodeTexNoise")
     nt.links.new(noise.outputs["Color"], nt.nodes["Principled BSDF"].inputs["Base Color"])
@@ -163,13 +160,13 @@ def main():
     nt.links.new(nt.nodes["Principled BSDF"].outputs[0], mix.inputs[1])
     nt.links.new(mix.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
     for i, mat in enumerate((noise_mat, glass_mat, emit_mat, no_output, mix_mat)):
-        tutil.uv_sphere(scene, mat.name + "Sphere", (-2.4 + 1.2 * i, 0, 0.5), 0.5, mat,
-                        segments=16, rings=8)
+        testing.sphere_object(scene, mat.name + "Sphere", (-2.4 + 1.2 * i, 0, 0.5), 0.5, mat,
+                              segments=16, rings=8)
     img = render_case("unsupported_nodes", scene, d, expect=[
         "'NoiseMat': input 'Base Color'", "Noise Texture", "'NoiseMat': input 'Roughness'",
         "'GlassMat': the surface shader", "Glass BSDF",
         "'NoOutputMat': no active Material Output", "'MixMat'", "Mix Shader"])
-    messages = tutil.last_messages()
+    messages = testing.last_messages()
     check(not any("EmitMat" in m for _, m in messages), "EmitMat must not be reported")
     check(sum("'NoiseMat': input 'Base Color'" in m for _, m in messages) == 1,
           "each material/socket must be reported once")
@@ -179,12 +176,12 @@ def main():
     # 6. Spot and area lights (supported), object types, a negative-scale object, a text and
     #    a curve.
     scene = base_scene()
-    tutil.add_sun(scene)
+    testing.add_sun(scene)
     spot = bpy.data.lights.new("Spot", 'SPOT')
     scene.collection.objects.link(bpy.data.objects.new("Spot", spot))
     area = bpy.data.lights.new("Area", 'AREA')
     scene.collection.objects.link(bpy.data.objects.new("Area", area))
-    ob = tutil.uv_sphere(scene, "Mirrored", (0, 0, 0.6), 0.6, tutil.principled("M"))
+    ob = testing.sphere_object(scene, "Mirrored", (0, 0, 0.6), 0.6, testing.principled("M"))
     ob.scale = (-1, 1, 1)
     font = bpy.data.curves.new("Text", 'FONT')
     font.body = "T"
@@ -201,18 +198,18 @@ def main():
     spline.points[1].co = (-1.2, 0, 1.2, 1)
     scene.collection.objects.link(bpy.data.objects.new("Curve", curve))
     render_case("lights_and_types", scene, d)
-    stats = tutil.addon().render.last_stats
+    stats = testing.addon().render.last_stats
     check(sorted(stats["object_names"]) == ["Curve", "Mirrored", "Text"], f"expected 3 mesh objects (sphere, text, curve): {stats}")
     check(stats["lights"] == 3, f"expected 3 lights (sun, spot, area): {stats}")
-    check(not any("light" in m.lower() for _, m in tutil.last_messages()),
-          f"spot and area lights must not be reported: {tutil.last_messages()}")
+    check(not any("light" in m.lower() for _, m in testing.last_messages()),
+          f"spot and area lights must not be reported: {testing.last_messages()}")
 
     # 7. Hidden objects are not exported; collection instances are.
     scene = base_scene()
-    hidden = tutil.uv_sphere(scene, "Hidden", (0, 0, 0.6), 0.6)
+    hidden = testing.sphere_object(scene, "Hidden", (0, 0, 0.6), 0.6)
     hidden.hide_render = True
     coll = bpy.data.collections.new("Instanced")
-    src = tutil.uv_sphere(scene, "Source", (0, 0, 0), 0.3, segments=8, rings=4)
+    src = testing.sphere_object(scene, "Source", (0, 0, 0), 0.3, segments=8, rings=4)
     scene.collection.objects.unlink(src)
     coll.objects.link(src)
     for i in range(3):
@@ -222,18 +219,18 @@ def main():
         inst.location = (i - 1.0, 0, 0.3)
         scene.collection.objects.link(inst)
     render_case("instances", scene, d)
-    stats = tutil.addon().render.last_stats
+    stats = testing.addon().render.last_stats
     check(stats["objects"] == 3, f"expected the 3 instances only: {stats}")
 
     # 7b. Particles instancing a cube from a plane whose own render is off (show_self).
     scene = base_scene()
-    tutil.add_sun(scene)
-    cube = tutil.mesh_object(scene, "ParticleCube", [(x, y, z) for x in (-.1, .1) for y in (-.1, .1)
-                                                     for z in (-.1, .1)],
-                             [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6),
-                              (0, 2, 6, 4), (1, 5, 7, 3)])
+    testing.add_sun(scene)
+    cube = testing.mesh_object(scene, "ParticleCube", [(x, y, z) for x in (-.1, .1) for y in (-.1, .1)
+                                                       for z in (-.1, .1)],
+                               [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6),
+                                (0, 2, 6, 4), (1, 5, 7, 3)])
     cube.location = (0, 0, -50)
-    emitter = tutil.plane(scene, "Emitter", 2.0, z=0.2)
+    emitter = testing.plane(scene, "Emitter", 2.0, z=0.2)
     emitter.modifiers.new("Particles", 'PARTICLE_SYSTEM')
     pset = emitter.particle_systems[0].settings
     pset.count = 4
@@ -244,17 +241,17 @@ def main():
     pset.particle_size = 1.0
     emitter.show_instancer_for_render = False
     render_case("particles", scene, d)
-    names = tutil.addon().render.last_stats["object_names"]
+    names = testing.addon().render.last_stats["object_names"]
     check(sorted(names) == ["ParticleCube"] * 5,
           f"expected the cube and its 4 particle instances, not the emitter: {names}")
 
     # 7c. Normals: an auto-smooth cube (30 deg) renders like a flat one; a mesh with smooth
     #     and flat faces, and one with custom split normals, render without trouble.
     scene = base_scene()
-    tutil.add_sun(scene, rotation=(math.radians(30), 0, math.radians(40)))
+    testing.add_sun(scene, rotation=(math.radians(30), 0, math.radians(40)))
     verts = [(x, y, z) for x in (-.6, .6) for y in (-.6, .6) for z in (0, 1.2)]
     faces = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
-    cube = tutil.mesh_object(scene, "Cube", verts, faces, tutil.principled("C", (0.6, 0.6, 0.6)))
+    cube = testing.mesh_object(scene, "Cube", verts, faces, testing.principled("C", (0.6, 0.6, 0.6)))
     flat = render_case("flat_cube", scene, d)
     cube.data.polygons.foreach_set("use_smooth", [True] * 6)
     cube.data.use_auto_smooth = True
@@ -274,9 +271,9 @@ def main():
 
     # 8. Border render: a window of the frame, same pixels as the full render there.
     scene = base_scene()
-    tutil.add_sun(scene)
-    tutil.uv_sphere(scene, "Ball", (0, 0, 0.6), 0.8, tutil.principled("B", (0.7, 0.3, 0.2)))
-    tutil.plane(scene, "Floor", 8.0, material=tutil.principled("F"))
+    testing.add_sun(scene)
+    testing.sphere_object(scene, "Ball", (0, 0, 0.6), 0.8, testing.principled("B", (0.7, 0.3, 0.2)))
+    testing.plane(scene, "Floor", 8.0, material=testing.principled("F"))
     scene.torrance.samples = SAMPLES
     full = render_case("full_frame", scene, d)
     rd = scene.render
@@ -305,4 +302,4 @@ def main():
     render_case("no_camera", scene, d, expect_error="camera")
 
 
-tutil.run(main)
+testing.run(main)

@@ -1,10 +1,10 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The sweep runner (blender_tests/sweep.py) on a tiny scene.
+"""The sweep runner (torrance_tools/sweep/runner.py) on a tiny scene.
 
     scripts/blender -b --factory-startup --python-exit-code 1 --python blender_tests/test_sweep.py
 
 Builds a 32x24 scene (a matte-vs-metal probe plane lit from the side, a ball), saves it, and runs
-sweep.py on it in Blender subprocesses:
+the runner on it in Blender subprocesses:
 * a Metallic sweep 0, 0.5, 1 (Roughness fixed by --set): EXR + PNG + JSON per frame, CSV/JSON,
   masks, and the contact sheet with 3 labeled panels; each frame's value is applied: the probe's
   median brightness falls from metallic 0 (sunlit diffuse) to 1 (a mirror of the dim sky);
@@ -19,36 +19,33 @@ import math
 import os
 import shutil
 import subprocess
-import sys
 
 import bpy
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import tutil  # noqa: E402
-from tutil import check  # noqa: E402
-import sweep_sheet  # noqa: E402
+from torrance_tools import REPO as ROOT
+from torrance_tools import compare, testing
+from torrance_tools.sweep import sheet as sweep_sheet
+from torrance_tools.testing import check
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
-SWEEP = os.path.join(HERE, "sweep.py")
+SWEEP = os.path.join(ROOT, "torrance_tools", "sweep", "runner.py")
 
 
 def build_scene(path):
-    scene = tutil.clear_scene()
-    tutil.setup_render(scene, width=32, height=24, samples=4, seed=1, max_bounces=4)
+    scene = testing.clear_scene()
+    testing.setup_render(scene, width=32, height=24, samples=4, seed=1, max_bounces=4)
     scene.cycles.samples = 4
     scene.cycles.use_denoising = False
     scene.cycles.use_adaptive_sampling = False
-    probe = tutil.principled("Probe", base_color=(0.8, 0.8, 0.8), metallic=0.0, roughness=0.5)
-    other = tutil.principled("Other", base_color=(0.8, 0.1, 0.1))
-    tutil.plane(scene, "Floor", 10.0, material=probe)
-    tutil.uv_sphere(scene, "Ball", (1.2, 0.8, 0.5), 0.5, material=other, segments=16, rings=8)
-    tutil.add_camera(scene, location=(0.0, 0.0, 5.0), target=(0.0, 0.0, 0.0), lens=35.0)
+    probe = testing.principled("Probe", base_color=(0.8, 0.8, 0.8), metallic=0.0, roughness=0.5)
+    other = testing.principled("Other", base_color=(0.8, 0.1, 0.1))
+    testing.plane(scene, "Floor", 10.0, material=probe)
+    testing.sphere_object(scene, "Ball", (1.2, 0.8, 0.5), 0.5, material=other, segments=16, rings=8)
+    testing.add_camera(scene, location=(0.0, 0.0, 5.0), target=(0.0, 0.0, 0.0), lens=35.0)
     # Sun 50 deg from the zenith: no mirror highlight towards the camera looking straight down.
-    tutil.add_sun(scene, strength=3.0, rotation=(math.radians(50), 0, math.radians(30)),
-                  angle=math.radians(1.0))
-    tutil.set_world(scene, (0.2, 0.2, 0.2))
+    testing.add_sun(scene, strength=3.0, rotation=(math.radians(50), 0, math.radians(30)),
+                    angle=math.radians(1.0))
+    testing.set_world(scene, (0.2, 0.2, 0.2))
     bpy.ops.wm.save_as_mainfile(filepath=path)
 
 
@@ -70,9 +67,9 @@ def probe_median(out_dir, frame):
     check("Probe" in names and "Other" in names, f"masks name {names}")
     probe = masks["material"] == names.index("Probe")
     exr, _png, _meta = sweep_sheet.frame_paths(out_dir, frame)
-    img = sweep_sheet.read_image(exr)
+    img = compare.read_exr(exr)
     check(img.shape[:2] == probe.shape, f"image {img.shape} vs mask {probe.shape}")
-    return float(np.median(tutil.luminance(img)[probe]))
+    return float(np.median(compare.luminance(img)[probe]))
 
 
 def check_sheet(out_dir, labels):
@@ -92,7 +89,7 @@ def check_sheet(out_dir, labels):
 
 
 def main():
-    tmp = tutil.tempdir()
+    tmp = testing.tempdir()
     try:
         checks(tmp)
     finally:
@@ -156,7 +153,7 @@ def checks(tmp):
     layout = check_sheet(out_c, ["Metallic 0, Roughness 0.2", "Metallic 1, Roughness 0.2",
                                  "Metallic 0, Roughness 0.8", "Metallic 1, Roughness 0.8"])
     check(layout["columns"] == 2 and layout["rows"] == 2, "grid layout")
-    c = [float(np.median(tutil.luminance(sweep_sheet.read_image(
+    c = [float(np.median(compare.luminance(compare.read_exr(
         sweep_sheet.frame_paths(out_c, f)[0])))) for f in (1, 2)]
     check(c[0] > 1.5 * c[1], f"Cycles: metallic 0 vs 1 medians {c}")
 
@@ -184,4 +181,4 @@ def checks(tmp):
     check(abs(rough - 0.3) < 1e-6, f"--set Roughness=0.3 not saved ({rough})")
 
 
-tutil.run(main)
+testing.run(main)

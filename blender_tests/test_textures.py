@@ -22,16 +22,13 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_
 
 import math
 import os
-import sys
 
 import bpy
 import numpy as np
 from mathutils import Vector
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import tutil  # noqa: E402
-import agreement_scene  # noqa: E402
-from tutil import check  # noqa: E402
+from torrance_tools import agreement, compare, render_settings, testing
+from torrance_tools.testing import check
 
 SMOOTH, ROUGH = 0.12, 0.75
 
@@ -98,9 +95,9 @@ def floor_uvs(half, repeat):
 # 1. Base colour where the UVs map it
 
 def uv_placement(d):
-    scene = tutil.clear_scene()
-    tutil.setup_render(scene, width=64, height=64, samples=16)
-    tutil.set_world(scene, (1.0, 1.0, 1.0))
+    scene = testing.clear_scene()
+    testing.setup_render(scene, width=64, height=64, samples=16)
+    testing.set_world(scene, (1.0, 1.0, 1.0))
     # The 2x2 image, row 0 = bottom: red, green / blue, white (sRGB bytes).
     texels = np.array([[[0.8, 0.1, 0.1, 1], [0.1, 0.7, 0.2, 1]],
                        [[0.15, 0.2, 0.9, 1], [1.0, 1.0, 1.0, 1]]], np.float32)
@@ -114,10 +111,10 @@ def uv_placement(d):
     img = bpy.data.images.load(path)
     img.filepath = "//quad.png"                       # relative to the saved .blend
     check(img.source == 'FILE' and img.packed_file is None, "the test needs a file image")
-    mat = tutil.principled("QuadMat", specular=0.0, roughness=0.5)
+    mat = testing.principled("QuadMat", specular=0.0, roughness=0.5)
     image_node(mat, img, "Base Color", 'Closest')
     half = 2.0
-    ob = tutil.plane(scene, "Plane", 2 * half, material=mat)
+    ob = testing.plane(scene, "Plane", 2 * half, material=mat)
     # Turned by 90 degrees and repeated twice: vertex (x, y) -> UV (2 (y/h+1)/2, 2 (1-x/h)/2).
     verts = [(-half, -half), (half, -half), (half, half), (-half, half)]
     set_uvs(ob, [((y / half + 1), (1 - x / half)) for x, y in verts])
@@ -130,10 +127,10 @@ def uv_placement(d):
     scene.collection.objects.link(cam_ob)
     scene.camera = cam_ob
     scene.torrance.brdf_model = 'PRINCIPLED'
-    render, _ = tutil.render(scene, d, "uv_placement")
-    stats = tutil.addon().render.last_stats
+    render, _ = testing.render(scene, d, "uv_placement")
+    stats = testing.addon().render.last_stats
     check(stats["textures"] == 1, f"uv_placement: {stats['textures']} textures loaded")
-    check(not tutil.last_messages(), f"uv_placement: unexpected reports {tutil.last_messages()}")
+    check(not testing.last_messages(), f"uv_placement: unexpected reports {testing.last_messages()}")
     # The camera sees 36/200*40 = 7.2 m: the 4 m plane covers the middle 35.6 pixels.
     span = 2 * half / (36.0 / 200.0 * 40.0) * 64
     lin = srgb_to_linear(texels[:, :, :3])
@@ -162,17 +159,17 @@ def uv_placement(d):
 def textured_scene(roughness_mode="texture", color_texture=True, extras=True):
     """roughness_mode: 'texture' (the checker), 'smooth', 'rough' or 'mask' (the checker as
     the floor's emission, nothing else lit)."""
-    scene = tutil.clear_scene()
-    tutil.setup_render(scene, width=96, height=72, samples=128)
-    tutil.add_camera(scene, location=(0.0, -5.0, 2.6), target=(0.0, 0.0, 0.3), lens=35.0)
+    scene = testing.clear_scene()
+    testing.setup_render(scene, width=96, height=72, samples=128)
+    testing.add_camera(scene, location=(0.0, -5.0, 2.6), target=(0.0, 0.0, 0.3), lens=35.0)
     rough = bpy.data.images.get("Checker") or new_image("Checker", checker(4, SMOOTH, ROUGH),
                                                           'Non-Color')
     half, repeat = 3.0, 2.0
     if roughness_mode == "mask":
         mat = emission_material("FloorMask", rough)
     else:
-        mat = tutil.principled("Floor", (0.6, 0.6, 0.6), 0.0,
-                               {"smooth": SMOOTH, "rough": ROUGH}.get(roughness_mode, 0.5))
+        mat = testing.principled("Floor", (0.6, 0.6, 0.6), 0.0,
+                                 {"smooth": SMOOTH, "rough": ROUGH}.get(roughness_mode, 0.5))
         if roughness_mode == "texture":
             image_node(mat, rough, "Roughness", 'Closest')
         if color_texture:
@@ -182,7 +179,7 @@ def textured_scene(roughness_mode="texture", color_texture=True, extras=True):
                 px = np.dstack([0.55 + 0.4 * x, 0.5 + 0.3 * y, 0.7 - 0.3 * x, np.ones_like(x)])
                 col = new_image("Tint", px.astype(np.float32), 'sRGB')
             image_node(mat, col, "Base Color", 'Linear')
-    floor = tutil.plane(scene, "Floor", 2 * half, material=mat)
+    floor = testing.plane(scene, "Floor", 2 * half, material=mat)
     set_uvs(floor, [(0, 0), (repeat, 0), (repeat, repeat), (0, repeat)])
     if roughness_mode == "mask":
         return scene
@@ -194,7 +191,7 @@ def textured_scene(roughness_mode="texture", color_texture=True, extras=True):
     ob.location = (0.0, 2.2, 2.2)
     ob.rotation_euler = (math.radians(-40), 0, 0)
     scene.collection.objects.link(ob)
-    tutil.set_world(scene, (0.05, 0.05, 0.06))
+    testing.set_world(scene, (0.05, 0.05, 0.06))
     if extras:
         # A wall panel with a normal map (its left half tilted along +U, its right half along
         # -U) and metallic in its top half, lit by a sun near its normal. Near, because Cycles
@@ -214,27 +211,27 @@ def textured_scene(roughness_mode="texture", color_texture=True, extras=True):
         metal[1, 0, :] = 1.0                               # row 1 = the top half
         metal[:, :, 3] = 1.0
         metal = new_image("Metal", metal, 'Non-Color')
-        wall = tutil.principled("WallMat", (0.7, 0.6, 0.5), 0.0, 0.35)
+        wall = testing.principled("WallMat", (0.7, 0.6, 0.5), 0.0, 0.35)
         image_node(wall, metal, "Metallic", 'Closest')
         nt = wall.node_tree
         nm = nt.nodes.new("ShaderNodeNormalMap")
         nm.inputs["Strength"].default_value = 0.9
         nt.links.new(nm.outputs["Normal"], nt.nodes["Principled BSDF"].inputs["Normal"])
         image_node(wall, nmap, None, 'Closest', target=nm.inputs["Color"])
-        w = tutil.mesh_object(scene, "Wall", [(-3.0, 1.9, 0.0), (-0.2, 1.4, 0.0), (-0.2, 1.4, 2.2),
-                                              (-3.0, 1.9, 2.2)], [(0, 1, 2, 3)], wall)
+        w = testing.mesh_object(scene, "Wall", [(-3.0, 1.9, 0.0), (-0.2, 1.4, 0.0), (-0.2, 1.4, 2.2),
+                                                (-3.0, 1.9, 2.2)], [(0, 1, 2, 3)], wall)
         set_uvs(w, [(0, 0), (1, 0), (1, 1), (0, 1)])
-        sun = tutil.add_sun(scene, strength=2.5, angle=math.radians(3.0),
-                            rotation=Vector((-0.03, 0.968, -0.249)).to_track_quat('-Z', 'Y').to_euler())
+        sun = testing.add_sun(scene, strength=2.5, angle=math.radians(3.0),
+                              rotation=Vector((-0.03, 0.968, -0.249)).to_track_quat('-Z', 'Y').to_euler())
         sun.name = "Side"
         # An emissive sign: Principled Emission from a texture, x Emission Strength 4.
         sign_img = new_image("Sign", np.dstack([checker(4, 0.9, 0.2)[:, :, :3] *
                                                 np.array([1.0, 0.6, 0.3], np.float32),
                                                 np.ones((4, 4), np.float32)]), 'sRGB')
-        sign = tutil.principled("SignMat", (0.05, 0.05, 0.05), 0.0, 0.5, emission_strength=4.0)
+        sign = testing.principled("SignMat", (0.05, 0.05, 0.05), 0.0, 0.5, emission_strength=4.0)
         image_node(sign, sign_img, "Emission", 'Closest')
-        s = tutil.mesh_object(scene, "Sign", [(0.8, 1.2, 0.2), (2.2, 1.5, 0.2), (2.2, 1.5, 1.1),
-                                              (0.8, 1.2, 1.1)], [(0, 1, 2, 3)], sign)
+        s = testing.mesh_object(scene, "Sign", [(0.8, 1.2, 0.2), (2.2, 1.5, 0.2), (2.2, 1.5, 1.1),
+                                                (0.8, 1.2, 1.1)], [(0, 1, 2, 3)], sign)
         set_uvs(s, [(0, 0), (1, 0), (1, 1), (0, 1)])
     return scene
 
@@ -243,7 +240,7 @@ def roughness_cells(d):
     mask_scene = textured_scene("mask")
     scene = mask_scene
     scene.torrance.samples = 16
-    mask, _ = tutil.render(scene, d, "mask")
+    mask, _ = testing.render(scene, d, "mask")
     value = mask[:, :, 0]
     smooth_px = np.abs(value - SMOOTH) < 0.01
     rough_px = np.abs(value - ROUGH) < 0.01
@@ -254,8 +251,8 @@ def roughness_cells(d):
         scene = textured_scene(mode, extras=False)
         scene.torrance.samples = 64
         scene.torrance.brdf_model = 'PRINCIPLED'
-        renders[mode], _ = tutil.render(scene, d, f"roughness_{mode}")
-    lum = {k: tutil.luminance(v) for k, v in renders.items()}
+        renders[mode], _ = testing.render(scene, d, f"roughness_{mode}")
+    lum = {k: compare.luminance(v) for k, v in renders.items()}
     # The highlight: where the smooth and rough renders differ by more than 20% (and 0.02).
     diff = np.abs(lum["smooth"] - lum["rough"])
     highlight = diff > np.maximum(0.2 * np.maximum(lum["smooth"], lum["rough"]), 0.02)
@@ -277,18 +274,18 @@ def roughness_cells(d):
 
 def cycles_agreement(d):
     scene = textured_scene("texture")
-    agreement_scene.setup_cycles(scene, 128, 2)
-    ref, t_ref = tutil.render(scene, d, "textured_cycles")
-    agreement_scene.setup_torrance(scene, 128, 2)
+    render_settings.setup_cycles(scene, 128, 2)
+    ref, t_ref = testing.render(scene, d, "textured_cycles")
+    render_settings.setup_torrance(scene, 128, 2, brdf_model='PAPER')
     scene.torrance.brdf_model = 'PRINCIPLED'
-    img, t_img = tutil.render(scene, d, "textured_torrance")
-    stats = tutil.addon().render.last_stats
-    check(not tutil.last_messages(), f"textured: unexpected reports {tutil.last_messages()}")
+    img, t_img = testing.render(scene, d, "textured_torrance")
+    stats = testing.addon().render.last_stats
+    check(not testing.last_messages(), f"textured: unexpected reports {testing.last_messages()}")
     check(stats["textures"] == 5, f"textured: {stats['textures']} textures loaded, expected 5")
-    m = agreement_scene.metrics(img, ref)
-    bad = agreement_scene.failures(m)
+    m = agreement.metrics(img, ref)
+    bad = agreement.failures(m)
     print(f"[cycles] Cycles {ref[:, :, :3].mean():.4f} ({t_ref:.1f} s), Torrance "
-          f"{img[:, :, :3].mean():.4f} ({t_img:.1f} s): {agreement_scene.format_metrics(m)}",
+          f"{img[:, :, :3].mean():.4f} ({t_img:.1f} s): {agreement.format_metrics(m)}",
           flush=True)
     check(0.97 <= m["ratio"] <= 1.03, f"textured: ratio {m['ratio']:.3f}")
     check(not bad, f"textured scene disagrees with Cycles: {bad}")
@@ -299,12 +296,12 @@ def cycles_agreement(d):
                  and lk.to_node.bl_idname == 'ShaderNodeBsdfPrincipled']
         for lk in links:
             lk.is_muted = True
-        img2, _ = tutil.render(scene, d, f"without_{socket}")
+        img2, _ = testing.render(scene, d, f"without_{socket}")
         for lk in links:
             lk.is_muted = False
-        m2 = agreement_scene.metrics(img2, ref)
-        bad2 = agreement_scene.failures(m2)
-        print(f"[cycles] without the {socket} texture: {agreement_scene.format_metrics(m2)} -> "
+        m2 = agreement.metrics(img2, ref)
+        bad2 = agreement.failures(m2)
+        print(f"[cycles] without the {socket} texture: {agreement.format_metrics(m2)} -> "
               f"{'caught' if bad2 else 'NOT CAUGHT'}")
         check(bad2, f"the comparison misses a missing {socket} texture")
 
@@ -312,27 +309,27 @@ def cycles_agreement(d):
 def bad_inputs(d):
     scene = textured_scene("texture", extras=False)
     scene.torrance.samples = 4
-    shared = tutil.principled("Shared", (0.5, 0.5, 0.5))
+    shared = testing.principled("Shared", (0.5, 0.5, 0.5))
     image_node(shared, bpy.data.images["Checker"], "Roughness", 'Closest')
     missing = bpy.data.images.new("Missing", 4, 4)
     missing.source = 'FILE'
     missing.filepath = os.path.join(d, "no_such_file.png")
     image_node(shared, missing, "Base Color", 'Linear')
-    empty = tutil.principled("EmptyNode", (0.2, 0.4, 0.6))
+    empty = testing.principled("EmptyNode", (0.2, 0.4, 0.6))
     image_node(empty, None, "Base Color")
-    alpha = tutil.principled("AlphaOut", (0.2, 0.4, 0.6))
+    alpha = testing.principled("AlphaOut", (0.2, 0.4, 0.6))
     node = image_node(alpha, bpy.data.images["Checker"], "Metallic")
     nt = alpha.node_tree
     nt.links.new(node.outputs["Alpha"], nt.nodes["Principled BSDF"].inputs["Metallic"])
     for i, mat in enumerate((shared, empty, alpha)):
-        ob = tutil.uv_sphere(scene, f"S{i}", (-1.2 + 1.2 * i, 0, 0.5), 0.4, mat,
-                             segments=12, rings=6)
+        ob = testing.sphere_object(scene, f"S{i}", (-1.2 + 1.2 * i, 0, 0.5), 0.4, mat,
+                                   segments=12, rings=6)
         ob.data.uv_layers.new(name="UVMap")
-    img, _ = tutil.render(scene, d, "bad_inputs")
-    messages = [m for _, m in tutil.last_messages()]
+    img, _ = testing.render(scene, d, "bad_inputs")
+    messages = [m for _, m in testing.last_messages()]
     print(f"[bad_inputs] {messages}")
     check(np.isfinite(img).all(), "bad_inputs: NaN/Inf")
-    stats = tutil.addon().render.last_stats
+    stats = testing.addon().render.last_stats
     # Checker (floor and 'Shared' and 'AlphaOut' share it) + Tint: two images loaded once each.
     check(stats["textures"] == 2, f"bad_inputs: {stats['textures']} textures, expected 2")
     for text in ("no_such_file.png", "'EmptyNode'", "has no image", "Alpha"):
@@ -341,8 +338,8 @@ def bad_inputs(d):
 
 
 def main():
-    tutil.addon()
-    d = tutil.tempdir()
+    testing.addon()
+    d = testing.tempdir()
     uv_placement(d)
     contrast = roughness_cells(d)
     print(f"[roughness] highlight brightness smooth / rough cells: {contrast:.2f}")
@@ -350,4 +347,4 @@ def main():
     bad_inputs(d)
 
 
-tutil.run(main)
+testing.run(main)

@@ -14,31 +14,28 @@
 
 import math
 import os
-import sys
 import time
-
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import bpy
 import numpy as np
 from mathutils import Matrix, Vector
 
-import tutil
-from tutil import check
+from torrance_tools import testing
+from torrance_tools.testing import check
 
 
 def build_scene():
-    scene = tutil.clear_scene()
-    tutil.setup_render(scene, width=96, height=72, samples=4)
+    scene = testing.clear_scene()
+    testing.setup_render(scene, width=96, height=72, samples=4)
     scene.torrance.viewport_samples = 4
-    red = tutil.principled("Red", base_color=(0.8, 0.05, 0.05), roughness=0.4)
-    tutil.uv_sphere(scene, "Sphere", (0, 0, 0.8), 0.8, red, segments=24, rings=12)
-    tutil.uv_sphere(scene, "Ball", (1.6, 0.5, 0.4), 0.4, tutil.principled("Blue", (0.05, 0.1, 0.8)),
-                    segments=16, rings=8)
-    tutil.plane(scene, "Floor", 10, material=tutil.principled("Grey", (0.3, 0.3, 0.3)))
-    tutil.add_sun(scene)
-    tutil.set_world(scene, (0.1, 0.1, 0.12))
-    tutil.add_camera(scene)
+    red = testing.principled("Red", base_color=(0.8, 0.05, 0.05), roughness=0.4)
+    testing.sphere_object(scene, "Sphere", (0, 0, 0.8), 0.8, red, segments=24, rings=12)
+    testing.sphere_object(scene, "Ball", (1.6, 0.5, 0.4), 0.4,
+                          testing.principled("Blue", (0.05, 0.1, 0.8)), segments=16, rings=8)
+    testing.plane(scene, "Floor", 10, material=testing.principled("Grey", (0.3, 0.3, 0.3)))
+    testing.add_sun(scene)
+    testing.set_world(scene, (0.1, 0.1, 0.12))
+    testing.add_camera(scene)
     bpy.context.view_layer.update()
     return scene
 
@@ -251,7 +248,7 @@ def test_viewport_matches_final_render(tv, tc, scene):
     fx = state.render.image_window
     check(np.allclose(fx, (x0 / w, y0 / h, x1 / w, y1 / h)), f"drawn where it belongs: {fx}")
 
-    img_final, _ = tutil.render(scene, tutil.tempdir())
+    img_final, _ = testing.render(scene, testing.tempdir())
     diff = float(np.abs(img_view - img_final).max())
     print(f"viewport image vs final render (same view, {settings['samples']} samples): "
           f"max difference {diff:.2e}")
@@ -411,7 +408,7 @@ def test_preview_policy(addon, scene):
 
 def test_messages(addon, scene):
     ui = addon.ui
-    mat = tutil.principled("Waxy")
+    mat = testing.principled("Waxy")
     mat.node_tree.nodes["Principled BSDF"].inputs["Subsurface"].default_value = 0.5
     msgs = ui.material_messages(mat)
     check(any("Subsurface" in t for _l, t in msgs), f"subsurface reported: {msgs}")
@@ -447,9 +444,9 @@ def test_panels(addon):
 
 
 def main():
-    addon = tutil.addon()
+    addon = testing.addon()
     tv = addon.viewport
-    tc = tutil.core()
+    tc = testing.core()
     scene = build_scene()
     for name, fn, args in (
             ("camera derivation", test_camera_derivation, (tv, tc, scene)),
@@ -466,4 +463,4 @@ def main():
 
 
 if __name__ == "__main__":
-    tutil.run(main)
+    testing.run(main)

@@ -11,14 +11,11 @@ stored reference does not change when the paper scene does.
 """
 
 import math
-import os
-import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import cmp_util as cu  # noqa: E402
-import scene_util as su  # noqa: E402
+from torrance_tools import comparison_scenes, geometry
+from torrance_tools import scene as make
 
 TITLE = "grass and stone under the sun"
 BOUNCES = 8
@@ -57,11 +54,11 @@ def blades(scene, grass, rng, n=5000):
                       mid - 0.32 * ww * t, mid + 0.32 * ww * t, tip], 1)
     local = np.array([[0, 1, 3], [0, 3, 2], [2, 3, 4]])
     tris = (np.arange(n)[:, None, None] * 5 + local[None]).reshape(-1, 3)
-    return cu.mesh(scene, "Grass Blades", verts.reshape(-1, 3), tris, grass)
+    return make.mesh_object(scene, "Grass Blades", verts.reshape(-1, 3), tris, grass)
 
 
 def stone(scene, mat, rng):
-    verts, tris = su.icosphere(3)
+    verts, tris = geometry.icosphere(3)
     r = np.ones(len(verts))
     for _ in range(20):
         direction = rng.normal(size=3)
@@ -70,7 +67,7 @@ def stone(scene, mat, rng):
         r += (0.15 / freq) * np.sin(freq * (verts @ direction) + rng.uniform(0, 2 * np.pi))
     verts = verts * r[:, None] * np.array([0.45, 0.35, 0.32])
     verts[:, 2] = np.maximum(verts[:, 2], -0.15)
-    ob = cu.mesh(scene, "Stone", verts, tris, mat, smooth=True)
+    ob = make.mesh_object(scene, "Stone", verts, tris, mat, smooth=True)
     ob.location = (0.1, 0.9, float(height(0.1, 0.9)) + 0.08)
     ob.rotation_euler = (0.0, 0.0, math.radians(25.0))
     return ob
@@ -78,20 +75,20 @@ def stone(scene, mat, rng):
 
 def build(scene):
     rng = np.random.default_rng(SEED)
-    grass = cu.material("Grass", (0.06, 0.26, 0.03), roughness=0.5, specular=0.5)
-    rock = cu.material("Stone", (0.32, 0.31, 0.29), roughness=0.7, specular=0.5)
+    grass = make.principled("Grass", (0.06, 0.26, 0.03), roughness=0.5, specular=0.5)
+    rock = make.principled("Stone", (0.32, 0.31, 0.29), roughness=0.7, specular=0.5)
     xs = np.linspace(-30.0, 30.0, 61)
     ys = np.concatenate([np.linspace(-6.0, 10.0, 33)[:-1], np.linspace(10.0, 60.0, 21)])
-    verts, tris = cu.grid(xs, ys)
+    verts, tris = geometry.grid(xs, ys)
     verts[:, 2] = height(verts[:, 0], verts[:, 1])
-    cu.mesh(scene, "Ground", verts, tris, grass, smooth=True)
+    make.mesh_object(scene, "Ground", verts, tris, grass, smooth=True)
     blades(scene, grass, rng)
     stone(scene, rock, rng)
-    cu.sun(scene, elevation_deg=22.0, azimuth_deg=-15.0, strength=4.0, angle_deg=0.526,
-           color=(1.0, 0.96, 0.9))
-    cu.world(scene, (0.30, 0.45, 0.75), strength=0.8)
-    cu.camera(scene, CAMERA, TARGET, lens=32.0)
+    make.sun(scene, elevation_deg=22.0, azimuth_deg=-15.0, strength=4.0, angle_deg=0.526,
+             color=(1.0, 0.96, 0.9))
+    make.world(scene, (0.30, 0.45, 0.75), strength=0.8)
+    make.camera(scene, CAMERA, TARGET, lens=32.0, clip_end=1000.0)
 
 
 if __name__ == "__main__":
-    cu.script_main(build)
+    comparison_scenes.script_main(build)

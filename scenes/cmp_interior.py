@@ -8,11 +8,8 @@ under the ceiling; no world light gets in. Most of what is seen is indirect ligh
     scripts/blender -b --factory-startup --python scenes/cmp_interior.py -- OUT.blend
 """
 
-import os
-import sys
-
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import cmp_util as cu  # noqa: E402
+from torrance_tools import comparison_scenes
+from torrance_tools import scene as make
 
 TITLE = "interior lit by a point light"
 BOUNCES = 12
@@ -22,28 +19,28 @@ X0, X1, Y0, Y1, Z1 = -2.5, 2.5, -2.0, 2.0, 2.6
 
 
 def build(scene):
-    white = cu.material("Walls", (0.75, 0.74, 0.70), roughness=0.8, specular=0.3)
-    red = cu.material("Red Wall", (0.70, 0.15, 0.12), roughness=0.8, specular=0.3)
-    green = cu.material("Green Wall", (0.15, 0.55, 0.20), roughness=0.8, specular=0.3)
-    floor = cu.material("Floor", (0.55, 0.38, 0.22), roughness=0.4, specular=0.5)
-    ceiling = cu.material("Ceiling", (0.85, 0.85, 0.85), roughness=0.9, specular=0.2)
+    white = make.principled("Walls", (0.75, 0.74, 0.70), roughness=0.8, specular=0.3)
+    red = make.principled("Red Wall", (0.70, 0.15, 0.12), roughness=0.8, specular=0.3)
+    green = make.principled("Green Wall", (0.15, 0.55, 0.20), roughness=0.8, specular=0.3)
+    floor = make.principled("Floor", (0.55, 0.38, 0.22), roughness=0.4, specular=0.5)
+    ceiling = make.principled("Ceiling", (0.85, 0.85, 0.85), roughness=0.9, specular=0.2)
     # inward-facing walls (both engines shade both sides anyway)
-    cu.quad(scene, "Floor", [(X0, Y0, 0), (X1, Y0, 0), (X1, Y1, 0), (X0, Y1, 0)], floor)
-    cu.quad(scene, "Ceiling", [(X0, Y0, Z1), (X0, Y1, Z1), (X1, Y1, Z1), (X1, Y0, Z1)], ceiling)
-    cu.quad(scene, "Back", [(X0, Y1, 0), (X1, Y1, 0), (X1, Y1, Z1), (X0, Y1, Z1)], white)
-    cu.quad(scene, "Front", [(X0, Y0, 0), (X0, Y0, Z1), (X1, Y0, Z1), (X1, Y0, 0)], white)
-    cu.quad(scene, "Left", [(X0, Y0, 0), (X0, Y1, 0), (X0, Y1, Z1), (X0, Y0, Z1)], red)
-    cu.quad(scene, "Right", [(X1, Y0, 0), (X1, Y0, Z1), (X1, Y1, Z1), (X1, Y1, 0)], green)
-    cu.box(scene, "Table", (-0.6, 0.6, 0.35), (1.4, 0.8, 0.7),
-           cu.material("Table", (0.60, 0.58, 0.55), roughness=0.5), rotation_z_deg=10.0)
-    cu.box(scene, "Cabinet", (1.6, 1.3, 0.8), (0.7, 0.7, 1.6),
-           cu.material("Cabinet", (0.25, 0.30, 0.55), roughness=0.6), rotation_z_deg=-20.0)
-    cu.uv_sphere(scene, "Sphere", (0.3, -0.2, 0.35), 0.35,
-                 cu.material("Steel", (0.85, 0.85, 0.88), metallic=1.0, roughness=0.25))
-    cu.point_light(scene, (0.4, 0.2, 2.25), power=120.0, radius=0.1, color=(1.0, 0.9, 0.75))
-    cu.world(scene, (0.0, 0.0, 0.0), strength=0.0)
-    cu.camera(scene, (-0.3, -1.9, 1.5), (0.2, 1.0, 0.6), lens=20.0)
+    make.quad(scene, "Floor", [(X0, Y0, 0), (X1, Y0, 0), (X1, Y1, 0), (X0, Y1, 0)], floor)
+    make.quad(scene, "Ceiling", [(X0, Y0, Z1), (X0, Y1, Z1), (X1, Y1, Z1), (X1, Y0, Z1)], ceiling)
+    make.quad(scene, "Back", [(X0, Y1, 0), (X1, Y1, 0), (X1, Y1, Z1), (X0, Y1, Z1)], white)
+    make.quad(scene, "Front", [(X0, Y0, 0), (X0, Y0, Z1), (X1, Y0, Z1), (X1, Y0, 0)], white)
+    make.quad(scene, "Left", [(X0, Y0, 0), (X0, Y1, 0), (X0, Y1, Z1), (X0, Y0, Z1)], red)
+    make.quad(scene, "Right", [(X1, Y0, 0), (X1, Y0, Z1), (X1, Y1, Z1), (X1, Y1, 0)], green)
+    make.box(scene, "Table", (-0.6, 0.6, 0.35), (1.4, 0.8, 0.7),
+             make.principled("Table", (0.60, 0.58, 0.55), roughness=0.5), rotation_z_deg=10.0)
+    make.box(scene, "Cabinet", (1.6, 1.3, 0.8), (0.7, 0.7, 1.6),
+             make.principled("Cabinet", (0.25, 0.30, 0.55), roughness=0.6), rotation_z_deg=-20.0)
+    make.sphere_object(scene, "Sphere", (0.3, -0.2, 0.35), 0.35,
+                       make.principled("Steel", (0.85, 0.85, 0.88), metallic=1.0, roughness=0.25))
+    make.point_light(scene, (0.4, 0.2, 2.25), power=120.0, radius=0.1, color=(1.0, 0.9, 0.75))
+    make.world(scene, (0.0, 0.0, 0.0), strength=0.0)
+    make.camera(scene, (-0.3, -1.9, 1.5), (0.2, 1.0, 0.6), lens=20.0, clip_end=1000.0)
 
 
 if __name__ == "__main__":
-    cu.script_main(build)
+    comparison_scenes.script_main(build)

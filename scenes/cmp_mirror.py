@@ -10,11 +10,8 @@ low-sun geometry.
     scripts/blender -b --factory-startup --python scenes/cmp_mirror.py -- OUT.blend
 """
 
-import os
-import sys
-
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import cmp_util as cu  # noqa: E402
+from torrance_tools import comparison_scenes
+from torrance_tools import scene as make
 
 TITLE = "mirror floor at a grazing angle, low sun"
 BOUNCES = 8
@@ -22,20 +19,20 @@ REFERENCE_SAMPLES = 16384     # Cycles samples of the stored reference (two seed
 
 
 def build(scene):
-    mirror = cu.material("Mirror", (0.90, 0.90, 0.92), metallic=1.0, roughness=0.0)
-    cu.quad(scene, "Mirror Floor", [(-30, -30, 0), (30, -30, 0), (30, 40, 0), (-30, 40, 0)], mirror)
-    cu.box(scene, "Red Block", (-1.3, 3.0, 0.5), (0.8, 0.8, 1.0),
-           cu.material("Red", (0.75, 0.12, 0.08), roughness=0.5), rotation_z_deg=20.0)
-    cu.box(scene, "White Block", (0.9, 4.6, 0.9), (1.0, 1.0, 1.8),
-           cu.material("White", (0.80, 0.80, 0.78), roughness=0.6, specular=0.3),
-           rotation_z_deg=-15.0)
-    cu.uv_sphere(scene, "Ball", (0.0, 2.0, 0.45), 0.45,
-                 cu.material("Blue", (0.10, 0.25, 0.70), roughness=0.3))
-    cu.sun(scene, elevation_deg=8.0, azimuth_deg=-100.0, strength=5.0, angle_deg=6.0,
-           color=(1.0, 0.85, 0.65))
-    cu.world(scene, (0.40, 0.50, 0.70), strength=0.6)
-    cu.camera(scene, (0.0, -3.5, 0.45), (0.0, 4.0, 0.1), lens=32.0)
+    mirror = make.principled("Mirror", (0.90, 0.90, 0.92), metallic=1.0, roughness=0.0)
+    make.quad(scene, "Mirror Floor", [(-30, -30, 0), (30, -30, 0), (30, 40, 0), (-30, 40, 0)], mirror)
+    make.box(scene, "Red Block", (-1.3, 3.0, 0.5), (0.8, 0.8, 1.0),
+             make.principled("Red", (0.75, 0.12, 0.08), roughness=0.5), rotation_z_deg=20.0)
+    make.box(scene, "White Block", (0.9, 4.6, 0.9), (1.0, 1.0, 1.8),
+             make.principled("White", (0.80, 0.80, 0.78), roughness=0.6, specular=0.3),
+             rotation_z_deg=-15.0)
+    make.sphere_object(scene, "Ball", (0.0, 2.0, 0.45), 0.45,
+                       make.principled("Blue", (0.10, 0.25, 0.70), roughness=0.3))
+    make.sun(scene, elevation_deg=8.0, azimuth_deg=-100.0, strength=5.0, angle_deg=6.0,
+             color=(1.0, 0.85, 0.65))
+    make.world(scene, (0.40, 0.50, 0.70), strength=0.6)
+    make.camera(scene, (0.0, -3.5, 0.45), (0.0, 4.0, 0.1), lens=32.0, clip_end=1000.0)
 
 
 if __name__ == "__main__":
-    cu.script_main(build)
+    comparison_scenes.script_main(build)

@@ -6,11 +6,8 @@ Measures the specular lobe (D, G, F), the diffuse lobe and their sampling.
     scripts/blender -b --factory-startup --python scenes/cmp_sphere_chart.py -- OUT.blend
 """
 
-import os
-import sys
-
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import cmp_util as cu  # noqa: E402
+from torrance_tools import comparison_scenes
+from torrance_tools import scene as make
 
 TITLE = "metal/dielectric sphere chart (sun + sky)"
 BOUNCES = 8
@@ -22,25 +19,25 @@ METAL = (0.95, 0.74, 0.40)           # gold-ish
 
 
 def build(scene):
-    floor = cu.material("Floor", (0.45, 0.45, 0.45), roughness=0.6, specular=0.3)
-    wall = cu.material("Wall", (0.55, 0.50, 0.42), roughness=0.8, specular=0.2)
-    cu.quad(scene, "Floor", [(-8, -8, 0), (8, -8, 0), (8, 8, 0), (-8, 8, 0)], floor)
-    cu.quad(scene, "Wall", [(-8, 1.6, 0), (8, 1.6, 0), (8, 1.6, 5), (-8, 1.6, 5)], wall)
+    floor = make.principled("Floor", (0.45, 0.45, 0.45), roughness=0.6, specular=0.3)
+    wall = make.principled("Wall", (0.55, 0.50, 0.42), roughness=0.8, specular=0.2)
+    make.quad(scene, "Floor", [(-8, -8, 0), (8, -8, 0), (8, 8, 0), (-8, 8, 0)], floor)
+    make.quad(scene, "Wall", [(-8, 1.6, 0), (8, 1.6, 0), (8, 1.6, 5), (-8, 1.6, 5)], wall)
     r = 0.42
     for i, rough in enumerate(ROUGHNESS):
         x = (i - 1.5) * 1.0
-        cu.uv_sphere(scene, f"Dielectric{i}", (x, 0.4, 1.1 * r + r), r,
-                     cu.material(f"Dielectric r{rough}", DIELECTRIC, 0.0, rough, 0.5))
-        cu.uv_sphere(scene, f"Metal{i}", (x, -0.75, r), r,
-                     cu.material(f"Metal r{rough}", METAL, 1.0, rough, 0.5))
+        make.sphere_object(scene, f"Dielectric{i}", (x, 0.4, 1.1 * r + r), r,
+                           make.principled(f"Dielectric r{rough}", DIELECTRIC, 0.0, rough, 0.5))
+        make.sphere_object(scene, f"Metal{i}", (x, -0.75, r), r,
+                           make.principled(f"Metal r{rough}", METAL, 1.0, rough, 0.5))
     # a plinth under the top row
-    cu.box(scene, "Plinth", (0.0, 0.4, 0.55 * r), (4.2, 0.9, 1.1 * r),
-           cu.material("Plinth", (0.30, 0.32, 0.35), roughness=0.5, specular=0.5))
-    cu.sun(scene, elevation_deg=40.0, azimuth_deg=-150.0, strength=3.0, angle_deg=3.0,
-           color=(1.0, 0.95, 0.88))
-    cu.world(scene, (0.32, 0.38, 0.48), strength=0.7)
-    cu.camera(scene, (0.0, -5.4, 2.3), (0.0, 0.0, 0.5), lens=40.0)
+    make.box(scene, "Plinth", (0.0, 0.4, 0.55 * r), (4.2, 0.9, 1.1 * r),
+             make.principled("Plinth", (0.30, 0.32, 0.35), roughness=0.5, specular=0.5))
+    make.sun(scene, elevation_deg=40.0, azimuth_deg=-150.0, strength=3.0, angle_deg=3.0,
+             color=(1.0, 0.95, 0.88))
+    make.world(scene, (0.32, 0.38, 0.48), strength=0.7)
+    make.camera(scene, (0.0, -5.4, 2.3), (0.0, 0.0, 0.5), lens=40.0, clip_end=1000.0)
 
 
 if __name__ == "__main__":
-    cu.script_main(build)
+    comparison_scenes.script_main(build)

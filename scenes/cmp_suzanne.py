@@ -7,13 +7,11 @@ Measures modifier evaluation (the render depsgraph), smooth normals and self-sha
 """
 
 import math
-import os
-import sys
 
 import bpy
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import cmp_util as cu  # noqa: E402
+from torrance_tools import comparison_scenes
+from torrance_tools import scene as make
 
 TITLE = "Suzanne with a subdivision modifier on a floor"
 BOUNCES = 8
@@ -21,8 +19,8 @@ REFERENCE_SAMPLES = 8192      # Cycles samples of the stored reference (two seed
 
 
 def build(scene):
-    floor = cu.material("Floor", (0.50, 0.48, 0.45), roughness=0.55, specular=0.4)
-    cu.quad(scene, "Floor", [(-10, -10, 0), (10, -10, 0), (10, 10, 0), (-10, 10, 0)], floor)
+    floor = make.principled("Floor", (0.50, 0.48, 0.45), roughness=0.55, specular=0.4)
+    make.quad(scene, "Floor", [(-10, -10, 0), (10, -10, 0), (10, 10, 0), (-10, 10, 0)], floor)
     # Suzanne (the built-in monkey: 500 faces), made by the mesh operator into the scene's
     # collection; then a Subdivision Surface modifier evaluated at render level 2.
     bpy.ops.mesh.primitive_monkey_add(size=1.6, location=(0.0, 0.0, 0.0))
@@ -31,7 +29,7 @@ def build(scene):
     monkey.rotation_euler = (math.radians(-10.0), 0.0, math.radians(-20.0))
     for poly in monkey.data.polygons:
         poly.use_smooth = True
-    monkey.data.materials.append(cu.material("Suzanne", (0.75, 0.30, 0.08), roughness=0.35,
+    monkey.data.materials.append(make.principled("Suzanne", (0.75, 0.30, 0.08), roughness=0.35,
                                              specular=0.5))
     mod = monkey.modifiers.new("Subdivision", 'SUBSURF')
     mod.levels = 1
@@ -40,15 +38,15 @@ def build(scene):
     bpy.context.view_layer.update()
     zmin = min((monkey.matrix_world @ v.co).z for v in monkey.data.vertices)
     monkey.location.z = -zmin
-    cu.box(scene, "Block", (1.45, 0.8, 0.3), (0.6, 0.6, 0.6),
-           cu.material("Block", (0.20, 0.35, 0.60), metallic=0.0, roughness=0.25),
-           rotation_z_deg=30.0)
-    cu.sun(scene, elevation_deg=35.0, azimuth_deg=-135.0, strength=3.5, angle_deg=4.0,
-           color=(1.0, 0.96, 0.9))
-    cu.point_light(scene, (2.0, -2.2, 1.6), power=120.0, radius=0.15, color=(0.8, 0.9, 1.0))
-    cu.world(scene, (0.35, 0.42, 0.55), strength=0.6)
-    cu.camera(scene, (0.6, -4.4, 1.9), (0.25, 0.1, 0.65), lens=40.0)
+    make.box(scene, "Block", (1.45, 0.8, 0.3), (0.6, 0.6, 0.6),
+             make.principled("Block", (0.20, 0.35, 0.60), metallic=0.0, roughness=0.25),
+             rotation_z_deg=30.0)
+    make.sun(scene, elevation_deg=35.0, azimuth_deg=-135.0, strength=3.5, angle_deg=4.0,
+             color=(1.0, 0.96, 0.9))
+    make.point_light(scene, (2.0, -2.2, 1.6), power=120.0, radius=0.15, color=(0.8, 0.9, 1.0))
+    make.world(scene, (0.35, 0.42, 0.55), strength=0.6)
+    make.camera(scene, (0.6, -4.4, 1.9), (0.25, 0.1, 0.65), lens=40.0, clip_end=1000.0)
 
 
 if __name__ == "__main__":
-    cu.script_main(build)
+    comparison_scenes.script_main(build)

@@ -10,13 +10,10 @@ dielectric, a narrow lobe under a small sun, and smooth normals that bend toward
     scripts/blender -b --factory-startup --python scenes/cmp_water.py -- OUT.blend
 """
 
-import os
-import sys
-
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import cmp_util as cu  # noqa: E402
+from torrance_tools import comparison_scenes, geometry
+from torrance_tools import scene as make
 
 TITLE = "water under the sun"
 BOUNCES = 8
@@ -29,28 +26,28 @@ def waves(x, y):
 
 
 def build(scene):
-    water = cu.material("Water", (0.015, 0.05, 0.06), roughness=0.12, specular=0.25)
-    sand = cu.material("Sand", (0.62, 0.52, 0.36), roughness=0.8, specular=0.4)
-    rock = cu.material("Rock", (0.28, 0.26, 0.24), roughness=0.6, specular=0.5)
+    water = make.principled("Water", (0.015, 0.05, 0.06), roughness=0.12, specular=0.25)
+    sand = make.principled("Sand", (0.62, 0.52, 0.36), roughness=0.8, specular=0.4)
+    rock = make.principled("Rock", (0.28, 0.26, 0.24), roughness=0.6, specular=0.5)
     xs = np.concatenate([np.linspace(-60, -6, 10)[:-1], np.linspace(-6, 6, 121), np.linspace(6, 60, 10)[1:]])
     ys = np.concatenate([np.linspace(-3, 12, 151), np.linspace(12, 200, 20)[1:]])
-    verts, tris = cu.grid(xs, ys)
+    verts, tris = geometry.grid(xs, ys)
     verts[:, 2] = waves(verts[:, 0], verts[:, 1])
-    cu.mesh(scene, "Water", verts, tris, water, smooth=True)
+    make.mesh_object(scene, "Water", verts, tris, water, smooth=True)
     # the shore: a sloping sand strip in the lower left of the view
     sx = np.linspace(-6.0, 0.5, 27)
     sy = np.linspace(-3.0, 4.0, 29)
-    sv, st = cu.grid(sx, sy)
+    sv, st = geometry.grid(sx, sy)
     sv[:, 2] = 0.35 - 0.30 * (sv[:, 0] + 6.0) / 6.5 * 1.6 - 0.06 * (sv[:, 1] + 3.0)
     sv[:, 2] += 0.03 * np.sin(2.1 * sv[:, 0]) * np.sin(1.7 * sv[:, 1])
-    cu.mesh(scene, "Shore", sv, st, sand, smooth=True)
-    rock_ob = cu.uv_sphere(scene, "Rock", (-1.6, 2.2, 0.0), 0.55, rock, segments=24, rings=12)
+    make.mesh_object(scene, "Shore", sv, st, sand, smooth=True)
+    rock_ob = make.sphere_object(scene, "Rock", (-1.6, 2.2, 0.0), 0.55, rock, segments=24, rings=12)
     rock_ob.scale = (1.3, 1.0, 0.6)
-    cu.sun(scene, elevation_deg=15.0, azimuth_deg=10.0, strength=4.0, angle_deg=0.526,
-           color=(1.0, 0.93, 0.82))
-    cu.world(scene, (0.35, 0.50, 0.78), strength=0.9)
-    cu.camera(scene, (0.6, -2.6, 1.1), (0.0, 6.0, 0.0), lens=30.0)
+    make.sun(scene, elevation_deg=15.0, azimuth_deg=10.0, strength=4.0, angle_deg=0.526,
+             color=(1.0, 0.93, 0.82))
+    make.world(scene, (0.35, 0.50, 0.78), strength=0.9)
+    make.camera(scene, (0.6, -2.6, 1.1), (0.0, 6.0, 0.0), lens=30.0, clip_end=1000.0)
 
 
 if __name__ == "__main__":
-    cu.script_main(build)
+    comparison_scenes.script_main(build)

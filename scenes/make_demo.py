@@ -18,6 +18,8 @@ import sys
 import bpy
 from mathutils import Vector
 
+from torrance_tools import scene as make
+
 # name, centre, radius, base colour, metallic, roughness, specular
 SPHERES = (
     ("RedPlastic", (-2.2, 0.0, 0.5), 0.5, (0.80, 0.08, 0.06), 0.0, 0.20, 0.5),
@@ -49,31 +51,6 @@ def ensure_torrance():
         sys.exit("make_demo.py: the Torrance add-on is not available; run through scripts/blender")
 
 
-def clear():
-    for ob in list(bpy.data.objects):
-        bpy.data.objects.remove(ob, do_unlink=True)
-    for coll in (bpy.data.meshes, bpy.data.materials, bpy.data.lights, bpy.data.cameras,
-                 bpy.data.worlds):
-        for block in list(coll):
-            coll.remove(block)
-
-
-def principled(name, color, metallic=0.0, roughness=0.5, specular=0.5, emission=None,
-               strength=0.0):
-    mat = bpy.data.materials.new(name)
-    mat.use_nodes = True
-    node = mat.node_tree.nodes["Principled BSDF"]
-    node.inputs["Base Color"].default_value = (*color, 1.0)
-    node.inputs["Metallic"].default_value = metallic
-    node.inputs["Roughness"].default_value = roughness
-    node.inputs["Specular"].default_value = specular
-    if emission is not None:
-        node.inputs["Emission"].default_value = (*emission, 1.0)
-        node.inputs["Emission Strength"].default_value = strength
-    mat.diffuse_color = (*color, 1.0)          # the viewport colour
-    return mat
-
-
 def sphere(scene, name, centre, radius, mat):
     mesh = bpy.data.meshes.new(name)
     import bmesh
@@ -90,19 +67,20 @@ def sphere(scene, name, centre, radius, mat):
 
 
 def build(scene, args):
-    clear()
+    make.empty_scene(scene)
     # Floor
     mesh = bpy.data.meshes.new("Floor")
     h = 15.0
     mesh.from_pydata([(-h, -h, 0), (h, -h, 0), (h, h, 0), (-h, h, 0)], [], [(0, 1, 2, 3)])
-    mesh.materials.append(principled("Floor", (0.45, 0.45, 0.42), 0.0, 0.55, 0.5))
+    mesh.materials.append(make.principled("Floor", (0.45, 0.45, 0.42), 0.0, 0.55, 0.5))
     floor = bpy.data.objects.new("Floor", mesh)
     scene.collection.objects.link(floor)
 
     for name, centre, radius, color, metallic, roughness, specular in SPHERES:
-        sphere(scene, name, centre, radius, principled(name, color, metallic, roughness, specular))
+        sphere(scene, name, centre, radius, make.principled(name, color, metallic, roughness, specular))
     sphere(scene, "Lamp", (0.6, -1.0, 0.15), 0.15,
-           principled("LampGlow", (0.0, 0.0, 0.0), emission=(1.0, 0.6, 0.25), strength=8.0))
+           make.principled("LampGlow", (0.0, 0.0, 0.0), emission=(1.0, 0.6, 0.25),
+                           emission_strength=8.0))
 
     # Lights
     sun = bpy.data.lights.new("Sun", 'SUN')

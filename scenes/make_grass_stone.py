@@ -12,17 +12,15 @@ Everything is generated from fixed seeds (no assets):
   Material "Stone" (Principled, grey) — the control object of the paper's grass figures;
 * a sun 24 degrees high in front of the camera (its specular highlight on the field is in view)
   and a uniform sky colour.
-Engine TORRANCE, 320x240; Cycles is set to render the same scene (see scene_util.setup_render).
+Engine TORRANCE, 320x240; Cycles is set to render the same scene (see torrance_tools.render_settings.setup_side_by_side).
 """
 
 import math
-import os
-import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import scene_util as su  # noqa: E402
+from torrance_tools import geometry, render_settings
+from torrance_tools import scene as make
 
 SEED = 20240501
 CAMERA = (0.0, -4.0, 0.95)
@@ -40,9 +38,9 @@ def ground_height(x, y):
 def make_ground(scene, grass):
     xs = np.linspace(-45.0, 45.0, 121)
     ys = np.concatenate([np.linspace(-8.0, 12.0, 81)[:-1], np.linspace(12.0, 80.0, 41)])
-    verts, tris = su.grid(xs, ys)
+    verts, tris = geometry.grid(xs, ys)
     verts[:, 2] = ground_height(verts[:, 0], verts[:, 1])
-    return su.mesh_object(scene, "Ground", verts, tris, material=grass, smooth=True)
+    return make.mesh_object(scene, "Ground", verts, tris, material=grass, smooth=True)
 
 
 def make_blades(scene, grass, rng):
@@ -79,11 +77,11 @@ def make_blades(scene, grass, rng):
                       mid - 0.32 * w * t, mid + 0.32 * w * t, tip], 1)   # (n, 5, 3)
     local = np.array([[0, 1, 3], [0, 3, 2], [2, 3, 4]])
     tris = (np.arange(n)[:, None, None] * 5 + local[None]).reshape(-1, 3)
-    return su.mesh_object(scene, "Grass Blades", verts.reshape(-1, 3), tris, material=grass)
+    return make.mesh_object(scene, "Grass Blades", verts.reshape(-1, 3), tris, material=grass)
 
 
 def make_stone(scene, stone, rng):
-    verts, tris = su.icosphere(4)
+    verts, tris = geometry.icosphere(4)
     r = np.ones(len(verts))
     for _ in range(28):                              # deterministic noise: random plane waves
         direction = rng.normal(size=3)
@@ -92,28 +90,28 @@ def make_stone(scene, stone, rng):
         r += (0.16 / freq) * np.sin(freq * (verts @ direction) + rng.uniform(0, 2 * np.pi))
     verts = verts * r[:, None] * np.array([0.6, 0.46, 0.4])
     verts[:, 2] = np.maximum(verts[:, 2], -0.2)      # a flattened underside
-    ob = su.mesh_object(scene, "Stone", verts, tris, material=stone, smooth=True)
+    ob = make.mesh_object(scene, "Stone", verts, tris, material=stone, smooth=True)
     ob.location = STONE_CENTER
     ob.rotation_euler = (0.0, 0.0, math.radians(25.0))
     return ob
 
 
 def main():
-    path = su.out_path("grass_stone.blend")
+    path = make.out_path("grass_stone.blend")
     rng = np.random.default_rng(SEED)
-    scene = su.empty_scene()
+    scene = make.empty_scene()
     scene.name = "GrassStone"
-    su.setup_render(scene, width=320, height=240, samples=64, max_bounces=8)
+    render_settings.setup_side_by_side(scene, width=320, height=240, samples=64, max_bounces=8)
 
-    grass = su.principled("Grass", base_color=(0.06, 0.26, 0.03), metallic=0.0, roughness=0.5)
-    stone = su.principled("Stone", base_color=(0.32, 0.31, 0.29), metallic=0.0, roughness=0.7)
+    grass = make.principled("Grass", base_color=(0.06, 0.26, 0.03), metallic=0.0, roughness=0.5)
+    stone = make.principled("Stone", base_color=(0.32, 0.31, 0.29), metallic=0.0, roughness=0.7)
     make_ground(scene, grass)
     make_blades(scene, grass, rng)
     make_stone(scene, stone, rng)
-    su.sun(scene, elevation_deg=24.0, azimuth_deg=-18.0, strength=4.0, color=(1.0, 0.96, 0.9))
-    su.world(scene, (0.30, 0.45, 0.75), strength=0.8, name="Sky")
-    su.camera(scene, CAMERA, CAMERA_TARGET, lens=32.0)
-    su.save(path)
+    make.sun(scene, elevation_deg=24.0, azimuth_deg=-18.0, strength=4.0, color=(1.0, 0.96, 0.9))
+    make.world(scene, (0.30, 0.45, 0.75), strength=0.8, name="Sky")
+    make.camera(scene, CAMERA, CAMERA_TARGET, lens=32.0)
+    make.save(path)
 
 
 main()

@@ -10,13 +10,10 @@ sweeps. The floor is a matte grey ("Floor"). A sun behind the camera's left shou
 highlight on every sphere. Engine TORRANCE, 320x240; Cycles renders the same scene.
 """
 
-import os
-import sys
-
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import scene_util as su  # noqa: E402
+from torrance_tools import geometry, render_settings
+from torrance_tools import scene as make
 
 METALLIC = (1.0, 0.8, 0.6, 0.4, 0.2, 0.0)          # rows, back to front
 ROUGHNESS = (0.1, 0.2, 0.4, 0.6, 0.8, 1.0)         # columns, left to right
@@ -33,24 +30,24 @@ def sphere_center(row, col):
 
 
 def main():
-    path = su.out_path("sphere_chart.blend")
-    scene = su.empty_scene()
+    path = make.out_path("sphere_chart.blend")
+    scene = make.empty_scene()
     scene.name = "SphereChart"
-    su.setup_render(scene, width=320, height=240, samples=64, max_bounces=8)
-    verts, tris = su.uv_sphere(segments=40, rings=20)
+    render_settings.setup_side_by_side(scene, width=320, height=240, samples=64, max_bounces=8)
+    verts, tris = geometry.uv_sphere(segments=40, rings=20)
     for r, m in enumerate(METALLIC):
         for c, rough in enumerate(ROUGHNESS):
-            mat = su.principled(material_name(m, rough), BASE_COLOR, metallic=m, roughness=rough)
-            ob = su.mesh_object(scene, f"Sphere {r}{c}", verts * RADIUS, tris, material=mat,
-                                smooth=True)
+            mat = make.principled(material_name(m, rough), BASE_COLOR, metallic=m, roughness=rough)
+            ob = make.mesh_object(scene, f"Sphere {r}{c}", verts * RADIUS, tris, material=mat,
+                                  smooth=True)
             ob.location = sphere_center(r, c)
-    floor = su.principled("Floor", (0.45, 0.45, 0.45), metallic=0.0, roughness=0.9)
-    fv, ft = su.grid(np.array([-30.0, 30.0]), np.array([-20.0, 40.0]))
-    su.mesh_object(scene, "Floor", fv, ft, material=floor)
-    su.sun(scene, elevation_deg=40.0, azimuth_deg=200.0, strength=4.0)
-    su.world(scene, (0.30, 0.45, 0.75), strength=0.8, name="Sky")
-    su.camera(scene, (0.0, -8.5, 9.5), (0.0, 2.45, 0.0), lens=68.0)
-    su.save(path)
+    floor = make.principled("Floor", (0.45, 0.45, 0.45), metallic=0.0, roughness=0.9)
+    fv, ft = geometry.grid(np.array([-30.0, 30.0]), np.array([-20.0, 40.0]))
+    make.mesh_object(scene, "Floor", fv, ft, material=floor)
+    make.sun(scene, elevation_deg=40.0, azimuth_deg=200.0, strength=4.0)
+    make.world(scene, (0.30, 0.45, 0.75), strength=0.8, name="Sky")
+    make.camera(scene, (0.0, -8.5, 9.5), (0.0, 2.45, 0.0), lens=68.0)
+    make.save(path)
 
 
 main()

@@ -12,17 +12,15 @@ Everything is generated from fixed seeds (no assets):
   is sharp and blurs as the water's roughness rises;
 * a sun 12 degrees high straight ahead (its glitter path runs down the middle of the view) and a
   uniform sky colour.
-Engine TORRANCE, 320x240; Cycles is set to render the same scene (see scene_util.setup_render).
+Engine TORRANCE, 320x240; Cycles is set to render the same scene (see torrance_tools.render_settings.setup_side_by_side).
 """
 
 import math
-import os
-import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import scene_util as su  # noqa: E402
+from torrance_tools import geometry, render_settings
+from torrance_tools import scene as make
 
 SEED = 1234567
 CAMERA_HEIGHT = 1.8
@@ -58,36 +56,36 @@ def make_water(scene, water, rng):
         fade = t * t * (3 - 2 * t)
         Z += fade * amp * np.sin(k * (np.cos(ang) * X + np.sin(ang) * Y) + ph)
     verts = np.stack([X.ravel(), Y.ravel(), Z.ravel()], 1)
-    _, tris = su.grid(u, d)
-    return su.mesh_object(scene, "Water", verts, tris, material=water, smooth=True)
+    _, tris = geometry.grid(u, d)
+    return make.mesh_object(scene, "Water", verts, tris, material=water, smooth=True)
 
 
 def make_shore(scene, shore):
     xs = np.linspace(-90.0, 90.0, 181)
     ys = np.linspace(58.0, 80.0, 12)
-    verts, tris = su.grid(xs, ys)
+    verts, tris = geometry.grid(xs, ys)
     x, y = verts[:, 0], verts[:, 1]
     ridge = 4.5 + 1.6 * np.sin(0.09 * x + 0.5) + 0.9 * np.sin(0.23 * x + 2.0) + 0.4 * np.sin(0.61 * x)
     rise = np.clip((y - 58.0) / 9.0, 0.0, 1.0)
     verts[:, 2] = ridge * rise * rise * (3 - 2 * rise) - 0.3
-    return su.mesh_object(scene, "Shore", verts, tris, material=shore, smooth=True)
+    return make.mesh_object(scene, "Shore", verts, tris, material=shore, smooth=True)
 
 
 def main():
-    path = su.out_path("water.blend")
+    path = make.out_path("water.blend")
     rng = np.random.default_rng(SEED)
-    scene = su.empty_scene()
+    scene = make.empty_scene()
     scene.name = "Water"
-    su.setup_render(scene, width=320, height=240, samples=64, max_bounces=8)
-    water = su.principled("Water", base_color=(0.02, 0.06, 0.10), metallic=1.0, roughness=0.1)
-    shore = su.principled("Shore", base_color=(0.05, 0.07, 0.03), metallic=0.0, roughness=0.9)
+    render_settings.setup_side_by_side(scene, width=320, height=240, samples=64, max_bounces=8)
+    water = make.principled("Water", base_color=(0.02, 0.06, 0.10), metallic=1.0, roughness=0.1)
+    shore = make.principled("Shore", base_color=(0.05, 0.07, 0.03), metallic=0.0, roughness=0.9)
     make_water(scene, water, rng)
     make_shore(scene, shore)
-    su.sun(scene, elevation_deg=12.0, azimuth_deg=0.0, strength=6.0, color=(1.0, 0.86, 0.7))
-    su.world(scene, (0.35, 0.5, 0.8), strength=1.0, name="Sky")
+    make.sun(scene, elevation_deg=12.0, azimuth_deg=0.0, strength=6.0, color=(1.0, 0.86, 0.7))
+    make.world(scene, (0.35, 0.5, 0.8), strength=1.0, name="Sky")
     target = (0.0, 10.0, CAMERA_HEIGHT + 10.0 * math.tan(math.radians(PITCH_DEG)))
-    su.camera(scene, (0.0, 0.0, CAMERA_HEIGHT), target, lens=35.0)
-    su.save(path)
+    make.camera(scene, (0.0, 0.0, CAMERA_HEIGHT), target, lens=35.0)
+    make.save(path)
 
 
 main()

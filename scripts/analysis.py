@@ -16,6 +16,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import torrance_core as tc  # noqa: E402
+from torrance_tools.geometry import uv_sphere_with_normals  # noqa: E402
+
+# The name core/python/tests/test_module.py imports (its furnace test builds the same sphere).
+uv_sphere = uv_sphere_with_normals
 
 
 def read_csv(path):
@@ -78,27 +82,13 @@ def plot_albedo(rows, out):
     plt.close(fig)
 
 
-def uv_sphere(center, radius, rings=24, segments=48):
-    theta = np.linspace(0, np.pi, rings + 1)
-    phi = np.linspace(0, 2 * np.pi, segments, endpoint=False)
-    t, p = np.meshgrid(theta, phi, indexing="ij")
-    normals = np.stack([np.sin(t) * np.cos(p), np.sin(t) * np.sin(p), np.cos(t)], -1).reshape(-1, 3)
-    positions = (normals * radius + center).astype(np.float32)
-    idx = np.arange((rings + 1) * segments).reshape(rings + 1, segments)
-    a, b = idx[:-1], np.roll(idx[:-1], -1, axis=1)
-    c, d = idx[1:], np.roll(idx[1:], -1, axis=1)
-    tris = np.concatenate([np.stack([a, c, b], -1).reshape(-1, 3), np.stack([b, c, d], -1).reshape(-1, 3)])
-    corner_normals = normals[tris].astype(np.float32)
-    return positions, tris.astype(np.int32), corner_normals
-
-
 def sphere_chart(model, samples):
     scene = tc.Scene()
     roughness = [0.1, 0.3, 0.5, 0.8]
     for row, metallic in enumerate([0.0, 1.0]):
         for col, r in enumerate(roughness):
             m = scene.add_material(base_color=(0.8, 0.45, 0.2), metallic=metallic, roughness=r)
-            p, t, n = uv_sphere(np.array([col * 1.1 - 1.65, 0.0, 0.5 + row * 1.1]), 0.5)
+            p, t, n = uv_sphere_with_normals(np.array([col * 1.1 - 1.65, 0.0, 0.5 + row * 1.1]), 0.5)
             scene.add_mesh(p, t, n, np.full(len(t), m, np.int32))
     floor = scene.add_material(base_color=(0.5, 0.5, 0.5), roughness=0.6)
     scene.add_mesh(np.array([[-20, -20, 0], [20, -20, 0], [20, 20, 0], [-20, 20, 0]], np.float32),

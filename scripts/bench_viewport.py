@@ -31,21 +31,19 @@ import time
 import bpy
 from mathutils import Euler, Matrix, Vector
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "blender_tests"))
-import tutil  # noqa: E402
+from torrance_tools import testing
 
 
 def build(kind):
-    scene = tutil.clear_scene()
-    tutil.setup_render(scene, samples=16)
+    scene = testing.clear_scene()
+    testing.setup_render(scene, samples=16)
     scene.torrance.viewport_samples = 64
-    red = tutil.principled("Red", base_color=(0.8, 0.05, 0.05), roughness=0.4)
-    tutil.uv_sphere(scene, "Sphere", (0, 0, 0.8), 0.8, red)
-    tutil.plane(scene, "Floor", 20, material=tutil.principled("Grey", (0.3, 0.3, 0.3)))
-    tutil.add_sun(scene)
-    tutil.set_world(scene, (0.2, 0.25, 0.3))
-    tutil.add_camera(scene)
+    red = testing.principled("Red", base_color=(0.8, 0.05, 0.05), roughness=0.4)
+    testing.sphere_object(scene, "Sphere", (0, 0, 0.8), 0.8, red)
+    testing.plane(scene, "Floor", 20, material=testing.principled("Grey", (0.3, 0.3, 0.3)))
+    testing.add_sun(scene)
+    testing.set_world(scene, (0.2, 0.25, 0.3))
+    testing.add_camera(scene)
     if kind == "dense":
         bpy.ops.mesh.primitive_uv_sphere_add(segments=400, ring_count=250, radius=0.5,
                                              location=(1.6, 0.6, 0.5))
@@ -169,9 +167,9 @@ def main():
     ap.add_argument("--json", default="")
     args = ap.parse_args(argv)
 
-    addon = tutil.addon()
+    addon = testing.addon()
     tv = addon.viewport
-    tc = tutil.core()
+    tc = testing.core()
     sizes = [tuple(int(x) for x in s.split("x")) for s in args.sizes.split(",") if s]
     results = []
     print(f"Torrance viewport benchmark: {os.cpu_count()} cores, median of {args.repeats} "

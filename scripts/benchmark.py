@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """Speed against error, Torrance vs Cycles, on the comparison scenes (run by scripts/benchmark).
 
-In one Blender process, for each scene of scenes/cmp_util.py: both engines render it at 1, 2, 4,
+In one Blender process, for each scene of torrance_tools/comparison_scenes.py: both engines render it at 1, 2, 4,
 ... samples per pixel (up to --max-spp, or until one render of that engine takes longer than
 --cap-seconds), alternating engines at each count so that load changes on a shared machine hit
 both alike. Each render is timed the same way for both engines: the wall time of
@@ -35,10 +35,8 @@ import time
 import bpy
 import numpy as np
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "blender_tests"))
-import cmp_lib as cl  # noqa: E402
-import cmp_util as cu  # noqa: E402
+from torrance_tools import REPO as ROOT
+from torrance_tools import addon_access, compare, comparison_scenes, references
 
 KNOWN_SETTINGS = {"width", "height", "samples", "max_bounces", "seed", "pixel_aspect_x",
                   "pixel_aspect_y", "filter_width", "transparent_background", "brdf_model",
@@ -58,7 +56,7 @@ def parse_args():
     p.add_argument("--toggle-repeats", type=int, default=3)
     p.add_argument("--max-seeds", type=int, default=4,
                    help="most seeds averaged per point (4 under 1 s, 2 under 5 s, else 1)")
-    p.add_argument("scenes", nargs="*", default=list(cu.SCENES))
+    p.add_argument("scenes", nargs="*", default=list(comparison_scenes.SCENES))
     return p.parse_args(argv)
 
 
@@ -90,21 +88,22 @@ def specialisation_toggles(core):
 def render_once(scene, engine, samples, bounces, seed, name, settings_edit=None):
     """(image, seconds of bpy.ops.render.render, extra) -- the same timing for both engines."""
     if engine == "torrance":
-        img, t = cl.render_torrance(scene, samples, seed, bounces, name=name,
-                                    settings_edit=settings_edit)
-        stats = cl.addon().render.last_stats
+        img, t = references.render_torrance(scene, samples, seed, bounces, name=name,
+                                            settings_edit=settings_edit)
+        stats = addon_access.addon().render.last_stats
         extra = dict(export_seconds=stats.get("export_seconds"), core_seconds=stats.get("seconds"))
     else:
-        img, t = cl.render_cycles(scene, samples, seed, bounces, name=name)
+        img, t = references.render_cycles(scene, samples, seed, bounces, name=name)
         extra = {}
     return img, t, extra
 
 
 def measure(img, ref):
-    m = cl.bias_metrics(img, ref)
-    return dict(rel_mse=cl.rel_mse(img, ref), rel_mse_trim=cl.rel_mse(img, ref, trim=TRIM),
-                ssim=cl.ssim(img, ref), ratio=m["ratio"], block_mean=m["block_mean"],
-                finite=cl.finite(img))
+    m = compare.bias_metrics(img, ref)
+    return dict(rel_mse=compare.rel_mse(img, ref),
+                rel_mse_trim=compare.rel_mse(img, ref, trim=TRIM),
+                ssim=compare.ssim(img, ref), ratio=m["ratio"], block_mean=m["block_mean"],
+                finite=compare.finite(img))
 
 
 def seeds_for(seconds, max_seeds):
@@ -178,17 +177,17 @@ def machine():
 
 
 def bench_scene(name, args, core, toggles):
-    scene, mod = cu.build(name)
-    ref, meta = cl.load_reference(name)
-    if not cl.reference_is_current(scene, meta):
+    scene, mod = comparison_scenes.build(name)
+    ref, meta = references.load_reference(name)
+    if not references.reference_is_current(scene, meta):
         raise RuntimeError(f"{name}: the stored reference is stale; run scripts/references {name}")
     floor = float(meta["noise_rel_mse"])
     out = dict(title=mod.TITLE, bounces=mod.BOUNCES, reference=dict(
         samples=meta["samples"], noise_rel_mse=floor, blender=meta["blender"]),
         torrance=[], cycles=[], toggles={})
     # warm-up (untimed): first-render costs such as kernel and module loading
-    cl.render_torrance(scene, 1, SEED, mod.BOUNCES, name="warm_t")
-    cl.render_cycles(scene, 1, SEED, mod.BOUNCES, name="warm_c")
+    references.render_torrance(scene, 1, SEED, mod.BOUNCES, name="warm_t")
+    references.render_cycles(scene, 1, SEED, mod.BOUNCES, name="warm_c")
     active = {"torrance": True, "cycles": True}
     spp = 1
     while spp <= args.max_spp and any(active.values()):
@@ -233,8 +232,8 @@ def bench_scene(name, args, core, toggles):
 def main():
     args = parse_args()
     for name in args.scenes:
-        cu.module(name)
-    core = cl.addon().render.load_core()
+        comparison_scenes.module(name)
+    core = addon_access.addon().render.load_core()
     toggles = specialisation_toggles(core)
     t0 = time.perf_counter()
     results = dict(
@@ -242,8 +241,9 @@ def main():
         command="scripts/benchmark " + " ".join(sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []),
         torrance_commit=git("rev-parse", "--short", "HEAD"),
         torrance_dirty=bool(git("status", "--porcelain", "--", "core", "python_addon", "CMakeLists.txt")),
-        **cl.versions(), machine=machine(),
-        settings=dict(width=cu.WIDTH, height=cu.HEIGHT, seed=SEED, max_spp=args.max_spp,
+        **references.versions(), machine=machine(),
+        settings=dict(width=comparison_scenes.WIDTH, height=comparison_scenes.HEIGHT, seed=SEED,
+                      max_spp=args.max_spp,
                       cap_seconds=args.cap_seconds, toggle_spp=args.toggle_spp, toggle_repeats=args.toggle_repeats,
                       max_seeds=args.max_seeds, trim=TRIM,
                       torrance_model='PRINCIPLED',

@@ -2,7 +2,7 @@
 """Renders the converged Cycles references of the comparison scenes (run by scripts/references).
 
 For each scene scenes/cmp_<name>.py: Cycles renders it twice with REFERENCE_SAMPLES/2 samples
-(seeds 1 and 2, the settings of cmp_util.cycles_settings); the reference is their mean, written as
+(seeds 1 and 2, the settings of torrance_tools.render_settings.cycles_settings); the reference is their mean, written as
 references/cmp_<name>.exr (half float, lossless ZIP) with references/cmp_<name>.json beside it:
 Blender's version, the settings, render times, the scene digest (the test refuses a reference of
 another scene) and the reference's own noise, measured from the two halves:
@@ -25,36 +25,34 @@ import time
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
-                                "blender_tests"))
-import cmp_lib as cl  # noqa: E402
-import cmp_util as cu  # noqa: E402
+from torrance_tools import compare, comparison_scenes, references, render_settings
 
 SEEDS = (1, 2)
 
 
 def make_reference(name):
-    scene, mod = cu.build(name)
-    digest = cu.scene_digest(scene)
+    scene, mod = comparison_scenes.build(name)
+    digest = comparison_scenes.scene_digest(scene)
     half = mod.REFERENCE_SAMPLES // 2
     images, seconds = [], []
     for seed in SEEDS:
         print(f"references: {name}: Cycles {half} samples, seed {seed}", flush=True)
-        img, t = cl.render_cycles(scene, half, seed, mod.BOUNCES, name=f"ref_{name}_{seed}")
-        if not cl.finite(img):
+        img, t = references.render_cycles(scene, half, seed, mod.BOUNCES,
+                                          name=f"ref_{name}_{seed}")
+        if not compare.finite(img):
             raise RuntimeError(f"{name}: NaN/Inf in Cycles' render")
         images.append(img.astype(np.float64))
         seconds.append(round(t, 2))
     a, b = images
     ref = (a + b) / 2
-    exr, meta_path = cl.reference_paths(name)
+    exr, meta_path = references.reference_paths(name)
     os.makedirs(os.path.dirname(exr), exist_ok=True)
-    cl.write_exr_half(exr, ref)
-    stored = cl.read_exr(exr)
-    ba, bb, br = cl.block_means(a), cl.block_means(b), cl.block_means(stored)
+    compare.write_exr_half(exr, ref)
+    stored = compare.read_exr(exr)
+    ba, bb, br = compare.block_means(a), compare.block_means(b), compare.block_means(stored)
     block_noise = np.abs(ba - bb) / 2 / np.maximum(br, 0.1 * br.mean())
     # the settings as Cycles holds them after the renders (what was used, not what was asked)
-    keys = [k for k in cu.cycles_settings(half, 0, mod.BOUNCES) if k != "seed"]
+    keys = [k for k in render_settings.cycles_settings(half, 0, mod.BOUNCES) if k != "seed"]
     keys += ["sampling_pattern", "min_light_bounces", "min_transparent_bounces"]
     settings = {k: getattr(scene.cycles, k) for k in keys if hasattr(scene.cycles, k)}
     settings = {k: (v if isinstance(v, (bool, int, float, str)) else str(v)) for k, v in settings.items()}
@@ -63,7 +61,7 @@ def make_reference(name):
         scene_digest=digest,
         made=datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
         command="scripts/references " + name,
-        **cl.versions(),
+        **references.versions(),
         engine="CYCLES", width=scene.render.resolution_x, height=scene.render.resolution_y,
         bounces=mod.BOUNCES, samples=2 * half, seeds=list(SEEDS), samples_per_seed=half,
         cycles=settings, render_seconds=seconds,
@@ -86,10 +84,11 @@ def make_reference(name):
 
 def main():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    names = argv or list(cu.SCENES)
+    names = argv or list(comparison_scenes.SCENES)
     for name in names:
-        if name not in cu.SCENES:
-            raise SystemExit(f"references: unknown scene {name!r}; known: {', '.join(cu.SCENES)}")
+        if name not in comparison_scenes.SCENES:
+            raise SystemExit(f"references: unknown scene {name!r}; "
+                             f"known: {', '.join(comparison_scenes.SCENES)}")
     t0 = time.perf_counter()
     for name in names:
         make_reference(name)

@@ -1,23 +1,24 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Blender scene-building primitives (not a scene itself), shared by the paper scenes
-scenes/make_*.py, the comparison scenes (scenes/cmp_util.py) and the headless tests
-(blender_tests/tutil.py, which put this folder on sys.path).
+"""Building Blender scenes from numbers: objects, meshes, materials, lights, camera, world.
 
-A scene script runs as
+Used by the scene scripts (scenes/make_*.py, scenes/cmp_*.py), the headless tests and the
+benchmarks. A scene script runs as
     scripts/blender -b --factory-startup --python scenes/make_<name>.py -- <out.blend>
 builds everything from numbers (numpy, fixed seeds: no downloaded assets, the same .blend on every
 run) and saves the .blend. Meshes are built with foreach_set from numpy arrays, never a Python loop
-per vertex.
+per vertex. Render settings: torrance_tools.render_settings.
 """
 
 import math
 import os
 import sys
-import time
 
 import bpy
 import numpy as np
 from mathutils import Vector
+
+from torrance_tools import REPO
+from torrance_tools.geometry import uv_sphere
 
 
 # --------------------------------------------------------------------------------------------
@@ -31,7 +32,7 @@ def out_path(default_name):
     if argv:
         print(f"usage: blender -b --factory-startup --python {sys.argv[0]} -- OUT.blend")
         sys.exit(0)
-    return os.path.join(os.path.dirname(os.path.abspath(__file__)), default_name)
+    return os.path.join(REPO, "scenes", default_name)
 
 
 # --------------------------------------------------------------------------------------------
@@ -53,76 +54,6 @@ def empty_scene(scene=None, images=False):
                 bpy.data.images.remove(img)
     scene.world = None
     return scene
-
-
-def setup_render(scene, width=320, height=240, samples=64, max_bounces=8, seed=0):
-    """TORRANCE as the engine, and Cycles set to render the same thing (for side-by-side runs).
-
-    Biasing Cycles options are off (no denoising: Debian's Blender lacks OIDN; no clamping, no
-    glossy blur, no adaptive sampling), both engines use the 1.5 px Blackman-Harris filter, the
-    same bounce limit and a fixed seed. The view transform is Standard (sRGB), so PNGs are plain
-    sRGB encodings of the linear EXR data.
-    """
-    scene.render.engine = 'TORRANCE'
-    plain_output(scene, width, height)
-    scene.render.filter_size = 1.5
-    scene.frame_start = scene.frame_end = scene.frame_current = 1
-    torrance_settings(scene, samples, max_bounces, seed)
-    for key, value in cycles_settings(samples, seed, max_bounces).items():
-        setattr(scene.cycles, key, value)
-    scene.view_layers[0].cycles.use_denoising = False
-
-
-def plain_output(scene, width, height):
-    """Resolution at 100 %, square pixels, whole frame, opaque film, no compositing, sequencer
-    or dither, Standard view transform."""
-    rd = scene.render
-    rd.resolution_x, rd.resolution_y = width, height
-    rd.resolution_percentage = 100
-    rd.pixel_aspect_x = rd.pixel_aspect_y = 1.0
-    rd.use_border = False
-    rd.film_transparent = False
-    rd.use_compositing = False
-    rd.use_sequencer = False
-    rd.dither_intensity = 0.0
-    vs = scene.view_settings
-    vs.view_transform = 'Standard'
-    vs.look = 'None'
-    vs.exposure = 0.0
-    vs.gamma = 1.0
-
-
-def torrance_settings(scene, samples, max_bounces, seed=0):
-    """Torrance's samples, bounces and seed, and the 1.5 px filter (as Cycles')."""
-    ts = scene.torrance
-    ts.samples = int(samples)
-    ts.max_bounces = int(max_bounces)
-    ts.seed = int(seed)
-    ts.filter_width = 1.5
-    return ts
-
-
-def cycles_settings(samples, seed, bounces):
-    """The Cycles settings of an unbiased render comparable with Torrance (recorded in the
-    references' JSON): no denoising (Debian's Blender has no OIDN), no adaptive sampling, no
-    clamping, no glossy blur, no light threshold, Blackman-Harris 1.5 px like Torrance, all
-    bounce types limited by `bounces`."""
-    return dict(device='CPU', samples=int(samples), seed=int(seed), use_animated_seed=False,
-                use_adaptive_sampling=False, use_denoising=False,
-                max_bounces=bounces, diffuse_bounces=bounces, glossy_bounces=bounces,
-                transmission_bounces=bounces, transparent_max_bounces=bounces, volume_bounces=0,
-                sample_clamp_direct=0.0, sample_clamp_indirect=0.0, blur_glossy=0.0,
-                light_sampling_threshold=0.0, caustics_reflective=True, caustics_refractive=True,
-                pixel_filter_type='BLACKMAN_HARRIS', filter_width=1.5, film_exposure=1.0)
-
-
-def ggx_everywhere():
-    """Every Principled BSDF of every material set to GGX (the default, enforced)."""
-    for mat in bpy.data.materials:
-        if mat.use_nodes and mat.node_tree is not None:
-            for node in mat.node_tree.nodes:
-                if node.bl_idname == 'ShaderNodeBsdfPrincipled':
-                    node.distribution = 'GGX'
 
 
 def world(scene, color, strength=1.0, name="World", use_nodes=True, viewport_color=True):
@@ -246,7 +177,7 @@ def mesh_object(scene, name, verts, polys, material=None, smooth=False, material
                                 np.ascontiguousarray(material_indices, dtype=np.int32))
     me.update(calc_edges=True)
     if me.validate(verbose=False):
-        print(f"scene_util: mesh '{name}' needed fixing")
+        print(f"scene: mesh '{name}' needed fixing")
     ob = bpy.data.objects.new(name, me)
     scene.collection.objects.link(ob)
     return ob
@@ -276,83 +207,6 @@ def sphere_object(scene, name, center, radius, material=None, segments=48, rings
     ob = mesh_object(scene, name, verts * radius, tris, material, smooth=True)
     ob.location = center
     return ob
-
-
-def grid(xs, ys):
-    """Vertices (nx*ny, 3) at z = 0 over the coordinate arrays xs (nx,), ys (ny,), and the
-    triangles of the (nx-1)*(ny-1) cells, two per cell."""
-    nx, ny = len(xs), len(ys)
-    X, Y = np.meshgrid(xs, ys)                       # (ny, nx)
-    verts = np.stack([X.ravel(), Y.ravel(), np.zeros(X.size)], axis=1)
-    i, j = np.meshgrid(np.arange(nx - 1), np.arange(ny - 1))
-    a = (j * nx + i).ravel()
-    b, c, d = a + 1, a + nx + 1, a + nx
-    tris = np.concatenate([np.stack([a, b, c], 1), np.stack([a, c, d], 1)])
-    return verts, tris
-
-
-def icosphere(subdivisions):
-    """Unit icosphere: vertices (N,3) on the sphere and triangles (M,3), outward winding."""
-    t = (1.0 + 5 ** 0.5) / 2
-    v = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t), (0, -1, -t),
-         (0, 1, -t), (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
-    f = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4),
-         (11, 10, 2), (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8),
-         (3, 8, 9), (4, 9, 5), (2, 4, 11), (6, 2, 10), (8, 6, 7), (9, 8, 1)]
-    verts = [np.array(p, dtype=np.float64) / np.linalg.norm(p) for p in v]
-    faces = f
-    for _ in range(subdivisions):
-        cache = {}
-
-        def mid(a, b):
-            key = (a, b) if a < b else (b, a)
-            if key not in cache:
-                p = verts[a] + verts[b]
-                verts.append(p / np.linalg.norm(p))
-                cache[key] = len(verts) - 1
-            return cache[key]
-
-        new = []
-        for a, b, c in faces:
-            ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
-            new += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
-        faces = new
-    return np.array(verts), np.array(faces, dtype=np.int64)
-
-
-def uv_sphere(segments=32, rings=16):
-    """Unit UV sphere: vertices (N,3), triangles (M,3), outward winding."""
-    theta = np.pi * np.arange(1, rings) / rings              # polar angle of the inner rings
-    phi = 2 * np.pi * np.arange(segments) / segments
-    T, P = np.meshgrid(theta, phi, indexing="ij")            # (rings-1, segments)
-    ring = np.stack([np.sin(T) * np.cos(P), np.sin(T) * np.sin(P), np.cos(T)], -1).reshape(-1, 3)
-    verts = np.concatenate([[[0, 0, 1]], ring, [[0, 0, -1]]])
-    top, bottom = 0, len(verts) - 1
-    s = np.arange(segments)
-    s1 = (s + 1) % segments
-    tris = [np.stack([np.full(segments, top), 1 + s, 1 + s1], 1)]
-    for r in range(rings - 2):
-        a, b = 1 + r * segments + s, 1 + r * segments + s1
-        c, d = a + segments, b + segments
-        tris += [np.stack([a, c, d], 1), np.stack([a, d, b], 1)]
-    last = 1 + (rings - 2) * segments
-    tris.append(np.stack([last + s, np.full(segments, bottom), last + s1], 1))
-    return verts, np.concatenate(tris)
-
-
-def render_exr(scene, path, color_mode='RGBA'):
-    """Renders the scene with its engine into a 32-bit ZIP EXR at `path`; returns the seconds of
-    bpy.ops.render.render (scene sync/export + render)."""
-    settings = scene.render.image_settings
-    settings.file_format = 'OPEN_EXR'
-    settings.color_depth = '32'
-    settings.exr_codec = 'ZIP'
-    settings.color_mode = color_mode
-    t0 = time.perf_counter()
-    bpy.ops.render.render(write_still=False)
-    seconds = time.perf_counter() - t0
-    bpy.data.images["Render Result"].save_render(path, scene=scene)
-    return seconds
 
 
 def save(path):

@@ -1,11 +1,15 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The scene compared with Cycles (used by test_cycles_agreement.py and scenes/make_demo.py)."""
+"""The Torrance-vs-Cycles agreement scene, its metrics and pass/fail criteria (used by the
+headless tests: test_cycles_agreement.py, test_camera_agreement.py, test_lights.py, test_hdri.py,
+test_textures.py, test_reference_scenes.py, test_cancel_memory.py)."""
 
 import math
 
 import numpy as np
 
-import tutil
+from torrance_tools import testing
+from torrance_tools.compare import bias_metrics, image_offset
+from torrance_tools.render_settings import setup_torrance
 
 # name, centre, radius, base colour, metallic, roughness
 SPHERES = (
@@ -18,39 +22,22 @@ SPHERES = (
 
 def build(scene, world=(0.10, 0.12, 0.15), sun=3.0, point=250.0):
     """Spheres on a floor in front of a wall, lit by a sun, a point light and the world."""
-    tutil.add_camera(scene, location=(0.0, -5.2, 1.9), target=(0.0, 0.3, 0.55), lens=40.0)
+    testing.add_camera(scene, location=(0.0, -5.2, 1.9), target=(0.0, 0.3, 0.55), lens=40.0)
     # Matte floor and wall (Specular 0): there Lambert and Cycles' Burley diffuse agree to ~1%,
     # so the big surfaces measure units, camera and bounces rather than the BRDF difference.
-    floor = tutil.principled("Floor", (0.50, 0.50, 0.50), 0.0, 0.50, specular=0.0)
-    wall = tutil.principled("Wall", (0.60, 0.45, 0.30), 0.0, 0.50, specular=0.0)
-    tutil.plane(scene, "Floor", 12.0, material=floor)
-    w = tutil.mesh_object(scene, "Wall", [(-6, 2.2, 0), (6, 2.2, 0), (6, 2.2, 4), (-6, 2.2, 4)],
-                          [(0, 1, 2, 3)], wall)
+    floor = testing.principled("Floor", (0.50, 0.50, 0.50), 0.0, 0.50, specular=0.0)
+    wall = testing.principled("Wall", (0.60, 0.45, 0.30), 0.0, 0.50, specular=0.0)
+    testing.plane(scene, "Floor", 12.0, material=floor)
+    w = testing.mesh_object(scene, "Wall", [(-6, 2.2, 0), (6, 2.2, 0), (6, 2.2, 4), (-6, 2.2, 4)],
+                            [(0, 1, 2, 3)], wall)
     for name, centre, radius, color, metallic, roughness in SPHERES:
-        tutil.uv_sphere(scene, name, centre, radius,
-                        tutil.principled(name, color, metallic, roughness))
-    tutil.add_sun(scene, strength=sun, rotation=(math.radians(50), 0, math.radians(35)),
-                  angle=math.radians(10.0))
-    tutil.add_point(scene, (2.2, -1.8, 2.6), power=point, radius=0.25, color=(1.0, 0.9, 0.8))
-    tutil.set_world(scene, world)
+        testing.sphere_object(scene, name, centre, radius,
+                              testing.principled(name, color, metallic, roughness))
+    testing.add_sun(scene, strength=sun, rotation=(math.radians(50), 0, math.radians(35)),
+                    angle=math.radians(10.0))
+    testing.add_point(scene, (2.2, -1.8, 2.6), power=point, radius=0.25, color=(1.0, 0.9, 0.8))
+    testing.set_world(scene, world)
     return w
-
-
-def setup_cycles(scene, samples, max_bounces, seed=0):
-    """Cycles settings that make it an unbiased reference comparable with Torrance."""
-    scene.render.engine = 'CYCLES'
-    cy = scene.cycles
-    for key, value in tutil.su.cycles_settings(samples, seed, max_bounces).items():
-        setattr(cy, key, value)
-    if hasattr(cy, "use_light_tree"):     # Blender 3.5+
-        cy.use_light_tree = False
-    tutil.su.ggx_everywhere()
-
-
-def setup_torrance(scene, samples, max_bounces, seed=0):
-    scene.render.engine = 'TORRANCE'
-    ts = tutil.su.torrance_settings(scene, samples, max_bounces, seed)
-    ts.brdf_model = 'PAPER'
 
 
 # Agreement criteria (see test_cycles_agreement.py for the measurements behind them).
@@ -63,14 +50,8 @@ THRESHOLDS = dict(
 
 
 def metrics(img, ref):
-    rgb, ref_rgb = img[:, :, :3], ref[:, :, :3]
-    ratio = float(rgb.mean() / ref_rgb.mean())
-    channels = rgb.mean(axis=(0, 1)) / ref_rgb.mean(axis=(0, 1))
-    bi, br = tutil.block_means(img, 8), tutil.block_means(ref, 8)
-    rel = np.abs(bi - br) / np.maximum(br, 0.1 * br.mean())
-    offset = tutil.image_offset(img, ref)
-    return dict(ratio=ratio, channels=channels, block_mean=float(rel.mean()),
-                block_p90=float(np.percentile(rel, 90)), offset=offset)
+    """bias_metrics (RGB) and the image offset in pixels of img against ref."""
+    return dict(bias_metrics(img, ref), offset=image_offset(img, ref))
 
 
 def format_metrics(m):
@@ -101,8 +82,7 @@ def failures(m, thresholds=THRESHOLDS):
 
 def render_torrance(scene, directory, name, samples, max_bounces, model='PRINCIPLED'):
     """Renders with Torrance's `model`; (image, seconds), the image checked for NaN/Inf."""
-    setup_torrance(scene, samples, max_bounces)
-    scene.torrance.brdf_model = model
-    img, seconds = tutil.render(scene, directory, name)
-    tutil.check(np.isfinite(img).all(), f"{name}: NaN/Inf in Torrance's image")
+    setup_torrance(scene, samples, max_bounces, brdf_model=model)
+    img, seconds = testing.render(scene, directory, name)
+    testing.check(np.isfinite(img).all(), f"{name}: NaN/Inf in Torrance's image")
     return img, seconds

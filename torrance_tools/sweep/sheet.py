@@ -1,21 +1,20 @@
 # SPDX-License-Identifier: Apache-2.0
 """Assembling a parameter sweep's outputs: PNGs, contact sheet, CSV/JSON. No bpy needed.
 
-blender_tests/sweep.py renders the frames (EXR, linear) and calls collect(); this module can also
-run on its own, e.g. after a render farm rendered a sweep's .blend (`blender -b sweep.blend -a`):
+torrance_tools/sweep/runner.py renders the frames (EXR, linear) and calls collect(); this module can
+also run on its own, e.g. after a render farm rendered a sweep's .blend (`blender -b sweep.blend -a`):
 
-    /usr/bin/python3 blender_tests/sweep_sheet.py OUT_DIR        # or: scripts/blender -b --python
-                                                                 #     blender_tests/sweep.py -- --collect OUT_DIR
-OUT_DIR holds sweep.json (the plan written by sweep.py) and frames/frame_####.exr; per frame
-frames/frame_####.json (written when sweep.py rendered it: samples, time) is optional. It writes
-    frames/frame_####.png   sRGB 8 bit of each EXR (x 2^exposure of the scene's view settings),
-                            written by torrance_core.write_image (OpenImageIO) when available
+    python3 -m torrance_tools.sweep.sheet OUT_DIR     # from the repository root; or:
+    scripts/blender -b --python torrance_tools/sweep/runner.py -- --collect OUT_DIR
+
+OUT_DIR holds sweep.json (the plan written by runner.py) and frames/frame_####.exr; per frame
+frames/frame_####.json (written when runner.py rendered it: samples, time) is optional. It writes
+    frames/frame_####.png   sRGB 8 bit of each EXR (x 2^exposure of the scene's view settings)
     sheet.png               the labeled contact sheet (value under each panel), sheet.json its layout
     results.csv, results.json   each frame's inputs, engine, samples, render time, files
 
-Images are read and written with Torrance's torrance_core (OpenImageIO), else OpenImageIO's own
-Python module, else (PNG) PIL. Text is drawn with PIL's DejaVu Sans when available, else with a
-small built-in 5x7 bitmap font.
+EXR frames are read with OpenImageIO (torrance_tools.compare.read_exr); PNGs are written and text
+is drawn (DejaVu Sans) with Pillow, which matplotlib requires.
 """
 
 import csv
@@ -26,47 +25,15 @@ import re
 import sys
 
 import numpy as np
+from PIL import Image, ImageDraw, ImageFont
+
+from torrance_tools.compare import read_exr
 
 FRAME_RE = re.compile(r"^frame_(\d+)\.exr$")
 
 
 # --------------------------------------------------------------------------------------------
-# Image I/O
-
-_tc = None
-
-
-def _torrance_core():
-    """The native module, from the enabled add-on or the build tree; None when unavailable."""
-    global _tc
-    if _tc is None:
-        try:
-            from torrance import torrance_core as tc        # inside Blender, add-on enabled
-        except Exception:
-            here = os.path.dirname(os.path.abspath(__file__))
-            build = os.environ.get("TORRANCE_BUILD_DIR", os.path.join(here, "..", "build"))
-            path = os.path.join(os.path.abspath(build), "addon", "torrance")
-            if os.path.isdir(os.path.join(path, "torrance_core")) and path not in sys.path:
-                sys.path.append(path)
-            try:
-                import torrance_core as tc
-            except Exception:
-                tc = False
-        _tc = tc
-    return _tc or None
-
-
-def read_image(path):
-    """float32 (h, w, c) linear, row 0 = top."""
-    tc = _torrance_core()
-    if tc is not None:
-        return np.asarray(tc.read_image(path), dtype=np.float32)
-    import OpenImageIO as oiio
-    buf = oiio.ImageBuf(path)
-    if buf.has_error:
-        raise RuntimeError(f"cannot read {path}: {buf.geterror()}")
-    return np.asarray(buf.get_pixels(oiio.FLOAT), dtype=np.float32)
-
+# Images
 
 def srgb_encode(linear):
     """Linear -> sRGB in [0, 1] (clamped)."""
@@ -84,109 +51,36 @@ def to_display(linear, exposure=0.0):
 
 
 def write_png(path, linear, exposure=0.0):
-    """A linear image as an sRGB 8-bit PNG: torrance_core.write_image (OpenImageIO) when
-    available, else our own encoding (write_png8)."""
-    tc = _torrance_core()
-    if tc is not None:
-        img = np.ascontiguousarray(np.asarray(linear, dtype=np.float32)[:, :, :3]
-                                   * np.float32(2.0 ** exposure))
-        tc.write_image(path, img)
-    else:
-        write_png8(path, to_display(linear, exposure))
+    """A linear image (x 2^exposure) as an sRGB 8-bit PNG."""
+    write_png8(path, to_display(linear, exposure))
 
 
 def write_png8(path, rgb8):
     """Writes a uint8 (h, w, 3) sRGB image as PNG."""
-    rgb8 = np.ascontiguousarray(rgb8, dtype=np.uint8)
-    try:
-        from PIL import Image
-        Image.fromarray(rgb8, "RGB").save(path)
-        return
-    except ImportError:
-        pass
-    try:
-        import OpenImageIO as oiio
-        spec = oiio.ImageSpec(rgb8.shape[1], rgb8.shape[0], 3, oiio.UINT8)
-        out = oiio.ImageOutput.create(path)
-        out.open(path, spec)
-        out.write_image(rgb8)
-        out.close()
-        return
-    except ImportError:
-        pass
-    tc = _torrance_core()       # encodes linear -> sRGB itself: hand it the decoded values
-    x = rgb8.astype(np.float32) / 255.0
-    lin = np.where(x <= 0.04045, x / 12.92, ((x + 0.055) / 1.055) ** 2.4).astype(np.float32)
-    tc.write_image(path, np.concatenate([lin, np.ones_like(lin[:, :, :1])], axis=2))
+    Image.fromarray(np.ascontiguousarray(rgb8, dtype=np.uint8), "RGB").save(path)
 
 
 def read_png8(path):
-    from PIL import Image
     return np.asarray(Image.open(path).convert("RGB"))
 
 
 # --------------------------------------------------------------------------------------------
 # Text
 
-# 5x7 bitmap glyphs (rows top to bottom, '#' = ink) for the fallback font; lower case is drawn
-# as upper case.
-_GLYPHS = {
-    "0": "01110 10001 10011 10101 11001 10001 01110", "1": "00100 01100 00100 00100 00100 00100 01110",
-    "2": "01110 10001 00001 00010 00100 01000 11111", "3": "11110 00001 00001 01110 00001 00001 11110",
-    "4": "00010 00110 01010 10010 11111 00010 00010", "5": "11111 10000 11110 00001 00001 10001 01110",
-    "6": "00110 01000 10000 11110 10001 10001 01110", "7": "11111 00001 00010 00100 01000 01000 01000",
-    "8": "01110 10001 10001 01110 10001 10001 01110", "9": "01110 10001 10001 01111 00001 00010 01100",
-    "A": "01110 10001 10001 11111 10001 10001 10001", "B": "11110 10001 10001 11110 10001 10001 11110",
-    "C": "01110 10001 10000 10000 10000 10001 01110", "D": "11100 10010 10001 10001 10001 10010 11100",
-    "E": "11111 10000 10000 11110 10000 10000 11111", "F": "11111 10000 10000 11110 10000 10000 10000",
-    "G": "01110 10001 10000 10111 10001 10001 01111", "H": "10001 10001 10001 11111 10001 10001 10001",
-    "I": "01110 00100 00100 00100 00100 00100 01110", "J": "00111 00010 00010 00010 00010 10010 01100",
-    "K": "10001 10010 10100 11000 10100 10010 10001", "L": "10000 10000 10000 10000 10000 10000 11111",
-    "M": "10001 11011 10101 10101 10001 10001 10001", "N": "10001 10001 11001 10101 10011 10001 10001",
-    "O": "01110 10001 10001 10001 10001 10001 01110", "P": "11110 10001 10001 11110 10000 10000 10000",
-    "Q": "01110 10001 10001 10001 10101 10010 01101", "R": "11110 10001 10001 11110 10100 10010 10001",
-    "S": "01111 10000 10000 01110 00001 00001 11110", "T": "11111 00100 00100 00100 00100 00100 00100",
-    "U": "10001 10001 10001 10001 10001 10001 01110", "V": "10001 10001 10001 10001 10001 01010 00100",
-    "W": "10001 10001 10001 10101 10101 10101 01010", "X": "10001 10001 01010 00100 01010 10001 10001",
-    "Y": "10001 10001 01010 00100 00100 00100 00100", "Z": "11111 00001 00010 00100 01000 10000 11111",
-    " ": "00000 00000 00000 00000 00000 00000 00000", ".": "00000 00000 00000 00000 00000 01100 01100",
-    ",": "00000 00000 00000 00000 01100 00100 01000", "-": "00000 00000 00000 11111 00000 00000 00000",
-    "+": "00000 00100 00100 11111 00100 00100 00000", "=": "00000 00000 11111 00000 11111 00000 00000",
-    ":": "00000 01100 01100 00000 01100 01100 00000", "/": "00001 00010 00010 00100 01000 01000 10000",
-    "(": "00010 00100 01000 01000 01000 00100 00010", ")": "01000 00100 00010 00010 00010 00100 01000",
-    "_": "00000 00000 00000 00000 00000 00000 11111", "%": "11001 11010 00010 00100 01000 01011 10011",
-    "x": "00000 10001 01010 00100 01010 10001 00000", "?": "01110 10001 00001 00010 00100 00000 00100",
-    "|": "00100 00100 00100 00100 00100 00100 00100", "'": "00100 00100 01000 00000 00000 00000 00000",
-    "#": "01010 01010 11111 01010 11111 01010 01010", "*": "00000 10101 01110 11111 01110 10101 00000",
-}
-
-
 class _Font:
-    """Draws text into a uint8 RGB array: PIL TrueType when available, else the bitmap font."""
+    """Draws DejaVu Sans text (fonts-dejavu-core, a dependency of matplotlib's data) into a uint8
+    RGB array."""
 
     def __init__(self, size):
         self.size = size
-        self.pil = None
-        try:
-            from PIL import ImageFont
-            for name in ("DejaVuSans.ttf", "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"):
-                try:
-                    self.pil = ImageFont.truetype(name, size)
-                    break
-                except OSError:
-                    continue
-        except ImportError:
-            pass
-        self.scale = max(1, int(round(size / 9)))     # bitmap font: 7 px glyphs scaled
+        self.pil = ImageFont.truetype("DejaVuSans.ttf", size)
 
     @property
     def line_height(self):
-        return int(self.size * 1.5) if self.pil else 9 * self.scale + 4
+        return int(self.size * 1.5)
 
     def width(self, text):
-        if self.pil:
-            return int(math.ceil(self.pil.getlength(text)))
-        return len(text) * 6 * self.scale
+        return int(math.ceil(self.pil.getlength(text)))
 
     def fit(self, text, max_width):
         """The text, shortened with '...' so it fits in max_width pixels."""
@@ -197,21 +91,10 @@ class _Font:
         return text + "..."
 
     def draw(self, canvas, x, y, text, color=(0, 0, 0)):
-        """Draws text with its top-left corner at (x, y); returns canvas (possibly a new array)."""
-        if self.pil:
-            from PIL import Image, ImageDraw
-            im = Image.fromarray(canvas)
-            ImageDraw.Draw(im).text((x, y), text, font=self.pil, fill=tuple(color))
-            return np.asarray(im).copy()
-        s = self.scale
-        for k, ch in enumerate(text):
-            glyph = _GLYPHS.get(ch, _GLYPHS.get(ch.upper(), _GLYPHS["?"]))
-            for r, bits in enumerate(glyph.split()):
-                for c, bit in enumerate(bits):
-                    if bit == "1":
-                        y0, x0 = y + 1 + r * s, x + k * 6 * s + c * s
-                        canvas[max(0, y0):y0 + s, max(0, x0):x0 + s] = color
-        return canvas
+        """Draws text with its top-left corner at (x, y); returns the canvas as a new array."""
+        im = Image.fromarray(canvas)
+        ImageDraw.Draw(im).text((x, y), text, font=self.pil, fill=tuple(color))
+        return np.asarray(im).copy()
 
 
 # --------------------------------------------------------------------------------------------
@@ -341,7 +224,7 @@ def collect(out_dir, quiet=False):
                         row[key] = meta[key]
             else:
                 row["seconds"] = _exr_render_time(exr)
-            linear = read_image(exr)
+            linear = read_exr(exr)
             img8 = to_display(linear, exposure)
             if (not os.path.exists(png)) or os.path.getmtime(png) < os.path.getmtime(exr):
                 write_png(png, linear, exposure)
@@ -394,6 +277,6 @@ def _blank(v, digits=None):
 
 if __name__ == "__main__":
     if len(sys.argv) != 2 or sys.argv[1].startswith("-"):
-        print("usage: python3 blender_tests/sweep_sheet.py SWEEP_OUT_DIR", file=sys.stderr)
+        print("usage: python3 -m torrance_tools.sweep.sheet SWEEP_OUT_DIR", file=sys.stderr)
         sys.exit(2)
     collect(sys.argv[1])

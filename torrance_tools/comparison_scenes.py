@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The comparison scenes (scenes/cmp_*.py): registry, render settings and building helpers.
+"""The comparison scenes (scenes/cmp_*.py): registry, digest, common settings, building.
 
 Each scene module scenes/cmp_<name>.py defines
 
@@ -19,26 +19,17 @@ All materials are Principled BSDF v1 with the GGX distribution and inputs Torran
 (no transmission, sheen, clearcoat, subsurface or specular tint).
 """
 
-import functools
 import hashlib
-import importlib
+import importlib.util
 import os
 import sys
 
 import bpy
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-if HERE not in sys.path:
-    sys.path.insert(0, HERE)
-import scene_util as su  # noqa: E402
-# The building primitives (scenes/scene_util.py), under the names the scene modules use.
-from scene_util import box, cycles_settings, empty_scene, grid, point_light, quad, sun  # noqa: E402,F401
-material = su.principled
-mesh = su.mesh_object
-uv_sphere = su.sphere_object
-world = su.world
-camera = functools.partial(su.camera, clip_end=1000.0)
+from torrance_tools import REPO
+from torrance_tools.render_settings import plain_output
+from torrance_tools.scene import empty_scene
 
 # The scenes, in report order.
 SCENES = ("sphere_chart", "grass_stone", "water", "suzanne", "mirror", "interior")
@@ -46,10 +37,17 @@ WIDTH, HEIGHT = 128, 96
 
 
 def module(name):
-    """The scene module scenes/cmp_<name>.py."""
+    """The scene module scenes/cmp_<name>.py (loaded once)."""
     if name not in SCENES:
         raise KeyError(f"unknown comparison scene {name!r}; known: {', '.join(SCENES)}")
-    return importlib.import_module(f"cmp_{name}")
+    module_name = f"cmp_{name}"
+    if module_name not in sys.modules:
+        path = os.path.join(REPO, "scenes", module_name + ".py")
+        spec = importlib.util.spec_from_file_location(module_name, path)
+        mod = importlib.util.module_from_spec(spec)
+        sys.modules[module_name] = mod
+        spec.loader.exec_module(mod)
+    return sys.modules[module_name]
 
 
 def scene_digest(scene):
@@ -126,38 +124,14 @@ def build(name, scene=None):
 
 
 # --------------------------------------------------------------------------------------------
-# Render settings
+# Settings and saving
 
 def setup_common(scene, width=WIDTH, height=HEIGHT):
     """Resolution, plain output (no compositing, Standard view, no dither), frame 1."""
-    su.plain_output(scene, width, height)
+    plain_output(scene, width, height)
     scene.render.use_persistent_data = False
     scene.render.threads_mode = 'AUTO'
     scene.frame_start = scene.frame_end = scene.frame_current = 1
-
-
-def setup_cycles(scene, samples, seed=0, bounces=8):
-    scene.render.engine = 'CYCLES'
-    for key, value in cycles_settings(samples, seed, bounces).items():
-        if hasattr(scene.cycles, key):
-            setattr(scene.cycles, key, value)
-    for layer in scene.view_layers:
-        layer.cycles.use_denoising = False
-    su.ggx_everywhere()
-
-
-def setup_torrance(scene, samples, seed=0, bounces=8, brdf_model=None):
-    """Torrance with the same samples/seed/bounces/filter. brdf_model: None = 'PRINCIPLED' when
-    the add-on offers it, else left as it is."""
-    scene.render.engine = 'TORRANCE'
-    ts = su.torrance_settings(scene, samples, bounces, seed)
-    if hasattr(ts, "use_progressive_display"):
-        ts.use_progressive_display = False
-    models = {item.identifier for item in ts.bl_rna.properties['brdf_model'].enum_items}
-    if brdf_model is None:
-        brdf_model = 'PRINCIPLED' if 'PRINCIPLED' in models else None
-    if brdf_model is not None:
-        ts.brdf_model = brdf_model
 
 
 def script_main(build_fn):

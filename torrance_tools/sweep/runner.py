@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """Headless parameter sweeps of a material input, as ordinary Blender animations.
 
-    scripts/blender -b SCENE.blend --python blender_tests/sweep.py -- --material Grass \\
+    scripts/blender -b SCENE.blend --python torrance_tools/sweep/runner.py -- --material Grass \\
         --input Metallic --values 1,0.8,0.6,0.4,0.2,0 --out DIR [options]
 
 Each value of the swept input is one frame: the input's socket is keyframed (constant
@@ -12,13 +12,13 @@ frames in row-major order.
 How the frames get rendered:
 * by default this script renders every frame itself (or those of --frames), one progress line each;
 * Blender's own render flags after the script render only what they name, e.g.
-      scripts/blender -b SCENE.blend --python blender_tests/sweep.py -f 3 -- ...   (frame 3 only)
-      scripts/blender -b SCENE.blend --python blender_tests/sweep.py -s 2 -e 4 -a -- ...
+      scripts/blender -b SCENE.blend --python torrance_tools/sweep/runner.py -f 3 -- ...   (frame 3 only)
+      scripts/blender -b SCENE.blend --python torrance_tools/sweep/runner.py -s 2 -e 4 -a -- ...
   (the script then only sets the sweep up; handlers write each frame's PNG and record, and the
   sheet of the frames present when the render completes);
 * --save OUT.blend only writes the keyframed .blend (output path relative to it): any render farm
   renders it with `blender -b OUT.blend -a` (or splits it by frames), after which
-  `python3 blender_tests/sweep_sheet.py DIR` (or this script with --collect DIR) assembles the sheet.
+  `python3 -m torrance_tools.sweep.sheet DIR` (or this script with --collect DIR) assembles the sheet.
 
 Outputs in --out DIR:
     sweep.json                  the plan: material, inputs, each frame's values, engine, samples
@@ -57,31 +57,18 @@ import sys
 import time
 
 import bpy
-import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import sweep_sheet as sheet  # noqa: E402
+from torrance_tools.compare import read_exr
+from torrance_tools.sweep import sheet
+from torrance_tools.sweep.masks import compute_masks, scene_info
+from torrance_tools.sweep.materials import (SweepError, find_material, input_socket, keyframe,
+                                          parse_value, principled_node, set_constant, socket_value)
 
 RENDER_FLAGS = {"-f", "--render-frame", "-a", "--render-anim"}
 
 
-class SweepError(Exception):
-    """A usage error: printed without a traceback, exit status 2."""
-
-
 # --------------------------------------------------------------------------------------------
 # Command line
-
-def parse_value(text):
-    """'0.5' -> 0.5; '0.1/0.5/0.1' -> (0.1, 0.5, 0.1)."""
-    try:
-        parts = [float(p) for p in text.strip().split("/")]
-    except ValueError:
-        raise SweepError(f"not a number: {text!r}")
-    if not all(math.isfinite(p) for p in parts):
-        raise SweepError(f"not a finite number: {text!r}")
-    return parts[0] if len(parts) == 1 else tuple(parts)
-
 
 def parse_values(text):
     values = [parse_value(t) for t in text.split(",") if t.strip()]
@@ -123,9 +110,9 @@ def parse_frames(text):
 
 
 def build_parser():
-    p = argparse.ArgumentParser(prog="sweep.py", add_help=True,
+    p = argparse.ArgumentParser(prog="runner.py", add_help=True,
                                 description="Parameter sweeps of a material input (see the module "
-                                            "docstring of blender_tests/sweep.py)")
+                                            "docstring of torrance_tools/sweep/runner.py)")
     p.add_argument("--material")
     p.add_argument("--node")
     p.add_argument("--input")
@@ -166,116 +153,6 @@ def blender_renders_after_script():
         if arg in ("--python", "-P") and os.path.realpath(argv[i + 1]) == me:
             return any(a in RENDER_FLAGS for a in argv[i + 2:])
     return False
-
-
-# --------------------------------------------------------------------------------------------
-# Materials and keyframes
-
-def find_material(name):
-    mat = bpy.data.materials.get(name)
-    if mat is None:
-        names = ", ".join(sorted(m.name for m in bpy.data.materials)) or "none"
-        raise SweepError(f"no material {name!r} in this .blend (materials: {names})")
-    if not mat.use_nodes or mat.node_tree is None:
-        raise SweepError(f"material {name!r} does not use nodes")
-    return mat
-
-
-def principled_node(mat, node_name=None):
-    nodes = mat.node_tree.nodes
-    if node_name:
-        node = nodes.get(node_name)
-        if node is None:
-            raise SweepError(f"material {mat.name!r} has no node {node_name!r} "
-                             f"(nodes: {', '.join(n.name for n in nodes)})")
-        return node
-    output = mat.node_tree.get_output_node('CYCLES') or mat.node_tree.get_output_node('ALL')
-    if output is not None and output.inputs["Surface"].is_linked:
-        node = output.inputs["Surface"].links[0].from_node
-        if node.bl_idname == 'ShaderNodeBsdfPrincipled':
-            return node
-    for node in nodes:
-        if node.bl_idname == 'ShaderNodeBsdfPrincipled':
-            return node
-    raise SweepError(f"material {mat.name!r} has no Principled BSDF node (use --node)")
-
-
-def input_socket(mat, node, name):
-    socket = node.inputs.get(name)
-    if socket is None or not hasattr(socket, "default_value"):
-        names = ", ".join(s.name for s in node.inputs if s.enabled and hasattr(s, "default_value"))
-        raise SweepError(f"node {node.name!r} of material {mat.name!r} has no input {name!r} "
-                         f"(inputs: {names})")
-    if socket.is_linked:
-        raise SweepError(f"input {name!r} of {node.name!r} in material {mat.name!r} is linked to "
-                         f"another node: its own value, which a sweep sets, is not used")
-    return socket
-
-
-def socket_value(socket, value):
-    """The value converted to what socket.default_value holds (float, or a colour/vector)."""
-    current = socket.default_value
-    if isinstance(current, (float, int)):
-        if isinstance(value, tuple):
-            raise SweepError(f"input {socket.name!r} is a number, got {value}")
-        return float(value) if isinstance(current, float) else int(round(value))
-    n = len(current)
-    if not isinstance(value, tuple):
-        vals = [float(value)] * min(n, 3) + [1.0] * (n - 3)   # grey; alpha 1
-    else:
-        vals = list(value) + ([1.0] * (n - len(value)) if n == 4 and len(value) == 3 else [])
-        if len(vals) != n:
-            raise SweepError(f"input {socket.name!r} takes {n} components, got {value}")
-    return tuple(vals)
-
-
-def socket_path(socket):
-    return socket.path_from_id() + ".default_value"
-
-
-def clear_socket_animation(mat, socket):
-    ad = mat.node_tree.animation_data
-    if ad is None or ad.action is None:
-        return
-    path = socket_path(socket)
-    for fc in [fc for fc in ad.action.fcurves if fc.data_path == path]:
-        ad.action.fcurves.remove(fc)
-
-
-def keyframe(mat, socket, frame_values):
-    """Keys socket.default_value at each (frame, value); constant interpolation."""
-    clear_socket_animation(mat, socket)
-    for frame, value in frame_values:
-        socket.default_value = socket_value(socket, value)
-        socket.keyframe_insert("default_value", frame=frame)
-    path = socket_path(socket)
-    for fc in mat.node_tree.animation_data.action.fcurves:
-        if fc.data_path == path:
-            fc.extrapolation = 'CONSTANT'
-            for kp in fc.keyframe_points:
-                kp.interpolation = 'CONSTANT'
-            fc.update()
-
-
-def set_constant(text, default_material, default_node_name):
-    """--set [MATERIAL:]SOCKET=VALUE -> (material, socket, value), applied."""
-    if "=" not in text:
-        raise SweepError(f"--set wants [MATERIAL:]SOCKET=VALUE, got {text!r}")
-    lhs, rhs = text.split("=", 1)
-    if ":" in lhs:
-        mat_name, sock_name = lhs.split(":", 1)
-        node_name = None
-    else:
-        mat_name, sock_name, node_name = default_material, lhs, default_node_name
-    if not mat_name:
-        raise SweepError(f"--set {text!r}: no material (give MATERIAL:SOCKET=VALUE or --material)")
-    mat = find_material(mat_name)
-    node = principled_node(mat, node_name)
-    socket = input_socket(mat, node, sock_name.strip())
-    value = parse_value(rhs)
-    clear_socket_animation(mat, socket)
-    socket.default_value = socket_value(socket, value)
-    return [mat.name, socket.name, value]
 
 
 # --------------------------------------------------------------------------------------------
@@ -348,107 +225,6 @@ def configure(scene, args, frames_dir):
 
 
 # --------------------------------------------------------------------------------------------
-# Masks: what each pixel centre sees
-
-def compute_masks(scene, path):
-    """Writes masks.npz: material and object index per pixel (row 0 = top; -1 = background)."""
-    depsgraph = bpy.context.evaluated_depsgraph_get()
-    cam_ob = scene.camera
-    if cam_ob is None:
-        return None
-    rd = scene.render
-    W = rd.resolution_x * rd.resolution_percentage // 100
-    H = rd.resolution_y * rd.resolution_percentage // 100
-    cam = cam_ob.data
-    frame = [np.array(v) for v in cam.view_frame(scene=scene)]     # TR, BR, BL, TL (camera space)
-    right, top = frame[0][0], frame[0][1]
-    left, bottom = frame[2][0], frame[2][1]
-    depth = frame[0][2]
-    m = cam_ob.matrix_world.normalized()
-    rot = np.array(m.to_3x3())
-    loc = np.array(m.translation)
-    xs = left + (np.arange(W) + 0.5) / W * (right - left)
-    ys = top - (np.arange(H) + 0.5) / H * (top - bottom)            # row 0 = top
-    mat_names, obj_names = [], []
-    mat_index, obj_index = {}, {}
-    mat_labels = np.full((H, W), -1, dtype=np.int16)
-    obj_labels = np.full((H, W), -1, dtype=np.int16)
-    ortho = cam.type == 'ORTHO'
-    from mathutils import Vector
-    for j in range(H):
-        for i in range(W):
-            p = np.array([xs[i], ys[j], depth])
-            if ortho:
-                origin = loc + rot @ np.array([xs[i], ys[j], 0.0])
-                direction = rot @ np.array([0.0, 0.0, -1.0])
-            else:
-                origin = loc
-                direction = rot @ p
-            hit, _loc, _n, index, obj, _mx = scene.ray_cast(depsgraph, Vector(origin),
-                                                            Vector(direction).normalized())
-            if not hit or obj is None:
-                continue
-            oname = obj.name
-            if oname not in obj_index:
-                obj_index[oname] = len(obj_names)
-                obj_names.append(oname)
-            obj_labels[j, i] = obj_index[oname]
-            mname = None
-            polys = getattr(obj.data, "polygons", None)
-            if polys is not None and 0 <= index < len(polys) and obj.material_slots:
-                slot = min(polys[index].material_index, len(obj.material_slots) - 1)
-                mat = obj.material_slots[slot].material
-                mname = mat.name if mat is not None else None
-            if mname is None:
-                continue
-            if mname not in mat_index:
-                mat_index[mname] = len(mat_names)
-                mat_names.append(mname)
-            mat_labels[j, i] = mat_index[mname]
-    np.savez_compressed(path, material=mat_labels, material_names=np.array(mat_names),
-                        object=obj_labels, object_names=np.array(obj_names))
-    return path
-
-
-def scene_info(scene):
-    """Lights, world and Principled materials of the scene (for the plan: analyses use them)."""
-    lights = []
-    for ob in scene.objects:
-        if ob.type != 'LIGHT' or ob.hide_render:
-            continue
-        light = ob.data
-        m = ob.matrix_world
-        lights.append(dict(name=ob.name, type=light.type, energy=float(light.energy),
-                           color=list(light.color),
-                           direction=[-m[0][2], -m[1][2], -m[2][2]],    # the way light travels
-                           angle=float(getattr(light, "angle", 0.0))))
-    world = None
-    if scene.world is not None:
-        w = scene.world
-        color, strength = list(w.color), 1.0
-        if w.use_nodes and w.node_tree is not None:
-            bg = next((n for n in w.node_tree.nodes if n.bl_idname == 'ShaderNodeBackground'), None)
-            if bg is not None:
-                color = list(bg.inputs["Color"].default_value)[:3]
-                strength = float(bg.inputs["Strength"].default_value)
-        world = dict(name=w.name, color=color, strength=strength)
-    materials = {}
-    for mat in bpy.data.materials:
-        if not mat.use_nodes or mat.node_tree is None:
-            continue
-        node = next((n for n in mat.node_tree.nodes if n.bl_idname == 'ShaderNodeBsdfPrincipled'),
-                    None)
-        if node is None:
-            continue
-        vals = {}
-        for name in ("Base Color", "Metallic", "Roughness", "Specular"):
-            v = node.inputs[name].default_value
-            vals[name] = list(v)[:3] if name == "Base Color" else float(v)
-        materials[mat.name] = vals
-    return dict(lights=lights, world=world, materials=materials)
-
-
-# --------------------------------------------------------------------------------------------
 # Recording frames
 
 class Recorder:
@@ -480,7 +256,7 @@ class Recorder:
             record["samples_done"] = int(scene.cycles.samples)
         with open(meta, "w") as f:
             json.dump(record, f, indent=1)
-        sheet.write_png(png, sheet.read_image(exr), self.plan["exposure"])
+        sheet.write_png(png, read_exr(exr), self.plan["exposure"])
         self.done += 1
         label = sheet.frame_label(record["inputs"]) or "as is"
         spp = f", {record['samples_done']} spp" if record["samples_done"] is not None else ""
@@ -608,7 +384,7 @@ def run(args):
         rd.filepath = "//" + rel if not rel.startswith("..") else os.path.join(frames_dir, "frame_####")
         bpy.ops.wm.save_as_mainfile(filepath=save, copy=True, relative_remap=False, compress=True)
         print(f"sweep: saved {save}; render it with: blender -b {save} -a  (or -f N, -s A -e B -a); "
-              f"then: python3 blender_tests/sweep_sheet.py {out_dir}", flush=True)
+              f"then: python3 -m torrance_tools.sweep.sheet {out_dir}", flush=True)
         rd.filepath = os.path.join(frames_dir, "frame_####")
         return
 

@@ -2,14 +2,14 @@
 """The paper's experiments (its figures 4-1 ... 4-5) as headless sweeps, and their report.
 
 Run through scripts/experiments (which builds first); by hand:
-    /usr/bin/python3 blender_tests/sweep_experiments.py [--out DIR] [--final] [--publish]
-                     [--no-cycles] [--no-principled] [--brdf-model M] [--size WxH] [--samples N]
-                     [--only ID,...] [--report-only]
+    python3 -m torrance_tools.sweep.experiments [--out DIR] [--final] [--publish]
+                 [--no-cycles] [--no-principled] [--brdf-model M] [--size WxH] [--samples N]
+                 [--only ID,...] [--report-only]
 
-For each experiment it runs blender_tests/sweep.py in a Blender process on a scene built by
-scenes/make_<scene>.py — with Torrance (its PAPER model: the paper's Cook-Torrance), with Torrance's
+For each experiment it runs torrance_tools/sweep/runner.py in a Blender process on a scene built
+by scenes/make_<scene>.py — with Torrance (its PAPER model: the paper's Cook-Torrance), with Torrance's
 PRINCIPLED model when the add-on offers it, and with Cycles, side by side — then
-blender_tests/sweep_report.py measures the images and writes report.md.
+torrance_tools/sweep/measure.py measures the images and report.py writes report.md.
 """
 
 import argparse
@@ -20,10 +20,8 @@ import subprocess
 import sys
 import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
-sys.path.insert(0, HERE)
-import sweep_report  # noqa: E402
+from torrance_tools import REPO as ROOT
+from torrance_tools.sweep import report as sweep_report
 
 PAPER_METALLIC = [1.0, 0.8, 0.6, 0.4, 0.2, 0.0]
 PAPER_ROUGHNESS = [0.1, 0.2, 0.4, 0.6, 0.8, 1.0]
@@ -194,7 +192,7 @@ def main(argv=None):
                       f"({w}x{h}, {samples} spp)", flush=True)
                 cmd = blender_cmd() + [
                     os.path.join(out, "scenes", f"{exp['scene']}.blend"), "--python-exit-code",
-                    "1", "--python", os.path.join(HERE, "sweep.py"), "--",
+                    "1", "--python", os.path.join(ROOT, "torrance_tools", "sweep", "runner.py"), "--",
                     "--out", os.path.join(out, key, exp["id"]), "--engine", engine,
                     "--resolution", f"{w}x{h}", "--samples", str(samples), "--seed", "0",
                     "--title", f"Fig. {exp['figure']}: {exp['title']} | {label}, {w}x{h}, "

@@ -1,0 +1,86 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The comparison scenes rendered by Torrance and by Cycles, and their stored converged Cycles
+references (references/cmp_<name>.exr + .json). Runs inside Blender.
+
+Used by blender_tests/test_reference_scenes.py (CI), scripts/references.py (makes the references)
+and scripts/benchmark.py (the speed/error report). Images are float32 (H, W, 3) linear RGB,
+row 0 = TOP.
+"""
+
+import json
+import os
+import tempfile
+
+import bpy
+
+from torrance_tools import REPO
+from torrance_tools.addon_access import torrance_core
+from torrance_tools.compare import read_exr
+from torrance_tools.comparison_scenes import scene_digest
+from torrance_tools.render_settings import render_exr, setup_cycles, setup_torrance
+
+REFERENCE_DIR = os.environ.get("TORRANCE_REFERENCE_DIR") or os.path.join(REPO, "references")
+
+_tmp = None
+
+
+def _tmpdir():
+    global _tmp
+    if _tmp is None:
+        _tmp = tempfile.mkdtemp(prefix="torrance_cmp_")
+    return _tmp
+
+
+def render(scene, name="render"):
+    """Renders the scene with its current engine: (float32 (H, W, 3), seconds of
+    bpy.ops.render.render, i.e. scene sync/export + render, the same for both engines)."""
+    path = os.path.join(_tmpdir(), name + ".exr")
+    seconds = render_exr(scene, path, 'RGB')
+    img = read_exr(path)
+    os.remove(path)
+    return img, seconds
+
+
+def render_torrance(scene, samples, seed, bounces, name="torrance", settings_edit=None,
+                    scene_edit=None):
+    """A Torrance render with the PRINCIPLED model, the core wrapped by the edits (see
+    addon_access.core_proxy)."""
+    setup_torrance(scene, samples, bounces, seed, 'PRINCIPLED', progressive_display=False)
+    with torrance_core(settings_edit, scene_edit):
+        return render(scene, name)
+
+
+def render_cycles(scene, samples, seed, bounces, name="cycles"):
+    setup_cycles(scene, samples, bounces, seed)
+    return render(scene, name)
+
+
+# --------------------------------------------------------------------------------------------
+# References
+
+def reference_paths(name):
+    base = os.path.join(REFERENCE_DIR, f"cmp_{name}")
+    return base + ".exr", base + ".json"
+
+
+def load_reference(name):
+    """(image, metadata) of the stored Cycles reference of scene `name`."""
+    exr, meta = reference_paths(name)
+    if not os.path.exists(exr) or not os.path.exists(meta):
+        raise FileNotFoundError(f"no reference for scene '{name}' ({exr}); make it with "
+                                f"scripts/references")
+    with open(meta) as f:
+        return read_exr(exr), json.load(f)
+
+
+def reference_is_current(scene, meta):
+    """True when the built scene is the one the reference was rendered from."""
+    return meta.get("scene_digest") == scene_digest(scene)
+
+
+def versions():
+    """What made an image: Blender's version and build."""
+    app = bpy.app
+    return dict(blender=app.version_string,
+                build_hash=app.build_hash.decode() if isinstance(app.build_hash, bytes) else str(app.build_hash),
+                build_date=app.build_date.decode() if isinstance(app.build_date, bytes) else str(app.build_date))

@@ -1,0 +1,123 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Render settings that make Torrance and Cycles render the same thing, and rendering to EXR.
+
+Biasing Cycles options are off (no denoising: Debian's Blender lacks OIDN; no clamping, no glossy
+blur, no adaptive sampling), both engines use the 1.5 px Blackman-Harris filter, the same bounce
+limit and a fixed seed; the view transform is Standard (sRGB).
+"""
+
+import time
+
+import bpy
+
+
+def setup_side_by_side(scene, width=320, height=240, samples=64, max_bounces=8, seed=0):
+    """TORRANCE as the engine, and Cycles set to render the same thing (for side-by-side runs).
+
+    Biasing Cycles options are off (no denoising: Debian's Blender lacks OIDN; no clamping, no
+    glossy blur, no adaptive sampling), both engines use the 1.5 px Blackman-Harris filter, the
+    same bounce limit and a fixed seed. The view transform is Standard (sRGB), so PNGs are plain
+    sRGB encodings of the linear EXR data.
+    """
+    scene.render.engine = 'TORRANCE'
+    plain_output(scene, width, height)
+    scene.render.filter_size = 1.5
+    scene.frame_start = scene.frame_end = scene.frame_current = 1
+    torrance_settings(scene, samples, max_bounces, seed)
+    for key, value in cycles_settings(samples, seed, max_bounces).items():
+        setattr(scene.cycles, key, value)
+    scene.view_layers[0].cycles.use_denoising = False
+
+
+def plain_output(scene, width, height):
+    """Resolution at 100 %, square pixels, whole frame, opaque film, no compositing, sequencer
+    or dither, Standard view transform."""
+    rd = scene.render
+    rd.resolution_x, rd.resolution_y = width, height
+    rd.resolution_percentage = 100
+    rd.pixel_aspect_x = rd.pixel_aspect_y = 1.0
+    rd.use_border = False
+    rd.film_transparent = False
+    rd.use_compositing = False
+    rd.use_sequencer = False
+    rd.dither_intensity = 0.0
+    vs = scene.view_settings
+    vs.view_transform = 'Standard'
+    vs.look = 'None'
+    vs.exposure = 0.0
+    vs.gamma = 1.0
+
+
+def torrance_settings(scene, samples, max_bounces, seed=0):
+    """Torrance's samples, bounces and seed, and the 1.5 px filter (as Cycles')."""
+    ts = scene.torrance
+    ts.samples = int(samples)
+    ts.max_bounces = int(max_bounces)
+    ts.seed = int(seed)
+    ts.filter_width = 1.5
+    return ts
+
+
+def cycles_settings(samples, seed, bounces):
+    """The Cycles settings of an unbiased render comparable with Torrance (recorded in the
+    references' JSON): no denoising (Debian's Blender has no OIDN), no adaptive sampling, no
+    clamping, no glossy blur, no light threshold, Blackman-Harris 1.5 px like Torrance, all
+    bounce types limited by `bounces`."""
+    return dict(device='CPU', samples=int(samples), seed=int(seed), use_animated_seed=False,
+                use_adaptive_sampling=False, use_denoising=False,
+                max_bounces=bounces, diffuse_bounces=bounces, glossy_bounces=bounces,
+                transmission_bounces=bounces, transparent_max_bounces=bounces, volume_bounces=0,
+                sample_clamp_direct=0.0, sample_clamp_indirect=0.0, blur_glossy=0.0,
+                light_sampling_threshold=0.0, caustics_reflective=True, caustics_refractive=True,
+                pixel_filter_type='BLACKMAN_HARRIS', filter_width=1.5, film_exposure=1.0)
+
+
+def ggx_everywhere():
+    """Every Principled BSDF of every material set to GGX (the default, enforced)."""
+    for mat in bpy.data.materials:
+        if mat.use_nodes and mat.node_tree is not None:
+            for node in mat.node_tree.nodes:
+                if node.bl_idname == 'ShaderNodeBsdfPrincipled':
+                    node.distribution = 'GGX'
+
+
+def setup_torrance(scene, samples, max_bounces, seed=0, brdf_model='PRINCIPLED',
+                   progressive_display=None):
+    """Torrance as the engine with the given samples, bounces, seed and BRDF model (the 1.5 px
+    filter, as Cycles'); progressive_display: True/False sets it, None leaves it."""
+    scene.render.engine = 'TORRANCE'
+    ts = torrance_settings(scene, samples, max_bounces, seed)
+    if progressive_display is not None:
+        ts.use_progressive_display = progressive_display
+    ts.brdf_model = brdf_model
+    return ts
+
+
+def setup_cycles(scene, samples, max_bounces, seed=0):
+    """Cycles as the engine, an unbiased reference comparable with Torrance: cycles_settings,
+    no denoising on any view layer, no light tree (Blender 3.5+), GGX everywhere."""
+    scene.render.engine = 'CYCLES'
+    cy = scene.cycles
+    for key, value in cycles_settings(samples, seed, max_bounces).items():
+        if hasattr(cy, key):
+            setattr(cy, key, value)
+    if hasattr(cy, "use_light_tree"):
+        cy.use_light_tree = False
+    for layer in scene.view_layers:
+        layer.cycles.use_denoising = False
+    ggx_everywhere()
+
+
+def render_exr(scene, path, color_mode='RGBA'):
+    """Renders the scene with its engine into a 32-bit ZIP EXR at `path`; returns the seconds of
+    bpy.ops.render.render (scene sync/export + render)."""
+    settings = scene.render.image_settings
+    settings.file_format = 'OPEN_EXR'
+    settings.color_depth = '32'
+    settings.exr_codec = 'ZIP'
+    settings.color_mode = color_mode
+    t0 = time.perf_counter()
+    bpy.ops.render.render(write_still=False)
+    seconds = time.perf_counter() - t0
+    bpy.data.images["Render Result"].save_render(path, scene=scene)
+    return seconds

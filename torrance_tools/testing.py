@@ -1,0 +1,128 @@
+# SPDX-License-Identifier: Apache-2.0
+"""What the headless Blender tests share: the runner, temporary folders, small test scenes, and a
+render read back as an array.
+
+Each test runs as
+    scripts/blender -b --factory-startup --python-exit-code 1 --python blender_tests/test_xxx.py
+and exits non-zero on failure.
+"""
+
+import math
+import os
+import shutil
+import sys
+import tempfile
+import time
+import traceback
+
+from torrance_tools import scene as make
+from torrance_tools.addon_access import addon, core, last_messages  # noqa: F401 (for the tests)
+from torrance_tools.compare import read_exr
+from torrance_tools.render_settings import plain_output, render_exr, torrance_settings
+from torrance_tools.scene import mesh_object, sphere_object  # noqa: F401 (for the tests)
+
+
+_tempdirs = []
+
+
+def run(main):
+    """Runs main(); prints the traceback and exits 1 on any failure, 0 on success.
+
+    Temporary folders from tempdir() are removed unless TORRANCE_KEEP_TEST_FILES is set.
+    """
+    t0 = time.perf_counter()
+    ok = False
+    try:
+        main()
+        ok = True
+    except SystemExit:
+        raise
+    except BaseException:
+        traceback.print_exc()
+    finally:
+        if os.environ.get("TORRANCE_KEEP_TEST_FILES"):
+            for d in _tempdirs:
+                print(f"kept {d}")
+        else:
+            for d in _tempdirs:
+                shutil.rmtree(d, ignore_errors=True)
+    if not ok:
+        print(f"FAILED after {time.perf_counter() - t0:.1f} s", flush=True)
+        sys.exit(1)
+    print(f"PASSED in {time.perf_counter() - t0:.1f} s", flush=True)
+    sys.exit(0)
+
+
+def check(condition, message):
+    if not condition:
+        raise AssertionError(message)
+
+
+def tempdir():
+    d = tempfile.mkdtemp(prefix="torrance_test_")
+    _tempdirs.append(d)
+    return d
+
+
+# --------------------------------------------------------------------------------------------
+# Scene building
+
+def clear_scene(scene=None):
+    """The current scene emptied of all objects, data and images."""
+    return make.empty_scene(scene, images=True)
+
+
+def setup_render(scene, engine='TORRANCE', width=96, height=72, samples=16, seed=0,
+                 max_bounces=8):
+    """A small test render: the engine, plain output, Torrance's samples, bounces and seed."""
+    scene.render.engine = engine
+    plain_output(scene, width, height)
+    torrance_settings(scene, samples, max_bounces, seed)
+
+
+def add_camera(scene, location=(0, -6, 2.2), target=(0, 0, 0.6), lens=40.0):
+    return make.camera(scene, location, target, lens, clip_start=0.1, clip_end=100.0)
+
+
+def principled(name, base_color=(0.8, 0.8, 0.8), metallic=0.0, roughness=0.5, specular=0.5,
+               emission=(0, 0, 0), emission_strength=0.0):
+    """scene.principled with emission set (black, strength 0 unless given), no viewport colour."""
+    return make.principled(name, base_color, metallic, roughness, specular, emission,
+                           emission_strength, viewport_color=False)
+
+
+def plane(scene, name, size, z=0.0, material=None):
+    h = size / 2
+    return make.quad(scene, name, [(-h, -h, z), (h, -h, z), (h, h, z), (-h, h, z)], material)
+
+
+def add_sun(scene, strength=3.0, rotation=(math.radians(40), 0, math.radians(30)),
+            angle=math.radians(2.0), color=(1, 1, 1)):
+    return make.light(scene, 'SUN', "Sun", strength, color, rotation=rotation, angle=angle)
+
+
+def add_point(scene, location, power=300.0, radius=0.1, color=(1, 1, 1)):
+    return make.point_light(scene, location, power, radius, color)
+
+
+def set_world(scene, color, strength=1.0, use_nodes=True):
+    return make.world(scene, color, strength, use_nodes=use_nodes, viewport_color=False)
+
+
+# --------------------------------------------------------------------------------------------
+# Rendering
+
+def render(scene, directory, name="render"):
+    """Renders the scene with its engine; returns (float32 (H, W, 4) linear RGBA, row 0 = TOP,
+    seconds). The result goes through a 32-bit EXR (compare.read_exr)."""
+    path = os.path.join(directory, name + ".exr")
+    seconds = render_exr(scene, path, 'RGBA')
+    return read_exr(path), seconds
+
+
+def rss_mb():
+    with open("/proc/self/status") as f:
+        for line in f:
+            if line.startswith("VmRSS:"):
+                return int(line.split()[1]) / 1024.0
+    return float("nan")
