@@ -18,9 +18,6 @@ import numpy as np  # noqa: E402
 import torrance_core as tc  # noqa: E402
 from torrance_tools.geometry import uv_sphere_with_normals  # noqa: E402
 
-# The name core/python/tests/test_module.py imports (its furnace test builds the same sphere).
-uv_sphere = uv_sphere_with_normals
-
 
 def read_csv(path):
     with open(path) as f:

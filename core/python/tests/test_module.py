@@ -171,10 +171,7 @@ def test_directional_albedo_matches_the_models_known_values():
 def test_image_furnace_sphere_in_uniform_world():
     """A convex object under a uniform world: every pixel is albedo(cos_o) x L, without
     interreflection."""
-    import pathlib
-    import sys
-    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[3] / "scripts"))
-    from analysis import uv_sphere
+    from torrance_tools.geometry import uv_sphere_with_normals as uv_sphere
     for model, metallic, spec in [("PAPER", 0.0, 0.0), ("PRINCIPLED", 1.0, 0.5)]:
         scene = tc.Scene()
         m = scene.add_material(base_color=(1, 1, 1), metallic=metallic, roughness=1.0,
