@@ -270,8 +270,22 @@ TEST(Instances, MovingAndRemovingUpdatesHitsAndLights) {
   ASSERT_TRUE(scene.intersect(moved_down, hit));
   EXPECT_NEAR(hit.position.z, 1.6f * (1 - 0.05f), 1e-4f);  // scaled by 2
   ASSERT_GE(hit.emitter, 0);
-  // The emitter index must name the moved triangle in the light: its pdf at the hit point is finite.
-  EXPECT_GT(scene.lights().mesh_light_pdf(size_t(hit.emitter), Vec3(5, 0, 5), Vec3(0, 0, -1), hit.position), 0.0f);
+  // The light must hold the moved triangles: the same MIS density as a scene built moved.
+  Scene fresh;
+  fresh.add_material(Material{});
+  fresh.add_material(e);
+  fresh.add_prototype(proto.positions.data(), proto.num_vertices(), proto.triangles.data(), proto.num_triangles(),
+                      nullptr, nullptr);
+  fresh.add_instances(0, moved.data(), 1, table, 1);
+  fresh.add_instances(0, two[0].data(), 2, table, 1);
+  fresh.commit();
+  SurfaceHit fresh_hit;
+  ASSERT_TRUE(fresh.intersect(moved_down, fresh_hit));
+  EXPECT_EQ(hit.emitter, fresh_hit.emitter);
+  const Vec3 p(4, 1, 3);
+  const float pdf = fresh.lights().mesh_light_pdf(size_t(hit.emitter), p, Vec3(0, 0, -1), hit.position);
+  EXPECT_GT(pdf, 0.0f);
+  EXPECT_NEAR(scene.lights().mesh_light_pdf(size_t(hit.emitter), p, Vec3(0, 0, -1), hit.position), pdf, 1e-5f * pdf);
   const int64_t ids[] = {first, first + 1};
   scene.remove_instances(ids, 2);
   scene.commit();
