@@ -2,7 +2,9 @@
 
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <stdexcept>
+#include <vector>
 #include <string>
 
 namespace torrance::python {
@@ -34,6 +36,86 @@ IndexArray as_indices(const py::object& obj, const char* name) {
   if (raw.size() > 0 && raw.dtype().kind() != 'i' && raw.dtype().kind() != 'u')
     throw py::type_error(std::string(name) + " must hold integers, got dtype " + std::string(py::str(raw.dtype())));
   return IndexArray::ensure(raw);
+}
+
+struct MeshArrays {
+  FloatArray p, n, uv;
+  IndexArray t, m;
+  size_t num_triangles = 0;
+  bool has_n = false, has_m = false, has_uv = false;
+  size_t num_vertices() const { return size_t(p.size() / 3); }
+  const float* normals() const { return has_n ? n.data() : nullptr; }
+  const int64_t* materials() const { return has_m ? m.data() : nullptr; }
+  const float* uvs() const { return has_uv ? uv.data() : nullptr; }
+};
+
+MeshArrays mesh_arrays(const py::object& positions, const py::object& triangles, const py::object& corner_normals,
+                       const py::object& material_indices, const char* materials_name, const py::object& corner_uvs) {
+  MeshArrays a;
+  a.p = as_float_rows(positions, "positions", -1, 3);
+  a.t = as_indices(triangles, "triangles");
+  if (!((a.t.ndim() == 2 && a.t.shape(1) == 3) || a.t.size() == 0))
+    throw py::value_error("triangles must have shape (M, 3), got " + shape_of(a.t));
+  const py::ssize_t num_tris = a.t.size() / 3;
+  a.num_triangles = size_t(num_tris);
+  if (!corner_normals.is_none()) {
+    a.n = FloatArray::ensure(corner_normals);
+    if (!a.n || a.n.size() != num_tris * 9)
+      throw py::value_error("corner_normals must have shape (M, 3, 3) with M = " + std::to_string(num_tris) +
+                            " triangles");
+    a.has_n = true;
+  }
+  if (!material_indices.is_none()) {
+    a.m = as_indices(material_indices, materials_name);
+    if (a.m.size() != num_tris)
+      throw py::value_error(std::string(materials_name) + " must have shape (M,) with M = " +
+                            std::to_string(num_tris) + ", got " + shape_of(a.m));
+    a.has_m = true;
+  }
+  if (!corner_uvs.is_none()) {
+    a.uv = FloatArray::ensure(corner_uvs);
+    if (!a.uv || a.uv.size() != num_tris * 6)
+      throw py::value_error("corner_uvs must have shape (M, 3, 2) with M = " + std::to_string(num_tris) +
+                            " triangles");
+    a.has_uv = true;
+  }
+  return a;
+}
+
+// Affine matrices (N, 4, 4) or (N, 3, 4), or one (4, 4) / (3, 4) when expected is 1 or -1, as
+// N x 12 floats (row-major 3x4). Checked: shape, NaN/Inf, a 4x4's last row (0, 0, 0, 1).
+std::vector<float> affine_rows(const py::object& obj, const char* name, py::ssize_t expected) {
+  const py::array raw = py::array::ensure(obj);
+  if (!raw || (raw.size() > 0 && raw.dtype().kind() != 'f' && raw.dtype().kind() != 'i' &&
+               raw.dtype().kind() != 'u'))
+    throw py::type_error(std::string(name) + " must be a numeric array of 4x4 or 3x4 matrices");
+  using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+  const DoubleArray a = DoubleArray::ensure(raw);
+  const bool single = a.ndim() == 2 && expected <= 1;
+  const py::ssize_t rows = a.ndim() >= 2 ? a.shape(a.ndim() - 2) : 0;
+  const bool ok = (a.ndim() == 3 || single) && (rows == 3 || rows == 4) && a.shape(a.ndim() - 1) == 4;
+  const py::ssize_t count = single ? 1 : (a.ndim() == 3 ? a.shape(0) : 0);
+  if (!ok || (expected >= 0 && count != expected))
+    throw py::value_error(std::string(name) + " must have shape (N, 4, 4) or (N, 3, 4)" +
+                          (expected >= 0 ? " with N = " + std::to_string(expected) : std::string()) + ", got " +
+                          shape_of(a));
+  std::vector<float> out(size_t(count) * 12);
+  const double* d = a.data();
+  for (py::ssize_t i = 0; i < count; ++i) {
+    const double* m = d + i * rows * 4;
+    for (int k = 0; k < rows * 4; ++k)
+      if (!std::isfinite(m[k]))
+        throw py::value_error(std::string(name) + "[" + std::to_string(i) + "] has a NaN or Inf entry");
+    if (rows == 4 && !(m[12] == 0.0 && m[13] == 0.0 && m[14] == 0.0 && m[15] == 1.0))
+      throw py::value_error(std::string(name) + "[" + std::to_string(i) +
+                            "] is not affine: its last row must be (0, 0, 0, 1)");
+    for (int k = 0; k < 12; ++k) {
+      out[size_t(i) * 12 + k] = float(m[k]);
+      if (!std::isfinite(out[size_t(i) * 12 + k]))
+        throw py::value_error(std::string(name) + "[" + std::to_string(i) + "] has an entry beyond float range");
+    }
+  }
+  return out;
 }
 
 Vec3 vec3(const std::array<float, 3>& a) { return Vec3(a[0], a[1], a[2]); }
@@ -119,40 +201,66 @@ void init_scene(py::module_& m) {
           "add_mesh",
           [](Scene& s, const py::object& positions, const py::object& triangles, const py::object& corner_normals,
              const py::object& material_indices, const py::object& corner_uvs) {
-            const FloatArray p = as_float_rows(positions, "positions", -1, 3);
-            const IndexArray t = as_indices(triangles, "triangles");
-            if (!((t.ndim() == 2 && t.shape(1) == 3) || t.size() == 0))
-              throw py::value_error("triangles must have shape (M, 3), got " + shape_of(t));
-            const py::ssize_t num_tris = t.size() / 3;
-            FloatArray n;
-            if (!corner_normals.is_none()) {
-              n = FloatArray::ensure(corner_normals);
-              if (!n || n.size() != num_tris * 9)
-                throw py::value_error("corner_normals must have shape (M, 3, 3) with M = " +
-                                      std::to_string(num_tris) + " triangles");
-            }
-            IndexArray mi;
-            if (!material_indices.is_none()) {
-              mi = as_indices(material_indices, "material_indices");
-              if (mi.size() != num_tris)
-                throw py::value_error("material_indices must have shape (M,) with M = " + std::to_string(num_tris) +
-                                      ", got " + shape_of(mi));
-            }
-            FloatArray uv;
-            if (!corner_uvs.is_none()) {
-              uv = FloatArray::ensure(corner_uvs);
-              if (!uv || uv.size() != num_tris * 6)
-                throw py::value_error("corner_uvs must have shape (M, 3, 2) with M = " + std::to_string(num_tris) +
-                                      " triangles");
-            }
-            return s.add_mesh(p.data(), size_t(p.size() / 3), t.data(), size_t(num_tris),
-                              corner_normals.is_none() ? nullptr : n.data(),
-                              material_indices.is_none() ? nullptr : mi.data(),
-                              corner_uvs.is_none() ? nullptr : uv.data());
+            const MeshArrays a = mesh_arrays(positions, triangles, corner_normals, material_indices,
+                                             "material_indices", corner_uvs);
+            return s.add_mesh(a.p.data(), a.num_vertices(), a.t.data(), a.num_triangles, a.normals(), a.materials(),
+                              a.uvs());
           },
           py::arg("positions"), py::arg("triangles"), py::arg("corner_normals") = py::none(),
           py::arg("material_indices") = py::none(), py::arg("corner_uvs") = py::none(),
           "Adds a triangle mesh in world space; raises ValueError for malformed input.")
+      .def(
+          "add_prototype",
+          [](Scene& s, const py::object& positions, const py::object& triangles, const py::object& corner_normals,
+             const py::object& material_slots, const py::object& corner_uvs) {
+            const MeshArrays a =
+                mesh_arrays(positions, triangles, corner_normals, material_slots, "material_slots", corner_uvs);
+            return s.add_prototype(a.p.data(), a.num_vertices(), a.t.data(), a.num_triangles, a.normals(),
+                                   a.materials(), a.uvs());
+          },
+          py::arg("positions"), py::arg("triangles"), py::arg("corner_normals") = py::none(),
+          py::arg("material_slots") = py::none(), py::arg("corner_uvs") = py::none(),
+          "Adds a mesh in object space to be instanced (its BVH is built now, once); material_slots "
+          "(M,) >= 0 index the material table of each instance. Returns the prototype id.")
+      .def(
+          "add_instances",
+          [](Scene& s, int64_t prototype, const py::object& transforms, const py::object& materials) {
+            if (prototype < 0 || uint64_t(prototype) >= s.num_prototypes())
+              throw py::value_error("prototype " + std::to_string(prototype) + " does not exist (the scene has " +
+                                    std::to_string(s.num_prototypes()) + " prototypes)");
+            const std::vector<float> xf = affine_rows(transforms, "transforms", -1);
+            const size_t count = xf.size() / 12;
+            const IndexArray table = as_indices(materials, "materials");
+            const bool per_instance = table.ndim() == 2;
+            if (!(table.ndim() == 1 || (per_instance && size_t(table.shape(0)) == count)) || table.size() == 0)
+              throw py::value_error("materials must be a non-empty slot -> material table of shape (K,), or (N, K) "
+                                    "with N = " + std::to_string(count) + " instances, got " + shape_of(table));
+            const size_t table_size = size_t(per_instance ? table.shape(1) : table.shape(0));
+            return s.add_instances(uint32_t(prototype), xf.data(), count, table.data(), table_size, per_instance);
+          },
+          py::arg("prototype"), py::arg("transforms"), py::arg("materials"),
+          "Adds N instances of a prototype: transforms (N, 4, 4) or (N, 3, 4) object-to-world "
+          "(matrix_world), materials the slot -> material table (K,) or one per instance (N, K). "
+          "Returns the first id; the instances get ids first .. first + N - 1.")
+      .def(
+          "set_instance_transforms",
+          [](Scene& s, const py::object& ids, const py::object& transforms) {
+            const IndexArray id = as_indices(ids, "ids");
+            if (id.ndim() > 1) throw py::value_error("ids must have shape (N,), got " + shape_of(id));
+            const std::vector<float> xf = affine_rows(transforms, "transforms", id.size());
+            s.set_instance_transforms(id.data(), xf.data(), size_t(id.size()));
+          },
+          py::arg("ids"), py::arg("transforms"),
+          "Moves instances: ids (N,), transforms (N, 4, 4) or (N, 3, 4) (or one matrix for one id). "
+          "Only the top-level BVH is rebuilt, at the next render.")
+      .def(
+          "remove_instances",
+          [](Scene& s, const py::object& ids) {
+            const IndexArray id = as_indices(ids, "ids");
+            if (id.ndim() > 1) throw py::value_error("ids must have shape (N,), got " + shape_of(id));
+            s.remove_instances(id.data(), size_t(id.size()));
+          },
+          py::arg("ids"), "Removes instances (ids (N,)); their ids are not reused.")
       .def(
           "add_sun",
           [](Scene& s, std::array<float, 3> direction, float strength, std::array<float, 3> color, float angle) {
@@ -227,6 +335,10 @@ void init_scene(py::module_& m) {
       .def_property_readonly("num_triangles", &Scene::num_triangles)
       .def_property_readonly("num_materials", &Scene::num_materials)
       .def_property_readonly("num_textures", &Scene::num_textures)
+      .def_property_readonly("num_prototypes", &Scene::num_prototypes)
+      .def_property_readonly("num_instances", &Scene::num_instances)
+      .def_property_readonly("num_hidden_instances", &Scene::num_hidden_instances)
+      .def_property_readonly("num_material_tables", &Scene::num_material_tables)
       .def_property_readonly("num_lights", [](const Scene& s) { return s.lights().count(); });
 }
 

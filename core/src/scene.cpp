@@ -2,6 +2,9 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <stdexcept>
 
 namespace torrance {
@@ -14,6 +17,83 @@ struct Scene::Mesh {
   std::vector<Vec2> corner_uvs;  // empty => no UVs
   std::vector<int32_t> emitter_index;  // per triangle: index in the mesh light, or -1
 };
+
+namespace {
+constexpr uint32_t kInstanceBit = 0x80000000u;
+constexpr uint32_t kNoOwner = 0xFFFFFFFFu;     // a detached geometry id
+constexpr uint32_t kRemoved = 0xFFFFFFFFu;     // Instance::binding once removed
+constexpr uint32_t kNoGeometry = 0xFFFFFFFFu;  // Instance::geometry of an empty prototype's instance
+}  // namespace
+
+// An object-space mesh (material_ids hold material slots) in its own BVH, built once.
+struct Scene::Prototype {
+  std::unique_ptr<Mesh> mesh;
+  RTCScene scene = nullptr;  // nullptr when the mesh has no triangles
+  Prototype() = default;
+  Prototype(const Prototype&) = delete;
+  Prototype& operator=(const Prototype&) = delete;
+  ~Prototype() {
+    if (scene) rtcReleaseScene(scene);
+  }
+};
+
+// A prototype with one slot -> material table; instances share it (16 bytes per instance).
+struct Scene::Binding {
+  uint32_t prototype = 0;
+  std::vector<uint32_t> materials;    // never empty
+  std::vector<int32_t> emitter_rank;  // per prototype triangle: rank among the emissive ones, or -1
+  uint32_t num_emissive = 0;          // (both set by build_mesh_light)
+  uint32_t material(uint32_t slot) const { return materials[std::min<size_t>(slot, materials.size() - 1)]; }
+};
+
+struct Scene::Instance {
+  std::array<float, 12> transform;  // row-major 3x4, object to world
+  uint32_t binding = kRemoved;
+  uint32_t geometry = kNoGeometry;  // Embree geometry id in the top-level scene
+  int32_t emitter_base = -1;        // mesh-light index of its first emissive triangle, or -1
+  bool hidden = false;              // singular transform: disabled in Embree
+};
+
+namespace {
+// The corners of a hit triangle in world space; a mirroring instance's corners 1 and 2 are
+// swapped (and the barycentrics with them) exactly as the flattening export does, so that the
+// geometric normal keeps its side and everything derived from it matches a world-space copy.
+struct Corners {
+  Vec3 p[3];
+  Vec3 n[3];
+  Vec2 uv[3];
+  bool has_n = false, has_uv = false;
+};
+
+double determinant3(const std::array<float, 12>& m) {
+  const double a = m[0], b = m[1], c = m[2], d = m[4], e = m[5], f = m[6], g = m[8], h = m[9], i = m[10];
+  return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g);
+}
+
+Vec3 transform_point(const std::array<float, 12>& m, const Vec3& p) {
+  const double x = p.x, y = p.y, z = p.z;
+  return Vec3(float(m[0] * x + m[1] * y + m[2] * z + m[3]), float(m[4] * x + m[5] * y + m[6] * z + m[7]),
+              float(m[8] * x + m[9] * y + m[10] * z + m[11]));
+}
+
+// Rows of the inverse transpose of the 3x3 part, for normals.
+std::array<double, 9> normal_matrix(const std::array<float, 12>& m) {
+  const double a = m[0], b = m[1], c = m[2], d = m[4], e = m[5], f = m[6], g = m[8], h = m[9], i = m[10];
+  const double inv_det = 1.0 / determinant3(m);
+  // inverse(M)^T = cofactor(M) / det(M)
+  return {(e * i - f * h) * inv_det, (f * g - d * i) * inv_det, (d * h - e * g) * inv_det,
+          (c * h - b * i) * inv_det, (a * i - c * g) * inv_det, (b * g - a * h) * inv_det,
+          (b * f - c * e) * inv_det, (c * d - a * f) * inv_det, (a * e - b * d) * inv_det};
+}
+
+Vec3 transform_normal(const std::array<double, 9>& n, const Vec3& v) {
+  const double x = v.x, y = v.y, z = v.z;
+  const Vec3 r(float(n[0] * x + n[1] * y + n[2] * z), float(n[3] * x + n[4] * y + n[5] * z),
+               float(n[6] * x + n[7] * y + n[8] * z));
+  const float len = glm::length(r);
+  return len > 1e-12f && std::isfinite(len) ? r / len : Vec3(0.0f);
+}
+}  // namespace
 
 void embree_error_callback(void* user, int code, const char* message) {
   auto* scene = static_cast<Scene*>(user);
@@ -40,6 +120,7 @@ Scene::Scene() {
 
 Scene::~Scene() {
   if (scene_) rtcReleaseScene(scene_of(scene_));
+  prototypes_.clear();
   if (device_) rtcReleaseDevice(device_of(device_));
 }
 
@@ -107,9 +188,9 @@ uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures
   return uint32_t(materials_.size() - 1);
 }
 
-uint32_t Scene::add_mesh(const float* positions, size_t num_vertices, const int64_t* triangles,
-                         size_t num_triangles, const float* corner_normals, const int64_t* material_ids,
-                         const float* corner_uvs) {
+std::unique_ptr<Scene::Mesh> Scene::make_mesh(const float* positions, size_t num_vertices, const int64_t* triangles,
+                                              size_t num_triangles, const float* corner_normals,
+                                              const int64_t* material_ids, const float* corner_uvs, bool slots) const {
   auto mesh = std::make_unique<Mesh>();
   if (num_triangles > 0 && num_vertices == 0) throw std::invalid_argument("mesh has triangles but no vertices");
   if (num_vertices > UINT32_MAX || num_triangles > UINT32_MAX)
@@ -152,33 +233,51 @@ uint32_t Scene::add_mesh(const float* positions, size_t num_vertices, const int6
   if (material_ids) {
     for (size_t i = 0; i < num_triangles; ++i) {
       const int64_t m = material_ids[i];
-      if (m < 0 || uint64_t(m) >= materials_.size())
-        throw std::invalid_argument("triangle " + std::to_string(i) + " uses material " + std::to_string(m) +
-                                    " but the scene has " + std::to_string(materials_.size()) + " materials");
+      if (slots ? (m < 0 || m > INT32_MAX) : (m < 0 || uint64_t(m) >= materials_.size()))
+        throw std::invalid_argument(slots ? "triangle " + std::to_string(i) + " uses material slot " +
+                                                std::to_string(m) + "; slots must be >= 0"
+                                          : "triangle " + std::to_string(i) + " uses material " + std::to_string(m) +
+                                                " but the scene has " + std::to_string(materials_.size()) +
+                                                " materials");
       mesh->material_ids[i] = uint32_t(m);
     }
-  } else if (num_triangles > 0 && materials_.empty()) {
+  } else if (!slots && num_triangles > 0 && materials_.empty()) {
     throw std::invalid_argument("add a material before adding a mesh");
   }
+  return mesh;
+}
 
+void* Scene::new_triangle_geometry(const Mesh& mesh) const {
+  const size_t num_vertices = mesh.positions.size(), num_triangles = mesh.triangles.size();
+  RTCGeometry geom = rtcNewGeometry(device_of(device_), RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                         3 * sizeof(float), num_vertices));
+  auto* ib = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                            3 * sizeof(uint32_t), num_triangles));
+  if (!vb || !ib) {
+    rtcReleaseGeometry(geom);
+    check_device("allocating mesh buffers");
+    throw std::runtime_error("Embree could not allocate mesh buffers");
+  }
+  std::copy_n(&mesh.positions[0].x, 3 * num_vertices, vb);
+  std::copy_n(&mesh.triangles[0].x, 3 * num_triangles, ib);
+  rtcCommitGeometry(geom);
+  return geom;
+}
+
+uint32_t Scene::add_mesh(const float* positions, size_t num_vertices, const int64_t* triangles,
+                         size_t num_triangles, const float* corner_normals, const int64_t* material_ids,
+                         const float* corner_uvs) {
+  auto mesh = make_mesh(positions, num_vertices, triangles, num_triangles, corner_normals, material_ids, corner_uvs,
+                        false);
   const uint32_t id = uint32_t(meshes_.size());
   if (num_triangles > 0) {
-    RTCGeometry geom = rtcNewGeometry(device_of(device_), RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                           3 * sizeof(float), num_vertices));
-    auto* ib = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                              3 * sizeof(uint32_t), num_triangles));
-    if (!vb || !ib) {
-      rtcReleaseGeometry(geom);
-      check_device("allocating mesh buffers");
-      throw std::runtime_error("Embree could not allocate mesh buffers");
-    }
-    std::copy_n(&mesh->positions[0].x, 3 * num_vertices, vb);
-    std::copy_n(&mesh->triangles[0].x, 3 * num_triangles, ib);
-    rtcCommitGeometry(geom);
-    rtcAttachGeometryByID(scene_of(scene_), geom, id);
+    RTCGeometry geom = static_cast<RTCGeometry>(new_triangle_geometry(*mesh));
+    const uint32_t geom_id = uint32_t(geometry_owner_.size());
+    rtcAttachGeometryByID(scene_of(scene_), geom, geom_id);
     rtcReleaseGeometry(geom);
     check_device("committing a mesh");
+    geometry_owner_.push_back(id);
     dirty_ = true;
     emitters_dirty_ = true;
   }
@@ -186,9 +285,168 @@ uint32_t Scene::add_mesh(const float* positions, size_t num_vertices, const int6
   return id;
 }
 
+uint32_t Scene::add_prototype(const float* positions, size_t num_vertices, const int64_t* triangles,
+                              size_t num_triangles, const float* corner_normals, const int64_t* slots,
+                              const float* corner_uvs) {
+  auto prototype = std::make_unique<Prototype>();
+  prototype->mesh = make_mesh(positions, num_vertices, triangles, num_triangles, corner_normals, slots, corner_uvs,
+                              true);
+  if (num_triangles > 0) {
+    prototype->scene = rtcNewScene(device_of(device_));
+    rtcSetSceneFlags(prototype->scene, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(prototype->scene, RTC_BUILD_QUALITY_MEDIUM);
+    RTCGeometry geom = static_cast<RTCGeometry>(new_triangle_geometry(*prototype->mesh));
+    rtcAttachGeometryByID(prototype->scene, geom, 0);
+    rtcReleaseGeometry(geom);
+    rtcCommitScene(prototype->scene);  // built once, whatever happens to its instances
+    check_device("building a prototype's BVH");
+  }
+  prototypes_.push_back(std::move(prototype));
+  return uint32_t(prototypes_.size() - 1);
+}
+
+namespace {
+void check_transforms(const float* transforms, size_t count) {
+  for (size_t i = 0; i < count; ++i)
+    for (int k = 0; k < 12; ++k)
+      if (!std::isfinite(transforms[12 * i + k]))
+        throw std::invalid_argument("transform " + std::to_string(i) + " has a NaN or Inf entry");
+}
+
+bool singular(const std::array<float, 12>& m) {
+  // Zero scale in some direction (a common way of hiding instances): nothing to trace.
+  const double det = determinant3(m);
+  return !(std::abs(det) > 1e-30) || !std::isfinite(1.0 / det);
+}
+}  // namespace
+
+// Sets the instance's matrix, in Embree too, and hides it while the matrix is singular.
+void Scene::place_instance(Instance& instance, const float* transform) {
+  std::copy_n(transform, 12, instance.transform.begin());
+  const bool was_hidden = instance.hidden;
+  instance.hidden = singular(instance.transform);
+  if (instance.hidden != was_hidden) hidden_instances_ += instance.hidden ? 1 : size_t(-1);
+  if (instance.geometry == kNoGeometry) return;
+  RTCGeometry geom = rtcGetGeometry(scene_of(scene_), instance.geometry);
+  if (!instance.hidden) {
+    rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, instance.transform.data());
+    rtcCommitGeometry(geom);
+  }
+  if (instance.hidden != was_hidden) {
+    if (instance.hidden)
+      rtcDisableGeometry(geom);
+    else
+      rtcEnableGeometry(geom);
+  }
+  if (bindings_[instance.binding].num_emissive > 0) emitters_dirty_ = true;
+  dirty_ = true;
+}
+
+uint32_t Scene::add_instances(uint32_t prototype, const float* transforms, size_t count, const int64_t* materials,
+                              size_t table_size, bool per_instance_tables) {
+  if (prototype >= prototypes_.size())
+    throw std::invalid_argument("prototype " + std::to_string(prototype) + " does not exist (the scene has " +
+                                std::to_string(prototypes_.size()) + " prototypes)");
+  if (table_size == 0) throw std::invalid_argument("the material table of instances must not be empty");
+  const size_t num_tables = per_instance_tables ? count : (count > 0 ? 1 : 0);
+  for (size_t i = 0; i < num_tables * table_size; ++i)
+    if (materials[i] < 0 || uint64_t(materials[i]) >= materials_.size())
+      throw std::invalid_argument("material table entry " + std::to_string(i) + " is material " +
+                                  std::to_string(materials[i]) + " but the scene has " +
+                                  std::to_string(materials_.size()) + " materials");
+  check_transforms(transforms, count);
+  if (instances_.size() + count >= kInstanceBit || geometry_owner_.size() + count >= kInstanceBit)
+    throw std::invalid_argument("too many instances (2^31 at most)");
+
+  // The distinct tables, each a binding shared by all instances using it.
+  std::vector<uint32_t> binding_of(num_tables);
+  std::vector<uint32_t> key(1 + table_size);
+  key[0] = prototype;
+  for (size_t t = 0; t < num_tables; ++t) {
+    for (size_t k = 0; k < table_size; ++k) key[1 + k] = uint32_t(materials[t * table_size + k]);
+    auto [it, inserted] = binding_ids_.try_emplace(key, uint32_t(bindings_.size()));
+    if (inserted) {
+      Binding b;
+      b.prototype = prototype;
+      b.materials.assign(key.begin() + 1, key.end());
+      bindings_.push_back(std::move(b));
+    }
+    binding_of[t] = it->second;
+  }
+
+  const Prototype& proto = *prototypes_[prototype];
+  const uint32_t first = uint32_t(instances_.size());
+  instances_.reserve(instances_.size() + count);
+  if (proto.scene) geometry_owner_.reserve(geometry_owner_.size() + count);
+  for (size_t i = 0; i < count; ++i) {
+    Instance inst;
+    inst.binding = binding_of[per_instance_tables ? i : 0];
+    std::copy_n(transforms + 12 * i, 12, inst.transform.begin());
+    inst.hidden = singular(inst.transform);
+    if (proto.scene) {
+      RTCGeometry geom = rtcNewGeometry(device_of(device_), RTC_GEOMETRY_TYPE_INSTANCE);
+      rtcSetGeometryInstancedScene(geom, proto.scene);
+      rtcSetGeometryTimeStepCount(geom, 1);
+      if (!inst.hidden) rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, inst.transform.data());
+      rtcCommitGeometry(geom);
+      inst.geometry = uint32_t(geometry_owner_.size());
+      rtcAttachGeometryByID(scene_of(scene_), geom, inst.geometry);
+      if (inst.hidden) rtcDisableGeometry(geom);
+      rtcReleaseGeometry(geom);
+      geometry_owner_.push_back(uint32_t(instances_.size()) | kInstanceBit);
+    }
+    hidden_instances_ += inst.hidden;
+    instances_.push_back(inst);
+  }
+  check_device("adding instances");
+  live_instances_ += count;
+  dirty_ = true;
+  emitters_dirty_ = true;
+  return first;
+}
+
+const Scene::Instance& Scene::live_instance(int64_t id, const char* during) const {
+  if (id < 0 || uint64_t(id) >= instances_.size() || instances_[size_t(id)].binding == kRemoved)
+    throw std::invalid_argument(std::string(during) + ": instance " + std::to_string(id) +
+                                (id >= 0 && uint64_t(id) < instances_.size() ? " was removed"
+                                                                              : " does not exist"));
+  return instances_[size_t(id)];
+}
+
+void Scene::set_instance_transforms(const int64_t* ids, const float* transforms, size_t count) {
+  for (size_t i = 0; i < count; ++i) live_instance(ids[i], "set_instance_transforms");
+  check_transforms(transforms, count);
+  for (size_t i = 0; i < count; ++i) place_instance(instances_[size_t(ids[i])], transforms + 12 * i);
+  check_device("moving instances");
+}
+
+void Scene::remove_instances(const int64_t* ids, size_t count) {
+  for (size_t i = 0; i < count; ++i) live_instance(ids[i], "remove_instances");
+  for (size_t i = 0; i < count; ++i) {
+    Instance& inst = instances_[size_t(ids[i])];
+    if (inst.binding == kRemoved) continue;  // listed twice
+    if (inst.geometry != kNoGeometry) {
+      rtcDetachGeometry(scene_of(scene_), inst.geometry);
+      geometry_owner_[inst.geometry] = kNoOwner;
+    }
+    if (bindings_[inst.binding].num_emissive > 0) emitters_dirty_ = true;
+    hidden_instances_ -= inst.hidden;
+    inst.binding = kRemoved;
+    inst.emitter_base = -1;
+    --live_instances_;
+  }
+  check_device("removing instances");
+  dirty_ = true;
+}
+
+size_t Scene::num_material_tables() const { return bindings_.size(); }
+
 size_t Scene::num_triangles() const {
   size_t n = 0;
   for (const auto& m : meshes_) n += m->triangles.size();
+  for (const Instance& inst : instances_)
+    if (inst.binding != kRemoved && !inst.hidden)
+      n += prototypes_[bindings_[inst.binding].prototype]->mesh->triangles.size();
   return n;
 }
 
@@ -204,38 +462,125 @@ void Scene::commit() {
   }
 }
 
+// A triangle of a world-space mesh as Corners.
+static Corners mesh_corners(const std::vector<Vec3>& positions, const glm::uvec3& tri, const Vec3* normals,
+                            const Vec2* uvs) {
+  Corners c;
+  for (int k = 0; k < 3; ++k) {
+    c.p[k] = positions[tri[k]];
+    if (normals) c.n[k] = normals[k];
+    if (uvs) c.uv[k] = uvs[k];
+  }
+  c.has_n = normals != nullptr;
+  c.has_uv = uvs != nullptr;
+  return c;
+}
+
+// A prototype triangle placed by an instance's matrix: what the flattening export would have
+// added as a world-space mesh (positions by M, normals by M^-T, corners 1 and 2 swapped when M
+// mirrors). Returns whether they were swapped.
+static bool instance_corners(const std::vector<Vec3>& positions, const glm::uvec3& tri, const Vec3* normals,
+                             const Vec2* uvs, const std::array<float, 12>& m, Corners& c) {
+  c = mesh_corners(positions, tri, normals, uvs);
+  for (int k = 0; k < 3; ++k) c.p[k] = transform_point(m, c.p[k]);
+  if (normals) {
+    const std::array<double, 9> nm = normal_matrix(m);
+    for (int k = 0; k < 3; ++k) c.n[k] = transform_normal(nm, c.n[k]);
+  }
+  const bool mirrored = determinant3(m) < 0.0;
+  if (mirrored) {
+    std::swap(c.p[1], c.p[2]);
+    std::swap(c.n[1], c.n[2]);
+    std::swap(c.uv[1], c.uv[2]);
+  }
+  return mirrored;
+}
+
 void Scene::build_mesh_light() {
   std::vector<EmissiveTriangle> triangles;
   std::vector<float> power;
+  // Power estimate for choosing among emitters: a textured emission counts as its strength.
+  auto radiance_of = [this](uint32_t m) {
+    const MaterialTextures& tex = material_textures_[m];
+    return tex.emission >= 0 ? tex.emission_strength : luminance(materials_[m].emission);
+  };
+  auto add = [&](const Corners& c, uint32_t material, float radiance) {
+    EmissiveTriangle e;
+    e.p0 = c.p[0];
+    e.edge1 = c.p[1] - e.p0;
+    e.edge2 = c.p[2] - e.p0;
+    const Vec3 cross = glm::cross(e.edge1, e.edge2);
+    e.area = 0.5f * glm::length(cross);
+    if (!(e.area > 0.0f) || !std::isfinite(e.area)) return false;
+    e.normal = cross / (2.0f * e.area);
+    e.uv0 = c.uv[0];
+    e.uv1 = c.uv[1];
+    e.uv2 = c.uv[2];
+    e.material = material;
+    triangles.push_back(e);
+    power.push_back(e.area * radiance);
+    return true;
+  };
   for (auto& mesh : meshes_) {
     mesh->emitter_index.assign(mesh->triangles.size(), -1);
+    const bool has_uv = !mesh->corner_uvs.empty();
     for (size_t i = 0; i < mesh->triangles.size(); ++i) {
       const uint32_t m = mesh->material_ids[i];
-      const MaterialTextures& tex = material_textures_[m];
-      // Power estimate for choosing among emitters: a textured emission counts as its strength.
-      const float radiance = tex.emission >= 0 ? tex.emission_strength : luminance(materials_[m].emission);
+      const float radiance = radiance_of(m);
       if (!(radiance > 0.0f)) continue;
-      const glm::uvec3 t = mesh->triangles[i];
-      EmissiveTriangle e;
-      e.p0 = mesh->positions[t.x];
-      e.edge1 = mesh->positions[t.y] - e.p0;
-      e.edge2 = mesh->positions[t.z] - e.p0;
-      const Vec3 cross = glm::cross(e.edge1, e.edge2);
-      e.area = 0.5f * glm::length(cross);
-      if (!(e.area > 0.0f) || !std::isfinite(e.area)) continue;
-      e.normal = cross / (2.0f * e.area);
-      const bool has_uv = !mesh->corner_uvs.empty();
-      e.uv0 = has_uv ? mesh->corner_uvs[3 * i] : Vec2(0.0f);
-      e.uv1 = has_uv ? mesh->corner_uvs[3 * i + 1] : Vec2(0.0f);
-      e.uv2 = has_uv ? mesh->corner_uvs[3 * i + 2] : Vec2(0.0f);
-      e.material = m;
-      mesh->emitter_index[i] = int32_t(triangles.size());
-      triangles.push_back(e);
-      power.push_back(e.area * radiance);
+      const Corners c = mesh_corners(mesh->positions, mesh->triangles[i], nullptr,
+                                     has_uv ? &mesh->corner_uvs[3 * i] : nullptr);
+      if (add(c, m, radiance)) mesh->emitter_index[i] = int32_t(triangles.size() - 1);
     }
   }
-  if (triangles.empty()) {
+  // Instances: a prototype triangle emits under a table if its material does and it has an area
+  // in object space; each visible instance of an emissive binding adds those triangles in world
+  // space, consecutively from its emitter_base, in the order of the prototype.
+  for (Binding& b : bindings_) {
+    const Mesh& mesh = *prototypes_[b.prototype]->mesh;
+    b.emitter_rank.clear();
+    b.num_emissive = 0;
+    for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+      const glm::uvec3 t = mesh.triangles[i];
+      const float area = glm::length(glm::cross(mesh.positions[t.y] - mesh.positions[t.x],
+                                                mesh.positions[t.z] - mesh.positions[t.x]));
+      if (radiance_of(b.material(mesh.material_ids[i])) > 0.0f && area > 0.0f && std::isfinite(area)) {
+        if (b.emitter_rank.empty()) b.emitter_rank.assign(mesh.triangles.size(), -1);
+        b.emitter_rank[i] = int32_t(b.num_emissive++);
+      }
+    }
+  }
+  for (Instance& inst : instances_) {
+    inst.emitter_base = -1;
+    if (inst.binding == kRemoved || inst.hidden || bindings_[inst.binding].num_emissive == 0) continue;
+    const Binding& b = bindings_[inst.binding];
+    const Mesh& mesh = *prototypes_[b.prototype]->mesh;
+    const bool has_uv = !mesh.corner_uvs.empty();
+    inst.emitter_base = int32_t(triangles.size());
+    for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+      if (b.emitter_rank[i] < 0) continue;
+      const uint32_t m = b.material(mesh.material_ids[i]);
+      Corners c;
+      instance_corners(mesh.positions, mesh.triangles[i], nullptr, has_uv ? &mesh.corner_uvs[3 * i] : nullptr,
+                       inst.transform, c);
+      if (!add(c, m, radiance_of(m))) {
+        // Only a scale near float underflow gets here: keep the numbering, never choose it.
+        EmissiveTriangle e{};
+        e.p0 = c.p[0];
+        e.normal = Vec3(0, 0, 1);
+        e.area = 1.0f;
+        e.material = m;
+        triangles.push_back(e);
+        power.push_back(0.0f);
+      }
+    }
+  }
+  double total = 0.0;
+  for (float w : power) total += w;
+  if (triangles.empty() || !(total > 0.0)) {
     lights_.set_mesh_light(std::nullopt);
+    for (auto& mesh : meshes_) mesh->emitter_index.assign(mesh->triangles.size(), -1);
+    for (Instance& inst : instances_) inst.emitter_base = -1;
     return;
   }
   lights_.set_mesh_light(MeshLight(std::move(triangles), power, [this](uint32_t material, const Vec2& uv) {
@@ -265,11 +610,30 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   rtcIntersect1(scene_of(scene_), &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
 
-  const Mesh& mesh = *meshes_[rh.hit.geomID];
   const uint32_t prim = rh.hit.primID;
-  const glm::uvec3 tri = mesh.triangles[prim];
-  const Vec3 &p0 = mesh.positions[tri.x], &p1 = mesh.positions[tri.y], &p2 = mesh.positions[tri.z];
-  const float u = rh.hit.u, v = rh.hit.v, w = 1.0f - u - v;
+  float u = rh.hit.u, v = rh.hit.v;
+  Corners c;
+  if (rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID) {
+    const Mesh& mesh = *meshes_[geometry_owner_[rh.hit.geomID]];
+    c = mesh_corners(mesh.positions, mesh.triangles[prim],
+                     mesh.corner_normals.empty() ? nullptr : &mesh.corner_normals[3 * prim],
+                     mesh.corner_uvs.empty() ? nullptr : &mesh.corner_uvs[3 * prim]);
+    hit.material = mesh.material_ids[prim];
+    hit.emitter = mesh.emitter_index.empty() ? -1 : mesh.emitter_index[prim];
+  } else {
+    const Instance& inst = instances_[geometry_owner_[rh.hit.instID[0]] & ~kInstanceBit];
+    const Binding& b = bindings_[inst.binding];
+    const Mesh& mesh = *prototypes_[b.prototype]->mesh;
+    if (instance_corners(mesh.positions, mesh.triangles[prim],
+                         mesh.corner_normals.empty() ? nullptr : &mesh.corner_normals[3 * prim],
+                         mesh.corner_uvs.empty() ? nullptr : &mesh.corner_uvs[3 * prim], inst.transform, c))
+      std::swap(u, v);
+    hit.material = b.material(mesh.material_ids[prim]);
+    hit.emitter = inst.emitter_base >= 0 && b.emitter_rank[prim] >= 0 ? inst.emitter_base + b.emitter_rank[prim] : -1;
+  }
+
+  const Vec3 &p0 = c.p[0], &p1 = c.p[1], &p2 = c.p[2];
+  const float w = 1.0f - u - v;
   hit.t = rh.ray.tfar;
   hit.position = w * p0 + u * p1 + v * p2;  // interpolated, more accurate than origin + t * dir
   Vec3 ng = glm::cross(p1 - p0, p2 - p0);
@@ -277,21 +641,18 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   ng = ng_len > 0.0f ? ng / ng_len : -ray.dir;
   hit.geometric_normal = ng;
   hit.shading_normal = ng;
-  if (!mesh.corner_normals.empty()) {
-    const Vec3 n = w * mesh.corner_normals[3 * prim] + u * mesh.corner_normals[3 * prim + 1] +
-                   v * mesh.corner_normals[3 * prim + 2];
+  if (c.has_n) {
+    const Vec3 n = w * c.n[0] + u * c.n[1] + v * c.n[2];
     const float len = glm::length(n);
     if (len > 1e-6f && std::isfinite(len)) hit.shading_normal = n / len;
   }
-  hit.material = mesh.material_ids[prim];
-  hit.emitter = mesh.emitter_index.empty() ? -1 : mesh.emitter_index[prim];
-  if (!mesh.corner_uvs.empty()) {
-    const Vec2 &t0 = mesh.corner_uvs[3 * prim], &t1 = mesh.corner_uvs[3 * prim + 1], &t2 = mesh.corner_uvs[3 * prim + 2];
+  if (c.has_uv) {
+    const Vec2 &t0 = c.uv[0], &t1 = c.uv[1], &t2 = c.uv[2];
     hit.uv = w * t0 + u * t1 + v * t2;
     // dP/du from the triangle's UV parametrisation, for tangent-space normal maps.
     const Vec2 d1 = t1 - t0, d2 = t2 - t0;
     const float det = d1.x * d2.y - d1.y * d2.x;
-    const float area2 = glm::length(glm::cross(p1 - p0, p2 - p0));
+    const float area2 = ng_len;
     hit.uv_per_metre = area2 > 0.0f ? std::sqrt(std::abs(det) / area2) : 0.0f;
     if (std::abs(det) > 1e-12f) {
       const Vec3 dpdu = ((p1 - p0) * d2.y - (p2 - p0) * d1.y) / det;

@@ -122,6 +122,7 @@ class Lights {
   void set_mesh_light(std::optional<MeshLight> emitters) { mesh_ = std::move(emitters); }
   // MIS density of NEE producing point q on emissive triangle `triangle` from (p, n).
   float mesh_light_pdf(size_t triangle, const Vec3& p, const Vec3& n, const Vec3& q) const;
+  size_t num_emissive_triangles() const { return mesh_ ? mesh_->size() : 0; }
 
   // The NEE strategies: each light in the order added, the emissive triangles (as one), then the
   // world if it is an HDRI. A uniform world is left to BSDF sampling, which already draws

@@ -11,6 +11,7 @@
 #include "torrance/texture.h"
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -65,6 +66,29 @@ class Scene {
   uint32_t add_mesh(const float* positions, size_t num_vertices, const int64_t* triangles, size_t num_triangles,
                     const float* corner_normals, const int64_t* material_ids, const float* corner_uvs = nullptr);
 
+  // Instancing (a two-level BVH): a prototype is a mesh in object space, built once into its own
+  // BVH, whose per-triangle `slots` (>= 0) index a material table given per instance, like
+  // Blender's material slots (a slot past the table's end uses its last entry, as Cycles).
+  // Arguments as add_mesh with slots for material_ids; slots nullptr = all 0. Returns its id.
+  uint32_t add_prototype(const float* positions, size_t num_vertices, const int64_t* triangles,
+                         size_t num_triangles, const float* corner_normals, const int64_t* slots,
+                         const float* corner_uvs = nullptr);
+  // Adds `count` instances of `prototype` with ids first, first + 1, ... (the returned first).
+  // transforms: count row-major 3x4 object-to-world matrices (12 floats each). materials: the
+  // slot -> material table, table_size entries shared by all (per_instance_tables false) or one
+  // table per instance (count * table_size). Tables are stored once per distinct content.
+  // A matrix with NaN/Inf is rejected; a singular one (zero scale) leaves its instance hidden
+  // until set_instance_transforms gives it a regular matrix (see num_hidden_instances).
+  uint32_t add_instances(uint32_t prototype, const float* transforms, size_t count, const int64_t* materials,
+                         size_t table_size, bool per_instance_tables = false);
+  // Moves instances (count ids and 12 floats each); only the top-level BVH is rebuilt at commit.
+  void set_instance_transforms(const int64_t* ids, const float* transforms, size_t count);
+  void remove_instances(const int64_t* ids, size_t count);
+  size_t num_prototypes() const { return prototypes_.size(); }
+  size_t num_instances() const { return live_instances_; }          // added and not removed
+  size_t num_hidden_instances() const { return hidden_instances_; }  // of those, singular
+  size_t num_material_tables() const;  // distinct (prototype, material table) pairs
+
   // An HDRI world: texture `id` as an equirectangular environment, times strength.
   void set_world_texture(uint32_t id, float strength);
   Lights& lights() { return lights_; }
@@ -72,6 +96,7 @@ class Scene {
   void set_camera(const CameraParams& camera) { camera_ = camera; }
   const CameraParams& camera() const { return camera_; }
 
+  // Triangles traced: those of the world-space meshes plus, per visible instance, its prototype's.
   size_t num_triangles() const;
   size_t num_materials() const { return materials_.size(); }
   const Material& material(uint32_t i) const { return materials_[i]; }
@@ -84,12 +109,28 @@ class Scene {
 
  private:
   struct Mesh;
+  struct Prototype;
+  struct Binding;
+  struct Instance;
   void check_device(const char* during) const;
+  std::unique_ptr<Mesh> make_mesh(const float* positions, size_t num_vertices, const int64_t* triangles,
+                                  size_t num_triangles, const float* corner_normals, const int64_t* materials,
+                                  const float* corner_uvs, bool slots) const;
+  void* new_triangle_geometry(const Mesh& mesh) const;  // RTCGeometry, committed
+  const Instance& live_instance(int64_t id, const char* during) const;
+  void place_instance(Instance& instance, const float* transform);
 
   std::vector<Material> materials_;
   std::vector<MaterialTextures> material_textures_;
   std::vector<std::shared_ptr<const Texture>> textures_;
-  std::vector<std::unique_ptr<Mesh>> meshes_;  // indexed by Embree geometry id
+  std::vector<std::unique_ptr<Mesh>> meshes_;  // world-space meshes, in the order added
+  std::vector<std::unique_ptr<Prototype>> prototypes_;
+  std::vector<Binding> bindings_;  // distinct (prototype, material table) pairs
+  std::map<std::vector<uint32_t>, uint32_t> binding_ids_;  // {prototype, table...} -> binding
+  std::vector<Instance> instances_;
+  // Embree geometry id in the top-level scene -> mesh index, or instance index | kInstanceBit.
+  std::vector<uint32_t> geometry_owner_;
+  size_t live_instances_ = 0, hidden_instances_ = 0;
   Lights lights_;
   CameraParams camera_;
   void* device_ = nullptr;  // RTCDevice

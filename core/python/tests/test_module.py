@@ -422,3 +422,198 @@ def test_one_version_from_cmake_in_module_and_built_addon():
     assert _bl_info_version((addon / "__init__.py").read_text()) == expected
     with zipfile.ZipFile(addon.parents[1] / "torrance-addon.zip") as z:
         assert _bl_info_version(z.read("torrance/__init__.py").decode()) == expected
+
+
+# ---------------------------------------------------------------------------------------------
+# Instancing: prototypes placed by (N, 4, 4) matrices must render like world-space copies.
+
+def _tent():
+    pos = np.array([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0], [0, 0, 0.8]], np.float32)
+    tris = np.array([[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]], np.int32)
+    corner = pos[tris] * np.array([0.6, 0.6, 0.0], np.float32) + np.array([0, 0, 1], np.float32)
+    uvs = (0.5 + 0.45 * pos[tris][..., :2]).astype(np.float32)
+    slots = np.array([0, 1, 0, 1])
+    return pos, tris, corner.astype(np.float32), uvs, slots
+
+
+def _flatten(pos, tris, corner, uvs, m):
+    """What the export did per instance: world positions, normals by M^-T, a swap if M mirrors."""
+    lin = m[:3, :3]
+    wpos = (pos.astype(np.float64) @ lin.T + m[:3, 3]).astype(np.float32)
+    n = corner / np.linalg.norm(corner, axis=-1, keepdims=True)
+    wn = n @ np.linalg.inv(lin).astype(np.float32)   # rows: (M^-T n)^T = n^T M^-1
+    wn /= np.linalg.norm(wn, axis=-1, keepdims=True)
+    if np.linalg.det(lin) < 0:
+        return wpos, tris[:, [0, 2, 1]], wn[:, [0, 2, 1]], uvs[:, [0, 2, 1]]
+    return wpos, tris, wn, uvs
+
+
+def _instance_matrices():
+    def rot_z(a):
+        c, s = np.cos(a), np.sin(a)
+        return np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+    lins = [np.eye(3), rot_z(0.7), np.diag([2.5, 0.4, 1.7]), rot_z(-0.4) @ np.diag([-1.0, 1.3, 0.6]),
+            np.diag([-0.8, -1.2, -0.9])]
+    out = np.tile(np.eye(4), (len(lins), 1, 1))
+    for i, lin in enumerate(lins):
+        out[i, :3, :3] = lin
+        out[i, :3, 3] = [3.0 * (i % 3) - 3.0, 3.0 * (i // 3) - 1.5, 0.2 * i]
+    return out
+
+
+def _instancing_scenes():
+    scenes = []
+    for _ in range(2):
+        s = tc.Scene()
+        pixels = np.random.default_rng(3).uniform(0.3, 1.0, (8, 8, 3)).astype(np.float32)
+        t = s.add_texture(pixels, colorspace="Non-Color")
+        s.add_material(base_color=(0.8, 0.5, 0.3), roughness=0.3, base_color_texture=t, normal_texture=t)
+        s.add_material(base_color=(0.2, 0.6, 0.9), metallic=1.0, roughness=0.2)
+        s.add_material(emission=(1.0, 0.8, 0.5), emission_strength=4.0)
+        s.add_material()
+        s.add_mesh(np.array([[-20, -20, -0.5], [20, -20, -0.5], [20, 20, -0.5], [-20, 20, -0.5]], np.float32),
+                   np.array([[0, 1, 2], [0, 2, 3]]), material_indices=np.array([3, 3]))
+        cam = np.array([[1, 0, 0, 0], [0, 0.8, -0.6, -9], [0, 0.6, 0.8, 8], [0, 0, 0, 1]], np.float64)
+        s.set_camera(cam, lens=30.0)
+        s.add_point_light(position=(2, -4, 6), power=800.0, radius=0.3)
+        scenes.append(s)
+    instanced, flattened = scenes
+    pos, tris, corner, uvs, slots = _tent()
+    mats = _instance_matrices()
+    tables = np.array([[0, 1], [0, 1], [0, 1], [2, 1], [2, 1]])
+    proto = instanced.add_prototype(pos, tris, corner_normals=corner, material_slots=slots, corner_uvs=uvs)
+    assert instanced.add_instances(proto, mats, tables) == 0
+    for m, table in zip(mats, tables):
+        wpos, wtris, wn, wuv = _flatten(pos, tris, corner, uvs, m)
+        flattened.add_mesh(wpos, wtris, corner_normals=wn, material_indices=table[slots], corner_uvs=wuv)
+    return instanced, flattened
+
+
+def test_instances_render_like_world_space_copies():
+    instanced, flattened = _instancing_scenes()
+    assert instanced.num_triangles == flattened.num_triangles == 2 + 5 * 4
+    assert instanced.num_instances == 5 and instanced.num_material_tables == 2
+    settings = tc.RenderSettings(width=48, height=32, samples=16)
+    a = tc.render(instanced, settings).image[..., :3].astype(np.float64)
+    b = tc.render(flattened, settings).image[..., :3].astype(np.float64)
+    blocks = lambda img: img.reshape(4, 8, 6, 8, 3).mean(axis=(1, 3))
+    print(f"instanced vs flattened: max pixel diff {np.abs(a - b).max():.3g}, "
+          f"max 8x8 block diff {np.abs(blocks(a) - blocks(b)).max():.3g}, mean {b.mean():.4f}")
+    assert abs(a.mean() - b.mean()) < 1e-5 * b.mean()
+    assert np.abs(blocks(a) - blocks(b)).max() < 1e-4 * b.mean()
+
+
+def test_instance_transform_update_and_removal():
+    scene = tc.Scene()
+    scene.add_material(emission=(1, 1, 1), emission_strength=2.0)
+    pos, tris, *_ = _tent()
+    proto = scene.add_prototype(pos, tris)
+    first = scene.add_instances(proto, np.eye(4, dtype=np.float32)[None], np.array([0]))
+    cam = np.eye(4)
+    cam[2, 3] = 5.0
+    scene.set_camera(cam, lens=2000.0)          # sees only the tent's apex region
+    settings = tc.RenderSettings(width=4, height=4, samples=1, max_bounces=0)
+    assert tc.render(scene, settings).image[..., 0].mean() == pytest.approx(2.0, rel=1e-4)
+    moved = np.eye(4)
+    moved[0, 3] = 5.0
+    scene.set_instance_transforms([first], moved[None])
+    assert tc.render(scene, settings).image[..., 0].max() == 0.0
+    scene.set_instance_transforms(first, np.eye(4)[:3])   # one id, one 3x4 matrix
+    assert tc.render(scene, settings).image[..., 0].mean() == pytest.approx(2.0, rel=1e-4)
+    scene.remove_instances([first])
+    assert scene.num_instances == 0 and scene.num_triangles == 0
+    assert tc.render(scene, settings).image[..., 0].max() == 0.0
+
+
+def test_instance_input_errors():
+    scene = tc.Scene()
+    scene.add_material()
+    pos, tris, *_ = _tent()
+    with pytest.raises(ValueError, match="slot"):
+        scene.add_prototype(pos, tris, material_slots=np.array([0, -1, 0, 0]))
+    with pytest.raises(ValueError, match="material_slots must have shape"):
+        scene.add_prototype(pos, tris, material_slots=np.array([0, 0]))
+    proto = scene.add_prototype(pos, tris)
+    eye = np.tile(np.eye(4), (3, 1, 1))
+    with pytest.raises(ValueError, match="prototype 1 does not exist"):
+        scene.add_instances(1, eye, [0])
+    with pytest.raises(ValueError, match="prototype -1"):
+        scene.add_instances(-1, eye, [0])
+    with pytest.raises(ValueError, match=r"transforms must have shape \(N, 4, 4\) or \(N, 3, 4\)"):
+        scene.add_instances(proto, np.zeros((3, 4, 3)), [0])
+    with pytest.raises(ValueError, match="transforms must have shape"):
+        scene.add_instances(proto, np.zeros(16), [0])
+    with pytest.raises(TypeError, match="numeric"):
+        scene.add_instances(proto, np.array([["a"] * 4] * 4), [0])
+    bad = eye.copy()
+    bad[1, 0, 2] = np.nan
+    with pytest.raises(ValueError, match=r"transforms\[1\] has a NaN or Inf"):
+        scene.add_instances(proto, bad, [0])
+    bad[1, 0, 2] = np.inf
+    with pytest.raises(ValueError, match="NaN or Inf"):
+        scene.add_instances(proto, bad, [0])
+    bad = eye.copy()
+    bad[2, 3, 0] = 1.0
+    with pytest.raises(ValueError, match="not affine"):
+        scene.add_instances(proto, bad, [0])
+    bad = eye.copy()
+    bad[0, 0, 0] = 1e300
+    with pytest.raises(ValueError, match="float range"):
+        scene.add_instances(proto, bad, [0])
+    with pytest.raises(ValueError, match="material 5"):
+        scene.add_instances(proto, eye, [5])
+    with pytest.raises(ValueError, match="materials must be a non-empty"):
+        scene.add_instances(proto, eye, np.zeros(0, np.int64))
+    with pytest.raises(ValueError, match="with N = 3"):
+        scene.add_instances(proto, eye, np.zeros((2, 1), np.int64))
+    with pytest.raises(TypeError, match="integers"):
+        scene.add_instances(proto, eye, [0.5])
+    assert scene.num_instances == 0
+    # Zero scale (a common way of hiding instances): accepted, hidden, counted.
+    flat = eye.copy()
+    flat[1, 2, 2] = 0.0
+    first = scene.add_instances(proto, flat, [0])
+    assert scene.num_instances == 3 and scene.num_hidden_instances == 1
+    assert scene.num_triangles == 2 * 4
+    with pytest.raises(ValueError, match="instance 7 does not exist"):
+        scene.set_instance_transforms([7], np.eye(4)[None])
+    with pytest.raises(ValueError, match="with N = 2"):
+        scene.set_instance_transforms([first, first + 1], np.eye(4)[None])
+    scene.set_instance_transforms([first + 1], np.eye(4)[None])
+    assert scene.num_hidden_instances == 0
+    scene.remove_instances([first])
+    with pytest.raises(ValueError, match="instance 0 was removed"):
+        scene.remove_instances([first])
+    with pytest.raises(ValueError, match="was removed"):
+        scene.set_instance_transforms([first], np.eye(4)[None])
+
+
+def test_no_leak_over_repeated_instanced_renders():
+    import resource
+
+    def once():
+        scene = tc.Scene()
+        scene.add_material()
+        scene.add_material(emission=(1, 1, 1), emission_strength=1.0)
+        pos, tris, *_ = _tent()
+        proto = scene.add_prototype(pos, tris, material_slots=np.array([0, 1, 0, 1]))
+        mats = np.tile(np.eye(4), (20000, 1, 1))
+        mats[:, 0, 3] = np.arange(20000) % 200 * 3.0
+        mats[:, 1, 3] = np.arange(20000) // 200 * 3.0
+        scene.add_instances(proto, mats, [0, 1])
+        cam = np.eye(4)
+        cam[2, 3] = 50.0
+        scene.set_camera(cam)
+        tc.render(scene, tc.RenderSettings(width=16, height=16, samples=1))
+
+    once()
+    once()
+    base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    rss = []
+    for _ in range(6):
+        once()
+        with open("/proc/self/statm") as f:
+            rss.append(int(f.read().split()[1]) * 4096)
+    growth = rss[-1] - rss[0]
+    assert growth < 20e6, f"resident memory grew by {growth / 1e6:.1f} MB over 5 instanced renders"
+    assert resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - base < 50_000, "peak RSS kept growing (kB)"
