@@ -171,7 +171,7 @@ def test_camera_derivation(tv, tc, scene):
 
     # Image level: the derived camera renders what the final-render camera renders.
     from torrance import export
-    from torrance.materials import Reporter
+    from torrance.reporting import Reporter
     tc_scene, _stats = export.export_scene(tc, dg, Reporter(None))
     view_m, window_m = camera_matrices(cam_obj, dg, 96, 72)
     img_final = render_core(tc, tc_scene, _final_camera(tc, dg), 96, 72)
@@ -184,7 +184,7 @@ def test_camera_derivation(tv, tc, scene):
 def _final_camera(tc, depsgraph):
     """The set_camera keywords export.export_camera uses, captured from a stand-in scene."""
     from torrance import export
-    from torrance.materials import Reporter
+    from torrance.reporting import Reporter
     captured = {}
 
     class Capture:

@@ -11,7 +11,8 @@ import time
 
 import numpy as np
 
-from .materials import MaterialTable, TextureTable, _follow, _node_label
+from .materials import MaterialTable, TextureTable
+from .nodes import node_label, source_socket
 
 # Types whose geometry is a mesh. Only 'MESH' entries of the depsgraph are exported; the
 # others reach us as MESH instances of their evaluated geometry (see export_scene).
@@ -260,26 +261,26 @@ def light_node_factor(obj, light, reporter):
     unsupported = f"Light '{light.name}': Torrance does not support its node tree"
     output = tree.get_output_node('CYCLES')
     surface = output.inputs.get("Surface") if output is not None else None
-    source = _follow(surface) if surface is not None else None
+    source = source_socket(surface) if surface is not None else None
     if source is None:
         reporter.warning(f"{unsupported} (nothing feeds the Light Output); the nodes are ignored")
         return (1.0, 1.0, 1.0)
     node = source.node
     if node.bl_idname != 'ShaderNodeEmission' or node.mute:
-        reporter.warning(f"{unsupported} ({_node_label(node)} feeds the Light Output; Torrance "
+        reporter.warning(f"{unsupported} ({node_label(node)} feeds the Light Output; Torrance "
                          f"reads an Emission node); the nodes are ignored")
         return (1.0, 1.0, 1.0)
     values = []
     for name in ("Color", "Strength"):
         socket = node.inputs[name]
-        src = _follow(socket)
+        src = source_socket(socket)
         if src is None:
             values.append(socket.default_value)
         elif src.node.type in {'RGB', 'VALUE'} and not src.node.mute:
             values.append(src.default_value)
         else:
             reporter.warning(f"{unsupported} (the Emission {name} is linked to "
-                             f"{_node_label(src.node)}); using the socket's own value")
+                             f"{node_label(src.node)}); using the socket's own value")
             values.append(socket.default_value)
     color, strength = values
     try:
@@ -370,7 +371,7 @@ def export_light(tc_scene, obj, matrix, reporter):
 
 
 def _background_value(socket, world, what, reporter):
-    source = _follow(socket)
+    source = source_socket(socket)
     if source is not None:
         if source.node.type in {'RGB', 'VALUE'} and not source.node.mute:
             return source.default_value
@@ -382,7 +383,7 @@ def _background_value(socket, world, what, reporter):
 
 def _environment_texture(world, node, output, textures, reporter):
     """The texture id of an Environment Texture node feeding the Background Color, or None."""
-    what = f"World '{world.name}': {_node_label(node)}"
+    what = f"World '{world.name}': {node_label(node)}"
     if textures is None:
         return None
     if output.identifier != "Color":
@@ -397,9 +398,9 @@ def _environment_texture(world, node, output, textures, reporter):
                          f"not supported (only equirectangular); using the Background colour")
         return None
     vector = node.inputs.get("Vector")
-    src = _follow(vector) if vector is not None else None
+    src = source_socket(vector) if vector is not None else None
     if src is not None:
-        reporter.warning(f"{what}: the Vector input is linked to {_node_label(src.node)}; "
+        reporter.warning(f"{what}: the Vector input is linked to {node_label(src.node)}; "
                          f"Torrance does not support a mapping or rotation of the environment "
                          f"and uses the default one")
     interpolation = node.interpolation
@@ -424,7 +425,7 @@ def world_background(world, reporter, textures=None):
         reporter.info(f"World '{world.name}' has no World Output node: black background")
         return (0.0, 0.0, 0.0), 0.0, None
     surface = output.inputs.get("Surface")
-    source = _follow(surface) if surface is not None else None
+    source = source_socket(surface) if surface is not None else None
     if source is None:
         return (0.0, 0.0, 0.0), 0.0, None
     node = source.node
@@ -434,7 +435,7 @@ def world_background(world, reporter, textures=None):
         return fallback
     texture = None
     color_socket = node.inputs["Color"]
-    color_source = _follow(color_socket)
+    color_source = source_socket(color_socket)
     if (textures is not None and color_source is not None and not color_source.node.mute
             and color_source.node.bl_idname == 'ShaderNodeTexEnvironment'):
         texture = _environment_texture(world, color_source.node, color_source, textures, reporter)

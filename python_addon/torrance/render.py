@@ -7,7 +7,7 @@ import traceback
 import numpy as np
 
 from . import export, passes
-from .materials import Reporter
+from .reporting import Reporter
 
 _core = None
 _core_error = None

@@ -11,7 +11,7 @@ import bpy
 from bpy.types import Panel
 
 from . import export
-from .materials import Reporter
+from .reporting import Reporter
 
 ENGINE = 'TORRANCE'
 

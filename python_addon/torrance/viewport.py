@@ -30,7 +30,8 @@ import weakref
 import numpy as np
 
 from . import export
-from .materials import MaterialTable, Reporter
+from .materials import MaterialTable
+from .reporting import Reporter
 
 try:                                    # textures arrived later in the add-on's history
     from .materials import TextureTable
