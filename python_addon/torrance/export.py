@@ -450,12 +450,6 @@ def world_background(world, reporter, textures=None):
     return color, float(strength), texture
 
 
-def world_radiance(world, reporter):
-    """(color, strength) of the uniform background (textures not considered)."""
-    color, strength, _texture = world_background(world, reporter)
-    return color, strength
-
-
 def export_world(tc_scene, world, reporter, textures=None):
     color, strength, texture = world_background(world, reporter, textures)
     if not math.isfinite(strength) or (texture is None and not all(math.isfinite(c) for c in color)):
@@ -584,13 +578,9 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
         # Material per triangle: material_index clamped to the slots, like Cycles.
         idx = np.clip(local.material_slots[keep], 0, len(slot_to_material) - 1)
         mat_idx = slot_to_material[idx]
-        extra = {}
-        uvs = world_uvs(local, matrix, keep) if needs_uvs else None
-        if uvs is not None:
-            extra["corner_uvs"] = uvs          # only when used: the API before textures had none
         tc_scene.add_mesh(pos, tris, corner_normals=corner,
                           material_indices=np.ascontiguousarray(mat_idx, dtype=np.int32),
-                          **extra)
+                          corner_uvs=world_uvs(local, matrix, keep) if needs_uvs else None)
         stats.objects += 1
         stats.names.append(name)
         stats.triangles += len(tris)

@@ -488,14 +488,9 @@ class MaterialTable:
         idx = self.indices.get(key)
         if idx is None:
             args = self.reader.read(mat)
+            idx = self.scene.add_material(**args)
             if uses_textures(args):
-                idx = self.scene.add_material(**args)
                 self.textured.add(idx)
-            else:
-                # Without textures only the plain arguments (the API before textures).
-                idx = self.scene.add_material(**{k: v for k, v in args.items()
-                                                 if k not in _TEXTURE_KEYS
-                                                 and k != 'normal_strength'})
             self.indices[key] = idx
         return idx
 
