@@ -17,6 +17,9 @@ from .nodes import node_label, source_socket
 # Types whose geometry is a mesh. Only 'MESH' entries of the depsgraph are exported; the
 # others reach us as MESH instances of their evaluated geometry (see export_scene).
 MESH_TYPES = {'MESH', 'CURVE', 'SURFACE', 'META', 'FONT'}
+# Types that render nothing (in Cycles either) and are skipped without a word. Any other
+# type that is not a mesh or a light is reported as not rendered.
+SKIPPED_TYPES = {'CAMERA', 'EMPTY', 'ARMATURE', 'LATTICE', 'LIGHT_PROBE', 'SPEAKER', 'GPENCIL'}
 SUPPORTED_LIGHTS = {'SUN', 'POINT', 'SPOT', 'AREA'}
 MAX_COORDINATE = 1e18          # metres; anything farther is treated like Inf
 _VISIBILITY = ("visible_camera", "visible_diffuse", "visible_glossy",
@@ -232,6 +235,98 @@ def world_uvs(local, matrix, keep):
 def _is_visible(obj):
     vis = [getattr(obj, name, True) for name in _VISIBILITY]
     return any(vis)
+
+
+class MeshCache:
+    """Object-space meshes (LocalMesh, or None for no triangles) read once per key.
+
+    The key is the caller's: the final render reads each mesh of its instances once; the
+    viewport keeps meshes across updates and drops those whose geometry changed.
+    """
+
+    def __init__(self):
+        self.meshes = {}          # key + (uvs,) -> LocalMesh or None
+        self.reads = 0            # meshes read from Blender
+
+    def get(self, obj, key, uvs, reporter):
+        ckey = key + (bool(uvs),)
+        if ckey in self.meshes:
+            return self.meshes[ckey]
+        local = read_local_mesh(obj, uvs=uvs)
+        self.reads += 1
+        if local is not None and uvs and local.corner_uvs is None:
+            reporter.warning(f"Object '{obj.name}' has textured materials but no UV map: "
+                             f"its textures are read at UV (0, 0)")
+        self.meshes[ckey] = local
+        return local
+
+    def drop(self, stale):
+        """Forgets the meshes whose key (without the UV flag) satisfies stale(key)."""
+        for ckey in [k for k in self.meshes if stale(k[:-1])]:
+            del self.meshes[ckey]
+
+    def clear(self):
+        self.meshes.clear()
+
+
+def export_mesh(tc_scene, obj, matrix, slots, materials, meshes, key, reporter):
+    """Adds an evaluated mesh object (or an instance of one) to tc_scene at `matrix`.
+
+    slots: the materials of the object's slots; materials: the scene's MaterialTable;
+    meshes, key: the MeshCache to read the object's mesh through, and its key there.
+    Returns the number of triangles added (0: nothing to render).
+    """
+    # Material per slot (read before the mesh: textured materials need the UVs).
+    slot_to_material = materials.slot_indices(slots)
+    needs_uvs = materials.needs_uvs(slot_to_material.tolist())
+    local = meshes.get(obj, key, needs_uvs, reporter)
+    if local is None:
+        return 0
+    pos, tris, corner, keep, dropped = world_mesh(local, matrix)
+    if dropped:
+        reporter.warning(f"Object '{obj.name}': {dropped} triangle(s) with NaN/Inf vertex "
+                         f"positions dropped (or vertices beyond {MAX_COORDINATE:g} m)")
+    if len(tris) == 0:
+        return 0
+    # Material per triangle: material_index clamped to the slots, like Cycles.
+    idx = np.clip(local.material_slots[keep], 0, len(slot_to_material) - 1)
+    tc_scene.add_mesh(pos, tris, corner_normals=corner,
+                      material_indices=np.ascontiguousarray(slot_to_material[idx],
+                                                            dtype=np.int32),
+                      corner_uvs=world_uvs(local, matrix, keep) if needs_uvs else None)
+    return len(tris)
+
+
+# --------------------------------------------------------------------------------------------
+# Which depsgraph instances are exported
+
+def instance_role(inst):
+    """What an export does with a depsgraph instance: 'LIGHT' or 'MESH' (export it),
+    'UNSUPPORTED' (report its type) or None (skip it silently)."""
+    obj = inst.object
+    kind = obj.type
+    if kind == 'LIGHT':
+        return 'LIGHT'
+    if kind not in MESH_TYPES:
+        return None if kind in SKIPPED_TYPES else 'UNSUPPORTED'
+    if kind != 'MESH':
+        # As Cycles 3.x: curves, surfaces, metaballs and text are evaluated to a mesh that
+        # the depsgraph lists as a separate MESH instance (parent = the object). Only that
+        # one is exported, or the geometry would be there twice.
+        return None
+    if not inst.is_instance and not inst.show_self:
+        return None
+    if not _is_visible(obj):
+        return None
+    return 'MESH'
+
+
+def report_unsupported(obj, reported_types, reporter):
+    """Warns that objects of obj's type are not rendered, once per type (reported_types)."""
+    if obj.type not in reported_types:
+        reported_types.add(obj.type)
+        reporter.warning(f"Torrance does not render objects of type {obj.type} "
+                         f"(e.g. '{obj.name}')")
 
 
 # --------------------------------------------------------------------------------------------
@@ -515,7 +610,7 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
     export_camera(tc_scene, cam_obj, reporter, engine)
     export_world(tc_scene, scene.world, reporter, textures)
 
-    geometry_cache = {}
+    meshes = MeshCache()
     unsupported_types = set()
     last_poll = time.perf_counter()
     for inst in depsgraph.object_instances:
@@ -523,67 +618,25 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
             last_poll = time.perf_counter()       # Esc during a long export, polled at 10 Hz
             if should_stop():
                 raise Cancelled()
+        role = instance_role(inst)
         obj = inst.object
-        kind = obj.type
-        if kind == 'LIGHT':
+        if role == 'LIGHT':
             if export_light(tc_scene, obj, inst.matrix_world.copy(), reporter):
                 stats.lights += 1
-            continue
-        if kind not in MESH_TYPES:
-            if kind not in {'CAMERA', 'EMPTY', 'ARMATURE', 'LATTICE', 'LIGHT_PROBE', 'SPEAKER',
-                            'GPENCIL'} and kind not in unsupported_types:
-                unsupported_types.add(kind)
-                reporter.warning(f"Torrance does not render objects of type {kind} "
-                                 f"(e.g. '{obj.name}')")
-            continue
-        if kind != 'MESH':
-            # As Cycles 3.x: curves, surfaces, metaballs and text are evaluated to a mesh that
-            # the depsgraph lists as a separate MESH instance (parent = the object). Only that
-            # one is exported, or the geometry would be there twice.
-            continue
-        if not inst.is_instance and not inst.show_self:
-            continue
-        if not _is_visible(obj):
-            continue
-
-        matrix = inst.matrix_world.copy()        # the instance struct dies after this step
-        name = obj.name
-        slots = [slot.material for slot in obj.material_slots]
-        # Material per slot (read before the mesh: textured materials need the UVs).
-        if slots:
-            slot_to_material = np.array([materials.index(m) for m in slots], dtype=np.int32)
-        else:
-            slot_to_material = np.array([materials.default_index()], dtype=np.int32)
-        needs_uvs = materials.needs_uvs(slot_to_material.tolist())
-        # Instances of one mesh (collection instances, particles, geometry nodes) are read once.
-        key = (obj.as_pointer(), obj.data.as_pointer() if obj.data is not None else 0)
-        if key in geometry_cache:
-            local = geometry_cache[key]
-        else:
-            local = read_local_mesh(obj, uvs=needs_uvs)
-            geometry_cache[key] = local
-            if local is not None and needs_uvs and local.corner_uvs is None:
-                reporter.warning(f"Object '{name}' has textured materials but no UV map: "
-                                 f"its textures are read at UV (0, 0)")
-        if local is None:
-            continue
-
-        pos, tris, corner, keep, dropped = world_mesh(local, matrix)
-        if dropped:
-            reporter.warning(f"Object '{name}': {dropped} triangle(s) with NaN/Inf vertex "
-                             f"positions dropped (or vertices beyond {MAX_COORDINATE:g} m)")
-        if len(tris) == 0:
-            continue
-
-        # Material per triangle: material_index clamped to the slots, like Cycles.
-        idx = np.clip(local.material_slots[keep], 0, len(slot_to_material) - 1)
-        mat_idx = slot_to_material[idx]
-        tc_scene.add_mesh(pos, tris, corner_normals=corner,
-                          material_indices=np.ascontiguousarray(mat_idx, dtype=np.int32),
-                          corner_uvs=world_uvs(local, matrix, keep) if needs_uvs else None)
-        stats.objects += 1
-        stats.names.append(name)
-        stats.triangles += len(tris)
+        elif role == 'UNSUPPORTED':
+            report_unsupported(obj, unsupported_types, reporter)
+        elif role == 'MESH':
+            matrix = inst.matrix_world.copy()    # the instance struct dies after this step
+            slots = [slot.material for slot in obj.material_slots]
+            # Instances of one mesh (collection instances, particles, geometry nodes) are
+            # read once.
+            key = (obj.as_pointer(), obj.data.as_pointer() if obj.data is not None else 0)
+            triangles = export_mesh(tc_scene, obj, matrix, slots, materials, meshes, key,
+                                    reporter)
+            if triangles:
+                stats.objects += 1
+                stats.names.append(obj.name)
+                stats.triangles += triangles
 
     stats.materials = len(materials.indices) + (1 if materials._default is not None else 0)
     stats.textures = textures.loaded

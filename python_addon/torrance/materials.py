@@ -494,6 +494,12 @@ class MaterialTable:
             self.indices[key] = idx
         return idx
 
+    def slot_indices(self, slots):
+        """int32 material index per slot (materials or None); one default entry without slots."""
+        if not slots:
+            return np.array([self.default_index()], dtype=np.int32)
+        return np.array([self.index(m) for m in slots], dtype=np.int32)
+
     def needs_uvs(self, indices):
         """Whether any of these material indices uses a texture."""
         return any(i in self.textured for i in indices)

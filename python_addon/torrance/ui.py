@@ -151,7 +151,6 @@ def scene_messages(scene):
     """Scene-level limitations: unsupported object and light types, features not rendered."""
     messages = []
     rd = scene.render
-    skipped_types = {'CAMERA', 'EMPTY', 'ARMATURE', 'LATTICE', 'LIGHT_PROBE', 'SPEAKER'}
     unsupported, lights = {}, {}
     for i, ob in enumerate(scene.objects):
         if i >= _SCENE_LIMIT:
@@ -161,7 +160,7 @@ def scene_messages(scene):
         if ob.type == 'LIGHT':
             if ob.data is not None and ob.data.type not in export.SUPPORTED_LIGHTS:
                 lights.setdefault(ob.data.type, ob.name)
-        elif ob.type not in export.MESH_TYPES and ob.type not in skipped_types:
+        elif ob.type not in export.MESH_TYPES and ob.type not in export.SKIPPED_TYPES:
             unsupported.setdefault(ob.type, ob.name)
     for kind, name in sorted(lights.items()):
         messages.append(('WARNING', f"{kind.title()} lights are not rendered (e.g. '{name}')"))
