@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The interactive viewport without a window (viewport.py driven directly):
+"""The interactive viewport without a window (the viewport package driven directly):
 
 * the camera derived from a 3D view's matrices projects like Blender (camera views with every
   sensor fit, shifts and camera-view zoom/offset, free perspective views; orthographic views

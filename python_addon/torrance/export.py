@@ -479,8 +479,6 @@ def _background_value(socket, world, what, reporter):
 def _environment_texture(world, node, output, textures, reporter):
     """The texture id of an Environment Texture node feeding the Background Color, or None."""
     what = f"World '{world.name}': {node_label(node)}"
-    if textures is None:
-        return None
     if output.identifier != "Color":
         reporter.warning(f"{what}: only its Color output is supported; using the Background "
                          f"colour")
@@ -504,11 +502,11 @@ def _environment_texture(world, node, output, textures, reporter):
     return textures.texture(node.image, interpolation)
 
 
-def world_background(world, reporter, textures=None):
+def world_background(world, reporter, textures):
     """(color, strength, texture id or None) of the world's background.
 
-    The texture is an equirectangular Environment Texture linked to the Background Color
-    (with `textures`, a TextureTable); color is then the socket's own value (unused).
+    The texture (from `textures`, a TextureTable) is an equirectangular Environment Texture
+    linked to the Background Color; color is then the socket's own value (unused).
     """
     if world is None:
         return (0.0, 0.0, 0.0), 0.0, None
@@ -531,7 +529,7 @@ def world_background(world, reporter, textures=None):
     texture = None
     color_socket = node.inputs["Color"]
     color_source = source_socket(color_socket)
-    if (textures is not None and color_source is not None and not color_source.node.mute
+    if (color_source is not None and not color_source.node.mute
             and color_source.node.bl_idname == 'ShaderNodeTexEnvironment'):
         texture = _environment_texture(world, color_source.node, color_source, textures, reporter)
         color = color_socket.default_value
@@ -545,7 +543,7 @@ def world_background(world, reporter, textures=None):
     return color, float(strength), texture
 
 
-def export_world(tc_scene, world, reporter, textures=None):
+def export_world(tc_scene, world, reporter, textures):
     color, strength, texture = world_background(world, reporter, textures)
     if not math.isfinite(strength) or (texture is None and not all(math.isfinite(c) for c in color)):
         reporter.warning("The world colour is not finite: black background")

@@ -215,9 +215,9 @@ class TextureTable:
 class MaterialReader:
     """Reads one Blender material into a dict of add_material() arguments."""
 
-    def __init__(self, reporter, textures=None):
+    def __init__(self, reporter, textures):
         self.reporter = reporter
-        self.textures = textures         # TextureTable, or None: image textures unsupported
+        self.textures = textures         # TextureTable (the ui panels: a dry-run stand-in)
 
     def _socket_value(self, mat, node, name, fallback):
         """The value of input `name` of `node`: its default, or a constant node it is linked to."""
@@ -257,10 +257,6 @@ class MaterialReader:
     def _image_node(self, mat, node, output, where):
         """The texture id of an Image Texture node feeding `where` (None when unusable)."""
         what = f"Material '{mat.name}': {node_label(node)} (feeding {where})"
-        if self.textures is None:
-            self.reporter.warning(f"{what}: image textures are not supported here; using the "
-                                  f"socket's own value")
-            return None
         if output.identifier != "Color":
             self.reporter.warning(f"{what}: only the Color output of an Image Texture is "
                                   f"supported, not '{output.name}'; using the socket's own value")
@@ -468,9 +464,9 @@ def uses_textures(m):
 class MaterialTable:
     """Adds each Blender material to a tc.Scene once; maps materials to indices."""
 
-    def __init__(self, tc_scene, reporter, textures=None):
+    def __init__(self, tc_scene, reporter, textures):
         self.scene = tc_scene
-        self.textures = textures if textures is not None else TextureTable(tc_scene, reporter)
+        self.textures = textures
         self.reader = MaterialReader(reporter, self.textures)
         self.indices = {}
         self.textured = set()     # indices of materials that use textures
