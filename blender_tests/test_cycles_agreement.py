@@ -78,11 +78,12 @@ class _FaultyScene:
     def add_material(self, **kw):
         return self.scene.add_material(**kw)
 
-    def add_mesh(self, positions, triangles, corner_normals=None, material_indices=None):
+    def add_mesh(self, positions, triangles, corner_normals=None, material_indices=None,
+                 corner_uvs=None):
         if self.fault == "negate_normals" and corner_normals is not None:
             corner_normals = np.ascontiguousarray(-corner_normals)
         return self.scene.add_mesh(positions, triangles, corner_normals=corner_normals,
-                                   material_indices=material_indices)
+                                   material_indices=material_indices, corner_uvs=corner_uvs)
 
     def add_sun(self, **kw):
         if self.fault == "sun_x_pi":
@@ -113,7 +114,8 @@ def faulty_core(core, fault):
             settings.max_bounces = max(0, settings.max_bounces - 1)
         return core.render(scene.scene, settings, on_pass=on_pass, should_stop=should_stop)
     return types.SimpleNamespace(Scene=lambda: _FaultyScene(core, fault),
-                                 RenderSettings=core.RenderSettings, render=render)
+                                 RenderSettings=core.RenderSettings, render=render,
+                                 PASSES=core.PASSES)
 
 
 # ------------------------------------------------------------------------------------------

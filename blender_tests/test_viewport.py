@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The interactive viewport without a window (viewport.py driven directly):
+"""The interactive viewport without a window (the viewport package driven directly):
 
 * the camera derived from a 3D view's matrices projects like Blender (camera views with every
   sensor fit, shifts and camera-view zoom/offset, free perspective views; orthographic views
@@ -168,7 +168,7 @@ def test_camera_derivation(tv, tc, scene):
 
     # Image level: the derived camera renders what the final-render camera renders.
     from torrance import export
-    from torrance.materials import Reporter
+    from torrance.reporting import Reporter
     tc_scene, _stats = export.export_scene(tc, dg, Reporter(None))
     view_m, window_m = camera_matrices(cam_obj, dg, 96, 72)
     img_final = render_core(tc, tc_scene, _final_camera(tc, dg), 96, 72)
@@ -181,7 +181,7 @@ def test_camera_derivation(tv, tc, scene):
 def _final_camera(tc, depsgraph):
     """The set_camera keywords export.export_camera uses, captured from a stand-in scene."""
     from torrance import export
-    from torrance.materials import Reporter
+    from torrance.reporting import Reporter
     captured = {}
 
     class Capture:

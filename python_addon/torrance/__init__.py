@@ -17,14 +17,16 @@ bl_info = {
 # Support reloading the add-on (F3 > Reload Scripts).
 if "bpy" in locals():
     import importlib
-    for _name in ("materials", "export", "passes", "preview", "viewport", "render", "properties",
-                  "engine", "ui"):
+    for _name in ("reporting", "nodes", "materials", "export", "passes", "preview", "viewport",
+                  "render", "properties", "engine", "ui"):
         if _name in locals():
             importlib.reload(locals()[_name])
 
 import bpy
 
 from . import (
+    reporting,
+    nodes,
     materials,
     export,
     passes,

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
 """The RenderEngine subclass. Its callbacks only forward: final renders to render.py, the
-interactive viewport to viewport.py, render-pass registration to passes.py."""
+interactive viewport to the viewport package, render-pass registration to passes.py."""
 
 import bpy
 

@@ -11,11 +11,15 @@ import time
 
 import numpy as np
 
-from .materials import MaterialTable, TextureTable, _follow, _node_label
+from .materials import MaterialTable, TextureTable
+from .nodes import node_label, source_socket
 
 # Types whose geometry is a mesh. Only 'MESH' entries of the depsgraph are exported; the
 # others reach us as MESH instances of their evaluated geometry (see export_scene).
 MESH_TYPES = {'MESH', 'CURVE', 'SURFACE', 'META', 'FONT'}
+# Types that render nothing (in Cycles either) and are skipped without a word. Any other
+# type that is not a mesh or a light is reported as not rendered.
+SKIPPED_TYPES = {'CAMERA', 'EMPTY', 'ARMATURE', 'LATTICE', 'LIGHT_PROBE', 'SPEAKER', 'GPENCIL'}
 SUPPORTED_LIGHTS = {'SUN', 'POINT', 'SPOT', 'AREA'}
 MAX_COORDINATE = 1e18          # metres; anything farther is treated like Inf
 _VISIBILITY = ("visible_camera", "visible_diffuse", "visible_glossy",
@@ -233,6 +237,98 @@ def _is_visible(obj):
     return any(vis)
 
 
+class MeshCache:
+    """Object-space meshes (LocalMesh, or None for no triangles) read once per key.
+
+    The key is the caller's: the final render reads each mesh of its instances once; the
+    viewport keeps meshes across updates and drops those whose geometry changed.
+    """
+
+    def __init__(self):
+        self.meshes = {}          # key + (uvs,) -> LocalMesh or None
+        self.reads = 0            # meshes read from Blender
+
+    def get(self, obj, key, uvs, reporter):
+        ckey = key + (bool(uvs),)
+        if ckey in self.meshes:
+            return self.meshes[ckey]
+        local = read_local_mesh(obj, uvs=uvs)
+        self.reads += 1
+        if local is not None and uvs and local.corner_uvs is None:
+            reporter.warning(f"Object '{obj.name}' has textured materials but no UV map: "
+                             f"its textures are read at UV (0, 0)")
+        self.meshes[ckey] = local
+        return local
+
+    def drop(self, stale):
+        """Forgets the meshes whose key (without the UV flag) satisfies stale(key)."""
+        for ckey in [k for k in self.meshes if stale(k[:-1])]:
+            del self.meshes[ckey]
+
+    def clear(self):
+        self.meshes.clear()
+
+
+def export_mesh(tc_scene, obj, matrix, slots, materials, meshes, key, reporter):
+    """Adds an evaluated mesh object (or an instance of one) to tc_scene at `matrix`.
+
+    slots: the materials of the object's slots; materials: the scene's MaterialTable;
+    meshes, key: the MeshCache to read the object's mesh through, and its key there.
+    Returns the number of triangles added (0: nothing to render).
+    """
+    # Material per slot (read before the mesh: textured materials need the UVs).
+    slot_to_material = materials.slot_indices(slots)
+    needs_uvs = materials.needs_uvs(slot_to_material.tolist())
+    local = meshes.get(obj, key, needs_uvs, reporter)
+    if local is None:
+        return 0
+    pos, tris, corner, keep, dropped = world_mesh(local, matrix)
+    if dropped:
+        reporter.warning(f"Object '{obj.name}': {dropped} triangle(s) with NaN/Inf vertex "
+                         f"positions dropped (or vertices beyond {MAX_COORDINATE:g} m)")
+    if len(tris) == 0:
+        return 0
+    # Material per triangle: material_index clamped to the slots, like Cycles.
+    idx = np.clip(local.material_slots[keep], 0, len(slot_to_material) - 1)
+    tc_scene.add_mesh(pos, tris, corner_normals=corner,
+                      material_indices=np.ascontiguousarray(slot_to_material[idx],
+                                                            dtype=np.int32),
+                      corner_uvs=world_uvs(local, matrix, keep) if needs_uvs else None)
+    return len(tris)
+
+
+# --------------------------------------------------------------------------------------------
+# Which depsgraph instances are exported
+
+def instance_role(inst):
+    """What an export does with a depsgraph instance: 'LIGHT' or 'MESH' (export it),
+    'UNSUPPORTED' (report its type) or None (skip it silently)."""
+    obj = inst.object
+    kind = obj.type
+    if kind == 'LIGHT':
+        return 'LIGHT'
+    if kind not in MESH_TYPES:
+        return None if kind in SKIPPED_TYPES else 'UNSUPPORTED'
+    if kind != 'MESH':
+        # As Cycles 3.x: curves, surfaces, metaballs and text are evaluated to a mesh that
+        # the depsgraph lists as a separate MESH instance (parent = the object). Only that
+        # one is exported, or the geometry would be there twice.
+        return None
+    if not inst.is_instance and not inst.show_self:
+        return None
+    if not _is_visible(obj):
+        return None
+    return 'MESH'
+
+
+def report_unsupported(obj, reported_types, reporter):
+    """Warns that objects of obj's type are not rendered, once per type (reported_types)."""
+    if obj.type not in reported_types:
+        reported_types.add(obj.type)
+        reporter.warning(f"Torrance does not render objects of type {obj.type} "
+                         f"(e.g. '{obj.name}')")
+
+
 # --------------------------------------------------------------------------------------------
 # Lights, world, camera
 
@@ -260,26 +356,26 @@ def light_node_factor(obj, light, reporter):
     unsupported = f"Light '{light.name}': Torrance does not support its node tree"
     output = tree.get_output_node('CYCLES')
     surface = output.inputs.get("Surface") if output is not None else None
-    source = _follow(surface) if surface is not None else None
+    source = source_socket(surface) if surface is not None else None
     if source is None:
         reporter.warning(f"{unsupported} (nothing feeds the Light Output); the nodes are ignored")
         return (1.0, 1.0, 1.0)
     node = source.node
     if node.bl_idname != 'ShaderNodeEmission' or node.mute:
-        reporter.warning(f"{unsupported} ({_node_label(node)} feeds the Light Output; Torrance "
+        reporter.warning(f"{unsupported} ({node_label(node)} feeds the Light Output; Torrance "
                          f"reads an Emission node); the nodes are ignored")
         return (1.0, 1.0, 1.0)
     values = []
     for name in ("Color", "Strength"):
         socket = node.inputs[name]
-        src = _follow(socket)
+        src = source_socket(socket)
         if src is None:
             values.append(socket.default_value)
         elif src.node.type in {'RGB', 'VALUE'} and not src.node.mute:
             values.append(src.default_value)
         else:
             reporter.warning(f"{unsupported} (the Emission {name} is linked to "
-                             f"{_node_label(src.node)}); using the socket's own value")
+                             f"{node_label(src.node)}); using the socket's own value")
             values.append(socket.default_value)
     color, strength = values
     try:
@@ -370,7 +466,7 @@ def export_light(tc_scene, obj, matrix, reporter):
 
 
 def _background_value(socket, world, what, reporter):
-    source = _follow(socket)
+    source = source_socket(socket)
     if source is not None:
         if source.node.type in {'RGB', 'VALUE'} and not source.node.mute:
             return source.default_value
@@ -382,9 +478,7 @@ def _background_value(socket, world, what, reporter):
 
 def _environment_texture(world, node, output, textures, reporter):
     """The texture id of an Environment Texture node feeding the Background Color, or None."""
-    what = f"World '{world.name}': {_node_label(node)}"
-    if textures is None:
-        return None
+    what = f"World '{world.name}': {node_label(node)}"
     if output.identifier != "Color":
         reporter.warning(f"{what}: only its Color output is supported; using the Background "
                          f"colour")
@@ -397,9 +491,9 @@ def _environment_texture(world, node, output, textures, reporter):
                          f"not supported (only equirectangular); using the Background colour")
         return None
     vector = node.inputs.get("Vector")
-    src = _follow(vector) if vector is not None else None
+    src = source_socket(vector) if vector is not None else None
     if src is not None:
-        reporter.warning(f"{what}: the Vector input is linked to {_node_label(src.node)}; "
+        reporter.warning(f"{what}: the Vector input is linked to {node_label(src.node)}; "
                          f"Torrance does not support a mapping or rotation of the environment "
                          f"and uses the default one")
     interpolation = node.interpolation
@@ -408,11 +502,11 @@ def _environment_texture(world, node, output, textures, reporter):
     return textures.texture(node.image, interpolation)
 
 
-def world_background(world, reporter, textures=None):
+def world_background(world, reporter, textures):
     """(color, strength, texture id or None) of the world's background.
 
-    The texture is an equirectangular Environment Texture linked to the Background Color
-    (with `textures`, a TextureTable); color is then the socket's own value (unused).
+    The texture (from `textures`, a TextureTable) is an equirectangular Environment Texture
+    linked to the Background Color; color is then the socket's own value (unused).
     """
     if world is None:
         return (0.0, 0.0, 0.0), 0.0, None
@@ -424,7 +518,7 @@ def world_background(world, reporter, textures=None):
         reporter.info(f"World '{world.name}' has no World Output node: black background")
         return (0.0, 0.0, 0.0), 0.0, None
     surface = output.inputs.get("Surface")
-    source = _follow(surface) if surface is not None else None
+    source = source_socket(surface) if surface is not None else None
     if source is None:
         return (0.0, 0.0, 0.0), 0.0, None
     node = source.node
@@ -434,8 +528,8 @@ def world_background(world, reporter, textures=None):
         return fallback
     texture = None
     color_socket = node.inputs["Color"]
-    color_source = _follow(color_socket)
-    if (textures is not None and color_source is not None and not color_source.node.mute
+    color_source = source_socket(color_socket)
+    if (color_source is not None and not color_source.node.mute
             and color_source.node.bl_idname == 'ShaderNodeTexEnvironment'):
         texture = _environment_texture(world, color_source.node, color_source, textures, reporter)
         color = color_socket.default_value
@@ -449,13 +543,7 @@ def world_background(world, reporter, textures=None):
     return color, float(strength), texture
 
 
-def world_radiance(world, reporter):
-    """(color, strength) of the uniform background (textures not considered)."""
-    color, strength, _texture = world_background(world, reporter)
-    return color, strength
-
-
-def export_world(tc_scene, world, reporter, textures=None):
+def export_world(tc_scene, world, reporter, textures):
     color, strength, texture = world_background(world, reporter, textures)
     if not math.isfinite(strength) or (texture is None and not all(math.isfinite(c) for c in color)):
         reporter.warning("The world colour is not finite: black background")
@@ -520,7 +608,7 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
     export_camera(tc_scene, cam_obj, reporter, engine)
     export_world(tc_scene, scene.world, reporter, textures)
 
-    geometry_cache = {}
+    meshes = MeshCache()
     unsupported_types = set()
     last_poll = time.perf_counter()
     for inst in depsgraph.object_instances:
@@ -528,71 +616,25 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
             last_poll = time.perf_counter()       # Esc during a long export, polled at 10 Hz
             if should_stop():
                 raise Cancelled()
+        role = instance_role(inst)
         obj = inst.object
-        kind = obj.type
-        if kind == 'LIGHT':
+        if role == 'LIGHT':
             if export_light(tc_scene, obj, inst.matrix_world.copy(), reporter):
                 stats.lights += 1
-            continue
-        if kind not in MESH_TYPES:
-            if kind not in {'CAMERA', 'EMPTY', 'ARMATURE', 'LATTICE', 'LIGHT_PROBE', 'SPEAKER',
-                            'GPENCIL'} and kind not in unsupported_types:
-                unsupported_types.add(kind)
-                reporter.warning(f"Torrance does not render objects of type {kind} "
-                                 f"(e.g. '{obj.name}')")
-            continue
-        if kind != 'MESH':
-            # As Cycles 3.x: curves, surfaces, metaballs and text are evaluated to a mesh that
-            # the depsgraph lists as a separate MESH instance (parent = the object). Only that
-            # one is exported, or the geometry would be there twice.
-            continue
-        if not inst.is_instance and not inst.show_self:
-            continue
-        if not _is_visible(obj):
-            continue
-
-        matrix = inst.matrix_world.copy()        # the instance struct dies after this step
-        name = obj.name
-        slots = [slot.material for slot in obj.material_slots]
-        # Material per slot (read before the mesh: textured materials need the UVs).
-        if slots:
-            slot_to_material = np.array([materials.index(m) for m in slots], dtype=np.int32)
-        else:
-            slot_to_material = np.array([materials.default_index()], dtype=np.int32)
-        needs_uvs = materials.needs_uvs(slot_to_material.tolist())
-        # Instances of one mesh (collection instances, particles, geometry nodes) are read once.
-        key = (obj.as_pointer(), obj.data.as_pointer() if obj.data is not None else 0)
-        if key in geometry_cache:
-            local = geometry_cache[key]
-        else:
-            local = read_local_mesh(obj, uvs=needs_uvs)
-            geometry_cache[key] = local
-            if local is not None and needs_uvs and local.corner_uvs is None:
-                reporter.warning(f"Object '{name}' has textured materials but no UV map: "
-                                 f"its textures are read at UV (0, 0)")
-        if local is None:
-            continue
-
-        pos, tris, corner, keep, dropped = world_mesh(local, matrix)
-        if dropped:
-            reporter.warning(f"Object '{name}': {dropped} triangle(s) with NaN/Inf vertex "
-                             f"positions dropped (or vertices beyond {MAX_COORDINATE:g} m)")
-        if len(tris) == 0:
-            continue
-
-        # Material per triangle: material_index clamped to the slots, like Cycles.
-        idx = np.clip(local.material_slots[keep], 0, len(slot_to_material) - 1)
-        mat_idx = slot_to_material[idx]
-        extra = {}
-        uvs = world_uvs(local, matrix, keep) if needs_uvs else None
-        if uvs is not None:
-            extra["corner_uvs"] = uvs          # only when used: the API before textures had none
-        tc_scene.add_mesh(pos, tris, corner_normals=corner,
-                          material_indices=np.ascontiguousarray(mat_idx, dtype=np.int32),
-                          **extra)
-        stats.objects += 1
-        stats.names.append(name)
-        stats.triangles += len(tris)
+        elif role == 'UNSUPPORTED':
+            report_unsupported(obj, unsupported_types, reporter)
+        elif role == 'MESH':
+            matrix = inst.matrix_world.copy()    # the instance struct dies after this step
+            slots = [slot.material for slot in obj.material_slots]
+            # Instances of one mesh (collection instances, particles, geometry nodes) are
+            # read once.
+            key = (obj.as_pointer(), obj.data.as_pointer() if obj.data is not None else 0)
+            triangles = export_mesh(tc_scene, obj, matrix, slots, materials, meshes, key,
+                                    reporter)
+            if triangles:
+                stats.objects += 1
+                stats.names.append(obj.name)
+                stats.triangles += triangles
 
     stats.materials = len(materials.indices) + (1 if materials._default is not None else 0)
     stats.textures = textures.loaded

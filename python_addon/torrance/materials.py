@@ -26,6 +26,8 @@ import os
 
 import numpy as np
 
+from .nodes import node_label, source_socket
+
 # Cycles' surface for objects without material or with an empty slot is a 0.8 grey diffuse;
 # ours is the neutral Principled default.
 DEFAULT_MATERIAL = dict(
@@ -52,37 +54,6 @@ _IGNORED_PRINCIPLED_INPUTS = (
 _CONSTANT_NODES = {'RGB', 'VALUE'}
 
 
-class Reporter:
-    """Collects messages for engine.report(); each distinct message is reported once."""
-
-    def __init__(self, engine=None):
-        self.engine = engine
-        self.seen = set()
-        self.messages = []          # (level, text), in order
-
-    def report(self, level, text):
-        if (level, text) in self.seen:
-            return
-        self.seen.add((level, text))
-        self.messages.append((level, text))
-        if self.engine is not None:
-            try:
-                self.engine.report({level}, text)
-            except Exception:        # never let reporting break a render
-                print(f"Torrance {level}: {text}")
-        else:
-            print(f"Torrance {level}: {text}")
-
-    def info(self, text):
-        self.report('INFO', text)
-
-    def warning(self, text):
-        self.report('WARNING', text)
-
-    def error(self, text):
-        self.report('ERROR', text)
-
-
 def _finite_or(value, fallback):
     try:
         v = float(value)
@@ -103,35 +74,6 @@ def _color3(value, fallback):
     if len(c) < 3:
         return fallback
     return tuple(_finite_or(x, f) for x, f in zip(c, fallback))
-
-
-def _active_links(socket):
-    return [link for link in socket.links
-            if link.is_valid and not link.is_muted]
-
-
-def _follow(socket):
-    """The output socket feeding an input socket, through reroutes; None when unlinked."""
-    seen = 0
-    while True:
-        links = _active_links(socket) if socket.is_linked else []
-        if not links:
-            return None
-        from_socket = links[0].from_socket
-        node = from_socket.node
-        if node.bl_idname == 'NodeReroute' and seen < 1000:
-            seen += 1
-            socket = node.inputs[0]
-            continue
-        return from_socket
-
-
-def _node_label(node):
-    """'Name' or 'Name' (Type) when the name does not say the type."""
-    name = node.label or node.name
-    if name == node.bl_label or name.startswith(node.bl_label + "."):
-        return f"'{name}'"
-    return f"'{name}' ({node.bl_label})"
 
 
 # --------------------------------------------------------------------------------------------
@@ -273,9 +215,9 @@ class TextureTable:
 class MaterialReader:
     """Reads one Blender material into a dict of add_material() arguments."""
 
-    def __init__(self, reporter, textures=None):
+    def __init__(self, reporter, textures):
         self.reporter = reporter
-        self.textures = textures         # TextureTable, or None: image textures unsupported
+        self.textures = textures         # TextureTable (the ui panels: a dry-run stand-in)
 
     def _socket_value(self, mat, node, name, fallback):
         """The value of input `name` of `node`: its default, or a constant node it is linked to."""
@@ -292,33 +234,29 @@ class MaterialReader:
         socket = node.inputs.get(name)
         if socket is None:
             return fallback, -1
-        source = _follow(socket)
+        source = source_socket(socket)
         if source is None:
             return socket.default_value, -1
         src_node = source.node
         if src_node.mute:
             self.reporter.warning(
-                f"Material '{mat.name}': input '{name}' of {_node_label(node)} is linked to the "
-                f"muted node {_node_label(src_node)}; using the socket's own value")
+                f"Material '{mat.name}': input '{name}' of {node_label(node)} is linked to the "
+                f"muted node {node_label(src_node)}; using the socket's own value")
             return socket.default_value, -1
         if src_node.type in _CONSTANT_NODES:
             return source.default_value, -1
         if textures and src_node.bl_idname == 'ShaderNodeTexImage':
-            tid = self._image_node(mat, src_node, source, f"input '{name}' of {_node_label(node)}")
+            tid = self._image_node(mat, src_node, source, f"input '{name}' of {node_label(node)}")
             return socket.default_value, (-1 if tid is None else tid)
         self.reporter.warning(
-            f"Material '{mat.name}': input '{name}' of {_node_label(node)} is linked to "
-            f"{_node_label(src_node)}, which Torrance does not support; using the "
+            f"Material '{mat.name}': input '{name}' of {node_label(node)} is linked to "
+            f"{node_label(src_node)}, which Torrance does not support; using the "
             f"socket's own value")
         return socket.default_value, -1
 
     def _image_node(self, mat, node, output, where):
         """The texture id of an Image Texture node feeding `where` (None when unusable)."""
-        what = f"Material '{mat.name}': {_node_label(node)} (feeding {where})"
-        if self.textures is None:
-            self.reporter.warning(f"{what}: image textures are not supported here; using the "
-                                  f"socket's own value")
-            return None
+        what = f"Material '{mat.name}': {node_label(node)} (feeding {where})"
         if output.identifier != "Color":
             self.reporter.warning(f"{what}: only the Color output of an Image Texture is "
                                   f"supported, not '{output.name}'; using the socket's own value")
@@ -338,48 +276,48 @@ class MaterialReader:
             interpolation = "Linear"
         vector = node.inputs.get("Vector")
         if vector is not None:
-            src = _follow(vector)
+            src = source_socket(vector)
             if src is not None and not _is_default_uv(src):
                 self.reporter.warning(
-                    f"{what}: the Vector input is linked to {_node_label(src.node)}, which Torrance "
+                    f"{what}: the Vector input is linked to {node_label(src.node)}, which Torrance "
                     f"does not support; using the mesh's active render UV map")
             elif src is not None and src.node.bl_idname == 'ShaderNodeUVMap' and src.node.uv_map:
                 self.reporter.info(
-                    f"{what}: {_node_label(src.node)} names UV map '{src.node.uv_map}'; Torrance "
+                    f"{what}: {node_label(src.node)} names UV map '{src.node.uv_map}'; Torrance "
                     f"uses each mesh's active render UV map")
         return self.textures.texture(node.image, interpolation)
 
     def _normal_map(self, mat, node):
         """(texture id, strength) of a Normal Map node feeding the Normal of `node`, or None."""
         socket = node.inputs.get("Normal")
-        source = _follow(socket) if socket is not None else None
+        source = source_socket(socket) if socket is not None else None
         if source is None:
             return None
         src = source.node
-        where = f"Material '{mat.name}': input 'Normal' of {_node_label(node)}"
+        where = f"Material '{mat.name}': input 'Normal' of {node_label(node)}"
         if src.mute or src.bl_idname != 'ShaderNodeNormalMap':
-            self.reporter.warning(f"{where} is linked to {_node_label(src)}, which Torrance does not "
+            self.reporter.warning(f"{where} is linked to {node_label(src)}, which Torrance does not "
                                   f"support (only a tangent-space Normal Map); the normal is ignored")
             return None
         if src.space != 'TANGENT':
-            self.reporter.warning(f"{where}: {_node_label(src)} in {src.space.lower()} space is not "
+            self.reporter.warning(f"{where}: {node_label(src)} in {src.space.lower()} space is not "
                                   f"supported (only tangent space); the normal is ignored")
             return None
         if src.uv_map:
-            self.reporter.info(f"{where}: {_node_label(src)} names UV map '{src.uv_map}'; Torrance "
+            self.reporter.info(f"{where}: {node_label(src)} names UV map '{src.uv_map}'; Torrance "
                                f"uses each mesh's active render UV map")
         strength = _finite_or(self._socket_value(mat, src, "Strength", 1.0), 1.0)
         color = src.inputs.get("Color")
-        color_source = _follow(color) if color is not None else None
+        color_source = source_socket(color) if color is not None else None
         if color_source is None:
             return None                  # the default colour (0.5, 0.5, 1) is the unperturbed normal
         if color_source.node.mute or color_source.node.bl_idname != 'ShaderNodeTexImage':
-            self.reporter.warning(f"{where}: the Color of {_node_label(src)} is linked to "
-                                  f"{_node_label(color_source.node)}, which Torrance does not "
+            self.reporter.warning(f"{where}: the Color of {node_label(src)} is linked to "
+                                  f"{node_label(color_source.node)}, which Torrance does not "
                                   f"support; the normal is ignored")
             return None
         tid = self._image_node(mat, color_source.node, color_source,
-                               f"input 'Color' of {_node_label(src)}")
+                               f"input 'Color' of {node_label(src)}")
         if tid is None or strength == 0.0:
             return None
         return tid, strength
@@ -411,13 +349,13 @@ class MaterialReader:
         if output is None:
             return self._neutral(mat, "no active Material Output node")
         surface = output.inputs.get("Surface")
-        source = _follow(surface) if surface is not None else None
+        source = source_socket(surface) if surface is not None else None
         if source is None:
             return self._neutral(mat, "nothing is connected to the Surface of the Material Output")
 
         node = source.node
         if node.mute:
-            return self._neutral(mat, f"the surface node {_node_label(node)} is muted")
+            return self._neutral(mat, f"the surface node {node_label(node)} is muted")
         kind = node.bl_idname
         if kind == 'ShaderNodeBsdfPrincipled':
             return self._principled(mat, node)
@@ -426,7 +364,7 @@ class MaterialReader:
         if kind == 'ShaderNodeEmission':
             return self._emission(mat, node)
         return self._neutral(
-            mat, f"the surface shader {_node_label(node)} is not supported "
+            mat, f"the surface shader {node_label(node)} is not supported "
                  f"(Torrance reads Principled BSDF, Diffuse BSDF and Emission)")
 
     def _principled(self, mat, node):
@@ -526,9 +464,9 @@ def uses_textures(m):
 class MaterialTable:
     """Adds each Blender material to a tc.Scene once; maps materials to indices."""
 
-    def __init__(self, tc_scene, reporter, textures=None):
+    def __init__(self, tc_scene, reporter, textures):
         self.scene = tc_scene
-        self.textures = textures if textures is not None else TextureTable(tc_scene, reporter)
+        self.textures = textures
         self.reader = MaterialReader(reporter, self.textures)
         self.indices = {}
         self.textured = set()     # indices of materials that use textures
@@ -546,16 +484,17 @@ class MaterialTable:
         idx = self.indices.get(key)
         if idx is None:
             args = self.reader.read(mat)
+            idx = self.scene.add_material(**args)
             if uses_textures(args):
-                idx = self.scene.add_material(**args)
                 self.textured.add(idx)
-            else:
-                # Without textures only the plain arguments (the API before textures).
-                idx = self.scene.add_material(**{k: v for k, v in args.items()
-                                                 if k not in _TEXTURE_KEYS
-                                                 and k != 'normal_strength'})
             self.indices[key] = idx
         return idx
+
+    def slot_indices(self, slots):
+        """int32 material index per slot (materials or None); one default entry without slots."""
+        if not slots:
+            return np.array([self.default_index()], dtype=np.int32)
+        return np.array([self.index(m) for m in slots], dtype=np.int32)
 
     def needs_uvs(self, indices):
         """Whether any of these material indices uses a texture."""

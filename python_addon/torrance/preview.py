@@ -39,8 +39,8 @@ def _artist_settings():
 def preview_settings(settings, artist=None):
     """The preview policy: `artist` (or `settings`) with samples and bounces capped."""
     src = artist if artist is not None else settings
-    samples = max(1, int(getattr(src, "preview_samples", 16)))
-    bounces = min(int(src.max_bounces), int(getattr(src, "preview_max_bounces", 4)))
+    samples = max(1, int(src.preview_samples))
+    bounces = min(int(src.max_bounces), int(src.preview_max_bounces))
     return PreviewSettings(src, samples=samples, max_bounces=max(0, bounces),
                            use_progressive_display=True)
 

@@ -6,8 +6,8 @@ import traceback
 
 import numpy as np
 
-from . import export, passes
-from .materials import Reporter
+from . import export, passes, preview
+from .reporting import Reporter
 
 _core = None
 _core_error = None
@@ -182,12 +182,8 @@ def render(engine, depsgraph):
 
 def _render(engine, depsgraph, reporter):
     scene = depsgraph.scene
-    ts = scene.torrance
-    try:                                  # material/world/light previews: capped samples, bounces
-        from . import preview
-        ts = preview.render_settings(engine, ts)
-    except ImportError:
-        pass
+    # Material/world/light previews: capped samples and bounces.
+    ts = preview.render_settings(engine, scene.torrance)
     rd = scene.render
     width, height = int(engine.resolution_x), int(engine.resolution_y)
     window = render_window(rd, width, height)
@@ -210,14 +206,13 @@ def _render(engine, depsgraph, reporter):
 
     view_layer = depsgraph.view_layer
     wanted = passes.enabled_passes(view_layer)
-    available = {name for name, _channels in getattr(tc, "PASSES", ())}
+    available = {name for name, _channels in tc.PASSES}
     core_passes = [p.core for p in wanted if p.core in available]
     unsupported = passes.unsupported_enabled(view_layer)
     if unsupported:
         names = ", ".join(f.replace("use_pass_", "").replace("_", " ") for f in unsupported)
         reporter.info(f"Torrance does not render these passes of view layer "
                       f"'{view_layer.name}': {names}")
-    extra = {"passes": core_passes} if core_passes else {}
 
     threads = int(rd.threads) if rd.threads_mode == 'FIXED' else 0
     settings = tc.RenderSettings(
@@ -231,7 +226,7 @@ def _render(engine, depsgraph, reporter):
         window=None if (x0, y0, x1, y1) == (0, 0, width, height)
         else (x0, height - y1, x1, height - y0),
         threads=threads,
-        **extra,
+        passes=core_passes,
     )
 
     session.begin()
@@ -247,8 +242,7 @@ def _render(engine, depsgraph, reporter):
         if nonfinite:
             reporter.warning(f"Torrance: {nonfinite} NaN/Inf pixel values in the result "
                              f"were replaced by 0")
-        result_passes = dict(getattr(result, "passes", {}) or {}) if core_passes else {}
-        session.write(image, result_passes)
+        session.write(image, result.passes if core_passes else {})
         if session.missing_passes:
             reporter.warning(f"Torrance: the render result has no pass(es) "
                              f"{', '.join(session.missing_passes)}; they were not written")
@@ -264,7 +258,7 @@ def _render(engine, depsgraph, reporter):
     engine.update_progress(1.0)
     engine.update_stats("", msg)
     print(msg)
-    nonfinite = int(getattr(result, "nonfinite_samples", 0))
+    nonfinite = int(result.nonfinite_samples)
     last_stats["nonfinite_samples"] = nonfinite
     if nonfinite:
         reporter.warning(f"Torrance discarded {nonfinite} NaN/Inf samples")

@@ -11,7 +11,7 @@ import bpy
 from bpy.types import Panel
 
 from . import export
-from .materials import Reporter
+from .reporting import Reporter
 
 ENGINE = 'TORRANCE'
 
@@ -83,11 +83,7 @@ def material_messages(mat):
     reporter = Reporter(None)
     reporter.report = _collect(reporter)
     try:
-        try:
-            reader = MaterialReader(reporter, _DryTextures())
-        except TypeError:
-            reader = MaterialReader(reporter)
-        reader.read(mat)
+        MaterialReader(reporter, _DryTextures()).read(mat)
     except Exception as exc:
         reporter.messages.append(('WARNING', f"could not be read: {exc}"))
     return _strip(reporter.messages, f"Material '{mat.name}': ")
@@ -97,10 +93,7 @@ def world_messages(world):
     reporter = Reporter(None)
     reporter.report = _collect(reporter)
     try:
-        if hasattr(export, "world_background"):
-            export.world_background(world, reporter, _DryTextures())
-        else:
-            export.world_radiance(world, reporter)
+        export.world_background(world, reporter, _DryTextures())
     except Exception as exc:
         reporter.messages.append(('WARNING', f"could not be read: {exc}"))
     return _strip(reporter.messages, f"World '{world.name}': ")
@@ -121,12 +114,11 @@ def _strip(messages, prefix):
 
 def light_messages(light):
     messages = []
-    supported = getattr(export, "SUPPORTED_LIGHTS", {'SUN', 'POINT'})
-    if light.type not in supported:
-        names = ", ".join(sorted(t.title() for t in supported))
+    if light.type not in export.SUPPORTED_LIGHTS:
+        names = ", ".join(sorted(t.title() for t in export.SUPPORTED_LIGHTS))
         messages.append(('WARNING', f"{light.type.title()} lights are not rendered by Torrance "
                                     f"(supported: {names})"))
-    if light.use_nodes and light.node_tree is not None and hasattr(export, "light_node_factor"):
+    if light.use_nodes and light.node_tree is not None:
         reporter = Reporter(None)
         reporter.report = _collect(reporter)
 
@@ -137,8 +129,6 @@ def light_messages(light):
         except Exception:
             pass
         messages += _strip(reporter.messages, f"Light '{light.name}': ")
-    elif light.use_nodes and light.node_tree is not None:
-        messages.append(('INFO', "Light node trees are ignored"))
     if light.type == 'AREA' and getattr(getattr(light, "cycles", None), "is_portal", False):
         messages.append(('INFO', "Portals are not used (they emit no light)"))
     return messages
@@ -161,8 +151,6 @@ def scene_messages(scene):
     """Scene-level limitations: unsupported object and light types, features not rendered."""
     messages = []
     rd = scene.render
-    supported_lights = getattr(export, "SUPPORTED_LIGHTS", {'SUN', 'POINT'})
-    skipped_types = {'CAMERA', 'EMPTY', 'ARMATURE', 'LATTICE', 'LIGHT_PROBE', 'SPEAKER'}
     unsupported, lights = {}, {}
     for i, ob in enumerate(scene.objects):
         if i >= _SCENE_LIMIT:
@@ -170,9 +158,9 @@ def scene_messages(scene):
         if ob.hide_render:
             continue
         if ob.type == 'LIGHT':
-            if ob.data is not None and ob.data.type not in supported_lights:
+            if ob.data is not None and ob.data.type not in export.SUPPORTED_LIGHTS:
                 lights.setdefault(ob.data.type, ob.name)
-        elif ob.type not in export.MESH_TYPES and ob.type not in skipped_types:
+        elif ob.type not in export.MESH_TYPES and ob.type not in export.SKIPPED_TYPES:
             unsupported.setdefault(ob.type, ob.name)
     for kind, name in sorted(lights.items()):
         messages.append(('WARNING', f"{kind.title()} lights are not rendered (e.g. '{name}')"))

@@ -1,0 +1,31 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Reading Blender node graphs: what feeds a socket, and how to name a node in a message."""
+
+
+def _active_links(socket):
+    return [link for link in socket.links
+            if link.is_valid and not link.is_muted]
+
+
+def source_socket(socket):
+    """The output socket feeding an input socket, through reroutes; None when unlinked."""
+    seen = 0
+    while True:
+        links = _active_links(socket) if socket.is_linked else []
+        if not links:
+            return None
+        from_socket = links[0].from_socket
+        node = from_socket.node
+        if node.bl_idname == 'NodeReroute' and seen < 1000:
+            seen += 1
+            socket = node.inputs[0]
+            continue
+        return from_socket
+
+
+def node_label(node):
+    """'Name' or 'Name' (Type) when the name does not say the type."""
+    name = node.label or node.name
+    if name == node.bl_label or name.startswith(node.bl_label + "."):
+        return f"'{name}'"
+    return f"'{name}' ({node.bl_label})"

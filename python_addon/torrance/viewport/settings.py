@@ -1,0 +1,50 @@
+# SPDX-License-Identifier: Apache-2.0
+"""What the viewport render reads from the scene and from the 3D view's shading."""
+
+UNLIMITED_SAMPLES = 1 << 16     # "0 = unlimited" viewport samples
+
+
+def viewport_settings(scene):
+    """The RenderSettings keywords (without width/height) of the viewport, from the scene."""
+    ts = scene.torrance
+    rd = scene.render
+    samples = int(ts.viewport_samples)
+    return dict(
+        samples=UNLIMITED_SAMPLES if samples <= 0 else samples,
+        max_bounces=int(ts.max_bounces),
+        seed=int(ts.seed),
+        filter_width=float(ts.filter_width),
+        transparent_background=bool(rd.film_transparent),
+        brdf_model=str(ts.brdf_model),
+        threads=int(rd.threads) if rd.threads_mode == 'FIXED' else 0,
+    )
+
+
+def start_resolution(scene):
+    """The longer side of the viewport's first, coarse image, in pixels."""
+    return max(8, int(scene.torrance.viewport_start_resolution))
+
+
+def shading_options(context):
+    """The Rendered-mode shading choices of the 3D view: scene world/lights or a studio HDRI."""
+    options = dict(use_scene_world=True, use_scene_lights=True)
+    space = getattr(context, "space_data", None)
+    shading = getattr(space, "shading", None)
+    if shading is None:
+        return options
+    options["use_scene_world"] = bool(shading.use_scene_world_render)
+    options["use_scene_lights"] = bool(shading.use_scene_lights_render)
+    if not options["use_scene_world"]:
+        path = ""
+        try:
+            prefs = context.preferences
+            for light in prefs.studio_lights:
+                if light.type == 'WORLD' and light.name == shading.studio_light:
+                    path = light.path
+                    break
+        except Exception:
+            path = ""
+        options.update(studio_path=path, studio_strength=float(shading.studiolight_intensity),
+                       studio_rotation=float(shading.studiolight_rotate_z),
+                       studio_background=float(shading.studiolight_background_alpha) >= 0.5)
+    return options
