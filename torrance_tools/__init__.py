@@ -11,6 +11,8 @@ what the headless tests share.
     agreement         the Torrance-vs-Cycles agreement scene and its pass/fail criteria
     testing           what the headless Blender tests share (runner, add-on access, shortcuts)
     sweep/            headless material-input sweeps: runner, sheet, experiments, report
+    farm/             sweeps and tiled stills on Slurm (scripts/farm): job arrays, collecting
+    slurm_local       a throw-away Slurm cluster on loopback, for tests
 
 Importable in every Blender run of scripts/blender (a symlink in its user scripts' modules
 folder) and, for /usr/bin/python3, through PYTHONPATH set by the scripts/ wrappers and CMake.

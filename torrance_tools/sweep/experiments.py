@@ -4,7 +4,7 @@
 Run through scripts/experiments (which builds first); by hand:
     python3 -m torrance_tools.sweep.experiments [--out DIR] [--final] [--publish]
                  [--no-cycles] [--no-principled] [--brdf-model M] [--size WxH] [--samples N]
-                 [--only ID,...] [--report-only]
+                 [--only ID,...] [--report-only] [--farm slurm]
 
 For each experiment it runs torrance_tools/sweep/runner.py in a Blender process on a scene built
 by scenes/make_<scene>.py — with Torrance (its PAPER model: the paper's Cook-Torrance), with Torrance's
@@ -114,6 +114,8 @@ def parse_args(argv):
                    help="also copy the report, sheets and plots to docs/experiments/")
     p.add_argument("--report-only", action="store_true",
                    help="do not render: measure the existing outputs and rewrite the report")
+    p.add_argument("--farm", choices=["slurm"],
+                   help="render every sweep as a Slurm job array (scripts/farm; docs/farm.md)")
     return p.parse_args(argv)
 
 
@@ -173,6 +175,9 @@ def main(argv=None):
             timings = json.load(f)
     t_start = time.perf_counter()
 
+    if args.farm and not args.report_only:
+        from torrance_tools.farm.experiments import ExperimentFarm
+        farm = ExperimentFarm()
     if not args.report_only:
         timings = dict(scenes={}, sweeps={}, size=[width, height], samples=samples)
         scene_dir = os.path.join(out, "scenes")
@@ -206,8 +211,10 @@ def main(argv=None):
                     cmd += ["--brdf-model", model]
                 for sock, value in exp["set"].items():
                     cmd += ["--set", f"{sock}={value:g}"]
-                timings["sweeps"][f"{key}/{exp['id']}"] = run_logged(
+                timings["sweeps"][f"{key}/{exp['id']}"] = (farm.run if args.farm else run_logged)(
                     cmd, os.path.join(out, "logs", f"{exp['id']}_{key}.log"), prefix="    ")
+        if args.farm:       # the farm renders; the sweeps' outputs are collected as locally
+            timings["sweeps"].update(farm.finish())
         timings["render_wall_seconds"] = time.perf_counter() - t_start
         with open(timings_path, "w") as f:
             json.dump(timings, f, indent=1)

@@ -23,6 +23,7 @@ How the frames get rendered:
 Outputs in --out DIR:
     sweep.json                  the plan: material, inputs, each frame's values, engine, samples
     frames/frame_####.exr       linear float RGBA, written by Blender's render pipeline
+                                (under a dot-prefixed partial name, renamed when complete)
     frames/frame_####.png       sRGB 8 bit (Standard view, the scene's exposure)
     frames/frame_####.json      the frame's inputs, samples, wall time
     masks.npz                   per pixel (row 0 = top): material / object index seen through the
@@ -227,6 +228,14 @@ def configure(scene, args, frames_dir):
 # --------------------------------------------------------------------------------------------
 # Recording frames
 
+def partial_path(path):
+    """Where a file is written before it is renamed to path (atomic: a crash leaves no half file
+    under the final name). Same folder and extension, a leading dot: collectors skip it."""
+    folder, name = os.path.split(path)
+    stem, ext = os.path.splitext(name)
+    return os.path.join(folder, f".{stem}.part{os.getpid()}{ext}")
+
+
 class Recorder:
     """Per rendered frame: a JSON record, the PNG and a progress line; the sheet at the end."""
 
@@ -254,9 +263,13 @@ class Recorder:
             record["render_seconds"] = stats.get("seconds")
         elif engine == 'CYCLES':
             record["samples_done"] = int(scene.cycles.samples)
-        with open(meta, "w") as f:
+        tmp = partial_path(meta)
+        with open(tmp, "w") as f:
             json.dump(record, f, indent=1)
-        sheet.write_png(png, read_exr(exr), self.plan["exposure"])
+        os.replace(tmp, meta)
+        tmp = partial_path(png)
+        sheet.write_png(tmp, read_exr(exr), self.plan["exposure"])
+        os.replace(tmp, png)
         self.done += 1
         label = sheet.frame_label(record["inputs"]) or "as is"
         spp = f", {record['samples_done']} spp" if record["samples_done"] is not None else ""
@@ -264,20 +277,32 @@ class Recorder:
               f"-> {png}", flush=True)
 
     # -- handlers for renders started by Blender's own -f / -a ---------------------------------
-    def install(self):
+    def install(self, collect=True):
+        final = scene_pattern = None
+
         def pre(scene, *_):
+            nonlocal final, scene_pattern       # Blender writes the frame under a partial name
+            if scene_pattern is None:
+                scene_pattern = scene.render.filepath
+            final = sheet.frame_paths(self.out_dir, scene.frame_current)[0]
+            pattern = os.path.join(os.path.dirname(final), "frame_####.exr")
+            scene.render.filepath = partial_path(pattern)       # Blender fills in the frame
             self.t_start = time.perf_counter()
 
         def write(scene, *_):
             t = time.perf_counter() - (self.t_start or time.perf_counter())
+            scene.render.filepath = scene_pattern
+            if os.path.exists(partial_path(final)):
+                os.replace(partial_path(final), final)
             self.frame_done(scene, scene.frame_current, t)
 
         def complete(scene, *_):
             sheet.collect(self.out_dir)
 
-        self.handlers = [(bpy.app.handlers.render_pre, pre), (bpy.app.handlers.render_write, write),
-                         (bpy.app.handlers.render_complete, complete),
-                         (bpy.app.handlers.render_cancel, complete)]
+        self.handlers = [(bpy.app.handlers.render_pre, pre), (bpy.app.handlers.render_write, write)]
+        if collect:
+            self.handlers += [(bpy.app.handlers.render_complete, complete),
+                              (bpy.app.handlers.render_cancel, complete)]
         for lst, fn in self.handlers:
             lst.append(fn)
 
@@ -415,9 +440,12 @@ def run(args):
     try:
         for frame in selected:
             scene.frame_set(frame)
-            rd.filepath = os.path.join(frames_dir, f"frame_{frame:04d}")   # a still: no '#'
+            exr = sheet.frame_paths(out_dir, frame)[0]
+            rd.filepath = partial_path(exr)        # a still: no '#'; renamed when complete
             t = time.perf_counter()
             bpy.ops.render.render(write_still=True)
+            if os.path.exists(rd.filepath):
+                os.replace(rd.filepath, exr)
             recorder.frame_done(scene, frame, time.perf_counter() - t)
     finally:
         rd.filepath = pattern
