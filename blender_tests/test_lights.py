@@ -39,7 +39,6 @@ import math
 import time
 
 import bpy
-import numpy as np
 
 from torrance_tools import agreement, render_settings, testing
 from torrance_tools.testing import check

@@ -12,7 +12,6 @@
 * the preview policy; the panels' messages.
 """
 
-import math
 import os
 import time
 
@@ -129,10 +128,10 @@ def test_camera_derivation(tv, tc, scene):
     for (w, h) in ((640, 480), (300, 500)):
         for (tx, cx, cy) in ((0.6, 0.0, 0.0), (0.8, 0.25, -0.15)):
             ty = tx * h / w                          # square pixels, as in every 3D view
-            l, r, b, t = cx - tx, cx + tx, cy - ty, cy + ty
+            left, right, bottom, top = cx - tx, cx + tx, cy - ty, cy + ty
             n, f = 0.01, 1000.0
-            win = Matrix(((2 * n / ((r - l) * n), 0, (r + l) / (r - l), 0),
-                          (0, 2 * n / ((t - b) * n), (t + b) / (t - b), 0),
+            win = Matrix(((2 * n / ((right - left) * n), 0, (right + left) / (right - left), 0),
+                          (0, 2 * n / ((top - bottom) * n), (top + bottom) / (top - bottom), 0),
                           (0, 0, -(f + n) / (f - n), -2 * f * n / (f - n)),
                           (0, 0, -1, 0)))
             view_m = (Matrix.Translation((0.3, -5.0, 1.2)) @
@@ -219,10 +218,8 @@ def test_viewport_matches_final_render(tv, tc, scene):
     w, h = 192, 144
     scene.render.resolution_x, scene.render.resolution_y = w, h
     settings = tv.viewport_settings(scene)
-    t0 = time.perf_counter()
     state.ensure_render(camera_view(tv, scene, w, h), settings, start_res=64)
     levels = wait_done(state)
-    seconds = time.perf_counter() - t0
     st = state.render.stats()
     print(f"viewport {w}x{h}: images {levels}; first image {st['first_image_seconds']:.3f} s, "
           f"full resolution {st['full_image_seconds']:.3f} s, {settings['samples']} samples "
@@ -274,7 +271,6 @@ def test_restarts_and_cache(tv, tc, scene):
         check(not state.ensure_render(camera_view(tv, scene, w, h), settings),
               "the same view does not restart")
         # A changed view restarts (without a new scene).
-        builds = state.cache.builds
         scene.camera.location.x += 0.05
         bpy.context.view_layer.update()
         view2 = camera_view(tv, scene, w, h)

@@ -49,7 +49,7 @@ def make_water(scene, water, rng):
     col_spacing = (0.8 * d + 1.5) * 2.0 / (nx - 1)
     spacing = np.maximum(row_spacing, col_spacing)[:, None]
     Z = np.zeros_like(X)
-    for lam, amp, ang, ph in zip(*waves(rng)):
+    for lam, amp, ang, ph in zip(*waves(rng), strict=True):
         k = 2 * np.pi / lam
         # Full amplitude where a wavelength spans >= 8 rows, none below 4 (smoothstep between).
         t = np.clip((lam / spacing - 4.0) / 4.0, 0.0, 1.0)

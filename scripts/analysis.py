@@ -48,7 +48,7 @@ def plot_terms(rows, out):
 
 def plot_slices(rows, out):
     fig, axes = plt.subplots(1, 2, figsize=(11, 3.8))
-    for ax, material in zip(axes, ["dielectric", "metal"]):
+    for ax, material in zip(axes, ["dielectric", "metal"], strict=True):
         for r in sorted({row["roughness"] for row in rows}):
             sel = [row for row in rows if row["material"] == material and row["roughness"] == r]
             theta = [float(s["theta_i_deg"]) for s in sel]
@@ -64,7 +64,7 @@ def plot_slices(rows, out):
 
 def plot_albedo(rows, out):
     fig, axes = plt.subplots(1, 2, figsize=(11, 3.8))
-    for ax, material in zip(axes, ["dielectric", "metal"]):
+    for ax, material in zip(axes, ["dielectric", "metal"], strict=True):
         for model, style in [("PAPER", "--"), ("PRINCIPLED", "-")]:
             for c in ["1", "0.5", "0.1"]:
                 sel = [row for row in rows if row["model"] == model and row["material"] == material

@@ -22,14 +22,13 @@ first image) and "dense" (the same with a 200k-triangle object), or --scenes.
 
 import argparse
 import json
-import math
 import os
 import statistics
 import sys
 import time
 
 import bpy
-from mathutils import Euler, Matrix, Vector
+from mathutils import Euler, Matrix
 
 from torrance_tools import testing
 
@@ -97,7 +96,7 @@ def bench_size(tv, tc, scene, width, height, repeats):
         r = state.render
         coarse = ("x".join(map(str, r.levels[0][:2])) +
                   (f"+{len(r.levels) - 2}" if len(r.levels) > 2 else "")) if len(r.levels) > 1 else "-"
-        wait(lambda: (r.poll() or True) and r.full_image_seconds is not None or r.error)
+        wait(lambda r=r: (r.poll() or True) and r.full_image_seconds is not None or r.error)
         firsts.append(r.first_image_seconds)
         fulls.append(r.full_image_seconds)
         time.sleep(0.3)                       # let it refine at full resolution

@@ -32,7 +32,6 @@ import subprocess
 import sys
 import time
 
-import bpy
 import numpy as np
 
 from torrance_tools import REPO as ROOT

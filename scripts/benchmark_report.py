@@ -14,6 +14,7 @@ grid of errors where both curves exist (geometric mean over the overlap, and at 
 reaches with 16, 128 and 1024 samples).
 """
 
+import itertools
 import json
 import math
 import os
@@ -46,7 +47,7 @@ def time_at_error(c, log_e):
     es = [p[1] for p in c]
     if log_e > es[0] or log_e < es[-1]:
         return None
-    for (t0, e0), (t1, e1) in zip(c, c[1:]):
+    for (t0, e0), (t1, e1) in itertools.pairwise(c):
         if e1 <= log_e <= e0:
             if e0 == e1:
                 return t0
@@ -107,7 +108,7 @@ def plot_scene(name, data, path):
                    alpha=0.35, lw=1, ms=3)
         corr = [(r["seconds"], r["rel_mse_corrected"]) for r in rows if r["rel_mse_corrected"] > 0]
         if corr:
-            ax1.loglog(*zip(*corr), marker=marker, color=color, lw=1.8, ms=5,
+            ax1.loglog(*zip(*corr, strict=True), marker=marker, color=color, lw=1.8, ms=5,
                        label=f"{engine.capitalize()}")
         for r in rows:
             if r["spp"] in (1, 16, 256, 1024) and r["rel_mse_corrected"] > 0:
@@ -140,7 +141,7 @@ def plot_references(names, path):
     import matplotlib.pyplot as plt
     import OpenImageIO as oiio
     fig, axes = plt.subplots(1, len(names), figsize=(2.2 * len(names), 2.0))
-    for ax, name in zip(np.atleast_1d(axes), names):
+    for ax, name in zip(np.atleast_1d(axes), names, strict=True):
         inp = oiio.ImageInput.open(os.path.join(ROOT, "references", f"cmp_{name}.exr"))
         spec = inp.spec()
         img = np.asarray(inp.read_image(0, 0, 0, 3, oiio.FLOAT)).reshape(spec.height, spec.width, 3)

@@ -67,7 +67,7 @@ def failures(m, thresholds=THRESHOLDS):
     out = []
     if not lo <= m["ratio"] <= hi:
         out.append(f"ratio {m['ratio']:.3f} outside [{lo}, {hi}]")
-    for name, c in zip("RGB", m["channels"]):
+    for name, c in zip("RGB", m["channels"], strict=True):
         if not lo <= c <= hi:
             out.append(f"{name} ratio {c:.3f} outside [{lo}, {hi}]")
     if m["block_mean"] > thresholds["block_mean"]:

@@ -483,7 +483,7 @@ def _instancing_scenes():
     tables = np.array([[0, 1], [0, 1], [0, 1], [2, 1], [2, 1]])
     proto = instanced.add_prototype(pos, tris, corner_normals=corner, material_slots=slots, corner_uvs=uvs)
     assert instanced.add_instances(proto, mats, tables) == 0
-    for m, table in zip(mats, tables):
+    for m, table in zip(mats, tables, strict=True):
         wpos, wtris, wn, wuv = _flatten(pos, tris, corner, uvs, m)
         flattened.add_mesh(wpos, wtris, corner_normals=wn, material_indices=table[slots], corner_uvs=wuv)
     return instanced, flattened
@@ -496,7 +496,10 @@ def test_instances_render_like_world_space_copies():
     settings = tc.RenderSettings(width=48, height=32, samples=16)
     a = tc.render(instanced, settings).image[..., :3].astype(np.float64)
     b = tc.render(flattened, settings).image[..., :3].astype(np.float64)
-    blocks = lambda img: img.reshape(4, 8, 6, 8, 3).mean(axis=(1, 3))
+
+    def blocks(img):
+        return img.reshape(4, 8, 6, 8, 3).mean(axis=(1, 3))
+
     print(f"instanced vs flattened: max pixel diff {np.abs(a - b).max():.3g}, "
           f"max 8x8 block diff {np.abs(blocks(a) - blocks(b)).max():.3g}, mean {b.mean():.4f}")
     assert abs(a.mean() - b.mean()) < 1e-5 * b.mean()
