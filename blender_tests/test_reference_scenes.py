@@ -1,11 +1,11 @@
 # SPDX-License-Identifier: Apache-2.0
 """Torrance against the stored converged Cycles references of the comparison scenes.
 
-For each scene scenes/cmp_<name>.py (see torrance_tools/comparison_scenes.py) Torrance (PRINCIPLED model, the
-Blender 3.4 Principled v1 that Cycles renders) renders it at a fixed modest sample count through
-the add-on (bpy.ops.render.render), and the image is compared with references/cmp_<name>.exr
-(Cycles 3.4, 8192-16384 samples; made by scripts/references, settings and noise in the JSON
-beside it). The test fails on
+For each scene scenes/cmp_<name>.py (see torrance_tools/comparison_scenes.py) Torrance
+(PRINCIPLED model, the Blender 3.4 Principled v1 that Cycles renders) renders it at a fixed
+modest sample count through the add-on (bpy.ops.render.render), and the image is compared with
+references/cmp_<name>.exr (Cycles 3.4, 8192-16384 samples; made by scripts/references, settings
+and noise in the JSON beside it). The test fails on
 
 * a stale reference (the built scene's digest differs from the one the reference was made of:
   regenerate with scripts/references NAME), a missing one, or NaN/Inf in either image;
@@ -20,7 +20,8 @@ Measurement mode (`TORRANCE_CMP_MEASURE=1`): renders every scene with several se
 fault on every scene, prints the figures recorded in MEASURED, asserts nothing.
 `TORRANCE_CMP_SCENES=water,mirror` limits a run to some scenes.
 
-Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_tests/test_reference_scenes.py
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \
+         --python blender_tests/test_reference_scenes.py
 """
 
 import math
@@ -206,7 +207,8 @@ FAULT_KINDS = {
     "sun_3deg_lower": ("sun 3 degrees lower", _sun_lower, None),
     "world_x1.5": ("world strength x 1.5", _only("set_world", _scale_kw("strength", 1.5)), None),
     "point_x0.85": ("point power x 0.85", _only("add_point_light", _scale_kw("power", 0.85)), None),
-    "point_x4pi": ("point power x 4 pi", _only("add_point_light", _scale_kw("power", 4 * math.pi)), None),
+    "point_x4pi": ("point power x 4 pi",
+                   _only("add_point_light", _scale_kw("power", 4 * math.pi)), None),
     "paper_brdf": ("PAPER BRDF instead of PRINCIPLED", None, _paper),
     "roughness_squared": ("roughness squared", _material(_roughness_squared), None),
     "no_specular": ("specular 0 (no dielectric lobe)", _material(_no_specular), None),
@@ -244,7 +246,8 @@ class Scenes:
                       f"{comparison_scenes.scene_digest(scene)[:12]}): regenerate it with "
                       f"scripts/references {name}")
                 check(compare.finite(ref), f"{name}: NaN/Inf in the reference")
-                check(ref.shape[:2] == (comparison_scenes.HEIGHT, comparison_scenes.WIDTH), f"{name}: reference shape {ref.shape}")
+                check(ref.shape[:2] == (comparison_scenes.HEIGHT, comparison_scenes.WIDTH),
+                      f"{name}: reference shape {ref.shape}")
                 self.refs[name] = (ref, meta)
         return bpy.context.scene, self.mod, self.refs[name][0], self.refs[name][1]
 
@@ -285,7 +288,8 @@ def main():
             check_finite(name, img)
             m = compare.bias_metrics(img, ref)
             bad = failures(name, m)
-            print(f"{name:13s} {c['samples']:5d} spp seed {seed}: {compare.format_bias(m)} ({seconds:.1f} s)"
+            print(f"{name:13s} {c['samples']:5d} spp seed {seed}: {compare.format_bias(m)} "
+                  f"({seconds:.1f} s)"
                   + (f"  FAIL: {'; '.join(bad)}" if bad else "  ok"), flush=True)
             if bad and seed == SEED:
                 problems.append(f"{name}: {'; '.join(bad)}")
@@ -301,7 +305,8 @@ def main():
         img, seconds, ref = render(scenes, name, samples, SEED, fault)
         m = compare.bias_metrics(img, ref)
         bad = failures(name, m)
-        print(f"fault {name:13s} {FAULT_KINDS[fault][0]:34s} {samples:4d} spp: {compare.format_bias(m)} -> "
+        print(f"fault {name:13s} {FAULT_KINDS[fault][0]:34s} {samples:4d} spp: "
+              f"{compare.format_bias(m)} -> "
               + ("caught" if bad else "NOT CAUGHT"), flush=True)
         if not bad:
             missed.append(f"{name}: {FAULT_KINDS[fault][0]}")

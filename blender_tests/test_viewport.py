@@ -160,7 +160,8 @@ def test_camera_derivation(tv, tc, scene):
         a = np.array(torrance_pixel(derived, w, h, p))
         bb = np.array(blender_pixel(view_m, window_m, w, h, p))
         worst = max(worst, float(np.abs(a - bb).max()))
-    print(f"orthographic view: worst projection error {worst:.3f} px of {w} ({100 * worst / w:.2f} %)")
+    print(f"orthographic view: worst projection error {worst:.3f} px of {w} "
+          f"({100 * worst / w:.2f} %)")
     check(worst < 0.01 * w, f"orthographic approximation off by {worst} px")
     cam.type = 'PERSP'
     bpy.context.view_layer.update()
@@ -201,7 +202,8 @@ def wait_done(state, timeout=60.0):
             state.poll()
             return seen_levels
         time.sleep(0.002)
-    raise AssertionError(f"the viewport render did not finish in {timeout} s: {state.render.stats()}")
+    raise AssertionError(f"the viewport render did not finish in {timeout} s: "
+                         f"{state.render.stats()}")
 
 
 def camera_view(tv, scene, width, height):
@@ -224,7 +226,8 @@ def test_viewport_matches_final_render(tv, tc, scene):
     print(f"viewport {w}x{h}: images {levels}; first image {st['first_image_seconds']:.3f} s, "
           f"full resolution {st['full_image_seconds']:.3f} s, {settings['samples']} samples "
           f"{st['done_seconds']:.3f} s")
-    check(levels[0][0] == 0 and levels[0][1] == (48, 64), f"first image is the coarse one: {levels}")
+    check(levels[0][0] == 0 and levels[0][1] == (48, 64),
+          f"first image is the coarse one: {levels}")
     check(levels[-1][0] == 1 and levels[-1][1] == (h, w), f"last image full size: {levels}")
     check(state.render.samples_done == settings["samples"], "all samples rendered")
     check(st["first_image_seconds"] < 2.0, "coarse image within 2 s")
