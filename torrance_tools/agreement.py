@@ -74,7 +74,8 @@ def failures(m, thresholds=THRESHOLDS):
         out.append(f"block mean {m['block_mean']:.3f} > {thresholds['block_mean']}")
     if m["block_p90"] > thresholds["block_p90"]:
         out.append(f"block p90 {m['block_p90']:.3f} > {thresholds['block_p90']}")
-    if "offset" in thresholds and max(abs(m["offset"][0]), abs(m["offset"][1])) > thresholds["offset"]:
+    if ("offset" in thresholds
+            and max(abs(m["offset"][0]), abs(m["offset"][1])) > thresholds["offset"]):
         out.append(f"offset ({m['offset'][0]:+.2f}, {m['offset'][1]:+.2f}) px > "
                    f"{thresholds['offset']}")
     return out
