@@ -7,7 +7,8 @@ addon_enable, and renders Blender's default scene (cube, point light, camera) wi
 Torrance. The zip is TORRANCE_ADDON_ZIP if set, else torrance-addon.zip in the build
 directory of the add-on this Blender runs, else <repo>/build/torrance-addon.zip.
 
-Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_tests/test_addon_zip.py
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \
+         --python blender_tests/test_addon_zip.py
 """
 
 import os

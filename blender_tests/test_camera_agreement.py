@@ -9,7 +9,8 @@ shift moves or scales the image by pixels).
 
 Measured: offsets within 0.04 px and ratios 0.980-0.988 for all variants.
 
-Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_tests/test_camera_agreement.py
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \
+         --python blender_tests/test_camera_agreement.py
 """
 
 import numpy as np

@@ -12,7 +12,8 @@
    Measured: growth +2.6 MB (allocator jitter +-10 MB between single renders); with every
    tc.Scene deliberately kept alive (a simulated leak) +397 MB, about 30 MB per render.
 
-Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_tests/test_cancel_memory.py
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \
+         --python blender_tests/test_cancel_memory.py
 """
 
 import os
@@ -67,7 +68,8 @@ def cancel_test(addon, scene, d):
           f"{breaker.first_true - t0:.3f} s; render returned {stop:.3f} s later; "
           f"{stats.get('samples_done')} samples done in {stats.get('passes')} passes, "
           f"stopped={stats.get('stopped')}", flush=True)
-    check(stop < MAX_STOP_SECONDS, f"the render took {stop:.2f} s to stop (limit {MAX_STOP_SECONDS} s)")
+    check(stop < MAX_STOP_SECONDS,
+          f"the render took {stop:.2f} s to stop (limit {MAX_STOP_SECONDS} s)")
     check(stats.get("stopped") is True, f"the core did not report a stopped render: {stats}")
     check(stats.get("passes", 0) >= 2, f"expected progressive passes before the stop: {stats}")
     check(stats.get("samples_done", 0) < LONG_SAMPLES, "the render was not cut short")

@@ -39,7 +39,8 @@ re-runs a few faults every time (FAULTS) and requires each to fail, so the thres
 their teeth; the bounce count off by one either way is checked by comparing Torrance at
 B=0 with Cycles at B=1 (ratio 0.858) and Torrance at B=1 with Cycles at B=0 (ratio 1.118).
 
-Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_tests/test_cycles_agreement.py
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \
+         --python blender_tests/test_cycles_agreement.py
 """
 
 import math

@@ -10,7 +10,8 @@ interreflection (a sphere is convex). So
     quadrature (torrance_core.directional_albedo), ~0.39 of the world colour;
   * a white Principled dielectric gains energy (up to ~1.4 at grazing), as Cycles 3.4 does.
 
-Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_tests/test_furnace.py
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \
+         --python blender_tests/test_furnace.py
 """
 
 import numpy as np
@@ -49,7 +50,8 @@ def expected_disk_mean(core, model, metallic, specular, roughness, radius_fracti
     so albedo is weighted by mu dmu with mu = sqrt(1 - rho^2)."""
     mu_min = np.sqrt(1 - radius_fraction ** 2)
     mus = np.linspace(mu_min, 1.0, 17)
-    albedo = np.array([core.directional_albedo(model, (1, 1, 1), metallic, roughness, specular, float(m))
+    albedo = np.array([core.directional_albedo(model, (1, 1, 1), metallic, roughness, specular,
+                                               float(m))
                        for m in mus])
     return WORLD * np.trapz(albedo * mus, mus) / np.trapz(mus, mus)
 
@@ -72,7 +74,8 @@ def main():
         check(abs(measured - expected) < tolerance * expected,
               f"{model} m={metallic}: furnace mean {measured:.4f} vs {expected:.4f}")
         if model == "PAPER":
-            check(abs(measured - WORLD) < 0.02 * WORLD, "a white Lambert sphere must vanish into the world")
+            check(abs(measured - WORLD) < 0.02 * WORLD,
+                  "a white Lambert sphere must vanish into the world")
 
 
 testing.run(main)

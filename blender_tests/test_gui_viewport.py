@@ -9,8 +9,8 @@ Run (as CTest does) in background Blender; it then
 3. reads the driver's results and screenshots and checks them.
 
 No X server (Xvfb missing or unable to start): prints SKIPPED and exits with 77 (CTest:
-SKIP_RETURN_CODE 77). TORRANCE_XVFB names the Xvfb binary (default: Xvfb on PATH). Screenshots are kept in build/test_gui_viewport/ (or
-$TORRANCE_GUI_SHOTS) and their paths printed.
+SKIP_RETURN_CODE 77). TORRANCE_XVFB names the Xvfb binary (default: Xvfb on PATH). Screenshots
+are kept in build/test_gui_viewport/ (or $TORRANCE_GUI_SHOTS) and their paths printed.
 """
 
 import json
@@ -171,7 +171,8 @@ def _driver(result_path, shots_dir):
         background = region_pixel(pixels, region, region.width * 0.3, region.height * 0.88)
         results["rendered_sphere"] = red
         results["rendered_background"] = background
-        check("rendered sphere is red", red[0] > 90 and red[0] > 2.0 * red[1] and red[0] > 2.0 * red[2],
+        check("rendered sphere is red",
+              red[0] > 90 and red[0] > 2.0 * red[1] and red[0] > 2.0 * red[2],
               f"sphere pixel {red}, solid mode {solid}")
         check_silhouette("user view: sphere where Blender projects it", pixels, region, 0)
         check("rendered differs from solid", abs(red[0] - solid[0]) + abs(red[1] - solid[1]) > 60,
@@ -194,21 +195,25 @@ def _driver(result_path, shots_dir):
         st = dict(viewport.last_stats)
         check("selection does not restart", st.get("restarts") == restarts and
               st.get("scene_builds") == builds,
-              f"restarts {restarts} -> {st.get('restarts')}, builds {builds} -> {st.get('scene_builds')}")
+              f"restarts {restarts} -> {st.get('restarts')}, "
+              f"builds {builds} -> {st.get('scene_builds')}")
 
         # -- Material edit while refining: the sphere turns green, no mesh is re-read
         mat = bpy.data.materials["Red"]
-        mat.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = (0.02, 0.6, 0.02, 1)
+        base_color = mat.node_tree.nodes["Principled BSDF"].inputs["Base Color"]
+        base_color.default_value = (0.02, 0.6, 0.02, 1)
         yield 0.2
         yield from wait_samples(4, 60)
         st = dict(viewport.last_stats)
         pixels = screenshot("3_rendered_green")
         green = region_pixel(pixels, region, *project(sphere_center))
         results["green_sphere"] = green
-        check("material edit shows", green[1] > 70 and green[1] > 2.0 * green[0], f"sphere pixel {green}")
+        check("material edit shows", green[1] > 70 and green[1] > 2.0 * green[0],
+              f"sphere pixel {green}")
         check("material edit rebuilt the scene without reading meshes",
               st.get("scene_builds", 0) > builds and st.get("build_meshes_read") == 0,
-              f"builds {builds} -> {st.get('scene_builds')}, meshes read {st.get('build_meshes_read')}")
+              f"builds {builds} -> {st.get('scene_builds')}, "
+              f"meshes read {st.get('build_meshes_read')}")
 
         # -- Moving the object: transform only, no mesh read
         builds = st.get("scene_builds")
@@ -219,7 +224,8 @@ def _driver(result_path, shots_dir):
         st = dict(viewport.last_stats)
         check("moving an object re-uses its cached mesh",
               st.get("scene_builds", 0) > builds and st.get("build_meshes_read") == 0,
-              f"builds {builds} -> {st.get('scene_builds')}, meshes read {st.get('build_meshes_read')}")
+              f"builds {builds} -> {st.get('scene_builds')}, "
+              f"meshes read {st.get('build_meshes_read')}")
         sphere.location.x -= 0.3
         yield 0.3
 
@@ -232,7 +238,8 @@ def _driver(result_path, shots_dir):
         st = dict(viewport.last_stats)
         check("view change restarts without rebuilding",
               st.get("restarts", 0) > restarts and st.get("scene_builds") == builds,
-              f"restarts {restarts} -> {st.get('restarts')}, builds {builds} -> {st.get('scene_builds')}")
+              f"restarts {restarts} -> {st.get('restarts')}, "
+              f"builds {builds} -> {st.get('scene_builds')}")
         results["view_change_first_draw_seconds"] = st.get("first_draw_seconds")
 
         # -- A render border (Ctrl+B) through the middle of the sphere: only its left half
@@ -294,7 +301,8 @@ def _driver(result_path, shots_dir):
         blocks = lambda x: x[:hh, :ww].reshape(hh // 8, 8, ww // 8, 8).mean(axis=(1, 3))  # noqa: E731
         diff = np.abs(blocks(a) - blocks(b))
         ratio = float(a.mean() / max(b.mean(), 1e-6))
-        results["studio_vs_cycles"] = dict(mean=float(diff.mean()), p95=float(np.percentile(diff, 95)),
+        results["studio_vs_cycles"] = dict(mean=float(diff.mean()),
+                                           p95=float(np.percentile(diff, 95)),
                                            brightness_ratio=ratio)
         check("studio HDRI world as Cycles shows it (rotation, strength)",
               diff.mean() < 2.5 and np.percentile(diff, 95) < 8.0 and abs(ratio - 1) < 0.03,
@@ -368,7 +376,8 @@ def _driver(result_path, shots_dir):
             check("material preview rendered", False, "no preview pixels after 60 s")
         else:
             h, w = px.shape[:2]
-            centre = px[h // 2 - 4:h // 2 + 4, w // 2 - 4:w // 2 + 4, :3].reshape(-1, 3).mean(axis=0)
+            centre = px[h // 2 - 4:h // 2 + 4, w // 2 - 4:w // 2 + 4, :3]
+            centre = centre.reshape(-1, 3).mean(axis=0)
             results["preview_centre"] = [float(v) for v in centre]
             results["preview_size"] = [w, h]
             check("material preview is green", centre[1] > 1.5 * centre[0] and centre[1] > 0.1,
@@ -416,7 +425,8 @@ def _build_scene(path):
     scene.cycles.use_preview_adaptive_sampling = False
     red = testing.principled("Red", base_color=(0.8, 0.02, 0.02))
     testing.sphere_object(scene, "Sphere", (0, 0, 0.8), 0.8, red)
-    testing.plane(scene, "Floor", 10, material=testing.principled("Grey", base_color=(0.3, 0.3, 0.3)))
+    testing.plane(scene, "Floor", 10,
+                  material=testing.principled("Grey", base_color=(0.3, 0.3, 0.3)))
     testing.add_sun(scene)
     testing.set_world(scene, (0.18, 0.18, 0.18))
     testing.add_camera(scene)
@@ -521,7 +531,8 @@ def _main():
     st = results.get("stats_rendered", {})
     print(f"first image: engine created -> drawn {st.get('engine_first_draw_seconds')} s; "
           f"start -> first image {st.get('first_image_seconds')} s; "
-          f"full resolution {st.get('full_image_seconds')} s at {st.get('width')}x{st.get('height')}")
+          f"full resolution {st.get('full_image_seconds')} s "
+          f"at {st.get('width')}x{st.get('height')}")
     print(f"view change -> first draw {results.get('view_change_first_draw_seconds')} s; "
           f"material preview {results.get('preview_seconds')} s")
     failures = [c for c in results["checks"] if not c["ok"]]

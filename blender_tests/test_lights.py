@@ -39,7 +39,6 @@ import math
 import time
 
 import bpy
-import numpy as np
 
 from torrance_tools import agreement, render_settings, testing
 from torrance_tools.testing import check
@@ -60,7 +59,8 @@ def base_scene():
     testing.mesh_object(scene, "Wall", [(-5, 2.5, 0), (5, 2.5, 0), (5, 2.5, 4), (-5, 2.5, 4)],
                         [(0, 1, 2, 3)], wall)
     testing.sphere_object(scene, "Ball", (0.3, 0.2, 0.55), 0.55,
-                          testing.principled("Red", (0.8, 0.12, 0.08), 0.0, 0.3), segments=32, rings=16)
+                          testing.principled("Red", (0.8, 0.12, 0.08), 0.0, 0.3),
+                          segments=32, rings=16)
     # A dim uniform world: it keeps the blocks the light does not reach from being pure
     # bounce-light noise (which would dominate the block figures) and is the same on both sides.
     testing.set_world(scene, (WORLD, WORLD, WORLD))
@@ -204,14 +204,18 @@ def main():
 
     # The thresholds must catch plausible export mistakes.
     faults = {
-        "spot blend ignored": ("spot", lambda s: setattr(s.objects["Spot"].data, "spot_blend", 0.0)),
-        "light node tree ignored": ("spot", lambda s: setattr(s.objects["Spot"].data, "use_nodes", False)),
+        "spot blend ignored": ("spot",
+                               lambda s: setattr(s.objects["Spot"].data, "spot_blend", 0.0)),
+        "light node tree ignored": ("spot",
+                                    lambda s: setattr(s.objects["Spot"].data, "use_nodes", False)),
         "area scale ignored": ("area_rectangle",
                                lambda s: setattr(s.objects["Rectangle"], "scale", (1, 1, 1))),
         "disk rendered as square": ("area_disk",
                                     lambda s: setattr(s.objects["Disk"].data, "shape", 'SQUARE')),
-        "emission x 1.25": ("emissive", lambda s: s.objects["Panel"].active_material.node_tree
-                            .nodes["Emission"].inputs["Strength"].__setattr__("default_value", 7.5)),
+        "emission x 1.25": ("emissive",
+                            lambda s: setattr(s.objects["Panel"].active_material.node_tree
+                                              .nodes["Emission"].inputs["Strength"],
+                                              "default_value", 7.5)),
     }
     for description, (case, alter) in faults.items():
         scene = base_scene()

@@ -1,11 +1,11 @@
 # SPDX-License-Identifier: Apache-2.0
 """Torrance against the stored converged Cycles references of the comparison scenes.
 
-For each scene scenes/cmp_<name>.py (see torrance_tools/comparison_scenes.py) Torrance (PRINCIPLED model, the
-Blender 3.4 Principled v1 that Cycles renders) renders it at a fixed modest sample count through
-the add-on (bpy.ops.render.render), and the image is compared with references/cmp_<name>.exr
-(Cycles 3.4, 8192-16384 samples; made by scripts/references, settings and noise in the JSON
-beside it). The test fails on
+For each scene scenes/cmp_<name>.py (see torrance_tools/comparison_scenes.py) Torrance
+(PRINCIPLED model, the Blender 3.4 Principled v1 that Cycles renders) renders it at a fixed
+modest sample count through the add-on (bpy.ops.render.render), and the image is compared with
+references/cmp_<name>.exr (Cycles 3.4, 8192-16384 samples; made by scripts/references, settings
+and noise in the JSON beside it). The test fails on
 
 * a stale reference (the built scene's digest differs from the one the reference was made of:
   regenerate with scripts/references NAME), a missing one, or NaN/Inf in either image;
@@ -20,7 +20,8 @@ Measurement mode (`TORRANCE_CMP_MEASURE=1`): renders every scene with several se
 fault on every scene, prints the figures recorded in MEASURED, asserts nothing.
 `TORRANCE_CMP_SCENES=water,mirror` limits a run to some scenes.
 
-Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_tests/test_reference_scenes.py
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \
+         --python blender_tests/test_reference_scenes.py
 """
 
 import math
@@ -69,21 +70,36 @@ Correct renders, 4 seeds (ratio range; block mean and p90: the worst seed):
     mirror         1024 spp: ratio 0.9969-1.0046, block mean 0.0084, p90 0.0340
     interior        256 spp: ratio 1.0124-1.0144, block mean 0.0155, p90 0.0278
 Faults, seed 0, each scene at its own samples: ratio / block mean / p90, * = caught:
-                                     sphere_chart       grass_stone        water              suzanne            mirror             interior           
-    sun strength x 1.2               1.151/0.152/0.168* 1.087/0.077/0.168* 1.132/0.025/0.064* 1.096/0.083/0.136* 1.032/0.019/0.084* 1.014/0.015/0.026 
-    sun strength x 0.85              0.882/0.116/0.130* 0.933/0.058/0.131* 0.896/0.019/0.053* 0.929/0.062/0.102* 0.970/0.018/0.088* 1.014/0.015/0.026 
-    sun 3 degrees lower              0.995/0.032/0.059* 1.009/0.060/0.136* 1.663/0.081/0.065* 0.973/0.028/0.049* 0.995/0.009/0.040  1.014/0.015/0.026 
-    world strength x 1.5             1.113/0.118/0.145* 1.278/0.307/0.500* 1.160/0.418/0.500* 1.191/0.233/0.500* 1.407/0.446/0.500* 1.014/0.015/0.026 
-    point power x 0.85               0.997/0.011/0.024  0.999/0.004/0.013  0.997/0.001/0.001  0.980/0.018/0.049* 0.997/0.008/0.031  0.862/0.138/0.148*
-    point power x 4 pi               0.997/0.011/0.024  0.999/0.004/0.013  0.997/0.001/0.001  2.615/1.392/3.735* 0.997/0.008/0.031  12.746/11.749/11.899*
-    PAPER BRDF instead of PRINCIPLED 0.920/0.089/0.192* 0.798/0.179/0.371* 0.614/0.230/0.531* 0.923/0.071/0.133* 0.665/0.318/0.709* 0.837/0.172/0.235*
-    roughness squared                1.014/0.043/0.097* 1.226/0.344/0.496* 0.820/0.076/0.203* 0.983/0.018/0.042* 0.991/0.010/0.041* 1.006/0.016/0.036 
-    specular 0 (no dielectric lobe)  0.943/0.061/0.102* 0.547/0.397/0.868* 0.239/0.446/0.913* 0.946/0.053/0.123* 0.962/0.036/0.106* 0.910/0.102/0.149*
-    flat shading (no smooth normals) 0.995/0.011/0.025  0.999/0.011/0.032  1.045/0.011/0.017* 1.000/0.002/0.004  0.998/0.008/0.030  1.011/0.016/0.028 
-    shading normals negated          0.729/0.296/0.971* 0.491/0.533/0.954* 0.216/0.592/1.000* 0.841/0.152/0.842* 0.945/0.051/0.091* 0.923/0.072/0.123*
-    camera shifted 1 px              1.002/0.034/0.075* 0.998/0.039/0.104* 1.005/0.034/0.068* 1.002/0.009/0.030* 0.999/0.026/0.113* 1.015/0.030/0.061*
-    focal length x 1.03              0.995/0.044/0.071* 1.012/0.052/0.162* 1.039/0.040/0.097* 0.997/0.014/0.049* 1.003/0.015/0.065* 1.021/0.032/0.067*
-    one bounce less                  0.997/0.011/0.024  0.999/0.004/0.013  0.997/0.001/0.001  1.000/0.002/0.004  0.997/0.008/0.031  1.012/0.013/0.025 
+                                     sphere_chart       grass_stone        water
+    sun strength x 1.2               1.151/0.152/0.168* 1.087/0.077/0.168* 1.132/0.025/0.064*
+    sun strength x 0.85              0.882/0.116/0.130* 0.933/0.058/0.131* 0.896/0.019/0.053*
+    sun 3 degrees lower              0.995/0.032/0.059* 1.009/0.060/0.136* 1.663/0.081/0.065*
+    world strength x 1.5             1.113/0.118/0.145* 1.278/0.307/0.500* 1.160/0.418/0.500*
+    point power x 0.85               0.997/0.011/0.024  0.999/0.004/0.013  0.997/0.001/0.001
+    point power x 4 pi               0.997/0.011/0.024  0.999/0.004/0.013  0.997/0.001/0.001
+    PAPER BRDF instead of PRINCIPLED 0.920/0.089/0.192* 0.798/0.179/0.371* 0.614/0.230/0.531*
+    roughness squared                1.014/0.043/0.097* 1.226/0.344/0.496* 0.820/0.076/0.203*
+    specular 0 (no dielectric lobe)  0.943/0.061/0.102* 0.547/0.397/0.868* 0.239/0.446/0.913*
+    flat shading (no smooth normals) 0.995/0.011/0.025  0.999/0.011/0.032  1.045/0.011/0.017*
+    shading normals negated          0.729/0.296/0.971* 0.491/0.533/0.954* 0.216/0.592/1.000*
+    camera shifted 1 px              1.002/0.034/0.075* 0.998/0.039/0.104* 1.005/0.034/0.068*
+    focal length x 1.03              0.995/0.044/0.071* 1.012/0.052/0.162* 1.039/0.040/0.097*
+    one bounce less                  0.997/0.011/0.024  0.999/0.004/0.013  0.997/0.001/0.001
+                                     suzanne            mirror             interior
+    sun strength x 1.2               1.096/0.083/0.136* 1.032/0.019/0.084* 1.014/0.015/0.026
+    sun strength x 0.85              0.929/0.062/0.102* 0.970/0.018/0.088* 1.014/0.015/0.026
+    sun 3 degrees lower              0.973/0.028/0.049* 0.995/0.009/0.040  1.014/0.015/0.026
+    world strength x 1.5             1.191/0.233/0.500* 1.407/0.446/0.500* 1.014/0.015/0.026
+    point power x 0.85               0.980/0.018/0.049* 0.997/0.008/0.031  0.862/0.138/0.148*
+    point power x 4 pi               2.615/1.392/3.735* 0.997/0.008/0.031  12.746/11.749/11.899*
+    PAPER BRDF instead of PRINCIPLED 0.923/0.071/0.133* 0.665/0.318/0.709* 0.837/0.172/0.235*
+    roughness squared                0.983/0.018/0.042* 0.991/0.010/0.041* 1.006/0.016/0.036
+    specular 0 (no dielectric lobe)  0.946/0.053/0.123* 0.962/0.036/0.106* 0.910/0.102/0.149*
+    flat shading (no smooth normals) 1.000/0.002/0.004  0.998/0.008/0.030  1.011/0.016/0.028
+    shading normals negated          0.841/0.152/0.842* 0.945/0.051/0.091* 0.923/0.072/0.123*
+    camera shifted 1 px              1.002/0.009/0.030* 0.999/0.026/0.113* 1.015/0.030/0.061*
+    focal length x 1.03              0.997/0.014/0.049* 1.003/0.015/0.065* 1.021/0.032/0.067*
+    one bounce less                  1.000/0.002/0.004  0.997/0.008/0.031  1.012/0.013/0.025
 Notes:
 * interior: Torrance is 1.4 % brighter everywhere, for every seed (a bias, not noise). The cause is
   the point light's radius (0.1 m, 0.35 m under the ceiling): Cycles 3.4 samples a disk facing the
@@ -191,7 +207,8 @@ FAULT_KINDS = {
     "sun_3deg_lower": ("sun 3 degrees lower", _sun_lower, None),
     "world_x1.5": ("world strength x 1.5", _only("set_world", _scale_kw("strength", 1.5)), None),
     "point_x0.85": ("point power x 0.85", _only("add_point_light", _scale_kw("power", 0.85)), None),
-    "point_x4pi": ("point power x 4 pi", _only("add_point_light", _scale_kw("power", 4 * math.pi)), None),
+    "point_x4pi": ("point power x 4 pi",
+                   _only("add_point_light", _scale_kw("power", 4 * math.pi)), None),
     "paper_brdf": ("PAPER BRDF instead of PRINCIPLED", None, _paper),
     "roughness_squared": ("roughness squared", _material(_roughness_squared), None),
     "no_specular": ("specular 0 (no dielectric lobe)", _material(_no_specular), None),
@@ -229,7 +246,8 @@ class Scenes:
                       f"{comparison_scenes.scene_digest(scene)[:12]}): regenerate it with "
                       f"scripts/references {name}")
                 check(compare.finite(ref), f"{name}: NaN/Inf in the reference")
-                check(ref.shape[:2] == (comparison_scenes.HEIGHT, comparison_scenes.WIDTH), f"{name}: reference shape {ref.shape}")
+                check(ref.shape[:2] == (comparison_scenes.HEIGHT, comparison_scenes.WIDTH),
+                      f"{name}: reference shape {ref.shape}")
                 self.refs[name] = (ref, meta)
         return bpy.context.scene, self.mod, self.refs[name][0], self.refs[name][1]
 
@@ -270,7 +288,8 @@ def main():
             check_finite(name, img)
             m = compare.bias_metrics(img, ref)
             bad = failures(name, m)
-            print(f"{name:13s} {c['samples']:5d} spp seed {seed}: {compare.format_bias(m)} ({seconds:.1f} s)"
+            print(f"{name:13s} {c['samples']:5d} spp seed {seed}: {compare.format_bias(m)} "
+                  f"({seconds:.1f} s)"
                   + (f"  FAIL: {'; '.join(bad)}" if bad else "  ok"), flush=True)
             if bad and seed == SEED:
                 problems.append(f"{name}: {'; '.join(bad)}")
@@ -286,7 +305,8 @@ def main():
         img, seconds, ref = render(scenes, name, samples, SEED, fault)
         m = compare.bias_metrics(img, ref)
         bad = failures(name, m)
-        print(f"fault {name:13s} {FAULT_KINDS[fault][0]:34s} {samples:4d} spp: {compare.format_bias(m)} -> "
+        print(f"fault {name:13s} {FAULT_KINDS[fault][0]:34s} {samples:4d} spp: "
+              f"{compare.format_bias(m)} -> "
               + ("caught" if bad else "NOT CAUGHT"), flush=True)
         if not bad:
             missed.append(f"{name}: {FAULT_KINDS[fault][0]}")

@@ -2,7 +2,8 @@
 """The add-on registers, exposes its settings and panels, unregisters cleanly, and copes
 with a missing native module (it registers; a render reports a clear ERROR).
 
-Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_tests/test_registration.py
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \
+         --python blender_tests/test_registration.py
 """
 
 import os
@@ -77,7 +78,8 @@ def check_missing_core():
     proc = subprocess.run([bpy.app.binary_path, "-b", "--factory-startup", "--python-exit-code",
                            "1", "--python", script], env=env, stdout=subprocess.PIPE,
                           stderr=subprocess.STDOUT, text=True, timeout=120)
-    lines = [line for line in proc.stdout.splitlines() if "CHILD" in line or "torrance_core" in line]
+    lines = [line for line in proc.stdout.splitlines()
+             if "CHILD" in line or "torrance_core" in line]
     print("missing core:\n  " + "\n  ".join(lines))
     check(proc.returncode == 0, f"the child Blender failed:\n{proc.stdout[-3000:]}")
     check(any(line.startswith("CHILD error:") and "torrance_core" in line for line in lines),

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """Awkward scenes render without crashing, without NaN/Inf, and say what they skipped.
 
-Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_tests/test_robustness.py
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \
+         --python blender_tests/test_robustness.py
 """
 
 import math
@@ -58,14 +59,16 @@ def main():
     # 1. Empty scene: only the world.
     scene = base_scene()
     img = render_case("empty", scene, d)
-    check(np.allclose(img[:, :, :3], world, atol=2e-3), f"empty: not the world colour {img.mean((0, 1))}")
+    check(np.allclose(img[:, :, :3], world, atol=2e-3),
+          f"empty: not the world colour {img.mean((0, 1))}")
     check(np.allclose(img[:, :, 3], 1.0), "empty: alpha is not 1")
 
     # 1b. Empty scene, world without nodes; film transparent.
     scene = base_scene(world=None)
     testing.set_world(scene, (0.5, 0.25, 0.125), use_nodes=False)
     img = render_case("world_no_nodes", scene, d)
-    check(np.allclose(img[:, :, :3], (0.5, 0.25, 0.125), atol=2e-3), f"world colour {img.mean((0, 1))}")
+    check(np.allclose(img[:, :, :3], (0.5, 0.25, 0.125), atol=2e-3),
+          f"world colour {img.mean((0, 1))}")
     scene.render.film_transparent = True
     img = render_case("transparent", scene, d)
     check(np.abs(img).max() < 1e-6, "transparent: the background is not RGBA 0")
@@ -107,7 +110,8 @@ def main():
     # 4. A mesh with a NaN vertex (and one with an Inf vertex): its triangles are dropped.
     scene = base_scene()
     testing.add_sun(scene)
-    ob = testing.sphere_object(scene, "NaNSphere", (0, 0, 0.6), 0.6, testing.principled("Red", (0.8, 0.1, 0.1)))
+    ob = testing.sphere_object(scene, "NaNSphere", (0, 0, 0.6), 0.6,
+                               testing.principled("Red", (0.8, 0.1, 0.1)))
     me = ob.data
     co = np.empty(len(me.vertices) * 3, dtype=np.float32)
     me.vertices.foreach_get("co", co)
@@ -199,7 +203,8 @@ def main():
     scene.collection.objects.link(bpy.data.objects.new("Curve", curve))
     render_case("lights_and_types", scene, d)
     stats = testing.addon().render.last_stats
-    check(sorted(stats["object_names"]) == ["Curve", "Mirrored", "Text"], f"expected 3 mesh objects (sphere, text, curve): {stats}")
+    check(sorted(stats["object_names"]) == ["Curve", "Mirrored", "Text"],
+          f"expected 3 mesh objects (sphere, text, curve): {stats}")
     check(stats["lights"] == 3, f"expected 3 lights (sun, spot, area): {stats}")
     check(not any("light" in m.lower() for _, m in testing.last_messages()),
           f"spot and area lights must not be reported: {testing.last_messages()}")
@@ -225,8 +230,8 @@ def main():
     # 7b. Particles instancing a cube from a plane whose own render is off (show_self).
     scene = base_scene()
     testing.add_sun(scene)
-    cube = testing.mesh_object(scene, "ParticleCube", [(x, y, z) for x in (-.1, .1) for y in (-.1, .1)
-                                                       for z in (-.1, .1)],
+    cube = testing.mesh_object(scene, "ParticleCube",
+                               [(x, y, z) for x in (-.1, .1) for y in (-.1, .1) for z in (-.1, .1)],
                                [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6),
                                 (0, 2, 6, 4), (1, 5, 7, 3)])
     cube.location = (0, 0, -50)
@@ -251,7 +256,8 @@ def main():
     testing.add_sun(scene, rotation=(math.radians(30), 0, math.radians(40)))
     verts = [(x, y, z) for x in (-.6, .6) for y in (-.6, .6) for z in (0, 1.2)]
     faces = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
-    cube = testing.mesh_object(scene, "Cube", verts, faces, testing.principled("C", (0.6, 0.6, 0.6)))
+    cube = testing.mesh_object(scene, "Cube", verts, faces,
+                               testing.principled("C", (0.6, 0.6, 0.6)))
     flat = render_case("flat_cube", scene, d)
     cube.data.polygons.foreach_set("use_smooth", [True] * 6)
     cube.data.use_auto_smooth = True

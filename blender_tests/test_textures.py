@@ -17,7 +17,8 @@
 4. Each image is loaded once per render (two materials share one); a missing file, an Image
    Texture without image and an Alpha output are reported and fall back to the socket's value.
 
-Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_tests/test_textures.py
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \
+         --python blender_tests/test_textures.py
 """
 
 import math
@@ -130,7 +131,8 @@ def uv_placement(d):
     render, _ = testing.render(scene, d, "uv_placement")
     stats = testing.addon().render.last_stats
     check(stats["textures"] == 1, f"uv_placement: {stats['textures']} textures loaded")
-    check(not testing.last_messages(), f"uv_placement: unexpected reports {testing.last_messages()}")
+    check(not testing.last_messages(),
+          f"uv_placement: unexpected reports {testing.last_messages()}")
     # The camera sees 36/200*40 = 7.2 m: the 4 m plane covers the middle 35.6 pixels.
     span = 2 * half / (36.0 / 200.0 * 40.0) * 64
     lin = srgb_to_linear(texels[:, :, :3])
@@ -218,11 +220,12 @@ def textured_scene(roughness_mode="texture", color_texture=True, extras=True):
         nm.inputs["Strength"].default_value = 0.9
         nt.links.new(nm.outputs["Normal"], nt.nodes["Principled BSDF"].inputs["Normal"])
         image_node(wall, nmap, None, 'Closest', target=nm.inputs["Color"])
-        w = testing.mesh_object(scene, "Wall", [(-3.0, 1.9, 0.0), (-0.2, 1.4, 0.0), (-0.2, 1.4, 2.2),
-                                                (-3.0, 1.9, 2.2)], [(0, 1, 2, 3)], wall)
+        w = testing.mesh_object(scene, "Wall",
+                                [(-3.0, 1.9, 0.0), (-0.2, 1.4, 0.0), (-0.2, 1.4, 2.2),
+                                 (-3.0, 1.9, 2.2)], [(0, 1, 2, 3)], wall)
         set_uvs(w, [(0, 0), (1, 0), (1, 1), (0, 1)])
-        sun = testing.add_sun(scene, strength=2.5, angle=math.radians(3.0),
-                              rotation=Vector((-0.03, 0.968, -0.249)).to_track_quat('-Z', 'Y').to_euler())
+        side = Vector((-0.03, 0.968, -0.249)).to_track_quat('-Z', 'Y').to_euler()
+        sun = testing.add_sun(scene, strength=2.5, angle=math.radians(3.0), rotation=side)
         sun.name = "Side"
         # An emissive sign: Principled Emission from a texture, x Emission Strength 4.
         sign_img = new_image("Sign", np.dstack([checker(4, 0.9, 0.2)[:, :, :3] *
@@ -334,7 +337,8 @@ def bad_inputs(d):
     check(stats["textures"] == 2, f"bad_inputs: {stats['textures']} textures, expected 2")
     for text in ("no_such_file.png", "'EmptyNode'", "has no image", "Alpha"):
         check(any(text in m for m in messages), f"bad_inputs: no report containing {text!r}")
-    check(sum("no_such_file.png" in m for m in messages) == 1, "the missing file must be reported once")
+    check(sum("no_such_file.png" in m for m in messages) == 1,
+          "the missing file must be reported once")
 
 
 def main():

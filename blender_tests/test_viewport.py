@@ -12,7 +12,6 @@
 * the preview policy; the panels' messages.
 """
 
-import math
 import os
 import time
 
@@ -129,10 +128,10 @@ def test_camera_derivation(tv, tc, scene):
     for (w, h) in ((640, 480), (300, 500)):
         for (tx, cx, cy) in ((0.6, 0.0, 0.0), (0.8, 0.25, -0.15)):
             ty = tx * h / w                          # square pixels, as in every 3D view
-            l, r, b, t = cx - tx, cx + tx, cy - ty, cy + ty
+            left, right, bottom, top = cx - tx, cx + tx, cy - ty, cy + ty
             n, f = 0.01, 1000.0
-            win = Matrix(((2 * n / ((r - l) * n), 0, (r + l) / (r - l), 0),
-                          (0, 2 * n / ((t - b) * n), (t + b) / (t - b), 0),
+            win = Matrix(((2 * n / ((right - left) * n), 0, (right + left) / (right - left), 0),
+                          (0, 2 * n / ((top - bottom) * n), (top + bottom) / (top - bottom), 0),
                           (0, 0, -(f + n) / (f - n), -2 * f * n / (f - n)),
                           (0, 0, -1, 0)))
             view_m = (Matrix.Translation((0.3, -5.0, 1.2)) @
@@ -161,7 +160,8 @@ def test_camera_derivation(tv, tc, scene):
         a = np.array(torrance_pixel(derived, w, h, p))
         bb = np.array(blender_pixel(view_m, window_m, w, h, p))
         worst = max(worst, float(np.abs(a - bb).max()))
-    print(f"orthographic view: worst projection error {worst:.3f} px of {w} ({100 * worst / w:.2f} %)")
+    print(f"orthographic view: worst projection error {worst:.3f} px of {w} "
+          f"({100 * worst / w:.2f} %)")
     check(worst < 0.01 * w, f"orthographic approximation off by {worst} px")
     cam.type = 'PERSP'
     bpy.context.view_layer.update()
@@ -202,7 +202,8 @@ def wait_done(state, timeout=60.0):
             state.poll()
             return seen_levels
         time.sleep(0.002)
-    raise AssertionError(f"the viewport render did not finish in {timeout} s: {state.render.stats()}")
+    raise AssertionError(f"the viewport render did not finish in {timeout} s: "
+                         f"{state.render.stats()}")
 
 
 def camera_view(tv, scene, width, height):
@@ -219,15 +220,14 @@ def test_viewport_matches_final_render(tv, tc, scene):
     w, h = 192, 144
     scene.render.resolution_x, scene.render.resolution_y = w, h
     settings = tv.viewport_settings(scene)
-    t0 = time.perf_counter()
     state.ensure_render(camera_view(tv, scene, w, h), settings, start_res=64)
     levels = wait_done(state)
-    seconds = time.perf_counter() - t0
     st = state.render.stats()
     print(f"viewport {w}x{h}: images {levels}; first image {st['first_image_seconds']:.3f} s, "
           f"full resolution {st['full_image_seconds']:.3f} s, {settings['samples']} samples "
           f"{st['done_seconds']:.3f} s")
-    check(levels[0][0] == 0 and levels[0][1] == (48, 64), f"first image is the coarse one: {levels}")
+    check(levels[0][0] == 0 and levels[0][1] == (48, 64),
+          f"first image is the coarse one: {levels}")
     check(levels[-1][0] == 1 and levels[-1][1] == (h, w), f"last image full size: {levels}")
     check(state.render.samples_done == settings["samples"], "all samples rendered")
     check(st["first_image_seconds"] < 2.0, "coarse image within 2 s")
@@ -274,7 +274,6 @@ def test_restarts_and_cache(tv, tc, scene):
         check(not state.ensure_render(camera_view(tv, scene, w, h), settings),
               "the same view does not restart")
         # A changed view restarts (without a new scene).
-        builds = state.cache.builds
         scene.camera.location.x += 0.05
         bpy.context.view_layer.update()
         view2 = camera_view(tv, scene, w, h)

@@ -20,7 +20,8 @@ REFERENCE_SAMPLES = 16384     # Cycles samples of the stored reference (two seed
 
 def build(scene):
     mirror = make.principled("Mirror", (0.90, 0.90, 0.92), metallic=1.0, roughness=0.0)
-    make.quad(scene, "Mirror Floor", [(-30, -30, 0), (30, -30, 0), (30, 40, 0), (-30, 40, 0)], mirror)
+    make.quad(scene, "Mirror Floor", [(-30, -30, 0), (30, -30, 0), (30, 40, 0), (-30, 40, 0)],
+              mirror)
     make.box(scene, "Red Block", (-1.3, 3.0, 0.5), (0.8, 0.8, 1.0),
              make.principled("Red", (0.75, 0.12, 0.08), roughness=0.5), rotation_z_deg=20.0)
     make.box(scene, "White Block", (0.9, 4.6, 0.9), (1.0, 1.0, 1.8),

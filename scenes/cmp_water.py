@@ -29,7 +29,8 @@ def build(scene):
     water = make.principled("Water", (0.015, 0.05, 0.06), roughness=0.12, specular=0.25)
     sand = make.principled("Sand", (0.62, 0.52, 0.36), roughness=0.8, specular=0.4)
     rock = make.principled("Rock", (0.28, 0.26, 0.24), roughness=0.6, specular=0.5)
-    xs = np.concatenate([np.linspace(-60, -6, 10)[:-1], np.linspace(-6, 6, 121), np.linspace(6, 60, 10)[1:]])
+    xs = np.concatenate([np.linspace(-60, -6, 10)[:-1], np.linspace(-6, 6, 121),
+                         np.linspace(6, 60, 10)[1:]])
     ys = np.concatenate([np.linspace(-3, 12, 151), np.linspace(12, 200, 20)[1:]])
     verts, tris = geometry.grid(xs, ys)
     verts[:, 2] = waves(verts[:, 0], verts[:, 1])

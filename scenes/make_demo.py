@@ -77,7 +77,8 @@ def build(scene, args):
     scene.collection.objects.link(floor)
 
     for name, centre, radius, color, metallic, roughness, specular in SPHERES:
-        sphere(scene, name, centre, radius, make.principled(name, color, metallic, roughness, specular))
+        sphere(scene, name, centre, radius,
+               make.principled(name, color, metallic, roughness, specular))
     sphere(scene, "Lamp", (0.6, -1.0, 0.15), 0.15,
            make.principled("LampGlow", (0.0, 0.0, 0.0), emission=(1.0, 0.6, 0.25),
                            emission_strength=8.0))

@@ -12,7 +12,8 @@ Everything is generated from fixed seeds (no assets):
   Material "Stone" (Principled, grey) — the control object of the paper's grass figures;
 * a sun 24 degrees high in front of the camera (its specular highlight on the field is in view)
   and a uniform sky colour.
-Engine TORRANCE, 320x240; Cycles is set to render the same scene (see torrance_tools.render_settings.setup_side_by_side).
+Engine TORRANCE, 320x240; Cycles is set to render the same scene
+(see torrance_tools.render_settings.setup_side_by_side).
 """
 
 import math
@@ -53,7 +54,8 @@ def make_blades(scene, grass, rng):
     d_grid = np.linspace(near, far, 2000)
     falloff = np.minimum(1.0, (knee / d_grid) ** 2)
     per_metre = density * falloff * 2 * half_width(d_grid)
-    cdf = np.concatenate([[0.0], np.cumsum(0.5 * (per_metre[1:] + per_metre[:-1]) * np.diff(d_grid))])
+    cdf = np.concatenate([[0.0],
+                          np.cumsum(0.5 * (per_metre[1:] + per_metre[:-1]) * np.diff(d_grid))])
     n = int(cdf[-1])
     d = np.interp(rng.random(n) * cdf[-1], cdf, d_grid)
     x = cam_x + (rng.random(n) * 2 - 1) * half_width(d)

@@ -12,7 +12,8 @@ Everything is generated from fixed seeds (no assets):
   is sharp and blurs as the water's roughness rises;
 * a sun 12 degrees high straight ahead (its glitter path runs down the middle of the view) and a
   uniform sky colour.
-Engine TORRANCE, 320x240; Cycles is set to render the same scene (see torrance_tools.render_settings.setup_side_by_side).
+Engine TORRANCE, 320x240; Cycles is set to render the same scene
+(see torrance_tools.render_settings.setup_side_by_side).
 """
 
 import math
@@ -49,7 +50,7 @@ def make_water(scene, water, rng):
     col_spacing = (0.8 * d + 1.5) * 2.0 / (nx - 1)
     spacing = np.maximum(row_spacing, col_spacing)[:, None]
     Z = np.zeros_like(X)
-    for lam, amp, ang, ph in zip(*waves(rng)):
+    for lam, amp, ang, ph in zip(*waves(rng), strict=True):
         k = 2 * np.pi / lam
         # Full amplitude where a wavelength spans >= 8 rows, none below 4 (smoothstep between).
         t = np.clip((lam / spacing - 4.0) / 4.0, 0.0, 1.0)
@@ -65,7 +66,8 @@ def make_shore(scene, shore):
     ys = np.linspace(58.0, 80.0, 12)
     verts, tris = geometry.grid(xs, ys)
     x, y = verts[:, 0], verts[:, 1]
-    ridge = 4.5 + 1.6 * np.sin(0.09 * x + 0.5) + 0.9 * np.sin(0.23 * x + 2.0) + 0.4 * np.sin(0.61 * x)
+    ridge = (4.5 + 1.6 * np.sin(0.09 * x + 0.5) + 0.9 * np.sin(0.23 * x + 2.0)
+             + 0.4 * np.sin(0.61 * x))
     rise = np.clip((y - 58.0) / 9.0, 0.0, 1.0)
     verts[:, 2] = ridge * rise * rise * (3 - 2 * rise) - 0.3
     return make.mesh_object(scene, "Shore", verts, tris, material=shore, smooth=True)

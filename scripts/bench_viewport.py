@@ -22,14 +22,13 @@ first image) and "dense" (the same with a 200k-triangle object), or --scenes.
 
 import argparse
 import json
-import math
 import os
 import statistics
 import sys
 import time
 
 import bpy
-from mathutils import Euler, Matrix, Vector
+from mathutils import Euler, Matrix
 
 from torrance_tools import testing
 
@@ -95,9 +94,12 @@ def bench_size(tv, tc, scene, width, height, repeats):
         view = tv.View.from_matrices(*view_matrices(width, height, 0.1 * i), width, height)
         state.ensure_render(view, settings, start_res)
         r = state.render
-        coarse = ("x".join(map(str, r.levels[0][:2])) +
-                  (f"+{len(r.levels) - 2}" if len(r.levels) > 2 else "")) if len(r.levels) > 1 else "-"
-        wait(lambda: (r.poll() or True) and r.full_image_seconds is not None or r.error)
+        if len(r.levels) > 1:
+            coarse = ("x".join(map(str, r.levels[0][:2]))
+                      + (f"+{len(r.levels) - 2}" if len(r.levels) > 2 else ""))
+        else:
+            coarse = "-"
+        wait(lambda r=r: (r.poll() or True) and r.full_image_seconds is not None or r.error)
         firsts.append(r.first_image_seconds)
         fulls.append(r.full_image_seconds)
         time.sleep(0.3)                       # let it refine at full resolution

@@ -1,10 +1,10 @@
 # SPDX-License-Identifier: Apache-2.0
 """Speed against error, Torrance vs Cycles, on the comparison scenes (run by scripts/benchmark).
 
-In one Blender process, for each scene of torrance_tools/comparison_scenes.py: both engines render it at 1, 2, 4,
-... samples per pixel (up to --max-spp, or until one render of that engine takes longer than
---cap-seconds), alternating engines at each count so that load changes on a shared machine hit
-both alike. Each render is timed the same way for both engines: the wall time of
+In one Blender process, for each scene of torrance_tools/comparison_scenes.py: both engines render
+it at 1, 2, 4, ... samples per pixel (up to --max-spp, or until one render of that engine takes
+longer than --cap-seconds), alternating engines at each count so that load changes on a shared
+machine hit both alike. Each render is timed the same way for both engines: the wall time of
 bpy.ops.render.render (scene export/sync + render), after one untimed warm-up render per engine
 and scene. The error of each image against the stored converged Cycles reference
 (references/cmp_<name>.exr) is its relMSE (also with the worst 0.1 % of pixels left out) and SSIM.
@@ -32,7 +32,6 @@ import subprocess
 import sys
 import time
 
-import bpy
 import numpy as np
 
 from torrance_tools import REPO as ROOT
@@ -61,7 +60,8 @@ def parse_args():
 
 
 # String options of RenderSettings and the alternative that switches a choice of the core off
-# (used when the core has the field): what Sobol sampling and contribution-based light selection buy.
+# (used when the core has the field): what Sobol sampling and contribution-based light selection
+# buy.
 ALTERNATIVES = {"sampler": "RANDOM", "light_selection": "UNIFORM"}
 
 
@@ -215,8 +215,10 @@ def bench_scene(name, args, core, toggles):
                     if field is not None:
                         setattr(s, field, other)
                 img, t, extra = render_once(scene, "torrance", args.toggle_spp, mod.BOUNCES,
-                                            SEED + rnd, f"toggle_{name}_{label}", settings_edit=edit)
-                runs[label].append(dict(spp=args.toggle_spp, seconds=t, **extra, **measure(img, ref)))
+                                            SEED + rnd, f"toggle_{name}_{label}",
+                                            settings_edit=edit)
+                runs[label].append(dict(spp=args.toggle_spp, seconds=t, **extra,
+                                        **measure(img, ref)))
         summary = {}
         for label, rows in runs.items():
             summary[label] = row = aggregate(rows, floor)
@@ -238,21 +240,25 @@ def main():
     t0 = time.perf_counter()
     results = dict(
         made=datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-        command="scripts/benchmark " + " ".join(sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []),
+        command="scripts/benchmark " + " ".join(sys.argv[sys.argv.index("--") + 1:]
+                                                if "--" in sys.argv else []),
         torrance_commit=git("rev-parse", "--short", "HEAD"),
-        torrance_dirty=bool(git("status", "--porcelain", "--", "core", "python_addon", "CMakeLists.txt")),
+        torrance_dirty=bool(git("status", "--porcelain", "--",
+                                "core", "python_addon", "CMakeLists.txt")),
         **references.versions(), machine=machine(),
         settings=dict(width=comparison_scenes.WIDTH, height=comparison_scenes.HEIGHT, seed=SEED,
                       max_spp=args.max_spp,
-                      cap_seconds=args.cap_seconds, toggle_spp=args.toggle_spp, toggle_repeats=args.toggle_repeats,
+                      cap_seconds=args.cap_seconds, toggle_spp=args.toggle_spp,
+                      toggle_repeats=args.toggle_repeats,
                       max_seeds=args.max_seeds, trim=TRIM,
                       torrance_model='PRINCIPLED',
                       threads="all (Blender threads AUTO; Torrance threads 0)"),
         toggles=[dict(field=t, default=d, other=o) for t, d, o in toggles],
         blender_startup_seconds=blender_startup_seconds(),
         scenes={})
+    toggle_fields = [t['field'] for t in results['toggles']] or 'none exposed by the core'
     print(f"benchmark: Blender start-up {results['blender_startup_seconds']:.2f} s; "
-          f"specialisation toggles: {[t['field'] for t in results['toggles']] or 'none exposed by the core'}", flush=True)
+          f"specialisation toggles: {toggle_fields}", flush=True)
     for name in args.scenes:
         results["scenes"][name] = bench_scene(name, args, core, toggles)
     results["total_seconds"] = time.perf_counter() - t0

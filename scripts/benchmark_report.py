@@ -7,13 +7,14 @@ Run by scripts/benchmark after the renders (or alone, to re-make the report from
 
 Error: relMSE = mean over pixels and channels of (I - R)^2 / (R^2 + 0.01) against the stored
 reference R, minus the reference's own noise (noise_rel_mse in its JSON: E[relMSE] = true error +
-the reference's variance term; errors below that noise term are not used), and SSIM of tone-mapped images. Equal-error time ratio: both
-engines' curves of log(time) against log(corrected relMSE) are made monotone (the best error
-reached so far) and interpolated linearly; the ratio time_Torrance / time_Cycles is taken on a
-grid of errors where both curves exist (geometric mean over the overlap, and at the errors Cycles
-reaches with 16, 128 and 1024 samples).
+the reference's variance term; errors below that noise term are not used), and SSIM of tone-mapped
+images. Equal-error time ratio: both engines' curves of log(time) against log(corrected relMSE) are
+made monotone (the best error reached so far) and interpolated linearly; the ratio time_Torrance /
+time_Cycles is taken on a grid of errors where both curves exist (geometric mean over the overlap,
+and at the errors Cycles reaches with 16, 128 and 1024 samples).
 """
 
+import itertools
 import json
 import math
 import os
@@ -46,7 +47,7 @@ def time_at_error(c, log_e):
     es = [p[1] for p in c]
     if log_e > es[0] or log_e < es[-1]:
         return None
-    for (t0, e0), (t1, e1) in zip(c, c[1:]):
+    for (t0, e0), (t1, e1) in itertools.pairwise(c):
         if e1 <= log_e <= e0:
             if e0 == e1:
                 return t0
@@ -107,7 +108,7 @@ def plot_scene(name, data, path):
                    alpha=0.35, lw=1, ms=3)
         corr = [(r["seconds"], r["rel_mse_corrected"]) for r in rows if r["rel_mse_corrected"] > 0]
         if corr:
-            ax1.loglog(*zip(*corr), marker=marker, color=color, lw=1.8, ms=5,
+            ax1.loglog(*zip(*corr, strict=True), marker=marker, color=color, lw=1.8, ms=5,
                        label=f"{engine.capitalize()}")
         for r in rows:
             if r["spp"] in (1, 16, 256, 1024) and r["rel_mse_corrected"] > 0:
@@ -140,7 +141,7 @@ def plot_references(names, path):
     import matplotlib.pyplot as plt
     import OpenImageIO as oiio
     fig, axes = plt.subplots(1, len(names), figsize=(2.2 * len(names), 2.0))
-    for ax, name in zip(np.atleast_1d(axes), names):
+    for ax, name in zip(np.atleast_1d(axes), names, strict=True):
         inp = oiio.ImageInput.open(os.path.join(ROOT, "references", f"cmp_{name}.exr"))
         spec = inp.spec()
         img = np.asarray(inp.read_image(0, 0, 0, 3, oiio.FLOAT)).reshape(spec.height, spec.width, 3)
@@ -170,11 +171,13 @@ def write_report(directory):
         f"Raw data: [results.json](results.json).")
     add("")
     m = res["machine"]
-    dirty = " (with uncommitted changes in core/ or python_addon/)" if res.get("torrance_dirty") else ""
+    dirty = (" (with uncommitted changes in core/ or python_addon/)"
+             if res.get("torrance_dirty") else "")
     add(f"- Machine: {m['cpu']}, {m['cores']} cores, {m['system']}; load average at the start "
         f"{', '.join(f'{x:.2f}' for x in m['load_average'])} (a shared machine: timings carry "
         f"its load).")
-    add(f"- Blender {res['blender']} (Cycles CPU); Torrance at commit `{res['torrance_commit']}`{dirty}, "
+    add(f"- Blender {res['blender']} (Cycles CPU); "
+        f"Torrance at commit `{res['torrance_commit']}`{dirty}, "
         f"model PRINCIPLED (Cycles' Principled v1).")
     s = res["settings"]
     add(f"- {s['width']}x{s['height']} pixels, seed {s['seed']}, samples 1, 2, 4, … up to "
@@ -186,11 +189,13 @@ def write_report(directory):
     add(f"- One image's relMSE is dominated by a few fireflies: a point whose first render takes "
         f"under 1 s (5 s) is rendered with up to {s.get('max_seeds', 4)} (2) seeds, errors "
         f"averaged, time = median.")
-    add("- Cycles: no denoising, no adaptive sampling, no clamping, no glossy blur, light threshold "
-        "0, Blackman-Harris 1.5 px, GGX; bounces as each scene's BOUNCES (Torrance the same).")
+    add("- Cycles: no denoising, no adaptive sampling, no clamping, no glossy blur, "
+        "light threshold 0, Blackman-Harris 1.5 px, GGX; bounces as each scene's BOUNCES "
+        "(Torrance the same).")
     add("- Error against the stored converged Cycles reference (`references/`, made by "
         "`scripts/references`): relMSE = mean((I−R)²/(R²+0.01)) minus the reference's own noise "
-        "term (measured from its two seeds; corrected errors below that term are not used), and SSIM of tone-mapped images. Equal-error time "
+        "term (measured from its two seeds; corrected errors below that term are not used), "
+        "and SSIM of tone-mapped images. Equal-error time "
         "ratio = time_Torrance / time_Cycles at the same corrected relMSE, interpolating "
         "log-error against log-time; **below 1 Torrance is faster; the goal is ≤ "
         f"{TARGET}**.")
@@ -198,7 +203,10 @@ def write_report(directory):
     add("")
     add("## Summary")
     add("")
-    add("| scene | equal-error time ratio T/C (relMSE; geo. mean over overlap) | range | at Cycles' 16 / 128 / 1024 spp error | goal ≤ 0.5 | same, relMSE without the worst 0.1 % pixels | same by 1−SSIM | bias (mean ratio T/ref at max spp) |")
+    add("| scene | equal-error time ratio T/C (relMSE; geo. mean over overlap) | range "
+        "| at Cycles' 16 / 128 / 1024 spp error | goal ≤ 0.5 "
+        "| same, relMSE without the worst 0.1 % pixels | same by 1−SSIM "
+        "| bias (mean ratio T/ref at max spp) |")
     add("|---|---|---|---|---|---|---|---|")
     summary = {}
     for name, d in scenes.items():
@@ -212,7 +220,9 @@ def write_report(directory):
         met = "—" if eq["geomean"] is None else ("yes" if eq["geomean"] <= TARGET else "no")
         last = d["torrance"][-1] if d["torrance"] else None
         bias = f"{last['ratio']:.4f} ({last['spp']} spp)" if last else "—"
-        add(f"| [{name}](#{name.replace('_', '-')}) | {fmt_ratio(eq['geomean'])} | {rng} | {at} | {met} | {fmt_ratio(eq_trim['geomean'])} | {fmt_ratio(eq_ssim['geomean'])} | {bias} |")
+        add(f"| [{name}](#{name.replace('_', '-')}) | {fmt_ratio(eq['geomean'])} | {rng} | {at} "
+            f"| {met} | {fmt_ratio(eq_trim['geomean'])} | {fmt_ratio(eq_ssim['geomean'])} "
+            f"| {bias} |")
     add("")
     ok = [n for n, e in summary.items() if e["geomean"] is not None and e["geomean"] <= TARGET]
     add(f"Goal (equal error in ≤ {TARGET}× Cycles' time) met on {len(ok)} of {len(summary)} "
@@ -230,7 +240,8 @@ def write_report(directory):
         add(f"Torrance at {s['toggle_spp']} spp with its defaults, then with one option of the "
             f"core switched at a time (everything else default), {s.get('toggle_repeats', 1)} "
             f"interleaved rounds, median times. Time = the core's render time (the export is the "
-            f"same for all); speed-up = time(switched) / time(default); error ratio = relMSE(switched) / relMSE(default); efficiency gain = "
+            f"same for all); speed-up = time(switched) / time(default); "
+            f"error ratio = relMSE(switched) / relMSE(default); efficiency gain = "
             f"(time × relMSE)(switched) / (time × relMSE)(default), i.e. how much longer the "
             f"switched core needs for the same error (relMSE ∝ 1/samples). Above 1: the "
             f"default choice pays. Single renders at a fixed seed: ratios of relMSE near 1 are "
@@ -240,7 +251,8 @@ def write_report(directory):
             field = t["field"]
             add(f"**`{field}` = {t['default']!r} (default) vs {t['other']!r}**")
             add("")
-            add("| scene | core time default (s) | switched (s) | speed-up | relMSE default | relMSE switched | error ratio | efficiency gain |")
+            add("| scene | core time default (s) | switched (s) | speed-up | relMSE default "
+                "| relMSE switched | error ratio | efficiency gain |")
             add("|---|---|---|---|---|---|---|---|")
             gains = []
             for name, d in scenes.items():
@@ -281,12 +293,14 @@ def write_report(directory):
         add(f"{d['title']}. Reference: {d['reference']['samples']} Cycles samples, noise relMSE "
             f"{d['reference']['noise_rel_mse']:.2e}. Max bounces {d['bounces']}. "
             f"Equal-error time ratio T/C: **{fmt_ratio(eq['geomean'])}**"
-            + (f" over relMSE {eq['overlap'][0]:.2e}–{eq['overlap'][1]:.2e}" if eq["overlap"] else "")
+            + (f" over relMSE {eq['overlap'][0]:.2e}–{eq['overlap'][1]:.2e}"
+               if eq["overlap"] else "")
             + ".")
         add("")
         add(f"![{name}]({png})")
         add("")
-        add("| spp | Torrance s | relMSE | trimmed | SSIM | mean ratio | Cycles s | relMSE | trimmed | SSIM | mean ratio |")
+        add("| spp | Torrance s | relMSE | trimmed | SSIM | mean ratio "
+            "| Cycles s | relMSE | trimmed | SSIM | mean ratio |")
         add("|---|---|---|---|---|---|---|---|---|---|---|")
         by_spp = {}
         for engine in ("torrance", "cycles"):

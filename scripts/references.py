@@ -2,8 +2,9 @@
 """Renders the converged Cycles references of the comparison scenes (run by scripts/references).
 
 For each scene scenes/cmp_<name>.py: Cycles renders it twice with REFERENCE_SAMPLES/2 samples
-(seeds 1 and 2, the settings of torrance_tools.render_settings.cycles_settings); the reference is their mean, written as
-references/cmp_<name>.exr (half float, lossless ZIP) with references/cmp_<name>.json beside it:
+(seeds 1 and 2, the settings of torrance_tools.render_settings.cycles_settings); the reference is
+their mean, written as references/cmp_<name>.exr (half float, lossless ZIP) with
+references/cmp_<name>.json beside it:
 Blender's version, the settings, render times, the scene digest (the test refuses a reference of
 another scene) and the reference's own noise, measured from the two halves:
 
@@ -14,7 +15,8 @@ another scene) and the reference's own noise, measured from the two halves:
     noise_block_p90    its 90th percentile;
     half_ratio         mean(A) / mean(B).
 
-    scripts/blender -b --factory-startup --python-exit-code 1 --python scripts/references.py -- [NAME ...]
+    scripts/blender -b --factory-startup --python-exit-code 1 --python scripts/references.py -- \
+        [NAME ...]
 """
 
 import datetime
@@ -55,7 +57,8 @@ def make_reference(name):
     keys = [k for k in render_settings.cycles_settings(half, 0, mod.BOUNCES) if k != "seed"]
     keys += ["sampling_pattern", "min_light_bounces", "min_transparent_bounces"]
     settings = {k: getattr(scene.cycles, k) for k in keys if hasattr(scene.cycles, k)}
-    settings = {k: (v if isinstance(v, (bool, int, float, str)) else str(v)) for k, v in settings.items()}
+    settings = {k: (v if isinstance(v, (bool, int, float, str)) else str(v))
+                for k, v in settings.items()}
     meta = dict(
         scene=name, title=mod.TITLE, script=f"scenes/cmp_{name}.py",
         scene_digest=digest,
@@ -71,7 +74,8 @@ def make_reference(name):
         noise_block_mean=float(block_noise.mean()),
         noise_block_p90=float(np.percentile(block_noise, 90)),
         half_ratio=float(a.mean() / b.mean()),
-        half_float_max_rel_error=float(np.max(np.abs(stored - ref) / np.maximum(np.abs(ref), 1e-3))),
+        half_float_max_rel_error=float(np.max(np.abs(stored - ref)
+                                              / np.maximum(np.abs(ref), 1e-3))),
     )
     with open(meta_path, "w") as f:
         json.dump(meta, f, indent=2)

@@ -77,7 +77,8 @@ def core_proxy(core, settings_edit=None, scene_edit=None):
         real = scene._scene if isinstance(scene, _SceneProxy) else scene
         return core.render(real, settings, **kw)
 
-    proxy = types.SimpleNamespace(**{k: getattr(core, k) for k in dir(core) if not k.startswith("__")})
+    proxy = types.SimpleNamespace(**{k: getattr(core, k) for k in dir(core)
+                                     if not k.startswith("__")})
     proxy.RenderSettings = make_settings
     proxy.Scene = make_scene
     proxy.render = render_fn

@@ -67,14 +67,15 @@ def failures(m, thresholds=THRESHOLDS):
     out = []
     if not lo <= m["ratio"] <= hi:
         out.append(f"ratio {m['ratio']:.3f} outside [{lo}, {hi}]")
-    for name, c in zip("RGB", m["channels"]):
+    for name, c in zip("RGB", m["channels"], strict=True):
         if not lo <= c <= hi:
             out.append(f"{name} ratio {c:.3f} outside [{lo}, {hi}]")
     if m["block_mean"] > thresholds["block_mean"]:
         out.append(f"block mean {m['block_mean']:.3f} > {thresholds['block_mean']}")
     if m["block_p90"] > thresholds["block_p90"]:
         out.append(f"block p90 {m['block_p90']:.3f} > {thresholds['block_p90']}")
-    if "offset" in thresholds and max(abs(m["offset"][0]), abs(m["offset"][1])) > thresholds["offset"]:
+    if ("offset" in thresholds
+            and max(abs(m["offset"][0]), abs(m["offset"][1])) > thresholds["offset"]):
         out.append(f"offset ({m['offset'][0]:+.2f}, {m['offset'][1]:+.2f}) px > "
                    f"{thresholds['offset']}")
     return out

@@ -71,7 +71,8 @@ def bias_metrics(img, ref, block=8):
     """
     img, ref = img[:, :, :3], ref[:, :, :3]
     ratio = float(img.mean() / max(ref.mean(), 1e-12))
-    channels = [float(a / max(b, 1e-12)) for a, b in zip(img.mean(axis=(0, 1)), ref.mean(axis=(0, 1)))]
+    channels = [float(a / max(b, 1e-12))
+                for a, b in zip(img.mean(axis=(0, 1)), ref.mean(axis=(0, 1)), strict=True)]
     bi, br = block_means(img, block), block_means(ref, block)
     rel = np.abs(bi - br) / np.maximum(br, 0.1 * br.mean())
     return dict(ratio=ratio, channels=channels, block_mean=float(rel.mean()),

@@ -95,7 +95,8 @@ def scene_digest(scene):
                         for sock in node.inputs:
                             if hasattr(sock, "default_value"):
                                 v = sock.default_value
-                                put(sock.name, floats(v) if hasattr(v, "__len__") else round(float(v), 6))
+                                put(sock.name,
+                                    floats(v) if hasattr(v, "__len__") else round(float(v), 6))
         elif ob.type == 'LIGHT':
             li = ob.data
             put(li.type, li.energy, floats(li.color), getattr(li, "angle", None),
@@ -109,7 +110,8 @@ def scene_digest(scene):
         put(floats(w.color), w.use_nodes)
         if w.use_nodes:
             bg = w.node_tree.nodes.get("Background")
-            put(floats(bg.inputs["Color"].default_value), round(bg.inputs["Strength"].default_value, 6))
+            put(floats(bg.inputs["Color"].default_value),
+                round(bg.inputs["Strength"].default_value, 6))
     return h.hexdigest()
 
 

@@ -31,7 +31,7 @@ def icosphere(subdivisions):
     for _ in range(subdivisions):
         cache = {}
 
-        def mid(a, b):
+        def mid(a, b, cache=cache):
             key = (a, b) if a < b else (b, a)
             if key not in cache:
                 p = verts[a] + verts[b]

@@ -82,5 +82,7 @@ def versions():
     """What made an image: Blender's version and build."""
     app = bpy.app
     return dict(blender=app.version_string,
-                build_hash=app.build_hash.decode() if isinstance(app.build_hash, bytes) else str(app.build_hash),
-                build_date=app.build_date.decode() if isinstance(app.build_date, bytes) else str(app.build_date))
+                build_hash=(app.build_hash.decode() if isinstance(app.build_hash, bytes)
+                            else str(app.build_hash)),
+                build_date=(app.build_date.decode() if isinstance(app.build_date, bytes)
+                            else str(app.build_date)))

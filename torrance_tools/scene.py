@@ -194,7 +194,8 @@ def box(scene, name, center, size, material=None, rotation_z_deg=0.0):
     sx, sy, sz = (s / 2 for s in size)
     v = np.array([(-sx, -sy, -sz), (sx, -sy, -sz), (sx, sy, -sz), (-sx, sy, -sz),
                   (-sx, -sy, sz), (sx, -sy, sz), (sx, sy, sz), (-sx, sy, sz)])
-    f = np.array([(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)])
+    f = np.array([(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6),
+                  (3, 0, 4, 7)])
     ob = mesh_object(scene, name, v, f, material)
     ob.location = center
     ob.rotation_euler = (0.0, 0.0, math.radians(rotation_z_deg))

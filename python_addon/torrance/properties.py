@@ -55,7 +55,8 @@ class TorranceSceneSettings(bpy.types.PropertyGroup):
     )
     filter_width: FloatProperty(
         name="Filter Width",
-        description="Width of the Blackman-Harris pixel filter in pixels (as Cycles' Pixel Filter Width)",
+        description="Width of the Blackman-Harris pixel filter in pixels "
+                    "(as Cycles' Pixel Filter Width)",
         default=1.5, min=0.01, max=10.0, soft_max=3.0,
         subtype='PIXEL',
     )

@@ -80,7 +80,7 @@ class ProgressiveRender:
         self.levels = []                       # (width, height, samples, window or None)
         win = view.window
         ww, wh = (win[2] - win[0], win[3] - win[1]) if win else (view.width, view.height)
-        for w, h in coarse_sizes(ww, wh, start_res):
+        for w, _h in coarse_sizes(ww, wh, start_res):
             f = w / float(ww)
             self.levels.append((max(1, int(round(view.width * f))),
                                 max(1, int(round(view.height * f))), 1, self._scaled(win, f)))

@@ -49,7 +49,7 @@ class SceneCache:
                 if update.is_updated_geometry:
                     geometry_changed = True
                     name = id_.name
-                    self.meshes.drop(lambda key: key[0] == name)
+                    self.meshes.drop(lambda key, name=name: key[0] == name)
                 if update.is_updated_geometry or update.is_updated_transform \
                         or update.is_updated_shading:
                     relevant = True
@@ -66,7 +66,7 @@ class SceneCache:
                 if update.is_updated_geometry or isinstance(id_, bpy.types.Mesh):
                     geometry_changed = True
                     name = id_.name
-                    self.meshes.drop(lambda key: key[1] == name)
+                    self.meshes.drop(lambda key, name=name: key[1] == name)
         if geometry_changed:
             self.instance_meshes.clear()
         return relevant
