@@ -42,6 +42,11 @@ def load_core():
     return _core
 
 
+def _rect_is_flat():
+    import bpy
+    return bpy.app.version >= (4, 0, 0)
+
+
 def render_window(scene_render, width, height):
     """The pixels to render, (x0, y0, x1, y1) with y counted from the BOTTOM row, as Blender.
 
@@ -101,7 +106,10 @@ class _Session:
                              f"{self.w}x{self.h} window")
         win = np.flipud(win[:, :, :channels])
         win = np.nan_to_num(win, nan=0.0, posinf=0.0, neginf=0.0)
-        return np.ascontiguousarray(win, dtype=np.float32).reshape(-1, channels)
+        win = np.ascontiguousarray(win, dtype=np.float32)
+        # RenderPass.rect.foreach_set takes (pixels, channels) rows in Blender 3.4, the flat
+        # array in 4.x (seen in 4.2 and 4.5).
+        return win.reshape(-1) if _rect_is_flat() else win.reshape(-1, channels)
 
     def begin(self):
         self.result = self.engine.begin_result(0, 0, self.w, self.h, layer=self.layer_name)
