@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """A final render: export the depsgraph, run the core, hand the pixels to Blender."""
 
+import importlib.util
 import time
 import traceback
 
@@ -31,7 +32,10 @@ def load_core():
     global _core, _core_error
     if _core is None:
         try:
-            from . import torrance_core
+            if importlib.util.find_spec(f"{__package__}.torrance_core") is not None:
+                from . import torrance_core      # bundled: build/addon, the legacy add-on zip
+            else:
+                import torrance_core             # the Blender 4.2+ extension: from its wheel
         except Exception as exc:             # ImportError, or a broken .so (OSError, ...)
             _core_error = f"{type(exc).__name__}: {exc}"
             raise CoreMissing(
