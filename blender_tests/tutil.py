@@ -64,7 +64,7 @@ def addon():
     import addon_utils
     loaded_default, loaded_state = addon_utils.check("torrance")
     check(loaded_state, "the Torrance add-on is not enabled (run the test through scripts/blender)")
-    engines = {cls.bl_idname for cls in bpy.types.RenderEngine.__subclasses__()
+    engines = {getattr(cls, "bl_idname", None) for cls in bpy.types.RenderEngine.__subclasses__()
                if cls.is_registered}
     check('TORRANCE' in engines, "the TORRANCE render engine is not registered")
     return sys.modules["torrance"]
