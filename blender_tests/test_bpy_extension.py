@@ -22,7 +22,8 @@ wheel's native module needs none of Debian's copies of its libraries.
 Exits 77 (SKIPPED) only when bpy 4.2 can not be installed (no network and no cached wheels),
 after part 2a has passed.
 
-Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_tests/test_bpy_extension.py
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \
+         --python blender_tests/test_bpy_extension.py
 (or, without Blender 3.4, /usr/bin/python3 blender_tests/test_bpy_extension.py)
 """
 
@@ -63,7 +64,7 @@ def ldd(paths):
     out = {}
     for path in paths:
         text = subprocess.run(["ldd", path], capture_output=True, text=True, check=True).stdout
-        for m in re.finditer(r"^\s*(\S+) => (/\S+)", text, re.M):
+        for m in re.finditer(r"^\s*(\S+) => (/\S+)", text, re.MULTILINE):
             out[m.group(1)] = os.path.realpath(m.group(2))
     return out
 
@@ -91,7 +92,7 @@ def hidden_libraries(keep_elfs):
 
 def can_hide():
     return subprocess.run(["unshare", "--mount", "--propagation", "private", "true"],
-                          capture_output=True).returncode == 0
+                          capture_output=True, check=False).returncode == 0
 
 
 def hiding(cmd, hide, no_network=False):
@@ -125,7 +126,7 @@ MAPS_CHECK = textwrap.dedent('''
                       and p.startswith(("/usr/", "/lib"))]     # (Blender 4.2 has its own TBB 2020)
             assert not system, f"{stem} also loaded from {system}"
         print(f"CHILD maps: {len(mapped)} shared objects; Embree, TBB, OIIO from {libs_dir}")
-''' % (MUST_BUNDLE,))
+'''.replace("%r", repr(MUST_BUNDLE)))
 
 CORE_CHILD = MAPS_CHECK + textwrap.dedent('''
     import json, sys
@@ -191,7 +192,8 @@ BPY_CHILD = MAPS_CHECK + textwrap.dedent('''
 
 def run(cmd, env=None, timeout=600):
     t0 = time.time()
-    proc = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=timeout)
+    proc = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=timeout,
+                          check=False)
     out = proc.stdout + proc.stderr
     return proc.returncode, out, time.time() - t0
 
@@ -227,21 +229,25 @@ def main():
             os.chmod(path, 0o755)
 
         # 2a. the wheel's module in /usr/bin/python3 (with Debian's numpy).
-        import_numpy = subprocess.run(
-            ["/usr/bin/python3", "-c", "import numpy, glob, os; print('\\n'.join(glob.glob("
-             "os.path.join(os.path.dirname(numpy.__file__), '**', '*.so'), recursive=True)))"],
-            capture_output=True, text=True, check=True).stdout.split()
+        numpy_dir = subprocess.run(
+            ["/usr/bin/python3", "-c", "import numpy, os; print(os.path.dirname(numpy.__file__))"],
+            capture_output=True, text=True, check=True).stdout.strip()
+        import_numpy = glob.glob(os.path.join(numpy_dir, "**", "*.so"), recursive=True)
         hide = hidden_libraries([os.path.realpath("/usr/bin/python3")] + import_numpy)
         allowed = can_hide()
-        print(f"hiding {len(hide)} libraries ({', '.join(os.path.basename(p) for p in hide[:6])}, "
-              f"...)" if allowed else "WARNING: unshare is not allowed here: nothing is hidden, "
-              "only the /proc/self/maps checks are made")
+        if allowed:
+            print(f"hiding {len(hide)} libraries "
+                  f"({', '.join(os.path.basename(p) for p in hide[:6])}, ...)")
+        else:
+            print("WARNING: unshare is not allowed here: nothing is hidden, only the "
+                  "/proc/self/maps checks are made")
         hidden_json = os.path.join(tmp, "hidden.json")
         with open(hidden_json, "w") as f:
             json.dump(hide, f)
         if allowed:       # the control: Debian's build of the module can not load there
+            legacy = os.path.join(BUILD, "addon", "torrance")
             rc, out, _ = run(hiding(["/usr/bin/python3", "-c", "import torrance_core"], hide),
-                             env=dict(os.environ, PYTHONPATH=os.path.join(BUILD, "addon", "torrance")))
+                             env=dict(os.environ, PYTHONPATH=legacy))
             check(rc != 0 and "file too short" in out,
                   f"the hiding does not work: build/addon's module loaded ({out.strip()[-200:]})")
             print("control: build/addon's torrance_core fails there:", out.strip().splitlines()[-1])

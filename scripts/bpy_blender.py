@@ -39,7 +39,7 @@ def finish(code):
     import atexit
     try:
         atexit._run_exitfuncs()
-    except BaseException:
+    except BaseException:             # noqa: BLE001
         traceback.print_exc()
     sys.stdout.flush()
     sys.stderr.flush()
@@ -69,10 +69,8 @@ def frame_number(text, scene):
 
 def main():
     args = sys.argv[1:]
-    if "--" in args:
-        own, after = args[:args.index("--")], args[args.index("--"):]
-    else:
-        own, after = args, []
+    own = args[:args.index("--")] if "--" in args else args     # after "--": the scripts'
+
     exit_code_on_error = 0
     if "--python-exit-code" in own:
         exit_code_on_error = int(own[own.index("--python-exit-code") + 1])
@@ -100,7 +98,7 @@ def main():
                 print(code, file=sys.stderr)
                 code = 1
             finish(code)
-        except BaseException:
+        except BaseException:         # noqa: BLE001 (Blender prints any error of a script)
             traceback.print_exc()
             if exit_code_on_error:
                 print(f"\nError: script failed, {label}, exiting.", file=sys.stderr)
@@ -115,11 +113,12 @@ def main():
             path = value
             if not os.path.isfile(path):
                 fail(f"Cannot read file '{path}': No such file or directory")
-            run(lambda: runpy.run_path(path, run_name="__main__"), f"file: '{path}'")
+            run(lambda path=path: runpy.run_path(path, run_name="__main__"), f"file: '{path}'")
             i += 2
         elif arg == "--python-expr":
             expr = value
-            run(lambda: exec(compile(expr, "<string>", "exec"), {"__name__": "__main__"}),
+            run(lambda expr=expr: exec(compile(expr, "<string>", "exec"),  # noqa: S102
+                                       {"__name__": "__main__"}),
                 f"expr: '{expr}'")
             i += 2
         elif arg == "--addons":
