@@ -14,7 +14,7 @@ def addon():
     """The enabled Torrance add-on module (its TORRANCE engine registered)."""
     import addon_utils
     _default, loaded = addon_utils.check("torrance")
-    engines = {cls.bl_idname for cls in bpy.types.RenderEngine.__subclasses__()
+    engines = {getattr(cls, "bl_idname", None) for cls in bpy.types.RenderEngine.__subclasses__()
                if cls.is_registered}
     if not loaded or 'TORRANCE' not in engines:
         raise RuntimeError("the Torrance add-on is not enabled (run through scripts/blender)")

@@ -87,6 +87,22 @@ def read_corner_uvs(mesh, nt):
     return np.ascontiguousarray(corner), layer.name
 
 
+def _has_corner_normals(mesh):
+    """Whether a mesh's normals are its split (corner) normals, computing them if needed.
+
+    Blender < 4.1: with auto smooth. Blender 4.1 removed auto smooth: the mesh's
+    normals_domain is 'CORNER' when faces and edges are not all smooth or all flat (Cycles 4.1
+    reads corner normals then, and vertex normals or flat faces otherwise, as below).
+    """
+    import bpy
+    if bpy.app.version >= (4, 1, 0):
+        return mesh.normals_domain == 'CORNER'
+    if mesh.use_auto_smooth:
+        mesh.calc_normals_split()       # split_normals are zeros until this is called
+        return True
+    return False
+
+
 def read_local_mesh(obj, uvs=False):
     """The evaluated object's mesh as a LocalMesh, or None when it has no triangles.
 
@@ -112,8 +128,7 @@ def read_local_mesh(obj, uvs=False):
         mesh.loop_triangles.foreach_get("material_index", mat)
 
         vertex_normals = corner_normals = smooth = None
-        if mesh.use_auto_smooth:
-            mesh.calc_normals_split()       # split_normals are zeros until this is called
+        if _has_corner_normals(mesh):
             sn = np.empty(nt * 9, dtype=np.float32)
             mesh.loop_triangles.foreach_get("split_normals", sn)
             corner_normals = sn.reshape(nt, 3, 3)

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """A final render: export the depsgraph, run the core, hand the pixels to Blender."""
 
+import importlib.util
 import time
 import traceback
 
@@ -31,7 +32,10 @@ def load_core():
     global _core, _core_error
     if _core is None:
         try:
-            from . import torrance_core
+            if importlib.util.find_spec(f"{__package__}.torrance_core") is not None:
+                from . import torrance_core      # bundled: build/addon, the legacy add-on zip
+            else:
+                import torrance_core             # the Blender 4.2+ extension: from its wheel
         except Exception as exc:             # ImportError, or a broken .so (OSError, ...)
             _core_error = f"{type(exc).__name__}: {exc}"
             raise CoreMissing(
@@ -40,6 +44,11 @@ def load_core():
         _core = torrance_core
         _core_error = None
     return _core
+
+
+def _rect_is_flat():
+    import bpy
+    return bpy.app.version >= (4, 0, 0)
 
 
 def render_window(scene_render, width, height):
@@ -101,7 +110,10 @@ class _Session:
                              f"{self.w}x{self.h} window")
         win = np.flipud(win[:, :, :channels])
         win = np.nan_to_num(win, nan=0.0, posinf=0.0, neginf=0.0)
-        return np.ascontiguousarray(win, dtype=np.float32).reshape(-1, channels)
+        win = np.ascontiguousarray(win, dtype=np.float32)
+        # RenderPass.rect.foreach_set takes (pixels, channels) rows in Blender 3.4, the flat
+        # array in 4.x (seen in 4.2 and 4.5).
+        return win.reshape(-1) if _rect_is_flat() else win.reshape(-1, channels)
 
     def begin(self):
         self.result = self.engine.begin_result(0, 0, self.w, self.h, layer=self.layer_name)
