@@ -291,10 +291,16 @@ def _driver(result_path, shots_dir):
         yield from wait_samples(16, 90)
         torrance_px = screenshot("4b_studio_torrance")
         scene.render.engine = 'CYCLES'
-        yield 12.0                                        # Cycles: 16 samples, no stats to poll
-        cycles_px = screenshot("4c_studio_cycles")
-        scene.render.engine = 'TORRANCE'
         sub = (slice(region.y, region.y + region.height), slice(region.x, region.x + region.width))
+        # Cycles has no stats to poll: it has finished its 16 samples when its image stops
+        # changing (two screenshots 2 s apart alike), however loaded the machine is.
+        cycles_px, end = None, time.perf_counter() + 120.0
+        while time.perf_counter() < end:
+            yield 2.0
+            previous, cycles_px = cycles_px, screenshot("4c_studio_cycles")
+            if previous is not None and np.array_equal(previous[sub], cycles_px[sub]):
+                break
+        scene.render.engine = 'TORRANCE'
         # 8x8 block means: the two renders' noise (16 samples each) averages out.
         a, b = torrance_px[sub].mean(axis=2), cycles_px[sub].mean(axis=2)
         hh, ww = (a.shape[0] // 8) * 8, (a.shape[1] // 8) * 8
