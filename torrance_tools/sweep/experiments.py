@@ -7,8 +7,8 @@ Run through scripts/experiments (which builds first); by hand:
                  [--only ID,...] [--report-only] [--farm slurm]
 
 For each experiment it runs torrance_tools/sweep/runner.py in a Blender process on a scene built
-by scenes/make_<scene>.py — with Torrance (its PAPER model: the paper's Cook-Torrance), with Torrance's
-PRINCIPLED model when the add-on offers it, and with Cycles, side by side — then
+by scenes/make_<scene>.py — with Torrance (its PAPER model: the paper's Cook-Torrance), with
+Torrance's PRINCIPLED model when the add-on offers it, and with Cycles, side by side — then
 torrance_tools/sweep/measure.py measures the images and report.py writes report.md.
 """
 
@@ -55,7 +55,7 @@ def brdf_models():
         proc = subprocess.run(blender_cmd() + ["--factory-startup", "--python-expr", expr],
                               capture_output=True, text=True, timeout=120,
                               env=dict(os.environ, TORRANCE_NO_AUTOBUILD="1"))
-        line = next(l for l in proc.stdout.splitlines() if l.startswith("MODELS="))
+        line = next(ln for ln in proc.stdout.splitlines() if ln.startswith("MODELS="))
         return line[len("MODELS="):].split(",")
     except Exception:
         return ["PAPER"]
@@ -157,7 +157,7 @@ def main(argv=None):
     try:
         width, height = (int(v) for v in size.lower().split("x"))
     except ValueError:
-        raise SystemExit(f"experiments: --size wants WxH, got {size!r}")
+        raise SystemExit(f"experiments: --size wants WxH, got {size!r}") from None
     experiments = EXPERIMENTS
     if args.only:
         wanted = [s.strip() for s in args.only.split(",") if s.strip()]
@@ -197,7 +197,8 @@ def main(argv=None):
                       f"({w}x{h}, {samples} spp)", flush=True)
                 cmd = blender_cmd() + [
                     os.path.join(out, "scenes", f"{exp['scene']}.blend"), "--python-exit-code",
-                    "1", "--python", os.path.join(ROOT, "torrance_tools", "sweep", "runner.py"), "--",
+                    "1", "--python", os.path.join(ROOT, "torrance_tools", "sweep", "runner.py"),
+                    "--",
                     "--out", os.path.join(out, key, exp["id"]), "--engine", engine,
                     "--resolution", f"{w}x{h}", "--samples", str(samples), "--seed", "0",
                     "--title", f"Fig. {exp['figure']}: {exp['title']} | {label}, {w}x{h}, "

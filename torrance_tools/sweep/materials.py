@@ -16,7 +16,7 @@ def parse_value(text):
     try:
         parts = [float(p) for p in text.strip().split("/")]
     except ValueError:
-        raise SweepError(f"not a number: {text!r}")
+        raise SweepError(f"not a number: {text!r}") from None
     if not all(math.isfinite(p) for p in parts):
         raise SweepError(f"not a finite number: {text!r}")
     return parts[0] if len(parts) == 1 else tuple(parts)

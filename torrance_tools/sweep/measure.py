@@ -82,8 +82,8 @@ def highlight_threshold(plan, material):
     info = plan.get("scene_info") or {}
     base = (info.get("materials", {}).get(material) or {}).get("Base Color", [0.8, 0.8, 0.8])
     y_base = float(np.dot(base[:3], REC709_LUMA))
-    e_sun = sum(l["energy"] * float(np.dot(l["color"][:3], REC709_LUMA))
-                for l in info.get("lights", []) if l["type"] == "SUN")
+    e_sun = sum(lt["energy"] * float(np.dot(lt["color"][:3], REC709_LUMA))
+                for lt in info.get("lights", []) if lt["type"] == "SUN")
     world = info.get("world") or {}
     y_sky = (float(np.dot(world.get("color", [0, 0, 0])[:3], REC709_LUMA))
              * world.get("strength", 1.0))
@@ -223,7 +223,8 @@ def claims_for(exp, stats_by_engine, extra):
             res[engine]["ends"] = (y[0], y[-1])          # first and last frame (paper's order)
             # Steps between neighbouring values that go against the expected direction.
             order = np.argsort(x)
-            res[engine]["against"] = [f"{x[i]:g}→{x[j]:g}" for i, j in zip(order[:-1], order[1:])
+            res[engine]["against"] = [f"{x[i]:g}→{x[j]:g}"
+                                      for i, j in zip(order[:-1], order[1:], strict=True)
                                       if (y[j] - y[i]) * sign < 0]
         out.append(dict(figure=fig, claim=claim, source=source, statistic=stat_label,
                         key=key, sign=sign, results=res))

@@ -41,7 +41,7 @@ def plot_sweep(exp, stats_by_engine, path, labels):
     if any("stone_mean" in st["rows"][0] for st in stats_by_engine.values()):
         keys.append(("stone_mean", "stone mean Y (control)"))
     fig, axes = plt.subplots(1, len(keys), figsize=(3.0 * len(keys), 2.7))
-    for ax, (key, label) in zip(axes, keys):
+    for ax, (key, label) in zip(axes, keys, strict=True):
         for engine, st in stats_by_engine.items():
             x = [row["value"] for row in st["rows"]]
             y = [row[key] for row in st["rows"]]
@@ -67,7 +67,7 @@ def plot_chart(data_by_engine, spheres_by_engine, path, labels):
     n = len(data_by_engine)
     fig, axes = plt.subplots(1, n, figsize=(5.2 * n, 4.4), squeeze=False)
     axes = axes[0]
-    for ax, (engine, data) in zip(axes, data_by_engine.items()):
+    for ax, (engine, data) in zip(axes, data_by_engine.items(), strict=True):
         img = sheet.to_display(data.image(data.frames[0]))
         h, w = img.shape[:2]
         ax.imshow(img)
@@ -173,7 +173,8 @@ def write_report(out, experiments, engines, timings, publish_dir=None, labels=No
                     rs = sorted({k[1] for k in sp})
                     lines += [f"**{label}, {engine_label.get(engine, engine)}** "
                               f"(rows metallic, columns roughness)", "",
-                              "| metallic \\ roughness | " + " | ".join(f"{r:g}" for r in rs) + " |",
+                              "| metallic \\ roughness | "
+                              + " | ".join(f"{r:g}" for r in rs) + " |",
                               "|---|" + "---|" * len(rs)]
                     for m in ms:
                         lines.append(f"| {m:g} | " + " | ".join(
@@ -197,8 +198,9 @@ def write_report(out, experiments, engines, timings, publish_dir=None, labels=No
             for engine, st in stats.items():
                 has_stone = "stone_mean" in st["rows"][0]
                 is_water = exp["material"] == "Water"
-                head = (f"| {exp['input']} | highlight area | peak Y | max Y | glint concentration | "
-                        f"median Y | mean RGB |" + (" glitter spread |" if is_water else "")
+                head = (f"| {exp['input']} | highlight area | peak Y | max Y "
+                        f"| glint concentration | median Y | mean RGB |"
+                        + (" glitter spread |" if is_water else "")
                         + (" stone mean Y |" if has_stone else "") + " render s |")
                 lines += [f"**{engine_label.get(engine, engine)}** — {exp['material']} region "
                           f"{st['pixels']} px, highlight threshold T = {st['threshold']:.3f}", "",
@@ -242,12 +244,13 @@ def write_report(out, experiments, engines, timings, publish_dir=None, labels=No
     head += _runtime_lines(out, experiments, engines, timings, engine_label)
     head += ["## Summary: the paper's observations, measured", "",
              "Each row is a claim — from the paper (as issue 5 states it) or what the paper's "
-             "figures show by physics (\"expected\") — the statistic that tests it, and per renderer "
-             "whether the measurement agrees: Spearman ρ of the statistic against the swept "
-             "value, the statistic at the first → last value of the paper's order, and the steps "
-             "between neighbouring values that go against the claimed direction, if any.", "",
-             "| Fig. | claim | source | statistic | " + " | ".join(engine_label.get(e, e) for e in engines)
-             + " |", "|---|---|---|---|" + "---|" * len(engines)]
+             "figures show by physics (\"expected\") — the statistic that tests it, and per "
+             "renderer whether the measurement agrees: Spearman ρ of the statistic against the "
+             "swept value, the statistic at the first → last value of the paper's order, and the "
+             "steps between neighbouring values that go against the claimed direction, if any.", "",
+             "| Fig. | claim | source | statistic | "
+             + " | ".join(engine_label.get(e, e) for e in engines) + " |",
+             "|---|---|---|---|" + "---|" * len(engines)]
     for c in claims:
         head.append(f"| {c['figure']} | {c['claim']} | {c['source']} | {c['statistic']} | "
                     + " | ".join(_verdict_cell(c["results"].get(e)) for e in engines) + " |")
@@ -257,9 +260,9 @@ def write_report(out, experiments, engines, timings, publish_dir=None, labels=No
               "Reproduce: `scripts/experiments` (add `--final` for 640x480 at 128 spp, "
               "`--no-cycles` for Torrance alone, `--publish` to copy this report to "
               "docs/experiments/). One sweep by hand: `scripts/blender -b out/experiments/scenes/"
-              "grass_stone.blend --python torrance_tools/sweep/runner.py -- --material Grass --input "
-              "Metallic --values 1,0.8,0.6,0.4,0.2,0 --set Roughness=0.2 --out DIR`.", ""]
-    text = "\n".join(head + [l for s in sections for l in s] + method) + "\n"
+              "grass_stone.blend --python torrance_tools/sweep/runner.py -- --material Grass "
+              "--input Metallic --values 1,0.8,0.6,0.4,0.2,0 --set Roughness=0.2 --out DIR`.", ""]
+    text = "\n".join(head + [line for s in sections for line in s] + method) + "\n"
     path = os.path.join(out, "report.md")
     with open(path, "w") as f:
         f.write(text)
@@ -294,21 +297,25 @@ def _side_by_side(summary, engines, engine_label):
                                   sorted(rows.items(), key=lambda kv: -float(kv[0][1:])))
                 lines.append(f"| {who} | {exp_id} | per metallic row — {cells} | |")
                 continue
-            r = [a["mean"] / b["mean"] for a, b in zip(t["rows"], c["rows"])]
+            # Frames pair up by position; a run with frames missing (no EXR) gives the ratios
+            # of the frames both have, not an error.
+            pairs = list(zip(t["rows"], c["rows"], strict=False))
+            r = [a["mean"] / b["mean"] for a, b in pairs]
             stone = ""
             if "stone_mean" in t["rows"][0]:
-                rs = [a["stone_mean"] / b["stone_mean"] for a, b in zip(t["rows"], c["rows"])]
+                rs = [a["stone_mean"] / b["stone_mean"] for a, b in pairs]
                 stone = f"{min(rs):.2f} – {max(rs):.2f}"
             lines.append(f"| {who} | {exp_id} | {min(r):.2f} – {max(r):.2f} | {stone} |")
     if not lines:
         return []
     return ["## Torrance and Cycles side by side", "",
             "Torrance / Cycles ratio of the mean luminance of each region over a sweep's frames "
-            "(sphere chart: of each sphere's median Y, averaged over a metallic row). Cycles renders "
-            "its Principled BSDF v1 (Burley diffuse, the specular lobe's Fresnel from the IOR, the "
-            "lobes simply added); Torrance's PRINCIPLED model is that BSDF, its PAPER model the "
-            "paper's Cook-Torrance (Lambert diffuse, Schlick Fresnel). The claims above compare "
-            "trends within each renderer; these ratios show how far the absolute levels differ.", "",
+            "(sphere chart: of each sphere's median Y, averaged over a metallic row). Cycles "
+            "renders its Principled BSDF v1 (Burley diffuse, the specular lobe's Fresnel from the "
+            "IOR, the lobes simply added); Torrance's PRINCIPLED model is that BSDF, its PAPER "
+            "model the paper's Cook-Torrance (Lambert diffuse, Schlick Fresnel). The claims above "
+            "compare trends within each renderer; these ratios show how far the absolute levels "
+            "differ.", "",
             "| Torrance run | sweep | swept material | stone |", "|---|---|---|---|"] + lines + [""]
 
 
@@ -395,8 +402,8 @@ def _runtime_lines(out, experiments, engines, timings, engine_label):
     lines.append("| total | | " + " | ".join(f"{totals[e]:.1f}" for e in engines) + " |")
     wall = timings.get("render_wall_seconds")
     scenes = sum(timings.get("scenes", {}).values())
-    lines += ["", f"Render seconds are Blender's wall time per frame (export + render + save); wall "
-              f"seconds include Blender's start and the pixel masks. Scene building "
-              f"{scenes:.1f} s; everything (scenes, sweeps) {wall:.0f} s on {os.cpu_count()} cores."
-              if wall else "", ""]
+    lines += ["", f"Render seconds are Blender's wall time per frame (export + render + save); "
+              f"wall seconds include Blender's start and the pixel masks. Scene building "
+              f"{scenes:.1f} s; everything (scenes, sweeps) {wall:.0f} s on {os.cpu_count()} "
+              f"cores." if wall else "", ""]
     return lines

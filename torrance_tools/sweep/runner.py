@@ -11,14 +11,16 @@ frames in row-major order.
 
 How the frames get rendered:
 * by default this script renders every frame itself (or those of --frames), one progress line each;
-* Blender's own render flags after the script render only what they name, e.g.
-      scripts/blender -b SCENE.blend --python torrance_tools/sweep/runner.py -f 3 -- ...   (frame 3 only)
+* Blender's own render flags after the script render only what they name, e.g. frame 3 only, or
+  frames 2 to 4:
+      scripts/blender -b SCENE.blend --python torrance_tools/sweep/runner.py -f 3 -- ...
       scripts/blender -b SCENE.blend --python torrance_tools/sweep/runner.py -s 2 -e 4 -a -- ...
   (the script then only sets the sweep up; handlers write each frame's PNG and record, and the
   sheet of the frames present when the render completes);
 * --save OUT.blend only writes the keyframed .blend (output path relative to it): any render farm
   renders it with `blender -b OUT.blend -a` (or splits it by frames), after which
-  `python3 -m torrance_tools.sweep.sheet DIR` (or this script with --collect DIR) assembles the sheet.
+  `python3 -m torrance_tools.sweep.sheet DIR` (or this script with --collect DIR) assembles the
+  sheet.
 
 Outputs in --out DIR:
     sweep.json                  the plan: material, inputs, each frame's values, engine, samples
@@ -83,7 +85,7 @@ def parse_range(text):
     try:
         a, b, step = (float(p) for p in text.split(":"))
     except ValueError:
-        raise SweepError(f"--range wants A:B:STEP, got {text!r}")
+        raise SweepError(f"--range wants A:B:STEP, got {text!r}") from None
     if step == 0 or (b - a) * step < 0:
         raise SweepError(f"--range {text!r}: STEP must be non-zero and go from A towards B")
     n = int(math.floor((b - a) / step + 1e-6)) + 1
@@ -106,7 +108,7 @@ def parse_frames(text):
             else:
                 frames.add(int(part))
         except ValueError:
-            raise SweepError(f"--frames wants 3, 2:4 or 1,3,5; got {text!r}")
+            raise SweepError(f"--frames wants 3, 2:4 or 1,3,5; got {text!r}") from None
     return sorted(frames)
 
 
@@ -181,7 +183,7 @@ def configure(scene, args, frames_dir):
         try:
             w, h = (int(x) for x in args.resolution.lower().split("x"))
         except ValueError:
-            raise SweepError(f"--resolution wants WxH, got {args.resolution!r}")
+            raise SweepError(f"--resolution wants WxH, got {args.resolution!r}") from None
         rd.resolution_x, rd.resolution_y = w, h
     if args.percent:
         rd.resolution_percentage = args.percent
@@ -197,7 +199,7 @@ def configure(scene, args, frames_dir):
             try:
                 ts.brdf_model = args.brdf_model.upper()
             except TypeError as exc:
-                raise SweepError(f"--brdf-model: {exc}")
+                raise SweepError(f"--brdf-model: {exc}") from exc
     elif engine == 'CYCLES':
         cy = scene.cycles
         if args.samples:
@@ -351,7 +353,9 @@ def run(args):
     if args.collect:
         sheet.collect(os.path.abspath(args.collect))
         return
-    if not args.material and (args.input or args.set and any(":" not in t.split("=")[0] for t in args.set)):
+    needs_material = args.input or (
+        args.set and any(":" not in t.split("=")[0] for t in args.set))
+    if not args.material and needs_material:
         raise SweepError("--material is required for --input and --set SOCKET=VALUE")
     if not args.out and not args.save:
         raise SweepError("--out DIR is required (or --save OUT.blend)")
@@ -401,15 +405,19 @@ def run(args):
         json.dump(plan, f, indent=1)
     scene["torrance_sweep"] = json.dumps(plan)
     print(f"sweep: {len(frames)} frames ({frames[0]['frame']}..{frames[-1]['frame']}) of "
-          f"{mat.name if mat else 'the scene'}: {', '.join(names) or 'no input'}; {rd.engine}, {width}x{height}, "
-          f"{samples} spp -> {out_dir}", flush=True)
+          f"{mat.name if mat else 'the scene'}: {', '.join(names) or 'no input'}; {rd.engine}, "
+          f"{width}x{height}, {samples} spp -> {out_dir}", flush=True)
 
     if save:
         rel = os.path.relpath(os.path.join(frames_dir, "frame_####"), os.path.dirname(save))
-        rd.filepath = "//" + rel if not rel.startswith("..") else os.path.join(frames_dir, "frame_####")
+        if rel.startswith(".."):
+            rd.filepath = os.path.join(frames_dir, "frame_####")
+        else:
+            rd.filepath = "//" + rel
         bpy.ops.wm.save_as_mainfile(filepath=save, copy=True, relative_remap=False, compress=True)
-        print(f"sweep: saved {save}; render it with: blender -b {save} -a  (or -f N, -s A -e B -a); "
-              f"then: python3 -m torrance_tools.sweep.sheet {out_dir}", flush=True)
+        print(f"sweep: saved {save}; render it with: blender -b {save} -a  "
+              f"(or -f N, -s A -e B -a); then: python3 -m torrance_tools.sweep.sheet {out_dir}",
+              flush=True)
         rd.filepath = os.path.join(frames_dir, "frame_####")
         return
 

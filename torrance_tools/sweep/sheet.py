@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: Apache-2.0
 """Assembling a parameter sweep's outputs: PNGs, contact sheet, CSV/JSON. No bpy needed.
 
-torrance_tools/sweep/runner.py renders the frames (EXR, linear) and calls collect(); this module can
-also run on its own, e.g. after a render farm rendered a sweep's .blend (`blender -b sweep.blend -a`):
+torrance_tools/sweep/runner.py renders the frames (EXR, linear) and calls collect(); this module
+can also run on its own, e.g. after a render farm rendered a sweep's .blend
+(`blender -b sweep.blend -a`):
 
     python3 -m torrance_tools.sweep.sheet OUT_DIR     # from the repository root; or:
     scripts/blender -b --python torrance_tools/sweep/runner.py -- --collect OUT_DIR
@@ -10,7 +11,8 @@ also run on its own, e.g. after a render farm rendered a sweep's .blend (`blende
 OUT_DIR holds sweep.json (the plan written by runner.py) and frames/frame_####.exr; per frame
 frames/frame_####.json (written when runner.py rendered it: samples, time) is optional. It writes
     frames/frame_####.png   sRGB 8 bit of each EXR (x 2^exposure of the scene's view settings)
-    sheet.png               the labeled contact sheet (value under each panel), sheet.json its layout
+    sheet.png               the labeled contact sheet (value under each panel),
+                            sheet.json its layout
     results.csv, results.json   each frame's inputs, engine, samples, render time, files
 
 EXR frames are read with OpenImageIO (torrance_tools.compare.read_exr); PNGs are written and text
@@ -136,7 +138,8 @@ def contact_sheet(panels, columns, title="", col_headers=None, row_headers=None,
         y0 = title_h + col_h + r * (ph + label_h + pad)
         if img is None:
             canvas[y0:y0 + ph, x0:x0 + pw] = 200
-            canvas = font.draw(canvas, x0 + pad, y0 + ph // 2 - font.line_height // 2, "not rendered")
+            canvas = font.draw(canvas, x0 + pad, y0 + ph // 2 - font.line_height // 2,
+                               "not rendered")
         else:
             big = np.repeat(np.repeat(img[:, :, :3], zoom, axis=0), zoom, axis=1)
             canvas[y0:y0 + big.shape[0], x0:x0 + big.shape[1]] = big[:ph, :pw]
@@ -211,9 +214,9 @@ def collect(out_dir, quiet=False):
         frame = int(entry["frame"])
         inputs = [(name, value) for name, value in entry["inputs"]]
         exr, png, meta_path = frame_paths(out_dir, frame)
-        row = dict(frame=frame, inputs=dict(inputs), label=frame_label(inputs), engine=plan["engine"],
-                   samples=plan["samples"], samples_done=None, seconds=None, render_seconds=None,
-                   exr=None, png=None)
+        row = dict(frame=frame, inputs=dict(inputs), label=frame_label(inputs),
+                   engine=plan["engine"], samples=plan["samples"], samples_done=None, seconds=None,
+                   render_seconds=None, exr=None, png=None)
         img8 = None
         if os.path.exists(exr):
             if os.path.exists(meta_path):
@@ -240,7 +243,8 @@ def collect(out_dir, quiet=False):
         col_headers = [f"{grid['input1']} {format_value(v)}" for v in grid["values1"]]
         row_headers = [f"{grid['input2']} {format_value(v)}" for v in grid["values2"]]
     else:
-        columns = int(plan.get("columns") or max(1, min(len(panels), int(math.ceil(math.sqrt(1.5 * len(panels)))))))
+        auto_columns = int(math.ceil(math.sqrt(1.5 * len(panels))))
+        columns = int(plan.get("columns") or max(1, min(len(panels), auto_columns)))
         col_headers = row_headers = None
     sheet, layout = contact_sheet(panels, columns, title=plan.get("title", ""),
                                   col_headers=col_headers, row_headers=row_headers)
