@@ -118,20 +118,26 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     switch (in.ConsumeIntegralInRange<int>(0, 10)) {
       case 0: {
         Material m;
-        m.base_color = any_vec3(in);
-        m.metallic = any_float(in);
-        m.roughness = any_float(in);
-        m.specular = any_float(in);
-        m.emission = any_vec3(in);
-        m.specular_tint = any_float(in);
+        if (in.ConsumeBool()) {  // wild values
+          m.base_color = any_vec3(in);
+          m.metallic = any_float(in);
+          m.roughness = any_float(in);
+          m.specular = any_float(in);
+          m.emission = any_vec3(in);
+          m.specular_tint = any_float(in);
+        } else {  // valid values, so that what follows (textures, rendering) is reached
+          m.roughness = in.ConsumeFloatingPointInRange<float>(0.0f, 1.0f);
+          m.metallic = in.ConsumeFloatingPointInRange<float>(0.0f, 1.0f);
+          m.emission = Vec3(in.ConsumeFloatingPointInRange<float>(0.0f, 2.0f));
+        }
         MaterialTextures t;
         const int n = int(scene.num_textures());
         t.base_color = in.ConsumeIntegralInRange<int>(-2, n);
         t.roughness = in.ConsumeIntegralInRange<int>(-2, n);
         t.emission = in.ConsumeIntegralInRange<int>(-2, n);
         t.normal = in.ConsumeIntegralInRange<int>(-2, n);
-        t.emission_strength = any_float(in);
-        t.normal_strength = any_float(in);
+        t.emission_strength = in.ConsumeBool() ? any_float(in) : 1.0f;
+        t.normal_strength = in.ConsumeBool() ? any_float(in) : 1.0f;
         clearly([&] { scene.add_material(m, t); });
         break;
       }
@@ -194,5 +200,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       }
     }
   }
+  // Shade every material once, as a hit would (textures, normal map, mesh light on commit).
+  clearly([&] {
+    scene.commit();
+    SurfaceHit hit;
+    hit.tangent = Vec3(1.0f, 0.0f, 0.0f);
+    hit.uv = Vec2(0.3f, 0.7f);
+    for (uint32_t i = 0; i < scene.num_materials(); ++i) {
+      const Material m = scene.textured_material(i, hit.uv, 0.01f);
+      const Vec3 n = scene.normal_mapped(i, hit, Vec3(0.0f, 0.0f, 1.0f), 0.01f);
+      if (!is_finite(m.base_color) || !is_finite(n)) std::abort();
+    }
+  });
   return 0;
 }
