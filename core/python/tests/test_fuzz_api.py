@@ -177,6 +177,22 @@ def test_add_material_accepts_exactly_the_valid_ones(base_color, metallic, rough
         check_renders(scene, moderate_values=False)
 
 
+@examples(40)
+@given(num_textures=st.integers(0, 2), ids=st.tuples(*[st.integers(-3, 3)] * 5))
+def test_material_texture_ids(num_textures, ids):
+    """Valid values but any texture ids: only ids of existing textures (or -1) are accepted."""
+    scene = tc.Scene()
+    for _ in range(num_textures):
+        scene.add_texture(np.full((2, 2, 3), 0.5, np.float32))
+    names = ["base_color_texture", "metallic_texture", "roughness_texture", "emission_texture", "normal_texture"]
+    r = call(scene.add_material, emission_strength=1.0, **dict(zip(names, ids)))
+    assert accepted(r) == all(-1 <= i < num_textures for i in ids), r
+    if accepted(r):
+        scene.add_mesh(TRI, np.array([[0, 1, 2]]), corner_uvs=np.array([[[0, 0], [1, 0], [0.5, 1]]], np.float32))
+        scene.set_world((0.5, 0.5, 0.5))
+        check_renders(scene)
+
+
 # ---- Scene.add_mesh ----------------------------------------------------------------------------
 
 @st.composite
