@@ -20,7 +20,7 @@ std::string shape_of(const py::array& a) {
 }
 
 FloatArray as_float_rows(const py::object& obj, const char* name, py::ssize_t rows, int cols) {
-  FloatArray a = FloatArray::ensure(obj);
+  FloatArray a = FloatArray::ensure(numeric_array(obj, name, sizeof(float)));
   if (!a) throw py::type_error(std::string(name) + " must be a numeric array");
   const bool ok = (a.ndim() == 2 && a.shape(1) == cols && (rows < 0 || a.shape(0) == rows)) ||
                   (a.size() == 0 && rows <= 0);
@@ -31,8 +31,7 @@ FloatArray as_float_rows(const py::object& obj, const char* name, py::ssize_t ro
 }
 
 IndexArray as_indices(const py::object& obj, const char* name) {
-  const py::array raw = py::array::ensure(obj);
-  if (!raw) throw py::type_error(std::string(name) + " must be an array of integers");
+  const py::array raw = numeric_array(obj, name, sizeof(int64_t));
   if (raw.size() > 0 && raw.dtype().kind() != 'i' && raw.dtype().kind() != 'u')
     throw py::type_error(std::string(name) + " must hold integers, got dtype " + std::string(py::str(raw.dtype())));
   return IndexArray::ensure(raw);
@@ -59,7 +58,7 @@ MeshArrays mesh_arrays(const py::object& positions, const py::object& triangles,
   const py::ssize_t num_tris = a.t.size() / 3;
   a.num_triangles = size_t(num_tris);
   if (!corner_normals.is_none()) {
-    a.n = FloatArray::ensure(corner_normals);
+    a.n = FloatArray::ensure(numeric_array(corner_normals, "corner_normals", sizeof(float)));
     if (!a.n || a.n.size() != num_tris * 9)
       throw py::value_error("corner_normals must have shape (M, 3, 3) with M = " + std::to_string(num_tris) +
                             " triangles");
@@ -73,7 +72,7 @@ MeshArrays mesh_arrays(const py::object& positions, const py::object& triangles,
     a.has_m = true;
   }
   if (!corner_uvs.is_none()) {
-    a.uv = FloatArray::ensure(corner_uvs);
+    a.uv = FloatArray::ensure(numeric_array(corner_uvs, "corner_uvs", sizeof(float)));
     if (!a.uv || a.uv.size() != num_tris * 6)
       throw py::value_error("corner_uvs must have shape (M, 3, 2) with M = " + std::to_string(num_tris) +
                             " triangles");
@@ -178,7 +177,7 @@ void init_scene(py::module_& m) {
       .def(
           "add_texture",
           [](Scene& s, const py::object& pixels, const std::string& colorspace, const std::string& interpolation) {
-            const FloatArray a = FloatArray::ensure(pixels);
+            const FloatArray a = FloatArray::ensure(numeric_array(pixels, "texture pixels", sizeof(float)));
             if (!a || a.ndim() != 3 || a.shape(0) < 1 || a.shape(1) < 1 || a.shape(2) < 1 || a.shape(2) > 4)
               throw py::value_error("texture pixels must have shape (height, width, 1..4)");
             return s.add_texture(Texture(int(a.shape(1)), int(a.shape(0)), int(a.shape(2)), a.data(),
@@ -264,7 +263,7 @@ void init_scene(py::module_& m) {
       .def(
           "add_sun",
           [](Scene& s, std::array<float, 3> direction, float strength, std::array<float, 3> color, float angle) {
-            s.lights().add_sun(vec3(direction), strength, vec3(color), angle);
+            s.edit_lights([&](Lights& l) { l.add_sun(vec3(direction), strength, vec3(color), angle); });
           },
           py::arg("direction") = std::array<float, 3>{0, 0, -1}, py::arg("strength") = 1.0f,
           py::arg("color") = std::array<float, 3>{1, 1, 1}, py::arg("angle") = 0.00918f,
@@ -272,7 +271,7 @@ void init_scene(py::module_& m) {
       .def(
           "add_point_light",
           [](Scene& s, std::array<float, 3> position, float power, std::array<float, 3> color, float radius) {
-            s.lights().add_point(vec3(position), power, vec3(color), radius);
+            s.edit_lights([&](Lights& l) { l.add_point(vec3(position), power, vec3(color), radius); });
           },
           py::arg("position"), py::arg("power") = 1000.0f, py::arg("color") = std::array<float, 3>{1, 1, 1},
           py::arg("radius") = 0.1f, "Point light: power in W, radius in m.")
@@ -280,7 +279,9 @@ void init_scene(py::module_& m) {
           "add_spot_light",
           [](Scene& s, std::array<float, 3> position, std::array<float, 3> direction, float power,
              std::array<float, 3> color, float radius, float spot_size, float spot_blend) {
-            s.lights().add_spot(vec3(position), vec3(direction), power, vec3(color), radius, spot_size, spot_blend);
+            s.edit_lights([&](Lights& l) {
+              l.add_spot(vec3(position), vec3(direction), power, vec3(color), radius, spot_size, spot_blend);
+            });
           },
           py::arg("position"), py::arg("direction") = std::array<float, 3>{0, 0, -1}, py::arg("power") = 1000.0f,
           py::arg("color") = std::array<float, 3>{1, 1, 1}, py::arg("radius") = 0.1f,
@@ -294,8 +295,10 @@ void init_scene(py::module_& m) {
              float spread) {
             if (shape != "RECTANGLE" && shape != "ELLIPSE")
               throw py::value_error("area light shape must be 'RECTANGLE' or 'ELLIPSE', got '" + shape + "'");
-            s.lights().add_area(vec3(center), vec3(edge_u), vec3(edge_v), vec3(direction), shape == "ELLIPSE", power,
-                                vec3(color), spread);
+            s.edit_lights([&](Lights& l) {
+              l.add_area(vec3(center), vec3(edge_u), vec3(edge_v), vec3(direction), shape == "ELLIPSE", power,
+                         vec3(color), spread);
+            });
           },
           py::arg("center"), py::arg("edge_u"), py::arg("edge_v"), py::arg("direction") = std::array<float, 3>{0, 0, -1},
           py::arg("shape") = "RECTANGLE", py::arg("power") = 10.0f, py::arg("color") = std::array<float, 3>{1, 1, 1},
@@ -304,7 +307,9 @@ void init_scene(py::module_& m) {
           "it emits one-sided along direction with radiance power / (4 area), like Cycles.")
       .def(
           "set_world",
-          [](Scene& s, std::array<float, 3> color, float strength) { s.lights().set_world(vec3(color), strength); },
+          [](Scene& s, std::array<float, 3> color, float strength) {
+            s.edit_lights([&](Lights& l) { l.set_world(vec3(color), strength); });
+          },
           py::arg("color"), py::arg("strength") = 1.0f, "Uniform world radiance = color * strength.")
       .def("set_world_texture", &Scene::set_world_texture, py::arg("texture"), py::arg("strength") = 1.0f,
            "HDRI world: an equirectangular texture (from add_texture*) around the scene, mapped like "
@@ -313,7 +318,7 @@ void init_scene(py::module_& m) {
           "set_camera",
           [](Scene& s, const py::object& matrix, float lens, float sensor_width, float sensor_height,
              const std::string& sensor_fit, float shift_x, float shift_y, float clip_start, float clip_end) {
-            const FloatArray mat = FloatArray::ensure(matrix);
+            const FloatArray mat = FloatArray::ensure(numeric_array(matrix, "camera matrix", sizeof(float)));
             if (!mat || mat.size() != 16) throw py::value_error("camera matrix must be a 4x4 array");
             CameraParams c;
             std::copy_n(mat.data(), 16, c.camera_to_world.begin());

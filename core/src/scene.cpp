@@ -1,10 +1,13 @@
 #include "torrance/scene.h"
 
+#include "torrance/limits.h"
+
 #include <embree3/rtcore.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace torrance {
@@ -132,12 +135,40 @@ void Scene::check_device(const char* during) const {
   }
 }
 
+void Scene::check_idle(const char* change) const {
+  if (renders_ > 0)
+    throw std::runtime_error(std::string("cannot ") + change +
+                             " while a render uses the scene; stop the render (RenderSession.stop()) first");
+}
+
+void Scene::begin_render(LightSelection selection) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (materials_.empty()) {
+    materials_.push_back(Material{});
+    material_textures_.push_back({});
+    emitters_dirty_ = true;
+  }
+  commit();
+  lights_.set_selection(selection);
+  ++renders_;
+}
+
+void Scene::edit_lights(const std::function<void(Lights&)>& edit) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("change the lights");
+  edit(lights_);
+}
+
 uint32_t Scene::add_texture(Texture texture) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("add a texture");
   textures_.push_back(std::make_shared<const Texture>(std::move(texture)));
   return uint32_t(textures_.size() - 1);
 }
 
 void Scene::set_world_texture(uint32_t id, float strength) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("change the world");
   if (id >= textures_.size())
     throw std::invalid_argument("world uses texture " + std::to_string(id) + " but the scene has " +
                                 std::to_string(textures_.size()) + " textures");
@@ -166,19 +197,25 @@ Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, fl
   return len > 1e-6f && std::isfinite(len) ? n / len : ns;
 }
 
-uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures) {
-  for (int id : {textures.base_color, textures.metallic, textures.roughness, textures.emission, textures.normal})
-    if (id < -1 || id >= int(textures_.size()))
-      throw std::invalid_argument("material uses texture " + std::to_string(id) + " but the scene has " +
-                                  std::to_string(textures_.size()) + " textures");
-  if (!std::isfinite(textures.emission_strength) || !std::isfinite(textures.normal_strength))
-    throw std::invalid_argument("texture strengths must be finite");
+void check_material(const Material& m) {
   if (!is_finite(m.base_color) || !is_finite(m.emission) || !std::isfinite(m.metallic) ||
       !std::isfinite(m.roughness) || !std::isfinite(m.specular) || !std::isfinite(m.specular_tint))
     throw std::invalid_argument("material values must be finite (no NaN or Inf)");
   if (m.metallic < 0.0f || m.metallic > 1.0f || m.roughness < 0.0f || m.roughness > 1.0f)
     throw std::invalid_argument("material metallic and roughness must lie in [0, 1]");
   if (m.specular < 0.0f) throw std::invalid_argument("material specular must be >= 0");
+}
+
+uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("add a material");
+  for (int id : {textures.base_color, textures.metallic, textures.roughness, textures.emission, textures.normal})
+    if (id < -1 || id >= int(textures_.size()))
+      throw std::invalid_argument("material uses texture " + std::to_string(id) + " but the scene has " +
+                                  std::to_string(textures_.size()) + " textures");
+  if (!std::isfinite(textures.emission_strength) || !std::isfinite(textures.normal_strength))
+    throw std::invalid_argument("texture strengths must be finite");
+  check_material(m);
   Material clean = m;
   clean.base_color = glm::clamp(m.base_color, Vec3(0.0f), Vec3(1.0f));
   clean.emission = glm::max(m.emission, Vec3(0.0f));
@@ -195,11 +232,18 @@ std::unique_ptr<Scene::Mesh> Scene::make_mesh(const float* positions, size_t num
   if (num_triangles > 0 && num_vertices == 0) throw std::invalid_argument("mesh has triangles but no vertices");
   if (num_vertices > UINT32_MAX || num_triangles > UINT32_MAX)
     throw std::invalid_argument("mesh is too large (more than 2^32 vertices or triangles)");
+  // Copies here and in Embree, corner data, and about 64 bytes of BVH per triangle.
+  require_memory(double(num_vertices) * 24.0 +
+                     double(num_triangles) * (24.0 + (corner_normals ? 36 : 0) + (corner_uvs ? 24 : 0) + 64.0),
+                 std::string(slots ? "a prototype of " : "a mesh of ") + std::to_string(num_vertices) + " vertices and " + std::to_string(num_triangles) +
+                     " triangles");
   mesh->positions.resize(num_vertices);
   for (size_t i = 0; i < num_vertices; ++i) {
     const Vec3 p(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
     if (!is_finite(p))
-      throw std::invalid_argument("mesh vertex " + std::to_string(i) + " has a NaN or Inf coordinate");
+      throw std::invalid_argument(std::string(slots ? "prototype vertex " : "mesh vertex ") + std::to_string(i) +
+                                  " has a NaN or Inf coordinate");
+    require_position(p, std::string(slots ? "prototype vertex " : "mesh vertex ") + std::to_string(i));
     mesh->positions[i] = p;
   }
   mesh->triangles.resize(num_triangles);
@@ -268,6 +312,8 @@ void* Scene::new_triangle_geometry(const Mesh& mesh) const {
 uint32_t Scene::add_mesh(const float* positions, size_t num_vertices, const int64_t* triangles,
                          size_t num_triangles, const float* corner_normals, const int64_t* material_ids,
                          const float* corner_uvs) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("add a mesh");
   auto mesh = make_mesh(positions, num_vertices, triangles, num_triangles, corner_normals, material_ids, corner_uvs,
                         false);
   const uint32_t id = uint32_t(meshes_.size());
@@ -518,7 +564,8 @@ void Scene::build_mesh_light() {
     e.uv2 = c.uv[2];
     e.material = material;
     triangles.push_back(e);
-    power.push_back(e.area * radiance);
+    const float p = e.area * radiance;  // huge but finite inputs may overflow: keep the CDF finite
+    power.push_back(std::isfinite(p) ? p : std::numeric_limits<float>::max());
     return true;
   };
   for (auto& mesh : meshes_) {
