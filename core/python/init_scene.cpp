@@ -13,12 +13,6 @@ namespace {
 using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
 using IndexArray = py::array_t<int64_t, py::array::c_style | py::array::forcecast>;
 
-std::string shape_of(const py::array& a) {
-  std::string s = "(";
-  for (py::ssize_t i = 0; i < a.ndim(); ++i) s += (i ? ", " : "") + std::to_string(a.shape(i));
-  return s + (a.ndim() == 1 ? ",)" : ")");
-}
-
 FloatArray as_float_rows(const py::object& obj, const char* name, py::ssize_t rows, int cols) {
   FloatArray a = FloatArray::ensure(numeric_array(obj, name, sizeof(float)));
   if (!a) throw py::type_error(std::string(name) + " must be a numeric array");
@@ -26,7 +20,7 @@ FloatArray as_float_rows(const py::object& obj, const char* name, py::ssize_t ro
                   (a.size() == 0 && rows <= 0);
   if (!ok)
     throw py::value_error(std::string(name) + " must have shape (" + (rows < 0 ? "N" : std::to_string(rows)) +
-                          ", " + std::to_string(cols) + "), got " + shape_of(a));
+                          ", " + std::to_string(cols) + "), got " + shape_string(a));
   return a;
 }
 
@@ -54,7 +48,7 @@ MeshArrays mesh_arrays(const py::object& positions, const py::object& triangles,
   a.p = as_float_rows(positions, "positions", -1, 3);
   a.t = as_indices(triangles, "triangles");
   if (!((a.t.ndim() == 2 && a.t.shape(1) == 3) || a.t.size() == 0))
-    throw py::value_error("triangles must have shape (M, 3), got " + shape_of(a.t));
+    throw py::value_error("triangles must have shape (M, 3), got " + shape_string(a.t));
   const py::ssize_t num_tris = a.t.size() / 3;
   a.num_triangles = size_t(num_tris);
   if (!corner_normals.is_none()) {
@@ -68,7 +62,7 @@ MeshArrays mesh_arrays(const py::object& positions, const py::object& triangles,
     a.m = as_indices(material_indices, materials_name);
     if (a.m.size() != num_tris)
       throw py::value_error(std::string(materials_name) + " must have shape (M,) with M = " +
-                            std::to_string(num_tris) + ", got " + shape_of(a.m));
+                            std::to_string(num_tris) + ", got " + shape_string(a.m));
     a.has_m = true;
   }
   if (!corner_uvs.is_none()) {
@@ -82,12 +76,11 @@ MeshArrays mesh_arrays(const py::object& positions, const py::object& triangles,
 }
 
 // Affine matrices (N, 4, 4) or (N, 3, 4), or one (4, 4) / (3, 4) when expected is 1 or -1, as
-// N x 12 floats (row-major 3x4). Checked: shape, NaN/Inf, a 4x4's last row (0, 0, 0, 1).
+// N x 12 floats (row-major 3x4). Checked: dtype and memory budget (numeric_array), shape, NaN/Inf,
+// a 4x4's last row (0, 0, 0, 1), float range; the core checks the 1e12 bounds (check_transform).
 std::vector<float> affine_rows(const py::object& obj, const char* name, py::ssize_t expected) {
-  const py::array raw = py::array::ensure(obj);
-  if (!raw || (raw.size() > 0 && raw.dtype().kind() != 'f' && raw.dtype().kind() != 'i' &&
-               raw.dtype().kind() != 'u'))
-    throw py::type_error(std::string(name) + " must be a numeric array of 4x4 or 3x4 matrices");
+  // Real numbers only, and their double copy plus the float result within the memory budget.
+  const py::array raw = numeric_array(obj, name, sizeof(double) + sizeof(float));
   using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
   const DoubleArray a = DoubleArray::ensure(raw);
   const bool single = a.ndim() == 2 && expected <= 1;
@@ -97,7 +90,7 @@ std::vector<float> affine_rows(const py::object& obj, const char* name, py::ssiz
   if (!ok || (expected >= 0 && count != expected))
     throw py::value_error(std::string(name) + " must have shape (N, 4, 4) or (N, 3, 4)" +
                           (expected >= 0 ? " with N = " + std::to_string(expected) : std::string()) + ", got " +
-                          shape_of(a));
+                          shape_string(a));
   std::vector<float> out(size_t(count) * 12);
   const double* d = a.data();
   for (py::ssize_t i = 0; i < count; ++i) {
@@ -233,7 +226,7 @@ void init_scene(py::module_& m) {
             const bool per_instance = table.ndim() == 2;
             if (!(table.ndim() == 1 || (per_instance && size_t(table.shape(0)) == count)) || table.size() == 0)
               throw py::value_error("materials must be a non-empty slot -> material table of shape (K,), or (N, K) "
-                                    "with N = " + std::to_string(count) + " instances, got " + shape_of(table));
+                                    "with N = " + std::to_string(count) + " instances, got " + shape_string(table));
             const size_t table_size = size_t(per_instance ? table.shape(1) : table.shape(0));
             return s.add_instances(uint32_t(prototype), xf.data(), count, table.data(), table_size, per_instance);
           },
@@ -245,7 +238,7 @@ void init_scene(py::module_& m) {
           "set_instance_transforms",
           [](Scene& s, const py::object& ids, const py::object& transforms) {
             const IndexArray id = as_indices(ids, "ids");
-            if (id.ndim() > 1) throw py::value_error("ids must have shape (N,), got " + shape_of(id));
+            if (id.ndim() > 1) throw py::value_error("ids must have shape (N,), got " + shape_string(id));
             const std::vector<float> xf = affine_rows(transforms, "transforms", id.size());
             s.set_instance_transforms(id.data(), xf.data(), size_t(id.size()));
           },
@@ -256,7 +249,7 @@ void init_scene(py::module_& m) {
           "remove_instances",
           [](Scene& s, const py::object& ids) {
             const IndexArray id = as_indices(ids, "ids");
-            if (id.ndim() > 1) throw py::value_error("ids must have shape (N,), got " + shape_of(id));
+            if (id.ndim() > 1) throw py::value_error("ids must have shape (N,), got " + shape_string(id));
             s.remove_instances(id.data(), size_t(id.size()));
           },
           py::arg("ids"), "Removes instances (ids (N,)); their ids are not reused.")

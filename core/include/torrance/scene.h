@@ -83,8 +83,12 @@ class Scene {
   // transforms: count row-major 3x4 object-to-world matrices (12 floats each). materials: the
   // slot -> material table, table_size entries shared by all (per_instance_tables false) or one
   // table per instance (count * table_size). Tables are stored once per distinct content.
-  // A matrix with NaN/Inf is rejected; a singular one (zero scale) leaves its instance hidden
-  // until set_instance_transforms gives it a regular matrix (see num_hidden_instances).
+  // A matrix with NaN/Inf, an entry beyond 1e12, or placing the prototype's vertex bounds beyond
+  // 1e12 from the origin is rejected (std::invalid_argument), as is a request beyond the memory
+  // budget (limits.h); a singular one (zero scale) leaves its instance hidden until
+  // set_instance_transforms gives it a regular matrix (see num_hidden_instances). Like add_mesh,
+  // add_prototype/add_instances/set_instance_transforms/remove_instances throw
+  // std::runtime_error while a render uses the scene (begin_render .. end_render).
   uint32_t add_instances(uint32_t prototype, const float* transforms, size_t count, const int64_t* materials,
                          size_t table_size, bool per_instance_tables = false);
   // Moves instances (count ids and 12 floats each); only the top-level BVH is rebuilt at commit.
@@ -139,6 +143,9 @@ class Scene {
   void* new_triangle_geometry(const Mesh& mesh) const;  // RTCGeometry, committed
   const Instance& live_instance(int64_t id, const char* during) const;
   void place_instance(Instance& instance, const float* transform);
+  // Throws std::invalid_argument("<which> ...") unless the 3x4 matrix m keeps prototype within
+  // kMaxCoordinate (limits.h): finite entries within 1e12, the transformed vertex bounds too.
+  void check_transform(const float* m, uint32_t prototype, const std::string& which) const;
   void check_idle(const char* change) const;  // with mutex_ held
 
   mutable std::mutex mutex_;  // changes vs. begin_render, and the camera
