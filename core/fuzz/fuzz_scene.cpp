@@ -1,5 +1,6 @@
 // libFuzzer harness: a byte stream decoded into scene-building calls (materials, textures, meshes
-// with arbitrary indices and float bit patterns, lights, world, camera), then a tiny render.
+// with arbitrary indices and float bit patterns, prototypes and instances with arbitrary matrices,
+// lights, world, camera), then a tiny render.
 // Every call must return or throw std::invalid_argument / std::runtime_error; the render of what
 // was accepted must give a finite image. ASan/UBSan report the rest.
 #include "fuzz_common.h"
@@ -63,6 +64,52 @@ void add_mesh(FuzzedDataProvider& in, Scene& scene) {
   });
 }
 
+// A prototype (arbitrary vertices and slots), then a few instances of some prototype with
+// arbitrary matrices (any bit patterns, huge translations and scales), moved and removed.
+void add_instances(FuzzedDataProvider& in, Scene& scene) {
+  if (scene.num_prototypes() == 0 || in.ConsumeBool()) {
+    const size_t nv = in.ConsumeIntegralInRange<size_t>(0, 8), nt = in.ConsumeIntegralInRange<size_t>(0, 8);
+    std::vector<float> positions(3 * nv);
+    for (float& p : positions) p = any_float(in);
+    std::vector<int64_t> triangles(3 * nt), slots(nt);
+    for (int64_t& t : triangles) t = in.ConsumeIntegralInRange<int64_t>(-1, int64_t(nv));
+    for (int64_t& m : slots) m = in.ConsumeIntegralInRange<int64_t>(-1, 3);
+    clearly([&] { scene.add_prototype(positions.data(), nv, triangles.data(), nt, nullptr, slots.data()); });
+  }
+  const size_t count = in.ConsumeIntegralInRange<size_t>(0, 4);
+  std::vector<float> transforms(12 * count);
+  for (size_t i = 0; i < count; ++i) {
+    float* m = &transforms[12 * i];
+    for (int k = 0; k < 12; ++k) m[k] = (k % 5 == 0) ? 1.0f : 0.0f;  // identity
+    for (int j = in.ConsumeIntegralInRange<int>(0, 4); j > 0; --j) {
+      const int k = in.ConsumeIntegralInRange<int>(0, 11);
+      m[k] = in.ConsumeBool() ? any_float(in) : std::ldexp(1.0f, in.ConsumeIntegralInRange<int>(-140, 127)) *
+                                                    (in.ConsumeBool() ? -1.0f : 1.0f);
+    }
+  }
+  const bool per_instance = in.ConsumeBool();
+  const size_t table_size = in.ConsumeIntegralInRange<size_t>(0, 3);
+  std::vector<int64_t> table((per_instance ? count : 1) * table_size);
+  for (int64_t& t : table) t = in.ConsumeIntegralInRange<int64_t>(-1, int64_t(scene.num_materials()));
+  const uint32_t prototype = in.ConsumeIntegralInRange<uint32_t>(0, uint32_t(scene.num_prototypes()));
+  uint32_t first = 0;
+  if (!clearly([&] {
+        first = scene.add_instances(prototype, transforms.data(), count, table.data(), table_size, per_instance);
+      }))
+    return;
+  if (count > 0 && in.ConsumeBool()) {  // move or remove some, with ids that may not exist
+    std::vector<int64_t> ids(in.ConsumeIntegralInRange<size_t>(1, count));
+    for (int64_t& id : ids) id = int64_t(first) + in.ConsumeIntegralInRange<int64_t>(-1, int64_t(count));
+    if (in.ConsumeBool()) {
+      std::vector<float> moved(12 * ids.size());
+      for (float& v : moved) v = in.ConsumeBool() ? any_float(in) : float(in.ConsumeIntegralInRange<int>(-1, 1));
+      clearly([&] { scene.set_instance_transforms(ids.data(), moved.data(), ids.size()); });
+    } else {
+      clearly([&] { scene.remove_instances(ids.data(), ids.size()); });
+    }
+  }
+}
+
 void add_texture(FuzzedDataProvider& in, Scene& scene) {
   int w = in.ConsumeIntegralInRange<int>(-1, 9), h = in.ConsumeIntegralInRange<int>(-1, 9);
   const int c = in.ConsumeIntegralInRange<int>(0, 5);
@@ -115,7 +162,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   FuzzedDataProvider in(data, size);
   Scene scene;
   for (int op = 0; op < 24 && in.remaining_bytes() > 0; ++op) {
-    switch (in.ConsumeIntegralInRange<int>(0, 10)) {
+    switch (in.ConsumeIntegralInRange<int>(0, 11)) {
       case 0: {
         Material m;
         if (in.ConsumeBool()) {  // wild values
@@ -177,6 +224,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         break;
       }
       case 9: set_camera(in, scene); break;
+      case 10: add_instances(in, scene); break;
       default: {
         RenderSettings s;
         s.width = in.ConsumeIntegralInRange<int>(1, 4);
