@@ -21,4 +21,10 @@ BrdfModel parse_model(const std::string& s);
 // (height, width, 4) float32 copy of an image.
 py::array_t<float> to_numpy(const Image& image);
 
+// obj as a numpy array, not copied (a list becomes one), once it is known to hold real numbers
+// (bool, int, float: TypeError otherwise) and a copy of it with itemsize-byte items fits the
+// memory budget (ValueError otherwise) -- checked before any conversion allocates.
+py::array numeric_array(const py::object& obj, const std::string& name, size_t itemsize);
+std::string shape_string(const py::array& a);  // "(2, 3)"
+
 }  // namespace torrance::python

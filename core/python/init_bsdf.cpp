@@ -1,6 +1,7 @@
 #include "bindings.h"
 
 #include "torrance/albedo.h"
+#include "torrance/scene.h"
 
 #include <pybind11/stl.h>
 
@@ -17,6 +18,7 @@ void init_bsdf(py::module_& m) {
         mat.metallic = metallic;
         mat.roughness = roughness;
         mat.specular = specular;
+        check_material(mat);
         const MaterialBsdf bsdf(mat, parse_model(model));
         const Vec3 wo(std::sqrt(1.0f - cos_o * cos_o), 0.0f, cos_o);
         py::gil_scoped_release release;

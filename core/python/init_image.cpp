@@ -10,7 +10,8 @@ void init_image(py::module_& m) {
   m.def(
       "write_image",
       [](const std::string& path, const py::object& array) {
-        const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(array);
+        const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(
+            numeric_array(array, "image", 2 * sizeof(float)));  // + its RGBA float copy
         if (!a || a.ndim() != 3 || (a.shape(2) != 3 && a.shape(2) != 4))
           throw py::value_error("image must have shape (height, width, 3 or 4)");
         Image image{int(a.shape(1)), int(a.shape(0)), {}};

@@ -13,26 +13,19 @@ namespace {
 using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
 using IndexArray = py::array_t<int64_t, py::array::c_style | py::array::forcecast>;
 
-std::string shape_of(const py::array& a) {
-  std::string s = "(";
-  for (py::ssize_t i = 0; i < a.ndim(); ++i) s += (i ? ", " : "") + std::to_string(a.shape(i));
-  return s + (a.ndim() == 1 ? ",)" : ")");
-}
-
 FloatArray as_float_rows(const py::object& obj, const char* name, py::ssize_t rows, int cols) {
-  FloatArray a = FloatArray::ensure(obj);
+  FloatArray a = FloatArray::ensure(numeric_array(obj, name, sizeof(float)));
   if (!a) throw py::type_error(std::string(name) + " must be a numeric array");
   const bool ok = (a.ndim() == 2 && a.shape(1) == cols && (rows < 0 || a.shape(0) == rows)) ||
                   (a.size() == 0 && rows <= 0);
   if (!ok)
     throw py::value_error(std::string(name) + " must have shape (" + (rows < 0 ? "N" : std::to_string(rows)) +
-                          ", " + std::to_string(cols) + "), got " + shape_of(a));
+                          ", " + std::to_string(cols) + "), got " + shape_string(a));
   return a;
 }
 
 IndexArray as_indices(const py::object& obj, const char* name) {
-  const py::array raw = py::array::ensure(obj);
-  if (!raw) throw py::type_error(std::string(name) + " must be an array of integers");
+  const py::array raw = numeric_array(obj, name, sizeof(int64_t));
   if (raw.size() > 0 && raw.dtype().kind() != 'i' && raw.dtype().kind() != 'u')
     throw py::type_error(std::string(name) + " must hold integers, got dtype " + std::string(py::str(raw.dtype())));
   return IndexArray::ensure(raw);
@@ -55,11 +48,11 @@ MeshArrays mesh_arrays(const py::object& positions, const py::object& triangles,
   a.p = as_float_rows(positions, "positions", -1, 3);
   a.t = as_indices(triangles, "triangles");
   if (!((a.t.ndim() == 2 && a.t.shape(1) == 3) || a.t.size() == 0))
-    throw py::value_error("triangles must have shape (M, 3), got " + shape_of(a.t));
+    throw py::value_error("triangles must have shape (M, 3), got " + shape_string(a.t));
   const py::ssize_t num_tris = a.t.size() / 3;
   a.num_triangles = size_t(num_tris);
   if (!corner_normals.is_none()) {
-    a.n = FloatArray::ensure(corner_normals);
+    a.n = FloatArray::ensure(numeric_array(corner_normals, "corner_normals", sizeof(float)));
     if (!a.n || a.n.size() != num_tris * 9)
       throw py::value_error("corner_normals must have shape (M, 3, 3) with M = " + std::to_string(num_tris) +
                             " triangles");
@@ -69,11 +62,11 @@ MeshArrays mesh_arrays(const py::object& positions, const py::object& triangles,
     a.m = as_indices(material_indices, materials_name);
     if (a.m.size() != num_tris)
       throw py::value_error(std::string(materials_name) + " must have shape (M,) with M = " +
-                            std::to_string(num_tris) + ", got " + shape_of(a.m));
+                            std::to_string(num_tris) + ", got " + shape_string(a.m));
     a.has_m = true;
   }
   if (!corner_uvs.is_none()) {
-    a.uv = FloatArray::ensure(corner_uvs);
+    a.uv = FloatArray::ensure(numeric_array(corner_uvs, "corner_uvs", sizeof(float)));
     if (!a.uv || a.uv.size() != num_tris * 6)
       throw py::value_error("corner_uvs must have shape (M, 3, 2) with M = " + std::to_string(num_tris) +
                             " triangles");
@@ -83,12 +76,11 @@ MeshArrays mesh_arrays(const py::object& positions, const py::object& triangles,
 }
 
 // Affine matrices (N, 4, 4) or (N, 3, 4), or one (4, 4) / (3, 4) when expected is 1 or -1, as
-// N x 12 floats (row-major 3x4). Checked: shape, NaN/Inf, a 4x4's last row (0, 0, 0, 1).
+// N x 12 floats (row-major 3x4). Checked: dtype and memory budget (numeric_array), shape, NaN/Inf,
+// a 4x4's last row (0, 0, 0, 1), float range; the core checks the 1e12 bounds (check_transform).
 std::vector<float> affine_rows(const py::object& obj, const char* name, py::ssize_t expected) {
-  const py::array raw = py::array::ensure(obj);
-  if (!raw || (raw.size() > 0 && raw.dtype().kind() != 'f' && raw.dtype().kind() != 'i' &&
-               raw.dtype().kind() != 'u'))
-    throw py::type_error(std::string(name) + " must be a numeric array of 4x4 or 3x4 matrices");
+  // Real numbers only, and their double copy plus the float result within the memory budget.
+  const py::array raw = numeric_array(obj, name, sizeof(double) + sizeof(float));
   using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
   const DoubleArray a = DoubleArray::ensure(raw);
   const bool single = a.ndim() == 2 && expected <= 1;
@@ -98,7 +90,7 @@ std::vector<float> affine_rows(const py::object& obj, const char* name, py::ssiz
   if (!ok || (expected >= 0 && count != expected))
     throw py::value_error(std::string(name) + " must have shape (N, 4, 4) or (N, 3, 4)" +
                           (expected >= 0 ? " with N = " + std::to_string(expected) : std::string()) + ", got " +
-                          shape_of(a));
+                          shape_string(a));
   std::vector<float> out(size_t(count) * 12);
   const double* d = a.data();
   for (py::ssize_t i = 0; i < count; ++i) {
@@ -178,7 +170,7 @@ void init_scene(py::module_& m) {
       .def(
           "add_texture",
           [](Scene& s, const py::object& pixels, const std::string& colorspace, const std::string& interpolation) {
-            const FloatArray a = FloatArray::ensure(pixels);
+            const FloatArray a = FloatArray::ensure(numeric_array(pixels, "texture pixels", sizeof(float)));
             if (!a || a.ndim() != 3 || a.shape(0) < 1 || a.shape(1) < 1 || a.shape(2) < 1 || a.shape(2) > 4)
               throw py::value_error("texture pixels must have shape (height, width, 1..4)");
             return s.add_texture(Texture(int(a.shape(1)), int(a.shape(0)), int(a.shape(2)), a.data(),
@@ -234,7 +226,7 @@ void init_scene(py::module_& m) {
             const bool per_instance = table.ndim() == 2;
             if (!(table.ndim() == 1 || (per_instance && size_t(table.shape(0)) == count)) || table.size() == 0)
               throw py::value_error("materials must be a non-empty slot -> material table of shape (K,), or (N, K) "
-                                    "with N = " + std::to_string(count) + " instances, got " + shape_of(table));
+                                    "with N = " + std::to_string(count) + " instances, got " + shape_string(table));
             const size_t table_size = size_t(per_instance ? table.shape(1) : table.shape(0));
             return s.add_instances(uint32_t(prototype), xf.data(), count, table.data(), table_size, per_instance);
           },
@@ -246,7 +238,7 @@ void init_scene(py::module_& m) {
           "set_instance_transforms",
           [](Scene& s, const py::object& ids, const py::object& transforms) {
             const IndexArray id = as_indices(ids, "ids");
-            if (id.ndim() > 1) throw py::value_error("ids must have shape (N,), got " + shape_of(id));
+            if (id.ndim() > 1) throw py::value_error("ids must have shape (N,), got " + shape_string(id));
             const std::vector<float> xf = affine_rows(transforms, "transforms", id.size());
             s.set_instance_transforms(id.data(), xf.data(), size_t(id.size()));
           },
@@ -257,14 +249,14 @@ void init_scene(py::module_& m) {
           "remove_instances",
           [](Scene& s, const py::object& ids) {
             const IndexArray id = as_indices(ids, "ids");
-            if (id.ndim() > 1) throw py::value_error("ids must have shape (N,), got " + shape_of(id));
+            if (id.ndim() > 1) throw py::value_error("ids must have shape (N,), got " + shape_string(id));
             s.remove_instances(id.data(), size_t(id.size()));
           },
           py::arg("ids"), "Removes instances (ids (N,)); their ids are not reused.")
       .def(
           "add_sun",
           [](Scene& s, std::array<float, 3> direction, float strength, std::array<float, 3> color, float angle) {
-            s.lights().add_sun(vec3(direction), strength, vec3(color), angle);
+            s.edit_lights([&](Lights& l) { l.add_sun(vec3(direction), strength, vec3(color), angle); });
           },
           py::arg("direction") = std::array<float, 3>{0, 0, -1}, py::arg("strength") = 1.0f,
           py::arg("color") = std::array<float, 3>{1, 1, 1}, py::arg("angle") = 0.00918f,
@@ -272,7 +264,7 @@ void init_scene(py::module_& m) {
       .def(
           "add_point_light",
           [](Scene& s, std::array<float, 3> position, float power, std::array<float, 3> color, float radius) {
-            s.lights().add_point(vec3(position), power, vec3(color), radius);
+            s.edit_lights([&](Lights& l) { l.add_point(vec3(position), power, vec3(color), radius); });
           },
           py::arg("position"), py::arg("power") = 1000.0f, py::arg("color") = std::array<float, 3>{1, 1, 1},
           py::arg("radius") = 0.1f, "Point light: power in W, radius in m.")
@@ -280,7 +272,9 @@ void init_scene(py::module_& m) {
           "add_spot_light",
           [](Scene& s, std::array<float, 3> position, std::array<float, 3> direction, float power,
              std::array<float, 3> color, float radius, float spot_size, float spot_blend) {
-            s.lights().add_spot(vec3(position), vec3(direction), power, vec3(color), radius, spot_size, spot_blend);
+            s.edit_lights([&](Lights& l) {
+              l.add_spot(vec3(position), vec3(direction), power, vec3(color), radius, spot_size, spot_blend);
+            });
           },
           py::arg("position"), py::arg("direction") = std::array<float, 3>{0, 0, -1}, py::arg("power") = 1000.0f,
           py::arg("color") = std::array<float, 3>{1, 1, 1}, py::arg("radius") = 0.1f,
@@ -294,8 +288,10 @@ void init_scene(py::module_& m) {
              float spread) {
             if (shape != "RECTANGLE" && shape != "ELLIPSE")
               throw py::value_error("area light shape must be 'RECTANGLE' or 'ELLIPSE', got '" + shape + "'");
-            s.lights().add_area(vec3(center), vec3(edge_u), vec3(edge_v), vec3(direction), shape == "ELLIPSE", power,
-                                vec3(color), spread);
+            s.edit_lights([&](Lights& l) {
+              l.add_area(vec3(center), vec3(edge_u), vec3(edge_v), vec3(direction), shape == "ELLIPSE", power,
+                         vec3(color), spread);
+            });
           },
           py::arg("center"), py::arg("edge_u"), py::arg("edge_v"), py::arg("direction") = std::array<float, 3>{0, 0, -1},
           py::arg("shape") = "RECTANGLE", py::arg("power") = 10.0f, py::arg("color") = std::array<float, 3>{1, 1, 1},
@@ -304,7 +300,9 @@ void init_scene(py::module_& m) {
           "it emits one-sided along direction with radiance power / (4 area), like Cycles.")
       .def(
           "set_world",
-          [](Scene& s, std::array<float, 3> color, float strength) { s.lights().set_world(vec3(color), strength); },
+          [](Scene& s, std::array<float, 3> color, float strength) {
+            s.edit_lights([&](Lights& l) { l.set_world(vec3(color), strength); });
+          },
           py::arg("color"), py::arg("strength") = 1.0f, "Uniform world radiance = color * strength.")
       .def("set_world_texture", &Scene::set_world_texture, py::arg("texture"), py::arg("strength") = 1.0f,
            "HDRI world: an equirectangular texture (from add_texture*) around the scene, mapped like "
@@ -313,7 +311,7 @@ void init_scene(py::module_& m) {
           "set_camera",
           [](Scene& s, const py::object& matrix, float lens, float sensor_width, float sensor_height,
              const std::string& sensor_fit, float shift_x, float shift_y, float clip_start, float clip_end) {
-            const FloatArray mat = FloatArray::ensure(matrix);
+            const FloatArray mat = FloatArray::ensure(numeric_array(matrix, "camera matrix", sizeof(float)));
             if (!mat || mat.size() != 16) throw py::value_error("camera matrix must be a 4x4 array");
             CameraParams c;
             std::copy_n(mat.data(), 16, c.camera_to_world.begin());

@@ -1,5 +1,7 @@
 #include "torrance/camera.h"
 
+#include "torrance/limits.h"
+
 #include <stdexcept>
 #include <string>
 
@@ -21,14 +23,15 @@ Camera::Camera(const CameraParams& p, int width, int height, float pixel_aspect_
   const auto& m = p.camera_to_world;  // row-major: column j of the 3x3 is (m[j], m[4+j], m[8+j])
   auto column = [&](int j) { return Vec3(m[j], m[4 + j], m[8 + j]); };
   auto unit = [](Vec3 v, const char* what) {
-    const float len = glm::length(v);
-    if (!(len > 0.0f)) throw std::invalid_argument(std::string("camera matrix has a zero ") + what + " axis");
-    return v / len;
+    const Vec3 u = robust_normalize(v);  // a scaled matrix's axes may be too long to square
+    if (!(glm::length(u) > 0.0f)) throw std::invalid_argument(std::string("camera matrix has a zero ") + what + " axis");
+    return u;
   };
   right_ = unit(column(0), "X");
   up_ = unit(column(1), "Y");
   forward_ = -unit(column(2), "Z");  // Blender cameras look down their local -Z
   origin_ = Vec3(m[3], m[7], m[11]);
+  require_position(origin_, "camera position");
 
   // Sensor fit (Cycles' blender_camera_viewplane): AUTO fits the larger side with sensor_width.
   const float xr = width * pixel_aspect_x, yr = height * pixel_aspect_y;
@@ -50,6 +53,10 @@ Camera::Camera(const CameraParams& p, int width, int height, float pixel_aspect_
   }
   offset_x_ = 2.0f * h * p.shift_x;
   offset_y_ = 2.0f * h * p.shift_y;
+  // Beyond this the view plane is degenerate (a field of view within 1e-6 rad of 180 degrees):
+  // directions and clip distances would overflow into NaN, which Embree cannot trace.
+  for (float v : {half_w_, half_h_, std::abs(offset_x_), std::abs(offset_y_)})
+    if (!(v <= 1e6f)) throw std::invalid_argument("camera lens, sensor size, shift and pixel aspect give a degenerate view");
 }
 
 Ray Camera::generate_ray(float x, float y_from_top) const {

@@ -1,5 +1,7 @@
 #include "torrance/image_io.h"
 
+#include "torrance/limits.h"
+
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -42,10 +44,17 @@ void write_image(const std::string& path, const Image& image) {
   if (!ok || !out->close()) throw std::runtime_error("failed writing '" + path + "': " + out->geterror());
 }
 
-ImageData read_image(const std::string& path) {
+ImageData read_image(const std::string& path, double extra_bytes_per_pixel) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw std::runtime_error("cannot read '" + path + "': " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1 || spec.nchannels <= 0 || spec.deep)
+    throw std::runtime_error("cannot read '" + path + "': unsupported image size " + std::to_string(spec.width) + " x " +
+                             std::to_string(spec.height) + " x " + std::to_string(spec.depth) + ", " +
+                             std::to_string(spec.nchannels) + " channels" + (spec.deep ? " (deep)" : ""));
+  require_memory(double(spec.width) * double(spec.height) * (4.0 * spec.nchannels + extra_bytes_per_pixel),
+                 "reading the " + std::to_string(spec.width) + " x " + std::to_string(spec.height) + " image '" +
+                     path + "'");
   ImageData data;
   data.width = spec.width;
   data.height = spec.height;

@@ -1,5 +1,6 @@
 #include "torrance/integrator.h"
 
+#include "torrance/limits.h"
 #include "torrance/material_bsdf.h"
 #include "torrance/sampling.h"
 #include "torrance/shading_normal.h"
@@ -34,6 +35,18 @@ void RenderSettings::validate() const {
     if (w[0] < 0 || w[1] < 0 || w[2] > width || w[3] > height || w[0] >= w[2] || w[1] >= w[3])
       throw std::invalid_argument("window must satisfy 0 <= x0 < x1 <= width and 0 <= y0 < y1 <= height");
   }
+  if (!(pixel_aspect_x > 0.0f) || !(pixel_aspect_y > 0.0f) || !std::isfinite(pixel_aspect_x) ||
+      !std::isfinite(pixel_aspect_y))
+    throw std::invalid_argument("pixel aspect must be finite and > 0");
+  // What the render holds at once: the film (double sums of Combined, the passes and a count) and
+  // about four float RGBA copies of the image (snapshot, pass hand-over, result, numpy), passes twice.
+  const double pixels = window ? double((*window)[2] - (*window)[0]) * double((*window)[3] - (*window)[1])
+                               : double(width) * double(height);
+  int pass_channels = 0;
+  for (const PassInfo& p : kPasses)
+    if (passes & p.pass) pass_channels += p.channels;
+  require_memory(pixels * (8.0 * (5 + pass_channels) + 4.0 * 16 + 4.0 * 2 * pass_channels),
+                 "a " + std::to_string(width) + " x " + std::to_string(height) + " render");
 }
 
 namespace {
@@ -345,11 +358,14 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   const auto start = std::chrono::steady_clock::now();
   const Camera camera(scene.camera(), settings.width, settings.height, settings.pixel_aspect_x,
                       settings.pixel_aspect_y);
-  if (scene.num_materials() == 0) scene.add_material(Material{});
-  scene.commit();
-  scene.lights().set_selection(settings.light_selection);
+  scene.begin_render(settings.light_selection);  // read-only from here to the end of render()
+  struct EndRender {
+    Scene& scene;
+    ~EndRender() { scene.end_render(); }
+  } end_render{scene};
+  const Scene& cscene = scene;
 
-  PathContext ctx{scene, scene.lights(), settings, {}, camera.forward(), camera.pixel_spread()};
+  PathContext ctx{scene, cscene.lights(), settings, {}, camera.forward(), camera.pixel_spread()};
   ctx.bsdfs.reserve(scene.num_materials());
   for (size_t i = 0; i < scene.num_materials(); ++i) ctx.bsdfs.emplace_back(scene.material(uint32_t(i)), settings.brdf_model);
   const PixelFilter filter(settings.filter_width);
@@ -359,7 +375,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   for (size_t i = 0; i < scene.num_materials(); ++i) has_textures |= scene.material_textures(uint32_t(i)).any();
   const bool split_lobes =
       settings.passes & (kPassDiffuseDirect | kPassDiffuseIndirect | kPassGlossyDirect | kPassGlossyIndirect);
-  const bool hittable = scene.lights().any_hittable();
+  const bool hittable = cscene.lights().any_hittable();
   using TraceFn = PathRadiance (*)(const PathContext&, Ray, SobolSampler&);
   static constexpr TraceFn kTracers[8] = {
       trace_path<false, false, false>, trace_path<false, false, true>, trace_path<false, true, false>,

@@ -1,5 +1,6 @@
 #include "torrance/lights.h"
 
+#include "torrance/limits.h"
 #include "torrance/sampling.h"
 
 #include <stdexcept>
@@ -22,9 +23,15 @@ Vec3 checked_color(const Vec3& c, const char* what) {
 }
 Vec3 unit_direction(const Vec3& d, const char* what) {
   require_finite(d, what);
-  const float len = glm::length(d);
-  if (!(len > 0.0f)) throw std::invalid_argument(std::string(what) + " must not be zero");
-  return d / len;
+  const Vec3 u = robust_normalize(d);  // (1e30, 0, 0) is a direction too: |d| would overflow
+  if (!(glm::length(u) > 0.0f)) throw std::invalid_argument(std::string(what) + " must not be zero");
+  return u;
+}
+// color * scale, refused when the product overflows (it would turn into Inf radiance).
+Vec3 scaled_color(const Vec3& color, float scale, const char* what) {
+  const Vec3 c = checked_color(color, what) * scale;
+  if (!is_finite(c)) throw std::invalid_argument(std::string(what) + " times the light's strength overflows");
+  return c;
 }
 
 // A rectangle as seen from a point: the spherical rectangle of Urena, Fajardo and King (2013),
@@ -83,7 +90,7 @@ SunLight::SunLight(const Vec3& direction, float strength, const Vec3& color, flo
   require_non_negative(strength, "sun strength");
   require_non_negative(angle, "sun angle");
   to_light_ = -unit_direction(direction, "sun direction");
-  irradiance_ = checked_color(color, "sun color") * strength;
+  irradiance_ = scaled_color(color, strength, "sun color");
   const float s = std::sin(std::min(angle, kPi) * 0.25f);
   one_minus_cos_ = 2.0f * s * s;
 }
@@ -117,10 +124,10 @@ bool SunLight::hit(const Vec3&, const Vec3&, const Vec3& dir, float t_max, Light
 
 PointLight::PointLight(const Vec3& position, float power, const Vec3& color, float radius, const SpotShape& spot)
     : position_(position), radius_(radius), spot_(spot) {
-  require_finite(position, "light position");
+  require_position(position, "light position");
   require_non_negative(power, "light power");
   require_non_negative(radius, "light radius");
-  intensity_ = checked_color(color, "light color") * (power / (4.0f * kPi));
+  intensity_ = scaled_color(color, power / (4.0f * kPi), "light color");
 }
 
 float PointLight::spot_attenuation(const Vec3& p) const {
@@ -199,14 +206,15 @@ bool PointLight::hit(const Vec3& p, const Vec3&, const Vec3& dir, float t_max, L
 AreaLight::AreaLight(const Vec3& center, const Vec3& edge_u, const Vec3& edge_v, const Vec3& normal, bool ellipse,
                      float power, const Vec3& color, float spread)
     : center_(center), edge_u_(edge_u), edge_v_(edge_v), ellipse_(ellipse) {
-  require_finite(center, "area light position");
-  require_finite(edge_u, "area light size");
-  require_finite(edge_v, "area light size");
+  require_position(center, "area light position");
+  require_position(edge_u, "area light size");
+  require_position(edge_v, "area light size");
+  if (std::isnan(spread) || spread < 0.0f) throw std::invalid_argument("area light spread must be >= 0");
   require_non_negative(power, "area light power");
   normal_ = unit_direction(normal, "area light direction");
   area_ = glm::length(edge_u) * glm::length(edge_v) * (ellipse ? kPi / 4.0f : 1.0f);
   if (!(area_ > 0.0f)) throw std::invalid_argument("area light must have a non-zero size");
-  radiance_ = checked_color(color, "area light color") * (power / (4.0f * area_));
+  radiance_ = scaled_color(color, power / (4.0f * area_), "area light color");
   if (std::isfinite(spread) && spread < kPi) {  // Cycles' spread attenuation, normalised
     const float half = (kPi - std::max(spread, kPi / 180.0f)) * 0.5f;
     tan_half_spread_ = std::tan(half);
@@ -342,7 +350,7 @@ void Lights::add_area(const Vec3& center, const Vec3& edge_u, const Vec3& edge_v
 
 void Lights::set_world(const Vec3& color, float strength) {
   require_non_negative(strength, "world strength");
-  world_ = WorldLight(checked_color(color, "world color") * strength);
+  world_ = WorldLight(scaled_color(color, strength, "world color"));
 }
 
 void Lights::set_world_map(std::shared_ptr<const Texture> image, float strength) {

@@ -1,10 +1,14 @@
 #include "torrance/scene.h"
 
+#include "torrance/limits.h"
+
 #include <embree3/rtcore.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 namespace torrance {
@@ -29,6 +33,7 @@ constexpr uint32_t kNoGeometry = 0xFFFFFFFFu;  // Instance::geometry of an empty
 struct Scene::Prototype {
   std::unique_ptr<Mesh> mesh;
   RTCScene scene = nullptr;  // nullptr when the mesh has no triangles
+  Vec3 lo{0.0f}, hi{0.0f};   // bounds of its vertices (both 0 without vertices), for transforms
   Prototype() = default;
   Prototype(const Prototype&) = delete;
   Prototype& operator=(const Prototype&) = delete;
@@ -88,10 +93,15 @@ std::array<double, 9> normal_matrix(const std::array<float, 12>& m) {
 
 Vec3 transform_normal(const std::array<double, 9>& n, const Vec3& v) {
   const double x = v.x, y = v.y, z = v.z;
-  const Vec3 r(float(n[0] * x + n[1] * y + n[2] * z), float(n[3] * x + n[4] * y + n[5] * z),
-               float(n[6] * x + n[7] * y + n[8] * z));
+  const double rx = n[0] * x + n[1] * y + n[2] * z, ry = n[3] * x + n[4] * y + n[5] * z,
+               rz = n[6] * x + n[7] * y + n[8] * z;
+  const Vec3 r{float(rx), float(ry), float(rz)};
   const float len = glm::length(r);
-  return len > 1e-12f && std::isfinite(len) ? r / len : Vec3(0.0f);
+  if (len > 1e-12f && std::isfinite(len)) return r / len;
+  // M^-T of a large scale (entries up to the 1e12 check_transform allows) shrinks normals below
+  // float's reach before they are normalized: normalize in double instead.
+  const double dlen = std::sqrt(rx * rx + ry * ry + rz * rz);
+  return dlen > 0.0 && std::isfinite(dlen) ? Vec3(float(rx / dlen), float(ry / dlen), float(rz / dlen)) : Vec3(0.0f);
 }
 }  // namespace
 
@@ -132,12 +142,40 @@ void Scene::check_device(const char* during) const {
   }
 }
 
+void Scene::check_idle(const char* change) const {
+  if (renders_ > 0)
+    throw std::runtime_error(std::string("cannot ") + change +
+                             " while a render uses the scene; stop the render (RenderSession.stop()) first");
+}
+
+void Scene::begin_render(LightSelection selection) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (materials_.empty()) {
+    materials_.push_back(Material{});
+    material_textures_.push_back({});
+    emitters_dirty_ = true;
+  }
+  commit();
+  lights_.set_selection(selection);
+  ++renders_;
+}
+
+void Scene::edit_lights(const std::function<void(Lights&)>& edit) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("change the lights");
+  edit(lights_);
+}
+
 uint32_t Scene::add_texture(Texture texture) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("add a texture");
   textures_.push_back(std::make_shared<const Texture>(std::move(texture)));
   return uint32_t(textures_.size() - 1);
 }
 
 void Scene::set_world_texture(uint32_t id, float strength) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("change the world");
   if (id >= textures_.size())
     throw std::invalid_argument("world uses texture " + std::to_string(id) + " but the scene has " +
                                 std::to_string(textures_.size()) + " textures");
@@ -166,19 +204,25 @@ Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, fl
   return len > 1e-6f && std::isfinite(len) ? n / len : ns;
 }
 
-uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures) {
-  for (int id : {textures.base_color, textures.metallic, textures.roughness, textures.emission, textures.normal})
-    if (id < -1 || id >= int(textures_.size()))
-      throw std::invalid_argument("material uses texture " + std::to_string(id) + " but the scene has " +
-                                  std::to_string(textures_.size()) + " textures");
-  if (!std::isfinite(textures.emission_strength) || !std::isfinite(textures.normal_strength))
-    throw std::invalid_argument("texture strengths must be finite");
+void check_material(const Material& m) {
   if (!is_finite(m.base_color) || !is_finite(m.emission) || !std::isfinite(m.metallic) ||
       !std::isfinite(m.roughness) || !std::isfinite(m.specular) || !std::isfinite(m.specular_tint))
     throw std::invalid_argument("material values must be finite (no NaN or Inf)");
   if (m.metallic < 0.0f || m.metallic > 1.0f || m.roughness < 0.0f || m.roughness > 1.0f)
     throw std::invalid_argument("material metallic and roughness must lie in [0, 1]");
   if (m.specular < 0.0f) throw std::invalid_argument("material specular must be >= 0");
+}
+
+uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("add a material");
+  for (int id : {textures.base_color, textures.metallic, textures.roughness, textures.emission, textures.normal})
+    if (id < -1 || id >= int(textures_.size()))
+      throw std::invalid_argument("material uses texture " + std::to_string(id) + " but the scene has " +
+                                  std::to_string(textures_.size()) + " textures");
+  if (!std::isfinite(textures.emission_strength) || !std::isfinite(textures.normal_strength))
+    throw std::invalid_argument("texture strengths must be finite");
+  check_material(m);
   Material clean = m;
   clean.base_color = glm::clamp(m.base_color, Vec3(0.0f), Vec3(1.0f));
   clean.emission = glm::max(m.emission, Vec3(0.0f));
@@ -195,11 +239,18 @@ std::unique_ptr<Scene::Mesh> Scene::make_mesh(const float* positions, size_t num
   if (num_triangles > 0 && num_vertices == 0) throw std::invalid_argument("mesh has triangles but no vertices");
   if (num_vertices > UINT32_MAX || num_triangles > UINT32_MAX)
     throw std::invalid_argument("mesh is too large (more than 2^32 vertices or triangles)");
+  // Copies here and in Embree, corner data, and about 64 bytes of BVH per triangle.
+  require_memory(double(num_vertices) * 24.0 +
+                     double(num_triangles) * (24.0 + (corner_normals ? 36 : 0) + (corner_uvs ? 24 : 0) + 64.0),
+                 std::string(slots ? "a prototype of " : "a mesh of ") + std::to_string(num_vertices) +
+                     " vertices and " + std::to_string(num_triangles) + " triangles");
   mesh->positions.resize(num_vertices);
   for (size_t i = 0; i < num_vertices; ++i) {
     const Vec3 p(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
     if (!is_finite(p))
-      throw std::invalid_argument("mesh vertex " + std::to_string(i) + " has a NaN or Inf coordinate");
+      throw std::invalid_argument(std::string(slots ? "prototype vertex " : "mesh vertex ") + std::to_string(i) +
+                                  " has a NaN or Inf coordinate");
+    require_position(p, std::string(slots ? "prototype vertex " : "mesh vertex ") + std::to_string(i));
     mesh->positions[i] = p;
   }
   mesh->triangles.resize(num_triangles);
@@ -268,6 +319,8 @@ void* Scene::new_triangle_geometry(const Mesh& mesh) const {
 uint32_t Scene::add_mesh(const float* positions, size_t num_vertices, const int64_t* triangles,
                          size_t num_triangles, const float* corner_normals, const int64_t* material_ids,
                          const float* corner_uvs) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("add a mesh");
   auto mesh = make_mesh(positions, num_vertices, triangles, num_triangles, corner_normals, material_ids, corner_uvs,
                         false);
   const uint32_t id = uint32_t(meshes_.size());
@@ -288,9 +341,18 @@ uint32_t Scene::add_mesh(const float* positions, size_t num_vertices, const int6
 uint32_t Scene::add_prototype(const float* positions, size_t num_vertices, const int64_t* triangles,
                               size_t num_triangles, const float* corner_normals, const int64_t* slots,
                               const float* corner_uvs) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("add a prototype");
   auto prototype = std::make_unique<Prototype>();
   prototype->mesh = make_mesh(positions, num_vertices, triangles, num_triangles, corner_normals, slots, corner_uvs,
                               true);
+  if (num_vertices > 0) {
+    prototype->lo = prototype->hi = prototype->mesh->positions[0];
+    for (const Vec3& p : prototype->mesh->positions) {
+      prototype->lo = glm::min(prototype->lo, p);
+      prototype->hi = glm::max(prototype->hi, p);
+    }
+  }
   if (num_triangles > 0) {
     prototype->scene = rtcNewScene(device_of(device_));
     rtcSetSceneFlags(prototype->scene, RTC_SCENE_FLAG_ROBUST);
@@ -306,12 +368,41 @@ uint32_t Scene::add_prototype(const float* positions, size_t num_vertices, const
 }
 
 namespace {
-void check_transforms(const float* transforms, size_t count) {
-  for (size_t i = 0; i < count; ++i)
-    for (int k = 0; k < 12; ++k)
-      if (!std::isfinite(transforms[12 * i + k]))
-        throw std::invalid_argument("transform " + std::to_string(i) + " has a NaN or Inf entry");
+std::string number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
 }
+}  // namespace
+
+// What an instance's matrix may do (issue 15's bounds, for instancing): every entry finite and
+// within kMaxCoordinate (1e12) -- the translation is the object's origin, a column of the 3x3
+// part the world image of a unit object axis -- and the prototype's vertex bounds, transformed,
+// within 1e12 of the origin too, as add_mesh requires of world-space vertices. So hit points and
+// their offsets stay valid rays for Embree, whatever the matrix.
+void Scene::check_transform(const float* m, uint32_t prototype, const std::string& which) const {
+  for (int k = 0; k < 12; ++k)
+    if (!std::isfinite(m[k])) throw std::invalid_argument(which + " has a NaN or Inf entry");
+  for (int k = 0; k < 12; ++k)
+    if (std::abs(m[k]) > kMaxCoordinate)
+      throw std::invalid_argument(which + " has an entry of " + number(m[k]) + " (row " + std::to_string(k / 4) +
+                                  ", column " + std::to_string(k % 4) + "); entries must lie within 1e12");
+  const Prototype& proto = *prototypes_[prototype];
+  if (proto.mesh->positions.empty()) return;
+  for (int r = 0; r < 3; ++r) {  // the exact world bounds of the object-space box, row by row
+    double lo = m[4 * r + 3], hi = lo;
+    for (int c = 0; c < 3; ++c) {
+      const double a = double(m[4 * r + c]) * proto.lo[c], b = double(m[4 * r + c]) * proto.hi[c];
+      lo += std::min(a, b);
+      hi += std::max(a, b);
+    }
+    if (std::max(std::abs(lo), std::abs(hi)) > double(kMaxCoordinate))
+      throw std::invalid_argument(which + " places prototype " + std::to_string(prototype) + " beyond 1e12 from " +
+                                  "the origin (world " + "xyz"[r] + " from " + number(lo) + " to " + number(hi) + ")");
+  }
+}
+
+namespace {
 
 bool singular(const std::array<float, 12>& m) {
   // Zero scale in some direction (a common way of hiding instances): nothing to trace.
@@ -344,17 +435,25 @@ void Scene::place_instance(Instance& instance, const float* transform) {
 
 uint32_t Scene::add_instances(uint32_t prototype, const float* transforms, size_t count, const int64_t* materials,
                               size_t table_size, bool per_instance_tables) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("add instances");
   if (prototype >= prototypes_.size())
     throw std::invalid_argument("prototype " + std::to_string(prototype) + " does not exist (the scene has " +
                                 std::to_string(prototypes_.size()) + " prototypes)");
   if (table_size == 0) throw std::invalid_argument("the material table of instances must not be empty");
   const size_t num_tables = per_instance_tables ? count : (count > 0 ? 1 : 0);
+  // Per instance its record, an Embree instance geometry and its share of the top-level BVH
+  // (~512 bytes); per table entry the binding's copy and its key (8 bytes).
+  require_memory(double(count) * 512.0 + double(num_tables) * double(table_size) * 8.0,
+                 std::to_string(count) + " instances" +
+                     (per_instance_tables ? " with material tables of " + std::to_string(table_size) + " entries"
+                                          : std::string()));
   for (size_t i = 0; i < num_tables * table_size; ++i)
     if (materials[i] < 0 || uint64_t(materials[i]) >= materials_.size())
       throw std::invalid_argument("material table entry " + std::to_string(i) + " is material " +
                                   std::to_string(materials[i]) + " but the scene has " +
                                   std::to_string(materials_.size()) + " materials");
-  check_transforms(transforms, count);
+  for (size_t i = 0; i < count; ++i) check_transform(transforms + 12 * i, prototype, "transform " + std::to_string(i));
   if (instances_.size() + count >= kInstanceBit || geometry_owner_.size() + count >= kInstanceBit)
     throw std::invalid_argument("too many instances (2^31 at most)");
 
@@ -414,13 +513,20 @@ const Scene::Instance& Scene::live_instance(int64_t id, const char* during) cons
 }
 
 void Scene::set_instance_transforms(const int64_t* ids, const float* transforms, size_t count) {
-  for (size_t i = 0; i < count; ++i) live_instance(ids[i], "set_instance_transforms");
-  check_transforms(transforms, count);
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("move instances");
+  for (size_t i = 0; i < count; ++i) {
+    const Instance& inst = live_instance(ids[i], "set_instance_transforms");
+    check_transform(transforms + 12 * i, bindings_[inst.binding].prototype,
+                    "transform " + std::to_string(i) + " (instance " + std::to_string(ids[i]) + ")");
+  }
   for (size_t i = 0; i < count; ++i) place_instance(instances_[size_t(ids[i])], transforms + 12 * i);
   check_device("moving instances");
 }
 
 void Scene::remove_instances(const int64_t* ids, size_t count) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("remove instances");
   for (size_t i = 0; i < count; ++i) live_instance(ids[i], "remove_instances");
   for (size_t i = 0; i < count; ++i) {
     Instance& inst = instances_[size_t(ids[i])];
@@ -518,7 +624,8 @@ void Scene::build_mesh_light() {
     e.uv2 = c.uv[2];
     e.material = material;
     triangles.push_back(e);
-    power.push_back(e.area * radiance);
+    const float p = e.area * radiance;  // huge but finite inputs may overflow: keep the CDF finite
+    power.push_back(std::isfinite(p) ? p : std::numeric_limits<float>::max());
     return true;
   };
   for (auto& mesh : meshes_) {
@@ -550,6 +657,14 @@ void Scene::build_mesh_light() {
       }
     }
   }
+  // Every visible instance repeats its binding's emissive triangles in world space: check what
+  // that takes (here, in the light and its CDF) before allocating it.
+  double num_emissive = double(triangles.size());
+  for (const Instance& inst : instances_)
+    if (inst.binding != kRemoved && !inst.hidden) num_emissive += bindings_[inst.binding].num_emissive;
+  require_memory(num_emissive * 2.0 * double(sizeof(EmissiveTriangle) + 2 * sizeof(float)),
+                 "the mesh light of " + std::to_string(size_t(num_emissive)) +
+                     " emissive triangles (instances included)");
   for (Instance& inst : instances_) {
     inst.emitter_base = -1;
     if (inst.binding == kRemoved || inst.hidden || bindings_[inst.binding].num_emissive == 0) continue;

@@ -1,9 +1,12 @@
 #include "torrance/session.h"
 
+#include <stdexcept>
+
 namespace torrance {
 
 RenderSession::RenderSession(std::shared_ptr<Scene> scene, RenderSettings settings)
     : scene_(std::move(scene)), settings_(std::move(settings)) {
+  if (!scene_) throw std::invalid_argument("RenderSession needs a Scene, got None");
   settings_.validate();
 }
 
@@ -11,7 +14,18 @@ RenderSession::~RenderSession() { stop(); }
 
 void RenderSession::start() {
   if (thread_.joinable() || finished_) return;
+  scene_->begin_render(settings_.light_selection);  // in use from now on, not from when the thread runs
   running_ = true;
+  try {
+    launch();
+  } catch (...) {
+    scene_->end_render();
+    running_ = false;
+    throw;
+  }
+}
+
+void RenderSession::launch() {
   thread_ = std::thread([this] {
     RenderCallbacks callbacks;
     callbacks.on_pass = [this](const Image& image, int done, int) {
@@ -33,6 +47,7 @@ void RenderSession::start() {
       std::lock_guard<std::mutex> lock(mutex_);
       error_ = e.what();
     }
+    scene_->end_render();
     finished_ = true;
     running_ = false;
   });

@@ -1,6 +1,7 @@
 #include "torrance/texture.h"
 
 #include "torrance/image_io.h"
+#include "torrance/limits.h"
 
 #include <stdexcept>
 
@@ -21,6 +22,8 @@ Texture::Texture(int width, int height, int channels, const float* pixels, Color
   if (width <= 0 || height <= 0) throw std::invalid_argument("texture size must be positive");
   if (channels < 1 || channels > 4) throw std::invalid_argument("texture must have 1 to 4 channels");
   if (size_t(width) * height > (size_t(1) << 28)) throw std::invalid_argument("texture is too large");
+  require_memory(double(width) * double(height) * kBytesPerTexel,
+                 "a " + std::to_string(width) + " x " + std::to_string(height) + " texture");
   std::vector<glm::vec4> texels(size_t(width) * height);
   for (size_t i = 0; i < texels.size(); ++i) {
     const float* p = pixels + i * channels;
@@ -50,7 +53,7 @@ Texture::Texture(int width, int height, int channels, const float* pixels, Color
 }
 
 Texture Texture::from_file(const std::string& path, ColorSpace space, Interpolation interpolation) {
-  const ImageData data = read_image(path);
+  const ImageData data = read_image(path, 4.0 * 4 + kBytesPerTexel);  // + the flipped copy + the texels
   const int channels = std::min(data.channels, 4);
   std::vector<float> flipped(size_t(data.width) * data.height * channels);
   for (int y = 0; y < data.height; ++y)

@@ -13,7 +13,9 @@ struct ImageData {
   int width = 0, height = 0, channels = 0;
   std::vector<float> pixels;
 };
-ImageData read_image(const std::string& path);
+// The header is checked before any pixel is read: a size the file cannot have, or one whose
+// floats (plus extra_bytes_per_pixel the caller will add) exceed the memory budget, is refused.
+ImageData read_image(const std::string& path, double extra_bytes_per_pixel = 0.0);
 
 inline float linear_to_srgb(float x) {
   x = std::min(std::max(x, 0.0f), 1.0f);

@@ -10,9 +10,12 @@
 #include "torrance/lights.h"
 #include "torrance/texture.h"
 
+#include <atomic>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -40,6 +43,9 @@ struct SurfaceHit {
   float uv_per_metre = 0.0f;  // how fast UVs change across the triangle (sqrt of UV area / area)
   float bitangent_sign = 1.0f;
 };
+
+// Throws std::invalid_argument unless the material's values are finite and in range.
+void check_material(const Material& material);
 
 class Scene {
  public:
@@ -77,8 +83,12 @@ class Scene {
   // transforms: count row-major 3x4 object-to-world matrices (12 floats each). materials: the
   // slot -> material table, table_size entries shared by all (per_instance_tables false) or one
   // table per instance (count * table_size). Tables are stored once per distinct content.
-  // A matrix with NaN/Inf is rejected; a singular one (zero scale) leaves its instance hidden
-  // until set_instance_transforms gives it a regular matrix (see num_hidden_instances).
+  // A matrix with NaN/Inf, an entry beyond 1e12, or placing the prototype's vertex bounds beyond
+  // 1e12 from the origin is rejected (std::invalid_argument), as is a request beyond the memory
+  // budget (limits.h); a singular one (zero scale) leaves its instance hidden until
+  // set_instance_transforms gives it a regular matrix (see num_hidden_instances). Like add_mesh,
+  // add_prototype/add_instances/set_instance_transforms/remove_instances throw
+  // std::runtime_error while a render uses the scene (begin_render .. end_render).
   uint32_t add_instances(uint32_t prototype, const float* transforms, size_t count, const int64_t* materials,
                          size_t table_size, bool per_instance_tables = false);
   // Moves instances (count ids and 12 floats each); only the top-level BVH is rebuilt at commit.
@@ -91,10 +101,19 @@ class Scene {
 
   // An HDRI world: texture `id` as an equirectangular environment, times strength.
   void set_world_texture(uint32_t id, float strength);
-  Lights& lights() { return lights_; }
+  Lights& lights() { return lights_; }  // C++ set-up; bindings use edit_lights
   const Lights& lights() const { return lights_; }
-  void set_camera(const CameraParams& camera) { camera_ = camera; }
-  const CameraParams& camera() const { return camera_; }
+  // Runs edit on the lights unless a render is using the scene (then std::runtime_error).
+  void edit_lights(const std::function<void(Lights&)>& edit);
+  // The camera may change while renders run (each copies it when it starts).
+  void set_camera(const CameraParams& camera) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    camera_ = camera;
+  }
+  CameraParams camera() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return camera_;
+  }
 
   // Triangles traced: those of the world-space meshes plus, per visible instance, its prototype's.
   size_t num_triangles() const;
@@ -104,6 +123,11 @@ class Scene {
   // Builds the BVH and the emissive-triangle light if the scene changed since the last commit.
   // Must precede intersect/occluded.
   void commit();
+  // A render holds the scene read-only from begin_render (default material if none, commit,
+  // light selection) to end_render; meanwhile add_*, set_world_texture and edit_lights throw
+  // std::runtime_error instead of racing with the render threads. Renders may overlap.
+  void begin_render(LightSelection selection);
+  void end_render() { --renders_; }
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
   bool occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax) const;
 
@@ -119,6 +143,13 @@ class Scene {
   void* new_triangle_geometry(const Mesh& mesh) const;  // RTCGeometry, committed
   const Instance& live_instance(int64_t id, const char* during) const;
   void place_instance(Instance& instance, const float* transform);
+  // Throws std::invalid_argument("<which> ...") unless the 3x4 matrix m keeps prototype within
+  // kMaxCoordinate (limits.h): finite entries within 1e12, the transformed vertex bounds too.
+  void check_transform(const float* m, uint32_t prototype, const std::string& which) const;
+  void check_idle(const char* change) const;  // with mutex_ held
+
+  mutable std::mutex mutex_;  // changes vs. begin_render, and the camera
+  std::atomic<int> renders_{0};
 
   std::vector<Material> materials_;
   std::vector<MaterialTextures> material_textures_;

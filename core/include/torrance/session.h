@@ -19,7 +19,7 @@ class RenderSession {
   RenderSession(const RenderSession&) = delete;
   RenderSession& operator=(const RenderSession&) = delete;
 
-  void start();  // no-op if already started
+  void start();  // no-op if already started; the scene is in use (read-only) until the render ends
   void stop();          // asks the render to stop and waits for it (well under a second)
   void request_stop();  // asks the render to stop and returns at once (stop() or the destructor joins)
 
@@ -30,6 +30,7 @@ class RenderSession {
   std::string error() const;  // what went wrong, if the render failed
 
  private:
+  void launch();
   std::shared_ptr<Scene> scene_;
   RenderSettings settings_;
   std::thread thread_;

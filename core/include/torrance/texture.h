@@ -24,6 +24,8 @@ class Texture {
   // RGBA; a grey image gives (v, v, v, 1). footprint: the size, in UV units, of the area to
   // average (0 = the finest level, as Blender's node without filtering).
   glm::vec4 lookup(const Vec2& uv, float footprint = 0.0f) const;
+  // Memory per pixel of the image: RGBA float texels and their mip pyramid (a third more).
+  static constexpr double kBytesPerTexel = 16.0 * 4.0 / 3.0;
   int width() const { return width_; }
   int height() const { return height_; }
 

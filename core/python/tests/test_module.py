@@ -551,7 +551,7 @@ def test_instance_input_errors():
         scene.add_instances(proto, np.zeros((3, 4, 3)), [0])
     with pytest.raises(ValueError, match="transforms must have shape"):
         scene.add_instances(proto, np.zeros(16), [0])
-    with pytest.raises(TypeError, match="numeric"):
+    with pytest.raises(TypeError, match="transforms must hold real numbers"):
         scene.add_instances(proto, np.array([["a"] * 4] * 4), [0])
     bad = eye.copy()
     bad[1, 0, 2] = np.nan
