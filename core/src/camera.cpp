@@ -106,14 +106,15 @@ Ray Camera::generate_ray(float x, float y_from_top, const Vec2& u_lens) const {
     const Vec3 on_plane = origin_ + cx * right_ + cy * up_;
     if (aperture_ > 0.0f) {
       // Cycles: the ray starts at the clip_start plane, offset by the lens point l, and heads for
-      // the point focus_distance further along the axis. Kept on the camera plane here, so the
-      // same line is [tmin, tmax] = [clip_start, clip_end - clip_start + clip_start] / cos.
+      // the point focus_distance further along the axis. The origin is moved back along the ray
+      // to the camera plane, so the segment starts at tmin = clip_start / cos and is
+      // clip_end - clip_start long, like Cycles' cliplength.
       const Vec2 l = aperture_ * sample_aperture(u_lens, blades_, blade_rotation_, aperture_ratio_);
       const Vec3 lens = l.x * right_ + l.y * up_;
       r.dir = glm::normalize(focus_ * forward_ - lens);
       const float cos_axis = glm::dot(r.dir, forward_);
       const float to_start = clip_start_ / cos_axis;  // from the camera plane to the clip_start plane
-      r.origin = on_plane + lens - to_start * r.dir;
+      r.origin = on_plane + clip_start_ * forward_ + lens - to_start * r.dir;
       r.tmin = to_start;
       r.tmax = to_start + (clip_end_ - clip_start_);  // Cycles: cliplength along the (tilted) ray
     } else {
