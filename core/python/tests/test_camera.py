@@ -19,7 +19,8 @@ def square_scene(height, **camera):
 
 
 def alpha(scene, size=40, samples=16):
-    settings = tc.RenderSettings(width=size, height=size, samples=samples, transparent_background=True)
+    settings = tc.RenderSettings(width=size, height=size, samples=samples,
+                                 transparent_background=True)
     return tc.render(scene, settings).image[..., 3]
 
 
@@ -63,5 +64,6 @@ def test_camera_argument_errors():
     with pytest.raises(ValueError, match="ortho_scale"):
         scene.set_camera(eye, type="ORTHO", ortho_scale=0.0)
     with pytest.raises(TypeError):
-        scene.set_camera(eye, 50.0, 36.0, 24.0, "AUTO", 0.0, 0.0, 0.1, 100.0, "ORTHO")  # keyword-only
-    scene.set_camera(eye, type="ORTHO", ortho_scale=2.0, fstop=4.0, blades=6, rotation=0.3, ratio=1.5)
+        scene.set_camera(eye, 50.0, 36.0, 24.0, "AUTO", 0.0, 0.0, 0.1, 100.0, "ORTHO")  # kw-only
+    scene.set_camera(eye, type="ORTHO", ortho_scale=2.0, fstop=4.0, blades=6, rotation=0.3,
+                     ratio=1.5)
