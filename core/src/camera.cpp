@@ -36,9 +36,16 @@ Vec2 sample_aperture(const Vec2& u, int blades, float rotation, float ratio) {
 }
 
 Camera::Camera(const CameraParams& p, int width, int height, float pixel_aspect_x, float pixel_aspect_y)
-    : width_(width), height_(height), clip_start_(p.clip_start), clip_end_(p.clip_end),
-      ortho_(p.type == CameraType::Orthographic), aperture_(p.aperture_radius), focus_(p.focus_distance),
-      blade_rotation_(p.blade_rotation), aperture_ratio_(p.aperture_ratio), blades_(p.blades) {
+    : width_(width),
+      height_(height),
+      clip_start_(p.clip_start),
+      clip_end_(p.clip_end),
+      ortho_(p.type == CameraType::Orthographic),
+      aperture_(p.aperture_radius),
+      focus_(p.focus_distance),
+      blade_rotation_(p.blade_rotation),
+      aperture_ratio_(p.aperture_ratio),
+      blades_(p.blades) {
   if (width <= 0 || height <= 0) throw std::invalid_argument("image size must be positive");
   for (float v : p.camera_to_world)
     if (!std::isfinite(v)) throw std::invalid_argument("camera matrix contains NaN or Inf");

@@ -56,12 +56,11 @@ RoughDielectricBsdf::Lobe RoughDielectricBsdf::evaluate(const Vec3& wo, const Ve
   // 1 - F from both cosines of the refraction pair (Fresnel's r_s, r_p with 1 - r^2 factored):
   // exact in either direction, where F(cos) alone loses 1 - F to cancellation near the critical angle.
   const float c_o = o_h, c_i = -i_h;
-  const float transmit =
-      2.0f * etap * c_o * c_i * (1.0f / sqr(c_o + etap * c_i) + 1.0f / sqr(etap * c_o + c_i));
+  const float transmit = 2.0f * etap * c_o * c_i * (1.0f / sqr(c_o + etap * c_i) + 1.0f / sqr(etap * c_o + c_i));
   if (!(transmit > 0.0f)) return out;
   const float D = D_either_side(h, alpha_);
   const float jacobian = etap * etap * c_i / len2;  // dh/dwi (Walter eq. 17), eta_o = 1 relative
-  const float visible_h = g1_o * D * o_h / cos_o;  // density of h from visible-normal sampling
+  const float visible_h = g1_o * D * o_h / cos_o;   // density of h from visible-normal sampling
   out.f_cos = transmit * visible_h * jacobian * ggx::smith_G1(cos_i, alpha_);
   out.pdf = transmit * visible_h * jacobian;
   if (!std::isfinite(out.f_cos) || !std::isfinite(out.pdf)) return Lobe{};

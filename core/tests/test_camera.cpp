@@ -66,8 +66,8 @@ TEST(Camera, OrthographicRaysAreParallelAndProjectLikeBlender) {
     SensorFit fit;
     float shift_x, shift_y;
   };
-  const Case cases[] = {{200, 100, 1, 1, SensorFit::Auto, 0, 0},       {100, 200, 1, 1, SensorFit::Auto, 0, 0},
-                        {200, 100, 1, 1, SensorFit::Vertical, 0, 0},   {100, 200, 1, 1, SensorFit::Horizontal, 0, 0},
+  const Case cases[] = {{200, 100, 1, 1, SensorFit::Auto, 0, 0},        {100, 200, 1, 1, SensorFit::Auto, 0, 0},
+                        {200, 100, 1, 1, SensorFit::Vertical, 0, 0},    {100, 200, 1, 1, SensorFit::Horizontal, 0, 0},
                         {200, 100, 1, 1, SensorFit::Auto, 0.2f, -0.1f}, {160, 100, 2, 1, SensorFit::Auto, 0, 0.3f},
                         {120, 100, 1, 2, SensorFit::Auto, 0, 0}};
   const Vec3 points[] = {Vec3(0.5f, 5.0f, 0.5f), Vec3(2.3f, 7.0f, -1.0f), Vec3(-0.7f, 4.0f, 1.4f)};
@@ -278,8 +278,8 @@ TEST(Camera, ApertureSamplingIsUniformOverTheDiskOrPolygon) {
     if (pooled_e > 5.0) chi2 += (pooled_o - pooled_e) * (pooled_o - pooled_e) / pooled_e, ++dof;
     const double p = p_value(chi2, dof);
     EXPECT_GT(p, 0.01 / 6) << "blades " << s.blades << " ratio " << s.ratio << " chi2 " << chi2 << " dof " << dof;
-    std::printf("aperture blades=%d rotation=%.2f ratio=%.2f: chi2 = %.1f, dof = %d, p = %.3f\n", s.blades,
-                s.rotation, s.ratio, chi2, dof, p);
+    std::printf("aperture blades=%d rotation=%.2f ratio=%.2f: chi2 = %.1f, dof = %d, p = %.3f\n", s.blades, s.rotation,
+                s.ratio, chi2, dof, p);
   }
 }
 

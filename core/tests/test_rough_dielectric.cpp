@@ -83,8 +83,9 @@ struct Charts {
       for (int i = 0; i < kThetaBins; ++i)
         for (int j = 0; j < kPhiBins; ++j) {
           const double coarse = integrate(c, i, j, 8, fn), fine = integrate(c, i, j, 16, fn);
-          out[c * kBins + i * kPhiBins + j] =
-              std::abs(fine - coarse) > 1e-3 * std::abs(fine) + 1e-8 ? integrate(c, i, j, 64, fn) : fine;
+          out[c * kBins + i * kPhiBins + j] = std::abs(fine - coarse) > 1e-3 * std::abs(fine) + 1e-8
+                                                  ? integrate(c, i, j, 64, fn)
+                                                  : fine;
         }
     return out;
   }
@@ -102,7 +103,8 @@ struct Case {
 
 std::string name(const Case& c) {
   char buf[128];
-  std::snprintf(buf, sizeof buf, "r=%g ior=%g cos_o=%g %s", c.roughness, c.ior, c.cos_o, c.inside ? "inside" : "outside");
+  std::snprintf(buf, sizeof buf, "r=%g ior=%g cos_o=%g %s", c.roughness, c.ior, c.cos_o,
+                c.inside ? "inside" : "outside");
   return buf;
 }
 
