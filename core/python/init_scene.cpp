@@ -3,6 +3,7 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 #include <string>
@@ -310,12 +311,18 @@ void init_scene(py::module_& m) {
       .def(
           "set_camera",
           [](Scene& s, const py::object& matrix, float lens, float sensor_width, float sensor_height,
-             const std::string& sensor_fit, float shift_x, float shift_y, float clip_start, float clip_end) {
+             const std::string& sensor_fit, float shift_x, float shift_y, float clip_start, float clip_end,
+             const std::string& type, float ortho_scale, std::optional<float> fstop,
+             std::optional<float> aperture_radius, float focus_distance, int blades, float rotation, float ratio) {
             const FloatArray mat = FloatArray::ensure(numeric_array(matrix, "camera matrix", sizeof(float)));
             if (!mat || mat.size() != 16) throw py::value_error("camera matrix must be a 4x4 array");
             CameraParams c;
             std::copy_n(mat.data(), 16, c.camera_to_world.begin());
+            if (type == "PERSP") c.type = CameraType::Perspective;
+            else if (type == "ORTHO") c.type = CameraType::Orthographic;
+            else throw py::value_error("camera type must be 'PERSP' or 'ORTHO', got '" + type + "'");
             c.lens_mm = lens;
+            c.ortho_scale = ortho_scale;
             c.sensor_width_mm = sensor_width;
             c.sensor_height_mm = sensor_height;
             c.sensor_fit = parse_fit(sensor_fit);
@@ -323,13 +330,25 @@ void init_scene(py::module_& m) {
             c.shift_y = shift_y;
             c.clip_start = clip_start;
             c.clip_end = clip_end;
+            if (fstop && aperture_radius) throw py::value_error("give fstop or aperture_radius, not both");
+            if (fstop) c.aperture_radius = aperture_radius_from_fstop(c.type, lens, *fstop);
+            if (aperture_radius) c.aperture_radius = *aperture_radius;
+            c.focus_distance = focus_distance;
+            c.blades = blades;
+            c.blade_rotation = rotation;
+            c.aperture_ratio = ratio;
             Camera(c, 2, 2, 1.0f, 1.0f);  // validates now, so the error names the call that caused it
             s.set_camera(c);
           },
           py::arg("matrix"), py::arg("lens") = 50.0f, py::arg("sensor_width") = 36.0f,
           py::arg("sensor_height") = 24.0f, py::arg("sensor_fit") = "AUTO", py::arg("shift_x") = 0.0f,
           py::arg("shift_y") = 0.0f, py::arg("clip_start") = 0.1f, py::arg("clip_end") = 100.0f,
-          "Blender perspective camera; matrix is camera-to-world (row-major, like matrix_world).")
+          py::kw_only(), py::arg("type") = "PERSP", py::arg("ortho_scale") = 6.0f, py::arg("fstop") = py::none(),
+          py::arg("aperture_radius") = py::none(), py::arg("focus_distance") = 10.0f, py::arg("blades") = 0,
+          py::arg("rotation") = 0.0f, py::arg("ratio") = 1.0f,
+          "Blender camera, PERSP or ORTHO; matrix is camera-to-world (row-major, like matrix_world). "
+          "Depth of field: fstop (Blender's F-Stop, converted like Cycles) or aperture_radius (scene "
+          "units), focus_distance, blades (< 3: round), rotation (radians), ratio (anamorphic).")
       .def_property_readonly("num_triangles", &Scene::num_triangles)
       .def_property_readonly("num_materials", &Scene::num_materials)
       .def_property_readonly("num_textures", &Scene::num_textures)

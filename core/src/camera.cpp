@@ -1,14 +1,52 @@
 #include "torrance/camera.h"
 
 #include "torrance/limits.h"
+#include "torrance/sampling.h"
 
 #include <stdexcept>
 #include <string>
 
 namespace torrance {
 
+float aperture_radius_from_fstop(CameraType type, float lens_mm, float fstop) {
+  if (!(fstop >= 0.0f) || !std::isfinite(fstop)) throw std::invalid_argument("fstop must be a finite number >= 0");
+  fstop = std::max(fstop, 1e-5f);  // Blender/Cycles clamp
+  return type == CameraType::Orthographic ? 1.0f / (2.0f * fstop) : lens_mm * 1e-3f / (2.0f * fstop);
+}
+
+Vec2 sample_aperture(const Vec2& u, int blades, float rotation, float ratio) {
+  Vec2 p;
+  if (blades < 3) {
+    p = sample_concentric_disk(u);
+  } else {
+    // Pick one of the `blades` triangles (centre, corner k, corner k + 1) with equal probability,
+    // reuse the rest of u.x, then a uniform point of the triangle: sqrt warps the distance from
+    // the centre so that area, not length, is uniform.
+    const float n = float(blades);
+    const float k = std::min(std::floor(u.x * n), n - 1.0f);
+    const float a = std::min(std::max(u.x * n - k, 0.0f), 1.0f);
+    const float half = kPi / n;
+    const float angle_a = rotation + (2.0f * k - 1.0f) * half;  // corners at rotation + odd multiples of pi / n
+    const float angle_b = angle_a + 2.0f * half;
+    const float r = std::sqrt(a);
+    const Vec2 ca(std::cos(angle_a), std::sin(angle_a)), cb(std::cos(angle_b), std::sin(angle_b));
+    p = r * ((1.0f - u.y) * ca + u.y * cb);
+  }
+  p.x /= ratio;
+  return p;
+}
+
 Camera::Camera(const CameraParams& p, int width, int height, float pixel_aspect_x, float pixel_aspect_y)
-    : width_(width), height_(height), clip_start_(p.clip_start), clip_end_(p.clip_end) {
+    : width_(width),
+      height_(height),
+      clip_start_(p.clip_start),
+      clip_end_(p.clip_end),
+      ortho_(p.type == CameraType::Orthographic),
+      aperture_(p.aperture_radius),
+      focus_(p.focus_distance),
+      blade_rotation_(p.blade_rotation),
+      aperture_ratio_(p.aperture_ratio),
+      blades_(p.blades) {
   if (width <= 0 || height <= 0) throw std::invalid_argument("image size must be positive");
   for (float v : p.camera_to_world)
     if (!std::isfinite(v)) throw std::invalid_argument("camera matrix contains NaN or Inf");
@@ -19,6 +57,18 @@ Camera::Camera(const CameraParams& p, int width, int height, float pixel_aspect_
   if (!(p.clip_start >= 0.0f) || !(p.clip_end > p.clip_start) || !std::isfinite(p.shift_x) ||
       !std::isfinite(p.shift_y))
     throw std::invalid_argument("camera clipping must satisfy 0 <= clip_start < clip_end, shifts finite");
+  if (p.type != CameraType::Perspective && p.type != CameraType::Orthographic)
+    throw std::invalid_argument("camera type must be perspective or orthographic");
+  if (!(p.ortho_scale > 0.0f) || !std::isfinite(p.ortho_scale))
+    throw std::invalid_argument("ortho_scale must be positive and finite");
+  if (!(p.aperture_radius >= 0.0f) || !std::isfinite(p.aperture_radius))
+    throw std::invalid_argument("aperture radius must be finite and >= 0");
+  if (p.aperture_radius > 0.0f && (!(p.focus_distance > 0.0f) || !std::isfinite(p.focus_distance)))
+    throw std::invalid_argument("focus distance must be positive and finite when the aperture is open");
+  if (p.blades < 0 || p.blades > 1000) throw std::invalid_argument("aperture blades must be in 0..1000");
+  if (!std::isfinite(p.blade_rotation)) throw std::invalid_argument("blade rotation must be finite");
+  if (!(p.aperture_ratio > 0.0f) || !std::isfinite(p.aperture_ratio))
+    throw std::invalid_argument("aperture ratio must be positive and finite");
 
   const auto& m = p.camera_to_world;  // row-major: column j of the 3x3 is (m[j], m[4+j], m[8+j])
   auto column = [&](int j) { return Vec3(m[j], m[4 + j], m[8 + j]); };
@@ -43,7 +93,8 @@ Camera::Camera(const CameraParams& p, int width, int height, float pixel_aspect_
     horizontal = false;
     sensor = p.sensor_height_mm;
   }
-  const float h = sensor / (2.0f * p.lens_mm);
+  // ORTHO: the fitted dimension spans ortho_scale whichever sensor it would use.
+  const float h = ortho_ ? 0.5f * p.ortho_scale : sensor / (2.0f * p.lens_mm);
   if (horizontal) {
     half_w_ = h;
     half_h_ = h * yr / xr;
@@ -59,16 +110,49 @@ Camera::Camera(const CameraParams& p, int width, int height, float pixel_aspect_
     if (!(v <= 1e6f)) throw std::invalid_argument("camera lens, sensor size, shift and pixel aspect give a degenerate view");
 }
 
-Ray Camera::generate_ray(float x, float y_from_top) const {
+Ray Camera::generate_ray(float x, float y_from_top, const Vec2& u_lens) const {
   const float y_from_bottom = float(height_) - y_from_top;
   const float cx = half_w_ * (2.0f * x / float(width_) - 1.0f) + offset_x_;
   const float cy = half_h_ * (2.0f * y_from_bottom / float(height_) - 1.0f) + offset_y_;
+  Ray r;
+  if (ortho_) {
+    const Vec3 on_plane = origin_ + cx * right_ + cy * up_;
+    if (aperture_ > 0.0f) {
+      // Cycles: the ray starts at the clip_start plane, offset by the lens point l, and heads for
+      // the point focus_distance further along the axis. The origin is moved back along the ray
+      // to the camera plane, so the segment starts at tmin = clip_start / cos and is
+      // clip_end - clip_start long, like Cycles' cliplength.
+      const Vec2 l = aperture_ * sample_aperture(u_lens, blades_, blade_rotation_, aperture_ratio_);
+      const Vec3 lens = l.x * right_ + l.y * up_;
+      r.dir = glm::normalize(focus_ * forward_ - lens);
+      const float cos_axis = glm::dot(r.dir, forward_);
+      const float to_start = clip_start_ / cos_axis;  // from the camera plane to the clip_start plane
+      r.origin = on_plane + clip_start_ * forward_ + lens - to_start * r.dir;
+      r.tmin = to_start;
+      r.tmax = to_start + (clip_end_ - clip_start_);  // Cycles: cliplength along the (tilted) ray
+    } else {
+      r.origin = on_plane;
+      r.dir = forward_;
+      r.tmin = clip_start_;
+      r.tmax = clip_end_;
+    }
+    return r;
+  }
   const Vec3 d = cx * right_ + cy * up_ + forward_;
   const float len = glm::length(d);
-  Ray r;
-  r.origin = origin_;
-  r.dir = d / len;
-  // Planar clipping, like Cycles: distances measured along the view axis.
+  if (aperture_ > 0.0f) {
+    // Thin lens: the pinhole ray reaches the focus plane (focus_distance along the axis) at
+    // origin + focus * d; every lens point aims there, so that plane is sharp.
+    const Vec2 l = aperture_ * sample_aperture(u_lens, blades_, blade_rotation_, aperture_ratio_);
+    const Vec3 lens = l.x * right_ + l.y * up_;
+    r.origin = origin_ + lens;
+    r.dir = glm::normalize(focus_ * d - lens);
+  } else {
+    r.origin = origin_;
+    r.dir = d / len;
+  }
+  // Planar clipping, like Cycles: distances measured along the view axis (of the pinhole ray, also
+  // with depth of field, as Cycles does).
   r.tmin = clip_start_ * len;
   r.tmax = clip_end_ * len;
   return r;

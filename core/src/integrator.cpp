@@ -410,7 +410,9 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
               const glm::vec4 u_pixel = sampler.next_4d();
               const float dx = filter.sample_offset(u_pixel.x);
               const float dy = filter.sample_offset(u_pixel.y);
-              PathRadiance r = trace(ctx, camera.generate_ray(x + 0.5f + dx, y + 0.5f + dy), sampler);
+              // u_pixel.zw: the lens point (depth of field only).
+              PathRadiance r = trace(ctx, camera.generate_ray(x + 0.5f + dx, y + 0.5f + dy, Vec2(u_pixel.z, u_pixel.w)),
+                                     sampler);
               if (!is_finite(r.combined())) {  // never expected; counted so tests can prove it never happens
                 ++bad;
                 const float alpha = r.alpha;
