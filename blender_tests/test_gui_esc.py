@@ -3,8 +3,9 @@
 from the key press to the end of the render job, Torrance against Cycles.
 
 Run (as CTest does) in background Blender; it builds a scene (a 80k-triangle sphere, a floor,
-a sun; 64x48 (12 tiles of the core), 100000 samples: minutes uncancelled), starts Xvfb and a GUI Blender on it with
-this script as the driver. The driver, from bpy.app.timers, runs TRIALS renders
+a sun; 64x48 (12 tiles of the core), 100000 samples: minutes uncancelled), starts Xvfb and a
+GUI Blender on it with this script as the driver. The driver, from bpy.app.timers, runs
+TRIALS renders
 (bpy.ops.render.render('INVOKE_DEFAULT'), the result shown in the 3D view's area), and in each
 presses Escape (xdotool key, the pointer over Blender's window) after a seeded random delay
 of 0.05-1.0 s, so that the key lands in the export, the BVH build, the core's passes or a
