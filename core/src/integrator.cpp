@@ -402,7 +402,9 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
       uint64_t bad = 0;
       for (size_t t = r.begin(); t != r.end() && !stop.load(std::memory_order_relaxed); ++t) {
         const Tile& tile = tiles[t];
-        for (int y = tile.y0; y < tile.y1; ++y)
+        // Stop checked per row, not only per tile: a tile of a late pass (passes grow to half a
+        // second) can take a large part of that pass on a small image, and Esc waits for it.
+        for (int y = tile.y0; y < tile.y1 && !stop.load(std::memory_order_relaxed); ++y)
           for (int x = tile.x0; x < tile.x1; ++x) {
             const uint32_t pixel = uint32_t(y) * uint32_t(settings.width) + uint32_t(x);
             for (int s = first_sample; s < first_sample + num_samples; ++s) {

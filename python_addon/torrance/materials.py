@@ -134,6 +134,15 @@ def image_pixels(image):
     return np.ascontiguousarray(pixels)
 
 
+# How the core's read_image (core/src/image_io.cpp) words an error of a file whose format
+# OpenImageIO recognised but whose pixel data it could not read.
+_DAMAGED_FILE = "failed reading '"
+
+
+def _first_line(exc):
+    return str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+
+
 class TextureTable:
     """Adds each Blender image to a tc.Scene once per render; maps images to texture ids.
 
@@ -198,6 +207,14 @@ class TextureTable:
                 return self.scene.add_texture_file(path, colorspace=colorspace,
                                                    interpolation=interpolation)
             except (RuntimeError, ValueError) as exc:
+                if str(exc).startswith(_DAMAGED_FILE) and not image.has_data:
+                    # OpenImageIO knows the format but the data is damaged (a truncated
+                    # PNG/EXR). Blender's decoder fails on it too, and Blender 3.4's PNG reader
+                    # leaks its buffers when it does ("Not freed memory blocks" at exit): any
+                    # Image.size/channels/pixels access would load it, so none is made.
+                    self.reporter.warning(f"Image '{image.name}': file '{path}' is damaged "
+                                          f"({_first_line(exc)}); using the socket's own value")
+                    return None
                 # A format Blender reads but OpenImageIO does not: take Blender's pixels.
                 print(f"Torrance: '{path}' via OpenImageIO failed ({exc}); using Image.pixels")
         pixels = image_pixels(image)

@@ -168,6 +168,7 @@ class _Session:
             hook = test_break_override
             if hook(self.engine) if hook is not None else self.engine.test_break():
                 self.stop_requested = True
+                last_stats.setdefault("stop_seen_at", time.perf_counter())   # for Esc tests
             return self.stop_requested
         except Exception as exc:
             if self.callback_error is None:
@@ -184,12 +185,13 @@ def render(engine, depsgraph):
     try:
         _render(engine, depsgraph, reporter)
     except export.Cancelled:
-        pass
+        last_stats["stopped"] = True
     except CoreMissing as exc:
         reporter.error(str(exc))
     except Exception as exc:
         traceback.print_exc()
         reporter.error(f"Torrance: {exc}")
+    last_stats["returned_at"] = time.perf_counter()
 
 
 def _render(engine, depsgraph, reporter):
