@@ -7,9 +7,9 @@ world), 128x96, Torrance PRINCIPLED:
 * the panel's settings reach the core: with Noise Threshold 0.01 and 256 Max Samples the render
   spends fewer samples than 256 per pixel (render.last_stats), the automatic minimum is Cycles'
   64; a Time Limit ends a 1M-sample render; Clamping reaches the core and darkens the image;
-* adaptive agrees with plain within noise: over seeds 1..3, the image mean and every 8x8 block
-  mean of the adaptive renders lie within 5 standard errors (from the seeds' spread) of the
-  plain renders';
+* adaptive agrees with plain within noise: over seeds 1..3, the image mean (4) and every 8x8
+  block mean (5) of the adaptive renders lie within that many standard errors (from the seeds'
+  spread) plus 0.5 % of the plain renders' (stopping is slightly biased: 0.16 % darker here);
 * against Cycles with its own adaptive sampling at the same threshold (256 max samples, no
   denoising, GGX, no glossy blur, no clamping): the mean ratio and per-block figures are within
   the agreement thresholds (torrance_tools.agreement.THRESHOLDS).
@@ -78,7 +78,10 @@ def main():
     bp, ba = blocks(plain), blocks(adaptive)
     n = len(SEEDS)
     se = np.sqrt(bp.var(axis=0, ddof=1) / n + ba.var(axis=0, ddof=1) / n)
-    z = np.abs(bp.mean(axis=0) - ba.mean(axis=0)) / (se + 1e-4 * np.abs(bp.mean(axis=0)) + 1e-9)
+    # Stopping on the samples seen so far is slightly biased (a pixel whose rare bright paths
+    # have not shown up yet looks converged; Cycles' rule has the same bias): measured 0.16 %
+    # darker on this scene. Allowed: 0.5 % of the value on top of the noise.
+    z = np.abs(bp.mean(axis=0) - ba.mean(axis=0)) / (se + 5e-3 * np.abs(bp.mean(axis=0)) + 1e-9)
     print(f"adaptive vs plain: image mean ratio {ba[:, -1].mean() / bp[:, -1].mean():.4f} "
           f"({z[-1]:.2f} standard errors); worst block {z[:-1].max():.2f}, "
           f"mean {z[:-1].mean():.2f} standard errors")
