@@ -63,6 +63,9 @@ def main():
               f"Noise Threshold did not reach the core: {stats['adaptive_threshold']}")
         check(stats["adaptive_min_samples"] == 64,
               f"automatic Min Samples {stats['adaptive_min_samples']}, Cycles' would be 64")
+        check(stats["samples_done"] == SAMPLES,
+              f"no pixel got the {SAMPLES} samples (at most {stats['samples_done']}): the "
+              f"noisy parts should need them all at threshold {THRESHOLD}")
         adaptive.append(img)
         spent.append(stats["samples_spent"])
         print(f"seed {seed}: plain {t_plain:.2f} s, adaptive {t_adaptive:.2f} s, "
