@@ -66,7 +66,8 @@ void init_render(py::module_& m) {
                        float pixel_aspect_y, float filter_width, bool transparent_background,
                        const std::string& brdf_model, std::optional<std::array<int, 4>> window, int threads,
                        const std::string& light_selection, const std::vector<std::string>& passes,
-                       const std::string& sampler, bool specialize) {
+                       const std::string& sampler, bool specialize, float adaptive_threshold,
+                       int adaptive_min_samples, double time_limit, float clamp_direct, float clamp_indirect) {
              RenderSettings s;
              s.width = width;
              s.height = height;
@@ -84,6 +85,11 @@ void init_render(py::module_& m) {
              s.passes = parse_passes(passes);
              s.sobol = parse_sampler_is_sobol(sampler);
              s.specialize = specialize;
+             s.adaptive_threshold = adaptive_threshold;
+             s.adaptive_min_samples = adaptive_min_samples;
+             s.time_limit = time_limit;
+             s.clamp_direct = clamp_direct;
+             s.clamp_indirect = clamp_indirect;
              s.validate();
              return s;
            }),
@@ -92,7 +98,9 @@ void init_render(py::module_& m) {
            py::arg("filter_width") = 1.5f, py::arg("transparent_background") = false,
            py::arg("brdf_model") = "PAPER", py::arg("window") = py::none(), py::arg("threads") = 0,
            py::arg("light_selection") = "CONTRIBUTION", py::arg("passes") = std::vector<std::string>{},
-           py::arg("sampler") = "SOBOL", py::arg("specialize") = true)
+           py::arg("sampler") = "SOBOL", py::arg("specialize") = true, py::arg("adaptive_threshold") = 0.0f,
+           py::arg("adaptive_min_samples") = 0, py::arg("time_limit") = 0.0, py::arg("clamp_direct") = 0.0f,
+           py::arg("clamp_indirect") = 0.0f)
       .def_readwrite("specialize", &RenderSettings::specialize)
       .def_property(
           "sampler", [](const RenderSettings& s) { return std::string(s.sobol ? "SOBOL" : "RANDOM"); },
@@ -106,6 +114,12 @@ void init_render(py::module_& m) {
       .def_readwrite("transparent_background", &RenderSettings::transparent_background)
       .def_readwrite("window", &RenderSettings::window)
       .def_readwrite("threads", &RenderSettings::threads)
+      .def_readwrite("adaptive_threshold", &RenderSettings::adaptive_threshold)
+      .def_readwrite("adaptive_min_samples", &RenderSettings::adaptive_min_samples)
+      .def_readwrite("time_limit", &RenderSettings::time_limit)
+      .def_readwrite("clamp_direct", &RenderSettings::clamp_direct)
+      .def_readwrite("clamp_indirect", &RenderSettings::clamp_indirect)
+      .def_property_readonly("effective_adaptive_min_samples", &RenderSettings::effective_adaptive_min_samples)
       .def_property(
           "light_selection",
           [](const RenderSettings& s) {
@@ -133,7 +147,14 @@ void init_render(py::module_& m) {
       .def_readonly("samples_done", &RenderResult::samples_done)
       .def_readonly("stopped", &RenderResult::stopped)
       .def_readonly("seconds", &RenderResult::seconds)
-      .def_readonly("nonfinite_samples", &RenderResult::nonfinite_samples);
+      .def_readonly("nonfinite_samples", &RenderResult::nonfinite_samples)
+      .def_readonly("samples_spent", &RenderResult::samples_spent)
+      .def_readonly("time_limit_reached", &RenderResult::time_limit_reached)
+      .def_property_readonly("sample_counts", [](const RenderResult& r) {
+        py::array_t<float> a({py::ssize_t(r.sample_counts.height), py::ssize_t(r.sample_counts.width)});
+        std::copy(r.sample_counts.rgba.begin(), r.sample_counts.rgba.end(), a.mutable_data());
+        return a;
+      });
 
   py::class_<RenderSession>(m, "RenderSession",
                             "A render on a background thread for interactive use: start(), poll latest(), stop().")

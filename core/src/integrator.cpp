@@ -45,8 +45,25 @@ void RenderSettings::validate() const {
   int pass_channels = 0;
   for (const PassInfo& p : kPasses)
     if (passes & p.pass) pass_channels += p.channels;
-  require_memory(pixels * (8.0 * (5 + pass_channels) + 4.0 * 16 + 4.0 * 2 * pass_channels),
+  // Adaptive sampling adds a second (half) RGB sum per pixel, and the result a sample count.
+  const double adaptive_bytes = adaptive_threshold > 0.0f ? 8.0 * 3 + 4.0 : 0.0;
+  require_memory(pixels * (8.0 * (5 + pass_channels) + 4.0 * 16 + 4.0 * 2 * pass_channels + adaptive_bytes),
                  "a " + std::to_string(width) + " x " + std::to_string(height) + " render");
+  if (!(adaptive_threshold >= 0.0f && adaptive_threshold <= 1.0f))
+    throw std::invalid_argument("adaptive_threshold must be in [0, 1] (0 = off)");
+  if (adaptive_min_samples < 0) throw std::invalid_argument("adaptive_min_samples must be >= 0 (0 = automatic)");
+  if (!(time_limit >= 0.0) || !std::isfinite(time_limit))
+    throw std::invalid_argument("time_limit must be a finite number of seconds >= 0 (0 = none)");
+  if (!(clamp_direct >= 0.0f) || !std::isfinite(clamp_direct) || !(clamp_indirect >= 0.0f) ||
+      !std::isfinite(clamp_indirect))
+    throw std::invalid_argument("clamp_direct and clamp_indirect must be finite and >= 0 (0 = off)");
+}
+
+int RenderSettings::effective_adaptive_min_samples() const {
+  if (adaptive_min_samples > 0) return std::max(4, adaptive_min_samples);
+  if (!(adaptive_threshold > 0.0f)) return 0;
+  // Cycles 3.4's guess: threshold 0.1 -> 32, 0.01 -> 64, 0.001 -> 128.
+  return std::max(4, int(std::ceil(16.0f / std::pow(adaptive_threshold, 0.3f))));
 }
 
 namespace {
@@ -126,7 +143,17 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
   float prev_pdf = 0.0f;
   bool prev_delta = true;
   float path_length = 0.0f;  // for texture footprints (a ray cone of the pixel's spread)
-  auto deposit = [&](const Vec3& c, bool direct) {  // a contribution arriving after the first hit
+  // Cycles' clamping: a contribution whose RGB sum exceeds the limit is scaled down to it.
+  // Direct: seen by the camera or lighting the first hit; indirect: lighting later vertices.
+  const float clamp_direct = ctx.settings.clamp_direct, clamp_indirect = ctx.settings.clamp_indirect;
+  auto clamp_scale = [&](const Vec3& c, bool direct) {
+    const float limit = direct ? clamp_direct : clamp_indirect;
+    if (!(limit > 0.0f)) return 1.0f;
+    const float sum = std::abs(c.x) + std::abs(c.y) + std::abs(c.z);
+    return sum > limit ? limit / sum : 1.0f;
+  };
+  auto deposit = [&](Vec3 c, bool direct) {  // a contribution arriving after the first hit
+    if (const float k = clamp_scale(c, direct); k < 1.0f) c *= k;
     const Vec3 diffuse = c * diffuse_share, glossy = c - diffuse;
     (direct ? out.diffuse_direct : out.diffuse_indirect) += diffuse;
     (direct ? out.glossy_direct : out.glossy_indirect) += glossy;
@@ -139,6 +166,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
       if (!found) {
         if (ctx.settings.transparent_background) out.alpha = 0.0f;
         else out.environment = lights.world_radiance(ray.dir);
+        if (const float k = clamp_scale(out.environment, true); k < 1.0f) out.environment *= k;
         return out;
       }
       out.depth = hit.t * glm::dot(ray.dir, ctx.camera_forward);
@@ -181,6 +209,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
       out.normal = ns;
       out.albedo = material.base_color * (1.0f - material.metallic);
       out.emission = material.emission;
+      if (const float k = clamp_scale(out.emission, true); k < 1.0f) out.emission *= k;
     } else if (hit.emitter >= 0) {
       // An emissive triangle found by BSDF sampling: MIS against NEE's choice of it.
       const float mis = prev_delta ? 1.0f
@@ -207,8 +236,9 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
         if (max_component(f.total()) > 0.0f) {
           if (!shadowed(ctx.scene, hit.position, ng, ls)) {
             const float mis = ls.pdf > 0.0f ? power_heuristic(choice.probability * ls.pdf, bsdf.pdf(wo, wi)) : 1.0f;
-            const Vec3 light = throughput * ls.weight * (mis / choice.probability);
+            Vec3 light = throughput * ls.weight * (mis / choice.probability);
             if (bounce == 0) {
+              if (const float k = clamp_scale(light * f.total(), true); k < 1.0f) light *= k;
               out.diffuse_direct += light * f.diffuse;
               out.glossy_direct += light * f.glossy;
             } else {
@@ -263,21 +293,75 @@ struct Tile {
   int x0, y0, x1, y1;
 };
 
+// Adaptive sampling's split of a pixel's samples into two halves (Christensen et al. 2018,
+// "Progressive Multi-Jittered Sample Sequences", 10.2.1, as Cycles 3.4): a sample is in class A
+// when its index has an odd number of set odd bits, so every aligned group of 4 samples gives 2.
+inline bool sample_is_class_a(uint32_t sample) { return __builtin_popcount(sample & 0xaaaaaaaau) & 1; }
+
 // Per-pixel accumulation of sums for Combined (RGBA) and the requested passes, and sample counts,
-// for a window of the frame.
+// for a window of the frame. With adaptive sampling also twice the sum of the class-A samples'
+// RGB (an estimate of the pixel from half of its samples) and whether the pixel has converged.
 class Film {
  public:
-  Film(int w, int h, uint32_t passes) : width_(w), height_(h), passes_(passes) {
+  Film(int w, int h, uint32_t passes, bool adaptive) : width_(w), height_(h), passes_(passes), adaptive_(adaptive) {
     stride_ = 4;
     for (const PassInfo& p : kPasses)
       if (passes & p.pass) stride_ += p.channels;
     stride_ += 1;  // the sample count
     sums_.assign(size_t(w) * h * stride_, 0.0);
+    if (adaptive_) {
+      half_.assign(size_t(w) * h * 3, 0.0);
+      converged_.assign(size_t(w) * h, 0);
+    }
   }
 
-  void add(int x, int y, const PathRadiance& r) {
+  bool converged(int x, int y) const { return adaptive_ && converged_[size_t(y) * width_ + x]; }
+
+  // The convergence test of every pixel still sampled (Cycles' film_adaptive_sampling_convergence_check,
+  // the per-pixel error of Dammertz et al. 2010, "A hierarchical automatic stopping condition for
+  // Monte Carlo global illumination": |I - A| / sqrt(I) over the RGB sums of all samples I and twice
+  // the class-A half A, per sample), then every unconverged pixel keeps its 3x3 neighbourhood
+  // sampling. Returns the number of pixels still sampled.
+  size_t update_convergence(float threshold) {
+    const size_t n = size_t(width_) * height_;
+    for (size_t i = 0; i < n; ++i) {
+      if (converged_[i]) continue;
+      const double* acc = &sums_[i * stride_];
+      const double* a = &half_[i * 3];
+      const double inv_count = 1.0 / std::max(acc[stride_ - 1], 1.0);
+      const double difference = (std::abs(acc[0] - a[0]) + std::abs(acc[1] - a[1]) + std::abs(acc[2] - a[2])) *
+                                inv_count;
+      const double normalize = std::sqrt(std::max(acc[0] + acc[1] + acc[2], 0.0) * inv_count);
+      converged_[i] = difference / (1e-4 + normalize) < threshold;  // the epsilon: the floor of black pixels
+    }
+    // Dilate the unconverged set by one pixel in x, then in y.
+    std::vector<uint8_t> active(n), dilated(n);
+    for (size_t i = 0; i < n; ++i) active[i] = !converged_[i];
+    for (int y = 0; y < height_; ++y)
+      for (int x = 0; x < width_; ++x) {
+        const size_t i = size_t(y) * width_ + x;
+        dilated[i] = active[i] | (x > 0 && active[i - 1]) | (x + 1 < width_ && active[i + 1]);
+      }
+    size_t remaining = 0;
+    for (int y = 0; y < height_; ++y)
+      for (int x = 0; x < width_; ++x) {
+        const size_t i = size_t(y) * width_ + x;
+        const bool a = dilated[i] | (y > 0 && dilated[i - width_]) | (y + 1 < height_ && dilated[i + width_]);
+        converged_[i] = !a;
+        remaining += a;
+      }
+    return remaining;
+  }
+
+  void add(int x, int y, const PathRadiance& r, uint32_t sample) {
     double* acc = &sums_[(size_t(y) * width_ + x) * stride_];
     const Vec3 c = r.combined();
+    if (adaptive_ && sample_is_class_a(sample)) {
+      double* a = &half_[(size_t(y) * width_ + x) * 3];
+      a[0] += 2.0 * c.r;
+      a[1] += 2.0 * c.g;
+      a[2] += 2.0 * c.b;
+    }
     acc[0] += c.r;
     acc[1] += c.g;
     acc[2] += c.b;
@@ -298,6 +382,17 @@ class Film {
   }
 
   Image resolve_combined() const { return resolve(0, 4); }
+
+  Image sample_counts() const {
+    Image img{width_, height_, std::vector<float>(size_t(width_) * height_, 0.0f), 1};
+    for (size_t i = 0; i < img.rgba.size(); ++i) img.rgba[i] = float(sums_[i * stride_ + stride_ - 1]);
+    return img;
+  }
+  uint64_t total_samples() const {
+    double total = 0.0;
+    for (size_t i = 0, n = size_t(width_) * height_; i < n; ++i) total += sums_[i * stride_ + stride_ - 1];
+    return uint64_t(total);
+  }
 
   std::vector<std::pair<std::string, Image>> resolve_passes() const {
     std::vector<std::pair<std::string, Image>> out;
@@ -338,8 +433,11 @@ class Film {
 
   int width_, height_;
   uint32_t passes_;
+  bool adaptive_;
   int stride_;
   std::vector<double> sums_;
+  std::vector<double> half_;        // adaptive: 2 x the RGB sums of the class-A samples
+  std::vector<uint8_t> converged_;  // adaptive: 1 = not sampled until a neighbour needs it again
 };
 
 class FlushDenormals {  // FTZ/DAZ for the render threads: denormals cost a lot and mean nothing here
@@ -385,7 +483,20 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
                                             : kTracers[7];
 
   const std::array<int, 4> window = settings.window.value_or(std::array<int, 4>{0, 0, settings.width, settings.height});
-  Film film(window[2] - window[0], window[3] - window[1], settings.passes);
+  const bool adaptive = settings.adaptive_threshold > 0.0f;
+  const float adaptive_threshold = settings.adaptive_threshold * RenderSettings::kAdaptiveThresholdScale;
+  const int min_samples = settings.effective_adaptive_min_samples();
+  constexpr int kStep = RenderSettings::kAdaptiveStep;
+  // Convergence is checked once `done` samples are in every pixel, for done a multiple of the step
+  // past the minimum (Cycles' need_filter: 0-based sample index s > min_samples, s % 16 == 15).
+  // Passes end at these counts, so which pixels are sampled never depends on timing or threads.
+  auto needs_check = [&](int done) { return adaptive && done % kStep == 0 && done - 1 > min_samples; };
+  auto align_to_check = [&](int done, int n) {  // samples from `done` not past the next check
+    if (!adaptive) return n;
+    const int next_check = std::max(((min_samples + 1) | (kStep - 1)) + 1, (done | (kStep - 1)) + 1);
+    return std::min(n, next_check - done);
+  };
+  Film film(window[2] - window[0], window[3] - window[1], settings.passes, adaptive);
   constexpr int kTileSize = 16;
   std::vector<Tile> tiles;
   for (int y = window[1]; y < window[3]; y += kTileSize)
@@ -406,6 +517,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
         // second) can take a large part of that pass on a small image, and Esc waits for it.
         for (int y = tile.y0; y < tile.y1 && !stop.load(std::memory_order_relaxed); ++y)
           for (int x = tile.x0; x < tile.x1; ++x) {
+            if (adaptive && film.converged(x - window[0], y - window[1])) continue;
             const uint32_t pixel = uint32_t(y) * uint32_t(settings.width) + uint32_t(x);
             for (int s = first_sample; s < first_sample + num_samples; ++s) {
               SobolSampler sampler(pixel, uint32_t(s), settings.seed, !settings.sobol);
@@ -421,7 +533,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
                 r = PathRadiance{};
                 r.alpha = alpha;
               }
-              film.add(x - window[0], y - window[1], r);
+              film.add(x - window[0], y - window[1], r, uint32_t(s));
             }
           }
       }
@@ -441,16 +553,36 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
     try {
       tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
       int done = 0, pass_size = 1;
-      while (done < settings.samples && !stop) {
-        const int n = std::min(pass_size, settings.samples - done);
+      bool all_converged = false, out_of_time = false;
+      const auto sampling_start = std::chrono::steady_clock::now();
+      while (done < settings.samples && !stop && !all_converged && !out_of_time) {
+        const int target = std::min(pass_size, settings.samples - done);
         const auto t0 = std::chrono::steady_clock::now();
-        arena.execute([&] { render_pass(done, n); });
+        int n = 0;  // samples of this pass, rendered in steps that end at adaptive checks
+        while (n < target) {
+          const int step = align_to_check(done, target - n);
+          arena.execute([&] { render_pass(done, step); });
+          if (stop) break;
+          done += step;
+          n += step;
+          if (needs_check(done) && film.update_convergence(adaptive_threshold) == 0) {
+            all_converged = true;
+            break;
+          }
+        }
         if (stop) break;
-        done += n;
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        const auto t1 = std::chrono::steady_clock::now();
+        const double seconds = std::chrono::duration<double>(t1 - t0).count();
         // Aim for passes of about half a second, growing at most twofold.
         const double per_sample = std::max(seconds / n, 1e-6);
         pass_size = std::max(1, std::min(2 * n, int(0.5 / per_sample)));
+        if (settings.time_limit > 0.0) {  // the pass that crosses the limit is the last one
+          const double elapsed = std::chrono::duration<double>(t1 - sampling_start).count();
+          if (elapsed >= settings.time_limit) out_of_time = done < settings.samples && !all_converged;
+          else
+            pass_size = std::max(1, int(std::min<double>(pass_size,
+                                                         std::ceil((settings.time_limit - elapsed) / per_sample))));
+        }
         Image snapshot = film.resolve_combined();
         std::lock_guard<std::mutex> lock(mutex);
         pass_image = std::move(snapshot);
@@ -460,6 +592,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
       }
       std::lock_guard<std::mutex> lock(mutex);
       result.samples_done = done;
+      result.time_limit_reached = out_of_time;
     } catch (...) {
       std::lock_guard<std::mutex> lock(mutex);
       worker_error = std::current_exception();
@@ -501,6 +634,8 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   result.image = film.resolve_combined();
   result.passes = film.resolve_passes();
   result.nonfinite_samples = nonfinite.load();
+  result.sample_counts = film.sample_counts();
+  result.samples_spent = film.total_samples();
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -31,6 +31,46 @@ class TorranceSceneSettings(bpy.types.PropertyGroup):
         description="Number of samples per pixel for the final render",
         default=64, min=1, max=1 << 20, soft_max=4096,
     )
+    use_adaptive_sampling: BoolProperty(
+        name="Use Adaptive Sampling",
+        description="Automatically reduce the number of samples per pixel based on estimated "
+                    "noise level, as Cycles' Noise Threshold",
+        default=False,
+    )
+    adaptive_threshold: FloatProperty(
+        name="Adaptive Sampling Threshold",
+        description="Noise level step to stop sampling at, lower values reduce noise at the cost "
+                    "of render time. Zero for automatic setting based on number of samples "
+                    "(as Cycles: max(0.001, 1 / samples))",
+        default=0.01, min=0.0, max=1.0, soft_min=0.001, precision=4,
+    )
+    adaptive_min_samples: IntProperty(
+        name="Adaptive Min Samples",
+        description="Minimum samples for adaptive sampling, to discover noisy features before "
+                    "stopping sampling. Zero for automatic setting based on noise threshold "
+                    "(as Cycles: 64 at 0.01)",
+        default=0, min=0, max=4096,
+    )
+    time_limit: FloatProperty(
+        name="Time Limit",
+        description="Limit the render time (the render ends with the pass that reaches it). "
+                    "Zero disables the limit",
+        default=0.0, min=0.0, step=100.0, subtype='TIME_ABSOLUTE',
+    )
+    sample_clamp_direct: FloatProperty(
+        name="Clamp Direct",
+        description="If non-zero, the maximum value for a direct sample, higher values will be "
+                    "scaled down to avoid too much noise and slow convergence at the cost of "
+                    "accuracy",
+        default=0.0, min=0.0, max=1e8,
+    )
+    sample_clamp_indirect: FloatProperty(
+        name="Clamp Indirect",
+        description="If non-zero, the maximum value for an indirect sample, higher values will "
+                    "be scaled down to avoid too much noise and slow convergence at the cost of "
+                    "accuracy",
+        default=0.0, min=0.0, max=1e8,
+    )
     max_bounces: IntProperty(
         name="Max Bounces",
         description="Maximum number of bounces of a light path, as Cycles' Max Bounces: "

@@ -176,6 +176,20 @@ class _Session:
             return True
 
 
+def sampling_settings(ts):
+    """RenderSettings arguments for the Sampling panel's Noise Threshold, Time Limit and the
+    Light Paths panel's Clamping, from scene.torrance (final renders)."""
+    threshold = 0.0
+    if ts.use_adaptive_sampling:
+        # As Cycles: a threshold of 0 means automatic, from the number of samples.
+        threshold = float(ts.adaptive_threshold) or max(0.001, 1.0 / max(1, int(ts.samples)))
+    return dict(adaptive_threshold=threshold,
+                adaptive_min_samples=int(ts.adaptive_min_samples),
+                time_limit=float(ts.time_limit),
+                clamp_direct=float(ts.sample_clamp_direct),
+                clamp_indirect=float(ts.sample_clamp_indirect))
+
+
 def render(engine, depsgraph):
     """RenderEngine.render(): never raises; problems become engine reports."""
     reporter = Reporter(engine)
@@ -229,6 +243,7 @@ def _render(engine, depsgraph, reporter):
                       f"'{view_layer.name}': {names}")
 
     threads = int(rd.threads) if rd.threads_mode == 'FIXED' else 0
+    adaptive = sampling_settings(ts)
     settings = tc.RenderSettings(
         width=width, height=height,
         samples=int(ts.samples), max_bounces=int(ts.max_bounces), seed=int(ts.seed),
@@ -241,6 +256,7 @@ def _render(engine, depsgraph, reporter):
         else (x0, height - y1, x1, height - y0),
         threads=threads,
         passes=core_passes,
+        **adaptive,
     )
 
     session.begin()
@@ -264,11 +280,23 @@ def _render(engine, depsgraph, reporter):
         session.end()
 
     msg = f"Torrance | {result.samples_done}/{ts.samples} samples | Time {_format_time(result.seconds)}"
+    pixels = max(1, (x1 - x0) * (y1 - y0))
+    spent = int(result.samples_spent)
+    if settings.adaptive_threshold > 0:
+        msg += f" | adaptive: {spent / pixels:.1f} samples per pixel on average"
+    if result.time_limit_reached:
+        msg += " | time limit reached"
     if result.stopped:
         msg += " | stopped"
     last_stats.update(samples_done=int(result.samples_done), stopped=bool(result.stopped),
                       seconds=float(result.seconds), passes=session.passes,
-                      render_passes=list(core_passes))
+                      render_passes=list(core_passes), samples_spent=spent,
+                      samples_per_pixel=spent / pixels,
+                      time_limit_reached=bool(result.time_limit_reached),
+                      adaptive_threshold=float(settings.adaptive_threshold),
+                      adaptive_min_samples=int(settings.effective_adaptive_min_samples),
+                      clamp_direct=float(settings.clamp_direct),
+                      clamp_indirect=float(settings.clamp_indirect))
     engine.update_progress(1.0)
     engine.update_stats("", msg)
     print(msg)

@@ -209,7 +209,20 @@ class TORRANCE_RENDER_PT_sampling_render(TorrancePanel, Panel):
 
     def draw(self, context):
         layout = _split(self.layout)
-        layout.prop(context.scene.torrance, "samples")
+        ts = context.scene.torrance
+        heading = layout.column(align=True, heading="Noise Threshold")
+        row = heading.row(align=True)
+        row.prop(ts, "use_adaptive_sampling", text="")
+        sub = row.row()
+        sub.active = ts.use_adaptive_sampling
+        sub.prop(ts, "adaptive_threshold", text="")
+        col = layout.column(align=True)
+        if ts.use_adaptive_sampling:
+            col.prop(ts, "samples", text=" Max Samples")
+            col.prop(ts, "adaptive_min_samples", text="Min Samples")
+        else:
+            col.prop(ts, "samples", text="Samples")
+        col.prop(ts, "time_limit")
 
 
 class TORRANCE_RENDER_PT_sampling_preview(TorrancePanel, Panel):
@@ -244,6 +257,19 @@ class TORRANCE_RENDER_PT_light_paths(TorrancePanel, Panel):
     def draw(self, context):
         layout = _split(self.layout)
         layout.prop(context.scene.torrance, "max_bounces")
+
+
+class TORRANCE_RENDER_PT_light_paths_clamping(TorrancePanel, Panel):
+    bl_label = "Clamping"
+    bl_context = "render"
+    bl_parent_id = "TORRANCE_RENDER_PT_light_paths"
+
+    def draw(self, context):
+        layout = _split(self.layout)
+        ts = context.scene.torrance
+        col = layout.column(align=True)
+        col.prop(ts, "sample_clamp_direct", text="Direct Light")
+        col.prop(ts, "sample_clamp_indirect", text="Indirect Light")
 
 
 class TORRANCE_RENDER_PT_shading(TorrancePanel, Panel):
@@ -458,6 +484,7 @@ classes = (
     TORRANCE_RENDER_PT_sampling_preview,
     TORRANCE_RENDER_PT_sampling_advanced,
     TORRANCE_RENDER_PT_light_paths,
+    TORRANCE_RENDER_PT_light_paths_clamping,
     TORRANCE_RENDER_PT_shading,
     TORRANCE_RENDER_PT_film,
     TORRANCE_RENDER_PT_performance,

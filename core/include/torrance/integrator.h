@@ -62,6 +62,23 @@ struct RenderSettings {
   int threads = 0;  // 0 = all cores
   uint32_t passes = 0;  // a set of Pass flags, rendered besides Combined
 
+  // Adaptive sampling as Cycles' Noise Threshold: every kAdaptiveStep samples once past the
+  // minimum, each pixel still sampled compares the mean of all its samples with the mean of half
+  // of them; it stops when their difference, relative to the square root of its value, is below
+  // the threshold (times Cycles' internal factor 5). Unconverged pixels keep their 3x3
+  // neighbourhood sampling. 0 = off (every pixel gets `samples`).
+  float adaptive_threshold = 0.0f;
+  int adaptive_min_samples = 0;  // 0 = automatic as Cycles: max(4, ceil(16 / threshold^0.3))
+  double time_limit = 0.0;       // seconds of sampling; the render ends with the pass that passes it. 0 = none
+  // As Cycles' Clamping: the sum of the RGB components of each contribution of a path (one light
+  // sample, one emitter or world hit) is scaled down to at most this. Direct = seen by the camera
+  // or lighting the first hit; indirect = lighting later vertices. 0 = off.
+  float clamp_direct = 0.0f, clamp_indirect = 0.0f;
+
+  static constexpr int kAdaptiveStep = 16;                // samples between convergence checks (Cycles' step)
+  static constexpr float kAdaptiveThresholdScale = 5.0f;  // Cycles 3.4 multiplies the threshold by 5
+  int effective_adaptive_min_samples() const;             // the minimum in use (automatic one resolved)
+
   void validate() const;  // throws std::invalid_argument
 };
 
@@ -86,6 +103,9 @@ struct RenderResult {
   bool stopped = false;
   double seconds = 0.0;
   uint64_t nonfinite_samples = 0;  // discarded NaN/Inf path samples (a bug if ever non-zero)
+  uint64_t samples_spent = 0;      // camera samples traced over all pixels (adaptive: < pixels * samples)
+  Image sample_counts;             // per pixel of the rendered window, 1 channel: samples it received
+  bool time_limit_reached = false;  // ended by RenderSettings::time_limit (samples_done < samples)
 };
 
 RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCallbacks& callbacks = {});

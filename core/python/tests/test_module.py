@@ -626,3 +626,33 @@ def test_no_leak_over_repeated_instanced_renders():
     assert growth < 20e6, f"resident memory grew by {growth / 1e6:.1f} MB over 5 instanced renders"
     assert resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - base < 50_000, \
         "peak RSS kept growing (kB)"
+
+
+def test_adaptive_sampling_time_limit_and_clamping_settings():
+    scene = plane_scene(half=0.02)       # a tiny plane: most pixels see only the world
+    scene.set_world(color=(0.5, 0.5, 0.5), strength=1.0)
+    scene.add_point_light(position=(0.01, 0, 0.05), power=50.0, radius=0.0)
+    plain = tc.render(scene, tc.RenderSettings(width=16, height=16, samples=64))
+    assert plain.samples_spent == 16 * 16 * 64
+    assert plain.sample_counts.shape == (16, 16) and np.all(plain.sample_counts == 64)
+    assert not plain.time_limit_reached
+    settings = tc.RenderSettings(width=16, height=16, samples=64, adaptive_threshold=0.01,
+                                 adaptive_min_samples=8, time_limit=0.0, clamp_direct=0.0,
+                                 clamp_indirect=0.0)
+    assert settings.effective_adaptive_min_samples == 8
+    adaptive = tc.render(scene, settings)
+    assert adaptive.samples_spent == int(adaptive.sample_counts.sum()) < plain.samples_spent
+    assert adaptive.sample_counts.min() == 16       # flat world pixels: stopped at the first check
+    settings.clamp_direct = 0.1
+    clamped = tc.render(scene, settings)
+    rgb_sum = clamped.image[..., :3].sum(axis=2)
+    # Each contribution is clamped (as Cycles): the world seen directly is one, a plane pixel has
+    # two direct ones (the point light's sample and the world's, found by light or BSDF sampling).
+    assert rgb_sum[0, 0] == pytest.approx(0.1, rel=1e-5)
+    assert rgb_sum.max() <= 0.2 * (1 + 1e-5)
+    with pytest.raises(ValueError, match="adaptive_threshold"):
+        tc.RenderSettings(adaptive_threshold=-1.0)
+    with pytest.raises(ValueError, match="time_limit"):
+        tc.RenderSettings(time_limit=-1.0)
+    with pytest.raises(ValueError, match="clamp"):
+        tc.RenderSettings(clamp_indirect=-1.0)
