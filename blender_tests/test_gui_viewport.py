@@ -293,12 +293,14 @@ def _driver(result_path, shots_dir):
         scene.render.engine = 'CYCLES'
         sub = (slice(region.y, region.y + region.height), slice(region.x, region.x + region.width))
         # Cycles has no stats to poll: it has finished its 16 samples when its image stops
-        # changing (two screenshots 2 s apart alike), however loaded the machine is.
-        cycles_px, end = None, time.perf_counter() + 120.0
+        # changing (two screenshots 2 s apart alike) after it has shown one (the viewport is a
+        # flat grey while Cycles loads; std over the region < 5), however loaded the machine is.
+        cycles_px, end = None, time.perf_counter() + 180.0
         while time.perf_counter() < end:
             yield 2.0
             previous, cycles_px = cycles_px, screenshot("4c_studio_cycles")
-            if previous is not None and np.array_equal(previous[sub], cycles_px[sub]):
+            if previous is not None and np.array_equal(previous[sub], cycles_px[sub]) \
+                    and cycles_px[sub].std() > 5.0:
                 break
         scene.render.engine = 'TORRANCE'
         # 8x8 block means: the two renders' noise (16 samples each) averages out.
