@@ -6,7 +6,9 @@ vertex or triangle. Positions and normals go to world space here; the core
 knows nothing of objects.
 """
 
+import contextlib
 import math
+import sys
 import time
 
 import numpy as np
@@ -30,12 +32,13 @@ class ExportStats:
         self.materials = 0
         self.textures = 0
         self.seconds = 0.0
+        self.capture_seconds = 0.0   # the pass over the depsgraph (see export_scene)
         self.names = []          # exported mesh objects, one entry per instance
 
     def __str__(self):
         return (f"{self.objects} objects, {self.triangles} triangles, {self.lights} lights, "
                 f"{self.materials} materials, {self.textures} textures, "
-                f"exported in {self.seconds:.2f} s")
+                f"exported in {self.seconds:.2f} s (depsgraph pass {self.capture_seconds:.3f} s)")
 
 
 # --------------------------------------------------------------------------------------------
@@ -496,80 +499,121 @@ class Cancelled(Exception):
     pass
 
 
+@contextlib.contextmanager
+def _keep_gil():
+    """Keeps the main thread's Python (scripts, timers, add-ons) waiting while the block runs:
+    this thread does not hand the GIL over every 5 ms. Native code of the main thread (the
+    interface's own operators) is not held up."""
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(max(interval, 1.0))
+    try:
+        yield
+    finally:
+        sys.setswitchinterval(interval)
+
+
 def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
     """Builds a tc.Scene from a render depsgraph. Returns (tc_scene, ExportStats).
 
     Camera: engine.camera_override or the scene camera; raises ValueError when there is none.
+
+    A final render runs this on Blender's render thread while the main thread may still edit
+    and delete datablocks, so the export reads the main database only in one short pass:
+    iterating the depsgraph reads the original datablocks (Blender's iterator does), and
+    images are not copy-on-write (an Image Texture node of an evaluated material points to
+    the image in bpy.data). That pass reads the camera, world, lights, materials and images,
+    and lists the evaluated mesh objects (instances are temporary objects that live only
+    for their iteration step: their meshes are read in the pass). The meshes of the other
+    objects are read afterwards from the evaluated (copy-on-write) objects only, which the
+    render depsgraph owns and which no edit in bpy.data frees.
     """
     t0 = time.perf_counter()
     stats = ExportStats()
-    scene = depsgraph.scene
     tc_scene = tc.Scene()
     textures = TextureTable(tc_scene, reporter)
     materials = MaterialTable(tc_scene, reporter, textures)
-
-    cam_obj = None
-    if engine is not None:
-        cam_obj = getattr(engine, "camera_override", None)
-    if cam_obj is None:
-        cam_obj = scene.camera
-    if cam_obj is None or cam_obj.type != 'CAMERA':
-        raise ValueError("The scene has no camera")
-    if not cam_obj.is_evaluated:
-        cam_obj = cam_obj.evaluated_get(depsgraph)
-    export_camera(tc_scene, cam_obj, reporter, engine)
-    export_world(tc_scene, scene.world, reporter, textures)
-
     geometry_cache = {}
-    unsupported_types = set()
-    last_poll = time.perf_counter()
-    for inst in depsgraph.object_instances:
-        if should_stop is not None and time.perf_counter() - last_poll > 0.1:
-            last_poll = time.perf_counter()       # Esc during a long export, polled at 10 Hz
+    last_poll = [time.perf_counter()]
+
+    def poll():
+        if should_stop is not None and time.perf_counter() - last_poll[0] > 0.1:
+            last_poll[0] = time.perf_counter()    # Esc during a long export, polled at 10 Hz
             if should_stop():
                 raise Cancelled()
-        obj = inst.object
-        kind = obj.type
-        if kind == 'LIGHT':
-            if export_light(tc_scene, obj, inst.matrix_world.copy(), reporter):
-                stats.lights += 1
-            continue
-        if kind not in MESH_TYPES:
-            if kind not in {'CAMERA', 'EMPTY', 'ARMATURE', 'LATTICE', 'LIGHT_PROBE', 'SPEAKER',
-                            'GPENCIL'} and kind not in unsupported_types:
-                unsupported_types.add(kind)
-                reporter.warning(f"Torrance does not render objects of type {kind} "
-                                 f"(e.g. '{obj.name}')")
-            continue
-        if kind != 'MESH':
-            # As Cycles 3.x: curves, surfaces, metaballs and text are evaluated to a mesh that
-            # the depsgraph lists as a separate MESH instance (parent = the object). Only that
-            # one is exported, or the geometry would be there twice.
-            continue
-        if not inst.is_instance and not inst.show_self:
-            continue
-        if not _is_visible(obj):
-            continue
 
-        matrix = inst.matrix_world.copy()        # the instance struct dies after this step
-        name = obj.name
-        slots = [slot.material for slot in obj.material_slots]
-        # Material per slot (read before the mesh: textured materials need the UVs).
-        if slots:
-            slot_to_material = np.array([materials.index(m) for m in slots], dtype=np.int32)
-        else:
-            slot_to_material = np.array([materials.default_index()], dtype=np.int32)
-        needs_uvs = materials.needs_uvs(slot_to_material.tolist())
-        # Instances of one mesh (collection instances, particles, geometry nodes) are read once.
-        key = (obj.as_pointer(), obj.data.as_pointer() if obj.data is not None else 0)
+    def read_mesh(obj, name, needs_uvs):
+        local = read_local_mesh(obj, uvs=needs_uvs)
+        if local is not None and needs_uvs and local.corner_uvs is None:
+            reporter.warning(f"Object '{name}' has textured materials but no UV map: "
+                             f"its textures are read at UV (0, 0)")
+        return local
+
+    # (object or None, geometry key, name, world matrix, slot -> material index, needs UVs)
+    meshes = []
+    with _keep_gil():
+        scene = depsgraph.scene
+        cam_obj = None
+        if engine is not None:
+            cam_obj = getattr(engine, "camera_override", None)
+        if cam_obj is None:
+            cam_obj = scene.camera
+        if cam_obj is None or cam_obj.type != 'CAMERA':
+            raise ValueError("The scene has no camera")
+        if not cam_obj.is_evaluated:
+            cam_obj = cam_obj.evaluated_get(depsgraph)
+        export_camera(tc_scene, cam_obj, reporter, engine)
+        export_world(tc_scene, scene.world, reporter, textures)
+
+        unsupported_types = set()
+        for inst in depsgraph.object_instances:
+            poll()
+            obj = inst.object
+            kind = obj.type
+            if kind == 'LIGHT':
+                if export_light(tc_scene, obj, inst.matrix_world.copy(), reporter):
+                    stats.lights += 1
+                continue
+            if kind not in MESH_TYPES:
+                if kind not in {'CAMERA', 'EMPTY', 'ARMATURE', 'LATTICE', 'LIGHT_PROBE', 'SPEAKER',
+                                'GPENCIL'} and kind not in unsupported_types:
+                    unsupported_types.add(kind)
+                    reporter.warning(f"Torrance does not render objects of type {kind} "
+                                     f"(e.g. '{obj.name}')")
+                continue
+            if kind != 'MESH':
+                # As Cycles 3.x: curves, surfaces, metaballs and text are evaluated to a mesh that
+                # the depsgraph lists as a separate MESH instance (parent = the object). Only that
+                # one is exported, or the geometry would be there twice.
+                continue
+            if not inst.is_instance and not inst.show_self:
+                continue
+            if not _is_visible(obj):
+                continue
+
+            matrix = inst.matrix_world.copy()        # the instance struct dies after this step
+            name = obj.name
+            slots = [slot.material for slot in obj.material_slots]
+            # Material per slot (read before the mesh: textured materials need the UVs).
+            if slots:
+                slot_to_material = np.array([materials.index(m) for m in slots], dtype=np.int32)
+            else:
+                slot_to_material = np.array([materials.default_index()], dtype=np.int32)
+            needs_uvs = materials.needs_uvs(slot_to_material.tolist())
+            # Instances of one mesh (collection instances, particles, geometry nodes) are read once.
+            key = (obj.as_pointer(), obj.data.as_pointer() if obj.data is not None else 0)
+            if inst.is_instance:
+                if key not in geometry_cache:
+                    geometry_cache[key] = read_mesh(obj, name, needs_uvs)
+                obj = None
+            meshes.append((obj, key, name, matrix, slot_to_material, needs_uvs))
+    stats.capture_seconds = time.perf_counter() - t0
+
+    for obj, key, name, matrix, slot_to_material, needs_uvs in meshes:
+        poll()
         if key in geometry_cache:
             local = geometry_cache[key]
         else:
-            local = read_local_mesh(obj, uvs=needs_uvs)
-            geometry_cache[key] = local
-            if local is not None and needs_uvs and local.corner_uvs is None:
-                reporter.warning(f"Object '{name}' has textured materials but no UV map: "
-                                 f"its textures are read at UV (0, 0)")
+            local = geometry_cache[key] = read_mesh(obj, name, needs_uvs)
         if local is None:
             continue
 
