@@ -427,7 +427,7 @@ def _main():
     if driver_errors or tracebacks:
         problems.append(f"{len(driver_errors)} driver errors, {tracebacks} Python tracebacks "
                         f"in the GUI logs")
-    if len(tries) >= tries_wanted and in_export < tries_wanted // 4:
+    if len(tries) >= tries_wanted and in_export < tries_wanted // 6:
         problems.append(f"only {in_export} tries deleted during the export: not a test of it")
     if problems:
         print("FAILED: " + "; ".join(problems) + f" (logs in {out})")
