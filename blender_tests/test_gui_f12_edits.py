@@ -10,7 +10,8 @@ Run (as CTest does) in background Blender; it then
 2. starts an X server (Xvfb) and Blender's GUI with this script as the driver, which for each
    try builds the scene (1000 one-triangle objects sharing the materials A, B, C (image file)
    and D (packed image), each with its own mesh), presses F12 with xdotool (a real key event),
-   and at seeded random moments 0-1.5 s after Torrance's export started removes one to three
+   and at seeded random moments after Torrance's export started (the first one 0-0.3 s,
+   the others 0-1.5 s) removes one to three
    of: material A, an image, a random third of the meshes, a random third of the objects, or
    material B from half the meshes followed by a purge of orphan data;
 3. reads the driver's per-try records; a GUI session that crashes is restarted with the next
@@ -185,8 +186,9 @@ def _driver(result_path, image_path, seed, first, tries):
         _build_scene(rng, image_path)
         yield 0.3
         k = rng.choice((1, 1, 2, 3))
-        plan = sorted((round(rng.uniform(0.0, DELETE_WINDOW), 3), action)
-                      for action in rng.sample(ACTIONS, k))
+        # The first deletion aims at the export (0-0.3 s), the others at any moment.
+        plan = sorted((round(rng.uniform(0.0, 0.3 if j == 0 else DELETE_WINDOW), 3), action)
+                      for j, action in enumerate(rng.sample(ACTIONS, k)))
         entry = {"try": index, "plan": plan, "done": [], "status": "started"}
         record(entry)                       # so that a crash is attributed to this try
         state.clear()
