@@ -6,7 +6,9 @@ vertex or triangle. Positions and normals go to world space here; the core
 knows nothing of objects.
 """
 
+import contextlib
 import math
+import sys
 import time
 
 import numpy as np
@@ -34,12 +36,13 @@ class ExportStats:
         self.materials = 0
         self.textures = 0
         self.seconds = 0.0
+        self.capture_seconds = 0.0   # the pass over the depsgraph (see export_scene)
         self.names = []          # exported mesh objects, one entry per instance
 
     def __str__(self):
         return (f"{self.objects} objects, {self.triangles} triangles, {self.lights} lights, "
                 f"{self.materials} materials, {self.textures} textures, "
-                f"exported in {self.seconds:.2f} s")
+                f"exported in {self.seconds:.2f} s (depsgraph pass {self.capture_seconds:.3f} s)")
 
 
 # --------------------------------------------------------------------------------------------
@@ -284,22 +287,20 @@ class MeshCache:
         self.meshes.clear()
 
 
-def export_mesh(tc_scene, obj, matrix, slots, materials, meshes, key, reporter):
-    """Adds an evaluated mesh object (or an instance of one) to tc_scene at `matrix`.
-
-    slots: the materials of the object's slots; materials: the scene's MaterialTable;
-    meshes, key: the MeshCache to read the object's mesh through, and its key there.
-    Returns the number of triangles added (0: nothing to render).
-    """
-    # Material per slot (read before the mesh: textured materials need the UVs).
+def mesh_materials(slots, materials):
+    """(int32 material index per slot, whether any of them needs UVs) for an object's slots
+    (materials or None); read before the mesh: textured materials need the UVs."""
     slot_to_material = materials.slot_indices(slots)
-    needs_uvs = materials.needs_uvs(slot_to_material.tolist())
-    local = meshes.get(obj, key, needs_uvs, reporter)
+    return slot_to_material, materials.needs_uvs(slot_to_material.tolist())
+
+
+def add_world_mesh(tc_scene, name, local, matrix, slot_to_material, needs_uvs, reporter):
+    """Adds a LocalMesh (or None) at `matrix` with add_mesh; returns the triangles added."""
     if local is None:
         return 0
     pos, tris, corner, keep, dropped = world_mesh(local, matrix)
     if dropped:
-        reporter.warning(f"Object '{obj.name}': {dropped} triangle(s) with NaN/Inf vertex "
+        reporter.warning(f"Object '{name}': {dropped} triangle(s) with NaN/Inf vertex "
                          f"positions dropped (or vertices beyond {MAX_COORDINATE:g} m)")
     if len(tris) == 0:
         return 0
@@ -310,6 +311,19 @@ def export_mesh(tc_scene, obj, matrix, slots, materials, meshes, key, reporter):
                                                             dtype=np.int32),
                       corner_uvs=world_uvs(local, matrix, keep) if needs_uvs else None)
     return len(tris)
+
+
+def export_mesh(tc_scene, obj, matrix, slots, materials, meshes, key, reporter):
+    """Adds an evaluated mesh object (or an instance of one) to tc_scene at `matrix`.
+
+    slots: the materials of the object's slots; materials: the scene's MaterialTable;
+    meshes, key: the MeshCache to read the object's mesh through, and its key there.
+    Returns the number of triangles added (0: nothing to render).
+    """
+    slot_to_material, needs_uvs = mesh_materials(slots, materials)
+    local = meshes.get(obj, key, needs_uvs, reporter)
+    return add_world_mesh(tc_scene, obj.name, local, matrix, slot_to_material, needs_uvs,
+                          reporter)
 
 
 # --------------------------------------------------------------------------------------------
@@ -599,57 +613,98 @@ class Cancelled(Exception):
     pass
 
 
+@contextlib.contextmanager
+def _keep_gil():
+    """Keeps the main thread's Python (scripts, timers, add-ons) waiting while the block runs:
+    this thread does not hand the GIL over every 5 ms. Native code of the main thread (the
+    interface's own operators) is not held up."""
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(max(interval, 1.0))
+    try:
+        yield
+    finally:
+        sys.setswitchinterval(interval)
+
+
 def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
     """Builds a tc.Scene from a render depsgraph. Returns (tc_scene, ExportStats).
 
     Camera: engine.camera_override or the scene camera; raises ValueError when there is none.
+
+    A final render runs this on Blender's render thread while the main thread may still edit
+    and delete datablocks, so the export reads the main database only in one short pass:
+    iterating the depsgraph reads the original datablocks (Blender's iterator does), and
+    images are not copy-on-write (an Image Texture node of an evaluated material points to
+    the image in bpy.data). That pass reads the camera, world, lights, materials and images,
+    and lists the evaluated mesh objects (instances are temporary objects that live only
+    for their iteration step: their meshes are read in the pass). The meshes of the other
+    objects are read afterwards from the evaluated (copy-on-write) objects only, which the
+    render depsgraph owns and which no edit in bpy.data frees.
     """
     t0 = time.perf_counter()
     stats = ExportStats()
-    scene = depsgraph.scene
     tc_scene = tc.Scene()
     textures = TextureTable(tc_scene, reporter)
     materials = MaterialTable(tc_scene, reporter, textures)
-
-    cam_obj = None
-    if engine is not None:
-        cam_obj = getattr(engine, "camera_override", None)
-    if cam_obj is None:
-        cam_obj = scene.camera
-    if cam_obj is None or cam_obj.type != 'CAMERA':
-        raise ValueError("The scene has no camera")
-    if not cam_obj.is_evaluated:
-        cam_obj = cam_obj.evaluated_get(depsgraph)
-    export_camera(tc_scene, cam_obj, reporter, engine)
-    export_world(tc_scene, scene.world, reporter, textures)
-
     meshes = MeshCache()
-    unsupported_types = set()
-    last_poll = time.perf_counter()
-    for inst in depsgraph.object_instances:
-        if should_stop is not None and time.perf_counter() - last_poll > 0.1:
-            last_poll = time.perf_counter()       # Esc during a long export, polled at 10 Hz
+    last_poll = [time.perf_counter()]
+
+    def poll():
+        if should_stop is not None and time.perf_counter() - last_poll[0] > 0.1:
+            last_poll[0] = time.perf_counter()    # Esc during a long export, polled at 10 Hz
             if should_stop():
                 raise Cancelled()
-        role = instance_role(inst)
-        obj = inst.object
-        if role == 'LIGHT':
-            if export_light(tc_scene, obj, inst.matrix_world.copy(), reporter):
-                stats.lights += 1
-        elif role == 'UNSUPPORTED':
-            report_unsupported(obj, unsupported_types, reporter)
-        elif role == 'MESH':
-            matrix = inst.matrix_world.copy()    # the instance struct dies after this step
-            slots = [slot.material for slot in obj.material_slots]
-            # Instances of one mesh (collection instances, particles, geometry nodes) are
-            # read once.
-            key = (obj.as_pointer(), obj.data.as_pointer() if obj.data is not None else 0)
-            triangles = export_mesh(tc_scene, obj, matrix, slots, materials, meshes, key,
-                                    reporter)
-            if triangles:
-                stats.objects += 1
-                stats.names.append(obj.name)
-                stats.triangles += triangles
+
+    # (object or None when its mesh is in `meshes` already, geometry key, name, world matrix,
+    # slot -> material index, needs UVs)
+    plan = []
+    with _keep_gil():
+        scene = depsgraph.scene
+        cam_obj = None
+        if engine is not None:
+            cam_obj = getattr(engine, "camera_override", None)
+        if cam_obj is None:
+            cam_obj = scene.camera
+        if cam_obj is None or cam_obj.type != 'CAMERA':
+            raise ValueError("The scene has no camera")
+        if not cam_obj.is_evaluated:
+            cam_obj = cam_obj.evaluated_get(depsgraph)
+        export_camera(tc_scene, cam_obj, reporter, engine)
+        export_world(tc_scene, scene.world, reporter, textures)
+
+        unsupported_types = set()
+        for inst in depsgraph.object_instances:
+            poll()
+            role = instance_role(inst)
+            obj = inst.object
+            if role == 'LIGHT':
+                if export_light(tc_scene, obj, inst.matrix_world.copy(), reporter):
+                    stats.lights += 1
+            elif role == 'UNSUPPORTED':
+                report_unsupported(obj, unsupported_types, reporter)
+            elif role == 'MESH':
+                matrix = inst.matrix_world.copy()    # the instance struct dies after this step
+                slot_to_material, needs_uvs = mesh_materials(
+                    [slot.material for slot in obj.material_slots], materials)
+                # Instances of one mesh (collection instances, particles, geometry nodes) are
+                # read once.
+                key = (obj.as_pointer(), obj.data.as_pointer() if obj.data is not None else 0)
+                name = obj.name
+                if inst.is_instance:
+                    meshes.get(obj, key, needs_uvs, reporter)   # the object dies after this step
+                    obj = None
+                plan.append((obj, key, name, matrix, slot_to_material, needs_uvs))
+    stats.capture_seconds = time.perf_counter() - t0
+
+    for obj, key, name, matrix, slot_to_material, needs_uvs in plan:
+        poll()
+        local = meshes.get(obj, key, needs_uvs, reporter)
+        triangles = add_world_mesh(tc_scene, name, local, matrix, slot_to_material, needs_uvs,
+                                   reporter)
+        if triangles:
+            stats.objects += 1
+            stats.names.append(name)
+            stats.triangles += triangles
 
     stats.materials = len(materials.indices) + (1 if materials._default is not None else 0)
     stats.textures = textures.loaded

@@ -151,11 +151,8 @@ class TextureTable:
 
     @staticmethod
     def _key(image):
-        original = getattr(image, "original", None) or image
-        try:
-            return original.as_pointer()
-        except Exception:
-            return image.name_full
+        # Images are not copy-on-write: every user, evaluated or not, points to the same one.
+        return image.as_pointer()
 
     def texture(self, image, interpolation="Linear"):
         """The texture id of a Blender image (None when it can not be used)."""
@@ -480,7 +477,9 @@ class MaterialTable:
     def index(self, mat):
         if mat is None:
             return self.default_index()
-        key = mat.original.name_full if mat.original is not None else mat.name_full
+        # Never through mat.original: in a final render that is bpy.data's material, which
+        # the main thread may delete meanwhile; the evaluated one lives as long as the depsgraph.
+        key = mat.as_pointer()
         idx = self.indices.get(key)
         if idx is None:
             args = self.reader.read(mat)

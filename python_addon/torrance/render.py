@@ -213,7 +213,7 @@ def _render(engine, depsgraph, reporter):
     print(f"Torrance: {stats}")
     last_stats.update(objects=stats.objects, triangles=stats.triangles, lights=stats.lights,
                       materials=stats.materials, textures=stats.textures,
-                      export_seconds=stats.seconds,
+                      export_seconds=stats.seconds, capture_seconds=stats.capture_seconds,
                       object_names=list(stats.names))
 
     view_layer = depsgraph.view_layer
