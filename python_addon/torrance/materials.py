@@ -458,6 +458,13 @@ def uses_textures(m):
     return any(m.get(k, -1) >= 0 for k in _TEXTURE_KEYS)
 
 
+def emits(m):
+    """Whether add_material() arguments emit light."""
+    strength = m.get("emission_strength", 0.0)
+    color = m.get("emission", (0.0, 0.0, 0.0))
+    return strength > 0.0 and (max(color) > 0.0 or m.get("emission_texture", -1) >= 0)
+
+
 class MaterialTable:
     """Adds each Blender material to a tc.Scene once; maps materials to indices."""
 
@@ -467,6 +474,7 @@ class MaterialTable:
         self.reader = MaterialReader(reporter, self.textures)
         self.indices = {}
         self.textured = set()     # indices of materials that use textures
+        self.emissive = set()     # indices of materials that emit light
         self._default = None
 
     def default_index(self):
@@ -486,6 +494,8 @@ class MaterialTable:
             idx = self.scene.add_material(**args)
             if uses_textures(args):
                 self.textured.add(idx)
+            if emits(args):
+                self.emissive.add(idx)
             self.indices[key] = idx
         return idx
 
