@@ -315,8 +315,9 @@ def _read_records(path):
                 if "driver_error" in entry:
                     errors.append(entry["driver_error"])
                 elif "deleted" in entry:          # a deletion of a try that may not end
-                    if entry["try"] in tries and entry["deleted"] not in tries[entry["try"]]["done"]:
-                        tries[entry["try"]]["done"].append(entry["deleted"])
+                    done = tries[entry["try"]]["done"] if entry["try"] in tries else None
+                    if done is not None and entry["deleted"] not in done:
+                        done.append(entry["deleted"])
                 else:
                     tries[entry["try"]] = entry
     return tries, errors
