@@ -73,7 +73,7 @@ def _color3(value, fallback):
         c = (value, value, value)
     if len(c) < 3:
         return fallback
-    return tuple(_finite_or(x, f) for x, f in zip(c, fallback))
+    return tuple(_finite_or(x, f) for x, f in zip(c, fallback[:3], strict=True))
 
 
 # --------------------------------------------------------------------------------------------
@@ -293,8 +293,9 @@ class MaterialReader:
         src = source.node
         where = f"Material '{mat.name}': input 'Normal' of {node_label(node)}"
         if src.mute or src.bl_idname != 'ShaderNodeNormalMap':
-            self.reporter.warning(f"{where} is linked to {node_label(src)}, which Torrance does not "
-                                  f"support (only a tangent-space Normal Map); the normal is ignored")
+            self.reporter.warning(f"{where} is linked to {node_label(src)}, which Torrance does "
+                                  f"not support (only a tangent-space Normal Map); the normal "
+                                  f"is ignored")
             return None
         if src.space != 'TANGENT':
             self.reporter.warning(f"{where}: {node_label(src)} in {src.space.lower()} space is not "
@@ -307,7 +308,7 @@ class MaterialReader:
         color = src.inputs.get("Color")
         color_source = source_socket(color) if color is not None else None
         if color_source is None:
-            return None                  # the default colour (0.5, 0.5, 1) is the unperturbed normal
+            return None           # the default colour (0.5, 0.5, 1) is the unperturbed normal
         if color_source.node.mute or color_source.node.bl_idname != 'ShaderNodeTexImage':
             self.reporter.warning(f"{where}: the Color of {node_label(src)} is linked to "
                                   f"{node_label(color_source.node)}, which Torrance does not "

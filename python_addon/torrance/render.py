@@ -261,7 +261,8 @@ def _render(engine, depsgraph, reporter):
     finally:
         session.end()
 
-    msg = f"Torrance | {result.samples_done}/{ts.samples} samples | Time {_format_time(result.seconds)}"
+    msg = (f"Torrance | {result.samples_done}/{ts.samples} samples | "
+           f"Time {_format_time(result.seconds)}")
     if result.stopped:
         msg += " | stopped"
     last_stats.update(samples_done=int(result.samples_done), stopped=bool(result.stopped),
