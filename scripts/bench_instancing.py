@@ -154,7 +154,29 @@ def profile(scene):
             n += 1
         return n
 
-    for name, body in (("bare iteration", bare), ("+ inst.object", obj_only),
+    def export_like(copy):
+        def body():
+            seen = {}
+            n = 0
+            for inst in dg.object_instances:
+                n += 1
+                obj = inst.object
+                if inst.is_instance:
+                    data = obj.data
+                    key = (obj.name_full, data.as_pointer() if data is not None else 0)
+                    buf = seen.get(key)
+                    if buf is None:
+                        buf = seen[key] = array.array('f')
+                    r0, r1, r2, _ = inst.matrix_world.copy() if copy else inst.matrix_world
+                    buf.extend(r0)
+                    buf.extend(r1)
+                    buf.extend(r2)
+            return n
+        return body
+
+    for name, body in (("export loop: key, rows of matrix_world", export_like(False)),
+                       ("export loop: key, rows of matrix_world.copy()", export_like(True)),
+("bare iteration", bare), ("+ inst.object", obj_only),
                        ("+ type, is_instance, show_self", role_fields),
                        ("+ type, is_instance, name_full, data ptr", key_fields),
                        ("matrix_world.copy() kept", matrix_copy),
