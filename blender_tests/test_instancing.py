@@ -1,27 +1,35 @@
 # SPDX-License-Identifier: Apache-2.0
 """Instanced geometry renders like its flattened copy and like Cycles (issue 11).
 
-The final render's export gives the core each mesh once as a prototype and each object or
+The final render's export gives the core each instanced mesh once as a prototype and each
 instance as a transform (torrance.export.instances). Checked, each against a deliberate fault
-injected between the add-on and the core (addon_access.core_proxy) that must make it fail:
+injected between the add-on and the core (addon_access.core_proxy) that must make it fail
+(figures: worst channel, measured on 2 busy cores):
 
 (a) instanced vs flattened: a particle system (object render) and geometry nodes (Instance on
     Points of an Object Info, random rotation and non-uniform scale) against the same scene
     with the instances made real objects (make_real: one object per depsgraph instance, its
     evaluated mesh, world matrix and materials); same seed, so nearly identical.
-    Fault: instances given identity transforms.
+    Measured: identical (|ratio - 1|, block mean, block max all 0.0000).
+    Fault, instances given identity transforms: particles |ratio - 1| 0.035, block mean
+    0.055; geometry nodes 0.101, 0.130.
 (b) collection instances with negative (mirroring) and non-uniform scale agree with Cycles
-    (agreement.THRESHOLDS: mean ratio and 8x8 block means within noise). The instanced
-    object is asymmetric (a sphere beside a box), so a lost mirror moves the sphere.
-    Fault: the mirror dropped (column 0 of det < 0 transforms negated).
+    (agreement helpers; ratio 0.9995, block mean 0.0011, p90 0.0031). The instanced objects
+    are asymmetric in their own space, so a lost mirror moves them.
+    Fault, the mirror dropped (column 0 of det < 0 transforms negated): block mean 0.0156.
 (c) per-instance materials: two objects share one mesh, each with an object-linked slot (red,
-    blue), both instanced by two collection instances: instanced vs flattened (each real
-    object with its material). Fault: the per-instance table ignored (every add_instances
-    call of a prototype gets the first call's table).
-(d) an emissive instanced mesh (3 instances; no other light, black world) lights the floor
-    like its flattened copy. Fault: identity transforms (the emitters move).
+    blue), both instanced by two collection instances: instanced vs flattened (identical).
+    Fault, the per-instance table ignored (every add_instances call of a prototype gets the
+    first call's table): |ratio - 1| 0.054, block mean 0.092.
+(d) an emissive instanced mesh (3 collection instances of 2 objects; no other light, black
+    world) lights the floor like its flattened copy, within twice the seed-to-seed noise
+    (light sampling differs between instances and world-space meshes): instanced 0.0007 /
+    0.0057 against noise 0.0030 / 0.0139. Fault, identity transforms: 0.84 / 0.35.
 (e) repeated renders of a scene of 20000 particle instances: VmRSS grows by less than
-    MAX_RSS_GROWTH_MB from renders 3-5 to renders 10-12. Fault: every tc.Scene kept alive.
+    MAX_RSS_GROWTH_MB from renders 3-5 to renders 10-12 (measured +14 MB; the core alone,
+    15 such scenes built and rendered from plain Python, grows by 2.5 MB, flat after the
+    fourth). Fault, every tc.Scene kept alive: +68 MB.
+(f) an instance scaled to zero is not rendered and is reported (num_hidden_instances).
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_instancing.py
@@ -350,6 +358,19 @@ def mirrored_vs_cycles(d):
     check(results["mirror dropped"], "(b) the dropped mirror went unnoticed")
 
 
+def zero_scale(d):
+    scene, empties = mirrored_scene()
+    empties[0].scale = (0.0, 0.0, 0.0)
+    render_torrance(scene, d, "zero_scale")
+    stats = testing.addon().render.last_stats
+    messages = [m for _, m in testing.last_messages()]
+    print(f"(f) one collection instance (2 objects) at zero scale: {stats['objects']} objects, "
+          f"{messages}", flush=True)
+    check(stats["objects"] == 5, f"(f) expected floor + 2 x 2 instances: {stats}")
+    check("2 instance(s) with zero scale were not rendered" in messages,
+          f"(f) zero scale not reported: {messages}")
+
+
 def leak(d):
     scene, _ = particles_scene()
     scene.objects["Emitter"].particle_systems[0].settings.count = 20000
@@ -400,6 +421,7 @@ def main():
                       {"table ignored": first_table_per_prototype()})
     instanced_vs_flat(d, "d emissive", emissive_scene,
                       {"identity transforms": identity_transforms}, samples=64, noise_seed=6)
+    zero_scale(d)
     leak(d)
 
 
