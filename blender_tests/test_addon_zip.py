@@ -84,7 +84,8 @@ def main():
     check("torrance/__init__.py" in names, f"no torrance/__init__.py in the zip: {names}")
     check(any(n.startswith("torrance/torrance_core/_core") and n.endswith(".so") for n in names),
           f"no native module in the zip: {names}")
-    for module in ("engine", "export", "materials", "properties", "render", "ui"):
+    for module in ("engine", "export/__init__", "export/scene", "export/instances", "materials",
+                   "properties", "render", "ui", "viewport/__init__"):
         check(f"torrance/{module}.py" in names, f"torrance/{module}.py missing from the zip")
     stale = [n for n in names if "__pycache__" in n]
     if stale:

@@ -86,6 +86,16 @@ class _FaultyScene:
         return self.scene.add_mesh(positions, triangles, corner_normals=corner_normals,
                                    material_indices=material_indices, corner_uvs=corner_uvs)
 
+    def add_prototype(self, positions, triangles, corner_normals=None, material_slots=None,
+                      corner_uvs=None):
+        if self.fault == "negate_normals" and corner_normals is not None:
+            corner_normals = np.ascontiguousarray(-corner_normals)
+        return self.scene.add_prototype(positions, triangles, corner_normals=corner_normals,
+                                        material_slots=material_slots, corner_uvs=corner_uvs)
+
+    def __getattr__(self, attr):          # add_instances, num_triangles, ...
+        return getattr(self.scene, attr)
+
     def add_sun(self, **kw):
         if self.fault == "sun_x_pi":
             kw["strength"] *= math.pi

@@ -145,7 +145,7 @@ def _lens(factor):
 
 def _mesh_edit(fn):
     def edit(method, args, kwargs):
-        if method != "add_mesh":
+        if method not in ("add_mesh", "add_prototype"):   # the final render: add_prototype
             return args, kwargs
         return fn(args, kwargs)
     return edit

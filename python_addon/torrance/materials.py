@@ -73,7 +73,7 @@ def _color3(value, fallback):
         c = (value, value, value)
     if len(c) < 3:
         return fallback
-    return tuple(_finite_or(x, f) for x, f in zip(c, fallback))
+    return tuple(_finite_or(x, f) for x, f in zip(c, fallback[:3], strict=True))
 
 
 # --------------------------------------------------------------------------------------------
@@ -160,11 +160,8 @@ class TextureTable:
 
     @staticmethod
     def _key(image):
-        original = getattr(image, "original", None) or image
-        try:
-            return original.as_pointer()
-        except Exception:
-            return image.name_full
+        # Images are not copy-on-write: every user, evaluated or not, points to the same one.
+        return image.as_pointer()
 
     def texture(self, image, interpolation="Linear"):
         """The texture id of a Blender image (None when it can not be used)."""
@@ -313,8 +310,9 @@ class MaterialReader:
         src = source.node
         where = f"Material '{mat.name}': input 'Normal' of {node_label(node)}"
         if src.mute or src.bl_idname != 'ShaderNodeNormalMap':
-            self.reporter.warning(f"{where} is linked to {node_label(src)}, which Torrance does not "
-                                  f"support (only a tangent-space Normal Map); the normal is ignored")
+            self.reporter.warning(f"{where} is linked to {node_label(src)}, which Torrance does "
+                                  f"not support (only a tangent-space Normal Map); the normal "
+                                  f"is ignored")
             return None
         if src.space != 'TANGENT':
             self.reporter.warning(f"{where}: {node_label(src)} in {src.space.lower()} space is not "
@@ -327,7 +325,7 @@ class MaterialReader:
         color = src.inputs.get("Color")
         color_source = source_socket(color) if color is not None else None
         if color_source is None:
-            return None                  # the default colour (0.5, 0.5, 1) is the unperturbed normal
+            return None           # the default colour (0.5, 0.5, 1) is the unperturbed normal
         if color_source.node.mute or color_source.node.bl_idname != 'ShaderNodeTexImage':
             self.reporter.warning(f"{where}: the Color of {node_label(src)} is linked to "
                                   f"{node_label(color_source.node)}, which Torrance does not "
@@ -478,6 +476,13 @@ def uses_textures(m):
     return any(m.get(k, -1) >= 0 for k in _TEXTURE_KEYS)
 
 
+def emits(m):
+    """Whether add_material() arguments emit light."""
+    strength = m.get("emission_strength", 0.0)
+    color = m.get("emission", (0.0, 0.0, 0.0))
+    return strength > 0.0 and (max(color) > 0.0 or m.get("emission_texture", -1) >= 0)
+
+
 class MaterialTable:
     """Adds each Blender material to a tc.Scene once; maps materials to indices."""
 
@@ -487,6 +492,7 @@ class MaterialTable:
         self.reader = MaterialReader(reporter, self.textures)
         self.indices = {}
         self.textured = set()     # indices of materials that use textures
+        self.emissive = set()     # indices of materials that emit light
         self._default = None
 
     def default_index(self):
@@ -497,13 +503,17 @@ class MaterialTable:
     def index(self, mat):
         if mat is None:
             return self.default_index()
-        key = mat.original.name_full if mat.original is not None else mat.name_full
+        # Never through mat.original: in a final render that is bpy.data's material, which
+        # the main thread may delete meanwhile; the evaluated one lives as long as the depsgraph.
+        key = mat.as_pointer()
         idx = self.indices.get(key)
         if idx is None:
             args = self.reader.read(mat)
             idx = self.scene.add_material(**args)
             if uses_textures(args):
                 self.textured.add(idx)
+            if emits(args):
+                self.emissive.add(idx)
             self.indices[key] = idx
         return idx
 

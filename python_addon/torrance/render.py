@@ -229,7 +229,7 @@ def _render(engine, depsgraph, reporter):
     print(f"Torrance: {stats}")
     last_stats.update(objects=stats.objects, triangles=stats.triangles, lights=stats.lights,
                       materials=stats.materials, textures=stats.textures,
-                      export_seconds=stats.seconds,
+                      export_seconds=stats.seconds, capture_seconds=stats.capture_seconds,
                       object_names=list(stats.names))
 
     view_layer = depsgraph.view_layer
@@ -279,7 +279,8 @@ def _render(engine, depsgraph, reporter):
     finally:
         session.end()
 
-    msg = f"Torrance | {result.samples_done}/{ts.samples} samples | Time {_format_time(result.seconds)}"
+    msg = (f"Torrance | {result.samples_done}/{ts.samples} samples | "
+           f"Time {_format_time(result.seconds)}")
     pixels = max(1, (x1 - x0) * (y1 - y0))
     spent = int(result.samples_spent)
     if settings.adaptive_threshold > 0:

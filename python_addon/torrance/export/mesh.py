@@ -1,0 +1,352 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Meshes: reading an evaluated object's mesh in object space (numpy, foreach_get; never a
+Python loop per vertex or triangle), the object-space arrays of a prototype, and the flattened
+world-space path (world_mesh, export_mesh) that the viewport uses."""
+
+import numpy as np
+
+MAX_COORDINATE = 1e18          # metres; anything farther is treated like Inf
+
+
+class LocalMesh:
+    """A mesh in object space, as to_mesh() gives it, in numpy arrays."""
+    __slots__ = ("positions", "triangles", "vertex_normals", "corner_normals", "smooth",
+                 "material_slots", "corner_uvs", "uv_name")
+
+    def __init__(self, positions, triangles, vertex_normals, corner_normals, smooth,
+                 material_slots, corner_uvs=None, uv_name=None):
+        self.positions = positions            # float32 (N,3)
+        self.triangles = triangles            # int32 (M,3)
+        self.vertex_normals = vertex_normals  # None or float32 (N,3): smooth shading
+        self.corner_normals = corner_normals  # None or float32 (M,3,3): split normals
+        self.smooth = smooth                  # None (all alike) or bool (M,): False = flat
+        self.material_slots = material_slots  # int32 (M,) raw material_index
+        self.corner_uvs = corner_uvs          # None or float32 (M,3,2): active render UV map
+        self.uv_name = uv_name                # that UV map's name (None without one)
+
+
+def render_uv_layer(mesh):
+    """The UV map Cycles renders with: the active render one, else the active one, else None."""
+    layers = mesh.uv_layers
+    for layer in layers:
+        if layer.active_render:
+            return layer
+    return layers.active if len(layers) else None
+
+
+def read_corner_uvs(mesh, nt):
+    """(float32 (M,3,2) UVs of the loop triangles' corners, layer name), or (None, None)."""
+    layer = render_uv_layer(mesh)
+    if layer is None:
+        return None, None
+    nl = len(mesh.loops)
+    uv = np.empty(nl * 2, dtype=np.float32)
+    layer.data.foreach_get("uv", uv)
+    loops = np.empty(nt * 3, dtype=np.int32)
+    mesh.loop_triangles.foreach_get("loops", loops)
+    corner = uv.reshape(nl, 2)[loops].reshape(nt, 3, 2)
+    if not np.isfinite(corner).all():
+        corner = np.nan_to_num(corner, nan=0.0, posinf=0.0, neginf=0.0)
+    return np.ascontiguousarray(corner), layer.name
+
+
+def _has_corner_normals(mesh):
+    """Whether a mesh's normals are its split (corner) normals, computing them if needed.
+
+    Blender < 4.1: with auto smooth. Blender 4.1 removed auto smooth: the mesh's
+    normals_domain is 'CORNER' when faces and edges are not all smooth or all flat (Cycles 4.1
+    reads corner normals then, and vertex normals or flat faces otherwise, as below).
+    """
+    import bpy
+    if bpy.app.version >= (4, 1, 0):
+        return mesh.normals_domain == 'CORNER'
+    if mesh.use_auto_smooth:
+        mesh.calc_normals_split()       # split_normals are zeros until this is called
+        return True
+    return False
+
+
+def read_local_mesh(obj, uvs=False):
+    """The evaluated object's mesh as a LocalMesh, or None when it has no triangles.
+
+    Normals as Cycles 3.4 takes them: with auto smooth the split normals (sharp edges,
+    custom normals) and every triangle smooth; otherwise vertex normals on smooth faces
+    and the geometric normal on flat ones. With `uvs`, also the corner UVs of the active
+    render UV map (for textures and normal maps).
+    """
+    mesh = obj.to_mesh()
+    if mesh is None:
+        return None
+    try:
+        mesh.calc_loop_triangles()
+        nv = len(mesh.vertices)
+        nt = len(mesh.loop_triangles)
+        if nt == 0 or nv == 0:
+            return None
+        co = np.empty(nv * 3, dtype=np.float32)
+        mesh.vertices.foreach_get("co", co)
+        tris = np.empty(nt * 3, dtype=np.int32)
+        mesh.loop_triangles.foreach_get("vertices", tris)
+        mat = np.empty(nt, dtype=np.int32)
+        mesh.loop_triangles.foreach_get("material_index", mat)
+
+        vertex_normals = corner_normals = smooth = None
+        if _has_corner_normals(mesh):
+            sn = np.empty(nt * 9, dtype=np.float32)
+            mesh.loop_triangles.foreach_get("split_normals", sn)
+            corner_normals = sn.reshape(nt, 3, 3)
+        else:
+            smooth = np.empty(nt, dtype=bool)
+            mesh.loop_triangles.foreach_get("use_smooth", smooth)
+            if smooth.any():
+                vn = np.empty(nv * 3, dtype=np.float32)
+                mesh.vertices.foreach_get("normal", vn)
+                vertex_normals = vn.reshape(nv, 3)
+                if smooth.all():
+                    smooth = None
+            else:
+                smooth = None
+        corner_uvs = uv_name = None
+        if uvs:
+            corner_uvs, uv_name = read_corner_uvs(mesh, nt)
+        return LocalMesh(co.reshape(nv, 3), tris.reshape(nt, 3), vertex_normals,
+                         corner_normals, smooth, mat, corner_uvs, uv_name)
+    finally:
+        obj.to_mesh_clear()
+
+
+def _normalize(v):
+    """Unit vectors (float32) and a mask of those that could be normalised."""
+    length = np.sqrt(np.einsum("...i,...i->...", v, v))
+    ok = (length > 1e-30) & np.isfinite(length)
+    out = np.zeros_like(v)
+    np.divide(v, length[..., None], out=out, where=ok[..., None])
+    return out, ok
+
+
+def world_mesh(local, matrix):
+    """World-space arrays for add_mesh.
+
+    Returns (positions float32 (N,3), triangles int32 (M',3), corner_normals float32
+    (M',3,3) or None, kept-triangle mask over the local triangles, number of triangles
+    dropped for NaN/Inf vertices).
+    """
+    m = np.asarray(matrix, dtype=np.float64).reshape(4, 4)
+    lin = m[:3, :3]
+    with np.errstate(all="ignore"):
+        pos = (local.positions.astype(np.float64) @ lin.T + m[:3, 3]).astype(np.float32)
+    tris = local.triangles
+
+    # Triangles touching a NaN/Inf vertex (before or after the transform) are dropped, and
+    # so are absurdly far vertices (Blender clamps an Inf typed into a field to FLT_MAX).
+    with np.errstate(all="ignore"):
+        bad_vertex = ~(np.abs(pos) < MAX_COORDINATE).all(axis=1)
+    keep = np.ones(len(tris), dtype=bool)
+    dropped_nonfinite = 0
+    if bad_vertex.any():
+        keep &= ~bad_vertex[tris].any(axis=1)
+        dropped_nonfinite = int(len(tris) - np.count_nonzero(keep))
+        pos[bad_vertex] = 0.0            # unused now; the core rejects any non-finite value
+
+    # Geometric normals; zero-area triangles can never be hit and are dropped silently.
+    p0 = pos[tris[:, 0]]
+    with np.errstate(all="ignore"):
+        ng = np.cross(pos[tris[:, 1]] - p0, pos[tris[:, 2]] - p0)
+    del p0
+    ng, ng_ok = _normalize(ng)
+    keep &= ng_ok
+
+    # A mirroring transform turns the winding around: two corners are swapped below so that
+    # the geometric normal keeps its side (as Cycles does for negative scale).
+    det = float(np.linalg.det(lin))
+    flip = det < 0.0
+    if flip:
+        ng = -ng
+
+    corner = None
+    if local.vertex_normals is not None or local.corner_normals is not None:
+        with np.errstate(all="ignore"):
+            normal_matrix = (np.linalg.inv(lin).T if abs(det) > 1e-300 else lin)
+        normal_matrix = normal_matrix.astype(np.float32)
+        with np.errstate(all="ignore"):
+            if local.vertex_normals is not None:
+                vn, vn_ok = _normalize(local.vertex_normals @ normal_matrix.T)
+                corner = vn[tris]
+                corner_ok = vn_ok[tris]
+            else:
+                corner, corner_ok = _normalize(local.corner_normals @ normal_matrix.T)
+        # Corners without a usable normal, and flat triangles, use the geometric normal.
+        use_ng = ~corner_ok
+        if local.smooth is not None:
+            use_ng |= ~local.smooth[:, None]
+        if use_ng.any():
+            rows, cols = np.nonzero(use_ng)
+            corner[rows, cols] = ng[rows]
+
+    if not keep.all():
+        tris = tris[keep]
+        if corner is not None:
+            corner = corner[keep]
+    if flip:
+        tris = tris[:, [0, 2, 1]]
+        if corner is not None:
+            corner = corner[:, [0, 2, 1], :]
+
+    return (np.ascontiguousarray(pos, dtype=np.float32),
+            np.ascontiguousarray(tris, dtype=np.int32),
+            None if corner is None else np.ascontiguousarray(corner, dtype=np.float32),
+            keep, dropped_nonfinite)
+
+
+def world_uvs(local, matrix, keep):
+    """The corner UVs matching world_mesh()'s triangles (kept ones, corners swapped for a
+    mirroring transform), or None."""
+    if local.corner_uvs is None:
+        return None
+    uv = local.corner_uvs if keep.all() else local.corner_uvs[keep]
+    m = np.asarray(matrix, dtype=np.float64).reshape(4, 4)
+    if np.linalg.det(m[:3, :3]) < 0.0:
+        uv = uv[:, [0, 2, 1], :]
+    return np.ascontiguousarray(uv, dtype=np.float32)
+
+
+class MeshCache:
+    """Object-space meshes (LocalMesh, or None for no triangles) read once per key.
+
+    The key is the caller's: the final render reads each mesh of its instances once; the
+    viewport keeps meshes across updates and drops those whose geometry changed.
+    """
+
+    def __init__(self):
+        self.meshes = {}          # key + (uvs,) -> LocalMesh or None
+        self.reads = 0            # meshes read from Blender
+
+    def get(self, obj, key, uvs, reporter):
+        ckey = key + (bool(uvs),)
+        if ckey in self.meshes:
+            return self.meshes[ckey]
+        local = read_local_mesh(obj, uvs=uvs)
+        self.reads += 1
+        if local is not None and uvs and local.corner_uvs is None:
+            reporter.warning(f"Object '{obj.name}' has textured materials but no UV map: "
+                             f"its textures are read at UV (0, 0)")
+        self.meshes[ckey] = local
+        return local
+
+    def drop(self, stale):
+        """Forgets the meshes whose key (without the UV flag) satisfies stale(key)."""
+        for ckey in [k for k in self.meshes if stale(k[:-1])]:
+            del self.meshes[ckey]
+
+    def clear(self):
+        self.meshes.clear()
+
+
+def mesh_materials(slots, materials):
+    """(int32 material index per slot, whether any of them needs UVs) for an object's slots
+    (materials or None); read before the mesh: textured materials need the UVs."""
+    slot_to_material = materials.slot_indices(slots)
+    return slot_to_material, materials.needs_uvs(slot_to_material.tolist())
+
+
+def add_world_mesh(tc_scene, name, local, matrix, slot_to_material, needs_uvs, reporter):
+    """Adds a LocalMesh (or None) at `matrix` with add_mesh; returns the triangles added."""
+    if local is None:
+        return 0
+    pos, tris, corner, keep, dropped = world_mesh(local, matrix)
+    if dropped:
+        reporter.warning(f"Object '{name}': {dropped} triangle(s) with NaN/Inf vertex "
+                         f"positions dropped (or vertices beyond {MAX_COORDINATE:g} m)")
+    if len(tris) == 0:
+        return 0
+    # Material per triangle: material_index clamped to the slots, like Cycles.
+    idx = np.clip(local.material_slots[keep], 0, len(slot_to_material) - 1)
+    tc_scene.add_mesh(pos, tris, corner_normals=corner,
+                      material_indices=np.ascontiguousarray(slot_to_material[idx],
+                                                            dtype=np.int32),
+                      corner_uvs=world_uvs(local, matrix, keep) if needs_uvs else None)
+    return len(tris)
+
+
+def export_mesh(tc_scene, obj, matrix, slots, materials, meshes, key, reporter):
+    """Adds an evaluated mesh object (or an instance of one) to tc_scene at `matrix`.
+
+    slots: the materials of the object's slots; materials: the scene's MaterialTable;
+    meshes, key: the MeshCache to read the object's mesh through, and its key there.
+    Returns the number of triangles added (0: nothing to render).
+    """
+    slot_to_material, needs_uvs = mesh_materials(slots, materials)
+    local = meshes.get(obj, key, needs_uvs, reporter)
+    return add_world_mesh(tc_scene, obj.name, local, matrix, slot_to_material, needs_uvs,
+                          reporter)
+
+
+class Prototype:
+    """A LocalMesh as add_prototype() takes it (object space), with what was dropped."""
+    __slots__ = ("positions", "triangles", "corner_normals", "material_slots", "corner_uvs",
+                 "dropped_nonfinite")
+
+    def __init__(self, positions, triangles, corner_normals, material_slots, corner_uvs,
+                 dropped_nonfinite):
+        self.positions = positions              # float32 (N,3)
+        self.triangles = triangles              # int32 (M,3)
+        self.corner_normals = corner_normals    # None (all flat) or float32 (M,3,3), unit
+        self.material_slots = material_slots    # int32 (M,) >= 0, raw material_index
+        self.corner_uvs = corner_uvs            # None or float32 (M,3,2)
+        self.dropped_nonfinite = dropped_nonfinite
+
+
+def prototype_arrays(local, uvs):
+    """The object-space arrays of a LocalMesh for add_prototype(), as world_mesh() makes them
+    in world space but without a transform: triangles touching a NaN/Inf (or farther than
+    MAX_COORDINATE) vertex and zero-area triangles dropped, corner normals unit length with
+    the flat normal on flat triangles and on corners without a usable normal. The core moves
+    them to world space per instance (normals by M^-T, a mirroring M keeps the flat normal's
+    side), so each mesh is checked here once, whatever its number of instances."""
+    pos = local.positions
+    tris = local.triangles
+    with np.errstate(all="ignore"):
+        bad_vertex = ~(np.abs(pos) < MAX_COORDINATE).all(axis=1)
+    keep = np.ones(len(tris), dtype=bool)
+    dropped = 0
+    if bad_vertex.any():
+        keep &= ~bad_vertex[tris].any(axis=1)
+        dropped = int(len(tris) - np.count_nonzero(keep))
+        pos = pos.copy()
+        pos[bad_vertex] = 0.0             # unused now; the core rejects any non-finite value
+    p0 = pos[tris[:, 0]]
+    with np.errstate(all="ignore"):
+        ng = np.cross(pos[tris[:, 1]] - p0, pos[tris[:, 2]] - p0)
+    del p0
+    ng, ng_ok = _normalize(ng)
+    keep &= ng_ok
+
+    corner = None
+    if local.vertex_normals is not None or local.corner_normals is not None:
+        with np.errstate(all="ignore"):
+            if local.vertex_normals is not None:
+                vn, vn_ok = _normalize(local.vertex_normals)
+                corner = vn[tris]
+                corner_ok = vn_ok[tris]
+            else:
+                corner, corner_ok = _normalize(local.corner_normals)
+        use_ng = ~corner_ok
+        if local.smooth is not None:
+            use_ng |= ~local.smooth[:, None]
+        if use_ng.any():
+            rows, cols = np.nonzero(use_ng)
+            corner[rows, cols] = ng[rows]
+    slots = np.maximum(local.material_slots, 0)
+    corner_uvs = local.corner_uvs if uvs else None
+    if not keep.all():
+        tris = tris[keep]
+        slots = slots[keep]
+        if corner is not None:
+            corner = corner[keep]
+        if corner_uvs is not None:
+            corner_uvs = corner_uvs[keep]
+
+    def c(a, dtype=np.float32):
+        return None if a is None else np.ascontiguousarray(a, dtype=dtype)
+    return Prototype(c(pos), c(tris, np.int32), c(corner), c(slots, np.int32), c(corner_uvs),
+                     dropped)

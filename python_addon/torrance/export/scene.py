@@ -1,0 +1,214 @@
+# SPDX-License-Identifier: Apache-2.0
+"""export_scene: a render depsgraph -> tc.Scene, in two phases (issue 16); instances (particles,
+collection instances, geometry nodes) go to the core as prototypes and transforms (issue 11),
+the other objects as world-space meshes (OBJECTS_AS_INSTANCES)."""
+
+import contextlib
+import sys
+import time
+
+from ..materials import MaterialTable, TextureTable
+from .camera import export_camera
+from .instances import InstanceExport, Source
+from .lights import export_light
+from .mesh import MeshCache, add_world_mesh, mesh_materials
+from .world import export_world
+
+# Types whose geometry is a mesh. Only 'MESH' entries of the depsgraph are exported; the
+# others reach us as MESH instances of their evaluated geometry (see export_scene).
+MESH_TYPES = {'MESH', 'CURVE', 'SURFACE', 'META', 'FONT'}
+# Types that render nothing (in Cycles either) and are skipped without a word. Any other
+# type that is not a mesh or a light is reported as not rendered.
+SKIPPED_TYPES = {'CAMERA', 'EMPTY', 'ARMATURE', 'LATTICE', 'LIGHT_PROBE', 'SPEAKER', 'GPENCIL'}
+# Objects that are not instances: a world-space mesh through add_mesh (False), or a prototype
+# with one instance each (True). Measured with scripts/bench_export_paths.py (docs/instancing.md):
+# the same images, but the two-level BVH costs ~10% more render time on the comparison scenes.
+OBJECTS_AS_INSTANCES = False
+_VISIBILITY = ("visible_camera", "visible_diffuse", "visible_glossy",
+               "visible_transmission", "visible_shadow")
+
+
+class ExportStats:
+    def __init__(self):
+        self.objects = 0         # instances rendered (an object counts as one)
+        self.triangles = 0       # world-space triangles (tc.Scene.num_triangles)
+        self.lights = 0
+        self.materials = 0
+        self.textures = 0
+        self.seconds = 0.0
+        self.capture_seconds = 0.0   # the pass over the depsgraph (see export_scene)
+        self.names = []          # exported mesh objects, one entry per instance
+
+    def __str__(self):
+        return (f"{self.objects} objects, {self.triangles} triangles, {self.lights} lights, "
+                f"{self.materials} materials, {self.textures} textures, "
+                f"exported in {self.seconds:.2f} s (depsgraph pass {self.capture_seconds:.3f} s)")
+
+
+class Cancelled(Exception):
+    pass
+
+
+def _is_visible(obj):
+    return any(getattr(obj, name, True) for name in _VISIBILITY)
+
+
+def instance_role(inst):
+    """What an export does with a depsgraph instance: 'LIGHT' or 'MESH' (export it),
+    'UNSUPPORTED' (report its type) or None (skip it silently)."""
+    obj = inst.object
+    kind = obj.type
+    if kind == 'LIGHT':
+        return 'LIGHT'
+    if kind not in MESH_TYPES:
+        return None if kind in SKIPPED_TYPES else 'UNSUPPORTED'
+    if kind != 'MESH':
+        # As Cycles 3.x: curves, surfaces, metaballs and text are evaluated to a mesh that
+        # the depsgraph lists as a separate MESH instance (parent = the object). Only that
+        # one is exported, or the geometry would be there twice.
+        return None
+    if not inst.is_instance and not inst.show_self:
+        return None
+    if not _is_visible(obj):
+        return None
+    return 'MESH'
+
+
+def report_unsupported(obj, reported_types, reporter):
+    """Warns that objects of obj's type are not rendered, once per type (reported_types)."""
+    if obj.type not in reported_types:
+        reported_types.add(obj.type)
+        reporter.warning(f"Torrance does not render objects of type {obj.type} "
+                         f"(e.g. '{obj.name}')")
+
+
+@contextlib.contextmanager
+def _keep_gil():
+    """Keeps the main thread's Python (scripts, timers, add-ons) waiting while the block runs:
+    this thread does not hand the GIL over every 5 ms. Native code of the main thread (the
+    interface's own operators) is not held up."""
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(max(interval, 1.0))
+    try:
+        yield
+    finally:
+        sys.setswitchinterval(interval)
+
+
+def _camera_object(depsgraph, engine):
+    cam_obj = getattr(engine, "camera_override", None) if engine is not None else None
+    if cam_obj is None:
+        cam_obj = depsgraph.scene.camera
+    if cam_obj is None or cam_obj.type != 'CAMERA':
+        raise ValueError("The scene has no camera")
+    if not cam_obj.is_evaluated:
+        cam_obj = cam_obj.evaluated_get(depsgraph)
+    return cam_obj
+
+
+def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
+    """Builds a tc.Scene from a render depsgraph. Returns (tc_scene, ExportStats).
+
+    Camera: engine.camera_override or the scene camera; raises ValueError when there is none.
+
+    A final render runs this on Blender's render thread while the main thread may still edit
+    and delete datablocks, so the export reads the main database only in one short pass:
+    iterating the depsgraph reads the original datablocks (Blender's iterator does), and
+    images are not copy-on-write (an Image Texture node of an evaluated material points to
+    the image in bpy.data). That pass reads the camera, world, lights, materials and images,
+    and the world matrices of all mesh objects and instances (instances are temporary objects
+    that live only for their iteration step: their meshes are read in the pass). The meshes
+    of the other objects are read afterwards from the evaluated (copy-on-write) objects only,
+    which the render depsgraph owns and which no edit in bpy.data frees.
+
+    Per depsgraph instance the pass does the least Python work it can: an instance of an
+    object seen before (same name, same evaluated mesh: the same slots' materials, since an
+    object-linked slot is the object's and a data-linked one the mesh's) costs a dict lookup
+    and its matrix's twelve floats appended to an array; the instanced meshes go to the core
+    once each as prototypes, and each (prototype, material table) is one add_instances call.
+    """
+    t0 = time.perf_counter()
+    stats = ExportStats()
+    tc_scene = tc.Scene()
+    textures = TextureTable(tc_scene, reporter)
+    materials = MaterialTable(tc_scene, reporter, textures)
+    meshes = InstanceExport(tc_scene, materials, reporter)
+    last_poll = [time.perf_counter()]
+
+    def poll():
+        if should_stop is not None and time.perf_counter() - last_poll[0] > 0.1:
+            last_poll[0] = time.perf_counter()    # Esc during a long export, polled at 10 Hz
+            if should_stop():
+                raise Cancelled()
+
+    unsupported_types = set()
+    flattened = []        # OBJECTS_AS_INSTANCES off: (object, name, matrix, slot table, UVs)
+    as_instances = OBJECTS_AS_INSTANCES
+
+    def classify(inst, obj):
+        """What every instance of inst's object is: its Source (a mesh), 'LIGHT' or None."""
+        role = instance_role(inst)
+        if role == 'MESH':
+            src = meshes.source(obj, obj.name, instanced=True)
+            meshes.read_now(obj, src)
+            return src
+        if role == 'UNSUPPORTED':
+            report_unsupported(obj, unsupported_types, reporter)
+        return role
+
+    with _keep_gil():
+        export_camera(tc_scene, _camera_object(depsgraph, engine), reporter, engine)
+        export_world(tc_scene, depsgraph.scene.world, reporter, textures)
+        # (object name, evaluated mesh pointer) -> Source, 'LIGHT' or None, for instances
+        seen = {}
+        count = 0
+        for inst in depsgraph.object_instances:
+            count += 1
+            if not count & 1023:
+                poll()
+            obj = inst.object
+            if inst.is_instance:
+                data = obj.data
+                key = (obj.name_full, data.as_pointer() if data is not None else 0)
+                what = seen.get(key, seen)
+                if what is seen:
+                    what = seen[key] = classify(inst, obj)
+                if what.__class__ is Source:
+                    what.add(inst.matrix_world)
+                elif what == 'LIGHT' and export_light(tc_scene, obj, inst.matrix_world.copy(),
+                                                      reporter):
+                    stats.lights += 1
+                continue
+            poll()
+            role = instance_role(inst)
+            if role == 'LIGHT':
+                if export_light(tc_scene, obj, inst.matrix_world.copy(), reporter):
+                    stats.lights += 1
+            elif role == 'UNSUPPORTED':
+                report_unsupported(obj, unsupported_types, reporter)
+            elif role == 'MESH' and not as_instances:
+                flattened.append((obj, obj.name, inst.matrix_world.copy())
+                                 + mesh_materials([s.material for s in obj.material_slots],
+                                                  materials))
+            elif role == 'MESH':
+                src = meshes.source(obj, obj.name, instanced=False)
+                src.add(inst.matrix_world)
+                meshes.defer(obj, src)          # an evaluated object: read after the pass
+    stats.capture_seconds = time.perf_counter() - t0
+
+    meshes.read_pending(poll)
+    meshes.flush(stats)
+    cache = MeshCache()
+    for obj, name, matrix, slot_to_material, needs_uvs in flattened:
+        poll()
+        local = cache.get(obj, (obj.data.as_pointer(),), needs_uvs, reporter)
+        triangles = add_world_mesh(tc_scene, name, local, matrix, slot_to_material, needs_uvs,
+                                   reporter)
+        if triangles:
+            stats.objects += 1
+            stats.names.append(name)
+            stats.triangles += triangles
+    stats.materials = len(materials.indices) + (1 if materials._default is not None else 0)
+    stats.textures = textures.loaded
+    stats.seconds = time.perf_counter() - t0
+    return tc_scene, stats
