@@ -209,7 +209,10 @@ def main():
     if rc != 0:
         show(out)
     check(rc == 0, "scripts/build_extension failed")
-    zip_path = out.strip().splitlines()[-1]
+    # build_extension prints the zip's path last on stdout; `out` is stdout + stderr (the first
+    # build's progress), so take the last line naming a zip.
+    zips = [ln.strip() for ln in out.splitlines() if ln.strip().endswith("-linux_x64.zip")]
+    zip_path = zips[-1] if zips else out.strip().splitlines()[-1]
     check(zip_path.endswith("-linux_x64.zip") and os.path.isfile(zip_path), f"no zip: {zip_path}")
     print(f"extension: {zip_path} ({os.path.getsize(zip_path) / 2**20:.0f} MiB, {secs:.0f} s)")
 
