@@ -65,6 +65,10 @@ def checker(n, a, b):
     return np.dstack([v, v, v, np.ones_like(v)])
 
 
+# Principled v2 (Blender 4.x) names of the v1 sockets the test links.
+V2_NAMES = {"Emission": "Emission Color"}
+
+
 def image_node(mat, image, socket_name, interpolation='Closest', node_name=None, target=None):
     nt = mat.node_tree
     node = nt.nodes.new("ShaderNodeTexImage")
@@ -72,7 +76,9 @@ def image_node(mat, image, socket_name, interpolation='Closest', node_name=None,
     node.interpolation = interpolation
     if node_name:
         node.name = node_name
-    target = target if target is not None else nt.nodes["Principled BSDF"].inputs[socket_name]
+    if target is None:
+        inputs = nt.nodes["Principled BSDF"].inputs
+        target = inputs.get(socket_name) or inputs[V2_NAMES[socket_name]]    # 3.x or 4.x
     nt.links.new(node.outputs["Color"], target)
     return node
 
@@ -295,7 +301,7 @@ def cycles_agreement(d):
     # Teeth: without the textures Torrance must disagree.
     for name, socket in (("Floor", "Roughness"), ("WallMat", "Normal"), ("SignMat", "Emission")):
         nt = bpy.data.materials[name].node_tree
-        links = [lk for lk in nt.links if lk.to_socket.name == socket
+        links = [lk for lk in nt.links if lk.to_socket.name in (socket, V2_NAMES.get(socket))
                  and lk.to_node.bl_idname == 'ShaderNodeBsdfPrincipled']
         for lk in links:
             lk.is_muted = True

@@ -408,7 +408,8 @@ def test_preview_policy(addon, scene):
 def test_messages(addon, scene):
     ui = addon.ui
     mat = testing.principled("Waxy")
-    mat.node_tree.nodes["Principled BSDF"].inputs["Subsurface"].default_value = 0.5
+    inputs = mat.node_tree.nodes["Principled BSDF"].inputs
+    (inputs.get("Subsurface Weight") or inputs["Subsurface"]).default_value = 0.5   # 4.x / 3.x
     msgs = ui.material_messages(mat)
     check(any("Subsurface" in t for _l, t in msgs), f"subsurface reported: {msgs}")
     check(ui.material_messages(bpy.data.materials["Grey"]) == [], "a plain material has none")

@@ -14,8 +14,13 @@ import numpy as np
 
 def read_exr(path):
     """float32 (H, W, C) with the file's channels (RGB or RGBA), row 0 = top, from an EXR of
-    any depth."""
-    import OpenImageIO as oiio
+    any depth. Without OpenImageIO's Python module (the bpy 4.x venv) the add-on's native
+    module reads it (the same OpenImageIO library, stored values)."""
+    try:
+        import OpenImageIO as oiio
+    except ImportError:
+        from torrance_tools.addon_access import core
+        return np.asarray(core().read_image(path), dtype=np.float32)
     inp = oiio.ImageInput.open(path)
     if inp is None:
         raise RuntimeError(f"can not open {path}: {oiio.geterror()}")

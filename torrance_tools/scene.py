@@ -135,11 +135,19 @@ def principled(name, base_color=(0.8, 0.8, 0.8), metallic=0.0, roughness=0.5, sp
     node.inputs["Base Color"].default_value = (*base_color, 1.0)
     node.inputs["Metallic"].default_value = metallic
     node.inputs["Roughness"].default_value = roughness
-    node.inputs["Specular"].default_value = specular
+    v2 = node.inputs.get("Specular IOR Level") is not None      # Blender 4.x: Principled v2
+    if v2:
+        # v2's F0 is F0(IOR) * 2 * level: at IOR 1.5, level == v1's Specular (materials.py).
+        node.inputs["IOR"].default_value = 1.5
+        node.inputs["Specular IOR Level"].default_value = specular
+    else:
+        node.inputs["Specular"].default_value = specular
     if emission is not None:
-        node.inputs["Emission"].default_value = (*emission, 1.0)
+        node.inputs["Emission Color" if v2 else "Emission"].default_value = (*emission, 1.0)
     if emission_strength is not None:
         node.inputs["Emission Strength"].default_value = emission_strength
+    elif v2 and emission is not None:
+        node.inputs["Emission Strength"].default_value = 1.0    # v1's default; v2's is 0
     if viewport_color:
         mat.diffuse_color = (*base_color, 1.0)
     return mat

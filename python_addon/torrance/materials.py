@@ -7,6 +7,8 @@ output node (the output Cycles would use):
 
 * Principled BSDF: the sockets Base Color, Metallic, Roughness, Specular,
   Emission and Emission Strength, and Normal (from a tangent-space Normal Map);
+  Blender 4.x's Principled v2 by its names (Specular IOR Level with IOR, Emission
+  Color; _PRINCIPLED_SOCKETS);
 * Diffuse BSDF: a pure diffuse material (specular 0);
 * Emission: a black emitter.
 
@@ -40,15 +42,67 @@ DEFAULT_MATERIAL = dict(
     specular_tint=0.0,
 )
 
-# Principled inputs that Torrance ignores, with the value at which ignoring them is exact.
-_IGNORED_PRINCIPLED_INPUTS = (
-    ("Subsurface", 0.0),
-    ("Anisotropic", 0.0),
-    ("Sheen", 0.0),
-    ("Clearcoat", 0.0),
-    ("Transmission", 0.0),
-    ("Alpha", 1.0),
-)
+# The Principled BSDF's socket names per node version: v1 is Blender 3.x's, v2 Blender 4.0's
+# (renamed sockets; the version is told by the node's sockets, not by bpy.app.version).
+#   field             v1 (3.x)         v2 (4.x)
+_PRINCIPLED_SOCKETS = {
+    'v1': dict(specular="Specular", emission="Emission", specular_tint="Specular Tint"),
+    'v2': dict(specular="Specular IOR Level", emission="Emission Color",
+               specular_tint="Specular Tint"),
+}
+
+# Principled inputs that Torrance ignores, with the value at which ignoring them is exact
+# (a tuple: a colour socket). v2's Specular Tint is a colour: white is v1's tint 0.
+_IGNORED_PRINCIPLED_INPUTS = {
+    'v1': (
+        ("Subsurface", 0.0),
+        ("Anisotropic", 0.0),
+        ("Sheen", 0.0),
+        ("Clearcoat", 0.0),
+        ("Transmission", 0.0),
+        ("Alpha", 1.0),
+    ),
+    'v2': (
+        ("Subsurface Weight", 0.0),
+        ("Anisotropic", 0.0),
+        ("Sheen Weight", 0.0),
+        ("Coat Weight", 0.0),
+        ("Transmission Weight", 0.0),
+        ("Thin Film Thickness", 0.0),
+        ("Diffuse Roughness", 0.0),
+        ("Specular Tint", (1.0, 1.0, 1.0)),
+        ("Alpha", 1.0),
+    ),
+}
+
+
+def principled_version(node):
+    """'v2' for a Principled BSDF with Blender 4.0's sockets, else 'v1'."""
+    return 'v2' if node.inputs.get("Specular IOR Level") is not None else 'v1'
+
+
+def specular_from_ior_level(level, ior):
+    """v1's Specular for v2's (Specular IOR Level, IOR).
+
+    v1's dielectric F0 is 0.08 * Specular; v2's is F0(IOR) * 2 * Specular IOR Level (Cycles 4.x
+    scales F0 and rescales the IOR from it). Equating F0: Specular = level * F0(IOR) / 0.04, so
+    at IOR 1.5 (F0 = 0.04) Specular == Specular IOR Level exactly, 0.5 -> 0.5. The F0 is exact;
+    the angular Fresnel curve is v1's (Torrance's BRDF is Principled v1's).
+    """
+    # F0(IOR) / 0.04 = (5 (IOR - 1) / (IOR + 1))^2: exactly 1 at IOR 1.5 in floating point.
+    return level * (5.0 * (ior - 1.0) / (ior + 1.0)) ** 2
+
+
+def _is_neutral(value, neutral):
+    if isinstance(neutral, tuple):
+        try:
+            c = tuple(value)[:len(neutral)]
+        except TypeError:
+            return False
+        return len(c) == len(neutral) and all(
+            abs(_finite_or(x, n) - n) <= 1e-6 for x, n in zip(c, neutral, strict=True))
+    return abs(_finite_or(value, neutral) - neutral) <= 1e-6
+
 
 # Nodes whose output is a constant we can read.
 _CONSTANT_NODES = {'RGB', 'VALUE'}
@@ -79,10 +133,15 @@ def _color3(value, fallback):
 # --------------------------------------------------------------------------------------------
 # Image textures
 
-# Blender 3.4's colour spaces read as the core's "sRGB" / "Non-Color" / "Linear" / "Raw";
-# the others are approximated (and reported): scene-linear ones as Linear, display ones as sRGB.
-_COLORSPACES = {'sRGB': "sRGB", 'Non-Color': "Non-Color", 'Linear': "Linear", 'Raw': "Raw"}
-_LINEAR_LIKE = {'Linear ACES', 'Linear ACEScg', 'XYZ'}
+# Blender 3.4's colour spaces read as the core's "sRGB" / "Non-Color" / "Linear" / "Raw", and so
+# do their 4.x names ('Linear' is 'Linear Rec.709' since 4.0, the sRGB display space of byte
+# images is 'sRGB' in both); the others are approximated (and reported): scene-linear ones as
+# Linear, display ones as sRGB.
+_COLORSPACES = {'sRGB': "sRGB", 'Non-Color': "Non-Color", 'Linear': "Linear", 'Raw': "Raw",
+                'Linear Rec.709': "Linear"}
+_LINEAR_LIKE = {'Linear ACES', 'Linear ACEScg', 'ACEScg', 'ACES2065-1', 'XYZ',
+                'Linear CIE-XYZ E', 'Linear CIE-XYZ D65', 'Linear Rec.2020', 'Linear DCI-P3 D65',
+                'Linear FilmLight E-Gamut'}
 
 
 def image_colorspace(image, reporter, from_pixels=False):
@@ -386,27 +445,37 @@ class MaterialReader:
         d = DEFAULT_MATERIAL
         v = self._socket_value
         t = self._socket_input
+        version = principled_version(node)
+        names = _PRINCIPLED_SOCKETS[version]
         base, base_tex = t(mat, node, "Base Color", d['base_color'])
         metallic, metallic_tex = t(mat, node, "Metallic", d['metallic'])
         roughness, roughness_tex = t(mat, node, "Roughness", d['roughness'])
-        emission, emission_tex = t(mat, node, "Emission", d['emission'])
+        emission, emission_tex = t(mat, node, names['emission'], d['emission'])
+        specular = _finite_or(v(mat, node, names['specular'], d['specular']), d['specular'])
+        if version == 'v2':
+            ior = _finite_or(v(mat, node, "IOR", 1.5), 1.5)
+            specular = specular_from_ior_level(specular, ior if ior > 0.0 else 1.5)
+            specular_tint = 0.0            # a colour in v2: white (neutral) or reported below
+        else:
+            specular_tint = _clamp(_finite_or(v(mat, node, names['specular_tint'], 0.0), 0.0),
+                                   0.0, 1.0)
         out = dict(
             base_color=_color3(base, d['base_color']),
             metallic=_clamp(_finite_or(metallic, d['metallic']), 0.0, 1.0),
             roughness=_clamp(_finite_or(roughness, d['roughness']), 0.0, 1.0),
-            specular=max(0.0, _finite_or(v(mat, node, "Specular", d['specular']), d['specular'])),
+            specular=max(0.0, specular),
             emission=_color3(emission, d['emission']),
             emission_strength=_finite_or(v(mat, node, "Emission Strength", 1.0), 0.0),
-            specular_tint=_clamp(_finite_or(v(mat, node, "Specular Tint", 0.0), 0.0), 0.0, 1.0),
+            specular_tint=specular_tint,
             base_color_texture=base_tex, metallic_texture=metallic_tex,
             roughness_texture=roughness_tex, emission_texture=emission_tex,
         )
         ignored = []
-        for name, neutral in _IGNORED_PRINCIPLED_INPUTS:
+        for name, neutral in _IGNORED_PRINCIPLED_INPUTS[version]:
             socket = node.inputs.get(name)
             if socket is None:
                 continue
-            if socket.is_linked or abs(_finite_or(socket.default_value, neutral) - neutral) > 1e-6:
+            if socket.is_linked or not _is_neutral(socket.default_value, neutral):
                 ignored.append(name)
         if ignored:
             self.reporter.warning(
