@@ -2,8 +2,8 @@
 """The interactive viewport without a window (the viewport package driven directly):
 
 * the camera derived from a 3D view's matrices projects like Blender (camera views with every
-  sensor fit, shifts and camera-view zoom/offset, free perspective views; orthographic views
-  approximated within 1 %), and renders the same image as the final-render camera;
+  sensor fit, shifts and camera-view zoom/offset, free perspective views, orthographic views),
+  and renders the same image as the final-render camera;
 * the viewport's image equals the final render of the same view;
 * the progressive render shows a coarse image first, then the full resolution;
 * it restarts when the view, the settings or the scene change, and not otherwise;
@@ -47,11 +47,15 @@ def torrance_pixel(cam, width, height, point):
     py from the bottom), by the projection in docs (Cycles' viewplane)."""
     m = np.asarray(cam["matrix"], dtype=np.float64)
     local = np.linalg.inv(m) @ np.array([*point, 1.0])
-    x, y, z = local[:3] / -local[2]                  # on the plane at unit distance (-Z)
     fit = cam["sensor_fit"]
     horizontal = fit == 'HORIZONTAL' or (fit == 'AUTO' and width > height)
-    sensor = cam["sensor_height"] if fit == 'VERTICAL' else cam["sensor_width"]
-    h = sensor / (2.0 * cam["lens"])
+    if cam.get("type", 'PERSP') == 'ORTHO':          # parallel: the fitted side spans ortho_scale
+        x, y = local[0], local[1]
+        h = 0.5 * cam["ortho_scale"]
+    else:
+        x, y, z = local[:3] / -local[2]              # on the plane at unit distance (-Z)
+        sensor = cam["sensor_height"] if fit == 'VERTICAL' else cam["sensor_width"]
+        h = sensor / (2.0 * cam["lens"])
     x -= 2 * h * cam["shift_x"]
     y -= 2 * h * cam["shift_y"]
     if horizontal:
@@ -146,7 +150,7 @@ def test_camera_derivation(tv, tc, scene):
     print(f"free perspective views: worst projection error {worst:.2e} px")
     check(worst < 2e-2, f"free view projects {worst} px away from Blender's")
 
-    # Orthographic: approximated by a distant perspective camera.
+    # Orthographic (camera view of an orthographic camera): the core's orthographic camera.
     cam.type = 'ORTHO'
     cam.ortho_scale = 6.0
     bpy.context.view_layer.update()
@@ -160,9 +164,10 @@ def test_camera_derivation(tv, tc, scene):
         a = np.array(torrance_pixel(derived, w, h, p))
         bb = np.array(blender_pixel(view_m, window_m, w, h, p))
         worst = max(worst, float(np.abs(a - bb).max()))
-    print(f"orthographic view: worst projection error {worst:.3f} px of {w} "
-          f"({100 * worst / w:.2f} %)")
-    check(worst < 0.01 * w, f"orthographic approximation off by {worst} px")
+    print(f"orthographic view: worst projection error {worst:.2e} px of {w}")
+    check(derived.get("type") == 'ORTHO', f"orthographic view gave a {derived.get('type')} camera")
+    check(abs(derived["ortho_scale"] - 6.0) < 1e-4, f"ortho_scale {derived['ortho_scale']}")
+    check(worst < 2e-3, f"orthographic view projects {worst} px away from Blender's")
     cam.type = 'PERSP'
     bpy.context.view_layer.update()
 
