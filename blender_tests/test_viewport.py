@@ -182,6 +182,38 @@ def test_camera_derivation(tv, tc, scene):
     print(f"derived vs final-render camera, 96x72 image: max difference {diff:.2e}")
     check(diff < 2e-3, f"images differ by {diff}")
 
+    # Depth of field in camera view (perspective and orthographic): the same image as the final
+    # render's camera, focus object included.
+    from types import SimpleNamespace
+    focus = bpy.data.objects.new("FocusEmpty", None)
+    scene.collection.objects.link(focus)
+    focus.location = (1.5, 0.0, 0.8)
+    dof = cam.dof
+    dof.use_dof, dof.focus_object, dof.aperture_fstop = True, focus, 0.1
+    dof.aperture_blades, dof.aperture_ratio = 5, 1.5
+    ctx = SimpleNamespace(space_data=SimpleNamespace(use_local_camera=False, camera=None),
+                          region_data=SimpleNamespace(view_perspective='CAMERA'), scene=scene)
+    for kind in ('PERSP', 'ORTHO'):
+        cam.type = kind
+        bpy.context.view_layer.update()
+        view_m, window_m = camera_matrices(cam_obj, dg, 96, 72)
+        derived = dict(tv.camera_from_matrices(view_m, window_m, 96, 72,
+                                               is_perspective=kind == 'PERSP'),
+                       **tv.camera.view_dof(ctx))
+        img_final = render_core(tc, tc_scene, _final_camera(tc, dg), 96, 72, samples=8)
+        img_view = render_core(tc, tc_scene, derived, 96, 72, samples=8)
+        pinhole = render_core(tc, tc_scene, tv.camera_from_matrices(
+            view_m, window_m, 96, 72, is_perspective=kind == 'PERSP'), 96, 72, samples=8)
+        diff = float(np.abs(img_final - img_view).mean())
+        blur = float(np.abs(img_final - pinhole).mean())
+        print(f"camera view with depth of field ({kind}): mean difference {diff:.2e} from the "
+              f"final render's camera (the depth of field itself: {blur:.2e})")
+        check(diff < 0.05 * blur, f"{kind} depth of field differs by {diff} (DOF {blur})")
+    cam.type = 'PERSP'
+    dof.use_dof, dof.focus_object = False, None
+    bpy.data.objects.remove(focus)
+    bpy.context.view_layer.update()
+
 
 def _final_camera(tc, depsgraph):
     """The set_camera keywords export.export_camera uses, captured from a stand-in scene."""
@@ -419,7 +451,11 @@ def test_messages(addon, scene):
     check(ui.material_messages(bpy.data.materials["Grey"]) == [], "a plain material has none")
     cam = scene.camera.data
     cam.dof.use_dof = True
-    check(any("Depth of field" in t for _l, t in ui.camera_messages(cam)), "DOF reported")
+    cam.type = 'ORTHO'
+    check(ui.camera_messages(cam) == [], "orthographic and depth of field are supported")
+    cam.type = 'PANO'
+    check(any("Pano" in t for _l, t in ui.camera_messages(cam)), "a panoramic camera reported")
+    cam.type = 'PERSP'
     cam.dof.use_dof = False
     scene.render.use_motion_blur = True
     check(any("Motion blur" in t for _l, t in ui.scene_messages(scene)), "motion blur reported")

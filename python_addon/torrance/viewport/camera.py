@@ -151,6 +151,31 @@ def view_clip(context):
         return None
 
 
+def view_dof(context):
+    """The depth of field of the camera view (set_camera keywords: aperture_radius,
+    focus_distance, blades, rotation, ratio), as the final render's; None in a user view or
+    without depth of field. The radius is the camera's own (from its lens, not the view's zoom);
+    the focus distance is measured along the view axis, so it holds for the derived camera too
+    (an orthographic one starts at clip_start, where Cycles measures its focus from)."""
+    space = getattr(context, "space_data", None)
+    rv3d = context.region_data
+    try:
+        if rv3d.view_perspective != 'CAMERA':
+            return None
+        obj = space.camera if (space.use_local_camera and space.camera) else \
+            context.scene.camera
+        if obj is None or obj.type != 'CAMERA' or not obj.data.dof.use_dof:
+            return None
+    except AttributeError:
+        return None
+    from ..export.camera import camera_arguments
+    args, kind = camera_arguments(obj)
+    fstop = args["fstop"]
+    radius = 1.0 / (2.0 * fstop) if kind == 'ORTHO' else args["lens"] * 1e-3 / (2.0 * fstop)
+    return dict(aperture_radius=float(radius), focus_distance=args["focus_distance"],
+                blades=args["blades"], rotation=args["rotation"], ratio=args["ratio"])
+
+
 def region_view(context, pixel_size=1):
     """The View of the 3D view being drawn (context.region / region_data)."""
     region = context.region
@@ -162,6 +187,9 @@ def region_view(context, pixel_size=1):
     view = View.from_matrices(rv3d.view_matrix, rv3d.window_matrix, width, height,
                               perspective, float(rv3d.view_distance),
                               view_clip(context) if perspective else None)
+    dof = view_dof(context)
+    if dof is not None:
+        view = View(width, height, dict(view.camera, **dof))
     border = region_border(context)
     if border is not None:
         sx, sy = width / float(region.width), height / float(region.height)
