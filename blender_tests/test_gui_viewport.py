@@ -258,7 +258,7 @@ def _driver(result_path, shots_dir):
         space.use_render_border = False
         yield 0.3
 
-        # -- Orthographic user view (approximated by a distant perspective camera)
+        # -- Orthographic user view (the core's orthographic camera)
         rv3d.view_perspective = 'ORTHO'
         yield 0.3
         yield from wait_samples(2, 60)
@@ -294,13 +294,16 @@ def _driver(result_path, shots_dir):
         sub = (slice(region.y, region.y + region.height), slice(region.x, region.x + region.width))
         # Cycles has no stats to poll: it has finished its 16 samples when its image stops
         # changing (two screenshots 2 s apart alike) after it has shown one (the viewport is a
-        # flat grey while Cycles loads; std over the region < 5), however loaded the machine is.
+        # flat grey while Cycles loads; std over the region's middle < 5: the whole region's
+        # std counts the camera frame's passepartout), however loaded the machine is.
+        mid = (slice(region.y + region.height // 4, region.y + 3 * region.height // 4),
+               slice(region.x + region.width // 4, region.x + 3 * region.width // 4))
         cycles_px, end = None, time.perf_counter() + 180.0
         while time.perf_counter() < end:
             yield 2.0
             previous, cycles_px = cycles_px, screenshot("4c_studio_cycles")
             if previous is not None and np.array_equal(previous[sub], cycles_px[sub]) \
-                    and cycles_px[sub].std() > 5.0:
+                    and cycles_px[mid].std() > 5.0:
                 break
         scene.render.engine = 'TORRANCE'
         # 8x8 block means: the two renders' noise (16 samples each) averages out.

@@ -2,8 +2,8 @@
 """The interactive viewport without a window (the viewport package driven directly):
 
 * the camera derived from a 3D view's matrices projects like Blender (camera views with every
-  sensor fit, shifts and camera-view zoom/offset, free perspective views; orthographic views
-  approximated within 1 %), and renders the same image as the final-render camera;
+  sensor fit, shifts and camera-view zoom/offset, free perspective views, orthographic views),
+  and renders the same image as the final-render camera;
 * the viewport's image equals the final render of the same view;
 * the progressive render shows a coarse image first, then the full resolution;
 * it restarts when the view, the settings or the scene change, and not otherwise;
@@ -47,11 +47,15 @@ def torrance_pixel(cam, width, height, point):
     py from the bottom), by the projection in docs (Cycles' viewplane)."""
     m = np.asarray(cam["matrix"], dtype=np.float64)
     local = np.linalg.inv(m) @ np.array([*point, 1.0])
-    x, y, z = local[:3] / -local[2]                  # on the plane at unit distance (-Z)
     fit = cam["sensor_fit"]
     horizontal = fit == 'HORIZONTAL' or (fit == 'AUTO' and width > height)
-    sensor = cam["sensor_height"] if fit == 'VERTICAL' else cam["sensor_width"]
-    h = sensor / (2.0 * cam["lens"])
+    if cam.get("type", 'PERSP') == 'ORTHO':          # parallel: the fitted side spans ortho_scale
+        x, y = local[0], local[1]
+        h = 0.5 * cam["ortho_scale"]
+    else:
+        x, y, z = local[:3] / -local[2]              # on the plane at unit distance (-Z)
+        sensor = cam["sensor_height"] if fit == 'VERTICAL' else cam["sensor_width"]
+        h = sensor / (2.0 * cam["lens"])
     x -= 2 * h * cam["shift_x"]
     y -= 2 * h * cam["shift_y"]
     if horizontal:
@@ -146,7 +150,7 @@ def test_camera_derivation(tv, tc, scene):
     print(f"free perspective views: worst projection error {worst:.2e} px")
     check(worst < 2e-2, f"free view projects {worst} px away from Blender's")
 
-    # Orthographic: approximated by a distant perspective camera.
+    # Orthographic (camera view of an orthographic camera): the core's orthographic camera.
     cam.type = 'ORTHO'
     cam.ortho_scale = 6.0
     bpy.context.view_layer.update()
@@ -160,9 +164,10 @@ def test_camera_derivation(tv, tc, scene):
         a = np.array(torrance_pixel(derived, w, h, p))
         bb = np.array(blender_pixel(view_m, window_m, w, h, p))
         worst = max(worst, float(np.abs(a - bb).max()))
-    print(f"orthographic view: worst projection error {worst:.3f} px of {w} "
-          f"({100 * worst / w:.2f} %)")
-    check(worst < 0.01 * w, f"orthographic approximation off by {worst} px")
+    print(f"orthographic view: worst projection error {worst:.2e} px of {w}")
+    check(derived.get("type") == 'ORTHO', f"orthographic view gave a {derived.get('type')} camera")
+    check(abs(derived["ortho_scale"] - 6.0) < 1e-4, f"ortho_scale {derived['ortho_scale']}")
+    check(worst < 2e-3, f"orthographic view projects {worst} px away from Blender's")
     cam.type = 'PERSP'
     bpy.context.view_layer.update()
 
@@ -176,6 +181,38 @@ def test_camera_derivation(tv, tc, scene):
     diff = float(np.abs(img_final - img_view).max())
     print(f"derived vs final-render camera, 96x72 image: max difference {diff:.2e}")
     check(diff < 2e-3, f"images differ by {diff}")
+
+    # Depth of field in camera view (perspective and orthographic): the same image as the final
+    # render's camera, focus object included.
+    from types import SimpleNamespace
+    focus = bpy.data.objects.new("FocusEmpty", None)
+    scene.collection.objects.link(focus)
+    focus.location = (1.5, 0.0, 0.8)
+    dof = cam.dof
+    dof.use_dof, dof.focus_object, dof.aperture_fstop = True, focus, 0.1
+    dof.aperture_blades, dof.aperture_ratio = 5, 1.5
+    ctx = SimpleNamespace(space_data=SimpleNamespace(use_local_camera=False, camera=None),
+                          region_data=SimpleNamespace(view_perspective='CAMERA'), scene=scene)
+    for kind in ('PERSP', 'ORTHO'):
+        cam.type = kind
+        bpy.context.view_layer.update()
+        view_m, window_m = camera_matrices(cam_obj, dg, 96, 72)
+        derived = dict(tv.camera_from_matrices(view_m, window_m, 96, 72,
+                                               is_perspective=kind == 'PERSP'),
+                       **tv.camera.view_dof(ctx))
+        img_final = render_core(tc, tc_scene, _final_camera(tc, dg), 96, 72, samples=8)
+        img_view = render_core(tc, tc_scene, derived, 96, 72, samples=8)
+        pinhole = render_core(tc, tc_scene, tv.camera_from_matrices(
+            view_m, window_m, 96, 72, is_perspective=kind == 'PERSP'), 96, 72, samples=8)
+        diff = float(np.abs(img_final - img_view).mean())
+        blur = float(np.abs(img_final - pinhole).mean())
+        print(f"camera view with depth of field ({kind}): mean difference {diff:.2e} from the "
+              f"final render's camera (the depth of field itself: {blur:.2e})")
+        check(diff < 0.05 * blur, f"{kind} depth of field differs by {diff} (DOF {blur})")
+    cam.type = 'PERSP'
+    dof.use_dof, dof.focus_object = False, None
+    bpy.data.objects.remove(focus)
+    bpy.context.view_layer.update()
 
 
 def _final_camera(tc, depsgraph):
@@ -415,7 +452,11 @@ def test_messages(addon, scene):
     check(ui.material_messages(bpy.data.materials["Grey"]) == [], "a plain material has none")
     cam = scene.camera.data
     cam.dof.use_dof = True
-    check(any("Depth of field" in t for _l, t in ui.camera_messages(cam)), "DOF reported")
+    cam.type = 'ORTHO'
+    check(ui.camera_messages(cam) == [], "orthographic and depth of field are supported")
+    cam.type = 'PANO'
+    check(any("Pano" in t for _l, t in ui.camera_messages(cam)), "a panoramic camera reported")
+    cam.type = 'PERSP'
     cam.dof.use_dof = False
     scene.render.use_motion_blur = True
     check(any("Motion blur" in t for _l, t in ui.scene_messages(scene)), "motion blur reported")

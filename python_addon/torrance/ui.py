@@ -136,11 +136,9 @@ def light_messages(light):
 
 def camera_messages(cam):
     messages = []
-    if cam.type != 'PERSP':
+    if cam.type not in ('PERSP', 'ORTHO'):
         messages.append(('WARNING', f"{cam.type.title()} cameras are not supported: "
                                     f"rendered as a perspective camera of the same lens"))
-    if cam.dof.use_dof:
-        messages.append(('INFO', "Depth of field is ignored"))
     return messages
 
 
@@ -331,7 +329,7 @@ class TORRANCE_RENDER_PT_compatibility(TorrancePanel, Panel):
         col.label(text="Not rendered by Torrance:")
         for text in ("Volumes, subsurface, transmission, sheen, clearcoat",
                      "Shader nodes other than Principled / Diffuse / Emission",
-                     "Motion blur, depth of field, panoramic cameras"):
+                     "Motion blur, panoramic cameras"):
             col.label(text=text, icon='DOT')
 
 

@@ -1,16 +1,52 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The render camera."""
+"""The render camera: perspective and orthographic, with depth of field (Cycles 3.4's
+blender_camera sync)."""
 
 import numpy as np
 
 
-def export_camera(tc_scene, cam_obj, reporter, engine=None):
+def focus_distance(cam_obj):
+    """The focus distance of a camera, as Cycles' blender_camera_focal_distance: with a focus
+    object, the distance along the camera's view axis (its normalised local Z) between the
+    camera's and the object's world positions; else dof.focus_distance."""
+    dof = cam_obj.data.dof
+    target = dof.focus_object
+    if target is None:
+        return float(dof.focus_distance)
+    m = np.array(cam_obj.matrix_world, dtype=np.float64).reshape(4, 4)
+    t = np.array(target.matrix_world, dtype=np.float64).reshape(4, 4)
+    axis = m[:3, 2]
+    n = np.linalg.norm(axis)
+    if not n > 0.0:
+        return float(dof.focus_distance)
+    return float(abs(np.dot(axis / n, m[:3, 3] - t[:3, 3])))
+
+
+def camera_arguments(cam_obj):
+    """The keyword arguments of tc.Scene.set_camera for a camera object, except the matrix;
+    None for the type when Torrance can't render it (PANO: rendered as perspective)."""
     cam = cam_obj.data
-    if cam.type != 'PERSP':
-        reporter.warning(f"Camera '{cam_obj.name}': Torrance supports only perspective cameras; "
-                         f"rendering with a perspective camera of the same lens")
-    if cam.dof.use_dof:
-        reporter.info(f"Camera '{cam_obj.name}': depth of field is ignored by Torrance")
+    kind = cam.type if cam.type in ('PERSP', 'ORTHO') else None
+    args = dict(lens=float(cam.lens), sensor_width=float(cam.sensor_width),
+                sensor_height=float(cam.sensor_height), sensor_fit=cam.sensor_fit,
+                shift_x=float(cam.shift_x), shift_y=float(cam.shift_y),
+                clip_start=float(cam.clip_start), clip_end=float(cam.clip_end),
+                type=kind or 'PERSP', ortho_scale=float(cam.ortho_scale))
+    dof = cam.dof
+    if dof.use_dof:
+        fstop = max(float(dof.aperture_fstop), 1e-5)   # Cycles clamps too
+        args.update(fstop=fstop, focus_distance=max(focus_distance(cam_obj), 1e-5),
+                    blades=int(dof.aperture_blades), rotation=float(dof.aperture_rotation),
+                    ratio=float(dof.aperture_ratio))
+    return args, kind
+
+
+def export_camera(tc_scene, cam_obj, reporter, engine=None):
+    args, kind = camera_arguments(cam_obj)
+    if kind is None:
+        reporter.warning(f"Camera '{cam_obj.name}': Torrance supports only perspective and "
+                         f"orthographic cameras; rendering with a perspective camera of the "
+                         f"same lens")
     matrix = None
     if engine is not None:
         try:
@@ -20,7 +56,4 @@ def export_camera(tc_scene, cam_obj, reporter, engine=None):
     if matrix is None:
         matrix = cam_obj.matrix_world
     m = np.array(matrix, dtype=np.float64).reshape(4, 4)
-    tc_scene.set_camera(matrix=m, lens=float(cam.lens), sensor_width=float(cam.sensor_width),
-                        sensor_height=float(cam.sensor_height), sensor_fit=cam.sensor_fit,
-                        shift_x=float(cam.shift_x), shift_y=float(cam.shift_y),
-                        clip_start=float(cam.clip_start), clip_end=float(cam.clip_end))
+    tc_scene.set_camera(matrix=m, **args)

@@ -5,7 +5,6 @@ import math
 
 import numpy as np
 
-ORTHO_DISTANCE_FACTOR = 100.0   # orthographic views: a distant perspective camera (see below)
 SENSOR = 36.0                   # the sensor size used for derived cameras, in mm
 
 
@@ -24,9 +23,14 @@ def camera_from_matrices(view_matrix, window_matrix, width, height, is_perspecti
     P02/P00 (P12/P11). The fitted side gets a 36 mm sensor; the centre offset becomes the
     shift, in units of the fitted side (Cycles' convention).
 
-    Orthographic views have no exact perspective equivalent: they are approximated by a
-    camera ORTHO_DISTANCE_FACTOR times the view's half width behind the view (objects a
-    half width nearer or farther are off by 1 % in size).
+    Orthographic views (user views and the camera view of an orthographic camera) use the
+    core's orthographic camera: the projection maps x to P00 x + P03, so the view is 2/P00
+    (2/P11) wide and its centre is off by -P03/P00 (-P13/P11); ortho_scale is the fitted
+    side (Cycles: view_distance * sensor / lens for a user view, which is what Blender's
+    window matrix holds). Blender's orthographic user views clip from -clip_end/2 (behind
+    the view point); the core clips from >= 0, so the camera moves back along its axis to
+    the near plane, which changes nothing else in a parallel projection. view_distance is
+    not needed (kept for the callers).
 
     clip: (start, end) of a perspective view, when known exactly (the float32 window matrix
     gives the far plane only to about 0.1 %).
@@ -52,12 +56,22 @@ def camera_from_matrices(view_matrix, window_matrix, width, height, is_perspecti
         off_x, off_y = -p[0, 3] / p[0, 0], -p[1, 3] / p[1, 1]
         near = (p[2, 3] + 1.0) / p[2, 2]
         far = (p[2, 3] - 1.0) / p[2, 2]
-        back = ORTHO_DISTANCE_FACTOR * max(half_x, half_y)
-        focus = back + max(0.0, float(view_distance))   # the view's centre is sized exactly
-        cam[:3, 3] += cam[:3, 2] * back
-        tan_x, tan_y = half_x / focus, half_y / focus
-        centre_x, centre_y = off_x / focus, off_y / focus
-        near, far = max(back + near, 1e-3 * back), back + far
+        cam[:3, 3] += cam[:3, 2] * (-near)      # the camera's local +Z points backwards
+        far = far - near
+        half = half_x if horizontal else half_y
+        return dict(
+            matrix=cam,
+            lens=50.0,
+            sensor_width=SENSOR,
+            sensor_height=SENSOR,
+            sensor_fit='HORIZONTAL' if horizontal else 'VERTICAL',
+            shift_x=float(off_x / (2.0 * half)),
+            shift_y=float(off_y / (2.0 * half)),
+            clip_start=0.0,
+            clip_end=max(float(far), 1e-6),
+            type='ORTHO',
+            ortho_scale=float(2.0 * half),
+        )
     half = tan_x if horizontal else tan_y
     near = max(float(near), 1e-6)
     far = max(float(far), near * (1.0 + 1e-6) + 1e-6)
@@ -95,7 +109,8 @@ class View:
         m = camera["matrix"]
         self.key = (self.width, self.height, tuple(np.round(m, 9).ravel().tolist()),
                     tuple((k, round(float(x), 9)) for k, x in sorted(camera.items())
-                          if k not in ("matrix", "sensor_fit")), camera["sensor_fit"], window)
+                          if k not in ("matrix", "sensor_fit", "type")), camera["sensor_fit"],
+                    camera.get("type", 'PERSP'), window)
 
     @property
     def empty(self):
@@ -136,6 +151,31 @@ def view_clip(context):
         return None
 
 
+def view_dof(context):
+    """The depth of field of the camera view (set_camera keywords: aperture_radius,
+    focus_distance, blades, rotation, ratio), as the final render's; None in a user view or
+    without depth of field. The radius is the camera's own (from its lens, not the view's zoom);
+    the focus distance is measured along the view axis, so it holds for the derived camera too
+    (an orthographic one starts at clip_start, where Cycles measures its focus from)."""
+    space = getattr(context, "space_data", None)
+    rv3d = context.region_data
+    try:
+        if rv3d.view_perspective != 'CAMERA':
+            return None
+        obj = space.camera if (space.use_local_camera and space.camera) else \
+            context.scene.camera
+        if obj is None or obj.type != 'CAMERA' or not obj.data.dof.use_dof:
+            return None
+    except AttributeError:
+        return None
+    from ..export.camera import camera_arguments
+    args, kind = camera_arguments(obj)
+    fstop = args["fstop"]
+    radius = 1.0 / (2.0 * fstop) if kind == 'ORTHO' else args["lens"] * 1e-3 / (2.0 * fstop)
+    return dict(aperture_radius=float(radius), focus_distance=args["focus_distance"],
+                blades=args["blades"], rotation=args["rotation"], ratio=args["ratio"])
+
+
 def region_view(context, pixel_size=1):
     """The View of the 3D view being drawn (context.region / region_data)."""
     region = context.region
@@ -147,6 +187,9 @@ def region_view(context, pixel_size=1):
     view = View.from_matrices(rv3d.view_matrix, rv3d.window_matrix, width, height,
                               perspective, float(rv3d.view_distance),
                               view_clip(context) if perspective else None)
+    dof = view_dof(context)
+    if dof is not None:
+        view = View(width, height, dict(view.camera, **dof))
     border = region_border(context)
     if border is not None:
         sx, sy = width / float(region.width), height / float(region.height)
