@@ -7,7 +7,7 @@ The ground, stone, sun, sky, camera and render settings of scenes/make_grass_sto
 default scene, ~12 000 blades in one mesh, stays what the experiments render), but instead of the
 blade mesh a lawn: "Lawn", a patch of the ground covering the camera's view from 0.3 m to 30 m
 ahead (about 520 m^2), carries a geometry-nodes modifier that scatters points at --density
-blades per m^2 (default 1000: about half a million blades; a real lawn has more) and instances
+blades per m^2 (default 1000: 606 960 blades; a real lawn has more) and instances
 on each one of the blade variants of the collection "Blade Variants" (four bent blades of 6
 triangles, 9 to 26 cm tall, material "Grass"), picked at random, with a random turn about the
 vertical, a small random tilt and a random scale. Renderers get one prototype per variant and a
