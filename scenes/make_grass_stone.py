@@ -44,8 +44,8 @@ def make_ground(scene, grass):
     return make.mesh_object(scene, "Ground", verts, tris, material=grass, smooth=True)
 
 
-def make_blades(scene, grass, rng):
-    """Blades in the camera's view, from 0.5 m to 28 m ahead of it."""
+def blade_arrays(rng):
+    """Blades in the camera's view, from 0.5 m to 28 m ahead of it: verts (n*5, 3), triangles."""
     near, far, knee = 0.5, 28.0, 3.0
     cam_x, cam_y = CAMERA[0], CAMERA[1]
     half_width = lambda d: 0.62 * d + 0.4          # noqa: E731  (wider than the view: shadows)
@@ -79,7 +79,7 @@ def make_blades(scene, grass, rng):
                       mid - 0.32 * w * t, mid + 0.32 * w * t, tip], 1)   # (n, 5, 3)
     local = np.array([[0, 1, 3], [0, 3, 2], [2, 3, 4]])
     tris = (np.arange(n)[:, None, None] * 5 + local[None]).reshape(-1, 3)
-    return make.mesh_object(scene, "Grass Blades", verts.reshape(-1, 3), tris, material=grass)
+    return verts.reshape(-1, 3), tris
 
 
 def make_stone(scene, stone, rng):
@@ -98,22 +98,33 @@ def make_stone(scene, stone, rng):
     return ob
 
 
-def main():
-    path = make.out_path("grass_stone.blend")
+def build(name="GrassStone", blades=True):
+    """The scene, saved by main(). blades=False: the same ground, stone, sun, sky and camera
+    without the blade mesh (scenes/make_lawn.py puts instanced blades there instead; the random
+    numbers are drawn all the same, so the stone keeps its shape)."""
     rng = np.random.default_rng(SEED)
     scene = make.empty_scene()
-    scene.name = "GrassStone"
+    scene.name = name
     render_settings.setup_side_by_side(scene, width=320, height=240, samples=64, max_bounces=8)
 
     grass = make.principled("Grass", base_color=(0.06, 0.26, 0.03), metallic=0.0, roughness=0.5)
     stone = make.principled("Stone", base_color=(0.32, 0.31, 0.29), metallic=0.0, roughness=0.7)
     make_ground(scene, grass)
-    make_blades(scene, grass, rng)
+    verts, tris = blade_arrays(rng)
+    if blades:
+        make.mesh_object(scene, "Grass Blades", verts, tris, material=grass)
     make_stone(scene, stone, rng)
     make.sun(scene, elevation_deg=24.0, azimuth_deg=-18.0, strength=4.0, color=(1.0, 0.96, 0.9))
     make.world(scene, (0.30, 0.45, 0.75), strength=0.8, name="Sky")
     make.camera(scene, CAMERA, CAMERA_TARGET, lens=32.0)
+    return scene
+
+
+def main():
+    path = make.out_path("grass_stone.blend")
+    build()
     make.save(path)
 
 
-main()
+if __name__ == "__main__":      # not when scenes/make_lawn.py imports this file
+    main()

@@ -18,6 +18,19 @@ def grid(xs, ys):
     return verts, tris
 
 
+def blade(height=0.2, width=0.01, bend=0.04, segments=5, taper=0.8):
+    """A grass blade along +Z from the origin: a strip of `segments` quads (2 * segments
+    triangles) narrowing by `taper` to the tip and bent towards +Y (tip offset `bend`).
+    Returns verts (2 * (segments + 1), 3) and quads (segments, 4)."""
+    t = np.linspace(0.0, 1.0, segments + 1)
+    w = 0.5 * width * (1.0 - taper * t)
+    y, z = bend * t * t, height * t
+    verts = np.stack([np.stack([-w, y, z], 1), np.stack([w, y, z], 1)], 1).reshape(-1, 3)
+    i = 2 * np.arange(segments)
+    quads = np.stack([i, i + 1, i + 3, i + 2], 1)
+    return verts, quads
+
+
 def icosphere(subdivisions):
     """Unit icosphere: vertices (N,3) on the sphere and triangles (M,3), outward winding."""
     t = (1.0 + 5 ** 0.5) / 2

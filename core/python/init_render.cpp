@@ -147,6 +147,7 @@ void init_render(py::module_& m) {
       .def_readonly("samples_done", &RenderResult::samples_done)
       .def_readonly("stopped", &RenderResult::stopped)
       .def_readonly("seconds", &RenderResult::seconds)
+      .def_readonly("setup_seconds", &RenderResult::setup_seconds)
       .def_readonly("nonfinite_samples", &RenderResult::nonfinite_samples)
       .def_readonly("samples_spent", &RenderResult::samples_spent)
       .def_readonly("time_limit_reached", &RenderResult::time_limit_reached)

@@ -555,6 +555,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
       int done = 0, pass_size = 1;
       bool all_converged = false, out_of_time = false;
       const auto sampling_start = std::chrono::steady_clock::now();
+      result.setup_seconds = std::chrono::duration<double>(sampling_start - start).count();
       while (done < settings.samples && !stop && !all_converged && !out_of_time) {
         const int target = std::min(pass_size, settings.samples - done);
         const auto t0 = std::chrono::steady_clock::now();

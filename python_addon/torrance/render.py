@@ -290,7 +290,8 @@ def _render(engine, depsgraph, reporter):
     if result.stopped:
         msg += " | stopped"
     last_stats.update(samples_done=int(result.samples_done), stopped=bool(result.stopped),
-                      seconds=float(result.seconds), passes=session.passes,
+                      seconds=float(result.seconds), setup_seconds=float(result.setup_seconds),
+                      passes=session.passes,
                       render_passes=list(core_passes), samples_spent=spent,
                       samples_per_pixel=spent / pixels,
                       time_limit_reached=bool(result.time_limit_reached),

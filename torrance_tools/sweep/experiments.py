@@ -4,7 +4,7 @@
 Run through scripts/experiments (which builds first); by hand:
     python3 -m torrance_tools.sweep.experiments [--out DIR] [--final] [--publish]
                  [--no-cycles] [--no-principled] [--brdf-model M] [--size WxH] [--samples N]
-                 [--only ID,...] [--report-only] [--farm slurm]
+                 [--only ID,...] [--lawn] [--report-only] [--farm slurm]
 
 For each experiment it runs torrance_tools/sweep/runner.py in a Blender process on a scene built
 by scenes/make_<scene>.py — with Torrance (its PAPER model: the paper's Cook-Torrance), with
@@ -110,6 +110,10 @@ def parse_args(argv):
                         "offers it: it matches Cycles' Principled BSDF)")
     p.add_argument("--no-cycles", action="store_true", help="Torrance only, no Cycles side-by-side")
     p.add_argument("--only", help="comma-separated experiment ids")
+    p.add_argument("--lawn", action="store_true",
+                   help="the grass sweeps (figures 4-1 ... 4-3) on scenes/make_lawn.py's lawn of "
+                        "~600 000 instanced blades instead of grass_stone's ~12 000 (use "
+                        "another --out: the default figures stay grass_stone's)")
     p.add_argument("--publish", action="store_true",
                    help="also copy the report, sheets and plots to docs/experiments/")
     p.add_argument("--report-only", action="store_true",
@@ -166,6 +170,9 @@ def main(argv=None):
             raise SystemExit(f"experiments: unknown id(s) {unknown}; known: "
                              f"{', '.join(e['id'] for e in EXPERIMENTS)}")
         experiments = [e for e in EXPERIMENTS if e["id"] in wanted]
+    if args.lawn:
+        experiments = [dict(e, scene="lawn", title=e["title"].replace("Grass,", "Lawn,"))
+                       if e["scene"] == "grass_stone" else e for e in experiments]
     runs = runs_on_disk(out) if args.report_only else make_runs(args)
     os.makedirs(os.path.join(out, "logs"), exist_ok=True)
     timings_path = os.path.join(out, "timings.json")

@@ -102,6 +102,7 @@ struct RenderResult {
   int samples_done = 0;
   bool stopped = false;
   double seconds = 0.0;
+  double setup_seconds = 0.0;      // of `seconds`, before the first sample: top-level BVH, lights
   uint64_t nonfinite_samples = 0;  // discarded NaN/Inf path samples (a bug if ever non-zero)
   uint64_t samples_spent = 0;      // camera samples traced over all pixels (adaptive: < pixels * samples)
   Image sample_counts;             // per pixel of the rendered window, 1 channel: samples it received

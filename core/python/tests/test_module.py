@@ -33,6 +33,7 @@ def test_sun_on_lambert_plane_in_blender_units():
     assert result.image[..., 1].mean() == pytest.approx(0.5 * 2.0 / np.pi, rel=0.01)
     assert np.all(result.image[..., 3] == 1.0)
     assert result.nonfinite_samples == 0 and result.samples_done == 4 and not result.stopped
+    assert 0.0 <= result.setup_seconds <= result.seconds
 
 
 def test_mesh_input_errors_are_value_errors_with_messages():

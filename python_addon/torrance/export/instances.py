@@ -33,7 +33,7 @@ class Source:
     def add(self, matrix):
         """Appends a world matrix (a mathutils Matrix, e.g. inst.matrix_world)."""
         # One read of the instance's matrix (copy), not one per row: 2.4 instead of 4.2 us
-        # per instance in the export loop (scripts/bench_instancing.py --profile).
+        # per instance in the export loop (scripts/benchmark_scale_case.py --profile).
         r0, r1, r2, _ = matrix.copy()
         self.extend(r0)
         self.extend(r1)

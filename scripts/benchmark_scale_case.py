@@ -1,74 +1,29 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Issue 11's measurement: a field of grass blades instanced by a hair particle system.
+"""One case of the scale benchmark in this Blender process (run by scripts/benchmark_scale).
 
-A 10 x 10 m plane emits --count hair particles, each rendered as a 10-triangle blade
-(render type Object), under a sun and a sky; 160x120, 1 sample. Measured in this Blender
-process, for one --engine:
+    scripts/blender -b --factory-startup --python scripts/benchmark_scale_case.py -- \\
+        --case blades --count 100000 --engine TORRANCE [--json PATH] [--profile]
+    ... --case mesh --count 10000000 --engine CYCLES     (--count: triangles of the one mesh)
 
-* `render`: wall time of bpy.ops.render.render (depsgraph + export + BVH + the one pass);
-* `peak_rss_mb`: the process' peak resident memory (ru_maxrss) after the render;
-* Torrance only: the export statistics (seconds, depsgraph pass) of torrance.render.
+Scenes and measurement: torrance_tools/scale_bench.py (blades: hair particles rendered as a
+10-triangle blade object; mesh: one displaced grid). Prints `RESULT {json}`: build seconds,
+render seconds (bpy.ops.render.render: depsgraph + export + BVH + the one 160x120 pass), peak RSS,
+and for Torrance the export statistics of torrance.render.last_stats.
 
-With --profile, instead of rendering, the depsgraph.object_instances loop alone is timed with
-increasing Python work per instance (what the export could do), in microseconds per instance.
-
-    scripts/blender -b --factory-startup --python scripts/bench_instancing.py -- \\
-        --count 100000 --engine TORRANCE [--json PATH] [--profile]
-
+With --profile (blades), instead of rendering, the depsgraph.object_instances loop alone is timed
+with increasing Python work per instance (what the export could do), in microseconds per instance.
 Run one engine per process (peak memory is per process).
 """
 
 import argparse
 import array
 import json
-import math
-import resource
 import sys
 import time
 
 import bpy
 
-from torrance_tools import testing
-
-
-def build(count, seed=11):
-    scene = testing.clear_scene()
-    scene.render.resolution_x, scene.render.resolution_y = 160, 120
-    testing.add_camera(scene, location=(0.0, -7.0, 2.0), target=(0.0, 0.0, 0.2), lens=35.0)
-    ground_mat = testing.principled("Ground", (0.25, 0.18, 0.1), roughness=0.8)
-    blade_mat = testing.principled("Blade", (0.1, 0.5, 0.08), roughness=0.5)
-    ground = testing.plane(scene, "Ground", 10.0, material=ground_mat)
-    # The blade: a tapering strip of 5 quads, bent (10 triangles), 1 cm wide, 20 cm tall, +Z.
-    verts, faces = [], []
-    for i in range(6):
-        t = i / 5.0
-        w = 0.005 * (1.0 - 0.8 * t)
-        verts += [(-w, 0.04 * t * t, 0.2 * t), (w, 0.04 * t * t, 0.2 * t)]
-    for i in range(5):
-        faces.append((2 * i, 2 * i + 1, 2 * i + 3, 2 * i + 2))
-    blade = testing.mesh_object(scene, "Blade", verts, faces, blade_mat)
-    blade.location = (0.0, 0.0, -10.0)
-    blade.hide_render = True          # only its instances render
-    mod = ground.modifiers.new("Grass", 'PARTICLE_SYSTEM')
-    psys = mod.particle_system
-    psys.seed = seed
-    ps = psys.settings
-    ps.type = 'HAIR'
-    ps.count = count
-    ps.hair_length = 1.0
-    ps.render_type = 'OBJECT'
-    ps.instance_object = blade
-    ps.particle_size = 1.0
-    ps.size_random = 0.5
-    ps.use_rotations = True
-    ps.rotation_mode = 'NOR'
-    ps.phase_factor_random = 2.0
-    ps.use_advanced_hair = True
-    ps.rotation_factor_random = 0.3
-    ps.display_percentage = 1
-    testing.add_sun(scene, strength=3.0, rotation=(math.radians(50), 0, math.radians(30)))
-    testing.set_world(scene, (0.3, 0.4, 0.6))
-    return scene
+from torrance_tools import scale_bench
 
 
 def profile(scene):
@@ -190,39 +145,30 @@ def profile(scene):
 
 def main():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--count", type=int, default=100000)
+    ap = argparse.ArgumentParser(prog="benchmark_scale_case.py")
+    ap.add_argument("--case", choices=["blades", "mesh"], default="blades")
+    ap.add_argument("--count", type=int, default=100000,
+                    help="blades (--case blades) or triangles (--case mesh)")
     ap.add_argument("--engine", default="TORRANCE")
     ap.add_argument("--json")
     ap.add_argument("--profile", action="store_true")
     args = ap.parse_args(argv)
     t0 = time.perf_counter()
-    scene = build(args.count)
+    if args.case == "blades":
+        scene = scale_bench.build_blades(args.count)
+    else:
+        scene = scale_bench.build_mesh(args.count)
     bpy.context.view_layer.update()
-    result = dict(count=args.count, engine=args.engine, build_seconds=time.perf_counter() - t0)
+    result = dict(case=args.case, count=args.count, engine=args.engine,
+                  build_seconds=time.perf_counter() - t0)
     if args.profile:
         for ps in bpy.data.particles:
             ps.display_percentage = 100      # the viewport depsgraph then has them all
         bpy.context.view_layer.update()
         result["profile_us"] = profile(scene)
+        result["peak_rss_mb"] = scale_bench.peak_rss_mb()
     else:
-        if args.engine == 'CYCLES':
-            testing.setup_render(scene, engine='CYCLES', width=160, height=120, samples=1)
-            scene.cycles.samples = 1
-            scene.cycles.device = 'CPU'
-            scene.cycles.use_denoising = False
-        else:
-            testing.setup_render(scene, engine='TORRANCE', width=160, height=120, samples=1)
-        rss0 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
-        t1 = time.perf_counter()
-        bpy.ops.render.render(write_still=False)
-        result["render_seconds"] = time.perf_counter() - t1
-        result["peak_rss_before_mb"] = rss0
-        if args.engine == 'TORRANCE':
-            from torrance import render as trender
-            result["export"] = {k: v for k, v in trender.last_stats.items()
-                                if isinstance(v, (int, float))}
-    result["peak_rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+        result.update(scale_bench.measure(scene, args.engine))
     print("RESULT " + json.dumps(result), flush=True)
     if args.json:
         with open(args.json, "w") as f:
