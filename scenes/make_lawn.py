@@ -23,11 +23,11 @@ import sys
 import bpy
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import make_grass_stone as gs  # noqa: E402
+from torrance_tools import geometry
+from torrance_tools import scene as make
+from torrance_tools.comparison_scenes import scene_script
 
-from torrance_tools import geometry  # noqa: E402
-from torrance_tools import scene as make  # noqa: E402
+gs = scene_script("make_grass_stone")
 
 NEAR, FAR = 0.3, 30.0
 # (height m, width m, bend m): the blade variants

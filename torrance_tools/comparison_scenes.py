@@ -36,11 +36,9 @@ SCENES = ("sphere_chart", "grass_stone", "water", "suzanne", "mirror", "interior
 WIDTH, HEIGHT = 128, 96
 
 
-def module(name):
-    """The scene module scenes/cmp_<name>.py (loaded once)."""
-    if name not in SCENES:
-        raise KeyError(f"unknown comparison scene {name!r}; known: {', '.join(SCENES)}")
-    module_name = f"cmp_{name}"
+def scene_script(module_name):
+    """The scene script scenes/<module_name>.py as a module (loaded once, by its path: scenes/
+    is not a package)."""
     if module_name not in sys.modules:
         path = os.path.join(REPO, "scenes", module_name + ".py")
         spec = importlib.util.spec_from_file_location(module_name, path)
@@ -48,6 +46,13 @@ def module(name):
         sys.modules[module_name] = mod
         spec.loader.exec_module(mod)
     return sys.modules[module_name]
+
+
+def module(name):
+    """The scene module scenes/cmp_<name>.py (loaded once)."""
+    if name not in SCENES:
+        raise KeyError(f"unknown comparison scene {name!r}; known: {', '.join(SCENES)}")
+    return scene_script(f"cmp_{name}")
 
 
 def scene_digest(scene):
