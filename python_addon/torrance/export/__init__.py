@@ -10,8 +10,8 @@ lights.py, world.py, camera.py.
 
 from .camera import export_camera
 from .lights import SUPPORTED_LIGHTS, export_light, light_node_factor
-from .mesh import (MAX_COORDINATE, LocalMesh, MeshCache, export_mesh, prototype_arrays,
-                   read_local_mesh, world_mesh, world_uvs)
+from .mesh import (MAX_COORDINATE, LocalMesh, MeshCache, export_mesh, mesh_materials,
+                   prototype_arrays, read_local_mesh, world_mesh, world_uvs)
 from .scene import (MESH_TYPES, SKIPPED_TYPES, Cancelled, ExportStats, export_scene,
                     instance_role, report_unsupported)
 from .world import export_world, world_background
@@ -19,6 +19,7 @@ from .world import export_world, world_background
 __all__ = [
     "MAX_COORDINATE", "MESH_TYPES", "SKIPPED_TYPES", "SUPPORTED_LIGHTS", "Cancelled",
     "ExportStats", "LocalMesh", "MeshCache", "export_camera", "export_light", "export_mesh",
-    "export_scene", "export_world", "instance_role", "light_node_factor", "prototype_arrays",
+    "export_scene", "export_world", "instance_role", "light_node_factor", "mesh_materials",
+    "prototype_arrays",
     "read_local_mesh", "report_unsupported", "world_background", "world_mesh", "world_uvs",
 ]
