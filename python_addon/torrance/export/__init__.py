@@ -3,8 +3,9 @@
 
 scene.py: export_scene (the final render: two phases; instances as prototypes + transforms,
 other objects as world-space meshes); instances.py: prototypes and instance groups; mesh.py:
-reading evaluated meshes into numpy arrays, and the flattened world-space path (world_mesh;
-MeshCache and export_mesh, which the viewport uses for objects and instances alike);
+reading evaluated meshes into numpy arrays (MeshCache: the viewport keeps them across edits;
+prototype_arrays: a mesh as a prototype, the viewport's objects and instances alike), and the
+flattened world-space path (world_mesh, export_mesh);
 lights.py, world.py, camera.py.
 """
 
