@@ -199,6 +199,7 @@ def _driver(result_path, shots_dir):
               f"builds {builds} -> {st.get('scene_builds')}")
 
         # -- Material edit while refining: the sphere turns green, no mesh is re-read
+        updates = stats.get("scene_updates")
         mat = bpy.data.materials["Red"]
         base_color = mat.node_tree.nodes["Principled BSDF"].inputs["Base Color"]
         base_color.default_value = (0.02, 0.6, 0.02, 1)
@@ -210,10 +211,11 @@ def _driver(result_path, shots_dir):
         results["green_sphere"] = green
         check("material edit shows", green[1] > 70 and green[1] > 2.0 * green[0],
               f"sphere pixel {green}")
-        check("material edit rebuilt the scene without reading meshes",
-              st.get("scene_builds", 0) > builds and st.get("build_meshes_read") == 0,
-              f"builds {builds} -> {st.get('scene_builds')}, "
-              f"meshes read {st.get('build_meshes_read')}")
+        check("material edit updated the scene in place without reading meshes",
+              st.get("scene_builds") == builds and st.get("scene_updates", 0) > updates
+              and st.get("build_meshes_read") == 0,
+              f"builds {builds} -> {st.get('scene_builds')}, updates {updates} -> "
+              f"{st.get('scene_updates')}, meshes read {st.get('build_meshes_read')}")
 
         # -- Moving the object: transform only, no mesh read, the scene updated in place
         builds, updates = st.get("scene_builds"), st.get("scene_updates")

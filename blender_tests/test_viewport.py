@@ -8,8 +8,8 @@
 * the progressive render shows a coarse image first, then the full resolution;
 * it restarts when the view, the settings or the scene change, and not otherwise;
   moving an object or editing a material re-reads no mesh, editing a mesh re-reads that one;
-  moving, adding, hiding or deleting an object updates the live tc.Scene in place (instance
-  transforms; no new scene), and its image equals that of a scene built afresh;
+  moving, adding, hiding or deleting an object and editing a material update the live tc.Scene
+  in place (no new scene), and its image equals that of a scene built afresh;
 * the viewport's studio HDRI (Scene World off) lights the scene;
 * the preview policy; the panels' messages.
 """
@@ -339,8 +339,11 @@ def test_restarts_and_cache(tv, tc, scene):
         same_as_fresh(state, view2, changed, "after a move")
         node = bpy.data.materials["Red"].node_tree.nodes["Principled BSDF"]
         rebuilt, reads = edit("material colour", lambda: node.inputs["Base Color"].default_value
-                              .__setitem__(slice(0, 3), (0.1, 0.7, 0.1)), 'build')
+                              .__setitem__(slice(0, 3), (0.1, 0.7, 0.1)), 'update')
         check(rebuilt and reads == 0, "a material edit re-reads no mesh")
+        check(state.cache.last_build["added"] == 1 and state.cache.last_build["removed"] == 1,
+              "a material edit gives the sphere's instance a new material table")
+        same_as_fresh(state, view2, changed, "after a material edit")
 
         def move_vertex():
             sphere.data.vertices[0].co.z += 0.05

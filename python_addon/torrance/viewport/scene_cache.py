@@ -5,10 +5,11 @@ Every mesh object and depsgraph instance is an instance of a prototype (its mesh
 space, read from Blender only when its geometry changed: export.MeshCache). An edit that only
 moves, adds, hides or deletes objects (or instances) changes the live scene in place, after
 stopping its render: set_instance_transforms / add_prototype + add_instances / remove_instances,
-so only the top-level BVH is rebuilt at the next render. Anything else (a mesh, material,
-light or world edit, a light moved, an object's material slots, the view's shading options)
-builds a new tc.Scene from the cached meshes, as before: the core can neither change a
-prototype's mesh nor remove a light or a material."""
+so only the top-level BVH is rebuilt at the next render. A material edit is in place too: the
+material is read again (a new material id) and the instances showing it are added again with
+a table naming it (same prototypes). Anything else (a mesh, light or world edit, a light
+moved, an object's material slots, the view's shading options) builds a new tc.Scene from the
+cached meshes, as before: the core can neither change a prototype's mesh nor remove a light."""
 
 import math
 import time
@@ -76,6 +77,8 @@ class SceneCache:
         self.prototypes = {}      # (cache kind, mesh key, uvs) -> (pid, triangles) or None
         self.entries = {}         # entry id -> _Entry (every mesh object / instance shown)
         self.lights_fp = None     # fingerprint of the lights (and unsupported objects)
+        self.changed_materials = set()   # names of the materials the last update changed
+        self.stale_materials = 0  # materials of the live scene replaced by edited ones
         self.proto_arrays = {}    # (cache kind, mesh key, uvs) -> (LocalMesh, Prototype)
         self.n_lights = 0
 
@@ -89,7 +92,8 @@ class SceneCache:
         relevant = False
         needs_full = False
         geometry_changed = False
-        changed_objects = set()       # objects whose geometry or shading changed
+        changed_objects = set()       # objects whose geometry changed
+        self.changed_materials = set()
         changed_data = set()          # meshes (and other geometry data) that changed
         for update in depsgraph.updates:
             id_ = update.id
@@ -98,7 +102,7 @@ class SceneCache:
                     geometry_changed = True
                     name = id_.name
                     self.meshes.drop(lambda key, name=name: key[0] == name)
-                if update.is_updated_geometry or update.is_updated_shading:
+                if update.is_updated_geometry:
                     changed_objects.add(id_.name)
                 if update.is_updated_geometry or update.is_updated_transform \
                         or update.is_updated_shading:
@@ -119,7 +123,12 @@ class SceneCache:
                     relevant = True
                     # A collection's change is which objects (instances) are shown and
                     # where: the fingerprint compares those, entry by entry.
-                    if not geometry and not isinstance(id_, bpy.types.Collection):
+                    if isinstance(id_, bpy.types.Material):
+                        # Re-read and given to its objects' instances anew, in place.
+                        self.changed_materials.add(id_.name)
+                    elif isinstance(id_, bpy.types.NodeTree) and id_.is_embedded_data:
+                        pass    # a material's, world's or light's nodes: that ID comes too
+                    elif not geometry and not isinstance(id_, bpy.types.Collection):
                         needs_full = True
                 if geometry or (update.is_updated_geometry
                                 and not isinstance(id_, bpy.types.Collection)):
@@ -132,17 +141,22 @@ class SceneCache:
             self.instance_meshes.clear()
         if changed_objects or changed_data:
             needs_full = needs_full or self._uses(changed_objects, changed_data)
+            # Prototypes of objects not shown now (hidden, deleted) are out of date too.
+            for pkey in [k for k in self.prototypes
+                         if self._matches(k[0], k[1], changed_objects, changed_data)]:
+                del self.prototypes[pkey]
         return relevant, needs_full
 
     def _uses(self, objects, data):
         """Whether the live scene shows any of these objects or geometry data."""
-        for (key, _n) in self.entries:
-            if key[0] == 'O':
-                if key[1] in objects or key[2] in data:
-                    return True
-            elif key[1] in objects or key[2] in objects or key[3] in data:
-                return True
-        return False
+        return any(self._matches(key[0], key[1:], objects, data) for (key, _n) in self.entries)
+
+    @staticmethod
+    def _matches(kind, key, objects, data):
+        """Whether a mesh key (without its kind) is one of these objects' or data's."""
+        if kind == 'O':                      # (object name, data name)
+            return key[0] in objects or key[1] in data
+        return key[0] in objects or key[1] in objects or key[2] in data   # (parent, ...)
 
     def sync(self, tc, depsgraph, reporter, options=None, force=False, stop=None):
         """A tc.Scene if anything rendered changed, else None: the live scene updated in
@@ -230,10 +244,13 @@ class SceneCache:
         used = {e.pkey for e in self.entries.values()}
         if len(self.prototypes) > 2 * len(used) + 16:
             return None
+        if self.stale_materials > 256:     # materials replaced by edits (a slider dragged)
+            return None
         new = self._mesh_entries(plan)
         removed = [eid for eid in self.entries if eid not in new]
         moved = []
         added = []
+        changed = self.changed_materials
         for eid, (obj, matrix, slots, key) in new.items():
             old = self.entries.get(eid)
             if old is None:
@@ -241,6 +258,12 @@ class SceneCache:
                 continue
             if old.slots != _slot_names(slots):
                 return None
+            if changed and changed.intersection(old.slots):
+                # An edited material: the instance again, with a table of re-read materials
+                # (its prototype stays).
+                removed.append(eid)
+                added.append((eid, obj, matrix, slots, key))
+                continue
             mt = _matrix_tuple(matrix)
             if mt != old.matrix:
                 moved.append((eid, obj, matrix, slots, key, mt))
@@ -321,6 +344,13 @@ class SceneCache:
         if ids:
             self.scene.set_instance_transforms(np.asarray(ids, dtype=np.int64),
                                                np.stack(transforms))
+        if self.changed_materials:
+            # Edited materials are read again (new material ids; the old ones stay unused).
+            for _eid, _obj, _matrix, slots, _key in added:
+                for m in slots:
+                    if m is not None and m.name in self.changed_materials:
+                        if self.materials.indices.pop(m.as_pointer(), None) is not None:
+                            self.stale_materials += 1
         for eid, obj, matrix, slots, key in added:
             self._add_entry(eid, obj, matrix, slots, key, reporter)
         self.reads = self.meshes.reads + self.instance_meshes.reads - reads_before
@@ -343,6 +373,7 @@ class SceneCache:
 
         self.scene = tc_scene
         self.materials = materials
+        self.stale_materials = 0
         self.prototypes = {}
         self.entries = {}
         self.n_lights = 0
