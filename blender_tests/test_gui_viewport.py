@@ -199,6 +199,7 @@ def _driver(result_path, shots_dir):
               f"builds {builds} -> {st.get('scene_builds')}")
 
         # -- Material edit while refining: the sphere turns green, no mesh is re-read
+        updates = stats.get("scene_updates")
         mat = bpy.data.materials["Red"]
         base_color = mat.node_tree.nodes["Principled BSDF"].inputs["Base Color"]
         base_color.default_value = (0.02, 0.6, 0.02, 1)
@@ -210,22 +211,27 @@ def _driver(result_path, shots_dir):
         results["green_sphere"] = green
         check("material edit shows", green[1] > 70 and green[1] > 2.0 * green[0],
               f"sphere pixel {green}")
-        check("material edit rebuilt the scene without reading meshes",
-              st.get("scene_builds", 0) > builds and st.get("build_meshes_read") == 0,
-              f"builds {builds} -> {st.get('scene_builds')}, "
-              f"meshes read {st.get('build_meshes_read')}")
+        check("material edit updated the scene in place without reading meshes",
+              st.get("scene_builds") == builds and st.get("scene_updates", 0) > updates
+              and st.get("build_meshes_read") == 0,
+              f"builds {builds} -> {st.get('scene_builds')}, updates {updates} -> "
+              f"{st.get('scene_updates')}, meshes read {st.get('build_meshes_read')}")
 
-        # -- Moving the object: transform only, no mesh read
-        builds = st.get("scene_builds")
+        # -- Moving the object: transform only, no mesh read, the scene updated in place
+        builds, updates = st.get("scene_builds"), st.get("scene_updates")
         sphere = bpy.data.objects["Sphere"]
         sphere.location.x += 0.3
         yield 0.3
         yield from wait_samples(2, 60)
         st = dict(viewport.last_stats)
         check("moving an object re-uses its cached mesh",
-              st.get("scene_builds", 0) > builds and st.get("build_meshes_read") == 0,
-              f"builds {builds} -> {st.get('scene_builds')}, "
+              st.get("build_meshes_read") == 0,
               f"meshes read {st.get('build_meshes_read')}")
+        check("moving an object updates the scene in place (no rebuild)",
+              st.get("scene_builds") == builds and st.get("scene_updates", 0) > updates
+              and st.get("build_kind") == "update" and st.get("build_moved") == 1,
+              f"builds {builds} -> {st.get('scene_builds')}, updates {updates} -> "
+              f"{st.get('scene_updates')}, last {st.get('build_kind')}")
         sphere.location.x -= 0.3
         yield 0.3
 

@@ -8,6 +8,8 @@
 * the progressive render shows a coarse image first, then the full resolution;
 * it restarts when the view, the settings or the scene change, and not otherwise;
   moving an object or editing a material re-reads no mesh, editing a mesh re-reads that one;
+  moving, adding, hiding or deleting an object and editing a material update the live tc.Scene
+  in place (no new scene), and its image equals that of a scene built afresh;
 * the viewport's studio HDRI (Scene World off) lights the scene;
 * the preview policy; the panels' messages.
 """
@@ -294,6 +296,21 @@ def test_viewport_matches_final_render(tv, tc, scene):
     check(tv.running_renders() == 0, "closing stops the render")
 
 
+def same_as_fresh(state, view, settings, what):
+    """The image of the scene as updated in place equals that of a scene built afresh."""
+    state.ensure_render(view, settings)
+    wait_done(state)
+    updated = state.render.image.copy()
+    fresh = type(state)(state.tc)
+    fresh.sync(bpy.context.evaluated_depsgraph_get())
+    fresh.ensure_render(view, settings)
+    wait_done(fresh)
+    diff = float(np.abs(fresh.render.image - updated).max())
+    fresh.close()
+    print(f"{what}: in-place scene vs a fresh one: max difference {diff:.2e}")
+    check(diff < 1e-4, f"{what}: the updated scene renders as a fresh one (difference {diff})")
+
+
 def test_restarts_and_cache(tv, tc, scene):
     """Edits arrive as depsgraph updates: driven through depsgraph_update_post, like view_update."""
     state = tv.ViewportState(tc)
@@ -326,13 +343,25 @@ def test_restarts_and_cache(tv, tc, scene):
         check(state.ensure_render(view2, changed), "changed settings restart")
         check(not state.ensure_render(view2, changed), "same settings do not")
 
-        def edit(what, fn):
+        def edit(what, fn, kind=None):
+            """The edit; (scene changed, meshes read). kind: 'update' (in place, the same
+            tc.Scene) or 'build' (a new one), checked when given."""
             log.clear()
+            builds, updates, before = state.cache.builds, state.cache.updates, state.tc_scene
             fn()
             bpy.context.view_layer.update()
             rebuilt = any(log)
-            reads = state.cache.last_build.get("meshes_read") if rebuilt else None
-            print(f"{what}: scene rebuilt {rebuilt}, meshes read {reads}")
+            last = state.cache.last_build
+            reads = last.get("meshes_read") if rebuilt else None
+            print(f"{what}: scene changed {rebuilt} ({last.get('kind')}), meshes read {reads}, "
+                  f"{last.get('seconds', 0.0) * 1000:.1f} ms")
+            if kind == 'update':
+                check(rebuilt and state.cache.updates == updates + 1
+                      and state.cache.builds == builds and state.tc_scene is before,
+                      f"{what}: the scene is updated in place, not rebuilt")
+            elif kind == 'build':
+                check(rebuilt and state.cache.builds == builds + 1
+                      and state.tc_scene is not before, f"{what}: a new scene")
             return rebuilt, reads
 
         sphere = bpy.data.objects["Sphere"]
@@ -340,30 +369,49 @@ def test_restarts_and_cache(tv, tc, scene):
         rebuilt, _ = edit("select", lambda: floor.select_set(True))
         check(not rebuilt, "selecting rebuilds nothing")
         rebuilt, reads = edit("move object", lambda: setattr(sphere, "location",
-                                                             sphere.location + Vector((0.1, 0, 0))))
+                                                             sphere.location + Vector((0.1, 0, 0))),
+                              'update')
         check(rebuilt and reads == 0, "moving an object re-transforms its cached mesh")
+        check(state.cache.last_build["moved"] == 1, "one instance moved")
+        same_as_fresh(state, view2, changed, "after a move")
         node = bpy.data.materials["Red"].node_tree.nodes["Principled BSDF"]
         rebuilt, reads = edit("material colour", lambda: node.inputs["Base Color"].default_value
-                              .__setitem__(slice(0, 3), (0.1, 0.7, 0.1)))
+                              .__setitem__(slice(0, 3), (0.1, 0.7, 0.1)), 'update')
         check(rebuilt and reads == 0, "a material edit re-reads no mesh")
+        check(state.cache.last_build["added"] == 1 and state.cache.last_build["removed"] == 1,
+              "a material edit gives the sphere's instance a new material table")
+        same_as_fresh(state, view2, changed, "after a material edit")
 
         def move_vertex():
             sphere.data.vertices[0].co.z += 0.05
             sphere.data.update()
-        rebuilt, reads = edit("edit mesh", move_vertex)
+        rebuilt, reads = edit("edit mesh", move_vertex, 'build')
         check(rebuilt and reads == 1, "editing a mesh re-reads that mesh only")
-        rebuilt, reads = edit("hide object", lambda: setattr(floor, "hide_viewport", True))
+        rebuilt, reads = edit("hide object", lambda: setattr(floor, "hide_viewport", True),
+                              'update')
         check(rebuilt and state.cache.last_build["objects"] == 2, "hiding an object drops it")
         rebuilt, reads = edit("unhide object", lambda: setattr(floor, "hide_viewport", False))
         # (Blender re-evaluates an object shown again and reports its geometry as updated.)
         check(rebuilt and state.cache.last_build["objects"] == 3 and reads <= 1,
               "unhiding brings it back")
         light = bpy.data.lights["Sun"]
-        rebuilt, reads = edit("light strength", lambda: setattr(light, "energy", 5.0))
+        rebuilt, reads = edit("light strength", lambda: setattr(light, "energy", 5.0), 'build')
         check(rebuilt and reads == 0, "a light edit rebuilds without reading meshes")
+
+        def add_object():
+            testing.sphere_object(scene, "Ball copy", (-1.4, 0.6, 0.4), 0.4,
+                                  bpy.data.materials["Blue"], segments=16, rings=8)
+        rebuilt, reads = edit("add object", add_object, 'update')
+        check(state.cache.last_build["objects"] == 4 and state.cache.last_build["added"] == 1
+              and reads == 1, "an added object is in the scene (its mesh read once)")
+        same_as_fresh(state, view2, changed, "after adding an object")
         rebuilt, reads = edit("delete object", lambda: bpy.data.objects.remove(
-            bpy.data.objects["Ball"]))
-        check(rebuilt and state.cache.last_build["objects"] == 2, "a deleted object disappears")
+            bpy.data.objects["Ball"]), 'update')
+        check(rebuilt and state.cache.last_build["objects"] == 3, "a deleted object disappears")
+        same_as_fresh(state, view2, changed, "after deleting an object")
+        bpy.data.objects.remove(bpy.data.objects["Ball copy"])
+        bpy.context.view_layer.update()
+        check(state.cache.last_build["objects"] == 2, "and another")
         # The rebuilt scene restarts the render.
         serial = state.scene_serial
         check(state.ensure_render(view2, changed), "a rebuilt scene restarts the render")

@@ -11,7 +11,10 @@ looking at the scene, at the region sizes of typical viewports. Measured, each t
 * restart while navigating: a changed view -> stop the old render, start the new one, wait
   for its coarse image (what view_draw does on every frame of an orbit);
 * stop: how long stopping a full-resolution render takes;
-* an object moved: the rebuild from the mesh cache (no mesh read) and the first image after it.
+* an object moved: the scene's update (in place: stop the render, set_instance_transforms; the
+  other geometry is not rebuilt) and the first image after it; move>img = the sum, from the
+  edit's depsgraph update to the restarted render's first image; mat>img = the same for a
+  material edit.
 
 Scenes: "simple" (a sphere on a floor, sun and sky: the brief's target of <= 0.3 s to the
 first image) and "dense" (the same with a 200k-triangle object), or --scenes.
@@ -129,7 +132,8 @@ def bench_size(tv, tc, scene, width, height, repeats):
     state = tv.ViewportState(tc)
     state.sync(depsgraph)
     view = tv.View.from_matrices(*view_matrices(width, height), width, height)
-    builds, firsts_after = [], []
+    builds, firsts_after, totals, material_totals = [], [], [], []
+    reads, kind = None, None
     log = []
 
     def handler(_scene, dg):
@@ -144,19 +148,36 @@ def bench_size(tv, tc, scene, width, height, repeats):
             sphere.location.x += 0.01 * (1 if i % 2 else -1)
             bpy.context.view_layer.update()
             rebuilt = [entry for entry in log if entry[0]]
+            sync_seconds = sum(entry[1] for entry in log)
             if rebuilt:
                 builds.append(rebuilt[-1][1])
                 reads = rebuilt[-1][2].get("meshes_read")
+                kind = rebuilt[-1][2].get("kind", "build")
             t0 = time.perf_counter()
             state.ensure_render(view, settings, start_res)
             state.wait_first_image(5.0)
             firsts_after.append(time.perf_counter() - t0)
+            totals.append(sync_seconds + firsts_after[-1])
+        # A material edit (the red material: the sphere's and the dense object's).
+        node = bpy.data.materials["Red"].node_tree.nodes["Principled BSDF"]
+        for i in range(repeats):
+            state.ensure_render(view, settings, start_res)
+            state.wait_first_image(5.0)
+            log.clear()
+            node.inputs["Roughness"].default_value = 0.4 + 0.01 * (i % 2)
+            bpy.context.view_layer.update()
+            sync_seconds = sum(entry[1] for entry in log)
+            t0 = time.perf_counter()
+            state.ensure_render(view, settings, start_res)
+            state.wait_first_image(5.0)
+            material_totals.append(sync_seconds + time.perf_counter() - t0)
     finally:
         bpy.app.handlers.depsgraph_update_post.remove(handler)
         state.close()
     tv.wait_stopped()
-    out.update(move_rebuild=median(builds), move_meshes_read=reads,
-               move_first_image=median(firsts_after))
+    out.update(move_rebuild=median(builds), move_meshes_read=reads, move_kind=kind,
+               move_first_image=median(firsts_after), move_total=median(totals),
+               material_total=median(material_totals))
     return out
 
 
@@ -177,7 +198,8 @@ def main():
     print(f"Torrance viewport benchmark: {os.cpu_count()} cores, median of {args.repeats} "
           f"runs; times in ms")
     header = (f"{'scene':8} {'triangles':>9} {'size':>10} {'coarse':>9} {'sync':>7} "
-              f"{'first':>7} {'full':>7} {'stop':>6} {'orbit':>7} {'move':>6} {'move>1st':>8}")
+              f"{'first':>7} {'full':>7} {'stop':>6} {'orbit':>7} {'move':>6} {'move>1st':>8} "
+              f"{'move>img':>8} {'mat>img':>8}")
     print(header)
     for kind in args.scenes.split(","):
         scene = build(kind)
@@ -193,12 +215,16 @@ def main():
             print(f"{kind:8} {triangles:9d} {r['size']:>10} {r['coarse']:>9} {ms(r['sync_first'])} "
                   f"{ms(r['first_image'])} {ms(r['full_image'])} {ms(r['stop'])[1:]} "
                   f"{ms(r['navigation_frame'])} {ms(r['move_rebuild'])[1:]} "
-                  f"{ms(r['move_first_image']):>8}", flush=True)
+                  f"{ms(r['move_first_image']):>8} {ms(r['move_total']):>8} "
+                  f"{ms(r['material_total']):>8} ({r['move_kind']})",
+                  flush=True)
     print("columns: coarse = the first image's size (+N: larger ones before the full "
           "resolution); sync = depsgraph -> tc.Scene (all meshes read); first = render start -> "
           "coarse image; full = -> first full-resolution image; stop = stopping a full-"
-          "resolution render; orbit = a view change -> its coarse image; move = rebuild after "
-          "moving an object (cached meshes); move>1st = then -> its coarse image")
+          "resolution render; orbit = a view change -> its coarse image; move = the scene's "
+          "update after moving an object (update: in place; build: a new scene from cached "
+          "meshes); move>1st = then -> its coarse image; move>img = edit -> coarse image; "
+          "mat>img = a material edit -> coarse image")
     simple = [r for r in results if r["scene"] == "simple"]
     if simple:
         worst = max(r["sync_first"] + r["first_image"] for r in simple)

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """Meshes: reading an evaluated object's mesh in object space (numpy, foreach_get; never a
-Python loop per vertex or triangle), the object-space arrays of a prototype, and the flattened
-world-space path (world_mesh, export_mesh) that the viewport uses."""
+Python loop per vertex or triangle), the object-space arrays of a prototype (the viewport's
+and the instances' path), and the flattened world-space path (world_mesh, add_world_mesh: the
+final render's non-instanced objects; export_mesh)."""
 
 import numpy as np
 

@@ -4,10 +4,13 @@
 How it works
 ------------
 * ``view_update`` (Blender calls it when the depsgraph changed) turns the depsgraph into a
-  ``tc.Scene``. Meshes are cached per object as object-space numpy arrays (export.MeshCache),
-  so an edit re-reads only the objects whose geometry changed; moving an object only
-  re-transforms its cached arrays. Updates that change nothing we render (selection, say)
-  leave the render alone.
+  ``tc.Scene``: every mesh object and instance a prototype (its mesh in object space) and an
+  instance. Meshes are cached per object as object-space numpy arrays (export.MeshCache), so
+  an edit re-reads only the objects whose geometry changed. Moving, adding, hiding or deleting
+  objects and editing materials update the live scene in place (the render stopped, then
+  set_instance_transforms, add_instances, remove_instances: only the top-level BVH is
+  rebuilt); other edits (meshes, lights, the world) build a new scene from the cached meshes.
+  Updates that change nothing we render (selection, say) leave the render alone.
 * ``view_draw`` derives the camera from the region's matrices (``camera_from_matrices``), and
   (re)starts the render when the view, the settings or the scene changed. The render runs on
   the core's own thread (``tc.RenderSession``, GIL released): first a coarse image (the longer

@@ -40,7 +40,10 @@ def view_update(engine, context, depsgraph):
         state.reporter = reporter
         if state.sync(depsgraph, shading_options(context), reporter):
             build = state.cache.last_build
-            print(f"Torrance viewport: scene rebuilt ({build.get('objects', 0)} objects, "
+            what = "rebuilt" if build.get("kind") == "build" else (
+                f"updated: {build.get('moved', 0)} moved, {build.get('added', 0)} added, "
+                f"{build.get('removed', 0)} removed;")
+            print(f"Torrance viewport: scene {what} ({build.get('objects', 0)} objects, "
                   f"{build.get('triangles', 0)} triangles, {build.get('meshes_read', 0)} "
                   f"meshes read, {build.get('seconds', 0.0):.3f} s)")
         state.error = None

@@ -6,7 +6,7 @@ import weakref
 
 from ..reporting import Reporter
 from .draw import ImageDisplay, RedrawTimer
-from .progressive import ProgressiveRender
+from .progressive import ProgressiveRender, wait_stopped
 from .scene_cache import SceneCache
 
 # Statistics of the most recent viewport render (for tests and scripts/bench_viewport).
@@ -44,17 +44,18 @@ class ViewportState:
 
     # -- scene -------------------------------------------------------------------------------
     def sync(self, depsgraph, options=None, reporter=None):
-        """Rebuilds the tc.Scene if the depsgraph changed anything rendered. True if so."""
+        """Updates the tc.Scene if the depsgraph changed anything rendered (in place for moved,
+        added and removed objects, else a new one). True if so."""
         options = options or {}
         okey = tuple(sorted(options.items()))
         force = self.tc_scene is None or okey != self.options_key
         new_scene = self.cache.sync(self.tc, depsgraph, reporter or self.reporter, options,
-                                    force=force)
+                                    force=force, stop=self._stop_for_edit)
         self.options_key = okey
         self.options = dict(options)
         if new_scene is None:
             return False
-        self.stop_render()                  # the old scene is dropped with its session
+        self.stop_render()                  # an old scene is dropped with its session
         self.tc_scene = new_scene
         self.scene_serial += 1
         return True
@@ -102,11 +103,19 @@ class ViewportState:
         last_stats.update(keep)
         last_stats.update(self.render.stats())
         last_stats.update(restarts=self.restarts, scene_builds=self.cache.builds,
+                          scene_updates=self.cache.updates,
                           **{f"build_{k}": v for k, v in self.cache.last_build.items()})
         return new
 
     def refining(self):
         return self.render is not None and not self.render.finished
+
+    def _stop_for_edit(self):
+        """Before the live scene is changed in place: no render may use it any more (the
+        core raises RuntimeError otherwise), so wait for this one's and for those still
+        stopping in the background."""
+        self.stop_render(wait=True)
+        wait_stopped()
 
     def stop_render(self, wait=False):
         if self.render is not None:
