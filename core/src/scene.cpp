@@ -33,6 +33,7 @@ constexpr uint32_t kNoGeometry = 0xFFFFFFFFu;  // Instance::geometry of an empty
 struct Scene::Prototype {
   std::unique_ptr<Mesh> mesh;
   RTCScene scene = nullptr;  // nullptr when the mesh has no triangles
+  bool built = false;        // its BVH, built by the first commit() after add_prototype
   Vec3 lo{0.0f}, hi{0.0f};   // bounds of its vertices (both 0 without vertices), for transforms
   Prototype() = default;
   Prototype(const Prototype&) = delete;
@@ -360,8 +361,10 @@ uint32_t Scene::add_prototype(const float* positions, size_t num_vertices, const
     RTCGeometry geom = static_cast<RTCGeometry>(new_triangle_geometry(*prototype->mesh));
     rtcAttachGeometryByID(prototype->scene, geom, 0);
     rtcReleaseGeometry(geom);
-    rtcCommitScene(prototype->scene);  // built once, whatever happens to its instances
-    check_device("building a prototype's BVH");
+    check_device("adding a prototype's mesh");
+    // Its BVH is built by commit(), on the thread that renders, not on the caller's (Blender's
+    // main thread for the viewport); once, whatever happens to its instances later.
+    dirty_ = true;
   }
   prototypes_.push_back(std::move(prototype));
   return uint32_t(prototypes_.size() - 1);
@@ -558,6 +561,12 @@ size_t Scene::num_triangles() const {
 
 void Scene::commit() {
   if (dirty_) {
+    for (const auto& prototype : prototypes_)
+      if (prototype->scene && !prototype->built) {
+        rtcCommitScene(prototype->scene);  // before the instances' scene: Embree needs it built
+        check_device("building a prototype's BVH");
+        prototype->built = true;
+      }
     rtcCommitScene(scene_of(scene_));
     check_device("building the BVH");
     dirty_ = false;
