@@ -63,14 +63,34 @@ def in_use_mb():
         epoch = ctypes.c_uint64(1)
         size = ctypes.c_size_t(8)
         _je.mallctl(b"epoch", ctypes.byref(epoch), ctypes.byref(size), ctypes.byref(epoch), 8)
-        value = ctypes.c_size_t(0)
-        size = ctypes.c_size_t(ctypes.sizeof(value))
-        if _je.mallctl(b"stats.allocated", ctypes.byref(value), ctypes.byref(size), None, 0):
-            return float("nan")
-        return value.value / 2**20
+        return _je_stat("stats.allocated")
     _libc.mallinfo2.restype = _MallInfo2
     info = _libc.mallinfo2()
     return (info.uordblks + info.hblkhd) / 2**20
+
+
+def _je_stat(name):
+    value = ctypes.c_size_t(0)
+    size = ctypes.c_size_t(ctypes.sizeof(value))
+    if _je.mallctl(name.encode(), ctypes.byref(value), ctypes.byref(size), None, 0):
+        return float("nan")
+    return value.value / 2**20
+
+
+def details():
+    """For diagnosis (MB): the kernel's split of VmRSS (RssAnon, RssFile) and, with jemalloc,
+    its stats (resident, metadata, active), read after an epoch refresh."""
+    d = {}
+    with open("/proc/self/status") as f:
+        for line in f:
+            key = line.split(":")[0]
+            if key in ("RssAnon", "RssFile", "RssShmem", "Threads"):
+                d[key] = int(line.split()[1]) / (1024.0 if key != "Threads" else 1)
+    if _je is not None:
+        in_use_mb()                     # refreshes the epoch
+        for k in ("resident", "metadata", "active", "mapped"):
+            d["je_" + k] = _je_stat("stats." + k)
+    return d
 
 
 def rss_mb():
