@@ -327,6 +327,8 @@ def test_restarts_and_cache(tv, tc, scene):
         rebuilt, reads = edit("delete object", lambda: bpy.data.objects.remove(
             bpy.data.objects["Ball"]))
         check(rebuilt and state.cache.last_build["objects"] == 2, "a deleted object disappears")
+        cached = sorted(k[0] for k in state.cache.meshes.meshes)
+        check(cached == ["Floor", "Sphere"], f"a deleted object's mesh is not kept: {cached}")
         # The rebuilt scene restarts the render.
         serial = state.scene_serial
         check(state.ensure_render(view2, changed), "a rebuilt scene restarts the render")

@@ -141,6 +141,12 @@ class SceneCache:
                     n_objects += 1
                     n_tris += triangles
         self.reads = self.meshes.reads + self.instance_meshes.reads - reads_before
+        # Forget the meshes of objects no longer rendered (deleted, hidden, renamed): else
+        # every object added and deleted in Rendered shading stays cached until the engine
+        # is freed.
+        used = {key for kind, _, _, _, key in plan if kind == 'MESH'}
+        self.meshes.drop(lambda k: ('O',) + k not in used)
+        self.instance_meshes.drop(lambda k: ('I',) + k not in used)
         self.last_build = dict(objects=n_objects, triangles=n_tris, lights=n_lights,
                                meshes_read=self.reads, seconds=time.perf_counter() - t0)
         return tc_scene
