@@ -390,6 +390,12 @@ class SceneCache:
         live = {k for k in self.prototypes}
         self.proto_arrays = {k: v for k, v in self.proto_arrays.items() if k in live}
         self.reads = self.meshes.reads + self.instance_meshes.reads - reads_before
+        # Forget the meshes of objects no longer rendered (deleted, hidden, renamed): else
+        # every object added and deleted in Rendered shading stays cached until the engine
+        # is freed.
+        used = {key for kind, _, _, _, key in plan if kind == 'MESH'}
+        self.meshes.drop(lambda k: ('O',) + k not in used)
+        self.instance_meshes.drop(lambda k: ('I',) + k not in used)
         self._stats(kind="build", seconds=time.perf_counter() - t0)
         return tc_scene
 
