@@ -128,26 +128,15 @@ def _driver(result_path):
             for _ in range(n):
                 yield from trial(engine)
 
-    gen = steps()
     t_start = time.perf_counter()
 
-    def tick():
-        try:
-            return next(gen)
-        except StopIteration:
-            pass
-        except Exception:
-            import traceback
-            traceback.print_exc()
-            results["errors"].append(traceback.format_exc())
+    def write_results():
         results["seconds"] = time.perf_counter() - t_start
         with open(result_path, "w") as f:
             json.dump(results, f, indent=1)
         log("done")
-        bpy.ops.wm.quit_blender()
-        return None
 
-    bpy.app.timers.register(tick, first_interval=1.0)
+    gui.drive(steps(), results["errors"].append, write_results)
 
 
 # ============================================================================================
