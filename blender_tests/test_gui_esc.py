@@ -129,14 +129,7 @@ def _driver(result_path):
                 yield from trial(engine)
 
     t_start = time.perf_counter()
-
-    def write_results():
-        results["seconds"] = time.perf_counter() - t_start
-        with open(result_path, "w") as f:
-            json.dump(results, f, indent=1)
-        log("done")
-
-    gui.drive(steps(), results["errors"].append, write_results)
+    gui.drive_to_json(steps(), results, result_path, t_start, log)
 
 
 # ============================================================================================

@@ -379,12 +379,5 @@ if __name__ == "__main__":
         i = argv.index("--gui-driver")
         _driver(argv[i + 1], argv[i + 2], int(argv[i + 3]), int(argv[i + 4]), int(argv[i + 5]))
     else:
-        try:
-            _main()
-        except SystemExit:
-            raise
-        except BaseException:
-            import traceback
-            traceback.print_exc()
-            print("FAILED")
-            sys.exit(1)
+        from torrance_tools import testing
+        testing.run(_main)

@@ -397,13 +397,7 @@ def _driver(result_path, shots_dir):
             img.save()
             results["shots"]["7_material_preview"] = img.filepath_raw
 
-    def write_results():
-        results["seconds"] = time.perf_counter() - t_start
-        with open(result_path, "w") as f:
-            json.dump(results, f, indent=1)
-        log("done")
-
-    gui.drive(steps(), results["errors"].append, write_results)
+    gui.drive_to_json(steps(), results, result_path, t_start, log)
 
 
 # ============================================================================================
@@ -491,12 +485,5 @@ if __name__ == "__main__":
         i = argv.index("--gui-driver")
         _driver(argv[i + 1], argv[i + 2])
     else:
-        try:
-            _main()
-        except SystemExit:
-            raise
-        except BaseException:
-            import traceback
-            traceback.print_exc()
-            print("FAILED")
-            sys.exit(1)
+        from torrance_tools import testing
+        testing.run(_main)

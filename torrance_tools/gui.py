@@ -10,6 +10,7 @@ through its checks from a generator with gui.drive(steps(), on_error, on_end).
 """
 
 import contextlib
+import json
 import os
 import select
 import shutil
@@ -136,6 +137,18 @@ def drive(steps, on_error, on_end, first_interval=1.0):
         return None
 
     bpy.app.timers.register(tick, first_interval=first_interval)
+
+
+def drive_to_json(steps, results, result_path, t_start, log, first_interval=1.0):
+    """drive() for a driver whose `results` dict has an "errors" list (the tracebacks go
+    there): at the end, results["seconds"] since t_start and `results` written as JSON."""
+    def write_results():
+        results["seconds"] = time.perf_counter() - t_start
+        with open(result_path, "w") as f:
+            json.dump(results, f, indent=1)
+        log("done")
+
+    drive(steps, results["errors"].append, write_results, first_interval)
 
 
 def percentiles(values):
