@@ -19,7 +19,7 @@ import zipfile
 
 import bpy
 
-from torrance_tools import testing
+from torrance_tools import child_render, testing
 from torrance_tools.testing import check
 
 
@@ -41,9 +41,8 @@ def find_zip():
     raise AssertionError(f"no add-on zip found (looked at {candidates}); build it first")
 
 
-CHILD = textwrap.dedent('''
+CHILD = child_render.child_source() + textwrap.dedent('''
     import os, sys, addon_utils, bpy
-    import numpy as np
     zip_path, user_scripts, out = sys.argv[sys.argv.index("--") + 1:]
     result = bpy.ops.preferences.addon_install(filepath=zip_path, overwrite=True)
     assert result == {'FINISHED'}, f"addon_install: {result}"
@@ -56,21 +55,7 @@ CHILD = textwrap.dedent('''
     print("CHILD installed at", os.path.dirname(where))
     core = torrance.render.load_core()
     print("CHILD core", getattr(core, "__version__", "?"), core.__file__)
-    scene = bpy.context.scene
-    scene.render.engine = 'TORRANCE'
-    scene.render.resolution_x, scene.render.resolution_y = 64, 48
-    scene.render.resolution_percentage = 100
-    scene.torrance.samples = 8
-    s = scene.render.image_settings
-    s.file_format, s.color_depth = 'OPEN_EXR', '32'
-    scene.render.filepath = out
-    bpy.ops.render.render(write_still=True)
-    img = bpy.data.images.load(out)
-    px = np.empty(img.size[0] * img.size[1] * img.channels, dtype=np.float32)
-    img.pixels.foreach_get(px)
-    rgb = px.reshape(-1, img.channels)[:, :3]
-    assert np.isfinite(px).all(), "NaN/Inf in the render"
-    print(f"CHILD render mean {rgb.mean():.4f} max {rgb.max():.4f}")
+    rgb = render_small_exr(out)
     assert rgb.max() > 0.05, "the default cube is not lit"
     print("CHILD OK")
 ''')

@@ -150,10 +150,14 @@ CORE_CHILD = MAPS_CHECK + textwrap.dedent('''
     print(f"CHILD core {tc.__version__} from the wheel renders (mean {mean:.4f}, expected 1/pi)")
 ''')
 
-BPY_CHILD = MAPS_CHECK + textwrap.dedent('''
+# render_small_exr(), shared with test_addon_zip's child (read as text: this test imports no
+# torrance_tools, it also runs in /usr/bin/python3).
+with open(os.path.join(ROOT, "torrance_tools", "child_render.py")) as _f:
+    CHILD_RENDER = _f.read() + "\n"
+
+BPY_CHILD = MAPS_CHECK + CHILD_RENDER + textwrap.dedent('''
     import json, os, sys
     import addon_utils, bpy
-    import numpy as np
     zip_path, out, hidden_json = sys.argv[sys.argv.index("--") + 1:]
     print("CHILD Blender", bpy.app.version_string, "online access:", bpy.app.online_access)
     result = bpy.ops.extensions.package_install_files(filepath=zip_path, repo="user_default",
@@ -168,22 +172,8 @@ BPY_CHILD = MAPS_CHECK + textwrap.dedent('''
     site = os.path.dirname(os.path.dirname(os.path.realpath(core.__file__)))
     assert site.startswith(user), f"torrance_core from {core.__file__}, not the extension's wheel"
     print("CHILD extension at", os.path.dirname(addon.__file__), "core at", core.__file__)
-    scene = bpy.context.scene
-    scene.render.engine = "TORRANCE"
-    scene.render.resolution_x, scene.render.resolution_y = 64, 48
-    scene.render.resolution_percentage = 100
-    scene.torrance.samples = 8
-    s = scene.render.image_settings
-    s.file_format, s.color_depth = "OPEN_EXR", "32"
-    scene.render.filepath = out
-    bpy.ops.render.render(write_still=True)
+    rgb = render_small_exr(out)
     print("CHILD messages:", addon.render.last_messages)
-    img = bpy.data.images.load(out)
-    px = np.empty(img.size[0] * img.size[1] * img.channels, dtype=np.float32)
-    img.pixels.foreach_get(px)
-    rgb = px.reshape(-1, img.channels)[:, :3]
-    assert np.isfinite(px).all(), "NaN/Inf in the render"
-    print(f"CHILD render mean {rgb.mean():.4f} max {rgb.max():.4f}")
     assert rgb.max() > 0.05 and rgb.mean() > 0.01, "the render is black"
     check_maps(site + "/torrance_core.libs", json.load(open(hidden_json)))
     print("CHILD OK")

@@ -128,26 +128,8 @@ def _driver(result_path):
             for _ in range(n):
                 yield from trial(engine)
 
-    gen = steps()
     t_start = time.perf_counter()
-
-    def tick():
-        try:
-            return next(gen)
-        except StopIteration:
-            pass
-        except Exception:
-            import traceback
-            traceback.print_exc()
-            results["errors"].append(traceback.format_exc())
-        results["seconds"] = time.perf_counter() - t_start
-        with open(result_path, "w") as f:
-            json.dump(results, f, indent=1)
-        log("done")
-        bpy.ops.wm.quit_blender()
-        return None
-
-    bpy.app.timers.register(tick, first_interval=1.0)
+    gui.drive_to_json(steps(), results, result_path, t_start, log)
 
 
 # ============================================================================================

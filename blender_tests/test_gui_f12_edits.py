@@ -32,11 +32,11 @@ import json
 import os
 import random
 import shutil
-import subprocess
 import sys
 import time
 
 import bpy
+from torrance_tools import gui
 
 SKIP_CODE = 77
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -178,8 +178,7 @@ def _driver(result_path, image_path, seed, first, tries):
 
     def press_f12():
         x, y = SCREEN[0] // 2, SCREEN[1] // 2
-        subprocess.run(["xdotool", "mousemove", str(x), str(y), "key", "F12"], timeout=10,
-                       check=True)
+        gui.xdotool("mousemove", str(x), str(y), "key", "F12")
 
     def one_try(index):
         rng = random.Random(seed * 1000 + index)
@@ -242,62 +241,12 @@ def _driver(result_path, image_path, seed, first, tries):
         for index in range(first, tries):
             yield from one_try(index)
 
-    gen = steps()
-
-    def tick():
-        try:
-            return next(gen)
-        except StopIteration:
-            pass
-        except Exception:
-            import traceback
-            traceback.print_exc()
-            record({"driver_error": traceback.format_exc()})
-        log("done")
-        bpy.ops.wm.quit_blender()
-        return None
-
-    bpy.app.timers.register(tick, first_interval=2.0)
+    gui.drive(steps(), lambda error: record({"driver_error": error}), lambda: log("done"),
+              first_interval=2.0)
 
 
 # ============================================================================================
 # The background side (CTest): X server, GUI sessions, verdict
-
-def _start_xvfb():
-    """(process, display) of a fresh Xvfb, or (None, reason)."""
-    import select
-    xvfb = os.environ.get("TORRANCE_XVFB") or shutil.which("Xvfb")
-    if xvfb is None:
-        return None, "Xvfb is not installed (Debian package: xvfb)"
-    r, w = os.pipe()
-    try:
-        proc = subprocess.Popen(
-            [xvfb, "-displayfd", str(w), "-screen", "0", f"{SCREEN[0]}x{SCREEN[1]}x24",
-             "-nolisten", "tcp", "-ac", "+extension", "GLX"],
-            pass_fds=(w,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    except OSError as exc:
-        os.close(r)
-        os.close(w)
-        return None, f"Xvfb could not be started: {exc}"
-    os.close(w)
-    data = b""
-    end = time.time() + 20
-    while time.time() < end and not data.endswith(b"\n"):
-        ready, _, _ = select.select([r], [], [], 0.5)
-        if ready:
-            chunk = os.read(r, 64)
-            if not chunk:
-                break
-            data += chunk
-        elif proc.poll() is not None:
-            break
-    os.close(r)
-    if not data.strip().isdigit():
-        if proc.poll() is None:
-            proc.kill()
-        return None, "Xvfb did not start"
-    return proc, ":" + data.strip().decode()
-
 
 def _read_records(path):
     tries = {}
@@ -330,7 +279,7 @@ def _main():
     out = os.path.join(build, "test_gui_f12_edits")
     shutil.rmtree(out, ignore_errors=True)
     os.makedirs(out)
-    if shutil.which("xdotool") is None:
+    if not gui.has_xdotool():
         print("SKIPPED: xdotool is not installed (Debian package: xdotool; scripts/bootstrap)")
         sys.exit(SKIP_CODE)
 
@@ -344,30 +293,21 @@ def _main():
     blend = os.path.join(out, "start.blend")      # a file to open: no splash screen
     bpy.ops.wm.save_as_mainfile(filepath=blend)
 
-    xvfb, display = _start_xvfb()
-    if xvfb is None:
-        print(f"SKIPPED: no X server for the GUI test: {display}", flush=True)
-        sys.exit(SKIP_CODE)
-    env = dict(os.environ, DISPLAY=display, LIBGL_ALWAYS_SOFTWARE="1", GALLIUM_DRIVER="llvmpipe")
-    env.pop("WAYLAND_DISPLAY", None)
     sessions = []
     t_start = time.time()
-    try:
+    with gui.xvfb(SCREEN) as display:
+        if display is None:
+            print("SKIPPED: no X server for the GUI test", flush=True)
+            sys.exit(SKIP_CODE)
         first = 0
         while first < tries_wanted:
             left = TIME_BUDGET - (time.time() - t_start)
             if left < 10:
                 break
             log_path = os.path.join(out, f"blender_gui_{len(sessions)}.log")
-            cmd = [os.path.join(ROOT, "scripts", "blender"), "--factory-startup", blend,
-                   "--python", os.path.abspath(__file__), "--", "--gui-driver", result_path,
-                   image_path, str(seed), str(first), str(tries_wanted)]
-            with open(log_path, "w") as log:
-                try:
-                    code = subprocess.run(cmd, env=env, stdout=log, stderr=subprocess.STDOUT,
-                                          timeout=left).returncode
-                except subprocess.TimeoutExpired:
-                    code = "timeout"
+            code, _seconds = gui.run_blender(
+                display, blend, __file__, ["--gui-driver", result_path, image_path, str(seed),
+                                           str(first), str(tries_wanted)], log_path, timeout=left)
             tries, _errors = _read_records(result_path)
             sessions.append((first, code, log_path))
             done = [i for i in tries if i >= first]
@@ -388,12 +328,6 @@ def _main():
             first = last + 1
             if code == "timeout":
                 break
-    finally:
-        xvfb.terminate()
-        try:
-            xvfb.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            xvfb.kill()
     seconds = time.time() - t_start
 
     tries, driver_errors = _read_records(result_path)
@@ -445,12 +379,5 @@ if __name__ == "__main__":
         i = argv.index("--gui-driver")
         _driver(argv[i + 1], argv[i + 2], int(argv[i + 3]), int(argv[i + 4]), int(argv[i + 5]))
     else:
-        try:
-            _main()
-        except SystemExit:
-            raise
-        except BaseException:
-            import traceback
-            traceback.print_exc()
-            print("FAILED")
-            sys.exit(1)
+        from torrance_tools import testing
+        testing.run(_main)

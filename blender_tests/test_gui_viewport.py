@@ -15,16 +15,15 @@ are kept in build/test_gui_viewport/ (or $TORRANCE_GUI_SHOTS) and their paths pr
 
 import json
 import os
-import subprocess
 import sys
 import time
 
 import bpy
+from torrance_tools import gui
 
 SKIP_CODE = 77
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-SCREEN = (800, 600)
 
 
 # ============================================================================================
@@ -407,26 +406,7 @@ def _driver(result_path, shots_dir):
             img.save()
             results["shots"]["7_material_preview"] = img.filepath_raw
 
-    gen = steps()
-
-    def tick():
-        try:
-            delay = next(gen)
-            return delay
-        except StopIteration:
-            pass
-        except Exception:
-            import traceback
-            traceback.print_exc()
-            results["errors"].append(traceback.format_exc())
-        results["seconds"] = time.perf_counter() - t_start
-        with open(result_path, "w") as f:
-            json.dump(results, f, indent=1)
-        log("done")
-        bpy.ops.wm.quit_blender()
-        return None
-
-    bpy.app.timers.register(tick, first_interval=1.0)
+    gui.drive_to_json(steps(), results, result_path, t_start, log)
 
 
 # ============================================================================================
@@ -450,48 +430,6 @@ def _build_scene(path):
     bpy.ops.wm.save_as_mainfile(filepath=path)
 
 
-def _start_xvfb():
-    """(process, display) of a fresh Xvfb, or (None, reason)."""
-    import shutil
-    xvfb = os.environ.get("TORRANCE_XVFB") or shutil.which("Xvfb")
-    if xvfb is None or not os.access(xvfb, os.X_OK):
-        return None, f"Xvfb is not installed (Debian package: xvfb){f' ({xvfb})' if xvfb else ''}"
-    r, w = os.pipe()
-    try:
-        proc = subprocess.Popen(
-            [xvfb, "-displayfd", str(w), "-screen", "0", f"{SCREEN[0]}x{SCREEN[1]}x24",
-             "-nolisten", "tcp", "-ac", "+extension", "GLX"],
-            pass_fds=(w,), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    except OSError as exc:
-        os.close(r)
-        os.close(w)
-        return None, f"Xvfb could not be started: {exc}"
-    os.close(w)
-    import select
-    data = b""
-    end = time.time() + 20
-    while time.time() < end and not data.endswith(b"\n"):
-        ready, _, _ = select.select([r], [], [], 0.5)
-        if ready:
-            chunk = os.read(r, 64)
-            if not chunk:
-                break
-            data += chunk
-        elif proc.poll() is not None:
-            break
-    os.close(r)
-    if not data.strip().isdigit():
-        err = b""
-        if proc.poll() is None:
-            proc.kill()
-        try:
-            err = proc.communicate(timeout=5)[1] or b""
-        except Exception:
-            pass
-        return None, f"Xvfb did not start: {err.decode(errors='replace').strip()[-300:]}"
-    return proc, ":" + data.strip().decode()
-
-
 def _main():
     build = os.environ.get("TORRANCE_BUILD_DIR", os.path.join(ROOT, "build"))
     shots = os.environ.get("TORRANCE_GUI_SHOTS", os.path.join(build, "test_gui_viewport"))
@@ -503,32 +441,14 @@ def _main():
             os.remove(os.path.join(shots, name))
     _build_scene(blend)
 
-    xvfb, display = _start_xvfb()
-    if xvfb is None:
-        print(f"SKIPPED: no X server for the GUI test: {display}", flush=True)
-        sys.exit(SKIP_CODE)
     log_path = os.path.join(shots, "blender_gui.log")
-    try:
-        env = dict(os.environ, DISPLAY=display, LIBGL_ALWAYS_SOFTWARE="1",
-                   GALLIUM_DRIVER="llvmpipe")
-        env.pop("WAYLAND_DISPLAY", None)
-        cmd = [os.path.join(ROOT, "scripts", "blender"), "--factory-startup", blend,
-               "--python", os.path.abspath(__file__), "--", "--gui-driver", result_path, shots]
-        t0 = time.time()
-        with open(log_path, "w") as log:
-            try:
-                proc = subprocess.run(cmd, env=env, stdout=log, stderr=subprocess.STDOUT,
-                                      timeout=400)
-                code = proc.returncode
-            except subprocess.TimeoutExpired:
-                code = "timeout"
-        seconds = time.time() - t0
-    finally:
-        xvfb.terminate()
-        try:
-            xvfb.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            xvfb.kill()
+    with gui.xvfb() as display:
+        if display is None:
+            print("SKIPPED: no X server for the GUI test", flush=True)
+            sys.exit(SKIP_CODE)
+        code, seconds = gui.run_blender(display, blend, __file__,
+                                        ["--gui-driver", result_path, shots], log_path,
+                                        timeout=400)
 
     with open(log_path) as f:
         log_text = f.read()
@@ -574,12 +494,5 @@ if __name__ == "__main__":
         i = argv.index("--gui-driver")
         _driver(argv[i + 1], argv[i + 2])
     else:
-        try:
-            _main()
-        except SystemExit:
-            raise
-        except BaseException:
-            import traceback
-            traceback.print_exc()
-            print("FAILED")
-            sys.exit(1)
+        from torrance_tools import testing
+        testing.run(_main)

@@ -5,14 +5,17 @@ driver script, press real keys (xdotool).
 A GUI test runs in background Blender (as CTest starts it), builds its .blend, then
     with gui.xvfb() as display:            # None: no X server (the test exits 77, skipped)
         code, seconds = gui.run_blender(display, blend, script, args, log_path, timeout)
-and reads what the driver (the same script, run by the GUI Blender) wrote.
+and reads what the driver (the same script, run by the GUI Blender) wrote. The driver steps
+through its checks from a generator with gui.drive(steps(), on_error, on_end).
 """
 
 import contextlib
+import json
 import os
 import select
 import shutil
 import subprocess
+import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.realpath(__file__)))
@@ -25,14 +28,17 @@ def start_xvfb(screen=SCREEN):
     if xvfb is None or not os.access(xvfb, os.X_OK):
         return None, f"Xvfb is not installed (Debian package: xvfb){f' ({xvfb})' if xvfb else ''}"
     r, w = os.pipe()
+    # Its messages go to a file, not a pipe: a pipe nobody reads would block a long run.
+    err_file = tempfile.TemporaryFile()
     try:
         proc = subprocess.Popen(
             [xvfb, "-displayfd", str(w), "-screen", "0", f"{screen[0]}x{screen[1]}x24",
              "-nolisten", "tcp", "-ac", "+extension", "GLX"],
-            pass_fds=(w,), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+            pass_fds=(w,), stdout=subprocess.DEVNULL, stderr=err_file)
     except OSError as exc:
         os.close(r)
         os.close(w)
+        err_file.close()
         return None, f"Xvfb could not be started: {exc}"
     os.close(w)
     data = b""
@@ -48,14 +54,17 @@ def start_xvfb(screen=SCREEN):
             break
     os.close(r)
     if not data.strip().isdigit():
-        err = b""
         if proc.poll() is None:
             proc.kill()
         try:
-            err = proc.communicate(timeout=5)[1] or b""
-        except Exception:
+            proc.wait(timeout=5)
+        except subprocess.TimeoutExpired:
             pass
+        err_file.seek(0)
+        err = err_file.read()
+        err_file.close()
         return None, f"Xvfb did not start: {err.decode(errors='replace').strip()[-300:]}"
+    err_file.close()
     return proc, ":" + data.strip().decode()
 
 
@@ -106,6 +115,40 @@ def xdotool(*args):
 
 def has_xdotool():
     return shutil.which("xdotool") is not None
+
+
+def drive(steps, on_error, on_end, first_interval=1.0):
+    """Runs the generator `steps` from bpy.app.timers in the GUI Blender (each value it yields
+    is the delay to its next step); when it ends or raises (on_error(traceback text)), calls
+    on_end() and quits Blender."""
+    import bpy
+
+    def tick():
+        try:
+            return next(steps)
+        except StopIteration:
+            pass
+        except Exception:
+            import traceback
+            traceback.print_exc()
+            on_error(traceback.format_exc())
+        on_end()
+        bpy.ops.wm.quit_blender()
+        return None
+
+    bpy.app.timers.register(tick, first_interval=first_interval)
+
+
+def drive_to_json(steps, results, result_path, t_start, log, first_interval=1.0):
+    """drive() for a driver whose `results` dict has an "errors" list (the tracebacks go
+    there): at the end, results["seconds"] since t_start and `results` written as JSON."""
+    def write_results():
+        results["seconds"] = time.perf_counter() - t_start
+        with open(result_path, "w") as f:
+            json.dump(results, f, indent=1)
+        log("done")
+
+    drive(steps, results["errors"].append, write_results, first_interval)
 
 
 def percentiles(values):

@@ -33,7 +33,21 @@ struct Proto {
   }
   size_t num_vertices() const { return positions.size() / 3; }
   size_t num_triangles() const { return triangles.size() / 3; }
+  // Only positions and triangles: flat normals, material slot 0, no UVs.
+  void add_plain_to(Scene& scene) const {
+    scene.add_prototype(positions.data(), num_vertices(), triangles.data(), num_triangles(), nullptr, nullptr);
+  }
 };
+
+// Straight down onto the prototype at the origin, next to its ridge.
+Ray ray_down() {
+  Ray down;
+  down.origin = Vec3(0.1f, 0.05f, 5);
+  down.dir = Vec3(0, 0, -1);
+  down.tmin = 0.0f;
+  down.tmax = kInfinity;
+  return down;
+}
 
 // The flattening export, written independently of the core: a world-space copy of the prototype.
 void add_flattened(Scene& scene, const Proto& proto, const Matrix& m, const std::vector<int64_t>& table) {
@@ -244,8 +258,7 @@ TEST(Instances, MovingAndRemovingUpdatesHitsAndLights) {
   scene.add_material(Material{});
   scene.add_material(e);
   const Proto proto;
-  scene.add_prototype(proto.positions.data(), proto.num_vertices(), proto.triangles.data(), proto.num_triangles(),
-                      nullptr, nullptr);
+  proto.add_plain_to(scene);
   const Matrix at_origin = affine(glm::mat3(1.0f), Vec3(0.0f)), moved = affine(scale(2, 2, 2), Vec3(5, 0, 0));
   const int64_t table[] = {1};
   const int64_t first = scene.add_instances(0, at_origin.data(), 1, table, 1);
@@ -253,11 +266,7 @@ TEST(Instances, MovingAndRemovingUpdatesHitsAndLights) {
   scene.add_instances(0, two[0].data(), 2, table, 1);
   scene.commit();
   EXPECT_EQ(scene.lights().num_emissive_triangles(), 12u);
-  Ray down;
-  down.origin = Vec3(0.1f, 0.05f, 5);
-  down.dir = Vec3(0, 0, -1);
-  down.tmin = 0.0f;
-  down.tmax = kInfinity;
+  const Ray down = ray_down();
   SurfaceHit hit;
   ASSERT_TRUE(scene.intersect(down, hit));
   EXPECT_NEAR(hit.position.z, 0.8f * (1 - 0.1f), 1e-4f);
@@ -274,8 +283,7 @@ TEST(Instances, MovingAndRemovingUpdatesHitsAndLights) {
   Scene fresh;
   fresh.add_material(Material{});
   fresh.add_material(e);
-  fresh.add_prototype(proto.positions.data(), proto.num_vertices(), proto.triangles.data(), proto.num_triangles(),
-                      nullptr, nullptr);
+  proto.add_plain_to(fresh);
   fresh.add_instances(0, moved.data(), 1, table, 1);
   fresh.add_instances(0, two[0].data(), 2, table, 1);
   fresh.commit();
@@ -304,8 +312,7 @@ TEST(Instances, BadInputsAndZeroScale) {
   EXPECT_THROW(scene.add_prototype(proto.positions.data(), proto.num_vertices(), proto.triangles.data(),
                                    proto.num_triangles(), nullptr, bad_slots),
                std::invalid_argument);
-  scene.add_prototype(proto.positions.data(), proto.num_vertices(), proto.triangles.data(), proto.num_triangles(),
-                      nullptr, nullptr);
+  proto.add_plain_to(scene);
   Matrix m = affine(glm::mat3(1.0f), Vec3(0.0f));
   const int64_t table[] = {0}, bad_table[] = {1};
   EXPECT_THROW(scene.add_instances(1, m.data(), 1, table, 1), std::invalid_argument);
@@ -320,11 +327,7 @@ TEST(Instances, BadInputsAndZeroScale) {
   scene.commit();
   EXPECT_EQ(scene.num_hidden_instances(), 1u);
   EXPECT_EQ(scene.num_triangles(), 0u);
-  Ray down;
-  down.origin = Vec3(0.1f, 0.05f, 5);
-  down.dir = Vec3(0, 0, -1);
-  down.tmin = 0.0f;
-  down.tmax = kInfinity;
+  const Ray down = ray_down();
   SurfaceHit hit;
   EXPECT_FALSE(scene.intersect(down, hit));
   m = affine(glm::mat3(1.0f), Vec3(0.0f));

@@ -89,13 +89,7 @@ def prepare_still(argv):
     p.add_argument("--out", required=True)
     p.add_argument("--tiles", default="2x2")
     p.add_argument("--frame", type=int)
-    p.add_argument("--engine")
-    p.add_argument("--samples", type=int)
-    p.add_argument("--seed", type=int)
-    p.add_argument("--max-bounces", type=int)
-    p.add_argument("--brdf-model")
-    p.add_argument("--resolution")
-    p.add_argument("--percent", type=int)
+    runner.add_render_arguments(p)
     args = p.parse_args(argv)
     try:
         cols, rows = (int(v) for v in args.tiles.lower().split("x"))
@@ -105,7 +99,7 @@ def prepare_still(argv):
     scene = bpy.context.scene
     # The sweep runner's settings code: engine, samples, seed, resolution, float EXR output.
     sargs = runner.build_parser().parse_args([])
-    for key in ("engine", "samples", "seed", "max_bounces", "brdf_model", "resolution", "percent"):
+    for key in runner.RENDER_ARGUMENTS:
         setattr(sargs, key, getattr(args, key))
     runner.configure(scene, sargs, os.path.join(out, "tiles"))
     rd = scene.render

@@ -112,6 +112,21 @@ def parse_frames(text):
     return sorted(frames)
 
 
+RENDER_ARGUMENTS = ("engine", "samples", "seed", "max_bounces", "brdf_model", "resolution",
+                    "percent")
+
+
+def add_render_arguments(p):
+    """The options configure() reads (RENDER_ARGUMENTS), also taken by the farm's tasks."""
+    p.add_argument("--engine")
+    p.add_argument("--samples", type=int)
+    p.add_argument("--seed", type=int)
+    p.add_argument("--max-bounces", type=int)
+    p.add_argument("--brdf-model")
+    p.add_argument("--resolution")
+    p.add_argument("--percent", type=int)
+
+
 def build_parser():
     p = argparse.ArgumentParser(prog="runner.py", add_help=True,
                                 description="Parameter sweeps of a material input (see the module "
@@ -125,13 +140,7 @@ def build_parser():
     p.add_argument("--values2")
     p.add_argument("--range2")
     p.add_argument("--set", action="append", default=[], metavar="[MATERIAL:]SOCKET=VALUE")
-    p.add_argument("--engine")
-    p.add_argument("--samples", type=int)
-    p.add_argument("--seed", type=int)
-    p.add_argument("--max-bounces", type=int)
-    p.add_argument("--brdf-model")
-    p.add_argument("--resolution")
-    p.add_argument("--percent", type=int)
+    add_render_arguments(p)
     p.add_argument("--start", type=int, default=1)
     p.add_argument("--frames")
     p.add_argument("--out")

@@ -125,6 +125,57 @@ def _normalize(v):
     return out, ok
 
 
+def _usable_triangles(pos, tris):
+    """(positions, unit geometric normals, kept-triangle mask, number of triangles dropped for
+    NaN/Inf vertices) of float32 positions (N,3) and triangles (M,3).
+
+    Triangles touching a NaN/Inf vertex are dropped, and so are absurdly far vertices (Blender
+    clamps an Inf typed into a field to FLT_MAX); such vertices are set to 0 in a copy of pos
+    (unused now; the core rejects any non-finite value). Zero-area triangles can never be hit
+    and are dropped silently.
+    """
+    with np.errstate(all="ignore"):
+        bad_vertex = ~(np.abs(pos) < MAX_COORDINATE).all(axis=1)
+    keep = np.ones(len(tris), dtype=bool)
+    dropped_nonfinite = 0
+    if bad_vertex.any():
+        keep &= ~bad_vertex[tris].any(axis=1)
+        dropped_nonfinite = int(len(tris) - np.count_nonzero(keep))
+        pos = pos.copy()
+        pos[bad_vertex] = 0.0
+    p0 = pos[tris[:, 0]]
+    with np.errstate(all="ignore"):
+        ng = np.cross(pos[tris[:, 1]] - p0, pos[tris[:, 2]] - p0)
+    del p0
+    ng, ng_ok = _normalize(ng)
+    keep &= ng_ok
+    return pos, ng, keep, dropped_nonfinite
+
+
+def _corner_normals(local, tris, ng, normal_matrix=None):
+    """Unit corner normals float32 (M,3,3) of a LocalMesh, or None (all flat): its vertex or
+    corner normals (times normal_matrix, if given), with the geometric normal ng on flat
+    triangles and on corners without a usable normal."""
+    if local.vertex_normals is None and local.corner_normals is None:
+        return None
+    with np.errstate(all="ignore"):
+        if local.vertex_normals is not None:
+            vn = local.vertex_normals
+            vn, vn_ok = _normalize(vn if normal_matrix is None else vn @ normal_matrix.T)
+            corner = vn[tris]
+            corner_ok = vn_ok[tris]
+        else:
+            cn = local.corner_normals
+            corner, corner_ok = _normalize(cn if normal_matrix is None else cn @ normal_matrix.T)
+    use_ng = ~corner_ok
+    if local.smooth is not None:
+        use_ng |= ~local.smooth[:, None]
+    if use_ng.any():
+        rows, cols = np.nonzero(use_ng)
+        corner[rows, cols] = ng[rows]
+    return corner
+
+
 def world_mesh(local, matrix):
     """World-space arrays for add_mesh.
 
@@ -136,26 +187,10 @@ def world_mesh(local, matrix):
     lin = m[:3, :3]
     with np.errstate(all="ignore"):
         pos = (local.positions.astype(np.float64) @ lin.T + m[:3, 3]).astype(np.float32)
+    # Triangles touching a NaN/Inf vertex (before or after the transform) and zero-area
+    # triangles are dropped.
+    pos, ng, keep, dropped_nonfinite = _usable_triangles(pos, local.triangles)
     tris = local.triangles
-
-    # Triangles touching a NaN/Inf vertex (before or after the transform) are dropped, and
-    # so are absurdly far vertices (Blender clamps an Inf typed into a field to FLT_MAX).
-    with np.errstate(all="ignore"):
-        bad_vertex = ~(np.abs(pos) < MAX_COORDINATE).all(axis=1)
-    keep = np.ones(len(tris), dtype=bool)
-    dropped_nonfinite = 0
-    if bad_vertex.any():
-        keep &= ~bad_vertex[tris].any(axis=1)
-        dropped_nonfinite = int(len(tris) - np.count_nonzero(keep))
-        pos[bad_vertex] = 0.0            # unused now; the core rejects any non-finite value
-
-    # Geometric normals; zero-area triangles can never be hit and are dropped silently.
-    p0 = pos[tris[:, 0]]
-    with np.errstate(all="ignore"):
-        ng = np.cross(pos[tris[:, 1]] - p0, pos[tris[:, 2]] - p0)
-    del p0
-    ng, ng_ok = _normalize(ng)
-    keep &= ng_ok
 
     # A mirroring transform turns the winding around: two corners are swapped below so that
     # the geometric normal keeps its side (as Cycles does for negative scale).
@@ -164,25 +199,10 @@ def world_mesh(local, matrix):
     if flip:
         ng = -ng
 
-    corner = None
-    if local.vertex_normals is not None or local.corner_normals is not None:
-        with np.errstate(all="ignore"):
-            normal_matrix = (np.linalg.inv(lin).T if abs(det) > 1e-300 else lin)
-        normal_matrix = normal_matrix.astype(np.float32)
-        with np.errstate(all="ignore"):
-            if local.vertex_normals is not None:
-                vn, vn_ok = _normalize(local.vertex_normals @ normal_matrix.T)
-                corner = vn[tris]
-                corner_ok = vn_ok[tris]
-            else:
-                corner, corner_ok = _normalize(local.corner_normals @ normal_matrix.T)
-        # Corners without a usable normal, and flat triangles, use the geometric normal.
-        use_ng = ~corner_ok
-        if local.smooth is not None:
-            use_ng |= ~local.smooth[:, None]
-        if use_ng.any():
-            rows, cols = np.nonzero(use_ng)
-            corner[rows, cols] = ng[rows]
+    # Normals by M^-T.
+    with np.errstate(all="ignore"):
+        normal_matrix = (np.linalg.inv(lin).T if abs(det) > 1e-300 else lin)
+    corner = _corner_normals(local, tris, ng, normal_matrix.astype(np.float32))
 
     if not keep.all():
         tris = tris[keep]
@@ -304,39 +324,9 @@ def prototype_arrays(local, uvs):
     the flat normal on flat triangles and on corners without a usable normal. The core moves
     them to world space per instance (normals by M^-T, a mirroring M keeps the flat normal's
     side), so each mesh is checked here once, whatever its number of instances."""
-    pos = local.positions
     tris = local.triangles
-    with np.errstate(all="ignore"):
-        bad_vertex = ~(np.abs(pos) < MAX_COORDINATE).all(axis=1)
-    keep = np.ones(len(tris), dtype=bool)
-    dropped = 0
-    if bad_vertex.any():
-        keep &= ~bad_vertex[tris].any(axis=1)
-        dropped = int(len(tris) - np.count_nonzero(keep))
-        pos = pos.copy()
-        pos[bad_vertex] = 0.0             # unused now; the core rejects any non-finite value
-    p0 = pos[tris[:, 0]]
-    with np.errstate(all="ignore"):
-        ng = np.cross(pos[tris[:, 1]] - p0, pos[tris[:, 2]] - p0)
-    del p0
-    ng, ng_ok = _normalize(ng)
-    keep &= ng_ok
-
-    corner = None
-    if local.vertex_normals is not None or local.corner_normals is not None:
-        with np.errstate(all="ignore"):
-            if local.vertex_normals is not None:
-                vn, vn_ok = _normalize(local.vertex_normals)
-                corner = vn[tris]
-                corner_ok = vn_ok[tris]
-            else:
-                corner, corner_ok = _normalize(local.corner_normals)
-        use_ng = ~corner_ok
-        if local.smooth is not None:
-            use_ng |= ~local.smooth[:, None]
-        if use_ng.any():
-            rows, cols = np.nonzero(use_ng)
-            corner[rows, cols] = ng[rows]
+    pos, ng, keep, dropped = _usable_triangles(local.positions, tris)
+    corner = _corner_normals(local, tris, ng)
     slots = np.maximum(local.material_slots, 0)
     corner_uvs = local.corner_uvs if uvs else None
     if not keep.all():
