@@ -18,6 +18,7 @@ import traceback
 from torrance_tools import scene as make
 from torrance_tools.addon_access import addon, core, last_messages  # noqa: F401 (for the tests)
 from torrance_tools.compare import read_exr
+from torrance_tools.memory import rss_mb  # noqa: F401 (for the tests)
 from torrance_tools.render_settings import plain_output, render_exr, torrance_settings
 from torrance_tools.scene import mesh_object, sphere_object  # noqa: F401 (for the tests)
 
@@ -120,9 +121,3 @@ def render(scene, directory, name="render"):
     return read_exr(path), seconds
 
 
-def rss_mb():
-    with open("/proc/self/status") as f:
-        for line in f:
-            if line.startswith("VmRSS:"):
-                return int(line.split()[1]) / 1024.0
-    return float("nan")
