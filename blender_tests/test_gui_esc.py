@@ -144,13 +144,7 @@ def _build_scene(path):
     scene.cycles.use_denoising = False
     scene.cycles.use_adaptive_sampling = False
     scene.cycles.time_limit = 0.0
-    red = testing.principled("Red", base_color=(0.8, 0.1, 0.05))
-    testing.sphere_object(scene, "Sphere", (0, 0, 0.8), 0.8, red, segments=320, rings=128)
-    testing.plane(scene, "Floor", 10,
-                  material=testing.principled("Grey", base_color=(0.3, 0.3, 0.3)))
-    testing.add_sun(scene)
-    testing.set_world(scene, (0.18, 0.18, 0.18))
-    testing.add_camera(scene)
+    testing.sphere_on_floor(scene, (0.8, 0.1, 0.05), segments=320, rings=128)
     bpy.ops.wm.save_as_mainfile(filepath=path)
 
 

@@ -420,13 +420,7 @@ def _build_scene(path):
     scene.cycles.preview_samples = 16                 # for the studio HDRI comparison
     scene.cycles.use_preview_denoising = False
     scene.cycles.use_preview_adaptive_sampling = False
-    red = testing.principled("Red", base_color=(0.8, 0.02, 0.02))
-    testing.sphere_object(scene, "Sphere", (0, 0, 0.8), 0.8, red)
-    testing.plane(scene, "Floor", 10,
-                  material=testing.principled("Grey", base_color=(0.3, 0.3, 0.3)))
-    testing.add_sun(scene)
-    testing.set_world(scene, (0.18, 0.18, 0.18))
-    testing.add_camera(scene)
+    testing.sphere_on_floor(scene, (0.8, 0.02, 0.02))
     bpy.ops.wm.save_as_mainfile(filepath=path)
 
 

@@ -110,6 +110,17 @@ def set_world(scene, color, strength=1.0, use_nodes=True):
     return make.world(scene, color, strength, use_nodes=use_nodes, viewport_color=False)
 
 
+def sphere_on_floor(scene, red, segments=48, rings=24):
+    """The GUI tests' scene: a red sphere (radius 0.8, on the floor) on a grey 10 m floor, a sun,
+    a grey world and the default camera."""
+    sphere_object(scene, "Sphere", (0, 0, 0.8), 0.8, principled("Red", base_color=red),
+                  segments=segments, rings=rings)
+    plane(scene, "Floor", 10, material=principled("Grey", base_color=(0.3, 0.3, 0.3)))
+    add_sun(scene)
+    set_world(scene, (0.18, 0.18, 0.18))
+    add_camera(scene)
+
+
 # --------------------------------------------------------------------------------------------
 # Rendering
 
