@@ -15,14 +15,16 @@ constexpr int kS = 16;        // S: kS x kS x kS
 constexpr int kGridE = 64;    // u grid per E entry
 constexpr int kGridAvg = 48;  // u grid per mu point of E_avg
 constexpr int kMuAvg = 32;    // mu points (midpoint rule) of E_avg
-constexpr int kGridS = 32;    // u grid per S entry
+constexpr int kGridS = 48;    // u grid per S entry
 
 float grid_value(int k, int n, float hi) { return std::min(std::max(float(k) / float(n - 1), 1e-4f), hi); }
 
 Vec3 viewer(float mu) { return Vec3(safe_sqrt(1.0f - mu * mu), 0.0f, mu); }
 
-// Mean of f(h, wi) over the visible normals of wo (u-grid midpoint rule), 0 where wi is below
-// the horizon. A mirror (alpha below kDeltaAlpha) has the single normal h = n.
+// Mean of f(h, wi) over the visible normals of wo, 0 where wi is below the horizon: the midpoint
+// rule over u in [0, 1]^2, with u.y = 1 - (1 - v)^2 so that points crowd towards u.y = 1, where
+// the steep, rare normals lie (at low roughness they decide the few tenths of a percent that
+// reflect below the horizon). A mirror (alpha below kDeltaAlpha) has the single normal h = n.
 template <typename F>
 double visible_normal_mean(float roughness, float mu, int n, F&& f) {
   const float alpha = roughness * roughness;
@@ -31,11 +33,12 @@ double visible_normal_mean(float roughness, float mu, int n, F&& f) {
   double sum = 0.0;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
-      const Vec2 u((i + 0.5f) / float(n), (j + 0.5f) / float(n));
+      const float v = 1.0f - (j + 0.5f) / float(n);  // 1 - v of the text above
+      const Vec2 u((i + 0.5f) / float(n), 1.0f - v * v);
       const Vec3 h = ggx::sample_visible_normal(wo, alpha, u);
       const Vec3 wi = ggx::reflect(wo, h);
       if (wi.z <= 0.0f) continue;
-      sum += f(h, wi, wo);
+      sum += 2.0 * v * f(h, wi, wo);
     }
   return sum / double(n * n);
 }

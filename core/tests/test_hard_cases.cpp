@@ -43,7 +43,11 @@ TEST(HardCases, NoNanOrInfInAHundredMillionRandomisedEvaluations) {
       m.metallic = rng.next_1d() < 0.3f ? float(rng.next_u32() % 2) : rng.next_1d();
       m.roughness = nasty_roughness(rng);
       m.specular = rng.next_1d() < 0.3f ? 0.0f : rng.next_1d();
-      const MaterialBsdf bsdf(m, (chunk & 1) ? BrdfModel::Principled : BrdfModel::Paper);
+      const float ior_pick = rng.next_1d();  // PRINCIPLED_V2's inputs: IOR below, at and above 1
+      m.ior = ior_pick < 0.1f ? 1.0f : ior_pick < 0.2f ? 1e-5f : ior_pick < 0.3f ? 0.7f : 1.0f + 5.0f * rng.next_1d();
+      m.specular_tint_color = Vec3(rng.next_1d() < 0.2f ? 0.0f : 2.0f * rng.next_1d(), 1.0f, rng.next_1d());
+      m.multiscatter_ggx = rng.next_1d() < 0.8f;
+      const MaterialBsdf bsdf(m, test::kAllModels[chunk % 3]);
       for (int e = 0; e < 100; ++e) {
         const Vec3 wo = nasty_direction(rng), wi = nasty_direction(rng);
         const Vec3 f = bsdf.eval(wo, wi);
