@@ -125,13 +125,14 @@ def camera(scene, location, target, lens=35.0, name="Camera", clip_start=0.05, c
 
 
 def principled(name, base_color=(0.8, 0.8, 0.8), metallic=0.0, roughness=0.5, specular=0.5,
-               emission=None, emission_strength=None, viewport_color=True):
-    """A material whose surface is one Principled BSDF (GGX), with constant inputs (emission:
-    only set when given); viewport_color: the viewport colour is the base colour."""
+               emission=None, emission_strength=None, viewport_color=True, distribution='GGX'):
+    """A material whose surface is one Principled BSDF (`distribution`: GGX unless told, e.g.
+    'MULTI_GGX'), with constant inputs (emission: only set when given); viewport_color: the
+    viewport colour is the base colour."""
     mat = bpy.data.materials.new(name)
     mat.use_nodes = True
     node = mat.node_tree.nodes.get("Principled BSDF")
-    node.distribution = 'GGX'
+    node.distribution = distribution
     node.inputs["Base Color"].default_value = (*base_color, 1.0)
     node.inputs["Metallic"].default_value = metallic
     node.inputs["Roughness"].default_value = roughness
