@@ -177,8 +177,8 @@ def mesh_object(scene, name, verts, polys, material=None, smooth=False, material
     me.polygons.add(len(sizes))
     me.polygons.foreach_set("loop_start", (np.cumsum(sizes) - sizes).astype(np.int32))
     me.polygons.foreach_set("loop_total", sizes)
-    if smooth:
-        me.polygons.foreach_set("use_smooth", np.ones(len(sizes), dtype=bool))
+    # Explicitly either way: new faces are flat in Blender 3.x but smooth since 4.1.
+    me.polygons.foreach_set("use_smooth", np.full(len(sizes), bool(smooth)))
     for mat in (materials or ([material] if material is not None else [])):
         me.materials.append(mat)
     if material_indices is not None:
@@ -209,6 +209,18 @@ def box(scene, name, center, size, material=None, rotation_z_deg=0.0):
     ob.location = center
     ob.rotation_euler = (0.0, 0.0, math.radians(rotation_z_deg))
     return ob
+
+
+def geometry_in_out(tree):
+    """Gives a geometry node group a Geometry input and output: .inputs/.outputs in Blender 3.x,
+    .interface since 4.0."""
+    if hasattr(tree, "interface"):
+        for in_out in ('INPUT', 'OUTPUT'):
+            tree.interface.new_socket(name="Geometry", in_out=in_out,
+                                      socket_type='NodeSocketGeometry')
+    else:
+        tree.inputs.new('NodeSocketGeometry', "Geometry")
+        tree.outputs.new('NodeSocketGeometry', "Geometry")
 
 
 def sphere_object(scene, name, center, radius, material=None, segments=48, rings=24):
