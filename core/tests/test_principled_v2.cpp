@@ -33,8 +33,9 @@ TEST(PrincipledV2Tables, TablesMatchTheirIntegrals) {
   for (int i : {1, 4, 9, 15})
     for (int j : {0, 1, 5, 15}) {
       const float r = i / 15.0f, mu = std::max(j / 15.0f, 1e-4f);
-      EXPECT_NEAR(ggx_tables::dielectric_fresnel_mix(r, mu, 1.5f), ggx_tables::dielectric_fresnel_mix_direct(r, mu, 1.5f, 256),
-                  0.003) << r << " " << mu;
+      EXPECT_NEAR(ggx_tables::dielectric_fresnel_mix(r, mu, 1.5f),
+                  ggx_tables::dielectric_fresnel_mix_direct(r, mu, 1.5f, 256), 0.003)
+          << r << " " << mu;
     }
   for (int i : {1, 7, 20, 31})
     for (int j : {0, 1, 10, 31}) {

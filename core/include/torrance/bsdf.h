@@ -19,8 +19,8 @@ namespace torrance {
 
 // Which Cook-Torrance variant shades the scene.
 enum class BrdfModel {
-  Paper,       // exactly the brief's equations (GGX D, Schlick F, Schlick-GGX G, Lambert diffuse)
-  Principled,  // Blender 3.4's Principled BSDF v1 as Cycles renders it (Burley, exact Fresnel, Smith G)
+  Paper,         // exactly the brief's equations (GGX D, Schlick F, Schlick-GGX G, Lambert diffuse)
+  Principled,    // Blender 3.4's Principled BSDF v1 as Cycles renders it (Burley, exact Fresnel, Smith G)
   PrincipledV2,  // Blender 4.x's Principled BSDF v2 as Cycles 4.x renders it (principled_v2.h)
 };
 

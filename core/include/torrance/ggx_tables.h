@@ -23,8 +23,8 @@ namespace torrance::ggx_tables {
 // Below this alpha Cycles 4.x treats GGX as a mirror (alpha_x alpha_y <= 5e-7).
 inline constexpr float kDeltaAlpha = 7.0710678e-4f;
 
-float albedo(float roughness, float mu);                   // E(r, mu)
-float average_albedo(float roughness);                     // E_avg(r)
+float albedo(float roughness, float mu);                             // E(r, mu)
+float average_albedo(float roughness);                               // E_avg(r)
 float dielectric_fresnel_mix(float roughness, float mu, float eta);  // S(r, mu, z(eta))
 
 // The same integrals at one point, evaluated directly (no table), with an n x n grid over u:

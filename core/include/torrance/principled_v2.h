@@ -57,10 +57,10 @@ class PrincipledV2Bsdf {
 
   // The wo-dependent layer weights.
   struct ViewTerms {
-    Vec3 metal_scale{0.0f};       // metallic (x the multiscatter scale)
-    Vec3 dielectric_scale{0.0f};  // (1 - metallic) (x the multiscatter scale)
-    Vec3 dielectric_albedo{0.0f}; // A_d, the estimate the diffuse layer is reduced by
-    Vec3 diffuse{0.0f};           // (1 - metallic) base colour w(wo)
+    Vec3 metal_scale{0.0f};        // metallic (x the multiscatter scale)
+    Vec3 dielectric_scale{0.0f};   // (1 - metallic) (x the multiscatter scale)
+    Vec3 dielectric_albedo{0.0f};  // A_d, the estimate the diffuse layer is reduced by
+    Vec3 diffuse{0.0f};            // (1 - metallic) base colour w(wo)
   };
   ViewTerms view_terms(float cos_o) const;
 
