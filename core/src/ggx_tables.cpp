@@ -4,7 +4,9 @@
 #include "torrance/principled.h"  // fresnel_dielectric
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
+#include <memory>
 #include <vector>
 
 namespace torrance::ggx_tables {
@@ -66,7 +68,14 @@ struct Tables {
 };
 
 const Tables& tables() {
-  static const Tables t;  // computed once, thread-safe
+  // Computed once, thread-safe. Isolated: while its parallel loops run, this thread must not
+  // pick up an outer task (e.g. another tile of the render that first asked for the tables),
+  // which would ask for them again inside their own initialisation.
+  static const Tables t = [] {
+    std::unique_ptr<Tables> made;
+    tbb::this_task_arena::isolate([&] { made = std::make_unique<Tables>(); });
+    return std::move(*made);
+  }();
   return t;
 }
 
