@@ -56,7 +56,7 @@ def environment(mirror=False):
 def float_image(name, pixels):
     img = bpy.data.images.new(name, pixels.shape[1], pixels.shape[0], alpha=True,
                               float_buffer=True)
-    img.colorspace_settings.name = 'Linear'
+    img.colorspace_settings.name = 'Linear' if bpy.app.version < (4, 0, 0) else 'Linear Rec.709'
     img.pixels.foreach_set(pixels.ravel())
     return img
 

@@ -133,8 +133,7 @@ def geometry_nodes_scene():
     coll.objects.unlink(box)
     owner = testing.plane(scene, "Scatter", 3.0)
     tree = bpy.data.node_groups.new("Scatter", 'GeometryNodeTree')
-    tree.inputs.new('NodeSocketGeometry', "Geometry")
-    tree.outputs.new('NodeSocketGeometry', "Geometry")
+    testing.make.geometry_in_out(tree)
     n = tree.nodes
     gin, gout = n.new('NodeGroupInput'), n.new('NodeGroupOutput')
     grid = n.new('GeometryNodeMeshGrid')

@@ -42,6 +42,19 @@ def check_registered():
           f"scene.torrance defaults: {ts.samples} {ts.max_bounces} {ts.seed} {ts.brdf_model}")
     for prop in ("samples", "max_bounces", "seed", "brdf_model"):
         check(ts.bl_rna.properties[prop].description, f"scene.torrance.{prop} has no tooltip")
+    # The default model is this Blender's Principled: v1 in 3.x, v2 in 4.x (brdf_model.py);
+    # the explicit choices are the same everywhere, and v1 in 4.x is reported.
+    models = addon.brdf_model
+    v4 = bpy.app.version >= (4, 0, 0)
+    resolved = {m: models.core_model(m) for m in ('PRINCIPLED', 'PAPER', 'PRINCIPLED_V1',
+                                                  'PRINCIPLED_V2')}
+    check(resolved == dict(PRINCIPLED='PRINCIPLED_V2' if v4 else 'PRINCIPLED', PAPER='PAPER',
+                           PRINCIPLED_V1='PRINCIPLED', PRINCIPLED_V2='PRINCIPLED_V2'),
+          f"BRDF models in Blender {bpy.app.version_string}: {resolved}")
+    check(models.core_model('PRINCIPLED', (3, 4, 1)) == 'PRINCIPLED'
+          and models.core_model('PRINCIPLED', (4, 2, 0)) == 'PRINCIPLED_V2', "by version")
+    check(bool(models.model_note('PRINCIPLED_V1')) == v4
+          and models.model_note('PRINCIPLED') is None, "the note on Principled v1 in 4.x")
     for id_type in (bpy.types.Material, bpy.types.Light, bpy.types.Camera, bpy.types.World):
         check(hasattr(id_type, "torrance"), f"{id_type.__name__}.torrance missing")
     for name in PANELS:

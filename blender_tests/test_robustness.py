@@ -51,6 +51,16 @@ def render_case(name, scene, directory, expect=(), levels=('WARNING', 'INFO'), e
     return img
 
 
+def set_auto_smooth(mesh, on):
+    """Auto smooth at 30 degrees on or off: Mesh.use_auto_smooth before Blender 4.1, which
+    removed it; since then the edges sharper than 30 degrees marked sharp (on) or none (off)."""
+    if hasattr(mesh, "use_auto_smooth"):
+        mesh.use_auto_smooth = on
+    else:
+        mesh.set_sharp_from_angle(angle=math.radians(30.0) if on else math.pi)
+        mesh.update()                 # the method does not tag the mesh for the depsgraph
+
+
 def main():
     testing.addon()
     d = testing.tempdir()
@@ -260,18 +270,18 @@ def main():
                                testing.principled("C", (0.6, 0.6, 0.6)))
     flat = render_case("flat_cube", scene, d)
     cube.data.polygons.foreach_set("use_smooth", [True] * 6)
-    cube.data.use_auto_smooth = True
+    set_auto_smooth(cube.data, True)
     cube.data.update()
     auto = render_case("auto_smooth_cube", scene, d)
     diff = np.abs(auto - flat).max()
     print(f"[auto_smooth_cube] max |auto smooth - flat| = {diff:.2e}")
     check(diff < 1e-3 * max(1.0, flat.max()), "an auto-smooth cube must render like a flat one")
-    cube.data.use_auto_smooth = False
+    set_auto_smooth(cube.data, False)
     smooth = render_case("smooth_cube", scene, d)
     check(np.abs(smooth - flat).max() > 1e-2, "a smooth-shaded cube must differ from a flat one")
     cube.data.polygons[0].use_smooth = False
     render_case("mixed_cube", scene, d)
-    cube.data.use_auto_smooth = True
+    set_auto_smooth(cube.data, True)
     cube.data.normals_split_custom_set_from_vertices([(0.0, 0.0, 1.0)] * 8)
     render_case("custom_normals_cube", scene, d)
 

@@ -73,7 +73,11 @@ def cycles_settings(samples, seed, bounces):
 
 
 def ggx_everywhere():
-    """Every Principled BSDF of every material set to GGX (the default, enforced)."""
+    """In Blender 3.x, every Principled BSDF of every material set to GGX (the default, enforced:
+    Torrance's Principled v1 has no multiscatter GGX). Blender 4.x's nodes keep their
+    distribution: Torrance's Principled v2 renders GGX and Multiscatter GGX as Cycles 4.x does."""
+    if bpy.app.version >= (4, 0, 0):
+        return
     for mat in bpy.data.materials:
         if mat.use_nodes and mat.node_tree is not None:
             for node in mat.node_tree.nodes:
@@ -95,7 +99,7 @@ def setup_torrance(scene, samples, max_bounces, seed=0, brdf_model='PRINCIPLED',
 
 def setup_cycles(scene, samples, max_bounces, seed=0):
     """Cycles as the engine, an unbiased reference comparable with Torrance: cycles_settings,
-    no denoising on any view layer, no light tree (Blender 3.5+), GGX everywhere."""
+    no denoising on any view layer, no light tree (Blender 3.5+), GGX everywhere (3.x)."""
     scene.render.engine = 'CYCLES'
     cy = scene.cycles
     for key, value in cycles_settings(samples, seed, max_bounces).items():

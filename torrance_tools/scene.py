@@ -125,13 +125,14 @@ def camera(scene, location, target, lens=35.0, name="Camera", clip_start=0.05, c
 
 
 def principled(name, base_color=(0.8, 0.8, 0.8), metallic=0.0, roughness=0.5, specular=0.5,
-               emission=None, emission_strength=None, viewport_color=True):
-    """A material whose surface is one Principled BSDF (GGX), with constant inputs (emission:
-    only set when given); viewport_color: the viewport colour is the base colour."""
+               emission=None, emission_strength=None, viewport_color=True, distribution='GGX'):
+    """A material whose surface is one Principled BSDF (`distribution`: GGX unless told, e.g.
+    'MULTI_GGX'), with constant inputs (emission: only set when given); viewport_color: the
+    viewport colour is the base colour."""
     mat = bpy.data.materials.new(name)
     mat.use_nodes = True
     node = mat.node_tree.nodes.get("Principled BSDF")
-    node.distribution = 'GGX'
+    node.distribution = distribution
     node.inputs["Base Color"].default_value = (*base_color, 1.0)
     node.inputs["Metallic"].default_value = metallic
     node.inputs["Roughness"].default_value = roughness
@@ -176,8 +177,8 @@ def mesh_object(scene, name, verts, polys, material=None, smooth=False, material
     me.polygons.add(len(sizes))
     me.polygons.foreach_set("loop_start", (np.cumsum(sizes) - sizes).astype(np.int32))
     me.polygons.foreach_set("loop_total", sizes)
-    if smooth:
-        me.polygons.foreach_set("use_smooth", np.ones(len(sizes), dtype=bool))
+    # Explicitly either way: new faces are flat in Blender 3.x but smooth since 4.1.
+    me.polygons.foreach_set("use_smooth", np.full(len(sizes), bool(smooth)))
     for mat in (materials or ([material] if material is not None else [])):
         me.materials.append(mat)
     if material_indices is not None:
@@ -208,6 +209,18 @@ def box(scene, name, center, size, material=None, rotation_z_deg=0.0):
     ob.location = center
     ob.rotation_euler = (0.0, 0.0, math.radians(rotation_z_deg))
     return ob
+
+
+def geometry_in_out(tree):
+    """Gives a geometry node group a Geometry input and output: .inputs/.outputs in Blender 3.x,
+    .interface since 4.0."""
+    if hasattr(tree, "interface"):
+        for in_out in ('INPUT', 'OUTPUT'):
+            tree.interface.new_socket(name="Geometry", in_out=in_out,
+                                      socket_type='NodeSocketGeometry')
+    else:
+        tree.inputs.new('NodeSocketGeometry', "Geometry")
+        tree.outputs.new('NodeSocketGeometry', "Geometry")
 
 
 def sphere_object(scene, name, center, radius, material=None, segments=48, rings=24):

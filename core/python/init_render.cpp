@@ -14,6 +14,7 @@ std::string model_name(BrdfModel m) {
   switch (m) {
     case BrdfModel::Paper: return "PAPER";
     case BrdfModel::Principled: return "PRINCIPLED";
+    case BrdfModel::PrincipledV2: return "PRINCIPLED_V2";
   }
   return "PAPER";
 }
@@ -51,7 +52,8 @@ uint32_t parse_passes(const std::vector<std::string>& names) {
 BrdfModel parse_model(const std::string& s) {
   if (s == "PAPER") return BrdfModel::Paper;
   if (s == "PRINCIPLED") return BrdfModel::Principled;
-  throw py::value_error("brdf_model must be 'PAPER' or 'PRINCIPLED', got '" + s + "'");
+  if (s == "PRINCIPLED_V2") return BrdfModel::PrincipledV2;
+  throw py::value_error("brdf_model must be 'PAPER', 'PRINCIPLED' or 'PRINCIPLED_V2', got '" + s + "'");
 }
 
 py::array_t<float> to_numpy(const Image& image) {

@@ -142,7 +142,7 @@ void init_scene(py::module_& m) {
           [](Scene& s, std::array<float, 3> base_color, float metallic, float roughness, float specular,
              std::array<float, 3> emission, float emission_strength, float specular_tint, int base_color_texture,
              int metallic_texture, int roughness_texture, int emission_texture, int normal_texture,
-             float normal_strength) {
+             float normal_strength, float ior, std::array<float, 3> specular_tint_color, bool multiscatter_ggx) {
             Material mat;
             mat.base_color = vec3(base_color);
             mat.metallic = metallic;
@@ -150,6 +150,9 @@ void init_scene(py::module_& m) {
             mat.specular = specular;
             mat.emission = vec3(emission) * emission_strength;
             mat.specular_tint = specular_tint;
+            mat.ior = ior;
+            mat.specular_tint_color = vec3(specular_tint_color);
+            mat.multiscatter_ggx = multiscatter_ggx;
             MaterialTextures tex;
             tex.base_color = base_color_texture;
             tex.metallic = metallic_texture;
@@ -165,9 +168,11 @@ void init_scene(py::module_& m) {
           py::arg("emission") = std::array<float, 3>{0.0f, 0.0f, 0.0f}, py::arg("emission_strength") = 0.0f,
           py::arg("specular_tint") = 0.0f, py::arg("base_color_texture") = -1, py::arg("metallic_texture") = -1,
           py::arg("roughness_texture") = -1, py::arg("emission_texture") = -1, py::arg("normal_texture") = -1,
-          py::arg("normal_strength") = 1.0f,
+          py::arg("normal_strength") = 1.0f, py::arg("ior") = 1.5f,
+          py::arg("specular_tint_color") = std::array<float, 3>{1.0f, 1.0f, 1.0f}, py::arg("multiscatter_ggx") = true,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
-          "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength).")
+          "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength). "
+          "ior, specular_tint_color and multiscatter_ggx are read by PRINCIPLED_V2 only.")
       .def(
           "add_texture",
           [](Scene& s, const py::object& pixels, const std::string& colorspace, const std::string& interpolation) {

@@ -207,11 +207,15 @@ Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, fl
 
 void check_material(const Material& m) {
   if (!is_finite(m.base_color) || !is_finite(m.emission) || !std::isfinite(m.metallic) ||
-      !std::isfinite(m.roughness) || !std::isfinite(m.specular) || !std::isfinite(m.specular_tint))
+      !std::isfinite(m.roughness) || !std::isfinite(m.specular) || !std::isfinite(m.specular_tint) ||
+      !std::isfinite(m.ior) || !is_finite(m.specular_tint_color))
     throw std::invalid_argument("material values must be finite (no NaN or Inf)");
   if (m.metallic < 0.0f || m.metallic > 1.0f || m.roughness < 0.0f || m.roughness > 1.0f)
     throw std::invalid_argument("material metallic and roughness must lie in [0, 1]");
   if (m.specular < 0.0f) throw std::invalid_argument("material specular must be >= 0");
+  if (m.ior <= 0.0f) throw std::invalid_argument("material ior must be > 0");
+  if (glm::any(glm::lessThan(m.specular_tint_color, Vec3(0.0f))))
+    throw std::invalid_argument("material specular_tint_color must be >= 0");
 }
 
 uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures) {

@@ -26,7 +26,7 @@ struct ChiCase {
 
 std::vector<ChiCase> grid() {
   std::vector<ChiCase> cases;
-  for (BrdfModel model : {BrdfModel::Paper, BrdfModel::Principled})
+  for (BrdfModel model : test::kAllModels)
     for (float r : {0.0f, 1e-4f, 0.01f, 0.05f, 0.1f, 0.3f, 0.6f, 1.0f})
       for (float m : {0.0f, 0.5f, 1.0f})
         for (float spec : {0.0f, 0.5f, 1.0f})
@@ -43,7 +43,7 @@ std::vector<ChiCase> grid() {
 
 std::string name(const ChiCase& c) {
   std::ostringstream os;
-  os << (c.model == BrdfModel::Paper ? "PAPER" : "PRINCIPLED") << " r=" << c.roughness << " m=" << c.metallic
+  os << test::model_name(c.model) << " r=" << c.roughness << " m=" << c.metallic
      << " spec=" << c.specular << " cos_o=" << c.cos_o;
   return os.str();
 }

@@ -19,8 +19,8 @@ Material white(float metallic, float roughness, float specular = 0.5f) {
   return m;
 }
 
-TEST(Furnace, QuadratureAndSamplingAgreeForBothModels) {
-  for (BrdfModel model : {BrdfModel::Paper, BrdfModel::Principled})
+TEST(Furnace, QuadratureAndSamplingAgreeForEveryModel) {
+  for (BrdfModel model : test::kAllModels)
     for (float m : {0.0f, 1.0f})
       for (float r : {0.05f, 0.1f, 0.3f, 0.6f, 1.0f})
         for (float cos_o : {1.0f, 0.5f, 0.1f, 0.02f}) {
@@ -28,7 +28,7 @@ TEST(Furnace, QuadratureAndSamplingAgreeForBothModels) {
           const Vec3 wo = test::direction(cos_o, 0.0f);
           const double q = directional_albedo_quadrature(bsdf, wo, r * r);
           const double s = directional_albedo_sampled(bsdf, wo, 200000);
-          EXPECT_NEAR(s, q, 0.01 + 0.01 * q) << (model == BrdfModel::Paper ? "PAPER" : "PRINCIPLED") << " m=" << m
+          EXPECT_NEAR(s, q, 0.01 + 0.01 * q) << test::model_name(model) << " m=" << m
                                              << " r=" << r << " cos_o=" << cos_o;
           // The brief's Schlick-GGX G (k = (alpha+1)^2/8) is an approximation: rough PAPER dielectrics
           // gain a few percent at grazing (the analysis page tabulates it); never more than 10%.

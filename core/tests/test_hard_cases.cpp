@@ -31,7 +31,8 @@ float nasty_roughness(Rng& rng) {
 }
 
 TEST(HardCases, NoNanOrInfInAHundredMillionRandomisedEvaluations) {
-  constexpr uint32_t kChunks = 2000, kPerChunk = 50000;  // 10^8 evaluations
+  // 10^8 evaluations of PAPER and PRINCIPLED (alternate chunks), then 2.5 x 10^7 of PRINCIPLED_V2.
+  constexpr uint32_t kChunks = 2500, kV2Chunks = 500, kPerChunk = 50000;
   std::atomic<uint64_t> bad{0};
   tbb::parallel_for(uint32_t(0), kChunks, [&](uint32_t chunk) {
     Rng rng(chunk, 0, 99);
@@ -43,7 +44,14 @@ TEST(HardCases, NoNanOrInfInAHundredMillionRandomisedEvaluations) {
       m.metallic = rng.next_1d() < 0.3f ? float(rng.next_u32() % 2) : rng.next_1d();
       m.roughness = nasty_roughness(rng);
       m.specular = rng.next_1d() < 0.3f ? 0.0f : rng.next_1d();
-      const MaterialBsdf bsdf(m, (chunk & 1) ? BrdfModel::Principled : BrdfModel::Paper);
+      const bool v2 = chunk >= kChunks - kV2Chunks;
+      if (v2) {  // PRINCIPLED_V2's own inputs: IOR below, at and above 1, tints, distribution
+        const float ior_pick = rng.next_1d();
+        m.ior = ior_pick < 0.1f ? 1.0f : ior_pick < 0.2f ? 1e-5f : ior_pick < 0.3f ? 0.7f : 1.0f + 5.0f * rng.next_1d();
+        m.specular_tint_color = Vec3(rng.next_1d() < 0.2f ? 0.0f : 2.0f * rng.next_1d(), 1.0f, rng.next_1d());
+        m.multiscatter_ggx = rng.next_1d() < 0.8f;
+      }
+      const MaterialBsdf bsdf(m, v2 ? BrdfModel::PrincipledV2 : (chunk & 1) ? BrdfModel::Principled : BrdfModel::Paper);
       for (int e = 0; e < 100; ++e) {
         const Vec3 wo = nasty_direction(rng), wi = nasty_direction(rng);
         const Vec3 f = bsdf.eval(wo, wi);

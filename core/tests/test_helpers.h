@@ -1,6 +1,7 @@
 // Helpers shared by the core tests.
 #pragma once
 
+#include "torrance/bsdf.h"
 #include "torrance/math.h"
 #include "torrance/sampling.h"
 
@@ -16,6 +17,12 @@ inline Vec3 direction(float cos_theta, float phi) {
 inline Vec3 uniform_sphere(Rng& rng) {
   const float z = 1.0f - 2.0f * rng.next_1d();
   return direction(z, kTwoPi * rng.next_1d());
+}
+
+// Every BRDF model, and its name as the module spells it.
+inline constexpr BrdfModel kAllModels[] = {BrdfModel::Paper, BrdfModel::Principled, BrdfModel::PrincipledV2};
+inline const char* model_name(BrdfModel m) {
+  return m == BrdfModel::Paper ? "PAPER" : m == BrdfModel::Principled ? "PRINCIPLED" : "PRINCIPLED_V2";
 }
 
 }  // namespace torrance::test

@@ -8,7 +8,8 @@ output node (the output Cycles would use):
 * Principled BSDF: the sockets Base Color, Metallic, Roughness, Specular,
   Emission and Emission Strength, and Normal (from a tangent-space Normal Map);
   Blender 4.x's Principled v2 by its names (Specular IOR Level with IOR, Emission
-  Color; _PRINCIPLED_SOCKETS);
+  Color; _PRINCIPLED_SOCKETS) and, for the PRINCIPLED_V2 model, its IOR, Specular Tint
+  colour and distribution (Multiscatter GGX or GGX);
 * Diffuse BSDF: a pure diffuse material (specular 0);
 * Emission: a black emitter.
 
@@ -40,6 +41,10 @@ DEFAULT_MATERIAL = dict(
     emission=(0.0, 0.0, 0.0),
     emission_strength=0.0,
     specular_tint=0.0,
+    # Read by PRINCIPLED_V2 only: the IOR, Specular Tint colour and distribution of 4.x's node.
+    ior=1.5,
+    specular_tint_color=(1.0, 1.0, 1.0),
+    multiscatter_ggx=True,
 )
 
 # The Principled BSDF's socket names per node version: v1 is Blender 3.x's, v2 Blender 4.0's
@@ -52,7 +57,7 @@ _PRINCIPLED_SOCKETS = {
 }
 
 # Principled inputs that Torrance ignores, with the value at which ignoring them is exact
-# (a tuple: a colour socket). v2's Specular Tint is a colour: white is v1's tint 0.
+# (a tuple: a colour socket). v2's Specular Tint colour is read (PRINCIPLED_V2 renders it).
 _IGNORED_PRINCIPLED_INPUTS = {
     'v1': (
         ("Subsurface", 0.0),
@@ -70,7 +75,6 @@ _IGNORED_PRINCIPLED_INPUTS = {
         ("Transmission Weight", 0.0),
         ("Thin Film Thickness", 0.0),
         ("Diffuse Roughness", 0.0),
-        ("Specular Tint", (1.0, 1.0, 1.0)),
         ("Alpha", 1.0),
     ),
 }
@@ -452,10 +456,15 @@ class MaterialReader:
         roughness, roughness_tex = t(mat, node, "Roughness", d['roughness'])
         emission, emission_tex = t(mat, node, names['emission'], d['emission'])
         specular = _finite_or(v(mat, node, names['specular'], d['specular']), d['specular'])
+        v2_inputs = {}
         if version == 'v2':
             ior = _finite_or(v(mat, node, "IOR", 1.5), 1.5)
-            specular = specular_from_ior_level(specular, ior if ior > 0.0 else 1.5)
-            specular_tint = 0.0            # a colour in v2: white (neutral) or reported below
+            ior = ior if ior > 0.0 else 1.5
+            specular = specular_from_ior_level(specular, ior)
+            specular_tint = 0.0            # v1's float; v2's colour is read for PRINCIPLED_V2
+            tint = _color3(v(mat, node, names['specular_tint'], (1.0, 1.0, 1.0)), (1.0, 1.0, 1.0))
+            v2_inputs = dict(ior=ior, specular_tint_color=tuple(max(0.0, c) for c in tint),
+                             multiscatter_ggx=getattr(node, "distribution", "") == 'MULTI_GGX')
         else:
             specular_tint = _clamp(_finite_or(v(mat, node, names['specular_tint'], 0.0), 0.0),
                                    0.0, 1.0)
@@ -469,6 +478,7 @@ class MaterialReader:
             specular_tint=specular_tint,
             base_color_texture=base_tex, metallic_texture=metallic_tex,
             roughness_texture=roughness_tex, emission_texture=emission_tex,
+            **v2_inputs,
         )
         ignored = []
         for name, neutral in _IGNORED_PRINCIPLED_INPUTS[version]:

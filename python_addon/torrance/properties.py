@@ -14,14 +14,20 @@ from bpy.props import (
     PointerProperty,
 )
 
-# (identifier, name, description)
+# (identifier, name, description). New items go at the end: files store the item's index.
+# brdf_model.core_model() turns the setting into the core's model.
 BRDF_MODELS = (
     ('PRINCIPLED', "Principled",
-     "Blender's Principled BSDF as Cycles renders it with GGX: Burley diffuse, exact Fresnel, "
-     "Smith masking. Matches Cycles"),
+     "Blender's Principled BSDF as Cycles renders it in this Blender: v1 in Blender 3.x (Burley "
+     "diffuse, exact Fresnel, Smith masking), v2 in Blender 4.x (F82-tint metals, IOR and "
+     "Specular IOR Level, multiscatter GGX). Matches Cycles"),
     ('PAPER', "Paper",
      "The paper's Cook-Torrance model: Lambertian diffuse weighted by (1 - F)(1 - metallic), GGX, "
      "Schlick's Fresnel and Schlick-GGX geometry (metallic/roughness workflow)"),
+    ('PRINCIPLED_V1', "Principled v1",
+     "Blender 3.x's Principled BSDF as Cycles 3.x renders it, in any Blender"),
+    ('PRINCIPLED_V2', "Principled v2",
+     "Blender 4.x's Principled BSDF as Cycles 4.x renders it, in any Blender"),
 )
 
 

@@ -8,6 +8,7 @@ import traceback
 import numpy as np
 
 from . import export, passes, preview
+from .brdf_model import core_model, model_note
 from .reporting import Reporter
 
 _core = None
@@ -244,13 +245,16 @@ def _render(engine, depsgraph, reporter):
 
     threads = int(rd.threads) if rd.threads_mode == 'FIXED' else 0
     adaptive = sampling_settings(ts)
+    note = model_note(ts.brdf_model)
+    if note:
+        reporter.info(note)
     settings = tc.RenderSettings(
         width=width, height=height,
         samples=int(ts.samples), max_bounces=int(ts.max_bounces), seed=int(ts.seed),
         pixel_aspect_x=float(rd.pixel_aspect_x), pixel_aspect_y=float(rd.pixel_aspect_y),
         filter_width=float(ts.filter_width),
         transparent_background=bool(rd.film_transparent),
-        brdf_model=ts.brdf_model,
+        brdf_model=core_model(ts.brdf_model),
         # The core counts rows from the top, Blender from the bottom.
         window=None if (x0, y0, x1, y1) == (0, 0, width, height)
         else (x0, height - y1, x1, height - y0),

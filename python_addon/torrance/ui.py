@@ -11,6 +11,7 @@ import bpy
 from bpy.types import Panel
 
 from . import export
+from .brdf_model import core_model
 from .reporting import Reporter
 
 ENGINE = 'TORRANCE'
@@ -280,7 +281,11 @@ class TORRANCE_RENDER_PT_shading(TorrancePanel, Panel):
         layout.prop(ts, "brdf_model")
         col = layout.column(align=True)
         if ts.brdf_model == 'PRINCIPLED':
-            col.label(text="Matches Cycles' Principled BSDF (GGX)", icon='INFO')
+            version = "v2" if core_model(ts.brdf_model) == 'PRINCIPLED_V2' else "v1"
+            col.label(text=f"Matches Cycles' Principled BSDF ({version}, this Blender's)",
+                      icon='INFO')
+        elif ts.brdf_model in {'PRINCIPLED_V1', 'PRINCIPLED_V2'}:
+            col.label(text="Cycles' Principled BSDF of one Blender version", icon='INFO')
         else:
             col.label(text="The paper's Cook-Torrance model: differs from Cycles", icon='INFO')
 

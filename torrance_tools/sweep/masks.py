@@ -125,7 +125,10 @@ def scene_info(scene):
         if node is None:
             continue
         vals = {}
-        for name in ("Base Color", "Metallic", "Roughness", "Specular"):
+        # Blender 4.x's Principled v2 names v1's Specular "Specular IOR Level" (with its IOR).
+        v2 = node.inputs.get("Specular IOR Level") is not None
+        specular = ("Specular IOR Level", "IOR") if v2 else ("Specular",)
+        for name in ("Base Color", "Metallic", "Roughness") + specular:
             v = node.inputs[name].default_value
             vals[name] = list(v)[:3] if name == "Base Color" else float(v)
         materials[mat.name] = vals

@@ -19,8 +19,9 @@ namespace torrance {
 
 // Which Cook-Torrance variant shades the scene.
 enum class BrdfModel {
-  Paper,       // exactly the brief's equations (GGX D, Schlick F, Schlick-GGX G, Lambert diffuse)
-  Principled,  // Blender 3.4's Principled BSDF v1 as Cycles renders it (Burley, exact Fresnel, Smith G)
+  Paper,         // exactly the brief's equations (GGX D, Schlick F, Schlick-GGX G, Lambert diffuse)
+  Principled,    // Blender 3.4's Principled BSDF v1 as Cycles renders it (Burley, exact Fresnel, Smith G)
+  PrincipledV2,  // Blender 4.x's Principled BSDF v2 as Cycles 4.x renders it (principled_v2.h)
 };
 
 // The metallic/roughness material, as Blender's Principled BSDF names its inputs.
@@ -31,6 +32,12 @@ struct Material {
   float specular = 0.5f;  // dielectric F0 = 0.08 * specular (0.5 -> 0.04)
   float specular_tint = 0.0f;  // PRINCIPLED only: tints dielectric reflection towards the base hue
   Vec3 emission{0.0f};    // radiance emitted by both faces = emission colour * strength
+  // PRINCIPLED_V2 only (Blender 4.x's Principled inputs): the IOR input (with `specular` =
+  // Specular IOR Level * F0(ior) / 0.04, so that F0 = 0.08 specular holds for every model), the
+  // Specular Tint colour, and the node's distribution (Multiscatter GGX, or GGX when false).
+  float ior = 1.5f;
+  Vec3 specular_tint_color{1.0f};
+  bool multiscatter_ggx = true;
 };
 
 // eval() split by lobe, for Blender's diffuse and glossy light passes.

@@ -4,6 +4,7 @@
 
 #include "torrance/cook_torrance.h"
 #include "torrance/principled.h"
+#include "torrance/principled_v2.h"
 
 #include <variant>
 
@@ -25,9 +26,10 @@ class MaterialBsdf {
   }
 
  private:
-  using Variant = std::variant<CookTorranceBsdf, PrincipledBsdf>;
+  using Variant = std::variant<CookTorranceBsdf, PrincipledBsdf, PrincipledV2Bsdf>;
   static Variant make(const Material& m, BrdfModel model) {
     if (model == BrdfModel::Principled) return PrincipledBsdf(m);
+    if (model == BrdfModel::PrincipledV2) return PrincipledV2Bsdf(m);
     return CookTorranceBsdf(m);
   }
   Variant bsdf_;

@@ -25,6 +25,21 @@ inline float smith_G1(float cos_theta, float alpha) {
   return 2.0f * cos_theta / (cos_theta + std::sqrt(a2 + (1.0f - a2) * cos_theta * cos_theta));
 }
 
+// Smith's Lambda for GGX: G1 = 1 / (1 + Lambda), Lambda = (sqrt(1 + alpha^2 tan^2) - 1) / 2.
+inline float smith_lambda(float cos_theta, float alpha) {
+  if (cos_theta <= 0.0f) return 0.0f;
+  const float c2 = cos_theta * cos_theta;
+  const float tan2 = std::max(1.0f - c2, 0.0f) / c2;
+  return 0.5f * (std::sqrt(1.0f + alpha * alpha * tan2) - 1.0f);
+}
+
+// Height-correlated Smith masking-shadowing G2 = 1 / (1 + Lambda(wo) + Lambda(wi)) (Heitz 2014),
+// the form Cycles 4.x uses (3.x and PRINCIPLED use the separable G1(wo) G1(wi)).
+inline float smith_G2_correlated(float cos_o, float cos_i, float alpha) {
+  if (cos_o <= 0.0f || cos_i <= 0.0f) return 0.0f;
+  return 1.0f / (1.0f + smith_lambda(cos_o, alpha) + smith_lambda(cos_i, alpha));
+}
+
 // Samples a microfacet normal from the distribution of normals visible from wo (wo.z > 0),
 // using the spherical-cap construction (Dupuy & Benyoub 2023). Density of h: G1(wo) max(0, wo.h) D(h) / wo.z.
 inline Vec3 sample_visible_normal(const Vec3& wo, float alpha, const Vec2& u) {

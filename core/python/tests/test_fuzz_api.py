@@ -106,6 +106,7 @@ wild_floats = st.one_of(
 )
 moderate = st.floats(-10.0, 10.0)
 colors = st.tuples(wild_floats, wild_floats, wild_floats)
+MODELS = ("PAPER", "PRINCIPLED", "PRINCIPLED_V2")
 enum_noise = st.one_of(
     st.text(max_size=12), st.sampled_from(["", "paper", "SOBOL ", "None", "\x00", "É"])
 )
@@ -202,6 +203,8 @@ def check_renders(scene, moderate_values=True, **kw):
     specular_tint=wild_floats,
     texture=st.integers(-3, 3),
     normal_strength=wild_floats,
+    ior=wild_floats,
+    specular_tint_color=colors,
 )
 def test_add_material_accepts_exactly_the_valid_ones(
     base_color,
@@ -213,6 +216,8 @@ def test_add_material_accepts_exactly_the_valid_ones(
     specular_tint,
     texture,
     normal_strength,
+    ior,
+    specular_tint_color,
 ):
     scene = tc.Scene()
     scene.add_texture(np.full((2, 2, 3), 0.5, np.float32))
@@ -227,6 +232,8 @@ def test_add_material_accepts_exactly_the_valid_ones(
         specular_tint=specular_tint,
         base_color_texture=texture,
         normal_strength=normal_strength,
+        ior=ior,
+        specular_tint_color=specular_tint_color,
     )
     with np.errstate(over="ignore", invalid="ignore"):
         emitted = [np.float32(e) * np.float32(emission_strength) for e in emission]
@@ -239,8 +246,12 @@ def test_add_material_accepts_exactly_the_valid_ones(
             specular_tint,
             emission_strength,
             normal_strength,
+            ior,
+            *specular_tint_color,
         )
         and all(np.isfinite(e) for e in emitted)
+        and f32(ior) > 0
+        and all(f32(c) >= 0 for c in specular_tint_color)
         and 0 <= f32(metallic) <= 1
         and 0 <= f32(roughness) <= 1
         and f32(specular) >= 0
@@ -251,7 +262,8 @@ def test_add_material_accepts_exactly_the_valid_ones(
         assert r == 0 and scene.num_materials == 1
         scene.add_mesh(TRI, np.array([[0, 1, 2]]), corner_uvs=np.zeros((1, 3, 2), np.float32))
         scene.set_world((0.5, 0.5, 0.5))
-        check_renders(scene, moderate_values=False)
+        for model in MODELS:
+            check_renders(scene, moderate_values=False, brdf_model=model)
 
 
 @examples(40)
@@ -889,7 +901,7 @@ PASS_NAMES = [p[0] for p in tc.PASSES]
     filter_width=wild_floats,
     window=st.one_of(st.none(), st.tuples(*[st.integers(-2, 10)] * 4)),
     threads=st.integers(-2, 2**31 - 1),
-    model=st.one_of(st.sampled_from(["PAPER", "PRINCIPLED"]), enum_noise),
+    model=st.one_of(st.sampled_from(MODELS), enum_noise),
     selection=st.one_of(st.sampled_from(["CONTRIBUTION", "UNIFORM"]), enum_noise),
     passes=st.lists(st.one_of(st.sampled_from(PASS_NAMES), enum_noise), max_size=3),
     sampler=st.one_of(st.sampled_from(["SOBOL", "RANDOM"]), enum_noise),
@@ -940,7 +952,7 @@ def test_render_settings(
         and math.isfinite(fw)
         and 0 < fw <= 64
         and threads >= 0
-        and model in ("PAPER", "PRINCIPLED")
+        and model in MODELS
         and selection in ("CONTRIBUTION", "UNIFORM")
         and all(p in PASS_NAMES for p in passes)
         and sampler in ("SOBOL", "RANDOM")
@@ -1029,7 +1041,7 @@ def test_write_image(image, ext):
 
 @examples(80)
 @given(
-    st.one_of(st.sampled_from(["PAPER", "PRINCIPLED"]), enum_noise),
+    st.one_of(st.sampled_from(MODELS), enum_noise),
     colors,
     wild_floats,
     wild_floats,
@@ -1039,7 +1051,7 @@ def test_write_image(image, ext):
 def test_directional_albedo(model, base_color, metallic, roughness, specular, cos_o):
     r = call(tc.directional_albedo, model, base_color, metallic, roughness, specular, cos_o)
     valid = (
-        model in ("PAPER", "PRINCIPLED")
+        model in MODELS
         and finite32(*base_color, metallic, roughness, specular)
         and 0 <= f32(metallic) <= 1
         and 0 <= f32(roughness) <= 1

@@ -163,6 +163,12 @@ def test_directional_albedo_matches_the_models_known_values():
     assert rough_metal == pytest.approx(0.307, abs=0.004)
     assert tc.directional_albedo("PAPER", white, 0.0, 1.0, 0.0, 1.0) == pytest.approx(1.0, abs=0.03)
     assert tc.directional_albedo("PAPER", white, 1.0, 0.0, 0.5, 1.0) == pytest.approx(1.0, abs=0.01)
+    # Principled v2's multiscatter GGX keeps all of it, metal or dielectric over diffuse.
+    for cos_o in (1.0, 0.3):
+        assert tc.directional_albedo("PRINCIPLED_V2", white, 1.0, 1.0, 0.5, cos_o) == \
+            pytest.approx(1.0, abs=0.02)
+        assert tc.directional_albedo("PRINCIPLED_V2", white, 0.0, 0.5, 0.5, cos_o) == \
+            pytest.approx(1.0, abs=0.03)
     with pytest.raises(ValueError, match="brdf_model"):
         tc.directional_albedo("PHONG", (1, 1, 1), 0.0, 0.5)
     with pytest.raises(ValueError, match="cos_o"):
@@ -173,7 +179,8 @@ def test_image_furnace_sphere_in_uniform_world():
     """A convex object under a uniform world: every pixel is albedo(cos_o) x L, without
     interreflection."""
     from torrance_tools.geometry import uv_sphere_with_normals as uv_sphere
-    for model, metallic, spec in [("PAPER", 0.0, 0.0), ("PRINCIPLED", 1.0, 0.5)]:
+    for model, metallic, spec in [("PAPER", 0.0, 0.0), ("PRINCIPLED", 1.0, 0.5),
+                                  ("PRINCIPLED_V2", 1.0, 0.5)]:
         scene = tc.Scene()
         m = scene.add_material(base_color=(1, 1, 1), metallic=metallic, roughness=1.0,
                                specular=spec)

@@ -67,6 +67,14 @@ def _has_corner_normals(mesh):
     return False
 
 
+def _face_normals_only(mesh):
+    """Blender 4.1+: whether the mesh's normals are its face normals (normals_domain 'FACE':
+    every face flat, or every edge sharp, e.g. from Smooth by Angle), as Cycles 4.1 reads them
+    whatever the faces' smooth flags say."""
+    import bpy
+    return bpy.app.version >= (4, 1, 0) and mesh.normals_domain == 'FACE'
+
+
 def read_local_mesh(obj, uvs=False):
     """The evaluated object's mesh as a LocalMesh, or None when it has no triangles.
 
@@ -99,6 +107,8 @@ def read_local_mesh(obj, uvs=False):
         else:
             smooth = np.empty(nt, dtype=bool)
             mesh.loop_triangles.foreach_get("use_smooth", smooth)
+            if _face_normals_only(mesh):
+                smooth[:] = False
             if smooth.any():
                 vn = np.empty(nv * 3, dtype=np.float32)
                 mesh.vertices.foreach_get("normal", vn)

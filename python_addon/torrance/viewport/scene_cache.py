@@ -111,6 +111,11 @@ class SceneCache:
                 pass        # settings are compared by the caller; objects by the fingerprint
             else:
                 kind = type(id_).__name__
+                if (isinstance(id_, bpy.types.Mesh) and update.is_updated_shading
+                        and not update.is_updated_geometry):
+                    # Blender 4.x also reports the mesh of an object whose material changed,
+                    # shading only (the material comes too; slot changes are fingerprinted).
+                    continue
                 # Geometry data (a mesh, curve, ...): only the objects showing it need a new
                 # scene (a new object's data is no reason).
                 geometry = isinstance(id_, bpy.types.Mesh) or (update.is_updated_geometry

@@ -1,6 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """What the viewport render reads from the scene and from the 3D view's shading."""
 
+from ..brdf_model import core_model
+
 UNLIMITED_SAMPLES = 1 << 16     # "0 = unlimited" viewport samples
 
 
@@ -15,7 +17,7 @@ def viewport_settings(scene):
         seed=int(ts.seed),
         filter_width=float(ts.filter_width),
         transparent_background=bool(rd.film_transparent),
-        brdf_model=str(ts.brdf_model),
+        brdf_model=core_model(ts.brdf_model),
         threads=int(rd.threads) if rd.threads_mode == 'FIXED' else 0,
     )
 

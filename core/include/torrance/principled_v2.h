@@ -1,0 +1,73 @@
+// Principled BSDF v2, "PRINCIPLED_V2": Blender 4.x's Principled BSDF as Cycles 4.x renders it, for
+// the inputs Torrance supports (base colour, metallic, roughness, IOR, Specular IOR Level through
+// Material::specular, Specular Tint as a colour, emission; no coat, sheen, subsurface, thin film,
+// transmission or anisotropy). Three layers, from the top, with alpha = roughness^2 (GGX):
+//
+//   metal       weight metallic. GGX with height-correlated Smith G2 = 1 / (1 + L(wo) + L(wi))
+//               and the F82-tint Fresnel (Kutz et al., "Novel aspects of the Adobe Standard
+//               Material"):  F_m(c) = clamp(F_s(c) - b c (1 - c)^6, 0, 1),
+//               F_s(c) = f0 + (1 - f0)(1 - c)^5, f0 = base colour, c = wo.h, and b chosen so that
+//               F_m(1/7) = F_s(1/7) * tint (tint = Specular Tint, clamped to [0, 1]):
+//               b = F_s(1/7) (1 - tint) 7 / (6/7)^6.
+//   dielectric  weight (1 - metallic). The same GGX lobe with F_d(c) = mix(f0 tint, 1, s(c)),
+//               s(c) = clamp((F(c, eta) - F0(eta)) / (1 - F0(eta)), 0, 1), F the exact dielectric
+//               Fresnel and F0(eta) = ((eta - 1) / (eta + 1))^2. The Specular IOR Level rescales
+//               F0: f0 = 2 level F0(ior) = 0.08 specular (Material::specular carries it, see
+//               bsdf.h), and eta = ior_from_F0(f0) = (1 + sqrt f0) / (1 - sqrt f0) (1 / that for
+//               ior < 1; eta = ior when f0 = F0(ior), i.e. level 0.5). No lobe when eta = 1.
+//   diffuse     Lambert, base colour (1 - metallic) w(wo): the light the dielectric layer does
+//               not reflect, w = clamp(1 - max_rgb(A_d(wo)), 0, 1), with the dielectric layer's
+//               estimated albedo A_d = k mix(f0 tint, 1, S(r, mu_o, eta)) (ggx_tables.h).
+//
+// Multiscatter GGX (Material::multiscatter_ggx, the node's default "Multiscatter GGX"): each GGX
+// layer is scaled by 1 + F_ms (1 - E) / E (albedo scaling, Kulla & Conty 2017), E = E(r, mu_o)
+// and E_avg = E_avg(r) from ggx_tables.h, F_ms = F_ss E_avg / (1 - F_ss (1 - E_avg)) with F_ss
+// the layer's cosine-weighted mean Fresnel: metal mix(f0, 1, 1/21) - b / 126 (exact for F_m
+// before clamping), dielectric mix(f0 tint, 1, s_ss) with s_ss from Kulla & Conty's fit of
+// integral 2 mu F(mu, eta) dmu. The diffuse layer sees k = E (1 + F_ms (1 - E) / E) in A_d
+// (k = 1 without multiscatter). With F = 1 the scale is 1 / E: a white metal conserves energy.
+//
+// Below ggx_tables::kDeltaAlpha (Cycles 4.x's threshold) the GGX layers are a mirror with
+// reflectance sum(layer scale F(n.wo)). Like Cycles, the model is not reciprocal (the layer
+// weights depend on wo). Sampling: lobe_mixture.h (one GGX lobe for both layers, visible normals).
+// See bsdf.h for the conventions (eval includes the cosine).
+#pragma once
+
+#include "torrance/bsdf.h"
+#include "torrance/ggx_tables.h"
+
+namespace torrance {
+
+class PrincipledV2Bsdf {
+ public:
+  explicit PrincipledV2Bsdf(const Material& m);
+
+  LobeEval eval_lobes(const Vec3& wo, const Vec3& wi) const;
+  Vec3 eval(const Vec3& wo, const Vec3& wi) const { return eval_lobes(wo, wi).total(); }
+  float pdf(const Vec3& wo, const Vec3& wi) const;
+  BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const;
+
+  bool has_delta() const { return alpha_ < ggx_tables::kDeltaAlpha; }
+  Vec3 mirror_reflectance(const Vec3& wo) const;
+  float specular_probability(const Vec3& wo) const;
+
+  Vec3 metal_fresnel(float cos_ih) const;       // F_m
+  Vec3 dielectric_fresnel(float cos_ih) const;  // F_d (0 without a dielectric lobe)
+  float eta() const { return eta_; }
+
+  // The wo-dependent layer weights.
+  struct ViewTerms {
+    Vec3 metal_scale{0.0f};        // metallic (x the multiscatter scale)
+    Vec3 dielectric_scale{0.0f};   // (1 - metallic) (x the multiscatter scale)
+    Vec3 dielectric_albedo{0.0f};  // A_d, the estimate the diffuse layer is reduced by
+    Vec3 diffuse{0.0f};            // (1 - metallic) base colour w(wo)
+  };
+  ViewTerms view_terms(float cos_o) const;
+
+ private:
+  Vec3 base_, metal_f0_, metal_b_, metal_fss_, dielectric_f0_, dielectric_fss_;
+  float metallic_, roughness_, alpha_, eta_;
+  bool has_dielectric_, multiscatter_;
+};
+
+}  // namespace torrance

@@ -1,0 +1,126 @@
+#include "torrance/principled_v2.h"
+
+#include "torrance/lobe_mixture.h"
+#include "torrance/microfacet.h"
+
+namespace torrance {
+namespace {
+
+// Kulla & Conty's fit of the cosine-weighted mean dielectric Fresnel, integral 2 mu F(mu, eta) dmu.
+float mean_dielectric_fresnel(float eta) {
+  if (eta < 1.0f) return 0.997118f + eta * (0.1014f - eta * (0.965241f + eta * 0.130607f));
+  return (eta - 1.0f) / (4.08567f + 1.00071f * eta);
+}
+
+// Multiscatter albedo scaling of a GGX layer whose mean Fresnel is fss: 1 + F_ms (1 - E) / E.
+Vec3 multiscatter_scale(const Vec3& fss, float e, float e_avg) {
+  const Vec3 fms = fss * e_avg / (Vec3(1.0f) - fss * (1.0f - e_avg));
+  return Vec3(1.0f) + fms * ((1.0f - e) / e);
+}
+
+}  // namespace
+
+PrincipledV2Bsdf::PrincipledV2Bsdf(const Material& m) {
+  const Vec3 base = glm::max(m.base_color, Vec3(0.0f));
+  const Vec3 tint = glm::max(m.specular_tint_color, Vec3(0.0f));
+  metallic_ = clamp01(m.metallic);
+  roughness_ = clamp01(m.roughness);
+  alpha_ = roughness_ * roughness_;
+  multiscatter_ = m.multiscatter_ggx;
+  base_ = base;
+
+  // Metal: F82-tint with f0 = base colour (clamped to 1), tint clamped to 1.
+  metal_f0_ = glm::min(base, Vec3(1.0f));
+  const Vec3 tint82 = glm::min(tint, Vec3(1.0f));
+  metal_b_ = Vec3(0.0f);
+  if (tint82 != Vec3(1.0f)) {
+    const float f = 6.0f / 7.0f, f6 = f * f * f * f * f * f;
+    const Vec3 schlick_82 = glm::mix(metal_f0_, Vec3(1.0f), f6 / f);
+    metal_b_ = schlick_82 * (7.0f / f6) * (Vec3(1.0f) - tint82);
+  }
+  metal_fss_ = glm::mix(metal_f0_, Vec3(1.0f), 1.0f / 21.0f) - metal_b_ * (1.0f / 126.0f);
+
+  // Dielectric: F0 from the IOR rescaled by the Specular IOR Level (f0 = 0.08 specular).
+  const float ior = std::max(m.ior, 1e-5f);
+  const float f0 = 0.08f * std::max(m.specular, 0.0f);
+  const float f0_ior = ggx_tables::f0_from_ior(ior);
+  eta_ = ior;
+  if (std::abs(f0 - f0_ior) > 1e-6f * f0_ior) {
+    eta_ = ggx_tables::ior_from_f0(f0);
+    if (ior < 1.0f) eta_ = 1.0f / eta_;
+  }
+  has_dielectric_ = eta_ != 1.0f;
+  dielectric_f0_ = glm::clamp(ggx_tables::f0_from_ior(eta_) * tint, Vec3(0.0f), Vec3(1.0f));
+  const float f0_eta = ggx_tables::f0_from_ior(eta_);
+  const float s_ss = f0_eta < 1.0f ? clamp01((mean_dielectric_fresnel(eta_) - f0_eta) / (1.0f - f0_eta)) : 1.0f;
+  dielectric_fss_ = glm::mix(dielectric_f0_, Vec3(1.0f), s_ss);
+}
+
+Vec3 PrincipledV2Bsdf::metal_fresnel(float cos_ih) const {
+  const float c = clamp01(cos_ih), mu = 1.0f - c;
+  const float mu5 = (mu * mu) * (mu * mu) * mu;
+  const Vec3 schlick = glm::mix(metal_f0_, Vec3(1.0f), mu5);
+  return glm::clamp(schlick - metal_b_ * (c * mu5 * mu), Vec3(0.0f), Vec3(1.0f));
+}
+
+Vec3 PrincipledV2Bsdf::dielectric_fresnel(float cos_ih) const {
+  if (!has_dielectric_) return Vec3(0.0f);
+  return glm::mix(dielectric_f0_, Vec3(1.0f), ggx_tables::dielectric_fresnel_factor(cos_ih, eta_));
+}
+
+PrincipledV2Bsdf::ViewTerms PrincipledV2Bsdf::view_terms(float cos_o) const {
+  ViewTerms v;
+  Vec3 metal_k(1.0f), dielectric_k(1.0f), darkening(1.0f);
+  if (multiscatter_) {
+    const float e = std::max(ggx_tables::albedo(roughness_, cos_o), 1e-3f);
+    const float e_avg = ggx_tables::average_albedo(roughness_);
+    metal_k = multiscatter_scale(metal_fss_, e, e_avg);
+    dielectric_k = multiscatter_scale(dielectric_fss_, e, e_avg);
+    darkening = e * dielectric_k;
+  }
+  v.metal_scale = metallic_ * metal_k;
+  float diffuse_weight = 1.0f;
+  if (has_dielectric_) {
+    v.dielectric_scale = (1.0f - metallic_) * dielectric_k;
+    const float s = ggx_tables::dielectric_fresnel_mix(roughness_, cos_o, eta_);
+    v.dielectric_albedo = darkening * glm::mix(dielectric_f0_, Vec3(1.0f), s);
+    diffuse_weight = clamp01(1.0f - max_component(v.dielectric_albedo));
+  }
+  v.diffuse = base_ * ((1.0f - metallic_) * diffuse_weight);
+  return v;
+}
+
+Vec3 PrincipledV2Bsdf::mirror_reflectance(const Vec3& wo) const {
+  const ViewTerms v = view_terms(wo.z);
+  return v.metal_scale * metal_fresnel(wo.z) + v.dielectric_scale * dielectric_fresnel(wo.z);
+}
+
+float PrincipledV2Bsdf::specular_probability(const Vec3& wo) const {
+  const ViewTerms v = view_terms(wo.z);
+  const float spec = luminance(metallic_ * metal_fresnel(wo.z) + (1.0f - metallic_) * v.dielectric_albedo);
+  return lobe_mixture::specular_probability(spec, luminance(v.diffuse));
+}
+
+LobeEval PrincipledV2Bsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return {};
+  const ViewTerms v = view_terms(wo.z);
+  LobeEval f_cos;
+  f_cos.diffuse = v.diffuse * (kInvPi * wi.z);
+  if (has_delta()) return f_cos;
+  const Vec3 half = wo + wi;
+  const float half_len2 = glm::dot(half, half);
+  if (!(half_len2 > 0.0f)) return f_cos;
+  const Vec3 h = half / std::sqrt(half_len2);
+  const float cos_d = clamp01(glm::dot(wi, h));
+  const Vec3 fresnel = v.metal_scale * metal_fresnel(cos_d) + v.dielectric_scale * dielectric_fresnel(cos_d);
+  f_cos.glossy = fresnel * (ggx::D(h, alpha_) * ggx::smith_G2_correlated(wo.z, wi.z, alpha_) / (4.0f * wo.z));
+  return f_cos;
+}
+
+float PrincipledV2Bsdf::pdf(const Vec3& wo, const Vec3& wi) const { return lobe_mixture::pdf(*this, wo, wi, alpha_); }
+
+BsdfSample PrincipledV2Bsdf::sample(const Vec3& wo, float u_lobe, const Vec2& u) const {
+  return lobe_mixture::sample(*this, wo, u_lobe, u, alpha_);
+}
+
+}  // namespace torrance
