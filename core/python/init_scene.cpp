@@ -142,7 +142,7 @@ void init_scene(py::module_& m) {
           [](Scene& s, std::array<float, 3> base_color, float metallic, float roughness, float specular,
              std::array<float, 3> emission, float emission_strength, float specular_tint, int base_color_texture,
              int metallic_texture, int roughness_texture, int emission_texture, int normal_texture,
-             float normal_strength) {
+             float normal_strength, int bump_texture, float bump_strength, float bump_distance) {
             Material mat;
             mat.base_color = vec3(base_color);
             mat.metallic = metallic;
@@ -158,6 +158,9 @@ void init_scene(py::module_& m) {
             tex.emission_strength = emission_strength;
             tex.normal = normal_texture;
             tex.normal_strength = normal_strength;
+            tex.bump = bump_texture;
+            tex.bump_strength = bump_strength;
+            tex.bump_distance = bump_distance;
             return s.add_material(mat, tex);
           },
           py::arg("base_color") = std::array<float, 3>{0.8f, 0.8f, 0.8f}, py::arg("metallic") = 0.0f,
@@ -165,9 +168,11 @@ void init_scene(py::module_& m) {
           py::arg("emission") = std::array<float, 3>{0.0f, 0.0f, 0.0f}, py::arg("emission_strength") = 0.0f,
           py::arg("specular_tint") = 0.0f, py::arg("base_color_texture") = -1, py::arg("metallic_texture") = -1,
           py::arg("roughness_texture") = -1, py::arg("emission_texture") = -1, py::arg("normal_texture") = -1,
-          py::arg("normal_strength") = 1.0f,
+          py::arg("normal_strength") = 1.0f, py::arg("bump_texture") = -1, py::arg("bump_strength") = 1.0f,
+          py::arg("bump_distance") = 1.0f,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
-          "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength).")
+          "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
+          "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map.")
       .def(
           "add_texture",
           [](Scene& s, const py::object& pixels, const std::string& colorspace, const std::string& interpolation) {
