@@ -16,7 +16,7 @@ LobeEval DiffuseBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
   float t = 0.0f;
   if (b_ > 0.0f) {
     t = glm::dot(wi, wo) - wi.z * wo.z;
-    t = t > 0.0f ? t / std::max(wi.z, wo.z) : 0.0f;  // Cycles: only positive t is divided
+    if (t > 0.0f) t /= std::max(wi.z, wo.z);  // Cycles divides positive t only; negative t stays
   }
   LobeEval f;
   f.diffuse = color_ * (wi.z * (a_ + b_ * t));

@@ -2,7 +2,8 @@
 // Oren-Nayar variant (closure/bsdf_oren_nayar.h):
 //
 //   f cos = colour * cos_i * (A + B t),  A = 1 / (pi + (3 pi - 4) / 6 sigma),  B = sigma A,
-//   t = max(0, wi.wo - cos_i cos_o) / max(cos_i, cos_o),   sigma = Roughness clamped to [0, 1].
+//   t = wi.wo - cos_i cos_o, divided by max(cos_i, cos_o) where positive (Cycles keeps negative t
+//   undivided),   sigma = Roughness clamped to [0, 1].
 //
 // (sigma = 0 gives A = 1/pi, B = 0: Lambert.) Sampled by the cosine (Cycles samples Oren-Nayar
 // uniformly; the density differs, the expectation not). Everything it reflects is "diffuse" for
