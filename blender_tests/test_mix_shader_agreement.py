@@ -12,10 +12,10 @@ One scene, lit by a sun and a grey world, 2 bounces, Torrance's PRINCIPLED model
 
 The reference is Cycles at REF_SAMPLES (seed 1); Torrance (seed 0) and a second Cycles render
 at the same SAMPLES (seed 2, Cycles' own noise) are compared with it by the mean ratio (and per
-channel) and the 8x8 block means. Torrance must stay within NOISE_FACTOR x Cycles' own error
-plus a floor. Then deliberate faults (the add-on patched) must FAIL the same test: the mix
-weights swapped (fac <-> 1 - fac), the Glossy closures read as Diffuse, the Add Shader
-averaged instead of added.
+channel) and the 8x8 block means. Torrance must stay within twice Cycles' own error plus a
+floor of 0.004 (agreement.noise_limits). Then deliberate faults (the add-on patched) must
+FAIL the same test: the mix weights swapped (fac <-> 1 - fac), the Glossy closures read as
+Diffuse, the Add Shader averaged instead of added, Oren-Nayar rendered as Lambert.
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_mix_shader_agreement.py
@@ -27,21 +27,12 @@ import bpy
 import numpy as np
 
 from torrance_tools import render_settings, testing
-from torrance_tools.agreement import format_metrics, metrics
+from torrance_tools.agreement import format_metrics, metrics, noise_failures, noise_limits
+from torrance_tools.scene import node_material
 from torrance_tools.testing import check
 
 W, H = 128, 96
 SAMPLES, REF_SAMPLES, BOUNCES = 256, 1024, 2
-NOISE_FACTOR = 2.0
-FLOORS = dict(ratio=0.004, block_mean=0.004)    # beyond Cycles' own error, for any seed
-
-
-def node_material(name):
-    mat = bpy.data.materials.new(name)
-    mat.use_nodes = True
-    nodes = mat.node_tree.nodes
-    nodes.remove(nodes["Principled BSDF"])
-    return mat, nodes, mat.node_tree.links, nodes["Material Output"]
 
 
 def principled_node(nodes, color, metallic, roughness):
@@ -130,22 +121,6 @@ def build(scene):
     testing.set_world(scene, (0.12, 0.12, 0.14))
 
 
-def limits(noise):
-    """Torrance's allowed error: NOISE_FACTOR x Cycles' own (seed to seed) plus the floors."""
-    return dict(ratio=NOISE_FACTOR * max(abs(c - 1.0) for c in [noise["ratio"], *noise["channels"]])
-                + FLOORS["ratio"],
-                block_mean=NOISE_FACTOR * noise["block_mean"] + FLOORS["block_mean"])
-
-
-def violations(m, lim):
-    bad = [f"{name} ratio {r:.4f} off by more than {lim['ratio']:.4f}"
-           for name, r in zip(("mean", "R", "G", "B"), [m["ratio"], *m["channels"]], strict=True)
-           if abs(r - 1.0) > lim["ratio"]]
-    if m["block_mean"] > lim["block_mean"]:
-        bad.append(f"block mean {m['block_mean']:.4f} > {lim['block_mean']:.4f}")
-    return bad
-
-
 # Faults: wrappers of MaterialTable._add's arguments (a mixture's description).
 def swap_weights(mix):
     for i, (kind, args, terms) in enumerate(mix["closures"]):
@@ -187,7 +162,7 @@ def main():
     render_settings.setup_cycles(scene, SAMPLES, BOUNCES, seed=2)
     cyc, t_cyc = testing.render(scene, d, "cycles")
     noise = metrics(cyc, ref)
-    lim = limits(noise)
+    lim = noise_limits(noise)
     print(f"cycles {SAMPLES} spp seed 2 ({t_cyc:.1f} s; reference {t_ref:.1f} s): "
           f"{format_metrics(noise)}", flush=True)
     print(f"allowed: ratio +-{lim['ratio']:.4f}, block mean {lim['block_mean']:.4f}", flush=True)
@@ -195,7 +170,7 @@ def main():
     img, t_img = testing.render(scene, d, "torrance")
     check(np.isfinite(img).all(), "NaN/Inf in Torrance's image")
     m = metrics(img, ref)
-    bad = violations(m, lim)
+    bad = noise_failures(m, lim)
     print(f"torrance ({t_img:.1f} s): {format_metrics(m)}" + (f"  FAIL: {'; '.join(bad)}"
                                                               if bad else "  ok"), flush=True)
     missed = []
@@ -211,7 +186,7 @@ def main():
         finally:
             materials.MaterialTable._add = original
         fm = metrics(fimg, ref)
-        fbad = violations(fm, lim)
+        fbad = noise_failures(fm, lim)
         print(f"  fault {label:24s}: {format_metrics(fm)}"
               + (f"  caught: {'; '.join(fbad)}" if fbad else "  NOT CAUGHT"), flush=True)
         if not fbad:

@@ -208,7 +208,8 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     const Vec3 wo_world = -ray.dir;
     Vec3 ng = hit.geometric_normal;
     Vec3 n_smooth = hit.shading_normal;
-    Vec3 ns = textured ? ctx.scene.normal_mapped(hit.material, hit, n_smooth, footprint) : n_smooth;
+    const float cone_width = ctx.pixel_spread * path_length;  // the bump's step (Cycles' dP)
+    Vec3 ns = textured ? ctx.scene.normal_mapped(hit.material, hit, n_smooth, footprint, cone_width) : n_smooth;
     const bool normal_mapped = textured && ns != n_smooth;
     if (glm::dot(ng, wo_world) < 0.0f) {
       ng = -ng;

@@ -194,9 +194,9 @@ Material Scene::textured_material(uint32_t id, const Vec2& uv, float footprint) 
   return m;
 }
 
-Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, float footprint) const {
+Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, float footprint, float cone_width) const {
   const MaterialTextures& t = material_textures_[id];
-  if (t.normal < 0 && t.bump >= 0) return bump_mapped(t, hit, ns, footprint);
+  if (t.normal < 0 && t.bump >= 0) return bump_mapped(t, hit, ns, cone_width);
   if (t.normal < 0 || glm::dot(hit.tangent, hit.tangent) == 0.0f) return ns;
   const Vec3 tangent = glm::normalize(hit.tangent - glm::dot(hit.tangent, ns) * ns);
   const Vec3 bitangent = hit.bitangent_sign * glm::cross(ns, tangent);

@@ -66,25 +66,45 @@ Vec3 Scene::emission_at(uint32_t i, const Vec2& uv) const {
   return e;
 }
 
-Vec3 Scene::bump_mapped(const MaterialTextures& t, const SurfaceHit& hit, const Vec3& ns, float footprint) const {
-  const Vec3 cross_uv = glm::cross(hit.dpdu, hit.dpdv);
-  const float det = glm::dot(ns, cross_uv);
-  if (!(std::abs(det) > 0.0f) || !std::isfinite(det) || !(t.bump_strength > 0.0f)) return ns;
+namespace {
+// Cycles' tangent pair around a normal (make_orthonormals in util/math_float3.h): (1, 1, 1) x n,
+// normalized, and n x that; the directions of its ray differentials on a surface.
+void cycles_orthonormals(const Vec3& n, Vec3& a, Vec3& b) {
+  if (n.x != n.y || n.x != n.z) a = Vec3(n.z - n.y, n.x - n.z, n.y - n.x);
+  else a = Vec3(n.z - n.y, n.x + n.z, -n.y - n.x);
+  a = glm::normalize(a);
+  b = glm::cross(n, a);
+}
+}  // namespace
+
+Vec3 Scene::bump_mapped(const MaterialTextures& t, const SurfaceHit& hit, const Vec3& ns, float cone_width) const {
+  const float det_uv = glm::dot(ns, glm::cross(hit.dpdu, hit.dpdv));
+  if (!(std::abs(det_uv) > 0.0f) || !std::isfinite(det_uv) || !(t.bump_strength > 0.0f)) return ns;
   const Texture& height = *textures_[t.bump];
-  // Central differences in UV, one texel apart at least (the gradient of the bilinear image
-  // there), wider when a pixel covers more.
-  const float du = std::max(footprint, 1.0f / float(height.width()));
-  const float dv = std::max(footprint, 1.0f / float(height.height()));
-  auto h = [&](float u, float v) { return blender_luminance(Vec3(height.lookup(Vec2(u, v), footprint))); };
-  const float dh_du = (h(hit.uv.x + du, hit.uv.y) - h(hit.uv.x - du, hit.uv.y)) / (2.0f * du);
-  const float dh_dv = (h(hit.uv.x, hit.uv.y + dv) - h(hit.uv.x, hit.uv.y - dv)) / (2.0f * dv);
+  auto h = [&](const Vec2& uv) { return blender_luminance(Vec3(height.lookup(uv, 0.0f))); };
   // The surface gradients of u and v: the dual basis of (dP/du, dP/dv) in the tangent plane.
-  const Vec3 grad_u = glm::cross(hit.dpdv, ns) / det;
-  const Vec3 grad_v = glm::cross(ns, hit.dpdu) / det;
-  const Vec3 surface_gradient = dh_du * grad_u + dh_dv * grad_v;
-  Vec3 n = ns - t.bump_distance * surface_gradient;
+  const Vec3 grad_u = glm::cross(hit.dpdv, ns) / det_uv;
+  const Vec3 grad_v = glm::cross(ns, hit.dpdu) / det_uv;
+  auto uv_step = [&](const Vec3& d) { return Vec2(glm::dot(grad_u, d), glm::dot(grad_v, d)); };
+  // Cycles' Bump node: forward differences of the height over the ray differentials dx, dy (the
+  // pixel footprint's width along Cycles' tangent pair around Ng), then
+  // n' = normalize(|det| n - distance sign(det) surfgrad), surfgrad = (h_x - h_c) Rx + (h_y - h_c) Ry,
+  // Rx = dy x n, Ry = n x dx, det = dx . Rx. The width: the ray cone's (Cycles' dP), at least a
+  // hundredth of a texel so that the differences stay well above float rounding.
+  const float uv_per_metre = std::sqrt(std::abs(det_uv)) > 0.0f ? 1.0f / std::sqrt(std::abs(det_uv)) : 0.0f;
+  const float min_uv = 0.01f / float(std::max(height.width(), height.height()));
+  const float width = std::max(cone_width, min_uv / uv_per_metre);
+  Vec3 a, b;
+  const float ng_len = glm::length(hit.geometric_normal);
+  cycles_orthonormals(ng_len > 0.0f ? hit.geometric_normal / ng_len : ns, a, b);
+  const Vec3 dx = a * width, dy = b * width;
+  const float h_c = h(hit.uv), h_x = h(hit.uv + uv_step(dx)), h_y = h(hit.uv + uv_step(dy));
+  const Vec3 rx = glm::cross(dy, ns), ry = glm::cross(ns, dx);
+  const float det = glm::dot(dx, rx);
+  const Vec3 surface_gradient = (h_x - h_c) * rx + (h_y - h_c) * ry;
+  Vec3 n = std::abs(det) * ns - t.bump_distance * (det < 0.0f ? -1.0f : 1.0f) * surface_gradient;
   const float len = glm::length(n);
-  if (!(len > 1e-12f) || !std::isfinite(len)) return ns;
+  if (!(len > 0.0f) || !std::isfinite(len)) return ns;
   n /= len;
   const float strength = std::max(t.bump_strength, 0.0f);
   n = strength * n + (1.0f - strength) * ns;

@@ -82,11 +82,13 @@ class Scene {
   // The radiance material i emits at uv (textures and mixtures included).
   Vec3 emission_at(uint32_t i, const Vec2& uv) const;
   // The shading normal ns perturbed by the material's normal map or bump map at the hit (ns when
-  // none). A bump map follows Cycles' Bump node: n' = normalize(n - distance * grad_s h), with
-  // grad_s h the surface gradient of the height from central differences of the texture in UV
-  // (steps of one texel or the footprint, whichever is larger) through dP/du and dP/dv, then
-  // mixed with n by the strength.
-  Vec3 normal_mapped(uint32_t material, const SurfaceHit& hit, const Vec3& ns, float footprint = 0.0f) const;
+  // none). A bump map follows Cycles 3.4's Bump node: forward differences of the height (the
+  // texture's luminance) over two tangent steps of cone_width, along Cycles' tangent
+  // pair around the geometric normal, mapped to UV through dP/du and dP/dv; then
+  // n' ~ n - distance * (the height's surface gradient), mixed with n by the strength.
+  // cone_width: the width in metres of the ray cone at the hit (the bump's finite-difference step).
+  Vec3 normal_mapped(uint32_t material, const SurfaceHit& hit, const Vec3& ns, float footprint = 0.0f,
+                     float cone_width = 0.0f) const;
 
   // positions: num_vertices xyz; triangles: num_triangles vertex-index triples;
   // corner_normals: nullptr or num_triangles * 3 xyz normals; material_ids: nullptr or num_triangles;
@@ -171,7 +173,7 @@ class Scene {
   // kMaxCoordinate (limits.h): finite entries within 1e12, the transformed vertex bounds too.
   void check_transform(const float* m, uint32_t prototype, const std::string& which) const;
   void check_idle(const char* change) const;  // with mutex_ held
-  Vec3 bump_mapped(const MaterialTextures& t, const SurfaceHit& hit, const Vec3& ns, float footprint) const;
+  Vec3 bump_mapped(const MaterialTextures& t, const SurfaceHit& hit, const Vec3& ns, float cone_width) const;
 
   mutable std::mutex mutex_;  // changes vs. begin_render, and the camera
   std::atomic<int> renders_{0};
