@@ -70,7 +70,8 @@ void init_mixture(py::module_& m) {
     return s.add_mixture(mixture, normal);
   };
   cls.attr("add_mixture") = py::cpp_function(
-      add_mixture, py::name("add_mixture"), py::is_method(cls), py::sibling(py::getattr(cls, "add_mixture", py::none())),
+      add_mixture, py::name("add_mixture"), py::is_method(cls),
+      py::sibling(py::getattr(cls, "add_mixture", py::none())),
       py::arg("closures"), py::arg("factors") = py::list(), py::arg("normal_texture") = -1,
       py::arg("normal_strength") = 1.0f, py::arg("bump_texture") = -1, py::arg("bump_strength") = 1.0f,
       py::arg("bump_distance") = 1.0f,

@@ -37,8 +37,8 @@ void check_mixture(const Mixture& mixture, size_t num_materials, size_t num_text
       throw std::invalid_argument("a mixture closure has at most " + std::to_string(kMaxMixFactors) + " weight terms");
     for (int t : c.terms)
       if (t >= num_factors || -t - 1 >= num_factors)
-        throw std::invalid_argument("mixture weight term " + std::to_string(t) + " names no mix factor (the mixture has " +
-                                    std::to_string(num_factors) + ")");
+        throw std::invalid_argument("mixture weight term " + std::to_string(t) +
+                                    " names no mix factor (the mixture has " + std::to_string(num_factors) + ")");
   }
 }
 
