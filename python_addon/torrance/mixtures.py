@@ -65,6 +65,11 @@ class ShaderTreeReader:
             if node.mute:             # a muted node passes its first shader through
                 self._follow(shaders[0] if shaders else None, terms, depth + 1)
                 return
+            for s in shaders[:2]:
+                if source_socket(s) is None:
+                    self.reader.reporter.info(
+                        f"Material '{self.mat.name}': a Shader input of {node_label(node)} is "
+                        f"empty; it adds nothing (black), as in Cycles")
             if kind == 'ShaderNodeAddShader':
                 for s in shaders[:2]:
                     self._follow(s, terms, depth + 1)
