@@ -33,7 +33,7 @@ import os
 import numpy as np
 
 from .nodes import node_label, source_socket
-from .mixtures import SHADER_TREE_NODES, read_mixture
+from .mixtures import MIXTURE_SURFACES, read_mixture
 from .normal_inputs import read_normal_input
 
 # Cycles' surface for objects without material or with an empty slot is a 0.8 grey diffuse;
@@ -407,7 +407,7 @@ class MaterialReader:
             return self._diffuse(mat, node)
         if kind == 'ShaderNodeEmission':
             return self._emission(mat, node)
-        if kind in SHADER_TREE_NODES or kind == 'ShaderNodeBsdfGlossy':
+        if kind in MIXTURE_SURFACES:
             mixture = read_mixture(self, mat, node)
             if mixture is None:
                 return self._neutral(mat, f"no shader under {node_label(node)} can be rendered")

@@ -7,7 +7,8 @@ Shader gives both the weight it received. The closures Torrance renders:
 
 * Principled BSDF (as a lone Principled is read), Diffuse BSDF (Color, Roughness: Lambert or
   Cycles' Oren-Nayar), Glossy BSDF (Color, Roughness; GGX, Sharp as roughness 0; Beckmann,
-  Ashikhmin-Shirley and Multiscatter GGX are rendered as GGX and reported), Emission.
+  Ashikhmin-Shirley and Multiscatter GGX are rendered as GGX and reported; Blender 4.x's Glossy,
+  ShaderNodeBsdfAnisotropic, too, its Anisotropy reported), Emission.
 
 A Mix Shader's Fac may be a constant, an Image Texture (its Color's luminance) or a Checker
 Texture (its Fac output, or its Color output's luminance, with constant colours and scale and a
@@ -25,6 +26,8 @@ MAX_FACTORS = 8           # the core's kMaxMixFactors
 MAX_DEPTH = 8             # Mix/Add Shader nodes on one path
 
 SHADER_TREE_NODES = {'ShaderNodeMixShader', 'ShaderNodeAddShader'}
+# Surfaces read as a mixture (a one-closure one for a lone Glossy BSDF, 3.x's and 4.x's node).
+MIXTURE_SURFACES = SHADER_TREE_NODES | {'ShaderNodeBsdfGlossy', 'ShaderNodeBsdfAnisotropic'}
 _GLOSSY_AS_GGX = {'BECKMANN', 'ASHIKHMIN_SHIRLEY', 'MULTI_GGX'}
 
 
@@ -213,7 +216,7 @@ class ShaderTreeReader:
             return 'principled', args
         if kind == 'ShaderNodeEmission':
             return 'emission', reader._emission(mat, node)
-        if kind in ('ShaderNodeBsdfDiffuse', 'ShaderNodeBsdfGlossy'):
+        if kind in ('ShaderNodeBsdfDiffuse', 'ShaderNodeBsdfGlossy', 'ShaderNodeBsdfAnisotropic'):
             return self._colour_roughness(node)
         self.warn(f"the shader {node_label(node)} is not supported in a mix (Torrance mixes "
                   f"Principled, Diffuse, Glossy and Emission); it is left out")
@@ -227,8 +230,11 @@ class ShaderTreeReader:
         roughness, roughness_tex = reader._socket_input(mat, node, "Roughness", 0.0)
         roughness = min(max(_finite_or(roughness, 0.0), 0.0), 1.0)
         kind = 'diffuse'
-        if node.bl_idname == 'ShaderNodeBsdfGlossy':
+        if node.bl_idname in ('ShaderNodeBsdfGlossy', 'ShaderNodeBsdfAnisotropic'):
             kind = 'glossy'
+            anisotropy = node.inputs.get("Anisotropy")
+            if anisotropy is not None and (anisotropy.is_linked or anisotropy.default_value != 0.0):
+                self.warn(f"{node_label(node)}: Torrance ignores its Anisotropy (isotropic GGX)")
             if node.distribution == 'SHARP':
                 roughness, roughness_tex = 0.0, -1
             elif node.distribution in _GLOSSY_AS_GGX:
