@@ -17,6 +17,12 @@ floor of 0.004 (agreement.noise_limits). Then deliberate faults (the add-on patc
 FAIL the same test: the mix weights swapped (fac <-> 1 - fac), the Glossy closures read as
 Diffuse, the Add Shader averaged instead of added, Oren-Nayar rendered as Lambert.
 
+Measured (128x96, 256 / 1024 spp, 2 bounces, machine loaded): Cycles' own noise ratio 1.0003,
+block mean 0.0033 (allowed: ratio +-0.0053, block mean 0.0107); Torrance ratio 0.9991, block
+mean 0.0039. Faults: weights swapped ratio 1.051, block mean 1.02; Glossy as Diffuse 1.054,
+0.071; Add averaged 0.939, 0.047; Oren-Nayar as Lambert 1.008 (R 1.014), 0.0119. The test found
+a real bug when written: Oren-Nayar's negative t was clamped to 0 (Cycles keeps it), ratio 1.005.
+
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_mix_shader_agreement.py
 """
