@@ -3,7 +3,7 @@
 
 A 4 m plane whose Principled BSDF's Normal comes from a Bump node (Strength 1, Distance 0.08)
 whose Height is an Image Texture (a smooth 64 x 64 pattern of round bumps, Non-Color, Linear,
-four bumps per metre), lit by a low sun (15 degrees above the horizon, so the bumps' slopes
+one per metre), lit by a low sun (15 degrees above the horizon, so the bumps' slopes
 decide the shading) and a dim world; direct light plus one bounce, PRINCIPLED model.
 
 As in test_mix_shader_agreement.py, the reference is Cycles at REF_SAMPLES (seed 1), Cycles'
@@ -39,7 +39,7 @@ SIZE = 64                 # texels per side; the plane's UVs span the image once
 
 
 def height_image():
-    """Round bumps, 4 per side of the image (4 per metre... per UV unit / 4): smooth, in [0, 1]."""
+    """Round bumps, 4 per side of the image (one per metre on the 4 m plane), in [0, 1]."""
     u = (np.arange(SIZE) + 0.5) / SIZE
     x, y = np.meshgrid(u, u)
     h = 0.5 + 0.25 * (np.cos(2 * math.pi * 4 * x) + np.cos(2 * math.pi * 4 * y))
