@@ -490,16 +490,18 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   const bool hittable = cscene.lights().any_hittable();
   const bool has_mixtures = cscene.has_mixtures();  // a mixture's closures are built per hit
   using TraceFn = PathRadiance (*)(const PathContext&, Ray, SobolSampler&);
-  static constexpr TraceFn kTracers[9] = {
+  static constexpr TraceFn kTracers[12] = {
       trace_path<false, false, false, false>, trace_path<false, false, true, false>,
       trace_path<false, true, false, false>,  trace_path<false, true, true, false>,
       trace_path<true, false, false, false>,  trace_path<true, false, true, false>,
       trace_path<true, true, false, false>,   trace_path<true, true, true, false>,
-      trace_path<true, true, true, true>};
-  // Mixtures take the generic path (all features): the closure loop costs more than the rest.
-  const TraceFn trace = !settings.specialize || has_mixtures
-                            ? (has_mixtures ? kTracers[8] : kTracers[7])
-                            : kTracers[(has_textures << 2) | (split_lobes << 1) | int(hittable)];
+      // With mixtures (their weights may vary over the surface: always textured).
+      trace_path<true, false, false, true>,   trace_path<true, false, true, true>,
+      trace_path<true, true, false, true>,    trace_path<true, true, true, true>};
+  const int lobes_and_lights = (split_lobes << 1) | int(hittable);
+  const TraceFn trace = has_mixtures ? kTracers[8 + (settings.specialize ? lobes_and_lights : 3)]
+                        : settings.specialize ? kTracers[(has_textures << 2) | lobes_and_lights]
+                                              : kTracers[7];
 
   const std::array<int, 4> window = settings.window.value_or(std::array<int, 4>{0, 0, settings.width, settings.height});
   const bool adaptive = settings.adaptive_threshold > 0.0f;

@@ -4,6 +4,7 @@
 // Blender's definitions, the Bump node's normal from a height ramp, and malformed mixtures.
 // (Chi-square tests of mixture sampling: test_chi_square.cpp.)
 #include "torrance/albedo.h"
+#include "torrance/integrator.h"
 #include "torrance/mixture_bsdf.h"
 #include "torrance/scene.h"
 
@@ -263,6 +264,122 @@ TEST(Scene, BumpFromAHeightRampTiltsTheNormalLikeCyclesBumpNode) {
   // Without UVs (no dP/du) the normal is unchanged.
   SurfaceHit no_uv;
   EXPECT_EQ(scene.normal_mapped(m, no_uv, n), n);
+}
+
+// A tilted plane with UVs (a checker of 4 x 4 squares over it) under a sun and a world, seen at
+// 24 x 24 pixels; its triangles use `floor`, which add_floor_material adds to the scene.
+template <typename AddFloorMaterial>
+Image render_floor(AddFloorMaterial add_floor_material, bool specialize, uint32_t passes = 0, int samples = 8) {
+  Scene scene;
+  const uint32_t floor = add_floor_material(scene);
+  const float quad[] = {-1, -1, 0, 1, -1, 0, 1, 1, 0.3f, -1, 1, 0.3f};
+  const int64_t tris[] = {0, 1, 2, 0, 2, 3};
+  const int64_t materials[] = {floor, floor};
+  const float uvs[] = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1};
+  scene.add_mesh(quad, 4, tris, 2, nullptr, materials, uvs);
+  scene.lights().add_sun(glm::normalize(Vec3(0.3f, 0.5f, -1.0f)), 3.0f, Vec3(1.0f), 0.05f);
+  scene.lights().set_world(Vec3(0.2f, 0.25f, 0.3f), 1.0f);
+  CameraParams cam;
+  cam.camera_to_world = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 4, 0, 0, 0, 1};
+  cam.lens_mm = 60.0f;
+  scene.set_camera(cam);
+  RenderSettings settings;
+  settings.width = settings.height = 24;
+  settings.samples = samples;
+  settings.max_bounces = 3;
+  settings.specialize = specialize;
+  settings.passes = passes;
+  return render(scene, settings).image;
+}
+
+TEST(Render, AMixThatPicksOneClosureRendersExactlyAsThatMaterial) {
+  // Mix(checker, A, A): every hit has one closure of weight 1, so the mixture path must give
+  // the plain material's image (same random numbers, the same arithmetic up to the compiler's
+  // contraction of multiply-adds), specialised or generic, with light passes or without.
+  Material a;
+  a.base_color = Vec3(0.7f, 0.4f, 0.2f);
+  a.roughness = 0.3f;
+  const Image plain = render_floor([&](Scene& s) { return s.add_material(a); }, true);
+  auto mixed = [&](Scene& s) {
+    const uint32_t m = s.add_material(a);
+    Mixture mix;
+    mix.factors = {MixFactor{}};
+    mix.factors[0].kind = MixFactor::Kind::Checker;
+    mix.factors[0].checker_scale = 4.0f;
+    mix.components = {{ClosureType::Principled, m, {-1}}, {ClosureType::Principled, m, {0}}};
+    return s.add_mixture(mix);
+  };
+  for (bool specialize : {true, false})
+    for (uint32_t passes : {0u, uint32_t(kPassDiffuseDirect | kPassGlossyIndirect)}) {
+      const Image image = render_floor(mixed, specialize, passes);
+      ASSERT_EQ(image.rgba.size(), plain.rgba.size());
+      for (size_t i = 0; i < image.rgba.size(); ++i)
+        ASSERT_NEAR(image.rgba[i], plain.rgba[i], 1e-5f * (1.0f + plain.rgba[i]))
+            << "value " << i << " specialize=" << specialize;
+    }
+}
+
+TEST(Render, ACheckerMixShowsEachMaterialOnItsSquares) {
+  // Mix(checker, A, B) pixel by pixel is A's image or B's (one closure per hit).
+  Material a, b;
+  a.base_color = Vec3(0.8f, 0.1f, 0.1f);
+  b.base_color = Vec3(0.1f, 0.1f, 0.8f);
+  b.metallic = 1.0f;
+  const Image image_a = render_floor([&](Scene& s) { return s.add_material(a); }, true);
+  const Image image_b = render_floor([&](Scene& s) { return s.add_material(b); }, true);
+  const Image mixed = render_floor(
+      [&](Scene& s) {
+        const uint32_t ia = s.add_material(a), ib = s.add_material(b);
+        Mixture mix;
+        mix.factors = {MixFactor{}};
+        mix.factors[0].kind = MixFactor::Kind::Checker;
+        mix.factors[0].checker_scale = 4.0f;
+        mix.components = {{ClosureType::Principled, ia, {-1}}, {ClosureType::Principled, ib, {0}}};
+        return s.add_mixture(mix);
+      },
+      true);
+  int as_a = 0, as_b = 0, pixels = 0;
+  for (size_t i = 0; i < mixed.rgba.size(); i += 4) {
+    ++pixels;
+    auto same = [&](const Image& img) {
+      return std::abs(mixed.rgba[i] - img.rgba[i]) <= 1e-5f * (1.0f + img.rgba[i]) &&
+             std::abs(mixed.rgba[i + 2] - img.rgba[i + 2]) <= 1e-5f * (1.0f + img.rgba[i + 2]);
+    };
+    const bool same_a = same(image_a), same_b = same(image_b);
+    as_a += same_a;
+    as_b += same_b;
+  }
+  // Pixels on a square's edge mix both (the filter), so most but not all are pure.
+  EXPECT_GT(as_a, pixels / 4);
+  EXPECT_GT(as_b, pixels / 4);
+}
+
+TEST(Render, AConstantMixIsTheWeightedAverageOfItsMaterials) {
+  // Mix(0.25, A, B) = 0.75 A + 0.25 B in expectation (means over the image, 128 spp).
+  Material a, b;
+  a.base_color = Vec3(0.8f, 0.1f, 0.1f);
+  b.base_color = Vec3(0.1f, 0.1f, 0.8f);
+  b.metallic = 1.0f;
+  b.roughness = 0.2f;
+  auto mean = [](const Image& img) {
+    Vec3 sum(0.0f);
+    for (size_t i = 0; i < img.rgba.size(); i += 4) sum += Vec3(img.rgba[i], img.rgba[i + 1], img.rgba[i + 2]);
+    return sum / float(img.rgba.size() / 4);
+  };
+  const Vec3 ma = mean(render_floor([&](Scene& s) { return s.add_material(a); }, true, 0, 128));
+  const Vec3 mb = mean(render_floor([&](Scene& s) { return s.add_material(b); }, true, 0, 128));
+  const Vec3 mixed = mean(render_floor(
+      [&](Scene& s) {
+        const uint32_t ia = s.add_material(a), ib = s.add_material(b);
+        Mixture mix;
+        mix.factors = {MixFactor{}};
+        mix.factors[0].value = 0.25f;
+        mix.components = {{ClosureType::Principled, ia, {-1}}, {ClosureType::Principled, ib, {0}}};
+        return s.add_mixture(mix);
+      },
+      true, 0, 128));
+  const Vec3 expected = 0.75f * ma + 0.25f * mb;
+  for (int c : {0, 2}) EXPECT_NEAR(mixed[c], expected[c], 0.02f * expected[c]) << "channel " << c;
 }
 
 }  // namespace
