@@ -81,6 +81,25 @@ def failures(m, thresholds=THRESHOLDS):
     return out
 
 
+def noise_limits(noise, factor=2.0, ratio_floor=0.004, block_floor=0.004):
+    """Allowed errors of a render measured against its Cycles own seed-to-seed noise `noise`
+    (metrics of a Cycles render at the same samples and another seed against the reference):
+    factor x that noise plus a floor, for the ratios (overall and per channel) and block means."""
+    worst_ratio = max(abs(c - 1.0) for c in [noise["ratio"], *noise["channels"]])
+    return dict(ratio=factor * worst_ratio + ratio_floor,
+                block_mean=factor * noise["block_mean"] + block_floor)
+
+
+def noise_failures(m, limits):
+    """The noise_limits a result violates (empty = agreement within Cycles' own noise)."""
+    bad = [f"{name} ratio {r:.4f} off by more than {limits['ratio']:.4f}"
+           for name, r in zip(("mean", "R", "G", "B"), [m["ratio"], *m["channels"]], strict=True)
+           if abs(r - 1.0) > limits["ratio"]]
+    if m["block_mean"] > limits["block_mean"]:
+        bad.append(f"block mean {m['block_mean']:.4f} > {limits['block_mean']:.4f}")
+    return bad
+
+
 def render_torrance(scene, directory, name, samples, max_bounces, model='PRINCIPLED'):
     """Renders with Torrance's `model`; (image, seconds), the image checked for NaN/Inf."""
     setup_torrance(scene, samples, max_bounces, brdf_model=model)

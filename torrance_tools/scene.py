@@ -154,6 +154,18 @@ def principled(name, base_color=(0.8, 0.8, 0.8), metallic=0.0, roughness=0.5, sp
     return mat
 
 
+def node_material(name):
+    """A material with nodes whose tree holds only its Material Output:
+    (material, nodes, links, output node), for tests that build their own shader trees."""
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    nodes = mat.node_tree.nodes
+    for node in [n for n in nodes if n.bl_idname != 'ShaderNodeOutputMaterial']:
+        nodes.remove(node)
+    output = next(n for n in nodes if n.bl_idname == 'ShaderNodeOutputMaterial')
+    return mat, nodes, mat.node_tree.links, output
+
+
 # --------------------------------------------------------------------------------------------
 # Meshes from numpy
 

@@ -11,6 +11,7 @@ namespace torrance::python {
 namespace py = pybind11;
 
 void init_scene(py::module_& m);
+void init_mixture(py::module_& m);  // after init_scene: adds Scene.add_mixture
 void init_render(py::module_& m);
 void init_image(py::module_& m);
 void init_bsdf(py::module_& m);

@@ -142,7 +142,8 @@ void init_scene(py::module_& m) {
           [](Scene& s, std::array<float, 3> base_color, float metallic, float roughness, float specular,
              std::array<float, 3> emission, float emission_strength, float specular_tint, int base_color_texture,
              int metallic_texture, int roughness_texture, int emission_texture, int normal_texture,
-             float normal_strength, float ior, std::array<float, 3> specular_tint_color, bool multiscatter_ggx) {
+             float normal_strength, float ior, std::array<float, 3> specular_tint_color, bool multiscatter_ggx,
+             int bump_texture, float bump_strength, float bump_distance) {
             Material mat;
             mat.base_color = vec3(base_color);
             mat.metallic = metallic;
@@ -161,6 +162,9 @@ void init_scene(py::module_& m) {
             tex.emission_strength = emission_strength;
             tex.normal = normal_texture;
             tex.normal_strength = normal_strength;
+            tex.bump = bump_texture;
+            tex.bump_strength = bump_strength;
+            tex.bump_distance = bump_distance;
             return s.add_material(mat, tex);
           },
           py::arg("base_color") = std::array<float, 3>{0.8f, 0.8f, 0.8f}, py::arg("metallic") = 0.0f,
@@ -170,8 +174,10 @@ void init_scene(py::module_& m) {
           py::arg("roughness_texture") = -1, py::arg("emission_texture") = -1, py::arg("normal_texture") = -1,
           py::arg("normal_strength") = 1.0f, py::arg("ior") = 1.5f,
           py::arg("specular_tint_color") = std::array<float, 3>{1.0f, 1.0f, 1.0f}, py::arg("multiscatter_ggx") = true,
+          py::arg("bump_texture") = -1, py::arg("bump_strength") = 1.0f, py::arg("bump_distance") = 1.0f,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
-          "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength). "
+          "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
+          "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
           "ior, specular_tint_color and multiscatter_ggx are read by PRINCIPLED_V2 only.")
       .def(
           "add_texture",

@@ -2,6 +2,7 @@
 
 #include "torrance/limits.h"
 #include "torrance/material_bsdf.h"
+#include "torrance/mixture_bsdf.h"
 #include "torrance/sampling.h"
 #include "torrance/shading_normal.h"
 
@@ -132,8 +133,9 @@ struct PathRadiance {
 // through (NEE at the first hit by each lobe's share of eval), and as direct (one bounce) or
 // indirect; alpha is 0 where a transparent background is seen directly.
 // Compiled per scene feature set: kTextures (some material has textures), kSplitLobes (light
-// passes requested), kHittable (a BSDF-sampled ray can see a light). The generic path has all three.
-template <bool kTextures, bool kSplitLobes, bool kHittable>
+// passes requested), kHittable (a BSDF-sampled ray can see a light), kMixtures (some material is a
+// Mix/Add Shader mixture: every hit then shades with a MixtureBsdf). The generic path has all four.
+template <bool kTextures, bool kSplitLobes, bool kHittable, bool kMixtures>
 PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) {
   const Lights& lights = ctx.lights;
   PathRadiance out;
@@ -181,21 +183,33 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     // Textures: the material's inputs and its normal map at this hit, averaged over the pixel's
     // footprint (wider where the surface is seen at a grazing angle, capped at 4x).
     path_length += hit.t;
-    const bool textured = kTextures && ctx.scene.material_textures(hit.material).any();
+    const bool mixture = kMixtures && ctx.scene.mixture(hit.material);
+    const bool textured = kTextures && (mixture || ctx.scene.material_textures(hit.material).any());
     const float cos_view = std::abs(glm::dot(ray.dir, hit.geometric_normal));
     const float footprint =
         textured ? ctx.pixel_spread * path_length / std::max(cos_view, 0.25f) * hit.uv_per_metre : 0.0f;
-    const Material material = textured ? ctx.scene.textured_material(hit.material, hit.uv, footprint)
-                                       : ctx.scene.material(hit.material);
-    std::optional<MaterialBsdf> textured_bsdf;
-    if (textured) textured_bsdf.emplace(material, ctx.settings.brdf_model);
-    const MaterialBsdf& bsdf = textured ? *textured_bsdf : ctx.bsdfs[hit.material];
+    using Bsdf = std::conditional_t<kMixtures, MixtureBsdf, MaterialBsdf>;
+    Material material;
+    std::optional<Bsdf> local_bsdf;
+    if constexpr (kMixtures) {
+      local_bsdf.emplace(shade_material(ctx.scene, hit.material, hit.uv, footprint, textured, ctx.settings.brdf_model,
+                                        ctx.bsdfs[hit.material], material));
+    } else {
+      material = textured ? ctx.scene.textured_material(hit.material, hit.uv, footprint)
+                          : ctx.scene.material(hit.material);
+      if (textured) local_bsdf.emplace(material, ctx.settings.brdf_model);
+    }
+    const Bsdf* bsdf_used;
+    if constexpr (kMixtures) bsdf_used = &*local_bsdf;
+    else bsdf_used = textured ? &*local_bsdf : &ctx.bsdfs[hit.material];
+    const Bsdf& bsdf = *bsdf_used;
 
     // Orient the frame towards the viewer (two-sided surfaces) and keep reflections valid.
     const Vec3 wo_world = -ray.dir;
     Vec3 ng = hit.geometric_normal;
     Vec3 n_smooth = hit.shading_normal;
-    Vec3 ns = textured ? ctx.scene.normal_mapped(hit.material, hit, n_smooth, footprint) : n_smooth;
+    const float cone_width = ctx.pixel_spread * path_length;  // the bump's step (Cycles' dP)
+    Vec3 ns = textured ? ctx.scene.normal_mapped(hit.material, hit, n_smooth, footprint, cone_width) : n_smooth;
     const bool normal_mapped = textured && ns != n_smooth;
     if (glm::dot(ng, wo_world) < 0.0f) {
       ng = -ng;
@@ -474,13 +488,20 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   const bool split_lobes =
       settings.passes & (kPassDiffuseDirect | kPassDiffuseIndirect | kPassGlossyDirect | kPassGlossyIndirect);
   const bool hittable = cscene.lights().any_hittable();
+  const bool has_mixtures = cscene.has_mixtures();  // a mixture's closures are built per hit
   using TraceFn = PathRadiance (*)(const PathContext&, Ray, SobolSampler&);
-  static constexpr TraceFn kTracers[8] = {
-      trace_path<false, false, false>, trace_path<false, false, true>, trace_path<false, true, false>,
-      trace_path<false, true, true>,   trace_path<true, false, false>, trace_path<true, false, true>,
-      trace_path<true, true, false>,   trace_path<true, true, true>};
-  const TraceFn trace = settings.specialize ? kTracers[(has_textures << 2) | (split_lobes << 1) | int(hittable)]
-                                            : kTracers[7];
+  static constexpr TraceFn kTracers[12] = {
+      trace_path<false, false, false, false>, trace_path<false, false, true, false>,
+      trace_path<false, true, false, false>,  trace_path<false, true, true, false>,
+      trace_path<true, false, false, false>,  trace_path<true, false, true, false>,
+      trace_path<true, true, false, false>,   trace_path<true, true, true, false>,
+      // With mixtures (their weights may vary over the surface: always textured).
+      trace_path<true, false, false, true>,   trace_path<true, false, true, true>,
+      trace_path<true, true, false, true>,    trace_path<true, true, true, true>};
+  const int lobes_and_lights = (split_lobes << 1) | int(hittable);
+  const TraceFn trace = has_mixtures ? kTracers[8 + (settings.specialize ? lobes_and_lights : 3)]
+                        : settings.specialize ? kTracers[(has_textures << 2) | lobes_and_lights]
+                                              : kTracers[7];
 
   const std::array<int, 4> window = settings.window.value_or(std::array<int, 4>{0, 0, settings.width, settings.height});
   const bool adaptive = settings.adaptive_threshold > 0.0f;

@@ -154,6 +154,7 @@ void Scene::begin_render(LightSelection selection) {
   if (materials_.empty()) {
     materials_.push_back(Material{});
     material_textures_.push_back({});
+    mixture_index_.push_back(-1);
     emitters_dirty_ = true;
   }
   commit();
@@ -193,8 +194,9 @@ Material Scene::textured_material(uint32_t id, const Vec2& uv, float footprint) 
   return m;
 }
 
-Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, float footprint) const {
+Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, float footprint, float cone_width) const {
   const MaterialTextures& t = material_textures_[id];
+  if (t.normal < 0 && t.bump >= 0) return bump_mapped(t, hit, ns, cone_width);
   if (t.normal < 0 || glm::dot(hit.tangent, hit.tangent) == 0.0f) return ns;
   const Vec3 tangent = glm::normalize(hit.tangent - glm::dot(hit.tangent, ns) * ns);
   const Vec3 bitangent = hit.bitangent_sign * glm::cross(ns, tangent);
@@ -221,11 +223,13 @@ void check_material(const Material& m) {
 uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures) {
   std::lock_guard<std::mutex> lock(mutex_);
   check_idle("add a material");
-  for (int id : {textures.base_color, textures.metallic, textures.roughness, textures.emission, textures.normal})
+  for (int id : {textures.base_color, textures.metallic, textures.roughness, textures.emission, textures.normal,
+                 textures.bump})
     if (id < -1 || id >= int(textures_.size()))
       throw std::invalid_argument("material uses texture " + std::to_string(id) + " but the scene has " +
                                   std::to_string(textures_.size()) + " textures");
-  if (!std::isfinite(textures.emission_strength) || !std::isfinite(textures.normal_strength))
+  if (!std::isfinite(textures.emission_strength) || !std::isfinite(textures.normal_strength) ||
+      !std::isfinite(textures.bump_strength) || !std::isfinite(textures.bump_distance))
     throw std::invalid_argument("texture strengths must be finite");
   check_material(m);
   Material clean = m;
@@ -233,6 +237,7 @@ uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures
   clean.emission = glm::max(m.emission, Vec3(0.0f));
   materials_.push_back(clean);
   material_textures_.push_back(textures);
+  mixture_index_.push_back(-1);
   emitters_dirty_ = true;
   return uint32_t(materials_.size() - 1);
 }
@@ -712,8 +717,7 @@ void Scene::build_mesh_light() {
     return;
   }
   lights_.set_mesh_light(MeshLight(std::move(triangles), power, [this](uint32_t material, const Vec2& uv) {
-    return material_textures_[material].emission >= 0 ? textured_material(material, uv).emission
-                                                      : materials_[material].emission;
+    return emission_at(material, uv);
   }));
 }
 
@@ -788,6 +792,8 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
       if (len > 0.0f && std::isfinite(len)) {
         hit.tangent = dpdu / len;
         hit.bitangent_sign = det > 0.0f ? 1.0f : -1.0f;
+        hit.dpdu = dpdu;
+        hit.dpdv = ((p2 - p0) * d1.x - (p1 - p0) * d2.x) / det;
       }
     }
   } else {

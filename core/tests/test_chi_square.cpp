@@ -6,6 +6,7 @@
 // (16 x 16 midpoint sub-cells); bins expecting fewer than 5 samples are pooled; delta samples get a
 // bin of their own. Significance 0.01, Bonferroni-corrected for the number of cases.
 #include "torrance/material_bsdf.h"
+#include "torrance/mixture_bsdf.h"
 
 #include "test_helpers.h"
 
@@ -186,6 +187,61 @@ TEST(ChiSquare, VisibleNormalSamplingMatchesPdf) {
             return ggx::reflected_pdf(wo, h, alpha);
           });
       EXPECT_EQ(failure, "") << "r=" << r << " cos_o=" << cos_o;
+    }
+}
+
+}  // namespace
+}  // namespace torrance
+
+namespace torrance {
+namespace {
+
+// Mixtures (Mix/Add Shader): choosing a closure, sampling it and reporting the mixture's pdf
+// must draw directions with exactly that pdf, delta closures included (their own bin).
+TEST(ChiSquare, MixtureSamplingMatchesPdf) {
+  Material plastic, metal;
+  plastic.base_color = Vec3(0.8f, 0.2f, 0.1f);
+  plastic.roughness = 0.4f;
+  metal.base_color = Vec3(0.9f, 0.7f, 0.3f);
+  metal.metallic = 1.0f;
+  metal.roughness = 0.15f;
+  struct Case {
+    const char* name;
+    MixtureBsdf bsdf;
+  };
+  std::vector<Case> cases;
+  for (BrdfModel model : {BrdfModel::Paper, BrdfModel::Principled}) {
+    MixtureBsdf two;
+    two.add(MaterialBsdf(plastic, model), 0.3f, 0.5f);
+    two.add(MaterialBsdf(metal, model), 0.7f, 0.8f);
+    cases.push_back({model == BrdfModel::Paper ? "PAPER plastic+metal" : "PRINCIPLED plastic+metal", two});
+  }
+  for (float r : {0.05f, 0.3f, 1.0f}) {
+    MixtureBsdf dg;
+    dg.add(DiffuseBsdf(Vec3(0.7f), 0.0f), 0.5f, 0.7f);
+    dg.add(GlossyBsdf(Vec3(0.9f, 0.8f, 0.6f), r), 0.5f, 0.8f);
+    cases.push_back({r == 0.05f ? "diffuse+glossy r=0.05" : r == 0.3f ? "diffuse+glossy r=0.3" : "diffuse+glossy r=1",
+                     dg});
+  }
+  MixtureBsdf three;  // Oren-Nayar + a mirror (delta) + a rough Principled, added (weights sum > 1)
+  three.add(DiffuseBsdf(Vec3(0.5f, 0.6f, 0.7f), 0.8f), 1.0f, 0.6f);
+  three.add(GlossyBsdf(Vec3(1.0f), 0.0f), 0.4f, 1.0f);
+  three.add(MaterialBsdf(plastic, BrdfModel::Principled), 0.6f, 0.5f);
+  cases.push_back({"oren-nayar+mirror+principled", three});
+  const double significance = 0.01 / double(cases.size() * 3);
+  uint32_t seed = 5000;
+  for (const Case& c : cases)
+    for (float cos_o : {1.0f, 0.5f, 0.1f}) {
+      const Vec3 wo = test::direction(cos_o, 0.7f);
+      const std::string failure = chi_square(
+          wo, 0.25f, seed++, significance,
+          [&](Rng& rng) {
+            const float u = rng.next_1d();
+            const BsdfSample s = c.bsdf.sample(wo, u, rng.next_2d());
+            return Sampled{s.wi, s.valid(), s.is_delta};
+          },
+          [&](const Vec3& wi) { return c.bsdf.pdf(wo, wi); });
+      EXPECT_EQ(failure, "") << c.name << " cos_o=" << cos_o;
     }
 }
 

@@ -11,12 +11,16 @@ output node (the output Cycles would use):
   Color; _PRINCIPLED_SOCKETS) and, for the PRINCIPLED_V2 model, its IOR, Specular Tint
   colour and distribution (Multiscatter GGX or GGX);
 * Diffuse BSDF: a pure diffuse material (specular 0);
-* Emission: a black emitter.
+* Emission: a black emitter;
+* Mix Shader / Add Shader trees of Principled, Diffuse, Glossy BSDF and Emission (and a lone
+  Glossy BSDF): a mixture of closures (mixtures.py), its Fac a constant, an Image Texture or a
+  Checker Texture.
 
 Base Color, Metallic, Roughness, Emission (and the Color of Diffuse BSDF and
 Emission) may come from an Image Texture node (its Color output; float sockets
 take the colour's luminance, as Blender converts them), the Normal from a Normal
-Map node in tangent space whose Color is an Image Texture. Textures are looked
+Map node in tangent space whose Color is an Image Texture, or a Bump node whose Height is an
+Image Texture (normal_inputs.py). Textures are looked
 up with the mesh's active render UV map; each image is loaded once per render
 (TextureTable). A socket linked to something Torrance can not evaluate keeps its
 own default value and the render reports it once per material and socket.
@@ -30,6 +34,8 @@ import os
 import numpy as np
 
 from .nodes import node_label, source_socket
+from .mixtures import MIXTURE_SURFACES, read_mixture
+from .normal_inputs import read_normal_input
 
 # Cycles' surface for objects without material or with an empty slot is a 0.8 grey diffuse;
 # ours is the neutral Principled default.
@@ -364,42 +370,6 @@ class MaterialReader:
                     f"uses each mesh's active render UV map")
         return self.textures.texture(node.image, interpolation)
 
-    def _normal_map(self, mat, node):
-        """(texture id, strength) of a Normal Map node feeding the Normal of `node`, or None."""
-        socket = node.inputs.get("Normal")
-        source = source_socket(socket) if socket is not None else None
-        if source is None:
-            return None
-        src = source.node
-        where = f"Material '{mat.name}': input 'Normal' of {node_label(node)}"
-        if src.mute or src.bl_idname != 'ShaderNodeNormalMap':
-            self.reporter.warning(f"{where} is linked to {node_label(src)}, which Torrance does "
-                                  f"not support (only a tangent-space Normal Map); the normal "
-                                  f"is ignored")
-            return None
-        if src.space != 'TANGENT':
-            self.reporter.warning(f"{where}: {node_label(src)} in {src.space.lower()} space is not "
-                                  f"supported (only tangent space); the normal is ignored")
-            return None
-        if src.uv_map:
-            self.reporter.info(f"{where}: {node_label(src)} names UV map '{src.uv_map}'; Torrance "
-                               f"uses each mesh's active render UV map")
-        strength = _finite_or(self._socket_value(mat, src, "Strength", 1.0), 1.0)
-        color = src.inputs.get("Color")
-        color_source = source_socket(color) if color is not None else None
-        if color_source is None:
-            return None           # the default colour (0.5, 0.5, 1) is the unperturbed normal
-        if color_source.node.mute or color_source.node.bl_idname != 'ShaderNodeTexImage':
-            self.reporter.warning(f"{where}: the Color of {node_label(src)} is linked to "
-                                  f"{node_label(color_source.node)}, which Torrance does not "
-                                  f"support; the normal is ignored")
-            return None
-        tid = self._image_node(mat, color_source.node, color_source,
-                               f"input 'Color' of {node_label(src)}")
-        if tid is None or strength == 0.0:
-            return None
-        return tid, strength
-
     def read(self, mat):
         """add_material() keyword arguments for a Blender material (None = default material)."""
         if mat is None:
@@ -441,9 +411,14 @@ class MaterialReader:
             return self._diffuse(mat, node)
         if kind == 'ShaderNodeEmission':
             return self._emission(mat, node)
+        if kind in MIXTURE_SURFACES:
+            mixture = read_mixture(self, mat, node)
+            if mixture is None:
+                return self._neutral(mat, f"no shader under {node_label(node)} can be rendered")
+            return dict(mixture=mixture)
         return self._neutral(
-            mat, f"the surface shader {node_label(node)} is not supported "
-                 f"(Torrance reads Principled BSDF, Diffuse BSDF and Emission)")
+            mat, f"the surface shader {node_label(node)} is not supported (Torrance reads "
+                 f"Principled BSDF, Diffuse BSDF, Glossy BSDF, Emission, Mix and Add Shader)")
 
     def _principled(self, mat, node):
         d = DEFAULT_MATERIAL
@@ -491,9 +466,7 @@ class MaterialReader:
             self.reporter.warning(
                 f"Material '{mat.name}': Torrance ignores the Principled BSDF input(s) "
                 f"{', '.join(ignored)}")
-        normal = self._normal_map(mat, node)
-        if normal is not None:
-            out['normal_texture'], out['normal_strength'] = normal
+        out.update(read_normal_input(self, mat, node))
         return _sanitize(out)
 
     def _diffuse(self, mat, node):
@@ -502,9 +475,7 @@ class MaterialReader:
         color = _color3(color, d['base_color'])
         out = dict(d, base_color=color, metallic=0.0, specular=0.0, roughness=1.0,
                    base_color_texture=tex)
-        normal = self._normal_map(mat, node)
-        if normal is not None:
-            out['normal_texture'], out['normal_strength'] = normal
+        out.update(read_normal_input(self, mat, node))
         return _sanitize(out)
 
     def _emission(self, mat, node):
@@ -547,16 +518,24 @@ def _sanitize(m):
 
 
 _TEXTURE_KEYS = ('base_color_texture', 'metallic_texture', 'roughness_texture',
-                 'emission_texture', 'normal_texture')
+                 'emission_texture', 'normal_texture', 'bump_texture')
 
 
 def uses_textures(m):
-    """Whether add_material() arguments use any texture (the mesh then needs its UVs)."""
+    """Whether add_material() arguments (or a mixture: its closures, texture factors and
+    normal) use any texture or UV pattern (the mesh then needs its UVs)."""
+    if 'mixture' in m:
+        mix = m['mixture']
+        return (any(uses_textures(args) for _kind, args, _terms in mix['closures'])
+                or any(f['kind'] != "constant" for f in mix['factors'])
+                or uses_textures(mix['normal']))
     return any(m.get(k, -1) >= 0 for k in _TEXTURE_KEYS)
 
 
 def emits(m):
-    """Whether add_material() arguments emit light."""
+    """Whether add_material() arguments (or any closure of a mixture) emit light."""
+    if 'mixture' in m:
+        return any(emits(args) for _kind, args, _terms in m['mixture']['closures'])
     strength = m.get("emission_strength", 0.0)
     color = m.get("emission", (0.0, 0.0, 0.0))
     return strength > 0.0 and (max(color) > 0.0 or m.get("emission_texture", -1) >= 0)
@@ -588,13 +567,22 @@ class MaterialTable:
         idx = self.indices.get(key)
         if idx is None:
             args = self.reader.read(mat)
-            idx = self.scene.add_material(**args)
+            idx = self._add(args)
             if uses_textures(args):
                 self.textured.add(idx)
             if emits(args):
                 self.emissive.add(idx)
             self.indices[key] = idx
         return idx
+
+    def _add(self, args):
+        """Adds add_material() arguments, or a mixture's closures and then the mixture."""
+        if 'mixture' not in args:
+            return self.scene.add_material(**args)
+        mix = args['mixture']
+        closures = [(kind, self.scene.add_material(**a), terms)
+                    for kind, a, terms in mix['closures']]
+        return self.scene.add_mixture(closures, mix['factors'], **mix['normal'])
 
     def slot_indices(self, slots):
         """int32 material index per slot (materials or None); one default entry without slots."""

@@ -355,10 +355,10 @@ class TORRANCE_MATERIAL_PT_compatibility(TorrancePanel, Panel):
 
     def draw(self, context):
         layout = self.layout
-        _note(layout, "Torrance reads the Principled BSDF (or a Diffuse BSDF or Emission) "
-                      "feeding the Material Output: base colour, metallic, roughness, specular, "
-                      "specular tint, emission, image textures on them, and a tangent-space "
-                      "normal map")
+        _note(layout, "Torrance reads the Principled BSDF (or a Diffuse BSDF, Glossy BSDF or "
+                      "Emission, or Mix and Add Shaders of them) feeding the Material Output: "
+                      "base colour, metallic, roughness, specular, specular tint, emission, "
+                      "image textures on them, a tangent-space normal map or a Bump node")
         _messages(layout, material_messages(context.material),
                   ok_text="Torrance renders this material as it is")
 

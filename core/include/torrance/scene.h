@@ -8,6 +8,7 @@
 #include "torrance/bsdf.h"
 #include "torrance/camera.h"
 #include "torrance/lights.h"
+#include "torrance/mixture.h"
 #include "torrance/texture.h"
 
 #include <atomic>
@@ -28,7 +29,12 @@ struct MaterialTextures {
   int normal = -1;                 // a tangent-space normal map (Normal Map node)
   float emission_strength = 1.0f;  // emission = texture colour * strength
   float normal_strength = 1.0f;
-  bool any() const { return base_color >= 0 || metallic >= 0 || roughness >= 0 || emission >= 0 || normal >= 0; }
+  // A height map (Bump node fed by an image texture's luminance) when there is no normal map.
+  int bump = -1;
+  float bump_strength = 1.0f, bump_distance = 1.0f;
+  bool any() const {
+    return base_color >= 0 || metallic >= 0 || roughness >= 0 || emission >= 0 || normal >= 0 || bump >= 0;
+  }
 };
 
 struct SurfaceHit {
@@ -42,6 +48,7 @@ struct SurfaceHit {
   Vec3 tangent{0.0f};         // unit dP/du from the triangle's UVs (0 without usable UVs)
   float uv_per_metre = 0.0f;  // how fast UVs change across the triangle (sqrt of UV area / area)
   float bitangent_sign = 1.0f;
+  Vec3 dpdu{0.0f}, dpdv{0.0f};  // dP/du and dP/dv of the triangle's UV mapping (0 without usable UVs)
 };
 
 // Throws std::invalid_argument unless the material's values are finite and in range.
@@ -61,8 +68,27 @@ class Scene {
   // The material at a hit with its textures applied (base colour, metallic, roughness, emission),
   // averaged over a footprint of that many UV units (0: the finest texels).
   Material textured_material(uint32_t material, const Vec2& uv, float footprint = 0.0f) const;
-  // The shading normal ns perturbed by the material's normal map at the hit (ns when none).
-  Vec3 normal_mapped(uint32_t material, const SurfaceHit& hit, const Vec3& ns, float footprint = 0.0f) const;
+  // A material made of weighted closures (Mix/Add Shader, mixture.h); returns its material index.
+  // Its normal map or bump comes from `normal` (only those fields are read). Checked by
+  // check_mixture; its closures' materials must not be mixtures themselves.
+  uint32_t add_mixture(const Mixture& mixture, const MaterialTextures& normal = {});
+  // The mixture of material i, or nullptr for an ordinary material.
+  const Mixture* mixture(uint32_t i) const {
+    return mixture_index_[i] >= 0 ? &mixtures_[size_t(mixture_index_[i])] : nullptr;
+  }
+  bool has_mixtures() const { return !mixtures_.empty(); }
+  // The weights of mixture material i's closures at uv (image factors over footprint UV units).
+  MixtureWeights mixture_weights(uint32_t i, const Vec2& uv, float footprint = 0.0f) const;
+  // The radiance material i emits at uv (textures and mixtures included).
+  Vec3 emission_at(uint32_t i, const Vec2& uv) const;
+  // The shading normal ns perturbed by the material's normal map or bump map at the hit (ns when
+  // none). A bump map follows Cycles 3.4's Bump node: forward differences of the height (the
+  // texture's luminance) over two tangent steps of cone_width, along Cycles' tangent
+  // pair around the geometric normal, mapped to UV through dP/du and dP/dv; then
+  // n' ~ n - distance * (the height's surface gradient), mixed with n by the strength.
+  // cone_width: the width in metres of the ray cone at the hit (the bump's finite-difference step).
+  Vec3 normal_mapped(uint32_t material, const SurfaceHit& hit, const Vec3& ns, float footprint = 0.0f,
+                     float cone_width = 0.0f) const;
 
   // positions: num_vertices xyz; triangles: num_triangles vertex-index triples;
   // corner_normals: nullptr or num_triangles * 3 xyz normals; material_ids: nullptr or num_triangles;
@@ -147,12 +173,15 @@ class Scene {
   // kMaxCoordinate (limits.h): finite entries within 1e12, the transformed vertex bounds too.
   void check_transform(const float* m, uint32_t prototype, const std::string& which) const;
   void check_idle(const char* change) const;  // with mutex_ held
+  Vec3 bump_mapped(const MaterialTextures& t, const SurfaceHit& hit, const Vec3& ns, float cone_width) const;
 
   mutable std::mutex mutex_;  // changes vs. begin_render, and the camera
   std::atomic<int> renders_{0};
 
   std::vector<Material> materials_;
   std::vector<MaterialTextures> material_textures_;
+  std::vector<int32_t> mixture_index_;  // per material: index in mixtures_, or -1
+  std::vector<Mixture> mixtures_;
   std::vector<std::shared_ptr<const Texture>> textures_;
   std::vector<std::unique_ptr<Mesh>> meshes_;  // world-space meshes, in the order added
   std::vector<std::unique_ptr<Prototype>> prototypes_;

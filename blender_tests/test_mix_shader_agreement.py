@@ -1,0 +1,204 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Mix Shader and Add Shader trees render like Cycles 3.4.
+
+One scene, lit by a sun and a grey world, 2 bounces, Torrance's PRINCIPLED model:
+
+* a floor whose Surface is a Mix Shader of two Principled BSDFs (a grey plastic and a red
+  rough metal) driven by a Checker Texture's Fac at the UVs (issue 12, scene 1);
+* a sphere whose Surface is a Mix Shader of a Diffuse BSDF and a Glossy BSDF (GGX), its Fac an
+  Image Texture (horizontal bands, Non-Color);
+* a sphere whose Surface is an Add Shader of an Oren-Nayar Diffuse BSDF (Roughness 1) and a
+  Glossy BSDF.
+
+The reference is Cycles at REF_SAMPLES (seed 1); Torrance (seed 0) and a second Cycles render
+at the same SAMPLES (seed 2, Cycles' own noise) are compared with it by the mean ratio (and per
+channel) and the 8x8 block means. Torrance must stay within twice Cycles' own error plus a
+floor of 0.004 (agreement.noise_limits). Then deliberate faults (the add-on patched) must
+FAIL the same test: the mix weights swapped (fac <-> 1 - fac), the Glossy closures read as
+Diffuse, the Add Shader averaged instead of added, Oren-Nayar rendered as Lambert.
+
+Measured (128x96, 256 / 1024 spp, 2 bounces, machine loaded): Cycles' own noise ratio 1.0003,
+block mean 0.0033 (allowed: ratio +-0.0053, block mean 0.0107); Torrance ratio 0.9991, block
+mean 0.0039. Faults: weights swapped ratio 1.051, block mean 1.02; Glossy as Diffuse 1.054,
+0.071; Add averaged 0.939, 0.047; Oren-Nayar as Lambert 1.008 (R 1.014), 0.0119. The test found
+a real bug when written: Oren-Nayar's negative t was clamped to 0 (Cycles keeps it), ratio 1.005.
+
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \
+         --python blender_tests/test_mix_shader_agreement.py
+"""
+
+import math
+
+import bpy
+import numpy as np
+
+from torrance_tools import render_settings, testing
+from torrance_tools.agreement import format_metrics, metrics, noise_failures, noise_limits
+from torrance_tools.scene import node_material
+from torrance_tools.testing import check
+
+W, H = 128, 96
+SAMPLES, REF_SAMPLES, BOUNCES = 256, 1024, 2
+
+
+def principled_node(nodes, color, metallic, roughness):
+    p = nodes.new("ShaderNodeBsdfPrincipled")
+    p.distribution = 'GGX'
+    p.inputs["Base Color"].default_value = (*color, 1.0)
+    p.inputs["Metallic"].default_value = metallic
+    p.inputs["Roughness"].default_value = roughness
+    return p
+
+
+def bsdf_node(nodes, kind, color, roughness):
+    n = nodes.new(kind)
+    n.inputs["Color"].default_value = (*color, 1.0)
+    n.inputs["Roughness"].default_value = roughness
+    if kind == "ShaderNodeBsdfGlossy":
+        n.distribution = 'GGX'
+    return n
+
+
+def checker_floor():
+    mat, nodes, links, out = node_material("CheckerMix")
+    mix = nodes.new("ShaderNodeMixShader")
+    checker = nodes.new("ShaderNodeTexChecker")
+    checker.inputs["Scale"].default_value = 6.0
+    coords = nodes.new("ShaderNodeTexCoord")
+    links.new(coords.outputs["UV"], checker.inputs["Vector"])
+    links.new(checker.outputs["Fac"], mix.inputs["Fac"])
+    links.new(principled_node(nodes, (0.75, 0.75, 0.7), 0.0, 0.5).outputs[0], mix.inputs[1])
+    links.new(principled_node(nodes, (0.8, 0.25, 0.1), 1.0, 0.35).outputs[0], mix.inputs[2])
+    links.new(mix.outputs[0], out.inputs["Surface"])
+    return mat
+
+
+def banded_image():
+    rows = 16
+    values = np.where(np.arange(rows) % 4 < 2, 0.85, 0.15)
+    pixels = np.ones((rows, 1, 4), dtype=np.float32)
+    pixels[:, 0, :3] = values[:, None]
+    img = bpy.data.images.new("Bands", 1, rows, alpha=True, float_buffer=True)
+    img.colorspace_settings.name = 'Non-Color'
+    img.pixels.foreach_set(pixels.ravel())
+    return img
+
+
+def diffuse_glossy_mix():
+    mat, nodes, links, out = node_material("DiffuseGlossyMix")
+    mix = nodes.new("ShaderNodeMixShader")
+    tex = nodes.new("ShaderNodeTexImage")
+    tex.image = banded_image()
+    tex.interpolation = 'Closest'
+    links.new(tex.outputs["Color"], mix.inputs["Fac"])
+    links.new(bsdf_node(nodes, "ShaderNodeBsdfDiffuse", (0.2, 0.45, 0.8), 0.0).outputs[0],
+              mix.inputs[1])
+    links.new(bsdf_node(nodes, "ShaderNodeBsdfGlossy", (0.9, 0.85, 0.7), 0.25).outputs[0],
+              mix.inputs[2])
+    links.new(mix.outputs[0], out.inputs["Surface"])
+    return mat
+
+
+def add_shader():
+    mat, nodes, links, out = node_material("AddShader")
+    add = nodes.new("ShaderNodeAddShader")
+    links.new(bsdf_node(nodes, "ShaderNodeBsdfDiffuse", (0.6, 0.5, 0.1), 1.0).outputs[0],
+              add.inputs[0])
+    links.new(bsdf_node(nodes, "ShaderNodeBsdfGlossy", (0.3, 0.3, 0.3), 0.4).outputs[0],
+              add.inputs[1])
+    links.new(add.outputs[0], out.inputs["Surface"])
+    return mat
+
+
+def build(scene):
+    testing.add_camera(scene, location=(0.0, -4.6, 2.4), target=(0.0, 0.2, 0.4), lens=35.0)
+    bpy.ops.mesh.primitive_plane_add(size=6.0)
+    bpy.context.object.data.materials.append(checker_floor())
+    spheres = (("MixSphere", -0.75, diffuse_glossy_mix()), ("AddSphere", 0.75, add_shader()))
+    for name, x, mat in spheres:
+        bpy.ops.mesh.primitive_uv_sphere_add(radius=0.6, location=(x, 0.3, 0.6), segments=48,
+                                             ring_count=24)
+        ob = bpy.context.object
+        ob.name = name
+        bpy.ops.object.shade_smooth()
+        ob.data.materials.append(mat)
+    testing.add_sun(scene, strength=3.0, rotation=(math.radians(45), 0, math.radians(30)),
+                    angle=math.radians(5.0))
+    testing.set_world(scene, (0.12, 0.12, 0.14))
+
+
+# Faults: wrappers of MaterialTable._add's arguments (a mixture's description).
+def swap_weights(mix):
+    for i, (kind, args, terms) in enumerate(mix["closures"]):
+        mix["closures"][i] = (kind, args, [-t - 1 for t in terms])
+
+
+def glossy_as_diffuse(mix):
+    for i, (kind, args, terms) in enumerate(mix["closures"]):
+        mix["closures"][i] = ("diffuse" if kind == "glossy" else kind, args, terms)
+
+
+def add_averaged(mix):
+    if any(terms for _k, _a, terms in mix["closures"]):
+        return                                  # a Mix Shader: left alone
+    mix["factors"].append(dict(kind="constant", value=0.5))
+    half = len(mix["factors"]) - 1
+    mix["closures"][:] = [(k, a, terms + [half]) for k, a, terms in mix["closures"]]
+
+
+def lambert_for_oren_nayar(mix):
+    for _kind, args, _terms in mix["closures"]:
+        if _kind == "diffuse":
+            args["roughness"] = 0.0
+
+
+FAULTS = (("mix weights swapped", swap_weights), ("Glossy read as Diffuse", glossy_as_diffuse),
+          ("Add Shader averaged", add_averaged), ("Oren-Nayar as Lambert", lambert_for_oren_nayar))
+
+
+def main():
+    testing.addon()
+    import torrance.materials as materials
+    d = testing.tempdir()
+    scene = testing.clear_scene()
+    testing.setup_render(scene, width=W, height=H)
+    build(scene)
+    render_settings.setup_cycles(scene, REF_SAMPLES, BOUNCES, seed=1)
+    ref, t_ref = testing.render(scene, d, "reference")
+    render_settings.setup_cycles(scene, SAMPLES, BOUNCES, seed=2)
+    cyc, t_cyc = testing.render(scene, d, "cycles")
+    noise = metrics(cyc, ref)
+    lim = noise_limits(noise)
+    print(f"cycles {SAMPLES} spp seed 2 ({t_cyc:.1f} s; reference {t_ref:.1f} s): "
+          f"{format_metrics(noise)}", flush=True)
+    print(f"allowed: ratio +-{lim['ratio']:.4f}, block mean {lim['block_mean']:.4f}", flush=True)
+    render_settings.setup_torrance(scene, SAMPLES, BOUNCES, seed=0, brdf_model='PRINCIPLED')
+    img, t_img = testing.render(scene, d, "torrance")
+    check(np.isfinite(img).all(), "NaN/Inf in Torrance's image")
+    m = metrics(img, ref)
+    bad = noise_failures(m, lim)
+    print(f"torrance ({t_img:.1f} s): {format_metrics(m)}" + (f"  FAIL: {'; '.join(bad)}"
+                                                              if bad else "  ok"), flush=True)
+    missed = []
+    original = materials.MaterialTable._add
+    for label, patch in FAULTS:
+        def faulty(self, args, patch=patch):
+            if "mixture" in args:
+                patch(args["mixture"])
+            return original(self, args)
+        materials.MaterialTable._add = faulty
+        try:
+            fimg, _ = testing.render(scene, d, "fault")
+        finally:
+            materials.MaterialTable._add = original
+        fm = metrics(fimg, ref)
+        fbad = noise_failures(fm, lim)
+        print(f"  fault {label:24s}: {format_metrics(fm)}"
+              + (f"  caught: {'; '.join(fbad)}" if fbad else "  NOT CAUGHT"), flush=True)
+        if not fbad:
+            missed.append(label)
+    check(not bad, "Torrance disagrees with Cycles: " + "; ".join(bad))
+    check(not missed, "faults the comparison does not see: " + ", ".join(missed))
+
+
+testing.run(main)

@@ -1,0 +1,137 @@
+# SPDX-License-Identifier: Apache-2.0
+"""How the add-on reads shader trees (no rendering): the closures, weights and factors of nested
+Mix/Add Shader trees, the Bump node's arguments, and the reports of what Torrance leaves out
+(once per node and material).
+
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \
+         --python blender_tests/test_mix_shader_reading.py
+"""
+
+import bpy
+
+from torrance_tools import testing
+from torrance_tools.scene import node_material
+from torrance_tools.testing import check
+
+
+class DryTextures:
+    """Every image 'loads' as texture id 7 (the reader's stand-in for TextureTable)."""
+
+    def texture(self, image, interpolation="Linear"):
+        return 7 if image is not None else None
+
+
+def shader(nodes, kind, **inputs):
+    n = nodes.new(kind)
+    for name, value in inputs.items():
+        n.inputs[name].default_value = value
+    return n
+
+
+def read(mat):
+    from torrance.materials import MaterialReader
+    from torrance.reporting import Reporter
+    reporter = Reporter(None)
+    messages = []
+    reporter.report = lambda level, text: messages.append((level, text))
+    return MaterialReader(reporter, DryTextures()).read(mat), messages
+
+
+def nested_tree():
+    """Mix(Checker, Add(Diffuse, Glossy), Mix(0.3, Principled, Emission))."""
+    mat, nodes, links, out = node_material("Nested")
+    outer = nodes.new("ShaderNodeMixShader")
+    checker = nodes.new("ShaderNodeTexChecker")
+    checker.inputs["Scale"].default_value = 3.0
+    checker.inputs["Color1"].default_value = (1.0, 1.0, 1.0, 1.0)
+    checker.inputs["Color2"].default_value = (0.5, 0.5, 0.5, 1.0)
+    uv = nodes.new("ShaderNodeUVMap")
+    links.new(uv.outputs["UV"], checker.inputs["Vector"])
+    links.new(checker.outputs["Color"], outer.inputs["Fac"])
+    add = nodes.new("ShaderNodeAddShader")
+    links.new(shader(nodes, "ShaderNodeBsdfDiffuse", Roughness=0.4).outputs[0], add.inputs[0])
+    glossy = shader(nodes, "ShaderNodeBsdfGlossy", Roughness=0.2)
+    glossy.distribution = 'BECKMANN'
+    links.new(glossy.outputs[0], add.inputs[1])
+    inner = nodes.new("ShaderNodeMixShader")
+    inner.inputs["Fac"].default_value = 0.3
+    links.new(shader(nodes, "ShaderNodeBsdfPrincipled").outputs[0], inner.inputs[1])
+    links.new(shader(nodes, "ShaderNodeEmission", Strength=2.0).outputs[0], inner.inputs[2])
+    links.new(add.outputs[0], outer.inputs[1])
+    links.new(inner.outputs[0], outer.inputs[2])
+    links.new(outer.outputs[0], out.inputs["Surface"])
+    return mat
+
+
+def unsupported_tree():
+    """Mix(Noise Texture, Glass, Diffuse with a Bump from an image) and a checker on Generated."""
+    mat, nodes, links, out = node_material("Unsupported")
+    mix = nodes.new("ShaderNodeMixShader")
+    links.new(nodes.new("ShaderNodeTexNoise").outputs["Fac"], mix.inputs["Fac"])
+    links.new(nodes.new("ShaderNodeBsdfGlass").outputs[0], mix.inputs[1])
+    diffuse = shader(nodes, "ShaderNodeBsdfDiffuse")
+    bump = nodes.new("ShaderNodeBump")
+    bump.invert = True
+    bump.inputs["Distance"].default_value = 0.2
+    bump.inputs["Strength"].default_value = 0.7
+    tex = nodes.new("ShaderNodeTexImage")
+    tex.image = bpy.data.images.new("Height", 4, 4)
+    links.new(tex.outputs["Color"], bump.inputs["Height"])
+    links.new(bump.outputs["Normal"], diffuse.inputs["Normal"])
+    add = nodes.new("ShaderNodeAddShader")
+    links.new(diffuse.outputs[0], add.inputs[0])
+    mix2 = nodes.new("ShaderNodeMixShader")
+    links.new(nodes.new("ShaderNodeTexChecker").outputs["Fac"], mix2.inputs["Fac"])
+    links.new(shader(nodes, "ShaderNodeBsdfGlossy").outputs[0], mix2.inputs[1])
+    links.new(mix2.outputs[0], add.inputs[1])
+    links.new(add.outputs[0], mix.inputs[2])
+    links.new(mix.outputs[0], out.inputs["Surface"])
+    return mat
+
+
+def main():
+    testing.addon()
+    testing.clear_scene()
+    args, messages = read(nested_tree())
+    mix = args.get("mixture")
+    check(mix is not None, f"a nested tree reads as a mixture: {args}")
+    kinds = [(kind, terms) for kind, _a, terms in mix["closures"]]
+    factors = mix["factors"]
+    print("closures", kinds, "factors", factors, flush=True)
+    check(factors[0] == dict(kind="checker", scale=3.0, color1=1.0, color2=0.5),
+          f"the checker's Color output gives the colours' luminances: {factors[0]}")
+    check([f["kind"] for f in factors[1:]] == ["constant", "constant"]
+          and abs(factors[1]["value"] - 0.7) < 1e-6 and abs(factors[2]["value"] - 0.3) < 1e-6,
+          f"the constant Mix factor becomes (1 - fac) and fac: {factors[1:]}")
+    check(kinds == [("diffuse", [-1]), ("glossy", [-1]), ("principled", [0, 1]),
+                    ("emission", [0, 2])], f"closures and weight terms: {kinds}")
+    diffuse = mix["closures"][0][1]
+    check(abs(diffuse["roughness"] - 0.4) < 1e-6 and diffuse["specular"] == 0.0,
+          f"the Diffuse BSDF's roughness is read: {diffuse}")
+    check(mix["closures"][3][1]["emission_strength"] == 2.0, "the Emission's strength")
+    texts = [t for _l, t in messages]
+    check(any("Beckmann distribution is rendered as GGX" in t for t in texts),
+          f"Beckmann reported: {texts}")
+
+    args, messages = read(unsupported_tree())
+    mix = args["mixture"]
+    texts = [t for _l, t in messages]
+    print("\n".join(texts), flush=True)
+    kinds = [(kind, terms) for kind, _a, terms in mix["closures"]]
+    # Fac from a Noise Texture: the socket's 0.5 (a constant: 0.5 and 0.5); Glass left out.
+    check(kinds[0][0] == "diffuse" and len(kinds) == 2 and kinds[1][0] == "glossy",
+          f"Glass left out, Diffuse and Glossy kept: {kinds}")
+    normal = mix["normal"]
+    check(normal.get("bump_texture") == 7 and abs(normal.get("bump_strength", 0) - 0.7) < 1e-6
+          and abs(normal.get("bump_distance", 0) + 0.2) < 1e-6,
+          f"the Bump node's arguments (Invert negates Distance): {normal}")
+    for expected in ("is linked to 'Noise Texture', which Torrance does not support",
+                     "the shader 'Glass BSDF' is not supported in a mix",
+                     "only UV coordinates are supported",
+                     "'Glossy BSDF' has another Normal than 'Diffuse BSDF'"):
+        hits = [t for t in texts if expected in t]
+        check(len(hits) == 1, f"reported once: {expected!r} in {texts}")
+        check(hits[0].startswith("Material 'Unsupported':"), f"names the material: {hits[0]}")
+
+
+testing.run(main)

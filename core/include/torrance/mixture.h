@@ -1,0 +1,70 @@
+// Materials made of weighted closures, as Blender's Mix Shader and Add Shader build them.
+//
+// A Mixture lists its closures (components) and the Mix Shader factors at the hit. Each
+// component's weight is the product of its path's terms through the shader tree, as Cycles'
+// svm_node_mix_closure propagates them: the first (upper) shader of a Mix Shader gets 1 - fac,
+// the second gets fac (fac clamped to [0, 1]); an Add Shader passes the weight on unchanged, so
+// its two shaders simply add. A component's inputs live in an ordinary Scene material (with its
+// image textures), read per closure type (see ClosureType).
+#pragma once
+
+#include "torrance/bsdf.h"
+#include "torrance/texture.h"
+
+#include <array>
+#include <memory>
+#include <vector>
+
+namespace torrance {
+
+inline constexpr int kMaxMixtureComponents = 8;
+inline constexpr int kMaxMixFactors = 8;
+
+// Blender's Checker Texture as Cycles 3.4 computes it (svm_checker) at p = Vector * Scale:
+// 1 on Color1's squares, 0 on Color2's.
+float checker_pattern(const Vec3& p);
+
+// The Fac of one Mix Shader.
+struct MixFactor {
+  enum class Kind { Constant, Image, Checker };
+  Kind kind = Kind::Constant;
+  float value = 0.5f;  // Constant
+  int texture = -1;    // Image: the luminance of the texture's colour at the hit's UV
+  // Checker at (u, v, 0) * scale: the factor is color1 on Color1's squares, color2 on the others
+  // (the Fac output: 1 and 0; the Color output: the colours' luminances).
+  float checker_scale = 5.0f;
+  float checker_color1 = 1.0f, checker_color2 = 0.0f;
+};
+
+enum class ClosureType {
+  Principled,  // the material as it is (the render's BRDF model)
+  Diffuse,     // Diffuse BSDF: Color = base_color, Roughness = roughness (diffuse_bsdf.h)
+  Glossy,      // Glossy BSDF (GGX): Color = base_color, Roughness = roughness (glossy_bsdf.h)
+  Emission,    // Emission: emission only
+};
+
+struct MixtureComponent {
+  ClosureType type = ClosureType::Principled;
+  uint32_t material = 0;   // the Scene material holding the closure's inputs (not a mixture)
+  std::vector<int> terms;  // weight = product of: t >= 0 -> factor t; t < 0 -> 1 - factor (-t - 1)
+};
+
+struct Mixture {
+  std::vector<MixFactor> factors;
+  std::vector<MixtureComponent> components;
+};
+
+// Throws std::invalid_argument unless the mixture is well formed: 1..kMaxMixtureComponents
+// components, at most kMaxMixFactors factors, finite constants, terms naming existing factors,
+// texture ids below num_textures and component materials below num_materials.
+void check_mixture(const Mixture& mixture, size_t num_materials, size_t num_textures);
+
+// The components' weights at a hit (uv; image factors averaged over footprint UV units).
+struct MixtureWeights {
+  std::array<float, kMaxMixtureComponents> weight{};
+  int count = 0;
+};
+MixtureWeights mixture_weights(const Mixture& mixture, const std::vector<std::shared_ptr<const Texture>>& textures,
+                               const Vec2& uv, float footprint);
+
+}  // namespace torrance

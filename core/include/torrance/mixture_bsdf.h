@@ -1,0 +1,64 @@
+// A weighted sum of closures (Mix Shader / Add Shader), as Cycles combines a shader's closures:
+//
+//   eval(wo, wi) = sum_k w_k eval_k(wo, wi)
+//   pdf(wo, wi)  = sum_k P_k pdf_k(wo, wi),   P_k = s_k / sum_j s_j,
+//   s_k = w_k * (the closure's estimated albedo + 0.01)   (Cycles: the closure weight's average)
+//   sample: choose closure k with probability P_k (by u_lobe, rescaled for the closure's own
+//           lobe choice), sample it, then evaluate every closure at wi, so that weight =
+//           eval / pdf of the whole mixture (one-sample MIS over closures). A closure's delta
+//           lobe is returned as is, with weight w_k * its weight / P_k.
+//
+// Components are MaterialBsdf (whatever the render's model is: it composes any future variant),
+// DiffuseBsdf and GlossyBsdf; at most kMaxMixtureComponents, held by value (no allocation).
+// See bsdf.h for the conventions.
+#pragma once
+
+#include "torrance/diffuse_bsdf.h"
+#include "torrance/glossy_bsdf.h"
+#include "torrance/material_bsdf.h"
+#include "torrance/mixture.h"
+
+#include <array>
+#include <variant>
+
+namespace torrance {
+
+class Scene;
+
+class MixtureBsdf {
+ public:
+  using Component = std::variant<std::monostate, MaterialBsdf, DiffuseBsdf, GlossyBsdf>;
+
+  MixtureBsdf() = default;
+  explicit MixtureBsdf(const MaterialBsdf& single) { add(single, 1.0f, 1.0f); }
+
+  // Adds a closure with weight w (> 0) sampled in proportion to w * (sampling_albedo + 0.01).
+  // Beyond kMaxMixtureComponents closures, std::length_error.
+  void add(const Component& c, float w, float sampling_albedo);
+  int size() const { return count_; }
+
+  LobeEval eval_lobes(const Vec3& wo, const Vec3& wi) const;
+  Vec3 eval(const Vec3& wo, const Vec3& wi) const { return eval_lobes(wo, wi).total(); }
+  float pdf(const Vec3& wo, const Vec3& wi) const;
+  BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const;
+
+ private:
+  std::array<Component, kMaxMixtureComponents> components_{};
+  std::array<float, kMaxMixtureComponents> weights_{};
+  std::array<float, kMaxMixtureComponents> probabilities_{};  // P_k, normalised after each add
+  std::array<float, kMaxMixtureComponents> sampling_{};       // s_k
+  int count_ = 0;
+};
+
+// What the integrator shades with at a hit on material `id`: its BSDF (a single MaterialBsdf for
+// an ordinary material, a mixture's closures otherwise) and, in `resolved`, the material's
+// emission and an albedo (base_color, metallic 0 for mixtures) at uv, textures averaged over
+// `footprint` UV units when `textured`. `prebuilt` is the material's BSDF when untextured.
+MixtureBsdf shade_material(const Scene& scene, uint32_t id, const Vec2& uv, float footprint, bool textured,
+                           BrdfModel model, const MaterialBsdf& prebuilt, Material& resolved);
+
+// The estimated albedo a mixture samples a Principled closure by: luminance of the base colour
+// plus its dielectric F0.
+float principled_sampling_albedo(const Material& m);
+
+}  // namespace torrance

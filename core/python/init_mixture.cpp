@@ -1,0 +1,86 @@
+// Scene.add_mixture: materials made of weighted closures (Mix Shader / Add Shader), bound onto
+// the Scene class that init_scene defines.
+#include "bindings.h"
+
+#include "torrance/scene.h"
+
+#include <pybind11/stl.h>
+
+#include <string>
+
+namespace torrance::python {
+namespace {
+
+ClosureType parse_closure(const std::string& s) {
+  if (s == "principled") return ClosureType::Principled;
+  if (s == "diffuse") return ClosureType::Diffuse;
+  if (s == "glossy") return ClosureType::Glossy;
+  if (s == "emission") return ClosureType::Emission;
+  throw py::value_error("closure type must be 'principled', 'diffuse', 'glossy' or 'emission', got '" + s + "'");
+}
+
+MixFactor parse_factor(const py::handle& h) {
+  if (!py::isinstance<py::dict>(h)) throw py::type_error("each mix factor must be a dict");
+  const py::dict d = py::reinterpret_borrow<py::dict>(h);
+  for (const auto& item : d) {
+    const std::string key = py::str(item.first);
+    if (key != "kind" && key != "value" && key != "texture" && key != "scale" && key != "color1" && key != "color2")
+      throw py::value_error("unknown mix factor key '" + key + "' (kind, value, texture, scale, color1, color2)");
+  }
+  MixFactor f;
+  const std::string kind = d.contains("kind") ? py::str(d["kind"]).cast<std::string>() : "constant";
+  if (kind == "constant") {
+    f.kind = MixFactor::Kind::Constant;
+    if (d.contains("value")) f.value = d["value"].cast<float>();
+  } else if (kind == "image") {
+    f.kind = MixFactor::Kind::Image;
+    if (!d.contains("texture")) throw py::value_error("an image mix factor needs 'texture'");
+    f.texture = d["texture"].cast<int>();
+  } else if (kind == "checker") {
+    f.kind = MixFactor::Kind::Checker;
+    if (d.contains("scale")) f.checker_scale = d["scale"].cast<float>();
+    if (d.contains("color1")) f.checker_color1 = d["color1"].cast<float>();
+    if (d.contains("color2")) f.checker_color2 = d["color2"].cast<float>();
+  } else {
+    throw py::value_error("mix factor kind must be 'constant', 'image' or 'checker', got '" + kind + "'");
+  }
+  return f;
+}
+
+}  // namespace
+
+void init_mixture(py::module_& m) {
+  py::object cls = m.attr("Scene");
+  auto add_mixture = [](Scene& s, const std::vector<std::tuple<std::string, int64_t, std::vector<int>>>& closures,
+                        const py::list& factors, int normal_texture, float normal_strength, int bump_texture,
+                        float bump_strength, float bump_distance) {
+    Mixture mixture;
+    for (const auto& f : factors) mixture.factors.push_back(parse_factor(f));
+    for (const auto& [type, material, terms] : closures) {
+      if (material < 0 || material > int64_t(UINT32_MAX))
+        throw py::value_error("closure material must be a material index >= 0, got " + std::to_string(material));
+      mixture.components.push_back({parse_closure(type), uint32_t(material), terms});
+    }
+    MaterialTextures normal;
+    normal.normal = normal_texture;
+    normal.normal_strength = normal_strength;
+    normal.bump = bump_texture;
+    normal.bump_strength = bump_strength;
+    normal.bump_distance = bump_distance;
+    return s.add_mixture(mixture, normal);
+  };
+  cls.attr("add_mixture") = py::cpp_function(
+      add_mixture, py::name("add_mixture"), py::is_method(cls),
+      py::sibling(py::getattr(cls, "add_mixture", py::none())),
+      py::arg("closures"), py::arg("factors") = py::list(), py::arg("normal_texture") = -1,
+      py::arg("normal_strength") = 1.0f, py::arg("bump_texture") = -1, py::arg("bump_strength") = 1.0f,
+      py::arg("bump_distance") = 1.0f,
+      "Adds a material made of weighted closures (Mix Shader / Add Shader); returns its material index. "
+      "closures: [(type, material, terms)], type 'principled' | 'diffuse' | 'glossy' | 'emission', material an "
+      "add_material index holding the closure's inputs (diffuse/glossy: base_color = Color, roughness), terms the "
+      "weight's factors (t >= 0: factor t, t < 0: 1 - factor -t-1). factors: dicts {'kind': 'constant', 'value'} | "
+      "{'kind': 'image', 'texture'} (luminance) | {'kind': 'checker', 'scale', 'color1', 'color2'} (Blender's "
+      "Checker Texture at the UV). ValueError for malformed mixtures.");
+}
+
+}  // namespace torrance::python

@@ -1,0 +1,97 @@
+"""Scene.add_mixture (Mix Shader / Add Shader): exact weights on emitters, the checker factor,
+bump arguments and clear errors."""
+import numpy as np
+import pytest
+import torrance_core as tc
+
+
+def facing_plane(scene, material, half=1.0):
+    """A plane at z = 0 filling an 8x8 view from (0, 0, 5) looking down, UVs over [0, 1]^2."""
+    p = np.array([[-half, -half, 0], [half, -half, 0], [half, half, 0], [-half, half, 0]],
+                 np.float32)
+    uv = np.array([[[0, 0], [1, 0], [1, 1]], [[0, 0], [1, 1], [0, 1]]], np.float32)
+    scene.add_mesh(p, np.array([[0, 1, 2], [0, 2, 3]], np.int32),
+                   material_indices=np.array([material, material], np.int32), corner_uvs=uv)
+    matrix = np.eye(4)
+    matrix[2, 3] = 5.0
+    scene.set_camera(matrix, lens=200.0)
+
+
+def render(scene, size=8):
+    settings = tc.RenderSettings(width=size, height=size, samples=4, max_bounces=0)
+    return tc.render(scene, settings).image
+
+
+def emitter(scene, color, strength):
+    """A black, non-reflecting material that emits color * strength."""
+    return scene.add_material(base_color=(0, 0, 0), specular=0.0, emission=color,
+                              emission_strength=strength)
+
+
+def test_mix_and_add_weights_scale_emission_exactly():
+    scene = tc.Scene()
+    white = emitter(scene, (1, 1, 1), 2.0)
+    red = emitter(scene, (1, 0, 0), 1.0)
+    # Mix(0.25, white, red) + white: 0.75 * 2 + 0.25 * (1, 0, 0) + 2
+    closures = [("emission", white, [-1]), ("principled", red, [0]), ("emission", white, [])]
+    mix = scene.add_mixture(closures, [{"kind": "constant", "value": 0.25}])
+    facing_plane(scene, mix)
+    image = render(scene)
+    assert np.allclose(image[2:6, 2:6, 0], 1.5 + 0.25 + 2.0, rtol=1e-5)
+    assert np.allclose(image[2:6, 2:6, 1], 1.5 + 2.0, rtol=1e-5)
+
+
+def test_checker_factor_splits_a_plane_into_blenders_squares():
+    scene = tc.Scene()
+    one = emitter(scene, (1, 1, 1), 1.0)
+    black = scene.add_material(base_color=(0, 0, 0), specular=0.0)
+    # Scale 2 over UV [0, 1]: 2x2 squares; Color1's (factor 1 -> the second closure) where the
+    # cells' parities differ, i.e. the top-left and bottom-right quarters.
+    mix = scene.add_mixture([("emission", black, [-1]), ("emission", one, [0])],
+                            [{"kind": "checker", "scale": 2.0}])
+    facing_plane(scene, mix, half=0.5)
+    image = render(scene, size=16)[..., 0]           # row 0 = top: v = 1
+    lit = image > 0.5
+    assert lit[1:7, 1:7].all() and lit[9:15, 9:15].all()
+    assert not lit[1:7, 9:15].any() and not lit[9:15, 1:7].any()
+
+
+def test_add_material_takes_bump_arguments():
+    scene = tc.Scene()
+    ramp = np.linspace(0, 1, 16, dtype=np.float32).reshape(1, 16, 1)
+    height = scene.add_texture(ramp, colorspace="Non-Color")
+    m = scene.add_material(bump_texture=height, bump_strength=0.5, bump_distance=-0.1)
+    facing_plane(scene, m)
+    scene.add_sun(direction=(0.3, 0, -1), strength=2.0)
+    assert np.isfinite(render(scene)).all()
+    with pytest.raises(ValueError, match="texture 7"):
+        scene.add_material(bump_texture=7)
+    with pytest.raises(ValueError, match="finite"):
+        scene.add_material(bump_texture=height, bump_distance=float("nan"))
+
+
+def test_malformed_mixtures_are_value_errors():
+    scene = tc.Scene()
+    a = scene.add_material()
+    ok = [("diffuse", a, [-1]), ("glossy", a, [0])]
+    with pytest.raises(ValueError, match="closure type"):
+        scene.add_mixture([("glass", a, [])])
+    with pytest.raises(ValueError, match="unknown mix factor key"):
+        scene.add_mixture(ok, [{"kind": "constant", "valeu": 0.5}])
+    with pytest.raises(ValueError, match="kind"):
+        scene.add_mixture(ok, [{"kind": "noise"}])
+    with pytest.raises(ValueError, match="texture 3"):
+        scene.add_mixture(ok, [{"kind": "image", "texture": 3}])
+    with pytest.raises(ValueError, match="names no mix factor"):
+        scene.add_mixture(ok, [])
+    with pytest.raises(ValueError, match="material 9"):
+        scene.add_mixture([("diffuse", 9, [])])
+    with pytest.raises(ValueError, match="finite"):
+        scene.add_mixture(ok, [{"kind": "constant", "value": float("inf")}])
+    with pytest.raises(ValueError, match="1 to 8 closures"):
+        scene.add_mixture([("diffuse", a, [])] * 9)
+    mix = scene.add_mixture(ok, [{"kind": "constant", "value": 0.5}])
+    with pytest.raises(ValueError, match="itself a mixture"):
+        scene.add_mixture([("diffuse", mix, [])])
+    with pytest.raises(ValueError, match="material index >= 0"):
+        scene.add_mixture([("diffuse", -1, [])])

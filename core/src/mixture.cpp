@@ -1,0 +1,68 @@
+#include "torrance/mixture.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace torrance {
+
+float checker_pattern(const Vec3& p) {
+  // Cycles nudges coordinates off the integers so that unit-aligned inputs do not flicker.
+  auto cell = [](float x) { return std::abs(int(std::floor((x + 0.000001f) * 0.999999f))); };
+  const int xi = cell(p.x), yi = cell(p.y), zi = cell(p.z);
+  return ((xi % 2 == yi % 2) == bool(zi % 2)) ? 1.0f : 0.0f;
+}
+
+void check_mixture(const Mixture& mixture, size_t num_materials, size_t num_textures) {
+  const size_t n = mixture.components.size();
+  if (n < 1 || n > size_t(kMaxMixtureComponents))
+    throw std::invalid_argument("a mixture needs 1 to " + std::to_string(kMaxMixtureComponents) + " closures, got " +
+                                std::to_string(n));
+  if (mixture.factors.size() > size_t(kMaxMixFactors))
+    throw std::invalid_argument("a mixture has at most " + std::to_string(kMaxMixFactors) + " mix factors, got " +
+                                std::to_string(mixture.factors.size()));
+  for (const MixFactor& f : mixture.factors) {
+    if (!std::isfinite(f.value) || !std::isfinite(f.checker_scale) || !std::isfinite(f.checker_color1) ||
+        !std::isfinite(f.checker_color2))
+      throw std::invalid_argument("mix factor values must be finite (no NaN or Inf)");
+    if (f.kind == MixFactor::Kind::Image && (f.texture < 0 || size_t(f.texture) >= num_textures))
+      throw std::invalid_argument("mix factor uses texture " + std::to_string(f.texture) + " but the scene has " +
+                                  std::to_string(num_textures) + " textures");
+  }
+  const int num_factors = int(mixture.factors.size());
+  for (const MixtureComponent& c : mixture.components) {
+    if (c.material >= num_materials)
+      throw std::invalid_argument("mixture closure uses material " + std::to_string(c.material) +
+                                  " but the scene has " + std::to_string(num_materials) + " materials");
+    if (c.terms.size() > size_t(kMaxMixFactors))
+      throw std::invalid_argument("a mixture closure has at most " + std::to_string(kMaxMixFactors) + " weight terms");
+    for (int t : c.terms)
+      if (t >= num_factors || -t - 1 >= num_factors)
+        throw std::invalid_argument("mixture weight term " + std::to_string(t) +
+                                    " names no mix factor (the mixture has " + std::to_string(num_factors) + ")");
+  }
+}
+
+MixtureWeights mixture_weights(const Mixture& mixture, const std::vector<std::shared_ptr<const Texture>>& textures,
+                               const Vec2& uv, float footprint) {
+  std::array<float, kMaxMixFactors> fac{};
+  for (size_t i = 0; i < mixture.factors.size(); ++i) {
+    const MixFactor& f = mixture.factors[i];
+    float v = f.value;
+    if (f.kind == MixFactor::Kind::Image) {
+      v = blender_luminance(Vec3(textures[f.texture]->lookup(uv, footprint)));
+    } else if (f.kind == MixFactor::Kind::Checker) {
+      v = checker_pattern(Vec3(uv.x, uv.y, 0.0f) * f.checker_scale) > 0.5f ? f.checker_color1 : f.checker_color2;
+    }
+    fac[i] = std::isfinite(v) ? clamp01(v) : 0.0f;  // Cycles clamps the Mix Shader's Fac
+  }
+  MixtureWeights w;
+  w.count = int(mixture.components.size());
+  for (int c = 0; c < w.count; ++c) {
+    float weight = 1.0f;
+    for (int t : mixture.components[c].terms) weight *= t >= 0 ? fac[t] : 1.0f - fac[-t - 1];
+    w.weight[c] = weight;
+  }
+  return w;
+}
+
+}  // namespace torrance

@@ -1,0 +1,120 @@
+#include "torrance/mixture_bsdf.h"
+
+#include "torrance/scene.h"
+
+#include <stdexcept>
+
+namespace torrance {
+
+float principled_sampling_albedo(const Material& m) {
+  return luminance(glm::clamp(m.base_color, Vec3(0.0f), Vec3(1.0f))) +
+         0.08f * std::max(m.specular, 0.0f) * (1.0f - clamp01(m.metallic));
+}
+
+void MixtureBsdf::add(const Component& c, float w, float sampling_albedo) {
+  if (count_ >= kMaxMixtureComponents) throw std::length_error("a mixture holds at most 8 closures");
+  if (!(w > 0.0f) || std::holds_alternative<std::monostate>(c)) return;
+  components_[count_] = c;
+  weights_[count_] = w;
+  sampling_[count_] = w * (std::max(sampling_albedo, 0.0f) + 0.01f);
+  ++count_;
+  float sum = 0.0f;
+  for (int k = 0; k < count_; ++k) sum += sampling_[k];
+  for (int k = 0; k < count_; ++k) probabilities_[k] = sampling_[k] / sum;
+}
+
+LobeEval MixtureBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
+  LobeEval total;
+  for (int k = 0; k < count_; ++k) {
+    const LobeEval f = std::visit(
+        [&](const auto& b) -> LobeEval {
+          if constexpr (std::is_same_v<std::decay_t<decltype(b)>, std::monostate>) return {};
+          else return b.eval_lobes(wo, wi);
+        },
+        components_[k]);
+    total.diffuse += weights_[k] * f.diffuse;
+    total.glossy += weights_[k] * f.glossy;
+  }
+  return total;
+}
+
+float MixtureBsdf::pdf(const Vec3& wo, const Vec3& wi) const {
+  float p = 0.0f;
+  for (int k = 0; k < count_; ++k)
+    p += probabilities_[k] * std::visit(
+                                 [&](const auto& b) -> float {
+                                   if constexpr (std::is_same_v<std::decay_t<decltype(b)>, std::monostate>) return 0.0f;
+                                   else return b.pdf(wo, wi);
+                                 },
+                                 components_[k]);
+  return p;
+}
+
+BsdfSample MixtureBsdf::sample(const Vec3& wo, float u_lobe, const Vec2& u) const {
+  if (count_ == 0) return {};
+  // Choose closure k, and reuse what is left of u_lobe for the closure's own lobe choice.
+  int k = 0;
+  float lower = 0.0f;
+  while (k < count_ - 1 && u_lobe >= lower + probabilities_[k]) lower += probabilities_[k++];
+  const float u_rest = std::min((u_lobe - lower) / probabilities_[k], 0.99999994f);
+  const BsdfSample s = std::visit(
+      [&](const auto& b) -> BsdfSample {
+        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, std::monostate>) return {};
+        else return b.sample(wo, std::max(u_rest, 0.0f), u);
+      },
+      components_[k]);
+  if (!s.valid()) return {};
+  if (s.is_delta) {
+    BsdfSample d = s;
+    d.weight = s.weight * (weights_[k] / probabilities_[k]);
+    return d;
+  }
+  if (count_ == 1) {
+    BsdfSample one = s;
+    one.weight = s.weight * weights_[0];
+    return one;
+  }
+  BsdfSample m;
+  m.wi = s.wi;
+  m.pdf = pdf(wo, s.wi);
+  if (!(m.pdf > 0.0f)) return {};
+  m.weight = eval(wo, s.wi) / m.pdf;
+  return m;
+}
+
+MixtureBsdf shade_material(const Scene& scene, uint32_t id, const Vec2& uv, float footprint, bool textured,
+                           BrdfModel model, const MaterialBsdf& prebuilt, Material& resolved) {
+  const Mixture* mixture = scene.mixture(id);
+  if (!mixture) {
+    resolved = textured ? scene.textured_material(id, uv, footprint) : scene.material(id);
+    return textured ? MixtureBsdf(MaterialBsdf(resolved, model)) : MixtureBsdf(prebuilt);
+  }
+  const MixtureWeights w = scene.mixture_weights(id, uv, footprint);
+  resolved = Material{};
+  resolved.base_color = Vec3(0.0f);
+  resolved.metallic = 0.0f;
+  MixtureBsdf bsdf;
+  for (int k = 0; k < w.count; ++k) {
+    if (!(w.weight[k] > 0.0f)) continue;
+    const MixtureComponent& c = mixture->components[k];
+    const Material m = textured ? scene.textured_material(c.material, uv, footprint) : scene.material(c.material);
+    resolved.emission += w.weight[k] * m.emission;
+    switch (c.type) {
+      case ClosureType::Principled:
+        bsdf.add(MaterialBsdf(m, model), w.weight[k], principled_sampling_albedo(m));
+        resolved.base_color += w.weight[k] * m.base_color * (1.0f - m.metallic);
+        break;
+      case ClosureType::Diffuse:
+        bsdf.add(DiffuseBsdf(m.base_color, m.roughness), w.weight[k], luminance(m.base_color));
+        resolved.base_color += w.weight[k] * m.base_color;
+        break;
+      case ClosureType::Glossy:
+        bsdf.add(GlossyBsdf(m.base_color, m.roughness), w.weight[k], luminance(m.base_color));
+        break;
+      case ClosureType::Emission: break;
+    }
+  }
+  return bsdf;
+}
+
+}  // namespace torrance

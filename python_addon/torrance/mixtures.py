@@ -1,0 +1,260 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Mix Shader / Add Shader trees -> a Torrance mixture (Scene.add_mixture).
+
+The tree under the material's Surface is walked as Cycles' SVM compiles it: a Mix Shader gives
+its first Shader input the weight (1 - Fac) and its second Fac (Fac clamped to [0, 1]), an Add
+Shader gives both the weight it received. The closures Torrance renders:
+
+* Principled BSDF (as a lone Principled is read), Diffuse BSDF (Color, Roughness: Lambert or
+  Cycles' Oren-Nayar), Glossy BSDF (Color, Roughness; GGX, Sharp as roughness 0; Beckmann,
+  Ashikhmin-Shirley and Multiscatter GGX are rendered as GGX and reported; Blender 4.x's Glossy,
+  ShaderNodeBsdfAnisotropic, too, its Anisotropy reported), Emission.
+
+A Mix Shader's Fac may be a constant, an Image Texture (its Color's luminance) or a Checker
+Texture (its Fac output, or its Color output's luminance, with constant colours and scale and a
+UV vector). Up to MAX_CLOSURES closures, MAX_FACTORS factors, MAX_DEPTH nested shader nodes;
+what is beyond, and every other shader node, is reported once per node and material and left
+out of the sum (it contributes nothing). One Normal input serves all closures: the first
+closure's; a closure with a different normal source is reported.
+"""
+
+from .nodes import node_label, source_socket
+from .normal_inputs import read_normal_input
+
+MAX_CLOSURES = 8          # the core's kMaxMixtureComponents
+MAX_FACTORS = 8           # the core's kMaxMixFactors
+MAX_DEPTH = 8             # Mix/Add Shader nodes on one path
+
+SHADER_TREE_NODES = {'ShaderNodeMixShader', 'ShaderNodeAddShader'}
+# Surfaces read as a mixture (a one-closure one for a lone Glossy BSDF, 3.x's and 4.x's node).
+MIXTURE_SURFACES = SHADER_TREE_NODES | {'ShaderNodeBsdfGlossy', 'ShaderNodeBsdfAnisotropic'}
+_GLOSSY_AS_GGX = {'BECKMANN', 'ASHIKHMIN_SHIRLEY', 'MULTI_GGX'}
+
+
+def _luminance(c):
+    return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
+
+
+class ShaderTreeReader:
+    """Reads one material's Mix/Add Shader tree (reader: the MaterialReader, for closures,
+    sockets, images and reports)."""
+
+    def __init__(self, reader, mat):
+        self.reader = reader
+        self.mat = mat
+        self.closures = []        # (type, add_material kwargs, terms)
+        self.factors = []         # add_mixture factor dicts
+        self.normal = None        # the normal arguments of the first closure
+        self.normal_from = None
+
+    def warn(self, text):
+        self.reader.reporter.warning(f"Material '{self.mat.name}': {text}")
+
+    def read(self, node):
+        """dict(closures=..., factors=..., normal=...) or None when no closure is left."""
+        self._walk(node, [], 0)
+        if not self.closures:
+            return None
+        return dict(closures=self.closures, factors=self.factors, normal=self.normal or {})
+
+    def _walk(self, node, terms, depth):
+        kind = node.bl_idname
+        if kind in SHADER_TREE_NODES:
+            if depth >= MAX_DEPTH:
+                self.warn(f"{node_label(node)} is nested deeper than {MAX_DEPTH} shader nodes; "
+                          f"Torrance leaves it out")
+                return
+            shaders = [s for s in node.inputs if s.type == 'SHADER']
+            if node.mute:             # a muted node passes its first shader through
+                self._follow(shaders[0] if shaders else None, terms, depth + 1)
+                return
+            for s in shaders[:2]:
+                if source_socket(s) is None:
+                    self.reader.reporter.info(
+                        f"Material '{self.mat.name}': a Shader input of {node_label(node)} is "
+                        f"empty; it adds nothing (black), as in Cycles")
+            if kind == 'ShaderNodeAddShader':
+                for s in shaders[:2]:
+                    self._follow(s, terms, depth + 1)
+                return
+            fac = self._factor(node)
+            if fac is None:
+                return
+            first, second = shaders[0], shaders[1]
+            if isinstance(fac, float):            # a constant: folded in when it decides alone
+                if fac < 1.0:
+                    self._follow(first, terms + [('const', 1.0 - fac)], depth + 1)
+                if fac > 0.0:
+                    self._follow(second, terms + [('const', fac)], depth + 1)
+                return
+            index = fac
+            self._follow(first, terms + [-index - 1], depth + 1)
+            self._follow(second, terms + [index], depth + 1)
+            return
+        if node.mute:
+            self.warn(f"the shader {node_label(node)} is muted; Torrance leaves it out")
+            return
+        closure = self._closure(node)
+        if closure is None:
+            return
+        if len(self.closures) >= MAX_CLOSURES:
+            self.warn(f"{node_label(node)}: more than {MAX_CLOSURES} shaders are mixed; Torrance "
+                      f"leaves it out")
+            return
+        kind_name, args = closure
+        normal = read_normal_input(self.reader, self.mat, node)
+        if self.normal is None:
+            self.normal, self.normal_from = normal, node
+        elif normal != self.normal:
+            self.warn(f"{node_label(node)} has another Normal than {node_label(self.normal_from)}; "
+                      f"Torrance uses one normal for all mixed shaders (that of "
+                      f"{node_label(self.normal_from)})")
+        self.closures.append((kind_name, args, self._resolve(terms)))
+
+    def _follow(self, socket, terms, depth):
+        source = source_socket(socket) if socket is not None else None
+        if source is not None:        # an unlinked Shader input adds nothing, as in Cycles
+            self._walk(source.node, terms, depth)
+
+    def _resolve(self, terms):
+        """Constant terms become constant factors (the core multiplies factors only)."""
+        out = []
+        for t in terms:
+            if isinstance(t, tuple):
+                if t[1] >= 1.0:
+                    continue
+                index = self._add_factor(dict(kind="constant", value=t[1]))
+                if index is None:
+                    continue
+                out.append(index)
+            else:
+                out.append(t)
+        return out
+
+    def _add_factor(self, factor):
+        if factor in self.factors:
+            return self.factors.index(factor)
+        if len(self.factors) >= MAX_FACTORS:
+            self.warn(f"more than {MAX_FACTORS} different Mix Shader factors; Torrance treats "
+                      f"the others as 1")
+            return None
+        self.factors.append(factor)
+        return len(self.factors) - 1
+
+    # ----------------------------------------------------------------------------------------
+    # Mix factors
+
+    def _factor(self, node):
+        """A float (constant Fac, clamped to [0, 1]) or the index of a texture factor."""
+        reader = self.reader
+        socket = node.inputs.get("Fac") or node.inputs[0]
+        source = source_socket(socket)
+        clamp = lambda v: min(max(v, 0.0), 1.0)  # noqa: E731
+        if source is None or source.node.type in {'VALUE', 'RGB'}:
+            value = source.default_value if source is not None else socket.default_value
+            try:
+                value = float(value) if source is None or source.node.type == 'VALUE' \
+                    else _luminance(tuple(value))
+            except (TypeError, ValueError):
+                value = 0.5
+            return clamp(value) if value == value else 0.5
+        src = source.node
+        where = f"the Fac of {node_label(node)}"
+        if not src.mute and src.bl_idname == 'ShaderNodeTexImage':
+            tid = reader._image_node(self.mat, src, source, where)
+            if tid is not None:
+                index = self._add_factor(dict(kind="image", texture=tid))
+                if index is not None:
+                    return index
+        elif not src.mute and src.bl_idname == 'ShaderNodeTexChecker':
+            factor = self._checker(src, source, where)
+            if factor is not None:
+                index = self._add_factor(factor)
+                if index is not None:
+                    return index
+        else:
+            self.warn(f"{where} is linked to {node_label(src)}, which Torrance does not support "
+                      f"(a value, an Image Texture or a Checker Texture); using the socket's own "
+                      f"value")
+        return clamp(float(socket.default_value))
+
+    def _checker(self, node, output, where):
+        reader = self.reader
+        what = f"{node_label(node)} (feeding {where})"
+        vector = node.inputs.get("Vector")
+        src = source_socket(vector) if vector is not None else None
+        if src is None or not _is_uv(src):
+            self.warn(f"{what}: only UV coordinates are supported (link a Texture Coordinate's "
+                      f"UV or a UV Map node to its Vector); using the Mix Shader's own Fac")
+            return None
+        constants = {}
+        for name in ("Color1", "Color2", "Scale"):
+            socket = node.inputs.get(name)
+            if socket is not None and source_socket(socket) is not None:
+                self.warn(f"{what}: its {name} input is linked, which Torrance does not support; "
+                          f"using the socket's own value")
+            constants[name] = reader._socket_value(self.mat, node, name, None)
+        scale = float(constants["Scale"]) if constants["Scale"] is not None else 5.0
+        if output.identifier == "Fac":
+            c1, c2 = 1.0, 0.0
+        else:
+            c1 = _luminance(tuple(constants["Color1"])[:3])
+            c2 = _luminance(tuple(constants["Color2"])[:3])
+        return dict(kind="checker", scale=scale, color1=c1, color2=c2)
+
+    # ----------------------------------------------------------------------------------------
+    # Closures
+
+    def _closure(self, node):
+        reader, mat = self.reader, self.mat
+        kind = node.bl_idname
+        if kind == 'ShaderNodeBsdfPrincipled':
+            args = reader._principled(mat, node)
+            for key in ('normal_texture', 'normal_strength', 'bump_texture', 'bump_strength',
+                        'bump_distance'):
+                args.pop(key, None)         # the mixture's normal serves all closures
+            return 'principled', args
+        if kind == 'ShaderNodeEmission':
+            return 'emission', reader._emission(mat, node)
+        if kind in ('ShaderNodeBsdfDiffuse', 'ShaderNodeBsdfGlossy', 'ShaderNodeBsdfAnisotropic'):
+            return self._colour_roughness(node)
+        self.warn(f"the shader {node_label(node)} is not supported in a mix (Torrance mixes "
+                  f"Principled, Diffuse, Glossy and Emission); it is left out")
+        return None
+
+    def _colour_roughness(self, node):
+        reader, mat = self.reader, self.mat
+        from .materials import DEFAULT_MATERIAL, _color3, _finite_or, _sanitize
+        d = DEFAULT_MATERIAL
+        color, color_tex = reader._socket_input(mat, node, "Color", d['base_color'])
+        roughness, roughness_tex = reader._socket_input(mat, node, "Roughness", 0.0)
+        roughness = min(max(_finite_or(roughness, 0.0), 0.0), 1.0)
+        kind = 'diffuse'
+        if node.bl_idname in ('ShaderNodeBsdfGlossy', 'ShaderNodeBsdfAnisotropic'):
+            kind = 'glossy'
+            anisotropy = node.inputs.get("Anisotropy")
+            if anisotropy is not None and (anisotropy.is_linked or anisotropy.default_value != 0.0):
+                self.warn(f"{node_label(node)}: Torrance ignores its Anisotropy (isotropic GGX)")
+            if node.distribution == 'SHARP':
+                roughness, roughness_tex = 0.0, -1
+            elif node.distribution in _GLOSSY_AS_GGX:
+                self.warn(f"{node_label(node)}: the {node.distribution.replace('_', ' ').title()} "
+                          f"distribution is rendered as GGX")
+        args = dict(d, base_color=_color3(color, d['base_color']), metallic=0.0, specular=0.0,
+                    roughness=roughness, base_color_texture=color_tex,
+                    roughness_texture=roughness_tex)
+        return kind, _sanitize(args)
+
+
+def _is_uv(output):
+    node = output.node
+    if node.mute:
+        return False
+    if node.bl_idname == 'ShaderNodeTexCoord':
+        return output.identifier == "UV"
+    return node.bl_idname == 'ShaderNodeUVMap' and not node.from_instancer
+
+
+def read_mixture(reader, mat, node):
+    """The add_mixture() description of the shader tree at `node`, or None (nothing usable)."""
+    return ShaderTreeReader(reader, mat).read(node)
