@@ -142,7 +142,7 @@ void init_scene(py::module_& m) {
           [](Scene& s, std::array<float, 3> base_color, float metallic, float roughness, float specular,
              std::array<float, 3> emission, float emission_strength, float specular_tint, int base_color_texture,
              int metallic_texture, int roughness_texture, int emission_texture, int normal_texture,
-             float normal_strength) {
+             float normal_strength, float transmission, float ior, float transmission_roughness, bool glass) {
             Material mat;
             mat.base_color = vec3(base_color);
             mat.metallic = metallic;
@@ -150,6 +150,10 @@ void init_scene(py::module_& m) {
             mat.specular = specular;
             mat.emission = vec3(emission) * emission_strength;
             mat.specular_tint = specular_tint;
+            mat.transmission = transmission;
+            mat.ior = ior;
+            mat.transmission_roughness = transmission_roughness;
+            mat.glass_node = glass;
             MaterialTextures tex;
             tex.base_color = base_color_texture;
             tex.metallic = metallic_texture;
@@ -165,9 +169,13 @@ void init_scene(py::module_& m) {
           py::arg("emission") = std::array<float, 3>{0.0f, 0.0f, 0.0f}, py::arg("emission_strength") = 0.0f,
           py::arg("specular_tint") = 0.0f, py::arg("base_color_texture") = -1, py::arg("metallic_texture") = -1,
           py::arg("roughness_texture") = -1, py::arg("emission_texture") = -1, py::arg("normal_texture") = -1,
-          py::arg("normal_strength") = 1.0f,
+          py::arg("normal_strength") = 1.0f, py::arg("transmission") = 0.0f, py::arg("ior") = 1.45f,
+          py::arg("transmission_roughness") = 0.0f, py::arg("glass") = false,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
-          "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength).")
+          "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength). "
+          "transmission, ior, transmission_roughness: the Principled BSDF's glass (transmission and "
+          "transmission_roughness in [0, 1], ior in (0, 1000]); glass=True: Blender's Glass BSDF node "
+          "(base_color its Color, roughness, ior).")
       .def(
           "add_texture",
           [](Scene& s, const py::object& pixels, const std::string& colorspace, const std::string& interpolation) {

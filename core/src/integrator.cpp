@@ -132,8 +132,16 @@ struct PathRadiance {
 // through (NEE at the first hit by each lobe's share of eval), and as direct (one bounce) or
 // indirect; alpha is 0 where a transparent background is seen directly.
 // Compiled per scene feature set: kTextures (some material has textures), kSplitLobes (light
-// passes requested), kHittable (a BSDF-sampled ray can see a light). The generic path has all three.
-template <bool kTextures, bool kSplitLobes, bool kHittable>
+// passes requested), kHittable (a BSDF-sampled ray can see a light), kGlass (some material
+// transmits). The generic path has all four.
+//
+// Glass: whether a direction is reflected or transmitted is decided by the GEOMETRIC normal, and
+// a direction on which the geometric and the shading normal disagree carries nothing (as Cycles).
+// The glass is told whether the viewer is inside (behind the geometric surface). Shadow rays stop
+// at glass as at any surface (Cycles 3.4): light through glass arrives by BSDF sampling only, MIS
+// weighted where NEE could also have sampled it (NEE at a glass surface considers lights on both
+// sides). Transmitted light is filed with the glossy passes.
+template <bool kTextures, bool kSplitLobes, bool kHittable, bool kGlass>
 PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) {
   const Lights& lights = ctx.lights;
   PathRadiance out;
@@ -142,6 +150,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
   Vec3 prev_position(0.0f), prev_normal(0.0f);
   float prev_pdf = 0.0f;
   bool prev_delta = true;
+  bool prev_two_sided = false;  // the previous vertex transmits: NEE there chose among lights on both sides
   float path_length = 0.0f;  // for texture footprints (a ray cone of the pixel's spread)
   // Cycles' clamping: a contribution whose RGB sum exceeds the limit is scaled down to it.
   // Direct: seen by the camera or lighting the first hit; indirect: lighting later vertices.
@@ -173,7 +182,8 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     } else {
       if (kHittable)
         deposit(throughput * lights.emission_along_ray(prev_position, prev_normal, ray.dir,
-                                                        found ? hit.t : kInfinity, prev_pdf, prev_delta),
+                                                        found ? hit.t : kInfinity, prev_pdf, prev_delta,
+                                                        kGlass && prev_two_sided),
                 bounce == 1);
       if (!found) break;
     }
@@ -197,7 +207,9 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     Vec3 n_smooth = hit.shading_normal;
     Vec3 ns = textured ? ctx.scene.normal_mapped(hit.material, hit, n_smooth, footprint) : n_smooth;
     const bool normal_mapped = textured && ns != n_smooth;
-    if (glm::dot(ng, wo_world) < 0.0f) {
+    const bool backfacing = glm::dot(ng, wo_world) < 0.0f;  // inside, for glass
+    const bool transmits = kGlass && bsdf.transmits();
+    if (backfacing) {
       ng = -ng;
       ns = -ns;
       n_smooth = -n_smooth;
@@ -214,7 +226,8 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
       // An emissive triangle found by BSDF sampling: MIS against NEE's choice of it.
       const float mis = prev_delta ? 1.0f
                                    : power_heuristic(prev_pdf, lights.mesh_light_pdf(size_t(hit.emitter), prev_position,
-                                                                                     prev_normal, hit.position));
+                                                                                     prev_normal, hit.position,
+                                                                                     kGlass && prev_two_sided));
       deposit(throughput * material.emission * mis, bounce == 1);
     }
     if (bounce > ctx.settings.max_bounces) break;
@@ -226,16 +239,19 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     // BSDF sampling.
     const glm::vec4 u_light = sampler.next_4d();  // light choice, position on the light
     const glm::vec4 u_bsdf = sampler.next_4d();   // lobe, direction, roulette
-    const Lights::Choice choice = lights.select(hit.position, ns, u_light.x);
+    const Lights::Choice choice = lights.select(hit.position, ns, u_light.x, transmits);
     if (choice.probability > 0.0f) {
-      const LightSample ls = lights.sample(choice.index, hit.position, ns, Vec2(u_light.y, u_light.z));
-      if (ls.valid() && glm::dot(ls.wi, ng) > 0.0f) {
-        const Vec3 wi = frame.to_local(ls.wi);
-        LobeEval f = bsdf.eval_lobes(wo, wi);
+      const LightSample ls = lights.sample(choice.index, hit.position, ns, Vec2(u_light.y, u_light.z), transmits);
+      const Vec3 wi = frame.to_local(ls.wi);
+      const float cos_geometric = glm::dot(ls.wi, ng);
+      if (ls.valid() && (transmits ? cos_geometric != 0.0f && (cos_geometric > 0.0f) == (wi.z > 0.0f)
+                                   : cos_geometric > 0.0f)) {
+        LobeEval f = bsdf.eval_lobes(wo, wi, backfacing);
         if (normal_mapped) f.diffuse *= bump_shadowing(n_smooth, ns, ls.wi);
         if (max_component(f.total()) > 0.0f) {
           if (!shadowed(ctx.scene, hit.position, ng, ls)) {
-            const float mis = ls.pdf > 0.0f ? power_heuristic(choice.probability * ls.pdf, bsdf.pdf(wo, wi)) : 1.0f;
+            const float mis =
+                ls.pdf > 0.0f ? power_heuristic(choice.probability * ls.pdf, bsdf.pdf(wo, wi, backfacing)) : 1.0f;
             Vec3 light = throughput * ls.weight * (mis / choice.probability);
             if (bounce == 0) {
               if (const float k = clamp_scale(light * f.total(), true); k < 1.0f) light *= k;
@@ -250,18 +266,23 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     }
 
     // Continue the path by sampling the BSDF.
-    BsdfSample bs = bsdf.sample(wo, u_bsdf.x, Vec2(u_bsdf.y, u_bsdf.z));
+    BsdfSample bs = bsdf.sample(wo, u_bsdf.x, Vec2(u_bsdf.y, u_bsdf.z), backfacing);
     if (!bs.valid()) break;
     const Vec3 wi_world = frame.to_world(bs.wi);
-    if (glm::dot(wi_world, ng) <= 0.0f) break;  // below the geometric surface: no transmission
+    const float cos_geometric = glm::dot(wi_world, ng);
+    if (transmits) {
+      if (cos_geometric == 0.0f || (cos_geometric > 0.0f) != (bs.wi.z > 0.0f)) break;
+    } else if (cos_geometric <= 0.0f) {
+      break;  // below the geometric surface: an opaque surface transmits nothing
+    }
     if (normal_mapped && !bs.is_delta) {
-      LobeEval f = bsdf.eval_lobes(wo, bs.wi);
+      LobeEval f = bsdf.eval_lobes(wo, bs.wi, backfacing);
       f.diffuse *= bump_shadowing(n_smooth, ns, wi_world);
       bs.weight = f.total() / bs.pdf;
     }
     throughput *= bs.weight;
     if (kSplitLobes && bounce == 0 && !bs.is_delta) {
-      const LobeEval f = bsdf.eval_lobes(wo, bs.wi);
+      const LobeEval f = bsdf.eval_lobes(wo, bs.wi, backfacing);
       const Vec3 total = f.total();
       for (int c = 0; c < 3; ++c) diffuse_share[c] = total[c] > 0.0f ? f.diffuse[c] / total[c] : 0.0f;
     }
@@ -279,6 +300,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
 
     prev_pdf = bs.pdf;
     prev_delta = bs.is_delta;
+    prev_two_sided = transmits;
     prev_normal = ns;
     ray.origin = offset_origin(hit.position, ng, wi_world);
     prev_position = ray.origin;
@@ -474,13 +496,22 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   const bool split_lobes =
       settings.passes & (kPassDiffuseDirect | kPassDiffuseIndirect | kPassGlossyDirect | kPassGlossyIndirect);
   const bool hittable = cscene.lights().any_hittable();
+  bool has_glass = false;
+  for (size_t i = 0; i < scene.num_materials(); ++i) has_glass |= scene.material(uint32_t(i)).transmits();
   using TraceFn = PathRadiance (*)(const PathContext&, Ray, SobolSampler&);
-  static constexpr TraceFn kTracers[8] = {
-      trace_path<false, false, false>, trace_path<false, false, true>, trace_path<false, true, false>,
-      trace_path<false, true, true>,   trace_path<true, false, false>, trace_path<true, false, true>,
-      trace_path<true, true, false>,   trace_path<true, true, true>};
-  const TraceFn trace = settings.specialize ? kTracers[(has_textures << 2) | (split_lobes << 1) | int(hittable)]
-                                            : kTracers[7];
+  static constexpr TraceFn kTracers[16] = {
+      trace_path<false, false, false, false>, trace_path<false, false, true, false>,
+      trace_path<false, true, false, false>,  trace_path<false, true, true, false>,
+      trace_path<true, false, false, false>,  trace_path<true, false, true, false>,
+      trace_path<true, true, false, false>,   trace_path<true, true, true, false>,
+      trace_path<false, false, false, true>,  trace_path<false, false, true, true>,
+      trace_path<false, true, false, true>,   trace_path<false, true, true, true>,
+      trace_path<true, false, false, true>,   trace_path<true, false, true, true>,
+      trace_path<true, true, false, true>,    trace_path<true, true, true, true>};
+  const TraceFn trace =
+      settings.specialize
+          ? kTracers[(has_glass << 3) | (has_textures << 2) | (split_lobes << 1) | int(hittable)]
+          : kTracers[15];
 
   const std::array<int, 4> window = settings.window.value_or(std::array<int, 4>{0, 0, settings.width, settings.height});
   const bool adaptive = settings.adaptive_threshold > 0.0f;

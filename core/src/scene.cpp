@@ -212,6 +212,12 @@ void check_material(const Material& m) {
   if (m.metallic < 0.0f || m.metallic > 1.0f || m.roughness < 0.0f || m.roughness > 1.0f)
     throw std::invalid_argument("material metallic and roughness must lie in [0, 1]");
   if (m.specular < 0.0f) throw std::invalid_argument("material specular must be >= 0");
+  if (!std::isfinite(m.transmission) || !std::isfinite(m.transmission_roughness) || !std::isfinite(m.ior))
+    throw std::invalid_argument("material transmission, transmission_roughness and ior must be finite");
+  if (m.transmission < 0.0f || m.transmission > 1.0f || m.transmission_roughness < 0.0f ||
+      m.transmission_roughness > 1.0f)
+    throw std::invalid_argument("material transmission and transmission_roughness must lie in [0, 1]");
+  if (!(m.ior > 0.0f) || m.ior > 1000.0f) throw std::invalid_argument("material ior must lie in (0, 1000]");
 }
 
 uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures) {

@@ -10,7 +10,9 @@
 //    only; a delta lobe has no density and is never returned by eval or pdf).
 //  * sample() returns weight = eval / pdf for continuous lobes, and the delta lobe's weight
 //    (its reflectance) for a delta direction.
-//  * Reflection only: eval and pdf are 0 unless wo.z > 0 and wi.z > 0.
+//  * Reflection only: eval and pdf are 0 unless wo.z > 0 and wi.z > 0 -- except glass (glass.h),
+//    whose frame's z is the outward normal and whose lobes also refract; MaterialBsdf combines
+//    both (material_bsdf.h).
 #pragma once
 
 #include "torrance/math.h"
@@ -31,6 +33,15 @@ struct Material {
   float specular = 0.5f;  // dielectric F0 = 0.08 * specular (0.5 -> 0.04)
   float specular_tint = 0.0f;  // PRINCIPLED only: tints dielectric reflection towards the base hue
   Vec3 emission{0.0f};    // radiance emitted by both faces = emission colour * strength
+  // Glass (glass.h): Principled Transmission (the share (1 - metallic) transmission of the
+  // surface is glass: reflection untinted, refraction tinted by base_color, refraction roughness
+  // 1 - (1 - roughness)(1 - transmission_roughness)), or Blender's Glass BSDF node (glass_node:
+  // all glass, both lobes tinted by base_color, one roughness). ior: of the inside, > 0.
+  float transmission = 0.0f;
+  float transmission_roughness = 0.0f;
+  float ior = 1.45f;
+  bool glass_node = false;
+  bool transmits() const { return glass_node || (transmission > 0.0f && metallic < 1.0f); }
 };
 
 // eval() split by lobe, for Blender's diffuse and glossy light passes.

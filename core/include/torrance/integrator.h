@@ -56,7 +56,7 @@ struct RenderSettings {
   LightSelection light_selection = LightSelection::Contribution;
   bool sobol = true;       // Owen-scrambled Sobol samples; false: independent random numbers
   bool specialize = true;  // compile-time paths for what the scene lacks (textures, passes, hittable
-                           // lights) and no light choice when there is one light; false: generic path
+                           // lights, glass) and no light choice when there is one light; false: generic path
   // Optional window [x0, x1) x [y0, y1) of the frame to render, y counted from the top row.
   std::optional<std::array<int, 4>> window;
   int threads = 0;  // 0 = all cores
