@@ -7,9 +7,11 @@ output node (the output Cycles would use):
 
 * Principled BSDF: the sockets Base Color, Metallic, Roughness, Specular,
   Emission and Emission Strength, and Normal (from a tangent-space Normal Map);
+  v1's Transmission, IOR and Transmission Roughness (glass, as Cycles 3.4);
   Blender 4.x's Principled v2 by its names (Specular IOR Level with IOR, Emission
   Color; _PRINCIPLED_SOCKETS);
 * Diffuse BSDF: a pure diffuse material (specular 0);
+* Glass BSDF: Color, Roughness, IOR (GGX; Sharp is roughness 0);
 * Emission: a black emitter.
 
 Base Color, Metallic, Roughness, Emission (and the Color of Diffuse BSDF and
@@ -59,7 +61,6 @@ _IGNORED_PRINCIPLED_INPUTS = {
         ("Anisotropic", 0.0),
         ("Sheen", 0.0),
         ("Clearcoat", 0.0),
-        ("Transmission", 0.0),
         ("Alpha", 1.0),
     ),
     'v2': (
@@ -435,11 +436,13 @@ class MaterialReader:
             return self._principled(mat, node)
         if kind == 'ShaderNodeBsdfDiffuse':
             return self._diffuse(mat, node)
+        if kind == 'ShaderNodeBsdfGlass':
+            return self._glass(mat, node)
         if kind == 'ShaderNodeEmission':
             return self._emission(mat, node)
         return self._neutral(
             mat, f"the surface shader {node_label(node)} is not supported "
-                 f"(Torrance reads Principled BSDF, Diffuse BSDF and Emission)")
+                 f"(Torrance reads Principled BSDF, Diffuse BSDF, Glass BSDF and Emission)")
 
     def _principled(self, mat, node):
         d = DEFAULT_MATERIAL
@@ -452,6 +455,7 @@ class MaterialReader:
         roughness, roughness_tex = t(mat, node, "Roughness", d['roughness'])
         emission, emission_tex = t(mat, node, names['emission'], d['emission'])
         specular = _finite_or(v(mat, node, names['specular'], d['specular']), d['specular'])
+        glass = {}
         if version == 'v2':
             ior = _finite_or(v(mat, node, "IOR", 1.5), 1.5)
             specular = specular_from_ior_level(specular, ior if ior > 0.0 else 1.5)
@@ -459,6 +463,7 @@ class MaterialReader:
         else:
             specular_tint = _clamp(_finite_or(v(mat, node, names['specular_tint'], 0.0), 0.0),
                                    0.0, 1.0)
+            glass = self._principled_glass(mat, node)
         out = dict(
             base_color=_color3(base, d['base_color']),
             metallic=_clamp(_finite_or(metallic, d['metallic']), 0.0, 1.0),
@@ -469,6 +474,7 @@ class MaterialReader:
             specular_tint=specular_tint,
             base_color_texture=base_tex, metallic_texture=metallic_tex,
             roughness_texture=roughness_tex, emission_texture=emission_tex,
+            **glass,
         )
         ignored = []
         for name, neutral in _IGNORED_PRINCIPLED_INPUTS[version]:
@@ -492,6 +498,41 @@ class MaterialReader:
         color = _color3(color, d['base_color'])
         out = dict(d, base_color=color, metallic=0.0, specular=0.0, roughness=1.0,
                    base_color_texture=tex)
+        normal = self._normal_map(mat, node)
+        if normal is not None:
+            out['normal_texture'], out['normal_strength'] = normal
+        return _sanitize(out)
+
+    def _principled_glass(self, mat, node):
+        """add_material() glass arguments of a v1 Principled BSDF ({} without transmission)."""
+        v = self._socket_value
+        transmission = _clamp(_finite_or(v(mat, node, "Transmission", 0.0), 0.0), 0.0, 1.0)
+        if transmission == 0.0:
+            return {}
+        return dict(transmission=transmission, ior=self._ior(mat, node, 1.45),
+                    transmission_roughness=_clamp(
+                        _finite_or(v(mat, node, "Transmission Roughness", 0.0), 0.0), 0.0, 1.0))
+
+    def _ior(self, mat, node, fallback):
+        """The IOR socket of `node`, as Cycles uses it (max(IOR, 1e-5)); at most 1000."""
+        ior = _finite_or(self._socket_value(mat, node, "IOR", fallback), fallback)
+        return _clamp(ior, 1e-5, 1000.0)
+
+    def _glass(self, mat, node):
+        """Glass BSDF: Color (or an Image Texture), Roughness, IOR; GGX (Sharp = roughness 0)."""
+        d = DEFAULT_MATERIAL
+        color, tex = self._socket_input(mat, node, "Color", (1.0, 1.0, 1.0))
+        roughness = _clamp(_finite_or(self._socket_value(mat, node, "Roughness", 0.0), 0.0),
+                           0.0, 1.0)
+        distribution = getattr(node, "distribution", 'GGX')
+        if distribution == 'SHARP':
+            roughness = 0.0
+        elif distribution != 'GGX':
+            self.reporter.warning(f"Material '{mat.name}': {node_label(node)} uses the "
+                                  f"{distribution.title()} distribution; Torrance renders GGX")
+        out = dict(d, base_color=_color3(color, (1.0, 1.0, 1.0)), metallic=0.0, specular=0.0,
+                   roughness=roughness, glass=True, transmission=1.0,
+                   ior=self._ior(mat, node, 1.45), base_color_texture=tex)
         normal = self._normal_map(mat, node)
         if normal is not None:
             out['normal_texture'], out['normal_strength'] = normal
