@@ -246,12 +246,12 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
       const float cos_geometric = glm::dot(ls.wi, ng);
       if (ls.valid() && (transmits ? cos_geometric != 0.0f && (cos_geometric > 0.0f) == (wi.z > 0.0f)
                                    : cos_geometric > 0.0f)) {
-        LobeEval f = bsdf.eval_lobes(wo, wi, backfacing);
+        LobeEval f = bsdf.eval_lobes<kGlass>(wo, wi, backfacing);
         if (normal_mapped) f.diffuse *= bump_shadowing(n_smooth, ns, ls.wi);
         if (max_component(f.total()) > 0.0f) {
           if (!shadowed(ctx.scene, hit.position, ng, ls)) {
             const float mis =
-                ls.pdf > 0.0f ? power_heuristic(choice.probability * ls.pdf, bsdf.pdf(wo, wi, backfacing)) : 1.0f;
+                ls.pdf > 0.0f ? power_heuristic(choice.probability * ls.pdf, bsdf.pdf<kGlass>(wo, wi, backfacing)) : 1.0f;
             Vec3 light = throughput * ls.weight * (mis / choice.probability);
             if (bounce == 0) {
               if (const float k = clamp_scale(light * f.total(), true); k < 1.0f) light *= k;
@@ -266,7 +266,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     }
 
     // Continue the path by sampling the BSDF.
-    BsdfSample bs = bsdf.sample(wo, u_bsdf.x, Vec2(u_bsdf.y, u_bsdf.z), backfacing);
+    BsdfSample bs = bsdf.sample<kGlass>(wo, u_bsdf.x, Vec2(u_bsdf.y, u_bsdf.z), backfacing);
     if (!bs.valid()) break;
     const Vec3 wi_world = frame.to_world(bs.wi);
     const float cos_geometric = glm::dot(wi_world, ng);
@@ -276,13 +276,13 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
       break;  // below the geometric surface: an opaque surface transmits nothing
     }
     if (normal_mapped && !bs.is_delta) {
-      LobeEval f = bsdf.eval_lobes(wo, bs.wi, backfacing);
+      LobeEval f = bsdf.eval_lobes<kGlass>(wo, bs.wi, backfacing);
       f.diffuse *= bump_shadowing(n_smooth, ns, wi_world);
       bs.weight = f.total() / bs.pdf;
     }
     throughput *= bs.weight;
     if (kSplitLobes && bounce == 0 && !bs.is_delta) {
-      const LobeEval f = bsdf.eval_lobes(wo, bs.wi, backfacing);
+      const LobeEval f = bsdf.eval_lobes<kGlass>(wo, bs.wi, backfacing);
       const Vec3 total = f.total();
       for (int c = 0; c < 3; ++c) diffuse_share[c] = total[c] > 0.0f ? f.diffuse[c] / total[c] : 0.0f;
     }

@@ -39,27 +39,34 @@ class MaterialBsdf {
 
   bool transmits() const { return glass_.has_value(); }
 
+  // kGlass = false: the caller knows no material of the scene transmits (the integrator's
+  // glass-free path), so the glass is not even checked for.
+  template <bool kGlass = true>
   Vec3 eval(const Vec3& wo, const Vec3& wi, bool backfacing = false) const {
-    return eval_lobes(wo, wi, backfacing).total();
+    return eval_lobes<kGlass>(wo, wi, backfacing).total();
   }
+  template <bool kGlass = true>
   LobeEval eval_lobes(const Vec3& wo, const Vec3& wi, bool backfacing = false) const {
     LobeEval f;
-    if (opaque_) f = std::visit([&](const auto& b) { return b.eval_lobes(wo, wi); }, bsdf_);
-    if (!glass_) return f;
+    if (!kGlass || opaque_) f = std::visit([&](const auto& b) { return b.eval_lobes(wo, wi); }, bsdf_);
+    if (!kGlass || !glass_) return f;
     f.diffuse *= opaque_scale_;
     f.glossy = f.glossy * opaque_scale_ +
                glass_weight_ * glass_->eval(outward(wo, backfacing), outward(wi, backfacing));
     return f;
   }
+  template <bool kGlass = true>
   float pdf(const Vec3& wo, const Vec3& wi, bool backfacing = false) const {
+    if (!kGlass) return std::visit([&](const auto& b) { return b.pdf(wo, wi); }, bsdf_);
     const float opaque = opaque_ ? std::visit([&](const auto& b) { return b.pdf(wo, wi); }, bsdf_) *
                                        (1.0f - glass_probability_)
                                  : 0.0f;
     if (!glass_) return opaque;
     return opaque + glass_probability_ * glass_->pdf(outward(wo, backfacing), outward(wi, backfacing));
   }
+  template <bool kGlass = true>
   BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing = false) const {
-    if (!glass_) return std::visit([&](const auto& b) { return b.sample(wo, u_lobe, u); }, bsdf_);
+    if (!kGlass || !glass_) return std::visit([&](const auto& b) { return b.sample(wo, u_lobe, u); }, bsdf_);
     BsdfSample s;
     const float p = glass_probability_;
     if (u_lobe < p) {
