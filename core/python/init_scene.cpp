@@ -142,7 +142,8 @@ void init_scene(py::module_& m) {
           [](Scene& s, std::array<float, 3> base_color, float metallic, float roughness, float specular,
              std::array<float, 3> emission, float emission_strength, float specular_tint, int base_color_texture,
              int metallic_texture, int roughness_texture, int emission_texture, int normal_texture,
-             float normal_strength, float transmission, float ior, float transmission_roughness, bool glass) {
+             float normal_strength, float transmission, float ior, float transmission_roughness, bool glass,
+             float alpha, int alpha_texture, std::array<float, 3> transparent_color) {
             Material mat;
             mat.base_color = vec3(base_color);
             mat.metallic = metallic;
@@ -154,6 +155,8 @@ void init_scene(py::module_& m) {
             mat.ior = ior;
             mat.transmission_roughness = transmission_roughness;
             mat.glass_node = glass;
+            mat.alpha = alpha;
+            mat.transparent_color = vec3(transparent_color);
             MaterialTextures tex;
             tex.base_color = base_color_texture;
             tex.metallic = metallic_texture;
@@ -162,6 +165,7 @@ void init_scene(py::module_& m) {
             tex.emission_strength = emission_strength;
             tex.normal = normal_texture;
             tex.normal_strength = normal_strength;
+            tex.alpha = alpha_texture;
             return s.add_material(mat, tex);
           },
           py::arg("base_color") = std::array<float, 3>{0.8f, 0.8f, 0.8f}, py::arg("metallic") = 0.0f,
@@ -170,12 +174,15 @@ void init_scene(py::module_& m) {
           py::arg("specular_tint") = 0.0f, py::arg("base_color_texture") = -1, py::arg("metallic_texture") = -1,
           py::arg("roughness_texture") = -1, py::arg("emission_texture") = -1, py::arg("normal_texture") = -1,
           py::arg("normal_strength") = 1.0f, py::arg("transmission") = 0.0f, py::arg("ior") = 1.45f,
-          py::arg("transmission_roughness") = 0.0f, py::arg("glass") = false,
+          py::arg("transmission_roughness") = 0.0f, py::arg("glass") = false, py::arg("alpha") = 1.0f,
+          py::arg("alpha_texture") = -1, py::arg("transparent_color") = std::array<float, 3>{1.0f, 1.0f, 1.0f},
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength). "
           "transmission, ior, transmission_roughness: the Principled BSDF's glass (transmission and "
           "transmission_roughness in [0, 1], ior in (0, 1000]); glass=True: Blender's Glass BSDF node "
-          "(base_color its Color, roughness, ior).")
+          "(base_color its Color, roughness, ior). alpha in [0, 1] (or alpha_texture: a texture's alpha "
+          "channel): rays pass straight through with probability 1 - alpha, tinted by transparent_color "
+          "(Principled Alpha: white; Transparent BSDF: alpha 0 and its Color).")
       .def(
           "add_texture",
           [](Scene& s, const py::object& pixels, const std::string& colorspace, const std::string& interpolation) {

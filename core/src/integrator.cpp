@@ -19,6 +19,8 @@
 #include <mutex>
 #include <stdexcept>
 #include <thread>
+#include <utility>
+#include <array>
 
 namespace torrance {
 
@@ -27,6 +29,8 @@ void RenderSettings::validate() const {
     throw std::invalid_argument("image width and height must be in [1, 65536]");
   if (samples <= 0) throw std::invalid_argument("samples must be >= 1");
   if (max_bounces < 0 || max_bounces > 1024) throw std::invalid_argument("max_bounces must be in [0, 1024]");
+  if (max_transparent_bounces < 0 || max_transparent_bounces > 1024)
+    throw std::invalid_argument("max_transparent_bounces must be in [0, 1024]");
   if (!(filter_width > 0.0f) || !std::isfinite(filter_width) || filter_width > 64.0f)
     throw std::invalid_argument("filter_width must be in (0, 64] pixels");
   if (threads < 0) throw std::invalid_argument("threads must be >= 0 (0 = all cores)");
@@ -77,19 +81,51 @@ Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& dir) {
   return p + (glm::dot(ng, dir) >= 0.0f ? eps : -eps) * ng;
 }
 
-// Whether the light sample is blocked. The shadow ray runs from the offset origin to the sampled
-// point on the light, stopping short of it by the same kind of offset, so that a light close to
-// and nearly parallel with the surface is neither missed nor self-occluding.
-bool shadowed(const Scene& scene, const Vec3& p, const Vec3& ng, const LightSample& ls) {
-  const Vec3 origin = offset_origin(p, ng, ls.wi);
-  if (std::isinf(ls.distance)) return scene.occluded(origin, ls.wi, 0.0f, kInfinity);
+// The shadow ray of a light sample: from the offset origin to the sampled point on the light,
+// stopping short of it by the same kind of offset, so that a light close to and nearly parallel
+// with the surface is neither missed nor self-occluding. tmax <= 0: nothing can be in the way.
+Ray shadow_ray(const Vec3& p, const Vec3& ng, const LightSample& ls) {
+  Ray ray;
+  ray.origin = offset_origin(p, ng, ls.wi);
+  ray.tmin = 0.0f;
+  if (std::isinf(ls.distance)) {
+    ray.dir = ls.wi;
+    ray.tmax = kInfinity;
+    return ray;
+  }
   const Vec3 target = p + ls.wi * ls.distance;
-  const Vec3 d = target - origin;
+  const Vec3 d = target - ray.origin;
   const float len = glm::length(d);
   const float end_offset = 2e-5f * std::max(1.0f, std::max(std::abs(target.x), std::max(std::abs(target.y),
                                                                                           std::abs(target.z))));
-  const float tmax = len * (1.0f - 1e-4f) - end_offset;
-  return tmax > 0.0f && scene.occluded(origin, d / len, 0.0f, tmax);
+  ray.dir = d / len;
+  ray.tmax = len * (1.0f - 1e-4f) - end_offset;
+  return ray;
+}
+
+// The light a shadow ray carries to the shading point: 0 or 1 by one occlusion test, or with
+// kAlpha (some material has alpha) Cycles' transparent shadows: each surface in the way with
+// alpha < 1 lets (1 - alpha) x its transparent colour through, an opaque one (or more than
+// max_transparent_bounces transparent ones) nothing. Found by repeated closest hits, only once
+// the occlusion test has found something in the way.
+template <bool kAlpha>
+Vec3 shadow_transmittance(const Scene& scene, const Vec3& p, const Vec3& ng, const LightSample& ls,
+                          int max_transparent) {
+  Ray ray = shadow_ray(p, ng, ls);
+  if (!(ray.tmax > 0.0f) || !scene.occluded(ray.origin, ray.dir, 0.0f, ray.tmax)) return Vec3(1.0f);
+  if (!kAlpha) return Vec3(0.0f);
+  Vec3 transmittance(1.0f);
+  for (int passed = 0;; ++passed) {
+    SurfaceHit hit;
+    if (!scene.intersect(ray, hit)) return transmittance;
+    const float opacity = scene.opacity(hit.material, hit.uv);
+    if (opacity >= 1.0f || passed >= max_transparent) return Vec3(0.0f);
+    transmittance *= (1.0f - opacity) * scene.material(hit.material).transparent_color;
+    if (!(max_component(transmittance) > 0.0f)) return Vec3(0.0f);
+    ray.origin = offset_origin(hit.position, hit.geometric_normal, ray.dir);
+    ray.tmax -= hit.t;
+    if (!(ray.tmax > 0.0f)) return transmittance;
+  }
 }
 
 // Cycles 3.4's smoothing of diffuse light on bump- or normal-mapped surfaces near the terminator
@@ -141,7 +177,12 @@ struct PathRadiance {
 // at glass as at any surface (Cycles 3.4): light through glass arrives by BSDF sampling only, MIS
 // weighted where NEE could also have sampled it (NEE at a glass surface considers lights on both
 // sides). Transmitted light is filed with the glossy passes.
-template <bool kTextures, bool kSplitLobes, bool kHittable, bool kGlass>
+//
+// Alpha (kAlpha: some material has alpha < 1 or an alpha texture): at each hit the ray goes
+// straight on with probability 1 - alpha, tinted by the transparent colour, without counting a
+// bounce (at most max_transparent_bounces times per segment: then the path ends), keeping the
+// previous vertex for MIS; shadow rays pass such surfaces (shadow_transmittance).
+template <bool kTextures, bool kSplitLobes, bool kHittable, bool kGlass, bool kAlpha>
 PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) {
   const Lights& lights = ctx.lights;
   PathRadiance out;
@@ -170,19 +211,33 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
 
   for (int bounce = 0;; ++bounce) {
     SurfaceHit hit;
-    const bool found = ctx.scene.intersect(ray, hit);
+    bool found = ctx.scene.intersect(ray, hit);
+    float passed_length = 0.0f;  // through transparent surfaces since the last vertex
+    if constexpr (kAlpha) {
+      for (int passed = 0; found; ++passed) {
+        const float opacity = ctx.scene.opacity(hit.material, hit.uv);
+        if (opacity >= 1.0f || sampler.next_4d().x < opacity) break;
+        if (passed >= ctx.settings.max_transparent_bounces) return out;  // Cycles: the path ends
+        throughput *= ctx.scene.material(hit.material).transparent_color;
+        if (!(max_component(throughput) > 0.0f)) return out;
+        passed_length += hit.t;
+        ray.origin = offset_origin(hit.position, hit.geometric_normal, ray.dir);
+        ray.tmax -= hit.t;
+        found = ray.tmax > 0.0f && ctx.scene.intersect(ray, hit);
+      }
+    }
     if (bounce == 0) {
       if (!found) {
-        if (ctx.settings.transparent_background) out.alpha = 0.0f;
-        else out.environment = lights.world_radiance(ray.dir);
+        if (ctx.settings.transparent_background) out.alpha = kAlpha ? 1.0f - (throughput.x + throughput.y + throughput.z) / 3.0f : 0.0f;
+        else out.environment = (kAlpha ? throughput : Vec3(1.0f)) * lights.world_radiance(ray.dir);
         if (const float k = clamp_scale(out.environment, true); k < 1.0f) out.environment *= k;
         return out;
       }
-      out.depth = hit.t * glm::dot(ray.dir, ctx.camera_forward);
+      out.depth = (passed_length + hit.t) * glm::dot(ray.dir, ctx.camera_forward);
     } else {
       if (kHittable)
         deposit(throughput * lights.emission_along_ray(prev_position, prev_normal, ray.dir,
-                                                        found ? hit.t : kInfinity, prev_pdf, prev_delta,
+                                                        found ? passed_length + hit.t : kInfinity, prev_pdf, prev_delta,
                                                         kGlass && prev_two_sided),
                 bounce == 1);
       if (!found) break;
@@ -190,7 +245,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
 
     // Textures: the material's inputs and its normal map at this hit, averaged over the pixel's
     // footprint (wider where the surface is seen at a grazing angle, capped at 4x).
-    path_length += hit.t;
+    path_length += passed_length + hit.t;
     const bool textured = kTextures && ctx.scene.material_textures(hit.material).any();
     const float cos_view = std::abs(glm::dot(ray.dir, hit.geometric_normal));
     const float footprint =
@@ -220,7 +275,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     if (bounce == 0) {
       out.normal = ns;
       out.albedo = material.base_color * (1.0f - material.metallic);
-      out.emission = material.emission;
+      out.emission = kAlpha ? throughput * material.emission : material.emission;
       if (const float k = clamp_scale(out.emission, true); k < 1.0f) out.emission *= k;
     } else if (hit.emitter >= 0) {
       // An emissive triangle found by BSDF sampling: MIS against NEE's choice of it.
@@ -249,10 +304,13 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
         LobeEval f = bsdf.eval_lobes<kGlass>(wo, wi, backfacing);
         if (normal_mapped) f.diffuse *= bump_shadowing(n_smooth, ns, ls.wi);
         if (max_component(f.total()) > 0.0f) {
-          if (!shadowed(ctx.scene, hit.position, ng, ls)) {
+          const Vec3 transmittance =
+              shadow_transmittance<kAlpha>(ctx.scene, hit.position, ng, ls, ctx.settings.max_transparent_bounces);
+          if (max_component(transmittance) > 0.0f) {
             const float mis =
                 ls.pdf > 0.0f ? power_heuristic(choice.probability * ls.pdf, bsdf.pdf<kGlass>(wo, wi, backfacing)) : 1.0f;
             Vec3 light = throughput * ls.weight * (mis / choice.probability);
+            if (kAlpha) light *= transmittance;
             if (bounce == 0) {
               if (const float k = clamp_scale(light * f.total(), true); k < 1.0f) light *= k;
               out.diffuse_direct += light * f.diffuse;
@@ -310,6 +368,15 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
   }
   return out;
 }
+
+using TraceFn = PathRadiance (*)(const PathContext&, Ray, SobolSampler&);
+// trace_path for every feature set: index bit 0 kHittable, 1 kSplitLobes, 2 kTextures, 3 kGlass, 4 kAlpha.
+template <size_t... I>
+constexpr std::array<TraceFn, sizeof...(I)> make_tracers(std::index_sequence<I...>) {
+  return {trace_path<bool(I & 4), bool(I & 2), bool(I & 1), bool(I & 8), bool(I & 16)>...};
+}
+constexpr size_t kNumTracers = 32;
+constexpr std::array<TraceFn, kNumTracers> kTracers = make_tracers(std::make_index_sequence<kNumTracers>{});
 
 struct Tile {
   int x0, y0, x1, y1;
@@ -496,22 +563,15 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   const bool split_lobes =
       settings.passes & (kPassDiffuseDirect | kPassDiffuseIndirect | kPassGlossyDirect | kPassGlossyIndirect);
   const bool hittable = cscene.lights().any_hittable();
-  bool has_glass = false;
-  for (size_t i = 0; i < scene.num_materials(); ++i) has_glass |= scene.material(uint32_t(i)).transmits();
-  using TraceFn = PathRadiance (*)(const PathContext&, Ray, SobolSampler&);
-  static constexpr TraceFn kTracers[16] = {
-      trace_path<false, false, false, false>, trace_path<false, false, true, false>,
-      trace_path<false, true, false, false>,  trace_path<false, true, true, false>,
-      trace_path<true, false, false, false>,  trace_path<true, false, true, false>,
-      trace_path<true, true, false, false>,   trace_path<true, true, true, false>,
-      trace_path<false, false, false, true>,  trace_path<false, false, true, true>,
-      trace_path<false, true, false, true>,   trace_path<false, true, true, true>,
-      trace_path<true, false, false, true>,   trace_path<true, false, true, true>,
-      trace_path<true, true, false, true>,    trace_path<true, true, true, true>};
+  bool has_glass = false, has_alpha = false;
+  for (size_t i = 0; i < scene.num_materials(); ++i) {
+    has_glass |= scene.material(uint32_t(i)).transmits();
+    has_alpha |= scene.material(uint32_t(i)).alpha < 1.0f || scene.material_textures(uint32_t(i)).alpha >= 0;
+  }
   const TraceFn trace =
-      settings.specialize
-          ? kTracers[(has_glass << 3) | (has_textures << 2) | (split_lobes << 1) | int(hittable)]
-          : kTracers[15];
+      kTracers[settings.specialize ? (has_alpha << 4) | (has_glass << 3) | (has_textures << 2) | (split_lobes << 1) |
+                                         int(hittable)
+                                   : kNumTracers - 1];
 
   const std::array<int, 4> window = settings.window.value_or(std::array<int, 4>{0, 0, settings.width, settings.height});
   const bool adaptive = settings.adaptive_threshold > 0.0f;

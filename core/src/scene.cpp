@@ -218,12 +218,16 @@ void check_material(const Material& m) {
       m.transmission_roughness > 1.0f)
     throw std::invalid_argument("material transmission and transmission_roughness must lie in [0, 1]");
   if (!(m.ior > 0.0f) || m.ior > 1000.0f) throw std::invalid_argument("material ior must lie in (0, 1000]");
+  if (!std::isfinite(m.alpha) || !is_finite(m.transparent_color))
+    throw std::invalid_argument("material alpha and transparent_color must be finite");
+  if (m.alpha < 0.0f || m.alpha > 1.0f) throw std::invalid_argument("material alpha must lie in [0, 1]");
 }
 
 uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures) {
   std::lock_guard<std::mutex> lock(mutex_);
   check_idle("add a material");
-  for (int id : {textures.base_color, textures.metallic, textures.roughness, textures.emission, textures.normal})
+  for (int id : {textures.base_color, textures.metallic, textures.roughness, textures.emission, textures.normal,
+                 textures.alpha})
     if (id < -1 || id >= int(textures_.size()))
       throw std::invalid_argument("material uses texture " + std::to_string(id) + " but the scene has " +
                                   std::to_string(textures_.size()) + " textures");
@@ -233,6 +237,7 @@ uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures
   Material clean = m;
   clean.base_color = glm::clamp(m.base_color, Vec3(0.0f), Vec3(1.0f));
   clean.emission = glm::max(m.emission, Vec3(0.0f));
+  clean.transparent_color = glm::clamp(m.transparent_color, Vec3(0.0f), Vec3(1.0f));
   materials_.push_back(clean);
   material_textures_.push_back(textures);
   emitters_dirty_ = true;

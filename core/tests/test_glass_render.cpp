@@ -3,12 +3,18 @@
 #include "torrance/integrator.h"
 #include "torrance/material_bsdf.h"
 
+#include "scene_helpers.h"
+
 #include <gtest/gtest.h>
 
 #include <vector>
 
 namespace torrance {
 namespace {
+
+using test::add_quad;
+using test::look_down;
+using test::mean_rgb;
 
 // A UV sphere (smooth corner normals) of the given material index.
 void add_sphere(Scene& scene, const Vec3& centre, float radius, int64_t material, int rings = 48, int segments = 96) {
@@ -41,21 +47,6 @@ void add_sphere(Scene& scene, const Vec3& centre, float radius, int64_t material
   scene.add_mesh(p.data(), p.size() / 3, tris.data(), tris.size() / 3, normals.data(), mats.data());
 }
 
-// A quad (two triangles) with corners a, b, c, d counter-clockwise seen from its normal's side.
-void add_quad(Scene& scene, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, int64_t material) {
-  const float p[] = {a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z, d.x, d.y, d.z};
-  const int64_t tris[] = {0, 1, 2, 0, 2, 3}, mats[] = {material, material};
-  scene.add_mesh(p, 4, tris, 2, nullptr, mats);
-}
-
-void look_down(Scene& scene, float height, float lens_mm) {
-  CameraParams cam;
-  cam.camera_to_world = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, height, 0, 0, 0, 1};
-  cam.lens_mm = lens_mm;
-  cam.clip_end = 1000.0f;
-  scene.set_camera(cam);
-}
-
 Material glass(float roughness, float ior = 1.5f) {
   Material m;
   m.base_color = Vec3(1.0f);
@@ -63,12 +54,6 @@ Material glass(float roughness, float ior = 1.5f) {
   m.transmission = 1.0f;
   m.ior = ior;
   return m;
-}
-
-Vec3 mean_rgb(const Image& img) {
-  Vec3 sum(0.0f);
-  for (size_t i = 0; i < img.rgba.size(); i += 4) sum += Vec3(img.rgba[i], img.rgba[i + 1], img.rgba[i + 2]);
-  return sum / float(img.rgba.size() / 4);
 }
 
 RenderSettings settings(int size, int samples, int bounces) {

@@ -42,6 +42,11 @@ struct Material {
   float ior = 1.45f;
   bool glass_node = false;
   bool transmits() const { return glass_node || (transmission > 0.0f && metallic < 1.0f); }
+  // Transparency (the integrator, as Cycles' Transparent BSDF): with probability 1 - alpha a ray
+  // goes straight through, tinted by transparent_color, and shadow rays are attenuated by
+  // (1 - alpha) transparent_color. Principled Alpha: alpha, white; Transparent BSDF: alpha 0, its Color.
+  float alpha = 1.0f;
+  Vec3 transparent_color{1.0f};
 };
 
 // eval() split by lobe, for Blender's diffuse and glossy light passes.

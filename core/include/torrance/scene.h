@@ -26,6 +26,7 @@ namespace torrance {
 struct MaterialTextures {
   int base_color = -1, metallic = -1, roughness = -1, emission = -1;
   int normal = -1;                 // a tangent-space normal map (Normal Map node)
+  int alpha = -1;                  // the material's alpha from the texture's ALPHA channel (Scene::opacity)
   float emission_strength = 1.0f;  // emission = texture colour * strength
   float normal_strength = 1.0f;
   bool any() const { return base_color >= 0 || metallic >= 0 || roughness >= 0 || emission >= 0 || normal >= 0; }
@@ -61,6 +62,11 @@ class Scene {
   // The material at a hit with its textures applied (base colour, metallic, roughness, emission),
   // averaged over a footprint of that many UV units (0: the finest texels).
   Material textured_material(uint32_t material, const Vec2& uv, float footprint = 0.0f) const;
+  // The material's alpha at a hit: its alpha texture's alpha channel at uv, else Material::alpha.
+  float opacity(uint32_t material, const Vec2& uv) const {
+    const int t = material_textures_[material].alpha;
+    return t >= 0 ? clamp01(textures_[t]->lookup(uv).a) : materials_[material].alpha;
+  }
   // The shading normal ns perturbed by the material's normal map at the hit (ns when none).
   Vec3 normal_mapped(uint32_t material, const SurfaceHit& hit, const Vec3& ns, float footprint = 0.0f) const;
 
