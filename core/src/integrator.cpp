@@ -11,6 +11,7 @@
 #include <xmmintrin.h>
 #include <pmmintrin.h>
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -20,7 +21,6 @@
 #include <stdexcept>
 #include <thread>
 #include <utility>
-#include <array>
 
 namespace torrance {
 
@@ -228,7 +228,8 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     }
     if (bounce == 0) {
       if (!found) {
-        if (ctx.settings.transparent_background) out.alpha = kAlpha ? 1.0f - (throughput.x + throughput.y + throughput.z) / 3.0f : 0.0f;
+        if (ctx.settings.transparent_background)
+          out.alpha = kAlpha ? 1.0f - (throughput.x + throughput.y + throughput.z) / 3.0f : 0.0f;
         else out.environment = (kAlpha ? throughput : Vec3(1.0f)) * lights.world_radiance(ray.dir);
         if (const float k = clamp_scale(out.environment, true); k < 1.0f) out.environment *= k;
         return out;
@@ -237,8 +238,8 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     } else {
       if (kHittable)
         deposit(throughput * lights.emission_along_ray(prev_position, prev_normal, ray.dir,
-                                                        found ? passed_length + hit.t : kInfinity, prev_pdf, prev_delta,
-                                                        kGlass && prev_two_sided),
+                                                       found ? passed_length + hit.t : kInfinity, prev_pdf, prev_delta,
+                                                       kGlass && prev_two_sided),
                 bounce == 1);
       if (!found) break;
     }
@@ -299,16 +300,17 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
       const LightSample ls = lights.sample(choice.index, hit.position, ns, Vec2(u_light.y, u_light.z), transmits);
       const Vec3 wi = frame.to_local(ls.wi);
       const float cos_geometric = glm::dot(ls.wi, ng);
-      if (ls.valid() && (transmits ? cos_geometric != 0.0f && (cos_geometric > 0.0f) == (wi.z > 0.0f)
-                                   : cos_geometric > 0.0f)) {
+      if (ls.valid() &&
+          (transmits ? cos_geometric != 0.0f && (cos_geometric > 0.0f) == (wi.z > 0.0f) : cos_geometric > 0.0f)) {
         LobeEval f = bsdf.eval_lobes<kGlass>(wo, wi, backfacing);
         if (normal_mapped) f.diffuse *= bump_shadowing(n_smooth, ns, ls.wi);
         if (max_component(f.total()) > 0.0f) {
-          const Vec3 transmittance =
-              shadow_transmittance<kAlpha>(ctx.scene, hit.position, ng, ls, ctx.settings.max_transparent_bounces);
+          const Vec3 transmittance = shadow_transmittance<kAlpha>(ctx.scene, hit.position, ng, ls,
+                                                                  ctx.settings.max_transparent_bounces);
           if (max_component(transmittance) > 0.0f) {
-            const float mis =
-                ls.pdf > 0.0f ? power_heuristic(choice.probability * ls.pdf, bsdf.pdf<kGlass>(wo, wi, backfacing)) : 1.0f;
+            const float mis = ls.pdf > 0.0f
+                                  ? power_heuristic(choice.probability * ls.pdf, bsdf.pdf<kGlass>(wo, wi, backfacing))
+                                  : 1.0f;
             Vec3 light = throughput * ls.weight * (mis / choice.probability);
             if (kAlpha) light *= transmittance;
             if (bounce == 0) {
@@ -568,10 +570,9 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
     has_glass |= scene.material(uint32_t(i)).transmits();
     has_alpha |= scene.material(uint32_t(i)).alpha < 1.0f || scene.material_textures(uint32_t(i)).alpha >= 0;
   }
-  const TraceFn trace =
-      kTracers[settings.specialize ? (has_alpha << 4) | (has_glass << 3) | (has_textures << 2) | (split_lobes << 1) |
-                                         int(hittable)
-                                   : kNumTracers - 1];
+  const TraceFn trace = kTracers[settings.specialize ? (has_alpha << 4) | (has_glass << 3) | (has_textures << 2) |
+                                                           (split_lobes << 1) | int(hittable)
+                                                     : kNumTracers - 1];
 
   const std::array<int, 4> window = settings.window.value_or(std::array<int, 4>{0, 0, settings.width, settings.height});
   const bool adaptive = settings.adaptive_threshold > 0.0f;

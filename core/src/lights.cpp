@@ -419,8 +419,8 @@ LightSample Lights::sample(size_t index, const Vec3& p, const Vec3& shading_norm
   return s;
 }
 
-Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max,
-                                float bsdf_pdf, bool bsdf_delta, bool two_sided) const {
+Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max, float bsdf_pdf,
+                                bool bsdf_delta, bool two_sided) const {
   Vec3 L(0.0f);
   auto add = [&](size_t index, const LightHit& h, bool in_nee) {
     const float nee_pdf = in_nee ? selection_probability(index, p_prev, n_prev, two_sided) * h.pdf : 0.0f;

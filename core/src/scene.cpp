@@ -226,8 +226,8 @@ void check_material(const Material& m) {
 uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures) {
   std::lock_guard<std::mutex> lock(mutex_);
   check_idle("add a material");
-  for (int id : {textures.base_color, textures.metallic, textures.roughness, textures.emission, textures.normal,
-                 textures.alpha})
+  for (int id :
+       {textures.base_color, textures.metallic, textures.roughness, textures.emission, textures.normal, textures.alpha})
     if (id < -1 || id >= int(textures_.size()))
       throw std::invalid_argument("material uses texture " + std::to_string(id) + " but the scene has " +
                                   std::to_string(textures_.size()) + " textures");

@@ -43,8 +43,8 @@ inline constexpr PassInfo kPasses[] = {
 struct RenderSettings {
   int width = 640, height = 480;  // the full frame, in pixels
   int samples = 64;               // per pixel
-  int max_bounces = 8;
-  int max_transparent_bounces = 8;  // surfaces a ray may pass straight through (alpha), as Cycles' Transparent bounces            // 0 = direct light only
+  int max_bounces = 8;            // 0 = direct light only
+  int max_transparent_bounces = 8;  // surfaces passed straight through (alpha) per segment, as Cycles' Transparent
   uint32_t seed = 0;
   float pixel_aspect_x = 1.0f, pixel_aspect_y = 1.0f;
   float filter_width = 1.5f;      // Blackman-Harris, in pixels (Cycles' default)
