@@ -26,7 +26,7 @@ import numpy as np
 
 from torrance_tools import render_settings, testing
 from torrance_tools.scene import box
-from torrance_tools.agreement import failures, format_metrics, metrics
+from torrance_tools.agreement import failures, format_metrics, mean_metrics, metrics, noise_bounds
 from torrance_tools.testing import check
 from torrance_tools.textures import checker, floor_uvs, image_node, new_image, set_uvs
 
@@ -82,22 +82,6 @@ def build(scene):
     testing.set_world(scene, (0.45, 0.5, 0.6))
 
 
-def bounds(own):
-    """Thresholds for Torrance from Cycles' own seed-1 metrics against its reference."""
-    r = max(RATIO_FLOOR, RATIO_SIGMAS * max(abs(own["ratio"] - 1.0),
-                                            *(abs(c - 1.0) for c in own["channels"])))
-    return dict(ratio=(1.0 - r, 1.0 + r), block_mean=TOLERANCE * own["block_mean"],
-                block_p90=TOLERANCE * own["block_p90"])
-
-
-def mean_metrics(all_metrics):
-    keys = ("ratio", "block_mean", "block_p90", "block_max")
-    out = {k: float(np.mean([m[k] for m in all_metrics])) for k in keys}
-    out["channels"] = list(np.mean([m["channels"] for m in all_metrics], axis=0))
-    out["offset"] = tuple(np.mean([m["offset"] for m in all_metrics], axis=0))
-    return out
-
-
 def render_torrance(scene, d, seed, name):
     render_settings.setup_torrance(scene, SAMPLES, BOUNCES, seed=seed, brdf_model='PRINCIPLED')
     img, seconds = testing.render(scene, d, name)
@@ -134,7 +118,7 @@ def main():
     render_settings.setup_cycles(scene, SAMPLES, BOUNCES, seed=1)
     other, _ = testing.render(scene, d, "cycles1")
     own = metrics(other, ref)
-    limits = bounds(own)
+    limits = noise_bounds(own, TOLERANCE, RATIO_SIGMAS, RATIO_FLOOR)
     print(f"Cycles seed 1 vs seed 0     : {format_metrics(own)}  ({t_ref:.1f} s per render)")
     print(f"bounds: ratio {limits['ratio'][0]:.4f}..{limits['ratio'][1]:.4f}, block mean "
           f"{limits['block_mean']:.4f}, p90 {limits['block_p90']:.4f}")

@@ -8,10 +8,12 @@ output node (the output Cycles would use):
 * Principled BSDF: the sockets Base Color, Metallic, Roughness, Specular,
   Emission and Emission Strength, and Normal (from a tangent-space Normal Map);
   v1's Transmission, IOR and Transmission Roughness (glass, as Cycles 3.4);
+  Alpha (a value, or an Image Texture's Alpha output: the image's alpha channel);
   Blender 4.x's Principled v2 by its names (Specular IOR Level with IOR, Emission
   Color; _PRINCIPLED_SOCKETS);
 * Diffuse BSDF: a pure diffuse material (specular 0);
 * Glass BSDF: Color, Roughness, IOR (GGX; Sharp is roughness 0);
+* Transparent BSDF: Color (rays pass straight through, tinted);
 * Emission: a black emitter.
 
 Base Color, Metallic, Roughness, Emission (and the Color of Diffuse BSDF and
@@ -61,7 +63,6 @@ _IGNORED_PRINCIPLED_INPUTS = {
         ("Anisotropic", 0.0),
         ("Sheen", 0.0),
         ("Clearcoat", 0.0),
-        ("Alpha", 1.0),
     ),
     'v2': (
         ("Subsurface Weight", 0.0),
@@ -72,7 +73,6 @@ _IGNORED_PRINCIPLED_INPUTS = {
         ("Thin Film Thickness", 0.0),
         ("Diffuse Roughness", 0.0),
         ("Specular Tint", (1.0, 1.0, 1.0)),
-        ("Alpha", 1.0),
     ),
 }
 
@@ -298,12 +298,13 @@ class MaterialReader:
         value, _texture = self._socket_input(mat, node, name, fallback, textures=False)
         return value
 
-    def _socket_input(self, mat, node, name, fallback, textures=True):
+    def _socket_input(self, mat, node, name, fallback, textures=True, image_output="Color"):
         """(value, texture id or -1) of input `name` of `node`.
 
         The value is the socket's default or a constant node's; the texture, when `textures`,
-        comes from an Image Texture node linked to the socket (the value then stays the
-        socket's default, used when the image can not be loaded).
+        comes from an Image Texture node linked to the socket by its `image_output` (Color, or
+        Alpha for Alpha sockets; the value then stays the socket's default, used when the image
+        can not be loaded).
         """
         socket = node.inputs.get(name)
         if socket is None:
@@ -320,7 +321,8 @@ class MaterialReader:
         if src_node.type in _CONSTANT_NODES:
             return source.default_value, -1
         if textures and src_node.bl_idname == 'ShaderNodeTexImage':
-            tid = self._image_node(mat, src_node, source, f"input '{name}' of {node_label(node)}")
+            tid = self._image_node(mat, src_node, source, f"input '{name}' of {node_label(node)}",
+                                   image_output)
             return socket.default_value, (-1 if tid is None else tid)
         self.reporter.warning(
             f"Material '{mat.name}': input '{name}' of {node_label(node)} is linked to "
@@ -328,16 +330,20 @@ class MaterialReader:
             f"socket's own value")
         return socket.default_value, -1
 
-    def _image_node(self, mat, node, output, where):
-        """The texture id of an Image Texture node feeding `where` (None when unusable)."""
+    def _image_node(self, mat, node, output, where, expected="Color"):
+        """The texture id of an Image Texture node feeding `where` by its `expected` output
+        (None when unusable)."""
         what = f"Material '{mat.name}': {node_label(node)} (feeding {where})"
-        if output.identifier != "Color":
-            self.reporter.warning(f"{what}: only the Color output of an Image Texture is "
-                                  f"supported, not '{output.name}'; using the socket's own value")
+        if output.identifier != expected:
+            self.reporter.warning(f"{what}: only the {expected} output of an Image Texture is "
+                                  f"supported here, not '{output.name}'; using the socket's own "
+                                  f"value")
             return None
         if node.image is None:
             self.reporter.warning(f"{what} has no image; using the socket's own value")
             return None
+        if expected == "Alpha" and node.image.alpha_mode == 'NONE':
+            return None           # Blender's Alpha output is then 1: the socket's own value
         if node.projection != 'FLAT':
             self.reporter.warning(f"{what}: {node.projection.lower()} projection is not supported; "
                                   f"using flat UV mapping")
@@ -438,11 +444,14 @@ class MaterialReader:
             return self._diffuse(mat, node)
         if kind == 'ShaderNodeBsdfGlass':
             return self._glass(mat, node)
+        if kind == 'ShaderNodeBsdfTransparent':
+            return self._transparent(mat, node)
         if kind == 'ShaderNodeEmission':
             return self._emission(mat, node)
         return self._neutral(
             mat, f"the surface shader {node_label(node)} is not supported "
-                 f"(Torrance reads Principled BSDF, Diffuse BSDF, Glass BSDF and Emission)")
+                 f"(Torrance reads Principled BSDF, Diffuse BSDF, Glass BSDF, Transparent BSDF "
+                 f"and Emission)")
 
     def _principled(self, mat, node):
         d = DEFAULT_MATERIAL
@@ -454,6 +463,7 @@ class MaterialReader:
         metallic, metallic_tex = t(mat, node, "Metallic", d['metallic'])
         roughness, roughness_tex = t(mat, node, "Roughness", d['roughness'])
         emission, emission_tex = t(mat, node, names['emission'], d['emission'])
+        alpha, alpha_tex = t(mat, node, "Alpha", 1.0, image_output="Alpha")
         specular = _finite_or(v(mat, node, names['specular'], d['specular']), d['specular'])
         glass = {}
         if version == 'v2':
@@ -476,6 +486,9 @@ class MaterialReader:
             roughness_texture=roughness_tex, emission_texture=emission_tex,
             **glass,
         )
+        alpha = _clamp(_finite_or(alpha, 1.0), 0.0, 1.0)
+        if alpha < 1.0 or alpha_tex >= 0:
+            out.update(alpha=alpha, alpha_texture=alpha_tex)
         ignored = []
         for name, neutral in _IGNORED_PRINCIPLED_INPUTS[version]:
             socket = node.inputs.get(name)
@@ -538,6 +551,13 @@ class MaterialReader:
             out['normal_texture'], out['normal_strength'] = normal
         return _sanitize(out)
 
+    def _transparent(self, mat, node):
+        """Transparent BSDF: every ray passes straight through, tinted by Color."""
+        color = _color3(self._socket_value(mat, node, "Color", (1.0, 1.0, 1.0)), (1.0, 1.0, 1.0))
+        return _sanitize(dict(DEFAULT_MATERIAL, base_color=(0.0, 0.0, 0.0), specular=0.0,
+                              alpha=0.0, transparent_color=tuple(_clamp(c, 0.0, 1.0)
+                                                                 for c in color)))
+
     def _emission(self, mat, node):
         d = DEFAULT_MATERIAL
         color, tex = self._socket_input(mat, node, "Color", (1.0, 1.0, 1.0))
@@ -578,7 +598,7 @@ def _sanitize(m):
 
 
 _TEXTURE_KEYS = ('base_color_texture', 'metallic_texture', 'roughness_texture',
-                 'emission_texture', 'normal_texture')
+                 'emission_texture', 'normal_texture', 'alpha_texture')
 
 
 def uses_textures(m):
