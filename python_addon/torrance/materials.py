@@ -77,6 +77,11 @@ _IGNORED_PRINCIPLED_INPUTS = {
 }
 
 
+# Blender's names of the microfacet distributions Torrance renders as GGX.
+_DISTRIBUTIONS = {'MULTI_GGX': "Multiscatter GGX", 'BECKMANN': "Beckmann",
+                  'ASHIKHMIN_SHIRLEY': "Ashikhmin-Shirley"}
+
+
 def principled_version(node):
     """'v2' for a Principled BSDF with Blender 4.0's sockets, else 'v1'."""
     return 'v2' if node.inputs.get("Specular IOR Level") is not None else 'v1'
@@ -522,6 +527,12 @@ class MaterialReader:
         transmission = _clamp(_finite_or(v(mat, node, "Transmission", 0.0), 0.0), 0.0, 1.0)
         if transmission == 0.0:
             return {}
+        if getattr(node, "distribution", 'GGX') != 'GGX':
+            # Cycles 3.4 renders rough (> 0.05) transmission of Multiscatter GGX as its
+            # multiple-scattering glass, brighter than single-scattering GGX.
+            self.reporter.warning(f"Material '{mat.name}': the transmission of {node_label(node)} "
+                                  f"uses {_DISTRIBUTIONS.get(node.distribution, node.distribution)}"
+                                  f"; Torrance renders GGX")
         return dict(transmission=transmission, ior=self._ior(mat, node, 1.45),
                     transmission_roughness=_clamp(
                         _finite_or(v(mat, node, "Transmission Roughness", 0.0), 0.0), 0.0, 1.0))
@@ -541,8 +552,9 @@ class MaterialReader:
         if distribution == 'SHARP':
             roughness = 0.0
         elif distribution != 'GGX':
-            self.reporter.warning(f"Material '{mat.name}': {node_label(node)} uses the "
-                                  f"{distribution.title()} distribution; Torrance renders GGX")
+            self.reporter.warning(f"Material '{mat.name}': {node_label(node)} uses "
+                                  f"{_DISTRIBUTIONS.get(distribution, distribution)}; Torrance "
+                                  f"renders GGX")
         out = dict(d, base_color=_color3(color, (1.0, 1.0, 1.0)), metallic=0.0, specular=0.0,
                    roughness=roughness, glass=True, transmission=1.0,
                    ior=self._ior(mat, node, 1.45), base_color_texture=tex)
