@@ -275,7 +275,11 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     // Emissive surfaces emit from both faces; NEE samples them too (the mesh light).
     if (bounce == 0) {
       out.normal = ns;
-      out.albedo = material.base_color * (1.0f - material.metallic);
+      // Diffuse colour (DiffCol): the diffuse lobe's weight, which glass takes away (Cycles' TransCol).
+      out.albedo = kGlass ? material.base_color * (material.glass_node ? 0.0f
+                                                                        : (1.0f - material.metallic) *
+                                                                              (1.0f - material.transmission))
+                          : material.base_color * (1.0f - material.metallic);
       out.emission = kAlpha ? throughput * material.emission : material.emission;
       if (const float k = clamp_scale(out.emission, true); k < 1.0f) out.emission *= k;
     } else if (hit.emitter >= 0) {

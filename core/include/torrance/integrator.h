@@ -21,7 +21,7 @@ namespace torrance {
 enum Pass : uint32_t {
   kPassDepth = 1u << 0,             // distance from the camera plane (1e10 for the background)
   kPassNormal = 1u << 1,            // world-space shading normal at the first hit
-  kPassAlbedo = 1u << 2,            // diffuse colour at the first hit: base colour * (1 - metallic)
+  kPassAlbedo = 1u << 2,            // diffuse colour at the first hit: base colour (1 - metallic)(1 - transmission)
   kPassDiffuseDirect = 1u << 3,     // light reflected by the first hit's diffuse lobe, one bounce
   kPassDiffuseIndirect = 1u << 4,   // ... more bounces
   kPassGlossyDirect = 1u << 5,      // the same for the specular lobe

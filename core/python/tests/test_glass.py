@@ -53,3 +53,31 @@ def test_glass_pane_over_an_emitter_transmits_the_slab_closed_form():
     f = ((2.4 - 1.0) / 3.4) ** 2
     assert np.isfinite(image).all()
     assert image[..., 0].mean() == pytest.approx((1 - f) / (1 + f), rel=0.01)
+
+
+@pytest.mark.parametrize("kwargs, albedo", [
+    (dict(transmission=0.25), 0.75 * 0.6),               # the diffuse weight (1 - T) of 0.6
+    (dict(transmission=1.0), 0.0),
+    (dict(glass=True), 0.0),                             # the Glass node has no diffuse lobe
+])
+def test_glass_passes_keep_combined_and_take_the_diffuse_colour(kwargs, albedo):
+    """Transmitted light goes to the glossy passes (the sum stays Combined); DiffCol ("Albedo")
+    is the diffuse lobe's colour, which transmission takes away."""
+    scene = tc.Scene()
+    scene.add_material(base_color=(0.6, 0.6, 0.6), roughness=0.3, ior=1.5, **kwargs)
+    tri = np.array([[0, 1, 2], [0, 2, 3]], np.int32)
+    quad = np.array([[-50, -50, 0], [50, -50, 0], [50, 50, 0], [-50, 50, 0]], np.float32)
+    scene.add_mesh(quad, tri)
+    scene.add_sun(direction=(0.2, 0.1, -1), strength=3.0, angle=0.1)
+    scene.set_world(color=(0.2, 0.3, 0.4))
+    matrix = np.eye(4)
+    matrix[2, 3] = 5.0
+    scene.set_camera(matrix, lens=2000.0)
+    names = [name for name, _ in tc.PASSES]
+    result = tc.render(scene, tc.RenderSettings(width=8, height=8, samples=16, passes=names,
+                                                brdf_model="PRINCIPLED"))
+    p = result.passes
+    total = sum(p[k] for k in ["Emit", "Env", "DiffDir", "DiffInd", "GlossDir", "GlossInd"])
+    assert np.allclose(total, result.image[..., :3], rtol=1e-4, atol=1e-5)
+    assert np.allclose(p["Albedo"], albedo, atol=1e-5)
+    assert p["GlossDir"].mean() + p["GlossInd"].mean() > 0.0
