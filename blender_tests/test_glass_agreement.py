@@ -4,8 +4,9 @@ and the Glass BSDF node (issue 12's scene 2).
 
 An orthographic camera over a textured floor (a checker image) with a rough glass sphere
 (Principled Transmission 1, Roughness 0.2, Transmission Roughness 0.3, IOR 1.5), a clear glass
-cube (Principled Transmission 1, Roughness 0, IOR 1.45) and a tinted Glass BSDF sphere
-(Roughness 0.15, IOR 1.6), under a soft sun and a uniform sky; 8 bounces of every kind.
+cube (Principled Transmission 1, Roughness 0, IOR 1.45), a tinted Glass BSDF sphere (GGX,
+Roughness 0.15, IOR 1.6) and a Beckmann Glass BSDF sphere (the node's default distribution in
+3.4; Roughness 0.35), under a soft sun and a uniform sky; 8 bounces of every kind.
 
 The bounds come from Cycles' own noise, measured in the same run: Cycles renders the reference
 (seed 0) and a second image (seed 1); Torrance renders seeds 2 and 3 (never a reference's seed).
@@ -13,7 +14,10 @@ Torrance's metrics against the reference, averaged over its seeds, must stay wit
 TOLERANCE x Cycles' own seed-1 metrics (block mean, block p90) and its mean ratio within
 RATIO_SIGMAS of Cycles' own ratio spread (at least RATIO_FLOOR). Then deliberate faults
 (the export patched) must fail the same bounds: Transmission Roughness ignored and the IOR
-ignored (read as Blender's default 1.45), each rendered with one Torrance seed.
+ignored (read as Blender's default 1.45), each rendered with one Torrance seed. Reported only
+("info:"): the Beckmann sphere rendered as GGX, which these image-wide 8x8 block figures do not
+see (measured: block mean 0.0124 against the bound 0.0185; the core's test_glass.cpp checks the
+Beckmann lobes).
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_glass_agreement.py
@@ -48,13 +52,13 @@ def glass_principled(name, roughness, transmission_roughness, ior, color=(1.0, 1
     return mat
 
 
-def glass_node(name, color, roughness, ior):
+def glass_node(name, color, roughness, ior, distribution='GGX'):
     mat = bpy.data.materials.new(name)
     mat.use_nodes = True
     nt = mat.node_tree
     nt.nodes.remove(nt.nodes["Principled BSDF"])
     glass = nt.nodes.new("ShaderNodeBsdfGlass")
-    glass.distribution = 'GGX'
+    glass.distribution = distribution
     glass.inputs["Color"].default_value = (*color, 1.0)
     glass.inputs["Roughness"].default_value = roughness
     glass.inputs["IOR"].default_value = ior
@@ -77,6 +81,8 @@ def build(scene):
                 glass_principled("ClearGlass", 0.0, 0.0, 1.45), rotation_z_deg=30.0)
     testing.sphere_object(scene, "GlassNode", (0.1, 1.2, 0.46), 0.45,
                           glass_node("TintedGlass", (0.95, 0.7, 0.35), 0.15, 1.6))
+    testing.sphere_object(scene, "BeckmannNode", (1.65, 0.9, 0.36), 0.35,
+                          glass_node("BeckmannGlass", (0.8, 0.9, 1.0), 0.35, 1.5, 'BECKMANN'))
     testing.add_sun(scene, strength=2.5, rotation=(math.radians(35), 0, math.radians(25)),
                     angle=math.radians(15.0))
     testing.set_world(scene, (0.45, 0.5, 0.6))
@@ -107,6 +113,16 @@ def ior_ignored(reader_cls):
     return "_ior", fault
 
 
+def beckmann_as_ggx(reader_cls):
+    original = reader_cls._glass
+
+    def fault(self, mat, node):
+        out = original(self, mat, node)
+        out["glass_distribution"] = 'GGX'
+        return out
+    return "_glass", fault
+
+
 def main():
     testing.addon()
     from torrance.materials import MaterialReader
@@ -135,7 +151,8 @@ def main():
     check(not bad, "glass disagrees with Cycles: " + "; ".join(bad))
     missed = []
     for label, make_fault in (("Transmission Roughness ignored", no_transmission_roughness),
-                              ("IOR ignored (1.45)", ior_ignored)):
+                              ("IOR ignored (1.45)", ior_ignored),
+                              ("info: Beckmann rendered as GGX", beckmann_as_ggx)):
         attr, fault = make_fault(MaterialReader)
         original = getattr(MaterialReader, attr)
         setattr(MaterialReader, attr, fault)
@@ -147,7 +164,7 @@ def main():
         fbad = failures(fm, limits)
         print(f"  fault {label:30s}: {format_metrics(fm)}"
               + (f"  caught: {'; '.join(fbad)}" if fbad else "  NOT CAUGHT"), flush=True)
-        if not fbad:
+        if not fbad and not label.startswith("info:"):
             missed.append(label)
     check(not missed, "faults the comparison does not see: " + ", ".join(missed))
 

@@ -143,7 +143,11 @@ void init_scene(py::module_& m) {
              std::array<float, 3> emission, float emission_strength, float specular_tint, int base_color_texture,
              int metallic_texture, int roughness_texture, int emission_texture, int normal_texture,
              float normal_strength, float transmission, float ior, float transmission_roughness, bool glass,
-             float alpha, int alpha_texture, std::array<float, 3> transparent_color) {
+             float alpha, int alpha_texture, std::array<float, 3> transparent_color,
+             const std::string& glass_distribution) {
+            if (glass_distribution != "GGX" && glass_distribution != "BECKMANN")
+              throw py::value_error("glass_distribution must be 'GGX' or 'BECKMANN', got '" + glass_distribution +
+                                    "'");
             Material mat;
             mat.base_color = vec3(base_color);
             mat.metallic = metallic;
@@ -155,6 +159,7 @@ void init_scene(py::module_& m) {
             mat.ior = ior;
             mat.transmission_roughness = transmission_roughness;
             mat.glass_node = glass;
+            mat.glass_beckmann = glass_distribution == "BECKMANN";
             mat.alpha = alpha;
             mat.transparent_color = vec3(transparent_color);
             MaterialTextures tex;
@@ -176,13 +181,15 @@ void init_scene(py::module_& m) {
           py::arg("normal_strength") = 1.0f, py::arg("transmission") = 0.0f, py::arg("ior") = 1.45f,
           py::arg("transmission_roughness") = 0.0f, py::arg("glass") = false, py::arg("alpha") = 1.0f,
           py::arg("alpha_texture") = -1, py::arg("transparent_color") = std::array<float, 3>{1.0f, 1.0f, 1.0f},
+          py::arg("glass_distribution") = "GGX",
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength). "
           "transmission, ior, transmission_roughness: the Principled BSDF's glass (transmission and "
           "transmission_roughness in [0, 1], ior in (0, 1000]); glass=True: Blender's Glass BSDF node "
-          "(base_color its Color, roughness, ior). alpha in [0, 1] (or alpha_texture: a texture's alpha "
-          "channel): rays pass straight through with probability 1 - alpha, tinted by transparent_color "
-          "(Principled Alpha: white; Transparent BSDF: alpha 0 and its Color).")
+          "(base_color its Color, roughness, ior; glass_distribution 'GGX' or 'BECKMANN'). alpha in "
+          "[0, 1] (or alpha_texture: a texture's alpha channel): rays pass straight through with "
+          "probability 1 - alpha, tinted by transparent_color (Principled Alpha: white; Transparent "
+          "BSDF: alpha 0 and its Color).")
       .def(
           "add_texture",
           [](Scene& s, const py::object& pixels, const std::string& colorspace, const std::string& interpolation) {

@@ -12,8 +12,10 @@ Vec3 to_wo_side(const Vec3& w, float side) { return Vec3(w.x, w.y, w.z * side); 
 }  // namespace
 
 GlassBsdf::GlassBsdf(float reflect_roughness, float refract_roughness, float ior, const Vec3& reflect_color,
-                     const Vec3& refract_color)
-    : reflect_color_(glm::max(reflect_color, Vec3(0.0f))), refract_color_(glm::max(refract_color, Vec3(0.0f))) {
+                     const Vec3& refract_color, bool beckmann)
+    : reflect_color_(glm::max(reflect_color, Vec3(0.0f))),
+      refract_color_(glm::max(refract_color, Vec3(0.0f))),
+      beckmann_(beckmann) {
   const float rr = clamp01(std::isfinite(reflect_roughness) ? reflect_roughness : 0.0f);
   const float rt = clamp01(std::isfinite(refract_roughness) ? refract_roughness : 0.0f);
   alpha_r_ = rr * rr;
@@ -22,6 +24,37 @@ GlassBsdf::GlassBsdf(float reflect_roughness, float refract_roughness, float ior
   reflect_delta_ = alpha_r_ < ggx::kDeltaAlpha;
   refract_delta_ = alpha_t_ < ggx::kDeltaAlpha;
   invisible_ = std::abs(eta_ - 1.0f) < 1e-4f;
+}
+
+float GlassBsdf::D(const Vec3& h, float alpha) const {
+  if (!beckmann_) return ggx::D(h, alpha);
+  if (!(h.z > 0.0f)) return 0.0f;
+  const float a2 = alpha * alpha, c2 = h.z * h.z;
+  const float tan2 = (h.x * h.x + h.y * h.y) / c2;
+  return std::exp(-tan2 / a2) / (kPi * a2 * c2 * c2);
+}
+
+float GlassBsdf::G1(float cos_theta, float alpha) const {
+  if (!beckmann_) return ggx::smith_G1(cos_theta, alpha);
+  if (!(cos_theta > 0.0f)) return 0.0f;
+  const float alpha_tan = alpha * safe_sqrt(1.0f - cos_theta * cos_theta) / cos_theta;
+  if (!(alpha_tan >= 0.625f)) return 1.0f;  // Cycles' rational fit of Smith's Beckmann G1
+  const float a = 1.0f / alpha_tan;
+  return ((2.181f * a + 3.535f) * a) / ((2.577f * a + 2.276f) * a + 1.0f);
+}
+
+Vec3 GlassBsdf::sample_normal(const Vec3& wo, float alpha, const Vec2& u) const {
+  if (!beckmann_) return ggx::sample_visible_normal(wo, alpha, u);
+  // h in proportion to D(h) cos(theta_h): tan^2 theta = -alpha^2 ln(1 - u).
+  const float tan2 = -alpha * alpha * std::log1p(-std::min(u.x, 0.99999994f));
+  const float cos_t = 1.0f / std::sqrt(1.0f + tan2), sin_t = safe_sqrt(1.0f - cos_t * cos_t);
+  const float phi = kTwoPi * u.y;
+  return Vec3(sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t);
+}
+
+float GlassBsdf::normal_pdf(const Vec3& wo, const Vec3& h, float alpha) const {
+  if (!beckmann_) return G1(wo.z, alpha) * D(h, alpha) * std::max(glm::dot(wo, h), 0.0f) / wo.z;
+  return D(h, alpha) * h.z;
 }
 
 float GlassBsdf::fresnel(const Vec3& wo) const {
@@ -47,10 +80,11 @@ GlassBsdf::Lobe GlassBsdf::reflection(const Vec3& wo, const Vec3& wi) const {
   const float len2 = glm::dot(half, half);
   if (!(len2 > 0.0f)) return out;
   const Vec3 h = half / std::sqrt(len2);
-  const float D = ggx::D(h, alpha_r_);
-  const float g1_o = ggx::smith_G1(wo.z, alpha_r_);
-  out.pdf = g1_o * D / (4.0f * wo.z);
-  out.f_cos = out.pdf * ggx::smith_G1(wi.z, alpha_r_);
+  const float o_h = glm::dot(wo, h);
+  if (!(o_h > 0.0f)) return out;
+  const float d = D(h, alpha_r_);
+  out.pdf = normal_pdf(wo, h, alpha_r_) / (4.0f * o_h);
+  out.f_cos = d * G1(wo.z, alpha_r_) * G1(wi.z, alpha_r_) / (4.0f * wo.z);
   return out;
 }
 
@@ -65,10 +99,10 @@ GlassBsdf::Lobe GlassBsdf::refraction(const Vec3& wo, const Vec3& wi, float etap
   if (h.z < 0.0f) h = -h;
   const float o_h = glm::dot(wo, h), i_h = glm::dot(wi, h);
   if (!(o_h > 0.0f) || !(i_h < 0.0f)) return out;  // no microfacet visible from wo refracts into wi
-  const float D = ggx::D(h, alpha_t_);
-  // Visible-normal density of h times Walter's Jacobian dh/dwi = etap^2 |wi.h| / |wo + etap wi|^2.
-  out.pdf = ggx::smith_G1(wo.z, alpha_t_) * D * o_h / wo.z * (etap * etap * -i_h / len2);
-  out.f_cos = out.pdf * ggx::smith_G1(-wi.z, alpha_t_);
+  // The density of h times Walter's Jacobian dh/dwi = etap^2 |wi.h| / |wo + etap wi|^2.
+  const float jacobian = etap * etap * -i_h / len2;
+  out.pdf = normal_pdf(wo, h, alpha_t_) * jacobian;
+  out.f_cos = G1(wo.z, alpha_t_) * G1(-wi.z, alpha_t_) * D(h, alpha_t_) * o_h / wo.z * jacobian;
   if (!std::isfinite(out.f_cos) || !std::isfinite(out.pdf)) return Lobe{};
   return out;
 }
@@ -101,7 +135,7 @@ BsdfSample GlassBsdf::sample(const Vec3& wo, float u_lobe, const Vec2& u) const 
   bool delta;
   if (u_lobe < w.p_reflect) {
     delta = reflect_delta_;
-    const Vec3 m = delta ? Vec3(0.0f, 0.0f, 1.0f) : ggx::sample_visible_normal(o, alpha_r_, u);
+    const Vec3 m = delta ? Vec3(0.0f, 0.0f, 1.0f) : sample_normal(o, alpha_r_, u);
     i = ggx::reflect(o, m);
     if (!(i.z > 0.0f)) return s;
     if (delta) s.weight = w.reflect / w.p_reflect;
@@ -110,7 +144,7 @@ BsdfSample GlassBsdf::sample(const Vec3& wo, float u_lobe, const Vec2& u) const 
     if (invisible_) {
       i = -o;
     } else {
-      const Vec3 m = refract_delta_ ? Vec3(0.0f, 0.0f, 1.0f) : ggx::sample_visible_normal(o, alpha_t_, u);
+      const Vec3 m = refract_delta_ ? Vec3(0.0f, 0.0f, 1.0f) : sample_normal(o, alpha_t_, u);
       const float c = glm::dot(o, m);
       if (!(c > 0.0f)) return s;
       // Snell: etap wi = -wo + (c - sqrt(c^2 + etap^2 - 1)) m, the bracket formed without cancellation.

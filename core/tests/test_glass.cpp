@@ -14,6 +14,7 @@
 
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace torrance {
@@ -26,12 +27,13 @@ using test::p_value;
 struct Case {
   float reflect_roughness, refract_roughness, ior, cos_o;
   bool inside;
+  bool beckmann = false;
 };
 
 std::string name(const Case& c) {
   char buf[128];
-  std::snprintf(buf, sizeof buf, "r=%g/%g ior=%g cos_o=%g %s", c.reflect_roughness, c.refract_roughness, c.ior, c.cos_o,
-                c.inside ? "inside" : "outside");
+  std::snprintf(buf, sizeof buf, "r=%g/%g ior=%g cos_o=%g %s%s", c.reflect_roughness, c.refract_roughness, c.ior,
+                c.cos_o, c.inside ? "inside" : "outside", c.beckmann ? " Beckmann" : "");
   return buf;
 }
 
@@ -41,7 +43,7 @@ Vec3 wo_of(const Case& c) {
 }
 
 GlassBsdf glass_of(const Case& c) {
-  return GlassBsdf(c.reflect_roughness, c.refract_roughness, c.ior, Vec3(1.0f), Vec3(1.0f));
+  return GlassBsdf(c.reflect_roughness, c.refract_roughness, c.ior, Vec3(1.0f), Vec3(1.0f), c.beckmann);
 }
 
 std::vector<Case> grid() {
@@ -53,6 +55,8 @@ std::vector<Case> grid() {
           // Principled's refraction roughness 1 - (1 - r)(1 - 0.5) beside the Glass node's one roughness.
           cases.push_back({r, r, ior, cos_o, inside});
           if (r < 0.5f && cos_o == 0.5f) cases.push_back({r, 1.0f - (1.0f - r) * 0.5f, ior, cos_o, inside});
+          // The Glass node's default distribution in Blender 3.4.
+          if (r > 0.2f && r < 0.7f && ior == 1.5f) cases.push_back({r, r, ior, cos_o, inside, true});
         }
   return cases;
 }
@@ -114,7 +118,7 @@ TEST(Glass, SampleAgreesWithEvalAndPdf) {
   for (int n = 0; n < 200000; ++n) {
     const float rr = 0.02f + 0.98f * rng.next_1d(), rt = 0.02f + 0.98f * rng.next_1d();
     const float ior = (const float[]){1.0001f, 1.33f, 1.5f, 2.4f, 0.75f}[rng.next_u32() % 5];
-    const GlassBsdf bsdf(rr, rt, ior, Vec3(0.9f, 0.5f, 0.2f), Vec3(0.3f, 0.6f, 1.0f));
+    const GlassBsdf bsdf(rr, rt, ior, Vec3(0.9f, 0.5f, 0.2f), Vec3(0.3f, 0.6f, 1.0f), rng.next_1d() < 0.3f);
     const Vec3 wo = test::uniform_sphere(rng);
     const float ul = rng.next_1d();
     const BsdfSample s = bsdf.sample(wo, ul, rng.next_2d());
@@ -180,8 +184,9 @@ TEST(Glass, RoughGlassEnergyFollowsTheMacroFresnelSplit) {
     for (bool inside : {false, true})
       for (float cos_o : {1.0f, 0.5f, 0.15f}) {
         std::printf("glass furnace ior=%.2f %s cos_o=%.2f:", ior, inside ? "inside " : "outside", cos_o);
-        for (float r : {0.05f, 0.3f, 0.6f, 1.0f}) {
-          const Case c{r, r, ior, cos_o, inside};
+        for (const auto& [r, beckmann] : {std::pair{0.05f, false}, std::pair{0.3f, false}, std::pair{0.6f, false},
+                                          std::pair{1.0f, false}, std::pair{0.3f, true}, std::pair{0.6f, true}}) {
+          const Case c{r, r, ior, cos_o, inside, beckmann};
           const GlassBsdf bsdf = glass_of(c);
           const Vec3 wo = wo_of(c);
           const Charts charts(wo, ior, r * r);
@@ -193,7 +198,7 @@ TEST(Glass, RoughGlassEnergyFollowsTheMacroFresnelSplit) {
           }
           const double s = albedo_sampled(bsdf, wo, 200000);
           const float F = bsdf.fresnel(wo);
-          std::printf(" r=%.2f %.4f/%.4f (F %.3f refl %.4f)", r, q, s, F, q_reflected);
+          std::printf(" r=%.2f%s %.4f/%.4f (F %.3f refl %.4f)", r, beckmann ? "B" : "", q, s, F, q_reflected);
           EXPECT_NEAR(s, q, 0.006) << name(c);
           EXPECT_NEAR(albedo_sampled(bsdf, wo, 200000, true), q_reflected, 0.006) << name(c);
           EXPECT_LE(q, 1.0 + 2e-3) << name(c);
@@ -266,7 +271,7 @@ TEST(Glass, NoNanOrInfInAMillionRandomisedEvaluations) {
     const float rr = rng.next_1d() < 0.5f ? roughnesses[rng.next_u32() % 8] : rng.next_1d();
     const float rt = rng.next_1d() < 0.5f ? roughnesses[rng.next_u32() % 8] : rng.next_1d();
     const float ior = rng.next_1d() < 0.7f ? iors[rng.next_u32() % 8] : 0.5f + 2.0f * rng.next_1d();
-    const GlassBsdf bsdf(rr, rt, ior, Vec3(1.0f), Vec3(0.5f));
+    const GlassBsdf bsdf(rr, rt, ior, Vec3(1.0f), Vec3(0.5f), rng.next_1d() < 0.5f);
     for (int e = 0; e < 100; ++e) {
       const Vec3 wo = nasty_direction(), wi = rng.next_1d() < 0.05f ? -wo : nasty_direction();
       const Vec3 f = bsdf.eval(wo, wi);

@@ -12,7 +12,7 @@ output node (the output Cycles would use):
   Blender 4.x's Principled v2 by its names (Specular IOR Level with IOR, Emission
   Color; _PRINCIPLED_SOCKETS);
 * Diffuse BSDF: a pure diffuse material (specular 0);
-* Glass BSDF: Color, Roughness, IOR (GGX; Sharp is roughness 0);
+* Glass BSDF: Color, Roughness, IOR (GGX or Beckmann; Sharp is roughness 0);
 * Transparent BSDF: Color (rays pass straight through, tinted);
 * Emission: a black emitter.
 
@@ -543,7 +543,8 @@ class MaterialReader:
         return _clamp(ior, 1e-5, 1000.0)
 
     def _glass(self, mat, node):
-        """Glass BSDF: Color (or an Image Texture), Roughness, IOR; GGX (Sharp = roughness 0)."""
+        """Glass BSDF: Color (or an Image Texture), Roughness, IOR; GGX or Beckmann (Sharp =
+        roughness 0; Multiscatter GGX is reported and rendered as GGX)."""
         d = DEFAULT_MATERIAL
         color, tex = self._socket_input(mat, node, "Color", (1.0, 1.0, 1.0))
         roughness = _clamp(_finite_or(self._socket_value(mat, node, "Roughness", 0.0), 0.0),
@@ -551,12 +552,13 @@ class MaterialReader:
         distribution = getattr(node, "distribution", 'GGX')
         if distribution == 'SHARP':
             roughness = 0.0
-        elif distribution != 'GGX':
+        elif distribution not in ('GGX', 'BECKMANN'):
             self.reporter.warning(f"Material '{mat.name}': {node_label(node)} uses "
                                   f"{_DISTRIBUTIONS.get(distribution, distribution)}; Torrance "
                                   f"renders GGX")
         out = dict(d, base_color=_color3(color, (1.0, 1.0, 1.0)), metallic=0.0, specular=0.0,
                    roughness=roughness, glass=True, transmission=1.0,
+                   glass_distribution='BECKMANN' if distribution == 'BECKMANN' else 'GGX',
                    ior=self._ior(mat, node, 1.45), base_color_texture=tex)
         normal = self._normal_map(mat, node)
         if normal is not None:

@@ -41,6 +41,7 @@ struct Material {
   float transmission_roughness = 0.0f;
   float ior = 1.45f;
   bool glass_node = false;
+  bool glass_beckmann = false;  // the Glass node with the Beckmann distribution (else GGX)
   bool transmits() const { return glass_node || (transmission > 0.0f && metallic < 1.0f); }
   // Transparency (the integrator, as Cycles' Transparent BSDF): with probability 1 - alpha a ray
   // goes straight through, tinted by transparent_color, and shadow rays are attenuated by

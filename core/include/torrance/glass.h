@@ -21,6 +21,11 @@
 // gives no sample (Cycles too). Below ggx::kDeltaAlpha a lobe is a delta (mirror / straight
 // refraction); with |ior - 1| < 1e-4 the interface is invisible (straight through, weight refract_color).
 // eval() includes |cos_i| (see bsdf.h); delta lobes have no eval or pdf.
+//
+// Beckmann (the Glass BSDF node's default distribution in Blender 3.4): the same two closures
+// with Cycles 3.4's Beckmann D = exp(-tan^2 / alpha^2) / (pi alpha^2 cos^4) and its rational
+// approximation of Smith's G1; its microfacet normals are sampled in proportion to D(h) cos(h)
+// (not visible normals: a different estimator of the same BSDF).
 #pragma once
 
 #include "torrance/bsdf.h"
@@ -31,7 +36,7 @@ namespace torrance {
 class GlassBsdf {
  public:
   GlassBsdf(float reflect_roughness, float refract_roughness, float ior, const Vec3& reflect_color,
-            const Vec3& refract_color);
+            const Vec3& refract_color, bool beckmann = false);
 
   Vec3 eval(const Vec3& wo, const Vec3& wi) const;
   float pdf(const Vec3& wo, const Vec3& wi) const;
@@ -54,10 +59,16 @@ class GlassBsdf {
   };
   Lobe reflection(const Vec3& wo, const Vec3& wi) const;
   Lobe refraction(const Vec3& wo, const Vec3& wi, float etap) const;
+  // The microfacet distribution (GGX or Beckmann) for wo.z > 0: D, Smith G1, a sampled normal
+  // and its density.
+  float D(const Vec3& h, float alpha) const;
+  float G1(float cos_theta, float alpha) const;
+  Vec3 sample_normal(const Vec3& wo, float alpha, const Vec2& u) const;
+  float normal_pdf(const Vec3& wo, const Vec3& h, float alpha) const;
 
   Vec3 reflect_color_, refract_color_;
   float alpha_r_, alpha_t_, eta_;
-  bool reflect_delta_, refract_delta_, invisible_;
+  bool reflect_delta_, refract_delta_, invisible_, beckmann_;
 };
 
 }  // namespace torrance

@@ -25,7 +25,7 @@ class MaterialBsdf {
     if (!m.transmits()) return;
     const float metallic = clamp01(m.metallic), roughness = clamp01(m.roughness);
     if (m.glass_node) {
-      glass_.emplace(roughness, roughness, m.ior, m.base_color, m.base_color);
+      glass_.emplace(roughness, roughness, m.ior, m.base_color, m.base_color, m.glass_beckmann);
       glass_weight_ = glass_probability_ = 1.0f;
       opaque_ = false;
       return;
