@@ -141,7 +141,7 @@ def main():
     centre = img[H // 2 - 2:H // 2 + 2, W // 2 - 2:W // 2 + 2, :3].mean(axis=(0, 1))
     check(centre[0] > 2 * centre[2], f"nan_vertex: the red sphere is missing: {centre}")
 
-    # 5. Unsupported nodes: a Principled Base Color from a Noise Texture; a Glass BSDF surface;
+    # 5. Unsupported nodes: a Principled Base Color from a Noise Texture; a Toon BSDF surface;
     #    an Emission surface (supported); a material without output; a Mix Shader.
     scene = base_scene()
     testing.add_sun(scene)
@@ -150,12 +150,12 @@ def main():
     noise = nt.nodes.new("ShaderNodeTexNoise")
     nt.links.new(noise.outputs["Color"], nt.nodes["Principled BSDF"].inputs["Base Color"])
     nt.links.new(noise.outputs["Fac"], nt.nodes["Principled BSDF"].inputs["Roughness"])
-    glass_mat = bpy.data.materials.new("GlassMat")
-    glass_mat.use_nodes = True
-    nt = glass_mat.node_tree
+    toon_mat = bpy.data.materials.new("ToonMat")
+    toon_mat.use_nodes = True
+    nt = toon_mat.node_tree
     nt.nodes.remove(nt.nodes["Principled BSDF"])
-    glass = nt.nodes.new("ShaderNodeBsdfGlass")
-    nt.links.new(glass.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
+    toon = nt.nodes.new("ShaderNodeBsdfToon")
+    nt.links.new(toon.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
     emit_mat = bpy.data.materials.new("EmitMat")
     emit_mat.use_nodes = True
     nt = emit_mat.node_tree
@@ -173,12 +173,12 @@ def main():
     mix = nt.nodes.new("ShaderNodeMixShader")
     nt.links.new(nt.nodes["Principled BSDF"].outputs[0], mix.inputs[1])
     nt.links.new(mix.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
-    for i, mat in enumerate((noise_mat, glass_mat, emit_mat, no_output, mix_mat)):
+    for i, mat in enumerate((noise_mat, toon_mat, emit_mat, no_output, mix_mat)):
         testing.sphere_object(scene, mat.name + "Sphere", (-2.4 + 1.2 * i, 0, 0.5), 0.5, mat,
                               segments=16, rings=8)
     img = render_case("unsupported_nodes", scene, d, expect=[
         "'NoiseMat': input 'Base Color'", "Noise Texture", "'NoiseMat': input 'Roughness'",
-        "'GlassMat': the surface shader", "Glass BSDF",
+        "'ToonMat': the surface shader", "Toon BSDF",
         "'NoOutputMat': no active Material Output", "'MixMat'", "Mix Shader"])
     messages = testing.last_messages()
     check(not any("EmitMat" in m for _, m in messages), "EmitMat must not be reported")

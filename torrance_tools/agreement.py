@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """The Torrance-vs-Cycles agreement scene, its metrics and pass/fail criteria (used by the
 headless tests: test_cycles_agreement.py, test_camera_agreement.py, test_lights.py, test_hdri.py,
-test_textures.py, test_reference_scenes.py, test_cancel_memory.py)."""
+test_textures.py, test_reference_scenes.py, test_cancel_memory.py, test_glass_agreement.py,
+test_alpha_agreement.py)."""
 
 import math
 
@@ -98,6 +99,26 @@ def noise_failures(m, limits):
     if m["block_mean"] > limits["block_mean"]:
         bad.append(f"block mean {m['block_mean']:.4f} > {limits['block_mean']:.4f}")
     return bad
+
+
+def noise_bounds(own, tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.015):
+    """Thresholds (for failures()) from Cycles' own noise: `own` = metrics of a second Cycles
+    render (another seed) against the reference. Block mean and p90 may be `tolerance` x Cycles'
+    own; the ratio may be off by ratio_sigmas x Cycles' own largest |ratio - 1| (overall or per
+    channel), at least ratio_floor. No offset bound (the scenes' camera is tested elsewhere)."""
+    r = max(ratio_floor, ratio_sigmas * max(abs(own["ratio"] - 1.0),
+                                            *(abs(c - 1.0) for c in own["channels"])))
+    return dict(ratio=(1.0 - r, 1.0 + r), block_mean=tolerance * own["block_mean"],
+                block_p90=tolerance * own["block_p90"])
+
+
+def mean_metrics(all_metrics):
+    """The mean of several metrics() results (one per seed)."""
+    keys = ("ratio", "block_mean", "block_p90", "block_max")
+    out = {k: float(np.mean([m[k] for m in all_metrics])) for k in keys}
+    out["channels"] = list(np.mean([m["channels"] for m in all_metrics], axis=0))
+    out["offset"] = tuple(np.mean([m["offset"] for m in all_metrics], axis=0))
+    return out
 
 
 def render_torrance(scene, directory, name, samples, max_bounces, model='PRINCIPLED'):

@@ -53,6 +53,7 @@ def torrance_settings(scene, samples, max_bounces, seed=0):
     ts = scene.torrance
     ts.samples = int(samples)
     ts.max_bounces = int(max_bounces)
+    ts.transparent_max_bounces = int(max_bounces)   # as cycles_settings' transparent_max_bounces
     ts.seed = int(seed)
     ts.filter_width = 1.5
     return ts

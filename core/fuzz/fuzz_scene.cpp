@@ -172,10 +172,19 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
           m.specular = any_float(in);
           m.emission = any_vec3(in);
           m.specular_tint = any_float(in);
+          m.transmission = any_float(in);
+          m.transmission_roughness = any_float(in);
+          m.ior = any_float(in);
+          m.alpha = any_float(in);
+          m.transparent_color = any_vec3(in);
         } else {  // valid values, so that what follows (textures, rendering) is reached
           m.roughness = in.ConsumeFloatingPointInRange<float>(0.0f, 1.0f);
           m.metallic = in.ConsumeFloatingPointInRange<float>(0.0f, 1.0f);
           m.emission = Vec3(in.ConsumeFloatingPointInRange<float>(0.0f, 2.0f));
+          m.transmission = in.ConsumeFloatingPointInRange<float>(0.0f, 1.0f);
+          m.ior = in.ConsumeFloatingPointInRange<float>(0.5f, 3.0f);
+          m.glass_node = in.ConsumeBool();
+          m.alpha = in.ConsumeFloatingPointInRange<float>(0.0f, 1.0f);
         }
         MaterialTextures t;
         const int n = int(scene.num_textures());
@@ -183,6 +192,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         t.roughness = in.ConsumeIntegralInRange<int>(-2, n);
         t.emission = in.ConsumeIntegralInRange<int>(-2, n);
         t.normal = in.ConsumeIntegralInRange<int>(-2, n);
+        t.alpha = in.ConsumeIntegralInRange<int>(-2, n);
         t.emission_strength = in.ConsumeBool() ? any_float(in) : 1.0f;
         t.normal_strength = in.ConsumeBool() ? any_float(in) : 1.0f;
         clearly([&] { scene.add_material(m, t); });

@@ -69,7 +69,8 @@ void init_render(py::module_& m) {
                        const std::string& brdf_model, std::optional<std::array<int, 4>> window, int threads,
                        const std::string& light_selection, const std::vector<std::string>& passes,
                        const std::string& sampler, bool specialize, float adaptive_threshold,
-                       int adaptive_min_samples, double time_limit, float clamp_direct, float clamp_indirect) {
+                       int adaptive_min_samples, double time_limit, float clamp_direct, float clamp_indirect,
+                       int max_transparent_bounces) {
              RenderSettings s;
              s.width = width;
              s.height = height;
@@ -92,6 +93,7 @@ void init_render(py::module_& m) {
              s.time_limit = time_limit;
              s.clamp_direct = clamp_direct;
              s.clamp_indirect = clamp_indirect;
+             s.max_transparent_bounces = max_transparent_bounces;
              s.validate();
              return s;
            }),
@@ -102,7 +104,7 @@ void init_render(py::module_& m) {
            py::arg("light_selection") = "CONTRIBUTION", py::arg("passes") = std::vector<std::string>{},
            py::arg("sampler") = "SOBOL", py::arg("specialize") = true, py::arg("adaptive_threshold") = 0.0f,
            py::arg("adaptive_min_samples") = 0, py::arg("time_limit") = 0.0, py::arg("clamp_direct") = 0.0f,
-           py::arg("clamp_indirect") = 0.0f)
+           py::arg("clamp_indirect") = 0.0f, py::arg("max_transparent_bounces") = 8)
       .def_readwrite("specialize", &RenderSettings::specialize)
       .def_property(
           "sampler", [](const RenderSettings& s) { return std::string(s.sobol ? "SOBOL" : "RANDOM"); },
@@ -111,6 +113,7 @@ void init_render(py::module_& m) {
       .def_readwrite("height", &RenderSettings::height)
       .def_readwrite("samples", &RenderSettings::samples)
       .def_readwrite("max_bounces", &RenderSettings::max_bounces)
+      .def_readwrite("max_transparent_bounces", &RenderSettings::max_transparent_bounces)
       .def_readwrite("seed", &RenderSettings::seed)
       .def_readwrite("filter_width", &RenderSettings::filter_width)
       .def_readwrite("transparent_background", &RenderSettings::transparent_background)

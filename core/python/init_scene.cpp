@@ -143,7 +143,13 @@ void init_scene(py::module_& m) {
              std::array<float, 3> emission, float emission_strength, float specular_tint, int base_color_texture,
              int metallic_texture, int roughness_texture, int emission_texture, int normal_texture,
              float normal_strength, float ior, std::array<float, 3> specular_tint_color, bool multiscatter_ggx,
-             int bump_texture, float bump_strength, float bump_distance) {
+             int bump_texture, float bump_strength, float bump_distance,
+             float transmission, float transmission_roughness, bool glass,
+             float alpha, int alpha_texture, std::array<float, 3> transparent_color,
+             const std::string& glass_distribution) {
+            if (glass_distribution != "GGX" && glass_distribution != "BECKMANN")
+              throw py::value_error("glass_distribution must be 'GGX' or 'BECKMANN', got '" + glass_distribution +
+                                    "'");
             Material mat;
             mat.base_color = vec3(base_color);
             mat.metallic = metallic;
@@ -154,6 +160,12 @@ void init_scene(py::module_& m) {
             mat.ior = ior;
             mat.specular_tint_color = vec3(specular_tint_color);
             mat.multiscatter_ggx = multiscatter_ggx;
+            mat.transmission = transmission;
+            mat.transmission_roughness = transmission_roughness;
+            mat.glass_node = glass;
+            mat.glass_beckmann = glass_distribution == "BECKMANN";
+            mat.alpha = alpha;
+            mat.transparent_color = vec3(transparent_color);
             MaterialTextures tex;
             tex.base_color = base_color_texture;
             tex.metallic = metallic_texture;
@@ -165,6 +177,7 @@ void init_scene(py::module_& m) {
             tex.bump = bump_texture;
             tex.bump_strength = bump_strength;
             tex.bump_distance = bump_distance;
+            tex.alpha = alpha_texture;
             return s.add_material(mat, tex);
           },
           py::arg("base_color") = std::array<float, 3>{0.8f, 0.8f, 0.8f}, py::arg("metallic") = 0.0f,
@@ -172,13 +185,24 @@ void init_scene(py::module_& m) {
           py::arg("emission") = std::array<float, 3>{0.0f, 0.0f, 0.0f}, py::arg("emission_strength") = 0.0f,
           py::arg("specular_tint") = 0.0f, py::arg("base_color_texture") = -1, py::arg("metallic_texture") = -1,
           py::arg("roughness_texture") = -1, py::arg("emission_texture") = -1, py::arg("normal_texture") = -1,
-          py::arg("normal_strength") = 1.0f, py::arg("ior") = 1.5f,
+          py::arg("normal_strength") = 1.0f, py::arg("ior") = 1.45f,
           py::arg("specular_tint_color") = std::array<float, 3>{1.0f, 1.0f, 1.0f}, py::arg("multiscatter_ggx") = true,
           py::arg("bump_texture") = -1, py::arg("bump_strength") = 1.0f, py::arg("bump_distance") = 1.0f,
+          py::arg("transmission") = 0.0f,
+          py::arg("transmission_roughness") = 0.0f, py::arg("glass") = false, py::arg("alpha") = 1.0f,
+          py::arg("alpha_texture") = -1, py::arg("transparent_color") = std::array<float, 3>{1.0f, 1.0f, 1.0f},
+          py::arg("glass_distribution") = "GGX",
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
-          "ior, specular_tint_color and multiscatter_ggx are read by PRINCIPLED_V2 only.")
+          "specular_tint_color and multiscatter_ggx are read by PRINCIPLED_V2 only. "
+          "transmission, ior, transmission_roughness: the Principled BSDF's glass (transmission and "
+          "transmission_roughness in [0, 1], ior in (0, 1000]; ior is also PRINCIPLED_V2's IOR); glass=True: "
+          "Blender's Glass BSDF node "
+          "(base_color its Color, roughness, ior; glass_distribution 'GGX' or 'BECKMANN'). alpha in "
+          "[0, 1] (or alpha_texture: a texture's alpha channel): rays pass straight through with "
+          "probability 1 - alpha, tinted by transparent_color (Principled Alpha: white; Transparent "
+          "BSDF: alpha 0 and its Color).")
       .def(
           "add_texture",
           [](Scene& s, const py::object& pixels, const std::string& colorspace, const std::string& interpolation) {

@@ -12,6 +12,7 @@
 #include <xmmintrin.h>
 #include <pmmintrin.h>
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -20,6 +21,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 namespace torrance {
 
@@ -28,6 +30,8 @@ void RenderSettings::validate() const {
     throw std::invalid_argument("image width and height must be in [1, 65536]");
   if (samples <= 0) throw std::invalid_argument("samples must be >= 1");
   if (max_bounces < 0 || max_bounces > 1024) throw std::invalid_argument("max_bounces must be in [0, 1024]");
+  if (max_transparent_bounces < 0 || max_transparent_bounces > 1024)
+    throw std::invalid_argument("max_transparent_bounces must be in [0, 1024]");
   if (!(filter_width > 0.0f) || !std::isfinite(filter_width) || filter_width > 64.0f)
     throw std::invalid_argument("filter_width must be in (0, 64] pixels");
   if (threads < 0) throw std::invalid_argument("threads must be >= 0 (0 = all cores)");
@@ -78,19 +82,51 @@ Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& dir) {
   return p + (glm::dot(ng, dir) >= 0.0f ? eps : -eps) * ng;
 }
 
-// Whether the light sample is blocked. The shadow ray runs from the offset origin to the sampled
-// point on the light, stopping short of it by the same kind of offset, so that a light close to
-// and nearly parallel with the surface is neither missed nor self-occluding.
-bool shadowed(const Scene& scene, const Vec3& p, const Vec3& ng, const LightSample& ls) {
-  const Vec3 origin = offset_origin(p, ng, ls.wi);
-  if (std::isinf(ls.distance)) return scene.occluded(origin, ls.wi, 0.0f, kInfinity);
+// The shadow ray of a light sample: from the offset origin to the sampled point on the light,
+// stopping short of it by the same kind of offset, so that a light close to and nearly parallel
+// with the surface is neither missed nor self-occluding. tmax <= 0: nothing can be in the way.
+Ray shadow_ray(const Vec3& p, const Vec3& ng, const LightSample& ls) {
+  Ray ray;
+  ray.origin = offset_origin(p, ng, ls.wi);
+  ray.tmin = 0.0f;
+  if (std::isinf(ls.distance)) {
+    ray.dir = ls.wi;
+    ray.tmax = kInfinity;
+    return ray;
+  }
   const Vec3 target = p + ls.wi * ls.distance;
-  const Vec3 d = target - origin;
+  const Vec3 d = target - ray.origin;
   const float len = glm::length(d);
   const float end_offset = 2e-5f * std::max(1.0f, std::max(std::abs(target.x), std::max(std::abs(target.y),
                                                                                           std::abs(target.z))));
-  const float tmax = len * (1.0f - 1e-4f) - end_offset;
-  return tmax > 0.0f && scene.occluded(origin, d / len, 0.0f, tmax);
+  ray.dir = d / len;
+  ray.tmax = len * (1.0f - 1e-4f) - end_offset;
+  return ray;
+}
+
+// The light a shadow ray carries to the shading point: 0 or 1 by one occlusion test, or with
+// kAlpha (some material has alpha) Cycles' transparent shadows: each surface in the way with
+// alpha < 1 lets (1 - alpha) x its transparent colour through, an opaque one (or more than
+// max_transparent_bounces transparent ones) nothing. Found by repeated closest hits, only once
+// the occlusion test has found something in the way.
+template <bool kAlpha>
+Vec3 shadow_transmittance(const Scene& scene, const Vec3& p, const Vec3& ng, const LightSample& ls,
+                          int max_transparent) {
+  Ray ray = shadow_ray(p, ng, ls);
+  if (!(ray.tmax > 0.0f) || !scene.occluded(ray.origin, ray.dir, 0.0f, ray.tmax)) return Vec3(1.0f);
+  if (!kAlpha) return Vec3(0.0f);
+  Vec3 transmittance(1.0f);
+  for (int passed = 0;; ++passed) {
+    SurfaceHit hit;
+    if (!scene.intersect(ray, hit)) return transmittance;
+    const float opacity = scene.opacity(hit.material, hit.uv);
+    if (opacity >= 1.0f || passed >= max_transparent) return Vec3(0.0f);
+    transmittance *= (1.0f - opacity) * scene.material(hit.material).transparent_color;
+    if (!(max_component(transmittance) > 0.0f)) return Vec3(0.0f);
+    ray.origin = offset_origin(hit.position, hit.geometric_normal, ray.dir);
+    ray.tmax -= hit.t;
+    if (!(ray.tmax > 0.0f)) return transmittance;
+  }
 }
 
 // Cycles 3.4's smoothing of diffuse light on bump- or normal-mapped surfaces near the terminator
@@ -133,9 +169,22 @@ struct PathRadiance {
 // through (NEE at the first hit by each lobe's share of eval), and as direct (one bounce) or
 // indirect; alpha is 0 where a transparent background is seen directly.
 // Compiled per scene feature set: kTextures (some material has textures), kSplitLobes (light
-// passes requested), kHittable (a BSDF-sampled ray can see a light), kMixtures (some material is a
-// Mix/Add Shader mixture: every hit then shades with a MixtureBsdf). The generic path has all four.
-template <bool kTextures, bool kSplitLobes, bool kHittable, bool kMixtures>
+// passes requested), kHittable (a BSDF-sampled ray can see a light), kGlass (some material
+// transmits), kAlpha (below), kMixtures (some material is a Mix/Add Shader mixture: every hit then
+// shades with a MixtureBsdf). The generic path has all of them.
+//
+// Glass: whether a direction is reflected or transmitted is decided by the GEOMETRIC normal, and
+// a direction on which the geometric and the shading normal disagree carries nothing (as Cycles).
+// The glass is told whether the viewer is inside (behind the geometric surface). Shadow rays stop
+// at glass as at any surface (Cycles 3.4): light through glass arrives by BSDF sampling only, MIS
+// weighted where NEE could also have sampled it (NEE at a glass surface considers lights on both
+// sides). Transmitted light is filed with the glossy passes.
+//
+// Alpha (kAlpha: some material has alpha < 1 or an alpha texture): at each hit the ray goes
+// straight on with probability 1 - alpha, tinted by the transparent colour, without counting a
+// bounce (at most max_transparent_bounces times per segment: then the path ends), keeping the
+// previous vertex for MIS; shadow rays pass such surfaces (shadow_transmittance).
+template <bool kTextures, bool kSplitLobes, bool kHittable, bool kGlass, bool kAlpha, bool kMixtures>
 PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) {
   const Lights& lights = ctx.lights;
   PathRadiance out;
@@ -144,6 +193,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
   Vec3 prev_position(0.0f), prev_normal(0.0f);
   float prev_pdf = 0.0f;
   bool prev_delta = true;
+  bool prev_two_sided = false;  // the previous vertex transmits: NEE there chose among lights on both sides
   float path_length = 0.0f;  // for texture footprints (a ray cone of the pixel's spread)
   // Cycles' clamping: a contribution whose RGB sum exceeds the limit is scaled down to it.
   // Direct: seen by the camera or lighting the first hit; indirect: lighting later vertices.
@@ -163,26 +213,42 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
 
   for (int bounce = 0;; ++bounce) {
     SurfaceHit hit;
-    const bool found = ctx.scene.intersect(ray, hit);
+    bool found = ctx.scene.intersect(ray, hit);
+    float passed_length = 0.0f;  // through transparent surfaces since the last vertex
+    if constexpr (kAlpha) {
+      for (int passed = 0; found; ++passed) {
+        const float opacity = ctx.scene.opacity(hit.material, hit.uv);
+        if (opacity >= 1.0f || sampler.next_4d().x < opacity) break;
+        if (passed >= ctx.settings.max_transparent_bounces) return out;  // Cycles: the path ends
+        throughput *= ctx.scene.material(hit.material).transparent_color;
+        if (!(max_component(throughput) > 0.0f)) return out;
+        passed_length += hit.t;
+        ray.origin = offset_origin(hit.position, hit.geometric_normal, ray.dir);
+        ray.tmax -= hit.t;
+        found = ray.tmax > 0.0f && ctx.scene.intersect(ray, hit);
+      }
+    }
     if (bounce == 0) {
       if (!found) {
-        if (ctx.settings.transparent_background) out.alpha = 0.0f;
-        else out.environment = lights.world_radiance(ray.dir);
+        if (ctx.settings.transparent_background)
+          out.alpha = kAlpha ? 1.0f - (throughput.x + throughput.y + throughput.z) / 3.0f : 0.0f;
+        else out.environment = (kAlpha ? throughput : Vec3(1.0f)) * lights.world_radiance(ray.dir);
         if (const float k = clamp_scale(out.environment, true); k < 1.0f) out.environment *= k;
         return out;
       }
-      out.depth = hit.t * glm::dot(ray.dir, ctx.camera_forward);
+      out.depth = (passed_length + hit.t) * glm::dot(ray.dir, ctx.camera_forward);
     } else {
       if (kHittable)
         deposit(throughput * lights.emission_along_ray(prev_position, prev_normal, ray.dir,
-                                                        found ? hit.t : kInfinity, prev_pdf, prev_delta),
+                                                       found ? passed_length + hit.t : kInfinity, prev_pdf, prev_delta,
+                                                       kGlass && prev_two_sided),
                 bounce == 1);
       if (!found) break;
     }
 
     // Textures: the material's inputs and its normal map at this hit, averaged over the pixel's
     // footprint (wider where the surface is seen at a grazing angle, capped at 4x).
-    path_length += hit.t;
+    path_length += passed_length + hit.t;
     const bool mixture = kMixtures && ctx.scene.mixture(hit.material);
     const bool textured = kTextures && (mixture || ctx.scene.material_textures(hit.material).any());
     const float cos_view = std::abs(glm::dot(ray.dir, hit.geometric_normal));
@@ -211,7 +277,9 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     const float cone_width = ctx.pixel_spread * path_length;  // the bump's step (Cycles' dP)
     Vec3 ns = textured ? ctx.scene.normal_mapped(hit.material, hit, n_smooth, footprint, cone_width) : n_smooth;
     const bool normal_mapped = textured && ns != n_smooth;
-    if (glm::dot(ng, wo_world) < 0.0f) {
+    const bool backfacing = glm::dot(ng, wo_world) < 0.0f;  // inside, for glass
+    const bool transmits = kGlass && bsdf.transmits();
+    if (backfacing) {
       ng = -ng;
       ns = -ns;
       n_smooth = -n_smooth;
@@ -221,14 +289,19 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     // Emissive surfaces emit from both faces; NEE samples them too (the mesh light).
     if (bounce == 0) {
       out.normal = ns;
-      out.albedo = material.base_color * (1.0f - material.metallic);
-      out.emission = material.emission;
+      // Diffuse colour (DiffCol): the diffuse lobe's weight, which glass takes away (Cycles' TransCol).
+      out.albedo = kGlass ? material.base_color * (material.glass_node ? 0.0f
+                                                                        : (1.0f - material.metallic) *
+                                                                              (1.0f - material.transmission))
+                          : material.base_color * (1.0f - material.metallic);
+      out.emission = kAlpha ? throughput * material.emission : material.emission;
       if (const float k = clamp_scale(out.emission, true); k < 1.0f) out.emission *= k;
     } else if (hit.emitter >= 0) {
       // An emissive triangle found by BSDF sampling: MIS against NEE's choice of it.
       const float mis = prev_delta ? 1.0f
                                    : power_heuristic(prev_pdf, lights.mesh_light_pdf(size_t(hit.emitter), prev_position,
-                                                                                     prev_normal, hit.position));
+                                                                                     prev_normal, hit.position,
+                                                                                     kGlass && prev_two_sided));
       deposit(throughput * material.emission * mis, bounce == 1);
     }
     if (bounce > ctx.settings.max_bounces) break;
@@ -240,17 +313,24 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     // BSDF sampling.
     const glm::vec4 u_light = sampler.next_4d();  // light choice, position on the light
     const glm::vec4 u_bsdf = sampler.next_4d();   // lobe, direction, roulette
-    const Lights::Choice choice = lights.select(hit.position, ns, u_light.x);
+    const Lights::Choice choice = lights.select(hit.position, ns, u_light.x, transmits);
     if (choice.probability > 0.0f) {
-      const LightSample ls = lights.sample(choice.index, hit.position, ns, Vec2(u_light.y, u_light.z));
-      if (ls.valid() && glm::dot(ls.wi, ng) > 0.0f) {
-        const Vec3 wi = frame.to_local(ls.wi);
-        LobeEval f = bsdf.eval_lobes(wo, wi);
+      const LightSample ls = lights.sample(choice.index, hit.position, ns, Vec2(u_light.y, u_light.z), transmits);
+      const Vec3 wi = frame.to_local(ls.wi);
+      const float cos_geometric = glm::dot(ls.wi, ng);
+      if (ls.valid() &&
+          (transmits ? cos_geometric != 0.0f && (cos_geometric > 0.0f) == (wi.z > 0.0f) : cos_geometric > 0.0f)) {
+        LobeEval f = bsdf.template eval_lobes<kGlass>(wo, wi, backfacing);
         if (normal_mapped) f.diffuse *= bump_shadowing(n_smooth, ns, ls.wi);
         if (max_component(f.total()) > 0.0f) {
-          if (!shadowed(ctx.scene, hit.position, ng, ls)) {
-            const float mis = ls.pdf > 0.0f ? power_heuristic(choice.probability * ls.pdf, bsdf.pdf(wo, wi)) : 1.0f;
+          const Vec3 transmittance = shadow_transmittance<kAlpha>(ctx.scene, hit.position, ng, ls,
+                                                                  ctx.settings.max_transparent_bounces);
+          if (max_component(transmittance) > 0.0f) {
+            const float mis = ls.pdf > 0.0f
+                                  ? power_heuristic(choice.probability * ls.pdf, bsdf.template pdf<kGlass>(wo, wi, backfacing))
+                                  : 1.0f;
             Vec3 light = throughput * ls.weight * (mis / choice.probability);
+            if (kAlpha) light *= transmittance;
             if (bounce == 0) {
               if (const float k = clamp_scale(light * f.total(), true); k < 1.0f) light *= k;
               out.diffuse_direct += light * f.diffuse;
@@ -264,18 +344,23 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     }
 
     // Continue the path by sampling the BSDF.
-    BsdfSample bs = bsdf.sample(wo, u_bsdf.x, Vec2(u_bsdf.y, u_bsdf.z));
+    BsdfSample bs = bsdf.template sample<kGlass>(wo, u_bsdf.x, Vec2(u_bsdf.y, u_bsdf.z), backfacing);
     if (!bs.valid()) break;
     const Vec3 wi_world = frame.to_world(bs.wi);
-    if (glm::dot(wi_world, ng) <= 0.0f) break;  // below the geometric surface: no transmission
+    const float cos_geometric = glm::dot(wi_world, ng);
+    if (transmits) {
+      if (cos_geometric == 0.0f || (cos_geometric > 0.0f) != (bs.wi.z > 0.0f)) break;
+    } else if (cos_geometric <= 0.0f) {
+      break;  // below the geometric surface: an opaque surface transmits nothing
+    }
     if (normal_mapped && !bs.is_delta) {
-      LobeEval f = bsdf.eval_lobes(wo, bs.wi);
+      LobeEval f = bsdf.template eval_lobes<kGlass>(wo, bs.wi, backfacing);
       f.diffuse *= bump_shadowing(n_smooth, ns, wi_world);
       bs.weight = f.total() / bs.pdf;
     }
     throughput *= bs.weight;
     if (kSplitLobes && bounce == 0 && !bs.is_delta) {
-      const LobeEval f = bsdf.eval_lobes(wo, bs.wi);
+      const LobeEval f = bsdf.template eval_lobes<kGlass>(wo, bs.wi, backfacing);
       const Vec3 total = f.total();
       for (int c = 0; c < 3; ++c) diffuse_share[c] = total[c] > 0.0f ? f.diffuse[c] / total[c] : 0.0f;
     }
@@ -293,6 +378,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
 
     prev_pdf = bs.pdf;
     prev_delta = bs.is_delta;
+    prev_two_sided = transmits;
     prev_normal = ns;
     ray.origin = offset_origin(hit.position, ng, wi_world);
     prev_position = ray.origin;
@@ -302,6 +388,22 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
   }
   return out;
 }
+
+using TraceFn = PathRadiance (*)(const PathContext&, Ray, SobolSampler&);
+// trace_path for every feature set: index bit 0 kHittable, 1 kSplitLobes, 2 kTextures, 3 kGlass, 4 kAlpha.
+template <size_t... I>
+constexpr std::array<TraceFn, sizeof...(I)> make_tracers(std::index_sequence<I...>) {
+  return {trace_path<bool(I & 4), bool(I & 2), bool(I & 1), bool(I & 8), bool(I & 16), false>...};
+}
+constexpr size_t kNumTracers = 32;
+constexpr std::array<TraceFn, kNumTracers> kTracers = make_tracers(std::make_index_sequence<kNumTracers>{});
+// Scenes with mixtures (their weights may vary over the surface: always textured; glass and alpha
+// checked at run time, mixtures being the slower path anyway): bit 0 kHittable, 1 kSplitLobes.
+template <size_t... I>
+constexpr std::array<TraceFn, sizeof...(I)> make_mixture_tracers(std::index_sequence<I...>) {
+  return {trace_path<true, bool(I & 2), bool(I & 1), true, true, true>...};
+}
+constexpr std::array<TraceFn, 4> kMixtureTracers = make_mixture_tracers(std::make_index_sequence<4>{});
 
 struct Tile {
   int x0, y0, x1, y1;
@@ -488,20 +590,17 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   const bool split_lobes =
       settings.passes & (kPassDiffuseDirect | kPassDiffuseIndirect | kPassGlossyDirect | kPassGlossyIndirect);
   const bool hittable = cscene.lights().any_hittable();
+  bool has_glass = false, has_alpha = false;
+  for (size_t i = 0; i < scene.num_materials(); ++i) {
+    has_glass |= scene.material(uint32_t(i)).transmits();
+    has_alpha |= scene.material(uint32_t(i)).alpha < 1.0f || scene.material_textures(uint32_t(i)).alpha >= 0;
+  }
   const bool has_mixtures = cscene.has_mixtures();  // a mixture's closures are built per hit
-  using TraceFn = PathRadiance (*)(const PathContext&, Ray, SobolSampler&);
-  static constexpr TraceFn kTracers[12] = {
-      trace_path<false, false, false, false>, trace_path<false, false, true, false>,
-      trace_path<false, true, false, false>,  trace_path<false, true, true, false>,
-      trace_path<true, false, false, false>,  trace_path<true, false, true, false>,
-      trace_path<true, true, false, false>,   trace_path<true, true, true, false>,
-      // With mixtures (their weights may vary over the surface: always textured).
-      trace_path<true, false, false, true>,   trace_path<true, false, true, true>,
-      trace_path<true, true, false, true>,    trace_path<true, true, true, true>};
   const int lobes_and_lights = (split_lobes << 1) | int(hittable);
-  const TraceFn trace = has_mixtures ? kTracers[8 + (settings.specialize ? lobes_and_lights : 3)]
-                        : settings.specialize ? kTracers[(has_textures << 2) | lobes_and_lights]
-                                              : kTracers[7];
+  const TraceFn trace =
+      has_mixtures          ? kMixtureTracers[settings.specialize ? lobes_and_lights : 3]
+      : settings.specialize ? kTracers[(has_alpha << 4) | (has_glass << 3) | (has_textures << 2) | lobes_and_lights]
+                            : kMixtureTracers[3];  // the generic path: every feature
 
   const std::array<int, 4> window = settings.window.value_or(std::array<int, 4>{0, 0, settings.width, settings.height});
   const bool adaptive = settings.adaptive_threshold > 0.0f;

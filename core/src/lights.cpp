@@ -367,25 +367,27 @@ bool Lights::any_hittable() const {
   return false;
 }
 
-float Lights::mesh_light_pdf(size_t triangle, const Vec3& p, const Vec3& n, const Vec3& q) const {
+float Lights::mesh_light_pdf(size_t triangle, const Vec3& p, const Vec3& n, const Vec3& q, bool two_sided) const {
   if (!mesh_) return 0.0f;
-  return selection_probability(lights_.size(), p, n) * mesh_->pdf(triangle, p, q);
+  return selection_probability(lights_.size(), p, n, two_sided) * mesh_->pdf(triangle, p, q);
 }
 
-float Lights::importance(size_t index, const Vec3& p, const Vec3& n) const {
+float Lights::importance(size_t index, const Vec3& p, const Vec3& n, bool two_sided) const {
   if (selection_ == LightSelection::Uniform) return 1.0f;
-  return visit(index, [&](const auto& light) { return light.importance(p, n); });
+  return visit(index, [&](const auto& light) {
+    return two_sided ? light.importance(p, n) + light.importance(p, -n) : light.importance(p, n);
+  });
 }
 
-Lights::Choice Lights::select(const Vec3& p, const Vec3& n, float u) const {
+Lights::Choice Lights::select(const Vec3& p, const Vec3& n, float u, bool two_sided) const {
   const size_t n_lights = count();
   if (n_lights == 1 && selection_ == LightSelection::Uniform) return {0, 1.0f};
   constexpr size_t kCached = 64;
   float cached[kCached];
-  auto weight = [&](size_t i) { return i < kCached ? cached[i] : importance(i, p, n); };
+  auto weight = [&](size_t i) { return i < kCached ? cached[i] : importance(i, p, n, two_sided); };
   float total = 0.0f;
   for (size_t i = 0; i < n_lights; ++i) {
-    const float w = importance(i, p, n);
+    const float w = importance(i, p, n, two_sided);
     if (i < kCached) cached[i] = w;
     total += w;
   }
@@ -403,21 +405,25 @@ Lights::Choice Lights::select(const Vec3& p, const Vec3& n, float u) const {
   return {last_positive, weight(last_positive) / total};  // rounding left the target at the end
 }
 
-float Lights::selection_probability(size_t index, const Vec3& p, const Vec3& n) const {
+float Lights::selection_probability(size_t index, const Vec3& p, const Vec3& n, bool two_sided) const {
   float total = 0.0f;
-  for (size_t i = 0, n_lights = count(); i < n_lights; ++i) total += importance(i, p, n);
-  return total > 0.0f ? importance(index, p, n) / total : 0.0f;
+  for (size_t i = 0, n_lights = count(); i < n_lights; ++i) total += importance(i, p, n, two_sided);
+  return total > 0.0f ? importance(index, p, n, two_sided) / total : 0.0f;
 }
 
-LightSample Lights::sample(size_t index, const Vec3& p, const Vec3& shading_normal, const Vec2& u) const {
-  return visit(index, [&](const auto& light) { return light.sample(p, shading_normal, u); });
+LightSample Lights::sample(size_t index, const Vec3& p, const Vec3& shading_normal, const Vec2& u,
+                           bool two_sided) const {
+  const LightSample s = visit(index, [&](const auto& light) { return light.sample(p, shading_normal, u); });
+  // Only the world's map rejects directions below the normal: the same u seen from the other side.
+  if (two_sided && !s.valid() && index + 1 == count() && world_in_nee()) return world_.sample(p, -shading_normal, u);
+  return s;
 }
 
-Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max,
-                                float bsdf_pdf, bool bsdf_delta) const {
+Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max, float bsdf_pdf,
+                                bool bsdf_delta, bool two_sided) const {
   Vec3 L(0.0f);
   auto add = [&](size_t index, const LightHit& h, bool in_nee) {
-    const float nee_pdf = in_nee ? selection_probability(index, p_prev, n_prev) * h.pdf : 0.0f;
+    const float nee_pdf = in_nee ? selection_probability(index, p_prev, n_prev, two_sided) * h.pdf : 0.0f;
     L += h.radiance * (bsdf_delta ? 1.0f : power_heuristic(bsdf_pdf, nee_pdf));
   };
   for (size_t i = 0; i < lights_.size(); ++i) {

@@ -23,12 +23,14 @@ void MixtureBsdf::add(const Component& c, float w, float sampling_albedo) {
   for (int k = 0; k < count_; ++k) probabilities_[k] = sampling_[k] / sum;
 }
 
-LobeEval MixtureBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
+LobeEval MixtureBsdf::eval_mixture(const Vec3& wo, const Vec3& wi, bool backfacing) const {
   LobeEval total;
   for (int k = 0; k < count_; ++k) {
     const LobeEval f = std::visit(
         [&](const auto& b) -> LobeEval {
           if constexpr (std::is_same_v<std::decay_t<decltype(b)>, std::monostate>) return {};
+          else if constexpr (std::is_same_v<std::decay_t<decltype(b)>, MaterialBsdf>)
+            return b.eval_lobes(wo, wi, backfacing);
           else return b.eval_lobes(wo, wi);
         },
         components_[k]);
@@ -38,19 +40,21 @@ LobeEval MixtureBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
   return total;
 }
 
-float MixtureBsdf::pdf(const Vec3& wo, const Vec3& wi) const {
+float MixtureBsdf::pdf_mixture(const Vec3& wo, const Vec3& wi, bool backfacing) const {
   float p = 0.0f;
   for (int k = 0; k < count_; ++k)
     p += probabilities_[k] * std::visit(
                                  [&](const auto& b) -> float {
                                    if constexpr (std::is_same_v<std::decay_t<decltype(b)>, std::monostate>) return 0.0f;
+                                   else if constexpr (std::is_same_v<std::decay_t<decltype(b)>, MaterialBsdf>)
+                                     return b.pdf(wo, wi, backfacing);
                                    else return b.pdf(wo, wi);
                                  },
                                  components_[k]);
   return p;
 }
 
-BsdfSample MixtureBsdf::sample(const Vec3& wo, float u_lobe, const Vec2& u) const {
+BsdfSample MixtureBsdf::sample_mixture(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing) const {
   if (count_ == 0) return {};
   // Choose closure k, and reuse what is left of u_lobe for the closure's own lobe choice.
   int k = 0;
@@ -60,6 +64,8 @@ BsdfSample MixtureBsdf::sample(const Vec3& wo, float u_lobe, const Vec2& u) cons
   const BsdfSample s = std::visit(
       [&](const auto& b) -> BsdfSample {
         if constexpr (std::is_same_v<std::decay_t<decltype(b)>, std::monostate>) return {};
+        else if constexpr (std::is_same_v<std::decay_t<decltype(b)>, MaterialBsdf>)
+          return b.sample(wo, std::max(u_rest, 0.0f), u, backfacing);
         else return b.sample(wo, std::max(u_rest, 0.0f), u);
       },
       components_[k]);
@@ -76,10 +82,16 @@ BsdfSample MixtureBsdf::sample(const Vec3& wo, float u_lobe, const Vec2& u) cons
   }
   BsdfSample m;
   m.wi = s.wi;
-  m.pdf = pdf(wo, s.wi);
+  m.pdf = pdf_mixture(wo, s.wi, backfacing);
   if (!(m.pdf > 0.0f)) return {};
-  m.weight = eval(wo, s.wi) / m.pdf;
+  m.weight = eval_mixture(wo, s.wi, backfacing).total() / m.pdf;
   return m;
+}
+
+bool MixtureBsdf::transmits() const {
+  for (int k = 0; k < count_; ++k)
+    if (const auto* m = std::get_if<MaterialBsdf>(&components_[k]); m && m->transmits()) return true;
+  return false;
 }
 
 MixtureBsdf shade_material(const Scene& scene, uint32_t id, const Vec2& uv, float footprint, bool textured,

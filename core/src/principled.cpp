@@ -19,7 +19,11 @@ PrincipledBsdf::PrincipledBsdf(const Material& m) {
   const float metallic = clamp01(m.metallic);
   roughness_ = clamp01(m.roughness);
   alpha_ = roughness_ * roughness_;
-  diffuse_color_ = (1.0f - metallic) * base;
+  // Transmission (Cycles 3.4): the diffuse lobe keeps (1 - metallic)(1 - transmission), the
+  // specular lobe 1 - transmission (1 - metallic); the rest is glass (MaterialBsdf, glass.h).
+  const float transmission = clamp01(m.transmission);
+  diffuse_color_ = (1.0f - metallic) * (1.0f - transmission) * base;
+  specular_weight_ = 1.0f - transmission * (1.0f - metallic);
   f0_ = std::min(0.08f * std::max(m.specular, 0.0f), 0.99f);
   const float sqrt_f0 = std::sqrt(f0_);
   eta_ = 2.0f / (1.0f - sqrt_f0) - 1.0f;
@@ -30,10 +34,10 @@ PrincipledBsdf::PrincipledBsdf(const Material& m) {
 }
 
 Vec3 PrincipledBsdf::fresnel(float cos_ih) const {
-  if (f0_ <= 0.0f) return cspec0_;
+  if (f0_ <= 0.0f) return specular_weight_ * cspec0_;
   // Clamped: at normal incidence rounding makes F_dielectric - F0 a tiny negative number.
   const float fh = clamp01((fresnel_dielectric(cos_ih, eta_) - f0_) / (1.0f - f0_));
-  return cspec0_ * (1.0f - fh) + Vec3(fh);
+  return specular_weight_ * (cspec0_ * (1.0f - fh) + Vec3(fh));
 }
 
 float PrincipledBsdf::specular_probability(const Vec3& wo) const {

@@ -215,7 +215,15 @@ void check_material(const Material& m) {
   if (m.metallic < 0.0f || m.metallic > 1.0f || m.roughness < 0.0f || m.roughness > 1.0f)
     throw std::invalid_argument("material metallic and roughness must lie in [0, 1]");
   if (m.specular < 0.0f) throw std::invalid_argument("material specular must be >= 0");
-  if (m.ior <= 0.0f) throw std::invalid_argument("material ior must be > 0");
+  if (!std::isfinite(m.transmission) || !std::isfinite(m.transmission_roughness) || !std::isfinite(m.ior))
+    throw std::invalid_argument("material transmission, transmission_roughness and ior must be finite");
+  if (m.transmission < 0.0f || m.transmission > 1.0f || m.transmission_roughness < 0.0f ||
+      m.transmission_roughness > 1.0f)
+    throw std::invalid_argument("material transmission and transmission_roughness must lie in [0, 1]");
+  if (!(m.ior > 0.0f) || m.ior > 1000.0f) throw std::invalid_argument("material ior must lie in (0, 1000]");
+  if (!std::isfinite(m.alpha) || !is_finite(m.transparent_color))
+    throw std::invalid_argument("material alpha and transparent_color must be finite");
+  if (m.alpha < 0.0f || m.alpha > 1.0f) throw std::invalid_argument("material alpha must lie in [0, 1]");
   if (glm::any(glm::lessThan(m.specular_tint_color, Vec3(0.0f))))
     throw std::invalid_argument("material specular_tint_color must be >= 0");
 }
@@ -224,7 +232,7 @@ uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures
   std::lock_guard<std::mutex> lock(mutex_);
   check_idle("add a material");
   for (int id : {textures.base_color, textures.metallic, textures.roughness, textures.emission, textures.normal,
-                 textures.bump})
+                 textures.bump, textures.alpha})
     if (id < -1 || id >= int(textures_.size()))
       throw std::invalid_argument("material uses texture " + std::to_string(id) + " but the scene has " +
                                   std::to_string(textures_.size()) + " textures");
@@ -235,6 +243,7 @@ uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures
   Material clean = m;
   clean.base_color = glm::clamp(m.base_color, Vec3(0.0f), Vec3(1.0f));
   clean.emission = glm::max(m.emission, Vec3(0.0f));
+  clean.transparent_color = glm::clamp(m.transparent_color, Vec3(0.0f), Vec3(1.0f));
   materials_.push_back(clean);
   material_textures_.push_back(textures);
   mixture_index_.push_back(-1);

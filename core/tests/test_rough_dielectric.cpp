@@ -5,6 +5,7 @@
 
 #include "torrance/principled.h"
 
+#include "dielectric_charts.h"
 #include "test_helpers.h"
 
 #include <gtest/gtest.h>
@@ -17,84 +18,9 @@
 namespace torrance {
 namespace {
 
-// Refraction of wo through the macro surface (the centre of the transmission lobe); -wo under TIR.
-Vec3 refracted_centre(const Vec3& wo, float ior) {
-  const float side = wo.z > 0.0f ? 1.0f : -1.0f, etap = wo.z > 0.0f ? ior : 1.0f / ior;
-  const float c = std::abs(wo.z), sin2_t = (1.0f - c * c) / (etap * etap);
-  if (sin2_t >= 1.0f) return -wo;
-  return glm::normalize(-wo / etap + (c / etap - std::sqrt(1.0f - sin2_t)) * Vec3(0, 0, side));
-}
-
-// Two charts cover the sphere: directions on wo's side are binned around the mirror direction,
-// directions on the other side around the refracted direction. In each, the angle t from the
-// centre maps to s = t / (t + scale) (so a lobe of any width spans many bins) and the azimuth
-// is uniform. Bin k of chart c is index c * kBins + k; the last index collects samples without a
-// density (delta or rejected).
-constexpr int kThetaBins = 20, kPhiBins = 24, kBins = kThetaBins * kPhiBins;
-
-struct Charts {
-  Frame frame[2];
-  float scale[2];
-  float side;  // sign of wo.z: chart 0 holds directions with z * side > 0
-
-  Charts(const Vec3& wo, float ior, float alpha) : side(wo.z > 0.0f ? 1.0f : -1.0f) {
-    const float etap = wo.z > 0.0f ? ior : 1.0f / ior;
-    frame[0] = Frame(Vec3(-wo.x, -wo.y, wo.z));
-    frame[1] = Frame(refracted_centre(wo, ior));
-    scale[0] = std::max(2.0f * alpha, 2e-3f);
-    scale[1] = std::max(2.0f * alpha * std::abs(etap - 1.0f) / etap, 2e-5f);
-  }
-  int chart_of(const Vec3& w) const { return w.z * side > 0.0f ? 0 : 1; }
-  int bin_of(const Vec3& w) const {
-    const int c = chart_of(w);
-    const Vec3 l = frame[c].to_local(w);
-    const float t = std::atan2(std::sqrt(l.x * l.x + l.y * l.y), l.z);
-    const float s = t / (t + scale[c]);
-    float phi = std::atan2(l.y, l.x);
-    if (phi < 0) phi += kTwoPi;
-    const int i = std::min(int(s * kThetaBins), kThetaBins - 1);
-    const int j = std::min(int(phi / kTwoPi * kPhiBins), kPhiBins - 1);
-    return c * kBins + i * kPhiBins + j;
-  }
-  // Integral of fn over bin (i, j) of chart c, restricted to the chart's side, midpoint rule with
-  // sub x sub cells in (s, phi) and the Jacobian of t(s).
-  template <typename Fn>
-  double integrate(int c, int i, int j, int sub, Fn fn) const {
-    double sum = 0.0;
-    for (int a = 0; a < sub; ++a)
-      for (int b = 0; b < sub; ++b) {
-        const double s = (i + (a + 0.5) / sub) / kThetaBins;
-        const double phi = (j + (b + 0.5) / sub) / kPhiBins * 2 * M_PI;
-        const double t = scale[c] * s / (1.0 - s);
-        if (t >= M_PI) continue;
-        const double dt_ds = scale[c] / ((1.0 - s) * (1.0 - s));
-        const Vec3 l(float(std::sin(t) * std::cos(phi)), float(std::sin(t) * std::sin(phi)), float(std::cos(t)));
-        const Vec3 w = frame[c].to_world(l);
-        if (chart_of(w) != c) continue;
-        sum += double(fn(w)) * std::sin(t) * dt_ds;
-      }
-    return sum * (1.0 / kThetaBins) * (2 * M_PI / kPhiBins) / (sub * sub);
-  }
-  // Per-bin integrals of fn, refined to 64 x 64 where 8 x 8 and 16 x 16 disagree.
-  template <typename Fn>
-  std::vector<double> integrate_all(Fn fn) const {
-    std::vector<double> out(2 * kBins, 0.0);
-    for (int c = 0; c < 2; ++c)
-      for (int i = 0; i < kThetaBins; ++i)
-        for (int j = 0; j < kPhiBins; ++j) {
-          const double coarse = integrate(c, i, j, 8, fn), fine = integrate(c, i, j, 16, fn);
-          out[c * kBins + i * kPhiBins + j] = std::abs(fine - coarse) > 1e-3 * std::abs(fine) + 1e-8
-                                                  ? integrate(c, i, j, 64, fn)
-                                                  : fine;
-        }
-    return out;
-  }
-};
-
-double p_value(double x, int dof) {  // chi-square upper tail (Wilson-Hilferty)
-  const double k = dof, z = (std::cbrt(x / k) - (1.0 - 2.0 / (9.0 * k))) / std::sqrt(2.0 / (9.0 * k));
-  return 0.5 * std::erfc(z / std::sqrt(2.0));
-}
+using test::Charts;
+using test::kBins;
+using test::p_value;
 
 struct Case {
   float roughness, ior, cos_o;

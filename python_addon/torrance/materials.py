@@ -7,10 +7,14 @@ output node (the output Cycles would use):
 
 * Principled BSDF: the sockets Base Color, Metallic, Roughness, Specular,
   Emission and Emission Strength, and Normal (from a tangent-space Normal Map);
+  v1's Transmission, IOR and Transmission Roughness (glass, as Cycles 3.4);
+  Alpha (a value, or an Image Texture's Alpha output: the image's alpha channel);
   Blender 4.x's Principled v2 by its names (Specular IOR Level with IOR, Emission
   Color; _PRINCIPLED_SOCKETS) and, for the PRINCIPLED_V2 model, its IOR, Specular Tint
   colour and distribution (Multiscatter GGX or GGX);
 * Diffuse BSDF: a pure diffuse material (specular 0);
+* Glass BSDF: Color, Roughness, IOR (GGX or Beckmann; Sharp is roughness 0);
+* Transparent BSDF: Color (rays pass straight through, tinted);
 * Emission: a black emitter;
 * Mix Shader / Add Shader trees of Principled, Diffuse, Glossy BSDF and Emission (and a lone
   Glossy BSDF): a mixture of closures (mixtures.py), its Fac a constant, an Image Texture or a
@@ -70,8 +74,6 @@ _IGNORED_PRINCIPLED_INPUTS = {
         ("Anisotropic", 0.0),
         ("Sheen", 0.0),
         ("Clearcoat", 0.0),
-        ("Transmission", 0.0),
-        ("Alpha", 1.0),
     ),
     'v2': (
         ("Subsurface Weight", 0.0),
@@ -81,9 +83,13 @@ _IGNORED_PRINCIPLED_INPUTS = {
         ("Transmission Weight", 0.0),
         ("Thin Film Thickness", 0.0),
         ("Diffuse Roughness", 0.0),
-        ("Alpha", 1.0),
     ),
 }
+
+
+# Blender's names of the microfacet distributions Torrance renders as GGX.
+_DISTRIBUTIONS = {'MULTI_GGX': "Multiscatter GGX", 'BECKMANN': "Beckmann",
+                  'ASHIKHMIN_SHIRLEY': "Ashikhmin-Shirley"}
 
 
 def principled_version(node):
@@ -307,12 +313,13 @@ class MaterialReader:
         value, _texture = self._socket_input(mat, node, name, fallback, textures=False)
         return value
 
-    def _socket_input(self, mat, node, name, fallback, textures=True):
+    def _socket_input(self, mat, node, name, fallback, textures=True, image_output="Color"):
         """(value, texture id or -1) of input `name` of `node`.
 
         The value is the socket's default or a constant node's; the texture, when `textures`,
-        comes from an Image Texture node linked to the socket (the value then stays the
-        socket's default, used when the image can not be loaded).
+        comes from an Image Texture node linked to the socket by its `image_output` (Color, or
+        Alpha for Alpha sockets; the value then stays the socket's default, used when the image
+        can not be loaded).
         """
         socket = node.inputs.get(name)
         if socket is None:
@@ -329,7 +336,8 @@ class MaterialReader:
         if src_node.type in _CONSTANT_NODES:
             return source.default_value, -1
         if textures and src_node.bl_idname == 'ShaderNodeTexImage':
-            tid = self._image_node(mat, src_node, source, f"input '{name}' of {node_label(node)}")
+            tid = self._image_node(mat, src_node, source, f"input '{name}' of {node_label(node)}",
+                                   image_output)
             return socket.default_value, (-1 if tid is None else tid)
         self.reporter.warning(
             f"Material '{mat.name}': input '{name}' of {node_label(node)} is linked to "
@@ -337,16 +345,20 @@ class MaterialReader:
             f"socket's own value")
         return socket.default_value, -1
 
-    def _image_node(self, mat, node, output, where):
-        """The texture id of an Image Texture node feeding `where` (None when unusable)."""
+    def _image_node(self, mat, node, output, where, expected="Color"):
+        """The texture id of an Image Texture node feeding `where` by its `expected` output
+        (None when unusable)."""
         what = f"Material '{mat.name}': {node_label(node)} (feeding {where})"
-        if output.identifier != "Color":
-            self.reporter.warning(f"{what}: only the Color output of an Image Texture is "
-                                  f"supported, not '{output.name}'; using the socket's own value")
+        if output.identifier != expected:
+            self.reporter.warning(f"{what}: only the {expected} output of an Image Texture is "
+                                  f"supported here, not '{output.name}'; using the socket's own "
+                                  f"value")
             return None
         if node.image is None:
             self.reporter.warning(f"{what} has no image; using the socket's own value")
             return None
+        if expected == "Alpha" and node.image.alpha_mode == 'NONE':
+            return None           # Blender's Alpha output is then 1: the socket's own value
         if node.projection != 'FLAT':
             self.reporter.warning(f"{what}: {node.projection.lower()} projection is not supported; "
                                   f"using flat UV mapping")
@@ -409,6 +421,10 @@ class MaterialReader:
             return self._principled(mat, node)
         if kind == 'ShaderNodeBsdfDiffuse':
             return self._diffuse(mat, node)
+        if kind == 'ShaderNodeBsdfGlass':
+            return self._glass(mat, node)
+        if kind == 'ShaderNodeBsdfTransparent':
+            return self._transparent(mat, node)
         if kind == 'ShaderNodeEmission':
             return self._emission(mat, node)
         if kind in MIXTURE_SURFACES:
@@ -418,7 +434,8 @@ class MaterialReader:
             return dict(mixture=mixture)
         return self._neutral(
             mat, f"the surface shader {node_label(node)} is not supported (Torrance reads "
-                 f"Principled BSDF, Diffuse BSDF, Glossy BSDF, Emission, Mix and Add Shader)")
+                 f"Principled BSDF, Diffuse BSDF, Glossy BSDF, Glass BSDF, Transparent BSDF, "
+                 f"Emission, Mix and Add Shader)")
 
     def _principled(self, mat, node):
         d = DEFAULT_MATERIAL
@@ -430,8 +447,10 @@ class MaterialReader:
         metallic, metallic_tex = t(mat, node, "Metallic", d['metallic'])
         roughness, roughness_tex = t(mat, node, "Roughness", d['roughness'])
         emission, emission_tex = t(mat, node, names['emission'], d['emission'])
+        alpha, alpha_tex = t(mat, node, "Alpha", 1.0, image_output="Alpha")
         specular = _finite_or(v(mat, node, names['specular'], d['specular']), d['specular'])
         v2_inputs = {}
+        glass = {}
         if version == 'v2':
             ior = _finite_or(v(mat, node, "IOR", 1.5), 1.5)
             ior = ior if ior > 0.0 else 1.5
@@ -443,6 +462,7 @@ class MaterialReader:
         else:
             specular_tint = _clamp(_finite_or(v(mat, node, names['specular_tint'], 0.0), 0.0),
                                    0.0, 1.0)
+            glass = self._principled_glass(mat, node)
         out = dict(
             base_color=_color3(base, d['base_color']),
             metallic=_clamp(_finite_or(metallic, d['metallic']), 0.0, 1.0),
@@ -454,7 +474,11 @@ class MaterialReader:
             base_color_texture=base_tex, metallic_texture=metallic_tex,
             roughness_texture=roughness_tex, emission_texture=emission_tex,
             **v2_inputs,
+            **glass,
         )
+        alpha = _clamp(_finite_or(alpha, 1.0), 0.0, 1.0)
+        if alpha < 1.0 or alpha_tex >= 0:
+            out.update(alpha=alpha, alpha_texture=alpha_tex)
         ignored = []
         for name, neutral in _IGNORED_PRINCIPLED_INPUTS[version]:
             socket = node.inputs.get(name)
@@ -477,6 +501,55 @@ class MaterialReader:
                    base_color_texture=tex)
         out.update(read_normal_input(self, mat, node))
         return _sanitize(out)
+
+    def _principled_glass(self, mat, node):
+        """add_material() glass arguments of a v1 Principled BSDF ({} without transmission)."""
+        v = self._socket_value
+        transmission = _clamp(_finite_or(v(mat, node, "Transmission", 0.0), 0.0), 0.0, 1.0)
+        if transmission == 0.0:
+            return {}
+        if getattr(node, "distribution", 'GGX') != 'GGX':
+            # Cycles 3.4 renders rough (> 0.05) transmission of Multiscatter GGX as its
+            # multiple-scattering glass, brighter than single-scattering GGX.
+            self.reporter.warning(f"Material '{mat.name}': the transmission of {node_label(node)} "
+                                  f"uses {_DISTRIBUTIONS.get(node.distribution, node.distribution)}"
+                                  f"; Torrance renders GGX")
+        return dict(transmission=transmission, ior=self._ior(mat, node, 1.45),
+                    transmission_roughness=_clamp(
+                        _finite_or(v(mat, node, "Transmission Roughness", 0.0), 0.0), 0.0, 1.0))
+
+    def _ior(self, mat, node, fallback):
+        """The IOR socket of `node`, as Cycles uses it (max(IOR, 1e-5)); at most 1000."""
+        ior = _finite_or(self._socket_value(mat, node, "IOR", fallback), fallback)
+        return _clamp(ior, 1e-5, 1000.0)
+
+    def _glass(self, mat, node):
+        """Glass BSDF: Color (or an Image Texture), Roughness, IOR; GGX or Beckmann (Sharp =
+        roughness 0; Multiscatter GGX is reported and rendered as GGX)."""
+        d = DEFAULT_MATERIAL
+        color, tex = self._socket_input(mat, node, "Color", (1.0, 1.0, 1.0))
+        roughness = _clamp(_finite_or(self._socket_value(mat, node, "Roughness", 0.0), 0.0),
+                           0.0, 1.0)
+        distribution = getattr(node, "distribution", 'GGX')
+        if distribution == 'SHARP':
+            roughness = 0.0
+        elif distribution not in ('GGX', 'BECKMANN'):
+            self.reporter.warning(f"Material '{mat.name}': {node_label(node)} uses "
+                                  f"{_DISTRIBUTIONS.get(distribution, distribution)}; Torrance "
+                                  f"renders GGX")
+        out = dict(d, base_color=_color3(color, (1.0, 1.0, 1.0)), metallic=0.0, specular=0.0,
+                   roughness=roughness, glass=True, transmission=1.0,
+                   glass_distribution='BECKMANN' if distribution == 'BECKMANN' else 'GGX',
+                   ior=self._ior(mat, node, 1.45), base_color_texture=tex)
+        out.update(read_normal_input(self, mat, node))
+        return _sanitize(out)
+
+    def _transparent(self, mat, node):
+        """Transparent BSDF: every ray passes straight through, tinted by Color."""
+        color = _color3(self._socket_value(mat, node, "Color", (1.0, 1.0, 1.0)), (1.0, 1.0, 1.0))
+        return _sanitize(dict(DEFAULT_MATERIAL, base_color=(0.0, 0.0, 0.0), specular=0.0,
+                              alpha=0.0, transparent_color=tuple(_clamp(c, 0.0, 1.0)
+                                                                 for c in color)))
 
     def _emission(self, mat, node):
         d = DEFAULT_MATERIAL
@@ -518,7 +591,7 @@ def _sanitize(m):
 
 
 _TEXTURE_KEYS = ('base_color_texture', 'metallic_texture', 'roughness_texture',
-                 'emission_texture', 'normal_texture', 'bump_texture')
+                 'emission_texture', 'normal_texture', 'bump_texture', 'alpha_texture')
 
 
 def uses_textures(m):

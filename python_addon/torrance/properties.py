@@ -83,6 +83,13 @@ class TorranceSceneSettings(bpy.types.PropertyGroup):
                     "0 gives direct lighting only",
         default=8, min=0, max=1024, soft_max=64,
     )
+    transparent_max_bounces: IntProperty(
+        name="Transparent",
+        description="Maximum number of surfaces with alpha (or Transparent BSDF) a ray passes "
+                    "straight through, as Cycles' Transparent bounces; they do not count as "
+                    "bounces",
+        default=8, min=0, max=1024, soft_max=64,
+    )
     seed: IntProperty(
         name="Seed",
         description="Seed of the random sequences; renders with the same seed and settings "

@@ -251,6 +251,7 @@ def _render(engine, depsgraph, reporter):
     settings = tc.RenderSettings(
         width=width, height=height,
         samples=int(ts.samples), max_bounces=int(ts.max_bounces), seed=int(ts.seed),
+        max_transparent_bounces=int(ts.transparent_max_bounces),
         pixel_aspect_x=float(rd.pixel_aspect_x), pixel_aspect_y=float(rd.pixel_aspect_y),
         filter_width=float(ts.filter_width),
         transparent_background=bool(rd.film_transparent),

@@ -256,6 +256,7 @@ class TORRANCE_RENDER_PT_light_paths(TorrancePanel, Panel):
     def draw(self, context):
         layout = _split(self.layout)
         layout.prop(context.scene.torrance, "max_bounces")
+        layout.prop(context.scene.torrance, "transparent_max_bounces")
 
 
 class TORRANCE_RENDER_PT_light_paths_clamping(TorrancePanel, Panel):
@@ -355,10 +356,11 @@ class TORRANCE_MATERIAL_PT_compatibility(TorrancePanel, Panel):
 
     def draw(self, context):
         layout = self.layout
-        _note(layout, "Torrance reads the Principled BSDF (or a Diffuse BSDF, Glossy BSDF or "
-                      "Emission, or Mix and Add Shaders of them) feeding the Material Output: "
-                      "base colour, metallic, roughness, specular, specular tint, emission, "
-                      "image textures on them, a tangent-space normal map or a Bump node")
+        _note(layout, "Torrance reads the Principled BSDF (or a Diffuse, Glossy, Glass or "
+                      "Transparent BSDF, or Emission, or Mix and Add Shaders of them) feeding the "
+                      "Material Output: base colour, metallic, roughness, specular, specular tint, "
+                      "emission, transmission and IOR, alpha (an image's alpha), image textures on "
+                      "them, a tangent-space normal map or a Bump node")
         _messages(layout, material_messages(context.material),
                   ok_text="Torrance renders this material as it is")
 

@@ -10,7 +10,9 @@
 //    only; a delta lobe has no density and is never returned by eval or pdf).
 //  * sample() returns weight = eval / pdf for continuous lobes, and the delta lobe's weight
 //    (its reflectance) for a delta direction.
-//  * Reflection only: eval and pdf are 0 unless wo.z > 0 and wi.z > 0.
+//  * Reflection only: eval and pdf are 0 unless wo.z > 0 and wi.z > 0 -- except glass (glass.h),
+//    whose frame's z is the outward normal and whose lobes also refract; MaterialBsdf combines
+//    both (material_bsdf.h).
 #pragma once
 
 #include "torrance/math.h"
@@ -35,9 +37,24 @@ struct Material {
   // PRINCIPLED_V2 only (Blender 4.x's Principled inputs): the IOR input (with `specular` =
   // Specular IOR Level * F0(ior) / 0.04, so that F0 = 0.08 specular holds for every model), the
   // Specular Tint colour, and the node's distribution (Multiscatter GGX, or GGX when false).
-  float ior = 1.5f;
+  // The IOR input, also glass's (of the inside, > 0): Blender 3.4's default 1.45 (4.x: 1.5).
+  float ior = 1.45f;
   Vec3 specular_tint_color{1.0f};
   bool multiscatter_ggx = true;
+  // Glass (glass.h): Principled Transmission (the share (1 - metallic) transmission of the
+  // surface is glass: reflection untinted, refraction tinted by base_color, refraction roughness
+  // 1 - (1 - roughness)(1 - transmission_roughness)), or Blender's Glass BSDF node (glass_node:
+  // all glass, both lobes tinted by base_color, one roughness). ior: of the inside, > 0.
+  float transmission = 0.0f;
+  float transmission_roughness = 0.0f;
+  bool glass_node = false;
+  bool glass_beckmann = false;  // the Glass node with the Beckmann distribution (else GGX)
+  bool transmits() const { return glass_node || (transmission > 0.0f && metallic < 1.0f); }
+  // Transparency (the integrator, as Cycles' Transparent BSDF): with probability 1 - alpha a ray
+  // goes straight through, tinted by transparent_color, and shadow rays are attenuated by
+  // (1 - alpha) transparent_color. Principled Alpha: alpha, white; Transparent BSDF: alpha 0, its Color.
+  float alpha = 1.0f;
+  Vec3 transparent_color{1.0f};
 };
 
 // eval() split by lobe, for Blender's diffuse and glossy light passes.

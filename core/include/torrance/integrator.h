@@ -21,7 +21,7 @@ namespace torrance {
 enum Pass : uint32_t {
   kPassDepth = 1u << 0,             // distance from the camera plane (1e10 for the background)
   kPassNormal = 1u << 1,            // world-space shading normal at the first hit
-  kPassAlbedo = 1u << 2,            // diffuse colour at the first hit: base colour * (1 - metallic)
+  kPassAlbedo = 1u << 2,            // diffuse colour at the first hit: base colour (1 - metallic)(1 - transmission)
   kPassDiffuseDirect = 1u << 3,     // light reflected by the first hit's diffuse lobe, one bounce
   kPassDiffuseIndirect = 1u << 4,   // ... more bounces
   kPassGlossyDirect = 1u << 5,      // the same for the specular lobe
@@ -44,6 +44,7 @@ struct RenderSettings {
   int width = 640, height = 480;  // the full frame, in pixels
   int samples = 64;               // per pixel
   int max_bounces = 8;            // 0 = direct light only
+  int max_transparent_bounces = 8;  // surfaces passed straight through (alpha) per segment, as Cycles' Transparent
   uint32_t seed = 0;
   float pixel_aspect_x = 1.0f, pixel_aspect_y = 1.0f;
   float filter_width = 1.5f;      // Blackman-Harris, in pixels (Cycles' default)
@@ -56,7 +57,7 @@ struct RenderSettings {
   LightSelection light_selection = LightSelection::Contribution;
   bool sobol = true;       // Owen-scrambled Sobol samples; false: independent random numbers
   bool specialize = true;  // compile-time paths for what the scene lacks (textures, passes, hittable
-                           // lights) and no light choice when there is one light; false: generic path
+                           // lights, glass) and no light choice when there is one light; false: generic path
   // Optional window [x0, x1) x [y0, y1) of the frame to render, y counted from the top row.
   std::optional<std::array<int, 4>> window;
   int threads = 0;  // 0 = all cores

@@ -121,7 +121,7 @@ class Lights {
   // Emissive triangles (replaces any previous set); nullopt removes them.
   void set_mesh_light(std::optional<MeshLight> emitters) { mesh_ = std::move(emitters); }
   // MIS density of NEE producing point q on emissive triangle `triangle` from (p, n).
-  float mesh_light_pdf(size_t triangle, const Vec3& p, const Vec3& n, const Vec3& q) const;
+  float mesh_light_pdf(size_t triangle, const Vec3& p, const Vec3& n, const Vec3& q, bool two_sided = false) const;
   size_t num_emissive_triangles() const { return mesh_ ? mesh_->size() : 0; }
 
   // The NEE strategies: each light in the order added, the emissive triangles (as one), then the
@@ -134,17 +134,19 @@ class Lights {
     size_t index = 0;
     float probability = 0.0f;  // 0: no light can contribute here
   };
-  // Chooses the light for NEE at point p with shading normal n.
-  Choice select(const Vec3& p, const Vec3& n, float u) const;
-  float selection_probability(size_t index, const Vec3& p, const Vec3& n) const;
+  // Chooses the light for NEE at point p with shading normal n. two_sided: the surface also
+  // transmits (glass), so lights behind it count too (the same flag for all four calls).
+  Choice select(const Vec3& p, const Vec3& n, float u, bool two_sided = false) const;
+  float selection_probability(size_t index, const Vec3& p, const Vec3& n, bool two_sided = false) const;
 
-  LightSample sample(size_t index, const Vec3& p, const Vec3& shading_normal, const Vec2& u) const;
+  LightSample sample(size_t index, const Vec3& p, const Vec3& shading_normal, const Vec2& u,
+                     bool two_sided = false) const;
 
   // Radiance, MIS-weighted against NEE, that a BSDF-sampled ray leaving p_prev (where NEE used
   // shading normal n_prev) receives from lights it passes before distance t_max (infinite if
   // the ray escaped): spheres, area lights and, if escaped, the world and visible suns.
   Vec3 emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max, float bsdf_pdf,
-                          bool bsdf_delta) const;
+                          bool bsdf_delta, bool two_sided = false) const;
 
   // False when no BSDF-sampled ray can ever see a light (only delta lights, no world or
   // emitting shapes), so emission_along_ray can be skipped.
@@ -163,7 +165,7 @@ class Lights {
   }
   // Unnormalised selection weight of light `index` at (p, n): its unshadowed irradiance there,
   // bounded above so that lights partly above the horizon keep a chance.
-  float importance(size_t index, const Vec3& p, const Vec3& n) const;
+  float importance(size_t index, const Vec3& p, const Vec3& n, bool two_sided = false) const;
 
   std::vector<std::variant<SunLight, PointLight, AreaLight>> lights_;
   std::optional<MeshLight> mesh_;

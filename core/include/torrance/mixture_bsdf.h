@@ -37,12 +37,31 @@ class MixtureBsdf {
   void add(const Component& c, float w, float sampling_albedo);
   int size() const { return count_; }
 
-  LobeEval eval_lobes(const Vec3& wo, const Vec3& wi) const;
-  Vec3 eval(const Vec3& wo, const Vec3& wi) const { return eval_lobes(wo, wi).total(); }
-  float pdf(const Vec3& wo, const Vec3& wi) const;
-  BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const;
+  // The interface of MaterialBsdf (material_bsdf.h): `backfacing` goes to glass components;
+  // kGlass is accepted for the integrator's sake and ignored (a mixture always checks for glass).
+  template <bool kGlass = true>
+  LobeEval eval_lobes(const Vec3& wo, const Vec3& wi, bool backfacing = false) const {
+    return eval_mixture(wo, wi, backfacing);
+  }
+  template <bool kGlass = true>
+  Vec3 eval(const Vec3& wo, const Vec3& wi, bool backfacing = false) const {
+    return eval_mixture(wo, wi, backfacing).total();
+  }
+  template <bool kGlass = true>
+  float pdf(const Vec3& wo, const Vec3& wi, bool backfacing = false) const {
+    return pdf_mixture(wo, wi, backfacing);
+  }
+  template <bool kGlass = true>
+  BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing = false) const {
+    return sample_mixture(wo, u_lobe, u, backfacing);
+  }
+  bool transmits() const;  // some closure is glass
 
  private:
+  LobeEval eval_mixture(const Vec3& wo, const Vec3& wi, bool backfacing) const;
+  float pdf_mixture(const Vec3& wo, const Vec3& wi, bool backfacing) const;
+  BsdfSample sample_mixture(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing) const;
+
   std::array<Component, kMaxMixtureComponents> components_{};
   std::array<float, kMaxMixtureComponents> weights_{};
   std::array<float, kMaxMixtureComponents> probabilities_{};  // P_k, normalised after each add

@@ -1,6 +1,7 @@
 // Principled BSDF, "PRINCIPLED" model: Blender 3.4's Principled BSDF (v1) as Cycles 3.4 renders it
-// with the GGX distribution (no transmission, sheen, clearcoat or anisotropy), so that Torrance
-// and Cycles differ by noise only.
+// with the GGX distribution (no sheen, clearcoat or anisotropy), so that Torrance and Cycles
+// differ by noise only. Transmission only scales these lobes down (see the constructor); its
+// glass is GlassBsdf, which MaterialBsdf adds.
 //
 //   diffuse  Burley's lobe weighted by (1 - metallic), using the unsquared roughness for
 //            retro-reflection; it is NOT scaled by (1 - F): the lobes add (and can exceed 1).
@@ -37,7 +38,8 @@ class PrincipledBsdf {
   Vec3 fresnel(float cos_ih) const;
 
  private:
-  Vec3 diffuse_color_;  // (1 - metallic) * base colour
+  Vec3 diffuse_color_;  // (1 - metallic) (1 - transmission) * base colour
+  float specular_weight_;  // 1 - transmission (1 - metallic): the glass takes the rest
   Vec3 cspec0_;
   float roughness_, alpha_, eta_, f0_;
 };

@@ -27,6 +27,7 @@ namespace torrance {
 struct MaterialTextures {
   int base_color = -1, metallic = -1, roughness = -1, emission = -1;
   int normal = -1;                 // a tangent-space normal map (Normal Map node)
+  int alpha = -1;                  // the material's alpha from the texture's ALPHA channel (Scene::opacity)
   float emission_strength = 1.0f;  // emission = texture colour * strength
   float normal_strength = 1.0f;
   // A height map (Bump node fed by an image texture's luminance) when there is no normal map.
@@ -81,6 +82,11 @@ class Scene {
   MixtureWeights mixture_weights(uint32_t i, const Vec2& uv, float footprint = 0.0f) const;
   // The radiance material i emits at uv (textures and mixtures included).
   Vec3 emission_at(uint32_t i, const Vec2& uv) const;
+  // The material's alpha at a hit: its alpha texture's alpha channel at uv, else Material::alpha.
+  float opacity(uint32_t material, const Vec2& uv) const {
+    const int t = material_textures_[material].alpha;
+    return t >= 0 ? clamp01(textures_[t]->lookup(uv).a) : materials_[material].alpha;
+  }
   // The shading normal ns perturbed by the material's normal map or bump map at the hit (ns when
   // none). A bump map follows Cycles 3.4's Bump node: forward differences of the height (the
   // texture's luminance) over two tangent steps of cone_width, along Cycles' tangent

@@ -14,6 +14,7 @@ def viewport_settings(scene):
     return dict(
         samples=UNLIMITED_SAMPLES if samples <= 0 else samples,
         max_bounces=int(ts.max_bounces),
+        max_transparent_bounces=int(ts.transparent_max_bounces),
         seed=int(ts.seed),
         filter_width=float(ts.filter_width),
         transparent_background=bool(rd.film_transparent),
