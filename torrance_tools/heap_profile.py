@@ -6,9 +6,10 @@ What it is for: in the GUI tests, Blender draws through Mesa's software OpenGL (
 textures and buffers are ordinary heap allocations in Blender's jemalloc. How much of them is
 alive at a given moment depends on timing (orphaned buffers and textures still referenced by
 queued draws): over the same 500-edit storm in one GUI session, Mesa's share of the heap moved
-by 2 to 9 MB between measures with Torrance, EEVEE or Solid alike, while every other allocation
-site stayed within a fraction of a MB. A leak test bounds the growth of what is not the GPU
-driver's: `driver_mb(profile)` is subtracted from the growth of VmRSS and of the bytes in use.
+by 2 to 9 MB between measures with Torrance or EEVEE alike, while the allocations outside it
+stayed within a MB. A leak test bounds the growth of what is not the GPU driver's:
+    profile = HeapProfile(path)
+    outside = profile.total_mb() - profile.mb_through(GPU_DRIVER_LIBRARIES)
 
 The format (jemalloc's heap_v2, as jeprof reads it): a header line "heap_v2/<sample period>",
 then for each call stack a line "@ <addresses>" and a line "t*: <objects>: <bytes> [...]" (of
@@ -85,7 +86,3 @@ class HeapProfile:
                 total += est
         return total / 2**20
 
-
-def driver_mb(path):
-    """Estimated MB of the heap in use by the GPU driver, from the heap profile at `path`."""
-    return HeapProfile(path).mb_through(GPU_DRIVER_LIBRARIES)
