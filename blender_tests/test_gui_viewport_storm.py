@@ -44,7 +44,10 @@ five runs in a row through CTest: VmRSS without the GPU driver's heap +1.15, +1.
 -2.22, +4.18, +1.54, -4.64 MB: plain VmRSS +7.77, -0.39, +5.02, +3.40, -3.14 MB); 500 edits in
 54-70 s, the test 88-114 s. With TORRANCE_TEST_LEAK=scenes (313 scenes kept): +396.3 MB and
 +398.5 MB, FAILED; with TORRANCE_TEST_LEAK=16 (347 x 16 KB kept, ~5 MB during the storm): +6.81 MB
-and +4.71 MB, FAILED.
+and +4.71 MB, FAILED. After the rebase on 131edf0: +1.94 / +0.37 MB and +2.95 / +0.97 MB (70-84 s).
+Blender alone under the same storm (TORRANCE_STORM_ENGINE): Solid only +1.44 / -0.42 MB (the
+driver's heap +0.49 MB); EEVEE's Rendered mode +3.40 / +2.06 MB (the driver's heap +8.21 MB,
+plain VmRSS +11.61 MB): Torrance's growth is Blender's own.
 
 No X server: exits 77 (skipped). Log and results in build/test_gui_viewport_storm/.
 Diagnosis: TORRANCE_STORM_EDITS (default 500), TORRANCE_STORM_WARM_UP (default WARM_UP),
