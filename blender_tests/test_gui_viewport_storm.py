@@ -52,8 +52,8 @@ plain VmRSS +11.61 MB): Torrance's growth is Blender's own.
 No X server: exits 77 (skipped). Log and results in build/test_gui_viewport_storm/.
 Diagnosis: TORRANCE_STORM_EDITS (default 500), TORRANCE_STORM_WARM_UP (default WARM_UP),
 TORRANCE_STORM_CHECKPOINTS=N (measure every N edits too), TORRANCE_STORM_SMAPS=1 (keep
-/proc/self/smaps at each measure), TORRANCE_STORM_ENGINE (BLENDER_EEVEE, CYCLES: the same storm
-in another engine's Rendered mode; SOLID: in Solid shading only).
+/proc/self/smaps at each measure), TORRANCE_STORM_ENGINE (BLENDER_EEVEE or another engine's
+name: the same storm in that engine's Rendered mode; SOLID: in Solid shading only).
 """
 
 import gc
