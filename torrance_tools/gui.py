@@ -92,15 +92,16 @@ def gui_env(display):
     return env
 
 
-def run_blender(display, blend, script, args, log_path, timeout):
+def run_blender(display, blend, script, args, log_path, timeout, env=None):
     """Runs GUI Blender (this checkout's add-on) on `blend` with `script` as the driver
-    (sys.argv after '--' is `args`); returns (exit code or 'timeout', seconds)."""
+    (sys.argv after '--' is `args`; `env`: more environment variables); returns (exit code or
+    'timeout', seconds)."""
     cmd = [os.path.join(ROOT, "scripts", "blender"), "--factory-startup", blend,
            "--python", os.path.abspath(script), "--", *args]
     t0 = time.time()
     with open(log_path, "w") as log:
         try:
-            code = subprocess.run(cmd, env=gui_env(display), stdout=log,
+            code = subprocess.run(cmd, env=dict(gui_env(display), **(env or {})), stdout=log,
                                   stderr=subprocess.STDOUT, timeout=timeout).returncode
         except subprocess.TimeoutExpired:
             code = "timeout"

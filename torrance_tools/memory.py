@@ -22,6 +22,8 @@ import ctypes.util
 _libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6")
 _process = ctypes.CDLL(None)
 MALLCTL_ARENAS_ALL = 4096
+RTLD_NOLOAD = 4
+TBBMALLOC_CLEAN_ALL_BUFFERS = 0     # scalable_allocation_command: this thread's and global caches
 
 
 class _MallInfo2(ctypes.Structure):
@@ -33,7 +35,7 @@ class _MallInfo2(ctypes.Structure):
 def _jemalloc():
     """The jemalloc library if it is the process's malloc, else None."""
     try:
-        je = ctypes.CDLL("libjemalloc.so.2", mode=ctypes.RTLD_GLOBAL | 4)   # RTLD_NOLOAD
+        je = ctypes.CDLL("libjemalloc.so.2", mode=ctypes.RTLD_GLOBAL | RTLD_NOLOAD)
     except OSError:
         return None
     addr = ctypes.cast(_process.malloc, ctypes.c_void_p).value
@@ -48,13 +50,27 @@ _je = _jemalloc()
 ALLOCATOR = "jemalloc" if _je is not None else "glibc"
 
 
+def _tbbmalloc():
+    """TBB's scalable allocator if the process has loaded it (oneTBB loads libtbbmalloc for its
+    own allocations when it is installed: task arenas, task groups, ...), else None."""
+    try:
+        lib = ctypes.CDLL("libtbbmalloc.so.2", mode=RTLD_NOLOAD)
+    except OSError:
+        return None
+    lib.scalable_allocation_command.argtypes = [ctypes.c_int, ctypes.c_void_p]
+    return lib
+
+
 def purge():
-    """Returns the allocator's cached free pages to the OS (jemalloc: purge every arena;
-    glibc: malloc_trim(0))."""
+    """Returns the allocators' cached free pages to the OS (jemalloc: purge every arena;
+    glibc: malloc_trim(0)); then TBB's scalable allocator (if loaded) releases its caches."""
     if _je is not None:
         _je.mallctl(f"arena.{MALLCTL_ARENAS_ALL}.purge".encode(), None, None, None, 0)
     else:
         _libc.malloc_trim(0)
+    tbbmalloc = _tbbmalloc()
+    if tbbmalloc is not None:
+        tbbmalloc.scalable_allocation_command(TBBMALLOC_CLEAN_ALL_BUFFERS, None)
 
 
 def in_use_mb():
@@ -79,18 +95,39 @@ def _je_stat(name):
 
 def details():
     """For diagnosis (MB): the kernel's split of VmRSS (RssAnon, RssFile) and, with jemalloc,
-    its stats (resident, metadata, active), read after an epoch refresh."""
+    its stats (resident, metadata, active, mapped, retained), read after an epoch refresh, and
+    glibc's heap beside it (mallinfo2)."""
     d = {}
     with open("/proc/self/status") as f:
         for line in f:
             key = line.split(":")[0]
             if key in ("RssAnon", "RssFile", "RssShmem", "Threads"):
                 d[key] = int(line.split()[1]) / (1024.0 if key != "Threads" else 1)
+    with open("/proc/self/smaps_rollup") as f:     # transparent huge pages (2 MB each)
+        for line in f:
+            if line.startswith("AnonHugePages:"):
+                d["AnonHugePages"] = int(line.split()[1]) / 1024.0
     if _je is not None:
         in_use_mb()                     # refreshes the epoch
-        for k in ("resident", "metadata", "active", "mapped"):
+        for k in ("resident", "metadata", "active", "mapped", "retained"):
             d["je_" + k] = _je_stat("stats." + k)
+        # glibc's own heap beside jemalloc: what reaches glibc's malloc (nothing, if jemalloc
+        # serves the whole process) and the size of its arena.
+        _libc.mallinfo2.restype = _MallInfo2
+        info = _libc.mallinfo2()
+        d["glibc_in_use"] = (info.uordblks + info.hblkhd) / 2**20
+        d["glibc_arena"] = info.arena / 2**20
     return d
+
+
+def dump_heap_profile(path):
+    """Writes jemalloc's heap profile to `path` (for jeprof; Blender started with
+    MALLOC_CONF=prof:true); False if this jemalloc does not profile (or glibc malloc)."""
+    if _je is None:
+        return False
+    name = ctypes.c_char_p(path.encode())
+    return _je.mallctl(b"prof.dump", None, None, ctypes.byref(name),
+                       ctypes.sizeof(name)) == 0
 
 
 def rss_mb():
