@@ -82,3 +82,49 @@ def test_glass_passes_keep_combined_and_take_the_diffuse_colour(kwargs, albedo):
     assert np.allclose(total, result.image[..., :3], rtol=1e-4, atol=1e-5)
     assert np.allclose(p["Albedo"], albedo, atol=1e-5)
     assert p["GlossDir"].mean() + p["GlossInd"].mean() > 0.0
+
+
+def _fresnel_dielectric(cos_i, eta):
+    """Unpolarised Fresnel reflectance of light arriving from outside (IOR 1) at cos_i."""
+    g = np.sqrt(eta * eta - 1.0 + cos_i * cos_i)
+    a = (g - cos_i) / (g + cos_i)
+    b = (cos_i * (g + cos_i) - 1.0) / (cos_i * (g - cos_i) + 1.0)
+    return 0.5 * a * a * (1.0 + b * b)
+
+
+@pytest.mark.parametrize("as_mixture", [False, True])
+def test_glass_inside_a_mix_shader_transmits_like_plain_glass(as_mixture):
+    """A smooth Principled-transmission slab (IOR 2.4) over an emitter, seen at 50 degrees from
+    its normal, its material either plain or the only non-zero closure of a Mix Shader (Fac 0
+    beside a diffuse closure): glass must be told from which side it is seen (inside, leaving, the
+    refraction bends back and the Fresnel term is the entry's), so both give the slab's
+    (1 - F) / (1 + F) with F the Fresnel reflectance at 50 degrees."""
+    scene = tc.Scene()
+    glass = scene.add_material(base_color=(1, 1, 1), roughness=0.0, transmission=1.0, ior=2.4)
+    diffuse = scene.add_material(base_color=(0.5, 0.5, 0.5))
+    pane = glass
+    if as_mixture:
+        pane = scene.add_mixture([("principled", glass, [-1]), ("diffuse", diffuse, [0])],
+                                 factors=[{"kind": "constant", "value": 0.0}])
+    light = scene.add_material(base_color=(0, 0, 0), specular=0.0, emission=(1, 1, 1),
+                               emission_strength=1.0)
+    h = 100.0
+    tri = np.array([[0, 1, 2], [0, 2, 3]], np.int32)
+    quads = {pane: ([-h, -h, 0.1], [h, -h, 0.1], [h, h, 0.1], [-h, h, 0.1]),
+             light: ([-h, -h, -1.0], [h, -h, -1.0], [h, h, -1.0], [-h, h, -1.0])}
+    for material, corners in quads.items():
+        scene.add_mesh(np.array(corners, np.float32), tri, material_indices=[material] * 2)
+    bottom = np.array([[-h, -h, 0.0], [-h, h, 0.0], [h, h, 0.0], [h, -h, 0.0]], np.float32)
+    scene.add_mesh(bottom, tri, material_indices=[pane] * 2)
+    theta = np.radians(50.0)
+    matrix = np.eye(4)   # Blender's camera looks down its -Z: turned about X towards +Y by theta
+    matrix[1, 1], matrix[1, 2], matrix[2, 1], matrix[2, 2] = (np.cos(theta), -np.sin(theta),
+                                                              np.sin(theta), np.cos(theta))
+    matrix[:3, 3] = 6.0 * np.array([0.0, -np.sin(theta), np.cos(theta)])
+    scene.set_camera(matrix, type="ORTHO", ortho_scale=0.5)
+    settings = tc.RenderSettings(width=16, height=16, samples=256, max_bounces=32,
+                                 brdf_model="PRINCIPLED")
+    image = tc.render(scene, settings).image
+    f = _fresnel_dielectric(np.cos(theta), 2.4)
+    assert np.isfinite(image).all()
+    assert image[..., 0].mean() == pytest.approx((1 - f) / (1 + f), rel=0.01)
