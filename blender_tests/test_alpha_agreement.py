@@ -23,7 +23,8 @@ import bpy
 import numpy as np
 
 from torrance_tools import render_settings, testing
-from torrance_tools.agreement import failures, format_metrics, mean_metrics, metrics, noise_bounds
+from torrance_tools.agreement import (cycles_reference_and_noise, failures, format_metrics,
+                                      mean_metrics, metrics, noise_bounds, print_verdict)
 from torrance_tools.scene import mesh_object
 from torrance_tools.testing import check
 from torrance_tools.textures import image_node, new_image, set_uvs
@@ -125,13 +126,8 @@ def main():
     d = testing.tempdir()
     scene = testing.clear_scene()
     build(scene)
-    render_settings.setup_cycles(scene, SAMPLES, BOUNCES, seed=0)
-    ref, t_ref = testing.render(scene, d, "cycles0")
-    render_settings.setup_cycles(scene, SAMPLES, BOUNCES, seed=1)
-    other, _ = testing.render(scene, d, "cycles1")
-    own = metrics(other, ref)
+    ref, own = cycles_reference_and_noise(scene, d, SAMPLES, BOUNCES)
     limits = noise_bounds(own, TOLERANCE, RATIO_SIGMAS, RATIO_FLOOR)
-    print(f"Cycles seed 1 vs seed 0     : {format_metrics(own)}  ({t_ref:.1f} s per render)")
     print(f"bounds: ratio {limits['ratio'][0]:.4f}..{limits['ratio'][1]:.4f}, block mean "
           f"{limits['block_mean']:.4f}, p90 {limits['block_p90']:.4f}")
     results = []
@@ -142,8 +138,7 @@ def main():
               f"  ({seconds:.1f} s)")
     m = mean_metrics(results)
     bad = failures(m, limits)
-    print(f"Torrance mean over seeds    : {format_metrics(m)}"
-          + (f"  FAIL: {'; '.join(bad)}" if bad else "  ok"), flush=True)
+    print_verdict("Torrance mean over seeds    ", m, bad)
     check(not bad, "alpha disagrees with Cycles: " + "; ".join(bad))
     missed = []
     for label, attr, make_fault in FAULTS:

@@ -29,7 +29,8 @@ import bpy
 import numpy as np
 
 from torrance_tools import render_settings, testing
-from torrance_tools.agreement import format_metrics, metrics, noise_failures, noise_limits
+from torrance_tools.agreement import (cycles_reference_and_noise, format_metrics, metrics,
+                                      noise_failures, noise_limits, print_verdict)
 from torrance_tools.scene import node_material
 from torrance_tools.testing import check
 
@@ -104,22 +105,15 @@ def main():
     scene = testing.clear_scene()
     testing.setup_render(scene, width=W, height=H)
     build(scene)
-    render_settings.setup_cycles(scene, REF_SAMPLES, BOUNCES, seed=1)
-    ref, t_ref = testing.render(scene, d, "reference")
-    render_settings.setup_cycles(scene, SAMPLES, BOUNCES, seed=2)
-    cyc, t_cyc = testing.render(scene, d, "cycles")
-    noise = metrics(cyc, ref)
+    ref, noise = cycles_reference_and_noise(scene, d, SAMPLES, BOUNCES, REF_SAMPLES, seeds=(1, 2))
     lim = noise_limits(noise)
-    print(f"cycles {SAMPLES} spp seed 2 ({t_cyc:.1f} s; reference {t_ref:.1f} s): "
-          f"{format_metrics(noise)}", flush=True)
     print(f"allowed: ratio +-{lim['ratio']:.4f}, block mean {lim['block_mean']:.4f}", flush=True)
     render_settings.setup_torrance(scene, SAMPLES, BOUNCES, seed=0, brdf_model='PRINCIPLED')
     img, t_img = testing.render(scene, d, "torrance")
     check(np.isfinite(img).all(), "NaN/Inf in Torrance's image")
     m = metrics(img, ref)
     bad = noise_failures(m, lim)
-    print(f"torrance ({t_img:.1f} s): {format_metrics(m)}"
-          + (f"  FAIL: {'; '.join(bad)}" if bad else "  ok"), flush=True)
+    print_verdict(f"torrance ({t_img:.1f} s)", m, bad)
     missed = []
     original = materials.MaterialTable._add
     for label, patch in FAULTS:

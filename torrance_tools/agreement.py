@@ -2,7 +2,7 @@
 """The Torrance-vs-Cycles agreement scene, its metrics and pass/fail criteria (used by the
 headless tests: test_cycles_agreement.py, test_camera_agreement.py, test_lights.py, test_hdri.py,
 test_textures.py, test_reference_scenes.py, test_cancel_memory.py, test_glass_agreement.py,
-test_alpha_agreement.py)."""
+test_alpha_agreement.py, test_mix_shader_agreement.py, test_bump_agreement.py)."""
 
 import math
 
@@ -10,7 +10,7 @@ import numpy as np
 
 from torrance_tools import testing
 from torrance_tools.compare import bias_metrics, image_offset
-from torrance_tools.render_settings import setup_torrance
+from torrance_tools.render_settings import setup_cycles, setup_torrance
 
 # name, centre, radius, base colour, metallic, roughness
 SPHERES = (
@@ -110,6 +110,29 @@ def noise_bounds(own, tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.015):
                                             *(abs(c - 1.0) for c in own["channels"])))
     return dict(ratio=(1.0 - r, 1.0 + r), block_mean=tolerance * own["block_mean"],
                 block_p90=tolerance * own["block_p90"])
+
+
+def cycles_reference_and_noise(scene, directory, samples, bounces, ref_samples=None,
+                               seeds=(0, 1)):
+    """Cycles' reference of `scene` (ref_samples, default samples; seed seeds[0]) and Cycles' own
+    noise: the metrics of a second Cycles render (samples, seed seeds[1]) against it, printed.
+    Returns (reference image, noise metrics) for noise_bounds or noise_limits."""
+    ref_samples = ref_samples or samples
+    setup_cycles(scene, ref_samples, bounces, seed=seeds[0])
+    ref, t_ref = testing.render(scene, directory, "cycles_reference")
+    setup_cycles(scene, samples, bounces, seed=seeds[1])
+    other, t_other = testing.render(scene, directory, "cycles_noise")
+    noise = metrics(other, ref)
+    print(f"Cycles {samples} spp seed {seeds[1]} vs the reference ({ref_samples} spp, seed "
+          f"{seeds[0]}): {format_metrics(noise)}  ({t_other:.1f} s; reference {t_ref:.1f} s)",
+          flush=True)
+    return ref, noise
+
+
+def print_verdict(label, m, bad):
+    """One line: the metrics of a render and what it violates ("ok" if nothing)."""
+    print(f"{label}: {format_metrics(m)}" + (f"  FAIL: {'; '.join(bad)}" if bad else "  ok"),
+          flush=True)
 
 
 def mean_metrics(all_metrics):
