@@ -3,8 +3,10 @@
 // test_glass.cpp).
 #pragma once
 
-#include "torrance/math.h"
+#include "torrance/bsdf.h"
+#include "torrance/sampling.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -87,6 +89,62 @@ struct Charts {
 inline double p_value(double x, int dof) {  // chi-square upper tail (Wilson-Hilferty)
   const double k = dof, z = (std::cbrt(x / k) - (1.0 - 2.0 / (9.0 * k))) / std::sqrt(2.0 / (9.0 * k));
   return 0.5 * std::erfc(z / std::sqrt(2.0));
+}
+
+// Bin counts of n directions sampled from bsdf for wo: the last bin counts samples without a
+// density (delta lobes, rejected samples).
+template <class Bsdf>
+std::vector<double> sampled_bins(const Bsdf& bsdf, const Vec3& wo, const Charts& charts, Rng& rng, int n) {
+  std::vector<double> observed(2 * kBins + 1, 0.0);
+  for (int i = 0; i < n; ++i) {
+    const float u_lobe = rng.next_1d();
+    const BsdfSample s = bsdf.sample(wo, u_lobe, rng.next_2d());
+    if (!s.valid() || s.is_delta) observed.back() += 1;
+    else observed[charts.bin_of(s.wi)] += 1;
+  }
+  return observed;
+}
+
+// Expected counts per bin of n samples drawn with density pdf (its quadrature over the charts),
+// the last bin expecting what is left, 1 - mass (mass: the quadrature's total).
+template <class Pdf>
+std::vector<double> expected_bins(const Charts& charts, const Pdf& pdf, int n, double& mass) {
+  std::vector<double> expected = charts.integrate_all(pdf);
+  mass = 0.0;
+  for (double e : expected) mass += e;
+  expected.push_back(std::max(0.0, 1.0 - mass));
+  for (double& e : expected) e *= n;
+  return expected;
+}
+
+// Pearson's chi-square of observed bin counts against expected counts; bins expecting fewer than
+// 5 are pooled into one, which counts as a bin only if it expects 5 or more itself (otherwise the
+// caller bounds pooled_observed by pooled_expected).
+struct ChiSquare {
+  double chi2 = 0.0;
+  int dof = -1;
+  double pooled_observed = 0.0, pooled_expected = 0.0;
+  bool pooled_counted = false;
+  double p() const { return dof > 0 ? p_value(chi2, dof) : 1.0; }
+};
+inline ChiSquare pooled_chi_square(const std::vector<double>& observed, const std::vector<double>& expected) {
+  ChiSquare x;
+  for (size_t k = 0; k < expected.size(); ++k) {
+    const double e = expected[k];
+    if (e < 5.0) {
+      x.pooled_observed += observed[k];
+      x.pooled_expected += e;
+      continue;
+    }
+    x.chi2 += (observed[k] - e) * (observed[k] - e) / e;
+    ++x.dof;
+  }
+  if (x.pooled_expected >= 5.0) {
+    x.chi2 += (x.pooled_observed - x.pooled_expected) * (x.pooled_observed - x.pooled_expected) / x.pooled_expected;
+    ++x.dof;
+    x.pooled_counted = true;
+  }
+  return x;
 }
 
 }  // namespace torrance::test

@@ -66,44 +66,22 @@ TEST(RoughDielectric, ChiSquareSamplingMatchesPdfInBothHemispheres) {
     const RoughDielectricBsdf bsdf(c.roughness, c.ior);
     const Vec3 wo = wo_of(c);
     const Charts charts(wo, c.ior, bsdf.alpha());
-    std::vector<double> observed(2 * kBins + 1, 0.0);
     Rng rng(seed++, 1, 2);
-    for (int n = 0; n < kSamples; ++n) {
-      const float ul = rng.next_1d();
-      const BsdfSample s = bsdf.sample(wo, ul, rng.next_2d());
-      if (!s.valid() || s.is_delta) observed.back() += 1;
-      else observed[charts.bin_of(s.wi)] += 1;
-    }
-    std::vector<double> expected = charts.integrate_all([&](const Vec3& wi) { return bsdf.pdf(wo, wi); });
+    const std::vector<double> observed = sampled_bins(bsdf, wo, charts, rng, kSamples);
     double mass = 0.0;
-    for (double e : expected) mass += e;
+    const std::vector<double> expected =
+        expected_bins(charts, [&](const Vec3& wi) { return bsdf.pdf(wo, wi); }, kSamples, mass);
     ASSERT_LT(mass, 1.02) << name(c);
-    expected.push_back(std::max(0.0, 1.0 - mass));
-    double chi2 = 0.0, pooled_o = 0.0, pooled_e = 0.0;
-    int dof = -1;
-    for (size_t k = 0; k < expected.size(); ++k) {
-      const double e = expected[k] * kSamples;
-      if (e < 5.0) {
-        pooled_o += observed[k];
-        pooled_e += e;
-        continue;
-      }
-      chi2 += (observed[k] - e) * (observed[k] - e) / e;
-      ++dof;
-    }
-    if (pooled_e >= 5.0) {
-      chi2 += (pooled_o - pooled_e) * (pooled_o - pooled_e) / pooled_e;
-      ++dof;
-    } else {
-      // The invalid bin expects 1 - (quadrature of the pdf), known to ~1e-4 only: allow that much.
-      // (IOR 1.0001 from inside: microfacets beyond the critical angle reflect below the surface in
-      // ~1.4e-4 of the samples, while the quadrature of the 7e-5 rad transmission lobe is 1e-4 high.)
-      EXPECT_LE(pooled_o, 5.0 + 10.0 * pooled_e + 1e-4 * kSamples)
-          << name(c) << " invalid/delta " << observed.back() << " expected " << expected.back() * kSamples;
-    }
-    const double p = dof > 0 ? p_value(chi2, dof) : 1.0;
+    const test::ChiSquare x = test::pooled_chi_square(observed, expected);
+    // The invalid bin expects 1 - (quadrature of the pdf), known to ~1e-4 only: allow that much.
+    // (IOR 1.0001 from inside: microfacets beyond the critical angle reflect below the surface in
+    // ~1.4e-4 of the samples, while the quadrature of the 7e-5 rad transmission lobe is 1e-4 high.)
+    if (!x.pooled_counted)
+      EXPECT_LE(x.pooled_observed, 5.0 + 10.0 * x.pooled_expected + 1e-4 * kSamples)
+          << name(c) << " invalid/delta " << observed.back() << " expected " << expected.back();
+    const double p = x.p();
     min_p = std::min(min_p, p);
-    EXPECT_GT(p, significance) << name(c) << ": chi2 = " << chi2 << " dof " << dof;
+    EXPECT_GT(p, significance) << name(c) << ": chi2 = " << x.chi2 << " dof " << x.dof;
   }
   std::printf("rough dielectric chi-square: %zu cases, smallest p = %.4f (threshold %.2g)\n", cases.size(), min_p,
               significance);
