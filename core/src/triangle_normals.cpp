@@ -2,6 +2,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <xmmintrin.h>
 
 #include <atomic>
 #include <cmath>
@@ -12,11 +13,24 @@
 #pragma GCC optimize("fp-contract=off")
 
 namespace torrance {
+namespace {
+// IEEE denormals on this thread while it lives: TBB's workers may come from a render, which
+// flushes them to zero (FlushDenormals in integrator.cpp), and numpy does not.
+class KeepDenormals {
+ public:
+  KeepDenormals() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ & ~0x8040u); }
+  ~KeepDenormals() { _mm_setcsr(saved_); }
+
+ private:
+  unsigned saved_;
+};
+}  // namespace
 
 void triangle_normals(const float* positions, size_t num_vertices, const int32_t* triangles, size_t num_triangles,
                       float* normals, uint8_t* usable) {
   std::atomic<size_t> first_bad{num_triangles};
   tbb::parallel_for(tbb::blocked_range<size_t>(0, num_triangles, 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+    KeepDenormals ieee;
     for (size_t i = r.begin(); i != r.end(); ++i) {
       const int32_t* t = triangles + 3 * i;
       if (t[0] < 0 || t[1] < 0 || t[2] < 0 || size_t(t[0]) >= num_vertices || size_t(t[1]) >= num_vertices ||
