@@ -5,42 +5,58 @@ instances (issue 11).
 Every instanced mesh goes to the core once, in object space, as a prototype (add_prototype),
 keyed by (evaluated mesh pointer, needs UVs); every instance is one transform in an instance
 group keyed by (prototype, material table), and each group is one add_instances call.
-Python's work per depsgraph instance is a dict lookup and twelve floats appended to the
-group's array (see scene.export_scene); the meshes, material slots and visibility are read
-once per source (an object, or the object an instance repeats).
+Python's work per depsgraph instance is a dict lookup and a copy of its matrix kept in the
+group's list (see scene.export_scene; converted to numbers in bulk after the pass); the
+meshes, material slots and visibility are read once per source (an object, or the object an
+instance repeats).
 """
 
-import array
+from itertools import chain
 
 import numpy as np
 
 from .mesh import prototype_arrays, read_local_mesh
 
 
+CHUNK = 65536            # matrices converted per numpy call (~0.1 s: other threads get the GIL)
+
+
 class Source:
     """An object, or an object repeated by instances, with its material table and the world
-    matrices (3 x 4 float32, row-major, appended by `extend`) of everything that shows it."""
-    __slots__ = ("name", "mesh_key", "table", "instanced", "matrices", "extend")
+    matrices of everything that shows it: copies kept by `add` during the depsgraph pass,
+    converted to numbers in bulk by `transforms` afterwards."""
+    __slots__ = ("name", "mesh_key", "table", "instanced", "matrices", "_append")
 
     def __init__(self, name, mesh_key, table, instanced):
         self.name = name
         self.mesh_key = mesh_key      # (evaluated mesh pointer, needs UVs)
         self.table = table            # int32 (K,): material index per slot
         self.instanced = instanced
-        self.matrices = array.array('f')
-        self.extend = self.matrices.extend
+        self.matrices = []            # mathutils Matrix copies (4 x 4)
+        self._append = self.matrices.append
 
     def add(self, matrix):
-        """Appends a world matrix (a mathutils Matrix, e.g. inst.matrix_world)."""
-        # One read of the instance's matrix (copy), not one per row: 2.4 instead of 4.2 us
-        # per instance in the export loop (scripts/benchmark_scale_case.py --profile).
-        r0, r1, r2, _ = matrix.copy()
-        self.extend(r0)
-        self.extend(r1)
-        self.extend(r2)
+        """Keeps a copy of a world matrix (a mathutils Matrix, e.g. inst.matrix_world: it is
+        only valid during its iteration step). A copy is all the depsgraph pass does per
+        instance: reading its sixteen numbers then (4 row Vectors, 3 array extends) cost
+        2.2 us more per instance, with the GIL held (scripts/benchmark_scale_case.py
+        --profile)."""
+        self._append(matrix.copy())
 
     def count(self):
-        return len(self.matrices) // 12
+        return len(self.matrices)
+
+    def transforms(self):
+        """float32 (N, 3, 4): the kept matrices' top three rows, converted CHUNK at a time by
+        numpy iterating over the matrices' rows and numbers (1.6 us per matrix)."""
+        out = np.empty((len(self.matrices), 4, 4), dtype=np.float32)
+        flat = out.reshape(-1)
+        for start in range(0, len(self.matrices), CHUNK):
+            part = self.matrices[start:start + CHUNK]
+            flat[16 * start:16 * (start + len(part))] = np.fromiter(
+                chain.from_iterable(chain.from_iterable(part)), dtype=np.float32,
+                count=16 * len(part))
+        return out[:, :3, :]
 
 
 class InstanceExport:
@@ -104,14 +120,14 @@ class InstanceExport:
         """One add_instances call per (prototype, material table); fills stats."""
         groups = {}
         for src in self.sources:
-            if len(src.matrices) and self.prototypes.get(src.mesh_key) is not None:
+            if src.matrices and self.prototypes.get(src.mesh_key) is not None:
                 groups.setdefault((src.mesh_key, src.table.tobytes()), []).append(src)
         instances = 0
         for (mesh_key, _table), srcs in groups.items():
             pid, _triangles = self.prototypes[mesh_key]
             parts = []
             for src in srcs:
-                m = np.frombuffer(src.matrices, dtype=np.float32).reshape(-1, 3, 4)
+                m = src.transforms()
                 finite = np.isfinite(m).all(axis=(1, 2))
                 if not finite.all():
                     bad = int(len(m) - np.count_nonzero(finite))

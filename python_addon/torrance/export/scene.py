@@ -124,8 +124,10 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
     Per depsgraph instance the pass does the least Python work it can: an instance of an
     object seen before (same name, same evaluated mesh: the same slots' materials, since an
     object-linked slot is the object's and a data-linked one the mesh's) costs a dict lookup
-    and its matrix's twelve floats appended to an array; the instanced meshes go to the core
-    once each as prototypes, and each (prototype, material table) is one add_instances call.
+    and a copy of its matrix kept in a list (~2 us in all, 0.7 of them Blender's iteration
+    itself; the numbers are read in bulk after the pass, in chunks that let other threads
+    run); the instanced meshes go to the core once each as prototypes, and each (prototype,
+    material table) is one add_instances call.
     """
     t0 = time.perf_counter()
     stats = ExportStats()
