@@ -4,9 +4,10 @@
 * export.mesh_arrays.triangle_vertices (Blender's loop-triangle and loop arrays read through
   their element pointers) equals loop_triangles.foreach_get("vertices") on meshes of triangles,
   quads, n-gons and after modifiers, and a layout that does not check out falls back to it;
-* read_local_mesh on the evaluated mesh itself equals read_local_mesh on a to_mesh() copy, for
-  flat, smooth, mixed, auto-smooth, multi-material and UV-mapped meshes, and leaves the
-  evaluated mesh as it was.
+* read_local_mesh equals a reference reader made of plain foreach_get calls (the export's
+  reads before issue 11's second round) for flat, smooth, mixed, auto-smooth, multi-material,
+  modified and UV-mapped meshes: positions, triangles, normals, smooth flags, the material slot
+  each triangle renders with, UVs.
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_mesh_read.py
@@ -68,7 +69,43 @@ def by_corner(local, values, poly_of_triangle):
     return unique, values.reshape(len(keys), -1)[first]
 
 
-def same_local(a, b, name, poly_of_triangle):
+def reference_local(ev, mesh_module):
+    """(LocalMesh, polygon of each loop triangle) read with plain foreach_get calls from a
+    to_mesh() copy, as the export read meshes before."""
+    mesh = ev.to_mesh()
+    try:
+        mesh.calc_loop_triangles()
+        nv, nt = len(mesh.vertices), len(mesh.loop_triangles)
+        co = np.empty(nv * 3, np.float32)
+        mesh.vertices.foreach_get("co", co)
+        tris = rna_triangle_vertices(mesh)
+        mat = np.empty(nt, np.int32)
+        mesh.loop_triangles.foreach_get("material_index", mat)
+        polys = np.empty(nt, np.int32)
+        mesh.loop_triangles.foreach_get("polygon_index", polys)
+        vertex_normals = corner_normals = smooth = None
+        if bpy.app.version < (4, 1, 0) and mesh.use_auto_smooth:
+            mesh.calc_normals_split()
+            sn = np.empty(nt * 9, np.float32)
+            mesh.loop_triangles.foreach_get("split_normals", sn)
+            corner_normals = sn.reshape(nt, 3, 3)
+        else:
+            smooth = np.empty(nt, bool)
+            mesh.loop_triangles.foreach_get("use_smooth", smooth)
+            if smooth.any():
+                vn = np.empty(nv * 3, np.float32)
+                mesh.vertices.foreach_get("normal", vn)
+                vertex_normals = vn.reshape(nv, 3)
+            smooth = None if smooth.all() or not smooth.any() else smooth
+        uvs, uv_name = mesh_module.read_corner_uvs(mesh, nt)
+        local = mesh_module.LocalMesh(co.reshape(nv, 3), tris, vertex_normals, corner_normals,
+                                      smooth, mat, uvs, uv_name)
+        return local, polys
+    finally:
+        ev.to_mesh_clear()
+
+
+def same_local(a, b, name, poly_of_triangle, num_slots):
     """LocalMesh a == b: vertex arrays and per-polygon values exactly, triangles and per-corner
     values as the same corners of the same polygons (the triangulation may differ)."""
     for field in a.__slots__:
@@ -78,6 +115,9 @@ def same_local(a, b, name, poly_of_triangle):
             continue
         check(x is not None and y is not None and x.dtype == y.dtype and x.shape == y.shape,
               f"{name}: LocalMesh.{field} differs in presence, dtype or shape")
+        if field == "material_slots":                 # the slot each triangle renders with
+            last = max(num_slots - 1, 0)
+            x, y = np.clip(x, 0, last), np.clip(y, 0, last)
         if field in ("triangles", "corner_normals", "corner_uvs"):
             # triangles: the corners of each polygon (their values: the keys themselves)
             ka, va = by_corner(a, x if field != "triangles" else a.triangles[:, :, None] * 0,
@@ -110,32 +150,10 @@ def main():
         read_directly += arrays.checked_view(mesh.loop_triangles, nt, "loops", np.uint32, 3) \
             is not None
 
-        # The evaluated mesh read as it is, and through a to_mesh() copy: the same arrays.
-        polys_before = len(mesh.polygons)
-        direct = mesh_module.read_local_mesh(ev, uvs=True)
-        copy_of = mesh_module._readable_mesh
-        mesh_module._readable_mesh = lambda obj: (obj.to_mesh(), True)
-        try:
-            copied = mesh_module.read_local_mesh(ev, uvs=True)
-        finally:
-            mesh_module._readable_mesh = copy_of
-        poly_of_triangle = np.empty(nt, dtype=np.int32)
-        mesh.loop_triangles.foreach_get("polygon_index", poly_of_triangle)
-        same_local(direct, copied, name, poly_of_triangle)
-        check(len(ev.data.polygons) == polys_before, f"{name}: the evaluated mesh changed")
-        # And both as RNA has them: the slot each triangle renders with, its smooth flag.
-        rna_slots = np.empty(nt, dtype=np.int32)
-        mesh.loop_triangles.foreach_get("material_index", rna_slots)
-        last_slot = max(len(ev.material_slots) - 1, 0)
-        check(np.array_equal(np.clip(direct.material_slots, 0, last_slot),
-                             np.clip(rna_slots, 0, last_slot)), f"{name}: material slots differ")
-        rna_smooth = np.empty(nt, dtype=bool)
-        mesh.loop_triangles.foreach_get("use_smooth", rna_smooth)
-        if direct.corner_normals is None:
-            smooth = rna_smooth.all() if direct.smooth is None else direct.smooth
-            check(np.array_equal(np.broadcast_to(smooth, nt) if direct.vertex_normals is not None
-                                 else np.zeros(nt, bool), rna_smooth),
-                  f"{name}: smooth flags differ")
+        # read_local_mesh against plain foreach_get reads of a to_mesh() copy.
+        got_local = mesh_module.read_local_mesh(ev, uvs=True)
+        ref_local, poly_of_triangle = reference_local(ev, mesh_module)
+        same_local(got_local, ref_local, name, poly_of_triangle, len(ev.material_slots))
         print(f"[{name}] {nt} triangles: the same arrays", flush=True)
     check(read_directly == len(objs) or bpy.app.version >= (3, 5, 0),
           f"Blender 3.4's loop triangles were read directly for only {read_directly} of "

@@ -200,6 +200,10 @@ def write_report(out, results, meta, constant_work):
             lines.append(f"| {label} | {f['a']:.3f} + {f['b']:.3f}·log10 T | {f['b']:.3f} | "
                          f"{f['k']:.2f} |")
     lines += ["", meta.get("summary", ""), ""]
+    if os.path.exists(os.path.join(out, "before_after.md")):
+        lines += ["Issue 11's second round (export of big meshes, deferred instance matrices, the "
+                  "core's mesh checks): Torrance before and after it, with Cycles, in one run: "
+                  "[before_after.md](before_after.md).", ""]
     lines += scale_constant_work.report_lines(constant_work)
     with open(os.path.join(out, "report.md"), "w") as f:
         f.write("\n".join(lines))

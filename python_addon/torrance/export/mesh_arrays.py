@@ -22,6 +22,7 @@ import ctypes
 import numpy as np
 
 SAMPLE = 33          # elements compared with RNA before a view is trusted
+GATHER_CHUNK = 1 << 18   # loop triangles gathered per numpy call
 
 
 def element_view(collection, n, dtype, width, offset=0):
@@ -76,5 +77,10 @@ def triangle_vertices(mesh, nt):
         tris = np.empty(nt * 3, dtype=np.int32)
         mesh.loop_triangles.foreach_get("vertices", tris)
         return tris.reshape(nt, 3)
-    # numpy checks the loop indices' bounds (IndexError) while gathering.
-    return loop_vertex[:, 0].astype(np.int32)[tri_loops]
+    # Gathered in chunks (numpy turns an index array into a temporary of intp: 240 MB at once
+    # for 10 M triangles, 4 MB per chunk); numpy checks the loop indices' bounds (IndexError).
+    tris = np.empty((nt, 3), dtype=np.int32)
+    for start in range(0, nt, GATHER_CHUNK):
+        end = min(start + GATHER_CHUNK, nt)
+        np.take(loop_vertex[:, 0], tri_loops[start:end], out=tris[start:end].view(np.uint32))
+    return tris
