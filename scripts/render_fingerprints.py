@@ -1,7 +1,10 @@
 # SPDX-License-Identifier: Apache-2.0
 """Fingerprints (SHA-256 of the float32 RGBA pixels) of Torrance renders of fixed scenes, to show
-that a change of the export or of the core leaves the images bit for bit as they were: run it
-with the build before and the build after, and compare the two outputs line by line.
+that a change of the export or of the core leaves the images as they were: run it with the
+build before and the build after, and compare the two outputs line by line. Each image is also
+saved as OUT.d/<scene>.npy: when digests differ, compare the pixels (max |difference|) -- the
+film's sums depend on how samples were split into passes, and pass sizes follow the wall clock
+(a loaded machine changes the last bits, not more).
 
     scripts/blender -b --factory-startup --python scripts/render_fingerprints.py -- [--big] OUT.txt
 
@@ -13,6 +16,7 @@ seed 3, one thread count for all (the images do not depend on it).
 """
 
 import hashlib
+import os
 import sys
 import tempfile
 
@@ -59,10 +63,11 @@ def mesh_kinds(scene):
     return scene
 
 
-def fingerprint(scene, name, directory, width, height):
+def fingerprint(scene, name, directory, width, height, keep):
     testing.setup_render(scene, engine='TORRANCE', width=width, height=height, samples=16,
                          seed=3)
     image, _seconds = testing.render(scene, directory, name)
+    np.save(os.path.join(keep, name + ".npy"), image)
     digest = hashlib.sha256(np.ascontiguousarray(image, dtype=np.float32).tobytes()).hexdigest()
     return f"{name} {digest} mean {float(image[..., :3].mean()):.6f}"
 
@@ -72,17 +77,20 @@ def main():
     big = "--big" in argv
     out = [a for a in argv if not a.startswith("--")][0]
     lines = []
+    keep = out + ".d"
+    os.makedirs(keep, exist_ok=True)
     with tempfile.TemporaryDirectory() as d:
         for name in comparison_scenes.SCENES:
             scene, _mod = comparison_scenes.build(name)
-            lines.append(fingerprint(scene, name, d, 96, 72))
+            lines.append(fingerprint(scene, name, d, 96, 72, keep))
             print(lines[-1], flush=True)
-        lines.append(fingerprint(mesh_kinds(bpy.context.scene), "mesh_kinds", d, 96, 72))
+        lines.append(fingerprint(mesh_kinds(bpy.context.scene), "mesh_kinds", d, 96, 72, keep))
         print(lines[-1], flush=True)
         if big:
             for name, build in (("mesh_10M", lambda: scale_bench.build_mesh(10_000_000)),
                                 ("blades_100k", lambda: scale_bench.build_blades(100_000))):
-                lines.append(fingerprint(build(), name, d, scale_bench.WIDTH, scale_bench.HEIGHT))
+                lines.append(fingerprint(build(), name, d, scale_bench.WIDTH, scale_bench.HEIGHT,
+                                         keep))
                 print(lines[-1], flush=True)
     with open(out, "w") as f:
         f.write("\n".join(lines) + "\n")
