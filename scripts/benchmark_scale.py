@@ -333,7 +333,8 @@ def main(argv=None):
             r = run_constant_work(count, args.logs, args.constant_samples, args.constant_repeats)
             loads.append(os.getloadavg()[0])
             data.setdefault("constant_work", {})[str(count)] = r
-            print(f"sampling {min(r['sampling_seconds']):.2f} s, load {loads[-1]:.1f}", flush=True)
+            print(f"sampling {min(r['sampling_seconds']):.2f} s wall, "
+                  f"{min(r['cpu_seconds']):.2f} s CPU, load {loads[-1]:.1f}", flush=True)
             with open(res_path, "w") as f:
                 json.dump(data, f, indent=1)
         blender = subprocess.run(["/usr/bin/blender", "--version"], capture_output=True,
