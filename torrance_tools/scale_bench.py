@@ -107,3 +107,16 @@ def measure(scene, engine):
         result["export"] = {k: v for k, v in trender.last_stats.items()
                             if isinstance(v, (int, float)) and not isinstance(v, bool)}
     return result
+
+
+def fits(rows, key):
+    """Least-squares fits of seconds against triangles T over rows (dicts with "triangles" and
+    `key`): a + b log10 T (b: seconds per decade) and c T^k (k: the log-log slope)."""
+    pts = [(r["triangles"], r[key]) for r in rows if r.get(key)]
+    if len(pts) < 2:
+        return None
+    t = np.log10([p[0] for p in pts])
+    y = np.array([p[1] for p in pts])
+    b, a = np.polyfit(t, y, 1)
+    k, logc = np.polyfit(t, np.log10(y), 1)
+    return dict(a=a, b=b, k=k, c=10 ** logc, points=len(pts))

@@ -36,6 +36,46 @@ def test_sun_on_lambert_plane_in_blender_units():
     assert 0.0 <= result.setup_seconds <= result.seconds
 
 
+def test_big_mesh_errors_name_the_first_bad_element():
+    """add_mesh checks a mesh on all cores (blocks of 16 k elements): the error still names the
+    first bad vertex, index, normal or material, not whichever block failed first."""
+    scene = tc.Scene()
+    scene.add_material()
+    n = 200_000
+    rng = np.random.default_rng(5)
+    pos = rng.uniform(-1, 1, (n, 3)).astype(np.float32)
+    tris = rng.integers(0, n, (n, 3))
+    for late, early in ((190_000, 70_000), (90_000, 20_001)):
+        bad = pos.copy()
+        bad[late, 0] = np.nan
+        bad[early, 2] = np.inf
+        with pytest.raises(ValueError, match=f"mesh vertex {early} has a NaN or Inf"):
+            scene.add_mesh(bad, tris)
+        bad = pos.copy()
+        bad[late, 1] = 1e13
+        bad[early, 1] = -2e12
+        with pytest.raises(ValueError, match=f"mesh vertex {early} lies beyond 1e12"):
+            scene.add_mesh(bad, tris)
+        t = tris.copy()
+        t[late, 2] = n
+        t[early, 1] = -3
+        with pytest.raises(ValueError, match=f"triangle {early} uses vertex index -3"):
+            scene.add_mesh(pos, t)
+        normals = np.ones((n, 3, 3), np.float32)
+        normals[late, 1, 0] = np.nan
+        normals[early, 2, 1] = np.nan
+        with pytest.raises(ValueError, match=f"triangle corner {3 * early + 2} has NaN"):
+            scene.add_mesh(pos, tris, corner_normals=normals)
+        materials = np.zeros(n, np.int32)
+        materials[late] = 9
+        materials[early] = 7
+        with pytest.raises(ValueError, match=f"triangle {early} uses material 7"):
+            scene.add_mesh(pos, tris, material_indices=materials)
+    assert scene.num_triangles == 0
+    scene.add_mesh(pos, tris)            # and the good mesh goes in
+    assert scene.num_triangles == n
+
+
 def test_mesh_input_errors_are_value_errors_with_messages():
     scene = tc.Scene()
     scene.add_material()
