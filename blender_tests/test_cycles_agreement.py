@@ -124,9 +124,10 @@ def faulty_core(core, fault):
         if fault == "missing_bounce":
             settings.max_bounces = max(0, settings.max_bounces - 1)
         return core.render(scene.scene, settings, on_pass=on_pass, should_stop=should_stop)
-    return types.SimpleNamespace(Scene=lambda: _FaultyScene(core, fault),
-                                 RenderSettings=core.RenderSettings, render=render,
-                                 PASSES=core.PASSES)
+    # The module as it is (every other entry point the export uses), but Scene and render.
+    names = {n: getattr(core, n) for n in dir(core) if not n.startswith("__")}
+    names.update(Scene=lambda: _FaultyScene(core, fault), render=render)
+    return types.SimpleNamespace(**names)
 
 
 # ------------------------------------------------------------------------------------------
