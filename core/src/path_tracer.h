@@ -1,0 +1,42 @@
+// The path tracer of render() (integrator.cpp): one camera sample's radiance, split as Blender's
+// passes, by trace_path compiled once per set of scene features (textures, light passes, lights a
+// BSDF-sampled ray can hit, glass, alpha, mixtures), so that a scene pays only for what it has.
+#pragma once
+
+#include "torrance/integrator.h"
+#include "torrance/material_bsdf.h"
+#include "torrance/sampling.h"
+
+#include <vector>
+
+namespace torrance {
+
+struct PathContext {
+  const Scene& scene;
+  const Lights& lights;
+  const RenderSettings& settings;
+  std::vector<MaterialBsdf> bsdfs;  // one per material, built once per render
+  Vec3 camera_forward;
+  float pixel_spread;  // radians per pixel: texture footprints grow with the path's length
+};
+
+// Everything one camera sample brings back, split as Blender's passes.
+struct PathRadiance {
+  Vec3 emission{0.0f}, environment{0.0f};
+  Vec3 diffuse_direct{0.0f}, diffuse_indirect{0.0f}, glossy_direct{0.0f}, glossy_indirect{0.0f};
+  float alpha = 1.0f;
+  float depth = 1e10f;
+  Vec3 normal{0.0f}, albedo{0.0f};
+
+  Vec3 combined() const {
+    return emission + environment + diffuse_direct + diffuse_indirect + glossy_direct + glossy_indirect;
+  }
+};
+
+using TraceFn = PathRadiance (*)(const PathContext&, Ray, SobolSampler&);
+
+// The path tracer for the scene's features under the settings (specialize false: the generic
+// one, which has every feature).
+TraceFn select_path_tracer(const Scene& scene, const RenderSettings& settings);
+
+}  // namespace torrance
