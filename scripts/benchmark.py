@@ -15,11 +15,17 @@ Then the options of the core (boolean fields of RenderSettings such as `speciali
 string options in ALTERNATIVES) are switched one at a time at --toggle-spp, interleaved over
 --toggle-repeats rounds, for the report's "what each specialisation buys".
 
+In Blender 4.x (scripts/benchmark --blender 4.5, run through scripts/bpy) Torrance renders with
+PRINCIPLED_V2 (the add-on's choice for 4.x) against the references of that Cycles
+(references/blender4.5/), and Cycles is rendered as every variant of
+torrance_tools.blender_versions.CYCLES_4X: light tree and path guiding each on and off, each a
+separate engine curve and equal-error ratio; "cycles" (both off) is configured as the 3.4 one.
+
 Writes <out>/results.json; scripts/benchmark_report.py turns it into <out>/report.md + plots.
 
     scripts/blender -b --factory-startup --python-exit-code 1 --python scripts/benchmark.py -- \
         [--out DIR] [--max-spp N] [--cap-seconds S] [--max-seeds N] [--toggle-spp N]
-        [--toggle-repeats N] [SCENE ...]
+        [--toggle-repeats N (0: no toggles)] [SCENE ...]
 """
 
 import argparse
@@ -32,10 +38,11 @@ import subprocess
 import sys
 import time
 
+import bpy
 import numpy as np
 
 from torrance_tools import REPO as ROOT
-from torrance_tools import addon_access, compare, comparison_scenes, references
+from torrance_tools import addon_access, blender_versions, compare, comparison_scenes, references
 
 KNOWN_SETTINGS = {"width", "height", "samples", "max_bounces", "seed", "pixel_aspect_x",
                   "pixel_aspect_y", "filter_width", "transparent_background", "brdf_model",
@@ -47,7 +54,7 @@ TRIM = 0.001          # rel_mse_trim leaves out the worst 0.1 % of pixels (firef
 def parse_args():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     p = argparse.ArgumentParser(prog="scripts/benchmark")
-    p.add_argument("--out", default=os.path.join(ROOT, "docs", "benchmark"))
+    p.add_argument("--out", default=blender_versions.report_dir(bpy.app.version))
     p.add_argument("--max-spp", type=int, default=1024)
     p.add_argument("--cap-seconds", type=float, default=40.0,
                    help="stop doubling an engine's samples after a render this long")
@@ -85,15 +92,23 @@ def specialisation_toggles(core):
     return out
 
 
+CYCLES_VARIANTS = blender_versions.cycles_variants(bpy.app.version)
+ENGINES = ("torrance", *CYCLES_VARIANTS)
+COMMAND = "scripts/benchmark" + ("" if bpy.app.version < (4, 0, 0) else
+                                 f" --blender {blender_versions.series(bpy.app.version)}")
+
+
 def render_once(scene, engine, samples, bounces, seed, name, settings_edit=None):
-    """(image, seconds of bpy.ops.render.render, extra) -- the same timing for both engines."""
+    """(image, seconds of bpy.ops.render.render, extra) -- the same timing for both engines.
+    `engine`: "torrance" or a Cycles variant of CYCLES_VARIANTS."""
     if engine == "torrance":
         img, t = references.render_torrance(scene, samples, seed, bounces, name=name,
                                             settings_edit=settings_edit)
         stats = addon_access.addon().render.last_stats
         extra = dict(export_seconds=stats.get("export_seconds"), core_seconds=stats.get("seconds"))
     else:
-        img, t = references.render_cycles(scene, samples, seed, bounces, name=name)
+        img, t = references.render_cycles(scene, samples, seed, bounces, name=name,
+                                          variant=CYCLES_VARIANTS[engine])
         extra = {}
     return img, t, extra
 
@@ -147,7 +162,10 @@ def blender_startup_seconds(repeats=3):
     times = []
     for _ in range(repeats):
         t0 = time.perf_counter()
-        subprocess.run([os.path.join(ROOT, "scripts", "blender"), "-b", "--factory-startup",
+        # the Blender of this run: scripts/blender, or scripts/bpy's wrapper for this version
+        blender = (os.environ.get("TORRANCE_BPY_BINARY")
+                   or os.path.join(ROOT, "scripts", "blender"))
+        subprocess.run([blender, "-b", "--factory-startup",
                         "--python-expr", "import bpy"], stdout=subprocess.DEVNULL,
                        stderr=subprocess.DEVNULL, check=False)
         times.append(time.perf_counter() - t0)
@@ -184,27 +202,27 @@ def bench_scene(name, args, core, toggles):
     floor = float(meta["noise_rel_mse"])
     out = dict(title=mod.TITLE, bounces=mod.BOUNCES, reference=dict(
         samples=meta["samples"], noise_rel_mse=floor, blender=meta["blender"]),
-        torrance=[], cycles=[], toggles={})
+        toggles={}, **{engine: [] for engine in ENGINES})
     # warm-up (untimed): first-render costs such as kernel and module loading
-    references.render_torrance(scene, 1, SEED, mod.BOUNCES, name="warm_t")
-    references.render_cycles(scene, 1, SEED, mod.BOUNCES, name="warm_c")
-    active = {"torrance": True, "cycles": True}
+    for engine in ENGINES:
+        render_once(scene, engine, 1, mod.BOUNCES, SEED, f"warm_{engine}")
+    active = dict.fromkeys(ENGINES, True)
     spp = 1
     while spp <= args.max_spp and any(active.values()):
-        for engine in ("torrance", "cycles"):
+        for engine in ENGINES:
             if not active[engine]:
                 continue
             row = bench_point(scene, engine, spp, mod.BOUNCES, ref, floor, args.max_seeds,
                               f"{engine}_{name}_{spp}")
             seconds = row["seconds"]
             out[engine].append(row)
-            print(f"benchmark: {name:13s} {engine:8s} {spp:5d} spp {seconds:8.3f} s  relMSE "
+            print(f"benchmark: {name:13s} {engine:25s} {spp:5d} spp {seconds:8.3f} s  relMSE "
                   f"{row['rel_mse']:.3e} (trimmed {row['rel_mse_trim']:.3e}; {row['seeds']} seeds)"
                   f"  SSIM {row['ssim']:.4f}  ratio {row['ratio']:.4f}", flush=True)
             if seconds > args.cap_seconds:
                 active[engine] = False
         spp *= 2
-    if toggles:
+    if toggles and args.toggle_repeats > 0:
         # default and each switched option in turn, `toggle_repeats` rounds (interleaved, so load
         # changes hit all alike), a seed per round; errors averaged, times: medians
         variants = [("default", None, None)] + [(t, t, o) for t, _d, o in toggles]
@@ -240,7 +258,7 @@ def main():
     t0 = time.perf_counter()
     results = dict(
         made=datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-        command="scripts/benchmark " + " ".join(sys.argv[sys.argv.index("--") + 1:]
+        command=COMMAND + " " + " ".join(sys.argv[sys.argv.index("--") + 1:]
                                                 if "--" in sys.argv else []),
         torrance_commit=git("rev-parse", "--short", "HEAD"),
         torrance_dirty=bool(git("status", "--porcelain", "--",
@@ -251,12 +269,16 @@ def main():
                       cap_seconds=args.cap_seconds, toggle_spp=args.toggle_spp,
                       toggle_repeats=args.toggle_repeats,
                       max_seeds=args.max_seeds, trim=TRIM,
-                      torrance_model='PRINCIPLED',
+                      torrance_model=addon_access.addon().brdf_model.core_model('PRINCIPLED'),
+                      cycles_variants=CYCLES_VARIANTS,
+                      references=os.path.relpath(references.REFERENCE_DIR, ROOT),
                       threads="all (Blender threads AUTO; Torrance threads 0)"),
-        toggles=[dict(field=t, default=d, other=o) for t, d, o in toggles],
+        toggles=[dict(field=t, default=d, other=o) for t, d, o in toggles
+                 if args.toggle_repeats > 0],
         blender_startup_seconds=blender_startup_seconds(),
         scenes={})
-    toggle_fields = [t['field'] for t in results['toggles']] or 'none exposed by the core'
+    toggle_fields = ([t['field'] for t in results['toggles']] or 'none exposed by the core'
+                     if args.toggle_repeats > 0 else 'skipped (--toggle-repeats 0)')
     print(f"benchmark: Blender start-up {results['blender_startup_seconds']:.2f} s; "
           f"specialisation toggles: {toggle_fields}", flush=True)
     for name in args.scenes:

@@ -16,15 +16,22 @@ another scene) and the reference's own noise, measured from the two halves:
     half_ratio         mean(A) / mean(B).
 
     scripts/blender -b --factory-startup --python-exit-code 1 --python scripts/references.py -- \
-        [NAME ...]
+        [--samples N] [NAME ...]
+
+--samples N renders N samples in all (N/2 per seed) instead of each scene's REFERENCE_SAMPLES: a
+noisier reference, faster (its noise term is measured and recorded all the same). In Blender 4.x
+(scripts/references --blender 4.5) the references go to references/blender<X.Y>/
+(torrance_tools.blender_versions.reference_dir).
 """
 
+import argparse
 import datetime
 import json
 import os
 import sys
 import time
 
+import bpy
 import numpy as np
 
 from torrance_tools import compare, comparison_scenes, references, render_settings
@@ -32,10 +39,10 @@ from torrance_tools import compare, comparison_scenes, references, render_settin
 SEEDS = (1, 2)
 
 
-def make_reference(name):
+def make_reference(name, samples=None):
     scene, mod = comparison_scenes.build(name)
     digest = comparison_scenes.scene_digest(scene)
-    half = mod.REFERENCE_SAMPLES // 2
+    half = (samples or mod.REFERENCE_SAMPLES) // 2
     images, seconds = [], []
     for seed in SEEDS:
         print(f"references: {name}: Cycles {half} samples, seed {seed}", flush=True)
@@ -50,7 +57,7 @@ def make_reference(name):
     exr, meta_path = references.reference_paths(name)
     os.makedirs(os.path.dirname(exr), exist_ok=True)
     compare.write_exr_half(exr, ref)
-    stored = compare.read_exr(exr)
+    stored = compare.read_exr(exr)[:, :, :3]    # RGB (the native module writes RGBA)
     ba, bb, br = compare.block_means(a), compare.block_means(b), compare.block_means(stored)
     block_noise = np.abs(ba - bb) / 2 / np.maximum(br, 0.1 * br.mean())
     # the settings as Cycles holds them after the renders (what was used, not what was asked)
@@ -63,7 +70,7 @@ def make_reference(name):
         scene=name, title=mod.TITLE, script=f"scenes/cmp_{name}.py",
         scene_digest=digest,
         made=datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-        command="scripts/references " + name,
+        command=COMMAND + " " + name,
         **references.versions(),
         engine="CYCLES", width=scene.render.resolution_x, height=scene.render.resolution_y,
         bounces=mod.BOUNCES, samples=2 * half, seeds=list(SEEDS), samples_per_seed=half,
@@ -86,16 +93,28 @@ def make_reference(name):
           f"halves' ratio {meta['half_ratio']:.4f}", flush=True)
 
 
+COMMAND = "scripts/references" + ("" if bpy.app.version < (4, 0, 0)
+                                   else f" --blender {bpy.app.version[0]}.{bpy.app.version[1]}")
+
+
 def main():
+    global COMMAND
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    names = argv or list(comparison_scenes.SCENES)
+    p = argparse.ArgumentParser(prog="scripts/references")
+    p.add_argument("--samples", type=int, default=None,
+                   help="samples of every reference (default: each scene's REFERENCE_SAMPLES)")
+    p.add_argument("names", nargs="*")
+    args = p.parse_args(argv)
+    if args.samples:
+        COMMAND += f" --samples {args.samples}"
+    names = args.names or list(comparison_scenes.SCENES)
     for name in names:
         if name not in comparison_scenes.SCENES:
             raise SystemExit(f"references: unknown scene {name!r}; "
                              f"known: {', '.join(comparison_scenes.SCENES)}")
     t0 = time.perf_counter()
     for name in names:
-        make_reference(name)
+        make_reference(name, args.samples)
     print(f"references: done in {time.perf_counter() - t0:.0f} s", flush=True)
 
 

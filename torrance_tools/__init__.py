@@ -8,6 +8,7 @@ what the headless tests share.
     comparison_scenes the registry of the comparison scenes (scenes/cmp_*.py) and their digest
     compare           EXR reading/writing and image metrics (bias, relative MSE, SSIM, offset)
     references        the stored Cycles references; Torrance and Cycles renders of a scene
+    blender_versions  per Blender version: the benchmark's Cycles variants, reference/report dirs
     agreement         the Torrance-vs-Cycles agreement scene and its pass/fail criteria
     testing           what the headless Blender tests share (runner, add-on access, shortcuts)
     sweep/            headless material-input sweeps: runner, sheet, experiments, report

@@ -35,8 +35,15 @@ def read_exr(path):
 
 
 def write_exr_half(path, rgb):
-    """Writes float (H, W, 3) as a half-float, ZIP-compressed (lossless) RGB EXR."""
-    import OpenImageIO as oiio
+    """Writes float (H, W, 3) as a half-float, ZIP-compressed (lossless) RGB EXR. Without
+    OpenImageIO's Python module (the bpy 4.x venv): the half-float values through the add-on's
+    native module, stored as a float EXR."""
+    try:
+        import OpenImageIO as oiio
+    except ImportError:
+        from torrance_tools.addon_access import core
+        core().write_image(path, np.ascontiguousarray(to_half(rgb[:, :, :3])))
+        return
     rgb = np.ascontiguousarray(rgb[:, :, :3], dtype=np.float32)
     h, w = rgb.shape[:2]
     spec = oiio.ImageSpec(w, h, 3, oiio.HALF)

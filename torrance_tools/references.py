@@ -13,13 +13,14 @@ import tempfile
 
 import bpy
 
-from torrance_tools import REPO
 from torrance_tools.addon_access import torrance_core
+from torrance_tools.blender_versions import reference_dir
 from torrance_tools.compare import read_exr
 from torrance_tools.comparison_scenes import scene_digest
 from torrance_tools.render_settings import render_exr, setup_cycles, setup_torrance
 
-REFERENCE_DIR = os.environ.get("TORRANCE_REFERENCE_DIR") or os.path.join(REPO, "references")
+# references/ for Blender 3.4, references/blender<X.Y>/ for 4.x (rendered by that Cycles)
+REFERENCE_DIR = os.environ.get("TORRANCE_REFERENCE_DIR") or reference_dir(bpy.app.version)
 
 _tmp = None
 
@@ -50,8 +51,12 @@ def render_torrance(scene, samples, seed, bounces, name="torrance", settings_edi
         return render(scene, name)
 
 
-def render_cycles(scene, samples, seed, bounces, name="cycles"):
+def render_cycles(scene, samples, seed, bounces, name="cycles", variant=None):
+    """A Cycles render (setup_cycles), with the settings of `variant` (a dict of scene.cycles
+    fields, e.g. blender_versions.CYCLES_4X's light tree and path guiding) on top."""
     setup_cycles(scene, samples, bounces, seed)
+    for key, value in (variant or {}).items():
+        setattr(scene.cycles, key, value)
     return render(scene, name)
 
 
@@ -70,7 +75,7 @@ def load_reference(name):
         raise FileNotFoundError(f"no reference for scene '{name}' ({exr}); make it with "
                                 f"scripts/references")
     with open(meta) as f:
-        return read_exr(exr), json.load(f)
+        return read_exr(exr)[:, :, :3], json.load(f)
 
 
 def reference_is_current(scene, meta):

@@ -1,0 +1,83 @@
+"""The Blender 4.x speed/error benchmark's own logic, without rendering (scripts/benchmark
+--blender 4.5; docs/blender4.md): which Blender, report and reference directories a version gets,
+the Cycles variants it compares, and the report's ratio against each variant."""
+import importlib.util
+import json
+import os
+import subprocess
+from pathlib import Path
+
+from torrance_tools import blender_versions
+
+REPO = Path(__file__).resolve().parents[3]
+
+
+def load_report_module():
+    spec = importlib.util.spec_from_file_location("benchmark_report",
+                                                  REPO / "scripts" / "benchmark_report.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_directories_and_variants_by_blender_version():
+    assert blender_versions.report_dir((3, 4, 1)) == str(REPO / "docs" / "benchmark")
+    assert blender_versions.report_dir((4, 5, 15)) == str(REPO / "docs" / "benchmark_blender4.5")
+    assert blender_versions.reference_dir((3, 4, 1)) == str(REPO / "references")
+    assert blender_versions.reference_dir((4, 2, 23)) == str(REPO / "references" / "blender4.2")
+    assert list(blender_versions.cycles_variants((3, 4, 1))) == ["cycles"]
+    v4 = blender_versions.cycles_variants((4, 5, 15))
+    assert {(s["use_light_tree"], s["use_guiding"]) for s in v4.values()} == {
+        (False, False), (True, False), (False, True), (True, True)}
+    assert v4["cycles"] == {"use_light_tree": False, "use_guiding": False,
+                            "use_surface_guiding": False, "use_volume_guiding": False}
+
+
+def dry_run(*args):
+    env = dict(os.environ, TORRANCE_BENCHMARK_DRY_RUN="1")
+    return subprocess.run([REPO / "scripts" / "benchmark", *args], env=env, check=True,
+                          capture_output=True, text=True).stdout
+
+
+def test_option_parsing_selects_blender_and_output_directory():
+    out = dry_run("--blender", "4.5", "--max-spp", "2", "sphere_chart")
+    assert out.startswith(f"{REPO}/scripts/bpy 4.5 -- ")
+    assert f"--out {REPO}/docs/benchmark_blender4.5 --max-spp 2 sphere_chart" in out
+    out = dry_run("--max-spp", "2")
+    assert out.startswith(f"{REPO}/scripts/blender -- --out {REPO}/docs/benchmark --max-spp 2")
+    assert "--out /tmp/x" in dry_run("--blender", "4.2", "--out", "/tmp/x")
+
+
+def rows(seconds_per_spp, errors):
+    return [dict(spp=2 ** i, seconds=seconds_per_spp * 2 ** i, rel_mse=e, rel_mse_corrected=e,
+                 rel_mse_trim=e, rel_mse_trim_corrected=e, ssim=1 - e, ratio=1.0,
+                 block_mean=0.0, finite=True, seeds=1) for i, e in enumerate(errors)]
+
+
+def test_report_gives_a_ratio_against_each_cycles_variant(tmp_path):
+    errors = [0.1 / 2 ** i for i in range(5)]          # relMSE ∝ 1/spp for every engine
+    scene = dict(title="t", bounces=8, reference=dict(samples=1024, noise_rel_mse=1e-6,
+                                                      blender="4.5.15"),
+                 torrance=rows(0.2, errors), cycles=rows(0.1, errors),
+                 cycles_guiding=rows(0.4, errors), toggles={})
+    variants = {"cycles": {"use_guiding": False}, "cycles_guiding": {"use_guiding": True}}
+    report = load_report_module()
+    ratios = report.variant_ratios(scene, list(variants))
+    assert abs(ratios["cycles"]["geomean"] - 2.0) < 1e-9
+    assert abs(ratios["cycles_guiding"]["geomean"] - 0.5) < 1e-9
+    res = dict(made="now", command="scripts/benchmark --blender 4.5", torrance_commit="x",
+               torrance_dirty=False, blender="4.5.15 LTS", machine=dict(
+                   cpu="cpu", cores=2, system="linux", load_average=[1.0, 1.0, 1.0]),
+               settings=dict(width=128, height=96, seed=0, max_spp=16, cap_seconds=40,
+                             toggle_spp=128, toggle_repeats=0, max_seeds=4,
+                             torrance_model="PRINCIPLED_V2", cycles_variants=variants,
+                             references="references/blender4.5"),
+               toggles=[], blender_startup_seconds=1.0, total_seconds=60.0,
+               scenes={"sphere_chart": scene})
+    (tmp_path / "results.json").write_text(json.dumps(res))
+    path, _summary = report.write_report(str(tmp_path))
+    text = Path(path).read_text()
+    assert "# Speed against error: Torrance vs Cycles 4.5.15" in text
+    assert "model PRINCIPLED_V2 (Cycles' Principled v2)" in text
+    assert "| scene | T / `cycles` | T / `cycles_guiding` |" in text
+    assert "| sphere_chart | 2.00 (2.00–2.00) | 0.50 (0.50–0.50) |" in text
