@@ -23,17 +23,14 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_glass_agreement.py
 """
 
-import math
-
 import bpy
 import numpy as np
 
 from torrance_tools import render_settings, testing
-from torrance_tools.scene import box
 from torrance_tools.agreement import (cycles_reference_and_noise, failures, format_metrics,
                                       mean_metrics, metrics, noise_bounds, print_verdict)
 from torrance_tools.testing import check
-from torrance_tools.textures import checker, floor_uvs, image_node, new_image, set_uvs
+from torrance_tools.issue12_scenes import ortho_glass
 
 W, H = 96, 72
 SAMPLES = 256
@@ -42,15 +39,6 @@ TORRANCE_SEEDS = (2, 3)
 TOLERANCE = 1.5        # x Cycles' own block mean / p90 against its reference
 RATIO_SIGMAS = 3.0     # x Cycles' own |ratio - 1|
 RATIO_FLOOR = 0.015
-
-
-def glass_principled(name, roughness, transmission_roughness, ior, color=(1.0, 1.0, 1.0)):
-    mat = testing.principled(name, color, 0.0, roughness)
-    node = mat.node_tree.nodes["Principled BSDF"]
-    node.inputs["Transmission"].default_value = 1.0
-    node.inputs["Transmission Roughness"].default_value = transmission_roughness
-    node.inputs["IOR"].default_value = ior
-    return mat
 
 
 def glass_node(name, color, roughness, ior, distribution='GGX'):
@@ -68,25 +56,11 @@ def glass_node(name, color, roughness, ior, distribution='GGX'):
 
 
 def build(scene):
-    testing.setup_render(scene, width=W, height=H)
-    cam = testing.add_camera(scene, location=(0.0, -6.0, 4.5), target=(0.0, 0.2, 0.4))
-    cam.data.type = 'ORTHO'
-    cam.data.ortho_scale = 4.6
-    floor_mat = testing.principled("Floor", (0.8, 0.8, 0.8), 0.0, 0.7)
-    image_node(floor_mat, new_image("Checker", checker(8, 0.75, 0.15)), "Base Color", 'Closest')
-    floor = testing.plane(scene, "Floor", 12.0, material=floor_mat)
-    set_uvs(floor, floor_uvs(6.0, 6.0))
-    testing.sphere_object(scene, "RoughGlass", (-1.1, 0.0, 0.61), 0.6,
-                          glass_principled("RoughGlass", 0.2, 0.3, 1.5))
-    box(scene, "ClearCube", (0.75, -0.3, 0.46), (0.9, 0.9, 0.9),
-                glass_principled("ClearGlass", 0.0, 0.0, 1.45), rotation_z_deg=30.0)
+    ortho_glass(scene, W, H)
     testing.sphere_object(scene, "GlassNode", (0.1, 1.2, 0.46), 0.45,
                           glass_node("TintedGlass", (0.95, 0.7, 0.35), 0.15, 1.6))
     testing.sphere_object(scene, "BeckmannNode", (1.65, 0.9, 0.36), 0.35,
                           glass_node("BeckmannGlass", (0.8, 0.9, 1.0), 0.35, 1.5, 'BECKMANN'))
-    testing.add_sun(scene, strength=2.5, rotation=(math.radians(35), 0, math.radians(25)),
-                    angle=math.radians(15.0))
-    testing.set_world(scene, (0.45, 0.5, 0.6))
 
 
 def render_torrance(scene, d, seed, name):

@@ -51,16 +51,19 @@ def three_leaves(scene, image, make_material=leaf_material):
             for i, (x, yaw, tilt, color) in enumerate(LEAVES)]
 
 
-def stage(scene, width, height):
-    """The cards' stage: a camera, a grey 12 m floor, a low sun casting the cards' shadows toward
-    the camera and a blue-grey sky (test_alpha_agreement.py's scene)."""
+def stage(scene, width, height, floor_material=None):
+    """The cards' stage: a camera, a 12 m floor (grey, or floor_material with UVs over [0, 1]),
+    a low sun casting the cards' shadows toward the camera and a blue-grey sky
+    (test_alpha_agreement.py's scene). Returns the camera object."""
     testing.setup_render(scene, width=width, height=height)
-    testing.add_camera(scene, location=(0.0, -3.4, 2.4), target=(0.0, 0.6, 0.4), lens=30.0)
-    testing.plane(scene, "Floor", 12.0,
-                  material=testing.principled("Floor", (0.55, 0.55, 0.5), 0.0, 0.8))
+    cam = testing.add_camera(scene, location=(0.0, -3.4, 2.4), target=(0.0, 0.6, 0.4), lens=30.0)
+    floor = testing.plane(scene, "Floor", 12.0, material=floor_material or testing.principled(
+        "Floor", (0.55, 0.55, 0.5), 0.0, 0.8))
+    set_uvs(floor, [(0, 0), (1, 0), (1, 1), (0, 1)])
     testing.add_sun(scene, strength=3.0, rotation=(math.radians(55), 0, math.radians(-150)),
                     angle=math.radians(3.0))
     testing.set_world(scene, (0.3, 0.35, 0.45))
+    return cam
 
 
 def shader_material(name):
