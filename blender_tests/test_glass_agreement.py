@@ -24,13 +24,10 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
 """
 
 import bpy
-import numpy as np
 
-from torrance_tools import render_settings, testing
-from torrance_tools.agreement import (cycles_reference_and_noise, failures, format_metrics,
-                                      mean_metrics, metrics, noise_bounds, print_verdict)
-from torrance_tools.testing import check
+from torrance_tools import testing
 from torrance_tools.issue12_scenes import ortho_glass
+from torrance_tools.seed_noise import agree_within_seed_noise
 
 W, H = 96, 72
 SAMPLES = 256
@@ -63,79 +60,43 @@ def build(scene):
                           glass_node("BeckmannGlass", (0.8, 0.9, 1.0), 0.35, 1.5, 'BECKMANN'))
 
 
-def render_torrance(scene, d, seed, name):
-    render_settings.setup_torrance(scene, SAMPLES, BOUNCES, seed=seed, brdf_model='PRINCIPLED')
-    img, seconds = testing.render(scene, d, name)
-    check(np.isfinite(img).all(), f"{name}: NaN/Inf in Torrance's image")
-    return img, seconds
-
-
-# Faults: wrappers of MaterialReader._principled_glass / _ior.
-def no_transmission_roughness(reader_cls):
-    original = reader_cls._principled_glass
-
+# Faults: wrappers of MaterialReader._principled_glass / _ior / _glass.
+def no_transmission_roughness(original):
     def fault(self, mat, node):
         out = original(self, mat, node)
         if out:
             out["transmission_roughness"] = 0.0
         return out
-    return "_principled_glass", fault
+    return fault
 
 
-def ior_ignored(reader_cls):
+def ior_ignored(_original):
     def fault(self, mat, node, fallback):
         return 1.45
-    return "_ior", fault
+    return fault
 
 
-def beckmann_as_ggx(reader_cls):
-    original = reader_cls._glass
-
+def beckmann_as_ggx(original):
     def fault(self, mat, node):
         out = original(self, mat, node)
         out["glass_distribution"] = 'GGX'
         return out
-    return "_glass", fault
+    return fault
 
 
 def main():
     testing.addon()
     from torrance.materials import MaterialReader
-    d = testing.tempdir()
     scene = testing.clear_scene()
     build(scene)
-    ref, own = cycles_reference_and_noise(scene, d, SAMPLES, BOUNCES)
-    limits = noise_bounds(own, TOLERANCE, RATIO_SIGMAS, RATIO_FLOOR)
-    print(f"bounds: ratio {limits['ratio'][0]:.4f}..{limits['ratio'][1]:.4f}, block mean "
-          f"{limits['block_mean']:.4f}, p90 {limits['block_p90']:.4f}")
-    results = []
-    for seed in TORRANCE_SEEDS:
-        img, seconds = render_torrance(scene, d, seed, f"torrance{seed}")
-        results.append(metrics(img, ref))
-        print(f"Torrance seed {seed}             : {format_metrics(results[-1])}"
-              f"  ({seconds:.1f} s)")
-    m = mean_metrics(results)
-    bad = failures(m, limits)
-    print_verdict("Torrance mean over seeds    ", m, bad)
-    check(not bad, "glass disagrees with Cycles: " + "; ".join(bad))
-    missed = []
-    for label, make_fault in (("Transmission Roughness ignored", no_transmission_roughness),
-                              ("IOR ignored (1.45)", ior_ignored),
-                              ("info: Beckmann rendered as GGX", beckmann_as_ggx)):
-        attr, fault = make_fault(MaterialReader)
-        original = getattr(MaterialReader, attr)
-        setattr(MaterialReader, attr, fault)
-        try:
-            img, _ = render_torrance(scene, d, TORRANCE_SEEDS[0], "fault")
-        finally:
-            setattr(MaterialReader, attr, original)
-        fm = metrics(img, ref)
-        fbad = failures(fm, limits)
-        print(f"  fault {label:30s}: {format_metrics(fm)}"
-              + (f"  caught: {'; '.join(fbad)}" if fbad else "  NOT CAUGHT"), flush=True)
-        if not fbad and not label.startswith("info:"):
-            missed.append(label)
-    check(not missed, "faults the comparison does not see: " + ", ".join(missed))
+    agree_within_seed_noise(
+        scene, testing.tempdir(), SAMPLES, BOUNCES, "glass",
+        faults=(("Transmission Roughness ignored", MaterialReader, "_principled_glass",
+                 no_transmission_roughness),
+                ("IOR ignored (1.45)", MaterialReader, "_ior", ior_ignored),
+                ("info: Beckmann rendered as GGX", MaterialReader, "_glass", beckmann_as_ggx)),
+        seeds=TORRANCE_SEEDS, tolerance=TOLERANCE, ratio_sigmas=RATIO_SIGMAS,
+        ratio_floor=RATIO_FLOOR)
 
 
 testing.run(main)

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
 """Torrance against Cycles within Cycles' own seed-to-seed noise, with deliberate faults
-(test_alpha_agreement.py, test_alpha_mix_agreement.py).
+(test_alpha_agreement.py, test_alpha_mix_agreement.py, test_glass_agreement.py).
 
 Cycles renders the reference (seed 0) and a second image (seed 1),
 agreement.cycles_reference_and_noise; their metrics set the bounds (agreement.noise_bounds).
@@ -28,7 +28,8 @@ def agree_within_seed_noise(scene, directory, samples, bounces, what, faults=(),
     """Raises AssertionError unless Torrance agrees with Cycles and every fault is caught.
 
     faults: (label, owner, attribute, make_fault) - owner.attribute is replaced by
-    make_fault(original) for one Torrance render (seeds[0]) and restored.
+    make_fault(original) for one Torrance render (seeds[0]) and restored. A label beginning
+    "info:" is reported only (a fault these figures are known not to see).
     """
     ref, own = cycles_reference_and_noise(scene, directory, samples, bounces)
     limits = noise_bounds(own, tolerance, ratio_sigmas, ratio_floor)
@@ -56,6 +57,6 @@ def agree_within_seed_noise(scene, directory, samples, bounces, what, faults=(),
         fbad = failures(fm, limits)
         print(f"  fault {label:30s}: {format_metrics(fm)}"
               + (f"  caught: {'; '.join(fbad)}" if fbad else "  NOT CAUGHT"), flush=True)
-        if not fbad:
+        if not fbad and not label.startswith("info:"):
             missed.append(label)
     testing.check(not missed, "faults the comparison does not see: " + ", ".join(missed))
