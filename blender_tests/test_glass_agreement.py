@@ -23,17 +23,11 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_glass_agreement.py
 """
 
-import math
-
 import bpy
-import numpy as np
 
-from torrance_tools import render_settings, testing
-from torrance_tools.scene import box
-from torrance_tools.agreement import (cycles_reference_and_noise, failures, format_metrics,
-                                      mean_metrics, metrics, noise_bounds, print_verdict)
-from torrance_tools.testing import check
-from torrance_tools.textures import checker, floor_uvs, image_node, new_image, set_uvs
+from torrance_tools import testing
+from torrance_tools.issue12_scenes import ortho_glass
+from torrance_tools.seed_noise import agree_within_seed_noise
 
 W, H = 96, 72
 SAMPLES = 256
@@ -42,15 +36,6 @@ TORRANCE_SEEDS = (2, 3)
 TOLERANCE = 1.5        # x Cycles' own block mean / p90 against its reference
 RATIO_SIGMAS = 3.0     # x Cycles' own |ratio - 1|
 RATIO_FLOOR = 0.015
-
-
-def glass_principled(name, roughness, transmission_roughness, ior, color=(1.0, 1.0, 1.0)):
-    mat = testing.principled(name, color, 0.0, roughness)
-    node = mat.node_tree.nodes["Principled BSDF"]
-    node.inputs["Transmission"].default_value = 1.0
-    node.inputs["Transmission Roughness"].default_value = transmission_roughness
-    node.inputs["IOR"].default_value = ior
-    return mat
 
 
 def glass_node(name, color, roughness, ior, distribution='GGX'):
@@ -68,100 +53,50 @@ def glass_node(name, color, roughness, ior, distribution='GGX'):
 
 
 def build(scene):
-    testing.setup_render(scene, width=W, height=H)
-    cam = testing.add_camera(scene, location=(0.0, -6.0, 4.5), target=(0.0, 0.2, 0.4))
-    cam.data.type = 'ORTHO'
-    cam.data.ortho_scale = 4.6
-    floor_mat = testing.principled("Floor", (0.8, 0.8, 0.8), 0.0, 0.7)
-    image_node(floor_mat, new_image("Checker", checker(8, 0.75, 0.15)), "Base Color", 'Closest')
-    floor = testing.plane(scene, "Floor", 12.0, material=floor_mat)
-    set_uvs(floor, floor_uvs(6.0, 6.0))
-    testing.sphere_object(scene, "RoughGlass", (-1.1, 0.0, 0.61), 0.6,
-                          glass_principled("RoughGlass", 0.2, 0.3, 1.5))
-    box(scene, "ClearCube", (0.75, -0.3, 0.46), (0.9, 0.9, 0.9),
-                glass_principled("ClearGlass", 0.0, 0.0, 1.45), rotation_z_deg=30.0)
+    ortho_glass(scene, W, H)
     testing.sphere_object(scene, "GlassNode", (0.1, 1.2, 0.46), 0.45,
                           glass_node("TintedGlass", (0.95, 0.7, 0.35), 0.15, 1.6))
     testing.sphere_object(scene, "BeckmannNode", (1.65, 0.9, 0.36), 0.35,
                           glass_node("BeckmannGlass", (0.8, 0.9, 1.0), 0.35, 1.5, 'BECKMANN'))
-    testing.add_sun(scene, strength=2.5, rotation=(math.radians(35), 0, math.radians(25)),
-                    angle=math.radians(15.0))
-    testing.set_world(scene, (0.45, 0.5, 0.6))
 
 
-def render_torrance(scene, d, seed, name):
-    render_settings.setup_torrance(scene, SAMPLES, BOUNCES, seed=seed, brdf_model='PRINCIPLED')
-    img, seconds = testing.render(scene, d, name)
-    check(np.isfinite(img).all(), f"{name}: NaN/Inf in Torrance's image")
-    return img, seconds
-
-
-# Faults: wrappers of MaterialReader._principled_glass / _ior.
-def no_transmission_roughness(reader_cls):
-    original = reader_cls._principled_glass
-
+# Faults: wrappers of MaterialReader._principled_glass / _ior / _glass.
+def no_transmission_roughness(original):
     def fault(self, mat, node):
         out = original(self, mat, node)
         if out:
             out["transmission_roughness"] = 0.0
         return out
-    return "_principled_glass", fault
+    return fault
 
 
-def ior_ignored(reader_cls):
+def ior_ignored(_original):
     def fault(self, mat, node, fallback):
         return 1.45
-    return "_ior", fault
+    return fault
 
 
-def beckmann_as_ggx(reader_cls):
-    original = reader_cls._glass
-
+def beckmann_as_ggx(original):
     def fault(self, mat, node):
         out = original(self, mat, node)
         out["glass_distribution"] = 'GGX'
         return out
-    return "_glass", fault
+    return fault
 
 
 def main():
     testing.addon()
     from torrance.materials import MaterialReader
-    d = testing.tempdir()
     scene = testing.clear_scene()
     build(scene)
-    ref, own = cycles_reference_and_noise(scene, d, SAMPLES, BOUNCES)
-    limits = noise_bounds(own, TOLERANCE, RATIO_SIGMAS, RATIO_FLOOR)
-    print(f"bounds: ratio {limits['ratio'][0]:.4f}..{limits['ratio'][1]:.4f}, block mean "
-          f"{limits['block_mean']:.4f}, p90 {limits['block_p90']:.4f}")
-    results = []
-    for seed in TORRANCE_SEEDS:
-        img, seconds = render_torrance(scene, d, seed, f"torrance{seed}")
-        results.append(metrics(img, ref))
-        print(f"Torrance seed {seed}             : {format_metrics(results[-1])}"
-              f"  ({seconds:.1f} s)")
-    m = mean_metrics(results)
-    bad = failures(m, limits)
-    print_verdict("Torrance mean over seeds    ", m, bad)
-    check(not bad, "glass disagrees with Cycles: " + "; ".join(bad))
-    missed = []
-    for label, make_fault in (("Transmission Roughness ignored", no_transmission_roughness),
-                              ("IOR ignored (1.45)", ior_ignored),
-                              ("info: Beckmann rendered as GGX", beckmann_as_ggx)):
-        attr, fault = make_fault(MaterialReader)
-        original = getattr(MaterialReader, attr)
-        setattr(MaterialReader, attr, fault)
-        try:
-            img, _ = render_torrance(scene, d, TORRANCE_SEEDS[0], "fault")
-        finally:
-            setattr(MaterialReader, attr, original)
-        fm = metrics(img, ref)
-        fbad = failures(fm, limits)
-        print(f"  fault {label:30s}: {format_metrics(fm)}"
-              + (f"  caught: {'; '.join(fbad)}" if fbad else "  NOT CAUGHT"), flush=True)
-        if not fbad and not label.startswith("info:"):
-            missed.append(label)
-    check(not missed, "faults the comparison does not see: " + ", ".join(missed))
+    agree_within_seed_noise(
+        scene, testing.tempdir(), SAMPLES, BOUNCES, "glass",
+        faults=(("Transmission Roughness ignored", MaterialReader, "_principled_glass",
+                 no_transmission_roughness),
+                ("IOR ignored (1.45)", MaterialReader, "_ior", ior_ignored),
+                ("info: Beckmann rendered as GGX", MaterialReader, "_glass", beckmann_as_ggx)),
+        seeds=TORRANCE_SEEDS, tolerance=TOLERANCE, ratio_sigmas=RATIO_SIGMAS,
+        ratio_floor=RATIO_FLOOR)
 
 
 testing.run(main)

@@ -35,20 +35,12 @@ import numpy as np
 from torrance_tools import render_settings, testing
 from torrance_tools.agreement import (cycles_reference_and_noise, format_metrics, metrics,
                                       noise_failures, noise_limits, print_verdict)
+from torrance_tools.issue12_scenes import checker_mix
 from torrance_tools.scene import node_material
 from torrance_tools.testing import check
 
 W, H = 128, 96
 SAMPLES, REF_SAMPLES, BOUNCES = 256, 1024, 2
-
-
-def principled_node(nodes, color, metallic, roughness):
-    p = nodes.new("ShaderNodeBsdfPrincipled")
-    p.distribution = 'GGX'
-    p.inputs["Base Color"].default_value = (*color, 1.0)
-    p.inputs["Metallic"].default_value = metallic
-    p.inputs["Roughness"].default_value = roughness
-    return p
 
 
 def bsdf_node(nodes, kind, color, roughness):
@@ -58,20 +50,6 @@ def bsdf_node(nodes, kind, color, roughness):
     if kind == "ShaderNodeBsdfGlossy":
         n.distribution = 'GGX'
     return n
-
-
-def checker_floor():
-    mat, nodes, links, out = node_material("CheckerMix")
-    mix = nodes.new("ShaderNodeMixShader")
-    checker = nodes.new("ShaderNodeTexChecker")
-    checker.inputs["Scale"].default_value = 6.0
-    coords = nodes.new("ShaderNodeTexCoord")
-    links.new(coords.outputs["UV"], checker.inputs["Vector"])
-    links.new(checker.outputs["Fac"], mix.inputs["Fac"])
-    links.new(principled_node(nodes, (0.75, 0.75, 0.7), 0.0, 0.5).outputs[0], mix.inputs[1])
-    links.new(principled_node(nodes, (0.8, 0.25, 0.1), 1.0, 0.35).outputs[0], mix.inputs[2])
-    links.new(mix.outputs[0], out.inputs["Surface"])
-    return mat
 
 
 def banded_image():
@@ -114,7 +92,7 @@ def add_shader():
 def build(scene):
     testing.add_camera(scene, location=(0.0, -4.6, 2.4), target=(0.0, 0.2, 0.4), lens=35.0)
     bpy.ops.mesh.primitive_plane_add(size=6.0)
-    bpy.context.object.data.materials.append(checker_floor())
+    bpy.context.object.data.materials.append(checker_mix())
     spheres = (("MixSphere", -0.75, diffuse_glossy_mix()), ("AddSphere", 0.75, add_shader()))
     for name, x, mat in spheres:
         bpy.ops.mesh.primitive_uv_sphere_add(radius=0.6, location=(x, 0.3, 0.6), segments=48,

@@ -89,8 +89,46 @@ def unsupported_tree():
     return mat
 
 
+def transparent_mix(fac_node, fac_output):
+    """Mix(fac, Principled, tinted Transparent BSDF)."""
+    mat, nodes, links, out = node_material(f"TransparentMix{fac_node}")
+    mix = nodes.new("ShaderNodeMixShader")
+    fac = nodes.new(fac_node)
+    if fac_node == "ShaderNodeTexImage":
+        fac.image = bpy.data.images.new("Mask", 4, 4)
+    else:
+        links.new(nodes.new("ShaderNodeTexCoord").outputs["UV"], fac.inputs["Vector"])
+    links.new(fac.outputs[fac_output], mix.inputs["Fac"])
+    links.new(shader(nodes, "ShaderNodeBsdfPrincipled").outputs[0], mix.inputs[1])
+    links.new(shader(nodes, "ShaderNodeBsdfTransparent", Color=(0.2, 0.4, 0.6, 1.0)).outputs[0],
+              mix.inputs[2])
+    links.new(mix.outputs[0], out.inputs["Surface"])
+    return mat
+
+
+def check_transparent_mix():
+    """A Transparent BSDF in a Mix Shader becomes the other shader's alpha (transparent_mix.py);
+    with a Fac Torrance can not read as alpha, it stays reported and left out."""
+    args, messages = read(transparent_mix("ShaderNodeTexImage", "Color"))
+    print("transparent mix", {k: args.get(k) for k in ("alpha", "alpha_texture",
+                                                        "alpha_from_luminance", "alpha_inverted",
+                                                        "transparent_color")}, flush=True)
+    check("mixture" not in args and args["alpha_texture"] == 7 and args["alpha_from_luminance"]
+          and args["alpha_inverted"], f"an image's Color as Fac, Transparent second: {args}")
+    check(all(abs(a - b) < 1e-6 for a, b in zip(args["transparent_color"], (0.2, 0.4, 0.6),
+                                                 strict=True)),
+          f"the Transparent's Color tints: {args['transparent_color']}")
+    check(not messages, f"nothing reported: {messages}")
+    args, messages = read(transparent_mix("ShaderNodeTexChecker", "Fac"))
+    texts = [t for _l, t in messages]
+    check("mixture" in args and any("'Transparent BSDF' is not supported in a mix" in t
+                                    for t in texts),
+          f"a checker Fac: the Transparent BSDF reported and left out: {texts}")
+
+
 def main():
     testing.addon()
+    check_transparent_mix()
     testing.clear_scene()
     args, messages = read(nested_tree())
     mix = args.get("mixture")

@@ -6,6 +6,7 @@
 
 #include <pybind11/stl.h>
 
+#include <array>
 #include <string>
 
 namespace torrance::python {
@@ -53,7 +54,8 @@ void init_mixture(py::module_& m) {
   py::object cls = m.attr("Scene");
   auto add_mixture = [](Scene& s, const std::vector<std::tuple<std::string, int64_t, std::vector<int>>>& closures,
                         const py::list& factors, int normal_texture, float normal_strength, int bump_texture,
-                        float bump_strength, float bump_distance) {
+                        float bump_strength, float bump_distance, float alpha, int alpha_texture,
+                        bool alpha_from_luminance, bool alpha_inverted, std::array<float, 3> transparent_color) {
     Mixture mixture;
     for (const auto& f : factors) mixture.factors.push_back(parse_factor(f));
     for (const auto& [type, material, terms] : closures) {
@@ -67,20 +69,27 @@ void init_mixture(py::module_& m) {
     normal.bump = bump_texture;
     normal.bump_strength = bump_strength;
     normal.bump_distance = bump_distance;
-    return s.add_mixture(mixture, normal);
+    normal.alpha = alpha_texture;
+    normal.alpha_from_luminance = alpha_from_luminance;
+    normal.alpha_inverted = alpha_inverted;
+    return s.add_mixture(mixture, normal, alpha, Vec3(transparent_color[0], transparent_color[1], transparent_color[2]));
   };
   cls.attr("add_mixture") = py::cpp_function(
       add_mixture, py::name("add_mixture"), py::is_method(cls),
       py::sibling(py::getattr(cls, "add_mixture", py::none())),
       py::arg("closures"), py::arg("factors") = py::list(), py::arg("normal_texture") = -1,
       py::arg("normal_strength") = 1.0f, py::arg("bump_texture") = -1, py::arg("bump_strength") = 1.0f,
-      py::arg("bump_distance") = 1.0f,
+      py::arg("bump_distance") = 1.0f, py::arg("alpha") = 1.0f, py::arg("alpha_texture") = -1,
+      py::arg("alpha_from_luminance") = false, py::arg("alpha_inverted") = false,
+      py::arg("transparent_color") = std::array<float, 3>{1.0f, 1.0f, 1.0f},
       "Adds a material made of weighted closures (Mix Shader / Add Shader); returns its material index. "
       "closures: [(type, material, terms)], type 'principled' | 'diffuse' | 'glossy' | 'emission', material an "
       "add_material index holding the closure's inputs (diffuse/glossy: base_color = Color, roughness), terms the "
       "weight's factors (t >= 0: factor t, t < 0: 1 - factor -t-1). factors: dicts {'kind': 'constant', 'value'} | "
       "{'kind': 'image', 'texture'} (luminance) | {'kind': 'checker', 'scale', 'color1', 'color2'} (Blender's "
-      "Checker Texture at the UV). ValueError for malformed mixtures.");
+      "Checker Texture at the UV). alpha, alpha_texture, alpha_from_luminance, alpha_inverted, "
+      "transparent_color: as add_material's (a Mix Shader of a Transparent BSDF and this mixture). ValueError for "
+      "malformed mixtures.");
 }
 
 }  // namespace torrance::python

@@ -148,7 +148,7 @@ void init_scene(py::module_& m) {
              int bump_texture, float bump_strength, float bump_distance,
              float transmission, float transmission_roughness, bool glass,
              float alpha, int alpha_texture, std::array<float, 3> transparent_color,
-             const std::string& glass_distribution) {
+             const std::string& glass_distribution, bool alpha_from_luminance, bool alpha_inverted) {
             if (glass_distribution != "GGX" && glass_distribution != "BECKMANN")
               throw py::value_error("glass_distribution must be 'GGX' or 'BECKMANN', got '" + glass_distribution +
                                     "'");
@@ -180,6 +180,8 @@ void init_scene(py::module_& m) {
             tex.bump_strength = bump_strength;
             tex.bump_distance = bump_distance;
             tex.alpha = alpha_texture;
+            tex.alpha_from_luminance = alpha_from_luminance;
+            tex.alpha_inverted = alpha_inverted;
             return s.add_material(mat, tex);
           },
           py::arg("base_color") = std::array<float, 3>{0.8f, 0.8f, 0.8f}, py::arg("metallic") = 0.0f,
@@ -193,7 +195,8 @@ void init_scene(py::module_& m) {
           py::arg("transmission") = 0.0f,
           py::arg("transmission_roughness") = 0.0f, py::arg("glass") = false, py::arg("alpha") = 1.0f,
           py::arg("alpha_texture") = -1, py::arg("transparent_color") = std::array<float, 3>{1.0f, 1.0f, 1.0f},
-          py::arg("glass_distribution") = "GGX",
+          py::arg("glass_distribution") = "GGX", py::arg("alpha_from_luminance") = false,
+          py::arg("alpha_inverted") = false,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
@@ -202,7 +205,8 @@ void init_scene(py::module_& m) {
           "transmission_roughness in [0, 1], ior in (0, 1000]; ior is also PRINCIPLED_V2's IOR); glass=True: "
           "Blender's Glass BSDF node "
           "(base_color its Color, roughness, ior; glass_distribution 'GGX' or 'BECKMANN'). alpha in "
-          "[0, 1] (or alpha_texture: a texture's alpha channel): rays pass straight through with "
+          "[0, 1] (or alpha_texture: a texture's alpha channel; its colour's luminance with alpha_from_luminance; 1 - "
+          "that with alpha_inverted): rays pass straight through with "
           "probability 1 - alpha, tinted by transparent_color (Principled Alpha: white; Transparent "
           "BSDF: alpha 0 and its Color).")
       .def(

@@ -6,7 +6,8 @@
 
 namespace torrance {
 
-uint32_t Scene::add_mixture(const Mixture& mixture, const MaterialTextures& normal) {
+uint32_t Scene::add_mixture(const Mixture& mixture, const MaterialTextures& normal, float alpha,
+                            const Vec3& transparent_color) {
   std::lock_guard<std::mutex> lock(mutex_);
   check_idle("add a material");
   check_mixture(mixture, materials_.size(), textures_.size());
@@ -14,13 +15,16 @@ uint32_t Scene::add_mixture(const Mixture& mixture, const MaterialTextures& norm
     if (mixture_index_[c.material] >= 0)
       throw std::invalid_argument("a mixture closure's material " + std::to_string(c.material) +
                                   " is itself a mixture (flatten nested mixtures into one)");
-  for (int id : {normal.normal, normal.bump})
+  for (int id : {normal.normal, normal.bump, normal.alpha})
     if (id < -1 || id >= int(textures_.size()))
       throw std::invalid_argument("material uses texture " + std::to_string(id) + " but the scene has " +
                                   std::to_string(textures_.size()) + " textures");
   if (!std::isfinite(normal.normal_strength) || !std::isfinite(normal.bump_strength) ||
       !std::isfinite(normal.bump_distance))
     throw std::invalid_argument("texture strengths must be finite");
+  if (!std::isfinite(alpha) || !is_finite(transparent_color))
+    throw std::invalid_argument("material alpha and transparent_color must be finite");
+  if (alpha < 0.0f || alpha > 1.0f) throw std::invalid_argument("material alpha must lie in [0, 1]");
   // The stored material: an upper estimate of the emission (for the emitter choice; the
   // radiance itself comes from emission_at) and the albedo of a constant mix.
   Material summary;
@@ -37,6 +41,11 @@ uint32_t Scene::add_mixture(const Mixture& mixture, const MaterialTextures& norm
   textures.bump = normal.bump;
   textures.bump_strength = normal.bump_strength;
   textures.bump_distance = normal.bump_distance;
+  textures.alpha = normal.alpha;
+  textures.alpha_from_luminance = normal.alpha_from_luminance;
+  textures.alpha_inverted = normal.alpha_inverted;
+  summary.alpha = alpha;
+  summary.transparent_color = glm::clamp(transparent_color, Vec3(0.0f), Vec3(1.0f));
   materials_.push_back(summary);
   material_textures_.push_back(textures);
   mixture_index_.push_back(int32_t(mixtures_.size()));

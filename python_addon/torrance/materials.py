@@ -18,7 +18,8 @@ output node (the output Cycles would use):
 * Emission: a black emitter;
 * Mix Shader / Add Shader trees of Principled, Diffuse, Glossy BSDF and Emission (and a lone
   Glossy BSDF): a mixture of closures (mixtures.py), its Fac a constant, an Image Texture or a
-  Checker Texture.
+  Checker Texture; a Mix Shader of a Transparent BSDF and another shader: that shader with an
+  alpha (transparent_mix.py).
 
 Base Color, Metallic, Roughness, Emission (and the Color of Diffuse BSDF and
 Emission) may come from an Image Texture node (its Color output; float sockets
@@ -40,6 +41,7 @@ import numpy as np
 from .nodes import node_label, source_socket
 from .mixtures import MIXTURE_SURFACES, read_mixture
 from .normal_inputs import read_normal_input
+from .transparent_mix import read_transparent_mix
 
 # Cycles' surface for objects without material or with an empty slot is a 0.8 grey diffuse;
 # ours is the neutral Principled default.
@@ -428,6 +430,9 @@ class MaterialReader:
         if kind == 'ShaderNodeEmission':
             return self._emission(mat, node)
         if kind in MIXTURE_SURFACES:
+            with_alpha = read_transparent_mix(self, mat, node)
+            if with_alpha is not None:
+                return with_alpha
             mixture = read_mixture(self, mat, node)
             if mixture is None:
                 return self._neutral(mat, f"no shader under {node_label(node)} can be rendered")
@@ -601,7 +606,7 @@ def uses_textures(m):
         mix = m['mixture']
         return (any(uses_textures(args) for _kind, args, _terms in mix['closures'])
                 or any(f['kind'] != "constant" for f in mix['factors'])
-                or uses_textures(mix['normal']))
+                or uses_textures(mix['normal']) or uses_textures(mix.get('alpha', {})))
     return any(m.get(k, -1) >= 0 for k in _TEXTURE_KEYS)
 
 
@@ -655,7 +660,8 @@ class MaterialTable:
         mix = args['mixture']
         closures = [(kind, self.scene.add_material(**a), terms)
                     for kind, a, terms in mix['closures']]
-        return self.scene.add_mixture(closures, mix['factors'], **mix['normal'])
+        return self.scene.add_mixture(closures, mix['factors'], **mix['normal'],
+                                      **mix.get('alpha', {}))
 
     def slot_indices(self, slots):
         """int32 material index per slot (materials or None); one default entry without slots."""

@@ -28,6 +28,10 @@ struct MaterialTextures {
   int base_color = -1, metallic = -1, roughness = -1, emission = -1;
   int normal = -1;                 // a tangent-space normal map (Normal Map node)
   int alpha = -1;                  // the material's alpha from the texture's ALPHA channel (Scene::opacity)
+  // How the alpha texture is read: its colour's luminance instead of its alpha channel (a Mix
+  // Shader's Fac fed by an Image Texture's Color), and 1 - that (the Transparent BSDF in the
+  // Mix Shader's second slot, so the opaque closure's weight is 1 - Fac).
+  bool alpha_from_luminance = false, alpha_inverted = false;
   float emission_strength = 1.0f;  // emission = texture colour * strength
   float normal_strength = 1.0f;
   // A height map (Bump node fed by an image texture's luminance) when there is no normal map.
@@ -70,9 +74,11 @@ class Scene {
   // averaged over a footprint of that many UV units (0: the finest texels).
   Material textured_material(uint32_t material, const Vec2& uv, float footprint = 0.0f) const;
   // A material made of weighted closures (Mix/Add Shader, mixture.h); returns its material index.
-  // Its normal map or bump comes from `normal` (only those fields are read). Checked by
-  // check_mixture; its closures' materials must not be mixtures themselves.
-  uint32_t add_mixture(const Mixture& mixture, const MaterialTextures& normal = {});
+  // Its normal map or bump and its alpha texture come from `textures` (only those fields are read);
+  // alpha and transparent_color as Material's (a Mix Shader of a Transparent BSDF and this
+  // mixture). Checked by check_mixture; its closures' materials must not be mixtures themselves.
+  uint32_t add_mixture(const Mixture& mixture, const MaterialTextures& textures = {}, float alpha = 1.0f,
+                       const Vec3& transparent_color = Vec3(1.0f));
   // The mixture of material i, or nullptr for an ordinary material.
   const Mixture* mixture(uint32_t i) const {
     return mixture_index_[i] >= 0 ? &mixtures_[size_t(mixture_index_[i])] : nullptr;
@@ -82,10 +88,14 @@ class Scene {
   MixtureWeights mixture_weights(uint32_t i, const Vec2& uv, float footprint = 0.0f) const;
   // The radiance material i emits at uv (textures and mixtures included).
   Vec3 emission_at(uint32_t i, const Vec2& uv) const;
-  // The material's alpha at a hit: its alpha texture's alpha channel at uv, else Material::alpha.
+  // The material's alpha at a hit: its alpha texture's alpha channel (or colour luminance, or 1 -
+  // either: MaterialTextures) at uv, else Material::alpha.
   float opacity(uint32_t material, const Vec2& uv) const {
-    const int t = material_textures_[material].alpha;
-    return t >= 0 ? clamp01(textures_[t]->lookup(uv).a) : materials_[material].alpha;
+    const MaterialTextures& t = material_textures_[material];
+    if (t.alpha < 0) return materials_[material].alpha;
+    const glm::vec4 c = textures_[t.alpha]->lookup(uv);
+    const float a = clamp01(t.alpha_from_luminance ? blender_luminance(Vec3(c)) : c.a);
+    return t.alpha_inverted ? 1.0f - a : a;
   }
   // The shading normal ns perturbed by the material's normal map or bump map at the hit (ns when
   // none). A bump map follows Cycles 3.4's Bump node: forward differences of the height (the

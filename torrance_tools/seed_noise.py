@@ -1,0 +1,62 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Torrance against Cycles within Cycles' own seed-to-seed noise, with deliberate faults
+(test_alpha_agreement.py, test_alpha_mix_agreement.py, test_glass_agreement.py).
+
+Cycles renders the reference (seed 0) and a second image (seed 1),
+agreement.cycles_reference_and_noise; their metrics set the bounds (agreement.noise_bounds).
+Torrance renders other seeds, whose mean metrics must lie within those bounds. Each fault
+patches an attribute (a method of the add-on's reader) and must fail them.
+"""
+
+import numpy as np
+
+from torrance_tools import render_settings, testing
+from torrance_tools.agreement import (cycles_reference_and_noise, failures, format_metrics,
+                                      mean_metrics, metrics, noise_bounds, print_verdict)
+
+
+def render_torrance(scene, directory, seed, name, samples, bounces):
+    """Torrance (PRINCIPLED) at seed; (image, seconds), the image checked for NaN/Inf."""
+    render_settings.setup_torrance(scene, samples, bounces, seed=seed, brdf_model='PRINCIPLED')
+    img, seconds = testing.render(scene, directory, name)
+    testing.check(np.isfinite(img).all(), f"{name}: NaN/Inf in Torrance's image")
+    return img, seconds
+
+
+def agree_within_seed_noise(scene, directory, samples, bounces, what, faults=(), seeds=(2, 3),
+                            tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.015):
+    """Raises AssertionError unless Torrance agrees with Cycles and every fault is caught.
+
+    faults: (label, owner, attribute, make_fault) - owner.attribute is replaced by
+    make_fault(original) for one Torrance render (seeds[0]) and restored. A label beginning
+    "info:" is reported only (a fault these figures are known not to see).
+    """
+    ref, own = cycles_reference_and_noise(scene, directory, samples, bounces)
+    limits = noise_bounds(own, tolerance, ratio_sigmas, ratio_floor)
+    print(f"bounds: ratio {limits['ratio'][0]:.4f}..{limits['ratio'][1]:.4f}, block mean "
+          f"{limits['block_mean']:.4f}, p90 {limits['block_p90']:.4f}")
+    results = []
+    for seed in seeds:
+        img, seconds = render_torrance(scene, directory, seed, f"torrance{seed}", samples, bounces)
+        results.append(metrics(img, ref))
+        print(f"Torrance seed {seed}             : {format_metrics(results[-1])}"
+              f"  ({seconds:.1f} s)")
+    m = mean_metrics(results)
+    bad = failures(m, limits)
+    print_verdict("Torrance mean over seeds    ", m, bad)
+    testing.check(not bad, f"{what} disagrees with Cycles: " + "; ".join(bad))
+    missed = []
+    for label, owner, attr, make_fault in faults:
+        original = getattr(owner, attr)
+        setattr(owner, attr, make_fault(original))
+        try:
+            img, _ = render_torrance(scene, directory, seeds[0], "fault", samples, bounces)
+        finally:
+            setattr(owner, attr, original)
+        fm = metrics(img, ref)
+        fbad = failures(fm, limits)
+        print(f"  fault {label:30s}: {format_metrics(fm)}"
+              + (f"  caught: {'; '.join(fbad)}" if fbad else "  NOT CAUGHT"), flush=True)
+        if not fbad and not label.startswith("info:"):
+            missed.append(label)
+    testing.check(not missed, "faults the comparison does not see: " + ", ".join(missed))
