@@ -28,11 +28,9 @@ import math
 import bpy
 import numpy as np
 
-from torrance_tools import render_settings, testing
-from torrance_tools.agreement import (cycles_reference_and_noise, format_metrics, metrics,
-                                      noise_failures, noise_limits, print_verdict)
+from torrance_tools import testing
+from torrance_tools.seed_noise import agree_with_reference_noise
 from torrance_tools.scene import node_material
-from torrance_tools.testing import check
 
 W, H = 128, 96
 SAMPLES, REF_SAMPLES, BOUNCES = 128, 512, 1
@@ -100,39 +98,11 @@ FAULTS = (("bump ignored", bump_ignored), ("bump inverted", bump_inverted),
 
 def main():
     testing.addon()
-    import torrance.materials as materials
     d = testing.tempdir()
     scene = testing.clear_scene()
     testing.setup_render(scene, width=W, height=H)
     build(scene)
-    ref, noise = cycles_reference_and_noise(scene, d, SAMPLES, BOUNCES, REF_SAMPLES, seeds=(1, 2))
-    lim = noise_limits(noise)
-    print(f"allowed: ratio +-{lim['ratio']:.4f}, block mean {lim['block_mean']:.4f}", flush=True)
-    render_settings.setup_torrance(scene, SAMPLES, BOUNCES, seed=0, brdf_model='PRINCIPLED')
-    img, t_img = testing.render(scene, d, "torrance")
-    check(np.isfinite(img).all(), "NaN/Inf in Torrance's image")
-    m = metrics(img, ref)
-    bad = noise_failures(m, lim)
-    print_verdict(f"torrance ({t_img:.1f} s)", m, bad)
-    missed = []
-    original = materials.MaterialTable._add
-    for label, patch in FAULTS:
-        def faulty(self, args, patch=patch):
-            patch(args)
-            return original(self, args)
-        materials.MaterialTable._add = faulty
-        try:
-            fimg, _ = testing.render(scene, d, "fault")
-        finally:
-            materials.MaterialTable._add = original
-        fm = metrics(fimg, ref)
-        fbad = noise_failures(fm, lim)
-        print(f"  fault {label:18s}: {format_metrics(fm)}"
-              + (f"  caught: {'; '.join(fbad)}" if fbad else "  NOT CAUGHT"), flush=True)
-        if not fbad:
-            missed.append(label)
-    check(not bad, "Torrance disagrees with Cycles: " + "; ".join(bad))
-    check(not missed, "faults the comparison does not see: " + ", ".join(missed))
+    agree_with_reference_noise(scene, d, SAMPLES, REF_SAMPLES, BOUNCES, FAULTS)
 
 
 testing.run(main)

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """Torrance against Cycles within Cycles' own seed-to-seed noise, with deliberate faults
-(test_alpha_agreement.py, test_alpha_mix_agreement.py, test_glass_agreement.py).
+(test_alpha_agreement.py, test_alpha_mix_agreement.py, test_glass_agreement.py; with a
+higher-sampled reference: test_mix_shader_agreement.py, test_bump_agreement.py).
 
 Cycles renders the reference (seed 0) and a second image (seed 1),
 agreement.cycles_reference_and_noise; their metrics set the bounds (agreement.noise_bounds).
@@ -12,7 +13,8 @@ import numpy as np
 
 from torrance_tools import render_settings, testing
 from torrance_tools.agreement import (cycles_reference_and_noise, failures, format_metrics,
-                                      mean_metrics, metrics, noise_bounds, print_verdict)
+                                      mean_metrics, metrics, noise_bounds, noise_failures,
+                                      noise_limits, print_verdict)
 
 
 def render_torrance(scene, directory, seed, name, samples, bounces):
@@ -59,4 +61,47 @@ def agree_within_seed_noise(scene, directory, samples, bounces, what, faults=(),
               + (f"  caught: {'; '.join(fbad)}" if fbad else "  NOT CAUGHT"), flush=True)
         if not fbad and not label.startswith("info:"):
             missed.append(label)
+    testing.check(not missed, "faults the comparison does not see: " + ", ".join(missed))
+
+
+def agree_with_reference_noise(scene, directory, samples, ref_samples, bounces, faults=(),
+                               patch_args=None):
+    """Raises AssertionError unless Torrance (seed 0, `samples`) is within noise_limits of a
+    Cycles reference (ref_samples, seed 1) set by a second Cycles render (samples, seed 2), and
+    every fault is caught.
+
+    faults: (label, patch): for one render each, every add_material()/add_mixture() argument
+    dict the add-on's MaterialTable adds goes through patch_args(args, patch) (default:
+    patch(args)) first.
+    """
+    import torrance.materials as materials
+    ref, noise = cycles_reference_and_noise(scene, directory, samples, bounces, ref_samples,
+                                            seeds=(1, 2))
+    lim = noise_limits(noise)
+    print(f"allowed: ratio +-{lim['ratio']:.4f}, block mean {lim['block_mean']:.4f}", flush=True)
+    img, seconds = render_torrance(scene, directory, 0, "torrance", samples, bounces)
+    m = metrics(img, ref)
+    bad = noise_failures(m, lim)
+    print_verdict(f"torrance ({seconds:.1f} s)", m, bad)
+    missed = []
+    original = materials.MaterialTable._add
+    for label, patch in faults:
+        def faulty(self, args, patch=patch):
+            if patch_args:
+                patch_args(args, patch)
+            else:
+                patch(args)
+            return original(self, args)
+        materials.MaterialTable._add = faulty
+        try:
+            fimg, _ = render_torrance(scene, directory, 0, "fault", samples, bounces)
+        finally:
+            materials.MaterialTable._add = original
+        fm = metrics(fimg, ref)
+        fbad = noise_failures(fm, lim)
+        print(f"  fault {label:24s}: {format_metrics(fm)}"
+              + (f"  caught: {'; '.join(fbad)}" if fbad else "  NOT CAUGHT"), flush=True)
+        if not fbad:
+            missed.append(label)
+    testing.check(not bad, "Torrance disagrees with Cycles: " + "; ".join(bad))
     testing.check(not missed, "faults the comparison does not see: " + ", ".join(missed))
