@@ -7,7 +7,8 @@ import contextlib
 import sys
 import time
 
-from ..materials import MaterialTable, TextureTable
+from ..materials import MaterialTable
+from ..texture_table import TextureTable
 from .camera import export_camera
 from .instances import InstanceExport, Source
 from .lights import export_light

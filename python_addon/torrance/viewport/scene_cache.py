@@ -17,7 +17,8 @@ import time
 import numpy as np
 
 from .. import export
-from ..materials import MaterialTable, TextureTable
+from ..materials import MaterialTable
+from ..texture_table import TextureTable
 
 
 def _matrix_tuple(m):
