@@ -33,11 +33,10 @@ Anything else (another shader node, no output, nothing linked) becomes the
 neutral default material and is reported.
 """
 
-import math
 
 import numpy as np
 
-from .nodes import node_label, source_socket
+from .nodes import finite_or, node_label, source_socket
 from .mixtures import MIXTURE_SURFACES, read_mixture
 from .normal_inputs import read_normal_input
 from .transparent_mix import read_transparent_mix
@@ -117,20 +116,12 @@ def _is_neutral(value, neutral):
         except TypeError:
             return False
         return len(c) == len(neutral) and all(
-            abs(_finite_or(x, n) - n) <= 1e-6 for x, n in zip(c, neutral, strict=True))
-    return abs(_finite_or(value, neutral) - neutral) <= 1e-6
+            abs(finite_or(x, n) - n) <= 1e-6 for x, n in zip(c, neutral, strict=True))
+    return abs(finite_or(value, neutral) - neutral) <= 1e-6
 
 
 # Nodes whose output is a constant we can read.
 _CONSTANT_NODES = {'RGB', 'VALUE'}
-
-
-def _finite_or(value, fallback):
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        return fallback
-    return v if math.isfinite(v) else fallback
 
 
 def _clamp(v, lo, hi):
@@ -144,7 +135,7 @@ def _color3(value, fallback):
         c = (value, value, value)
     if len(c) < 3:
         return fallback
-    return tuple(_finite_or(x, f) for x, f in zip(c, fallback[:3], strict=True))
+    return tuple(finite_or(x, f) for x, f in zip(c, fallback[:3], strict=True))
 
 
 # --------------------------------------------------------------------------------------------
@@ -300,11 +291,11 @@ class MaterialReader:
         roughness, roughness_tex = t(mat, node, "Roughness", d['roughness'])
         emission, emission_tex = t(mat, node, names['emission'], d['emission'])
         alpha, alpha_tex = t(mat, node, "Alpha", 1.0, image_output="Alpha")
-        specular = _finite_or(v(mat, node, names['specular'], d['specular']), d['specular'])
+        specular = finite_or(v(mat, node, names['specular'], d['specular']), d['specular'])
         v2_inputs = {}
         glass = {}
         if version == 'v2':
-            ior = _finite_or(v(mat, node, "IOR", 1.5), 1.5)
+            ior = finite_or(v(mat, node, "IOR", 1.5), 1.5)
             ior = ior if ior > 0.0 else 1.5
             specular = specular_from_ior_level(specular, ior)
             specular_tint = 0.0            # v1's float; v2's colour is read for PRINCIPLED_V2
@@ -312,23 +303,23 @@ class MaterialReader:
             v2_inputs = dict(ior=ior, specular_tint_color=tuple(max(0.0, c) for c in tint),
                              multiscatter_ggx=getattr(node, "distribution", "") == 'MULTI_GGX')
         else:
-            specular_tint = _clamp(_finite_or(v(mat, node, names['specular_tint'], 0.0), 0.0),
+            specular_tint = _clamp(finite_or(v(mat, node, names['specular_tint'], 0.0), 0.0),
                                    0.0, 1.0)
             glass = self._principled_glass(mat, node)
         out = dict(
             base_color=_color3(base, d['base_color']),
-            metallic=_clamp(_finite_or(metallic, d['metallic']), 0.0, 1.0),
-            roughness=_clamp(_finite_or(roughness, d['roughness']), 0.0, 1.0),
+            metallic=_clamp(finite_or(metallic, d['metallic']), 0.0, 1.0),
+            roughness=_clamp(finite_or(roughness, d['roughness']), 0.0, 1.0),
             specular=max(0.0, specular),
             emission=_color3(emission, d['emission']),
-            emission_strength=_finite_or(v(mat, node, "Emission Strength", 1.0), 0.0),
+            emission_strength=finite_or(v(mat, node, "Emission Strength", 1.0), 0.0),
             specular_tint=specular_tint,
             base_color_texture=base_tex, metallic_texture=metallic_tex,
             roughness_texture=roughness_tex, emission_texture=emission_tex,
             **v2_inputs,
             **glass,
         )
-        alpha = _clamp(_finite_or(alpha, 1.0), 0.0, 1.0)
+        alpha = _clamp(finite_or(alpha, 1.0), 0.0, 1.0)
         if alpha < 1.0 or alpha_tex >= 0:
             out.update(alpha=alpha, alpha_texture=alpha_tex)
         ignored = []
@@ -357,7 +348,7 @@ class MaterialReader:
     def _principled_glass(self, mat, node):
         """add_material() glass arguments of a v1 Principled BSDF ({} without transmission)."""
         v = self._socket_value
-        transmission = _clamp(_finite_or(v(mat, node, "Transmission", 0.0), 0.0), 0.0, 1.0)
+        transmission = _clamp(finite_or(v(mat, node, "Transmission", 0.0), 0.0), 0.0, 1.0)
         if transmission == 0.0:
             return {}
         if getattr(node, "distribution", 'GGX') != 'GGX':
@@ -368,11 +359,11 @@ class MaterialReader:
                                   f"; Torrance renders GGX")
         return dict(transmission=transmission, ior=self._ior(mat, node, 1.45),
                     transmission_roughness=_clamp(
-                        _finite_or(v(mat, node, "Transmission Roughness", 0.0), 0.0), 0.0, 1.0))
+                        finite_or(v(mat, node, "Transmission Roughness", 0.0), 0.0), 0.0, 1.0))
 
     def _ior(self, mat, node, fallback):
         """The IOR socket of `node`, as Cycles uses it (max(IOR, 1e-5)); at most 1000."""
-        ior = _finite_or(self._socket_value(mat, node, "IOR", fallback), fallback)
+        ior = finite_or(self._socket_value(mat, node, "IOR", fallback), fallback)
         return _clamp(ior, 1e-5, 1000.0)
 
     def _glass(self, mat, node):
@@ -380,7 +371,7 @@ class MaterialReader:
         roughness 0; Multiscatter GGX is reported and rendered as GGX)."""
         d = DEFAULT_MATERIAL
         color, tex = self._socket_input(mat, node, "Color", (1.0, 1.0, 1.0))
-        roughness = _clamp(_finite_or(self._socket_value(mat, node, "Roughness", 0.0), 0.0),
+        roughness = _clamp(finite_or(self._socket_value(mat, node, "Roughness", 0.0), 0.0),
                            0.0, 1.0)
         distribution = getattr(node, "distribution", 'GGX')
         if distribution == 'SHARP':
@@ -407,7 +398,7 @@ class MaterialReader:
         d = DEFAULT_MATERIAL
         color, tex = self._socket_input(mat, node, "Color", (1.0, 1.0, 1.0))
         color = _color3(color, (1.0, 1.0, 1.0))
-        strength = _finite_or(self._socket_value(mat, node, "Strength", 1.0), 1.0)
+        strength = finite_or(self._socket_value(mat, node, "Strength", 1.0), 1.0)
         return _sanitize(dict(d, base_color=(0.0, 0.0, 0.0), metallic=0.0, specular=0.0,
                               emission=color, emission_strength=strength,
                               emission_texture=tex))

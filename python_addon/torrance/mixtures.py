@@ -18,7 +18,7 @@ out of the sum (it contributes nothing). One Normal input serves all closures: t
 closure's; a closure with a different normal source is reported.
 """
 
-from .nodes import node_label, source_socket
+from .nodes import finite_or, node_label, source_socket
 from .normal_inputs import read_normal_input
 
 MAX_CLOSURES = 8          # the core's kMaxMixtureComponents
@@ -224,11 +224,11 @@ class ShaderTreeReader:
 
     def _colour_roughness(self, node):
         reader, mat = self.reader, self.mat
-        from .materials import DEFAULT_MATERIAL, _color3, _finite_or, _sanitize
+        from .materials import DEFAULT_MATERIAL, _color3, _sanitize
         d = DEFAULT_MATERIAL
         color, color_tex = reader._socket_input(mat, node, "Color", d['base_color'])
         roughness, roughness_tex = reader._socket_input(mat, node, "Roughness", 0.0)
-        roughness = min(max(_finite_or(roughness, 0.0), 0.0), 1.0)
+        roughness = min(max(finite_or(roughness, 0.0), 0.0), 1.0)
         kind = 'diffuse'
         if node.bl_idname in ('ShaderNodeBsdfGlossy', 'ShaderNodeBsdfAnisotropic'):
             kind = 'glossy'

@@ -1,5 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Reading Blender node graphs: what feeds a socket, and how to name a node in a message."""
+"""Reading Blender node graphs: what feeds a socket, how to name a node in a message, and a
+socket value as a finite number."""
+
+import math
 
 
 def _active_links(socket):
@@ -29,3 +32,12 @@ def node_label(node):
     if name == node.bl_label or name.startswith(node.bl_label + "."):
         return f"'{name}'"
     return f"'{name}' ({node.bl_label})"
+
+
+def finite_or(value, fallback):
+    """float(value), or fallback when it is not a finite number (NaN, Inf, not a number)."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        return fallback
+    return v if math.isfinite(v) else fallback

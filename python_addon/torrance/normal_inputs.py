@@ -13,16 +13,7 @@ Two sources are read:
 Anything else linked to Normal (or a Bump node's own Normal input) is reported and ignored.
 """
 
-from .nodes import node_label, source_socket
-
-
-def _finite_or(value, fallback):
-    import math
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        return fallback
-    return v if math.isfinite(v) else fallback
+from .nodes import finite_or, node_label, source_socket
 
 
 def read_normal_input(reader, mat, node):
@@ -47,7 +38,7 @@ def read_normal_input(reader, mat, node):
     if src.uv_map:
         reader.reporter.info(f"{where}: {node_label(src)} names UV map '{src.uv_map}'; Torrance "
                              f"uses each mesh's active render UV map")
-    strength = _finite_or(reader._socket_value(mat, src, "Strength", 1.0), 1.0)
+    strength = finite_or(reader._socket_value(mat, src, "Strength", 1.0), 1.0)
     tid = _image_input(reader, mat, src, "Color", where)
     if tid is None or strength == 0.0:
         return {}
@@ -73,8 +64,8 @@ def _bump(reader, mat, bump, where):
     if normal is not None and source_socket(normal) is not None:
         reader.reporter.warning(f"{where}: the Normal input of {node_label(bump)} is linked; "
                                 f"Torrance bumps the surface's own normal instead")
-    strength = max(0.0, _finite_or(reader._socket_value(mat, bump, "Strength", 1.0), 1.0))
-    distance = _finite_or(reader._socket_value(mat, bump, "Distance", 1.0), 1.0)
+    strength = max(0.0, finite_or(reader._socket_value(mat, bump, "Strength", 1.0), 1.0))
+    distance = finite_or(reader._socket_value(mat, bump, "Distance", 1.0), 1.0)
     if bump.invert:
         distance = -distance
     tid = _image_input(reader, mat, bump, "Height", where)
