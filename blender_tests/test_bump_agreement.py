@@ -31,6 +31,7 @@ import numpy as np
 from torrance_tools import testing
 from torrance_tools.seed_noise import agree_with_reference_noise
 from torrance_tools.scene import node_material
+from torrance_tools.textures import new_image
 
 W, H = 128, 96
 SAMPLES, REF_SAMPLES, BOUNCES = 128, 512, 1
@@ -44,10 +45,7 @@ def height_image():
     h = 0.5 + 0.25 * (np.cos(2 * math.pi * 4 * x) + np.cos(2 * math.pi * 4 * y))
     pixels = np.ones((SIZE, SIZE, 4), dtype=np.float32)
     pixels[:, :, :3] = h[:, :, None]
-    img = bpy.data.images.new("Height", SIZE, SIZE, alpha=True, float_buffer=True)
-    img.colorspace_settings.name = 'Non-Color'
-    img.pixels.foreach_set(pixels.ravel())
-    return img
+    return new_image("Height", pixels, colorspace='Non-Color', float_buffer=True)
 
 
 def bumped_material():

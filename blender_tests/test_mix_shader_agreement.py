@@ -36,6 +36,7 @@ from torrance_tools import testing
 from torrance_tools.seed_noise import agree_with_reference_noise
 from torrance_tools.issue12_scenes import checker_mix
 from torrance_tools.scene import node_material
+from torrance_tools.textures import new_image
 
 W, H = 128, 96
 SAMPLES, REF_SAMPLES, BOUNCES = 256, 1024, 2
@@ -55,10 +56,7 @@ def banded_image():
     values = np.where(np.arange(rows) % 4 < 2, 0.85, 0.15)
     pixels = np.ones((rows, 1, 4), dtype=np.float32)
     pixels[:, 0, :3] = values[:, None]
-    img = bpy.data.images.new("Bands", 1, rows, alpha=True, float_buffer=True)
-    img.colorspace_settings.name = 'Non-Color'
-    img.pixels.foreach_set(pixels.ravel())
-    return img
+    return new_image("Bands", pixels, colorspace='Non-Color', float_buffer=True)
 
 
 def diffuse_glossy_mix():
