@@ -180,8 +180,9 @@ def bench_curves(name, scene, bounces, ref, floor, seeds, args):
             point = benchmark_points.aggregate(rows[c], floor)
             budgets[c].add(sum(r["seconds"] for r in rows[c]))
             points[c].append(point)
-            setting = (f"thr {point['threshold']:.3g} ({point.get('samples_per_pixel', 0):.0f} spp)"
-                       if point.get("threshold") else f"{point['spp']:5d} spp")
+            spp = point.get("samples_per_pixel")       # known for Torrance only
+            setting = (f"{point['spp']:5d} spp" if not point.get("threshold") else
+                       f"thr {point['threshold']:.3g}" + (f" ({spp:.0f} spp)" if spp else ""))
             print(f"benchmark: {name:13s} {c:25s} {setting:>18s} {point['seconds']:8.3f} s  "
                   f"relMSE {point['rel_mse']:.3e} (trimmed {point['rel_mse_trim']:.3e}; "
                   f"{point['seeds']} seeds)  SSIM {point['ssim']:.4f}  ratio {point['ratio']:.4f}",
