@@ -14,11 +14,12 @@ on a shared machine hit all alike. Curves:
                               --no-adaptive leaves them out
 
 A curve stops when its next point (predicted to cost twice the last) would take it over
---curve-seconds of render time (all seeds). Each render is timed the same way for both engines:
-the wall time of bpy.ops.render.render (scene export/sync + render), after one untimed warm-up
-render per engine and scene. The error of each image against the stored converged Cycles
-reference (references/cmp_<name>.exr) is its relMSE (also with the worst 0.1 % of pixels left
-out) and SSIM; a point's errors are the means over its seeds, its time the median.
+--curve-seconds of render time (all seeds); its first two points are always rendered. Each
+render is timed the same way for both engines: the wall time of bpy.ops.render.render (scene
+export/sync + render), after one untimed warm-up render per engine and scene. The error of
+each image against the stored converged Cycles reference (references/cmp_<name>.exr) is its
+relMSE (also with the worst 0.1 % of pixels left out) and SSIM; a point's errors are the means
+over its seeds, its time the median.
 
 Then the ablation: every lever of the core (boolean fields of RenderSettings such as `specialize`
 or `guiding`, and the string options in ALTERNATIVES) is switched one at a time at --toggle-spp,

@@ -62,7 +62,8 @@ def header(res, variants):
         f"clamping): {ladder} spp. Adaptive curves: each engine's adaptive sampling at noise "
         f"thresholds {thresholds} (automatic minimum samples, at most {s['max_spp']} spp). A "
         f"curve stops when its next point would take it over {s.get('curve_seconds', 0):.0f} s "
-        f"of render time (all seeds). Engines and seeds alternate.",
+        f"of render time (all seeds; the first two points always). Engines and seeds "
+        f"alternate.",
         f"- Time = wall time of `bpy.ops.render.render` (scene export/sync + render), measured the "
         f"same way for both after an untimed warm-up render. Blender start-up (with the add-on), "
         f"not included: {res['blender_startup_seconds']:.2f} s."]

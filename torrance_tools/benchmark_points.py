@@ -64,19 +64,26 @@ def threshold_ladder():
 class CurveBudget:
     """The render time a curve of one scene may spend (all seeds of all its points). The next
     point is rendered only if its predicted cost (STEP x the last point's) fits in what is left;
-    the first point is always rendered."""
+    the first MIN_POINTS points are always rendered (two points make a curve: an adaptive curve
+    starts at its minimum samples, and one point alone rarely shares an error with the other
+    engine's curve)."""
+
+    MIN_POINTS = 2
 
     def __init__(self, seconds):
         self.seconds = float(seconds)
         self.spent = 0.0
         self.last = None
+        self.points = 0
 
     def add(self, point_seconds):
         self.spent += point_seconds
         self.last = point_seconds
+        self.points += 1
 
     def next_fits(self):
-        return self.last is None or self.spent + STEP * self.last <= self.seconds
+        return (self.points < self.MIN_POINTS
+                or self.spent + STEP * self.last <= self.seconds)
 
 
 def aggregate(rows, floor):

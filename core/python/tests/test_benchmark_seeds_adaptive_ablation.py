@@ -51,6 +51,11 @@ def test_ladders_and_the_curve_budget():
     assert budget.next_fits()                 # 5 + 2 x 5 <= 30
     budget.add(10.0)
     assert not budget.next_fits()             # 15 + 2 x 10 > 30
+    expensive = benchmark_points.CurveBudget(1.0)
+    expensive.add(5.0)
+    assert expensive.next_fits()              # two points make a curve, whatever they cost
+    expensive.add(5.0)
+    assert not expensive.next_fits()
 
 
 def test_a_run_of_some_scenes_replaces_those_and_keeps_the_others():
