@@ -41,6 +41,7 @@ def plot_scene(name, data, path, curves):
         if not rows:
             continue
         color, marker, ls, label = curve_style(c)
+        face = "white" if ls == "--" else color          # adaptive: hollow markers
         t = [r["seconds"] for r in rows]
         ax1.loglog(t, [max(r["rel_mse"], 1e-12) for r in rows], marker=marker, color=color,
                    ls=ls, alpha=0.3, lw=1, ms=3)
@@ -48,12 +49,12 @@ def plot_scene(name, data, path, curves):
                 if r["rel_mse_corrected"] > 0]
         if corr:
             ax1.loglog([p[0] for p in corr], [p[1] for p in corr], marker=marker, color=color,
-                       ls=ls, lw=1.8, ms=5, label=label)
+                       mfc=face, ls=ls, lw=1.8, ms=5, label=label)
         for seconds, err, r in corr[::2]:
             ax1.annotate(point_label(r), (seconds, err), fontsize=6, xytext=(3, 3),
                          textcoords="offset points", color=color)
         ax2.loglog(t, [max(1.0 - r["ssim"], 1e-9) for r in rows], marker=marker, color=color,
-                   ls=ls, lw=1.5, ms=4, label=label)
+                   mfc=face, ls=ls, lw=1.5, ms=4, label=label)
     ax1.axhline(data["reference"]["noise_rel_mse"], color="gray", ls=":", lw=1,
                 label="reference noise")
     ax1.set_xlabel("wall time of bpy.ops.render.render (s), median over seeds")
