@@ -45,9 +45,12 @@ def render(scene, name="render"):
 def render_torrance(scene, samples, seed, bounces, name="torrance", settings_edit=None,
                     scene_edit=None, adaptive_threshold=0.0):
     """A Torrance render with the PRINCIPLED model, the core wrapped by the edits (see
-    addon_access.core_proxy). adaptive_threshold > 0: adaptive sampling at that noise threshold
-    with the automatic minimum of samples (as Cycles'); 0: every pixel gets `samples`."""
+    addon_access.core_proxy). Unbiased: no clamping, no time limit. adaptive_threshold > 0:
+    adaptive sampling at that noise threshold with the automatic minimum of samples (as
+    Cycles'); 0: every pixel gets `samples`."""
     ts = setup_torrance(scene, samples, bounces, seed, 'PRINCIPLED', progressive_display=False)
+    ts.sample_clamp_direct = ts.sample_clamp_indirect = 0.0
+    ts.time_limit = 0.0
     ts.use_adaptive_sampling = adaptive_threshold > 0
     if adaptive_threshold > 0:
         ts.adaptive_threshold = adaptive_threshold
