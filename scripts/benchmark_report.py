@@ -138,7 +138,8 @@ def write_report(directory):
     lines += ["", "## Summary", "",
               "Equal-error time ratio Torrance / Cycles (below 1 Torrance is faster) from the "
               "seed-averaged curves: plain (unbiased, the headline) and with each engine's "
-              "adaptive sampling at the same noise thresholds.", "", *table, "",
+              "adaptive sampling at the same noise thresholds. —: the two curves share no range "
+              "of errors (e.g. each has one usable point).", "", *table, "",
               benchmark_tables.goal_line(plain), ""]
     if len(variants) > 1:
         lines += variant_table(scenes, variants)
