@@ -10,13 +10,14 @@ on a shared machine hit all alike. Curves:
   torrance, cycles            plain: 4, 8, 16, ... samples per pixel up to --max-spp; no adaptive
                               sampling, no clamping (unbiased; the headline ratio)
   torrance_adaptive,          each engine's adaptive sampling at the same noise thresholds 0.1,
-  cycles_adaptive             0.071, 0.05, ... (automatic minimum samples, at most --max-spp);
+  cycles_adaptive             0.05, 0.025, ... (automatic minimum samples, at most --max-spp);
                               --no-adaptive leaves them out
 
-A curve stops when its next point (predicted to cost twice the last) would take it over
---curve-seconds of render time (all seeds); its first two points are always rendered. Each
-render is timed the same way for both engines: the wall time of bpy.ops.render.render (scene
-export/sync + render), after one untimed warm-up render per engine and scene. The error of
+A curve stops when its next point (predicted: the last one's cost times its growth, at least 2)
+would take it over --curve-seconds of render time (all seeds); its first two points are always
+rendered. Each render is timed the same way for both engines: the wall time of
+bpy.ops.render.render (scene export/sync + render), after one untimed warm-up render per engine
+and scene. The error of
 each image against the stored converged Cycles reference (references/cmp_<name>.exr) is its
 relMSE (also with the worst 0.1 % of pixels left out) and SSIM; a point's errors are the means
 over its seeds, its time the median.

@@ -19,8 +19,10 @@ import numpy as np
 FIRST_SEED = 10
 REFERENCE_SEEDS = (1, 2)
 
-# Successive points of a curve cost about STEP times as much: samples double; a noise threshold
-# is divided by sqrt(2) (relMSE ~ threshold^2 ~ 1/samples).
+# Successive points of a curve cost about STEP times as much or more: samples double; a noise
+# threshold is halved (at least 2x the samples where the threshold decides, relMSE ~ threshold^2
+# ~ 1/samples; less where the automatic minimum of samples decides, so finer steps would give
+# points of the same cost and error that only timing noise tells apart).
 STEP = 2
 FIRST_SPP = 4
 FIRST_THRESHOLD = 0.1
@@ -49,12 +51,12 @@ def spp_ladder(max_spp):
 
 
 def threshold_ladder():
-    """Noise thresholds of an adaptive curve, each 1/sqrt(2) of the previous one, from
-    FIRST_THRESHOLD down to LAST_THRESHOLD (rounded to 3 significant digits)."""
+    """Noise thresholds of an adaptive curve, each half the previous one, from FIRST_THRESHOLD
+    down to LAST_THRESHOLD (rounded to 3 significant digits)."""
     out = []
     k = 0
     while True:
-        t = float(f"{FIRST_THRESHOLD * STEP ** (-k / 2):.3g}")
+        t = float(f"{FIRST_THRESHOLD / STEP ** k:.3g}")
         if t < LAST_THRESHOLD:
             return out
         out.append(t)
@@ -63,7 +65,8 @@ def threshold_ladder():
 
 class CurveBudget:
     """The render time a curve of one scene may spend (all seeds of all its points). The next
-    point is rendered only if its predicted cost (STEP x the last point's) fits in what is left;
+    point is rendered only if its predicted cost fits in what is left: the last point's times
+    its growth over the one before, at least STEP;
     the first MIN_POINTS points are always rendered (two points make a curve: an adaptive curve
     starts at its minimum samples, and one point alone rarely shares an error with the other
     engine's curve)."""
@@ -74,16 +77,19 @@ class CurveBudget:
         self.seconds = float(seconds)
         self.spent = 0.0
         self.last = None
+        self.growth = STEP
         self.points = 0
 
     def add(self, point_seconds):
+        if self.last:
+            self.growth = max(STEP, point_seconds / self.last)
         self.spent += point_seconds
         self.last = point_seconds
         self.points += 1
 
     def next_fits(self):
         return (self.points < self.MIN_POINTS
-                or self.spent + STEP * self.last <= self.seconds)
+                or self.spent + self.growth * self.last <= self.seconds)
 
 
 def aggregate(rows, floor):
