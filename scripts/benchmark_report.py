@@ -115,11 +115,14 @@ def scene_section(directory, name, d, curves, eq):
     benchmark_plots.plot_scene(name, d, os.path.join(directory, png), curves)
     over = (f" over relMSE {eq['overlap'][0]:.2e}–{eq['overlap'][1]:.2e}" if eq["overlap"]
             else "")
+    run = d.get("run", {})
+    rendered = (f" Rendered {run['made']} at `{run.get('commit', '?')}` in "
+                f"{run.get('seconds', 0):.0f} s." if "made" in run else "")
     return ["", f"### {name}", "",
             f"{d['title']}. Reference: {d['reference']['samples']} Cycles samples, noise relMSE "
             f"{d['reference']['noise_rel_mse']:.2e}. Max bounces {d['bounces']}. Seeds "
             f"{', '.join(str(x) for x in d.get('seeds', []))}. Plain equal-error time ratio "
-            f"T/C: **{fmt_ratio(eq['geomean'])}**{over}.", "",
+            f"T/C: **{fmt_ratio(eq['geomean'])}**{over}.{rendered}", "",
             f"![{name}]({png})", *benchmark_tables.points(d, curves)]
 
 

@@ -112,7 +112,7 @@ def scene_data(name):
                 cycles_adaptive=points(0.2, errors, thresholds),
                 ablation={"guiding": lever(1.0, 0.01, 1.0, 0.03),
                           "packet_shadow_rays": lever(1.0, 0.01, 2.0, 0.01)},
-                rays=measure_stand_in(name), run=dict(made="t0", seconds=100.0))
+                rays=measure_stand_in(name), run=dict(made="t0", commit="abc1234", seconds=100.0))
 
 
 def test_report_has_adaptive_ratios_ablation_tables_and_rays_per_second(tmp_path):
@@ -151,3 +151,4 @@ def test_report_has_adaptive_ratios_ablation_tables_and_rays_per_second(tmp_path
     # per scene: the adaptive points with their thresholds, plots of every curve
     assert "| 0.05 | 100.0 | 0.100 | 5.000e-02 | 2.500e-02 |" in text
     assert (tmp_path / "water.png").stat().st_size > 0
+    assert "Rendered t0 at `abc1234` in 100 s." in text        # which run made a merged scene
