@@ -1,19 +1,35 @@
 # SPDX-License-Identifier: Apache-2.0
 """Speed against error, Torrance vs Cycles, on the comparison scenes (run by scripts/benchmark).
 
-In one Blender process, for each scene of torrance_tools/comparison_scenes.py: both engines render
-it at 1, 2, 4, ... samples per pixel (up to --max-spp, or until one render of that engine takes
-longer than --cap-seconds), alternating engines at each count so that load changes on a shared
-machine hit both alike. Each render is timed the same way for both engines: the wall time of
-bpy.ops.render.render (scene export/sync + render), after one untimed warm-up render per engine
-and scene. The error of each image against the stored converged Cycles reference
-(references/cmp_<name>.exr) is its relMSE (also with the worst 0.1 % of pixels left out) and SSIM.
-One image's relMSE is dominated by a few fireflies, so a point whose first render takes under
-1 s (5 s) is rendered with 4 (2) seeds: errors averaged, time = median.
+In one Blender process, for each scene of torrance_tools/comparison_scenes.SCENES (or the scenes
+named): every curve climbs its ladder (torrance_tools/benchmark_points.py) point by point, each
+point rendered once per seed (--seeds, default 8: seeds 10, 11, ..., never the references' own
+seeds nor 0; the same seeds for every engine), engines and seeds alternating so that load changes
+on a shared machine hit all alike. Curves:
 
-Then the options of the core (boolean fields of RenderSettings such as `specialize`, and the
-string options in ALTERNATIVES) are switched one at a time at --toggle-spp, interleaved over
---toggle-repeats rounds, for the report's "what each specialisation buys".
+  torrance, cycles            plain: 4, 8, 16, ... samples per pixel up to --max-spp; no adaptive
+                              sampling, no clamping (unbiased; the headline ratio)
+  torrance_adaptive,          each engine's adaptive sampling at the same noise thresholds 0.1,
+  cycles_adaptive             0.05, 0.025, ... (automatic minimum samples, at most --max-spp);
+                              --no-adaptive leaves them out
+
+A curve stops when its next point (predicted: the last one's cost times its growth, at least 2)
+would take it over --curve-seconds of render time (all seeds); its first two points are always
+rendered. Each render is timed the same way for both engines: the wall time of
+bpy.ops.render.render (scene export/sync + render), after one untimed warm-up render per engine
+and scene. The error of
+each image against the stored converged Cycles reference (references/cmp_<name>.exr) is its
+relMSE (also with the worst 0.1 % of pixels left out) and SSIM; a point's errors are the means
+over its seeds, its time the median.
+
+Then the ablation: every lever of the core (boolean fields of RenderSettings such as `specialize`
+or `guiding`, and the string options in ALTERNATIVES) is switched one at a time at --toggle-spp,
+each variant rendered with the first --toggle-seeds seeds (interleaved). And, when
+torrance_tools.ray_throughput exists, its measure(scene) (rays/s of the integrator against raw
+Embree) is stored per scene.
+
+Named scenes are merged into an existing <out>/results.json (the others are kept), so a long
+run can be made in pieces; with no scene named (or --fresh) the results start afresh.
 
 In Blender 4.x (scripts/benchmark --blender 4.5, run through scripts/bpy) Torrance renders with
 PRINCIPLED_V2 (the add-on's choice for 4.x) against the references of that Cycles
@@ -24,13 +40,12 @@ separate engine curve and equal-error ratio; "cycles" (both off) is configured a
 Writes <out>/results.json; scripts/benchmark_report.py turns it into <out>/report.md + plots.
 
     scripts/blender -b --factory-startup --python-exit-code 1 --python scripts/benchmark.py -- \
-        [--out DIR] [--max-spp N] [--cap-seconds S] [--max-seeds N] [--toggle-spp N]
-        [--toggle-repeats N (0: no toggles)] [SCENE ...]
+        [--out DIR] [--seeds N] [--max-spp N] [--curve-seconds S] [--no-adaptive]
+        [--toggle-spp N] [--toggle-seeds N (0: no ablation)] [--fresh] [SCENE ...]
 """
 
 import argparse
 import datetime
-import json
 import os
 import platform
 import statistics
@@ -39,15 +54,14 @@ import sys
 import time
 
 import bpy
-import numpy as np
 
 from torrance_tools import REPO as ROOT
-from torrance_tools import addon_access, blender_versions, compare, comparison_scenes, references
+from torrance_tools import (addon_access, benchmark_points, benchmark_results, blender_versions,
+                            compare, comparison_scenes, references)
 
 KNOWN_SETTINGS = {"width", "height", "samples", "max_bounces", "seed", "pixel_aspect_x",
                   "pixel_aspect_y", "filter_width", "transparent_background", "brdf_model",
                   "window", "threads"}
-SEED = 0
 TRIM = 0.001          # rel_mse_trim leaves out the worst 0.1 % of pixels (fireflies)
 
 
@@ -55,15 +69,23 @@ def parse_args():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     p = argparse.ArgumentParser(prog="scripts/benchmark")
     p.add_argument("--out", default=blender_versions.report_dir(bpy.app.version))
+    p.add_argument("--seeds", type=int, default=8, help="seeds averaged in every point")
     p.add_argument("--max-spp", type=int, default=1024)
-    p.add_argument("--cap-seconds", type=float, default=40.0,
-                   help="stop doubling an engine's samples after a render this long")
-    p.add_argument("--toggle-spp", type=int, default=128)
-    p.add_argument("--toggle-repeats", type=int, default=3)
-    p.add_argument("--max-seeds", type=int, default=4,
-                   help="most seeds averaged per point (4 under 1 s, 2 under 5 s, else 1)")
-    p.add_argument("scenes", nargs="*", default=list(comparison_scenes.SCENES))
-    return p.parse_args(argv)
+    p.add_argument("--curve-seconds", type=float, default=30.0,
+                   help="render time of one curve of one scene, all seeds (the next point is "
+                        "rendered if its predicted cost fits)")
+    p.add_argument("--no-adaptive", action="store_true",
+                   help="no adaptive-sampling curves")
+    p.add_argument("--toggle-spp", type=int, default=64)
+    p.add_argument("--toggle-seeds", type=int, default=4,
+                   help="seeds of each ablation variant (0: no ablation)")
+    p.add_argument("--fresh", action="store_true",
+                   help="do not merge the scenes into an existing results.json")
+    p.add_argument("scenes", nargs="*", default=[])
+    args = p.parse_args(argv)
+    args.merge = bool(args.scenes) and not args.fresh
+    args.scenes = args.scenes or list(comparison_scenes.SCENES)
+    return args
 
 
 # String options of RenderSettings and the alternative that switches a choice of the core off
@@ -72,10 +94,10 @@ def parse_args():
 ALTERNATIVES = {"sampler": "RANDOM", "light_selection": "UNIFORM"}
 
 
-def specialisation_toggles(core):
+def ablation_levers(core):
     """[(field, default, alternative)]: every boolean field of RenderSettings that is not one of
-    the known ones (e.g. `specialize`), switched to its opposite, and the known string options
-    of ALTERNATIVES."""
+    the known ones (e.g. `specialize`, `guiding`), switched to its opposite, and the known string
+    options of ALTERNATIVES."""
     s = core.RenderSettings()
     out = []
     for name in dir(s):
@@ -94,21 +116,28 @@ def specialisation_toggles(core):
 
 CYCLES_VARIANTS = blender_versions.cycles_variants(bpy.app.version)
 ENGINES = ("torrance", *CYCLES_VARIANTS)
+# curve name -> (engine, adaptive); "cycles_adaptive" is Cycles as configured for "cycles"
+CURVES = {**{e: (e, False) for e in ENGINES},
+          "torrance_adaptive": ("torrance", True), "cycles_adaptive": ("cycles", True)}
 COMMAND = "scripts/benchmark" + ("" if bpy.app.version < (4, 0, 0) else
                                  f" --blender {blender_versions.series(bpy.app.version)}")
 
 
-def render_once(scene, engine, samples, bounces, seed, name, settings_edit=None):
+def render_once(scene, engine, samples, bounces, seed, name, threshold=0.0, settings_edit=None):
     """(image, seconds of bpy.ops.render.render, extra) -- the same timing for both engines.
-    `engine`: "torrance" or a Cycles variant of CYCLES_VARIANTS."""
+    `engine`: "torrance" or a Cycles variant of CYCLES_VARIANTS; threshold > 0: adaptive
+    sampling at that noise threshold, at most `samples`."""
     if engine == "torrance":
         img, t = references.render_torrance(scene, samples, seed, bounces, name=name,
-                                            settings_edit=settings_edit)
+                                            settings_edit=settings_edit,
+                                            adaptive_threshold=threshold)
         stats = addon_access.addon().render.last_stats
-        extra = dict(export_seconds=stats.get("export_seconds"), core_seconds=stats.get("seconds"))
+        extra = dict(export_seconds=stats.get("export_seconds"), core_seconds=stats.get("seconds"),
+                     samples_per_pixel=stats.get("samples_per_pixel"))
     else:
         img, t = references.render_cycles(scene, samples, seed, bounces, name=name,
-                                          variant=CYCLES_VARIANTS[engine])
+                                          variant=CYCLES_VARIANTS[engine],
+                                          adaptive_threshold=threshold)
         extra = {}
     return img, t, extra
 
@@ -121,40 +150,79 @@ def measure(img, ref):
                 finite=compare.finite(img))
 
 
-def seeds_for(seconds, max_seeds):
-    """How many seeds a point gets, from the time of its first render: the relMSE of one image
-    is dominated by a few fireflies, so cheap points are averaged over several seeds."""
-    return max(1, min(max_seeds, 4 if seconds < 1.0 else 2 if seconds < 5.0 else 1))
+def curve_ladders(args):
+    """{curve: [(samples, threshold)]}: the plain curves' sample counts (threshold 0) and the
+    adaptive curves' thresholds (at most --max-spp samples)."""
+    plain = [(spp, 0.0) for spp in benchmark_points.spp_ladder(args.max_spp)]
+    adaptive = [(args.max_spp, t) for t in benchmark_points.threshold_ladder()]
+    return {c: adaptive if is_adaptive else plain for c, (_e, is_adaptive) in CURVES.items()
+            if not (is_adaptive and args.no_adaptive)}
 
 
-def aggregate(rows, floor):
-    """One point from renders with different seeds: errors averaged, times' median."""
-    out = dict(spp=rows[0]["spp"], seeds=len(rows),
-               seconds=float(statistics.median(r["seconds"] for r in rows)),
-               all_seconds=[round(r["seconds"], 4) for r in rows],
-               rel_mse_seeds=[r["rel_mse"] for r in rows])
-    for key in ("rel_mse", "rel_mse_trim", "ssim", "ratio", "block_mean"):
-        out[key] = float(np.mean([r[key] for r in rows]))
-    out["rel_mse_corrected"] = out["rel_mse"] - floor
-    out["rel_mse_trim_corrected"] = out["rel_mse_trim"] - floor
-    out["finite"] = all(r["finite"] for r in rows)
-    for key in ("export_seconds", "core_seconds"):
-        vals = [r[key] for r in rows if r.get(key) is not None]
-        if vals:
-            out[key] = float(statistics.median(vals))
-    return out
+def bench_curves(name, scene, bounces, ref, floor, seeds, args):
+    """{curve: [point]}: every curve up its ladder while its budget lasts; at each step of the
+    ladders every active curve renders with every seed, interleaved."""
+    ladders = curve_ladders(args)
+    budgets = {c: benchmark_points.CurveBudget(args.curve_seconds) for c in ladders}
+    points = {c: [] for c in ladders}
+    for step in range(max(len(ladder) for ladder in ladders.values())):
+        active = [c for c in ladders if step < len(ladders[c]) and budgets[c].next_fits()]
+        if not active:
+            break
+        rows = {c: [] for c in active}
+        for seed in seeds:
+            for c in active:
+                engine = CURVES[c][0]
+                spp, threshold = ladders[c][step]
+                img, t, extra = render_once(scene, engine, spp, bounces, seed,
+                                            f"{c}_{name}_{step}_{seed}", threshold)
+                rows[c].append(dict(spp=spp, threshold=threshold or None, seed=seed, seconds=t,
+                                    **extra, **measure(img, ref)))
+        for c in active:
+            point = benchmark_points.aggregate(rows[c], floor)
+            budgets[c].add(sum(r["seconds"] for r in rows[c]))
+            points[c].append(point)
+            spp = point.get("samples_per_pixel")       # known for Torrance only
+            setting = (f"{point['spp']:5d} spp" if not point.get("threshold") else
+                       f"thr {point['threshold']:.3g}" + (f" ({spp:.0f} spp)" if spp else ""))
+            print(f"benchmark: {name:13s} {c:25s} {setting:>18s} {point['seconds']:8.3f} s  "
+                  f"relMSE {point['rel_mse']:.3e} (trimmed {point['rel_mse_trim']:.3e}; "
+                  f"{point['seeds']} seeds)  SSIM {point['ssim']:.4f}  ratio {point['ratio']:.4f}",
+                  flush=True)
+    return points
 
 
-def bench_point(scene, engine, samples, bounces, ref, floor, max_seeds, name):
-    rows = []
-    n, k = 1, 0
-    while k < n:
-        img, t, extra = render_once(scene, engine, samples, bounces, SEED + k, f"{name}_{k}")
-        rows.append(dict(spp=samples, seconds=t, **extra, **measure(img, ref)))
-        if k == 0:
-            n = seeds_for(t, max_seeds)
-        k += 1
-    return aggregate(rows, floor)
+def bench_ablation(name, scene, bounces, ref, floor, seeds, levers, spp):
+    """{field: dict(default, other, on, off)}: Torrance at `spp` with its defaults and with each
+    lever switched alone, every variant with every seed (interleaved, so load changes hit all
+    alike); points averaged over the seeds (aggregate)."""
+    variants = [("default", None, None)] + [(f, f, o) for f, _d, o in levers]
+    runs = {label: [] for label, _f, _o in variants}
+    for seed in seeds:
+        for label, field, other in variants:
+            def edit(s, field=field, other=other):
+                if field is not None:
+                    setattr(s, field, other)
+            img, t, extra = render_once(scene, "torrance", spp, bounces, seed,
+                                        f"toggle_{name}_{label}", settings_edit=edit)
+            runs[label].append(dict(spp=spp, seed=seed, seconds=t, **extra, **measure(img, ref)))
+    summary = {label: benchmark_points.aggregate(rows, floor) for label, rows in runs.items()}
+    for label, row in summary.items():
+        print(f"benchmark: {name:13s} {label:16s} at {spp} spp: wall {row['seconds']:.3f} s, core "
+              f"{row.get('core_seconds', 0):.3f} s, relMSE {row['rel_mse']:.3e} (trimmed "
+              f"{row['rel_mse_trim']:.3e}; {row['seeds']} seeds)", flush=True)
+    return {field: dict(default=default, other=other, on=summary["default"], off=summary[field])
+            for field, default, other in levers}
+
+
+def ray_throughput(scene):
+    """torrance_tools.ray_throughput.measure(scene) (rays/s of the integrator against raw Embree),
+    or None while that module does not exist."""
+    try:
+        from torrance_tools import ray_throughput as module
+    except ImportError:
+        return None
+    return module.measure(scene)
 
 
 def blender_startup_seconds(repeats=3):
@@ -194,58 +262,29 @@ def machine():
                 load_average=list(os.getloadavg()))
 
 
-def bench_scene(name, args, core, toggles):
+def bench_scene(name, args, levers, run):
+    t0 = time.perf_counter()
     scene, mod = comparison_scenes.build(name)
     ref, meta = references.load_reference(name)
     if not references.reference_is_current(scene, meta):
         raise RuntimeError(f"{name}: the stored reference is stale; run scripts/references {name}")
     floor = float(meta["noise_rel_mse"])
+    reference_seeds = meta.get("seeds", benchmark_points.REFERENCE_SEEDS)
+    seeds = benchmark_points.benchmark_seeds(args.seeds, reference_seeds)
     out = dict(title=mod.TITLE, bounces=mod.BOUNCES, reference=dict(
-        samples=meta["samples"], noise_rel_mse=floor, blender=meta["blender"]),
-        toggles={}, **{engine: [] for engine in ENGINES})
+        samples=meta["samples"], noise_rel_mse=floor, blender=meta["blender"],
+        seeds=list(reference_seeds)), seeds=seeds)
+    rays = ray_throughput(scene)
+    if rays is not None:
+        out["rays"] = rays
     # warm-up (untimed): first-render costs such as kernel and module loading
     for engine in ENGINES:
-        render_once(scene, engine, 1, mod.BOUNCES, SEED, f"warm_{engine}")
-    active = dict.fromkeys(ENGINES, True)
-    spp = 1
-    while spp <= args.max_spp and any(active.values()):
-        for engine in ENGINES:
-            if not active[engine]:
-                continue
-            row = bench_point(scene, engine, spp, mod.BOUNCES, ref, floor, args.max_seeds,
-                              f"{engine}_{name}_{spp}")
-            seconds = row["seconds"]
-            out[engine].append(row)
-            print(f"benchmark: {name:13s} {engine:25s} {spp:5d} spp {seconds:8.3f} s  relMSE "
-                  f"{row['rel_mse']:.3e} (trimmed {row['rel_mse_trim']:.3e}; {row['seeds']} seeds)"
-                  f"  SSIM {row['ssim']:.4f}  ratio {row['ratio']:.4f}", flush=True)
-            if seconds > args.cap_seconds:
-                active[engine] = False
-        spp *= 2
-    if toggles and args.toggle_repeats > 0:
-        # default and each switched option in turn, `toggle_repeats` rounds (interleaved, so load
-        # changes hit all alike), a seed per round; errors averaged, times: medians
-        variants = [("default", None, None)] + [(t, t, o) for t, _d, o in toggles]
-        runs = {label: [] for label, _f, _o in variants}
-        for rnd in range(args.toggle_repeats):
-            for label, field, other in variants:
-                def edit(s, field=field, other=other):
-                    if field is not None:
-                        setattr(s, field, other)
-                img, t, extra = render_once(scene, "torrance", args.toggle_spp, mod.BOUNCES,
-                                            SEED + rnd, f"toggle_{name}_{label}",
-                                            settings_edit=edit)
-                runs[label].append(dict(spp=args.toggle_spp, seconds=t, **extra,
-                                        **measure(img, ref)))
-        summary = {}
-        for label, rows in runs.items():
-            summary[label] = row = aggregate(rows, floor)
-            print(f"benchmark: {name:13s} {label:16s} at {args.toggle_spp} spp: wall "
-                  f"{row['seconds']:.3f} s, core {row.get('core_seconds', 0):.3f} s, relMSE "
-                  f"{row['rel_mse']:.3e} (trimmed {row['rel_mse_trim']:.3e})", flush=True)
-        for toggle, default, other in toggles:
-            out["toggles"][toggle] = dict(default=default, other=other, on=summary["default"],
-                                          off=summary[toggle])
+        render_once(scene, engine, 1, mod.BOUNCES, seeds[0], f"warm_{engine}")
+    out.update(bench_curves(name, scene, mod.BOUNCES, ref, floor, seeds, args))
+    out["ablation"] = (bench_ablation(name, scene, mod.BOUNCES, ref, floor,
+                                      seeds[:args.toggle_seeds], levers, args.toggle_spp)
+                       if levers and args.toggle_seeds > 0 else {})
+    out["run"] = dict(run, seconds=time.perf_counter() - t0)
     return out
 
 
@@ -254,42 +293,47 @@ def main():
     for name in args.scenes:
         comparison_scenes.module(name)
     core = addon_access.addon().render.load_core()
-    toggles = specialisation_toggles(core)
+    levers = ablation_levers(core) if args.toggle_seeds > 0 else []
     t0 = time.perf_counter()
+    made = datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")
+    commit = git("rev-parse", "--short", "HEAD")
+    dirty = bool(git("status", "--porcelain", "--", "core", "python_addon", "CMakeLists.txt"))
     results = dict(
-        made=datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+        made=made,
         command=COMMAND + " " + " ".join(sys.argv[sys.argv.index("--") + 1:]
-                                                if "--" in sys.argv else []),
-        torrance_commit=git("rev-parse", "--short", "HEAD"),
-        torrance_dirty=bool(git("status", "--porcelain", "--",
-                                "core", "python_addon", "CMakeLists.txt")),
+                                         if "--" in sys.argv else []),
+        torrance_commit=commit, torrance_dirty=dirty,
         **references.versions(), machine=machine(),
-        settings=dict(width=comparison_scenes.WIDTH, height=comparison_scenes.HEIGHT, seed=SEED,
-                      max_spp=args.max_spp,
-                      cap_seconds=args.cap_seconds, toggle_spp=args.toggle_spp,
-                      toggle_repeats=args.toggle_repeats,
-                      max_seeds=args.max_seeds, trim=TRIM,
+        settings=dict(width=comparison_scenes.WIDTH, height=comparison_scenes.HEIGHT,
+                      seeds=args.seeds, first_seed=benchmark_points.FIRST_SEED,
+                      max_spp=args.max_spp, curve_seconds=args.curve_seconds,
+                      spp_ladder=benchmark_points.spp_ladder(args.max_spp),
+                      adaptive_thresholds=([] if args.no_adaptive
+                                           else benchmark_points.threshold_ladder()),
+                      toggle_spp=args.toggle_spp, toggle_seeds=args.toggle_seeds, trim=TRIM,
                       torrance_model=addon_access.addon().brdf_model.core_model('PRINCIPLED'),
                       cycles_variants=CYCLES_VARIANTS,
                       references=os.path.relpath(references.REFERENCE_DIR, ROOT),
                       threads="all (Blender threads AUTO; Torrance threads 0)"),
-        toggles=[dict(field=t, default=d, other=o) for t, d, o in toggles
-                 if args.toggle_repeats > 0],
+        levers=[dict(field=f, default=d, other=o) for f, d, o in levers],
         blender_startup_seconds=blender_startup_seconds(),
         scenes={})
-    toggle_fields = ([t['field'] for t in results['toggles']] or 'none exposed by the core'
-                     if args.toggle_repeats > 0 else 'skipped (--toggle-repeats 0)')
+    lever_names = [f for f, _d, _o in levers] or ("none exposed by the core"
+                                                  if args.toggle_seeds > 0 else
+                                                  "skipped (--toggle-seeds 0)")
     print(f"benchmark: Blender start-up {results['blender_startup_seconds']:.2f} s; "
-          f"specialisation toggles: {toggle_fields}", flush=True)
+          f"ablation levers: {lever_names}", flush=True)
+    run = dict(made=made, commit=commit, dirty=dirty, seeds=args.seeds,
+               curve_seconds=args.curve_seconds, max_spp=args.max_spp)
     for name in args.scenes:
-        results["scenes"][name] = bench_scene(name, args, core, toggles)
+        results["scenes"][name] = bench_scene(name, args, levers, run)
     results["total_seconds"] = time.perf_counter() - t0
-    os.makedirs(args.out, exist_ok=True)
-    path = os.path.join(args.out, "results.json")
-    with open(path, "w") as f:
-        json.dump(results, f, indent=1)
-        f.write("\n")
-    print(f"benchmark: wrote {path} in {results['total_seconds']:.0f} s", flush=True)
+    if args.merge:
+        results = benchmark_results.merge(benchmark_results.load(args.out), results,
+                                          comparison_scenes.SCENES)
+    path = benchmark_results.save(args.out, results)
+    print(f"benchmark: wrote {path} ({', '.join(results['scenes'])}) in "
+          f"{time.perf_counter() - t0:.0f} s", flush=True)
 
 
 main()

@@ -9,6 +9,11 @@ what the headless tests share.
     compare           EXR reading/writing and image metrics (bias, relative MSE, SSIM, offset)
     references        the stored Cycles references; Torrance and Cycles renders of a scene
     blender_versions  per Blender version: the benchmark's Cycles variants, reference/report dirs
+    benchmark_points  the speed/error benchmark's seeds, ladders, curve budget, seed averaging
+    benchmark_results its results.json: reading, merging a run of some scenes into an earlier one
+    equal_error       equal-error time ratio of two error-vs-time curves
+    benchmark_tables  the benchmark report's tables (summary, ablation, rays/s, points)
+    benchmark_plots   the benchmark report's error-vs-time plots and reference strip
     agreement         the Torrance-vs-Cycles agreement scene and its pass/fail criteria
     testing           what the headless Blender tests share (runner, add-on access, shortcuts)
     sweep/            headless material-input sweeps: runner, sheet, experiments, report

@@ -43,20 +43,35 @@ def render(scene, name="render"):
 
 
 def render_torrance(scene, samples, seed, bounces, name="torrance", settings_edit=None,
-                    scene_edit=None):
+                    scene_edit=None, adaptive_threshold=0.0):
     """A Torrance render with the PRINCIPLED model, the core wrapped by the edits (see
-    addon_access.core_proxy)."""
-    setup_torrance(scene, samples, bounces, seed, 'PRINCIPLED', progressive_display=False)
+    addon_access.core_proxy). Unbiased: no clamping, no time limit. adaptive_threshold > 0:
+    adaptive sampling at that noise threshold with the automatic minimum of samples (as
+    Cycles'); 0: every pixel gets `samples`."""
+    ts = setup_torrance(scene, samples, bounces, seed, 'PRINCIPLED', progressive_display=False)
+    ts.sample_clamp_direct = ts.sample_clamp_indirect = 0.0
+    ts.time_limit = 0.0
+    ts.use_adaptive_sampling = adaptive_threshold > 0
+    if adaptive_threshold > 0:
+        ts.adaptive_threshold = adaptive_threshold
+        ts.adaptive_min_samples = 0
     with torrance_core(settings_edit, scene_edit):
         return render(scene, name)
 
 
-def render_cycles(scene, samples, seed, bounces, name="cycles", variant=None):
+def render_cycles(scene, samples, seed, bounces, name="cycles", variant=None,
+                  adaptive_threshold=0.0):
     """A Cycles render (setup_cycles), with the settings of `variant` (a dict of scene.cycles
-    fields, e.g. blender_versions.CYCLES_4X's light tree and path guiding) on top."""
+    fields, e.g. blender_versions.CYCLES_4X's light tree and path guiding) on top.
+    adaptive_threshold > 0: Cycles' adaptive sampling at that noise threshold with its automatic
+    minimum of samples; 0: none (setup_cycles)."""
     setup_cycles(scene, samples, bounces, seed)
     for key, value in (variant or {}).items():
         setattr(scene.cycles, key, value)
+    if adaptive_threshold > 0:
+        scene.cycles.use_adaptive_sampling = True
+        scene.cycles.adaptive_threshold = adaptive_threshold
+        scene.cycles.adaptive_min_samples = 0
     return render(scene, name)
 
 

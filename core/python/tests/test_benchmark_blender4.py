@@ -59,7 +59,7 @@ def test_report_gives_a_ratio_against_each_cycles_variant(tmp_path):
     scene = dict(title="t", bounces=8, reference=dict(samples=1024, noise_rel_mse=1e-6,
                                                       blender="4.5.15"),
                  torrance=rows(0.2, errors), cycles=rows(0.1, errors),
-                 cycles_guiding=rows(0.4, errors), toggles={})
+                 cycles_guiding=rows(0.4, errors), ablation={})
     variants = {"cycles": {"use_guiding": False}, "cycles_guiding": {"use_guiding": True}}
     report = load_report_module()
     ratios = report.variant_ratios(scene, list(variants))
@@ -68,11 +68,11 @@ def test_report_gives_a_ratio_against_each_cycles_variant(tmp_path):
     res = dict(made="now", command="scripts/benchmark --blender 4.5", torrance_commit="x",
                torrance_dirty=False, blender="4.5.15 LTS", machine=dict(
                    cpu="cpu", cores=2, system="linux", load_average=[1.0, 1.0, 1.0]),
-               settings=dict(width=128, height=96, seed=0, max_spp=16, cap_seconds=40,
-                             toggle_spp=128, toggle_repeats=0, max_seeds=4,
+               settings=dict(width=128, height=96, seeds=8, first_seed=10, max_spp=16,
+                             curve_seconds=30.0, toggle_spp=64, toggle_seeds=0,
                              torrance_model="PRINCIPLED_V2", cycles_variants=variants,
                              references="references/blender4.5"),
-               toggles=[], blender_startup_seconds=1.0, total_seconds=60.0,
+               levers=[], blender_startup_seconds=1.0, total_seconds=60.0,
                scenes={"sphere_chart": scene})
     (tmp_path / "results.json").write_text(json.dumps(res))
     path, _summary = report.write_report(str(tmp_path))
@@ -81,3 +81,4 @@ def test_report_gives_a_ratio_against_each_cycles_variant(tmp_path):
     assert "model PRINCIPLED_V2 (Cycles' Principled v2)" in text
     assert "| scene | T / `cycles` | T / `cycles_guiding` |" in text
     assert "| sphere_chart | 2.00 (2.00–2.00) | 0.50 (0.50–0.50) |" in text
+    assert "Not measured in this run (`--toggle-seeds 0`)." in text
