@@ -71,10 +71,10 @@ void check_glint(const GlintCase& c) {
   const Estimate e_bsdf = estimate(kSamples, 2, [&](Rng& r) { return by_bsdf(r, false); });
   const Estimate e_mis = estimate(kSamples, 3, [&](Rng& r) { return nee(r, true) + by_bsdf(r, true); });
 
-  const std::string what = "cos_view " + std::to_string(c.cos_view) + ", sun " +
-                           std::to_string(c.offset_degrees) + " degrees off the mirror direction";
-  std::printf("glint %s: NEE %.5g (var %.3g), BSDF %.5g (var %.3g), MIS %.5g (var %.3g)\n", what.c_str(),
-              e_nee.mean, e_nee.variance, e_bsdf.mean, e_bsdf.variance, e_mis.mean, e_mis.variance);
+  const std::string what = "cos_view " + std::to_string(c.cos_view) + ", sun " + std::to_string(c.offset_degrees) +
+                           " degrees off the mirror direction";
+  std::printf("glint %s: NEE %.5g (var %.3g), BSDF %.5g (var %.3g), MIS %.5g (var %.3g)\n", what.c_str(), e_nee.mean,
+              e_nee.variance, e_bsdf.mean, e_bsdf.variance, e_mis.mean, e_mis.variance);
   ASSERT_GT(e_mis.mean, 0.0) << what;
   auto standard_error = [&](const Estimate& e) { return std::sqrt(e.variance / kSamples); };
   for (const auto& [name, e] : {std::pair{"NEE", e_nee}, std::pair{"BSDF sampling", e_bsdf}}) {
@@ -82,8 +82,8 @@ void check_glint(const GlintCase& c) {
     EXPECT_NEAR(e.mean, e_mis.mean, tolerance) << name << " vs MIS, " << what;
   }
   EXPECT_LE(e_mis.variance, 1.5 * std::min(e_nee.variance, e_bsdf.variance) + 1e-6 * e_mis.mean * e_mis.mean)
-      << "MIS is noisier than the better strategy, " << what << ": variances NEE " << e_nee.variance
-      << ", BSDF " << e_bsdf.variance << ", MIS " << e_mis.variance;
+      << "MIS is noisier than the better strategy, " << what << ": variances NEE " << e_nee.variance << ", BSDF "
+      << e_bsdf.variance << ", MIS " << e_mis.variance;
 }
 
 TEST(Glint, NeeBsdfSamplingAndMisAgreeAtGrazingIncidence) {
