@@ -54,7 +54,8 @@ def seed_list(text):
 
 
 def settings_edit(assignments):
-    """A RenderSettings edit setting FIELD=VALUE pairs (bool, int, float or enum member name)."""
+    """A RenderSettings edit setting FIELD=VALUE pairs (bool, int, float or string option such
+    as sampler=RANDOM)."""
     def edit(settings):
         for field, value in assignments:
             current = getattr(settings, field)
@@ -62,8 +63,6 @@ def settings_edit(assignments):
                 value = value.lower() in ("1", "true", "on")
             elif isinstance(current, (int, float)):
                 value = type(current)(value)
-            else:
-                value = type(current).__members__[value]
             setattr(settings, field, value)
     return edit
 
