@@ -46,6 +46,10 @@ CONFIG = {
     # Since point lights are disks facing the shaded point (as in Cycles): ratio 1.0013, block mean
     # 0.0067, p90 0.0145 at seed 0 (was 1.4 % bright with spheres, see MEASURED's notes).
     "interior": dict(samples=256, ratio=(0.99, 1.01), block_mean=0.015, block_p90=0.03),
+    # glint: the sun's glint (a few pixels near 10^4) decides the image's mean and so the ratio
+    # (+-1.8 % over seeds at 512 spp) and the blocks' normalisation (p90 tiny).
+    "glint": dict(samples=512, ratio=(0.965, 1.035), block_mean=0.014, block_p90=0.0012),
+    "glossy_chain": dict(samples=256, ratio=(0.99, 1.01), block_mean=0.012, block_p90=0.035),
 }
 SEED = 0
 
@@ -58,6 +62,8 @@ FAULTS = (
     ("sphere_chart", "lens_x1.03"),
     ("water", "flat_normals"),
     ("mirror", "paper_brdf"),
+    ("glint", "sun_3deg_lower"),
+    ("glossy_chain", "roughness_squared"),
 )
 
 MEASURED = """
@@ -109,6 +115,24 @@ Notes:
   the shaded point): ratio 1.0013, block mean 0.0067, p90 0.0145; the band was tightened.
 * "one bounce less" is invisible at 8-12 bounces (< 0.3 %); test_cycles_agreement.py checks
   bounce counts at 0 and 1. Flat shading matters only on the water (dense smooth meshes elsewhere).
+* glint and glossy_chain (issue 10), measured 2026-12-01 (seeds 0, 3, 4, 5: not the references'
+  1 and 2): glint 512 spp ratio 0.9825-1.0079, block mean 0.0075, p90 0.0003 (8.5 s a render);
+  glossy_chain 256 spp ratio 0.9997-1.0000, block mean 0.0063, p90 0.0206 (3.5 s). Faults, seed 0:
+                                     glint              glossy_chain
+    sun strength x 1.2               1.195/0.013/0.003* (no sun)
+    sun strength x 0.85              0.868/0.009/0.002* (no sun)
+    sun 3 degrees lower              0.880/0.023/0.004* (no sun)
+    world strength x 1.5             1.044/0.359/0.412* 1.156/0.344/0.500*
+    point power x 0.85               (no point light)   0.897/0.048/0.125*
+    PAPER BRDF instead of PRINCIPLED 0.181/0.215/0.586* 0.843/0.091/0.223*
+    roughness squared                0.990/0.015/0.015* 1.108/0.204/0.752*
+    specular 0 (no dielectric lobe)  0.874/0.039/0.090* 0.987/0.022/0.071*
+    shading normals negated          1.005/0.018/0.006* 1.000/0.006/0.021
+    camera shifted 1 px              0.995/0.042/0.041* 1.000/0.027/0.107*
+    focal length x 1.03              1.073/0.010/0.030* 1.025/0.041/0.123*
+    one bounce less                  1.008/0.008/0.000  1.000/0.006/0.021
+  glint's roughness squared turns the ground into a delta mirror (the same energy in a thinner
+  glint): caught only by the block mean, narrowly, so FAULTS uses the sun 3 degrees lower there.
 * Scenes without a point light (or sun) can not see its faults: those cells repeat the correct
   render's figures.
 """
@@ -282,7 +306,7 @@ def main():
     names = only.split(",") if only else list(comparison_scenes.SCENES)
     for name in names:
         c = CONFIG[name]
-        seeds = (SEED, 1, 2, 3) if measure else (SEED,)
+        seeds = (SEED, 3, 4, 5) if measure else (SEED,)   # not 1, 2: the references' seeds
         for seed in seeds:
             img, seconds, ref = render(scenes, name, c["samples"], seed)
             check_finite(name, img)
