@@ -83,10 +83,15 @@ def reference_paths(name):
     return base + ".exr", base + ".json"
 
 
+def has_reference(name):
+    """True when scene `name` has a stored reference (image and metadata) for this Blender."""
+    return all(os.path.exists(path) for path in reference_paths(name))
+
+
 def load_reference(name):
     """(image, metadata) of the stored Cycles reference of scene `name`."""
     exr, meta = reference_paths(name)
-    if not os.path.exists(exr) or not os.path.exists(meta):
+    if not has_reference(name):
         raise FileNotFoundError(f"no reference for scene '{name}' ({exr}); make it with "
                                 f"scripts/references")
     with open(meta) as f:
