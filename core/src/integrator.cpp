@@ -4,6 +4,7 @@
 #include "path_tracer.h"
 
 #include "torrance/limits.h"
+#include "torrance/ray_log.h"
 #include "torrance/sampling.h"
 
 #include <tbb/blocked_range.h>
@@ -130,12 +131,14 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
 
   std::atomic<bool> stop{false};
   std::atomic<uint64_t> nonfinite{0};
+  std::atomic<uint64_t> closest_rays{0}, occlusion_rays{0};
   RenderResult result;
 
   auto render_pass = [&](int first_sample, int num_samples) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
       FlushDenormals ftz;
       uint64_t bad = 0;
+      const RayCounts rays_before = thread_ray_counts();
       for (size_t t = r.begin(); t != r.end() && !stop.load(std::memory_order_relaxed); ++t) {
         const Tile& tile = tiles[t];
         // Stop checked per row, not only per tile: a tile of a late pass (passes grow to half a
@@ -163,6 +166,9 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
           }
       }
       if (bad) nonfinite += bad;
+      const RayCounts rays = thread_ray_counts() - rays_before;
+      closest_rays += rays.closest;
+      occlusion_rays += rays.occlusion;
     });
   };
 
@@ -260,6 +266,8 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   result.image = film.resolve_combined();
   result.passes = film.resolve_passes();
   result.nonfinite_samples = nonfinite.load();
+  result.closest_rays = closest_rays.load();
+  result.occlusion_rays = occlusion_rays.load();
   result.sample_counts = film.sample_counts();
   result.samples_spent = film.total_samples();
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

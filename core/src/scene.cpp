@@ -1,5 +1,6 @@
 #include "torrance/scene.h"
 
+#include "ray_queries.h"
 #include "scene_internal.h"
 
 #include "torrance/first_failure.h"
@@ -318,8 +319,6 @@ void Scene::commit() {
 }
 
 bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
   RTCRayHit rh;
   rh.ray.org_x = ray.origin.x;
   rh.ray.org_y = ray.origin.y;
@@ -335,7 +334,7 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   rh.ray.flags = 0;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(scene_of(scene_), &context, &rh);
+  ray_queries::intersect(scene_of(scene_), rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
 
   const uint32_t prim = rh.hit.primID;
@@ -401,8 +400,6 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
 }
 
 bool Scene::occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
   RTCRay ray;
   ray.org_x = origin.x;
   ray.org_y = origin.y;
@@ -416,8 +413,7 @@ bool Scene::occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax
   ray.mask = 0xFFFFFFFFu;
   ray.id = 0;
   ray.flags = 0;
-  rtcOccluded1(scene_of(scene_), &context, &ray);
-  return ray.tfar < 0.0f;
+  return ray_queries::occluded(scene_of(scene_), ray);
 }
 
 }  // namespace torrance

@@ -108,6 +108,8 @@ struct RenderResult {
   uint64_t samples_spent = 0;      // camera samples traced over all pixels (adaptive: < pixels * samples)
   Image sample_counts;             // per pixel of the rendered window, 1 channel: samples it received
   bool time_limit_reached = false;  // ended by RenderSettings::time_limit (samples_done < samples)
+  uint64_t closest_rays = 0, occlusion_rays = 0;  // Embree queries traced (closest hit, shadow)
+  uint64_t rays_traced() const { return closest_rays + occlusion_rays; }
 };
 
 RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCallbacks& callbacks = {});

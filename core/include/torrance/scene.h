@@ -172,6 +172,7 @@ class Scene {
   void end_render() { --renders_; }
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
   bool occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax) const;
+  void* embree_scene() const { return scene_; }  // the RTCScene, for raw-Embree measurements (ray_replay.h)
 
  private:
   struct Mesh;
