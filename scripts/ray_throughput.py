@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """Prints the ray-throughput table (torrance_tools.ray_throughput) of the comparison scenes.
 
-    scripts/blender -b --factory-startup --python-exit-code 1 --python scripts/ray_throughput.py -- [SCENE ...]
+    scripts/ray_throughput [SCENE ...]   (runs this in scripts/blender)
 """
 
 import sys

@@ -45,7 +45,8 @@ def _measure_core(core, tc_scene, settings, samples, rounds):
     recorded = core.record_rays(tc_scene, settings)
     camera = recorded.select("CAMERA")
     sun = recorded.select("OCCLUSION", unbounded_only=True)
-    series = {k: [] for k in ("integrator", "embree", "camera1", "camera8", "camera16", "sun1", "sun8")}
+    series = {k: [] for k in ("integrator", "embree", "camera1", "camera8", "camera16", "sun1",
+                              "sun8")}
     traced = 0
     for _ in range(rounds):          # interleaved: load changes hit every variant alike
         result = core.render(tc_scene, settings)
@@ -123,5 +124,6 @@ def table(rows):
             f"{m['embree_rays_per_second'] / 1e6:.2f} | {m['fraction']:.2f} | "
             f"{m['rays_per_sample']:.2f} | {m['camera_packet8_speedup']:.2f} | "
             f"{m['camera_packet16_speedup']:.2f} | {m['sun_packet8_speedup']:.2f} | "
-            f"{m['unbounded_shadow_share']:.2f} | {m['export_seconds']:.3f} | {m['setup_seconds']:.3f} |")
+            f"{m['unbounded_shadow_share']:.2f} | {m['export_seconds']:.3f} | "
+            f"{m['setup_seconds']:.3f} |")
     return "\n".join(lines)
