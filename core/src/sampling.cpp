@@ -5,6 +5,14 @@
 namespace torrance {
 namespace {
 
+uint32_t reverse_bits(uint32_t x) {
+  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+  return (x >> 16) | (x << 16);
+}
+
 // Sobol generator matrices for 4 dimensions (direction numbers of Joe & Kuo: dimension 0 is van
 // der Corput; then the primitive polynomials x + 1, x^2 + x + 1, x^3 + x + 1 with initial
 // m = {1}, {1, 3}, {1, 3, 1}), built once by the standard recurrence.
@@ -27,14 +35,15 @@ struct SobolMatrices {
       }
       for (int k = 0; k < 32; ++k) v[d + 1][k] = m[k] << (31 - k);
     }
-    // The matrix-vector product one index byte at a time: table[dim][byte][value] is the XOR of
-    // the columns selected by that byte's bits.
+    // The matrix-vector product one index byte at a time, bit-reversed (the Owen scramble below
+    // works on reversed values, and reversal commutes with XOR): table[dim][byte][value] is the
+    // XOR of the reversed columns selected by that byte's bits.
     for (int d = 0; d < 4; ++d)
       for (int byte = 0; byte < 4; ++byte)
         for (uint32_t value = 0; value < 256; ++value) {
           uint32_t x = 0;
           for (int bit = 0; bit < 8; ++bit)
-            if ((value >> bit) & 1u) x ^= v[d][8 * byte + bit];
+            if ((value >> bit) & 1u) x ^= reverse_bits(v[d][8 * byte + bit]);
           table[d][byte][value] = x;
         }
   }
@@ -42,24 +51,16 @@ struct SobolMatrices {
 };
 const SobolMatrices kSobol;
 
-uint32_t sobol(uint32_t index, int dim) {
+// Sobol point `index` in dimension dim, bit-reversed.
+uint32_t reversed_sobol(uint32_t index, int dim) {
   const auto& t = kSobol.table[dim];
   return t[0][index & 0xffu] ^ t[1][(index >> 8) & 0xffu] ^ t[2][(index >> 16) & 0xffu] ^ t[3][index >> 24];
 }
 
-uint32_t reverse_bits(uint32_t x) {
-  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
-  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
-  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
-  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
-  return (x >> 16) | (x << 16);
-}
-
-// Nested uniform (Owen) scramble in base 2: a hash in which each bit depends only on higher bits
-// (the Laine-Karras construction), applied to the bit-reversed value.
-uint32_t owen_scramble(uint32_t x, uint32_t seed) {
-  x = reverse_bits(x);
-  x += seed;
+// Nested uniform (Owen) scramble in base 2 of x given bit-reversed: a hash in which each bit
+// depends only on higher bits of x (the Laine-Karras construction); returns it in natural order.
+uint32_t owen_scramble_reversed(uint32_t reversed_x, uint32_t seed) {
+  uint32_t x = reversed_x + seed;
   x ^= x * 0x6c50b47cu;
   x ^= x * 0xb82f1e52u;
   x ^= x * 0xc7afe638u;
@@ -75,12 +76,13 @@ glm::vec4 SobolSampler::next_4d() {
     return glm::vec4(a.x, a.y, b.x, b.y);
   }
   const uint32_t group_seed = hash_combine(pixel_seed_, group_++);
-  const uint32_t shuffled = owen_scramble(index_, group_seed);
+  const uint32_t shuffled = owen_scramble_reversed(reverse_bits(index_), group_seed);
+  // The four dimensions side by side (the compiler vectorizes the scrambles).
+  uint32_t x[4];
+  for (int d = 0; d < 4; ++d) x[d] = reversed_sobol(shuffled, d);
   glm::vec4 u;
-  for (int d = 0; d < 4; ++d) {
-    const uint32_t x = owen_scramble(sobol(shuffled, d), hash_combine(group_seed, uint32_t(d) + 1u));
-    u[d] = float(x >> 8) * 0x1p-24f;
-  }
+  for (int d = 0; d < 4; ++d)
+    u[d] = float(owen_scramble_reversed(x[d], hash_combine(group_seed, uint32_t(d) + 1u)) >> 8) * 0x1p-24f;
   return u;
 }
 
