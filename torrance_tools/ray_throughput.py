@@ -18,6 +18,7 @@ The returned dict (see KEYS) is what scripts/ray_throughput prints as a table.
 """
 
 import statistics
+import time
 
 from torrance_tools import addon_access
 
@@ -26,18 +27,25 @@ ROUNDS = 3
 
 KEYS = ("integrator_rays_per_second", "embree_rays_per_second", "fraction", "rays_per_sample",
         "camera_packet8_speedup", "camera_packet16_speedup", "sun_packet8_speedup",
-        "unbounded_shadow_share", "export_seconds", "setup_seconds")
+        "unbounded_shadow_share", "export_seconds", "setup_seconds", "core_seconds_1spp",
+        "render_wall_seconds_1spp")
 
 
 def _rate(rays, seconds):
     return rays / seconds if seconds > 0 else float("nan")
 
 
-def _replay_rate(core, tc_scene, rays, packet_width):
+def _replay_rate(core, tc_scene, rays, packet_width, min_seconds=0.05):
+    """Rays/s of raw Embree on `rays`, replayed until min_seconds have passed (a small subset such
+    as the camera rays takes milliseconds: one replay alone is mostly noise)."""
     if len(rays) == 0:
         return float("nan")
     copy = rays.copy()
-    return _rate(len(copy), core.replay_rays(tc_scene, copy, packet_width=packet_width))
+    traced, seconds = 0, 0.0
+    while seconds < min_seconds:
+        seconds += core.replay_rays(tc_scene, copy, packet_width=packet_width)
+        traced += len(copy)
+    return _rate(traced, seconds)
 
 
 def _measure_core(core, tc_scene, settings, samples, rounds):
@@ -88,11 +96,14 @@ def measure(scene, samples=SAMPLES, rounds=ROUNDS):
     mod = addon_access.addon()
     core = mod.render.load_core()
     out = {}
+    measuring = [0.0]   # seconds spent measuring inside the add-on's render call
 
     def measuring_render(tc_scene, settings, **callbacks):
         first = core.render(tc_scene, settings, **callbacks)   # what the add-on shows
-        out.update(setup_seconds=float(first.setup_seconds))
+        out.update(setup_seconds=float(first.setup_seconds), core_seconds_1spp=float(first.seconds))
+        t0 = time.perf_counter()
         out.update(_measure_core(core, tc_scene, settings, samples, rounds))
+        measuring[0] = time.perf_counter() - t0
         return first
 
     old_engine, old_samples = scene.render.engine, scene.torrance.samples
@@ -102,7 +113,9 @@ def measure(scene, samples=SAMPLES, rounds=ROUNDS):
     proxy.render = measuring_render
     mod.render._core = proxy
     try:
+        t0 = time.perf_counter()
         bpy.ops.render.render(write_still=False, scene=scene.name)
+        wall = time.perf_counter() - t0
     finally:
         mod.render._core = core
         scene.render.engine, scene.torrance.samples = old_engine, old_samples
@@ -110,13 +123,18 @@ def measure(scene, samples=SAMPLES, rounds=ROUNDS):
         raise RuntimeError(f"the Torrance render of {scene.name!r} did not run: "
                            f"{addon_access.last_messages()}")
     out["export_seconds"] = float(mod.render.last_stats.get("export_seconds", float("nan")))
+    # The fixed cost of a render through Blender at 1 spp: the operator's wall time, of which the
+    # add-on's export and the core's render (its setup included); the rest is Blender's and the
+    # add-on's own (result hand-over, depsgraph).
+    out["render_wall_seconds_1spp"] = wall - measuring[0]
     return out
 
 
 def table(rows):
     """Markdown table of {scene name: measure() dict}."""
     head = ("scene", "integrator Mrays/s", "Embree Mrays/s", "fraction", "rays/sample",
-            "camera x8", "camera x16", "sun x8", "sun share", "export s", "setup s")
+            "camera x8", "camera x16", "sun x8", "sun share", "export s", "setup s",
+            "1-spp core s", "1-spp F12 wall s")
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for name, m in rows.items():
         lines.append(
@@ -125,5 +143,6 @@ def table(rows):
             f"{m['rays_per_sample']:.2f} | {m['camera_packet8_speedup']:.2f} | "
             f"{m['camera_packet16_speedup']:.2f} | {m['sun_packet8_speedup']:.2f} | "
             f"{m['unbounded_shadow_share']:.2f} | {m['export_seconds']:.3f} | "
-            f"{m['setup_seconds']:.3f} |")
+            f"{m['setup_seconds']:.3f} | {m['core_seconds_1spp']:.3f} | "
+            f"{m['render_wall_seconds_1spp']:.3f} |")
     return "\n".join(lines)
