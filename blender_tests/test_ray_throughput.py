@@ -44,7 +44,7 @@ def main():
         seen.update(counted=counted.rays_traced, closest=counted.closest_rays,
                     occlusion=counted.occlusion_rays, recorded=recorded)
         replays = {}
-        for width in (1, 8, 16):
+        for width in (1, 8):
             for name, rays in (("all", recorded), ("camera", recorded.select("CAMERA"))):
                 copy = rays.copy()
                 core.replay_rays(tc_scene, copy, packet_width=width)

@@ -10,7 +10,7 @@ on that exported core scene and those render settings:
 - in ROUNDS interleaved rounds, times a render of the same settings (its rays counted by the
   core: RenderResult.rays_traced over its sampling time) and the replay of the recorded rays
   through raw Embree, one ray at a time (torrance_core.replay_rays), and the camera rays and the
-  unbounded shadow rays (toward a sun or the world) alone, one by one and as 8- and 16-wide
+  unbounded shadow rays (toward a sun or the world) alone, one by one and as 8-wide
   coherent packets. Rates are medians over the rounds; the ratios are what to read on a
   shared machine.
 
@@ -26,7 +26,7 @@ SAMPLES = 8   # per pixel, for the recorded and the timed renders (128x96: ~0.5 
 ROUNDS = 3
 
 KEYS = ("integrator_rays_per_second", "embree_rays_per_second", "fraction", "rays_per_sample",
-        "camera_packet8_speedup", "camera_packet16_speedup", "sun_packet8_speedup",
+        "camera_packet8_speedup", "sun_packet8_speedup",
         "unbounded_shadow_share", "export_seconds", "setup_seconds", "core_seconds_1spp",
         "render_wall_seconds_1spp")
 
@@ -53,8 +53,7 @@ def _measure_core(core, tc_scene, settings, samples, rounds):
     recorded = core.record_rays(tc_scene, settings)
     camera = recorded.select("CAMERA")
     sun = recorded.select("OCCLUSION", unbounded_only=True)
-    series = {k: [] for k in ("integrator", "embree", "camera1", "camera8", "camera16", "sun1",
-                              "sun8")}
+    series = {k: [] for k in ("integrator", "embree", "camera1", "camera8", "sun1", "sun8")}
     traced = 0
     for _ in range(rounds):          # interleaved: load changes hit every variant alike
         result = core.render(tc_scene, settings)
@@ -63,7 +62,6 @@ def _measure_core(core, tc_scene, settings, samples, rounds):
         series["embree"].append(_replay_rate(core, tc_scene, recorded, 1))
         series["camera1"].append(_replay_rate(core, tc_scene, camera, 1))
         series["camera8"].append(_replay_rate(core, tc_scene, camera, 8))
-        series["camera16"].append(_replay_rate(core, tc_scene, camera, 16))
         series["sun1"].append(_replay_rate(core, tc_scene, sun, 1))
         series["sun8"].append(_replay_rate(core, tc_scene, sun, 8))
     med = {k: statistics.median(v) for k, v in series.items()}
@@ -77,9 +75,7 @@ def _measure_core(core, tc_scene, settings, samples, rounds):
         rays_per_sample=len(recorded) / (pixels * samples),
         camera_rays_per_second=med["camera1"],
         camera_packet8_rays_per_second=med["camera8"],
-        camera_packet16_rays_per_second=med["camera16"],
         camera_packet8_speedup=med["camera8"] / med["camera1"],
-        camera_packet16_speedup=med["camera16"] / med["camera1"],
         sun_rays_per_second=med["sun1"],
         sun_packet8_rays_per_second=med["sun8"],
         sun_packet8_speedup=med["sun8"] / med["sun1"] if len(sun) else float("nan"),
@@ -133,7 +129,7 @@ def measure(scene, samples=SAMPLES, rounds=ROUNDS):
 def table(rows):
     """Markdown table of {scene name: measure() dict}."""
     head = ("scene", "integrator Mrays/s", "Embree Mrays/s", "fraction", "rays/sample",
-            "camera x8", "camera x16", "sun x8", "sun share", "export s", "setup s",
+            "camera x8", "sun x8", "sun share", "export s", "setup s",
             "1-spp core s", "1-spp F12 wall s")
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for name, m in rows.items():
@@ -141,7 +137,7 @@ def table(rows):
             f"| {name} | {m['integrator_rays_per_second'] / 1e6:.2f} | "
             f"{m['embree_rays_per_second'] / 1e6:.2f} | {m['fraction']:.2f} | "
             f"{m['rays_per_sample']:.2f} | {m['camera_packet8_speedup']:.2f} | "
-            f"{m['camera_packet16_speedup']:.2f} | {m['sun_packet8_speedup']:.2f} | "
+            f"{m['sun_packet8_speedup']:.2f} | "
             f"{m['unbounded_shadow_share']:.2f} | {m['export_seconds']:.3f} | "
             f"{m['setup_seconds']:.3f} | {m['core_seconds_1spp']:.3f} | "
             f"{m['render_wall_seconds_1spp']:.3f} |")

@@ -78,7 +78,7 @@ void init_rays(py::module_& m) {
         return replay_rays(scene, rays.rays, packet_width, threads);
       },
       py::arg("scene"), py::arg("rays"), py::arg("packet_width") = 1, py::arg("threads") = 0,
-      "Traces the rays through raw Embree (packet_width 1, 8 or 16), storing the answers in them; "
+      "Traces the rays through raw Embree (packet_width 1 or 8), storing the answers in them; "
       "returns the seconds taken. The scene must have been rendered (its BVH built).");
 }
 

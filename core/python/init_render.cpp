@@ -106,6 +106,7 @@ void init_render(py::module_& m) {
            py::arg("adaptive_min_samples") = 0, py::arg("time_limit") = 0.0, py::arg("clamp_direct") = 0.0f,
            py::arg("clamp_indirect") = 0.0f, py::arg("max_transparent_bounces") = 8)
       .def_readwrite("specialize", &RenderSettings::specialize)
+      .def_readwrite("camera_packets", &RenderSettings::camera_packets)
       .def_property(
           "sampler", [](const RenderSettings& s) { return std::string(s.sobol ? "SOBOL" : "RANDOM"); },
           [](RenderSettings& s, const std::string& v) { s.sobol = parse_sampler_is_sobol(v); })

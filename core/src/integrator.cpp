@@ -20,6 +20,7 @@
 #include <exception>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 #include <utility>
@@ -147,21 +148,38 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
           for (int x = tile.x0; x < tile.x1; ++x) {
             if (adaptive && film.converged(x - window[0], y - window[1])) continue;
             const uint32_t pixel = uint32_t(y) * uint32_t(settings.width) + uint32_t(x);
-            for (int s = first_sample; s < first_sample + num_samples; ++s) {
-              SobolSampler sampler(pixel, uint32_t(s), settings.seed, !settings.sobol);
-              const glm::vec4 u_pixel = sampler.next_4d();
-              const float dx = filter.sample_offset(u_pixel.x);
-              const float dy = filter.sample_offset(u_pixel.y);
-              // u_pixel.zw: the lens point (depth of field only).
-              PathRadiance r = trace(ctx, camera.generate_ray(x + 0.5f + dx, y + 0.5f + dy, Vec2(u_pixel.z, u_pixel.w)),
-                                     sampler);
-              if (!is_finite(r.combined())) {  // never expected; counted so tests can prove it never happens
-                ++bad;
-                const float alpha = r.alpha;
-                r = PathRadiance{};
-                r.alpha = alpha;
+            for (int s0 = first_sample; s0 < first_sample + num_samples; s0 += Scene::kPacketSize) {
+              // Up to kPacketSize samples at once: their camera rays in one packet, then each path.
+              const int n = std::min(Scene::kPacketSize, first_sample + num_samples - s0);
+              std::array<std::optional<SobolSampler>, Scene::kPacketSize> samplers;
+              std::array<Ray, Scene::kPacketSize> rays;
+              for (int i = 0; i < n; ++i) {
+                SobolSampler& sampler = samplers[i].emplace(pixel, uint32_t(s0 + i), settings.seed, !settings.sobol);
+                const glm::vec4 u_pixel = sampler.next_4d();
+                const float dx = filter.sample_offset(u_pixel.x);
+                const float dy = filter.sample_offset(u_pixel.y);
+                // u_pixel.zw: the lens point (depth of field only).
+                rays[i] = camera.generate_ray(x + 0.5f + dx, y + 0.5f + dy, Vec2(u_pixel.z, u_pixel.w));
               }
-              film.add(x - window[0], y - window[1], r, uint32_t(s));
+              const bool packet = settings.camera_packets && n > 1;
+              std::array<FirstHit, Scene::kPacketSize> first;
+              if (packet) {
+                std::array<SurfaceHit, Scene::kPacketSize> hits;
+                std::array<bool, Scene::kPacketSize> found;
+                scene.intersect_packet(rays.data(), n, hits.data(), found.data());
+                for (int i = 0; i < n; ++i) first[i] = {hits[i], found[i]};
+              }
+              for (int i = 0; i < n; ++i) {
+                const int s = s0 + i;
+                PathRadiance r = trace(ctx, rays[i], *samplers[i], packet ? &first[i] : nullptr);
+                if (!is_finite(r.combined())) {  // never expected; counted so tests can prove it never happens
+                  ++bad;
+                  const float alpha = r.alpha;
+                  r = PathRadiance{};
+                  r.alpha = alpha;
+                }
+                film.add(x - window[0], y - window[1], r, uint32_t(s));
+              }
             }
           }
       }

@@ -82,6 +82,38 @@ void intersect(RTCScene scene, RTCRayHit& rh) {
   }
 }
 
+void intersect_coherent(RTCScene scene, const int* valid, RTCRayHit8& packet) {
+  RayLog::Storage* log = recording_of(scene);
+  LoggedRay logged[8];
+  int active = 0;
+  for (int i = 0; i < 8; ++i)
+    if (valid[i]) {
+      ++active;
+      if (log) {
+        logged[i].origin = Vec3(packet.ray.org_x[i], packet.ray.org_y[i], packet.ray.org_z[i]);
+        logged[i].dir = Vec3(packet.ray.dir_x[i], packet.ray.dir_y[i], packet.ray.dir_z[i]);
+        logged[i].tmin = packet.ray.tnear[i];
+        logged[i].tmax = packet.ray.tfar[i];
+        logged[i].kind = packet.ray.tnear[i] > 0.0f ? RayKind::Camera : RayKind::Closest;
+      }
+    }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  rtcIntersect8(valid, scene, &context, &packet);
+  counts_of_this_thread.closest += uint64_t(active);
+  if (!log) return;
+  for (int i = 0; i < 8; ++i)
+    if (valid[i]) {
+      const bool hit = packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+      logged[i].geom_id = packet.hit.geomID[i];
+      logged[i].inst_id = packet.hit.instID[0][i];
+      logged[i].prim_id = hit ? packet.hit.primID[i] : RTC_INVALID_GEOMETRY_ID;
+      logged[i].hit_t = hit ? packet.ray.tfar[i] : 0.0f;
+      log->per_thread.local().push_back(logged[i]);
+    }
+}
+
 bool occluded(RTCScene scene, RTCRay& ray) {
   RayLog::Storage* log = recording_of(scene);
   LoggedRay logged;

@@ -9,6 +9,8 @@ namespace torrance::ray_queries {
 
 // rtcIntersect1 of rh (its hit ids set to invalid by the caller) through scene.
 void intersect(RTCScene scene, RTCRayHit& rh);
+// rtcIntersect8 of the packet's valid lanes (valid[i] = -1) with the coherent flag.
+void intersect_coherent(RTCScene scene, const int* valid, RTCRayHit8& packet);
 // rtcOccluded1 of ray through scene; true when something lies in [tnear, tfar].
 bool occluded(RTCScene scene, RTCRay& ray);
 

@@ -20,8 +20,8 @@ std::vector<LoggedRay> select_rays(const std::vector<LoggedRay>& rays, RayKind k
 // Traces the rays through the scene's BVH (committed: the scene has been rendered), writing each
 // answer into its ray, in parallel over runs of consecutive rays on `threads` threads (0: all
 // cores); returns the seconds it took. packet_width 1: rtcIntersect1 / rtcOccluded1 per ray;
-// 8 or 16: consecutive rays of one kind go that many at a time through rtcIntersect8/16 or
-// rtcOccluded8/16 with the coherent flag (for coherent groups such as select_rays' camera rays).
+// 8: consecutive rays of one kind go 8 at a time through rtcIntersect8 or rtcOccluded8 with the
+// coherent flag (for coherent groups such as select_rays' camera rays).
 double replay_rays(const Scene& scene, std::vector<LoggedRay>& rays, int packet_width = 1, int threads = 0);
 
 }  // namespace torrance
