@@ -15,6 +15,7 @@ void init_mixture(py::module_& m);  // after init_scene: adds Scene.add_mixture
 void init_render(py::module_& m);
 void init_image(py::module_& m);
 void init_bsdf(py::module_& m);
+void init_rays(py::module_& m);  // record_rays, replay_rays
 
 // "PAPER" / "PRINCIPLED" -> BrdfModel; ValueError otherwise.
 BrdfModel parse_model(const std::string& s);

@@ -106,6 +106,7 @@ void init_render(py::module_& m) {
            py::arg("adaptive_min_samples") = 0, py::arg("time_limit") = 0.0, py::arg("clamp_direct") = 0.0f,
            py::arg("clamp_indirect") = 0.0f, py::arg("max_transparent_bounces") = 8)
       .def_readwrite("specialize", &RenderSettings::specialize)
+      .def_readwrite("camera_packets", &RenderSettings::camera_packets)
       .def_property(
           "sampler", [](const RenderSettings& s) { return std::string(s.sobol ? "SOBOL" : "RANDOM"); },
           [](RenderSettings& s, const std::string& v) { s.sobol = parse_sampler_is_sobol(v); })
@@ -156,6 +157,9 @@ void init_render(py::module_& m) {
       .def_readonly("nonfinite_samples", &RenderResult::nonfinite_samples)
       .def_readonly("samples_spent", &RenderResult::samples_spent)
       .def_readonly("time_limit_reached", &RenderResult::time_limit_reached)
+      .def_readonly("closest_rays", &RenderResult::closest_rays)
+      .def_readonly("occlusion_rays", &RenderResult::occlusion_rays)
+      .def_property_readonly("rays_traced", &RenderResult::rays_traced)
       .def_property_readonly("sample_counts", [](const RenderResult& r) {
         py::array_t<float> a({py::ssize_t(r.sample_counts.height), py::ssize_t(r.sample_counts.width)});
         std::copy(r.sample_counts.rgba.begin(), r.sample_counts.rgba.end(), a.mutable_data());

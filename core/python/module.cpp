@@ -12,4 +12,5 @@ PYBIND11_MODULE(_core, m) {
   torrance::python::init_render(m);
   torrance::python::init_image(m);
   torrance::python::init_bsdf(m);
+  torrance::python::init_rays(m);
 }

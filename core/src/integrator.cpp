@@ -4,6 +4,7 @@
 #include "path_tracer.h"
 
 #include "torrance/limits.h"
+#include "torrance/ray_log.h"
 #include "torrance/sampling.h"
 
 #include <tbb/blocked_range.h>
@@ -19,6 +20,7 @@
 #include <exception>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 #include <utility>
@@ -130,12 +132,14 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
 
   std::atomic<bool> stop{false};
   std::atomic<uint64_t> nonfinite{0};
+  std::atomic<uint64_t> closest_rays{0}, occlusion_rays{0};
   RenderResult result;
 
   auto render_pass = [&](int first_sample, int num_samples) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
       FlushDenormals ftz;
       uint64_t bad = 0;
+      const RayCounts rays_before = thread_ray_counts();
       for (size_t t = r.begin(); t != r.end() && !stop.load(std::memory_order_relaxed); ++t) {
         const Tile& tile = tiles[t];
         // Stop checked per row, not only per tile: a tile of a late pass (passes grow to half a
@@ -144,25 +148,45 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
           for (int x = tile.x0; x < tile.x1; ++x) {
             if (adaptive && film.converged(x - window[0], y - window[1])) continue;
             const uint32_t pixel = uint32_t(y) * uint32_t(settings.width) + uint32_t(x);
-            for (int s = first_sample; s < first_sample + num_samples; ++s) {
-              SobolSampler sampler(pixel, uint32_t(s), settings.seed, !settings.sobol);
-              const glm::vec4 u_pixel = sampler.next_4d();
-              const float dx = filter.sample_offset(u_pixel.x);
-              const float dy = filter.sample_offset(u_pixel.y);
-              // u_pixel.zw: the lens point (depth of field only).
-              PathRadiance r = trace(ctx, camera.generate_ray(x + 0.5f + dx, y + 0.5f + dy, Vec2(u_pixel.z, u_pixel.w)),
-                                     sampler);
-              if (!is_finite(r.combined())) {  // never expected; counted so tests can prove it never happens
-                ++bad;
-                const float alpha = r.alpha;
-                r = PathRadiance{};
-                r.alpha = alpha;
+            for (int s0 = first_sample; s0 < first_sample + num_samples; s0 += Scene::kPacketSize) {
+              // Up to kPacketSize samples at once: their camera rays in one packet, then each path.
+              const int n = std::min(Scene::kPacketSize, first_sample + num_samples - s0);
+              std::array<std::optional<SobolSampler>, Scene::kPacketSize> samplers;
+              std::array<Ray, Scene::kPacketSize> rays;
+              for (int i = 0; i < n; ++i) {
+                SobolSampler& sampler = samplers[i].emplace(pixel, uint32_t(s0 + i), settings.seed, !settings.sobol);
+                const glm::vec4 u_pixel = sampler.next_4d();
+                const float dx = filter.sample_offset(u_pixel.x);
+                const float dy = filter.sample_offset(u_pixel.y);
+                // u_pixel.zw: the lens point (depth of field only).
+                rays[i] = camera.generate_ray(x + 0.5f + dx, y + 0.5f + dy, Vec2(u_pixel.z, u_pixel.w));
               }
-              film.add(x - window[0], y - window[1], r, uint32_t(s));
+              const bool packet = settings.camera_packets && n > 1;
+              std::array<FirstHit, Scene::kPacketSize> first;
+              if (packet) {
+                std::array<SurfaceHit, Scene::kPacketSize> hits;
+                std::array<bool, Scene::kPacketSize> found;
+                scene.intersect_packet(rays.data(), n, hits.data(), found.data());
+                for (int i = 0; i < n; ++i) first[i] = {hits[i], found[i]};
+              }
+              for (int i = 0; i < n; ++i) {
+                const int s = s0 + i;
+                PathRadiance r = trace(ctx, rays[i], *samplers[i], packet ? &first[i] : nullptr);
+                if (!is_finite(r.combined())) {  // never expected; counted so tests can prove it never happens
+                  ++bad;
+                  const float alpha = r.alpha;
+                  r = PathRadiance{};
+                  r.alpha = alpha;
+                }
+                film.add(x - window[0], y - window[1], r, uint32_t(s));
+              }
             }
           }
       }
       if (bad) nonfinite += bad;
+      const RayCounts rays = thread_ray_counts() - rays_before;
+      closest_rays += rays.closest;
+      occlusion_rays += rays.occlusion;
     });
   };
 
@@ -260,6 +284,8 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   result.image = film.resolve_combined();
   result.passes = film.resolve_passes();
   result.nonfinite_samples = nonfinite.load();
+  result.closest_rays = closest_rays.load();
+  result.occlusion_rays = occlusion_rays.load();
   result.sample_counts = film.sample_counts();
   result.samples_spent = film.total_samples();
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

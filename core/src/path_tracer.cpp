@@ -104,7 +104,7 @@ float bump_shadowing(Vec3 n_smooth, const Vec3& n_mapped, const Vec3& wi) {
 // bounce (at most max_transparent_bounces times per segment: then the path ends), keeping the
 // previous vertex for MIS; shadow rays pass such surfaces (shadow_transmittance).
 template <bool kTextures, bool kSplitLobes, bool kHittable, bool kGlass, bool kAlpha, bool kMixtures>
-PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) {
+PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, const FirstHit* first) {
   const Lights& lights = ctx.lights;
   PathRadiance out;
   Vec3 throughput(1.0f);
@@ -132,7 +132,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
 
   for (int bounce = 0;; ++bounce) {
     SurfaceHit hit;
-    bool found = ctx.scene.intersect(ray, hit);
+    bool found = bounce == 0 && first ? (hit = first->hit, first->found) : ctx.scene.intersect(ray, hit);
     float passed_length = 0.0f;  // through transparent surfaces since the last vertex
     if constexpr (kAlpha) {
       for (int passed = 0; found; ++passed) {

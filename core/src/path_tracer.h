@@ -33,7 +33,14 @@ struct PathRadiance {
   }
 };
 
-using TraceFn = PathRadiance (*)(const PathContext&, Ray, SobolSampler&);
+// The camera ray's answer when the integrator traced it already (Scene::intersect_packet).
+struct FirstHit {
+  SurfaceHit hit;
+  bool found = false;
+};
+
+// first: the camera ray's answer, or nullptr to trace it.
+using TraceFn = PathRadiance (*)(const PathContext&, Ray, SobolSampler&, const FirstHit* first);
 
 // The path tracer for the scene's features under the settings (specialize false: the generic
 // one, which has every feature).

@@ -1,9 +1,19 @@
 #include "torrance/sampling.h"
 
+#include <emmintrin.h>
+
 #include <array>
 
 namespace torrance {
 namespace {
+
+uint32_t reverse_bits(uint32_t x) {
+  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+  return (x >> 16) | (x << 16);
+}
 
 // Sobol generator matrices for 4 dimensions (direction numbers of Joe & Kuo: dimension 0 is van
 // der Corput; then the primitive polynomials x + 1, x^2 + x + 1, x^3 + x + 1 with initial
@@ -27,14 +37,15 @@ struct SobolMatrices {
       }
       for (int k = 0; k < 32; ++k) v[d + 1][k] = m[k] << (31 - k);
     }
-    // The matrix-vector product one index byte at a time: table[dim][byte][value] is the XOR of
-    // the columns selected by that byte's bits.
+    // The matrix-vector product one index byte at a time, bit-reversed (the Owen scramble below
+    // works on reversed values, and reversal commutes with XOR): table[dim][byte][value] is the
+    // XOR of the reversed columns selected by that byte's bits.
     for (int d = 0; d < 4; ++d)
       for (int byte = 0; byte < 4; ++byte)
         for (uint32_t value = 0; value < 256; ++value) {
           uint32_t x = 0;
           for (int bit = 0; bit < 8; ++bit)
-            if ((value >> bit) & 1u) x ^= v[d][8 * byte + bit];
+            if ((value >> bit) & 1u) x ^= reverse_bits(v[d][8 * byte + bit]);
           table[d][byte][value] = x;
         }
   }
@@ -42,28 +53,56 @@ struct SobolMatrices {
 };
 const SobolMatrices kSobol;
 
-uint32_t sobol(uint32_t index, int dim) {
+// Sobol point `index` in dimension dim, bit-reversed.
+uint32_t reversed_sobol(uint32_t index, int dim) {
   const auto& t = kSobol.table[dim];
   return t[0][index & 0xffu] ^ t[1][(index >> 8) & 0xffu] ^ t[2][(index >> 16) & 0xffu] ^ t[3][index >> 24];
 }
 
-uint32_t reverse_bits(uint32_t x) {
+// Four uint32 lanes (SSE2, x86-64's baseline): next_4d's four dimensions side by side.
+struct Lanes {
+  __m128i v;
+  Lanes(__m128i x) : v(x) {}
+  explicit Lanes(uint32_t x) : v(_mm_set1_epi32(int(x))) {}
+  Lanes operator+(Lanes o) const { return _mm_add_epi32(v, o.v); }
+  Lanes operator^(Lanes o) const { return _mm_xor_si128(v, o.v); }
+  Lanes operator&(uint32_t m) const { return _mm_and_si128(v, _mm_set1_epi32(int(m))); }
+  Lanes operator|(Lanes o) const { return _mm_or_si128(v, o.v); }
+  Lanes operator>>(int n) const { return _mm_srli_epi32(v, n); }
+  Lanes operator<<(int n) const { return _mm_slli_epi32(v, n); }
+  Lanes operator*(uint32_t c) const {  // low 32 bits of each product (SSE2 has no pmulld)
+    const __m128i k = _mm_set1_epi32(int(c));
+    const __m128i even = _mm_mul_epu32(v, k), odd = _mm_mul_epu32(_mm_srli_epi64(v, 32), k);
+    return _mm_unpacklo_epi32(_mm_shuffle_epi32(even, _MM_SHUFFLE(0, 0, 2, 0)),
+                              _mm_shuffle_epi32(odd, _MM_SHUFFLE(0, 0, 2, 0)));
+  }
+};
+
+// reverse_bits and hash_u32 (sampling.h) of each lane.
+Lanes reverse_bits(Lanes x) {
   x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
   x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
   x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
   x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
   return (x >> 16) | (x << 16);
 }
+Lanes hash_u32(Lanes x) {
+  x = x ^ (x >> 16);
+  x = x * 0x7feb352du;
+  x = x ^ (x >> 15);
+  x = x * 0x846ca68bu;
+  return x ^ (x >> 16);
+}
 
-// Nested uniform (Owen) scramble in base 2: a hash in which each bit depends only on higher bits
-// (the Laine-Karras construction), applied to the bit-reversed value.
-uint32_t owen_scramble(uint32_t x, uint32_t seed) {
-  x = reverse_bits(x);
-  x += seed;
-  x ^= x * 0x6c50b47cu;
-  x ^= x * 0xb82f1e52u;
-  x ^= x * 0xc7afe638u;
-  x ^= x * 0x8d22f6e6u;
+// Nested uniform (Owen) scramble in base 2 of x given bit-reversed: a hash in which each bit
+// depends only on higher bits of x (the Laine-Karras construction); returns it in natural order.
+template <typename U>
+U owen_scramble_reversed(U reversed_x, U seed) {
+  U x = reversed_x + seed;
+  x = x ^ (x * 0x6c50b47cu);
+  x = x ^ (x * 0xb82f1e52u);
+  x = x ^ (x * 0xc7afe638u);
+  x = x ^ (x * 0x8d22f6e6u);
   return reverse_bits(x);
 }
 
@@ -75,12 +114,15 @@ glm::vec4 SobolSampler::next_4d() {
     return glm::vec4(a.x, a.y, b.x, b.y);
   }
   const uint32_t group_seed = hash_combine(pixel_seed_, group_++);
-  const uint32_t shuffled = owen_scramble(index_, group_seed);
+  const uint32_t shuffled = owen_scramble_reversed(reverse_bits(index_), group_seed);
+  // Dimension d is scrambled with hash_combine(group_seed, d + 1), all four at once.
+  const uint32_t combine = 0x9e3779b9U + (group_seed << 6) + (group_seed >> 2);
+  const Lanes seeds = hash_u32(Lanes(group_seed) ^ (Lanes(_mm_setr_epi32(1, 2, 3, 4)) + Lanes(combine)));
+  const Lanes points(_mm_setr_epi32(int(reversed_sobol(shuffled, 0)), int(reversed_sobol(shuffled, 1)),
+                                    int(reversed_sobol(shuffled, 2)), int(reversed_sobol(shuffled, 3))));
+  const Lanes scrambled = owen_scramble_reversed(points, seeds);
   glm::vec4 u;
-  for (int d = 0; d < 4; ++d) {
-    const uint32_t x = owen_scramble(sobol(shuffled, d), hash_combine(group_seed, uint32_t(d) + 1u));
-    u[d] = float(x >> 8) * 0x1p-24f;
-  }
+  _mm_storeu_ps(&u[0], _mm_mul_ps(_mm_cvtepi32_ps((scrambled >> 8).v), _mm_set1_ps(0x1p-24f)));
   return u;
 }
 

@@ -1,5 +1,6 @@
 #include "torrance/scene.h"
 
+#include "ray_queries.h"
 #include "scene_internal.h"
 
 #include "torrance/first_failure.h"
@@ -318,8 +319,6 @@ void Scene::commit() {
 }
 
 bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
   RTCRayHit rh;
   rh.ray.org_x = ray.origin.x;
   rh.ray.org_y = ray.origin.y;
@@ -335,74 +334,11 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   rh.ray.flags = 0;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(scene_of(scene_), &context, &rh);
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-
-  const uint32_t prim = rh.hit.primID;
-  float u = rh.hit.u, v = rh.hit.v;
-  Corners c;
-  if (rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID) {
-    const Mesh& mesh = *meshes_[geometry_owner_[rh.hit.geomID]];
-    c = mesh_corners(mesh.positions, mesh.triangles[prim],
-                     mesh.corner_normals.empty() ? nullptr : &mesh.corner_normals[3 * prim],
-                     mesh.corner_uvs.empty() ? nullptr : &mesh.corner_uvs[3 * prim]);
-    hit.material = mesh.material_ids[prim];
-    hit.emitter = mesh.emitter_index.empty() ? -1 : mesh.emitter_index[prim];
-  } else {
-    const Instance& inst = instances_[geometry_owner_[rh.hit.instID[0]] & ~kInstanceBit];
-    const Binding& b = bindings_[inst.binding];
-    const Mesh& mesh = *prototypes_[b.prototype]->mesh;
-    if (instance_corners(mesh.positions, mesh.triangles[prim],
-                         mesh.corner_normals.empty() ? nullptr : &mesh.corner_normals[3 * prim],
-                         mesh.corner_uvs.empty() ? nullptr : &mesh.corner_uvs[3 * prim], inst.transform, c))
-      std::swap(u, v);
-    hit.material = b.material(mesh.material_ids[prim]);
-    hit.emitter = inst.emitter_base >= 0 && b.emitter_rank[prim] >= 0 ? inst.emitter_base + b.emitter_rank[prim] : -1;
-  }
-
-  const Vec3 &p0 = c.p[0], &p1 = c.p[1], &p2 = c.p[2];
-  const float w = 1.0f - u - v;
-  hit.t = rh.ray.tfar;
-  hit.position = w * p0 + u * p1 + v * p2;  // interpolated, more accurate than origin + t * dir
-  Vec3 ng = glm::cross(p1 - p0, p2 - p0);
-  const float ng_len = glm::length(ng);
-  ng = ng_len > 0.0f ? ng / ng_len : -ray.dir;
-  hit.geometric_normal = ng;
-  hit.shading_normal = ng;
-  if (c.has_n) {
-    const Vec3 n = w * c.n[0] + u * c.n[1] + v * c.n[2];
-    const float len = glm::length(n);
-    if (len > 1e-6f && std::isfinite(len)) hit.shading_normal = n / len;
-  }
-  if (c.has_uv) {
-    const Vec2 &t0 = c.uv[0], &t1 = c.uv[1], &t2 = c.uv[2];
-    hit.uv = w * t0 + u * t1 + v * t2;
-    // dP/du from the triangle's UV parametrisation, for tangent-space normal maps.
-    const Vec2 d1 = t1 - t0, d2 = t2 - t0;
-    const float det = d1.x * d2.y - d1.y * d2.x;
-    const float area2 = ng_len;
-    hit.uv_per_metre = area2 > 0.0f ? std::sqrt(std::abs(det) / area2) : 0.0f;
-    if (std::abs(det) > 1e-12f) {
-      const Vec3 dpdu = ((p1 - p0) * d2.y - (p2 - p0) * d1.y) / det;
-      const float len = glm::length(dpdu);
-      if (len > 0.0f && std::isfinite(len)) {
-        hit.tangent = dpdu / len;
-        hit.bitangent_sign = det > 0.0f ? 1.0f : -1.0f;
-        hit.dpdu = dpdu;
-        hit.dpdv = ((p2 - p0) * d1.x - (p1 - p0) * d2.x) / det;
-      }
-    }
-  } else {
-    hit.uv = Vec2(0.0f);
-    hit.tangent = Vec3(0.0f);
-    hit.uv_per_metre = 0.0f;
-  }
-  return true;
+  ray_queries::intersect(scene_of(scene_), rh);
+  return surface_hit(&rh, ray.dir, hit);
 }
 
 bool Scene::occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
   RTCRay ray;
   ray.org_x = origin.x;
   ray.org_y = origin.y;
@@ -416,8 +352,7 @@ bool Scene::occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax
   ray.mask = 0xFFFFFFFFu;
   ray.id = 0;
   ray.flags = 0;
-  rtcOccluded1(scene_of(scene_), &context, &ray);
-  return ray.tfar < 0.0f;
+  return ray_queries::occluded(scene_of(scene_), ray);
 }
 
 }  // namespace torrance

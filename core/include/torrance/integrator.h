@@ -58,6 +58,8 @@ struct RenderSettings {
   bool sobol = true;       // Owen-scrambled Sobol samples; false: independent random numbers
   bool specialize = true;  // compile-time paths for what the scene lacks (textures, passes, hittable
                            // lights, glass) and no light choice when there is one light; false: generic path
+  bool camera_packets = true;  // a pixel's camera rays traced 8 at a time (Scene::intersect_packet);
+                               // the same image bit for bit, only faster
   // Optional window [x0, x1) x [y0, y1) of the frame to render, y counted from the top row.
   std::optional<std::array<int, 4>> window;
   int threads = 0;  // 0 = all cores
@@ -108,6 +110,8 @@ struct RenderResult {
   uint64_t samples_spent = 0;      // camera samples traced over all pixels (adaptive: < pixels * samples)
   Image sample_counts;             // per pixel of the rendered window, 1 channel: samples it received
   bool time_limit_reached = false;  // ended by RenderSettings::time_limit (samples_done < samples)
+  uint64_t closest_rays = 0, occlusion_rays = 0;  // Embree queries traced (closest hit, shadow)
+  uint64_t rays_traced() const { return closest_rays + occlusion_rays; }
 };
 
 RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCallbacks& callbacks = {});

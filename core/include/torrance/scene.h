@@ -171,7 +171,12 @@ class Scene {
   void begin_render(LightSelection selection);
   void end_render() { --renders_; }
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
+  // intersect of up to kPacketSize coherent rays at once (an 8-wide Embree packet: camera rays
+  // of neighbouring samples): the same hits, bit for bit, as intersect of each. found[i]: hit.
+  static constexpr int kPacketSize = 8;
+  void intersect_packet(const Ray* rays, int n, SurfaceHit* hits, bool* found) const;
   bool occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax) const;
+  void* embree_scene() const { return scene_; }  // the RTCScene, for raw-Embree measurements (ray_replay.h)
 
  private:
   struct Mesh;
@@ -179,6 +184,8 @@ class Scene {
   struct Binding;
   struct Instance;
   void check_device(const char* during) const;
+  // The hit described by Embree's answer `rayhit` (an RTCRayHit) to a ray along dir; false: a miss.
+  bool surface_hit(const void* rayhit, const Vec3& dir, SurfaceHit& hit) const;
   std::unique_ptr<Mesh> make_mesh(const float* positions, size_t num_vertices, const int64_t* triangles,
                                   size_t num_triangles, const float* corner_normals, const int64_t* materials,
                                   const float* corner_uvs, bool slots) const;

@@ -1,7 +1,8 @@
 """Torrance's C++ shading core (Embree + Cook-Torrance path tracer), for Python and Blender."""
-from ._core import (PASSES, RenderResult, RenderSession, RenderSettings, Scene, __version__,
-                    directional_albedo, read_image, render, triangle_normals, write_image)
+from ._core import (PASSES, RecordedRays, RenderResult, RenderSession, RenderSettings, Scene,
+                    __version__, directional_albedo, read_image, record_rays, render, replay_rays,
+                    triangle_normals, write_image)
 
-__all__ = ["PASSES", "RenderResult", "RenderSession", "RenderSettings", "Scene",
-           "directional_albedo", "read_image", "render", "triangle_normals", "write_image",
-           "__version__"]
+__all__ = ["PASSES", "RecordedRays", "RenderResult", "RenderSession", "RenderSettings", "Scene",
+           "directional_albedo", "read_image", "record_rays", "render", "replay_rays",
+           "triangle_normals", "write_image", "__version__"]

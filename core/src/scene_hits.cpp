@@ -1,0 +1,113 @@
+// Hits from Embree's answers (Scene::intersect, Scene::intersect_packet): the hit triangle's
+// corners (instances placed as the flattening export would), position, normals and UV frame.
+#include "ray_queries.h"
+#include "scene_internal.h"
+
+#include <stdexcept>
+
+namespace torrance {
+
+using namespace scene_detail;
+
+bool Scene::surface_hit(const void* rayhit, const Vec3& dir, SurfaceHit& hit) const {
+  const RTCRayHit& rh = *static_cast<const RTCRayHit*>(rayhit);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+
+  const uint32_t prim = rh.hit.primID;
+  float u = rh.hit.u, v = rh.hit.v;
+  Corners c;
+  if (rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID) {
+    const Mesh& mesh = *meshes_[geometry_owner_[rh.hit.geomID]];
+    c = mesh_corners(mesh.positions, mesh.triangles[prim],
+                     mesh.corner_normals.empty() ? nullptr : &mesh.corner_normals[3 * prim],
+                     mesh.corner_uvs.empty() ? nullptr : &mesh.corner_uvs[3 * prim]);
+    hit.material = mesh.material_ids[prim];
+    hit.emitter = mesh.emitter_index.empty() ? -1 : mesh.emitter_index[prim];
+  } else {
+    const Instance& inst = instances_[geometry_owner_[rh.hit.instID[0]] & ~kInstanceBit];
+    const Binding& b = bindings_[inst.binding];
+    const Mesh& mesh = *prototypes_[b.prototype]->mesh;
+    if (instance_corners(mesh.positions, mesh.triangles[prim],
+                         mesh.corner_normals.empty() ? nullptr : &mesh.corner_normals[3 * prim],
+                         mesh.corner_uvs.empty() ? nullptr : &mesh.corner_uvs[3 * prim], inst.transform, c))
+      std::swap(u, v);
+    hit.material = b.material(mesh.material_ids[prim]);
+    hit.emitter = inst.emitter_base >= 0 && b.emitter_rank[prim] >= 0 ? inst.emitter_base + b.emitter_rank[prim] : -1;
+  }
+
+  const Vec3 &p0 = c.p[0], &p1 = c.p[1], &p2 = c.p[2];
+  const float w = 1.0f - u - v;
+  hit.t = rh.ray.tfar;
+  hit.position = w * p0 + u * p1 + v * p2;  // interpolated, more accurate than origin + t * dir
+  Vec3 ng = glm::cross(p1 - p0, p2 - p0);
+  const float ng_len = glm::length(ng);
+  ng = ng_len > 0.0f ? ng / ng_len : -dir;
+  hit.geometric_normal = ng;
+  hit.shading_normal = ng;
+  if (c.has_n) {
+    const Vec3 n = w * c.n[0] + u * c.n[1] + v * c.n[2];
+    const float len = glm::length(n);
+    if (len > 1e-6f && std::isfinite(len)) hit.shading_normal = n / len;
+  }
+  if (c.has_uv) {
+    const Vec2 &t0 = c.uv[0], &t1 = c.uv[1], &t2 = c.uv[2];
+    hit.uv = w * t0 + u * t1 + v * t2;
+    // dP/du from the triangle's UV parametrisation, for tangent-space normal maps.
+    const Vec2 d1 = t1 - t0, d2 = t2 - t0;
+    const float det = d1.x * d2.y - d1.y * d2.x;
+    const float area2 = ng_len;
+    hit.uv_per_metre = area2 > 0.0f ? std::sqrt(std::abs(det) / area2) : 0.0f;
+    if (std::abs(det) > 1e-12f) {
+      const Vec3 dpdu = ((p1 - p0) * d2.y - (p2 - p0) * d1.y) / det;
+      const float len = glm::length(dpdu);
+      if (len > 0.0f && std::isfinite(len)) {
+        hit.tangent = dpdu / len;
+        hit.bitangent_sign = det > 0.0f ? 1.0f : -1.0f;
+        hit.dpdu = dpdu;
+        hit.dpdv = ((p2 - p0) * d1.x - (p1 - p0) * d2.x) / det;
+      }
+    }
+  } else {
+    hit.uv = Vec2(0.0f);
+    hit.tangent = Vec3(0.0f);
+    hit.uv_per_metre = 0.0f;
+  }
+  return true;
+}
+
+void Scene::intersect_packet(const Ray* rays, int n, SurfaceHit* hits, bool* found) const {
+  if (n < 1 || n > kPacketSize) throw std::invalid_argument("intersect_packet takes 1 to 8 rays");
+  alignas(32) int valid[kPacketSize];
+  alignas(32) RTCRayHit8 packet;
+  for (int i = 0; i < kPacketSize; ++i) {
+    const Ray& r = rays[i < n ? i : 0];
+    valid[i] = i < n ? -1 : 0;
+    packet.ray.org_x[i] = r.origin.x;
+    packet.ray.org_y[i] = r.origin.y;
+    packet.ray.org_z[i] = r.origin.z;
+    packet.ray.dir_x[i] = r.dir.x;
+    packet.ray.dir_y[i] = r.dir.y;
+    packet.ray.dir_z[i] = r.dir.z;
+    packet.ray.tnear[i] = r.tmin;
+    packet.ray.tfar[i] = r.tmax;
+    packet.ray.time[i] = 0.0f;
+    packet.ray.mask[i] = 0xFFFFFFFFu;
+    packet.ray.id[i] = uint32_t(i);
+    packet.ray.flags[i] = 0;
+    packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  ray_queries::intersect_coherent(scene_of(scene_), valid, packet);
+  for (int i = 0; i < n; ++i) {
+    RTCRayHit rh;  // lane i as a single ray's answer
+    rh.ray.tfar = packet.ray.tfar[i];
+    rh.hit.u = packet.hit.u[i];
+    rh.hit.v = packet.hit.v[i];
+    rh.hit.primID = packet.hit.primID[i];
+    rh.hit.geomID = packet.hit.geomID[i];
+    rh.hit.instID[0] = packet.hit.instID[0][i];
+    found[i] = surface_hit(&rh, rays[i].dir, hits[i]);
+  }
+}
+
+}  // namespace torrance
