@@ -32,7 +32,8 @@ from torrance_tools.render_settings import plain_output
 from torrance_tools.scene import empty_scene
 
 # The scenes, in report order.
-SCENES = ("sphere_chart", "grass_stone", "water", "suzanne", "mirror", "interior")
+SCENES = ("sphere_chart", "grass_stone", "water", "suzanne", "mirror", "interior", "small_lights",
+          "many_lights")
 WIDTH, HEIGHT = 128, 96
 
 
