@@ -234,10 +234,12 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     // (light_choice.h), MIS-weighted against BSDF sampling.
     const glm::vec4 u_light = sampler.next_4d();  // light choice, position on the light
     const glm::vec4 u_bsdf = sampler.next_4d();   // lobe, direction, roulette
-    light_choice.score(lights, hit.position, ns, transmits, [&](const Vec3& toward) {
-      const Vec3 wi = frame.to_local(toward);
-      return luminance(bsdf.template eval_lobes<kGlass>(wo, wi, backfacing).total()) / std::max(std::abs(wi.z), 0.01f);
-    });
+    light_choice.score(lights, hit.position, ns, transmits, LightChoice::narrow_lobe(material.roughness),
+                       [&](const Vec3& toward) {
+                         const Vec3 wi = frame.to_local(toward);
+                         return luminance(bsdf.template eval_lobes<kGlass>(wo, wi, backfacing).total()) /
+                                std::max(std::abs(wi.z), 0.01f);
+                       });
     const Lights::Choice choice = light_choice.select(u_light.x);
     if (choice.probability > 0.0f) {
       const LightSample ls = lights.sample(choice.index, hit.position, ns, Vec2(u_light.y, u_light.z), transmits);

@@ -13,6 +13,9 @@
 // points at gets at least half of all choices. The table is kept until the path's next vertex:
 // a BSDF-sampled ray that hits a light reads its MIS probability from it (no re-scoring).
 // Used in CONTRIBUTION mode with 2..kMaxScored strategies; otherwise it defers to Lights::select.
+// The BSDF is asked only where its lobe is narrow (narrow_lobe): a rough lobe answers nearly the
+// same for every light, and asking costs one BSDF evaluation per light (on 48 lights it doubled
+// the time per sample for a 30 % lower error).
 #pragma once
 
 #include "torrance/lights.h"
@@ -24,12 +27,16 @@ namespace torrance {
 class LightChoice {
  public:
   static constexpr size_t kMaxScored = 64;
+  // Roughness below which a material's glossy lobe is narrow enough to tell lights apart.
+  static constexpr float kNarrowRoughness = 0.4f;
+  static bool narrow_lobe(float roughness) { return roughness < kNarrowRoughness; }
 
   // Scores the NEE strategies of `lights` at p (shading normal n; two_sided as Lights::select).
   // response(wi): luminance of the BSDF's value f (not times the cosine) for unit world
-  // direction wi towards the light; >= 0.
+  // direction wi towards the light; >= 0. Asked only if use_response, else P_i = E_i / sum E.
   template <typename Response>
-  void score(const Lights& lights, const Vec3& p, const Vec3& n, bool two_sided, Response&& response) {
+  void score(const Lights& lights, const Vec3& p, const Vec3& n, bool two_sided, bool use_response,
+             Response&& response) {
     lights_ = &lights;
     p_ = p;
     n_ = n;
@@ -40,11 +47,12 @@ class LightChoice {
     float total_irradiance = 0.0f, total_response = 0.0f;
     for (size_t i = 0; i < count_; ++i) {
       const float e = lights.selection_weight(i, p, n, two_sided);
+      probability_[i] = e;
+      total_irradiance += e;
+      if (!use_response) continue;
       Vec3 toward;
       const float f = e > 0.0f ? response(lights.direction_hint(i, p, n, toward) ? toward : n) : 0.0f;
-      probability_[i] = e;
       response_[i] = e * (std::isfinite(f) ? std::max(f, 0.0f) : 0.0f);
-      total_irradiance += e;
       total_response += response_[i];
     }
     mix(total_irradiance, total_response);
