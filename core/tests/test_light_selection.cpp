@@ -1,6 +1,8 @@
-// Choosing one light for next-event estimation among many: the probability select() reports is
-// the frequency with which it chooses, and NEE through it is unbiased.
+// Choosing one light for next-event estimation among many (Lights::select, LightChoice): the
+// probability reported is the frequency with which each light is chosen, and NEE through the
+// choice is unbiased.
 #include "test_helpers.h"
+#include "torrance/light_choice.h"
 #include "torrance/lights.h"
 
 #include <gtest/gtest.h>
@@ -113,6 +115,101 @@ TEST(LightSelection, NextEventEstimationIsUnbiased) {
       const Vec3 estimate(sum / double(kDraws));
       for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(estimate[ch], exact[ch], 2e-3f * exact[ch] + 1e-7f);
     }
+  }
+}
+
+// A glossy lobe around the mirror direction of a fixed view: the BSDF-aware choice's response.
+struct Lobe {
+  Vec3 mirror;
+  float operator()(const Vec3& wi) const {
+    const float c = std::max(glm::dot(wi, mirror), 0.0f);
+    return 0.1f + 50.0f * std::pow(c, 200.0f);
+  }
+};
+
+TEST(LightChoice, ChoosesEachLightAsOftenAsItsProbabilitySays) {
+  const Lights lights = many_lights(9, 48);
+  constexpr int kDraws = 20000;
+  Rng rng(0, 0, 5);
+  for (const auto& [p, n] : shading_points(4, 12)) {
+    const Lobe lobe{glm::normalize(n + 0.8f * uniform_sphere(rng))};
+    LightChoice choice;
+    choice.score(lights, p, n, false, true, lobe);
+    if (!(lights.select(p, n, 0.5f).probability > 0.0f)) {  // no light reaches p: none is chosen
+      EXPECT_EQ(choice.select(0.5f).probability, 0.0f);
+      continue;
+    }
+    std::vector<int> chosen(lights.count(), 0);
+    for (int i = 0; i < kDraws; ++i) {
+      const Lights::Choice c = choice.select((i + 0.5f) / kDraws);
+      ASSERT_LT(c.index, lights.count());
+      ASSERT_GT(c.probability, 0.0f);
+      EXPECT_NEAR(c.probability, choice.probability(c.index), 1e-6f * c.probability);
+      ++chosen[c.index];
+    }
+    float total = 0.0f;
+    for (size_t k = 0; k < lights.count(); ++k) {
+      const float prob = choice.probability(k);
+      total += prob;
+      EXPECT_NEAR(chosen[k], kDraws * prob, 1.5f) << "light " << k;
+      // Never below half of the irradiance choice's probability.
+      EXPECT_GE(prob, 0.5f * lights.selection_probability(k, p, n) * (1.0f - 1e-4f)) << "light " << k;
+    }
+    EXPECT_NEAR(total, 1.0f, 1e-4f);
+  }
+}
+
+// Where the lobe points at one light among 16 alike, that light gets nearly half of the choices
+// or more (the irradiance choice gives it about 1/16).
+TEST(LightChoice, FavoursTheLightTheLobePointsAt) {
+  Lights lights;
+  for (int i = 0; i < 16; ++i) lights.add_point(Vec3(std::cos(0.4f * i), std::sin(0.4f * i), 2.0f), 10.0f, Vec3(1.0f), 0.02f);
+  const Vec3 p(0.0f), n(0, 0, 1);
+  const Vec3 target = glm::normalize(Vec3(std::cos(0.4f * 5), std::sin(0.4f * 5), 2.0f));
+  LightChoice choice;
+  choice.score(lights, p, n, false, true, Lobe{target});
+  EXPECT_GT(choice.probability(5), 0.4f);
+  EXPECT_LT(lights.selection_probability(5, p, n), 0.1f);
+  choice.score(lights, p, n, false, false, Lobe{target});  // not asked: the irradiance choice
+  EXPECT_NEAR(choice.probability(5), lights.selection_probability(5, p, n), 1e-6f);
+}
+
+// One-light NEE through the BSDF-aware choice, weighted by the same lobe, averages to the sum
+// over the lights of lobe x irradiance (delta lights: closed form).
+TEST(LightChoice, NextEventEstimationIsUnbiased) {
+  Lights lights;
+  Rng rng(0, 0, 13);
+  struct Delta {
+    Vec3 at, intensity;
+  };
+  std::vector<Delta> deltas;
+  for (int i = 0; i < 40; ++i) {
+    const Vec3 at((2.0f * rng.next_1d() - 1.0f) * 4.0f, (2.0f * rng.next_1d() - 1.0f) * 4.0f, 0.3f + 2.5f * rng.next_1d());
+    const float power = std::pow(10.0f, 2.0f * rng.next_1d());
+    lights.add_point(at, power, Vec3(1.0f), 0.0f);
+    deltas.push_back({at, Vec3(power / (4.0f * kPi))});
+  }
+  for (const auto& [p, n] : shading_points(6, 8)) {
+    const Lobe lobe{glm::normalize(n + 0.6f * uniform_sphere(rng))};
+    double exact = 0.0;
+    for (const Delta& d : deltas) {
+      const Vec3 to = d.at - p;
+      const float d2 = glm::dot(to, to);
+      const Vec3 wi = to / std::sqrt(d2);
+      exact += d.intensity.x * std::max(glm::dot(n, wi), 0.0f) / d2 * lobe(wi);
+    }
+    if (!(exact > 0.0)) continue;
+    LightChoice choice;
+    choice.score(lights, p, n, false, true, lobe);
+    constexpr int kDraws = 100000;
+    double sum = 0.0;
+    for (int i = 0; i < kDraws; ++i) {
+      const Lights::Choice c = choice.select((i + 0.5f) / kDraws);
+      if (!(c.probability > 0.0f)) continue;
+      const LightSample s = lights.sample(c.index, p, n, Vec2(0.5f));
+      sum += s.weight.x * std::max(glm::dot(n, s.wi), 0.0f) * lobe(s.wi) / c.probability;
+    }
+    EXPECT_NEAR(sum / kDraws, exact, 2e-3 * exact);
   }
 }
 
