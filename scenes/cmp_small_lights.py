@@ -10,8 +10,6 @@ sampling can find: the case where one sample decides a pixel (issue 10).
     scripts/blender -b --factory-startup --python scenes/cmp_small_lights.py -- OUT.blend
 """
 
-import math
-
 from torrance_tools import comparison_scenes
 from torrance_tools import scene as make
 

@@ -12,7 +12,8 @@ Seeds default to 10..17: the stored references use seeds 1 and 2.
 
 --variant adds a Torrance engine whose RenderSettings fields are set as given (VALUE parsed as a
 Python literal, else kept as a string), e.g. --variant uniform:light_selection=UNIFORM.
---maps DIR writes each engine's per-pixel relMSE, averaged over the seeds, as DIR/<scene>_<engine>.npy.
+--maps DIR writes each engine's per-pixel relMSE, averaged over the seeds, as
+DIR/<scene>_<engine>.npy.
 """
 
 import argparse
