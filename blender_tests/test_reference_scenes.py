@@ -50,6 +50,8 @@ CONFIG = {
     # (+-1.8 % over seeds at 512 spp) and the blocks' normalisation (p90 tiny).
     "glint": dict(samples=512, ratio=(0.965, 1.035), block_mean=0.014, block_p90=0.0012),
     "glossy_chain": dict(samples=256, ratio=(0.99, 1.01), block_mean=0.012, block_p90=0.035),
+    "small_lights": dict(samples=256, ratio=(0.99, 1.01), block_mean=0.015, block_p90=0.03),
+    "many_lights": dict(samples=256, ratio=(0.99, 1.01), block_mean=0.01, block_p90=0.02),
 }
 SEED = 0
 
@@ -64,6 +66,7 @@ FAULTS = (
     ("mirror", "paper_brdf"),
     ("glint", "sun_3deg_lower"),
     ("glossy_chain", "roughness_squared"),
+    ("many_lights", "point_x0.85"),
 )
 
 MEASURED = """
@@ -106,6 +109,21 @@ Faults, seed 0, each scene at its own samples: ratio / block mean / p90, * = cau
     camera shifted 1 px              1.002/0.009/0.030* 0.999/0.026/0.113* 1.015/0.030/0.061*
     focal length x 1.03              0.997/0.014/0.049* 1.003/0.015/0.065* 1.021/0.032/0.067*
     one bounce less                  1.000/0.002/0.004  0.997/0.008/0.031  1.012/0.013/0.025
+Measured 2026-12-01 (wt-L, light choice aware of the BSDF), 256 spp, 4 seeds, same statistics:
+    small_lights    256 spp: ratio 0.9994-1.0016, block mean 0.0085, p90 0.0167 (8-13 s)
+    many_lights     256 spp: ratio 0.9980-1.0011, block mean 0.0054, p90 0.0105 (16 s)
+Faults at seed 0: ratio / block mean / p90, * = caught by the thresholds above:
+                                     small_lights       many_lights
+    world strength x 1.5             1.018/0.021/0.034* 1.007/0.009/0.019
+    point power x 0.85               0.919/0.084/0.103* 0.884/0.115/0.140*
+    PAPER BRDF instead of PRINCIPLED 0.926/0.069/0.151* 0.901/0.099/0.144*
+    roughness squared                0.997/0.027/0.065* 1.034/0.074/0.165*
+    specular 0 (no dielectric lobe)  0.937/0.060/0.118* 0.887/0.121/0.276*
+    flat shading (no smooth normals) 0.996/0.008/0.016  1.001/0.005/0.012
+    shading normals negated          0.861/0.157/0.933* 0.951/0.051/0.076*
+    camera shifted 1 px              0.997/0.019/0.047* 1.000/0.030/0.068*
+    focal length x 1.03              1.010/0.033/0.072* 1.028/0.048/0.085*
+  (no sun: the sun faults repeat the correct render; one bounce less is invisible at 8.)
 Notes:
 * interior: Torrance is 1.4 % brighter everywhere, for every seed (a bias, not noise). The cause is
   the point light's radius (0.1 m, 0.35 m under the ceiling): Cycles 3.4 samples a disk facing the

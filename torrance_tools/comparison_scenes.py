@@ -33,7 +33,7 @@ from torrance_tools.scene import empty_scene
 
 # The scenes, in report order.
 SCENES = ("sphere_chart", "grass_stone", "water", "suzanne", "mirror", "interior", "glint",
-          "glossy_chain")
+          "glossy_chain", "small_lights", "many_lights")
 WIDTH, HEIGHT = 128, 96
 
 

@@ -21,7 +21,8 @@ std::string model_name(BrdfModel m) {
 LightSelection parse_light_selection(const std::string& s) {
   if (s == "CONTRIBUTION") return LightSelection::Contribution;
   if (s == "UNIFORM") return LightSelection::Uniform;
-  throw py::value_error("light_selection must be 'CONTRIBUTION' or 'UNIFORM', got '" + s + "'");
+  if (s == "IRRADIANCE") return LightSelection::Irradiance;
+  throw py::value_error("light_selection must be 'CONTRIBUTION', 'IRRADIANCE' or 'UNIFORM', got '" + s + "'");
 }
 
 bool parse_sampler_is_sobol(const std::string& s) {
@@ -129,7 +130,9 @@ void init_render(py::module_& m) {
       .def_property(
           "light_selection",
           [](const RenderSettings& s) {
-            return std::string(s.light_selection == LightSelection::Uniform ? "UNIFORM" : "CONTRIBUTION");
+            return std::string(s.light_selection == LightSelection::Uniform      ? "UNIFORM"
+                               : s.light_selection == LightSelection::Irradiance ? "IRRADIANCE"
+                                                                                 : "CONTRIBUTION");
           },
           [](RenderSettings& s, const std::string& v) { s.light_selection = parse_light_selection(v); })
       .def_property(

@@ -1,5 +1,7 @@
 #include "torrance/lights.h"
 
+#include "torrance/light_choice.h"
+
 #include "torrance/limits.h"
 #include "torrance/sampling.h"
 
@@ -367,9 +369,24 @@ bool Lights::any_hittable() const {
   return false;
 }
 
-float Lights::mesh_light_pdf(size_t triangle, const Vec3& p, const Vec3& n, const Vec3& q, bool two_sided) const {
+float Lights::mesh_light_pdf(size_t triangle, const Vec3& p, const Vec3& n, const Vec3& q, bool two_sided,
+                             const LightChoice* choice) const {
   if (!mesh_) return 0.0f;
-  return selection_probability(lights_.size(), p, n, two_sided) * mesh_->pdf(triangle, p, q);
+  const size_t index = lights_.size();
+  return (choice ? choice->probability(index) : selection_probability(index, p, n, two_sided)) *
+         mesh_->pdf(triangle, p, q);
+}
+
+bool Lights::direction_hint(size_t index, const Vec3& p, const Vec3&, Vec3& out) const {
+  if (index >= lights_.size()) return false;
+  Vec3 d(0.0f);
+  if (const auto* sun = std::get_if<SunLight>(&lights_[index])) return out = sun->to_light(), true;
+  if (const auto* point = std::get_if<PointLight>(&lights_[index])) d = point->position() - p;
+  if (const auto* area = std::get_if<AreaLight>(&lights_[index])) d = area->center() - p;
+  const float len = glm::length(d);
+  if (!(len > 0.0f) || !std::isfinite(len)) return false;
+  out = d / len;
+  return true;
 }
 
 float Lights::importance(size_t index, const Vec3& p, const Vec3& n, bool two_sided) const {
@@ -420,10 +437,13 @@ LightSample Lights::sample(size_t index, const Vec3& p, const Vec3& shading_norm
 }
 
 Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max, float bsdf_pdf,
-                                bool bsdf_delta, bool two_sided) const {
+                                bool bsdf_delta, bool two_sided, const LightChoice* prev_choice) const {
   Vec3 L(0.0f);
   auto add = [&](size_t index, const LightHit& h, bool in_nee) {
-    const float nee_pdf = in_nee ? selection_probability(index, p_prev, n_prev, two_sided) * h.pdf : 0.0f;
+    if (!in_nee || bsdf_delta) return void(L += h.radiance);
+    const float selected = prev_choice ? prev_choice->probability(index)
+                                       : selection_probability(index, p_prev, n_prev, two_sided);
+    const float nee_pdf = selected * h.pdf;
     L += h.radiance * (bsdf_delta ? 1.0f : power_heuristic(bsdf_pdf, nee_pdf));
   };
   for (size_t i = 0; i < lights_.size(); ++i) {

@@ -1,5 +1,6 @@
 #include "path_tracer.h"
 
+#include "torrance/light_choice.h"
 #include "torrance/mixture_bsdf.h"
 #include "torrance/shading_normal.h"
 
@@ -113,6 +114,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
   float prev_pdf = 0.0f;
   bool prev_delta = true;
   bool prev_two_sided = false;  // the previous vertex transmits: NEE there chose among lights on both sides
+  LightChoice light_choice;     // NEE's choice at the latest vertex, for MIS when the next ray hits a light
   float path_length = 0.0f;  // for texture footprints (a ray cone of the pixel's spread)
   // Cycles' clamping: a contribution whose RGB sum exceeds the limit is scaled down to it.
   // Direct: seen by the camera or lighting the first hit; indirect: lighting later vertices.
@@ -160,7 +162,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       if (kHittable)
         deposit(throughput * lights.emission_along_ray(prev_position, prev_normal, ray.dir,
                                                        found ? passed_length + hit.t : kInfinity, prev_pdf, prev_delta,
-                                                       kGlass && prev_two_sided),
+                                                       kGlass && prev_two_sided, &light_choice),
                 bounce == 1);
       if (!found) break;
     }
@@ -220,7 +222,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       const float mis = prev_delta ? 1.0f
                                    : power_heuristic(prev_pdf, lights.mesh_light_pdf(size_t(hit.emitter), prev_position,
                                                                                      prev_normal, hit.position,
-                                                                                     kGlass && prev_two_sided));
+                                                                                     kGlass && prev_two_sided, &light_choice));
       deposit(throughput * material.emission * mis, bounce == 1);
     }
     if (bounce > ctx.settings.max_bounces) break;
@@ -228,11 +230,17 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
     const Frame frame(ns);
     const Vec3 wo = frame.to_local(wo_world);
 
-    // Next-event estimation: one light, chosen by its expected contribution, MIS-weighted against
-    // BSDF sampling.
+    // Next-event estimation: one light, chosen by its expected contribution through this BSDF
+    // (light_choice.h), MIS-weighted against BSDF sampling.
     const glm::vec4 u_light = sampler.next_4d();  // light choice, position on the light
     const glm::vec4 u_bsdf = sampler.next_4d();   // lobe, direction, roulette
-    const Lights::Choice choice = lights.select(hit.position, ns, u_light.x, transmits);
+    light_choice.score(lights, hit.position, ns, transmits, LightChoice::narrow_lobe(material.roughness),
+                       [&](const Vec3& toward) {
+                         const Vec3 wi = frame.to_local(toward);
+                         return luminance(bsdf.template eval_lobes<kGlass>(wo, wi, backfacing).total()) /
+                                std::max(std::abs(wi.z), 0.01f);
+                       });
+    const Lights::Choice choice = light_choice.select(u_light.x);
     if (choice.probability > 0.0f) {
       const LightSample ls = lights.sample(choice.index, hit.position, ns, Vec2(u_light.y, u_light.z), transmits);
       const Vec3 wi = frame.to_local(ls.wi);

@@ -28,6 +28,8 @@
 
 namespace torrance {
 
+class LightChoice;
+
 class SunLight {
  public:
   SunLight(const Vec3& direction, float strength, const Vec3& color, float angle);
@@ -35,6 +37,7 @@ class SunLight {
   float importance(const Vec3& p, const Vec3& n) const;
   bool hit(const Vec3& p, const Vec3& n, const Vec3& dir, float t_max, LightHit& out) const;
   bool is_delta() const { return one_minus_cos_ <= 0.0f; }
+  Vec3 to_light() const { return to_light_; }
 
  private:
   Vec3 to_light_, irradiance_;
@@ -54,6 +57,7 @@ class PointLight {
   float importance(const Vec3& p, const Vec3& n) const;
   bool hit(const Vec3& p, const Vec3& n, const Vec3& dir, float t_max, LightHit& out) const;
   bool is_delta() const { return radius_ <= 0.0f; }
+  const Vec3& position() const { return position_; }
 
  private:
   float spot_attenuation(const Vec3& p) const;
@@ -72,6 +76,7 @@ class AreaLight {
   float importance(const Vec3& p, const Vec3& n) const;
   bool hit(const Vec3& p, const Vec3& n, const Vec3& dir, float t_max, LightHit& out) const;
   float area() const { return area_; }
+  const Vec3& center() const { return center_; }
 
  private:
   float spread_attenuation(float cos_emit) const;
@@ -105,7 +110,8 @@ class WorldLight {
 // How next-event estimation chooses a light at a shading point.
 enum class LightSelection {
   Uniform,       // every light equally often (Cycles 3.4)
-  Contribution,  // in proportion to an unshadowed estimate of the irradiance each light brings
+  Irradiance,    // in proportion to an unshadowed estimate of the irradiance each light brings
+  Contribution,  // Irradiance mixed with irradiance x the BSDF's response (light_choice.h)
 };
 
 class Lights {
@@ -121,7 +127,8 @@ class Lights {
   // Emissive triangles (replaces any previous set); nullopt removes them.
   void set_mesh_light(std::optional<MeshLight> emitters) { mesh_ = std::move(emitters); }
   // MIS density of NEE producing point q on emissive triangle `triangle` from (p, n).
-  float mesh_light_pdf(size_t triangle, const Vec3& p, const Vec3& n, const Vec3& q, bool two_sided = false) const;
+  float mesh_light_pdf(size_t triangle, const Vec3& p, const Vec3& n, const Vec3& q, bool two_sided = false,
+                       const LightChoice* choice = nullptr) const;
   size_t num_emissive_triangles() const { return mesh_ ? mesh_->size() : 0; }
 
   // The NEE strategies: each light in the order added, the emissive triangles (as one), then the
@@ -129,6 +136,7 @@ class Lights {
   // directions in proportion to f cos: NEE could only match it, at the cost of a shadow ray.
   size_t count() const { return lights_.size() + (mesh_ ? 1 : 0) + (world_in_nee() ? 1 : 0); }
   void set_selection(LightSelection s) { selection_ = s; }
+  LightSelection selection() const { return selection_; }
 
   struct Choice {
     size_t index = 0;
@@ -138,6 +146,14 @@ class Lights {
   // transmits (glass), so lights behind it count too (the same flag for all four calls).
   Choice select(const Vec3& p, const Vec3& n, float u, bool two_sided = false) const;
   float selection_probability(size_t index, const Vec3& p, const Vec3& n, bool two_sided = false) const;
+  // Unnormalised selection weight of strategy `index` at (p, n): its unshadowed irradiance there,
+  // bounded above so that lights partly above the horizon keep a chance (1 in Uniform mode).
+  float selection_weight(size_t index, const Vec3& p, const Vec3& n, bool two_sided = false) const {
+    return importance(index, p, n, two_sided);
+  }
+  // The unit direction from p to strategy `index`'s centre (a sun: towards it); false for the
+  // emissive triangles and the world, which have none.
+  bool direction_hint(size_t index, const Vec3& p, const Vec3& n, Vec3& out) const;
 
   LightSample sample(size_t index, const Vec3& p, const Vec3& shading_normal, const Vec2& u,
                      bool two_sided = false) const;
@@ -145,8 +161,9 @@ class Lights {
   // Radiance, MIS-weighted against NEE, that a BSDF-sampled ray leaving p_prev (where NEE used
   // shading normal n_prev) receives from lights it passes before distance t_max (infinite if
   // the ray escaped): spheres, area lights and, if escaped, the world and visible suns.
+  // prev_choice: the LightChoice NEE used at p_prev (its probabilities), if any.
   Vec3 emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max, float bsdf_pdf,
-                          bool bsdf_delta, bool two_sided = false) const;
+                          bool bsdf_delta, bool two_sided = false, const LightChoice* prev_choice = nullptr) const;
 
   // False when no BSDF-sampled ray can ever see a light (only delta lights, no world or
   // emitting shapes), so emission_along_ray can be skipped.
@@ -163,8 +180,6 @@ class Lights {
     if (mesh_ && index == lights_.size()) return f(*mesh_);
     return f(world_);
   }
-  // Unnormalised selection weight of light `index` at (p, n): its unshadowed irradiance there,
-  // bounded above so that lights partly above the horizon keep a chance.
   float importance(size_t index, const Vec3& p, const Vec3& n, bool two_sided = false) const;
 
   std::vector<std::variant<SunLight, PointLight, AreaLight>> lights_;

@@ -902,7 +902,7 @@ PASS_NAMES = [p[0] for p in tc.PASSES]
     window=st.one_of(st.none(), st.tuples(*[st.integers(-2, 10)] * 4)),
     threads=st.integers(-2, 2**31 - 1),
     model=st.one_of(st.sampled_from(MODELS), enum_noise),
-    selection=st.one_of(st.sampled_from(["CONTRIBUTION", "UNIFORM"]), enum_noise),
+    selection=st.one_of(st.sampled_from(["CONTRIBUTION", "IRRADIANCE", "UNIFORM"]), enum_noise),
     passes=st.lists(st.one_of(st.sampled_from(PASS_NAMES), enum_noise), max_size=3),
     sampler=st.one_of(st.sampled_from(["SOBOL", "RANDOM"]), enum_noise),
     specialize=st.booleans(),
@@ -953,7 +953,7 @@ def test_render_settings(
         and 0 < fw <= 64
         and threads >= 0
         and model in MODELS
-        and selection in ("CONTRIBUTION", "UNIFORM")
+        and selection in ("CONTRIBUTION", "IRRADIANCE", "UNIFORM")
         and all(p in PASS_NAMES for p in passes)
         and sampler in ("SOBOL", "RANDOM")
         and (
