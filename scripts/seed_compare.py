@@ -14,11 +14,12 @@ seeds is itself heavy-tailed (glint at 64 spp: Torrance/Cycles 8.6 over 8 seeds,
 so the median relMSE over seeds is printed too, and such scenes need many seeds.
 
 Variants switch RenderSettings fields of the core (--variant NAME:FIELD=VALUE[,FIELD=VALUE]),
-so before/after figures of a lever come from one run. --save DIR keeps every image (EXR), for
-per-pixel error maps.
+so before/after figures of a lever come from one run. --save DIR keeps every image (EXR);
+--maps DIR writes each engine's per-pixel relMSE averaged over the seeds as
+DIR/<scene>_<engine>.npy (where the error sits, fireflies included).
 
     scripts/blender -b --factory-startup --python-exit-code 1 --python scripts/seed_compare.py -- \
-        [--spp 64] [--seeds 10-17] [--variant off:FIELD=0 ...] [--save DIR] SCENE ...
+        [--spp 64] [--seeds 10-17] [--variant off:FIELD=0 ...] [--save DIR] [--maps DIR] [--no-cycles] SCENE ...
 """
 
 import argparse
@@ -42,6 +43,7 @@ def parse_args():
                    help="NAME:FIELD=VALUE[,FIELD=VALUE] (a Torrance variant besides the default)")
     p.add_argument("--no-cycles", action="store_true")
     p.add_argument("--save", default=None)
+    p.add_argument("--maps", default=None)
     p.add_argument("scenes", nargs="+")
     return p.parse_args(argv)
 
@@ -79,7 +81,7 @@ def parse_variants(texts):
 def errors(img, ref):
     d = img[:, :, :3].astype(np.float64) - ref
     per_pixel = np.mean(d * d / (ref ** 2 + 1e-2), axis=2)
-    return dict(rel_mse=float(per_pixel.mean()),
+    return dict(per_pixel=per_pixel, rel_mse=float(per_pixel.mean()),
                 trimmed=compare.rel_mse(img, ref, trim=TRIM),
                 worst_share=float(per_pixel.max() / max(per_pixel.sum(), 1e-30)),
                 finite=compare.finite(img))
@@ -108,11 +110,13 @@ def main():
         for engine in engines:
             render(engine, 99, 4)
         rows = {engine: [] for engine in engines}
+        maps = {engine: np.zeros(ref.shape[:2]) for engine in engines}
         for i, seed in enumerate(seeds):
             order = engines[i % len(engines):] + engines[:i % len(engines)]
             for engine in order:
                 img, seconds = render(engine, seed)
                 e = errors(img, ref)
+                maps[engine] += e.pop("per_pixel") / len(seeds)
                 e["seconds"] = seconds
                 rows[engine].append(e)
                 print(f"{name} seed {seed} {engine:>12}: relMSE {e['rel_mse']:.5f} trimmed "
@@ -137,6 +141,10 @@ def main():
                          f" (trimmed {trimmed * seconds / (base[1] * base[2]):.2f})")
             print(f"   {engine:>12}: mean relMSE {mse:.5f} (median {median:.5f}) trimmed "
                   f"{trimmed:.5f} median time {seconds:.2f} s{ratio}", flush=True)
+        if args.maps:
+            os.makedirs(args.maps, exist_ok=True)
+            for engine, error_map in maps.items():
+                np.save(os.path.join(args.maps, f"{name}_{engine}.npy"), error_map)
 
 
 main()
