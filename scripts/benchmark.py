@@ -94,16 +94,17 @@ def parse_args():
     return args
 
 
-# String options of RenderSettings and the alternative that switches a choice of the core off
-# (used when the core has the field): what Sobol sampling and contribution-based light selection
-# buy.
-ALTERNATIVES = {"sampler": "RANDOM", "light_selection": "UNIFORM"}
+# String options of RenderSettings and the alternatives that switch a choice of the core off
+# (used when the core has the field), each its own lever keyed FIELD=ALTERNATIVE: what Sobol
+# sampling, the BSDF-aware light choice (against the former irradiance-only choice) and
+# contribution-based light selection at all (against uniform) buy.
+ALTERNATIVES = {"sampler": ("RANDOM",), "light_selection": ("IRRADIANCE", "UNIFORM")}
 
 
 def ablation_levers(core):
-    """[(field, default, alternative)]: every boolean field of RenderSettings that is not one of
-    the known ones (e.g. `specialize`, `guiding`), switched to its opposite, and the known string
-    options of ALTERNATIVES."""
+    """[(key, default, alternative)]: every boolean field of RenderSettings that is not one of
+    the known ones (e.g. `specialize`, `guiding`), switched to its opposite (key = the field),
+    and each alternative of the known string options of ALTERNATIVES (key FIELD=ALTERNATIVE)."""
     s = core.RenderSettings()
     out = []
     for name in dir(s):
@@ -115,8 +116,9 @@ def ablation_levers(core):
             continue
         if isinstance(value, bool):
             out.append((name, value, not value))
-        elif name in ALTERNATIVES and isinstance(value, str) and value != ALTERNATIVES[name]:
-            out.append((name, value, ALTERNATIVES[name]))
+        elif name in ALTERNATIVES and isinstance(value, str):
+            out += [(f"{name}={other}", value, other) for other in ALTERNATIVES[name]
+                    if other != value]
     return out
 
 
@@ -208,7 +210,7 @@ def bench_ablation(name, scene, bounces, ref, floor, seeds, levers, spp):
         for label, field, other in variants:
             def edit(s, field=field, other=other):
                 if field is not None:
-                    setattr(s, field, other)
+                    setattr(s, field.partition("=")[0], other)
             img, t, extra = render_once(scene, "torrance", spp, bounces, seed,
                                         f"toggle_{name}_{label}", settings_edit=edit)
             runs[label].append(dict(spp=spp, seed=seed, seconds=t, **extra, **measure(img, ref)))

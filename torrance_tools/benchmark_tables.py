@@ -10,8 +10,10 @@ TARGET = 0.5          # the issue's goal: equal error in at most half of Cycles'
 RAYS_GOAL = 0.6       # the issue's goal: the integrator traces >= 60 % of raw Embree's rays/s
 
 # What a lever of the core is, for the ablation tables (any other field: its name in words).
-LEVER_LABELS = {"specialize": "specialised kernels", "sampler": "Sobol sampler",
-                "light_selection": "light selection by contribution", "guiding": "path guiding"}
+LEVER_LABELS = {"specialize": "specialised kernels", "sampler=RANDOM": "Sobol sampler",
+                "light_selection=IRRADIANCE": "light choice aware of the BSDF",
+                "light_selection=UNIFORM": "light selection by contribution",
+                "guiding": "path guiding", "camera_packets": "camera rays in 8-wide packets"}
 
 
 def ratios(d, torrance, cycles):
@@ -61,8 +63,9 @@ def summary(scenes):
 
 
 def lever_label(field, default, other):
-    words = LEVER_LABELS.get(field, field.replace("_", " "))
-    return f"{words} (`{field}` {default!r} → {other!r})"
+    """`field` is a RenderSettings field, or FIELD=ALTERNATIVE for a string option's lever."""
+    words = LEVER_LABELS.get(field, field.partition("=")[0].replace("_", " "))
+    return f"{words} (`{field.partition('=')[0]}` {default!r} → {other!r})"
 
 
 def lever_cells(tg):
