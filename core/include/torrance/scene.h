@@ -172,6 +172,7 @@ class Scene {
   void end_render() { --renders_; }
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
   bool occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax) const;
+  void bounds(Vec3& lo, Vec3& hi) const;  // of everything traced, after commit (lo > hi: nothing)
 
  private:
   struct Mesh;

@@ -1,0 +1,137 @@
+// Path guiding learned during the render: an SD-tree in the style of Müller, Gross and Novák 2017,
+// "Practical Path Guiding for Efficient Light-Transport Simulation". A binary tree over the scene's
+// bounds (split at the midpoint, axes in turn) whose leaves each hold a quadtree over the sphere of
+// directions, mapped to the unit square by the cylindrical (cos theta, phi) map. The quadtrees
+// learn where incident radiance comes from: training passes record, at path vertices, the
+// luminance of the radiance that arrived along the sampled direction divided by its pdf; between
+// passes (refine) the recorded trees become the ones sampled, and fresh recording trees are built,
+// subdivided where energy was found. The path tracer samples a one-sample mixture of the BSDF and
+// the guide (guided_bsdf.h), so any guide -- a good, a poor or an empty one -- leaves the estimator
+// unbiased; only its variance changes.
+#pragma once
+
+#include "torrance/math.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace torrance {
+
+// The cylindrical map between unit directions and [0,1)^2: (u, v) = ((cos theta + 1) / 2, phi / 2pi).
+// It preserves area up to the factor 4pi, so a density on the square is 4pi x the solid-angle one.
+Vec2 direction_to_square(const Vec3& dir);
+Vec3 square_to_direction(const Vec2& p);
+
+// A piecewise-constant density on [0,1)^2 as a quadtree of energies. Recording adds energy to the
+// leaf cell holding a point (thread-safe, the structure fixed); build_sums() then fills the inner
+// nodes, after which sample() and pdf() (a density on the square) may be used.
+class DirectionalQuadtree {
+ public:
+  DirectionalQuadtree();  // the root's four quadrants, no energy
+  void record(const Vec2& p, float energy);  // thread-safe
+  void build_sums();
+  float total() const;
+  Vec2 sample(Vec2 u) const;  // requires total() > 0
+  float pdf(const Vec2& p) const;
+  // The structure for the next training pass: a quadrant holding more than `fraction` of the total
+  // energy is subdivided (down to max_depth levels, at most max_nodes nodes), others are leaves.
+  // No energy.
+  DirectionalQuadtree refined(float fraction, int max_depth, size_t max_nodes) const;
+  size_t num_nodes() const { return nodes_.size(); }
+
+ private:
+  struct Node {
+    std::array<float, 4> energy{};     // per quadrant: 0 = (low u, low v), 1 = (high u, low v), 2, 3
+    std::array<uint32_t, 4> child{};  // 0: the quadrant is a leaf (node 0, the root, is no one's child)
+  };
+  uint32_t add_refined(const DirectionalQuadtree& old, uint32_t old_node, const std::array<float, 4>& energy,
+                       float threshold, int depth, int max_depth, size_t max_nodes);
+  std::vector<Node> nodes_;
+};
+
+// The guide at one point: its learned distribution of directions, as a solid-angle density.
+class GuideDistribution {
+ public:
+  GuideDistribution() = default;
+  explicit GuideDistribution(const DirectionalQuadtree* tree) : tree_(tree) {}
+  explicit operator bool() const { return tree_ != nullptr; }
+  Vec3 sample(const Vec2& u) const { return square_to_direction(tree_->sample(u)); }
+  float pdf(const Vec3& dir) const { return tree_->pdf(direction_to_square(dir)) * (1.0f / (4.0f * kPi)); }
+
+ private:
+  const DirectionalQuadtree* tree_ = nullptr;
+};
+
+struct GuidingOptions {
+  float spatial_threshold = 4000.0f;  // a leaf splits past threshold x sqrt(2^iteration) records
+  float directional_fraction = 0.01f;  // a quadrant splits past this share of its leaf's energy
+  int max_directional_depth = 20;
+  size_t max_directional_nodes = 1024;  // per quadtree
+  size_t max_leaves = 2048;  // memory at most 2048 leaves x 2 trees x 1024 nodes x 32 B = 128 MiB
+};
+
+// The SD-tree. During a pass sample/pdf (through at()) read the trees learned so far and record()
+// writes the ones being trained, from any number of threads; refine() runs between passes.
+class GuidingField {
+ public:
+  GuidingField(const Vec3& lo, const Vec3& hi, const GuidingOptions& options = {});
+  // The learned distribution at p; empty before the first refine() or where nothing was recorded.
+  GuideDistribution at(const Vec3& p) const;
+  // One path vertex: the luminance of the radiance that arrived along `dir`, over the pdf of `dir`.
+  void record(const Vec3& p, const Vec3& dir, float radiance_over_pdf);
+  void refine();  // the end of a training pass: recorded trees become sampled, new ones recorded
+  int iterations() const { return iterations_; }
+  size_t num_leaves() const { return leaves_.size(); }
+
+ private:
+  struct SpatialNode {
+    int32_t leaf = 0;             // >= 0: the index in leaves_; -1: inner node
+    uint32_t first_child = 0;     // inner: children first_child, first_child + 1
+    uint8_t axis = 0;             // inner: the split axis (at the midpoint)
+  };
+  struct Leaf {
+    DirectionalQuadtree sampled, recording;
+    bool trained = false;  // sampled holds a distribution
+    uint32_t records = 0;  // this pass
+  };
+  uint32_t leaf_index(const Vec3& p) const;
+  void split(uint32_t node, const Vec3& lo, const Vec3& hi, uint32_t threshold);
+
+  Vec3 lo_, hi_;
+  GuidingOptions options_;
+  std::vector<SpatialNode> nodes_;
+  std::vector<Leaf> leaves_;
+  int iterations_ = 0;
+};
+
+// The vertices of one path while it is traced, for GuidingField::record: each gets every
+// contribution found after it, and at the end (the destructor) records the radiance that reached it
+// (contributions / the throughput after its own bounce). Disabled (field null): does nothing.
+class GuidePathRecorder {
+ public:
+  explicit GuidePathRecorder(GuidingField* field) : field_(field) {}
+  GuidePathRecorder(const GuidePathRecorder&) = delete;
+  GuidePathRecorder& operator=(const GuidePathRecorder&) = delete;
+  ~GuidePathRecorder() { flush(); }
+  bool enabled() const { return field_ != nullptr; }
+  void add_vertex(const Vec3& p, const Vec3& dir, const Vec3& throughput_after, float pdf) {
+    if (count_ < kMaxVertices) vertices_[count_++] = {p, dir, throughput_after, Vec3(0.0f), pdf};
+  }
+  void add_contribution(const Vec3& c) {
+    for (int i = 0; i < count_; ++i) vertices_[i].radiance += c;
+  }
+  void flush();
+
+ private:
+  static constexpr int kMaxVertices = 16;
+  struct Vertex {
+    Vec3 position, dir, throughput, radiance;
+    float pdf;
+  };
+  GuidingField* field_;
+  int count_ = 0;
+  std::array<Vertex, kMaxVertices> vertices_;
+};
+
+}  // namespace torrance

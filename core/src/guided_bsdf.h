@@ -1,0 +1,50 @@
+// Path guiding's sampling at a path vertex (guiding.h): a one-sample mixture of the BSDF's own
+// sampling (probability kGuideBsdfFraction) and the learned guide, whose density -- used for the
+// sample's weight and for MIS against next-event estimation -- is the same mixture of both pdfs,
+// so the estimator stays unbiased whatever the guide. sample and pdf side by side.
+#pragma once
+
+#include "torrance/bsdf.h"
+#include "torrance/guiding.h"
+
+#include <glm/vec4.hpp>
+
+namespace torrance {
+
+inline constexpr float kGuideBsdfFraction = 0.5f;
+
+// The density of the guided mixture for wi (local) / wi_world, given the BSDF's pdf of wi.
+inline float guided_pdf(float bsdf_pdf, const GuideDistribution& guide, const Vec3& wi_world) {
+  if (!guide) return bsdf_pdf;
+  return kGuideBsdfFraction * bsdf_pdf + (1.0f - kGuideBsdfFraction) * guide.pdf(wi_world);
+}
+
+// Samples the mixture: u.x chooses the strategy, u.yz the guide's direction; u_bsdf as for
+// Bsdf::sample. A delta lobe (only BSDF sampling produces it) gets its weight over the
+// probability of choosing the BSDF; continuous directions get eval / mixture pdf.
+template <bool kGlass, typename Bsdf>
+BsdfSample sample_guided(const Bsdf& bsdf, const GuideDistribution& guide, const Frame& frame, const Vec3& wo,
+                         bool backfacing, const glm::vec4& u_bsdf, const glm::vec4& u) {
+  constexpr float a = kGuideBsdfFraction;
+  if (u.x < a) {
+    BsdfSample s = bsdf.template sample<kGlass>(wo, u_bsdf.x, Vec2(u_bsdf.y, u_bsdf.z), backfacing);
+    if (!s.valid()) return s;
+    if (s.is_delta) {
+      s.weight /= a;
+      return s;
+    }
+    const Vec3 f = s.weight * s.pdf;
+    s.pdf = guided_pdf(s.pdf, guide, frame.to_world(s.wi));
+    s.weight = f / s.pdf;
+    return s;
+  }
+  const Vec3 wi_world = guide.sample(Vec2(u.y, u.z));
+  BsdfSample s;
+  s.wi = frame.to_local(wi_world);
+  s.pdf = guided_pdf(bsdf.template pdf<kGlass>(wo, s.wi, backfacing), guide, wi_world);
+  if (!(s.pdf > 0.0f)) return BsdfSample{};
+  s.weight = bsdf.template eval_lobes<kGlass>(wo, s.wi, backfacing).total() / s.pdf;
+  return s;
+}
+
+}  // namespace torrance
