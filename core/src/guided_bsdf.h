@@ -9,6 +9,8 @@
 
 #include <glm/vec4.hpp>
 
+#include <algorithm>
+
 namespace torrance {
 
 inline constexpr float kGuideBsdfFraction = 0.5f;
@@ -19,15 +21,16 @@ inline float guided_pdf(float bsdf_pdf, const GuideDistribution& guide, const Ve
   return kGuideBsdfFraction * bsdf_pdf + (1.0f - kGuideBsdfFraction) * guide.pdf(wi_world);
 }
 
-// Samples the mixture: u.x chooses the strategy, u.yz the guide's direction; u_bsdf as for
-// Bsdf::sample. A delta lobe (only BSDF sampling produces it) gets its weight over the
+// Samples the mixture with the numbers of Bsdf::sample: u.x chooses the strategy (and, rescaled,
+// the BSDF's lobe), u.yz the direction of either, so both keep the sampler's stratification of
+// the direction. A delta lobe (only BSDF sampling produces it) gets its weight over the
 // probability of choosing the BSDF; continuous directions get eval / mixture pdf.
 template <bool kGlass, typename Bsdf>
 BsdfSample sample_guided(const Bsdf& bsdf, const GuideDistribution& guide, const Frame& frame, const Vec3& wo,
-                         bool backfacing, const glm::vec4& u_bsdf, const glm::vec4& u) {
+                         bool backfacing, const glm::vec4& u) {
   constexpr float a = kGuideBsdfFraction;
   if (u.x < a) {
-    BsdfSample s = bsdf.template sample<kGlass>(wo, u_bsdf.x, Vec2(u_bsdf.y, u_bsdf.z), backfacing);
+    BsdfSample s = bsdf.template sample<kGlass>(wo, std::min(u.x / a, 0.99999994f), Vec2(u.y, u.z), backfacing);
     if (!s.valid()) return s;
     if (s.is_delta) {
       s.weight /= a;

@@ -234,6 +234,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     const bool guidable =
         ctx.guide && !mixture && !transmits && (material.metallic < 1.0f || material.roughness >= 0.3f);
     const GuideDistribution guide = guidable ? ctx.guide->at(hit.position) : GuideDistribution();
+    if (recorder.enabled()) recorder.reached_next_vertex();
 
     // Next-event estimation: one light, chosen by its expected contribution, MIS-weighted against
     // BSDF sampling.
@@ -271,7 +272,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     }
 
     // Continue the path by sampling the BSDF.
-    BsdfSample bs = guide ? sample_guided<kGlass>(bsdf, guide, frame, wo, backfacing, u_bsdf, sampler.next_4d())
+    BsdfSample bs = guide ? sample_guided<kGlass>(bsdf, guide, frame, wo, backfacing, u_bsdf)
                           : bsdf.template sample<kGlass>(wo, u_bsdf.x, Vec2(u_bsdf.y, u_bsdf.z), backfacing);
     if (!bs.valid()) break;
     const Vec3 wi_world = frame.to_world(bs.wi);

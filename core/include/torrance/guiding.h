@@ -68,6 +68,9 @@ struct GuidingOptions {
   float directional_fraction = 0.01f;  // a quadrant splits past this share of its leaf's energy
   int max_directional_depth = 20;
   size_t max_directional_nodes = 1024;  // per quadtree
+  // Whether light reaching a vertex straight from an emitter (which next-event estimation already
+  // samples) is learned too, or only light that has bounced at least once more.
+  bool learn_direct_light = false;
   size_t max_leaves = 2048;  // memory at most 2048 leaves x 2 trees x 1024 nodes x 32 B = 128 MiB
 };
 
@@ -82,6 +85,7 @@ class GuidingField {
   void record(const Vec3& p, const Vec3& dir, float radiance_over_pdf);
   void refine();  // the end of a training pass: recorded trees become sampled, new ones recorded
   int iterations() const { return iterations_; }
+  const GuidingOptions& options() const { return options_; }
   size_t num_leaves() const { return leaves_.size(); }
 
  private:
@@ -107,7 +111,9 @@ class GuidingField {
 
 // The vertices of one path while it is traced, for GuidingField::record: each gets every
 // contribution found after it, and at the end (the destructor) records the radiance that reached it
-// (contributions / the throughput after its own bounce). Disabled (field null): does nothing.
+// (contributions / the throughput after its own bounce). Unless the field learns direct light,
+// what the last vertex's ray finds on an emitter (before reached_next_vertex) is left out for
+// that vertex. Disabled (field null): does nothing.
 class GuidePathRecorder {
  public:
   explicit GuidePathRecorder(GuidingField* field) : field_(field) {}
@@ -116,10 +122,14 @@ class GuidePathRecorder {
   ~GuidePathRecorder() { flush(); }
   bool enabled() const { return field_ != nullptr; }
   void add_vertex(const Vec3& p, const Vec3& dir, const Vec3& throughput_after, float pdf) {
-    if (count_ < kMaxVertices) vertices_[count_++] = {p, dir, throughput_after, Vec3(0.0f), pdf};
+    if (count_ < kMaxVertices) {
+      vertices_[count_++] = {p, dir, throughput_after, Vec3(0.0f), pdf};
+      direct_ = !field_->options().learn_direct_light;
+    }
   }
+  void reached_next_vertex() { direct_ = false; }
   void add_contribution(const Vec3& c) {
-    for (int i = 0; i < count_; ++i) vertices_[i].radiance += c;
+    for (int i = 0, n = direct_ ? count_ - 1 : count_; i < n; ++i) vertices_[i].radiance += c;
   }
   void flush();
 
@@ -131,6 +141,7 @@ class GuidePathRecorder {
   };
   GuidingField* field_;
   int count_ = 0;
+  bool direct_ = false;  // contributions now are emitters seen from the last vertex
   std::array<Vertex, kMaxVertices> vertices_;
 };
 
