@@ -15,7 +15,6 @@
 #include <array>
 #include <atomic>
 #include <chrono>
-#include <cstdlib>
 #include <condition_variable>
 #include <exception>
 #include <limits>
@@ -114,10 +113,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
     Vec3 lo, hi;
     cscene.bounds(lo, hi);
     if (!(is_finite(lo) && is_finite(hi) && lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z)) lo = hi = Vec3(0.0f);
-    GuidingOptions options;
-    if (const char* e = std::getenv("TORRANCE_GUIDE_DIRECT")) options.learn_direct_light = e[0] == '1';
-    if (const char* e = std::getenv("TORRANCE_GUIDE_SPATIAL")) options.spatial_threshold = std::atof(e);
-    guide.emplace(lo, hi, options);
+    guide.emplace(lo, hi);
     ctx.guide = &*guide;
     ctx.guide_training = true;
   }

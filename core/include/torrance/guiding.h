@@ -68,9 +68,11 @@ struct GuidingOptions {
   float directional_fraction = 0.01f;  // a quadrant splits past this share of its leaf's energy
   int max_directional_depth = 20;
   size_t max_directional_nodes = 1024;  // per quadtree
-  // Whether light reaching a vertex straight from an emitter (which next-event estimation already
-  // samples) is learned too, or only light that has bounced at least once more.
-  bool learn_direct_light = false;
+  // Whether light reaching a vertex straight from an emitter (which next-event estimation also
+  // samples) is learned too, or only light that has bounced at least once more. Learning it
+  // paid on the comparison scenes (64 spp, 8 seeds, relMSE guided / plain: suzanne 1.64 -> 1.36,
+  // water 0.74 -> 0.73, interior 0.92 -> 0.92): NEE of a sky or of large lights is far from ideal.
+  bool learn_direct_light = true;
   size_t max_leaves = 2048;  // memory at most 2048 leaves x 2 trees x 1024 nodes x 32 B = 128 MiB
 };
 
