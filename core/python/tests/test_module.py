@@ -708,7 +708,8 @@ def test_adaptive_sampling_time_limit_and_clamping_settings():
 
 def test_guiding_settings_and_a_guided_adaptive_render():
     settings = tc.RenderSettings(width=16, height=16, samples=64, guiding=True,
-                                 guiding_training_fraction=0.5, adaptive_threshold=0.01)
+                                 guiding_training_fraction=0.5, adaptive_threshold=0.01,
+                                 adaptive_min_samples=8)
     assert settings.guiding and settings.guiding_training_fraction == 0.5
     assert not tc.RenderSettings().guiding             # off unless asked for
     with pytest.raises(ValueError, match="guiding_training_fraction"):
