@@ -3,7 +3,10 @@
 // one path's vertices.
 #include "torrance/guiding.h"
 
+#include "atomic_float.h"
+
 #include <cmath>
+#include <limits>
 
 namespace torrance {
 
@@ -38,14 +41,27 @@ uint32_t GuidingField::leaf_index(const Vec3& p) const {
 
 GuideDistribution GuidingField::at(const Vec3& p) const {
   const Leaf& leaf = leaves_[leaf_index(p)];
-  return leaf.trained ? GuideDistribution(&leaf.sampled) : GuideDistribution();
+  return leaf.trained && leaf.bsdf_fraction < 1.0f ? GuideDistribution(&leaf.sampled, leaf.bsdf_fraction)
+                                                    : GuideDistribution();
 }
 
-void GuidingField::record(const Vec3& p, const Vec3& dir, float radiance_over_pdf) {
+void GuidingField::record(const Vec3& p, const Vec3& dir, float radiance_over_pdf, float estimate, float bsdf_pdf,
+                          float guide_pdf) {
   Leaf& leaf = leaves_[leaf_index(p)];
   __atomic_fetch_add(&leaf.records, 1u, __ATOMIC_RELAXED);
   if (radiance_over_pdf > 0.0f && std::isfinite(radiance_over_pdf))
     leaf.recording.record(direction_to_square(dir), radiance_over_pdf);
+  if (!(guide_pdf > 0.0f)) return;
+  __atomic_fetch_add(&leaf.moment_records, 1u, __ATOMIC_RELAXED);
+  if (!(estimate > 0.0f) || !std::isfinite(estimate)) return;
+  // The sample came with pdf q = a0 p_bsdf + (1 - a0) p_guide; with fraction a its square would
+  // have been estimate^2 q^2 / q_a^2, seen with density q: each adds estimate^2 q / q_a.
+  const float q = leaf.bsdf_fraction * bsdf_pdf + (1.0f - leaf.bsdf_fraction) * guide_pdf;
+  for (size_t i = 0; i < kBsdfFractions.size(); ++i) {
+    const float qa = kBsdfFractions[i] * bsdf_pdf + (1.0f - kBsdfFractions[i]) * guide_pdf;
+    const float term = qa > 0.0f ? estimate * estimate * q / qa : std::numeric_limits<float>::infinity();
+    atomic_add_float(leaf.second_moment[i], std::min(term, 1e30f));
+  }
 }
 
 // Splits a leaf in two at the midpoint of the next axis while it has more records than the
@@ -100,6 +116,15 @@ void GuidingField::refine() {
   // Then directionally: what was recorded is sampled from now on (where anything was), and the
   // next pass records into a tree refined where this one found energy.
   for (Leaf& leaf : leaves_) {
+    // The BSDF fraction of least estimated second moment, once the leaf has a few guided samples.
+    if (leaf.moment_records >= 256) {
+      size_t best = 0;
+      for (size_t i = 1; i < kBsdfFractions.size(); ++i)
+        if (leaf.second_moment[i] < leaf.second_moment[best]) best = i;
+      leaf.bsdf_fraction = kBsdfFractions[best];
+    }
+    leaf.second_moment.fill(0.0f);
+    leaf.moment_records = 0;
     DirectionalQuadtree next = leaf.recording.refined(options_.directional_fraction, options_.max_directional_depth,
                                                       options_.max_directional_nodes);
     if (leaf.recording.total() > 0.0f) {
@@ -116,10 +141,12 @@ void GuidePathRecorder::flush() {
   if (!field_) return;
   for (int i = 0; i < count_; ++i) {
     const Vertex& v = vertices_[i];
-    Vec3 incident(0.0f);  // the radiance that reached the vertex along dir
-    for (int c = 0; c < 3; ++c)
+    Vec3 incident(0.0f), reflected(0.0f);  // the radiance that reached the vertex along dir, and left it
+    for (int c = 0; c < 3; ++c) {
       if (v.throughput[c] > 0.0f) incident[c] = v.radiance[c] / v.throughput[c];
-    field_->record(v.position, v.dir, luminance(incident) / v.pdf);
+      if (v.throughput_before[c] > 0.0f) reflected[c] = v.radiance[c] / v.throughput_before[c];
+    }
+    field_->record(v.position, v.dir, luminance(incident) / v.pdf, luminance(reflected), v.bsdf_pdf, v.guide_pdf);
   }
   count_ = 0;
 }

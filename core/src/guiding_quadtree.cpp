@@ -2,18 +2,11 @@
 // quadtree of energies over it, with sample() and pdf() side by side.
 #include "torrance/guiding.h"
 
+#include "atomic_float.h"
+
 namespace torrance {
 
 namespace {
-
-// Adds to a float that other threads add to at the same time.
-void atomic_add(float& target, float value) {
-  float expected;
-  __atomic_load(&target, &expected, __ATOMIC_RELAXED);
-  float desired = expected + value;
-  while (!__atomic_compare_exchange(&target, &expected, &desired, true, __ATOMIC_RELAXED, __ATOMIC_RELAXED))
-    desired = expected + value;
-}
 
 // The quadrant of [0,1)^2 holding p, and p rescaled to [0,1)^2 within it.
 int quadrant_of(Vec2& p) {
@@ -60,7 +53,7 @@ void DirectionalQuadtree::record(const Vec2& point, float energy) {
     const int q = quadrant_of(p);
     const uint32_t child = nodes_[node].child[q];
     if (child == 0) {
-      atomic_add(nodes_[node].energy[q], energy);
+      atomic_add_float(nodes_[node].energy[q], energy);
       return;
     }
     node = child;

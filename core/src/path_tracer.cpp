@@ -272,7 +272,8 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     }
 
     // Continue the path by sampling the BSDF.
-    BsdfSample bs = guide ? sample_guided<kGlass>(bsdf, guide, frame, wo, backfacing, u_bsdf)
+    float bsdf_pdf = 0.0f, guide_pdf = 0.0f;  // the parts of a guided sample's pdf
+    BsdfSample bs = guide ? sample_guided<kGlass>(bsdf, guide, frame, wo, backfacing, u_bsdf, bsdf_pdf, guide_pdf)
                           : bsdf.template sample<kGlass>(wo, u_bsdf.x, Vec2(u_bsdf.y, u_bsdf.z), backfacing);
     if (!bs.valid()) break;
     const Vec3 wi_world = frame.to_world(bs.wi);
@@ -287,8 +288,9 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
       f.diffuse *= bump_shadowing(n_smooth, ns, wi_world);
       bs.weight = f.total() / bs.pdf;
     }
+    if (recorder.enabled() && guidable && !bs.is_delta)
+      recorder.add_vertex(hit.position, wi_world, throughput, bs.weight, bs.pdf, guide ? bsdf_pdf : bs.pdf, guide_pdf);
     throughput *= bs.weight;
-    if (recorder.enabled() && guidable && !bs.is_delta) recorder.add_vertex(hit.position, wi_world, throughput, bs.pdf);
     if (kSplitLobes && bounce == 0 && !bs.is_delta) {
       const LobeEval f = bsdf.template eval_lobes<kGlass>(wo, bs.wi, backfacing);
       const Vec3 total = f.total();

@@ -19,7 +19,7 @@ void record_peak(GuidingField& field, const Vec3& p, const Vec3& peak, int n, Rn
   for (int i = 0; i < n; ++i) {
     const Vec3 dir = test::uniform_sphere(rng);
     const float radiance = glm::dot(dir, peak) > 0.9f ? 10.0f : 0.1f;
-    field.record(p, dir, radiance * 4.0f * kPi);
+    field.record(p, dir, radiance * 4.0f * kPi, 0.0f, 0.0f, 0.0f);
   }
 }
 

@@ -50,18 +50,27 @@ class DirectionalQuadtree {
   std::vector<Node> nodes_;
 };
 
-// The guide at one point: its learned distribution of directions, as a solid-angle density.
+// The guide at one point: its learned distribution of directions, as a solid-angle density, and
+// the probability with which the mixture (guided_bsdf.h) samples the BSDF instead.
 class GuideDistribution {
  public:
   GuideDistribution() = default;
-  explicit GuideDistribution(const DirectionalQuadtree* tree) : tree_(tree) {}
+  GuideDistribution(const DirectionalQuadtree* tree, float bsdf_fraction) : tree_(tree), bsdf_fraction_(bsdf_fraction) {}
   explicit operator bool() const { return tree_ != nullptr; }
+  float bsdf_fraction() const { return bsdf_fraction_; }
   Vec3 sample(const Vec2& u) const { return square_to_direction(tree_->sample(u)); }
   float pdf(const Vec3& dir) const { return tree_->pdf(direction_to_square(dir)) * (1.0f / (4.0f * kPi)); }
 
  private:
   const DirectionalQuadtree* tree_ = nullptr;
+  float bsdf_fraction_ = 1.0f;
 };
+
+// The BSDF fractions a leaf chooses among, after each training pass the one whose estimator would
+// have had the least second moment (estimated from the pass's samples by reweighting them); 1 turns
+// guiding off there. The first guided pass uses kInitialBsdfFraction.
+inline constexpr std::array<float, 5> kBsdfFractions = {0.3f, 0.5f, 0.7f, 0.9f, 1.0f};
+inline constexpr float kInitialBsdfFraction = 0.7f;
 
 struct GuidingOptions {
   float spatial_threshold = 4000.0f;  // a leaf splits past threshold x sqrt(2^iteration) records
@@ -83,8 +92,11 @@ class GuidingField {
   GuidingField(const Vec3& lo, const Vec3& hi, const GuidingOptions& options = {});
   // The learned distribution at p; empty before the first refine() or where nothing was recorded.
   GuideDistribution at(const Vec3& p) const;
-  // One path vertex: the luminance of the radiance that arrived along `dir`, over the pdf of `dir`.
-  void record(const Vec3& p, const Vec3& dir, float radiance_over_pdf);
+  // One path vertex: the luminance of the radiance that arrived along `dir`, over the pdf of `dir`,
+  // and, where the guide was used (guide_pdf > 0), the vertex's estimate of its reflected light
+  // (luminance) with the BSDF's and the guide's pdfs of dir, for choosing the BSDF fraction.
+  void record(const Vec3& p, const Vec3& dir, float radiance_over_pdf, float estimate, float bsdf_pdf,
+              float guide_pdf);
   void refine();  // the end of a training pass: recorded trees become sampled, new ones recorded
   int iterations() const { return iterations_; }
   const GuidingOptions& options() const { return options_; }
@@ -100,6 +112,9 @@ class GuidingField {
     DirectionalQuadtree sampled, recording;
     bool trained = false;  // sampled holds a distribution
     uint32_t records = 0;  // this pass
+    float bsdf_fraction = kInitialBsdfFraction;
+    std::array<float, kBsdfFractions.size()> second_moment{};  // this pass, per candidate fraction
+    uint32_t moment_records = 0;
   };
   uint32_t leaf_index(const Vec3& p) const;
   void split(uint32_t node, const Vec3& lo, const Vec3& hi, uint32_t threshold);
@@ -123,9 +138,12 @@ class GuidePathRecorder {
   GuidePathRecorder& operator=(const GuidePathRecorder&) = delete;
   ~GuidePathRecorder() { flush(); }
   bool enabled() const { return field_ != nullptr; }
-  void add_vertex(const Vec3& p, const Vec3& dir, const Vec3& throughput_after, float pdf) {
+  // Before the throughput takes the bounce's weight; pdf: the mixture's, bsdf_pdf and guide_pdf
+  // its parts (guide_pdf 0 where no guide was used).
+  void add_vertex(const Vec3& p, const Vec3& dir, const Vec3& throughput_before, const Vec3& weight, float pdf,
+                  float bsdf_pdf, float guide_pdf) {
     if (count_ < kMaxVertices) {
-      vertices_[count_++] = {p, dir, throughput_after, Vec3(0.0f), pdf};
+      vertices_[count_++] = {p, dir, throughput_before, throughput_before * weight, Vec3(0.0f), pdf, bsdf_pdf, guide_pdf};
       direct_ = !field_->options().learn_direct_light;
     }
   }
@@ -138,8 +156,8 @@ class GuidePathRecorder {
  private:
   static constexpr int kMaxVertices = 16;
   struct Vertex {
-    Vec3 position, dir, throughput, radiance;
-    float pdf;
+    Vec3 position, dir, throughput_before, throughput, radiance;
+    float pdf, bsdf_pdf, guide_pdf;
   };
   GuidingField* field_;
   int count_ = 0;
