@@ -119,6 +119,25 @@ TEST(Guiding, RecordingConcentratesTheDensityWhereRadianceCameFrom) {
   EXPECT_GT(guide.pdf(-peak), 0.0f);
 }
 
+TEST(Guiding, EachLeafChoosesTheBsdfFractionOfLeastSecondMoment) {
+  const Vec3 peak(0, 0, 1);
+  for (bool guide_helps : {true, false}) {
+    GuidingField field = trained_field(peak);
+    ASSERT_EQ(field.at(Vec3(0.0f)).bsdf_fraction(), kInitialBsdfFraction);
+    // Light arrives where the guide's density is high and the BSDF's low, or the other way round.
+    const float bsdf_pdf = guide_helps ? 0.05f : 2.0f, guide_pdf = guide_helps ? 2.0f : 0.05f;
+    for (int i = 0; i < 1000; ++i) field.record(Vec3(0.0f), peak, 0.0f, 1.0f, bsdf_pdf, guide_pdf);
+    field.refine();
+    const GuideDistribution guide = field.at(Vec3(0.0f));
+    if (guide_helps) {
+      ASSERT_TRUE(guide);
+      EXPECT_EQ(guide.bsdf_fraction(), kBsdfFractions.front());
+    } else {
+      EXPECT_FALSE(guide) << "a useless guide is switched off (fraction 1)";
+    }
+  }
+}
+
 TEST(Guiding, NothingRecordedMeansNoGuide) {
   GuidingField field(Vec3(-1.0f), Vec3(1.0f));
   EXPECT_FALSE(field.at(Vec3(0.0f)));
