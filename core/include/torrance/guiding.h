@@ -68,7 +68,10 @@ class GuideDistribution {
 
 // The BSDF fractions a leaf chooses among, after each training pass the one whose estimator would
 // have had the least second moment (estimated from the pass's samples by reweighting them); 1 turns
-// guiding off there. The first guided pass uses kInitialBsdfFraction.
+// guiding off there. The first guided pass uses kInitialBsdfFraction: 0.7 rather than Müller et
+// al.'s 0.5, which as a fixed fraction cost more where the guide is of little use (64 spp, 8
+// seeds, relMSE guided / plain: suzanne 2.01 with 0.5, 1.64 with 0.7; water 0.90, 0.74) while
+// keeping most of the gain where it pays (mirror 0.14, 0.17).
 inline constexpr std::array<float, 5> kBsdfFractions = {0.3f, 0.5f, 0.7f, 0.9f, 1.0f};
 inline constexpr float kInitialBsdfFraction = 0.7f;
 
