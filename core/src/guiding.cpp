@@ -39,10 +39,10 @@ uint32_t GuidingField::leaf_index(const Vec3& p) const {
   return uint32_t(nodes_[node].leaf);
 }
 
-GuideDistribution GuidingField::at(const Vec3& p) const {
+GuideDistribution GuidingField::at(const Vec3& p, bool training) const {
   const Leaf& leaf = leaves_[leaf_index(p)];
-  return leaf.trained && leaf.bsdf_fraction < 1.0f ? GuideDistribution(&leaf.sampled, leaf.bsdf_fraction)
-                                                    : GuideDistribution();
+  return leaf.trained && (leaf.bsdf_fraction < 1.0f || training) ? GuideDistribution(&leaf.sampled, leaf.bsdf_fraction)
+                                                                 : GuideDistribution();
 }
 
 void GuidingField::record(const Vec3& p, const Vec3& dir, float radiance_over_pdf, float estimate, float bsdf_pdf,

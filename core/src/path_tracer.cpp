@@ -233,7 +233,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler) 
     // Path guiding (guided_bsdf.h) on opaque single-material surfaces with a continuous lobe.
     const bool guidable =
         ctx.guide && !mixture && !transmits && (material.metallic < 1.0f || material.roughness >= 0.3f);
-    const GuideDistribution guide = guidable ? ctx.guide->at(hit.position) : GuideDistribution();
+    const GuideDistribution guide = guidable ? ctx.guide->at(hit.position, ctx.guide_training) : GuideDistribution();
     if (recorder.enabled()) recorder.reached_next_vertex();
 
     // Next-event estimation: one light, chosen by its expected contribution, MIS-weighted against

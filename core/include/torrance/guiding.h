@@ -93,8 +93,10 @@ struct GuidingOptions {
 class GuidingField {
  public:
   GuidingField(const Vec3& lo, const Vec3& hi, const GuidingOptions& options = {});
-  // The learned distribution at p; empty before the first refine() or where nothing was recorded.
-  GuideDistribution at(const Vec3& p) const;
+  // The learned distribution at p; empty before the first refine(), where nothing was recorded and
+  // where the leaf's BSDF fraction is 1 -- except in training passes (`training`), where such a
+  // leaf still samples only the BSDF but the guide's pdf is known, so its fraction can change.
+  GuideDistribution at(const Vec3& p, bool training = false) const;
   // One path vertex: the luminance of the radiance that arrived along `dir`, over the pdf of `dir`,
   // and, where the guide was used (guide_pdf > 0), the vertex's estimate of its reflected light
   // (luminance) with the BSDF's and the guide's pdfs of dir, for choosing the BSDF fraction.
