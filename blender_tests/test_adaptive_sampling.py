@@ -127,6 +127,16 @@ def main():
     ratio = img[:, :, :3].mean() / np.mean(plain, axis=0)[:, :, :3].mean()
     print(f"clamped (direct 0.5, indirect 0.05) / plain mean: {ratio:.3f}")
     check(ratio < 0.9, f"Clamping left the image mean at {ratio:.3f} of the plain one")
+    # Path guiding reaches the core (its unbiasedness: core/tests/test_guiding_render.cpp).
+    ts.sample_clamp_direct = ts.sample_clamp_indirect = 0.0
+    ts.use_guiding = True
+    ts.guiding_training_fraction = 0.5
+    img, _ = testing.render(scene, d, "guided")
+    stats = addon().render.last_stats
+    check(stats["guiding"] and stats["guiding_training_fraction"] == 0.5,
+          f"Path guiding did not reach the core: {stats}")
+    check(bool(np.isfinite(img).all()), "the guided render has NaN/Inf")
+    ts.use_guiding = False
 
 
 testing.run(main)

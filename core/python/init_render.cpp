@@ -71,7 +71,7 @@ void init_render(py::module_& m) {
                        const std::string& light_selection, const std::vector<std::string>& passes,
                        const std::string& sampler, bool specialize, float adaptive_threshold,
                        int adaptive_min_samples, double time_limit, float clamp_direct, float clamp_indirect,
-                       int max_transparent_bounces) {
+                       int max_transparent_bounces, bool guiding, float guiding_training_fraction) {
              RenderSettings s;
              s.width = width;
              s.height = height;
@@ -95,6 +95,8 @@ void init_render(py::module_& m) {
              s.clamp_direct = clamp_direct;
              s.clamp_indirect = clamp_indirect;
              s.max_transparent_bounces = max_transparent_bounces;
+             s.guiding = guiding;
+             s.guiding_training_fraction = guiding_training_fraction;
              s.validate();
              return s;
            }),
@@ -105,7 +107,8 @@ void init_render(py::module_& m) {
            py::arg("light_selection") = "CONTRIBUTION", py::arg("passes") = std::vector<std::string>{},
            py::arg("sampler") = "SOBOL", py::arg("specialize") = true, py::arg("adaptive_threshold") = 0.0f,
            py::arg("adaptive_min_samples") = 0, py::arg("time_limit") = 0.0, py::arg("clamp_direct") = 0.0f,
-           py::arg("clamp_indirect") = 0.0f, py::arg("max_transparent_bounces") = 8)
+           py::arg("clamp_indirect") = 0.0f, py::arg("max_transparent_bounces") = 8,
+           py::arg("guiding") = false, py::arg("guiding_training_fraction") = 0.25f)
       .def_readwrite("specialize", &RenderSettings::specialize)
       .def_readwrite("camera_packets", &RenderSettings::camera_packets)
       .def_property(
@@ -126,6 +129,8 @@ void init_render(py::module_& m) {
       .def_readwrite("time_limit", &RenderSettings::time_limit)
       .def_readwrite("clamp_direct", &RenderSettings::clamp_direct)
       .def_readwrite("clamp_indirect", &RenderSettings::clamp_indirect)
+      .def_readwrite("guiding", &RenderSettings::guiding)
+      .def_readwrite("guiding_training_fraction", &RenderSettings::guiding_training_fraction)
       .def_property_readonly("effective_adaptive_min_samples", &RenderSettings::effective_adaptive_min_samples)
       .def_property(
           "light_selection",

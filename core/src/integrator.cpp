@@ -64,6 +64,8 @@ void RenderSettings::validate() const {
   if (!(clamp_direct >= 0.0f) || !std::isfinite(clamp_direct) || !(clamp_indirect >= 0.0f) ||
       !std::isfinite(clamp_indirect))
     throw std::invalid_argument("clamp_direct and clamp_indirect must be finite and >= 0 (0 = off)");
+  if (!(guiding_training_fraction >= 0.0f && guiding_training_fraction <= 1.0f))
+    throw std::invalid_argument("guiding_training_fraction must be in [0, 1]");
 }
 
 int RenderSettings::effective_adaptive_min_samples() const {
@@ -108,6 +110,16 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   const PixelFilter filter(settings.filter_width);
 
   const TraceFn trace = select_path_tracer(cscene, settings);
+  std::optional<GuidingField> guide;
+  if (settings.guiding) {
+    Vec3 lo, hi;
+    cscene.bounds(lo, hi);
+    if (!(is_finite(lo) && is_finite(hi) && lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z)) lo = hi = Vec3(0.0f);
+    guide.emplace(lo, hi);
+    ctx.guide = &*guide;
+    ctx.guide_training = true;
+  }
+  int guide_pass_end = 1;  // the sample count that ends the current training pass
 
   const std::array<int, 4> window = settings.window.value_or(std::array<int, 4>{0, 0, settings.width, settings.height});
   const bool adaptive = settings.adaptive_threshold > 0.0f;
@@ -210,11 +222,19 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
         const auto t0 = std::chrono::steady_clock::now();
         int n = 0;  // samples of this pass, rendered in steps that end at adaptive checks
         while (n < target) {
-          const int step = align_to_check(done, target - n);
+          int step = align_to_check(done, target - n);
+          if (ctx.guide_training) step = std::min(step, guide_pass_end - done);
           arena.execute([&] { render_pass(done, step); });
           if (stop) break;
           done += step;
           n += step;
+          if (ctx.guide_training && done == guide_pass_end) {  // learn; train on while the next pass fits
+            guide->refine();
+            guide_pass_end = done + (1 << std::min(guide->iterations(), 20));
+            const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - sampling_start).count();
+            ctx.guide_training = guide_pass_end <= settings.guiding_training_fraction * settings.samples &&
+                                 (settings.time_limit <= 0.0 || elapsed < settings.guiding_training_fraction * settings.time_limit);
+          }
           if (needs_check(done) && film.update_convergence(adaptive_threshold) == 0) {
             all_converged = true;
             break;

@@ -1,5 +1,6 @@
 #include "path_tracer.h"
 
+#include "guided_bsdf.h"
 #include "torrance/light_choice.h"
 #include "torrance/mixture_bsdf.h"
 #include "torrance/shading_normal.h"
@@ -108,6 +109,7 @@ template <bool kTextures, bool kSplitLobes, bool kHittable, bool kGlass, bool kA
 PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, const FirstHit* first) {
   const Lights& lights = ctx.lights;
   PathRadiance out;
+  GuidePathRecorder recorder(ctx.guide_training ? ctx.guide : nullptr);  // training: records at the end
   Vec3 throughput(1.0f);
   Vec3 diffuse_share(0.0f);  // per channel, of the energy that left the first hit
   Vec3 prev_position(0.0f), prev_normal(0.0f);
@@ -127,6 +129,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
   };
   auto deposit = [&](Vec3 c, bool direct) {  // a contribution arriving after the first hit
     if (const float k = clamp_scale(c, direct); k < 1.0f) c *= k;
+    if (recorder.enabled()) recorder.add_contribution(c);
     const Vec3 diffuse = c * diffuse_share, glossy = c - diffuse;
     (direct ? out.diffuse_direct : out.diffuse_indirect) += diffuse;
     (direct ? out.glossy_direct : out.glossy_indirect) += glossy;
@@ -229,6 +232,11 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
 
     const Frame frame(ns);
     const Vec3 wo = frame.to_local(wo_world);
+    // Path guiding (guided_bsdf.h) on opaque single-material surfaces with a continuous lobe.
+    const bool guidable =
+        ctx.guide && !mixture && !transmits && (material.metallic < 1.0f || material.roughness >= 0.3f);
+    const GuideDistribution guide = guidable ? ctx.guide->at(hit.position, ctx.guide_training) : GuideDistribution();
+    if (recorder.enabled()) recorder.reached_next_vertex();
 
     // Next-event estimation: one light, chosen by its expected contribution through this BSDF
     // (light_choice.h), MIS-weighted against BSDF sampling.
@@ -254,7 +262,8 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
                                                                   ctx.settings.max_transparent_bounces);
           if (max_component(transmittance) > 0.0f) {
             const float mis = ls.pdf > 0.0f
-                                  ? power_heuristic(choice.probability * ls.pdf, bsdf.template pdf<kGlass>(wo, wi, backfacing))
+                                  ? power_heuristic(choice.probability * ls.pdf,
+                                                    guided_pdf(bsdf.template pdf<kGlass>(wo, wi, backfacing), guide, ls.wi))
                                   : 1.0f;
             Vec3 light = throughput * ls.weight * (mis / choice.probability);
             if (kAlpha) light *= transmittance;
@@ -271,7 +280,9 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
     }
 
     // Continue the path by sampling the BSDF.
-    BsdfSample bs = bsdf.template sample<kGlass>(wo, u_bsdf.x, Vec2(u_bsdf.y, u_bsdf.z), backfacing);
+    float bsdf_pdf = 0.0f, guide_pdf = 0.0f;  // the parts of a guided sample's pdf
+    BsdfSample bs = guide ? sample_guided<kGlass>(bsdf, guide, frame, wo, backfacing, u_bsdf, bsdf_pdf, guide_pdf)
+                          : bsdf.template sample<kGlass>(wo, u_bsdf.x, Vec2(u_bsdf.y, u_bsdf.z), backfacing);
     if (!bs.valid()) break;
     const Vec3 wi_world = frame.to_world(bs.wi);
     const float cos_geometric = glm::dot(wi_world, ng);
@@ -285,6 +296,8 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       f.diffuse *= bump_shadowing(n_smooth, ns, wi_world);
       bs.weight = f.total() / bs.pdf;
     }
+    if (recorder.enabled() && guidable && !bs.is_delta)
+      recorder.add_vertex(hit.position, wi_world, throughput, bs.weight, bs.pdf, guide ? bsdf_pdf : bs.pdf, guide_pdf);
     throughput *= bs.weight;
     if (kSplitLobes && bounce == 0 && !bs.is_delta) {
       const LobeEval f = bsdf.template eval_lobes<kGlass>(wo, bs.wi, backfacing);

@@ -3,6 +3,7 @@
 // BSDF-sampled ray can hit, glass, alpha, mixtures), so that a scene pays only for what it has.
 #pragma once
 
+#include "torrance/guiding.h"
 #include "torrance/integrator.h"
 #include "torrance/material_bsdf.h"
 #include "torrance/sampling.h"
@@ -18,6 +19,10 @@ struct PathContext {
   std::vector<MaterialBsdf> bsdfs;  // one per material, built once per render
   Vec3 camera_forward;
   float pixel_spread;  // radians per pixel: texture footprints grow with the path's length
+  // Path guiding (RenderSettings::guiding): the field sampled where it has learned something, and
+  // whether this pass also records into it (a training pass). Null: no guiding.
+  GuidingField* guide = nullptr;
+  bool guide_training = false;
 };
 
 // Everything one camera sample brings back, split as Blender's passes.

@@ -318,6 +318,13 @@ void Scene::commit() {
   }
 }
 
+void Scene::bounds(Vec3& lo, Vec3& hi) const {
+  RTCBounds b;
+  rtcGetSceneBounds(scene_of(scene_), &b);
+  lo = Vec3(b.lower_x, b.lower_y, b.lower_z);
+  hi = Vec3(b.upper_x, b.upper_y, b.upper_z);
+}
+
 bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   RTCRayHit rh;
   rh.ray.org_x = ray.origin.x;

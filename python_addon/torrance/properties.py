@@ -63,6 +63,19 @@ class TorranceSceneSettings(bpy.types.PropertyGroup):
                     "Zero disables the limit",
         default=0.0, min=0.0, step=100.0, subtype='TIME_ABSOLUTE',
     )
+    use_guiding: BoolProperty(
+        name="Path Guiding",
+        description="Learn where light comes from during the render (an SD-tree trained in the "
+                    "first passes) and send part of the bounced rays there: pays on caustics "
+                    "and light arriving by narrow paths, costs time on simply lit scenes",
+        default=False,
+    )
+    guiding_training_fraction: FloatProperty(
+        name="Training Fraction",
+        description="Share of the samples (and of the time limit) during which the guide keeps "
+                    "learning; every sample is in the image",
+        default=0.25, min=0.0, max=1.0, subtype='FACTOR',
+    )
     sample_clamp_direct: FloatProperty(
         name="Clamp Direct",
         description="If non-zero, the maximum value for a direct sample, higher values will be "

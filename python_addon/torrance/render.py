@@ -178,8 +178,8 @@ class _Session:
 
 
 def sampling_settings(ts):
-    """RenderSettings arguments for the Sampling panel's Noise Threshold, Time Limit and the
-    Light Paths panel's Clamping, from scene.torrance (final renders)."""
+    """RenderSettings arguments for the Sampling panel's Noise Threshold, Time Limit and Path
+    Guiding and the Light Paths panel's Clamping, from scene.torrance (final renders)."""
     threshold = 0.0
     if ts.use_adaptive_sampling:
         # As Cycles: a threshold of 0 means automatic, from the number of samples.
@@ -188,7 +188,9 @@ def sampling_settings(ts):
                 adaptive_min_samples=int(ts.adaptive_min_samples),
                 time_limit=float(ts.time_limit),
                 clamp_direct=float(ts.sample_clamp_direct),
-                clamp_indirect=float(ts.sample_clamp_indirect))
+                clamp_indirect=float(ts.sample_clamp_indirect),
+                guiding=bool(ts.use_guiding),
+                guiding_training_fraction=float(ts.guiding_training_fraction))
 
 
 def render(engine, depsgraph):
@@ -303,7 +305,9 @@ def _render(engine, depsgraph, reporter):
                       adaptive_threshold=float(settings.adaptive_threshold),
                       adaptive_min_samples=int(settings.effective_adaptive_min_samples),
                       clamp_direct=float(settings.clamp_direct),
-                      clamp_indirect=float(settings.clamp_indirect))
+                      clamp_indirect=float(settings.clamp_indirect),
+                      guiding=bool(settings.guiding),
+                      guiding_training_fraction=float(settings.guiding_training_fraction))
     engine.update_progress(1.0)
     engine.update_stats("", msg)
     print(msg)

@@ -249,6 +249,22 @@ class TORRANCE_RENDER_PT_sampling_advanced(TorrancePanel, Panel):
         layout.prop(context.scene.torrance, "seed")
 
 
+class TORRANCE_RENDER_PT_sampling_path_guiding(TorrancePanel, Panel):
+    bl_label = "Path Guiding"
+    bl_context = "render"
+    bl_parent_id = "TORRANCE_RENDER_PT_sampling"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    def draw_header(self, context):
+        self.layout.prop(context.scene.torrance, "use_guiding", text="")
+
+    def draw(self, context):
+        layout = _split(self.layout)
+        ts = context.scene.torrance
+        layout.active = ts.use_guiding
+        layout.prop(ts, "guiding_training_fraction")
+
+
 class TORRANCE_RENDER_PT_light_paths(TorrancePanel, Panel):
     bl_label = "Light Paths"
     bl_context = "render"
@@ -487,6 +503,7 @@ classes = (
     TORRANCE_RENDER_PT_sampling_viewport,
     TORRANCE_RENDER_PT_sampling_render,
     TORRANCE_RENDER_PT_sampling_preview,
+    TORRANCE_RENDER_PT_sampling_path_guiding,
     TORRANCE_RENDER_PT_sampling_advanced,
     TORRANCE_RENDER_PT_light_paths,
     TORRANCE_RENDER_PT_light_paths_clamping,

@@ -77,6 +77,12 @@ struct RenderSettings {
   // sample, one emitter or world hit) is scaled down to at most this. Direct = seen by the camera
   // or lighting the first hit; indirect = lighting later vertices. 0 = off.
   float clamp_direct = 0.0f, clamp_indirect = 0.0f;
+  // Path guiding (guiding.h): an SD-tree of incident radiance learned in training passes of 1, 2,
+  // 4, ... samples per pixel while they fit in guiding_training_fraction of the samples (and of
+  // time_limit), then kept for the rest; the samples of every pass (each one unbiased) are in the
+  // image. Not bit-deterministic across runs: threads record into the tree in any order.
+  bool guiding = false;
+  float guiding_training_fraction = 0.25f;
 
   static constexpr int kAdaptiveStep = 16;                // samples between convergence checks (Cycles' step)
   static constexpr float kAdaptiveThresholdScale = 5.0f;  // Cycles 3.4 multiplies the threshold by 5

@@ -177,6 +177,7 @@ class Scene {
   void intersect_packet(const Ray* rays, int n, SurfaceHit* hits, bool* found) const;
   bool occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax) const;
   void* embree_scene() const { return scene_; }  // the RTCScene, for raw-Embree measurements (ray_replay.h)
+  void bounds(Vec3& lo, Vec3& hi) const;  // of everything traced, after commit (lo > hi: nothing)
 
  private:
   struct Mesh;

@@ -704,3 +704,19 @@ def test_adaptive_sampling_time_limit_and_clamping_settings():
         tc.RenderSettings(time_limit=-1.0)
     with pytest.raises(ValueError, match="clamp"):
         tc.RenderSettings(clamp_indirect=-1.0)
+
+
+def test_guiding_settings_and_a_guided_adaptive_render():
+    settings = tc.RenderSettings(width=16, height=16, samples=64, guiding=True,
+                                 guiding_training_fraction=0.5, adaptive_threshold=0.01,
+                                 adaptive_min_samples=8)
+    assert settings.guiding and settings.guiding_training_fraction == 0.5
+    assert not tc.RenderSettings().guiding             # off unless asked for
+    with pytest.raises(ValueError, match="guiding_training_fraction"):
+        tc.RenderSettings(guiding_training_fraction=1.5)
+    scene = plane_scene(half=0.02)
+    scene.set_world(color=(0.5, 0.5, 0.5), strength=1.0)
+    scene.add_point_light(position=(0.01, 0, 0.05), power=50.0, radius=0.0)
+    guided = tc.render(scene, settings)
+    assert np.isfinite(guided.image).all() and guided.nonfinite_samples == 0
+    assert guided.samples_spent < 16 * 16 * 64       # adaptive sampling still stops pixels

@@ -1,0 +1,168 @@
+// Path guiding's SD-tree (guiding.h): the quadtree's sample() and pdf() agree, its pdf is a
+// density, and recording concentrates it where radiance was recorded.
+#include "torrance/guiding.h"
+#include "torrance/sampling.h"
+
+#include "test_helpers.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace torrance {
+namespace {
+
+// Radiance from a cone of directions around `peak` (cos > 0.9) over a dim uniform background,
+// recorded as a training pass would: directions drawn uniformly, radiance over their pdf.
+void record_peak(GuidingField& field, const Vec3& p, const Vec3& peak, int n, Rng& rng) {
+  for (int i = 0; i < n; ++i) {
+    const Vec3 dir = test::uniform_sphere(rng);
+    const float radiance = glm::dot(dir, peak) > 0.9f ? 10.0f : 0.1f;
+    field.record(p, dir, radiance * 4.0f * kPi, 0.0f, 0.0f, 0.0f);
+  }
+}
+
+// A field trained on a peaked distribution at the origin, refined three times.
+GuidingField trained_field(const Vec3& peak) {
+  GuidingField field(Vec3(-1.0f), Vec3(1.0f));
+  Rng rng(1, 2, 3);
+  for (int pass = 0; pass < 3; ++pass) {
+    record_peak(field, Vec3(0.0f), peak, 20000 << pass, rng);
+    field.refine();
+  }
+  return field;
+}
+
+TEST(Guiding, CylindricalMapRoundTrips) {
+  Rng rng(7, 0, 0);
+  for (int i = 0; i < 1000; ++i) {
+    const Vec3 d = test::uniform_sphere(rng);
+    const Vec3 back = square_to_direction(direction_to_square(d));
+    EXPECT_NEAR(glm::dot(d, back), 1.0f, 1e-5f);
+  }
+}
+
+TEST(Guiding, QuadtreePdfIntegratesToOne) {
+  const Vec3 peak = glm::normalize(Vec3(0.3f, -0.5f, 0.8f));
+  const GuidingField field = trained_field(peak);
+  const GuideDistribution guide = field.at(Vec3(0.0f));
+  ASSERT_TRUE(guide);
+  // Midpoint rule over the sphere through the square (area 4pi x cell area).
+  constexpr int kN = 512;
+  double integral = 0.0;
+  for (int i = 0; i < kN; ++i)
+    for (int j = 0; j < kN; ++j)
+      integral += guide.pdf(square_to_direction(Vec2((i + 0.5f) / kN, (j + 0.5f) / kN)));
+  integral *= 4.0 * kPi / (double(kN) * kN);
+  EXPECT_NEAR(integral, 1.0, 0.01);
+}
+
+TEST(Guiding, SamplesFollowThePdf) {
+  const Vec3 peak = glm::normalize(Vec3(-0.6f, 0.2f, -0.3f));
+  const GuidingField field = trained_field(peak);
+  const GuideDistribution guide = field.at(Vec3(0.0f));
+  ASSERT_TRUE(guide);
+  // Histogram of samples on a 32 x 32 grid of the square vs the pdf integrated over each cell
+  // (8 x 8 midpoints); Pearson's chi-square over cells expecting >= 5 (the rest pooled).
+  constexpr int kGrid = 32, kSub = 8, kSamples = 400000;
+  std::vector<double> observed(kGrid * kGrid, 0.0), expected(kGrid * kGrid, 0.0);
+  Rng rng(11, 0, 0);
+  for (int i = 0; i < kSamples; ++i) {
+    const Vec2 p = direction_to_square(guide.sample(rng.next_2d()));
+    observed[std::min(int(p.y * kGrid), kGrid - 1) * kGrid + std::min(int(p.x * kGrid), kGrid - 1)] += 1.0;
+  }
+  for (int cy = 0; cy < kGrid; ++cy)
+    for (int cx = 0; cx < kGrid; ++cx) {
+      double sum = 0.0;
+      for (int sy = 0; sy < kSub; ++sy)
+        for (int sx = 0; sx < kSub; ++sx)
+          sum += guide.pdf(square_to_direction(
+              Vec2((cx + (sx + 0.5f) / kSub) / kGrid, (cy + (sy + 0.5f) / kSub) / kGrid)));
+      expected[cy * kGrid + cx] = sum * 4.0 * kPi / (double(kGrid) * kGrid * kSub * kSub) * kSamples;
+    }
+  double chi2 = 0.0, pooled_observed = 0.0, pooled_expected = 0.0;
+  int dof = -1;
+  for (int i = 0; i < kGrid * kGrid; ++i) {
+    if (expected[i] < 5.0) {
+      pooled_observed += observed[i];
+      pooled_expected += expected[i];
+      continue;
+    }
+    chi2 += (observed[i] - expected[i]) * (observed[i] - expected[i]) / expected[i];
+    ++dof;
+  }
+  if (pooled_expected >= 5.0) {
+    chi2 += (pooled_observed - pooled_expected) * (pooled_observed - pooled_expected) / pooled_expected;
+    ++dof;
+  }
+  // Wilson-Hilferty: the chi-square quantile of p = 1e-4 (z = 3.72) for `dof` degrees of freedom.
+  const double k = 2.0 / (9.0 * dof), limit = dof * std::pow(1.0 - k + 3.72 * std::sqrt(k), 3.0);
+  std::printf("chi-square %.1f, %d dof, limit %.1f\n", chi2, dof, limit);
+  EXPECT_LT(chi2, limit);
+}
+
+TEST(Guiding, RecordingConcentratesTheDensityWhereRadianceCameFrom) {
+  const Vec3 peak = glm::normalize(Vec3(0.2f, 0.9f, 0.1f));
+  const GuidingField field = trained_field(peak);
+  const GuideDistribution guide = field.at(Vec3(0.0f));
+  ASSERT_TRUE(guide);
+  // The cone holds 10 x 0.05 of the sphere against 0.1 x 0.95: 84% of the energy.
+  Rng rng(5, 0, 0);
+  int inside = 0;
+  constexpr int kSamples = 20000;
+  for (int i = 0; i < kSamples; ++i) inside += glm::dot(guide.sample(rng.next_2d()), peak) > 0.9f;
+  std::printf("share of samples in the cone: %.3f\n", double(inside) / kSamples);
+  EXPECT_GT(double(inside) / kSamples, 0.75);
+  EXPECT_GT(guide.pdf(peak), 10.0f * guide.pdf(-peak));
+  // The dim background keeps a density.
+  EXPECT_GT(guide.pdf(-peak), 0.0f);
+}
+
+TEST(Guiding, EachLeafChoosesTheBsdfFractionOfLeastSecondMoment) {
+  const Vec3 peak(0, 0, 1);
+  for (bool guide_helps : {true, false}) {
+    GuidingField field = trained_field(peak);
+    ASSERT_EQ(field.at(Vec3(0.0f)).bsdf_fraction(), kInitialBsdfFraction);
+    // Light arrives where the guide's density is high and the BSDF's low, or the other way round.
+    const float bsdf_pdf = guide_helps ? 0.05f : 2.0f, guide_pdf = guide_helps ? 2.0f : 0.05f;
+    for (int i = 0; i < 1000; ++i) field.record(Vec3(0.0f), peak, 0.0f, 1.0f, bsdf_pdf, guide_pdf);
+    field.refine();
+    const GuideDistribution guide = field.at(Vec3(0.0f));
+    if (guide_helps) {
+      ASSERT_TRUE(guide);
+      EXPECT_EQ(guide.bsdf_fraction(), kBsdfFractions.front());
+    } else {
+      EXPECT_FALSE(guide) << "a useless guide is switched off (fraction 1)";
+    }
+  }
+}
+
+TEST(Guiding, NothingRecordedMeansNoGuide) {
+  GuidingField field(Vec3(-1.0f), Vec3(1.0f));
+  EXPECT_FALSE(field.at(Vec3(0.0f)));
+  field.refine();
+  EXPECT_FALSE(field.at(Vec3(0.0f)));
+}
+
+TEST(Guiding, ManyRecordsSplitSpaceAndEachHalfLearnsItsOwnDirection) {
+  GuidingOptions options;
+  options.spatial_threshold = 1000.0f;
+  GuidingField field(Vec3(-1.0f), Vec3(1.0f), options);
+  Rng rng(3, 0, 0);
+  const Vec3 up(0, 0, 1), down(0, 0, -1);
+  for (int pass = 0; pass < 3; ++pass) {
+    record_peak(field, Vec3(-0.5f, 0.0f, 0.0f), up, 5000, rng);
+    record_peak(field, Vec3(0.5f, 0.0f, 0.0f), down, 5000, rng);
+    field.refine();
+  }
+  EXPECT_GT(field.num_leaves(), 1u);
+  const GuideDistribution left = field.at(Vec3(-0.5f, 0.0f, 0.0f)), right = field.at(Vec3(0.5f, 0.0f, 0.0f));
+  ASSERT_TRUE(left);
+  ASSERT_TRUE(right);
+  EXPECT_GT(left.pdf(up), 5.0f * left.pdf(down));
+  EXPECT_GT(right.pdf(down), 5.0f * right.pdf(up));
+}
+
+}  // namespace
+}  // namespace torrance
