@@ -1,5 +1,7 @@
 #include "torrance/ray_replay.h"
 
+#include "embree_rays.h"
+
 #include <embree3/rtcore.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -31,26 +33,12 @@ constexpr uint32_t kInvalid = RTC_INVALID_GEOMETRY_ID;
 void trace_one(RTCScene scene, LoggedRay& r) {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRayHit rh;
-  rh.ray.org_x = r.origin.x;
-  rh.ray.org_y = r.origin.y;
-  rh.ray.org_z = r.origin.z;
-  rh.ray.dir_x = r.dir.x;
-  rh.ray.dir_y = r.dir.y;
-  rh.ray.dir_z = r.dir.z;
-  rh.ray.tnear = r.tmin;
-  rh.ray.tfar = r.tmax;
-  rh.ray.time = 0.0f;
-  rh.ray.mask = 0xFFFFFFFFu;
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
+  RTCRayHit rh = embree_ray_hit(r.origin, r.dir, r.tmin, r.tmax);
   if (r.kind == RayKind::Occlusion) {
     rtcOccluded1(scene, &context, &rh.ray);
     r.occluded = rh.ray.tfar < 0.0f;
     return;
   }
-  rh.hit.geomID = kInvalid;
-  rh.hit.instID[0] = kInvalid;
   rtcIntersect1(scene, &context, &rh);
   r.geom_id = rh.hit.geomID;
   r.inst_id = rh.hit.instID[0];
@@ -77,20 +65,7 @@ void trace_packet(RTCScene scene, LoggedRay* rays, int n) {
   for (int i = 0; i < W; ++i) {
     const LoggedRay& r = rays[i < n ? i : 0];
     valid[i] = i < n ? -1 : 0;
-    p.ray.org_x[i] = r.origin.x;
-    p.ray.org_y[i] = r.origin.y;
-    p.ray.org_z[i] = r.origin.z;
-    p.ray.dir_x[i] = r.dir.x;
-    p.ray.dir_y[i] = r.dir.y;
-    p.ray.dir_z[i] = r.dir.z;
-    p.ray.tnear[i] = r.tmin;
-    p.ray.tfar[i] = r.tmax;
-    p.ray.time[i] = 0.0f;
-    p.ray.mask[i] = 0xFFFFFFFFu;
-    p.ray.id[i] = uint32_t(i);
-    p.ray.flags[i] = 0;
-    p.hit.geomID[i] = kInvalid;
-    p.hit.instID[0][i] = kInvalid;
+    set_embree_lane(p, i, r.origin, r.dir, r.tmin, r.tmax);
   }
   if (rays[0].kind == RayKind::Occlusion) {
     Packet<W>::occluded(valid, scene, &context, &p);

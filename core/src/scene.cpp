@@ -1,5 +1,6 @@
 #include "torrance/scene.h"
 
+#include "embree_rays.h"
 #include "ray_queries.h"
 #include "scene_internal.h"
 
@@ -326,39 +327,13 @@ void Scene::bounds(Vec3& lo, Vec3& hi) const {
 }
 
 bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
-  RTCRayHit rh;
-  rh.ray.org_x = ray.origin.x;
-  rh.ray.org_y = ray.origin.y;
-  rh.ray.org_z = ray.origin.z;
-  rh.ray.dir_x = ray.dir.x;
-  rh.ray.dir_y = ray.dir.y;
-  rh.ray.dir_z = ray.dir.z;
-  rh.ray.tnear = ray.tmin;
-  rh.ray.tfar = ray.tmax;
-  rh.ray.time = 0.0f;
-  rh.ray.mask = 0xFFFFFFFFu;
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHit rh = embree_ray_hit(ray.origin, ray.dir, ray.tmin, ray.tmax);
   ray_queries::intersect(scene_of(scene_), rh);
   return surface_hit(&rh, ray.dir, hit);
 }
 
 bool Scene::occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax) const {
-  RTCRay ray;
-  ray.org_x = origin.x;
-  ray.org_y = origin.y;
-  ray.org_z = origin.z;
-  ray.dir_x = dir.x;
-  ray.dir_y = dir.y;
-  ray.dir_z = dir.z;
-  ray.tnear = tmin;
-  ray.tfar = tmax;
-  ray.time = 0.0f;
-  ray.mask = 0xFFFFFFFFu;
-  ray.id = 0;
-  ray.flags = 0;
+  RTCRay ray = embree_ray(origin, dir, tmin, tmax);
   return ray_queries::occluded(scene_of(scene_), ray);
 }
 

@@ -1,6 +1,8 @@
 // Hits from Embree's answers (Scene::intersect, Scene::intersect_packet): the hit triangle's
 // corners (instances placed as the flattening export would), position, normals and UV frame.
 #include "ray_queries.h"
+
+#include "embree_rays.h"
 #include "scene_internal.h"
 
 #include <stdexcept>
@@ -82,20 +84,7 @@ void Scene::intersect_packet(const Ray* rays, int n, SurfaceHit* hits, bool* fou
   for (int i = 0; i < kPacketSize; ++i) {
     const Ray& r = rays[i < n ? i : 0];
     valid[i] = i < n ? -1 : 0;
-    packet.ray.org_x[i] = r.origin.x;
-    packet.ray.org_y[i] = r.origin.y;
-    packet.ray.org_z[i] = r.origin.z;
-    packet.ray.dir_x[i] = r.dir.x;
-    packet.ray.dir_y[i] = r.dir.y;
-    packet.ray.dir_z[i] = r.dir.z;
-    packet.ray.tnear[i] = r.tmin;
-    packet.ray.tfar[i] = r.tmax;
-    packet.ray.time[i] = 0.0f;
-    packet.ray.mask[i] = 0xFFFFFFFFu;
-    packet.ray.id[i] = uint32_t(i);
-    packet.ray.flags[i] = 0;
-    packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
-    packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    set_embree_lane(packet, i, r.origin, r.dir, r.tmin, r.tmax);
   }
   ray_queries::intersect_coherent(scene_of(scene_), valid, packet);
   for (int i = 0; i < n; ++i) {
