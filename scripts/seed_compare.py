@@ -19,7 +19,8 @@ so before/after figures of a lever come from one run. --save DIR keeps every ima
 DIR/<scene>_<engine>.npy (where the error sits, fireflies included).
 
     scripts/blender -b --factory-startup --python-exit-code 1 --python scripts/seed_compare.py -- \
-        [--spp 64] [--seeds 10-17] [--variant off:FIELD=0 ...] [--save DIR] [--maps DIR] [--no-cycles] SCENE ...
+        [--spp 64] [--seeds 10-17] [--variant off:FIELD=0 ...] [--save DIR] [--maps DIR] \
+        [--no-cycles] SCENE ...
 """
 
 import argparse
