@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstring>
 #include <set>
 
@@ -115,6 +116,59 @@ TEST(SobolSampler, DecorrelatedAcrossPixelsSeedsAndGroups) {
   EXPECT_NE(pa, a.next_4d());
   SobolSampler again(1, 0, 0);
   EXPECT_EQ(pa, again.next_4d());
+}
+
+// Rare events must not come in clumps: for a small disk in any two of a path's dimensions (two
+// of one point, or of different points: light choice against lobe choice, one bounce's direction
+// against the next, the pixel position against the first direction), the number of a pixel's N
+// samples inside it varies from pixel to pixel no more than with independent random numbers
+// (binomial variance), and much less within one point. A sampler whose points repeat or pair up
+// across calls (a shared scramble or shuffle) puts a firefly-making event into some pixels many
+// times and into others never. Deterministic (fixed seeds); the ratio is ~1 for independent numbers.
+double disk_count_variance_ratio(int group_a, int dim_a, int group_b, int dim_b, float area) {
+  constexpr int kSamples = 64, kPixels = 3000;
+  const float r = std::sqrt(area / kPi);
+  Rng centres(7, 0, 1);
+  double squared_error = 0.0;
+  for (uint32_t pixel = 0; pixel < kPixels; ++pixel) {
+    const float cx = r + (1.0f - 2.0f * r) * centres.next_1d(), cy = r + (1.0f - 2.0f * r) * centres.next_1d();
+    int inside = 0;
+    for (uint32_t i = 0; i < kSamples; ++i) {
+      SobolSampler s(pixel, i, 4);
+      glm::vec4 points[6];
+      for (auto& p : points) p = s.next_4d();
+      const float x = points[group_a][dim_a] - cx, y = points[group_b][dim_b] - cy;
+      inside += x * x + y * y < r * r;
+    }
+    squared_error += sqr(float(inside) / kSamples - area);
+  }
+  return squared_error / kPixels / (area * (1.0 - area) / kSamples);
+}
+
+TEST(SobolSampler, RareEventsAcrossDimensionsAreNoMoreClumpedThanRandom) {
+  const float area = 4.0f / 64;  // 4 of the 64 samples expected inside
+  // Groups as the path tracer draws them: 0 pixel, then per vertex 1 light, 2 BSDF, 3 light, 4 BSDF.
+  struct Pair {
+    int ga, da, gb, db;
+    const char* what;
+  };
+  const Pair across[] = {{1, 0, 2, 0, "light choice x lobe choice"},
+                         {2, 1, 4, 1, "direction x next direction"},
+                         {2, 2, 4, 2, "direction x next direction (2nd dim)"},
+                         {0, 0, 2, 1, "pixel x x first direction"},
+                         {2, 3, 4, 3, "roulette x next roulette"},
+                         {1, 1, 3, 1, "light position x next light position"}};
+  for (const Pair& p : across) {
+    const double ratio = disk_count_variance_ratio(p.ga, p.da, p.gb, p.db, area);
+    std::printf("  %-40s variance / binomial = %.3f\n", p.what, ratio);
+    EXPECT_LT(ratio, 0.9) << p.what;
+  }
+  const Pair within[] = {{2, 1, 2, 2, "direction (dims 1, 2 of a point)"}, {2, 0, 2, 3, "lobe x roulette"}};
+  for (const Pair& p : within) {
+    const double ratio = disk_count_variance_ratio(p.ga, p.da, p.gb, p.db, area);
+    std::printf("  %-40s variance / binomial = %.3f\n", p.what, ratio);
+    EXPECT_LT(ratio, 0.5) << p.what;
+  }
 }
 
 TEST(SobolSampler, IntegratesSmoothFunctionsFarBetterThanRandom) {
