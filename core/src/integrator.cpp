@@ -1,7 +1,4 @@
 #include "torrance/integrator.h"
-#include "torrance/ab_switch.h"
-
-#include <cstdlib>
 
 #include "film.h"
 #include "path_tracer.h"
@@ -96,7 +93,6 @@ class FlushDenormals {  // FTZ/DAZ for the render threads: denormals cost a lot 
 }  // namespace
 
 RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCallbacks& callbacks) {
-  ab_old() = std::getenv("TORRANCE_AB_OLD") != nullptr;
   settings.validate();
   const auto start = std::chrono::steady_clock::now();
   const Camera camera(scene.camera(), settings.width, settings.height, settings.pixel_aspect_x,

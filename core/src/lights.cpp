@@ -1,5 +1,4 @@
 #include "torrance/lights.h"
-#include "torrance/ab_switch.h"
 
 #include "torrance/light_choice.h"
 
@@ -189,7 +188,7 @@ float PointLight::importance(const Vec3& p, const Vec3& n) const {
 bool PointLight::hit(const Vec3& p, const Vec3&, const Vec3& dir, float t_max, LightHit& out) const {
   if (radius_ <= 0.0f) return false;
   const Vec3 d = position_ - p;
-  if (!ab_old()) {
+  {
     // The disk lies in the sphere of radius r about the centre: a ray whose line passes farther
     // from the centre misses it. A cheap conservative test before the exact one, with margins
     // for rounding (the cancellation in d2 - along^2) and |dir| ~ 1: hits are found as before.

@@ -42,7 +42,6 @@ Vec3 PrincipledBsdf::fresnel(float cos_ih) const {
 }
 
 float PrincipledBsdf::specular_probability(const Vec3& wo) const {
-  if (ab_old()) return lobe_mixture::specular_probability(luminance(fresnel(wo.z)), luminance(diffuse_color_));
   // Without a diffuse lobe the answer is 1 whatever F is: no Fresnel then (metals, mirrors).
   if (!(diffuse_luminance_ > 0.0f)) return 1.0f;
   return lobe_mixture::specular_probability(luminance(fresnel(wo.z)), diffuse_luminance_);

@@ -5,7 +5,6 @@
 // mirror_reflectance(wo). Only the models' eval() and lobe weights differ.
 #pragma once
 
-#include "torrance/ab_switch.h"
 #include "torrance/bsdf.h"
 #include "torrance/microfacet.h"
 #include "torrance/sampling.h"
@@ -56,7 +55,7 @@ BsdfSample sample(const Bsdf& bsdf, const Vec3& wo, float u_lobe, const Vec2& u,
     s.wi = sample_cosine_hemisphere(u);
   }
   if (s.wi.z <= 0.0f) return BsdfSample{};
-  s.pdf = ab_old() ? pdf(bsdf, wo, s.wi, alpha) : pdf_given(bsdf, wo, s.wi, alpha, p_spec);
+  s.pdf = pdf_given(bsdf, wo, s.wi, alpha, p_spec);
   if (!(s.pdf > 0.0f)) return BsdfSample{};
   s.weight = bsdf.eval(wo, s.wi) / s.pdf;
   return s;
