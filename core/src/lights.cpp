@@ -188,6 +188,13 @@ float PointLight::importance(const Vec3& p, const Vec3& n) const {
 bool PointLight::hit(const Vec3& p, const Vec3&, const Vec3& dir, float t_max, LightHit& out) const {
   if (radius_ <= 0.0f) return false;
   const Vec3 d = position_ - p;
+  {
+    // The disk lies in the sphere of radius r about the centre: a ray whose line passes farther
+    // from the centre misses it. A cheap conservative test before the exact one, with margins
+    // for rounding (the cancellation in d2 - along^2) and |dir| ~ 1: hits are found as before.
+    const float along = glm::dot(d, dir), d2 = glm::dot(d, d);
+    if (d2 - along * along > 1.01f * radius_ * radius_ + 1e-5f * d2) return false;
+  }
   const float dist = glm::length(d);
   if (!(dist > radius_)) return false;
   const Vec3 normal = -d / dist;  // the disk faces p

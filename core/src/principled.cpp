@@ -23,6 +23,7 @@ PrincipledBsdf::PrincipledBsdf(const Material& m) {
   // specular lobe 1 - transmission (1 - metallic); the rest is glass (MaterialBsdf, glass.h).
   const float transmission = clamp01(m.transmission);
   diffuse_color_ = (1.0f - metallic) * (1.0f - transmission) * base;
+  diffuse_luminance_ = luminance(diffuse_color_);
   specular_weight_ = 1.0f - transmission * (1.0f - metallic);
   f0_ = std::min(0.08f * std::max(m.specular, 0.0f), 0.99f);
   const float sqrt_f0 = std::sqrt(f0_);
@@ -41,9 +42,9 @@ Vec3 PrincipledBsdf::fresnel(float cos_ih) const {
 }
 
 float PrincipledBsdf::specular_probability(const Vec3& wo) const {
-  const float spec = luminance(fresnel(wo.z));
-  const float diff = luminance(diffuse_color_);
-  return lobe_mixture::specular_probability(spec, diff);
+  // Without a diffuse lobe the answer is 1 whatever F is: no Fresnel then (metals, mirrors).
+  if (!(diffuse_luminance_ > 0.0f)) return 1.0f;
+  return lobe_mixture::specular_probability(luminance(fresnel(wo.z)), diffuse_luminance_);
 }
 
 LobeEval PrincipledBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {

@@ -23,13 +23,19 @@ inline float specular_probability(float spec, float diff) {
   return std::min(std::max(spec / (spec + diff), 0.1f), 0.9f);
 }
 
+// The mixture's pdf given p_spec = bsdf.specular_probability(wo) (sample() has it already).
 template <typename Bsdf>
-float pdf(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi, float alpha) {
+float pdf_given(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi, float alpha, float p_spec) {
   if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
-  const float p_spec = bsdf.specular_probability(wo);
   float pdf = (1.0f - p_spec) * cosine_hemisphere_pdf(wi.z);
   if (!bsdf.has_delta() && p_spec > 0.0f) pdf += p_spec * ggx::reflected_pdf(wo, glm::normalize(wo + wi), alpha);
   return pdf;
+}
+
+template <typename Bsdf>
+float pdf(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi, float alpha) {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
+  return pdf_given(bsdf, wo, wi, alpha, bsdf.specular_probability(wo));
 }
 
 template <typename Bsdf>
@@ -49,7 +55,7 @@ BsdfSample sample(const Bsdf& bsdf, const Vec3& wo, float u_lobe, const Vec2& u,
     s.wi = sample_cosine_hemisphere(u);
   }
   if (s.wi.z <= 0.0f) return BsdfSample{};
-  s.pdf = pdf(bsdf, wo, s.wi, alpha);
+  s.pdf = pdf_given(bsdf, wo, s.wi, alpha, p_spec);
   if (!(s.pdf > 0.0f)) return BsdfSample{};
   s.weight = bsdf.eval(wo, s.wi) / s.pdf;
   return s;

@@ -39,6 +39,7 @@ class PrincipledBsdf {
 
  private:
   Vec3 diffuse_color_;  // (1 - metallic) (1 - transmission) * base colour
+  float diffuse_luminance_;  // luminance(diffuse_color_), for the lobe choice
   float specular_weight_;  // 1 - transmission (1 - metallic): the glass takes the rest
   Vec3 cspec0_;
   float roughness_, alpha_, eta_, f0_;
