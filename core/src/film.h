@@ -33,6 +33,12 @@ class Film {
   }
 
   bool converged(int x, int y) const { return adaptive_ && converged_[size_t(y) * width_ + x]; }
+  // The pixel's combined colour so far (0 before any sample).
+  Vec3 mean(int x, int y) const {
+    const double* acc = &sums_[(size_t(y) * width_ + x) * stride_];
+    const double count = acc[stride_ - 1];
+    return count > 0.0 ? Vec3(float(acc[0] / count), float(acc[1] / count), float(acc[2] / count)) : Vec3(0.0f);
+  }
 
   // The convergence test of every pixel still sampled (Cycles' film_adaptive_sampling_convergence_check,
   // the per-pixel error of Dammertz et al. 2010, "A hierarchical automatic stopping condition for

@@ -146,7 +146,8 @@ void GuidePathRecorder::flush() {
       if (v.throughput[c] > 0.0f) incident[c] = v.radiance[c] / v.throughput[c];
       if (v.throughput_before[c] > 0.0f) reflected[c] = v.radiance[c] / v.throughput_before[c];
     }
-    field_->record(v.position, v.dir, luminance(incident) / v.pdf, luminance(reflected), v.bsdf_pdf, v.guide_pdf);
+    field_->record(v.position, v.dir, weight_ * luminance(incident) / v.pdf, weight_ * luminance(reflected), v.bsdf_pdf,
+                   v.guide_pdf);
   }
   count_ = 0;
 }

@@ -160,6 +160,9 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
           for (int x = tile.x0; x < tile.x1; ++x) {
             if (adaptive && film.converged(x - window[0], y - window[1])) continue;
             const uint32_t pixel = uint32_t(y) * uint32_t(settings.width) + uint32_t(x);
+            // Guiding learns relative error: the pixel's estimate from earlier passes (only this thread
+            // adds to it during the pass).
+            const float guide_weight = ctx.guide_training ? pixel_weight(film.mean(x - window[0], y - window[1])) : 1.0f;
             for (int s0 = first_sample; s0 < first_sample + num_samples; s0 += Scene::kPacketSize) {
               // Up to kPacketSize samples at once: their camera rays in one packet, then each path.
               const int n = std::min(Scene::kPacketSize, first_sample + num_samples - s0);
@@ -183,7 +186,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
               }
               for (int i = 0; i < n; ++i) {
                 const int s = s0 + i;
-                PathRadiance r = trace(ctx, rays[i], *samplers[i], packet ? &first[i] : nullptr);
+                PathRadiance r = trace(ctx, rays[i], *samplers[i], packet ? &first[i] : nullptr, guide_weight);
                 if (!is_finite(r.combined())) {  // never expected; counted so tests can prove it never happens
                   ++bad;
                   const float alpha = r.alpha;

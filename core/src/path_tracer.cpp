@@ -106,10 +106,10 @@ float bump_shadowing(Vec3 n_smooth, const Vec3& n_mapped, const Vec3& wi) {
 // bounce (at most max_transparent_bounces times per segment: then the path ends), keeping the
 // previous vertex for MIS; shadow rays pass such surfaces (shadow_transmittance).
 template <bool kTextures, bool kSplitLobes, bool kHittable, bool kGlass, bool kAlpha, bool kMixtures>
-PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, const FirstHit* first) {
+PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, const FirstHit* first, float guide_weight) {
   const Lights& lights = ctx.lights;
   PathRadiance out;
-  GuidePathRecorder recorder(ctx.guide_training ? ctx.guide : nullptr);  // training: records at the end
+  GuidePathRecorder recorder(ctx.guide_training ? ctx.guide : nullptr, guide_weight);  // training: records at the end
   Vec3 throughput(1.0f);
   Vec3 diffuse_share(0.0f);  // per channel, of the energy that left the first hit
   Vec3 prev_position(0.0f), prev_normal(0.0f);

@@ -45,7 +45,8 @@ struct FirstHit {
 };
 
 // first: the camera ray's answer, or nullptr to trace it.
-using TraceFn = PathRadiance (*)(const PathContext&, Ray, SobolSampler&, const FirstHit* first);
+// guide_weight: what the path records for guiding is multiplied by it (pixel_weight, guiding.h).
+using TraceFn = PathRadiance (*)(const PathContext&, Ray, SobolSampler&, const FirstHit* first, float guide_weight);
 
 // The path tracer for the scene's features under the settings (specialize false: the generic
 // one, which has every feature).

@@ -138,6 +138,30 @@ TEST(Guiding, EachLeafChoosesTheBsdfFractionOfLeastSecondMoment) {
   }
 }
 
+TEST(Guiding, RecordsAreWeightedByTheirPixelsRelativeError) {
+  EXPECT_FLOAT_EQ(pixel_weight(Vec3(0.0f)), 10.0f);  // 1 / sqrt(0 + 0.01)
+  EXPECT_NEAR(pixel_weight(Vec3(10.0f)), 1.0f / std::sqrt(100.01f), 1e-6f);
+  // Paths of a bright pixel (estimate 10) find radiance 10 from above, paths of a dark one
+  // (estimate 0.1) find 0.1 from below: by absolute radiance below would get 1 % of the density,
+  // by relative error (each divided by sqrt(estimate^2 + 0.01)) 10 / sqrt(100.01) against
+  // 0.1 / sqrt(0.02): 0.71 of above's.
+  const Vec3 up(0.0f, 0.0f, 1.0f), down(0.0f, 0.0f, -1.0f);
+  GuidingField field(Vec3(-1.0f), Vec3(1.0f));
+  for (int i = 0; i < 100; ++i) {
+    for (const float value : {10.0f, 0.1f}) {
+      GuidePathRecorder path(&field, pixel_weight(Vec3(value)));
+      path.add_vertex(Vec3(0.0f), value > 1.0f ? up : down, Vec3(1.0f), Vec3(1.0f), 1.0f, 1.0f, 0.0f);
+      path.add_contribution(Vec3(value));
+    }  // recorded here
+  }
+  field.refine();
+  const GuideDistribution guide = field.at(Vec3(0.0f));
+  ASSERT_TRUE(guide);
+  const float ratio = guide.pdf(down) / guide.pdf(up);
+  std::printf("guide density below / above: %.3f\n", ratio);
+  EXPECT_NEAR(ratio, 0.1f / std::sqrt(0.02f) / (10.0f / std::sqrt(100.01f)), 0.02f);
+}
+
 TEST(Guiding, NothingRecordedMeansNoGuide) {
   GuidingField field(Vec3(-1.0f), Vec3(1.0f));
   EXPECT_FALSE(field.at(Vec3(0.0f)));

@@ -13,6 +13,7 @@
 #include "torrance/math.h"
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -131,14 +132,25 @@ class GuidingField {
   int iterations_ = 0;
 };
 
+// What a path records is weighted by its pixel's relative-error weight: 1 / sqrt(Y^2 + 0.01), Y the
+// luminance of the pixel's estimate so far (its mean over earlier passes; 0 before any), the
+// weight relMSE = mean((I - R)^2 / (R^2 + 0.01)) gives the pixel's squared error. The guide then
+// learns, and the BSDF fraction minimises, the relative error rather than the absolute one, which
+// bright, simply lit pixels dominate (dark caustics lost their guiding to them).
+inline float pixel_weight(const Vec3& pixel_mean) {
+  const float y = luminance(pixel_mean);
+  return 1.0f / std::sqrt(y * y + 0.01f);
+}
+
 // The vertices of one path while it is traced, for GuidingField::record: each gets every
 // contribution found after it, and at the end (the destructor) records the radiance that reached it
 // (contributions / the throughput after its own bounce). Unless the field learns direct light,
 // what the last vertex's ray finds on an emitter (before reached_next_vertex) is left out for
 // that vertex. Disabled (field null): does nothing.
+// weight: the path's pixel_weight(), by which everything it records is multiplied.
 class GuidePathRecorder {
  public:
-  explicit GuidePathRecorder(GuidingField* field) : field_(field) {}
+  explicit GuidePathRecorder(GuidingField* field, float weight = 1.0f) : field_(field), weight_(weight) {}
   GuidePathRecorder(const GuidePathRecorder&) = delete;
   GuidePathRecorder& operator=(const GuidePathRecorder&) = delete;
   ~GuidePathRecorder() { flush(); }
@@ -165,6 +177,7 @@ class GuidePathRecorder {
     float pdf, bsdf_pdf, guide_pdf;
   };
   GuidingField* field_;
+  float weight_;
   int count_ = 0;
   bool direct_ = false;  // contributions now are emitters seen from the last vertex
   std::array<Vertex, kMaxVertices> vertices_;
