@@ -1,7 +1,6 @@
 """The Blender 4.x speed/error benchmark's own logic, without rendering (scripts/benchmark
 --blender 4.5; docs/blender4.md): which Blender, report and reference directories a version gets,
 the Cycles variants it compares, and the report's ratio against each variant."""
-import importlib.util
 import json
 import os
 import subprocess
@@ -10,14 +9,6 @@ from pathlib import Path
 from torrance_tools import blender_versions
 
 REPO = Path(__file__).resolve().parents[3]
-
-
-def load_report_module():
-    spec = importlib.util.spec_from_file_location("benchmark_report",
-                                                  REPO / "scripts" / "benchmark_report.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
 
 
 def test_directories_and_variants_by_blender_version():
@@ -54,15 +45,14 @@ def rows(seconds_per_spp, errors):
                  block_mean=0.0, finite=True, seeds=1) for i, e in enumerate(errors)]
 
 
-def test_report_gives_a_ratio_against_each_cycles_variant(tmp_path):
+def test_report_gives_a_ratio_against_each_cycles_variant(tmp_path, benchmark_report):
     errors = [0.1 / 2 ** i for i in range(5)]          # relMSE ∝ 1/spp for every engine
     scene = dict(title="t", bounces=8, reference=dict(samples=1024, noise_rel_mse=1e-6,
                                                       blender="4.5.15"),
                  torrance=rows(0.2, errors), cycles=rows(0.1, errors),
                  cycles_guiding=rows(0.4, errors), ablation={})
     variants = {"cycles": {"use_guiding": False}, "cycles_guiding": {"use_guiding": True}}
-    report = load_report_module()
-    ratios = report.variant_ratios(scene, list(variants))
+    ratios = benchmark_report.variant_ratios(scene, list(variants))
     assert abs(ratios["cycles"]["geomean"] - 2.0) < 1e-9
     assert abs(ratios["cycles_guiding"]["geomean"] - 0.5) < 1e-9
     res = dict(made="now", command="scripts/benchmark --blender 4.5", torrance_commit="x",
@@ -75,7 +65,7 @@ def test_report_gives_a_ratio_against_each_cycles_variant(tmp_path):
                levers=[], blender_startup_seconds=1.0, total_seconds=60.0,
                scenes={"sphere_chart": scene})
     (tmp_path / "results.json").write_text(json.dumps(res))
-    path, _summary = report.write_report(str(tmp_path))
+    path, _summary = benchmark_report.write_report(str(tmp_path))
     text = Path(path).read_text()
     assert "# Speed against error: Torrance vs Cycles 4.5.15" in text
     assert "model PRINCIPLED_V2 (Cycles' Principled v2)" in text

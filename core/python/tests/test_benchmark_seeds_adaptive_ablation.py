@@ -2,21 +2,12 @@
 (never a reference's own), a point's average over its seeds, the ladders and the curve budget,
 merging a run of some scenes into an earlier one, and the report's summary with and without
 adaptive sampling, its ablation tables and its rays/s table, from a synthetic results.json."""
-import importlib.util
 import json
 from pathlib import Path
 
 from torrance_tools import benchmark_points, benchmark_results
 
 REPO = Path(__file__).resolve().parents[3]
-
-
-def load_report_module():
-    spec = importlib.util.spec_from_file_location("benchmark_report",
-                                                  REPO / "scripts" / "benchmark_report.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
 
 
 def test_seeds_are_disjoint_from_the_references_and_the_same_list_each_time():
@@ -115,7 +106,8 @@ def scene_data(name):
                 rays=measure_stand_in(name), run=dict(made="t0", commit="abc1234", seconds=100.0))
 
 
-def test_report_has_adaptive_ratios_ablation_tables_and_rays_per_second(tmp_path):
+def test_report_has_adaptive_ratios_ablation_tables_and_rays_per_second(tmp_path,
+                                                                         benchmark_report):
     res = dict(made="now", command="scripts/benchmark", torrance_commit="x", torrance_dirty=False,
                blender="3.4.1", machine=dict(cpu="cpu", cores=2, system="linux",
                                              load_average=[1.0, 1.0, 1.0]),
@@ -129,8 +121,7 @@ def test_report_has_adaptive_ratios_ablation_tables_and_rays_per_second(tmp_path
                blender_startup_seconds=1.0, total_seconds=200.0,
                scenes={n: scene_data(n) for n in ("water", "glint")})
     (tmp_path / "results.json").write_text(json.dumps(res))
-    report = load_report_module()
-    path, summary = report.write_report(str(tmp_path))
+    path, summary = benchmark_report.write_report(str(tmp_path))
     text = Path(path).read_text()
     print(text)
     assert abs(summary["water"]["geomean"] - 2.0) < 1e-9
