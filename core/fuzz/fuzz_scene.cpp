@@ -250,10 +250,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         RenderResult r;
         if (clearly([&] { r = render(scene, s); })) {
           for (float v : r.image.rgba)
-            if (!std::isfinite(v)) {
-              std::fprintf(stderr, "render gave a non-finite pixel\n");
-              std::abort();
-            }
+            if (!std::isfinite(v)) torrance_fuzz::fail("render gave a non-finite pixel");
         }
       }
     }
@@ -267,7 +264,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     for (uint32_t i = 0; i < scene.num_materials(); ++i) {
       const Material m = scene.textured_material(i, hit.uv, 0.01f);
       const Vec3 n = scene.normal_mapped(i, hit, Vec3(0.0f, 0.0f, 1.0f), 0.01f);
-      if (!is_finite(m.base_color) || !is_finite(n)) std::abort();
+      if (!is_finite(m.base_color) || !is_finite(n)) torrance_fuzz::fail("shading gave a non-finite colour or normal");
     }
   });
   return 0;

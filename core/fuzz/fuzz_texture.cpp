@@ -34,7 +34,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::fclose(f);
   torrance_fuzz::clearly([&] {
     const ImageData image = read_image(path);
-    if (image.pixels.size() != size_t(image.width) * image.height * image.channels) std::abort();
+    if (image.pixels.size() != size_t(image.width) * image.height * image.channels)
+      torrance_fuzz::fail("read_image: pixel count differs from width x height x channels");
   });
   torrance_fuzz::clearly([&] {
     const Texture t = Texture::from_file(path, data[0] & 8 ? ColorSpace::SRGB : ColorSpace::Linear,
@@ -42,7 +43,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     for (float u : {0.0f, 0.3f, -7.5f, 1e30f, NAN})
       for (float footprint : {0.0f, 0.01f, 1e9f})
         for (float v : {t.lookup(Vec2(u, 0.5f), footprint).x, t.lookup(Vec2(0.25f, u), footprint).w})
-          if (!std::isfinite(v)) std::abort();
+          if (!std::isfinite(v)) torrance_fuzz::fail("texture lookup gave a non-finite value");
   });
   std::remove(path.c_str());
   return 0;
