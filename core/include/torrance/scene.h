@@ -127,7 +127,8 @@ class Scene {
   // table per instance (count * table_size). Tables are stored once per distinct content.
   // A matrix with NaN/Inf, an entry beyond 1e12, or placing the prototype's vertex bounds beyond
   // 1e12 from the origin is rejected (std::invalid_argument), as is a request beyond the memory
-  // budget (limits.h); a singular one (zero scale) leaves its instance hidden until
+  // budget (limits.h); a singular one (zero scale, or below 1e-5 in some direction: too thin for
+  // Embree to trace it in object space) leaves its instance hidden until
   // set_instance_transforms gives it a regular matrix (see num_hidden_instances). Like add_mesh,
   // add_prototype/add_instances/set_instance_transforms/remove_instances throw
   // std::runtime_error while a render uses the scene (begin_render .. end_render).
@@ -138,7 +139,7 @@ class Scene {
   void remove_instances(const int64_t* ids, size_t count);
   size_t num_prototypes() const { return prototypes_.size(); }
   size_t num_instances() const { return live_instances_; }          // added and not removed
-  size_t num_hidden_instances() const { return hidden_instances_; }  // of those, singular
+  size_t num_hidden_instances() const { return hidden_instances_; }  // of those, (near-)singular
   size_t num_material_tables() const;  // distinct (prototype, material table) pairs
 
   // An HDRI world: texture `id` as an equirectangular environment, times strength.

@@ -581,6 +581,28 @@ def test_instance_transform_update_and_removal():
     assert tc.render(scene, settings).image[..., 0].max() == 0.0
 
 
+def test_nearly_flat_instances_are_hidden_not_traced():
+    """Embree traces an instance in object space; one thinner than 1e-5 of its prototype moves a
+    camera ray's origin beyond the range Embree accepts (Debian's Embree asserts: Blender would
+    abort). It is hidden like a zero-scaled one; a thin one within the bound still renders."""
+    scene = tc.Scene()
+    scene.add_material(emission=(1, 1, 1), emission_strength=2.0)
+    pos, tris, *_ = _tent()
+    proto = scene.add_prototype(pos, tris)
+    cam = np.eye(4)
+    cam[2, 3] = 5.0
+    scene.set_camera(cam, lens=2000.0)
+    settings = tc.RenderSettings(width=4, height=4, samples=1, max_bounces=1)
+    thin, flat = np.eye(4), np.eye(4)
+    thin[2, 2], flat[2, 2] = 1e-4, 1e-20
+    first = scene.add_instances(proto, np.stack([thin, flat]), [0])
+    assert scene.num_hidden_instances == 1
+    assert tc.render(scene, settings).image[..., 0].mean() == pytest.approx(2.0, rel=1e-4)
+    scene.set_instance_transforms([first], flat[None])  # both too thin now
+    assert scene.num_hidden_instances == 2
+    assert tc.render(scene, settings).image[..., 0].max() == 0.0
+
+
 def test_instance_input_errors():
     scene = tc.Scene()
     scene.add_material()

@@ -164,6 +164,7 @@ class InstanceExport:
                                    f"many emitting instances make light sampling noisier)")
         hidden = self.scene.num_hidden_instances
         if hidden:
-            self.reporter.info(f"{hidden} instance(s) with zero scale were not rendered")
+            self.reporter.info(f"{hidden} instance(s) with zero scale (below 1e-5 in some "
+                               f"direction) were not rendered")
         stats.objects += instances - hidden
         stats.triangles += self.scene.num_triangles
