@@ -239,13 +239,22 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         RenderSettings s;
         s.width = in.ConsumeIntegralInRange<int>(1, 4);
         s.height = in.ConsumeIntegralInRange<int>(1, 4);
-        s.samples = in.ConsumeIntegralInRange<int>(1, 2);
+        // Mostly 1-2 samples; sometimes enough for adaptive checks and guiding's training passes.
+        s.samples = in.ConsumeIntegralInRange<int>(0, 7) == 0 ? in.ConsumeIntegralInRange<int>(3, 40)
+                                                               : in.ConsumeIntegralInRange<int>(1, 2);
         s.max_bounces = in.ConsumeIntegralInRange<int>(0, 4);
         s.passes = in.ConsumeIntegral<uint32_t>() & 0x1ff;
         s.brdf_model = in.ConsumeBool() ? BrdfModel::Principled : BrdfModel::Paper;
         s.light_selection = in.ConsumeBool() ? LightSelection::Uniform : LightSelection::Contribution;
         s.sobol = in.ConsumeBool();
         s.specialize = in.ConsumeBool();
+        s.camera_packets = in.ConsumeBool();
+        s.guiding = in.ConsumeBool();
+        if (in.ConsumeBool()) s.guiding_training_fraction = any_float(in);
+        if (in.ConsumeBool()) s.adaptive_threshold = any_float(in);
+        if (in.ConsumeBool()) s.adaptive_min_samples = in.ConsumeIntegralInRange<int>(-1, 20);
+        if (in.ConsumeBool()) s.clamp_direct = any_float(in);
+        if (in.ConsumeBool()) s.clamp_indirect = any_float(in);
         s.threads = 1;
         RenderResult r;
         if (clearly([&] { r = render(scene, s); })) {

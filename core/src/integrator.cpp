@@ -72,7 +72,10 @@ int RenderSettings::effective_adaptive_min_samples() const {
   if (adaptive_min_samples > 0) return std::max(4, adaptive_min_samples);
   if (!(adaptive_threshold > 0.0f)) return 0;
   // Cycles 3.4's guess: threshold 0.1 -> 32, 0.01 -> 64, 0.001 -> 128.
-  return std::max(4, int(std::ceil(16.0f / std::pow(adaptive_threshold, 0.3f))));
+  // Capped where it cannot matter (no render takes 2^24 samples): a tiny threshold (1e-40 gives
+  // 1e13) must not overflow the int.
+  const float automatic = std::ceil(16.0f / std::pow(adaptive_threshold, 0.3f));
+  return std::max(4, int(std::min(automatic, float(1 << 24))));
 }
 
 namespace {

@@ -710,6 +710,9 @@ def test_adaptive_sampling_time_limit_and_clamping_settings():
                                  adaptive_min_samples=8, time_limit=0.0, clamp_direct=0.0,
                                  clamp_indirect=0.0)
     assert settings.effective_adaptive_min_samples == 8
+    # Cycles' automatic minimum, capped at 2^24 for a tiny threshold (once an int overflow).
+    assert tc.RenderSettings(adaptive_threshold=0.01).effective_adaptive_min_samples == 64
+    assert tc.RenderSettings(adaptive_threshold=1e-40).effective_adaptive_min_samples == 1 << 24
     adaptive = tc.render(scene, settings)
     assert adaptive.samples_spent == int(adaptive.sample_counts.sum()) < plain.samples_spent
     assert adaptive.sample_counts.min() == 16       # flat world pixels: stopped at the first check
