@@ -55,4 +55,12 @@ BsdfSample CookTorranceBsdf::sample(const Vec3& wo, float u_lobe, const Vec2& u)
   return lobe_mixture::sample(*this, wo, u_lobe, u, alpha_);
 }
 
+float CookTorranceBsdf::pdf_given(const Vec3& wo, const Vec3& wi, float p_spec) const {
+  return lobe_mixture::pdf_given(*this, wo, wi, alpha_, p_spec);
+}
+
+BsdfSample CookTorranceBsdf::sample_given(const Vec3& wo, float u_lobe, const Vec2& u, float p_spec) const {
+  return lobe_mixture::sample_given(*this, wo, u_lobe, u, alpha_, p_spec);
+}
+
 }  // namespace torrance

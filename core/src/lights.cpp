@@ -95,6 +95,8 @@ SunLight::SunLight(const Vec3& direction, float strength, const Vec3& color, flo
   irradiance_ = scaled_color(color, strength, "sun color");
   const float s = std::sin(std::min(angle, kPi) * 0.25f);
   one_minus_cos_ = 2.0f * s * s;
+  sin_half_ = std::sqrt(one_minus_cos_ * (2.0f - one_minus_cos_));
+  luminance_ = luminance(irradiance_);
 }
 
 LightSample SunLight::sample(const Vec3&, const Vec3&, const Vec2& u) const {
@@ -110,8 +112,7 @@ LightSample SunLight::sample(const Vec3&, const Vec3&, const Vec2& u) const {
 }
 
 float SunLight::importance(const Vec3&, const Vec3& n) const {
-  const float sin_half = std::sqrt(one_minus_cos_ * (2.0f - one_minus_cos_));
-  return luminance(irradiance_) * std::max(glm::dot(n, to_light_) + sin_half, 0.0f);
+  return luminance_ * std::max(glm::dot(n, to_light_) + sin_half_, 0.0f);
 }
 
 bool SunLight::hit(const Vec3&, const Vec3&, const Vec3& dir, float t_max, LightHit& out) const {
@@ -130,6 +131,7 @@ PointLight::PointLight(const Vec3& position, float power, const Vec3& color, flo
   require_non_negative(power, "light power");
   require_non_negative(radius, "light radius");
   intensity_ = scaled_color(color, power / (4.0f * kPi), "light color");
+  luminance_ = luminance(intensity_);
 }
 
 float PointLight::spot_attenuation(const Vec3& p) const {
@@ -182,7 +184,7 @@ float PointLight::importance(const Vec3& p, const Vec3& n) const {
   const float d2 = std::max(glm::dot(d, d), radius_ * radius_ + 1e-8f);
   const float inv_d = 1.0f / std::sqrt(d2);
   const float cos_bound = glm::dot(n, d) * inv_d + std::min(radius_ * inv_d, 1.0f);
-  return luminance(intensity_) * spot_attenuation(p) / d2 * std::max(cos_bound, 0.0f);
+  return luminance_ * spot_attenuation(p) / d2 * std::max(cos_bound, 0.0f);
 }
 
 bool PointLight::hit(const Vec3& p, const Vec3&, const Vec3& dir, float t_max, LightHit& out) const {

@@ -85,6 +85,24 @@ float bump_shadowing(Vec3 n_smooth, const Vec3& n_mapped, const Vec3& wi) {
   return g + g * g - g * g * g;
 }
 
+// A vertex's BSDF queries with its lobe choice p_spec (MaterialBsdf::specular_probability,
+// computed once per vertex) where the BSDF takes one; a MixtureBsdf chooses per closure itself.
+template <typename Bsdf>
+float lobe_choice(const Bsdf& bsdf, const Vec3& wo) {
+  if constexpr (std::is_same_v<Bsdf, MaterialBsdf>) return bsdf.specular_probability(wo);
+  else return 0.0f;
+}
+template <bool kGlass, typename Bsdf>
+float vertex_pdf(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi, bool backfacing, float p_spec) {
+  if constexpr (std::is_same_v<Bsdf, MaterialBsdf>) return bsdf.template pdf<kGlass>(wo, wi, backfacing, p_spec);
+  else return bsdf.template pdf<kGlass>(wo, wi, backfacing);
+}
+template <bool kGlass, typename Bsdf>
+BsdfSample vertex_sample(const Bsdf& bsdf, const Vec3& wo, const glm::vec4& u, bool backfacing, float p_spec) {
+  if constexpr (std::is_same_v<Bsdf, MaterialBsdf>)
+    return bsdf.template sample<kGlass>(wo, u.x, Vec2(u.y, u.z), backfacing, p_spec);
+  else return bsdf.template sample<kGlass>(wo, u.x, Vec2(u.y, u.z), backfacing);
+}
 
 // Radiance along a camera ray. Contributions are filed by the lobe the path left its first hit
 // through (NEE at the first hit by each lobe's share of eval), and as direct (one bounce) or
@@ -232,6 +250,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
 
     const Frame frame(ns);
     const Vec3 wo = frame.to_local(wo_world);
+    const float p_spec = lobe_choice(bsdf, wo);
     // Path guiding (guided_bsdf.h) on opaque single-material surfaces with a continuous lobe.
     const bool guidable =
         ctx.guide && !mixture && !transmits && (material.metallic < 1.0f || material.roughness >= 0.3f);
@@ -263,7 +282,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
           if (max_component(transmittance) > 0.0f) {
             const float mis = ls.pdf > 0.0f
                                   ? power_heuristic(choice.probability * ls.pdf,
-                                                    guided_pdf(bsdf.template pdf<kGlass>(wo, wi, backfacing), guide, ls.wi))
+                                                    guided_pdf(vertex_pdf<kGlass>(bsdf, wo, wi, backfacing, p_spec), guide, ls.wi))
                                   : 1.0f;
             Vec3 light = throughput * ls.weight * (mis / choice.probability);
             if (kAlpha) light *= transmittance;
@@ -282,7 +301,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
     // Continue the path by sampling the BSDF.
     float bsdf_pdf = 0.0f, guide_pdf = 0.0f;  // the parts of a guided sample's pdf
     BsdfSample bs = guide ? sample_guided<kGlass>(bsdf, guide, frame, wo, backfacing, u_bsdf, bsdf_pdf, guide_pdf)
-                          : bsdf.template sample<kGlass>(wo, u_bsdf.x, Vec2(u_bsdf.y, u_bsdf.z), backfacing);
+                          : vertex_sample<kGlass>(bsdf, wo, u_bsdf, backfacing, p_spec);
     if (!bs.valid()) break;
     const Vec3 wi_world = frame.to_world(bs.wi);
     const float cos_geometric = glm::dot(wi_world, ng);

@@ -78,4 +78,12 @@ BsdfSample PrincipledBsdf::sample(const Vec3& wo, float u_lobe, const Vec2& u) c
   return lobe_mixture::sample(*this, wo, u_lobe, u, alpha_);
 }
 
+float PrincipledBsdf::pdf_given(const Vec3& wo, const Vec3& wi, float p_spec) const {
+  return lobe_mixture::pdf_given(*this, wo, wi, alpha_, p_spec);
+}
+
+BsdfSample PrincipledBsdf::sample_given(const Vec3& wo, float u_lobe, const Vec2& u, float p_spec) const {
+  return lobe_mixture::sample_given(*this, wo, u_lobe, u, alpha_, p_spec);
+}
+
 }  // namespace torrance

@@ -123,4 +123,12 @@ BsdfSample PrincipledV2Bsdf::sample(const Vec3& wo, float u_lobe, const Vec2& u)
   return lobe_mixture::sample(*this, wo, u_lobe, u, alpha_);
 }
 
+float PrincipledV2Bsdf::pdf_given(const Vec3& wo, const Vec3& wi, float p_spec) const {
+  return lobe_mixture::pdf_given(*this, wo, wi, alpha_, p_spec);
+}
+
+BsdfSample PrincipledV2Bsdf::sample_given(const Vec3& wo, float u_lobe, const Vec2& u, float p_spec) const {
+  return lobe_mixture::sample_given(*this, wo, u_lobe, u, alpha_, p_spec);
+}
+
 }  // namespace torrance

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <new>
 #include <vector>
 
 namespace torrance {
@@ -172,6 +174,27 @@ TEST(LightChoice, FavoursTheLightTheLobePointsAt) {
   EXPECT_LT(lights.selection_probability(5, p, n), 0.1f);
   choice.score(lights, p, n, false, false, Lobe{target});  // not asked: the irradiance choice
   EXPECT_NEAR(choice.probability(5), lights.selection_probability(5, p, n), 1e-6f);
+}
+
+// LightChoice leaves its tables uninitialised (one per path): scoring without the BSDF must not
+// read what a table held before. Built over memory full of NaN bytes, it gives exactly the
+// irradiance choice's probabilities.
+TEST(LightChoice, IrradianceChoiceReadsNothingStale) {
+  const Lights lights = many_lights(3, 12);
+  const Vec3 p(0.3f, -0.2f, 0.0f), n(0, 0, 1);
+  alignas(LightChoice) unsigned char memory[sizeof(LightChoice)];
+  std::memset(memory, 0xFF, sizeof(memory));  // every float a NaN
+  LightChoice* choice = new (memory) LightChoice;
+  choice->score(lights, p, n, false, false, Lobe{n});
+  float total = 0.0f;
+  for (size_t k = 0; k < lights.count(); ++k) {
+    const float prob = choice->probability(k);
+    ASSERT_TRUE(std::isfinite(prob)) << "light " << k;
+    EXPECT_NEAR(prob, lights.selection_probability(k, p, n), 1e-6f) << "light " << k;
+    total += prob;
+  }
+  EXPECT_NEAR(total, 1.0f, 1e-5f);
+  choice->~LightChoice();
 }
 
 // One-light NEE through the BSDF-aware choice, weighted by the same lobe, averages to the sum

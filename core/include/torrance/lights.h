@@ -42,6 +42,8 @@ class SunLight {
  private:
   Vec3 to_light_, irradiance_;
   float one_minus_cos_;  // of the cone's half-angle; 0 for a delta sun
+  float sin_half_;       // sin of the cone's half-angle, for importance()
+  float luminance_;      // of irradiance_
 };
 
 struct SpotShape {
@@ -62,6 +64,7 @@ class PointLight {
  private:
   float spot_attenuation(const Vec3& p) const;
   Vec3 position_, intensity_;
+  float luminance_;  // of intensity_, for importance()
   float radius_;
   SpotShape spot_;
 };

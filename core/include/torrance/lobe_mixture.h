@@ -38,11 +38,12 @@ float pdf(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi, float alpha) {
   return pdf_given(bsdf, wo, wi, alpha, bsdf.specular_probability(wo));
 }
 
+// sample given p_spec = bsdf.specular_probability(wo) (a path vertex computes it once for its
+// light sample's pdf and its BSDF sample).
 template <typename Bsdf>
-BsdfSample sample(const Bsdf& bsdf, const Vec3& wo, float u_lobe, const Vec2& u, float alpha) {
+BsdfSample sample_given(const Bsdf& bsdf, const Vec3& wo, float u_lobe, const Vec2& u, float alpha, float p_spec) {
   BsdfSample s;
   if (wo.z <= 0.0f) return s;
-  const float p_spec = bsdf.specular_probability(wo);
   if (u_lobe < p_spec) {
     if (bsdf.has_delta()) {
       s.wi = Vec3(-wo.x, -wo.y, wo.z);
@@ -59,6 +60,12 @@ BsdfSample sample(const Bsdf& bsdf, const Vec3& wo, float u_lobe, const Vec2& u,
   if (!(s.pdf > 0.0f)) return BsdfSample{};
   s.weight = bsdf.eval(wo, s.wi) / s.pdf;
   return s;
+}
+
+template <typename Bsdf>
+BsdfSample sample(const Bsdf& bsdf, const Vec3& wo, float u_lobe, const Vec2& u, float alpha) {
+  if (wo.z <= 0.0f) return BsdfSample{};
+  return sample_given(bsdf, wo, u_lobe, u, alpha, bsdf.specular_probability(wo));
 }
 
 }  // namespace torrance::lobe_mixture

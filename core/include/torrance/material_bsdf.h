@@ -56,10 +56,19 @@ class MaterialBsdf {
                glass_weight_ * glass_->eval(outward(wo, backfacing), outward(wi, backfacing));
     return f;
   }
+  // The opaque lobes' choice of their specular lobe for this wo (lobe_mixture.h; 1 without
+  // opaque lobes), which pdf and sample take as p_spec: a path vertex computes it once.
+  float specular_probability(const Vec3& wo) const {
+    return opaque_ ? std::visit([&](const auto& b) { return b.specular_probability(wo); }, bsdf_) : 1.0f;
+  }
   template <bool kGlass = true>
   float pdf(const Vec3& wo, const Vec3& wi, bool backfacing = false) const {
-    if (!kGlass) return std::visit([&](const auto& b) { return b.pdf(wo, wi); }, bsdf_);
-    const float opaque = opaque_ ? std::visit([&](const auto& b) { return b.pdf(wo, wi); }, bsdf_) *
+    return pdf<kGlass>(wo, wi, backfacing, specular_probability(wo));
+  }
+  template <bool kGlass = true>
+  float pdf(const Vec3& wo, const Vec3& wi, bool backfacing, float p_spec) const {
+    if (!kGlass) return std::visit([&](const auto& b) { return b.pdf_given(wo, wi, p_spec); }, bsdf_);
+    const float opaque = opaque_ ? std::visit([&](const auto& b) { return b.pdf_given(wo, wi, p_spec); }, bsdf_) *
                                        (1.0f - glass_probability_)
                                  : 0.0f;
     if (!glass_) return opaque;
@@ -67,7 +76,12 @@ class MaterialBsdf {
   }
   template <bool kGlass = true>
   BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing = false) const {
-    if (!kGlass || !glass_) return std::visit([&](const auto& b) { return b.sample(wo, u_lobe, u); }, bsdf_);
+    return sample<kGlass>(wo, u_lobe, u, backfacing, specular_probability(wo));
+  }
+  template <bool kGlass = true>
+  BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing, float p_spec) const {
+    if (!kGlass || !glass_)
+      return std::visit([&](const auto& b) { return b.sample_given(wo, u_lobe, u, p_spec); }, bsdf_);
     BsdfSample s;
     const float p = glass_probability_;
     if (u_lobe < p) {
@@ -75,13 +89,14 @@ class MaterialBsdf {
       s.wi = outward(s.wi, backfacing);
       if (s.is_delta) s.weight *= glass_weight_ / p;
     } else {
-      s = std::visit([&](const auto& b) { return b.sample(wo, std::min((u_lobe - p) / (1.0f - p), 0.99999994f), u); },
-                     bsdf_);
+      s = std::visit(
+          [&](const auto& b) { return b.sample_given(wo, std::min((u_lobe - p) / (1.0f - p), 0.99999994f), u, p_spec); },
+          bsdf_);
       if (s.is_delta) s.weight *= opaque_scale_ / (1.0f - p);
     }
     if (!s.valid() || s.is_delta) return s;
     // One-sample MIS over both parts: the density of either producing wi.
-    s.pdf = pdf(wo, s.wi, backfacing);
+    s.pdf = pdf(wo, s.wi, backfacing, p_spec);
     if (!(s.pdf > 0.0f)) return BsdfSample{};
     s.weight = eval(wo, s.wi, backfacing) / s.pdf;
     return s;

@@ -46,6 +46,9 @@ class PrincipledV2Bsdf {
   Vec3 eval(const Vec3& wo, const Vec3& wi) const { return eval_lobes(wo, wi).total(); }
   float pdf(const Vec3& wo, const Vec3& wi) const;
   BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const;
+  // pdf and sample given p_spec = specular_probability(wo) (lobe_mixture.h).
+  float pdf_given(const Vec3& wo, const Vec3& wi, float p_spec) const;
+  BsdfSample sample_given(const Vec3& wo, float u_lobe, const Vec2& u, float p_spec) const;
 
   bool has_delta() const { return alpha_ < ggx_tables::kDeltaAlpha; }
   Vec3 mirror_reflectance(const Vec3& wo) const;
