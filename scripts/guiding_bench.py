@@ -59,8 +59,9 @@ def main():
         cpu_gain = (c[False] * e[False]) / (c[True] * e[True])
         print(f"guiding_bench: {name:13s} plain {t[False]:.3f} s relMSE {e[False]:.4e} | guided "
               f"{t[True]:.3f} s relMSE {e[True]:.4e} | time x{t[True] / t[False]:.2f} error "
-              f"x{e[True] / e[False]:.3f} | efficiency gain {gain:.2f} | CPU time x{c[True] / c[False]:.2f}, "
-              f"gain {cpu_gain:.2f} (reference noise {floor:.1e}; finite {finite})", flush=True)
+              f"x{e[True] / e[False]:.3f} | efficiency gain {gain:.2f} | CPU time "
+              f"x{c[True] / c[False]:.2f}, gain {cpu_gain:.2f} (reference noise {floor:.1e}; "
+              f"finite {finite})", flush=True)
 
 
 main()
