@@ -3,7 +3,10 @@
 equal samples: per scene, seeds 10.. (never the references' 1 and 2) rendered plain and guided in
 turn (interleaved, so load changes on a shared machine hit both alike); relMSE against
 references/cmp_<name>.exr averaged over the seeds, core render time averaged; efficiency gain =
-(time x relMSE)(plain) / (time x relMSE)(guided), above 1 guiding pays.
+(time x relMSE)(plain) / (time x relMSE)(guided), above 1 guiding pays. Printed twice: with the
+core's wall-clock time, and with the CPU time Blender's process spent in the render (export and
+all threads; what other processes on a loaded machine take from it does not count), the steadier
+figure on a shared machine.
 
     scripts/blender -b --factory-startup --python-exit-code 1 --python scripts/guiding_bench.py -- \
         [--spp N] [--seeds N] [--fraction F] [SCENE ...]
@@ -12,6 +15,7 @@ references/cmp_<name>.exr averaged over the seeds, core render time averaged; ef
 import argparse
 import statistics
 import sys
+import time
 
 from torrance_tools import addon_access, compare, comparison_scenes, references
 
@@ -41,18 +45,23 @@ def main():
                 def edit(s, guided=guided):
                     s.guiding = guided
                     s.guiding_training_fraction = args.fraction
+                cpu_start = time.process_time()
                 img, _ = references.render_torrance(scene, args.spp, seed, mod.BOUNCES,
                                                     name=f"g{int(guided)}", settings_edit=edit)
+                cpu = time.process_time() - cpu_start
                 seconds = addon_access.addon().render.last_stats.get("seconds")
-                runs[guided].append((seconds, compare.rel_mse(img, ref), compare.finite(img)))
+                runs[guided].append((seconds, compare.rel_mse(img, ref), compare.finite(img), cpu))
         t = {g: statistics.mean(r[0] for r in runs[g]) for g in runs}
         e = {g: statistics.mean(r[1] for r in runs[g]) for g in runs}
+        c = {g: statistics.mean(r[3] for r in runs[g]) for g in runs}
         finite = all(r[2] for g in runs for r in runs[g])
         gain = (t[False] * e[False]) / (t[True] * e[True])
+        cpu_gain = (c[False] * e[False]) / (c[True] * e[True])
         print(f"guiding_bench: {name:13s} plain {t[False]:.3f} s relMSE {e[False]:.4e} | guided "
               f"{t[True]:.3f} s relMSE {e[True]:.4e} | time x{t[True] / t[False]:.2f} error "
-              f"x{e[True] / e[False]:.3f} | efficiency gain {gain:.2f} (reference noise "
-              f"{floor:.1e}; finite {finite})", flush=True)
+              f"x{e[True] / e[False]:.3f} | efficiency gain {gain:.2f} | CPU time "
+              f"x{c[True] / c[False]:.2f}, gain {cpu_gain:.2f} (reference noise {floor:.1e}; "
+              f"finite {finite})", flush=True)
 
 
 main()

@@ -13,9 +13,10 @@
 
 namespace torrance {
 
-// The density of the guided mixture for wi (local) / wi_world, given the BSDF's pdf of wi.
+// The density of the guided mixture for wi (local) / wi_world, given the BSDF's pdf of wi. A leaf
+// that only samples the BSDF (a training pass's, fraction 1) needs no lookup.
 inline float guided_pdf(float bsdf_pdf, const GuideDistribution& guide, const Vec3& wi_world) {
-  if (!guide) return bsdf_pdf;
+  if (!guide || guide.bsdf_fraction() >= 1.0f) return bsdf_pdf;
   const float a = guide.bsdf_fraction();
   return a * bsdf_pdf + (1.0f - a) * guide.pdf(wi_world);
 }
@@ -24,10 +25,11 @@ inline float guided_pdf(float bsdf_pdf, const GuideDistribution& guide, const Ve
 // the BSDF's lobe), u.yz the direction of either, so both keep the sampler's stratification of
 // the direction. A delta lobe (only BSDF sampling produces it) gets its weight over the
 // probability of choosing the BSDF; continuous directions get eval / mixture pdf. bsdf_pdf and
-// guide_pdf: the parts of that pdf (for GuidingField::record).
+// guide_pdf: the parts of that pdf, square: the direction on the guide's square (for
+// GuidingField::record), each found once.
 template <bool kGlass, typename Bsdf>
 BsdfSample sample_guided(const Bsdf& bsdf, const GuideDistribution& guide, const Frame& frame, const Vec3& wo,
-                         bool backfacing, const glm::vec4& u, float& bsdf_pdf, float& guide_pdf) {
+                         bool backfacing, const glm::vec4& u, float& bsdf_pdf, float& guide_pdf, Vec2& square) {
   const float a = guide.bsdf_fraction();
   if (u.x < a) {
     BsdfSample s = bsdf.template sample<kGlass>(wo, std::min(u.x / a, 0.99999994f), Vec2(u.y, u.z), backfacing);
@@ -38,16 +40,16 @@ BsdfSample sample_guided(const Bsdf& bsdf, const GuideDistribution& guide, const
     }
     const Vec3 f = s.weight * s.pdf;
     bsdf_pdf = s.pdf;
-    guide_pdf = guide.pdf(frame.to_world(s.wi));
+    square = direction_to_square(frame.to_world(s.wi));
+    guide_pdf = guide.pdf_of_square(square);
     s.pdf = a * bsdf_pdf + (1.0f - a) * guide_pdf;
     s.weight = f / s.pdf;
     return s;
   }
-  const Vec3 wi_world = guide.sample(Vec2(u.y, u.z));
+  const Vec3 wi_world = guide.sample(Vec2(u.y, u.z), square, guide_pdf);
   BsdfSample s;
   s.wi = frame.to_local(wi_world);
   bsdf_pdf = bsdf.template pdf<kGlass>(wo, s.wi, backfacing);
-  guide_pdf = guide.pdf(wi_world);
   s.pdf = a * bsdf_pdf + (1.0f - a) * guide_pdf;
   if (!(s.pdf > 0.0f)) return BsdfSample{};
   s.weight = bsdf.template eval_lobes<kGlass>(wo, s.wi, backfacing).total() / s.pdf;

@@ -40,17 +40,17 @@ uint32_t GuidingField::leaf_index(const Vec3& p) const {
 }
 
 GuideDistribution GuidingField::at(const Vec3& p, bool training) const {
-  const Leaf& leaf = leaves_[leaf_index(p)];
-  return leaf.trained && (leaf.bsdf_fraction < 1.0f || training) ? GuideDistribution(&leaf.sampled, leaf.bsdf_fraction)
-                                                                 : GuideDistribution();
+  const uint32_t index = leaf_index(p);
+  const Leaf& leaf = leaves_[index];
+  const bool guides = leaf.trained && (leaf.bsdf_fraction < 1.0f || training);
+  return GuideDistribution(guides ? &leaf.sampled : nullptr, leaf.bsdf_fraction, index);
 }
 
-void GuidingField::record(const Vec3& p, const Vec3& dir, float radiance_over_pdf, float estimate, float bsdf_pdf,
-                          float guide_pdf) {
-  Leaf& leaf = leaves_[leaf_index(p)];
+void GuidingField::record(uint32_t leaf_index, const Vec2& square, float radiance_over_pdf, float estimate,
+                          float bsdf_pdf, float guide_pdf) {
+  Leaf& leaf = leaves_[leaf_index];
   __atomic_fetch_add(&leaf.records, 1u, __ATOMIC_RELAXED);
-  if (radiance_over_pdf > 0.0f && std::isfinite(radiance_over_pdf))
-    leaf.recording.record(direction_to_square(dir), radiance_over_pdf);
+  if (radiance_over_pdf > 0.0f && std::isfinite(radiance_over_pdf)) leaf.recording.record(square, radiance_over_pdf);
   if (!(guide_pdf > 0.0f)) return;
   __atomic_fetch_add(&leaf.moment_records, 1u, __ATOMIC_RELAXED);
   if (!(estimate > 0.0f) || !std::isfinite(estimate)) return;
@@ -86,7 +86,7 @@ void GuidingField::split(uint32_t node, const Vec3& lo, const Vec3& hi, uint32_t
   split(first + 1, upper_lo, hi, threshold);
 }
 
-void GuidingField::refine() {
+bool GuidingField::refine() {
   // Spatially first (Müller et al.: c x sqrt(2^k) records for the k-th pass of 2^k samples), with
   // what each leaf recorded; the recorded quadtrees travel with the split leaves.
   for (Leaf& leaf : leaves_) leaf.recording.build_sums();
@@ -115,6 +115,8 @@ void GuidingField::refine() {
   }
   // Then directionally: what was recorded is sampled from now on (where anything was), and the
   // next pass records into a tree refined where this one found energy.
+  // The estimated second moments of the leaves' chosen fractions and of BSDF sampling alone.
+  double chosen_moment = 0.0, bsdf_only_moment = 0.0;
   for (Leaf& leaf : leaves_) {
     // The BSDF fraction of least estimated second moment, once the leaf has a few guided samples.
     if (leaf.moment_records >= 256) {
@@ -122,6 +124,8 @@ void GuidingField::refine() {
       for (size_t i = 1; i < kBsdfFractions.size(); ++i)
         if (leaf.second_moment[i] < leaf.second_moment[best]) best = i;
       leaf.bsdf_fraction = kBsdfFractions[best];
+      chosen_moment += leaf.second_moment[best];
+      bsdf_only_moment += leaf.second_moment.back();
     }
     leaf.second_moment.fill(0.0f);
     leaf.moment_records = 0;
@@ -135,6 +139,8 @@ void GuidingField::refine() {
     leaf.records = 0;
   }
   ++iterations_;
+  const bool deciding = iterations_ == options_.decision_pass && bsdf_only_moment > 0.0;
+  return !deciding || chosen_moment < (1.0 - double(options_.min_predicted_saving)) * bsdf_only_moment;
 }
 
 void GuidePathRecorder::flush() {
@@ -146,7 +152,7 @@ void GuidePathRecorder::flush() {
       if (v.throughput[c] > 0.0f) incident[c] = v.radiance[c] / v.throughput[c];
       if (v.throughput_before[c] > 0.0f) reflected[c] = v.radiance[c] / v.throughput_before[c];
     }
-    field_->record(v.position, v.dir, weight_ * luminance(incident) / v.pdf, weight_ * luminance(reflected), v.bsdf_pdf,
+    field_->record(v.leaf, v.square, weight_ * luminance(incident) / v.pdf, weight_ * luminance(reflected), v.bsdf_pdf,
                    v.guide_pdf);
   }
   count_ = 0;

@@ -78,9 +78,11 @@ float DirectionalQuadtree::total() const {
 }
 
 // Down the tree choosing a quadrant by its energy: first the u half (0/1 vs 2/3 share the
-// x bit), then within it the v half; at a leaf quadrant, uniform within its cell.
-Vec2 DirectionalQuadtree::sample(Vec2 u) const {
+// x bit), then within it the v half; at a leaf quadrant, uniform within its cell, whose density
+// is the product of 4 x the chosen quadrant's share at each level.
+Vec2 DirectionalQuadtree::sample(Vec2 u, float* pdf) const {
   Vec2 origin(0.0f), size(1.0f);
+  float density = 1.0f;
   uint32_t node = 0;
   for (;;) {
     const auto& e = nodes_[node].energy;
@@ -102,8 +104,12 @@ Vec2 DirectionalQuadtree::sample(Vec2 u) const {
       u.y = std::min((u.y * (low_y + high_y) - low_y) / high_y, kBelowOne);
       origin.y += size.y;
     }
+    density *= 4.0f * e[q] / total;
     const uint32_t child = nodes_[node].child[q];
-    if (child == 0) return Vec2(std::min(origin.x + u.x * size.x, kBelowOne), std::min(origin.y + u.y * size.y, kBelowOne));
+    if (child == 0) {
+      if (pdf) *pdf = density;
+      return Vec2(std::min(origin.x + u.x * size.x, kBelowOne), std::min(origin.y + u.y * size.y, kBelowOne));
+    }
     node = child;
   }
 }

@@ -23,6 +23,8 @@
 #include <optional>
 #include <stdexcept>
 #include <thread>
+#include <cstdio>
+#include <cstdlib>
 #include <utility>
 
 namespace torrance {
@@ -118,7 +120,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
     Vec3 lo, hi;
     cscene.bounds(lo, hi);
     if (!(is_finite(lo) && is_finite(hi) && lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z)) lo = hi = Vec3(0.0f);
-    guide.emplace(lo, hi);
+    guide.emplace(lo, hi, settings.guiding_options);
     ctx.guide = &*guide;
     ctx.guide_training = true;
   }
@@ -235,11 +237,12 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
           done += step;
           n += step;
           if (ctx.guide_training && done == guide_pass_end) {  // learn; train on while the next pass fits
-            guide->refine();
+            const bool worth_it = guide->refine();
             guide_pass_end = done + (1 << std::min(guide->iterations(), 20));
             const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - sampling_start).count();
-            ctx.guide_training = guide_pass_end <= settings.guiding_training_fraction * settings.samples &&
+            ctx.guide_training = worth_it && guide_pass_end <= settings.guiding_training_fraction * settings.samples &&
                                  (settings.time_limit <= 0.0 || elapsed < settings.guiding_training_fraction * settings.time_limit);
+            if (!worth_it) ctx.guide = nullptr;  // it would cost more than it gains: plain path tracing from here
           }
           if (needs_check(done) && film.update_convergence(adaptive_threshold) == 0) {
             all_converged = true;

@@ -300,7 +300,8 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
 
     // Continue the path by sampling the BSDF.
     float bsdf_pdf = 0.0f, guide_pdf = 0.0f;  // the parts of a guided sample's pdf
-    BsdfSample bs = guide ? sample_guided<kGlass>(bsdf, guide, frame, wo, backfacing, u_bsdf, bsdf_pdf, guide_pdf)
+    Vec2 square(-1.0f);                        // and its direction on the guide's square (-1: not known yet)
+    BsdfSample bs = guide ? sample_guided<kGlass>(bsdf, guide, frame, wo, backfacing, u_bsdf, bsdf_pdf, guide_pdf, square)
                           : vertex_sample<kGlass>(bsdf, wo, u_bsdf, backfacing, p_spec);
     if (!bs.valid()) break;
     const Vec3 wi_world = frame.to_world(bs.wi);
@@ -316,7 +317,8 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       bs.weight = f.total() / bs.pdf;
     }
     if (recorder.enabled() && guidable && !bs.is_delta)
-      recorder.add_vertex(hit.position, wi_world, throughput, bs.weight, bs.pdf, guide ? bsdf_pdf : bs.pdf, guide_pdf);
+      recorder.add_vertex(guide.leaf(), square.x >= 0.0f ? square : direction_to_square(wi_world), throughput,
+                          bs.weight, bs.pdf, guide ? bsdf_pdf : bs.pdf, guide_pdf);
     throughput *= bs.weight;
     if (kSplitLobes && bounce == 0 && !bs.is_delta) {
       const LobeEval f = bsdf.template eval_lobes<kGlass>(wo, bs.wi, backfacing);

@@ -138,6 +138,21 @@ TEST(Guiding, EachLeafChoosesTheBsdfFractionOfLeastSecondMoment) {
   }
 }
 
+TEST(Guiding, AfterTheDecisionPassGuidingGoesOnOnlyIfItPromisesASaving) {
+  for (bool guide_helps : {true, false}) {
+    GuidingOptions options;
+    options.decision_pass = 2;
+    GuidingField field(Vec3(-1.0f), Vec3(1.0f), options);
+    const float bsdf_pdf = guide_helps ? 0.05f : 2.0f, guide_pdf = guide_helps ? 2.0f : 0.05f;
+    for (int pass = 1; pass <= 2; ++pass) {
+      for (int i = 0; i < 1000; ++i) field.record(Vec3(0.0f), Vec3(0, 0, 1), 1.0f, 1.0f, bsdf_pdf, guide_pdf);
+      const bool go_on = field.refine();
+      if (pass < options.decision_pass) EXPECT_TRUE(go_on) << "only the decision pass decides";
+      else EXPECT_EQ(go_on, guide_helps) << "guide helps: " << guide_helps;
+    }
+  }
+}
+
 TEST(Guiding, RecordsAreWeightedByTheirPixelsRelativeError) {
   EXPECT_FLOAT_EQ(pixel_weight(Vec3(0.0f)), 10.0f);  // 1 / sqrt(0 + 0.01)
   EXPECT_NEAR(pixel_weight(Vec3(10.0f)), 1.0f / std::sqrt(100.01f), 1e-6f);
@@ -150,7 +165,8 @@ TEST(Guiding, RecordsAreWeightedByTheirPixelsRelativeError) {
   for (int i = 0; i < 100; ++i) {
     for (const float value : {10.0f, 0.1f}) {
       GuidePathRecorder path(&field, pixel_weight(Vec3(value)));
-      path.add_vertex(Vec3(0.0f), value > 1.0f ? up : down, Vec3(1.0f), Vec3(1.0f), 1.0f, 1.0f, 0.0f);
+      path.add_vertex(field.at(Vec3(0.0f)).leaf(), direction_to_square(value > 1.0f ? up : down), Vec3(1.0f),
+                      Vec3(1.0f), 1.0f, 1.0f, 0.0f);
       path.add_contribution(Vec3(value));
     }  // recorded here
   }

@@ -33,7 +33,8 @@ class DirectionalQuadtree {
   void record(const Vec2& p, float energy);  // thread-safe
   void build_sums();
   float total() const;
-  Vec2 sample(Vec2 u) const;  // requires total() > 0
+  // A point drawn from the density, and (pdf) its density, found on the way down. Requires total() > 0.
+  Vec2 sample(Vec2 u, float* pdf = nullptr) const;
   float pdf(const Vec2& p) const;
   // The structure for the next training pass: a quadrant holding more than `fraction` of the total
   // energy is subdivided (down to max_depth levels, at most max_nodes nodes), others are leaves.
@@ -52,19 +53,31 @@ class DirectionalQuadtree {
 };
 
 // The guide at one point: its learned distribution of directions, as a solid-angle density, and
-// the probability with which the mixture (guided_bsdf.h) samples the BSDF instead.
+// the probability with which the mixture (guided_bsdf.h) samples the BSDF instead; empty (false)
+// where only the BSDF is sampled. Either way it knows its leaf of the SD-tree, so that recording
+// at the point needs no second descent (GuidingField::record).
 class GuideDistribution {
  public:
   GuideDistribution() = default;
-  GuideDistribution(const DirectionalQuadtree* tree, float bsdf_fraction) : tree_(tree), bsdf_fraction_(bsdf_fraction) {}
+  GuideDistribution(const DirectionalQuadtree* tree, float bsdf_fraction, uint32_t leaf)
+      : tree_(tree), bsdf_fraction_(tree ? bsdf_fraction : 1.0f), leaf_(leaf) {}
   explicit operator bool() const { return tree_ != nullptr; }
   float bsdf_fraction() const { return bsdf_fraction_; }
+  uint32_t leaf() const { return leaf_; }
   Vec3 sample(const Vec2& u) const { return square_to_direction(tree_->sample(u)); }
-  float pdf(const Vec3& dir) const { return tree_->pdf(direction_to_square(dir)) * (1.0f / (4.0f * kPi)); }
+  // A direction, its point on the square and its solid-angle density, from one descent.
+  Vec3 sample(const Vec2& u, Vec2& square, float& pdf) const {
+    square = tree_->sample(u, &pdf);
+    pdf *= 1.0f / (4.0f * kPi);
+    return square_to_direction(square);
+  }
+  float pdf(const Vec3& dir) const { return pdf_of_square(direction_to_square(dir)); }
+  float pdf_of_square(const Vec2& square) const { return tree_->pdf(square) * (1.0f / (4.0f * kPi)); }
 
  private:
   const DirectionalQuadtree* tree_ = nullptr;
   float bsdf_fraction_ = 1.0f;
+  uint32_t leaf_ = 0;
 };
 
 // The BSDF fractions a leaf chooses among, after each training pass the one whose estimator would
@@ -75,6 +88,7 @@ class GuideDistribution {
 // keeping most of the gain where it pays (mirror 0.14, 0.17).
 inline constexpr std::array<float, 5> kBsdfFractions = {0.3f, 0.5f, 0.7f, 0.9f, 1.0f};
 inline constexpr float kInitialBsdfFraction = 0.7f;
+static_assert(kBsdfFractions.back() == 1.0f, "the last candidate is BSDF sampling alone");
 
 struct GuidingOptions {
   float spatial_threshold = 4000.0f;  // a leaf splits past threshold x sqrt(2^iteration) records
@@ -87,6 +101,14 @@ struct GuidingOptions {
   // water 0.74 -> 0.73, interior 0.92 -> 0.92): NEE of a sky or of large lights is far from ideal.
   bool learn_direct_light = true;
   size_t max_leaves = 2048;  // memory at most 2048 leaves x 2 trees x 1024 nodes x 32 B = 128 MiB
+  // Guiding costs time at every vertex it touches (the tree's descent, the guide's pdf for MIS and
+  // for the sample, recording). After the training pass number decision_pass (0: never) the
+  // render stops guiding and training altogether if the leaves' chosen fractions promise to cut
+  // the second moment of their vertices' estimates (summed over the leaves that estimated it) by
+  // less than min_predicted_saving. Earlier passes' guides are too young to judge (the comparison
+  // scenes' guides that pay predict only 0.4 % after the second pass, 5-67 % after the third).
+  int decision_pass = 3;
+  float min_predicted_saving = 0.02f;
 };
 
 // The SD-tree. During a pass sample/pdf (through at()) read the trees learned so far and record()
@@ -102,8 +124,16 @@ class GuidingField {
   // and, where the guide was used (guide_pdf > 0), the vertex's estimate of its reflected light
   // (luminance) with the BSDF's and the guide's pdfs of dir, for choosing the BSDF fraction.
   void record(const Vec3& p, const Vec3& dir, float radiance_over_pdf, float estimate, float bsdf_pdf,
+              float guide_pdf) {
+    record(leaf_index(p), direction_to_square(dir), radiance_over_pdf, estimate, bsdf_pdf, guide_pdf);
+  }
+  // The same in a leaf known from at() (GuideDistribution::leaf()), dir as its point on the square.
+  void record(uint32_t leaf, const Vec2& square, float radiance_over_pdf, float estimate, float bsdf_pdf,
               float guide_pdf);
-  void refine();  // the end of a training pass: recorded trees become sampled, new ones recorded
+  // The end of a training pass: recorded trees become sampled, new ones recorded. Returns whether
+  // the guide is still worth its cost (see GuidingOptions::decision_pass); false: the render stops
+  // guiding.
+  bool refine();
   int iterations() const { return iterations_; }
   const GuidingOptions& options() const { return options_; }
   size_t num_leaves() const { return leaves_.size(); }
@@ -155,12 +185,14 @@ class GuidePathRecorder {
   GuidePathRecorder& operator=(const GuidePathRecorder&) = delete;
   ~GuidePathRecorder() { flush(); }
   bool enabled() const { return field_ != nullptr; }
-  // Before the throughput takes the bounce's weight; pdf: the mixture's, bsdf_pdf and guide_pdf
-  // its parts (guide_pdf 0 where no guide was used).
-  void add_vertex(const Vec3& p, const Vec3& dir, const Vec3& throughput_before, const Vec3& weight, float pdf,
+  // Before the throughput takes the bounce's weight; leaf: GuideDistribution::leaf() at the vertex,
+  // square: the sampled direction on the square; pdf: the mixture's, bsdf_pdf and guide_pdf its
+  // parts (guide_pdf 0 where no guide was used).
+  void add_vertex(uint32_t leaf, const Vec2& square, const Vec3& throughput_before, const Vec3& weight, float pdf,
                   float bsdf_pdf, float guide_pdf) {
     if (count_ < kMaxVertices) {
-      vertices_[count_++] = {p, dir, throughput_before, throughput_before * weight, Vec3(0.0f), pdf, bsdf_pdf, guide_pdf};
+      vertices_[count_++] = {throughput_before, throughput_before * weight, Vec3(0.0f), square, leaf, pdf, bsdf_pdf,
+                             guide_pdf};
       direct_ = !field_->options().learn_direct_light;
     }
   }
@@ -173,7 +205,9 @@ class GuidePathRecorder {
  private:
   static constexpr int kMaxVertices = 16;
   struct Vertex {
-    Vec3 position, dir, throughput_before, throughput, radiance;
+    Vec3 throughput_before, throughput, radiance;
+    Vec2 square;
+    uint32_t leaf;
     float pdf, bsdf_pdf, guide_pdf;
   };
   GuidingField* field_;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "torrance/bsdf.h"
+#include "torrance/guiding.h"
 #include "torrance/scene.h"
 
 #include <functional>
@@ -83,6 +84,7 @@ struct RenderSettings {
   // image. Not bit-deterministic across runs: threads record into the tree in any order.
   bool guiding = false;
   float guiding_training_fraction = 0.25f;
+  GuidingOptions guiding_options;  // the SD-tree's parameters (C++ only: tests)
 
   static constexpr int kAdaptiveStep = 16;                // samples between convergence checks (Cycles' step)
   static constexpr float kAdaptiveThresholdScale = 5.0f;  // Cycles 3.4 multiplies the threshold by 5
