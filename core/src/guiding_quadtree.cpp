@@ -8,22 +8,14 @@ namespace torrance {
 
 namespace {
 
-// The quadrant of [0,1)^2 holding p, and p rescaled to [0,1)^2 within it.
+// The quadrant of [0,1)^2 holding p, and p rescaled to [0,1)^2 within it. Without branches: which
+// half p lies in is a coin toss at every level of a descent, so branches on it are mispredicted
+// half the time. p * 2 - 0 equals p * 2 exactly, so the result is the same as branching.
 int quadrant_of(Vec2& p) {
-  int q = 0;
-  if (p.x >= 0.5f) {
-    q |= 1;
-    p.x = p.x * 2.0f - 1.0f;
-  } else {
-    p.x *= 2.0f;
-  }
-  if (p.y >= 0.5f) {
-    q |= 2;
-    p.y = p.y * 2.0f - 1.0f;
-  } else {
-    p.y *= 2.0f;
-  }
-  return q;
+  const int high_x = p.x >= 0.5f, high_y = p.y >= 0.5f;
+  p.x = p.x * 2.0f - float(high_x);
+  p.y = p.y * 2.0f - float(high_y);
+  return high_x | (high_y << 1);
 }
 
 constexpr float kBelowOne = 0.99999994f;
@@ -87,23 +79,20 @@ Vec2 DirectionalQuadtree::sample(Vec2 u, float* pdf) const {
   for (;;) {
     const auto& e = nodes_[node].energy;
     const float low_x = e[0] + e[2], total = low_x + e[1] + e[3];
-    int q = 0;
     size *= 0.5f;
-    if (u.x * total < low_x) {
-      u.x = std::min(u.x * total / low_x, kBelowOne);
-    } else {
-      q |= 1;
-      u.x = std::min((u.x * total - low_x) / (total - low_x), kBelowOne);
-      origin.x += size.x;
-    }
-    const float low_y = e[q], high_y = e[q | 2];
-    if (u.y * (low_y + high_y) < low_y) {
-      u.y = std::min(u.y * (low_y + high_y) / low_y, kBelowOne);
-    } else {
-      q |= 2;
-      u.y = std::min((u.y * (low_y + high_y) - low_y) / high_y, kBelowOne);
-      origin.y += size.y;
-    }
+    // The halves chosen by selects, not branches (a coin toss per level); subtracting 0 and adding
+    // 0 are exact, so this is the arithmetic of choosing each half by a branch.
+    const float ux = u.x * total;
+    const bool high_x = !(ux < low_x);
+    u.x = std::min((ux - (high_x ? low_x : 0.0f)) / (high_x ? total - low_x : low_x), kBelowOne);
+    origin.x += high_x ? size.x : 0.0f;
+    int q = high_x ? 1 : 0;
+    const float low_y = e[q], high_y = e[q | 2], sum_y = low_y + high_y;
+    const float uy = u.y * sum_y;
+    const bool high_y_half = !(uy < low_y);
+    u.y = std::min((uy - (high_y_half ? low_y : 0.0f)) / (high_y_half ? high_y : low_y), kBelowOne);
+    origin.y += high_y_half ? size.y : 0.0f;
+    q |= high_y_half ? 2 : 0;
     density *= 4.0f * e[q] / total;
     const uint32_t child = nodes_[node].child[q];
     if (child == 0) {
