@@ -23,8 +23,6 @@
 #include <optional>
 #include <stdexcept>
 #include <thread>
-#include <cstdio>
-#include <cstdlib>
 #include <utility>
 
 namespace torrance {
