@@ -7,6 +7,8 @@
 
 namespace torrance {
 namespace {
+constexpr float kMaxTexelValue = 1e20f;
+
 float srgb_to_linear(float v) {
   return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
 }
@@ -34,7 +36,9 @@ Texture::Texture(int width, int height, int channels, const float* pixels, Color
       if (!std::isfinite(t[c])) t[c] = 0.0f;  // a broken pixel must not poison the render
     if (space == ColorSpace::SRGB)
       for (int c = 0; c < 3; ++c) t[c] = srgb_to_linear(t[c]);
-    texels[i] = t;
+    // Finite is not enough: bilinear filtering (a + t (b - a)) and the mip levels' sums overflow
+    // to Inf and then NaN near float's limit (3e38 next to -3e38); far above any real radiance.
+    texels[i] = glm::clamp(t, glm::vec4(-kMaxTexelValue), glm::vec4(kMaxTexelValue));
   }
   levels_.push_back({width, height, std::move(texels)});
   while (levels_.back().width > 1 || levels_.back().height > 1) {  // 2x2 box-filtered mip levels

@@ -303,6 +303,29 @@ def test_textures_drive_base_color_and_roughness_by_uv():
         scene.add_mesh(positions, np.array([[0, 1, 2]]), corner_uvs=np.zeros((2, 3, 2), np.float32))
 
 
+def test_extreme_texel_values_shade_finitely():
+    """Finite texels near float's limit (3e38 beside -3e38): bilinear filtering and mip levels
+    once overflowed to Inf - Inf = NaN in the base colour and emission (found by the fuzzer)."""
+    scene = tc.Scene()
+    extreme = np.random.default_rng(0).choice([3e38, -3e38, 1.0], (64, 64, 3)).astype(np.float32)
+    extreme[..., 0] = 3e38                  # every mip level's sum of four overflows
+    textures = [scene.add_texture(extreme, colorspace=space) for space in ("Linear", "sRGB")]
+    mats = [scene.add_material(base_color_texture=t, emission_texture=t) for t in textures]
+    half = 50.0
+    positions = np.array([[-half, -half, 0], [half, -half, 0], [half, half, 0], [-half, half, 0]],
+                         np.float32)
+    uvs = np.array([[[0, 0], [1, 0], [1, 1]], [[0, 0], [1, 1], [0, 1]]], np.float32)
+    scene.add_mesh(positions, np.array([[0, 1, 2], [0, 2, 3]]), material_indices=np.array(mats),
+                   corner_uvs=uvs)
+    scene.add_sun(direction=(0, 0, -1), strength=1.0, angle=0.0)
+    matrix = np.eye(4)
+    matrix[2, 3] = 5.0
+    scene.set_camera(matrix, lens=5.0)
+    result = tc.render(scene, tc.RenderSettings(width=16, height=8, samples=4, max_bounces=1))
+    assert result.nonfinite_samples == 0
+    assert np.isfinite(result.image).all()
+
+
 def test_texture_file_and_normal_map(tmp_path):
     path = str(tmp_path / "grey.exr")
     tc.write_image(path, np.full((4, 4, 4), 0.25, np.float32))
