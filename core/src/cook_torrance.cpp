@@ -1,7 +1,5 @@
 #include "torrance/cook_torrance.h"
 
-#include "torrance/lobe_mixture.h"
-
 namespace torrance {
 
 CookTorranceBsdf::CookTorranceBsdf(const Material& m) {
@@ -32,7 +30,21 @@ float CookTorranceBsdf::specular_probability(const Vec3& wo) const {
   return lobe_mixture::specular_probability(spec, diff);
 }
 
-LobeEval CookTorranceBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
+CookTorranceBsdf::View CookTorranceBsdf::geometry(const Vec3& wo) const {
+  View v;
+  lobe_mixture::prepare(v, wo, alpha_);
+  v.geometry_o = geometry_G1(wo.z);
+  return v;
+}
+
+CookTorranceBsdf::View CookTorranceBsdf::at(const Vec3& wo) const {
+  View v = geometry(wo);
+  v.p_spec = specular_probability(wo);
+  return v;
+}
+
+LobeEval CookTorranceBsdf::eval_lobes(const View& v, const Vec3& wi) const {
+  const Vec3& wo = v.wo;
   if (wo.z <= 0.0f || wi.z <= 0.0f) return {};
   const Vec3 half = wo + wi;
   const float half_len2 = glm::dot(half, half);
@@ -43,24 +55,10 @@ LobeEval CookTorranceBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
   f_cos.diffuse = (Vec3(1.0f) - F) * diffuse_color_ * (kInvPi * wi.z);
   if (!has_delta()) {
     // D F G / (4 cos_o cos_i) * cos_i; G1(wo)/cos_o stays bounded (<= 1/k) at grazing wo.
-    const float dg = ggx::D(h, alpha_) * geometry_G1(wo.z) * geometry_G1(wi.z) / (4.0f * wo.z);
+    const float dg = ggx::D(h, alpha_) * v.geometry_o * geometry_G1(wi.z) / v.four_cos_o;
     f_cos.glossy = F * dg;
   }
   return f_cos;
-}
-
-float CookTorranceBsdf::pdf(const Vec3& wo, const Vec3& wi) const { return lobe_mixture::pdf(*this, wo, wi, alpha_); }
-
-BsdfSample CookTorranceBsdf::sample(const Vec3& wo, float u_lobe, const Vec2& u) const {
-  return lobe_mixture::sample(*this, wo, u_lobe, u, alpha_);
-}
-
-float CookTorranceBsdf::pdf_given(const Vec3& wo, const Vec3& wi, float p_spec) const {
-  return lobe_mixture::pdf_given(*this, wo, wi, alpha_, p_spec);
-}
-
-BsdfSample CookTorranceBsdf::sample_given(const Vec3& wo, float u_lobe, const Vec2& u, float p_spec) const {
-  return lobe_mixture::sample_given(*this, wo, u_lobe, u, alpha_, p_spec);
 }
 
 }  // namespace torrance

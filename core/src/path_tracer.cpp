@@ -85,25 +85,6 @@ float bump_shadowing(Vec3 n_smooth, const Vec3& n_mapped, const Vec3& wi) {
   return g + g * g - g * g * g;
 }
 
-// A vertex's BSDF queries with its lobe choice p_spec (MaterialBsdf::specular_probability,
-// computed once per vertex) where the BSDF takes one; a MixtureBsdf chooses per closure itself.
-template <typename Bsdf>
-float lobe_choice(const Bsdf& bsdf, const Vec3& wo) {
-  if constexpr (std::is_same_v<Bsdf, MaterialBsdf>) return bsdf.specular_probability(wo);
-  else return 0.0f;
-}
-template <bool kGlass, typename Bsdf>
-float vertex_pdf(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi, bool backfacing, float p_spec) {
-  if constexpr (std::is_same_v<Bsdf, MaterialBsdf>) return bsdf.template pdf<kGlass>(wo, wi, backfacing, p_spec);
-  else return bsdf.template pdf<kGlass>(wo, wi, backfacing);
-}
-template <bool kGlass, typename Bsdf>
-BsdfSample vertex_sample(const Bsdf& bsdf, const Vec3& wo, const glm::vec4& u, bool backfacing, float p_spec) {
-  if constexpr (std::is_same_v<Bsdf, MaterialBsdf>)
-    return bsdf.template sample<kGlass>(wo, u.x, Vec2(u.y, u.z), backfacing, p_spec);
-  else return bsdf.template sample<kGlass>(wo, u.x, Vec2(u.y, u.z), backfacing);
-}
-
 // Radiance along a camera ray. Contributions are filed by the lobe the path left its first hit
 // through (NEE at the first hit by each lobe's share of eval), and as direct (one bounce) or
 // indirect; alpha is 0 where a transparent background is seen directly.
@@ -250,7 +231,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
 
     const Frame frame(ns);
     const Vec3 wo = frame.to_local(wo_world);
-    const float p_spec = lobe_choice(bsdf, wo);
+    const typename Bsdf::View view = bsdf.at(wo, backfacing);  // wo's terms, once for this vertex's queries
     // Path guiding (guided_bsdf.h) on opaque single-material surfaces with a continuous lobe.
     const bool guidable =
         ctx.guide && !mixture && !transmits && (material.metallic < 1.0f || material.roughness >= 0.3f);
@@ -264,7 +245,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
     light_choice.score(lights, hit.position, ns, transmits, LightChoice::narrow_lobe(material.roughness),
                        [&](const Vec3& toward) {
                          const Vec3 wi = frame.to_local(toward);
-                         return luminance(bsdf.template eval_lobes<kGlass>(wo, wi, backfacing).total()) /
+                         return luminance(bsdf.template eval_lobes<kGlass>(view, wi).total()) /
                                 std::max(std::abs(wi.z), 0.01f);
                        });
     const Lights::Choice choice = light_choice.select(u_light.x);
@@ -274,7 +255,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       const float cos_geometric = glm::dot(ls.wi, ng);
       if (ls.valid() &&
           (transmits ? cos_geometric != 0.0f && (cos_geometric > 0.0f) == (wi.z > 0.0f) : cos_geometric > 0.0f)) {
-        LobeEval f = bsdf.template eval_lobes<kGlass>(wo, wi, backfacing);
+        LobeEval f = bsdf.template eval_lobes<kGlass>(view, wi);
         if (normal_mapped) f.diffuse *= bump_shadowing(n_smooth, ns, ls.wi);
         if (max_component(f.total()) > 0.0f) {
           const Vec3 transmittance = shadow_transmittance<kAlpha>(ctx.scene, hit.position, ng, ls,
@@ -282,7 +263,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
           if (max_component(transmittance) > 0.0f) {
             const float mis = ls.pdf > 0.0f
                                   ? power_heuristic(choice.probability * ls.pdf,
-                                                    guided_pdf(vertex_pdf<kGlass>(bsdf, wo, wi, backfacing, p_spec), guide, ls.wi))
+                                                    guided_pdf(bsdf.template pdf<kGlass>(view, wi), guide, ls.wi))
                                   : 1.0f;
             Vec3 light = throughput * ls.weight * (mis / choice.probability);
             if (kAlpha) light *= transmittance;
@@ -302,7 +283,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
     float bsdf_pdf = 0.0f, guide_pdf = 0.0f;  // the parts of a guided sample's pdf
     Vec2 square(-1.0f);                        // and its direction on the guide's square (-1: not known yet)
     BsdfSample bs = guide ? sample_guided<kGlass>(bsdf, guide, frame, wo, backfacing, u_bsdf, bsdf_pdf, guide_pdf, square)
-                          : vertex_sample<kGlass>(bsdf, wo, u_bsdf, backfacing, p_spec);
+                          : bsdf.template sample<kGlass>(view, u_bsdf.x, Vec2(u_bsdf.y, u_bsdf.z));
     if (!bs.valid()) break;
     const Vec3 wi_world = frame.to_world(bs.wi);
     const float cos_geometric = glm::dot(wi_world, ng);
@@ -312,7 +293,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       break;  // below the geometric surface: an opaque surface transmits nothing
     }
     if (normal_mapped && !bs.is_delta) {
-      LobeEval f = bsdf.template eval_lobes<kGlass>(wo, bs.wi, backfacing);
+      LobeEval f = bsdf.template eval_lobes<kGlass>(view, bs.wi);
       f.diffuse *= bump_shadowing(n_smooth, ns, wi_world);
       bs.weight = f.total() / bs.pdf;
     }
@@ -321,7 +302,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
                           bs.weight, bs.pdf, guide ? bsdf_pdf : bs.pdf, guide_pdf);
     throughput *= bs.weight;
     if (kSplitLobes && bounce == 0 && !bs.is_delta) {
-      const LobeEval f = bsdf.template eval_lobes<kGlass>(wo, bs.wi, backfacing);
+      const LobeEval f = bsdf.template eval_lobes<kGlass>(view, bs.wi);
       const Vec3 total = f.total();
       for (int c = 0; c < 3; ++c) diffuse_share[c] = total[c] > 0.0f ? f.diffuse[c] / total[c] : 0.0f;
     }

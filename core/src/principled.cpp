@@ -1,7 +1,5 @@
 #include "torrance/principled.h"
 
-#include "torrance/lobe_mixture.h"
-
 namespace torrance {
 
 float fresnel_dielectric(float cos_i, float eta) {
@@ -47,7 +45,29 @@ float PrincipledBsdf::specular_probability(const Vec3& wo) const {
   return lobe_mixture::specular_probability(luminance(fresnel(wo.z)), diffuse_luminance_);
 }
 
-LobeEval PrincipledBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
+namespace {
+// Schlick's weight (1 - c)^5 of the Burley diffuse, c clamped to [0, 1].
+float schlick_weight(float c) {
+  const float m = 1.0f - clamp01(c);
+  return (m * m) * (m * m) * m;
+}
+}  // namespace
+
+PrincipledBsdf::View PrincipledBsdf::geometry(const Vec3& wo) const {
+  View v;
+  lobe_mixture::prepare(v, wo, alpha_);
+  v.burley_o = schlick_weight(wo.z);
+  return v;
+}
+
+PrincipledBsdf::View PrincipledBsdf::at(const Vec3& wo) const {
+  View v = geometry(wo);
+  v.p_spec = specular_probability(wo);
+  return v;
+}
+
+LobeEval PrincipledBsdf::eval_lobes(const View& v, const Vec3& wi) const {
+  const Vec3& wo = v.wo;
   if (wo.z <= 0.0f || wi.z <= 0.0f) return {};
   const Vec3 half = wo + wi;
   const float half_len2 = glm::dot(half, half);
@@ -56,34 +76,16 @@ LobeEval PrincipledBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
   const float cos_d = clamp01(glm::dot(wi, h));
 
   // Burley diffuse (Cycles 3.4's principled diffuse, roughness unsquared).
-  auto schlick_weight = [](float c) {
-    const float m = 1.0f - clamp01(c);
-    return (m * m) * (m * m) * m;
-  };
-  const float fl = schlick_weight(wi.z), fv = schlick_weight(wo.z);
+  const float fl = schlick_weight(wi.z), fv = v.burley_o;
   const float rr = 2.0f * roughness_ * cos_d * cos_d;
   const float burley = (1.0f - 0.5f * fl) * (1.0f - 0.5f * fv) + rr * (fl + fv + fl * fv * (rr - 1.0f));
   LobeEval f_cos;
   f_cos.diffuse = diffuse_color_ * (kInvPi * burley * wi.z);
   if (!has_delta()) {
-    const float g = ggx::smith_G1(wo.z, alpha_) * ggx::smith_G1(wi.z, alpha_);
-    f_cos.glossy = fresnel(cos_d) * (ggx::D(h, alpha_) * g / (4.0f * wo.z));
+    const float g = v.g1_o * ggx::smith_G1(wi.z, alpha_);
+    f_cos.glossy = fresnel(cos_d) * (ggx::D(h, alpha_) * g / v.four_cos_o);
   }
   return f_cos;
-}
-
-float PrincipledBsdf::pdf(const Vec3& wo, const Vec3& wi) const { return lobe_mixture::pdf(*this, wo, wi, alpha_); }
-
-BsdfSample PrincipledBsdf::sample(const Vec3& wo, float u_lobe, const Vec2& u) const {
-  return lobe_mixture::sample(*this, wo, u_lobe, u, alpha_);
-}
-
-float PrincipledBsdf::pdf_given(const Vec3& wo, const Vec3& wi, float p_spec) const {
-  return lobe_mixture::pdf_given(*this, wo, wi, alpha_, p_spec);
-}
-
-BsdfSample PrincipledBsdf::sample_given(const Vec3& wo, float u_lobe, const Vec2& u, float p_spec) const {
-  return lobe_mixture::sample_given(*this, wo, u_lobe, u, alpha_, p_spec);
 }
 
 }  // namespace torrance

@@ -1,6 +1,5 @@
 #include "torrance/principled_v2.h"
 
-#include "torrance/lobe_mixture.h"
 #include "torrance/microfacet.h"
 
 namespace torrance {
@@ -95,15 +94,29 @@ Vec3 PrincipledV2Bsdf::mirror_reflectance(const Vec3& wo) const {
   return v.metal_scale * metal_fresnel(wo.z) + v.dielectric_scale * dielectric_fresnel(wo.z);
 }
 
-float PrincipledV2Bsdf::specular_probability(const Vec3& wo) const {
-  const ViewTerms v = view_terms(wo.z);
-  const float spec = luminance(metallic_ * metal_fresnel(wo.z) + (1.0f - metallic_) * v.dielectric_albedo);
+float PrincipledV2Bsdf::specular_probability(const ViewTerms& v, float cos_o) const {
+  const float spec = luminance(metallic_ * metal_fresnel(cos_o) + (1.0f - metallic_) * v.dielectric_albedo);
   return lobe_mixture::specular_probability(spec, luminance(v.diffuse));
 }
 
-LobeEval PrincipledV2Bsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
+PrincipledV2Bsdf::View PrincipledV2Bsdf::geometry(const Vec3& wo) const {
+  View v;
+  lobe_mixture::prepare(v, wo, alpha_);
+  v.terms = view_terms(wo.z);
+  v.lambda_o = ggx::smith_lambda(wo.z, alpha_);
+  return v;
+}
+
+PrincipledV2Bsdf::View PrincipledV2Bsdf::at(const Vec3& wo) const {
+  View v = geometry(wo);
+  v.p_spec = specular_probability(v.terms, wo.z);
+  return v;
+}
+
+LobeEval PrincipledV2Bsdf::eval_lobes(const View& view, const Vec3& wi) const {
+  const Vec3& wo = view.wo;
   if (wo.z <= 0.0f || wi.z <= 0.0f) return {};
-  const ViewTerms v = view_terms(wo.z);
+  const ViewTerms& v = view.terms;
   LobeEval f_cos;
   f_cos.diffuse = v.diffuse * (kInvPi * wi.z);
   if (has_delta()) return f_cos;
@@ -113,22 +126,9 @@ LobeEval PrincipledV2Bsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
   const Vec3 h = half / std::sqrt(half_len2);
   const float cos_d = clamp01(glm::dot(wi, h));
   const Vec3 fresnel = v.metal_scale * metal_fresnel(cos_d) + v.dielectric_scale * dielectric_fresnel(cos_d);
-  f_cos.glossy = fresnel * (ggx::D(h, alpha_) * ggx::smith_G2_correlated(wo.z, wi.z, alpha_) / (4.0f * wo.z));
+  const float g2 = ggx::smith_G2_correlated_given(view.lambda_o, wi.z, alpha_);
+  f_cos.glossy = fresnel * (ggx::D(h, alpha_) * g2 / view.four_cos_o);
   return f_cos;
-}
-
-float PrincipledV2Bsdf::pdf(const Vec3& wo, const Vec3& wi) const { return lobe_mixture::pdf(*this, wo, wi, alpha_); }
-
-BsdfSample PrincipledV2Bsdf::sample(const Vec3& wo, float u_lobe, const Vec2& u) const {
-  return lobe_mixture::sample(*this, wo, u_lobe, u, alpha_);
-}
-
-float PrincipledV2Bsdf::pdf_given(const Vec3& wo, const Vec3& wi, float p_spec) const {
-  return lobe_mixture::pdf_given(*this, wo, wi, alpha_, p_spec);
-}
-
-BsdfSample PrincipledV2Bsdf::sample_given(const Vec3& wo, float u_lobe, const Vec2& u, float p_spec) const {
-  return lobe_mixture::sample_given(*this, wo, u_lobe, u, alpha_, p_spec);
 }
 
 }  // namespace torrance

@@ -1,8 +1,12 @@
-// Sampling shared by the metallic/roughness BSDFs (PAPER and PRINCIPLED): a diffuse lobe sampled
-// by the cosine and a GGX lobe sampled by visible normals, chosen with the BSDF's
+// Sampling shared by the metallic/roughness BSDFs (PAPER, PRINCIPLED, PRINCIPLED_V2): a diffuse
+// lobe sampled by the cosine and a GGX lobe sampled by visible normals, chosen with the BSDF's
 // specular_probability(wo) (one-sample MIS: the pdf is the mixture of both); below
 // ggx::kDeltaAlpha the GGX lobe is a mirror whose reflectance the BSDF gives as
 // mirror_reflectance(wo). Only the models' eval() and lobe weights differ.
+//
+// A shading point asks its BSDF several times with one wo (light choice, the light sample's eval
+// and MIS pdf, the BSDF sample's pdf and eval), so each model prepares what depends on wo alone
+// once, in a View (the model's at(wo)), which its eval/pdf/sample take instead of wo.
 #pragma once
 
 #include "torrance/bsdf.h"
@@ -23,31 +27,44 @@ inline float specular_probability(float spec, float diff) {
   return std::min(std::max(spec / (spec + diff), 0.1f), 0.9f);
 }
 
-// The mixture's pdf given p_spec = bsdf.specular_probability(wo) (sample() has it already).
+// The mixture's terms of wo, the base of every model's View: the GGX density factors of wo
+// (ggx::reflected_pdf = g1_o D(h) / four_cos_o) and the lobe choice p_spec.
+struct View {
+  Vec3 wo{0.0f, 0.0f, 1.0f};
+  float g1_o = 0.0f;       // ggx::smith_G1(wo.z, alpha)
+  float four_cos_o = 0.0f;  // 4 wo.z
+  float p_spec = 1.0f;     // bsdf.specular_probability(wo)
+};
+
+// Fills the geometric terms of `v` for wo (not p_spec: the model's at() adds it).
+inline void prepare(View& v, const Vec3& wo, float alpha) {
+  v.wo = wo;
+  v.g1_o = ggx::smith_G1(wo.z, alpha);
+  v.four_cos_o = 4.0f * wo.z;
+}
+
+// The mixture's pdf of wi seen from the prepared v.
 template <typename Bsdf>
-float pdf_given(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi, float alpha, float p_spec) {
+float pdf(const Bsdf& bsdf, const View& v, const Vec3& wi, float alpha) {
+  const Vec3& wo = v.wo;
   if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
-  float pdf = (1.0f - p_spec) * cosine_hemisphere_pdf(wi.z);
-  if (!bsdf.has_delta() && p_spec > 0.0f) pdf += p_spec * ggx::reflected_pdf(wo, glm::normalize(wo + wi), alpha);
+  float pdf = (1.0f - v.p_spec) * cosine_hemisphere_pdf(wi.z);
+  if (!bsdf.has_delta() && v.p_spec > 0.0f)
+    pdf += v.p_spec * ggx::reflected_pdf_given(v.g1_o, v.four_cos_o, glm::normalize(wo + wi), alpha);
   return pdf;
 }
 
+// Samples the mixture seen from the prepared v (Bsdf::View derives from View); eval and pdf of
+// the sampled direction use the same view.
 template <typename Bsdf>
-float pdf(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi, float alpha) {
-  if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
-  return pdf_given(bsdf, wo, wi, alpha, bsdf.specular_probability(wo));
-}
-
-// sample given p_spec = bsdf.specular_probability(wo) (a path vertex computes it once for its
-// light sample's pdf and its BSDF sample).
-template <typename Bsdf>
-BsdfSample sample_given(const Bsdf& bsdf, const Vec3& wo, float u_lobe, const Vec2& u, float alpha, float p_spec) {
+BsdfSample sample(const Bsdf& bsdf, const typename Bsdf::View& v, float u_lobe, const Vec2& u, float alpha) {
+  const Vec3& wo = v.wo;
   BsdfSample s;
   if (wo.z <= 0.0f) return s;
-  if (u_lobe < p_spec) {
+  if (u_lobe < v.p_spec) {
     if (bsdf.has_delta()) {
       s.wi = Vec3(-wo.x, -wo.y, wo.z);
-      s.weight = bsdf.mirror_reflectance(wo) / p_spec;
+      s.weight = bsdf.mirror_reflectance(wo) / v.p_spec;
       s.is_delta = true;
       return s;
     }
@@ -56,16 +73,10 @@ BsdfSample sample_given(const Bsdf& bsdf, const Vec3& wo, float u_lobe, const Ve
     s.wi = sample_cosine_hemisphere(u);
   }
   if (s.wi.z <= 0.0f) return BsdfSample{};
-  s.pdf = pdf_given(bsdf, wo, s.wi, alpha, p_spec);
+  s.pdf = pdf(bsdf, v, s.wi, alpha);
   if (!(s.pdf > 0.0f)) return BsdfSample{};
-  s.weight = bsdf.eval(wo, s.wi) / s.pdf;
+  s.weight = bsdf.eval_lobes(v, s.wi).total() / s.pdf;
   return s;
-}
-
-template <typename Bsdf>
-BsdfSample sample(const Bsdf& bsdf, const Vec3& wo, float u_lobe, const Vec2& u, float alpha) {
-  if (wo.z <= 0.0f) return BsdfSample{};
-  return sample_given(bsdf, wo, u_lobe, u, alpha, bsdf.specular_probability(wo));
 }
 
 }  // namespace torrance::lobe_mixture

@@ -40,69 +40,108 @@ class MaterialBsdf {
 
   bool transmits() const { return glass_.has_value(); }
 
+  // What eval, pdf and sample need of wo alone, prepared once per shading point: the model's
+  // View (its at(wo), lobe_mixture.h) and `backfacing` (the glass's side).
+  struct View {
+    std::variant<CookTorranceBsdf::View, PrincipledBsdf::View, PrincipledV2Bsdf::View> lobes;
+    Vec3 wo{0.0f, 0.0f, 1.0f};
+    bool backfacing = false;
+    // The opaque lobes' choice of their specular lobe for this wo (1 without opaque lobes).
+    float p_spec() const { return std::visit([](const auto& v) { return v.p_spec; }, lobes); }
+  };
+  // lobe_choice = false: without the lobe choice p_spec (1), for eval alone.
+  View at(const Vec3& wo, bool backfacing = false, bool lobe_choice = true) const {
+    const bool choice = lobe_choice && opaque_;
+    return View{std::visit([&](const auto& b) -> decltype(View::lobes) { return choice ? b.at(wo) : b.geometry(wo); },
+                           bsdf_),
+                wo, backfacing};
+  }
+
   // kGlass = false: the caller knows no material of the scene transmits (the integrator's
   // glass-free path), so the glass is not even checked for.
+  template <bool kGlass = true>
+  LobeEval eval_lobes(const View& v, const Vec3& wi) const {
+    LobeEval f;
+    if (!kGlass || opaque_) f = visit(v, [&](const auto& b, const auto& lv) { return b.eval_lobes(lv, wi); });
+    if (!kGlass || !glass_) return f;
+    f.diffuse *= opaque_scale_;
+    f.glossy = f.glossy * opaque_scale_ +
+               glass_weight_ * glass_->eval(outward(v.wo, v.backfacing), outward(wi, v.backfacing));
+    return f;
+  }
+  template <bool kGlass = true>
+  float pdf(const View& v, const Vec3& wi) const {
+    if (!kGlass) return visit(v, [&](const auto& b, const auto& lv) { return b.pdf(lv, wi); });
+    const float opaque =
+        opaque_ ? visit(v, [&](const auto& b, const auto& lv) { return b.pdf(lv, wi); }) * (1.0f - glass_probability_)
+                : 0.0f;
+    if (!glass_) return opaque;
+    return opaque + glass_probability_ * glass_->pdf(outward(v.wo, v.backfacing), outward(wi, v.backfacing));
+  }
+  template <bool kGlass = true>
+  BsdfSample sample(const View& v, float u_lobe, const Vec2& u) const {
+    if (!kGlass || !glass_) return visit(v, [&](const auto& b, const auto& lv) { return b.sample(lv, u_lobe, u); });
+    BsdfSample s;
+    const float p = glass_probability_;
+    if (u_lobe < p) {
+      s = glass_->sample(outward(v.wo, v.backfacing), std::min(u_lobe / p, 0.99999994f), u);
+      s.wi = outward(s.wi, v.backfacing);
+      if (s.is_delta) s.weight *= glass_weight_ / p;
+    } else {
+      s = visit(v, [&](const auto& b, const auto& lv) {
+        return b.sample(lv, std::min((u_lobe - p) / (1.0f - p), 0.99999994f), u);
+      });
+      if (s.is_delta) s.weight *= opaque_scale_ / (1.0f - p);
+    }
+    if (!s.valid() || s.is_delta) return s;
+    // One-sample MIS over both parts: the density of either producing wi.
+    s.pdf = pdf(v, s.wi);
+    if (!(s.pdf > 0.0f)) return BsdfSample{};
+    s.weight = eval_lobes(v, s.wi).total() / s.pdf;
+    return s;
+  }
+
+  // The same, preparing wo for this one query (p_spec: the lobe choice, if known).
   template <bool kGlass = true>
   Vec3 eval(const Vec3& wo, const Vec3& wi, bool backfacing = false) const {
     return eval_lobes<kGlass>(wo, wi, backfacing).total();
   }
   template <bool kGlass = true>
   LobeEval eval_lobes(const Vec3& wo, const Vec3& wi, bool backfacing = false) const {
-    LobeEval f;
-    if (!kGlass || opaque_) f = std::visit([&](const auto& b) { return b.eval_lobes(wo, wi); }, bsdf_);
-    if (!kGlass || !glass_) return f;
-    f.diffuse *= opaque_scale_;
-    f.glossy = f.glossy * opaque_scale_ +
-               glass_weight_ * glass_->eval(outward(wo, backfacing), outward(wi, backfacing));
-    return f;
+    return eval_lobes<kGlass>(at(wo, backfacing, false), wi);
   }
-  // The opaque lobes' choice of their specular lobe for this wo (lobe_mixture.h; 1 without
-  // opaque lobes), which pdf and sample take as p_spec: a path vertex computes it once.
-  float specular_probability(const Vec3& wo) const {
-    return opaque_ ? std::visit([&](const auto& b) { return b.specular_probability(wo); }, bsdf_) : 1.0f;
-  }
+  float specular_probability(const Vec3& wo) const { return at(wo).p_spec(); }
   template <bool kGlass = true>
   float pdf(const Vec3& wo, const Vec3& wi, bool backfacing = false) const {
-    return pdf<kGlass>(wo, wi, backfacing, specular_probability(wo));
+    return pdf<kGlass>(at(wo, backfacing), wi);
   }
   template <bool kGlass = true>
   float pdf(const Vec3& wo, const Vec3& wi, bool backfacing, float p_spec) const {
-    if (!kGlass) return std::visit([&](const auto& b) { return b.pdf_given(wo, wi, p_spec); }, bsdf_);
-    const float opaque = opaque_ ? std::visit([&](const auto& b) { return b.pdf_given(wo, wi, p_spec); }, bsdf_) *
-                                       (1.0f - glass_probability_)
-                                 : 0.0f;
-    if (!glass_) return opaque;
-    return opaque + glass_probability_ * glass_->pdf(outward(wo, backfacing), outward(wi, backfacing));
+    return pdf<kGlass>(with_choice(at(wo, backfacing, false), p_spec), wi);
   }
   template <bool kGlass = true>
   BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing = false) const {
-    return sample<kGlass>(wo, u_lobe, u, backfacing, specular_probability(wo));
+    return sample<kGlass>(at(wo, backfacing), u_lobe, u);
   }
   template <bool kGlass = true>
   BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing, float p_spec) const {
-    if (!kGlass || !glass_)
-      return std::visit([&](const auto& b) { return b.sample_given(wo, u_lobe, u, p_spec); }, bsdf_);
-    BsdfSample s;
-    const float p = glass_probability_;
-    if (u_lobe < p) {
-      s = glass_->sample(outward(wo, backfacing), std::min(u_lobe / p, 0.99999994f), u);
-      s.wi = outward(s.wi, backfacing);
-      if (s.is_delta) s.weight *= glass_weight_ / p;
-    } else {
-      s = std::visit(
-          [&](const auto& b) { return b.sample_given(wo, std::min((u_lobe - p) / (1.0f - p), 0.99999994f), u, p_spec); },
-          bsdf_);
-      if (s.is_delta) s.weight *= opaque_scale_ / (1.0f - p);
-    }
-    if (!s.valid() || s.is_delta) return s;
-    // One-sample MIS over both parts: the density of either producing wi.
-    s.pdf = pdf(wo, s.wi, backfacing, p_spec);
-    if (!(s.pdf > 0.0f)) return BsdfSample{};
-    s.weight = eval(wo, s.wi, backfacing) / s.pdf;
-    return s;
+    return sample<kGlass>(with_choice(at(wo, backfacing, false), p_spec), u_lobe, u);
   }
 
  private:
+  // Calls f(model, its view) for the model of this material and v (prepared by at()).
+  template <typename F>
+  decltype(auto) visit(const View& v, F&& f) const {
+    if (const auto* p = std::get_if<PrincipledBsdf::View>(&v.lobes)) return f(*std::get_if<PrincipledBsdf>(&bsdf_), *p);
+    if (const auto* c = std::get_if<CookTorranceBsdf::View>(&v.lobes))
+      return f(*std::get_if<CookTorranceBsdf>(&bsdf_), *c);
+    return f(*std::get_if<PrincipledV2Bsdf>(&bsdf_), *std::get_if<PrincipledV2Bsdf::View>(&v.lobes));
+  }
+  static View with_choice(View v, float p_spec) {
+    std::visit([&](auto& lv) { lv.p_spec = p_spec; }, v.lobes);
+    return v;
+  }
+
   using Variant = std::variant<CookTorranceBsdf, PrincipledBsdf, PrincipledV2Bsdf>;
   static Variant make(const Material& m, BrdfModel model) {
     if (model == BrdfModel::Principled) return PrincipledBsdf(m);

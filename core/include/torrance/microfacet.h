@@ -39,6 +39,11 @@ inline float smith_G2_correlated(float cos_o, float cos_i, float alpha) {
   if (cos_o <= 0.0f || cos_i <= 0.0f) return 0.0f;
   return 1.0f / (1.0f + smith_lambda(cos_o, alpha) + smith_lambda(cos_i, alpha));
 }
+// The same given lambda_o = smith_lambda(cos_o, alpha) of a cos_o > 0.
+inline float smith_G2_correlated_given(float lambda_o, float cos_i, float alpha) {
+  if (cos_i <= 0.0f) return 0.0f;
+  return 1.0f / (1.0f + lambda_o + smith_lambda(cos_i, alpha));
+}
 
 // Samples a microfacet normal from the distribution of normals visible from wo (wo.z > 0),
 // using the spherical-cap construction (Dupuy & Benyoub 2023). Density of h: G1(wo) max(0, wo.h) D(h) / wo.z.
@@ -52,9 +57,13 @@ inline Vec3 sample_visible_normal(const Vec3& wo, float alpha, const Vec2& u) {
 }
 
 // Solid-angle density of the reflected direction produced by sample_visible_normal.
+// reflected_pdf given wo's terms g1_o = smith_G1(wo.z, alpha) and four_cos_o = 4 wo.z (wo.z > 0).
+inline float reflected_pdf_given(float g1_o, float four_cos_o, const Vec3& h, float alpha) {
+  return g1_o * D(h, alpha) / four_cos_o;
+}
 inline float reflected_pdf(const Vec3& wo, const Vec3& h, float alpha) {
   if (wo.z <= 0.0f) return 0.0f;
-  return smith_G1(wo.z, alpha) * D(h, alpha) / (4.0f * wo.z);
+  return reflected_pdf_given(smith_G1(wo.z, alpha), 4.0f * wo.z, h, alpha);
 }
 
 inline Vec3 reflect(const Vec3& w, const Vec3& n) { return 2.0f * glm::dot(w, n) * n - w; }

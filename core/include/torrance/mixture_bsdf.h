@@ -57,6 +57,25 @@ class MixtureBsdf {
   }
   bool transmits() const;  // some closure is glass
 
+  // The View interface of MaterialBsdf: a mixture prepares nothing (each closure its own wo).
+  struct View {
+    Vec3 wo{0.0f, 0.0f, 1.0f};
+    bool backfacing = false;
+  };
+  View at(const Vec3& wo, bool backfacing = false) const { return View{wo, backfacing}; }
+  template <bool kGlass = true>
+  LobeEval eval_lobes(const View& v, const Vec3& wi) const {
+    return eval_mixture(v.wo, wi, v.backfacing);
+  }
+  template <bool kGlass = true>
+  float pdf(const View& v, const Vec3& wi) const {
+    return pdf_mixture(v.wo, wi, v.backfacing);
+  }
+  template <bool kGlass = true>
+  BsdfSample sample(const View& v, float u_lobe, const Vec2& u) const {
+    return sample_mixture(v.wo, u_lobe, u, v.backfacing);
+  }
+
  private:
   LobeEval eval_mixture(const Vec3& wo, const Vec3& wi, bool backfacing) const;
   float pdf_mixture(const Vec3& wo, const Vec3& wi, bool backfacing) const;

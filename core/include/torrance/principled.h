@@ -16,6 +16,7 @@
 #pragma once
 
 #include "torrance/bsdf.h"
+#include "torrance/lobe_mixture.h"
 #include "torrance/microfacet.h"
 
 namespace torrance {
@@ -27,13 +28,24 @@ class PrincipledBsdf {
  public:
   explicit PrincipledBsdf(const Material& m);
 
-  LobeEval eval_lobes(const Vec3& wo, const Vec3& wi) const;
+  // What eval, pdf and sample need of wo alone (lobe_mixture.h), prepared once per shading point.
+  struct View : lobe_mixture::View {
+    using Model = PrincipledBsdf;
+    float burley_o = 0.0f;  // the Burley diffuse's Schlick weight (1 - wo.z)^5
+  };
+  View at(const Vec3& wo) const;        // with the lobe choice p_spec
+  View geometry(const Vec3& wo) const;  // without it (p_spec = 1): enough for eval
+
+  LobeEval eval_lobes(const View& v, const Vec3& wi) const;
+  float pdf(const View& v, const Vec3& wi) const { return lobe_mixture::pdf(*this, v, wi, alpha_); }
+  BsdfSample sample(const View& v, float u_lobe, const Vec2& u) const {
+    return lobe_mixture::sample(*this, v, u_lobe, u, alpha_);
+  }
+  // The same, preparing wo for this one query.
+  LobeEval eval_lobes(const Vec3& wo, const Vec3& wi) const { return eval_lobes(geometry(wo), wi); }
   Vec3 eval(const Vec3& wo, const Vec3& wi) const { return eval_lobes(wo, wi).total(); }
-  float pdf(const Vec3& wo, const Vec3& wi) const;
-  BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const;
-  // pdf and sample given p_spec = specular_probability(wo) (lobe_mixture.h).
-  float pdf_given(const Vec3& wo, const Vec3& wi, float p_spec) const;
-  BsdfSample sample_given(const Vec3& wo, float u_lobe, const Vec2& u, float p_spec) const;
+  float pdf(const Vec3& wo, const Vec3& wi) const { return pdf(at(wo), wi); }
+  BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const { return sample(at(wo), u_lobe, u); }
 
   bool has_delta() const { return alpha_ < ggx::kDeltaAlpha; }
   Vec3 mirror_reflectance(const Vec3& wo) const { return fresnel(wo.z); }

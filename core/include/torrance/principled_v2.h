@@ -35,28 +35,13 @@
 
 #include "torrance/bsdf.h"
 #include "torrance/ggx_tables.h"
+#include "torrance/lobe_mixture.h"
 
 namespace torrance {
 
 class PrincipledV2Bsdf {
  public:
   explicit PrincipledV2Bsdf(const Material& m);
-
-  LobeEval eval_lobes(const Vec3& wo, const Vec3& wi) const;
-  Vec3 eval(const Vec3& wo, const Vec3& wi) const { return eval_lobes(wo, wi).total(); }
-  float pdf(const Vec3& wo, const Vec3& wi) const;
-  BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const;
-  // pdf and sample given p_spec = specular_probability(wo) (lobe_mixture.h).
-  float pdf_given(const Vec3& wo, const Vec3& wi, float p_spec) const;
-  BsdfSample sample_given(const Vec3& wo, float u_lobe, const Vec2& u, float p_spec) const;
-
-  bool has_delta() const { return alpha_ < ggx_tables::kDeltaAlpha; }
-  Vec3 mirror_reflectance(const Vec3& wo) const;
-  float specular_probability(const Vec3& wo) const;
-
-  Vec3 metal_fresnel(float cos_ih) const;       // F_m
-  Vec3 dielectric_fresnel(float cos_ih) const;  // F_d (0 without a dielectric lobe)
-  float eta() const { return eta_; }
 
   // The wo-dependent layer weights.
   struct ViewTerms {
@@ -67,7 +52,37 @@ class PrincipledV2Bsdf {
   };
   ViewTerms view_terms(float cos_o) const;
 
+  // What eval, pdf and sample need of wo alone (lobe_mixture.h), prepared once per shading point.
+  struct View : lobe_mixture::View {
+    using Model = PrincipledV2Bsdf;
+    ViewTerms terms;
+    float lambda_o = 0.0f;  // ggx::smith_lambda(wo.z, alpha)
+  };
+  View at(const Vec3& wo) const;        // with the lobe choice p_spec
+  View geometry(const Vec3& wo) const;  // without it (p_spec = 1): enough for eval
+
+  LobeEval eval_lobes(const View& v, const Vec3& wi) const;
+  float pdf(const View& v, const Vec3& wi) const { return lobe_mixture::pdf(*this, v, wi, alpha_); }
+  BsdfSample sample(const View& v, float u_lobe, const Vec2& u) const {
+    return lobe_mixture::sample(*this, v, u_lobe, u, alpha_);
+  }
+  // The same, preparing wo for this one query.
+  LobeEval eval_lobes(const Vec3& wo, const Vec3& wi) const { return eval_lobes(geometry(wo), wi); }
+  Vec3 eval(const Vec3& wo, const Vec3& wi) const { return eval_lobes(wo, wi).total(); }
+  float pdf(const Vec3& wo, const Vec3& wi) const { return pdf(at(wo), wi); }
+  BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const { return sample(at(wo), u_lobe, u); }
+
+  bool has_delta() const { return alpha_ < ggx_tables::kDeltaAlpha; }
+  Vec3 mirror_reflectance(const Vec3& wo) const;
+  float specular_probability(const Vec3& wo) const { return specular_probability(view_terms(wo.z), wo.z); }
+
+  Vec3 metal_fresnel(float cos_ih) const;       // F_m
+  Vec3 dielectric_fresnel(float cos_ih) const;  // F_d (0 without a dielectric lobe)
+  float eta() const { return eta_; }
+
  private:
+  float specular_probability(const ViewTerms& v, float cos_o) const;
+
   Vec3 base_, metal_f0_, metal_b_, metal_fss_, dielectric_f0_, dielectric_fss_;
   float metallic_, roughness_, alpha_, eta_;
   bool has_dielectric_, multiscatter_;
