@@ -111,6 +111,8 @@ void init_render(py::module_& m) {
            py::arg("guiding") = false, py::arg("guiding_training_fraction") = 0.25f)
       .def_readwrite("specialize", &RenderSettings::specialize)
       .def_readwrite("camera_packets", &RenderSettings::camera_packets)
+      .def_readwrite("efficiency_roulette", &RenderSettings::efficiency_roulette)
+      .def_readwrite("roulette_min_survival", &RenderSettings::roulette_min_survival)
       .def_property(
           "sampler", [](const RenderSettings& s) { return std::string(s.sobol ? "SOBOL" : "RANDOM"); },
           [](RenderSettings& s, const std::string& v) { s.sobol = parse_sampler_is_sobol(v); })

@@ -307,6 +307,8 @@ def _render(engine, depsgraph, reporter):
                       clamp_direct=float(settings.clamp_direct),
                       clamp_indirect=float(settings.clamp_indirect),
                       guiding=bool(settings.guiding),
+                      closest_rays=int(result.closest_rays),
+                      occlusion_rays=int(result.occlusion_rays),
                       guiding_training_fraction=float(settings.guiding_training_fraction))
     engine.update_progress(1.0)
     engine.update_stats("", msg)
