@@ -13,7 +13,8 @@ RAYS_GOAL = 0.6       # the issue's goal: the integrator traces >= 60 % of raw E
 LEVER_LABELS = {"specialize": "specialised kernels", "sampler=RANDOM": "Sobol sampler",
                 "light_selection=IRRADIANCE": "light choice aware of the BSDF",
                 "light_selection=UNIFORM": "light selection by contribution",
-                "guiding": "path guiding", "camera_packets": "camera rays in 8-wide packets"}
+                "guiding": "path guiding", "camera_packets": "camera rays in 8-wide packets",
+                "efficiency_roulette": "efficiency-aware Russian roulette"}
 
 
 def ratios(d, torrance, cycles):

@@ -255,6 +255,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         if (in.ConsumeBool()) s.adaptive_min_samples = in.ConsumeIntegralInRange<int>(-1, 20);
         if (in.ConsumeBool()) s.clamp_direct = any_float(in);
         if (in.ConsumeBool()) s.clamp_indirect = any_float(in);
+        s.efficiency_roulette = in.ConsumeBool();
+        if (in.ConsumeBool()) s.roulette_min_survival = any_float(in);
         s.threads = 1;
         RenderResult r;
         if (clearly([&] { r = render(scene, s); })) {

@@ -71,7 +71,8 @@ void init_render(py::module_& m) {
                        const std::string& light_selection, const std::vector<std::string>& passes,
                        const std::string& sampler, bool specialize, float adaptive_threshold,
                        int adaptive_min_samples, double time_limit, float clamp_direct, float clamp_indirect,
-                       int max_transparent_bounces, bool guiding, float guiding_training_fraction) {
+                       int max_transparent_bounces, bool guiding, float guiding_training_fraction,
+                       bool efficiency_roulette) {
              RenderSettings s;
              s.width = width;
              s.height = height;
@@ -97,6 +98,7 @@ void init_render(py::module_& m) {
              s.max_transparent_bounces = max_transparent_bounces;
              s.guiding = guiding;
              s.guiding_training_fraction = guiding_training_fraction;
+             s.efficiency_roulette = efficiency_roulette;
              s.validate();
              return s;
            }),
@@ -108,9 +110,12 @@ void init_render(py::module_& m) {
            py::arg("sampler") = "SOBOL", py::arg("specialize") = true, py::arg("adaptive_threshold") = 0.0f,
            py::arg("adaptive_min_samples") = 0, py::arg("time_limit") = 0.0, py::arg("clamp_direct") = 0.0f,
            py::arg("clamp_indirect") = 0.0f, py::arg("max_transparent_bounces") = 8,
-           py::arg("guiding") = false, py::arg("guiding_training_fraction") = 0.25f)
+           py::arg("guiding") = false, py::arg("guiding_training_fraction") = 0.25f,
+           py::arg("efficiency_roulette") = true)
       .def_readwrite("specialize", &RenderSettings::specialize)
       .def_readwrite("camera_packets", &RenderSettings::camera_packets)
+      .def_readwrite("efficiency_roulette", &RenderSettings::efficiency_roulette)
+      .def_readwrite("roulette_min_survival", &RenderSettings::roulette_min_survival)
       .def_property(
           "sampler", [](const RenderSettings& s) { return std::string(s.sobol ? "SOBOL" : "RANDOM"); },
           [](RenderSettings& s, const std::string& v) { s.sobol = parse_sampler_is_sobol(v); })

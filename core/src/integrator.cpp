@@ -54,7 +54,10 @@ void RenderSettings::validate() const {
     if (passes & p.pass) pass_channels += p.channels;
   // Adaptive sampling adds a second (half) RGB sum per pixel, and the result a sample count.
   const double adaptive_bytes = adaptive_threshold > 0.0f ? 8.0 * 3 + 4.0 : 0.0;
-  require_memory(pixels * (8.0 * (5 + pass_channels) + 4.0 * 16 + 4.0 * 2 * pass_channels + adaptive_bytes),
+  // The roulette's per-pixel sums (24 bytes) and its statistics per block of 16 pixels.
+  const double roulette_bytes = efficiency_roulette ? 32.0 : 0.0;
+  require_memory(pixels * (8.0 * (5 + pass_channels) + 4.0 * 16 + 4.0 * 2 * pass_channels + adaptive_bytes +
+                           roulette_bytes),
                  "a " + std::to_string(width) + " x " + std::to_string(height) + " render");
   if (!(adaptive_threshold >= 0.0f && adaptive_threshold <= 1.0f))
     throw std::invalid_argument("adaptive_threshold must be in [0, 1] (0 = off)");
@@ -64,6 +67,8 @@ void RenderSettings::validate() const {
   if (!(clamp_direct >= 0.0f) || !std::isfinite(clamp_direct) || !(clamp_indirect >= 0.0f) ||
       !std::isfinite(clamp_indirect))
     throw std::invalid_argument("clamp_direct and clamp_indirect must be finite and >= 0 (0 = off)");
+  if (!(roulette_min_survival > 0.0f && roulette_min_survival <= 1.0f))
+    throw std::invalid_argument("roulette_min_survival must be in (0, 1]");
   if (!(guiding_training_fraction >= 0.0f && guiding_training_fraction <= 1.0f))
     throw std::invalid_argument("guiding_training_fraction must be in [0, 1]");
 }
@@ -123,6 +128,10 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
     ctx.guide_training = true;
   }
   int guide_pass_end = 1;  // the sample count that ends the current training pass
+  std::optional<RouletteField> roulette;
+  // The sample count at which the roulette next learns: 2^k - 1, where the first passes (1, 2, 4,
+  // ... samples) end anyway; never timing-dependent.
+  int roulette_update_at = 1;
 
   const std::array<int, 4> window = settings.window.value_or(std::array<int, 4>{0, 0, settings.width, settings.height});
   const bool adaptive = settings.adaptive_threshold > 0.0f;
@@ -139,6 +148,10 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
     return std::min(n, next_check - done);
   };
   Film film(window[2] - window[0], window[3] - window[1], settings.passes, adaptive);
+  if (settings.efficiency_roulette) {
+    roulette.emplace(window[2] - window[0], window[3] - window[1], settings.roulette_min_survival);
+    ctx.roulette = &*roulette;
+  }
   constexpr int kTileSize = 16;
   std::vector<Tile> tiles;
   for (int y = window[1]; y < window[3]; y += kTileSize)
@@ -165,7 +178,13 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
             const uint32_t pixel = uint32_t(y) * uint32_t(settings.width) + uint32_t(x);
             // Guiding learns relative error: the pixel's estimate from earlier passes (only this thread
             // adds to it during the pass).
-            const float guide_weight = ctx.guide_training ? pixel_weight(film.mean(x - window[0], y - window[1])) : 1.0f;
+            PixelSample pixel_sample;
+            pixel_sample.x = x - window[0];
+            pixel_sample.y = y - window[1];
+            const Vec3 mean = film.mean(pixel_sample.x, pixel_sample.y);
+            pixel_sample.guide_weight = ctx.guide_training ? pixel_weight(mean) : 1.0f;
+            pixel_sample.estimate = luminance(mean);
+            pixel_sample.has_estimate = film.samples(pixel_sample.x, pixel_sample.y) > 0.0;
             for (int s0 = first_sample; s0 < first_sample + num_samples; s0 += Scene::kPacketSize) {
               // Up to kPacketSize samples at once: their camera rays in one packet, then each path.
               const int n = std::min(Scene::kPacketSize, first_sample + num_samples - s0);
@@ -189,7 +208,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
               }
               for (int i = 0; i < n; ++i) {
                 const int s = s0 + i;
-                PathRadiance r = trace(ctx, rays[i], *samplers[i], packet ? &first[i] : nullptr, guide_weight);
+                PathRadiance r = trace(ctx, rays[i], *samplers[i], packet ? &first[i] : nullptr, pixel_sample);
                 if (!is_finite(r.combined())) {  // never expected; counted so tests can prove it never happens
                   ++bad;
                   const float alpha = r.alpha;
@@ -230,6 +249,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
         while (n < target) {
           int step = align_to_check(done, target - n);
           if (ctx.guide_training) step = std::min(step, guide_pass_end - done);
+          if (roulette) step = std::min(step, roulette_update_at - done);
           arena.execute([&] { render_pass(done, step); });
           if (stop) break;
           done += step;
@@ -241,6 +261,10 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
             ctx.guide_training = worth_it && guide_pass_end <= settings.guiding_training_fraction * settings.samples &&
                                  (settings.time_limit <= 0.0 || elapsed < settings.guiding_training_fraction * settings.time_limit);
             if (!worth_it) ctx.guide = nullptr;  // it would cost more than it gains: plain path tracing from here
+          }
+          if (roulette && done == roulette_update_at) {  // at 1, 3, 7, 15, ... samples: where passes end
+            roulette->update();
+            roulette_update_at = 2 * done + 1;
           }
           if (needs_check(done) && film.update_convergence(adaptive_threshold) == 0) {
             all_converged = true;

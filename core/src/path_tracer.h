@@ -3,6 +3,7 @@
 // BSDF-sampled ray can hit, glass, alpha, mixtures), so that a scene pays only for what it has.
 #pragma once
 
+#include "torrance/roulette.h"
 #include "torrance/guiding.h"
 #include "torrance/integrator.h"
 #include "torrance/material_bsdf.h"
@@ -23,6 +24,16 @@ struct PathContext {
   // whether this pass also records into it (a training pass). Null: no guiding.
   GuidingField* guide = nullptr;
   bool guide_training = false;
+  // Efficiency-aware Russian roulette (roulette.h): learned and used; null: the classic rule only.
+  RouletteField* roulette = nullptr;
+};
+
+// Where a camera sample goes, and what the render knows of its pixel so far.
+struct PixelSample {
+  int x = 0, y = 0;           // in the rendered window
+  float guide_weight = 1.0f;  // what the path records for guiding is multiplied by it (pixel_weight, guiding.h)
+  float estimate = 0.0f;      // the luminance of the pixel's mean so far
+  bool has_estimate = false;  // false before its first sample
 };
 
 // Everything one camera sample brings back, split as Blender's passes.
@@ -45,8 +56,7 @@ struct FirstHit {
 };
 
 // first: the camera ray's answer, or nullptr to trace it.
-// guide_weight: what the path records for guiding is multiplied by it (pixel_weight, guiding.h).
-using TraceFn = PathRadiance (*)(const PathContext&, Ray, SobolSampler&, const FirstHit* first, float guide_weight);
+using TraceFn = PathRadiance (*)(const PathContext&, Ray, SobolSampler&, const FirstHit* first, const PixelSample& pixel);
 
 // The path tracer for the scene's features under the settings (specialize false: the generic
 // one, which has every feature).

@@ -63,6 +63,13 @@ class TorranceSceneSettings(bpy.types.PropertyGroup):
                     "Zero disables the limit",
         default=0.0, min=0.0, step=100.0, subtype='TIME_ABSOLUTE',
     )
+    use_efficiency_roulette: BoolProperty(
+        name="Efficiency Roulette",
+        description="Stop paths where what they would still bring is worth less than the rays "
+                    "it costs, learned from the render's own samples (unbiased: the image "
+                    "converges to the same result). Off: the classic rule, from the fifth bounce",
+        default=True,
+    )
     use_guiding: BoolProperty(
         name="Path Guiding",
         description="Learn where light comes from during the render (an SD-tree trained in the "

@@ -178,8 +178,9 @@ class _Session:
 
 
 def sampling_settings(ts):
-    """RenderSettings arguments for the Sampling panel's Noise Threshold, Time Limit and Path
-    Guiding and the Light Paths panel's Clamping, from scene.torrance (final renders)."""
+    """RenderSettings arguments for the Sampling panel's Noise Threshold, Time Limit, Path
+    Guiding and Efficiency Roulette and the Light Paths panel's Clamping, from scene.torrance
+    (final renders)."""
     threshold = 0.0
     if ts.use_adaptive_sampling:
         # As Cycles: a threshold of 0 means automatic, from the number of samples.
@@ -190,7 +191,8 @@ def sampling_settings(ts):
                 clamp_direct=float(ts.sample_clamp_direct),
                 clamp_indirect=float(ts.sample_clamp_indirect),
                 guiding=bool(ts.use_guiding),
-                guiding_training_fraction=float(ts.guiding_training_fraction))
+                guiding_training_fraction=float(ts.guiding_training_fraction),
+                efficiency_roulette=bool(ts.use_efficiency_roulette))
 
 
 def render(engine, depsgraph):
@@ -307,7 +309,10 @@ def _render(engine, depsgraph, reporter):
                       clamp_direct=float(settings.clamp_direct),
                       clamp_indirect=float(settings.clamp_indirect),
                       guiding=bool(settings.guiding),
-                      guiding_training_fraction=float(settings.guiding_training_fraction))
+                      closest_rays=int(result.closest_rays),
+                      occlusion_rays=int(result.occlusion_rays),
+                      guiding_training_fraction=float(settings.guiding_training_fraction),
+                      efficiency_roulette=bool(settings.efficiency_roulette))
     engine.update_progress(1.0)
     engine.update_stats("", msg)
     print(msg)

@@ -247,6 +247,7 @@ class TORRANCE_RENDER_PT_sampling_advanced(TorrancePanel, Panel):
     def draw(self, context):
         layout = _split(self.layout)
         layout.prop(context.scene.torrance, "seed")
+        layout.prop(context.scene.torrance, "use_efficiency_roulette")
 
 
 class TORRANCE_RENDER_PT_sampling_path_guiding(TorrancePanel, Panel):

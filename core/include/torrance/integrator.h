@@ -82,6 +82,11 @@ struct RenderSettings {
   // 4, ... samples per pixel while they fit in guiding_training_fraction of the samples (and of
   // time_limit), then kept for the rest; the samples of every pass (each one unbiased) are in the
   // image. Not bit-deterministic across runs: threads record into the tree in any order.
+  // Efficiency-aware Russian roulette (core/src/roulette.h): a path continues from a vertex with
+  // the probability learned, from the render's own samples, to give the least relative error per
+  // ray; false: the classic rule only (from the fifth vertex, probability sqrt(max throughput)).
+  bool efficiency_roulette = true;
+  float roulette_min_survival = 0.05f;  // the smallest probability it uses, in (0, 1]
   bool guiding = false;
   float guiding_training_fraction = 0.25f;
   GuidingOptions guiding_options;  // the SD-tree's parameters (C++ only: tests)

@@ -387,7 +387,11 @@ def test_hdri_world_mapping_and_importance_sampling():
             phi, theta = 2 * np.pi * (0.5 - u), np.pi * (1 - v)
             d = np.array([np.sin(theta) * np.cos(phi), np.sin(theta) * np.sin(phi), np.cos(theta)])
             E += 2000.0 * max(d[0], 0) * np.sin(theta) * (2 * np.pi / w) * (np.pi / h)
-    img = tc.render(scene, tc.RenderSettings(width=4, height=4, samples=256)).image
+    settings = tc.RenderSettings(width=4, height=4, samples=256)
+    # One seed of 16 pixels: the rare BSDF-sampled hits of the patch, which the efficiency
+    # roulette may stop or boost, would decide it (its own tests: test_roulette.cpp).
+    settings.efficiency_roulette = False
+    img = tc.render(scene, settings).image
     assert img[..., 0].mean() == pytest.approx(E / np.pi, rel=0.03)
     # The camera looking at empty sky sees the map itself.
     sky = tc.Scene()

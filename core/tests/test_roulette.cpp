@@ -1,0 +1,201 @@
+// Efficiency-aware Russian roulette (core/src/roulette.h): the learned survival probability is the
+// closed form of its statistics; renders with it agree with the classic rule's within noise,
+// stop paths where their continuation carries little of the image and keep them where it
+// carries most of it; and they do not depend on the number of threads.
+#include "torrance/roulette.h"
+
+#include "torrance/integrator.h"
+
+#include "scene_helpers.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+namespace torrance {
+namespace {
+
+struct FakeRadiance {  // what RoulettePath reads of a path's radiance
+  Vec3 value{0.0f};
+  Vec3 combined() const { return value; }
+};
+
+// Every pixel of a 4 x 4 window gets samples of value 1 or 3 (mean 2, variance 4/3 with n - 1),
+// whose one continuation from depth 0 brought y = 1 at t = 0.5 and q = 1 and cost 1 ray of 2.
+void learn(RouletteField& field, int first, int samples) {
+  for (int s = first; s < first + samples; ++s)
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 4; ++x) {
+        FakeRadiance radiance;
+        RoulettePath<FakeRadiance> path(&field, radiance, x, y, 0.0f, false);
+        radiance.value = Vec3(s % 2 ? 3.0f : 1.0f) - Vec3(0.5f);  // luminance 0.5 or 2.5 before ...
+        path.continued(0, 1.0f, 0.5f);
+        radiance.value += Vec3(0.5f);  // ... and the continuation's 0.5 = t x y, so y = 1
+      }
+}
+
+TEST(Roulette, SurvivalIsTheClosedFormOfWhatWasLearned) {
+  RouletteField field(4, 4, 0.01f);
+  learn(field, 0, 3);
+  field.update();
+  EXPECT_LT(field.survival(0, 0, 0, 0.5f, 2.0f), 0.0f) << "decided before kFirstSamples samples per pixel";
+  learn(field, 3, 5);  // 8 samples per pixel
+  field.update();
+  // v = (4/3) / (2^2 + eps): the variance of 1, 3, 1, 3, ... with n - 1 = 7 is 8/7.
+  const double variance = 8.0 / 7.0;
+  const double v = variance / (4.0 + RouletteField::kEpsilon), c = 2.0;
+  EXPECT_NEAR(field.relative_variance(), v, 1e-6);
+  EXPECT_NEAR(field.cost_per_sample(), c, 1e-6);
+  // q = k t sqrt(E[Y^2] / E[C]) / sqrt(I^2 + eps) sqrt(c / v), E[Y^2] = 1, E[C] = 1.
+  const float t = 0.1f, pixel = 2.0f;
+  const double expected =
+      RouletteField::kSafety * t * 1.0 / std::sqrt(double(pixel) * pixel + RouletteField::kEpsilon) * std::sqrt(c / v);
+  EXPECT_NEAR(field.survival(1, 2, 0, t, pixel), expected, 1e-5 * expected);
+  EXPECT_EQ(field.survival(1, 2, 0, 100.0f, pixel), 1.0f) << "a probability";
+  EXPECT_EQ(field.survival(1, 2, 0, 1e-9f, pixel), 0.01f) << "the minimum survival";
+  EXPECT_LT(field.survival(1, 2, 1, t, pixel), 0.0f) << "nothing learned at depth 1";
+}
+
+// A floor of thin stripes, white and black, several to a pixel, under a sun and a dim sky: the
+// image's variance is the stripes' (which of them a sample sees), the floor's light is almost all
+// direct, and the little the sky sends through a bounce is the continuation's, so the roulette
+// stops most paths at the first vertex (with a small probability, not zero).
+void build_sunlit_stripes(Scene& scene) {
+  Material white;
+  white.base_color = Vec3(0.9f);
+  white.specular = 0.0f;
+  white.roughness = 1.0f;
+  scene.add_material(white);
+  Material black = white;
+  black.base_color = Vec3(0.02f);
+  scene.add_material(black);
+  constexpr float kWidth = 0.04f;
+  for (int i = 0; i < 150; ++i) {
+    const float x0 = -3.0f + i * kWidth, x1 = x0 + kWidth;
+    test::add_quad(scene, {x0, -4, 0}, {x1, -4, 0}, {x1, 4, 0}, {x0, 4, 0}, i % 2);
+  }
+  scene.lights().add_sun(glm::normalize(Vec3(0.3f, 0.5f, -1.0f)), 3.0f, Vec3(1.0f), 0.01f);
+  scene.lights().set_world(Vec3(1.0f), 0.05f);
+  test::look_down(scene, 3.0f, 18.0f);
+}
+
+// A closed room whose floor, the camera's view, is lit only by light bounced off the ceiling
+// above an upward-facing area light: the continuation from the floor carries all of the image.
+void build_indirect_room(Scene& scene) {
+  Material wall;
+  wall.base_color = Vec3(0.7f);
+  wall.specular = 0.0f;
+  wall.roughness = 1.0f;
+  scene.add_material(wall);
+  const Vec3 c[8] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
+  test::add_quad(scene, c[0], c[1], c[2], c[3], 0);
+  test::add_quad(scene, c[4], c[7], c[6], c[5], 0);
+  test::add_quad(scene, c[0], c[4], c[5], c[1], 0);
+  test::add_quad(scene, c[1], c[5], c[6], c[2], 0);
+  test::add_quad(scene, c[2], c[6], c[7], c[3], 0);
+  test::add_quad(scene, c[3], c[7], c[4], c[0], 0);
+  scene.lights().add_area(Vec3(0.0f, 0.0f, 0.6f), Vec3(0.3f, 0, 0), Vec3(0, 0.3f, 0), Vec3(0, 0, 1), false, 40.0f,
+                          Vec3(1.0f), kPi);
+  CameraParams cam;
+  cam.camera_to_world = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0.5f, 0, 0, 0, 1};
+  cam.lens_mm = 25.0f;
+  scene.set_camera(cam);
+}
+
+RenderSettings settings(uint32_t seed, bool roulette) {
+  RenderSettings s;
+  s.width = s.height = 32;
+  s.samples = 64;
+  s.seed = seed;
+  s.efficiency_roulette = roulette;
+  return s;
+}
+
+double rays_per_sample(const RenderResult& r) {
+  return double(r.closest_rays + r.occlusion_rays) / double(r.samples_spent);
+}
+
+// Mean of 4 x 4 blocks of 8 x 8 pixels, green channel.
+std::vector<double> block_means(const Image& img) {
+  std::vector<double> blocks(16, 0.0);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) blocks[(y / 8) * 4 + x / 8] += img.rgba[(size_t(y) * img.width + x) * 4 + 1];
+  for (double& b : blocks) b /= 64.0;
+  return blocks;
+}
+
+// Over 8 seeds, per block and for the whole image: |mean difference| / its standard error.
+void expect_agreement(Scene& scene, double* rays_ratio) {
+  constexpr int kSeeds = 8;
+  std::vector<std::vector<double>> classic, learned;
+  double rays_classic = 0.0, rays_learned = 0.0;
+  for (uint32_t seed = 10; seed < 10 + kSeeds; ++seed) {
+    const RenderResult a = render(scene, settings(seed, false));
+    const RenderResult b = render(scene, settings(seed, true));
+    EXPECT_EQ(b.nonfinite_samples, 0u);
+    classic.push_back(block_means(a.image));
+    learned.push_back(block_means(b.image));
+    rays_classic += rays_per_sample(a);
+    rays_learned += rays_per_sample(b);
+  }
+  *rays_ratio = rays_learned / rays_classic;
+  auto z_score = [&](auto value) {
+    double ma = 0, mb = 0, va = 0, vb = 0;
+    for (int s = 0; s < kSeeds; ++s) {
+      ma += value(classic[s]) / kSeeds;
+      mb += value(learned[s]) / kSeeds;
+    }
+    for (int s = 0; s < kSeeds; ++s) {
+      va += (value(classic[s]) - ma) * (value(classic[s]) - ma) / (kSeeds - 1);
+      vb += (value(learned[s]) - mb) * (value(learned[s]) - mb) / (kSeeds - 1);
+    }
+    return std::pair<double, double>(mb / ma, std::abs(mb - ma) / std::sqrt((va + vb) / kSeeds + 1e-12));
+  };
+  double worst_z = 0.0;
+  for (int b = 0; b < 16; ++b)
+    worst_z = std::max(worst_z, z_score([b](const std::vector<double>& blocks) { return blocks[b]; }).second);
+  const auto [ratio, image_z] = z_score([](const std::vector<double>& blocks) {
+    double sum = 0.0;
+    for (double b : blocks) sum += b;
+    return sum;
+  });
+  std::printf("mean ratio roulette / classic %.4f (z %.2f), worst block z %.2f, rays per sample x%.3f\n", ratio,
+              image_z, worst_z, *rays_ratio);
+  EXPECT_NEAR(ratio, 1.0, 0.02);
+  EXPECT_LT(image_z, 4.0);
+  EXPECT_LT(worst_z, 4.5);  // 16 blocks: |z| > 4.5 by chance has odds ~1e-4
+}
+
+TEST(RouletteRender, StopsPathsWhoseContinuationCarriesLittleAndKeepsTheMean) {
+  Scene scene;
+  build_sunlit_stripes(scene);
+  double rays_ratio = 1.0;
+  expect_agreement(scene, &rays_ratio);
+  EXPECT_LT(rays_ratio, 0.8) << "the roulette should stop most continuations from the sun-lit floor";
+}
+
+TEST(RouletteRender, KeepsPathsThatCarryTheImageAndKeepsTheMean) {
+  Scene scene;
+  build_indirect_room(scene);
+  double rays_ratio = 1.0;
+  expect_agreement(scene, &rays_ratio);
+  EXPECT_GT(rays_ratio, 0.9) << "the floor's light is all indirect: its paths must go on";
+}
+
+TEST(RouletteRender, SameImageWhateverTheThreads) {
+  Scene scene;
+  build_sunlit_stripes(scene);
+  RenderSettings s = settings(3, true);
+  s.threads = 1;
+  const RenderResult one = render(scene, s);
+  s.threads = 2;
+  const RenderResult two = render(scene, s);
+  ASSERT_EQ(one.image.rgba.size(), two.image.rgba.size());
+  EXPECT_EQ(std::memcmp(one.image.rgba.data(), two.image.rgba.data(), one.image.rgba.size() * sizeof(float)), 0);
+  EXPECT_EQ(one.closest_rays, two.closest_rays);
+}
+
+}  // namespace
+}  // namespace torrance
