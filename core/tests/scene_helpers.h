@@ -3,6 +3,12 @@
 
 #include "torrance/integrator.h"
 
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+#include <utility>
+#include <vector>
+
 namespace torrance::test {
 
 // A quad (two triangles) with corners a, b, c, d counter-clockwise seen from its normal's side.
@@ -34,6 +40,59 @@ inline Vec3 mean_rgb(const Image& img) {
   Vec3 sum(0.0f);
   for (size_t i = 0; i < img.rgba.size(); i += 4) sum += Vec3(img.rgba[i], img.rgba[i + 1], img.rgba[i + 2]);
   return sum / float(img.rgba.size() / 4);
+}
+
+// The walls, floor and ceiling of a closed 2 m cube about the origin, facing inwards.
+inline void add_closed_room(Scene& scene, int64_t material) {
+  const Vec3 c[8] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
+  add_quad(scene, c[0], c[1], c[2], c[3], material);  // floor
+  add_quad(scene, c[4], c[7], c[6], c[5], material);  // ceiling
+  add_quad(scene, c[0], c[4], c[5], c[1], material);
+  add_quad(scene, c[1], c[5], c[6], c[2], material);
+  add_quad(scene, c[2], c[6], c[7], c[3], material);
+  add_quad(scene, c[3], c[7], c[4], c[0], material);
+}
+
+// Mean of the green channel over 4 x 4 blocks of 8 x 8 pixels of a 32 x 32 image.
+inline std::vector<double> block_means_32(const Image& img) {
+  std::vector<double> blocks(16, 0.0);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) blocks[(y / 8) * 4 + x / 8] += img.rgba[(size_t(y) * img.width + x) * 4 + 1];
+  for (double& b : blocks) b /= 64.0;
+  return blocks;
+}
+
+// Two renderers' block means (block_means_32) over the same seeds, compared: the ratio of their
+// image means (b over a), and |mean difference| / its standard error (from both sets' spread over
+// the seeds) for the whole image and for the worst block.
+struct SeedAgreement {
+  double ratio = 1.0, image_z = 0.0, worst_block_z = 0.0;
+};
+inline SeedAgreement compare_over_seeds(const std::vector<std::vector<double>>& a,
+                                        const std::vector<std::vector<double>>& b) {
+  const size_t seeds = a.size();
+  auto z_score = [&](auto value) {
+    double ma = 0, mb = 0, va = 0, vb = 0;
+    for (size_t s = 0; s < seeds; ++s) {
+      ma += value(a[s]) / seeds;
+      mb += value(b[s]) / seeds;
+    }
+    for (size_t s = 0; s < seeds; ++s) {
+      va += (value(a[s]) - ma) * (value(a[s]) - ma) / (seeds - 1);
+      vb += (value(b[s]) - mb) * (value(b[s]) - mb) / (seeds - 1);
+    }
+    return std::pair<double, double>(mb / ma, std::abs(mb - ma) / std::sqrt((va + vb) / seeds + 1e-12));
+  };
+  SeedAgreement out;
+  for (size_t block = 0; block < a[0].size(); ++block)
+    out.worst_block_z = std::max(
+        out.worst_block_z, z_score([block](const std::vector<double>& blocks) { return blocks[block]; }).second);
+  std::tie(out.ratio, out.image_z) = z_score([](const std::vector<double>& blocks) {
+    double sum = 0.0;
+    for (double v : blocks) sum += v;
+    return sum;
+  });
+  return out;
 }
 
 }  // namespace torrance::test

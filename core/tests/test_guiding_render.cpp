@@ -22,13 +22,7 @@ void build_room(Scene& scene) {
   wall.specular = 0.0f;
   wall.roughness = 1.0f;
   scene.add_material(wall);
-  const Vec3 c[8] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
-  test::add_quad(scene, c[0], c[1], c[2], c[3], 0);  // floor
-  test::add_quad(scene, c[4], c[7], c[6], c[5], 0);  // ceiling
-  test::add_quad(scene, c[0], c[4], c[5], c[1], 0);
-  test::add_quad(scene, c[1], c[5], c[6], c[2], 0);
-  test::add_quad(scene, c[2], c[6], c[7], c[3], 0);
-  test::add_quad(scene, c[3], c[7], c[4], c[0], 0);
+  test::add_closed_room(scene, 0);
   scene.lights().add_area(Vec3(0.5f, 0.5f, 0.8f), Vec3(0.2f, 0, 0), Vec3(0, 0.2f, 0), Vec3(0, 0, 1), false, 40.0f,
                           Vec3(1.0f), kPi);
   scene.lights().add_area(Vec3(-0.4f, -0.4f, 0.9f), Vec3(0.8f, 0, 0), Vec3(0, 0.8f, 0), Vec3(0, 0, -1), false, 4.0f,
@@ -52,58 +46,25 @@ RenderSettings room_settings(uint32_t seed, bool guiding) {
   return s;
 }
 
-// Mean over 4 x 4 blocks of 8 x 8 pixels, of the green channel.
-std::vector<double> block_means(const Image& img) {
-  std::vector<double> blocks(16, 0.0);
-  for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < img.width; ++x) blocks[(y / 8) * 4 + x / 8] += img.rgba[(size_t(y) * img.width + x) * 4 + 1];
-  for (double& b : blocks) b /= 64.0;
-  return blocks;
-}
-
 TEST(GuidedRender, AgreesWithThePlainRenderWithinNoise) {
   Scene scene;
   build_room(scene);
   constexpr int kSeeds = 8;
   std::vector<std::vector<double>> plain, guided;
   for (uint32_t seed = 10; seed < 10 + kSeeds; ++seed) {
-    plain.push_back(block_means(render(scene, room_settings(seed, false)).image));
+    plain.push_back(test::block_means_32(render(scene, room_settings(seed, false)).image));
     const RenderResult r = render(scene, room_settings(seed, true));
     EXPECT_EQ(r.nonfinite_samples, 0u);
-    guided.push_back(block_means(r.image));
+    guided.push_back(test::block_means_32(r.image));
   }
   // Per block and for the whole image: the difference of the seed means over its standard error
   // (from both sets' spread over the seeds).
-  auto z_score = [&](auto value) {
-    double mp = 0, mg = 0, vp = 0, vg = 0;
-    for (int s = 0; s < kSeeds; ++s) {
-      mp += value(plain[s]) / kSeeds;
-      mg += value(guided[s]) / kSeeds;
-    }
-    for (int s = 0; s < kSeeds; ++s) {
-      vp += (value(plain[s]) - mp) * (value(plain[s]) - mp) / (kSeeds - 1);
-      vg += (value(guided[s]) - mg) * (value(guided[s]) - mg) / (kSeeds - 1);
-    }
-    return std::abs(mg - mp) / std::sqrt((vp + vg) / kSeeds + 1e-12);
-  };
-  double worst_z = 0.0, sum_plain = 0.0, sum_guided = 0.0;
-  for (int b = 0; b < 16; ++b) {
-    worst_z = std::max(worst_z, z_score([b](const std::vector<double>& blocks) { return blocks[b]; }));
-    for (int s = 0; s < kSeeds; ++s) {
-      sum_plain += plain[s][b];
-      sum_guided += guided[s][b];
-    }
-  }
-  const double image_z = z_score([](const std::vector<double>& blocks) {
-    double sum = 0.0;
-    for (double b : blocks) sum += b;
-    return sum;
-  });
-  std::printf("mean ratio guided / plain %.4f (z %.2f), worst block z %.2f\n", sum_guided / sum_plain, image_z,
-              worst_z);
-  EXPECT_NEAR(sum_guided / sum_plain, 1.0, 0.02);
-  EXPECT_LT(image_z, 4.0);
-  EXPECT_LT(worst_z, 4.5);  // 16 blocks: |z| > 4.5 by chance has odds ~1e-4
+  const test::SeedAgreement agreement = test::compare_over_seeds(plain, guided);
+  std::printf("mean ratio guided / plain %.4f (z %.2f), worst block z %.2f\n", agreement.ratio, agreement.image_z,
+              agreement.worst_block_z);
+  EXPECT_NEAR(agreement.ratio, 1.0, 0.02);
+  EXPECT_LT(agreement.image_z, 4.0);
+  EXPECT_LT(agreement.worst_block_z, 4.5);  // 16 blocks: |z| > 4.5 by chance has odds ~1e-4
 }
 
 // A grey floor under a large, close area light and nothing else: all its light is direct, found

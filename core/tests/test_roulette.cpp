@@ -89,13 +89,7 @@ void build_indirect_room(Scene& scene) {
   wall.specular = 0.0f;
   wall.roughness = 1.0f;
   scene.add_material(wall);
-  const Vec3 c[8] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
-  test::add_quad(scene, c[0], c[1], c[2], c[3], 0);
-  test::add_quad(scene, c[4], c[7], c[6], c[5], 0);
-  test::add_quad(scene, c[0], c[4], c[5], c[1], 0);
-  test::add_quad(scene, c[1], c[5], c[6], c[2], 0);
-  test::add_quad(scene, c[2], c[6], c[7], c[3], 0);
-  test::add_quad(scene, c[3], c[7], c[4], c[0], 0);
+  test::add_closed_room(scene, 0);
   scene.lights().add_area(Vec3(0.0f, 0.0f, 0.6f), Vec3(0.3f, 0, 0), Vec3(0, 0.3f, 0), Vec3(0, 0, 1), false, 40.0f,
                           Vec3(1.0f), kPi);
   CameraParams cam;
@@ -117,17 +111,9 @@ double rays_per_sample(const RenderResult& r) {
   return double(r.closest_rays + r.occlusion_rays) / double(r.samples_spent);
 }
 
-// Mean of 4 x 4 blocks of 8 x 8 pixels, green channel.
-std::vector<double> block_means(const Image& img) {
-  std::vector<double> blocks(16, 0.0);
-  for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < img.width; ++x) blocks[(y / 8) * 4 + x / 8] += img.rgba[(size_t(y) * img.width + x) * 4 + 1];
-  for (double& b : blocks) b /= 64.0;
-  return blocks;
-}
-
-// Over 8 seeds, per block and for the whole image: |mean difference| / its standard error.
-void expect_agreement(Scene& scene, double* rays_ratio) {
+// Over 8 seeds, per block and for the whole image: |mean difference| / its standard error below 4
+// (4.5 for the worst of 16 blocks). Returns the ratio of rays per sample, roulette / classic.
+double expect_agreement(Scene& scene) {
   constexpr int kSeeds = 8;
   std::vector<std::vector<double>> classic, learned;
   double rays_classic = 0.0, rays_learned = 0.0;
@@ -135,53 +121,31 @@ void expect_agreement(Scene& scene, double* rays_ratio) {
     const RenderResult a = render(scene, settings(seed, false));
     const RenderResult b = render(scene, settings(seed, true));
     EXPECT_EQ(b.nonfinite_samples, 0u);
-    classic.push_back(block_means(a.image));
-    learned.push_back(block_means(b.image));
+    classic.push_back(test::block_means_32(a.image));
+    learned.push_back(test::block_means_32(b.image));
     rays_classic += rays_per_sample(a);
     rays_learned += rays_per_sample(b);
   }
-  *rays_ratio = rays_learned / rays_classic;
-  auto z_score = [&](auto value) {
-    double ma = 0, mb = 0, va = 0, vb = 0;
-    for (int s = 0; s < kSeeds; ++s) {
-      ma += value(classic[s]) / kSeeds;
-      mb += value(learned[s]) / kSeeds;
-    }
-    for (int s = 0; s < kSeeds; ++s) {
-      va += (value(classic[s]) - ma) * (value(classic[s]) - ma) / (kSeeds - 1);
-      vb += (value(learned[s]) - mb) * (value(learned[s]) - mb) / (kSeeds - 1);
-    }
-    return std::pair<double, double>(mb / ma, std::abs(mb - ma) / std::sqrt((va + vb) / kSeeds + 1e-12));
-  };
-  double worst_z = 0.0;
-  for (int b = 0; b < 16; ++b)
-    worst_z = std::max(worst_z, z_score([b](const std::vector<double>& blocks) { return blocks[b]; }).second);
-  const auto [ratio, image_z] = z_score([](const std::vector<double>& blocks) {
-    double sum = 0.0;
-    for (double b : blocks) sum += b;
-    return sum;
-  });
-  std::printf("mean ratio roulette / classic %.4f (z %.2f), worst block z %.2f, rays per sample x%.3f\n", ratio,
-              image_z, worst_z, *rays_ratio);
-  EXPECT_NEAR(ratio, 1.0, 0.02);
-  EXPECT_LT(image_z, 4.0);
-  EXPECT_LT(worst_z, 4.5);  // 16 blocks: |z| > 4.5 by chance has odds ~1e-4
+  const double rays_ratio = rays_learned / rays_classic;
+  const test::SeedAgreement agreement = test::compare_over_seeds(classic, learned);
+  std::printf("mean ratio roulette / classic %.4f (z %.2f), worst block z %.2f, rays per sample x%.3f\n",
+              agreement.ratio, agreement.image_z, agreement.worst_block_z, rays_ratio);
+  EXPECT_NEAR(agreement.ratio, 1.0, 0.02);
+  EXPECT_LT(agreement.image_z, 4.0);
+  EXPECT_LT(agreement.worst_block_z, 4.5);  // 16 blocks: |z| > 4.5 by chance has odds ~1e-4
+  return rays_ratio;
 }
 
 TEST(RouletteRender, StopsPathsWhoseContinuationCarriesLittleAndKeepsTheMean) {
   Scene scene;
   build_sunlit_stripes(scene);
-  double rays_ratio = 1.0;
-  expect_agreement(scene, &rays_ratio);
-  EXPECT_LT(rays_ratio, 0.8) << "the roulette should stop most continuations from the sun-lit floor";
+  EXPECT_LT(expect_agreement(scene), 0.8) << "the roulette should stop most continuations from the sun-lit floor";
 }
 
 TEST(RouletteRender, KeepsPathsThatCarryTheImageAndKeepsTheMean) {
   Scene scene;
   build_indirect_room(scene);
-  double rays_ratio = 1.0;
-  expect_agreement(scene, &rays_ratio);
-  EXPECT_GT(rays_ratio, 0.9) << "the floor's light is all indirect: its paths must go on";
+  EXPECT_GT(expect_agreement(scene), 0.9) << "the floor's light is all indirect: its paths must go on";
 }
 
 TEST(RouletteRender, SameImageWhateverTheThreads) {
