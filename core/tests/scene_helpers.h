@@ -42,6 +42,23 @@ inline Vec3 mean_rgb(const Image& img) {
   return sum / float(img.rgba.size() / 4);
 }
 
+// A rough white-to-grey diffuse material: Lambert-like, no specular layer.
+inline Material diffuse_material(const Vec3& color) {
+  Material m;
+  m.base_color = color;
+  m.specular = 0.0f;
+  m.roughness = 1.0f;
+  return m;
+}
+
+// A camera inside the closed room (add_closed_room), half a metre above its centre, looking down.
+inline void look_down_in_room(Scene& scene) {
+  CameraParams cam;
+  cam.camera_to_world = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0.5f, 0, 0, 0, 1};
+  cam.lens_mm = 25.0f;
+  scene.set_camera(cam);
+}
+
 // The walls, floor and ceiling of a closed 2 m cube about the origin, facing inwards.
 inline void add_closed_room(Scene& scene, int64_t material) {
   const Vec3 c[8] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};

@@ -17,20 +17,13 @@ namespace {
 // dim one faces the floor, whose direct light both next-event estimation and BSDF (or guide)
 // sampling find, so that it depends on their MIS weights.
 void build_room(Scene& scene) {
-  Material wall;
-  wall.base_color = Vec3(0.7f);
-  wall.specular = 0.0f;
-  wall.roughness = 1.0f;
-  scene.add_material(wall);
+  scene.add_material(test::diffuse_material(Vec3(0.7f)));
   test::add_closed_room(scene, 0);
   scene.lights().add_area(Vec3(0.5f, 0.5f, 0.8f), Vec3(0.2f, 0, 0), Vec3(0, 0.2f, 0), Vec3(0, 0, 1), false, 40.0f,
                           Vec3(1.0f), kPi);
   scene.lights().add_area(Vec3(-0.4f, -0.4f, 0.9f), Vec3(0.8f, 0, 0), Vec3(0, 0.8f, 0), Vec3(0, 0, -1), false, 4.0f,
                           Vec3(1.0f), kPi);
-  CameraParams cam;
-  cam.camera_to_world = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0.5f, 0, 0, 0, 1};  // looking down at the floor
-  cam.lens_mm = 25.0f;
-  scene.set_camera(cam);
+  test::look_down_in_room(scene);
 }
 
 RenderSettings room_settings(uint32_t seed, bool guiding) {

@@ -63,14 +63,8 @@ TEST(Roulette, SurvivalIsTheClosedFormOfWhatWasLearned) {
 // direct, and the little the sky sends through a bounce is the continuation's, so the roulette
 // stops most paths at the first vertex (with a small probability, not zero).
 void build_sunlit_stripes(Scene& scene) {
-  Material white;
-  white.base_color = Vec3(0.9f);
-  white.specular = 0.0f;
-  white.roughness = 1.0f;
-  scene.add_material(white);
-  Material black = white;
-  black.base_color = Vec3(0.02f);
-  scene.add_material(black);
+  scene.add_material(test::diffuse_material(Vec3(0.9f)));
+  scene.add_material(test::diffuse_material(Vec3(0.02f)));
   constexpr float kWidth = 0.04f;
   for (int i = 0; i < 150; ++i) {
     const float x0 = -3.0f + i * kWidth, x1 = x0 + kWidth;
@@ -84,18 +78,11 @@ void build_sunlit_stripes(Scene& scene) {
 // A closed room whose floor, the camera's view, is lit only by light bounced off the ceiling
 // above an upward-facing area light: the continuation from the floor carries all of the image.
 void build_indirect_room(Scene& scene) {
-  Material wall;
-  wall.base_color = Vec3(0.7f);
-  wall.specular = 0.0f;
-  wall.roughness = 1.0f;
-  scene.add_material(wall);
+  scene.add_material(test::diffuse_material(Vec3(0.7f)));
   test::add_closed_room(scene, 0);
   scene.lights().add_area(Vec3(0.0f, 0.0f, 0.6f), Vec3(0.3f, 0, 0), Vec3(0, 0.3f, 0), Vec3(0, 0, 1), false, 40.0f,
                           Vec3(1.0f), kPi);
-  CameraParams cam;
-  cam.camera_to_world = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0.5f, 0, 0, 0, 1};
-  cam.lens_mm = 25.0f;
-  scene.set_camera(cam);
+  test::look_down_in_room(scene);
 }
 
 RenderSettings settings(uint32_t seed, bool roulette) {
