@@ -29,7 +29,7 @@ def parse_args():
     p.add_argument("--set", action="append", default=[], metavar="FIELD=VALUE",
                    help="another RenderSettings field for both renders (a float)")
     p.add_argument("scenes", nargs="*", default=list(comparison_scenes.SCENES))
-    return p.parse_args(argv)
+    return p.parse_intermixed_args(argv)
 
 
 def main():

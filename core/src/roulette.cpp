@@ -1,5 +1,7 @@
 #include "torrance/roulette.h"
 
+#include <array>
+
 namespace torrance {
 
 namespace {
@@ -33,10 +35,20 @@ void RouletteField::update() {
   cost_per_sample_ = float(cost / samples);
   // sqrt(c / v): the image's cost over its relative variance, per sample.
   const double image_factor = std::sqrt(cost_per_sample_ / relative_variance) * kSafety;
+  // A block's second moment is at least its depth's over the image: a block's few samples of a
+  // heavy tail (a rare bright path) often hold none of it.
+  std::array<double, kDepths> image_y_squared{}, image_count{};
+  for (size_t i = 0; i < slots_.size(); ++i) {
+    image_y_squared[i % kDepths] += slots_[i].y_squared;
+    image_count[i % kDepths] += slots_[i].count;
+  }
   for (size_t i = 0; i < slots_.size(); ++i) {
     const Slot& s = slots_[i];
-    scale_[i] = s.count >= kMinContinuations && s.cost > 0.0 ? float(std::sqrt(s.y_squared / s.cost) * image_factor)
-                                                             : -1.0f;
+    const double floor = image_y_squared[i % kDepths] / std::max(image_count[i % kDepths], 1.0);
+    const double y_squared = std::max(s.y_squared / std::max(double(s.count), 1.0), floor);
+    scale_[i] = s.count >= kMinContinuations && s.cost > 0.0
+                    ? float(std::sqrt(y_squared / (s.cost / s.count)) * image_factor)
+                    : -1.0f;
   }
 }
 

@@ -22,17 +22,19 @@ struct FakeRadiance {  // what RoulettePath reads of a path's radiance
   Vec3 combined() const { return value; }
 };
 
-// Every pixel of a 4 x 4 window gets samples of value 1 or 3 (mean 2, variance 4/3 with n - 1),
-// whose one continuation from depth 0 brought y = 1 at t = 0.5 and q = 1 and cost 1 ray of 2.
-void learn(RouletteField& field, int first, int samples) {
+// Every pixel of the block at x0 (4 x 4 pixels) gets samples of value 1 or 3 (alternating from
+// sample index `first`), whose one continuation from depth 0 brought y at t = 0.5 and q = 1 and
+// cost 1 ray of 2.
+void learn(RouletteField& field, int first, int samples, float y_brought = 1.0f, int x0 = 0) {
   for (int s = first; s < first + samples; ++s)
     for (int y = 0; y < 4; ++y)
-      for (int x = 0; x < 4; ++x) {
+      for (int x = x0; x < x0 + 4; ++x) {
         FakeRadiance radiance;
         RoulettePath<FakeRadiance> path(&field, radiance, x, y, 0.0f, false);
-        radiance.value = Vec3(s % 2 ? 3.0f : 1.0f) - Vec3(0.5f);  // luminance 0.5 or 2.5 before ...
+        const float continuation = 0.5f * y_brought;                          // t x y
+        radiance.value = Vec3(s % 2 ? 3.0f : 1.0f) - Vec3(continuation);  // before ...
         path.continued(0, 1.0f, 0.5f);
-        radiance.value += Vec3(0.5f);  // ... and the continuation's 0.5 = t x y, so y = 1
+        radiance.value += Vec3(continuation);  // ... and after the continuation
       }
 }
 
@@ -56,6 +58,18 @@ TEST(Roulette, SurvivalIsTheClosedFormOfWhatWasLearned) {
   EXPECT_EQ(field.survival(1, 2, 0, 100.0f, pixel), 1.0f) << "a probability";
   EXPECT_EQ(field.survival(1, 2, 0, 1e-9f, pixel), 0.01f) << "the minimum survival";
   EXPECT_LT(field.survival(1, 2, 1, t, pixel), 0.0f) << "nothing learned at depth 1";
+}
+
+// A block whose continuations brought less than the image's do on average uses the image's second
+// moment (at that depth): a block's few samples of a heavy tail often hold none of it.
+TEST(Roulette, ABlocksSecondMomentIsAtLeastTheImages) {
+  RouletteField field(8, 4, 0.01f);
+  learn(field, 0, 8, 1.0f, 0);  // block 0: y = 1
+  learn(field, 0, 8, 3.0f, 4);  // block 1: y = 3; the image's E[Y^2] = (1 + 9) / 2 = 5
+  field.update();
+  const float t = 0.01f, pixel = 2.0f;
+  const float low = field.survival(0, 0, 0, t, pixel), high = field.survival(4, 0, 0, t, pixel);
+  EXPECT_NEAR(low / high, std::sqrt(5.0f / 9.0f), 1e-5f) << "block 0 uses the image's 5, block 1 its own 9";
 }
 
 // A floor of thin stripes, white and black, several to a pixel, under a sun and a dim sky: the

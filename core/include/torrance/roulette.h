@@ -18,7 +18,8 @@
 // variance and the time change.
 //
 // What is learned, from every sample of the passes so far: per block of kBlock x kBlock pixels
-// and depth slot (0, 1, 2, and 3 or more), E[Y^2] and E[C] of continuations, Y measured as the
+// and depth slot (0, 1, 2, and 3 or more), E[Y^2] (at least the image's at that depth: a block's
+// few samples of a heavy tail often hold none of it) and E[C] of continuations, Y measured as the
 // luminance the continuation brought divided by t and multiplied by the q it survived (the
 // un-rouletted value); per pixel, the sum and sum of squares of its samples' luminance and their
 // cost (rays). update() turns them into the survival factors of the next samples, once pixels have
