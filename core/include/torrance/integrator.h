@@ -82,7 +82,7 @@ struct RenderSettings {
   // 4, ... samples per pixel while they fit in guiding_training_fraction of the samples (and of
   // time_limit), then kept for the rest; the samples of every pass (each one unbiased) are in the
   // image. Not bit-deterministic across runs: threads record into the tree in any order.
-  // Efficiency-aware Russian roulette (core/src/roulette.h): a path continues from a vertex with
+  // Efficiency-aware Russian roulette (torrance/roulette.h): a path also stops at a vertex with
   // the probability learned, from the render's own samples, to give the least relative error per
   // ray; false: the classic rule only (from the fifth vertex, probability sqrt(max throughput)).
   bool efficiency_roulette = true;

@@ -15,7 +15,8 @@
 // scene: its indirect light is a few per cent of the image and of its error) q is small and most
 // paths stop after their first vertex; where it carries the error (caustics, a room lit
 // indirectly) q reaches 1 and nothing changes. Any q > 0 keeps the estimator unbiased: only the
-// variance and the time change.
+// variance and the time change. The path tracer uses it as a cap on the classic rule's
+// probability (1 before the fifth vertex): it only ever stops more paths.
 //
 // What is learned, from every sample of the passes so far: per block of kBlock x kBlock pixels
 // and depth slot (0, 1, 2, and 3 or more), E[Y^2] (at least the image's at that depth: a block's
@@ -26,7 +27,8 @@
 // kFirstSamples samples (the relative variance of fewer, divided by their own noisy mean, is far
 // too high, and would make the roulette kill paths whose extra variance then confirms it). It
 // runs when every pixel has the same number of samples (the integrator calls it at sample counts
-// 1, 2, 4, 8, ...), so the decisions depend on the sample index, never on timing or threads.
+// 1, 3, 7, 15, ..., where its first passes end), so the decisions depend on the sample index,
+// never on timing or threads.
 #pragma once
 
 #include "torrance/math.h"
