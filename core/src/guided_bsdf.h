@@ -1,7 +1,7 @@
 // Path guiding's sampling at a path vertex (guiding.h): a one-sample mixture of the BSDF's own
 // sampling (probability guide.bsdf_fraction()) and the learned guide, whose density -- used for the
-// sample's weight and for MIS against next-event estimation -- is the same mixture of both pdfs,
-// so the estimator stays unbiased whatever the guide. sample and pdf side by side.
+// sample's weight -- is the same mixture of both pdfs, so the estimator stays unbiased whatever
+// the guide. MIS against next-event estimation uses the BSDF's part alone (path_tracer.cpp).
 #pragma once
 
 #include "torrance/bsdf.h"
@@ -12,14 +12,6 @@
 #include <algorithm>
 
 namespace torrance {
-
-// The density of the guided mixture for wi (local) / wi_world, given the BSDF's pdf of wi. A leaf
-// that only samples the BSDF (a training pass's, fraction 1) needs no lookup.
-inline float guided_pdf(float bsdf_pdf, const GuideDistribution& guide, const Vec3& wi_world) {
-  if (!guide || guide.bsdf_fraction() >= 1.0f) return bsdf_pdf;
-  const float a = guide.bsdf_fraction();
-  return a * bsdf_pdf + (1.0f - a) * guide.pdf(wi_world);
-}
 
 // Samples the mixture with the numbers of Bsdf::sample: u.x chooses the strategy (and, rescaled,
 // the BSDF's lobe), u.yz the direction of either, so both keep the sampler's stratification of

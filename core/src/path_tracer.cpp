@@ -264,9 +264,9 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
           const Vec3 transmittance = shadow_transmittance<kAlpha>(ctx.scene, hit.position, ng, ls,
                                                                   ctx.settings.max_transparent_bounces);
           if (max_component(transmittance) > 0.0f) {
+            // Against the BSDF's pdf even where a guide samples the next direction: see prev_pdf.
             const float mis = ls.pdf > 0.0f
-                                  ? power_heuristic(choice.probability * ls.pdf,
-                                                    guided_pdf(bsdf.template pdf<kGlass>(view, wi), guide, ls.wi))
+                                  ? power_heuristic(choice.probability * ls.pdf, bsdf.template pdf<kGlass>(view, wi))
                                   : 1.0f;
             Vec3 light = throughput * ls.weight * (mis / choice.probability);
             if (kAlpha) light *= transmittance;
@@ -326,7 +326,13 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
     roulette.continued(bounce, q, t);
     if (!(max_component(throughput) > 0.0f)) break;
 
-    prev_pdf = bs.pdf;
+    // MIS between next-event estimation and the emitter this sample may hit weighs the BSDF's pdf
+    // against the light's, also where the guided mixture drew the sample (its weight above still
+    // divides by the mixture's pdf): both weights use the same pdfs, so they sum to 1 and the
+    // estimator stays unbiased, and NEE needs no guide lookup (the quadtree's walk toward the
+    // light, a cache miss per level). Interior, 6 seeds, CPU time guided / plain 1.24 -> 1.17 at
+    // the same error (x0.91); see docs/speed/path_guiding.md.
+    prev_pdf = guide && !bs.is_delta ? bsdf_pdf : bs.pdf;
     prev_delta = bs.is_delta;
     prev_two_sided = transmits;
     prev_normal = ns;

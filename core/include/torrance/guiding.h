@@ -101,12 +101,13 @@ struct GuidingOptions {
   // water 0.74 -> 0.73, interior 0.92 -> 0.92): NEE of a sky or of large lights is far from ideal.
   bool learn_direct_light = true;
   size_t max_leaves = 2048;  // memory at most 2048 leaves x 2 trees x 1024 nodes x 32 B = 128 MiB
-  // Guiding costs time at every vertex it touches (the tree's descent, the guide's pdf for MIS and
-  // for the sample, recording). After the training pass number decision_pass (0: never) the
-  // render stops guiding and training altogether if the leaves' chosen fractions promise to cut
-  // the second moment of their vertices' estimates (summed over the leaves that estimated it) by
-  // less than min_predicted_saving. Earlier passes' guides are too young to judge (the comparison
-  // scenes' guides that pay predict only 0.4 % after the second pass, 5-67 % after the third).
+  // Guiding costs time at every vertex it touches (the tree's descent, the guide's pdf or sample
+  // for the sampled direction, recording). After the training pass number decision_pass (0:
+  // never) the render stops guiding and training altogether if the leaves' chosen fractions
+  // promise to cut the second moment of their vertices' estimates (summed over the leaves that
+  // estimated it) by less than min_predicted_saving. Earlier passes' guides are too young to
+  // judge (the comparison scenes' guides that pay predict only 0.4 % after the second pass,
+  // 5-67 % after the third).
   int decision_pass = 3;
   float min_predicted_saving = 0.02f;
 };
