@@ -52,7 +52,6 @@ RenderSettings mixed_settings(int samples) {
   RenderSettings s;
   s.width = s.height = 64;
   s.samples = samples;
-  s.guiding = false;  // these tests compare renders bit for bit; guided ones are not reproducible
   return s;
 }
 

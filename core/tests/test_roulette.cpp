@@ -153,7 +153,6 @@ TEST(RouletteRender, SameImageWhateverTheThreads) {
   Scene scene;
   build_sunlit_stripes(scene);
   RenderSettings s = settings(3, true);
-  s.guiding = false;  // guided renders are not reproducible (threads record in any order)
   s.threads = 1;
   const RenderResult one = render(scene, s);
   s.threads = 2;

@@ -87,7 +87,7 @@ struct RenderSettings {
   // ray; false: the classic rule only (from the fifth vertex, probability sqrt(max throughput)).
   bool efficiency_roulette = true;
   float roulette_min_survival = 0.05f;  // the smallest probability it uses, in (0, 1]
-  bool guiding = true;  // on: it pays 4x on caustics, costs at most ~6 % where it does not pay
+  bool guiding = false;
   float guiding_training_fraction = 0.25f;
   GuidingOptions guiding_options;  // the SD-tree's parameters (C++ only: tests)
 
