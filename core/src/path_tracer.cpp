@@ -110,8 +110,12 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
   const Lights& lights = ctx.lights;
   PathRadiance out;
   GuidePathRecorder recorder(ctx.guide_training ? ctx.guide : nullptr, pixel.guide_weight);  // training: records at the end
-  RoulettePath<PathRadiance> roulette(ctx.roulette, out, pixel.x, pixel.y, pixel.estimate,
-                                      pixel.has_estimate);  // learns at the end
+  // The luminance the path has brought so far, for the roulette: summed contribution by
+  // contribution, so that it does not depend on how the passes split them (out.combined() does, by
+  // rounding, and the roulette's decisions with it).
+  float path_luminance = 0.0f;
+  RoulettePath roulette(ctx.roulette, path_luminance, pixel.x, pixel.y, pixel.estimate,
+                        pixel.has_estimate);  // learns at the end
   Vec3 throughput(1.0f);
   Vec3 diffuse_share(0.0f);  // per channel, of the energy that left the first hit
   Vec3 prev_position(0.0f), prev_normal(0.0f);
@@ -133,6 +137,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
     if (const float k = clamp_scale(c, direct); k < 1.0f) c *= k;
     if (recorder.enabled()) recorder.add_contribution(c);
     const Vec3 diffuse = c * diffuse_share, glossy = c - diffuse;
+    path_luminance += luminance(c);
     (direct ? out.diffuse_direct : out.diffuse_indirect) += diffuse;
     (direct ? out.glossy_direct : out.glossy_indirect) += glossy;
   };
@@ -160,6 +165,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
           out.alpha = kAlpha ? 1.0f - (throughput.x + throughput.y + throughput.z) / 3.0f : 0.0f;
         else out.environment = (kAlpha ? throughput : Vec3(1.0f)) * lights.world_radiance(ray.dir);
         if (const float k = clamp_scale(out.environment, true); k < 1.0f) out.environment *= k;
+        path_luminance = luminance(out.environment);
         return out;
       }
       out.depth = (passed_length + hit.t) * glm::dot(ray.dir, ctx.camera_forward);
@@ -222,6 +228,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
                           : material.base_color * (1.0f - material.metallic);
       out.emission = kAlpha ? throughput * material.emission : material.emission;
       if (const float k = clamp_scale(out.emission, true); k < 1.0f) out.emission *= k;
+      path_luminance += luminance(out.emission);
     } else if (hit.emitter >= 0) {
       // An emissive triangle found by BSDF sampling: MIS against NEE's choice of it.
       const float mis = prev_delta ? 1.0f
@@ -272,6 +279,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
             if (kAlpha) light *= transmittance;
             if (bounce == 0) {
               if (const float k = clamp_scale(light * f.total(), true); k < 1.0f) light *= k;
+              path_luminance += luminance(light * f.total());
               out.diffuse_direct += light * f.diffuse;
               out.glossy_direct += light * f.glossy;
             } else {

@@ -67,8 +67,10 @@ class TorranceSceneSettings(bpy.types.PropertyGroup):
         name="Efficiency Roulette",
         description="Stop paths where what they would still bring is worth less than the rays "
                     "it costs, learned from the render's own samples (unbiased: the image "
-                    "converges to the same result). Off: the classic rule, from the fifth bounce",
-        default=True,
+                    "converges to the same result; a render border or a farm's tile then gets "
+                    "other noise than the whole frame). Off: the classic rule, from the fifth "
+                    "bounce",
+        default=False,
     )
     use_guiding: BoolProperty(
         name="Path Guiding",

@@ -85,7 +85,9 @@ struct RenderSettings {
   // Efficiency-aware Russian roulette (torrance/roulette.h): a path also stops at a vertex with
   // the probability learned, from the render's own samples, to give the least relative error per
   // ray; false: the classic rule only (from the fifth vertex, probability sqrt(max throughput)).
-  bool efficiency_roulette = true;
+  // Off by default: it learns across pixels, so a render border or a farm's tile gets other noise
+  // than the same pixels of the whole frame (docs/speed/roulette.md).
+  bool efficiency_roulette = false;
   float roulette_min_survival = 0.05f;  // the smallest probability it uses, in (0, 1]
   bool guiding = false;
   float guiding_training_fraction = 0.25f;

@@ -108,14 +108,15 @@ class RouletteField {
 };
 
 // One camera sample's roulette: decides at each vertex, and on destruction records what each
-// continuation brought and cost. Radiance: the path's radiance so far (combined()).
-template <class Radiance>
+// continuation brought and cost. It reads the path's luminance so far from `luminance`, which the
+// path tracer keeps up to date contribution by contribution (the same sums whether or not light
+// passes split them: decisions compare with random numbers, so rounding must not move them).
 class RoulettePath {
  public:
   // field null: learns and decides nothing. Cost is counted in path segments: the camera ray and
   // one per continuation (each with its vertex's shading and light sample).
-  RoulettePath(RouletteField* field, const Radiance& radiance, int x, int y, float pixel_value, bool have_estimate)
-      : field_(field), radiance_(radiance), x_(x), y_(y), pixel_value_(pixel_value), have_estimate_(have_estimate) {}
+  RoulettePath(RouletteField* field, const float& luminance, int x, int y, float pixel_value, bool have_estimate)
+      : field_(field), luminance_(luminance), x_(x), y_(y), pixel_value_(pixel_value), have_estimate_(have_estimate) {}
   RoulettePath(const RoulettePath&) = delete;
   RoulettePath& operator=(const RoulettePath&) = delete;
   ~RoulettePath() {
@@ -130,7 +131,7 @@ class RoulettePath {
   // The path goes on from this vertex, having survived with probability q.
   void continued(int depth, float q, float t) {
     if (!field_ || count_ >= kMaxVertices || !(t > 0.0f)) return;
-    vertices_[count_++] = {depth, q / t, luminance(radiance_.combined())};
+    vertices_[count_++] = {depth, q / t, luminance_};
   }
 
  private:
@@ -141,7 +142,7 @@ class RoulettePath {
     float value_before;
   };
   void flush() {
-    const float value = luminance(radiance_.combined());
+    const float value = luminance_;
     if (!std::isfinite(value)) return;
     for (int i = 0; i < count_; ++i) {
       const Vertex& v = vertices_[i];
@@ -152,7 +153,7 @@ class RoulettePath {
   }
 
   RouletteField* field_;
-  const Radiance& radiance_;
+  const float& luminance_;
   int x_, y_;
   float pixel_value_;
   bool have_estimate_;
