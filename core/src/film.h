@@ -34,7 +34,6 @@ class Film {
 
   bool converged(int x, int y) const { return adaptive_ && converged_[size_t(y) * width_ + x]; }
   // The pixel's combined colour so far (0 before any sample).
-  double samples(int x, int y) const { return sums_[(size_t(y) * width_ + x) * stride_ + stride_ - 1]; }
   Vec3 mean(int x, int y) const {
     const double* acc = &sums_[(size_t(y) * width_ + x) * stride_];
     const double count = acc[stride_ - 1];

@@ -181,10 +181,8 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
             PixelSample pixel_sample;
             pixel_sample.x = x - window[0];
             pixel_sample.y = y - window[1];
-            const Vec3 mean = film.mean(pixel_sample.x, pixel_sample.y);
-            pixel_sample.guide_weight = ctx.guide_training ? pixel_weight(mean) : 1.0f;
-            pixel_sample.estimate = luminance(mean);
-            pixel_sample.has_estimate = film.samples(pixel_sample.x, pixel_sample.y) > 0.0;
+            pixel_sample.guide_weight =
+                ctx.guide_training ? pixel_weight(film.mean(pixel_sample.x, pixel_sample.y)) : 1.0f;
             for (int s0 = first_sample; s0 < first_sample + num_samples; s0 += Scene::kPacketSize) {
               // Up to kPacketSize samples at once: their camera rays in one packet, then each path.
               const int n = std::min(Scene::kPacketSize, first_sample + num_samples - s0);

@@ -114,8 +114,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
   // contribution, so that it does not depend on how the passes split them (out.combined() does, by
   // rounding, and the roulette's decisions with it).
   float path_luminance = 0.0f;
-  RoulettePath roulette(ctx.roulette, path_luminance, pixel.x, pixel.y, pixel.estimate,
-                        pixel.has_estimate);  // learns at the end
+  RoulettePath roulette(ctx.roulette, path_luminance, pixel.x, pixel.y);  // learns at the end
   Vec3 throughput(1.0f);
   Vec3 diffuse_share(0.0f);  // per channel, of the energy that left the first hit
   Vec3 prev_position(0.0f), prev_normal(0.0f);

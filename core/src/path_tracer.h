@@ -28,12 +28,10 @@ struct PathContext {
   RouletteField* roulette = nullptr;
 };
 
-// Where a camera sample goes, and what the render knows of its pixel so far.
+// Where a camera sample goes.
 struct PixelSample {
   int x = 0, y = 0;           // in the rendered window
   float guide_weight = 1.0f;  // what the path records for guiding is multiplied by it (pixel_weight, guiding.h)
-  float estimate = 0.0f;      // the luminance of the pixel's mean so far
-  bool has_estimate = false;  // false before its first sample
 };
 
 // Everything one camera sample brings back, split as Blender's passes.

@@ -25,7 +25,7 @@ void learn(RouletteField& field, int first, int samples, float y_brought = 1.0f,
     for (int y = 0; y < 4; ++y)
       for (int x = x0; x < x0 + 4; ++x) {
         float luminance = 0.0f;
-        RoulettePath path(&field, luminance, x, y, 0.0f, false);
+        RoulettePath path(&field, luminance, x, y);
         const float continuation = 0.5f * y_brought;           // t x y
         luminance = (s % 2 ? 3.0f : 1.0f) - continuation;  // before ...
         path.continued(0, 1.0f, 0.5f);
@@ -37,7 +37,7 @@ TEST(Roulette, SurvivalIsTheClosedFormOfWhatWasLearned) {
   RouletteField field(4, 4, 0.01f);
   learn(field, 0, 3);
   field.update();
-  EXPECT_LT(field.survival(0, 0, 0, 0.5f, 2.0f), 0.0f) << "decided before kFirstSamples samples per pixel";
+  EXPECT_LT(field.survival(0, 0, 0, 0.5f), 0.0f) << "decided before kFirstSamples samples per pixel";
   learn(field, 3, 5);  // 8 samples per pixel
   field.update();
   // v = (4/3) / (2^2 + eps): the variance of 1, 3, 1, 3, ... with n - 1 = 7 is 8/7.
@@ -46,13 +46,13 @@ TEST(Roulette, SurvivalIsTheClosedFormOfWhatWasLearned) {
   EXPECT_NEAR(field.relative_variance(), v, 1e-6);
   EXPECT_NEAR(field.cost_per_sample(), c, 1e-6);
   // q = k t sqrt(E[Y^2] / E[C]) / sqrt(I^2 + eps) sqrt(c / v), E[Y^2] = 1, E[C] = 1.
-  const float t = 0.1f, pixel = 2.0f;
+  const float t = 0.1f, pixel = 2.0f;  // the mean of its samples 1, 3, 1, 3, ...
   const double expected =
       RouletteField::kSafety * t * 1.0 / std::sqrt(double(pixel) * pixel + RouletteField::kEpsilon) * std::sqrt(c / v);
-  EXPECT_NEAR(field.survival(1, 2, 0, t, pixel), expected, 1e-5 * expected);
-  EXPECT_EQ(field.survival(1, 2, 0, 100.0f, pixel), 1.0f) << "a probability";
-  EXPECT_EQ(field.survival(1, 2, 0, 1e-9f, pixel), 0.01f) << "the minimum survival";
-  EXPECT_LT(field.survival(1, 2, 1, t, pixel), 0.0f) << "nothing learned at depth 1";
+  EXPECT_NEAR(field.survival(1, 2, 0, t), expected, 1e-5 * expected);
+  EXPECT_EQ(field.survival(1, 2, 0, 100.0f), 1.0f) << "a probability";
+  EXPECT_EQ(field.survival(1, 2, 0, 1e-9f), 0.01f) << "the minimum survival";
+  EXPECT_LT(field.survival(1, 2, 1, t), 0.0f) << "nothing learned at depth 1";
 }
 
 // A block whose continuations brought less than the image's do on average uses the image's second
@@ -62,8 +62,8 @@ TEST(Roulette, ABlocksSecondMomentIsAtLeastTheImages) {
   learn(field, 0, 8, 1.0f, 0);  // block 0: y = 1
   learn(field, 0, 8, 3.0f, 4);  // block 1: y = 3; the image's E[Y^2] = (1 + 9) / 2 = 5
   field.update();
-  const float t = 0.01f, pixel = 2.0f;
-  const float low = field.survival(0, 0, 0, t, pixel), high = field.survival(4, 0, 0, t, pixel);
+  const float t = 0.01f;
+  const float low = field.survival(0, 0, 0, t), high = field.survival(4, 0, 0, t);
   EXPECT_NEAR(low / high, std::sqrt(5.0f / 9.0f), 1e-5f) << "block 0 uses the image's 5, block 1 its own 9";
 }
 

@@ -60,10 +60,14 @@ class RouletteField {
   void update();
 
   // The probability to continue a path from a vertex at `depth` with throughput luminance t in the
-  // pixel (x, y) whose estimate is `pixel_value` (its luminance); < 0 where nothing is learned yet.
-  float survival(int x, int y, int depth, float t, float pixel_value) const {
+  // pixel (x, y); < 0 where nothing is learned yet. The pixel's value is the mean of the
+  // luminance its samples brought (recorded here, not the film's: that one's sums round
+  // differently when light passes split them, and would move decisions with it).
+  float survival(int x, int y, int depth, float t) const {
     const float scale = scale_[slot(x, y, depth)];
-    if (!(scale >= 0.0f)) return -1.0f;
+    const PixelStats& p = pixels_[size_t(y) * size_t(width_) + size_t(x)];
+    if (!(scale >= 0.0f) || p.samples == 0) return -1.0f;
+    const float pixel_value = float(p.sum / p.samples);
     const float q = t * scale / std::sqrt(pixel_value * pixel_value + kEpsilon);
     return std::clamp(q, min_survival_, 1.0f);
   }
@@ -115,8 +119,8 @@ class RoulettePath {
  public:
   // field null: learns and decides nothing. Cost is counted in path segments: the camera ray and
   // one per continuation (each with its vertex's shading and light sample).
-  RoulettePath(RouletteField* field, const float& luminance, int x, int y, float pixel_value, bool have_estimate)
-      : field_(field), luminance_(luminance), x_(x), y_(y), pixel_value_(pixel_value), have_estimate_(have_estimate) {}
+  RoulettePath(RouletteField* field, const float& luminance, int x, int y)
+      : field_(field), luminance_(luminance), x_(x), y_(y) {}
   RoulettePath(const RoulettePath&) = delete;
   RoulettePath& operator=(const RoulettePath&) = delete;
   ~RoulettePath() {
@@ -125,9 +129,7 @@ class RoulettePath {
 
   // The survival probability at this vertex (t: the throughput's luminance after the bounce's
   // weight), or < 0 where the field knows nothing (the caller's own rule applies).
-  float survival(int depth, float t) const {
-    return field_ && have_estimate_ ? field_->survival(x_, y_, depth, t, pixel_value_) : -1.0f;
-  }
+  float survival(int depth, float t) const { return field_ ? field_->survival(x_, y_, depth, t) : -1.0f; }
   // The path goes on from this vertex, having survived with probability q.
   void continued(int depth, float q, float t) {
     if (!field_ || count_ >= kMaxVertices || !(t > 0.0f)) return;
@@ -155,8 +157,6 @@ class RoulettePath {
   RouletteField* field_;
   const float& luminance_;
   int x_, y_;
-  float pixel_value_;
-  bool have_estimate_;
   int count_ = 0;
   Vertex vertices_[kMaxVertices];
 };
