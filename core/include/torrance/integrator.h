@@ -78,10 +78,6 @@ struct RenderSettings {
   // sample, one emitter or world hit) is scaled down to at most this. Direct = seen by the camera
   // or lighting the first hit; indirect = lighting later vertices. 0 = off.
   float clamp_direct = 0.0f, clamp_indirect = 0.0f;
-  // Path guiding (guiding.h): an SD-tree of incident radiance learned in training passes of 1, 2,
-  // 4, ... samples per pixel while they fit in guiding_training_fraction of the samples (and of
-  // time_limit), then kept for the rest; the samples of every pass (each one unbiased) are in the
-  // image. Not bit-deterministic across runs: threads record into the tree in any order.
   // Efficiency-aware Russian roulette (torrance/roulette.h): a path also stops at a vertex with
   // the probability learned, from the render's own samples, to give the least relative error per
   // ray; false: the classic rule only (from the fifth vertex, probability sqrt(max throughput)).
@@ -89,6 +85,10 @@ struct RenderSettings {
   // than the same pixels of the whole frame (docs/speed/roulette.md).
   bool efficiency_roulette = false;
   float roulette_min_survival = 0.05f;  // the smallest probability it uses, in (0, 1]
+  // Path guiding (guiding.h): an SD-tree of incident radiance learned in training passes of 1, 2,
+  // 4, ... samples per pixel while they fit in guiding_training_fraction of the samples (and of
+  // time_limit), then kept for the rest; the samples of every pass (each one unbiased) are in the
+  // image. Not bit-deterministic across runs: threads record into the tree in any order.
   bool guiding = false;
   float guiding_training_fraction = 0.25f;
   GuidingOptions guiding_options;  // the SD-tree's parameters (C++ only: tests)
