@@ -79,4 +79,28 @@ BsdfSample sample(const Bsdf& bsdf, const typename Bsdf::View& v, float u_lobe, 
   return s;
 }
 
+// The queries every model answers the same way from its geometry(wo), at(wo), eval_lobes(view, wi)
+// and alpha(): pdf and sample of a prepared view, and eval, pdf and sample preparing wo for one
+// query. A model derives from Queries<Model> and names `using Queries<Model>::eval_lobes;` beside
+// its own eval_lobes(view, wi). (View overloads are templates: the model is incomplete here.)
+template <typename Bsdf>
+class Queries {
+ public:
+  template <typename View>
+  float pdf(const View& v, const Vec3& wi) const {
+    return lobe_mixture::pdf(self(), v, wi, self().alpha());
+  }
+  template <typename View>
+  BsdfSample sample(const View& v, float u_lobe, const Vec2& u) const {
+    return lobe_mixture::sample(self(), v, u_lobe, u, self().alpha());
+  }
+  LobeEval eval_lobes(const Vec3& wo, const Vec3& wi) const { return self().eval_lobes(self().geometry(wo), wi); }
+  Vec3 eval(const Vec3& wo, const Vec3& wi) const { return eval_lobes(wo, wi).total(); }
+  float pdf(const Vec3& wo, const Vec3& wi) const { return pdf(self().at(wo), wi); }
+  BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const { return sample(self().at(wo), u_lobe, u); }
+
+ private:
+  const Bsdf& self() const { return static_cast<const Bsdf&>(*this); }
+};
+
 }  // namespace torrance::lobe_mixture

@@ -24,7 +24,7 @@ namespace torrance {
 // Unpolarised Fresnel reflectance of a dielectric interface with relative IOR eta (> 0).
 float fresnel_dielectric(float cos_i, float eta);
 
-class PrincipledBsdf {
+class PrincipledBsdf : public lobe_mixture::Queries<PrincipledBsdf> {
  public:
   explicit PrincipledBsdf(const Material& m);
 
@@ -37,16 +37,9 @@ class PrincipledBsdf {
   View geometry(const Vec3& wo) const;  // without it (p_spec = 1): enough for eval
 
   LobeEval eval_lobes(const View& v, const Vec3& wi) const;
-  float pdf(const View& v, const Vec3& wi) const { return lobe_mixture::pdf(*this, v, wi, alpha_); }
-  BsdfSample sample(const View& v, float u_lobe, const Vec2& u) const {
-    return lobe_mixture::sample(*this, v, u_lobe, u, alpha_);
-  }
-  // The same, preparing wo for this one query.
-  LobeEval eval_lobes(const Vec3& wo, const Vec3& wi) const { return eval_lobes(geometry(wo), wi); }
-  Vec3 eval(const Vec3& wo, const Vec3& wi) const { return eval_lobes(wo, wi).total(); }
-  float pdf(const Vec3& wo, const Vec3& wi) const { return pdf(at(wo), wi); }
-  BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const { return sample(at(wo), u_lobe, u); }
+  using lobe_mixture::Queries<PrincipledBsdf>::eval_lobes;  // pdf, sample, eval: lobe_mixture::Queries
 
+  float alpha() const { return alpha_; }
   bool has_delta() const { return alpha_ < ggx::kDeltaAlpha; }
   Vec3 mirror_reflectance(const Vec3& wo) const { return fresnel(wo.z); }
   float specular_probability(const Vec3& wo) const;
