@@ -3,8 +3,6 @@
 // one path's vertices.
 #include "torrance/guiding.h"
 
-#include "atomic_float.h"
-
 #include <cmath>
 #include <limits>
 
@@ -60,7 +58,7 @@ void GuidingField::record(uint32_t leaf_index, const Vec2& square, float radianc
   for (size_t i = 0; i < kBsdfFractions.size(); ++i) {
     const float qa = kBsdfFractions[i] * bsdf_pdf + (1.0f - kBsdfFractions[i]) * guide_pdf;
     const float term = qa > 0.0f ? estimate * estimate * q / qa : std::numeric_limits<float>::infinity();
-    atomic_add_float(leaf.second_moment[i], std::min(term, 1e30f));
+    leaf.second_moment[i].add(term);
   }
 }
 
@@ -122,12 +120,12 @@ bool GuidingField::refine() {
     if (leaf.moment_records >= 256) {
       size_t best = 0;
       for (size_t i = 1; i < kBsdfFractions.size(); ++i)
-        if (leaf.second_moment[i] < leaf.second_moment[best]) best = i;
+        if (leaf.second_moment[i].units < leaf.second_moment[best].units) best = i;
       leaf.bsdf_fraction = kBsdfFractions[best];
-      chosen_moment += leaf.second_moment[best];
-      bsdf_only_moment += leaf.second_moment.back();
+      chosen_moment += leaf.second_moment[best].value();
+      bsdf_only_moment += leaf.second_moment.back().value();
     }
-    leaf.second_moment.fill(0.0f);
+    leaf.second_moment = {};
     leaf.moment_records = 0;
     DirectionalQuadtree next = leaf.recording.refined(options_.directional_fraction, options_.max_directional_depth,
                                                       options_.max_directional_nodes);

@@ -2,8 +2,6 @@
 // quadtree of energies over it, with sample() and pdf() side by side.
 #include "torrance/guiding.h"
 
-#include "atomic_float.h"
-
 namespace torrance {
 
 namespace {
@@ -36,7 +34,7 @@ Vec3 square_to_direction(const Vec2& p) {
   return Vec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta);
 }
 
-DirectionalQuadtree::DirectionalQuadtree() : nodes_(1) {}
+DirectionalQuadtree::DirectionalQuadtree() : nodes_(1), recorded_(1) {}
 
 void DirectionalQuadtree::record(const Vec2& point, float energy) {
   Vec2 p = point;
@@ -45,7 +43,7 @@ void DirectionalQuadtree::record(const Vec2& point, float energy) {
     const int q = quadrant_of(p);
     const uint32_t child = nodes_[node].child[q];
     if (child == 0) {
-      atomic_add_float(nodes_[node].energy[q], energy);
+      recorded_[node][q].add(energy);
       return;
     }
     node = child;
@@ -57,11 +55,14 @@ void DirectionalQuadtree::build_sums() {
   for (size_t i = nodes_.size(); i-- > 0;) {
     Node& n = nodes_[i];
     for (int q = 0; q < 4; ++q)
-      if (n.child[q] != 0) {
+      if (n.child[q] == 0) {
+        if (!recorded_.empty()) n.energy[q] = float(recorded_[i][q].value());
+      } else {
         const auto& e = nodes_[n.child[q]].energy;
         n.energy[q] = e[0] + e[1] + e[2] + e[3];
       }
   }
+  recorded_ = {};
 }
 
 float DirectionalQuadtree::total() const {
@@ -123,6 +124,7 @@ DirectionalQuadtree DirectionalQuadtree::refined(float fraction, int max_depth, 
   DirectionalQuadtree out;
   out.nodes_.clear();
   out.add_refined(*this, 0, nodes_[0].energy, fraction * total(), 1, max_depth, max_nodes);
+  out.recorded_.resize(out.nodes_.size());
   return out;
 }
 

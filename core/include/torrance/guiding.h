@@ -10,6 +10,7 @@
 // unbiased; only its variance changes.
 #pragma once
 
+#include "torrance/fixed_point_sum.h"
 #include "torrance/math.h"
 
 #include <array>
@@ -25,12 +26,13 @@ Vec2 direction_to_square(const Vec3& dir);
 Vec3 square_to_direction(const Vec2& p);
 
 // A piecewise-constant density on [0,1)^2 as a quadtree of energies. Recording adds energy to the
-// leaf cell holding a point (thread-safe, the structure fixed); build_sums() then fills the inner
-// nodes, after which sample() and pdf() (a density on the square) may be used.
+// leaf cell holding a point (thread-safe, the structure fixed; in fixed point, so the sums do not
+// depend on the threads' order); build_sums() then turns them into the nodes' energies, after
+// which sample() and pdf() (a density on the square) may be used.
 class DirectionalQuadtree {
  public:
   DirectionalQuadtree();  // the root's four quadrants, no energy
-  void record(const Vec2& p, float energy);  // thread-safe
+  void record(const Vec2& p, float energy);  // thread-safe; energy >= 0
   void build_sums();
   float total() const;
   // A point drawn from the density, and (pdf) its density, found on the way down. Requires total() > 0.
@@ -49,7 +51,11 @@ class DirectionalQuadtree {
   };
   uint32_t add_refined(const DirectionalQuadtree& old, uint32_t old_node, const std::array<float, 4>& energy,
                        float threshold, int depth, int max_depth, size_t max_nodes);
+  // Energies: the relative-error weighted luminance over pdf is of the order of the pixel's value
+  // over it, ~1 (guiding.cpp, pixel_weight); 2^24 resolves 3e-8 of it and sums up to 1e12.
+  using EnergySum = FixedPointSum<24>;
   std::vector<Node> nodes_;
+  std::vector<std::array<EnergySum, 4>> recorded_;  // per node while recording; empty once built
 };
 
 // The guide at one point: its learned distribution of directions, as a solid-angle density, and
@@ -150,7 +156,9 @@ class GuidingField {
     bool trained = false;  // sampled holds a distribution
     uint32_t records = 0;  // this pass
     float bsdf_fraction = kInitialBsdfFraction;
-    std::array<float, kBsdfFractions.size()> second_moment{};  // this pass, per candidate fraction
+    // This pass, per candidate fraction (squared estimates of ~1, as the energies; 2^16 resolves
+    // 8e-6 and sums up to 3e14).
+    std::array<FixedPointSum<16>, kBsdfFractions.size()> second_moment{};
     uint32_t moment_records = 0;
   };
   uint32_t leaf_index(const Vec3& p) const;

@@ -88,7 +88,9 @@ struct RenderSettings {
   // Path guiding (guiding.h): an SD-tree of incident radiance learned in training passes of 1, 2,
   // 4, ... samples per pixel while they fit in guiding_training_fraction of the samples (and of
   // time_limit), then kept for the rest; the samples of every pass (each one unbiased) are in the
-  // image. Not bit-deterministic across runs: threads record into the tree in any order.
+  // image. Deterministic as the rest (the tree's sums are in fixed point, independent of the
+  // threads' order); it learns from the pixels rendered, so a window gets other noise than the
+  // same pixels of the whole frame.
   bool guiding = false;
   float guiding_training_fraction = 0.25f;
   GuidingOptions guiding_options;  // the SD-tree's parameters (C++ only: tests)
