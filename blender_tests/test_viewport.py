@@ -287,7 +287,11 @@ def test_viewport_matches_final_render(tv, tc, scene):
     fx = state.render.image_window
     check(np.allclose(fx, (x0 / w, y0 / h, x1 / w, y1 / h)), f"drawn where it belongs: {fx}")
 
+    # The viewport is unguided (viewport/settings.py), so the final render it equals is too.
+    guided = scene.torrance.use_guiding
+    scene.torrance.use_guiding = False
     img_final, _ = testing.render(scene, testing.tempdir())
+    scene.torrance.use_guiding = guided
     diff = float(np.abs(img_view - img_final).max())
     print(f"viewport image vs final render (same view, {settings['samples']} samples): "
           f"max difference {diff:.2e}")

@@ -79,6 +79,7 @@ TEST(AdaptiveSampling, AllOffGivesTheSameImageAsBefore) {
   RenderSettings s = mixed_settings(16);
   s.passes = kPassDiffuseDirect | kPassGlossyIndirect;
   s.efficiency_roulette = false;  // newer than the hash: its own tests are test_roulette.cpp
+  s.guiding = false;              // off by default when the hash was taken
   const RenderResult r = render(scene, s);
   uint64_t h = fnv1a(r.image.rgba);
   for (const auto& [name, image] : r.passes) h ^= fnv1a(image.rgba);

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numeric>
 #include <vector>
 
 namespace torrance {
@@ -115,6 +116,48 @@ TEST(GuidedRender, SameSeedSameImageWhateverTheThreads) {
   }
   s.guiding = false;
   EXPECT_NE(render(scene, s).image.rgba, one);  // the guide did change the image
+}
+
+// A render window (a farm's tile, Blender's render border) learns its guide from its own pixels
+// only: other noise than the same pixels of the whole frame, the same expectation. Window
+// [8, 24)^2 of the 32x32 room against that crop of the whole frame, over seeds, in 4x4 blocks.
+TEST(GuidedRender, AWindowAgreesWithTheWholeFramesPixelsWithinNoise) {
+  Scene scene;
+  build_room(scene);
+  constexpr int kLo = 8, kSize = 16, kSeeds = 8;
+  auto block_means = [](const Image& img, int x0, int y0) {
+    std::vector<double> blocks(16, 0.0);
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x)
+        blocks[(y / 4) * 4 + x / 4] += img.rgba[(size_t(y + y0) * img.width + x + x0) * 4 + 1] / 16.0;
+    return blocks;
+  };
+  std::vector<std::vector<double>> whole, window;
+  for (uint32_t seed = 20; seed < 20 + kSeeds; ++seed) {
+    RenderSettings s = room_settings(seed, true);
+    whole.push_back(block_means(render(scene, s).image, kLo, kLo));
+    s.window = std::array<int, 4>{kLo, kLo, kLo + kSize, kLo + kSize};
+    const Image img = render(scene, s).image;
+    ASSERT_EQ(img.width, kSize);
+    window.push_back(block_means(img, 0, 0));
+  }
+  EXPECT_NE(whole.front(), window.front()) << "the window learned from its own pixels";
+  const test::SeedAgreement agreement = test::compare_over_seeds(whole, window);
+  // Their first pass is the same (unguided), so seed by seed they are correlated: the paired
+  // differences are the sharper test.
+  std::vector<double> differences;
+  for (int s = 0; s < kSeeds; ++s)
+    differences.push_back(std::accumulate(window[s].begin(), window[s].end(), 0.0) -
+                          std::accumulate(whole[s].begin(), whole[s].end(), 0.0));
+  const double mean = std::accumulate(differences.begin(), differences.end(), 0.0) / kSeeds;
+  double variance = 0.0;
+  for (double d : differences) variance += (d - mean) * (d - mean) / (kSeeds - 1);
+  const double paired_z = std::abs(mean) / std::sqrt(variance / kSeeds);
+  std::printf("mean ratio window / whole %.4f (z %.2f, paired z %.2f), worst block z %.2f\n", agreement.ratio,
+              agreement.image_z, paired_z, agreement.worst_block_z);
+  EXPECT_NEAR(agreement.ratio, 1.0, 0.03);
+  EXPECT_LT(agreement.worst_block_z, 4.5);
+  EXPECT_LT(paired_z, 4.0);
 }
 
 TEST(GuidedRender, GuidingOffIgnoresTheTrainingFraction) {

@@ -289,6 +289,9 @@ Image render_floor(AddFloorMaterial add_floor_material, bool specialize, uint32_
   settings.max_bounces = 3;
   settings.specialize = specialize;
   settings.passes = passes;
+  // Unguided: mixtures are never guided while plain materials are, which would give the two
+  // images other random numbers.
+  settings.guiding = false;
   return render(scene, settings).image;
 }
 

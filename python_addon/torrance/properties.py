@@ -76,8 +76,9 @@ class TorranceSceneSettings(bpy.types.PropertyGroup):
         name="Path Guiding",
         description="Learn where light comes from during the render (an SD-tree trained in the "
                     "first passes) and send part of the bounced rays there: pays on caustics "
-                    "and light arriving by narrow paths, costs time on simply lit scenes",
-        default=False,
+                    "and light arriving by narrow paths; switches itself off after its third "
+                    "training pass where it would not pay",
+        default=True,
     )
     guiding_training_fraction: FloatProperty(
         name="Training Fraction",

@@ -88,10 +88,11 @@ struct RenderSettings {
   // Path guiding (guiding.h): an SD-tree of incident radiance learned in training passes of 1, 2,
   // 4, ... samples per pixel while they fit in guiding_training_fraction of the samples (and of
   // time_limit), then kept for the rest; the samples of every pass (each one unbiased) are in the
-  // image. Deterministic as the rest (the tree's sums are in fixed point, independent of the
-  // threads' order); it learns from the pixels rendered, so a window gets other noise than the
-  // same pixels of the whole frame.
-  bool guiding = false;
+  // image. On by default: it pays 4x on caustics and switches itself off where it would not pay
+  // (docs/speed/path_guiding.md). Deterministic as the rest (the tree's sums are in fixed point,
+  // independent of the threads' order); it learns from the pixels rendered, so a window gets
+  // other noise than the same pixels of the whole frame.
+  bool guiding = true;
   float guiding_training_fraction = 0.25f;
   GuidingOptions guiding_options;  // the SD-tree's parameters (C++ only: tests)
 

@@ -20,6 +20,9 @@ def viewport_settings(scene):
         transparent_background=bool(rd.film_transparent),
         brdf_model=core_model(ts.brdf_model),
         threads=int(rd.threads) if rd.threads_mode == 'FIXED' else 0,
+        # Unguided: the viewport restarts at every edit, and a guide's training passes (1, 2, 4,
+        # ... samples per pixel) would delay its first images for a gain only long renders see.
+        guiding=False,
     )
 
 
