@@ -21,7 +21,8 @@ reason) only where the packages cannot be installed or the daemons need root.
    the sweep is complete.
 3. A 61x45 still in 3x2 tiles (uneven edges), one task per tile on several nodes, stitched into
    one EXR: bit-exact against the same .blend rendered whole on one machine (max |diff| = 0),
-   path guiding off (a guided tile learns from its own pixels: same expectation, other noise).
+   path guiding and the efficiency roulette off (with them a tile learns from its own pixels:
+   same expectation, other noise).
 """
 
 import json
@@ -223,10 +224,12 @@ def wait_jobs_gone(env, job, timeout=120):
 
 
 def tiles(tmp, blend, env):
-    # Path guiding learns from the pixels a render traces, so a guided tile gets other noise than
-    # the same pixels of the whole frame (the farm says so); bit-exact tiles are unguided.
+    # Path guiding and the efficiency roulette learn from the pixels a render traces, so a tile
+    # gets other noise than the same pixels of the whole frame (the farm says so); bit-exact
+    # tiles have both off.
     bpy.context.scene.torrance.use_guiding = False
-    blend = os.path.join(tmp, "tiny_unguided.blend")
+    bpy.context.scene.torrance.use_efficiency_roulette = False
+    blend = os.path.join(tmp, "tiny_unlearned.blend")
     bpy.ops.wm.save_as_mainfile(filepath=blend)
     out = os.path.join(tmp, "farm_still")
     log, dt = run([FARM, "still", blend, "--out", out, "--tiles", "3x2", "--resolution", "61x45",
@@ -234,7 +237,7 @@ def tiles(tmp, blend, env):
                    "1"], env)
     FIGURES["still_6_tiles_s"] = round(dt, 1)
     check("6 array tasks for 6 tiles" in log and "stitched 6 tiles" in log, log[-2000:])
-    check("path guiding learns" not in log, "the farm warns about guiding that is off")
+    check("learn from each tile" not in log, "the farm warns about learning that is off")
     nodes = set()
     for k in range(6):
         with open(os.path.join(out, "tiles", f"tile_{k:03d}.json")) as f:

@@ -111,7 +111,7 @@ void init_render(py::module_& m) {
            py::arg("adaptive_min_samples") = 0, py::arg("time_limit") = 0.0, py::arg("clamp_direct") = 0.0f,
            py::arg("clamp_indirect") = 0.0f, py::arg("max_transparent_bounces") = 8,
            py::arg("guiding") = true, py::arg("guiding_training_fraction") = 0.25f,
-           py::arg("efficiency_roulette") = false)
+           py::arg("efficiency_roulette") = true)
       .def_readwrite("specialize", &RenderSettings::specialize)
       .def_readwrite("camera_packets", &RenderSettings::camera_packets)
       .def_readwrite("efficiency_roulette", &RenderSettings::efficiency_roulette)

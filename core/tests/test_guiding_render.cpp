@@ -118,8 +118,9 @@ TEST(GuidedRender, SameSeedSameImageWhateverTheThreads) {
   EXPECT_NE(render(scene, s).image.rgba, one);  // the guide did change the image
 }
 
-// A render window (a farm's tile, Blender's render border) learns its guide from its own pixels
-// only: other noise than the same pixels of the whole frame, the same expectation. Window
+// A render window (a farm's tile, Blender's render border) learns its guide (and the efficiency
+// roulette, also on by default, its factors) from its own pixels only: other noise than the same
+// pixels of the whole frame, the same expectation. Window
 // [8, 24)^2 of the 32x32 room against that crop of the whole frame, over seeds, in 4x4 blocks.
 TEST(GuidedRender, AWindowAgreesWithTheWholeFramesPixelsWithinNoise) {
   Scene scene;
@@ -135,6 +136,7 @@ TEST(GuidedRender, AWindowAgreesWithTheWholeFramesPixelsWithinNoise) {
   std::vector<std::vector<double>> whole, window;
   for (uint32_t seed = 20; seed < 20 + kSeeds; ++seed) {
     RenderSettings s = room_settings(seed, true);
+    ASSERT_TRUE(s.efficiency_roulette);
     whole.push_back(block_means(render(scene, s).image, kLo, kLo));
     s.window = std::array<int, 4>{kLo, kLo, kLo + kSize, kLo + kSize};
     const Image img = render(scene, s).image;

@@ -70,7 +70,7 @@ class TorranceSceneSettings(bpy.types.PropertyGroup):
                     "converges to the same result; a render border or a farm's tile then gets "
                     "other noise than the whole frame). Off: the classic rule, from the fifth "
                     "bounce",
-        default=False,
+        default=True,
     )
     use_guiding: BoolProperty(
         name="Path Guiding",

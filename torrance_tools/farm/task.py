@@ -119,10 +119,14 @@ def prepare_still(argv):
                 rects=[list(r) for r in tile_rects(width, height, cols, rows)])
     _write_json(os.path.join(out, "still.json"), plan)
     print(f"farm: still {width}x{height} in {cols}x{rows} tiles -> {blend}", flush=True)
-    if rd.engine == "TORRANCE" and scene.torrance.use_guiding:
-        print("farm: path guiding learns from each tile's own pixels: the stitched image has the "
-              "whole frame's expectation, not its noise bit for bit (turn Path Guiding off for "
-              "bit-exact tiles)", flush=True)
+    ts = scene.torrance
+    learning = [name for name, on in (("Path Guiding", ts.use_guiding),
+                                      ("Efficiency Roulette", ts.use_efficiency_roulette))
+                if on and rd.engine == "TORRANCE"]
+    if learning:
+        print(f"farm: {' and '.join(learning)} learn from each tile's own pixels: the stitched "
+              "image has the whole frame's expectation, not its noise bit for bit (turn them off "
+              "for bit-exact tiles)", flush=True)
 
 
 def tiles(argv):

@@ -4,8 +4,8 @@ one 32-bit float EXR. No bpy.
 
 A tile is Blender's render border, cropped, on the full frame's pixel grid; Torrance's sampler is
 deterministic per pixel, so the stitched image equals a one-machine render exactly -- unless path
-guiding is on: it learns from the pixels a render traces, so each tile has the whole frame's
-expectation with noise of its own.
+guiding or the efficiency roulette is on: they learn from the pixels a render traces, so each tile
+has the whole frame's expectation with noise of its own.
 """
 
 import json

@@ -22,7 +22,10 @@ def viewport_settings(scene):
         threads=int(rd.threads) if rd.threads_mode == 'FIXED' else 0,
         # Unguided: the viewport restarts at every edit, and a guide's training passes (1, 2, 4,
         # ... samples per pixel) would delay its first images for a gain only long renders see.
+        # The classic roulette: what the efficiency roulette learns from a viewport's few samples
+        # would be too young to pay, and a render border then shows the full view's own pixels.
         guiding=False,
+        efficiency_roulette=False,
     )
 
 
