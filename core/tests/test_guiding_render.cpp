@@ -162,6 +162,24 @@ TEST(GuidedRender, AWindowAgreesWithTheWholeFramesPixelsWithinNoise) {
   EXPECT_LT(paired_z, 4.0);
 }
 
+// A render whose training passes cannot reach the decision pass (1 + 2 + 4 samples within the
+// training fraction) is not guided at all: the same image as guiding off. One that can is.
+TEST(GuidedRender, AGuideThatCannotBeJudgedIsNotUsed) {
+  Scene scene;
+  build_room(scene);
+  for (int samples : {16, 28}) {
+    RenderSettings s = room_settings(4, true);
+    s.samples = samples;
+    s.guiding_training_fraction = 0.25f;
+    s.guiding_options = GuidingOptions{};
+    ASSERT_EQ(s.guiding_options.decision_pass, 3);
+    const std::vector<float> guided = render(scene, s).image.rgba;
+    s.guiding = false;
+    if (samples < 28) EXPECT_EQ(render(scene, s).image.rgba, guided) << samples << " samples";
+    else EXPECT_NE(render(scene, s).image.rgba, guided) << samples << " samples";
+  }
+}
+
 TEST(GuidedRender, GuidingOffIgnoresTheTrainingFraction) {
   Scene scene;
   build_room(scene);
