@@ -172,6 +172,7 @@ void init_render(py::module_& m) {
       .def_readonly("time_limit_reached", &RenderResult::time_limit_reached)
       .def_readonly("closest_rays", &RenderResult::closest_rays)
       .def_readonly("occlusion_rays", &RenderResult::occlusion_rays)
+      .def_readonly("guiding", &RenderResult::guiding)
       .def_property_readonly("rays_traced", &RenderResult::rays_traced)
       .def_property_readonly("sample_counts", [](const RenderResult& r) {
         py::array_t<float> a({py::ssize_t(r.sample_counts.height), py::ssize_t(r.sample_counts.width)});

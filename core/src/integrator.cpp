@@ -129,6 +129,8 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
 
   const TraceFn trace = select_path_tracer(cscene, settings);
   std::optional<GuidingField> guide;
+  RenderResult result;
+  if (settings.guiding) result.guiding = guide_can_be_judged(settings) ? "guided" : "too few samples";
   if (settings.guiding && guide_can_be_judged(settings)) {
     Vec3 lo, hi;
     cscene.bounds(lo, hi);
@@ -171,7 +173,6 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   std::atomic<bool> stop{false};
   std::atomic<uint64_t> nonfinite{0};
   std::atomic<uint64_t> closest_rays{0}, occlusion_rays{0};
-  RenderResult result;
 
   auto render_pass = [&](int first_sample, int num_samples) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
@@ -271,7 +272,11 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
             // Plain path tracing from here if it would cost more than it gains, or if training
             // ended (the time limit) before the guide could be judged.
             const bool judged = guide->iterations() >= settings.guiding_options.decision_pass;
-            if (!worth_it || (!ctx.guide_training && !judged)) ctx.guide = nullptr;
+            if (!worth_it || (!ctx.guide_training && !judged)) {
+              ctx.guide = nullptr;
+              result.guiding = !worth_it ? "stopped after pass " + std::to_string(guide->iterations())
+                                         : "stopped before deciding";
+            }
           }
           if (roulette && done == roulette_update_at) {  // at 1, 3, 7, 15, ... samples: where passes end
             roulette->update();

@@ -173,11 +173,31 @@ TEST(GuidedRender, AGuideThatCannotBeJudgedIsNotUsed) {
     s.guiding_training_fraction = 0.25f;
     s.guiding_options = GuidingOptions{};
     ASSERT_EQ(s.guiding_options.decision_pass, 3);
-    const std::vector<float> guided = render(scene, s).image.rgba;
+    const RenderResult guided = render(scene, s);
+    // 28 samples: guided through pass 3, then on or off as the guide promises.
+    if (samples < 28) EXPECT_EQ(guided.guiding, "too few samples");
+    else EXPECT_NE(guided.guiding, "too few samples");
     s.guiding = false;
-    if (samples < 28) EXPECT_EQ(render(scene, s).image.rgba, guided) << samples << " samples";
-    else EXPECT_NE(render(scene, s).image.rgba, guided) << samples << " samples";
+    const RenderResult plain = render(scene, s);
+    EXPECT_EQ(plain.guiding, "off");
+    if (samples < 28) EXPECT_EQ(plain.image.rgba, guided.image.rgba) << samples << " samples";
+    else EXPECT_NE(plain.image.rgba, guided.image.rgba) << samples << " samples";
   }
+}
+
+// A grey plane under a uniform sky: cosine sampling is already ideal there, the guide promises
+// nothing after pass 3, and the render says it stopped guiding.
+TEST(GuidedRender, SaysWhenItStoppedGuiding) {
+  Scene scene;
+  scene.add_material(test::diffuse_material(Vec3(0.5f)));
+  test::add_quad(scene, Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0), 0);
+  scene.lights().set_world(Vec3(1.0f), 1.0f);
+  test::look_down(scene, 2.0f, 50.0f);
+  RenderSettings s;
+  s.width = s.height = 32;
+  s.samples = 64;
+  const RenderResult r = render(scene, s);
+  EXPECT_EQ(r.guiding, "stopped after pass 3");
 }
 
 TEST(GuidedRender, GuidingOffIgnoresTheTrainingFraction) {

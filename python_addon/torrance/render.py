@@ -294,6 +294,8 @@ def _render(engine, depsgraph, reporter):
     spent = int(result.samples_spent)
     if settings.adaptive_threshold > 0:
         msg += f" | adaptive: {spent / pixels:.1f} samples per pixel on average"
+    if settings.guiding:
+        msg += f" | path guiding: {result.guiding}"
     if result.time_limit_reached:
         msg += " | time limit reached"
     if result.stopped:
@@ -308,7 +310,7 @@ def _render(engine, depsgraph, reporter):
                       adaptive_min_samples=int(settings.effective_adaptive_min_samples),
                       clamp_direct=float(settings.clamp_direct),
                       clamp_indirect=float(settings.clamp_indirect),
-                      guiding=bool(settings.guiding),
+                      guiding=bool(settings.guiding), guiding_outcome=str(result.guiding),
                       closest_rays=int(result.closest_rays),
                       occlusion_rays=int(result.occlusion_rays),
                       guiding_training_fraction=float(settings.guiding_training_fraction),

@@ -772,3 +772,6 @@ def test_guiding_settings_and_a_guided_adaptive_render():
     guided = tc.render(scene, settings)
     assert np.isfinite(guided.image).all() and guided.nonfinite_samples == 0
     assert guided.samples_spent < 16 * 16 * 64       # adaptive sampling still stops pixels
+    assert guided.guiding in ("guided", "stopped after pass 3")   # what guiding did
+    settings.guiding = False
+    assert tc.render(scene, settings).guiding == "off"
