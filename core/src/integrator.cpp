@@ -130,8 +130,9 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   const TraceFn trace = select_path_tracer(cscene, settings);
   std::optional<GuidingField> guide;
   RenderResult result;
-  if (settings.guiding) result.guiding = guide_can_be_judged(settings) ? "guided" : "too few samples";
-  if (settings.guiding && guide_can_be_judged(settings)) {
+  const bool guided = settings.guiding && guide_can_be_judged(settings);
+  if (settings.guiding) result.guiding = guided ? "guided" : "too few samples";
+  if (guided) {
     Vec3 lo, hi;
     cscene.bounds(lo, hi);
     if (!(is_finite(lo) && is_finite(hi) && lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z)) lo = hi = Vec3(0.0f);

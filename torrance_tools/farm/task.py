@@ -124,9 +124,10 @@ def prepare_still(argv):
                                       ("Efficiency Roulette", ts.use_efficiency_roulette))
                 if on and rd.engine == "TORRANCE"]
     if learning:
-        print(f"farm: {' and '.join(learning)} learn from each tile's own pixels: the stitched "
-              "image has the whole frame's expectation, not its noise bit for bit (turn them off "
-              "for bit-exact tiles)", flush=True)
+        verb = "learns" if len(learning) == 1 else "learn"
+        print(f"farm: {' and '.join(learning)} {verb} from each tile's own pixels: the stitched "
+              "image has the whole frame's expectation, not its noise bit for bit (off: "
+              "bit-exact tiles)", flush=True)
 
 
 def tiles(argv):
