@@ -70,14 +70,20 @@ inline void add_closed_room(Scene& scene, int64_t material) {
   add_quad(scene, c[3], c[7], c[4], c[0], material);
 }
 
-// Mean of the green channel over 4 x 4 blocks of 8 x 8 pixels of a 32 x 32 image.
-inline std::vector<double> block_means_32(const Image& img) {
+// Mean of the green channel over 4 x 4 blocks of the size x size pixels from (x0, y0) (size a
+// multiple of 4).
+inline std::vector<double> block_means(const Image& img, int x0, int y0, int size) {
   std::vector<double> blocks(16, 0.0);
-  for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < img.width; ++x) blocks[(y / 8) * 4 + x / 8] += img.rgba[(size_t(y) * img.width + x) * 4 + 1];
-  for (double& b : blocks) b /= 64.0;
+  const int block = size / 4;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x)
+      blocks[(y / block) * 4 + x / block] += img.rgba[(size_t(y + y0) * img.width + x + x0) * 4 + 1];
+  for (double& b : blocks) b /= double(block * block);
   return blocks;
 }
+
+// The same over a whole 32 x 32 image (blocks of 8 x 8 pixels).
+inline std::vector<double> block_means_32(const Image& img) { return block_means(img, 0, 0, 32); }
 
 // Two renderers' block means (block_means_32) over the same seeds, compared: the ratio of their
 // image means (b over a), and |mean difference| / its standard error (from both sets' spread over

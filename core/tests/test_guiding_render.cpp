@@ -126,22 +126,15 @@ TEST(GuidedRender, AWindowAgreesWithTheWholeFramesPixelsWithinNoise) {
   Scene scene;
   build_room(scene);
   constexpr int kLo = 8, kSize = 16, kSeeds = 8;
-  auto block_means = [](const Image& img, int x0, int y0) {
-    std::vector<double> blocks(16, 0.0);
-    for (int y = 0; y < kSize; ++y)
-      for (int x = 0; x < kSize; ++x)
-        blocks[(y / 4) * 4 + x / 4] += img.rgba[(size_t(y + y0) * img.width + x + x0) * 4 + 1] / 16.0;
-    return blocks;
-  };
   std::vector<std::vector<double>> whole, window;
   for (uint32_t seed = 20; seed < 20 + kSeeds; ++seed) {
     RenderSettings s = room_settings(seed, true);
     ASSERT_TRUE(s.efficiency_roulette);
-    whole.push_back(block_means(render(scene, s).image, kLo, kLo));
+    whole.push_back(test::block_means(render(scene, s).image, kLo, kLo, kSize));
     s.window = std::array<int, 4>{kLo, kLo, kLo + kSize, kLo + kSize};
     const Image img = render(scene, s).image;
     ASSERT_EQ(img.width, kSize);
-    window.push_back(block_means(img, 0, 0));
+    window.push_back(test::block_means(img, 0, 0, kSize));
   }
   EXPECT_NE(whole.front(), window.front()) << "the window learned from its own pixels";
   const test::SeedAgreement agreement = test::compare_over_seeds(whole, window);
