@@ -14,7 +14,8 @@ LEVER_LABELS = {"specialize": "specialised kernels", "sampler=RANDOM": "Sobol sa
                 "light_selection=IRRADIANCE": "light choice aware of the BSDF",
                 "light_selection=UNIFORM": "light selection by contribution",
                 "guiding": "path guiding", "camera_packets": "camera rays in 8-wide packets",
-                "efficiency_roulette": "efficiency-aware Russian roulette"}
+                "efficiency_roulette": "efficiency-aware Russian roulette",
+                "mirror_images": "NEE of suns through planar mirrors"}
 
 
 def ratios(d, torrance, cycles):

@@ -128,6 +128,11 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   const PixelFilter filter(settings.filter_width);
 
   const TraceFn trace = select_path_tracer(cscene, settings);
+  std::optional<MirrorImages> mirror_images;
+  if (settings.mirror_images && !has_alpha(cscene)) {
+    mirror_images.emplace(cscene, ctx.bsdfs);
+    if (!mirror_images->empty()) ctx.mirror_images = &*mirror_images;
+  }
   std::optional<GuidingField> guide;
   RenderResult result;
   const bool guided = settings.guiding && guide_can_be_judged(settings);

@@ -2,6 +2,7 @@
 
 #include "guided_bsdf.h"
 #include "torrance/light_choice.h"
+#include "torrance/mirror_images.h"
 #include "torrance/mixture_bsdf.h"
 #include "torrance/shading_normal.h"
 
@@ -85,6 +86,37 @@ float bump_shadowing(Vec3 n_smooth, const Vec3& n_mapped, const Vec3& wi) {
   return g + g * g - g * g * g;
 }
 
+// Next-event estimation of a sun's light reflected once by a planar mirror (mirror_images.h) at
+// a shading point: the BSDF's lobes for the sampled direction (f) and the light arriving along it,
+// MIS-weighted against BSDF sampling (light); false when nothing arrives. The direction must meet
+// the mirror first, and the sun must be unoccluded from there.
+template <bool kGlass, typename Bsdf>
+bool mirror_image_light(const PathContext& ctx, const Bsdf& bsdf, const typename Bsdf::View& view, const Frame& frame,
+                        const Vec3& position, const Vec3& ng, const Vec3& n_smooth, const Vec3& ns,
+                        bool normal_mapped, bool transmits, const glm::vec4& u, LobeEval& f, Vec3& light) {
+  const MirrorImages& images = *ctx.mirror_images;
+  MirrorImages::Sample ms;
+  if (!images.sample(position, u.x, Vec2(u.y, u.z), ms)) return false;
+  const Vec3 wi = frame.to_local(ms.wi);
+  const float cos_geometric = glm::dot(ms.wi, ng);
+  if (transmits ? cos_geometric == 0.0f || (cos_geometric > 0.0f) != (wi.z > 0.0f) : cos_geometric <= 0.0f)
+    return false;
+  f = bsdf.template eval_lobes<kGlass>(view, wi);
+  if (normal_mapped) f.diffuse *= bump_shadowing(n_smooth, ns, ms.wi);
+  if (!(max_component(f.total()) > 0.0f)) return false;
+  Ray ray;
+  ray.origin = offset_origin(position, ng, ms.wi);
+  ray.dir = ms.wi;
+  SurfaceHit on_mirror;
+  if (!ctx.scene.intersect(ray, on_mirror) || images.mirror_of(on_mirror.material) != ms.mirror) return false;
+  if (ctx.scene.occluded(offset_origin(on_mirror.position, on_mirror.geometric_normal, ms.to_sun), ms.to_sun, 0.0f,
+                         kInfinity))
+    return false;
+  const float mis = ms.pdf > 0.0f ? power_heuristic(ms.pdf, bsdf.template pdf<kGlass>(view, wi)) : 1.0f;
+  light = ms.weight * images.reflectance(ms.mirror, ms.to_sun) * mis;
+  return max_component(light) > 0.0f;
+}
+
 // Radiance along a camera ray. Contributions are filed by the lobe the path left its first hit
 // through (NEE at the first hit by each lobe's share of eval), and as direct (one bounce) or
 // indirect; alpha is 0 where a transparent background is seen directly.
@@ -122,6 +154,12 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
   bool prev_delta = true;
   bool prev_two_sided = false;  // the previous vertex transmits: NEE there chose among lights on both sides
   LightChoice light_choice;     // NEE's choice at the latest vertex, for MIS when the next ray hits a light
+  // A planar mirror the path met right after a non-delta vertex (mirror_images.h): the suns it
+  // reflects are weighed against NEE through the mirror at that vertex (its position, BSDF pdf).
+  int mirror = -1;
+  Vec3 before_mirror(0.0f);
+  float before_mirror_pdf = 0.0f;
+  Vec3 prev_hit_position(0.0f);
   float path_length = 0.0f;  // for texture footprints (a ray cone of the pixel's spread)
   // Cycles' clamping: a contribution whose RGB sum exceeds the limit is scaled down to it.
   // Direct: seen by the camera or lighting the first hit; indirect: lighting later vertices.
@@ -169,12 +207,20 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       }
       out.depth = (passed_length + hit.t) * glm::dot(ray.dir, ctx.camera_forward);
     } else {
-      if (kHittable)
-        deposit(throughput * lights.emission_along_ray(prev_position, prev_normal, ray.dir,
-                                                       found ? passed_length + hit.t : kInfinity, prev_pdf, prev_delta,
-                                                       kGlass && prev_two_sided, &light_choice),
-                bounce == 1);
+      if (kHittable) {
+        Vec3 e = lights.emission_along_ray(prev_position, prev_normal, ray.dir, found ? passed_length + hit.t : kInfinity,
+                                           prev_pdf, prev_delta, kGlass && prev_two_sided, &light_choice,
+                                           mirror >= 0 && prev_delta);
+        if (mirror >= 0 && prev_delta && !found)
+          e += ctx.mirror_images->suns_through(mirror, before_mirror, ray.dir, before_mirror_pdf);
+        deposit(throughput * e, bounce == 1);
+      }
       if (!found) break;
+      mirror = -1;
+      if (ctx.mirror_images && !prev_delta && (mirror = ctx.mirror_images->mirror_of(hit.material)) >= 0) {
+        before_mirror = prev_hit_position;
+        before_mirror_pdf = prev_pdf;
+      }
     }
 
     // Textures: the material's inputs and its normal map at this hit, averaged over the pixel's
@@ -289,6 +335,26 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       }
     }
 
+    // Next-event estimation of suns through planar mirrors; the light counts as indirect, as it
+    // does when BSDF sampling finds it.
+    if (ctx.mirror_images && bounce < ctx.settings.max_bounces) {
+      const glm::vec4 u_mirror = sampler.next_4d();
+      LobeEval f;
+      Vec3 light;
+      if (mirror_image_light<kGlass>(ctx, bsdf, view, frame, hit.position, ng, n_smooth, ns, normal_mapped, transmits,
+                                     u_mirror, f, light)) {
+        light *= throughput;
+        if (bounce == 0) {
+          if (const float k = clamp_scale(light * f.total(), false); k < 1.0f) light *= k;
+          path_luminance += luminance(light * f.total());
+          out.diffuse_indirect += light * f.diffuse;
+          out.glossy_indirect += light * f.glossy;
+        } else {
+          deposit(light * f.total(), false);
+        }
+      }
+    }
+
     // Continue the path by sampling the BSDF.
     float bsdf_pdf = 0.0f, guide_pdf = 0.0f;  // the parts of a guided sample's pdf
     Vec2 square(-1.0f);                        // and its direction on the guide's square (-1: not known yet)
@@ -343,6 +409,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
     prev_delta = bs.is_delta;
     prev_two_sided = transmits;
     prev_normal = ns;
+    prev_hit_position = hit.position;
     ray.origin = offset_origin(hit.position, ng, wi_world);
     prev_position = ray.origin;
     ray.dir = wi_world;
@@ -369,19 +436,25 @@ constexpr std::array<TraceFn, 4> kMixtureTracers = make_mixture_tracers(std::mak
 
 }  // namespace
 
+bool has_alpha(const Scene& scene) {
+  for (size_t i = 0; i < scene.num_materials(); ++i)
+    if (scene.material(uint32_t(i)).alpha < 1.0f || scene.material_textures(uint32_t(i)).alpha >= 0) return true;
+  return false;
+}
+
 TraceFn select_path_tracer(const Scene& scene, const RenderSettings& settings) {
-  bool has_textures = false, has_glass = false, has_alpha = false;
+  bool has_textures = false, has_glass = false;
   for (size_t i = 0; i < scene.num_materials(); ++i) {
     has_textures |= scene.material_textures(uint32_t(i)).any();
     has_glass |= scene.material(uint32_t(i)).transmits();
-    has_alpha |= scene.material(uint32_t(i)).alpha < 1.0f || scene.material_textures(uint32_t(i)).alpha >= 0;
   }
+  const bool alpha = has_alpha(scene);
   const bool split_lobes =
       settings.passes & (kPassDiffuseDirect | kPassDiffuseIndirect | kPassGlossyDirect | kPassGlossyIndirect);
   const int lobes_and_lights = (split_lobes << 1) | int(scene.lights().any_hittable());
   if (scene.has_mixtures()) return kMixtureTracers[settings.specialize ? lobes_and_lights : 3];
   if (!settings.specialize) return kMixtureTracers[3];  // the generic path: every feature
-  return kTracers[(has_alpha << 4) | (has_glass << 3) | (has_textures << 2) | lobes_and_lights];
+  return kTracers[(alpha << 4) | (has_glass << 3) | (has_textures << 2) | lobes_and_lights];
 }
 
 }  // namespace torrance

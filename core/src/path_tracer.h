@@ -7,6 +7,7 @@
 #include "torrance/guiding.h"
 #include "torrance/integrator.h"
 #include "torrance/material_bsdf.h"
+#include "torrance/mirror_images.h"
 #include "torrance/sampling.h"
 
 #include <vector>
@@ -26,6 +27,8 @@ struct PathContext {
   bool guide_training = false;
   // Efficiency-aware Russian roulette (roulette.h): learned and used; null: the classic rule only.
   RouletteField* roulette = nullptr;
+  // Suns seen in planar mirrors (mirror_images.h), sampled by NEE; null: none, or not used.
+  const MirrorImages* mirror_images = nullptr;
 };
 
 // Where a camera sample goes.
@@ -59,5 +62,8 @@ using TraceFn = PathRadiance (*)(const PathContext&, Ray, SobolSampler&, const F
 // The path tracer for the scene's features under the settings (specialize false: the generic
 // one, which has every feature).
 TraceFn select_path_tracer(const Scene& scene, const RenderSettings& settings);
+
+// Whether some material of the scene has alpha below 1 or an alpha texture.
+bool has_alpha(const Scene& scene);
 
 }  // namespace torrance

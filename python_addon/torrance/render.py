@@ -179,8 +179,8 @@ class _Session:
 
 def sampling_settings(ts):
     """RenderSettings arguments for the Sampling panel's Noise Threshold, Time Limit, Path
-    Guiding and Efficiency Roulette and the Light Paths panel's Clamping, from scene.torrance
-    (final renders)."""
+    Guiding, Efficiency Roulette and Suns in Mirrors and the Light Paths panel's Clamping, from
+    scene.torrance (final renders)."""
     threshold = 0.0
     if ts.use_adaptive_sampling:
         # As Cycles: a threshold of 0 means automatic, from the number of samples.
@@ -192,7 +192,8 @@ def sampling_settings(ts):
                 clamp_indirect=float(ts.sample_clamp_indirect),
                 guiding=bool(ts.use_guiding),
                 guiding_training_fraction=float(ts.guiding_training_fraction),
-                efficiency_roulette=bool(ts.use_efficiency_roulette))
+                efficiency_roulette=bool(ts.use_efficiency_roulette),
+                mirror_images=bool(ts.use_mirror_images))
 
 
 def render(engine, depsgraph):
@@ -314,7 +315,8 @@ def _render(engine, depsgraph, reporter):
                       closest_rays=int(result.closest_rays),
                       occlusion_rays=int(result.occlusion_rays),
                       guiding_training_fraction=float(settings.guiding_training_fraction),
-                      efficiency_roulette=bool(settings.efficiency_roulette))
+                      efficiency_roulette=bool(settings.efficiency_roulette),
+                      mirror_images=bool(settings.mirror_images))
     engine.update_progress(1.0)
     engine.update_stats("", msg)
     print(msg)

@@ -248,6 +248,7 @@ class TORRANCE_RENDER_PT_sampling_advanced(TorrancePanel, Panel):
         layout = _split(self.layout)
         layout.prop(context.scene.torrance, "seed")
         layout.prop(context.scene.torrance, "use_efficiency_roulette")
+        layout.prop(context.scene.torrance, "use_mirror_images")
 
 
 class TORRANCE_RENDER_PT_sampling_path_guiding(TorrancePanel, Panel):

@@ -165,8 +165,14 @@ class Lights {
   // shading normal n_prev) receives from lights it passes before distance t_max (infinite if
   // the ray escaped): spheres, area lights and, if escaped, the world and visible suns.
   // prev_choice: the LightChoice NEE used at p_prev (its probabilities), if any.
+  // without_suns: the suns' light is left out (the caller weighs it itself: mirror_images.h).
   Vec3 emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max, float bsdf_pdf,
-                          bool bsdf_delta, bool two_sided = false, const LightChoice* prev_choice = nullptr) const;
+                          bool bsdf_delta, bool two_sided = false, const LightChoice* prev_choice = nullptr,
+                          bool without_suns = false) const;
+  // Strategy `index`'s sun, or nullptr when it is another kind of light.
+  const SunLight* sun(size_t index) const {
+    return index < lights_.size() ? std::get_if<SunLight>(&lights_[index]) : nullptr;
+  }
 
   // False when no BSDF-sampled ray can ever see a light (only delta lights, no world or
   // emitting shapes), so emission_along_ray can be skipped.

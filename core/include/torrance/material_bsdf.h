@@ -39,6 +39,17 @@ class MaterialBsdf {
   }
 
   bool transmits() const { return glass_.has_value(); }
+  // Whether the material is a perfect mirror and nothing else: a delta reflection, no diffuse
+  // lobe, no glass (mirror_images.h).
+  bool pure_mirror() const {
+    if (glass_) return false;
+    return std::visit(
+        [](const auto& b) {
+          return b.has_delta() && b.specular_probability(Vec3(0.0f, 0.0f, 1.0f)) >= 1.0f &&
+                 b.specular_probability(Vec3(0.99498744f, 0.0f, 0.1f)) >= 1.0f;
+        },
+        bsdf_);
+  }
 
   // What eval, pdf and sample need of wo alone, prepared once per shading point: the model's
   // View (its at(wo), lobe_mixture.h) and `backfacing` (the glass's side).

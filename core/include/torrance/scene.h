@@ -17,6 +17,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -179,6 +180,14 @@ class Scene {
   bool occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax) const;
   void* embree_scene() const { return scene_; }  // the RTCScene, for raw-Embree measurements (ray_replay.h)
   void bounds(Vec3& lo, Vec3& hi) const;  // of everything traced, after commit (lo > hi: nothing)
+  // The plane all triangles of material `material` lie in, shaded flat (any corner normals along
+  // its normal): a point on it and its unit normal (as the largest triangle winds). nullopt when
+  // no world-space triangle has the material, some leaves the plane (relative tolerance 1e-5) or
+  // has a bent corner normal, or a prototype uses it (instances are not examined).
+  struct Plane {
+    Vec3 point{0.0f}, normal{0.0f, 0.0f, 1.0f};
+  };
+  std::optional<Plane> material_plane(uint32_t material) const;
 
  private:
   struct Mesh;

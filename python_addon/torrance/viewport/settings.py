@@ -26,6 +26,7 @@ def viewport_settings(scene):
         # would be too young to pay, and a render border then shows the full view's own pixels.
         guiding=False,
         efficiency_roulette=False,
+        mirror_images=bool(ts.use_mirror_images),
     )
 
 

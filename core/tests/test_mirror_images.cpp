@@ -1,0 +1,142 @@
+// Suns seen in planar mirrors (mirror_images.h): which materials are mirrors, and a wall standing on
+// a mirror floor against the closed form of its direct and mirrored sunlight.
+#include "scene_helpers.h"
+#include "torrance/integrator.h"
+#include "torrance/mirror_images.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace torrance {
+namespace {
+
+Material mirror_metal() {
+  Material m;
+  m.base_color = Vec3(0.9f, 0.8f, 0.6f);
+  m.metallic = 1.0f;
+  m.roughness = 0.0f;
+  return m;
+}
+
+TEST(MirrorImages, OnlyFlatPerfectMirrorsAreMirrors) {
+  Scene scene;
+  const uint32_t flat = scene.add_material(mirror_metal());
+  const uint32_t bent = scene.add_material(mirror_metal());
+  Material rough = mirror_metal();
+  rough.roughness = 0.1f;
+  const uint32_t glossy = scene.add_material(rough);
+  Material dielectric = mirror_metal();
+  dielectric.metallic = 0.0f;
+  const uint32_t coated = scene.add_material(dielectric);  // a delta lobe over a diffuse one
+  const uint32_t smooth_normals = scene.add_material(mirror_metal());
+  test::add_quad(scene, Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0), flat);
+  test::add_quad(scene, Vec3(-1, -1, 1), Vec3(1, -1, 1), Vec3(1, 1, 1.2f), Vec3(-1, 1, 1), bent);
+  test::add_quad(scene, Vec3(-1, -1, 2), Vec3(1, -1, 2), Vec3(1, 1, 2), Vec3(-1, 1, 2), glossy);
+  test::add_quad(scene, Vec3(-1, -1, 3), Vec3(1, -1, 3), Vec3(1, 1, 3), Vec3(-1, 1, 3), coated);
+  {
+    const float p[] = {-1, -1, 4, 1, -1, 4, 1, 1, 4};
+    const int64_t tri[] = {0, 1, 2}, mat[] = {smooth_normals};
+    const float normals[] = {0, 0, 1, 0, 0.1f, 0.995f, 0, 0, 1};  // one corner bent
+    scene.add_mesh(p, 3, tri, 1, normals, mat);
+  }
+  scene.lights().add_sun(Vec3(0, 0, -1), 1.0f, Vec3(1.0f), 0.05f);
+  std::vector<MaterialBsdf> bsdfs;
+  for (uint32_t i = 0; i < scene.num_materials(); ++i) bsdfs.emplace_back(scene.material(i), BrdfModel::Principled);
+  const MirrorImages images(scene, bsdfs);
+  EXPECT_EQ(images.num_mirrors(), 1u);
+  EXPECT_EQ(images.mirror_of(flat), 0);
+  for (uint32_t other : {bent, glossy, coated, smooth_normals}) EXPECT_EQ(images.mirror_of(other), -1) << other;
+  const std::optional<Scene::Plane> plane = scene.material_plane(flat);
+  ASSERT_TRUE(plane);
+  EXPECT_NEAR(std::abs(plane->normal.z), 1.0f, 1e-6f);
+
+  // A delta sun has no image: Cycles cannot render its light through a mirror either.
+  Scene delta_sun;
+  delta_sun.add_material(mirror_metal());
+  test::add_quad(delta_sun, Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0), 0);
+  delta_sun.lights().add_sun(Vec3(0, 0, -1), 1.0f, Vec3(1.0f), 0.0f);
+  std::vector<MaterialBsdf> one{MaterialBsdf(delta_sun.material(0), BrdfModel::Principled)};
+  EXPECT_TRUE(MirrorImages(delta_sun, one).empty());
+}
+
+// A Lambert wall (the plane x = 0, facing +x) standing on a mirror floor (z = 0), a sun of
+// angular diameter 80 degrees 45 degrees high in front of it (so that BSDF sampling finds its
+// image often and MIS matters), a black world; the camera looks at the wall horizontally. The
+// wall sees the sun and the sun's image in the floor; it cannot see itself (its image lies in its
+// own plane). Its radiance: the integral over the sun's cone of L f cos, plus over the image's
+// cone of L R f cos, R the mirror's reflectance for the direction reflected, by quadrature.
+constexpr float kElevation = 0.25f * kPi, kSunAngle = 80.0f * kPi / 180.0f, kStrength = 3.0f;
+
+void build_wall_on_mirror(Scene& scene, const Material& wall, const Material& mirror) {
+  scene.add_material(wall);
+  scene.add_material(mirror);
+  test::add_quad(scene, Vec3(0, -5, 0), Vec3(0, 5, 0), Vec3(0, 5, 10), Vec3(0, -5, 10), 0);
+  test::add_quad(scene, Vec3(-100, -100, 0), Vec3(100, -100, 0), Vec3(100, 100, 0), Vec3(-100, 100, 0), 1);
+  const Vec3 to_sun(std::cos(kElevation), 0.0f, std::sin(kElevation));
+  scene.lights().add_sun(-to_sun, kStrength, Vec3(1.0f), kSunAngle);
+  CameraParams cam;  // at (5, 0, 1) looking along -x, up +z
+  cam.camera_to_world = {0, 0, 1, 5, 1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 1};
+  cam.lens_mm = 2000.0f;
+  scene.set_camera(cam);
+}
+
+Vec3 expected_wall_radiance(const Material& wall, const Material& mirror) {
+  const MaterialBsdf wall_bsdf(wall, BrdfModel::Paper), mirror_bsdf(mirror, BrdfModel::Paper);
+  const Frame wall_frame(Vec3(1, 0, 0));
+  const Vec3 wo = wall_frame.to_local(Vec3(1, 0, 0));
+  const Vec3 to_sun(std::cos(kElevation), 0.0f, std::sin(kElevation));
+  const Frame sun_frame(to_sun);
+  const float half = 0.5f * kSunAngle, solid_angle = 2.0f * kPi * (1.0f - std::cos(half));
+  const float radiance = kStrength / solid_angle;
+  const int n = 400;
+  Vec3 sum(0.0f);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      // Midpoints in (cos theta, phi) over the cone: equal solid angles.
+      const float cos_t = 1.0f - (1.0f - std::cos(half)) * (float(i) + 0.5f) / float(n);
+      const float sin_t = std::sqrt(1.0f - cos_t * cos_t), phi = 2.0f * kPi * (float(j) + 0.5f) / float(n);
+      const Vec3 d = sun_frame.to_world(Vec3(sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t));
+      const Vec3 image(d.x, d.y, -d.z);
+      const float c = d.z;  // the mirror's cosine
+      const Vec3 reflectance =
+          mirror_bsdf.sample<false>(Vec3(std::sqrt(1.0f - c * c), 0.0f, c), 0.5f, Vec2(0.5f)).weight;
+      sum += wall_bsdf.eval<false>(wo, wall_frame.to_local(d)) +
+             reflectance * wall_bsdf.eval<false>(wo, wall_frame.to_local(image));
+    }
+  }
+  return sum * (radiance * solid_angle / float(n * n));
+}
+
+TEST(MirrorImages, WallOnAMirrorFloorGetsTheSunAndItsImage) {
+  const Material wall = test::diffuse_material(Vec3(0.7f));
+  const Material mirror = mirror_metal();
+  Scene scene;
+  build_wall_on_mirror(scene, wall, mirror);
+  const Vec3 expected = expected_wall_radiance(wall, mirror);
+  // The image's share, to show what the check would miss without it.
+  Material black_mirror = mirror;
+  black_mirror.base_color = Vec3(0.0f);
+  const float direct_only = expected_wall_radiance(wall, black_mirror).g;
+  ASSERT_GT(expected.g, 1.3f * direct_only);
+  for (bool images : {true, false}) {
+    RenderSettings s;
+    s.width = s.height = 16;
+    s.samples = 256;
+    s.mirror_images = images;
+    Vec3 sum(0.0f);
+    const int seeds = 4;
+    for (int seed = 0; seed < seeds; ++seed) {
+      s.seed = uint32_t(seed);
+      const RenderResult r = render(scene, s);
+      EXPECT_EQ(r.nonfinite_samples, 0u);
+      sum += test::mean_rgb(r.image);
+    }
+    const Vec3 mean = sum / float(seeds);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(mean[c], expected[c], 0.01f * expected[c]) << "channel " << c << ", mirror images " << images;
+  }
+}
+
+}  // namespace
+}  // namespace torrance
