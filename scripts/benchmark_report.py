@@ -22,7 +22,7 @@ import sys
 
 from torrance_tools import REPO as ROOT
 from torrance_tools import benchmark_plots, benchmark_tables
-from torrance_tools.equal_error import equal_error, fmt_ratio
+from torrance_tools.equal_error import equal_error, fmt_equal, fmt_ratio
 
 ADAPTIVE_CURVES = ("torrance_adaptive", "cycles_adaptive")
 
@@ -105,7 +105,7 @@ def variant_table(scenes, variants):
         cells = []
         for eq in variant_ratios(d, variants).values():
             rng = f" ({fmt_ratio(eq['lo'])}–{fmt_ratio(eq['hi'])})" if eq["lo"] is not None else ""
-            cells.append(fmt_ratio(eq["geomean"]) + rng)
+            cells.append(fmt_equal(eq) + rng)
         lines.append(f"| {name} | " + " | ".join(cells) + " |")
     return lines + [""]
 
@@ -122,7 +122,7 @@ def scene_section(directory, name, d, curves, eq):
             f"{d['title']}. Reference: {d['reference']['samples']} Cycles samples, noise relMSE "
             f"{d['reference']['noise_rel_mse']:.2e}. Max bounces {d['bounces']}. Seeds "
             f"{', '.join(str(x) for x in d.get('seeds', []))}. Plain equal-error time ratio "
-            f"T/C: **{fmt_ratio(eq['geomean'])}**{over}.{rendered}", "",
+            f"T/C: **{fmt_equal(eq)}**{over}.{rendered}", "",
             f"![{name}]({png})", *benchmark_tables.points(d, curves)]
 
 
@@ -142,7 +142,10 @@ def write_report(directory):
               "Equal-error time ratio Torrance / Cycles (below 1 Torrance is faster) from the "
               "seed-averaged curves: plain (unbiased, the headline) and with each engine's "
               "adaptive sampling at the same noise thresholds. —: the two curves share no range "
-              "of errors (e.g. each has one usable point).", "", *table, "",
+              "of errors (e.g. each has one usable point). ≤ x: Torrance's worst error (its "
+              "first point) is already below Cycles' best, so at Cycles' best error Torrance "
+              "needs at most its first point's time: the ratio is at most x (≥ x: the other way "
+              "round).", "", *table, "",
               benchmark_tables.goal_line(plain), ""]
     if len(variants) > 1:
         lines += variant_table(scenes, variants)
@@ -170,7 +173,7 @@ def main():
     path, summary = write_report(directory)
     for name, eq in summary.items():
         print(f"benchmark: {name:13s} equal-error time ratio Torrance/Cycles "
-              f"{fmt_ratio(eq['geomean'])} (range {fmt_ratio(eq['lo'])}–{fmt_ratio(eq['hi'])})")
+              f"{fmt_equal(eq)} (range {fmt_ratio(eq['lo'])}–{fmt_ratio(eq['hi'])})")
     print(f"benchmark: wrote {path}")
 
 

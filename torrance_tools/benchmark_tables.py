@@ -4,7 +4,7 @@ equal-error ratios with and without adaptive sampling, the ablation tables, rays
 Embree and each scene's points. Each function returns a list of lines. Needs no bpy."""
 
 from torrance_tools.benchmark_points import geometric_mean
-from torrance_tools.equal_error import equal_error, fmt_ratio
+from torrance_tools.equal_error import equal_error, fmt_equal, fmt_ratio, meets
 
 TARGET = 0.5          # the issue's goal: equal error in at most half of Cycles' time
 RAYS_GOAL = 0.6       # the issue's goal: the integrator traces >= 60 % of raw Embree's rays/s
@@ -48,13 +48,13 @@ def summary(scenes):
                 continue
             eq, trim, dssim = r
             rng = f"{fmt_ratio(eq['lo'])}–{fmt_ratio(eq['hi'])}" if eq["lo"] is not None else "—"
-            cells += [fmt_ratio(eq["geomean"]), rng]
+            cells += [fmt_equal(eq), rng]
             if with_spp:
-                met = "—" if eq["geomean"] is None else ("yes" if eq["geomean"] <= TARGET else "no")
-                cells += [" / ".join(fmt_ratio(eq["at"].get(k)) for k in (16, 128, 1024)), met,
-                          fmt_ratio(trim["geomean"]), fmt_ratio(dssim["geomean"])]
+                met = {None: "—", True: "yes", False: "no"}[meets(eq, TARGET)]
+                cells += [" / ".join(fmt_equal(eq, k) for k in (16, 128, 1024)), met,
+                          fmt_equal(trim), fmt_equal(dssim)]
             else:
-                cells.append(fmt_ratio(trim["geomean"]))
+                cells.append(fmt_equal(trim))
         plain_by_scene[name] = plain[0] if plain else equal_error([], [])
         last = d["torrance"][-1] if d.get("torrance") else None
         bias = f"{last['ratio']:.4f} ({last['spp']} spp)" if last else "—"
@@ -181,7 +181,6 @@ def points(d, curves):
 
 
 def goal_line(plain_by_scene):
-    ok = [n for n, e in plain_by_scene.items()
-          if e["geomean"] is not None and e["geomean"] <= TARGET]
+    ok = [n for n, e in plain_by_scene.items() if meets(e, TARGET)]
     return (f"Goal (equal error in ≤ {TARGET}× Cycles' time, plain curves) met on {len(ok)} of "
             f"{len(plain_by_scene)} scenes{': ' + ', '.join(ok) if ok else ''}.")
