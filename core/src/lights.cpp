@@ -447,7 +447,7 @@ LightSample Lights::sample(size_t index, const Vec3& p, const Vec3& shading_norm
 
 Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max, float bsdf_pdf,
                                 bool bsdf_delta, bool two_sided, const LightChoice* prev_choice,
-                                bool without_suns) const {
+                                float sun_scale) const {
   Vec3 L(0.0f);
   auto add = [&](size_t index, const LightHit& h, bool in_nee) {
     if (!in_nee || bsdf_delta) return void(L += h.radiance);
@@ -457,10 +457,13 @@ Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Ve
     L += h.radiance * (bsdf_delta ? 1.0f : power_heuristic(bsdf_pdf, nee_pdf));
   };
   for (size_t i = 0; i < lights_.size(); ++i) {
-    if (without_suns && std::holds_alternative<SunLight>(lights_[i])) continue;
+    const bool sun = std::holds_alternative<SunLight>(lights_[i]);
+    if (sun && !(sun_scale > 0.0f)) continue;
     LightHit h;
-    if (std::visit([&](const auto& light) { return light.hit(p_prev, n_prev, dir, t_max, h); }, lights_[i]))
-      add(i, h, true);
+    if (!std::visit([&](const auto& light) { return light.hit(p_prev, n_prev, dir, t_max, h); }, lights_[i]))
+      continue;
+    if (sun) h.radiance *= sun_scale;
+    add(i, h, true);
   }
   LightHit h;
   if (has_world() && world_.hit(p_prev, n_prev, dir, t_max, h)) add(count() - 1, h, world_in_nee());

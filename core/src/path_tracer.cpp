@@ -86,15 +86,16 @@ float bump_shadowing(Vec3 n_smooth, const Vec3& n_mapped, const Vec3& wi) {
   return g + g * g - g * g * g;
 }
 
-// Next-event estimation of a sun's light reflected once by a planar mirror (mirror_images.h) at
-// a shading point: the BSDF's lobes for the sampled direction (f) and the light arriving along it,
-// MIS-weighted against BSDF sampling (light); false when nothing arrives. The direction must meet
-// the mirror first, and the sun must be unoccluded from there.
+// Next-event estimation of a sun's light reflected once by a planar mirror or glossy plane
+// (mirror_images.h) at a shading point: the BSDF's lobes for the sampled direction (f) and the
+// light arriving along it, MIS-weighted against BSDF sampling (light); false when nothing
+// arrives. The direction must meet the plane first, and the sun must be unoccluded from there.
 template <bool kGlass, typename Bsdf>
 bool mirror_image_light(const PathContext& ctx, const Bsdf& bsdf, const typename Bsdf::View& view, const Frame& frame,
                         const Vec3& position, const Vec3& ng, const Vec3& n_smooth, const Vec3& ns,
-                        bool normal_mapped, bool transmits, const glm::vec4& u, LobeEval& f, Vec3& light) {
+                        bool normal_mapped, bool transmits, SobolSampler& sampler, LobeEval& f, Vec3& light) {
   const MirrorImages& images = *ctx.mirror_images;
+  const glm::vec4 u = sampler.next_4d();
   MirrorImages::Sample ms;
   if (!images.sample(position, u.x, Vec2(u.y, u.z), ms)) return false;
   const Vec3 wi = frame.to_local(ms.wi);
@@ -107,13 +108,27 @@ bool mirror_image_light(const PathContext& ctx, const Bsdf& bsdf, const typename
   Ray ray;
   ray.origin = offset_origin(position, ng, ms.wi);
   ray.dir = ms.wi;
-  SurfaceHit on_mirror;
-  if (!ctx.scene.intersect(ray, on_mirror) || images.mirror_of(on_mirror.material) != ms.mirror) return false;
-  if (ctx.scene.occluded(offset_origin(on_mirror.position, on_mirror.geometric_normal, ms.to_sun), ms.to_sun, 0.0f,
-                         kInfinity))
-    return false;
+  SurfaceHit on_plane;
+  if (!ctx.scene.intersect(ray, on_plane) || images.plane_of(on_plane.material) != ms.plane) return false;
   const float mis = ms.pdf > 0.0f ? power_heuristic(ms.pdf, bsdf.template pdf<kGlass>(view, wi)) : 1.0f;
-  light = ms.weight * images.reflectance(ms.mirror, ms.to_sun) * mis;
+  const Vec3 n = images.normal(ms.plane) * (glm::dot(images.normal(ms.plane), ms.wi) < 0.0f ? 1.0f : -1.0f);
+  if (images.is_mirror(ms.plane)) {
+    if (ctx.scene.occluded(offset_origin(on_plane.position, n, ms.to_sun), ms.to_sun, 0.0f, kInfinity)) return false;
+    light = ms.sun_weight * images.reflectance(ms.plane, ms.to_sun) * mis;
+    return max_component(light) > 0.0f;
+  }
+  // A glossy plane: NEE of the sun at the plane point, through the plane's BSDF.
+  const glm::vec4 u_sun = sampler.next_4d();
+  const LightSample ls = ms.sun->sample(on_plane.position, n, Vec2(u_sun.x, u_sun.y));
+  if (!ls.valid() || !(glm::dot(ls.wi, n) > 0.0f)) return false;
+  const Frame plane_frame(n);
+  const MaterialBsdf& plane_bsdf = images.bsdf(ms.plane);
+  const Vec3 f_plane = plane_bsdf.eval_lobes<false>(plane_bsdf.at(plane_frame.to_local(-ms.wi), false, false),
+                                                    plane_frame.to_local(ls.wi))
+                           .total();
+  if (!(max_component(f_plane) > 0.0f)) return false;
+  if (ctx.scene.occluded(offset_origin(on_plane.position, n, ls.wi), ls.wi, 0.0f, kInfinity)) return false;
+  light = f_plane * ls.weight * (mis / ms.pdf);
   return max_component(light) > 0.0f;
 }
 
@@ -159,6 +174,9 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
   int mirror = -1;
   Vec3 before_mirror(0.0f);
   float before_mirror_pdf = 0.0f;
+  // At a glossy plane met so: the share of the sun's light found there (by NEE, or by the next
+  // BSDF-sampled ray) that this path's strategy keeps; 1 elsewhere.
+  float sun_share = 1.0f;
   Vec3 prev_hit_position(0.0f);
   float path_length = 0.0f;  // for texture footprints (a ray cone of the pixel's spread)
   // Cycles' clamping: a contribution whose RGB sum exceeds the limit is scaled down to it.
@@ -208,18 +226,26 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       out.depth = (passed_length + hit.t) * glm::dot(ray.dir, ctx.camera_forward);
     } else {
       if (kHittable) {
+        const bool through_mirror = mirror >= 0 && prev_delta;
         Vec3 e = lights.emission_along_ray(prev_position, prev_normal, ray.dir, found ? passed_length + hit.t : kInfinity,
                                            prev_pdf, prev_delta, kGlass && prev_two_sided, &light_choice,
-                                           mirror >= 0 && prev_delta);
-        if (mirror >= 0 && prev_delta && !found)
+                                           through_mirror ? 0.0f : sun_share);
+        if (through_mirror && !found)
           e += ctx.mirror_images->suns_through(mirror, before_mirror, ray.dir, before_mirror_pdf);
         deposit(throughput * e, bounce == 1);
       }
       if (!found) break;
       mirror = -1;
-      if (ctx.mirror_images && !prev_delta && (mirror = ctx.mirror_images->mirror_of(hit.material)) >= 0) {
-        before_mirror = prev_hit_position;
-        before_mirror_pdf = prev_pdf;
+      sun_share = 1.0f;
+      if (const int plane = ctx.mirror_images && !prev_delta ? ctx.mirror_images->plane_of(hit.material) : -1;
+          plane >= 0) {
+        if (ctx.mirror_images->is_mirror(plane)) {
+          mirror = plane;
+          before_mirror = prev_hit_position;
+          before_mirror_pdf = prev_pdf;
+        } else {
+          sun_share = ctx.mirror_images->bsdf_share(plane, prev_hit_position, ray.dir, prev_pdf);
+        }
       }
     }
 
@@ -321,6 +347,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
                                   ? power_heuristic(choice.probability * ls.pdf, bsdf.template pdf<kGlass>(view, wi))
                                   : 1.0f;
             Vec3 light = throughput * ls.weight * (mis / choice.probability);
+            if (sun_share < 1.0f && lights.sun(choice.index)) light *= sun_share;
             if (kAlpha) light *= transmittance;
             if (bounce == 0) {
               if (const float k = clamp_scale(light * f.total(), true); k < 1.0f) light *= k;
@@ -335,14 +362,13 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       }
     }
 
-    // Next-event estimation of suns through planar mirrors; the light counts as indirect, as it
-    // does when BSDF sampling finds it.
+    // Next-event estimation of suns through planar mirrors and glossy planes; the light counts as
+    // indirect, as it does when BSDF sampling finds it.
     if (ctx.mirror_images && bounce < ctx.settings.max_bounces) {
-      const glm::vec4 u_mirror = sampler.next_4d();
       LobeEval f;
       Vec3 light;
       if (mirror_image_light<kGlass>(ctx, bsdf, view, frame, hit.position, ng, n_smooth, ns, normal_mapped, transmits,
-                                     u_mirror, f, light)) {
+                                     sampler, f, light)) {
         light *= throughput;
         if (bounce == 0) {
           if (const float k = clamp_scale(light * f.total(), false); k < 1.0f) light *= k;

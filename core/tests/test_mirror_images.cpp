@@ -19,7 +19,7 @@ Material mirror_metal() {
   return m;
 }
 
-TEST(MirrorImages, OnlyFlatPerfectMirrorsAreMirrors) {
+TEST(MirrorImages, OnlyFlatMirrorsAndGlossyPlanesAreSampled) {
   Scene scene;
   const uint32_t flat = scene.add_material(mirror_metal());
   const uint32_t bent = scene.add_material(mirror_metal());
@@ -29,11 +29,15 @@ TEST(MirrorImages, OnlyFlatPerfectMirrorsAreMirrors) {
   Material dielectric = mirror_metal();
   dielectric.metallic = 0.0f;
   const uint32_t coated = scene.add_material(dielectric);  // a delta lobe over a diffuse one
+  Material matte = mirror_metal();
+  matte.roughness = 0.5f;
+  const uint32_t rougher = scene.add_material(matte);
   const uint32_t smooth_normals = scene.add_material(mirror_metal());
   test::add_quad(scene, Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0), flat);
   test::add_quad(scene, Vec3(-1, -1, 1), Vec3(1, -1, 1), Vec3(1, 1, 1.2f), Vec3(-1, 1, 1), bent);
   test::add_quad(scene, Vec3(-1, -1, 2), Vec3(1, -1, 2), Vec3(1, 1, 2), Vec3(-1, 1, 2), glossy);
   test::add_quad(scene, Vec3(-1, -1, 3), Vec3(1, -1, 3), Vec3(1, 1, 3), Vec3(-1, 1, 3), coated);
+  test::add_quad(scene, Vec3(-1, -1, 5), Vec3(1, -1, 5), Vec3(1, 1, 5), Vec3(-1, 1, 5), rougher);
   {
     const float p[] = {-1, -1, 4, 1, -1, 4, 1, 1, 4};
     const int64_t tri[] = {0, 1, 2}, mat[] = {smooth_normals};
@@ -44,9 +48,12 @@ TEST(MirrorImages, OnlyFlatPerfectMirrorsAreMirrors) {
   std::vector<MaterialBsdf> bsdfs;
   for (uint32_t i = 0; i < scene.num_materials(); ++i) bsdfs.emplace_back(scene.material(i), BrdfModel::Principled);
   const MirrorImages images(scene, bsdfs);
-  EXPECT_EQ(images.num_mirrors(), 1u);
-  EXPECT_EQ(images.mirror_of(flat), 0);
-  for (uint32_t other : {bent, glossy, coated, smooth_normals}) EXPECT_EQ(images.mirror_of(other), -1) << other;
+  EXPECT_EQ(images.num_planes(), 2u);
+  ASSERT_GE(images.plane_of(flat), 0);
+  EXPECT_TRUE(images.is_mirror(images.plane_of(flat)));
+  ASSERT_GE(images.plane_of(glossy), 0);
+  EXPECT_FALSE(images.is_mirror(images.plane_of(glossy)));
+  for (uint32_t other : {bent, coated, smooth_normals, rougher}) EXPECT_EQ(images.plane_of(other), -1) << other;
   const std::optional<Scene::Plane> plane = scene.material_plane(flat);
   ASSERT_TRUE(plane);
   EXPECT_NEAR(std::abs(plane->normal.z), 1.0f, 1e-6f);
@@ -68,13 +75,14 @@ TEST(MirrorImages, OnlyFlatPerfectMirrorsAreMirrors) {
 // cone of L R f cos, R the mirror's reflectance for the direction reflected, by quadrature.
 constexpr float kElevation = 0.25f * kPi, kSunAngle = 80.0f * kPi / 180.0f, kStrength = 3.0f;
 
-void build_wall_on_mirror(Scene& scene, const Material& wall, const Material& mirror) {
+void build_wall_on_mirror(Scene& scene, const Material& wall, const Material& mirror,
+                          float sun_angle = kSunAngle) {
   scene.add_material(wall);
   scene.add_material(mirror);
   test::add_quad(scene, Vec3(0, -5, 0), Vec3(0, 5, 0), Vec3(0, 5, 10), Vec3(0, -5, 10), 0);
   test::add_quad(scene, Vec3(-100, -100, 0), Vec3(100, -100, 0), Vec3(100, 100, 0), Vec3(-100, 100, 0), 1);
   const Vec3 to_sun(std::cos(kElevation), 0.0f, std::sin(kElevation));
-  scene.lights().add_sun(-to_sun, kStrength, Vec3(1.0f), kSunAngle);
+  scene.lights().add_sun(-to_sun, kStrength, Vec3(1.0f), sun_angle);
   CameraParams cam;  // at (5, 0, 1) looking along -x, up +z
   cam.camera_to_world = {0, 0, 1, 5, 1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 1};
   cam.lens_mm = 2000.0f;
@@ -136,6 +144,59 @@ TEST(MirrorImages, WallOnAMirrorFloorGetsTheSunAndItsImage) {
     for (int c = 0; c < 3; ++c)
       EXPECT_NEAR(mean[c], expected[c], 0.01f * expected[c]) << "channel " << c << ", mirror images " << images;
   }
+}
+
+// The wall on a glossy floor (GGX, roughness 0.2 and 0.05): with the strategy and without it the
+// renders agree within noise (under a large sun, where BSDF sampling finds the sun's image
+// often and the MIS weights matter), and under a small sun the strategy's images scatter less.
+// 32 seeds: the plain renders' errors are heavy-tailed, and 8 or 16 seeds' standard errors are
+// not to be trusted (96 seeds: ratio 0.9996, z 0.35, worst block 1.52; 32: 0.9977, 1.29, 1.72).
+std::vector<std::vector<double>> wall_blocks(const Scene& scene, bool images, int samples, int seeds) {
+  std::vector<std::vector<double>> out;
+  RenderSettings s;
+  s.width = s.height = 32;
+  s.samples = samples;
+  s.mirror_images = images;
+  for (int seed = 0; seed < seeds; ++seed) {
+    s.seed = uint32_t(100 + seed);
+    const RenderResult r = render(const_cast<Scene&>(scene), s);
+    EXPECT_EQ(r.nonfinite_samples, 0u);
+    out.push_back(test::block_means_32(r.image));
+  }
+  return out;
+}
+
+TEST(MirrorImages, GlossyFloorAgreesWithBsdfSamplingAndScattersLess) {
+  const Material wall = test::diffuse_material(Vec3(0.7f));
+  Material floor = mirror_metal();
+  floor.roughness = 0.2f;
+  {
+    Scene scene;
+    build_wall_on_mirror(scene, wall, floor);
+    const test::SeedAgreement a = test::compare_over_seeds(wall_blocks(scene, false, 64, 32),
+                                                           wall_blocks(scene, true, 64, 32));
+    EXPECT_NEAR(a.ratio, 1.0, 0.01);
+    EXPECT_LT(a.image_z, 4.0);
+    EXPECT_LT(a.worst_block_z, 4.5);
+  }
+  floor.roughness = 0.05f;
+  Scene scene;
+  build_wall_on_mirror(scene, wall, floor, 2.0f * kPi / 180.0f);
+  auto spread = [](const std::vector<std::vector<double>>& blocks) {
+    double sum = 0.0, sum2 = 0.0;
+    for (const auto& b : blocks) {
+      double image = 0.0;
+      for (double v : b) image += v / double(b.size());
+      sum += image;
+      sum2 += image * image;
+    }
+    const double n = double(blocks.size()), mean = sum / n;
+    return std::sqrt(std::max(sum2 / n - mean * mean, 0.0)) / mean;
+  };
+  const auto with = wall_blocks(scene, true, 16, 8), without = wall_blocks(scene, false, 16, 8);
+  const test::SeedAgreement a = test::compare_over_seeds(without, with);
+  EXPECT_NEAR(a.ratio, 1.0, 0.05);
+  EXPECT_LT(spread(with), 0.25 * spread(without)) << spread(with) << " vs " << spread(without);
 }
 
 }  // namespace

@@ -38,6 +38,7 @@ class SunLight {
   bool hit(const Vec3& p, const Vec3& n, const Vec3& dir, float t_max, LightHit& out) const;
   bool is_delta() const { return one_minus_cos_ <= 0.0f; }
   Vec3 to_light() const { return to_light_; }
+  float one_minus_cos() const { return one_minus_cos_; }  // of its cone's half-angle
 
  private:
   Vec3 to_light_, irradiance_;
@@ -165,10 +166,11 @@ class Lights {
   // shading normal n_prev) receives from lights it passes before distance t_max (infinite if
   // the ray escaped): spheres, area lights and, if escaped, the world and visible suns.
   // prev_choice: the LightChoice NEE used at p_prev (its probabilities), if any.
-  // without_suns: the suns' light is left out (the caller weighs it itself: mirror_images.h).
+  // sun_scale: the suns' light is multiplied by it (the caller shares it with another strategy:
+  // mirror_images.h).
   Vec3 emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max, float bsdf_pdf,
                           bool bsdf_delta, bool two_sided = false, const LightChoice* prev_choice = nullptr,
-                          bool without_suns = false) const;
+                          float sun_scale = 1.0f) const;
   // Strategy `index`'s sun, or nullptr when it is another kind of light.
   const SunLight* sun(size_t index) const {
     return index < lights_.size() ? std::get_if<SunLight>(&lights_[index]) : nullptr;

@@ -39,6 +39,14 @@ class MaterialBsdf {
   }
 
   bool transmits() const { return glass_.has_value(); }
+  // The GGX alpha of the model's specular lobe (0 with glass: not asked for).
+  float specular_alpha() const {
+    return glass_ ? 0.0f : std::visit([](const auto& b) { return b.alpha(); }, bsdf_);
+  }
+  // Whether the model's specular lobe is a delta (a mirror, with or without other lobes).
+  bool has_delta() const {
+    return !glass_ && std::visit([](const auto& b) { return b.has_delta(); }, bsdf_);
+  }
   // Whether the material is a perfect mirror and nothing else: a delta reflection, no diffuse
   // lobe, no glass (mirror_images.h).
   bool pure_mirror() const {

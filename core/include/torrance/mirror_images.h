@@ -1,23 +1,29 @@
-// Suns seen in flat mirrors: next-event estimation of a sun's light reflected once by a planar
-// perfect mirror (a material that is a delta reflection and nothing else, lying in one plane:
-// a mirror, a polished metal floor of roughness 0).
+// Suns seen in flat mirrors and glossy planes: next-event estimation of a sun's light reflected
+// once by a planar surface with a delta or narrow specular lobe (a mirror, a polished floor).
 //
-// Such light reaches a diffuse or glossy point x only along paths x -> mirror -> sun, which
-// ordinary NEE cannot sample (the mirror is a delta lobe) and BSDF sampling at x finds only when
-// its direction happens to land in the sun's small mirror image: the caustic fireflies of a
-// low sun over a mirror floor. Reflection in a plane keeps solid angle, so the sun's image is a
-// second sun of the same cone seen along the reflected direction, and NEE can sample it: pick a
-// direction d in the sun's cone, aim x at its mirror image wi = d - 2 (d.n) n, check that the
-// first thing wi meets is the mirror and that nothing hides the sun from there, and weigh
-// by the mirror's reflectance. BSDF sampling at x still finds the same paths; both strategies'
-// weights come from the power heuristic over the same two densities (the BSDF's pdf of wi at x and
-// this strategy's pdf, the sun's cone density times the choice of the pair), so they sum to 1.
-// Suns of angle 0 are left out: no BSDF-sampled path can reach a delta sun through a mirror,
-// so Cycles renders no such light, and Torrance matches it.
+// Such light reaches a diffuse or glossy point x only along paths x -> plane -> sun, which
+// ordinary NEE cannot sample at x, and BSDF sampling at x finds only when its direction happens to
+// land in the sun's small image in the plane: the caustic fireflies of a low sun over a mirror
+// or a polished floor. Reflection in a plane keeps solid angle, so the sun's image is a second sun
+// seen along the reflected direction, and this strategy samples it:
 //
-// Only world-space meshes are examined for planes (instanced geometry is not), and the strategy is
-// not used in scenes with alpha (a BSDF-sampled path passes transparent surfaces this strategy's
-// rays would stop at).
+//  * Perfect mirror (a material that is a delta reflection and nothing else): pick a direction d
+//    in the sun's cone, aim x at its image wi = d - 2 (d.n) n, check that the first thing wi
+//    meets is the mirror and that nothing hides the sun from there, and weigh by the mirror's
+//    reflectance. BSDF sampling at x followed by the mirror's delta reflection finds the same
+//    paths: both strategies weigh them by the power heuristic over the BSDF's pdf of wi at x and
+//    this strategy's pdf (the cone's density times the choice of the pair), so the weights sum to 1.
+//  * Glossy plane (opaque, specular GGX alpha at most kMaxGlossyAlpha, one sun in the scene): aim
+//    x uniformly into a cone about the sun's mirror image, widened by the lobe (half-angle = the
+//    sun's + 2 atan(3 alpha), where GGX's D has fallen to 1 %), then at the plane point do NEE of
+//    the sun through the plane's BSDF. Against BSDF sampling at x the same weighting applies, the
+//    sun's light found at the plane point after a BSDF-sampled direction (by NEE or by BSDF
+//    sampling there) taking the BSDF's share (bsdf_share), this strategy the rest.
+//
+// Suns of angle 0 are left out: no BSDF-sampled path can reach a delta sun through a plane's
+// delta lobe, so Cycles renders no such light, and Torrance matches it. Only world-space meshes
+// are examined for planes (instanced geometry is not), and the strategy is not used in scenes with
+// alpha (a BSDF-sampled path passes transparent surfaces this strategy's rays would stop at).
 #pragma once
 
 #include "torrance/material_bsdf.h"
@@ -29,44 +35,59 @@ namespace torrance {
 
 class MirrorImages {
  public:
-  // The scene's planar mirrors (bsdfs: the render's, one per material) and its suns.
+  // Glossy planes up to roughness 0.3 (Principled) are sampled.
+  static constexpr float kMaxGlossyAlpha = 0.09f;
+
+  // The scene's planar mirrors and glossy planes (bsdfs: the render's, one per material) and its suns.
   MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& bsdfs);
-  bool empty() const { return mirrors_.empty() || suns_.empty(); }
-  size_t num_mirrors() const { return mirrors_.size(); }
-  // The mirror made of material `material`, or -1.
-  int mirror_of(uint32_t material) const {
-    return material < mirror_of_material_.size() ? mirror_of_material_[material] : -1;
+  bool empty() const { return planes_.empty() || suns_.empty(); }
+  size_t num_planes() const { return planes_.size(); }
+  // The plane made of material `material` (an index for the queries below), or -1.
+  int plane_of(uint32_t material) const {
+    return material < plane_of_material_.size() ? plane_of_material_[material] : -1;
   }
+  bool is_mirror(int plane) const { return planes_[size_t(plane)].mirror; }
+  const MaterialBsdf& bsdf(int plane) const { return *planes_[size_t(plane)].bsdf; }
+  const Vec3& normal(int plane) const { return planes_[size_t(plane)].normal; }
 
   struct Sample {
-    Vec3 wi{0.0f};      // from the shading point towards the sun's image in the mirror
-    Vec3 to_sun{0.0f};  // from the mirror towards the sun (wi reflected)
-    Vec3 weight{0.0f};  // the sun's radiance over pdf (its irradiance for a delta sun)
-    float pdf = 0.0f;   // the solid-angle density of wi, pair choice included; 0: a delta sun
-    int mirror = -1;
+    Vec3 wi{0.0f};      // from the shading point towards the sun's image in the plane
+    float pdf = 0.0f;   // the solid-angle density of wi, the pair's choice included
+    int plane = -1;
+    // Mirrors: the direction from the mirror to the sun (wi reflected) and the sun's radiance
+    // over its cone's density. Glossy planes: the sun, for NEE at the plane point.
+    Vec3 to_sun{0.0f};
+    Vec3 sun_weight{0.0f};
+    const SunLight* sun = nullptr;
   };
-  // One direction towards a sun's image in a mirror, the (mirror, sun) pair chosen uniformly among
-  // those p sees: p off the mirror's plane on the side the sun shines on (a mirror reflects on
-  // both faces). False: p sees none.
+  // One direction towards a sun's image in a plane, the (plane, sun) pair chosen uniformly among
+  // those p sees: p off the plane on the side the sun shines on (both faces reflect). False:
+  // p sees none.
   bool sample(const Vec3& p, float u_pair, const Vec2& u, Sample& out) const;
-  // The reflectance of `mirror` for light arriving from direction to_sun.
-  Vec3 reflectance(int mirror, const Vec3& to_sun) const;
-  // What the suns send along `dir` (from a point on `mirror`, unoccluded), as a path that left
-  // p with BSDF density bsdf_pdf and was reflected by the mirror: the suns' radiance weighted
-  // against this strategy at p by the power heuristic.
-  Vec3 suns_through(int mirror, const Vec3& p, const Vec3& dir, float bsdf_pdf) const;
+  // The reflectance of mirror `plane` for light arriving from direction to_sun.
+  Vec3 reflectance(int plane, const Vec3& to_sun) const;
+  // Mirrors: what the suns send along `dir` (from a point on mirror `plane`, unoccluded) to a
+  // path that left p with BSDF density bsdf_pdf: their radiance weighted against this strategy.
+  Vec3 suns_through(int plane, const Vec3& p, const Vec3& dir, float bsdf_pdf) const;
+  // Glossy planes: the share of the sun's light found at the point of glossy `plane` that a
+  // BSDF-sampled direction wi (density bsdf_pdf) from p reached: the power heuristic against this
+  // strategy's density of wi (1 where it does not sample wi).
+  float bsdf_share(int plane, const Vec3& p, const Vec3& wi, float bsdf_pdf) const;
 
  private:
-  struct Mirror {
+  struct Plane {
     Vec3 point, normal;
     const MaterialBsdf* bsdf;
+    bool mirror;
+    float image_one_minus_cos;  // glossy: of the sun's image cone's half-angle (sun + lobe)
   };
-  // Whether p sees sun s in mirror m (the side test of sample()).
-  bool sees(const Mirror& m, const SunLight& s, const Vec3& p) const;
+  bool sees(const Plane& plane, const SunLight& sun, const Vec3& p) const;
   size_t pairs_seen(const Vec3& p) const;
+  // Glossy: the density with which the strategy aims p along wi at `plane` (given the pair).
+  float image_cone_pdf(const Plane& plane, const Vec3& wi) const;
 
-  std::vector<Mirror> mirrors_;
-  std::vector<int> mirror_of_material_;
+  std::vector<Plane> planes_;
+  std::vector<int> plane_of_material_;
   std::vector<const SunLight*> suns_;
 };
 
