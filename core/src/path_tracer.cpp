@@ -117,18 +117,32 @@ bool mirror_image_light(const PathContext& ctx, const Bsdf& bsdf, const typename
     light = ms.sun_weight * images.reflectance(ms.plane, ms.to_sun) * mis;
     return max_component(light) > 0.0f;
   }
-  // A glossy plane: NEE of the sun at the plane point, through the plane's BSDF.
-  const glm::vec4 u_sun = sampler.next_4d();
-  const LightSample ls = ms.sun->sample(on_plane.position, n, Vec2(u_sun.x, u_sun.y));
-  if (!ls.valid() || !(glm::dot(ls.wi, n) > 0.0f)) return false;
+  // A glossy plane: the sun's light at the plane point, by NEE and by sampling the plane's BSDF,
+  // weighed against each other (a lobe narrower than the sun is the BSDF's to sample).
+  const glm::vec4 u_plane = sampler.next_4d();
   const Frame plane_frame(n);
   const MaterialBsdf& plane_bsdf = images.bsdf(ms.plane);
-  const Vec3 f_plane = plane_bsdf.eval_lobes<false>(plane_bsdf.at(plane_frame.to_local(-ms.wi), false, false),
-                                                    plane_frame.to_local(ls.wi))
-                           .total();
-  if (!(max_component(f_plane) > 0.0f)) return false;
-  if (ctx.scene.occluded(offset_origin(on_plane.position, n, ls.wi), ls.wi, 0.0f, kInfinity)) return false;
-  light = f_plane * ls.weight * (mis / ms.pdf);
+  const MaterialBsdf::View plane_view = plane_bsdf.at(plane_frame.to_local(-ms.wi));
+  const Vec3 origin_on_plane = on_plane.position;
+  auto sees_sun = [&](const Vec3& dir) {
+    return !ctx.scene.occluded(offset_origin(origin_on_plane, n, dir), dir, 0.0f, kInfinity);
+  };
+  Vec3 sun_light(0.0f);
+  const LightSample ls = ms.sun->sample(on_plane.position, n, Vec2(u_plane.x, u_plane.y));
+  if (ls.valid() && glm::dot(ls.wi, n) > 0.0f) {
+    const Vec3 wi_plane = plane_frame.to_local(ls.wi);
+    const Vec3 f_plane = plane_bsdf.eval_lobes<false>(plane_view, wi_plane).total();
+    if (max_component(f_plane) > 0.0f && sees_sun(ls.wi))
+      sun_light += f_plane * ls.weight * power_heuristic(ls.pdf, plane_bsdf.pdf<false>(plane_view, wi_plane));
+  }
+  const BsdfSample bs = plane_bsdf.sample<false>(plane_view, u.w, Vec2(u_plane.z, u_plane.w));
+  if (bs.valid() && !bs.is_delta) {
+    const Vec3 dir = plane_frame.to_world(bs.wi);
+    LightHit h;
+    if (glm::dot(dir, n) > 0.0f && ms.sun->hit(on_plane.position, n, dir, kInfinity, h) && sees_sun(dir))
+      sun_light += bs.weight * h.radiance * power_heuristic(bs.pdf, h.pdf);
+  }
+  light = sun_light * (mis / ms.pdf);
   return max_component(light) > 0.0f;
 }
 
