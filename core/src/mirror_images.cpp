@@ -13,6 +13,12 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 Vec3 reflect_in(const Vec3& d, const Vec3& n) { return d - 2.0f * glm::dot(d, n) * n; }
 
+// 1 - cos(angle), without cancellation for small angles.
+float one_minus_cos_of(float angle) {
+  const float s = std::sin(0.5f * angle);
+  return 2.0f * s * s;
+}
+
 // Whether material m can be a plane of the strategy at all: opaque, uniform, not emitting.
 bool plain_surface(const Scene& scene, uint32_t m) {
   const Material& material = scene.material(m);
@@ -41,68 +47,123 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
     const bool glossy = !mirror && all_suns == 1 && !bsdf.transmits() && !bsdf.has_delta() &&
                         bsdf.specular_alpha() <= kMaxGlossyAlpha;
     if (!(mirror || glossy) || !plain_surface(scene, m)) continue;
-    const std::optional<Scene::Plane> plane = scene.material_plane(m);
-    if (!plane) continue;
-    float image_one_minus_cos = 0.0f;
-    if (glossy) {
-      const float sun_half = std::acos(1.0f - suns_[0]->one_minus_cos());
-      const float half = std::min(sun_half + 2.0f * std::atan(3.0f * bsdf.specular_alpha()), 0.5f * kPi);
-      image_one_minus_cos = 1.0f - std::cos(half);
+    // The half-angle of the sun's image's directions (sun + lobe), and of its normals.
+    const float image_half =
+        glossy ? std::min(std::acos(1.0f - suns_[0]->one_minus_cos()) + 2.0f * std::atan(3.0f * bsdf.specular_alpha()),
+                          0.5f * kPi)
+               : 0.0f;
+    // For choosing among the pairs: the specular reflectance at normal incidence (roughly).
+    const Material& material = scene.material(m);
+    const float metallic = clamp01(material.metallic);
+    const float reflectance =
+        std::max(luminance(material.base_color) * metallic + 0.08f * material.specular * (1.0f - metallic), 1e-3f);
+    if (const std::optional<Scene::Plane> plane = scene.material_plane(m)) {
+      plane_of_material_[m] = int(planes_.size());
+      planes_.push_back(Plane{plane->point, plane->normal, &bsdf, mirror, one_minus_cos_of(image_half), 0.0f, 0.0f,
+                              reflectance});
+    } else if (const std::optional<Scene::Sphere> sphere = glossy ? scene.material_sphere(m) : std::nullopt) {
+      plane_of_material_[m] = int(planes_.size());
+      planes_.push_back(Plane{sphere->center, Vec3(0.0f), &bsdf, false, 0.0f, sphere->radius, 0.5f * image_half,
+                              reflectance});
     }
-    plane_of_material_[m] = int(planes_.size());
-    planes_.push_back(Plane{plane->point, plane->normal, &bsdf, mirror, image_one_minus_cos});
   }
 }
 
 bool MirrorImages::sees(const Plane& plane, const SunLight& sun, const Vec3& p) const {
+  if (plane.radius > 0.0f) {  // a sphere: from anywhere outside it
+    const Vec3 d = p - plane.point;
+    return glm::dot(d, d) > plane.radius * plane.radius * 1.0001f;
+  }
   const float side = glm::dot(p - plane.point, plane.normal);
   const float sun_side = glm::dot(sun.to_light(), plane.normal);
   return (side > 0.0f && sun_side > 0.0f) || (side < 0.0f && sun_side < 0.0f);
 }
 
-size_t MirrorImages::pairs_seen(const Vec3& p) const {
-  size_t n = 0;
-  for (const Plane& plane : planes_)
-    for (const SunLight* sun : suns_) n += sees(plane, *sun, p);
-  return n;
+float MirrorImages::pair_weight(const Plane& plane, const SunLight& sun, const Vec3& p) const {
+  if (!sees(plane, sun, p)) return 0.0f;
+  if (plane.radius <= 0.0f) return plane.reflectance;
+  // A convex mirror spreads the sunlight it catches, pi r^2 E R, evenly: E R r^2 / (4 d^2) at d.
+  const Vec3 d = p - plane.point;
+  return plane.reflectance * std::min(plane.radius * plane.radius / (4.0f * glm::dot(d, d)), 1.0f);
 }
 
-float MirrorImages::image_cone_pdf(const Plane& plane, const Vec3& wi) const {
-  const Vec3 axis = reflect_in(suns_[0]->to_light(), plane.normal);
-  return 1.0f - glm::dot(wi, axis) <= plane.image_one_minus_cos ? 1.0f / cone_solid_angle(plane.image_one_minus_cos)
-                                                                : 0.0f;
+float MirrorImages::total_weight(const Vec3& p) const {
+  float total = 0.0f;
+  for (const Plane& plane : planes_)
+    for (const SunLight* sun : suns_) total += pair_weight(plane, *sun, p);
+  return total;
 }
+
+void MirrorImages::image_cone(const Plane& plane, const Vec3& p, Vec3& axis, float& one_minus_cos) const {
+  const Vec3 to_sun = suns_[0]->to_light();
+  if (plane.radius <= 0.0f) {
+    axis = reflect_in(to_sun, plane.normal);
+    one_minus_cos = plane.image_one_minus_cos;
+    return;
+  }
+  // The highlight: the point h whose normal halves the directions to p and to the sun.
+  const Vec3 c = plane.point;
+  const float r = plane.radius;
+  Vec3 h = c + r * glm::normalize(to_sun + glm::normalize(p - c));
+  for (int i = 0; i < 3; ++i) h = c + r * glm::normalize(to_sun + glm::normalize(p - h));
+  const Vec3 to_h = h - p;
+  const float distance = glm::length(to_h);
+  axis = to_h / distance;
+  // Its normals' angular radius seen from p (margin 1.5), at most the whole sphere's.
+  const float whole = std::asin(std::min(r / glm::length(p - c), 1.0f));
+  const float half = std::max(std::min(1.5f * r * plane.highlight_half / distance, whole), 1e-4f);
+  one_minus_cos = one_minus_cos_of(half);
+}
+
+float MirrorImages::image_cone_pdf(const Plane& plane, const Vec3& p, const Vec3& wi) const {
+  Vec3 axis;
+  float one_minus_cos;
+  image_cone(plane, p, axis, one_minus_cos);
+  // Inside when the chord |wi - axis| is at most the rim's, sqrt(2 (1 - cos)): exact for small cones.
+  const Vec3 chord = wi - axis;
+  return glm::dot(chord, chord) <= 2.0f * one_minus_cos ? 1.0f / cone_solid_angle(one_minus_cos) : 0.0f;
+}
+
+float MirrorImages::run_probability(float total) { return std::min(kRunScale * total, 1.0f); }
 
 bool MirrorImages::sample(const Vec3& p, float u_pair, const Vec2& u, Sample& out) const {
-  const size_t n = pairs_seen(p);
-  if (n == 0) return false;
-  size_t pick = std::min(size_t(u_pair * float(n)), n - 1);
-  for (size_t pi = 0; pi < planes_.size(); ++pi) {
+  const float total = total_weight(p);
+  const float run = run_probability(total);
+  if (!(total > 0.0f) || u_pair >= run) return false;
+  // The pair whose share of the total holds u_pair (the last one seen, if rounding leaves some).
+  float target = u_pair / run * total, weight = 0.0f;
+  for (size_t pi = 0; pi < planes_.size() && target >= 0.0f; ++pi) {
     for (const SunLight* sun : suns_) {
-      if (!sees(planes_[pi], *sun, p) || pick-- > 0) continue;
-      const Plane& plane = planes_[pi];
+      const float w = pair_weight(planes_[pi], *sun, p);
+      if (!(w > 0.0f)) continue;
+      weight = w;
       out.plane = int(pi);
       out.sun = sun;
-      const bool above = glm::dot(p - plane.point, plane.normal) > 0.0f;
-      if (!plane.mirror) {
-        const Vec3 axis = reflect_in(sun->to_light(), plane.normal);
-        out.wi = Frame(axis).to_world(sample_uniform_cone(u, plane.image_one_minus_cos));
-        out.pdf = 1.0f / (cone_solid_angle(plane.image_one_minus_cos) * float(n));
-        // Only directions into the plane from p's side can reach it.
-        return (glm::dot(out.wi, plane.normal) < 0.0f) == above;
-      }
-      const LightSample ls = sun->sample(p, plane.normal, u);
-      // A direction of the sun's cone below the mirror's horizon has no image on p's side.
-      const float cos_sun = glm::dot(ls.wi, plane.normal);
-      if (!ls.valid() || cos_sun == 0.0f || (cos_sun > 0.0f) != above) return false;
-      out.to_sun = ls.wi;
-      out.wi = glm::normalize(reflect_in(ls.wi, plane.normal));
-      out.sun_weight = ls.weight * float(n);
-      out.pdf = ls.pdf / float(n);
-      return true;
+      if ((target -= w) < 0.0f) break;
     }
   }
-  return false;
+  const Plane& plane = planes_[size_t(out.plane)];
+  const float probability = run * weight / total;
+  if (!plane.mirror) {
+    Vec3 axis;
+    float one_minus_cos;
+    image_cone(plane, p, axis, one_minus_cos);
+    out.wi = Frame(axis).to_world(sample_uniform_cone(u, one_minus_cos));
+    out.pdf = probability / cone_solid_angle(one_minus_cos);
+    // Only directions into a plane from p's side can reach it.
+    const bool above = glm::dot(p - plane.point, plane.normal) > 0.0f;
+    return plane.radius > 0.0f || (glm::dot(out.wi, plane.normal) < 0.0f) == above;
+  }
+  const LightSample ls = out.sun->sample(p, plane.normal, u);
+  // A direction of the sun's cone below the mirror's horizon has no image on p's side.
+  const float cos_sun = glm::dot(ls.wi, plane.normal);
+  if (!ls.valid() || cos_sun == 0.0f || (cos_sun > 0.0f) != (glm::dot(p - plane.point, plane.normal) > 0.0f))
+    return false;
+  out.to_sun = ls.wi;
+  out.wi = glm::normalize(reflect_in(ls.wi, plane.normal));
+  out.sun_weight = ls.weight / probability;
+  out.pdf = ls.pdf * probability;
+  return true;
 }
 
 Vec3 MirrorImages::reflectance(int plane, const Vec3& to_sun) const {
@@ -114,20 +175,23 @@ Vec3 MirrorImages::reflectance(int plane, const Vec3& to_sun) const {
 
 Vec3 MirrorImages::suns_through(int plane, const Vec3& p, const Vec3& dir, float bsdf_pdf) const {
   const Plane& m = planes_[size_t(plane)];
-  const size_t n = pairs_seen(p);
+  const float total = total_weight(p);
   Vec3 light(0.0f);
   for (const SunLight* sun : suns_) {
     LightHit h;
     if (!sun->hit(p, m.normal, dir, kInfinity, h)) continue;
-    light += h.radiance * (sees(m, *sun, p) ? power_heuristic(bsdf_pdf, h.pdf / float(n)) : 1.0f);
+    const float w = pair_weight(m, *sun, p);
+    light += h.radiance * (w > 0.0f ? power_heuristic(bsdf_pdf, h.pdf * run_probability(total) * w / total) : 1.0f);
   }
   return light;
 }
 
 float MirrorImages::bsdf_share(int plane, const Vec3& p, const Vec3& wi, float bsdf_pdf) const {
   const Plane& g = planes_[size_t(plane)];
-  if (!sees(g, *suns_[0], p)) return 1.0f;
-  const float pdf = image_cone_pdf(g, wi) / float(pairs_seen(p));
+  const float w = pair_weight(g, *suns_[0], p);
+  if (!(w > 0.0f)) return 1.0f;
+  const float total = total_weight(p);
+  const float pdf = image_cone_pdf(g, p, wi) * run_probability(total) * w / total;
   return pdf > 0.0f ? power_heuristic(bsdf_pdf, pdf) : 1.0f;
 }
 

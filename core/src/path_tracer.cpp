@@ -111,16 +111,21 @@ bool mirror_image_light(const PathContext& ctx, const Bsdf& bsdf, const typename
   SurfaceHit on_plane;
   if (!ctx.scene.intersect(ray, on_plane) || images.plane_of(on_plane.material) != ms.plane) return false;
   const float mis = ms.pdf > 0.0f ? power_heuristic(ms.pdf, bsdf.template pdf<kGlass>(view, wi)) : 1.0f;
-  const Vec3 n = images.normal(ms.plane) * (glm::dot(images.normal(ms.plane), ms.wi) < 0.0f ? 1.0f : -1.0f);
+  // The plane point's normals turned towards the shading point, as the path would shade it.
+  Vec3 n = on_plane.geometric_normal, n_shading = on_plane.shading_normal;
+  if (glm::dot(n, ms.wi) > 0.0f) {
+    n = -n;
+    n_shading = -n_shading;
+  }
   if (images.is_mirror(ms.plane)) {
     if (ctx.scene.occluded(offset_origin(on_plane.position, n, ms.to_sun), ms.to_sun, 0.0f, kInfinity)) return false;
     light = ms.sun_weight * images.reflectance(ms.plane, ms.to_sun) * mis;
     return max_component(light) > 0.0f;
   }
-  // A glossy plane: the sun's light at the plane point, by NEE and by sampling the plane's BSDF,
+  // A glossy plane or sphere: the sun's light at its point, by NEE and by sampling its BSDF,
   // weighed against each other (a lobe narrower than the sun is the BSDF's to sample).
   const glm::vec4 u_plane = sampler.next_4d();
-  const Frame plane_frame(n);
+  const Frame plane_frame(valid_shading_normal(n, n_shading, -ms.wi));
   const MaterialBsdf& plane_bsdf = images.bsdf(ms.plane);
   const MaterialBsdf::View plane_view = plane_bsdf.at(plane_frame.to_local(-ms.wi));
   const Vec3 origin_on_plane = on_plane.position;
@@ -128,7 +133,7 @@ bool mirror_image_light(const PathContext& ctx, const Bsdf& bsdf, const typename
     return !ctx.scene.occluded(offset_origin(origin_on_plane, n, dir), dir, 0.0f, kInfinity);
   };
   Vec3 sun_light(0.0f);
-  const LightSample ls = ms.sun->sample(on_plane.position, n, Vec2(u_plane.x, u_plane.y));
+  const LightSample ls = ms.sun->sample(on_plane.position, plane_frame.n, Vec2(u_plane.x, u_plane.y));
   if (ls.valid() && glm::dot(ls.wi, n) > 0.0f) {
     const Vec3 wi_plane = plane_frame.to_local(ls.wi);
     const Vec3 f_plane = plane_bsdf.eval_lobes<false>(plane_view, wi_plane).total();

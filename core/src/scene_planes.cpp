@@ -1,8 +1,9 @@
-// Scene::material_plane: whether a material lies in one plane (the planar mirrors of
-// mirror_images.h).
+// Scene::material_plane and material_sphere: whether a material lies in one plane or makes one
+// sphere (the reflectors of mirror_images.h).
 #include "scene_internal.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace torrance {
 
@@ -48,6 +49,31 @@ std::optional<Scene::Plane> Scene::material_plane(uint32_t material) const {
     }
   }
   return plane;
+}
+
+std::optional<Scene::Sphere> Scene::material_sphere(uint32_t material) const {
+  for (const Binding& b : bindings_)
+    if (std::find(b.materials.begin(), b.materials.end(), material) != b.materials.end()) return std::nullopt;
+  Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  auto each_vertex = [&](auto&& f) {
+    for (const auto& mesh : meshes_)
+      for (size_t i = 0; i < mesh->triangles.size(); ++i)
+        if (mesh->material_ids[i] == material)
+          for (int k = 0; k < 3; ++k) f(mesh->positions[mesh->triangles[i][k]]);
+  };
+  each_vertex([&](const Vec3& p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  });
+  if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) return std::nullopt;
+  const Vec3 extent = hi - lo;
+  const float radius = (extent.x + extent.y + extent.z) / 6.0f;
+  if (max_component(glm::abs(extent - Vec3(2.0f * radius))) > 0.01f * radius) return std::nullopt;
+  const Vec3 center = 0.5f * (lo + hi);
+  bool on_sphere = true;
+  each_vertex([&](const Vec3& p) { on_sphere &= std::abs(glm::length(p - center) - radius) <= 0.005f * radius; });
+  if (!on_sphere || !is_finite(center) || !(radius > 0.0f)) return std::nullopt;
+  return Sphere{center, radius};
 }
 
 }  // namespace torrance

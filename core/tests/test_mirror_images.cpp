@@ -257,5 +257,63 @@ TEST(MirrorImages, PlateAboveAGlossyFloorGetsTheGrazingSunItReflects) {
   EXPECT_NEAR(sum / seeds, expected, 0.02 * expected);
 }
 
+// A smooth UV sphere (corner normals from the centre) of material `material`; squash scales z.
+void add_sphere(Scene& scene, const Vec3& center, float radius, int64_t material, float squash = 1.0f) {
+  const int segments = 48, rings = 24;
+  std::vector<float> positions, normals;
+  std::vector<int64_t> triangles, materials;
+  auto vertex = [&](int ring, int segment) {
+    const float theta = kPi * float(ring) / float(rings), phi = 2.0f * kPi * float(segment) / float(segments);
+    return Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+  };
+  std::vector<Vec3> corners;
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      const Vec3 a = vertex(i, j), b = vertex(i, j + 1), c = vertex(i + 1, j), d = vertex(i + 1, j + 1);
+      for (const Vec3& v : {a, c, b, b, c, d}) corners.push_back(v);
+    }
+  for (size_t k = 0; k < corners.size(); ++k) {
+    const Vec3 p = center + radius * Vec3(corners[k].x, corners[k].y, squash * corners[k].z);
+    positions.insert(positions.end(), {p.x, p.y, p.z});
+    normals.insert(normals.end(), {corners[k].x, corners[k].y, corners[k].z});
+    triangles.push_back(int64_t(k));
+    if (k % 3 == 0) materials.push_back(material);
+  }
+  scene.add_mesh(positions.data(), corners.size(), triangles.data(), corners.size() / 3, normals.data(),
+                 materials.data());
+}
+
+// A glossy metal ball (roughness 0.2) on a matte floor under a large sun: the floor around it
+// gets the ball's reflection of the sun, with and without the strategy alike (32 seeds); the ball
+// is found as a sphere, a squashed one is not.
+TEST(MirrorImages, GlossyBallLightsTheFloorAsBsdfSamplingSays) {
+  Scene scene;
+  scene.add_material(test::diffuse_material(Vec3(0.6f)));
+  Material ball = mirror_metal();
+  ball.roughness = 0.2f;
+  const uint32_t ball_material = scene.add_material(ball);
+  const uint32_t squashed = scene.add_material(ball);
+  test::add_quad(scene, Vec3(-5, -5, 0), Vec3(5, -5, 0), Vec3(5, 5, 0), Vec3(-5, 5, 0), 0);
+  add_sphere(scene, Vec3(0.0f, 0.0f, 0.5f), 0.5f, ball_material);
+  add_sphere(scene, Vec3(3.0f, 3.0f, 0.5f), 0.5f, squashed, 0.8f);
+  const float elevation = 50.0f * kPi / 180.0f;
+  const Vec3 to_sun(0.0f, std::cos(elevation), std::sin(elevation));
+  scene.lights().add_sun(-to_sun, 3.0f, Vec3(1.0f), 30.0f * kPi / 180.0f);
+  test::look_down(scene, 6.0f, 30.0f);  // the ball and the floor 3.6 m around it
+
+  std::vector<MaterialBsdf> bsdfs;
+  for (uint32_t i = 0; i < scene.num_materials(); ++i) bsdfs.emplace_back(scene.material(i), BrdfModel::Paper);
+  const MirrorImages images(scene, bsdfs);
+  ASSERT_GE(images.plane_of(ball_material), 0);
+  EXPECT_TRUE(images.is_sphere(images.plane_of(ball_material)));
+  EXPECT_EQ(images.plane_of(squashed), -1);
+
+  const test::SeedAgreement a =
+      test::compare_over_seeds(wall_blocks(scene, false, 64, 32), wall_blocks(scene, true, 64, 32));
+  EXPECT_NEAR(a.ratio, 1.0, 0.01);
+  EXPECT_LT(a.image_z, 4.0);
+  EXPECT_LT(a.worst_block_z, 4.5);
+}
+
 }  // namespace
 }  // namespace torrance

@@ -1,5 +1,6 @@
-// Suns seen in flat mirrors and glossy planes: next-event estimation of a sun's light reflected
-// once by a planar surface with a delta or narrow specular lobe (a mirror, a polished floor).
+// Suns seen in flat mirrors, glossy planes and glossy spheres: next-event estimation of a sun's
+// light reflected once by a surface with a delta or narrow specular lobe (a mirror, a polished
+// floor, a metal ball).
 //
 // Such light reaches a diffuse or glossy point x only along paths x -> plane -> sun, which
 // ordinary NEE cannot sample at x, and BSDF sampling at x finds only when its direction happens to
@@ -15,10 +16,15 @@
 //    this strategy's pdf (the cone's density times the choice of the pair), so the weights sum to 1.
 //  * Glossy plane (opaque, specular GGX alpha at most kMaxGlossyAlpha, one sun in the scene): aim
 //    x uniformly into a cone about the sun's mirror image, widened by the lobe (half-angle = the
-//    sun's + 2 atan(3 alpha), where GGX's D has fallen to 1 %), then at the plane point do NEE of
-//    the sun through the plane's BSDF. Against BSDF sampling at x the same weighting applies, the
-//    sun's light found at the plane point after a BSDF-sampled direction (by NEE or by BSDF
-//    sampling there) taking the BSDF's share (bsdf_share), this strategy the rest.
+//    sun's + 2 atan(3 alpha), where GGX's D has fallen to 1 %), then at the plane point estimate
+//    the sun's light through the plane's BSDF (NEE and BSDF sampling). Against BSDF sampling at x
+//    the same weighting applies, the sun's light found at the plane point after a BSDF-sampled
+//    direction (by NEE or by BSDF sampling there) taking the BSDF's share (bsdf_share), this
+//    strategy the rest.
+//  * Glossy sphere (a material making one sphere, same conditions): the same with the cone about
+//    the sphere's highlight seen from x, the point whose normal halves the directions to x and to
+//    the sun (a few fixed-point steps from the sphere's centre), of the angular size the
+//    sun and the lobe give it there: a convex mirror's image of the sun is small and moves with x.
 //
 // Suns of angle 0 are left out: no BSDF-sampled path can reach a delta sun through a plane's
 // delta lobe, so Cycles renders no such light, and Torrance matches it. Only world-space meshes
@@ -38,7 +44,8 @@ class MirrorImages {
   // Glossy planes up to roughness 0.3 (Principled) are sampled.
   static constexpr float kMaxGlossyAlpha = 0.09f;
 
-  // The scene's planar mirrors and glossy planes (bsdfs: the render's, one per material) and its suns.
+  // The scene's planar mirrors, glossy planes and glossy spheres (bsdfs: the render's, one per
+  // material) and its suns; "plane" below stands for any of them.
   MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& bsdfs);
   bool empty() const { return planes_.empty() || suns_.empty(); }
   size_t num_planes() const { return planes_.size(); }
@@ -48,7 +55,7 @@ class MirrorImages {
   }
   bool is_mirror(int plane) const { return planes_[size_t(plane)].mirror; }
   const MaterialBsdf& bsdf(int plane) const { return *planes_[size_t(plane)].bsdf; }
-  const Vec3& normal(int plane) const { return planes_[size_t(plane)].normal; }
+  bool is_sphere(int plane) const { return planes_[size_t(plane)].radius > 0.0f; }
 
   struct Sample {
     Vec3 wi{0.0f};      // from the shading point towards the sun's image in the plane
@@ -60,9 +67,9 @@ class MirrorImages {
     Vec3 sun_weight{0.0f};
     const SunLight* sun = nullptr;
   };
-  // One direction towards a sun's image in a plane, the (plane, sun) pair chosen uniformly among
-  // those p sees: p off the plane on the side the sun shines on (both faces reflect). False:
-  // p sees none.
+  // One direction towards a sun's image in a plane, the (plane, sun) pair chosen among those p
+  // sees (p off a plane on the side the sun shines on, both faces reflecting; outside a sphere)
+  // in proportion to pair_weight, at the rate run_probability. False: none this time.
   bool sample(const Vec3& p, float u_pair, const Vec2& u, Sample& out) const;
   // The reflectance of mirror `plane` for light arriving from direction to_sun.
   Vec3 reflectance(int plane, const Vec3& to_sun) const;
@@ -76,15 +83,29 @@ class MirrorImages {
 
  private:
   struct Plane {
-    Vec3 point, normal;
+    Vec3 point, normal;  // a sphere: its centre (normal unused)
     const MaterialBsdf* bsdf;
     bool mirror;
-    float image_one_minus_cos;  // glossy: of the sun's image cone's half-angle (sun + lobe)
+    float image_one_minus_cos;  // glossy plane: of the sun's image cone's half-angle (sun + lobe)
+    float radius = 0.0f;        // > 0: a sphere
+    float highlight_half = 0.0f;  // sphere: the angular radius of its highlight's normals
+    float reflectance = 1.0f;     // its specular reflectance at normal incidence, roughly
   };
   bool sees(const Plane& plane, const SunLight& sun, const Vec3& p) const;
-  size_t pairs_seen(const Vec3& p) const;
+  // How often sample() at p picks the pair (plane, sun), relative to total_weight(p): 0 where p
+  // does not see it, else the plane's reflectance, times r^2 / (4 d^2) for a sphere (the share
+  // of the sun's power a convex mirror of radius r sends to distance d).
+  float pair_weight(const Plane& plane, const SunLight& sun, const Vec3& p) const;
+  float total_weight(const Vec3& p) const;
+  // The strategy runs at p with probability min(1, kRunScale x total_weight(p)): where the
+  // planes can send only a little of the sun's light (a small ball far away), it mostly leaves
+  // that light to BSDF sampling rather than spend rays on it.
+  static constexpr float kRunScale = 10.0f;
+  static float run_probability(float total);
+  // Glossy: the cone the strategy aims p into at `plane` (its axis, 1 - cos of its half-angle).
+  void image_cone(const Plane& plane, const Vec3& p, Vec3& axis, float& one_minus_cos) const;
   // Glossy: the density with which the strategy aims p along wi at `plane` (given the pair).
-  float image_cone_pdf(const Plane& plane, const Vec3& wi) const;
+  float image_cone_pdf(const Plane& plane, const Vec3& p, const Vec3& wi) const;
 
   std::vector<Plane> planes_;
   std::vector<int> plane_of_material_;

@@ -188,6 +188,14 @@ class Scene {
     Vec3 point{0.0f}, normal{0.0f, 0.0f, 1.0f};
   };
   std::optional<Plane> material_plane(uint32_t material) const;
+  // The sphere all triangles of material `material` make (every vertex within 0.5 % of the radius
+  // from the centre of their bounds, the bounds a cube): its centre and radius; nullopt otherwise,
+  // or when a prototype uses the material.
+  struct Sphere {
+    Vec3 center{0.0f};
+    float radius = 0.0f;
+  };
+  std::optional<Sphere> material_sphere(uint32_t material) const;
 
  private:
   struct Mesh;
