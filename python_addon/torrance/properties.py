@@ -74,11 +74,11 @@ class TorranceSceneSettings(bpy.types.PropertyGroup):
     )
     use_mirror_images: BoolProperty(
         name="Suns in Mirrors",
-        description="Sample the image of each sun in flat perfect mirrors (metal or other "
-                    "materials of roughness 0 lying in one plane) directly, so that a mirror or "
-                    "a polished floor lights the scene with the sun's reflection without caustic "
-                    "fireflies; converges to the same image. Suns of angle 0 are left out, as "
-                    "Cycles renders no light from them through a mirror",
+        description="Sample the image of each sun in flat mirrors (roughness 0), flat glossy "
+                    "surfaces and glossy spheres (roughness up to 0.3) directly, so that a mirror, "
+                    "a polished floor or a metal ball lights the scene with the sun's reflection "
+                    "without caustic fireflies; converges to the same image. Suns of angle 0 are "
+                    "left out, as Cycles renders no light from them through a mirror",
         default=True,
     )
     use_guiding: BoolProperty(
