@@ -215,6 +215,16 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
     (direct ? out.diffuse_direct : out.diffuse_indirect) += diffuse;
     (direct ? out.glossy_direct : out.glossy_indirect) += glossy;
   };
+  // A light sample taken at this path's vertex `bounce` (light: what arrives, throughput
+  // included; f: the vertex's lobes for it): at the first hit filed by those lobes, as direct light
+  // (NEE of a light) or indirect (a sun through a mirror); later as deposit() files it.
+  auto deposit_light_sample = [&](Vec3 light, const LobeEval& f, int bounce, bool direct) {
+    if (bounce > 0) return deposit(light * f.total(), false);
+    if (const float k = clamp_scale(light * f.total(), direct); k < 1.0f) light *= k;
+    path_luminance += luminance(light * f.total());
+    (direct ? out.diffuse_direct : out.diffuse_indirect) += light * f.diffuse;
+    (direct ? out.glossy_direct : out.glossy_indirect) += light * f.glossy;
+  };
 
   for (int bounce = 0;; ++bounce) {
     SurfaceHit hit;
@@ -368,36 +378,20 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
             Vec3 light = throughput * ls.weight * (mis / choice.probability);
             if (sun_share < 1.0f && lights.sun(choice.index)) light *= sun_share;
             if (kAlpha) light *= transmittance;
-            if (bounce == 0) {
-              if (const float k = clamp_scale(light * f.total(), true); k < 1.0f) light *= k;
-              path_luminance += luminance(light * f.total());
-              out.diffuse_direct += light * f.diffuse;
-              out.glossy_direct += light * f.glossy;
-            } else {
-              deposit(light * f.total(), false);
-            }
+            deposit_light_sample(light, f, bounce, true);
           }
         }
       }
     }
 
-    // Next-event estimation of suns through planar mirrors and glossy planes; the light counts as
-    // indirect, as it does when BSDF sampling finds it.
+    // Next-event estimation of suns through planar mirrors, glossy planes and spheres; the light
+    // counts as indirect, as it does when BSDF sampling finds it.
     if (ctx.mirror_images && bounce < ctx.settings.max_bounces) {
       LobeEval f;
       Vec3 light;
       if (mirror_image_light<kGlass>(ctx, bsdf, view, frame, hit.position, ng, n_smooth, ns, normal_mapped, transmits,
-                                     sampler, f, light)) {
-        light *= throughput;
-        if (bounce == 0) {
-          if (const float k = clamp_scale(light * f.total(), false); k < 1.0f) light *= k;
-          path_luminance += luminance(light * f.total());
-          out.diffuse_indirect += light * f.diffuse;
-          out.glossy_indirect += light * f.glossy;
-        } else {
-          deposit(light * f.total(), false);
-        }
-      }
+                                     sampler, f, light))
+        deposit_light_sample(light * throughput, f, bounce, false);
     }
 
     // Continue the path by sampling the BSDF.
