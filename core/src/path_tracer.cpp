@@ -108,43 +108,46 @@ bool mirror_image_light(const PathContext& ctx, const Bsdf& bsdf, const typename
   Ray ray;
   ray.origin = offset_origin(position, ng, ms.wi);
   ray.dir = ms.wi;
-  SurfaceHit on_plane;
-  if (!ctx.scene.intersect(ray, on_plane) || images.plane_of(on_plane.material) != ms.plane) return false;
+  SurfaceHit on_reflector;
+  if (!ctx.scene.intersect(ray, on_reflector) || images.reflector_of(on_reflector.material) != ms.reflector)
+    return false;
   const float mis = ms.pdf > 0.0f ? power_heuristic(ms.pdf, bsdf.template pdf<kGlass>(view, wi)) : 1.0f;
   // The plane point's normals turned towards the shading point, as the path would shade it.
-  Vec3 n = on_plane.geometric_normal, n_shading = on_plane.shading_normal;
+  Vec3 n = on_reflector.geometric_normal, n_shading = on_reflector.shading_normal;
   if (glm::dot(n, ms.wi) > 0.0f) {
     n = -n;
     n_shading = -n_shading;
   }
-  if (images.is_mirror(ms.plane)) {
-    if (ctx.scene.occluded(offset_origin(on_plane.position, n, ms.to_sun), ms.to_sun, 0.0f, kInfinity)) return false;
-    light = ms.sun_weight * images.reflectance(ms.plane, ms.to_sun) * mis;
+  if (images.is_mirror(ms.reflector)) {
+    if (ctx.scene.occluded(offset_origin(on_reflector.position, n, ms.to_sun), ms.to_sun, 0.0f, kInfinity))
+      return false;
+    light = ms.sun_weight * images.reflectance(ms.reflector, ms.to_sun) * mis;
     return max_component(light) > 0.0f;
   }
   // A glossy plane or sphere: the sun's light at its point, by NEE and by sampling its BSDF,
   // weighed against each other (a lobe narrower than the sun is the BSDF's to sample).
-  const glm::vec4 u_plane = sampler.next_4d();
-  const Frame plane_frame(valid_shading_normal(n, n_shading, -ms.wi));
-  const MaterialBsdf& plane_bsdf = images.bsdf(ms.plane);
-  const MaterialBsdf::View plane_view = plane_bsdf.at(plane_frame.to_local(-ms.wi));
-  const Vec3 origin_on_plane = on_plane.position;
+  const glm::vec4 u_reflector = sampler.next_4d();
+  const Frame reflector_frame(valid_shading_normal(n, n_shading, -ms.wi));
+  const MaterialBsdf& reflector_bsdf = images.bsdf(ms.reflector);
+  const MaterialBsdf::View reflector_view = reflector_bsdf.at(reflector_frame.to_local(-ms.wi));
+  const Vec3 origin_on_reflector = on_reflector.position;
   auto sees_sun = [&](const Vec3& dir) {
-    return !ctx.scene.occluded(offset_origin(origin_on_plane, n, dir), dir, 0.0f, kInfinity);
+    return !ctx.scene.occluded(offset_origin(origin_on_reflector, n, dir), dir, 0.0f, kInfinity);
   };
   Vec3 sun_light(0.0f);
-  const LightSample ls = ms.sun->sample(on_plane.position, plane_frame.n, Vec2(u_plane.x, u_plane.y));
+  const LightSample ls = ms.sun->sample(on_reflector.position, reflector_frame.n, Vec2(u_reflector.x, u_reflector.y));
   if (ls.valid() && glm::dot(ls.wi, n) > 0.0f) {
-    const Vec3 wi_plane = plane_frame.to_local(ls.wi);
-    const Vec3 f_plane = plane_bsdf.eval_lobes<false>(plane_view, wi_plane).total();
-    if (max_component(f_plane) > 0.0f && sees_sun(ls.wi))
-      sun_light += f_plane * ls.weight * power_heuristic(ls.pdf, plane_bsdf.pdf<false>(plane_view, wi_plane));
+    const Vec3 wi_reflector = reflector_frame.to_local(ls.wi);
+    const Vec3 f_reflector = reflector_bsdf.eval_lobes<false>(reflector_view, wi_reflector).total();
+    if (max_component(f_reflector) > 0.0f && sees_sun(ls.wi))
+      sun_light +=
+          f_reflector * ls.weight * power_heuristic(ls.pdf, reflector_bsdf.pdf<false>(reflector_view, wi_reflector));
   }
-  const BsdfSample bs = plane_bsdf.sample<false>(plane_view, u.w, Vec2(u_plane.z, u_plane.w));
+  const BsdfSample bs = reflector_bsdf.sample<false>(reflector_view, u.w, Vec2(u_reflector.z, u_reflector.w));
   if (bs.valid() && !bs.is_delta) {
-    const Vec3 dir = plane_frame.to_world(bs.wi);
+    const Vec3 dir = reflector_frame.to_world(bs.wi);
     LightHit h;
-    if (glm::dot(dir, n) > 0.0f && ms.sun->hit(on_plane.position, n, dir, kInfinity, h) && sees_sun(dir))
+    if (glm::dot(dir, n) > 0.0f && ms.sun->hit(on_reflector.position, n, dir, kInfinity, h) && sees_sun(dir))
       sun_light += bs.weight * h.radiance * power_heuristic(bs.pdf, h.pdf);
   }
   light = sun_light * (mis / ms.pdf);
@@ -256,9 +259,9 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
     } else {
       if (kHittable) {
         const bool through_mirror = mirror >= 0 && prev_delta;
-        Vec3 e = lights.emission_along_ray(prev_position, prev_normal, ray.dir, found ? passed_length + hit.t : kInfinity,
-                                           prev_pdf, prev_delta, kGlass && prev_two_sided, &light_choice,
-                                           through_mirror ? 0.0f : sun_share);
+        const float t_max = found ? passed_length + hit.t : kInfinity;
+        Vec3 e = lights.emission_along_ray(prev_position, prev_normal, ray.dir, t_max, prev_pdf, prev_delta,
+                                           kGlass && prev_two_sided, &light_choice, through_mirror ? 0.0f : sun_share);
         if (through_mirror && !found)
           e += ctx.mirror_images->suns_through(mirror, before_mirror, ray.dir, before_mirror_pdf);
         deposit(throughput * e, bounce == 1);
@@ -266,14 +269,14 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       if (!found) break;
       mirror = -1;
       sun_share = 1.0f;
-      if (const int plane = ctx.mirror_images && !prev_delta ? ctx.mirror_images->plane_of(hit.material) : -1;
-          plane >= 0) {
-        if (ctx.mirror_images->is_mirror(plane)) {
-          mirror = plane;
+      if (const int reflector = ctx.mirror_images && !prev_delta ? ctx.mirror_images->reflector_of(hit.material) : -1;
+          reflector >= 0) {
+        if (ctx.mirror_images->is_mirror(reflector)) {
+          mirror = reflector;
           before_mirror = prev_hit_position;
           before_mirror_pdf = prev_pdf;
         } else {
-          sun_share = ctx.mirror_images->bsdf_share(plane, prev_hit_position, ray.dir, prev_pdf);
+          sun_share = ctx.mirror_images->bsdf_share(reflector, prev_hit_position, ray.dir, prev_pdf);
         }
       }
     }

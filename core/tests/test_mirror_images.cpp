@@ -49,12 +49,12 @@ TEST(MirrorImages, OnlyFlatMirrorsAndGlossyPlanesAreSampled) {
   std::vector<MaterialBsdf> bsdfs;
   for (uint32_t i = 0; i < scene.num_materials(); ++i) bsdfs.emplace_back(scene.material(i), BrdfModel::Principled);
   const MirrorImages images(scene, bsdfs);
-  EXPECT_EQ(images.num_planes(), 2u);
-  ASSERT_GE(images.plane_of(flat), 0);
-  EXPECT_TRUE(images.is_mirror(images.plane_of(flat)));
-  ASSERT_GE(images.plane_of(glossy), 0);
-  EXPECT_FALSE(images.is_mirror(images.plane_of(glossy)));
-  for (uint32_t other : {bent, coated, smooth_normals, rougher}) EXPECT_EQ(images.plane_of(other), -1) << other;
+  EXPECT_EQ(images.num_reflectors(), 2u);
+  ASSERT_GE(images.reflector_of(flat), 0);
+  EXPECT_TRUE(images.is_mirror(images.reflector_of(flat)));
+  ASSERT_GE(images.reflector_of(glossy), 0);
+  EXPECT_FALSE(images.is_mirror(images.reflector_of(glossy)));
+  for (uint32_t other : {bent, coated, smooth_normals, rougher}) EXPECT_EQ(images.reflector_of(other), -1) << other;
   const std::optional<Scene::Plane> plane = scene.material_plane(flat);
   ASSERT_TRUE(plane);
   EXPECT_NEAR(std::abs(plane->normal.z), 1.0f, 1e-6f);
@@ -304,9 +304,9 @@ TEST(MirrorImages, GlossyBallLightsTheFloorAsBsdfSamplingSays) {
   std::vector<MaterialBsdf> bsdfs;
   for (uint32_t i = 0; i < scene.num_materials(); ++i) bsdfs.emplace_back(scene.material(i), BrdfModel::Paper);
   const MirrorImages images(scene, bsdfs);
-  ASSERT_GE(images.plane_of(ball_material), 0);
-  EXPECT_TRUE(images.is_sphere(images.plane_of(ball_material)));
-  EXPECT_EQ(images.plane_of(squashed), -1);
+  ASSERT_GE(images.reflector_of(ball_material), 0);
+  EXPECT_TRUE(images.is_sphere(images.reflector_of(ball_material)));
+  EXPECT_EQ(images.reflector_of(squashed), -1);
 
   const test::SeedAgreement a =
       test::compare_over_seeds(wall_blocks(scene, false, 64, 32), wall_blocks(scene, true, 64, 32));

@@ -41,48 +41,48 @@ namespace torrance {
 
 class MirrorImages {
  public:
-  // Glossy planes up to roughness 0.3 (Principled) are sampled.
+  // Glossy reflectors up to roughness 0.3 (Principled) are sampled.
   static constexpr float kMaxGlossyAlpha = 0.09f;
 
-  // The scene's planar mirrors, glossy planes and glossy spheres (bsdfs: the render's, one per
-  // material) and its suns; "plane" below stands for any of them.
+  // The scene's reflectors -- planar mirrors, glossy planes and glossy spheres (bsdfs: the
+  // render's, one per material) -- and its suns.
   MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& bsdfs);
-  bool empty() const { return planes_.empty() || suns_.empty(); }
-  size_t num_planes() const { return planes_.size(); }
-  // The plane made of material `material` (an index for the queries below), or -1.
-  int plane_of(uint32_t material) const {
-    return material < plane_of_material_.size() ? plane_of_material_[material] : -1;
+  bool empty() const { return reflectors_.empty() || suns_.empty(); }
+  size_t num_reflectors() const { return reflectors_.size(); }
+  // The reflector made of material `material` (an index for the queries below), or -1.
+  int reflector_of(uint32_t material) const {
+    return material < reflector_of_material_.size() ? reflector_of_material_[material] : -1;
   }
-  bool is_mirror(int plane) const { return planes_[size_t(plane)].mirror; }
-  const MaterialBsdf& bsdf(int plane) const { return *planes_[size_t(plane)].bsdf; }
-  bool is_sphere(int plane) const { return planes_[size_t(plane)].radius > 0.0f; }
+  bool is_mirror(int reflector) const { return reflectors_[size_t(reflector)].mirror; }
+  const MaterialBsdf& bsdf(int reflector) const { return *reflectors_[size_t(reflector)].bsdf; }
+  bool is_sphere(int reflector) const { return reflectors_[size_t(reflector)].radius > 0.0f; }
 
   struct Sample {
-    Vec3 wi{0.0f};      // from the shading point towards the sun's image in the plane
+    Vec3 wi{0.0f};      // from the shading point towards the sun's image in the reflector
     float pdf = 0.0f;   // the solid-angle density of wi, the pair's choice included
-    int plane = -1;
+    int reflector = -1;
     // Mirrors: the direction from the mirror to the sun (wi reflected) and the sun's radiance
-    // over its cone's density. Glossy planes: the sun, for NEE at the plane point.
+    // over its cone's density. Glossy reflectors: the sun, for NEE at the reflector's point.
     Vec3 to_sun{0.0f};
     Vec3 sun_weight{0.0f};
     const SunLight* sun = nullptr;
   };
-  // One direction towards a sun's image in a plane, the (plane, sun) pair chosen among those p
-  // sees (p off a plane on the side the sun shines on, both faces reflecting; outside a sphere)
+  // One direction towards a sun's image in a reflector, the (reflector, sun) pair chosen among
+  // those p sees (p off a plane on the side the sun shines on, both faces reflecting; outside a sphere)
   // in proportion to pair_weight, at the rate run_probability. False: none this time.
   bool sample(const Vec3& p, float u_pair, const Vec2& u, Sample& out) const;
-  // The reflectance of mirror `plane` for light arriving from direction to_sun.
-  Vec3 reflectance(int plane, const Vec3& to_sun) const;
-  // Mirrors: what the suns send along `dir` (from a point on mirror `plane`, unoccluded) to a
+  // The reflectance of mirror `reflector` for light arriving from direction to_sun.
+  Vec3 reflectance(int reflector, const Vec3& to_sun) const;
+  // Mirrors: what the suns send along `dir` (from a point on mirror `reflector`, unoccluded) to a
   // path that left p with BSDF density bsdf_pdf: their radiance weighted against this strategy.
-  Vec3 suns_through(int plane, const Vec3& p, const Vec3& dir, float bsdf_pdf) const;
-  // Glossy planes: the share of the sun's light found at the point of glossy `plane` that a
+  Vec3 suns_through(int reflector, const Vec3& p, const Vec3& dir, float bsdf_pdf) const;
+  // Glossy reflectors: the share of the sun's light found at the point of glossy `reflector` that a
   // BSDF-sampled direction wi (density bsdf_pdf) from p reached: the power heuristic against this
   // strategy's density of wi (1 where it does not sample wi).
-  float bsdf_share(int plane, const Vec3& p, const Vec3& wi, float bsdf_pdf) const;
+  float bsdf_share(int reflector, const Vec3& p, const Vec3& wi, float bsdf_pdf) const;
 
  private:
-  struct Plane {
+  struct Reflector {
     Vec3 point, normal;  // a sphere: its centre (normal unused)
     const MaterialBsdf* bsdf;
     bool mirror;
@@ -91,24 +91,24 @@ class MirrorImages {
     float highlight_half = 0.0f;  // sphere: the angular radius of its highlight's normals
     float reflectance = 1.0f;     // its specular reflectance at normal incidence, roughly
   };
-  bool sees(const Plane& plane, const SunLight& sun, const Vec3& p) const;
-  // How often sample() at p picks the pair (plane, sun), relative to total_weight(p): 0 where p
-  // does not see it, else the plane's reflectance, times r^2 / (4 d^2) for a sphere (the share
+  bool sees(const Reflector& reflector, const SunLight& sun, const Vec3& p) const;
+  // How often sample() at p picks the pair (reflector, sun), relative to total_weight(p): 0 where
+  // p does not see it, else the reflectance, times r^2 / (4 d^2) for a sphere (the share
   // of the sun's power a convex mirror of radius r sends to distance d).
-  float pair_weight(const Plane& plane, const SunLight& sun, const Vec3& p) const;
+  float pair_weight(const Reflector& reflector, const SunLight& sun, const Vec3& p) const;
   float total_weight(const Vec3& p) const;
   // The strategy runs at p with probability min(1, kRunScale x total_weight(p)): where the
-  // planes can send only a little of the sun's light (a small ball far away), it mostly leaves
+  // reflectors can send only a little of the sun's light (a small ball far away), it mostly leaves
   // that light to BSDF sampling rather than spend rays on it.
   static constexpr float kRunScale = 10.0f;
   static float run_probability(float total);
-  // Glossy: the cone the strategy aims p into at `plane` (its axis, 1 - cos of its half-angle).
-  void image_cone(const Plane& plane, const Vec3& p, Vec3& axis, float& one_minus_cos) const;
-  // Glossy: the density with which the strategy aims p along wi at `plane` (given the pair).
-  float image_cone_pdf(const Plane& plane, const Vec3& p, const Vec3& wi) const;
+  // Glossy: the cone the strategy aims p into at `reflector` (its axis, 1 - cos of its half-angle).
+  void image_cone(const Reflector& reflector, const Vec3& p, Vec3& axis, float& one_minus_cos) const;
+  // Glossy: the density with which the strategy aims p along wi at `reflector` (given the pair).
+  float image_cone_pdf(const Reflector& reflector, const Vec3& p, const Vec3& wi) const;
 
-  std::vector<Plane> planes_;
-  std::vector<int> plane_of_material_;
+  std::vector<Reflector> reflectors_;
+  std::vector<int> reflector_of_material_;
   std::vector<const SunLight*> suns_;
 };
 

@@ -37,8 +37,8 @@ std::optional<Scene::Plane> Scene::material_plane(uint32_t material) const {
       const glm::uvec3& t = mesh->triangles[i];
       // The triangle's own side (its winding may face either way) for its corner normals.
       const Vec3& a = mesh->positions[t[0]];
-      const float side =
-          glm::dot(glm::cross(mesh->positions[t[1]] - a, mesh->positions[t[2]] - a), plane.normal) < 0.0f ? -1.0f : 1.0f;
+      const Vec3 winding = glm::cross(mesh->positions[t[1]] - a, mesh->positions[t[2]] - a);
+      const float side = glm::dot(winding, plane.normal) < 0.0f ? -1.0f : 1.0f;
       for (int k = 0; k < 3; ++k) {
         if (std::abs(glm::dot(mesh->positions[t[k]] - plane.point, plane.normal)) > tolerance) return std::nullopt;
         if (!mesh->corner_normals.empty()) {
