@@ -209,6 +209,7 @@ bool PointLight::hit(const Vec3& p, const Vec3&, const Vec3& dir, float t_max, L
   if (glm::dot(offset, offset) > r2) return false;
   out.radiance = intensity_ * (spot_attenuation(p) / (kPi * r2));
   out.pdf = t * t / (kPi * r2 * -denom);
+  out.distance = t;
   return true;
 }
 
@@ -296,6 +297,7 @@ bool AreaLight::hit(const Vec3& p, const Vec3&, const Vec3& dir, float t_max, Li
   const float cos_emit = -denom;
   out.radiance = radiance_ * spread_attenuation(cos_emit);
   out.pdf = t * t / (area_ * cos_emit);
+  out.distance = t;
   if (!ellipse_) {
     const SphericalRect rect(p, center_ - 0.5f * edge_u_ - 0.5f * edge_v_, edge_u_, edge_v_);
     if (rect.solid_angle > kMinSphericalSolidAngle) out.pdf = float(1.0 / rect.solid_angle);
@@ -445,9 +447,13 @@ LightSample Lights::sample(size_t index, const Vec3& p, const Vec3& shading_norm
   return s;
 }
 
+bool Lights::hit(size_t index, const Vec3& p, const Vec3& n, const Vec3& dir, LightHit& out) const {
+  return visit(index, [&](const auto& light) { return light.hit(p, n, dir, kInfinity, out); });
+}
+
 Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max, float bsdf_pdf,
                                 bool bsdf_delta, bool two_sided, const LightChoice* prev_choice,
-                                float sun_scale) const {
+                                const LightShare* share) const {
   Vec3 L(0.0f);
   auto add = [&](size_t index, const LightHit& h, bool in_nee) {
     if (!in_nee || bsdf_delta) return void(L += h.radiance);
@@ -457,16 +463,14 @@ Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Ve
     L += h.radiance * (bsdf_delta ? 1.0f : power_heuristic(bsdf_pdf, nee_pdf));
   };
   for (size_t i = 0; i < lights_.size(); ++i) {
-    const bool sun = std::holds_alternative<SunLight>(lights_[i]);
-    if (sun && !(sun_scale > 0.0f)) continue;
     LightHit h;
     if (!std::visit([&](const auto& light) { return light.hit(p_prev, n_prev, dir, t_max, h); }, lights_[i]))
       continue;
-    if (sun) h.radiance *= sun_scale;
+    if (share) h.radiance *= share->of(i);
     add(i, h, true);
   }
   LightHit h;
-  if (has_world() && world_.hit(p_prev, n_prev, dir, t_max, h)) add(count() - 1, h, world_in_nee());
+  if (has_world() && world_.hit(p_prev, n_prev, dir, t_max, h)) add(count() - 1, h, world_in_nee());  // never shared
   return L;
 }
 

@@ -2,7 +2,9 @@
 
 #include "torrance/sampling.h"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 namespace torrance {
@@ -19,7 +21,10 @@ float one_minus_cos_of(float angle) {
   return 2.0f * s * s;
 }
 
-// Whether material m can be a plane of the strategy at all: opaque, uniform, not emitting.
+// The angle under which a ball of radius r is seen from distance d (pi/2 from inside it).
+float angular_radius_of(float r, float d) { return r < d ? std::asin(r / d) : 0.5f * kPi; }
+
+// Whether material m can be a reflector of the strategy at all: opaque, uniform, not emitting.
 bool plain_surface(const Scene& scene, uint32_t m) {
   const Material& material = scene.material(m);
   const MaterialTextures& textures = scene.material_textures(m);
@@ -29,132 +34,193 @@ bool plain_surface(const Scene& scene, uint32_t m) {
 
 }  // namespace
 
+// ---- the lights ---------------------------------------------------------------------------------
+
+Vec3 MirrorImages::Source::toward(const Vec3& x) const {
+  if (sun) return sun->to_light();
+  return glm::normalize((point ? point->position() : area->center()) - x);
+}
+
+float MirrorImages::Source::angular_radius(const Vec3& x) const {
+  if (sun) return std::acos(1.0f - sun->one_minus_cos());
+  if (point) return angular_radius_of(point->radius(), glm::length(point->position() - x));
+  return angular_radius_of(area->extent(), glm::length(area->center() - x));
+}
+
+float MirrorImages::Source::irradiance(const Vec3& x, const Vec3& n) const {
+  if (sun) return sun->importance(x, n);
+  return point ? point->importance(x, n) : area->importance(x, n);
+}
+
+// ---- the reflectors and their pairs -------------------------------------------------------------
+
 MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& bsdfs)
-    : reflector_of_material_(scene.num_materials(), -1) {
+    : reflector_of_material_(scene.num_materials(), -1), num_lights_(scene.lights().count()) {
   const Lights& lights = scene.lights();
-  size_t all_suns = 0;
-  for (size_t i = 0; i < lights.count(); ++i) {
-    const SunLight* sun = lights.sun(i);
-    all_suns += sun != nullptr;
-    if (sun && !sun->is_delta()) suns_.push_back(sun);
+  for (size_t i = 0; i < num_lights_; ++i) {
+    Source s{i, lights.sun(i), lights.point(i), lights.area(i)};
+    if ((s.sun && !s.sun->is_delta()) || (s.point && !s.point->is_delta()) || s.area) sources_.push_back(s);
   }
-  if (suns_.empty()) return;
+  if (sources_.empty()) return;
+  struct Candidate {
+    Pair pair;
+    float strength;  // the light the reflector sends out, roughly (planes first)
+  };
+  std::vector<Candidate> candidates;
   for (uint32_t m = 0; m < scene.num_materials(); ++m) {
     const MaterialBsdf& bsdf = bsdfs[m];
     const bool mirror = bsdf.pure_mirror();
-    // Glossy planes: in scenes with one sun only (bsdf_share weighs "the" sun's light), and
-    // without a delta lobe (its paths through the plane are the BSDF's alone).
-    const bool glossy = !mirror && all_suns == 1 && !bsdf.transmits() && !bsdf.has_delta() &&
-                        bsdf.specular_alpha() <= kMaxGlossyAlpha;
+    // Glossy: no delta lobe (its paths through the reflector are the BSDF's alone).
+    const bool glossy =
+        !mirror && !bsdf.transmits() && !bsdf.has_delta() && bsdf.specular_alpha() <= kMaxGlossyAlpha;
     if (!(mirror || glossy) || !plain_surface(scene, m)) continue;
-    // The half-angle of the sun's image's directions (sun + lobe), and of its normals.
-    const float image_half =
-        glossy ? std::min(std::acos(1.0f - suns_[0]->one_minus_cos()) + 2.0f * std::atan(3.0f * bsdf.specular_alpha()),
-                          0.5f * kPi)
-               : 0.0f;
     // For choosing among the pairs: the specular reflectance at normal incidence (roughly).
     const Material& material = scene.material(m);
     const float metallic = clamp01(material.metallic);
     const float reflectance =
         std::max(luminance(material.base_color) * metallic + 0.08f * material.specular * (1.0f - metallic), 1e-3f);
+    const float lobe = glossy ? 2.0f * std::atan(3.0f * bsdf.specular_alpha()) : 0.0f;
+    const int index = int(reflectors_.size());
     if (const std::optional<Scene::Plane> plane = scene.material_plane(m)) {
-      reflector_of_material_[m] = int(reflectors_.size());
-      reflectors_.push_back(
-          Reflector{plane->point, plane->normal, &bsdf, mirror, one_minus_cos_of(image_half), 0.0f, 0.0f, reflectance});
+      reflectors_.push_back(Reflector{plane->point, plane->normal, &bsdf, mirror, 0.0f, lobe, reflectance});
+      for (size_t s = 0; s < sources_.size(); ++s) {
+        if (!sources_[s].sun) continue;  // planes: suns only
+        const float image_half = std::min(sources_[s].angular_radius(plane->point) + lobe, 0.5f * kPi);
+        candidates.push_back({Pair{index, int(s), one_minus_cos_of(image_half)}, kInfinity});
+      }
     } else if (const std::optional<Scene::Sphere> sphere = glossy ? scene.material_sphere(m) : std::nullopt) {
-      reflector_of_material_[m] = int(reflectors_.size());
-      reflectors_.push_back(Reflector{sphere->center, Vec3(0.0f), &bsdf, false, 0.0f, sphere->radius,
-                                      0.5f * image_half, reflectance});
+      reflectors_.push_back(Reflector{sphere->center, Vec3(0.0f), &bsdf, false, sphere->radius, lobe, reflectance});
+      for (size_t s = 0; s < sources_.size(); ++s) {
+        const Source& source = sources_[s];
+        // A light inside the ball or behind an area light's face lights none of it from outside.
+        if (!source.sun && glm::length((source.point ? source.point->position() : source.area->center()) -
+                                       sphere->center) <= sphere->radius)
+          continue;
+        const float strength = reflectance * sphere->radius * sphere->radius * source.irradiance(sphere->center);
+        if (strength > 0.0f) candidates.push_back({Pair{index, int(s)}, strength});
+      }
+    } else {
+      continue;
     }
+    reflector_of_material_[m] = index;
   }
+  // The brightest pairs, in the order found.
+  if (candidates.size() > kMaxPairs) {
+    std::vector<float> strengths;
+    for (const Candidate& c : candidates) strengths.push_back(c.strength);
+    std::nth_element(strengths.begin(), strengths.begin() + (kMaxPairs - 1), strengths.end(), std::greater<float>());
+    const float weakest_kept = strengths[kMaxPairs - 1];
+    for (const Candidate& c : candidates)
+      if (c.strength >= weakest_kept && pairs_.size() < kMaxPairs) pairs_.push_back(c.pair);
+  } else {
+    for (const Candidate& c : candidates) pairs_.push_back(c.pair);
+  }
+  pair_of_.assign(reflectors_.size() * num_lights_, -1);
+  for (size_t i = 0; i < pairs_.size(); ++i)
+    pair_of_[size_t(pairs_[i].reflector) * num_lights_ + sources_[size_t(pairs_[i].source)].index] = int(i);
 }
 
-bool MirrorImages::sees(const Reflector& reflector, const SunLight& sun, const Vec3& p) const {
-  if (reflector.radius > 0.0f) {  // a sphere: from anywhere outside it
-    const Vec3 d = p - reflector.point;
-    return glm::dot(d, d) > reflector.radius * reflector.radius * 1.0001f;
+float MirrorImages::pair_weight(const Pair& pair, const Vec3& p) const {
+  const Reflector& reflector = reflectors_[size_t(pair.reflector)];
+  const Source& source = sources_[size_t(pair.source)];
+  if (reflector.radius <= 0.0f) {  // a plane and a sun, on the same side
+    const float side = glm::dot(p - reflector.point, reflector.normal);
+    const float sun_side = glm::dot(source.sun->to_light(), reflector.normal);
+    const bool sees = (side > 0.0f && sun_side > 0.0f) || (side < 0.0f && sun_side < 0.0f);
+    return sees ? reflector.reflectance * source.irradiance(p) : 0.0f;
   }
-  const float side = glm::dot(p - reflector.point, reflector.normal);
-  const float sun_side = glm::dot(sun.to_light(), reflector.normal);
-  return (side > 0.0f && sun_side > 0.0f) || (side < 0.0f && sun_side < 0.0f);
-}
-
-float MirrorImages::pair_weight(const Reflector& reflector, const SunLight& sun, const Vec3& p) const {
-  if (!sees(reflector, sun, p)) return 0.0f;
-  if (reflector.radius <= 0.0f) return reflector.reflectance;
-  // A convex mirror spreads the sunlight it catches, pi r^2 E R, evenly: E R r^2 / (4 d^2) at d.
+  // A convex mirror spreads the light it catches, pi r^2 E R, evenly: E R r^2 / (4 d^2) at d.
   const Vec3 d = p - reflector.point;
-  return reflector.reflectance * std::min(reflector.radius * reflector.radius / (4.0f * glm::dot(d, d)), 1.0f);
+  const float d2 = glm::dot(d, d), r2 = reflector.radius * reflector.radius;
+  if (!(d2 > r2 * 1.0001f)) return 0.0f;  // on or inside the ball
+  return reflector.reflectance * std::min(r2 / (4.0f * d2), 1.0f) * source.irradiance(reflector.point);
 }
 
 float MirrorImages::total_weight(const Vec3& p) const {
   float total = 0.0f;
-  for (const Reflector& reflector : reflectors_)
-    for (const SunLight* sun : suns_) total += pair_weight(reflector, *sun, p);
+  for (const Pair& pair : pairs_) total += pair_weight(pair, p);
   return total;
 }
 
-void MirrorImages::image_cone(const Reflector& reflector, const Vec3& p, Vec3& axis, float& one_minus_cos) const {
-  const Vec3 to_sun = suns_[0]->to_light();
+float MirrorImages::run_probability(const Vec3& p, const Vec3& n, float total) const {
+  float direct = 0.0f;
+  for (const Source& source : sources_) direct += source.irradiance(p, n);
+  return direct > 0.0f ? std::min(kRunScale * total / direct, 1.0f) : 1.0f;
+}
+
+// ---- where the strategy aims --------------------------------------------------------------------
+
+void MirrorImages::image_cone(const Pair& pair, const Vec3& p, Vec3& axis, float& one_minus_cos) const {
+  const Reflector& reflector = reflectors_[size_t(pair.reflector)];
+  const Source& source = sources_[size_t(pair.source)];
   if (reflector.radius <= 0.0f) {
-    axis = reflect_in(to_sun, reflector.normal);
-    one_minus_cos = reflector.image_one_minus_cos;
+    axis = reflect_in(source.sun->to_light(), reflector.normal);
+    one_minus_cos = pair.image_one_minus_cos;
     return;
   }
-  // The highlight: the point h whose normal halves the directions to p and to the sun.
+  // The highlight: the point h whose normal halves the directions to p and to the light.
   const Vec3 c = reflector.point;
   const float r = reflector.radius;
-  Vec3 h = c + r * glm::normalize(to_sun + glm::normalize(p - c));
-  for (int i = 0; i < 3; ++i) h = c + r * glm::normalize(to_sun + glm::normalize(p - h));
+  Vec3 h = c + r * glm::normalize(source.toward(c) + glm::normalize(p - c));
+  for (int i = 0; i < 3; ++i) h = c + r * glm::normalize(source.toward(h) + glm::normalize(p - h));
   const Vec3 to_h = h - p;
   const float distance = glm::length(to_h);
   axis = to_h / distance;
-  // Its normals' angular radius seen from p (margin 1.5), at most the whole sphere's.
-  const float whole = std::asin(std::min(r / glm::length(p - c), 1.0f));
-  const float half = std::max(std::min(1.5f * r * reflector.highlight_half / distance, whole), 1e-4f);
+  // Its normals' angular radius (half the light's and the lobe's) seen from p (margin 1.5), at
+  // most the whole sphere's.
+  const float highlight_half = 0.5f * std::min(source.angular_radius(h) + reflector.lobe, 0.5f * kPi);
+  const float whole = angular_radius_of(r, glm::length(p - c));
+  const float half = std::max(std::min(1.5f * r * highlight_half / distance, whole), 1e-4f);
   one_minus_cos = one_minus_cos_of(half);
 }
 
-float MirrorImages::image_cone_pdf(const Reflector& reflector, const Vec3& p, const Vec3& wi) const {
+float MirrorImages::pair_pdf(const Pair& pair, const Vec3& p, const Vec3& n, const Vec3& wi) const {
+  const float w = pair_weight(pair, p);
+  if (!(w > 0.0f)) return 0.0f;
+  const float total = total_weight(p);
+  const float choice = run_probability(p, n, total) * w / total;
+  const Reflector& reflector = reflectors_[size_t(pair.reflector)];
+  // A mirror keeps solid angle: the sun's cone density (wi is taken to reach the sun).
+  if (reflector.mirror) return choice / cone_solid_angle(sources_[size_t(pair.source)].sun->one_minus_cos());
   Vec3 axis;
   float one_minus_cos;
-  image_cone(reflector, p, axis, one_minus_cos);
+  image_cone(pair, p, axis, one_minus_cos);
   // Inside when the chord |wi - axis| is at most the rim's, sqrt(2 (1 - cos)): exact for small cones.
   const Vec3 chord = wi - axis;
-  return glm::dot(chord, chord) <= 2.0f * one_minus_cos ? 1.0f / cone_solid_angle(one_minus_cos) : 0.0f;
+  return glm::dot(chord, chord) <= 2.0f * one_minus_cos ? choice / cone_solid_angle(one_minus_cos) : 0.0f;
 }
 
-float MirrorImages::run_probability(float total) { return std::min(kRunScale * total, 1.0f); }
-
-bool MirrorImages::sample(const Vec3& p, float u_pair, const Vec2& u, Sample& out) const {
+bool MirrorImages::sample(const Vec3& p, const Vec3& n, float u_pair, const Vec2& u, Sample& out) const {
   const float total = total_weight(p);
-  const float run = run_probability(total);
-  if (!(total > 0.0f) || u_pair >= run) return false;
+  if (!(total > 0.0f)) return false;
+  const float run = run_probability(p, n, total);
+  if (u_pair >= run) return false;
   // The pair whose share of the total holds u_pair (the last one seen, if rounding leaves some).
   float target = u_pair / run * total, weight = 0.0f;
-  for (size_t pi = 0; pi < reflectors_.size() && target >= 0.0f; ++pi) {
-    for (const SunLight* sun : suns_) {
-      const float w = pair_weight(reflectors_[pi], *sun, p);
-      if (!(w > 0.0f)) continue;
-      weight = w;
-      out.reflector = int(pi);
-      out.sun = sun;
-      if ((target -= w) < 0.0f) break;
-    }
+  const Pair* chosen = nullptr;
+  for (const Pair& pair : pairs_) {
+    const float w = pair_weight(pair, p);
+    if (!(w > 0.0f)) continue;
+    weight = w;
+    chosen = &pair;
+    if ((target -= w) < 0.0f) break;
   }
-  const Reflector& reflector = reflectors_[size_t(out.reflector)];
+  const Reflector& reflector = reflectors_[size_t(chosen->reflector)];
+  const Source& source = sources_[size_t(chosen->source)];
+  out.reflector = chosen->reflector;
+  out.light = source.index;
   const float probability = run * weight / total;
   if (!reflector.mirror) {
     Vec3 axis;
     float one_minus_cos;
-    image_cone(reflector, p, axis, one_minus_cos);
+    image_cone(*chosen, p, axis, one_minus_cos);
     out.wi = Frame(axis).to_world(sample_uniform_cone(u, one_minus_cos));
     out.pdf = probability / cone_solid_angle(one_minus_cos);
     // Only directions into a plane from p's side can reach it.
     const bool above = glm::dot(p - reflector.point, reflector.normal) > 0.0f;
     return reflector.radius > 0.0f || (glm::dot(out.wi, reflector.normal) < 0.0f) == above;
   }
-  const LightSample ls = out.sun->sample(p, reflector.normal, u);
+  const LightSample ls = source.sun->sample(p, reflector.normal, u);
   // A direction of the sun's cone below the mirror's horizon has no image on p's side.
   const float cos_sun = glm::dot(ls.wi, reflector.normal);
   if (!ls.valid() || cos_sun == 0.0f || (cos_sun > 0.0f) != (glm::dot(p - reflector.point, reflector.normal) > 0.0f))
@@ -173,25 +239,12 @@ Vec3 MirrorImages::reflectance(int reflector, const Vec3& to_sun) const {
   return s.is_delta ? s.weight : Vec3(0.0f);
 }
 
-Vec3 MirrorImages::suns_through(int reflector, const Vec3& p, const Vec3& dir, float bsdf_pdf) const {
-  const Reflector& m = reflectors_[size_t(reflector)];
-  const float total = total_weight(p);
-  Vec3 light(0.0f);
-  for (const SunLight* sun : suns_) {
-    LightHit h;
-    if (!sun->hit(p, m.normal, dir, kInfinity, h)) continue;
-    const float w = pair_weight(m, *sun, p);
-    light += h.radiance * (w > 0.0f ? power_heuristic(bsdf_pdf, h.pdf * run_probability(total) * w / total) : 1.0f);
-  }
-  return light;
-}
-
-float MirrorImages::bsdf_share(int reflector, const Vec3& p, const Vec3& wi, float bsdf_pdf) const {
-  const Reflector& g = reflectors_[size_t(reflector)];
-  const float w = pair_weight(g, *suns_[0], p);
-  if (!(w > 0.0f)) return 1.0f;
-  const float total = total_weight(p);
-  const float pdf = image_cone_pdf(g, p, wi) * run_probability(total) * w / total;
+float MirrorImages::bsdf_share(int reflector, const Vec3& p, const Vec3& n, const Vec3& wi, float bsdf_pdf,
+                              size_t light) const {
+  if (light >= num_lights_) return 1.0f;
+  const int pair = pair_of_[size_t(reflector) * num_lights_ + light];
+  if (pair < 0) return 1.0f;
+  const float pdf = pair_pdf(pairs_[size_t(pair)], p, n, wi);
   return pdf > 0.0f ? power_heuristic(bsdf_pdf, pdf) : 1.0f;
 }
 

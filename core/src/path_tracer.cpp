@@ -86,10 +86,10 @@ float bump_shadowing(Vec3 n_smooth, const Vec3& n_mapped, const Vec3& wi) {
   return g + g * g - g * g * g;
 }
 
-// Next-event estimation of a sun's light reflected once by a planar mirror or glossy plane
-// (mirror_images.h) at a shading point: the BSDF's lobes for the sampled direction (f) and the
-// light arriving along it, MIS-weighted against BSDF sampling (light); false when nothing
-// arrives. The direction must meet the plane first, and the sun must be unoccluded from there.
+// Next-event estimation of a light reflected once by a planar mirror, glossy plane or glossy
+// sphere (mirror_images.h) at a shading point: the BSDF's lobes for the sampled direction (f) and
+// the light arriving along it, MIS-weighted against BSDF sampling (light); false when nothing
+// arrives. The direction must meet the reflector first, and the light must be unoccluded from there.
 template <bool kGlass, typename Bsdf>
 bool mirror_image_light(const PathContext& ctx, const Bsdf& bsdf, const typename Bsdf::View& view, const Frame& frame,
                         const Vec3& position, const Vec3& ng, const Vec3& n_smooth, const Vec3& ns,
@@ -97,7 +97,7 @@ bool mirror_image_light(const PathContext& ctx, const Bsdf& bsdf, const typename
   const MirrorImages& images = *ctx.mirror_images;
   const glm::vec4 u = sampler.next_4d();
   MirrorImages::Sample ms;
-  if (!images.sample(position, u.x, Vec2(u.y, u.z), ms)) return false;
+  if (!images.sample(position, ns, u.x, Vec2(u.y, u.z), ms)) return false;
   const Vec3 wi = frame.to_local(ms.wi);
   const float cos_geometric = glm::dot(ms.wi, ng);
   if (transmits ? cos_geometric == 0.0f || (cos_geometric > 0.0f) != (wi.z > 0.0f) : cos_geometric <= 0.0f)
@@ -112,45 +112,48 @@ bool mirror_image_light(const PathContext& ctx, const Bsdf& bsdf, const typename
   if (!ctx.scene.intersect(ray, on_reflector) || images.reflector_of(on_reflector.material) != ms.reflector)
     return false;
   const float mis = ms.pdf > 0.0f ? power_heuristic(ms.pdf, bsdf.template pdf<kGlass>(view, wi)) : 1.0f;
-  // The plane point's normals turned towards the shading point, as the path would shade it.
+  // The reflector point's normals turned towards the shading point, as the path would shade it.
   Vec3 n = on_reflector.geometric_normal, n_shading = on_reflector.shading_normal;
   if (glm::dot(n, ms.wi) > 0.0f) {
     n = -n;
     n_shading = -n_shading;
   }
+  const Vec3& x = on_reflector.position;
+  auto unoccluded = [&](const Vec3& dir, float distance) {
+    LightSample toward;
+    toward.wi = dir;
+    toward.distance = distance;
+    const Ray shadow = shadow_ray(x, n, toward);
+    return !(shadow.tmax > 0.0f) || !ctx.scene.occluded(shadow.origin, shadow.dir, 0.0f, shadow.tmax);
+  };
   if (images.is_mirror(ms.reflector)) {
-    if (ctx.scene.occluded(offset_origin(on_reflector.position, n, ms.to_sun), ms.to_sun, 0.0f, kInfinity))
-      return false;
+    if (!unoccluded(ms.to_sun, kInfinity)) return false;
     light = ms.sun_weight * images.reflectance(ms.reflector, ms.to_sun) * mis;
     return max_component(light) > 0.0f;
   }
-  // A glossy plane or sphere: the sun's light at its point, by NEE and by sampling its BSDF,
-  // weighed against each other (a lobe narrower than the sun is the BSDF's to sample).
+  // A glossy plane or sphere: the light at its point, by NEE and by sampling its BSDF, weighed
+  // against each other (a lobe narrower than the light is the BSDF's to sample).
   const glm::vec4 u_reflector = sampler.next_4d();
   const Frame reflector_frame(valid_shading_normal(n, n_shading, -ms.wi));
   const MaterialBsdf& reflector_bsdf = images.bsdf(ms.reflector);
   const MaterialBsdf::View reflector_view = reflector_bsdf.at(reflector_frame.to_local(-ms.wi));
-  const Vec3 origin_on_reflector = on_reflector.position;
-  auto sees_sun = [&](const Vec3& dir) {
-    return !ctx.scene.occluded(offset_origin(origin_on_reflector, n, dir), dir, 0.0f, kInfinity);
-  };
-  Vec3 sun_light(0.0f);
-  const LightSample ls = ms.sun->sample(on_reflector.position, reflector_frame.n, Vec2(u_reflector.x, u_reflector.y));
-  if (ls.valid() && glm::dot(ls.wi, n) > 0.0f) {
+  Vec3 arriving(0.0f);
+  const LightSample ls = ctx.lights.sample(ms.light, x, reflector_frame.n, Vec2(u_reflector.x, u_reflector.y));
+  if (ls.valid() && ls.pdf > 0.0f && glm::dot(ls.wi, n) > 0.0f) {
     const Vec3 wi_reflector = reflector_frame.to_local(ls.wi);
     const Vec3 f_reflector = reflector_bsdf.eval_lobes<false>(reflector_view, wi_reflector).total();
-    if (max_component(f_reflector) > 0.0f && sees_sun(ls.wi))
-      sun_light +=
+    if (max_component(f_reflector) > 0.0f && unoccluded(ls.wi, ls.distance))
+      arriving +=
           f_reflector * ls.weight * power_heuristic(ls.pdf, reflector_bsdf.pdf<false>(reflector_view, wi_reflector));
   }
   const BsdfSample bs = reflector_bsdf.sample<false>(reflector_view, u.w, Vec2(u_reflector.z, u_reflector.w));
   if (bs.valid() && !bs.is_delta) {
     const Vec3 dir = reflector_frame.to_world(bs.wi);
     LightHit h;
-    if (glm::dot(dir, n) > 0.0f && ms.sun->hit(on_reflector.position, n, dir, kInfinity, h) && sees_sun(dir))
-      sun_light += bs.weight * h.radiance * power_heuristic(bs.pdf, h.pdf);
+    if (glm::dot(dir, n) > 0.0f && ctx.lights.hit(ms.light, x, n, dir, h) && unoccluded(dir, h.distance))
+      arriving += bs.weight * h.radiance * power_heuristic(bs.pdf, h.pdf);
   }
-  light = sun_light * (mis / ms.pdf);
+  light = arriving * (mis / ms.pdf);
   return max_component(light) > 0.0f;
 }
 
@@ -191,14 +194,10 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
   bool prev_delta = true;
   bool prev_two_sided = false;  // the previous vertex transmits: NEE there chose among lights on both sides
   LightChoice light_choice;     // NEE's choice at the latest vertex, for MIS when the next ray hits a light
-  // A planar mirror the path met right after a non-delta vertex (mirror_images.h): the suns it
-  // reflects are weighed against NEE through the mirror at that vertex (its position, BSDF pdf).
-  int mirror = -1;
-  Vec3 before_mirror(0.0f);
-  float before_mirror_pdf = 0.0f;
-  // At a glossy plane met so: the share of the sun's light found there (by NEE, or by the next
-  // BSDF-sampled ray) that this path's strategy keeps; 1 elsewhere.
-  float sun_share = 1.0f;
+  // A reflector the path met right after a non-delta vertex (mirror_images.h): of the light of
+  // the lights it reflects, found there by NEE or by the next BSDF-sampled ray, the path keeps
+  // its share against NEE through the reflector at that vertex.
+  MirrorImages::PathShare reflector_share(ctx.mirror_images);
   Vec3 prev_hit_position(0.0f);
   float path_length = 0.0f;  // for texture footprints (a ray cone of the pixel's spread)
   // Cycles' clamping: a contribution whose RGB sum exceeds the limit is scaled down to it.
@@ -258,27 +257,16 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       out.depth = (passed_length + hit.t) * glm::dot(ray.dir, ctx.camera_forward);
     } else {
       if (kHittable) {
-        const bool through_mirror = mirror >= 0 && prev_delta;
         const float t_max = found ? passed_length + hit.t : kInfinity;
-        Vec3 e = lights.emission_along_ray(prev_position, prev_normal, ray.dir, t_max, prev_pdf, prev_delta,
-                                           kGlass && prev_two_sided, &light_choice, through_mirror ? 0.0f : sun_share);
-        if (through_mirror && !found)
-          e += ctx.mirror_images->suns_through(mirror, before_mirror, ray.dir, before_mirror_pdf);
+        const Vec3 e = lights.emission_along_ray(prev_position, prev_normal, ray.dir, t_max, prev_pdf, prev_delta,
+                                                 kGlass && prev_two_sided, &light_choice, reflector_share.active());
         deposit(throughput * e, bounce == 1);
       }
       if (!found) break;
-      mirror = -1;
-      sun_share = 1.0f;
+      reflector_share.clear();
       if (const int reflector = ctx.mirror_images && !prev_delta ? ctx.mirror_images->reflector_of(hit.material) : -1;
-          reflector >= 0) {
-        if (ctx.mirror_images->is_mirror(reflector)) {
-          mirror = reflector;
-          before_mirror = prev_hit_position;
-          before_mirror_pdf = prev_pdf;
-        } else {
-          sun_share = ctx.mirror_images->bsdf_share(reflector, prev_hit_position, ray.dir, prev_pdf);
-        }
-      }
+          reflector >= 0)
+        reflector_share.met(reflector, prev_hit_position, prev_normal, ray.dir, prev_pdf);
     }
 
     // Textures: the material's inputs and its normal map at this hit, averaged over the pixel's
@@ -379,7 +367,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
                                   ? power_heuristic(choice.probability * ls.pdf, bsdf.template pdf<kGlass>(view, wi))
                                   : 1.0f;
             Vec3 light = throughput * ls.weight * (mis / choice.probability);
-            if (sun_share < 1.0f && lights.sun(choice.index)) light *= sun_share;
+            if (const LightShare* share = reflector_share.active()) light *= share->of(choice.index);
             if (kAlpha) light *= transmittance;
             deposit_light_sample(light, f, bounce, true);
           }
@@ -387,7 +375,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       }
     }
 
-    // Next-event estimation of suns through planar mirrors, glossy planes and spheres; the light
+    // Next-event estimation of lights through planar mirrors, glossy planes and spheres; the light
     // counts as indirect, as it does when BSDF sampling finds it.
     if (ctx.mirror_images && bounce < ctx.settings.max_bounces) {
       LobeEval f;

@@ -1,5 +1,5 @@
-// Suns seen in planar mirrors (mirror_images.h): which materials are mirrors, and a wall standing on
-// a mirror floor against the closed form of its direct and mirrored sunlight.
+// Lights seen in mirrors, glossy planes and glossy spheres (mirror_images.h): which materials are
+// reflectors, closed forms for mirrored sunlight, and agreement with BSDF sampling over seeds.
 #include "scene_helpers.h"
 #include "torrance/integrator.h"
 #include "torrance/mirror_images.h"
@@ -167,6 +167,19 @@ std::vector<std::vector<double>> wall_blocks(const Scene& scene, bool images, in
   return out;
 }
 
+// The relative spread over seeds of the images' means (blocks: per seed, as wall_blocks).
+double spread(const std::vector<std::vector<double>>& blocks) {
+  double sum = 0.0, sum2 = 0.0;
+  for (const auto& b : blocks) {
+    double image = 0.0;
+    for (double v : b) image += v / double(b.size());
+    sum += image;
+    sum2 += image * image;
+  }
+  const double n = double(blocks.size()), mean = sum / n;
+  return std::sqrt(std::max(sum2 / n - mean * mean, 0.0)) / mean;
+}
+
 TEST(MirrorImages, GlossyFloorAgreesWithBsdfSamplingAndScattersLess) {
   const Material wall = test::diffuse_material(Vec3(0.7f));
   Material floor = mirror_metal();
@@ -183,19 +196,8 @@ TEST(MirrorImages, GlossyFloorAgreesWithBsdfSamplingAndScattersLess) {
   floor.roughness = 0.05f;
   Scene scene;
   build_wall_on_mirror(scene, wall, floor, 2.0f * kPi / 180.0f);
-  auto spread = [](const std::vector<std::vector<double>>& blocks) {
-    double sum = 0.0, sum2 = 0.0;
-    for (const auto& b : blocks) {
-      double image = 0.0;
-      for (double v : b) image += v / double(b.size());
-      sum += image;
-      sum2 += image * image;
-    }
-    const double n = double(blocks.size()), mean = sum / n;
-    return std::sqrt(std::max(sum2 / n - mean * mean, 0.0)) / mean;
-  };
   const auto with = wall_blocks(scene, true, 16, 8), without = wall_blocks(scene, false, 16, 8);
-  const test::SeedAgreement a = test::compare_over_seeds(without, with);
+  const test::SeedAgreement a = test::compare_over_seeds(with, without);
   EXPECT_NEAR(a.ratio, 1.0, 0.05);
   EXPECT_LT(spread(with), 0.25 * spread(without)) << spread(with) << " vs " << spread(without);
 }
@@ -313,6 +315,67 @@ TEST(MirrorImages, GlossyBallLightsTheFloorAsBsdfSamplingSays) {
   EXPECT_NEAR(a.ratio, 1.0, 0.01);
   EXPECT_LT(a.image_z, 4.0);
   EXPECT_LT(a.worst_block_z, 4.5);
+}
+
+// A plastic ball (red, a diffuse lobe under a GGX coat of roughness `roughness`) before a matte
+// wall (the plane x = 0, facing +x), a point light of radius 0.15 m and a disk light facing the
+// ball both behind the wall's plane, above its top: the wall gets only the ball's reflections of
+// the two lights. A delta point light and a light inside the ball are there too.
+// A plastic ball (red, a diffuse lobe under a GGX coat of roughness `roughness`) 1 m before a
+// matte wall (the plane x = 0, facing +x, up to z = 2), a point light of radius light_radius and a
+// disk light facing the ball, both behind the wall's plane and above its top: the wall gets only
+// the ball's reflections of the two lights. The camera sees the wall below the ball, not the
+// ball. A delta point light and a light inside the ball are there too.
+uint32_t build_ball_before_wall(Scene& scene, float roughness, float light_radius) {
+  scene.add_material(test::diffuse_material(Vec3(0.6f)));
+  Material plastic;
+  plastic.base_color = Vec3(0.55f, 0.1f, 0.08f);
+  plastic.roughness = roughness;
+  plastic.specular = 0.5f;
+  const uint32_t ball = scene.add_material(plastic);
+  const Vec3 center(1.0f, 0.0f, 0.0f);
+  test::add_quad(scene, Vec3(0, -5, -6), Vec3(0, 5, -6), Vec3(0, 5, 2), Vec3(0, -5, 2), 0);
+  add_sphere(scene, center, 0.5f, ball);
+  scene.lights().add_point(Vec3(-0.3f, -0.5f, 4.0f), 300.0f, Vec3(1.0f, 0.9f, 0.8f), light_radius);
+  const Vec3 disk_center(-0.3f, 1.0f, 3.8f), to_ball = glm::normalize(center - disk_center);
+  const Frame disk(to_ball);
+  scene.lights().add_area(disk_center, 2.0f * light_radius * disk.s, 2.0f * light_radius * disk.t, to_ball, true,
+                          150.0f, Vec3(0.8f, 0.9f, 1.0f), kPi);
+  scene.lights().add_point(Vec3(-1.5f, -1.5f, 1.0f), 5.0f, Vec3(1.0f), 0.0f);  // delta
+  scene.lights().add_point(center, 5.0f, Vec3(1.0f), 0.1f);                    // inside the ball
+  CameraParams cam;  // at (4, 0, -2.5) looking along -x, up +z
+  cam.camera_to_world = {0, 0, 1, 4, 1, 0, 0, 0, 0, 1, 0, -2.5f, 0, 0, 0, 1};
+  cam.lens_mm = 35.0f;
+  scene.set_camera(cam);
+  return ball;
+}
+
+// The ball's reflections on the wall with the strategy (64 spp) agree with BSDF sampling alone at
+// 512 spp (roughness 0.3, lights of radius 0.3 m, 32 seeds: at 64 spp BSDF sampling's rare finds
+// make its mean and its spread both come out low), and are found with much less scatter from seed
+// to seed (roughness 0.05, radius 0.1 m: a sharp reflection of small lights). Only the point
+// light with a radius and the disk make pairs with the ball.
+TEST(MirrorImages, PlasticBallReflectsPointAndDiskLightsAsBsdfSamplingSays) {
+  {
+    Scene scene;
+    const uint32_t ball = build_ball_before_wall(scene, 0.3f, 0.3f);
+    std::vector<MaterialBsdf> bsdfs;
+    for (uint32_t i = 0; i < scene.num_materials(); ++i) bsdfs.emplace_back(scene.material(i), BrdfModel::Principled);
+    const MirrorImages images(scene, bsdfs);
+    ASSERT_GE(images.reflector_of(ball), 0);
+    EXPECT_TRUE(images.is_sphere(images.reflector_of(ball)));
+    EXPECT_EQ(images.num_pairs(), 2u);
+    const test::SeedAgreement a =
+        test::compare_over_seeds(wall_blocks(scene, false, 512, 32), wall_blocks(scene, true, 64, 32));
+    EXPECT_NEAR(a.ratio, 1.0, 0.02);
+    EXPECT_LT(a.image_z, 4.0);
+    EXPECT_LT(a.worst_block_z, 4.5);
+  }
+  Scene scene;
+  build_ball_before_wall(scene, 0.05f, 0.1f);
+  const auto with = wall_blocks(scene, true, 16, 8), without = wall_blocks(scene, false, 16, 8);
+  const test::SeedAgreement a = test::compare_over_seeds(with, without);
+  EXPECT_LT(spread(with), 0.1) << "without the strategy: " << spread(without) << ", mean x" << 1.0 / a.ratio;
 }
 
 }  // namespace

@@ -61,6 +61,7 @@ class PointLight {
   bool hit(const Vec3& p, const Vec3& n, const Vec3& dir, float t_max, LightHit& out) const;
   bool is_delta() const { return radius_ <= 0.0f; }
   const Vec3& position() const { return position_; }
+  float radius() const { return radius_; }
 
  private:
   float spot_attenuation(const Vec3& p) const;
@@ -81,6 +82,8 @@ class AreaLight {
   bool hit(const Vec3& p, const Vec3& n, const Vec3& dir, float t_max, LightHit& out) const;
   float area() const { return area_; }
   const Vec3& center() const { return center_; }
+  // The radius of a sphere about the centre that holds the light.
+  float extent() const { return 0.5f * std::sqrt(glm::dot(edge_u_, edge_u_) + glm::dot(edge_v_, edge_v_)); }
 
  private:
   float spread_attenuation(float cos_emit) const;
@@ -166,15 +169,17 @@ class Lights {
   // shading normal n_prev) receives from lights it passes before distance t_max (infinite if
   // the ray escaped): spheres, area lights and, if escaped, the world and visible suns.
   // prev_choice: the LightChoice NEE used at p_prev (its probabilities), if any.
-  // sun_scale: the suns' light is multiplied by it (the caller shares it with another strategy:
-  // mirror_images.h).
+  // share: each light's light is multiplied by share->of(its index) (the caller shares it with
+  // another strategy: mirror_images.h); nullptr: by 1.
   Vec3 emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max, float bsdf_pdf,
                           bool bsdf_delta, bool two_sided = false, const LightChoice* prev_choice = nullptr,
-                          float sun_scale = 1.0f) const;
-  // Strategy `index`'s sun, or nullptr when it is another kind of light.
-  const SunLight* sun(size_t index) const {
-    return index < lights_.size() ? std::get_if<SunLight>(&lights_[index]) : nullptr;
-  }
+                          const LightShare* share = nullptr) const;
+  // What a ray from p along dir sees of strategy `index` alone, unoccluded (its MIS density too).
+  bool hit(size_t index, const Vec3& p, const Vec3& n, const Vec3& dir, LightHit& out) const;
+  // Strategy `index`'s light of each kind, or nullptr when it is another kind.
+  const SunLight* sun(size_t index) const { return get<SunLight>(index); }
+  const PointLight* point(size_t index) const { return get<PointLight>(index); }
+  const AreaLight* area(size_t index) const { return get<AreaLight>(index); }
 
   // False when no BSDF-sampled ray can ever see a light (only delta lights, no world or
   // emitting shapes), so emission_along_ray can be skipped.
@@ -192,6 +197,10 @@ class Lights {
     return f(world_);
   }
   float importance(size_t index, const Vec3& p, const Vec3& n, bool two_sided = false) const;
+  template <typename Light>
+  const Light* get(size_t index) const {
+    return index < lights_.size() ? std::get_if<Light>(&lights_[index]) : nullptr;
+  }
 
   std::vector<std::variant<SunLight, PointLight, AreaLight>> lights_;
   std::optional<MeshLight> mesh_;

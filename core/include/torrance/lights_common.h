@@ -21,6 +21,17 @@ struct LightSample {
 struct LightHit {
   Vec3 radiance{0.0f};
   float pdf = 0.0f;
+  float distance = std::numeric_limits<float>::infinity();  // along dir to the light's surface
+};
+
+// The part of each light's light that a path keeps where another strategy shares that light with
+// it (mirror_images.h): of(index) in [0, 1] for NEE strategy `index` of Lights.
+class LightShare {
+ public:
+  virtual float of(size_t light) const = 0;
+
+ protected:
+  ~LightShare() = default;
 };
 
 }  // namespace torrance

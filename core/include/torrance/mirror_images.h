@@ -1,6 +1,7 @@
-// Suns seen in flat mirrors, glossy planes and glossy spheres: next-event estimation of a sun's
+// Lights seen in flat mirrors, glossy planes and glossy spheres: next-event estimation of a
 // light reflected once by a surface with a delta or narrow specular lobe (a mirror, a polished
-// floor, a metal ball).
+// floor, a metal or plastic ball). Planes reflect suns; spheres reflect suns, point and spot lights
+// with a radius, and area lights.
 //
 // Such light reaches a diffuse or glossy point x only along paths x -> plane -> sun, which
 // ordinary NEE cannot sample at x, and BSDF sampling at x finds only when its direction happens to
@@ -23,15 +24,21 @@
 //    strategy the rest.
 //  * Glossy sphere (a material making one sphere, same conditions): the same with the cone about
 //    the sphere's highlight seen from x, the point whose normal halves the directions to x and to
-//    the sun (a few fixed-point steps from the sphere's centre), of the angular size the
-//    sun and the lobe give it there: a convex mirror's image of the sun is small and moves with x.
+//    the light (a few fixed-point steps from the sphere's centre), of the angular size the
+//    light and the lobe give it there: a convex mirror's image of a light is small and moves with x.
+//    Then NEE of that light and BSDF sampling at the sphere's point, as for a glossy plane.
 //
-// Suns of angle 0 are left out: no BSDF-sampled path can reach a delta sun through a plane's
-// delta lobe, so Cycles renders no such light, and Torrance matches it. Only world-space meshes
+// Each (reflector, light) pair is chosen in proportion to the light it can send to x (pair_weight),
+// and a path that met a reflector after a BSDF-sampled direction keeps, of each paired light's
+// light found there, its own share (PathShare); lights in no pair are the path's alone.
+//
+// Delta lights (suns of angle 0, point lights of radius 0) are left out: no BSDF-sampled path can
+// reach them through a delta lobe, so Cycles renders no such light, and Torrance matches it. Only world-space meshes
 // are examined for planes (instanced geometry is not), and the strategy is not used in scenes with
 // alpha (a BSDF-sampled path passes transparent surfaces this strategy's rays would stop at).
 #pragma once
 
+#include "torrance/lights.h"
 #include "torrance/material_bsdf.h"
 #include "torrance/scene.h"
 
@@ -43,12 +50,16 @@ class MirrorImages {
  public:
   // Glossy reflectors up to roughness 0.3 (Principled) are sampled.
   static constexpr float kMaxGlossyAlpha = 0.09f;
+  // At most this many (reflector, light) pairs, the brightest reflections first: each costs a
+  // little at every shading point.
+  static constexpr size_t kMaxPairs = 32;
 
   // The scene's reflectors -- planar mirrors, glossy planes and glossy spheres (bsdfs: the
-  // render's, one per material) -- and its suns.
+  // render's, one per material) -- and the lights they reflect.
   MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& bsdfs);
-  bool empty() const { return reflectors_.empty() || suns_.empty(); }
+  bool empty() const { return pairs_.empty(); }
   size_t num_reflectors() const { return reflectors_.size(); }
+  size_t num_pairs() const { return pairs_.size(); }
   // The reflector made of material `material` (an index for the queries below), or -1.
   int reflector_of(uint32_t material) const {
     return material < reflector_of_material_.size() ? reflector_of_material_[material] : -1;
@@ -58,58 +69,98 @@ class MirrorImages {
   bool is_sphere(int reflector) const { return reflectors_[size_t(reflector)].radius > 0.0f; }
 
   struct Sample {
-    Vec3 wi{0.0f};      // from the shading point towards the sun's image in the reflector
+    Vec3 wi{0.0f};      // from the shading point towards the light's image in the reflector
     float pdf = 0.0f;   // the solid-angle density of wi, the pair's choice included
     int reflector = -1;
+    size_t light = 0;   // the light's NEE strategy index in Lights: at a glossy reflector, NEE of it
     // Mirrors: the direction from the mirror to the sun (wi reflected) and the sun's radiance
-    // over its cone's density. Glossy reflectors: the sun, for NEE at the reflector's point.
+    // over its cone's density.
     Vec3 to_sun{0.0f};
     Vec3 sun_weight{0.0f};
-    const SunLight* sun = nullptr;
   };
-  // One direction towards a sun's image in a reflector, the (reflector, sun) pair chosen among
-  // those p sees (p off a plane on the side the sun shines on, both faces reflecting; outside a sphere)
-  // in proportion to pair_weight, at the rate run_probability. False: none this time.
-  bool sample(const Vec3& p, float u_pair, const Vec2& u, Sample& out) const;
+  // One direction from p (shading normal n) towards a light's image in a reflector, the
+  // (reflector, light) pair chosen among those p sees in proportion to pair_weight, at the rate
+  // run_probability. False: none this time.
+  bool sample(const Vec3& p, const Vec3& n, float u_pair, const Vec2& u, Sample& out) const;
   // The reflectance of mirror `reflector` for light arriving from direction to_sun.
   Vec3 reflectance(int reflector, const Vec3& to_sun) const;
-  // Mirrors: what the suns send along `dir` (from a point on mirror `reflector`, unoccluded) to a
-  // path that left p with BSDF density bsdf_pdf: their radiance weighted against this strategy.
-  Vec3 suns_through(int reflector, const Vec3& p, const Vec3& dir, float bsdf_pdf) const;
-  // Glossy reflectors: the share of the sun's light found at the point of glossy `reflector` that a
-  // BSDF-sampled direction wi (density bsdf_pdf) from p reached: the power heuristic against this
-  // strategy's density of wi (1 where it does not sample wi).
-  float bsdf_share(int reflector, const Vec3& p, const Vec3& wi, float bsdf_pdf) const;
+  // The share of light `light` (a Lights index) found after a BSDF-sampled direction wi (density
+  // bsdf_pdf) from p (shading normal n) met `reflector` -- at a glossy reflector by NEE or BSDF sampling there, after
+  // a mirror along the reflected ray: the power heuristic against this strategy's density of wi
+  // (1 where it does not sample wi, or the pair does not exist).
+  float bsdf_share(int reflector, const Vec3& p, const Vec3& n, const Vec3& wi, float bsdf_pdf, size_t light) const;
+
+  // What a path keeps of the lights found at (and right after) the reflector it has just met.
+  class PathShare final : public LightShare {
+   public:
+    explicit PathShare(const MirrorImages* images) : images_(images) {}
+    void clear() { reflector_ = -1; }
+    // The path left `from` (shading normal n) along wi with BSDF density bsdf_pdf and met `reflector`.
+    void met(int reflector, const Vec3& from, const Vec3& n, const Vec3& wi, float bsdf_pdf) {
+      reflector_ = reflector, from_ = from, n_ = n, wi_ = wi, bsdf_pdf_ = bsdf_pdf;
+    }
+    // Null when the path keeps every light's light whole.
+    const LightShare* active() const { return reflector_ >= 0 ? this : nullptr; }
+    float of(size_t light) const override {
+      return images_->bsdf_share(reflector_, from_, n_, wi_, bsdf_pdf_, light);
+    }
+
+   private:
+    const MirrorImages* images_;
+    int reflector_ = -1;
+    Vec3 from_{0.0f}, n_{0.0f}, wi_{0.0f};
+    float bsdf_pdf_ = 0.0f;
+  };
 
  private:
   struct Reflector {
     Vec3 point, normal;  // a sphere: its centre (normal unused)
     const MaterialBsdf* bsdf;
     bool mirror;
-    float image_one_minus_cos;  // glossy plane: of the sun's image cone's half-angle (sun + lobe)
-    float radius = 0.0f;        // > 0: a sphere
-    float highlight_half = 0.0f;  // sphere: the angular radius of its highlight's normals
-    float reflectance = 1.0f;     // its specular reflectance at normal incidence, roughly
+    float radius = 0.0f;       // > 0: a sphere
+    float lobe = 0.0f;         // glossy: how far the lobe widens a light's image (2 atan(3 alpha))
+    float reflectance = 1.0f;  // its specular reflectance at normal incidence, roughly
   };
-  bool sees(const Reflector& reflector, const SunLight& sun, const Vec3& p) const;
-  // How often sample() at p picks the pair (reflector, sun), relative to total_weight(p): 0 where
-  // p does not see it, else the reflectance, times r^2 / (4 d^2) for a sphere (the share
-  // of the sun's power a convex mirror of radius r sends to distance d).
-  float pair_weight(const Reflector& reflector, const SunLight& sun, const Vec3& p) const;
+  // A light the strategy aims at: a non-delta sun, a point or spot light with a radius, an area light.
+  struct Source {
+    size_t index;  // its NEE strategy index in Lights
+    const SunLight* sun = nullptr;
+    const PointLight* point = nullptr;
+    const AreaLight* area = nullptr;
+    Vec3 toward(const Vec3& x) const;          // unit direction from x to the light (its centre)
+    float angular_radius(const Vec3& x) const;  // of the light seen from x (at most pi/2)
+    // Its luminance on a surface at x with normal n (default: facing it), unshadowed, roughly.
+    float irradiance(const Vec3& x) const { return irradiance(x, toward(x)); }
+    float irradiance(const Vec3& x, const Vec3& n) const;
+  };
+  struct Pair {
+    int reflector, source;
+    float image_one_minus_cos = 0.0f;  // glossy plane: of the sun's image cone's half-angle (sun + lobe)
+  };
+  // How often sample() at p picks the pair, relative to total_weight(p): 0 where p does not see
+  // it (p off a plane on the side the sun shines on, both faces reflecting; outside a sphere), else
+  // the light the reflector can send to p: a plane's reflectance x the sun's irradiance; a
+  // sphere's reflectance x r^2 / (4 d^2) x the light's irradiance at its centre (the share of the
+  // light it catches that a convex mirror of radius r sends to distance d).
+  float pair_weight(const Pair& pair, const Vec3& p) const;
   float total_weight(const Vec3& p) const;
-  // The strategy runs at p with probability min(1, kRunScale x total_weight(p)): where the
-  // reflectors can send only a little of the sun's light (a small ball far away), it mostly leaves
-  // that light to BSDF sampling rather than spend rays on it.
+  // The strategy runs at p with probability min(1, kRunScale x total_weight(p) / direct), direct:
+  // the paired lights' own irradiance at p on its shading normal n: where the reflectors send
+  // only a little of what the lights bring directly (a small ball far away), it mostly leaves that
+  // light to BSDF sampling rather than spend rays on it.
   static constexpr float kRunScale = 10.0f;
-  static float run_probability(float total);
-  // Glossy: the cone the strategy aims p into at `reflector` (its axis, 1 - cos of its half-angle).
-  void image_cone(const Reflector& reflector, const Vec3& p, Vec3& axis, float& one_minus_cos) const;
-  // Glossy: the density with which the strategy aims p along wi at `reflector` (given the pair).
-  float image_cone_pdf(const Reflector& reflector, const Vec3& p, const Vec3& wi) const;
+  float run_probability(const Vec3& p, const Vec3& n, float total) const;
+  // Glossy: the cone the strategy aims p into for `pair` (its axis, 1 - cos of its half-angle).
+  void image_cone(const Pair& pair, const Vec3& p, Vec3& axis, float& one_minus_cos) const;
+  // The density with which the strategy aims p (normal n) along wi for `pair`, its choice included.
+  float pair_pdf(const Pair& pair, const Vec3& p, const Vec3& n, const Vec3& wi) const;
 
   std::vector<Reflector> reflectors_;
+  std::vector<Source> sources_;
+  std::vector<Pair> pairs_;
   std::vector<int> reflector_of_material_;
-  std::vector<const SunLight*> suns_;
+  std::vector<int> pair_of_;  // [reflector * num_lights_ + light]: the pair's index, or -1
+  size_t num_lights_ = 0;
 };
 
 }  // namespace torrance
