@@ -55,7 +55,10 @@ CONFIG = {
     # misses: correct renders now read p90 0.0015-0.0022 (see the notes below).
     "glint": dict(samples=512, ratio=(0.965, 1.035), block_mean=0.014, block_p90=0.004),
     "glossy_chain": dict(samples=256, ratio=(0.99, 1.01), block_mean=0.012, block_p90=0.035),
-    "small_lights": dict(samples=256, ratio=(0.99, 1.01), block_mean=0.015, block_p90=0.03),
+    # small_lights: block mean 0.015 -> 0.008, p90 0.03 -> 0.015 with lights in glossy spheres
+    # (02370e2): correct renders read 0.0040-0.0045 / 0.0070-0.0086 over 4 seeds (were 0.0085 /
+    # 0.0167): the plastic balls' reflections of the small lights on the floor are sampled.
+    "small_lights": dict(samples=256, ratio=(0.99, 1.01), block_mean=0.008, block_p90=0.015),
     "many_lights": dict(samples=256, ratio=(0.99, 1.01), block_mean=0.01, block_p90=0.02),
 }
 SEED = 0

@@ -64,7 +64,7 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
   if (sources_.empty()) return;
   struct Candidate {
     Pair pair;
-    float strength;  // the light the reflector sends out, roughly (planes first)
+    float rank;  // the light the reflector sends out, roughly (planes first)
   };
   std::vector<Candidate> candidates;
   for (uint32_t m = 0; m < scene.num_materials(); ++m) {
@@ -86,7 +86,8 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
       for (size_t s = 0; s < sources_.size(); ++s) {
         if (!sources_[s].sun) continue;  // planes: suns only
         const float image_half = std::min(sources_[s].angular_radius(plane->point) + lobe, 0.5f * kPi);
-        candidates.push_back({Pair{index, int(s), one_minus_cos_of(image_half)}, kInfinity});
+        const float strength = reflectance * sources_[s].irradiance(plane->point);
+        candidates.push_back({Pair{index, int(s), strength, one_minus_cos_of(image_half)}, kInfinity});
       }
     } else if (const std::optional<Scene::Sphere> sphere = glossy ? scene.material_sphere(m) : std::nullopt) {
       reflectors_.push_back(Reflector{sphere->center, Vec3(0.0f), &bsdf, false, sphere->radius, lobe, reflectance});
@@ -96,8 +97,9 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
         if (!source.sun && glm::length((source.point ? source.point->position() : source.area->center()) -
                                        sphere->center) <= sphere->radius)
           continue;
-        const float strength = reflectance * sphere->radius * sphere->radius * source.irradiance(sphere->center);
-        if (strength > 0.0f) candidates.push_back({Pair{index, int(s)}, strength});
+        const float strength = reflectance * source.irradiance(sphere->center);
+        if (strength > 0.0f)
+          candidates.push_back({Pair{index, int(s), strength}, strength * sphere->radius * sphere->radius});
       }
     } else {
       continue;
@@ -106,12 +108,12 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
   }
   // The brightest pairs, in the order found.
   if (candidates.size() > kMaxPairs) {
-    std::vector<float> strengths;
-    for (const Candidate& c : candidates) strengths.push_back(c.strength);
-    std::nth_element(strengths.begin(), strengths.begin() + (kMaxPairs - 1), strengths.end(), std::greater<float>());
-    const float weakest_kept = strengths[kMaxPairs - 1];
+    std::vector<float> ranks;
+    for (const Candidate& c : candidates) ranks.push_back(c.rank);
+    std::nth_element(ranks.begin(), ranks.begin() + (kMaxPairs - 1), ranks.end(), std::greater<float>());
+    const float weakest_kept = ranks[kMaxPairs - 1];
     for (const Candidate& c : candidates)
-      if (c.strength >= weakest_kept && pairs_.size() < kMaxPairs) pairs_.push_back(c.pair);
+      if (c.rank >= weakest_kept && pairs_.size() < kMaxPairs) pairs_.push_back(c.pair);
   } else {
     for (const Candidate& c : candidates) pairs_.push_back(c.pair);
   }
@@ -127,13 +129,19 @@ float MirrorImages::pair_weight(const Pair& pair, const Vec3& p) const {
     const float side = glm::dot(p - reflector.point, reflector.normal);
     const float sun_side = glm::dot(source.sun->to_light(), reflector.normal);
     const bool sees = (side > 0.0f && sun_side > 0.0f) || (side < 0.0f && sun_side < 0.0f);
-    return sees ? reflector.reflectance * source.irradiance(p) : 0.0f;
+    return sees ? pair.strength : 0.0f;
   }
   // A convex mirror spreads the light it catches, pi r^2 E R, evenly: E R r^2 / (4 d^2) at d.
   const Vec3 d = p - reflector.point;
   const float d2 = glm::dot(d, d), r2 = reflector.radius * reflector.radius;
   if (!(d2 > r2 * 1.0001f)) return 0.0f;  // on or inside the ball
-  return reflector.reflectance * std::min(r2 / (4.0f * d2), 1.0f) * source.irradiance(reflector.point);
+  return pair.strength * std::min(r2 / (4.0f * d2), 1.0f);
+}
+
+float MirrorImages::pair_weights(const Vec3& p, float* weights) const {
+  float total = 0.0f;
+  for (size_t i = 0; i < pairs_.size(); ++i) total += weights[i] = pair_weight(pairs_[i], p);
+  return total;
 }
 
 float MirrorImages::total_weight(const Vec3& p) const {
@@ -191,19 +199,19 @@ float MirrorImages::pair_pdf(const Pair& pair, const Vec3& p, const Vec3& n, con
 }
 
 bool MirrorImages::sample(const Vec3& p, const Vec3& n, float u_pair, const Vec2& u, Sample& out) const {
-  const float total = total_weight(p);
+  float weights[kMaxPairs];
+  const float total = pair_weights(p, weights);
   if (!(total > 0.0f)) return false;
   const float run = run_probability(p, n, total);
   if (u_pair >= run) return false;
   // The pair whose share of the total holds u_pair (the last one seen, if rounding leaves some).
   float target = u_pair / run * total, weight = 0.0f;
   const Pair* chosen = nullptr;
-  for (const Pair& pair : pairs_) {
-    const float w = pair_weight(pair, p);
-    if (!(w > 0.0f)) continue;
-    weight = w;
-    chosen = &pair;
-    if ((target -= w) < 0.0f) break;
+  for (size_t i = 0; i < pairs_.size(); ++i) {
+    if (!(weights[i] > 0.0f)) continue;
+    weight = weights[i];
+    chosen = &pairs_[i];
+    if ((target -= weight) < 0.0f) break;
   }
   const Reflector& reflector = reflectors_[size_t(chosen->reflector)];
   const Source& source = sources_[size_t(chosen->source)];

@@ -135,14 +135,17 @@ class MirrorImages {
   };
   struct Pair {
     int reflector, source;
+    // The reflector's reflectance x the light's irradiance on it (a sphere: at its centre).
+    float strength;
     float image_one_minus_cos = 0.0f;  // glossy plane: of the sun's image cone's half-angle (sun + lobe)
   };
   // How often sample() at p picks the pair, relative to total_weight(p): 0 where p does not see
   // it (p off a plane on the side the sun shines on, both faces reflecting; outside a sphere), else
-  // the light the reflector can send to p: a plane's reflectance x the sun's irradiance; a
-  // sphere's reflectance x r^2 / (4 d^2) x the light's irradiance at its centre (the share of the
-  // light it catches that a convex mirror of radius r sends to distance d).
+  // the light the reflector can send to p: a plane's strength; a sphere's x r^2 / (4 d^2) (the
+  // share of the light it catches that a convex mirror of radius r sends to distance d).
   float pair_weight(const Pair& pair, const Vec3& p) const;
+  // The pairs' weights at p (weights: num_pairs() of them) and their sum.
+  float pair_weights(const Vec3& p, float* weights) const;
   float total_weight(const Vec3& p) const;
   // The strategy runs at p with probability min(1, kRunScale x total_weight(p) / direct), direct:
   // the paired lights' own irradiance at p on its shading normal n: where the reflectors send
