@@ -73,12 +73,14 @@ class TorranceSceneSettings(bpy.types.PropertyGroup):
         default=True,
     )
     use_mirror_images: BoolProperty(
-        name="Suns in Mirrors",
-        description="Sample the image of each sun in flat mirrors (roughness 0), flat glossy "
-                    "surfaces and glossy spheres (roughness up to 0.3) directly, so that a mirror, "
-                    "a polished floor or a metal ball lights the scene with the sun's reflection "
-                    "without caustic fireflies; converges to the same image. Suns of angle 0 are "
-                    "left out, as Cycles renders no light from them through a mirror",
+        name="Lights in Mirrors",
+        description="Sample the image of each sun in flat mirrors (roughness 0) and flat glossy "
+                    "surfaces, and of each sun, point, spot and area light in glossy spheres "
+                    "(roughness up to 0.3), directly, so that a mirror, a polished floor or a "
+                    "metal or plastic ball lights the scene with the light's reflection without "
+                    "caustic fireflies; converges to the same image. Suns of angle 0 and point "
+                    "lights of radius 0 are left out, as Cycles renders no light from them "
+                    "through a mirror",
         default=True,
     )
     use_guiding: BoolProperty(

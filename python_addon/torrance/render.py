@@ -179,7 +179,7 @@ class _Session:
 
 def sampling_settings(ts):
     """RenderSettings arguments for the Sampling panel's Noise Threshold, Time Limit, Path
-    Guiding, Efficiency Roulette and Suns in Mirrors and the Light Paths panel's Clamping, from
+    Guiding, Efficiency Roulette and Lights in Mirrors and the Light Paths panel's Clamping, from
     scene.torrance (final renders)."""
     threshold = 0.0
     if ts.use_adaptive_sampling:

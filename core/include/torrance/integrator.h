@@ -94,9 +94,10 @@ struct RenderSettings {
   // independent of the threads' order); it learns from the pixels rendered, so a window gets
   // other noise than the same pixels of the whole frame.
   bool guiding = true;
-  // Next-event estimation of suns seen in planar perfect mirrors (mirror_images.h): the light a
-  // mirror floor reflects from a small sun onto the scene without its caustic fireflies. It
-  // changes nothing in scenes without such a mirror (nor in scenes with alpha, where it is not used).
+  // Next-event estimation of lights seen in mirrors, glossy planes and glossy spheres
+  // (mirror_images.h): the light a mirror floor or a polished ball reflects from a small sun or
+  // lamp onto the scene, without its caustic fireflies. It changes nothing in scenes without such
+  // a reflector (nor in scenes with alpha, where it is not used).
   bool mirror_images = true;
   float guiding_training_fraction = 0.25f;
   GuidingOptions guiding_options;  // the SD-tree's parameters (C++ only: tests)

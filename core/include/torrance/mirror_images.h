@@ -15,7 +15,7 @@
 //    reflectance. BSDF sampling at x followed by the mirror's delta reflection finds the same
 //    paths: both strategies weigh them by the power heuristic over the BSDF's pdf of wi at x and
 //    this strategy's pdf (the cone's density times the choice of the pair), so the weights sum to 1.
-//  * Glossy plane (opaque, specular GGX alpha at most kMaxGlossyAlpha, one sun in the scene): aim
+//  * Glossy plane (opaque, specular GGX alpha at most kMaxGlossyAlpha): for each sun, aim
 //    x uniformly into a cone about the sun's mirror image, widened by the lobe (half-angle = the
 //    sun's + 2 atan(3 alpha), where GGX's D has fallen to 1 %), then at the plane point estimate
 //    the sun's light through the plane's BSDF (NEE and BSDF sampling). Against BSDF sampling at x
