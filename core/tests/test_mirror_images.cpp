@@ -58,6 +58,10 @@ TEST(MirrorImages, OnlyFlatMirrorsAndGlossyPlanesAreSampled) {
   const std::optional<Scene::Plane> plane = scene.material_plane(flat);
   ASSERT_TRUE(plane);
   EXPECT_NEAR(std::abs(plane->normal.z), 1.0f, 1e-6f);
+  EXPECT_EQ(images.num_pairs(), 2u);
+  // A second sun: each plane reflects both (a glossy plane's share is per light).
+  scene.lights().add_sun(Vec3(0.3f, 0, -1), 0.5f, Vec3(1.0f), 0.1f);
+  EXPECT_EQ(MirrorImages(scene, bsdfs).num_pairs(), 4u);
 
   // A delta sun has no image: Cycles cannot render its light through a mirror either.
   Scene delta_sun;
