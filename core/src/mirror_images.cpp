@@ -41,6 +41,11 @@ Vec3 MirrorImages::Source::toward(const Vec3& x) const {
   return glm::normalize((point ? point->position() : area->center()) - x);
 }
 
+bool MirrorImages::Source::above(const Vec3& origin, const Vec3& n) const {
+  if (sun) return glm::dot(sun->to_light(), n) > 0.0f;
+  return glm::dot((point ? point->position() : area->center()) - origin, n) > 0.0f;
+}
+
 float MirrorImages::Source::angular_radius(const Vec3& x) const {
   if (sun) return std::acos(1.0f - sun->one_minus_cos());
   if (point) return angular_radius_of(point->radius(), glm::length(point->position() - x));
@@ -83,12 +88,9 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
     const int index = int(reflectors_.size());
     if (const std::optional<Scene::Plane> plane = scene.material_plane(m)) {
       reflectors_.push_back(Reflector{plane->point, plane->normal, &bsdf, mirror, 0.0f, lobe, reflectance});
-      for (size_t s = 0; s < sources_.size(); ++s) {
-        if (!sources_[s].sun) continue;  // planes: suns only
-        const float image_half = std::min(sources_[s].angular_radius(plane->point) + lobe, 0.5f * kPi);
-        const float strength = reflectance * sources_[s].irradiance(plane->point);
-        candidates.push_back({Pair{index, int(s), strength, one_minus_cos_of(image_half)}, kInfinity});
-      }
+      for (size_t s = 0; s < sources_.size(); ++s)
+        if (glossy || sources_[s].sun)  // mirrors: suns only
+          candidates.push_back({Pair{index, int(s), reflectance}, kInfinity});
     } else if (const std::optional<Scene::Sphere> sphere = glossy ? scene.material_sphere(m) : std::nullopt) {
       reflectors_.push_back(Reflector{sphere->center, Vec3(0.0f), &bsdf, false, sphere->radius, lobe, reflectance});
       for (size_t s = 0; s < sources_.size(); ++s) {
@@ -125,11 +127,10 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
 float MirrorImages::pair_weight(const Pair& pair, const Vec3& p) const {
   const Reflector& reflector = reflectors_[size_t(pair.reflector)];
   const Source& source = sources_[size_t(pair.source)];
-  if (reflector.radius <= 0.0f) {  // a plane and a sun, on the same side
+  if (reflector.radius <= 0.0f) {  // a plane and a light, on the same side
     const float side = glm::dot(p - reflector.point, reflector.normal);
-    const float sun_side = glm::dot(source.sun->to_light(), reflector.normal);
-    const bool sees = (side > 0.0f && sun_side > 0.0f) || (side < 0.0f && sun_side < 0.0f);
-    return sees ? pair.strength : 0.0f;
+    if (side == 0.0f || (side > 0.0f) != source.above(reflector.point, reflector.normal)) return 0.0f;
+    return pair.strength * source.irradiance(mirrored(reflector, p));
   }
   // A convex mirror spreads the light it catches, pi r^2 E R, evenly: E R r^2 / (4 d^2) at d.
   const Vec3 d = p - reflector.point;
@@ -162,8 +163,10 @@ void MirrorImages::image_cone(const Pair& pair, const Vec3& p, Vec3& axis, float
   const Reflector& reflector = reflectors_[size_t(pair.reflector)];
   const Source& source = sources_[size_t(pair.source)];
   if (reflector.radius <= 0.0f) {
-    axis = reflect_in(source.sun->to_light(), reflector.normal);
-    one_minus_cos = pair.image_one_minus_cos;
+    // The light's image seen from p: the light seen from p's mirror image, reflected.
+    const Vec3 image_of_p = mirrored(reflector, p);
+    axis = reflect_in(source.toward(image_of_p), reflector.normal);
+    one_minus_cos = one_minus_cos_of(std::min(source.angular_radius(image_of_p) + reflector.lobe, 0.5f * kPi));
     return;
   }
   // The highlight: the point h whose normal halves the directions to p and to the light.

@@ -382,5 +382,52 @@ TEST(MirrorImages, PlasticBallReflectsPointAndDiskLightsAsBsdfSamplingSays) {
   EXPECT_LT(spread(with), 0.1) << "without the strategy: " << spread(without) << ", mean x" << 1.0 / a.ratio;
 }
 
+// A matte wall (the plane x = 0, facing +x) on a glossy metal floor (z = 0) of roughness
+// `roughness`, a spot light of radius 0.15 m pointing down 1 m before it, its cone (40 degrees)
+// missing the wall: the wall gets only the floor's reflection of the spot (the camera sees the
+// wall alone). A delta point light behind the wall makes no pair.
+void build_spot_over_glossy_floor(Scene& scene, float roughness) {
+  scene.add_material(test::diffuse_material(Vec3(0.7f)));
+  Material floor = mirror_metal();
+  floor.roughness = roughness;
+  scene.add_material(floor);
+  test::add_quad(scene, Vec3(0, -5, 0), Vec3(0, 5, 0), Vec3(0, 5, 8), Vec3(0, -5, 8), 0);
+  test::add_quad(scene, Vec3(0, -5, 0), Vec3(10, -5, 0), Vec3(10, 5, 0), Vec3(0, 5, 0), 1);
+  scene.lights().add_spot(Vec3(1.0f, 0.0f, 1.5f), Vec3(0.0f, 0.0f, -1.0f), 500.0f, Vec3(1.0f, 0.95f, 0.9f), 0.15f,
+                          40.0f * kPi / 180.0f, 0.0f);
+  scene.lights().add_point(Vec3(-1.0f, 0.0f, 1.0f), 5.0f, Vec3(1.0f), 0.0f);  // delta, behind the wall
+  CameraParams cam;  // at (4, 0, 3) looking along -x, up +z
+  cam.camera_to_world = {0, 0, 1, 4, 1, 0, 0, 0, 0, 1, 0, 3, 0, 0, 0, 1};
+  cam.lens_mm = 35.0f;
+  scene.set_camera(cam);
+}
+
+// The floor's reflection of the spot on the wall with the strategy (64 spp) agrees with BSDF
+// sampling alone at 512 spp (roughness 0.3, 32 seeds) and scatters little from seed to seed where
+// the reflection is sharp (roughness 0.05, 8 seeds at 16 spp). The glossy floor pairs with the
+// spot; the delta light pairs with nothing.
+TEST(MirrorImages, GlossyFloorReflectsASpotLightAsBsdfSamplingSays) {
+  {
+    Scene scene;
+    build_spot_over_glossy_floor(scene, 0.3f);
+    std::vector<MaterialBsdf> bsdfs;
+    for (uint32_t i = 0; i < scene.num_materials(); ++i) bsdfs.emplace_back(scene.material(i), BrdfModel::Principled);
+    const MirrorImages images(scene, bsdfs);
+    ASSERT_GE(images.reflector_of(1), 0);
+    EXPECT_FALSE(images.is_sphere(images.reflector_of(1)));
+    EXPECT_EQ(images.num_pairs(), 1u);
+    const test::SeedAgreement a =
+        test::compare_over_seeds(wall_blocks(scene, false, 512, 32), wall_blocks(scene, true, 64, 32));
+    EXPECT_NEAR(a.ratio, 1.0, 0.02);
+    EXPECT_LT(a.image_z, 4.0);
+    EXPECT_LT(a.worst_block_z, 4.5);
+  }
+  Scene scene;
+  build_spot_over_glossy_floor(scene, 0.05f);
+  const auto with = wall_blocks(scene, true, 16, 8), without = wall_blocks(scene, false, 16, 8);
+  const test::SeedAgreement a = test::compare_over_seeds(with, without);
+  EXPECT_LT(spread(with), 0.3 * spread(without)) << spread(with) << " vs " << spread(without);
+}
+
 }  // namespace
 }  // namespace torrance

@@ -1,7 +1,7 @@
 // Lights seen in flat mirrors, glossy planes and glossy spheres: next-event estimation of a
 // light reflected once by a surface with a delta or narrow specular lobe (a mirror, a polished
-// floor, a metal or plastic ball). Planes reflect suns; spheres reflect suns, point and spot lights
-// with a radius, and area lights.
+// floor, a metal or plastic ball). Mirrors reflect suns; glossy planes and spheres reflect suns,
+// point and spot lights with a radius, and area lights.
 //
 // Such light reaches a diffuse or glossy point x only along paths x -> plane -> sun, which
 // ordinary NEE cannot sample at x, and BSDF sampling at x finds only when its direction happens to
@@ -15,13 +15,15 @@
 //    reflectance. BSDF sampling at x followed by the mirror's delta reflection finds the same
 //    paths: both strategies weigh them by the power heuristic over the BSDF's pdf of wi at x and
 //    this strategy's pdf (the cone's density times the choice of the pair), so the weights sum to 1.
-//  * Glossy plane (opaque, specular GGX alpha at most kMaxGlossyAlpha): for each sun, aim
-//    x uniformly into a cone about the sun's mirror image, widened by the lobe (half-angle = the
-//    sun's + 2 atan(3 alpha), where GGX's D has fallen to 1 %), then at the plane point estimate
-//    the sun's light through the plane's BSDF (NEE and BSDF sampling). Against BSDF sampling at x
-//    the same weighting applies, the sun's light found at the plane point after a BSDF-sampled
-//    direction (by NEE or by BSDF sampling there) taking the BSDF's share (bsdf_share), this
-//    strategy the rest.
+//  * Glossy plane (opaque, specular GGX alpha at most kMaxGlossyAlpha): aim x uniformly into a
+//    cone about the light's mirror image (a sun's reflected direction; a lamp's mirrored position,
+//    seen from x as the lamp is seen from x's mirror image), widened by the lobe (half-angle = the
+//    light's + 2 atan(3 alpha), where GGX's D has fallen to 1 %), then at the plane point estimate
+//    the light through the plane's BSDF (NEE and BSDF sampling). Against BSDF sampling at x the
+//    same weighting applies, the light found at the plane point after a BSDF-sampled direction
+//    (by NEE or by BSDF sampling there) taking the BSDF's share (bsdf_share), this strategy the
+//    rest. (Mirrors reflect suns only: Cycles' point light is a disk facing the point it lights,
+//    which a mirrored lamp would face differently from the mirror's point.)
 //  * Glossy sphere (a material making one sphere, same conditions): the same with the cone about
 //    the sphere's highlight seen from x, the point whose normal halves the directions to x and to
 //    the light (a few fixed-point steps from the sphere's centre), of the angular size the
@@ -128,6 +130,8 @@ class MirrorImages {
     const PointLight* point = nullptr;
     const AreaLight* area = nullptr;
     Vec3 toward(const Vec3& x) const;          // unit direction from x to the light (its centre)
+    // Whether the light is on the positive side of the plane through `origin` with normal n.
+    bool above(const Vec3& origin, const Vec3& n) const;
     float angular_radius(const Vec3& x) const;  // of the light seen from x (at most pi/2)
     // Its luminance on a surface at x with normal n (default: facing it), unshadowed, roughly.
     float irradiance(const Vec3& x) const { return irradiance(x, toward(x)); }
@@ -135,14 +139,14 @@ class MirrorImages {
   };
   struct Pair {
     int reflector, source;
-    // The reflector's reflectance x the light's irradiance on it (a sphere: at its centre).
+    // A sphere: its reflectance x the light's irradiance at its centre; a plane: its reflectance.
     float strength;
-    float image_one_minus_cos = 0.0f;  // glossy plane: of the sun's image cone's half-angle (sun + lobe)
   };
   // How often sample() at p picks the pair, relative to total_weight(p): 0 where p does not see
-  // it (p off a plane on the side the sun shines on, both faces reflecting; outside a sphere), else
-  // the light the reflector can send to p: a plane's strength; a sphere's x r^2 / (4 d^2) (the
-  // share of the light it catches that a convex mirror of radius r sends to distance d).
+  // it (p off a plane on the light's side, both faces reflecting; outside a sphere), else the
+  // light the reflector can send to p: a plane's strength x the light's irradiance at p's mirror
+  // image (what the light's image brings to p); a sphere's strength x r^2 / (4 d^2) (the share of
+  // the light it catches that a convex mirror of radius r sends to distance d).
   float pair_weight(const Pair& pair, const Vec3& p) const;
   // The pairs' weights at p (weights: num_pairs() of them) and their sum.
   float pair_weights(const Vec3& p, float* weights) const;
@@ -155,6 +159,10 @@ class MirrorImages {
   float run_probability(const Vec3& p, const Vec3& n, float total) const;
   // Glossy: the cone the strategy aims p into for `pair` (its axis, 1 - cos of its half-angle).
   void image_cone(const Pair& pair, const Vec3& p, Vec3& axis, float& one_minus_cos) const;
+  // p reflected in plane `reflector`.
+  static Vec3 mirrored(const Reflector& reflector, const Vec3& p) {
+    return p - 2.0f * glm::dot(p - reflector.point, reflector.normal) * reflector.normal;
+  }
   // The density with which the strategy aims p (normal n) along wi for `pair`, its choice included.
   float pair_pdf(const Pair& pair, const Vec3& p, const Vec3& n, const Vec3& wi) const;
 
