@@ -151,10 +151,11 @@ float MirrorImages::total_weight(const Vec3& p) const {
   return total;
 }
 
-float MirrorImages::run_probability(const Vec3& p, const Vec3& n, float total) const {
+float MirrorImages::run_probability(const Vec3& p, const Vec3& n, float path_weight, float total) const {
   float direct = 0.0f;
   for (const Source& source : sources_) direct += source.irradiance(p, n);
-  return direct > 0.0f ? std::min(kRunScale * total / direct, 1.0f) : 1.0f;
+  const float rate = direct > 0.0f ? std::min(kRunScale * total / direct, 1.0f) : 1.0f;
+  return std::min(rate * path_weight, 1.0f);
 }
 
 // ---- where the strategy aims --------------------------------------------------------------------
@@ -185,11 +186,11 @@ void MirrorImages::image_cone(const Pair& pair, const Vec3& p, Vec3& axis, float
   one_minus_cos = one_minus_cos_of(half);
 }
 
-float MirrorImages::pair_pdf(const Pair& pair, const Vec3& p, const Vec3& n, const Vec3& wi) const {
+float MirrorImages::pair_pdf(const Pair& pair, const Vec3& p, const Vec3& n, float path_weight, const Vec3& wi) const {
   const float w = pair_weight(pair, p);
   if (!(w > 0.0f)) return 0.0f;
   const float total = total_weight(p);
-  const float choice = run_probability(p, n, total) * w / total;
+  const float choice = run_probability(p, n, path_weight, total) * w / total;
   const Reflector& reflector = reflectors_[size_t(pair.reflector)];
   // A mirror keeps solid angle: the sun's cone density (wi is taken to reach the sun).
   if (reflector.mirror) return choice / cone_solid_angle(sources_[size_t(pair.source)].sun->one_minus_cos());
@@ -201,11 +202,12 @@ float MirrorImages::pair_pdf(const Pair& pair, const Vec3& p, const Vec3& n, con
   return glm::dot(chord, chord) <= 2.0f * one_minus_cos ? choice / cone_solid_angle(one_minus_cos) : 0.0f;
 }
 
-bool MirrorImages::sample(const Vec3& p, const Vec3& n, float u_pair, const Vec2& u, Sample& out) const {
+bool MirrorImages::sample(const Vec3& p, const Vec3& n, float path_weight, float u_pair, const Vec2& u,
+                          Sample& out) const {
   float weights[kMaxPairs];
   const float total = pair_weights(p, weights);
   if (!(total > 0.0f)) return false;
-  const float run = run_probability(p, n, total);
+  const float run = run_probability(p, n, path_weight, total);
   if (u_pair >= run) return false;
   // The pair whose share of the total holds u_pair (the last one seen, if rounding leaves some).
   float target = u_pair / run * total, weight = 0.0f;
@@ -250,12 +252,12 @@ Vec3 MirrorImages::reflectance(int reflector, const Vec3& to_sun) const {
   return s.is_delta ? s.weight : Vec3(0.0f);
 }
 
-float MirrorImages::bsdf_share(int reflector, const Vec3& p, const Vec3& n, const Vec3& wi, float bsdf_pdf,
-                              size_t light) const {
+float MirrorImages::bsdf_share(int reflector, const Vec3& p, const Vec3& n, float path_weight, const Vec3& wi,
+                              float bsdf_pdf, size_t light) const {
   if (light >= num_lights_) return 1.0f;
   const int pair = pair_of_[size_t(reflector) * num_lights_ + light];
   if (pair < 0) return 1.0f;
-  const float pdf = pair_pdf(pairs_[size_t(pair)], p, n, wi);
+  const float pdf = pair_pdf(pairs_[size_t(pair)], p, n, path_weight, wi);
   return pdf > 0.0f ? power_heuristic(bsdf_pdf, pdf) : 1.0f;
 }
 

@@ -93,11 +93,12 @@ float bump_shadowing(Vec3 n_smooth, const Vec3& n_mapped, const Vec3& wi) {
 template <bool kGlass, typename Bsdf>
 bool mirror_image_light(const PathContext& ctx, const Bsdf& bsdf, const typename Bsdf::View& view, const Frame& frame,
                         const Vec3& position, const Vec3& ng, const Vec3& n_smooth, const Vec3& ns,
-                        bool normal_mapped, bool transmits, SobolSampler& sampler, LobeEval& f, Vec3& light) {
+                        bool normal_mapped, bool transmits, float path_weight, SobolSampler& sampler, LobeEval& f,
+                        Vec3& light) {
   const MirrorImages& images = *ctx.mirror_images;
   const glm::vec4 u = sampler.next_4d();
   MirrorImages::Sample ms;
-  if (!images.sample(position, ns, u.x, Vec2(u.y, u.z), ms)) return false;
+  if (!images.sample(position, ns, path_weight, u.x, Vec2(u.y, u.z), ms)) return false;
   const Vec3 wi = frame.to_local(ms.wi);
   const float cos_geometric = glm::dot(ms.wi, ng);
   if (transmits ? cos_geometric == 0.0f || (cos_geometric > 0.0f) != (wi.z > 0.0f) : cos_geometric <= 0.0f)
@@ -199,6 +200,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
   // its share against NEE through the reflector at that vertex.
   MirrorImages::PathShare reflector_share(ctx.mirror_images);
   Vec3 prev_hit_position(0.0f);
+  float prev_path_weight = 1.0f;  // max_component(throughput) at the previous vertex (mirror_images.h)
   float path_length = 0.0f;  // for texture footprints (a ray cone of the pixel's spread)
   // Cycles' clamping: a contribution whose RGB sum exceeds the limit is scaled down to it.
   // Direct: seen by the camera or lighting the first hit; indirect: lighting later vertices.
@@ -266,7 +268,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       reflector_share.clear();
       if (const int reflector = ctx.mirror_images && !prev_delta ? ctx.mirror_images->reflector_of(hit.material) : -1;
           reflector >= 0)
-        reflector_share.met(reflector, prev_hit_position, prev_normal, ray.dir, prev_pdf);
+        reflector_share.met(reflector, prev_hit_position, prev_normal, prev_path_weight, ray.dir, prev_pdf);
     }
 
     // Textures: the material's inputs and its normal map at this hit, averaged over the pixel's
@@ -381,7 +383,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       LobeEval f;
       Vec3 light;
       if (mirror_image_light<kGlass>(ctx, bsdf, view, frame, hit.position, ng, n_smooth, ns, normal_mapped, transmits,
-                                     sampler, f, light))
+                                     max_component(throughput), sampler, f, light))
         deposit_light_sample(light * throughput, f, bounce, false);
     }
 
@@ -406,6 +408,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
     if (recorder.enabled() && guidable && !bs.is_delta)
       recorder.add_vertex(guide.leaf(), square.x >= 0.0f ? square : direction_to_square(wi_world), throughput,
                           bs.weight, bs.pdf, guide ? bsdf_pdf : bs.pdf, guide_pdf);
+    const float vertex_weight = max_component(throughput);
     throughput *= bs.weight;
     if (kSplitLobes && bounce == 0 && !bs.is_delta) {
       const LobeEval f = bsdf.template eval_lobes<kGlass>(view, bs.wi);
@@ -440,6 +443,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
     prev_two_sided = transmits;
     prev_normal = ns;
     prev_hit_position = hit.position;
+    prev_path_weight = vertex_weight;
     ray.origin = offset_origin(hit.position, ng, wi_world);
     prev_position = ray.origin;
     ray.dir = wi_world;

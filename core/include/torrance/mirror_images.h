@@ -83,14 +83,15 @@ class MirrorImages {
   // One direction from p (shading normal n) towards a light's image in a reflector, the
   // (reflector, light) pair chosen among those p sees in proportion to pair_weight, at the rate
   // run_probability. False: none this time.
-  bool sample(const Vec3& p, const Vec3& n, float u_pair, const Vec2& u, Sample& out) const;
+  bool sample(const Vec3& p, const Vec3& n, float path_weight, float u_pair, const Vec2& u, Sample& out) const;
   // The reflectance of mirror `reflector` for light arriving from direction to_sun.
   Vec3 reflectance(int reflector, const Vec3& to_sun) const;
   // The share of light `light` (a Lights index) found after a BSDF-sampled direction wi (density
   // bsdf_pdf) from p (shading normal n) met `reflector` -- at a glossy reflector by NEE or BSDF sampling there, after
   // a mirror along the reflected ray: the power heuristic against this strategy's density of wi
   // (1 where it does not sample wi, or the pair does not exist).
-  float bsdf_share(int reflector, const Vec3& p, const Vec3& n, const Vec3& wi, float bsdf_pdf, size_t light) const;
+  float bsdf_share(int reflector, const Vec3& p, const Vec3& n, float path_weight, const Vec3& wi, float bsdf_pdf,
+                   size_t light) const;
 
   // What a path keeps of the lights found at (and right after) the reflector it has just met.
   class PathShare final : public LightShare {
@@ -98,20 +99,20 @@ class MirrorImages {
     explicit PathShare(const MirrorImages* images) : images_(images) {}
     void clear() { reflector_ = -1; }
     // The path left `from` (shading normal n) along wi with BSDF density bsdf_pdf and met `reflector`.
-    void met(int reflector, const Vec3& from, const Vec3& n, const Vec3& wi, float bsdf_pdf) {
-      reflector_ = reflector, from_ = from, n_ = n, wi_ = wi, bsdf_pdf_ = bsdf_pdf;
+    void met(int reflector, const Vec3& from, const Vec3& n, float path_weight, const Vec3& wi, float bsdf_pdf) {
+      reflector_ = reflector, from_ = from, n_ = n, path_weight_ = path_weight, wi_ = wi, bsdf_pdf_ = bsdf_pdf;
     }
     // Null when the path keeps every light's light whole.
     const LightShare* active() const { return reflector_ >= 0 ? this : nullptr; }
     float of(size_t light) const override {
-      return images_->bsdf_share(reflector_, from_, n_, wi_, bsdf_pdf_, light);
+      return images_->bsdf_share(reflector_, from_, n_, path_weight_, wi_, bsdf_pdf_, light);
     }
 
    private:
     const MirrorImages* images_;
     int reflector_ = -1;
     Vec3 from_{0.0f}, n_{0.0f}, wi_{0.0f};
-    float bsdf_pdf_ = 0.0f;
+    float bsdf_pdf_ = 0.0f, path_weight_ = 1.0f;
   };
 
  private:
@@ -151,12 +152,14 @@ class MirrorImages {
   // The pairs' weights at p (weights: num_pairs() of them) and their sum.
   float pair_weights(const Vec3& p, float* weights) const;
   float total_weight(const Vec3& p) const;
-  // The strategy runs at p with probability min(1, kRunScale x total_weight(p) / direct), direct:
-  // the paired lights' own irradiance at p on its shading normal n: where the reflectors send
-  // only a little of what the lights bring directly (a small ball far away), it mostly leaves that
-  // light to BSDF sampling rather than spend rays on it.
+  // The strategy runs at p with probability min(1, kRunScale x total_weight(p) / direct) x
+  // path_weight (at most 1), direct: the paired lights' own irradiance at p on its shading normal
+  // n: where the reflectors send only a little of what the lights bring directly (a small ball
+  // far away), it mostly leaves that light to BSDF sampling rather than spend rays on it; and it
+  // spends fewer where the path carries little (path_weight: the largest channel of the path's
+  // throughput at p, 1 at the camera's hit).
   static constexpr float kRunScale = 10.0f;
-  float run_probability(const Vec3& p, const Vec3& n, float total) const;
+  float run_probability(const Vec3& p, const Vec3& n, float path_weight, float total) const;
   // Glossy: the cone the strategy aims p into for `pair` (its axis, 1 - cos of its half-angle).
   void image_cone(const Pair& pair, const Vec3& p, Vec3& axis, float& one_minus_cos) const;
   // p reflected in plane `reflector`.
@@ -164,7 +167,7 @@ class MirrorImages {
     return p - 2.0f * glm::dot(p - reflector.point, reflector.normal) * reflector.normal;
   }
   // The density with which the strategy aims p (normal n) along wi for `pair`, its choice included.
-  float pair_pdf(const Pair& pair, const Vec3& p, const Vec3& n, const Vec3& wi) const;
+  float pair_pdf(const Pair& pair, const Vec3& p, const Vec3& n, float path_weight, const Vec3& wi) const;
 
   std::vector<Reflector> reflectors_;
   std::vector<Source> sources_;
