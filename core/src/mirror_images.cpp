@@ -87,12 +87,12 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
     const float lobe = glossy ? 2.0f * std::atan(3.0f * bsdf.specular_alpha()) : 0.0f;
     const int index = int(reflectors_.size());
     if (const std::optional<Scene::Plane> plane = scene.material_plane(m)) {
-      reflectors_.push_back(Reflector{plane->point, plane->normal, &bsdf, mirror, 0.0f, lobe, reflectance});
+      reflectors_.push_back(Reflector{plane->point, plane->normal, &bsdf, mirror, 0.0f, lobe});
       for (size_t s = 0; s < sources_.size(); ++s)
         if (glossy || sources_[s].sun)  // mirrors: suns only
           candidates.push_back({Pair{index, int(s), reflectance}, kInfinity});
     } else if (const std::optional<Scene::Sphere> sphere = glossy ? scene.material_sphere(m) : std::nullopt) {
-      reflectors_.push_back(Reflector{sphere->center, Vec3(0.0f), &bsdf, false, sphere->radius, lobe, reflectance});
+      reflectors_.push_back(Reflector{sphere->center, Vec3(0.0f), &bsdf, false, sphere->radius, lobe});
       for (size_t s = 0; s < sources_.size(); ++s) {
         const Source& source = sources_[s];
         // A light inside the ball or behind an area light's face lights none of it from outside.
@@ -141,13 +141,11 @@ float MirrorImages::pair_weight(const Pair& pair, const Vec3& p) const {
 
 float MirrorImages::pair_weights(const Vec3& p, float* weights) const {
   float total = 0.0f;
-  for (size_t i = 0; i < pairs_.size(); ++i) total += weights[i] = pair_weight(pairs_[i], p);
-  return total;
-}
-
-float MirrorImages::total_weight(const Vec3& p) const {
-  float total = 0.0f;
-  for (const Pair& pair : pairs_) total += pair_weight(pair, p);
+  for (size_t i = 0; i < pairs_.size(); ++i) {
+    const float w = pair_weight(pairs_[i], p);
+    if (weights) weights[i] = w;
+    total += w;
+  }
   return total;
 }
 
@@ -189,7 +187,7 @@ void MirrorImages::image_cone(const Pair& pair, const Vec3& p, Vec3& axis, float
 float MirrorImages::pair_pdf(const Pair& pair, const Vec3& p, const Vec3& n, float path_weight, const Vec3& wi) const {
   const float w = pair_weight(pair, p);
   if (!(w > 0.0f)) return 0.0f;
-  const float total = total_weight(p);
+  const float total = pair_weights(p);
   const float choice = run_probability(p, n, path_weight, total) * w / total;
   const Reflector& reflector = reflectors_[size_t(pair.reflector)];
   // A mirror keeps solid angle: the sun's cone density (wi is taken to reach the sun).

@@ -122,7 +122,6 @@ class MirrorImages {
     bool mirror;
     float radius = 0.0f;       // > 0: a sphere
     float lobe = 0.0f;         // glossy: how far the lobe widens a light's image (2 atan(3 alpha))
-    float reflectance = 1.0f;  // its specular reflectance at normal incidence, roughly
   };
   // A light the strategy aims at: a non-delta sun, a point or spot light with a radius, an area light.
   struct Source {
@@ -143,16 +142,15 @@ class MirrorImages {
     // A sphere: its reflectance x the light's irradiance at its centre; a plane: its reflectance.
     float strength;
   };
-  // How often sample() at p picks the pair, relative to total_weight(p): 0 where p does not see
-  // it (p off a plane on the light's side, both faces reflecting; outside a sphere), else the
-  // light the reflector can send to p: a plane's strength x the light's irradiance at p's mirror
+  // How often sample() at p picks the pair, relative to their sum (pair_weights): 0 where p does
+  // not see it (p off a plane on the light's side, both faces reflecting; outside a sphere), else
+  // the light the reflector can send to p: a plane's strength x the light's irradiance at p's mirror
   // image (what the light's image brings to p); a sphere's strength x r^2 / (4 d^2) (the share of
   // the light it catches that a convex mirror of radius r sends to distance d).
   float pair_weight(const Pair& pair, const Vec3& p) const;
-  // The pairs' weights at p (weights: num_pairs() of them) and their sum.
-  float pair_weights(const Vec3& p, float* weights) const;
-  float total_weight(const Vec3& p) const;
-  // The strategy runs at p with probability min(1, kRunScale x total_weight(p) / direct) x
+  // The sum of the pairs' weights at p; each written to weights[i] too, unless it is null.
+  float pair_weights(const Vec3& p, float* weights = nullptr) const;
+  // The strategy runs at p with probability min(1, kRunScale x the pair weights' sum / direct) x
   // path_weight (at most 1), direct: the paired lights' own irradiance at p on its shading normal
   // n: where the reflectors send only a little of what the lights bring directly (a small ball
   // far away), it mostly leaves that light to BSDF sampling rather than spend rays on it; and it
