@@ -38,12 +38,12 @@ bool plain_surface(const Scene& scene, uint32_t m) {
 
 Vec3 MirrorImages::Source::toward(const Vec3& x) const {
   if (sun) return sun->to_light();
-  return glm::normalize((point ? point->position() : area->center()) - x);
+  return glm::normalize(position() - x);
 }
 
 bool MirrorImages::Source::above(const Vec3& origin, const Vec3& n) const {
   if (sun) return glm::dot(sun->to_light(), n) > 0.0f;
-  return glm::dot((point ? point->position() : area->center()) - origin, n) > 0.0f;
+  return glm::dot(position() - origin, n) > 0.0f;
 }
 
 float MirrorImages::Source::angular_radius(const Vec3& x) const {
@@ -96,9 +96,7 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
       for (size_t s = 0; s < sources_.size(); ++s) {
         const Source& source = sources_[s];
         // A light inside the ball or behind an area light's face lights none of it from outside.
-        if (!source.sun && glm::length((source.point ? source.point->position() : source.area->center()) -
-                                       sphere->center) <= sphere->radius)
-          continue;
+        if (!source.sun && glm::length(source.position() - sphere->center) <= sphere->radius) continue;
         const float strength = reflectance * source.irradiance(sphere->center);
         if (strength > 0.0f)
           candidates.push_back({Pair{index, int(s), strength}, strength * sphere->radius * sphere->radius});

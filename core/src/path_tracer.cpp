@@ -120,12 +120,12 @@ bool mirror_image_light(const PathContext& ctx, const Bsdf& bsdf, const typename
     n_shading = -n_shading;
   }
   const Vec3& x = on_reflector.position;
+  // Nothing between x and the light along dir, up to its surface at `distance` (no alpha here).
   auto unoccluded = [&](const Vec3& dir, float distance) {
     LightSample toward;
     toward.wi = dir;
     toward.distance = distance;
-    const Ray shadow = shadow_ray(x, n, toward);
-    return !(shadow.tmax > 0.0f) || !ctx.scene.occluded(shadow.origin, shadow.dir, 0.0f, shadow.tmax);
+    return shadow_transmittance<false>(ctx.scene, x, n, toward, 0).x > 0.0f;
   };
   if (images.is_mirror(ms.reflector)) {
     if (!unoccluded(ms.to_sun, kInfinity)) return false;

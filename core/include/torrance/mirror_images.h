@@ -35,9 +35,10 @@
 // light found there, its own share (PathShare); lights in no pair are the path's alone.
 //
 // Delta lights (suns of angle 0, point lights of radius 0) are left out: no BSDF-sampled path can
-// reach them through a delta lobe, so Cycles renders no such light, and Torrance matches it. Only world-space meshes
-// are examined for planes (instanced geometry is not), and the strategy is not used in scenes with
-// alpha (a BSDF-sampled path passes transparent surfaces this strategy's rays would stop at).
+// reach them through a delta lobe, so Cycles renders no such light, and Torrance matches it. Only
+// world-space meshes are examined for planes (instanced geometry is not), and the strategy is not
+// used in scenes with alpha (a BSDF-sampled path passes transparent surfaces this strategy's rays
+// would stop at).
 #pragma once
 
 #include "torrance/lights.h"
@@ -87,9 +88,10 @@ class MirrorImages {
   // The reflectance of mirror `reflector` for light arriving from direction to_sun.
   Vec3 reflectance(int reflector, const Vec3& to_sun) const;
   // The share of light `light` (a Lights index) found after a BSDF-sampled direction wi (density
-  // bsdf_pdf) from p (shading normal n) met `reflector` -- at a glossy reflector by NEE or BSDF sampling there, after
-  // a mirror along the reflected ray: the power heuristic against this strategy's density of wi
-  // (1 where it does not sample wi, or the pair does not exist).
+  // bsdf_pdf) from p (shading normal n, path_weight as for sample()) met `reflector` -- at a
+  // glossy reflector by NEE or BSDF sampling there, after a mirror along the reflected ray: the
+  // power heuristic against this strategy's density of wi (1 where it does not sample wi, or the
+  // pair does not exist).
   float bsdf_share(int reflector, const Vec3& p, const Vec3& n, float path_weight, const Vec3& wi, float bsdf_pdf,
                    size_t light) const;
 
@@ -129,6 +131,7 @@ class MirrorImages {
     const SunLight* sun = nullptr;
     const PointLight* point = nullptr;
     const AreaLight* area = nullptr;
+    Vec3 position() const { return point ? point->position() : area->center(); }  // not for a sun
     Vec3 toward(const Vec3& x) const;          // unit direction from x to the light (its centre)
     // Whether the light is on the positive side of the plane through `origin` with normal n.
     bool above(const Vec3& origin, const Vec3& n) const;
