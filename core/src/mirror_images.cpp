@@ -47,9 +47,8 @@ bool MirrorImages::Source::above(const Vec3& origin, const Vec3& n) const {
 }
 
 float MirrorImages::Source::angular_radius(const Vec3& x) const {
-  if (sun) return std::acos(1.0f - sun->one_minus_cos());
-  if (point) return angular_radius_of(point->radius(), glm::length(point->position() - x));
-  return angular_radius_of(area->extent(), glm::length(area->center() - x));
+  if (sun) return sun_radius;
+  return angular_radius_of(size, glm::length(position() - x));
 }
 
 float MirrorImages::Source::irradiance(const Vec3& x, const Vec3& n) const {
@@ -60,10 +59,15 @@ float MirrorImages::Source::irradiance(const Vec3& x, const Vec3& n) const {
 // ---- the reflectors and their pairs -------------------------------------------------------------
 
 MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& bsdfs)
-    : reflector_of_material_(scene.num_materials(), -1), num_lights_(scene.lights().count()) {
+    : first_reflector_(scene.num_materials(), -1),
+      num_reflectors_(scene.num_materials(), 0),
+      num_lights_(scene.lights().count()) {
   const Lights& lights = scene.lights();
   for (size_t i = 0; i < num_lights_; ++i) {
     Source s{i, lights.sun(i), lights.point(i), lights.area(i)};
+    if (s.sun) s.sun_radius = std::acos(1.0f - s.sun->one_minus_cos());
+    if (s.point) s.size = s.point->radius();
+    if (s.area) s.size = s.area->extent();
     if ((s.sun && !s.sun->is_delta()) || (s.point && !s.point->is_delta()) || s.area) sources_.push_back(s);
   }
   if (sources_.empty()) return;
@@ -85,14 +89,30 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
     const float reflectance =
         std::max(luminance(material.base_color) * metallic + 0.08f * material.specular * (1.0f - metallic), 1e-3f);
     const float lobe = glossy ? 2.0f * std::atan(3.0f * bsdf.specular_alpha()) : 0.0f;
-    const int index = int(reflectors_.size());
-    if (const std::optional<Scene::Plane> plane = scene.material_plane(m)) {
-      reflectors_.push_back(Reflector{plane->point, plane->normal, &bsdf, mirror, 0.0f, lobe});
-      for (size_t s = 0; s < sources_.size(); ++s)
-        if (glossy || sources_[s].sun)  // mirrors: suns only
-          candidates.push_back({Pair{index, int(s), reflectance}, kInfinity});
+    const int first = int(reflectors_.size());
+    // Mirrors: exact planes only (a sheet's image of the sun is not a second sun).
+    std::vector<Scene::Plane> planes = scene.material_planes(m);
+    if (mirror && !planes.empty() && planes.front().tilt > 0.0f) planes.clear();
+    if (!planes.empty()) {
+      for (const Scene::Plane& plane : planes) {
+        const int index = int(reflectors_.size());
+        Reflector r{plane.point, plane.normal, &bsdf, m, mirror, 0.0f, lobe};
+        r.tilt = plane.tilt;
+        r.depth = plane.depth;
+        // A sheet's tilted normals turn the reflected direction by up to twice their tilt.
+        r.widen = std::min(lobe + 2.0f * plane.tilt, 0.5f * kPi);
+        r.widen_sin = std::sin(r.widen);
+        r.widen_one_minus_cos = one_minus_cos_of(r.widen);
+        r.bound_center = plane.center;
+        r.bound_radius = plane.radius;
+        reflectors_.push_back(r);
+        for (size_t s = 0; s < sources_.size(); ++s)
+          if (glossy || sources_[s].sun)  // mirrors: suns only
+            candidates.push_back({Pair{index, int(s), reflectance}, kInfinity});
+      }
     } else if (const std::optional<Scene::Sphere> sphere = glossy ? scene.material_sphere(m) : std::nullopt) {
-      reflectors_.push_back(Reflector{sphere->center, Vec3(0.0f), &bsdf, false, sphere->radius, lobe});
+      const int index = int(reflectors_.size());
+      reflectors_.push_back(Reflector{sphere->center, Vec3(0.0f), &bsdf, m, false, sphere->radius, lobe});
       for (size_t s = 0; s < sources_.size(); ++s) {
         const Source& source = sources_[s];
         // A light inside the ball or behind an area light's face lights none of it from outside.
@@ -104,7 +124,8 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
     } else {
       continue;
     }
-    reflector_of_material_[m] = index;
+    first_reflector_[m] = first;
+    num_reflectors_[m] = int(reflectors_.size()) - first;
   }
   // The brightest pairs, in the order found.
   if (candidates.size() > kMaxPairs) {
@@ -117,17 +138,64 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
   } else {
     for (const Candidate& c : candidates) pairs_.push_back(c.pair);
   }
+  for (Pair& pair : pairs_) {
+    const Reflector& reflector = reflectors_[size_t(pair.reflector)];
+    const Source& source = sources_[size_t(pair.source)];
+    if (reflector.radius > 0.0f) continue;
+    pair.light_above = source.above(reflector.point, reflector.normal);
+    if (source.sun && !reflector.mirror) {
+      pair.axis = reflect_in(source.sun->to_light(), reflector.normal);
+      pair.one_minus_cos = one_minus_cos_of(std::min(source.sun_radius + reflector.widen, 0.5f * kPi));
+      pair.fixed_cone = true;
+    } else if (!source.sun) {
+      pair.light_image = mirrored(reflector, source.position());
+    }
+  }
   pair_of_.assign(reflectors_.size() * num_lights_, -1);
   for (size_t i = 0; i < pairs_.size(); ++i)
     pair_of_[size_t(pairs_[i].reflector) * num_lights_ + sources_[size_t(pairs_[i].source)].index] = int(i);
 }
 
-float MirrorImages::pair_weight(const Pair& pair, const Vec3& p) const {
+int MirrorImages::reflector_at(uint32_t material, const Vec3& position) const {
+  if (!is_reflector(material)) return -1;
+  const int first = first_reflector_[material], count = num_reflectors_[material];
+  int nearest = first;
+  float nearest_distance = kInfinity;
+  for (int i = first; count > 1 && i < first + count; ++i) {
+    const Reflector& r = reflectors_[size_t(i)];
+    const float distance = std::abs(glm::dot(position - r.point, r.normal));
+    if (distance < nearest_distance) nearest = i, nearest_distance = distance;
+  }
+  return nearest;
+}
+
+float MirrorImages::pair_weight(const Pair& pair, const Origin& at) const {
   const Reflector& reflector = reflectors_[size_t(pair.reflector)];
+  if (reflector.material == at.material) return 0.0f;
   const Source& source = sources_[size_t(pair.source)];
+  const Vec3& p = at.p;
   if (reflector.radius <= 0.0f) {  // a plane and a light, on the same side
+    // A sheet's waves rise and fall by its depth about its mean plane: p may be below that plane
+    // and still above the surface near it.
     const float side = glm::dot(p - reflector.point, reflector.normal);
-    if (side == 0.0f || (side > 0.0f) != source.above(reflector.point, reflector.normal)) return 0.0f;
+    if (std::abs(side) <= reflector.depth ? side == 0.0f && reflector.depth == 0.0f
+                                          : (side > 0.0f) != pair.light_above)
+      return 0.0f;
+    // The light's image cone must meet the plane's bounds (a box's face is small): the angle
+    // between the cone's axis and the bounds' centre at most the cone's half-angle plus the
+    // bounds' angular radius (both at most pi/2), compared by their cosines.
+    const Vec3 to_bounds = reflector.bound_center - p;
+    const float d2 = glm::dot(to_bounds, to_bounds), r2 = reflector.bound_radius * reflector.bound_radius;
+    if (d2 > r2) {
+      Vec3 axis;
+      float one_minus_cos;
+      image_cone(pair, p, axis, one_minus_cos);
+      const float cos_cone = 1.0f - one_minus_cos;
+      const float sin_cone = std::sqrt(std::max(one_minus_cos * (2.0f - one_minus_cos), 0.0f));
+      const float sin_bounds = std::sqrt(r2 / d2), cos_bounds = std::sqrt(1.0f - r2 / d2);
+      const float cos_limit = cos_cone * cos_bounds - sin_cone * sin_bounds;
+      if (glm::dot(axis, to_bounds) < cos_limit * std::sqrt(d2)) return 0.0f;
+    }
     return pair.strength * source.irradiance(mirrored(reflector, p));
   }
   // A convex mirror spreads the light it catches, pi r^2 E R, evenly: E R r^2 / (4 d^2) at d.
@@ -137,21 +205,19 @@ float MirrorImages::pair_weight(const Pair& pair, const Vec3& p) const {
   return pair.strength * std::min(r2 / (4.0f * d2), 1.0f);
 }
 
-float MirrorImages::pair_weights(const Vec3& p, float* weights) const {
-  float total = 0.0f;
+MirrorImages::Odds MirrorImages::odds(const Origin& at, float* weights) const {
+  Odds odds;
   for (size_t i = 0; i < pairs_.size(); ++i) {
-    const float w = pair_weight(pairs_[i], p);
+    const float w = pair_weight(pairs_[i], at);
     if (weights) weights[i] = w;
-    total += w;
+    odds.total += w;
   }
-  return total;
-}
-
-float MirrorImages::run_probability(const Vec3& p, const Vec3& n, float path_weight, float total) const {
+  if (!(odds.total > 0.0f)) return odds;
   float direct = 0.0f;
-  for (const Source& source : sources_) direct += source.irradiance(p, n);
-  const float rate = direct > 0.0f ? std::min(kRunScale * total / direct, 1.0f) : 1.0f;
-  return std::min(rate * path_weight, 1.0f);
+  for (const Source& source : sources_) direct += source.irradiance(at.p, at.n);
+  const float rate = direct > 0.0f ? std::min(kRunScale * odds.total / direct, 1.0f) : 1.0f;
+  odds.run = std::min(rate * at.path_weight, 1.0f);
+  return odds;
 }
 
 // ---- where the strategy aims --------------------------------------------------------------------
@@ -159,11 +225,26 @@ float MirrorImages::run_probability(const Vec3& p, const Vec3& n, float path_wei
 void MirrorImages::image_cone(const Pair& pair, const Vec3& p, Vec3& axis, float& one_minus_cos) const {
   const Reflector& reflector = reflectors_[size_t(pair.reflector)];
   const Source& source = sources_[size_t(pair.source)];
+  if (reflector.radius <= 0.0f && pair.fixed_cone) {  // a sun's image: the same from everywhere
+    axis = pair.axis;
+    one_minus_cos = pair.one_minus_cos;
+    return;
+  }
   if (reflector.radius <= 0.0f) {
-    // The light's image seen from p: the light seen from p's mirror image, reflected.
-    const Vec3 image_of_p = mirrored(reflector, p);
-    axis = reflect_in(source.toward(image_of_p), reflector.normal);
-    one_minus_cos = one_minus_cos_of(std::min(source.angular_radius(image_of_p) + reflector.lobe, 0.5f * kPi));
+    // The lamp's image seen from p (as the lamp is seen from p's mirror image), its angular
+    // radius a widened by the reflector's: 1 - cos(a + widen) by the angle-sum rule, every term
+    // >= 0 (no cancellation in small cones), at most 1 (pi/2).
+    const Vec3 to_image = pair.light_image - p;
+    const float distance = glm::length(to_image);
+    if (!(distance > source.size)) {
+      axis = -reflector.normal;
+      one_minus_cos = 1.0f;
+      return;
+    }
+    axis = to_image / distance;
+    const float sin_a = source.size / distance, cos_a = std::sqrt(1.0f - sin_a * sin_a);
+    one_minus_cos = std::min(
+        sin_a * sin_a / (1.0f + cos_a) + cos_a * reflector.widen_one_minus_cos + sin_a * reflector.widen_sin, 1.0f);
     return;
   }
   // The highlight: the point h whose normal halves the directions to p and to the light.
@@ -182,28 +263,28 @@ void MirrorImages::image_cone(const Pair& pair, const Vec3& p, Vec3& axis, float
   one_minus_cos = one_minus_cos_of(half);
 }
 
-float MirrorImages::pair_pdf(const Pair& pair, const Vec3& p, const Vec3& n, float path_weight, const Vec3& wi) const {
-  const float w = pair_weight(pair, p);
-  if (!(w > 0.0f)) return 0.0f;
-  const float total = pair_weights(p);
-  const float choice = run_probability(p, n, path_weight, total) * w / total;
+float MirrorImages::pair_pdf(const Pair& pair, const Origin& at, const Odds& odds, const Vec3& wi) const {
+  const float w = pair_weight(pair, at);
+  if (!(w > 0.0f) || !(odds.total > 0.0f)) return 0.0f;
+  const float choice = odds.run * w / odds.total;
   const Reflector& reflector = reflectors_[size_t(pair.reflector)];
   // A mirror keeps solid angle: the sun's cone density (wi is taken to reach the sun).
   if (reflector.mirror) return choice / cone_solid_angle(sources_[size_t(pair.source)].sun->one_minus_cos());
   Vec3 axis;
   float one_minus_cos;
-  image_cone(pair, p, axis, one_minus_cos);
+  image_cone(pair, at.p, axis, one_minus_cos);
   // Inside when the chord |wi - axis| is at most the rim's, sqrt(2 (1 - cos)): exact for small cones.
   const Vec3 chord = wi - axis;
   return glm::dot(chord, chord) <= 2.0f * one_minus_cos ? choice / cone_solid_angle(one_minus_cos) : 0.0f;
 }
 
-bool MirrorImages::sample(const Vec3& p, const Vec3& n, float path_weight, float u_pair, const Vec2& u,
-                          Sample& out) const {
+bool MirrorImages::sample(const Origin& at, float u_pair, const Vec2& u, Sample& out) const {
+  if (u_pair >= at.path_weight) return false;  // the run rate is at most the path's weight: no need to weigh
   float weights[kMaxPairs];
-  const float total = pair_weights(p, weights);
-  if (!(total > 0.0f)) return false;
-  const float run = run_probability(p, n, path_weight, total);
+  const Odds odds = this->odds(at, weights);
+  if (!(odds.total > 0.0f)) return false;
+  const float total = odds.total, run = odds.run;
+  const Vec3& p = at.p;
   if (u_pair >= run) return false;
   // The pair whose share of the total holds u_pair (the last one seen, if rounding leaves some).
   float target = u_pair / run * total, weight = 0.0f;
@@ -225,9 +306,10 @@ bool MirrorImages::sample(const Vec3& p, const Vec3& n, float path_weight, float
     image_cone(*chosen, p, axis, one_minus_cos);
     out.wi = Frame(axis).to_world(sample_uniform_cone(u, one_minus_cos));
     out.pdf = probability / cone_solid_angle(one_minus_cos);
-    // Only directions into a plane from p's side can reach it.
+    // Only directions into an exact plane from p's side can reach it (a sheet's waves may rise
+    // into any direction's way: the ray decides).
     const bool above = glm::dot(p - reflector.point, reflector.normal) > 0.0f;
-    return reflector.radius > 0.0f || (glm::dot(out.wi, reflector.normal) < 0.0f) == above;
+    return reflector.radius > 0.0f || reflector.tilt > 0.0f || (glm::dot(out.wi, reflector.normal) < 0.0f) == above;
   }
   const LightSample ls = source.sun->sample(p, reflector.normal, u);
   // A direction of the sun's cone below the mirror's horizon has no image on p's side.
@@ -248,12 +330,12 @@ Vec3 MirrorImages::reflectance(int reflector, const Vec3& to_sun) const {
   return s.is_delta ? s.weight : Vec3(0.0f);
 }
 
-float MirrorImages::bsdf_share(int reflector, const Vec3& p, const Vec3& n, float path_weight, const Vec3& wi,
-                              float bsdf_pdf, size_t light) const {
+float MirrorImages::bsdf_share(int reflector, const Origin& at, const Odds& odds, const Vec3& wi, float bsdf_pdf,
+                              size_t light) const {
   if (light >= num_lights_) return 1.0f;
   const int pair = pair_of_[size_t(reflector) * num_lights_ + light];
   if (pair < 0) return 1.0f;
-  const float pdf = pair_pdf(pairs_[size_t(pair)], p, n, path_weight, wi);
+  const float pdf = pair_pdf(pairs_[size_t(pair)], at, odds, wi);
   return pdf > 0.0f ? power_heuristic(bsdf_pdf, pdf) : 1.0f;
 }
 

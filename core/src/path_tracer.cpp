@@ -92,13 +92,13 @@ float bump_shadowing(Vec3 n_smooth, const Vec3& n_mapped, const Vec3& wi) {
 // arrives. The direction must meet the reflector first, and the light must be unoccluded from there.
 template <bool kGlass, typename Bsdf>
 bool mirror_image_light(const PathContext& ctx, const Bsdf& bsdf, const typename Bsdf::View& view, const Frame& frame,
-                        const Vec3& position, const Vec3& ng, const Vec3& n_smooth, const Vec3& ns,
-                        bool normal_mapped, bool transmits, float path_weight, SobolSampler& sampler, LobeEval& f,
-                        Vec3& light) {
+                        const Vec3& position, uint32_t material, const Vec3& ng, const Vec3& n_smooth,
+                        const Vec3& ns, bool normal_mapped, bool transmits, float path_weight, SobolSampler& sampler,
+                        LobeEval& f, Vec3& light) {
   const MirrorImages& images = *ctx.mirror_images;
   const glm::vec4 u = sampler.next_4d();
   MirrorImages::Sample ms;
-  if (!images.sample(position, ns, path_weight, u.x, Vec2(u.y, u.z), ms)) return false;
+  if (!images.sample({position, ns, material, path_weight}, u.x, Vec2(u.y, u.z), ms)) return false;
   const Vec3 wi = frame.to_local(ms.wi);
   const float cos_geometric = glm::dot(ms.wi, ng);
   if (transmits ? cos_geometric == 0.0f || (cos_geometric > 0.0f) != (wi.z > 0.0f) : cos_geometric <= 0.0f)
@@ -110,7 +110,8 @@ bool mirror_image_light(const PathContext& ctx, const Bsdf& bsdf, const typename
   ray.origin = offset_origin(position, ng, ms.wi);
   ray.dir = ms.wi;
   SurfaceHit on_reflector;
-  if (!ctx.scene.intersect(ray, on_reflector) || images.reflector_of(on_reflector.material) != ms.reflector)
+  if (!ctx.scene.intersect(ray, on_reflector) ||
+      images.reflector_at(on_reflector.material, on_reflector.position) != ms.reflector)
     return false;
   const float mis = ms.pdf > 0.0f ? power_heuristic(ms.pdf, bsdf.template pdf<kGlass>(view, wi)) : 1.0f;
   // The reflector point's normals turned towards the shading point, as the path would shade it.
@@ -200,6 +201,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
   // its share against NEE through the reflector at that vertex.
   MirrorImages::PathShare reflector_share(ctx.mirror_images);
   Vec3 prev_hit_position(0.0f);
+  uint32_t prev_material = 0;
   float prev_path_weight = 1.0f;  // max_component(throughput) at the previous vertex (mirror_images.h)
   float path_length = 0.0f;  // for texture footprints (a ray cone of the pixel's spread)
   // Cycles' clamping: a contribution whose RGB sum exceeds the limit is scaled down to it.
@@ -266,9 +268,11 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       }
       if (!found) break;
       reflector_share.clear();
-      if (const int reflector = ctx.mirror_images && !prev_delta ? ctx.mirror_images->reflector_of(hit.material) : -1;
+      if (const int reflector =
+              ctx.mirror_images && !prev_delta ? ctx.mirror_images->reflector_at(hit.material, hit.position) : -1;
           reflector >= 0)
-        reflector_share.met(reflector, prev_hit_position, prev_normal, prev_path_weight, ray.dir, prev_pdf);
+        reflector_share.met(reflector, {prev_hit_position, prev_normal, prev_material, prev_path_weight}, ray.dir,
+                            prev_pdf);
     }
 
     // Textures: the material's inputs and its normal map at this hit, averaged over the pixel's
@@ -382,7 +386,8 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
     if (ctx.mirror_images && bounce < ctx.settings.max_bounces) {
       LobeEval f;
       Vec3 light;
-      if (mirror_image_light<kGlass>(ctx, bsdf, view, frame, hit.position, ng, n_smooth, ns, normal_mapped, transmits,
+      if (mirror_image_light<kGlass>(ctx, bsdf, view, frame, hit.position, hit.material, ng, n_smooth, ns,
+                                     normal_mapped, transmits,
                                      max_component(throughput), sampler, f, light))
         deposit_light_sample(light * throughput, f, bounce, false);
     }
@@ -443,6 +448,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
     prev_two_sided = transmits;
     prev_normal = ns;
     prev_hit_position = hit.position;
+    prev_material = hit.material;
     prev_path_weight = vertex_weight;
     ray.origin = offset_origin(hit.position, ng, wi_world);
     prev_position = ray.origin;

@@ -1,5 +1,5 @@
-// Scene::material_plane and material_sphere: whether a material lies in one plane or makes one
-// sphere (the reflectors of mirror_images.h).
+// Scene::material_planes and material_sphere: whether a material makes a few planes, one nearly
+// flat sheet or one sphere (the reflectors of mirror_images.h).
 #include "scene_internal.h"
 
 #include <algorithm>
@@ -27,11 +27,104 @@ void for_each_triangle(const Meshes& meshes, uint32_t material, F&& f) {
 
 }  // namespace
 
-std::optional<Scene::Plane> Scene::material_plane(uint32_t material) const {
-  if (in_a_material_table(bindings_, material)) return std::nullopt;
-  // The plane of the largest triangle, then every triangle's corners against it.
-  double best_area = 0.0;
-  Plane plane;
+namespace {
+
+// A triangle of a reflector candidate: corners, unit normal (as it winds), area, corner normals.
+struct Face {
+  Vec3 a, b, c;
+  Vec3 normal;
+  double area;
+  const Vec3* corner_normals;  // three, or null (flat)
+};
+
+// The sphere about the box lo..hi.
+void bounding_sphere(const Vec3& lo, const Vec3& hi, Scene::Plane& plane) {
+  plane.center = 0.5f * (lo + hi);
+  plane.radius = 0.5f * glm::length(hi - lo);
+}
+
+// Up to Scene::kMaxPlanes exact planes, the largest faces first (their normals are the most
+// precise); empty if the faces need more or a corner normal leaves its plane.
+std::vector<Scene::Plane> exact_planes(const std::vector<Face>& faces, float tolerance) {
+  std::vector<Scene::Plane> planes;
+  std::vector<Vec3> lo, hi;
+  for (const Face& f : faces) {
+    size_t j = 0;
+    for (; j < planes.size(); ++j) {
+      const Scene::Plane& q = planes[j];
+      if (std::abs(glm::dot(f.normal, q.normal)) >= 1.0f - 1e-6f &&
+          std::abs(glm::dot(f.a - q.point, q.normal)) <= tolerance &&
+          std::abs(glm::dot(f.b - q.point, q.normal)) <= tolerance &&
+          std::abs(glm::dot(f.c - q.point, q.normal)) <= tolerance)
+        break;
+    }
+    if (j == planes.size()) {
+      if (planes.size() == Scene::kMaxPlanes) return {};
+      Scene::Plane plane;
+      plane.point = f.a;
+      plane.normal = f.normal;
+      planes.push_back(plane);
+      lo.push_back(f.a);
+      hi.push_back(f.a);
+    }
+    // The face's own side (its winding may face either way) for its corner normals.
+    const Vec3 n = glm::dot(f.normal, planes[j].normal) < 0.0f ? -planes[j].normal : planes[j].normal;
+    for (int k = 0; k < 3; ++k) {
+      if (f.corner_normals && f.corner_normals[k] != Vec3(0.0f) && glm::dot(f.corner_normals[k], n) < 1.0f - 1e-6f)
+        return {};
+      const Vec3& p = k == 0 ? f.a : k == 1 ? f.b : f.c;
+      lo[j] = glm::min(lo[j], p);
+      hi[j] = glm::max(hi[j], p);
+    }
+  }
+  for (size_t j = 0; j < planes.size(); ++j) bounding_sphere(lo[j], hi[j], planes[j]);
+  return planes;
+}
+
+// One nearly flat sheet: every face normal (turned to agree with the largest face's) and corner
+// normal within Scene::kMaxPlaneTilt of the area-weighted mean normal; empty otherwise.
+std::vector<Scene::Plane> one_sheet(const std::vector<Face>& faces) {
+  const Vec3 up = faces.front().normal;
+  auto agreeing = [&](const Face& f) { return glm::dot(f.normal, up) < 0.0f ? -1.0f : 1.0f; };
+  glm::dvec3 sum_normal(0.0), sum_centroid(0.0);
+  double sum_area = 0.0;
+  Vec3 lo = faces.front().a, hi = lo;
+  for (const Face& f : faces) {
+    sum_normal += f.area * glm::dvec3(agreeing(f) * f.normal);
+    sum_centroid += f.area * glm::dvec3(f.a + f.b + f.c) / 3.0;
+    sum_area += f.area;
+    for (const Vec3& p : {f.a, f.b, f.c}) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+  }
+  Scene::Plane sheet;
+  sheet.normal = Vec3(glm::normalize(sum_normal));
+  sheet.point = Vec3(sum_centroid / sum_area);
+  if (!is_finite(sheet.normal) || !is_finite(sheet.point)) return {};
+  float min_cos = 1.0f;
+  for (const Face& f : faces) {
+    const float side = agreeing(f);
+    min_cos = std::min(min_cos, side * glm::dot(f.normal, sheet.normal));
+    if (f.corner_normals)
+      for (int k = 0; k < 3; ++k)
+        if (f.corner_normals[k] != Vec3(0.0f))
+          min_cos = std::min(min_cos, side * glm::dot(glm::normalize(f.corner_normals[k]), sheet.normal));
+  }
+  if (!(min_cos >= std::cos(Scene::kMaxPlaneTilt))) return {};
+  sheet.tilt = std::acos(std::min(min_cos, 1.0f));
+  for (const Face& f : faces)
+    for (const Vec3& p : {f.a, f.b, f.c})
+      sheet.depth = std::max(sheet.depth, std::abs(glm::dot(p - sheet.point, sheet.normal)));
+  bounding_sphere(lo, hi, sheet);
+  return {sheet};
+}
+
+}  // namespace
+
+std::vector<Scene::Plane> Scene::material_planes(uint32_t material) const {
+  if (in_a_material_table(bindings_, material)) return {};
+  std::vector<Face> faces;
   float scale = 0.0f;
   for_each_triangle(meshes_, material, [&](const Mesh& mesh, size_t i) {
     const glm::uvec3& t = mesh.triangles[i];
@@ -39,31 +132,14 @@ std::optional<Scene::Plane> Scene::material_plane(uint32_t material) const {
     for (const Vec3& p : {a, b, c}) scale = std::max(scale, max_component(glm::abs(p)));
     const glm::dvec3 cross = glm::cross(glm::dvec3(b - a), glm::dvec3(c - a));
     const double area = glm::length(cross);
-    if (area > best_area) {
-      best_area = area;
-      plane.point = a;
-      plane.normal = Vec3(cross / area);
-    }
+    if (!(area > 0.0)) return;  // a degenerate face is never hit
+    faces.push_back(Face{a, b, c, Vec3(cross / area), area,
+                         mesh.corner_normals.empty() ? nullptr : &mesh.corner_normals[3 * i]});
   });
-  if (!(best_area > 0.0) || !is_finite(plane.normal)) return std::nullopt;
-  const float tolerance = 1e-5f * std::max(scale, 1.0f);
-  bool in_plane = true;
-  for_each_triangle(meshes_, material, [&](const Mesh& mesh, size_t i) {
-    const glm::uvec3& t = mesh.triangles[i];
-    // The triangle's own side (its winding may face either way) for its corner normals.
-    const Vec3& a = mesh.positions[t[0]];
-    const Vec3 winding = glm::cross(mesh.positions[t[1]] - a, mesh.positions[t[2]] - a);
-    const float side = glm::dot(winding, plane.normal) < 0.0f ? -1.0f : 1.0f;
-    for (int k = 0; k < 3; ++k) {
-      in_plane &= std::abs(glm::dot(mesh.positions[t[k]] - plane.point, plane.normal)) <= tolerance;
-      if (!mesh.corner_normals.empty()) {
-        const Vec3& n = mesh.corner_normals[3 * i + size_t(k)];
-        in_plane &= n == Vec3(0.0f) || glm::dot(n, side * plane.normal) >= 1.0f - 1e-6f;
-      }
-    }
-  });
-  if (!in_plane) return std::nullopt;
-  return plane;
+  if (faces.empty()) return {};
+  std::stable_sort(faces.begin(), faces.end(), [](const Face& x, const Face& y) { return x.area > y.area; });
+  std::vector<Plane> planes = exact_planes(faces, 1e-5f * std::max(scale, 1.0f));
+  return planes.empty() ? one_sheet(faces) : planes;
 }
 
 std::optional<Scene::Sphere> Scene::material_sphere(uint32_t material) const {

@@ -45,6 +45,7 @@
 #include "torrance/material_bsdf.h"
 #include "torrance/scene.h"
 
+#include <limits>
 #include <vector>
 
 namespace torrance {
@@ -63,9 +64,11 @@ class MirrorImages {
   bool empty() const { return pairs_.empty(); }
   size_t num_reflectors() const { return reflectors_.size(); }
   size_t num_pairs() const { return pairs_.size(); }
-  // The reflector made of material `material` (an index for the queries below), or -1.
-  int reflector_of(uint32_t material) const {
-    return material < reflector_of_material_.size() ? reflector_of_material_[material] : -1;
+  // The reflector at `position` on material `material` (an index for the queries below), or -1: a
+  // material making several planes (a box) is a reflector per plane, the one nearest `position`.
+  int reflector_at(uint32_t material, const Vec3& position) const;
+  bool is_reflector(uint32_t material) const {
+    return material < first_reflector_.size() && first_reflector_[material] >= 0;
   }
   bool is_mirror(int reflector) const { return reflectors_[size_t(reflector)].mirror; }
   const MaterialBsdf& bsdf(int reflector) const { return *reflectors_[size_t(reflector)].bsdf; }
@@ -81,18 +84,30 @@ class MirrorImages {
     Vec3 to_sun{0.0f};
     Vec3 sun_weight{0.0f};
   };
-  // One direction from p (shading normal n) towards a light's image in a reflector, the
-  // (reflector, light) pair chosen among those p sees in proportion to pair_weight, at the rate
-  // run_probability. False: none this time.
-  bool sample(const Vec3& p, const Vec3& n, float path_weight, float u_pair, const Vec2& u, Sample& out) const;
+  // Where the strategy runs: a shading point p on material `material` (shading normal n; pairs
+  // with a reflector of its own material are left out: a sheet does not sample its own glints),
+  // and the path's weight there (the largest channel of its throughput, 1 at the camera's hit).
+  struct Origin {
+    Vec3 p, n;
+    uint32_t material;
+    float path_weight;
+  };
+  // One direction from the origin towards a light's image in a reflector, the (reflector, light)
+  // pair chosen among those it sees in proportion to pair_weight, at the rate run_probability.
+  // False: none this time.
+  bool sample(const Origin& at, float u_pair, const Vec2& u, Sample& out) const;
   // The reflectance of mirror `reflector` for light arriving from direction to_sun.
   Vec3 reflectance(int reflector, const Vec3& to_sun) const;
   // The share of light `light` (a Lights index) found after a BSDF-sampled direction wi (density
-  // bsdf_pdf) from p (shading normal n, path_weight as for sample()) met `reflector` -- at a
-  // glossy reflector by NEE or BSDF sampling there, after a mirror along the reflected ray: the
-  // power heuristic against this strategy's density of wi (1 where it does not sample wi, or the
-  // pair does not exist).
-  float bsdf_share(int reflector, const Vec3& p, const Vec3& n, float path_weight, const Vec3& wi, float bsdf_pdf,
+  // bsdf_pdf) from `at` met `reflector` -- at a glossy reflector by NEE or BSDF sampling there,
+  // after a mirror along the reflected ray: the power heuristic against this strategy's density
+  // of wi (1 where it does not sample wi, or the pair does not exist).
+  // The pairs' weights at an origin summed, and the rate the strategy runs at there.
+  struct Odds {
+    float total = 0.0f, run = 0.0f;
+  };
+  Odds odds(const Origin& at, float* weights = nullptr) const;
+  float bsdf_share(int reflector, const Origin& at, const Odds& odds, const Vec3& wi, float bsdf_pdf,
                    size_t light) const;
 
   // What a path keeps of the lights found at (and right after) the reflector it has just met.
@@ -100,30 +115,43 @@ class MirrorImages {
    public:
     explicit PathShare(const MirrorImages* images) : images_(images) {}
     void clear() { reflector_ = -1; }
-    // The path left `from` (shading normal n) along wi with BSDF density bsdf_pdf and met `reflector`.
-    void met(int reflector, const Vec3& from, const Vec3& n, float path_weight, const Vec3& wi, float bsdf_pdf) {
-      reflector_ = reflector, from_ = from, n_ = n, path_weight_ = path_weight, wi_ = wi, bsdf_pdf_ = bsdf_pdf;
+    // The path left `from` along wi with BSDF density bsdf_pdf and met `reflector`.
+    void met(int reflector, const Origin& from, const Vec3& wi, float bsdf_pdf) {
+      reflector_ = reflector, from_ = from, wi_ = wi, bsdf_pdf_ = bsdf_pdf, odds_known_ = false;
     }
     // Null when the path keeps every light's light whole.
     const LightShare* active() const { return reflector_ >= 0 ? this : nullptr; }
     float of(size_t light) const override {
-      return images_->bsdf_share(reflector_, from_, n_, path_weight_, wi_, bsdf_pdf_, light);
+      if (!odds_known_) odds_ = images_->odds(from_), odds_known_ = true;  // once per reflector met
+      return images_->bsdf_share(reflector_, from_, odds_, wi_, bsdf_pdf_, light);
     }
 
    private:
     const MirrorImages* images_;
     int reflector_ = -1;
-    Vec3 from_{0.0f}, n_{0.0f}, wi_{0.0f};
-    float bsdf_pdf_ = 0.0f, path_weight_ = 1.0f;
+    Origin from_{};
+    Vec3 wi_{0.0f};
+    float bsdf_pdf_ = 0.0f;
+    mutable Odds odds_;
+    mutable bool odds_known_ = false;
   };
 
  private:
   struct Reflector {
     Vec3 point, normal;  // a sphere: its centre (normal unused)
     const MaterialBsdf* bsdf;
+    uint32_t material;
     bool mirror;
-    float radius = 0.0f;       // > 0: a sphere
-    float lobe = 0.0f;         // glossy: how far the lobe widens a light's image (2 atan(3 alpha))
+    float radius = 0.0f;  // > 0: a sphere
+    float lobe = 0.0f;    // glossy: how far the lobe widens a light's image (2 atan(3 alpha))
+    // A plane: how far its normals tilt from `normal` and its points stray from its plane (a
+    // sheet), the sphere bounding it.
+    float tilt = 0.0f, depth = 0.0f;
+    // Glossy planes: how far the lobe and the tilt widen a light's image (at most pi/2), its sine
+    // and 1 - its cosine.
+    float widen = 0.0f, widen_sin = 0.0f, widen_one_minus_cos = 0.0f;
+    Vec3 bound_center{0.0f};
+    float bound_radius = std::numeric_limits<float>::infinity();
   };
   // A light the strategy aims at: a non-delta sun, a point or spot light with a radius, an area light.
   struct Source {
@@ -131,6 +159,8 @@ class MirrorImages {
     const SunLight* sun = nullptr;
     const PointLight* point = nullptr;
     const AreaLight* area = nullptr;
+    float sun_radius = 0.0f;  // a sun's angular radius
+    float size = 0.0f;        // a lamp's radius (an area light's extent)
     Vec3 position() const { return point ? point->position() : area->center(); }  // not for a sun
     Vec3 toward(const Vec3& x) const;          // unit direction from x to the light (its centre)
     // Whether the light is on the positive side of the plane through `origin` with normal n.
@@ -144,15 +174,20 @@ class MirrorImages {
     int reflector, source;
     // A sphere: its reflectance x the light's irradiance at its centre; a plane: its reflectance.
     float strength;
+    // A plane: whether the light is on its normal's side; a glossy plane and a sun: the image
+    // cone, the same from every point (image_cone).
+    bool light_above = false, fixed_cone = false;
+    Vec3 axis{0.0f};
+    float one_minus_cos = 0.0f;
+    Vec3 light_image{0.0f};  // a glossy plane and a lamp: the lamp mirrored in the plane
   };
-  // How often sample() at p picks the pair, relative to their sum (pair_weights): 0 where p does
-  // not see it (p off a plane on the light's side, both faces reflecting; outside a sphere), else
+  // How often sample() at p picks the pair, relative to their sum (odds): 0 where p does
+  // not see it (p off a plane on the light's side, both faces reflecting, and the light's image
+  // cone meeting the plane's bounds; outside a sphere; p on the reflector's material), else
   // the light the reflector can send to p: a plane's strength x the light's irradiance at p's mirror
   // image (what the light's image brings to p); a sphere's strength x r^2 / (4 d^2) (the share of
   // the light it catches that a convex mirror of radius r sends to distance d).
-  float pair_weight(const Pair& pair, const Vec3& p) const;
-  // The sum of the pairs' weights at p; each written to weights[i] too, unless it is null.
-  float pair_weights(const Vec3& p, float* weights = nullptr) const;
+  float pair_weight(const Pair& pair, const Origin& at) const;
   // The strategy runs at p with probability min(1, kRunScale x the pair weights' sum / direct) x
   // path_weight (at most 1), direct: the paired lights' own irradiance at p on its shading normal
   // n: where the reflectors send only a little of what the lights bring directly (a small ball
@@ -160,20 +195,20 @@ class MirrorImages {
   // spends fewer where the path carries little (path_weight: the largest channel of the path's
   // throughput at p, 1 at the camera's hit).
   static constexpr float kRunScale = 10.0f;
-  float run_probability(const Vec3& p, const Vec3& n, float path_weight, float total) const;
   // Glossy: the cone the strategy aims p into for `pair` (its axis, 1 - cos of its half-angle).
   void image_cone(const Pair& pair, const Vec3& p, Vec3& axis, float& one_minus_cos) const;
   // p reflected in plane `reflector`.
   static Vec3 mirrored(const Reflector& reflector, const Vec3& p) {
     return p - 2.0f * glm::dot(p - reflector.point, reflector.normal) * reflector.normal;
   }
-  // The density with which the strategy aims p (normal n) along wi for `pair`, its choice included.
-  float pair_pdf(const Pair& pair, const Vec3& p, const Vec3& n, float path_weight, const Vec3& wi) const;
+  // The density with which the strategy aims `at` along wi for `pair`, its choice included.
+  float pair_pdf(const Pair& pair, const Origin& at, const Odds& odds, const Vec3& wi) const;
 
   std::vector<Reflector> reflectors_;
   std::vector<Source> sources_;
   std::vector<Pair> pairs_;
-  std::vector<int> reflector_of_material_;
+  std::vector<int> first_reflector_;  // per material: its first reflector (a box's planes follow), or -1
+  std::vector<int> num_reflectors_;   // per material
   std::vector<int> pair_of_;  // [reflector * num_lights_ + light]: the pair's index, or -1
   size_t num_lights_ = 0;
 };

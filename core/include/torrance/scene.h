@@ -180,14 +180,24 @@ class Scene {
   bool occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax) const;
   void* embree_scene() const { return scene_; }  // the RTCScene, for raw-Embree measurements (ray_replay.h)
   void bounds(Vec3& lo, Vec3& hi) const;  // of everything traced, after commit (lo > hi: nothing)
-  // The plane all triangles of material `material` lie in, shaded flat (any corner normals along
-  // its normal): a point on it and its unit normal (as the largest triangle winds). nullopt when
-  // no world-space triangle has the material, some leaves the plane (relative tolerance 1e-5) or
-  // has a bent corner normal, or a prototype uses it (instances are not examined).
+  // The flat pieces that the triangles of material `material` make (mirror_images.h): either a
+  // few exact planes shaded flat (a quad, a box: every corner inside its plane to a relative 1e-5,
+  // corner normals along its normal), or else one nearly flat sheet (a wavy water surface: every
+  // face and corner normal within kMaxPlaneTilt of the area-weighted mean normal, facing one way).
+  // Each piece: a point on its (mean) plane, its unit normal (as its largest triangle winds), how
+  // far its normals tilt from it and its points lie off it, and a sphere bounding its triangles. Empty when no world-space
+  // triangle has the material, they make neither, or a prototype uses it (instances are not
+  // examined).
+  static constexpr size_t kMaxPlanes = 8;
+  static constexpr float kMaxPlaneTilt = 0.35f;  // radians (20 degrees)
   struct Plane {
     Vec3 point{0.0f}, normal{0.0f, 0.0f, 1.0f};
+    float tilt = 0.0f;   // 0: exact
+    float depth = 0.0f;  // how far its points lie from its plane (0: exact)
+    Vec3 center{0.0f};  // the bounding sphere
+    float radius = 0.0f;
   };
-  std::optional<Plane> material_plane(uint32_t material) const;
+  std::vector<Plane> material_planes(uint32_t material) const;
   // The sphere all triangles of material `material` make (every vertex within 0.5 % of the radius
   // from the centre of their bounds, the bounds a cube): its centre and radius; nullopt otherwise,
   // or when a prototype uses the material.
