@@ -75,8 +75,9 @@ class TorranceSceneSettings(bpy.types.PropertyGroup):
     use_mirror_images: BoolProperty(
         name="Lights in Mirrors",
         description="Sample the image of each sun in flat mirrors (roughness 0), and of each "
-                    "sun, point, spot and area light in flat glossy surfaces and glossy spheres "
-                    "(roughness up to 0.3), directly, so that a mirror, a polished floor or a "
+                    "sun, point, spot and area light in flat glossy surfaces, glossy boxes, "
+                    "gently wavy glossy sheets and glossy spheres (roughness up to 0.3), "
+                    "directly, so that a mirror, a polished floor, water or a "
                     "metal or plastic ball lights the scene with the light's reflection without "
                     "caustic fireflies; converges to the same image. Suns of angle 0 and point "
                     "lights of radius 0 are left out, as Cycles renders no light from them "

@@ -1,4 +1,4 @@
-// Lights seen in flat mirrors, glossy planes and glossy spheres: next-event estimation of a
+// Lights seen in flat mirrors, glossy planes, boxes, sheets and spheres: next-event estimation of a
 // light reflected once by a surface with a delta or narrow specular lobe (a mirror, a polished
 // floor, a metal or plastic ball). Mirrors reflect suns; glossy planes and spheres reflect suns,
 // point and spot lights with a radius, and area lights.
@@ -29,6 +29,12 @@
 //    the light (a few fixed-point steps from the sphere's centre), of the angular size the
 //    light and the lobe give it there: a convex mirror's image of a light is small and moves with x.
 //    Then NEE of that light and BSDF sampling at the sphere's point, as for a glossy plane.
+//
+//  * Glossy boxes and sheets: a material made of a few exact planes (Scene::material_planes) is
+//    a reflector per plane, the plane a hit belongs to the one nearest it (reflector_at); one
+//    nearly flat sheet (a wavy water surface, normals within Scene::kMaxPlaneTilt of their mean)
+//    is a glossy plane whose image cone is widened by twice its normals' tilt. Pairs of the
+//    shading point's own material are left out.
 //
 // Each (reflector, light) pair is chosen in proportion to the light it can send to x (pair_weight),
 // and a path that met a reflector after a BSDF-sampled direction keeps, of each paired light's
