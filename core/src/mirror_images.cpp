@@ -146,6 +146,7 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
     if (source.sun && !reflector.mirror) {
       pair.axis = reflect_in(source.sun->to_light(), reflector.normal);
       pair.one_minus_cos = one_minus_cos_of(std::min(source.sun_radius + reflector.widen, 0.5f * kPi));
+      pair.sin_cone = std::sin(std::min(source.sun_radius + reflector.widen, 0.5f * kPi));
       pair.fixed_cone = true;
     } else if (!source.sun) {
       pair.light_image = mirrored(reflector, source.position());
@@ -187,14 +188,17 @@ float MirrorImages::pair_weight(const Pair& pair, const Origin& at) const {
     const Vec3 to_bounds = reflector.bound_center - p;
     const float d2 = glm::dot(to_bounds, to_bounds), r2 = reflector.bound_radius * reflector.bound_radius;
     if (d2 > r2) {
+      // cos(cone + bounds) d = cos_cone sqrt(d^2 - r^2) - sin_cone r.
       Vec3 axis;
-      float one_minus_cos;
-      image_cone(pair, p, axis, one_minus_cos);
-      const float cos_cone = 1.0f - one_minus_cos;
-      const float sin_cone = std::sqrt(std::max(one_minus_cos * (2.0f - one_minus_cos), 0.0f));
-      const float sin_bounds = std::sqrt(r2 / d2), cos_bounds = std::sqrt(1.0f - r2 / d2);
-      const float cos_limit = cos_cone * cos_bounds - sin_cone * sin_bounds;
-      if (glm::dot(axis, to_bounds) < cos_limit * std::sqrt(d2)) return 0.0f;
+      float one_minus_cos, sin_cone;
+      if (pair.fixed_cone) {
+        axis = pair.axis, one_minus_cos = pair.one_minus_cos, sin_cone = pair.sin_cone;
+      } else {
+        image_cone(pair, p, axis, one_minus_cos);
+        sin_cone = std::sqrt(std::max(one_minus_cos * (2.0f - one_minus_cos), 0.0f));
+      }
+      const float limit = (1.0f - one_minus_cos) * std::sqrt(d2 - r2) - sin_cone * reflector.bound_radius;
+      if (glm::dot(axis, to_bounds) < limit) return 0.0f;
     }
     return pair.strength * source.irradiance(mirrored(reflector, p));
   }

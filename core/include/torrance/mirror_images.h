@@ -184,7 +184,7 @@ class MirrorImages {
     // cone, the same from every point (image_cone).
     bool light_above = false, fixed_cone = false;
     Vec3 axis{0.0f};
-    float one_minus_cos = 0.0f;
+    float one_minus_cos = 0.0f, sin_cone = 0.0f;
     Vec3 light_image{0.0f};  // a glossy plane and a lamp: the lamp mirrored in the plane
   };
   // How often sample() at p picks the pair, relative to their sum (odds): 0 where p does
