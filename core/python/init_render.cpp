@@ -72,7 +72,7 @@ void init_render(py::module_& m) {
                        const std::string& sampler, bool specialize, float adaptive_threshold,
                        int adaptive_min_samples, double time_limit, float clamp_direct, float clamp_indirect,
                        int max_transparent_bounces, bool guiding, float guiding_training_fraction,
-                       bool efficiency_roulette, bool mirror_images) {
+                       bool efficiency_roulette, bool mirror_images, bool nee_every_light) {
              RenderSettings s;
              s.width = width;
              s.height = height;
@@ -100,6 +100,7 @@ void init_render(py::module_& m) {
              s.guiding_training_fraction = guiding_training_fraction;
              s.efficiency_roulette = efficiency_roulette;
              s.mirror_images = mirror_images;
+             s.nee_every_light = nee_every_light;
              s.validate();
              return s;
            }),
@@ -112,11 +113,13 @@ void init_render(py::module_& m) {
            py::arg("adaptive_min_samples") = 0, py::arg("time_limit") = 0.0, py::arg("clamp_direct") = 0.0f,
            py::arg("clamp_indirect") = 0.0f, py::arg("max_transparent_bounces") = 8,
            py::arg("guiding") = true, py::arg("guiding_training_fraction") = 0.25f,
-           py::arg("efficiency_roulette") = true, py::arg("mirror_images") = true)
+           py::arg("efficiency_roulette") = true, py::arg("mirror_images") = true,
+           py::arg("nee_every_light") = true)
       .def_readwrite("specialize", &RenderSettings::specialize)
       .def_readwrite("camera_packets", &RenderSettings::camera_packets)
       .def_readwrite("efficiency_roulette", &RenderSettings::efficiency_roulette)
       .def_readwrite("mirror_images", &RenderSettings::mirror_images)
+      .def_readwrite("nee_every_light", &RenderSettings::nee_every_light)
       .def_readwrite("roulette_min_survival", &RenderSettings::roulette_min_survival)
       .def_property(
           "sampler", [](const RenderSettings& s) { return std::string(s.sobol ? "SOBOL" : "RANDOM"); },

@@ -1,4 +1,5 @@
 #include "torrance/integrator.h"
+#include "torrance/light_choice.h"
 
 #include "film.h"
 #include "path_tracer.h"
@@ -128,6 +129,8 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   const PixelFilter filter(settings.filter_width);
 
   const TraceFn trace = select_path_tracer(cscene, settings);
+  ctx.nee_every_light = settings.nee_every_light && cscene.lights().count() > 1 &&
+                        cscene.lights().count() <= LightChoice::kEveryLightLimit;
   std::optional<MirrorImages> mirror_images;
   if (settings.mirror_images && !has_alpha(cscene)) {
     mirror_images.emplace(cscene, ctx.bsdfs);

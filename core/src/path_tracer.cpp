@@ -349,36 +349,41 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
     // (light_choice.h), MIS-weighted against BSDF sampling.
     const glm::vec4 u_light = sampler.next_4d();  // light choice, position on the light
     const glm::vec4 u_bsdf = sampler.next_4d();   // lobe, direction, roulette
-    light_choice.score(lights, hit.position, ns, transmits, LightChoice::narrow_lobe(material.roughness),
-                       [&](const Vec3& toward) {
-                         const Vec3 wi = frame.to_local(toward);
-                         return luminance(bsdf.template eval_lobes<kGlass>(view, wi).total()) /
-                                std::max(std::abs(wi.z), 0.01f);
-                       });
-    const Lights::Choice choice = light_choice.select(u_light.x);
-    if (choice.probability > 0.0f) {
-      const LightSample ls = lights.sample(choice.index, hit.position, ns, Vec2(u_light.y, u_light.z), transmits);
+    // NEE of light `index`, chosen with `probability`.
+    auto next_event = [&](size_t index, float probability) {
+      const LightSample ls = lights.sample(index, hit.position, ns, Vec2(u_light.y, u_light.z), transmits);
       const Vec3 wi = frame.to_local(ls.wi);
       const float cos_geometric = glm::dot(ls.wi, ng);
-      if (ls.valid() &&
-          (transmits ? cos_geometric != 0.0f && (cos_geometric > 0.0f) == (wi.z > 0.0f) : cos_geometric > 0.0f)) {
-        LobeEval f = bsdf.template eval_lobes<kGlass>(view, wi);
-        if (normal_mapped) f.diffuse *= bump_shadowing(n_smooth, ns, ls.wi);
-        if (max_component(f.total()) > 0.0f) {
-          const Vec3 transmittance = shadow_transmittance<kAlpha>(ctx.scene, hit.position, ng, ls,
-                                                                  ctx.settings.max_transparent_bounces);
-          if (max_component(transmittance) > 0.0f) {
-            // Against the BSDF's pdf even where a guide samples the next direction: see prev_pdf.
-            const float mis = ls.pdf > 0.0f
-                                  ? power_heuristic(choice.probability * ls.pdf, bsdf.template pdf<kGlass>(view, wi))
-                                  : 1.0f;
-            Vec3 light = throughput * ls.weight * (mis / choice.probability);
-            if (const LightShare* share = reflector_share.active()) light *= share->of(choice.index);
-            if (kAlpha) light *= transmittance;
-            deposit_light_sample(light, f, bounce, true);
-          }
-        }
-      }
+      if (!ls.valid() ||
+          !(transmits ? cos_geometric != 0.0f && (cos_geometric > 0.0f) == (wi.z > 0.0f) : cos_geometric > 0.0f))
+        return;
+      LobeEval f = bsdf.template eval_lobes<kGlass>(view, wi);
+      if (normal_mapped) f.diffuse *= bump_shadowing(n_smooth, ns, ls.wi);
+      if (!(max_component(f.total()) > 0.0f)) return;
+      const Vec3 transmittance =
+          shadow_transmittance<kAlpha>(ctx.scene, hit.position, ng, ls, ctx.settings.max_transparent_bounces);
+      if (!(max_component(transmittance) > 0.0f)) return;
+      // Against the BSDF's pdf even where a guide samples the next direction: see prev_pdf.
+      const float mis =
+          ls.pdf > 0.0f ? power_heuristic(probability * ls.pdf, bsdf.template pdf<kGlass>(view, wi)) : 1.0f;
+      Vec3 light = throughput * ls.weight * (mis / probability);
+      if (const LightShare* share = reflector_share.active()) light *= share->of(index);
+      if (kAlpha) light *= transmittance;
+      deposit_light_sample(light, f, bounce, true);
+    };
+    if (ctx.nee_every_light) {
+      light_choice.every(lights, hit.position, ns, transmits);
+      for (size_t i = 0; i < light_choice.count(); ++i)
+        if (light_choice.probability(i) > 0.0f) next_event(i, 1.0f);
+    } else {
+      light_choice.score(lights, hit.position, ns, transmits, LightChoice::narrow_lobe(material.roughness),
+                         [&](const Vec3& toward) {
+                           const Vec3 wi = frame.to_local(toward);
+                           return luminance(bsdf.template eval_lobes<kGlass>(view, wi).total()) /
+                                  std::max(std::abs(wi.z), 0.01f);
+                         });
+      if (const Lights::Choice choice = light_choice.select(u_light.x); choice.probability > 0.0f)
+        next_event(choice.index, choice.probability);
     }
 
     // Next-event estimation of lights through planar mirrors, glossy planes and spheres; the light

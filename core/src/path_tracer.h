@@ -29,6 +29,7 @@ struct PathContext {
   RouletteField* roulette = nullptr;
   // Suns seen in planar mirrors (mirror_images.h), sampled by NEE; null: none, or not used.
   const MirrorImages* mirror_images = nullptr;
+  bool nee_every_light = false;  // RenderSettings::nee_every_light, in a scene of few enough lights
 };
 
 // Where a camera sample goes.

@@ -84,6 +84,13 @@ class TorranceSceneSettings(bpy.types.PropertyGroup):
                     "through a mirror",
         default=True,
     )
+    use_nee_every_light: BoolProperty(
+        name="Both Lights",
+        description="In a scene of two lights (a sun and a lamp, a sun and an HDRI), sample both "
+                    "at every bounce instead of choosing one: a shadow ray more, no noise from "
+                    "the choice where both shine; converges to the same image",
+        default=True,
+    )
     use_guiding: BoolProperty(
         name="Path Guiding",
         description="Learn where light comes from during the render (an SD-tree trained in the "

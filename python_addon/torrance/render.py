@@ -179,8 +179,8 @@ class _Session:
 
 def sampling_settings(ts):
     """RenderSettings arguments for the Sampling panel's Noise Threshold, Time Limit, Path
-    Guiding, Efficiency Roulette and Lights in Mirrors and the Light Paths panel's Clamping, from
-    scene.torrance (final renders)."""
+    Guiding, Efficiency Roulette, Lights in Mirrors and Both Lights and the Light Paths panel's
+    Clamping, from scene.torrance (final renders)."""
     threshold = 0.0
     if ts.use_adaptive_sampling:
         # As Cycles: a threshold of 0 means automatic, from the number of samples.
@@ -193,7 +193,8 @@ def sampling_settings(ts):
                 guiding=bool(ts.use_guiding),
                 guiding_training_fraction=float(ts.guiding_training_fraction),
                 efficiency_roulette=bool(ts.use_efficiency_roulette),
-                mirror_images=bool(ts.use_mirror_images))
+                mirror_images=bool(ts.use_mirror_images),
+                nee_every_light=bool(ts.use_nee_every_light))
 
 
 def render(engine, depsgraph):

@@ -61,6 +61,18 @@ class LightChoice {
     mix(total_irradiance, total_response);
   }
 
+  // Every light at once (RenderSettings::nee_every_light, scenes of at most kEveryLightLimit
+  // NEE strategies): probability 1 for each light that can reach p (its selection weight > 0), 0
+  // for the others; the caller samples each light of probability 1.
+  static constexpr size_t kEveryLightLimit = 2;
+  void every(const Lights& lights, const Vec3& p, const Vec3& n, bool two_sided) {
+    lights_ = &lights, p_ = p, n_ = n, two_sided_ = two_sided;
+    count_ = std::min(lights.count(), kMaxScored);
+    scored_ = true;
+    for (size_t i = 0; i < count_; ++i) probability_[i] = lights.selection_weight(i, p, n, two_sided) > 0.0f ? 1.0f : 0.0f;
+  }
+  size_t count() const { return count_; }
+
   Lights::Choice select(float u) const;
   // The probability select() gives strategy `index` (the MIS density's selection factor).
   float probability(size_t index) const;

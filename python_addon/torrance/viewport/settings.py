@@ -27,6 +27,7 @@ def viewport_settings(scene):
         guiding=False,
         efficiency_roulette=False,
         mirror_images=bool(ts.use_mirror_images),
+        nee_every_light=bool(ts.use_nee_every_light),
     )
 
 
