@@ -143,7 +143,7 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
     const Source& source = sources_[size_t(pair.source)];
     if (reflector.radius > 0.0f) continue;
     pair.light_above = source.above(reflector.point, reflector.normal);
-    if (source.sun && !reflector.mirror) {
+    if (source.sun) {  // a mirror's too (its bounds test; a mirror's samples follow the sun's cone)
       pair.axis = reflect_in(source.sun->to_light(), reflector.normal);
       pair.one_minus_cos = one_minus_cos_of(std::min(source.sun_radius + reflector.widen, 0.5f * kPi));
       pair.sin_cone = std::sin(std::min(source.sun_radius + reflector.widen, 0.5f * kPi));

@@ -333,6 +333,31 @@ void add_wavy_sheet(Scene& scene, float x0, float x1, float y0, float y1, int n,
                  corner_normals.data(), materials.data());
 }
 
+// A mirror and a glossy plate far from the origin, a sun above: from a point over each the
+// strategy finds a pair to sample (their image cones meet their bounds) and aims down into it.
+TEST(MirrorImages, PlanesAwayFromTheOriginAreAimedAt) {
+  Scene scene;
+  Material glossy = mirror_metal();
+  glossy.roughness = 0.2f;
+  const uint32_t mirror = scene.add_material(mirror_metal()), plate = scene.add_material(glossy);
+  const uint32_t elsewhere = scene.add_material(test::diffuse_material(Vec3(0.5f)));
+  test::add_quad(scene, Vec3(12, -3, 0), Vec3(18, -3, 0), Vec3(18, 3, 0), Vec3(12, 3, 0), mirror);
+  test::add_quad(scene, Vec3(-3, 12, 0), Vec3(3, 12, 0), Vec3(3, 18, 0), Vec3(-3, 18, 0), plate);
+  scene.lights().add_sun(glm::normalize(Vec3(0.1f, 0.2f, -1.0f)), 1.0f, Vec3(1.0f), 0.05f);
+  const std::vector<MaterialBsdf> bsdfs = [&] {
+    std::vector<MaterialBsdf> b;
+    for (uint32_t i = 0; i < scene.num_materials(); ++i) b.emplace_back(scene.material(i), BrdfModel::Principled);
+    return b;
+  }();
+  const MirrorImages images(scene, bsdfs);
+  for (const Vec3& over : {Vec3(15, 0, 6), Vec3(0, 15, 6)}) {  // outside their bounding spheres
+    MirrorImages::Sample s;
+    const bool found = images.sample({over, Vec3(0, 0, -1), elsewhere, 1.0f}, 0.001f, Vec2(0.5f), s);
+    EXPECT_TRUE(found) << "no pair sampled over (" << over.x << ", " << over.y << ")";
+    if (found) EXPECT_LT(s.wi.z, -0.9f);
+  }
+}
+
 // A glossy box's faces are a reflector each, told apart by where a hit is; a gently wavy glossy
 // sheet is one reflector whose normals tilt; a wavy mirror, a steep sheet and a rough box are none.
 TEST(MirrorImages, BoxFacesAndWavySheetsAreReflectors) {

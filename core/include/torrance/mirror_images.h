@@ -180,8 +180,8 @@ class MirrorImages {
     int reflector, source;
     // A sphere: its reflectance x the light's irradiance at its centre; a plane: its reflectance.
     float strength;
-    // A plane: whether the light is on its normal's side; a glossy plane and a sun: the image
-    // cone, the same from every point (image_cone).
+    // A plane: whether the light is on its normal's side; a plane and a sun: the image cone,
+    // the same from every point (image_cone).
     bool light_above = false, fixed_cone = false;
     Vec3 axis{0.0f};
     float one_minus_cos = 0.0f, sin_cone = 0.0f;
