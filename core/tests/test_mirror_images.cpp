@@ -21,6 +21,13 @@ Material mirror_metal() {
   return m;
 }
 
+// The render's BSDFs of a scene's materials (Principled).
+std::vector<MaterialBsdf> principled_bsdfs(const Scene& scene) {
+  std::vector<MaterialBsdf> bsdfs;
+  for (uint32_t i = 0; i < scene.num_materials(); ++i) bsdfs.emplace_back(scene.material(i), BrdfModel::Principled);
+  return bsdfs;
+}
+
 TEST(MirrorImages, OnlyFlatMirrorsAndGlossyPlanesAreSampled) {
   Scene scene;
   const uint32_t flat = scene.add_material(mirror_metal());
@@ -47,8 +54,7 @@ TEST(MirrorImages, OnlyFlatMirrorsAndGlossyPlanesAreSampled) {
     scene.add_mesh(p, 3, tri, 1, normals, mat);
   }
   scene.lights().add_sun(Vec3(0, 0, -1), 1.0f, Vec3(1.0f), 0.05f);
-  std::vector<MaterialBsdf> bsdfs;
-  for (uint32_t i = 0; i < scene.num_materials(); ++i) bsdfs.emplace_back(scene.material(i), BrdfModel::Principled);
+  const std::vector<MaterialBsdf> bsdfs = principled_bsdfs(scene);
   const MirrorImages images(scene, bsdfs);
   // The bent quad is two flat triangles in two planes: two mirrors, told apart by where a hit is.
   EXPECT_EQ(images.num_reflectors(), 4u);
@@ -344,11 +350,7 @@ TEST(MirrorImages, PlanesAwayFromTheOriginAreAimedAt) {
   test::add_quad(scene, Vec3(12, -3, 0), Vec3(18, -3, 0), Vec3(18, 3, 0), Vec3(12, 3, 0), mirror);
   test::add_quad(scene, Vec3(-3, 12, 0), Vec3(3, 12, 0), Vec3(3, 18, 0), Vec3(-3, 18, 0), plate);
   scene.lights().add_sun(glm::normalize(Vec3(0.1f, 0.2f, -1.0f)), 1.0f, Vec3(1.0f), 0.05f);
-  const std::vector<MaterialBsdf> bsdfs = [&] {
-    std::vector<MaterialBsdf> b;
-    for (uint32_t i = 0; i < scene.num_materials(); ++i) b.emplace_back(scene.material(i), BrdfModel::Principled);
-    return b;
-  }();
+  const std::vector<MaterialBsdf> bsdfs = principled_bsdfs(scene);
   const MirrorImages images(scene, bsdfs);
   for (const Vec3& over : {Vec3(15, 0, 6), Vec3(0, 15, 6)}) {  // outside their bounding spheres
     MirrorImages::Sample s;
@@ -375,11 +377,7 @@ TEST(MirrorImages, BoxFacesAndWavySheetsAreReflectors) {
   add_wavy_sheet(scene, -8.0f, -4.0f, -2.0f, 2.0f, 24, 0.4f, steep);    // slopes up to 0.8: ~39 degrees
   add_box(scene, Vec3(0.0f, 5.0f, 1.0f), Vec3(0.5f), rough_box);
   scene.lights().add_sun(Vec3(0.2f, 0.1f, -1.0f), 1.0f, Vec3(1.0f), 0.05f);
-  const std::vector<MaterialBsdf> bsdfs = [&] {
-    std::vector<MaterialBsdf> b;
-    for (uint32_t i = 0; i < scene.num_materials(); ++i) b.emplace_back(scene.material(i), BrdfModel::Principled);
-    return b;
-  }();
+  const std::vector<MaterialBsdf> bsdfs = principled_bsdfs(scene);
   const MirrorImages images(scene, bsdfs);
   EXPECT_EQ(scene.material_planes(box).size(), 6u);
   std::vector<int> faces;
@@ -436,13 +434,6 @@ TEST(MirrorImages, GlossyBallLightsTheFloorAsBsdfSamplingSays) {
   EXPECT_NEAR(a.ratio, 1.0, 0.01);
   EXPECT_LT(a.image_z, 4.0);
   EXPECT_LT(a.worst_block_z, 4.5);
-}
-
-// The render's BSDFs of a scene's materials (Principled).
-std::vector<MaterialBsdf> principled_bsdfs(const Scene& scene) {
-  std::vector<MaterialBsdf> bsdfs;
-  for (uint32_t i = 0; i < scene.num_materials(); ++i) bsdfs.emplace_back(scene.material(i), BrdfModel::Principled);
-  return bsdfs;
 }
 
 // 32 seeds of the strategy at 64 spp against BSDF sampling alone at 512 spp (at 64 spp its rare
