@@ -145,8 +145,9 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
     pair.light_above = source.above(reflector.point, reflector.normal);
     if (source.sun) {  // a mirror's too (its bounds test; a mirror's samples follow the sun's cone)
       pair.axis = reflect_in(source.sun->to_light(), reflector.normal);
-      pair.one_minus_cos = one_minus_cos_of(std::min(source.sun_radius + reflector.widen, 0.5f * kPi));
-      pair.sin_cone = std::sin(std::min(source.sun_radius + reflector.widen, 0.5f * kPi));
+      const float half_angle = std::min(source.sun_radius + reflector.widen, 0.5f * kPi);
+      pair.one_minus_cos = one_minus_cos_of(half_angle);
+      pair.sin_cone = std::sin(half_angle);
       pair.fixed_cone = true;
     } else if (!source.sun) {
       pair.light_image = mirrored(reflector, source.position());

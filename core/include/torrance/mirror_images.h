@@ -98,8 +98,13 @@ class MirrorImages {
     uint32_t material;
     float path_weight;
   };
+  // The pairs' weights at an origin summed, and the rate the strategy runs at there (kRunScale).
+  struct Odds {
+    float total = 0.0f, run = 0.0f;
+  };
+  Odds odds(const Origin& at, float* weights = nullptr) const;
   // One direction from the origin towards a light's image in a reflector, the (reflector, light)
-  // pair chosen among those it sees in proportion to pair_weight, at the rate run_probability.
+  // pair chosen among those it sees in proportion to pair_weight, at the rate odds() gives.
   // False: none this time.
   bool sample(const Origin& at, float u_pair, const Vec2& u, Sample& out) const;
   // The reflectance of mirror `reflector` for light arriving from direction to_sun.
@@ -107,12 +112,7 @@ class MirrorImages {
   // The share of light `light` (a Lights index) found after a BSDF-sampled direction wi (density
   // bsdf_pdf) from `at` met `reflector` -- at a glossy reflector by NEE or BSDF sampling there,
   // after a mirror along the reflected ray: the power heuristic against this strategy's density
-  // of wi (1 where it does not sample wi, or the pair does not exist).
-  // The pairs' weights at an origin summed, and the rate the strategy runs at there.
-  struct Odds {
-    float total = 0.0f, run = 0.0f;
-  };
-  Odds odds(const Origin& at, float* weights = nullptr) const;
+  // of wi (1 where it does not sample wi, or the pair does not exist); odds: odds(at).
   float bsdf_share(int reflector, const Origin& at, const Odds& odds, const Vec3& wi, float bsdf_pdf,
                    size_t light) const;
 
