@@ -112,7 +112,7 @@ void init_render(py::module_& m) {
            py::arg("sampler") = "SOBOL", py::arg("specialize") = true, py::arg("adaptive_threshold") = 0.0f,
            py::arg("adaptive_min_samples") = 0, py::arg("time_limit") = 0.0, py::arg("clamp_direct") = 0.0f,
            py::arg("clamp_indirect") = 0.0f, py::arg("max_transparent_bounces") = 8,
-           py::arg("guiding") = true, py::arg("guiding_training_fraction") = 0.25f,
+           py::arg("guiding") = false, py::arg("guiding_training_fraction") = 0.25f,
            py::arg("efficiency_roulette") = true, py::arg("mirror_images") = true,
            py::arg("nee_every_light") = true)
       .def_readwrite("specialize", &RenderSettings::specialize)

@@ -189,6 +189,7 @@ TEST(GuidedRender, SaysWhenItStoppedGuiding) {
   RenderSettings s;
   s.width = s.height = 32;
   s.samples = 64;
+  s.guiding = true;
   const RenderResult r = render(scene, s);
   EXPECT_EQ(r.guiding, "stopped after pass 3");
 }

@@ -94,13 +94,15 @@ class TorranceSceneSettings(bpy.types.PropertyGroup):
     use_guiding: BoolProperty(
         name="Path Guiding",
         description="Learn where light comes from during the render (an SD-tree trained in the "
-                    "first passes) and send part of the bounced rays there: pays on caustics "
-                    "and light arriving by narrow paths; switches itself off after its third "
-                    "training pass where it would not pay, and is not used by renders too short "
-                    "for that pass (below 28 samples at a training fraction of 0.25). Off, with "
+                    "first passes) and send part of the bounced rays there: can pay on light "
+                    "arriving by narrow paths that Lights in Mirrors does not sample (many "
+                    "lights, long renders); switches itself off after its third training pass "
+                    "where it would not pay, and is not used by renders too short for that pass "
+                    "(below 28 samples at a training fraction of 0.25). Off by default, as "
+                    "Cycles': its training costs more than it gains on most scenes. Off, with "
                     "Efficiency Roulette off too, a render border or a farm tile matches the "
                     "full frame's pixels bit for bit",
-        default=True,
+        default=False,
     )
     guiding_training_fraction: FloatProperty(
         name="Training Fraction",

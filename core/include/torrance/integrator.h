@@ -89,11 +89,13 @@ struct RenderSettings {
   // Path guiding (guiding.h): an SD-tree of incident radiance learned in training passes of 1, 2,
   // 4, ... samples per pixel while they fit in guiding_training_fraction of the samples (and of
   // time_limit), then kept for the rest; the samples of every pass (each one unbiased) are in the
-  // image. On by default: it pays 4x on caustics and switches itself off where it would not pay
+  // image; it switches itself off after its third training pass where it would not pay. Off by
+  // default (as Cycles' path guiding): since the mirror-image strategy took the caustics it paid
+  // on, its training costs more than it gains on 8 of the 10 comparison scenes
   // (docs/speed/path_guiding.md). Deterministic as the rest (the tree's sums are in fixed point,
   // independent of the threads' order); it learns from the pixels rendered, so a window gets
   // other noise than the same pixels of the whole frame.
-  bool guiding = true;
+  bool guiding = false;
   // Next-event estimation of lights seen in mirrors, glossy planes and glossy spheres
   // (mirror_images.h): the light a mirror floor or a polished ball reflects from a small sun or
   // lamp onto the scene, without its caustic fireflies. It changes nothing in scenes without such

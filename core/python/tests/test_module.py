@@ -763,7 +763,7 @@ def test_guiding_settings_and_a_guided_adaptive_render():
                                  guiding_training_fraction=0.5, adaptive_threshold=0.01,
                                  adaptive_min_samples=8)
     assert settings.guiding and settings.guiding_training_fraction == 0.5
-    assert tc.RenderSettings().guiding                 # on by default
+    assert not tc.RenderSettings().guiding             # off by default
     with pytest.raises(ValueError, match="guiding_training_fraction"):
         tc.RenderSettings(guiding_training_fraction=1.5)
     scene = plane_scene(half=0.02)
