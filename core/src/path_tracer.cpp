@@ -72,6 +72,15 @@ Vec3 shadow_transmittance(const Scene& scene, const Vec3& p, const Vec3& ng, con
   }
 }
 
+// Whether light can leave (or arrive) along world direction wi at a vertex with geometric normal
+// ng (turned towards the viewer) and wi's shading-frame z wi_z: an opaque surface only above its
+// geometric surface; a transmitting one on either side, where the geometric and the shading
+// normal agree on the side (as Cycles: a direction they disagree on carries nothing).
+bool leaves_geometric_side(const Vec3& wi, const Vec3& ng, float wi_z, bool transmits) {
+  const float cos_geometric = glm::dot(wi, ng);
+  return transmits ? cos_geometric != 0.0f && (cos_geometric > 0.0f) == (wi_z > 0.0f) : cos_geometric > 0.0f;
+}
+
 // Cycles 3.4's smoothing of diffuse light on bump- or normal-mapped surfaces near the terminator
 // ("Taming the Shadow Terminator", Chiang et al. 2019): n_smooth is the interpolated normal,
 // n_mapped the normal-mapped one, wi the light direction.
@@ -100,9 +109,7 @@ bool mirror_image_light(const PathContext& ctx, const Bsdf& bsdf, const typename
   MirrorImages::Sample ms;
   if (!images.sample({position, ns, material, path_weight}, u.x, Vec2(u.y, u.z), ms)) return false;
   const Vec3 wi = frame.to_local(ms.wi);
-  const float cos_geometric = glm::dot(ms.wi, ng);
-  if (transmits ? cos_geometric == 0.0f || (cos_geometric > 0.0f) != (wi.z > 0.0f) : cos_geometric <= 0.0f)
-    return false;
+  if (!leaves_geometric_side(ms.wi, ng, wi.z, transmits)) return false;
   f = bsdf.template eval_lobes<kGlass>(view, wi);
   if (normal_mapped) f.diffuse *= bump_shadowing(n_smooth, ns, ms.wi);
   if (!(max_component(f.total()) > 0.0f)) return false;
@@ -353,10 +360,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
     auto next_event = [&](size_t index, float probability) {
       const LightSample ls = lights.sample(index, hit.position, ns, Vec2(u_light.y, u_light.z), transmits);
       const Vec3 wi = frame.to_local(ls.wi);
-      const float cos_geometric = glm::dot(ls.wi, ng);
-      if (!ls.valid() ||
-          !(transmits ? cos_geometric != 0.0f && (cos_geometric > 0.0f) == (wi.z > 0.0f) : cos_geometric > 0.0f))
-        return;
+      if (!ls.valid() || !leaves_geometric_side(ls.wi, ng, wi.z, transmits)) return;
       LobeEval f = bsdf.template eval_lobes<kGlass>(view, wi);
       if (normal_mapped) f.diffuse *= bump_shadowing(n_smooth, ns, ls.wi);
       if (!(max_component(f.total()) > 0.0f)) return;
@@ -404,12 +408,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
                           : bsdf.template sample<kGlass>(view, u_bsdf.x, Vec2(u_bsdf.y, u_bsdf.z));
     if (!bs.valid()) break;
     const Vec3 wi_world = frame.to_world(bs.wi);
-    const float cos_geometric = glm::dot(wi_world, ng);
-    if (transmits) {
-      if (cos_geometric == 0.0f || (cos_geometric > 0.0f) != (bs.wi.z > 0.0f)) break;
-    } else if (cos_geometric <= 0.0f) {
-      break;  // below the geometric surface: an opaque surface transmits nothing
-    }
+    if (!leaves_geometric_side(wi_world, ng, bs.wi.z, transmits)) break;
     if (normal_mapped && !bs.is_delta) {
       LobeEval f = bsdf.template eval_lobes<kGlass>(view, bs.wi);
       f.diffuse *= bump_shadowing(n_smooth, ns, wi_world);
