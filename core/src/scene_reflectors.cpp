@@ -81,10 +81,29 @@ std::vector<Scene::Plane> exact_planes(const std::vector<Face>& faces, float tol
   return planes;
 }
 
-// One nearly flat sheet: every face normal (turned to agree with the largest face's) and corner
-// normal within Scene::kMaxPlaneTilt of the area-weighted mean normal; empty otherwise.
-std::vector<Scene::Plane> one_sheet(const std::vector<Face>& faces) {
-  const Vec3 up = faces.front().normal;
+// Whether the faces' normals fall into at most Scene::kMaxPlanes directions (either way) when
+// normals within ~2.6 degrees count as one: a necessary condition for exact_planes (its faces of
+// one plane agree within ~0.1 degree), checked in one pass that stops at the first direction too
+// many -- a curved sheet of many faces then skips exact_planes' sort by area.
+bool few_directions(const std::vector<Face>& faces) {
+  std::vector<Vec3> directions;
+  for (const Face& f : faces) {
+    bool known = false;
+    for (const Vec3& d : directions)
+      if (std::abs(glm::dot(f.normal, d)) >= 1.0f - 1e-3f) {
+        known = true;
+        break;
+      }
+    if (known) continue;
+    if (directions.size() == Scene::kMaxPlanes) return false;
+    directions.push_back(f.normal);
+  }
+  return true;
+}
+
+// One nearly flat sheet: every face normal (turned to agree with `up`, the largest face's) and
+// corner normal within Scene::kMaxPlaneTilt of the area-weighted mean normal; empty otherwise.
+std::vector<Scene::Plane> one_sheet(const std::vector<Face>& faces, const Vec3& up) {
   auto agreeing = [&](const Face& f) { return glm::dot(f.normal, up) < 0.0f ? -1.0f : 1.0f; };
   glm::dvec3 sum_normal(0.0), sum_centroid(0.0);
   double sum_area = 0.0;
@@ -125,6 +144,9 @@ std::vector<Scene::Plane> one_sheet(const std::vector<Face>& faces) {
 std::vector<Scene::Plane> Scene::material_planes(uint32_t material) const {
   if (in_a_material_table(bindings_, material)) return {};
   std::vector<Face> faces;
+  size_t triangles = 0;  // of this material: one pass over the ids spares the faces' regrowth
+  for_each_triangle(meshes_, material, [&](const Mesh&, size_t) { ++triangles; });
+  faces.reserve(triangles);
   float scale = 0.0f;
   for_each_triangle(meshes_, material, [&](const Mesh& mesh, size_t i) {
     const glm::uvec3& t = mesh.triangles[i];
@@ -137,9 +159,14 @@ std::vector<Scene::Plane> Scene::material_planes(uint32_t material) const {
                          mesh.corner_normals.empty() ? nullptr : &mesh.corner_normals[3 * i]});
   });
   if (faces.empty()) return {};
-  std::stable_sort(faces.begin(), faces.end(), [](const Face& x, const Face& y) { return x.area > y.area; });
+  auto larger = [](const Face& x, const Face& y) { return x.area > y.area; };
+  if (!few_directions(faces)) {
+    const Vec3 up = std::min_element(faces.begin(), faces.end(), larger)->normal;  // the first largest face's
+    return one_sheet(faces, up);
+  }
+  std::stable_sort(faces.begin(), faces.end(), larger);
   std::vector<Plane> planes = exact_planes(faces, 1e-5f * std::max(scale, 1.0f));
-  return planes.empty() ? one_sheet(faces) : planes;
+  return planes.empty() ? one_sheet(faces, faces.front().normal) : planes;
 }
 
 std::optional<Scene::Sphere> Scene::material_sphere(uint32_t material) const {
