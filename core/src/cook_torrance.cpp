@@ -46,10 +46,8 @@ CookTorranceBsdf::View CookTorranceBsdf::at(const Vec3& wo) const {
 LobeEval CookTorranceBsdf::eval_lobes(const View& v, const Vec3& wi) const {
   const Vec3& wo = v.wo;
   if (wo.z <= 0.0f || wi.z <= 0.0f) return {};
-  const Vec3 half = wo + wi;
-  const float half_len2 = glm::dot(half, half);
-  if (!(half_len2 > 0.0f)) return {};
-  const Vec3 h = half / std::sqrt(half_len2);
+  Vec3 h;
+  if (!ggx::reflection_half(wo, wi, h)) return {};
   const Vec3 F = fresnel(glm::dot(wi, h));
   LobeEval f_cos;
   f_cos.diffuse = (Vec3(1.0f) - F) * diffuse_color_ * (kInvPi * wi.z);

@@ -76,10 +76,8 @@ GlassBsdf::Weights GlassBsdf::weights(const Vec3& wo) const {
 GlassBsdf::Lobe GlassBsdf::reflection(const Vec3& wo, const Vec3& wi) const {
   Lobe out;
   if (reflect_delta_ || !(wo.z > 0.0f) || !(wi.z > 0.0f)) return out;
-  const Vec3 half = wo + wi;
-  const float len2 = glm::dot(half, half);
-  if (!(len2 > 0.0f)) return out;
-  const Vec3 h = half / std::sqrt(len2);
+  Vec3 h;
+  if (!ggx::reflection_half(wo, wi, h)) return out;
   const float o_h = glm::dot(wo, h);
   if (!(o_h > 0.0f)) return out;
   const float d = D(h, alpha_r_);

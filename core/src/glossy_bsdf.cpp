@@ -10,10 +10,8 @@ GlossyBsdf::GlossyBsdf(const Vec3& color, float roughness)
 
 LobeEval GlossyBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
   if (wo.z <= 0.0f || wi.z <= 0.0f || has_delta()) return {};
-  const Vec3 half = wo + wi;
-  const float half_len2 = glm::dot(half, half);
-  if (!(half_len2 > 0.0f)) return {};
-  const Vec3 h = half / std::sqrt(half_len2);
+  Vec3 h;
+  if (!ggx::reflection_half(wo, wi, h)) return {};
   const float g = ggx::smith_G1(wo.z, alpha_) * ggx::smith_G1(wi.z, alpha_);
   LobeEval f;
   f.glossy = color_ * (ggx::D(h, alpha_) * g / (4.0f * wo.z));
@@ -22,10 +20,8 @@ LobeEval GlossyBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
 
 float GlossyBsdf::pdf(const Vec3& wo, const Vec3& wi) const {
   if (wo.z <= 0.0f || wi.z <= 0.0f || has_delta()) return 0.0f;
-  const Vec3 half = wo + wi;
-  const float half_len2 = glm::dot(half, half);
-  if (!(half_len2 > 0.0f)) return 0.0f;
-  return ggx::reflected_pdf(wo, half / std::sqrt(half_len2), alpha_);
+  Vec3 h;
+  return ggx::reflection_half(wo, wi, h) ? ggx::reflected_pdf(wo, h, alpha_) : 0.0f;
 }
 
 BsdfSample GlossyBsdf::sample(const Vec3& wo, float /*u_lobe*/, const Vec2& u) const {

@@ -69,10 +69,8 @@ PrincipledBsdf::View PrincipledBsdf::at(const Vec3& wo) const {
 LobeEval PrincipledBsdf::eval_lobes(const View& v, const Vec3& wi) const {
   const Vec3& wo = v.wo;
   if (wo.z <= 0.0f || wi.z <= 0.0f) return {};
-  const Vec3 half = wo + wi;
-  const float half_len2 = glm::dot(half, half);
-  if (!(half_len2 > 0.0f)) return {};
-  const Vec3 h = half / std::sqrt(half_len2);
+  Vec3 h;
+  if (!ggx::reflection_half(wo, wi, h)) return {};
   const float cos_d = clamp01(glm::dot(wi, h));
 
   // Burley diffuse (Cycles 3.4's principled diffuse, roughness unsquared).

@@ -120,10 +120,8 @@ LobeEval PrincipledV2Bsdf::eval_lobes(const View& view, const Vec3& wi) const {
   LobeEval f_cos;
   f_cos.diffuse = v.diffuse * (kInvPi * wi.z);
   if (has_delta()) return f_cos;
-  const Vec3 half = wo + wi;
-  const float half_len2 = glm::dot(half, half);
-  if (!(half_len2 > 0.0f)) return f_cos;
-  const Vec3 h = half / std::sqrt(half_len2);
+  Vec3 h;
+  if (!ggx::reflection_half(wo, wi, h)) return f_cos;
   const float cos_d = clamp01(glm::dot(wi, h));
   const Vec3 fresnel = v.metal_scale * metal_fresnel(cos_d) + v.dielectric_scale * dielectric_fresnel(cos_d);
   const float g2 = ggx::smith_G2_correlated_given(view.lambda_o, wi.z, alpha_);

@@ -35,10 +35,8 @@ RoughDielectricBsdf::Lobe RoughDielectricBsdf::evaluate(const Vec3& wo, const Ve
   const float g1_o = ggx::smith_G1(cos_o, alpha_);
   if (wo.z * wi.z > 0.0f) {
     // Reflection: wo + wi points into wo's side, so h faces wo and wi.
-    const Vec3 half = wo + wi;
-    const float len2 = glm::dot(half, half);
-    if (!(len2 > 0.0f)) return out;
-    const Vec3 h = half / std::sqrt(len2);
+    Vec3 h;
+    if (!ggx::reflection_half(wo, wi, h)) return out;
     const float F = fresnel_dielectric(glm::dot(wo, h), etap);
     const float D = D_either_side(h, alpha_);
     out.f_cos = F * D * g1_o * ggx::smith_G1(cos_i, alpha_) / (4.0f * cos_o);

@@ -9,6 +9,16 @@ namespace torrance::ggx {
 // threshold as Cycles (alpha^2 <= 1e-7), i.e. roughness <= ~0.0178 with alpha = roughness^2.
 inline constexpr float kDeltaAlpha = 3.1622776e-4f;
 
+// The half vector of a reflection, normalize(wo + wi), into h; false where wo and wi cancel (no
+// half vector: the BSDF is 0 there).
+inline bool reflection_half(const Vec3& wo, const Vec3& wi, Vec3& h) {
+  const Vec3 half = wo + wi;
+  const float half_len2 = glm::dot(half, half);
+  if (!(half_len2 > 0.0f)) return false;
+  h = half / std::sqrt(half_len2);
+  return true;
+}
+
 // D(h) = alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2), written with sin^2 = x^2 + y^2 so it stays
 // accurate when h is close to n and alpha is tiny.
 inline float D(const Vec3& h, float alpha) {
