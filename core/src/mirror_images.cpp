@@ -76,13 +76,18 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
     float rank;  // the light the reflector sends out, roughly (planes first)
   };
   std::vector<Candidate> candidates;
+  std::vector<uint32_t> matte;  // opaque materials neither mirror nor glossy: lamps' spots
   for (uint32_t m = 0; m < scene.num_materials(); ++m) {
     const MaterialBsdf& bsdf = bsdfs[m];
     const bool mirror = bsdf.pure_mirror();
     // Glossy: no delta lobe (its paths through the reflector are the BSDF's alone).
     const bool glossy =
         !mirror && !bsdf.transmits() && !bsdf.has_delta() && bsdf.specular_alpha() <= kMaxGlossyAlpha;
-    if (!(mirror || glossy) || !plain_surface(scene, m)) continue;
+    if (!plain_surface(scene, m)) continue;
+    if (!mirror && !glossy) {
+      if (!bsdf.transmits() && !bsdf.has_delta()) matte.push_back(m);
+      continue;
+    }
     // For choosing among the pairs: the specular reflectance at normal incidence (roughly).
     const Material& material = scene.material(m);
     const float metallic = clamp01(material.metallic);
@@ -127,6 +132,8 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
     first_reflector_[m] = first;
     num_reflectors_[m] = int(reflectors_.size()) - first;
   }
+  // Lamps' spots after every reflection (the pairs that need them most, caustics, come first).
+  for (const Pair& pair : lamp_spots(scene, bsdfs, matte)) candidates.push_back({pair, -1.0f});
   // The brightest pairs, in the order found.
   if (candidates.size() > kMaxPairs) {
     std::vector<float> ranks;
@@ -141,7 +148,7 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
   for (Pair& pair : pairs_) {
     const Reflector& reflector = reflectors_[size_t(pair.reflector)];
     const Source& source = sources_[size_t(pair.source)];
-    if (reflector.radius > 0.0f) continue;
+    if (reflector.radius > 0.0f || reflector.matte) continue;
     pair.light_above = source.above(reflector.point, reflector.normal);
     if (source.sun) {  // a mirror's too (its bounds test; a mirror's samples follow the sun's cone)
       pair.axis = reflect_in(source.sun->to_light(), reflector.normal);
@@ -153,6 +160,7 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
       pair.light_image = mirrored(reflector, source.position());
     }
   }
+  for (const Pair& pair : pairs_) beyond_camera_hits_ |= !reflectors_[size_t(pair.reflector)].matte;
   pair_of_.assign(reflectors_.size() * num_lights_, -1);
   for (size_t i = 0; i < pairs_.size(); ++i)
     pair_of_[size_t(pairs_[i].reflector) * num_lights_ + sources_[size_t(pairs_[i].source)].index] = int(i);
@@ -174,6 +182,7 @@ int MirrorImages::reflector_at(uint32_t material, const Vec3& position) const {
 float MirrorImages::pair_weight(const Pair& pair, const Origin& at) const {
   const Reflector& reflector = reflectors_[size_t(pair.reflector)];
   if (reflector.material == at.material) return 0.0f;
+  if (reflector.matte) return at.camera_hit ? spot_weight(pair, at.p) : 0.0f;
   const Source& source = sources_[size_t(pair.source)];
   const Vec3& p = at.p;
   if (reflector.radius <= 0.0f) {  // a plane and a light, on the same side
@@ -273,6 +282,7 @@ float MirrorImages::pair_pdf(const Pair& pair, const Origin& at, const Odds& odd
   if (!(w > 0.0f) || !(odds.total > 0.0f)) return 0.0f;
   const float choice = odds.run * w / odds.total;
   const Reflector& reflector = reflectors_[size_t(pair.reflector)];
+  if (reflector.matte) return choice * spot_pdf(pair, at.p, wi);
   // A mirror keeps solid angle: the sun's cone density (wi is taken to reach the sun).
   if (reflector.mirror) return choice / cone_solid_angle(sources_[size_t(pair.source)].sun->one_minus_cos());
   Vec3 axis;
@@ -305,6 +315,11 @@ bool MirrorImages::sample(const Origin& at, float u_pair, const Vec2& u, Sample&
   out.reflector = chosen->reflector;
   out.light = source.index;
   const float probability = run * weight / total;
+  if (reflector.matte) {
+    if (!sample_spot(*chosen, p, u, out.wi)) return false;
+    out.pdf = probability * spot_pdf(*chosen, p, out.wi);
+    return out.pdf > 0.0f;
+  }
   if (!reflector.mirror) {
     Vec3 axis;
     float one_minus_cos;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "torrance/integrator.h"
+#include "torrance/material_bsdf.h"
 
 #include <algorithm>
 #include <cmath>
@@ -51,6 +52,13 @@ inline Material diffuse_material(const Vec3& color) {
   return m;
 }
 
+// The render's BSDFs of a scene's materials (Principled), as MirrorImages takes them.
+inline std::vector<MaterialBsdf> principled_bsdfs(const Scene& scene) {
+  std::vector<MaterialBsdf> bsdfs;
+  for (uint32_t i = 0; i < scene.num_materials(); ++i) bsdfs.emplace_back(scene.material(i), BrdfModel::Principled);
+  return bsdfs;
+}
+
 // A camera inside the closed room (add_closed_room), half a metre above its centre, looking down.
 inline void look_down_in_room(Scene& scene) {
   CameraParams cam;
@@ -59,11 +67,12 @@ inline void look_down_in_room(Scene& scene) {
   scene.set_camera(cam);
 }
 
-// The walls, floor and ceiling of a closed 2 m cube about the origin, facing inwards.
-inline void add_closed_room(Scene& scene, int64_t material) {
+// The walls, floor and ceiling of a closed 2 m cube about the origin, facing inwards (the
+// ceiling of `ceiling` if given).
+inline void add_closed_room(Scene& scene, int64_t material, int64_t ceiling = -1) {
   const Vec3 c[8] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
   add_quad(scene, c[0], c[1], c[2], c[3], material);  // floor
-  add_quad(scene, c[4], c[7], c[6], c[5], material);  // ceiling
+  add_quad(scene, c[4], c[7], c[6], c[5], ceiling >= 0 ? ceiling : material);  // ceiling
   add_quad(scene, c[0], c[4], c[5], c[1], material);
   add_quad(scene, c[1], c[5], c[6], c[2], material);
   add_quad(scene, c[2], c[6], c[7], c[3], material);

@@ -79,9 +79,10 @@ class TorranceSceneSettings(bpy.types.PropertyGroup):
                     "gently wavy glossy sheets and glossy spheres (roughness up to 0.3), "
                     "directly, so that a mirror, a polished floor, water or a "
                     "metal or plastic ball lights the scene with the light's reflection without "
-                    "caustic fireflies; converges to the same image. Suns of angle 0 and point "
-                    "lights of radius 0 are left out, as Cycles renders no light from them "
-                    "through a mirror",
+                    "caustic fireflies; and the bright spot a lamp hanging close to a matte "
+                    "ceiling or wall makes there, as a second light for the room. Converges to "
+                    "the same image. Suns of angle 0 and point lights of radius 0 are left out, "
+                    "as Cycles renders no light from them through a mirror",
         default=True,
     )
     use_nee_every_light: BoolProperty(

@@ -62,6 +62,7 @@ class PointLight {
   bool is_delta() const { return radius_ <= 0.0f; }
   const Vec3& position() const { return position_; }
   float radius() const { return radius_; }
+  bool is_spot() const { return spot_.cos_half_angle > -1.0f; }
 
  private:
   float spot_attenuation(const Vec3& p) const;

@@ -36,6 +36,13 @@
 //    is a glossy plane whose image cone is widened by twice its normals' tilt. Pairs of the
 //    shading point's own material are left out.
 //
+//  * Lamps' bright spots on matte planes (lamp_spots.cpp): a lamp hanging close to a large matte
+//    plane (a ceiling light) lights a small spot of it brightly, and that spot is a second light
+//    for the room that BSDF sampling finds rarely from afar (interior comparison scene: paths
+//    through it carried 17 % of the light and ~40 % of the variance). From the path's first
+//    vertex the strategy aims at points of the spot drawn by the lamp's irradiance there, then
+//    estimates the lamp at that point as at a glossy plane.
+//
 // Each (reflector, light) pair is chosen in proportion to the light it can send to x (pair_weight),
 // and a path that met a reflector after a BSDF-sampled direction keeps, of each paired light's
 // light found there, its own share (PathShare); lights in no pair are the path's alone.
@@ -68,8 +75,11 @@ class MirrorImages {
   // render's, one per material) -- and the lights they reflect.
   MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& bsdfs);
   bool empty() const { return pairs_.empty(); }
+  // Whether some pair is aimed at from vertices past the camera's hit (lamps' spots are not).
+  bool beyond_camera_hits() const { return beyond_camera_hits_; }
   size_t num_reflectors() const { return reflectors_.size(); }
   size_t num_pairs() const { return pairs_.size(); }
+  size_t num_spots() const;  // of those, lamps' spots on matte planes
   // The reflector at `position` on material `material` (an index for the queries below), or -1: a
   // material making several planes (a box) is a reflector per plane, the one nearest `position`.
   int reflector_at(uint32_t material, const Vec3& position) const;
@@ -97,6 +107,7 @@ class MirrorImages {
     Vec3 p, n;
     uint32_t material;
     float path_weight;
+    bool camera_hit = false;  // the path's first vertex: lamps' bright spots are aimed at from there only
   };
   // The pairs' weights at an origin summed, and the rate the strategy runs at there (kRunScale).
   struct Odds {
@@ -158,6 +169,7 @@ class MirrorImages {
     float widen = 0.0f, widen_sin = 0.0f, widen_one_minus_cos = 0.0f;
     Vec3 bound_center{0.0f};
     float bound_radius = std::numeric_limits<float>::infinity();
+    bool matte = false;  // a matte plane: the bright spots lamps close to it make (lamp_spots.cpp)
   };
   // A light the strategy aims at: a non-delta sun, a point or spot light with a radius, an area light.
   struct Source {
@@ -186,6 +198,9 @@ class MirrorImages {
     Vec3 axis{0.0f};
     float one_minus_cos = 0.0f, sin_cone = 0.0f;
     Vec3 light_image{0.0f};  // a glossy plane and a lamp: the lamp mirrored in the plane
+    // A matte plane and a lamp: the point of the plane nearest the lamp, and the lamp's distance.
+    Vec3 spot{0.0f};
+    float height = 0.0f;
   };
   // How often sample() at p picks the pair, relative to their sum (odds): 0 where p does
   // not see it (p off a plane on the light's side, both faces reflecting, and the light's image
@@ -210,6 +225,33 @@ class MirrorImages {
   // The density with which the strategy aims `at` along wi for `pair`, its choice included.
   float pair_pdf(const Pair& pair, const Origin& at, const Odds& odds, const Vec3& wi) const;
 
+  // Lamps' bright spots on matte planes (lamp_spots.cpp). A lamp at height h over a matte plane
+  // lights the plane's points y by E(y) = I cos / d^2, a spot of radius ~h that sends a large
+  // share of the lamp's light back into the room and that BSDF sampling finds rarely from afar
+  // (a ceiling lamp's bright ceiling). From the path's first vertex the strategy aims at points
+  // of the spot drawn by E: directions from the lamp, uniform over the half-space towards the
+  // plane, met with the plane; then NEE and BSDF sampling of the lamp there, as at a glossy plane.
+  // A lamp (a point light with a radius, not a spot) pairs with a plane when it hangs within
+  // kSpotReach of the plane's bounding radius over a point inside those bounds and the plane
+  // sends back at least kMinSpotShare of the light all lights bring (2 albedo I against 4 pi I
+  // summed over the lamps, plus each sun's irradiance over the scene's bounding disk: among dozens
+  // of lamps or under a sun no one spot matters); the kMaxSpots pairs that send the most
+  // back are kept (each costs a little at every camera hit).
+  static constexpr float kSpotReach = 0.25f;
+  static constexpr float kMinSpotShare = 0.05f;
+  static constexpr size_t kMaxSpots = 4;
+  // The planes of the matte materials that make the kept pairs become reflectors; returns the pairs.
+  std::vector<Pair> lamp_spots(const Scene& scene, const std::vector<MaterialBsdf>& bsdfs,
+                               const std::vector<uint32_t>& matte);
+  // The light the spot sends to a point p above the plane, as a small Lambertian emitter of the
+  // light the plane reflects (2 albedo I cos / d^2 from the spot's centre at distance d), over
+  // kRunScale.
+  float spot_weight(const Pair& pair, const Vec3& p) const;
+  // The solid-angle density at p of aiming along wi (the plane point wi meets, drawn by E), and
+  // one such direction.
+  float spot_pdf(const Pair& pair, const Vec3& p, const Vec3& wi) const;
+  bool sample_spot(const Pair& pair, const Vec3& p, const Vec2& u, Vec3& wi) const;
+
   std::vector<Reflector> reflectors_;
   std::vector<Source> sources_;
   std::vector<Pair> pairs_;
@@ -217,6 +259,7 @@ class MirrorImages {
   std::vector<int> num_reflectors_;   // per material
   std::vector<int> pair_of_;  // [reflector * num_lights_ + light]: the pair's index, or -1
   size_t num_lights_ = 0;
+  bool beyond_camera_hits_ = false;
 };
 
 }  // namespace torrance
