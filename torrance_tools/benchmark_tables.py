@@ -15,7 +15,7 @@ LEVER_LABELS = {"specialize": "specialised kernels", "sampler=RANDOM": "Sobol sa
                 "light_selection=UNIFORM": "light selection by contribution",
                 "guiding": "path guiding", "camera_packets": "camera rays in 8-wide packets",
                 "efficiency_roulette": "efficiency-aware Russian roulette",
-                "mirror_images": "NEE of lights in mirrors and glossy planes, boxes, sheets, balls",
+                "mirror_images": "NEE of lights in mirrors, glossy surfaces; lamp spots",
                 "nee_every_light": "NEE of both lights in two-light scenes"}
 
 
