@@ -160,7 +160,6 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
       pair.light_image = mirrored(reflector, source.position());
     }
   }
-  for (const Pair& pair : pairs_) beyond_camera_hits_ |= !reflectors_[size_t(pair.reflector)].matte;
   pair_of_.assign(reflectors_.size() * num_lights_, -1);
   for (size_t i = 0; i < pairs_.size(); ++i)
     pair_of_[size_t(pairs_[i].reflector) * num_lights_ + sources_[size_t(pairs_[i].source)].index] = int(i);
@@ -182,7 +181,7 @@ int MirrorImages::reflector_at(uint32_t material, const Vec3& position) const {
 float MirrorImages::pair_weight(const Pair& pair, const Origin& at) const {
   const Reflector& reflector = reflectors_[size_t(pair.reflector)];
   if (reflector.material == at.material) return 0.0f;
-  if (reflector.matte) return at.camera_hit ? spot_weight(pair, at.p) : 0.0f;
+  if (reflector.matte) return spot_weight(pair, at.p);
   const Source& source = sources_[size_t(pair.source)];
   const Vec3& p = at.p;
   if (reflector.radius <= 0.0f) {  // a plane and a light, on the same side

@@ -102,12 +102,12 @@ float bump_shadowing(Vec3 n_smooth, const Vec3& n_mapped, const Vec3& wi) {
 template <bool kGlass, typename Bsdf>
 bool mirror_image_light(const PathContext& ctx, const Bsdf& bsdf, const typename Bsdf::View& view, const Frame& frame,
                         const Vec3& position, uint32_t material, const Vec3& ng, const Vec3& n_smooth,
-                        const Vec3& ns, bool normal_mapped, bool transmits, float path_weight, bool camera_hit,
-                        SobolSampler& sampler, LobeEval& f, Vec3& light) {
+                        const Vec3& ns, bool normal_mapped, bool transmits, float path_weight, SobolSampler& sampler,
+                        LobeEval& f, Vec3& light) {
   const MirrorImages& images = *ctx.mirror_images;
   const glm::vec4 u = sampler.next_4d();
   MirrorImages::Sample ms;
-  if (!images.sample({position, ns, material, path_weight, camera_hit}, u.x, Vec2(u.y, u.z), ms)) return false;
+  if (!images.sample({position, ns, material, path_weight}, u.x, Vec2(u.y, u.z), ms)) return false;
   const Vec3 wi = frame.to_local(ms.wi);
   if (!leaves_geometric_side(ms.wi, ng, wi.z, transmits)) return false;
   f = bsdf.template eval_lobes<kGlass>(view, wi);
@@ -276,12 +276,10 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       if (!found) break;
       reflector_share.clear();
       if (const int reflector =
-              ctx.mirror_images && !prev_delta && (bounce == 1 || ctx.mirror_images->beyond_camera_hits())
-                  ? ctx.mirror_images->reflector_at(hit.material, hit.position)
-                  : -1;
+              ctx.mirror_images && !prev_delta ? ctx.mirror_images->reflector_at(hit.material, hit.position) : -1;
           reflector >= 0)
-        reflector_share.met(reflector, {prev_hit_position, prev_normal, prev_material, prev_path_weight, bounce == 1},
-                            ray.dir, prev_pdf);
+        reflector_share.met(reflector, {prev_hit_position, prev_normal, prev_material, prev_path_weight}, ray.dir,
+                            prev_pdf);
     }
 
     // Textures: the material's inputs and its normal map at this hit, averaged over the pixel's
@@ -392,16 +390,15 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
         next_event(choice.index, choice.probability);
     }
 
-    // Next-event estimation of lights through planar mirrors, glossy planes and spheres, and (from
-    // the camera's hit) of lamps' bright spots on matte planes; the light counts as indirect, as
-    // it does when BSDF sampling finds it.
-    if (ctx.mirror_images && bounce < ctx.settings.max_bounces &&
-        (bounce == 0 || ctx.mirror_images->beyond_camera_hits())) {
+    // Next-event estimation of lights through planar mirrors, glossy planes and spheres, and of
+    // lamps' bright spots on matte planes; the light counts as indirect, as it does when BSDF
+    // sampling finds it.
+    if (ctx.mirror_images && bounce < ctx.settings.max_bounces) {
       LobeEval f;
       Vec3 light;
       if (mirror_image_light<kGlass>(ctx, bsdf, view, frame, hit.position, hit.material, ng, n_smooth, ns,
                                      normal_mapped, transmits,
-                                     max_component(throughput), bounce == 0, sampler, f, light))
+                                     max_component(throughput), sampler, f, light))
         deposit_light_sample(light * throughput, f, bounce, false);
     }
 

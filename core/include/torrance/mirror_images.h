@@ -39,9 +39,9 @@
 //  * Lamps' bright spots on matte planes (lamp_spots.cpp): a lamp hanging close to a large matte
 //    plane (a ceiling light) lights a small spot of it brightly, and that spot is a second light
 //    for the room that BSDF sampling finds rarely from afar (interior comparison scene: paths
-//    through it carried 17 % of the light and ~40 % of the variance). From the path's first
-//    vertex the strategy aims at points of the spot drawn by the lamp's irradiance there, then
-//    estimates the lamp at that point as at a glossy plane.
+//    through it carried 17 % of the light and ~40 % of the variance). The strategy aims at points
+//    of the spot drawn by the lamp's irradiance there, then estimates the lamp at that point as
+//    at a glossy plane.
 //
 // Each (reflector, light) pair is chosen in proportion to the light it can send to x (pair_weight),
 // and a path that met a reflector after a BSDF-sampled direction keeps, of each paired light's
@@ -75,8 +75,6 @@ class MirrorImages {
   // render's, one per material) -- and the lights they reflect.
   MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& bsdfs);
   bool empty() const { return pairs_.empty(); }
-  // Whether some pair is aimed at from vertices past the camera's hit (lamps' spots are not).
-  bool beyond_camera_hits() const { return beyond_camera_hits_; }
   size_t num_reflectors() const { return reflectors_.size(); }
   size_t num_pairs() const { return pairs_.size(); }
   size_t num_spots() const;  // of those, lamps' spots on matte planes
@@ -107,7 +105,6 @@ class MirrorImages {
     Vec3 p, n;
     uint32_t material;
     float path_weight;
-    bool camera_hit = false;  // the path's first vertex: lamps' bright spots are aimed at from there only
   };
   // The pairs' weights at an origin summed, and the rate the strategy runs at there (kRunScale).
   struct Odds {
@@ -228,15 +225,15 @@ class MirrorImages {
   // Lamps' bright spots on matte planes (lamp_spots.cpp). A lamp at height h over a matte plane
   // lights the plane's points y by E(y) = I cos / d^2, a spot of radius ~h that sends a large
   // share of the lamp's light back into the room and that BSDF sampling finds rarely from afar
-  // (a ceiling lamp's bright ceiling). From the path's first vertex the strategy aims at points
+  // (a ceiling lamp's bright ceiling). From every path vertex the strategy aims at points
   // of the spot drawn by E: directions from the lamp, uniform over the half-space towards the
   // plane, met with the plane; then NEE and BSDF sampling of the lamp there, as at a glossy plane.
   // A lamp (a point light with a radius, not a spot) pairs with a plane when it hangs within
   // kSpotReach of the plane's bounding radius over a point inside those bounds and the plane
   // sends back at least kMinSpotShare of the light all lights bring (2 albedo I against 4 pi I
-  // summed over the lamps, plus each sun's irradiance over the scene's bounding disk: among dozens
+  // summed over the lamps, plus each sun's irradiance over the largest plane's disk: among dozens
   // of lamps or under a sun no one spot matters); the kMaxSpots pairs that send the most
-  // back are kept (each costs a little at every camera hit).
+  // back are kept (each costs a little at every vertex).
   static constexpr float kSpotReach = 0.25f;
   static constexpr float kMinSpotShare = 0.05f;
   static constexpr size_t kMaxSpots = 4;
@@ -259,7 +256,6 @@ class MirrorImages {
   std::vector<int> num_reflectors_;   // per material
   std::vector<int> pair_of_;  // [reflector * num_lights_ + light]: the pair's index, or -1
   size_t num_lights_ = 0;
-  bool beyond_camera_hits_ = false;
 };
 
 }  // namespace torrance
