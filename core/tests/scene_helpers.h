@@ -4,6 +4,8 @@
 #include "torrance/integrator.h"
 #include "torrance/material_bsdf.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <tuple>
@@ -125,6 +127,15 @@ inline SeedAgreement compare_over_seeds(const std::vector<std::vector<double>>& 
     return sum;
   });
   return out;
+}
+
+// Two renderers agree: image means within ratio_tolerance of each other, and the whole image's
+// and the worst block's differences within 4 and 4.5 standard errors (16 blocks: |z| > 4.5 by
+// chance has odds ~1e-4).
+inline void expect_agreement(const SeedAgreement& a, double ratio_tolerance = 0.01) {
+  EXPECT_NEAR(a.ratio, 1.0, ratio_tolerance);
+  EXPECT_LT(a.image_z, 4.0);
+  EXPECT_LT(a.worst_block_z, 4.5);
 }
 
 }  // namespace torrance::test
