@@ -6,6 +6,7 @@ final render's non-instanced objects; export_mesh)."""
 
 import numpy as np
 
+from ..matrices import inverse_transpose, times_transpose
 from .mesh_arrays import triangle_vertices
 
 MAX_COORDINATE = 1e18          # metres; anything farther is treated like Inf
@@ -189,12 +190,16 @@ def _corner_normals(local, tris, ng, normal_matrix=None):
     with np.errstate(all="ignore"):
         if local.vertex_normals is not None:
             vn = local.vertex_normals
-            vn, vn_ok = _normalize(vn if normal_matrix is None else vn @ normal_matrix.T)
+            if normal_matrix is not None:
+                vn = times_transpose(vn, normal_matrix)
+            vn, vn_ok = _normalize(vn)
             corner = vn[tris]
             corner_ok = vn_ok[tris]
         else:
             cn = local.corner_normals
-            corner, corner_ok = _normalize(cn if normal_matrix is None else cn @ normal_matrix.T)
+            if normal_matrix is not None:
+                cn = times_transpose(cn, normal_matrix)
+            corner, corner_ok = _normalize(cn)
     use_ng = ~corner_ok
     if local.smooth is not None:
         use_ng |= ~local.smooth[:, None]
@@ -214,7 +219,8 @@ def world_mesh(local, matrix):
     m = np.asarray(matrix, dtype=np.float64).reshape(4, 4)
     lin = m[:3, :3]
     with np.errstate(all="ignore"):
-        pos = (local.positions.astype(np.float64) @ lin.T + m[:3, 3]).astype(np.float32)
+        pos = times_transpose(local.positions.astype(np.float64), lin) + m[:3, 3]
+    pos = pos.astype(np.float32)
     # Triangles touching a NaN/Inf vertex (before or after the transform) and zero-area
     # triangles are dropped.
     pos, ng, keep, dropped_nonfinite = _usable_triangles(pos, local.triangles)
@@ -222,14 +228,13 @@ def world_mesh(local, matrix):
 
     # A mirroring transform turns the winding around: two corners are swapped below so that
     # the geometric normal keeps its side (as Cycles does for negative scale).
-    det = float(np.linalg.det(lin))
+    inv_t, det = inverse_transpose(lin)
     flip = det < 0.0
     if flip:
         ng = -ng
 
     # Normals by M^-T.
-    with np.errstate(all="ignore"):
-        normal_matrix = (np.linalg.inv(lin).T if abs(det) > 1e-300 else lin)
+    normal_matrix = inv_t if inv_t is not None and abs(det) > 1e-300 else lin
     corner = _corner_normals(local, tris, ng, normal_matrix.astype(np.float32))
 
     if not keep.all():
@@ -254,7 +259,7 @@ def world_uvs(local, matrix, keep):
         return None
     uv = local.corner_uvs if keep.all() else local.corner_uvs[keep]
     m = np.asarray(matrix, dtype=np.float64).reshape(4, 4)
-    if np.linalg.det(m[:3, :3]) < 0.0:
+    if inverse_transpose(m[:3, :3])[1] < 0.0:
         uv = uv[:, [0, 2, 1], :]
     return np.ascontiguousarray(uv, dtype=np.float32)
 

@@ -5,6 +5,8 @@ import math
 
 import numpy as np
 
+from ..matrices import inverse
+
 SENSOR = 36.0                   # the sensor size used for derived cameras, in mm
 
 
@@ -37,7 +39,7 @@ def camera_from_matrices(view_matrix, window_matrix, width, height, is_perspecti
     """
     v = np.array(view_matrix, dtype=np.float64).reshape(4, 4)
     p = np.array(window_matrix, dtype=np.float64).reshape(4, 4)
-    cam = np.linalg.inv(v)
+    cam = inverse(v)
     # Only the rotation and the position count (the core ignores scale, so normalise).
     for j in range(3):
         n = np.linalg.norm(cam[:3, j])

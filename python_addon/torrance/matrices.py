@@ -1,0 +1,46 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Small matrix products and inverses for the export, written without BLAS or LAPACK.
+
+numpy hands `@` and `np.linalg` to the BLAS it was built with. Debian's is OpenBLAS, whose
+LAPACK solve (np.linalg.inv, even of a 3x3 matrix) runs in parallel: it wakes OpenBLAS's worker
+threads, which then spin in sched_yield for about a tenth of a second. Woken at export time,
+they took a core from the render that followed: on the 2-core test machine 17 % of all CPU
+samples of a series of final renders, and one render in three of the Suzanne scene 25-55 ms
+slower (docs/speed/unmet_scenes.md, "Fixed cost"). The few products the export needs are as
+cheap written out; ruff bans the numpy calls in the add-on (pyproject.toml).
+"""
+
+import numpy as np
+
+
+def times_transpose(v, a):
+    """v @ a.T for rows v (..., 3) and a 3x3 matrix a, by broadcasting (no BLAS call)."""
+    a = np.asarray(a)
+    return v[..., 0:1] * a[:, 0] + v[..., 1:2] * a[:, 1] + v[..., 2:3] * a[:, 2]
+
+
+def inverse_transpose(m):
+    """(inv(m).T, det(m)) of a 3x3 matrix m (float64): the rows of inv(m).T are the cross
+    products of m's rows over the determinant. inv(m).T is None where det(m) is 0 or not finite."""
+    m = np.asarray(m, dtype=np.float64)
+    with np.errstate(all="ignore"):
+        cof = np.array([np.cross(m[1], m[2]), np.cross(m[2], m[0]), np.cross(m[0], m[1])])
+        det = float(np.sum(m[0] * cof[0]))
+    if not (np.isfinite(det) and det != 0.0):
+        return None, det
+    return cof / det, det
+
+
+def inverse(m):
+    """The inverse of a 4x4 matrix m: written out where m is affine (last row 0, 0, 0, 1; a
+    view matrix) and invertible, np.linalg.inv otherwise (which raises for a singular m)."""
+    m = np.asarray(m, dtype=np.float64)
+    inv_t = None
+    if np.array_equal(m[3], (0.0, 0.0, 0.0, 1.0)):
+        inv_t, _det = inverse_transpose(m[:3, :3])
+    if inv_t is None:
+        return np.linalg.inv(m)  # noqa: TID251 (not a view matrix: rare)
+    out = np.eye(4)
+    out[:3, :3] = inv_t.T
+    out[:3, 3] = -times_transpose(m[:3, 3], inv_t.T)
+    return out
