@@ -378,9 +378,14 @@ def _driver(result_path, shots_dir):
         preview = mat.preview
         px = None
         end = time.perf_counter() + 60
+        # The preview job writes its image as it renders: read it once the job has run and ended
+        # (the first pixels alone were once a strip at the bottom, the centre still black).
+        seen_running = False
         while time.perf_counter() < end:
+            running = bpy.app.is_job_running('RENDER_PREVIEW')
+            seen_running |= running
             w, h = preview.image_size
-            if w and h:
+            if w and h and not running and (seen_running or time.perf_counter() - t0 > 2.0):
                 buf = np.empty(w * h * 4, dtype=np.float32)
                 preview.image_pixels_float.foreach_get(buf)
                 if buf.any():
