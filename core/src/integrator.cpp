@@ -181,21 +181,68 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
 
   std::atomic<bool> stop{false};
   std::atomic<uint64_t> nonfinite{0};
-  std::atomic<uint64_t> closest_rays{0}, occlusion_rays{0};
+  std::atomic<uint64_t> closest_rays{0}, occlusion_rays{0}, camera_packets{0};
+
+  // One camera sample of the pass: its pixel (frame coordinates and PixelSample) and sample index.
+  struct CameraSample {
+    int x, y;
+    uint32_t sample;
+    PixelSample pixel;
+  };
+  using Batch = std::array<CameraSample, Scene::kPacketSize>;
+  // Up to kPacketSize camera samples at once: their camera rays in one packet, then each path.
+  auto trace_batch = [&](const Batch& batch, int n, uint64_t& bad) {
+    std::array<std::optional<SobolSampler>, Scene::kPacketSize> samplers;
+    std::array<Ray, Scene::kPacketSize> rays;
+    for (int i = 0; i < n; ++i) {
+      const CameraSample& c = batch[size_t(i)];
+      const uint32_t pixel = uint32_t(c.y) * uint32_t(settings.width) + uint32_t(c.x);
+      SobolSampler& sampler = samplers[size_t(i)].emplace(pixel, c.sample, settings.seed, !settings.sobol);
+      const glm::vec4 u_pixel = sampler.next_4d();
+      const float dx = filter.sample_offset(u_pixel.x);
+      const float dy = filter.sample_offset(u_pixel.y);
+      // u_pixel.zw: the lens point (depth of field only).
+      rays[size_t(i)] = camera.generate_ray(c.x + 0.5f + dx, c.y + 0.5f + dy, Vec2(u_pixel.z, u_pixel.w));
+    }
+    const bool packet = settings.camera_packets && n > 1;
+    std::array<FirstHit, Scene::kPacketSize> first;
+    if (packet) {
+      std::array<SurfaceHit, Scene::kPacketSize> hits;
+      std::array<bool, Scene::kPacketSize> found;
+      scene.intersect_packet(rays.data(), n, hits.data(), found.data());
+      for (int i = 0; i < n; ++i) first[size_t(i)] = {hits[size_t(i)], found[size_t(i)]};
+    }
+    for (int i = 0; i < n; ++i) {
+      const CameraSample& c = batch[size_t(i)];
+      PathRadiance r = trace(ctx, rays[size_t(i)], *samplers[size_t(i)], packet ? &first[size_t(i)] : nullptr, c.pixel);
+      if (!is_finite(r.combined())) {  // never expected; counted so tests can prove it never happens
+        ++bad;
+        const float alpha = r.alpha;
+        r = PathRadiance{};
+        r.alpha = alpha;
+      }
+      film.add(c.pixel.x, c.pixel.y, r, c.sample);
+    }
+  };
 
   auto render_pass = [&](int first_sample, int num_samples) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
       FlushDenormals ftz;
       uint64_t bad = 0;
       const RayCounts rays_before = thread_ray_counts();
+      Batch batch;
+      int batched = 0;
       for (size_t t = r.begin(); t != r.end() && !stop.load(std::memory_order_relaxed); ++t) {
         const Tile& tile = tiles[t];
         // Stop checked per row, not only per tile: a tile of a late pass (passes grow to half a
         // second) can take a large part of that pass on a small image, and Esc waits for it.
-        for (int y = tile.y0; y < tile.y1 && !stop.load(std::memory_order_relaxed); ++y)
+        for (int y = tile.y0; y < tile.y1 && !stop.load(std::memory_order_relaxed); ++y) {
+          // A row's camera samples in order, pixel by pixel, batched: a packet holds a pixel's
+          // samples of the pass and, in passes of fewer than kPacketSize samples, those of the
+          // next pixels too (their rays are as coherent). Each pixel's samples reach the film in
+          // order, so the image does not depend on the batching.
           for (int x = tile.x0; x < tile.x1; ++x) {
             if (adaptive && film.converged(x - window[0], y - window[1])) continue;
-            const uint32_t pixel = uint32_t(y) * uint32_t(settings.width) + uint32_t(x);
             // Guiding learns relative error: the pixel's estimate from earlier passes (only this thread
             // adds to it during the pass).
             PixelSample pixel_sample;
@@ -203,45 +250,19 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
             pixel_sample.y = y - window[1];
             pixel_sample.guide_weight =
                 ctx.guide_training ? pixel_weight(film.mean(pixel_sample.x, pixel_sample.y)) : 1.0f;
-            for (int s0 = first_sample; s0 < first_sample + num_samples; s0 += Scene::kPacketSize) {
-              // Up to kPacketSize samples at once: their camera rays in one packet, then each path.
-              const int n = std::min(Scene::kPacketSize, first_sample + num_samples - s0);
-              std::array<std::optional<SobolSampler>, Scene::kPacketSize> samplers;
-              std::array<Ray, Scene::kPacketSize> rays;
-              for (int i = 0; i < n; ++i) {
-                SobolSampler& sampler = samplers[i].emplace(pixel, uint32_t(s0 + i), settings.seed, !settings.sobol);
-                const glm::vec4 u_pixel = sampler.next_4d();
-                const float dx = filter.sample_offset(u_pixel.x);
-                const float dy = filter.sample_offset(u_pixel.y);
-                // u_pixel.zw: the lens point (depth of field only).
-                rays[i] = camera.generate_ray(x + 0.5f + dx, y + 0.5f + dy, Vec2(u_pixel.z, u_pixel.w));
-              }
-              const bool packet = settings.camera_packets && n > 1;
-              std::array<FirstHit, Scene::kPacketSize> first;
-              if (packet) {
-                std::array<SurfaceHit, Scene::kPacketSize> hits;
-                std::array<bool, Scene::kPacketSize> found;
-                scene.intersect_packet(rays.data(), n, hits.data(), found.data());
-                for (int i = 0; i < n; ++i) first[i] = {hits[i], found[i]};
-              }
-              for (int i = 0; i < n; ++i) {
-                const int s = s0 + i;
-                PathRadiance r = trace(ctx, rays[i], *samplers[i], packet ? &first[i] : nullptr, pixel_sample);
-                if (!is_finite(r.combined())) {  // never expected; counted so tests can prove it never happens
-                  ++bad;
-                  const float alpha = r.alpha;
-                  r = PathRadiance{};
-                  r.alpha = alpha;
-                }
-                film.add(x - window[0], y - window[1], r, uint32_t(s));
-              }
+            for (int s = first_sample; s < first_sample + num_samples; ++s) {
+              batch[size_t(batched++)] = {x, y, uint32_t(s), pixel_sample};
+              if (batched == Scene::kPacketSize) trace_batch(batch, std::exchange(batched, 0), bad);
             }
           }
+          if (batched > 0) trace_batch(batch, std::exchange(batched, 0), bad);
+        }
       }
       if (bad) nonfinite += bad;
       const RayCounts rays = thread_ray_counts() - rays_before;
       closest_rays += rays.closest;
       occlusion_rays += rays.occlusion;
+      camera_packets += rays.packets;
     });
   };
 
@@ -362,6 +383,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   result.nonfinite_samples = nonfinite.load();
   result.closest_rays = closest_rays.load();
   result.occlusion_rays = occlusion_rays.load();
+  result.camera_packets = camera_packets.load();
   result.sample_counts = film.sample_counts();
   result.samples_spent = film.total_samples();
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

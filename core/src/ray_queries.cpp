@@ -102,6 +102,7 @@ void intersect_coherent(RTCScene scene, const int* valid, RTCRayHit8& packet) {
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   rtcIntersect8(valid, scene, &context, &packet);
   counts_of_this_thread.closest += uint64_t(active);
+  ++counts_of_this_thread.packets;
   if (!log) return;
   for (int i = 0; i < 8; ++i)
     if (valid[i]) {

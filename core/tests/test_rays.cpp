@@ -215,5 +215,24 @@ TEST(Rays, CameraPacketsRenderTheSameImageBitForBit) {
   EXPECT_EQ(single.occlusion_rays, packets.occlusion_rays);
 }
 
+// Passes of fewer than 8 samples per pixel (the first passes of every render: 1, 2, 4, ...
+// samples) fill their camera packets with the next pixels' samples: a 1-sample render of a
+// 24 x 16 image (tiles 16 and 8 pixels wide) traces each tile row as full packets, 3 per image
+// row, and the same image as ray by ray (CameraPacketsRenderTheSameImageBitForBit's 13 samples
+// run passes of 1, 2, 4 and 6).
+TEST(Rays, OneSamplePassesTraceCameraRaysInFullPackets) {
+  Scene scene;
+  cluttered_room(scene);
+  RenderSettings settings = tiny(1, 3);
+  settings.width = 24;
+  settings.height = 16;
+  const RenderResult packets = render(scene, settings);
+  EXPECT_EQ(packets.camera_packets, 3u * 16u);
+  settings.camera_packets = false;
+  const RenderResult single = render(scene, settings);
+  EXPECT_EQ(single.camera_packets, 0u);
+  EXPECT_EQ(std::memcmp(single.image.rgba.data(), packets.image.rgba.data(), single.image.rgba.size() * 4), 0);
+}
+
 }  // namespace
 }  // namespace torrance

@@ -143,6 +143,7 @@ struct RenderResult {
   Image sample_counts;             // per pixel of the rendered window, 1 channel: samples it received
   bool time_limit_reached = false;  // ended by RenderSettings::time_limit (samples_done < samples)
   uint64_t closest_rays = 0, occlusion_rays = 0;  // Embree queries traced (closest hit, shadow)
+  uint64_t camera_packets = 0;  // 8-wide packets the camera rays among closest_rays went in
   // What path guiding did: "off" (not asked for), "too few samples" (its training could not
   // reach the decision pass, so it was not used), "guided" (to the end), "stopped after pass 3"
   // (it would not have paid), "stopped before deciding" (the time limit ended its training).

@@ -37,8 +37,11 @@ struct LoggedRay {
 
 struct RayCounts {
   uint64_t closest = 0, occlusion = 0;
+  uint64_t packets = 0;  // of the closest-hit queries, the 8-wide packets they went in
   uint64_t total() const { return closest + occlusion; }
-  RayCounts operator-(const RayCounts& o) const { return {closest - o.closest, occlusion - o.occlusion}; }
+  RayCounts operator-(const RayCounts& o) const {
+    return {closest - o.closest, occlusion - o.occlusion, packets - o.packets};
+  }
 };
 
 // The queries made by the calling thread since it started (never reset: take differences).
