@@ -29,6 +29,14 @@ RenderSettings tiny(int samples, int max_bounces) {
   return s;
 }
 
+// The cluttered room's renders: 24 x 16 pixels (a 16-pixel tile and an 8-pixel one per row), 3 bounces.
+RenderSettings room_frame(int samples) {
+  RenderSettings s = tiny(samples, 3);
+  s.width = 24;
+  s.height = 16;
+  return s;
+}
+
 // A plane at z = 0 filling the view of a camera above it, lit by a sun straight down.
 void sunlit_plane(Scene& scene) {
   const int64_t m = scene.add_material(grey());
@@ -94,9 +102,7 @@ void cluttered_room(Scene& scene) {
 TEST(Rays, LogHoldsTheRenderedRaysAndRawEmbreeGivesTheSameAnswers) {
   Scene scene;
   cluttered_room(scene);
-  RenderSettings settings = tiny(4, 3);
-  settings.width = 24;
-  settings.height = 16;
+  RenderSettings settings = room_frame(4);
   const RenderResult counted = render(scene, settings);
   const std::vector<LoggedRay> logged = record_render_rays(scene, settings);
   ASSERT_EQ(logged.size(), counted.rays_traced());  // the same render, the same rays
@@ -198,9 +204,7 @@ TEST(Rays, PacketHitsAreSingleHitsBitForBit) {
 TEST(Rays, CameraPacketsRenderTheSameImageBitForBit) {
   Scene scene;
   cluttered_room(scene);
-  RenderSettings settings = tiny(13, 3);  // 13: a full packet and a partial one per pixel and pass
-  settings.width = 24;
-  settings.height = 16;
+  RenderSettings settings = room_frame(13);  // 13: a full packet and a partial one per pixel and pass
   settings.passes = kPassNormal | kPassDiffuseDirect;
   settings.camera_packets = false;
   const RenderResult single = render(scene, settings);
@@ -223,9 +227,7 @@ TEST(Rays, CameraPacketsRenderTheSameImageBitForBit) {
 TEST(Rays, OneSamplePassesTraceCameraRaysInFullPackets) {
   Scene scene;
   cluttered_room(scene);
-  RenderSettings settings = tiny(1, 3);
-  settings.width = 24;
-  settings.height = 16;
+  RenderSettings settings = room_frame(1);
   const RenderResult packets = render(scene, settings);
   EXPECT_EQ(packets.camera_packets, 3u * 16u);
   settings.camera_packets = false;
