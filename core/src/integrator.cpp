@@ -183,11 +183,10 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   std::atomic<uint64_t> nonfinite{0};
   std::atomic<uint64_t> closest_rays{0}, occlusion_rays{0}, camera_packets{0};
 
-  // One camera sample of the pass: its pixel (frame coordinates and PixelSample) and sample index.
+  // One camera sample of the pass: its pixel (in the window) and its sample index.
   struct CameraSample {
-    int x, y;
-    uint32_t sample;
     PixelSample pixel;
+    uint32_t sample;
   };
   using Batch = std::array<CameraSample, Scene::kPacketSize>;
   // Up to kPacketSize camera samples at once: their camera rays in one packet, then each path.
@@ -196,13 +195,14 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
     std::array<Ray, Scene::kPacketSize> rays;
     for (int i = 0; i < n; ++i) {
       const CameraSample& c = batch[size_t(i)];
-      const uint32_t pixel = uint32_t(c.y) * uint32_t(settings.width) + uint32_t(c.x);
+      const int x = c.pixel.x + window[0], y = c.pixel.y + window[1];  // in the frame
+      const uint32_t pixel = uint32_t(y) * uint32_t(settings.width) + uint32_t(x);
       SobolSampler& sampler = samplers[size_t(i)].emplace(pixel, c.sample, settings.seed, !settings.sobol);
       const glm::vec4 u_pixel = sampler.next_4d();
       const float dx = filter.sample_offset(u_pixel.x);
       const float dy = filter.sample_offset(u_pixel.y);
       // u_pixel.zw: the lens point (depth of field only).
-      rays[size_t(i)] = camera.generate_ray(c.x + 0.5f + dx, c.y + 0.5f + dy, Vec2(u_pixel.z, u_pixel.w));
+      rays[size_t(i)] = camera.generate_ray(x + 0.5f + dx, y + 0.5f + dy, Vec2(u_pixel.z, u_pixel.w));
     }
     const bool packet = settings.camera_packets && n > 1;
     std::array<FirstHit, Scene::kPacketSize> first;
@@ -251,7 +251,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
             pixel_sample.guide_weight =
                 ctx.guide_training ? pixel_weight(film.mean(pixel_sample.x, pixel_sample.y)) : 1.0f;
             for (int s = first_sample; s < first_sample + num_samples; ++s) {
-              batch[size_t(batched++)] = {x, y, uint32_t(s), pixel_sample};
+              batch[size_t(batched++)] = {pixel_sample, uint32_t(s)};
               if (batched == Scene::kPacketSize) trace_batch(batch, std::exchange(batched, 0), bad);
             }
           }

@@ -220,7 +220,7 @@ def world_mesh(local, matrix):
     lin = m[:3, :3]
     with np.errstate(all="ignore"):
         pos = times_transpose(local.positions.astype(np.float64), lin) + m[:3, 3]
-    pos = pos.astype(np.float32)
+        pos = pos.astype(np.float32)
     # Triangles touching a NaN/Inf vertex (before or after the transform) and zero-area
     # triangles are dropped.
     pos, ng, keep, dropped_nonfinite = _usable_triangles(pos, local.triangles)
