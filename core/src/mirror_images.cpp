@@ -108,6 +108,7 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
         r.widen = std::min(lobe + 2.0f * plane.tilt, 0.5f * kPi);
         r.widen_sin = std::sin(r.widen);
         r.widen_one_minus_cos = one_minus_cos_of(r.widen);
+        r.widen_cos = std::cos(r.widen);
         r.bound_center = plane.center;
         r.bound_radius = plane.radius;
         reflectors_.push_back(r);
@@ -178,37 +179,30 @@ int MirrorImages::reflector_at(uint32_t material, const Vec3& position) const {
   return nearest;
 }
 
-float MirrorImages::pair_weight(const Pair& pair, const Origin& at) const {
+float MirrorImages::pair_weight(const Pair& pair, const Origin& at, PlaneSight& sight) const {
   const Reflector& reflector = reflectors_[size_t(pair.reflector)];
   if (reflector.material == at.material) return 0.0f;
   if (reflector.matte) return spot_weight(pair, at.p);
   const Source& source = sources_[size_t(pair.source)];
   const Vec3& p = at.p;
   if (reflector.radius <= 0.0f) {  // a plane and a light, on the same side
+    if (sight.reflector != pair.reflector) {
+      const Vec3 to_bounds = reflector.bound_center - p;
+      const float d2 = glm::dot(to_bounds, to_bounds), r2 = reflector.bound_radius * reflector.bound_radius;
+      sight = {pair.reflector, glm::dot(p - reflector.point, reflector.normal), to_bounds,
+               d2 > r2 ? std::sqrt(d2 - r2) : -1.0f};
+    }
     // A sheet's waves rise and fall by its depth about its mean plane: p may be below that plane
     // and still above the surface near it.
-    const float side = glm::dot(p - reflector.point, reflector.normal);
+    const float side = sight.side;
     if (std::abs(side) <= reflector.depth ? side == 0.0f && reflector.depth == 0.0f
                                           : (side > 0.0f) != pair.light_above)
       return 0.0f;
     // The light's image cone must meet the plane's bounds (a box's face is small): the angle
     // between the cone's axis and the bounds' centre at most the cone's half-angle plus the
-    // bounds' angular radius (both at most pi/2), compared by their cosines.
-    const Vec3 to_bounds = reflector.bound_center - p;
-    const float d2 = glm::dot(to_bounds, to_bounds), r2 = reflector.bound_radius * reflector.bound_radius;
-    if (d2 > r2) {
-      // cos(cone + bounds) d = cos_cone sqrt(d^2 - r^2) - sin_cone r.
-      Vec3 axis;
-      float one_minus_cos, sin_cone;
-      if (pair.fixed_cone) {
-        axis = pair.axis, one_minus_cos = pair.one_minus_cos, sin_cone = pair.sin_cone;
-      } else {
-        image_cone(pair, p, axis, one_minus_cos);
-        sin_cone = std::sqrt(std::max(one_minus_cos * (2.0f - one_minus_cos), 0.0f));
-      }
-      const float limit = (1.0f - one_minus_cos) * std::sqrt(d2 - r2) - sin_cone * reflector.bound_radius;
-      if (glm::dot(axis, to_bounds) < limit) return 0.0f;
-    }
+    // bounds' angular radius (both at most pi/2), compared by their cosines:
+    // cos(cone + bounds) d = cos_cone sqrt(d^2 - r^2) - sin_cone r.
+    if (sight.clearance >= 0.0f && !image_meets_bounds(pair, reflector, source, p, sight)) return 0.0f;
     return pair.strength * source.irradiance(mirrored(reflector, p));
   }
   // A convex mirror spreads the light it catches, pi r^2 E R, evenly: E R r^2 / (4 d^2) at d.
@@ -218,10 +212,31 @@ float MirrorImages::pair_weight(const Pair& pair, const Origin& at) const {
   return pair.strength * std::min(r2 / (4.0f * d2), 1.0f);
 }
 
+bool MirrorImages::image_meets_bounds(const Pair& pair, const Reflector& reflector, const Source& source,
+                                      const Vec3& p, const PlaneSight& sight) const {
+  const float r = reflector.bound_radius;
+  if (pair.fixed_cone)  // a sun's image cone, the same from everywhere
+    return glm::dot(pair.axis, sight.to_bounds) >= (1.0f - pair.one_minus_cos) * sight.clearance - pair.sin_cone * r;
+  // A lamp's image (image_cone): its angular radius a widened by the reflector's, at most pi/2,
+  // the axis towards the image at distance l. Both sides times l, by the angle-sum rule:
+  // l cos(a + widen) = q cos(widen) - size sin(widen), l sin(a + widen) = size cos(widen) +
+  // q sin(widen), with q = l cos(a) = sqrt(l^2 - size^2): one square root and no division.
+  const Vec3 to_image = pair.light_image - p;
+  const float l2 = glm::dot(to_image, to_image), size = source.size;
+  if (!(l2 > size * size))  // inside the lamp's reach: the half-space behind the plane
+    return glm::dot(-reflector.normal, sight.to_bounds) >= -r;
+  const float q = std::sqrt(l2 - size * size);
+  float cos_l = q * reflector.widen_cos - size * reflector.widen_sin;
+  float sin_l = size * reflector.widen_cos + q * reflector.widen_sin;
+  if (cos_l < 0.0f) cos_l = 0.0f, sin_l = std::sqrt(l2);  // the cone at its widest, pi/2
+  return glm::dot(to_image, sight.to_bounds) >= cos_l * sight.clearance - sin_l * r;
+}
+
 MirrorImages::Odds MirrorImages::odds(const Origin& at, float* weights) const {
   Odds odds;
+  PlaneSight sight;  // a box's face seen from at.p, shared by the face's pairs
   for (size_t i = 0; i < pairs_.size(); ++i) {
-    const float w = pair_weight(pairs_[i], at);
+    const float w = pair_weight(pairs_[i], at, sight);
     if (weights) weights[i] = w;
     odds.total += w;
   }

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -361,6 +362,69 @@ TEST(MirrorImages, PlanesAwayFromTheOriginAreAimedAt) {
     const bool found = images.sample({over, Vec3(0, 0, -1), elsewhere, 1.0f}, 0.001f, Vec2(0.5f), s);
     EXPECT_TRUE(found) << "no pair sampled over (" << over.x << ", " << over.y << ")";
     if (found) EXPECT_LT(s.wi.z, -0.9f);
+  }
+}
+
+// A pair weighs something exactly where the light is on the shading point's side of the plane
+// and the light's image cone, widened by the lobe, meets the plane's bounds (a sphere about the
+// plane's centre): checked against that rule in plain angles at points all around a small glossy
+// plate lit by a lamp with a radius and by a sun (pairs: the lamp's, then the sun's).
+TEST(MirrorImages, PairsWeighWhereTheImageConeMeetsThePlane) {
+  Scene scene;
+  Material glossy = mirror_metal();
+  glossy.roughness = 0.15f;
+  const uint32_t plate = scene.add_material(glossy);
+  const uint32_t elsewhere = scene.add_material(test::diffuse_material(Vec3(0.5f)));
+  test::add_quad(scene, Vec3(-0.5f, -0.5f, 0), Vec3(0.5f, -0.5f, 0), Vec3(0.5f, 0.5f, 0), Vec3(-0.5f, 0.5f, 0), plate);
+  const Vec3 lamp(1.5f, 0.5f, 2.0f);
+  const float lamp_radius = 0.3f;
+  scene.lights().add_point(lamp, 100.0f, Vec3(1.0f), lamp_radius);
+  const Vec3 to_sun = glm::normalize(Vec3(-0.6f, 0.2f, 1.0f));
+  const float sun_angle = 0.1f;
+  scene.lights().add_sun(-to_sun, 1.0f, Vec3(1.0f), sun_angle);
+  const std::vector<MaterialBsdf> bsdfs = test::principled_bsdfs(scene);
+  const MirrorImages images(scene, bsdfs);
+  ASSERT_EQ(images.num_pairs(), 2u);
+  const std::vector<Scene::Plane> planes = scene.material_planes(plate);
+  ASSERT_EQ(planes.size(), 1u);
+  const Scene::Plane& plane = planes[0];
+  const float widen = 2.0f * std::atan(3.0f * bsdfs[plate].specular_alpha());
+  auto angle = [](const Vec3& a, const Vec3& b) {
+    return std::acos(std::clamp(glm::dot(glm::normalize(a), glm::normalize(b)), -1.0f, 1.0f));
+  };
+  // Rule minus angle between the cone's axis and the bounds' centre: > 0 where the pair weighs.
+  auto margin = [&](const Vec3& p, const Vec3& axis, float light_radius) {
+    const Vec3 to_bounds = plane.center - p;
+    const float bounds = std::asin(std::min(plane.radius / glm::length(to_bounds), 1.0f));
+    return std::min(light_radius + widen, 0.5f * kPi) + bounds - angle(axis, to_bounds);
+  };
+  const Vec3 lamp_image = lamp - 2.0f * glm::dot(lamp - plane.point, plane.normal) * plane.normal;
+  Rng rng(7, 0, 0);
+  int weighed[2] = {0, 0}, culled[2] = {0, 0};
+  for (int i = 0; i < 4000; ++i) {
+    const Vec2 a = rng.next_2d(), b = rng.next_2d();
+    const Vec3 p = Vec3(12.0f * a.x - 6.0f, 12.0f * a.y - 6.0f, 8.0f * b.x - 2.0f);
+    if (glm::length(p - plane.center) <= plane.radius * 1.01f || std::abs(p.z) < 1e-3f) continue;
+    float weights[MirrorImages::kMaxPairs];
+    images.odds({p, Vec3(0, 0, 1), elsewhere, 1.0f}, weights);
+    const bool lamp_side = (glm::dot(p - plane.point, plane.normal) > 0.0f) ==
+                           (glm::dot(lamp - plane.point, plane.normal) > 0.0f);
+    const bool sun_side = (glm::dot(p - plane.point, plane.normal) > 0.0f) == (glm::dot(to_sun, plane.normal) > 0.0f);
+    const float lamp_size = std::asin(std::min(lamp_radius / glm::length(lamp_image - p), 1.0f));
+    const Vec3 sun_image = to_sun - 2.0f * glm::dot(to_sun, plane.normal) * plane.normal;
+    const float margins[2] = {margin(p, lamp_image - p, lamp_size), margin(p, sun_image, 0.5f * sun_angle)};
+    const bool sides[2] = {lamp_side, sun_side};
+    for (int k = 0; k < 2; ++k) {
+      if (std::abs(margins[k]) < 1e-3f) continue;  // on the rule's edge, rounding decides
+      const bool expected = sides[k] && margins[k] > 0.0f;
+      EXPECT_EQ(weights[k] > 0.0f, expected) << "pair " << k << " at (" << p.x << ", " << p.y << ", " << p.z
+                                             << "), margin " << margins[k];
+      (weights[k] > 0.0f ? weighed : culled)[k] += 1;
+    }
+  }
+  for (int k = 0; k < 2; ++k) {  // both outcomes seen often for each pair
+    EXPECT_GT(weighed[k], 100) << k;
+    EXPECT_GT(culled[k], 100) << k;
   }
 }
 

@@ -163,7 +163,7 @@ class MirrorImages {
     float tilt = 0.0f, depth = 0.0f;
     // Glossy planes: how far the lobe and the tilt widen a light's image (at most pi/2), its sine
     // and 1 - its cosine.
-    float widen = 0.0f, widen_sin = 0.0f, widen_one_minus_cos = 0.0f;
+    float widen = 0.0f, widen_sin = 0.0f, widen_cos = 1.0f, widen_one_minus_cos = 0.0f;
     Vec3 bound_center{0.0f};
     float bound_radius = std::numeric_limits<float>::infinity();
     bool matte = false;  // a matte plane: the bright spots lamps close to it make (lamp_spots.cpp)
@@ -205,7 +205,23 @@ class MirrorImages {
   // the light the reflector can send to p: a plane's strength x the light's irradiance at p's mirror
   // image (what the light's image brings to p); a sphere's strength x r^2 / (4 d^2) (the share of
   // the light it catches that a convex mirror of radius r sends to distance d).
-  float pair_weight(const Pair& pair, const Origin& at) const;
+  float pair_weight(const Pair& pair, const Origin& at) const {
+    PlaneSight sight;
+    return pair_weight(pair, at, sight);
+  }
+  // A plane reflector seen from a shading point p, the same for each of its pairs (odds() weighs
+  // a box's faces light by light): p's height over the plane, the way to its bounds' centre, and
+  // sqrt(d^2 - r^2) for bounds of radius r at distance d (< 0: p inside them).
+  struct PlaneSight {
+    int reflector = -1;
+    float side = 0.0f;
+    Vec3 to_bounds{0.0f};
+    float clearance = -1.0f;
+  };
+  float pair_weight(const Pair& pair, const Origin& at, PlaneSight& sight) const;
+  // Whether the light's image cone seen from p (image_cone) meets the plane's bounds, p outside them.
+  bool image_meets_bounds(const Pair& pair, const Reflector& reflector, const Source& source, const Vec3& p,
+                          const PlaneSight& sight) const;
   // The strategy runs at p with probability min(1, kRunScale x the pair weights' sum / direct) x
   // path_weight (at most 1), direct: the paired lights' own irradiance at p on its shading normal
   // n: where the reflectors send only a little of what the lights bring directly (a small ball
