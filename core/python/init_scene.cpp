@@ -1,7 +1,5 @@
 #include "bindings.h"
 
-#include "torrance/triangle_normals.h"
-
 #include <pybind11/stl.h>
 
 #include <cmath>
@@ -398,38 +396,6 @@ void init_scene(py::module_& m) {
       .def_property_readonly("num_hidden_instances", &Scene::num_hidden_instances)
       .def_property_readonly("num_material_tables", &Scene::num_material_tables)
       .def_property_readonly("num_lights", [](const Scene& s) { return s.lights().count(); });
-
-  m.def(
-      "triangle_normals",
-      [](const py::object& positions, const py::object& triangles) {
-        const FloatArray p = as_float_rows(positions, "positions", -1, 3);
-        const py::array raw = numeric_array(triangles, "triangles", sizeof(int32_t));
-        if (raw.size() > 0 && raw.dtype().kind() != 'i' && raw.dtype().kind() != 'u')
-          throw py::type_error("triangles must hold integers, got dtype " + std::string(py::str(raw.dtype())));
-        if (raw.size() > 0 && raw.dtype().itemsize() > 4) {
-          // Wider integers are narrowed only if they fit (a wrapped index would pass the checks).
-          const py::object lo = raw.attr("min")(), hi = raw.attr("max")();
-          if (lo.cast<int64_t>() < 0 || hi.cast<int64_t>() > INT32_MAX)
-            throw py::value_error("triangles use vertex indices outside [0, 2^31)");
-        }
-        using Int32Array = py::array_t<int32_t, py::array::c_style | py::array::forcecast>;
-        const Int32Array t = Int32Array::ensure(raw);
-        if (!((t.ndim() == 2 && t.shape(1) == 3) || t.size() == 0))
-          throw py::value_error("triangles must have shape (M, 3), got " + shape_string(t));
-        const size_t num_triangles = size_t(t.size() / 3);
-        py::array_t<float> normals({py::ssize_t(num_triangles), py::ssize_t(3)});
-        py::array_t<bool> usable{py::ssize_t(num_triangles)};
-        {
-          py::gil_scoped_release release;
-          triangle_normals(p.data(), size_t(p.size() / 3), t.data(), num_triangles, normals.mutable_data(),
-                           reinterpret_cast<uint8_t*>(usable.mutable_data()));
-        }
-        return py::make_tuple(normals, usable);
-      },
-      py::arg("positions"), py::arg("triangles"),
-      "Unit geometric normals (M, 3) float32 of triangles (M, 3) over positions (N, 3) -- "
-      "cross(p1 - p0, p2 - p0) normalised, as numpy computes it in float32, bit for bit -- and "
-      "usable (M,) bool: False where the length is not finite or <= 1e-30 (normal 0 there).");
 }
 
 }  // namespace torrance::python

@@ -13,4 +13,5 @@ PYBIND11_MODULE(_core, m) {
   torrance::python::init_image(m);
   torrance::python::init_bsdf(m);
   torrance::python::init_rays(m);
+  torrance::python::init_world_mesh(m);
 }

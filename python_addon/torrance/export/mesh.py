@@ -6,7 +6,7 @@ final render's non-instanced objects; export_mesh)."""
 
 import numpy as np
 
-from ..matrices import inverse_transpose, times_transpose
+from ..matrices import inverse_transpose
 from .mesh_arrays import triangle_vertices
 
 MAX_COORDINATE = 1e18          # metres; anything farther is treated like Inf
@@ -146,13 +146,10 @@ def read_local_mesh(obj, uvs=False):
         obj.to_mesh_clear()
 
 
-def _normalize(v):
-    """Unit vectors (float32) and a mask of those that could be normalised."""
-    length = np.sqrt(np.einsum("...i,...i->...", v, v))
-    ok = (length > 1e-30) & np.isfinite(length)
-    out = np.zeros_like(v)
-    np.divide(v, length[..., None], out=out, where=ok[..., None])
-    return out, ok
+def _core():
+    """The native module (imported on first use: ..render imports this package)."""
+    from ..render import load_core
+    return load_core()
 
 
 def _usable_triangles(pos, tris):
@@ -173,10 +170,9 @@ def _usable_triangles(pos, tris):
         dropped_nonfinite = int(len(tris) - np.count_nonzero(keep))
         pos = pos.copy()
         pos[bad_vertex] = 0.0
-    # What numpy's cross products and _normalize give, bit for bit, ~20x faster (2 s of a 10 M-
-    # triangle mesh's export in numpy's gathers).
-    from ..render import load_core
-    ng, ng_ok = load_core().triangle_normals(pos, tris)
+    # What numpy's cross products and normalisation give, bit for bit, ~20x faster (2 s of a
+    # 10 M-triangle mesh's export in numpy's gathers).
+    ng, ng_ok = _core().triangle_normals(pos, tris)
     keep &= ng_ok
     return pos, ng, keep, dropped_nonfinite
 
@@ -184,29 +180,14 @@ def _usable_triangles(pos, tris):
 def _corner_normals(local, tris, ng, normal_matrix=None):
     """Unit corner normals float32 (M,3,3) of a LocalMesh, or None (all flat): its vertex or
     corner normals (times normal_matrix, if given), with the geometric normal ng on flat
-    triangles and on corners without a usable normal."""
+    triangles and on corners without a usable normal (the core's corner_normals: one parallel
+    pass, bit for bit what numpy's gathers gave)."""
     if local.vertex_normals is None and local.corner_normals is None:
         return None
-    with np.errstate(all="ignore"):
-        if local.vertex_normals is not None:
-            vn = local.vertex_normals
-            if normal_matrix is not None:
-                vn = times_transpose(vn, normal_matrix)
-            vn, vn_ok = _normalize(vn)
-            corner = vn[tris]
-            corner_ok = vn_ok[tris]
-        else:
-            cn = local.corner_normals
-            if normal_matrix is not None:
-                cn = times_transpose(cn, normal_matrix)
-            corner, corner_ok = _normalize(cn)
-    use_ng = ~corner_ok
-    if local.smooth is not None:
-        use_ng |= ~local.smooth[:, None]
-    if use_ng.any():
-        rows, cols = np.nonzero(use_ng)
-        corner[rows, cols] = ng[rows]
-    return corner
+    per_vertex = local.vertex_normals is not None
+    normals = local.vertex_normals if per_vertex else local.corner_normals.reshape(-1, 3)
+    return _core().corner_normals(normals, tris, ng, matrix=normal_matrix, smooth=local.smooth,
+                                  per_vertex=per_vertex)
 
 
 def world_mesh(local, matrix):
@@ -218,9 +199,7 @@ def world_mesh(local, matrix):
     """
     m = np.asarray(matrix, dtype=np.float64).reshape(4, 4)
     lin = m[:3, :3]
-    with np.errstate(all="ignore"):
-        pos = times_transpose(local.positions.astype(np.float64), lin) + m[:3, 3]
-        pos = pos.astype(np.float32)
+    pos = _core().transform_points(local.positions, m)  # in float64, rounded to float32
     # Triangles touching a NaN/Inf vertex (before or after the transform) and zero-area
     # triangles are dropped.
     pos, ng, keep, dropped_nonfinite = _usable_triangles(pos, local.triangles)

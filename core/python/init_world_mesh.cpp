@@ -1,0 +1,127 @@
+// The export's bulk mesh arrays (torrance/world_mesh.h): forwarded with their shapes checked.
+#include "bindings.h"
+
+#include "torrance/world_mesh.h"
+
+#include <cstdint>
+#include <string>
+
+namespace torrance::python {
+namespace {
+
+using Float32Array = py::array_t<float, py::array::c_style | py::array::forcecast>;
+using Float64Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using Int32Array = py::array_t<int32_t, py::array::c_style | py::array::forcecast>;
+using BoolArray = py::array_t<bool, py::array::c_style | py::array::forcecast>;
+
+// obj as a C-contiguous array of T whose shape is `shape` (-1: any length), or a ValueError.
+template <typename Array>
+Array shaped(const py::object& obj, const char* name, std::initializer_list<py::ssize_t> shape, size_t itemsize) {
+  Array a = Array::ensure(numeric_array(obj, name, itemsize));
+  if (!a) throw py::type_error(std::string(name) + " must be a numeric array");
+  bool ok = a.ndim() == py::ssize_t(shape.size());
+  size_t axis = 0;
+  for (const py::ssize_t n : shape) {
+    ok = ok && (n < 0 || a.shape(py::ssize_t(axis)) == n);
+    ++axis;
+  }
+  if (!ok && a.size() == 0 && shape.size() > 0 && *shape.begin() < 0) ok = true;  // empty: any shape
+  if (!ok) {
+    std::string want = "(";
+    for (const py::ssize_t n : shape) want += (want.size() > 1 ? ", " : "") + (n < 0 ? std::string("N") : std::to_string(n));
+    throw py::value_error(std::string(name) + " must have shape " + want + "), got " + shape_string(a));
+  }
+  return a;
+}
+
+// Triangles (M, 3) of any integer dtype as int32; wider integers only if every index fits.
+Int32Array triangle_indices(const py::object& triangles) {
+  const py::array raw = numeric_array(triangles, "triangles", sizeof(int32_t));
+  if (raw.size() > 0 && raw.dtype().kind() != 'i' && raw.dtype().kind() != 'u')
+    throw py::type_error("triangles must hold integers, got dtype " + std::string(py::str(raw.dtype())));
+  if (raw.size() > 0 && raw.dtype().itemsize() > 4) {
+    // Wider integers are narrowed only if they fit (a wrapped index would pass the checks).
+    const py::object lo = raw.attr("min")(), hi = raw.attr("max")();
+    if (lo.cast<int64_t>() < 0 || hi.cast<int64_t>() > INT32_MAX)
+      throw py::value_error("triangles use vertex indices outside [0, 2^31)");
+  }
+  const Int32Array t = Int32Array::ensure(raw);
+  if (!((t.ndim() == 2 && t.shape(1) == 3) || t.size() == 0))
+    throw py::value_error("triangles must have shape (M, 3), got " + shape_string(t));
+  return t;
+}
+
+}  // namespace
+
+void init_world_mesh(py::module_& m) {
+  m.def(
+      "triangle_normals",
+      [](const py::object& positions, const py::object& triangles) {
+        const Float32Array p = shaped<Float32Array>(positions, "positions", {-1, 3}, sizeof(float));
+        const Int32Array t = triangle_indices(triangles);
+        const size_t num_triangles = size_t(t.size() / 3);
+        py::array_t<float> normals({py::ssize_t(num_triangles), py::ssize_t(3)});
+        py::array_t<bool> usable{py::ssize_t(num_triangles)};
+        {
+          py::gil_scoped_release release;
+          triangle_normals(p.data(), size_t(p.size() / 3), t.data(), num_triangles, normals.mutable_data(),
+                           reinterpret_cast<uint8_t*>(usable.mutable_data()));
+        }
+        return py::make_tuple(normals, usable);
+      },
+      py::arg("positions"), py::arg("triangles"),
+      "Unit geometric normals (M, 3) float32 of triangles (M, 3) over positions (N, 3) -- "
+      "cross(p1 - p0, p2 - p0) normalised, as numpy computes it in float32, bit for bit -- and "
+      "usable (M,) bool: False where the length is not finite or <= 1e-30 (normal 0 there).");
+
+  m.def(
+      "transform_points",
+      [](const py::object& points, const py::object& matrix) {
+        const Float32Array p = shaped<Float32Array>(points, "points", {-1, 3}, sizeof(float));
+        const Float64Array mat = shaped<Float64Array>(matrix, "matrix", {4, 4}, sizeof(double));
+        const size_t count = size_t(p.size() / 3);
+        py::array_t<float> out({py::ssize_t(count), py::ssize_t(3)});
+        {
+          py::gil_scoped_release release;
+          transform_points(p.data(), count, mat.data(), out.mutable_data());
+        }
+        return out;
+      },
+      py::arg("points"), py::arg("matrix"),
+      "Points (N, 3) moved by the affine 4x4 matrix in float64, rounded to float32 (N, 3): "
+      "(points.astype(float64) @ matrix[:3, :3].T + matrix[:3, 3]).astype(float32), bit for bit.");
+
+  m.def(
+      "corner_normals",
+      [](const py::object& normals, const py::object& triangles, const py::object& geometric,
+         const py::object& matrix, const py::object& smooth, bool per_vertex) {
+        const Int32Array t = triangle_indices(triangles);
+        const size_t num_triangles = size_t(t.size() / 3);
+        const py::ssize_t rows = per_vertex ? -1 : py::ssize_t(3 * num_triangles);
+        const Float32Array n = shaped<Float32Array>(normals, "normals", {rows, 3}, sizeof(float));
+        const Float32Array g =
+            shaped<Float32Array>(geometric, "geometric", {py::ssize_t(num_triangles), 3}, sizeof(float));
+        Float32Array mat;
+        if (!matrix.is_none()) mat = shaped<Float32Array>(matrix, "matrix", {3, 3}, sizeof(float));
+        BoolArray flat_mask;
+        if (!smooth.is_none())
+          flat_mask = shaped<BoolArray>(smooth, "smooth", {py::ssize_t(num_triangles)}, sizeof(bool));
+        py::array_t<float> out({py::ssize_t(num_triangles), py::ssize_t(3), py::ssize_t(3)});
+        {
+          py::gil_scoped_release release;
+          corner_normals(n.data(), size_t(n.size() / 3), per_vertex, t.data(), num_triangles,
+                         matrix.is_none() ? nullptr : mat.data(),
+                         smooth.is_none() ? nullptr : reinterpret_cast<const uint8_t*>(flat_mask.data()), g.data(),
+                         out.mutable_data());
+        }
+        return out;
+      },
+      py::arg("normals"), py::arg("triangles"), py::arg("geometric"), py::arg("matrix") = py::none(),
+      py::arg("smooth") = py::none(), py::arg("per_vertex") = true,
+      "Unit corner normals (M, 3, 3) float32 of triangles (M, 3): normals (N, 3) per vertex (per_vertex) "
+      "or (3 M, 3) per corner, times matrix.T (3x3 float32, optional), normalised in float32 as numpy "
+      "does; where that fails, and on triangles whose smooth (M,) entry is False, the triangle's "
+      "geometric normal (M, 3).");
+}
+
+}  // namespace torrance::python
