@@ -10,6 +10,8 @@ slower (docs/speed/unmet_scenes.md, "Fixed cost"). The few products the export n
 cheap written out; ruff bans the numpy calls in the add-on (pyproject.toml).
 """
 
+import math
+
 import numpy as np
 
 
@@ -21,14 +23,16 @@ def times_transpose(v, a):
 
 def inverse_transpose(m):
     """(inv(m).T, det(m)) of a 3x3 matrix m (float64): the rows of inv(m).T are the cross
-    products of m's rows over the determinant. inv(m).T is None where det(m) is 0 or not finite."""
-    m = np.asarray(m, dtype=np.float64)
-    with np.errstate(all="ignore"):
-        cof = np.array([np.cross(m[1], m[2]), np.cross(m[2], m[0]), np.cross(m[0], m[1])])
-        det = float(np.sum(m[0] * cof[0]))
-    if not (np.isfinite(det) and det != 0.0):
+    products of m's rows over the determinant. inv(m).T is None where det(m) is 0 or not finite.
+    In Python floats: np.cross on three 3-vectors costs ~0.2 ms, this ~0.01 (the same numbers)."""
+    (a0, a1, a2), (b0, b1, b2), (c0, c1, c2) = np.asarray(m, dtype=np.float64).tolist()
+    cof = [[b1 * c2 - b2 * c1, b2 * c0 - b0 * c2, b0 * c1 - b1 * c0],   # rows 1 x 2
+           [c1 * a2 - c2 * a1, c2 * a0 - c0 * a2, c0 * a1 - c1 * a0],   # rows 2 x 0
+           [a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0]]   # rows 0 x 1
+    det = (a0 * cof[0][0] + a1 * cof[0][1]) + a2 * cof[0][2]
+    if not (math.isfinite(det) and det != 0.0):
         return None, det
-    return cof / det, det
+    return np.array(cof) / det, det
 
 
 def inverse(m):
