@@ -41,8 +41,9 @@ Int32Array triangle_indices(const py::object& triangles) {
     throw py::type_error("triangles must hold integers, got dtype " + std::string(py::str(raw.dtype())));
   if (raw.size() > 0 && raw.dtype().itemsize() > 4) {
     // Wider integers are narrowed only if they fit (a wrapped index would pass the checks).
+    // Compared as Python integers: a uint64 beyond int64 would not cast.
     const py::object lo = raw.attr("min")(), hi = raw.attr("max")();
-    if (lo.cast<int64_t>() < 0 || hi.cast<int64_t>() > INT32_MAX)
+    if (lo < py::int_(0) || hi > py::int_(INT32_MAX))
       throw py::value_error("triangles use vertex indices outside [0, 2^31)");
   }
   const Int32Array t = Int32Array::ensure(raw);

@@ -121,3 +121,61 @@ def test_input_errors():
     with pytest.raises(ValueError, match=r"points must have shape \(N, 3\)"):
         tc.transform_points(np.zeros((3, 2), np.float32), np.eye(4))
     assert tc.transform_points(np.zeros((0, 3), np.float32), np.eye(4)).shape == (0, 3)
+    # uint64 indices beyond int64 (found by the test below: "Unable to cast Python instance")
+    with pytest.raises(ValueError, match=r"outside \[0, 2\^31\)"):
+        tc.triangle_normals(pos, np.array([[2**63, 0, 1]], np.uint64))
+
+
+# ---- any input: an answer of the right shape or a clear rejection (test_fuzz_api's rules) -------
+
+from hypothesis import given  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+from hypothesis.extra import numpy as hnp  # noqa: E402
+from test_fuzz_api import accepted, arrays, call, examples, mesh_inputs  # noqa: E402
+
+
+def _well_formed(positions, triangles):
+    """float32/float64 positions (N, 3) and integer triangles (M, 3) indexing them."""
+    if not (positions.ndim == 2 and positions.shape[1:] == (3,) and positions.dtype.kind == "f"):
+        return False
+    if not (triangles.ndim == 2 and triangles.shape[1:] == (3,) and triangles.dtype.kind == "i"):
+        return False
+    return triangles.size == 0 or (0 <= triangles.min() and triangles.max() < len(positions))
+
+
+@examples(120)
+@given(mesh_inputs(),
+       st.one_of(hnp.arrays(np.float64, (4, 4), elements=st.floats(-1e3, 1e3)), arrays(max_side=5)),
+       st.one_of(st.none(), hnp.arrays(np.float32, (3, 3), elements=st.floats(-2, 2, width=32)),
+                 arrays(max_side=4)),
+       st.one_of(st.none(), arrays(max_side=6)),
+       st.booleans())
+def test_any_input_answers_or_is_rejected_clearly(inputs, matrix, normal_matrix, smooth,
+                                                  per_vertex):
+    positions, triangles, _normals, _materials, _uvs = inputs
+    good = _well_formed(positions, triangles)
+    m = len(triangles) if good else 0
+    normals = call(tc.triangle_normals, positions, triangles)
+    assert accepted(normals) or not good, normals
+    if accepted(normals):
+        assert normals[0].shape == (m if good else normals[0].shape[0], 3)
+    points = call(tc.transform_points, positions, matrix)
+    if good and matrix.shape == (4, 4) and matrix.dtype.kind == "f":
+        assert accepted(points), points
+    if accepted(points):
+        assert points.dtype == np.float32 and points.shape == (positions.size // 3, 3)
+    if not good:
+        return
+    ng = normals[0]
+    given_normals = positions if per_vertex else np.repeat(ng, 3, axis=0)
+    corners = call(tc.corner_normals, given_normals, triangles, ng, matrix=normal_matrix,
+                   smooth=smooth, per_vertex=per_vertex)
+    plain = (normal_matrix is None or (normal_matrix.shape == (3, 3)
+                                       and normal_matrix.dtype.kind in "fiub")) and \
+            (smooth is None or (smooth.shape == (m,) and smooth.dtype.kind in "fiub"))
+    if plain:
+        assert accepted(corners), corners
+    if accepted(corners):
+        assert corners.dtype == np.float32 and corners.shape == (m, 3, 3)
+        usable = np.isfinite(corners).all(axis=2)
+        assert (usable | ~np.isfinite(ng)[:, None, :].all(axis=2)).all()
