@@ -6,6 +6,9 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <initializer_list>
+#include <string>
+
 namespace torrance::python {
 
 namespace py = pybind11;
@@ -29,5 +32,30 @@ py::array_t<float> to_numpy(const Image& image);
 // memory budget (ValueError otherwise) -- checked before any conversion allocates.
 py::array numeric_array(const py::object& obj, const std::string& name, size_t itemsize);
 std::string shape_string(const py::array& a);  // "(2, 3)"
+
+// obj as a C-contiguous array of T (numeric_array's checks, then converted) whose shape is
+// `shape`, -1 standing for any length (an empty array passes when the first one is -1); a
+// ValueError "<name> must have shape (N, 3), got (2, 2)" otherwise.
+template <typename T>
+py::array_t<T, py::array::c_style | py::array::forcecast> shaped_array(const py::object& obj, const char* name,
+                                                                      std::initializer_list<py::ssize_t> shape) {
+  using Array = py::array_t<T, py::array::c_style | py::array::forcecast>;
+  Array a = Array::ensure(numeric_array(obj, name, sizeof(T)));
+  if (!a) throw py::type_error(std::string(name) + " must be a numeric array");
+  bool ok = a.ndim() == py::ssize_t(shape.size());
+  py::ssize_t axis = 0;
+  for (const py::ssize_t n : shape) {
+    ok = ok && (n < 0 || a.shape(axis) == n);
+    ++axis;
+  }
+  if (!ok && a.size() == 0 && shape.size() > 0 && *shape.begin() < 0) ok = true;
+  if (!ok) {
+    std::string want;
+    for (const py::ssize_t n : shape)
+      want += (want.empty() ? "(" : ", ") + (n < 0 ? std::string("N") : std::to_string(n));
+    throw py::value_error(std::string(name) + " must have shape " + want + "), got " + shape_string(a));
+  }
+  return a;
+}
 
 }  // namespace torrance::python

@@ -14,17 +14,6 @@ namespace {
 using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
 using IndexArray = py::array_t<int64_t, py::array::c_style | py::array::forcecast>;
 
-FloatArray as_float_rows(const py::object& obj, const char* name, py::ssize_t rows, int cols) {
-  FloatArray a = FloatArray::ensure(numeric_array(obj, name, sizeof(float)));
-  if (!a) throw py::type_error(std::string(name) + " must be a numeric array");
-  const bool ok = (a.ndim() == 2 && a.shape(1) == cols && (rows < 0 || a.shape(0) == rows)) ||
-                  (a.size() == 0 && rows <= 0);
-  if (!ok)
-    throw py::value_error(std::string(name) + " must have shape (" + (rows < 0 ? "N" : std::to_string(rows)) +
-                          ", " + std::to_string(cols) + "), got " + shape_string(a));
-  return a;
-}
-
 IndexArray as_indices(const py::object& obj, const char* name) {
   const py::array raw = numeric_array(obj, name, sizeof(int64_t));
   if (raw.size() > 0 && raw.dtype().kind() != 'i' && raw.dtype().kind() != 'u')
@@ -46,7 +35,7 @@ struct MeshArrays {
 MeshArrays mesh_arrays(const py::object& positions, const py::object& triangles, const py::object& corner_normals,
                        const py::object& material_indices, const char* materials_name, const py::object& corner_uvs) {
   MeshArrays a;
-  a.p = as_float_rows(positions, "positions", -1, 3);
+  a.p = shaped_array<float>(positions, "positions", {-1, 3});
   a.t = as_indices(triangles, "triangles");
   if (!((a.t.ndim() == 2 && a.t.shape(1) == 3) || a.t.size() == 0))
     throw py::value_error("triangles must have shape (M, 3), got " + shape_string(a.t));

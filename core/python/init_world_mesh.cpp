@@ -10,29 +10,8 @@ namespace torrance::python {
 namespace {
 
 using Float32Array = py::array_t<float, py::array::c_style | py::array::forcecast>;
-using Float64Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 using Int32Array = py::array_t<int32_t, py::array::c_style | py::array::forcecast>;
 using BoolArray = py::array_t<bool, py::array::c_style | py::array::forcecast>;
-
-// obj as a C-contiguous array of T whose shape is `shape` (-1: any length), or a ValueError.
-template <typename Array>
-Array shaped(const py::object& obj, const char* name, std::initializer_list<py::ssize_t> shape, size_t itemsize) {
-  Array a = Array::ensure(numeric_array(obj, name, itemsize));
-  if (!a) throw py::type_error(std::string(name) + " must be a numeric array");
-  bool ok = a.ndim() == py::ssize_t(shape.size());
-  size_t axis = 0;
-  for (const py::ssize_t n : shape) {
-    ok = ok && (n < 0 || a.shape(py::ssize_t(axis)) == n);
-    ++axis;
-  }
-  if (!ok && a.size() == 0 && shape.size() > 0 && *shape.begin() < 0) ok = true;  // empty: any shape
-  if (!ok) {
-    std::string want = "(";
-    for (const py::ssize_t n : shape) want += (want.size() > 1 ? ", " : "") + (n < 0 ? std::string("N") : std::to_string(n));
-    throw py::value_error(std::string(name) + " must have shape " + want + "), got " + shape_string(a));
-  }
-  return a;
-}
 
 // Triangles (M, 3) of any integer dtype as int32; wider integers only if every index fits.
 Int32Array triangle_indices(const py::object& triangles) {
@@ -58,7 +37,7 @@ void init_world_mesh(py::module_& m) {
   m.def(
       "triangle_normals",
       [](const py::object& positions, const py::object& triangles) {
-        const Float32Array p = shaped<Float32Array>(positions, "positions", {-1, 3}, sizeof(float));
+        const Float32Array p = shaped_array<float>(positions, "positions", {-1, 3});
         const Int32Array t = triangle_indices(triangles);
         const size_t num_triangles = size_t(t.size() / 3);
         py::array_t<float> normals({py::ssize_t(num_triangles), py::ssize_t(3)});
@@ -78,8 +57,8 @@ void init_world_mesh(py::module_& m) {
   m.def(
       "transform_points",
       [](const py::object& points, const py::object& matrix) {
-        const Float32Array p = shaped<Float32Array>(points, "points", {-1, 3}, sizeof(float));
-        const Float64Array mat = shaped<Float64Array>(matrix, "matrix", {4, 4}, sizeof(double));
+        const Float32Array p = shaped_array<float>(points, "points", {-1, 3});
+        const auto mat = shaped_array<double>(matrix, "matrix", {4, 4});
         const size_t count = size_t(p.size() / 3);
         py::array_t<float> out({py::ssize_t(count), py::ssize_t(3)});
         {
@@ -99,14 +78,14 @@ void init_world_mesh(py::module_& m) {
         const Int32Array t = triangle_indices(triangles);
         const size_t num_triangles = size_t(t.size() / 3);
         const py::ssize_t rows = per_vertex ? -1 : py::ssize_t(3 * num_triangles);
-        const Float32Array n = shaped<Float32Array>(normals, "normals", {rows, 3}, sizeof(float));
+        const Float32Array n = shaped_array<float>(normals, "normals", {rows, 3});
         const Float32Array g =
-            shaped<Float32Array>(geometric, "geometric", {py::ssize_t(num_triangles), 3}, sizeof(float));
+            shaped_array<float>(geometric, "geometric", {py::ssize_t(num_triangles), 3});
         Float32Array mat;
-        if (!matrix.is_none()) mat = shaped<Float32Array>(matrix, "matrix", {3, 3}, sizeof(float));
+        if (!matrix.is_none()) mat = shaped_array<float>(matrix, "matrix", {3, 3});
         BoolArray flat_mask;
         if (!smooth.is_none())
-          flat_mask = shaped<BoolArray>(smooth, "smooth", {py::ssize_t(num_triangles)}, sizeof(bool));
+          flat_mask = shaped_array<bool>(smooth, "smooth", {py::ssize_t(num_triangles)});
         py::array_t<float> out({py::ssize_t(num_triangles), py::ssize_t(3), py::ssize_t(3)});
         {
           py::gil_scoped_release release;
