@@ -1,10 +1,14 @@
 """torrance_core.transform_points and corner_normals: what the add-on's export computed with
 numpy (export/mesh.py world_mesh and _corner_normals before they moved to the core), bit for
-bit on awkward meshes, and their input errors."""
+bit on awkward meshes, their input errors, and any input under test_fuzz_api's rules."""
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+from hypothesis.extra import numpy as hnp
 
 import torrance_core as tc
+from test_fuzz_api import accepted, arrays, call, examples, mesh_inputs
 from test_triangle_normals import awkward_mesh, render_something
 
 
@@ -127,12 +131,6 @@ def test_input_errors():
 
 
 # ---- any input: an answer of the right shape or a clear rejection (test_fuzz_api's rules) -------
-
-from hypothesis import given  # noqa: E402
-from hypothesis import strategies as st  # noqa: E402
-from hypothesis.extra import numpy as hnp  # noqa: E402
-from test_fuzz_api import accepted, arrays, call, examples, mesh_inputs  # noqa: E402
-
 
 def _well_formed(positions, triangles):
     """float32/float64 positions (N, 3) and integer triangles (M, 3) indexing them."""
