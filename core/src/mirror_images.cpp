@@ -164,6 +164,7 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
   pair_of_.assign(reflectors_.size() * num_lights_, -1);
   for (size_t i = 0; i < pairs_.size(); ++i)
     pair_of_[size_t(pairs_[i].reflector) * num_lights_ + sources_[size_t(pairs_[i].source)].index] = int(i);
+  build_pair_grid(scene);
 }
 
 int MirrorImages::reflector_at(uint32_t material, const Vec3& position) const {
@@ -233,9 +234,19 @@ bool MirrorImages::image_meets_bounds(const Pair& pair, const Reflector& reflect
 }
 
 MirrorImages::Odds MirrorImages::odds(const Origin& at, float* weights) const {
+  return weigh(at, pairs_seen_from(at.p), weights);
+}
+
+MirrorImages::Odds MirrorImages::odds_of_every_pair(const Origin& at, float* weights) const {
+  return weigh(at, every_pair(), weights);
+}
+
+MirrorImages::Odds MirrorImages::weigh(const Origin& at, uint64_t pairs, float* weights) const {
   Odds odds;
+  if (weights) std::fill_n(weights, pairs_.size(), 0.0f);
   PlaneSight sight;  // a box's face seen from at.p, shared by the face's pairs
-  for (size_t i = 0; i < pairs_.size(); ++i) {
+  for (uint64_t left = pairs & every_pair(); left != 0; left &= left - 1) {
+    const size_t i = size_t(__builtin_ctzll(left));
     const float w = pair_weight(pairs_[i], at, sight);
     if (weights) weights[i] = w;
     odds.total += w;

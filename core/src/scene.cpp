@@ -320,6 +320,11 @@ void Scene::commit() {
 }
 
 void Scene::bounds(Vec3& lo, Vec3& hi) const {
+  if (dirty_) {  // not committed since the last change: Embree knows no bounds yet (and would complain)
+    lo = Vec3(std::numeric_limits<float>::infinity());
+    hi = -lo;
+    return;
+  }
   RTCBounds b;
   rtcGetSceneBounds(scene_of(scene_), &b);
   lo = Vec3(b.lower_x, b.lower_y, b.lower_z);

@@ -29,6 +29,42 @@ inline void add_quad_uv(Scene& scene, const Vec3& a, const Vec3& b, const Vec3& 
   scene.add_mesh(p, 4, tris, 2, nullptr, mats, uvs);
 }
 
+// A box (12 flat triangles, wound outwards) of half-extents `half` about `center`.
+inline void add_box(Scene& scene, const Vec3& center, const Vec3& half, int64_t material) {
+  const Vec3 lo = center - half, hi = center + half;
+  auto corner = [&](int i) { return Vec3(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z); };
+  // Each face's corners counter-clockwise seen from outside.
+  const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& f : faces) add_quad(scene, corner(f[0]), corner(f[1]), corner(f[2]), corner(f[3]), material);
+}
+
+// A wavy sheet over x0..x1 by y0..y1 (n x n cells): z = amplitude sin(k x) cos(k y), k = 2, with
+// its true normals at the corners (smooth shading).
+inline void add_wavy_sheet(Scene& scene, float x0, float x1, float y0, float y1, int n, float amplitude, int64_t material) {
+  const float k = 2.0f;
+  std::vector<float> positions, normals;
+  std::vector<int64_t> triangles, materials;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const float x = x0 + (x1 - x0) * float(i) / float(n), y = y0 + (y1 - y0) * float(j) / float(n);
+      const Vec3 normal = glm::normalize(Vec3(-amplitude * k * std::cos(k * x) * std::cos(k * y),
+                                              amplitude * k * std::sin(k * x) * std::sin(k * y), 1.0f));
+      positions.insert(positions.end(), {x, y, amplitude * std::sin(k * x) * std::cos(k * y)});
+      normals.insert(normals.end(), {normal.x, normal.y, normal.z});
+    }
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int64_t a = j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
+      triangles.insert(triangles.end(), {a, b, c, a, c, d});
+      materials.insert(materials.end(), {material, material});
+    }
+  // Per-corner normals: the scene takes three per triangle.
+  std::vector<float> corner_normals;
+  for (int64_t v : triangles) corner_normals.insert(corner_normals.end(), normals.begin() + 3 * v, normals.begin() + 3 * v + 3);
+  scene.add_mesh(positions.data(), positions.size() / 3, triangles.data(), triangles.size() / 3,
+                 corner_normals.data(), materials.data());
+}
+
 // A narrow camera at (0, 0, height) looking straight down (-z); lens 2000 mm sees +-0.045 h/5.
 inline void look_down(Scene& scene, float height, float lens_mm) {
   CameraParams cam;

@@ -308,42 +308,6 @@ void add_sphere(Scene& scene, const Vec3& center, float radius, int64_t material
                  materials.data());
 }
 
-// A box (12 flat triangles, wound outwards) of half-extents `half` about `center`.
-void add_box(Scene& scene, const Vec3& center, const Vec3& half, int64_t material) {
-  const Vec3 lo = center - half, hi = center + half;
-  auto corner = [&](int i) { return Vec3(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z); };
-  // Each face's corners counter-clockwise seen from outside.
-  const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto& f : faces) test::add_quad(scene, corner(f[0]), corner(f[1]), corner(f[2]), corner(f[3]), material);
-}
-
-// A wavy sheet over x0..x1 by y0..y1 (n x n cells): z = amplitude sin(k x) cos(k y), k = 2, with
-// its true normals at the corners (smooth shading).
-void add_wavy_sheet(Scene& scene, float x0, float x1, float y0, float y1, int n, float amplitude, int64_t material) {
-  const float k = 2.0f;
-  std::vector<float> positions, normals;
-  std::vector<int64_t> triangles, materials;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) {
-      const float x = x0 + (x1 - x0) * float(i) / float(n), y = y0 + (y1 - y0) * float(j) / float(n);
-      const Vec3 normal = glm::normalize(Vec3(-amplitude * k * std::cos(k * x) * std::cos(k * y),
-                                              amplitude * k * std::sin(k * x) * std::sin(k * y), 1.0f));
-      positions.insert(positions.end(), {x, y, amplitude * std::sin(k * x) * std::cos(k * y)});
-      normals.insert(normals.end(), {normal.x, normal.y, normal.z});
-    }
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const int64_t a = j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
-      triangles.insert(triangles.end(), {a, b, c, a, c, d});
-      materials.insert(materials.end(), {material, material});
-    }
-  // Per-corner normals: the scene takes three per triangle.
-  std::vector<float> corner_normals;
-  for (int64_t v : triangles) corner_normals.insert(corner_normals.end(), normals.begin() + 3 * v, normals.begin() + 3 * v + 3);
-  scene.add_mesh(positions.data(), positions.size() / 3, triangles.data(), triangles.size() / 3,
-                 corner_normals.data(), materials.data());
-}
-
 // A mirror and a glossy plate far from the origin, a sun above: from a point over each the
 // strategy finds a pair to sample (their image cones meet their bounds) and aims down into it.
 TEST(MirrorImages, PlanesAwayFromTheOriginAreAimedAt) {
@@ -439,11 +403,11 @@ TEST(MirrorImages, BoxFacesAndWavySheetsAreReflectors) {
   const uint32_t box = scene.add_material(glossy), sheet = scene.add_material(glossy);
   const uint32_t wavy_mirror = scene.add_material(mirror_metal()), steep = scene.add_material(glossy);
   const uint32_t rough_box = scene.add_material(rough);
-  add_box(scene, Vec3(0.0f, 0.0f, 1.0f), Vec3(0.5f, 0.4f, 0.3f), box);
-  add_wavy_sheet(scene, -2.0f, 2.0f, -2.0f, 2.0f, 24, 0.05f, sheet);   // slopes up to 0.1: ~6 degrees
-  add_wavy_sheet(scene, 4.0f, 8.0f, -2.0f, 2.0f, 24, 0.05f, wavy_mirror);
-  add_wavy_sheet(scene, -8.0f, -4.0f, -2.0f, 2.0f, 24, 0.4f, steep);    // slopes up to 0.8: ~39 degrees
-  add_box(scene, Vec3(0.0f, 5.0f, 1.0f), Vec3(0.5f), rough_box);
+  test::add_box(scene, Vec3(0.0f, 0.0f, 1.0f), Vec3(0.5f, 0.4f, 0.3f), box);
+  test::add_wavy_sheet(scene, -2.0f, 2.0f, -2.0f, 2.0f, 24, 0.05f, sheet);   // slopes up to 0.1: ~6 degrees
+  test::add_wavy_sheet(scene, 4.0f, 8.0f, -2.0f, 2.0f, 24, 0.05f, wavy_mirror);
+  test::add_wavy_sheet(scene, -8.0f, -4.0f, -2.0f, 2.0f, 24, 0.4f, steep);    // slopes up to 0.8: ~39 degrees
+  test::add_box(scene, Vec3(0.0f, 5.0f, 1.0f), Vec3(0.5f), rough_box);
   scene.lights().add_sun(Vec3(0.2f, 0.1f, -1.0f), 1.0f, Vec3(1.0f), 0.05f);
   const std::vector<MaterialBsdf> bsdfs = test::principled_bsdfs(scene);
   const MirrorImages images(scene, bsdfs);
@@ -526,7 +490,7 @@ uint32_t build_ball_before_wall(Scene& scene, float roughness, float light_radiu
   const uint32_t ball = scene.add_material(plastic);
   const Vec3 center(1.0f, 0.0f, 0.0f);
   test::add_quad(scene, Vec3(0, -5, -6), Vec3(0, 5, -6), Vec3(0, 5, 2), Vec3(0, -5, 2), 0);
-  if (as_box) add_box(scene, center, Vec3(0.5f), ball);
+  if (as_box) test::add_box(scene, center, Vec3(0.5f), ball);
   else add_sphere(scene, center, 0.5f, ball);
   scene.lights().add_point(Vec3(-0.3f, -0.5f, 4.0f), 300.0f, Vec3(1.0f, 0.9f, 0.8f), light_radius);
   const Vec3 disk_center(-0.3f, 1.0f, 3.8f), to_ball = glm::normalize(center - disk_center);
@@ -578,7 +542,7 @@ void build_spot_over_glossy_floor(Scene& scene, float roughness, bool wavy = fal
   floor.roughness = roughness;
   scene.add_material(floor);
   test::add_quad(scene, Vec3(0, -5, 0), Vec3(0, 5, 0), Vec3(0, 5, 8), Vec3(0, -5, 8), 0);
-  if (wavy) add_wavy_sheet(scene, 0.0f, 10.0f, -5.0f, 5.0f, 80, 0.05f, 1);
+  if (wavy) test::add_wavy_sheet(scene, 0.0f, 10.0f, -5.0f, 5.0f, 80, 0.05f, 1);
   else test::add_quad(scene, Vec3(0, -5, 0), Vec3(10, -5, 0), Vec3(10, 5, 0), Vec3(0, 5, 0), 1);
   scene.lights().add_spot(Vec3(1.0f, 0.0f, 1.5f), Vec3(0.0f, 0.0f, -1.0f), 500.0f, Vec3(1.0f, 0.95f, 0.9f), 0.15f,
                           40.0f * kPi / 180.0f, 0.0f);

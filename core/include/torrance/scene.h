@@ -179,7 +179,7 @@ class Scene {
   void intersect_packet(const Ray* rays, int n, SurfaceHit* hits, bool* found) const;
   bool occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax) const;
   void* embree_scene() const { return scene_; }  // the RTCScene, for raw-Embree measurements (ray_replay.h)
-  void bounds(Vec3& lo, Vec3& hi) const;  // of everything traced, after commit (lo > hi: nothing)
+  void bounds(Vec3& lo, Vec3& hi) const;  // of everything traced, after commit (lo > hi: nothing, or not committed)
   // The flat pieces that the triangles of material `material` make (mirror_images.h): either a
   // few exact planes shaded flat (a quad, a box: every corner inside its plane to a relative 1e-5,
   // corner normals along its normal), or else one nearly flat sheet (a wavy water surface: every
