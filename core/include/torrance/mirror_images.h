@@ -210,11 +210,11 @@ class MirrorImages {
   // the plane, or where the light's image cone misses the plane's bounds), yet odds() would weigh
   // every pair at every path vertex: suzanne's glossy box makes 12 pairs, of which a vertex sees
   // ~1 (weighing them was ~6 % of its render; with the grid its core time is x0.96 at 64 spp).
-  // So space is cut into cells over the scene's
-  // bounds, and each cell keeps the set of pairs that some point in it may see, found by a
-  // conservative version of pair_weight's tests the first time a vertex falls into the cell;
-  // odds() weighs only those. The others would weigh exactly 0 there, so every sum is the same
-  // bit for bit. Points outside the grid weigh every pair.
+  // So space is cut into cells over the scene's bounds, and each cell keeps the set of pairs
+  // that some point in it may see, found by a conservative version of pair_weight's tests the
+  // first time a vertex falls into the cell; odds() weighs only those. The others would weigh
+  // exactly 0 there, so every sum is the same bit for bit. Points outside the grid weigh every
+  // pair.
   static constexpr size_t kGridCells = 16384;   // about; the cells near cubes
   static constexpr uint64_t kCellKnown = 1ull << 63;  // a cell's set is computed (kMaxPairs <= 32)
   void build_pair_grid(const Scene& scene);
