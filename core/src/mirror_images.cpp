@@ -21,9 +21,6 @@ float one_minus_cos_of(float angle) {
   return 2.0f * s * s;
 }
 
-// The angle under which a ball of radius r is seen from distance d (pi/2 from inside it).
-float angular_radius_of(float r, float d) { return r < d ? std::asin(r / d) : 0.5f * kPi; }
-
 // Whether material m can be a reflector of the strategy at all: opaque, uniform, not emitting.
 bool plain_surface(const Scene& scene, uint32_t m) {
   const Material& material = scene.material(m);

@@ -26,9 +26,6 @@ namespace torrance {
 
 namespace {
 
-// asin(x) for x >= 0, pi/2 from 1 on.
-float asin_at_most_one(float x) { return x < 1.0f ? std::asin(x) : 0.5f * kPi; }
-
 // The angle between two non-zero vectors (accurate near 0 and pi).
 float angle_between(const Vec3& a, const Vec3& b) { return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)); }
 
@@ -115,20 +112,19 @@ bool MirrorImages::may_weigh(const Pair& pair, const Vec3& centre, const Vec3& h
   const Vec3 to_bounds = reflector.bound_center - centre;
   const float d = glm::length(to_bounds);
   if (!(d > reflector.bound_radius + rc)) return true;
-  const float bounds = asin_at_most_one(reflector.bound_radius / (d - rc));  // the ball's angular radius, at most
-  const float turn_bounds = asin_at_most_one(rc / d);
+  const float bounds = angular_radius_of(reflector.bound_radius, d - rc);  // the ball's, at most
+  const float turn_bounds = angular_radius_of(rc, d);
+  const Source& source = sources_[size_t(pair.source)];
   if (pair.fixed_cone) {  // a sun's image: one cone from everywhere
-    const Source& source = sources_[size_t(pair.source)];
     const float cone = std::min(source.sun_radius + reflector.widen, 0.5f * kPi);
     return angle_between(pair.axis, to_bounds) - turn_bounds <= cone + bounds + kAngleMargin;
   }
   // A lamp's image I, seen from p as the lamp is from p's mirror image.
-  const Source& source = sources_[size_t(pair.source)];
   const Vec3 to_image = pair.light_image - centre;
   const float l = glm::length(to_image);
   if (!(l > source.size + rc)) return true;  // p may be within the lamp's reach
-  const float cone = std::min(asin_at_most_one(source.size / (l - rc)) + reflector.widen, 0.5f * kPi);
-  const float turn_image = asin_at_most_one(rc / l);
+  const float cone = std::min(angular_radius_of(source.size, l - rc) + reflector.widen, 0.5f * kPi);
+  const float turn_image = angular_radius_of(rc, l);
   return angle_between(to_image, to_bounds) - turn_image - turn_bounds <= cone + bounds + kAngleMargin;
 }
 

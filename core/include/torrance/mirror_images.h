@@ -59,6 +59,7 @@
 #include "torrance/scene.h"
 
 #include <atomic>
+#include <cmath>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -260,6 +261,8 @@ class MirrorImages {
   static constexpr float kRunScale = 10.0f;
   // Glossy: the cone the strategy aims p into for `pair` (its axis, 1 - cos of its half-angle).
   void image_cone(const Pair& pair, const Vec3& p, Vec3& axis, float& one_minus_cos) const;
+  // The angle under which a ball of radius r is seen from distance d (pi/2 from inside it).
+  static float angular_radius_of(float r, float d) { return r < d ? std::asin(r / d) : 0.5f * kPi; }
   // p reflected in plane `reflector`.
   static Vec3 mirrored(const Reflector& reflector, const Vec3& p) {
     return p - 2.0f * glm::dot(p - reflector.point, reflector.normal) * reflector.normal;
