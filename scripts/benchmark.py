@@ -94,11 +94,13 @@ def parse_args():
     return args
 
 
-# String options of RenderSettings and the alternatives that switch a choice of the core off
-# (used when the core has the field), each its own lever keyed FIELD=ALTERNATIVE: what Sobol
-# sampling, the BSDF-aware light choice (against the former irradiance-only choice) and
-# contribution-based light selection at all (against uniform) buy.
-ALTERNATIVES = {"sampler": ("RANDOM",), "light_selection": ("IRRADIANCE", "UNIFORM")}
+# String and integer options of RenderSettings and the alternatives that switch a choice of the
+# core off (used when the core has the field), each its own lever keyed FIELD=ALTERNATIVE: what
+# Sobol sampling, the BSDF-aware light choice (against the former irradiance-only choice),
+# contribution-based light selection at all (against uniform) and the automatic splitting at the
+# first hit (against none) buy.
+ALTERNATIVES = {"sampler": ("RANDOM",), "light_selection": ("IRRADIANCE", "UNIFORM"),
+                "first_bounce_splits": (1,)}
 
 
 def ablation_levers(core):
@@ -116,7 +118,7 @@ def ablation_levers(core):
             continue
         if isinstance(value, bool):
             out.append((name, value, not value))
-        elif name in ALTERNATIVES and isinstance(value, str):
+        elif name in ALTERNATIVES and isinstance(value, (str, int)):
             out += [(f"{name}={other}", value, other) for other in ALTERNATIVES[name]
                     if other != value]
     return out

@@ -16,7 +16,8 @@ LEVER_LABELS = {"specialize": "specialised kernels", "sampler=RANDOM": "Sobol sa
                 "guiding": "path guiding", "camera_packets": "camera rays in 8-wide packets",
                 "efficiency_roulette": "efficiency-aware Russian roulette",
                 "mirror_images": "NEE of lights in mirrors, glossy surfaces; lamp spots",
-                "nee_every_light": "NEE of both lights in two-light scenes"}
+                "nee_every_light": "NEE of both lights in two-light scenes",
+                "first_bounce_splits=1": "splitting at the first hit, chosen by a pilot"}
 
 
 def ratios(d, torrance, cycles):
@@ -92,7 +93,7 @@ def ablation(res, scenes):
         return ["Not measured in this run (`--toggle-seeds 0`)."]
     if not levers:
         return ["The core exposes no levers (no boolean fields of `torrance_core.RenderSettings` "
-                "beyond the known ones, no string option of ALTERNATIVES in "
+                "beyond the known ones, no string or integer option of ALTERNATIVES in "
                 "`scripts/benchmark.py`)."]
     lines = [f"Torrance at {s['toggle_spp']} spp with its defaults, then with one lever of the "
              f"core switched at a time (everything else default), each variant rendered with the "

@@ -72,7 +72,8 @@ void init_render(py::module_& m) {
                        const std::string& sampler, bool specialize, float adaptive_threshold,
                        int adaptive_min_samples, double time_limit, float clamp_direct, float clamp_indirect,
                        int max_transparent_bounces, bool guiding, float guiding_training_fraction,
-                       bool efficiency_roulette, bool mirror_images, bool nee_every_light) {
+                       bool efficiency_roulette, bool mirror_images, bool nee_every_light,
+                       int first_bounce_splits) {
              RenderSettings s;
              s.width = width;
              s.height = height;
@@ -101,6 +102,7 @@ void init_render(py::module_& m) {
              s.efficiency_roulette = efficiency_roulette;
              s.mirror_images = mirror_images;
              s.nee_every_light = nee_every_light;
+             s.first_bounce_splits = first_bounce_splits;
              s.validate();
              return s;
            }),
@@ -114,12 +116,20 @@ void init_render(py::module_& m) {
            py::arg("clamp_indirect") = 0.0f, py::arg("max_transparent_bounces") = 8,
            py::arg("guiding") = false, py::arg("guiding_training_fraction") = 0.25f,
            py::arg("efficiency_roulette") = true, py::arg("mirror_images") = true,
-           py::arg("nee_every_light") = true)
+           py::arg("nee_every_light") = true, py::arg("first_bounce_splits") = 0)
       .def_readwrite("specialize", &RenderSettings::specialize)
       .def_readwrite("camera_packets", &RenderSettings::camera_packets)
       .def_readwrite("efficiency_roulette", &RenderSettings::efficiency_roulette)
       .def_readwrite("mirror_images", &RenderSettings::mirror_images)
       .def_readwrite("nee_every_light", &RenderSettings::nee_every_light)
+      .def_property(
+          "first_bounce_splits", [](const RenderSettings& s) { return s.first_bounce_splits; },
+          [](RenderSettings& s, int n) {
+            RenderSettings checked = s;
+            checked.first_bounce_splits = n;
+            checked.validate();
+            s.first_bounce_splits = n;
+          })
       .def_readwrite("roulette_min_survival", &RenderSettings::roulette_min_survival)
       .def_property(
           "sampler", [](const RenderSettings& s) { return std::string(s.sobol ? "SOBOL" : "RANDOM"); },
@@ -178,6 +188,8 @@ void init_render(py::module_& m) {
       .def_readonly("closest_rays", &RenderResult::closest_rays)
       .def_readonly("occlusion_rays", &RenderResult::occlusion_rays)
       .def_readonly("guiding", &RenderResult::guiding)
+      .def_readonly("first_bounce_splits", &RenderResult::first_bounce_splits)
+      .def_readonly("first_bounce_optimum", &RenderResult::first_bounce_optimum)
       .def_property_readonly("rays_traced", &RenderResult::rays_traced)
       .def_property_readonly("sample_counts", [](const RenderResult& r) {
         py::array_t<float> a({py::ssize_t(r.sample_counts.height), py::ssize_t(r.sample_counts.width)});

@@ -63,6 +63,8 @@ void RenderSettings::validate() const {
   if (!(adaptive_threshold >= 0.0f && adaptive_threshold <= 1.0f))
     throw std::invalid_argument("adaptive_threshold must be in [0, 1] (0 = off)");
   if (adaptive_min_samples < 0) throw std::invalid_argument("adaptive_min_samples must be >= 0 (0 = automatic)");
+  if (first_bounce_splits < 0 || first_bounce_splits > 16)
+    throw std::invalid_argument("first_bounce_splits must be in [0, 16] (0 = automatic, 1 = off)");
   if (!(time_limit >= 0.0) || !std::isfinite(time_limit))
     throw std::invalid_argument("time_limit must be a finite number of seconds >= 0 (0 = none)");
   if (!(clamp_direct >= 0.0f) || !std::isfinite(clamp_direct) || !(clamp_indirect >= 0.0f) ||
@@ -107,6 +109,64 @@ class FlushDenormals {  // FTZ/DAZ for the render threads: denormals cost a lot 
 bool guide_can_be_judged(const RenderSettings& s) {
   const int pass = s.guiding_options.decision_pass;
   return pass <= 0 || double((1u << std::min(pass, 30)) - 1u) <= double(s.guiding_training_fraction) * s.samples;
+}
+
+// A camera sample's ray through pixel (x, y) of the frame: the pixel filter's offset and the lens
+// point from the sampler's first four dimensions.
+Ray camera_ray(const Camera& camera, const PixelFilter& filter, int x, int y, SobolSampler& sampler) {
+  const glm::vec4 u_pixel = sampler.next_4d();
+  const float dx = filter.sample_offset(u_pixel.x);
+  const float dy = filter.sample_offset(u_pixel.y);
+  // u_pixel.zw: the lens point (depth of field only).
+  return camera.generate_ray(x + 0.5f + dx, y + 0.5f + dy, Vec2(u_pixel.z, u_pixel.w));
+}
+
+// The pilot of the automatic splitting at the first hit (first_bounce_splits.h): a few samples,
+// two branches each, of every kStride-th pixel of the window, with the render's seed moved away
+// (none of its samples is in the image); the pixels' statistics are summed in a fixed order. Its
+// rays are added to `closest` and `occlusion` (the render's counts).
+FirstBounceSplits first_bounce_pilot(const PathContext& ctx, const TraceFn& trace, const Camera& camera,
+                                     const PixelFilter& filter, const std::array<int, 4>& window,
+                                     std::atomic<uint64_t>& closest, std::atomic<uint64_t>& occlusion) {
+  using Pilot = FirstBounceSplits;
+  PathContext pilot = ctx;
+  pilot.roulette = nullptr;
+  pilot.guide = nullptr;
+  pilot.guide_training = false;
+  pilot.first_bounce_splits = BranchRecord::kMaxBranches;
+  std::vector<std::array<int, 2>> pixels;
+  for (int y = window[1] + Pilot::kStride / 2; y < window[3]; y += Pilot::kStride)
+    for (int x = window[0] + Pilot::kStride / 2; x < window[2]; x += Pilot::kStride) pixels.push_back({x, y});
+  std::vector<std::array<BranchRecord, Pilot::kSamples>> records(pixels.size());
+  std::vector<std::array<float, Pilot::kSamples>> values(pixels.size());
+  const uint32_t seed = hash_u32(ctx.settings.seed ^ 0x5eed5b17u);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
+    FlushDenormals ftz;
+    const RayCounts rays_before = thread_ray_counts();
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      const auto [x, y] = pixels[i];
+      for (int s = 0; s < Pilot::kSamples; ++s) {
+        SobolSampler sampler(uint32_t(y) * uint32_t(ctx.settings.width) + uint32_t(x), uint32_t(s), seed,
+                             !ctx.settings.sobol);
+        const Ray ray = camera_ray(camera, filter, x, y, sampler);
+        BranchRecord& record = records[i][size_t(s)];
+        PixelSample pixel;
+        pixel.x = x - window[0];
+        pixel.y = y - window[1];
+        pixel.record = &record;
+        record.rays_at_start = thread_ray_counts().total();
+        const float value = luminance(trace(pilot, ray, sampler, nullptr, pixel).combined());
+        record.rays_at_end = thread_ray_counts().total();
+        values[i][size_t(s)] = std::isfinite(value) ? value : 0.0f;
+      }
+    }
+    const RayCounts rays = thread_ray_counts() - rays_before;
+    closest += rays.closest;
+    occlusion += rays.occlusion;
+  });
+  FirstBounceSplits splits;
+  for (size_t i = 0; i < pixels.size(); ++i) splits.add_pixel(records[i].data(), values[i].data(), Pilot::kSamples);
+  return splits;
 }
 
 }  // namespace
@@ -198,11 +258,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
       const int x = c.pixel.x + window[0], y = c.pixel.y + window[1];  // in the frame
       const uint32_t pixel = uint32_t(y) * uint32_t(settings.width) + uint32_t(x);
       SobolSampler& sampler = samplers[size_t(i)].emplace(pixel, c.sample, settings.seed, !settings.sobol);
-      const glm::vec4 u_pixel = sampler.next_4d();
-      const float dx = filter.sample_offset(u_pixel.x);
-      const float dy = filter.sample_offset(u_pixel.y);
-      // u_pixel.zw: the lens point (depth of field only).
-      rays[size_t(i)] = camera.generate_ray(x + 0.5f + dx, y + 0.5f + dy, Vec2(u_pixel.z, u_pixel.w));
+      rays[size_t(i)] = camera_ray(camera, filter, x, y, sampler);
     }
     const bool packet = settings.camera_packets && n > 1;
     std::array<FirstHit, Scene::kPacketSize> first;
@@ -281,6 +337,16 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
       bool all_converged = false, out_of_time = false;
       const auto sampling_start = std::chrono::steady_clock::now();
       result.setup_seconds = std::chrono::duration<double>(sampling_start - start).count();
+      ctx.first_bounce_splits = settings.first_bounce_splits;
+      if (settings.first_bounce_splits == 0) {  // automatic: the pilot chooses
+        const FirstBounceSplits pilot =
+            arena.execute([&] {
+              return first_bounce_pilot(ctx, trace, camera, filter, window, closest_rays, occlusion_rays);
+            });
+        ctx.first_bounce_splits = pilot.choose();
+        result.first_bounce_optimum = pilot.optimum();
+      }
+      result.first_bounce_splits = ctx.first_bounce_splits;
       while (done < settings.samples && !stop && !all_converged && !out_of_time) {
         const int target = std::min(pass_size, settings.samples - done);
         const auto t0 = std::chrono::steady_clock::now();

@@ -4,6 +4,7 @@
 #include "torrance/light_choice.h"
 #include "torrance/mirror_images.h"
 #include "torrance/mixture_bsdf.h"
+#include "torrance/ray_log.h"
 #include "torrance/shading_normal.h"
 
 #include <array>
@@ -220,8 +221,11 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
     const float sum = std::abs(c.x) + std::abs(c.y) + std::abs(c.z);
     return sum > limit ? limit / sum : 1.0f;
   };
+  // The share of the path's branch (1/n where it split at the first hit into n).
+  float branch_weight = 1.0f;
   auto deposit = [&](Vec3 c, bool direct) {  // a contribution arriving after the first hit
-    if (const float k = clamp_scale(c, direct); k < 1.0f) c *= k;
+    // Clamped as the unsplit path's contribution would be: a branch's to 1/n of the limit.
+    if (const float k = clamp_scale(c / branch_weight, direct); k < 1.0f) c *= k;
     if (recorder.enabled()) recorder.add_contribution(c);
     const Vec3 diffuse = c * diffuse_share, glossy = c - diffuse;
     path_luminance += luminance(c);
@@ -239,227 +243,278 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
     (direct ? out.glossy_direct : out.glossy_indirect) += light * f.glossy;
   };
 
-  for (int bounce = 0;; ++bounce) {
+  // Splitting at the first hit (RenderSettings::first_bounce_splits): each later branch goes back to
+  // the first vertex, whose emission, light samples and light choice the first branch took, and
+  // leaves it along a BSDF sample of its own; every branch carries 1/n of the throughput.
+  struct FirstVertex {
     SurfaceHit hit;
-    bool found = bounce == 0 && first ? (hit = first->hit, first->found) : ctx.scene.intersect(ray, hit);
-    float passed_length = 0.0f;  // through transparent surfaces since the last vertex
-    if constexpr (kAlpha) {
-      for (int passed = 0; found; ++passed) {
-        const float opacity = ctx.scene.opacity(hit.material, hit.uv);
-        if (opacity >= 1.0f || sampler.next_4d().x < opacity) break;
-        if (passed >= ctx.settings.max_transparent_bounces) return out;  // Cycles: the path ends
-        throughput *= ctx.scene.material(hit.material).transparent_color;
-        if (!(max_component(throughput) > 0.0f)) return out;
-        passed_length += hit.t;
-        ray.origin = offset_origin(hit.position, hit.geometric_normal, ray.dir);
-        ray.tmax -= hit.t;
-        found = ray.tmax > 0.0f && ctx.scene.intersect(ray, hit);
-      }
-    }
-    if (bounce == 0) {
-      if (!found) {
-        if (ctx.settings.transparent_background)
-          out.alpha = kAlpha ? 1.0f - (throughput.x + throughput.y + throughput.z) / 3.0f : 0.0f;
-        else out.environment = (kAlpha ? throughput : Vec3(1.0f)) * lights.world_radiance(ray.dir);
-        if (const float k = clamp_scale(out.environment, true); k < 1.0f) out.environment *= k;
-        path_luminance = luminance(out.environment);
-        return out;
-      }
-      out.depth = (passed_length + hit.t) * glm::dot(ray.dir, ctx.camera_forward);
-    } else {
-      if (kHittable) {
-        const float t_max = found ? passed_length + hit.t : kInfinity;
-        const Vec3 e = lights.emission_along_ray(prev_position, prev_normal, ray.dir, t_max, prev_pdf, prev_delta,
-                                                 kGlass && prev_two_sided, &light_choice, reflector_share.active());
-        deposit(throughput * e, bounce == 1);
-      }
-      if (!found) break;
+    Ray ray;
+    LightChoice choice;
+  } first_vertex;
+  int branches = 1;
+  float branch_start = 0.0f;  // path_luminance when the branch left (the pilot's record)
+  // Branch k draws its points from kBranchPoints * k on past the first vertex's: the same indices
+  // in every sample of the pixel, so each branch is as well stratified as the first.
+  constexpr uint32_t kBranchPoints = 1u << 16;
+  uint32_t first_vertex_points = 0;
+  for (int branch = 0; branch < branches; ++branch) {
+    const bool again = branch > 0;
+    if (again) {
+      sampler.continue_at_point(first_vertex_points + uint32_t(branch) * kBranchPoints);
+      roulette.end_branch();
       reflector_share.clear();
-      if (const int reflector =
-              ctx.mirror_images && !prev_delta ? ctx.mirror_images->reflector_at(hit.material, hit.position) : -1;
-          reflector >= 0)
-        reflector_share.met(reflector, {prev_hit_position, prev_normal, prev_material, prev_path_weight}, ray.dir,
-                            prev_pdf);
+      ray = first_vertex.ray;
+      throughput = Vec3(1.0f);
+      path_length = 0.0f;
     }
+    for (int bounce = 0;; ++bounce) {
+      const bool first_again = again && bounce == 0;  // back at the first vertex
+      SurfaceHit hit;
+      bool found = first_again ? (hit = first_vertex.hit, true)
+                   : bounce == 0 && first ? (hit = first->hit, first->found)
+                                          : ctx.scene.intersect(ray, hit);
+      float passed_length = 0.0f;  // through transparent surfaces since the last vertex
+      if constexpr (kAlpha) {
+        for (int passed = 0; found; ++passed) {
+          const float opacity = ctx.scene.opacity(hit.material, hit.uv);
+          if (opacity >= 1.0f || sampler.next_4d().x < opacity) break;
+          if (passed >= ctx.settings.max_transparent_bounces) return out;  // Cycles: the path ends
+          throughput *= ctx.scene.material(hit.material).transparent_color;
+          if (!(max_component(throughput) > 0.0f)) return out;
+          passed_length += hit.t;
+          ray.origin = offset_origin(hit.position, hit.geometric_normal, ray.dir);
+          ray.tmax -= hit.t;
+          found = ray.tmax > 0.0f && ctx.scene.intersect(ray, hit);
+        }
+      }
+      if (first_again) {
+        light_choice = first_vertex.choice;
+      } else if (bounce == 0) {
+        if (!found) {
+          if (ctx.settings.transparent_background)
+            out.alpha = kAlpha ? 1.0f - (throughput.x + throughput.y + throughput.z) / 3.0f : 0.0f;
+          else out.environment = (kAlpha ? throughput : Vec3(1.0f)) * lights.world_radiance(ray.dir);
+          if (const float k = clamp_scale(out.environment, true); k < 1.0f) out.environment *= k;
+          path_luminance = luminance(out.environment);
+          return out;
+        }
+        out.depth = (passed_length + hit.t) * glm::dot(ray.dir, ctx.camera_forward);
+        first_vertex.hit = hit;
+        first_vertex.ray = ray;
+      } else {
+        if (kHittable) {
+          const float t_max = found ? passed_length + hit.t : kInfinity;
+          const Vec3 e = lights.emission_along_ray(prev_position, prev_normal, ray.dir, t_max, prev_pdf, prev_delta,
+                                                   kGlass && prev_two_sided, &light_choice, reflector_share.active());
+          deposit(throughput * e, bounce == 1);
+        }
+        if (!found) break;
+        reflector_share.clear();
+        if (const int reflector =
+                ctx.mirror_images && !prev_delta ? ctx.mirror_images->reflector_at(hit.material, hit.position) : -1;
+            reflector >= 0)
+          reflector_share.met(reflector, {prev_hit_position, prev_normal, prev_material, prev_path_weight}, ray.dir,
+                              prev_pdf);
+      }
 
-    // Textures: the material's inputs and its normal map at this hit, averaged over the pixel's
-    // footprint (wider where the surface is seen at a grazing angle, capped at 4x).
-    path_length += passed_length + hit.t;
-    const bool mixture = kMixtures && ctx.scene.mixture(hit.material);
-    const bool textured = kTextures && (mixture || ctx.scene.material_textures(hit.material).any());
-    const float cos_view = std::abs(glm::dot(ray.dir, hit.geometric_normal));
-    const float footprint =
-        textured ? ctx.pixel_spread * path_length / std::max(cos_view, 0.25f) * hit.uv_per_metre : 0.0f;
-    using Bsdf = std::conditional_t<kMixtures, MixtureBsdf, MaterialBsdf>;
-    Material material;
-    std::optional<Bsdf> local_bsdf;
-    if constexpr (kMixtures) {
-      local_bsdf.emplace(shade_material(ctx.scene, hit.material, hit.uv, footprint, textured, ctx.settings.brdf_model,
-                                        ctx.bsdfs[hit.material], material));
-    } else {
-      material = textured ? ctx.scene.textured_material(hit.material, hit.uv, footprint)
-                          : ctx.scene.material(hit.material);
-      if (textured) local_bsdf.emplace(material, ctx.settings.brdf_model);
-    }
-    const Bsdf* bsdf_used;
-    if constexpr (kMixtures) bsdf_used = &*local_bsdf;
-    else bsdf_used = textured ? &*local_bsdf : &ctx.bsdfs[hit.material];
-    const Bsdf& bsdf = *bsdf_used;
+      // Textures: the material's inputs and its normal map at this hit, averaged over the pixel's
+      // footprint (wider where the surface is seen at a grazing angle, capped at 4x).
+      path_length += passed_length + hit.t;
+      const bool mixture = kMixtures && ctx.scene.mixture(hit.material);
+      const bool textured = kTextures && (mixture || ctx.scene.material_textures(hit.material).any());
+      const float cos_view = std::abs(glm::dot(ray.dir, hit.geometric_normal));
+      const float footprint =
+          textured ? ctx.pixel_spread * path_length / std::max(cos_view, 0.25f) * hit.uv_per_metre : 0.0f;
+      using Bsdf = std::conditional_t<kMixtures, MixtureBsdf, MaterialBsdf>;
+      Material material;
+      std::optional<Bsdf> local_bsdf;
+      if constexpr (kMixtures) {
+        local_bsdf.emplace(shade_material(ctx.scene, hit.material, hit.uv, footprint, textured, ctx.settings.brdf_model,
+                                          ctx.bsdfs[hit.material], material));
+      } else {
+        material = textured ? ctx.scene.textured_material(hit.material, hit.uv, footprint)
+                            : ctx.scene.material(hit.material);
+        if (textured) local_bsdf.emplace(material, ctx.settings.brdf_model);
+      }
+      const Bsdf* bsdf_used;
+      if constexpr (kMixtures) bsdf_used = &*local_bsdf;
+      else bsdf_used = textured ? &*local_bsdf : &ctx.bsdfs[hit.material];
+      const Bsdf& bsdf = *bsdf_used;
 
-    // Orient the frame towards the viewer (two-sided surfaces) and keep reflections valid.
-    const Vec3 wo_world = -ray.dir;
-    Vec3 ng = hit.geometric_normal;
-    Vec3 n_smooth = hit.shading_normal;
-    const float cone_width = ctx.pixel_spread * path_length;  // the bump's step (Cycles' dP)
-    Vec3 ns = textured ? ctx.scene.normal_mapped(hit.material, hit, n_smooth, footprint, cone_width) : n_smooth;
-    const bool normal_mapped = textured && ns != n_smooth;
-    const bool backfacing = glm::dot(ng, wo_world) < 0.0f;  // inside, for glass
-    const bool transmits = kGlass && bsdf.transmits();
-    if (backfacing) {
-      ng = -ng;
-      ns = -ns;
-      n_smooth = -n_smooth;
-    }
-    ns = valid_shading_normal(ng, ns, wo_world);
+      // Orient the frame towards the viewer (two-sided surfaces) and keep reflections valid.
+      const Vec3 wo_world = -ray.dir;
+      Vec3 ng = hit.geometric_normal;
+      Vec3 n_smooth = hit.shading_normal;
+      const float cone_width = ctx.pixel_spread * path_length;  // the bump's step (Cycles' dP)
+      Vec3 ns = textured ? ctx.scene.normal_mapped(hit.material, hit, n_smooth, footprint, cone_width) : n_smooth;
+      const bool normal_mapped = textured && ns != n_smooth;
+      const bool backfacing = glm::dot(ng, wo_world) < 0.0f;  // inside, for glass
+      const bool transmits = kGlass && bsdf.transmits();
+      if (backfacing) {
+        ng = -ng;
+        ns = -ns;
+        n_smooth = -n_smooth;
+      }
+      ns = valid_shading_normal(ng, ns, wo_world);
 
-    // Emissive surfaces emit from both faces; NEE samples them too (the mesh light).
-    if (bounce == 0) {
-      out.normal = ns;
-      // Diffuse colour (DiffCol): the diffuse lobe's weight, which glass takes away (Cycles' TransCol).
-      out.albedo = kGlass ? material.base_color * (material.glass_node ? 0.0f
-                                                                        : (1.0f - material.metallic) *
-                                                                              (1.0f - material.transmission))
-                          : material.base_color * (1.0f - material.metallic);
-      out.emission = kAlpha ? throughput * material.emission : material.emission;
-      if (const float k = clamp_scale(out.emission, true); k < 1.0f) out.emission *= k;
-      path_luminance += luminance(out.emission);
-    } else if (hit.emitter >= 0) {
-      // An emissive triangle found by BSDF sampling: MIS against NEE's choice of it.
-      const float mis = prev_delta ? 1.0f
-                                   : power_heuristic(prev_pdf, lights.mesh_light_pdf(size_t(hit.emitter), prev_position,
-                                                                                     prev_normal, hit.position,
-                                                                                     kGlass && prev_two_sided, &light_choice));
-      deposit(throughput * material.emission * mis, bounce == 1);
-    }
-    if (bounce > ctx.settings.max_bounces) break;
+      // Emissive surfaces emit from both faces; NEE samples them too (the mesh light).
+      if (first_again) {  // its emission: in the first branch
+      } else if (bounce == 0) {
+        out.normal = ns;
+        // Diffuse colour (DiffCol): the diffuse lobe's weight, which glass takes away (Cycles' TransCol).
+        out.albedo = kGlass ? material.base_color * (material.glass_node ? 0.0f
+                                                                          : (1.0f - material.metallic) *
+                                                                                (1.0f - material.transmission))
+                            : material.base_color * (1.0f - material.metallic);
+        out.emission = kAlpha ? throughput * material.emission : material.emission;
+        if (const float k = clamp_scale(out.emission, true); k < 1.0f) out.emission *= k;
+        path_luminance += luminance(out.emission);
+      } else if (hit.emitter >= 0) {
+        // An emissive triangle found by BSDF sampling: MIS against NEE's choice of it.
+        float mis = 1.0f;
+        if (!prev_delta)
+          mis = power_heuristic(prev_pdf, lights.mesh_light_pdf(size_t(hit.emitter), prev_position, prev_normal,
+                                                                hit.position, kGlass && prev_two_sided, &light_choice));
+        deposit(throughput * material.emission * mis, bounce == 1);
+      }
+      if (bounce > ctx.settings.max_bounces) break;
 
-    const Frame frame(ns);
-    const Vec3 wo = frame.to_local(wo_world);
-    const typename Bsdf::View view = bsdf.at(wo, backfacing);  // wo's terms, once for this vertex's queries
-    // Path guiding (guided_bsdf.h) on opaque single-material surfaces with a continuous lobe.
-    const bool guidable =
-        ctx.guide && !mixture && !transmits && (material.metallic < 1.0f || material.roughness >= 0.3f);
-    const GuideDistribution guide = guidable ? ctx.guide->at(hit.position, ctx.guide_training) : GuideDistribution();
-    if (recorder.enabled()) recorder.reached_next_vertex();
+      const Frame frame(ns);
+      const Vec3 wo = frame.to_local(wo_world);
+      const typename Bsdf::View view = bsdf.at(wo, backfacing);  // wo's terms, once for this vertex's queries
+      // Path guiding (guided_bsdf.h) on opaque single-material surfaces with a continuous lobe.
+      const bool guidable =
+          ctx.guide && !mixture && !transmits && (material.metallic < 1.0f || material.roughness >= 0.3f);
+      const GuideDistribution guide = guidable ? ctx.guide->at(hit.position, ctx.guide_training) : GuideDistribution();
+      if (recorder.enabled()) recorder.reached_next_vertex();
 
-    // Next-event estimation: one light, chosen by its expected contribution through this BSDF
-    // (light_choice.h), MIS-weighted against BSDF sampling.
-    const glm::vec4 u_light = sampler.next_4d();  // light choice, position on the light
-    const glm::vec4 u_bsdf = sampler.next_4d();   // lobe, direction, roulette
-    // NEE of light `index`, chosen with `probability`.
-    auto next_event = [&](size_t index, float probability) {
-      const LightSample ls = lights.sample(index, hit.position, ns, Vec2(u_light.y, u_light.z), transmits);
-      const Vec3 wi = frame.to_local(ls.wi);
-      if (!ls.valid() || !leaves_geometric_side(ls.wi, ng, wi.z, transmits)) return;
-      LobeEval f = bsdf.template eval_lobes<kGlass>(view, wi);
-      if (normal_mapped) f.diffuse *= bump_shadowing(n_smooth, ns, ls.wi);
-      if (!(max_component(f.total()) > 0.0f)) return;
-      const Vec3 transmittance =
-          shadow_transmittance<kAlpha>(ctx.scene, hit.position, ng, ls, ctx.settings.max_transparent_bounces);
-      if (!(max_component(transmittance) > 0.0f)) return;
-      // Against the BSDF's pdf even where a guide samples the next direction: see prev_pdf.
-      const float mis =
-          ls.pdf > 0.0f ? power_heuristic(probability * ls.pdf, bsdf.template pdf<kGlass>(view, wi)) : 1.0f;
-      Vec3 light = throughput * ls.weight * (mis / probability);
-      if (const LightShare* share = reflector_share.active()) light *= share->of(index);
-      if (kAlpha) light *= transmittance;
-      deposit_light_sample(light, f, bounce, true);
-    };
-    if (ctx.nee_every_light) {
-      light_choice.every(lights, hit.position, ns, transmits);
-      for (size_t i = 0; i < light_choice.count(); ++i)
-        if (light_choice.probability(i) > 0.0f) next_event(i, 1.0f);
-    } else {
-      light_choice.score(lights, hit.position, ns, transmits, LightChoice::narrow_lobe(material.roughness),
-                         [&](const Vec3& toward) {
-                           const Vec3 wi = frame.to_local(toward);
-                           return luminance(bsdf.template eval_lobes<kGlass>(view, wi).total()) /
-                                  std::max(std::abs(wi.z), 0.01f);
-                         });
-      if (const Lights::Choice choice = light_choice.select(u_light.x); choice.probability > 0.0f)
-        next_event(choice.index, choice.probability);
-    }
+      // Next-event estimation: one light, chosen by its expected contribution through this BSDF
+      // (light_choice.h), MIS-weighted against BSDF sampling.
+      if (bounce == 0 && !again) first_vertex_points = sampler.point_index();
+      const glm::vec4 u_light = sampler.next_4d();  // light choice, position on the light
+      const glm::vec4 u_bsdf = sampler.next_4d();   // lobe, direction, roulette
+      // NEE of light `index`, chosen with `probability`.
+      auto next_event = [&](size_t index, float probability) {
+        const LightSample ls = lights.sample(index, hit.position, ns, Vec2(u_light.y, u_light.z), transmits);
+        const Vec3 wi = frame.to_local(ls.wi);
+        if (!ls.valid() || !leaves_geometric_side(ls.wi, ng, wi.z, transmits)) return;
+        LobeEval f = bsdf.template eval_lobes<kGlass>(view, wi);
+        if (normal_mapped) f.diffuse *= bump_shadowing(n_smooth, ns, ls.wi);
+        if (!(max_component(f.total()) > 0.0f)) return;
+        const Vec3 transmittance =
+            shadow_transmittance<kAlpha>(ctx.scene, hit.position, ng, ls, ctx.settings.max_transparent_bounces);
+        if (!(max_component(transmittance) > 0.0f)) return;
+        // Against the BSDF's pdf even where a guide samples the next direction: see prev_pdf.
+        const float mis =
+            ls.pdf > 0.0f ? power_heuristic(probability * ls.pdf, bsdf.template pdf<kGlass>(view, wi)) : 1.0f;
+        Vec3 light = throughput * ls.weight * (mis / probability);
+        if (const LightShare* share = reflector_share.active()) light *= share->of(index);
+        if (kAlpha) light *= transmittance;
+        deposit_light_sample(light, f, bounce, true);
+      };
+      if (first_again) {  // its light samples: in the first branch
+      } else if (ctx.nee_every_light) {
+        light_choice.every(lights, hit.position, ns, transmits);
+        for (size_t i = 0; i < light_choice.count(); ++i)
+          if (light_choice.probability(i) > 0.0f) next_event(i, 1.0f);
+      } else {
+        light_choice.score(lights, hit.position, ns, transmits, LightChoice::narrow_lobe(material.roughness),
+                           [&](const Vec3& toward) {
+                             const Vec3 wi = frame.to_local(toward);
+                             return luminance(bsdf.template eval_lobes<kGlass>(view, wi).total()) /
+                                    std::max(std::abs(wi.z), 0.01f);
+                           });
+        if (const Lights::Choice choice = light_choice.select(u_light.x); choice.probability > 0.0f)
+          next_event(choice.index, choice.probability);
+      }
 
-    // Next-event estimation of lights through planar mirrors, glossy planes and spheres, and of
-    // lamps' bright spots on matte planes; the light counts as indirect, as it does when BSDF
-    // sampling finds it.
-    if (ctx.mirror_images && bounce < ctx.settings.max_bounces) {
-      LobeEval f;
-      Vec3 light;
-      if (mirror_image_light<kGlass>(ctx, bsdf, view, frame, hit.position, hit.material, ng, n_smooth, ns,
-                                     normal_mapped, transmits,
-                                     max_component(throughput), sampler, f, light))
-        deposit_light_sample(light * throughput, f, bounce, false);
-    }
+      // Next-event estimation of lights through planar mirrors, glossy planes and spheres, and of
+      // lamps' bright spots on matte planes; the light counts as indirect, as it does when BSDF
+      // sampling finds it.
+      if (bounce == 0 && !again) {
+        first_vertex.choice = light_choice;
+        branches = kAlpha || ctx.guide_training ? 1 : ctx.first_bounce_splits;
+        branch_weight = 1.0f / float(branches);
+      }
+      if (!first_again && ctx.mirror_images && bounce < ctx.settings.max_bounces) {
+        LobeEval f;
+        Vec3 light;
+        if (mirror_image_light<kGlass>(ctx, bsdf, view, frame, hit.position, hit.material, ng, n_smooth, ns,
+                                       normal_mapped, transmits,
+                                       max_component(throughput), sampler, f, light))
+          deposit_light_sample(light * throughput, f, bounce, false);
+      }
 
-    // Continue the path by sampling the BSDF.
-    float bsdf_pdf = 0.0f, guide_pdf = 0.0f;  // the parts of a guided sample's pdf
-    Vec2 square(-1.0f);                        // and its direction on the guide's square (-1: not known yet)
-    BsdfSample bs = guide ? sample_guided<kGlass>(bsdf, guide, frame, wo, backfacing, u_bsdf, bsdf_pdf, guide_pdf, square)
+      // Continue the path by sampling the BSDF.
+      if (pixel.record && bounce == 0 && !again) {
+        pixel.record->rays_at_branching = thread_ray_counts().total();
+        branch_start = path_luminance;
+      }
+      float bsdf_pdf = 0.0f, guide_pdf = 0.0f;  // the parts of a guided sample's pdf
+      Vec2 square(-1.0f);                        // and its direction on the guide's square (-1: not known yet)
+      BsdfSample bs = guide
+                          ? sample_guided<kGlass>(bsdf, guide, frame, wo, backfacing, u_bsdf, bsdf_pdf, guide_pdf, square)
                           : bsdf.template sample<kGlass>(view, u_bsdf.x, Vec2(u_bsdf.y, u_bsdf.z));
-    if (!bs.valid()) break;
-    const Vec3 wi_world = frame.to_world(bs.wi);
-    if (!leaves_geometric_side(wi_world, ng, bs.wi.z, transmits)) break;
-    if (normal_mapped && !bs.is_delta) {
-      LobeEval f = bsdf.template eval_lobes<kGlass>(view, bs.wi);
-      f.diffuse *= bump_shadowing(n_smooth, ns, wi_world);
-      bs.weight = f.total() / bs.pdf;
-    }
-    if (recorder.enabled() && guidable && !bs.is_delta)
-      recorder.add_vertex(guide.leaf(), square.x >= 0.0f ? square : direction_to_square(wi_world), throughput,
-                          bs.weight, bs.pdf, guide ? bsdf_pdf : bs.pdf, guide_pdf);
-    const float vertex_weight = max_component(throughput);
-    throughput *= bs.weight;
-    if (kSplitLobes && bounce == 0 && !bs.is_delta) {
-      const LobeEval f = bsdf.template eval_lobes<kGlass>(view, bs.wi);
-      const Vec3 total = f.total();
-      for (int c = 0; c < 3; ++c) diffuse_share[c] = total[c] > 0.0f ? f.diffuse[c] / total[c] : 0.0f;
-    }
+      if (!bs.valid()) break;
+      const Vec3 wi_world = frame.to_world(bs.wi);
+      if (!leaves_geometric_side(wi_world, ng, bs.wi.z, transmits)) break;
+      if (normal_mapped && !bs.is_delta) {
+        LobeEval f = bsdf.template eval_lobes<kGlass>(view, bs.wi);
+        f.diffuse *= bump_shadowing(n_smooth, ns, wi_world);
+        bs.weight = f.total() / bs.pdf;
+      }
+      if (recorder.enabled() && guidable && !bs.is_delta)
+        recorder.add_vertex(guide.leaf(), square.x >= 0.0f ? square : direction_to_square(wi_world), throughput,
+                            bs.weight, bs.pdf, guide ? bsdf_pdf : bs.pdf, guide_pdf);
+      const float vertex_weight = max_component(throughput);
+      throughput *= bs.weight;
+      if (bounce == 0) throughput *= branch_weight;
+      if (kSplitLobes && bounce == 0 && !bs.is_delta) {
+        const LobeEval f = bsdf.template eval_lobes<kGlass>(view, bs.wi);
+        const Vec3 total = f.total();
+        for (int c = 0; c < 3; ++c) diffuse_share[c] = total[c] > 0.0f ? f.diffuse[c] / total[c] : 0.0f;
+      }
 
-    // Russian roulette: from the fifth vertex on with probability sqrt(max throughput) (the
-    // classic rule), and anywhere with at most the probability the render has learned to be the
-    // most efficient here (roulette.h). Starting the classic rule later than Cycles (second
-    // vertex) keeps short caustic paths (diffuse -> mirror -> sun) out of the 1/q boost: on the
-    // mirror comparison scene relMSE at 64 spp fell from 0.337 to 0.233 (Cycles 0.225), at no
-    // measurable cost in time.
-    const float t = luminance(throughput);
-    float q = bounce >= 4 ? std::min(std::sqrt(max_component(throughput)), 1.0f) : 1.0f;
-    if (const float learned = roulette.survival(bounce, t); learned >= 0.0f) q = std::min(q, learned);
-    if (q < 1.0f) {
-      if (!(q > 0.0f) || u_bsdf.w >= q) break;
-      throughput /= q;
-    }
-    roulette.continued(bounce, q, t);
-    if (!(max_component(throughput) > 0.0f)) break;
+      // Russian roulette: from the fifth vertex on with probability sqrt(max throughput) (the
+      // classic rule), and anywhere with at most the probability the render has learned to be the
+      // most efficient here (roulette.h). Starting the classic rule later than Cycles (second
+      // vertex) keeps short caustic paths (diffuse -> mirror -> sun) out of the 1/q boost: on the
+      // mirror comparison scene relMSE at 64 spp fell from 0.337 to 0.233 (Cycles 0.225), at no
+      // measurable cost in time.
+      const float t = luminance(throughput);
+      float q = bounce >= 4 ? std::min(std::sqrt(max_component(throughput)), 1.0f) : 1.0f;
+      if (const float learned = roulette.survival(bounce, t); learned >= 0.0f) q = std::min(q, learned);
+      if (q < 1.0f) {
+        if (!(q > 0.0f) || u_bsdf.w >= q) break;
+        throughput /= q;
+      }
+      roulette.continued(bounce, q, t);
+      if (!(max_component(throughput) > 0.0f)) break;
 
-    // MIS between next-event estimation and the emitter this sample may hit weighs the BSDF's pdf
-    // against the light's, also where the guided mixture drew the sample (its weight above still
-    // divides by the mixture's pdf): both weights use the same pdfs, so they sum to 1 and the
-    // estimator stays unbiased, and NEE needs no guide lookup (the quadtree's walk toward the
-    // light, a cache miss per level). Interior, 6 seeds, CPU time guided / plain 1.24 -> 1.17 at
-    // the same error (x0.91); see docs/speed/path_guiding.md.
-    prev_pdf = guide && !bs.is_delta ? bsdf_pdf : bs.pdf;
-    prev_delta = bs.is_delta;
-    prev_two_sided = transmits;
-    prev_normal = ns;
-    prev_hit_position = hit.position;
-    prev_material = hit.material;
-    prev_path_weight = vertex_weight;
-    ray.origin = offset_origin(hit.position, ng, wi_world);
-    prev_position = ray.origin;
-    ray.dir = wi_world;
-    ray.tmin = 0.0f;
-    ray.tmax = kInfinity;
+      // MIS between next-event estimation and the emitter this sample may hit weighs the BSDF's pdf
+      // against the light's, also where the guided mixture drew the sample (its weight above still
+      // divides by the mixture's pdf): both weights use the same pdfs, so they sum to 1 and the
+      // estimator stays unbiased, and NEE needs no guide lookup (the quadtree's walk toward the
+      // light, a cache miss per level). Interior, 6 seeds, CPU time guided / plain 1.24 -> 1.17 at
+      // the same error (x0.91); see docs/speed/path_guiding.md.
+      prev_pdf = guide && !bs.is_delta ? bsdf_pdf : bs.pdf;
+      prev_delta = bs.is_delta;
+      prev_two_sided = transmits;
+      prev_normal = ns;
+      prev_hit_position = hit.position;
+      prev_material = hit.material;
+      prev_path_weight = vertex_weight;
+      ray.origin = offset_origin(hit.position, ng, wi_world);
+      prev_position = ray.origin;
+      ray.dir = wi_world;
+      ray.tmin = 0.0f;
+      ray.tmax = kInfinity;
+    }
+    if (pixel.record && branch < BranchRecord::kMaxBranches) {
+      pixel.record->branch_luminance[branch] = path_luminance - branch_start;
+      pixel.record->branches = branch + 1;
+      branch_start = path_luminance;
+    }
   }
   return out;
 }

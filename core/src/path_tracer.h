@@ -5,6 +5,7 @@
 
 #include "torrance/roulette.h"
 #include "torrance/guiding.h"
+#include "torrance/first_bounce_splits.h"
 #include "torrance/integrator.h"
 #include "torrance/material_bsdf.h"
 #include "torrance/mirror_images.h"
@@ -30,12 +31,14 @@ struct PathContext {
   // Suns seen in planar mirrors (mirror_images.h), sampled by NEE; null: none, or not used.
   const MirrorImages* mirror_images = nullptr;
   bool nee_every_light = false;  // RenderSettings::nee_every_light, in a scene of few enough lights
+  int first_bounce_splits = 1;   // branches at the first hit (first_bounce_splits.h): set or chosen
 };
 
 // Where a camera sample goes.
 struct PixelSample {
   int x = 0, y = 0;           // in the rendered window
   float guide_weight = 1.0f;  // what the path records for guiding is multiplied by it (pixel_weight, guiding.h)
+  BranchRecord* record = nullptr;  // the pilot's (first_bounce_splits.h); null in the render
 };
 
 // Everything one camera sample brings back, split as Blender's passes.

@@ -179,8 +179,8 @@ class _Session:
 
 def sampling_settings(ts):
     """RenderSettings arguments for the Sampling panel's Noise Threshold, Time Limit, Path
-    Guiding, Efficiency Roulette, Lights in Mirrors and Both Lights and the Light Paths panel's
-    Clamping, from scene.torrance (final renders)."""
+    Guiding, Efficiency Roulette, Lights in Mirrors, Both Lights and First-Bounce Splits and the
+    Light Paths panel's Clamping, from scene.torrance (final renders)."""
     threshold = 0.0
     if ts.use_adaptive_sampling:
         # As Cycles: a threshold of 0 means automatic, from the number of samples.
@@ -194,7 +194,8 @@ def sampling_settings(ts):
                 guiding_training_fraction=float(ts.guiding_training_fraction),
                 efficiency_roulette=bool(ts.use_efficiency_roulette),
                 mirror_images=bool(ts.use_mirror_images),
-                nee_every_light=bool(ts.use_nee_every_light))
+                nee_every_light=bool(ts.use_nee_every_light),
+                first_bounce_splits=int(ts.first_bounce_splits))
 
 
 def render(engine, depsgraph):
@@ -298,6 +299,8 @@ def _render(engine, depsgraph, reporter):
         msg += f" | adaptive: {spent / pixels:.1f} samples per pixel on average"
     if settings.guiding:
         msg += f" | path guiding: {result.guiding}"
+    if result.first_bounce_splits > 1:
+        msg += f" | {result.first_bounce_splits} branches at the first hit"
     if result.time_limit_reached:
         msg += " | time limit reached"
     if result.stopped:
@@ -317,6 +320,8 @@ def _render(engine, depsgraph, reporter):
                       occlusion_rays=int(result.occlusion_rays),
                       guiding_training_fraction=float(settings.guiding_training_fraction),
                       efficiency_roulette=bool(settings.efficiency_roulette),
+                      first_bounce_splits=int(result.first_bounce_splits),
+                      first_bounce_optimum=float(result.first_bounce_optimum),
                       mirror_images=bool(settings.mirror_images))
     engine.update_progress(1.0)
     engine.update_stats("", msg)

@@ -250,6 +250,7 @@ class TORRANCE_RENDER_PT_sampling_advanced(TorrancePanel, Panel):
         layout.prop(context.scene.torrance, "use_efficiency_roulette")
         layout.prop(context.scene.torrance, "use_mirror_images")
         layout.prop(context.scene.torrance, "use_nee_every_light")
+        layout.prop(context.scene.torrance, "first_bounce_splits")
 
 
 class TORRANCE_RENDER_PT_sampling_path_guiding(TorrancePanel, Panel):

@@ -107,6 +107,15 @@ struct RenderSettings {
   // and a point light), 8 seeds: relMSE x0.78 for x1.15 the CPU time at 64 spp, x0.71 for x1.20
   // at 16 spp; with 4 lights (small_lights) the extra shadow rays cost more than they gain.
   bool nee_every_light = true;
+  // Splitting at the first hit: the path continues from the camera's hit along n BSDF-sampled
+  // directions, each with 1/n of the weight (the first hit's shading and light samples are taken
+  // once). Pays where bounced light makes the noise: suzanne (sun, sky, a lamp; the chin lit by
+  // the floor) at 16 spp, 16 seeds: n = 2 relMSE x0.61 for x1.33 the F12 time; loses where the
+  // first hit makes it (sun-lit grass: x0.95 for x1.8) or the branches are most of a sample's
+  // cost (a room lit indirectly: x0.79 for x1.5). 0 = automatic (the default): a pilot before the
+  // render chooses n (first_bounce_splits.h); 1 = off; 2-16: that many. Not used while path
+  // guiding trains, nor in scenes with alpha.
+  int first_bounce_splits = 0;
   float guiding_training_fraction = 0.25f;
   GuidingOptions guiding_options;  // the SD-tree's parameters (C++ only: tests)
 
@@ -148,6 +157,8 @@ struct RenderResult {
   // reach the decision pass, so it was not used), "guided" (to the end), "stopped after pass 3"
   // (it would not have paid), "stopped before deciding" (the time limit ended its training).
   std::string guiding = "off";
+  int first_bounce_splits = 1;         // the branches used at the first hit (chosen, or as set)
+  float first_bounce_optimum = 0.0f;   // the automatic choice's n* (0: not automatic, or unknown)
   uint64_t rays_traced() const { return closest_rays + occlusion_rays; }
 };
 

@@ -132,8 +132,21 @@ class RoulettePath {
   float survival(int depth, float t) const { return field_ ? field_->survival(x_, y_, depth, t) : -1.0f; }
   // The path goes on from this vertex, having survived with probability q.
   void continued(int depth, float q, float t) {
-    if (!field_ || count_ >= kMaxVertices || !(t > 0.0f)) return;
+    if (!field_) return;
+    if (branch_ended_) {
+      ++later_branch_segments_;
+      return;
+    }
+    if (count_ >= kMaxVertices || !(t > 0.0f)) return;
     vertices_[count_++] = {depth, q / t, luminance_};
+  }
+  // The path goes back to its first vertex for another branch (RenderSettings::
+  // first_bounce_splits): the vertices recorded so far learn from the light of their own branch;
+  // the later branches add to the sample's value and cost only.
+  void end_branch() {
+    if (branch_ended_) return;
+    branch_ended_ = true;
+    branch_value_ = luminance_;
   }
 
  private:
@@ -145,13 +158,14 @@ class RoulettePath {
   };
   void flush() {
     const float value = luminance_;
+    const float branch_value = branch_ended_ ? branch_value_ : value;
     if (!std::isfinite(value)) return;
     for (int i = 0; i < count_; ++i) {
       const Vertex& v = vertices_[i];
-      const float y = (value - v.value_before) * v.q_over_t;
+      const float y = (branch_value - v.value_before) * v.q_over_t;
       field_->record_continuation(x_, y_, v.depth, y * y, float(count_ - i));
     }
-    field_->record_sample(x_, y_, value, float(count_ + 1));
+    field_->record_sample(x_, y_, value, float(count_ + 1 + later_branch_segments_));
   }
 
   RouletteField* field_;
@@ -159,6 +173,9 @@ class RoulettePath {
   int x_, y_;
   int count_ = 0;
   Vertex vertices_[kMaxVertices];
+  bool branch_ended_ = false;
+  float branch_value_ = 0.0f;
+  int later_branch_segments_ = 0;
 };
 
 }  // namespace torrance

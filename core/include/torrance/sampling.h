@@ -61,6 +61,11 @@ class SobolSampler {
       : pixel_seed_(hash_combine(hash_u32(seed ^ 0xa511e9b3U), pixel)), index_(sample_index), random_(random),
         rng_(pixel, sample_index, seed) {}
   glm::vec4 next_4d();
+  // Which 4-D point comes next: a path's k-th point is stratified over the pixel's samples with
+  // the k-th points of its other samples, so a branch that starts at a fixed point index (not
+  // after however many points the branch before it took) keeps its points stratified too.
+  uint32_t point_index() const { return group_; }
+  void continue_at_point(uint32_t index) { group_ = index; }
 
  private:
   uint32_t pixel_seed_;

@@ -28,6 +28,7 @@ def viewport_settings(scene):
         efficiency_roulette=False,
         mirror_images=bool(ts.use_mirror_images),
         nee_every_light=bool(ts.use_nee_every_light),
+        first_bounce_splits=int(ts.first_bounce_splits),
     )
 
 
