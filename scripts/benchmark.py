@@ -97,10 +97,10 @@ def parse_args():
 # String and integer options of RenderSettings and the alternatives that switch a choice of the
 # core off (used when the core has the field), each its own lever keyed FIELD=ALTERNATIVE: what
 # Sobol sampling, the BSDF-aware light choice (against the former irradiance-only choice),
-# contribution-based light selection at all (against uniform) and the automatic splitting at the
-# first hit (against none) buy.
+# contribution-based light selection at all (against uniform) buy, and what the opt-in automatic
+# splitting at the first hit would (against none, the default).
 ALTERNATIVES = {"sampler": ("RANDOM",), "light_selection": ("IRRADIANCE", "UNIFORM"),
-                "first_bounce_splits": (1,)}
+                "first_bounce_splits": (0,)}
 
 
 def ablation_levers(core):

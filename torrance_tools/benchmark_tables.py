@@ -17,7 +17,7 @@ LEVER_LABELS = {"specialize": "specialised kernels", "sampler=RANDOM": "Sobol sa
                 "efficiency_roulette": "efficiency-aware Russian roulette",
                 "mirror_images": "NEE of lights in mirrors, glossy surfaces; lamp spots",
                 "nee_every_light": "NEE of both lights in two-light scenes",
-                "first_bounce_splits=1": "splitting at the first hit, chosen by a pilot"}
+                "first_bounce_splits=0": "splitting at the first hit chosen by a pilot (opt-in)"}
 
 
 def ratios(d, torrance, cycles):

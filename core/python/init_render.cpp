@@ -116,7 +116,7 @@ void init_render(py::module_& m) {
            py::arg("clamp_indirect") = 0.0f, py::arg("max_transparent_bounces") = 8,
            py::arg("guiding") = false, py::arg("guiding_training_fraction") = 0.25f,
            py::arg("efficiency_roulette") = true, py::arg("mirror_images") = true,
-           py::arg("nee_every_light") = true, py::arg("first_bounce_splits") = 0)
+           py::arg("nee_every_light") = true, py::arg("first_bounce_splits") = 1)
       .def_readwrite("specialize", &RenderSettings::specialize)
       .def_readwrite("camera_packets", &RenderSettings::camera_packets)
       .def_readwrite("efficiency_roulette", &RenderSettings::efficiency_roulette)

@@ -105,6 +105,22 @@ inline void look_down_in_room(Scene& scene) {
   scene.set_camera(cam);
 }
 
+// A floor of thin stripes, white and black, several to a pixel (0.04 m wide, seen from 3 m with an
+// 18 mm lens), under a high sun and a dim sky: the image's variance is which stripe a sample
+// sees, and its light is almost all direct.
+inline void add_sunlit_stripes(Scene& scene) {
+  const int64_t white = scene.add_material(diffuse_material(Vec3(0.9f)));
+  const int64_t black = scene.add_material(diffuse_material(Vec3(0.02f)));
+  constexpr float kWidth = 0.04f;
+  for (int i = 0; i < 150; ++i) {
+    const float x0 = -3.0f + i * kWidth, x1 = x0 + kWidth;
+    add_quad(scene, {x0, -4, 0}, {x1, -4, 0}, {x1, 4, 0}, {x0, 4, 0}, i % 2 ? black : white);
+  }
+  scene.lights().add_sun(glm::normalize(Vec3(0.3f, 0.5f, -1.0f)), 3.0f, Vec3(1.0f), 0.01f);
+  scene.lights().set_world(Vec3(1.0f), 0.05f);
+  look_down(scene, 3.0f, 18.0f);
+}
+
 // The walls, floor and ceiling of a closed 2 m cube about the origin, facing inwards (the
 // ceiling of `ceiling` if given).
 inline void add_closed_room(Scene& scene, int64_t material, int64_t ceiling = -1) {

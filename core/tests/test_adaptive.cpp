@@ -81,7 +81,6 @@ TEST(AdaptiveSampling, AllOffGivesTheSameImageAsBefore) {
   s.efficiency_roulette = false;  // newer than the hash: its own tests are test_roulette.cpp
   s.guiding = false;              // off by default when the hash was taken
   s.mirror_images = false;        // newer too: the occluder is a glossy plane under a lamp
-  s.first_bounce_splits = 1;      // newer too
   const RenderResult r = render(scene, s);
   uint64_t h = fnv1a(r.image.rgba);
   for (const auto& [name, image] : r.passes) h ^= fnv1a(image.rgba);
@@ -166,7 +165,6 @@ TEST(AdaptiveSampling, FlatRegionsStopAtTheFirstCheck) {
   // The glossy occluder's reflection of the lamp on the floor is part of the noise this test
   // needs; lights in mirrors would make it smooth (no pixel then needs all 256 samples).
   s.mirror_images = false;
-  s.first_bounce_splits = 1;  // nor would splitting at the first hit: it takes out the bounced light's noise
   EXPECT_EQ(s.effective_adaptive_min_samples(), 16);
   const RenderResult r = render(scene, s);
   const auto count = [&](int x, int y) { return r.sample_counts.rgba[size_t(y) * 64 + x]; };

@@ -5,6 +5,7 @@
 #include "torrance/integrator.h"
 #include "scene_helpers.h"
 #include <gtest/gtest.h>
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 #include <vector>
@@ -22,21 +23,6 @@ void build_wall_lit_floor(Scene& scene) {
   test::add_quad(scene, {1, -6, 0}, {1, -6, 3}, {1, 6, 3}, {1, 6, 0}, 1);  // facing -x, toward the sun
   scene.lights().add_sun(glm::normalize(Vec3(1.0f, 0.0f, -0.02f)), 3.0f, Vec3(1.0f), 0.01f);
   test::look_down(scene, 3.0f, 100.0f);  // the floor up to 0.5 m from the wall, not the wall
-}
-
-// Thin white and black stripes under a high sun and a dim sky: the noise is which stripe a sample
-// sees; the continuation brings little.
-void build_sunlit_stripes(Scene& scene) {
-  scene.add_material(test::diffuse_material(Vec3(0.9f)));
-  scene.add_material(test::diffuse_material(Vec3(0.02f)));
-  constexpr float kWidth = 0.04f;
-  for (int i = 0; i < 150; ++i) {
-    const float x0 = -3.0f + i * kWidth, x1 = x0 + kWidth;
-    test::add_quad(scene, {x0, -4, 0}, {x1, -4, 0}, {x1, 4, 0}, {x0, 4, 0}, i % 2);
-  }
-  scene.lights().add_sun(glm::normalize(Vec3(0.3f, 0.5f, -1.0f)), 3.0f, Vec3(1.0f), 0.01f);
-  scene.lights().set_world(Vec3(1.0f), 0.05f);
-  test::look_down(scene, 3.0f, 18.0f);
 }
 
 RenderSettings settings(uint32_t seed, int splits, int samples = 32) {
@@ -84,7 +70,7 @@ TEST(FirstBounceSplits, SplitRenderAgreesWithThePlainOneAndHasLessNoise) {
 TEST(FirstBounceSplits, PilotSplitsWhereBouncedLightMakesTheNoise) {
   Scene wall, stripes;
   build_wall_lit_floor(wall);
-  build_sunlit_stripes(stripes);
+  test::add_sunlit_stripes(stripes);  // the noise: which stripe a sample sees
   for (uint32_t seed : {1u, 2u, 3u}) {
     RenderSettings two_bounces = settings(seed, 0, 4);  // the wall's light costs a ray and a shadow ray
     two_bounces.max_bounces = 2;
@@ -115,6 +101,26 @@ TEST(FirstBounceSplits, SameImageWhateverTheThreads) {
   EXPECT_EQ(one.first_bounce_splits, two.first_bounce_splits);
   ASSERT_EQ(one.image.rgba.size(), two.image.rgba.size());
   EXPECT_EQ(std::memcmp(one.image.rgba.data(), two.image.rgba.data(), one.image.rgba.size() * sizeof(float)), 0);
+}
+
+// Clamping (Cycles' "indirect light" limit) bounds what a sample's branches bring together, as it
+// bounds the unsplit path's contribution: each branch to 1/n of the limit.
+TEST(FirstBounceSplits, ClampingBoundsTheBranchesTogether) {
+  Scene scene;
+  build_wall_lit_floor(scene);
+  RenderSettings s = settings(3, 3, 1);  // one sample: a pixel is that sample
+  s.max_bounces = 1;  // one indirect contribution per branch (clamping bounds each contribution)
+  s.clamp_indirect = 0.05f;
+  s.passes = kPassDiffuseIndirect;
+  const RenderResult r = render(scene, s);
+  ASSERT_EQ(r.passes.size(), 1u);
+  const Image& indirect = r.passes[0].second;
+  double worst = 0.0;
+  for (size_t i = 0; i + 2 < indirect.rgba.size(); i += size_t(indirect.channels))
+    worst = std::max(worst, double(indirect.rgba[i]) + indirect.rgba[i + 1] + indirect.rgba[i + 2]);
+  std::printf("largest indirect RGB sum of a pixel: %.4f (limit 0.05)\n", worst);
+  EXPECT_GT(worst, 0.03);  // the wall's light is clamped, not absent
+  EXPECT_LE(worst, 0.05 * (1.0 + 1e-5));
 }
 
 TEST(FirstBounceSplits, OutOfRangeCountsAreRefused) {

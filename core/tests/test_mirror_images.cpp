@@ -174,10 +174,6 @@ std::vector<std::vector<double>> wall_blocks(const Scene& scene, bool images, in
   // sampling alone find the lamps' reflections, whose 512-spp renders are otherwise ~3 % noisy
   // (the box test's ratio 1.038, z 1.34 unguided).
   s.guiding = true;
-  // Unsplit, as they were calibrated: splitting at the first hit (newer) takes noise out of BSDF
-  // sampling alone, the arm these tests measure the strategy against (the spot's reflection,
-  // 8 seeds: spread without the strategy 0.94 unsplit, 0.44 with the pilot's choice).
-  s.first_bounce_splits = 1;
   for (int seed = 0; seed < seeds; ++seed) {
     s.seed = uint32_t(100 + seed);
     const RenderResult r = render(const_cast<Scene&>(scene), s);

@@ -67,22 +67,6 @@ TEST(Roulette, ABlocksSecondMomentIsAtLeastTheImages) {
   EXPECT_NEAR(low / high, std::sqrt(5.0f / 9.0f), 1e-5f) << "block 0 uses the image's 5, block 1 its own 9";
 }
 
-// A floor of thin stripes, white and black, several to a pixel, under a sun and a dim sky: the
-// image's variance is the stripes' (which of them a sample sees), the floor's light is almost all
-// direct, and the little the sky sends through a bounce is the continuation's, so the roulette
-// stops most paths at the first vertex (with a small probability, not zero).
-void build_sunlit_stripes(Scene& scene) {
-  scene.add_material(test::diffuse_material(Vec3(0.9f)));
-  scene.add_material(test::diffuse_material(Vec3(0.02f)));
-  constexpr float kWidth = 0.04f;
-  for (int i = 0; i < 150; ++i) {
-    const float x0 = -3.0f + i * kWidth, x1 = x0 + kWidth;
-    test::add_quad(scene, {x0, -4, 0}, {x1, -4, 0}, {x1, 4, 0}, {x0, 4, 0}, i % 2);
-  }
-  scene.lights().add_sun(glm::normalize(Vec3(0.3f, 0.5f, -1.0f)), 3.0f, Vec3(1.0f), 0.01f);
-  scene.lights().set_world(Vec3(1.0f), 0.05f);
-  test::look_down(scene, 3.0f, 18.0f);
-}
 
 // A closed room whose floor, the camera's view, is lit only by light bounced off the ceiling
 // above an upward-facing area light: the continuation from the floor carries all of the image.
@@ -134,7 +118,10 @@ double expect_agreement(Scene& scene) {
 
 TEST(RouletteRender, StopsPathsWhoseContinuationCarriesLittleAndKeepsTheMean) {
   Scene scene;
-  build_sunlit_stripes(scene);
+  // Thin stripes under a sun (test::add_sunlit_stripes): the floor's light is almost all direct, and
+  // the little the sky sends through a bounce is the continuation's, so the roulette stops most
+  // paths at the first vertex (with a small probability, not zero).
+  test::add_sunlit_stripes(scene);
   EXPECT_LT(expect_agreement(scene), 0.8) << "the roulette should stop most continuations from the sun-lit floor";
 }
 
@@ -162,7 +149,7 @@ TEST(RouletteRender, LightPassesLeaveTheImageAsItIs) {
 
 TEST(RouletteRender, SameImageWhateverTheThreads) {
   Scene scene;
-  build_sunlit_stripes(scene);
+  test::add_sunlit_stripes(scene);
   RenderSettings s = settings(3, true);
   s.threads = 1;
   const RenderResult one = render(scene, s);

@@ -96,10 +96,11 @@ class TorranceSceneSettings(bpy.types.PropertyGroup):
         name="First-Bounce Splits",
         description="Continue each path this many times from the surface the camera sees, each "
                     "branch with its share of the light: less noise where bounced light makes "
-                    "it (a chin lit by the floor), more time per sample. 0 = automatic: a short "
-                    "pilot before the render chooses (1 to 4) where it pays; 1 = off. Converges "
-                    "to the same image",
-        default=0, min=0, max=16,
+                    "it (a chin lit by the floor), more time per sample; pays most at low "
+                    "sample counts (previews, the viewport). 1 = off; 0 = automatic: a short "
+                    "pilot before the render chooses 1 to 4 where it would pay. Converges to "
+                    "the same image",
+        default=1, min=0, max=16,
     )
     use_guiding: BoolProperty(
         name="Path Guiding",

@@ -109,13 +109,16 @@ struct RenderSettings {
   bool nee_every_light = true;
   // Splitting at the first hit: the path continues from the camera's hit along n BSDF-sampled
   // directions, each with 1/n of the weight (the first hit's shading and light samples are taken
-  // once). Pays where bounced light makes the noise: suzanne (sun, sky, a lamp; the chin lit by
-  // the floor) at 16 spp, 16 seeds: n = 2 relMSE x0.61 for x1.33 the F12 time; loses where the
-  // first hit makes it (sun-lit grass: x0.95 for x1.8) or the branches are most of a sample's
-  // cost (a room lit indirectly: x0.79 for x1.5). 0 = automatic (the default): a pilot before the
-  // render chooses n (first_bounce_splits.h); 1 = off; 2-16: that many. Not used while path
-  // guiding trains, nor in scenes with alpha.
-  int first_bounce_splits = 0;
+  // once). Pays at low sample counts where bounced light makes the noise: suzanne (the chin lit by
+  // the floor), n = 2, 16 seeds: relMSE x0.56 at 4 spp for x1.15 the F12 time; its gain fades
+  // with samples (x0.74 for x1.40 at 64 spp: the unsplit continuation's stratified samples
+  // converge faster than 1/N) and it loses where the first hit makes the noise (sun-lit grass)
+  // or the branches are most of a sample's cost (a room lit indirectly). 1 = off (the default:
+  // on by default it left the benchmark's ratios as they were or worse, docs/speed/
+  // first_bounce_splits.md); 0 = automatic: a pilot before the render chooses n in 1-4
+  // (first_bounce_splits.h); 2-16: that many. Not used while path guiding trains, nor in scenes
+  // with alpha.
+  int first_bounce_splits = 1;
   float guiding_training_fraction = 0.25f;
   GuidingOptions guiding_options;  // the SD-tree's parameters (C++ only: tests)
 
