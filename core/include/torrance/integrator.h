@@ -110,14 +110,13 @@ struct RenderSettings {
   // Splitting at the first hit: the path continues from the camera's hit along n BSDF-sampled
   // directions, each with 1/n of the weight (the first hit's shading and light samples are taken
   // once). Pays at low sample counts where bounced light makes the noise: suzanne (the chin lit by
-  // the floor), n = 2, 16 seeds: relMSE x0.56 at 4 spp for x1.15 the F12 time; its gain fades
-  // with samples (x0.74 for x1.40 at 64 spp: the unsplit continuation's stratified samples
-  // converge faster than 1/N) and it loses where the first hit makes the noise (sun-lit grass)
-  // or the branches are most of a sample's cost (a room lit indirectly). 1 = off (the default:
-  // on by default it left the benchmark's ratios as they were or worse, docs/speed/
-  // first_bounce_splits.md); 0 = automatic: a pilot before the render chooses n in 1-4
-  // (first_bounce_splits.h); 2-16: that many. Not used while path guiding trains, nor in scenes
-  // with alpha.
+  // the floor), n = 2, the benchmark's 8 seeds: relMSE x0.71-0.73 at every sample count, for
+  // x1.10 the F12 time at 4 spp (its fixed costs dilute the branches') but x1.40 at 64 and up;
+  // it loses where the first hit makes the noise (sun-lit grass) or the branches are most of a
+  // sample's cost (a room lit indirectly). 1 = off (the default: on by default it left the
+  // benchmark's ratios as they were or worse, docs/speed/first_bounce_splits.md); 0 = automatic:
+  // a pilot before the render chooses n in 1-4 (first_bounce_splits.h); 2-16: that many. Not
+  // used while path guiding trains, nor in scenes with alpha.
   int first_bounce_splits = 1;
   float guiding_training_fraction = 0.25f;
   GuidingOptions guiding_options;  // the SD-tree's parameters (C++ only: tests)
