@@ -73,7 +73,7 @@ void init_render(py::module_& m) {
                        int adaptive_min_samples, double time_limit, float clamp_direct, float clamp_indirect,
                        int max_transparent_bounces, bool guiding, float guiding_training_fraction,
                        bool efficiency_roulette, bool mirror_images, bool nee_every_light,
-                       int first_bounce_splits) {
+                       int first_bounce_splits, bool filter_splatting) {
              RenderSettings s;
              s.width = width;
              s.height = height;
@@ -103,6 +103,7 @@ void init_render(py::module_& m) {
              s.mirror_images = mirror_images;
              s.nee_every_light = nee_every_light;
              s.first_bounce_splits = first_bounce_splits;
+             s.filter_splatting = filter_splatting;
              s.validate();
              return s;
            }),
@@ -116,12 +117,14 @@ void init_render(py::module_& m) {
            py::arg("clamp_indirect") = 0.0f, py::arg("max_transparent_bounces") = 8,
            py::arg("guiding") = false, py::arg("guiding_training_fraction") = 0.25f,
            py::arg("efficiency_roulette") = true, py::arg("mirror_images") = true,
-           py::arg("nee_every_light") = true, py::arg("first_bounce_splits") = 1)
+           py::arg("nee_every_light") = true, py::arg("first_bounce_splits") = 1,
+           py::arg("filter_splatting") = true)
       .def_readwrite("specialize", &RenderSettings::specialize)
       .def_readwrite("camera_packets", &RenderSettings::camera_packets)
       .def_readwrite("efficiency_roulette", &RenderSettings::efficiency_roulette)
       .def_readwrite("mirror_images", &RenderSettings::mirror_images)
       .def_readwrite("nee_every_light", &RenderSettings::nee_every_light)
+      .def_readwrite("filter_splatting", &RenderSettings::filter_splatting)
       .def_property(
           "first_bounce_splits", [](const RenderSettings& s) { return s.first_bounce_splits; },
           [](RenderSettings& s, int n) {
@@ -189,6 +192,7 @@ void init_render(py::module_& m) {
       .def_readonly("occlusion_rays", &RenderResult::occlusion_rays)
       .def_readonly("guiding", &RenderResult::guiding)
       .def_readonly("first_bounce_splits", &RenderResult::first_bounce_splits)
+      .def_readonly("filter_splatting", &RenderResult::filter_splatting)
       .def_readonly("first_bounce_optimum", &RenderResult::first_bounce_optimum)
       .def_property_readonly("rays_traced", &RenderResult::rays_traced)
       .def_property_readonly("sample_counts", [](const RenderResult& r) {

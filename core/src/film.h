@@ -4,8 +4,12 @@
 
 #include "path_tracer.h"
 
+#include "torrance/sampling.h"
+
 #include <algorithm>
+#include <array>
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 namespace torrance {
@@ -16,28 +20,51 @@ namespace torrance {
 inline bool sample_is_class_a(uint32_t sample) { return __builtin_popcount(sample & 0xaaaaaaaau) & 1; }
 
 // Per-pixel accumulation of sums for Combined (RGBA) and the requested passes, and sample counts,
-// for a window of the frame. With adaptive sampling also twice the sum of the class-A samples'
-// RGB (an estimate of the pixel from half of its samples) and whether the pixel has converged.
+// for a window of the frame. Two ways in:
+// - add(): a sample drawn by the filter's importance (Cycles' way) counts once in its own pixel,
+//   which is the mean of its samples. With adaptive sampling also twice the sum of the class-A
+//   samples' RGB (an estimate of the pixel from half of its samples) and whether it converged.
+// - splat() (a film made with a splatting filter): a sample anywhere in its pixel adds into every
+//   pixel of the window whose filter covers it, weighted by the filter there; a pixel is the
+//   weighted mean (the ratio of its weighted sums to its summed weights: consistent, and exact on
+//   flat regions at any sample count). Samples of a ring of margin() pixels around the window
+//   reach its edge pixels; their counts are kept (the work done) but they are not pixels of it.
 class Film {
  public:
-  Film(int w, int h, uint32_t passes, bool adaptive) : width_(w), height_(h), passes_(passes), adaptive_(adaptive) {
+  Film(int w, int h, uint32_t passes, bool adaptive, const PixelFilter* splatting = nullptr)
+      : width_(w),
+        height_(h),
+        passes_(passes),
+        adaptive_(adaptive),
+        splatting_(splatting),
+        margin_(splatting ? splatting->reach() : 0) {
+    if (adaptive && splatting) throw std::logic_error("Film: adaptive sampling needs unsplatted pixels");
     stride_ = 4;
     for (const PassInfo& p : kPasses)
       if (passes & p.pass) stride_ += p.channels;
-    stride_ += 1;  // the sample count
-    sums_.assign(size_t(w) * h * stride_, 0.0);
+    values_ = stride_;
+    if (values_ > int(kMaxValues)) throw std::logic_error("Film: more channels than a sample holds");
+    if (splatting_) stride_ += 1;  // the sum of the filter weights
+    stride_ += 1;                  // the sample count
+    norm_slot_ = splatting_ ? stride_ - 2 : stride_ - 1;
+    buffer_width_ = w + 2 * margin_;
+    sums_.assign(size_t(buffer_width_) * (h + 2 * margin_) * stride_, 0.0);
     if (adaptive_) {
       half_.assign(size_t(w) * h * 3, 0.0);
       converged_.assign(size_t(w) * h, 0);
     }
   }
 
+  // Pixels beyond each side of the window whose samples reach it (0 without splatting).
+  int margin() const { return margin_; }
+  bool splatting() const { return splatting_ != nullptr; }
+
   bool converged(int x, int y) const { return adaptive_ && converged_[size_t(y) * width_ + x]; }
   // The pixel's combined colour so far (0 before any sample).
   Vec3 mean(int x, int y) const {
-    const double* acc = &sums_[(size_t(y) * width_ + x) * stride_];
-    const double count = acc[stride_ - 1];
-    return count > 0.0 ? Vec3(float(acc[0] / count), float(acc[1] / count), float(acc[2] / count)) : Vec3(0.0f);
+    const double* acc = at(x, y);
+    const double norm = acc[norm_slot_];
+    return norm > 0.0 ? Vec3(float(acc[0] / norm), float(acc[1] / norm), float(acc[2] / norm)) : Vec3(0.0f);
   }
 
   // The convergence test of every pixel still sampled (Cycles' film_adaptive_sampling_convergence_check,
@@ -46,7 +73,7 @@ class Film {
   // the class-A half A, per sample), then every unconverged pixel keeps its 3x3 neighbourhood
   // sampling. Returns the number of pixels still sampled.
   size_t update_convergence(float threshold) {
-    const size_t n = size_t(width_) * height_;
+    const size_t n = size_t(width_) * height_;  // no margin: adaptive films do not splat
     for (size_t i = 0; i < n; ++i) {
       if (converged_[i]) continue;
       const double* acc = &sums_[i * stride_];
@@ -76,44 +103,59 @@ class Film {
     return remaining;
   }
 
+  // A sample of pixel (x, y) of the window, drawn by the filter's importance.
   void add(int x, int y, const PathRadiance& r, uint32_t sample) {
-    double* acc = &sums_[(size_t(y) * width_ + x) * stride_];
-    const Vec3 c = r.combined();
+    double* acc = at(x, y);
+    const Values v = values(r);
     if (adaptive_ && sample_is_class_a(sample)) {
       double* a = &half_[(size_t(y) * width_ + x) * 3];
-      a[0] += 2.0 * c.r;
-      a[1] += 2.0 * c.g;
-      a[2] += 2.0 * c.b;
+      a[0] += 2.0 * v[0];
+      a[1] += 2.0 * v[1];
+      a[2] += 2.0 * v[2];
     }
-    acc[0] += c.r;
-    acc[1] += c.g;
-    acc[2] += c.b;
-    acc[3] += r.alpha;
-    int k = 4;
-    for (const PassInfo& p : kPasses) {
-      if (!(passes_ & p.pass)) continue;
-      if (p.channels == 1) {
-        acc[k++] += pass_scalar(p.pass, r);
-      } else {
-        const Vec3 v = pass_color(p.pass, r);
-        acc[k++] += v.x;
-        acc[k++] += v.y;
-        acc[k++] += v.z;
+    for (int c = 0; c < values_; ++c) acc[c] += v[size_t(c)];
+    acc[stride_ - 1] += 1.0;
+  }
+
+  // A sample at `offset` (each coordinate in [-1/2, 1/2)) from the centre of pixel (x, y), which
+  // is in the window or within margin() of it; only a film made with a splatting filter.
+  void splat(int x, int y, const Vec2& offset, const PathRadiance& r) {
+    constexpr int kMaxReach = 2;
+    std::array<float, 2 * kMaxReach + 1> wx{}, wy{};
+    const int m = std::min(margin_, kMaxReach);
+    for (int k = -m; k <= m; ++k) {
+      wx[size_t(k + m)] = splatting_->weight(offset.x - float(k));
+      wy[size_t(k + m)] = splatting_->weight(offset.y - float(k));
+    }
+    const Values v = values(r);
+    for (int ky = -m; ky <= m; ++ky) {
+      const int ty = y + ky;
+      if (ty < 0 || ty >= height_ || !(wy[size_t(ky + m)] > 0.0f)) continue;
+      for (int kx = -m; kx <= m; ++kx) {
+        const int tx = x + kx;
+        if (tx < 0 || tx >= width_ || !(wx[size_t(kx + m)] > 0.0f)) continue;
+        const double w = double(wx[size_t(kx + m)]) * double(wy[size_t(ky + m)]);
+        double* acc = at(tx, ty);
+        for (int c = 0; c < values_; ++c) acc[c] += w * v[size_t(c)];
+        acc[norm_slot_] += w;
       }
     }
-    acc[stride_ - 1] += 1.0;
+    at(x, y)[stride_ - 1] += 1.0;
   }
 
   Image resolve_combined() const { return resolve(0, 4); }
 
+  // The samples taken in each pixel of the window.
   Image sample_counts() const {
     Image img{width_, height_, std::vector<float>(size_t(width_) * height_, 0.0f), 1};
-    for (size_t i = 0; i < img.rgba.size(); ++i) img.rgba[i] = float(sums_[i * stride_ + stride_ - 1]);
+    for (int y = 0; y < height_; ++y)
+      for (int x = 0; x < width_; ++x) img.rgba[size_t(y) * width_ + x] = float(at(x, y)[stride_ - 1]);
     return img;
   }
+  // Every sample taken, the ring's included.
   uint64_t total_samples() const {
     double total = 0.0;
-    for (size_t i = 0, n = size_t(width_) * height_; i < n; ++i) total += sums_[i * stride_ + stride_ - 1];
+    for (size_t i = 0, n = sums_.size() / size_t(stride_); i < n; ++i) total += sums_[i * stride_ + stride_ - 1];
     return uint64_t(total);
   }
 
@@ -129,6 +171,34 @@ class Film {
   }
 
  private:
+  static constexpr size_t kMaxValues = 64;
+  using Values = std::array<float, kMaxValues>;
+  // A sample's values in the film's channel order: Combined RGBA, then the requested passes.
+  Values values(const PathRadiance& r) const {
+    Values v;
+    const Vec3 c = r.combined();
+    v[0] = c.r;
+    v[1] = c.g;
+    v[2] = c.b;
+    v[3] = r.alpha;
+    size_t k = 4;
+    for (const PassInfo& p : kPasses) {
+      if (!(passes_ & p.pass)) continue;
+      if (p.channels == 1) {
+        v[k++] = pass_scalar(p.pass, r);
+      } else {
+        const Vec3 pv = pass_color(p.pass, r);
+        v[k++] = pv.x;
+        v[k++] = pv.y;
+        v[k++] = pv.z;
+      }
+    }
+    return v;
+  }
+  double* at(int x, int y) { return &sums_[(size_t(y + margin_) * buffer_width_ + size_t(x + margin_)) * stride_]; }
+  const double* at(int x, int y) const {
+    return &sums_[(size_t(y + margin_) * buffer_width_ + size_t(x + margin_)) * stride_];
+  }
   static float pass_scalar(Pass, const PathRadiance& r) { return r.depth; }
   static Vec3 pass_color(Pass pass, const PathRadiance& r) {
     switch (pass) {
@@ -145,18 +215,25 @@ class Film {
   }
   Image resolve(int offset, int channels) const {
     Image img{width_, height_, std::vector<float>(size_t(width_) * height_ * channels, 0.0f), channels};
-    for (size_t i = 0, n = size_t(width_) * height_; i < n; ++i) {
-      const double* acc = &sums_[i * stride_];
-      const double count = acc[stride_ - 1];
-      if (count > 0)
-        for (int c = 0; c < channels; ++c) img.rgba[i * channels + c] = float(acc[offset + c] / count);
-    }
+    for (int y = 0; y < height_; ++y)
+      for (int x = 0; x < width_; ++x) {
+        const size_t i = size_t(y) * width_ + x;
+        const double* acc = at(x, y);
+        const double norm = acc[norm_slot_];
+        if (norm > 0)
+          for (int c = 0; c < channels; ++c) img.rgba[i * channels + c] = float(acc[offset + c] / norm);
+      }
     return img;
   }
 
   int width_, height_;
   uint32_t passes_;
   bool adaptive_;
+  const PixelFilter* splatting_;  // null: samples drawn by the filter's importance
+  int margin_;
+  int buffer_width_;
+  int values_;     // channels of a sample: Combined RGBA and the passes
+  int norm_slot_;  // what a pixel's sums are divided by: its weight sum, or its sample count
   int stride_;
   std::vector<double> sums_;
   std::vector<double> half_;        // adaptive: 2 x the RGB sums of the class-A samples

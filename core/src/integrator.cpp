@@ -54,7 +54,7 @@ void RenderSettings::validate() const {
   for (const PassInfo& p : kPasses)
     if (passes & p.pass) pass_channels += p.channels;
   // Adaptive sampling adds a second (half) RGB sum per pixel, and the result a sample count.
-  const double adaptive_bytes = adaptive_threshold > 0.0f ? 8.0 * 3 + 4.0 : 0.0;
+  const double adaptive_bytes = adaptive_threshold > 0.0f ? 8.0 * 3 + 4.0 : 8.0;  // or splatting's weight sum
   // The roulette's per-pixel sums (24 bytes) and its statistics per block of 16 pixels.
   const double roulette_bytes = efficiency_roulette ? 32.0 : 0.0;
   require_memory(pixels * (8.0 * (5 + pass_channels) + 4.0 * 16 + 4.0 * 2 * pass_channels + adaptive_bytes +
@@ -111,14 +111,24 @@ bool guide_can_be_judged(const RenderSettings& s) {
   return pass <= 0 || double((1u << std::min(pass, 30)) - 1u) <= double(s.guiding_training_fraction) * s.samples;
 }
 
-// A camera sample's ray through pixel (x, y) of the frame: the pixel filter's offset and the lens
-// point from the sampler's first four dimensions.
-Ray camera_ray(const Camera& camera, const PixelFilter& filter, int x, int y, SobolSampler& sampler) {
+// A camera sample's ray through pixel (x, y) of the frame: its offset from the pixel's centre
+// (drawn by the pixel filter's importance, or uniform in the pixel when `splatting`; stored in
+// `offset`) and the lens point from the sampler's first four dimensions.
+Ray camera_ray(const Camera& camera, const PixelFilter& filter, bool splatting, int x, int y, SobolSampler& sampler,
+               Vec2& offset) {
   const glm::vec4 u_pixel = sampler.next_4d();
-  const float dx = filter.sample_offset(u_pixel.x);
-  const float dy = filter.sample_offset(u_pixel.y);
+  offset = splatting ? Vec2(u_pixel.x - 0.5f, u_pixel.y - 0.5f)
+                     : Vec2(filter.sample_offset(u_pixel.x), filter.sample_offset(u_pixel.y));
   // u_pixel.zw: the lens point (depth of field only).
-  return camera.generate_ray(x + 0.5f + dx, y + 0.5f + dy, Vec2(u_pixel.z, u_pixel.w));
+  return camera.generate_ray(x + 0.5f + offset.x, y + 0.5f + offset.y, Vec2(u_pixel.z, u_pixel.w));
+}
+
+// The sampler's pixel number of pixel (x, y) of the frame; pixels of the splatting ring outside
+// the frame (up to `margin` beyond it) get numbers after the frame's.
+uint32_t sampler_pixel(const RenderSettings& s, int x, int y, int margin) {
+  if (x >= 0 && y >= 0 && x < s.width && y < s.height) return uint32_t(y) * uint32_t(s.width) + uint32_t(x);
+  return uint32_t(s.width) * uint32_t(s.height) +
+         uint32_t(y + margin) * uint32_t(s.width + 2 * margin) + uint32_t(x + margin);
 }
 
 // The pilot of the automatic splitting at the first hit (first_bounce_splits.h): a few samples,
@@ -148,7 +158,8 @@ FirstBounceSplits first_bounce_pilot(const PathContext& ctx, const TraceFn& trac
       for (int s = 0; s < Pilot::kSamples; ++s) {
         SobolSampler sampler(uint32_t(y) * uint32_t(ctx.settings.width) + uint32_t(x), uint32_t(s), seed,
                              !ctx.settings.sobol);
-        const Ray ray = camera_ray(camera, filter, x, y, sampler);
+        Vec2 offset;
+        const Ray ray = camera_ray(camera, filter, false, x, y, sampler, offset);
         BranchRecord& record = records[i][size_t(s)];
         PixelSample pixel;
         pixel.x = x - window[0];
@@ -228,16 +239,34 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
     const int next_check = std::max(((min_samples + 1) | (kStep - 1)) + 1, (done | (kStep - 1)) + 1);
     return std::min(n, next_check - done);
   };
-  Film film(window[2] - window[0], window[3] - window[1], settings.passes, adaptive);
+  const bool splatting = settings.filter_splatting && !adaptive && filter.reach() <= 2;
+  Film film(window[2] - window[0], window[3] - window[1], settings.passes, adaptive, splatting ? &filter : nullptr);
+  const int margin = film.margin();
   if (settings.efficiency_roulette) {
     roulette.emplace(window[2] - window[0], window[3] - window[1], settings.roulette_min_survival);
     ctx.roulette = &*roulette;
   }
+  // Tiles of the window; with splatting the outer tiles also take the ring of `margin` pixels
+  // around it, and the tiles go in four phases (by the parity of their column and row) so that
+  // no two tiles of a phase, which run in parallel, splat into the same pixel.
   constexpr int kTileSize = 16;
-  std::vector<Tile> tiles;
+  std::array<std::vector<Tile>, 4> phases;
   for (int y = window[1]; y < window[3]; y += kTileSize)
-    for (int x = window[0]; x < window[2]; x += kTileSize)
-      tiles.push_back({x, y, std::min(x + kTileSize, window[2]), std::min(y + kTileSize, window[3])});
+    for (int x = window[0]; x < window[2]; x += kTileSize) {
+      const int x1 = std::min(x + kTileSize, window[2]), y1 = std::min(y + kTileSize, window[3]);
+      const Tile tile{x == window[0] ? x - margin : x, y == window[1] ? y - margin : y,
+                      x1 == window[2] ? x1 + margin : x1, y1 == window[3] ? y1 + margin : y1};
+      const int phase = margin > 0 ? ((x - window[0]) / kTileSize % 2) + 2 * ((y - window[1]) / kTileSize % 2) : 0;
+      phases[size_t(phase)].push_back(tile);
+    }
+  // The ring's paths: no learning from them (the roulette's and the guide's statistics are the window's).
+  PathContext ring_ctx = ctx;
+  ring_ctx.roulette = nullptr;
+  ring_ctx.guide = nullptr;
+  ring_ctx.guide_training = false;
+  auto in_window = [&](const PixelSample& p) {
+    return p.x >= 0 && p.y >= 0 && p.x < window[2] - window[0] && p.y < window[3] - window[1];
+  };
 
   std::atomic<bool> stop{false};
   std::atomic<uint64_t> nonfinite{0};
@@ -253,12 +282,13 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   auto trace_batch = [&](const Batch& batch, int n, uint64_t& bad) {
     std::array<std::optional<SobolSampler>, Scene::kPacketSize> samplers;
     std::array<Ray, Scene::kPacketSize> rays;
+    std::array<Vec2, Scene::kPacketSize> offsets;
     for (int i = 0; i < n; ++i) {
       const CameraSample& c = batch[size_t(i)];
       const int x = c.pixel.x + window[0], y = c.pixel.y + window[1];  // in the frame
-      const uint32_t pixel = uint32_t(y) * uint32_t(settings.width) + uint32_t(x);
-      SobolSampler& sampler = samplers[size_t(i)].emplace(pixel, c.sample, settings.seed, !settings.sobol);
-      rays[size_t(i)] = camera_ray(camera, filter, x, y, sampler);
+      SobolSampler& sampler =
+          samplers[size_t(i)].emplace(sampler_pixel(settings, x, y, margin), c.sample, settings.seed, !settings.sobol);
+      rays[size_t(i)] = camera_ray(camera, filter, splatting, x, y, sampler, offsets[size_t(i)]);
     }
     const bool packet = settings.camera_packets && n > 1;
     std::array<FirstHit, Scene::kPacketSize> first;
@@ -270,18 +300,21 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
     }
     for (int i = 0; i < n; ++i) {
       const CameraSample& c = batch[size_t(i)];
-      PathRadiance r = trace(ctx, rays[size_t(i)], *samplers[size_t(i)], packet ? &first[size_t(i)] : nullptr, c.pixel);
+      const bool inside = in_window(c.pixel);
+      PathRadiance r = trace(inside ? ctx : ring_ctx, rays[size_t(i)], *samplers[size_t(i)],
+                             packet ? &first[size_t(i)] : nullptr, c.pixel);
       if (!is_finite(r.combined())) {  // never expected; counted so tests can prove it never happens
         ++bad;
         const float alpha = r.alpha;
         r = PathRadiance{};
         r.alpha = alpha;
       }
-      film.add(c.pixel.x, c.pixel.y, r, c.sample);
+      if (splatting) film.splat(c.pixel.x, c.pixel.y, offsets[size_t(i)], r);
+      else film.add(c.pixel.x, c.pixel.y, r, c.sample);
     }
   };
 
-  auto render_pass = [&](int first_sample, int num_samples) {
+  auto render_phase = [&](const std::vector<Tile>& tiles, int first_sample, int num_samples) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
       FlushDenormals ftz;
       uint64_t bad = 0;
@@ -299,13 +332,14 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
           // order, so the image does not depend on the batching.
           for (int x = tile.x0; x < tile.x1; ++x) {
             if (adaptive && film.converged(x - window[0], y - window[1])) continue;
-            // Guiding learns relative error: the pixel's estimate from earlier passes (only this thread
-            // adds to it during the pass).
+            // Guiding learns relative error: the pixel's estimate so far (no other thread adds to
+            // it during this phase of the pass).
             PixelSample pixel_sample;
             pixel_sample.x = x - window[0];
             pixel_sample.y = y - window[1];
-            pixel_sample.guide_weight =
-                ctx.guide_training ? pixel_weight(film.mean(pixel_sample.x, pixel_sample.y)) : 1.0f;
+            pixel_sample.guide_weight = ctx.guide_training && in_window(pixel_sample)
+                                            ? pixel_weight(film.mean(pixel_sample.x, pixel_sample.y))
+                                            : 1.0f;
             for (int s = first_sample; s < first_sample + num_samples; ++s) {
               batch[size_t(batched++)] = {pixel_sample, uint32_t(s)};
               if (batched == Scene::kPacketSize) trace_batch(batch, std::exchange(batched, 0), bad);
@@ -320,6 +354,10 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
       occlusion_rays += rays.occlusion;
       camera_packets += rays.packets;
     });
+  };
+  auto render_pass = [&](int first_sample, int num_samples) {
+    for (const std::vector<Tile>& tiles : phases)
+      if (!tiles.empty()) render_phase(tiles, first_sample, num_samples);
   };
 
   std::mutex mutex;
@@ -347,6 +385,8 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
         result.first_bounce_optimum = pilot.optimum();
       }
       result.first_bounce_splits = ctx.first_bounce_splits;
+      ring_ctx.first_bounce_splits = ctx.first_bounce_splits;
+      result.filter_splatting = splatting;
       while (done < settings.samples && !stop && !all_converged && !out_of_time) {
         const int target = std::min(pass_size, settings.samples - done);
         const auto t0 = std::chrono::steady_clock::now();

@@ -154,16 +154,20 @@ Vec3 sample_uniform_cone(const Vec2& u, float one_minus_cos_max) {
   return Vec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta);
 }
 
+namespace {
+// The Blackman-Harris window at t in [0, 1] (across [-width, width]): 1 at t = 1/2, 0 at the ends.
+double blackman_harris(double t) {
+  return 0.35875 - 0.48829 * std::cos(2 * M_PI * t) + 0.14128 * std::cos(4 * M_PI * t) -
+         0.01168 * std::cos(6 * M_PI * t);
+}
+constexpr int kWeightTableSize = 257;
+}  // namespace
+
 PixelFilter::PixelFilter(float width, int table_size) : width_(std::max(width, 1e-3f)) {
   // Tabulate the window's CDF finely, then invert it at table_size evenly spaced levels.
   const int n = table_size * 8;
   std::vector<double> cdf(n + 1, 0.0);
-  for (int i = 0; i < n; ++i) {
-    const double t = (i + 0.5) / n;  // position in [0,1] across [-width, width]
-    const double w = 0.35875 - 0.48829 * std::cos(2 * M_PI * t) + 0.14128 * std::cos(4 * M_PI * t) -
-                     0.01168 * std::cos(6 * M_PI * t);
-    cdf[i + 1] = cdf[i] + w;
-  }
+  for (int i = 0; i < n; ++i) cdf[i + 1] = cdf[i] + blackman_harris((i + 0.5) / n);
   for (double& c : cdf) c /= cdf[n];
   inverse_cdf_.resize(table_size + 1);
   int j = 0;
@@ -175,6 +179,18 @@ PixelFilter::PixelFilter(float width, int table_size) : width_(std::max(width, 1
     const double t = (j + std::min(std::max(frac, 0.0), 1.0)) / n;
     inverse_cdf_[i] = float((2.0 * t - 1.0) * width_);
   }
+  weights_.resize(kWeightTableSize);
+  for (int i = 0; i < kWeightTableSize; ++i)
+    weights_[i] = float(std::max(blackman_harris(0.5 + 0.5 * i / (kWeightTableSize - 1.0)), 0.0));
+  weights_.back() = 0.0f;
+}
+
+float PixelFilter::weight(float d) const {
+  const float x = std::abs(d) / width_ * float(kWeightTableSize - 1);
+  if (!(x < float(kWeightTableSize - 1))) return 0.0f;
+  const int i = int(x);
+  const float f = x - float(i);
+  return weights_[i] * (1.0f - f) + weights_[i + 1] * f;
 }
 
 float PixelFilter::sample_offset(float u) const {

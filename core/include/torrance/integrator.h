@@ -49,6 +49,17 @@ struct RenderSettings {
   uint32_t seed = 0;
   float pixel_aspect_x = 1.0f, pixel_aspect_y = 1.0f;
   float filter_width = 1.5f;      // Blackman-Harris, in pixels (Cycles' default)
+  // How camera samples become pixels. true: each sample lands uniformly in its pixel and is
+  // splatted, weighted by the filter, into every pixel whose filter covers it (each pixel the
+  // filter-weighted mean of its neighbourhood's samples: pbrt-v3's and Mitsuba's film); a 1-pixel
+  // ring around the image is sampled too, so edge pixels see the whole filter. false: Cycles'
+  // filter importance sampling (each sample's offset drawn from the filter, weight 1, its own
+  // pixel only). Both converge to the same image; splatting uses every sample in ~2.2 pixels'
+  // estimates (the Blackman-Harris 1.5's effective share), so its per-pixel noise is lower (16
+  // spp, 8 seeds: suzanne relMSE x0.45, grass_stone x0.30) and correlated between neighbours.
+  // Used without adaptive sampling (whose per-pixel convergence test needs independent pixels)
+  // and for filter widths up to 2.5 pixels (wider filters: importance sampling).
+  bool filter_splatting = true;
   bool transparent_background = false;
   // PAPER here, PRINCIPLED in the add-on (python_addon/torrance/properties.py), on purpose: callers of
   // the core (C++ and module tests, scripts) check renders against closed forms of the brief's
@@ -160,6 +171,7 @@ struct RenderResult {
   // (it would not have paid), "stopped before deciding" (the time limit ended its training).
   std::string guiding = "off";
   int first_bounce_splits = 1;         // the branches used at the first hit (chosen, or as set)
+  bool filter_splatting = false;       // whether samples were splatted (RenderSettings::filter_splatting)
   float first_bounce_optimum = 0.0f;   // the automatic choice's n* (0: not automatic, or unknown)
   uint64_t rays_traced() const { return closest_rays + occlusion_rays; }
 };

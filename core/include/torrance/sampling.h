@@ -102,10 +102,15 @@ class PixelFilter {
   // Maps u in [0,1) to an offset in pixels from the pixel centre.
   float sample_offset(float u) const;
   float width() const { return width_; }
+  // The filter's value (1 at the centre, 0 from `width` on) at offset d pixels, for splatting.
+  float weight(float d) const;
+  // How many pixels beyond its own a sample placed anywhere in its pixel reaches when splatted.
+  int reach() const { return int(std::ceil(width_ - 0.5f)); }
 
  private:
   float width_;
   std::vector<float> inverse_cdf_;
+  std::vector<float> weights_;  // weight at |d| = i * width / (size - 1)
 };
 
 }  // namespace torrance
