@@ -239,7 +239,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
     const int next_check = std::max(((min_samples + 1) | (kStep - 1)) + 1, (done | (kStep - 1)) + 1);
     return std::min(n, next_check - done);
   };
-  const bool splatting = settings.filter_splatting && !adaptive && filter.reach() <= 2;
+  const bool splatting = settings.filter_splatting && !adaptive && settings.filter_width >= 1.0f && filter.reach() <= 2;
   Film film(window[2] - window[0], window[3] - window[1], settings.passes, adaptive, splatting ? &filter : nullptr);
   const int margin = film.margin();
   if (settings.efficiency_roulette) {

@@ -52,7 +52,8 @@ TEST(Rays, RenderCountsEveryQuery) {
     Scene scene;
     sunlit_plane(scene);
     const RenderResult r = render(scene, tiny(3, 0));
-    const uint64_t samples = 8 * 6 * 3;
+    const uint64_t samples = (8 + 2) * (6 + 2) * 3;  // the image and its 1-pixel splatting ring
+    EXPECT_EQ(r.samples_spent, samples);
     EXPECT_EQ(r.occlusion_rays, samples);
     EXPECT_GT(r.closest_rays, samples + samples * 9 / 10);
     EXPECT_LE(r.closest_rays, 2 * samples);
@@ -65,13 +66,13 @@ TEST(Rays, RenderCountsEveryQuery) {
     up.camera_to_world = {1, 0, 0, 0, 0, -1, 0, 0, 0, 0, -1, 5, 0, 0, 0, 1};  // looking up (+z)
     scene.set_camera(up);
     const RenderResult r = render(scene, tiny(5, 4));
-    EXPECT_EQ(r.closest_rays, uint64_t(8 * 6 * 5));
+    EXPECT_EQ(r.closest_rays, uint64_t(10 * 8 * 5));
     // With the automatic splitting's pilot (first_bounce_splits.h: its 2 x 1 pixels, 4 samples
     // each), its camera rays are counted too.
     RenderSettings piloted_settings = tiny(5, 4);
     piloted_settings.first_bounce_splits = 0;
     const RenderResult piloted = render(scene, piloted_settings);
-    EXPECT_EQ(piloted.closest_rays, uint64_t(8 * 6 * 5 + 2 * 1 * FirstBounceSplits::kSamples));
+    EXPECT_EQ(piloted.closest_rays, uint64_t(10 * 8 * 5 + 2 * 1 * FirstBounceSplits::kSamples));
     EXPECT_EQ(r.occlusion_rays, 0u);
   }
 }
@@ -118,7 +119,7 @@ TEST(Rays, LogHoldsTheRenderedRaysAndRawEmbreeGivesTheSameAnswers) {
     camera += r.kind == RayKind::Camera;
     occluded += r.kind == RayKind::Occlusion && r.occluded;
   }
-  EXPECT_EQ(camera, size_t(24 * 16 * 4));
+  EXPECT_EQ(camera, size_t(26 * 18 * 4));  // the image and its 1-pixel splatting ring
   EXPECT_GT(occluded, 0u);
   // The log's order (runs of one kind are short: mostly partial packets), then the camera rays
   // alone (full, coherent packets).
@@ -235,6 +236,7 @@ TEST(Rays, OneSamplePassesTraceCameraRaysInFullPackets) {
   Scene scene;
   cluttered_room(scene);
   RenderSettings settings = room_frame(1);
+  settings.filter_splatting = false;  // the tiles of the image alone (splatting adds a ring)
   const RenderResult packets = render(scene, settings);
   EXPECT_EQ(packets.camera_packets, 3u * 16u);
   settings.camera_packets = false;

@@ -730,7 +730,7 @@ def test_adaptive_sampling_time_limit_and_clamping_settings():
     scene.set_world(color=(0.5, 0.5, 0.5), strength=1.0)
     scene.add_point_light(position=(0.01, 0, 0.05), power=50.0, radius=0.0)
     plain = tc.render(scene, tc.RenderSettings(width=16, height=16, samples=64))
-    assert plain.samples_spent == 16 * 16 * 64
+    assert plain.filter_splatting and plain.samples_spent == 18 * 18 * 64  # and the splatting ring
     assert plain.sample_counts.shape == (16, 16) and np.all(plain.sample_counts == 64)
     assert not plain.time_limit_reached
     settings = tc.RenderSettings(width=16, height=16, samples=64, adaptive_threshold=0.01,
