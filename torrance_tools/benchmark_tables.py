@@ -17,7 +17,8 @@ LEVER_LABELS = {"specialize": "specialised kernels", "sampler=RANDOM": "Sobol sa
                 "efficiency_roulette": "efficiency-aware Russian roulette",
                 "mirror_images": "NEE of lights in mirrors, glossy surfaces; lamp spots",
                 "nee_every_light": "NEE of both lights in two-light scenes",
-                "first_bounce_splits=0": "splitting at the first hit chosen by a pilot (opt-in)"}
+                "first_bounce_splits=0": "splitting at the first hit chosen by a pilot (opt-in)",
+                "filter_splatting": "samples splatted over the pixels their filter covers"}
 
 
 def ratios(d, torrance, cycles):

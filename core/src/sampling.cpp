@@ -183,14 +183,7 @@ PixelFilter::PixelFilter(float width, int table_size) : width_(std::max(width, 1
   for (int i = 0; i < kWeightTableSize; ++i)
     weights_[i] = float(std::max(blackman_harris(0.5 + 0.5 * i / (kWeightTableSize - 1.0)), 0.0));
   weights_.back() = 0.0f;
-}
-
-float PixelFilter::weight(float d) const {
-  const float x = std::abs(d) / width_ * float(kWeightTableSize - 1);
-  if (!(x < float(kWeightTableSize - 1))) return 0.0f;
-  const int i = int(x);
-  const float f = x - float(i);
-  return weights_[i] * (1.0f - f) + weights_[i + 1] * f;
+  weight_scale_ = float(kWeightTableSize - 1) / width_;
 }
 
 float PixelFilter::sample_offset(float u) const {

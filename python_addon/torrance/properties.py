@@ -171,6 +171,15 @@ class TorranceSceneSettings(bpy.types.PropertyGroup):
         default=1.5, min=0.01, max=10.0, soft_max=3.0,
         subtype='PIXEL',
     )
+    use_filter_splatting: BoolProperty(
+        name="Splat Samples",
+        description="Spread each sample over every pixel its filter covers, weighted by the "
+                    "filter, instead of drawing it by the filter's importance for one pixel (as "
+                    "Cycles): the same image, with about half the noise per pixel (grainier "
+                    "clumps, correlated between neighbours). Used for filter widths of 1 to 2.5 "
+                    "pixels without adaptive sampling",
+        default=True,
+    )
     viewport_samples: IntProperty(
         name="Viewport Samples",
         description="Samples per pixel of the Rendered viewport; the image refines up to this "

@@ -261,6 +261,7 @@ def _render(engine, depsgraph, reporter):
         max_transparent_bounces=int(ts.transparent_max_bounces),
         pixel_aspect_x=float(rd.pixel_aspect_x), pixel_aspect_y=float(rd.pixel_aspect_y),
         filter_width=float(ts.filter_width),
+        filter_splatting=bool(ts.use_filter_splatting),
         transparent_background=bool(rd.film_transparent),
         brdf_model=core_model(ts.brdf_model),
         # The core counts rows from the top, Blender from the bottom.

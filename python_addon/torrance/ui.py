@@ -320,6 +320,7 @@ class TORRANCE_RENDER_PT_film(TorrancePanel, Panel):
         layout = _split(self.layout)
         col = layout.column()
         col.prop(context.scene.torrance, "filter_width")
+        col.prop(context.scene.torrance, "use_filter_splatting")
         col.prop(context.scene.render, "film_transparent", text="Transparent")
 
 

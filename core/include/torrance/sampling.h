@@ -103,7 +103,13 @@ class PixelFilter {
   float sample_offset(float u) const;
   float width() const { return width_; }
   // The filter's value (1 at the centre, 0 from `width` on) at offset d pixels, for splatting.
-  float weight(float d) const;
+  float weight(float d) const {
+    const float x = std::abs(d) * weight_scale_;
+    if (!(x < float(weights_.size() - 1))) return 0.0f;
+    const int i = int(x);
+    const float f = x - float(i);
+    return weights_[size_t(i)] * (1.0f - f) + weights_[size_t(i) + 1] * f;
+  }
   // How many pixels beyond its own a sample placed anywhere in its pixel reaches when splatted.
   int reach() const { return int(std::ceil(width_ - 0.5f)); }
 
@@ -111,6 +117,7 @@ class PixelFilter {
   float width_;
   std::vector<float> inverse_cdf_;
   std::vector<float> weights_;  // weight at |d| = i * width / (size - 1)
+  float weight_scale_;          // (size - 1) / width
 };
 
 }  // namespace torrance

@@ -17,6 +17,7 @@ def viewport_settings(scene):
         max_transparent_bounces=int(ts.transparent_max_bounces),
         seed=int(ts.seed),
         filter_width=float(ts.filter_width),
+        filter_splatting=bool(ts.use_filter_splatting),
         transparent_background=bool(rd.film_transparent),
         brdf_model=core_model(ts.brdf_model),
         threads=int(rd.threads) if rd.threads_mode == 'FIXED' else 0,
