@@ -148,6 +148,19 @@ inline std::vector<double> block_means(const Image& img, int x0, int y0, int siz
 // The same over a whole 32 x 32 image (blocks of 8 x 8 pixels).
 inline std::vector<double> block_means_32(const Image& img) { return block_means(img, 0, 0, 32); }
 
+// Mean over the pixels of the green channel's variance over the seeds' images.
+inline double mean_pixel_variance(const std::vector<Image>& images) {
+  const size_t n = images.size(), pixels = images[0].rgba.size() / 4;
+  double total = 0.0;
+  for (size_t p = 0; p < pixels; ++p) {
+    double mean = 0.0, square = 0.0;
+    for (const Image& img : images) mean += img.rgba[4 * p + 1] / n;
+    for (const Image& img : images) square += (img.rgba[4 * p + 1] - mean) * (img.rgba[4 * p + 1] - mean);
+    total += square / (n - 1);
+  }
+  return total / pixels;
+}
+
 // Two renderers' block means (block_means_32) over the same seeds, compared: the ratio of their
 // image means (b over a), and |mean difference| / its standard error (from both sets' spread over
 // the seeds) for the whole image and for the worst block.

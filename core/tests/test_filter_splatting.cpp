@@ -69,19 +69,6 @@ std::vector<double> border_runs(const Image& img) {
   return runs;
 }
 
-// Mean over the pixels of the green channel's variance over the seeds' images.
-double mean_pixel_variance(const std::vector<Image>& images) {
-  const size_t n = images.size(), pixels = images[0].rgba.size() / 4;
-  double total = 0.0;
-  for (size_t p = 0; p < pixels; ++p) {
-    double mean = 0.0, square = 0.0;
-    for (const Image& img : images) mean += img.rgba[4 * p + 1] / n;
-    for (const Image& img : images) square += (img.rgba[4 * p + 1] - mean) * (img.rgba[4 * p + 1] - mean);
-    total += square / (n - 1);
-  }
-  return total / pixels;
-}
-
 // Both films over 12 seeds: the image, its 8 x 8 blocks and the border's runs agree within noise,
 // and the splatted pixels' variance is well under the importance-sampled ones'.
 TEST(FilterSplatting, AgreesWithFilterImportanceSamplingAndHasLessNoise) {
@@ -108,7 +95,7 @@ TEST(FilterSplatting, AgreesWithFilterImportanceSamplingAndHasLessNoise) {
               blocks.image_z, blocks.worst_block_z, border.worst_block_z);
   test::expect_agreement(blocks, 0.01);
   EXPECT_LT(border.worst_block_z, 4.5);
-  const double ratio = mean_pixel_variance(splat) / mean_pixel_variance(fis);
+  const double ratio = test::mean_pixel_variance(splat) / test::mean_pixel_variance(fis);
   std::printf("pixel variance, splatted / importance-sampled: %.3f\n", ratio);
   EXPECT_LT(ratio, 0.6);
 }

@@ -34,19 +34,6 @@ RenderSettings settings(uint32_t seed, int splits, int samples = 32) {
   return s;
 }
 
-// Mean over the pixels of the green channel's variance over the seeds' images.
-double mean_pixel_variance(const std::vector<Image>& images) {
-  const size_t n = images.size(), pixels = images[0].rgba.size() / 4;
-  double total = 0.0;
-  for (size_t p = 0; p < pixels; ++p) {
-    double mean = 0.0, square = 0.0;
-    for (const Image& img : images) mean += img.rgba[4 * p + 1] / n;
-    for (const Image& img : images) square += (img.rgba[4 * p + 1] - mean) * (img.rgba[4 * p + 1] - mean);
-    total += square / (n - 1);
-  }
-  return total / pixels;
-}
-
 TEST(FirstBounceSplits, SplitRenderAgreesWithThePlainOneAndHasLessNoise) {
   Scene scene;
   build_wall_lit_floor(scene);
@@ -62,7 +49,7 @@ TEST(FirstBounceSplits, SplitRenderAgreesWithThePlainOneAndHasLessNoise) {
     split_blocks.push_back(test::block_means_32(split.back()));
   }
   test::expect_agreement(test::compare_over_seeds(plain_blocks, split_blocks), 0.02);
-  const double ratio = mean_pixel_variance(split) / mean_pixel_variance(plain);
+  const double ratio = test::mean_pixel_variance(split) / test::mean_pixel_variance(plain);
   std::printf("pixel variance, 3 branches / 1: %.3f\n", ratio);
   EXPECT_LT(ratio, 0.6) << "three branches should divide most of the wall's light's noise by three";
 }
