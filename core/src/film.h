@@ -29,6 +29,9 @@ inline bool sample_is_class_a(uint32_t sample) { return __builtin_popcount(sampl
 //   weighted mean (the ratio of its weighted sums to its summed weights: consistent, and exact on
 //   flat regions at any sample count). Samples of a ring of margin() pixels around the window
 //   reach its edge pixels; their counts are kept (the work done) but they are not pixels of it.
+//   With adaptive sampling (a reach of 1 pixel) a pixel takes splats only in the steps in which
+//   its whole 3 x 3 neighbourhood is sampled, so each of its steps sees its neighbourhood evenly
+//   sampled and its weighted mean stays consistent while the neighbours stop one by one.
 class Film {
  public:
   Film(int w, int h, uint32_t passes, bool adaptive, const PixelFilter* splatting = nullptr)
@@ -38,7 +41,7 @@ class Film {
         adaptive_(adaptive),
         splatting_(splatting),
         margin_(splatting ? splatting->reach() : 0) {
-    if (adaptive && splatting) throw std::logic_error("Film: adaptive sampling needs unsplatted pixels");
+    if (adaptive && margin_ > 1) throw std::logic_error("Film: adaptive sampling splats 1 pixel far at most");
     stride_ = 4;
     for (const PassInfo& p : kPasses)
       if (passes & p.pass) stride_ += p.channels;
@@ -50,8 +53,11 @@ class Film {
     buffer_width_ = w + 2 * margin_;
     sums_.assign(size_t(buffer_width_) * (h + 2 * margin_) * stride_, 0.0);
     if (adaptive_) {
-      half_.assign(size_t(w) * h * 3, 0.0);
-      converged_.assign(size_t(w) * h, 0);
+      const size_t pixels = size_t(buffer_width_) * (h + 2 * margin_);
+      half_stride_ = splatting_ ? 4 : 3;
+      half_.assign(pixels * half_stride_, 0.0);
+      sampled_.assign(pixels, 1);
+      receiving_.assign(pixels, 1);
     }
   }
 
@@ -59,7 +65,8 @@ class Film {
   int margin() const { return margin_; }
   bool splatting() const { return splatting_ != nullptr; }
 
-  bool converged(int x, int y) const { return adaptive_ && converged_[size_t(y) * width_ + x]; }
+  // Whether pixel (x, y) (in the window or its ring) is left out of the next samples.
+  bool converged(int x, int y) const { return adaptive_ && !sampled_[index(x, y)]; }
   // The pixel's combined colour so far (0 before any sample).
   Vec3 mean(int x, int y) const {
     const double* acc = at(x, y);
@@ -69,36 +76,35 @@ class Film {
 
   // The convergence test of every pixel still sampled (Cycles' film_adaptive_sampling_convergence_check,
   // the per-pixel error of Dammertz et al. 2010, "A hierarchical automatic stopping condition for
-  // Monte Carlo global illumination": |I - A| / sqrt(I) over the RGB sums of all samples I and twice
-  // the class-A half A, per sample), then every unconverged pixel keeps its 3x3 neighbourhood
-  // sampling. Returns the number of pixels still sampled.
+  // Monte Carlo global illumination": |I - A| / sqrt(I) over the RGB of the mean of all samples I
+  // and of the class-A half A), then every unconverged pixel keeps its 3x3 neighbourhood (the
+  // ring's pixels too) sampling. Returns the number of the window's pixels still sampled.
   size_t update_convergence(float threshold) {
-    const size_t n = size_t(width_) * height_;  // no margin: adaptive films do not splat
-    for (size_t i = 0; i < n; ++i) {
-      if (converged_[i]) continue;
-      const double* acc = &sums_[i * stride_];
-      const double* a = &half_[i * 3];
-      const double inv_count = 1.0 / std::max(acc[stride_ - 1], 1.0);
-      const double difference = (std::abs(acc[0] - a[0]) + std::abs(acc[1] - a[1]) + std::abs(acc[2] - a[2])) *
-                                inv_count;
-      const double normalize = std::sqrt(std::max(acc[0] + acc[1] + acc[2], 0.0) * inv_count);
-      converged_[i] = difference / (1e-4 + normalize) < threshold;  // the epsilon: the floor of black pixels
-    }
-    // Dilate the unconverged set by one pixel in x, then in y.
-    std::vector<uint8_t> active(n), dilated(n);
-    for (size_t i = 0; i < n; ++i) active[i] = !converged_[i];
+    const int bw = buffer_width_, bh = height_ + 2 * margin_;
+    std::vector<uint8_t> unconverged(size_t(bw) * bh, 0), dilated(size_t(bw) * bh, 0);
     for (int y = 0; y < height_; ++y)
-      for (int x = 0; x < width_; ++x) {
-        const size_t i = size_t(y) * width_ + x;
-        dilated[i] = active[i] | (x > 0 && active[i - 1]) | (x + 1 < width_ && active[i + 1]);
+      for (int x = 0; x < width_; ++x)
+        if (sampled_[index(x, y)]) unconverged[index(x, y)] = !passes_convergence_test(x, y, threshold);
+    // Dilate the unconverged set by one pixel in x, then in y.
+    for (int y = 0; y < bh; ++y)
+      for (int x = 0; x < bw; ++x) {
+        const size_t i = size_t(y) * bw + x;
+        dilated[i] = unconverged[i] | (x > 0 && unconverged[i - 1]) | (x + 1 < bw && unconverged[i + 1]);
+      }
+    for (int y = 0; y < bh; ++y)
+      for (int x = 0; x < bw; ++x) {
+        const size_t i = size_t(y) * bw + x;
+        sampled_[i] = dilated[i] | (y > 0 && dilated[i - bw]) | (y + 1 < bh && dilated[i + bw]);
       }
     size_t remaining = 0;
     for (int y = 0; y < height_; ++y)
       for (int x = 0; x < width_; ++x) {
-        const size_t i = size_t(y) * width_ + x;
-        const bool a = dilated[i] | (y > 0 && dilated[i - width_]) | (y + 1 < height_ && dilated[i + width_]);
-        converged_[i] = !a;
-        remaining += a;
+        remaining += sampled_[index(x, y)];
+        if (!splatting_) continue;
+        bool all = true;  // the whole 3 x 3 neighbourhood sampled (it lies in the window and ring)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) all = all && sampled_[index(x + dx, y + dy)];
+        receiving_[index(x, y)] = all;
       }
     return remaining;
   }
@@ -108,7 +114,7 @@ class Film {
     double* acc = at(x, y);
     const Values v = values(r);
     if (adaptive_ && sample_is_class_a(sample)) {
-      double* a = &half_[(size_t(y) * width_ + x) * 3];
+      double* a = &half_[index(x, y) * half_stride_];
       a[0] += 2.0 * v[0];
       a[1] += 2.0 * v[1];
       a[2] += 2.0 * v[2];
@@ -119,7 +125,8 @@ class Film {
 
   // A sample at `offset` (each coordinate in [-1/2, 1/2)) from the centre of pixel (x, y), which
   // is in the window or within margin() of it; only a film made with a splatting filter.
-  void splat(int x, int y, const Vec2& offset, const PathRadiance& r) {
+  void splat(int x, int y, const Vec2& offset, const PathRadiance& r, uint32_t sample) {
+    const bool class_a = adaptive_ && sample_is_class_a(sample);
     constexpr int kMaxReach = 2;
     std::array<float, 2 * kMaxReach + 1> wx{}, wy{};
     const int m = std::min(margin_, kMaxReach);
@@ -134,10 +141,16 @@ class Film {
       for (int kx = -m; kx <= m; ++kx) {
         const int tx = x + kx;
         if (tx < 0 || tx >= width_ || !(wx[size_t(kx + m)] > 0.0f)) continue;
+        if (adaptive_ && !receiving_[index(tx, ty)]) continue;
         const double w = double(wx[size_t(kx + m)]) * double(wy[size_t(ky + m)]);
         double* acc = at(tx, ty);
         for (int c = 0; c < values_; ++c) acc[c] += w * v[size_t(c)];
         acc[norm_slot_] += w;
+        if (class_a) {
+          double* a = &half_[index(tx, ty) * half_stride_];
+          for (int c = 0; c < 3; ++c) a[c] += w * v[size_t(c)];
+          a[3] += w;
+        }
       }
     }
     at(x, y)[stride_ - 1] += 1.0;
@@ -195,9 +208,27 @@ class Film {
     }
     return v;
   }
-  double* at(int x, int y) { return &sums_[(size_t(y + margin_) * buffer_width_ + size_t(x + margin_)) * stride_]; }
-  const double* at(int x, int y) const {
-    return &sums_[(size_t(y + margin_) * buffer_width_ + size_t(x + margin_)) * stride_];
+  // Pixel (x, y) of the window (or its ring) in the buffers.
+  size_t index(int x, int y) const { return size_t(y + margin_) * buffer_width_ + size_t(x + margin_); }
+  double* at(int x, int y) { return &sums_[index(x, y) * stride_]; }
+  const double* at(int x, int y) const { return &sums_[index(x, y) * stride_]; }
+  // Whether the mean of pixel (x, y) and that of its class-A half are close enough.
+  bool passes_convergence_test(int x, int y, float threshold) const {
+    const double* acc = at(x, y);
+    const double* a = &half_[index(x, y) * half_stride_];
+    double difference, normalize;
+    if (splatting_) {  // weighted means of all samples and of the class-A ones
+      if (!(acc[norm_slot_] > 0.0 && a[3] > 0.0)) return false;
+      const double inv_all = 1.0 / acc[norm_slot_], inv_half = 1.0 / a[3];
+      difference = std::abs(acc[0] * inv_all - a[0] * inv_half) + std::abs(acc[1] * inv_all - a[1] * inv_half) +
+                   std::abs(acc[2] * inv_all - a[2] * inv_half);
+      normalize = std::sqrt(std::max(acc[0] + acc[1] + acc[2], 0.0) * inv_all);
+    } else {  // the sums of all samples and twice the class-A sums, per sample
+      const double inv_count = 1.0 / std::max(acc[stride_ - 1], 1.0);
+      difference = (std::abs(acc[0] - a[0]) + std::abs(acc[1] - a[1]) + std::abs(acc[2] - a[2])) * inv_count;
+      normalize = std::sqrt(std::max(acc[0] + acc[1] + acc[2], 0.0) * inv_count);
+    }
+    return difference / (1e-4 + normalize) < threshold;  // the epsilon: the floor of black pixels
   }
   static float pass_scalar(Pass, const PathRadiance& r) { return r.depth; }
   static Vec3 pass_color(Pass pass, const PathRadiance& r) {
@@ -236,8 +267,11 @@ class Film {
   int norm_slot_;  // what a pixel's sums are divided by: its weight sum, or its sample count
   int stride_;
   std::vector<double> sums_;
-  std::vector<double> half_;        // adaptive: 2 x the RGB sums of the class-A samples
-  std::vector<uint8_t> converged_;  // adaptive: 1 = not sampled until a neighbour needs it again
+  // Adaptive sampling: the class-A samples' RGB sums (2 x; splatting: weighted, and their weight
+  // sum), whether a pixel is sampled in the next step, and (splatting) whether it takes splats.
+  int half_stride_ = 3;
+  std::vector<double> half_;
+  std::vector<uint8_t> sampled_, receiving_;
 };
 
 }  // namespace torrance

@@ -54,7 +54,7 @@ void RenderSettings::validate() const {
   for (const PassInfo& p : kPasses)
     if (passes & p.pass) pass_channels += p.channels;
   // Adaptive sampling adds a second (half) RGB sum per pixel, and the result a sample count.
-  const double adaptive_bytes = adaptive_threshold > 0.0f ? 8.0 * 3 + 4.0 : 8.0;  // or splatting's weight sum
+  const double adaptive_bytes = adaptive_threshold > 0.0f ? 8.0 * 5 + 6.0 : 8.0;  // and splatting's weight sum
   // The roulette's per-pixel sums (24 bytes) and its statistics per block of 16 pixels.
   const double roulette_bytes = efficiency_roulette ? 32.0 : 0.0;
   require_memory(pixels * (8.0 * (5 + pass_channels) + 4.0 * 16 + 4.0 * 2 * pass_channels + adaptive_bytes +
@@ -239,7 +239,8 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
     const int next_check = std::max(((min_samples + 1) | (kStep - 1)) + 1, (done | (kStep - 1)) + 1);
     return std::min(n, next_check - done);
   };
-  const bool splatting = settings.filter_splatting && !adaptive && settings.filter_width >= 1.0f && filter.reach() <= 2;
+  const bool splatting =
+      settings.filter_splatting && settings.filter_width >= 1.0f && filter.reach() <= (adaptive ? 1 : 2);
   Film film(window[2] - window[0], window[3] - window[1], settings.passes, adaptive, splatting ? &filter : nullptr);
   const int margin = film.margin();
   if (settings.efficiency_roulette) {
@@ -309,7 +310,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
         r = PathRadiance{};
         r.alpha = alpha;
       }
-      if (splatting) film.splat(c.pixel.x, c.pixel.y, offsets[size_t(i)], r);
+      if (splatting) film.splat(c.pixel.x, c.pixel.y, offsets[size_t(i)], r, c.sample);
       else film.add(c.pixel.x, c.pixel.y, r, c.sample);
     }
   };

@@ -177,7 +177,7 @@ class TorranceSceneSettings(bpy.types.PropertyGroup):
                     "filter, instead of drawing it by the filter's importance for one pixel (as "
                     "Cycles): the same image, with about half the noise per pixel (grainier "
                     "clumps, correlated between neighbours). Used for filter widths of 1 to 2.5 "
-                    "pixels without adaptive sampling",
+                    "pixels (with adaptive sampling up to 1.5)",
         default=True,
     )
     viewport_samples: IntProperty(

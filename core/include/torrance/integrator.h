@@ -57,9 +57,10 @@ struct RenderSettings {
   // pixel only). Both converge to the same image; splatting uses every sample in ~2.2 pixels'
   // estimates (the Blackman-Harris 1.5's effective share), so its per-pixel noise is lower (16
   // spp, 8 seeds: suzanne relMSE x0.45, grass_stone x0.30) and correlated between neighbours.
-  // Used without adaptive sampling (whose per-pixel convergence test needs independent pixels)
-  // and for filter widths from 1 to 2.5 pixels (narrower or wider filters: importance sampling;
-  // a sample reaches only pixels within the width, so narrow filters would waste most of them).
+  // Used for filter widths from 1 to 2.5 pixels (narrower or wider filters: importance sampling;
+  // a sample reaches only pixels within the width, so narrow filters would waste most of them);
+  // with adaptive sampling up to 1.5 (a pixel then takes splats only while its whole 3 x 3
+  // neighbourhood is sampled, film.h).
   bool filter_splatting = true;
   bool transparent_background = false;
   // PAPER here, PRINCIPLED in the add-on (python_addon/torrance/properties.py), on purpose: callers of
