@@ -57,13 +57,12 @@ class Film {
       half_stride_ = splatting_ ? 4 : 3;
       half_.assign(pixels * half_stride_, 0.0);
       sampled_.assign(pixels, 1);
-      receiving_.assign(pixels, 1);
+      if (splatting_) receiving_.assign(pixels, 1);
     }
   }
 
   // Pixels beyond each side of the window whose samples reach it (0 without splatting).
   int margin() const { return margin_; }
-  bool splatting() const { return splatting_ != nullptr; }
 
   // Whether pixel (x, y) (in the window or its ring) is left out of the next samples.
   bool converged(int x, int y) const { return adaptive_ && !sampled_[index(x, y)]; }
