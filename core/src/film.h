@@ -41,6 +41,7 @@ class Film {
         adaptive_(adaptive),
         splatting_(splatting),
         margin_(splatting ? splatting->reach() : 0) {
+    if (margin_ > kMaxReach) throw std::logic_error("Film: a splat reaches 2 pixels beyond its own at most");
     if (adaptive && margin_ > 1) throw std::logic_error("Film: adaptive sampling splats 1 pixel far at most");
     stride_ = 4;
     for (const PassInfo& p : kPasses)
@@ -126,9 +127,8 @@ class Film {
   // is in the window or within margin() of it; only a film made with a splatting filter.
   void splat(int x, int y, const Vec2& offset, const PathRadiance& r, uint32_t sample) {
     const bool class_a = adaptive_ && sample_is_class_a(sample);
-    constexpr int kMaxReach = 2;
     std::array<float, 2 * kMaxReach + 1> wx{}, wy{};
-    const int m = std::min(margin_, kMaxReach);
+    const int m = margin_;
     for (int k = -m; k <= m; ++k) {
       wx[size_t(k + m)] = splatting_->weight(offset.x - float(k));
       wy[size_t(k + m)] = splatting_->weight(offset.y - float(k));
@@ -183,6 +183,7 @@ class Film {
   }
 
  private:
+  static constexpr int kMaxReach = 2;  // pixels beyond its own that a splat may reach
   static constexpr size_t kMaxValues = 64;
   using Values = std::array<float, kMaxValues>;
   // A sample's values in the film's channel order: Combined RGBA, then the requested passes.

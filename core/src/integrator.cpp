@@ -156,8 +156,7 @@ FirstBounceSplits first_bounce_pilot(const PathContext& ctx, const TraceFn& trac
     for (size_t i = r.begin(); i != r.end(); ++i) {
       const auto [x, y] = pixels[i];
       for (int s = 0; s < Pilot::kSamples; ++s) {
-        SobolSampler sampler(uint32_t(y) * uint32_t(ctx.settings.width) + uint32_t(x), uint32_t(s), seed,
-                             !ctx.settings.sobol);
+        SobolSampler sampler(sampler_pixel(ctx.settings, x, y, 0), uint32_t(s), seed, !ctx.settings.sobol);
         Vec2 offset;
         const Ray ray = camera_ray(camera, filter, false, x, y, sampler, offset);
         BranchRecord& record = records[i][size_t(s)];
@@ -260,11 +259,9 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
       const int phase = margin > 0 ? ((x - window[0]) / kTileSize % 2) + 2 * ((y - window[1]) / kTileSize % 2) : 0;
       phases[size_t(phase)].push_back(tile);
     }
-  // The ring's paths: no learning from them (the roulette's and the guide's statistics are the window's).
-  PathContext ring_ctx = ctx;
-  ring_ctx.roulette = nullptr;
-  ring_ctx.guide = nullptr;
-  ring_ctx.guide_training = false;
+  // The ring's paths: ctx without learning (the roulette's and the guide's statistics are the
+  // window's); made once ctx is final, before the first pass.
+  std::optional<PathContext> ring_ctx;
   auto in_window = [&](const PixelSample& p) {
     return p.x >= 0 && p.y >= 0 && p.x < window[2] - window[0] && p.y < window[3] - window[1];
   };
@@ -302,7 +299,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
     for (int i = 0; i < n; ++i) {
       const CameraSample& c = batch[size_t(i)];
       const bool inside = in_window(c.pixel);
-      PathRadiance r = trace(inside ? ctx : ring_ctx, rays[size_t(i)], *samplers[size_t(i)],
+      PathRadiance r = trace(inside ? ctx : *ring_ctx, rays[size_t(i)], *samplers[size_t(i)],
                              packet ? &first[size_t(i)] : nullptr, c.pixel);
       if (!is_finite(r.combined())) {  // never expected; counted so tests can prove it never happens
         ++bad;
@@ -386,7 +383,10 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
         result.first_bounce_optimum = pilot.optimum();
       }
       result.first_bounce_splits = ctx.first_bounce_splits;
-      ring_ctx.first_bounce_splits = ctx.first_bounce_splits;
+      ring_ctx.emplace(ctx);
+      ring_ctx->roulette = nullptr;
+      ring_ctx->guide = nullptr;
+      ring_ctx->guide_training = false;
       result.filter_splatting = splatting;
       while (done < settings.samples && !stop && !all_converged && !out_of_time) {
         const int target = std::min(pass_size, settings.samples - done);
