@@ -1,6 +1,7 @@
 // Image textures as Blender's Image Texture node samples them: UV (0,0) is the image's bottom-left
-// corner, REPEAT extension, Linear (bilinear) or Closest interpolation. Pixels are stored linear:
-// sRGB-encoded images are decoded once on the way in. A mip pyramid (2x2 box filter) lets lookups
+// corner, REPEAT extension, Linear (bilinear) or Closest interpolation. sRGB-encoded images are
+// interpolated as stored and decoded after (as Cycles, which keeps sRGB images compressed), so
+// an edge between two colours ramps in sRGB, not in linear. A mip pyramid (2x2 box filter) lets lookups
 // with a footprint average what a pixel covers (trilinear), so distant detail does not alias.
 #pragma once
 
@@ -36,8 +37,10 @@ class Texture {
     glm::vec4 texel(int x, int y) const;
     glm::vec4 bilinear(const Vec2& uv) const;
   };
+  static void average_decoded(const Level& fine, Level& coarse);
   int width_, height_;
   Interpolation interpolation_;
+  bool srgb_;                  // levels_[0] holds sRGB-encoded colours (the coarser levels: linear)
   std::vector<Level> levels_;  // levels_[0] = the image
 };
 
