@@ -1,4 +1,5 @@
 #include "bindings.h"
+#include "shader_arrays.h"
 
 #include <pybind11/stl.h>
 
@@ -135,7 +136,8 @@ void init_scene(py::module_& m) {
              int bump_texture, float bump_strength, float bump_distance,
              float transmission, float transmission_roughness, bool glass,
              float alpha, int alpha_texture, std::array<float, 3> transparent_color,
-             const std::string& glass_distribution, bool alpha_from_luminance, bool alpha_inverted) {
+             const std::string& glass_distribution, bool alpha_from_luminance, bool alpha_inverted, int program,
+             int base_color_register, int metallic_register, int roughness_register, int emission_register) {
             if (glass_distribution != "GGX" && glass_distribution != "BECKMANN")
               throw py::value_error("glass_distribution must be 'GGX' or 'BECKMANN', got '" + glass_distribution +
                                     "'");
@@ -169,6 +171,8 @@ void init_scene(py::module_& m) {
             tex.alpha = alpha_texture;
             tex.alpha_from_luminance = alpha_from_luminance;
             tex.alpha_inverted = alpha_inverted;
+            tex.program = program_outputs(program, base_color_register, metallic_register, roughness_register,
+                                          emission_register);
             return s.add_material(mat, tex);
           },
           py::arg("base_color") = std::array<float, 3>{0.8f, 0.8f, 0.8f}, py::arg("metallic") = 0.0f,
@@ -183,7 +187,8 @@ void init_scene(py::module_& m) {
           py::arg("transmission_roughness") = 0.0f, py::arg("glass") = false, py::arg("alpha") = 1.0f,
           py::arg("alpha_texture") = -1, py::arg("transparent_color") = std::array<float, 3>{1.0f, 1.0f, 1.0f},
           py::arg("glass_distribution") = "GGX", py::arg("alpha_from_luminance") = false,
-          py::arg("alpha_inverted") = false,
+          py::arg("alpha_inverted") = false, py::arg("program") = -1, py::arg("base_color_register") = -1,
+          py::arg("metallic_register") = -1, py::arg("roughness_register") = -1, py::arg("emission_register") = -1,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
@@ -195,7 +200,26 @@ void init_scene(py::module_& m) {
           "[0, 1] (or alpha_texture: a texture's alpha channel; its colour's luminance with alpha_from_luminance; 1 - "
           "that with alpha_inverted): rays pass straight through with "
           "probability 1 - alpha, tinted by transparent_color (Principled Alpha: white; Transparent "
-          "BSDF: alpha 0 and its Color).")
+          "BSDF: alpha 0 and its Color). program: an id from add_shader_program whose registers "
+          "*_register (-1: none) feed those inputs instead of the constant or texture (floats read x; "
+          "emission: the colour x emission_strength).")
+      .def(
+          "add_shader_program",
+          [](Scene& s, const py::object& constants, const py::object& code, int registers) {
+            return s.add_shader_program(shader_program(s, constants, code, registers));
+          },
+          py::arg("constants"), py::arg("code"), py::arg("registers"),
+          "Adds a shader program (docs/python_api.md): constants (N, 4) float32 preloaded into registers "
+          "0..N-1, code (M, 10) int32 rows [opcode, mode, flags, texture, out, in0, in1, in2, in3, in4], "
+          "registers the register count. Raises ValueError naming a bad instruction. Returns its id.")
+      .def(
+          "run_shader_program",
+          [](const Scene& s, int program, const py::object& uvs, float footprint) {
+            return run_shader_program(s, program, uvs, footprint);
+          },
+          py::arg("program"), py::arg("uvs"), py::arg("footprint") = 0.0f,
+          "Every register of shader program `program` after running it at each UV of uvs (N, 2): "
+          "a float32 array (N, registers, 4) (for tests and tools).")
       .def(
           "add_texture",
           [](Scene& s, const py::object& pixels, const std::string& colorspace, const std::string& interpolation) {
@@ -207,7 +231,7 @@ void init_scene(py::module_& m) {
           },
           py::arg("pixels"), py::arg("colorspace") = "sRGB", py::arg("interpolation") = "Linear",
           "Adds an image texture from pixels with row 0 = BOTTOM (Blender's Image.pixels order); "
-          "sRGB images are decoded to linear. Returns its id.")
+          "sRGB images are interpolated as stored and decoded after (as Cycles). Returns its id.")
       .def(
           "add_texture_file",
           [](Scene& s, const std::string& path, const std::string& colorspace, const std::string& interpolation) {

@@ -96,6 +96,13 @@ void Scene::set_world_texture(uint32_t id, float strength) {
   lights_.set_world_map(textures_[id], strength);
 }
 
+uint32_t Scene::add_shader_program(ShaderProgram program) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("add a shader program");
+  programs_.push_back(std::move(program));
+  return uint32_t(programs_.size() - 1);
+}
+
 Material Scene::textured_material(uint32_t id, const Vec2& uv, float footprint) const {
   Material m = materials_[id];
   const MaterialTextures& t = material_textures_[id];
@@ -103,7 +110,18 @@ Material Scene::textured_material(uint32_t id, const Vec2& uv, float footprint) 
   if (t.metallic >= 0) m.metallic = clamp01(blender_luminance(Vec3(textures_[t.metallic]->lookup(uv, footprint))));
   if (t.roughness >= 0) m.roughness = clamp01(blender_luminance(Vec3(textures_[t.roughness]->lookup(uv, footprint))));
   if (t.emission >= 0) m.emission = glm::max(Vec3(textures_[t.emission]->lookup(uv, footprint)), Vec3(0.0f)) * t.emission_strength;
+  if (t.program.any()) apply_program(t, uv, footprint, m);
   return m;
+}
+
+void Scene::apply_program(const MaterialTextures& t, const Vec2& uv, float footprint, Material& m) const {
+  const ShaderOutputs& o = t.program;
+  std::array<glm::vec4, ShaderProgram::kMaxRegisters> regs;
+  run_shader_program(uint32_t(o.program), ShaderGlobals{uv, footprint}, regs.data());
+  if (o.base_color >= 0) m.base_color = glm::clamp(Vec3(regs[size_t(o.base_color)]), Vec3(0.0f), Vec3(1.0f));
+  if (o.metallic >= 0) m.metallic = clamp01(regs[size_t(o.metallic)].x);
+  if (o.roughness >= 0) m.roughness = clamp01(regs[size_t(o.roughness)].x);
+  if (o.emission >= 0) m.emission = glm::max(Vec3(regs[size_t(o.emission)]), Vec3(0.0f)) * t.emission_strength;
 }
 
 Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, float footprint, float cone_width) const {
@@ -151,6 +169,7 @@ uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures
   if (!std::isfinite(textures.emission_strength) || !std::isfinite(textures.normal_strength) ||
       !std::isfinite(textures.bump_strength) || !std::isfinite(textures.bump_distance))
     throw std::invalid_argument("texture strengths must be finite");
+  check_program_outputs(textures.program);
   check_material(m);
   Material clean = m;
   clean.base_color = glm::clamp(m.base_color, Vec3(0.0f), Vec3(1.0f));
@@ -161,6 +180,22 @@ uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures
   mixture_index_.push_back(-1);
   emitters_dirty_ = true;
   return uint32_t(materials_.size() - 1);
+}
+
+void Scene::check_program_outputs(const ShaderOutputs& o) const {
+  if (o.program < 0) {
+    if (o.base_color >= 0 || o.metallic >= 0 || o.roughness >= 0 || o.emission >= 0)
+      throw std::invalid_argument("material reads shader program registers but names no program");
+    return;
+  }
+  if (size_t(o.program) >= programs_.size())
+    throw std::invalid_argument("material uses shader program " + std::to_string(o.program) + " but the scene has " +
+                                std::to_string(programs_.size()) + " programs");
+  const ShaderProgram& program = programs_[size_t(o.program)];
+  for (int r : {o.base_color, o.metallic, o.roughness, o.emission})
+    if (r != -1 && !program.written(r))
+      throw std::invalid_argument("material reads register " + std::to_string(r) + " of a shader program with " +
+                                  std::to_string(program.registers()) + " registers, which the program does not write");
 }
 
 namespace {

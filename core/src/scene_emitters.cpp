@@ -19,7 +19,7 @@ void Scene::build_mesh_light() {
   bool any_emissive = false;
   for (size_t m = 0; m < materials_.size(); ++m) {
     const MaterialTextures& tex = material_textures_[m];
-    material_radiance[m] = tex.emission >= 0 ? tex.emission_strength : luminance(materials_[m].emission);
+    material_radiance[m] = tex.textured_emission() ? tex.emission_strength : luminance(materials_[m].emission);
     any_emissive |= material_radiance[m] > 0.0f;
   }
   auto radiance_of = [&material_radiance](uint32_t m) { return material_radiance[m]; };

@@ -32,7 +32,7 @@ uint32_t Scene::add_mixture(const Mixture& mixture, const MaterialTextures& norm
   summary.emission = Vec3(0.0f);
   for (const MixtureComponent& c : mixture.components) {
     const MaterialTextures& t = material_textures_[c.material];
-    summary.emission += t.emission >= 0 ? Vec3(std::max(t.emission_strength, 0.0f)) : materials_[c.material].emission;
+    summary.emission += t.textured_emission() ? Vec3(std::max(t.emission_strength, 0.0f)) : materials_[c.material].emission;
     summary.base_color = glm::max(summary.base_color, materials_[c.material].base_color);
   }
   MaterialTextures textures;
@@ -67,7 +67,7 @@ MixtureWeights Scene::mixture_weights(uint32_t i, const Vec2& uv, float footprin
 
 Vec3 Scene::emission_at(uint32_t i, const Vec2& uv) const {
   const Mixture* m = mixture(i);
-  if (!m) return material_textures_[i].emission >= 0 ? textured_material(i, uv).emission : materials_[i].emission;
+  if (!m) return material_textures_[i].textured_emission() ? textured_material(i, uv).emission : materials_[i].emission;
   const MixtureWeights w = torrance::mixture_weights(*m, textures_, uv, 0.0f);
   Vec3 e(0.0f);
   for (int k = 0; k < w.count; ++k)

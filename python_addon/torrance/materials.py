@@ -37,6 +37,9 @@ neutral default material and is reported.
 import numpy as np
 
 from .nodes import finite_or, node_label, source_socket
+from .shader_graph.graph import KIND_OF_SOCKET, GraphCompiler, Unsupported
+from .shader_graph.program import ProgramBuilder
+from .shader_graph.registry import READERS
 from .mixtures import MIXTURE_SURFACES, read_mixture
 from .normal_inputs import read_normal_input
 from .transparent_mix import read_transparent_mix
@@ -147,19 +150,24 @@ class MaterialReader:
     def __init__(self, reporter, textures):
         self.reporter = reporter
         self.textures = textures         # TextureTable (the ui panels: a dry-run stand-in)
+        self._begin_program()
 
     def _socket_value(self, mat, node, name, fallback):
         """The value of input `name` of `node`: its default, or a constant node it is linked to."""
         value, _texture = self._socket_input(mat, node, name, fallback, textures=False)
         return value
 
-    def _socket_input(self, mat, node, name, fallback, textures=True, image_output="Color"):
+    def _socket_input(self, mat, node, name, fallback, textures=True, image_output="Color",
+                      program_input=None):
         """(value, texture id or -1) of input `name` of `node`.
 
-        The value is the socket's default or a constant node's; the texture, when `textures`,
-        comes from an Image Texture node linked to the socket by its `image_output` (Color, or
-        Alpha for Alpha sockets; the value then stays the socket's default, used when the image
-        can not be loaded).
+        The value is the socket's default, or what the node graph feeding it gives when that is a
+        constant (graphs of constants are folded); the texture, when `textures`, comes from an
+        Image Texture node linked to the socket by its `image_output` (Color, or Alpha for Alpha
+        sockets; the value then stays the socket's default, used when the image can not be
+        loaded). Any other graph is compiled into the closure's shader program when
+        `program_input` names the add_material() input it feeds ('base_color', 'metallic',
+        'roughness', 'emission'; read by _with_program); elsewhere it is reported.
         """
         socket = node.inputs.get(name)
         if socket is None:
@@ -168,22 +176,52 @@ class MaterialReader:
         if source is None:
             return socket.default_value, -1
         src_node = source.node
-        if src_node.mute:
-            self.reporter.warning(
-                f"Material '{mat.name}': input '{name}' of {node_label(node)} is linked to the "
-                f"muted node {node_label(src_node)}; using the socket's own value")
-            return socket.default_value, -1
-        if src_node.type in _CONSTANT_NODES:
+        if src_node.type in _CONSTANT_NODES and not src_node.mute:
             return source.default_value, -1
-        if textures and src_node.bl_idname == 'ShaderNodeTexImage':
+        if (textures and src_node.bl_idname == 'ShaderNodeTexImage' and not src_node.mute
+                and _plain_image(src_node)):
             tid = self._image_node(mat, src_node, source, f"input '{name}' of {node_label(node)}",
                                    image_output)
             return socket.default_value, (-1 if tid is None else tid)
-        self.reporter.warning(
-            f"Material '{mat.name}': input '{name}' of {node_label(node)} is linked to "
-            f"{node_label(src_node)}, which Torrance does not support; using the "
-            f"socket's own value")
-        return socket.default_value, -1
+        return self._graph_input(mat, node, socket, textures and program_input), -1
+
+    def _graph_input(self, mat, node, socket, program_input):
+        """The value of a linked input from its node graph: a constant when the graph folds to
+        one; else, with program_input, the socket's default (the program computes it)."""
+        where = f"Material '{mat.name}': input '{socket.name}' of {node_label(node)}"
+        kind = KIND_OF_SOCKET.get(socket.type, 'float')
+        builder = self._program
+        mark = builder.mark()
+        try:
+            value = GraphCompiler(builder, self.textures, READERS).input(socket, kind)
+        except Unsupported as exc:
+            builder.rollback(mark)
+            self.reporter.warning(f"{where}: {exc}; using the socket's own value")
+            return socket.default_value
+        if value.constant:
+            return value.value[0] if kind == 'float' else value.value[:len(socket.default_value)]
+        if program_input:
+            self._program_inputs[program_input] = value
+            return socket.default_value
+        builder.rollback(mark)
+        self.reporter.warning(f"{where} varies over the surface (its node graph reads textures or "
+                              f"UVs), which Torrance does not support for this input; using the "
+                              f"socket's own value")
+        return socket.default_value
+
+    def _begin_program(self):
+        """A new shader program for the closure about to be read."""
+        self._program = ProgramBuilder()
+        self._program_inputs = {}
+
+    def _with_program(self, out):
+        """add_material() arguments with the closure's shader program (if it has one)."""
+        if self._program_inputs:
+            out['shader_program'] = self._program.build()
+            for key, value in self._program_inputs.items():
+                out[f'{key}_register'] = self._program.register_of(value)
+                out.pop(f'{key}_texture', None)
+        return out
 
     def _image_node(self, mat, node, output, where, expected="Color"):
         """The texture id of an Image Texture node feeding `where` by its `expected` output
@@ -286,10 +324,13 @@ class MaterialReader:
         t = self._socket_input
         version = principled_version(node)
         names = _PRINCIPLED_SOCKETS[version]
-        base, base_tex = t(mat, node, "Base Color", d['base_color'])
-        metallic, metallic_tex = t(mat, node, "Metallic", d['metallic'])
-        roughness, roughness_tex = t(mat, node, "Roughness", d['roughness'])
-        emission, emission_tex = t(mat, node, names['emission'], d['emission'])
+        self._begin_program()
+        base, base_tex = t(mat, node, "Base Color", d['base_color'], program_input='base_color')
+        metallic, metallic_tex = t(mat, node, "Metallic", d['metallic'], program_input='metallic')
+        roughness, roughness_tex = t(mat, node, "Roughness", d['roughness'],
+                                     program_input='roughness')
+        emission, emission_tex = t(mat, node, names['emission'], d['emission'],
+                                   program_input='emission')
         alpha, alpha_tex = t(mat, node, "Alpha", 1.0, image_output="Alpha")
         specular = finite_or(v(mat, node, names['specular'], d['specular']), d['specular'])
         v2_inputs = {}
@@ -334,16 +375,18 @@ class MaterialReader:
                 f"Material '{mat.name}': Torrance ignores the Principled BSDF input(s) "
                 f"{', '.join(ignored)}")
         out.update(read_normal_input(self, mat, node))
-        return _sanitize(out)
+        return _sanitize(self._with_program(out))
 
     def _diffuse(self, mat, node):
         d = DEFAULT_MATERIAL
-        color, tex = self._socket_input(mat, node, "Color", d['base_color'])
+        self._begin_program()
+        color, tex = self._socket_input(mat, node, "Color", d['base_color'],
+                                        program_input='base_color')
         color = _color3(color, d['base_color'])
         out = dict(d, base_color=color, metallic=0.0, specular=0.0, roughness=1.0,
                    base_color_texture=tex)
         out.update(read_normal_input(self, mat, node))
-        return _sanitize(out)
+        return _sanitize(self._with_program(out))
 
     def _principled_glass(self, mat, node):
         """add_material() glass arguments of a v1 Principled BSDF ({} without transmission)."""
@@ -396,12 +439,24 @@ class MaterialReader:
 
     def _emission(self, mat, node):
         d = DEFAULT_MATERIAL
-        color, tex = self._socket_input(mat, node, "Color", (1.0, 1.0, 1.0))
+        self._begin_program()
+        color, tex = self._socket_input(mat, node, "Color", (1.0, 1.0, 1.0),
+                                        program_input='emission')
         color = _color3(color, (1.0, 1.0, 1.0))
         strength = finite_or(self._socket_value(mat, node, "Strength", 1.0), 1.0)
-        return _sanitize(dict(d, base_color=(0.0, 0.0, 0.0), metallic=0.0, specular=0.0,
-                              emission=color, emission_strength=strength,
-                              emission_texture=tex))
+        return _sanitize(self._with_program(dict(
+            d, base_color=(0.0, 0.0, 0.0), metallic=0.0, specular=0.0, emission=color,
+            emission_strength=strength, emission_texture=tex)))
+
+
+def _plain_image(node):
+    """Whether an Image Texture node is read by the texture path (flat projection, Repeat, its
+    Vector unlinked or the default UVs); otherwise the shader graph reads it."""
+    if node.projection != 'FLAT' or node.extension != 'REPEAT':
+        return True            # the texture path reports what it does not render
+    vector = node.inputs.get("Vector")
+    src = source_socket(vector) if vector is not None else None
+    return src is None or _is_default_uv(src)
 
 
 def _is_default_uv(output):
@@ -422,10 +477,12 @@ def _sanitize(m):
     m['base_color'] = tuple(_clamp(c, 0.0, 1.0) for c in m['base_color'])
     m['emission'] = tuple(max(0.0, c) for c in m['emission'])
     m['emission_strength'] = max(0.0, m['emission_strength'])
-    if m.get('emission_texture', -1) >= 0:
-        # The texture replaces the Emission colour; the core multiplies it by the strength.
+    if m.get('emission_texture', -1) >= 0 or m.get('emission_register', -1) >= 0:
+        # The texture (or program) replaces the Emission colour; the core multiplies it by the
+        # strength.
         if m['emission_strength'] == 0.0:
             m['emission_texture'] = -1
+            m['emission_register'] = -1
             m['emission'] = (0.0, 0.0, 0.0)
     elif m['emission_strength'] == 0.0 or max(m['emission']) == 0.0:
         m['emission'] = (0.0, 0.0, 0.0)
@@ -445,7 +502,7 @@ def uses_textures(m):
         return (any(uses_textures(args) for _kind, args, _terms in mix['closures'])
                 or any(f['kind'] != "constant" for f in mix['factors'])
                 or uses_textures(mix['normal']) or uses_textures(mix.get('alpha', {})))
-    return any(m.get(k, -1) >= 0 for k in _TEXTURE_KEYS)
+    return 'shader_program' in m or any(m.get(k, -1) >= 0 for k in _TEXTURE_KEYS)
 
 
 def emits(m):
@@ -454,7 +511,8 @@ def emits(m):
         return any(emits(args) for _kind, args, _terms in m['mixture']['closures'])
     strength = m.get("emission_strength", 0.0)
     color = m.get("emission", (0.0, 0.0, 0.0))
-    return strength > 0.0 and (max(color) > 0.0 or m.get("emission_texture", -1) >= 0)
+    return strength > 0.0 and (max(color) > 0.0 or m.get("emission_texture", -1) >= 0
+                                or m.get("emission_register", -1) >= 0)
 
 
 class MaterialTable:
@@ -494,12 +552,19 @@ class MaterialTable:
     def _add(self, args):
         """Adds add_material() arguments, or a mixture's closures and then the mixture."""
         if 'mixture' not in args:
-            return self.scene.add_material(**args)
+            return self._add_material(args)
         mix = args['mixture']
-        closures = [(kind, self.scene.add_material(**a), terms)
-                    for kind, a, terms in mix['closures']]
+        closures = [(kind, self._add_material(a), terms) for kind, a, terms in mix['closures']]
         return self.scene.add_mixture(closures, mix['factors'], **mix['normal'],
                                       **mix.get('alpha', {}))
+
+    def _add_material(self, args):
+        """add_material() of one closure's arguments, its shader program added first."""
+        args = dict(args)
+        program = args.pop('shader_program', None)
+        if program is not None:
+            args['program'] = self.scene.add_shader_program(*program)
+        return self.scene.add_material(**args)
 
     def slot_indices(self, slots):
         """int32 material index per slot (materials or None); one default entry without slots."""

@@ -9,6 +9,7 @@
 #include "torrance/camera.h"
 #include "torrance/lights.h"
 #include "torrance/mixture.h"
+#include "torrance/shader_program.h"
 #include "torrance/texture.h"
 
 #include <atomic>
@@ -38,9 +39,14 @@ struct MaterialTextures {
   // A height map (Bump node fed by an image texture's luminance) when there is no normal map.
   int bump = -1;
   float bump_strength = 1.0f, bump_distance = 1.0f;
+  // Inputs computed by a shader program (node graphs the fields above do not express); an input
+  // the program feeds replaces both the constant and the texture (emission: x emission_strength).
+  ShaderOutputs program;
   bool any() const {
-    return base_color >= 0 || metallic >= 0 || roughness >= 0 || emission >= 0 || normal >= 0 || bump >= 0;
+    return base_color >= 0 || metallic >= 0 || roughness >= 0 || emission >= 0 || normal >= 0 || bump >= 0 ||
+           program.any();
   }
+  bool textured_emission() const { return emission >= 0 || program.emission >= 0; }
 };
 
 struct SurfaceHit {
@@ -69,6 +75,15 @@ class Scene {
 
   uint32_t add_material(const Material& material, const MaterialTextures& textures = {});
   uint32_t add_texture(Texture texture);
+  // Adds a shader program (its textures must already be added); returns its index for
+  // MaterialTextures::program.
+  uint32_t add_shader_program(ShaderProgram program);
+  size_t num_shader_programs() const { return programs_.size(); }
+  const ShaderProgram& shader_program(uint32_t i) const { return programs_[i]; }
+  // Runs program i at a point; regs must hold its registers() entries.
+  void run_shader_program(uint32_t i, const ShaderGlobals& g, glm::vec4* regs) const {
+    programs_[i].run(g, textures_, regs);
+  }
   size_t num_textures() const { return textures_.size(); }
   const MaterialTextures& material_textures(uint32_t i) const { return material_textures_[i]; }
   // The material at a hit with its textures applied (base colour, metallic, roughness, emission),
@@ -226,6 +241,9 @@ class Scene {
   void check_transform(const float* m, uint32_t prototype, const std::string& which) const;
   void check_idle(const char* change) const;  // with mutex_ held
   Vec3 bump_mapped(const MaterialTextures& t, const SurfaceHit& hit, const Vec3& ns, float cone_width) const;
+  // Runs the material's shader program at uv and writes the inputs it feeds into m.
+  void apply_program(const MaterialTextures& t, const Vec2& uv, float footprint, Material& m) const;
+  void check_program_outputs(const ShaderOutputs& outputs) const;  // throws std::invalid_argument
 
   mutable std::mutex mutex_;  // changes vs. begin_render, and the camera
   std::atomic<int> renders_{0};
@@ -235,6 +253,7 @@ class Scene {
   std::vector<int32_t> mixture_index_;  // per material: index in mixtures_, or -1
   std::vector<Mixture> mixtures_;
   std::vector<std::shared_ptr<const Texture>> textures_;
+  std::vector<ShaderProgram> programs_;
   std::vector<std::unique_ptr<Mesh>> meshes_;  // world-space meshes, in the order added
   std::vector<std::unique_ptr<Prototype>> prototypes_;
   std::vector<Binding> bindings_;  // distinct (prototype, material table) pairs

@@ -1,0 +1,89 @@
+// A shader program: the part of a Blender node graph that computes the values feeding a
+// closure's sockets (textures, colour and converter nodes, maths), compiled by the add-on
+// (python_addon/torrance/shader_graph/) into straight-line code over registers of four floats
+// and run by the core at each hit whose material needs it.
+//
+// Registers 0 .. constants-1 hold the graph's folded constants; every instruction reads up to five
+// registers written before it and writes one. A float lives in a register's x, a colour in xyz (w
+// is an image's alpha), a vector in xyz. The ops are Cycles' (shader_math.h, shader_color.h); the
+// add-on inserts Blender's implicit conversions (colour -> float: luminance, vector -> float:
+// average) as instructions, so every op reads exactly the kind it expects.
+#pragma once
+
+#include "torrance/math.h"
+#include "torrance/texture.h"
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace torrance {
+
+enum class ShaderOpcode : uint8_t {
+  TexCoordUV,      // out = (u, v, 0, 0): the mesh's UVs (Texture Coordinate > UV, UV Map, unlinked Vector)
+  Image,           // out = texture(in0.xy) RGBA; texture = its id; mode: 0 = Repeat
+  Channel,         // out = (in0[mode], 0, 0, 0): Separate RGB/XYZ/Color (RGB), an image's Alpha
+  Combine,         // out = (in0.x, in1.x, in2.x, 1): Combine RGB/XYZ/Color (RGB)
+  Math,            // out.x = math(mode, in0.x, in1.x, in2.x); flags & 1: clamp to [0, 1]
+  VectorMath,      // vector_math(mode, in0, in1, in2, in3.x): flags & 1 ? (value, 0, 0, 0) : vector
+  MixColor,        // mix_color(mode, factor(in0.x, flags & 2), in1, in2, flags & 1)
+  MixFloat,        // out.x = mix_float(factor(in0.x, flags & 2), in1.x, in2.x)
+  MixVector,       // mix_vector(flags & 4 ? in0 : in0.x, in1, in2); flags & 2: clamp the factor
+  ColorModel,      // mode 0: RGB -> HSV, 1: HSV -> RGB, 2: RGB -> HSL, 3: HSL -> RGB (of in0.xyz)
+  Invert,          // invert(in0.x, in1)
+  Gamma,           // gamma(in0, in1.x)
+  BrightContrast,  // bright_contrast(in0, in1.x, in2.x)
+  HueSaturation,   // hue_saturation_value(in0.x, in1.x, in2.x, in3.x, in4)
+  Luminance,       // out.x = rgb_to_bw(in0): colour -> float
+  Average,         // out.x = (in0.x + in0.y + in0.z) / 3: vector -> float
+  Count
+};
+
+struct ShaderInstruction {
+  ShaderOpcode op = ShaderOpcode::TexCoordUV;
+  uint8_t mode = 0, flags = 0;
+  int32_t texture = -1;
+  int16_t out = 0;
+  std::array<int16_t, 5> in{{-1, -1, -1, -1, -1}};
+};
+
+// What a program may read at a hit.
+struct ShaderGlobals {
+  Vec2 uv{0.0f};
+  float footprint = 0.0f;  // the texture lookups' footprint, in UV units
+};
+
+class ShaderProgram {
+ public:
+  static constexpr int kMaxRegisters = 128;
+
+  // Throws std::invalid_argument naming the problem unless every instruction's opcode, mode,
+  // registers (inputs written before they are read, outputs past the constants) and texture
+  // (below num_textures) are valid and the constants are finite.
+  ShaderProgram(std::vector<glm::vec4> constants, std::vector<ShaderInstruction> code, int registers,
+                size_t num_textures);
+
+  int registers() const { return registers_; }
+  // Whether register r holds a value after run() (a constant or an instruction's output).
+  bool written(int r) const { return r >= 0 && r < registers_ && written_[size_t(r)]; }
+  // Runs the program; regs must hold registers() entries. Every value written is finite.
+  void run(const ShaderGlobals& g, const std::vector<std::shared_ptr<const Texture>>& textures,
+           glm::vec4* regs) const;
+
+ private:
+  std::vector<glm::vec4> constants_;
+  std::vector<ShaderInstruction> code_;
+  int registers_;
+  std::vector<bool> written_;
+};
+
+// Which registers of a material's program feed its inputs (-1: the material's own value). A
+// float input reads the register's x.
+struct ShaderOutputs {
+  int program = -1;  // index from Scene::add_shader_program
+  int16_t base_color = -1, metallic = -1, roughness = -1, emission = -1;
+  bool any() const { return program >= 0; }
+};
+
+}  // namespace torrance

@@ -1,0 +1,83 @@
+// The shader-program arguments of Scene.add_shader_program and Scene.add_material, from numpy
+// arrays to the core's ShaderProgram and ShaderOutputs (the core validates the program itself).
+#pragma once
+
+#include "bindings.h"
+
+#include "torrance/scene.h"
+#include "torrance/shader_program.h"
+
+#include <limits>
+#include <vector>
+
+namespace torrance::python {
+
+inline ShaderProgram shader_program(const Scene& scene, const py::object& constants, const py::object& code,
+                                    int registers) {
+  const auto c = shaped_array<float>(constants, "constants", {-1, 4});
+  const auto k = shaped_array<int32_t>(code, "code", {-1, 10});
+  std::vector<glm::vec4> values(size_t(c.size() / 4));
+  for (size_t i = 0; i < values.size(); ++i)
+    values[i] = glm::vec4(c.data()[4 * i], c.data()[4 * i + 1], c.data()[4 * i + 2], c.data()[4 * i + 3]);
+  std::vector<ShaderInstruction> instructions(size_t(k.size() / 10));
+  constexpr int32_t kShort = std::numeric_limits<int16_t>::max();
+  for (size_t i = 0; i < instructions.size(); ++i) {
+    const int32_t* row = k.data() + 10 * i;
+    for (int j = 0; j < 10; ++j)
+      if ((j != 3 && (row[j] < -1 || row[j] > kShort)) || (j < 3 && row[j] < 0) || (j < 3 && row[j] > 255))
+        throw py::value_error("code row " + std::to_string(i) + ": column " + std::to_string(j) + " holds " +
+                              std::to_string(row[j]) + ", out of range");
+    ShaderInstruction& ins = instructions[i];
+    ins.op = ShaderOpcode(row[0]);
+    ins.mode = uint8_t(row[1]);
+    ins.flags = uint8_t(row[2]);
+    ins.texture = row[3];
+    ins.out = int16_t(row[4]);
+    for (int j = 0; j < 5; ++j) ins.in[size_t(j)] = int16_t(row[5 + j]);
+  }
+  try {
+    return ShaderProgram(std::move(values), std::move(instructions), registers, scene.num_textures());
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(e.what());
+  }
+}
+
+inline ShaderOutputs program_outputs(int program, int base_color, int metallic, int roughness, int emission) {
+  for (int r : {base_color, metallic, roughness, emission})
+    if (r < -1 || r >= ShaderProgram::kMaxRegisters)
+      throw py::value_error("a material's program register must lie in [-1, " +
+                            std::to_string(ShaderProgram::kMaxRegisters) + "), got " + std::to_string(r));
+  ShaderOutputs o;
+  o.program = program;
+  o.base_color = int16_t(base_color);
+  o.metallic = int16_t(metallic);
+  o.roughness = int16_t(roughness);
+  o.emission = int16_t(emission);
+  return o;
+}
+
+inline py::array_t<float> run_shader_program(const Scene& scene, int program, const py::object& uvs,
+                                             float footprint) {
+  if (program < 0 || size_t(program) >= scene.num_shader_programs())
+    throw py::value_error("shader program " + std::to_string(program) + " but the scene has " +
+                          std::to_string(scene.num_shader_programs()) + " programs");
+  const auto a = shaped_array<float>(uvs, "uvs", {-1, 2});
+  const py::ssize_t n = a.size() / 2;
+  const int registers = scene.shader_program(uint32_t(program)).registers();
+  py::array_t<float> out({n, py::ssize_t(registers), py::ssize_t(4)});
+  float* dst = out.mutable_data();
+  const float* src = a.data();
+  {
+    py::gil_scoped_release release;
+    std::vector<glm::vec4> regs(static_cast<size_t>(registers), glm::vec4(0.0f));
+    for (py::ssize_t i = 0; i < n; ++i) {
+      scene.run_shader_program(uint32_t(program), ShaderGlobals{Vec2(src[2 * i], src[2 * i + 1]), footprint},
+                               regs.data());
+      for (int r = 0; r < registers; ++r)
+        for (int c = 0; c < 4; ++c) dst[(size_t(i) * registers + r) * 4 + c] = regs[size_t(r)][c];
+    }
+  }
+  return out;
+}
+
+}  // namespace torrance::python

@@ -1,0 +1,1 @@
+"""Blender shader node graphs compiled into programs the core evaluates per hit."""

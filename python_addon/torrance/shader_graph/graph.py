@@ -1,0 +1,138 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Compiles the node graph feeding a socket into a shader program (program.ProgramBuilder).
+
+One registry (READERS, registry.py) maps a node's bl_idname to the function that turns one of its
+outputs into a Value; this module walks links (through reroutes, muted nodes as Blender passes
+them through, and node groups, nested) and applies Blender's implicit conversions between
+floats, colours and vectors. A node no reader knows raises Unsupported, naming it, and the
+caller keeps the socket's own value.
+"""
+
+from ..nodes import node_label
+from .program import Value, constant
+
+KIND_OF_SOCKET = {'VALUE': 'float', 'INT': 'float', 'BOOLEAN': 'float', 'RGBA': 'color',
+                  'VECTOR': 'vector'}
+
+
+class Unsupported(Exception):
+    """A node or setting the shader graph can not compile (the message names it)."""
+
+
+class GraphCompiler:
+    """Compiles sockets of one material's node tree into one ProgramBuilder."""
+
+    def __init__(self, builder, textures, readers):
+        self.builder = builder
+        self.textures = textures          # texture_table.TextureTable
+        self.readers = readers
+        self._cache = {}
+        self._groups = []                 # the group nodes we are inside, outermost first
+
+    # -- sockets ---------------------------------------------------------------------------------
+    def input(self, socket, kind):
+        """The Value of an input socket, converted to `kind`."""
+        link = _active_link(socket)
+        if link is None:
+            return convert(self.builder, _default(socket), kind)
+        return convert(self.builder, self.output(link.from_socket), kind)
+
+    def output(self, socket):
+        """The Value of an output socket (of its own kind)."""
+        node = socket.node
+        key = (tuple(g.as_pointer() for g in self._groups), node.as_pointer(), socket.identifier)
+        if key not in self._cache:
+            self._cache[key] = self._output(node, socket)
+        return self._cache[key]
+
+    def _output(self, node, socket):
+        kind = KIND_OF_SOCKET.get(socket.type)
+        if kind is None:
+            raise Unsupported(f"{node_label(node)}'s output '{socket.name}' is a "
+                              f"{socket.type.lower()}, not a value")
+        if node.bl_idname == 'NodeReroute':
+            return self.input(node.inputs[0], kind)
+        if node.mute:
+            for link in node.internal_links:
+                if link.to_socket.identifier == socket.identifier:
+                    return self.input(link.from_socket, kind)
+            return convert(self.builder, _default(socket), kind)
+        if node.bl_idname == 'ShaderNodeGroup':
+            return self._group_output(node, socket, kind)
+        if node.bl_idname == 'NodeGroupInput':
+            return self._group_input(socket, kind)
+        reader = self.readers.get(node.bl_idname)
+        if reader is None:
+            raise Unsupported(f"{node_label(node)} is not supported")
+        return convert(self.builder, reader(self, node, socket), kind)
+
+    def _group_output(self, group, socket, kind):
+        tree = group.node_tree
+        if tree is None:
+            raise Unsupported(f"the group node {node_label(group)} has no node group")
+        if len(self._groups) > 64:
+            raise Unsupported(f"node groups nested more than 64 deep at {node_label(group)}")
+        outputs = [n for n in tree.nodes if n.bl_idname == 'NodeGroupOutput']
+        out = next((n for n in outputs if n.is_active_output), outputs[0] if outputs else None)
+        target = by_identifier(out.inputs, socket.identifier) if out is not None else None
+        if target is None:
+            return convert(self.builder, _default(socket), kind)
+        self._groups.append(group)
+        try:
+            return self.input(target, kind)
+        finally:
+            self._groups.pop()
+
+    def _group_input(self, socket, kind):
+        if not self._groups:
+            raise Unsupported("a Group Input node outside a group")
+        group = self._groups.pop()
+        try:
+            outer = by_identifier(group.inputs, socket.identifier)
+            return (self.input(outer, kind) if outer is not None
+                    else convert(self.builder, _default(socket), kind))
+        finally:
+            self._groups.append(group)
+
+
+def by_identifier(sockets, identifier):
+    """The socket of an identifier, or None (`sockets.get` looks up names, which a group's or
+    the Mix node's sockets may share)."""
+    for s in sockets:
+        if s.identifier == identifier:
+            return s
+    return None
+
+
+def _active_link(socket):
+    if not socket.is_linked:
+        return None
+    for link in socket.links:
+        if link.is_valid and not link.is_muted:
+            return link
+    return None
+
+
+def _default(socket):
+    kind = KIND_OF_SOCKET.get(socket.type)
+    if kind is None or not hasattr(socket, "default_value"):
+        return constant('float', 0.0)
+    v = socket.default_value
+    if kind == 'float':
+        return constant('float', float(v))
+    return constant(kind, tuple(v))
+
+
+def convert(builder, v, kind):
+    """Blender's implicit conversion of a Value to `kind`: colour -> float is the luminance,
+    vector -> float the average, float -> colour/vector the value in every component."""
+    if v.kind == kind:
+        return v
+    if kind == 'float':
+        return builder.emit("Luminance" if v.kind == 'color' else "Average", 'float', [v])
+    if v.kind == 'float':
+        return builder.emit("Combine", kind, [v, v, v]) if not v.constant else \
+            constant(kind, (v.value[0],) * 3)
+    if v.constant:                   # colour <-> vector: the same xyz
+        return constant(kind, v.value[:3])
+    return Value(kind, register=v.register)

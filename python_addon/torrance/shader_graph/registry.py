@@ -1,0 +1,179 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The shader graph's registry: Blender node bl_idname -> the reader that compiles one of its
+outputs (graph.GraphCompiler calls it with the node and the output socket; it returns a Value).
+
+Each reader says what Cycles computes with the core's ops (program.OPCODES); a setting it can not
+render raises graph.Unsupported naming it.
+"""
+
+from ..nodes import node_label
+from . import color_ops, math_ops
+from .graph import Unsupported, by_identifier
+from .program import constant
+
+_CHANNELS = {"R": 0, "G": 1, "B": 2, "X": 0, "Y": 1, "Z": 2, "H": 0, "S": 1, "V": 2, "L": 2,
+             "Red": 0, "Green": 1, "Blue": 2}
+_TO_MODEL = {'RGB': None, 'HSV': 0, 'HSL': 2}       # ColorModel mode from RGB
+_FROM_MODEL = {'RGB': None, 'HSV': 1, 'HSL': 3}     # ColorModel mode to RGB
+
+
+def _value_node(g, node, socket):
+    return constant('float', float(socket.default_value))
+
+
+def _rgb_node(g, node, socket):
+    return constant('color', tuple(socket.default_value))
+
+
+def _uv(g, node, socket):
+    if node.bl_idname == 'ShaderNodeTexCoord' and (socket.identifier != "UV" or node.object):
+        raise Unsupported(f"{node_label(node)}'s output '{socket.name}' is not supported (UV is)")
+    if node.bl_idname == 'ShaderNodeUVMap' and node.from_instancer:
+        raise Unsupported(f"{node_label(node)}: UVs from the instancer are not supported")
+    return g.builder.emit("TexCoordUV", 'vector')
+
+
+def _image(g, node, socket):
+    if node.image is None:
+        raise Unsupported(f"{node_label(node)} has no image")
+    if node.projection != 'FLAT':
+        raise Unsupported(f"{node_label(node)}: {node.projection.lower()} projection")
+    if node.extension != 'REPEAT':
+        raise Unsupported(f"{node_label(node)}: extension '{node.extension.title()}'")
+    interpolation = node.interpolation if node.interpolation in ("Linear", "Closest") else "Linear"
+    tid = g.textures.texture(node.image, interpolation)
+    if tid is None:
+        raise Unsupported(f"{node_label(node)}: its image could not be loaded")
+    vector = node.inputs.get("Vector")
+    uv = (g.input(vector, 'vector') if vector is not None and vector.is_linked
+          else g.builder.emit("TexCoordUV", 'vector'))
+    rgba = g.builder.emit("Image", 'color', [uv], texture=tid)
+    if socket.identifier == "Alpha":
+        if node.image.alpha_mode == 'NONE':
+            return constant('float', 1.0)
+        return g.builder.emit("Channel", 'float', [rgba], mode=3)
+    return rgba
+
+
+def _separate(model_of):
+    def read(g, node, socket):
+        kind = 'vector' if node.bl_idname == 'ShaderNodeSeparateXYZ' else 'color'
+        v = g.input(node.inputs[0], kind)
+        mode = _TO_MODEL[model_of(node)]
+        if mode is not None:
+            v = g.builder.emit("ColorModel", 'color', [v], mode=mode)
+        return g.builder.emit("Channel", 'float', [v], mode=_CHANNELS[socket.identifier])
+    return read
+
+
+def _combine(model_of):
+    def read(g, node, socket):
+        kind = 'vector' if node.bl_idname == 'ShaderNodeCombineXYZ' else 'color'
+        parts = [g.input(s, 'float') for s in node.inputs[:3]]
+        v = g.builder.emit("Combine", kind, parts)
+        mode = _FROM_MODEL[model_of(node)]
+        return v if mode is None else g.builder.emit("ColorModel", 'color', [v], mode=mode)
+    return read
+
+
+def _math(g, node, socket):
+    if node.operation not in math_ops.MATH_OPS:
+        raise Unsupported(f"{node_label(node)}: operation {node.operation}")
+    args = [g.input(s, 'float') for s in node.inputs[:3]]
+    return g.builder.emit("Math", 'float', args, mode=math_ops.MATH_OPS.index(node.operation),
+                          flags=1 if node.use_clamp else 0)
+
+
+def _vector_math(g, node, socket):
+    if node.operation not in math_ops.VECTOR_MATH_OPS:
+        raise Unsupported(f"{node_label(node)}: operation {node.operation}")
+    vectors = [g.input(s, 'vector') for s in node.inputs[:3]]
+    scale = g.input(node.inputs[3], 'float')
+    value = socket.identifier == "Value"
+    return g.builder.emit("VectorMath", 'float' if value else 'vector', [*vectors, scale],
+                          mode=math_ops.VECTOR_MATH_OPS.index(node.operation),
+                          flags=1 if value else 0)
+
+
+def _blend(node):
+    if node.blend_type not in color_ops.MIX_BLENDS:
+        raise Unsupported(f"{node_label(node)}: blend mode {node.blend_type}")
+    return color_ops.MIX_BLENDS.index(node.blend_type)
+
+
+def _mix_rgb(g, node, socket):
+    fac, a, b = (g.input(node.inputs[0], 'float'), g.input(node.inputs[1], 'color'),
+                 g.input(node.inputs[2], 'color'))
+    flags = (1 if node.use_clamp else 0) | 2      # MixRGB always clamps its Fac (Cycles 3.4)
+    return g.builder.emit("MixColor", 'color', [fac, a, b], mode=_blend(node), flags=flags)
+
+
+def _socket(sockets, identifier):
+    found = by_identifier(sockets, identifier)
+    if found is None:
+        raise Unsupported(f"no socket '{identifier}'")
+    return found
+
+
+def _mix(g, node, socket):
+    """The Mix node (3.4+): its data type picks the sockets (by identifier)."""
+    data = node.data_type
+    inputs = {i: _socket(node.inputs, i) for i in (
+        "Factor_Float", "Factor_Vector", "A_Float", "B_Float", "A_Vector", "B_Vector",
+        "A_Color", "B_Color")}
+    clamp_factor = 2 if node.clamp_factor else 0
+    if data == 'FLOAT':
+        args = [g.input(inputs[i], 'float') for i in ("Factor_Float", "A_Float", "B_Float")]
+        return g.builder.emit("MixFloat", 'float', args, flags=clamp_factor)
+    if data == 'VECTOR':
+        non_uniform = node.factor_mode == 'NON_UNIFORM'
+        fac = (g.input(inputs["Factor_Vector"], 'vector') if non_uniform
+               else g.input(inputs["Factor_Float"], 'float'))
+        args = [fac, g.input(inputs["A_Vector"], 'vector'),
+                g.input(inputs["B_Vector"], 'vector')]
+        return g.builder.emit("MixVector", 'vector', args,
+                              flags=clamp_factor | (4 if non_uniform else 0))
+    if data == 'RGBA':
+        args = [g.input(inputs["Factor_Float"], 'float'),
+                g.input(inputs["A_Color"], 'color'), g.input(inputs["B_Color"], 'color')]
+        flags = clamp_factor | (1 if node.clamp_result else 0)
+        return g.builder.emit("MixColor", 'color', args, mode=_blend(node), flags=flags)
+    raise Unsupported(f"{node_label(node)}: data type {data}")
+
+
+def _color_op(op, kinds):
+    def read(g, node, socket):
+        args = [g.input(s, k) for s, k in zip(node.inputs, kinds, strict=False)]
+        return g.builder.emit(op, 'color', args)
+    return read
+
+
+def _rgb_to_bw(g, node, socket):
+    return g.builder.emit("Luminance", 'float', [g.input(node.inputs[0], 'color')])
+
+
+READERS = {
+    'ShaderNodeValue': _value_node,
+    'ShaderNodeRGB': _rgb_node,
+    'ShaderNodeTexCoord': _uv,
+    'ShaderNodeUVMap': _uv,
+    'ShaderNodeTexImage': _image,
+    'ShaderNodeSeparateColor': _separate(lambda n: n.mode),
+    'ShaderNodeSeparateRGB': _separate(lambda n: 'RGB'),
+    'ShaderNodeSeparateXYZ': _separate(lambda n: 'RGB'),
+    'ShaderNodeSeparateHSV': _separate(lambda n: 'HSV'),
+    'ShaderNodeCombineColor': _combine(lambda n: n.mode),
+    'ShaderNodeCombineRGB': _combine(lambda n: 'RGB'),
+    'ShaderNodeCombineXYZ': _combine(lambda n: 'RGB'),
+    'ShaderNodeCombineHSV': _combine(lambda n: 'HSV'),
+    'ShaderNodeMath': _math,
+    'ShaderNodeVectorMath': _vector_math,
+    'ShaderNodeMixRGB': _mix_rgb,
+    'ShaderNodeMix': _mix,
+    'ShaderNodeInvert': _color_op("Invert", ('float', 'color')),
+    'ShaderNodeGamma': _color_op("Gamma", ('color', 'float')),
+    'ShaderNodeBrightContrast': _color_op("BrightContrast", ('color', 'float', 'float')),
+    'ShaderNodeHueSaturation': _color_op("HueSaturation",
+                                         ('float', 'float', 'float', 'float', 'color')),
+    'ShaderNodeRGBToBW': _rgb_to_bw,
+}
