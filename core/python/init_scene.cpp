@@ -205,13 +205,15 @@ void init_scene(py::module_& m) {
           "emission: the colour x emission_strength).")
       .def(
           "add_shader_program",
-          [](Scene& s, const py::object& constants, const py::object& code, int registers) {
-            return s.add_shader_program(shader_program(s, constants, code, registers));
+          [](Scene& s, const py::object& constants, const py::object& code, int registers, const py::object& data) {
+            return s.add_shader_program(shader_program(s, constants, code, registers, data));
           },
-          py::arg("constants"), py::arg("code"), py::arg("registers"),
+          py::arg("constants"), py::arg("code"), py::arg("registers"), py::arg("data") = py::none(),
           "Adds a shader program (docs/python_api.md): constants (N, 4) float32 preloaded into registers "
-          "0..N-1, code (M, 10) int32 rows [opcode, mode, flags, texture, out, in0, in1, in2, in3, in4], "
-          "registers the register count. Raises ValueError naming a bad instruction. Returns its id.")
+          "0..N-1, code (M, 17) int32 rows [opcode, mode, flags, resource, out, in0 .. in11] (resource: an "
+          "Image's texture id, or the offset in data of an op's table: its length n, then n floats), "
+          "registers the register count, data (K,) float32 or None. Raises ValueError naming a bad "
+          "instruction. Returns its id.")
       .def(
           "run_shader_program",
           [](const Scene& s, int program, const py::object& uvs, float footprint) {

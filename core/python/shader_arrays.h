@@ -12,18 +12,26 @@
 
 namespace torrance::python {
 
+// A code row: opcode, mode, flags, resource, out, then kShaderInputs input registers.
+constexpr int kCodeColumns = 5 + kShaderInputs;
+
 inline ShaderProgram shader_program(const Scene& scene, const py::object& constants, const py::object& code,
-                                    int registers) {
+                                    int registers, const py::object& data) {
   const auto c = shaped_array<float>(constants, "constants", {-1, 4});
-  const auto k = shaped_array<int32_t>(code, "code", {-1, 10});
+  const auto k = shaped_array<int32_t>(code, "code", {-1, kCodeColumns});
+  std::vector<float> table;
+  if (!data.is_none()) {
+    const auto d = shaped_array<float>(data, "data", {-1});
+    table.assign(d.data(), d.data() + d.size());
+  }
   std::vector<glm::vec4> values(size_t(c.size() / 4));
   for (size_t i = 0; i < values.size(); ++i)
     values[i] = glm::vec4(c.data()[4 * i], c.data()[4 * i + 1], c.data()[4 * i + 2], c.data()[4 * i + 3]);
-  std::vector<ShaderInstruction> instructions(size_t(k.size() / 10));
+  std::vector<ShaderInstruction> instructions(size_t(k.size() / kCodeColumns));
   constexpr int32_t kShort = std::numeric_limits<int16_t>::max();
   for (size_t i = 0; i < instructions.size(); ++i) {
-    const int32_t* row = k.data() + 10 * i;
-    for (int j = 0; j < 10; ++j)
+    const int32_t* row = k.data() + kCodeColumns * i;
+    for (int j = 0; j < kCodeColumns; ++j)
       if ((j != 3 && (row[j] < -1 || row[j] > kShort)) || (j < 3 && row[j] < 0) || (j < 3 && row[j] > 255))
         throw py::value_error("code row " + std::to_string(i) + ": column " + std::to_string(j) + " holds " +
                               std::to_string(row[j]) + ", out of range");
@@ -31,12 +39,13 @@ inline ShaderProgram shader_program(const Scene& scene, const py::object& consta
     ins.op = ShaderOpcode(row[0]);
     ins.mode = uint8_t(row[1]);
     ins.flags = uint8_t(row[2]);
-    ins.texture = row[3];
+    ins.resource = row[3];
     ins.out = int16_t(row[4]);
-    for (int j = 0; j < 5; ++j) ins.in[size_t(j)] = int16_t(row[5 + j]);
+    for (int j = 0; j < kShaderInputs; ++j) ins.in[size_t(j)] = int16_t(row[5 + j]);
   }
   try {
-    return ShaderProgram(std::move(values), std::move(instructions), registers, scene.num_textures());
+    return ShaderProgram(std::move(values), std::move(instructions), registers, scene.num_textures(),
+                         std::move(table));
   } catch (const std::invalid_argument& e) {
     throw py::value_error(e.what());
   }

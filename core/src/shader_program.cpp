@@ -11,35 +11,6 @@
 namespace torrance {
 namespace {
 
-// Inputs each opcode reads (in0 .. in(n-1)) and how many modes it has (1: none).
-struct OpcodeShape {
-  int inputs;
-  int modes;
-};
-
-OpcodeShape shape_of(ShaderOpcode op) {
-  switch (op) {
-    case ShaderOpcode::TexCoordUV: return {0, 1};
-    case ShaderOpcode::Image: return {1, 1};
-    case ShaderOpcode::Channel: return {1, 4};
-    case ShaderOpcode::Combine: return {3, 1};
-    case ShaderOpcode::Math: return {3, shader::kMathOpCount};
-    case ShaderOpcode::VectorMath: return {4, shader::kVectorMathOpCount};
-    case ShaderOpcode::MixColor: return {3, shader::kMixBlendCount};
-    case ShaderOpcode::MixFloat: return {3, 1};
-    case ShaderOpcode::MixVector: return {3, 1};
-    case ShaderOpcode::ColorModel: return {1, 4};
-    case ShaderOpcode::Invert: return {2, 1};
-    case ShaderOpcode::Gamma: return {2, 1};
-    case ShaderOpcode::BrightContrast: return {3, 1};
-    case ShaderOpcode::HueSaturation: return {5, 1};
-    case ShaderOpcode::Luminance: return {1, 1};
-    case ShaderOpcode::Average: return {1, 1};
-    case ShaderOpcode::Count: break;
-  }
-  return {0, 0};
-}
-
 constexpr float kMaxValue = 1e30f;  // program values stay finite and well inside float's range
 
 float finite_or_zero(float v) { return std::isfinite(v) ? std::clamp(v, -kMaxValue, kMaxValue) : 0.0f; }
@@ -49,11 +20,81 @@ glm::vec4 finite(const glm::vec4& v) {
 glm::vec4 color(const Vec3& c, float w = 1.0f) { return glm::vec4(c, w); }
 glm::vec4 value(float v) { return glm::vec4(v, 0.0f, 0.0f, 0.0f); }
 
+// The core node families' ops (shader_math.h, shader_color.h); a register's kinds as the header says.
+glm::vec4 channel(const ShaderOpContext& c) { return value(c.in(0)[c.ins.mode]); }
+glm::vec4 combine(const ShaderOpContext& c) { return glm::vec4(c.value(0), c.value(1), c.value(2), 1.0f); }
+glm::vec4 math(const ShaderOpContext& c) {
+  const float v = shader::math(shader::MathOp(c.ins.mode), c.value(0), c.value(1), c.value(2));
+  return value((c.ins.flags & 1) ? std::clamp(v, 0.0f, 1.0f) : v);
+}
+glm::vec4 vector_math(const ShaderOpContext& c) {
+  Vec3 vector(0.0f);
+  float scalar = 0.0f;
+  shader::vector_math(shader::VectorMathOp(c.ins.mode), c.vector(0), c.vector(1), c.vector(2), c.value(3), &vector,
+                      &scalar);
+  return (c.ins.flags & 1) ? value(scalar) : glm::vec4(vector, 0.0f);
+}
+glm::vec4 mix_color(const ShaderOpContext& c) {
+  return color(shader::mix_color(shader::MixBlend(c.ins.mode), shader::mix_factor(c.value(0), c.ins.flags & 2),
+                                 c.vector(1), c.vector(2), c.ins.flags & 1));
+}
+glm::vec4 mix_float(const ShaderOpContext& c) {
+  return value(shader::mix_float(shader::mix_factor(c.value(0), c.ins.flags & 2), c.value(1), c.value(2)));
+}
+glm::vec4 mix_vector(const ShaderOpContext& c) {
+  Vec3 factor = (c.ins.flags & 4) ? c.vector(0) : Vec3(c.value(0));
+  if (c.ins.flags & 2) factor = glm::clamp(factor, Vec3(0.0f), Vec3(1.0f));
+  return glm::vec4(shader::mix_vector(factor, c.vector(1), c.vector(2)), 0.0f);
+}
+glm::vec4 color_model(const ShaderOpContext& c) {
+  const Vec3 v = c.vector(0);
+  switch (c.ins.mode) {
+    case 0: return color(shader::rgb_to_hsv(v));
+    case 1: return color(shader::hsv_to_rgb(v));
+    case 2: return color(shader::rgb_to_hsl(v));
+    default: return color(shader::hsl_to_rgb(v));
+  }
+}
+glm::vec4 invert(const ShaderOpContext& c) { return color(shader::invert(c.value(0), c.vector(1))); }
+glm::vec4 gamma(const ShaderOpContext& c) { return color(shader::gamma(c.vector(0), c.value(1))); }
+glm::vec4 bright_contrast(const ShaderOpContext& c) {
+  return color(shader::bright_contrast(c.vector(0), c.value(1), c.value(2)));
+}
+glm::vec4 hue_saturation(const ShaderOpContext& c) {
+  return color(shader::hue_saturation_value(c.value(0), c.value(1), c.value(2), c.value(3), c.vector(4)));
+}
+glm::vec4 luminance(const ShaderOpContext& c) { return value(shader::rgb_to_bw(c.vector(0))); }
+glm::vec4 average(const ShaderOpContext& c) { return value((c.in(0).x + c.in(0).y + c.in(0).z) / 3.0f); }
+glm::vec4 uv(const ShaderOpContext& c) { return glm::vec4(c.globals.uv, 0.0f, 0.0f); }
+
 }  // namespace
 
+ShaderOpInfo shader_op_info(ShaderOpcode op) {
+  switch (op) {
+    case ShaderOpcode::TexCoordUV: return {0, 1, false, uv};
+    case ShaderOpcode::Image: return {1, 1, false, nullptr};
+    case ShaderOpcode::Channel: return {1, 4, false, channel};
+    case ShaderOpcode::Combine: return {3, 1, false, combine};
+    case ShaderOpcode::Math: return {3, shader::kMathOpCount, false, math};
+    case ShaderOpcode::VectorMath: return {4, shader::kVectorMathOpCount, false, vector_math};
+    case ShaderOpcode::MixColor: return {3, shader::kMixBlendCount, false, mix_color};
+    case ShaderOpcode::MixFloat: return {3, 1, false, mix_float};
+    case ShaderOpcode::MixVector: return {3, 1, false, mix_vector};
+    case ShaderOpcode::ColorModel: return {1, 4, false, color_model};
+    case ShaderOpcode::Invert: return {2, 1, false, invert};
+    case ShaderOpcode::Gamma: return {2, 1, false, gamma};
+    case ShaderOpcode::BrightContrast: return {3, 1, false, bright_contrast};
+    case ShaderOpcode::HueSaturation: return {5, 1, false, hue_saturation};
+    case ShaderOpcode::Luminance: return {1, 1, false, luminance};
+    case ShaderOpcode::Average: return {1, 1, false, average};
+    case ShaderOpcode::Count: break;
+  }
+  return {0, 0, false, nullptr};
+}
+
 ShaderProgram::ShaderProgram(std::vector<glm::vec4> constants, std::vector<ShaderInstruction> code, int registers,
-                             size_t num_textures)
-    : constants_(std::move(constants)), code_(std::move(code)), registers_(registers) {
+                             size_t num_textures, std::vector<float> data)
+    : constants_(std::move(constants)), code_(std::move(code)), data_(std::move(data)), registers_(registers) {
   if (registers_ < 1 || registers_ > kMaxRegisters)
     throw std::invalid_argument("a shader program has 1 to " + std::to_string(kMaxRegisters) + " registers, got " +
                                 std::to_string(registers_));
@@ -63,13 +104,15 @@ ShaderProgram::ShaderProgram(std::vector<glm::vec4> constants, std::vector<Shade
   for (const glm::vec4& c : constants_)
     if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z) || !std::isfinite(c.w))
       throw std::invalid_argument("a shader program's constants must be finite");
+  for (float d : data_)
+    if (!std::isfinite(d)) throw std::invalid_argument("a shader program's data must be finite");
   std::vector<bool> written(size_t(registers_), false);
   for (size_t r = 0; r < constants_.size(); ++r) written[r] = true;
   for (size_t i = 0; i < code_.size(); ++i) {
     const ShaderInstruction& ins = code_[i];
     const std::string where = "shader instruction " + std::to_string(i);
     if (ins.op >= ShaderOpcode::Count) throw std::invalid_argument(where + ": unknown opcode " + std::to_string(int(ins.op)));
-    const OpcodeShape s = shape_of(ins.op);
+    const ShaderOpInfo s = shader_op_info(ins.op);
     if (ins.mode >= s.modes)
       throw std::invalid_argument(where + ": mode " + std::to_string(int(ins.mode)) + " out of range [0, " +
                                   std::to_string(s.modes) + ")");
@@ -82,9 +125,13 @@ ShaderProgram::ShaderProgram(std::vector<glm::vec4> constants, std::vector<Shade
     if (ins.out < int(constants_.size()) || ins.out >= registers_)
       throw std::invalid_argument(where + ": output register " + std::to_string(ins.out) + " outside [" +
                                   std::to_string(constants_.size()) + ", " + std::to_string(registers_) + ")");
-    if (ins.op == ShaderOpcode::Image && (ins.texture < 0 || size_t(ins.texture) >= num_textures))
-      throw std::invalid_argument(where + ": texture " + std::to_string(ins.texture) + " but the scene has " +
+    if (ins.op == ShaderOpcode::Image && (ins.resource < 0 || size_t(ins.resource) >= num_textures))
+      throw std::invalid_argument(where + ": texture " + std::to_string(ins.resource) + " but the scene has " +
                                   std::to_string(num_textures) + " textures");
+    if (s.data && (ins.resource < 0 || size_t(ins.resource) >= data_.size() || !(data_[size_t(ins.resource)] >= 0.0f) ||
+                   double(ins.resource) + 1.0 + double(data_[size_t(ins.resource)]) > double(data_.size())))
+      throw std::invalid_argument(where + ": its table at " + std::to_string(ins.resource) +
+                                  " does not lie within the program's " + std::to_string(data_.size()) + " data");
     written[size_t(ins.out)] = true;
   }
   written_ = std::move(written);
@@ -94,59 +141,11 @@ void ShaderProgram::run(const ShaderGlobals& g, const std::vector<std::shared_pt
                         glm::vec4* regs) const {
   for (size_t r = 0; r < constants_.size(); ++r) regs[r] = constants_[r];
   for (const ShaderInstruction& ins : code_) {
-    auto in = [&](int k) -> const glm::vec4& { return regs[ins.in[size_t(k)]]; };
-    auto rgb = [&](int k) { return Vec3(in(k)); };
-    glm::vec4 out(0.0f);
-    switch (ins.op) {
-      case ShaderOpcode::TexCoordUV: out = glm::vec4(g.uv, 0.0f, 0.0f); break;
-      case ShaderOpcode::Image: out = textures[size_t(ins.texture)]->lookup(Vec2(in(0)), g.footprint); break;
-      case ShaderOpcode::Channel: out = value(in(0)[ins.mode]); break;
-      case ShaderOpcode::Combine: out = glm::vec4(in(0).x, in(1).x, in(2).x, 1.0f); break;
-      case ShaderOpcode::Math: {
-        float v = shader::math(shader::MathOp(ins.mode), in(0).x, in(1).x, in(2).x);
-        if (ins.flags & 1) v = std::clamp(v, 0.0f, 1.0f);
-        out = value(v);
-        break;
-      }
-      case ShaderOpcode::VectorMath: {
-        Vec3 vector(0.0f);
-        float scalar = 0.0f;
-        shader::vector_math(shader::VectorMathOp(ins.mode), rgb(0), rgb(1), rgb(2), in(3).x, &vector, &scalar);
-        out = (ins.flags & 1) ? value(scalar) : glm::vec4(vector, 0.0f);
-        break;
-      }
-      case ShaderOpcode::MixColor:
-        out = color(shader::mix_color(shader::MixBlend(ins.mode), shader::mix_factor(in(0).x, ins.flags & 2), rgb(1),
-                                      rgb(2), ins.flags & 1));
-        break;
-      case ShaderOpcode::MixFloat:
-        out = value(shader::mix_float(shader::mix_factor(in(0).x, ins.flags & 2), in(1).x, in(2).x));
-        break;
-      case ShaderOpcode::MixVector: {
-        Vec3 factor = (ins.flags & 4) ? rgb(0) : Vec3(in(0).x);
-        if (ins.flags & 2) factor = glm::clamp(factor, Vec3(0.0f), Vec3(1.0f));
-        out = glm::vec4(shader::mix_vector(factor, rgb(1), rgb(2)), 0.0f);
-        break;
-      }
-      case ShaderOpcode::ColorModel: {
-        const Vec3 c = rgb(0);
-        const Vec3 converted = ins.mode == 0   ? shader::rgb_to_hsv(c)
-                               : ins.mode == 1 ? shader::hsv_to_rgb(c)
-                               : ins.mode == 2 ? shader::rgb_to_hsl(c)
-                                               : shader::hsl_to_rgb(c);
-        out = color(converted);
-        break;
-      }
-      case ShaderOpcode::Invert: out = color(shader::invert(in(0).x, rgb(1))); break;
-      case ShaderOpcode::Gamma: out = color(shader::gamma(rgb(0), in(1).x)); break;
-      case ShaderOpcode::BrightContrast: out = color(shader::bright_contrast(rgb(0), in(1).x, in(2).x)); break;
-      case ShaderOpcode::HueSaturation:
-        out = color(shader::hue_saturation_value(in(0).x, in(1).x, in(2).x, in(3).x, rgb(4)));
-        break;
-      case ShaderOpcode::Luminance: out = value(shader::rgb_to_bw(rgb(0))); break;
-      case ShaderOpcode::Average: out = value((in(0).x + in(0).y + in(0).z) / 3.0f); break;
-      case ShaderOpcode::Count: break;
-    }
+    const ShaderOpInfo info = shader_op_info(ins.op);
+    const bool table = info.data;
+    const ShaderOpContext c{ins, regs, g, table ? data_.data() + ins.resource + 1 : nullptr,
+                            table ? int(data_[size_t(ins.resource)]) : 0};
+    const glm::vec4 out = info.run ? info.run(c) : textures[size_t(ins.resource)]->lookup(Vec2(c.in(0)), g.footprint);
     regs[ins.out] = finite(out);
   }
 }

@@ -3,8 +3,9 @@
 // (python_addon/torrance/shader_graph/) into straight-line code over registers of four floats
 // and run by the core at each hit whose material needs it.
 //
-// Registers 0 .. constants-1 hold the graph's folded constants; every instruction reads up to five
-// registers written before it and writes one. A float lives in a register's x, a colour in xyz (w
+// Registers 0 .. constants-1 hold the graph's folded constants; every instruction reads up to
+// kShaderInputs registers written before it and writes one; ops with tables (ramps, curves) read
+// them from the program's data: at the instruction's resource, a length n and then n floats. A float lives in a register's x, a colour in xyz (w
 // is an image's alpha), a vector in xyz. The ops are Cycles' (shader_math.h, shader_color.h); the
 // add-on inserts Blender's implicit conversions (colour -> float: luminance, vector -> float:
 // average) as instructions, so every op reads exactly the kind it expects.
@@ -37,15 +38,18 @@ enum class ShaderOpcode : uint8_t {
   HueSaturation,   // hue_saturation_value(in0.x, in1.x, in2.x, in3.x, in4)
   Luminance,       // out.x = rgb_to_bw(in0): colour -> float
   Average,         // out.x = (in0.x + in0.y + in0.z) / 3: vector -> float
+  // Appended here, in this order, by the node families (shader_op_info lists what each reads).
   Count
 };
+
+constexpr int kShaderInputs = 12;
 
 struct ShaderInstruction {
   ShaderOpcode op = ShaderOpcode::TexCoordUV;
   uint8_t mode = 0, flags = 0;
-  int32_t texture = -1;
+  int32_t resource = -1;  // Image: the texture id; ops with tables: the offset of their data
   int16_t out = 0;
-  std::array<int16_t, 5> in{{-1, -1, -1, -1, -1}};
+  std::array<int16_t, kShaderInputs> in{};
 };
 
 // What a program may read at a hit.
@@ -54,15 +58,37 @@ struct ShaderGlobals {
   float footprint = 0.0f;  // the texture lookups' footprint, in UV units
 };
 
+// What an op sees when it runs: its instruction, the registers and the program's data.
+struct ShaderOpContext {
+  const ShaderInstruction& ins;
+  const glm::vec4* regs;
+  const ShaderGlobals& globals;
+  const float* data;  // the op's table (after its length), when it has one
+  int data_size;      // its length
+  const glm::vec4& in(int k) const { return regs[ins.in[size_t(k)]]; }
+  float value(int k) const { return in(k).x; }
+  Vec3 vector(int k) const { return Vec3(in(k)); }
+};
+
+// An opcode's shape: the inputs it reads, how many modes it has, whether it reads data, and how
+// it runs (Image needs the textures and runs in ShaderProgram::run itself: run is null).
+struct ShaderOpInfo {
+  int inputs = 0;
+  int modes = 1;
+  bool data = false;
+  glm::vec4 (*run)(const ShaderOpContext&) = nullptr;
+};
+ShaderOpInfo shader_op_info(ShaderOpcode op);
+
 class ShaderProgram {
  public:
   static constexpr int kMaxRegisters = 128;
 
   // Throws std::invalid_argument naming the problem unless every instruction's opcode, mode,
-  // registers (inputs written before they are read, outputs past the constants) and texture
-  // (below num_textures) are valid and the constants are finite.
+  // registers (inputs written before they are read, outputs past the constants), texture (below
+  // num_textures) and table (within data) are valid and the constants and data are finite.
   ShaderProgram(std::vector<glm::vec4> constants, std::vector<ShaderInstruction> code, int registers,
-                size_t num_textures);
+                size_t num_textures, std::vector<float> data = {});
 
   int registers() const { return registers_; }
   // Whether register r holds a value after run() (a constant or an instruction's output).
@@ -74,6 +100,7 @@ class ShaderProgram {
  private:
   std::vector<glm::vec4> constants_;
   std::vector<ShaderInstruction> code_;
+  std::vector<float> data_;
   int registers_;
   std::vector<bool> written_;
 };

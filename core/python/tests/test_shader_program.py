@@ -26,15 +26,19 @@ def program():
         sys.path.pop(0)
 
 
-def code_row(op, out, inputs=(), mode=0, flags=0, texture=-1):
-    row = [op, mode, flags, texture, out, -1, -1, -1, -1, -1]
+COLUMNS = 17     # opcode, mode, flags, resource, out, 12 inputs
+
+
+def code_row(op, out, inputs=(), mode=0, flags=0, resource=-1):
+    row = [op, mode, flags, resource, out] + [-1] * (COLUMNS - 5)
     row[5:5 + len(inputs)] = inputs
     return row
 
 
-def add(scene, constants, rows, registers):
+def add(scene, constants, rows, registers, data=None):
     return scene.add_shader_program(np.asarray(constants, np.float32).reshape(-1, 4),
-                                    np.asarray(rows, np.int32).reshape(-1, 10), registers)
+                                    np.asarray(rows, np.int32).reshape(-1, COLUMNS), registers,
+                                    data)
 
 
 @pytest.mark.parametrize("rows, registers, message", [
@@ -42,7 +46,7 @@ def add(scene, constants, rows, registers):
     ([code_row(4, 1, (0, 0, 0), mode=200)], 2, "mode 200 out of range"),
     ([code_row(4, 1, (0, 0, 2))], 3, "reads register 2, which is not written"),
     ([code_row(0, 0)], 2, "output register 0 outside"),
-    ([code_row(1, 1, (0,), texture=0)], 2, "texture 0 but the scene has 0 textures"),
+    ([code_row(1, 1, (0,), resource=0)], 2, "texture 0 but the scene has 0 textures"),
     ([code_row(0, 1)], 300, "registers"),
     ([code_row(4, 1, (0, 0, 0), mode=-3)], 2, "out of range"),
 ])
@@ -55,7 +59,7 @@ def test_bad_programs_are_rejected(rows, registers, message):
 def test_bad_arrays_and_material_registers_are_rejected():
     scene = tc.Scene()
     with pytest.raises(ValueError, match="constants must have shape"):
-        scene.add_shader_program(np.zeros((2, 3), np.float32), np.zeros((0, 10), np.int32), 2)
+        scene.add_shader_program(np.zeros((2, 3), np.float32), np.zeros((0, COLUMNS), np.int32), 2)
     with pytest.raises(ValueError, match="code must have shape"):
         scene.add_shader_program(np.zeros((1, 4), np.float32), np.zeros((1, 9), np.int32), 2)
     with pytest.raises(ValueError, match="finite"):
@@ -133,7 +137,7 @@ def test_random_programs_agree_with_the_reference_evaluator(program, data):
             if name == "TexCoordUV":
                 want = (float(uv[0]), float(uv[1]), 0.0, 0.0)
             else:
-                want = program._finite(program._fold(name, mode, flags, values))
+                want = program.finite(program.fold(name, mode, flags, values))
             if max((abs(x) for v in values for x in v.value), default=0.0) > 1e4 or \
                     max(map(abs, want)) > 1e6:
                 continue   # float's range: the core's float and the reference's double part ways

@@ -3,8 +3,9 @@
 that compute them, in the core's format (core/include/torrance/shader_program.h).
 
 Every instruction whose inputs are all constants and that reads nothing of the hit is folded:
-evaluated here with the reference twins of the core's ops (math_ops, color_ops), so a graph of
-constants costs the core nothing. The opcode numbers are the core's ShaderOpcode.
+evaluated here with the reference twins of the core's ops (FOLDS: this module's core families,
+then each family module's), so a graph of constants costs the core nothing. The opcode numbers
+are the core's ShaderOpcode, in its order (append-only).
 """
 
 from dataclasses import dataclass
@@ -18,7 +19,11 @@ OPCODES = ("TexCoordUV", "Image", "Channel", "Combine", "Math", "VectorMath", "M
            "MixFloat", "MixVector", "ColorModel", "Invert", "Gamma", "BrightContrast",
            "HueSaturation", "Luminance", "Average")
 OPCODE = {name: i for i, name in enumerate(OPCODES)}
-MAX_REGISTERS = 128   # ShaderProgram::kMaxRegisters
+SHADER_INPUTS = 12                 # kShaderInputs
+CODE_COLUMNS = 5 + SHADER_INPUTS   # opcode, mode, flags, resource, out, inputs
+MAX_REGISTERS = 128                # ShaderProgram::kMaxRegisters
+# Ops that read the hit (never folded).
+VARYING = {"TexCoordUV", "Image"}
 
 
 @dataclass(frozen=True)
@@ -42,53 +47,65 @@ def constant(kind, v):
     return Value(kind, t[:4])
 
 
-def _fold(op, mode, flags, args):
-    """The four floats an instruction gives for constant arguments (the core's semantics)."""
-    a = [v.value for v in args]
-    if op == "Channel":
-        return (a[0][mode], 0.0, 0.0, 0.0)
-    if op == "Combine":
-        return (a[0][0], a[1][0], a[2][0], 1.0)
-    if op == "Math":
-        r = math_ops.math_op(math_ops.MATH_OPS[mode], a[0][0], a[1][0], a[2][0])
-        return (min(max(r, 0.0), 1.0) if flags & 1 else r, 0.0, 0.0, 0.0)
-    if op == "VectorMath":
-        vec, val = math_ops.vector_math_op(math_ops.VECTOR_MATH_OPS[mode], a[0][:3], a[1][:3],
-                                           a[2][:3], a[3][0])
-        return (val, 0.0, 0.0, 0.0) if flags & 1 else (*vec, 0.0)
-    if op == "MixColor":
-        fac = color_ops.mix_factor(a[0][0], bool(flags & 2))
-        return (*color_ops.mix_color(color_ops.MIX_BLENDS[mode], fac, a[1][:3], a[2][:3],
-                                     bool(flags & 1)), 1.0)
-    if op == "MixFloat":
-        return (color_ops.mix_float(color_ops.mix_factor(a[0][0], bool(flags & 2)), a[1][0],
-                                    a[2][0]), 0.0, 0.0, 0.0)
-    if op == "MixVector":
-        fac = a[0][:3] if flags & 4 else (a[0][0],) * 3
-        if flags & 2:
-            fac = tuple(min(max(f, 0.0), 1.0) for f in fac)
-        return (*color_ops.mix_vector(fac, a[1][:3], a[2][:3]), 0.0)
-    if op == "ColorModel":
-        f = (color_ops.rgb_to_hsv, color_ops.hsv_to_rgb, color_ops.rgb_to_hsl,
-             color_ops.hsl_to_rgb)[mode]
-        return (*f(a[0][:3]), 1.0)
-    if op == "Invert":
-        return (*color_ops.invert(a[0][0], a[1][:3]), 1.0)
-    if op == "Gamma":
-        return (*color_ops.gamma(a[0][:3], a[1][0]), 1.0)
-    if op == "BrightContrast":
-        return (*color_ops.bright_contrast(a[0][:3], a[1][0], a[2][0]), 1.0)
-    if op == "HueSaturation":
-        return (*color_ops.hue_saturation_value(a[0][0], a[1][0], a[2][0], a[3][0], a[4][:3]), 1.0)
-    if op == "Luminance":
-        return (color_ops.rgb_to_bw(a[0][:3]), 0.0, 0.0, 0.0)
-    if op == "Average":
-        return (sum(a[0][:3]) / 3.0, 0.0, 0.0, 0.0)
-    raise ValueError(f"cannot fold {op}")
+# -- the core families' folds: (mode, flags, args (four-float tuples), table) -> four floats ------
+
+def _fold_math(mode, flags, a, _table):
+    r = math_ops.math_op(math_ops.MATH_OPS[mode], a[0][0], a[1][0], a[2][0])
+    return (min(max(r, 0.0), 1.0) if flags & 1 else r, 0.0, 0.0, 0.0)
 
 
-def _finite(t):
-    """As the core keeps every value: finite, within +-1e30 (NaN -> 0)."""
+def _fold_vector_math(mode, flags, a, _table):
+    vec, val = math_ops.vector_math_op(math_ops.VECTOR_MATH_OPS[mode], a[0][:3], a[1][:3],
+                                       a[2][:3], a[3][0])
+    return (val, 0.0, 0.0, 0.0) if flags & 1 else (*vec, 0.0)
+
+
+def _fold_mix_color(mode, flags, a, _table):
+    fac = color_ops.mix_factor(a[0][0], bool(flags & 2))
+    return (*color_ops.mix_color(color_ops.MIX_BLENDS[mode], fac, a[1][:3], a[2][:3],
+                                 bool(flags & 1)), 1.0)
+
+
+def _fold_mix_vector(mode, flags, a, _table):
+    fac = a[0][:3] if flags & 4 else (a[0][0],) * 3
+    if flags & 2:
+        fac = tuple(min(max(f, 0.0), 1.0) for f in fac)
+    return (*color_ops.mix_vector(fac, a[1][:3], a[2][:3]), 0.0)
+
+
+_COLOR_MODELS = (color_ops.rgb_to_hsv, color_ops.hsv_to_rgb, color_ops.rgb_to_hsl,
+                 color_ops.hsl_to_rgb)
+
+FOLDS = {
+    "Channel": lambda mode, flags, a, t: (a[0][mode], 0.0, 0.0, 0.0),
+    "Combine": lambda mode, flags, a, t: (a[0][0], a[1][0], a[2][0], 1.0),
+    "Math": _fold_math,
+    "VectorMath": _fold_vector_math,
+    "MixColor": _fold_mix_color,
+    "MixFloat": lambda mode, flags, a, t: (color_ops.mix_float(
+        color_ops.mix_factor(a[0][0], bool(flags & 2)), a[1][0], a[2][0]), 0.0, 0.0, 0.0),
+    "MixVector": _fold_mix_vector,
+    "ColorModel": lambda mode, flags, a, t: (*_COLOR_MODELS[mode](a[0][:3]), 1.0),
+    "Invert": lambda mode, flags, a, t: (*color_ops.invert(a[0][0], a[1][:3]), 1.0),
+    "Gamma": lambda mode, flags, a, t: (*color_ops.gamma(a[0][:3], a[1][0]), 1.0),
+    "BrightContrast": lambda mode, flags, a, t: (
+        *color_ops.bright_contrast(a[0][:3], a[1][0], a[2][0]), 1.0),
+    "HueSaturation": lambda mode, flags, a, t: (
+        *color_ops.hue_saturation_value(a[0][0], a[1][0], a[2][0], a[3][0], a[4][:3]), 1.0),
+    "Luminance": lambda mode, flags, a, t: (color_ops.rgb_to_bw(a[0][:3]), 0.0, 0.0, 0.0),
+    "Average": lambda mode, flags, a, t: (sum(a[0][:3]) / 3.0, 0.0, 0.0, 0.0),
+}
+
+
+def fold(op, mode, flags, args, table=None):
+    """The four floats instruction `op` gives for constant arguments (Values or four-float
+    tuples), as the core computes them."""
+    a = [v.value if isinstance(v, Value) else tuple(v) for v in args]
+    return FOLDS[op](mode, flags, a, table)
+
+
+def finite(t):
+    """As the core keeps every value: finite, within +-1e30 (NaN -> 0), float32."""
     out = []
     for x in t:
         x = float(x)
@@ -100,18 +117,24 @@ class ProgramBuilder:
     """Collects instructions; constants are placed in the first registers when built."""
 
     def __init__(self):
-        self.code = []            # [op, mode, flags, texture, out, in0..in4] with symbolic inputs
+        self.code = []            # (op, mode, flags, resource, out, inputs) with symbolic places
         self.constants = {}       # four floats -> constant slot
         self.registers = 0        # computed values
+        self.data = []            # the ops' tables, each its length first
 
-    def emit(self, op, kind, args=(), mode=0, flags=0, texture=-1):
-        """The Value of an instruction (folded when it can be)."""
-        if op not in ("TexCoordUV", "Image") and all(a.constant for a in args):
-            return Value(kind, _finite(_fold(op, mode, flags, list(args))))
+    def emit(self, op, kind, args=(), mode=0, flags=0, texture=-1, table=None):
+        """The Value of an instruction (folded when it can be). table: the floats of an op that
+        reads one (a ramp's stops, a curve's samples)."""
+        if op not in VARYING and all(a.constant for a in args):
+            return Value(kind, finite(fold(op, mode, flags, list(args), table)))
+        resource = texture
+        if table is not None:
+            resource = len(self.data)
+            self.data += [float(len(table)), *(float(x) for x in table)]
         inputs = [self._operand(a) for a in args]
         out = ('r', self.registers)
         self.registers += 1
-        self.code.append((OPCODE[op], mode, flags, texture, out, inputs))
+        self.code.append((OPCODE[op], mode, flags, resource, out, inputs))
         return Value(kind, register=out[1])
 
     def _operand(self, v):
@@ -121,11 +144,12 @@ class ProgramBuilder:
 
     def mark(self):
         """A point to roll back to (rollback) when a graph can not be compiled or used."""
-        return len(self.code), self.registers, len(self.constants)
+        return len(self.code), self.registers, len(self.constants), len(self.data)
 
     def rollback(self, mark):
-        code, registers, constants = mark
+        code, registers, constants, data = mark
         del self.code[code:]
+        del self.data[data:]
         self.registers = registers
         for value in [v for v, slot in self.constants.items() if slot >= constants]:
             del self.constants[value]
@@ -135,8 +159,9 @@ class ProgramBuilder:
         return len(self.constants) + v.register
 
     def build(self):
-        """(constants (N, 4) float32, code (M, 10) int32, registers), or ValueError when the
-        program needs more registers than the core has."""
+        """(constants (N, 4) float32, code (M, CODE_COLUMNS) int32, registers, data (K,)
+        float32): Scene.add_shader_program's arguments. ValueError when the program needs more
+        registers than the core has."""
         n = len(self.constants)
         total = n + self.registers
         if total > MAX_REGISTERS:
@@ -146,30 +171,33 @@ class ProgramBuilder:
         constants = np.zeros((n, 4), np.float32)
         for value, slot in self.constants.items():
             constants[slot] = value
-        code = np.full((len(self.code), 10), -1, np.int32)
-        for row, (op, mode, flags, texture, out, inputs) in enumerate(self.code):
-            code[row, :5] = (op, mode, flags, texture, place[out[0]](out[1]))
+        code = np.full((len(self.code), CODE_COLUMNS), -1, np.int32)
+        for row, (op, mode, flags, resource, out, inputs) in enumerate(self.code):
+            code[row, :5] = (op, mode, flags, resource, place[out[0]](out[1]))
             for k, (where, i) in enumerate(inputs):
                 code[row, 5 + k] = place[where](i)
-        return constants, code, max(total, 1)
+        return constants, code, max(total, 1), np.asarray(self.data, np.float32)
 
 
-def evaluate(constants, code, registers, uv, image=None):
-    """The reference evaluator: every register of a built program (constants, code as build()
-    gives them) at one UV, as the core's ShaderProgram::run computes them (float32 values).
-    image(texture, uv): the RGBA an Image instruction reads (programs with images need it)."""
+def evaluate(constants, code, registers, uv, image=None, data=()):
+    """The reference evaluator: every register of a built program at one UV, as the core's
+    ShaderProgram::run computes them. image(texture, uv): the RGBA an Image instruction reads
+    (programs with images need it)."""
     regs = [(0.0, 0.0, 0.0, 0.0)] * registers
     for r, c in enumerate(constants):
         regs[r] = tuple(float(x) for x in c)
     for row in code:
-        op, mode, flags, texture, out = (int(x) for x in row[:5])
+        op, mode, flags, resource, out = (int(x) for x in row[:5])
         name = OPCODES[op]
-        args = [Value('float', regs[int(i)]) for i in row[5:] if i >= 0]
+        args = [regs[int(i)] for i in row[5:] if i >= 0]
         if name == "TexCoordUV":
             result = (float(uv[0]), float(uv[1]), 0.0, 0.0)
         elif name == "Image":
-            result = tuple(image(texture, args[0].value[:2]))
+            result = tuple(image(resource, args[0][:2]))
         else:
-            result = _fold(name, mode, flags, args)
-        regs[out] = _finite(result)
+            table = None
+            if resource >= 0:
+                table = tuple(data[resource + 1:resource + 1 + int(data[resource])])
+            result = fold(name, mode, flags, args, table)
+        regs[out] = finite(result)
     return regs
