@@ -28,60 +28,10 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_shader_graph_agreement.py
 """
 
-import math
-
 import bpy
-import numpy as np
 
 from torrance_tools import testing
-from torrance_tools.scene import node_material
-from torrance_tools.seed_noise import agree_within_seed_noise
-from torrance_tools.textures import new_image, set_uvs
-
-W, H = 128, 96
-SAMPLES = 32
-BOUNCES = 2
-COLUMNS = 4
-
-
-def test_image():
-    """16 x 16 sRGB colours: hue along x, brightness along y, a few saturated texels."""
-    y, x = np.mgrid[0:16, 0:16] / 15.0
-    px = np.dstack([0.5 + 0.5 * np.cos(6.28 * x), 0.5 + 0.5 * np.cos(6.28 * (x - 0.33)),
-                    0.5 + 0.5 * np.cos(6.28 * (x - 0.67))]) * (0.25 + 0.75 * y[..., None])
-    return new_image("Colours", np.dstack([px, np.ones_like(x)]).astype(np.float32))
-
-
-class Graph:
-    """A node material being built: nodes by name, links by (node, socket) pairs."""
-
-    def __init__(self, name, surface="ShaderNodeEmission"):
-        self.mat, self.nodes, self.links, out = node_material(name)
-        self.shader = self.nodes.new(surface)
-        self.links.new(self.shader.outputs[0], out.inputs["Surface"])
-
-    def node(self, kind, **settings):
-        n = self.nodes.new(kind)
-        for key, value in settings.items():
-            setattr(n, key, value)
-        return n
-
-    def link(self, a, b):
-        self.links.new(a, b)
-
-    def image(self, img):
-        return self.node("ShaderNodeTexImage", image=img, interpolation='Linear')
-
-    def math(self, op, a, b=None, value_b=0.5, value_c=0.5, clamp=False):
-        m = self.node("ShaderNodeMath", operation=op, use_clamp=clamp)
-        self.link(a, m.inputs[0])
-        if b is not None:
-            self.link(b, m.inputs[1])
-        else:
-            m.inputs[1].default_value = value_b
-        m.inputs[2].default_value = value_c
-        return m.outputs[0]
-
+from torrance_tools.shader_graphs import DictAttr, Graph, agree_on_patches, test_image
 
 def channels(g, img):
     sep = g.node("ShaderNodeSeparateColor", mode='RGB')
@@ -104,7 +54,7 @@ def hsv(g, img):
 
 
 def maths(g, img):
-    uv = g.node("ShaderNodeTexCoord").outputs["UV"]
+    uv = g.uv()
     sep = g.node("ShaderNodeSeparateXYZ")
     g.link(uv, sep.inputs[0])
     x5 = g.math('MULTIPLY', sep.outputs[0], value_b=5.0)
@@ -118,7 +68,7 @@ def maths(g, img):
 
 
 def vector_maths(g, img):
-    uv = g.node("ShaderNodeTexCoord").outputs["UV"]
+    uv = g.uv()
     cross = g.node("ShaderNodeVectorMath", operation='CROSS_PRODUCT')
     g.link(uv, cross.inputs[0])
     cross.inputs[1].default_value = (0.3, -0.5, 0.8)
@@ -251,10 +201,12 @@ def legacy(g, img):
 EMISSIVE = (channels, hsv, maths, vector_maths, mixrgb, mix, adjust, grouped, muted, legacy)
 
 
-def orm_material(img):
+def orm():
+    """A glTF-style material: Base Color from the image, Separate Color's Green -> Roughness,
+    Blue -> Metallic."""
     g = Graph("ORM", "ShaderNodeBsdfPrincipled")
     g.shader.distribution = 'GGX'
-    tex = g.image(img)
+    tex = g.image(the_image())
     g.link(tex.outputs["Color"], g.shader.inputs["Base Color"])
     sep = g.node("ShaderNodeSeparateColor", mode='RGB')
     g.link(tex.outputs["Color"], sep.inputs[0])
@@ -263,31 +215,16 @@ def orm_material(img):
     return g.mat
 
 
-def build(scene):
-    testing.setup_render(scene, width=W, height=H)
-    cam = testing.add_camera(scene, location=(0.0, -0.001, 10.0), target=(0.0, 0.0, 0.0))
-    cam.data.type = 'ORTHO'
-    cam.data.ortho_scale = 4.4
-    img = test_image()
-    materials = []
-    for make in EMISSIVE:
-        g = Graph(make.__name__)
-        g.link(make(g, img), g.shader.inputs["Color"])
-        materials.append(g.mat)
-    materials.append(orm_material(img))
-    rows = math.ceil(len(materials) / COLUMNS)
-    size, gap = 1.0, 0.08
-    for k, mat in enumerate(materials):
-        i, j = k % COLUMNS, k // COLUMNS
-        x0 = (i - COLUMNS / 2) * (size + gap)
-        y0 = (rows / 2 - j - 1) * (size + gap)
-        quad = testing.mesh_object(scene, mat.name, [(x0, y0, 0), (x0 + size, y0, 0),
-                                                     (x0 + size, y0 + size, 0),
-                                                     (x0, y0 + size, 0)], [(0, 1, 2, 3)], mat)
-        set_uvs(quad, [(0, 0), (1, 0), (1, 1), (0, 1)])
-    testing.add_sun(scene, strength=2.0, rotation=(math.radians(30), 0, math.radians(20)),
-                    angle=math.radians(5.0))
-    testing.set_world(scene, (0.3, 0.32, 0.35))
+def the_image():
+    """The test image (made once the grid's scene is cleared)."""
+    return bpy.data.images.get("Colours") or test_image()
+
+
+def with_image(make):
+    def maker(g):
+        return make(g, the_image())
+    maker.__name__ = make.__name__
+    return maker
 
 
 def fault_math_as_add(original):
@@ -344,36 +281,20 @@ def fault_group_passes_through(_original):
     return read
 
 
-class _DictAttr:
-    """Lets agree_within_seed_noise patch one entry of a dict as if it were an attribute."""
-
-    def __init__(self, table):
-        self.__dict__['_table'] = table
-
-    def __getattr__(self, key):
-        return self._table[key]
-
-    def __setattr__(self, key, value):
-        self._table[key] = value
-
-
 def main():
     testing.addon()
     from torrance.shader_graph.graph import GraphCompiler
     from torrance.shader_graph.registry import READERS
-    readers = _DictAttr(READERS)
-    scene = testing.clear_scene()
-    build(scene)
-    agree_within_seed_noise(
-        scene, testing.tempdir(), SAMPLES, BOUNCES, "the shader graph",
+    readers = DictAttr(READERS)
+    agree_on_patches(
+        [with_image(make) for make in EMISSIVE], lit=(orm,),
         faults=(("Math read as Add", readers, 'ShaderNodeMath', fault_math_as_add),
                 ("Separate Color channels shifted", readers, 'ShaderNodeSeparateColor',
                  fault_channels_shifted),
                 ("MixRGB blend read as Mix", readers, 'ShaderNodeMixRGB', fault_blend_as_mix),
                 ("HSV read as HSL", readers, 'ShaderNodeSeparateColor', fault_models_swapped),
                 ("groups pass their input through", GraphCompiler, '_group_output',
-                 fault_group_passes_through)),
-        tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
+                 fault_group_passes_through)))
 
 
 testing.run(main)

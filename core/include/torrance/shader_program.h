@@ -38,9 +38,12 @@ enum class ShaderOpcode : uint8_t {
   HueSaturation,   // hue_saturation_value(in0.x, in1.x, in2.x, in3.x, in4)
   Luminance,       // out.x = rgb_to_bw(in0): colour -> float
   Average,         // out.x = (in0.x + in0.y + in0.z) / 3: vector -> float
-  // Appended here, in this order, by the node families (shader_op_info lists what each reads).
-  Count
+  // The node families' ops, each family a range of numbers (its header says what each op reads;
+  // shader_op_info lists their shapes; python_addon/torrance/shader_graph/ the same numbers):
+  //   32-47 noise (shader_noise.h), 48-55 Voronoi (shader_voronoi.h), 56-71 textures
+  //   (shader_textures.h), 72-95 converters (shader_convert.h), 96-127 geometry and vectors.
 };
+constexpr int kShaderOpcodes = 128;
 
 constexpr int kShaderInputs = 12;
 
@@ -70,11 +73,11 @@ struct ShaderOpContext {
   Vec3 vector(int k) const { return Vec3(in(k)); }
 };
 
-// An opcode's shape: the inputs it reads, how many modes it has, whether it reads data, and how
-// it runs (Image needs the textures and runs in ShaderProgram::run itself: run is null).
+// An opcode's shape: the inputs it reads, how many modes it has (0: not an opcode), whether it
+// reads data, and how it runs (Image needs the textures and runs in ShaderProgram::run itself).
 struct ShaderOpInfo {
   int inputs = 0;
-  int modes = 1;
+  int modes = 0;
   bool data = false;
   glm::vec4 (*run)(const ShaderOpContext&) = nullptr;
 };

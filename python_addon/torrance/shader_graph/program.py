@@ -3,9 +3,9 @@
 that compute them, in the core's format (core/include/torrance/shader_program.h).
 
 Every instruction whose inputs are all constants and that reads nothing of the hit is folded:
-evaluated here with the reference twins of the core's ops (FOLDS: this module's core families,
-then each family module's), so a graph of constants costs the core nothing. The opcode numbers
-are the core's ShaderOpcode, in its order (append-only).
+evaluated here with the reference twins of the core's ops (FOLDS: this module's core ops, and
+each node family's, added by families.py), so a graph of constants costs the core nothing. The
+opcode numbers are the core's ShaderOpcode: the core ops in order, then each family's range.
 """
 
 from dataclasses import dataclass
@@ -14,16 +14,29 @@ import numpy as np
 
 from . import color_ops, math_ops
 
-# The core's ShaderOpcode, in its order.
-OPCODES = ("TexCoordUV", "Image", "Channel", "Combine", "Math", "VectorMath", "MixColor",
-           "MixFloat", "MixVector", "ColorModel", "Invert", "Gamma", "BrightContrast",
-           "HueSaturation", "Luminance", "Average")
-OPCODE = {name: i for i, name in enumerate(OPCODES)}
+# The core's ShaderOpcode: name -> number (the core ops here, each family's added by add_family).
+OPCODE = {name: i for i, name in enumerate((
+    "TexCoordUV", "Image", "Channel", "Combine", "Math", "VectorMath", "MixColor", "MixFloat",
+    "MixVector", "ColorModel", "Invert", "Gamma", "BrightContrast", "HueSaturation", "Luminance",
+    "Average"))}
+OPCODE_NAME = {number: name for name, number in OPCODE.items()}
 SHADER_INPUTS = 12                 # kShaderInputs
 CODE_COLUMNS = 5 + SHADER_INPUTS   # opcode, mode, flags, resource, out, inputs
 MAX_REGISTERS = 128                # ShaderProgram::kMaxRegisters
 # Ops that read the hit (never folded).
 VARYING = {"TexCoordUV", "Image"}
+
+
+def add_family(opcodes, folds, varying=()):
+    """A node family's ops: opcodes (name -> the core's number), folds (name -> fold function,
+    for every op not in varying), varying (ops that read the hit)."""
+    for name, number in opcodes.items():
+        if OPCODE.get(name, number) != number or OPCODE_NAME.get(number, name) != name:
+            raise ValueError(f"opcode {name} = {number} clashes with another op")
+        OPCODE[name] = number
+        OPCODE_NAME[number] = name
+    FOLDS.update(folds)
+    VARYING.update(varying)
 
 
 @dataclass(frozen=True)
@@ -188,7 +201,7 @@ def evaluate(constants, code, registers, uv, image=None, data=()):
         regs[r] = tuple(float(x) for x in c)
     for row in code:
         op, mode, flags, resource, out = (int(x) for x in row[:5])
-        name = OPCODES[op]
+        name = OPCODE_NAME[op]
         args = [regs[int(i)] for i in row[5:] if i >= 0]
         if name == "TexCoordUV":
             result = (float(uv[0]), float(uv[1]), 0.0, 0.0)

@@ -2,12 +2,12 @@
 """The shader graph's registry: Blender node bl_idname -> the reader that compiles one of its
 outputs (graph.GraphCompiler calls it with the node and the output socket; it returns a Value).
 
-Each reader says what Cycles computes with the core's ops (program.OPCODES); a setting it can not
+Each reader says what Cycles computes with the core's ops (program.OPCODE); a setting it can not
 render raises graph.Unsupported naming it.
 """
 
 from ..nodes import node_label
-from . import color_ops, math_ops
+from . import color_ops, families, math_ops
 from .graph import Unsupported, by_identifier
 from .program import constant
 
@@ -176,4 +176,5 @@ READERS = {
     'ShaderNodeHueSaturation': _color_op("HueSaturation",
                                          ('float', 'float', 'float', 'float', 'color')),
     'ShaderNodeRGBToBW': _rgb_to_bw,
+    **families.READERS,
 }

@@ -1,0 +1,15 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The node families beyond the core ops: each a module with OPCODES (name -> the core's
+ShaderOpcode number, in the family's range), FOLDS (the reference twins), READERS (bl_idname ->
+reader) and, optionally, VARYING (ops that read the hit). Importing this module adds them all to
+program (opcodes, folds) and gives their readers to the registry; adding a family is a line here.
+"""
+
+from . import program
+
+FAMILIES = ()
+
+READERS = {}
+for _family in FAMILIES:
+    program.add_family(_family.OPCODES, _family.FOLDS, getattr(_family, "VARYING", ()))
+    READERS.update(_family.READERS)

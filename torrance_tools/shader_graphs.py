@@ -1,0 +1,154 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Node-graph test scenes for the shader graph's agreement tests (test_shader_graph_agreement.py
+and one test per node family): a grid of patches seen from straight above, each an Emission
+shader whose Color a node graph computes (or a lit material), rendered by Cycles and Torrance.
+
+    def stripes(g):                       # a maker: returns the output socket to show
+        tex = g.node("ShaderNodeTexChecker")
+        g.link(g.uv(), tex.inputs["Vector"])
+        return tex.outputs["Color"]
+
+    agree_on_patches(MAKERS, faults=(...))
+"""
+
+import math
+
+import bpy
+import numpy as np
+
+from torrance_tools import render_settings, testing
+from torrance_tools.scene import node_material
+from torrance_tools.seed_noise import agree_within_seed_noise
+from torrance_tools.textures import new_image, set_uvs
+
+W, H = 128, 96
+ORTHO_SCALE = 4.4
+COLUMNS = 4
+PATCH, GAP = 1.0, 0.08
+
+
+class Graph:
+    """A node material being built (nodes, links, the shader feeding the output)."""
+
+    def __init__(self, name, surface="ShaderNodeEmission"):
+        self.mat, self.nodes, self.links, out = node_material(name)
+        self.shader = self.nodes.new(surface)
+        self.links.new(self.shader.outputs[0], out.inputs["Surface"])
+
+    def node(self, kind, **settings):
+        n = self.nodes.new(kind)
+        for key, value in settings.items():
+            setattr(n, key, value)
+        return n
+
+    def link(self, a, b):
+        self.links.new(a, b)
+
+    def uv(self):
+        return self.node("ShaderNodeTexCoord").outputs["UV"]
+
+    def image(self, img, interpolation='Linear'):
+        return self.node("ShaderNodeTexImage", image=img, interpolation=interpolation)
+
+    def math(self, op, a, b=None, value_b=0.5, value_c=0.5, clamp=False):
+        m = self.node("ShaderNodeMath", operation=op, use_clamp=clamp)
+        self.link(a, m.inputs[0])
+        if b is not None:
+            self.link(b, m.inputs[1])
+        else:
+            m.inputs[1].default_value = value_b
+        m.inputs[2].default_value = value_c
+        return m.outputs[0]
+
+
+def test_image():
+    """16 x 16 sRGB colours: hue along x, brightness along y."""
+    y, x = np.mgrid[0:16, 0:16] / 15.0
+    px = np.dstack([0.5 + 0.5 * np.cos(6.28 * x), 0.5 + 0.5 * np.cos(6.28 * (x - 0.33)),
+                    0.5 + 0.5 * np.cos(6.28 * (x - 0.67))]) * (0.25 + 0.75 * y[..., None])
+    return new_image("Colours", np.dstack([px, np.ones_like(x)]).astype(np.float32))
+
+
+def _patch_corner(k, rows):
+    i, j = k % COLUMNS, k // COLUMNS
+    return (i - COLUMNS / 2) * (PATCH + GAP), (rows / 2 - j - 1) * (PATCH + GAP)
+
+
+def build(scene, makers, lit=()):
+    """The grid: one Emission patch per maker (maker(graph) -> the socket shown; the maker's
+    name names the material), then one patch per lit material (made by lit's makers, of
+    materials), under a sun and a sky."""
+    testing.setup_render(scene, width=W, height=H)
+    cam = testing.add_camera(scene, location=(0.0, -0.001, 10.0), target=(0.0, 0.0, 0.0))
+    cam.data.type = 'ORTHO'
+    cam.data.ortho_scale = ORTHO_SCALE
+    materials = []
+    for make in makers:
+        g = Graph(make.__name__)
+        g.link(make(g), g.shader.inputs["Color"])
+        materials.append(g.mat)
+    materials += [make() for make in lit]
+    rows = math.ceil(len(materials) / COLUMNS)
+    for k, mat in enumerate(materials):
+        x0, y0 = _patch_corner(k, rows)
+        quad = testing.mesh_object(scene, mat.name, [(x0, y0, 0), (x0 + PATCH, y0, 0),
+                                                     (x0 + PATCH, y0 + PATCH, 0),
+                                                     (x0, y0 + PATCH, 0)], [(0, 1, 2, 3)], mat)
+        set_uvs(quad, [(0, 0), (1, 0), (1, 1), (0, 1)])
+    testing.add_sun(scene, strength=2.0, rotation=(math.radians(30), 0, math.radians(20)),
+                    angle=math.radians(5.0))
+    testing.set_world(scene, (0.3, 0.32, 0.35))
+    return [m.name for m in materials]
+
+
+def patch_means(img, count):
+    """Mean RGB of each patch's inner pixels, in the grid's order."""
+    rows = math.ceil(count / COLUMNS)
+    px = W / ORTHO_SCALE
+    out = []
+    for k in range(count):
+        x0, y0 = _patch_corner(k, rows)
+        c0, c1 = int(W / 2 + x0 * px) + 3, int(W / 2 + (x0 + PATCH) * px) - 3
+        r0, r1 = int(H / 2 - (y0 + PATCH) * px) + 3, int(H / 2 - y0 * px) - 3
+        out.append(img[r0:r1, c0:c1, :3].mean(axis=(0, 1)))
+    return out
+
+
+def print_patches(names, directory, samples=64):
+    """Per patch, Torrance's and Cycles' means (for finding which patch disagrees)."""
+    scene = bpy.context.scene
+    render_settings.setup_cycles(scene, samples, 2, seed=1)
+    cycles, _ = testing.render(scene, directory, "patches_cycles")
+    render_settings.setup_torrance(scene, samples, 2, seed=2)
+    torrance, _ = testing.render(scene, directory, "patches_torrance")
+    for name, t, c in zip(names, patch_means(torrance, len(names)),
+                          patch_means(cycles, len(names)), strict=True):
+        print(f"  {name:16s} Torrance {np.round(t, 4)}  Cycles {np.round(c, 4)}")
+
+
+class DictAttr:
+    """One entry of a dict (e.g. the registry's READERS) as an attribute, so that
+    agree_within_seed_noise's faults can patch it."""
+
+    def __init__(self, table):
+        self.__dict__['_table'] = table
+
+    def __getattr__(self, key):
+        return self._table[key]
+
+    def __setattr__(self, key, value):
+        self._table[key] = value
+
+
+def agree_on_patches(makers, faults=(), lit=(), what="the shader graph", samples=32):
+    """Builds the grid and checks Torrance against Cycles within Cycles' seed-to-seed noise
+    (agree_within_seed_noise), printing each patch's means when they disagree."""
+    scene = testing.clear_scene()
+    names = build(scene, makers, lit)
+    directory = testing.tempdir()
+    try:
+        agree_within_seed_noise(scene, directory, samples, 2, what, faults=faults,
+                                tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
+    except AssertionError:
+        print_patches(names, directory)
+        raise
