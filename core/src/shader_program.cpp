@@ -2,6 +2,7 @@
 
 #include "torrance/shader_color.h"
 #include "torrance/shader_math.h"
+// [family headers]
 
 #include <algorithm>
 #include <cmath>
@@ -88,6 +89,11 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
     case ShaderOpcode::Luminance: return {1, 1, false, luminance};
     case ShaderOpcode::Average: return {1, 1, false, average};
     // The node families' ops (a line each, in opcode order):
+    // [noise ops]
+    // [voronoi ops]
+    // [texture ops]
+    // [converter ops]
+    // [geometry ops]
     default: break;
   }
   return {0, 0, false, nullptr};

@@ -42,6 +42,11 @@ enum class ShaderOpcode : uint8_t {
   // shader_op_info lists their shapes; python_addon/torrance/shader_graph/ the same numbers):
   //   32-47 noise (shader_noise.h), 48-55 Voronoi (shader_voronoi.h), 56-71 textures
   //   (shader_textures.h), 72-95 converters (shader_convert.h), 96-127 geometry and vectors.
+  // [noise ops]
+  // [voronoi ops]
+  // [texture ops]
+  // [converter ops]
+  // [geometry ops]
 };
 constexpr int kShaderOpcodes = 128;
 

@@ -7,7 +7,11 @@ program (opcodes, folds) and gives their readers to the registry; adding a famil
 
 from . import program
 
-FAMILIES = ()
+# [family imports]
+
+FAMILIES = (
+    # [families]
+)
 
 READERS = {}
 for _family in FAMILIES:
