@@ -94,14 +94,14 @@ bool MixtureBsdf::transmits() const {
   return false;
 }
 
-MixtureBsdf shade_material(const Scene& scene, uint32_t id, const Vec2& uv, float footprint, bool textured,
+MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals& globals, bool textured,
                            BrdfModel model, const MaterialBsdf& prebuilt, Material& resolved) {
   const Mixture* mixture = scene.mixture(id);
   if (!mixture) {
-    resolved = textured ? scene.textured_material(id, uv, footprint) : scene.material(id);
+    resolved = textured ? scene.textured_material(id, globals) : scene.material(id);
     return textured ? MixtureBsdf(MaterialBsdf(resolved, model)) : MixtureBsdf(prebuilt);
   }
-  const MixtureWeights w = scene.mixture_weights(id, uv, footprint);
+  const MixtureWeights w = scene.mixture_weights(id, globals.uv, globals.footprint);
   resolved = Material{};
   resolved.base_color = Vec3(0.0f);
   resolved.metallic = 0.0f;
@@ -109,7 +109,7 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const Vec2& uv, floa
   for (int k = 0; k < w.count; ++k) {
     if (!(w.weight[k] > 0.0f)) continue;
     const MixtureComponent& c = mixture->components[k];
-    const Material m = textured ? scene.textured_material(c.material, uv, footprint) : scene.material(c.material);
+    const Material m = textured ? scene.textured_material(c.material, globals) : scene.material(c.material);
     resolved.emission += w.weight[k] * m.emission;
     switch (c.type) {
       case ClosureType::Principled:

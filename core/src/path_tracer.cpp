@@ -330,12 +330,12 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       using Bsdf = std::conditional_t<kMixtures, MixtureBsdf, MaterialBsdf>;
       Material material;
       std::optional<Bsdf> local_bsdf;
+      const ShaderGlobals globals = textured ? shader_globals(hit, ray.dir, footprint) : ShaderGlobals{};
       if constexpr (kMixtures) {
-        local_bsdf.emplace(shade_material(ctx.scene, hit.material, hit.uv, footprint, textured, ctx.settings.brdf_model,
+        local_bsdf.emplace(shade_material(ctx.scene, hit.material, globals, textured, ctx.settings.brdf_model,
                                           ctx.bsdfs[hit.material], material));
       } else {
-        material = textured ? ctx.scene.textured_material(hit.material, hit.uv, footprint)
-                            : ctx.scene.material(hit.material);
+        material = textured ? ctx.scene.textured_material(hit.material, globals) : ctx.scene.material(hit.material);
         if (textured) local_bsdf.emplace(material, ctx.settings.brdf_model);
       }
       const Bsdf* bsdf_used;

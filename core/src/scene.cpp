@@ -103,21 +103,23 @@ uint32_t Scene::add_shader_program(ShaderProgram program) {
   return uint32_t(programs_.size() - 1);
 }
 
-Material Scene::textured_material(uint32_t id, const Vec2& uv, float footprint) const {
+Material Scene::textured_material(uint32_t id, const ShaderGlobals& g) const {
+  const Vec2& uv = g.uv;
+  const float footprint = g.footprint;
   Material m = materials_[id];
   const MaterialTextures& t = material_textures_[id];
   if (t.base_color >= 0) m.base_color = glm::clamp(Vec3(textures_[t.base_color]->lookup(uv, footprint)), Vec3(0.0f), Vec3(1.0f));
   if (t.metallic >= 0) m.metallic = clamp01(blender_luminance(Vec3(textures_[t.metallic]->lookup(uv, footprint))));
   if (t.roughness >= 0) m.roughness = clamp01(blender_luminance(Vec3(textures_[t.roughness]->lookup(uv, footprint))));
   if (t.emission >= 0) m.emission = glm::max(Vec3(textures_[t.emission]->lookup(uv, footprint)), Vec3(0.0f)) * t.emission_strength;
-  if (t.program.any()) apply_program(t, uv, footprint, m);
+  if (t.program.any()) apply_program(t, g, m);
   return m;
 }
 
-void Scene::apply_program(const MaterialTextures& t, const Vec2& uv, float footprint, Material& m) const {
+void Scene::apply_program(const MaterialTextures& t, const ShaderGlobals& g, Material& m) const {
   const ShaderOutputs& o = t.program;
   std::array<glm::vec4, ShaderProgram::kMaxRegisters> regs;
-  run_shader_program(uint32_t(o.program), ShaderGlobals{uv, footprint}, regs.data());
+  run_shader_program(uint32_t(o.program), g, regs.data());
   if (o.base_color >= 0) m.base_color = glm::clamp(Vec3(regs[size_t(o.base_color)]), Vec3(0.0f), Vec3(1.0f));
   if (o.metallic >= 0) m.metallic = clamp01(regs[size_t(o.metallic)].x);
   if (o.roughness >= 0) m.roughness = clamp01(regs[size_t(o.roughness)].x);

@@ -3,6 +3,7 @@
 #include "torrance/shader_color.h"
 #include "torrance/shader_math.h"
 // [family headers]
+#include "torrance/shader_geometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -94,6 +95,10 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
     // [texture ops]
     // [converter ops]
     // [geometry ops]
+    case ShaderOpcode::Geometry: return {0, 5, false, shader::geometry_op};
+    case ShaderOpcode::Reflection: return {0, 1, false, shader::reflection_op};
+    case ShaderOpcode::Fresnel: return {2, 1, false, shader::fresnel_op};
+    case ShaderOpcode::LayerWeight: return {2, 2, false, shader::layer_weight_op};
     default: break;
   }
   return {0, 0, false, nullptr};

@@ -218,6 +218,7 @@ class MaterialReader:
         """add_material() arguments with the closure's shader program (if it has one)."""
         if self._program_inputs:
             out['shader_program'] = self._program.build()
+            out['program_reads_uvs'] = self._program.reads("TexCoordUV")
             for key, value in self._program_inputs.items():
                 out[f'{key}_register'] = self._program.register_of(value)
                 out.pop(f'{key}_texture', None)
@@ -502,7 +503,7 @@ def uses_textures(m):
         return (any(uses_textures(args) for _kind, args, _terms in mix['closures'])
                 or any(f['kind'] != "constant" for f in mix['factors'])
                 or uses_textures(mix['normal']) or uses_textures(mix.get('alpha', {})))
-    return 'shader_program' in m or any(m.get(k, -1) >= 0 for k in _TEXTURE_KEYS)
+    return m.get('program_reads_uvs', False) or any(m.get(k, -1) >= 0 for k in _TEXTURE_KEYS)
 
 
 def emits(m):
@@ -562,6 +563,7 @@ class MaterialTable:
         """add_material() of one closure's arguments, its shader program added first."""
         args = dict(args)
         program = args.pop('shader_program', None)
+        args.pop('program_reads_uvs', None)
         if program is not None:
             args['program'] = self.scene.add_shader_program(*program)
         return self.scene.add_material(**args)

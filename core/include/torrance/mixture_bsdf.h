@@ -17,6 +17,7 @@
 #include "torrance/glossy_bsdf.h"
 #include "torrance/material_bsdf.h"
 #include "torrance/mixture.h"
+#include "torrance/shader_program.h"
 
 #include <array>
 #include <variant>
@@ -90,9 +91,10 @@ class MixtureBsdf {
 
 // What the integrator shades with at a hit on material `id`: its BSDF (a single MaterialBsdf for
 // an ordinary material, a mixture's closures otherwise) and, in `resolved`, the material's
-// emission and an albedo (base_color, metallic 0 for mixtures) at uv, textures averaged over
-// `footprint` UV units when `textured`. `prebuilt` is the material's BSDF when untextured.
-MixtureBsdf shade_material(const Scene& scene, uint32_t id, const Vec2& uv, float footprint, bool textured,
+// emission and an albedo (base_color, metallic 0 for mixtures) at the hit `globals` describe
+// (textures and shader programs read when `textured`). `prebuilt` is the material's BSDF when
+// untextured.
+MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals& globals, bool textured,
                            BrdfModel model, const MaterialBsdf& prebuilt, Material& resolved);
 
 // The estimated albedo a mixture samples a Principled closure by: luminance of the base colour

@@ -63,6 +63,21 @@ struct SurfaceHit {
   Vec3 dpdu{0.0f}, dpdv{0.0f};  // dP/du and dP/dv of the triangle's UV mapping (0 without usable UVs)
 };
 
+// What a shader program reads at a hit seen along ray_dir (Cycles' ShaderData: normals facing
+// the viewer), textures averaged over `footprint` UV units.
+inline ShaderGlobals shader_globals(const SurfaceHit& hit, const Vec3& ray_dir, float footprint) {
+  ShaderGlobals g;
+  g.uv = hit.uv;
+  g.footprint = footprint;
+  g.position = hit.position;
+  g.incoming = -ray_dir;
+  g.backfacing = glm::dot(hit.geometric_normal, g.incoming) < 0.0f;
+  const float side = g.backfacing ? -1.0f : 1.0f;
+  g.normal = side * hit.shading_normal;
+  g.true_normal = side * hit.geometric_normal;
+  return g;
+}
+
 // Throws std::invalid_argument unless the material's values are finite and in range.
 void check_material(const Material& material);
 
@@ -88,7 +103,13 @@ class Scene {
   const MaterialTextures& material_textures(uint32_t i) const { return material_textures_[i]; }
   // The material at a hit with its textures applied (base colour, metallic, roughness, emission),
   // averaged over a footprint of that many UV units (0: the finest texels).
-  Material textured_material(uint32_t material, const Vec2& uv, float footprint = 0.0f) const;
+  Material textured_material(uint32_t material, const ShaderGlobals& globals) const;
+  Material textured_material(uint32_t material, const Vec2& uv, float footprint = 0.0f) const {
+    ShaderGlobals g;
+    g.uv = uv;
+    g.footprint = footprint;
+    return textured_material(material, g);
+  }
   // A material made of weighted closures (Mix/Add Shader, mixture.h); returns its material index.
   // Its normal map or bump and its alpha texture come from `textures` (only those fields are read);
   // alpha and transparent_color as Material's (a Mix Shader of a Transparent BSDF and this
@@ -242,7 +263,7 @@ class Scene {
   void check_idle(const char* change) const;  // with mutex_ held
   Vec3 bump_mapped(const MaterialTextures& t, const SurfaceHit& hit, const Vec3& ns, float cone_width) const;
   // Runs the material's shader program at uv and writes the inputs it feeds into m.
-  void apply_program(const MaterialTextures& t, const Vec2& uv, float footprint, Material& m) const;
+  void apply_program(const MaterialTextures& t, const ShaderGlobals& g, Material& m) const;
   void check_program_outputs(const ShaderOutputs& outputs) const;  // throws std::invalid_argument
 
   mutable std::mutex mutex_;  // changes vs. begin_render, and the camera

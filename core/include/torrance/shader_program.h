@@ -47,6 +47,10 @@ enum class ShaderOpcode : uint8_t {
   // [texture ops]
   // [converter ops]
   // [geometry ops]
+  Geometry = 96,     // shader_geometry.h
+  Reflection = 97,
+  Fresnel = 98,
+  LayerWeight = 99,
 };
 constexpr int kShaderOpcodes = 128;
 
@@ -60,10 +64,16 @@ struct ShaderInstruction {
   std::array<int16_t, kShaderInputs> in{};
 };
 
-// What a program may read at a hit.
+// What a program may read at a hit, as Cycles' ShaderData: world-space position, the shading and
+// true normals facing the viewer (flipped on a back face), the direction toward the viewer.
 struct ShaderGlobals {
   Vec2 uv{0.0f};
   float footprint = 0.0f;  // the texture lookups' footprint, in UV units
+  Vec3 position{0.0f};
+  Vec3 normal{0.0f, 0.0f, 1.0f};
+  Vec3 true_normal{0.0f, 0.0f, 1.0f};
+  Vec3 incoming{0.0f, 0.0f, 1.0f};
+  bool backfacing = false;
 };
 
 // What an op sees when it runs: its instruction, the registers and the program's data.

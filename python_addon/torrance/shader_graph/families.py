@@ -8,9 +8,11 @@ program (opcodes, folds) and gives their readers to the registry; adding a famil
 from . import program
 
 # [family imports]
+from . import geometry  # noqa: I001
 
 FAMILIES = (
     # [families]
+    geometry,
 )
 
 READERS = {}

@@ -37,6 +37,10 @@ class GraphCompiler:
             return convert(self.builder, _default(socket), kind)
         return convert(self.builder, self.output(link.from_socket), kind)
 
+    def generated(self):
+        """Texture Coordinate > Generated, what an unlinked texture Vector reads."""
+        raise Unsupported("Generated texture coordinates (an unlinked Vector) are not supported")
+
     def output(self, socket):
         """The Value of an output socket (of its own kind)."""
         node = socket.node

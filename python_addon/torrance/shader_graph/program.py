@@ -167,6 +167,10 @@ class ProgramBuilder:
         for value in [v for v, slot in self.constants.items() if slot >= constants]:
             del self.constants[value]
 
+    def reads(self, op):
+        """Whether the program has an instruction of op (e.g. TexCoordUV: the mesh needs UVs)."""
+        return any(row[0] == OPCODE[op] for row in self.code)
+
     def register_of(self, v):
         """The final register index of a computed (non-constant) Value."""
         return len(self.constants) + v.register

@@ -26,9 +26,7 @@ def _rgb_node(g, node, socket):
 
 
 def _uv(g, node, socket):
-    if node.bl_idname == 'ShaderNodeTexCoord' and (socket.identifier != "UV" or node.object):
-        raise Unsupported(f"{node_label(node)}'s output '{socket.name}' is not supported (UV is)")
-    if node.bl_idname == 'ShaderNodeUVMap' and node.from_instancer:
+    if node.from_instancer:
         raise Unsupported(f"{node_label(node)}: UVs from the instancer are not supported")
     return g.builder.emit("TexCoordUV", 'vector')
 
@@ -155,7 +153,6 @@ def _rgb_to_bw(g, node, socket):
 READERS = {
     'ShaderNodeValue': _value_node,
     'ShaderNodeRGB': _rgb_node,
-    'ShaderNodeTexCoord': _uv,
     'ShaderNodeUVMap': _uv,
     'ShaderNodeTexImage': _image,
     'ShaderNodeSeparateColor': _separate(lambda n: n.mode),

@@ -1,0 +1,145 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The shader graph's geometry nodes render as Cycles 3.4 renders them: Fresnel, Layer Weight
+(Fresnel and Facing), Geometry (Position, Normal, True Normal, Incoming, Backfacing) and Texture
+Coordinate > Reflection, each shown through an Emission shader on a sphere (normals and view
+directions vary over it) seen by a perspective camera, and on a quad seen from behind
+(Backfacing, the IOR inverted).
+
+Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
+seeds 2 and 3. Deliberate faults (the Fresnel's IOR ignored; Layer Weight's Facing read as its
+Fresnel; Geometry's Normal read as Incoming) must fail them.
+
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \
+         --python blender_tests/test_shader_geometry_agreement.py
+"""
+
+from torrance_tools import testing
+from torrance_tools.seed_noise import agree_within_seed_noise
+from torrance_tools.shader_graphs import DictAttr, Graph
+
+W, H = 128, 80
+
+
+def fresnel(g):
+    f = g.node("ShaderNodeFresnel")
+    f.inputs["IOR"].default_value = 2.5
+    return f.outputs[0]
+
+
+def facing(g):
+    lw = g.node("ShaderNodeLayerWeight")
+    lw.inputs["Blend"].default_value = 0.3
+    return lw.outputs["Facing"]
+
+
+def layer_fresnel(g):
+    lw = g.node("ShaderNodeLayerWeight")
+    lw.inputs["Blend"].default_value = 0.7
+    return lw.outputs["Fresnel"]
+
+
+def _abs(g, socket):
+    v = g.node("ShaderNodeVectorMath", operation='ABSOLUTE')
+    g.link(socket, v.inputs[0])
+    return v.outputs[0]
+
+
+def normal(g):
+    return _abs(g, g.node("ShaderNodeNewGeometry").outputs["Normal"])
+
+
+def incoming(g):
+    return _abs(g, g.node("ShaderNodeNewGeometry").outputs["Incoming"])
+
+
+def position(g):
+    v = g.node("ShaderNodeVectorMath", operation='FRACTION')
+    scale = g.node("ShaderNodeVectorMath", operation='SCALE')
+    scale.inputs["Scale"].default_value = 2.0
+    g.link(g.node("ShaderNodeNewGeometry").outputs["Position"], scale.inputs[0])
+    g.link(scale.outputs[0], v.inputs[0])
+    return v.outputs[0]
+
+
+def reflection(g):
+    return _abs(g, g.node("ShaderNodeTexCoord").outputs["Reflection"])
+
+
+def true_normal_and_backfacing(g):
+    """Red: Backfacing; green, blue: the true normal's |y|, |z|."""
+    geo = g.node("ShaderNodeNewGeometry")
+    sep = g.node("ShaderNodeSeparateXYZ")
+    g.link(_abs(g, geo.outputs["True Normal"]), sep.inputs[0])
+    comb = g.node("ShaderNodeCombineRGB")
+    g.link(geo.outputs["Backfacing"], comb.inputs[0])
+    g.link(sep.outputs[1], comb.inputs[1])
+    g.link(sep.outputs[2], comb.inputs[2])
+    return comb.outputs[0]
+
+
+SPHERES = (fresnel, facing, layer_fresnel, normal, incoming, position, reflection)
+
+
+def build(scene):
+    testing.setup_render(scene, width=W, height=H)
+    testing.add_camera(scene, location=(0.0, -9.0, 3.0), target=(0.0, 0.0, 0.3), lens=35.0)
+    for k, make in enumerate(SPHERES):
+        g = Graph(make.__name__)
+        g.link(make(g), g.shader.inputs["Color"])
+        x, y = (k % 4 - 1.5) * 1.6, (k // 4) * 1.8 - 0.6
+        testing.sphere_object(scene, make.__name__, (x, y, 0.7), 0.7, g.mat)
+    # A quad whose front faces away from the camera: seen from behind (Backfacing 1), and the
+    # Fresnel of a back face (the IOR inverted).
+    back = Graph("Back")
+    mix = back.node("ShaderNodeMixRGB", blend_type='ADD')
+    mix.inputs["Fac"].default_value = 1.0
+    back.link(true_normal_and_backfacing(back), mix.inputs["Color1"])
+    back.link(fresnel(back), mix.inputs["Color2"])
+    back.link(mix.outputs[0], back.shader.inputs["Color"])
+    testing.mesh_object(scene, "Back", [(1.8, 1.6, 0.0), (1.8, 1.6, 1.5), (3.3, 2.2, 1.5),
+                                        (3.3, 2.2, 0.0)], [(0, 1, 2, 3)], back.mat)
+    testing.set_world(scene, (0.0, 0.0, 0.0))
+
+
+def read_as(output):
+    """A fault: the Geometry reader reads `output` whatever the socket asks for."""
+    def fault(original):
+        def read(g, node, socket):
+            return original(g, node, node.outputs[output] if socket.name == "Normal" else socket)
+        return read
+    return fault
+
+
+def ior_ignored(original):
+    def read(g, node, socket):
+        saved = node.inputs["IOR"].default_value
+        node.inputs["IOR"].default_value = 1.45
+        try:
+            return original(g, node, socket)
+        finally:
+            node.inputs["IOR"].default_value = saved
+    return read
+
+
+def facing_as_fresnel(original):
+    def read(g, node, socket):
+        return original(g, node, node.outputs["Fresnel"])
+    return read
+
+
+def main():
+    testing.addon()
+    from torrance.shader_graph.registry import READERS
+    readers = DictAttr(READERS)
+    scene = testing.clear_scene()
+    build(scene)
+    agree_within_seed_noise(
+        scene, testing.tempdir(), 32, 2, "the geometry nodes",
+        faults=(("Fresnel IOR ignored", readers, 'ShaderNodeFresnel', ior_ignored),
+                ("Facing read as Fresnel", readers, 'ShaderNodeLayerWeight', facing_as_fresnel),
+                ("Normal read as Incoming", readers, 'ShaderNodeNewGeometry',
+                 read_as("Incoming"))),
+        tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
+
+
+testing.run(main)
