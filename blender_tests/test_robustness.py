@@ -141,15 +141,16 @@ def main():
     centre = img[H // 2 - 2:H // 2 + 2, W // 2 - 2:W // 2 + 2, :3].mean(axis=(0, 1))
     check(centre[0] > 2 * centre[2], f"nan_vertex: the red sphere is missing: {centre}")
 
-    # 5. Unsupported nodes: a Principled Base Color from a Noise Texture; a Toon BSDF surface;
+    # 5. Unsupported nodes: a Principled Base Color from a Point Density texture (not read by the
+    #    shader graph); a Toon BSDF surface;
     #    an Emission surface (supported); a material without output; a Mix Shader.
     scene = base_scene()
     testing.add_sun(scene)
     noise_mat = testing.principled("NoiseMat", (0.2, 0.6, 0.2))
     nt = noise_mat.node_tree
-    noise = nt.nodes.new("ShaderNodeTexNoise")
+    noise = nt.nodes.new("ShaderNodeTexPointDensity")
     nt.links.new(noise.outputs["Color"], nt.nodes["Principled BSDF"].inputs["Base Color"])
-    nt.links.new(noise.outputs["Fac"], nt.nodes["Principled BSDF"].inputs["Roughness"])
+    nt.links.new(noise.outputs["Density"], nt.nodes["Principled BSDF"].inputs["Roughness"])
     toon_mat = bpy.data.materials.new("ToonMat")
     toon_mat.use_nodes = True
     nt = toon_mat.node_tree
@@ -177,7 +178,7 @@ def main():
         testing.sphere_object(scene, mat.name + "Sphere", (-2.4 + 1.2 * i, 0, 0.5), 0.5, mat,
                               segments=16, rings=8)
     img = render_case("unsupported_nodes", scene, d, expect=[
-        "'NoiseMat': input 'Base Color'", "Noise Texture", "'NoiseMat': input 'Roughness'",
+        "'NoiseMat': input 'Base Color'", "Point Density", "'NoiseMat': input 'Roughness'",
         "'ToonMat': the surface shader", "Toon BSDF",
         "'NoOutputMat': no active Material Output", "'MixMat'", "Mix Shader"])
     messages = testing.last_messages()

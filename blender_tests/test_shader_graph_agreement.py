@@ -16,6 +16,7 @@ compared is the graph's value, up to the pixel filter's noise):
                into Combine) -> Emission
   muted        Image -> a muted Invert (Blender passes the colour through) -> Gamma 0.5
   legacy       Image -> Separate RGB -> Combine HSV (legacy nodes) and Separate HSV -> Combine RGB
+  mapped       UV -> Mapping (Texture) -> Image, times UV -> Mapping (Point) -> Vector Rotate
   orm          a glTF-style material: Base Color from the image, Separate Color's Green ->
                Roughness, Blue -> Metallic, lit by a sun and the sky (Principled BSDF)
 
@@ -198,7 +199,34 @@ def legacy(g, img):
     return rgb.outputs[0]
 
 
-EMISSIVE = (channels, hsv, maths, vector_maths, mixrgb, mix, adjust, grouped, muted, legacy)
+def mapped(g, img):
+    """UV -> Mapping (Texture: location, rotation, scale; glTF's KHR_texture_transform) -> the
+    image, times UV -> Mapping (Point) -> Vector Rotate (axis-angle, inverted) as a colour."""
+    m = g.node("ShaderNodeMapping", vector_type='TEXTURE')
+    m.inputs["Location"].default_value = (0.2, -0.1, 0.0)
+    m.inputs["Rotation"].default_value = (0.0, 0.0, 0.6)
+    m.inputs["Scale"].default_value = (1.5, 0.7, 1.0)
+    g.link(g.uv(), m.inputs["Vector"])
+    tex = g.image(img)
+    g.link(m.outputs[0], tex.inputs["Vector"])
+    p = g.node("ShaderNodeMapping", vector_type='POINT')
+    p.inputs["Rotation"].default_value = (0.3, 0.2, 0.4)
+    g.link(g.uv(), p.inputs["Vector"])
+    r = g.node("ShaderNodeVectorRotate", rotation_type='AXIS_ANGLE', invert=True)
+    r.inputs["Axis"].default_value = (0.3, 0.5, 1.0)
+    r.inputs["Angle"].default_value = 0.8
+    g.link(p.outputs[0], r.inputs["Vector"])
+    absolute = g.node("ShaderNodeVectorMath", operation='ABSOLUTE')
+    g.link(r.outputs[0], absolute.inputs[0])
+    mul = g.node("ShaderNodeMixRGB", blend_type='MULTIPLY')
+    mul.inputs["Fac"].default_value = 1.0
+    g.link(tex.outputs["Color"], mul.inputs["Color1"])
+    g.link(absolute.outputs[0], mul.inputs["Color2"])
+    return mul.outputs[0]
+
+
+EMISSIVE = (channels, hsv, maths, vector_maths, mixrgb, mix, adjust, grouped, muted, legacy,
+            mapped)
 
 
 def orm():
@@ -274,6 +302,17 @@ def fault_models_swapped(original):
     return read
 
 
+def fault_mapping_as_point(original):
+    def read(g, node, socket):
+        saved = node.vector_type
+        node.vector_type = 'POINT'
+        try:
+            return original(g, node, socket)
+        finally:
+            node.vector_type = saved
+    return read
+
+
 def fault_group_passes_through(_original):
     """A fault: a group node's output is its first input (its inner nodes ignored)."""
     def read(self, group, socket, kind):
@@ -294,7 +333,8 @@ def main():
                 ("MixRGB blend read as Mix", readers, 'ShaderNodeMixRGB', fault_blend_as_mix),
                 ("HSV read as HSL", readers, 'ShaderNodeSeparateColor', fault_models_swapped),
                 ("groups pass their input through", GraphCompiler, '_group_output',
-                 fault_group_passes_through)))
+                 fault_group_passes_through),
+                ("Mapping read as Point", readers, 'ShaderNodeMapping', fault_mapping_as_point)))
 
 
 testing.run(main)

@@ -76,8 +76,9 @@ def _patch_corner(k, rows):
 
 def build(scene, makers, lit=()):
     """The grid: one Emission patch per maker (maker(graph) -> the socket shown; the maker's
-    name names the material), then one patch per lit material (made by lit's makers, of
-    materials), under a sun and a sky."""
+    name names the material; a maker's `setup(obj)`, if it has one, then edits its quad, e.g.
+    adds attributes), then one patch per lit material (made by lit's makers, of materials),
+    under a sun and a sky."""
     testing.setup_render(scene, width=W, height=H)
     cam = testing.add_camera(scene, location=(0.0, -0.001, 10.0), target=(0.0, 0.0, 0.0))
     cam.data.type = 'ORTHO'
@@ -88,13 +89,16 @@ def build(scene, makers, lit=()):
         g.link(make(g), g.shader.inputs["Color"])
         materials.append(g.mat)
     materials += [make() for make in lit]
+    setups = [getattr(make, "setup", None) for make in makers] + [None] * len(lit)
     rows = math.ceil(len(materials) / COLUMNS)
-    for k, mat in enumerate(materials):
+    for k, (mat, setup) in enumerate(zip(materials, setups, strict=True)):
         x0, y0 = _patch_corner(k, rows)
         quad = testing.mesh_object(scene, mat.name, [(x0, y0, 0), (x0 + PATCH, y0, 0),
                                                      (x0 + PATCH, y0 + PATCH, 0),
                                                      (x0, y0 + PATCH, 0)], [(0, 1, 2, 3)], mat)
         set_uvs(quad, [(0, 0), (1, 0), (1, 1), (0, 1)])
+        if setup is not None:
+            setup(quad)
     testing.add_sun(scene, strength=2.0, rotation=(math.radians(30), 0, math.radians(20)),
                     angle=math.radians(5.0))
     testing.set_world(scene, (0.3, 0.32, 0.35))

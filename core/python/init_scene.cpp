@@ -215,6 +215,19 @@ void init_scene(py::module_& m) {
           "registers the register count, data (K,) float32 or None. Raises ValueError naming a bad "
           "instruction. Returns its id.")
       .def(
+          "set_mesh_attributes",
+          [](Scene& s, uint32_t mesh, const py::object& values, const py::object& ids, bool prototype) {
+            const auto v = shaped_array<float>(values, "values", {-1, -1, 3});
+            const auto i = shaped_array<int32_t>(ids, "ids", {-1});
+            if (v.ndim() != 3 || v.shape(0) != i.size())
+              throw py::value_error("values must have shape (len(ids), 3 * triangles, 3), got " + shape_string(v));
+            s.set_mesh_attributes(mesh, prototype, v.data(), size_t(v.shape(1)), i.data(), size_t(i.size()));
+          },
+          py::arg("mesh"), py::arg("values"), py::arg("ids"), py::arg("prototype") = false,
+          "Per-corner attributes of a mesh (or, with prototype=True, of a prototype) that shader programs "
+          "read with the Attribute op: values (A, 3 * triangles, 3) float32 (triangle t's corners at 3t, 3t + 1, "
+          "3t + 2), ids (A,) int32 naming each layer. NaN/Inf read as 0.")
+      .def(
           "run_shader_program",
           [](const Scene& s, int program, const py::object& uvs, float footprint) {
             return run_shader_program(s, program, uvs, footprint);

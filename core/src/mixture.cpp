@@ -1,16 +1,11 @@
 #include "torrance/mixture.h"
 
+#include "torrance/shader_textures.h"
+
 #include <stdexcept>
 #include <string>
 
 namespace torrance {
-
-float checker_pattern(const Vec3& p) {
-  // Cycles nudges coordinates off the integers so that unit-aligned inputs do not flicker.
-  auto cell = [](float x) { return std::abs(int(std::floor((x + 0.000001f) * 0.999999f))); };
-  const int xi = cell(p.x), yi = cell(p.y), zi = cell(p.z);
-  return ((xi % 2 == yi % 2) == bool(zi % 2)) ? 1.0f : 0.0f;
-}
 
 void check_mixture(const Mixture& mixture, size_t num_materials, size_t num_textures) {
   const size_t n = mixture.components.size();
@@ -51,7 +46,7 @@ MixtureWeights mixture_weights(const Mixture& mixture, const std::vector<std::sh
     if (f.kind == MixFactor::Kind::Image) {
       v = blender_luminance(Vec3(textures[f.texture]->lookup(uv, footprint)));
     } else if (f.kind == MixFactor::Kind::Checker) {
-      v = checker_pattern(Vec3(uv.x, uv.y, 0.0f) * f.checker_scale) > 0.5f ? f.checker_color1 : f.checker_color2;
+      v = shader::checker(Vec3(uv.x, uv.y, 0.0f) * f.checker_scale) > 0.5f ? f.checker_color1 : f.checker_color2;
     }
     fac[i] = std::isfinite(v) ? clamp01(v) : 0.0f;  // Cycles clamps the Mix Shader's Fac
   }

@@ -287,6 +287,31 @@ std::unique_ptr<Scene::Mesh> Scene::make_mesh(const float* positions, size_t num
   return mesh;
 }
 
+void Scene::set_mesh_attributes(uint32_t id, bool prototype, const float* values, size_t num_corners,
+                                const int32_t* ids, size_t num_attributes) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set mesh attributes");
+  if (prototype ? id >= prototypes_.size() : id >= meshes_.size())
+    throw std::invalid_argument(std::string(prototype ? "prototype " : "mesh ") + std::to_string(id) +
+                                " does not exist");
+  Mesh& mesh = prototype ? *prototypes_[id]->mesh : *meshes_[id];
+  const size_t corners = 3 * mesh.triangles.size();
+  if (num_attributes > 0 && num_corners != corners)
+    throw std::invalid_argument("mesh attributes have " + std::to_string(num_corners) + " corners; the mesh has " +
+                                std::to_string(corners));
+  if (num_attributes > 64) throw std::invalid_argument("a mesh has at most 64 attributes");
+  require_memory(double(corners) * double(num_attributes) * sizeof(Vec3), "mesh attributes");
+  std::vector<Vec3> stored(corners * num_attributes);
+  for (size_t a = 0; a < num_attributes; ++a)
+    for (size_t i = 0; i < corners; ++i) {
+      const float* v = values + 3 * (a * corners + i);
+      const Vec3 x(v[0], v[1], v[2]);
+      stored[i * num_attributes + a] = is_finite(x) ? x : Vec3(0.0f);
+    }
+  mesh.corner_attributes = std::move(stored);
+  mesh.attribute_ids.assign(ids, ids + num_attributes);
+}
+
 static_assert(sizeof(Vec3) == 3 * sizeof(float) && sizeof(glm::uvec3) == 3 * sizeof(uint32_t),
               "Embree shares the mesh arrays as FLOAT3 and UINT3");
 

@@ -18,8 +18,11 @@ bool Scene::surface_hit(const void* rayhit, const Vec3& dir, SurfaceHit& hit) co
   const uint32_t prim = rh.hit.primID;
   float u = rh.hit.u, v = rh.hit.v;
   Corners c;
+  const Mesh* hit_mesh = nullptr;
+  bool mirrored = false;
   if (rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID) {
     const Mesh& mesh = *meshes_[geometry_owner_[rh.hit.geomID]];
+    hit_mesh = &mesh;
     c = mesh_corners(mesh.positions, mesh.triangles[prim],
                      mesh.corner_normals.empty() ? nullptr : &mesh.corner_normals[3 * prim],
                      mesh.corner_uvs.empty() ? nullptr : &mesh.corner_uvs[3 * prim]);
@@ -29,16 +32,26 @@ bool Scene::surface_hit(const void* rayhit, const Vec3& dir, SurfaceHit& hit) co
     const Instance& inst = instances_[geometry_owner_[rh.hit.instID[0]] & ~kInstanceBit];
     const Binding& b = bindings_[inst.binding];
     const Mesh& mesh = *prototypes_[b.prototype]->mesh;
-    if (instance_corners(mesh.positions, mesh.triangles[prim],
-                         mesh.corner_normals.empty() ? nullptr : &mesh.corner_normals[3 * prim],
-                         mesh.corner_uvs.empty() ? nullptr : &mesh.corner_uvs[3 * prim], inst.transform, c))
-      std::swap(u, v);
+    hit_mesh = &mesh;
+    mirrored = instance_corners(mesh.positions, mesh.triangles[prim],
+                                mesh.corner_normals.empty() ? nullptr : &mesh.corner_normals[3 * prim],
+                                mesh.corner_uvs.empty() ? nullptr : &mesh.corner_uvs[3 * prim], inst.transform, c);
+    if (mirrored) std::swap(u, v);
     hit.material = b.material(mesh.material_ids[prim]);
     hit.emitter = inst.emitter_base >= 0 && b.emitter_rank[prim] >= 0 ? inst.emitter_base + b.emitter_rank[prim] : -1;
   }
 
   const Vec3 &p0 = c.p[0], &p1 = c.p[1], &p2 = c.p[2];
   const float w = 1.0f - u - v;
+  hit.num_attributes = int(hit_mesh->attribute_ids.size());
+  if (hit.num_attributes > 0) {
+    hit.corner_attributes = &hit_mesh->corner_attributes[3 * size_t(prim) * hit_mesh->attribute_ids.size()];
+    hit.attribute_ids = hit_mesh->attribute_ids.data();
+    hit.corner_weights = mirrored ? Vec3(w, v, u) : Vec3(w, u, v);  // the stored corners' order
+  } else {
+    hit.corner_attributes = nullptr;
+    hit.attribute_ids = nullptr;
+  }
   hit.t = rh.ray.tfar;
   hit.position = w * p0 + u * p1 + v * p2;  // interpolated, more accurate than origin + t * dir
   Vec3 ng = glm::cross(p1 - p0, p2 - p0);

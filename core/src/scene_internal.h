@@ -21,6 +21,10 @@ struct Scene::Mesh {
   std::vector<Vec3> corner_normals;  // empty => flat
   std::vector<uint32_t> material_ids;
   std::vector<Vec2> corner_uvs;  // empty => no UVs
+  // Per-corner attributes the shader programs read (Attribute op): corner (3 * triangle + k)'s
+  // layer a at (3 * triangle + k) * attribute_ids.size() + a; attribute_ids names each layer.
+  std::vector<Vec3> corner_attributes;
+  std::vector<int32_t> attribute_ids;
   std::vector<int32_t> emitter_index;  // per triangle: index in the mesh light, or -1
 };
 

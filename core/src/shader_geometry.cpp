@@ -52,4 +52,17 @@ glm::vec4 layer_weight_op(const ShaderOpContext& c) {
   return glm::vec4(f, 0.0f, 0.0f, 0.0f);
 }
 
+glm::vec4 attribute_op(const ShaderOpContext& c) {
+  const ShaderGlobals& g = c.globals;
+  const int n = g.num_attributes;
+  for (int a = 0; a < n; ++a)
+    if (g.attribute_ids[a] == c.ins.resource) {
+      const Vec3* corner = g.corner_attributes;
+      return glm::vec4(g.corner_weights.x * corner[a] + g.corner_weights.y * corner[n + a] +
+                           g.corner_weights.z * corner[2 * n + a],
+                       1.0f);
+    }
+  return glm::vec4(0.0f);
+}
+
 }  // namespace torrance::shader

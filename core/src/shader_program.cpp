@@ -3,7 +3,12 @@
 #include "torrance/shader_color.h"
 #include "torrance/shader_math.h"
 // [family headers]
+#include "torrance/shader_convert.h"
+#include "torrance/shader_noise.h"
+#include "torrance/shader_voronoi.h"
+#include "torrance/shader_textures.h"
 #include "torrance/shader_geometry.h"
+#include "torrance/shader_vector.h"
 
 #include <algorithm>
 #include <cmath>
@@ -91,14 +96,35 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
     case ShaderOpcode::Average: return {1, 1, false, average};
     // The node families' ops (a line each, in opcode order):
     // [noise ops]
+    case ShaderOpcode::Noise: return {6, shader::kNoiseModes, false, shader::noise_op};
+    case ShaderOpcode::WhiteNoise: return {2, shader::kWhiteNoiseModes, false, shader::white_noise_op};
+    case ShaderOpcode::Musgrave: return {8, shader::kMusgraveModes, false, shader::musgrave_op};
+    case ShaderOpcode::Wave: return {7, shader::kWaveModes, false, shader::wave_op};
     // [voronoi ops]
+    case ShaderOpcode::Voronoi: return {6, shader::kVoronoiModes, false, shader::voronoi_op};
     // [texture ops]
+    case ShaderOpcode::TexChecker: return {4, 1, false, shader::checker_op};
+    case ShaderOpcode::TexGradient: return {1, shader::kGradientTypeCount, false, shader::gradient_op};
+    case ShaderOpcode::TexBrick: return {11, 1, false, shader::brick_op};
+    case ShaderOpcode::TexMagic: return {3, shader::kMagicDepths, false, shader::magic_op};
     // [converter ops]
+    case ShaderOpcode::ColorRamp: return {1, 1, true, shader::color_ramp_op};
+    case ShaderOpcode::RGBCurves: return {2, 1, true, shader::rgb_curves_op};
+    case ShaderOpcode::VectorCurves: return {2, 1, true, shader::vector_curves_op};
+    case ShaderOpcode::FloatCurve: return {2, 1, true, shader::float_curve_op};
+    case ShaderOpcode::MapRange: return {6, shader::kMapRangeModeCount, false, shader::map_range_op};
+    case ShaderOpcode::VectorMapRange: return {6, shader::kMapRangeModeCount, false, shader::vector_map_range_op};
+    case ShaderOpcode::Clamp: return {3, 2, false, shader::clamp_op};
+    case ShaderOpcode::Blackbody: return {1, 1, false, shader::blackbody_op};
+    case ShaderOpcode::Wavelength: return {1, 1, false, shader::wavelength_op};
     // [geometry ops]
     case ShaderOpcode::Geometry: return {0, 5, false, shader::geometry_op};
     case ShaderOpcode::Reflection: return {0, 1, false, shader::reflection_op};
     case ShaderOpcode::Fresnel: return {2, 1, false, shader::fresnel_op};
     case ShaderOpcode::LayerWeight: return {2, 2, false, shader::layer_weight_op};
+    case ShaderOpcode::Attribute: return {0, 1, false, shader::attribute_op};
+    case ShaderOpcode::Mapping: return {4, 4, false, shader::mapping_op};
+    case ShaderOpcode::VectorRotate: return {5, 5, false, shader::vector_rotate_op};
     default: break;
   }
   return {0, 0, false, nullptr};

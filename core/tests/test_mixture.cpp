@@ -7,6 +7,7 @@
 #include "torrance/integrator.h"
 #include "torrance/mixture_bsdf.h"
 #include "torrance/scene.h"
+#include "torrance/shader_textures.h"
 
 #include "test_helpers.h"
 
@@ -169,13 +170,13 @@ TEST(HardCases, MixturesStayFiniteAtGrazingAnglesAndTinyWeights) {
 
 TEST(MixWeights, CheckerFollowsBlendersDefinition) {
   // Cycles: 1 where (floor x even == floor y even) == (floor z odd), with |floor| parities.
-  EXPECT_EQ(checker_pattern(Vec3(0.5f, 0.5f, 0.0f)), 0.0f);
-  EXPECT_EQ(checker_pattern(Vec3(1.5f, 0.5f, 0.0f)), 1.0f);
-  EXPECT_EQ(checker_pattern(Vec3(-0.5f, 0.5f, 0.0f)), 1.0f);
-  EXPECT_EQ(checker_pattern(Vec3(-1.5f, -0.5f, 0.0f)), 1.0f);
-  EXPECT_EQ(checker_pattern(Vec3(-1.5f, -1.5f, 0.0f)), 0.0f);
-  EXPECT_EQ(checker_pattern(Vec3(0.5f, 0.5f, 1.5f)), 1.0f);
-  EXPECT_EQ(checker_pattern(Vec3(2.5f, 3.5f, 0.0f)), 1.0f);
+  EXPECT_EQ(shader::checker(Vec3(0.5f, 0.5f, 0.0f)), 0.0f);
+  EXPECT_EQ(shader::checker(Vec3(1.5f, 0.5f, 0.0f)), 1.0f);
+  EXPECT_EQ(shader::checker(Vec3(-0.5f, 0.5f, 0.0f)), 1.0f);
+  EXPECT_EQ(shader::checker(Vec3(-1.5f, -0.5f, 0.0f)), 1.0f);
+  EXPECT_EQ(shader::checker(Vec3(-1.5f, -1.5f, 0.0f)), 0.0f);
+  EXPECT_EQ(shader::checker(Vec3(0.5f, 0.5f, 1.5f)), 1.0f);
+  EXPECT_EQ(shader::checker(Vec3(2.5f, 3.5f, 0.0f)), 1.0f);
 }
 
 TEST(MixWeights, NestedMixAndAddShadersMultiplyTheirFactors) {

@@ -34,10 +34,12 @@ neutral default material and is reported.
 """
 
 
+from typing import NamedTuple
+
 import numpy as np
 
 from .nodes import finite_or, node_label, source_socket
-from .shader_graph.graph import KIND_OF_SOCKET, GraphCompiler, Unsupported
+from .shader_graph.graph import KIND_OF_SOCKET, AttributeIds, GraphCompiler, Unsupported
 from .shader_graph.program import ProgramBuilder
 from .shader_graph.registry import READERS
 from .mixtures import MIXTURE_SURFACES, read_mixture
@@ -147,9 +149,10 @@ def _color3(value, fallback):
 class MaterialReader:
     """Reads one Blender material into a dict of add_material() arguments."""
 
-    def __init__(self, reporter, textures):
+    def __init__(self, reporter, textures, attributes=None):
         self.reporter = reporter
         self.textures = textures         # TextureTable (the ui panels: a dry-run stand-in)
+        self.attributes = attributes if attributes is not None else AttributeIds()
         self._begin_program()
 
     def _socket_value(self, mat, node, name, fallback):
@@ -179,7 +182,7 @@ class MaterialReader:
         if src_node.type in _CONSTANT_NODES and not src_node.mute:
             return source.default_value, -1
         if (textures and src_node.bl_idname == 'ShaderNodeTexImage' and not src_node.mute
-                and _plain_image(src_node)):
+                and source.identifier == image_output and _plain_image(src_node)):
             tid = self._image_node(mat, src_node, source, f"input '{name}' of {node_label(node)}",
                                    image_output)
             return socket.default_value, (-1 if tid is None else tid)
@@ -193,7 +196,8 @@ class MaterialReader:
         builder = self._program
         mark = builder.mark()
         try:
-            value = GraphCompiler(builder, self.textures, READERS).input(socket, kind)
+            value = GraphCompiler(builder, self.textures, READERS, self.attributes).input(socket,
+                                                                                         kind)
         except Unsupported as exc:
             builder.rollback(mark)
             self.reporter.warning(f"{where}: {exc}; using the socket's own value")
@@ -213,12 +217,14 @@ class MaterialReader:
         """A new shader program for the closure about to be read."""
         self._program = ProgramBuilder()
         self._program_inputs = {}
+        self.attributes.take()
 
     def _with_program(self, out):
         """add_material() arguments with the closure's shader program (if it has one)."""
         if self._program_inputs:
             out['shader_program'] = self._program.build()
             out['program_reads_uvs'] = self._program.reads("TexCoordUV")
+            out['program_attributes'] = self.attributes.take()
             for key, value in self._program_inputs.items():
                 out[f'{key}_register'] = self._program.register_of(value)
                 out.pop(f'{key}_texture', None)
@@ -251,14 +257,15 @@ class MaterialReader:
         vector = node.inputs.get("Vector")
         if vector is not None:
             src = source_socket(vector)
-            if src is not None and not _is_default_uv(src):
-                self.reporter.warning(
-                    f"{what}: the Vector input is linked to {node_label(src.node)}, which Torrance "
-                    f"does not support; using the mesh's active render UV map")
-            elif src is not None and src.node.bl_idname == 'ShaderNodeUVMap' and src.node.uv_map:
+            if src is not None and src.node.bl_idname == 'ShaderNodeUVMap' and src.node.uv_map \
+                    and not src.node.mute:
                 self.reporter.info(
                     f"{what}: {node_label(src.node)} names UV map '{src.node.uv_map}'; Torrance "
-                    f"uses each mesh's active render UV map")
+                    f"uses each mesh's active render UV map here")
+            elif src is not None and not _is_default_uv(src):
+                self.reporter.warning(
+                    f"{what}: the Vector input is linked to {node_label(src.node)}, which Torrance "
+                    f"does not support here; using the mesh's active render UV map")
         return self.textures.texture(node.image, interpolation)
 
     def read(self, mat):
@@ -469,7 +476,7 @@ def _is_default_uv(output):
     if node.bl_idname == 'ShaderNodeTexCoord':
         return output.identifier == "UV" and node.object is None
     if node.bl_idname == 'ShaderNodeUVMap':
-        return not node.from_instancer
+        return not node.from_instancer and not node.uv_map
     return False
 
 
@@ -506,6 +513,14 @@ def uses_textures(m):
     return m.get('program_reads_uvs', False) or any(m.get(k, -1) >= 0 for k in _TEXTURE_KEYS)
 
 
+def attribute_keys(m):
+    """The mesh attribute keys add_material() arguments (or a mixture's closures) read."""
+    if 'mixture' in m:
+        return tuple(sorted({k for _kind, args, _terms in m['mixture']['closures']
+                             for k in attribute_keys(args)}))
+    return m.get('program_attributes', ())
+
+
 def emits(m):
     """Whether add_material() arguments (or any closure of a mixture) emit light."""
     if 'mixture' in m:
@@ -516,15 +531,33 @@ def emits(m):
                                 or m.get("emission_register", -1) >= 0)
 
 
+class MeshNeeds(NamedTuple):
+    """What a mesh must export for its materials: the render UV map, and the attributes their
+    shader programs read, as (key, id) pairs (export/mesh_attributes.py's keys, the ids the
+    programs name them by). False when nothing."""
+    uvs: bool = False
+    attributes: tuple = ()
+
+    @staticmethod
+    def of(needs):
+        """A MeshNeeds from a MeshNeeds or a bool (UVs or not)."""
+        return needs if isinstance(needs, MeshNeeds) else MeshNeeds(bool(needs))
+
+    def __bool__(self):
+        return self.uvs or bool(self.attributes)
+
+
 class MaterialTable:
     """Adds each Blender material to a tc.Scene once; maps materials to indices."""
 
     def __init__(self, tc_scene, reporter, textures):
         self.scene = tc_scene
         self.textures = textures
-        self.reader = MaterialReader(reporter, self.textures)
+        self.attribute_ids = AttributeIds()
+        self.reader = MaterialReader(reporter, self.textures, self.attribute_ids)
         self.indices = {}
         self.textured = set()     # indices of materials that use textures
+        self.attributes = {}      # index -> the mesh attribute keys its programs read
         self.emissive = set()     # indices of materials that emit light
         self._default = None
 
@@ -545,6 +578,9 @@ class MaterialTable:
             idx = self._add(args)
             if uses_textures(args):
                 self.textured.add(idx)
+            keys = attribute_keys(args)
+            if keys:
+                self.attributes[idx] = keys
             if emits(args):
                 self.emissive.add(idx)
             self.indices[key] = idx
@@ -564,6 +600,7 @@ class MaterialTable:
         args = dict(args)
         program = args.pop('shader_program', None)
         args.pop('program_reads_uvs', None)
+        args.pop('program_attributes', None)
         if program is not None:
             args['program'] = self.scene.add_shader_program(*program)
         return self.scene.add_material(**args)
@@ -575,5 +612,12 @@ class MaterialTable:
         return np.array([self.index(m) for m in slots], dtype=np.int32)
 
     def needs_uvs(self, indices):
-        """Whether any of these material indices uses a texture."""
-        return any(i in self.textured for i in indices)
+        """What meshes with these material indices must export (MeshNeeds, false when
+        nothing): the render UV map when one uses a texture, and the attributes their
+        programs read."""
+        keys = set()
+        for i in indices:
+            keys.update(self.attributes.get(i, ()))
+        ids = self.attribute_ids.ids
+        return MeshNeeds(any(i in self.textured for i in indices),
+                         tuple((k, ids[k]) for k in sorted(keys)))

@@ -20,18 +20,15 @@ namespace torrance {
 inline constexpr int kMaxMixtureComponents = 8;
 inline constexpr int kMaxMixFactors = 8;
 
-// Blender's Checker Texture as Cycles 3.4 computes it (svm_checker) at p = Vector * Scale:
-// 1 on Color1's squares, 0 on Color2's.
-float checker_pattern(const Vec3& p);
-
 // The Fac of one Mix Shader.
 struct MixFactor {
   enum class Kind { Constant, Image, Checker };
   Kind kind = Kind::Constant;
   float value = 0.5f;  // Constant
   int texture = -1;    // Image: the luminance of the texture's colour at the hit's UV
-  // Checker at (u, v, 0) * scale: the factor is color1 on Color1's squares, color2 on the others
-  // (the Fac output: 1 and 0; the Color output: the colours' luminances).
+  // Checker (shader::checker, shader_textures.h) at (u, v, 0) * scale: the factor is color1 on
+  // Color1's squares, color2 on the others (the Fac output: 1 and 0; the Color output: the colours'
+  // luminances).
   float checker_scale = 5.0f;
   float checker_color1 = 1.0f, checker_color2 = 0.0f;
 };

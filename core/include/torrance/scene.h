@@ -61,6 +61,12 @@ struct SurfaceHit {
   float uv_per_metre = 0.0f;  // how fast UVs change across the triangle (sqrt of UV area / area)
   float bitangent_sign = 1.0f;
   Vec3 dpdu{0.0f}, dpdv{0.0f};  // dP/du and dP/dv of the triangle's UV mapping (0 without usable UVs)
+  // The hit triangle's corner attributes (Scene::set_mesh_attributes) and each stored corner's
+  // interpolation weight (nullptr / 0 without attributes).
+  const Vec3* corner_attributes = nullptr;
+  const int32_t* attribute_ids = nullptr;
+  int num_attributes = 0;
+  Vec3 corner_weights{0.0f};
 };
 
 // What a shader program reads at a hit seen along ray_dir (Cycles' ShaderData: normals facing
@@ -75,6 +81,10 @@ inline ShaderGlobals shader_globals(const SurfaceHit& hit, const Vec3& ray_dir, 
   const float side = g.backfacing ? -1.0f : 1.0f;
   g.normal = side * hit.shading_normal;
   g.true_normal = side * hit.geometric_normal;
+  g.corner_attributes = hit.corner_attributes;
+  g.attribute_ids = hit.attribute_ids;
+  g.num_attributes = hit.num_attributes;
+  g.corner_weights = hit.corner_weights;
   return g;
 }
 
@@ -150,6 +160,13 @@ class Scene {
   // Returns the mesh id; a mesh without triangles is accepted and ignored.
   uint32_t add_mesh(const float* positions, size_t num_vertices, const int64_t* triangles, size_t num_triangles,
                     const float* corner_normals, const int64_t* material_ids, const float* corner_uvs = nullptr);
+
+  // Per-corner attributes of mesh `mesh` (from add_mesh; with prototype = true, of a prototype)
+  // for shader programs: values (num_attributes, 3 * its triangles) xyz, ids naming each layer
+  // (the Attribute op's resource); num_corners must be 3 * its triangles. NaN/Inf values are read
+  // as 0. Replaces earlier ones.
+  void set_mesh_attributes(uint32_t mesh, bool prototype, const float* values, size_t num_corners,
+                           const int32_t* ids, size_t num_attributes);
 
   // Instancing (a two-level BVH): a prototype is a mesh in object space, built once into its own
   // BVH, whose per-triangle `slots` (>= 0) index a material table given per instance, like

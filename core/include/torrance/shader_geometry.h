@@ -6,6 +6,9 @@
 //   Fresnel (98)      in0.x IOR, in1 the normal: the dielectric reflectance toward the viewer
 //                     (IOR inverted on a back face)
 //   LayerWeight (99)  in0.x Blend, in1 the normal; mode 0 Fresnel, 1 Facing
+//   Attribute (100)   the mesh attribute named by the resource (Scene::set_mesh_attributes),
+//                     interpolated over the hit triangle: xyz, w 1 (all 0 where the mesh lacks
+//                     it, as Cycles reads a missing attribute)
 // A node's unlinked Normal input is the shading normal (the add-on links Geometry > Normal).
 #pragma once
 
@@ -17,6 +20,7 @@ glm::vec4 geometry_op(const ShaderOpContext& c);
 glm::vec4 reflection_op(const ShaderOpContext& c);
 glm::vec4 fresnel_op(const ShaderOpContext& c);
 glm::vec4 layer_weight_op(const ShaderOpContext& c);
+glm::vec4 attribute_op(const ShaderOpContext& c);
 
 // Cycles' Layer Weight, from the cosine between the view direction and the normal.
 float layer_weight_fresnel(float blend, float cos_view, bool backfacing);

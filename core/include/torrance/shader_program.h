@@ -43,14 +43,35 @@ enum class ShaderOpcode : uint8_t {
   //   32-47 noise (shader_noise.h), 48-55 Voronoi (shader_voronoi.h), 56-71 textures
   //   (shader_textures.h), 72-95 converters (shader_convert.h), 96-127 geometry and vectors.
   // [noise ops]
+  Noise = 32,       // Noise Texture (shader_noise.h): mode = dimensions - 1; flags & 1: Color, else Fac
+  WhiteNoise = 33,  // White Noise Texture: mode = dimensions - 1; flags & 1: Color, else Value
+  Musgrave = 34,    // Musgrave Texture: mode = type * 4 + dimensions - 1
+  Wave = 35,        // Wave Texture: mode = (type * 4 + direction) * 3 + profile; flags & 1: Color
   // [voronoi ops]
+  Voronoi = 48,    // the Voronoi Texture node (shader_voronoi.h): mode, flags and inputs as voronoi_op says
   // [texture ops]
+  TexChecker = 56,   // shader_textures.h (flags & 1: the Fac, else the Color)
+  TexGradient = 57,
+  TexBrick = 58,
+  TexMagic = 59,
   // [converter ops]
+  ColorRamp = 72,       // shader_convert.h: RGBA = ramp(in0.x), table RGBA; flags & 1: interpolate
+  RGBCurves = 73,       // curves(fac in0.x, colour in1), table (min_x, max_x, RGB); flags & 1: extrapolate
+  VectorCurves = 74,    // as RGBCurves on a vector (w 0)
+  FloatCurve = 75,      // float_curve(fac in0.x, value in1.x), table (min_x, max_x, values); flags & 1 as above
+  MapRange = 76,        // map_range(mode, in0-in5 .x: value, from min/max, to min/max, steps); flags & 1: clamp
+  VectorMapRange = 77,  // vector_map_range(mode, in0-in5 as vectors); flags & 1: clamp
+  Clamp = 78,           // clamp(mode, in0.x, min in1.x, max in2.x)
+  Blackbody = 79,       // blackbody(in0.x kelvin)
+  Wavelength = 80,      // wavelength(in0.x nanometres)
   // [geometry ops]
   Geometry = 96,     // shader_geometry.h
   Reflection = 97,
   Fresnel = 98,
   LayerWeight = 99,
+  Attribute = 100,
+  Mapping = 104,       // shader_vector.h
+  VectorRotate = 105,
 };
 constexpr int kShaderOpcodes = 128;
 
@@ -74,6 +95,12 @@ struct ShaderGlobals {
   Vec3 true_normal{0.0f, 0.0f, 1.0f};
   Vec3 incoming{0.0f, 0.0f, 1.0f};
   bool backfacing = false;
+  // The hit triangle's corner attributes (corner k's layer a at k * num_attributes + a), the
+  // layers' ids and the corners' interpolation weights.
+  const Vec3* corner_attributes = nullptr;
+  const int32_t* attribute_ids = nullptr;
+  int num_attributes = 0;
+  Vec3 corner_weights{0.0f};
 };
 
 // What an op sees when it runs: its instruction, the registers and the program's data.

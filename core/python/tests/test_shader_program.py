@@ -42,7 +42,7 @@ def add(scene, constants, rows, registers, data=None):
 
 
 @pytest.mark.parametrize("rows, registers, message", [
-    ([code_row(99, 1)], 2, "unknown opcode"),
+    ([code_row(127, 1)], 2, "unknown opcode"),
     ([code_row(4, 1, (0, 0, 0), mode=200)], 2, "mode 200 out of range"),
     ([code_row(4, 1, (0, 0, 2))], 3, "reads register 2, which is not written"),
     ([code_row(0, 0)], 2, "output register 0 outside"),

@@ -110,7 +110,7 @@ class InstanceExport:
         local = read_local_mesh(obj, uvs=uvs)
         if local is None:
             return None
-        if uvs and local.corner_uvs is None:
+        if uvs.uvs and local.corner_uvs is None:
             self.reporter.warning(f"Object '{name}' has textured materials but no UV map: "
                                   f"its textures are read at UV (0, 0)")
         p = prototype_arrays(local, uvs)
@@ -119,8 +119,7 @@ class InstanceExport:
                                   f"NaN/Inf vertex positions dropped (or vertices beyond 1e18 m)")
         if len(p.triangles) == 0:
             return None
-        pid = self.scene.add_prototype(p.positions, p.triangles, corner_normals=p.corner_normals,
-                                       material_slots=p.material_slots, corner_uvs=p.corner_uvs)
+        pid = p.add_to(self.scene)
         return pid, len(p.triangles)
 
     def flush(self, stats):

@@ -6,8 +6,10 @@ final render's non-instanced objects; export_mesh)."""
 
 import numpy as np
 
+from ..materials import MeshNeeds
 from ..matrices import inverse_transpose
 from .mesh_arrays import triangle_vertices
+from .mesh_attributes import attribute_layers, read_corner_attributes
 
 MAX_COORDINATE = 1e18          # metres; anything farther is treated like Inf
 
@@ -15,10 +17,10 @@ MAX_COORDINATE = 1e18          # metres; anything farther is treated like Inf
 class LocalMesh:
     """A mesh in object space, as to_mesh() gives it, in numpy arrays."""
     __slots__ = ("positions", "triangles", "vertex_normals", "corner_normals", "smooth",
-                 "material_slots", "corner_uvs", "uv_name")
+                 "material_slots", "corner_uvs", "uv_name", "corner_attributes")
 
     def __init__(self, positions, triangles, vertex_normals, corner_normals, smooth,
-                 material_slots, corner_uvs=None, uv_name=None):
+                 material_slots, corner_uvs=None, uv_name=None, corner_attributes=None):
         self.positions = positions            # float32 (N,3)
         self.triangles = triangles            # int32 (M,3)
         self.vertex_normals = vertex_normals  # None or float32 (N,3): smooth shading
@@ -27,6 +29,8 @@ class LocalMesh:
         self.material_slots = material_slots  # int32 (M,) raw material_index
         self.corner_uvs = corner_uvs          # None or float32 (M,3,2): active render UV map
         self.uv_name = uv_name                # that UV map's name (None without one)
+        # {attribute key: float32 (M,3,3)} the materials' shader programs read
+        self.corner_attributes = corner_attributes or {}
 
 
 def render_uv_layer(mesh):
@@ -100,8 +104,9 @@ def read_local_mesh(obj, uvs=False):
 
     Normals as Cycles 3.4 takes them: with auto smooth the split normals (sharp edges,
     custom normals) and every triangle smooth; otherwise vertex normals on smooth faces
-    and the geometric normal on flat ones. With `uvs`, also the corner UVs of the active
-    render UV map (for textures and normal maps). Material indices are read only for a mesh
+    and the geometric normal on flat ones. With `uvs` (a MeshNeeds or a bool), also the corner
+    UVs of the active render UV map (for textures and normal maps) and the corner attributes
+    the materials' shader programs read. Material indices are read only for a mesh
     with more than one material (otherwise every slot maps to its first, or only, one).
     """
     # A copy, cleared below. Reading the evaluated mesh itself would save 1-1.5 s on 10 M
@@ -137,11 +142,14 @@ def read_local_mesh(obj, uvs=False):
                 vn = np.empty(nv * 3, dtype=np.float32)
                 mesh.vertices.foreach_get("normal", vn)
                 vertex_normals = vn.reshape(nv, 3)
+        needs = MeshNeeds.of(uvs)
         corner_uvs = uv_name = None
-        if uvs:
+        if needs.uvs:
             corner_uvs, uv_name = read_corner_uvs(mesh, nt)
+        attributes = read_corner_attributes(mesh, nt, [k for k, _ in needs.attributes],
+                                            co.reshape(nv, 3), tris)
         return LocalMesh(co.reshape(nv, 3), tris, vertex_normals,
-                         corner_normals, smooth, mat, corner_uvs, uv_name)
+                         corner_normals, smooth, mat, corner_uvs, uv_name, attributes)
     finally:
         obj.to_mesh_clear()
 
@@ -251,23 +259,24 @@ class MeshCache:
     """
 
     def __init__(self):
-        self.meshes = {}          # key + (uvs,) -> LocalMesh or None
+        self.meshes = {}          # key + (MeshNeeds,) -> LocalMesh or None
         self.reads = 0            # meshes read from Blender
 
     def get(self, obj, key, uvs, reporter):
-        ckey = key + (bool(uvs),)
+        needs = MeshNeeds.of(uvs)
+        ckey = key + (needs,)
         if ckey in self.meshes:
             return self.meshes[ckey]
-        local = read_local_mesh(obj, uvs=uvs)
+        local = read_local_mesh(obj, uvs=needs)
         self.reads += 1
-        if local is not None and uvs and local.corner_uvs is None:
+        if local is not None and needs.uvs and local.corner_uvs is None:
             reporter.warning(f"Object '{obj.name}' has textured materials but no UV map: "
                              f"its textures are read at UV (0, 0)")
         self.meshes[ckey] = local
         return local
 
     def drop(self, stale):
-        """Forgets the meshes whose key (without the UV flag) satisfies stale(key)."""
+        """Forgets the meshes whose key (without the MeshNeeds) satisfies stale(key)."""
         for ckey in [k for k in self.meshes if stale(k[:-1])]:
             del self.meshes[ckey]
 
@@ -276,8 +285,9 @@ class MeshCache:
 
 
 def mesh_materials(slots, materials):
-    """(int32 material index per slot, whether any of them needs UVs) for an object's slots
-    (materials or None); read before the mesh: textured materials need the UVs."""
+    """(int32 material index per slot, what the mesh must export for them: MeshNeeds) for an
+    object's slots (materials or None); read before the mesh: textured materials need the UVs,
+    shader programs their attributes."""
     slot_to_material = materials.slot_indices(slots)
     return slot_to_material, materials.needs_uvs(slot_to_material.tolist())
 
@@ -294,10 +304,16 @@ def add_world_mesh(tc_scene, name, local, matrix, slot_to_material, needs_uvs, r
         return 0
     # Material per triangle: material_index clamped to the slots, like Cycles.
     idx = np.clip(local.material_slots[keep], 0, len(slot_to_material) - 1)
-    tc_scene.add_mesh(pos, tris, corner_normals=corner,
-                      material_indices=np.ascontiguousarray(slot_to_material[idx],
-                                                            dtype=np.int32),
-                      corner_uvs=world_uvs(local, matrix, keep) if needs_uvs else None)
+    needs = MeshNeeds.of(needs_uvs)
+    mesh_id = tc_scene.add_mesh(pos, tris, corner_normals=corner,
+                                material_indices=np.ascontiguousarray(slot_to_material[idx],
+                                                                      dtype=np.int32),
+                                corner_uvs=world_uvs(local, matrix, keep) if needs.uvs else None)
+    m = np.asarray(matrix, dtype=np.float64).reshape(4, 4)
+    layers = attribute_layers(local.corner_attributes, dict(needs.attributes), keep,
+                              flip=inverse_transpose(m[:3, :3])[1] < 0.0)
+    if layers is not None:
+        tc_scene.set_mesh_attributes(mesh_id, *layers)
     return len(tris)
 
 
@@ -317,16 +333,27 @@ def export_mesh(tc_scene, obj, matrix, slots, materials, meshes, key, reporter):
 class Prototype:
     """A LocalMesh as add_prototype() takes it (object space), with what was dropped."""
     __slots__ = ("positions", "triangles", "corner_normals", "material_slots", "corner_uvs",
-                 "dropped_nonfinite")
+                 "dropped_nonfinite", "attributes")
 
     def __init__(self, positions, triangles, corner_normals, material_slots, corner_uvs,
-                 dropped_nonfinite):
+                 dropped_nonfinite, attributes=None):
         self.positions = positions              # float32 (N,3)
         self.triangles = triangles              # int32 (M,3)
         self.corner_normals = corner_normals    # None (all flat) or float32 (M,3,3), unit
         self.material_slots = material_slots    # int32 (M,) >= 0, raw material_index
         self.corner_uvs = corner_uvs            # None or float32 (M,3,2)
         self.dropped_nonfinite = dropped_nonfinite
+        self.attributes = attributes            # None or set_mesh_attributes' (values, ids)
+
+    def add_to(self, tc_scene):
+        """add_prototype() and its attributes; returns the prototype id."""
+        pid = tc_scene.add_prototype(self.positions, self.triangles,
+                                     corner_normals=self.corner_normals,
+                                     material_slots=self.material_slots,
+                                     corner_uvs=self.corner_uvs)
+        if self.attributes is not None:
+            tc_scene.set_mesh_attributes(pid, *self.attributes, prototype=True)
+        return pid
 
 
 def prototype_arrays(local, uvs):
@@ -340,7 +367,9 @@ def prototype_arrays(local, uvs):
     pos, ng, keep, dropped = _usable_triangles(local.positions, tris)
     corner = _corner_normals(local, tris, ng)
     slots = np.maximum(local.material_slots, 0)
-    corner_uvs = local.corner_uvs if uvs else None
+    needs = MeshNeeds.of(uvs)
+    corner_uvs = local.corner_uvs if needs.uvs else None
+    attributes = attribute_layers(local.corner_attributes, dict(needs.attributes), keep)
     if not keep.all():
         tris = tris[keep]
         slots = slots[keep]
@@ -352,4 +381,4 @@ def prototype_arrays(local, uvs):
     def c(a, dtype=np.float32):
         return None if a is None else np.ascontiguousarray(a, dtype=dtype)
     return Prototype(c(pos), c(tris, np.int32), c(corner), c(slots, np.int32), c(corner_uvs),
-                     dropped)
+                     dropped, attributes)

@@ -8,10 +8,20 @@ program (opcodes, folds) and gives their readers to the registry; adding a famil
 from . import program
 
 # [family imports]
+from . import vector  # noqa: I001
+from . import voronoi  # noqa: I001
+from . import convert  # noqa: I001
+from . import textures  # noqa: I001
+from . import noise  # noqa: I001
 from . import geometry  # noqa: I001
 
 FAMILIES = (
     # [families]
+    vector,
+    voronoi,
+    convert,
+    textures,
+    noise,
     geometry,
 )
 

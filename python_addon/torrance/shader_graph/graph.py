@@ -22,10 +22,11 @@ class Unsupported(Exception):
 class GraphCompiler:
     """Compiles sockets of one material's node tree into one ProgramBuilder."""
 
-    def __init__(self, builder, textures, readers):
+    def __init__(self, builder, textures, readers, attributes=None):
         self.builder = builder
         self.textures = textures          # texture_table.TextureTable
         self.readers = readers
+        self.attributes = attributes if attributes is not None else AttributeIds()
         self._cache = {}
         self._groups = []                 # the group nodes we are inside, outermost first
 
@@ -37,9 +38,14 @@ class GraphCompiler:
             return convert(self.builder, _default(socket), kind)
         return convert(self.builder, self.output(link.from_socket), kind)
 
+    def attribute(self, key, kind='vector'):
+        """A per-corner mesh attribute (export/mesh_attributes.py's keys), interpolated at the
+        hit; the meshes of the material export it."""
+        return self.builder.emit("Attribute", kind, texture=self.attributes.request(key))
+
     def generated(self):
         """Texture Coordinate > Generated, what an unlinked texture Vector reads."""
-        raise Unsupported("Generated texture coordinates (an unlinked Vector) are not supported")
+        return self.attribute(('generated',))
 
     def output(self, socket):
         """The Value of an output socket (of its own kind)."""
@@ -97,6 +103,23 @@ class GraphCompiler:
                     else convert(self.builder, _default(socket), kind))
         finally:
             self._groups.append(group)
+
+
+class AttributeIds:
+    """The scene's attribute keys -> the ids shader programs and meshes name them by; with the
+    keys each material's program requested since the last take()."""
+
+    def __init__(self):
+        self.ids = {}
+        self.requested = set()
+
+    def request(self, key):
+        self.requested.add(key)
+        return self.ids.setdefault(key, len(self.ids))
+
+    def take(self):
+        keys, self.requested = tuple(sorted(self.requested)), set()
+        return keys
 
 
 def by_identifier(sockets, identifier):

@@ -25,12 +25,6 @@ def _rgb_node(g, node, socket):
     return constant('color', tuple(socket.default_value))
 
 
-def _uv(g, node, socket):
-    if node.from_instancer:
-        raise Unsupported(f"{node_label(node)}: UVs from the instancer are not supported")
-    return g.builder.emit("TexCoordUV", 'vector')
-
-
 def _image(g, node, socket):
     if node.image is None:
         raise Unsupported(f"{node_label(node)} has no image")
@@ -153,7 +147,6 @@ def _rgb_to_bw(g, node, socket):
 READERS = {
     'ShaderNodeValue': _value_node,
     'ShaderNodeRGB': _rgb_node,
-    'ShaderNodeUVMap': _uv,
     'ShaderNodeTexImage': _image,
     'ShaderNodeSeparateColor': _separate(lambda n: n.mode),
     'ShaderNodeSeparateRGB': _separate(lambda n: 'RGB'),
@@ -174,4 +167,35 @@ READERS = {
                                          ('float', 'float', 'float', 'float', 'color')),
     'ShaderNodeRGBToBW': _rgb_to_bw,
     **families.READERS,
+}
+
+# Nodes read outside the value graph (closures, outputs, the world), with what Torrance renders
+# of them: the other half of the registry, for docs/nodes.md and the reports (scripts/nodes_doc).
+CLOSURES = {
+    'ShaderNodeBsdfPrincipled': "partly: Base Color, Metallic, Roughness, Specular (v2: Specular "
+                                "IOR Level, IOR, Specular Tint), Emission, Alpha, Normal; v1 "
+                                "Transmission, IOR, Transmission Roughness. Reported: Subsurface, "
+                                "Sheen, Clearcoat / Coat, Anisotropic, v2 Transmission Weight, "
+                                "Thin Film, Diffuse Roughness",
+    'ShaderNodeBsdfDiffuse': "rendered: Color, Normal (Roughness in Mix/Add Shader trees)",
+    'ShaderNodeBsdfGlossy': "partly: Color, Roughness (GGX) alone and in Mix/Add Shader trees",
+    'ShaderNodeBsdfAnisotropic': "partly: as the Glossy BSDF (Anisotropy reported)",
+    'ShaderNodeBsdfGlass': "partly: Color, Roughness, IOR, Normal; GGX, Beckmann, Sharp "
+                           "(Multiscatter GGX rendered as GGX)",
+    'ShaderNodeBsdfTransparent': "rendered: Color",
+    'ShaderNodeEmission': "rendered: Color, Strength",
+    'ShaderNodeMixShader': "partly: trees of Principled, Diffuse, Glossy and Emission closures "
+                           "(and a Transparent BSDF), Fac a value, an Image Texture or a Checker "
+                           "Texture",
+    'ShaderNodeAddShader': "partly: trees of Principled, Diffuse, Glossy and Emission closures",
+    'ShaderNodeNormalMap': "partly: Tangent Space, Strength, Color from an Image Texture",
+    'ShaderNodeBump': "partly: Height from an Image Texture, Strength, Distance, Invert",
+    'ShaderNodeBackground': "world: Color (a constant or an Environment Texture), Strength",
+    'ShaderNodeTexEnvironment': "world: equirectangular images feeding the Background",
+    'ShaderNodeOutputMaterial': "rendered: the active output (target All or Cycles)",
+    'ShaderNodeOutputWorld': "rendered: the active output",
+    'ShaderNodeOutputLight': "partly: an Emission of constant Color and Strength",
+    # Read by graph.GraphCompiler itself.
+    'ShaderNodeGroup': "rendered: node groups, nested, are compiled through (muted nodes pass "
+                       "their inputs through as Blender does; reroutes are followed)",
 }

@@ -280,7 +280,7 @@ class SceneCache:
         """Adds a mesh object / instance: its prototype (once per mesh) and one instance."""
         meshes = self.instance_meshes if key[0] == 'I' else self.meshes
         table, needs_uvs = export.mesh_materials(slots, self.materials)
-        pkey = (key[0], key[1:], bool(needs_uvs))
+        pkey = (key[0], key[1:], needs_uvs)
         if pkey not in self.prototypes:
             local = meshes.get(obj, key[1:], needs_uvs, reporter)
             self.prototypes[pkey] = self._prototype(pkey, local, obj.name, needs_uvs, reporter)
@@ -317,10 +317,7 @@ class SceneCache:
                              f"{export.MAX_COORDINATE:g} m)")
         if len(p.triangles) == 0:
             return None
-        pid = self.scene.add_prototype(p.positions, p.triangles,
-                                       corner_normals=p.corner_normals,
-                                       material_slots=p.material_slots,
-                                       corner_uvs=p.corner_uvs)
+        pid = p.add_to(self.scene)
         return pid, len(p.triangles)
 
     def _apply(self, edits, reporter, t0):

@@ -1,0 +1,319 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The noise family (Noise, White Noise, Musgrave and Wave Texture) renders as Cycles 3.4 renders
+it: the same patterns, not look-alikes.
+
+Three grids of patches seen from straight above (torrance_tools.shader_graphs), each patch an
+Emission whose Color a texture computes from the UVs (Texture Coordinate > UV; through
+Separate/Combine XYZ and Math where a 3D point or a W should vary too: (u - 0.5, v - 0.5,
+0.6 u + 0.8 v - 0.5) and W = u + 0.37 v), scaled so that several cells show per patch:
+
+  noise     Noise 1D (W), 2D, 3D (distortion), 4D as Color; the Fac of 2D / 3D / 4D with other
+            settings as RGB; one node's Fac and Color both used (one instruction); White Noise
+            1D to 4D (Color, and the Values as RGB) of the UVs snapped to a 5 x 5 grid of cells;
+            unlinked Vectors (Noise, Wave: Generated; White Noise: (0, 0, 0))
+  musgrave  each type x 1D-4D (20 textures, three per patch as R, G, B), mapped to about [0, 1]
+  wave      bands X, Y, Z, Diagonal and rings X, Y, Z, Spherical, a patch each with the three
+            profiles as R, G, B (Sine, Saw, Triangle), half of them distorted
+
+Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
+seeds 2 and 3. A deliberate fault per node (the registry's reader patched: Noise and White
+Noise read one dimension off, Musgrave read as fBM, Wave's profile read as Sine) must fail them.
+
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \
+         --python blender_tests/test_shader_noise_agreement.py
+"""
+
+from torrance_tools import testing
+from torrance_tools.shader_graphs import DictAttr, agree_on_patches
+
+
+# -- coordinates -----------------------------------------------------------------------------------
+
+def _uv_parts(g):
+    sep = g.node("ShaderNodeSeparateXYZ")
+    g.link(g.uv(), sep.inputs[0])
+    return sep.outputs[0], sep.outputs[1]
+
+
+def _multiply_add(g, a, b, c):
+    """a * b + c of sockets or numbers."""
+    m = g.node("ShaderNodeMath", operation='MULTIPLY_ADD')
+    for k, v in enumerate((a, b, c)):
+        if isinstance(v, (int, float)):
+            m.inputs[k].default_value = v
+        else:
+            g.link(v, m.inputs[k])
+    return m.outputs[0]
+
+
+def uvw(g):
+    """(u - 0.5, v - 0.5, 0.6 u + 0.8 v - 0.5): the UVs as a 3D point that varies in z too."""
+    u, v = _uv_parts(g)
+    comb = g.node("ShaderNodeCombineXYZ")
+    g.link(g.math('SUBTRACT', u, value_b=0.5), comb.inputs[0])
+    g.link(g.math('SUBTRACT', v, value_b=0.5), comb.inputs[1])
+    g.link(_multiply_add(g, u, 0.6, _multiply_add(g, v, 0.8, -0.5)), comb.inputs[2])
+    return comb.outputs[0]
+
+
+def w_of_uv(g):
+    """W = u + 0.37 v."""
+    u, v = _uv_parts(g)
+    return _multiply_add(g, v, 0.37, u)
+
+
+def combine_rgb(g, r, gr, b):
+    comb = g.node("ShaderNodeCombineRGB")
+    for k, s in enumerate((r, gr, b)):
+        g.link(s, comb.inputs[k])
+    return comb.outputs[0]
+
+
+def set_inputs(node, **values):
+    for name, v in values.items():
+        node.inputs[name.title()].default_value = v
+
+
+# -- Noise and White Noise -------------------------------------------------------------------------
+
+def noise_node(g, dims, vector=True, w=None, **values):
+    n = g.node("ShaderNodeTexNoise", noise_dimensions=dims)
+    if vector:
+        g.link(uvw(g), n.inputs["Vector"])
+    if w is not None:
+        g.link(w, n.inputs["W"])
+    set_inputs(n, **values)
+    return n
+
+
+def noise_1d(g):
+    n = noise_node(g, '1D', vector=False, w=w_of_uv(g), scale=6.0, detail=2.0, roughness=0.5)
+    g.link(g.uv(), n.inputs["Vector"])            # unused in 1D (as in Cycles)
+    return n.outputs["Color"]
+
+
+def noise_2d(g):
+    n = g.node("ShaderNodeTexNoise", noise_dimensions='2D')
+    g.link(g.uv(), n.inputs["Vector"])
+    set_inputs(n, scale=5.0, detail=3.5, roughness=0.6)
+    return n.outputs["Color"]
+
+
+def noise_3d(g):
+    return noise_node(g, '3D', scale=4.0, detail=2.0, roughness=0.5,
+                      distortion=0.8).outputs["Color"]
+
+
+def noise_4d(g):
+    n = noise_node(g, '4D', scale=3.0, detail=1.5, roughness=0.55)
+    n.inputs["W"].default_value = 1.3
+    return n.outputs["Color"]
+
+
+def noise_facs(g):
+    a = noise_node(g, '2D', scale=4.0, detail=2.0, roughness=0.5, distortion=-1.2)
+    b = noise_node(g, '3D', scale=3.0, detail=6.3, roughness=0.8)
+    c = noise_node(g, '4D', w=w_of_uv(g), scale=3.5, detail=0.0, distortion=0.5)
+    return combine_rgb(g, a.outputs["Fac"], b.outputs["Fac"], c.outputs["Fac"])
+
+
+def noise_fac_and_color(g):
+    n = noise_node(g, '3D', scale=5.0, detail=3.0, roughness=0.45)
+    mul = g.node("ShaderNodeMixRGB", blend_type='MULTIPLY')
+    mul.inputs["Fac"].default_value = 1.0
+    g.link(n.outputs["Color"], mul.inputs["Color1"])
+    g.link(g.math('MULTIPLY', n.outputs["Fac"], value_b=1.6), mul.inputs["Color2"])
+    return mul.outputs[0]
+
+
+def _cells(g):
+    """The UVs snapped to a 5 x 5 grid: floor(uv * 5) (whole cells of white noise)."""
+    scale = g.node("ShaderNodeVectorMath", operation='SCALE')
+    g.link(g.uv(), scale.inputs[0])
+    scale.inputs["Scale"].default_value = 5.0
+    floor = g.node("ShaderNodeVectorMath", operation='FLOOR')
+    g.link(scale.outputs[0], floor.inputs[0])
+    return floor.outputs[0]
+
+
+def white_node(g, dims):
+    n = g.node("ShaderNodeTexWhiteNoise", noise_dimensions=dims)
+    cells = _cells(g)
+    g.link(cells, n.inputs["Vector"])
+    if dims in ('1D', '4D'):
+        sep = g.node("ShaderNodeSeparateXYZ")
+        g.link(cells, sep.inputs[0])
+        g.link(_multiply_add(g, sep.outputs[1], 7.0, sep.outputs[0]), n.inputs["W"])
+    return n
+
+
+def white_1d(g):
+    return white_node(g, '1D').outputs["Color"]
+
+
+def white_2d(g):
+    return white_node(g, '2D').outputs["Color"]
+
+
+def white_3d(g):
+    return white_node(g, '3D').outputs["Color"]
+
+
+def white_4d(g):
+    return white_node(g, '4D').outputs["Color"]
+
+
+def white_values(g):
+    return combine_rgb(g, *(white_node(g, d).outputs["Value"] for d in ('1D', '3D', '4D')))
+
+
+def unlinked(g):
+    """Unlinked Vectors: Noise and Wave read Generated coordinates, White Noise its (hidden)
+    default (0, 0, 0), whose Value and Color both feed the patch."""
+    n = g.node("ShaderNodeTexNoise", noise_dimensions='3D')
+    n.inputs["Scale"].default_value = 4.0
+    w = g.node("ShaderNodeTexWave", wave_type='RINGS', wave_profile='TRI')
+    white = g.node("ShaderNodeTexWhiteNoise", noise_dimensions='2D')
+    add = g.math('ADD', white.outputs["Value"], value_b=0.0)
+    sep = g.node("ShaderNodeSeparateRGB")
+    g.link(white.outputs["Color"], sep.inputs[0])
+    return combine_rgb(g, n.outputs["Fac"], w.outputs["Fac"],
+                       g.math('MULTIPLY', add, sep.outputs[2]))
+
+
+NOISE = (noise_1d, noise_2d, noise_3d, noise_4d, noise_facs, noise_fac_and_color, white_1d,
+         white_2d, white_3d, white_4d, white_values, unlinked)
+
+
+# -- Musgrave ----------------------------------------------------------------------------------
+
+# (type, dimensions, scale, detail, dimension, lacunarity, offset, gain, a, b): Fac * a + b is
+# about [0, 1] over a patch (3rd to 97th percentile).
+MUSGRAVES = (
+    ('MULTIFRACTAL', 1, 4.0, 2.0, 2.0, 2.0, 0.0, 1.0, 0.978, -0.502),
+    ('MULTIFRACTAL', 2, 5.0, 3.5, 1.2, 2.2, 0.0, 1.0, 0.799, -0.282),
+    ('MULTIFRACTAL', 3, 3.0, 4.0, 0.8, 1.9, 0.0, 1.0, 0.938, -0.489),
+    ('MULTIFRACTAL', 4, 4.0, 2.6, 1.5, 2.0, 0.0, 1.0, 1.01, -0.506),
+    ('RIDGED_MULTIFRACTAL', 1, 4.0, 3.0, 1.0, 2.0, 1.0, 2.0, 0.772, -0.253),
+    ('RIDGED_MULTIFRACTAL', 2, 5.0, 4.0, 1.0, 2.0, 0.9, 1.5, 0.879, -0.0765),
+    ('RIDGED_MULTIFRACTAL', 3, 3.0, 2.5, 0.7, 2.3, 1.1, 2.5, 1.01, -0.721),
+    ('RIDGED_MULTIFRACTAL', 4, 3.0, 3.0, 1.3, 2.0, 1.0, 2.0, 1.08, -0.487),
+    ('HYBRID_MULTIFRACTAL', 1, 4.0, 3.0, 1.0, 2.0, 0.7, 1.2, 0.754, -0.243),
+    ('HYBRID_MULTIFRACTAL', 2, 5.0, 4.5, 1.0, 2.0, 0.8, 1.0, 0.559, -0.132),
+    ('HYBRID_MULTIFRACTAL', 3, 3.0, 2.5, 0.9, 2.1, 0.6, 1.4, 0.808, -0.154),
+    ('HYBRID_MULTIFRACTAL', 4, 3.0, 3.3, 1.2, 2.0, 0.7, 1.1, 0.863, -0.374),
+    ('FBM', 1, 4.0, 3.0, 1.0, 2.0, 0.0, 1.0, 0.961, 0.49),
+    ('FBM', 2, 5.0, 5.5, 0.8, 2.0, 0.0, 1.0, 0.624, 0.519),
+    ('FBM', 3, 3.0, 2.0, 1.0, 2.5, 0.0, 1.0, 1.1, 0.525),
+    ('FBM', 4, 4.0, 3.7, 1.4, 1.8, 0.0, 1.0, 0.911, 0.479),
+    ('HETERO_TERRAIN', 1, 4.0, 3.0, 1.0, 2.0, 0.5, 1.0, 0.698, -0.011),
+    ('HETERO_TERRAIN', 2, 5.0, 2.5, 1.3, 2.0, 0.4, 1.0, 0.665, 0.193),
+    ('HETERO_TERRAIN', 3, 3.0, 3.0, 1.0, 2.2, 0.6, 1.0, 0.759, -0.143),
+    ('HETERO_TERRAIN', 4, 3.0, 2.8, 1.1, 2.0, 0.5, 1.0, 0.819, -0.123),
+)
+
+
+def musgrave_channel(g, spec):
+    kind, dims, scale, detail, dimension, lacunarity, offset, gain, a, b = spec
+    n = g.node("ShaderNodeTexMusgrave", musgrave_type=kind, musgrave_dimensions=f"{dims}D")
+    g.link(uvw(g), n.inputs["Vector"])
+    if dims in (1, 4):
+        g.link(w_of_uv(g), n.inputs["W"])
+    for name, v in (("Scale", scale), ("Detail", detail), ("Dimension", dimension),
+                    ("Lacunarity", lacunarity), ("Offset", offset), ("Gain", gain)):
+        n.inputs[name].default_value = v
+    return g.math('MULTIPLY_ADD', n.outputs["Fac"], value_b=a, value_c=b, clamp=True)
+
+
+def musgrave_patch(specs, name):
+    def make(g):
+        channels = [musgrave_channel(g, s) for s in specs]
+        while len(channels) < 3:
+            channels.append(channels[0])
+        return combine_rgb(g, *channels)
+    make.__name__ = name
+    return make
+
+
+# Three per patch, each patch mixing types and dimensions.
+_ORDER = (0, 5, 10, 15, 16, 1, 6, 11, 12, 17, 2, 7, 8, 13, 18, 3, 4, 9, 14, 19)
+MUSGRAVE = tuple(musgrave_patch([MUSGRAVES[i] for i in _ORDER[k:k + 3]], f"musgrave_{k // 3}")
+                 for k in range(0, len(_ORDER), 3))
+
+
+# -- Wave ------------------------------------------------------------------------------------------
+
+def wave_patch(kind, direction, distorted):
+    def make(g):
+        channels = []
+        vector = uvw(g)
+        for profile in ('SIN', 'SAW', 'TRI'):
+            n = g.node("ShaderNodeTexWave", wave_type=kind, wave_profile=profile)
+            if kind == 'BANDS':
+                n.bands_direction = direction
+            else:
+                n.rings_direction = direction
+            g.link(vector, n.inputs["Vector"])
+            n.inputs["Scale"].default_value = 1.1 if kind == 'BANDS' else 1.7
+            n.inputs["Distortion"].default_value = 2.5 if distorted else 0.0
+            n.inputs["Detail"].default_value = 2.5
+            n.inputs["Detail Scale"].default_value = 1.5
+            n.inputs["Detail Roughness"].default_value = 0.6
+            n.inputs["Phase Offset"].default_value = 0.7
+            channels.append(n.outputs["Fac"])
+        return combine_rgb(g, *channels)
+    make.__name__ = f"wave_{kind.lower()}_{direction.lower()}"
+    return make
+
+
+WAVE = tuple(wave_patch(kind, d, distorted=(k % 2 == 1))
+             for kind, dirs in (('BANDS', ('X', 'Y', 'Z', 'DIAGONAL')),
+                                ('RINGS', ('X', 'Y', 'Z', 'SPHERICAL')))
+             for k, d in enumerate(dirs))
+
+
+def wave_color(g):
+    """The Color output, (fac, fac, fac)."""
+    n = g.node("ShaderNodeTexWave", wave_type='RINGS', rings_direction='SPHERICAL',
+               wave_profile='SAW')
+    g.link(uvw(g), n.inputs["Vector"])
+    n.inputs["Scale"].default_value = 1.3
+    return n.outputs["Color"]
+
+
+# -- faults ----------------------------------------------------------------------------------------
+
+def fault_setting(prop, change):
+    """A fault: the reader sees node.<prop> changed by `change` (restored after)."""
+    def make(original):
+        def read(g, node, socket):
+            saved = getattr(node, prop)
+            setattr(node, prop, change(saved))
+            try:
+                return original(g, node, socket)
+            finally:
+                setattr(node, prop, saved)
+        return read
+    return make
+
+
+_DIMENSION_OFF = {'1D': '2D', '2D': '3D', '3D': '4D', '4D': '3D'}
+
+
+def main():
+    testing.addon()
+    from torrance.shader_graph.registry import READERS
+    readers = DictAttr(READERS)
+    dims_off = fault_setting("noise_dimensions", _DIMENSION_OFF.get)
+    agree_on_patches(NOISE, what="Noise and White Noise", faults=(
+        ("Noise read a dimension off", readers, 'ShaderNodeTexNoise', dims_off),
+        ("White Noise read a dimension off", readers, 'ShaderNodeTexWhiteNoise', dims_off)))
+    agree_on_patches(MUSGRAVE, what="Musgrave", faults=(
+        ("Musgrave read as fBM", readers, 'ShaderNodeTexMusgrave',
+         fault_setting("musgrave_type", lambda t: 'FBM')),))
+    agree_on_patches((*WAVE, wave_color), what="Wave", faults=(
+        ("Wave profile read as Sine", readers, 'ShaderNodeTexWave',
+         fault_setting("wave_profile", lambda p: 'SIN')),))
+
+
+testing.run(main)

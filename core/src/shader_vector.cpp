@@ -1,0 +1,75 @@
+#include "torrance/shader_vector.h"
+
+#include <cmath>
+
+namespace torrance::shader {
+namespace {
+
+// Row r of the matrix times v (Cycles' transform_direction), and the transposed product.
+Vec3 times(const glm::mat3& rows, const Vec3& v) {
+  return Vec3(glm::dot(rows[0], v), glm::dot(rows[1], v), glm::dot(rows[2], v));
+}
+Vec3 times_transposed(const glm::mat3& rows, const Vec3& v) { return v.x * rows[0] + v.y * rows[1] + v.z * rows[2]; }
+
+Vec3 safe_divide(const Vec3& a, const Vec3& b) {
+  return Vec3(b.x != 0.0f ? a.x / b.x : 0.0f, b.y != 0.0f ? a.y / b.y : 0.0f, b.z != 0.0f ? a.z / b.z : 0.0f);
+}
+Vec3 safe_normalize(const Vec3& a) {
+  const float len = glm::length(a);
+  return len != 0.0f ? a * (1.0f / len) : a;
+}
+
+// Rodrigues' rotation of p about a unit axis, term by term as Cycles writes it.
+Vec3 rotate_around_axis(const Vec3& p, const Vec3& a, float angle) {
+  const float c = std::cos(angle), s = std::sin(angle), k = 1.0f - c;
+  return Vec3((c + k * a.x * a.x) * p.x + (k * a.x * a.y - a.z * s) * p.y + (k * a.x * a.z + a.y * s) * p.z,
+              (k * a.x * a.y + a.z * s) * p.x + (c + k * a.y * a.y) * p.y + (k * a.y * a.z - a.x * s) * p.z,
+              (k * a.x * a.z - a.y * s) * p.x + (k * a.y * a.z + a.x * s) * p.y + (c + k * a.z * a.z) * p.z);
+}
+
+}  // namespace
+
+glm::mat3 euler_rows(const Vec3& e) {
+  const float cx = std::cos(e.x), cy = std::cos(e.y), cz = std::cos(e.z);
+  const float sx = std::sin(e.x), sy = std::sin(e.y), sz = std::sin(e.z);
+  glm::mat3 rows;
+  rows[0] = Vec3(cy * cz, sy * sx * cz - cx * sz, sy * cx * cz + sx * sz);
+  rows[1] = Vec3(cy * sz, sy * sx * sz + cx * cz, sy * cx * sz - sx * cz);
+  rows[2] = Vec3(-sy, cy * sx, cy * cx);
+  return rows;
+}
+
+Vec3 mapping(int type, const Vec3& vector, const Vec3& location, const Vec3& rotation, const Vec3& scale) {
+  const glm::mat3 r = euler_rows(rotation);
+  switch (type) {
+    case 0: return times(r, vector * scale) + location;
+    case 1: return safe_divide(times_transposed(r, vector - location), scale);
+    case 2: return times(r, vector * scale);
+    default: return safe_normalize(times(r, safe_divide(vector, scale)));
+  }
+}
+
+Vec3 vector_rotate(int type, bool invert, const Vec3& vector, const Vec3& center, const Vec3& axis, float angle,
+                   const Vec3& rotation) {
+  if (type == 4) {
+    const glm::mat3 r = euler_rows(rotation);
+    return (invert ? times_transposed(r, vector - center) : times(r, vector - center)) + center;
+  }
+  const Vec3 a = type == 1 ? Vec3(1.0f, 0.0f, 0.0f) : type == 2 ? Vec3(0.0f, 1.0f, 0.0f)
+               : type == 3 ? Vec3(0.0f, 0.0f, 1.0f) : axis;
+  const float len = type == 0 ? glm::length(a) : 1.0f;
+  if (len == 0.0f) return vector;
+  return rotate_around_axis(vector - center, a / len, invert ? -angle : angle) + center;
+}
+
+glm::vec4 mapping_op(const ShaderOpContext& c) {
+  return glm::vec4(mapping(c.ins.mode, c.vector(0), c.vector(1), c.vector(2), c.vector(3)), 0.0f);
+}
+
+glm::vec4 vector_rotate_op(const ShaderOpContext& c) {
+  return glm::vec4(vector_rotate(c.ins.mode, c.ins.flags & 1, c.vector(0), c.vector(1), c.vector(2), c.value(3),
+                                 c.vector(4)),
+                   0.0f);
+}
+
+}  // namespace torrance::shader
