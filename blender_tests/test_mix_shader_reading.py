@@ -64,10 +64,11 @@ def nested_tree():
 
 
 def unsupported_tree():
-    """Mix(Noise Texture, Glass, Diffuse with a Bump from an image) and a checker on Generated."""
+    """Mix(Point Density, Glass, Diffuse with a Bump from an image) and a checker on Generated
+    (read by the shader graph: a program factor)."""
     mat, nodes, links, out = node_material("Unsupported")
     mix = nodes.new("ShaderNodeMixShader")
-    links.new(nodes.new("ShaderNodeTexNoise").outputs["Fac"], mix.inputs["Fac"])
+    links.new(nodes.new("ShaderNodeTexPointDensity").outputs["Density"], mix.inputs["Fac"])
     links.new(nodes.new("ShaderNodeBsdfGlass").outputs[0], mix.inputs[1])
     diffuse = shader(nodes, "ShaderNodeBsdfDiffuse")
     bump = nodes.new("ShaderNodeBump")
@@ -156,16 +157,19 @@ def main():
     texts = [t for _l, t in messages]
     print("\n".join(texts), flush=True)
     kinds = [(kind, terms) for kind, _a, terms in mix["closures"]]
-    # Fac from a Noise Texture: the socket's 0.5 (a constant: 0.5 and 0.5); Glass left out.
+    # Fac from a Point Density texture: the socket's 0.5 (a constant: 0.5 and 0.5); Glass left
+    # out; the checker on Generated coordinates a program factor of the mixture's shader program.
     check(kinds[0][0] == "diffuse" and len(kinds) == 2 and kinds[1][0] == "glossy",
           f"Glass left out, Diffuse and Glossy kept: {kinds}")
     normal = mix["normal"]
     check(normal.get("bump_texture") == 7 and abs(normal.get("bump_strength", 0) - 0.7) < 1e-6
           and abs(normal.get("bump_distance", 0) + 0.2) < 1e-6,
           f"the Bump node's arguments (Invert negates Distance): {normal}")
-    for expected in ("is linked to 'Noise Texture', which Torrance does not support",
+    check([f["kind"] for f in mix["factors"]] == ["constant", "program"] and "shader_program" in mix
+          and ('generated',) in mix["program_attributes"],
+          f"the checker on Generated: a program factor reading Generated: {mix['factors']}")
+    for expected in ("'Point Density' is not supported",
                      "the shader 'Glass BSDF' is not supported in a mix",
-                     "only UV coordinates are supported",
                      "'Glossy BSDF' has another Normal than 'Diffuse BSDF'"):
         hits = [t for t in texts if expected in t]
         check(len(hits) == 1, f"reported once: {expected!r} in {texts}")

@@ -17,6 +17,7 @@ compared is the graph's value, up to the pixel filter's noise):
   muted        Image -> a muted Invert (Blender passes the colour through) -> Gamma 0.5
   legacy       Image -> Separate RGB -> Combine HSV (legacy nodes) and Separate HSV -> Combine RGB
   mapped       UV -> Mapping (Texture) -> Image, times UV -> Mapping (Point) -> Vector Rotate
+  extend, clip the image at UVs from -0.4 to 1.4 with Extension Extend, Clip (Linear, Closest)
   orm          a glTF-style material: Base Color from the image, Separate Color's Green ->
                Roughness, Blue -> Metallic, lit by a sun and the sky (Principled BSDF)
 
@@ -225,8 +226,32 @@ def mapped(g, img):
     return mul.outputs[0]
 
 
+def _beyond_the_image(g, img, extension, interpolation='Linear'):
+    """The image at UVs running from -0.4 to 1.4 (Mapping, Texture type) with `extension`."""
+    m = g.node("ShaderNodeMapping", vector_type='POINT')
+    m.inputs["Location"].default_value = (-0.4, -0.4, 0.0)
+    m.inputs["Scale"].default_value = (1.8, 1.8, 1.0)
+    g.link(g.uv(), m.inputs["Vector"])
+    tex = g.image(img, interpolation)
+    tex.extension = extension
+    g.link(m.outputs[0], tex.inputs["Vector"])
+    return tex.outputs["Color"]
+
+
+def extend(g, img):
+    return _beyond_the_image(g, img, 'EXTEND')
+
+
+def clip(g, img):
+    return _beyond_the_image(g, img, 'CLIP')
+
+
+def clip_closest(g, img):
+    return _beyond_the_image(g, img, 'CLIP', 'Closest')
+
+
 EMISSIVE = (channels, hsv, maths, vector_maths, mixrgb, mix, adjust, grouped, muted, legacy,
-            mapped)
+            mapped, extend, clip, clip_closest)
 
 
 def orm():
@@ -313,6 +338,17 @@ def fault_mapping_as_point(original):
     return read
 
 
+def fault_extension_repeats(original):
+    def read(g, node, socket):
+        saved = node.extension
+        node.extension = 'REPEAT'
+        try:
+            return original(g, node, socket)
+        finally:
+            node.extension = saved
+    return read
+
+
 def fault_group_passes_through(_original):
     """A fault: a group node's output is its first input (its inner nodes ignored)."""
     def read(self, group, socket, kind):
@@ -334,7 +370,9 @@ def main():
                 ("HSV read as HSL", readers, 'ShaderNodeSeparateColor', fault_models_swapped),
                 ("groups pass their input through", GraphCompiler, '_group_output',
                  fault_group_passes_through),
-                ("Mapping read as Point", readers, 'ShaderNodeMapping', fault_mapping_as_point)))
+                ("Mapping read as Point", readers, 'ShaderNodeMapping', fault_mapping_as_point),
+                ("Extend and Clip read as Repeat", readers, 'ShaderNodeTexImage',
+                 fault_extension_repeats)))
 
 
 testing.run(main)

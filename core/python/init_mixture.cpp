@@ -25,8 +25,10 @@ MixFactor parse_factor(const py::handle& h) {
   const py::dict d = py::reinterpret_borrow<py::dict>(h);
   for (const auto& item : d) {
     const std::string key = py::str(item.first);
-    if (key != "kind" && key != "value" && key != "texture" && key != "scale" && key != "color1" && key != "color2")
-      throw py::value_error("unknown mix factor key '" + key + "' (kind, value, texture, scale, color1, color2)");
+    if (key != "kind" && key != "value" && key != "texture" && key != "scale" && key != "color1" && key != "color2" &&
+        key != "register")
+      throw py::value_error("unknown mix factor key '" + key +
+                            "' (kind, value, texture, scale, color1, color2, register)");
   }
   MixFactor f;
   const std::string kind = d.contains("kind") ? py::str(d["kind"]).cast<std::string>() : "constant";
@@ -37,13 +39,17 @@ MixFactor parse_factor(const py::handle& h) {
     f.kind = MixFactor::Kind::Image;
     if (!d.contains("texture")) throw py::value_error("an image mix factor needs 'texture'");
     f.texture = d["texture"].cast<int>();
+  } else if (kind == "program") {
+    f.kind = MixFactor::Kind::Program;
+    if (!d.contains("register")) throw py::value_error("a program mix factor needs 'register'");
+    f.register_index = d["register"].cast<int>();
   } else if (kind == "checker") {
     f.kind = MixFactor::Kind::Checker;
     if (d.contains("scale")) f.checker_scale = d["scale"].cast<float>();
     if (d.contains("color1")) f.checker_color1 = d["color1"].cast<float>();
     if (d.contains("color2")) f.checker_color2 = d["color2"].cast<float>();
   } else {
-    throw py::value_error("mix factor kind must be 'constant', 'image' or 'checker', got '" + kind + "'");
+    throw py::value_error("mix factor kind must be 'constant', 'image', 'checker' or 'program', got '" + kind + "'");
   }
   return f;
 }
@@ -55,8 +61,10 @@ void init_mixture(py::module_& m) {
   auto add_mixture = [](Scene& s, const std::vector<std::tuple<std::string, int64_t, std::vector<int>>>& closures,
                         const py::list& factors, int normal_texture, float normal_strength, int bump_texture,
                         float bump_strength, float bump_distance, float alpha, int alpha_texture,
-                        bool alpha_from_luminance, bool alpha_inverted, std::array<float, 3> transparent_color) {
+                        bool alpha_from_luminance, bool alpha_inverted, std::array<float, 3> transparent_color,
+                        int program) {
     Mixture mixture;
+    mixture.program = program;
     for (const auto& f : factors) mixture.factors.push_back(parse_factor(f));
     for (const auto& [type, material, terms] : closures) {
       if (material < 0 || material > int64_t(UINT32_MAX))
@@ -81,13 +89,14 @@ void init_mixture(py::module_& m) {
       py::arg("normal_strength") = 1.0f, py::arg("bump_texture") = -1, py::arg("bump_strength") = 1.0f,
       py::arg("bump_distance") = 1.0f, py::arg("alpha") = 1.0f, py::arg("alpha_texture") = -1,
       py::arg("alpha_from_luminance") = false, py::arg("alpha_inverted") = false,
-      py::arg("transparent_color") = std::array<float, 3>{1.0f, 1.0f, 1.0f},
+      py::arg("transparent_color") = std::array<float, 3>{1.0f, 1.0f, 1.0f}, py::arg("program") = -1,
       "Adds a material made of weighted closures (Mix Shader / Add Shader); returns its material index. "
       "closures: [(type, material, terms)], type 'principled' | 'diffuse' | 'glossy' | 'emission', material an "
       "add_material index holding the closure's inputs (diffuse/glossy: base_color = Color, roughness), terms the "
       "weight's factors (t >= 0: factor t, t < 0: 1 - factor -t-1). factors: dicts {'kind': 'constant', 'value'} | "
       "{'kind': 'image', 'texture'} (luminance) | {'kind': 'checker', 'scale', 'color1', 'color2'} (Blender's "
-      "Checker Texture at the UV). alpha, alpha_texture, alpha_from_luminance, alpha_inverted, "
+      "Checker Texture at the UV) | {'kind': 'program', 'register'} (register x of shader program `program`, "
+      "from add_shader_program: the Fac's node graph). alpha, alpha_texture, alpha_from_luminance, alpha_inverted, "
       "transparent_color: as add_material's (a Mix Shader of a Transparent BSDF and this mixture). ValueError for "
       "malformed mixtures.");
 }

@@ -38,13 +38,15 @@ void check_mixture(const Mixture& mixture, size_t num_materials, size_t num_text
 }
 
 MixtureWeights mixture_weights(const Mixture& mixture, const std::vector<std::shared_ptr<const Texture>>& textures,
-                               const Vec2& uv, float footprint) {
+                               const Vec2& uv, float footprint, const glm::vec4* registers) {
   std::array<float, kMaxMixFactors> fac{};
   for (size_t i = 0; i < mixture.factors.size(); ++i) {
     const MixFactor& f = mixture.factors[i];
     float v = f.value;
     if (f.kind == MixFactor::Kind::Image) {
       v = blender_luminance(Vec3(textures[f.texture]->lookup(uv, footprint)));
+    } else if (f.kind == MixFactor::Kind::Program) {
+      v = registers ? registers[f.register_index].x : 0.0f;
     } else if (f.kind == MixFactor::Kind::Checker) {
       v = shader::checker(Vec3(uv.x, uv.y, 0.0f) * f.checker_scale) > 0.5f ? f.checker_color1 : f.checker_color2;
     }

@@ -101,7 +101,7 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
     resolved = textured ? scene.textured_material(id, globals) : scene.material(id);
     return textured ? MixtureBsdf(MaterialBsdf(resolved, model)) : MixtureBsdf(prebuilt);
   }
-  const MixtureWeights w = scene.mixture_weights(id, globals.uv, globals.footprint);
+  const MixtureWeights w = scene.mixture_weights(id, globals);
   resolved = Material{};
   resolved.base_color = Vec3(0.0f);
   resolved.metallic = 0.0f;

@@ -11,6 +11,13 @@ uint32_t Scene::add_mixture(const Mixture& mixture, const MaterialTextures& norm
   std::lock_guard<std::mutex> lock(mutex_);
   check_idle("add a material");
   check_mixture(mixture, materials_.size(), textures_.size());
+  for (const MixFactor& f : mixture.factors)
+    if (f.kind == MixFactor::Kind::Program &&
+        (mixture.program < 0 || size_t(mixture.program) >= programs_.size() ||
+         !programs_[size_t(mixture.program)].written(f.register_index)))
+      throw std::invalid_argument("a program mix factor reads register " + std::to_string(f.register_index) +
+                                  " of shader program " + std::to_string(mixture.program) +
+                                  ", which does not exist or does not write it");
   for (const MixtureComponent& c : mixture.components)
     if (mixture_index_[c.material] >= 0)
       throw std::invalid_argument("a mixture closure's material " + std::to_string(c.material) +
@@ -54,7 +61,7 @@ uint32_t Scene::add_mixture(const Mixture& mixture, const MaterialTextures& norm
   return uint32_t(materials_.size() - 1);
 }
 
-MixtureWeights Scene::mixture_weights(uint32_t i, const Vec2& uv, float footprint) const {
+MixtureWeights Scene::mixture_weights(uint32_t i, const ShaderGlobals& g) const {
   const Mixture* m = mixture(i);
   if (!m) {
     MixtureWeights w;
@@ -62,13 +69,16 @@ MixtureWeights Scene::mixture_weights(uint32_t i, const Vec2& uv, float footprin
     w.weight[0] = 1.0f;
     return w;
   }
-  return torrance::mixture_weights(*m, textures_, uv, footprint);
+  if (m->program < 0) return torrance::mixture_weights(*m, textures_, g.uv, g.footprint);
+  std::array<glm::vec4, ShaderProgram::kMaxRegisters> regs;
+  run_shader_program(uint32_t(m->program), g, regs.data());
+  return torrance::mixture_weights(*m, textures_, g.uv, g.footprint, regs.data());
 }
 
 Vec3 Scene::emission_at(uint32_t i, const Vec2& uv) const {
   const Mixture* m = mixture(i);
   if (!m) return material_textures_[i].textured_emission() ? textured_material(i, uv).emission : materials_[i].emission;
-  const MixtureWeights w = torrance::mixture_weights(*m, textures_, uv, 0.0f);
+  const MixtureWeights w = mixture_weights(i, uv, 0.0f);
   Vec3 e(0.0f);
   for (int k = 0; k < w.count; ++k)
     if (w.weight[k] > 0.0f) e += w.weight[k] * emission_at(m->components[k].material, uv);

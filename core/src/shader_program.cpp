@@ -79,7 +79,7 @@ glm::vec4 uv(const ShaderOpContext& c) { return glm::vec4(c.globals.uv, 0.0f, 0.
 ShaderOpInfo shader_op_info(ShaderOpcode op) {
   switch (op) {
     case ShaderOpcode::TexCoordUV: return {0, 1, false, uv};
-    case ShaderOpcode::Image: return {1, 1, false, nullptr};
+    case ShaderOpcode::Image: return {1, 4, false, nullptr};
     case ShaderOpcode::Channel: return {1, 4, false, channel};
     case ShaderOpcode::Combine: return {3, 1, false, combine};
     case ShaderOpcode::Math: return {3, shader::kMathOpCount, false, math};
@@ -183,7 +183,9 @@ void ShaderProgram::run(const ShaderGlobals& g, const std::vector<std::shared_pt
     const bool table = info.data;
     const ShaderOpContext c{ins, regs, g, table ? data_.data() + ins.resource + 1 : nullptr,
                             table ? int(data_[size_t(ins.resource)]) : 0};
-    const glm::vec4 out = info.run ? info.run(c) : textures[size_t(ins.resource)]->lookup(Vec2(c.in(0)), g.footprint);
+    const glm::vec4 out = info.run ? info.run(c)
+                                   : textures[size_t(ins.resource)]->lookup(Vec2(c.in(0)), g.footprint,
+                                                                            Extension(ins.mode));
     regs[ins.out] = finite(out);
   }
 }

@@ -5,6 +5,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace torrance {
@@ -40,6 +41,10 @@ glm::vec4 decoded_fast(const glm::vec4& t) {
     out[c] = table[i] + (x - float(i)) * (table[i + 1] - table[i]);
   }
   return out;
+}
+int mirror(int i, int n) {
+  const int m = std::abs(i + (i < 0 ? 1 : 0)) % (2 * n);
+  return m >= n ? 2 * n - m - 1 : m;
 }
 int wrap(int i, int n) {
   const int m = i % n;
@@ -123,19 +128,37 @@ Texture Texture::from_file(const std::string& path, ColorSpace space, Interpolat
   return Texture(data.width, data.height, channels, flipped.data(), space, interpolation);
 }
 
-glm::vec4 Texture::Level::texel(int x, int y) const {
+glm::vec4 Texture::Level::texel(int x, int y, Extension e) const {
+  switch (e) {
+    case Extension::Repeat: break;
+    case Extension::Extend:
+      x = std::clamp(x, 0, width - 1);
+      y = std::clamp(y, 0, height - 1);
+      break;
+    case Extension::Clip:
+      if (x < 0 || y < 0 || x >= width || y >= height) return glm::vec4(0.0f);
+      break;
+    case Extension::Mirror:
+      x = mirror(x, width);
+      y = mirror(y, height);
+      break;
+  }
   return texels[size_t(wrap(y, height)) * width + wrap(x, width)];
 }
 
-glm::vec4 Texture::Level::bilinear(const Vec2& uv) const {
-  const float x = (uv.x - std::floor(uv.x)) * width - 0.5f, y = (uv.y - std::floor(uv.y)) * height - 0.5f;
+glm::vec4 Texture::Level::bilinear(const Vec2& uv, Extension e) const {
+  // Repeat: the UV's fraction (exact for huge UVs); the others: the UV as it is, clamped to a
+  // range where the texel arithmetic stays in int (far outside, Extend/Mirror/Clip are constant or
+  // periodic anyway).
+  const Vec2 at = e == Extension::Repeat ? uv - glm::floor(uv) : glm::clamp(uv, Vec2(-1e6f), Vec2(1e6f));
+  const float x = at.x * width - 0.5f, y = at.y * height - 0.5f;
   const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
   const float tx = x - float(x0), ty = y - float(y0);
-  return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), tx), glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), tx),
-                  ty);
+  return glm::mix(glm::mix(texel(x0, y0, e), texel(x0 + 1, y0, e), tx),
+                  glm::mix(texel(x0, y0 + 1, e), texel(x0 + 1, y0 + 1, e), tx), ty);
 }
 
-glm::vec4 Texture::lookup(const Vec2& uv, float footprint) const {
+glm::vec4 Texture::lookup(const Vec2& uv, float footprint, Extension extension) const {
   // The finest level holds the texels as stored, so an sRGB image is interpolated in sRGB and
   // decoded after, as Cycles does with the sRGB images it keeps compressed (all of them); the
   // coarser levels are linear.
@@ -145,16 +168,20 @@ glm::vec4 Texture::lookup(const Vec2& uv, float footprint) const {
   // Level of detail: log2 of the footprint in texels of the finest level.
   const float texels = std::isfinite(footprint) ? footprint * float(std::max(width_, height_)) : 0.0f;
   if (texels <= 1.0f) {
-    if (interpolation_ == Interpolation::Closest)
-      return finest(base.texel(int((uv.x - std::floor(uv.x)) * width_), int((uv.y - std::floor(uv.y)) * height_)));
-    return finest(base.bilinear(uv));
+    if (interpolation_ == Interpolation::Closest) {
+      if (extension == Extension::Clip && (uv.x < 0.0f || uv.y < 0.0f || uv.x > 1.0f || uv.y > 1.0f))
+        return glm::vec4(0.0f);
+      const Vec2 at = extension == Extension::Repeat ? uv - glm::floor(uv) : glm::clamp(uv, Vec2(-1e6f), Vec2(1e6f));
+      return finest(base.texel(int(std::floor(at.x * width_)), int(std::floor(at.y * height_)), extension));
+    }
+    return finest(base.bilinear(uv, extension));
   }
   const float lod = std::min(std::log2(texels), float(levels_.size() - 1));
   const int l0 = int(lod);
   const int l1 = std::min(l0 + 1, int(levels_.size()) - 1);
   const float t = lod - float(l0);
-  const glm::vec4 fine = l0 == 0 ? finest(base.bilinear(uv)) : levels_[l0].bilinear(uv);
-  return glm::mix(fine, levels_[l1].bilinear(uv), t);
+  const glm::vec4 fine = l0 == 0 ? finest(base.bilinear(uv, extension)) : levels_[l0].bilinear(uv, extension);
+  return glm::mix(fine, levels_[l1].bilinear(uv, extension), t);
 }
 
 }  // namespace torrance

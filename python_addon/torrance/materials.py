@@ -38,7 +38,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .nodes import finite_or, node_label, source_socket
+from .nodes import finite_or, is_default_uv, node_label, plain_image, source_socket
 from .shader_graph.graph import KIND_OF_SOCKET, AttributeIds, GraphCompiler, Unsupported
 from .shader_graph.program import ProgramBuilder
 from .shader_graph.registry import READERS
@@ -182,7 +182,7 @@ class MaterialReader:
         if src_node.type in _CONSTANT_NODES and not src_node.mute:
             return source.default_value, -1
         if (textures and src_node.bl_idname == 'ShaderNodeTexImage' and not src_node.mute
-                and source.identifier == image_output and _plain_image(src_node)):
+                and source.identifier == image_output and plain_image(src_node)):
             tid = self._image_node(mat, src_node, source, f"input '{name}' of {node_label(node)}",
                                    image_output)
             return socket.default_value, (-1 if tid is None else tid)
@@ -217,14 +217,13 @@ class MaterialReader:
         """A new shader program for the closure about to be read."""
         self._program = ProgramBuilder()
         self._program_inputs = {}
-        self.attributes.take()
 
     def _with_program(self, out):
         """add_material() arguments with the closure's shader program (if it has one)."""
         if self._program_inputs:
             out['shader_program'] = self._program.build()
             out['program_reads_uvs'] = self._program.reads("TexCoordUV")
-            out['program_attributes'] = self.attributes.take()
+            out['program_attributes'] = self.attributes.keys_of(self._program)
             for key, value in self._program_inputs.items():
                 out[f'{key}_register'] = self._program.register_of(value)
                 out.pop(f'{key}_texture', None)
@@ -262,7 +261,7 @@ class MaterialReader:
                 self.reporter.info(
                     f"{what}: {node_label(src.node)} names UV map '{src.node.uv_map}'; Torrance "
                     f"uses each mesh's active render UV map here")
-            elif src is not None and not _is_default_uv(src):
+            elif src is not None and not is_default_uv(src):
                 self.reporter.warning(
                     f"{what}: the Vector input is linked to {node_label(src.node)}, which Torrance "
                     f"does not support here; using the mesh's active render UV map")
@@ -457,29 +456,6 @@ class MaterialReader:
             emission_strength=strength, emission_texture=tex)))
 
 
-def _plain_image(node):
-    """Whether an Image Texture node is read by the texture path (flat projection, Repeat, its
-    Vector unlinked or the default UVs); otherwise the shader graph reads it."""
-    if node.projection != 'FLAT' or node.extension != 'REPEAT':
-        return True            # the texture path reports what it does not render
-    vector = node.inputs.get("Vector")
-    src = source_socket(vector) if vector is not None else None
-    return src is None or _is_default_uv(src)
-
-
-def _is_default_uv(output):
-    """Whether a Vector input's source gives the default UVs (Texture Coordinate UV, UV Map
-    node without a named map)."""
-    node = output.node
-    if node.mute:
-        return False
-    if node.bl_idname == 'ShaderNodeTexCoord':
-        return output.identifier == "UV" and node.object is None
-    if node.bl_idname == 'ShaderNodeUVMap':
-        return not node.from_instancer and not node.uv_map
-    return False
-
-
 def _sanitize(m):
     """Keep values in the ranges the core accepts; drop textures that can not matter."""
     m['base_color'] = tuple(_clamp(c, 0.0, 1.0) for c in m['base_color'])
@@ -508,7 +484,8 @@ def uses_textures(m):
     if 'mixture' in m:
         mix = m['mixture']
         return (any(uses_textures(args) for _kind, args, _terms in mix['closures'])
-                or any(f['kind'] != "constant" for f in mix['factors'])
+                or any(f['kind'] not in ("constant", "program") for f in mix['factors'])
+                or mix.get('program_reads_uvs', False)
                 or uses_textures(mix['normal']) or uses_textures(mix.get('alpha', {})))
     return m.get('program_reads_uvs', False) or any(m.get(k, -1) >= 0 for k in _TEXTURE_KEYS)
 
@@ -516,8 +493,9 @@ def uses_textures(m):
 def attribute_keys(m):
     """The mesh attribute keys add_material() arguments (or a mixture's closures) read."""
     if 'mixture' in m:
-        return tuple(sorted({k for _kind, args, _terms in m['mixture']['closures']
-                             for k in attribute_keys(args)}))
+        mix = m['mixture']
+        return tuple(sorted({k for _kind, args, _terms in mix['closures']
+                             for k in attribute_keys(args)} | set(attribute_keys(mix))))
     return m.get('program_attributes', ())
 
 
@@ -592,8 +570,10 @@ class MaterialTable:
             return self._add_material(args)
         mix = args['mixture']
         closures = [(kind, self._add_material(a), terms) for kind, a, terms in mix['closures']]
+        program = mix.get('shader_program')
+        pid = self.scene.add_shader_program(*program) if program is not None else -1
         return self.scene.add_mixture(closures, mix['factors'], **mix['normal'],
-                                      **mix.get('alpha', {}))
+                                      **mix.get('alpha', {}), program=pid)
 
     def _add_material(self, args):
         """add_material() of one closure's arguments, its shader program added first."""

@@ -18,7 +18,10 @@ out of the sum (it contributes nothing). One Normal input serves all closures: t
 closure's; a closure with a different normal source is reported.
 """
 
-from .nodes import finite_or, node_label, source_socket
+from .shader_graph.graph import GraphCompiler, Unsupported
+from .shader_graph.program import ProgramBuilder
+from .shader_graph.registry import READERS
+from .nodes import finite_or, is_default_uv, node_label, plain_image, source_socket
 from .normal_inputs import read_normal_input
 
 MAX_CLOSURES = 8          # the core's kMaxMixtureComponents
@@ -46,6 +49,8 @@ class ShaderTreeReader:
         self.factors = []         # add_mixture factor dicts
         self.normal = None        # the normal arguments of the first closure
         self.normal_from = None
+        self.program = ProgramBuilder()   # the factors the shader graph computes
+        self.program_factors = {}         # factor index -> its Value in self.program
 
     def warn(self, text):
         self.reader.reporter.warning(f"Material '{self.mat.name}': {text}")
@@ -55,7 +60,15 @@ class ShaderTreeReader:
         self._walk(node, [], 0)
         if not self.closures:
             return None
-        return dict(closures=self.closures, factors=self.factors, normal=self.normal or {})
+        out = dict(closures=self.closures, factors=self.factors, normal=self.normal or {})
+        if self.program_factors:
+            out.update(shader_program=self.program.build(),
+                       program_reads_uvs=self.program.reads("TexCoordUV"),
+                       program_attributes=self.reader.attributes.keys_of(self.program))
+            for index, value in self.program_factors.items():
+                self.factors[index] = dict(kind="program",
+                                           register=self.program.register_of(value))
+        return out
 
     def _walk(self, node, terms, depth):
         kind = node.bl_idname
@@ -160,40 +173,46 @@ class ShaderTreeReader:
             return clamp(value) if value == value else 0.5
         src = source.node
         where = f"the Fac of {node_label(node)}"
-        if not src.mute and src.bl_idname == 'ShaderNodeTexImage':
+        # An Image Texture at the UVs and a Checker Texture at the UVs of constant inputs have
+        # factor kinds of their own; anything else is the shader graph's.
+        if not src.mute and src.bl_idname == 'ShaderNodeTexImage' \
+                and source.identifier == "Color" and plain_image(src):
             tid = reader._image_node(self.mat, src, source, where)
-            if tid is not None:
-                index = self._add_factor(dict(kind="image", texture=tid))
-                if index is not None:
-                    return index
-        elif not src.mute and src.bl_idname == 'ShaderNodeTexChecker':
-            factor = self._checker(src, source, where)
-            if factor is not None:
-                index = self._add_factor(factor)
-                if index is not None:
-                    return index
-        else:
-            self.warn(f"{where} is linked to {node_label(src)}, which Torrance does not support "
-                      f"(a value, an Image Texture or a Checker Texture); using the socket's own "
-                      f"value")
-        return clamp(float(socket.default_value))
+            index = self._add_factor(dict(kind="image", texture=tid)) if tid is not None else None
+            return index if index is not None else clamp(float(socket.default_value))
+        if not src.mute and src.bl_idname == 'ShaderNodeTexChecker' and _plain_checker(src):
+            index = self._add_factor(self._checker(src, source))
+            return index if index is not None else clamp(float(socket.default_value))
+        value = self._graph_factor(socket, where)
+        return value if value is not None else clamp(float(socket.default_value))
 
-    def _checker(self, node, output, where):
+    def _graph_factor(self, socket, where):
+        """A Fac from its node graph: a float when it folds to a constant, else the index of a
+        program factor; None when the graph can not be compiled (reported)."""
         reader = self.reader
-        what = f"{node_label(node)} (feeding {where})"
-        vector = node.inputs.get("Vector")
-        src = source_socket(vector) if vector is not None else None
-        if src is None or not _is_uv(src):
-            self.warn(f"{what}: only UV coordinates are supported (link a Texture Coordinate's "
-                      f"UV or a UV Map node to its Vector); using the Mix Shader's own Fac")
+        mark = self.program.mark()
+        try:
+            value = GraphCompiler(self.program, reader.textures, READERS,
+                                  reader.attributes).input(socket, 'float')
+        except Unsupported as exc:
+            self.program.rollback(mark)
+            self.warn(f"{where}: {exc}; using the socket's own value")
             return None
-        constants = {}
-        for name in ("Color1", "Color2", "Scale"):
-            socket = node.inputs.get(name)
-            if socket is not None and source_socket(socket) is not None:
-                self.warn(f"{what}: its {name} input is linked, which Torrance does not support; "
-                          f"using the socket's own value")
-            constants[name] = reader._socket_value(self.mat, node, name, None)
+        if value.constant:
+            v = value.value[0]
+            return min(max(v, 0.0), 1.0) if v == v else 0.5
+        # A placeholder (unique: _add_factor merges equal factors), its register set by read().
+        index = self._add_factor(dict(kind="program", register=-1 - len(self.program_factors)))
+        if index is None:
+            self.program.rollback(mark)
+            return None
+        self.program_factors[index] = value
+        return index
+
+    def _checker(self, node, output):
+        """The factor of a Checker Texture at the UVs with constant inputs (_plain_checker)."""
+        constants = {name: node.inputs[name].default_value
+                     for name in ("Color1", "Color2", "Scale")}
         scale = float(constants["Scale"]) if constants["Scale"] is not None else 5.0
         if output.identifier == "Fac":
             c1, c2 = 1.0, 0.0
@@ -246,13 +265,12 @@ class ShaderTreeReader:
         return kind, _sanitize(args)
 
 
-def _is_uv(output):
-    node = output.node
-    if node.mute:
-        return False
-    if node.bl_idname == 'ShaderNodeTexCoord':
-        return output.identifier == "UV"
-    return node.bl_idname == 'ShaderNodeUVMap' and not node.from_instancer
+def _plain_checker(node):
+    """A Checker Texture at the UVs whose Color1, Color2 and Scale are unlinked."""
+    vector = node.inputs.get("Vector")
+    src = source_socket(vector) if vector is not None else None
+    return (src is not None and is_default_uv(src)
+            and all(source_socket(node.inputs[n]) is None for n in ("Color1", "Color2", "Scale")))
 
 
 def read_mixture(reader, mat, node):

@@ -41,3 +41,28 @@ def finite_or(value, fallback):
     except (TypeError, ValueError):
         return fallback
     return v if math.isfinite(v) else fallback
+
+
+def plain_image(node):
+    """Whether an Image Texture node is read by the texture path (flat projection, Repeat, its
+    Vector unlinked or the default UVs); otherwise the shader graph reads it."""
+    if node.projection != 'FLAT':
+        return True            # the texture path reports what it does not render
+    if node.extension != 'REPEAT':
+        return False           # the shader graph's Image op has every extension
+    vector = node.inputs.get("Vector")
+    src = source_socket(vector) if vector is not None else None
+    return src is None or is_default_uv(src)
+
+
+def is_default_uv(output):
+    """Whether a Vector input's source gives the default UVs (Texture Coordinate UV, UV Map
+    node without a named map)."""
+    node = output.node
+    if node.mute:
+        return False
+    if node.bl_idname == 'ShaderNodeTexCoord':
+        return output.identifier == "UV" and node.object is None
+    if node.bl_idname == 'ShaderNodeUVMap':
+        return not node.from_instancer and not node.uv_map
+    return False

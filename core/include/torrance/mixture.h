@@ -22,7 +22,7 @@ inline constexpr int kMaxMixFactors = 8;
 
 // The Fac of one Mix Shader.
 struct MixFactor {
-  enum class Kind { Constant, Image, Checker };
+  enum class Kind { Constant, Image, Checker, Program };
   Kind kind = Kind::Constant;
   float value = 0.5f;  // Constant
   int texture = -1;    // Image: the luminance of the texture's colour at the hit's UV
@@ -31,6 +31,7 @@ struct MixFactor {
   // luminances).
   float checker_scale = 5.0f;
   float checker_color1 = 1.0f, checker_color2 = 0.0f;
+  int register_index = -1;  // Program: register x of the mixture's shader program
 };
 
 enum class ClosureType {
@@ -49,6 +50,7 @@ struct MixtureComponent {
 struct Mixture {
   std::vector<MixFactor> factors;
   std::vector<MixtureComponent> components;
+  int program = -1;  // the shader program computing its Program factors (Scene::add_shader_program)
 };
 
 // Throws std::invalid_argument unless the mixture is well formed: 1..kMaxMixtureComponents
@@ -61,7 +63,9 @@ struct MixtureWeights {
   std::array<float, kMaxMixtureComponents> weight{};
   int count = 0;
 };
+// registers: the mixture's program's registers after running it (its Program factors read them;
+// nullptr: they read 0).
 MixtureWeights mixture_weights(const Mixture& mixture, const std::vector<std::shared_ptr<const Texture>>& textures,
-                               const Vec2& uv, float footprint);
+                               const Vec2& uv, float footprint, const glm::vec4* registers = nullptr);
 
 }  // namespace torrance

@@ -132,7 +132,13 @@ class Scene {
   }
   bool has_mixtures() const { return !mixtures_.empty(); }
   // The weights of mixture material i's closures at uv (image factors over footprint UV units).
-  MixtureWeights mixture_weights(uint32_t i, const Vec2& uv, float footprint = 0.0f) const;
+  MixtureWeights mixture_weights(uint32_t i, const ShaderGlobals& globals) const;
+  MixtureWeights mixture_weights(uint32_t i, const Vec2& uv, float footprint = 0.0f) const {
+    ShaderGlobals g;
+    g.uv = uv;
+    g.footprint = footprint;
+    return mixture_weights(i, g);
+  }
   // The radiance material i emits at uv (textures and mixtures included).
   Vec3 emission_at(uint32_t i, const Vec2& uv) const;
   // The material's alpha at a hit: its alpha texture's alpha channel (or colour luminance, or 1 -

@@ -23,7 +23,7 @@ namespace torrance {
 
 enum class ShaderOpcode : uint8_t {
   TexCoordUV,      // out = (u, v, 0, 0): the mesh's UVs (Texture Coordinate > UV, UV Map, unlinked Vector)
-  Image,           // out = texture(in0.xy) RGBA; texture = its id; mode: 0 = Repeat
+  Image,           // out = texture(in0.xy) RGBA; resource = its id; mode: the Extension (texture.h)
   Channel,         // out = (in0[mode], 0, 0, 0): Separate RGB/XYZ/Color (RGB), an image's Alpha
   Combine,         // out = (in0.x, in1.x, in2.x, 1): Combine RGB/XYZ/Color (RGB)
   Math,            // out.x = math(mode, in0.x, in1.x, in2.x); flags & 1: clamp to [0, 1]

@@ -14,6 +14,10 @@ namespace torrance {
 
 enum class ColorSpace { Linear, SRGB };
 enum class Interpolation { Linear, Closest };
+// The Image Texture node's Extension, as Cycles' CPU lookups: Repeat wraps; Extend clamps to the
+// edge texels; Clip reads 0 outside the image (Linear: texels beyond the edge are 0; Closest: 0
+// outside [0, 1]); Mirror (Blender 3.5+) reflects at each edge.
+enum class Extension { Repeat, Extend, Clip, Mirror };
 
 class Texture {
  public:
@@ -24,7 +28,7 @@ class Texture {
 
   // RGBA; a grey image gives (v, v, v, 1). footprint: the size, in UV units, of the area to
   // average (0 = the finest level, as Blender's node without filtering).
-  glm::vec4 lookup(const Vec2& uv, float footprint = 0.0f) const;
+  glm::vec4 lookup(const Vec2& uv, float footprint = 0.0f, Extension extension = Extension::Repeat) const;
   // Memory per pixel of the image: RGBA float texels and their mip pyramid (a third more).
   static constexpr double kBytesPerTexel = 16.0 * 4.0 / 3.0;
   int width() const { return width_; }
@@ -34,8 +38,8 @@ class Texture {
   struct Level {
     int width, height;
     std::vector<glm::vec4> texels;
-    glm::vec4 texel(int x, int y) const;
-    glm::vec4 bilinear(const Vec2& uv) const;
+    glm::vec4 texel(int x, int y, Extension e = Extension::Repeat) const;
+    glm::vec4 bilinear(const Vec2& uv, Extension e = Extension::Repeat) const;
   };
   static void average_decoded(const Level& fine, Level& coarse);
   int width_, height_;

@@ -144,3 +144,19 @@ def test_random_programs_agree_with_the_reference_evaluator(program, data):
             note(f"{name} mode {mode} flags {flags} args {[v.value for v in values]}")
             np.testing.assert_allclose(got[out], want, rtol=2e-4, atol=2e-5,
                                        err_msg=f"{name} mode {mode} flags {flags}")
+
+
+def test_mixture_program_factors_are_checked():
+    scene = tc.Scene()
+    diffuse = scene.add_material(base_color=(0.8, 0.2, 0.1), specular=0.0)
+    glossy = scene.add_material(base_color=(0.9, 0.9, 0.9), roughness=0.2)
+    # register 0: 0.25 (a constant), 1: UV, 2: U
+    pid = add(scene, [(0.25, 0.0, 0.0, 0.0)], [code_row(0, 1), code_row(2, 2, (1,), mode=0)], 3)
+    closures = [("diffuse", diffuse, [0]), ("glossy", glossy, [-1])]
+    with pytest.raises(ValueError, match="does not exist or does not write it"):
+        scene.add_mixture(closures, [dict(kind="program", register=2)], program=-1)
+    with pytest.raises(ValueError, match="does not exist or does not write it"):
+        scene.add_mixture(closures, [dict(kind="program", register=5)], program=pid)
+    with pytest.raises(ValueError, match="needs 'register'"):
+        scene.add_mixture(closures, [dict(kind="program")], program=pid)
+    assert scene.add_mixture(closures, [dict(kind="program", register=2)], program=pid) >= 0

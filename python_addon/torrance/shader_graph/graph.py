@@ -106,20 +106,20 @@ class GraphCompiler:
 
 
 class AttributeIds:
-    """The scene's attribute keys -> the ids shader programs and meshes name them by; with the
-    keys each material's program requested since the last take()."""
+    """The scene's attribute keys -> the ids shader programs and meshes name them by."""
 
     def __init__(self):
         self.ids = {}
-        self.requested = set()
 
     def request(self, key):
-        self.requested.add(key)
         return self.ids.setdefault(key, len(self.ids))
 
-    def take(self):
-        keys, self.requested = tuple(sorted(self.requested)), set()
-        return keys
+    def keys_of(self, builder):
+        """The keys a program's Attribute instructions read (sorted)."""
+        from .program import OPCODE
+        op = OPCODE.get("Attribute")
+        used = {row[3] for row in builder.code if row[0] == op}
+        return tuple(sorted(k for k, i in self.ids.items() if i in used))
 
 
 def by_identifier(sockets, identifier):

@@ -11,6 +11,8 @@ from . import color_ops, families, math_ops
 from .graph import Unsupported, by_identifier
 from .program import constant
 
+# The Image Texture node's extensions, in the core's Extension order (texture.h).
+_EXTENSIONS = ('REPEAT', 'EXTEND', 'CLIP', 'MIRROR')
 _CHANNELS = {"R": 0, "G": 1, "B": 2, "X": 0, "Y": 1, "Z": 2, "H": 0, "S": 1, "V": 2, "L": 2,
              "Red": 0, "Green": 1, "Blue": 2}
 _TO_MODEL = {'RGB': None, 'HSV': 0, 'HSL': 2}       # ColorModel mode from RGB
@@ -30,7 +32,7 @@ def _image(g, node, socket):
         raise Unsupported(f"{node_label(node)} has no image")
     if node.projection != 'FLAT':
         raise Unsupported(f"{node_label(node)}: {node.projection.lower()} projection")
-    if node.extension != 'REPEAT':
+    if node.extension not in _EXTENSIONS:
         raise Unsupported(f"{node_label(node)}: extension '{node.extension.title()}'")
     interpolation = node.interpolation if node.interpolation in ("Linear", "Closest") else "Linear"
     tid = g.textures.texture(node.image, interpolation)
@@ -39,7 +41,8 @@ def _image(g, node, socket):
     vector = node.inputs.get("Vector")
     uv = (g.input(vector, 'vector') if vector is not None and vector.is_linked
           else g.builder.emit("TexCoordUV", 'vector'))
-    rgba = g.builder.emit("Image", 'color', [uv], texture=tid)
+    rgba = g.builder.emit("Image", 'color', [uv], texture=tid,
+                          mode=_EXTENSIONS.index(node.extension))
     if socket.identifier == "Alpha":
         if node.image.alpha_mode == 'NONE':
             return constant('float', 1.0)
