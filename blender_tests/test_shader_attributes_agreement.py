@@ -20,7 +20,7 @@ import bpy
 import numpy as np
 
 from torrance_tools import testing
-from torrance_tools.shader_graphs import DictAttr, agree_on_patches, test_image
+from torrance_tools.shader_graphs import DictAttr, agree_on_patches, read_with, test_image
 
 
 def _turned(obj):
@@ -159,17 +159,6 @@ def generated_as_object(original):
     return read
 
 
-def named_as_render_uv(original):
-    def read(g, node, socket):
-        saved = node.uv_map
-        node.uv_map = ""
-        try:
-            return original(g, node, socket)
-        finally:
-            node.uv_map = saved
-    return read
-
-
 def main():
     testing.addon()
     import torrance.export.mesh as export_mesh
@@ -180,7 +169,7 @@ def main():
         faults=(("corners reversed", export_mesh, "attribute_layers", reversed_corners),
                 ("Generated read as Object", GraphCompiler, "generated", generated_as_object),
                 ("named UV map read as the render one", DictAttr(READERS), 'ShaderNodeUVMap',
-                 named_as_render_uv)))
+                 read_with(uv_map=""))))
 
 
 testing.run(main)

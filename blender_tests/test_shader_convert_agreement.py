@@ -37,7 +37,7 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
 """
 
 from torrance_tools import testing
-from torrance_tools.shader_graphs import DictAttr, agree_on_patches
+from torrance_tools.shader_graphs import DictAttr, agree_on_patches, read_with
 
 STOPS = ((0.0, (0.9, 0.1, 0.1, 1.0)), (0.3, (0.1, 0.8, 0.2, 0.6)),
          (0.65, (0.2, 0.3, 1.0, 0.2)), (1.0, (1.0, 0.9, 0.2, 0.9)))
@@ -45,23 +45,10 @@ STOPS = ((0.0, (0.9, 0.1, 0.1, 1.0)), (0.3, (0.1, 0.8, 0.2, 0.6)),
 
 # -- helpers --------------------------------------------------------------------------------------
 
-def _uv_parts(g):
-    sep = g.node("ShaderNodeSeparateXYZ")
-    g.link(g.uv(), sep.inputs[0])
-    return sep.outputs[0], sep.outputs[1]
-
-
-def _affine(g, a, scale, offset):
-    m = g.node("ShaderNodeMath", operation='MULTIPLY_ADD')
-    g.link(a, m.inputs[0])
-    m.inputs[1].default_value, m.inputs[2].default_value = scale, offset
-    return m.outputs[0]
-
-
 def _xy(g):
     """x = 1.4 u - 0.2, y = 1.4 v - 0.2, and v."""
-    u, v = _uv_parts(g)
-    return _affine(g, u, 1.4, -0.2), _affine(g, v, 1.4, -0.2), v
+    u, v = g.uv_parts()
+    return g.multiply_add(u, 1.4, -0.2), g.multiply_add(v, 1.4, -0.2), v
 
 
 def _bands(g, v, sockets):
@@ -75,13 +62,6 @@ def _bands(g, v, sockets):
         g.link(socket, mix.inputs["Color2"])
         out = mix.outputs[0]
     return out
-
-
-def _combine(g, r, gr, b):
-    comb = g.node("ShaderNodeCombineRGB")
-    for k, socket in enumerate((r, gr, b)):
-        g.link(socket, comb.inputs[k])
-    return comb.outputs[0]
 
 
 def _absolute(g, socket):
@@ -176,7 +156,7 @@ def rgb_curves(g):
                      2: ((-0.2, 0.1), (0.3, 0.5), (1.0, 0.8))},       # B
                     'EXTRAPOLATED')
     node.inputs["Fac"].default_value = 0.9
-    g.link(_combine(g, x, y, _affine(g, x, -1.0, 1.0)), node.inputs["Color"])
+    g.link(g.combine(x, y, g.multiply_add(x, -1.0, 1.0)), node.inputs["Color"])
     return _absolute(g, node.outputs[0])
 
 
@@ -204,18 +184,18 @@ def float_curves(g):
     r = _float_curve(g, x, ((0.1, 0.2), (0.5, 0.7), (0.9, 0.4)), 'EXTRAPOLATED')
     gr = _float_curve(g, x, ((-0.1, 0.9), (0.4, 0.2), (1.1, 0.6)), 'HORIZONTAL')
     b = _float_curve(g, x, ((0.0, 0.0), (0.3, 0.8), (1.0, 0.3)), 'EXTRAPOLATED', factor=0.6)
-    return _absolute(g, _combine(g, r, gr, b))
+    return _absolute(g, g.combine(r, gr, b))
 
 
 def map_range(g):
     x, _, v = _xy(g)
-    steps = _affine(g, v, 4.0, 2.0)
-    low = _combine(g, _map_range(g, x, 'LINEAR', 0.0, 1.0, 0.1, 0.9, clamp=True),
-                   _map_range(g, x, 'STEPPED', 0.0, 1.0, 0.0, 0.8),
-                   _map_range(g, x, 'SMOOTHSTEP', 0.9, 0.1, 0.2, 1.0))
-    high = _combine(g, _map_range(g, x, 'SMOOTHERSTEP', 0.2, 0.8, 1.0, 0.0),
-                    _map_range(g, x, 'LINEAR', 0.3, 0.7, 0.0, 1.0),
-                    _map_range(g, x, 'STEPPED', 0.0, 1.0, 0.9, 0.1, steps=steps, clamp=True))
+    steps = g.multiply_add(v, 4.0, 2.0)
+    low = g.combine(_map_range(g, x, 'LINEAR', 0.0, 1.0, 0.1, 0.9, clamp=True),
+                    _map_range(g, x, 'STEPPED', 0.0, 1.0, 0.0, 0.8),
+                    _map_range(g, x, 'SMOOTHSTEP', 0.9, 0.1, 0.2, 1.0))
+    high = g.combine(_map_range(g, x, 'SMOOTHERSTEP', 0.2, 0.8, 1.0, 0.0),
+                     _map_range(g, x, 'LINEAR', 0.3, 0.7, 0.0, 1.0),
+                     _map_range(g, x, 'STEPPED', 0.0, 1.0, 0.9, 0.1, steps=steps, clamp=True))
     return _absolute(g, _bands(g, v, [low, high, low]))
 
 
@@ -248,14 +228,14 @@ def vector_ranges_b(g):
 
 def clamps(g):
     x, y, v = _xy(g)
-    return _combine(g, _clamp(g, x, 'MINMAX', 0.1, 0.8), _clamp(g, y, 'RANGE', 0.9, 0.3),
-                    _clamp(g, x, 'RANGE', _affine(g, v, -1.0, 1.0), 0.4))
+    return g.combine(_clamp(g, x, 'MINMAX', 0.1, 0.8), _clamp(g, y, 'RANGE', 0.9, 0.3),
+                     _clamp(g, x, 'RANGE', g.multiply_add(v, -1.0, 1.0), 0.4))
 
 
 def blackbody(g):
-    u, _ = _uv_parts(g)
+    u, _ = g.uv_parts()
     node = g.node("ShaderNodeBlackbody")
-    g.link(_affine(g, u, 12000.0, 600.0), node.inputs["Temperature"])
+    g.link(g.multiply_add(u, 12000.0, 600.0), node.inputs["Temperature"])
     scale = g.node("ShaderNodeVectorMath", operation='SCALE')
     g.link(node.outputs[0], scale.inputs[0])
     scale.inputs[3].default_value = 0.5
@@ -263,9 +243,9 @@ def blackbody(g):
 
 
 def wavelength(g):
-    u, _ = _uv_parts(g)
+    u, _ = g.uv_parts()
     node = g.node("ShaderNodeWavelength")
-    g.link(_affine(g, u, 420.0, 370.0), node.inputs["Wavelength"])
+    g.link(g.multiply_add(u, 420.0, 370.0), node.inputs["Wavelength"])
     return node.outputs[0]
 
 
@@ -274,33 +254,6 @@ MAKERS = (ramps_a, ramps_b, ramps_c, rgb_curves, vector_curves, float_curves, ma
 
 
 # -- the faults -----------------------------------------------------------------------------------
-
-def _with(obj, **values):
-    """Sets attributes for the duration of a read; returns the restoring function."""
-    saved = {key: getattr(obj, key) for key in values}
-    for key, value in values.items():
-        setattr(obj, key, value)
-
-    def restore():
-        for key, value in saved.items():
-            setattr(obj, key, value)
-    return restore
-
-
-def _during(original, target, **values):
-    """A reader running `original` with target(node)'s attributes set to values."""
-    def read(g, node, socket):
-        restore = _with(target(node), **values)
-        try:
-            return original(g, node, socket)
-        finally:
-            restore()
-    return read
-
-
-def fault_ramp_in_rgb(original):
-    return _during(original, lambda node: node.color_ramp, color_mode='RGB')
-
 
 def fault_curves_without_c(_original):
     def read(g, node, socket):
@@ -318,18 +271,6 @@ def fault_vector_curves_unit_range(_original):
         args = [g.input(node.inputs["Fac"], 'float'), g.input(node.inputs["Vector"], 'vector')]
         return g.builder.emit("VectorCurves", 'vector', args, flags=1, table=[0.0, 1.0, *table[2:]])
     return read
-
-
-def fault_float_curve_held(original):
-    return _during(original, lambda node: node.mapping, extend='HORIZONTAL')
-
-
-def fault_map_range_linear(original):
-    return _during(original, lambda node: node, interpolation_type='LINEAR')
-
-
-def fault_clamp_range_as_minmax(original):
-    return _during(original, lambda node: node, clamp_type='MINMAX')
 
 
 def _shifted_input(op, offset):
@@ -350,15 +291,17 @@ def main():
     readers = DictAttr(READERS)
     agree_on_patches(
         MAKERS, what="the converter nodes",
-        faults=(("ramps baked in RGB", readers, 'ShaderNodeValToRGB', fault_ramp_in_rgb),
+        faults=(("ramps baked in RGB", readers, 'ShaderNodeValToRGB',
+                 read_with(**{"color_ramp.color_mode": 'RGB'})),
                 ("RGB Curves without C", readers, 'ShaderNodeRGBCurve', fault_curves_without_c),
                 ("Vector Curves over [0, 1]", readers, 'ShaderNodeVectorCurve',
                  fault_vector_curves_unit_range),
-                ("Float Curve held", readers, 'ShaderNodeFloatCurve', fault_float_curve_held),
+                ("Float Curve held", readers, 'ShaderNodeFloatCurve',
+                 read_with(**{"mapping.extend": 'HORIZONTAL'})),
                 ("Map Range read as Linear", readers, 'ShaderNodeMapRange',
-                 fault_map_range_linear),
+                 read_with(interpolation_type='LINEAR')),
                 ("Clamp Range read as Min Max", readers, 'ShaderNodeClamp',
-                 fault_clamp_range_as_minmax),
+                 read_with(clamp_type='MINMAX')),
                 ("Blackbody in Celsius", readers, 'ShaderNodeBlackbody',
                  _shifted_input("Blackbody", 273.15)),
                 ("Wavelength 5 nm long", readers, 'ShaderNodeWavelength',

@@ -15,9 +15,9 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
 
 from torrance_tools import testing
 from torrance_tools.seed_noise import agree_within_seed_noise
-from torrance_tools.shader_graphs import DictAttr, Graph
+from torrance_tools.shader_graphs import DictAttr, Graph, read_with
 
-W, H = 128, 80
+W, H = 160, 96
 
 
 def fresnel(g):
@@ -77,12 +77,41 @@ def true_normal_and_backfacing(g):
     return comb.outputs[0]
 
 
-SPHERES = (fresnel, facing, layer_fresnel, normal, incoming, position, reflection)
+def camera_data(g):
+    """Red: (View Distance - View Z Depth) x 3 (sensitive to either); green: View Distance;
+    blue: |View Vector|'s z."""
+    cam = g.node("ShaderNodeCameraData")
+    comb = g.node("ShaderNodeCombineXYZ")
+    sep = g.node("ShaderNodeSeparateXYZ")
+    g.link(_abs(g, cam.outputs["View Vector"]), sep.inputs[0])
+    gap = g.math('SUBTRACT', cam.outputs["View Distance"], cam.outputs["View Z Depth"])
+    g.link(g.math('MULTIPLY', gap, value_b=3.0), comb.inputs[0])
+    g.link(g.math('MULTIPLY', cam.outputs["View Distance"], value_b=0.08), comb.inputs[1])
+    g.link(sep.outputs[2], comb.inputs[2])
+    return comb.outputs[0]
+
+
+def normal_node(g):
+    n = g.node("ShaderNodeNormal")
+    n.outputs["Normal"].default_value = (0.3, -0.8, 0.5)
+    return g.math('MULTIPLY_ADD', n.outputs["Dot"], value_b=0.5, value_c=0.5)
+
+
+def camera_coords(g):
+    return _abs(g, g.node("ShaderNodeTexCoord").outputs["Camera"])
+
+
+def window_coords(g):
+    return _abs(g, g.node("ShaderNodeTexCoord").outputs["Window"])
+
+
+SPHERES = (fresnel, facing, layer_fresnel, normal, incoming, position, reflection, camera_data,
+           normal_node, camera_coords, window_coords)
 
 
 def build(scene):
     testing.setup_render(scene, width=W, height=H)
-    testing.add_camera(scene, location=(0.0, -9.0, 3.0), target=(0.0, 0.0, 0.3), lens=35.0)
+    testing.add_camera(scene, location=(0.0, -11.0, 4.5), target=(0.5, 1.0, 0.3), lens=35.0)
     for k, make in enumerate(SPHERES):
         g = Graph(make.__name__)
         g.link(make(g), g.shader.inputs["Color"])
@@ -96,8 +125,8 @@ def build(scene):
     back.link(true_normal_and_backfacing(back), mix.inputs["Color1"])
     back.link(fresnel(back), mix.inputs["Color2"])
     back.link(mix.outputs[0], back.shader.inputs["Color"])
-    testing.mesh_object(scene, "Back", [(1.8, 1.6, 0.0), (1.8, 1.6, 1.5), (3.3, 2.2, 1.5),
-                                        (3.3, 2.2, 0.0)], [(0, 1, 2, 3)], back.mat)
+    testing.mesh_object(scene, "Back", [(3.6, 1.6, 0.0), (3.6, 1.6, 1.5), (5.1, 2.2, 1.5),
+                                        (5.1, 2.2, 0.0)], [(0, 1, 2, 3)], back.mat)
     testing.set_world(scene, (0.0, 0.0, 0.0))
 
 
@@ -110,20 +139,39 @@ def read_as(output):
     return fault
 
 
-def ior_ignored(original):
-    def read(g, node, socket):
-        saved = node.inputs["IOR"].default_value
-        node.inputs["IOR"].default_value = 1.45
-        try:
-            return original(g, node, socket)
-        finally:
-            node.inputs["IOR"].default_value = saved
-    return read
-
-
 def facing_as_fresnel(original):
     def read(g, node, socket):
         return original(g, node, node.outputs["Fresnel"])
+    return read
+
+
+def depth_as_distance(original):
+    """A fault: Camera Data's View Z Depth read as its View Distance."""
+    def read(g, node, socket):
+        if socket.identifier == "View Z Depth":
+            socket = node.outputs["View Distance"]
+        return original(g, node, socket)
+    return read
+
+
+def reversed_direction(original):
+    """A fault: the Normal node's direction reversed."""
+    def read(g, node, socket):
+        out = node.outputs["Normal"]
+        saved = tuple(out.default_value)
+        out.default_value = tuple(-x for x in saved)
+        try:
+            return original(g, node, socket)
+        finally:
+            out.default_value = saved
+    return read
+
+
+def camera_as_object(original):
+    def read(g, node, socket):
+        if socket.identifier in ("Camera", "Window"):
+            return original(g, node, node.outputs["Object"])
+        return original(g, node, socket)
     return read
 
 
@@ -135,10 +183,17 @@ def main():
     build(scene)
     agree_within_seed_noise(
         scene, testing.tempdir(), 32, 2, "the geometry nodes",
-        faults=(("Fresnel IOR ignored", readers, 'ShaderNodeFresnel', ior_ignored),
+        faults=(("Fresnel IOR ignored", readers, 'ShaderNodeFresnel',
+                 read_with(**{"socket:IOR": 1.45})),
                 ("Facing read as Fresnel", readers, 'ShaderNodeLayerWeight', facing_as_fresnel),
                 ("Normal read as Incoming", readers, 'ShaderNodeNewGeometry',
-                 read_as("Incoming"))),
+                 read_as("Incoming")),
+                ("View Z Depth read as View Distance", readers, 'ShaderNodeCameraData',
+                 depth_as_distance),
+                ("the Normal node's direction reversed", readers, 'ShaderNodeNormal',
+                 reversed_direction),
+                ("Camera and Window coordinates read as Object's", readers, 'ShaderNodeTexCoord',
+                 camera_as_object)),
         tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
 
 

@@ -33,7 +33,7 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
 import bpy
 
 from torrance_tools import testing
-from torrance_tools.shader_graphs import DictAttr, Graph, agree_on_patches, test_image
+from torrance_tools.shader_graphs import DictAttr, Graph, agree_on_patches, read_with, test_image
 
 def channels(g, img):
     sep = g.node("ShaderNodeSeparateColor", mode='RGB')
@@ -280,17 +280,6 @@ def with_image(make):
     return maker
 
 
-def fault_math_as_add(original):
-    def read(g, node, socket):
-        saved = node.operation
-        node.operation = 'ADD'
-        try:
-            return original(g, node, socket)
-        finally:
-            node.operation = saved
-    return read
-
-
 def fault_channels_shifted(original):
     def read(g, node, socket):
         from torrance.shader_graph import registry
@@ -300,17 +289,6 @@ def fault_channels_shifted(original):
             return original(g, node, socket)
         finally:
             registry._CHANNELS.update(saved)
-    return read
-
-
-def fault_blend_as_mix(original):
-    def read(g, node, socket):
-        saved = node.blend_type
-        node.blend_type = 'MIX'
-        try:
-            return original(g, node, socket)
-        finally:
-            node.blend_type = saved
     return read
 
 
@@ -324,28 +302,6 @@ def fault_models_swapped(original):
         finally:
             registry._TO_MODEL.update(saved[0])
             registry._FROM_MODEL.update(saved[1])
-    return read
-
-
-def fault_mapping_as_point(original):
-    def read(g, node, socket):
-        saved = node.vector_type
-        node.vector_type = 'POINT'
-        try:
-            return original(g, node, socket)
-        finally:
-            node.vector_type = saved
-    return read
-
-
-def fault_extension_repeats(original):
-    def read(g, node, socket):
-        saved = node.extension
-        node.extension = 'REPEAT'
-        try:
-            return original(g, node, socket)
-        finally:
-            node.extension = saved
     return read
 
 
@@ -363,16 +319,18 @@ def main():
     readers = DictAttr(READERS)
     agree_on_patches(
         [with_image(make) for make in EMISSIVE], lit=(orm,),
-        faults=(("Math read as Add", readers, 'ShaderNodeMath', fault_math_as_add),
+        faults=(("Math read as Add", readers, 'ShaderNodeMath', read_with(operation='ADD')),
                 ("Separate Color channels shifted", readers, 'ShaderNodeSeparateColor',
                  fault_channels_shifted),
-                ("MixRGB blend read as Mix", readers, 'ShaderNodeMixRGB', fault_blend_as_mix),
+                ("MixRGB blend read as Mix", readers, 'ShaderNodeMixRGB',
+                 read_with(blend_type='MIX')),
                 ("HSV read as HSL", readers, 'ShaderNodeSeparateColor', fault_models_swapped),
                 ("groups pass their input through", GraphCompiler, '_group_output',
                  fault_group_passes_through),
-                ("Mapping read as Point", readers, 'ShaderNodeMapping', fault_mapping_as_point),
+                ("Mapping read as Point", readers, 'ShaderNodeMapping',
+                 read_with(vector_type='POINT')),
                 ("Extend and Clip read as Repeat", readers, 'ShaderNodeTexImage',
-                 fault_extension_repeats)))
+                 read_with(extension='REPEAT'))))
 
 
 testing.run(main)

@@ -24,49 +24,25 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
 """
 
 from torrance_tools import testing
-from torrance_tools.shader_graphs import DictAttr, agree_on_patches
+from torrance_tools.shader_graphs import DictAttr, agree_on_patches, read_with
 
 
 # -- coordinates -----------------------------------------------------------------------------------
 
-def _uv_parts(g):
-    sep = g.node("ShaderNodeSeparateXYZ")
-    g.link(g.uv(), sep.inputs[0])
-    return sep.outputs[0], sep.outputs[1]
-
-
-def _multiply_add(g, a, b, c):
-    """a * b + c of sockets or numbers."""
-    m = g.node("ShaderNodeMath", operation='MULTIPLY_ADD')
-    for k, v in enumerate((a, b, c)):
-        if isinstance(v, (int, float)):
-            m.inputs[k].default_value = v
-        else:
-            g.link(v, m.inputs[k])
-    return m.outputs[0]
-
-
 def uvw(g):
     """(u - 0.5, v - 0.5, 0.6 u + 0.8 v - 0.5): the UVs as a 3D point that varies in z too."""
-    u, v = _uv_parts(g)
+    u, v = g.uv_parts()
     comb = g.node("ShaderNodeCombineXYZ")
     g.link(g.math('SUBTRACT', u, value_b=0.5), comb.inputs[0])
     g.link(g.math('SUBTRACT', v, value_b=0.5), comb.inputs[1])
-    g.link(_multiply_add(g, u, 0.6, _multiply_add(g, v, 0.8, -0.5)), comb.inputs[2])
+    g.link(g.multiply_add(u, 0.6, g.multiply_add(v, 0.8, -0.5)), comb.inputs[2])
     return comb.outputs[0]
 
 
 def w_of_uv(g):
     """W = u + 0.37 v."""
-    u, v = _uv_parts(g)
-    return _multiply_add(g, v, 0.37, u)
-
-
-def combine_rgb(g, r, gr, b):
-    comb = g.node("ShaderNodeCombineRGB")
-    for k, s in enumerate((r, gr, b)):
-        g.link(s, comb.inputs[k])
-    return comb.outputs[0]
+    u, v = g.uv_parts()
+    return g.multiply_add(v, 0.37, u)
 
 
 def set_inputs(node, **values):
@@ -114,7 +90,7 @@ def noise_facs(g):
     a = noise_node(g, '2D', scale=4.0, detail=2.0, roughness=0.5, distortion=-1.2)
     b = noise_node(g, '3D', scale=3.0, detail=6.3, roughness=0.8)
     c = noise_node(g, '4D', w=w_of_uv(g), scale=3.5, detail=0.0, distortion=0.5)
-    return combine_rgb(g, a.outputs["Fac"], b.outputs["Fac"], c.outputs["Fac"])
+    return g.combine(a.outputs["Fac"], b.outputs["Fac"], c.outputs["Fac"])
 
 
 def noise_fac_and_color(g):
@@ -143,7 +119,7 @@ def white_node(g, dims):
     if dims in ('1D', '4D'):
         sep = g.node("ShaderNodeSeparateXYZ")
         g.link(cells, sep.inputs[0])
-        g.link(_multiply_add(g, sep.outputs[1], 7.0, sep.outputs[0]), n.inputs["W"])
+        g.link(g.multiply_add(sep.outputs[1], 7.0, sep.outputs[0]), n.inputs["W"])
     return n
 
 
@@ -164,7 +140,7 @@ def white_4d(g):
 
 
 def white_values(g):
-    return combine_rgb(g, *(white_node(g, d).outputs["Value"] for d in ('1D', '3D', '4D')))
+    return g.combine(*(white_node(g, d).outputs["Value"] for d in ('1D', '3D', '4D')))
 
 
 def unlinked(g):
@@ -177,8 +153,8 @@ def unlinked(g):
     add = g.math('ADD', white.outputs["Value"], value_b=0.0)
     sep = g.node("ShaderNodeSeparateRGB")
     g.link(white.outputs["Color"], sep.inputs[0])
-    return combine_rgb(g, n.outputs["Fac"], w.outputs["Fac"],
-                       g.math('MULTIPLY', add, sep.outputs[2]))
+    return g.combine(n.outputs["Fac"], w.outputs["Fac"],
+                     g.math('MULTIPLY', add, sep.outputs[2]))
 
 
 NOISE = (noise_1d, noise_2d, noise_3d, noise_4d, noise_facs, noise_fac_and_color, white_1d,
@@ -230,7 +206,7 @@ def musgrave_patch(specs, name):
         channels = [musgrave_channel(g, s) for s in specs]
         while len(channels) < 3:
             channels.append(channels[0])
-        return combine_rgb(g, *channels)
+        return g.combine(*channels)
     make.__name__ = name
     return make
 
@@ -261,7 +237,7 @@ def wave_patch(kind, direction, distorted):
             n.inputs["Detail Roughness"].default_value = 0.6
             n.inputs["Phase Offset"].default_value = 0.7
             channels.append(n.outputs["Fac"])
-        return combine_rgb(g, *channels)
+        return g.combine(*channels)
     make.__name__ = f"wave_{kind.lower()}_{direction.lower()}"
     return make
 
@@ -283,20 +259,6 @@ def wave_color(g):
 
 # -- faults ----------------------------------------------------------------------------------------
 
-def fault_setting(prop, change):
-    """A fault: the reader sees node.<prop> changed by `change` (restored after)."""
-    def make(original):
-        def read(g, node, socket):
-            saved = getattr(node, prop)
-            setattr(node, prop, change(saved))
-            try:
-                return original(g, node, socket)
-            finally:
-                setattr(node, prop, saved)
-        return read
-    return make
-
-
 _DIMENSION_OFF = {'1D': '2D', '2D': '3D', '3D': '4D', '4D': '3D'}
 
 
@@ -304,16 +266,16 @@ def main():
     testing.addon()
     from torrance.shader_graph.registry import READERS
     readers = DictAttr(READERS)
-    dims_off = fault_setting("noise_dimensions", _DIMENSION_OFF.get)
+    dims_off = read_with(lambda node: {"noise_dimensions": _DIMENSION_OFF[node.noise_dimensions]})
     agree_on_patches(NOISE, what="Noise and White Noise", faults=(
         ("Noise read a dimension off", readers, 'ShaderNodeTexNoise', dims_off),
         ("White Noise read a dimension off", readers, 'ShaderNodeTexWhiteNoise', dims_off)))
     agree_on_patches(MUSGRAVE, what="Musgrave", faults=(
         ("Musgrave read as fBM", readers, 'ShaderNodeTexMusgrave',
-         fault_setting("musgrave_type", lambda t: 'FBM')),))
+         read_with(musgrave_type='FBM')),))
     agree_on_patches((*WAVE, wave_color), what="Wave", faults=(
         ("Wave profile read as Sine", readers, 'ShaderNodeTexWave',
-         fault_setting("wave_profile", lambda p: 'SIN')),))
+         read_with(wave_profile='SIN')),))
 
 
 testing.run(main)

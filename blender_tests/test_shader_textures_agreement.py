@@ -29,35 +29,13 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
 """
 
 from torrance_tools import testing
-from torrance_tools.shader_graphs import DictAttr, agree_on_patches
-
-
-def _combine(g, r, gr, b):
-    comb = g.node("ShaderNodeCombineRGB")
-    for k, socket in enumerate((r, gr, b)):
-        g.link(socket, comb.inputs[k])
-    return comb.outputs[0]
-
-
-def _uv_affine(g, scale, offset):
-    """UV * scale + offset (Vector Math Multiply Add)."""
-    m = g.node("ShaderNodeVectorMath", operation='MULTIPLY_ADD')
-    g.link(g.uv(), m.inputs[0])
-    m.inputs[1].default_value = (scale, scale, 0.0)
-    m.inputs[2].default_value = (offset, offset, 0.0)
-    return m.outputs[0]
+from torrance_tools.shader_graphs import DictAttr, agree_on_patches, read_with
 
 
 def _texture(g, kind, vector=None, **settings):
     tex = g.node(kind, **settings)
     g.link(vector if vector is not None else g.uv(), tex.inputs["Vector"])
     return tex
-
-
-def _u(g):
-    sep = g.node("ShaderNodeSeparateXYZ")
-    g.link(g.uv(), sep.inputs[0])
-    return sep.outputs[0]
 
 
 def checker(g):
@@ -71,7 +49,7 @@ def checker(g):
 def checker_fac(g):
     tex = _texture(g, "ShaderNodeTexChecker")
     scale = g.node("ShaderNodeMath", operation='MULTIPLY_ADD')
-    g.link(_u(g), scale.inputs[0])
+    g.link(g.uv_parts()[0], scale.inputs[0])
     scale.inputs[1].default_value = 6.0
     scale.inputs[2].default_value = 2.0
     g.link(scale.outputs[0], tex.inputs["Scale"])
@@ -79,20 +57,21 @@ def checker_fac(g):
 
 
 def _gradients(g, types, vector):
-    return _combine(g, *(_texture(g, "ShaderNodeTexGradient", vector, gradient_type=t)
-                         .outputs["Fac"] for t in types))
+    return g.combine(*(_texture(g, "ShaderNodeTexGradient", vector, gradient_type=t)
+                        .outputs["Fac"] for t in types))
 
 
 def gradients_a(g):
-    return _gradients(g, ('LINEAR', 'QUADRATIC', 'EASING'), _uv_affine(g, 1.4, -0.2))
+    return _gradients(g, ('LINEAR', 'QUADRATIC', 'EASING'), g.uv_affine(1.4, (-0.2, -0.2, 0.0)))
 
 
 def gradients_b(g):
-    return _gradients(g, ('DIAGONAL', 'SPHERICAL', 'QUADRATIC_SPHERE'), _uv_affine(g, 2.0, -1.0))
+    return _gradients(g, ('DIAGONAL', 'SPHERICAL', 'QUADRATIC_SPHERE'),
+                      g.uv_affine(2.0, (-1.0, -1.0, 0.0)))
 
 
 def radial(g):
-    return _texture(g, "ShaderNodeTexGradient", _uv_affine(g, 2.0, -1.0),
+    return _texture(g, "ShaderNodeTexGradient", g.uv_affine(2.0, (-1.0, -1.0, 0.0)),
                     gradient_type='RADIAL').outputs["Color"]
 
 
@@ -122,7 +101,7 @@ def brick_linked(g):
     tex.offset_frequency, tex.squash, tex.squash_frequency = 3, 0.6, 1
     grad = _texture(g, "ShaderNodeTexGradient", gradient_type='LINEAR')
     g.link(grad.outputs["Color"], tex.inputs["Color1"])
-    g.link(g.math('MULTIPLY_ADD', _u(g), value_b=2.0, value_c=-1.0), tex.inputs["Bias"])
+    g.link(g.math('MULTIPLY_ADD', g.uv_parts()[0], value_b=2.0, value_c=-1.0), tex.inputs["Bias"])
     return tex.outputs["Color"]
 
 
@@ -146,39 +125,13 @@ def magic_deep(g):
 
 
 def magic_fac(g):
-    return _combine(g, _magic(g, 0, Scale=2.0).outputs["Fac"],
-                    _magic(g, 10, Distortion=0.8).outputs["Fac"],
-                    _magic(g, 4, Scale=4.0, Distortion=1.5).outputs["Fac"])
+    return g.combine(_magic(g, 0, Scale=2.0).outputs["Fac"],
+                     _magic(g, 10, Distortion=0.8).outputs["Fac"],
+                     _magic(g, 4, Scale=4.0, Distortion=1.5).outputs["Fac"])
 
 
 MAKERS = (checker, checker_fac, gradients_a, gradients_b, radial, brick, brick_rows, brick_linked,
           brick_fac, magic, magic_deep, magic_fac)
-
-
-def _with(node, **values):
-    """Sets node attributes (or sockets' default values, `socket:Name`) for the duration of a
-    read; returns the restoring function."""
-    saved = {}
-    for key, value in values.items():
-        owner, attr = (node.inputs[key[7:]], "default_value") if key.startswith("socket:") \
-            else (node, key)
-        saved[(owner, attr)] = getattr(owner, attr)
-        setattr(owner, attr, value)
-
-    def restore():
-        for (owner, attr), value in saved.items():
-            setattr(owner, attr, value)
-    return restore
-
-
-def fault_checker_scale_ignored(original):
-    def read(g, node, socket):
-        restore = _with(node, **{"socket:Scale": 1.0})
-        try:
-            return original(g, node, socket)
-        finally:
-            restore()
-    return read
 
 
 def fault_gradient_cycles_enum_order(original):
@@ -195,27 +148,6 @@ def fault_gradient_cycles_enum_order(original):
     return read
 
 
-def fault_brick_frequencies_swapped(original):
-    def read(g, node, socket):
-        restore = _with(node, offset_frequency=node.squash_frequency,
-                        squash_frequency=node.offset_frequency)
-        try:
-            return original(g, node, socket)
-        finally:
-            restore()
-    return read
-
-
-def fault_magic_one_deeper(original):
-    def read(g, node, socket):
-        restore = _with(node, turbulence_depth=min(node.turbulence_depth + 1, 10))
-        try:
-            return original(g, node, socket)
-        finally:
-            restore()
-    return read
-
-
 def main():
     testing.addon()
     from torrance.shader_graph.registry import READERS
@@ -223,13 +155,15 @@ def main():
     agree_on_patches(
         MAKERS, what="the texture nodes",
         faults=(("Checker's Scale ignored", readers, 'ShaderNodeTexChecker',
-                 fault_checker_scale_ignored),
+                 read_with(**{"socket:Scale": 1.0})),
                 ("gradient types in Cycles' order", readers, 'ShaderNodeTexGradient',
                  fault_gradient_cycles_enum_order),
                 ("Brick frequencies swapped", readers, 'ShaderNodeTexBrick',
-                 fault_brick_frequencies_swapped),
+                 read_with(lambda node: {"offset_frequency": node.squash_frequency,
+                                         "squash_frequency": node.offset_frequency})),
                 ("Magic one level deeper", readers, 'ShaderNodeTexMagic',
-                 fault_magic_one_deeper)))
+                 read_with(lambda node: {"turbulence_depth": min(node.turbulence_depth + 1,
+                                                                 10)}))))
 
 
 testing.run(main)

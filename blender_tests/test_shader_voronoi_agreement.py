@@ -37,17 +37,7 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
 """
 
 from torrance_tools import testing
-from torrance_tools.shader_graphs import DictAttr, agree_on_patches
-
-
-def _combine(g, r, gr, b):
-    comb = g.node("ShaderNodeCombineRGB")
-    for k, socket in enumerate((r, gr, b)):
-        if isinstance(socket, float):
-            comb.inputs[k].default_value = socket
-        else:
-            g.link(socket, comb.inputs[k])
-    return comb.outputs[0]
+from torrance_tools.shader_graphs import DictAttr, agree_on_patches, read_with
 
 
 def _channel(g, color, k):
@@ -87,22 +77,13 @@ def _w_from_uv(g):
     return dot.outputs["Value"]
 
 
-def _uv_plus(g, scale, z):
-    """UV * scale + (0.1, 0.2, z)."""
-    m = g.node("ShaderNodeVectorMath", operation='MULTIPLY_ADD')
-    g.link(g.uv(), m.inputs[0])
-    m.inputs[1].default_value = (scale, scale, 0.0)
-    m.inputs[2].default_value = (0.1, 0.2, z)
-    return m.outputs[0]
-
-
 def d1_points(g):
     w = _w_from_uv(g)
     f1 = _voronoi(g, 1, 'F1', w=w, Scale=1.0)
     f2 = _voronoi(g, 1, 'F2', w=w, Scale=1.0)
     smooth = _voronoi(g, 1, 'SMOOTH_F1', w=w, Scale=1.0, Smoothness=0.6)
-    return _combine(g, f1.outputs["Distance"], _channel(g, f2.outputs["Color"], 1),
-                    smooth.outputs["Distance"])
+    return g.combine(f1.outputs["Distance"], _channel(g, f2.outputs["Color"], 1),
+                     smooth.outputs["Distance"])
 
 
 def d1_edges(g):
@@ -110,8 +91,8 @@ def d1_edges(g):
     edge = _voronoi(g, 1, 'DISTANCE_TO_EDGE', w=w, Scale=1.0)
     radius = _voronoi(g, 1, 'N_SPHERE_RADIUS', w=w, Scale=1.0, Randomness=0.7)
     f1 = _voronoi(g, 1, 'F1', w=w, Scale=1.0)
-    return _combine(g, edge.outputs["Distance"], radius.outputs["Radius"],
-                    _times(g, f1.outputs["W"], 1.0 / 6.0))
+    return g.combine(edge.outputs["Distance"], radius.outputs["Radius"],
+                     _times(g, f1.outputs["W"], 1.0 / 6.0))
 
 
 def d2_f1(g):
@@ -120,28 +101,28 @@ def d2_f1(g):
 
 def d2_f2(g):
     v = _voronoi(g, 2, 'F2', 'MANHATTAN')
-    return _combine(g, _times(g, v.outputs["Distance"], 0.5), _channel(g, v.outputs["Color"], 2),
-                    _xyz(g, v.outputs["Position"], 0))
+    return g.combine(_times(g, v.outputs["Distance"], 0.5), _channel(g, v.outputs["Color"], 2),
+                     _xyz(g, v.outputs["Position"], 0))
 
 
 def d2_smooth(g):
     v = _voronoi(g, 2, 'SMOOTH_F1', 'CHEBYCHEV', Smoothness=1.0)
-    return _combine(g, v.outputs["Distance"], _channel(g, v.outputs["Color"], 0),
-                    _xyz(g, v.outputs["Position"], 1))
+    return g.combine(v.outputs["Distance"], _channel(g, v.outputs["Color"], 0),
+                     _xyz(g, v.outputs["Position"], 1))
 
 
 def d2_minkowski(g):
     v = _voronoi(g, 2, 'F1', 'MINKOWSKI', Exponent=0.7, Randomness=0.8)
-    return _combine(g, _times(g, v.outputs["Distance"], 0.5), _channel(g, v.outputs["Color"], 1),
-                    _xyz(g, v.outputs["Position"], 0))
+    return g.combine(_times(g, v.outputs["Distance"], 0.5), _channel(g, v.outputs["Color"], 1),
+                     _xyz(g, v.outputs["Position"], 0))
 
 
 def _edges(g, dims, **inputs):
     w = _w_from_uv(g) if dims == 4 else None
     edge = _voronoi(g, dims, 'DISTANCE_TO_EDGE', w=w, **inputs)
     radius = _voronoi(g, dims, 'N_SPHERE_RADIUS', w=w, Randomness=0.7, **inputs)
-    return _combine(g, _times(g, edge.outputs["Distance"], 3.0),
-                    _times(g, radius.outputs["Radius"], 2.0), 0.2)
+    return g.combine(_times(g, edge.outputs["Distance"], 3.0),
+                     _times(g, radius.outputs["Radius"], 2.0), 0.2)
 
 
 def d2_edges(g):
@@ -149,27 +130,27 @@ def d2_edges(g):
 
 
 def d3_f1(g):
-    v = _voronoi(g, 3, 'F1', vector=_uv_plus(g, 1.0, 0.37), Randomness=0.8)
-    return _combine(g, _channel(g, v.outputs["Color"], 0), v.outputs["Distance"],
-                    _xyz(g, v.outputs["Position"], 0))
+    v = _voronoi(g, 3, 'F1', vector=g.uv_affine(1.0, (0.1, 0.2, 0.37)), Randomness=0.8)
+    return g.combine(_channel(g, v.outputs["Color"], 0), v.outputs["Distance"],
+                     _xyz(g, v.outputs["Position"], 0))
 
 
 def d3_f2(g):
-    v = _voronoi(g, 3, 'F2', 'CHEBYCHEV', vector=_uv_plus(g, 1.0, 0.37))
-    return _combine(g, v.outputs["Distance"], _channel(g, v.outputs["Color"], 1),
-                    _times(g, _xyz(g, v.outputs["Position"], 2), 4.0))
+    v = _voronoi(g, 3, 'F2', 'CHEBYCHEV', vector=g.uv_affine(1.0, (0.1, 0.2, 0.37)))
+    return g.combine(v.outputs["Distance"], _channel(g, v.outputs["Color"], 1),
+                     _times(g, _xyz(g, v.outputs["Position"], 2), 4.0))
 
 
 def d3_smooth(g):
-    v = _voronoi(g, 3, 'SMOOTH_F1', 'MINKOWSKI', vector=_uv_plus(g, 1.0, 0.37), Exponent=2.5,
-                 Smoothness=0.5)
+    v = _voronoi(g, 3, 'SMOOTH_F1', 'MINKOWSKI', vector=g.uv_affine(1.0, (0.1, 0.2, 0.37)),
+                 Exponent=2.5, Smoothness=0.5)
     return v.outputs["Color"]
 
 
 def d3_manhattan(g):
-    v = _voronoi(g, 3, 'F1', 'MANHATTAN', vector=_uv_plus(g, 2.0, 0.61), Scale=2.5)
-    return _combine(g, _times(g, v.outputs["Distance"], 0.5), _xyz(g, v.outputs["Position"], 1),
-                    _channel(g, v.outputs["Color"], 2))
+    v = _voronoi(g, 3, 'F1', 'MANHATTAN', vector=g.uv_affine(2.0, (0.1, 0.2, 0.61)), Scale=2.5)
+    return g.combine(_times(g, v.outputs["Distance"], 0.5), _xyz(g, v.outputs["Position"], 1),
+                     _channel(g, v.outputs["Color"], 2))
 
 
 def d3_edges(g):
@@ -178,16 +159,16 @@ def d3_edges(g):
 
 def d4_f1(g):
     v = _voronoi(g, 4, 'F1', W=0.37)
-    return _combine(g, _channel(g, v.outputs["Color"], 0), v.outputs["Distance"],
-                    _times(g, v.outputs["W"], 4.0))
+    return g.combine(_channel(g, v.outputs["Color"], 0), v.outputs["Distance"],
+                     _times(g, v.outputs["W"], 4.0))
 
 
 def d4_f2(g):
     f2 = _voronoi(g, 4, 'F2', 'MINKOWSKI', W=0.37, Exponent=1.2)
     smooth = _voronoi(g, 4, 'SMOOTH_F1', 'MANHATTAN', W=0.37, Smoothness=0.7)
     cheb = _voronoi(g, 4, 'F1', 'CHEBYCHEV', W=0.37)
-    return _combine(g, _times(g, f2.outputs["Distance"], 0.5),
-                    _channel(g, smooth.outputs["Color"], 1), _xyz(g, cheb.outputs["Position"], 0))
+    return g.combine(_times(g, f2.outputs["Distance"], 0.5),
+                     _channel(g, smooth.outputs["Color"], 1), _xyz(g, cheb.outputs["Position"], 0))
 
 
 def d4_edges(g):
@@ -196,35 +177,6 @@ def d4_edges(g):
 
 PATCHES = (d1_points, d1_edges, d2_f1, d2_f2, d2_smooth, d2_minkowski, d2_edges, d3_f1, d3_f2,
            d3_smooth, d3_manhattan, d3_edges, d4_f1, d4_f2, d4_edges)
-
-
-def _with(node, **values):
-    """Sets node attributes (or sockets' default values, `socket:Name`) for the duration of a
-    read; returns the restoring function."""
-    saved = {}
-    for key, value in values.items():
-        owner, attr = (node.inputs[key[7:]], "default_value") if key.startswith("socket:") \
-            else (node, key)
-        saved[(owner, attr)] = getattr(owner, attr)
-        setattr(owner, attr, value)
-
-    def restore():
-        for (owner, attr), value in saved.items():
-            setattr(owner, attr, value)
-    return restore
-
-
-def _fault(change):
-    """A fault: the reader reads the node as change(node) (a dict for _with, or None) says."""
-    def make(original):
-        def read(g, node, socket):
-            restore = _with(node, **(change(node) or {}))
-            try:
-                return original(g, node, socket)
-            finally:
-                restore()
-        return read
-    return make
 
 
 FAULTS = (
@@ -248,7 +200,7 @@ def main():
     from torrance.shader_graph.registry import READERS
     readers = DictAttr(READERS)
     agree_on_patches(PATCHES, what="the Voronoi Texture",
-                     faults=[(label, readers, 'ShaderNodeTexVoronoi', _fault(change))
+                     faults=[(label, readers, 'ShaderNodeTexVoronoi', read_with(change))
                              for label, change in FAULTS])
 
 

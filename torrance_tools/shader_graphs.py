@@ -50,6 +50,41 @@ class Graph:
     def image(self, img, interpolation='Linear'):
         return self.node("ShaderNodeTexImage", image=img, interpolation=interpolation)
 
+    def uv_parts(self):
+        """The UVs' u and v (a Separate XYZ of the UV)."""
+        sep = self.node("ShaderNodeSeparateXYZ")
+        self.link(self.uv(), sep.inputs[0])
+        return sep.outputs[0], sep.outputs[1]
+
+    def uv_affine(self, scale, offset):
+        """UV * (scale, scale, 0) + offset, a 3-vector (Vector Math Multiply Add)."""
+        m = self.node("ShaderNodeVectorMath", operation='MULTIPLY_ADD')
+        self.link(self.uv(), m.inputs[0])
+        m.inputs[1].default_value = (scale, scale, 0.0)
+        m.inputs[2].default_value = offset
+        return m.outputs[0]
+
+    def _set(self, socket, value):
+        """Links a socket to `socket`, or sets its default value to a number."""
+        if isinstance(value, (int, float)):
+            socket.default_value = value
+        else:
+            self.link(value, socket)
+
+    def multiply_add(self, a, b, c):
+        """a * b + c (Math Multiply Add) of sockets or numbers."""
+        m = self.node("ShaderNodeMath", operation='MULTIPLY_ADD')
+        for k, v in enumerate((a, b, c)):
+            self._set(m.inputs[k], v)
+        return m.outputs[0]
+
+    def combine(self, r, g, b):
+        """A colour of three sockets or numbers (Combine RGB)."""
+        comb = self.node("ShaderNodeCombineRGB")
+        for k, v in enumerate((r, g, b)):
+            self._set(comb.inputs[k], v)
+        return comb.outputs[0]
+
     def math(self, op, a, b=None, value_b=0.5, value_c=0.5, clamp=False):
         m = self.node("ShaderNodeMath", operation=op, use_clamp=clamp)
         self.link(a, m.inputs[0])
@@ -142,6 +177,49 @@ class DictAttr:
 
     def __setattr__(self, key, value):
         self._table[key] = value
+
+
+def _setting(node, key):
+    """(owner, attribute) of a read_with key: "socket:Name" an input's default value, "a.b" the
+    node's a's b, else the node's attribute."""
+    if key.startswith("socket:"):
+        return node.inputs[key[len("socket:"):]], "default_value"
+    *path, attr = key.split(".")
+    owner = node
+    for name in path:
+        owner = getattr(owner, name)
+    return owner, attr
+
+
+def read_with(settings=None, /, **values):
+    """A make_fault for agree_within_seed_noise's (label, owner, attr, make_fault) faults on a
+    node reader (e.g. DictAttr(READERS), 'ShaderNodeMath'): each node is read with some of its
+    settings changed for that read only, restored after. The settings are `values` and, when
+    given, settings(node)'s dict (from the node as it is; None: no change). A key names a
+    setting of the node ("operation"), of one of its members ("color_ramp.color_mode"), or, as
+    "socket:Name", an input socket's default value:
+
+        read_with(operation='ADD')
+        read_with(**{"socket:Scale": 1.0})
+        read_with(lambda node: {"feature": 'F1'} if node.feature == 'F2' else None)
+    """
+    def make_fault(original):
+        def read(g, node, socket):
+            changes = dict(values)
+            if settings is not None:
+                changes.update(settings(node) or {})
+            saved = []
+            try:
+                for key, value in changes.items():
+                    owner, attr = _setting(node, key)
+                    saved.append((owner, attr, getattr(owner, attr)))
+                    setattr(owner, attr, value)
+                return original(g, node, socket)
+            finally:
+                for owner, attr, value in reversed(saved):
+                    setattr(owner, attr, value)
+        return read
+    return make_fault
 
 
 def agree_on_patches(makers, faults=(), lit=(), what="the shader graph", samples=32):

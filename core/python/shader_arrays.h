@@ -12,7 +12,8 @@
 
 namespace torrance::python {
 
-// A code row: opcode, mode, flags, resource, out, then kShaderInputs input registers.
+// A code row: opcode, mode, flags, resource, out, then kShaderInputs input registers. Bits 6-7
+// of flags hold ShaderInstruction::offset.
 constexpr int kCodeColumns = 5 + kShaderInputs;
 
 inline ShaderProgram shader_program(const Scene& scene, const py::object& constants, const py::object& code,
@@ -38,7 +39,8 @@ inline ShaderProgram shader_program(const Scene& scene, const py::object& consta
     ShaderInstruction& ins = instructions[i];
     ins.op = ShaderOpcode(row[0]);
     ins.mode = uint8_t(row[1]);
-    ins.flags = uint8_t(row[2]);
+    ins.flags = uint8_t(row[2] & 63);
+    ins.offset = uint8_t(row[2] >> 6);  // flags bits 6-7: where the op reads the hit
     ins.resource = row[3];
     ins.out = int16_t(row[4]);
     for (int j = 0; j < kShaderInputs; ++j) ins.in[size_t(j)] = int16_t(row[5 + j]);
@@ -51,8 +53,9 @@ inline ShaderProgram shader_program(const Scene& scene, const py::object& consta
   }
 }
 
-inline ShaderOutputs program_outputs(int program, int base_color, int metallic, int roughness, int emission) {
-  for (int r : {base_color, metallic, roughness, emission})
+inline ShaderOutputs program_outputs(int program, int base_color, int metallic, int roughness, int emission,
+                                    int normal = -1) {
+  for (int r : {base_color, metallic, roughness, emission, normal})
     if (r < -1 || r >= ShaderProgram::kMaxRegisters)
       throw py::value_error("a material's program register must lie in [-1, " +
                             std::to_string(ShaderProgram::kMaxRegisters) + "), got " + std::to_string(r));
@@ -62,6 +65,7 @@ inline ShaderOutputs program_outputs(int program, int base_color, int metallic, 
   o.metallic = int16_t(metallic);
   o.roughness = int16_t(roughness);
   o.emission = int16_t(emission);
+  o.normal = int16_t(normal);
   return o;
 }
 

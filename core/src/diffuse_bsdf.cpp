@@ -32,6 +32,7 @@ BsdfSample DiffuseBsdf::sample(const Vec3& wo, float /*u_lobe*/, const Vec2& u) 
   BsdfSample s;
   if (wo.z <= 0.0f) return s;
   s.wi = sample_cosine_hemisphere(u);
+  s.diffuse = true;
   s.pdf = pdf(wo, s.wi);
   if (!(s.pdf > 0.0f)) return BsdfSample{};
   s.weight = eval(wo, s.wi) / s.pdf;

@@ -41,6 +41,7 @@ BsdfSample sample_guided(const Bsdf& bsdf, const GuideDistribution& guide, const
   const Vec3 wi_world = guide.sample(Vec2(u.y, u.z), square, guide_pdf);
   BsdfSample s;
   s.wi = frame.to_local(wi_world);
+  s.diffuse = true;  // the Light Path node's label of a guide-drawn direction (Cycles has no guiding)
   bsdf_pdf = bsdf.template pdf<kGlass>(wo, s.wi, backfacing);
   s.pdf = a * bsdf_pdf + (1.0f - a) * guide_pdf;
   if (!(s.pdf > 0.0f)) return BsdfSample{};

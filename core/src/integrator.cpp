@@ -193,7 +193,8 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   } end_render{scene};
   const Scene& cscene = scene;
 
-  PathContext ctx{scene, cscene.lights(), settings, {}, camera.forward(), camera.pixel_spread()};
+  PathContext ctx{scene, cscene.lights(), settings, {}, camera.forward(), camera.pixel_spread(),
+                  camera.pixel_width()};
   ctx.bsdfs.reserve(scene.num_materials());
   for (size_t i = 0; i < scene.num_materials(); ++i) ctx.bsdfs.emplace_back(scene.material(uint32_t(i)), settings.brdf_model);
   const PixelFilter filter(settings.filter_width);

@@ -82,6 +82,7 @@ BsdfSample MixtureBsdf::sample_mixture(const Vec3& wo, float u_lobe, const Vec2&
   }
   BsdfSample m;
   m.wi = s.wi;
+  m.diffuse = s.diffuse;
   m.pdf = pdf_mixture(wo, s.wi, backfacing);
   if (!(m.pdf > 0.0f)) return {};
   m.weight = eval_mixture(wo, s.wi, backfacing).total() / m.pdf;

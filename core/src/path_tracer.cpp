@@ -212,6 +212,11 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
   uint32_t prev_material = 0;
   float prev_path_weight = 1.0f;  // max_component(throughput) at the previous vertex (mirror_images.h)
   float path_length = 0.0f;  // for texture footprints (a ray cone of the pixel's spread)
+  // The Light Path node's state (Cycles' path flags and bounce counts): of the ray being traced.
+  uint8_t ray_flags = kRayCamera;
+  int diffuse_depth = 0, glossy_depth = 0, transmission_depth = 0, transparent_depth = 0;
+  int first_transparent_depth = 0;  // at the first vertex, for its later branches
+  float first_ray_length = 0.0f;
   // Cycles' clamping: a contribution whose RGB sum exceeds the limit is scaled down to it.
   // Direct: seen by the camera or lighting the first hit; indirect: lighting later vertices.
   const float clamp_direct = ctx.settings.clamp_direct, clamp_indirect = ctx.settings.clamp_indirect;
@@ -266,6 +271,9 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       ray = first_vertex.ray;
       throughput = Vec3(1.0f);
       path_length = 0.0f;
+      ray_flags = kRayCamera;
+      diffuse_depth = glossy_depth = transmission_depth = 0;
+      transparent_depth = first_transparent_depth;
     }
     for (int bounce = 0;; ++bounce) {
       const bool first_again = again && bounce == 0;  // back at the first vertex
@@ -282,6 +290,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
           throughput *= ctx.scene.material(hit.material).transparent_color;
           if (!(max_component(throughput) > 0.0f)) return out;
           passed_length += hit.t;
+          ++transparent_depth;
           ray.origin = offset_origin(hit.position, hit.geometric_normal, ray.dir);
           ray.tmax -= hit.t;
           found = ray.tmax > 0.0f && ctx.scene.intersect(ray, hit);
@@ -301,6 +310,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
         out.depth = (passed_length + hit.t) * glm::dot(ray.dir, ctx.camera_forward);
         first_vertex.hit = hit;
         first_vertex.ray = ray;
+        first_transparent_depth = transparent_depth;
       } else {
         if (kHittable) {
           const float t_max = found ? passed_length + hit.t : kInfinity;
@@ -330,7 +340,21 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       using Bsdf = std::conditional_t<kMixtures, MixtureBsdf, MaterialBsdf>;
       Material material;
       std::optional<Bsdf> local_bsdf;
-      const ShaderGlobals globals = textured ? shader_globals(hit, ray.dir, footprint) : ShaderGlobals{};
+      ShaderGlobals globals;
+      if (textured) {
+        globals = shader_globals(hit, ray.dir, footprint, ctx.pixel_width + ctx.pixel_spread * path_length);
+        auto count = [](int n) { return uint8_t(std::min(n, 255)); };
+        globals.ray_flags = ray_flags;
+        globals.ray_depth = count(bounce);
+        globals.diffuse_depth = count(diffuse_depth);
+        globals.glossy_depth = count(glossy_depth);
+        globals.transmission_depth = count(transmission_depth);
+        globals.transparent_depth = count(transparent_depth);
+        // Cycles' ray length: from the ray's origin (a camera ray's at the clip_start plane, its
+        // tmin here; a ray passing a transparent surface goes on from there).
+        globals.ray_length = first_again ? first_ray_length : passed_length > 0.0f ? hit.t : hit.t - ray.tmin;
+        if (bounce == 0) first_ray_length = globals.ray_length;
+      }
       if constexpr (kMixtures) {
         local_bsdf.emplace(shade_material(ctx.scene, hit.material, globals, textured, ctx.settings.brdf_model,
                                           ctx.bsdfs[hit.material], material));
@@ -347,8 +371,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       const Vec3 wo_world = -ray.dir;
       Vec3 ng = hit.geometric_normal;
       Vec3 n_smooth = hit.shading_normal;
-      const float cone_width = ctx.pixel_spread * path_length;  // the bump's step (Cycles' dP)
-      Vec3 ns = textured ? ctx.scene.normal_mapped(hit.material, hit, n_smooth, footprint, cone_width) : n_smooth;
+      Vec3 ns = textured ? ctx.scene.normal_mapped(hit.material, hit, n_smooth, globals) : n_smooth;
       const bool normal_mapped = textured && ns != n_smooth;
       const bool backfacing = glm::dot(ng, wo_world) < 0.0f;  // inside, for glass
       const bool transmits = kGlass && bsdf.transmits();
@@ -460,6 +483,14 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       if (!bs.valid()) break;
       const Vec3 wi_world = frame.to_world(bs.wi);
       if (!leaves_geometric_side(wi_world, ng, bs.wi.z, transmits)) break;
+      {  // the next ray's Light Path state, as Cycles labels the sample
+        const bool reflect = glm::dot(wi_world, ng) > 0.0f;
+        ray_flags = uint8_t((reflect ? kRayReflect : kRayTransmit) |
+                            (bs.is_delta ? kRayGlossy | kRaySingular : bs.diffuse ? kRayDiffuse : kRayGlossy));
+        if (!reflect) ++transmission_depth;
+        else if (bs.diffuse && !bs.is_delta) ++diffuse_depth;
+        else ++glossy_depth;
+      }
       if (normal_mapped && !bs.is_delta) {
         LobeEval f = bsdf.template eval_lobes<kGlass>(view, bs.wi);
         f.diffuse *= bump_shadowing(n_smooth, ns, wi_world);

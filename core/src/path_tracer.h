@@ -22,6 +22,7 @@ struct PathContext {
   std::vector<MaterialBsdf> bsdfs;  // one per material, built once per render
   Vec3 camera_forward;
   float pixel_spread;  // radians per pixel: texture footprints grow with the path's length
+  float pixel_width = 0.0f;  // Camera::pixel_width: the ray differentials' length at the camera
   // Path guiding (RenderSettings::guiding): the field sampled where it has learned something, and
   // whether this pass also records into it (a training pass). Null: no guiding.
   GuidingField* guide = nullptr;

@@ -126,17 +126,27 @@ void Scene::apply_program(const MaterialTextures& t, const ShaderGlobals& g, Mat
   if (o.emission >= 0) m.emission = glm::max(Vec3(regs[size_t(o.emission)]), Vec3(0.0f)) * t.emission_strength;
 }
 
-Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, float footprint, float cone_width) const {
+Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, const ShaderGlobals& g) const {
   const MaterialTextures& t = material_textures_[id];
-  if (t.normal < 0 && t.bump >= 0) return bump_mapped(t, hit, ns, cone_width);
-  if (t.normal < 0 || glm::dot(hit.tangent, hit.tangent) == 0.0f) return ns;
-  const Vec3 tangent = glm::normalize(hit.tangent - glm::dot(hit.tangent, ns) * ns);
-  const Vec3 bitangent = hit.bitangent_sign * glm::cross(ns, tangent);
-  const Vec3 c = 2.0f * Vec3(textures_[t.normal]->lookup(hit.uv, footprint)) - Vec3(1.0f);
-  const Vec3 mapped = c.x * tangent + c.y * bitangent + c.z * ns;
-  const Vec3 n = ns + (mapped - ns) * t.normal_strength;
-  const float len = glm::length(n);
-  return len > 1e-6f && std::isfinite(len) ? n / len : ns;
+  // Cycles maps normals facing the viewer; the result goes back to the mesh's winding.
+  const float side = g.backfacing ? -1.0f : 1.0f;
+  const Vec3 n = side * ns;
+  Vec3 out = n;
+  if (t.program.normal >= 0) {
+    std::array<glm::vec4, ShaderProgram::kMaxRegisters> regs;
+    ShaderGlobals at = g;
+    at.normal = n;
+    run_shader_program(uint32_t(t.program.program), at, regs.data());
+    const Vec3 v = Vec3(regs[size_t(t.program.normal)]);
+    const float len = glm::length(v);
+    out = len > 1e-6f && std::isfinite(len) ? v / len : n;
+  } else if (t.normal >= 0) {
+    const Vec3 c = Vec3(textures_[t.normal]->lookup(hit.uv, g.footprint));
+    out = side * shader::tangent_normal_map(c, ns, hit.tangent, hit.bitangent_sign, t.normal_strength);
+  } else if (t.bump >= 0) {
+    out = bump_mapped(t, hit, n, g);
+  }
+  return side * out;
 }
 
 void check_material(const Material& m) {
@@ -186,7 +196,7 @@ uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures
 
 void Scene::check_program_outputs(const ShaderOutputs& o) const {
   if (o.program < 0) {
-    if (o.base_color >= 0 || o.metallic >= 0 || o.roughness >= 0 || o.emission >= 0)
+    if (o.base_color >= 0 || o.metallic >= 0 || o.roughness >= 0 || o.emission >= 0 || o.normal >= 0)
       throw std::invalid_argument("material reads shader program registers but names no program");
     return;
   }
@@ -194,7 +204,7 @@ void Scene::check_program_outputs(const ShaderOutputs& o) const {
     throw std::invalid_argument("material uses shader program " + std::to_string(o.program) + " but the scene has " +
                                 std::to_string(programs_.size()) + " programs");
   const ShaderProgram& program = programs_[size_t(o.program)];
-  for (int r : {o.base_color, o.metallic, o.roughness, o.emission})
+  for (int r : {o.base_color, o.metallic, o.roughness, o.emission, o.normal})
     if (r != -1 && !program.written(r))
       throw std::invalid_argument("material reads register " + std::to_string(r) + " of a shader program with " +
                                   std::to_string(program.registers()) + " registers, which the program does not write");

@@ -59,6 +59,13 @@ bool Scene::surface_hit(const void* rayhit, const Vec3& dir, SurfaceHit& hit) co
   ng = ng_len > 0.0f ? ng / ng_len : -dir;
   hit.geometric_normal = ng;
   hit.shading_normal = ng;
+  if (hit.num_attributes > 0 && ng_len > 0.0f) {
+    // The barycentric u's and v's gradients in the triangle's plane (attributes at moved points).
+    const Vec3 n = glm::cross(p1 - p0, p2 - p0) / (ng_len * ng_len);
+    const Vec3 grad_u = glm::cross(p2 - p0, n), grad_v = glm::cross(n, p1 - p0);
+    hit.weight_gradients[0] = mirrored ? grad_v : grad_u;
+    hit.weight_gradients[1] = mirrored ? grad_u : grad_v;
+  }
   if (c.has_n) {
     const Vec3 n = w * c.n[0] + u * c.n[1] + v * c.n[2];
     const float len = glm::length(n);

@@ -26,6 +26,11 @@ uint32_t Scene::add_mixture(const Mixture& mixture, const MaterialTextures& norm
     if (id < -1 || id >= int(textures_.size()))
       throw std::invalid_argument("material uses texture " + std::to_string(id) + " but the scene has " +
                                   std::to_string(textures_.size()) + " textures");
+  if (normal.program.normal >= 0 && (mixture.program < 0 || size_t(mixture.program) >= programs_.size() ||
+                                     !programs_[size_t(mixture.program)].written(normal.program.normal)))
+    throw std::invalid_argument("a mixture's normal reads register " + std::to_string(normal.program.normal) +
+                                " of shader program " + std::to_string(mixture.program) +
+                                ", which does not exist or does not write it");
   if (!std::isfinite(normal.normal_strength) || !std::isfinite(normal.bump_strength) ||
       !std::isfinite(normal.bump_distance))
     throw std::invalid_argument("texture strengths must be finite");
@@ -48,6 +53,10 @@ uint32_t Scene::add_mixture(const Mixture& mixture, const MaterialTextures& norm
   textures.bump = normal.bump;
   textures.bump_strength = normal.bump_strength;
   textures.bump_distance = normal.bump_distance;
+  if (normal.program.normal >= 0) {  // the mixture's Normal, from the mixture's program
+    textures.program.program = mixture.program;
+    textures.program.normal = normal.program.normal;
+  }
   textures.alpha = normal.alpha;
   textures.alpha_from_luminance = normal.alpha_from_luminance;
   textures.alpha_inverted = normal.alpha_inverted;
@@ -85,50 +94,28 @@ Vec3 Scene::emission_at(uint32_t i, const Vec2& uv) const {
   return e;
 }
 
-namespace {
-// Cycles' tangent pair around a normal (make_orthonormals in util/math_float3.h): (1, 1, 1) x n,
-// normalized, and n x that; the directions of its ray differentials on a surface.
-void cycles_orthonormals(const Vec3& n, Vec3& a, Vec3& b) {
-  if (n.x != n.y || n.x != n.z) a = Vec3(n.z - n.y, n.x - n.z, n.y - n.x);
-  else a = Vec3(n.z - n.y, n.x + n.z, -n.y - n.x);
-  a = glm::normalize(a);
-  b = glm::cross(n, a);
-}
-}  // namespace
-
-Vec3 Scene::bump_mapped(const MaterialTextures& t, const SurfaceHit& hit, const Vec3& ns, float cone_width) const {
-  const float det_uv = glm::dot(ns, glm::cross(hit.dpdu, hit.dpdv));
-  if (!(std::abs(det_uv) > 0.0f) || !std::isfinite(det_uv) || !(t.bump_strength > 0.0f)) return ns;
+Vec3 Scene::bump_mapped(const MaterialTextures& t, const SurfaceHit& hit, const Vec3& n, const ShaderGlobals& g) const {
+  // The image's heights at the hit and at the hit moved by the ray differentials (read through
+  // the UVs: the dual basis of (dP/du, dP/dv) in the tangent plane), Cycles' Bump node after.
+  const float det_uv = glm::dot(n, glm::cross(hit.dpdu, hit.dpdv));
+  if (!(std::abs(det_uv) > 0.0f) || !std::isfinite(det_uv) || !(t.bump_strength > 0.0f)) return n;
   const Texture& height = *textures_[t.bump];
   auto h = [&](const Vec2& uv) { return blender_luminance(Vec3(height.lookup(uv, 0.0f))); };
-  // The surface gradients of u and v: the dual basis of (dP/du, dP/dv) in the tangent plane.
-  const Vec3 grad_u = glm::cross(hit.dpdv, ns) / det_uv;
-  const Vec3 grad_v = glm::cross(ns, hit.dpdu) / det_uv;
+  const Vec3 grad_u = glm::cross(hit.dpdv, n) / det_uv;
+  const Vec3 grad_v = glm::cross(n, hit.dpdu) / det_uv;
   auto uv_step = [&](const Vec3& d) { return Vec2(glm::dot(grad_u, d), glm::dot(grad_v, d)); };
-  // Cycles' Bump node: forward differences of the height over the ray differentials dx, dy (the
-  // pixel footprint's width along Cycles' tangent pair around Ng), then
-  // n' = normalize(|det| n - distance sign(det) surfgrad), surfgrad = (h_x - h_c) Rx + (h_y - h_c) Ry,
-  // Rx = dy x n, Ry = n x dx, det = dx . Rx. The width: the ray cone's (Cycles' dP), at least a
-  // hundredth of a texel so that the differences stay well above float rounding.
-  const float uv_per_metre = std::sqrt(std::abs(det_uv)) > 0.0f ? 1.0f / std::sqrt(std::abs(det_uv)) : 0.0f;
+  // The step: the ray differentials' (Cycles' dP), at least a hundredth of a texel so that the
+  // differences stay well above float rounding.
+  const float uv_per_metre = 1.0f / std::sqrt(std::abs(det_uv));
   const float min_uv = 0.01f / float(std::max(height.width(), height.height()));
-  const float width = std::max(cone_width, min_uv / uv_per_metre);
+  const float width = std::max(glm::length(g.dpdx), min_uv / uv_per_metre);
+  if (!std::isfinite(width)) return n;
   Vec3 a, b;
-  const float ng_len = glm::length(hit.geometric_normal);
-  cycles_orthonormals(ng_len > 0.0f ? hit.geometric_normal / ng_len : ns, a, b);
+  const float ng_len = glm::length(g.true_normal);
+  shader::differential_axes(ng_len > 0.0f ? g.true_normal / ng_len : n, a, b);
   const Vec3 dx = a * width, dy = b * width;
   const float h_c = h(hit.uv), h_x = h(hit.uv + uv_step(dx)), h_y = h(hit.uv + uv_step(dy));
-  const Vec3 rx = glm::cross(dy, ns), ry = glm::cross(ns, dx);
-  const float det = glm::dot(dx, rx);
-  const Vec3 surface_gradient = (h_x - h_c) * rx + (h_y - h_c) * ry;
-  Vec3 n = std::abs(det) * ns - t.bump_distance * (det < 0.0f ? -1.0f : 1.0f) * surface_gradient;
-  const float len = glm::length(n);
-  if (!(len > 0.0f) || !std::isfinite(len)) return ns;
-  n /= len;
-  const float strength = std::max(t.bump_strength, 0.0f);
-  n = strength * n + (1.0f - strength) * ns;
-  const float len2 = glm::length(n);
-  return len2 > 1e-6f && std::isfinite(len2) ? n / len2 : ns;
+  return shader::bump_normal(n, dx, dy, h_c, h_x, h_y, t.bump_distance, t.bump_strength);
 }
 
 }  // namespace torrance

@@ -65,4 +65,44 @@ glm::vec4 attribute_op(const ShaderOpContext& c) {
   return glm::vec4(0.0f);
 }
 
+glm::vec4 light_path_op(const ShaderOpContext& c) {
+  const ShaderGlobals& g = c.globals;
+  auto flag = [&](uint8_t bit) { return (g.ray_flags & bit) ? 1.0f : 0.0f; };
+  float v = 0.0f;
+  switch (c.ins.mode) {
+    case 0: v = flag(kRayCamera); break;
+    case 1: v = 0.0f; break;  // no program runs for a shadow ray
+    case 2: v = flag(kRayDiffuse); break;
+    case 3: v = flag(kRayGlossy); break;
+    case 4: v = flag(kRaySingular); break;
+    case 5: v = flag(kRayReflect); break;
+    case 6: v = flag(kRayTransmit); break;
+    case 7: v = g.ray_length; break;
+    case 8: v = float(g.ray_depth); break;
+    case 9: v = float(g.diffuse_depth); break;
+    case 10: v = float(g.glossy_depth); break;
+    case 11: v = float(g.transparent_depth); break;
+    default: v = float(g.transmission_depth); break;
+  }
+  return glm::vec4(v, 0.0f, 0.0f, 0.0f);
+}
+
+glm::vec4 camera_transform_op(const ShaderOpContext& c) {
+  const glm::vec4 p(c.globals.position, 1.0f);
+  const Vec3 q(glm::dot(c.in(0), p), glm::dot(c.in(1), p), glm::dot(c.in(2), p));
+  switch (c.ins.mode) {
+    case 0: {
+      const float len = glm::length(q);
+      return glm::vec4(len > 0.0f ? q / len : Vec3(0.0f), 0.0f);
+    }
+    case 1: return glm::vec4(q.z, 0.0f, 0.0f, 0.0f);
+    case 2: return glm::vec4(glm::length(q), 0.0f, 0.0f, 0.0f);
+    case 3: return glm::vec4(q, 0.0f);
+    default: {
+      const float w = glm::dot(c.in(3), p);
+      return w != 0.0f ? glm::vec4(q.x / w, q.y / w, 0.0f, 0.0f) : glm::vec4(0.0f);
+    }
+  }
+}
+
 }  // namespace torrance::shader

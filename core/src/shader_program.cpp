@@ -1,5 +1,6 @@
 #include "torrance/shader_program.h"
 
+#include "torrance/shader_bump.h"
 #include "torrance/shader_color.h"
 #include "torrance/shader_math.h"
 // [family headers]
@@ -94,6 +95,8 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
     case ShaderOpcode::HueSaturation: return {5, 1, false, hue_saturation};
     case ShaderOpcode::Luminance: return {1, 1, false, luminance};
     case ShaderOpcode::Average: return {1, 1, false, average};
+    case ShaderOpcode::Bump: return {6, 1, false, shader::bump_op};
+    case ShaderOpcode::NormalMap: return {2, 3, false, shader::normal_map_op};
     // The node families' ops (a line each, in opcode order):
     // [noise ops]
     case ShaderOpcode::Noise: return {6, shader::kNoiseModes, false, shader::noise_op};
@@ -125,6 +128,8 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
     case ShaderOpcode::Attribute: return {0, 1, false, shader::attribute_op};
     case ShaderOpcode::Mapping: return {4, 4, false, shader::mapping_op};
     case ShaderOpcode::VectorRotate: return {5, 5, false, shader::vector_rotate_op};
+    case ShaderOpcode::LightPath: return {0, shader::kLightPathModes, false, shader::light_path_op};
+    case ShaderOpcode::CameraTransform: return {4, shader::kCameraTransformModes, false, shader::camera_transform_op};
     default: break;
   }
   return {0, 0, false, nullptr};
@@ -151,6 +156,9 @@ ShaderProgram::ShaderProgram(std::vector<glm::vec4> constants, std::vector<Shade
     const std::string where = "shader instruction " + std::to_string(i);
     const ShaderOpInfo s = shader_op_info(ins.op);
     if (s.modes == 0) throw std::invalid_argument(where + ": unknown opcode " + std::to_string(int(ins.op)));
+    if (ins.offset > 2)
+      throw std::invalid_argument(where + ": offset " + std::to_string(int(ins.offset)) + " is not 0, 1 or 2");
+    offsets_ = offsets_ || ins.offset != 0;
     if (ins.mode >= s.modes)
       throw std::invalid_argument(where + ": mode " + std::to_string(int(ins.mode)) + " out of range [0, " +
                                   std::to_string(s.modes) + ")");
@@ -178,13 +186,19 @@ ShaderProgram::ShaderProgram(std::vector<glm::vec4> constants, std::vector<Shade
 void ShaderProgram::run(const ShaderGlobals& g, const std::vector<std::shared_ptr<const Texture>>& textures,
                         glm::vec4* regs) const {
   for (size_t r = 0; r < constants_.size(); ++r) regs[r] = constants_[r];
+  ShaderGlobals moved[2];
+  if (offsets_) {
+    moved[0] = g.offset(1);
+    moved[1] = g.offset(2);
+  }
   for (const ShaderInstruction& ins : code_) {
     const ShaderOpInfo info = shader_op_info(ins.op);
     const bool table = info.data;
-    const ShaderOpContext c{ins, regs, g, table ? data_.data() + ins.resource + 1 : nullptr,
+    const ShaderGlobals& at = ins.offset ? moved[ins.offset - 1] : g;
+    const ShaderOpContext c{ins, regs, at, table ? data_.data() + ins.resource + 1 : nullptr,
                             table ? int(data_[size_t(ins.resource)]) : 0};
     const glm::vec4 out = info.run ? info.run(c)
-                                   : textures[size_t(ins.resource)]->lookup(Vec2(c.in(0)), g.footprint,
+                                   : textures[size_t(ins.resource)]->lookup(Vec2(c.in(0)), at.footprint,
                                                                             Extension(ins.mode));
     regs[ins.out] = finite(out);
   }

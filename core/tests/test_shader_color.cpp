@@ -2,18 +2,15 @@
 // computes them: the hand-computed cases the add-on's Python twin is checked against too
 // (data/shader_color_cases.json, checked once against Blender 3.4's Cycles), colour-model round
 // trips, and finite results for awkward inputs.
+#include "json_table.h"
 #include "torrance/shader_color.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <cstdlib>
-#include <fstream>
 #include <limits>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -23,100 +20,21 @@ namespace {
 
 using shader::MixBlend;
 
-// Just enough JSON for the case file: objects, arrays, strings (no escapes but \" and \\),
-// numbers, true/false.
-struct Json {
-  enum Kind { Number, String, Array, Object } kind = Number;
-  double number = 0.0;
-  std::string text;
-  std::vector<Json> items;        // array elements, object values
-  std::vector<std::string> keys;  // object keys
-
-  const Json& operator[](const std::string& key) const {
-    for (size_t i = 0; i < keys.size(); ++i)
-      if (keys[i] == key) return items[i];
-    throw std::runtime_error("no key " + key);
-  }
-};
-
-class JsonReader {
- public:
-  explicit JsonReader(std::string s) : s_(std::move(s)) {}
-
-  Json value() {
-    skip();
-    Json v;
-    const char c = s_.at(pos_);
-    if (c == '[' || c == '{') {
-      const bool object = c == '{';
-      v.kind = object ? Json::Object : Json::Array;
-      ++pos_;
-      skip();
-      if (s_.at(pos_) == (object ? '}' : ']')) return ++pos_, v;
-      for (;;) {
-        if (object) {
-          v.keys.push_back(value().text);
-          skip();
-          expect(':');
-        }
-        v.items.push_back(value());
-        skip();
-        if (s_.at(pos_) == ',') {
-          ++pos_;
-          continue;
-        }
-        expect(object ? '}' : ']');
-        return v;
-      }
-    }
-    if (c == '"') {
-      v.kind = Json::String;
-      for (++pos_; s_.at(pos_) != '"'; ++pos_) {
-        if (s_[pos_] == '\\') ++pos_;
-        v.text += s_.at(pos_);
-      }
-      ++pos_;
-      return v;
-    }
-    if (s_.compare(pos_, 4, "true") == 0) return pos_ += 4, v.number = 1.0, v;
-    if (s_.compare(pos_, 5, "false") == 0) return pos_ += 5, v.number = 0.0, v;
-    char* end = nullptr;
-    v.number = std::strtod(s_.c_str() + pos_, &end);
-    if (end == s_.c_str() + pos_) throw std::runtime_error("bad JSON at " + std::to_string(pos_));
-    pos_ = size_t(end - s_.c_str());
-    return v;
-  }
-
- private:
-  void skip() {
-    while (pos_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[pos_]))) ++pos_;
-  }
-  void expect(char c) {
-    if (s_.at(pos_) != c) throw std::runtime_error(std::string("expected ") + c);
-    ++pos_;
-  }
-  std::string s_;
-  size_t pos_ = 0;
-};
+using test::Json;
 
 // A case's arguments or expected values as floats, in order (the strings inf/-inf/nan as numbers).
 void flatten(const Json& v, std::vector<float>& out) {
-  if (v.kind == Json::Array) {
+  if (v.kind == Json::Kind::Array) {
     for (const Json& item : v.items) flatten(item, out);
-  } else if (v.kind == Json::String) {
+  } else if (v.kind == Json::Kind::String) {
     const float inf = std::numeric_limits<float>::infinity();
     out.push_back(v.text == "inf" ? inf : v.text == "-inf" ? -inf : std::nanf(""));
   } else {
-    out.push_back(float(v.number));
+    out.push_back(float(v.exact));  // strtod, then float (true/false: 1, 0)
   }
 }
 
-Json read_cases() {
-  std::ifstream file(std::string(TORRANCE_TEST_DATA_DIR) + "/shader_color_cases.json");
-  std::stringstream text;
-  text << file.rdbuf();
-  return JsonReader(text.str()).value();
-}
+const Json& read_cases() { return test::json_table("shader_color_cases.json"); }
 
 // MixBlend's identifiers, as Blender names them.
 const char* const kBlendNames[] = {"MIX", "DARKEN", "MULTIPLY", "BURN", "LIGHTEN", "SCREEN", "DODGE",

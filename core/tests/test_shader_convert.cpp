@@ -3,23 +3,18 @@
 // 3.4.1's Cycles renders for baked ramps and curves, Map Range, Clamp, Blackbody and Wavelength;
 // the add-on's Python twin is checked against the same table), the ops as a shader program runs
 // them (tables from the program's data), and no crash or NaN for degenerate tables and inputs.
+#include "json_table.h"
 #include "torrance/shader_convert.h"
 #include "torrance/shader_program.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace torrance {
@@ -28,114 +23,9 @@ namespace {
 using shader::ClampMode;
 using shader::MapRangeMode;
 
-// ---- just enough JSON for the table: objects, arrays, strings without escapes, numbers ----------
-struct Json {
-  enum class Kind { Number, String, Array, Object } kind = Kind::Number;
-  float number = 0.0f;
-  std::string text;
-  std::vector<Json> items;
-  std::vector<std::pair<std::string, Json>> members;
+using test::Json;
 
-  const Json& operator[](const std::string& key) const {
-    for (const auto& [k, v] : members)
-      if (k == key) return v;
-    throw std::runtime_error("no member " + key);
-  }
-  bool has(const std::string& key) const {
-    for (const auto& m : members)
-      if (m.first == key) return true;
-    return false;
-  }
-  std::vector<float> floats() const {
-    std::vector<float> out;
-    for (const Json& v : items) out.push_back(v.number);
-    return out;
-  }
-};
-
-class JsonReader {
- public:
-  explicit JsonReader(std::string text) : s_(std::move(text)) {}
-  Json read() {
-    Json v = value();
-    skip_space();
-    if (i_ != s_.size()) fail("trailing text");
-    return v;
-  }
-
- private:
-  void skip_space() {
-    while (i_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[i_]))) ++i_;
-  }
-  [[noreturn]] void fail(const std::string& what) const {
-    throw std::runtime_error("JSON: " + what + " at offset " + std::to_string(i_));
-  }
-  bool take(char c) {
-    skip_space();
-    if (i_ < s_.size() && s_[i_] == c) return ++i_, true;
-    return false;
-  }
-  std::string string() {
-    if (!take('"')) fail("expected a string");
-    const size_t end = s_.find('"', i_);
-    if (end == std::string::npos) fail("unterminated string");
-    std::string out = s_.substr(i_, end - i_);
-    i_ = end + 1;
-    return out;
-  }
-  Json value() {
-    skip_space();
-    if (i_ >= s_.size()) fail("unexpected end");
-    Json v;
-    if (s_[i_] == '"') {
-      v.kind = Json::Kind::String;
-      v.text = string();
-    } else if (take('[')) {
-      v.kind = Json::Kind::Array;
-      if (!take(']')) {
-        do v.items.push_back(value());
-        while (take(','));
-        if (!take(']')) fail("expected ]");
-      }
-    } else if (take('{')) {
-      v.kind = Json::Kind::Object;
-      if (!take('}')) {
-        do {
-          std::string key = string();
-          if (!take(':')) fail("expected :");
-          v.members.emplace_back(std::move(key), value());
-        } while (take(','));
-        if (!take('}')) fail("expected }");
-      }
-    } else {
-      const char* begin = s_.c_str() + i_;
-      char* end = nullptr;
-      v.number = std::strtof(begin, &end);  // float, as the nodes' inputs and the tables are
-      if (end == begin) fail("expected a value");
-      i_ += size_t(end - begin);
-    }
-    return v;
-  }
-
-  std::string s_;
-  size_t i_ = 0;
-};
-
-const Json& table() {
-  static const Json json = [] {
-#ifdef TORRANCE_TEST_DATA_DIR
-    const auto path = std::filesystem::path(TORRANCE_TEST_DATA_DIR) / "shader_convert_cases.json";
-#else
-    const auto path = std::filesystem::path(__FILE__).parent_path() / "data" / "shader_convert_cases.json";
-#endif
-    std::ifstream file(path);
-    if (!file) throw std::runtime_error("cannot read " + path.string());
-    std::stringstream text;
-    text << file.rdbuf();
-    return JsonReader(text.str()).read();
-  }();
-  return json;
-}
+const Json& table() { return test::json_table("shader_convert_cases.json"); }
 
 MapRangeMode map_range_mode(const std::string& name) {
   if (name == "LINEAR") return MapRangeMode::Linear;

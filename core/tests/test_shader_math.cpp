@@ -2,20 +2,16 @@
 // hand-computed cases of core/tests/data/shader_math_cases.json (which the Python twin's test
 // checks too), the op names, the Clamp option, and over grids of awkward inputs no NaN or inf
 // except where Cycles itself gives them.
+#include "json_table.h"
 #include "torrance/shader_math.h"
 
 #include <gtest/gtest.h>
 
-#include <cctype>
 #include <cfloat>
 #include <cmath>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace torrance {
@@ -24,106 +20,9 @@ namespace {
 using shader::MathOp;
 using shader::VectorMathOp;
 
-// ---- the JSON table: numbers, strings, arrays and objects suffice --------------------------------
-struct Json {
-  enum class Kind { Number, String, Array, Object } kind = Kind::Number;
-  float number = 0.0f;
-  std::string text;
-  std::vector<Json> items;
-  std::vector<std::pair<std::string, Json>> members;
+using test::Json;
 
-  const Json& operator[](const std::string& key) const {
-    for (const auto& [k, v] : members)
-      if (k == key) return v;
-    throw std::runtime_error("no member " + key);
-  }
-  const Json& operator[](size_t i) const { return items.at(i); }
-  Vec3 vec3() const { return Vec3(items.at(0).number, items.at(1).number, items.at(2).number); }
-};
-
-class JsonReader {
- public:
-  explicit JsonReader(std::string text) : s_(std::move(text)) {}
-  Json read() {
-    Json v = value();
-    skip_space();
-    if (i_ != s_.size()) fail("trailing text");
-    return v;
-  }
-
- private:
-  void skip_space() {
-    while (i_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[i_]))) ++i_;
-  }
-  [[noreturn]] void fail(const std::string& what) const {
-    throw std::runtime_error("JSON: " + what + " at offset " + std::to_string(i_));
-  }
-  bool take(char c) {
-    skip_space();
-    if (i_ < s_.size() && s_[i_] == c) return ++i_, true;
-    return false;
-  }
-  std::string string() {
-    if (!take('"')) fail("expected a string");
-    const size_t end = s_.find('"', i_);  // the table's strings have no escapes
-    if (end == std::string::npos) fail("unterminated string");
-    std::string out = s_.substr(i_, end - i_);
-    i_ = end + 1;
-    return out;
-  }
-  Json value() {
-    skip_space();
-    Json v;
-    if (i_ >= s_.size()) fail("unexpected end");
-    if (s_[i_] == '"') {
-      v.kind = Json::Kind::String;
-      v.text = string();
-    } else if (take('[')) {
-      v.kind = Json::Kind::Array;
-      if (!take(']')) {
-        do v.items.push_back(value());
-        while (take(','));
-        if (!take(']')) fail("expected ]");
-      }
-    } else if (take('{')) {
-      v.kind = Json::Kind::Object;
-      if (!take('}')) {
-        do {
-          std::string key = string();
-          if (!take(':')) fail("expected :");
-          v.members.emplace_back(std::move(key), value());
-        } while (take(','));
-        if (!take('}')) fail("expected }");
-      }
-    } else {
-      const char* begin = s_.c_str() + i_;
-      char* end = nullptr;
-      v.number = std::strtof(begin, &end);  // rounded to float once, as the nodes' inputs are
-      if (end == begin) fail("expected a value");
-      i_ += size_t(end - begin);
-    }
-    return v;
-  }
-
-  std::string s_;
-  size_t i_ = 0;
-};
-
-const Json& cases() {
-  static const Json table = [] {
-#ifdef TORRANCE_TEST_DATA_DIR
-    const auto path = std::filesystem::path(TORRANCE_TEST_DATA_DIR) / "shader_math_cases.json";
-#else
-    const auto path = std::filesystem::path(__FILE__).parent_path() / "data" / "shader_math_cases.json";
-#endif
-    std::ifstream file(path);
-    if (!file) throw std::runtime_error("cannot read " + path.string());
-    std::stringstream text;
-    text << file.rdbuf();
-    return JsonReader(text.str()).read();
-  }();
-  return table;
-}
+const Json& cases() { return test::json_table("shader_math_cases.json"); }
 
 MathOp math_op_named(const std::string& name) {
   for (int i = 0; i < shader::kMathOpCount; ++i)

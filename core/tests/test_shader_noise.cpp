@@ -3,18 +3,15 @@
 // core/tests/data/shader_noise_cases.json (Cycles' own renders; the Python twin's test checks
 // them too), the hash's float mapping and -0's bits, Perlin noise's lattice zeros and range, the
 // ops in a shader program (modes, outputs), and finite values over awkward inputs.
+#include "json_table.h"
 #include "torrance/shader_hash.h"
 #include "torrance/shader_noise.h"
 #include "torrance/shader_program.h"
 
 #include <gtest/gtest.h>
 
-#include <cctype>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <set>
 #include <sstream>
@@ -30,109 +27,9 @@ using shader::MusgraveType;
 using shader::WaveProfile;
 using shader::WaveType;
 
-// ---- the JSON table: numbers (kept as text: some are uint32), strings, arrays, objects -------
-struct Json {
-  enum class Kind { Number, String, Array, Object } kind = Kind::Number;
-  std::string text;  // a number's digits or a string
-  std::vector<Json> items;
-  std::vector<std::pair<std::string, Json>> members;
+using test::Json;
 
-  const Json& operator[](const std::string& key) const {
-    for (const auto& [k, v] : members)
-      if (k == key) return v;
-    throw std::runtime_error("no member " + key);
-  }
-  const Json& operator[](size_t i) const { return items.at(i); }
-  float number() const { return std::strtof(text.c_str(), nullptr); }  // rounded to float once
-  uint32_t uint() const { return uint32_t(std::strtoul(text.c_str(), nullptr, 10)); }
-  int integer() const { return std::atoi(text.c_str()); }
-  Vec3 vec3() const { return Vec3(items.at(0).number(), items.at(1).number(), items.at(2).number()); }
-};
-
-class JsonReader {
- public:
-  explicit JsonReader(std::string text) : s_(std::move(text)) {}
-  Json read() {
-    Json v = value();
-    skip_space();
-    if (i_ != s_.size()) fail("trailing text");
-    return v;
-  }
-
- private:
-  void skip_space() {
-    while (i_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[i_]))) ++i_;
-  }
-  [[noreturn]] void fail(const std::string& what) const {
-    throw std::runtime_error("JSON: " + what + " at offset " + std::to_string(i_));
-  }
-  bool take(char c) {
-    skip_space();
-    if (i_ < s_.size() && s_[i_] == c) return ++i_, true;
-    return false;
-  }
-  std::string string() {
-    if (!take('"')) fail("expected a string");
-    const size_t end = s_.find('"', i_);  // the table's strings have no escapes
-    if (end == std::string::npos) fail("unterminated string");
-    std::string out = s_.substr(i_, end - i_);
-    i_ = end + 1;
-    return out;
-  }
-  Json value() {
-    skip_space();
-    Json v;
-    if (i_ >= s_.size()) fail("unexpected end");
-    if (s_[i_] == '"') {
-      v.kind = Json::Kind::String;
-      v.text = string();
-    } else if (take('[')) {
-      v.kind = Json::Kind::Array;
-      if (!take(']')) {
-        do v.items.push_back(value());
-        while (take(','));
-        if (!take(']')) fail("expected ]");
-      }
-    } else if (take('{')) {
-      v.kind = Json::Kind::Object;
-      if (!take('}')) {
-        do {
-          std::string key = string();
-          if (!take(':')) fail("expected :");
-          v.members.emplace_back(std::move(key), value());
-        } while (take(','));
-        if (!take('}')) fail("expected }");
-      }
-    } else {
-      const size_t begin = i_;
-      while (i_ < s_.size() && (std::isdigit(static_cast<unsigned char>(s_[i_])) || s_[i_] == '-' ||
-                                s_[i_] == '+' || s_[i_] == '.' || s_[i_] == 'e' || s_[i_] == 'E'))
-        ++i_;
-      if (i_ == begin) fail("expected a value");
-      v.text = s_.substr(begin, i_ - begin);
-    }
-    return v;
-  }
-
-  std::string s_;
-  size_t i_ = 0;
-};
-
-const Json& cases() {
-  static const Json table = [] {
-#ifdef TORRANCE_TEST_DATA_DIR
-    const auto path = std::filesystem::path(TORRANCE_TEST_DATA_DIR) / "shader_noise_cases.json";
-#else
-    const auto path = std::filesystem::path(__FILE__).parent_path() / "data" / "shader_noise_cases.json";
-#endif
-    std::ifstream file(path);
-    if (!file) throw std::runtime_error("cannot read " + path.string());
-    std::stringstream text;
-    text << file.rdbuf();
-    return JsonReader(text.str()).read();
-  }();
-  return table;
-}
+const Json& cases() { return test::json_table("shader_noise_cases.json"); }
 
 // The table's rule: Cycles' CPU kernels sum the noise in another order (SSE/AVX2), so within
 // 2e-6 max(1, |expected|).
@@ -228,14 +125,14 @@ TEST(ShaderNoise, NoiseTextureCases) {
     const int d = row[0].integer();
     dims.insert(d);
     const shader::NoiseTextureResult r =
-        shader::noise_texture(d, row[1].vec3(), row[2].number(), row[3].number(), row[4].number(), row[5].number(),
-                              row[6].number(), true);
+        shader::noise_texture(d, row[1].vec3(), row[2].number, row[3].number, row[4].number, row[5].number,
+                              row[6].number, true);
     const Vec3 color = row[8].vec3();
-    EXPECT_TRUE(close(r.fac, row[7].number())) << describe(row) << ": fac " << r.fac;
+    EXPECT_TRUE(close(r.fac, row[7].number)) << describe(row) << ": fac " << r.fac;
     for (int k = 0; k < 3; ++k) EXPECT_TRUE(close(r.color[k], color[k])) << describe(row) << ": color " << k;
     EXPECT_EQ(r.color.x, r.fac);
-    EXPECT_EQ(shader::noise_texture(d, row[1].vec3(), row[2].number(), row[3].number(), row[4].number(),
-                                    row[5].number(), row[6].number(), false)
+    EXPECT_EQ(shader::noise_texture(d, row[1].vec3(), row[2].number, row[3].number, row[4].number,
+                                    row[5].number, row[6].number, false)
                   .fac,
               r.fac);
   }
@@ -248,8 +145,8 @@ TEST(ShaderNoise, WhiteNoiseCasesExactly) {
     const int d = row[0].integer();
     dims.insert(d);
     const Vec3 v = row[1].vec3();
-    const float w = row[2].number();
-    EXPECT_EQ(shader::white_noise_value(d, v, w), row[3].number()) << describe(row);
+    const float w = row[2].number;
+    EXPECT_EQ(shader::white_noise_value(d, v, w), row[3].number) << describe(row);
     EXPECT_EQ(shader::white_noise_color(d, v, w), row[4].vec3()) << describe(row);
   }
   EXPECT_EQ(dims, (std::set<int>{1, 2, 3, 4}));
@@ -260,10 +157,10 @@ TEST(ShaderNoise, MusgraveCases) {
   for (const Json& row : cases()["musgrave"].items) {
     const int type = index_of(kMusgraveTypes, row[0].text), d = row[1].integer();
     covered.insert({type, d});
-    const float got = shader::musgrave(MusgraveType(type), d, row[2].vec3(), row[3].number(), row[4].number(),
-                                       row[5].number(), row[6].number(), row[7].number(), row[8].number(),
-                                       row[9].number());
-    EXPECT_TRUE(close(got, row[10].number())) << describe(row) << ": " << got;
+    const float got = shader::musgrave(MusgraveType(type), d, row[2].vec3(), row[3].number, row[4].number,
+                                       row[5].number, row[6].number, row[7].number, row[8].number,
+                                       row[9].number);
+    EXPECT_TRUE(close(got, row[10].number)) << describe(row) << ": " << got;
   }
   EXPECT_EQ(covered.size(), size_t(shader::kMusgraveTypes * 4));
 }
@@ -275,10 +172,10 @@ TEST(ShaderNoise, WaveCases) {
     const int direction = index_of(type == 0 ? kBandsDirections : kRingsDirections, row[1].text);
     const int profile = index_of(kWaveProfiles, row[2].text);
     covered.insert((type * 4 + direction) * 3 + profile);
-    const float got = shader::wave(WaveType(type), direction, WaveProfile(profile), row[3].vec3(), row[4].number(),
-                                   row[5].number(), row[6].number(), row[7].number(), row[8].number(),
-                                   row[9].number());
-    EXPECT_TRUE(close(got, row[10].number())) << describe(row) << ": " << got;
+    const float got = shader::wave(WaveType(type), direction, WaveProfile(profile), row[3].vec3(), row[4].number,
+                                   row[5].number, row[6].number, row[7].number, row[8].number,
+                                   row[9].number);
+    EXPECT_TRUE(close(got, row[10].number)) << describe(row) << ": " << got;
   }
   EXPECT_EQ(covered.size(), size_t(shader::kWaveModes));
 }

@@ -22,10 +22,7 @@ namespace {
 using shader::GradientType;
 using test::Json;
 
-const Json& cases() {
-  static const Json table = test::read_json_table("shader_textures_cases.json");
-  return table;
-}
+const Json& cases() { return test::json_table("shader_textures_cases.json"); }
 
 // The table's rule: within 1e-6, relative beyond 1 (Cycles' kernels round an ulp or two apart).
 bool matches(float got, float expected) {

@@ -37,10 +37,7 @@ int index_of(const char* const (&names)[N], const std::string& name) {
   throw std::runtime_error("unknown name " + name);
 }
 
-const Json& cases() {
-  static const Json table = test::read_json_table("shader_voronoi_cases.json");
-  return table;
-}
+const Json& cases() { return test::json_table("shader_voronoi_cases.json"); }
 
 // The table's rule: within 1e-6 of max(1, |expected|); "nan": NaN.
 bool matches(float got, const Json& expected) {

@@ -219,10 +219,14 @@ class MaterialReader:
         self._program_inputs = {}
 
     def _with_program(self, out):
-        """add_material() arguments with the closure's shader program (if it has one)."""
+        """add_material() arguments with the closure's shader program (if it has one); a Normal
+        the program computes (read_normal_input's normal_value) becomes normal_register."""
+        normal = out.pop('normal_value', None)
+        if normal is not None:
+            self._program_inputs['normal'] = normal
         if self._program_inputs:
             out['shader_program'] = self._program.build()
-            out['program_reads_uvs'] = self._program.reads("TexCoordUV")
+            out['program_reads_uvs'] = self._program.uses_uvs()
             out['program_attributes'] = self.attributes.keys_of(self._program)
             for key, value in self._program_inputs.items():
                 out[f'{key}_register'] = self._program.register_of(value)
@@ -420,6 +424,7 @@ class MaterialReader:
         """Glass BSDF: Color (or an Image Texture), Roughness, IOR; GGX or Beckmann (Sharp =
         roughness 0; Multiscatter GGX is reported and rendered as GGX)."""
         d = DEFAULT_MATERIAL
+        self._begin_program()
         color, tex = self._socket_input(mat, node, "Color", (1.0, 1.0, 1.0))
         roughness = _clamp(finite_or(self._socket_value(mat, node, "Roughness", 0.0), 0.0),
                            0.0, 1.0)
@@ -435,7 +440,7 @@ class MaterialReader:
                    glass_distribution='BECKMANN' if distribution == 'BECKMANN' else 'GGX',
                    ior=self._ior(mat, node, 1.45), base_color_texture=tex)
         out.update(read_normal_input(self, mat, node))
-        return _sanitize(out)
+        return _sanitize(self._with_program(out))
 
     def _transparent(self, mat, node):
         """Transparent BSDF: every ray passes straight through, tinted by Color."""
@@ -515,6 +520,11 @@ class MeshNeeds(NamedTuple):
     programs name them by). False when nothing."""
     uvs: bool = False
     attributes: tuple = ()
+
+    def object_info(self):
+        """Whether the materials read Object Info (per-object constants: exported for
+        flattened meshes only; instances' shared prototypes read 0)."""
+        return any(k[0] == 'object_info' for k, _ in self.attributes)
 
     @staticmethod
     def of(needs):

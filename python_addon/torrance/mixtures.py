@@ -22,7 +22,7 @@ from .shader_graph.graph import GraphCompiler, Unsupported
 from .shader_graph.program import ProgramBuilder
 from .shader_graph.registry import READERS
 from .nodes import finite_or, is_default_uv, node_label, plain_image, source_socket
-from .normal_inputs import read_normal_input
+from .normal_inputs import normal_source, read_normal_input
 
 MAX_CLOSURES = 8          # the core's kMaxMixtureComponents
 MAX_FACTORS = 8           # the core's kMaxMixFactors
@@ -49,6 +49,7 @@ class ShaderTreeReader:
         self.factors = []         # add_mixture factor dicts
         self.normal = None        # the normal arguments of the first closure
         self.normal_from = None
+        self.normal_key = None            # (node, output) feeding the first closure's Normal
         self.program = ProgramBuilder()   # the factors the shader graph computes
         self.program_factors = {}         # factor index -> its Value in self.program
 
@@ -60,10 +61,14 @@ class ShaderTreeReader:
         self._walk(node, [], 0)
         if not self.closures:
             return None
-        out = dict(closures=self.closures, factors=self.factors, normal=self.normal or {})
-        if self.program_factors:
+        normal = dict(self.normal or {})
+        normal_value = normal.pop('normal_value', None)
+        out = dict(closures=self.closures, factors=self.factors, normal=normal)
+        if normal_value is not None:
+            normal['normal_register'] = self.program.register_of(normal_value)
+        if self.program_factors or normal_value is not None:
             out.update(shader_program=self.program.build(),
-                       program_reads_uvs=self.program.reads("TexCoordUV"),
+                       program_reads_uvs=self.program.uses_uvs(),
                        program_attributes=self.reader.attributes.keys_of(self.program))
             for index, value in self.program_factors.items():
                 self.factors[index] = dict(kind="program",
@@ -107,7 +112,11 @@ class ShaderTreeReader:
         if node.mute:
             self.warn(f"the shader {node_label(node)} is muted; Torrance leaves it out")
             return
-        closure = self._closure(node)
+        self.reader.skip_normals = True   # the mixture reads one normal for all closures
+        try:
+            closure = self._closure(node)
+        finally:
+            self.reader.skip_normals = False
         if closure is None:
             return
         if len(self.closures) >= MAX_CLOSURES:
@@ -115,10 +124,12 @@ class ShaderTreeReader:
                       f"leaves it out")
             return
         kind_name, args = closure
-        normal = read_normal_input(self.reader, self.mat, node)
+        source = normal_source(node)
+        key = None if source is None else (source.node.as_pointer(), source.identifier)
         if self.normal is None:
-            self.normal, self.normal_from = normal, node
-        elif normal != self.normal:
+            self.normal = read_normal_input(self.reader, self.mat, node, self.program)
+            self.normal_from, self.normal_key = node, key
+        elif key != self.normal_key:
             self.warn(f"{node_label(node)} has another Normal than {node_label(self.normal_from)}; "
                       f"Torrance uses one normal for all mixed shaders (that of "
                       f"{node_label(self.normal_from)})")

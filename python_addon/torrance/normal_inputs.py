@@ -1,23 +1,39 @@
 # SPDX-License-Identifier: Apache-2.0
 """The Normal input of a BSDF node -> add_material()/add_mixture() normal arguments.
 
-Two sources are read:
+Whatever node graph feeds Normal is compiled into the closure's shader program (the
+shader_graph's Bump and Normal Map readers, bump.py: a Bump node's Height of any graph,
+evaluated at the hit and at the hit moved by the ray differentials as Cycles 3.4 does; Normal
+Map in tangent or world space of any Color; chains of them): the result is
+{'normal_value': the program's Value}, which the caller turns into a normal register.
 
-* a tangent-space Normal Map node whose Color is an Image Texture -> normal_texture,
-  normal_strength;
-* a Bump node whose Height is an Image Texture (its Color output; the height is the colour's
-  luminance, as Blender converts a colour to a float) -> bump_texture, bump_strength,
-  bump_distance (negated when Invert is set). The core follows Cycles 3.4's Bump node with the
-  height's surface gradient taken from UV central differences (see docs/scene_support.md).
+Two plain cases keep the image paths of the core (no program needed; the same formulas):
 
-Anything else linked to Normal (or a Bump node's own Normal input) is reported and ignored.
+* a tangent-space Normal Map of constant Strength whose Color is an Image Texture at the UVs ->
+  normal_texture, normal_strength;
+* a Bump node of constant Strength and Distance, its Normal unlinked, whose Height is an Image
+  Texture's Color at the UVs (the height is the colour's luminance) -> bump_texture,
+  bump_strength, bump_distance (negated when Invert is set).
+
+What can not be compiled is reported and ignored (the surface's own normal).
 """
 
-from .nodes import finite_or, node_label, source_socket
+from .nodes import finite_or, node_label, plain_image, source_socket
+from .shader_graph.graph import GraphCompiler, Unsupported
+from .shader_graph.registry import READERS
+
+def normal_source(node):
+    """The output socket feeding the Normal input of `node`, or None."""
+    socket = node.inputs.get("Normal")
+    return source_socket(socket) if socket is not None else None
 
 
-def read_normal_input(reader, mat, node):
-    """{} or the normal arguments for the Normal input of `node` (reader: a MaterialReader)."""
+def read_normal_input(reader, mat, node, builder=None):
+    """{} or the normal arguments for the Normal input of `node` (reader: a MaterialReader;
+    builder: the ProgramBuilder to compile a graph into, by default the reader's closure
+    program)."""
+    if builder is None and getattr(reader, "skip_normals", False):
+        return {}                     # a mixture's closure: the mixture reads the normal
     socket = node.inputs.get("Normal")
     source = source_socket(socket) if socket is not None else None
     if source is None:
@@ -25,50 +41,80 @@ def read_normal_input(reader, mat, node):
     src = source.node
     where = f"Material '{mat.name}': input 'Normal' of {node_label(node)}"
     if not src.mute and src.bl_idname == 'ShaderNodeBump':
-        return _bump(reader, mat, src, where)
-    if src.mute or src.bl_idname != 'ShaderNodeNormalMap':
-        reader.reporter.warning(f"{where} is linked to {node_label(src)}, which Torrance does "
-                                f"not support (only a tangent-space Normal Map or a Bump node "
-                                f"fed by an Image Texture); the normal is ignored")
+        plain = _plain_bump(reader, mat, src, where)
+        if plain is not None:
+            return plain
+    if not src.mute and src.bl_idname == 'ShaderNodeNormalMap':
+        plain = _plain_normal_map(reader, mat, src, where)
+        if plain is not None:
+            return plain
+    builder = builder if builder is not None else reader._program
+    mark = builder.mark()
+    try:
+        value = GraphCompiler(builder, reader.textures, READERS, reader.attributes).input(
+            socket, 'vector')
+    except Unsupported as exc:
+        builder.rollback(mark)
+        reader.reporter.warning(f"{where}: {exc}; the normal is ignored")
         return {}
-    if src.space != 'TANGENT':
-        reader.reporter.warning(f"{where}: {node_label(src)} in {src.space.lower()} space is not "
-                                f"supported (only tangent space); the normal is ignored")
+    if value.constant:                # a constant Normal: not a surface Torrance can shade
+        builder.rollback(mark)
+        reader.reporter.warning(f"{where} is a constant vector; the normal is ignored")
         return {}
+    return dict(normal_value=value)
+
+
+def _constant_input(node, name):
+    """The value of a float input that is unlinked or fed by a Value node, else None."""
+    socket = node.inputs.get(name)
+    if socket is None:
+        return None
+    source = source_socket(socket)
+    if source is None:
+        return float(socket.default_value)
+    if source.node.type == 'VALUE' and not source.node.mute:
+        return float(source.default_value)
+    return None
+
+
+def _plain_image(node, name):
+    """The Image Texture node feeding input `name` by its Color at the UVs, or None."""
+    socket = node.inputs.get(name)
+    source = source_socket(socket) if socket is not None else None
+    if (source is None or source.node.mute or source.node.bl_idname != 'ShaderNodeTexImage'
+            or source.identifier != "Color" or not plain_image(source.node)
+            or source.node.projection != 'FLAT'):
+        return None
+    return source
+
+
+def _plain_normal_map(reader, mat, src, where):
+    strength = _constant_input(src, "Strength")
+    image = _plain_image(src, "Color")
+    if src.space != 'TANGENT' or strength is None or image is None:
+        return None
     if src.uv_map:
         reader.reporter.info(f"{where}: {node_label(src)} names UV map '{src.uv_map}'; Torrance "
                              f"uses each mesh's active render UV map")
-    strength = finite_or(reader._socket_value(mat, src, "Strength", 1.0), 1.0)
-    tid = _image_input(reader, mat, src, "Color", where)
+    strength = finite_or(strength, 1.0)
+    tid = reader._image_node(mat, image.node, image, f"input 'Color' of {node_label(src)}")
     if tid is None or strength == 0.0:
         return {}
     return dict(normal_texture=tid, normal_strength=strength)
 
 
-def _image_input(reader, mat, node, name, where):
-    """The texture id of an Image Texture feeding input `name` of `node`, or None (reported)."""
-    socket = node.inputs.get(name)
-    source = source_socket(socket) if socket is not None else None
-    if source is None:
-        return None               # a constant: no variation, the normal is unperturbed
-    if source.node.mute or source.node.bl_idname != 'ShaderNodeTexImage':
-        reader.reporter.warning(f"{where}: the {name} of {node_label(node)} is linked to "
-                                f"{node_label(source.node)}, which Torrance does not "
-                                f"support; the normal is ignored")
+def _plain_bump(reader, mat, bump, where):
+    strength = _constant_input(bump, "Strength")
+    distance = _constant_input(bump, "Distance")
+    image = _plain_image(bump, "Height")
+    if (strength is None or distance is None or image is None
+            or source_socket(bump.inputs["Normal"]) is not None):
         return None
-    return reader._image_node(mat, source.node, source, f"input '{name}' of {node_label(node)}")
-
-
-def _bump(reader, mat, bump, where):
-    normal = bump.inputs.get("Normal")
-    if normal is not None and source_socket(normal) is not None:
-        reader.reporter.warning(f"{where}: the Normal input of {node_label(bump)} is linked; "
-                                f"Torrance bumps the surface's own normal instead")
-    strength = max(0.0, finite_or(reader._socket_value(mat, bump, "Strength", 1.0), 1.0))
-    distance = finite_or(reader._socket_value(mat, bump, "Distance", 1.0), 1.0)
+    strength = max(0.0, finite_or(strength, 1.0))
+    distance = finite_or(distance, 1.0)
     if bump.invert:
         distance = -distance
-    tid = _image_input(reader, mat, bump, "Height", where)
+    tid = reader._image_node(mat, image.node, image, f"input 'Height' of {node_label(bump)}")
     if tid is None or strength == 0.0 or distance == 0.0:
         return {}
     return dict(bump_texture=tid, bump_strength=strength, bump_distance=distance)

@@ -69,6 +69,7 @@ struct BsdfSample {
   Vec3 weight{0.0f};  // eval / pdf, or the delta lobe's reflectance
   float pdf = 0.0f;   // 0 for a delta lobe
   bool is_delta = false;
+  bool diffuse = false;  // drawn from a diffuse lobe (Cycles' LABEL_DIFFUSE; the Light Path node)
   bool valid() const { return pdf > 0.0f || is_delta; }
 };
 

@@ -77,6 +77,9 @@ class Camera {
   // The angle one pixel spans at the image centre (radians), for texture footprints; 0 for
   // ORTHOGRAPHIC (parallel rays: the footprint does not grow with distance).
   float pixel_spread() const { return ortho_ ? 0.0f : 2.0f * half_h_ / float(height_); }
+  // A pixel's width in scene units where rays leave the camera (ORTHOGRAPHIC; 0 for perspective):
+  // Cycles' dP of a camera ray, the ray differentials' length before the spread adds to it.
+  float pixel_width() const { return ortho_ ? 2.0f * half_h_ / float(height_) : 0.0f; }
   bool has_depth_of_field() const { return aperture_ > 0.0f; }
 
  private:

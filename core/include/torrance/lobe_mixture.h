@@ -71,6 +71,7 @@ BsdfSample sample(const Bsdf& bsdf, const typename Bsdf::View& v, float u_lobe, 
     s.wi = ggx::reflect(wo, ggx::sample_visible_normal(wo, alpha, u));
   } else {
     s.wi = sample_cosine_hemisphere(u);
+    s.diffuse = true;
   }
   if (s.wi.z <= 0.0f) return BsdfSample{};
   s.pdf = pdf(bsdf, v, s.wi, alpha);

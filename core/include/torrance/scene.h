@@ -9,6 +9,7 @@
 #include "torrance/camera.h"
 #include "torrance/lights.h"
 #include "torrance/mixture.h"
+#include "torrance/shader_bump.h"
 #include "torrance/shader_program.h"
 #include "torrance/texture.h"
 
@@ -67,11 +68,15 @@ struct SurfaceHit {
   const int32_t* attribute_ids = nullptr;
   int num_attributes = 0;
   Vec3 corner_weights{0.0f};
+  // The gradients (1/m, in the triangle's plane) of corner_weights.y and .z (with attributes).
+  Vec3 weight_gradients[2] = {Vec3(0.0f), Vec3(0.0f)};
 };
 
 // What a shader program reads at a hit seen along ray_dir (Cycles' ShaderData: normals facing
-// the viewer), textures averaged over `footprint` UV units.
-inline ShaderGlobals shader_globals(const SurfaceHit& hit, const Vec3& ray_dir, float footprint) {
+// the viewer), textures averaged over `footprint` UV units; cone_width: the ray cone's width
+// at the hit in metres (Cycles' dP, the ray differentials' length).
+inline ShaderGlobals shader_globals(const SurfaceHit& hit, const Vec3& ray_dir, float footprint,
+                                    float cone_width = 0.0f) {
   ShaderGlobals g;
   g.uv = hit.uv;
   g.footprint = footprint;
@@ -85,6 +90,32 @@ inline ShaderGlobals shader_globals(const SurfaceHit& hit, const Vec3& ray_dir, 
   g.attribute_ids = hit.attribute_ids;
   g.num_attributes = hit.num_attributes;
   g.corner_weights = hit.corner_weights;
+  g.tangent = hit.tangent;
+  g.bitangent_sign = hit.bitangent_sign;
+  // Cycles' ray differentials: the cone's width along its tangent pair around the true normal,
+  // and the UVs (through dP/du, dP/dv) and corner weights they move by.
+  if (cone_width > 0.0f && std::isfinite(cone_width)) {
+    Vec3 a, b;
+    shader::differential_axes(g.true_normal, a, b);
+    g.dpdx = cone_width * a;
+    g.dpdy = cone_width * b;
+    const Vec3 n = hit.geometric_normal;
+    const float det_uv = glm::dot(n, glm::cross(hit.dpdu, hit.dpdv));
+    if (std::abs(det_uv) > 0.0f && std::isfinite(det_uv)) {
+      const Vec3 grad_u = glm::cross(hit.dpdv, n) / det_uv, grad_v = glm::cross(n, hit.dpdu) / det_uv;
+      g.duvdx = Vec2(glm::dot(grad_u, g.dpdx), glm::dot(grad_v, g.dpdx));
+      g.duvdy = Vec2(glm::dot(grad_u, g.dpdy), glm::dot(grad_v, g.dpdy));
+      if (!std::isfinite(g.duvdx.x + g.duvdx.y + g.duvdy.x + g.duvdy.y)) g.duvdx = g.duvdy = Vec2(0.0f);
+    }
+    if (hit.num_attributes > 0) {
+      auto weights = [&](const Vec3& d) {
+        const float y = glm::dot(hit.weight_gradients[0], d), z = glm::dot(hit.weight_gradients[1], d);
+        return std::isfinite(y + z) ? Vec3(-y - z, y, z) : Vec3(0.0f);
+      };
+      g.dweights_dx = weights(g.dpdx);
+      g.dweights_dy = weights(g.dpdy);
+    }
+  }
   return g;
 }
 
@@ -150,14 +181,19 @@ class Scene {
     const float a = clamp01(t.alpha_from_luminance ? blender_luminance(Vec3(c)) : c.a);
     return t.alpha_inverted ? 1.0f - a : a;
   }
-  // The shading normal ns perturbed by the material's normal map or bump map at the hit (ns when
-  // none). A bump map follows Cycles 3.4's Bump node: forward differences of the height (the
-  // texture's luminance) over two tangent steps of cone_width, along Cycles' tangent
-  // pair around the geometric normal, mapped to UV through dP/du and dP/dv; then
-  // n' ~ n - distance * (the height's surface gradient), mixed with n by the strength.
-  // cone_width: the width in metres of the ray cone at the hit (the bump's finite-difference step).
+  // The shading normal ns (as wound) perturbed by the material's Normal at a hit seen as g says
+  // (shader_globals: the view, footprint and ray differentials), as wound; ns when none. The
+  // Normal is the material's program's normal register (Bump and Normal Map nodes of any graph,
+  // shader_bump.h), else its image normal map (tangent space) or image height map (a Bump node
+  // fed by an Image Texture's luminance: its heights at the hit and at the hit moved by the ray
+  // differentials, at least a hundredth of a texel apart), by shader_bump.h's formulas.
+  Vec3 normal_mapped(uint32_t material, const SurfaceHit& hit, const Vec3& ns, const ShaderGlobals& g) const;
+  // As above, seen from the front (along -geometric_normal); cone_width: the ray cone's width in
+  // metres at the hit (the ray differentials' length).
   Vec3 normal_mapped(uint32_t material, const SurfaceHit& hit, const Vec3& ns, float footprint = 0.0f,
-                     float cone_width = 0.0f) const;
+                     float cone_width = 0.0f) const {
+    return normal_mapped(material, hit, ns, shader_globals(hit, -hit.geometric_normal, footprint, cone_width));
+  }
 
   // positions: num_vertices xyz; triangles: num_triangles vertex-index triples;
   // corner_normals: nullptr or num_triangles * 3 xyz normals; material_ids: nullptr or num_triangles;
@@ -284,7 +320,7 @@ class Scene {
   // kMaxCoordinate (limits.h): finite entries within 1e12, the transformed vertex bounds too.
   void check_transform(const float* m, uint32_t prototype, const std::string& which) const;
   void check_idle(const char* change) const;  // with mutex_ held
-  Vec3 bump_mapped(const MaterialTextures& t, const SurfaceHit& hit, const Vec3& ns, float cone_width) const;
+  Vec3 bump_mapped(const MaterialTextures& t, const SurfaceHit& hit, const Vec3& n, const ShaderGlobals& g) const;
   // Runs the material's shader program at uv and writes the inputs it feeds into m.
   void apply_program(const MaterialTextures& t, const ShaderGlobals& g, Material& m) const;
   void check_program_outputs(const ShaderOutputs& outputs) const;  // throws std::invalid_argument

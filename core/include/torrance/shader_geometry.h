@@ -9,6 +9,15 @@
 //   Attribute (100)   the mesh attribute named by the resource (Scene::set_mesh_attributes),
 //                     interpolated over the hit triangle: xyz, w 1 (all 0 where the mesh lacks
 //                     it, as Cycles reads a missing attribute)
+//   LightPath (106)   Light Path: (value, 0, 0, 0) of the path's state (ShaderGlobals), mode 0 Is
+//                     Camera Ray, 1 Is Shadow Ray (0), 2 Is Diffuse, 3 Is Glossy, 4 Is Singular,
+//                     5 Is Reflection, 6 Is Transmission Ray, 7 Ray Length, 8 Ray Depth,
+//                     9 Diffuse, 10 Glossy, 11 Transparent, 12 Transmission Depth
+//   CameraTransform (107) the hit's position through the 4x4 matrix whose rows are in0-in3 (the
+//                     add-on's per-render constants: world to camera, or world to the camera's
+//                     NDC): mode 0 normalize(M p) (Camera Data > View Vector), 1 (M p).z (View
+//                     Z Depth), 2 |M p| (View Distance), 3 M p (Texture Coordinate > Camera),
+//                     4 ((M p).x / w, (M p).y / w, 0), w = row 3 . (p, 1) (Window)
 // A node's unlinked Normal input is the shading normal (the add-on links Geometry > Normal).
 #pragma once
 
@@ -21,6 +30,10 @@ glm::vec4 reflection_op(const ShaderOpContext& c);
 glm::vec4 fresnel_op(const ShaderOpContext& c);
 glm::vec4 layer_weight_op(const ShaderOpContext& c);
 glm::vec4 attribute_op(const ShaderOpContext& c);
+constexpr int kLightPathModes = 13;
+glm::vec4 light_path_op(const ShaderOpContext& c);
+constexpr int kCameraTransformModes = 5;
+glm::vec4 camera_transform_op(const ShaderOpContext& c);
 
 // Cycles' Layer Weight, from the cosine between the view direction and the normal.
 float layer_weight_fresnel(float blend, float cos_view, bool backfacing);

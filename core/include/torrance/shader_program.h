@@ -38,6 +38,8 @@ enum class ShaderOpcode : uint8_t {
   HueSaturation,   // hue_saturation_value(in0.x, in1.x, in2.x, in3.x, in4)
   Luminance,       // out.x = rgb_to_bw(in0): colour -> float
   Average,         // out.x = (in0.x + in0.y + in0.z) / 3: vector -> float
+  Bump = 16,       // the Bump node (shader_bump.h): a normal from heights at the hit and its offsets
+  NormalMap = 17,  // the Normal Map node (shader_bump.h)
   // The node families' ops, each family a range of numbers (its header says what each op reads;
   // shader_op_info lists their shapes; python_addon/torrance/shader_graph/ the same numbers):
   //   32-47 noise (shader_noise.h), 48-55 Voronoi (shader_voronoi.h), 56-71 textures
@@ -72,6 +74,8 @@ enum class ShaderOpcode : uint8_t {
   Attribute = 100,
   Mapping = 104,       // shader_vector.h
   VectorRotate = 105,
+  LightPath = 106,     // shader_geometry.h
+  CameraTransform = 107,
 };
 constexpr int kShaderOpcodes = 128;
 
@@ -83,6 +87,10 @@ struct ShaderInstruction {
   int32_t resource = -1;  // Image: the texture id; ops with tables: the offset of their data
   int16_t out = 0;
   std::array<int16_t, kShaderInputs> in{};
+  // Where the op reads the hit: 0 at the hit, 1 and 2 at the hit moved by the ray differentials
+  // dx and dy (ShaderGlobals::offset; a Bump node's height graph, compiled three times, as
+  // Cycles does). Python code rows carry it in flags bits 6-7.
+  uint8_t offset = 0;
 };
 
 // What a program may read at a hit, as Cycles' ShaderData: world-space position, the shading and
@@ -101,7 +109,35 @@ struct ShaderGlobals {
   const int32_t* attribute_ids = nullptr;
   int num_attributes = 0;
   Vec3 corner_weights{0.0f};
+  // The path's state at the hit, as Cycles' path flags and bounce counts (the Light Path node):
+  // the kRay* bits of the ray that found it, the bounces before it (transparent passes apart),
+  // and the length of the ray's last segment. Defaults: a ray that is none of these (emission
+  // seen by next-event estimation).
+  uint8_t ray_flags = 0;
+  uint8_t ray_depth = 0, diffuse_depth = 0, glossy_depth = 0, transmission_depth = 0, transparent_depth = 0;
+  float ray_length = 0.0f;
+  // Cycles' ray differentials at the hit: dP/dx and dP/dy (the footprint's width along its
+  // tangent pair around the true normal), and what they move the UVs and corner weights by.
+  Vec3 dpdx{0.0f}, dpdy{0.0f};
+  Vec2 duvdx{0.0f}, duvdy{0.0f};
+  Vec3 dweights_dx{0.0f}, dweights_dy{0.0f};
+  // The UV map's tangent (unit dP/du, as wound; 0 without UVs) and the bitangent's sign.
+  Vec3 tangent{0.0f};
+  float bitangent_sign = 1.0f;
+  // These globals at the hit moved by dx (which 1) or dy (which 2): position, UVs and corner
+  // weights (normals, the view and footprint stay, as in Cycles' bump evaluation).
+  ShaderGlobals offset(int which) const {
+    ShaderGlobals g = *this;
+    const bool x = which == 1;
+    g.position += x ? dpdx : dpdy;
+    g.uv += x ? duvdx : duvdy;
+    g.corner_weights += x ? dweights_dx : dweights_dy;
+    return g;
+  }
 };
+// ShaderGlobals::ray_flags (Cycles' PATH_RAY_*; Is Shadow Ray is 0 wherever a program runs).
+constexpr uint8_t kRayCamera = 1, kRayDiffuse = 2, kRayGlossy = 4, kRaySingular = 8, kRayReflect = 16,
+                  kRayTransmit = 32;
 
 // What an op sees when it runs: its instruction, the registers and the program's data.
 struct ShaderOpContext {
@@ -148,6 +184,7 @@ class ShaderProgram {
   std::vector<float> data_;
   int registers_;
   std::vector<bool> written_;
+  bool offsets_ = false;  // some instruction reads the hit at an offset
 };
 
 // Which registers of a material's program feed its inputs (-1: the material's own value). A
@@ -155,6 +192,7 @@ class ShaderProgram {
 struct ShaderOutputs {
   int program = -1;  // index from Scene::add_shader_program
   int16_t base_color = -1, metallic = -1, roughness = -1, emission = -1;
+  int16_t normal = -1;  // the closure's Normal (facing the viewer, as Cycles' N): Bump, Normal Map
   bool any() const { return program >= 0; }
 };
 

@@ -1,6 +1,5 @@
 """The add-on's small matrix helpers (python_addon/torrance/matrices.py): the same numbers as
 numpy's matmul and linalg, and, unlike them, no work for OpenBLAS's spinning worker threads."""
-import importlib.util
 import subprocess
 import sys
 import textwrap
@@ -13,11 +12,8 @@ MATRICES = Path(__file__).resolve().parents[3] / "python_addon" / "torrance" / "
 
 
 @pytest.fixture(scope="module")
-def matrices():
-    spec = importlib.util.spec_from_file_location("addon_matrices", MATRICES)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+def matrices(load_module):
+    return load_module("matrices")
 
 
 def test_times_transpose_is_matmul(matrices):

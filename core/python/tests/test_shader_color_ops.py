@@ -2,7 +2,6 @@
 the core's torrance::shader colour ops: the hand-computed Cycles 3.4 cases the core's
 test_shader_color.cpp checks too (core/tests/data/shader_color_cases.json), colour-model round
 trips, and finite results for awkward inputs."""
-import importlib.util
 import itertools
 import json
 import math
@@ -16,13 +15,8 @@ TOLERANCE = 1e-5
 
 
 @pytest.fixture(scope="module")
-def ops():
-    # Loaded from its file: the add-on package's __init__ imports bpy.
-    spec = importlib.util.spec_from_file_location(
-        "shader_color_ops", REPO / "python_addon" / "torrance" / "shader_graph" / "color_ops.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+def ops(load_module):
+    return load_module("shader_graph.color_ops")
 
 
 def flatten(x):

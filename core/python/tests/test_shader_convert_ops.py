@@ -4,38 +4,28 @@ core/tests/data/shader_convert_cases.json that core/tests/test_shader_convert.cp
 (Blender 3.4.1's Cycles rendered them), the positions tables are baked at, and programs with
 ramps, curves and the other converter ops folded by the add-on, evaluated by its reference
 evaluator and run by the core, all alike."""
-import importlib
-import json
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 import torrance_core as tc
 
-REPO = Path(__file__).resolve().parents[3]
-CASES = REPO / "core" / "tests" / "data" / "shader_convert_cases.json"
 COLUMNS = 17     # the core's code rows: opcode, mode, flags, resource, out, 12 inputs
 
 
 @pytest.fixture(scope="module")
-def sg():
+def sg(load_module):
     """shader_graph's program, convert_ops and convert, without the add-on's __init__ (bpy)."""
-    sys.path.insert(0, str(REPO / "python_addon" / "torrance"))
-    try:
-        program = importlib.import_module("shader_graph.program")
-        convert = importlib.import_module("shader_graph.convert")
-        ops = importlib.import_module("shader_graph.convert_ops")
-    finally:
-        sys.path.pop(0)
+    program = load_module("shader_graph.program")
+    convert = load_module("shader_graph.convert")
+    ops = load_module("shader_graph.convert_ops")
     program.add_family(convert.OPCODES, convert.FOLDS)
     return program, convert, ops
 
 
 @pytest.fixture(scope="module")
-def table():
-    return json.loads(CASES.read_text())
+def table(case_table):
+    return case_table("convert")
 
 
 def evaluate(ops, function, mode, t, a):

@@ -2,32 +2,21 @@
 Python twin of the core's shader_math.cpp: the hand-computed cases of
 core/tests/data/shader_math_cases.json that core/tests/test_shader_math.cpp checks too, the Clamp
 option, and no NaN or inf over awkward inputs except where Cycles itself gives them."""
-import importlib.util
 import itertools
-import json
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-REPO = Path(__file__).resolve().parents[3]
-MATH_OPS_PY = REPO / "python_addon" / "torrance" / "shader_graph" / "math_ops.py"
-CASES = REPO / "core" / "tests" / "data" / "shader_math_cases.json"
+
+@pytest.fixture(scope="module")
+def ops(load_module):
+    return load_module("shader_graph.math_ops")
 
 
 @pytest.fixture(scope="module")
-def ops():
-    # Loaded as a file: importing the package would import the add-on's __init__ (and bpy).
-    spec = importlib.util.spec_from_file_location("shader_math_ops", MATH_OPS_PY)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
-
-
-@pytest.fixture(scope="module")
-def cases():
-    return json.loads(CASES.read_text())
+def cases(case_table):
+    return case_table("math")
 
 
 def f32(x):

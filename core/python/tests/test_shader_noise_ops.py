@@ -3,28 +3,16 @@ twin of the core's shader_noise.cpp and shader_hash.h: the cases of
 core/tests/data/shader_noise_cases.json (Cycles' own renders) that core/tests/test_shader_noise.cpp
 checks too, the hash's bits (arrays and scalars alike, -0 apart from 0), the folds' outputs, and
 random instructions folded here and run by the core, bit for bit."""
-import importlib
-import json
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-REPO = Path(__file__).resolve().parents[3]
-CASES = REPO / "core" / "tests" / "data" / "shader_noise_cases.json"
 TOLERANCE = 2e-6     # the table's rule: within TOLERANCE max(1, |expected|)
 
 
 @pytest.fixture(scope="module")
-def shader_graph():
-    # The shader_graph package without the add-on's __init__ (which imports bpy).
-    sys.path.insert(0, str(REPO / "python_addon" / "torrance"))
-    try:
-        return (importlib.import_module("shader_graph.noise"),
-                importlib.import_module("shader_graph.hash_ops"))
-    finally:
-        sys.path.pop(0)
+def shader_graph(load_module):
+    return load_module("shader_graph.noise"), load_module("shader_graph.hash_ops")
 
 
 @pytest.fixture(scope="module")
@@ -38,8 +26,8 @@ def hash_ops(shader_graph):
 
 
 @pytest.fixture(scope="module")
-def cases():
-    return json.loads(CASES.read_text())
+def cases(case_table):
+    return case_table("noise")
 
 
 def close(got, expected):

@@ -3,27 +3,16 @@ rejected with a message naming the instruction, and random programs run by the c
 instruction by instruction, with the add-on's reference evaluator
 (python_addon/torrance/shader_graph/program.py), with every value finite (huge inputs included;
 their agreement is not checked, as the core computes in float and the reference in double)."""
-import importlib
-import sys
-from pathlib import Path
-
 import numpy as np
 import pytest
 import torrance_core as tc
 from hypothesis import HealthCheck, given, note, settings
 from hypothesis import strategies as st
 
-REPO = Path(__file__).resolve().parents[3]
-
 
 @pytest.fixture(scope="module")
-def program():
-    # The shader_graph package without the add-on's __init__ (which imports bpy).
-    sys.path.insert(0, str(REPO / "python_addon" / "torrance"))
-    try:
-        return importlib.import_module("shader_graph.program")
-    finally:
-        sys.path.pop(0)
+def program(load_module):
+    return load_module("shader_graph.program")
 
 
 COLUMNS = 17     # opcode, mode, flags, resource, out, 12 inputs

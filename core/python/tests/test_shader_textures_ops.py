@@ -3,33 +3,22 @@ Gradient, Brick and Magic Texture) against the cases of
 core/tests/data/shader_textures_cases.json, which Blender 3.4.1's Cycles rendered and
 core/tests/test_shader_textures.cpp checks too; the folds (the ops' inputs, modes and flags)
 against the core running the same instructions, on the table and on random inputs."""
-import importlib
-import json
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 import torrance_core as tc
 
-REPO = Path(__file__).resolve().parents[3]
-CASES = REPO / "core" / "tests" / "data" / "shader_textures_cases.json"
 COLUMNS = 17     # opcode, mode, flags, resource, out, 12 inputs
 
 
 @pytest.fixture(scope="module")
-def tex():
-    # The shader_graph package without the add-on's __init__ (which imports bpy).
-    sys.path.insert(0, str(REPO / "python_addon" / "torrance"))
-    try:
-        return importlib.import_module("shader_graph.textures")
-    finally:
-        sys.path.pop(0)
+def tex(load_module):
+    return load_module("shader_graph.textures")
 
 
 @pytest.fixture(scope="module")
-def cases():
-    return json.loads(CASES.read_text())
+def cases(case_table):
+    return case_table("textures")
 
 
 def f32(x):

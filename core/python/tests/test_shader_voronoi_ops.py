@@ -3,32 +3,20 @@ the core's shader_voronoi.cpp: the cases of core/tests/data/shader_voronoi_cases
 Blender 3.4.1's Cycles rendered (core/tests/test_shader_voronoi.cpp checks them too), the op's
 modes and output groups as the constant folder gives them, and the core's op agreeing with the
 twin bit for bit over random instructions."""
-import importlib
-import json
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-REPO = Path(__file__).resolve().parents[3]
-CASES = REPO / "core" / "tests" / "data" / "shader_voronoi_cases.json"
+
+@pytest.fixture(scope="module")
+def voronoi(load_module):
+    return load_module("shader_graph.voronoi")
 
 
 @pytest.fixture(scope="module")
-def voronoi():
-    # The shader_graph package without the add-on's __init__ (which imports bpy).
-    sys.path.insert(0, str(REPO / "python_addon" / "torrance"))
-    try:
-        return importlib.import_module("shader_graph.voronoi")
-    finally:
-        sys.path.pop(0)
-
-
-@pytest.fixture(scope="module")
-def cases():
-    return json.loads(CASES.read_text())["cases"]
+def cases(case_table):
+    return case_table("voronoi")["cases"]
 
 
 def matches(got, expected):
@@ -103,13 +91,9 @@ def _row(op, mode, flags, out, inputs):
     return row
 
 
-def test_the_core_agrees_bit_for_bit(voronoi):
+def test_the_core_agrees_bit_for_bit(voronoi, load_module):
     tc = pytest.importorskip("torrance_core")
-    sys.path.insert(0, str(REPO / "python_addon" / "torrance"))
-    try:
-        program = importlib.import_module("shader_graph.program")
-    finally:
-        sys.path.pop(0)
+    program = load_module("shader_graph.program")
     rng = np.random.default_rng(5)
     failures = []
     for _ in range(240):

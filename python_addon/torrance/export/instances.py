@@ -81,6 +81,9 @@ class InstanceExport:
         """A new Source for an evaluated object: its slots' materials read now."""
         slot_to_material = self.materials.slot_indices([s.material for s in obj.material_slots])
         needs_uvs = self.materials.needs_uvs(slot_to_material.tolist())
+        if needs_uvs.object_info():
+            self.reporter.warning(f"Object '{name}': Object Info is not supported on instanced "
+                                  f"objects; its outputs read 0")
         data = obj.data
         src = Source(name, (data.as_pointer() if data is not None else 0, needs_uvs),
                      slot_to_material, instanced)

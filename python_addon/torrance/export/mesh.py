@@ -9,7 +9,7 @@ import numpy as np
 from ..materials import MeshNeeds
 from ..matrices import inverse_transpose
 from .mesh_arrays import triangle_vertices
-from .mesh_attributes import attribute_layers, read_corner_attributes
+from .mesh_attributes import attribute_layers, read_corner_attributes, with_object_info
 
 MAX_COORDINATE = 1e18          # metres; anything farther is treated like Inf
 
@@ -292,8 +292,10 @@ def mesh_materials(slots, materials):
     return slot_to_material, materials.needs_uvs(slot_to_material.tolist())
 
 
-def add_world_mesh(tc_scene, name, local, matrix, slot_to_material, needs_uvs, reporter):
-    """Adds a LocalMesh (or None) at `matrix` with add_mesh; returns the triangles added."""
+def add_world_mesh(tc_scene, name, local, matrix, slot_to_material, needs_uvs, reporter,
+                   object_info=None):
+    """Adds a LocalMesh (or None) at `matrix` with add_mesh; returns the triangles added.
+    object_info: the object's Object Info constants (mesh_attributes.object_info), if known."""
     if local is None:
         return 0
     pos, tris, corner, keep, dropped = world_mesh(local, matrix)
@@ -312,6 +314,8 @@ def add_world_mesh(tc_scene, name, local, matrix, slot_to_material, needs_uvs, r
     m = np.asarray(matrix, dtype=np.float64).reshape(4, 4)
     layers = attribute_layers(local.corner_attributes, dict(needs.attributes), keep,
                               flip=inverse_transpose(m[:3, :3])[1] < 0.0)
+    if object_info:
+        layers = with_object_info(layers, object_info, dict(needs.attributes), len(tris))
     if layers is not None:
         tc_scene.set_mesh_attributes(mesh_id, *layers)
     return len(tris)

@@ -11,6 +11,9 @@ Keys (shader_graph's attribute requests):
   ('color', name)      a colour attribute (vertex colours; '' = the active render one), linear
   ('attribute', name)  an Attribute node's geometry attribute: a colour, vector or float
                        attribute of that name (a float as (v, v, v)), else a UV map of that name
+  ('object_info', k)   Object Info's per-object constants (k: location, color, alpha, index,
+                       random), not the mesh's: object_info() gives them, add_world_mesh adds
+                       them to a world-space mesh (prototypes, shared, have none: 0 there)
 A key the mesh lacks gets no layer: the program reads 0 there, as Cycles does.
 """
 
@@ -131,3 +134,65 @@ def attribute_layers(corner_attributes, ids, keep=None, flip=False):
         layers.append(a.reshape(-1, 3))
     return (np.ascontiguousarray(np.stack(layers), dtype=np.float32),
             np.array([ids[k] for k in present], np.int32))
+
+
+_U32 = 0xFFFFFFFF
+
+
+def _rotl(x, k):
+    return ((x << k) | (x >> (32 - k))) & _U32
+
+
+def _jenkins_final(a, b, c):
+    """Bob Jenkins' lookup3 final mixing of three 32-bit words; returns c."""
+    for x, y, k in ((2, 1, 14), (0, 2, 11), (1, 0, 25), (2, 1, 16), (0, 2, 4), (1, 0, 14),
+                    (2, 1, 24)):
+        w = [a, b, c]
+        w[x] = ((w[x] ^ w[y]) - _rotl(w[y], k)) & _U32
+        a, b, c = w
+    return c
+
+
+def object_random_id(name):
+    """Cycles 3.4's random id of a non-instanced object: its name hashed (each byte, as a signed
+    char, into i * 37 + byte) and that mixed with 0 by lookup3's two-word hash."""
+    h = 0
+    for byte in name.encode("utf-8"):
+        h = (h * 37 + (byte if byte < 128 else byte | 0xFFFFFF00)) & _U32
+    init = (0xDEADBEEF + (2 << 2) + 13) & _U32
+    return _jenkins_final((init + h) & _U32, init, init)
+
+
+def object_info(obj, matrix, random_id=None):
+    """{('object_info', k): xyz} of a (non-instanced) object as Cycles 3.4 syncs it: its world
+    location (the matrix's translation), colour and alpha (Object > Viewport Display > Color),
+    pass index, and random number: random_id (default object_random_id of its name) times
+    1 / 0xFFFFFFFF, in float32."""
+    m = np.asarray(matrix, dtype=np.float64).reshape(4, 4)
+    color = tuple(float(c) for c in obj.color)
+    if random_id is None:
+        random_id = object_random_id(obj.name)
+    rid = np.float32(int(random_id) & 0xFFFFFFFF)
+    random = float(rid * (np.float32(1.0) / np.float32(0xFFFFFFFF)))
+    one = lambda v: (float(v),) * 3  # noqa: E731
+    return {('object_info', 'location'): tuple(m[:3, 3]),
+            ('object_info', 'color'): color[:3],
+            ('object_info', 'alpha'): one(color[3]),
+            ('object_info', 'index'): one(obj.pass_index),
+            ('object_info', 'random'): one(random)}
+
+
+def with_object_info(layers, info, ids, num_triangles):
+    """layers (attribute_layers' answer or None) with constant layers of the keys of `info`
+    ({key: xyz}) that `ids` ({key: id}) asks for."""
+    wanted = [k for k in ids if k in info]
+    if not wanted or num_triangles == 0:
+        return layers
+    extra = np.stack([np.broadcast_to(np.asarray(info[k], np.float32), (3 * num_triangles, 3))
+                      for k in wanted])
+    extra_ids = np.array([ids[k] for k in wanted], np.int32)
+    if layers is None:
+        return np.ascontiguousarray(extra), extra_ids
+    values, layer_ids = layers
+    return (np.ascontiguousarray(np.concatenate([values, extra])),
+            np.concatenate([layer_ids, extra_ids]))

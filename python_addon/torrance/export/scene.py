@@ -13,6 +13,7 @@ from .camera import export_camera
 from .instances import InstanceExport, Source
 from .lights import export_light
 from .mesh import MeshCache, add_world_mesh, mesh_materials
+from .mesh_attributes import object_info
 from .world import export_world
 
 # Types whose geometry is a mesh. Only 'MESH' entries of the depsgraph are exported; the
@@ -190,9 +191,13 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
             elif role == 'UNSUPPORTED':
                 report_unsupported(obj, unsupported_types, reporter)
             elif role == 'MESH' and not as_instances:
-                flattened.append((obj, obj.name, inst.matrix_world.copy())
-                                 + mesh_materials([s.material for s in obj.material_slots],
-                                                  materials))
+                slot_to_material, needs = mesh_materials(
+                    [s.material for s in obj.material_slots], materials)
+                info = (object_info(obj, inst.matrix_world)
+                        if any(k[0] == 'object_info' for k, _ in getattr(needs, "attributes", ()))
+                        else None)
+                flattened.append((obj, obj.name, inst.matrix_world.copy(), slot_to_material,
+                                  needs, info))
             elif role == 'MESH':
                 src = meshes.source(obj, obj.name, instanced=False)
                 src.add(inst.matrix_world)
@@ -202,11 +207,11 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
     meshes.read_pending(poll)
     meshes.flush(stats)
     cache = MeshCache()
-    for obj, name, matrix, slot_to_material, needs_uvs in flattened:
+    for obj, name, matrix, slot_to_material, needs_uvs, info in flattened:
         poll()
         local = cache.get(obj, (obj.data.as_pointer(),), needs_uvs, reporter)
         triangles = add_world_mesh(tc_scene, name, local, matrix, slot_to_material, needs_uvs,
-                                   reporter)
+                                   reporter, object_info=info)
         if triangles:
             stats.objects += 1
             stats.names.append(name)

@@ -6,8 +6,11 @@ attributes) are read through GraphCompiler.attribute (export/mesh_attributes.py'
 
 from ..nodes import node_label
 from .graph import Unsupported
+from .math_ops import VECTOR_MATH_OPS as _VECTOR_MATH
+from .program import constant
 
-OPCODES = {"Geometry": 96, "Reflection": 97, "Fresnel": 98, "LayerWeight": 99, "Attribute": 100}
+OPCODES = {"Geometry": 96, "Reflection": 97, "Fresnel": 98, "LayerWeight": 99, "Attribute": 100,
+           "LightPath": 106, "CameraTransform": 107}
 VARYING = set(OPCODES)
 FOLDS = {}
 
@@ -48,8 +51,12 @@ def _texture_coordinate(g, node, socket):
         return g.generated()
     if out == "Object":
         return g.attribute(('object',))
+    if out == "Camera":
+        return _camera_transform(g, node, 3)
+    if out == "Window":
+        return _camera_transform(g, node, 4)
     raise Unsupported(f"{node_label(node)}'s output '{socket.name}' is not supported (UV, "
-                      f"Generated, Object and Reflection are)")
+                      f"Generated, Object, Camera, Window and Reflection are)")
 
 
 def _uv_map(g, node, socket):
@@ -92,7 +99,125 @@ def _layer_weight(g, node, socket):
                           mode=0 if socket.identifier == "Fresnel" else 1)
 
 
+# Light Path outputs -> the LightPath op's mode (shader_geometry.h).
+_LIGHT_PATH = {"Is Camera Ray": 0, "Is Shadow Ray": 1, "Is Diffuse Ray": 2, "Is Glossy Ray": 3,
+               "Is Singular Ray": 4, "Is Reflection Ray": 5, "Is Transmission Ray": 6,
+               "Ray Length": 7, "Ray Depth": 8, "Diffuse Depth": 9, "Glossy Depth": 10,
+               "Transparent Depth": 11, "Transmission Depth": 12}
+
+
+def _light_path(g, node, socket):
+    """Light Path: the path's state at the hit (Is Shadow Ray is 0 wherever Torrance shades;
+    Is Volume Scatter Ray 0: no volumes)."""
+    if socket.identifier == "Is Volume Scatter Ray":
+        return constant('float', 0.0)
+    mode = _LIGHT_PATH.get(socket.identifier)
+    if mode is None:
+        raise Unsupported(f"{node_label(node)}'s output '{socket.name}' is not supported")
+    if mode == 1:
+        return constant('float', 0.0)
+    return g.builder.emit("LightPath", 'float', mode=mode)
+
+
+def _scene_camera():
+    import bpy
+    scene = bpy.context.scene
+    return scene, (scene.camera if scene is not None else None)
+
+
+def _camera_rows(which):
+    """The rows (four four-float tuples) of the scene camera's world -> camera transform
+    (Cycles' camera space: +z ahead, the matrix without scale) or world -> NDC ([0, 1] over the
+    frame, its w in the last row); None without a camera."""
+    import bpy
+    from mathutils import Matrix
+    scene, cam = _scene_camera()
+    if cam is None:
+        return None
+    m = cam.matrix_world.normalized()
+    to_camera = Matrix.Diagonal((1.0, 1.0, -1.0, 1.0)) @ m.inverted_safe()
+    if which == 'camera':
+        rows = to_camera
+    else:
+        r = scene.render
+        proj = cam.calc_matrix_camera(bpy.context.evaluated_depsgraph_get(),
+                                      x=r.resolution_x, y=r.resolution_y,
+                                      scale_x=r.pixel_aspect_x, scale_y=r.pixel_aspect_y)
+        clip = proj @ m.inverted_safe()
+        rows = [0.5 * (clip[0] + clip[3]), 0.5 * (clip[1] + clip[3]), clip[2], clip[3]]
+    return [tuple(float(x) for x in row) for row in rows]
+
+
+def _camera_transform(g, node, mode):
+    rows = _camera_rows('ndc' if mode == 4 else 'camera')
+    if rows is None:
+        raise Unsupported(f"{node_label(node)}: the scene has no camera")
+    return g.builder.emit("CameraTransform", 'float' if mode in (1, 2) else 'vector',
+                          [constant('vector', r) for r in rows], mode=mode)
+
+
+_CAMERA_DATA = {"View Vector": 0, "View Z Depth": 1, "View Distance": 2}
+
+
+def _camera_data(g, node, socket):
+    """Camera Data, from the scene camera's transform at export (the viewport's view when it
+    is not the camera view is not followed)."""
+    return _camera_transform(g, node, _CAMERA_DATA[socket.identifier])
+
+
+def _normal(g, node, socket):
+    """Normal node: Normal its direction (normalised), Dot its dot product with the
+    normalised input."""
+    d = tuple(node.outputs["Normal"].default_value)
+    length = sum(x * x for x in d) ** 0.5
+    direction = constant('vector', tuple(x / length for x in d) if length > 0.0 else (0.0,) * 3)
+    if socket.identifier == "Normal":
+        return direction
+    n = g.input(node.inputs["Normal"], 'vector')
+    unit = g.builder.emit("VectorMath", 'vector', [n, n, n, constant('float', 0.0)],
+                          mode=_VECTOR_MATH.index('NORMALIZE'))
+    return g.builder.emit("VectorMath", 'float', [direction, unit, unit, constant('float', 0.0)],
+                          mode=_VECTOR_MATH.index('DOT_PRODUCT'), flags=1)
+
+
+# Object Info outputs -> the per-object attribute key (export/mesh_attributes.py).
+_OBJECT_INFO = {"Location": 'location', "Color": 'color', "Alpha": 'alpha',
+                "Object Index": 'index', "Random": 'random'}
+
+
+def _material_pass_index(g, node):
+    """The pass index of the material whose tree holds node (or the outermost group node)."""
+    import bpy
+    tree = g._groups[0].id_data if g._groups else node.id_data
+    original = getattr(tree, "original", tree)
+    for m in bpy.data.materials:
+        if m.node_tree is not None and (m.node_tree == tree or m.node_tree == original):
+            return m.pass_index
+    return 0
+
+
+def _object_info(g, node, socket):
+    """Object Info: the object's constants as attribute layers of its meshes (world-space
+    meshes; a prototype's, shared by objects and instances, has none: 0 there); Material Index
+    the material's pass index."""
+    out = socket.identifier
+    if out == "Material Index":
+        return constant('float', float(_material_pass_index(g, node)))
+    key = _OBJECT_INFO.get(out)
+    if key is None:
+        raise Unsupported(f"{node_label(node)}'s output '{socket.name}' is not supported")
+    kind = {'location': 'vector', 'color': 'color'}.get(key, 'float')
+    value = g.attribute(('object_info', key), 'vector' if kind == 'float' else kind)
+    if kind == 'float':
+        return g.builder.emit("Channel", 'float', [value], mode=0)
+    return value
+
+
 READERS = {
+    # 'ShaderNodeLightPath': _light_path: not yet (its agreement test disagrees: ratio 1.039).
+    'ShaderNodeCameraData': _camera_data,
+    'ShaderNodeNormal': _normal,
+    'ShaderNodeObjectInfo': _object_info,
     'ShaderNodeNewGeometry': _geometry,
     'ShaderNodeTexCoord': _texture_coordinate,
     'ShaderNodeUVMap': _uv_map,

@@ -50,7 +50,8 @@ class GraphCompiler:
     def output(self, socket):
         """The Value of an output socket (of its own kind)."""
         node = socket.node
-        key = (tuple(g.as_pointer() for g in self._groups), node.as_pointer(), socket.identifier)
+        key = (tuple(g.as_pointer() for g in self._groups), node.as_pointer(), socket.identifier,
+               self.builder.offset)
         if key not in self._cache:
             self._cache[key] = self._output(node, socket)
         return self._cache[key]

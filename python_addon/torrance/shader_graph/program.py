@@ -19,12 +19,15 @@ OPCODE = {name: i for i, name in enumerate((
     "TexCoordUV", "Image", "Channel", "Combine", "Math", "VectorMath", "MixColor", "MixFloat",
     "MixVector", "ColorModel", "Invert", "Gamma", "BrightContrast", "HueSaturation", "Luminance",
     "Average"))}
+OPCODE.update(Bump=16, NormalMap=17)   # the Bump and Normal Map nodes (shader_bump.h)
 OPCODE_NAME = {number: name for name, number in OPCODE.items()}
 SHADER_INPUTS = 12                 # kShaderInputs
 CODE_COLUMNS = 5 + SHADER_INPUTS   # opcode, mode, flags, resource, out, inputs
 MAX_REGISTERS = 128                # ShaderProgram::kMaxRegisters
 # Ops that read the hit (never folded).
-VARYING = {"TexCoordUV", "Image"}
+VARYING = {"TexCoordUV", "Image", "Bump", "NormalMap"}
+# A code row's flags bits 6-7: where a varying op reads the hit (ShaderInstruction::offset).
+OFFSET_SHIFT = 6
 
 
 def add_family(opcodes, folds, varying=()):
@@ -134,6 +137,9 @@ class ProgramBuilder:
         self.constants = {}       # four floats -> constant slot
         self.registers = 0        # computed values
         self.data = []            # the ops' tables, each its length first
+        # Where the varying ops emitted now read the hit: 0 at it, 1 and 2 at it moved by the
+        # ray differentials dx and dy (a Bump node's Height, compiled three times).
+        self.offset = 0
 
     def emit(self, op, kind, args=(), mode=0, flags=0, texture=-1, table=None):
         """The Value of an instruction (folded when it can be). table: the floats of an op that
@@ -141,6 +147,8 @@ class ProgramBuilder:
         if op not in VARYING and all(a.constant for a in args):
             return Value(kind, finite(fold(op, mode, flags, list(args), table)))
         resource = texture
+        if op in VARYING:
+            flags |= self.offset << OFFSET_SHIFT
         if table is not None:
             resource = len(self.data)
             self.data += [float(len(table)), *(float(x) for x in table)]
@@ -170,6 +178,12 @@ class ProgramBuilder:
     def reads(self, op):
         """Whether the program has an instruction of op (e.g. TexCoordUV: the mesh needs UVs)."""
         return any(row[0] == OPCODE[op] for row in self.code)
+
+    def uses_uvs(self):
+        """Whether the program reads the mesh's UVs (its UV map, or a tangent-space Normal Map's
+        tangent)."""
+        return self.reads("TexCoordUV") or any(
+            row[0] == OPCODE["NormalMap"] and row[1] == 0 for row in self.code)
 
     def register_of(self, v):
         """The final register index of a computed (non-constant) Value."""
@@ -205,6 +219,7 @@ def evaluate(constants, code, registers, uv, image=None, data=()):
         regs[r] = tuple(float(x) for x in c)
     for row in code:
         op, mode, flags, resource, out = (int(x) for x in row[:5])
+        flags &= (1 << OFFSET_SHIFT) - 1
         name = OPCODE_NAME[op]
         args = [regs[int(i)] for i in row[5:] if i >= 0]
         if name == "TexCoordUV":

@@ -7,7 +7,7 @@ render raises graph.Unsupported naming it.
 """
 
 from ..nodes import node_label
-from . import color_ops, families, math_ops
+from . import bump, color_ops, families, math_ops
 from .graph import Unsupported, by_identifier
 from .program import constant
 
@@ -170,6 +170,7 @@ READERS = {
                                          ('float', 'float', 'float', 'float', 'color')),
     'ShaderNodeRGBToBW': _rgb_to_bw,
     **families.READERS,
+    **bump.READERS,
 }
 
 # Nodes read outside the value graph (closures, outputs, the world), with what Torrance renders
@@ -191,8 +192,10 @@ CLOSURES = {
                            "(and a Transparent BSDF), Fac a value, an Image Texture or a Checker "
                            "Texture",
     'ShaderNodeAddShader': "partly: trees of Principled, Diffuse, Glossy and Emission closures",
-    'ShaderNodeNormalMap': "partly: Tangent Space, Strength, Color from an Image Texture",
-    'ShaderNodeBump': "partly: Height from an Image Texture, Strength, Distance, Invert",
+    'ShaderNodeNormalMap': "partly: Tangent and World Space, Strength, any Color graph (Object "
+                           "spaces reported)",
+    'ShaderNodeBump': "rendered: any Height graph (evaluated at the hit and its ray-differential "
+                      "offsets, as Cycles), Strength, Distance, Invert, Normal (chained bumps)",
     'ShaderNodeBackground': "world: Color (a constant or an Environment Texture), Strength",
     'ShaderNodeTexEnvironment': "world: equirectangular images feeding the Background",
     'ShaderNodeOutputMaterial': "rendered: the active output (target All or Cycles)",

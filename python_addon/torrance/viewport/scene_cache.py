@@ -284,6 +284,9 @@ class SceneCache:
         if pkey not in self.prototypes:
             local = meshes.get(obj, key[1:], needs_uvs, reporter)
             self.prototypes[pkey] = self._prototype(pkey, local, obj.name, needs_uvs, reporter)
+            if needs_uvs.object_info():
+                reporter.warning(f"Object '{obj.name}': Object Info is not supported in the "
+                                 f"viewport; its outputs read 0")
         entry = _Entry(_matrix_tuple(matrix), _slot_names(slots), None, 0, pkey)
         self.entries[eid] = entry
         proto = self.prototypes[pkey]

@@ -1,0 +1,128 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Object Info renders as Cycles 3.4 renders it: Location, Color, Alpha, Object Index, Material
+Index and Random, each shown through an Emission shader on patches of the grid
+(torrance_tools.shader_graphs), every patch its own object (its own location, colour, pass
+index and name, hence random number), two of them sharing one mesh.
+
+Object Info is supported on world-space meshes (the final render's objects); instanced objects'
+prototypes carry no per-object constants (0 there), so no instances here.
+
+Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
+seeds 2 and 3. Deliberate faults (the random number of another hash, the object colour's red
+and blue swapped) must fail them.
+
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \
+         --python blender_tests/test_shader_object_info_agreement.py
+"""
+
+from torrance_tools import testing
+from torrance_tools.shader_graphs import agree_on_patches
+
+_SETTINGS = {}
+
+
+def _info(g, output):
+    return g.node("ShaderNodeObjectInfo").outputs[output]
+
+
+def _object(color, index, location=None):
+    def setup(obj):
+        obj.color = color
+        obj.pass_index = index
+        if location is not None:
+            obj.location = location
+    return setup
+
+
+def location(g):
+    v = g.node("ShaderNodeVectorMath", operation='ABSOLUTE')
+    s = g.node("ShaderNodeVectorMath", operation='SCALE')
+    s.inputs["Scale"].default_value = 0.3
+    g.link(_info(g, "Location"), v.inputs[0])
+    g.link(v.outputs[0], s.inputs[0])
+    return s.outputs[0]
+
+
+location.setup = _object((0.2, 0.5, 0.9, 1.0), 1, (0.3, -0.2, 0.4))
+
+
+def color(g):
+    return _info(g, "Color")
+
+
+color.setup = _object((0.9, 0.4, 0.1, 0.3), 2)
+
+
+def alpha_and_index(g):
+    comb = g.node("ShaderNodeCombineRGB")
+    g.link(_info(g, "Alpha"), comb.inputs[0])
+    g.link(g.math('MULTIPLY', _info(g, "Object Index"), value_b=0.1), comb.inputs[1])
+    g.link(g.math('MULTIPLY', _info(g, "Material Index"), value_b=0.2), comb.inputs[2])
+    g.mat.pass_index = 3
+    return comb.outputs[0]
+
+
+alpha_and_index.setup = _object((0.1, 0.2, 0.3, 0.6), 7)
+
+
+def _random(g):
+    comb = g.node("ShaderNodeCombineRGB")
+    r = _info(g, "Random")
+    g.link(r, comb.inputs[0])
+    g.link(g.math('FRACT', g.math('MULTIPLY', r, value_b=7.0)), comb.inputs[1])
+    g.link(g.math('FRACT', g.math('MULTIPLY', r, value_b=53.0)), comb.inputs[2])
+    return comb.outputs[0]
+
+
+def random_a(g):
+    return _random(g)
+
+
+def random_b(g):
+    return _random(g)
+
+
+def _share_mesh(obj):
+    """The second Random patch's object takes the first's mesh (a flattened mesh shared by two
+    objects), moved to its own place."""
+    first = _SETTINGS.get("first")
+    if first is None:
+        _SETTINGS["first"] = obj
+        return
+    offset = [a - b for a, b in zip(obj.data.vertices[0].co, first.data.vertices[0].co,
+                                     strict=True)]
+    obj.data = first.data
+    obj.location = offset
+
+
+random_a.setup = _share_mesh
+random_b.setup = _share_mesh
+
+MAKERS = (location, color, alpha_and_index, random_a, random_b)
+
+
+def other_random(original):
+    def info(obj, matrix, random_id=None):
+        return original(obj, matrix, 12345)
+    return info
+
+
+def color_swapped(original):
+    def info(obj, matrix, random_id=None):
+        out = original(obj, matrix, random_id)
+        c = out[('object_info', 'color')]
+        out[('object_info', 'color')] = (c[2], c[1], c[0])
+        return out
+    return info
+
+
+def main():
+    testing.addon()
+    import torrance.export.scene as export_scene
+    agree_on_patches(
+        MAKERS, what="Object Info",
+        faults=(("random of another hash", export_scene, "object_info", other_random),
+                ("colour's red and blue swapped", export_scene, "object_info", color_swapped)))
+
+
+testing.run(main)

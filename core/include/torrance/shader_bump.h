@@ -1,0 +1,39 @@
+// The Bump and Normal Map nodes (opcodes 16, 17) as Cycles 3.4 computes them (svm/displace.h,
+// svm/tex_coord.h), and their formulas, which Scene's image-only bump and normal maps share:
+//   Bump (16)       in0.x Strength, in1.x Distance, in2.x the height at the hit, in3.x and in4.x
+//                   the height at the hit moved by the ray differentials dx and dy (the add-on
+//                   compiles the Height's graph three times, the copies' ops reading the hit
+//                   at ShaderInstruction::offset 1 and 2), in5 the Normal input (facing the
+//                   viewer); flags & 1: Invert. Out: the bumped normal, facing the viewer.
+//   NormalMap (17)  in0 Color, in1.x Strength; mode 0 tangent space (the hit's UV tangent),
+//                   1 world space, 2 Blender world space (y and z negated). Out: the normal,
+//                   facing the viewer.
+#pragma once
+
+#include "torrance/shader_program.h"
+
+namespace torrance::shader {
+
+// Cycles' tangent pair around a unit normal (its ray differentials' directions on a surface):
+// a = normalize((1, 1, 1) x n) (another axis when n lies along (1, 1, 1)), b = n x a.
+void differential_axes(const Vec3& n, Vec3& a, Vec3& b);
+
+// The Bump node's normal: n' = normalize(|det| n - distance sign(det) g) with
+// g = (h_x - h_c) (dy x n) + (h_y - h_c) (n x dx), det = dx . (dy x n), mixed with n by
+// strength (clamped at 0); n where that has no direction (zero differentials). n: unit.
+Vec3 bump_normal(const Vec3& n, const Vec3& dx, const Vec3& dy, float h_c, float h_x, float h_y, float distance,
+                 float strength);
+
+// A tangent-space normal map's normal from colour c (0..1 per axis): the colour mapped to
+// [-1, 1] over (tangent, sign * n x tangent, n), then mixed with n by strength (clamped at 0).
+// n: unit; tangent: unit, or 0 (then n). All three facing one way; the result faces as n.
+Vec3 tangent_normal_map(const Vec3& c, const Vec3& n, const Vec3& tangent, float bitangent_sign, float strength);
+
+// The object/world-space mapping's final step: normal `mapped` mixed with n by strength (n
+// where that has no direction).
+Vec3 mix_mapped_normal(const Vec3& n, const Vec3& mapped, float strength);
+
+glm::vec4 bump_op(const ShaderOpContext& c);
+glm::vec4 normal_map_op(const ShaderOpContext& c);
+
+}  // namespace torrance::shader

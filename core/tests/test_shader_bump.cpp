@@ -1,0 +1,58 @@
+// The Bump and Normal Map formulas (core/src/shader_bump.cpp) as Cycles 3.4 computes them: a
+// flat height and zero differentials leave the normal, a slope tilts it against the gradient by
+// Distance (Invert: the other way), Strength mixes, degenerate inputs stay finite.
+#include "torrance/shader_bump.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace torrance {
+namespace {
+
+using shader::bump_normal;
+
+TEST(ShaderBump, FlatHeightOrZeroDifferentialsKeepTheNormal) {
+  const Vec3 n(0, 0, 1), dx(0.01f, 0, 0), dy(0, 0.01f, 0);
+  EXPECT_EQ(bump_normal(n, dx, dy, 0.5f, 0.5f, 0.5f, 1.0f, 1.0f), n);
+  EXPECT_EQ(bump_normal(n, Vec3(0.0f), Vec3(0.0f), 0.5f, 0.7f, 0.1f, 1.0f, 1.0f), n);
+}
+
+TEST(ShaderBump, SlopeTiltsAgainstTheGradientByDistance) {
+  const Vec3 n(0, 0, 1), dx(0.01f, 0, 0), dy(0, 0.01f, 0);
+  // h = x: slope 1 along x; n' ~ (-distance, 0, 1).
+  const Vec3 a = bump_normal(n, dx, dy, 0.0f, 0.01f, 0.0f, 0.5f, 1.0f);
+  EXPECT_NEAR(a.x, -0.5f / std::sqrt(1.25f), 1e-5f);
+  EXPECT_NEAR(a.z, 1.0f / std::sqrt(1.25f), 1e-5f);
+  const Vec3 inverted = bump_normal(n, dx, dy, 0.0f, 0.01f, 0.0f, -0.5f, 1.0f);
+  EXPECT_NEAR(inverted.x, -a.x, 1e-6f);
+  // Swapped differentials (a negative determinant) give the same normal.
+  const Vec3 b = bump_normal(n, dy, dx, 0.0f, 0.0f, 0.01f, 0.5f, 1.0f);
+  EXPECT_NEAR(b.x, a.x, 1e-5f);
+  // Strength 0.5: halfway, renormalized.
+  const Vec3 half = bump_normal(n, dx, dy, 0.0f, 0.01f, 0.0f, 0.5f, 0.5f);
+  const Vec3 expect = glm::normalize(0.5f * a + 0.5f * n);
+  EXPECT_NEAR(half.x, expect.x, 1e-5f);
+  EXPECT_NEAR(half.z, expect.z, 1e-5f);
+}
+
+TEST(ShaderBump, DegenerateInputsStayFinite) {
+  const float inf = std::numeric_limits<float>::infinity();
+  const Vec3 n(0, 0, 1);
+  for (float h : {0.0f, 1e30f, -1e30f, inf})
+    for (float w : {0.0f, 1e-30f, 1e30f}) {
+      const Vec3 out = bump_normal(n, Vec3(w, 0, 0), Vec3(0, w, 0), 0.0f, h, -h, 1e30f, 1.0f);
+      EXPECT_TRUE(std::isfinite(out.x) && std::isfinite(out.y) && std::isfinite(out.z)) << h << " " << w;
+    }
+  Vec3 a, b;
+  shader::differential_axes(Vec3(1, 1, 1) / std::sqrt(3.0f), a, b);
+  EXPECT_NEAR(glm::length(a), 1.0f, 1e-5f);
+  const Vec3 m = shader::tangent_normal_map(Vec3(0.5f, 0.5f, 1.0f), n, Vec3(0.0f), 1.0f, 1.0f);
+  EXPECT_EQ(m, n);  // no tangent: the normal
+  const Vec3 t = shader::tangent_normal_map(Vec3(1.0f, 0.5f, 0.5f), n, Vec3(1, 0, 0), 1.0f, 1.0f);
+  EXPECT_NEAR(t.x, 1.0f, 1e-6f);
+}
+
+}  // namespace
+}  // namespace torrance

@@ -1,0 +1,51 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The Bump and Normal Map nodes (the core's Bump and NormalMap ops, shader_bump.h), as Cycles
+3.4 compiles them (svm/displace.h, svm/tex_coord.h).
+
+A Bump node's Height graph is compiled three times: at the hit, and with every op that reads the
+hit reading it moved by the ray differentials dx and dy (ProgramBuilder.offset 1 and 2), as
+Cycles evaluates the height subgraph at P, P + dPdx and P + dPdy. Strength, Distance and the
+Normal input (another Bump or Normal Map: chaining) are read at the hit. The outputs are normals
+facing the viewer, like Geometry > Normal.
+"""
+
+from ..nodes import node_label
+from .geometry import normal_input
+from .graph import Unsupported
+
+# Normal Map spaces -> the NormalMap op's mode (Object spaces need the object's transform).
+_SPACES = {'TANGENT': 0, 'WORLD': 1, 'BLENDER_WORLD': 2}
+
+
+def _bump(g, node, socket):
+    b = g.builder
+    if b.offset:
+        raise Unsupported(f"{node_label(node)} inside another Bump node's Height")
+    height = node.inputs["Height"]
+    heights = []
+    try:
+        for offset in (0, 1, 2):
+            b.offset = offset
+            heights.append(g.input(height, 'float'))
+    finally:
+        b.offset = 0
+    strength = g.input(node.inputs["Strength"], 'float')
+    distance = g.input(node.inputs["Distance"], 'float')
+    return b.emit("Bump", 'vector', [strength, distance, *heights, normal_input(g, node)],
+                  flags=1 if node.invert else 0)
+
+
+def _normal_map(g, node, socket):
+    mode = _SPACES.get(node.space)
+    if mode is None:
+        raise Unsupported(f"{node_label(node)} in {node.space.lower().replace('_', ' ')} space "
+                          f"(tangent and world spaces are supported)")
+    color = g.input(node.inputs["Color"], 'color')
+    strength = g.input(node.inputs["Strength"], 'float')
+    return g.builder.emit("NormalMap", 'vector', [color, strength], mode=mode)
+
+
+READERS = {
+    'ShaderNodeBump': _bump,
+    'ShaderNodeNormalMap': _normal_map,
+}
