@@ -29,10 +29,9 @@ import math
 import numpy as np
 
 from torrance_tools import render_settings, testing
-from torrance_tools.issue12_scenes import glass_principled
+from torrance_tools.issue12_scenes import checker_floor, glass_principled
 from torrance_tools.scene import box
 from torrance_tools.seed_noise import agree_within_seed_noise, render_torrance
-from torrance_tools.textures import checker, floor_uvs, image_node, new_image, set_uvs
 
 W, H = 96, 72
 ORTHO_SCALE = 4.6
@@ -49,10 +48,7 @@ def build(scene, cube_gap, with_cube=True):
     cam = testing.add_camera(scene, location=(0.0, -0.001, 8.0), target=(0.0, 0.0, 0.0))
     cam.data.type = 'ORTHO'
     cam.data.ortho_scale = ORTHO_SCALE
-    floor_mat = testing.principled("Floor", (0.8, 0.8, 0.8), 0.0, 0.7)
-    image_node(floor_mat, new_image("Checker", checker(8, 0.75, 0.15)), "Base Color", 'Closest')
-    floor = testing.plane(scene, "Floor", 12.0, material=floor_mat)
-    set_uvs(floor, floor_uvs(6.0, 6.0))
+    checker_floor(scene)
     testing.sphere_object(scene, "RoughGlass", (-1.1, 0.0, 0.61), 0.6,
                           glass_principled("RoughGlass", 0.2, 0.3, 1.5))
     if with_cube:

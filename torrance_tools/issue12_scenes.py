@@ -49,6 +49,15 @@ def checker_mix():
     return mat
 
 
+def checker_floor(scene):
+    """A 12 m floor, its Base Color a Closest 8 x 8 checker (0.75 / 0.15) repeated 6 times."""
+    floor_mat = testing.principled("Floor", (0.8, 0.8, 0.8), 0.0, 0.7)
+    image_node(floor_mat, new_image("Checker", checker(8, 0.75, 0.15)), "Base Color", 'Closest')
+    floor = testing.plane(scene, "Floor", 12.0, material=floor_mat)
+    set_uvs(floor, floor_uvs(6.0, 6.0))
+    return floor
+
+
 def ortho_glass(scene, width, height):
     """An orthographic camera over a checker floor with a rough glass sphere (Principled
     Transmission 1, Roughness 0.2, Transmission Roughness 0.3, IOR 1.5) and a clear glass cube
@@ -57,10 +66,7 @@ def ortho_glass(scene, width, height):
     cam = testing.add_camera(scene, location=(0.0, -6.0, 4.5), target=(0.0, 0.2, 0.4))
     cam.data.type = 'ORTHO'
     cam.data.ortho_scale = 4.6
-    floor_mat = testing.principled("Floor", (0.8, 0.8, 0.8), 0.0, 0.7)
-    image_node(floor_mat, new_image("Checker", checker(8, 0.75, 0.15)), "Base Color", 'Closest')
-    floor = testing.plane(scene, "Floor", 12.0, material=floor_mat)
-    set_uvs(floor, floor_uvs(6.0, 6.0))
+    checker_floor(scene)
     testing.sphere_object(scene, "RoughGlass", (-1.1, 0.0, 0.61), 0.6,
                           glass_principled("RoughGlass", 0.2, 0.3, 1.5))
     box(scene, "ClearCube", (0.75, -0.3, 0.46), (0.9, 0.9, 0.9),

@@ -72,14 +72,20 @@ struct SurfaceHit {
   Vec3 weight_gradients[2] = {Vec3(0.0f), Vec3(0.0f)};
 };
 
+// Shader globals that know only a UV (what a mesh light's sample or a test has).
+inline ShaderGlobals uv_globals(const Vec2& uv, float footprint = 0.0f) {
+  ShaderGlobals g;
+  g.uv = uv;
+  g.footprint = footprint;
+  return g;
+}
+
 // What a shader program reads at a hit seen along ray_dir (Cycles' ShaderData: normals facing
 // the viewer), textures averaged over `footprint` UV units; cone_width: the ray cone's width
 // at the hit in metres (Cycles' dP, the ray differentials' length).
 inline ShaderGlobals shader_globals(const SurfaceHit& hit, const Vec3& ray_dir, float footprint,
                                     float cone_width = 0.0f) {
-  ShaderGlobals g;
-  g.uv = hit.uv;
-  g.footprint = footprint;
+  ShaderGlobals g = uv_globals(hit.uv, footprint);
   g.position = hit.position;
   g.incoming = -ray_dir;
   g.backfacing = glm::dot(hit.geometric_normal, g.incoming) < 0.0f;
@@ -146,10 +152,7 @@ class Scene {
   // averaged over a footprint of that many UV units (0: the finest texels).
   Material textured_material(uint32_t material, const ShaderGlobals& globals) const;
   Material textured_material(uint32_t material, const Vec2& uv, float footprint = 0.0f) const {
-    ShaderGlobals g;
-    g.uv = uv;
-    g.footprint = footprint;
-    return textured_material(material, g);
+    return textured_material(material, uv_globals(uv, footprint));
   }
   // A material made of weighted closures (Mix/Add Shader, mixture.h); returns its material index.
   // Its normal map or bump and its alpha texture come from `textures` (only those fields are read);
@@ -165,10 +168,7 @@ class Scene {
   // The weights of mixture material i's closures at uv (image factors over footprint UV units).
   MixtureWeights mixture_weights(uint32_t i, const ShaderGlobals& globals) const;
   MixtureWeights mixture_weights(uint32_t i, const Vec2& uv, float footprint = 0.0f) const {
-    ShaderGlobals g;
-    g.uv = uv;
-    g.footprint = footprint;
-    return mixture_weights(i, g);
+    return mixture_weights(i, uv_globals(uv, footprint));
   }
   // The radiance material i emits at uv (textures and mixtures included).
   Vec3 emission_at(uint32_t i, const Vec2& uv) const;
