@@ -290,7 +290,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
           throughput *= ctx.scene.material(hit.material).transparent_color;
           if (!(max_component(throughput) > 0.0f)) return out;
           passed_length += hit.t;
-          ++transparent_depth;
+          if constexpr (kTextures) ++transparent_depth;
           ray.origin = offset_origin(hit.position, hit.geometric_normal, ray.dir);
           ray.tmax -= hit.t;
           found = ray.tmax > 0.0f && ctx.scene.intersect(ray, hit);
@@ -483,7 +483,8 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       if (!bs.valid()) break;
       const Vec3 wi_world = frame.to_world(bs.wi);
       if (!leaves_geometric_side(wi_world, ng, bs.wi.z, transmits)) break;
-      {  // the next ray's Light Path state, as Cycles labels the sample
+      if constexpr (kTextures) {  // the next ray's Light Path state, as Cycles labels the sample
+        // (only shader programs read it: scenes without textures skip it)
         const bool reflect = glm::dot(wi_world, ng) > 0.0f;
         ray_flags = uint8_t((reflect ? kRayReflect : kRayTransmit) |
                             (bs.is_delta ? kRayGlossy | kRaySingular : bs.diffuse ? kRayDiffuse : kRayGlossy));
