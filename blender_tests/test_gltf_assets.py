@@ -36,9 +36,7 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
 import bpy
 
 from torrance_tools import gltf_assets, testing
-from torrance_tools.agreement import (cycles_reference_and_noise, failures, format_metrics,
-                                      mean_metrics, metrics, noise_bounds, print_verdict)
-from torrance_tools.seed_noise import render_torrance
+from torrance_tools.seed_noise import seed_noise_verdict
 
 W, H = 96, 72
 SAMPLES = 64
@@ -55,21 +53,12 @@ KNOWN_GAPS = {}
 
 
 def compare(scene, directory, name):
-    """agree_within_seed_noise's comparison, returned rather than raised:
+    """seed_noise_verdict's comparison, and the WARNING/INFO messages of Torrance's last render:
     (Torrance's mean metrics, Cycles' own metrics, the bounds, what the mean violates,
-    the WARNING/INFO messages of Torrance's last render)."""
-    ref, own = cycles_reference_and_noise(scene, directory, SAMPLES, BOUNCES)
-    limits = noise_bounds(own, TOLERANCE, RATIO_SIGMAS, RATIO_FLOOR)
-    results = []
-    for seed in TORRANCE_SEEDS:
-        img, seconds = render_torrance(scene, directory, seed, f"{name}_torrance{seed}",
-                                       SAMPLES, BOUNCES)
-        results.append(metrics(img, ref))
-        print(f"Torrance seed {seed}             : {format_metrics(results[-1])}"
-              f"  ({seconds:.1f} s)")
-    m = mean_metrics(results)
-    bad = failures(m, limits)
-    print_verdict("Torrance mean over seeds    ", m, bad)
+    messages)."""
+    _ref, m, own, limits, bad = seed_noise_verdict(scene, directory, SAMPLES, BOUNCES,
+                                                   TORRANCE_SEEDS, TOLERANCE, RATIO_SIGMAS,
+                                                   RATIO_FLOOR, prefix=f"{name}_")
     return m, own, limits, bad, testing.last_messages()
 
 

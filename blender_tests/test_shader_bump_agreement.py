@@ -111,22 +111,21 @@ def chained_bump():
     return g.mat
 
 
-def noise_normal_map():
-    g = _closure("noise_normal_map")
-    nm = g.node("ShaderNodeNormalMap", space='TANGENT')
-    nm.inputs["Strength"].default_value = 0.7
-    g.link(_noise(g, 4.0, "Color"), nm.inputs["Color"])
+def _noise_normal_map(name, space, strength, scale):
+    g = _closure(name)
+    nm = g.node("ShaderNodeNormalMap", space=space)
+    nm.inputs["Strength"].default_value = strength
+    g.link(_noise(g, scale, "Color"), nm.inputs["Color"])
     g.link(nm.outputs["Normal"], g.shader.inputs["Normal"])
     return g.mat
+
+
+def noise_normal_map():
+    return _noise_normal_map("noise_normal_map", 'TANGENT', 0.7, 4.0)
 
 
 def world_normal_map():
-    g = _closure("world_normal_map")
-    nm = g.node("ShaderNodeNormalMap", space='WORLD')
-    nm.inputs["Strength"].default_value = 0.4
-    g.link(_noise(g, 3.0, "Color"), nm.inputs["Color"])
-    g.link(nm.outputs["Normal"], g.shader.inputs["Normal"])
-    return g.mat
+    return _noise_normal_map("world_normal_map", 'WORLD', 0.4, 3.0)
 
 
 def mixed_bump():

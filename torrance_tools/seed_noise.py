@@ -25,6 +25,28 @@ def render_torrance(scene, directory, seed, name, samples, bounces):
     return img, seconds
 
 
+def seed_noise_verdict(scene, directory, samples, bounces, seeds=(2, 3), tolerance=1.5,
+                       ratio_sigmas=3.0, ratio_floor=0.015, prefix=""):
+    """Torrance (seeds) against Cycles' reference within Cycles' own seed-to-seed noise, printed:
+    (reference image, Torrance's mean metrics, Cycles' own metrics, the bounds, what the mean
+    violates). prefix: before the Torrance images' names."""
+    ref, own = cycles_reference_and_noise(scene, directory, samples, bounces)
+    limits = noise_bounds(own, tolerance, ratio_sigmas, ratio_floor)
+    print(f"bounds: ratio {limits['ratio'][0]:.4f}..{limits['ratio'][1]:.4f}, block mean "
+          f"{limits['block_mean']:.4f}, p90 {limits['block_p90']:.4f}")
+    results = []
+    for seed in seeds:
+        img, seconds = render_torrance(scene, directory, seed, f"{prefix}torrance{seed}", samples,
+                                       bounces)
+        results.append(metrics(img, ref))
+        print(f"Torrance seed {seed}             : {format_metrics(results[-1])}"
+              f"  ({seconds:.1f} s)")
+    m = mean_metrics(results)
+    bad = failures(m, limits)
+    print_verdict("Torrance mean over seeds    ", m, bad)
+    return ref, m, own, limits, bad
+
+
 def agree_within_seed_noise(scene, directory, samples, bounces, what, faults=(), seeds=(2, 3),
                             tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.015):
     """Raises AssertionError unless Torrance agrees with Cycles and every fault is caught.
@@ -33,19 +55,8 @@ def agree_within_seed_noise(scene, directory, samples, bounces, what, faults=(),
     make_fault(original) for one Torrance render (seeds[0]) and restored. A label beginning
     "info:" is reported only (a fault these figures are known not to see).
     """
-    ref, own = cycles_reference_and_noise(scene, directory, samples, bounces)
-    limits = noise_bounds(own, tolerance, ratio_sigmas, ratio_floor)
-    print(f"bounds: ratio {limits['ratio'][0]:.4f}..{limits['ratio'][1]:.4f}, block mean "
-          f"{limits['block_mean']:.4f}, p90 {limits['block_p90']:.4f}")
-    results = []
-    for seed in seeds:
-        img, seconds = render_torrance(scene, directory, seed, f"torrance{seed}", samples, bounces)
-        results.append(metrics(img, ref))
-        print(f"Torrance seed {seed}             : {format_metrics(results[-1])}"
-              f"  ({seconds:.1f} s)")
-    m = mean_metrics(results)
-    bad = failures(m, limits)
-    print_verdict("Torrance mean over seeds    ", m, bad)
+    ref, m, _own, limits, bad = seed_noise_verdict(scene, directory, samples, bounces, seeds,
+                                                   tolerance, ratio_sigmas, ratio_floor)
     testing.check(not bad, f"{what} disagrees with Cycles: " + "; ".join(bad))
     missed = []
     for label, owner, attr, make_fault in faults:
