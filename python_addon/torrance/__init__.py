@@ -17,16 +17,18 @@ bl_info = {
 # Support reloading the add-on (F3 > Reload Scripts).
 if "bpy" in locals():
     import importlib
-    for _name in ("reporting", "nodes", "materials", "brdf_model", "export", "passes", "preview",
-                  "viewport", "render", "properties", "engine", "ui"):
+    for _name in ("reporting", "nodes", "materials", "brdf_model", "settings_table",
+                  "core_settings", "export", "passes", "preview", "viewport", "render",
+                  "properties", "engine", "ui"):
         if _name in locals():
             importlib.reload(locals()[_name])
 
 # These imports follow the reload on purpose. `bpy` is the marker the reload checks for; the
-# first eight modules are imported for the reload (register() uses only the last four).
+# first ten modules are imported for the reload (register() uses only the last four).
 import bpy  # noqa: E402, F401
 
-from . import reporting, nodes, materials, brdf_model, export, passes, preview  # noqa: E402, F401
+from . import reporting, nodes, materials, brdf_model  # noqa: E402, F401
+from . import settings_table, core_settings, export, passes, preview  # noqa: E402, F401
 from . import viewport  # noqa: E402, F401
 from . import render, properties, engine, ui  # noqa: E402
 

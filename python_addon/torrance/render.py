@@ -8,7 +8,8 @@ import traceback
 import numpy as np
 
 from . import export, passes, preview
-from .brdf_model import core_model, model_note
+from .brdf_model import model_note
+from .core_settings import core_settings
 from .reporting import Reporter
 
 _core = None
@@ -177,27 +178,6 @@ class _Session:
             return True
 
 
-def sampling_settings(ts):
-    """RenderSettings arguments for the Sampling panel's Noise Threshold, Time Limit, Path
-    Guiding, Efficiency Roulette, Lights in Mirrors, Both Lights and First-Bounce Splits and the
-    Light Paths panel's Clamping, from scene.torrance (final renders)."""
-    threshold = 0.0
-    if ts.use_adaptive_sampling:
-        # As Cycles: a threshold of 0 means automatic, from the number of samples.
-        threshold = float(ts.adaptive_threshold) or max(0.001, 1.0 / max(1, int(ts.samples)))
-    return dict(adaptive_threshold=threshold,
-                adaptive_min_samples=int(ts.adaptive_min_samples),
-                time_limit=float(ts.time_limit),
-                clamp_direct=float(ts.sample_clamp_direct),
-                clamp_indirect=float(ts.sample_clamp_indirect),
-                guiding=bool(ts.use_guiding),
-                guiding_training_fraction=float(ts.guiding_training_fraction),
-                efficiency_roulette=bool(ts.use_efficiency_roulette),
-                mirror_images=bool(ts.use_mirror_images),
-                nee_every_light=bool(ts.use_nee_every_light),
-                first_bounce_splits=int(ts.first_bounce_splits))
-
-
 def render(engine, depsgraph):
     """RenderEngine.render(): never raises; problems become engine reports."""
     reporter = Reporter(engine)
@@ -251,25 +231,19 @@ def _render(engine, depsgraph, reporter):
                       f"'{view_layer.name}': {names}")
 
     threads = int(rd.threads) if rd.threads_mode == 'FIXED' else 0
-    adaptive = sampling_settings(ts)
     note = model_note(ts.brdf_model)
     if note:
         reporter.info(note)
     settings = tc.RenderSettings(
         width=width, height=height,
-        samples=int(ts.samples), max_bounces=int(ts.max_bounces), seed=int(ts.seed),
-        max_transparent_bounces=int(ts.transparent_max_bounces),
         pixel_aspect_x=float(rd.pixel_aspect_x), pixel_aspect_y=float(rd.pixel_aspect_y),
-        filter_width=float(ts.filter_width),
-        filter_splatting=bool(ts.use_filter_splatting),
         transparent_background=bool(rd.film_transparent),
-        brdf_model=core_model(ts.brdf_model),
         # The core counts rows from the top, Blender from the bottom.
         window=None if (x0, y0, x1, y1) == (0, 0, width, height)
         else (x0, height - y1, x1, height - y0),
         threads=threads,
         passes=core_passes,
-        **adaptive,
+        **core_settings(ts),
     )
 
     session.begin()

@@ -13,6 +13,7 @@ from bpy.types import Panel
 from . import export
 from .brdf_model import core_model
 from .reporting import Reporter
+from .settings_table import BY_PROP, in_panel
 
 ENGINE = 'TORRANCE'
 
@@ -32,6 +33,17 @@ def _split(layout):
     layout.use_property_split = True
     layout.use_property_decorate = False
     return layout
+
+
+def _setting(layout, ts, prop, **options):
+    """scene.torrance.<prop>, labelled as the settings table says for its panel."""
+    layout.prop(ts, prop, text=BY_PROP[prop].panel_text, **options)
+
+
+def _panel_settings(layout, ts, panel):
+    """The settings the table puts in `panel`, in the table's order."""
+    for setting in in_panel(type(panel).__name__):
+        layout.prop(ts, setting.prop, text=setting.panel_text)
 
 
 def _messages(layout, messages, limit=8, ok_text=None):
@@ -195,9 +207,7 @@ class TORRANCE_RENDER_PT_sampling_viewport(TorrancePanel, Panel):
     def draw(self, context):
         layout = _split(self.layout)
         ts = context.scene.torrance
-        col = layout.column(align=True)
-        col.prop(ts, "viewport_samples", text="Samples")
-        col.prop(ts, "viewport_start_resolution")
+        _panel_settings(layout.column(align=True), ts, self)
         layout.prop(context.scene.render, "preview_pixel_size", text="Pixel Size")
 
 
@@ -211,17 +221,17 @@ class TORRANCE_RENDER_PT_sampling_render(TorrancePanel, Panel):
         ts = context.scene.torrance
         heading = layout.column(align=True, heading="Noise Threshold")
         row = heading.row(align=True)
-        row.prop(ts, "use_adaptive_sampling", text="")
+        _setting(row, ts, "use_adaptive_sampling")
         sub = row.row()
         sub.active = ts.use_adaptive_sampling
-        sub.prop(ts, "adaptive_threshold", text="")
+        _setting(sub, ts, "adaptive_threshold")
         col = layout.column(align=True)
         if ts.use_adaptive_sampling:
-            col.prop(ts, "samples", text=" Max Samples")
-            col.prop(ts, "adaptive_min_samples", text="Min Samples")
+            col.prop(ts, "samples", text=" Max " + BY_PROP["samples"].panel_text)
+            _setting(col, ts, "adaptive_min_samples")
         else:
-            col.prop(ts, "samples", text="Samples")
-        col.prop(ts, "time_limit")
+            _setting(col, ts, "samples")
+        _setting(col, ts, "time_limit")
 
 
 class TORRANCE_RENDER_PT_sampling_preview(TorrancePanel, Panel):
@@ -233,9 +243,7 @@ class TORRANCE_RENDER_PT_sampling_preview(TorrancePanel, Panel):
     def draw(self, context):
         layout = _split(self.layout)
         ts = context.scene.torrance
-        col = layout.column(align=True)
-        col.prop(ts, "preview_samples", text="Samples")
-        col.prop(ts, "preview_max_bounces", text="Max Bounces")
+        _panel_settings(layout.column(align=True), ts, self)
 
 
 class TORRANCE_RENDER_PT_sampling_advanced(TorrancePanel, Panel):
@@ -245,12 +253,7 @@ class TORRANCE_RENDER_PT_sampling_advanced(TorrancePanel, Panel):
     bl_options = {'DEFAULT_CLOSED'}
 
     def draw(self, context):
-        layout = _split(self.layout)
-        layout.prop(context.scene.torrance, "seed")
-        layout.prop(context.scene.torrance, "use_efficiency_roulette")
-        layout.prop(context.scene.torrance, "use_mirror_images")
-        layout.prop(context.scene.torrance, "use_nee_every_light")
-        layout.prop(context.scene.torrance, "first_bounce_splits")
+        _panel_settings(_split(self.layout), context.scene.torrance, self)
 
 
 class TORRANCE_RENDER_PT_sampling_path_guiding(TorrancePanel, Panel):
@@ -260,13 +263,13 @@ class TORRANCE_RENDER_PT_sampling_path_guiding(TorrancePanel, Panel):
     bl_options = {'DEFAULT_CLOSED'}
 
     def draw_header(self, context):
-        self.layout.prop(context.scene.torrance, "use_guiding", text="")
+        _setting(self.layout, context.scene.torrance, "use_guiding")
 
     def draw(self, context):
         layout = _split(self.layout)
         ts = context.scene.torrance
         layout.active = ts.use_guiding
-        layout.prop(ts, "guiding_training_fraction")
+        _setting(layout, ts, "guiding_training_fraction")
 
 
 class TORRANCE_RENDER_PT_light_paths(TorrancePanel, Panel):
@@ -274,9 +277,7 @@ class TORRANCE_RENDER_PT_light_paths(TorrancePanel, Panel):
     bl_context = "render"
 
     def draw(self, context):
-        layout = _split(self.layout)
-        layout.prop(context.scene.torrance, "max_bounces")
-        layout.prop(context.scene.torrance, "transparent_max_bounces")
+        _panel_settings(_split(self.layout), context.scene.torrance, self)
 
 
 class TORRANCE_RENDER_PT_light_paths_clamping(TorrancePanel, Panel):
@@ -287,9 +288,7 @@ class TORRANCE_RENDER_PT_light_paths_clamping(TorrancePanel, Panel):
     def draw(self, context):
         layout = _split(self.layout)
         ts = context.scene.torrance
-        col = layout.column(align=True)
-        col.prop(ts, "sample_clamp_direct", text="Direct Light")
-        col.prop(ts, "sample_clamp_indirect", text="Indirect Light")
+        _panel_settings(layout.column(align=True), ts, self)
 
 
 class TORRANCE_RENDER_PT_shading(TorrancePanel, Panel):
@@ -299,7 +298,7 @@ class TORRANCE_RENDER_PT_shading(TorrancePanel, Panel):
     def draw(self, context):
         layout = _split(self.layout)
         ts = context.scene.torrance
-        layout.prop(ts, "brdf_model")
+        _setting(layout, ts, "brdf_model")
         col = layout.column(align=True)
         if ts.brdf_model == 'PRINCIPLED':
             version = "v2" if core_model(ts.brdf_model) == 'PRINCIPLED_V2' else "v1"
@@ -319,8 +318,7 @@ class TORRANCE_RENDER_PT_film(TorrancePanel, Panel):
     def draw(self, context):
         layout = _split(self.layout)
         col = layout.column()
-        col.prop(context.scene.torrance, "filter_width")
-        col.prop(context.scene.torrance, "use_filter_splatting")
+        _panel_settings(col, context.scene.torrance, self)
         col.prop(context.scene.render, "film_transparent", text="Transparent")
 
 
@@ -337,7 +335,7 @@ class TORRANCE_RENDER_PT_performance(TorrancePanel, Panel):
         sub = col.column(align=True)
         sub.enabled = rd.threads_mode == 'FIXED'
         sub.prop(rd, "threads")
-        col.prop(context.scene.torrance, "use_progressive_display")
+        _panel_settings(col, context.scene.torrance, self)
 
 
 class TORRANCE_RENDER_PT_compatibility(TorrancePanel, Panel):

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """What the viewport render reads from the scene and from the 3D view's shading."""
 
-from ..brdf_model import core_model
+from ..core_settings import core_settings
 
 UNLIMITED_SAMPLES = 1 << 16     # "0 = unlimited" viewport samples
 
@@ -12,14 +12,9 @@ def viewport_settings(scene):
     rd = scene.render
     samples = int(ts.viewport_samples)
     return dict(
+        core_settings(ts, viewport=True),
         samples=UNLIMITED_SAMPLES if samples <= 0 else samples,
-        max_bounces=int(ts.max_bounces),
-        max_transparent_bounces=int(ts.transparent_max_bounces),
-        seed=int(ts.seed),
-        filter_width=float(ts.filter_width),
-        filter_splatting=bool(ts.use_filter_splatting),
         transparent_background=bool(rd.film_transparent),
-        brdf_model=core_model(ts.brdf_model),
         threads=int(rd.threads) if rd.threads_mode == 'FIXED' else 0,
         # Unguided: the viewport restarts at every edit, and a guide's training passes (1, 2, 4,
         # ... samples per pixel) would delay its first images for a gain only long renders see.
@@ -27,9 +22,6 @@ def viewport_settings(scene):
         # would be too young to pay, and a render border then shows the full view's own pixels.
         guiding=False,
         efficiency_roulette=False,
-        mirror_images=bool(ts.use_mirror_images),
-        nee_every_light=bool(ts.use_nee_every_light),
-        first_bounce_splits=int(ts.first_bounce_splits),
     )
 
 
