@@ -104,18 +104,16 @@ ALTERNATIVES = {"sampler": ("RANDOM",), "light_selection": ("IRRADIANCE", "UNIFO
 
 
 def ablation_levers(core):
-    """[(key, default, alternative)]: every boolean field of RenderSettings that is not one of
-    the known ones (e.g. `specialize`, `guiding`), switched to its opposite (key = the field),
-    and each alternative of the known string options of ALTERNATIVES (key FIELD=ALTERNATIVE)."""
+    """[(key, default, alternative)]: every boolean field of RenderSettings (its FIELDS) that is
+    not one of the known ones (e.g. `specialize`, `guiding`), switched to its opposite (key = the
+    field), and each alternative of the known string options of ALTERNATIVES (key
+    FIELD=ALTERNATIVE)."""
     s = core.RenderSettings()
     out = []
-    for name in dir(s):
-        if name.startswith("_") or name in KNOWN_SETTINGS:
+    for name in sorted(s.FIELDS):
+        if name in KNOWN_SETTINGS:
             continue
-        try:
-            value = getattr(s, name)
-        except Exception:
-            continue
+        value = getattr(s, name)
         if isinstance(value, bool):
             out.append((name, value, not value))
         elif name in ALTERNATIVES and isinstance(value, (str, int)):
