@@ -1,5 +1,6 @@
 #include "torrance/shader_bump.h"
 
+#include "torrance/shader_vector.h"
 #include "torrance/shading_normal.h"
 
 #include <algorithm>
@@ -73,8 +74,30 @@ glm::vec4 normal_map_op(const ShaderOpContext& c) {
     return glm::vec4(side * tangent_normal_map(color, n, g.tangent, g.bitangent_sign, strength), 0.0f);
   }
   Vec3 m = 2.0f * (color - Vec3(0.5f));
-  if (c.ins.mode == 2) m = Vec3(m.x, -m.y, -m.z);
-  return glm::vec4(mix_mapped_normal(g.normal, side * unit_or_zero(m), strength), 0.0f);
+  if (c.ins.mode == 2 || c.ins.mode == 4) m = Vec3(m.x, -m.y, -m.z);
+  m = c.ins.mode >= 3 ? ObjectTransform(c, 2).normal(m) : unit_or_zero(m);
+  return glm::vec4(mix_mapped_normal(g.normal, side * m, strength), 0.0f);
+}
+
+glm::vec4 displacement_op(const ShaderOpContext& c) {
+  const float amount = (c.value(0) - c.value(1)) * c.value(2);
+  if (c.ins.mode == 1) return glm::vec4(c.vector(3) * amount, 0.0f);
+  const ObjectTransform object(c, 4);
+  return glm::vec4(object.direction(object.inverse_normal(c.vector(3)) * amount), 0.0f);
+}
+
+glm::vec4 vector_displacement_op(const ShaderOpContext& c) {
+  const ShaderGlobals& g = c.globals;
+  Vec3 d = (c.vector(0) - Vec3(c.value(1))) * c.value(2);
+  const ObjectTransform object(c, 3);
+  if (c.ins.mode == 0) {  // the frame in object space, as Cycles' tangent attribute is
+    const Vec3 n = object.inverse_normal(g.normal);
+    Vec3 t = unit_or_zero(object.inverse_direction(g.tangent));
+    t = unit_or_zero(t - glm::dot(t, n) * n);
+    const Vec3 b = g.bitangent_sign * unit_or_zero(glm::cross(n, t));
+    d = t * d.x + n * d.y + b * d.z;
+  }
+  return glm::vec4(c.ins.mode == 2 ? d : object.direction(d), 0.0f);
 }
 
 }  // namespace torrance::shader

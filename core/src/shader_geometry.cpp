@@ -1,6 +1,7 @@
 #include "torrance/shader_geometry.h"
 
 #include "torrance/principled.h"
+#include "torrance/shader_vector.h"
 
 #include <algorithm>
 #include <cmath>
@@ -85,6 +86,22 @@ glm::vec4 light_path_op(const ShaderOpContext& c) {
     default: v = float(g.transmission_depth); break;
   }
   return glm::vec4(v, 0.0f, 0.0f, 0.0f);
+}
+
+glm::vec4 tangent_op(const ShaderOpContext& c) {
+  const ShaderGlobals& g = c.globals;
+  const ObjectTransform object(c, 1);
+  Vec3 t;
+  if (c.ins.mode == 3) {
+    if (glm::length(g.tangent) == 0.0f) return glm::vec4(0.0f);
+    t = object.inverse_direction(g.tangent);  // the UV tangent in object space, as Cycles stores it
+  } else {
+    const Vec3 p = c.in(0).w != 0.0f ? c.vector(0) - Vec3(0.5f) : g.position - Vec3(0.5f);
+    t = c.ins.mode == 0 ? Vec3(0.0f, -p.z, p.y) : c.ins.mode == 1 ? Vec3(-p.z, 0.0f, p.x) : Vec3(-p.y, p.x, 0.0f);
+  }
+  t = object.normal(t);
+  const Vec3 n = c.vector(5);
+  return glm::vec4(glm::cross(n, safe_unit(glm::cross(t, n))), 0.0f);
 }
 
 glm::vec4 camera_transform_op(const ShaderOpContext& c) {

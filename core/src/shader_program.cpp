@@ -96,7 +96,9 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
     case ShaderOpcode::Luminance: return {1, 1, false, luminance};
     case ShaderOpcode::Average: return {1, 1, false, average};
     case ShaderOpcode::Bump: return {6, 1, false, shader::bump_op};
-    case ShaderOpcode::NormalMap: return {2, 3, false, shader::normal_map_op};
+    case ShaderOpcode::NormalMap: return {6, shader::kNormalMapModes, false, shader::normal_map_op};
+    case ShaderOpcode::Displacement: return {8, 2, false, shader::displacement_op};
+    case ShaderOpcode::VectorDisplacement: return {7, 3, false, shader::vector_displacement_op};
     // The node families' ops (a line each, in opcode order):
     // [noise ops]
     case ShaderOpcode::Noise: return {6, shader::kNoiseModes, false, shader::noise_op};
@@ -126,10 +128,12 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
     case ShaderOpcode::Fresnel: return {2, 1, false, shader::fresnel_op};
     case ShaderOpcode::LayerWeight: return {2, 2, false, shader::layer_weight_op};
     case ShaderOpcode::Attribute: return {0, 1, false, shader::attribute_op};
+    case ShaderOpcode::Tangent: return {6, shader::kTangentModes, false, shader::tangent_op};
     case ShaderOpcode::Mapping: return {4, 4, false, shader::mapping_op};
     case ShaderOpcode::VectorRotate: return {5, 5, false, shader::vector_rotate_op};
     case ShaderOpcode::LightPath: return {0, shader::kLightPathModes, false, shader::light_path_op};
     case ShaderOpcode::CameraTransform: return {4, shader::kCameraTransformModes, false, shader::camera_transform_op};
+    case ShaderOpcode::VectorTransform: return {11, shader::kVectorTransformModes, false, shader::vector_transform_op};
     default: break;
   }
   return {0, 0, false, nullptr};

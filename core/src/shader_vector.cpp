@@ -62,6 +62,63 @@ Vec3 vector_rotate(int type, bool invert, const Vec3& vector, const Vec3& center
   return rotate_around_axis(vector - center, a / len, invert ? -angle : angle) + center;
 }
 
+Vec3 safe_unit(const Vec3& v) {
+  const float len = glm::length(v);
+  return len > 0.0f && std::isfinite(len) ? v / len : Vec3(0.0f);
+}
+
+ObjectTransform::ObjectTransform(const ShaderOpContext& c, int first) {
+  const glm::mat3 m(c.vector(first), c.vector(first + 1), c.vector(first + 2));
+  const float det = glm::determinant(m);
+  if (det == 0.0f || !std::isfinite(det)) return;
+  matrix = m;
+  inverse = glm::inverse(m);
+  location = c.vector(first + 3);
+  known = true;
+}
+
+Vec3 ObjectTransform::normal(const Vec3& n) const { return safe_unit(known ? glm::transpose(inverse) * n : n); }
+Vec3 ObjectTransform::inverse_normal(const Vec3& n) const { return safe_unit(known ? glm::transpose(matrix) * n : n); }
+
+namespace {
+
+// A 3 x 4 transform given by its rows (w the translation) of a point (w 1) or a direction (w 0).
+Vec3 through_rows(const glm::vec4 rows[3], const Vec3& v, float w) {
+  const glm::vec4 p(v, w);
+  return Vec3(glm::dot(rows[0], p), glm::dot(rows[1], p), glm::dot(rows[2], p));
+}
+
+}  // namespace
+
+Vec3 vector_transform(int mode, const Vec3& v, const ObjectTransform& object, const glm::vec4 to_camera[3],
+                      const glm::vec4 to_world[3]) {
+  enum { kWorld, kObject, kCamera };
+  const int type = mode / 9, from = mode / 3 % 3, to = mode % 3;
+  const bool direction = type != 0;
+  const float w = direction ? 0.0f : 1.0f;
+  auto into_object = [&](const Vec3& x) { return direction ? object.inverse_direction(x) : object.inverse_point(x); };
+  auto out_of_object = [&](const Vec3& x) { return direction ? object.direction(x) : object.point(x); };
+  Vec3 out = v;
+  if (from == kWorld) {
+    if (to == kCamera) out = through_rows(to_camera, out, w);
+    else if (to == kObject) out = into_object(out);
+  } else if (from == kCamera) {
+    if (to != kCamera) out = through_rows(to_world, out, w);
+    if (to == kObject) out = into_object(out);
+  } else {
+    if (to != kObject) out = out_of_object(out);
+    if (to == kCamera) out = through_rows(to_camera, out, w);
+  }
+  return type == 2 ? safe_unit(out) : out;
+}
+
+glm::vec4 vector_transform_op(const ShaderOpContext& c) {
+  const ObjectTransform object(c, 1);
+  const glm::vec4 to_camera[3] = {c.in(5), c.in(6), c.in(7)};
+  const glm::vec4 to_world[3] = {c.in(8), c.in(9), c.in(10)};
+  return glm::vec4(vector_transform(c.ins.mode, c.vector(0), object, to_camera, to_world), 0.0f);
+}
+
 glm::vec4 mapping_op(const ShaderOpContext& c) {
   return glm::vec4(mapping(c.ins.mode, c.vector(0), c.vector(1), c.vector(2), c.vector(3)), 0.0f);
 }

@@ -12,20 +12,18 @@ output node (the output Cycles would use):
   Blender 4.x's Principled v2 by its names (Specular IOR Level with IOR, Emission
   Color; _PRINCIPLED_SOCKETS) and, for the PRINCIPLED_V2 model, its IOR, Specular Tint
   colour and distribution (Multiscatter GGX or GGX);
-* Diffuse BSDF: a pure diffuse material (specular 0);
 * Glass BSDF: Color, Roughness, IOR (GGX or Beckmann; Sharp is roughness 0);
 * Transparent BSDF: Color (rays pass straight through, tinted);
 * Emission: a black emitter;
 * Mix Shader / Add Shader trees of Principled, Diffuse, Glossy BSDF and Emission (and a lone
-  Glossy BSDF): a mixture of closures (mixtures.py), its Fac a constant, an Image Texture or a
-  Checker Texture; a Mix Shader of a Transparent BSDF and another shader: that shader with an
+  Diffuse or Glossy BSDF: a closure means the same alone and in a Mix): a mixture of closures
+  (mixtures.py), its Fac any shader graph; a Mix Shader of a Transparent BSDF and another shader: that shader with an
   alpha (transparent_mix.py).
 
-Base Color, Metallic, Roughness, Emission (and the Color of Diffuse BSDF and
-Emission) may come from an Image Texture node (its Color output; float sockets
-take the colour's luminance, as Blender converts them), the Normal from a Normal
-Map node in tangent space whose Color is an Image Texture, or a Bump node whose Height is an
-Image Texture (normal_inputs.py). Textures are looked
+Base Color, Metallic, Roughness, Emission and its strength (and the Color and Roughness of
+Diffuse and Glossy BSDF, the Color and Strength of Emission) may come from any node graph the
+shader graph compiles (shader_graph/), the Normal from a Bump or Normal Map node of any graph
+(normal_inputs.py). Textures are looked
 up with the mesh's active render UV map; each image is loaded once per render
 (texture_table.TextureTable). A socket linked to something Torrance can not evaluate keeps its
 own default value and the render reports it once per material and socket.
@@ -40,10 +38,11 @@ import numpy as np
 
 from .nodes import finite_or, is_default_uv, node_label, plain_image, source_socket
 from .shader_graph.graph import KIND_OF_SOCKET, AttributeIds, GraphCompiler, Unsupported
-from .shader_graph.program import ProgramBuilder
+from .shader_graph.math_ops import VECTOR_MATH_OPS
+from .shader_graph.program import ProgramBuilder, constant
 from .shader_graph.registry import READERS
 from .mixtures import MIXTURE_SURFACES, read_mixture
-from .normal_inputs import read_normal_input
+from .normal_inputs import begin_displacement, read_normal_input
 from .transparent_mix import read_transparent_mix
 
 # Cycles' surface for objects without material or with an empty slot is a 0.8 grey diffuse;
@@ -153,7 +152,7 @@ class MaterialReader:
         self.reporter = reporter
         self.textures = textures         # TextureTable (the ui panels: a dry-run stand-in)
         self.attributes = attributes if attributes is not None else AttributeIds()
-        self._begin_program()
+        self._begin_program(None)
 
     def _socket_value(self, mat, node, name, fallback):
         """The value of input `name` of `node`: its default, or a constant node it is linked to."""
@@ -213,10 +212,12 @@ class MaterialReader:
                               f"socket's own value")
         return socket.default_value
 
-    def _begin_program(self):
-        """A new shader program for the closure about to be read."""
+    def _begin_program(self, mat):
+        """A new shader program for the closure about to be read (mat's Displacement, as bump,
+        first)."""
         self._program = ProgramBuilder()
         self._program_inputs = {}
+        begin_displacement(self, mat, self._program)
 
     def _with_program(self, out):
         """add_material() arguments with the closure's shader program (if it has one); a Normal
@@ -308,8 +309,6 @@ class MaterialReader:
         kind = node.bl_idname
         if kind == 'ShaderNodeBsdfPrincipled':
             return self._principled(mat, node)
-        if kind == 'ShaderNodeBsdfDiffuse':
-            return self._diffuse(mat, node)
         if kind == 'ShaderNodeBsdfGlass':
             return self._glass(mat, node)
         if kind == 'ShaderNodeBsdfTransparent':
@@ -335,13 +334,18 @@ class MaterialReader:
         t = self._socket_input
         version = principled_version(node)
         names = _PRINCIPLED_SOCKETS[version]
-        self._begin_program()
+        self._begin_program(mat)
         base, base_tex = t(mat, node, "Base Color", d['base_color'], program_input='base_color')
         metallic, metallic_tex = t(mat, node, "Metallic", d['metallic'], program_input='metallic')
         roughness, roughness_tex = t(mat, node, "Roughness", d['roughness'],
                                      program_input='roughness')
-        emission, emission_tex = t(mat, node, names['emission'], d['emission'],
-                                   program_input='emission')
+        emission = {}
+        if not self._varying_emission(mat, node, names['emission'], "Emission Strength", emission):
+            color, emission_tex = t(mat, node, names['emission'], d['emission'],
+                                    program_input='emission')
+            emission = dict(emission=_color3(color, d['emission']), emission_texture=emission_tex,
+                            emission_strength=finite_or(v(mat, node, "Emission Strength", 1.0),
+                                                        0.0))
         alpha, alpha_tex = t(mat, node, "Alpha", 1.0, image_output="Alpha")
         specular = finite_or(v(mat, node, names['specular'], d['specular']), d['specular'])
         v2_inputs = {}
@@ -363,11 +367,9 @@ class MaterialReader:
             metallic=_clamp(finite_or(metallic, d['metallic']), 0.0, 1.0),
             roughness=_clamp(finite_or(roughness, d['roughness']), 0.0, 1.0),
             specular=max(0.0, specular),
-            emission=_color3(emission, d['emission']),
-            emission_strength=finite_or(v(mat, node, "Emission Strength", 1.0), 0.0),
             specular_tint=specular_tint,
             base_color_texture=base_tex, metallic_texture=metallic_tex,
-            roughness_texture=roughness_tex, emission_texture=emission_tex,
+            roughness_texture=roughness_tex, **emission,
             **v2_inputs,
             **glass,
         )
@@ -385,17 +387,6 @@ class MaterialReader:
             self.reporter.warning(
                 f"Material '{mat.name}': Torrance ignores the Principled BSDF input(s) "
                 f"{', '.join(ignored)}")
-        out.update(read_normal_input(self, mat, node))
-        return _sanitize(self._with_program(out))
-
-    def _diffuse(self, mat, node):
-        d = DEFAULT_MATERIAL
-        self._begin_program()
-        color, tex = self._socket_input(mat, node, "Color", d['base_color'],
-                                        program_input='base_color')
-        color = _color3(color, d['base_color'])
-        out = dict(d, base_color=color, metallic=0.0, specular=0.0, roughness=1.0,
-                   base_color_texture=tex)
         out.update(read_normal_input(self, mat, node))
         return _sanitize(self._with_program(out))
 
@@ -424,7 +415,7 @@ class MaterialReader:
         """Glass BSDF: Color (or an Image Texture), Roughness, IOR; GGX or Beckmann (Sharp =
         roughness 0; Multiscatter GGX is reported and rendered as GGX)."""
         d = DEFAULT_MATERIAL
-        self._begin_program()
+        self._begin_program(mat)
         color, tex = self._socket_input(mat, node, "Color", (1.0, 1.0, 1.0))
         roughness = _clamp(finite_or(self._socket_value(mat, node, "Roughness", 0.0), 0.0),
                            0.0, 1.0)
@@ -451,14 +442,42 @@ class MaterialReader:
 
     def _emission(self, mat, node):
         d = DEFAULT_MATERIAL
-        self._begin_program()
-        color, tex = self._socket_input(mat, node, "Color", (1.0, 1.0, 1.0),
-                                        program_input='emission')
-        color = _color3(color, (1.0, 1.0, 1.0))
-        strength = finite_or(self._socket_value(mat, node, "Strength", 1.0), 1.0)
-        return _sanitize(self._with_program(dict(
-            d, base_color=(0.0, 0.0, 0.0), metallic=0.0, specular=0.0, emission=color,
-            emission_strength=strength, emission_texture=tex)))
+        self._begin_program(mat)
+        out = dict(d, base_color=(0.0, 0.0, 0.0), metallic=0.0, specular=0.0)
+        if not self._varying_emission(mat, node, "Color", "Strength", out):
+            color, tex = self._socket_input(mat, node, "Color", (1.0, 1.0, 1.0),
+                                            program_input='emission')
+            out.update(emission=_color3(color, (1.0, 1.0, 1.0)), emission_texture=tex,
+                       emission_strength=finite_or(self._socket_value(mat, node, "Strength", 1.0),
+                                                   1.0))
+        return _sanitize(self._with_program(out))
+
+    def _varying_emission(self, mat, node, color_name, strength_name, out):
+        """When the node graph varies the emission's strength over the surface: the closure's
+        program computes Color x Strength (emission strength 1 in `out`); True then."""
+        strength_socket = node.inputs.get(strength_name)
+        if strength_socket is None or not strength_socket.is_linked:
+            return False
+        builder = self._program
+        mark = builder.mark()
+        compiler = GraphCompiler(builder, self.textures, READERS, self.attributes)
+        try:
+            strength = compiler.input(strength_socket, 'float')
+            if strength.constant:
+                builder.rollback(mark)
+                return False
+            color = compiler.input(node.inputs[color_name], 'color')
+        except Unsupported as exc:
+            builder.rollback(mark)
+            self.reporter.warning(f"Material '{mat.name}': input '{strength_name}' of "
+                                  f"{node_label(node)}: {exc}; using the socket's own value")
+            return False
+        zero = constant('vector', (0.0, 0.0, 0.0))
+        self._program_inputs['emission'] = builder.emit(
+            "VectorMath", 'color', [color, zero, zero, strength],
+            mode=VECTOR_MATH_OPS.index("SCALE"))
+        out.update(emission=(1.0, 1.0, 1.0), emission_strength=1.0, emission_texture=-1)
+        return True
 
 
 def _sanitize(m):

@@ -22,15 +22,17 @@ from .shader_graph.graph import GraphCompiler, Unsupported
 from .shader_graph.program import ProgramBuilder
 from .shader_graph.registry import READERS
 from .nodes import finite_or, is_default_uv, node_label, plain_image, source_socket
-from .normal_inputs import normal_source, read_normal_input
+from .normal_inputs import begin_displacement, normal_source, read_normal_input
 
 MAX_CLOSURES = 8          # the core's kMaxMixtureComponents
 MAX_FACTORS = 8           # the core's kMaxMixFactors
 MAX_DEPTH = 8             # Mix/Add Shader nodes on one path
 
 SHADER_TREE_NODES = {'ShaderNodeMixShader', 'ShaderNodeAddShader'}
-# Surfaces read as a mixture (a one-closure one for a lone Glossy BSDF, 3.x's and 4.x's node).
-MIXTURE_SURFACES = SHADER_TREE_NODES | {'ShaderNodeBsdfGlossy', 'ShaderNodeBsdfAnisotropic'}
+# Surfaces read as a mixture (a one-closure one for a lone Diffuse or Glossy BSDF, 3.x's and
+# 4.x's node): a closure means the same alone and in a Mix.
+MIXTURE_SURFACES = SHADER_TREE_NODES | {'ShaderNodeBsdfDiffuse', 'ShaderNodeBsdfGlossy',
+                                        'ShaderNodeBsdfAnisotropic'}
 _GLOSSY_AS_GGX = {'BECKMANN', 'ASHIKHMIN_SHIRLEY', 'MULTI_GGX'}
 
 
@@ -52,6 +54,7 @@ class ShaderTreeReader:
         self.normal_key = None            # (node, output) feeding the first closure's Normal
         self.program = ProgramBuilder()   # the factors the shader graph computes
         self.program_factors = {}         # factor index -> its Value in self.program
+        begin_displacement(reader, mat, self.program)
 
     def warn(self, text):
         self.reader.reporter.warning(f"Material '{self.mat.name}': {text}")
@@ -256,24 +259,26 @@ class ShaderTreeReader:
         reader, mat = self.reader, self.mat
         from .materials import DEFAULT_MATERIAL, _color3, _sanitize
         d = DEFAULT_MATERIAL
-        color, color_tex = reader._socket_input(mat, node, "Color", d['base_color'])
-        roughness, roughness_tex = reader._socket_input(mat, node, "Roughness", 0.0)
-        roughness = min(max(finite_or(roughness, 0.0), 0.0), 1.0)
         kind = 'diffuse'
+        sharp = getattr(node, "distribution", None) == 'SHARP'
+        reader._begin_program(mat)
+        color, color_tex = reader._socket_input(mat, node, "Color", d['base_color'],
+                                                program_input='base_color')
+        roughness, roughness_tex = ((0.0, -1) if sharp else reader._socket_input(
+            mat, node, "Roughness", 0.0, program_input='roughness'))
+        roughness = min(max(finite_or(roughness, 0.0), 0.0), 1.0)
         if node.bl_idname in ('ShaderNodeBsdfGlossy', 'ShaderNodeBsdfAnisotropic'):
             kind = 'glossy'
             anisotropy = node.inputs.get("Anisotropy")
             if anisotropy is not None and (anisotropy.is_linked or anisotropy.default_value != 0.0):
                 self.warn(f"{node_label(node)}: Torrance ignores its Anisotropy (isotropic GGX)")
-            if node.distribution == 'SHARP':
-                roughness, roughness_tex = 0.0, -1
-            elif node.distribution in _GLOSSY_AS_GGX:
+            if node.distribution in _GLOSSY_AS_GGX:
                 self.warn(f"{node_label(node)}: the {node.distribution.replace('_', ' ').title()} "
                           f"distribution is rendered as GGX")
         args = dict(d, base_color=_color3(color, d['base_color']), metallic=0.0, specular=0.0,
                     roughness=roughness, base_color_texture=color_tex,
                     roughness_texture=roughness_tex)
-        return kind, _sanitize(args)
+        return kind, _sanitize(reader._with_program(args))
 
 
 def _plain_checker(node):

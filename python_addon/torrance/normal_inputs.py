@@ -16,11 +16,39 @@ Two plain cases keep the image paths of the core (no program needed; the same fo
   bump_strength, bump_distance (negated when Invert is set).
 
 What can not be compiled is reported and ignored (the surface's own normal).
+
+A Material Output's Displacement is rendered as bump (shader_graph/displacement.py, as Cycles'
+"Bump Only"): begin_displacement compiles it first into each closure program, whose reads of the
+shading normal (an unlinked Normal, Geometry > Normal) then see the bumped one.
 """
 
 from .nodes import finite_or, node_label, plain_image, source_socket
+from .shader_graph.displacement import METHODS, bump_from_displacement, displacement_method
 from .shader_graph.graph import GraphCompiler, Unsupported
 from .shader_graph.registry import READERS
+
+
+def begin_displacement(reader, mat, builder):
+    """Compiles the Displacement of mat's active output as bump into a new closure program
+    (builder.shading_normal); reports what it can not render (true displacement, a graph it
+    can not compile: then the surface keeps its own normal)."""
+    tree = mat.node_tree if mat is not None else None
+    output = tree.get_output_node('CYCLES') if tree is not None else None
+    socket = output.inputs.get("Displacement") if output is not None else None
+    if socket is None or source_socket(socket) is None:
+        return
+    where = f"Material '{mat.name}': the Displacement of {node_label(output)}"
+    method = displacement_method(mat)
+    if method != 'BUMP':
+        reader.reporter.warning(f"{where}: method '{METHODS.get(method, method)}' - Torrance "
+                                f"does no true displacement; rendered as bump (Bump Only)")
+    mark = builder.mark()
+    try:
+        g = GraphCompiler(builder, reader.textures, READERS, reader.attributes)
+        builder.shading_normal = bump_from_displacement(g, socket)
+    except Unsupported as exc:
+        builder.rollback(mark)
+        reader.reporter.warning(f"{where}: {exc}; the displacement is ignored")
 
 def normal_source(node):
     """The output socket feeding the Normal input of `node`, or None."""
@@ -34,21 +62,21 @@ def read_normal_input(reader, mat, node, builder=None):
     program)."""
     if builder is None and getattr(reader, "skip_normals", False):
         return {}                     # a mixture's closure: the mixture reads the normal
+    builder = builder if builder is not None else reader._program
     socket = node.inputs.get("Normal")
     source = source_socket(socket) if socket is not None else None
     if source is None:
-        return {}
+        displaced = builder.shading_normal
+        return {} if displaced is None else dict(normal_value=displaced)
     src = source.node
     where = f"Material '{mat.name}': input 'Normal' of {node_label(node)}"
-    if not src.mute and src.bl_idname == 'ShaderNodeBump':
-        plain = _plain_bump(reader, mat, src, where)
+    plain_reader = {'ShaderNodeBump': _plain_bump, 'ShaderNodeNormalMap': _plain_normal_map}.get(
+        src.bl_idname)
+    # The image-only paths know no displaced shading normal.
+    if plain_reader is not None and not src.mute and builder.shading_normal is None:
+        plain = plain_reader(reader, mat, src, where)
         if plain is not None:
             return plain
-    if not src.mute and src.bl_idname == 'ShaderNodeNormalMap':
-        plain = _plain_normal_map(reader, mat, src, where)
-        if plain is not None:
-            return plain
-    builder = builder if builder is not None else reader._program
     mark = builder.mark()
     try:
         value = GraphCompiler(builder, reader.textures, READERS, reader.attributes).input(

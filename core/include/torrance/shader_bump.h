@@ -6,8 +6,20 @@
 //                   at ShaderInstruction::offset 1 and 2), in5 the Normal input (facing the
 //                   viewer); flags & 1: Invert. Out: the bumped normal, facing the viewer.
 //   NormalMap (17)  in0 Color, in1.x Strength; mode 0 tangent space (the hit's UV tangent),
-//                   1 world space, 2 Blender world space (y and z negated). Out: the normal,
-//                   facing the viewer.
+//                   1 world space, 2 Blender world space (y and z negated), 3 object space,
+//                   4 Blender object space (through the object's normal transform); in2-in5
+//                   the object (shader_vector.h's ObjectTransform; read in modes 3 and 4).
+//                   Out: the normal, facing the viewer.
+//   Displacement (18)  (svm/displace.h) in0.x Height, in1.x Midlevel, in2.x Scale, in3 Normal,
+//                   in4-in7 the object; mode 0 object space (the normal taken to object
+//                   space, the offset back to world), 1 world space. Out: the world-space
+//                   offset normal * (height - midlevel) * scale.
+//   VectorDisplacement (19)  in0 Vector, in1.x Midlevel, in2.x Scale, in3-in6 the object;
+//                   mode 0 tangent space ((x, y, z) along the UV tangent, the normal and the
+//                   bitangent, in object space), 1 object space, 2 world space. Out: the
+//                   world-space offset (vector - midlevel) * scale.
+// The add-on renders a Material Output's Displacement as Cycles' "Bump Only": the Bump op of
+// the offset's component along the normal, at the hit and its ray-differential offsets.
 #pragma once
 
 #include "torrance/shader_program.h"
@@ -34,6 +46,9 @@ Vec3 tangent_normal_map(const Vec3& c, const Vec3& n, const Vec3& tangent, float
 Vec3 mix_mapped_normal(const Vec3& n, const Vec3& mapped, float strength);
 
 glm::vec4 bump_op(const ShaderOpContext& c);
+constexpr int kNormalMapModes = 5;
 glm::vec4 normal_map_op(const ShaderOpContext& c);
+glm::vec4 displacement_op(const ShaderOpContext& c);
+glm::vec4 vector_displacement_op(const ShaderOpContext& c);
 
 }  // namespace torrance::shader

@@ -9,10 +9,16 @@
 //   Attribute (100)   the mesh attribute named by the resource (Scene::set_mesh_attributes),
 //                     interpolated over the hit triangle: xyz, w 1 (all 0 where the mesh lacks
 //                     it, as Cycles reads a missing attribute)
-//   LightPath (106)   Light Path: (value, 0, 0, 0) of the path's state (ShaderGlobals), mode 0 Is
-//                     Camera Ray, 1 Is Shadow Ray (0), 2 Is Diffuse, 3 Is Glossy, 4 Is Singular,
+//   LightPath (106)   Light Path: (value, 0, 0, 0) of the path's state (PathState), mode 0 Is
+//                     Camera Ray, 1 Is Shadow Ray, 2 Is Diffuse, 3 Is Glossy, 4 Is Singular,
 //                     5 Is Reflection, 6 Is Transmission Ray, 7 Ray Length, 8 Ray Depth,
 //                     9 Diffuse, 10 Glossy, 11 Transparent, 12 Transmission Depth
+//   Tangent (101)     the Tangent node (svm/tex_coord.h): mode 0-2 Radial about X, Y, Z of in0
+//                     (Generated, w 0 where the mesh lacks it: then the position), 3 UV Map (the
+//                     hit's UV tangent, ShaderGlobals::tangent, taken back to object space);
+//                     in1-in4 the object (shader_vector.h's ObjectTransform), in5 the shading
+//                     normal. Out: the tangent through the object's normal transform, made
+//                     perpendicular to the normal (0 without UVs)
 //   CameraTransform (107) the hit's position through the 4x4 matrix whose rows are in0-in3 (the
 //                     add-on's per-render constants: world to camera, or world to the camera's
 //                     NDC): mode 0 normalize(M p) (Camera Data > View Vector), 1 (M p).z (View
@@ -32,6 +38,8 @@ glm::vec4 layer_weight_op(const ShaderOpContext& c);
 glm::vec4 attribute_op(const ShaderOpContext& c);
 constexpr int kLightPathModes = 13;
 glm::vec4 light_path_op(const ShaderOpContext& c);
+constexpr int kTangentModes = 4;
+glm::vec4 tangent_op(const ShaderOpContext& c);
 constexpr int kCameraTransformModes = 5;
 glm::vec4 camera_transform_op(const ShaderOpContext& c);
 

@@ -40,6 +40,8 @@ enum class ShaderOpcode : uint8_t {
   Average,         // out.x = (in0.x + in0.y + in0.z) / 3: vector -> float
   Bump = 16,       // the Bump node (shader_bump.h): a normal from heights at the hit and its offsets
   NormalMap = 17,  // the Normal Map node (shader_bump.h)
+  Displacement = 18,        // the Displacement and Vector Displacement nodes (shader_bump.h)
+  VectorDisplacement = 19,
   // The node families' ops, each family a range of numbers (its header says what each op reads;
   // shader_op_info lists their shapes; python_addon/torrance/shader_graph/ the same numbers):
   //   32-47 noise (shader_noise.h), 48-55 Voronoi (shader_voronoi.h), 56-71 textures
@@ -72,10 +74,12 @@ enum class ShaderOpcode : uint8_t {
   Fresnel = 98,
   LayerWeight = 99,
   Attribute = 100,
+  Tangent = 101,
   Mapping = 104,       // shader_vector.h
   VectorRotate = 105,
   LightPath = 106,     // shader_geometry.h
   CameraTransform = 107,
+  VectorTransform = 108,  // shader_vector.h
 };
 constexpr int kShaderOpcodes = 128;
 

@@ -12,8 +12,10 @@ Keys (shader_graph's attribute requests):
   ('attribute', name)  an Attribute node's geometry attribute: a colour, vector or float
                        attribute of that name (a float as (v, v, v)), else a UV map of that name
   ('object_info', k)   Object Info's per-object constants (k: location, color, alpha, index,
-                       random), not the mesh's: object_info() gives them, add_world_mesh adds
-                       them to a world-space mesh (prototypes, shared, have none: 0 there)
+                       random; axis_x, axis_y, axis_z: the matrix's columns, for the shader
+                       graph's object transforms), not the mesh's: object_info() gives them,
+                       add_world_mesh adds them to a world-space mesh (prototypes, shared, have
+                       none: 0 there)
 A key the mesh lacks gets no layer: the program reads 0 there, as Cycles does.
 """
 
@@ -165,9 +167,9 @@ def object_random_id(name):
 
 def object_info(obj, matrix, random_id=None):
     """{('object_info', k): xyz} of a (non-instanced) object as Cycles 3.4 syncs it: its world
-    location (the matrix's translation), colour and alpha (Object > Viewport Display > Color),
-    pass index, and random number: random_id (default object_random_id of its name) times
-    1 / 0xFFFFFFFF, in float32."""
+    location (the matrix's translation) and axes (its columns), colour and alpha (Object >
+    Viewport Display > Color), pass index, and random number: random_id (default
+    object_random_id of its name) times 1 / 0xFFFFFFFF, in float32."""
     m = np.asarray(matrix, dtype=np.float64).reshape(4, 4)
     color = tuple(float(c) for c in obj.color)
     if random_id is None:
@@ -176,6 +178,9 @@ def object_info(obj, matrix, random_id=None):
     random = float(rid * (np.float32(1.0) / np.float32(0xFFFFFFFF)))
     one = lambda v: (float(v),) * 3  # noqa: E731
     return {('object_info', 'location'): tuple(m[:3, 3]),
+            ('object_info', 'axis_x'): tuple(m[:3, 0]),
+            ('object_info', 'axis_y'): tuple(m[:3, 1]),
+            ('object_info', 'axis_z'): tuple(m[:3, 2]),
             ('object_info', 'color'): color[:3],
             ('object_info', 'alpha'): one(color[3]),
             ('object_info', 'index'): one(obj.pass_index),

@@ -10,11 +10,11 @@ facing the viewer, like Geometry > Normal.
 """
 
 from ..nodes import node_label
-from .geometry import normal_input
+from .geometry import normal_input, object_transform
 from .graph import Unsupported
 
-# Normal Map spaces -> the NormalMap op's mode (Object spaces need the object's transform).
-_SPACES = {'TANGENT': 0, 'WORLD': 1, 'BLENDER_WORLD': 2}
+# Normal Map spaces -> the NormalMap op's mode (Object spaces read the object's transform).
+_SPACES = {'TANGENT': 0, 'WORLD': 1, 'BLENDER_WORLD': 2, 'OBJECT': 3, 'BLENDER_OBJECT': 4}
 
 
 def _bump(g, node, socket):
@@ -38,11 +38,11 @@ def _bump(g, node, socket):
 def _normal_map(g, node, socket):
     mode = _SPACES.get(node.space)
     if mode is None:
-        raise Unsupported(f"{node_label(node)} in {node.space.lower().replace('_', ' ')} space "
-                          f"(tangent and world spaces are supported)")
+        raise Unsupported(f"{node_label(node)} in {node.space.lower().replace('_', ' ')} space")
     color = g.input(node.inputs["Color"], 'color')
     strength = g.input(node.inputs["Strength"], 'float')
-    return g.builder.emit("NormalMap", 'vector', [color, strength], mode=mode)
+    obj = object_transform(g) if mode >= 3 else [color] * 4
+    return g.builder.emit("NormalMap", 'vector', [color, strength, *obj], mode=mode)
 
 
 READERS = {

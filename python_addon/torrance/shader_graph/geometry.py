@@ -10,7 +10,7 @@ from .math_ops import VECTOR_MATH_OPS as _VECTOR_MATH
 from .program import constant
 
 OPCODES = {"Geometry": 96, "Reflection": 97, "Fresnel": 98, "LayerWeight": 99, "Attribute": 100,
-           "LightPath": 106, "CameraTransform": 107}
+           "Tangent": 101, "LightPath": 106, "CameraTransform": 107}
 VARYING = set(OPCODES)
 FOLDS = {}
 
@@ -19,8 +19,19 @@ _GEOMETRY = {"Position": 0, "Normal": 1, "True Normal": 2, "Incoming": 3, "Backf
 
 
 def shading_normal(g):
-    """Geometry > Normal: the shading normal facing the viewer (an unlinked Normal input)."""
+    """Geometry > Normal: the shading normal facing the viewer (an unlinked Normal input); the
+    Material Output's Displacement rendered as bump when the program has one (ProgramBuilder.
+    shading_normal)."""
+    if g.builder.shading_normal is not None:
+        return g.builder.shading_normal
     return g.builder.emit("Geometry", 'vector', mode=_GEOMETRY["Normal"])
+
+
+def object_transform(g):
+    """The hit's object transform, four Values for the core's ObjectTransform (shader_vector.h):
+    its matrix's columns and location, per-object attribute layers (export/mesh_attributes.py's
+    object_info; all 0 where unknown, which the core reads as no object)."""
+    return [g.attribute(('object_info', k)) for k in ('axis_x', 'axis_y', 'axis_z', 'location')]
 
 
 def normal_input(g, node, name="Normal"):
@@ -34,6 +45,8 @@ def _geometry(g, node, socket):
     mode = _GEOMETRY.get(socket.identifier)
     if mode is None:
         raise Unsupported(f"{node_label(node)}'s output '{socket.name}' is not supported")
+    if mode == _GEOMETRY["Normal"]:
+        return shading_normal(g)
     return g.builder.emit("Geometry", 'float' if socket.identifier == "Backfacing" else 'vector',
                           mode=mode)
 
@@ -107,15 +120,13 @@ _LIGHT_PATH = {"Is Camera Ray": 0, "Is Shadow Ray": 1, "Is Diffuse Ray": 2, "Is 
 
 
 def _light_path(g, node, socket):
-    """Light Path: the path's state at the hit (Is Shadow Ray is 0 wherever Torrance shades;
+    """Light Path: the path's state where the shader runs (core/include/torrance/path_state.h;
     Is Volume Scatter Ray 0: no volumes)."""
     if socket.identifier == "Is Volume Scatter Ray":
         return constant('float', 0.0)
     mode = _LIGHT_PATH.get(socket.identifier)
     if mode is None:
         raise Unsupported(f"{node_label(node)}'s output '{socket.name}' is not supported")
-    if mode == 1:
-        return constant('float', 0.0)
     return g.builder.emit("LightPath", 'float', mode=mode)
 
 
@@ -125,7 +136,7 @@ def _scene_camera():
     return scene, (scene.camera if scene is not None else None)
 
 
-def _camera_rows(which):
+def camera_rows(which):
     """The rows (four four-float tuples) of the scene camera's world -> camera transform
     (Cycles' camera space: +z ahead, the matrix without scale) or world -> NDC ([0, 1] over the
     frame, its w in the last row); None without a camera."""
@@ -148,8 +159,19 @@ def _camera_rows(which):
     return [tuple(float(x) for x in row) for row in rows]
 
 
+def camera_to_world_rows():
+    """The rows (three four-float tuples) of the scene camera's camera -> world transform (the
+    inverse of camera_rows('camera')); None without a camera."""
+    from mathutils import Matrix
+    rows = camera_rows('camera')
+    if rows is None:
+        return None
+    inverse = Matrix(rows).inverted_safe()
+    return [tuple(float(x) for x in inverse[i]) for i in range(3)]
+
+
 def _camera_transform(g, node, mode):
-    rows = _camera_rows('ndc' if mode == 4 else 'camera')
+    rows = camera_rows('ndc' if mode == 4 else 'camera')
     if rows is None:
         raise Unsupported(f"{node_label(node)}: the scene has no camera")
     return g.builder.emit("CameraTransform", 'float' if mode in (1, 2) else 'vector',
@@ -213,8 +235,28 @@ def _object_info(g, node, socket):
     return value
 
 
+_TANGENT_AXES = {'X': 0, 'Y': 1, 'Z': 2}
+
+
+def _tangent(g, node, socket):
+    """Tangent: Radial about an axis of the Generated coordinates, or the UV map's tangent (each
+    mesh's active render UV map: the hit's UV tangent, as the tangent-space Normal Map reads
+    it), through the object's normal transform, perpendicular to the shading normal."""
+    if node.direction_type == 'UV_MAP':
+        mode, generated = 3, None
+    elif node.direction_type == 'RADIAL' and node.axis in _TANGENT_AXES:
+        mode, generated = _TANGENT_AXES[node.axis], g.generated()
+    else:
+        raise Unsupported(f"{node_label(node)}: direction {node.direction_type} {node.axis}")
+    normal = shading_normal(g)
+    position = normal if generated is None else generated      # the UV Map mode reads none
+    return g.builder.emit("Tangent", 'vector', [position, *object_transform(g), normal],
+                          mode=mode)
+
+
 READERS = {
-    # 'ShaderNodeLightPath': _light_path: not yet (its agreement test disagrees: ratio 1.039).
+    'ShaderNodeTangent': _tangent,
+    'ShaderNodeLightPath': _light_path,
     'ShaderNodeCameraData': _camera_data,
     'ShaderNodeNormal': _normal,
     'ShaderNodeObjectInfo': _object_info,

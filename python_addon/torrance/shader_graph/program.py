@@ -19,13 +19,16 @@ OPCODE = {name: i for i, name in enumerate((
     "TexCoordUV", "Image", "Channel", "Combine", "Math", "VectorMath", "MixColor", "MixFloat",
     "MixVector", "ColorModel", "Invert", "Gamma", "BrightContrast", "HueSaturation", "Luminance",
     "Average"))}
-OPCODE.update(Bump=16, NormalMap=17)   # the Bump and Normal Map nodes (shader_bump.h)
+# The Bump, Normal Map, Displacement and Vector Displacement nodes (shader_bump.h).
+OPCODE.update(Bump=16, NormalMap=17, Displacement=18, VectorDisplacement=19)
 OPCODE_NAME = {number: name for name, number in OPCODE.items()}
 SHADER_INPUTS = 12                 # kShaderInputs
 CODE_COLUMNS = 5 + SHADER_INPUTS   # opcode, mode, flags, resource, out, inputs
 MAX_REGISTERS = 128                # ShaderProgram::kMaxRegisters
 # Ops that read the hit (never folded).
-VARYING = {"TexCoordUV", "Image", "Bump", "NormalMap"}
+VARYING = {"TexCoordUV", "Image", "Bump", "NormalMap", "Displacement", "VectorDisplacement"}
+# (op, mode) of the ops that read the hit's UV tangent: the mesh then needs its UVs.
+READS_TANGENT = {("NormalMap", 0), ("Tangent", 3), ("VectorDisplacement", 0)}
 # A code row's flags bits 6-7: where a varying op reads the hit (ShaderInstruction::offset).
 OFFSET_SHIFT = 6
 
@@ -140,6 +143,9 @@ class ProgramBuilder:
         # Where the varying ops emitted now read the hit: 0 at it, 1 and 2 at it moved by the
         # ray differentials dx and dy (a Bump node's Height, compiled three times).
         self.offset = 0
+        # The shading normal the graph's reads of the hit's Normal see: None for the hit's own,
+        # else a Value computed first (a Material Output's Displacement, rendered as bump).
+        self.shading_normal = None
 
     def emit(self, op, kind, args=(), mode=0, flags=0, texture=-1, table=None):
         """The Value of an instruction (folded when it can be). table: the floats of an op that
@@ -180,10 +186,9 @@ class ProgramBuilder:
         return any(row[0] == OPCODE[op] for row in self.code)
 
     def uses_uvs(self):
-        """Whether the program reads the mesh's UVs (its UV map, or a tangent-space Normal Map's
-        tangent)."""
+        """Whether the program reads the mesh's UVs (its UV map, or their tangent)."""
         return self.reads("TexCoordUV") or any(
-            row[0] == OPCODE["NormalMap"] and row[1] == 0 for row in self.code)
+            (OPCODE_NAME[row[0]], row[1]) in READS_TANGENT for row in self.code)
 
     def register_of(self, v):
         """The final register index of a computed (non-constant) Value."""

@@ -7,7 +7,7 @@ render raises graph.Unsupported naming it.
 """
 
 from ..nodes import node_label
-from . import bump, color_ops, families, math_ops
+from . import bump, color_ops, displacement, families, math_ops
 from .graph import Unsupported, by_identifier
 from .program import constant
 
@@ -171,6 +171,7 @@ READERS = {
     'ShaderNodeRGBToBW': _rgb_to_bw,
     **families.READERS,
     **bump.READERS,
+    **displacement.READERS,
 }
 
 # Nodes read outside the value graph (closures, outputs, the world), with what Torrance renders
@@ -192,13 +193,15 @@ CLOSURES = {
                            "(and a Transparent BSDF), Fac a value, an Image Texture or a Checker "
                            "Texture",
     'ShaderNodeAddShader': "partly: trees of Principled, Diffuse, Glossy and Emission closures",
-    'ShaderNodeNormalMap': "partly: Tangent and World Space, Strength, any Color graph (Object "
-                           "spaces reported)",
+    'ShaderNodeNormalMap': "rendered: Tangent (each mesh's active render UV map), Object, "
+                           "World and the Blender spaces, Strength, any Color graph",
     'ShaderNodeBump': "rendered: any Height graph (evaluated at the hit and its ray-differential "
                       "offsets, as Cycles), Strength, Distance, Invert, Normal (chained bumps)",
     'ShaderNodeBackground': "world: Color (a constant or an Environment Texture), Strength",
     'ShaderNodeTexEnvironment': "world: equirectangular images feeding the Background",
-    'ShaderNodeOutputMaterial': "rendered: the active output (target All or Cycles)",
+    'ShaderNodeOutputMaterial': "rendered: the active output (target All or Cycles); its "
+                                "Displacement as bump (Cycles' Bump Only; the other methods "
+                                "are reported and rendered as bump too)",
     'ShaderNodeOutputWorld': "rendered: the active output",
     'ShaderNodeOutputLight': "partly: an Emission of constant Color and Strength",
     # Read by graph.GraphCompiler itself.

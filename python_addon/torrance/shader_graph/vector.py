@@ -1,14 +1,17 @@
 # SPDX-License-Identifier: Apache-2.0
 """The vector nodes (the core's shader_vector.h, opcodes 104-111): Mapping (Point, Texture,
 Vector, Normal) and Vector Rotate, with their reference twins (float64, as Cycles' float
-maths to ~1e-6)."""
+maths to ~1e-6); Vector Transform (it reads the hit's object: not folded)."""
 
 import math
 
 from ..nodes import node_label
+from .geometry import camera_rows, camera_to_world_rows, object_transform
 from .graph import Unsupported
+from .program import constant
 
-OPCODES = {"Mapping": 104, "VectorRotate": 105}
+OPCODES = {"Mapping": 104, "VectorRotate": 105, "VectorTransform": 108}
+VARYING = {"VectorTransform"}
 MAPPING_TYPES = ('POINT', 'TEXTURE', 'VECTOR', 'NORMAL')
 ROTATE_TYPES = ('AXIS_ANGLE', 'X_AXIS', 'Y_AXIS', 'Z_AXIS', 'EULER_XYZ')
 
@@ -95,4 +98,29 @@ def _vector_rotate(g, node, socket):
                           flags=1 if node.invert else 0)
 
 
-READERS = {'ShaderNodeMapping': _mapping, 'ShaderNodeVectorRotate': _vector_rotate}
+_TRANSFORM_TYPES = ('POINT', 'VECTOR', 'NORMAL')
+_SPACES = ('WORLD', 'OBJECT', 'CAMERA')
+
+
+def _vector_transform(g, node, socket):
+    """Vector Transform: the scene camera's transform at export, the hit's object's (per-object
+    layers: identity where unknown, as Cycles' for no object)."""
+    kind, spaces = node.vector_type, (node.convert_from, node.convert_to)
+    if kind not in _TRANSFORM_TYPES or any(s not in _SPACES for s in spaces):
+        raise Unsupported(f"{node_label(node)}: {kind} from {spaces[0]} to {spaces[1]}")
+    vector = g.input(node.inputs["Vector"], 'vector')
+    mode = (_TRANSFORM_TYPES.index(kind) * 3 + _SPACES.index(spaces[0])) * 3 + \
+        _SPACES.index(spaces[1])
+    moves = spaces[0] != spaces[1]
+    obj = object_transform(g) if moves and 'OBJECT' in spaces else [vector] * 4
+    camera = [vector] * 6
+    if moves and 'CAMERA' in spaces:
+        to_camera, to_world = camera_rows('camera'), camera_to_world_rows()
+        if to_camera is None:
+            raise Unsupported(f"{node_label(node)}: the scene has no camera")
+        camera = [constant('vector', r) for r in (*to_camera[:3], *to_world)]
+    return g.builder.emit("VectorTransform", 'vector', [vector, *obj, *camera], mode=mode)
+
+
+READERS = {'ShaderNodeMapping': _mapping, 'ShaderNodeVectorRotate': _vector_rotate,
+           'ShaderNodeVectorTransform': _vector_transform}

@@ -1,0 +1,268 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Random node graphs (issue 33): random node trees built in Blender (torrance_tools.
+random_node_trees: every node type the shader graph reads, random settings from their RNA enum
+items, extreme socket values, links between any value sockets, reroutes, muted nodes, nested
+node groups, several outputs) feeding a Principled BSDF's Base Color, Roughness, Metallic and
+Emission and a Mix Shader's Fac, compiled by the add-on (GraphCompiler, as materials.py does for
+each input) and run by the core (Scene.run_shader_program) at a grid of UVs. For each tree:
+
+  - compiling raises nothing but Unsupported (the add-on's report path), and the add-on's
+    MaterialReader reads the material without falling back to "could not be read";
+  - every register the core computes, at every point, is finite;
+  - instruction by instruction the core agrees with program.py's reference twins (program.fold)
+    of the same inputs (instructions with inputs beyond 1e4 are skipped for the ops whose
+    reference computes in double, as test_shader_program.py does; the float32 twins of the
+    noise, Voronoi and texture families are checked at any input);
+  - constant folding: the graph compiled without folding, evaluated by program.evaluate, gives
+    each folded constant exactly, and a graph of constant-only nodes folds to constants.
+
+The core only takes UVs (and the footprint) through run_shader_program: the hit's position,
+normals, incoming direction, backfacing and attributes stay ShaderGlobals' defaults here.
+
+Deterministic: the "ci" profile is derandomized (fixed examples), about 30 s. The "long" profile
+(TORRANCE_FUZZ_PROFILE=long, scripts/fuzz) is randomized with TORRANCE_FUZZ_SCALE (20) times the
+examples.
+
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \
+         --python blender_tests/test_shader_graph_fuzz.py
+"""
+
+import collections
+import contextlib
+import os
+
+import numpy as np
+from hypothesis import HealthCheck, given, note, settings
+
+from torrance_tools import testing
+from torrance_tools.random_node_trees import (build_material, catalogue, remove_material,
+                                              tree_plans)
+from torrance_tools.textures import new_image
+
+PROFILE = os.environ.get("TORRANCE_FUZZ_PROFILE", "ci")
+SCALE = 1 if PROFILE == "ci" else int(os.environ.get("TORRANCE_FUZZ_SCALE", "20"))
+_QUIET = [HealthCheck.too_slow, HealthCheck.data_too_large, HealthCheck.filter_too_much]
+settings.register_profile("ci", derandomize=True, deadline=None, database=None,
+                          suppress_health_check=_QUIET, print_blob=True)
+settings.register_profile("long", deadline=None, database=None, suppress_health_check=_QUIET,
+                          print_blob=True)
+settings.load_profile(PROFILE)
+STATS = collections.Counter()     # what the examples covered (printed at the end)
+
+# The shading points: UVs (inside, outside and far outside [0, 1]) and footprints.
+UVS = np.array([[0.0, 0.0], [0.5, 0.5], [1.0, 1.0], [0.25, -0.75], [-3.3, 7.1], [1e3, -2e3],
+                [1e7, 3e7]], np.float32)
+FOOTPRINTS = (0.0, 0.05)
+# Nodes of constants only (none reads the hit when its inputs are unlinked).
+CONSTANT_NODES = (
+    'ShaderNodeValue', 'ShaderNodeRGB', 'ShaderNodeMath', 'ShaderNodeVectorMath', 'ShaderNodeMix',
+    'ShaderNodeMixRGB', 'ShaderNodeInvert', 'ShaderNodeGamma', 'ShaderNodeBrightContrast',
+    'ShaderNodeHueSaturation', 'ShaderNodeRGBToBW', 'ShaderNodeSeparateColor',
+    'ShaderNodeSeparateRGB', 'ShaderNodeSeparateXYZ', 'ShaderNodeSeparateHSV',
+    'ShaderNodeCombineColor', 'ShaderNodeCombineRGB', 'ShaderNodeCombineXYZ',
+    'ShaderNodeCombineHSV', 'ShaderNodeValToRGB', 'ShaderNodeRGBCurve', 'ShaderNodeVectorCurve',
+    'ShaderNodeFloatCurve', 'ShaderNodeMapRange', 'ShaderNodeClamp', 'ShaderNodeBlackbody',
+    'ShaderNodeWavelength', 'ShaderNodeMapping', 'ShaderNodeVectorRotate')
+
+
+def addon_modules():
+    from torrance.shader_graph import noise, program, registry, textures, voronoi
+    from torrance.shader_graph.graph import KIND_OF_SOCKET, GraphCompiler, Unsupported
+    single = set(noise.OPCODES) | set(voronoi.OPCODES) | set(textures.OPCODES)
+    return program, registry, KIND_OF_SOCKET, GraphCompiler, Unsupported, single
+
+
+program, registry, KIND_OF_SOCKET, GraphCompiler, Unsupported, SINGLE_PRECISION = addon_modules()
+# Ops that read the hit other than the UV: program.evaluate has no reference for them.
+HIT_READERS = set(program.VARYING) - {"TexCoordUV"}
+
+
+class CoreTextures:
+    """The reader's texture table: each image added once to a core Scene."""
+
+    def __init__(self, scene):
+        self.scene, self.ids = scene, {}
+
+    def texture(self, image, interpolation="Linear"):
+        key = (image.name, interpolation)
+        if key not in self.ids:
+            w, h = image.size
+            pixels = np.array(image.pixels[:], np.float32).reshape(h, w, 4)
+            self.ids[key] = self.scene.add_texture(pixels, "sRGB", interpolation)
+        return self.ids[key]
+
+
+@contextlib.contextmanager
+def folding_off():
+    """ProgramBuilder.emit folds no op (every op taken as reading the hit) inside."""
+    saved = set(program.VARYING)
+    program.VARYING.update(program.OPCODE)
+    try:
+        yield
+    finally:
+        program.VARYING.clear()
+        program.VARYING.update(saved)
+
+
+def compile_targets(sockets, textures):
+    """(builder, the Value of each socket or None where Unsupported) compiled as materials.py
+    compiles a closure's inputs: one GraphCompiler per socket, a rollback where Unsupported."""
+    builder = program.ProgramBuilder()
+    values = []
+    for socket in sockets:
+        mark = builder.mark()
+        try:
+            compiler = GraphCompiler(builder, textures, registry.READERS)
+            values.append(compiler.input(socket, KIND_OF_SOCKET[socket.type]))
+        except Unsupported as exc:
+            note(f"Unsupported ({socket.name}): {exc}")
+            STATS["Unsupported inputs"] += 1
+            builder.rollback(mark)
+            values.append(None)
+    return builder, values
+
+
+def build_or_limit(builder):
+    """builder.build(), or None past the core's register count (the add-on's ValueError)."""
+    try:
+        return builder.build()
+    except ValueError as exc:
+        if "Torrance evaluates at most" not in str(exc):
+            raise
+        note(str(exc))
+        return None
+
+
+def run_in_core(scene, built, footprint):
+    constants, code, registers, data = built
+    pid = scene.add_shader_program(constants, code, registers, data)
+    return scene.run_shader_program(pid, UVS, footprint)
+
+
+def reference_of(name, mode, flags, args, table, uv, offset):
+    """What program.py's reference gives for one instruction of the core's inputs (None: not
+    checked: ops reading the hit other than the UV)."""
+    if name == "TexCoordUV":
+        return (float(uv[0]), float(uv[1]), 0.0, 0.0) if offset == 0 else None
+    if name in program.VARYING:
+        return None
+    return program.finite(program.fold(name, mode, flags, args, table))
+
+
+def check_instructions(built, regs):
+    """Every instruction's output register, at every point, against the reference of its
+    input registers as the core computed them."""
+    constants, code, _registers, data = built
+    np.testing.assert_array_equal(regs[:, :len(constants)], np.broadcast_to(
+        constants, (len(UVS), *constants.shape)), err_msg="the constants' registers")
+    low_bits = (1 << program.OFFSET_SHIFT) - 1
+    for k, uv in enumerate(UVS):
+        got = regs[k]
+        for row in code:
+            op, mode, flags, resource, out = (int(x) for x in row[:5])
+            name = program.OPCODE_NAME[op]
+            args = [tuple(float(x) for x in got[i]) for i in row[5:] if i >= 0]
+            table = None
+            if resource >= 0 and name not in program.VARYING:
+                table = tuple(data[resource + 1:resource + 1 + int(data[resource])])
+            want = reference_of(name, mode, flags & low_bits, args, table, uv,
+                                flags >> program.OFFSET_SHIFT)
+            if want is None:
+                continue
+            single = name in SINGLE_PRECISION
+            if not single and (max((abs(x) for a in args for x in a), default=0.0) > 1e4
+                               or max(map(abs, want)) > 1e6):
+                continue    # float's range: the core's float and the reference's double part
+            np.testing.assert_allclose(
+                got[out], want, rtol=1e-5 if single else 2e-4, atol=1e-6 if single else 2e-5,
+                err_msg=f"{name} mode {mode} flags {flags} args {args} at UV {tuple(uv)}")
+
+
+def check_material_reader(mat, textures):
+    """The add-on's own reading: only reports, never a material it "could not read"."""
+    from torrance.materials import MaterialReader
+    from torrance.reporting import Reporter
+    reporter = Reporter(None)
+    messages = []
+    reporter.report = lambda level, text: messages.append(text)
+    MaterialReader(reporter, textures).read(mat)
+    for text in messages:
+        note(f"reported: {text}")
+    broken = [t for t in messages if "could not be read" in t and "evaluates at most" not in t]
+    testing.check(not broken, f"the material fell back to the default: {broken}")
+
+
+def check_folding(sockets, values, textures):
+    """The graph compiled without folding, evaluated by the reference, gives each folded
+    constant (its kind's components) exactly."""
+    with folding_off():
+        builder, unfolded = compile_targets(sockets, textures)
+    built = build_or_limit(builder)
+    if built is None:
+        return
+    constants, code, registers, data = built
+    regs = program.evaluate(constants, code, registers, (0.5, 0.5), data=data) \
+        if not any(program.OPCODE_NAME[int(r[0])] in HIT_READERS for r in code) else None
+    for socket, folded, value in zip(sockets, values, unfolded, strict=True):
+        if folded is None or not folded.constant or value is None:
+            continue
+        got = value.value if value.constant else (regs[builder.register_of(value)]
+                                                  if regs is not None else None)
+        if got is None:
+            continue
+        n = 1 if folded.kind == 'float' else 3
+        testing.check(tuple(got[:n]) == tuple(folded.value[:n]),
+                      f"{socket.name}: folded {folded.value[:n]}, unfolded {tuple(got[:n])}")
+
+
+def check_tree(plan, image, core, constant_only=False):
+    mat, groups, sockets = build_material(plan, image)
+    try:
+        scene = core.Scene()
+        textures = CoreTextures(scene)
+        builder, values = compile_targets(sockets, textures)
+        if constant_only:
+            for socket, value in zip(sockets, values, strict=True):
+                testing.check(value is None or value.constant,
+                              f"{socket.name}: a graph of constants did not fold")
+        check_folding(sockets, values, textures)
+        check_material_reader(mat, CoreTextures(core.Scene()))
+        built = build_or_limit(builder)
+        STATS["trees"] += 1
+        STATS["constant inputs"] += sum(1 for v in values if v is not None and v.constant)
+        if built is None or len(built[1]) == 0:
+            STATS["programs over the register limit"] += built is None
+            return
+        STATS["programs run"] += 1
+        STATS["instructions"] += len(built[1])
+        STATS.update(program.OPCODE_NAME[int(r[0])] for r in built[1])
+        for footprint in FOOTPRINTS:
+            regs = run_in_core(scene, built, footprint)
+            bad = np.argwhere(~np.isfinite(regs))
+            testing.check(len(bad) == 0, f"non-finite registers (point, register, channel): "
+                                         f"{bad[:8].tolist()}")
+            check_instructions(built, regs)
+    finally:
+        remove_material(mat, groups)
+
+
+def fuzz(types, image, core, examples, constant_only=False):
+    @settings(max_examples=examples * SCALE)
+    @given(plan=tree_plans(types, max_nodes=6 if constant_only else 8))
+    def random_trees(plan):
+        check_tree(plan, image, core, constant_only)
+    random_trees()
+
+
+def main():
+    core = testing.core()
+    testing.clear_scene()
+    image = new_image("fuzz image", np.random.default_rng(1).random((4, 5, 4)).astype(np.float32))
+    types = catalogue(registry.READERS)
+    fuzz(types, image, core, examples=700)
+    fuzz({k: t for k, t in types.items() if k in CONSTANT_NODES}, image, core, examples=150,
+         constant_only=True)
+    print("covered:", dict(STATS.most_common()), flush=True)
+
+
+testing.run(main)

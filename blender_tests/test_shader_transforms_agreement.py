@@ -1,0 +1,179 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The nodes that read the object's and the camera's transforms render as Cycles 3.4 renders
+them: Tangent (UV Map, Radial X and Z), Vector Transform (Point, Vector and Normal between
+World, Object and Camera, both ways) and Normal Map in Object and Blender Object space, each
+shown through an Emission shader (a vector v as 0.5 v + 0.5) on patches of the grid
+(torrance_tools.shader_graphs).
+
+Every patch is its own object whose matrix rotates about a tilted axis, scales unevenly and
+moves, with its mesh taken back by the inverse so that the patch stays where the grid puts it:
+object space differs from world space everywhere, and unevenly scaled (normals and directions
+transform differently). The UVs are turned by 30 degrees (the UV tangent is not an axis).
+
+Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
+seeds 2 and 3. Deliberate faults (Vector Transform to World instead of Object/Camera, Tangent
+about Y instead of the axis set, Normal Map's object spaces read as world spaces, the UV tangent
+not taken back to object space) must fail them.
+
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \
+         --python blender_tests/test_shader_transforms_agreement.py
+"""
+
+import math
+
+from torrance_tools import testing
+from torrance_tools.shader_graphs import DictAttr, agree_on_patches, read_with
+from torrance_tools.textures import set_uvs
+
+
+def object_matrix(obj):
+    """obj's matrix: a turn about a tilted axis, an uneven scale and a move; its mesh taken back
+    by the inverse (the patch stays in place)."""
+    from mathutils import Matrix, Vector
+    k = len(obj.name) % 3
+    m = (Matrix.Translation(Vector((0.3, -0.2 + 0.1 * k, 0.5)))
+         @ Matrix.Rotation(math.radians(40.0 + 25.0 * k), 4, Vector((0.3, 1.0, 0.6)).normalized())
+         @ Matrix.Diagonal((1.6, 0.7, 1.2 + 0.2 * k, 1.0)))
+    obj.data.transform(m.inverted())
+    obj.matrix_world = m
+
+
+def _turned_uvs(obj):
+    c, s = math.cos(math.radians(30.0)), math.sin(math.radians(30.0))
+    corners = [(0, 0), (1, 0), (1, 1), (0, 1)]
+    obj.data.uv_layers.remove(obj.data.uv_layers[0])
+    set_uvs(obj, [(c * u - s * v, s * u + c * v) for u, v in corners])
+
+
+def _setup(obj):
+    _turned_uvs(obj)
+    object_matrix(obj)
+
+
+def _shown(g, vector):
+    """0.5 v + 0.5 (Vector Math Multiply Add)."""
+    m = g.node("ShaderNodeVectorMath", operation='MULTIPLY_ADD')
+    g.link(vector, m.inputs[0])
+    m.inputs[1].default_value = (0.5, 0.5, 0.5)
+    m.inputs[2].default_value = (0.5, 0.5, 0.5)
+    return m.outputs[0]
+
+
+def _tangent(g, direction, axis='Z'):
+    t = g.node("ShaderNodeTangent", direction_type=direction, axis=axis)
+    return _shown(g, t.outputs["Tangent"])
+
+
+def tangent_uv(g):
+    return _tangent(g, 'UV_MAP')
+
+
+def tangent_radial_z(g):
+    return _tangent(g, 'RADIAL', 'Z')
+
+
+def tangent_radial_x(g):
+    return _tangent(g, 'RADIAL', 'X')
+
+
+def _position(g, scale=0.4):
+    s = g.node("ShaderNodeVectorMath", operation='SCALE')
+    s.inputs["Scale"].default_value = scale
+    g.link(g.node("ShaderNodeNewGeometry").outputs["Position"], s.inputs[0])
+    return s.outputs[0]
+
+
+def _transform(g, vector, kind, convert_from, convert_to, scale=1.0):
+    vt = g.node("ShaderNodeVectorTransform", vector_type=kind, convert_from=convert_from,
+                convert_to=convert_to)
+    g.link(vector, vt.inputs["Vector"])
+    s = g.node("ShaderNodeVectorMath", operation='SCALE')
+    s.inputs["Scale"].default_value = scale
+    g.link(vt.outputs["Vector"], s.inputs[0])
+    return _shown(g, s.outputs[0])
+
+
+def point_world_to_object(g):
+    return _transform(g, g.node("ShaderNodeNewGeometry").outputs["Position"], 'POINT', 'WORLD',
+                      'OBJECT', 0.5)
+
+
+def vector_object_to_camera(g):
+    return _transform(g, _position(g), 'VECTOR', 'OBJECT', 'CAMERA')
+
+
+def normal_camera_to_object(g):
+    return _transform(g, _position(g), 'NORMAL', 'CAMERA', 'OBJECT')
+
+
+def point_camera_to_world(g):
+    return _transform(g, _position(g, 1.0), 'POINT', 'CAMERA', 'WORLD', 0.1)
+
+
+def point_world_to_camera(g):
+    return _transform(g, g.node("ShaderNodeNewGeometry").outputs["Position"], 'POINT', 'WORLD',
+                      'CAMERA', 0.08)
+
+
+def normal_object_to_world(g):
+    return _transform(g, g.node("ShaderNodeNewGeometry").outputs["Normal"], 'NORMAL', 'OBJECT',
+                      'WORLD')
+
+
+def _normal_map(g, space):
+    nm = g.node("ShaderNodeNormalMap", space=space)
+    nm.inputs["Strength"].default_value = 0.8
+    noise = g.node("ShaderNodeTexNoise")
+    noise.inputs["Scale"].default_value = 3.0
+    g.link(noise.outputs["Color"], nm.inputs["Color"])
+    return _shown(g, nm.outputs["Normal"])
+
+
+def normal_map_object(g):
+    return _normal_map(g, 'OBJECT')
+
+
+def normal_map_blender_object(g):
+    return _normal_map(g, 'BLENDER_OBJECT')
+
+
+MAKERS = (tangent_uv, tangent_radial_z, tangent_radial_x, point_world_to_object,
+          vector_object_to_camera, normal_camera_to_object, point_camera_to_world,
+          point_world_to_camera, normal_object_to_world, normal_map_object,
+          normal_map_blender_object)
+for _make in MAKERS:
+    _make.setup = _setup
+
+
+def _world_spaces(node):
+    return {"space": {'OBJECT': 'WORLD', 'BLENDER_OBJECT': 'BLENDER_WORLD'}.get(node.space,
+                                                                              node.space)}
+
+
+def _uv_tangent_in_world(original):
+    """The UV tangent used as it is (world space), not taken back to object space first."""
+    def read(g, node, socket):
+        out = original(g, node, socket)
+        if node.direction_type == 'UV_MAP':
+            op, mode, flags, resource, place, inputs = g.builder.code[-1]
+            g.builder.code[-1] = (op, mode, flags, resource, place, [inputs[0]] * 5 + inputs[5:])
+        return out
+    return read
+
+
+def main():
+    testing.addon()
+    from torrance.shader_graph.registry import READERS
+    readers = DictAttr(READERS)
+    agree_on_patches(MAKERS, what="Tangent, Vector Transform and Normal Map object spaces",
+                     faults=(
+        ("Vector Transform to World", readers, 'ShaderNodeVectorTransform',
+         read_with(convert_to='WORLD')),
+        ("Tangent about Y", readers, 'ShaderNodeTangent', read_with(axis='Y')),
+        ("object transform ignored (UV tangent)", readers, 'ShaderNodeTangent',
+         _uv_tangent_in_world),
+        ("Normal Map object spaces read as world", readers, 'ShaderNodeNormalMap',
+         read_with(_world_spaces))))
+
+
+testing.run(main)
