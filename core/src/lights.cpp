@@ -440,8 +440,10 @@ float Lights::selection_probability(size_t index, const Vec3& p, const Vec3& n, 
 }
 
 LightSample Lights::sample(size_t index, const Vec3& p, const Vec3& shading_normal, const Vec2& u,
-                           bool two_sided) const {
-  const LightSample s = visit(index, [&](const auto& light) { return light.sample(p, shading_normal, u); });
+                           bool two_sided, const PathState& receiver) const {
+  const LightSample s = mesh_ && index == lights_.size()
+                            ? mesh_->sample(p, shading_normal, u, receiver)
+                            : visit(index, [&](const auto& light) { return light.sample(p, shading_normal, u); });
   // Only the world's map rejects directions below the normal: the same u seen from the other side.
   if (two_sided && !s.valid() && index + 1 == count() && world_in_nee()) return world_.sample(p, -shading_normal, u);
   return s;

@@ -29,7 +29,7 @@ MeshLight::MeshLight(std::vector<EmissiveTriangle> triangles, const std::vector<
   radius_ = 0.5f * glm::length(hi - lo);
 }
 
-LightSample MeshLight::sample(const Vec3& p, const Vec3&, const Vec2& u) const {
+LightSample MeshLight::sample(const Vec3& p, const Vec3&, const Vec2& u, const PathState& receiver) const {
   LightSample s;
   // Choose a triangle with u.x, then reuse what is left of u.x inside its interval.
   const size_t n = triangles_.size();
@@ -50,8 +50,10 @@ LightSample MeshLight::sample(const Vec3& p, const Vec3&, const Vec2& u) const {
   if (!(cos_light > 1e-7f)) return LightSample{};
   s.distance = dist;
   s.pdf = span * dist2 / (t.area * cos_light);
-  const Vec2 uv = (1.0f - b1 - b2) * t.uv0 + b1 * t.uv1 + b2 * t.uv2;
-  s.weight = emission_(t.material, uv) / s.pdf;
+  PathState seen_by = receiver;
+  seen_by.ray_flags = kRayEmission;
+  seen_by.ray_length = dist;
+  s.weight = emission_(t, Vec2(b1, b2), s.wi, seen_by) / s.pdf;
   return s;
 }
 

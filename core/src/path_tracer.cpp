@@ -213,9 +213,10 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
   float prev_path_weight = 1.0f;  // max_component(throughput) at the previous vertex (mirror_images.h)
   float path_length = 0.0f;  // for texture footprints (a ray cone of the pixel's spread)
   // The Light Path node's state (Cycles' path flags and bounce counts): of the ray being traced.
-  uint8_t ray_flags = kRayCamera;
-  int diffuse_depth = 0, glossy_depth = 0, transmission_depth = 0, transparent_depth = 0;
-  int first_transparent_depth = 0;  // at the first vertex, for its later branches
+  PathState path_state;
+  path_state.ray_flags = kRayCamera;
+  uint8_t first_transparent_depth = 0;  // at the first vertex, for its later branches
+  auto count_up = [](uint8_t& depth) { depth = uint8_t(std::min(depth + 1, 255)); };
   float first_ray_length = 0.0f;
   // Cycles' clamping: a contribution whose RGB sum exceeds the limit is scaled down to it.
   // Direct: seen by the camera or lighting the first hit; indirect: lighting later vertices.
@@ -271,9 +272,9 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       ray = first_vertex.ray;
       throughput = Vec3(1.0f);
       path_length = 0.0f;
-      ray_flags = kRayCamera;
-      diffuse_depth = glossy_depth = transmission_depth = 0;
-      transparent_depth = first_transparent_depth;
+      path_state = PathState{};
+      path_state.ray_flags = kRayCamera;
+      path_state.transparent_depth = first_transparent_depth;
     }
     for (int bounce = 0;; ++bounce) {
       const bool first_again = again && bounce == 0;  // back at the first vertex
@@ -290,7 +291,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
           throughput *= ctx.scene.material(hit.material).transparent_color;
           if (!(max_component(throughput) > 0.0f)) return out;
           passed_length += hit.t;
-          if constexpr (kTextures) ++transparent_depth;
+          if constexpr (kTextures) count_up(path_state.transparent_depth);
           ray.origin = offset_origin(hit.position, hit.geometric_normal, ray.dir);
           ray.tmax -= hit.t;
           found = ray.tmax > 0.0f && ctx.scene.intersect(ray, hit);
@@ -310,7 +311,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
         out.depth = (passed_length + hit.t) * glm::dot(ray.dir, ctx.camera_forward);
         first_vertex.hit = hit;
         first_vertex.ray = ray;
-        first_transparent_depth = transparent_depth;
+        first_transparent_depth = path_state.transparent_depth;
       } else {
         if (kHittable) {
           const float t_max = found ? passed_length + hit.t : kInfinity;
@@ -340,20 +341,18 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       using Bsdf = std::conditional_t<kMixtures, MixtureBsdf, MaterialBsdf>;
       Material material;
       std::optional<Bsdf> local_bsdf;
+      if constexpr (kTextures) {  // what this vertex's programs and its light samples' emitters read
+        path_state.ray_depth = uint8_t(std::min(bounce, 255));
+        // Cycles' ray length: from the ray's origin (a camera ray's at the clip_start plane, its
+        // tmin here), through the transparent surfaces it passed (Cycles 3.4 moves on a ray's
+        // tmin past them, its origin stays).
+        path_state.ray_length = first_again ? first_ray_length : passed_length + hit.t - ray.tmin;
+        if (bounce == 0) first_ray_length = path_state.ray_length;
+      }
       ShaderGlobals globals;
       if (textured) {
         globals = shader_globals(hit, ray.dir, footprint, ctx.pixel_width + ctx.pixel_spread * path_length);
-        auto count = [](int n) { return uint8_t(std::min(n, 255)); };
-        globals.ray_flags = ray_flags;
-        globals.ray_depth = count(bounce);
-        globals.diffuse_depth = count(diffuse_depth);
-        globals.glossy_depth = count(glossy_depth);
-        globals.transmission_depth = count(transmission_depth);
-        globals.transparent_depth = count(transparent_depth);
-        // Cycles' ray length: from the ray's origin (a camera ray's at the clip_start plane, its
-        // tmin here; a ray passing a transparent surface goes on from there).
-        globals.ray_length = first_again ? first_ray_length : passed_length > 0.0f ? hit.t : hit.t - ray.tmin;
-        if (bounce == 0) first_ray_length = globals.ray_length;
+        globals.path = path_state;
       }
       if constexpr (kMixtures) {
         local_bsdf.emplace(shade_material(ctx.scene, hit.material, globals, textured, ctx.settings.brdf_model,
@@ -420,7 +419,8 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       const glm::vec4 u_bsdf = sampler.next_4d();   // lobe, direction, roulette
       // NEE of light `index`, chosen with `probability`.
       auto next_event = [&](size_t index, float probability) {
-        const LightSample ls = lights.sample(index, hit.position, ns, Vec2(u_light.y, u_light.z), transmits);
+        const LightSample ls =
+            lights.sample(index, hit.position, ns, Vec2(u_light.y, u_light.z), transmits, path_state);
         const Vec3 wi = frame.to_local(ls.wi);
         if (!ls.valid() || !leaves_geometric_side(ls.wi, ng, wi.z, transmits)) return;
         LobeEval f = bsdf.template eval_lobes<kGlass>(view, wi);
@@ -486,11 +486,11 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       if constexpr (kTextures) {  // the next ray's Light Path state, as Cycles labels the sample
         // (only shader programs read it: scenes without textures skip it)
         const bool reflect = glm::dot(wi_world, ng) > 0.0f;
-        ray_flags = uint8_t((reflect ? kRayReflect : kRayTransmit) |
-                            (bs.is_delta ? kRayGlossy | kRaySingular : bs.diffuse ? kRayDiffuse : kRayGlossy));
-        if (!reflect) ++transmission_depth;
-        else if (bs.diffuse && !bs.is_delta) ++diffuse_depth;
-        else ++glossy_depth;
+        path_state.ray_flags = uint8_t((reflect ? kRayReflect : kRayTransmit) |
+                                       (bs.is_delta ? kRayGlossy | kRaySingular : bs.diffuse ? kRayDiffuse : kRayGlossy));
+        count_up(!reflect ? path_state.transmission_depth
+                 : bs.diffuse && !bs.is_delta ? path_state.diffuse_depth
+                                              : path_state.glossy_depth);
       }
       if (normal_mapped && !bs.is_delta) {
         LobeEval f = bsdf.template eval_lobes<kGlass>(view, bs.wi);

@@ -23,8 +23,11 @@ void Scene::build_mesh_light() {
     any_emissive |= material_radiance[m] > 0.0f;
   }
   auto radiance_of = [&material_radiance](uint32_t m) { return material_radiance[m]; };
-  auto add = [&](const Corners& c, uint32_t material, float radiance) {
+  auto add = [&](const Corners& c, uint32_t material, float radiance, uint32_t owner, uint32_t prim, bool mirrored) {
     EmissiveTriangle e;
+    e.owner = owner;
+    e.prim = prim;
+    e.mirrored = mirrored;
     e.p0 = c.p[0];
     e.edge1 = c.p[1] - e.p0;
     e.edge2 = c.p[2] - e.p0;
@@ -32,27 +35,24 @@ void Scene::build_mesh_light() {
     e.area = 0.5f * glm::length(cross);
     if (!(e.area > 0.0f) || !std::isfinite(e.area)) return false;
     e.normal = cross / (2.0f * e.area);
-    e.uv0 = c.uv[0];
-    e.uv1 = c.uv[1];
-    e.uv2 = c.uv[2];
     e.material = material;
     triangles.push_back(e);
     const float p = e.area * radiance;  // huge but finite inputs may overflow: keep the CDF finite
     power.push_back(std::isfinite(p) ? p : std::numeric_limits<float>::max());
     return true;
   };
-  for (auto& mesh : meshes_) {
+  for (size_t mesh_index = 0; mesh_index < meshes_.size(); ++mesh_index) {
+    Mesh* mesh = meshes_[mesh_index].get();
     mesh->emitter_index.clear();  // none emits (intersect reads an empty table as -1)
     if (!any_emissive) continue;
     mesh->emitter_index.assign(mesh->triangles.size(), -1);
-    const bool has_uv = !mesh->corner_uvs.empty();
     for (size_t i = 0; i < mesh->triangles.size(); ++i) {
       const uint32_t m = mesh->material_ids[i];
       const float radiance = radiance_of(m);
       if (!(radiance > 0.0f)) continue;
-      const Corners c = mesh_corners(mesh->positions, mesh->triangles[i], nullptr,
-                                     has_uv ? &mesh->corner_uvs[3 * i] : nullptr);
-      if (add(c, m, radiance)) mesh->emitter_index[i] = int32_t(triangles.size() - 1);
+      const Corners c = mesh_corners(mesh->positions, mesh->triangles[i], nullptr, nullptr);
+      if (add(c, m, radiance, uint32_t(mesh_index), uint32_t(i), false))
+        mesh->emitter_index[i] = int32_t(triangles.size() - 1);
     }
   }
   // Instances: a prototype triangle emits under a table if its material does and it has an area
@@ -81,20 +81,19 @@ void Scene::build_mesh_light() {
   require_memory(num_emissive * 2.0 * double(sizeof(EmissiveTriangle) + 2 * sizeof(float)),
                  "the mesh light of " + std::to_string(size_t(num_emissive)) +
                      " emissive triangles (instances included)");
-  for (Instance& inst : instances_) {
+  for (size_t inst_index = 0; inst_index < instances_.size(); ++inst_index) {
+    Instance& inst = instances_[inst_index];
     inst.emitter_base = -1;
     if (inst.binding == kRemoved || inst.hidden || bindings_[inst.binding].num_emissive == 0) continue;
     const Binding& b = bindings_[inst.binding];
     const Mesh& mesh = *prototypes_[b.prototype]->mesh;
-    const bool has_uv = !mesh.corner_uvs.empty();
     inst.emitter_base = int32_t(triangles.size());
     for (size_t i = 0; i < mesh.triangles.size(); ++i) {
       if (b.emitter_rank[i] < 0) continue;
       const uint32_t m = b.material(mesh.material_ids[i]);
       Corners c;
-      instance_corners(mesh.positions, mesh.triangles[i], nullptr, has_uv ? &mesh.corner_uvs[3 * i] : nullptr,
-                       inst.transform, c);
-      if (!add(c, m, radiance_of(m))) {
+      const bool mirrored = instance_corners(mesh.positions, mesh.triangles[i], nullptr, nullptr, inst.transform, c);
+      if (!add(c, m, radiance_of(m), uint32_t(inst_index) | kInstanceBit, uint32_t(i), mirrored)) {
         // Only a scale near float underflow gets here: keep the numbering, never choose it.
         EmissiveTriangle e{};
         e.p0 = c.p[0];
@@ -114,8 +113,9 @@ void Scene::build_mesh_light() {
     for (Instance& inst : instances_) inst.emitter_base = -1;
     return;
   }
-  lights_.set_mesh_light(MeshLight(std::move(triangles), power, [this](uint32_t material, const Vec2& uv) {
-    return emission_at(material, uv);
+  lights_.set_mesh_light(MeshLight(std::move(triangles), power, [this](const EmissiveTriangle& t, const Vec2& b, const Vec3& wi,
+                                                                        const PathState& seen_by) {
+    return sampled_emission(t, b, wi, seen_by);
   }));
 }
 

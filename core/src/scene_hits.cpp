@@ -14,14 +14,19 @@ using namespace scene_detail;
 bool Scene::surface_hit(const void* rayhit, const Vec3& dir, SurfaceHit& hit) const {
   const RTCRayHit& rh = *static_cast<const RTCRayHit*>(rayhit);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  const uint32_t owner = rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID ? geometry_owner_[rh.hit.geomID]
+                                                                      : geometry_owner_[rh.hit.instID[0]];
+  triangle_hit(owner, rh.hit.primID, rh.hit.u, rh.hit.v, dir, hit);
+  hit.t = rh.ray.tfar;
+  return true;
+}
 
-  const uint32_t prim = rh.hit.primID;
-  float u = rh.hit.u, v = rh.hit.v;
+void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const Vec3& dir, SurfaceHit& hit) const {
   Corners c;
   const Mesh* hit_mesh = nullptr;
   bool mirrored = false;
-  if (rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID) {
-    const Mesh& mesh = *meshes_[geometry_owner_[rh.hit.geomID]];
+  if (!(owner & kInstanceBit)) {
+    const Mesh& mesh = *meshes_[owner];
     hit_mesh = &mesh;
     c = mesh_corners(mesh.positions, mesh.triangles[prim],
                      mesh.corner_normals.empty() ? nullptr : &mesh.corner_normals[3 * prim],
@@ -29,7 +34,7 @@ bool Scene::surface_hit(const void* rayhit, const Vec3& dir, SurfaceHit& hit) co
     hit.material = mesh.material_ids[prim];
     hit.emitter = mesh.emitter_index.empty() ? -1 : mesh.emitter_index[prim];
   } else {
-    const Instance& inst = instances_[geometry_owner_[rh.hit.instID[0]] & ~kInstanceBit];
+    const Instance& inst = instances_[owner & ~kInstanceBit];
     const Binding& b = bindings_[inst.binding];
     const Mesh& mesh = *prototypes_[b.prototype]->mesh;
     hit_mesh = &mesh;
@@ -52,7 +57,6 @@ bool Scene::surface_hit(const void* rayhit, const Vec3& dir, SurfaceHit& hit) co
     hit.corner_attributes = nullptr;
     hit.attribute_ids = nullptr;
   }
-  hit.t = rh.ray.tfar;
   hit.position = w * p0 + u * p1 + v * p2;  // interpolated, more accurate than origin + t * dir
   Vec3 ng = glm::cross(p1 - p0, p2 - p0);
   const float ng_len = glm::length(ng);
@@ -94,7 +98,6 @@ bool Scene::surface_hit(const void* rayhit, const Vec3& dir, SurfaceHit& hit) co
     hit.tangent = Vec3(0.0f);
     hit.uv_per_metre = 0.0f;
   }
-  return true;
 }
 
 void Scene::intersect_packet(const Ray* rays, int n, SurfaceHit* hits, bool* found) const {

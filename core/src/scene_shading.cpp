@@ -84,14 +84,26 @@ MixtureWeights Scene::mixture_weights(uint32_t i, const ShaderGlobals& g) const 
   return torrance::mixture_weights(*m, textures_, g.uv, g.footprint, regs.data());
 }
 
-Vec3 Scene::emission_at(uint32_t i, const Vec2& uv) const {
+Vec3 Scene::emission_at(uint32_t i, const ShaderGlobals& g) const {
   const Mixture* m = mixture(i);
-  if (!m) return material_textures_[i].textured_emission() ? textured_material(i, uv).emission : materials_[i].emission;
-  const MixtureWeights w = mixture_weights(i, uv, 0.0f);
+  if (!m) return material_textures_[i].textured_emission() ? textured_material(i, g).emission : materials_[i].emission;
+  const MixtureWeights w = mixture_weights(i, g);
   Vec3 e(0.0f);
   for (int k = 0; k < w.count; ++k)
-    if (w.weight[k] > 0.0f) e += w.weight[k] * emission_at(m->components[k].material, uv);
+    if (w.weight[k] > 0.0f) e += w.weight[k] * emission_at(m->components[k].material, g);
   return e;
+}
+
+Vec3 Scene::sampled_emission(const EmissiveTriangle& triangle, const Vec2& b, const Vec3& wi,
+                             const PathState& seen_by) const {
+  const uint32_t i = triangle.material;
+  if (!mixture(i) && !material_textures_[i].textured_emission()) return materials_[i].emission;
+  SurfaceHit hit;
+  triangle_hit(triangle.owner, triangle.prim, triangle.mirrored ? b.y : b.x, triangle.mirrored ? b.x : b.y, wi, hit);
+  hit.t = seen_by.ray_length;
+  ShaderGlobals g = shader_globals(hit, wi, 0.0f);
+  g.path = seen_by;
+  return emission_at(i, g);
 }
 
 Vec3 Scene::bump_mapped(const MaterialTextures& t, const SurfaceHit& hit, const Vec3& n, const ShaderGlobals& g) const {

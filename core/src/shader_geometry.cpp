@@ -67,23 +67,24 @@ glm::vec4 attribute_op(const ShaderOpContext& c) {
 }
 
 glm::vec4 light_path_op(const ShaderOpContext& c) {
-  const ShaderGlobals& g = c.globals;
-  auto flag = [&](uint8_t bit) { return (g.ray_flags & bit) ? 1.0f : 0.0f; };
+  const PathState& s = c.globals.path;
+  auto flag = [&](uint8_t bit) { return (s.ray_flags & bit) ? 1.0f : 0.0f; };
   float v = 0.0f;
   switch (c.ins.mode) {
     case 0: v = flag(kRayCamera); break;
-    case 1: v = 0.0f; break;  // no program runs for a shadow ray
+    case 1: v = flag(kRayShadow); break;
     case 2: v = flag(kRayDiffuse); break;
     case 3: v = flag(kRayGlossy); break;
     case 4: v = flag(kRaySingular); break;
     case 5: v = flag(kRayReflect); break;
     case 6: v = flag(kRayTransmit); break;
-    case 7: v = g.ray_length; break;
-    case 8: v = float(g.ray_depth); break;
-    case 9: v = float(g.diffuse_depth); break;
-    case 10: v = float(g.glossy_depth); break;
-    case 11: v = float(g.transparent_depth); break;
-    default: v = float(g.transmission_depth); break;
+    case 7: v = s.ray_length; break;
+    // A shadow ray or an emitter seen by next-event estimation is one bounce further.
+    case 8: v = float(s.ray_depth) + ((s.ray_flags & (kRayShadow | kRayEmission)) ? 1.0f : 0.0f); break;
+    case 9: v = float(s.diffuse_depth); break;
+    case 10: v = float(s.glossy_depth); break;
+    case 11: v = float(s.transparent_depth); break;
+    default: v = float(s.transmission_depth); break;
   }
   return glm::vec4(v, 0.0f, 0.0f, 0.0f);
 }

@@ -163,8 +163,10 @@ class Lights {
   // emissive triangles and the world, which have none.
   bool direction_hint(size_t index, const Vec3& p, const Vec3& n, Vec3& out) const;
 
+  // receiver: the path's state at p (an emitting mesh's shader reads it, as Cycles' next-event
+  // estimation does: PathState's kRayEmission).
   LightSample sample(size_t index, const Vec3& p, const Vec3& shading_normal, const Vec2& u,
-                     bool two_sided = false) const;
+                     bool two_sided = false, const PathState& receiver = {}) const;
 
   // Radiance, MIS-weighted against NEE, that a BSDF-sampled ray leaving p_prev (where NEE used
   // shading normal n_prev) receives from lights it passes before distance t_max (infinite if

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "torrance/lights_common.h"
+#include "torrance/path_state.h"
 
 #include <functional>
 #include <vector>
@@ -15,18 +16,25 @@ struct EmissiveTriangle {
   Vec3 p0, edge1, edge2;
   Vec3 normal;  // unit
   float area;
-  Vec2 uv0, uv1, uv2;
   uint32_t material;
+  // Where it comes from: a Scene mesh or instance (Scene::triangle_hit's owner), its triangle,
+  // and whether the corners above are that triangle's in mirrored order (u and v swapped).
+  uint32_t owner = 0, prim = 0;
+  bool mirrored = false;
 };
 
 class MeshLight {
  public:
-  // Emitted radiance of `material` at `uv` (textures applied).
-  using EmissionLookup = std::function<Vec3(uint32_t material, const Vec2& uv)>;
+  // Radiance emitted back along unit wi by the point at barycentrics b (along edge1 and edge2)
+  // of a triangle, seen by a path in state `seen_by` (Cycles' next-event estimation: kRayEmission,
+  // ray_length the distance).
+  using EmissionLookup =
+      std::function<Vec3(const EmissiveTriangle& triangle, const Vec2& b, const Vec3& wi, const PathState& seen_by)>;
   // power[i] > 0 is the selection weight of triangle i.
   MeshLight(std::vector<EmissiveTriangle> triangles, const std::vector<float>& power, EmissionLookup emission);
 
-  LightSample sample(const Vec3& p, const Vec3& n, const Vec2& u) const;
+  // receiver: the path's state at p (the emitter's shader sees it with kRayEmission).
+  LightSample sample(const Vec3& p, const Vec3& n, const Vec2& u, const PathState& receiver = {}) const;
   float importance(const Vec3& p, const Vec3& n) const;
   bool hit(const Vec3&, const Vec3&, const Vec3&, float, LightHit&) const { return false; }
   // Solid-angle density with which sample(p, ...) produces point q on triangle `index`.

@@ -170,8 +170,8 @@ class Scene {
   MixtureWeights mixture_weights(uint32_t i, const Vec2& uv, float footprint = 0.0f) const {
     return mixture_weights(i, uv_globals(uv, footprint));
   }
-  // The radiance material i emits at uv (textures and mixtures included).
-  Vec3 emission_at(uint32_t i, const Vec2& uv) const;
+  // The radiance material i emits at a point seen as g says (textures and mixtures included).
+  Vec3 emission_at(uint32_t i, const ShaderGlobals& g) const;
   // The material's alpha at a hit: its alpha texture's alpha channel (or colour luminance, or 1 -
   // either: MaterialTextures) at uv, else Material::alpha.
   float opacity(uint32_t material, const Vec2& uv) const {
@@ -310,6 +310,12 @@ class Scene {
   void check_device(const char* during) const;
   // The hit described by Embree's answer `rayhit` (an RTCRayHit) to a ray along dir; false: a miss.
   bool surface_hit(const void* rayhit, const Vec3& dir, SurfaceHit& hit) const;
+  // The hit at Embree's barycentrics (u, v) of triangle prim of owner (a mesh index, or an instance
+  // index | kInstanceBit: geometry_owner_'s values) seen along dir; all but its t.
+  void triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const Vec3& dir, SurfaceHit& hit) const;
+  // The radiance a mesh light's sample emits (MeshLight::EmissionLookup): its material's emission
+  // with the shader globals Cycles' next-event estimation gives it (no ray differentials).
+  Vec3 sampled_emission(const EmissiveTriangle& triangle, const Vec2& b, const Vec3& wi, const PathState& seen_by) const;
   std::unique_ptr<Mesh> make_mesh(const float* positions, size_t num_vertices, const int64_t* triangles,
                                   size_t num_triangles, const float* corner_normals, const int64_t* materials,
                                   const float* corner_uvs, bool slots) const;

@@ -12,6 +12,7 @@
 #pragma once
 
 #include "torrance/math.h"
+#include "torrance/path_state.h"
 #include "torrance/texture.h"
 
 #include <array>
@@ -113,13 +114,7 @@ struct ShaderGlobals {
   const int32_t* attribute_ids = nullptr;
   int num_attributes = 0;
   Vec3 corner_weights{0.0f};
-  // The path's state at the hit, as Cycles' path flags and bounce counts (the Light Path node):
-  // the kRay* bits of the ray that found it, the bounces before it (transparent passes apart),
-  // and the length of the ray's last segment. Defaults: a ray that is none of these (emission
-  // seen by next-event estimation).
-  uint8_t ray_flags = 0;
-  uint8_t ray_depth = 0, diffuse_depth = 0, glossy_depth = 0, transmission_depth = 0, transparent_depth = 0;
-  float ray_length = 0.0f;
+  PathState path;  // the path's state where the program runs (the Light Path node)
   // Cycles' ray differentials at the hit: dP/dx and dP/dy (the footprint's width along its
   // tangent pair around the true normal), and what they move the UVs and corner weights by.
   Vec3 dpdx{0.0f}, dpdy{0.0f};
@@ -139,9 +134,6 @@ struct ShaderGlobals {
     return g;
   }
 };
-// ShaderGlobals::ray_flags (Cycles' PATH_RAY_*; Is Shadow Ray is 0 wherever a program runs).
-constexpr uint8_t kRayCamera = 1, kRayDiffuse = 2, kRayGlossy = 4, kRaySingular = 8, kRayReflect = 16,
-                  kRayTransmit = 32;
 
 // What an op sees when it runs: its instruction, the registers and the program's data.
 struct ShaderOpContext {
