@@ -19,49 +19,19 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_shader_transforms_agreement.py
 """
 
-import math
-
 from torrance_tools import testing
-from torrance_tools.shader_graphs import DictAttr, agree_on_patches, read_with
-from torrance_tools.textures import set_uvs
-
-
-def object_matrix(obj):
-    """obj's matrix: a turn about a tilted axis, an uneven scale and a move; its mesh taken back
-    by the inverse (the patch stays in place)."""
-    from mathutils import Matrix, Vector
-    k = len(obj.name) % 3
-    m = (Matrix.Translation(Vector((0.3, -0.2 + 0.1 * k, 0.5)))
-         @ Matrix.Rotation(math.radians(40.0 + 25.0 * k), 4, Vector((0.3, 1.0, 0.6)).normalized())
-         @ Matrix.Diagonal((1.6, 0.7, 1.2 + 0.2 * k, 1.0)))
-    obj.data.transform(m.inverted())
-    obj.matrix_world = m
-
-
-def _turned_uvs(obj):
-    c, s = math.cos(math.radians(30.0)), math.sin(math.radians(30.0))
-    corners = [(0, 0), (1, 0), (1, 1), (0, 1)]
-    obj.data.uv_layers.remove(obj.data.uv_layers[0])
-    set_uvs(obj, [(c * u - s * v, s * u + c * v) for u, v in corners])
+from torrance_tools.shader_graphs import (DictAttr, agree_on_patches, object_matrix, read_with,
+                                          shown, turned_uvs)
 
 
 def _setup(obj):
-    _turned_uvs(obj)
+    turned_uvs(obj)
     object_matrix(obj)
-
-
-def _shown(g, vector):
-    """0.5 v + 0.5 (Vector Math Multiply Add)."""
-    m = g.node("ShaderNodeVectorMath", operation='MULTIPLY_ADD')
-    g.link(vector, m.inputs[0])
-    m.inputs[1].default_value = (0.5, 0.5, 0.5)
-    m.inputs[2].default_value = (0.5, 0.5, 0.5)
-    return m.outputs[0]
 
 
 def _tangent(g, direction, axis='Z'):
     t = g.node("ShaderNodeTangent", direction_type=direction, axis=axis)
-    return _shown(g, t.outputs["Tangent"])
+    return shown(g, t.outputs["Tangent"])
 
 
 def tangent_uv(g):
@@ -90,7 +60,7 @@ def _transform(g, vector, kind, convert_from, convert_to, scale=1.0):
     s = g.node("ShaderNodeVectorMath", operation='SCALE')
     s.inputs["Scale"].default_value = scale
     g.link(vt.outputs["Vector"], s.inputs[0])
-    return _shown(g, s.outputs[0])
+    return shown(g, s.outputs[0])
 
 
 def point_world_to_object(g):
@@ -126,7 +96,7 @@ def _normal_map(g, space):
     noise = g.node("ShaderNodeTexNoise")
     noise.inputs["Scale"].default_value = 3.0
     g.link(noise.outputs["Color"], nm.inputs["Color"])
-    return _shown(g, nm.outputs["Normal"])
+    return shown(g, nm.outputs["Normal"])
 
 
 def normal_map_object(g):

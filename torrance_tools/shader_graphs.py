@@ -111,9 +111,9 @@ def _patch_corner(k, rows):
 
 def build(scene, makers, lit=()):
     """The grid: one Emission patch per maker (maker(graph) -> the socket shown; the maker's
-    name names the material; a maker's `setup(obj)`, if it has one, then edits its quad, e.g.
-    adds attributes), then one patch per lit material (made by lit's makers, of materials),
-    under a sun and a sky."""
+    name names the material), then one patch per lit material (made by lit's makers, of
+    materials), under a sun and a sky; a maker's `setup(obj)`, if it has one, then edits its
+    quad (e.g. adds attributes, object_matrix)."""
     testing.setup_render(scene, width=W, height=H)
     cam = testing.add_camera(scene, location=(0.0, -0.001, 10.0), target=(0.0, 0.0, 0.0))
     cam.data.type = 'ORTHO'
@@ -124,7 +124,7 @@ def build(scene, makers, lit=()):
         g.link(make(g), g.shader.inputs["Color"])
         materials.append(g.mat)
     materials += [make() for make in lit]
-    setups = [getattr(make, "setup", None) for make in makers] + [None] * len(lit)
+    setups = [getattr(make, "setup", None) for make in (*makers, *lit)]
     rows = math.ceil(len(materials) / COLUMNS)
     for k, (mat, setup) in enumerate(zip(materials, setups, strict=True)):
         x0, y0 = _patch_corner(k, rows)
@@ -138,6 +138,36 @@ def build(scene, makers, lit=()):
                     angle=math.radians(5.0))
     testing.set_world(scene, (0.3, 0.32, 0.35))
     return [m.name for m in materials]
+
+
+def object_matrix(obj):
+    """Gives obj a matrix that turns about a tilted axis, scales unevenly and moves, its mesh
+    taken back by the inverse so that the patch stays in place: object space differs from world
+    space everywhere, normals and directions transform differently."""
+    from mathutils import Matrix, Vector
+    k = len(obj.name) % 3
+    m = (Matrix.Translation(Vector((0.3, -0.2 + 0.1 * k, 0.5)))
+         @ Matrix.Rotation(math.radians(40.0 + 25.0 * k), 4, Vector((0.3, 1.0, 0.6)).normalized())
+         @ Matrix.Diagonal((1.6, 0.7, 1.2 + 0.2 * k, 1.0)))
+    obj.data.transform(m.inverted())
+    obj.matrix_world = m
+
+
+def turned_uvs(obj, degrees=30.0):
+    """obj's UVs (the grid's quad: (0, 0) .. (1, 1)) turned about (0, 0): the UV tangent is
+    not an axis."""
+    c, s = math.cos(math.radians(degrees)), math.sin(math.radians(degrees))
+    obj.data.uv_layers.remove(obj.data.uv_layers[0])
+    set_uvs(obj, [(c * u - s * v, s * u + c * v) for u, v in ((0, 0), (1, 0), (1, 1), (0, 1))])
+
+
+def shown(g, vector):
+    """0.5 v + 0.5 (Vector Math Multiply Add): a unit vector as a colour."""
+    m = g.node("ShaderNodeVectorMath", operation='MULTIPLY_ADD')
+    g.link(vector, m.inputs[0])
+    m.inputs[1].default_value = (0.5, 0.5, 0.5)
+    m.inputs[2].default_value = (0.5, 0.5, 0.5)
+    return m.outputs[0]
 
 
 def patch_means(img, count):
