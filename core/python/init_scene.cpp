@@ -138,7 +138,7 @@ void init_scene(py::module_& m) {
              float alpha, int alpha_texture, std::array<float, 3> transparent_color,
              const std::string& glass_distribution, bool alpha_from_luminance, bool alpha_inverted, int program,
              int base_color_register, int metallic_register, int roughness_register, int emission_register,
-             int normal_register) {
+             int normal_register, int alpha_register) {
             if (glass_distribution != "GGX" && glass_distribution != "BECKMANN")
               throw py::value_error("glass_distribution must be 'GGX' or 'BECKMANN', got '" + glass_distribution +
                                     "'");
@@ -173,7 +173,7 @@ void init_scene(py::module_& m) {
             tex.alpha_from_luminance = alpha_from_luminance;
             tex.alpha_inverted = alpha_inverted;
             tex.program = program_outputs(program, base_color_register, metallic_register, roughness_register,
-                                          emission_register, normal_register);
+                                          emission_register, normal_register, alpha_register);
             return s.add_material(mat, tex);
           },
           py::arg("base_color") = std::array<float, 3>{0.8f, 0.8f, 0.8f}, py::arg("metallic") = 0.0f,
@@ -190,7 +190,7 @@ void init_scene(py::module_& m) {
           py::arg("glass_distribution") = "GGX", py::arg("alpha_from_luminance") = false,
           py::arg("alpha_inverted") = false, py::arg("program") = -1, py::arg("base_color_register") = -1,
           py::arg("metallic_register") = -1, py::arg("roughness_register") = -1, py::arg("emission_register") = -1,
-          py::arg("normal_register") = -1,
+          py::arg("normal_register") = -1, py::arg("alpha_register") = -1,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
@@ -205,7 +205,8 @@ void init_scene(py::module_& m) {
           "BSDF: alpha 0 and its Color). program: an id from add_shader_program whose registers "
           "*_register (-1: none) feed those inputs instead of the constant or texture (floats read x; "
           "emission: the colour x emission_strength; normal_register: the Normal, a vector facing the viewer, "
-          "which replaces normal_texture and bump_texture).")
+          "which replaces normal_texture and bump_texture; alpha_register: the alpha, clamped to [0, 1], which "
+          "replaces alpha and alpha_texture, run wherever a ray meets the surface, shadow rays included).")
       .def(
           "add_shader_program",
           [](Scene& s, const py::object& constants, const py::object& code, int registers, const py::object& data) {
@@ -232,12 +233,19 @@ void init_scene(py::module_& m) {
           "3t + 2), ids (A,) int32 naming each layer. NaN/Inf read as 0.")
       .def(
           "run_shader_program",
-          [](const Scene& s, int program, const py::object& uvs, float footprint) {
-            return run_shader_program(s, program, uvs, footprint);
+          [](const Scene& s, int program, const py::object& uvs, float footprint, const py::object& positions,
+             const py::object& normals, const py::object& true_normals, const py::object& incoming,
+             const py::object& backfacing, const py::object& attributes) {
+            return run_shader_program(s, program, uvs, footprint,
+                                      {positions, normals, true_normals, incoming, backfacing, attributes});
           },
-          py::arg("program"), py::arg("uvs"), py::arg("footprint") = 0.0f,
+          py::arg("program"), py::arg("uvs"), py::arg("footprint") = 0.0f, py::kw_only(),
+          py::arg("positions") = py::none(), py::arg("normals") = py::none(), py::arg("true_normals") = py::none(),
+          py::arg("incoming") = py::none(), py::arg("backfacing") = py::none(), py::arg("attributes") = py::none(),
           "Every register of shader program `program` after running it at each UV of uvs (N, 2): "
-          "a float32 array (N, registers, 4) (for tests and tools).")
+          "a float32 array (N, registers, 4) (for tests and tools). The hits' other globals, each "
+          "optional (else ShaderGlobals' defaults): positions, normals, true_normals, incoming (N, 3), "
+          "backfacing (N,) (non-zero: a back face), attributes (N, A, 3) (layer a has the id a).")
       .def(
           "add_texture",
           [](Scene& s, const py::object& pixels, const std::string& colorspace, const std::string& interpolation) {

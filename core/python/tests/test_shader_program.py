@@ -149,3 +149,32 @@ def test_mixture_program_factors_are_checked():
     with pytest.raises(ValueError, match="needs 'register'"):
         scene.add_mixture(closures, [dict(kind="program")], program=pid)
     assert scene.add_mixture(closures, [dict(kind="program", register=2)], program=pid) >= 0
+
+
+def test_run_shader_program_takes_the_hits_globals():
+    """run_shader_program's optional hit globals reach the Geometry and Attribute ops."""
+    geometry, attribute = 96, 100      # ShaderOpcode (shader_graph/geometry.py's OPCODES)
+    scene = tc.Scene()
+    # registers 0-4: Geometry Position, Normal, True Normal, Incoming, Backfacing; 5, 6:
+    # attribute layers 1 and 7 (7: none given, so 0)
+    rows = [code_row(geometry, mode, mode=mode) for mode in range(5)]
+    rows += [code_row(attribute, 5, resource=1), code_row(attribute, 6, resource=7)]
+    pid = add(scene, np.zeros((0, 4)), rows, 7)
+    n = 2
+    p, nrm, true_n, inc = (np.arange(3 * n, dtype=np.float32).reshape(n, 3) + k for k in range(4))
+    layers = np.arange(n * 2 * 3, dtype=np.float32).reshape(n, 2, 3) - 5.0
+    regs = scene.run_shader_program(pid, np.zeros((n, 2)), positions=p, normals=nrm,
+                                    true_normals=true_n, incoming=inc,
+                                    backfacing=np.array([0.0, 1.0]), attributes=layers)
+    for r, want in enumerate((p, nrm, true_n, inc)):
+        np.testing.assert_array_equal(regs[:, r, :3], want)
+    np.testing.assert_array_equal(regs[:, 4, 0], [0.0, 1.0])
+    np.testing.assert_array_equal(regs[:, 5, :3], layers[:, 1])
+    np.testing.assert_array_equal(regs[:, 5, 3], 1.0)
+    np.testing.assert_array_equal(regs[:, 6], 0.0)
+    defaults = scene.run_shader_program(pid, np.zeros((1, 2)))[0]
+    np.testing.assert_array_equal(defaults[1, :3], (0.0, 0.0, 1.0))
+    with pytest.raises(ValueError, match="one row per UV"):
+        scene.run_shader_program(pid, np.zeros((n, 2)), positions=np.zeros((3, 3)))
+    with pytest.raises(ValueError, match="must have shape"):
+        scene.run_shader_program(pid, np.zeros((n, 2)), normals=np.zeros((n, 2)))
