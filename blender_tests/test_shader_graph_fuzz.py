@@ -8,16 +8,19 @@ each input) and run by the core (Scene.run_shader_program) at a grid of UVs. For
 
   - compiling raises nothing but Unsupported (the add-on's report path), and the add-on's
     MaterialReader reads the material without falling back to "could not be read";
-  - every register the core computes, at every point, is finite;
+  - every register the core computes, at every point (UVs, positions, normals, incoming
+    directions, back faces and attribute values varied), is finite;
   - instruction by instruction the core agrees with program.py's reference twins (program.fold)
-    of the same inputs (instructions with inputs beyond 1e4 are skipped for the ops whose
-    reference computes in double, as test_shader_program.py does; the float32 twins of the
-    noise, Voronoi and texture families are checked at any input);
+    of the same inputs, and the Texture Coordinate, Geometry and Attribute ops give the point's
+    globals exactly (the other ops reading the hit are checked for finiteness only).
+    Instructions with inputs beyond 1e4 are skipped for the ops whose reference computes in
+    double, as test_shader_program.py does, and for Magic and Wave (chains of sin and cos,
+    which the C library and the reference round differently by an ulp: a large argument, e.g.
+    a Distortion of 3e5, magnifies that to any difference); the other float32 twins (noise,
+    Voronoi, texture families) are checked at any input, within 1e-5 (relative and absolute:
+    Magic's sin chains reach ~5e-6 at moderate inputs);
   - constant folding: the graph compiled without folding, evaluated by program.evaluate, gives
     each folded constant exactly, and a graph of constant-only nodes folds to constants.
-
-The core only takes UVs (and the footprint) through run_shader_program: the hit's position,
-normals, incoming direction, backfacing and attributes stay ShaderGlobals' defaults here.
 
 Deterministic: the "ci" profile is derandomized (fixed examples), about 30 s. The "long" profile
 (TORRANCE_FUZZ_PROFILE=long, scripts/fuzz) is randomized with TORRANCE_FUZZ_SCALE (20) times the
@@ -53,6 +56,21 @@ STATS = collections.Counter()     # what the examples covered (printed at the en
 UVS = np.array([[0.0, 0.0], [0.5, 0.5], [1.0, 1.0], [0.25, -0.75], [-3.3, 7.1], [1e3, -2e3],
                 [1e7, 3e7]], np.float32)
 FOOTPRINTS = (0.0, 0.05)
+# The points' other globals (run_shader_program's keywords): unit normals and directions, grazing
+# and opposed ones among them, back faces and front faces.
+_R = 0.5 ** 0.5
+HITS = dict(
+    positions=np.array([[0, 0, 0], [1, 2, 3], [-5, 0.5, 1e3], [1e6, -1e6, 0], [0.3, 0.3, 0.3],
+                        [-1, -1, -1], [1e7, 2e7, -3e7]], np.float32),
+    normals=np.array([[0, 0, 1], [0, 0, -1], [1, 0, 0], [0.6, 0.8, 0], [0, 0.6, -0.8],
+                      [_R, 0, _R], [0, 1, 0]], np.float32),
+    true_normals=np.array([[0, 0, 1], [0, 0, -1], [1, 0, 0], [0, 1, 0], [0, 0.6, -0.8],
+                           [0, 0, 1], [0, -1, 0]], np.float32),
+    incoming=np.array([[0, 0, 1], [0, 0, 1], [0, 1, 0], [0.6, 0.8, 0], [-1, 0, 0],
+                       [0, 0, -1], [_R, _R, 0]], np.float32),
+    backfacing=np.array([0, 1, 0, 0, 1, 1, 0], np.float32))
+# Attribute layer a at point k (any number of layers): moderate values and extremes.
+_ATTRIBUTE_VALUES = np.array([0.0, 0.25, -1.0, 3.5, 1e30, -1e-38, 0.75, 2.0], np.float32)
 # Nodes of constants only (none reads the hit when its inputs are unlinked).
 CONSTANT_NODES = (
     'ShaderNodeValue', 'ShaderNodeRGB', 'ShaderNodeMath', 'ShaderNodeVectorMath', 'ShaderNodeMix',
@@ -67,12 +85,15 @@ CONSTANT_NODES = (
 
 def addon_modules():
     from torrance.shader_graph import noise, program, registry, textures, voronoi
-    from torrance.shader_graph.graph import KIND_OF_SOCKET, GraphCompiler, Unsupported
+    from torrance.shader_graph.graph import KIND_OF_SOCKET, AttributeIds, GraphCompiler, Unsupported
     single = set(noise.OPCODES) | set(voronoi.OPCODES) | set(textures.OPCODES)
-    return program, registry, KIND_OF_SOCKET, GraphCompiler, Unsupported, single
+    return program, registry, KIND_OF_SOCKET, AttributeIds, GraphCompiler, Unsupported, single
 
 
-program, registry, KIND_OF_SOCKET, GraphCompiler, Unsupported, SINGLE_PRECISION = addon_modules()
+(program, registry, KIND_OF_SOCKET, AttributeIds, GraphCompiler, Unsupported,
+ SINGLE_PRECISION) = addon_modules()
+# float32 twins whose agreement large inputs undo (chains of sin; see the docstring).
+SINE_CHAINS = {"TexMagic", "Wave"}
 # Ops that read the hit other than the UV: program.evaluate has no reference for them.
 HIT_READERS = set(program.VARYING) - {"TexCoordUV"}
 
@@ -104,22 +125,30 @@ def folding_off():
         program.VARYING.update(saved)
 
 
+def attribute_layers(count):
+    """(len(UVS), count, 3) attribute values: layer a at point k, component c."""
+    k, a, c = np.meshgrid(np.arange(len(UVS)), np.arange(count), np.arange(3), indexing='ij')
+    return _ATTRIBUTE_VALUES[(k + 3 * a + c) % len(_ATTRIBUTE_VALUES)]
+
+
 def compile_targets(sockets, textures):
-    """(builder, the Value of each socket or None where Unsupported) compiled as materials.py
-    compiles a closure's inputs: one GraphCompiler per socket, a rollback where Unsupported."""
+    """(builder, attribute ids, the Value of each socket or None where Unsupported) compiled as
+    materials.py compiles a closure's inputs: one GraphCompiler per socket, a rollback where
+    Unsupported."""
     builder = program.ProgramBuilder()
+    attributes = AttributeIds()
     values = []
     for socket in sockets:
         mark = builder.mark()
         try:
-            compiler = GraphCompiler(builder, textures, registry.READERS)
+            compiler = GraphCompiler(builder, textures, registry.READERS, attributes)
             values.append(compiler.input(socket, KIND_OF_SOCKET[socket.type]))
         except Unsupported as exc:
             note(f"Unsupported ({socket.name}): {exc}")
             STATS["Unsupported inputs"] += 1
             builder.rollback(mark)
             values.append(None)
-    return builder, values
+    return builder, attributes, values
 
 
 def build_or_limit(builder):
@@ -133,49 +162,66 @@ def build_or_limit(builder):
         return None
 
 
-def run_in_core(scene, built, footprint):
+def run_in_core(scene, built, footprint, layers):
     constants, code, registers, data = built
     pid = scene.add_shader_program(constants, code, registers, data)
-    return scene.run_shader_program(pid, UVS, footprint)
+    return scene.run_shader_program(pid, UVS, footprint, attributes=layers, **HITS)
 
 
-def reference_of(name, mode, flags, args, table, uv, offset):
-    """What program.py's reference gives for one instruction of the core's inputs (None: not
-    checked: ops reading the hit other than the UV)."""
+_GEOMETRY_GLOBALS = ("positions", "normals", "true_normals", "incoming")
+
+
+def hit_reference(name, mode, resource, k, layers):
+    """The globals at point k an op reading the hit gives (None: not checked)."""
     if name == "TexCoordUV":
-        return (float(uv[0]), float(uv[1]), 0.0, 0.0) if offset == 0 else None
-    if name in program.VARYING:
-        return None
+        return (float(UVS[k][0]), float(UVS[k][1]), 0.0, 0.0)
+    if name == "Geometry":
+        if mode == 4:
+            return (float(HITS["backfacing"][k]), 0.0, 0.0, 0.0)
+        return (*(float(x) for x in HITS[_GEOMETRY_GLOBALS[mode]][k]), 0.0)
+    if name == "Attribute":
+        return (*(float(x) for x in layers[k, resource]), 1.0) if resource < layers.shape[1] \
+            else (0.0,) * 4
+    return None
+
+
+def reference_of(name, mode, flags, resource, args, data):
+    """What program.py's reference gives for one instruction (not reading the hit) of the
+    core's inputs."""
+    table = None
+    if resource >= 0:
+        table = tuple(data[resource + 1:resource + 1 + int(data[resource])])
     return program.finite(program.fold(name, mode, flags, args, table))
 
 
-def check_instructions(built, regs):
+def check_instructions(built, regs, layers):
     """Every instruction's output register, at every point, against the reference of its
-    input registers as the core computed them."""
+    input registers as the core computed them (or the point's globals, for ops reading them)."""
     constants, code, _registers, data = built
     np.testing.assert_array_equal(regs[:, :len(constants)], np.broadcast_to(
         constants, (len(UVS), *constants.shape)), err_msg="the constants' registers")
     low_bits = (1 << program.OFFSET_SHIFT) - 1
-    for k, uv in enumerate(UVS):
+    for k in range(len(UVS)):
         got = regs[k]
         for row in code:
             op, mode, flags, resource, out = (int(x) for x in row[:5])
             name = program.OPCODE_NAME[op]
             args = [tuple(float(x) for x in got[i]) for i in row[5:] if i >= 0]
-            table = None
-            if resource >= 0 and name not in program.VARYING:
-                table = tuple(data[resource + 1:resource + 1 + int(data[resource])])
-            want = reference_of(name, mode, flags & low_bits, args, table, uv,
-                                flags >> program.OFFSET_SHIFT)
-            if want is None:
+            where = f"{name} mode {mode} flags {flags} args {args} at point {k}"
+            if name in program.VARYING:
+                want = hit_reference(name, mode, resource, k, layers) \
+                    if flags >> program.OFFSET_SHIFT == 0 else None
+                if want is not None:
+                    np.testing.assert_array_equal(got[out], np.float32(want), err_msg=where)
                 continue
+            want = reference_of(name, mode, flags & low_bits, resource, args, data)
             single = name in SINGLE_PRECISION
-            if not single and (max((abs(x) for a in args for x in a), default=0.0) > 1e4
-                               or max(map(abs, want)) > 1e6):
+            huge = (max((abs(x) for a in args for x in a), default=0.0) > 1e4
+                    or max(map(abs, want)) > 1e6)
+            if huge and (not single or name in SINE_CHAINS):
                 continue    # float's range: the core's float and the reference's double part
-            np.testing.assert_allclose(
-                got[out], want, rtol=1e-5 if single else 2e-4, atol=1e-6 if single else 2e-5,
-                err_msg=f"{name} mode {mode} flags {flags} args {args} at UV {tuple(uv)}")
+            np.testing.assert_allclose(got[out], want, rtol=1e-5 if single else 2e-4,
+                                       atol=1e-5 if single else 2e-5, err_msg=where)
 
 
 def check_material_reader(mat, textures):
@@ -196,7 +242,7 @@ def check_folding(sockets, values, textures):
     """The graph compiled without folding, evaluated by the reference, gives each folded
     constant (its kind's components) exactly."""
     with folding_off():
-        builder, unfolded = compile_targets(sockets, textures)
+        builder, _ids, unfolded = compile_targets(sockets, textures)
     built = build_or_limit(builder)
     if built is None:
         return
@@ -220,7 +266,7 @@ def check_tree(plan, image, core, constant_only=False):
     try:
         scene = core.Scene()
         textures = CoreTextures(scene)
-        builder, values = compile_targets(sockets, textures)
+        builder, attributes, values = compile_targets(sockets, textures)
         if constant_only:
             for socket, value in zip(sockets, values, strict=True):
                 testing.check(value is None or value.constant,
@@ -236,12 +282,13 @@ def check_tree(plan, image, core, constant_only=False):
         STATS["programs run"] += 1
         STATS["instructions"] += len(built[1])
         STATS.update(program.OPCODE_NAME[int(r[0])] for r in built[1])
+        layers = attribute_layers(len(attributes.ids))
         for footprint in FOOTPRINTS:
-            regs = run_in_core(scene, built, footprint)
+            regs = run_in_core(scene, built, footprint, layers)
             bad = np.argwhere(~np.isfinite(regs))
             testing.check(len(bad) == 0, f"non-finite registers (point, register, channel): "
                                          f"{bad[:8].tolist()}")
-            check_instructions(built, regs)
+            check_instructions(built, regs, layers)
     finally:
         remove_material(mat, groups)
 
