@@ -178,3 +178,19 @@ def test_run_shader_program_takes_the_hits_globals():
         scene.run_shader_program(pid, np.zeros((n, 2)), positions=np.zeros((3, 3)))
     with pytest.raises(ValueError, match="must have shape"):
         scene.run_shader_program(pid, np.zeros((n, 2)), normals=np.zeros((n, 2)))
+
+
+def test_constants_keep_the_sign_of_zero(program):
+    """-0.0 and +0.0 are two constants of a program (one slot for both gave White Noise, which
+    hashes the bits, the other's value: the shader graph fuzz found it)."""
+    b = program.ProgramBuilder()
+    uv = b.emit("TexCoordUV", 'vector')
+    u = b.emit("Channel", 'float', [uv], mode=0)
+    parts = [program.constant('float', -0.0), program.constant('float', 0.0), u]
+    v = b.emit("Combine", 'vector', parts)
+    constants, code, registers, data = b.build()
+    assert len(constants) == 2 and sorted(np.signbit(constants[:, 0])) == [False, True]
+    scene = tc.Scene()
+    regs = scene.run_shader_program(scene.add_shader_program(constants, code, registers, data),
+                                    np.array([[0.5, 0.5]], np.float32))
+    assert np.signbit(regs[0, b.register_of(v), :2]).tolist() == [True, False]

@@ -8,6 +8,7 @@ each node family's, added by families.py), so a graph of constants costs the cor
 opcode numbers are the core's ShaderOpcode: the core ops in order, then each family's range.
 """
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -137,7 +138,7 @@ class ProgramBuilder:
 
     def __init__(self):
         self.code = []            # (op, mode, flags, resource, out, inputs) with symbolic places
-        self.constants = {}       # four floats -> constant slot
+        self.constants = {}       # constant_key(four floats) -> constant slot
         self.registers = 0        # computed values
         self.data = []            # the ops' tables, each its length first
         # Where the varying ops emitted now read the hit: 0 at it, 1 and 2 at it moved by the
@@ -166,7 +167,7 @@ class ProgramBuilder:
 
     def _operand(self, v):
         if v.constant:
-            return ('c', self.constants.setdefault(v.value, len(self.constants)))
+            return ('c', self.constants.setdefault(constant_key(v.value), len(self.constants)))
         return ('r', v.register)
 
     def mark(self):
@@ -205,7 +206,7 @@ class ProgramBuilder:
                              f"{MAX_REGISTERS}")
         place = {'c': lambda i: i, 'r': lambda i: n + i}
         constants = np.zeros((n, 4), np.float32)
-        for value, slot in self.constants.items():
+        for (value, _signs), slot in self.constants.items():
             constants[slot] = value
         code = np.full((len(self.code), CODE_COLUMNS), -1, np.int32)
         for row, (op, mode, flags, resource, out, inputs) in enumerate(self.code):
@@ -213,6 +214,12 @@ class ProgramBuilder:
             for k, (where, i) in enumerate(inputs):
                 code[row, 5 + k] = place[where](i)
         return constants, code, max(total, 1), np.asarray(self.data, np.float32)
+
+
+def constant_key(value):
+    """A constant's key in a program's pool: its four floats and their signs, since -0.0 == 0.0
+    in Python but not to every op (White Noise hashes the bits)."""
+    return tuple(value), tuple(math.copysign(1.0, x) < 0.0 for x in value)
 
 
 def evaluate(constants, code, registers, uv, image=None, data=()):
