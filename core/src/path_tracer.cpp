@@ -55,20 +55,26 @@ Ray shadow_ray(const Vec3& p, const Vec3& ng, const LightSample& ls) {
 // the occlusion test has found something in the way.
 template <bool kAlpha>
 Vec3 shadow_transmittance(const Scene& scene, const Vec3& p, const Vec3& ng, const LightSample& ls,
-                          int max_transparent) {
+                          int max_transparent, const PathState& receiver = {}) {
   Ray ray = shadow_ray(p, ng, ls);
   if (!(ray.tmax > 0.0f) || !scene.occluded(ray.origin, ray.dir, 0.0f, ray.tmax)) return Vec3(1.0f);
   if (!kAlpha) return Vec3(0.0f);
   Vec3 transmittance(1.0f);
+  PathState shadow = receiver;  // what a shader sees on the shadow ray (Cycles' shadow path)
+  shadow.ray_flags = kRayShadow;
+  float travelled = 0.0f;
   for (int passed = 0;; ++passed) {
     SurfaceHit hit;
     if (!scene.intersect(ray, hit)) return transmittance;
-    const float opacity = scene.opacity(hit.material, hit.uv);
+    shadow.transparent_depth = uint8_t(std::min(receiver.transparent_depth + passed, 255));
+    shadow.ray_length = travelled + hit.t;
+    const float opacity = scene.opacity(hit, ray.dir, shadow);
     if (opacity >= 1.0f || passed >= max_transparent) return Vec3(0.0f);
     transmittance *= (1.0f - opacity) * scene.material(hit.material).transparent_color;
     if (!(max_component(transmittance) > 0.0f)) return Vec3(0.0f);
     ray.origin = offset_origin(hit.position, hit.geometric_normal, ray.dir);
     ray.tmax -= hit.t;
+    travelled += hit.t;
     if (!(ray.tmax > 0.0f)) return transmittance;
   }
 }
@@ -285,7 +291,10 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       float passed_length = 0.0f;  // through transparent surfaces since the last vertex
       if constexpr (kAlpha) {
         for (int passed = 0; found; ++passed) {
-          const float opacity = ctx.scene.opacity(hit.material, hit.uv);
+          PathState at = path_state;  // the state a shader there sees (as set after this loop)
+          at.ray_depth = uint8_t(std::min(bounce, 255));
+          at.ray_length = passed_length + hit.t - ray.tmin;
+          const float opacity = ctx.scene.opacity(hit, ray.dir, at);
           if (opacity >= 1.0f || sampler.next_4d().x < opacity) break;
           if (passed >= ctx.settings.max_transparent_bounces) return out;  // Cycles: the path ends
           throughput *= ctx.scene.material(hit.material).transparent_color;
@@ -427,7 +436,8 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
         if (normal_mapped) f.diffuse *= bump_shadowing(n_smooth, ns, ls.wi);
         if (!(max_component(f.total()) > 0.0f)) return;
         const Vec3 transmittance =
-            shadow_transmittance<kAlpha>(ctx.scene, hit.position, ng, ls, ctx.settings.max_transparent_bounces);
+            shadow_transmittance<kAlpha>(ctx.scene, hit.position, ng, ls, ctx.settings.max_transparent_bounces,
+                                         path_state);
         if (!(max_component(transmittance) > 0.0f)) return;
         // Against the BSDF's pdf even where a guide samples the next direction: see prev_pdf.
         const float mis =
@@ -572,7 +582,9 @@ constexpr std::array<TraceFn, 4> kMixtureTracers = make_mixture_tracers(std::mak
 
 bool has_alpha(const Scene& scene) {
   for (size_t i = 0; i < scene.num_materials(); ++i)
-    if (scene.material(uint32_t(i)).alpha < 1.0f || scene.material_textures(uint32_t(i)).alpha >= 0) return true;
+    if (scene.material(uint32_t(i)).alpha < 1.0f || scene.material_textures(uint32_t(i)).alpha >= 0 ||
+        scene.material_textures(uint32_t(i)).program.alpha >= 0)
+      return true;
   return false;
 }
 

@@ -196,7 +196,7 @@ uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures
 
 void Scene::check_program_outputs(const ShaderOutputs& o) const {
   if (o.program < 0) {
-    if (o.base_color >= 0 || o.metallic >= 0 || o.roughness >= 0 || o.emission >= 0 || o.normal >= 0)
+    if (o.base_color >= 0 || o.metallic >= 0 || o.roughness >= 0 || o.emission >= 0 || o.normal >= 0 || o.alpha >= 0)
       throw std::invalid_argument("material reads shader program registers but names no program");
     return;
   }
@@ -204,7 +204,7 @@ void Scene::check_program_outputs(const ShaderOutputs& o) const {
     throw std::invalid_argument("material uses shader program " + std::to_string(o.program) + " but the scene has " +
                                 std::to_string(programs_.size()) + " programs");
   const ShaderProgram& program = programs_[size_t(o.program)];
-  for (int r : {o.base_color, o.metallic, o.roughness, o.emission, o.normal})
+  for (int r : {o.base_color, o.metallic, o.roughness, o.emission, o.normal, o.alpha})
     if (r != -1 && !program.written(r))
       throw std::invalid_argument("material reads register " + std::to_string(r) + " of a shader program with " +
                                   std::to_string(program.registers()) + " registers, which the program does not write");

@@ -94,6 +94,17 @@ Vec3 Scene::emission_at(uint32_t i, const ShaderGlobals& g) const {
   return e;
 }
 
+float Scene::opacity(const SurfaceHit& hit, const Vec3& dir, const PathState& seen_by) const {
+  const ShaderOutputs& o = material_textures_[hit.material].program;
+  if (o.alpha < 0) return opacity(hit.material, hit.uv);
+  ShaderGlobals g = shader_globals(hit, dir, 0.0f);
+  g.path = seen_by;
+  std::array<glm::vec4, ShaderProgram::kMaxRegisters> regs;
+  run_shader_program(uint32_t(o.program), g, regs.data());
+  const float alpha = regs[size_t(o.alpha)].x;
+  return alpha == alpha ? clamp01(alpha) : 1.0f;  // a NaN alpha: opaque, as the socket's default
+}
+
 Vec3 Scene::sampled_emission(const EmissiveTriangle& triangle, const Vec2& b, const Vec3& wi,
                              const PathState& seen_by) const {
   const uint32_t i = triangle.material;

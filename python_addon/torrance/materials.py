@@ -17,18 +17,17 @@ output node (the output Cycles would use):
 * Emission: a black emitter;
 * Mix Shader / Add Shader trees of Principled, Diffuse, Glossy BSDF and Emission (and a lone
   Diffuse or Glossy BSDF: a closure means the same alone and in a Mix): a mixture of closures
-  (mixtures.py), its Fac any shader graph; a Mix Shader of a Transparent BSDF and another shader: that shader with an
-  alpha (transparent_mix.py).
+  (mixtures.py), its Fac any shader graph; a Mix Shader of a Transparent BSDF and another
+  shader: that shader with an alpha (transparent_mix.py).
 
 Base Color, Metallic, Roughness, Emission and its strength (and the Color and Roughness of
-Diffuse and Glossy BSDF, the Color and Strength of Emission) may come from any node graph the
-shader graph compiles (shader_graph/), the Normal from a Bump or Normal Map node of any graph
-(normal_inputs.py). Textures are looked
-up with the mesh's active render UV map; each image is loaded once per render
-(texture_table.TextureTable). A socket linked to something Torrance can not evaluate keeps its
-own default value and the render reports it once per material and socket.
-Anything else (another shader node, no output, nothing linked) becomes the
-neutral default material and is reported.
+Diffuse and Glossy BSDF, the Color and Strength of Emission, a lone Principled's Alpha) may come
+from any node graph the shader graph compiles (shader_graph/), the Normal from a Bump or Normal
+Map node of any graph (normal_inputs.py). Textures are looked up with the mesh's active render UV
+map; each image is loaded once per render (texture_table.TextureTable). A socket linked to
+something Torrance can not evaluate keeps its own default value and the render reports it once
+per material and socket. Anything else (another shader node, no output, nothing linked) becomes
+the neutral default material and is reported.
 """
 
 
@@ -346,7 +345,10 @@ class MaterialReader:
             emission = dict(emission=_color3(color, d['emission']), emission_texture=emission_tex,
                             emission_strength=finite_or(v(mat, node, "Emission Strength", 1.0),
                                                         0.0))
-        alpha, alpha_tex = t(mat, node, "Alpha", 1.0, image_output="Alpha")
+        # A lone Principled's Alpha from any graph (a mixture's closures' alphas are not read).
+        in_mixture = getattr(self, "skip_normals", False)
+        alpha, alpha_tex = t(mat, node, "Alpha", 1.0, image_output="Alpha",
+                             program_input=None if in_mixture else 'alpha')
         specular = finite_or(v(mat, node, names['specular'], d['specular']), d['specular'])
         v2_inputs = {}
         glass = {}

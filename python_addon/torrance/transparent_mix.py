@@ -24,8 +24,8 @@ keeps the Mix Shader's alpha only, and that is reported.
 from .mixtures import MIXTURE_SURFACES, read_mixture
 from .nodes import node_label, source_socket
 
-_SINGLE_SHADERS = {'ShaderNodeBsdfPrincipled': '_principled', 'ShaderNodeBsdfDiffuse': '_diffuse',
-                   'ShaderNodeBsdfGlass': '_glass', 'ShaderNodeEmission': '_emission'}
+_SINGLE_SHADERS = {'ShaderNodeBsdfPrincipled': '_principled', 'ShaderNodeBsdfGlass': '_glass',
+                   'ShaderNodeEmission': '_emission'}
 
 
 def _clamp01(v):
@@ -106,6 +106,8 @@ def read_transparent_mix(reader, mat, node):
         args['mixture']['alpha'] = alpha
         return args
     own_alpha, own_texture = args.get('alpha', 1.0), args.get('alpha_texture', -1)
+    if args.pop('alpha_register', -1) >= 0:
+        own_texture = 0                 # an Alpha its graph computes: as a texture of its own
     if own_texture >= 0 or (own_alpha < 1.0 and 'alpha_texture' in alpha):
         reader.reporter.warning(
             f"Material '{mat.name}': {node_label(other)} has an Alpha of its own under "

@@ -172,8 +172,11 @@ class Scene {
   }
   // The radiance material i emits at a point seen as g says (textures and mixtures included).
   Vec3 emission_at(uint32_t i, const ShaderGlobals& g) const;
+  // The alpha of the surface a ray along dir meets at hit, the path being in state seen_by (a
+  // shadow ray's: kRayShadow): its program's alpha register run there, else as below.
+  float opacity(const SurfaceHit& hit, const Vec3& dir, const PathState& seen_by) const;
   // The material's alpha at a hit: its alpha texture's alpha channel (or colour luminance, or 1 -
-  // either: MaterialTextures) at uv, else Material::alpha.
+  // either: MaterialTextures) at uv, else Material::alpha (its program's alpha not run).
   float opacity(uint32_t material, const Vec2& uv) const {
     const MaterialTextures& t = material_textures_[material];
     if (t.alpha < 0) return materials_[material].alpha;

@@ -189,6 +189,7 @@ struct ShaderOutputs {
   int program = -1;  // index from Scene::add_shader_program
   int16_t base_color = -1, metallic = -1, roughness = -1, emission = -1;
   int16_t normal = -1;  // the closure's Normal (facing the viewer, as Cycles' N): Bump, Normal Map
+  int16_t alpha = -1;   // the material's alpha (x, clamped to [0, 1]): Scene::opacity
   bool any() const { return program >= 0; }
 };
 

@@ -178,20 +178,23 @@ READERS = {
 # of them: the other half of the registry, for docs/nodes.md and the reports (scripts/nodes_doc).
 CLOSURES = {
     'ShaderNodeBsdfPrincipled': "partly: Base Color, Metallic, Roughness, Specular (v2: Specular "
-                                "IOR Level, IOR, Specular Tint), Emission, Alpha, Normal; v1 "
+                                "IOR Level, IOR, Specular Tint), Emission and its Strength, Alpha "
+                                "(alone: any graph, camera and shadow rays), Normal; v1 "
                                 "Transmission, IOR, Transmission Roughness. Reported: Subsurface, "
                                 "Sheen, Clearcoat / Coat, Anisotropic, v2 Transmission Weight, "
                                 "Thin Film, Diffuse Roughness",
-    'ShaderNodeBsdfDiffuse': "rendered: Color, Normal (Roughness in Mix/Add Shader trees)",
-    'ShaderNodeBsdfGlossy': "partly: Color, Roughness (GGX) alone and in Mix/Add Shader trees",
+    'ShaderNodeBsdfDiffuse': "rendered: Color, Roughness (Lambert, Cycles' Oren-Nayar), Normal; "
+                             "alone and in Mix/Add Shader trees alike",
+    'ShaderNodeBsdfGlossy': "partly: Color, Roughness (GGX, Sharp) alone and in Mix/Add Shader "
+                            "trees",
     'ShaderNodeBsdfAnisotropic': "partly: as the Glossy BSDF (Anisotropy reported)",
     'ShaderNodeBsdfGlass': "partly: Color, Roughness, IOR, Normal; GGX, Beckmann, Sharp "
                            "(Multiscatter GGX rendered as GGX)",
     'ShaderNodeBsdfTransparent': "rendered: Color",
     'ShaderNodeEmission': "rendered: Color, Strength",
     'ShaderNodeMixShader': "partly: trees of Principled, Diffuse, Glossy and Emission closures "
-                           "(and a Transparent BSDF), Fac a value, an Image Texture or a Checker "
-                           "Texture",
+                           "(and a Transparent BSDF: Fac a value or an Image Texture), Fac any "
+                           "graph",
     'ShaderNodeAddShader': "partly: trees of Principled, Diffuse, Glossy and Emission closures",
     'ShaderNodeNormalMap': "rendered: Tangent (each mesh's active render UV map), Object, "
                            "World and the Blender spaces, Strength, any Color graph",
