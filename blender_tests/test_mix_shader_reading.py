@@ -64,12 +64,12 @@ def nested_tree():
 
 
 def unsupported_tree():
-    """Mix(Point Density, Glass, Diffuse with a Bump from an image) and a checker on Generated
+    """Mix(Point Density, Translucent, Diffuse with a Bump from an image) and a checker on Generated
     (read by the shader graph: a program factor)."""
     mat, nodes, links, out = node_material("Unsupported")
     mix = nodes.new("ShaderNodeMixShader")
     links.new(nodes.new("ShaderNodeTexPointDensity").outputs["Density"], mix.inputs["Fac"])
-    links.new(nodes.new("ShaderNodeBsdfGlass").outputs[0], mix.inputs[1])
+    links.new(nodes.new("ShaderNodeBsdfTranslucent").outputs[0], mix.inputs[1])
     diffuse = shader(nodes, "ShaderNodeBsdfDiffuse")
     bump = nodes.new("ShaderNodeBump")
     bump.invert = True
@@ -157,10 +157,11 @@ def main():
     texts = [t for _l, t in messages]
     print("\n".join(texts), flush=True)
     kinds = [(kind, terms) for kind, _a, terms in mix["closures"]]
-    # Fac from a Point Density texture: the socket's 0.5 (a constant: 0.5 and 0.5); Glass left
-    # out; the checker on Generated coordinates a program factor of the mixture's shader program.
+    # Fac from a Point Density texture: the socket's 0.5 (a constant: 0.5 and 0.5);
+    # Translucent left out; the checker on Generated coordinates a program factor of the
+    # mixture's shader program.
     check(kinds[0][0] == "diffuse" and len(kinds) == 2 and kinds[1][0] == "glossy",
-          f"Glass left out, Diffuse and Glossy kept: {kinds}")
+          f"Translucent left out, Diffuse and Glossy kept: {kinds}")
     normal = mix["normal"]
     check(normal.get("bump_texture") == 7 and abs(normal.get("bump_strength", 0) - 0.7) < 1e-6
           and abs(normal.get("bump_distance", 0) + 0.2) < 1e-6,
@@ -169,7 +170,7 @@ def main():
           and ('generated',) in mix["program_attributes"],
           f"the checker on Generated: a program factor reading Generated: {mix['factors']}")
     for expected in ("'Point Density' is not supported",
-                     "the shader 'Glass BSDF' is not supported in a mix",
+                     "the shader 'Translucent BSDF' is not supported in a mix",
                      "'Glossy BSDF' has another Normal than 'Diffuse BSDF'"):
         hits = [t for t in texts if expected in t]
         check(len(hits) == 1, f"reported once: {expected!r} in {texts}")

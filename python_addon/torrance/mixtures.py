@@ -5,7 +5,7 @@ The tree under the material's Surface is walked as Cycles' SVM compiles it: a Mi
 its first Shader input the weight (1 - Fac) and its second Fac (Fac clamped to [0, 1]), an Add
 Shader gives both the weight it received. The closures Torrance renders:
 
-* Principled BSDF (as a lone Principled is read), Diffuse BSDF (Color, Roughness: Lambert or
+* Principled BSDF and Glass BSDF (as a lone one is read), Diffuse BSDF (Color, Roughness: Lambert or
   Cycles' Oren-Nayar), Glossy BSDF (Color, Roughness; GGX, Sharp as roughness 0; Beckmann,
   Ashikhmin-Shirley and Multiscatter GGX are rendered as GGX and reported; Blender 4.x's Glossy,
   ShaderNodeBsdfAnisotropic, too, its Anisotropy reported), Emission.
@@ -249,10 +249,16 @@ class ShaderTreeReader:
             return 'principled', args
         if kind == 'ShaderNodeEmission':
             return 'emission', reader._emission(mat, node)
+        if kind == 'ShaderNodeBsdfGlass':       # a material of its own, as a lone Glass BSDF
+            args = reader._glass(mat, node)
+            for key in ('normal_texture', 'normal_strength', 'bump_texture', 'bump_strength',
+                        'bump_distance'):
+                args.pop(key, None)         # the mixture's normal serves all closures
+            return 'principled', args
         if kind in ('ShaderNodeBsdfDiffuse', 'ShaderNodeBsdfGlossy', 'ShaderNodeBsdfAnisotropic'):
             return self._colour_roughness(node)
         self.warn(f"the shader {node_label(node)} is not supported in a mix (Torrance mixes "
-                  f"Principled, Diffuse, Glossy and Emission); it is left out")
+                  f"Principled, Diffuse, Glossy, Glass and Emission); it is left out")
         return None
 
     def _colour_roughness(self, node):

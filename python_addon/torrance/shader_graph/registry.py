@@ -189,13 +189,15 @@ CLOSURES = {
                             "trees",
     'ShaderNodeBsdfAnisotropic': "partly: as the Glossy BSDF (Anisotropy reported)",
     'ShaderNodeBsdfGlass': "partly: Color, Roughness, IOR, Normal; GGX, Beckmann, Sharp "
-                           "(Multiscatter GGX rendered as GGX)",
+                           "(Multiscatter GGX rendered as GGX); alone and in Mix/Add Shader trees",
     'ShaderNodeBsdfTransparent': "rendered: Color",
     'ShaderNodeEmission': "rendered: Color, Strength",
-    'ShaderNodeMixShader': "partly: trees of Principled, Diffuse, Glossy and Emission closures "
+    'ShaderNodeMixShader': "partly: trees of Principled, Diffuse, Glossy, Glass and Emission "
+                           "closures "
                            "(and a Transparent BSDF: Fac a value or an Image Texture), Fac any "
                            "graph",
-    'ShaderNodeAddShader': "partly: trees of Principled, Diffuse, Glossy and Emission closures",
+    'ShaderNodeAddShader': "partly: trees of Principled, Diffuse, Glossy, Glass and Emission "
+                           "closures",
     'ShaderNodeNormalMap': "rendered: Tangent (each mesh's active render UV map), Object, "
                            "World and the Blender spaces, Strength, any Color graph",
     'ShaderNodeBump': "rendered: any Height graph (evaluated at the hit and its ray-differential "
