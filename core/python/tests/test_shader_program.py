@@ -194,3 +194,14 @@ def test_constants_keep_the_sign_of_zero(program):
     regs = scene.run_shader_program(scene.add_shader_program(constants, code, registers, data),
                                     np.array([[0.5, 0.5]], np.float32))
     assert np.signbit(regs[0, b.register_of(v), :2]).tolist() == [True, False]
+
+
+def test_tables_are_kept_finite(program):
+    """An op's table with NaN and infinities (an HSL Color Ramp's, baked by Blender) becomes
+    finite, as the core requires (the shader graph fuzz found the core refusing the program)."""
+    b = program.ProgramBuilder()
+    u = b.emit("Channel", 'float', [b.emit("TexCoordUV", 'vector')], mode=0)
+    b.emit("Math", 'float', [u, u, u], table=[float('nan'), float('inf'), -float('inf'), 0.5])
+    constants, code, registers, data = b.build()
+    assert data.tolist() == [4.0, 0.0, 0.0, 0.0, 0.5]     # as program.finite: NaN and inf read 0
+    tc.Scene().add_shader_program(constants, code, registers, data)

@@ -150,7 +150,10 @@ class ProgramBuilder:
 
     def emit(self, op, kind, args=(), mode=0, flags=0, texture=-1, table=None):
         """The Value of an instruction (folded when it can be). table: the floats of an op that
-        reads one (a ramp's stops, a curve's samples)."""
+        reads one (a ramp's stops, a curve's samples), kept finite as every value (Blender's
+        ColorRamp.evaluate gives NaN for an HSL ramp of a stop brighter than 1)."""
+        if table is not None:
+            table = finite(table)
         if op not in VARYING and all(a.constant for a in args):
             return Value(kind, finite(fold(op, mode, flags, list(args), table)))
         resource = texture
