@@ -10,12 +10,11 @@ scaled matrix (shader_graphs.object_matrix) and turned UVs:
   (the surface's normal is the displacement's bump: no lighting noise);
 - lit materials whose output has a Displacement: a metallic Principled BSDF (Displacement in
   World and Object space, Vector Displacement in Tangent space), a Mix Shader of two Glossy
-  BSDFs.
-Known gap, so no diffuse closure here: Cycles smooths diffuse light on bumped surfaces by its
-bump shadowing term against sd->N, which its displacement bump replaces (so no term for a
-closure whose Normal is unlinked); Torrance takes the term against the undisplaced normal, and
-a diffuse displaced Principled renders 1.4 % darker than Cycles (0.6191 against 0.6278 in red;
-the same normal through a Bump node agrees: 0.6193 / 0.6194, as Cycles applies the term there).
+  BSDFs, a dielectric Principled and a Diffuse BSDF (diffuse light: Cycles smooths it on bumped
+  surfaces by its bump shadowing term against sd->N, which the displacement's bump replaces, so
+  a closure whose Normal is unlinked gets no term; Torrance compares with the displaced normal
+  too, ShaderOutputs::surface_normal; against the undisplaced one it rendered the dielectric
+  1.4 % dark: 0.6191 against 0.6278 in red).
 Cycles renders the output's Displacement as bump: the offset's component along the normal at
 the hit and at the hit moved by the ray differentials, as heights of a Bump node (Strength 1,
 Distance 1) whose normal becomes the shading normal.
@@ -119,6 +118,19 @@ def lit_vector_tangent():
     return g.mat
 
 
+def lit_dielectric():
+    g = _lit("lit_dielectric", metallic=0.0)
+    _to_output(g, _displacement(g, 'WORLD', 0.12))
+    return g.mat
+
+
+def lit_diffuse():
+    g = _lit("lit_diffuse", "ShaderNodeBsdfDiffuse")
+    g.shader.inputs["Color"].default_value = (0.7, 0.6, 0.5, 1.0)
+    _to_output(g, _displacement(g, 'OBJECT', 0.1))
+    return g.mat
+
+
 def lit_mixed():
     """A Mix Shader of two Glossy BSDFs (GGX, roughness 0.2 and 0.5)."""
     g = _lit("lit_mixed", "ShaderNodeMixShader")
@@ -135,7 +147,8 @@ def lit_mixed():
 MAKERS = (displacement_object, displacement_world, vector_tangent, vector_object, vector_world,
           displaced_normal)
 LIT = (lit_world, lit_object, lit_vector_tangent, lit_mixed)
-for _make in (*MAKERS, *LIT):
+DIFFUSE = (lit_dielectric, lit_diffuse)     # checked on their own: the term is a few per cent
+for _make in (*MAKERS, *LIT, *DIFFUSE):
     _make.setup = _setup
 
 
@@ -166,6 +179,18 @@ def displacement_ignored(original):
     return lambda g, displacement: g.builder.emit("Geometry", 'vector', mode=1)
 
 
+def without_surface_normal(original):
+    """A fault: the closure's program no longer says the displaced surface normal (the shadow
+    terminator's smoothing then compares with the undisplaced one)."""
+    def read(self, *args):
+        out = original(self, *args)
+        if isinstance(out, dict):
+            out.pop('surface_normal_register', None)
+            out.get('normal', {}).pop('surface_normal_register', None)
+        return out
+    return read
+
+
 def main():
     testing.addon()
     import torrance.normal_inputs as normal_inputs
@@ -182,6 +207,13 @@ def main():
          read_with(lambda node: {"socket:Scale": node.inputs["Scale"].default_value / 2})),
         ("the output's Displacement ignored", normal_inputs, 'bump_from_displacement',
          displacement_ignored)))
+    from torrance.materials import MaterialReader
+    from torrance.mixtures import ShaderTreeReader
+    agree_on_patches((), lit=DIFFUSE, what="diffuse light on displaced surfaces", samples=128,
+                     faults=(("a Principled's displaced normal not said", MaterialReader,
+                              '_with_program', without_surface_normal),
+                             ("a Diffuse BSDF's displaced normal not said", ShaderTreeReader,
+                              'read', without_surface_normal)))
 
 
 testing.run(main)

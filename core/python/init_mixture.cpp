@@ -62,7 +62,7 @@ void init_mixture(py::module_& m) {
                         const py::list& factors, int normal_texture, float normal_strength, int bump_texture,
                         float bump_strength, float bump_distance, float alpha, int alpha_texture,
                         bool alpha_from_luminance, bool alpha_inverted, std::array<float, 3> transparent_color,
-                        int program, int normal_register) {
+                        int program, int normal_register, int surface_normal_register) {
     Mixture mixture;
     mixture.program = program;
     for (const auto& f : factors) mixture.factors.push_back(parse_factor(f));
@@ -80,10 +80,12 @@ void init_mixture(py::module_& m) {
     normal.alpha = alpha_texture;
     normal.alpha_from_luminance = alpha_from_luminance;
     normal.alpha_inverted = alpha_inverted;
-    if (normal_register < -1 || normal_register >= ShaderProgram::kMaxRegisters)
-      throw py::value_error("normal_register must lie in [-1, " + std::to_string(ShaderProgram::kMaxRegisters) +
-                            "), got " + std::to_string(normal_register));
+    for (int r : {normal_register, surface_normal_register})
+      if (r < -1 || r >= ShaderProgram::kMaxRegisters)
+        throw py::value_error("normal_register and surface_normal_register must lie in [-1, " +
+                              std::to_string(ShaderProgram::kMaxRegisters) + "), got " + std::to_string(r));
     normal.program.normal = int16_t(normal_register);
+    normal.program.surface_normal = int16_t(surface_normal_register);
     return s.add_mixture(mixture, normal, alpha, Vec3(transparent_color[0], transparent_color[1], transparent_color[2]));
   };
   cls.attr("add_mixture") = py::cpp_function(
@@ -94,7 +96,7 @@ void init_mixture(py::module_& m) {
       py::arg("bump_distance") = 1.0f, py::arg("alpha") = 1.0f, py::arg("alpha_texture") = -1,
       py::arg("alpha_from_luminance") = false, py::arg("alpha_inverted") = false,
       py::arg("transparent_color") = std::array<float, 3>{1.0f, 1.0f, 1.0f}, py::arg("program") = -1,
-      py::arg("normal_register") = -1,
+      py::arg("normal_register") = -1, py::arg("surface_normal_register") = -1,
       "Adds a material made of weighted closures (Mix Shader / Add Shader); returns its material index. "
       "closures: [(type, material, terms)], type 'principled' | 'diffuse' | 'glossy' | 'emission', material an "
       "add_material index holding the closure's inputs (diffuse/glossy: base_color = Color, roughness), terms the "
@@ -103,7 +105,8 @@ void init_mixture(py::module_& m) {
       "Checker Texture at the UV) | {'kind': 'program', 'register'} (register x of shader program `program`, "
       "from add_shader_program: the Fac's node graph). alpha, alpha_texture, alpha_from_luminance, alpha_inverted, "
       "transparent_color: as add_material's (a Mix Shader of a Transparent BSDF and this mixture). "
-      "normal_register: register of `program` holding the Normal of all closures (as add_material's). ValueError "
+      "normal_register: register of `program` holding the Normal of all closures, surface_normal_register the "
+      "surface's after the Material Output's Displacement (as add_material's). ValueError "
       "for malformed mixtures.");
 }
 

@@ -138,7 +138,7 @@ void init_scene(py::module_& m) {
              float alpha, int alpha_texture, std::array<float, 3> transparent_color,
              const std::string& glass_distribution, bool alpha_from_luminance, bool alpha_inverted, int program,
              int base_color_register, int metallic_register, int roughness_register, int emission_register,
-             int normal_register, int alpha_register) {
+             int normal_register, int alpha_register, int surface_normal_register) {
             if (glass_distribution != "GGX" && glass_distribution != "BECKMANN")
               throw py::value_error("glass_distribution must be 'GGX' or 'BECKMANN', got '" + glass_distribution +
                                     "'");
@@ -173,7 +173,8 @@ void init_scene(py::module_& m) {
             tex.alpha_from_luminance = alpha_from_luminance;
             tex.alpha_inverted = alpha_inverted;
             tex.program = program_outputs(program, base_color_register, metallic_register, roughness_register,
-                                          emission_register, normal_register, alpha_register);
+                                          emission_register, normal_register, alpha_register,
+                                          surface_normal_register);
             return s.add_material(mat, tex);
           },
           py::arg("base_color") = std::array<float, 3>{0.8f, 0.8f, 0.8f}, py::arg("metallic") = 0.0f,
@@ -191,6 +192,7 @@ void init_scene(py::module_& m) {
           py::arg("alpha_inverted") = false, py::arg("program") = -1, py::arg("base_color_register") = -1,
           py::arg("metallic_register") = -1, py::arg("roughness_register") = -1, py::arg("emission_register") = -1,
           py::arg("normal_register") = -1, py::arg("alpha_register") = -1,
+          py::arg("surface_normal_register") = -1,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
@@ -206,7 +208,9 @@ void init_scene(py::module_& m) {
           "*_register (-1: none) feed those inputs instead of the constant or texture (floats read x; "
           "emission: the colour x emission_strength; normal_register: the Normal, a vector facing the viewer, "
           "which replaces normal_texture and bump_texture; alpha_register: the alpha, clamped to [0, 1], which "
-          "replaces alpha and alpha_texture, run wherever a ray meets the surface, shadow rays included).")
+          "replaces alpha and alpha_texture, run wherever a ray meets the surface, shadow rays included; "
+          "surface_normal_register: the surface's normal after the Material Output's Displacement, as bump, "
+          "what the shadow terminator's smoothing compares the Normal with).")
       .def(
           "add_shader_program",
           [](Scene& s, const py::object& constants, const py::object& code, int registers, const py::object& data) {

@@ -54,8 +54,8 @@ inline ShaderProgram shader_program(const Scene& scene, const py::object& consta
 }
 
 inline ShaderOutputs program_outputs(int program, int base_color, int metallic, int roughness, int emission,
-                                    int normal = -1, int alpha = -1) {
-  for (int r : {base_color, metallic, roughness, emission, normal, alpha})
+                                    int normal = -1, int alpha = -1, int surface_normal = -1) {
+  for (int r : {base_color, metallic, roughness, emission, normal, alpha, surface_normal})
     if (r < -1 || r >= ShaderProgram::kMaxRegisters)
       throw py::value_error("a material's program register must lie in [-1, " +
                             std::to_string(ShaderProgram::kMaxRegisters) + "), got " + std::to_string(r));
@@ -67,6 +67,7 @@ inline ShaderOutputs program_outputs(int program, int base_color, int metallic, 
   o.emission = int16_t(emission);
   o.normal = int16_t(normal);
   o.alpha = int16_t(alpha);
+  o.surface_normal = int16_t(surface_normal);
   return o;
 }
 

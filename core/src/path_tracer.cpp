@@ -378,8 +378,10 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       // Orient the frame towards the viewer (two-sided surfaces) and keep reflections valid.
       const Vec3 wo_world = -ray.dir;
       Vec3 ng = hit.geometric_normal;
+      // The surface's normal (interpolated, or displaced as bump by the Material Output's
+      // Displacement: Cycles' sd->N) and the closure's (normal-mapped).
       Vec3 n_smooth = hit.shading_normal;
-      Vec3 ns = textured ? ctx.scene.normal_mapped(hit.material, hit, n_smooth, globals) : n_smooth;
+      Vec3 ns = textured ? ctx.scene.normal_mapped(hit.material, hit, hit.shading_normal, globals, &n_smooth) : n_smooth;
       const bool normal_mapped = textured && ns != n_smooth;
       const bool backfacing = glm::dot(ng, wo_world) < 0.0f;  // inside, for glass
       const bool transmits = kGlass && bsdf.transmits();

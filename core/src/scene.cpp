@@ -126,7 +126,8 @@ void Scene::apply_program(const MaterialTextures& t, const ShaderGlobals& g, Mat
   if (o.emission >= 0) m.emission = glm::max(Vec3(regs[size_t(o.emission)]), Vec3(0.0f)) * t.emission_strength;
 }
 
-Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, const ShaderGlobals& g) const {
+Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, const ShaderGlobals& g,
+                          Vec3* surface_normal) const {
   const MaterialTextures& t = material_textures_[id];
   // Cycles maps normals facing the viewer; the result goes back to the mesh's winding.
   const float side = g.backfacing ? -1.0f : 1.0f;
@@ -137,9 +138,13 @@ Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, co
     ShaderGlobals at = g;
     at.normal = n;
     run_shader_program(uint32_t(t.program.program), at, regs.data());
-    const Vec3 v = Vec3(regs[size_t(t.program.normal)]);
-    const float len = glm::length(v);
-    out = len > 1e-6f && std::isfinite(len) ? v / len : n;
+    auto unit = [&](int16_t r) {
+      const Vec3 v = Vec3(regs[size_t(r)]);
+      const float len = glm::length(v);
+      return len > 1e-6f && std::isfinite(len) ? v / len : n;
+    };
+    out = unit(t.program.normal);
+    if (surface_normal && t.program.surface_normal >= 0) *surface_normal = side * unit(t.program.surface_normal);
   } else if (t.normal >= 0) {
     const Vec3 c = Vec3(textures_[t.normal]->lookup(hit.uv, g.footprint));
     out = side * shader::tangent_normal_map(c, ns, hit.tangent, hit.bitangent_sign, t.normal_strength);
@@ -196,7 +201,8 @@ uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures
 
 void Scene::check_program_outputs(const ShaderOutputs& o) const {
   if (o.program < 0) {
-    if (o.base_color >= 0 || o.metallic >= 0 || o.roughness >= 0 || o.emission >= 0 || o.normal >= 0 || o.alpha >= 0)
+    if (o.base_color >= 0 || o.metallic >= 0 || o.roughness >= 0 || o.emission >= 0 || o.normal >= 0 || o.alpha >= 0 ||
+        o.surface_normal >= 0)
       throw std::invalid_argument("material reads shader program registers but names no program");
     return;
   }
@@ -204,7 +210,7 @@ void Scene::check_program_outputs(const ShaderOutputs& o) const {
     throw std::invalid_argument("material uses shader program " + std::to_string(o.program) + " but the scene has " +
                                 std::to_string(programs_.size()) + " programs");
   const ShaderProgram& program = programs_[size_t(o.program)];
-  for (int r : {o.base_color, o.metallic, o.roughness, o.emission, o.normal, o.alpha})
+  for (int r : {o.base_color, o.metallic, o.roughness, o.emission, o.normal, o.alpha, o.surface_normal})
     if (r != -1 && !program.written(r))
       throw std::invalid_argument("material reads register " + std::to_string(r) + " of a shader program with " +
                                   std::to_string(program.registers()) + " registers, which the program does not write");

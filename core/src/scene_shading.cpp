@@ -26,11 +26,11 @@ uint32_t Scene::add_mixture(const Mixture& mixture, const MaterialTextures& norm
     if (id < -1 || id >= int(textures_.size()))
       throw std::invalid_argument("material uses texture " + std::to_string(id) + " but the scene has " +
                                   std::to_string(textures_.size()) + " textures");
-  if (normal.program.normal >= 0 && (mixture.program < 0 || size_t(mixture.program) >= programs_.size() ||
-                                     !programs_[size_t(mixture.program)].written(normal.program.normal)))
-    throw std::invalid_argument("a mixture's normal reads register " + std::to_string(normal.program.normal) +
-                                " of shader program " + std::to_string(mixture.program) +
-                                ", which does not exist or does not write it");
+  for (int16_t r : {normal.program.normal, normal.program.surface_normal})
+    if (r >= 0 && (mixture.program < 0 || size_t(mixture.program) >= programs_.size() ||
+                   !programs_[size_t(mixture.program)].written(r)))
+      throw std::invalid_argument("a mixture's normal reads register " + std::to_string(r) + " of shader program " +
+                                  std::to_string(mixture.program) + ", which does not exist or does not write it");
   if (!std::isfinite(normal.normal_strength) || !std::isfinite(normal.bump_strength) ||
       !std::isfinite(normal.bump_distance))
     throw std::invalid_argument("texture strengths must be finite");
@@ -56,6 +56,7 @@ uint32_t Scene::add_mixture(const Mixture& mixture, const MaterialTextures& norm
   if (normal.program.normal >= 0) {  // the mixture's Normal, from the mixture's program
     textures.program.program = mixture.program;
     textures.program.normal = normal.program.normal;
+    textures.program.surface_normal = normal.program.surface_normal;
   }
   textures.alpha = normal.alpha;
   textures.alpha_from_luminance = normal.alpha_from_luminance;

@@ -224,6 +224,8 @@ class MaterialReader:
         normal = out.pop('normal_value', None)
         if normal is not None:
             self._program_inputs['normal'] = normal
+            if self._program.shading_normal is not None:     # the Displacement's, as bump
+                self._program_inputs['surface_normal'] = self._program.shading_normal
         if self._program_inputs:
             out['shader_program'] = self._program.build()
             out['program_reads_uvs'] = self._program.uses_uvs()

@@ -69,6 +69,9 @@ class ShaderTreeReader:
         out = dict(closures=self.closures, factors=self.factors, normal=normal)
         if normal_value is not None:
             normal['normal_register'] = self.program.register_of(normal_value)
+            if self.program.shading_normal is not None:       # the Displacement's, as bump
+                normal['surface_normal_register'] = self.program.register_of(
+                    self.program.shading_normal)
         if self.program_factors or normal_value is not None:
             out.update(shader_program=self.program.build(),
                        program_reads_uvs=self.program.uses_uvs(),

@@ -190,7 +190,10 @@ class Scene {
   // shader_bump.h), else its image normal map (tangent space) or image height map (a Bump node
   // fed by an Image Texture's luminance: its heights at the hit and at the hit moved by the ray
   // differentials, at least a hundredth of a texel apart), by shader_bump.h's formulas.
-  Vec3 normal_mapped(uint32_t material, const SurfaceHit& hit, const Vec3& ns, const ShaderGlobals& g) const;
+  // surface_normal (if given) becomes the surface's normal after the Material Output's Displacement
+  // (ShaderOutputs::surface_normal, as wound) where the program computes it; else it is left as is.
+  Vec3 normal_mapped(uint32_t material, const SurfaceHit& hit, const Vec3& ns, const ShaderGlobals& g,
+                     Vec3* surface_normal = nullptr) const;
   // As above, seen from the front (along -geometric_normal); cone_width: the ray cone's width in
   // metres at the hit (the ray differentials' length).
   Vec3 normal_mapped(uint32_t material, const SurfaceHit& hit, const Vec3& ns, float footprint = 0.0f,

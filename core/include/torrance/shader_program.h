@@ -52,6 +52,7 @@ enum class ShaderOpcode : uint8_t {
   WhiteNoise = 33,  // White Noise Texture: mode = dimensions - 1; flags & 1: Color, else Value
   Musgrave = 34,    // Musgrave Texture: mode = type * 4 + dimensions - 1
   Wave = 35,        // Wave Texture: mode = (type * 4 + direction) * 3 + profile; flags & 1: Color
+  NoiseV4 = 36,     // Blender 4.x's Noise Texture (shader_noise4.h): mode = type * 4 + dimensions - 1
   // [voronoi ops]
   Voronoi = 48,    // the Voronoi Texture node (shader_voronoi.h): mode, flags and inputs as voronoi_op says
   // [texture ops]
@@ -190,6 +191,9 @@ struct ShaderOutputs {
   int16_t base_color = -1, metallic = -1, roughness = -1, emission = -1;
   int16_t normal = -1;  // the closure's Normal (facing the viewer, as Cycles' N): Bump, Normal Map
   int16_t alpha = -1;   // the material's alpha (x, clamped to [0, 1]): Scene::opacity
+  // The surface's normal after the Material Output's Displacement (as bump: Cycles' sd->N, facing
+  // the viewer), what the shadow terminator's smoothing compares the closure's Normal with.
+  int16_t surface_normal = -1;
   bool any() const { return program >= 0; }
 };
 
