@@ -108,14 +108,17 @@ def node_plans(draw, types, depth):
 
 
 @st.composite
-def tree_plans(draw, types, depth=2, interface=False, max_nodes=8):
+def tree_plans(draw, types, depth=2, interface=False, max_nodes=8, sources=()):
     """(interface inputs' kinds, nodes, links, outputs): links (source, output choice, node,
     input choice, reroutes) from an earlier node (or GROUP_INPUT / SHADER_SOURCE) to a later one;
     outputs (node, output choice, kind) feed a group's outputs or, at the top, TARGETS (None:
-    left unlinked)."""
+    left unlinked). sources: node types (of `types`) the first node is drawn from, when given
+    (nodes reading the hit, so that the ops after them run in the core, not folded)."""
     inputs = tuple(draw(st.lists(st.sampled_from(sorted(INTERFACE_SOCKET)), max_size=3)))
     nodes = tuple(draw(st.lists(node_plans(types, depth), min_size=1 if interface else 2,
                                 max_size=max_nodes)))
+    if sources:
+        nodes = (draw(node_plans({k: types[k] for k in sources}, 0)), *nodes)
     first = GROUP_INPUT if interface and inputs else 0
     links = []
     for target in range(len(nodes)):      # each node's inputs: mostly from the nodes before it
