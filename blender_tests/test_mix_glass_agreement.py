@@ -21,16 +21,18 @@ import math
 from torrance_tools import testing
 from torrance_tools.issue12_scenes import checker_floor
 from torrance_tools.seed_noise import agree_within_seed_noise
-from torrance_tools.shader_graphs import Graph
+from torrance_tools.shader_graphs import Graph, make_sharp
 
 W, H = 128, 96
 BOUNCES = 8
 
 
 def glass(g, color, roughness, ior):
-    n = g.node("ShaderNodeBsdfGlass", distribution='GGX' if roughness > 0 else 'SHARP')
+    n = g.node("ShaderNodeBsdfGlass", distribution='GGX')
     n.inputs["Color"].default_value = (*color, 1.0)
     n.inputs["Roughness"].default_value = roughness
+    if roughness == 0:
+        make_sharp(n)
     n.inputs["IOR"].default_value = ior
     return n.outputs[0]
 

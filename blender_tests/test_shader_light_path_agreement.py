@@ -24,7 +24,7 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
 
 from torrance_tools import testing
 from torrance_tools.seed_noise import agree_within_seed_noise
-from torrance_tools.shader_graphs import DictAttr, Graph
+from torrance_tools.shader_graphs import DictAttr, Graph, make_sharp
 
 W, H = 160, 120
 BOUNCES = 6
@@ -68,7 +68,7 @@ def bsdf_material(name, kind, **inputs):
     for key, value in inputs.items():
         g.shader.inputs[key].default_value = value
     if kind in ("ShaderNodeBsdfGlossy", "ShaderNodeBsdfGlass"):
-        g.shader.distribution = 'SHARP'
+        make_sharp(g.shader)
     return g.mat
 
 

@@ -23,6 +23,8 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_shader_noise_agreement.py
 """
 
+import bpy
+
 from torrance_tools import testing
 from torrance_tools.shader_graphs import DictAttr, agree_on_patches, read_with
 
@@ -55,22 +57,22 @@ def set_inputs(node, **values):
 def noise_node(g, dims, vector=True, w=None, **values):
     n = g.node("ShaderNodeTexNoise", noise_dimensions=dims)
     if vector:
-        g.link(uvw(g), n.inputs["Vector"])
+        g.link(uvw(g), g.socket(n, "Vector"))
     if w is not None:
-        g.link(w, n.inputs["W"])
+        g.link(w, g.socket(n, "W"))
     set_inputs(n, **values)
     return n
 
 
 def noise_1d(g):
     n = noise_node(g, '1D', vector=False, w=w_of_uv(g), scale=6.0, detail=2.0, roughness=0.5)
-    g.link(g.uv(), n.inputs["Vector"])            # unused in 1D (as in Cycles)
+    g.link(g.uv(), g.socket(n, "Vector"))         # unused in 1D (as in Cycles)
     return n.outputs["Color"]
 
 
 def noise_2d(g):
     n = g.node("ShaderNodeTexNoise", noise_dimensions='2D')
-    g.link(g.uv(), n.inputs["Vector"])
+    g.link(g.uv(), g.socket(n, "Vector"))
     set_inputs(n, scale=5.0, detail=3.5, roughness=0.6)
     return n.outputs["Color"]
 
@@ -82,7 +84,7 @@ def noise_3d(g):
 
 def noise_4d(g):
     n = noise_node(g, '4D', scale=3.0, detail=1.5, roughness=0.55)
-    n.inputs["W"].default_value = 1.3
+    g.socket(n, "W").default_value = 1.3
     return n.outputs["Color"]
 
 
@@ -115,11 +117,11 @@ def _cells(g):
 def white_node(g, dims):
     n = g.node("ShaderNodeTexWhiteNoise", noise_dimensions=dims)
     cells = _cells(g)
-    g.link(cells, n.inputs["Vector"])
+    g.link(cells, g.socket(n, "Vector"))
     if dims in ('1D', '4D'):
         sep = g.node("ShaderNodeSeparateXYZ")
         g.link(cells, sep.inputs[0])
-        g.link(g.multiply_add(sep.outputs[1], 7.0, sep.outputs[0]), n.inputs["W"])
+        g.link(g.multiply_add(sep.outputs[1], 7.0, sep.outputs[0]), g.socket(n, "W"))
     return n
 
 
@@ -157,8 +159,29 @@ def unlinked(g):
                      g.math('MULTIPLY', add, sep.outputs[2]))
 
 
+def noise_lacunarity(g):
+    """Blender 4.x: fBM normalised (the default) with Lacunarity 2.7 and Roughness above 1
+    (Cycles 4.x clamps it at 0 only), Color."""
+    n = noise_node(g, '3D', scale=3.0, detail=3.5, roughness=1.15, lacunarity=2.7,
+                   distortion=0.3)
+    return n.outputs["Color"]
+
+
+def noise_raw_sums(g):
+    """Blender 4.x: fBM not normalised (the raw sum; 1D, 2D and 4D), mapped to about [0, 1]."""
+    a = noise_node(g, '2D', scale=4.0, detail=2.5, roughness=0.5, lacunarity=1.8)
+    b = noise_node(g, '4D', w=w_of_uv(g), scale=3.0, detail=1.0, roughness=0.7, lacunarity=2.2)
+    c = noise_node(g, '1D', vector=False, w=w_of_uv(g), scale=5.0, detail=4.2, roughness=0.6,
+                   lacunarity=2.4)
+    for n in (a, b, c):
+        n.normalize = False
+    return g.combine(*(g.math('MULTIPLY_ADD', n.outputs["Fac"], value_b=0.45, value_c=0.5,
+                              clamp=True) for n in (a, b, c)))
+
+
 NOISE = (noise_1d, noise_2d, noise_3d, noise_4d, noise_facs, noise_fac_and_color, white_1d,
          white_2d, white_3d, white_4d, white_values, unlinked)
+NOISE_4X = (noise_lacunarity, noise_raw_sums)       # 4.x's settings (Lacunarity, Normalize)
 
 
 # -- Musgrave ----------------------------------------------------------------------------------
@@ -189,15 +212,34 @@ MUSGRAVES = (
 )
 
 
+def has_musgrave():
+    """Blender 4.1 merged the Musgrave Texture into the Noise Texture (its noise types)."""
+    return hasattr(bpy.types, "ShaderNodeTexMusgrave")
+
+
+def musgrave_node(g, kind, dims, scale, detail, dimension, lacunarity, offset, gain):
+    """A Musgrave Texture, or in Blender 4.1+ the Noise Texture Blender's versioning makes of it
+    (for a Detail of at least 1): that type not normalised, Detail - 1, Roughness
+    Lacunarity^-Dimension."""
+    if has_musgrave():
+        n = g.node("ShaderNodeTexMusgrave", musgrave_type=kind, musgrave_dimensions=f"{dims}D")
+        values = (("Dimension", dimension), ("Detail", detail))
+    else:
+        n = g.node("ShaderNodeTexNoise", noise_type=kind, noise_dimensions=f"{dims}D",
+                   normalize=False)
+        values = (("Roughness", lacunarity ** -dimension), ("Detail", min(detail - 1.0, 14.0)))
+    for name, v in (("Scale", scale), *values, ("Lacunarity", lacunarity), ("Offset", offset),
+                    ("Gain", gain)):
+        g.socket(n, name).default_value = v
+    return n
+
+
 def musgrave_channel(g, spec):
     kind, dims, scale, detail, dimension, lacunarity, offset, gain, a, b = spec
-    n = g.node("ShaderNodeTexMusgrave", musgrave_type=kind, musgrave_dimensions=f"{dims}D")
-    g.link(uvw(g), n.inputs["Vector"])
+    n = musgrave_node(g, kind, dims, scale, detail, dimension, lacunarity, offset, gain)
+    g.link(uvw(g), g.socket(n, "Vector"))
     if dims in (1, 4):
-        g.link(w_of_uv(g), n.inputs["W"])
-    for name, v in (("Scale", scale), ("Detail", detail), ("Dimension", dimension),
-                    ("Lacunarity", lacunarity), ("Offset", offset), ("Gain", gain)):
-        n.inputs[name].default_value = v
+        g.link(w_of_uv(g), g.socket(n, "W"))
     return g.math('MULTIPLY_ADD', n.outputs["Fac"], value_b=a, value_c=b, clamp=True)
 
 
@@ -229,7 +271,7 @@ def wave_patch(kind, direction, distorted):
                 n.bands_direction = direction
             else:
                 n.rings_direction = direction
-            g.link(vector, n.inputs["Vector"])
+            g.link(vector, g.socket(n, "Vector"))
             n.inputs["Scale"].default_value = 1.1 if kind == 'BANDS' else 1.7
             n.inputs["Distortion"].default_value = 2.5 if distorted else 0.0
             n.inputs["Detail"].default_value = 2.5
@@ -252,7 +294,7 @@ def wave_color(g):
     """The Color output, (fac, fac, fac)."""
     n = g.node("ShaderNodeTexWave", wave_type='RINGS', rings_direction='SPHERICAL',
                wave_profile='SAW')
-    g.link(uvw(g), n.inputs["Vector"])
+    g.link(uvw(g), g.socket(n, "Vector"))
     n.inputs["Scale"].default_value = 1.3
     return n.outputs["Color"]
 
@@ -267,12 +309,22 @@ def main():
     from torrance.shader_graph.registry import READERS
     readers = DictAttr(READERS)
     dims_off = read_with(lambda node: {"noise_dimensions": _DIMENSION_OFF[node.noise_dimensions]})
+    cycles4 = 'normalize' in bpy.types.ShaderNodeTexNoise.bl_rna.properties
+    faults_4x = (
+        ("Noise Lacunarity read as 2", readers, 'ShaderNodeTexNoise',
+         read_with(**{"socket:Lacunarity": 2.0})),
+        ("Noise Normalize read as on", readers, 'ShaderNodeTexNoise', read_with(normalize=True)))
     agree_on_patches(NOISE, what="Noise and White Noise", faults=(
         ("Noise read a dimension off", readers, 'ShaderNodeTexNoise', dims_off),
         ("White Noise read a dimension off", readers, 'ShaderNodeTexWhiteNoise', dims_off)))
-    agree_on_patches(MUSGRAVE, what="Musgrave", faults=(
-        ("Musgrave read as fBM", readers, 'ShaderNodeTexMusgrave',
-         read_with(musgrave_type='FBM')),))
+    if cycles4:
+        agree_on_patches(NOISE_4X, what="Noise (4.x's Lacunarity, Normalize)", faults=faults_4x)
+    musgrave_fault = (("Musgrave read as fBM", readers, 'ShaderNodeTexMusgrave',
+                       read_with(musgrave_type='FBM')) if has_musgrave() else
+                      ("Noise type read as fBM", readers, 'ShaderNodeTexNoise',
+                       read_with(noise_type='FBM')))
+    agree_on_patches(MUSGRAVE, what="Musgrave (4.1+: the Noise Texture's types)",
+                     faults=(musgrave_fault,))
     agree_on_patches((*WAVE, wave_color), what="Wave", faults=(
         ("Wave profile read as Sine", readers, 'ShaderNodeTexWave',
          read_with(wave_profile='SIN')),))

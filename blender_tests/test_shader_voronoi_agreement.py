@@ -60,7 +60,7 @@ def _voronoi(g, dims, feature, metric='EUCLIDEAN', vector=None, w=None, **inputs
     """A Voronoi Texture over the UVs (or `vector`), W linked when given; inputs by name."""
     v = g.node("ShaderNodeTexVoronoi", voronoi_dimensions=f"{dims}D", feature=feature,
                distance=metric)
-    g.link(vector if vector is not None else g.uv(), v.inputs["Vector"])
+    g.link(vector if vector is not None else g.uv(), g.socket(v, "Vector"))
     if w is not None:
         g.link(w, v.inputs["W"])
     inputs.setdefault("Scale", 5.0)

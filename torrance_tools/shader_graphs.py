@@ -44,6 +44,13 @@ class Graph:
     def link(self, a, b):
         self.links.new(a, b)
 
+    @staticmethod
+    def socket(node, name):
+        """node's input `name`, available or not (Blender 4.x's node.inputs[name] finds only
+        available sockets, e.g. not a 1D texture's Vector)."""
+        from torrance.shader_graph.node_versions import input_socket
+        return input_socket(node, name)
+
     def uv(self):
         return self.node("ShaderNodeTexCoord").outputs["UV"]
 
@@ -94,6 +101,16 @@ class Graph:
             m.inputs[1].default_value = value_b
         m.inputs[2].default_value = value_c
         return m.outputs[0]
+
+
+def make_sharp(node):
+    """A Glossy or Glass BSDF made sharp: distribution Sharp (Blender 3.x), or GGX at roughness 0
+    (4.x, which has no Sharp: its versioning turns Sharp into that)."""
+    if 'SHARP' in node.bl_rna.properties['distribution'].enum_items.keys():
+        node.distribution = 'SHARP'
+    else:
+        node.distribution = 'GGX'
+        node.inputs["Roughness"].default_value = 0.0
 
 
 def test_image():

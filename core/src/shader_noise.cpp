@@ -2,6 +2,8 @@
 // shader_noise.h). Single precision throughout, in Cycles' order of operations.
 #include "torrance/shader_noise.h"
 
+#include "torrance/shader_noise4.h"
+
 #include "torrance/shader_hash.h"
 
 #include <array>
@@ -276,6 +278,17 @@ float snoise(const Vec2& p) { return 0.6616f * finite_or_zero(perlin(p.x, p.y));
 float snoise(const Vec3& p) { return 0.9820f * finite_or_zero(perlin(p.x, p.y, p.z)); }
 float snoise(const Vec4& p) { return 0.8344f * finite_or_zero(perlin(p.x, p.y, p.z, p.w)); }
 
+// Cycles 4.x's periodic signed noise (shader_noise4.h): each coordinate modulo 100000, plus 0.5
+// at |x| >= 1e6; the result kept as it is.
+static float periodic(float x) { return std::fmod(x, 100000.0f) + 0.5f * float(std::fabs(x) >= 1000000.0f); }
+
+float snoise4(float p) { return 0.25f * perlin(periodic(p)); }
+float snoise4(const Vec2& p) { return 0.6616f * perlin(periodic(p.x), periodic(p.y)); }
+float snoise4(const Vec3& p) { return 0.9820f * perlin(periodic(p.x), periodic(p.y), periodic(p.z)); }
+float snoise4(const Vec4& p) {
+  return 0.8344f * perlin(periodic(p.x), periodic(p.y), periodic(p.z), periodic(p.w));
+}
+
 float unoise(float p) { return 0.5f * snoise(p) + 0.5f; }
 float unoise(const Vec2& p) { return 0.5f * snoise(p) + 0.5f; }
 float unoise(const Vec3& p) { return 0.5f * snoise(p) + 0.5f; }
@@ -346,7 +359,7 @@ float musgrave(MusgraveType type, int dimensions, const Vec3& vector, float w, f
 // ---- Wave Texture ----
 
 float wave(WaveType type, int direction, WaveProfile profile, const Vec3& vector, float scale, float distortion,
-           float detail, float detail_scale, float detail_roughness, float phase) {
+           float detail, float detail_scale, float detail_roughness, float phase, bool cycles4_noise) {
   const Vec3 p = (vector * scale + 0.000001f) * 0.999999f;
   float n;
   if (type == WaveType::Bands) {
@@ -362,7 +375,11 @@ float wave(WaveType type, int direction, WaveProfile profile, const Vec3& vector
     n = std::sqrt(r.x * r.x + r.y * r.y + r.z * r.z) * 20.0f;
   }
   n += phase;
-  if (distortion != 0.0f) n += distortion * (fbm(p * detail_scale, detail, detail_roughness) * 2.0f - 1.0f);
+  if (distortion != 0.0f) {
+    const Vec3 q = p * detail_scale;
+    const float noise = cycles4_noise ? wave_fbm4(q, detail, detail_roughness) : fbm(q, detail, detail_roughness);
+    n += distortion * (noise * 2.0f - 1.0f);
+  }
   constexpr float kHalfPi = 1.57079632679489661923f;
   constexpr float kTwoPiF = 6.28318530717958647692f;
   switch (profile) {
@@ -396,7 +413,8 @@ glm::vec4 musgrave_op(const ShaderOpContext& c) {
 glm::vec4 wave_op(const ShaderOpContext& c) {
   const int shape = c.ins.mode / 3;
   const float fac = wave(WaveType(shape / kWaveDirections), shape % kWaveDirections, WaveProfile(c.ins.mode % 3),
-                         c.vector(0), c.value(1), c.value(2), c.value(3), c.value(4), c.value(5), c.value(6));
+                         c.vector(0), c.value(1), c.value(2), c.value(3), c.value(4), c.value(5), c.value(6),
+                         (c.ins.flags & 2) != 0);
   return (c.ins.flags & 1) ? glm::vec4(fac, fac, fac, 1.0f) : glm::vec4(fac, 0.0f, 0.0f, 0.0f);
 }
 

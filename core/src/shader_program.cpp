@@ -6,6 +6,7 @@
 // [family headers]
 #include "torrance/shader_convert.h"
 #include "torrance/shader_noise.h"
+#include "torrance/shader_noise4.h"
 #include "torrance/shader_voronoi.h"
 #include "torrance/shader_textures.h"
 #include "torrance/shader_geometry.h"
@@ -105,6 +106,7 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
     case ShaderOpcode::WhiteNoise: return {2, shader::kWhiteNoiseModes, false, shader::white_noise_op};
     case ShaderOpcode::Musgrave: return {8, shader::kMusgraveModes, false, shader::musgrave_op};
     case ShaderOpcode::Wave: return {7, shader::kWaveModes, false, shader::wave_op};
+    case ShaderOpcode::NoiseV4: return {9, shader::kNoise4Modes, false, shader::noise4_op};
     // [voronoi ops]
     case ShaderOpcode::Voronoi: return {6, shader::kVoronoiModes, false, shader::voronoi_op};
     // [texture ops]

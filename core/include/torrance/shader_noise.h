@@ -117,10 +117,11 @@ enum class WaveProfile : uint8_t { Sine, Saw, Triangle };
 // dropped (spherical: all kept); n += phase, and with a nonzero distortion n += distortion
 // (2 fractal_noise(p detail_scale, detail, detail_roughness) - 1). Sine: 0.5 + 0.5 sin(n - pi/2);
 // Saw: fract(n / 2pi); Triangle: 2 |n / 2pi - floor(n / 2pi + 0.5)|.
+// cycles4_noise: the distortion is Cycles 4.x's fBM (shader_noise4.h's wave_fbm4).
 float wave(WaveType type, int direction, WaveProfile profile, const Vec3& vector, float scale, float distortion,
-           float detail, float detail_scale, float detail_roughness, float phase);
+           float detail, float detail_scale, float detail_roughness, float phase, bool cycles4_noise = false);
 
-// ---- the ops (ShaderOpcode 32-35) ----
+// ---- the ops (ShaderOpcode 32-35; 36, Blender 4.x's Noise Texture: shader_noise4.h) ----
 //
 // Noise       in: vector, w, scale, detail, roughness, distortion; mode = dimensions - 1;
 //             flags & 1: Color (fac, g, b, 1) (Fac is its x), else Fac (fac, 0, 0, 0)
@@ -131,7 +132,7 @@ float wave(WaveType type, int direction, WaveProfile profile, const Vec3& vector
 //             mode = type * 4 + dimensions - 1 (20 modes); out (fac, 0, 0, 0)
 // Wave        in: vector, scale, distortion, detail, detail scale, detail roughness, phase;
 //             mode = (type * 4 + direction) * 3 + profile (24 modes); flags & 1: Color
-//             (fac, fac, fac, 1), else Fac (fac, 0, 0, 0)
+//             (fac, fac, fac, 1), else Fac (fac, 0, 0, 0); flags & 2: Cycles 4.x's distortion
 constexpr int kNoiseModes = 4;
 constexpr int kWhiteNoiseModes = 4;
 constexpr int kMusgraveModes = kMusgraveTypes * 4;

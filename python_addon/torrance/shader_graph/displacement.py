@@ -12,6 +12,7 @@ from ..nodes import node_label
 from .geometry import normal_input, object_transform, shading_normal
 from .graph import Unsupported
 from .math_ops import VECTOR_MATH_OPS
+from .node_versions import displacement_owner
 from .program import constant
 
 # Blender's displacement methods (Cycles 3.4: material.cycles.displacement_method).
@@ -43,10 +44,8 @@ def _vector_displacement(g, node, socket):
 
 def displacement_method(mat):
     """The material's displacement method ('BUMP' where Blender has no such setting)."""
-    method = getattr(mat, "displacement_method", None)     # Blender 4.1+
-    if method is None:
-        method = getattr(getattr(mat, "cycles", None), "displacement_method", 'BUMP')
-    return method
+    owner = displacement_owner(mat)
+    return 'BUMP' if owner is None else owner.displacement_method
 
 
 def bump_from_displacement(g, displacement):

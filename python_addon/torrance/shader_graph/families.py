@@ -13,6 +13,7 @@ from . import voronoi  # noqa: I001
 from . import convert  # noqa: I001
 from . import textures  # noqa: I001
 from . import noise  # noqa: I001
+from . import noise4  # noqa: I001
 from . import geometry  # noqa: I001
 
 FAMILIES = (
@@ -22,6 +23,7 @@ FAMILIES = (
     convert,
     textures,
     noise,
+    noise4,
     geometry,
 )
 

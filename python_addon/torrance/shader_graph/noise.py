@@ -24,6 +24,7 @@ import math
 import numpy as np
 
 from . import hash_ops
+from .node_versions import cycles4_wave_noise, input_socket, is_cycles4_noise
 from .program import Value, constant
 
 _F = np.float32
@@ -347,9 +348,10 @@ _TWO_PI = _F(2.0 * math.pi)
 
 @_quiet
 def wave(kind, direction, profile, vector, scale, distortion, detail, detail_scale,
-         detail_roughness, phase):
+         detail_roughness, phase, cycles4_noise=False):
     """The Wave Texture's Fac. kind: 0 bands, 1 rings; direction 0-3 (X, Y, Z, Diagonal or
-    Spherical); profile 0 sine, 1 saw, 2 triangle."""
+    Spherical); profile 0 sine, 1 saw, 2 triangle; cycles4_noise: Cycles 4.x's distortion
+    (noise4.wave_fbm4)."""
     p = tuple((_F(scale) * _F(c) + _F(0.000001)) * _F(0.999999) for c in vector[:3])
     if kind == 0:
         n = p[direction] * _F(20.0) if direction < 3 else (p[0] + p[1] + p[2]) * _F(10.0)
@@ -361,7 +363,12 @@ def wave(kind, direction, profile, vector, scale, distortion, detail, detail_sca
     n = n + _F(phase)
     distortion = _F(distortion)
     if distortion != 0.0:
-        fbm = fractal_noise(_scaled(detail_scale, p), detail, detail_roughness)
+        q = _scaled(detail_scale, p)
+        if cycles4_noise:
+            from .noise4 import wave_fbm4
+            fbm = wave_fbm4(q, detail, detail_roughness)
+        else:
+            fbm = fractal_noise(q, detail, detail_roughness)
         n = n + distortion * (fbm * _2 - _1)
     if profile == 0:
         if not np.isfinite(n):
@@ -401,7 +408,8 @@ def _fold_musgrave(mode, flags, a, _table):
 @_quiet
 def _fold_wave(mode, flags, a, _table):
     shape = mode // 3
-    fac = float(wave(shape // 4, shape % 4, mode % 3, a[0][:3], *(x[0] for x in a[1:7])))
+    fac = float(wave(shape // 4, shape % 4, mode % 3, a[0][:3], *(x[0] for x in a[1:7]),
+                     cycles4_noise=bool(flags & 2)))
     return (fac, fac, fac, 1.0) if flags & 1 else (fac, 0.0, 0.0, 0.0)
 
 
@@ -439,7 +447,7 @@ def _vector(g, node, needed=True):
     default for these textures)."""
     if not needed:
         return _ZERO_VECTOR
-    socket = node.inputs["Vector"]
+    socket = input_socket(node, "Vector")
     if socket.is_linked:
         return g.input(socket, 'vector')
     generated = getattr(g, "generated", None)
@@ -449,7 +457,7 @@ def _vector(g, node, needed=True):
 
 
 def _float(g, node, name, needed=True):
-    return g.input(node.inputs[name], 'float') if needed else _ZERO
+    return g.input(input_socket(node, name), 'float') if needed else _ZERO
 
 
 def _dimensions(node, prop):
@@ -471,6 +479,9 @@ def _as_float(v):
 def _noise(g, node, socket):
     _check_mapping(node)
     dims = _dimensions(node, "noise_dimensions")
+    if is_cycles4_noise(node):
+        from .noise4 import read_noise4
+        return read_noise4(g, node, socket)
     want_color = socket.identifier == "Color"
     if not want_color and node.outputs["Color"].is_linked:
         return _as_float(g.output(node.outputs["Color"]))     # the same instruction
@@ -504,7 +515,7 @@ def _white_noise_vector(g, node, needed):
     texture coordinates."""
     if not needed:
         return _ZERO_VECTOR
-    return g.input(node.inputs["Vector"], 'vector')
+    return g.input(input_socket(node, "Vector"), 'vector')
 
 
 def _musgrave(g, node, socket):
@@ -537,8 +548,9 @@ def _wave(g, node, socket):
     want_color = socket.identifier == "Color"
     args = [_vector(g, node), *(_float(g, node, n) for n in (
         "Scale", "Distortion", "Detail", "Detail Scale", "Detail Roughness", "Phase Offset"))]
+    flags = (1 if want_color else 0) | (2 if cycles4_wave_noise() else 0)
     return g.builder.emit("Wave", 'color' if want_color else 'float', args, mode=mode,
-                          flags=1 if want_color else 0)
+                          flags=flags)
 
 
 READERS = {

@@ -19,6 +19,7 @@ import math
 
 import numpy as np
 
+from .node_versions import input_socket
 from .program import constant
 
 _F = np.float32
@@ -269,7 +270,7 @@ def _check_mapping(node):
 def _vector(g, node):
     """The Vector input: its link; unlinked, Cycles' Generated coordinates."""
     _check_mapping(node)
-    socket = node.inputs["Vector"]
+    socket = input_socket(node, "Vector")
     if socket.is_linked and any(link.is_valid and not link.is_muted for link in socket.links):
         return g.input(socket, 'vector')
     generated = getattr(g, "generated", None)

@@ -8,6 +8,7 @@ import math
 from ..nodes import node_label
 from .geometry import camera_rows, camera_to_world_rows, object_transform
 from .graph import Unsupported
+from .node_versions import input_socket
 from .program import constant
 
 OPCODES = {"Mapping": 104, "VectorRotate": 105, "VectorTransform": 108}
@@ -83,16 +84,17 @@ FOLDS = {
 
 def _mapping(g, node, socket):
     kind = MAPPING_TYPES.index(node.vector_type)
-    args = [g.input(node.inputs[n], 'vector') for n in ("Vector", "Location", "Rotation", "Scale")]
+    args = [g.input(input_socket(node, n), 'vector')
+            for n in ("Vector", "Location", "Rotation", "Scale")]
     return g.builder.emit("Mapping", 'vector', args, mode=kind)
 
 
 def _vector_rotate(g, node, socket):
     if node.rotation_type not in ROTATE_TYPES:
         raise Unsupported(f"{node_label(node)}: rotation type {node.rotation_type}")
-    args = [g.input(node.inputs["Vector"], 'vector'), g.input(node.inputs["Center"], 'vector'),
-            g.input(node.inputs["Axis"], 'vector'), g.input(node.inputs["Angle"], 'float'),
-            g.input(node.inputs["Rotation"], 'vector')]
+    args = [g.input(input_socket(node, name), kind) for name, kind in (
+        ("Vector", 'vector'), ("Center", 'vector'), ("Axis", 'vector'), ("Angle", 'float'),
+        ("Rotation", 'vector'))]
     return g.builder.emit("VectorRotate", 'vector', args,
                           mode=ROTATE_TYPES.index(node.rotation_type),
                           flags=1 if node.invert else 0)
@@ -108,7 +110,7 @@ def _vector_transform(g, node, socket):
     kind, spaces = node.vector_type, (node.convert_from, node.convert_to)
     if kind not in _TRANSFORM_TYPES or any(s not in _SPACES for s in spaces):
         raise Unsupported(f"{node_label(node)}: {kind} from {spaces[0]} to {spaces[1]}")
-    vector = g.input(node.inputs["Vector"], 'vector')
+    vector = g.input(input_socket(node, "Vector"), 'vector')
     mode = (_TRANSFORM_TYPES.index(kind) * 3 + _SPACES.index(spaces[0])) * 3 + \
         _SPACES.index(spaces[1])
     moves = spaces[0] != spaces[1]

@@ -21,6 +21,7 @@ from functools import lru_cache
 import numpy as np
 
 from . import hash_ops
+from .node_versions import input_socket
 from .program import constant
 
 OPCODES = {"Voronoi": 48}
@@ -303,22 +304,22 @@ def _check_mapping(node):
 
 def _arguments(g, node, dimensions, feature, metric):
     """The op's six arguments; the inputs this setting does not read are constants (0)."""
-    inputs = node.inputs
     zero = constant('float', 0.0)
     if dimensions == 1:
         vector = constant('vector', (0.0, 0.0, 0.0))
-    elif _linked(inputs["Vector"]):
-        vector = g.input(inputs["Vector"], 'vector')
+    elif _linked(input_socket(node, "Vector")):
+        vector = g.input(input_socket(node, "Vector"), 'vector')
     else:
         generated = getattr(g, "generated", None)
         if generated is None:
             raise _unsupported("Generated coordinates")
         vector = generated()
-    w = g.input(inputs["W"], 'float') if dimensions in (1, 4) else zero
-    smoothness = g.input(inputs["Smoothness"], 'float') if feature == 'SMOOTH_F1' else zero
-    exponent = g.input(inputs["Exponent"], 'float') if metric == 'MINKOWSKI' else zero
-    return [vector, w, g.input(inputs["Scale"], 'float'), smoothness, exponent,
-            g.input(inputs["Randomness"], 'float')]
+    w = g.input(input_socket(node, "W"), 'float') if dimensions in (1, 4) else zero
+    smoothness = (g.input(input_socket(node, "Smoothness"), 'float') if feature == 'SMOOTH_F1'
+                  else zero)
+    exponent = g.input(input_socket(node, "Exponent"), 'float') if metric == 'MINKOWSKI' else zero
+    return [vector, w, g.input(input_socket(node, "Scale"), 'float'), smoothness, exponent,
+            g.input(input_socket(node, "Randomness"), 'float')]
 
 
 def _emit(g, node, flags, kind):

@@ -1,0 +1,68 @@
+# SPDX-License-Identifier: Apache-2.0
+"""What differs in Blender's shader nodes between the Blenders that load the add-on (3.4, 4.2,
+4.5, 5.x), in one place; the readers ask here and choose the core op's mode from the answer.
+
+The version is told by the node itself (a setting or socket that only the newer node has), as
+materials.principled_version does, not by bpy.app.version:
+
+  sockets     Blender 4.x's node.inputs[name] (and .get) skip unavailable sockets (e.g. the
+              Vector of a 1D Noise, the Location of a Vector-type Mapping); input_socket finds
+              them as 3.4 did, for readers and tests that read or link them anyway.
+  Noise       4.0 adds Normalize and Lacunarity; 4.1 the noise types (Musgrave's five, merged
+              into the Noise Texture: its node is gone) with Offset and Gain. noise_settings
+              gives (type, normalize, cycles4): 3.4's node is fBM normalised, Cycles 3.4's sum.
+  Voronoi     4.0 adds fractal Voronoi (Detail, Roughness, Lacunarity, Normalize):
+              voronoi_fractal says whether the node has them.
+  materials   4.1 moves the displacement method from material.cycles to the material:
+              displacement_owner is where it is.
+"""
+
+# The Noise Texture's noise types, Blender 4.1's names (the Musgrave types of 3.4).
+NOISE_TYPES = ('MULTIFRACTAL', 'RIDGED_MULTIFRACTAL', 'HYBRID_MULTIFRACTAL', 'FBM',
+               'HETERO_TERRAIN')
+
+
+def input_socket(node, name):
+    """node's input socket `name` (a name or an identifier), available or not."""
+    socket = node.inputs.get(name)
+    if socket is not None:
+        return socket
+    for s in node.inputs:
+        if s.identifier == name:
+            return s
+    for s in node.inputs:
+        if s.name == name:
+            return s
+    raise KeyError(f"{node.name}: no input '{name}'")
+
+
+def is_cycles4_noise(node):
+    """True for a Noise Texture of Blender 4.0+ (it has Normalize): Cycles 4.x's fractal sums
+    (lacunarity, signed octaves, normalising optional, roughness unclamped above 1)."""
+    return hasattr(node, "normalize")
+
+
+def cycles4_wave_noise():
+    """True where Cycles computes the Wave Texture's distortion with 4.x's fBM (the Wave node
+    itself did not change: the running Blender tells)."""
+    import bpy
+    return bpy.app.version >= (4, 0, 0)
+
+
+def noise_settings(node):
+    """(noise type, normalize) of a Noise Texture: 3.4's node is fBM, normalised."""
+    return getattr(node, "noise_type", 'FBM'), bool(getattr(node, "normalize", True))
+
+
+def voronoi_fractal(node):
+    """True for a Voronoi Texture of Blender 4.0+ (Detail, Roughness, Lacunarity, Normalize)."""
+    return hasattr(node, "normalize")
+
+
+def displacement_owner(mat):
+    """What holds mat's displacement_method: the material (Blender 4.1+) or its Cycles settings
+    (3.x, 4.0); None where Blender has no such setting."""
+    if hasattr(mat, "displacement_method"):
+        return mat
+    cycles = getattr(mat, "cycles", None)
+    return cycles if hasattr(cycles, "displacement_method") else None
