@@ -2,6 +2,7 @@
 
 #include "torrance/shader_hash.h"
 #include "torrance/shader_program.h"
+#include "voronoi_cells.h"
 
 #include <algorithm>
 #include <cmath>
@@ -35,34 +36,6 @@ inline float dot(const VecN<4>& a, const VecN<4>& b) { return (a.x * b.x + a.y *
 template <int D>
 float length(const VecN<D>& v) {
   return std::sqrt(dot(v, v));
-}
-
-// The distance from a to b under the node's metric (1D: always |b - a|).
-template <int D>
-float metric_distance(const VecN<D>& a, const VecN<D>& b, VoronoiMetric metric, float exponent) {
-  if constexpr (D == 1) {
-    return std::fabs(b.x - a.x);
-  } else {
-    switch (metric) {
-      case VoronoiMetric::Euclidean: return length<D>(a - b);
-      case VoronoiMetric::Manhattan: {
-        float sum = std::fabs(a[0] - b[0]);
-        for (int k = 1; k < D; ++k) sum += std::fabs(a[k] - b[k]);
-        return sum;
-      }
-      case VoronoiMetric::Chebychev: {
-        float most = std::fabs(a[D - 1] - b[D - 1]);
-        for (int k = D - 2; k >= 0; --k) most = std::max(std::fabs(a[k] - b[k]), most);
-        return most;
-      }
-      case VoronoiMetric::Minkowski: {
-        float sum = std::pow(std::fabs(a[0] - b[0]), exponent);
-        for (int k = 1; k < D; ++k) sum += std::pow(std::fabs(a[k] - b[k]), exponent);
-        return std::pow(sum, 1.0f / exponent);
-      }
-    }
-    return 0.0f;
-  }
 }
 
 // Calls visit(offset) for every cell offset in [-reach, reach]^D, x varying fastest (Cycles'
@@ -103,54 +76,63 @@ struct Params {
 template <int D>
 Found<D> f1(const VecN<D>& p, const Params& q) {
   const VecN<D> cell = glm::floor(p);
-  const VecN<D> local = p - cell;
+  voronoi_cells::Cells<D, 1> cells;
+  cells.place_points(cell, q.randomness);
+  cells.measure(p - cell, q.metric, q.exponent);
   float best = 8.0f;
-  VecN<D> best_offset(0.0f), best_point(0.0f);
-  for_each_offset<D>(1, [&](const VecN<D>& offset) {
-    const VecN<D> point = offset + cell_point(cell + offset) * q.randomness;
-    const float d = metric_distance<D>(point, local, q.metric, q.exponent);
-    if (d < best) best = d, best_offset = offset, best_point = point;
-  });
-  return {best, cell_color(cell + best_offset), best_point + cell, 0.0f};
+  int chosen = -1;
+  for (int i = 0; i < cells.kCount; ++i)
+    if (cells.distance[i] < best) best = cells.distance[i], chosen = i;
+  // None closer than 8: the own cell's colour and the cell corner (Cycles' initial values).
+  const VecN<D> offset = chosen >= 0 ? cells.offset(chosen) : VecN<D>(0.0f);
+  const VecN<D> point = chosen >= 0 ? cells.point_at(chosen) : VecN<D>(0.0f);
+  return {best, cell_color(cell + offset), point + cell, 0.0f};
 }
 
 template <int D>
 Found<D> f2(const VecN<D>& p, const Params& q) {
   const VecN<D> cell = glm::floor(p);
-  const VecN<D> local = p - cell;
+  voronoi_cells::Cells<D, 1> cells;
+  cells.place_points(cell, q.randomness);
+  cells.measure(p - cell, q.metric, q.exponent);
   float first = 8.0f, second = 8.0f;
-  VecN<D> first_offset(0.0f), first_point(0.0f), second_offset(0.0f), second_point(0.0f);
-  for_each_offset<D>(1, [&](const VecN<D>& offset) {
-    const VecN<D> point = offset + cell_point(cell + offset) * q.randomness;
-    const float d = metric_distance<D>(point, local, q.metric, q.exponent);
+  int first_cell = -1, second_cell = -1;
+  for (int i = 0; i < cells.kCount; ++i) {
+    const float d = cells.distance[i];
     if (d < first) {
-      second = first, second_offset = first_offset, second_point = first_point;
-      first = d, first_offset = offset, first_point = point;
+      second = first, second_cell = first_cell;
+      first = d, first_cell = i;
     } else if (d < second) {
-      second = d, second_offset = offset, second_point = point;
+      second = d, second_cell = i;
     }
-  });
-  return {second, cell_color(cell + second_offset), second_point + cell, 0.0f};
+  }
+  const VecN<D> offset = second_cell >= 0 ? cells.offset(second_cell) : VecN<D>(0.0f);
+  const VecN<D> point = second_cell >= 0 ? cells.point_at(second_cell) : VecN<D>(0.0f);
+  return {second, cell_color(cell + offset), point + cell, 0.0f};
 }
 
 template <int D>
 Found<D> smooth_f1(const VecN<D>& p, const Params& q) {
+  using Cells = voronoi_cells::Cells<D, 2>;
   const VecN<D> cell = glm::floor(p);
-  const VecN<D> local = p - cell;
+  Cells cells;
+  cells.place_points(cell, q.randomness);
+  cells.measure(p - cell, q.metric, q.exponent);
+  alignas(16) float colors[3][Cells::kLanes];
+  if (q.color) cells.colors(colors);
   const float s = q.smoothness;
   float distance = 8.0f;
   Vec3 color(0.0f);
   VecN<D> position(0.0f);
-  for_each_offset<D>(2, [&](const VecN<D>& offset) {
-    const VecN<D> point = offset + cell_point(cell + offset) * q.randomness;
-    const float d = metric_distance<D>(point, local, q.metric, q.exponent);
+  for (int i = 0; i < cells.kCount; ++i) {
+    const float d = cells.distance[i];
     const float h = smoothstep01(0.5f + 0.5f * (distance - d) / s);
     float correction = s * h * (1.0f - h);
     distance = distance + h * (d - distance) - correction;
     correction /= 1.0f + 3.0f * s;
-    if (q.color) color = color + h * (cell_color(cell + offset) - color) - correction;
-    position = position + h * (point - position) - correction;
-  });
+    if (q.color) color = color + h * (Vec3(colors[0][i], colors[1][i], colors[2][i]) - color) - correction;
+    position = position + h * (cells.point_at(i) - position) - correction;
+  }
   return {distance, color, cell + position, 0.0f};
 }
 
@@ -168,22 +150,24 @@ float distance_to_edge(const VecN<D>& p, float randomness) {
     const float to_right = std::fabs((mid + right) / 2.0f - local.x);
     return std::min(to_left, to_right);
   } else {
+    voronoi_cells::Cells<D, 1> cells;
+    cells.place_points(cell, randomness);
     float best = 8.0f;
     VecN<D> to_closest(0.0f);
-    for_each_offset<D>(1, [&](const VecN<D>& offset) {
-      const VecN<D> to_point = offset + cell_point(cell + offset) * randomness - local;
+    for (int i = 0; i < cells.kCount; ++i) {
+      const VecN<D> to_point = cells.point_at(i) - local;
       const float d = dot(to_point, to_point);
       if (d < best) best = d, to_closest = to_point;
-    });
+    }
     float edge = 8.0f;
-    for_each_offset<D>(1, [&](const VecN<D>& offset) {
-      const VecN<D> to_point = offset + cell_point(cell + offset) * randomness - local;
+    for (int i = 0; i < cells.kCount; ++i) {
+      const VecN<D> to_point = cells.point_at(i) - local;
       const VecN<D> across = to_point - to_closest;
       if (dot(across, across) > 0.0001f) {
         const VecN<D> normal = across / length<D>(across);
         edge = std::min(edge, dot((to_closest + to_point) / 2.0f, normal));
       }
-    });
+    }
     return edge;
   }
 }
@@ -193,14 +177,13 @@ float distance_to_edge(const VecN<D>& p, float randomness) {
 template <int D>
 float n_sphere_radius(const VecN<D>& p, float randomness) {
   const VecN<D> cell = glm::floor(p);
-  const VecN<D> local = p - cell;
+  voronoi_cells::Cells<D, 1> cells;
+  cells.place_points(cell, randomness);
+  cells.measure(p - cell, VoronoiMetric::Euclidean, 0.0f);
   float best = 8.0f;
   VecN<D> closest(0.0f), closest_offset(0.0f);
-  for_each_offset<D>(1, [&](const VecN<D>& offset) {
-    const VecN<D> point = offset + cell_point(cell + offset) * randomness;
-    const float d = D == 1 ? std::fabs(point[0] - local[0]) : length<D>(point - local);
-    if (d < best) best = d, closest = point, closest_offset = offset;
-  });
+  for (int i = 0; i < cells.kCount; ++i)
+    if (cells.distance[i] < best) best = cells.distance[i], closest = cells.point_at(i), closest_offset = cells.offset(i);
   best = 8.0f;
   VecN<D> nearest(0.0f);
   for_each_offset<D>(1, [&](const VecN<D>& step) {
