@@ -4,8 +4,8 @@ Index and Random, each shown through an Emission shader on patches of the grid
 (torrance_tools.shader_graphs), every patch its own object (its own location, colour, pass
 index and name, hence random number), two of them sharing one mesh.
 
-Object Info is supported on world-space meshes (the final render's objects); instanced objects'
-prototypes carry no per-object constants (0 there), so no instances here.
+These are world-space meshes (the final render's objects); instanced objects are
+test_object_info_instances_agreement.py's.
 
 Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
 seeds 2 and 3. Deliberate faults (the random number of another hash, the object colour's red

@@ -236,6 +236,21 @@ void init_scene(py::module_& m) {
           "read with the Attribute op: values (A, 3 * triangles, 3) float32 (triangle t's corners at 3t, 3t + 1, "
           "3t + 2), ids (A,) int32 naming each layer. NaN/Inf read as 0.")
       .def(
+          "set_instance_constants",
+          [](Scene& s, const py::object& ids, const py::object& layer_ids, const py::object& values) {
+            const IndexArray id = as_indices(ids, "ids");
+            if (id.ndim() != 1) throw py::value_error("ids must have shape (N,), got " + shape_string(id));
+            const auto layers = shaped_array<int32_t>(layer_ids, "layer_ids", {-1});
+            const auto v = shaped_array<float>(values, "values", {-1, -1, 3});
+            if (v.shape(0) != id.size() || v.shape(1) != layers.size())
+              throw py::value_error("values must have shape (len(ids), len(layer_ids), 3), got " + shape_string(v));
+            s.set_instance_constants(id.data(), size_t(id.size()), layers.data(), size_t(layers.size()), v.data());
+          },
+          py::arg("ids"), py::arg("layer_ids"), py::arg("values"),
+          "Constant attributes of instances (an instanced object's Object Info), which the Attribute op reads "
+          "where the prototype has no such per-corner layer: ids (N,) instance ids, layer_ids (A,) int32, values "
+          "(N, A, 3) float32. A layer an instance was never given reads 0; NaN/Inf read as 0.")
+      .def(
           "run_shader_program",
           [](const Scene& s, int program, const py::object& uvs, float footprint, const py::object& positions,
              const py::object& normals, const py::object& true_normals, const py::object& incoming,

@@ -303,6 +303,45 @@ std::unique_ptr<Scene::Mesh> Scene::make_mesh(const float* positions, size_t num
   return mesh;
 }
 
+void Scene::set_instance_constants(const int64_t* ids, size_t count, const int32_t* layer_ids, size_t num_layers,
+                                   const float* values) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set instance constants");
+  for (size_t i = 0; i < count; ++i)
+    if (ids[i] < 0 || size_t(ids[i]) >= instances_.size())
+      throw std::invalid_argument("instance " + std::to_string(ids[i]) + " does not exist");
+  // The layout: every layer id any call gave, in order of arrival; a new one widens every
+  // instance's row (rows already set keep their values, the new layer 0).
+  std::vector<int32_t> layout = instance_constant_ids_;
+  std::vector<size_t> slot(num_layers);
+  for (size_t a = 0; a < num_layers; ++a) {
+    const auto found = std::find(layout.begin(), layout.end(), layer_ids[a]);
+    slot[a] = size_t(found - layout.begin());
+    if (found == layout.end()) layout.push_back(layer_ids[a]);
+  }
+  if (layout.size() > 64) throw std::invalid_argument("instances have at most 64 constant attributes");
+  const size_t width = layout.size(), old_width = instance_constant_ids_.size();
+  if (width == 0) return;
+  size_t rows = old_width > 0 ? instance_constants_.size() / old_width : 0;
+  for (size_t i = 0; i < count; ++i) rows = std::max(rows, size_t(ids[i]) + 1);
+  require_memory(double(rows) * double(width) * sizeof(Vec3), "instance constants");
+  if (width != old_width) {
+    std::vector<Vec3> wider(rows * width, Vec3(0.0f));
+    for (size_t r = 0; old_width > 0 && r < instance_constants_.size() / old_width; ++r)
+      std::copy_n(&instance_constants_[r * old_width], old_width, &wider[r * width]);
+    instance_constants_ = std::move(wider);
+    instance_constant_ids_ = std::move(layout);
+  } else {
+    instance_constants_.resize(rows * width, Vec3(0.0f));
+  }
+  for (size_t i = 0; i < count; ++i)
+    for (size_t a = 0; a < num_layers; ++a) {
+      const float* v = values + 3 * (i * num_layers + a);
+      const Vec3 x(v[0], v[1], v[2]);
+      instance_constants_[size_t(ids[i]) * width + slot[a]] = is_finite(x) ? x : Vec3(0.0f);
+    }
+}
+
 void Scene::set_mesh_attributes(uint32_t id, bool prototype, const float* values, size_t num_corners,
                                 const int32_t* ids, size_t num_attributes) {
   std::lock_guard<std::mutex> lock(mutex_);

@@ -44,6 +44,12 @@ void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const 
     if (mirrored) std::swap(u, v);
     hit.material = b.material(mesh.material_ids[prim]);
     hit.emitter = inst.emitter_base >= 0 && b.emitter_rank[prim] >= 0 ? inst.emitter_base + b.emitter_rank[prim] : -1;
+    const size_t layers = instance_constant_ids_.size(), first = size_t(owner & ~kInstanceBit) * layers;
+    if (layers > 0 && first + layers <= instance_constants_.size()) {
+      hit.instance_constants = &instance_constants_[first];
+      hit.instance_constant_ids = instance_constant_ids_.data();
+      hit.num_instance_constants = int(layers);
+    }
   }
 
   const Vec3 &p0 = c.p[0], &p1 = c.p[1], &p2 = c.p[2];

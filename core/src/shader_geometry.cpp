@@ -63,6 +63,8 @@ glm::vec4 attribute_op(const ShaderOpContext& c) {
                            g.corner_weights.z * corner[2 * n + a],
                        1.0f);
     }
+  for (int a = 0; a < g.num_instance_constants; ++a)
+    if (g.instance_constant_ids[a] == c.ins.resource) return glm::vec4(g.instance_constants[a], 1.0f);
   return glm::vec4(0.0f);
 }
 

@@ -68,6 +68,10 @@ struct SurfaceHit {
   const int32_t* attribute_ids = nullptr;
   int num_attributes = 0;
   Vec3 corner_weights{0.0f};
+  // The hit instance's constant attributes (Scene::set_instance_constants; nullptr / 0: none).
+  const Vec3* instance_constants = nullptr;
+  const int32_t* instance_constant_ids = nullptr;
+  int num_instance_constants = 0;
   // The gradients (1/m, in the triangle's plane) of corner_weights.y and .z (with attributes).
   Vec3 weight_gradients[2] = {Vec3(0.0f), Vec3(0.0f)};
 };
@@ -96,6 +100,9 @@ inline ShaderGlobals shader_globals(const SurfaceHit& hit, const Vec3& ray_dir, 
   g.attribute_ids = hit.attribute_ids;
   g.num_attributes = hit.num_attributes;
   g.corner_weights = hit.corner_weights;
+  g.instance_constants = hit.instance_constants;
+  g.instance_constant_ids = hit.instance_constant_ids;
+  g.num_instance_constants = hit.num_instance_constants;
   g.tangent = hit.tangent;
   g.bitangent_sign = hit.bitangent_sign;
   // Cycles' ray differentials: the cone's width along its tangent pair around the true normal,
@@ -213,6 +220,12 @@ class Scene {
   // for shader programs: values (num_attributes, 3 * its triangles) xyz, ids naming each layer
   // (the Attribute op's resource); num_corners must be 3 * its triangles. NaN/Inf values are read
   // as 0. Replaces earlier ones.
+  // Per-instance constant attributes (an instanced object's Object Info: the Attribute op reads
+  // them where the prototype's corners have no layer of that id): values (count, num_layers, 3)
+  // for instances ids[0..count) of the layers layer_ids (any of them, in any order; a layer an
+  // instance was never given reads 0). Non-finite values are stored as 0.
+  void set_instance_constants(const int64_t* ids, size_t count, const int32_t* layer_ids, size_t num_layers,
+                              const float* values);
   void set_mesh_attributes(uint32_t mesh, bool prototype, const float* values, size_t num_corners,
                            const int32_t* ids, size_t num_attributes);
 
@@ -347,6 +360,10 @@ class Scene {
   std::vector<std::shared_ptr<const Texture>> textures_;
   std::vector<ShaderProgram> programs_;
   std::vector<std::unique_ptr<Mesh>> meshes_;  // world-space meshes, in the order added
+  // Instances' constant attributes: instance i's layer a at i * ids.size() + a (the vector may
+  // end before the last instances: those have none).
+  std::vector<Vec3> instance_constants_;
+  std::vector<int32_t> instance_constant_ids_;
   std::vector<std::unique_ptr<Prototype>> prototypes_;
   std::vector<Binding> bindings_;  // distinct (prototype, material table) pairs
   std::map<std::vector<uint32_t>, uint32_t> binding_ids_;  // {prototype, table...} -> binding

@@ -115,6 +115,11 @@ struct ShaderGlobals {
   const int32_t* attribute_ids = nullptr;
   int num_attributes = 0;
   Vec3 corner_weights{0.0f};
+  // The hit instance's constant attributes (Object Info of an instanced object): layer a's value
+  // at instance_constants[a], its id instance_constant_ids[a].
+  const Vec3* instance_constants = nullptr;
+  const int32_t* instance_constant_ids = nullptr;
+  int num_instance_constants = 0;
   PathState path;  // the path's state where the program runs (the Light Path node)
   // Cycles' ray differentials at the hit: dP/dx and dP/dy (the footprint's width along its
   // tangent pair around the true normal), and what they move the UVs and corner weights by.

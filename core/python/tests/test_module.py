@@ -777,3 +777,41 @@ def test_guiding_settings_and_a_guided_adaptive_render():
     assert guided.guiding in ("guided", "stopped after pass 3")   # what guiding did
     settings.guiding = False
     assert tc.render(scene, settings).guiding == "off"
+
+
+def test_instance_constants_are_read_by_the_attribute_op():
+    """Scene.set_instance_constants: an instance's constant layer is what a program's Attribute
+    op reads there (an instanced object's Object Info); layers may arrive in any order, a new
+    one widening the rows; an instance given none reads 0; bad ids and shapes are ValueErrors."""
+    scene = tc.Scene()
+    attribute_row = [100, 0, 0, 5, 0] + [-1] * 12    # register 0 = layer 5 at the hit
+    pid = scene.add_shader_program(np.zeros((0, 4), np.float32),
+                                   np.array([attribute_row], np.int32), 1)
+    scene.add_material(emission=(1, 1, 1), emission_strength=1.0, program=pid,
+                       emission_register=0)
+    pos, tris, *_ = _tent()
+    proto = scene.add_prototype(pos, tris)
+    first = scene.add_instances(proto, np.eye(4, dtype=np.float32)[None], np.array([0]))
+    cam = np.eye(4)
+    cam[2, 3] = 5.0
+    scene.set_camera(cam, lens=2000.0)          # sees only the tent's apex region
+    settings = tc.RenderSettings(width=4, height=4, samples=1, max_bounces=0)
+
+    def seen():
+        return tc.render(scene, settings).image[..., :3].reshape(-1, 3).mean(axis=0)
+
+    assert np.allclose(seen(), 0.0)             # no constants given: 0, as Cycles' missing ones
+    scene.set_instance_constants([first], np.array([5], np.int32),
+                                 np.array([[[0.25, 0.5, 0.75]]], np.float32))
+    assert np.allclose(seen(), (0.25, 0.5, 0.75), rtol=1e-4)
+    scene.set_instance_constants([first], np.array([9, 5], np.int32),
+                                 np.array([[[1, 1, 1], [0.5, np.nan, 2.0]]], np.float32))
+    assert np.allclose(seen(), (0.0, 0.0, 0.0))   # a NaN in the value: the whole value 0
+    scene.set_instance_constants([first], np.array([5], np.int32),
+                                 np.array([[[0.5, 0.25, 2.0]]], np.float32))
+    assert np.allclose(seen(), (0.5, 0.25, 2.0), rtol=1e-4)
+    with pytest.raises(ValueError, match="does not exist"):
+        scene.set_instance_constants([7], np.array([5], np.int32), np.zeros((1, 1, 3), np.float32))
+    with pytest.raises(ValueError, match="shape"):
+        scene.set_instance_constants([first], np.array([5, 6], np.int32),
+                                     np.zeros((1, 1, 3), np.float32))

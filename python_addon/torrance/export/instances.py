@@ -15,6 +15,7 @@ from itertools import chain
 import numpy as np
 
 from .mesh import prototype_arrays, read_local_mesh
+from .mesh_attributes import instances_info, object_random_id
 
 
 CHUNK = 65536            # matrices kept as objects before they are converted to numbers
@@ -24,9 +25,10 @@ class Source:
     """An object, or an object repeated by instances, with its material table and the world
     matrices of everything that shows it: copies kept by `add`, converted to float32 rows
     CHUNK at a time (transforms() gives them all)."""
-    __slots__ = ("name", "mesh_key", "table", "instanced", "matrices", "converted", "_append")
+    __slots__ = ("name", "mesh_key", "table", "instanced", "matrices", "converted", "_append",
+                 "info_of", "random_ids")
 
-    def __init__(self, name, mesh_key, table, instanced):
+    def __init__(self, name, mesh_key, table, instanced, info_of=None):
         self.name = name
         self.mesh_key = mesh_key      # (evaluated mesh pointer, needs UVs)
         self.table = table            # int32 (K,): material index per slot
@@ -34,6 +36,10 @@ class Source:
         self.matrices = []            # mathutils Matrix copies (4 x 4), fewer than CHUNK
         self.converted = []           # float32 (CHUNK, 3, 4) blocks
         self._append = self.matrices.append
+        # With materials reading Object Info: the object whose colour and pass index its
+        # instances show, and (instanced) each instance's random id, as add() gets them.
+        self.info_of = info_of
+        self.random_ids = [] if info_of is not None and instanced else None
 
     def add(self, matrix):
         """Keeps a copy of a world matrix (a mathutils Matrix, e.g. inst.matrix_world: valid
@@ -49,6 +55,15 @@ class Source:
 
     def count(self):
         return CHUNK * len(self.converted) + len(self.matrices)
+
+    def infos(self, transforms, keep):
+        """{key: float32 (n, 3)} Object Info of the instances kept (bool mask `keep` over
+        transforms (N, 3, 4)), or None when no material reads it."""
+        if self.info_of is None:
+            return None
+        ids = (np.asarray(self.random_ids, np.int64) if self.random_ids is not None
+               else np.full(len(transforms), object_random_id(self.name), np.int64))
+        return instances_info(self.info_of, transforms[keep], ids[keep])
 
     def transforms(self):
         """float32 (N, 3, 4): the top three rows of every matrix added, in order."""
@@ -81,12 +96,9 @@ class InstanceExport:
         """A new Source for an evaluated object: its slots' materials read now."""
         slot_to_material = self.materials.slot_indices([s.material for s in obj.material_slots])
         needs_uvs = self.materials.needs_uvs(slot_to_material.tolist())
-        if needs_uvs.object_info():
-            self.reporter.warning(f"Object '{name}': Object Info is not supported on instanced "
-                                  f"objects; its outputs read 0")
         data = obj.data
         src = Source(name, (data.as_pointer() if data is not None else 0, needs_uvs),
-                     slot_to_material, instanced)
+                     slot_to_material, instanced, obj if needs_uvs.object_info() else None)
         self.sources.append(src)
         return src
 
@@ -138,29 +150,32 @@ class InstanceExport:
             for src in srcs:
                 m = src.transforms()
                 finite = np.isfinite(m).all(axis=(1, 2))
+                info = src.infos(m, finite)
                 if not finite.all():
                     bad = int(len(m) - np.count_nonzero(finite))
                     self.reporter.warning(f"Object '{src.name}': {bad} instance(s) with a NaN/Inf "
                                           f"transform (a driver?) are not rendered")
                     m = m[finite]
                 if len(m):
-                    parts.append((src, m))
+                    parts.append((src, m, info))
             if not parts:
                 continue
-            transforms = parts[0][1] if len(parts) == 1 else np.concatenate([m for _, m in parts])
+            transforms = (parts[0][1] if len(parts) == 1
+                          else np.concatenate([m for _, m, _ in parts]))
             try:
-                self.scene.add_instances(pid, transforms, srcs[0].table)
+                first = self.scene.add_instances(pid, transforms, srcs[0].table)
             except ValueError as exc:
-                names = ", ".join(sorted({f"'{src.name}'" for src, _ in parts}))
+                names = ", ".join(sorted({f"'{src.name}'" for src, _, _ in parts}))
                 self.reporter.warning(f"Object {names}: {len(transforms)} instance(s) not "
                                       f"rendered ({exc})")
                 continue
+            self._set_infos(first, parts)
             instances += len(transforms)
-            for src, m in parts:
+            for src, m, _ in parts:
                 stats.names.extend([src.name] * len(m))
             emissive = self.materials.emissive
             if any(i in emissive for i in srcs[0].table.tolist()) \
-                    and any(src.instanced for src, _ in parts):
+                    and any(src.instanced for src, _, _ in parts):
                 self.reporter.info(f"{len(transforms)} instance(s) of '{parts[0][0].name}' have "
                                    f"an emissive material: each one is a light (rendered, but "
                                    f"many emitting instances make light sampling noisier)")
@@ -170,3 +185,20 @@ class InstanceExport:
                                f"direction) were not rendered")
         stats.objects += instances - hidden
         stats.triangles += self.scene.num_triangles
+
+    def _set_infos(self, first, parts):
+        """The Object Info constants of the instances first, first + 1, ... (parts' order) that
+        their materials read (Scene.set_instance_constants)."""
+        start = first
+        for src, m, info in parts:
+            if info is not None:
+                keys = [(k, i) for k, i in src.mesh_key[1].attributes if k[0] == 'object_info']
+                if keys:
+                    values = np.stack([info[k] for k, _ in keys], axis=1)
+                    self.scene.set_instance_constants(
+                        np.arange(start, start + len(m), dtype=np.int64),
+                        np.array([i for _, i in keys], np.int32),
+                        np.ascontiguousarray(values, dtype=np.float32))
+            start += len(m)
+
+

@@ -14,8 +14,9 @@ Keys (shader_graph's attribute requests):
   ('object_info', k)   Object Info's per-object constants (k: location, color, alpha, index,
                        random; axis_x, axis_y, axis_z: the matrix's columns, for the shader
                        graph's object transforms), not the mesh's: object_info() gives them,
-                       add_world_mesh adds them to a world-space mesh (prototypes, shared, have
-                       none: 0 there)
+                       add_world_mesh adds them to a world-space mesh; an instance of a
+                       prototype gets them as instance constants (instances_info,
+                       Scene.set_instance_constants)
 A key the mesh lacks gets no layer: the program reads 0 there, as Cycles does.
 """
 
@@ -170,21 +171,34 @@ def object_info(obj, matrix, random_id=None):
     location (the matrix's translation) and axes (its columns), colour and alpha (Object >
     Viewport Display > Color), pass index, and random number: random_id (default
     object_random_id of its name) times 1 / 0xFFFFFFFF, in float32."""
-    m = np.asarray(matrix, dtype=np.float64).reshape(4, 4)
-    color = tuple(float(c) for c in obj.color)
+    m = np.asarray(matrix, dtype=np.float64).reshape(4, 4)[None, :3, :]
     if random_id is None:
         random_id = object_random_id(obj.name)
-    rid = np.float32(int(random_id) & 0xFFFFFFFF)
-    random = float(rid * (np.float32(1.0) / np.float32(0xFFFFFFFF)))
-    one = lambda v: (float(v),) * 3  # noqa: E731
-    return {('object_info', 'location'): tuple(m[:3, 3]),
-            ('object_info', 'axis_x'): tuple(m[:3, 0]),
-            ('object_info', 'axis_y'): tuple(m[:3, 1]),
-            ('object_info', 'axis_z'): tuple(m[:3, 2]),
-            ('object_info', 'color'): color[:3],
-            ('object_info', 'alpha'): one(color[3]),
-            ('object_info', 'index'): one(obj.pass_index),
-            ('object_info', 'random'): one(random)}
+    info = instances_info(obj, m, np.array([random_id]))
+    return {key: tuple(float(x) for x in v[0]) for key, v in info.items()}
+
+
+def instances_info(obj, matrices, random_ids):
+    """{('object_info', k): float32 (N, 3)} of N instances of obj (Cycles 3.4's Object Info of
+    each): matrices (N, 3, 4) object to world, random_ids (N,) Blender's random ids
+    (DepsgraphObjectInstance.random_id; object_random_id for an object itself)."""
+    m = np.asarray(matrices, dtype=np.float64)
+    n = len(m)
+    color = np.asarray(tuple(obj.color), np.float32)
+    rid = (np.asarray(random_ids, np.int64) & 0xFFFFFFFF).astype(np.float32)
+    random = rid * (np.float32(1.0) / np.float32(0xFFFFFFFF))
+
+    def same(v):
+        return np.broadcast_to(np.asarray(v, np.float32), (n, 3))
+
+    return {('object_info', 'location'): m[:, :, 3].astype(np.float32),
+            ('object_info', 'axis_x'): m[:, :, 0].astype(np.float32),
+            ('object_info', 'axis_y'): m[:, :, 1].astype(np.float32),
+            ('object_info', 'axis_z'): m[:, :, 2].astype(np.float32),
+            ('object_info', 'color'): same(color[:3]),
+            ('object_info', 'alpha'): same(color[3]),
+            ('object_info', 'index'): same(float(obj.pass_index)),
+            ('object_info', 'random'): np.repeat(random[:, None], 3, axis=1)}
 
 
 def with_object_info(layers, info, ids, num_triangles):

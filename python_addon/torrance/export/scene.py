@@ -179,6 +179,8 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
                     what = seen[key] = classify(inst, obj)
                 if what.__class__ is Source:
                     what.add(inst.matrix_world)
+                    if what.random_ids is not None:         # its materials read Object Info
+                        what.random_ids.append(inst.random_id)
                 elif what == 'LIGHT' and export_light(tc_scene, obj, inst.matrix_world.copy(),
                                                       reporter):
                     stats.lights += 1

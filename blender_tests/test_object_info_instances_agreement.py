@@ -1,0 +1,117 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Object Info on instanced objects renders as Cycles 3.4 renders it: each instance its own
+Location and Random (Blender's per-instance random id), its object's Color and Object Index.
+
+Seen from above through Emission shaders, no lighting noise:
+* a quad instanced on the 24 vertices of a parent mesh (instancing Verts), its colour
+  (Random, fract(7 Random), |Location x| / 4);
+* a quad instanced by two collection instances (Empties), its colour (Object Color's red,
+  Object Index / 10, Location y / 3 + 0.5).
+
+Each instance is a prototype's instance in the core, its Object Info constants per instance
+(Scene.set_instance_constants). Cycles' reference (seed 0) and a second Cycles image (seed 1)
+set the bounds; Torrance renders seeds 2 and 3. Deliberate faults (every instance the same
+random number; the instances' locations dropped) must fail them.
+
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \
+         --python blender_tests/test_object_info_instances_agreement.py
+"""
+
+import bpy
+
+from torrance_tools import testing
+from torrance_tools.seed_noise import agree_within_seed_noise
+from torrance_tools.shader_graphs import Graph
+
+W, H = 160, 96
+
+
+def random_and_location():
+    g = Graph("RandomLocation")
+    info = g.node("ShaderNodeObjectInfo")
+    r = info.outputs["Random"]
+    sep = g.node("ShaderNodeSeparateXYZ")
+    g.link(info.outputs["Location"], sep.inputs[0])
+    x = g.math('MULTIPLY', g.math('ABSOLUTE', sep.outputs[0]), value_b=0.25)
+    g.link(g.combine(r, g.math('FRACT', g.math('MULTIPLY', r, value_b=7.0)), x),
+           g.shader.inputs["Color"])
+    return g.mat
+
+
+def color_index_location():
+    g = Graph("ColorIndexLocation")
+    info = g.node("ShaderNodeObjectInfo")
+    sep_c = g.node("ShaderNodeSeparateRGB")
+    g.link(info.outputs["Color"], sep_c.inputs[0])
+    sep_l = g.node("ShaderNodeSeparateXYZ")
+    g.link(info.outputs["Location"], sep_l.inputs[0])
+    g.link(g.combine(sep_c.outputs[0], g.math('MULTIPLY', info.outputs["Object Index"],
+                                               value_b=0.1),
+                     g.multiply_add(sep_l.outputs[1], 1.0 / 3.0, 0.5)),
+           g.shader.inputs["Color"])
+    return g.mat
+
+
+def quad(scene, name, size, mat):
+    h = size / 2
+    return testing.mesh_object(scene, name, [(-h, -h, 0), (h, -h, 0), (h, h, 0), (-h, h, 0)],
+                               [(0, 1, 2, 3)], mat)
+
+
+def build(scene):
+    testing.setup_render(scene, width=W, height=H)
+    cam = testing.add_camera(scene, location=(0.0, -0.001, 10.0), target=(0.0, 0.0, 0.0))
+    cam.data.type = 'ORTHO'
+    cam.data.ortho_scale = 8.0
+    # 24 instances on a parent's vertices (the parent mesh itself is not rendered).
+    child = quad(scene, "Child", 0.45, random_and_location())
+    verts = [(-3.5 + 0.6 * i, -1.9 + 0.6 * j, 0.0) for j in range(4) for i in range(6)]
+    parent = testing.mesh_object(scene, "Parent", verts, [])
+    parent.instance_type = 'VERTS'
+    child.parent = parent
+    # Two collection instances of a coloured quad.
+    coll = bpy.data.collections.new("Tiles")
+    tile = quad(scene, "Tile", 0.8, color_index_location())
+    for c in tile.users_collection:
+        c.objects.unlink(tile)
+    coll.objects.link(tile)
+    tile.color = (0.8, 0.3, 0.1, 1.0)
+    tile.pass_index = 4
+    for k, (x, y) in enumerate(((1.8, -1.0), (2.9, 1.2))):
+        empty = bpy.data.objects.new(f"TilesAt{k}", None)
+        empty.instance_type = 'COLLECTION'
+        empty.instance_collection = coll
+        empty.location = (x, y, 0.0)
+        scene.collection.objects.link(empty)
+    testing.set_world(scene, (0.0, 0.0, 0.0))
+
+
+def same_random(original):
+    """A fault: every instance the same random id."""
+    def info(obj, matrices, random_ids):
+        return original(obj, matrices, [12345] * len(random_ids))
+    return info
+
+
+def no_location(original):
+    """A fault: the instances' locations dropped (the prototype's: 0)."""
+    def info(obj, matrices, random_ids):
+        out = original(obj, matrices, random_ids)
+        out[('object_info', 'location')] = out[('object_info', 'location')] * 0.0
+        return out
+    return info
+
+
+def main():
+    testing.addon()
+    import torrance.export.instances as instances
+    scene = testing.clear_scene()
+    build(scene)
+    agree_within_seed_noise(
+        scene, testing.tempdir(), 64, 2, "Object Info on instanced objects",
+        faults=(("every instance the same random", instances, "instances_info", same_random),
+                ("the instances' locations dropped", instances, "instances_info", no_location)),
+        tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
+
+
+testing.run(main)
