@@ -2,13 +2,18 @@
 """docs/nodes.md from the shader graph's registry: every shader node of the running Blender,
 and what Torrance renders of it (rendered by the shader graph, a closure's note, or reported).
 
-Run: scripts/nodes_doc (writes docs/nodes.md); blender_tests/test_nodes_doc.py checks that the
-file is current and that every registry entry names a node of this Blender.
+Run: scripts/nodes_doc (writes docs/nodes.md, Blender 3.4's list) or scripts/nodes_doc 4.2
+(docs/nodes_blender4.2.md, bpy 4.2's); blender_tests/test_nodes_doc.py checks that the running
+Blender's file is current and that every registry entry names a node of this Blender (or one it
+removed: node_versions.REMOVED_NODES).
 """
 
+import os
 import sys
 
 import bpy
+
+from torrance_tools import REPO
 
 # Node types that are not nodes an artist places (bases, custom groups).
 _NOT_NODES = {'ShaderNodeCustomGroup', 'ShaderNodeTree', 'ShaderNode'}
@@ -63,14 +68,23 @@ def markdown():
 
 
 def unknown_entries():
-    """Registry entries that name no node type of this Blender (a typo, or another version's)."""
+    """Registry entries that name no node type of this Blender (a typo, or another version's),
+    but for the nodes this Blender removed (read where an older Blender has them)."""
+    from torrance.shader_graph.node_versions import REMOVED_NODES
     readers, closures = registry()
     nodes = shader_nodes()
-    return sorted(k for k in (*readers, *closures) if k not in nodes)
+    return sorted(k for k in (*readers, *closures) if k not in nodes and k not in REMOVED_NODES)
+
+
+def doc_path(version=None):
+    """docs/nodes.md for Blender 3.x, docs/nodes_blender<X.Y>.md for 4.x and later."""
+    version = tuple(bpy.app.version if version is None else version)
+    name = "nodes.md" if version < (4, 0, 0) else f"nodes_blender{version[0]}.{version[1]}.md"
+    return os.path.join(REPO, "docs", name)
 
 
 def main():
-    path = sys.argv[sys.argv.index("--") + 1] if "--" in sys.argv else "docs/nodes.md"
+    path = sys.argv[sys.argv.index("--") + 1] if "--" in sys.argv else doc_path()
     with open(path, "w", encoding="utf-8") as f:
         f.write(markdown())
     print(f"nodes_doc: wrote {path}")

@@ -13,9 +13,17 @@ materials.principled_version does, not by bpy.app.version:
               gives (type, normalize, cycles4): 3.4's node is fBM normalised, Cycles 3.4's sum.
   Voronoi     4.0 adds fractal Voronoi (Detail, Roughness, Lacunarity, Normalize):
               voronoi_fractal says whether the node has them.
+  kernels     Cycles 4.x computes some unchanged nodes differently (the Wave Texture's
+              distortion, the Vector Transform of a Normal): the running Blender tells.
   materials   4.1 moves the displacement method from material.cycles to the material:
               displacement_owner is where it is.
 """
+
+# Node types a newer Blender removed, which the registry still reads for the older ones.
+REMOVED_NODES = {
+    'ShaderNodeTexMusgrave': "merged into the Noise Texture's types in 4.1",
+    'ShaderNodeBsdfGlossy': "4.0: the Glossy BSDF is ShaderNodeBsdfAnisotropic (merged)",
+}
 
 # The Noise Texture's noise types, Blender 4.1's names (the Musgrave types of 3.4).
 NOISE_TYPES = ('MULTIFRACTAL', 'RIDGED_MULTIFRACTAL', 'HYBRID_MULTIFRACTAL', 'FBM',
@@ -45,6 +53,13 @@ def is_cycles4_noise(node):
 def cycles4_wave_noise():
     """True where Cycles computes the Wave Texture's distortion with 4.x's fBM (the Wave node
     itself did not change: the running Blender tells)."""
+    import bpy
+    return bpy.app.version >= (4, 0, 0)
+
+
+def cycles4_normal_transform():
+    """True where Cycles' Vector Transform moves a Normal by the inverse transpose (4.0+; 3.4
+    moves it as a vector): the node did not change, the running Blender tells."""
     import bpy
     return bpy.app.version >= (4, 0, 0)
 
