@@ -11,13 +11,16 @@ Seen from above through Emission shaders, no lighting noise:
 Each instance is a prototype's instance in the core, its Object Info constants per instance
 (Scene.set_instance_constants). Cycles' reference (seed 0) and a second Cycles image (seed 1)
 set the bounds; Torrance renders seeds 2 and 3. Deliberate faults (every instance the same
-random number; the instances' locations dropped) must fail them.
+random number; the instances' locations dropped) must fail them. The viewport's scene (its
+SceneCache, instances added one by one, then moved in place) renders the same image as the
+final render's.
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_object_info_instances_agreement.py
 """
 
 import bpy
+import numpy as np
 
 from torrance_tools import testing
 from torrance_tools.seed_noise import agree_within_seed_noise
@@ -102,6 +105,35 @@ def no_location(original):
     return info
 
 
+def viewport_matches_final(scene):
+    """The viewport's scene of the same depsgraph renders the final render's image, after an
+    in-place move too (Object Info's Location follows)."""
+    from torrance.export.camera import export_camera
+    from torrance.export.scene import export_scene
+    from torrance.reporting import Reporter
+    from torrance.viewport.scene_cache import SceneCache
+
+    def image(tc_scene):
+        export_camera(tc_scene, scene.camera, Reporter(None))
+        settings = tc.RenderSettings(width=W, height=H, samples=4, seed=0, max_bounces=1)
+        return np.asarray(tc.render(tc_scene, settings).image)[..., :3]
+
+    tc = testing.core()
+    cache = SceneCache()
+    for step in ("added", "moved"):
+        if step == "moved":
+            bpy.data.objects["Parent"].location.x += 0.3
+            bpy.data.objects["TilesAt0"].location.y -= 0.4
+        depsgraph = bpy.context.evaluated_depsgraph_get()
+        live = cache.sync(tc, depsgraph, Reporter(None))
+        final, _stats = export_scene(tc, depsgraph, Reporter(None))
+        difference = float(np.abs(image(live) - image(final)).mean())
+        print(f"  viewport scene ({step}) vs final render: mean difference {difference:.2e}")
+        testing.check(difference < 1e-4, f"the viewport's Object Info differs ({step}): "
+                      f"{difference}")
+    testing.check(cache.updates == 1, f"the move was not applied in place: {cache.updates}")
+
+
 def main():
     testing.addon()
     import torrance.export.instances as instances
@@ -112,6 +144,7 @@ def main():
         faults=(("every instance the same random", instances, "instances_info", same_random),
                 ("the instances' locations dropped", instances, "instances_info", no_location)),
         tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
+    viewport_matches_final(scene)
 
 
 testing.run(main)

@@ -15,7 +15,7 @@ from itertools import chain
 import numpy as np
 
 from .mesh import prototype_arrays, read_local_mesh
-from .mesh_attributes import instances_info, object_random_id
+from .mesh_attributes import instance_constant_layers, instances_info, object_random_id
 
 
 CHUNK = 65536            # matrices kept as objects before they are converted to numbers
@@ -191,14 +191,10 @@ class InstanceExport:
         their materials read (Scene.set_instance_constants)."""
         start = first
         for src, m, info in parts:
-            if info is not None:
-                keys = [(k, i) for k, i in src.mesh_key[1].attributes if k[0] == 'object_info']
-                if keys:
-                    values = np.stack([info[k] for k, _ in keys], axis=1)
-                    self.scene.set_instance_constants(
-                        np.arange(start, start + len(m), dtype=np.int64),
-                        np.array([i for _, i in keys], np.int32),
-                        np.ascontiguousarray(values, dtype=np.float32))
+            layers = instance_constant_layers(src.mesh_key[1], info) if info is not None else None
+            if layers is not None:
+                self.scene.set_instance_constants(
+                    np.arange(start, start + len(m), dtype=np.int64), *layers)
             start += len(m)
 
 

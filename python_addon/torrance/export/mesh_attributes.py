@@ -201,6 +201,17 @@ def instances_info(obj, matrices, random_ids):
             ('object_info', 'random'): np.repeat(random[:, None], 3, axis=1)}
 
 
+def instance_constant_layers(needs, info):
+    """(layer ids int32 (A,), values float32 (N, A, 3)) for Scene.set_instance_constants: the
+    Object Info keys the materials' programs read (needs: materials.MeshNeeds) from
+    instances_info's answer `info`; None when they read none."""
+    keys = [(k, i) for k, i in needs.attributes if k[0] == 'object_info']
+    if not keys:
+        return None
+    values = np.stack([info[k] for k, _ in keys], axis=1)
+    return np.array([i for _, i in keys], np.int32), np.ascontiguousarray(values, np.float32)
+
+
 def with_object_info(layers, info, ids, num_triangles):
     """layers (attribute_layers' answer or None) with constant layers of the keys of `info`
     ({key: xyz}) that `ids` ({key: id}) asks for."""

@@ -220,8 +220,8 @@ def _material_pass_index(g, node):
 
 def _object_info(g, node, socket):
     """Object Info: the object's constants as attribute layers (a world-space mesh's; an
-    instance's constants, Scene.set_instance_constants; the viewport's instances have none: 0
-    there, reported); Material Index the material's pass index."""
+    instance's constants, Scene.set_instance_constants, in the final render and the viewport);
+    Material Index the material's pass index."""
     out = socket.identifier
     if out == "Material Index":
         return constant('float', float(_material_pass_index(g, node)))

@@ -17,6 +17,7 @@ import time
 import numpy as np
 
 from .. import export
+from ..export.mesh_attributes import instance_constant_layers, instances_info, object_random_id
 from ..materials import MaterialTable
 from ..texture_table import TextureTable
 
@@ -77,6 +78,7 @@ class SceneCache:
         self.materials = None     # its MaterialTable
         self.prototypes = {}      # (cache kind, mesh key, uvs) -> (pid, triangles) or None
         self.entries = {}         # entry id -> _Entry (every mesh object / instance shown)
+        self._random_ids = {}     # the last plan's instance key -> random ids (Object Info)
         self.lights_fp = None     # fingerprint of the lights (and unsupported objects)
         self.changed_materials = set()   # names of the materials the last update changed
         self.stale_materials = 0  # materials of the live scene replaced by edited ones
@@ -194,6 +196,7 @@ class SceneCache:
         """The instances to render, and a fingerprint of everything read without meshes."""
         use_lights = options.get("use_scene_lights", True)
         plan = []
+        self._random_ids = {}     # an instance key -> its instances' random ids, in plan order
         fp = []
         for inst in depsgraph.object_instances:
             role = export.instance_role(inst)
@@ -214,6 +217,7 @@ class SceneCache:
                     parent = inst.parent.name if inst.parent is not None else ""
                     key = ('I', parent, obj.name, data_name, obj.as_pointer(),
                            obj.data.as_pointer() if obj.data is not None else 0)
+                    self._random_ids.setdefault(key, []).append(inst.random_id)
                 else:
                     key = ('O', obj.name, data_name)
                 plan.append(('MESH', obj, m, slots, key))
@@ -284,9 +288,6 @@ class SceneCache:
         if pkey not in self.prototypes:
             local = meshes.get(obj, key[1:], needs_uvs, reporter)
             self.prototypes[pkey] = self._prototype(pkey, local, obj.name, needs_uvs, reporter)
-            if needs_uvs.object_info():
-                reporter.warning(f"Object '{obj.name}': Object Info is not supported in the "
-                                 f"viewport; its outputs read 0")
         entry = _Entry(_matrix_tuple(matrix), _slot_names(slots), None, 0, pkey)
         self.entries[eid] = entry
         proto = self.prototypes[pkey]
@@ -301,9 +302,24 @@ class SceneCache:
         try:
             entry.iid = self.scene.add_instances(pid, transform, table)
             entry.triangles = triangles
+            self._object_info(entry, eid, obj, transform)
         except ValueError as exc:
             reporter.warning(f"Object '{obj.name}' is not rendered ({exc})")
         return entry
+
+    def _object_info(self, entry, eid, obj, transform):
+        """The instance's Object Info constants, if its materials read them."""
+        needs = entry.pkey[2]
+        if entry.iid is None or not needs.object_info():
+            return
+        key, n = eid
+        randoms = self._random_ids.get(key)
+        random_id = randoms[n] if randoms is not None and n < len(randoms) \
+            else object_random_id(obj.name)
+        info = instances_info(obj, np.asarray(transform)[None], [random_id])
+        layers = instance_constant_layers(needs, info)
+        if layers is not None:
+            self.scene.set_instance_constants([entry.iid], *layers)
 
     def _prototype(self, pkey, local, name, needs_uvs, reporter):
         if local is None:
@@ -347,6 +363,7 @@ class SceneCache:
                 continue
             ids.append(entry.iid)
             transforms.append(t)
+            self._object_info(entry, eid, obj, t)
         if ids:
             self.scene.set_instance_transforms(np.asarray(ids, dtype=np.int64),
                                                np.stack(transforms))
