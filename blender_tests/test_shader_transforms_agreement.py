@@ -13,7 +13,8 @@ transform differently). The UVs are turned by 30 degrees (the UV tangent is not 
 Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
 seeds 2 and 3. Deliberate faults (Vector Transform to World instead of Object/Camera, Tangent
 about Y instead of the axis set, Normal Map's object spaces read as world spaces, the UV tangent
-not taken back to object space) must fail them.
+not taken back to object space, Normals moved as the other Cycles version moves them) must fail
+them.
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_shader_transforms_agreement.py
@@ -133,6 +134,7 @@ def _uv_tangent_in_world(original):
 
 def main():
     testing.addon()
+    from torrance.shader_graph import vector
     from torrance.shader_graph.registry import READERS
     readers = DictAttr(READERS)
     agree_on_patches(MAKERS, what="Tangent, Vector Transform and Normal Map object spaces",
@@ -143,7 +145,10 @@ def main():
         ("object transform ignored (UV tangent)", readers, 'ShaderNodeTangent',
          _uv_tangent_in_world),
         ("Normal Map object spaces read as world", readers, 'ShaderNodeNormalMap',
-         read_with(_world_spaces))))
+         read_with(_world_spaces)),
+        ("Normals moved as the other Cycles moves them (3.4: as vectors, 4.x: inverse "
+         "transpose)", vector, 'cycles4_normal_transform',
+         lambda original: lambda: not original())))
 
 
 testing.run(main)

@@ -88,35 +88,56 @@ Vec3 through_rows(const glm::vec4 rows[3], const Vec3& v, float w) {
   return Vec3(glm::dot(rows[0], p), glm::dot(rows[1], p), glm::dot(rows[2], p));
 }
 
+// The 3 x 3 part of rows, transposed, times v (Cycles' transform_direction_transposed).
+Vec3 through_columns(const glm::vec4 rows[3], const Vec3& v) {
+  return Vec3(rows[0]) * v.x + Vec3(rows[1]) * v.y + Vec3(rows[2]) * v.z;
+}
+
 }  // namespace
 
 Vec3 vector_transform(int mode, const Vec3& v, const ObjectTransform& object, const glm::vec4 to_camera[3],
-                      const glm::vec4 to_world[3]) {
+                      const glm::vec4 to_world[3], bool cycles4_normals) {
   enum { kWorld, kObject, kCamera };
   const int type = mode / 9, from = mode / 3 % 3, to = mode % 3;
   const bool direction = type != 0;
+  const bool normal4 = type == 2 && cycles4_normals;
   const float w = direction ? 0.0f : 1.0f;
-  auto into_object = [&](const Vec3& x) { return direction ? object.inverse_direction(x) : object.inverse_point(x); };
-  auto out_of_object = [&](const Vec3& x) { return direction ? object.direction(x) : object.point(x); };
+  auto into_object = [&](const Vec3& x) {
+    if (normal4) return object.inverse_normal(x);
+    return direction ? object.inverse_direction(x) : object.inverse_point(x);
+  };
+  auto out_of_object = [&](const Vec3& x) {
+    if (normal4) return object.normal(x);
+    return direction ? object.direction(x) : object.point(x);
+  };
+  // Cycles 4.x moves a normal by the inverse transpose: world -> camera by camera -> world's rows
+  // transposed, and back by world -> camera's.
+  auto into_camera = [&](const Vec3& x) {
+    return normal4 ? safe_unit(through_columns(to_world, x)) : through_rows(to_camera, x, w);
+  };
+  auto out_of_camera = [&](const Vec3& x) {
+    return normal4 ? safe_unit(through_columns(to_camera, x)) : through_rows(to_world, x, w);
+  };
   Vec3 out = v;
   if (from == kWorld) {
-    if (to == kCamera) out = through_rows(to_camera, out, w);
+    if (to == kCamera) out = into_camera(out);
     else if (to == kObject) out = into_object(out);
   } else if (from == kCamera) {
-    if (to != kCamera) out = through_rows(to_world, out, w);
+    if (to != kCamera) out = out_of_camera(out);
     if (to == kObject) out = into_object(out);
   } else {
     if (to != kObject) out = out_of_object(out);
-    if (to == kCamera) out = through_rows(to_camera, out, w);
+    if (to == kCamera) out = into_camera(out);
   }
-  return type == 2 ? safe_unit(out) : out;
+  return type == 2 && !normal4 ? safe_unit(out) : out;
 }
 
 glm::vec4 vector_transform_op(const ShaderOpContext& c) {
   const ObjectTransform object(c, 1);
   const glm::vec4 to_camera[3] = {c.in(5), c.in(6), c.in(7)};
   const glm::vec4 to_world[3] = {c.in(8), c.in(9), c.in(10)};
-  return glm::vec4(vector_transform(c.ins.mode, c.vector(0), object, to_camera, to_world), 0.0f);
+  return glm::vec4(vector_transform(c.ins.mode, c.vector(0), object, to_camera, to_world, c.ins.flags & 2),
+                   0.0f);
 }
 
 glm::vec4 mapping_op(const ShaderOpContext& c) {

@@ -6,7 +6,7 @@
 //                       in0 Vector, in1 Center, in2 Axis, in3.x Angle, in4 Rotation
 //   VectorTransform (108) (svm/vector_transform.h) mode (type * 3 + from) * 3 + to, type 0
 //                       Point, 1 Vector, 2 Normal (moved as a vector, then normalised, as 3.4
-//                       does), spaces 0 World, 1 Object, 2 Camera; in0 Vector, in1-in4 the
+//                       does; flags & 2: as Cycles 4.x, see vector_transform), spaces 0 World, 1 Object, 2 Camera; in0 Vector, in1-in4 the
 //                       object (ObjectTransform), in5-in7 the rows of world -> camera, in8-in10
 //                       the rows of camera -> world (3 x 4, w the translation)
 #pragma once
@@ -44,8 +44,11 @@ constexpr int kObjectInputs = 4;
 Vec3 safe_unit(const Vec3& v);
 
 constexpr int kVectorTransformModes = 27;
+// cycles4_normals (the op's flags & 2, Cycles 4.x): a Normal moves by each transform's inverse
+// transpose (ObjectTransform::normal, inverse_normal; the camera's rows transposed), normalised
+// at each step, as Cycles 4.x's svm/vector_transform.h; else as a vector, normalised at the end.
 Vec3 vector_transform(int mode, const Vec3& v, const ObjectTransform& object, const glm::vec4 to_camera[3],
-                      const glm::vec4 to_world[3]);
+                      const glm::vec4 to_world[3], bool cycles4_normals = false);
 
 glm::vec4 mapping_op(const ShaderOpContext& c);
 glm::vec4 vector_rotate_op(const ShaderOpContext& c);

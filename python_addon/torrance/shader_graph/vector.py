@@ -8,7 +8,7 @@ import math
 from ..nodes import node_label
 from .geometry import camera_rows, camera_to_world_rows, object_transform
 from .graph import Unsupported
-from .node_versions import input_socket
+from .node_versions import cycles4_normal_transform, input_socket
 from .program import constant
 
 OPCODES = {"Mapping": 104, "VectorRotate": 105, "VectorTransform": 108}
@@ -121,7 +121,8 @@ def _vector_transform(g, node, socket):
         if to_camera is None:
             raise Unsupported(f"{node_label(node)}: the scene has no camera")
         camera = [constant('vector', r) for r in (*to_camera[:3], *to_world)]
-    return g.builder.emit("VectorTransform", 'vector', [vector, *obj, *camera], mode=mode)
+    return g.builder.emit("VectorTransform", 'vector', [vector, *obj, *camera], mode=mode,
+                          flags=2 if cycles4_normal_transform() else 0)
 
 
 READERS = {'ShaderNodeMapping': _mapping, 'ShaderNodeVectorRotate': _vector_rotate,
