@@ -8,6 +8,7 @@
 #include "torrance/shader_noise.h"
 #include "torrance/shader_noise4.h"
 #include "torrance/shader_voronoi.h"
+#include "torrance/shader_image.h"
 #include "torrance/shader_textures.h"
 #include "torrance/shader_geometry.h"
 #include "torrance/shader_vector.h"
@@ -114,6 +115,8 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
     case ShaderOpcode::TexGradient: return {1, shader::kGradientTypeCount, false, shader::gradient_op};
     case ShaderOpcode::TexBrick: return {11, 1, false, shader::brick_op};
     case ShaderOpcode::TexMagic: return {3, shader::kMagicDepths, false, shader::magic_op};
+    case ShaderOpcode::ImageProjection:
+      return {7, shader::kImageProjectionModes, false, shader::image_projection_op};
     // [converter ops]
     case ShaderOpcode::ColorRamp: return {1, 1, true, shader::color_ramp_op};
     case ShaderOpcode::RGBCurves: return {2, 1, true, shader::rgb_curves_op};

@@ -47,7 +47,7 @@ def plain_image(node):
     """Whether an Image Texture node is read by the texture path (flat projection, Repeat, its
     Vector unlinked or the default UVs); otherwise the shader graph reads it."""
     if node.projection != 'FLAT':
-        return True            # the texture path reports what it does not render
+        return False           # the shader graph's ImageProjection op
     if node.extension != 'REPEAT':
         return False           # the shader graph's Image op has every extension
     vector = node.inputs.get("Vector")

@@ -15,6 +15,7 @@ from . import textures  # noqa: I001
 from . import noise  # noqa: I001
 from . import noise4  # noqa: I001
 from . import geometry  # noqa: I001
+from . import image  # noqa: I001
 
 FAMILIES = (
     # [families]
@@ -25,6 +26,7 @@ FAMILIES = (
     noise,
     noise4,
     geometry,
+    image,
 )
 
 READERS = {}

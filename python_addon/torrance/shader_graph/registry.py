@@ -11,8 +11,6 @@ from . import bump, color_ops, displacement, families, math_ops
 from .graph import Unsupported, by_identifier
 from .program import constant
 
-# The Image Texture node's extensions, in the core's Extension order (texture.h).
-_EXTENSIONS = ('REPEAT', 'EXTEND', 'CLIP', 'MIRROR')
 _CHANNELS = {"R": 0, "G": 1, "B": 2, "X": 0, "Y": 1, "Z": 2, "H": 0, "S": 1, "V": 2, "L": 2,
              "Red": 0, "Green": 1, "Blue": 2}
 _TO_MODEL = {'RGB': None, 'HSV': 0, 'HSL': 2}       # ColorModel mode from RGB
@@ -25,29 +23,6 @@ def _value_node(g, node, socket):
 
 def _rgb_node(g, node, socket):
     return constant('color', tuple(socket.default_value))
-
-
-def _image(g, node, socket):
-    if node.image is None:
-        raise Unsupported(f"{node_label(node)} has no image")
-    if node.projection != 'FLAT':
-        raise Unsupported(f"{node_label(node)}: {node.projection.lower()} projection")
-    if node.extension not in _EXTENSIONS:
-        raise Unsupported(f"{node_label(node)}: extension '{node.extension.title()}'")
-    interpolation = node.interpolation if node.interpolation in ("Linear", "Closest") else "Linear"
-    tid = g.textures.texture(node.image, interpolation)
-    if tid is None:
-        raise Unsupported(f"{node_label(node)}: its image could not be loaded")
-    vector = node.inputs.get("Vector")
-    uv = (g.input(vector, 'vector') if vector is not None and vector.is_linked
-          else g.builder.emit("TexCoordUV", 'vector'))
-    rgba = g.builder.emit("Image", 'color', [uv], texture=tid,
-                          mode=_EXTENSIONS.index(node.extension))
-    if socket.identifier == "Alpha":
-        if node.image.alpha_mode == 'NONE':
-            return constant('float', 1.0)
-        return g.builder.emit("Channel", 'float', [rgba], mode=3)
-    return rgba
 
 
 def _separate(model_of):
@@ -150,7 +125,6 @@ def _rgb_to_bw(g, node, socket):
 READERS = {
     'ShaderNodeValue': _value_node,
     'ShaderNodeRGB': _rgb_node,
-    'ShaderNodeTexImage': _image,
     'ShaderNodeSeparateColor': _separate(lambda n: n.mode),
     'ShaderNodeSeparateRGB': _separate(lambda n: 'RGB'),
     'ShaderNodeSeparateXYZ': _separate(lambda n: 'RGB'),
