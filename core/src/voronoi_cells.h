@@ -16,7 +16,23 @@
 #include <cmath>
 #include <cstdint>
 
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
+
 namespace torrance::shader::voronoi_cells {
+
+// v[i] = sqrt(v[i]) for N values (a multiple of 4). The compiler leaves std::sqrt one value at
+// a time (it keeps errno, which a negative argument sets), so SSE's sqrtps takes four: the same
+// correctly rounded square roots.
+template <int N>
+void square_roots(float* v) {
+#if defined(__SSE__)
+  for (int i = 0; i < N; i += 4) _mm_storeu_ps(v + i, _mm_sqrt_ps(_mm_loadu_ps(v + i)));
+#else
+  for (int i = 0; i < N; ++i) v[i] = std::sqrt(v[i]);
+#endif
+}
 
 template <int D>
 using VecN = glm::vec<D, float, glm::defaultp>;
@@ -66,8 +82,9 @@ struct Cells {
   // Fills key, hash and point for the cells around `cell` (floor(p)).
   void place_points(const VecN<D>& cell, float randomness) {
     for (int k = 0; k < D; ++k) {
+      const float corner = cell[k];  // read once: glm's v[k] is a switch, which keeps a loop scalar
       alignas(16) float coordinate[kLanes];
-      for (int i = 0; i < kLanes; ++i) coordinate[i] = cell[k] + kOffsets[size_t(k)][size_t(i)];
+      for (int i = 0; i < kLanes; ++i) coordinate[i] = corner + kOffsets[size_t(k)][size_t(i)];
       lanes::float_bits<kLanes>(coordinate, key[k]);
     }
     // As cell_point in shader_voronoi.cpp: hash_float{,2,3,4}_to_float{,2,3,4}.
@@ -115,24 +132,27 @@ struct Cells {
   // axis down; 1D is |local - point| whatever the metric.
   void measure(const VecN<D>& local, VoronoiMetric metric, float exponent) {
     alignas(16) float diff[D][kLanes];
-    for (int k = 0; k < D; ++k)
-      for (int i = 0; i < kLanes; ++i) diff[k][i] = point[k][i] - local[k];
+    for (int k = 0; k < D; ++k) {
+      const float to = local[k];
+      for (int i = 0; i < kLanes; ++i) diff[k][i] = point[k][i] - to;
+    }
     if constexpr (D == 1) {
-      for (int i = 0; i < kLanes; ++i) distance[i] = std::fabs(local[0] - point[0][i]);
+      const float to = local[0];
+      for (int i = 0; i < kLanes; ++i) distance[i] = std::fabs(to - point[0][i]);
       return;
     }
     switch (metric) {
       case VoronoiMetric::Euclidean:
         for (int i = 0; i < kLanes; ++i) {
-          float sum;
           if constexpr (D == 4)
-            sum = (diff[0][i] * diff[0][i] + diff[1][i] * diff[1][i]) + (diff[2][i] * diff[2][i] + diff[3][i] * diff[3][i]);
+            distance[i] = (diff[0][i] * diff[0][i] + diff[1][i] * diff[1][i]) +
+                          (diff[2][i] * diff[2][i] + diff[3][i] * diff[3][i]);
           else {
-            sum = diff[0][i] * diff[0][i];
-            for (int k = 1; k < D; ++k) sum += diff[k][i] * diff[k][i];
+            distance[i] = diff[0][i] * diff[0][i];
+            for (int k = 1; k < D; ++k) distance[i] += diff[k][i] * diff[k][i];
           }
-          distance[i] = std::sqrt(sum);
         }
+        square_roots<kLanes>(distance);
         return;
       case VoronoiMetric::Manhattan:
         for (int i = 0; i < kLanes; ++i) {
