@@ -21,7 +21,7 @@ from functools import lru_cache
 import numpy as np
 
 from . import hash_ops
-from .node_versions import input_socket
+from .node_versions import input_socket, voronoi_fractal
 from .program import constant
 
 OPCODES = {"Voronoi": 48}
@@ -332,8 +332,21 @@ def _emit(g, node, flags, kind):
                           flags=flags)
 
 
+def _check_fractal(node):
+    """Blender 4.x's fractal settings this reader cannot render yet are reported, not dropped:
+    Detail above 0 (or linked) sums octaves, Normalize divides by the largest distance."""
+    from ..nodes import node_label
+    detail = input_socket(node, "Detail")
+    if _linked(detail) or detail.default_value > 0.0:
+        raise _unsupported(f"{node_label(node)}: Blender 4.x's fractal Voronoi (Detail above 0)")
+    if node.normalize and node.feature != 'N_SPHERE_RADIUS':
+        raise _unsupported(f"{node_label(node)}: Blender 4.x's Voronoi Normalize")
+
+
 def _voronoi(g, node, socket):
     _check_mapping(node)
+    if voronoi_fractal(node):
+        _check_fractal(node)
     dimensions = int(node.voronoi_dimensions[0])
     feature = node.feature
     if feature not in FEATURES or node.distance not in METRICS:
