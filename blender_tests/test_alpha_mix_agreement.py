@@ -11,9 +11,10 @@ most common alpha pattern in artists' files, on test_alpha_agreement.py's leaf-c
   Glossy BSDF second (the alpha of a mixture).
 
 Bounds from Cycles' own noise (seed_noise.agree_within_seed_noise: Cycles seeds 0 and 1,
-Torrance seeds 2 and 3). Faults (the export patched) must fail them: the pattern left to the
-mixture reader (the Transparent BSDF dropped), the Transparent BSDF's slot ignored, the image's
-colour read as its alpha channel, the mixture's alpha dropped.
+Torrance seeds 2 and 3). Faults (the export patched) must fail them: the Transparent BSDF's
+slot ignored, the image's colour read as its alpha channel, the mixture's alpha dropped. The
+pattern left to the mixture reader (its Transparent closure, mixtures.py) renders the same
+image (ratio 0.9998, block mean 0.0012: reported, not a fault since the closure exists).
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_alpha_mix_agreement.py
@@ -129,7 +130,8 @@ def main():
     build(scene)
     agree_within_seed_noise(
         scene, testing.tempdir(), SAMPLES, BOUNCES, "a Transparent BSDF in a Mix Shader",
-        faults=(("left to the mixture reader", materials, "read_transparent_mix",
+        # The mixture reader renders the pattern too (its Transparent closure): the same image.
+        faults=(("info: left to the mixture reader", materials, "read_transparent_mix",
                  left_to_mixture_reader),
                 ("Transparent's slot ignored", module, "_opaque_weight", slot_ignored),
                 ("colour read as alpha channel", module, "_opaque_weight",

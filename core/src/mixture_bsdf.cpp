@@ -102,7 +102,8 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
     resolved = textured ? scene.textured_material(id, globals) : scene.material(id);
     return textured ? MixtureBsdf(MaterialBsdf(resolved, model)) : MixtureBsdf(prebuilt);
   }
-  const MixtureWeights w = scene.mixture_weights(id, globals);
+  MixtureWeights w = scene.mixture_weights(id, globals);
+  weights_when_opaque(*mixture, w);  // the path did not pass through its Transparent closures
   resolved = Material{};
   resolved.base_color = Vec3(0.0f);
   resolved.metallic = 0.0f;
@@ -124,7 +125,8 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
       case ClosureType::Glossy:
         bsdf.add(GlossyBsdf(m.base_color, m.roughness), w.weight[k], luminance(m.base_color));
         break;
-      case ClosureType::Emission: break;
+      case ClosureType::Emission:
+      case ClosureType::Transparent: break;
     }
   }
   return bsdf;

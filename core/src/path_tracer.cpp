@@ -68,9 +68,10 @@ Vec3 shadow_transmittance(const Scene& scene, const Vec3& p, const Vec3& ng, con
     if (!scene.intersect(ray, hit)) return transmittance;
     shadow.transparent_depth = uint8_t(std::min(receiver.transparent_depth + passed, 255));
     shadow.ray_length = travelled + hit.t;
-    const float opacity = scene.opacity(hit, ray.dir, shadow);
+    Vec3 tint;
+    const float opacity = scene.opacity(hit, ray.dir, shadow, &tint);
     if (opacity >= 1.0f || passed >= max_transparent) return Vec3(0.0f);
-    transmittance *= (1.0f - opacity) * scene.material(hit.material).transparent_color;
+    transmittance *= (1.0f - opacity) * tint;
     if (!(max_component(transmittance) > 0.0f)) return Vec3(0.0f);
     ray.origin = offset_origin(hit.position, hit.geometric_normal, ray.dir);
     ray.tmax -= hit.t;
@@ -294,10 +295,11 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
           PathState at = path_state;  // the state a shader there sees (as set after this loop)
           at.ray_depth = uint8_t(std::min(bounce, 255));
           at.ray_length = passed_length + hit.t - ray.tmin;
-          const float opacity = ctx.scene.opacity(hit, ray.dir, at);
+          Vec3 tint;
+          const float opacity = ctx.scene.opacity(hit, ray.dir, at, &tint);
           if (opacity >= 1.0f || sampler.next_4d().x < opacity) break;
           if (passed >= ctx.settings.max_transparent_bounces) return out;  // Cycles: the path ends
-          throughput *= ctx.scene.material(hit.material).transparent_color;
+          throughput *= tint;
           if (!(max_component(throughput) > 0.0f)) return out;
           passed_length += hit.t;
           if constexpr (kTextures) count_up(path_state.transparent_depth);
@@ -585,7 +587,8 @@ constexpr std::array<TraceFn, 4> kMixtureTracers = make_mixture_tracers(std::mak
 bool has_alpha(const Scene& scene) {
   for (size_t i = 0; i < scene.num_materials(); ++i)
     if (scene.material(uint32_t(i)).alpha < 1.0f || scene.material_textures(uint32_t(i)).alpha >= 0 ||
-        scene.material_textures(uint32_t(i)).program.alpha >= 0)
+        scene.material_textures(uint32_t(i)).program.alpha >= 0 ||
+        (scene.mixture(uint32_t(i)) && scene.mixture(uint32_t(i))->transparent()))
       return true;
   return false;
 }

@@ -95,11 +95,28 @@ Vec3 Scene::emission_at(uint32_t i, const ShaderGlobals& g) const {
   return e;
 }
 
-float Scene::opacity(const SurfaceHit& hit, const Vec3& dir, const PathState& seen_by) const {
+float Scene::opacity(const SurfaceHit& hit, const Vec3& dir, const PathState& seen_by, Vec3* tint) const {
   const ShaderOutputs& o = material_textures_[hit.material].program;
-  if (o.alpha < 0) return opacity(hit.material, hit.uv);
+  const Mixture* m = mixture(hit.material);
+  const bool through_closures = m && m->transparent();
+  if (tint) *tint = materials_[hit.material].transparent_color;
+  if (o.alpha < 0 && !through_closures) return opacity(hit.material, hit.uv);
   ShaderGlobals g = shader_globals(hit, dir, 0.0f);
   g.path = seen_by;
+  if (through_closures) {
+    const MixtureWeights w = mixture_weights(hit.material, g);
+    if (tint) {
+      Vec3 sum(0.0f);
+      float total = 0.0f;
+      for (int k = 0; k < w.count; ++k)
+        if (m->components[size_t(k)].type == ClosureType::Transparent) {
+          sum += w.weight[k] * materials_[m->components[size_t(k)].material].transparent_color;
+          total += w.weight[k];
+        }
+      *tint = total > 0.0f ? sum / total : Vec3(1.0f);
+    }
+    return mixture_opacity(*m, w);
+  }
   std::array<glm::vec4, ShaderProgram::kMaxRegisters> regs;
   run_shader_program(uint32_t(o.program), g, regs.data());
   const float alpha = regs[size_t(o.alpha)].x;

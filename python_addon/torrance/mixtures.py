@@ -5,14 +5,16 @@ The tree under the material's Surface is walked as Cycles' SVM compiles it: a Mi
 its first Shader input the weight (1 - Fac) and its second Fac (Fac clamped to [0, 1]), an Add
 Shader gives both the weight it received. The closures Torrance renders:
 
-* Principled BSDF and Glass BSDF (as a lone one is read), Diffuse BSDF (Color, Roughness: Lambert or
-  Cycles' Oren-Nayar), Glossy BSDF (Color, Roughness; GGX, Sharp as roughness 0; Beckmann,
-  Ashikhmin-Shirley and Multiscatter GGX are rendered as GGX and reported; Blender 4.x's Glossy,
-  ShaderNodeBsdfAnisotropic, too, its Anisotropy reported), Emission.
+* Transparent BSDF (Color): rays pass through by its weight, Cycles' transparency (the other
+  closures shade the rest; the core's ClosureType::Transparent);
+* Principled BSDF and Glass BSDF (as a lone one is read), Diffuse BSDF (Color, Roughness:
+  Lambert or Cycles' Oren-Nayar), Glossy BSDF (Color, Roughness; GGX, Sharp as roughness 0;
+  Beckmann, Ashikhmin-Shirley and Multiscatter GGX are rendered as GGX and reported; Blender
+  4.x's Glossy, ShaderNodeBsdfAnisotropic, too, its Anisotropy reported), Emission.
 
-A Mix Shader's Fac may be a constant, an Image Texture (its Color's luminance) or a Checker
-Texture (its Fac output, or its Color output's luminance, with constant colours and scale and a
-UV vector). Up to MAX_CLOSURES closures, MAX_FACTORS factors, MAX_DEPTH nested shader nodes;
+A Mix Shader's Fac may be any graph the shader graph compiles (a constant, an Image Texture's
+Color luminance and a Checker Texture of constant inputs at the UVs keep factor kinds of their
+own). Up to MAX_CLOSURES closures, MAX_FACTORS factors, MAX_DEPTH nested shader nodes;
 what is beyond, and every other shader node, is reported once per node and material and left
 out of the sum (it contributes nothing). One Normal input serves all closures: the first
 closure's; a closure with a different normal source is reported.
@@ -252,6 +254,8 @@ class ShaderTreeReader:
             return 'principled', args
         if kind == 'ShaderNodeEmission':
             return 'emission', reader._emission(mat, node)
+        if kind == 'ShaderNodeBsdfTransparent':   # rays pass through by its weight
+            return 'transparent', reader._transparent(mat, node)
         if kind == 'ShaderNodeBsdfGlass':       # a material of its own, as a lone Glass BSDF
             args = reader._glass(mat, node)
             for key in ('normal_texture', 'normal_strength', 'bump_texture', 'bump_strength',
@@ -261,7 +265,8 @@ class ShaderTreeReader:
         if kind in ('ShaderNodeBsdfDiffuse', 'ShaderNodeBsdfGlossy', 'ShaderNodeBsdfAnisotropic'):
             return self._colour_roughness(node)
         self.warn(f"the shader {node_label(node)} is not supported in a mix (Torrance mixes "
-                  f"Principled, Diffuse, Glossy, Glass and Emission); it is left out")
+                  f"Principled, Diffuse, Glossy, Glass, Transparent and Emission); it is left "
+                  f"out")
         return None
 
     def _colour_roughness(self, node):

@@ -39,6 +39,11 @@ enum class ClosureType {
   Diffuse,     // Diffuse BSDF: Color = base_color, Roughness = roughness (diffuse_bsdf.h)
   Glossy,      // Glossy BSDF (GGX): Color = base_color, Roughness = roughness (glossy_bsdf.h)
   Emission,    // Emission: emission only
+  // Transparent BSDF: rays pass straight through, tinted by the material's transparent_color.
+  // Cycles' transparency: the mixture lets 1 - alpha through, alpha = 1 - the sum of these
+  // closures' weights (clamped to [0, 1]); the path shades the other closures (their weights
+  // divided by alpha) with probability alpha, so that their expectation is their weight.
+  Transparent,
 };
 
 struct MixtureComponent {
@@ -51,6 +56,11 @@ struct Mixture {
   std::vector<MixFactor> factors;
   std::vector<MixtureComponent> components;
   int program = -1;  // the shader program computing its Program factors (Scene::add_shader_program)
+  bool transparent() const {
+    for (const MixtureComponent& c : components)
+      if (c.type == ClosureType::Transparent) return true;
+    return false;
+  }
 };
 
 // Throws std::invalid_argument unless the mixture is well formed: 1..kMaxMixtureComponents
@@ -67,5 +77,12 @@ struct MixtureWeights {
 // nullptr: they read 0).
 MixtureWeights mixture_weights(const Mixture& mixture, const std::vector<std::shared_ptr<const Texture>>& textures,
                                const Vec2& uv, float footprint, const glm::vec4* registers = nullptr);
+
+// The mixture's opacity at a hit from its weights there: 1 - its Transparent closures' weights
+// (clamped to [0, 1]; 1 without them).
+float mixture_opacity(const Mixture& mixture, const MixtureWeights& w);
+// The weights a path shades with once it has not passed through (Transparent closures 0, the
+// others divided by the opacity; unchanged without Transparent closures).
+void weights_when_opaque(const Mixture& mixture, MixtureWeights& w);
 
 }  // namespace torrance

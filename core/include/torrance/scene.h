@@ -181,7 +181,9 @@ class Scene {
   Vec3 emission_at(uint32_t i, const ShaderGlobals& g) const;
   // The alpha of the surface a ray along dir meets at hit, the path being in state seen_by (a
   // shadow ray's: kRayShadow): its program's alpha register run there, else as below.
-  float opacity(const SurfaceHit& hit, const Vec3& dir, const PathState& seen_by) const;
+  // tint (if given) becomes the colour that passes (Material::transparent_color, or a mixture's
+  // Transparent closures' colours by their weights).
+  float opacity(const SurfaceHit& hit, const Vec3& dir, const PathState& seen_by, Vec3* tint = nullptr) const;
   // The material's alpha at a hit: its alpha texture's alpha channel (or colour luminance, or 1 -
   // either: MaterialTextures) at uv, else Material::alpha (its program's alpha not run).
   float opacity(uint32_t material, const Vec2& uv) const {

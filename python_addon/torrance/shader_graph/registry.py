@@ -164,14 +164,14 @@ CLOSURES = {
     'ShaderNodeBsdfAnisotropic': "partly: as the Glossy BSDF (Anisotropy reported)",
     'ShaderNodeBsdfGlass': "partly: Color, Roughness, IOR, Normal; GGX, Beckmann, Sharp "
                            "(Multiscatter GGX rendered as GGX); alone and in Mix/Add Shader trees",
-    'ShaderNodeBsdfTransparent': "rendered: Color",
+    'ShaderNodeBsdfTransparent': "rendered: Color; alone and anywhere in Mix/Add Shader trees "
+                                 "(camera and shadow rays pass by its weight)",
     'ShaderNodeEmission': "rendered: Color, Strength",
-    'ShaderNodeMixShader': "partly: trees of Principled, Diffuse, Glossy, Glass and Emission "
-                           "closures "
-                           "(and a Transparent BSDF: Fac a value or an Image Texture), Fac any "
-                           "graph",
-    'ShaderNodeAddShader': "partly: trees of Principled, Diffuse, Glossy, Glass and Emission "
-                           "closures",
+    'ShaderNodeMixShader': "partly: trees of Principled, Diffuse, Glossy, Glass, Transparent "
+                           "and Emission closures, Fac any graph",
+    'ShaderNodeAddShader': "partly: trees of Principled, Diffuse, Glossy, Glass, Transparent "
+                           "and Emission closures (a Transparent's weight and the others' "
+                           "summing past 1: the others shade only what it lets through)",
     'ShaderNodeNormalMap': "rendered: Tangent (each mesh's active render UV map), Object, "
                            "World and the Blender spaces, Strength, any Color graph",
     'ShaderNodeBump': "rendered: any Height graph (evaluated at the hit and its ray-differential "
