@@ -1,13 +1,14 @@
 # SPDX-License-Identifier: Apache-2.0
 """The shader graph's geometry nodes render as Cycles 3.4 renders them: Fresnel, Layer Weight
-(Fresnel and Facing), Geometry (Position, Normal, True Normal, Incoming, Backfacing) and Texture
-Coordinate > Reflection, each shown through an Emission shader on a sphere (normals and view
+(Fresnel and Facing), Geometry (Position, Normal, True Normal, Incoming, Backfacing), Texture
+Coordinate > Reflection and > Object of another object (a turned, scaled Empty), each shown through an Emission shader on a sphere (normals and view
 directions vary over it) seen by a perspective camera, and on a quad seen from behind
 (Backfacing, the IOR inverted).
 
 Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
 seeds 2 and 3. Deliberate faults (the Fresnel's IOR ignored; Layer Weight's Facing read as its
-Fresnel; Geometry's Normal read as Incoming) must fail them.
+Fresnel; Geometry's Normal read as Incoming; the other object's space ignored, ...) must fail
+them.
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_shader_geometry_agreement.py
@@ -97,6 +98,23 @@ def normal_node(g):
     return g.math('MULTIPLY_ADD', n.outputs["Dot"], value_b=0.5, value_c=0.5)
 
 
+def other_object(g):
+    """Texture Coordinate > Object of a turned, scaled Empty (its Object field)."""
+    import bpy
+    import math
+    empty = bpy.data.objects.new("Frame", None)
+    empty.location = (1.0, -0.5, 0.3)
+    empty.rotation_euler = (math.radians(30), 0.0, math.radians(50))
+    empty.scale = (0.5, 1.5, 1.0)
+    bpy.context.scene.collection.objects.link(empty)
+    bpy.context.view_layer.update()
+    coords = g.node("ShaderNodeTexCoord")
+    coords.object = empty
+    v = g.node("ShaderNodeVectorMath", operation='FRACTION')
+    g.link(coords.outputs["Object"], v.inputs[0])
+    return v.outputs[0]
+
+
 def camera_coords(g):
     return _abs(g, g.node("ShaderNodeTexCoord").outputs["Camera"])
 
@@ -106,7 +124,7 @@ def window_coords(g):
 
 
 SPHERES = (fresnel, facing, layer_fresnel, normal, incoming, position, reflection, camera_data,
-           normal_node, camera_coords, window_coords)
+           normal_node, camera_coords, window_coords, other_object)
 
 
 def build(scene):
@@ -193,7 +211,9 @@ def main():
                 ("the Normal node's direction reversed", readers, 'ShaderNodeNormal',
                  reversed_direction),
                 ("Camera and Window coordinates read as Object's", readers, 'ShaderNodeTexCoord',
-                 camera_as_object)),
+                 camera_as_object),
+                ("another object's space ignored", readers, 'ShaderNodeTexCoord',
+                 read_with(object=None))),
         tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
 
 

@@ -55,9 +55,8 @@ def _texture_coordinate(g, node, socket):
     out = socket.identifier
     if out == "Reflection":
         return g.builder.emit("Reflection", 'vector')
-    if node.object is not None and out in ("Object", "UV"):
-        raise Unsupported(f"{node_label(node)}: coordinates of another object "
-                          f"('{node.object.name}')")
+    if node.object is not None and out == "Object":
+        return _other_object(g, node)
     if out == "UV":
         return g.builder.emit("TexCoordUV", 'vector')
     if out == "Generated":
@@ -168,6 +167,14 @@ def camera_to_world_rows():
         return None
     inverse = Matrix(rows).inverted_safe()
     return [tuple(float(x) for x in inverse[i]) for i in range(3)]
+
+
+def _other_object(g, node):
+    """Texture Coordinate > Object of another object (its Object field): the hit's position in
+    that object's space, its world matrix at export (CameraTransform's M p with the inverse)."""
+    m = node.object.matrix_world.inverted_safe()
+    return g.builder.emit("CameraTransform", 'vector',
+                          [constant('vector', tuple(m[i])) for i in range(4)], mode=3)
 
 
 def _camera_transform(g, node, mode):
