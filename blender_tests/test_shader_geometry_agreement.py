@@ -1,9 +1,9 @@
 # SPDX-License-Identifier: Apache-2.0
 """The shader graph's geometry nodes render as Cycles 3.4 renders them: Fresnel, Layer Weight
 (Fresnel and Facing), Geometry (Position, Normal, True Normal, Incoming, Backfacing), Texture
-Coordinate > Reflection and > Object of another object (a turned, scaled Empty), each shown through an Emission shader on a sphere (normals and view
-directions vary over it) seen by a perspective camera, and on a quad seen from behind
-(Backfacing, the IOR inverted).
+Coordinate > Reflection and > Object of another object (a turned, scaled Empty), each shown
+through an Emission shader on a sphere (normals and view directions vary over it) seen by a
+perspective camera, and on a quad seen from behind (Backfacing, the IOR inverted).
 
 Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
 seeds 2 and 3. Deliberate faults (the Fresnel's IOR ignored; Layer Weight's Facing read as its
