@@ -11,9 +11,10 @@ mirror floor. Their
 emission is gated by Is Camera + Is Glossy + Is Transmission Ray, so that no diffuse surface
 sees them: an emitter whose emission differs between next-event estimation (Cycles' path flag
 EMISSION alone) and a BSDF-sampled ray (DIFFUSE, REFLECT) renders as the engines' MIS weights mix
-the two. A lamp over a diffuse tile emits Ray Depth + Ray Length, which Cycles makes the same for
-both (a light sample is one bounce further: Ray Depth 1, its length the distance): the tile
-checks the state next-event estimation gives an emitter.
+the two. A lamp over a diffuse tile emits Ray Depth + Ray Length + Light Falloff's Linear
+(Smooth 0.3), which Cycles makes the same for both (a light sample is one bounce further: Ray
+Depth 1, its length the distance): the tile checks the state next-event estimation gives an
+emitter, and the Light Falloff node.
 
 Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
 seeds 2 and 3. Deliberate faults in the reader must fail them.
@@ -56,8 +57,12 @@ def panel_material(outputs):
 def lamp_material():
     g = Graph("Lamp")
     lp = g.node("ShaderNodeLightPath")
+    falloff = g.node("ShaderNodeLightFalloff")
+    falloff.inputs["Strength"].default_value = 0.4
+    falloff.inputs["Smooth"].default_value = 0.3
     strength = g.math('ADD', lp.outputs["Ray Depth"],
                       g.math('MULTIPLY', lp.outputs["Ray Length"], value_b=0.5))
+    strength = g.math('ADD', strength, falloff.outputs["Linear"])
     g.link(strength, g.shader.inputs["Strength"])
     g.shader.inputs["Color"].default_value = (1.0, 0.9, 0.7, 1.0)
     return g.mat
@@ -133,7 +138,9 @@ def main():
                 ("Transparent Depth read as Ray Depth", readers, node,
                  read_as({"Transparent Depth": "Ray Depth"})),
                 ("Ray Length read as Ray Depth", readers, node,
-                 read_as({"Ray Length": "Ray Depth"}))),
+                 read_as({"Ray Length": "Ray Depth"})),
+                ("Light Falloff's Linear read as Constant", readers, 'ShaderNodeLightFalloff',
+                 read_as({"Linear": "Constant"}))),
         tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
 
 

@@ -91,6 +91,16 @@ glm::vec4 light_path_op(const ShaderOpContext& c) {
   return glm::vec4(v, 0.0f, 0.0f, 0.0f);
 }
 
+glm::vec4 light_falloff_op(const ShaderOpContext& c) {
+  const float length = c.globals.path.ray_length;
+  float strength = c.value(0);
+  if (c.ins.mode == 1) strength *= length;
+  if (c.ins.mode == 2) strength *= length * length;
+  const float smooth = c.value(1), squared = length * length;
+  if (smooth > 0.0f && std::isfinite(squared)) strength *= squared / (smooth + squared);
+  return glm::vec4(strength, 0.0f, 0.0f, 0.0f);
+}
+
 glm::vec4 tangent_op(const ShaderOpContext& c) {
   const ShaderGlobals& g = c.globals;
   const ObjectTransform object(c, 1);

@@ -13,6 +13,9 @@
 //                     Camera Ray, 1 Is Shadow Ray, 2 Is Diffuse, 3 Is Glossy, 4 Is Singular,
 //                     5 Is Reflection, 6 Is Transmission Ray, 7 Ray Length, 8 Ray Depth,
 //                     9 Diffuse, 10 Glossy, 11 Transparent, 12 Transmission Depth
+//   LightFalloff (109) Light Falloff (svm/light_path.h): in0.x Strength, in1.x Smooth; mode 0
+//                     Quadratic (Strength), 1 Linear (x ray length), 2 Constant (x its square);
+//                     then, for Smooth > 0, x l^2 / (Smooth + l^2) (l the ray length, PathState)
 //   Tangent (101)     the Tangent node (svm/tex_coord.h): mode 0-2 Radial about X, Y, Z of in0
 //                     (Generated, w 0 where the mesh lacks it: then the position), 3 UV Map (the
 //                     hit's UV tangent, ShaderGlobals::tangent, taken back to object space);
@@ -38,6 +41,8 @@ glm::vec4 layer_weight_op(const ShaderOpContext& c);
 glm::vec4 attribute_op(const ShaderOpContext& c);
 constexpr int kLightPathModes = 13;
 glm::vec4 light_path_op(const ShaderOpContext& c);
+constexpr int kLightFalloffModes = 3;
+glm::vec4 light_falloff_op(const ShaderOpContext& c);
 constexpr int kTangentModes = 4;
 glm::vec4 tangent_op(const ShaderOpContext& c);
 constexpr int kCameraTransformModes = 5;

@@ -83,6 +83,7 @@ enum class ShaderOpcode : uint8_t {
   LightPath = 106,     // shader_geometry.h
   CameraTransform = 107,
   VectorTransform = 108,  // shader_vector.h
+  LightFalloff = 109,     // shader_geometry.h
 };
 constexpr int kShaderOpcodes = 128;
 

@@ -10,7 +10,7 @@ from .math_ops import VECTOR_MATH_OPS as _VECTOR_MATH
 from .program import constant
 
 OPCODES = {"Geometry": 96, "Reflection": 97, "Fresnel": 98, "LayerWeight": 99, "Attribute": 100,
-           "Tangent": 101, "LightPath": 106, "CameraTransform": 107}
+           "Tangent": 101, "LightPath": 106, "CameraTransform": 107, "LightFalloff": 109}
 VARYING = set(OPCODES)
 FOLDS = {}
 
@@ -127,6 +127,19 @@ def _light_path(g, node, socket):
     if mode is None:
         raise Unsupported(f"{node_label(node)}'s output '{socket.name}' is not supported")
     return g.builder.emit("LightPath", 'float', mode=mode)
+
+
+_FALLOFF = {"Quadratic": 0, "Linear": 1, "Constant": 2}
+
+
+def _light_falloff(g, node, socket):
+    """Light Falloff: Strength times the ray length to the power the output says, smoothed
+    (core/include/torrance/shader_geometry.h)."""
+    mode = _FALLOFF.get(socket.identifier)
+    if mode is None:
+        raise Unsupported(f"{node_label(node)}'s output '{socket.name}' is not supported")
+    args = [g.input(node.inputs[n], 'float') for n in ("Strength", "Smooth")]
+    return g.builder.emit("LightFalloff", 'float', args, mode=mode)
 
 
 def _scene_camera():
@@ -264,6 +277,7 @@ def _tangent(g, node, socket):
 READERS = {
     'ShaderNodeTangent': _tangent,
     'ShaderNodeLightPath': _light_path,
+    'ShaderNodeLightFalloff': _light_falloff,
     'ShaderNodeCameraData': _camera_data,
     'ShaderNodeNormal': _normal,
     'ShaderNodeObjectInfo': _object_info,
