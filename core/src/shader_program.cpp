@@ -14,6 +14,7 @@
 #include "torrance/shader_vector.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -165,7 +166,8 @@ ShaderProgram::ShaderProgram(std::vector<glm::vec4> constants, std::vector<Shade
     const ShaderInstruction& ins = code_[i];
     const std::string where = "shader instruction " + std::to_string(i);
     const ShaderOpInfo s = shader_op_info(ins.op);
-    if (s.modes == 0) throw std::invalid_argument(where + ": unknown opcode " + std::to_string(int(ins.op)));
+    if (s.modes == 0 || int(ins.op) >= kShaderOpcodes)  // run() looks opcodes up in a table of kShaderOpcodes
+      throw std::invalid_argument(where + ": unknown opcode " + std::to_string(int(ins.op)));
     if (ins.offset > 2)
       throw std::invalid_argument(where + ": offset " + std::to_string(int(ins.offset)) + " is not 0, 1 or 2");
     offsets_ = offsets_ || ins.offset != 0;
@@ -193,24 +195,51 @@ ShaderProgram::ShaderProgram(std::vector<glm::vec4> constants, std::vector<Shade
   written_ = std::move(written);
 }
 
+namespace {
+
+// shader_op_info of every opcode, looked up once: run() reads an instruction's entry instead of
+// going through shader_op_info's switch for each instruction at each hit.
+const std::array<ShaderOpInfo, kShaderOpcodes>& op_table() {
+  static const std::array<ShaderOpInfo, kShaderOpcodes> table = [] {
+    std::array<ShaderOpInfo, kShaderOpcodes> t;
+    for (int op = 0; op < kShaderOpcodes; ++op) t[size_t(op)] = shader_op_info(ShaderOpcode(op));
+    return t;
+  }();
+  return table;
+}
+
+// Runs the code; at[k] holds the globals an instruction of offset k reads.
+void run_code(const std::vector<ShaderInstruction>& code, const std::vector<float>& data,
+              const ShaderGlobals* const at[3], const std::vector<std::shared_ptr<const Texture>>& textures,
+              glm::vec4* regs) {
+  const std::array<ShaderOpInfo, kShaderOpcodes>& ops = op_table();
+  for (const ShaderInstruction& ins : code) {
+    const ShaderOpInfo& info = ops[size_t(ins.op)];
+    const bool table = info.data;
+    const ShaderGlobals& g = *at[ins.offset];
+    const ShaderOpContext c{ins, regs, g, table ? data.data() + ins.resource + 1 : nullptr,
+                            table ? int(data[size_t(ins.resource)]) : 0};
+    const glm::vec4 out = info.run ? info.run(c)
+                                   : textures[size_t(ins.resource)]->lookup(Vec2(c.in(0)), g.footprint,
+                                                                            Extension(ins.mode));
+    regs[ins.out] = finite(out);
+  }
+}
+
+}  // namespace
+
 void ShaderProgram::run(const ShaderGlobals& g, const std::vector<std::shared_ptr<const Texture>>& textures,
                         glm::vec4* regs) const {
   for (size_t r = 0; r < constants_.size(); ++r) regs[r] = constants_[r];
-  ShaderGlobals moved[2];
+  // The globals at the offset hits are made only for programs that read them (a Bump's
+  // heights): ShaderGlobals is large enough that making two at every run costs a noticeable share.
   if (offsets_) {
-    moved[0] = g.offset(1);
-    moved[1] = g.offset(2);
-  }
-  for (const ShaderInstruction& ins : code_) {
-    const ShaderOpInfo info = shader_op_info(ins.op);
-    const bool table = info.data;
-    const ShaderGlobals& at = ins.offset ? moved[ins.offset - 1] : g;
-    const ShaderOpContext c{ins, regs, at, table ? data_.data() + ins.resource + 1 : nullptr,
-                            table ? int(data_[size_t(ins.resource)]) : 0};
-    const glm::vec4 out = info.run ? info.run(c)
-                                   : textures[size_t(ins.resource)]->lookup(Vec2(c.in(0)), at.footprint,
-                                                                            Extension(ins.mode));
-    regs[ins.out] = finite(out);
+    const ShaderGlobals dx = g.offset(1), dy = g.offset(2);
+    const ShaderGlobals* const at[3] = {&g, &dx, &dy};
+    run_code(code_, data_, at, textures, regs);
+  } else {
+    const ShaderGlobals* const at[3] = {&g, &g, &g};
+    run_code(code_, data_, at, textures, regs);
   }
 }
 
