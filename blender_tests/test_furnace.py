@@ -58,7 +58,8 @@ def expected_disk_mean(core, model, metallic, specular, roughness, radius_fracti
     albedo = np.array([core.directional_albedo(model, (1, 1, 1), metallic, roughness, specular,
                                                float(m))
                        for m in mus])
-    return WORLD * np.trapz(albedo * mus, mus) / np.trapz(mus, mus)
+    trapezoid = getattr(np, "trapezoid", None) or np.trapz      # numpy 2 (Blender 5.1+) renamed it
+    return WORLD * trapezoid(albedo * mus, mus) / trapezoid(mus, mus)
 
 
 def main():

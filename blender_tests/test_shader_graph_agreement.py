@@ -160,9 +160,9 @@ def group_tree(name, inner=None):
     mul.operation = 'MULTIPLY'
     mul.inputs[1].default_value = 1.6
     tree.links.new(bw.outputs[0], mul.inputs[0])
-    sep = tree.nodes.new("ShaderNodeSeparateRGB")
+    sep = tree.nodes.new("ShaderNodeSeparateColor")
     tree.links.new(source, sep.inputs[0])
-    comb = tree.nodes.new("ShaderNodeCombineRGB")
+    comb = tree.nodes.new("ShaderNodeCombineColor")
     tree.links.new(mul.outputs[0], comb.inputs[0])
     tree.links.new(bw.outputs[0], comb.inputs[1])
     tree.links.new(sep.outputs[2], comb.inputs[2])

@@ -36,6 +36,13 @@ class Graph:
         self.links.new(self.shader.outputs[0], out.inputs["Surface"])
 
     def node(self, kind, **settings):
+        """A new node of type `kind`; where this Blender removed it (Combine RGB in 5.0), the node
+        Blender would open it as."""
+        import bpy
+        from torrance.shader_graph.node_versions import COLOR_NODE_SUCCESSORS
+        if not hasattr(bpy.types, kind) and kind in COLOR_NODE_SUCCESSORS:
+            kind, mode = COLOR_NODE_SUCCESSORS[kind]
+            settings = dict(mode=mode, **settings)
         n = self.nodes.new(kind)
         for key, value in settings.items():
             setattr(n, key, value)
@@ -266,6 +273,27 @@ def read_with(settings=None, /, **values):
                 for owner, attr, value in reversed(saved):
                     setattr(owner, attr, value)
         return read
+    return make_fault
+
+
+def read_output_as(wrong):
+    """A make_fault for a node reader: each output named in `wrong` (identifier -> another
+    output's identifier) is read as that other output."""
+    def make_fault(original):
+        def read(g, node, socket):
+            name = wrong.get(socket.identifier)
+            return original(g, node, node.outputs[name] if name else socket)
+        return read
+    return make_fault
+
+
+def closure_left_out(bl_idname):
+    """A make_fault for mixtures.ShaderTreeReader._closure: every closure node of that type is
+    left out of the mixture."""
+    def make_fault(original):
+        def closure(self, node):
+            return None if node.bl_idname == bl_idname else original(self, node)
+        return closure
     return make_fault
 
 

@@ -35,6 +35,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from .blender_versions import used_node_tree
 from .nodes import finite_or, is_default_uv, node_label, plain_image, source_socket
 from .shader_graph.graph import KIND_OF_SOCKET, AttributeIds, GraphCompiler, Unsupported
 from .shader_graph.math_ops import VECTOR_MATH_OPS
@@ -289,13 +290,13 @@ class MaterialReader:
         return dict(DEFAULT_MATERIAL)
 
     def _read(self, mat):
-        if not mat.use_nodes or mat.node_tree is None:
+        tree = used_node_tree(mat)
+        if tree is None:
             # Like Cycles: a material without nodes is a diffuse surface of the viewport colour.
             return dict(DEFAULT_MATERIAL,
                         base_color=_color3(mat.diffuse_color, DEFAULT_MATERIAL['base_color']),
                         specular=0.0, metallic=0.0)
 
-        tree = mat.node_tree
         output = tree.get_output_node('CYCLES')
         if output is None:
             return self._neutral(mat, "no active Material Output node")

@@ -11,6 +11,7 @@ import bpy
 from bpy.types import Panel
 
 from . import export
+from .blender_versions import used_node_tree
 from .brdf_model import core_model
 from .reporting import Reporter
 from .settings_table import BY_PROP, in_panel
@@ -131,7 +132,7 @@ def light_messages(light):
         names = ", ".join(sorted(t.title() for t in export.SUPPORTED_LIGHTS))
         messages.append(('WARNING', f"{light.type.title()} lights are not rendered by Torrance "
                                     f"(supported: {names})"))
-    if light.use_nodes and light.node_tree is not None:
+    if used_node_tree(light) is not None:
         reporter = Reporter(None)
         reporter.report = _collect(reporter)
 

@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 
+from ..blender_versions import used_node_tree
 from ..nodes import node_label, source_socket
 
 SUPPORTED_LIGHTS = {'SUN', 'POINT', 'SPOT', 'AREA'}
@@ -28,9 +29,9 @@ def light_node_factor(obj, light, reporter):
     A tree whose Light Output is fed by an Emission node with constant Color and Strength
     (what "Use Nodes" creates) is supported; anything else is reported once and ignored.
     """
-    if not light.use_nodes or light.node_tree is None:
+    tree = used_node_tree(light)
+    if tree is None:
         return (1.0, 1.0, 1.0)
-    tree = light.node_tree
     unsupported = f"Light '{light.name}': Torrance does not support its node tree"
     output = tree.get_output_node('CYCLES')
     surface = output.inputs.get("Surface") if output is not None else None

@@ -3,6 +3,7 @@
 
 import math
 
+from ..blender_versions import used_node_tree
 from ..nodes import node_label, source_socket
 
 
@@ -52,9 +53,10 @@ def world_background(world, reporter, textures):
     if world is None:
         return (0.0, 0.0, 0.0), 0.0, None
     fallback = (tuple(float(c) for c in world.color), 1.0, None)
-    if not world.use_nodes or world.node_tree is None:
+    tree = used_node_tree(world)
+    if tree is None:
         return fallback
-    output = world.node_tree.get_output_node('CYCLES')
+    output = tree.get_output_node('CYCLES')
     if output is None:
         reporter.info(f"World '{world.name}' has no World Output node: black background")
         return (0.0, 0.0, 0.0), 0.0, None

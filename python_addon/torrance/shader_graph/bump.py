@@ -12,6 +12,7 @@ facing the viewer, like Geometry > Normal.
 from ..nodes import node_label
 from .geometry import normal_input, object_transform
 from .graph import Unsupported
+from .node_versions import normal_map_directx
 
 # Normal Map spaces -> the NormalMap op's mode (Object spaces read the object's transform).
 _SPACES = {'TANGENT': 0, 'WORLD': 1, 'BLENDER_WORLD': 2, 'OBJECT': 3, 'BLENDER_OBJECT': 4}
@@ -39,6 +40,8 @@ def _normal_map(g, node, socket):
     mode = _SPACES.get(node.space)
     if mode is None:
         raise Unsupported(f"{node_label(node)} in {node.space.lower().replace('_', ' ')} space")
+    if normal_map_directx(node):
+        raise Unsupported(f"{node_label(node)} in the DirectX convention")
     color = g.input(node.inputs["Color"], 'color')
     strength = g.input(node.inputs["Strength"], 'float')
     obj = object_transform(g) if mode >= 3 else [color] * 4

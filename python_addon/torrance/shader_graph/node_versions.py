@@ -17,12 +17,25 @@ materials.principled_version does, not by bpy.app.version:
               distortion, the Vector Transform of a Normal): the running Blender tells.
   materials   4.1 moves the displacement method from material.cycles to the material:
               displacement_owner is where it is.
+  Normal Map  5.1 adds the DirectX convention (green pointing down): normal_map_directx says
+              whether the node uses it.
+  Separate/Combine RGB/HSV  5.0 removes them: files open with Separate/Combine Color in the
+              mode RGB or HSV (COLOR_NODE_SUCCESSORS), which the registry reads.
 """
+
+# Separate/Combine RGB/HSV, removed in 5.0: Blender opens them as Separate/Combine Color in a mode.
+COLOR_NODE_SUCCESSORS = {
+    'ShaderNodeSeparateRGB': ('ShaderNodeSeparateColor', 'RGB'),
+    'ShaderNodeSeparateHSV': ('ShaderNodeSeparateColor', 'HSV'),
+    'ShaderNodeCombineRGB': ('ShaderNodeCombineColor', 'RGB'),
+    'ShaderNodeCombineHSV': ('ShaderNodeCombineColor', 'HSV'),
+}
 
 # Node types a newer Blender removed, which the registry still reads for the older ones.
 REMOVED_NODES = {
     'ShaderNodeTexMusgrave': "merged into the Noise Texture's types in 4.1",
     'ShaderNodeBsdfGlossy': "4.0: the Glossy BSDF is ShaderNodeBsdfAnisotropic (merged)",
+    **{old: f"5.0: {new} in mode {mode}" for old, (new, mode) in COLOR_NODE_SUCCESSORS.items()},
 }
 
 # The Noise Texture's noise types, Blender 4.1's names (the Musgrave types of 3.4).
@@ -81,3 +94,9 @@ def displacement_owner(mat):
         return mat
     cycles = getattr(mat, "cycles", None)
     return cycles if hasattr(cycles, "displacement_method") else None
+
+
+def normal_map_directx(node):
+    """True for a Normal Map of Blender 5.1+ set to the DirectX convention (green pointing down);
+    older nodes and the default read OpenGL's."""
+    return getattr(node, "convention", 'OPENGL') == 'DIRECTX'
