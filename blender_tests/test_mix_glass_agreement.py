@@ -21,7 +21,7 @@ import math
 from torrance_tools import testing
 from torrance_tools.issue12_scenes import checker_floor
 from torrance_tools.seed_noise import agree_within_seed_noise
-from torrance_tools.shader_graphs import Graph, make_sharp
+from torrance_tools.shader_graphs import Graph, closure_left_out, make_sharp
 
 W, H = 128, 96
 BOUNCES = 8
@@ -86,15 +86,6 @@ def build(scene):
     testing.set_world(scene, (0.5, 0.52, 0.55))
 
 
-def glass_left_out(original):
-    """A fault: the mixture reader leaves every Glass BSDF out."""
-    def closure(self, node):
-        if node.bl_idname == 'ShaderNodeBsdfGlass':
-            return None
-        return original(self, node)
-    return closure
-
-
 def main():
     testing.addon()
     from torrance.mixtures import ShaderTreeReader
@@ -102,7 +93,8 @@ def main():
     build(scene)
     agree_within_seed_noise(
         scene, testing.tempdir(), 64, BOUNCES, "Glass BSDF in Mix and Add Shader trees",
-        faults=(("the glass left out of the mix", ShaderTreeReader, '_closure', glass_left_out),),
+        faults=(("the glass left out of the mix", ShaderTreeReader, '_closure',
+                 closure_left_out('ShaderNodeBsdfGlass')),),
         tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
 
 

@@ -21,7 +21,7 @@ import math
 
 from torrance_tools import testing
 from torrance_tools.seed_noise import agree_within_seed_noise
-from torrance_tools.shader_graphs import Graph
+from torrance_tools.shader_graphs import Graph, closure_left_out
 
 W, H = 160, 96
 BOUNCES = 4
@@ -79,14 +79,6 @@ def build(scene):
     testing.set_world(scene, (0.2, 0.22, 0.25))
 
 
-def transparent_left_out(original):
-    def closure(self, node):
-        if node.bl_idname == 'ShaderNodeBsdfTransparent':
-            return None
-        return original(self, node)
-    return closure
-
-
 def main():
     testing.addon()
     from torrance.mixtures import ShaderTreeReader
@@ -95,7 +87,7 @@ def main():
     agree_within_seed_noise(
         scene, testing.tempdir(), 64, BOUNCES, "Transparent BSDF in Mix Shader trees",
         faults=(("the Transparent closures left out", ShaderTreeReader, '_closure',
-                 transparent_left_out),),
+                 closure_left_out('ShaderNodeBsdfTransparent')),),
         tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
 
 

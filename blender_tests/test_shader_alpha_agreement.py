@@ -20,7 +20,7 @@ import math
 
 from torrance_tools import testing
 from torrance_tools.seed_noise import agree_within_seed_noise
-from torrance_tools.shader_graphs import DictAttr, read_with
+from torrance_tools.shader_graphs import DictAttr, read_output_as, read_with
 
 W, H = 160, 96
 
@@ -79,15 +79,6 @@ def build(scene):
     testing.set_world(scene, (0.15, 0.16, 0.18))
 
 
-def shadow_as_camera(original):
-    """A fault: Light Path's Is Shadow Ray read as its Is Camera Ray."""
-    def read(g, node, socket):
-        if socket.identifier == "Is Shadow Ray":
-            socket = node.outputs["Is Camera Ray"]
-        return original(g, node, socket)
-    return read
-
-
 def main():
     testing.addon()
     from torrance.shader_graph.registry import READERS
@@ -97,7 +88,7 @@ def main():
     agree_within_seed_noise(
         scene, testing.tempdir(), 32, 4, "a Principled BSDF's Alpha from node graphs",
         faults=(("Is Shadow Ray read as Is Camera Ray", readers, 'ShaderNodeLightPath',
-                 shadow_as_camera),
+                 read_output_as({"Is Shadow Ray": "Is Camera Ray"})),
                 ("the checker's scale ignored", readers, 'ShaderNodeTexChecker',
                  read_with(**{"socket:Scale": 5.0}))),
         tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)

@@ -16,7 +16,7 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
 
 from torrance_tools import testing
 from torrance_tools.seed_noise import agree_within_seed_noise
-from torrance_tools.shader_graphs import DictAttr, Graph, read_with
+from torrance_tools.shader_graphs import DictAttr, Graph, read_output_as, read_with
 
 W, H = 160, 96
 
@@ -185,14 +185,6 @@ def reversed_direction(original):
     return read
 
 
-def camera_as_object(original):
-    def read(g, node, socket):
-        if socket.identifier in ("Camera", "Window"):
-            return original(g, node, node.outputs["Object"])
-        return original(g, node, socket)
-    return read
-
-
 def main():
     testing.addon()
     from torrance.shader_graph.registry import READERS
@@ -211,7 +203,7 @@ def main():
                 ("the Normal node's direction reversed", readers, 'ShaderNodeNormal',
                  reversed_direction),
                 ("Camera and Window coordinates read as Object's", readers, 'ShaderNodeTexCoord',
-                 camera_as_object),
+                 read_output_as({"Camera": "Object", "Window": "Object"})),
                 ("another object's space ignored", readers, 'ShaderNodeTexCoord',
                  read_with(object=None))),
         tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)

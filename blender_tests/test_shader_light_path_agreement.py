@@ -25,7 +25,7 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
 
 from torrance_tools import testing
 from torrance_tools.seed_noise import agree_within_seed_noise
-from torrance_tools.shader_graphs import DictAttr, Graph, make_sharp
+from torrance_tools.shader_graphs import DictAttr, Graph, make_sharp, read_output_as
 
 W, H = 160, 120
 BOUNCES = 6
@@ -112,16 +112,6 @@ def build(scene):
     testing.set_world(scene, (0.0, 0.0, 0.0))
 
 
-def read_as(wrong):
-    """A fault: the reader reads output `wrong[socket]` in place of each socket named."""
-    def fault(original):
-        def read(g, node, socket):
-            name = wrong.get(socket.identifier)
-            return original(g, node, node.outputs[name] if name else socket)
-        return read
-    return fault
-
-
 def main():
     testing.addon()
     from torrance.shader_graph.registry import READERS
@@ -132,15 +122,15 @@ def main():
     agree_within_seed_noise(
         scene, testing.tempdir(), 32, BOUNCES, "the Light Path node",
         faults=(("Is Singular read as Is Reflection", readers, node,
-                 read_as({"Is Singular Ray": "Is Reflection Ray"})),
+                 read_output_as({"Is Singular Ray": "Is Reflection Ray"})),
                 ("Transmission Depth read as Glossy Depth", readers, node,
-                 read_as({"Transmission Depth": "Glossy Depth"})),
+                 read_output_as({"Transmission Depth": "Glossy Depth"})),
                 ("Transparent Depth read as Ray Depth", readers, node,
-                 read_as({"Transparent Depth": "Ray Depth"})),
+                 read_output_as({"Transparent Depth": "Ray Depth"})),
                 ("Ray Length read as Ray Depth", readers, node,
-                 read_as({"Ray Length": "Ray Depth"})),
+                 read_output_as({"Ray Length": "Ray Depth"})),
                 ("Light Falloff's Linear read as Constant", readers, 'ShaderNodeLightFalloff',
-                 read_as({"Linear": "Constant"}))),
+                 read_output_as({"Linear": "Constant"}))),
         tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
 
 
