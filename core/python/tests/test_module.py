@@ -586,16 +586,22 @@ def test_instances_render_like_world_space_copies():
     assert np.abs(blocks(a) - blocks(b)).max() < 1e-4 * b.mean()
 
 
-def test_instance_transform_update_and_removal():
-    scene = tc.Scene()
-    scene.add_material(emission=(1, 1, 1), emission_strength=2.0)
+def _tent_instance_seen_at_its_apex(scene):
+    """One instance of the tent (material 0) and a camera seeing only its apex region: (the
+    instance's id, 4 x 4 render settings of one sample, no bounces)."""
     pos, tris, *_ = _tent()
     proto = scene.add_prototype(pos, tris)
     first = scene.add_instances(proto, np.eye(4, dtype=np.float32)[None], np.array([0]))
     cam = np.eye(4)
     cam[2, 3] = 5.0
-    scene.set_camera(cam, lens=2000.0)          # sees only the tent's apex region
-    settings = tc.RenderSettings(width=4, height=4, samples=1, max_bounces=0)
+    scene.set_camera(cam, lens=2000.0)
+    return first, tc.RenderSettings(width=4, height=4, samples=1, max_bounces=0)
+
+
+def test_instance_transform_update_and_removal():
+    scene = tc.Scene()
+    scene.add_material(emission=(1, 1, 1), emission_strength=2.0)
+    first, settings = _tent_instance_seen_at_its_apex(scene)
     assert tc.render(scene, settings).image[..., 0].mean() == pytest.approx(2.0, rel=1e-4)
     moved = np.eye(4)
     moved[0, 3] = 5.0
@@ -789,13 +795,7 @@ def test_instance_constants_are_read_by_the_attribute_op():
                                    np.array([attribute_row], np.int32), 1)
     scene.add_material(emission=(1, 1, 1), emission_strength=1.0, program=pid,
                        emission_register=0)
-    pos, tris, *_ = _tent()
-    proto = scene.add_prototype(pos, tris)
-    first = scene.add_instances(proto, np.eye(4, dtype=np.float32)[None], np.array([0]))
-    cam = np.eye(4)
-    cam[2, 3] = 5.0
-    scene.set_camera(cam, lens=2000.0)          # sees only the tent's apex region
-    settings = tc.RenderSettings(width=4, height=4, samples=1, max_bounces=0)
+    first, settings = _tent_instance_seen_at_its_apex(scene)
 
     def seen():
         return tc.render(scene, settings).image[..., :3].reshape(-1, 3).mean(axis=0)
