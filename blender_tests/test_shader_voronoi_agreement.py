@@ -26,11 +26,27 @@ several outputs or nodes as R, G, B (Combine RGB):
                   green; F1 Chebychev: Position x
   d4_edges        4D Distance to Edge x 3, N-Sphere Radius x 2 (Randomness 0.7), Scale 4
 
+Blender 4.x's fractal Voronoi (Detail, Roughness, Lacunarity, Normalize), patches built only
+where the node has those settings:
+
+  f4_f1           3D F1 Euclidean, Detail 2.5, Roughness 0.6, Lacunarity 2.2: Distance / 2,
+                  Color's red, Position x
+  f4_f2           2D F2 Manhattan, Detail 1.5, Normalize: Distance, Color's green, Position y
+  f4_smooth       3D Smooth F1 Chebychev (Smoothness 0.5), Detail 2, Roughness 0.8, Normalize:
+                  Color
+  f4_edges        2D Distance to Edge, Detail 2.3, Normalize; 4D Distance to Edge x 3, Detail
+                  1 (W 0.37); 1D F1 (W = 5u + 0.7v), Detail 1.7: Distance
+  f4_minkowski    4D F1 Minkowski (Exponent 1.3), Detail 1.2, Normalize: Color's blue,
+                  Distance, W output x 4
+  f4_linked       3D F1, Detail 3u and Lacunarity 1.5 + v (linked), Roughness 0.7: Distance,
+                  Color's green, 0.2
+
 Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
 seeds 2 and 3. A deliberate fault per feature and setting family (the reader patched: F1's
 Randomness read as 1, F2 read as F1, Smooth F1 read as F1, Distance to Edge read as F1's
 Distance, N-Sphere Radius's Randomness read as 1, the metrics read as Euclidean, each dimension
-count read as the next) must fail them.
+count read as the next) must fail them; in Blender 4.x also Detail read as 0, Normalize read as
+off, Lacunarity read as 2 and Roughness read as 0.5.
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_shader_voronoi_agreement.py
@@ -56,10 +72,14 @@ def _times(g, value, factor):
     return g.math('MULTIPLY', value, value_b=factor)
 
 
-def _voronoi(g, dims, feature, metric='EUCLIDEAN', vector=None, w=None, **inputs):
-    """A Voronoi Texture over the UVs (or `vector`), W linked when given; inputs by name."""
+def _voronoi(g, dims, feature, metric='EUCLIDEAN', vector=None, w=None, normalize=False,
+             **inputs):
+    """A Voronoi Texture over the UVs (or `vector`), W linked when given; inputs by name;
+    normalize: Blender 4.x's setting, set only when True."""
     v = g.node("ShaderNodeTexVoronoi", voronoi_dimensions=f"{dims}D", feature=feature,
                distance=metric)
+    if normalize:
+        v.normalize = True
     g.link(vector if vector is not None else g.uv(), g.socket(v, "Vector"))
     if w is not None:
         g.link(w, v.inputs["W"])
@@ -175,8 +195,49 @@ def d4_edges(g):
     return _edges(g, 4, Scale=4.0)
 
 
+def f4_f1(g):
+    v = _voronoi(g, 3, 'F1', vector=g.uv_affine(1.0, (0.1, 0.2, 0.37)), Detail=2.5,
+                 Roughness=0.6, Lacunarity=2.2)
+    return g.combine(_times(g, v.outputs["Distance"], 0.5), _channel(g, v.outputs["Color"], 0),
+                     _xyz(g, v.outputs["Position"], 0))
+
+
+def f4_f2(g):
+    v = _voronoi(g, 2, 'F2', 'MANHATTAN', normalize=True, Detail=1.5)
+    return g.combine(v.outputs["Distance"], _channel(g, v.outputs["Color"], 1),
+                     _xyz(g, v.outputs["Position"], 1))
+
+
+def f4_smooth(g):
+    v = _voronoi(g, 3, 'SMOOTH_F1', 'CHEBYCHEV', vector=g.uv_affine(1.0, (0.1, 0.2, 0.37)),
+                 normalize=True, Smoothness=0.5, Detail=2.0, Roughness=0.8)
+    return v.outputs["Color"]
+
+
+def f4_edges(g):
+    flat = _voronoi(g, 2, 'DISTANCE_TO_EDGE', normalize=True, Detail=2.3)
+    four = _voronoi(g, 4, 'DISTANCE_TO_EDGE', W=0.37, Detail=1.0)
+    line = _voronoi(g, 1, 'F1', w=_w_from_uv(g), Scale=1.0, Detail=1.7)
+    return g.combine(flat.outputs["Distance"], _times(g, four.outputs["Distance"], 3.0),
+                     line.outputs["Distance"])
+
+
+def f4_minkowski(g):
+    v = _voronoi(g, 4, 'F1', 'MINKOWSKI', normalize=True, W=0.37, Exponent=1.3, Detail=1.2)
+    return g.combine(_channel(g, v.outputs["Color"], 2), v.outputs["Distance"],
+                     _times(g, v.outputs["W"], 4.0))
+
+
+def f4_linked(g):
+    v = _voronoi(g, 3, 'F1', vector=g.uv_affine(1.0, (0.1, 0.2, 0.37)), Roughness=0.7)
+    g.link(_times(g, _xyz(g, g.uv(), 0), 3.0), v.inputs["Detail"])
+    g.link(g.math('ADD', _xyz(g, g.uv(), 1), value_b=1.5), v.inputs["Lacunarity"])
+    return g.combine(v.outputs["Distance"], _channel(g, v.outputs["Color"], 1), 0.2)
+
+
 PATCHES = (d1_points, d1_edges, d2_f1, d2_f2, d2_smooth, d2_minkowski, d2_edges, d3_f1, d3_f2,
            d3_smooth, d3_manhattan, d3_edges, d4_f1, d4_f2, d4_edges)
+FRACTAL_PATCHES = (f4_f1, f4_f2, f4_smooth, f4_edges, f4_minkowski, f4_linked)
 
 
 FAULTS = (
@@ -195,13 +256,31 @@ FAULTS = (
 )
 
 
+def _fractal(change):
+    """A fault on the nodes with octaves (N-Sphere Radius has no fractal sockets)."""
+    return lambda n: change if n.feature != 'N_SPHERE_RADIUS' else None
+
+
+FRACTAL_FAULTS = (
+    ("Detail read as 0", _fractal({"socket:Detail": 0.0})),
+    ("Normalize read as off", _fractal({"normalize": False})),
+    ("Lacunarity read as 2", _fractal({"socket:Lacunarity": 2.0})),
+    ("Roughness read as 0.5", _fractal({"socket:Roughness": 0.5})),
+)
+
+
 def main():
+    import bpy
     testing.addon()
     from torrance.shader_graph.registry import READERS
     readers = DictAttr(READERS)
-    agree_on_patches(PATCHES, what="the Voronoi Texture",
+    fractal = "normalize" in bpy.types.ShaderNodeTexVoronoi.bl_rna.properties
+    patches, faults = PATCHES, FAULTS
+    if fractal:
+        patches, faults = PATCHES + FRACTAL_PATCHES, FAULTS + FRACTAL_FAULTS
+    agree_on_patches(patches, what="the Voronoi Texture",
                      faults=[(label, readers, 'ShaderNodeTexVoronoi', read_with(change))
-                             for label, change in FAULTS])
+                             for label, change in faults])
 
 
 testing.run(main)

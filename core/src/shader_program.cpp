@@ -111,6 +111,7 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
     case ShaderOpcode::NoiseV4: return {9, shader::kNoise4Modes, false, shader::noise4_op};
     // [voronoi ops]
     case ShaderOpcode::Voronoi: return {6, shader::kVoronoiModes, false, shader::voronoi_op};
+    case ShaderOpcode::VoronoiV4: return {9, shader::kVoronoiModes, false, shader::voronoi4_op};
     // [texture ops]
     case ShaderOpcode::TexChecker: return {4, 1, false, shader::checker_op};
     case ShaderOpcode::TexGradient: return {1, shader::kGradientTypeCount, false, shader::gradient_op};

@@ -55,6 +55,7 @@ enum class ShaderOpcode : uint8_t {
   NoiseV4 = 36,     // Blender 4.x's Noise Texture (shader_noise4.h): mode = type * 4 + dimensions - 1
   // [voronoi ops]
   Voronoi = 48,    // the Voronoi Texture node (shader_voronoi.h): mode, flags and inputs as voronoi_op says
+  VoronoiV4 = 49,  // Blender 4.x's Voronoi Texture (fractal; shader_voronoi.h): as voronoi4_op says
   // [texture ops]
   TexChecker = 56,   // shader_textures.h (flags & 1: the Fac, else the Color)
   TexGradient = 57,

@@ -19,6 +19,22 @@
 //     by Scale (0 when Scale is 0); outputs a feature does not compute are 0.
 // Dimensions: 1D reads W only, 2D Vector's x and y, 3D Vector, 4D Vector and W.
 //
+// Blender 4.0+'s node (Cycles 4.x, voronoi4 and the VoronoiV4 op below) adds fractal Voronoi:
+//   - octaves i = 0 .. ceil(Detail) (Detail clamped to [0, 15]) at the coordinate times
+//     Lacunarity^i, weighted Roughness^i (Roughness clamped to [0, 1]); F1, F2 and Smooth F1 sum
+//     distances and colours and blend positions (lerp by the weight), the last octave by Detail's
+//     fraction; Distance to Edge keeps a blended running minimum of the octaves' distances (each
+//     divided by its scale); Detail or Roughness 0: the first octave alone;
+//   - Normalize divides the distance by the weights' sum times the largest distance a feature
+//     can have (the metric's length of (0.5 + 0.5 Randomness) on every axis, twice for F2; for
+//     Distance to Edge 0.5 + 0.5 Randomness scaled like the distances), the colour by the sum;
+//   - searches start from FLT_MAX instead of 8, Smooth F1 takes the first cell as it is (then
+//     blends), Smoothness 0 is F1, and positions are multiplied by 1 / scale (4.x's divisions).
+// N-Sphere Radius has no octaves. (4.2.0's kernel read Lacunarity from Smoothness's slot; the
+// 4.2 LTS Blender the tests run, 4.2.23, reads Lacunarity, as this does.)
+// Cycles 3.4's node is shader_voronoi.cpp, 4.x's shader_voronoi4.cpp, over the searches both
+// share (voronoi_search.h); 4.x's twin is python_addon/torrance/shader_graph/voronoi4.py.
+//
 // The Python twin (python_addon/torrance/shader_graph/voronoi.py) is the add-on's constant folder;
 // both are checked against core/tests/data/shader_voronoi_cases.json, which Blender 3.4.1's Cycles
 // rendered.
@@ -63,8 +79,18 @@ struct VoronoiOutputs {
   float radius = 0.0f;
 };
 
+// Blender 4.x's fractal sockets and setting.
+struct VoronoiFractal {
+  float detail = 0.0f;
+  float roughness = 0.5f;
+  float lacunarity = 2.0f;
+  bool normalize = false;
+};
+
 // All the node's outputs (any inputs; non-finite ones give what Cycles' float arithmetic does).
 VoronoiOutputs voronoi(const VoronoiSettings& settings, const VoronoiInputs& in);
+// The same as Cycles 4.x computes them (Blender 4.0+'s node).
+VoronoiOutputs voronoi4(const VoronoiSettings& settings, const VoronoiInputs& in, const VoronoiFractal& fractal);
 
 // ---- the shader program's op (ShaderOpcode::Voronoi) ----
 //
@@ -88,5 +114,11 @@ constexpr VoronoiSettings voronoi_settings(int mode) {
 }
 
 glm::vec4 voronoi_op(const ShaderOpContext& c);
+
+// ShaderOpcode::VoronoiV4 (Blender 4.0+'s node, voronoi4): modes and output groups as Voronoi's
+// (flags & 3), flags & 4 (kVoronoiNormalize): Normalize; inputs Voronoi's six, then in6 Detail,
+// in7 Roughness, in8 Lacunarity.
+constexpr uint8_t kVoronoiNormalize = 4;
+glm::vec4 voronoi4_op(const ShaderOpContext& c);
 
 }  // namespace torrance::shader

@@ -10,6 +10,7 @@ from . import program
 # [family imports]
 from . import vector  # noqa: I001
 from . import voronoi  # noqa: I001
+from . import voronoi4  # noqa: I001
 from . import convert  # noqa: I001
 from . import textures  # noqa: I001
 from . import noise  # noqa: I001
@@ -21,6 +22,7 @@ FAMILIES = (
     # [families]
     vector,
     voronoi,
+    voronoi4,
     convert,
     textures,
     noise,

@@ -12,7 +12,8 @@ materials.principled_version does, not by bpy.app.version:
               into the Noise Texture: its node is gone) with Offset and Gain. noise_settings
               gives (type, normalize, cycles4): 3.4's node is fBM normalised, Cycles 3.4's sum.
   Voronoi     4.0 adds fractal Voronoi (Detail, Roughness, Lacunarity, Normalize):
-              voronoi_fractal says whether the node has them.
+              voronoi_fractal says whether the node has them (then voronoi4.py's op, Cycles
+              4.x's searches and octaves).
   kernels     Cycles 4.x computes some unchanged nodes differently (the Wave Texture's
               distortion, the Vector Transform of a Normal): the running Blender tells.
   materials   4.1 moves the displacement method from material.cycles to the material:

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """Blender's Voronoi Texture node (ShaderNodeTexVoronoi) as Cycles 3.4 computes it: the Python
 twin of the core's shader_voronoi.cpp (whose header describes the node: cells, features, metrics,
-outputs), the add-on's constant folder for it, and the node's reader.
+outputs), the add-on's constant folder for it, and the node's reader (which hands a Blender 4.x
+node's instruction to voronoi4.py; its searches, asked with settings(cycles4=True), are here).
 
 Float32 throughout, as Cycles and the core: the neighbourhood's hashes (hash_ops), points and
 distances are numpy float32 arrays, element by element the core's float operations in its order;
@@ -14,6 +15,7 @@ The op (core: ShaderOpcode::Voronoi, shader_voronoi.h): mode = (dimensions - 1) 
 (Color, Distance), 1 (POSITION_W): (Position, W), 2 (RADIUS): (Radius, 0, 0, 0).
 """
 
+import functools
 import itertools
 from collections import namedtuple
 from functools import lru_cache
@@ -35,6 +37,7 @@ VoronoiOutputs = namedtuple("VoronoiOutputs", "distance color position w radius"
 
 _F = np.float32
 _ZERO, _HALF, _ONE, _TWO, _THREE, _EIGHT = (_F(x) for x in (0.0, 0.5, 1.0, 2.0, 3.0, 8.0))
+FLT_MAX = np.finfo(np.float32).max
 
 
 def mode_of(dimensions, feature, metric):
@@ -90,11 +93,11 @@ def _dot(a, b):
     return s + p[2] if n == 3 else s
 
 
-def _length(v):
+def length_of(v):
     return np.sqrt(_dot(v, v))
 
 
-def _pow(a, b):
+def power(a, b):
     return np.power(np.asarray(a, np.float64), np.float64(b)).astype(_F)
 
 
@@ -104,7 +107,7 @@ def _distances(points, local, metric, exponent):
         return np.abs(local[0] - points[:, 0])
     d = points - local
     if metric == 'EUCLIDEAN':
-        return _length(d)
+        return length_of(d)
     a = np.abs(d)
     n = a.shape[1]
     if metric == 'MANHATTAN':
@@ -117,10 +120,10 @@ def _distances(points, local, metric, exponent):
         for k in range(n - 2, -1, -1):
             out = np.maximum(a[:, k], out)
         return out
-    out = _pow(a[:, 0], exponent)
+    out = power(a[:, 0], exponent)
     for k in range(1, n):
-        out = out + _pow(a[:, k], exponent)
-    return _pow(out, _ONE / _F(exponent))
+        out = out + power(a[:, k], exponent)
+    return power(out, _ONE / _F(exponent))
 
 
 def _first_below(values, limit=_EIGHT):
@@ -143,8 +146,8 @@ def _neighbourhood(p, reach, randomness):
 def _f1(p, q):
     cell, local, offsets, points = _neighbourhood(p, 1, q['randomness'])
     d = _distances(points, local, q['metric'], q['exponent'])
-    i = _first_below(d)
-    distance, offset, point = (_EIGHT, np.zeros_like(cell), np.zeros_like(cell)) if i is None \
+    i = _first_below(d, q['start'])
+    distance, offset, point = (q['start'], np.zeros_like(cell), np.zeros_like(cell)) if i is None \
         else (d[i], offsets[i], points[i])
     return distance, _cell_colors((cell + offset)[None, :])[0], point + cell
 
@@ -152,7 +155,7 @@ def _f1(p, q):
 def _f2(p, q):
     cell, local, offsets, points = _neighbourhood(p, 1, q['randomness'])
     d = _distances(points, local, q['metric'], q['exponent'])
-    first = second = _EIGHT
+    first = second = q['start']
     i1 = i2 = None
     for i, di in enumerate(d):
         if di < first:
@@ -170,10 +173,13 @@ def _smooth_f1(p, q):
     d = _distances(points, local, q['metric'], q['exponent'])
     colors = _cell_colors(cell + offsets)
     s = q['smoothness']
-    distance, color, position = _EIGHT, np.zeros(3, _F), np.zeros(len(p), _F)
+    distance = _ZERO if q['cycles4'] else _EIGHT
+    color, position = np.zeros(3, _F), np.zeros(len(p), _F)
     for i in range(len(d)):
         x = _HALF + _HALF * (distance - d[i]) / s
-        if x < _ZERO:
+        if q['cycles4'] and i == 0:      # Cycles 4.x takes the first cell as it is
+            h = _ONE
+        elif x < _ZERO:
             h = _ZERO
         elif x >= _ONE:
             h = _ONE
@@ -187,7 +193,16 @@ def _smooth_f1(p, q):
     return distance, color, cell + position
 
 
-def _distance_to_edge(p, randomness):
+def point_search(feature, p, q):
+    """F1, F2 or Smooth F1 at p (q: settings()): (distance, colour, position in p's units)."""
+    return {'F1': _f1, 'F2': _f2, 'SMOOTH_F1': _smooth_f1}[feature](p, q)
+
+
+def cycles_min(a, b):
+    return a if a < b else b
+
+
+def distance_to_edge(p, randomness, cycles4=False):
     if len(p) == 1:
         cell = np.floor(p)
         local = (p - cell)[0]
@@ -197,34 +212,69 @@ def _distance_to_edge(p, randomness):
         return min(np.abs((mid + left) / _TWO - local), np.abs((mid + right) / _TWO - local))
     cell, local, offsets, points = _neighbourhood(p, 1, randomness)
     to_points = points - local
-    i = _first_below(_dot(to_points, to_points))
+    start = FLT_MAX if cycles4 else _EIGHT
+    i = _first_below(_dot(to_points, to_points), start)
     to_closest = to_points[i] if i is not None else np.zeros_like(local)
     across = to_points - to_closest
     apart = _dot(across, across) > _F(0.0001)
-    normals = across[apart] / _length(across[apart])[:, None]
+    normals = across[apart] / length_of(across[apart])[:, None]
     edges = _dot((to_closest + to_points[apart]) / _TWO, normals)
+    if cycles4:                          # Cycles' min from FLT_MAX, in order
+        return functools.reduce(cycles_min, edges, start)
     edges = edges[edges < _EIGHT]        # a running minimum from 8 (which skips NaN)
     return edges.min() if len(edges) else _EIGHT
 
 
-def _n_sphere_radius(p, randomness):
+def n_sphere_radius(p, randomness, start=_EIGHT):
     n = len(p)
     cell, local, offsets, points = _neighbourhood(p, 1, randomness)
-    i = _first_below(_length(points - local) if n > 1 else np.abs(points[:, 0] - local[0]))
+    i = _first_below(length_of(points - local) if n > 1 else np.abs(points[:, 0] - local[0]), start)
     closest = points[i] if i is not None else np.zeros_like(local)
     closest_offset = offsets[i] if i is not None else np.zeros_like(local)
     steps = offsets[np.any(offsets != 0, axis=1)]
     around = steps + closest_offset
     others = around + _cell_points(cell + around) * randomness
-    j = _first_below(_length(closest - others) if n > 1 else np.abs(closest[0] - others[:, 0]))
+    j = _first_below(length_of(closest - others) if n > 1 else np.abs(closest[0] - others[:, 0]),
+                     start)
     nearest = others[j] if j is not None else np.zeros_like(local)
-    between = _length((nearest - closest)[None, :])[0] if n > 1 else np.abs(nearest[0] - closest[0])
+    between = (length_of((nearest - closest)[None, :])[0] if n > 1
+               else np.abs(nearest[0] - closest[0]))
     return between / _TWO
 
 
-def _clamp(v, lo, hi):
+def cycles_clamp(v, lo, hi):
     v = v if v > lo else lo
     return v if v < hi else hi
+
+
+def settings(metric, smoothness, exponent, randomness, cycles4=False):
+    """The searches' settings (clamped as Cycles clamps them); cycles4: Cycles 4.x's searches
+    (from FLT_MAX, Smooth F1 taking its first cell as it is)."""
+    return {'smoothness': cycles_clamp(_F(smoothness) / _TWO, _ZERO, _HALF),
+            'exponent': _F(exponent), 'randomness': cycles_clamp(_F(randomness), _ZERO, _ONE),
+            'metric': metric, 'start': FLT_MAX if cycles4 else _EIGHT, 'cycles4': cycles4}
+
+
+def coordinate(dimensions, vector, w, scale):
+    """The scaled coordinate the node searches at, (dimensions,) float32."""
+    v = np.asarray(vector, _F)[:3] * scale
+    ws = _F(w) * scale
+    return {1: lambda: np.array([ws], _F), 2: lambda: v[:2].copy(), 3: lambda: v.copy(),
+            4: lambda: np.array([v[0], v[1], v[2], ws], _F)}[dimensions]()
+
+
+def outputs(dimensions, distance, color, position, radius):
+    """VoronoiOutputs of Python floats from a search's results (position in the node's units)."""
+    xyz = np.zeros(3, _F)
+    w_out = _ZERO
+    if dimensions == 1:
+        w_out = position[0]
+    else:
+        xyz[:min(dimensions, 3)] = position[:3]
+        if dimensions == 4:
+            w_out = position[3]
+    return VoronoiOutputs(float(distance), tuple(float(x) for x in color),
+                          tuple(float(x) for x in xyz), float(w_out), float(radius))
 
 
 def voronoi(dimensions, feature, metric, vector=(0.0, 0.0, 0.0), w=0.0, scale=5.0,
@@ -233,13 +283,8 @@ def voronoi(dimensions, feature, metric, vector=(0.0, 0.0, 0.0), w=0.0, scale=5.
     dimension count 1-4, Blender's feature and metric names) and input values."""
     with np.errstate(all='ignore'):
         scale = _F(scale)
-        q = {'smoothness': _clamp(_F(smoothness) / _TWO, _ZERO, _HALF),
-             'exponent': _F(exponent), 'randomness': _clamp(_F(randomness), _ZERO, _ONE),
-             'metric': metric}
-        v = np.asarray(vector, _F)[:3] * scale
-        ws = _F(w) * scale
-        p = {1: lambda: np.array([ws], _F), 2: lambda: v[:2].copy(), 3: lambda: v.copy(),
-             4: lambda: np.array([v[0], v[1], v[2], ws], _F)}[dimensions]()
+        q = settings(metric, smoothness, exponent, randomness)
+        p = coordinate(dimensions, vector, w, scale)
         distance, color, position, radius = _ZERO, np.zeros(3, _F), np.zeros(len(p), _F), _ZERO
         if feature == 'F1':
             distance, color, position = _f1(p, q)
@@ -248,22 +293,13 @@ def voronoi(dimensions, feature, metric, vector=(0.0, 0.0, 0.0), w=0.0, scale=5.
         elif feature == 'SMOOTH_F1':
             distance, color, position = _smooth_f1(p, q)
         elif feature == 'DISTANCE_TO_EDGE':
-            distance = _distance_to_edge(p, q['randomness'])
+            distance = distance_to_edge(p, q['randomness'])
         elif feature == 'N_SPHERE_RADIUS':
-            radius = _n_sphere_radius(p, q['randomness'])
+            radius = n_sphere_radius(p, q['randomness'])
         else:
             raise ValueError(f"no Voronoi feature {feature}")
         position = position / scale if scale != 0.0 else np.zeros_like(position)
-        xyz = np.zeros(3, _F)
-        w_out = _ZERO
-        if dimensions == 1:
-            w_out = position[0]
-        else:
-            xyz[:min(dimensions, 3)] = position[:3]
-            if dimensions == 4:
-                w_out = position[3]
-        return VoronoiOutputs(float(distance), tuple(float(x) for x in color),
-                              tuple(float(x) for x in xyz), float(w_out), float(radius))
+        return outputs(dimensions, distance, color, position, radius)
 
 
 def _fold(mode, flags, a, _table):
@@ -284,12 +320,12 @@ FOLDS = {"Voronoi": _fold}
 
 # -- the reader -----------------------------------------------------------------------------------
 
-def _unsupported(message):
+def unsupported(message):
     from .graph import Unsupported      # graph imports bpy's side of the add-on: only when reading
     return Unsupported(message)
 
 
-def _linked(socket):
+def linked(socket):
     return any(link.is_valid and not link.is_muted for link in socket.links)
 
 
@@ -299,7 +335,7 @@ def _check_mapping(node):
             or tuple(m.scale) != (1.0, 1.0, 1.0) or m.use_min or m.use_max
             or (m.mapping_x, m.mapping_y, m.mapping_z) != ('X', 'Y', 'Z')):
         from ..nodes import node_label
-        raise _unsupported(f"{node_label(node)}: a Texture Mapping other than the identity")
+        raise unsupported(f"{node_label(node)}: a Texture Mapping other than the identity")
 
 
 def _arguments(g, node, dimensions, feature, metric):
@@ -307,12 +343,12 @@ def _arguments(g, node, dimensions, feature, metric):
     zero = constant('float', 0.0)
     if dimensions == 1:
         vector = constant('vector', (0.0, 0.0, 0.0))
-    elif _linked(input_socket(node, "Vector")):
+    elif linked(input_socket(node, "Vector")):
         vector = g.input(input_socket(node, "Vector"), 'vector')
     else:
         generated = getattr(g, "generated", None)
         if generated is None:
-            raise _unsupported("Generated coordinates")
+            raise unsupported("Generated coordinates")
         vector = generated()
     w = g.input(input_socket(node, "W"), 'float') if dimensions in (1, 4) else zero
     smoothness = (g.input(input_socket(node, "Smoothness"), 'float') if feature == 'SMOOTH_F1'
@@ -328,29 +364,19 @@ def _emit(g, node, flags, kind):
     if dimensions == 1 or feature in ('DISTANCE_TO_EDGE', 'N_SPHERE_RADIUS'):
         metric = 'EUCLIDEAN'             # not read: one mode for all
     args = _arguments(g, node, dimensions, feature, metric)
-    return g.builder.emit("Voronoi", kind, args, mode=mode_of(dimensions, feature, metric),
-                          flags=flags)
-
-
-def _check_fractal(node):
-    """Blender 4.x's fractal settings this reader cannot render yet are reported, not dropped:
-    Detail above 0 (or linked) sums octaves, Normalize divides by the largest distance."""
-    from ..nodes import node_label
-    detail = input_socket(node, "Detail")
-    if _linked(detail) or detail.default_value > 0.0:
-        raise _unsupported(f"{node_label(node)}: Blender 4.x's fractal Voronoi (Detail above 0)")
-    if node.normalize and node.feature != 'N_SPHERE_RADIUS':
-        raise _unsupported(f"{node_label(node)}: Blender 4.x's Voronoi Normalize")
+    mode = mode_of(dimensions, feature, metric)
+    if voronoi_fractal(node):            # Blender 4.x's node (voronoi4)
+        from .voronoi4 import emit_fractal
+        return emit_fractal(g, node, kind, args, mode, flags)
+    return g.builder.emit("Voronoi", kind, args, mode=mode, flags=flags)
 
 
 def _voronoi(g, node, socket):
     _check_mapping(node)
-    if voronoi_fractal(node):
-        _check_fractal(node)
     dimensions = int(node.voronoi_dimensions[0])
     feature = node.feature
     if feature not in FEATURES or node.distance not in METRICS:
-        raise _unsupported(f"Voronoi feature {feature}, metric {node.distance}")
+        raise unsupported(f"Voronoi feature {feature}, metric {node.distance}")
     out = socket.identifier
     points = feature not in ('DISTANCE_TO_EDGE', 'N_SPHERE_RADIUS')   # F1, F2, Smooth F1
     if out == "Color":
@@ -378,7 +404,7 @@ def _voronoi(g, node, socket):
         if feature != 'N_SPHERE_RADIUS':
             return constant('float', 0.0)
         return _emit(g, node, RADIUS, 'float')
-    raise _unsupported(f"the Voronoi Texture's output '{socket.name}'")
+    raise unsupported(f"the Voronoi Texture's output '{socket.name}'")
 
 
 READERS = {'ShaderNodeTexVoronoi': _voronoi}

@@ -1,0 +1,84 @@
+"""Blender 4.x's Voronoi Texture (python_addon/torrance/shader_graph/voronoi4.py, the twin of the
+core's voronoi4 in shader_voronoi.cpp): one octave without Normalize is 3.4's node (up to 4.x's
+1 / Scale for positions), the octaves' sums by hand, and the core's VoronoiV4 op agreeing with
+the twin bit for bit over random instructions (Detail with fractions, Normalize, every mode)."""
+import numpy as np
+import pytest
+
+
+@pytest.fixture(scope="module")
+def voronoi(load_module):
+    return load_module("shader_graph.voronoi")
+
+
+@pytest.fixture(scope="module")
+def voronoi4(load_module):
+    return load_module("shader_graph.voronoi4")
+
+
+def test_one_octave_is_34s_node(voronoi, voronoi4):
+    rng = np.random.default_rng(3)
+    for mode in range(80):
+        dims, feature, metric = voronoi.settings_of(mode)
+        v, w = tuple(rng.uniform(-5, 5, 3)), float(rng.uniform(-5, 5))
+        old = voronoi.voronoi(dims, feature, metric, v, w, 1.0, 0.6, 1.5, 0.8)
+        new = voronoi4.voronoi4(dims, feature, metric, v, w, 1.0, detail=0.0, smoothness=0.6,
+                                exponent=1.5, randomness=0.8)
+        assert np.allclose(new.distance, old.distance, rtol=1e-5, atol=1e-6), (mode, new, old)
+        assert np.allclose(new.color, old.color, rtol=1e-5, atol=1e-6), (mode, new, old)
+        assert np.allclose(new.position, old.position, rtol=1e-6), (mode, new, old)
+        assert new.radius == old.radius and new.w == pytest.approx(old.w, rel=1e-6)
+
+
+def test_octaves_sum_by_hand(voronoi4):
+    v = (0.31, -0.72, 0.45)
+    octaves = [voronoi4.voronoi4(3, 'F1', 'EUCLIDEAN', tuple(np.float32(x) * s for x in v),
+                                 scale=1.0, detail=0.0) for s in (1.0, 2.5)]
+    two = voronoi4.voronoi4(3, 'F1', 'EUCLIDEAN', v, scale=1.0, detail=1.0, roughness=0.4,
+                            lacunarity=2.5)
+    assert two.distance == pytest.approx(octaves[0].distance + 0.4 * octaves[1].distance, 1e-6)
+    half = voronoi4.voronoi4(3, 'F1', 'EUCLIDEAN', v, scale=1.0, detail=0.5, roughness=0.4,
+                             lacunarity=2.5)
+    assert half.distance == pytest.approx(octaves[0].distance + 0.2 * octaves[1].distance, 1e-6)
+    normal = voronoi4.voronoi4(3, 'F1', 'EUCLIDEAN', v, scale=1.0, detail=1.0, roughness=0.4,
+                               lacunarity=2.5, normalize=True)
+    assert normal.distance == pytest.approx(two.distance / (1.4 * np.sqrt(3.0)), 1e-6)
+    assert normal.color == pytest.approx(tuple(c / 1.4 for c in two.color), 1e-6)
+
+
+def _row(op, mode, flags, out, inputs):
+    row = [op, mode, flags, -1, out] + [-1] * 12
+    row[5:5 + len(inputs)] = inputs
+    return row
+
+
+def test_the_core_agrees_bit_for_bit(voronoi4, load_module):
+    tc = pytest.importorskip("torrance_core")
+    program = load_module("shader_graph.program")
+    rng = np.random.default_rng(11)
+    failures = []
+    for k in range(200):
+        mode = k % 80 if k < 160 else int(rng.integers(0, 80))
+        normalize = voronoi4.NORMALIZE if rng.random() < 0.5 else 0
+        constants = np.zeros((9, 4), np.float32)
+        constants[0, :3] = rng.uniform(-20, 20, 3)
+        constants[1, 0] = rng.uniform(-20, 20)
+        constants[2, 0] = rng.choice([1.0, 2.7, -1.3, 0.0, 13.0])
+        constants[3, 0] = rng.choice([0.0, 0.3, 1.0, 2.5, rng.uniform(0, 2)])
+        constants[4, 0] = rng.choice([0.05, 0.7, 1.0, 1.5, 3.0, 0.0, -1.0])
+        constants[5, 0] = rng.choice([1.0, 0.6, 0.25, 0.0, 1.5, -0.5])
+        constants[6, 0] = rng.choice([0.0, 1.0, 2.0, 2.4, 3.7, -1.0, 20.0])
+        constants[7, 0] = rng.choice([0.5, 0.0, 1.0, 0.73, 1.6])
+        constants[8, 0] = rng.choice([2.0, 1.0, 0.5, 3.3, 0.0])
+        code = [_row(49, mode, flags | normalize, 9 + flags, range(9)) for flags in range(3)]
+        scene = tc.Scene()
+        pid = scene.add_shader_program(constants, np.asarray(code, np.int32), 12, None)
+        regs = scene.run_shader_program(pid, np.zeros((1, 2), np.float32))[0]
+        args = [tuple(float(x) for x in c) for c in constants]
+        for flags in range(3):
+            fold = voronoi4.FOLDS["VoronoiV4"](mode, flags | normalize, args, None)
+            want = np.float32(program.finite(fold))
+            if not np.array_equal(regs[9 + flags], want):
+                failures.append(f"mode {mode} flags {flags | normalize} {args}: core "
+                                f"{regs[9 + flags]}, twin {want}")
+    assert not failures, f"{len(failures)} disagreements:\n" + "\n".join(failures[:10])
