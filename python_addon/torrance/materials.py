@@ -36,6 +36,8 @@ from typing import NamedTuple
 import numpy as np
 
 from .blender_versions import used_node_tree
+from .material_values import DEFAULT_MATERIAL, clamp as _clamp, color3 as _color3, \
+    sanitize as _sanitize
 from .nodes import finite_or, is_default_uv, node_label, plain_image, source_socket
 from .shader_graph.graph import KIND_OF_SOCKET, AttributeIds, GraphCompiler, Unsupported
 from .shader_graph.math_ops import VECTOR_MATH_OPS
@@ -44,22 +46,6 @@ from .shader_graph.registry import READERS
 from .mixtures import MIXTURE_SURFACES, read_mixture
 from .normal_inputs import begin_displacement, read_normal_input
 from .transparent_mix import read_transparent_mix
-
-# Cycles' surface for objects without material or with an empty slot is a 0.8 grey diffuse;
-# ours is the neutral Principled default.
-DEFAULT_MATERIAL = dict(
-    base_color=(0.8, 0.8, 0.8),
-    metallic=0.0,
-    roughness=0.5,
-    specular=0.5,
-    emission=(0.0, 0.0, 0.0),
-    emission_strength=0.0,
-    specular_tint=0.0,
-    # Read by PRINCIPLED_V2 only: the IOR, Specular Tint colour and distribution of 4.x's node.
-    ior=1.5,
-    specular_tint_color=(1.0, 1.0, 1.0),
-    multiscatter_ggx=True,
-)
 
 # The Principled BSDF's socket names per node version: v1 is Blender 3.x's, v2 Blender 4.0's
 # (renamed sockets; the version is told by the node's sockets, not by bpy.app.version).
@@ -126,20 +112,6 @@ def _is_neutral(value, neutral):
 
 # Nodes whose output is a constant we can read.
 _CONSTANT_NODES = {'RGB', 'VALUE'}
-
-
-def _clamp(v, lo, hi):
-    return lo if v < lo else hi if v > hi else v
-
-
-def _color3(value, fallback):
-    try:
-        c = tuple(value)[:3]
-    except TypeError:                       # a float socket linked into a colour
-        c = (value, value, value)
-    if len(c) < 3:
-        return fallback
-    return tuple(finite_or(x, f) for x, f in zip(c, fallback[:3], strict=True))
 
 
 # --------------------------------------------------------------------------------------------
@@ -483,24 +455,6 @@ class MaterialReader:
             mode=VECTOR_MATH_OPS.index("SCALE"))
         out.update(emission=(1.0, 1.0, 1.0), emission_strength=1.0, emission_texture=-1)
         return True
-
-
-def _sanitize(m):
-    """Keep values in the ranges the core accepts; drop textures that can not matter."""
-    m['base_color'] = tuple(_clamp(c, 0.0, 1.0) for c in m['base_color'])
-    m['emission'] = tuple(max(0.0, c) for c in m['emission'])
-    m['emission_strength'] = max(0.0, m['emission_strength'])
-    if m.get('emission_texture', -1) >= 0 or m.get('emission_register', -1) >= 0:
-        # The texture (or program) replaces the Emission colour; the core multiplies it by the
-        # strength.
-        if m['emission_strength'] == 0.0:
-            m['emission_texture'] = -1
-            m['emission_register'] = -1
-            m['emission'] = (0.0, 0.0, 0.0)
-    elif m['emission_strength'] == 0.0 or max(m['emission']) == 0.0:
-        m['emission'] = (0.0, 0.0, 0.0)
-        m['emission_strength'] = 0.0
-    return m
 
 
 _TEXTURE_KEYS = ('base_color_texture', 'metallic_texture', 'roughness_texture',

@@ -20,6 +20,7 @@ out of the sum (it contributes nothing). One Normal input serves all closures: t
 closure's; a closure with a different normal source is reported.
 """
 
+from .material_values import DEFAULT_MATERIAL, color3, sanitize
 from .shader_graph.graph import GraphCompiler, Unsupported
 from .shader_graph.program import ProgramBuilder
 from .shader_graph.registry import READERS
@@ -271,7 +272,6 @@ class ShaderTreeReader:
 
     def _colour_roughness(self, node):
         reader, mat = self.reader, self.mat
-        from .materials import DEFAULT_MATERIAL, _color3, _sanitize
         d = DEFAULT_MATERIAL
         kind = 'diffuse'
         sharp = getattr(node, "distribution", None) == 'SHARP'
@@ -289,10 +289,10 @@ class ShaderTreeReader:
             if node.distribution in _GLOSSY_AS_GGX:
                 self.warn(f"{node_label(node)}: the {node.distribution.replace('_', ' ').title()} "
                           f"distribution is rendered as GGX")
-        args = dict(d, base_color=_color3(color, d['base_color']), metallic=0.0, specular=0.0,
+        args = dict(d, base_color=color3(color, d['base_color']), metallic=0.0, specular=0.0,
                     roughness=roughness, base_color_texture=color_tex,
                     roughness_texture=roughness_tex)
-        return kind, _sanitize(reader._with_program(args))
+        return kind, sanitize(reader._with_program(args))
 
 
 def _plain_checker(node):
