@@ -34,8 +34,6 @@ import time
 import bpy
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
 RENDERS = 10
 MAX_RSS_GROWTH_MB = 5.0
 EXIT_REPORT = "Not freed memory blocks"
@@ -129,7 +127,8 @@ def _make_files(d):
 
 def _run_child(path, engine, d, name):
     result_path = os.path.join(d, f"{name}_{engine}.json")
-    cmd = [os.path.join(ROOT, "scripts", "blender"), "-b", "--factory-startup",
+    from torrance_tools import testing
+    cmd = [testing.this_blender(), "-b", "--factory-startup",
            "--python-exit-code", "1", "--python", os.path.abspath(__file__),
            "--", "--child", path, engine, result_path]
     t0 = time.perf_counter()

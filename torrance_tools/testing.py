@@ -26,6 +26,14 @@ from torrance_tools.scene import mesh_object, sphere_object  # noqa: F401 (for t
 _tempdirs = []
 
 
+def this_blender():
+    """The command starting the Blender this test runs in, with the add-on enabled, for a child
+    Blender: scripts/bpy's for the running bpy version (TORRANCE_BPY_BINARY), else
+    scripts/blender."""
+    from torrance_tools import REPO
+    return os.environ.get("TORRANCE_BPY_BINARY") or os.path.join(REPO, "scripts", "blender")
+
+
 def run(main):
     """Runs main(); prints the traceback and exits 1 on any failure, 0 on success.
 

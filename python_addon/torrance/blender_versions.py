@@ -6,11 +6,15 @@ difference is named once and told by the API itself where it can be:
   use_nodes   5.0 deprecates Material.use_nodes and World.use_nodes (always on; reading them
               warns), 5.1 Light.use_nodes: used_node_tree gives the tree Blender renders with.
   compositor  5.0 replaces Scene.node_tree (with Scene.use_nodes) by the node group
-              Scene.compositing_node_group: compositor_tree gives it (for tests and tools).
+              Scene.compositing_node_group, and the File Output node's base_path and
+              file_slots by directory and file_output_items (its files lose the frame number):
+              compositor_tree and exr_file_output give them (for tests and tools).
+  image formats  5.0 offers the format OPEN_EXR_MULTILAYER only under the media type
+              Multi-Layer Image (and OPEN_EXR only under Image): set_multilayer_exr.
 """
 
 
-def _always_uses_nodes(owner):
+def always_uses_nodes(owner):
     """True where owner's use_nodes is deprecated, i.e. its node tree is always used (5.0+)."""
     prop = owner.bl_rna.properties.get("use_nodes")
     return prop is None or getattr(prop, "is_deprecated", False)
@@ -22,7 +26,7 @@ def used_node_tree(owner):
     tree = owner.node_tree
     if tree is None:
         return None
-    return tree if _always_uses_nodes(owner) or owner.use_nodes else None
+    return tree if always_uses_nodes(owner) or owner.use_nodes else None
 
 
 def compositor_tree(scene):
@@ -38,3 +42,34 @@ def compositor_tree(scene):
         tree.nodes.new('CompositorNodeRLayers')
         scene.compositing_node_group = tree
     return tree
+
+
+def exr_file_output(tree, directory, sockets):
+    """A File Output node in the compositor `tree` writing each output socket of `sockets` as a
+    32-bit OpenEXR named after the socket (with the frame number before Blender 5.0)."""
+    out = tree.nodes.new("CompositorNodeOutputFile")
+    if hasattr(out, "file_output_items"):
+        out.directory = directory
+        out.file_name = ""            # else the .blend's name prefixes the files
+        out.format.media_type = 'IMAGE'
+    else:
+        out.base_path = directory
+        out.file_slots.clear()
+    out.format.file_format = 'OPEN_EXR'
+    out.format.color_depth = '32'
+    out.format.color_mode = 'RGBA'
+    for socket in sockets:
+        if hasattr(out, "file_output_items"):
+            kind = {'VALUE': 'FLOAT', 'VECTOR': 'VECTOR'}.get(socket.type, 'RGBA')
+            out.file_output_items.new(kind, socket.name)
+        else:
+            out.file_slots.new(socket.name)
+        tree.links.new(socket, out.inputs[socket.name])
+    return out
+
+
+def set_multilayer_exr(settings):
+    """Image format settings (e.g. scene.render.image_settings) to a multilayer OpenEXR."""
+    if hasattr(settings, "media_type"):
+        settings.media_type = 'MULTI_LAYER_IMAGE'
+    settings.file_format = 'OPEN_EXR_MULTILAYER'
