@@ -174,7 +174,7 @@ def main():
     render_settings.setup_torrance(scene, SAMPLES, FAULT_BOUNCES, brdf_model='PAPER')
     try:
         for fault, description in FAULTS.items():
-            addon.render._core = faulty_core(core, fault)
+            addon.core_module._core = faulty_core(core, fault)
             img, t_img = testing.render(scene, d, f"fault_{fault}")
             m = metrics(img, cycles_ref[FAULT_BOUNCES])
             bad = failures(m)
@@ -183,7 +183,7 @@ def main():
             if not bad:
                 missed.append(description)
     finally:
-        addon.render._core = core
+        addon.core_module._core = core
 
     check(not problems, "Torrance disagrees with Cycles: " + " | ".join(problems))
     check(not missed, "the thresholds miss these faults: " + ", ".join(missed))

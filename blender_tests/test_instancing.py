@@ -387,14 +387,14 @@ def leak(d):
                 kept.append(core.Scene())
                 return kept[-1]
             proxy.Scene = scene_factory
-        addon.render._core = proxy
+        addon.core_module._core = proxy
         rss = []
         try:
             for i in range(RENDERS):
                 testing.render(scene, d, f"leak{i}")
                 rss.append(testing.rss_mb())
         finally:
-            addon.render._core = core
+            addon.core_module._core = core
         stats = addon.render.last_stats
         check(stats["objects"] >= 20000, f"(e) expected 20000 instances: {stats}")
         return float(np.mean(rss[-3:]) - np.mean(rss[2:5])), rss

@@ -54,13 +54,13 @@ def main():
     proxy = addon_access.core_proxy(core)
     proxy.render = capture
     mod = addon_access.addon()
-    mod.render._core = proxy
+    mod.core_module._core = proxy
     try:
         scene.render.engine = 'TORRANCE'
         scene.torrance.samples = 1
         bpy.ops.render.render(write_still=False, scene=scene.name)
     finally:
-        mod.render._core = core
+        mod.core_module._core = core
     recorded = seen["recorded"]
     counts = recorded.counts
     check(len(recorded) == seen["counted"] == seen["closest"] + seen["occlusion"],

@@ -90,8 +90,8 @@ def torrance_core(settings_edit=None, scene_edit=None):
     """Renders inside use a wrapped core (see core_proxy)."""
     mod = addon()
     core = mod.render.load_core()
-    mod.render._core = core_proxy(core, settings_edit, scene_edit)
+    mod.core_module._core = core_proxy(core, settings_edit, scene_edit)
     try:
         yield core
     finally:
-        mod.render._core = core
+        mod.core_module._core = core

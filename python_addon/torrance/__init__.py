@@ -30,7 +30,7 @@ import bpy  # noqa: E402, F401
 from . import reporting, nodes, materials, brdf_model  # noqa: E402, F401
 from . import settings_table, core_settings, export, passes, preview  # noqa: E402, F401
 from . import viewport  # noqa: E402, F401
-from . import render, properties, engine, ui  # noqa: E402
+from . import core_module, render, properties, engine, ui  # noqa: E402, F401
 
 
 def register():
@@ -40,7 +40,7 @@ def register():
     # The native module is loaded lazily by the first render; check it now so a broken
     # build is reported at once. The add-on stays registered: renders report the error.
     try:
-        render.load_core()
+        core_module.load_core()
     except RuntimeError as exc:
         print(f"Torrance: {exc}")
 

@@ -1,7 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
 """A final render: export the depsgraph, run the core, hand the pixels to Blender."""
 
-import importlib.util
 import time
 import traceback
 
@@ -9,11 +8,9 @@ import numpy as np
 
 from . import export, passes, preview
 from .brdf_model import model_note
+from .core_module import CoreMissing, load_core
 from .core_settings import core_settings
 from .reporting import Reporter
-
-_core = None
-_core_error = None
 
 # (level, message) pairs reported by the last render (for tests and scripting); also
 # its stats: samples_done, stopped, seconds, export statistics.
@@ -23,29 +20,6 @@ last_stats = {}
 # Testing hook: when set, called as test_break_override(engine) instead of
 # engine.test_break() (RNA methods of a RenderEngine can not be monkeypatched).
 test_break_override = None
-
-
-class CoreMissing(RuntimeError):
-    pass
-
-
-def load_core():
-    """The native module torrance_core; raises RuntimeError with a clear message if missing."""
-    global _core, _core_error
-    if _core is None:
-        try:
-            if importlib.util.find_spec(f"{__package__}.torrance_core") is not None:
-                from . import torrance_core      # bundled: build/addon, the legacy add-on zip
-            else:
-                import torrance_core             # the Blender 4.2+ extension: from its wheel
-        except Exception as exc:             # ImportError, or a broken .so (OSError, ...)
-            _core_error = f"{type(exc).__name__}: {exc}"
-            raise CoreMissing(
-                "Torrance's native module 'torrance_core' could not be loaded "
-                f"({_core_error}). Rebuild the add-on (scripts/build) and reinstall it.") from exc
-        _core = torrance_core
-        _core_error = None
-    return _core
 
 
 def _rect_is_flat():

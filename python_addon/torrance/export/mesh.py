@@ -6,6 +6,7 @@ final render's non-instanced objects; export_mesh)."""
 
 import numpy as np
 
+from ..core_module import load_core
 from ..materials import MeshNeeds
 from ..matrices import inverse_transpose
 from .mesh_arrays import triangle_vertices
@@ -155,8 +156,7 @@ def read_local_mesh(obj, uvs=False):
 
 
 def _core():
-    """The native module (imported on first use: ..render imports this package)."""
-    from ..render import load_core
+    """The native module, loaded on first use."""
     return load_core()
 
 

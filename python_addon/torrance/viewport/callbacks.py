@@ -4,6 +4,7 @@ free. Each keeps its ViewportState on the engine and never raises into Blender."
 
 import traceback
 
+from ..core_module import load_core
 from ..reporting import Reporter
 from .camera import region_view
 from .settings import UNLIMITED_SAMPLES, shading_options, start_resolution, viewport_settings
@@ -18,7 +19,6 @@ _ATTR = "_torrance_viewport"
 def _state(engine, create=True):
     state = getattr(engine, _ATTR, None)
     if state is None and create:
-        from ..render import load_core
         state = ViewportState(load_core())
         setattr(engine, _ATTR, state)
     return state
