@@ -137,6 +137,8 @@ def mixed_bump():
         c = g.node(kind)
         c.inputs["Color"].default_value = (0.7, 0.6, 0.5, 1.0)
         c.inputs["Roughness"].default_value = 0.4
+        if hasattr(c, "distribution"):
+            c.distribution = 'GGX'       # 4.x's default is Multiscatter GGX (rendered as GGX)
         g.link(normal, c.inputs["Normal"])
         g.link(c.outputs[0], g.shader.inputs[k])
     return g.mat

@@ -46,21 +46,28 @@ Vec3 mix_mapped_normal(const Vec3& n, const Vec3& mapped, float strength) {
   return is_zero(out) ? n : out;
 }
 
-Vec3 tangent_normal_map(const Vec3& c, const Vec3& n, const Vec3& tangent, float bitangent_sign, float strength) {
+Vec3 tangent_normal_map(const Vec3& c, const Vec3& n, const Vec3& tangent, float bitangent_sign, float strength,
+                        bool cycles4) {
   // The tangent made perpendicular to n (as a mesh's per-vertex tangents are to its normals).
   const Vec3 t = unit_or_zero(tangent - glm::dot(tangent, n) * n);
   if (is_zero(t)) return n;
   const Vec3 b = bitangent_sign * glm::cross(n, t);
-  const Vec3 m = 2.0f * (c - Vec3(0.5f));
-  return mix_mapped_normal(n, unit_or_zero(m.x * t + m.y * b + m.z * n), strength);
+  Vec3 m = 2.0f * (c - Vec3(0.5f));
+  if (!cycles4) return mix_mapped_normal(n, unit_or_zero(m.x * t + m.y * b + m.z * n), strength);
+  m.x *= strength;
+  m.y *= strength;
+  m.z = 1.0f + std::clamp(strength, 0.0f, 1.0f) * (m.z - 1.0f);
+  const Vec3 mapped = unit_or_zero(m.x * t + m.y * b + m.z * n);
+  return is_zero(mapped) ? n : mapped;
 }
 
 glm::vec4 bump_op(const ShaderOpContext& c) {
   const ShaderGlobals& g = c.globals;
   Vec3 n = unit_or_zero(c.vector(5));
   if (is_zero(n)) n = g.normal;
-  const float distance = (c.ins.flags & 1) ? -c.value(1) : c.value(1);
+  const float distance = (c.ins.flags & kBumpInvert) ? -c.value(1) : c.value(1);
   const Vec3 out = bump_normal(n, g.dpdx, g.dpdy, c.value(2), c.value(3), c.value(4), distance, c.value(0));
+  if (c.ins.flags & kBumpCycles4) return glm::vec4(out, 0.0f);
   return glm::vec4(valid_shading_normal(g.true_normal, out, g.incoming), 0.0f);
 }
 
@@ -71,7 +78,8 @@ glm::vec4 normal_map_op(const ShaderOpContext& c) {
   const float strength = c.value(1);
   if (c.ins.mode == 0) {  // the frame as the mesh winds it, the result facing the viewer
     const Vec3 n = side * g.normal;
-    return glm::vec4(side * tangent_normal_map(color, n, g.tangent, g.bitangent_sign, strength), 0.0f);
+    const bool cycles4 = (c.ins.flags & kNormalMapCycles4) != 0;
+    return glm::vec4(side * tangent_normal_map(color, n, g.tangent, g.bitangent_sign, strength, cycles4), 0.0f);
   }
   Vec3 m = 2.0f * (color - Vec3(0.5f));
   if (c.ins.mode == 2 || c.ins.mode == 4) m = Vec3(m.x, -m.y, -m.z);

@@ -54,5 +54,24 @@ TEST(ShaderBump, DegenerateInputsStayFinite) {
   EXPECT_NEAR(t.x, 1.0f, 1e-6f);
 }
 
+// Cycles 4.x's tangent-space Strength scales the mapped colour's tangent components and moves
+// its normal component from 1: Strength 1 is 3.4's map, 0 the surface normal, 0.5 of the colour
+// (1, 0.5, 0.5) (mapped (1, 0, 0)) is normalize(0.5, 0, 0.5); 3.4 mixes normals instead.
+TEST(ShaderBump, Cycles4NormalMapStrengthScalesTheColour) {
+  const Vec3 n(0, 0, 1), t(1, 0, 0), c(1.0f, 0.5f, 0.5f);
+  const Vec3 full = shader::tangent_normal_map(c, n, t, 1.0f, 1.0f, true);
+  const Vec3 full34 = shader::tangent_normal_map(c, n, t, 1.0f, 1.0f);
+  EXPECT_NEAR(glm::length(full - full34), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::length(shader::tangent_normal_map(c, n, t, 1.0f, 0.0f, true) - n), 0.0f, 1e-6f);
+  const Vec3 half = shader::tangent_normal_map(c, n, t, 1.0f, 0.5f, true);
+  EXPECT_NEAR(half.x, std::sqrt(0.5f), 1e-6f);
+  EXPECT_NEAR(half.z, std::sqrt(0.5f), 1e-6f);
+  const Vec3 half34 = shader::tangent_normal_map(c, n, t, 1.0f, 0.5f);  // normalize(n + (m - n) / 2)
+  EXPECT_NEAR(half34.x, std::sqrt(0.5f), 1e-6f);
+  const Vec3 strong = shader::tangent_normal_map(Vec3(0.8f, 0.5f, 0.6f), n, t, 1.0f, 0.7f, true);
+  const Vec3 strong34 = shader::tangent_normal_map(Vec3(0.8f, 0.5f, 0.6f), n, t, 1.0f, 0.7f);
+  EXPECT_GT(strong.z, strong34.z);  // 4.x keeps more of the surface normal at a shallow colour
+}
+
 }  // namespace
 }  // namespace torrance

@@ -12,10 +12,18 @@ facing the viewer, like Geometry > Normal.
 from ..nodes import node_label
 from .geometry import normal_input, object_transform
 from .graph import Unsupported
-from .node_versions import normal_map_directx
+from .node_versions import cycles4_normals, normal_map_directx
 
 # Normal Map spaces -> the NormalMap op's mode (Object spaces read the object's transform).
 _SPACES = {'TANGENT': 0, 'WORLD': 1, 'BLENDER_WORLD': 2, 'OBJECT': 3, 'BLENDER_OBJECT': 4}
+
+# The ops' flags (shader_bump.h): Invert, and Cycles 4.x's Bump and Normal Map (node_versions).
+BUMP_INVERT, BUMP_CYCLES4, NORMAL_MAP_CYCLES4 = 1, 2, 1
+
+
+def bump_flags(invert=False):
+    """The Bump op's flags for the running Blender's Cycles."""
+    return (BUMP_INVERT if invert else 0) | (BUMP_CYCLES4 if cycles4_normals() else 0)
 
 
 def _bump(g, node, socket):
@@ -33,7 +41,7 @@ def _bump(g, node, socket):
     strength = g.input(node.inputs["Strength"], 'float')
     distance = g.input(node.inputs["Distance"], 'float')
     return b.emit("Bump", 'vector', [strength, distance, *heights, normal_input(g, node)],
-                  flags=1 if node.invert else 0)
+                  flags=bump_flags(node.invert))
 
 
 def _normal_map(g, node, socket):
@@ -45,7 +53,8 @@ def _normal_map(g, node, socket):
     color = g.input(node.inputs["Color"], 'color')
     strength = g.input(node.inputs["Strength"], 'float')
     obj = object_transform(g) if mode >= 3 else [color] * 4
-    return g.builder.emit("NormalMap", 'vector', [color, strength, *obj], mode=mode)
+    flags = NORMAL_MAP_CYCLES4 if cycles4_normals() else 0
+    return g.builder.emit("NormalMap", 'vector', [color, strength, *obj], mode=mode, flags=flags)
 
 
 READERS = {

@@ -9,6 +9,7 @@ surface shader (svm_node_set_normal). True displacement (the other methods) is n
 """
 
 from ..nodes import node_label
+from .bump import bump_flags
 from .geometry import normal_input, object_transform, shading_normal
 from .graph import Unsupported
 from .math_ops import VECTOR_MATH_OPS
@@ -66,7 +67,7 @@ def bump_from_displacement(g, displacement):
     finally:
         b.offset = 0
     one = constant('float', 1.0)
-    return b.emit("Bump", 'vector', [one, one, *heights, normal])
+    return b.emit("Bump", 'vector', [one, one, *heights, normal], flags=bump_flags())
 
 
 READERS = {

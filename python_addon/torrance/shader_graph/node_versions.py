@@ -15,7 +15,8 @@ materials.principled_version does, not by bpy.app.version:
               voronoi_fractal says whether the node has them (then voronoi4.py's op, Cycles
               4.x's searches and octaves).
   kernels     Cycles 4.x computes some unchanged nodes differently (the Wave Texture's
-              distortion, the Vector Transform of a Normal): the running Blender tells.
+              distortion, the Vector Transform of a Normal, the Bump's reflection check and
+              the tangent-space Normal Map's Strength): the running Blender tells.
   materials   4.1 moves the displacement method from material.cycles to the material:
               displacement_owner is where it is.
   Normal Map  5.1 adds the DirectX convention (green pointing down): normal_map_directx says
@@ -67,6 +68,14 @@ def is_cycles4_noise(node):
 def cycles4_wave_noise():
     """True where Cycles computes the Wave Texture's distortion with 4.x's fBM (the Wave node
     itself did not change: the running Blender tells)."""
+    import bpy
+    return bpy.app.version >= (4, 0, 0)
+
+
+def cycles4_normals():
+    """True where Cycles' Bump leaves the reflection check to the closures and a tangent-space
+    Normal Map applies Strength to its colour (4.0+; 3.4 checks the bumped normal and mixes the
+    mapped one with the surface's): the nodes did not change, the running Blender tells."""
     import bpy
     return bpy.app.version >= (4, 0, 0)
 
