@@ -18,13 +18,17 @@ compared is the graph's value, up to the pixel filter's noise):
   legacy       Image -> Separate RGB -> Combine HSV (legacy nodes) and Separate HSV -> Combine RGB
   mapped       UV -> Mapping (Texture) -> Image, times UV -> Mapping (Point) -> Vector Rotate
   extend, clip the image at UVs from -0.4 to 1.4 with Extension Extend, Clip (Linear, Closest)
+  newer_ops    Blender 4.x only (built where the Blender has them): Math Floored Modulo of
+               5x - 2.5 by 0.7 (/ 0.7), Mix (colour, Exclusion, Fac 0.7) of the image and a pink
+               (green and blue)
   orm          a glTF-style material: Base Color from the image, Separate Color's Green ->
                Roughness, Blue -> Metallic, lit by a sun and the sky (Principled BSDF)
 
 Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
 seeds 2 and 3. A deliberate fault per node family (the registry's reader patched: a Math node
 read as Add, Separate Color's channels shifted, the blend modes read as Mix, the colour models
-swapped, node groups' inner links ignored) must fail them.
+swapped, node groups' inner links ignored) must fail them; in Blender 4.x also Floored Modulo
+read as Modulo and Exclusion read as Difference.
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_shader_graph_agreement.py
@@ -254,6 +258,29 @@ EMISSIVE = (channels, hsv, maths, vector_maths, mixrgb, mix, adjust, grouped, mu
             mapped, extend, clip, clip_closest)
 
 
+def _has_option(node_type, setting, option):
+    return option in getattr(bpy.types, node_type).bl_rna.properties[setting].enum_items.keys()
+
+
+# Blender 4.x's Math Floored Modulo and Mix Exclusion, where the running Blender has them.
+NEWER_OPS = (_has_option("ShaderNodeMath", "operation", 'FLOORED_MODULO')
+             and _has_option("ShaderNodeMix", "blend_type", 'EXCLUSION'))
+
+
+def newer_ops(g, img):
+    sep = g.node("ShaderNodeSeparateXYZ")
+    g.link(g.uv(), sep.inputs[0])
+    shifted = g.math('SUBTRACT', g.math('MULTIPLY', sep.outputs[0], value_b=5.0), value_b=2.5)
+    modulo = g.math('DIVIDE', g.math('FLOORED_MODULO', shifted, value_b=0.7), value_b=0.7)
+    m = g.node("ShaderNodeMix", data_type='RGBA', blend_type='EXCLUSION')
+    next(s for s in m.inputs if s.identifier == "Factor_Float").default_value = 0.7
+    g.link(g.image(img).outputs["Color"], next(s for s in m.inputs if s.identifier == "A_Color"))
+    next(s for s in m.inputs if s.identifier == "B_Color").default_value = (0.9, 0.3, 0.6, 1.0)
+    color = g.node("ShaderNodeSeparateColor")
+    g.link(next(s for s in m.outputs if s.identifier == "Result_Color"), color.inputs[0])
+    return g.combine(modulo, color.outputs[1], color.outputs[2])
+
+
 def orm():
     """A glTF-style material: Base Color from the image, Separate Color's Green -> Roughness,
     Blue -> Metallic."""
@@ -317,9 +344,18 @@ def main():
     from torrance.shader_graph.graph import GraphCompiler
     from torrance.shader_graph.registry import READERS
     readers = DictAttr(READERS)
+    newer = ()
+    if NEWER_OPS:
+        newer = (("Floored Modulo read as Modulo", readers, 'ShaderNodeMath',
+                  read_with(lambda n: {"operation": 'MODULO'}
+                            if n.operation == 'FLOORED_MODULO' else None)),
+                 ("Exclusion read as Difference", readers, 'ShaderNodeMix',
+                  read_with(lambda n: {"blend_type": 'DIFFERENCE'}
+                            if n.blend_type == 'EXCLUSION' else None)))
     agree_on_patches(
-        [with_image(make) for make in EMISSIVE], lit=(orm,),
-        faults=(("Math read as Add", readers, 'ShaderNodeMath', read_with(operation='ADD')),
+        [with_image(make) for make in EMISSIVE + ((newer_ops,) if NEWER_OPS else ())],
+        lit=(orm,),
+        faults=newer + (("Math read as Add", readers, 'ShaderNodeMath', read_with(operation='ADD')),
                 ("Separate Color channels shifted", readers, 'ShaderNodeSeparateColor',
                  fault_channels_shifted),
                 ("MixRGB blend read as Mix", readers, 'ShaderNodeMixRGB',
