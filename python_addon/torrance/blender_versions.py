@@ -9,6 +9,8 @@ difference is named once and told by the API itself where it can be:
               Scene.compositing_node_group, and the File Output node's base_path and
               file_slots by directory and file_output_items (its files lose the frame number):
               compositor_tree and exr_file_output give them (for tests and tools).
+  depsgraph   5.x flags the geometry of an object whose material changed (its mesh comes
+              shading only, as in 4.x): object_geometry_changed tells a real geometry change.
   image formats  5.0 offers the format OPEN_EXR_MULTILAYER only under the media type
               Multi-Layer Image (and OPEN_EXR only under Image): set_multilayer_exr.
 """
@@ -27,6 +29,18 @@ def used_node_tree(owner):
     if tree is None:
         return None
     return tree if always_uses_nodes(owner) or owner.use_nodes else None
+
+
+def object_geometry_changed(update, shading_only_data):
+    """Whether a depsgraph update of an object changes its geometry. shading_only_data: the
+    names of the geometry data reported in the same update with shading only (a material edit);
+    an object showing such data without modifiers (which could read the material) keeps its
+    geometry though Blender 5 flags it."""
+    if not update.is_updated_geometry:
+        return False
+    obj = update.id
+    data = getattr(obj, "data", None)
+    return data is None or data.name not in shading_only_data or len(obj.modifiers) > 0
 
 
 def compositor_tree(scene):

@@ -17,6 +17,7 @@ import time
 import numpy as np
 
 from .. import export
+from ..blender_versions import object_geometry_changed
 from ..export.mesh_attributes import instance_constant_layers, instances_info, object_random_id
 from ..materials import MaterialTable
 from ..texture_table import TextureTable
@@ -98,15 +99,17 @@ class SceneCache:
         changed_objects = set()       # objects whose geometry changed
         self.changed_materials = set()
         changed_data = set()          # meshes (and other geometry data) that changed
+        shading_only_data = {u.id.name for u in depsgraph.updates      # a material edit's
+                             if isinstance(u.id, bpy.types.Mesh) and u.is_updated_shading
+                             and not u.is_updated_geometry}
         for update in depsgraph.updates:
             id_ = update.id
             if isinstance(id_, bpy.types.Object):
-                if update.is_updated_geometry:
+                if object_geometry_changed(update, shading_only_data):
                     geometry_changed = True
                     name = id_.name
                     self.meshes.drop(lambda key, name=name: key[0] == name)
-                if update.is_updated_geometry:
-                    changed_objects.add(id_.name)
+                    changed_objects.add(name)
                 if update.is_updated_geometry or update.is_updated_transform \
                         or update.is_updated_shading:
                     relevant = True
