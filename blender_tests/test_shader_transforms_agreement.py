@@ -1,9 +1,9 @@
 # SPDX-License-Identifier: Apache-2.0
 """The nodes that read the object's and the camera's transforms render as Cycles 3.4 renders
 them: Tangent (UV Map, Radial X and Z), Vector Transform (Point, Vector and Normal between
-World, Object and Camera, both ways) and Normal Map in Object and Blender Object space, each
-shown through an Emission shader (a vector v as 0.5 v + 0.5) on patches of the grid
-(torrance_tools.shader_graphs).
+World, Object and Camera, both ways) and Normal Map in Object and Blender Object space (and
+Blender 5.1+'s DirectX convention in Object space), each shown through an Emission shader (a
+vector v as 0.5 v + 0.5) on patches of the grid (torrance_tools.shader_graphs).
 
 Every patch is its own object whose matrix rotates about a tilted axis, scales unevenly and
 moves, with its mesh taken back by the inverse so that the patch stays where the grid puts it:
@@ -19,6 +19,8 @@ them.
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_shader_transforms_agreement.py
 """
+
+import bpy
 
 from torrance_tools import testing
 from torrance_tools.shader_graphs import (DictAttr, agree_on_patches, object_matrix, read_with,
@@ -91,8 +93,10 @@ def normal_object_to_world(g):
                       'WORLD')
 
 
-def _normal_map(g, space):
+def _normal_map(g, space, convention=None):
     nm = g.node("ShaderNodeNormalMap", space=space)
+    if convention is not None:
+        nm.convention = convention
     nm.inputs["Strength"].default_value = 0.8
     noise = g.node("ShaderNodeTexNoise")
     noise.inputs["Scale"].default_value = 3.0
@@ -108,10 +112,17 @@ def normal_map_blender_object(g):
     return _normal_map(g, 'BLENDER_OBJECT')
 
 
+def normal_map_object_directx(g):
+    """Blender 5.1+: the DirectX convention (green pointing down)."""
+    return _normal_map(g, 'OBJECT', 'DIRECTX')
+
+
+# Blender 5.1+'s Normal Map has a convention.
+_DIRECTX = "convention" in bpy.types.ShaderNodeNormalMap.bl_rna.properties
 MAKERS = (tangent_uv, tangent_radial_z, tangent_radial_x, point_world_to_object,
           vector_object_to_camera, normal_camera_to_object, point_camera_to_world,
           point_world_to_camera, normal_object_to_world, normal_map_object,
-          normal_map_blender_object)
+          normal_map_blender_object) + ((normal_map_object_directx,) if _DIRECTX else ())
 for _make in MAKERS:
     _make.setup = _setup
 
@@ -134,7 +145,7 @@ def _uv_tangent_in_world(original):
 
 def main():
     testing.addon()
-    from torrance.shader_graph import vector
+    from torrance.shader_graph import bump, vector
     from torrance.shader_graph.registry import READERS
     readers = DictAttr(READERS)
     agree_on_patches(MAKERS, what="Tangent, Vector Transform and Normal Map object spaces",
@@ -148,7 +159,9 @@ def main():
          read_with(_world_spaces)),
         ("Normals moved as the other Cycles moves them (3.4: as vectors, 4.x: inverse "
          "transpose)", vector, 'cycles4_normal_transform',
-         lambda original: lambda: not original())))
+         lambda original: lambda: not original())) + ((
+        ("Normal Map's DirectX convention read as OpenGL's", bump, 'normal_map_directx',
+         lambda original: lambda node: False),) if _DIRECTX else ()))
 
 
 testing.run(main)

@@ -12,7 +12,9 @@ facing the viewer, like Geometry > Normal.
 from ..nodes import node_label
 from .geometry import normal_input, object_transform
 from .graph import Unsupported
+from .math_ops import VECTOR_MATH_OPS
 from .node_versions import cycles4_normals, normal_map_directx
+from .program import constant
 
 # Normal Map spaces -> the NormalMap op's mode (Object spaces read the object's transform).
 _SPACES = {'TANGENT': 0, 'WORLD': 1, 'BLENDER_WORLD': 2, 'OBJECT': 3, 'BLENDER_OBJECT': 4}
@@ -48,9 +50,11 @@ def _normal_map(g, node, socket):
     mode = _SPACES.get(node.space)
     if mode is None:
         raise Unsupported(f"{node_label(node)} in {node.space.lower().replace('_', ' ')} space")
-    if normal_map_directx(node):
-        raise Unsupported(f"{node_label(node)} in the DirectX convention")
     color = g.input(node.inputs["Color"], 'color')
+    if normal_map_directx(node):      # green pointing down: flipped to OpenGL's, 1 - green
+        color = g.builder.emit("VectorMath", 'color', [
+            color, constant('vector', (1.0, -1.0, 1.0)), constant('vector', (0.0, 1.0, 0.0)),
+            constant('float', 0.0)], mode=VECTOR_MATH_OPS.index("MULTIPLY_ADD"))
     strength = g.input(node.inputs["Strength"], 'float')
     obj = object_transform(g) if mode >= 3 else [color] * 4
     flags = NORMAL_MAP_CYCLES4 if cycles4_normals() else 0

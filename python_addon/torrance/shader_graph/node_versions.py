@@ -19,8 +19,8 @@ materials.principled_version does, not by bpy.app.version:
               the tangent-space Normal Map's Strength): the running Blender tells.
   materials   4.1 moves the displacement method from material.cycles to the material:
               displacement_owner is where it is.
-  Normal Map  5.1 adds the DirectX convention (green pointing down): normal_map_directx says
-              whether the node uses it.
+  Normal Map  5.1 adds the DirectX convention (green pointing down, in every space):
+              normal_map_directx says whether the node uses it; bump.py flips green.
   Separate/Combine RGB/HSV  5.0 removes them: files open with Separate/Combine Color in the
               mode RGB or HSV (COLOR_NODE_SUCCESSORS), which the registry reads.
 """
