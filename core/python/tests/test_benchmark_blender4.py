@@ -1,6 +1,6 @@
 """The Blender 4.x speed/error benchmark's own logic, without rendering (scripts/benchmark
---blender 4.5; docs/blender4.md): which Blender, report and reference directories a version gets,
-the Cycles variants it compares, and the report's ratio against each variant."""
+--blender 4.5; docs/blender_versions.md): which Blender, report and reference directories a
+version gets, the Cycles variants it compares, and the report's ratio against each variant."""
 import json
 import os
 import subprocess
