@@ -5,7 +5,8 @@ Lit patches (torrance_tools.shader_graphs' grid under a sun 30 degrees from the 
 sky), each a closure whose Normal a node graph computes: Bump nodes whose Height is a Noise
 Texture, a Voronoi Texture, a Math combination of Position and Noise, an image through a
 ColorRamp; Invert; Strength below 1; a Bump chained into another Bump's Normal; a Normal Map
-(tangent and world space) of a Noise colour; a Mix Shader whose closures share a bumped Normal.
+(tangent and world space) of a Noise colour, a tangent-space one of a gentle normal image
+(Strength 0.6); a Mix Shader whose closures share a bumped Normal.
 Cycles evaluates a Bump's Height at P, P + dPdx and P + dPdy; Torrance compiles the Height's
 graph three times, its hit-reading ops moved by the ray differentials (shader_graph/bump.py,
 core/src/shader_bump.cpp).
@@ -124,6 +125,36 @@ def noise_normal_map():
     return _noise_normal_map("noise_normal_map", 'TANGENT', 0.7, 4.0)
 
 
+def _gentle_normals(size=32):
+    """A Non-Color normal image whose colours' normal components are small (0.2 of 1 mapped):
+    Cycles 4.x's Strength 0.6 tilts its normals by 40 degrees at most, 3.4's by up to 60."""
+    import math
+
+    import bpy
+    img = bpy.data.images.get("gentle_normals")
+    if img is None:
+        img = bpy.data.images.new("gentle_normals", size, size)
+        img.colorspace_settings.name = 'Non-Color'
+        pixels = []
+        for y in range(size):
+            for x in range(size):
+                u, v = 6.0 * math.pi * x / size, 4.0 * math.pi * y / size
+                pixels += [0.5 + 0.25 * math.sin(u), 0.5 + 0.25 * math.cos(v), 0.6, 1.0]
+        img.pixels = pixels
+    return img
+
+
+def image_normal_map():
+    """A tangent-space Normal Map (Strength 0.6) of an image: the material's image normal map in
+    3.x, the shader graph in 4.x (Cycles 4.x's Strength)."""
+    g = _closure("image_normal_map")
+    nm = g.node("ShaderNodeNormalMap", space='TANGENT')
+    nm.inputs["Strength"].default_value = 0.6
+    g.link(g.image(_gentle_normals()).outputs["Color"], nm.inputs["Color"])
+    g.link(nm.outputs["Normal"], g.shader.inputs["Normal"])
+    return g.mat
+
+
 def world_normal_map():
     return _noise_normal_map("world_normal_map", 'WORLD', 0.4, 3.0)
 
@@ -145,7 +176,7 @@ def mixed_bump():
 
 
 LIT = (noise_bump, voronoi_bump, math_bump, ramp_bump, inverted_bump, weak_bump, chained_bump,
-       noise_normal_map, world_normal_map, mixed_bump)
+       noise_normal_map, image_normal_map, world_normal_map, mixed_bump)
 
 
 def _with_setting(node, name, value, original, g, socket):

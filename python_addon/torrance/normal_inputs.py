@@ -25,7 +25,7 @@ shading normal (an unlinked Normal, Geometry > Normal) then see the bumped one.
 from .nodes import finite_or, node_label, plain_image, source_socket
 from .shader_graph.displacement import METHODS, bump_from_displacement, displacement_method
 from .shader_graph.graph import GraphCompiler, Unsupported
-from .shader_graph.node_versions import normal_map_directx
+from .shader_graph.node_versions import cycles4_normals, normal_map_directx
 from .shader_graph.registry import READERS
 
 
@@ -122,6 +122,8 @@ def _plain_normal_map(reader, mat, src, where):
     image = _plain_image(src, "Color")
     if src.space != 'TANGENT' or normal_map_directx(src) or strength is None or image is None:
         return None                   # read (or reported) by the shader graph
+    if cycles4_normals() and finite_or(strength, 1.0) != 1.0:
+        return None                   # Cycles 4.x's Strength: the shader graph's NormalMap op
     if src.uv_map:
         reader.reporter.info(f"{where}: {node_label(src)} names UV map '{src.uv_map}'; Torrance "
                              f"uses each mesh's active render UV map")
