@@ -405,6 +405,11 @@ void init_scene(py::module_& m) {
       .def("set_world_texture", &Scene::set_world_texture, py::arg("texture"), py::arg("strength") = 1.0f,
            "HDRI world: an equirectangular texture (from add_texture*) around the scene, mapped like "
            "Cycles' Environment Texture, importance-sampled.")
+      .def("set_world_program", &Scene::set_world_program, py::arg("program"), py::arg("radiance_register"),
+           py::arg("resolution") = 1024,
+           "The world's node graph: program (from add_shader_program) run per direction as Cycles' background "
+           "shader, its radiance in radiance_register; next-event estimation samples a map of it `resolution` "
+           "cells wide (Cycles' world Map Resolution). ValueError for a bad program, register or resolution.")
       .def(
           "set_camera",
           [](Scene& s, const py::object& matrix, float lens, float sensor_width, float sensor_height,

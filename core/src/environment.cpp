@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
+
+#include <tbb/parallel_for.h>
 
 namespace torrance {
 namespace {
@@ -33,20 +36,51 @@ EnvironmentMap::EnvironmentMap(std::shared_ptr<const Texture> image, float stren
   if (!(strength >= 0.0f) || !std::isfinite(strength)) throw std::invalid_argument("world strength must be >= 0");
   width_ = image_->width();
   height_ = image_->height();
-  // Cell (i, j) covers u in [i, i+1)/W and v in [j, j+1)/H; its weight is its mean luminance
-  // times sin(theta) (the solid angle it spans), with a floor so no direction is impossible.
-  std::vector<float> weight(size_t(width_) * height_);
+  std::vector<float> lum(size_t(width_) * height_);
+  for (int j = 0; j < height_; ++j)
+    for (int i = 0; i < width_; ++i)
+      lum[size_t(j) * width_ + i] = luminance(Vec3(image_->lookup(Vec2((i + 0.5f) / width_, (j + 0.5f) / height_))));
+  build(std::move(lum));
+  average_luminance_ *= strength_;
+}
+
+EnvironmentMap::EnvironmentMap(std::shared_ptr<const BackgroundShader> shader, int resolution)
+    : shader_(std::move(shader)) {
+  if (!shader_) throw std::invalid_argument("environment map needs a background shader");
+  if (resolution < 4 || resolution > 16384)
+    throw std::invalid_argument("the world's map resolution must be in [4, 16384], not " + std::to_string(resolution));
+  width_ = resolution;
+  height_ = std::max(resolution / 2, 2);
+  // As Cycles bakes its background map: the shader at each cell's centre, seen by no ray in
+  // particular (kRayEmission).
+  PathState baking;
+  baking.ray_flags = kRayEmission;
+  std::vector<float> lum(size_t(width_) * height_);
+  tbb::parallel_for(0, height_, [&](int j) {
+    for (int i = 0; i < width_; ++i) {
+      const Vec3 dir = uv_to_direction(Vec2((i + 0.5f) / width_, (j + 0.5f) / height_));
+      lum[size_t(j) * width_ + i] = luminance(shader_->radiance(dir, baking));
+    }
+  });
+  build(std::move(lum));
+}
+
+void EnvironmentMap::build(std::vector<float> lum) {
+  // Cell (i, j) covers u in [i, i+1)/W and v in [j, j+1)/H; its weight is its luminance times
+  // sin(theta) (the solid angle it spans), with a floor so no direction is impossible.
+  std::vector<float>& weight = lum;
   double total = 0.0, lum_sum = 0.0, solid_sum = 0.0;
   for (int j = 0; j < height_; ++j) {
     const float sin_theta = std::sin(kPi * (1.0f - (j + 0.5f) / height_));
     for (int i = 0; i < width_; ++i) {
-      const float lum = std::max(luminance(Vec3(image_->lookup(Vec2((i + 0.5f) / width_, (j + 0.5f) / height_)))), 0.0f);
-      weight[size_t(j) * width_ + i] = lum * sin_theta;
-      lum_sum += double(lum) * sin_theta;
+      float& w = weight[size_t(j) * width_ + i];
+      const float l = std::isfinite(w) ? std::max(w, 0.0f) : 0.0f;
+      w = l * sin_theta;
+      lum_sum += double(l) * sin_theta;
       solid_sum += sin_theta;
     }
   }
-  average_luminance_ = solid_sum > 0 ? float(lum_sum / solid_sum) * strength_ : 0.0f;
+  average_luminance_ = solid_sum > 0 ? float(lum_sum / solid_sum) : 0.0f;
   const double mean = lum_sum / std::max(double(weight.size()), 1.0);
   for (float& w : weight) {
     w += float(0.01 * mean) + 1e-12f;
@@ -74,7 +108,8 @@ EnvironmentMap::EnvironmentMap(std::shared_ptr<const Texture> image, float stren
   for (size_t k = 0; k < weight.size(); ++k) cell_pdf_[k] = float(weight[k] / total * double(weight.size()));
 }
 
-Vec3 EnvironmentMap::radiance(const Vec3& dir) const {
+Vec3 EnvironmentMap::radiance(const Vec3& dir, const PathState& state) const {
+  if (shader_) return shader_->radiance(dir, state);
   return Vec3(image_->lookup(direction_to_uv(dir))) * strength_;
 }
 

@@ -307,12 +307,14 @@ bool AreaLight::hit(const Vec3& p, const Vec3&, const Vec3& dir, float t_max, Li
 
 // ---- world ----------------------------------------------------------------------------------
 
-LightSample WorldLight::sample(const Vec3&, const Vec3& n, const Vec2& u) const {
+LightSample WorldLight::sample(const Vec3&, const Vec3& n, const Vec2& u, const PathState& receiver) const {
   LightSample s;
   if (map_) {
     s.wi = map_->sample(u, s.pdf);
     if (!(s.pdf > 0.0f) || glm::dot(s.wi, n) <= 0.0f) return LightSample{};
-    s.weight = map_->radiance(s.wi) / s.pdf;
+    PathState seen_by = receiver;
+    seen_by.ray_flags = kRayEmission;
+    s.weight = map_->radiance(s.wi, seen_by) / s.pdf;
     return s;
   }
   const Vec3 local = sample_cosine_hemisphere(u);
@@ -323,10 +325,11 @@ LightSample WorldLight::sample(const Vec3&, const Vec3& n, const Vec2& u) const 
   return s;
 }
 
-bool WorldLight::hit(const Vec3&, const Vec3& n, const Vec3& dir, float t_max, LightHit& out) const {
+bool WorldLight::hit(const Vec3&, const Vec3& n, const Vec3& dir, float t_max, LightHit& out,
+                     const PathState& state) const {
   if (t_max < kInfinity) return false;
   if (map_) {
-    out.radiance = map_->radiance(dir);
+    out.radiance = map_->radiance(dir, state);
     out.pdf = map_->pdf(dir);
     return true;
   }
@@ -368,6 +371,10 @@ void Lights::set_world(const Vec3& color, float strength) {
 
 void Lights::set_world_map(std::shared_ptr<const Texture> image, float strength) {
   world_ = WorldLight(std::make_shared<EnvironmentMap>(std::move(image), strength));
+}
+
+void Lights::set_world_shader(std::shared_ptr<const BackgroundShader> shader, int resolution) {
+  world_ = WorldLight(std::make_shared<EnvironmentMap>(std::move(shader), resolution));
 }
 
 bool Lights::any_hittable() const {
@@ -441,11 +448,12 @@ float Lights::selection_probability(size_t index, const Vec3& p, const Vec3& n, 
 
 LightSample Lights::sample(size_t index, const Vec3& p, const Vec3& shading_normal, const Vec2& u,
                            bool two_sided, const PathState& receiver) const {
-  const LightSample s = mesh_ && index == lights_.size()
-                            ? mesh_->sample(p, shading_normal, u, receiver)
-                            : visit(index, [&](const auto& light) { return light.sample(p, shading_normal, u); });
+  const bool world = world_in_nee() && index + 1 == count();
+  const LightSample s = mesh_ && index == lights_.size() ? mesh_->sample(p, shading_normal, u, receiver)
+                        : world ? world_.sample(p, shading_normal, u, receiver)
+                                : visit(index, [&](const auto& light) { return light.sample(p, shading_normal, u); });
   // Only the world's map rejects directions below the normal: the same u seen from the other side.
-  if (two_sided && !s.valid() && index + 1 == count() && world_in_nee()) return world_.sample(p, -shading_normal, u);
+  if (two_sided && !s.valid() && world) return world_.sample(p, -shading_normal, u, receiver);
   return s;
 }
 
@@ -455,7 +463,7 @@ bool Lights::hit(size_t index, const Vec3& p, const Vec3& n, const Vec3& dir, Li
 
 Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max, float bsdf_pdf,
                                 bool bsdf_delta, bool two_sided, const LightChoice* prev_choice,
-                                const LightShare* share) const {
+                                const LightShare* share, const PathState& escaped) const {
   Vec3 L(0.0f);
   auto add = [&](size_t index, const LightHit& h, bool in_nee) {
     if (!in_nee || bsdf_delta) return void(L += h.radiance);
@@ -472,7 +480,7 @@ Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Ve
     add(i, h, true);
   }
   LightHit h;
-  if (has_world() && world_.hit(p_prev, n_prev, dir, t_max, h)) add(count() - 1, h, world_in_nee());  // never shared
+  if (has_world() && world_.hit(p_prev, n_prev, dir, t_max, h, escaped)) add(count() - 1, h, world_in_nee());  // never shared
   return L;
 }
 

@@ -308,13 +308,21 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
           found = ray.tmax > 0.0f && ctx.scene.intersect(ray, hit);
         }
       }
+      // What the world's node graph sees of a ray that escapes (Cycles' background: path flags
+      // plus PATH_RAY_EMISSION, the bounces so far).
+      const auto escaped = [&] {
+        PathState s = path_state;
+        s.ray_depth = uint8_t(std::min(bounce, 255));
+        s.ray_flags |= kRayEmission;
+        return s;
+      };
       if (first_again) {
         light_choice = first_vertex.choice;
       } else if (bounce == 0) {
         if (!found) {
           if (ctx.settings.transparent_background)
             out.alpha = kAlpha ? 1.0f - (throughput.x + throughput.y + throughput.z) / 3.0f : 0.0f;
-          else out.environment = (kAlpha ? throughput : Vec3(1.0f)) * lights.world_radiance(ray.dir);
+          else out.environment = (kAlpha ? throughput : Vec3(1.0f)) * lights.world_radiance(ray.dir, escaped());
           if (const float k = clamp_scale(out.environment, true); k < 1.0f) out.environment *= k;
           path_luminance = luminance(out.environment);
           return out;
@@ -327,7 +335,8 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
         if (kHittable) {
           const float t_max = found ? passed_length + hit.t : kInfinity;
           const Vec3 e = lights.emission_along_ray(prev_position, prev_normal, ray.dir, t_max, prev_pdf, prev_delta,
-                                                   kGlass && prev_two_sided, &light_choice, reflector_share.active());
+                                                   kGlass && prev_two_sided, &light_choice, reflector_share.active(),
+                                                   found ? PathState{} : escaped());
           deposit(throughput * e, bounce == 1);
         }
         if (!found) break;
@@ -599,6 +608,7 @@ TraceFn select_path_tracer(const Scene& scene, const RenderSettings& settings) {
     has_textures |= scene.material_textures(uint32_t(i)).any();
     has_glass |= scene.material(uint32_t(i)).transmits();
   }
+  has_textures |= scene.lights().world_reads_path();  // the path's state, tracked for its Light Path
   const bool alpha = has_alpha(scene);
   const bool split_lobes =
       settings.passes & (kPassDiffuseDirect | kPassDiffuseIndirect | kPassGlossyDirect | kPassGlossyIndirect);

@@ -96,6 +96,16 @@ void Scene::set_world_texture(uint32_t id, float strength) {
   lights_.set_world_map(textures_[id], strength);
 }
 
+void Scene::set_world_program(uint32_t program, int radiance_register, int resolution) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("change the world");
+  if (program >= programs_.size())
+    throw std::invalid_argument("the world uses shader program " + std::to_string(program) + " but the scene has " +
+                                std::to_string(programs_.size()));
+  lights_.set_world_shader(std::make_shared<BackgroundShader>(programs_[program], radiance_register, textures_),
+                           resolution);
+}
+
 uint32_t Scene::add_shader_program(ShaderProgram program) {
   std::lock_guard<std::mutex> lock(mutex_);
   check_idle("add a shader program");

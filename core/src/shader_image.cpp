@@ -62,11 +62,30 @@ Vec3 box_weights(const Vec3& signed_n, float blend) {
   return Vec3(corner(n.x), corner(n.y), corner(n.z));
 }
 
+Vec2 direction_to_equirectangular(const Vec3& co) {
+  const float l = glm::length(co);
+  if (!(l > 0.0f)) return Vec2(0.0f);
+  const Vec3 d = co / l;
+  const float c = std::min(std::max(d.z / glm::length(d), -1.0f), 1.0f);
+  return Vec2((std::atan2(d.y, d.x) - kPi) / (-2.0f * kPi), (std::acos(c) - kPi) / -kPi);
+}
+
+Vec2 direction_to_mirror_ball(const Vec3& co) {
+  const float l = glm::length(co);
+  Vec3 d = l > 0.0f ? co / l : Vec3(0.0f);
+  d.y -= 1.0f;
+  const float div = 2.0f * std::sqrt(std::max(-0.5f * d.y, 0.0f));
+  if (div > 0.0f) d /= div;
+  return Vec2(0.5f * (d.x + 1.0f), 0.5f * (d.z + 1.0f));
+}
+
 glm::vec4 image_projection_op(const ShaderOpContext& c) {
   const Vec3 co = c.vector(0);
   switch (c.ins.mode) {
     case 0: return glm::vec4(map_to_sphere(remap_square(co)), 0.0f, 0.0f);
     case 1: return glm::vec4(map_to_tube(remap_square(co)), 0.0f, 0.0f);
+    case 6: return glm::vec4(direction_to_equirectangular(co), 0.0f, 0.0f);
+    case 7: return glm::vec4(direction_to_mirror_ball(co), 0.0f, 0.0f);
     default: break;
   }
   // The normal in object space, as Cycles' object_inverse_normal_transform: by M's transpose.

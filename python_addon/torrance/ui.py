@@ -107,7 +107,7 @@ def world_messages(world):
     reporter = Reporter(None)
     reporter.report = _collect(reporter)
     try:
-        export.world_background(world, reporter, _DryTextures())
+        export.read_world(world, reporter, _DryTextures())
     except Exception as exc:
         reporter.messages.append(('WARNING', f"could not be read: {exc}"))
     return _strip(reporter.messages, f"World '{world.name}': ")

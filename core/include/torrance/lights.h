@@ -95,20 +95,28 @@ class AreaLight {
   bool has_spread_ = false;
 };
 
-// The world: a uniform colour (NEE samples the cosine around the shading normal) or an HDRI
-// (NEE samples the map's own distribution).
+// The world: a uniform colour (NEE samples the cosine around the shading normal) or a map (an
+// HDRI or the world's node graph; NEE samples the map's own distribution). state: the ray's (a
+// world's node graph reads it; NEE reads it with kRayEmission).
 class WorldLight {
  public:
   explicit WorldLight(const Vec3& radiance) : radiance_(radiance) {}
   explicit WorldLight(std::shared_ptr<const EnvironmentMap> map) : map_(std::move(map)) {}
-  LightSample sample(const Vec3& p, const Vec3& n, const Vec2& u) const;
+  LightSample sample(const Vec3& p, const Vec3& n, const Vec2& u, const PathState& receiver = {}) const;
   float importance(const Vec3&, const Vec3&) const {
     return (map_ ? map_->average_luminance() : luminance(radiance_)) * kPi;
   }
-  bool hit(const Vec3& p, const Vec3& n, const Vec3& dir, float t_max, LightHit& out) const;
-  Vec3 radiance(const Vec3& dir) const { return map_ ? map_->radiance(dir) : radiance_; }
-  bool black() const { return map_ ? !(map_->average_luminance() > 0.0f) : !(max_component(radiance_) > 0.0f); }
+  bool hit(const Vec3& p, const Vec3& n, const Vec3& dir, float t_max, LightHit& out,
+           const PathState& state = {}) const;
+  Vec3 radiance(const Vec3& dir, const PathState& state = {}) const {
+    return map_ ? map_->radiance(dir, state) : radiance_;
+  }
+  // A map whose samples all came out black may still shine on some rays (a node graph reading
+  // the Light Path): only a uniform black world is no world.
+  bool black() const { return map_ ? false : !(max_component(radiance_) > 0.0f); }
   bool is_map() const { return map_ != nullptr; }
+  bool in_nee() const { return map_ && map_->average_luminance() > 0.0f; }
+  bool reads_path() const { return map_ && map_->reads_path(); }
 
  private:
   Vec3 radiance_{0.0f};
@@ -132,6 +140,8 @@ class Lights {
                 float power, const Vec3& color, float spread);
   void set_world(const Vec3& color, float strength);
   void set_world_map(std::shared_ptr<const Texture> image, float strength);
+  // The world's node graph (background_shader.h), its NEE map `resolution` cells wide.
+  void set_world_shader(std::shared_ptr<const BackgroundShader> shader, int resolution);
   // Emissive triangles (replaces any previous set); nullopt removes them.
   void set_mesh_light(std::optional<MeshLight> emitters) { mesh_ = std::move(emitters); }
   // MIS density of NEE producing point q on emissive triangle `triangle` from (p, n).
@@ -173,10 +183,11 @@ class Lights {
   // the ray escaped): spheres, area lights and, if escaped, the world and visible suns.
   // prev_choice: the LightChoice NEE used at p_prev (its probabilities), if any.
   // share: each light's light is multiplied by share->of(its index) (the caller shares it with
-  // another strategy: mirror_images.h); nullptr: by 1.
+  // another strategy: mirror_images.h); nullptr: by 1. escaped: the ray's path state, which the
+  // world's node graph reads if the ray escaped.
   Vec3 emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max, float bsdf_pdf,
                           bool bsdf_delta, bool two_sided = false, const LightChoice* prev_choice = nullptr,
-                          const LightShare* share = nullptr) const;
+                          const LightShare* share = nullptr, const PathState& escaped = {}) const;
   // What a ray from p along dir sees of strategy `index` alone, unoccluded (its MIS density too).
   bool hit(size_t index, const Vec3& p, const Vec3& n, const Vec3& dir, LightHit& out) const;
   // Strategy `index`'s light of each kind, or nullptr when it is another kind.
@@ -187,9 +198,12 @@ class Lights {
   // False when no BSDF-sampled ray can ever see a light (only delta lights, no world or
   // emitting shapes), so emission_along_ray can be skipped.
   bool any_hittable() const;
-  Vec3 world_radiance(const Vec3& dir) const { return world_.radiance(dir); }
+  // escaped: the state of the ray that left the scene (emission_along_ray's `escaped` too).
+  Vec3 world_radiance(const Vec3& dir, const PathState& escaped = {}) const { return world_.radiance(dir, escaped); }
   bool has_world() const { return !world_.black(); }
-  bool world_in_nee() const { return has_world() && world_.is_map(); }
+  bool world_in_nee() const { return world_.in_nee(); }
+  // Whether the world's radiance depends on the ray's path state (the path tracer tracks it).
+  bool world_reads_path() const { return world_.reads_path(); }
 
  private:
   // Calls f with the concrete light of NEE strategy `index` (see count()).

@@ -261,6 +261,10 @@ class Scene {
 
   // An HDRI world: texture `id` as an equirectangular environment, times strength.
   void set_world_texture(uint32_t id, float strength);
+  // The world's node graph: shader program `program` (from add_shader_program), its radiance in
+  // register radiance_register (background_shader.h), NEE sampling a map `resolution` cells
+  // wide (Cycles' world Map Resolution). Throws std::invalid_argument naming a bad argument.
+  void set_world_program(uint32_t program, int radiance_register, int resolution);
   Lights& lights() { return lights_; }  // C++ set-up; bindings use edit_lights
   const Lights& lights() const { return lights_; }
   // Runs edit on the lights unless a render is using the scene (then std::runtime_error).

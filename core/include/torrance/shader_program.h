@@ -179,6 +179,12 @@ class ShaderProgram {
   int registers() const { return registers_; }
   // Whether register r holds a value after run() (a constant or an instruction's output).
   bool written(int r) const { return r >= 0 && r < registers_ && written_[size_t(r)]; }
+  // Whether some instruction is of op.
+  bool reads(ShaderOpcode op) const {
+    for (const ShaderInstruction& ins : code_)
+      if (ins.op == op) return true;
+    return false;
+  }
   // Runs the program; regs must hold registers() entries. Every value written is finite.
   void run(const ShaderGlobals& g, const std::vector<std::shared_ptr<const Texture>>& textures,
            glm::vec4* regs) const;

@@ -15,12 +15,12 @@ from .mesh import (MAX_COORDINATE, LocalMesh, MeshCache, export_mesh, mesh_mater
                    prototype_arrays, read_local_mesh, world_mesh, world_uvs)
 from .scene import (MESH_TYPES, SKIPPED_TYPES, Cancelled, ExportStats, export_scene,
                     instance_role, report_unsupported)
-from .world import export_world, world_background
+from .world import export_world, read_world
 
 __all__ = [
     "MAX_COORDINATE", "MESH_TYPES", "SKIPPED_TYPES", "SUPPORTED_LIGHTS", "Cancelled",
     "ExportStats", "LocalMesh", "MeshCache", "export_camera", "export_light", "export_mesh",
     "export_scene", "export_world", "instance_role", "light_node_factor", "mesh_materials",
     "prototype_arrays",
-    "read_local_mesh", "report_unsupported", "world_background", "world_mesh", "world_uvs",
+    "read_local_mesh", "report_unsupported", "read_world", "world_mesh", "world_uvs",
 ]

@@ -1,100 +1,119 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The world's background (a colour or an equirectangular environment texture)."""
+"""The world: its node tree as the core renders it. A tree that folds to a constant is a uniform
+colour; a Background fed by a plain equirectangular Environment Texture is an HDRI (the core's
+EnvironmentMap, sampled over the image's own pixels); any other tree is compiled into a shader
+program (shader_graph/background.py) that the core runs per direction, as Cycles runs its
+background shader."""
 
 import math
+from dataclasses import dataclass
 
 from ..blender_versions import used_node_tree
-from ..nodes import node_label, source_socket
+from ..nodes import source_socket
+from ..shader_graph.background import BackgroundCompiler
+from ..shader_graph.registry import READERS
+
+DEFAULT_MAP_RESOLUTION = 1024      # Cycles' world Map Resolution
 
 
-def _background_value(socket, world, what, reporter):
+@dataclass
+class WorldLook:
+    """What a world renders as: a colour, an HDRI (texture id, strength) or a program."""
+    color: tuple = (0.0, 0.0, 0.0)
+    texture: int = None
+    strength: float = 1.0
+    program: tuple = None          # ProgramBuilder.build()'s arguments
+    radiance_register: int = -1
+    resolution: int = DEFAULT_MAP_RESOLUTION
+
+
+def _constant_input(socket):
+    """A closure input's value when it is unlinked (or linked to a Value/RGB node), else None."""
     source = source_socket(socket)
-    if source is not None:
-        if source.node.type in {'RGB', 'VALUE'} and not source.node.mute:
-            return source.default_value
-        reporter.warning(f"World '{world.name}': the Background {what} is linked to "
-                         f"'{source.node.bl_label}', which Torrance does not support; "
-                         f"using the socket's own value")
-    return socket.default_value
+    if source is None:
+        return socket.default_value
+    if source.node.type in {'RGB', 'VALUE'} and not source.node.mute:
+        return source.default_value
+    return None
 
 
-def _environment_texture(world, node, output, textures, reporter):
-    """The texture id of an Environment Texture node feeding the Background Color, or None."""
-    what = f"World '{world.name}': {node_label(node)}"
-    if output.identifier != "Color":
-        reporter.warning(f"{what}: only its Color output is supported; using the Background "
-                         f"colour")
+def _plain_hdri(node, textures):
+    """The texture id of a Background whose Color is an equirectangular Environment Texture
+    read as the core's EnvironmentMap reads it (its Vector unlinked, no mapping, constant
+    Strength), else None."""
+    if node.bl_idname != 'ShaderNodeBackground' or node.mute:
         return None
-    if node.image is None:
-        reporter.warning(f"{what} has no image; using the Background colour")
+    source = source_socket(node.inputs["Color"])
+    if source is None or _constant_input(node.inputs["Strength"]) is None:
         return None
-    if node.projection != 'EQUIRECTANGULAR':
-        reporter.warning(f"{what}: the {node.projection.replace('_', ' ').lower()} projection is "
-                         f"not supported (only equirectangular); using the Background colour")
+    env = source.node
+    if (env.bl_idname != 'ShaderNodeTexEnvironment' or env.mute or source.identifier != "Color"
+            or env.image is None or env.projection != 'EQUIRECTANGULAR'
+            or env.inputs["Vector"].is_linked or not _identity_mapping(env)):
         return None
-    vector = node.inputs.get("Vector")
-    src = source_socket(vector) if vector is not None else None
-    if src is not None:
-        reporter.warning(f"{what}: the Vector input is linked to {node_label(src.node)}; "
-                         f"Torrance does not support a mapping or rotation of the environment "
-                         f"and uses the default one")
-    interpolation = node.interpolation
-    if interpolation not in ("Linear", "Closest"):
-        interpolation = "Linear"          # Cubic/Smart: a smooth lookup either way
-    return textures.texture(node.image, interpolation)
+    interpolation = env.interpolation if env.interpolation in ("Linear", "Closest") else "Linear"
+    return textures.texture(env.image, interpolation)
 
 
-def world_background(world, reporter, textures):
-    """(color, strength, texture id or None) of the world's background.
+def _identity_mapping(node):
+    m = node.texture_mapping
+    return (tuple(m.translation) == (0.0, 0.0, 0.0) and tuple(m.rotation) == (0.0, 0.0, 0.0)
+            and tuple(m.scale) == (1.0, 1.0, 1.0)
+            and (m.mapping_x, m.mapping_y, m.mapping_z) == ('X', 'Y', 'Z'))
 
-    The texture (from `textures`, a TextureTable) is an equirectangular Environment Texture
-    linked to the Background Color; color is then the socket's own value (unused).
-    """
+
+def _map_resolution(world):
+    settings = getattr(world, "cycles", None)
+    resolution = getattr(settings, "sample_map_resolution", DEFAULT_MAP_RESOLUTION)
+    return min(max(int(resolution), 4), 16384)
+
+
+def read_world(world, reporter, textures):
+    """The WorldLook of a world (None: black), reporting what it leaves out."""
     if world is None:
-        return (0.0, 0.0, 0.0), 0.0, None
-    fallback = (tuple(float(c) for c in world.color), 1.0, None)
+        return WorldLook()
     tree = used_node_tree(world)
     if tree is None:
-        return fallback
+        return WorldLook(color=tuple(float(c) for c in world.color))
     output = tree.get_output_node('CYCLES')
     if output is None:
         reporter.info(f"World '{world.name}' has no World Output node: black background")
-        return (0.0, 0.0, 0.0), 0.0, None
+        return WorldLook()
     surface = output.inputs.get("Surface")
     source = source_socket(surface) if surface is not None else None
     if source is None:
-        return (0.0, 0.0, 0.0), 0.0, None
-    node = source.node
-    if node.bl_idname != 'ShaderNodeBackground' or node.mute:
-        reporter.warning(f"World '{world.name}': '{node.bl_label}' is not supported (Torrance "
-                         f"reads a Background node); using the world colour")
-        return fallback
-    texture = None
-    color_socket = node.inputs["Color"]
-    color_source = source_socket(color_socket)
-    if (color_source is not None and not color_source.node.mute
-            and color_source.node.bl_idname == 'ShaderNodeTexEnvironment'):
-        texture = _environment_texture(world, color_source.node, color_source, textures, reporter)
-        color = color_socket.default_value
-    else:
-        color = _background_value(color_socket, world, "Color", reporter)
-    strength = _background_value(node.inputs["Strength"], world, "Strength", reporter)
+        return WorldLook()
+    hdri = _plain_hdri(source.node, textures)
+    if hdri is not None:
+        strength = _constant_input(source.node.inputs["Strength"])
+        return WorldLook(texture=hdri, strength=float(strength))
+    compiler = BackgroundCompiler(world.name, textures, READERS, reporter)
+    radiance = compiler.radiance(surface)
+    if radiance.constant:
+        return WorldLook(color=tuple(radiance.value[:3]))
     try:
-        color = tuple(float(c) for c in tuple(color)[:3])
-    except TypeError:
-        color = (float(color),) * 3
-    return color, float(strength), texture
+        program = compiler.builder.build()
+    except ValueError as exc:
+        reporter.warning(f"World '{world.name}': {exc}; black background")
+        return WorldLook()
+    return WorldLook(program=program, radiance_register=compiler.builder.register_of(radiance),
+                     resolution=_map_resolution(world))
 
 
 def export_world(tc_scene, world, reporter, textures):
-    color, strength, texture = world_background(world, reporter, textures)
-    if not math.isfinite(strength) or (texture is None
-                                       and not all(math.isfinite(c) for c in color)):
-        reporter.warning("The world colour is not finite: black background")
-        color, strength, texture = (0.0, 0.0, 0.0), 0.0, None
-    strength = max(0.0, strength)
-    if texture is not None:
-        tc_scene.set_world_texture(texture, strength=strength)
+    look = read_world(world, reporter, textures)
+    if look.program is not None:
+        program = tc_scene.add_shader_program(*look.program)
+        tc_scene.set_world_program(program, look.radiance_register, look.resolution)
         return
-    color = tuple(max(0.0, c) for c in color)
-    tc_scene.set_world(color=color, strength=strength)
+    strength = look.strength
+    if not math.isfinite(strength) or (look.texture is None
+                                       and not all(math.isfinite(c) for c in look.color)):
+        reporter.warning("The world colour is not finite: black background")
+        look = WorldLook()
+        strength = 0.0
+    strength = max(0.0, strength)
+    if look.texture is not None:
+        tc_scene.set_world_texture(look.texture, strength=strength)
+        return
+    tc_scene.set_world(color=tuple(max(0.0, c) for c in look.color), strength=strength)

@@ -194,6 +194,11 @@ def _camera_transform(g, node, mode):
     rows = camera_rows('ndc' if mode == 4 else 'camera')
     if rows is None:
         raise Unsupported(f"{node_label(node)}: the scene has no camera")
+    if g.background:
+        # Cycles' background: the camera space of the direction (as if from the camera).
+        if mode != 3:
+            raise Unsupported(f"{node_label(node)}: only Camera coordinates in a world")
+        rows = [(*r[:3], 0.0) for r in rows]
     return g.builder.emit("CameraTransform", 'float' if mode in (1, 2) else 'vector',
                           [constant('vector', r) for r in rows], mode=mode)
 

@@ -22,11 +22,13 @@ class Unsupported(Exception):
 class GraphCompiler:
     """Compiles sockets of one material's node tree into one ProgramBuilder."""
 
-    def __init__(self, builder, textures, readers, attributes=None):
+    def __init__(self, builder, textures, readers, attributes=None, background=False):
         self.builder = builder
         self.textures = textures          # texture_table.TextureTable
         self.readers = readers
         self.attributes = attributes if attributes is not None else AttributeIds()
+        # A world's tree (background.py): no mesh, the hit's position is the ray's direction.
+        self.background = background
         self._cache = {}
         self._groups = []                 # the group nodes we are inside, outermost first
 
@@ -38,9 +40,18 @@ class GraphCompiler:
             return convert(self.builder, _default(socket), kind)
         return convert(self.builder, self.output(link.from_socket), kind)
 
+    def default(self, socket, kind):
+        """An input socket's own value, converted to `kind`."""
+        return convert(self.builder, _default(socket), kind)
+
     def attribute(self, key, kind='vector'):
         """A per-corner mesh attribute (export/mesh_attributes.py's keys), interpolated at the
-        hit; the meshes of the material export it."""
+        hit; the meshes of the material export it. In a world, as in Cycles' background: the
+        Generated and Object coordinates are the direction, any other attribute 0."""
+        if self.background:
+            if key in (('generated',), ('object',)):
+                return self.builder.emit("Geometry", 'vector', mode=0)
+            return constant(kind, 0.0 if kind == 'float' else (0.0, 0.0, 0.0))
         return self.builder.emit("Attribute", kind, texture=self.attributes.request(key))
 
     def generated(self):

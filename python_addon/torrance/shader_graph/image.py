@@ -6,128 +6,34 @@ and y; Sphere and Tube wrap the Vector's direction from the box's centre; Box re
 the three object-space cube faces the shading normal sees, blended by Blend across edges and
 corners (Cycles' svm_node_tex_image_box).
 
-The twins here (sphere, tube, box) are the reference evaluator's op: float32 results, atan2 and
-acos in float64 rounded to float32.
+The Environment Texture node reads the same op's Equirectangular and Mirror Ball modes. The op's
+reference twins and fold: projections.py.
 """
-
-import math
-
-import numpy as np
 
 from ..nodes import node_label
 from .geometry import object_transform, shading_normal
 from .graph import Unsupported
 from .math_ops import MATH_OPS, VECTOR_MATH_OPS
 from .program import constant
+from . import projections
+from .projections import BOX_FACES, BOX_WEIGHTS, ENVIRONMENT_PROJECTIONS, PROJECTIONS
 
 OPCODES = {"ImageProjection": 60}
+FOLDS = projections.FOLDS
 
 # The Image Texture node's extensions, in the core's Extension order (texture.h).
 EXTENSIONS = ('REPEAT', 'EXTEND', 'CLIP', 'MIRROR')
-PROJECTIONS = {'SPHERE': 0, 'TUBE': 1}
-_BOX_FACES = (2, 3, 4)
-_BOX_WEIGHTS = 5
 _ADD, _MULTIPLY = MATH_OPS.index("ADD"), MATH_OPS.index("MULTIPLY")
-
-_F = np.float32
-
-
-def map_to_sphere(co):
-    x, y, z = (_F(c) for c in co)
-    length2 = x * x + y * y + z * z
-    if not length2 > 0:
-        return _F(0), _F(0)
-    u = _F(0) if x == 0 and y == 0 else _F(0.5) - _F(math.atan2(x, y)) * _F(0.5 / math.pi)
-    c = min(max(float(z / np.sqrt(length2)), -1.0), 1.0)
-    return u, _F(1) - _F(math.acos(c)) * _F(1 / math.pi)
-
-
-def map_to_tube(co):
-    x, y, z = (_F(c) for c in co)
-    length = np.sqrt(x * x + y * y)
-    if not length > 0:
-        return _F(0), _F(0)
-    return ((_F(1) - _F(math.atan2(x / length, y / length)) / _F(math.pi)) * _F(0.5),
-            (z + _F(1)) * _F(0.5))
-
-
-def box_weights(n, blend):
-    """Each cube face's share for a box projection seen along object-space normal n."""
-    n = [abs(_F(c)) for c in n]
-    total = n[0] + n[1] + n[2]
-    if not total > 0:
-        return 1.0, 0.0, 0.0
-    x, y, z = (c / total for c in n)
-    blend = _F(blend)
-    limit = _F(0.5) * (_F(1) + blend)
-    if x > limit * (x + y) and x > limit * (x + z):
-        return 1.0, 0.0, 0.0
-    if y > limit * (x + y) and y > limit * (y + z):
-        return 0.0, 1.0, 0.0
-    if z > limit * (x + z) and z > limit * (y + z):
-        return 0.0, 0.0, 1.0
-    if not blend > 0:
-        return 1.0, 0.0, 0.0
-
-    def edge(a, b):
-        return min(max((a / (a + b) - _F(0.5) * (_F(1) - blend)) / blend, _F(0)), _F(1))
-
-    if z < (_F(1) - limit) * (y + x):
-        w = edge(x, y)
-        return w, _F(1) - w, 0.0
-    if x < (_F(1) - limit) * (y + z):
-        w = edge(y, z)
-        return 0.0, w, _F(1) - w
-    if y < (_F(1) - limit) * (x + z):
-        w = edge(x, z)
-        return w, 0.0, _F(1) - w
-
-    def corner(a):
-        return ((_F(2) - limit) * a + (limit - _F(1))) / (_F(2) * limit - _F(1))
-
-    return corner(x), corner(y), corner(z)
-
-
-def _object_space_normal(n, axes):
-    """n by the object matrix's transpose (axes: its columns; all 0: no object), unit."""
-    m = np.array(axes, np.float64)
-    v = np.array(n[:3], np.float64)
-    det = float(np.dot(m[0], np.cross(m[1], m[2])))
-    if det != 0 and math.isfinite(det):
-        v = m @ v                               # rows of M^T are M's columns
-    length = float(np.linalg.norm(v))
-    return tuple(v / length) if length > 0 and math.isfinite(length) else (0.0, 0.0, 0.0)
-
-
-def _fold_projection(mode, flags, a, _table):
-    co = a[0][:3]
-    if mode == 0:
-        return (*(float(v) for v in map_to_sphere([(c - 0.5) * 2 for c in co])), 0.0, 0.0)
-    if mode == 1:
-        return (*(float(v) for v in map_to_tube([(c - 0.5) * 2 for c in co])), 0.0, 0.0)
-    m = _object_space_normal(a[1], [v[:3] for v in a[2:5]])
-    x, y, z = co
-    if mode == 2:
-        return (1.0 - y if m[0] < 0 else y, z, 0.0, 0.0)
-    if mode == 3:
-        return (1.0 - x if m[1] > 0 else x, z, 0.0, 0.0)
-    if mode == 4:
-        return (1.0 - y if m[2] > 0 else y, x, 0.0, 0.0)
-    return (*(float(w) for w in box_weights(m, a[6][0])), 0.0)
-
-
-FOLDS = {"ImageProjection": _fold_projection}
-
 
 def _box(g, vector, lookup, node):
     """Cycles' box projection: the image on each face, weighted."""
     b = g.builder
     args = [vector, shading_normal(g), *object_transform(g),
             constant('float', float(node.projection_blend))]
-    weights = b.emit("ImageProjection", 'vector', args, mode=_BOX_WEIGHTS)
+    weights = b.emit("ImageProjection", 'vector', args, mode=BOX_WEIGHTS)
     zero = constant('vector', (0.0, 0.0, 0.0))
     total = None
-    for axis, face in enumerate(_BOX_FACES):
+    for axis, face in enumerate(BOX_FACES):
         rgba = lookup(b.emit("ImageProjection", 'vector', args, mode=face))
         w = b.emit("Channel", 'float', [weights], mode=axis)
         part = b.emit("VectorMath", 'color', [rgba, zero, zero, w],
@@ -173,4 +79,30 @@ def _image(g, node, socket):
     return g.builder.emit("Channel", 'float', [rgba], mode=3) if alpha_wanted else rgba
 
 
-READERS = {'ShaderNodeTexImage': _image}
+def _environment(g, node, socket):
+    """The Environment Texture node: its image (Repeat, as Cycles) at the Vector's direction
+    (unlinked: the position, which in a world is the ray's direction), equirectangular or
+    mirror ball."""
+    from .textures import check_mapping
+    if node.image is None:
+        raise Unsupported(f"{node_label(node)} has no image")
+    if node.projection not in ENVIRONMENT_PROJECTIONS:
+        raise Unsupported(f"{node_label(node)}: {node.projection.lower()} projection")
+    check_mapping(node)
+    interpolation = node.interpolation if node.interpolation in ("Linear", "Closest") else "Linear"
+    tid = g.textures.texture(node.image, interpolation)
+    if tid is None:
+        raise Unsupported(f"{node_label(node)}: its image could not be loaded")
+    if socket.identifier == "Alpha" and node.image.alpha_mode == 'NONE':
+        return constant('float', 1.0)
+    vector = node.inputs.get("Vector")
+    co = (g.input(vector, 'vector') if vector is not None and vector.is_linked
+          else g.builder.emit("Geometry", 'vector', mode=0))
+    uv = g.builder.emit("ImageProjection", 'vector', [co] * 7,   # reads the Vector alone
+                        mode=ENVIRONMENT_PROJECTIONS[node.projection])
+    rgba = g.builder.emit("Image", 'color', [uv], texture=tid, mode=EXTENSIONS.index('REPEAT'))
+    return g.builder.emit("Channel", 'float', [rgba], mode=3) if socket.identifier == "Alpha" \
+        else rgba
+
+
+READERS = {'ShaderNodeTexImage': _image, 'ShaderNodeTexEnvironment': _environment}

@@ -176,8 +176,9 @@ CLOSURES = {
                            "World and the Blender spaces, Strength, any Color graph",
     'ShaderNodeBump': "rendered: any Height graph (evaluated at the hit and its ray-differential "
                       "offsets, as Cycles), Strength, Distance, Invert, Normal (chained bumps)",
-    'ShaderNodeBackground': "world: Color (a constant or an Environment Texture), Strength",
-    'ShaderNodeTexEnvironment': "world: equirectangular images feeding the Background",
+    'ShaderNodeBackground': "rendered: Color and Strength from any graph, in Mix and Add Shader "
+                            "trees (with Emission closures) of the world: its tree runs per "
+                            "direction, as Cycles' background shader",
     'ShaderNodeOutputMaterial': "rendered: the active output (target All or Cycles); its "
                                 "Displacement as bump (Cycles' Bump Only; the other methods "
                                 "are reported and rendered as bump too)",

@@ -254,7 +254,7 @@ def _unsupported(node, what):
     return Unsupported(f"{node_label(node)}: {what}")
 
 
-def _check_mapping(node):
+def check_mapping(node):
     """Cycles applies a texture node's hidden texture mapping unless it is the identity."""
     m = node.texture_mapping
     if m is None:
@@ -269,7 +269,7 @@ def _check_mapping(node):
 
 def _vector(g, node):
     """The Vector input: its link; unlinked, Cycles' Generated coordinates."""
-    _check_mapping(node)
+    check_mapping(node)
     socket = input_socket(node, "Vector")
     if socket.is_linked and any(link.is_valid and not link.is_muted for link in socket.links):
         return g.input(socket, 'vector')

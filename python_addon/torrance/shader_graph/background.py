@@ -1,0 +1,89 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The world's node tree compiled into one shader program: the radiance of its Background and
+Emission closures (Color x Strength), through Mix and Add Shader nodes, as Cycles sums a
+background shader's emission. The core runs it per direction (core/include/torrance/
+background_shader.h): the hit's position is the direction, so Generated and Object coordinates
+and an Environment Texture's unlinked Vector read it.
+
+Other closures add nothing to a world in Cycles either (a BSDF has no light to reflect there):
+they are reported and left out.
+"""
+
+from ..nodes import node_label, source_socket
+from .color_ops import MIX_BLENDS
+from .graph import GraphCompiler, Unsupported
+from .math_ops import VECTOR_MATH_OPS
+from .program import ProgramBuilder, constant
+
+_EMITTERS = {'ShaderNodeBackground', 'ShaderNodeEmission'}
+_MAX_DEPTH = 64
+_BLACK = constant('color', (0.0, 0.0, 0.0))
+_ZERO = constant('float', 0.0)
+
+
+class BackgroundCompiler:
+    """Compiles a World Output's Surface into (ProgramBuilder, radiance Value)."""
+
+    def __init__(self, world_name, textures, readers, reporter):
+        self.builder = ProgramBuilder()
+        self.values = GraphCompiler(self.builder, textures, readers, background=True)
+        self.where = f"World '{world_name}'"
+        self.reporter = reporter
+
+    def radiance(self, surface):
+        """The radiance Value (a colour) of the closure tree feeding input socket `surface`."""
+        return self._shader(source_socket(surface), 0)
+
+    def _shader(self, output, depth):
+        if output is None:
+            return _BLACK
+        node = output.node
+        if depth > _MAX_DEPTH:
+            self.reporter.warning(f"{self.where}: shader nodes nested deeper than {_MAX_DEPTH} "
+                                  f"at {node_label(node)}; left out")
+            return _BLACK
+        if node.mute:
+            passed = [link.from_socket for link in node.internal_links
+                      if link.to_socket.identifier == output.identifier]
+            return self._shader(source_socket(passed[0]) if passed else None, depth + 1)
+        kind = node.bl_idname
+        if kind in _EMITTERS:
+            return self._emitter(node)
+        if kind == 'ShaderNodeAddShader':
+            a, b = (self._shader(source_socket(s), depth + 1) for s in node.inputs[:2])
+            return self._vector_math("ADD", a, b)
+        if kind == 'ShaderNodeMixShader':
+            return self._mix(node, depth)
+        self.reporter.warning(f"{self.where}: {node_label(node)} is not a light (Torrance, as "
+                              f"Cycles, renders a world's Background and Emission closures); "
+                              f"left out")
+        return _BLACK
+
+    def _value(self, node, name, kind):
+        """A closure input's Value; an input the graph can not compile keeps its own value."""
+        socket = node.inputs[name]
+        mark = self.builder.mark()
+        try:
+            return self.values.input(socket, kind)
+        except Unsupported as exc:
+            self.builder.rollback(mark)
+            self.reporter.warning(f"{self.where}: input '{socket.name}' of {node_label(node)}: "
+                                  f"{exc}; using the socket's own value")
+            return self.values.default(socket, kind)
+
+    def _emitter(self, node):
+        color = self._value(node, "Color", 'color')
+        strength = self._value(node, "Strength", 'float')
+        return self.builder.emit("VectorMath", 'color', [color, _BLACK, _BLACK, strength],
+                                 mode=VECTOR_MATH_OPS.index("SCALE"))
+
+    def _mix(self, node, depth):
+        fac = self._value(node, "Fac", 'float')
+        a, b = (self._shader(source_socket(s), depth + 1) for s in node.inputs[1:3])
+        # Cycles clamps a Mix Shader's factor to [0, 1] (svm_node_mix_closure).
+        return self.builder.emit("MixColor", 'color', [fac, a, b], mode=MIX_BLENDS.index("MIX"),
+                                 flags=2)
+
+    def _vector_math(self, op, a, b):
+        return self.builder.emit("VectorMath", 'color', [a, b, _BLACK, _ZERO],
+                                 mode=VECTOR_MATH_OPS.index(op))
