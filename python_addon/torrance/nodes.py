@@ -44,12 +44,16 @@ def finite_or(value, fallback):
 
 
 def plain_image(node):
-    """Whether an Image Texture node is read by the texture path (flat projection, Repeat, its
-    Vector unlinked or the default UVs); otherwise the shader graph reads it."""
+    """Whether an Image Texture node is read by the texture path (flat projection, Repeat, no
+    texture mapping, its Vector unlinked or the default UVs); otherwise the shader graph reads
+    it."""
     if node.projection != 'FLAT':
         return False           # the shader graph's ImageProjection op
     if node.extension != 'REPEAT':
         return False           # the shader graph's Image op has every extension
+    from .shader_graph.texture_mapping import is_identity
+    if not is_identity(node.texture_mapping):
+        return False           # the shader graph maps the Vector
     vector = node.inputs.get("Vector")
     src = source_socket(vector) if vector is not None else None
     return src is None or is_default_uv(src)

@@ -12,6 +12,7 @@ from ..blender_versions import used_node_tree
 from ..nodes import source_socket
 from ..shader_graph.background import BackgroundCompiler
 from ..shader_graph.registry import READERS
+from ..shader_graph.texture_mapping import is_identity
 
 DEFAULT_MAP_RESOLUTION = 1024      # Cycles' world Map Resolution
 
@@ -49,17 +50,10 @@ def _plain_hdri(node, textures):
     env = source.node
     if (env.bl_idname != 'ShaderNodeTexEnvironment' or env.mute or source.identifier != "Color"
             or env.image is None or env.projection != 'EQUIRECTANGULAR'
-            or env.inputs["Vector"].is_linked or not _identity_mapping(env)):
+            or env.inputs["Vector"].is_linked or not is_identity(env.texture_mapping)):
         return None
     interpolation = env.interpolation if env.interpolation in ("Linear", "Closest") else "Linear"
     return textures.texture(env.image, interpolation)
-
-
-def _identity_mapping(node):
-    m = node.texture_mapping
-    return (tuple(m.translation) == (0.0, 0.0, 0.0) and tuple(m.rotation) == (0.0, 0.0, 0.0)
-            and tuple(m.scale) == (1.0, 1.0, 1.0)
-            and (m.mapping_x, m.mapping_y, m.mapping_z) == ('X', 'Y', 'Z'))
 
 
 def _map_resolution(world):

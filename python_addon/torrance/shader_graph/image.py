@@ -16,6 +16,7 @@ from .graph import Unsupported
 from .math_ops import MATH_OPS, VECTOR_MATH_OPS
 from .program import constant
 from . import projections
+from .texture_mapping import texture_vector
 from .projections import BOX_FACES, BOX_WEIGHTS, ENVIRONMENT_PROJECTIONS, PROJECTIONS
 
 OPCODES = {"ImageProjection": 60}
@@ -58,9 +59,7 @@ def _image(g, node, socket):
     tid = g.textures.texture(node.image, interpolation)
     if tid is None:
         raise Unsupported(f"{node_label(node)}: its image could not be loaded")
-    vector = node.inputs.get("Vector")
-    co = (g.input(vector, 'vector') if vector is not None and vector.is_linked
-          else g.builder.emit("TexCoordUV", 'vector'))
+    co = texture_vector(g, node, lambda: g.builder.emit("TexCoordUV", 'vector'))
 
     def lookup(uv):
         return g.builder.emit("Image", 'color', [uv], texture=tid,
@@ -83,21 +82,17 @@ def _environment(g, node, socket):
     """The Environment Texture node: its image (Repeat, as Cycles) at the Vector's direction
     (unlinked: the position, which in a world is the ray's direction), equirectangular or
     mirror ball."""
-    from .textures import check_mapping
     if node.image is None:
         raise Unsupported(f"{node_label(node)} has no image")
     if node.projection not in ENVIRONMENT_PROJECTIONS:
         raise Unsupported(f"{node_label(node)}: {node.projection.lower()} projection")
-    check_mapping(node)
     interpolation = node.interpolation if node.interpolation in ("Linear", "Closest") else "Linear"
     tid = g.textures.texture(node.image, interpolation)
     if tid is None:
         raise Unsupported(f"{node_label(node)}: its image could not be loaded")
     if socket.identifier == "Alpha" and node.image.alpha_mode == 'NONE':
         return constant('float', 1.0)
-    vector = node.inputs.get("Vector")
-    co = (g.input(vector, 'vector') if vector is not None and vector.is_linked
-          else g.builder.emit("Geometry", 'vector', mode=0))
+    co = texture_vector(g, node, lambda: g.builder.emit("Geometry", 'vector', mode=0))
     uv = g.builder.emit("ImageProjection", 'vector', [co] * 7,   # reads the Vector alone
                         mode=ENVIRONMENT_PROJECTIONS[node.projection])
     rgba = g.builder.emit("Image", 'color', [uv], texture=tid, mode=EXTENSIONS.index('REPEAT'))

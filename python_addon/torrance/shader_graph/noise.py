@@ -26,6 +26,7 @@ import numpy as np
 from . import hash_ops
 from .node_versions import cycles4_wave_noise, input_socket, is_cycles4_noise
 from .program import Value, constant
+from .texture_mapping import texture_vector
 
 _F = np.float32
 _0, _1, _2, _HALF = _F(0.0), _F(1.0), _F(2.0), _F(0.5)
@@ -428,32 +429,11 @@ def _unsupported(message):
     return Unsupported(message)
 
 
-def _check_mapping(node):
-    """The node's Texture Mapping (hidden in the sidebar) must be the identity: Cycles applies it
-    to the Vector, which Torrance does not."""
-    from ..nodes import node_label
-    m = getattr(node, "texture_mapping", None)
-    if m is None:
-        return
-    identity = (tuple(m.translation) == (0.0, 0.0, 0.0) and tuple(m.rotation) == (0.0, 0.0, 0.0)
-                and tuple(m.scale) == (1.0, 1.0, 1.0)
-                and (m.mapping_x, m.mapping_y, m.mapping_z) == ('X', 'Y', 'Z'))
-    if not identity:
-        raise _unsupported(f"{node_label(node)}: a Texture Mapping other than the identity")
-
-
 def _vector(g, node, needed=True):
-    """The Vector input: linked, its value; unlinked, Generated texture coordinates (Cycles'
-    default for these textures)."""
+    """The Vector input (texture_mapping.py: unlinked, Generated), where the node reads it."""
     if not needed:
         return _ZERO_VECTOR
-    socket = input_socket(node, "Vector")
-    if socket.is_linked:
-        return g.input(socket, 'vector')
-    generated = getattr(g, "generated", None)
-    if generated is None:
-        raise _unsupported("Generated coordinates")
-    return generated()
+    return texture_vector(g, node)
 
 
 def _float(g, node, name, needed=True):
@@ -477,7 +457,6 @@ def _as_float(v):
 
 
 def _noise(g, node, socket):
-    _check_mapping(node)
     dims = _dimensions(node, "noise_dimensions")
     if is_cycles4_noise(node):
         from .noise4 import read_noise4
@@ -519,7 +498,6 @@ def _white_noise_vector(g, node, needed):
 
 
 def _musgrave(g, node, socket):
-    _check_mapping(node)
     dims = _dimensions(node, "musgrave_dimensions")
     if node.musgrave_type not in MUSGRAVE_TYPES:
         from ..nodes import node_label
@@ -535,7 +513,6 @@ def _musgrave(g, node, socket):
 
 
 def _wave(g, node, socket):
-    _check_mapping(node)
     from ..nodes import node_label
     if node.wave_type not in WAVE_TYPES or node.wave_profile not in WAVE_PROFILES:
         raise _unsupported(f"{node_label(node)}: {node.wave_type} {node.wave_profile}")

@@ -19,8 +19,8 @@ import math
 
 import numpy as np
 
-from .node_versions import input_socket
 from .program import constant
+from .texture_mapping import texture_vector
 
 _F = np.float32
 
@@ -254,29 +254,9 @@ def _unsupported(node, what):
     return Unsupported(f"{node_label(node)}: {what}")
 
 
-def check_mapping(node):
-    """Cycles applies a texture node's hidden texture mapping unless it is the identity."""
-    m = node.texture_mapping
-    if m is None:
-        return
-    identity = (tuple(m.translation) == (0.0, 0.0, 0.0) and tuple(m.rotation) == (0.0, 0.0, 0.0)
-                and tuple(m.scale) == (1.0, 1.0, 1.0)
-                and (m.mapping_x, m.mapping_y, m.mapping_z) == ('X', 'Y', 'Z')
-                and not m.use_min and not m.use_max)
-    if not identity:
-        raise _unsupported(node, "a texture mapping (the node's hidden Mapping settings)")
-
-
 def _vector(g, node):
-    """The Vector input: its link; unlinked, Cycles' Generated coordinates."""
-    check_mapping(node)
-    socket = input_socket(node, "Vector")
-    if socket.is_linked and any(link.is_valid and not link.is_muted for link in socket.links):
-        return g.input(socket, 'vector')
-    generated = getattr(g, "generated", None)
-    if generated is None:
-        raise _unsupported(node, "Generated coordinates (its Vector unlinked)")
-    return generated()
+    """The Vector input, mapped; unlinked, Cycles' Generated coordinates."""
+    return texture_vector(g, node)
 
 
 def _emit(g, op, socket, args, mode=0):

@@ -25,6 +25,7 @@ import numpy as np
 from . import hash_ops
 from .node_versions import input_socket, voronoi_fractal
 from .program import constant
+from .texture_mapping import texture_vector
 
 OPCODES = {"Voronoi": 48}
 
@@ -329,27 +330,11 @@ def linked(socket):
     return any(link.is_valid and not link.is_muted for link in socket.links)
 
 
-def _check_mapping(node):
-    m = node.texture_mapping
-    if (m.vector_type != 'POINT' or any(m.translation) or any(m.rotation)
-            or tuple(m.scale) != (1.0, 1.0, 1.0) or m.use_min or m.use_max
-            or (m.mapping_x, m.mapping_y, m.mapping_z) != ('X', 'Y', 'Z')):
-        from ..nodes import node_label
-        raise unsupported(f"{node_label(node)}: a Texture Mapping other than the identity")
-
-
 def _arguments(g, node, dimensions, feature, metric):
     """The op's six arguments; the inputs this setting does not read are constants (0)."""
     zero = constant('float', 0.0)
-    if dimensions == 1:
-        vector = constant('vector', (0.0, 0.0, 0.0))
-    elif linked(input_socket(node, "Vector")):
-        vector = g.input(input_socket(node, "Vector"), 'vector')
-    else:
-        generated = getattr(g, "generated", None)
-        if generated is None:
-            raise unsupported("Generated coordinates")
-        vector = generated()
+    vector = (constant('vector', (0.0, 0.0, 0.0)) if dimensions == 1
+              else texture_vector(g, node))
     w = g.input(input_socket(node, "W"), 'float') if dimensions in (1, 4) else zero
     smoothness = (g.input(input_socket(node, "Smoothness"), 'float') if feature == 'SMOOTH_F1'
                   else zero)
@@ -372,7 +357,6 @@ def _emit(g, node, flags, kind):
 
 
 def _voronoi(g, node, socket):
-    _check_mapping(node)
     dimensions = int(node.voronoi_dimensions[0])
     feature = node.feature
     if feature not in FEATURES or node.distance not in METRICS:
