@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """The nodes that read the object's and the camera's transforms render as Cycles 3.4 renders
 them: Tangent (UV Map, Radial X and Z), Vector Transform (Point, Vector and Normal between
-World, Object and Camera, both ways) and Normal Map in Object and Blender Object space (and
+World, Object and Camera, both ways), Texture Coordinate > Normal (the normal in object space)
+and Normal Map in Object and Blender Object space (and
 Blender 5.1+'s DirectX convention in Object space), each shown through an Emission shader (a
 vector v as 0.5 v + 0.5) on patches of the grid (torrance_tools.shader_graphs).
 
@@ -93,6 +94,10 @@ def normal_object_to_world(g):
                       'WORLD')
 
 
+def texco_normal(g):
+    return shown(g, g.node("ShaderNodeTexCoord").outputs["Normal"])
+
+
 def _normal_map(g, space, convention=None):
     nm = g.node("ShaderNodeNormalMap", space=space)
     if convention is not None:
@@ -122,7 +127,8 @@ _DIRECTX = "convention" in bpy.types.ShaderNodeNormalMap.bl_rna.properties
 MAKERS = (tangent_uv, tangent_radial_z, tangent_radial_x, point_world_to_object,
           vector_object_to_camera, normal_camera_to_object, point_camera_to_world,
           point_world_to_camera, normal_object_to_world, normal_map_object,
-          normal_map_blender_object) + ((normal_map_object_directx,) if _DIRECTX else ())
+          normal_map_blender_object, texco_normal) + ((normal_map_object_directx,) if _DIRECTX
+                                                      else ())
 for _make in MAKERS:
     _make.setup = _setup
 
@@ -143,6 +149,16 @@ def _uv_tangent_in_world(original):
     return read
 
 
+def _texco_normal_in_world(original):
+    """Texture Coordinate > Normal read as the world-space normal."""
+    def read(g, node, socket):
+        if socket.identifier == "Normal":
+            from torrance.shader_graph.geometry import shading_normal
+            return shading_normal(g)
+        return original(g, node, socket)
+    return read
+
+
 def main():
     testing.addon()
     from torrance.shader_graph import bump, vector
@@ -157,6 +173,8 @@ def main():
          _uv_tangent_in_world),
         ("Normal Map object spaces read as world", readers, 'ShaderNodeNormalMap',
          read_with(_world_spaces)),
+        ("Texture Coordinate Normal in world space", readers, 'ShaderNodeTexCoord',
+         _texco_normal_in_world),
         ("Normals moved as the other Cycles moves them (3.4: as vectors, 4.x: inverse "
          "transpose)", vector, 'cycles4_normal_transform',
          lambda original: lambda: not original())) + ((

@@ -51,10 +51,25 @@ def _geometry(g, node, socket):
                           mode=mode)
 
 
+# The Vector Transform op's mode for a Normal from World to Object (vector.py numbers them).
+_NORMAL_WORLD_TO_OBJECT = (2 * 3 + 0) * 3 + 1
+
+
+def object_space_normal(g):
+    """Texture Coordinate > Normal: the shading normal in object space, as Cycles' texco
+    (normalize(M^T n): the Vector Transform op's Normal with Cycles 4.x's normal transform,
+    flags 2, in every Blender); unchanged where there is no object (a world)."""
+    n = shading_normal(g)
+    return g.builder.emit("VectorTransform", 'vector', [n, *object_transform(g), *[n] * 6],
+                          mode=_NORMAL_WORLD_TO_OBJECT, flags=2)
+
+
 def _texture_coordinate(g, node, socket):
     out = socket.identifier
     if out == "Reflection":
         return g.builder.emit("Reflection", 'vector')
+    if out == "Normal":
+        return object_space_normal(g)
     if node.object is not None and out == "Object":
         return _other_object(g, node)
     if out == "UV":
@@ -67,8 +82,7 @@ def _texture_coordinate(g, node, socket):
         return _camera_transform(g, node, 3)
     if out == "Window":
         return _camera_transform(g, node, 4)
-    raise Unsupported(f"{node_label(node)}'s output '{socket.name}' is not supported (UV, "
-                      f"Generated, Object, Camera, Window and Reflection are)")
+    raise Unsupported(f"{node_label(node)}'s output '{socket.name}' is not supported")
 
 
 def _uv_map(g, node, socket):
