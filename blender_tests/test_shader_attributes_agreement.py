@@ -2,13 +2,15 @@
 """Mesh attributes in the shader graph render as Cycles 3.4 renders them: Texture Coordinate
 Generated and Object, a UV Map node naming a second UV map (also driving an image), Color
 Attribute nodes (a float colour attribute on points, a byte one on face corners read as the
-render colour), Attribute nodes (a float point attribute's Fac, a UV map by name), each shown
+render colour, a colour's Alpha), Attribute nodes (a float point attribute's Fac, a UV map by
+name, a colour's Alpha, a UV map's Fac: its u), each shown
 through an Emission shader on a patch of the grid (torrance_tools.shader_graphs), the patches'
 quads rotated and scaled so that Generated and Object differ.
 
 Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
 seeds 2 and 3. Deliberate faults (the corners' attribute order reversed in the export, Generated
-read as Object, the named UV map read as the render one) must fail them.
+read as Object, the named UV map read as the render one, every Fac the mean and every Alpha 1)
+must fail them.
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_shader_attributes_agreement.py
@@ -137,8 +139,27 @@ def attribute_uv(g):
 
 attribute_uv.setup = _second_uvs
 
+def _alpha_and_uvs(obj):
+    attr = obj.data.color_attributes.new("Veil", 'FLOAT_COLOR', 'POINT')
+    attr.data.foreach_set("color", np.array([[0.9, 0.1, 0.2, 1.0], [0.1, 0.8, 0.3, 0.2],
+                                             [0.2, 0.3, 0.9, 0.6], [1.5, 1.2, 0.1, 0.0]],
+                                            np.float32).ravel())
+    _second_uvs(obj)
+
+
+def alphas_and_fac(g):
+    """R: a Color Attribute's Alpha, G: an Attribute node's Alpha of the same colours, B: an
+    Attribute node's Fac of a UV map (a 2D attribute: its u, in Cycles)."""
+    vc = g.node("ShaderNodeVertexColor", layer_name="Veil")
+    colour = g.node("ShaderNodeAttribute", attribute_name="Veil")
+    uv = g.node("ShaderNodeAttribute", attribute_name="Second")
+    return g.combine(vc.outputs["Alpha"], colour.outputs["Alpha"], uv.outputs["Fac"])
+
+
+alphas_and_fac.setup = _alpha_and_uvs
+
 MAKERS = (generated, object_coords, named_uv, named_uv_image, point_colours, render_colours,
-          attribute_fac, attribute_uv)
+          attribute_fac, attribute_uv, alphas_and_fac)
 
 
 def reversed_corners(original):
@@ -159,9 +180,20 @@ def generated_as_object(original):
     return read
 
 
+def fac_as_mean_alpha_one(original):
+    """A fault: every attribute's Fac its xyz mean (a 2D one's too) and its Alpha 1."""
+    def fac_alpha(values):
+        xyz = np.zeros((len(values), 3), np.float32)
+        xyz[:, :min(values.shape[1], 3)] = values[:, :3]
+        return np.stack([xyz.mean(axis=1), np.ones(len(values), np.float32),
+                         np.zeros(len(values), np.float32)], axis=1)
+    return fac_alpha
+
+
 def main():
     testing.addon()
     import torrance.export.mesh as export_mesh
+    import torrance.export.mesh_attributes as mesh_attributes
     from torrance.shader_graph.graph import GraphCompiler
     from torrance.shader_graph.registry import READERS
     agree_on_patches(
@@ -169,7 +201,8 @@ def main():
         faults=(("corners reversed", export_mesh, "attribute_layers", reversed_corners),
                 ("Generated read as Object", GraphCompiler, "generated", generated_as_object),
                 ("named UV map read as the render one", DictAttr(READERS), 'ShaderNodeUVMap',
-                 read_with(uv_map=""))))
+                 read_with(uv_map="")),
+                ("Fac the mean, Alpha 1", mesh_attributes, "_fac_alpha", fac_as_mean_alpha_one)))
 
 
 testing.run(main)

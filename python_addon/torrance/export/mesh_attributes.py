@@ -11,6 +11,9 @@ Keys (shader_graph's attribute requests):
   ('color', name)      a colour attribute (vertex colours; '' = the active render one), linear
   ('attribute', name)  an Attribute node's geometry attribute: a colour, vector or float
                        attribute of that name (a float as (v, v, v)), else a UV map of that name
+  ('attribute_fac_alpha', name)  that attribute's Fac and Alpha outputs as x and y (Cycles':
+                       a number itself, a 2D vector its x, else the mean; a colour's alpha, else 1)
+  ('color_alpha', name)  a colour attribute's alpha as x (the Color Attribute node's Alpha)
   ('object_info', k)   Object Info's per-object constants (k: location, color, alpha, index,
                        random; axis_x, axis_y, axis_z: the matrix's columns, for the shader
                        graph's object transforms), not the mesh's: object_info() gives them,
@@ -45,27 +48,55 @@ def _as_xyz(values):
     return np.ascontiguousarray(values[:, :3])
 
 
-def _generic(mesh, name):
-    """(values (n, 3), domain) of a geometry attribute called name, or None."""
+def _raw(mesh, name):
+    """(values (n, k), domain) of a geometry attribute called name, or None: k = 1 for a
+    number, 2 for a 2D vector, 3 for a vector, 4 for a colour (RGBA)."""
     attr = mesh.attributes.get(name)
     if attr is None or attr.domain not in ('POINT', 'CORNER', 'FACE'):
         return None
     n = len(attr.data)
     kind = attr.data_type
     if kind in ('FLOAT_COLOR', 'BYTE_COLOR'):
-        return _as_xyz(_read(attr.data, "color", n, 4)), attr.domain
+        return _read(attr.data, "color", n, 4), attr.domain
     if kind == 'FLOAT_VECTOR':
         return _read(attr.data, "vector", n, 3), attr.domain
     if kind == 'FLOAT2':
-        return _as_xyz(_read(attr.data, "vector", n, 2)), attr.domain
+        return _read(attr.data, "vector", n, 2), attr.domain
     if kind in ('FLOAT', 'INT', 'BOOLEAN', 'INT8'):
         out = np.empty(n, dtype=np.float32 if kind == 'FLOAT' else np.int32)
         attr.data.foreach_get("value", out)
-        return _as_xyz(out.astype(np.float32).reshape(n, 1)), attr.domain
+        return out.astype(np.float32).reshape(n, 1), attr.domain
     return None
 
 
-def _color(mesh, name):
+def _generic(mesh, name):
+    """(values (n, 3), domain) of a geometry attribute called name, or None."""
+    found = _raw(mesh, name)
+    return None if found is None else (_as_xyz(found[0]), found[1])
+
+
+def _fac_alpha(values):
+    """(n, 3): an Attribute node's Fac and Alpha (x, y) of raw values (n, k), as Cycles'
+    svm_node_attr: a number itself, a 2D vector its x, a vector or colour its mean; the alpha
+    of a colour, 1 for the others."""
+    n, k = values.shape
+    fac = values[:, 0] if k <= 2 else values[:, :3].mean(axis=1)
+    alpha = values[:, 3] if k == 4 else np.ones(n, np.float32)
+    return np.stack([fac, alpha, np.zeros(n, np.float32)], axis=1)
+
+
+def _attribute_fac_alpha(mesh, name):
+    found = _raw(mesh, name)
+    if found is None:
+        uv = mesh.uv_layers.get(name)
+        if uv is None:
+            return None
+        found = _read(uv.data, "uv", len(mesh.loops), 2), 'CORNER'
+    return _fac_alpha(found[0]), found[1]
+
+
+def _color_raw(mesh, name):
+    """_raw of a colour attribute by name ('': the active render one), or None."""
     colors = getattr(mesh, "color_attributes", None)
     if colors is None:
         return None
@@ -74,7 +105,22 @@ def _color(mesh, name):
         attr = colors[index] if 0 <= index < len(colors) else colors.active_color
     else:
         attr = colors.get(name)
-    return None if attr is None else _generic(mesh, attr.name)
+    return None if attr is None else _raw(mesh, attr.name)
+
+
+def _color(mesh, name):
+    found = _color_raw(mesh, name)
+    return None if found is None else (_as_xyz(found[0]), found[1])
+
+
+def _color_alpha(mesh, name):
+    """A Color Attribute node's Alpha (x): the colour's alpha (Cycles' svm_node_vertex_color)."""
+    found = _color_raw(mesh, name)
+    if found is None:
+        return None
+    values, domain = found
+    alpha = values[:, 3] if values.shape[1] == 4 else np.ones(len(values), np.float32)
+    return np.stack([alpha, np.zeros_like(alpha), np.zeros_like(alpha)], axis=1), domain
 
 
 def _uv(mesh, name):
@@ -111,6 +157,10 @@ def read_corner_attributes(mesh, nt, keys, co, tris):
             found = _color(mesh, key[1])
         elif key[0] == 'attribute':
             found = _generic(mesh, key[1]) or _uv(mesh, key[1])
+        elif key[0] == 'attribute_fac_alpha':
+            found = _attribute_fac_alpha(mesh, key[1])
+        elif key[0] == 'color_alpha':
+            found = _color_alpha(mesh, key[1])
         if found is not None:
             values, domain = found
             corner = _per_corner(np.asarray(values, np.float32), domain, tris, corner_loops,

@@ -94,24 +94,26 @@ def _uv_map(g, node, socket):
 
 
 def _color_attribute(g, node, socket):
-    """Color Attribute (Vertex Color) node: a colour attribute by name ('': the render one)."""
+    """Color Attribute (Vertex Color) node: a colour attribute by name ('': the render one),
+    its Alpha (0 where the mesh has none, as Cycles)."""
     if socket.identifier == "Alpha":
-        raise Unsupported(f"{node_label(node)}'s Alpha output is not supported")
+        return g.builder.emit("Channel", 'float', [g.attribute(('color_alpha', node.layer_name))],
+                              mode=0)
     return g.attribute(('color', node.layer_name), 'color')
 
 
 def _attribute(g, node, socket):
-    """Attribute node, Geometry type: Color/Vector the attribute, Fac its average."""
+    """Attribute node, Geometry type: Color/Vector the attribute; Fac and Alpha as Cycles'
+    svm_node_attr gives them for the attribute's type (export/mesh_attributes.py)."""
     if node.attribute_type != 'GEOMETRY':
         raise Unsupported(f"{node_label(node)}: {node.attribute_type.lower()} attributes are not "
                           f"supported")
-    if socket.identifier == "Alpha":
-        raise Unsupported(f"{node_label(node)}'s Alpha output is not supported")
-    value = g.attribute(('attribute', node.attribute_name),
-                        'vector' if socket.identifier == "Vector" else 'color')
-    if socket.identifier == "Fac":
-        return g.builder.emit("Average", 'float', [value])
-    return value
+    if socket.identifier in ("Fac", "Alpha"):
+        scalars = g.attribute(('attribute_fac_alpha', node.attribute_name))
+        return g.builder.emit("Channel", 'float', [scalars],
+                              mode=0 if socket.identifier == "Fac" else 1)
+    return g.attribute(('attribute', node.attribute_name),
+                       'vector' if socket.identifier == "Vector" else 'color')
 
 
 def _fresnel(g, node, socket):
