@@ -11,26 +11,25 @@ DiffuseBsdf::DiffuseBsdf(const Vec3& color, float roughness)
   b_ = sigma * a_;
 }
 
+// Cycles weighs wi by the cosine whatever side of the normal the viewer is on (a viewer below it
+// counts as grazing: cos_o clamped to 0); that happens only about a Cycles 4.x DiffuseNormal.
 LobeEval DiffuseBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
-  if (wo.z <= 0.0f || wi.z <= 0.0f) return {};
+  if (wi.z <= 0.0f) return {};
   float t = 0.0f;
   if (b_ > 0.0f) {
-    t = glm::dot(wi, wo) - wi.z * wo.z;
-    if (t > 0.0f) t /= std::max(wi.z, wo.z);  // Cycles divides positive t only; negative t stays
+    const float cos_o = std::max(wo.z, 0.0f);
+    t = glm::dot(wi, wo) - wi.z * cos_o;
+    if (t > 0.0f) t /= std::max(wi.z, cos_o);  // Cycles divides positive t only; negative t stays
   }
   LobeEval f;
   f.diffuse = color_ * (wi.z * (a_ + b_ * t));
   return f;
 }
 
-float DiffuseBsdf::pdf(const Vec3& wo, const Vec3& wi) const {
-  if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
-  return cosine_hemisphere_pdf(wi.z);
-}
+float DiffuseBsdf::pdf(const Vec3& /*wo*/, const Vec3& wi) const { return cosine_hemisphere_pdf(wi.z); }
 
 BsdfSample DiffuseBsdf::sample(const Vec3& wo, float /*u_lobe*/, const Vec2& u) const {
   BsdfSample s;
-  if (wo.z <= 0.0f) return s;
   s.wi = sample_cosine_hemisphere(u);
   s.diffuse = true;
   s.pdf = pdf(wo, s.wi);

@@ -5,6 +5,22 @@
 #include <stdexcept>
 
 namespace torrance {
+namespace {
+
+// The frame of a DiffuseBsdf closure: about the diffuse normal d (bsdf.h) where it is tilted,
+// else the shading frame itself.
+struct DiffuseFrame {
+  explicit DiffuseFrame(const DiffuseNormal& d) : tilted(d.tilted), frame(d.tilted ? Frame(d.n) : Frame()) {}
+  Vec3 to_local(const Vec3& v) const { return tilted ? frame.to_local(v) : v; }
+  Vec3 to_world(const Vec3& v) const { return tilted ? frame.to_world(v) : v; }
+  bool tilted;
+  Frame frame;
+};
+
+template <typename B, typename T>
+constexpr bool is = std::is_same_v<std::decay_t<B>, T>;
+
+}  // namespace
 
 float principled_sampling_albedo(const Material& m) {
   return luminance(glm::clamp(m.base_color, Vec3(0.0f), Vec3(1.0f))) +
@@ -23,14 +39,16 @@ void MixtureBsdf::add(const Component& c, float w, float sampling_albedo) {
   for (int k = 0; k < count_; ++k) probabilities_[k] = sampling_[k] / sum;
 }
 
-LobeEval MixtureBsdf::eval_mixture(const Vec3& wo, const Vec3& wi, bool backfacing) const {
+LobeEval MixtureBsdf::eval_mixture(const Vec3& wo, const Vec3& wi, bool backfacing,
+                                   const DiffuseNormal& diffuse) const {
+  const DiffuseFrame d(diffuse);
   LobeEval total;
   for (int k = 0; k < count_; ++k) {
     const LobeEval f = std::visit(
         [&](const auto& b) -> LobeEval {
-          if constexpr (std::is_same_v<std::decay_t<decltype(b)>, std::monostate>) return {};
-          else if constexpr (std::is_same_v<std::decay_t<decltype(b)>, MaterialBsdf>)
-            return b.eval_lobes(wo, wi, backfacing);
+          if constexpr (is<decltype(b), std::monostate>) return {};
+          else if constexpr (is<decltype(b), MaterialBsdf>) return b.eval_lobes(b.at(wo, backfacing, false, diffuse), wi);
+          else if constexpr (is<decltype(b), DiffuseBsdf>) return b.eval_lobes(d.to_local(wo), d.to_local(wi));
           else return b.eval_lobes(wo, wi);
         },
         components_[k]);
@@ -40,33 +58,41 @@ LobeEval MixtureBsdf::eval_mixture(const Vec3& wo, const Vec3& wi, bool backfaci
   return total;
 }
 
-float MixtureBsdf::pdf_mixture(const Vec3& wo, const Vec3& wi, bool backfacing) const {
+float MixtureBsdf::pdf_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse) const {
+  const DiffuseFrame d(diffuse);
   float p = 0.0f;
   for (int k = 0; k < count_; ++k)
     p += probabilities_[k] * std::visit(
                                  [&](const auto& b) -> float {
-                                   if constexpr (std::is_same_v<std::decay_t<decltype(b)>, std::monostate>) return 0.0f;
-                                   else if constexpr (std::is_same_v<std::decay_t<decltype(b)>, MaterialBsdf>)
-                                     return b.pdf(wo, wi, backfacing);
+                                   if constexpr (is<decltype(b), std::monostate>) return 0.0f;
+                                   else if constexpr (is<decltype(b), MaterialBsdf>)
+                                     return b.pdf(b.at(wo, backfacing, true, diffuse), wi);
+                                   else if constexpr (is<decltype(b), DiffuseBsdf>)
+                                     return b.pdf(d.to_local(wo), d.to_local(wi));
                                    else return b.pdf(wo, wi);
                                  },
                                  components_[k]);
   return p;
 }
 
-BsdfSample MixtureBsdf::sample_mixture(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing) const {
+BsdfSample MixtureBsdf::sample_mixture(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing,
+                                       const DiffuseNormal& diffuse) const {
   if (count_ == 0) return {};
   // Choose closure k, and reuse what is left of u_lobe for the closure's own lobe choice.
   int k = 0;
   float lower = 0.0f;
   while (k < count_ - 1 && u_lobe >= lower + probabilities_[k]) lower += probabilities_[k++];
-  const float u_rest = std::min((u_lobe - lower) / probabilities_[k], 0.99999994f);
+  const float u_rest = std::max(std::min((u_lobe - lower) / probabilities_[k], 0.99999994f), 0.0f);
+  const DiffuseFrame d(diffuse);
   const BsdfSample s = std::visit(
       [&](const auto& b) -> BsdfSample {
-        if constexpr (std::is_same_v<std::decay_t<decltype(b)>, std::monostate>) return {};
-        else if constexpr (std::is_same_v<std::decay_t<decltype(b)>, MaterialBsdf>)
-          return b.sample(wo, std::max(u_rest, 0.0f), u, backfacing);
-        else return b.sample(wo, std::max(u_rest, 0.0f), u);
+        if constexpr (is<decltype(b), std::monostate>) return {};
+        else if constexpr (is<decltype(b), MaterialBsdf>) return b.sample(b.at(wo, backfacing, true, diffuse), u_rest, u);
+        else if constexpr (is<decltype(b), DiffuseBsdf>) {
+          BsdfSample local = b.sample(d.to_local(wo), u_rest, u);
+          local.wi = d.to_world(local.wi);
+          return local;
+        } else return b.sample(wo, u_rest, u);
       },
       components_[k]);
   if (!s.valid()) return {};
@@ -83,9 +109,9 @@ BsdfSample MixtureBsdf::sample_mixture(const Vec3& wo, float u_lobe, const Vec2&
   BsdfSample m;
   m.wi = s.wi;
   m.diffuse = s.diffuse;
-  m.pdf = pdf_mixture(wo, s.wi, backfacing);
+  m.pdf = pdf_mixture(wo, s.wi, backfacing, diffuse);
   if (!(m.pdf > 0.0f)) return {};
-  m.weight = eval_mixture(wo, s.wi, backfacing).total() / m.pdf;
+  m.weight = eval_mixture(wo, s.wi, backfacing, diffuse).total() / m.pdf;
   return m;
 }
 

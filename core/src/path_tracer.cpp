@@ -401,6 +401,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
         ns = -ns;
         n_smooth = -n_smooth;
       }
+      const Vec3 ns_closure = ns;  // unchecked: Cycles 4.x's diffuse lobes shade with it
       ns = valid_shading_normal(ng, ns, wo_world);
 
       // Emissive surfaces emit from both faces; NEE samples them too (the mesh light).
@@ -427,7 +428,9 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
 
       const Frame frame(ns);
       const Vec3 wo = frame.to_local(wo_world);
-      const typename Bsdf::View view = bsdf.at(wo, backfacing);  // wo's terms, once for this vertex's queries
+      const DiffuseNormal diffuse = diffuse_normal(frame, ns, ns_closure, ctx.settings.brdf_model);
+      const Vec3& n_diffuse = diffuse.tilted ? ns_closure : ns;
+      const typename Bsdf::View view = bsdf.at(wo, backfacing, diffuse);  // wo's terms, once for this vertex's queries
       // Path guiding (guided_bsdf.h) on opaque single-material surfaces with a continuous lobe.
       const bool guidable =
           ctx.guide && !mixture && !transmits && (material.metallic < 1.0f || material.roughness >= 0.3f);
@@ -446,7 +449,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
         const Vec3 wi = frame.to_local(ls.wi);
         if (!ls.valid() || !leaves_geometric_side(ls.wi, ng, wi.z, transmits)) return;
         LobeEval f = bsdf.template eval_lobes<kGlass>(view, wi);
-        if (normal_mapped) f.diffuse *= bump_shadowing(n_smooth, ns, ls.wi);
+        if (normal_mapped) f.diffuse *= bump_shadowing(n_smooth, n_diffuse, ls.wi);
         if (!(max_component(f.total()) > 0.0f)) return;
         const Vec3 transmittance =
             shadow_transmittance<kAlpha>(ctx.scene, hit.position, ng, ls, ctx.settings.max_transparent_bounces,
@@ -517,7 +520,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       }
       if (normal_mapped && !bs.is_delta) {
         LobeEval f = bsdf.template eval_lobes<kGlass>(view, bs.wi);
-        f.diffuse *= bump_shadowing(n_smooth, ns, wi_world);
+        f.diffuse *= bump_shadowing(n_smooth, n_diffuse, wi_world);
         bs.weight = f.total() / bs.pdf;
       }
       if (recorder.enabled() && guidable && !bs.is_delta)

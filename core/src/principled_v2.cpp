@@ -115,11 +115,12 @@ PrincipledV2Bsdf::View PrincipledV2Bsdf::at(const Vec3& wo) const {
 
 LobeEval PrincipledV2Bsdf::eval_lobes(const View& view, const Vec3& wi) const {
   const Vec3& wo = view.wo;
-  if (wo.z <= 0.0f || wi.z <= 0.0f) return {};
+  if (wo.z <= 0.0f) return {};
   const ViewTerms& v = view.terms;
   LobeEval f_cos;
-  f_cos.diffuse = v.diffuse * (kInvPi * wi.z);
-  if (has_delta()) return f_cos;
+  const float cos_diffuse = view.diffuse_normal.cosine(wi);
+  if (cos_diffuse > 0.0f) f_cos.diffuse = v.diffuse * (kInvPi * cos_diffuse);
+  if (wi.z <= 0.0f || has_delta()) return f_cos;
   Vec3 h;
   if (!ggx::reflection_half(wo, wi, h)) return f_cos;
   const float cos_d = clamp01(glm::dot(wi, h));

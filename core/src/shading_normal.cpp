@@ -19,4 +19,12 @@ Vec3 valid_shading_normal(const Vec3& ng, const Vec3& ns, const Vec3& wo) {
   return len > 1e-6f ? n / len : ng;
 }
 
+DiffuseNormal diffuse_normal(const Frame& frame, const Vec3& checked, const Vec3& unchecked, BrdfModel model) {
+  DiffuseNormal d;
+  if (model != BrdfModel::PrincipledV2 || checked == unchecked) return d;
+  d.n = frame.to_local(unchecked);
+  d.tilted = true;
+  return d;
+}
+
 }  // namespace torrance

@@ -245,5 +245,54 @@ TEST(ChiSquare, MixtureSamplingMatchesPdf) {
     }
 }
 
+// Cycles 4.x's diffuse lobes keep the closure's normal where the specular ones' is checked
+// (bsdf.h, DiffuseNormal): sampling about that tilted normal must still draw the pdf it reports,
+// and a viewer below the tilted normal still gets the diffuse lobe's max(n.wi, 0) / pi.
+TEST(ChiSquare, TiltedDiffuseNormalSamplingMatchesPdf) {
+  Material plastic;
+  plastic.base_color = Vec3(0.8f, 0.5f, 0.3f);
+  plastic.roughness = 0.4f;
+  DiffuseNormal tilted;
+  tilted.n = glm::normalize(Vec3(0.6f, 0.2f, 0.5f));
+  tilted.tilted = true;
+  MixtureBsdf dg;
+  dg.add(DiffuseBsdf(Vec3(0.7f), 0.0f), 0.5f, 0.7f);
+  dg.add(GlossyBsdf(Vec3(0.9f, 0.8f, 0.6f), 0.3f), 0.5f, 0.8f);
+  const MaterialBsdf v2(plastic, BrdfModel::PrincipledV2);
+  const double significance = 0.01 / 6.0;
+  uint32_t seed = 7000;
+  for (float cos_o : {0.9f, 0.3f, 0.05f}) {
+    const Vec3 wo = test::direction(cos_o, 3.5f);  // on the side away from the tilt
+    const MixtureBsdf::View mix_view = dg.at(wo, false, tilted);
+    const MaterialBsdf::View v2_view = v2.at(wo, false, tilted);
+    EXPECT_EQ(chi_square(wo, 0.25f, seed++, significance,
+                         [&](Rng& rng) {
+                           const float u = rng.next_1d();
+                           const BsdfSample s = dg.sample(mix_view, u, rng.next_2d());
+                           return Sampled{s.wi, s.valid(), s.is_delta};
+                         },
+                         [&](const Vec3& wi) { return dg.pdf(mix_view, wi); }),
+              "")
+        << "diffuse+glossy cos_o=" << cos_o;
+    EXPECT_EQ(chi_square(wo, 0.25f, seed++, significance,
+                         [&](Rng& rng) {
+                           const float u = rng.next_1d();
+                           const BsdfSample s = v2.sample(v2_view, u, rng.next_2d());
+                           return Sampled{s.wi, s.valid(), s.is_delta};
+                         },
+                         [&](const Vec3& wi) { return v2.pdf(v2_view, wi); }),
+              "")
+        << "PRINCIPLED_V2 cos_o=" << cos_o;
+  }
+  // A viewer below the diffuse normal: the Diffuse closure's light along n is colour / pi.
+  const Vec3 wo_below = glm::normalize(Vec3(-0.9f, 0.0f, 0.2f));
+  ASSERT_LT(glm::dot(wo_below, tilted.n), 0.0f);
+  MixtureBsdf diffuse;
+  diffuse.add(DiffuseBsdf(Vec3(0.7f), 0.0f), 1.0f, 0.7f);
+  EXPECT_NEAR(diffuse.eval_lobes(diffuse.at(wo_below, false, tilted), tilted.n).diffuse.x, 0.7f / kPi, 1e-6f);
+  EXPECT_EQ(diffuse.eval_lobes(diffuse.at(wo_below, false), tilted.n).diffuse.x,
+            DiffuseBsdf(Vec3(0.7f), 0.0f).eval(wo_below, tilted.n).x);
+}
+
 }  // namespace
 }  // namespace torrance

@@ -57,6 +57,18 @@ struct Material {
   Vec3 transparent_color{1.0f};
 };
 
+// The normal a BSDF's diffuse lobes shade with, in its shading frame. The frame's z is the
+// shading normal after valid_shading_normal (shading_normal.h): Cycles 3.4 checks every closure's
+// normal so, Cycles 4.x (the PRINCIPLED_V2 model) only its specular, refracting, translucent
+// and subsurface ones, so that its diffuse lobes (Diffuse BSDF, Principled's diffuse) keep the
+// closure's normal as it came (`tilted`: it differs from z). A diffuse lobe then weighs a light
+// direction wi by max(n.wi, 0) whatever side of n the viewer is on, as Cycles' do.
+struct DiffuseNormal {
+  Vec3 n{0.0f, 0.0f, 1.0f};
+  bool tilted = false;
+  float cosine(const Vec3& wi) const { return tilted ? glm::dot(n, wi) : wi.z; }
+};
+
 // eval() split by lobe, for Blender's diffuse and glossy light passes.
 struct LobeEval {
   Vec3 diffuse{0.0f};

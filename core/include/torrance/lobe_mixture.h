@@ -34,7 +34,14 @@ struct View {
   float g1_o = 0.0f;       // ggx::smith_G1(wo.z, alpha)
   float four_cos_o = 0.0f;  // 4 wo.z
   float p_spec = 1.0f;     // bsdf.specular_probability(wo)
+  DiffuseNormal diffuse_normal;  // the diffuse lobe's (bsdf.h); PRINCIPLED_V2 alone reads it
 };
+
+// A cosine-distributed direction about the diffuse lobe's normal d.
+inline Vec3 sample_diffuse(const DiffuseNormal& d, const Vec2& u) {
+  const Vec3 local = sample_cosine_hemisphere(u);
+  return d.tilted ? Frame(d.n).to_world(local) : local;
+}
 
 // Fills the geometric terms of `v` for wo (not p_spec: the model's at() adds it).
 inline void prepare(View& v, const Vec3& wo, float alpha) {
@@ -47,9 +54,9 @@ inline void prepare(View& v, const Vec3& wo, float alpha) {
 template <typename Bsdf>
 float pdf(const Bsdf& bsdf, const View& v, const Vec3& wi, float alpha) {
   const Vec3& wo = v.wo;
-  if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
-  float pdf = (1.0f - v.p_spec) * cosine_hemisphere_pdf(wi.z);
-  if (!bsdf.has_delta() && v.p_spec > 0.0f)
+  if (wo.z <= 0.0f) return 0.0f;
+  float pdf = (1.0f - v.p_spec) * cosine_hemisphere_pdf(v.diffuse_normal.cosine(wi));
+  if (wi.z > 0.0f && !bsdf.has_delta() && v.p_spec > 0.0f)
     pdf += v.p_spec * ggx::reflected_pdf_given(v.g1_o, v.four_cos_o, glm::normalize(wo + wi), alpha);
   return pdf;
 }
@@ -69,11 +76,12 @@ BsdfSample sample(const Bsdf& bsdf, const typename Bsdf::View& v, float u_lobe, 
       return s;
     }
     s.wi = ggx::reflect(wo, ggx::sample_visible_normal(wo, alpha, u));
+    if (s.wi.z <= 0.0f) return BsdfSample{};
   } else {
-    s.wi = sample_cosine_hemisphere(u);
+    s.wi = sample_diffuse(v.diffuse_normal, u);
     s.diffuse = true;
+    if (v.diffuse_normal.cosine(s.wi) <= 0.0f) return BsdfSample{};
   }
-  if (s.wi.z <= 0.0f) return BsdfSample{};
   s.pdf = pdf(bsdf, v, s.wi, alpha);
   if (!(s.pdf > 0.0f)) return BsdfSample{};
   s.weight = bsdf.eval_lobes(v, s.wi).total() / s.pdf;

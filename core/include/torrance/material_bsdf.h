@@ -68,13 +68,17 @@ class MaterialBsdf {
     // The opaque lobes' choice of their specular lobe for this wo (1 without opaque lobes).
     float p_spec() const { return std::visit([](const auto& v) { return v.p_spec; }, lobes); }
   };
-  // lobe_choice = false: without the lobe choice p_spec (1), for eval alone.
-  View at(const Vec3& wo, bool backfacing = false, bool lobe_choice = true) const {
+  // lobe_choice = false: without the lobe choice p_spec (1), for eval alone. diffuse: the diffuse
+  // lobe's normal (bsdf.h).
+  View at(const Vec3& wo, bool backfacing = false, bool lobe_choice = true, const DiffuseNormal& diffuse = {}) const {
     const bool choice = lobe_choice && opaque_;
-    return View{std::visit([&](const auto& b) -> decltype(View::lobes) { return choice ? b.at(wo) : b.geometry(wo); },
-                           bsdf_),
-                wo, backfacing};
+    View v{std::visit([&](const auto& b) -> decltype(View::lobes) { return choice ? b.at(wo) : b.geometry(wo); },
+                      bsdf_),
+           wo, backfacing};
+    if (diffuse.tilted) std::visit([&](auto& lv) { lv.diffuse_normal = diffuse; }, v.lobes);
+    return v;
   }
+  View at(const Vec3& wo, bool backfacing, const DiffuseNormal& diffuse) const { return at(wo, backfacing, true, diffuse); }
 
   // kGlass = false: the caller knows no material of the scene transmits (the integrator's
   // glass-free path), so the glass is not even checked for.

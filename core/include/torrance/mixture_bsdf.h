@@ -58,29 +58,34 @@ class MixtureBsdf {
   }
   bool transmits() const;  // some closure is glass
 
-  // The View interface of MaterialBsdf: a mixture prepares nothing (each closure its own wo).
+  // The View interface of MaterialBsdf: a mixture prepares nothing (each closure its own wo);
+  // `diffuse`: its diffuse lobes' normal (bsdf.h).
   struct View {
     Vec3 wo{0.0f, 0.0f, 1.0f};
     bool backfacing = false;
+    DiffuseNormal diffuse;
   };
-  View at(const Vec3& wo, bool backfacing = false) const { return View{wo, backfacing}; }
+  View at(const Vec3& wo, bool backfacing = false, const DiffuseNormal& diffuse = {}) const {
+    return View{wo, backfacing, diffuse};
+  }
   template <bool kGlass = true>
   LobeEval eval_lobes(const View& v, const Vec3& wi) const {
-    return eval_mixture(v.wo, wi, v.backfacing);
+    return eval_mixture(v.wo, wi, v.backfacing, v.diffuse);
   }
   template <bool kGlass = true>
   float pdf(const View& v, const Vec3& wi) const {
-    return pdf_mixture(v.wo, wi, v.backfacing);
+    return pdf_mixture(v.wo, wi, v.backfacing, v.diffuse);
   }
   template <bool kGlass = true>
   BsdfSample sample(const View& v, float u_lobe, const Vec2& u) const {
-    return sample_mixture(v.wo, u_lobe, u, v.backfacing);
+    return sample_mixture(v.wo, u_lobe, u, v.backfacing, v.diffuse);
   }
 
  private:
-  LobeEval eval_mixture(const Vec3& wo, const Vec3& wi, bool backfacing) const;
-  float pdf_mixture(const Vec3& wo, const Vec3& wi, bool backfacing) const;
-  BsdfSample sample_mixture(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing) const;
+  LobeEval eval_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse = {}) const;
+  float pdf_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse = {}) const;
+  BsdfSample sample_mixture(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing,
+                            const DiffuseNormal& diffuse = {}) const;
 
   std::array<Component, kMaxMixtureComponents> components_{};
   std::array<float, kMaxMixtureComponents> weights_{};

@@ -15,8 +15,9 @@
 //               F0: f0 = 2 level F0(ior) = 0.08 specular (Material::specular carries it, see
 //               bsdf.h), and eta = ior_from_F0(f0) = (1 + sqrt f0) / (1 - sqrt f0) (1 / that for
 //               ior < 1; eta = ior when f0 = F0(ior), i.e. level 0.5). No lobe when eta = 1.
-//   diffuse     Lambert, base colour (1 - metallic) w(wo): the light the dielectric layer does
-//               not reflect, w = clamp(1 - max_rgb(A_d(wo)), 0, 1), with the dielectric layer's
+//   diffuse     Lambert about the View's diffuse_normal (bsdf.h: Cycles 4.x's diffuse keeps the
+//               unchecked normal), base colour (1 - metallic) w(wo): the light the dielectric
+//               layer does not reflect, w = clamp(1 - max_rgb(A_d(wo)), 0, 1), with the dielectric layer's
 //               estimated albedo A_d = k mix(f0 tint, 1, S(r, mu_o, eta)) (ggx_tables.h).
 //
 // Multiscatter GGX (Material::multiscatter_ggx, the node's default "Multiscatter GGX"): each GGX
