@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """Object Info renders as Cycles 3.4 renders it: Location, Color, Alpha, Object Index, Material
-Index and Random, each shown through an Emission shader on patches of the grid
-(torrance_tools.shader_graphs), every patch its own object (its own location, colour, pass
+Index and Random; so do the Attribute node's Object attributes (a custom property of the object
+or of its mesh, an RNA path) and View Layer attributes (a scene's custom property), each shown
+through an Emission shader on patches of the grid (torrance_tools.shader_graphs), every patch its own object (its own location, colour, pass
 index and name, hence random number), two of them sharing one mesh.
 
 These are world-space meshes (the final render's objects); instanced objects are
@@ -9,7 +10,7 @@ test_object_info_instances_agreement.py's.
 
 Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
 seeds 2 and 3. Deliberate faults (the random number of another hash, the object colour's red
-and blue swapped) must fail them.
+and blue swapped, attributes not searched on the object's data) must fail them.
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_shader_object_info_agreement.py
@@ -98,7 +99,42 @@ def _share_mesh(obj):
 random_a.setup = _share_mesh
 random_b.setup = _share_mesh
 
-MAKERS = (location, color, alpha_and_index, random_a, random_b)
+def _attribute(g, kind, name, output):
+    return g.node("ShaderNodeAttribute", attribute_type=kind,
+                  attribute_name=name).outputs[output]
+
+
+def object_attribute(g):
+    """An Object attribute: the object's custom property 'tint' (an array)."""
+    return _attribute(g, 'OBJECT', "tint", "Color")
+
+
+def _tinted(obj):
+    obj["tint"] = (0.2, 0.7, 0.4)
+
+
+object_attribute.setup = _tinted
+
+
+def attribute_kinds(g):
+    """R: an Object attribute found on the object's mesh ('gain', a number: its Fac), G: the
+    RNA path 'color' (the object colour's alpha), B: a View Layer attribute found on the scene
+    ('haze': its Fac)."""
+    return g.combine(_attribute(g, 'OBJECT', "gain", "Fac"),
+                     _attribute(g, 'OBJECT', "color", "Alpha"),
+                     _attribute(g, 'VIEW_LAYER', "haze", "Fac"))
+
+
+def _gain(obj):
+    obj.data["gain"] = 0.6
+    obj.color = (0.3, 0.9, 0.2, 0.45)
+    obj.users_scene[0]["haze"] = 0.35
+
+
+attribute_kinds.setup = _gain
+
+MAKERS = (location, color, alpha_and_index, random_a, random_b, object_attribute,
+          attribute_kinds)
 
 
 def other_random(original):
@@ -116,13 +152,24 @@ def color_swapped(original):
     return info
 
 
+def data_not_searched(original):
+    """A fault: an Object attribute looked up on the object alone, not on its data."""
+    def lookup(obj, name):
+        from torrance.export.object_attributes import rgba_attribute
+        return rgba_attribute((obj,), name)
+    return lookup
+
+
 def main():
     testing.addon()
+    import torrance.export.object_attributes as object_attributes
     import torrance.export.scene as export_scene
     agree_on_patches(
-        MAKERS, what="Object Info",
+        MAKERS, what="Object Info and Object / View Layer attributes",
         faults=(("random of another hash", export_scene, "object_info", other_random),
-                ("colour's red and blue swapped", export_scene, "object_info", color_swapped)))
+                ("colour's red and blue swapped", export_scene, "object_info", color_swapped),
+                ("attributes not searched on the object's data", object_attributes,
+                 "object_attribute", data_not_searched)))
 
 
 testing.run(main)

@@ -16,7 +16,9 @@ Keys (shader_graph's attribute requests):
   ('color_alpha', name)  a colour attribute's alpha as x (the Color Attribute node's Alpha)
   ('object_info', k)   Object Info's per-object constants (k: location, color, alpha, index,
                        random; axis_x, axis_y, axis_z: the matrix's columns, for the shader
-                       graph's object transforms), not the mesh's: object_info() gives them,
+                       graph's object transforms; ('attribute', name) and
+                       ('attribute_fac_alpha', name): an Object attribute), not the mesh's:
+                       object_info() gives them,
                        add_world_mesh adds them to a world-space mesh; an instance of a
                        prototype gets them as instance constants (instances_info,
                        Scene.set_instance_constants)
@@ -216,21 +218,54 @@ def object_random_id(name):
     return _jenkins_final((init + h) & _U32, init, init)
 
 
+class ObjectInfo(dict):
+    """instances_info's answer: the Object Info keys, and the keys of the object's attributes
+    (the Attribute node's Object type, export/object_attributes.py), computed when asked:
+    ('object_info', ('attribute', name)) its RGB, ('object_info', ('attribute_fac_alpha',
+    name)) its Fac (the RGB's mean) and Alpha as x and y. Each value: float32 (N, 3), or with
+    single=True one xyz tuple."""
+
+    def __init__(self, fixed, obj, n, single=False):
+        super().__init__(fixed)
+        self.obj, self.n, self.single = obj, n, single
+
+    @staticmethod
+    def _is_attribute(key):
+        return (isinstance(key, tuple) and len(key) == 2 and key[0] == 'object_info'
+                and isinstance(key[1], tuple) and key[1][0] in ('attribute', 'attribute_fac_alpha'))
+
+    def __contains__(self, key):
+        return dict.__contains__(self, key) or self._is_attribute(key)
+
+    def __missing__(self, key):
+        if not self._is_attribute(key):
+            raise KeyError(key)
+        from .object_attributes import object_attribute
+        r, g, b, a = object_attribute(self.obj, key[1][1])
+        xyz = (r, g, b) if key[1][0] == 'attribute' else ((r + g + b) / 3.0, a, 0.0)
+        value = (tuple(float(np.float32(x)) for x in xyz) if self.single
+                 else np.broadcast_to(np.asarray(xyz, np.float32), (self.n, 3)))
+        self[key] = value
+        return value
+
+
 def object_info(obj, matrix, random_id=None):
     """{('object_info', k): xyz} of a (non-instanced) object as Cycles 3.4 syncs it: its world
     location (the matrix's translation) and axes (its columns), colour and alpha (Object >
     Viewport Display > Color), pass index, and random number: random_id (default
-    object_random_id of its name) times 1 / 0xFFFFFFFF, in float32."""
+    object_random_id of its name) times 1 / 0xFFFFFFFF, in float32; its attributes (ObjectInfo)."""
     m = np.asarray(matrix, dtype=np.float64).reshape(4, 4)[None, :3, :]
     if random_id is None:
         random_id = object_random_id(obj.name)
     info = instances_info(obj, m, np.array([random_id]))
-    return {key: tuple(float(x) for x in v[0]) for key, v in info.items()}
+    return ObjectInfo({key: tuple(float(x) for x in v[0]) for key, v in info.items()}, obj, 1,
+                      single=True)
 
 
 def instances_info(obj, matrices, random_ids):
-    """{('object_info', k): float32 (N, 3)} of N instances of obj (Cycles 3.4's Object Info of
-    each): matrices (N, 3, 4) object to world, random_ids (N,) Blender's random ids
+    """ObjectInfo {('object_info', k): float32 (N, 3)} of N instances of obj (Cycles 3.4's
+    Object Info of each, and the object's attributes): matrices (N, 3, 4) object to world,
+    random_ids (N,) Blender's random ids
     (DepsgraphObjectInstance.random_id; object_random_id for an object itself)."""
     m = np.asarray(matrices, dtype=np.float64)
     n = len(m)
@@ -241,14 +276,14 @@ def instances_info(obj, matrices, random_ids):
     def same(v):
         return np.broadcast_to(np.asarray(v, np.float32), (n, 3))
 
-    return {('object_info', 'location'): m[:, :, 3].astype(np.float32),
+    return ObjectInfo({('object_info', 'location'): m[:, :, 3].astype(np.float32),
             ('object_info', 'axis_x'): m[:, :, 0].astype(np.float32),
             ('object_info', 'axis_y'): m[:, :, 1].astype(np.float32),
             ('object_info', 'axis_z'): m[:, :, 2].astype(np.float32),
             ('object_info', 'color'): same(color[:3]),
             ('object_info', 'alpha'): same(color[3]),
             ('object_info', 'index'): same(float(obj.pass_index)),
-            ('object_info', 'random'): np.repeat(random[:, None], 3, axis=1)}
+            ('object_info', 'random'): np.repeat(random[:, None], 3, axis=1)}, obj, n)
 
 
 def instance_constant_layers(needs, info):

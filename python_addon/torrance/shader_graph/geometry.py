@@ -102,18 +102,36 @@ def _color_attribute(g, node, socket):
     return g.attribute(('color', node.layer_name), 'color')
 
 
+def _view_layer_attribute(node, socket):
+    """A View Layer attribute: a constant of the render (export/object_attributes.py)."""
+    import bpy
+    from ..export.object_attributes import view_layer_attribute
+    r, g, b, a = view_layer_attribute(bpy.context.scene, bpy.context.view_layer,
+                                      node.attribute_name)
+    out = socket.identifier
+    if out in ("Fac", "Alpha"):
+        return constant('float', (r + g + b) / 3.0 if out == "Fac" else a)
+    return constant('vector' if out == "Vector" else 'color', (r, g, b))
+
+
 def _attribute(g, node, socket):
-    """Attribute node, Geometry type: Color/Vector the attribute; Fac and Alpha as Cycles'
-    svm_node_attr gives them for the attribute's type (export/mesh_attributes.py)."""
-    if node.attribute_type != 'GEOMETRY':
-        raise Unsupported(f"{node_label(node)}: {node.attribute_type.lower()} attributes are not "
-                          f"supported")
-    if socket.identifier in ("Fac", "Alpha"):
-        scalars = g.attribute(('attribute_fac_alpha', node.attribute_name))
-        return g.builder.emit("Channel", 'float', [scalars],
-                              mode=0 if socket.identifier == "Fac" else 1)
-    return g.attribute(('attribute', node.attribute_name),
-                       'vector' if socket.identifier == "Vector" else 'color')
+    """Attribute node: Geometry (a mesh attribute), Object (the object's, then its data's custom
+    property or RNA path: per-object constants) and View Layer (a constant); Color/Vector the
+    attribute, Fac and Alpha as Cycles' svm_node_attr gives them for the attribute's type
+    (export/mesh_attributes.py). Instancer attributes are reported."""
+    kind, name, out = node.attribute_type, node.attribute_name, socket.identifier
+    if kind == 'VIEW_LAYER':
+        return _view_layer_attribute(node, socket)
+    if kind not in ('GEOMETRY', 'OBJECT'):
+        raise Unsupported(f"{node_label(node)}: {kind.lower()} attributes are not supported")
+
+    def key(what):
+        return ('object_info', (what, name)) if kind == 'OBJECT' else (what, name)
+
+    if out in ("Fac", "Alpha"):
+        scalars = g.attribute(key('attribute_fac_alpha'))
+        return g.builder.emit("Channel", 'float', [scalars], mode=0 if out == "Fac" else 1)
+    return g.attribute(key('attribute'), 'vector' if out == "Vector" else 'color')
 
 
 def _fresnel(g, node, socket):
