@@ -2,8 +2,9 @@
 """Object Info renders as Cycles 3.4 renders it: Location, Color, Alpha, Object Index, Material
 Index and Random; so do the Attribute node's Object attributes (a custom property of the object
 or of its mesh, an RNA path) and View Layer attributes (a scene's custom property), each shown
-through an Emission shader on patches of the grid (torrance_tools.shader_graphs), every patch its own object (its own location, colour, pass
-index and name, hence random number), two of them sharing one mesh.
+through an Emission shader on patches of the grid (torrance_tools.shader_graphs), every patch
+its own object (its own location, colour, pass index and name, hence random number), two of
+them sharing one mesh.
 
 These are world-space meshes (the final render's objects); instanced objects are
 test_object_info_instances_agreement.py's.
