@@ -112,7 +112,8 @@ ColorSpace parse_colorspace(const std::string& s) {
 Interpolation parse_interpolation(const std::string& s) {
   if (s == "Linear") return Interpolation::Linear;
   if (s == "Closest") return Interpolation::Closest;
-  throw py::value_error("interpolation must be 'Linear' or 'Closest', got '" + s + "'");
+  if (s == "Cubic") return Interpolation::Cubic;
+  throw py::value_error("interpolation must be 'Linear', 'Closest' or 'Cubic', got '" + s + "'");
 }
 
 SensorFit parse_fit(const std::string& s) {

@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <stdexcept>
 
 namespace torrance {
@@ -158,6 +159,27 @@ glm::vec4 Texture::Level::bilinear(const Vec2& uv, Extension e) const {
                   glm::mix(texel(x0, y0 + 1, e), texel(x0 + 1, y0 + 1, e), tx), ty);
 }
 
+// The uniform cubic B-spline's weights of the four texels around a point t (in [0, 1)) past the
+// second one.
+static std::array<float, 4> spline_weights(float t) {
+  return {(((-1.0f / 6.0f) * t + 0.5f) * t - 0.5f) * t + 1.0f / 6.0f, ((0.5f * t - 1.0f) * t) * t + 2.0f / 3.0f,
+          ((-0.5f * t + 0.5f) * t + 0.5f) * t + 1.0f / 6.0f, (1.0f / 6.0f) * t * t * t};
+}
+
+glm::vec4 Texture::Level::bicubic(const Vec2& uv, Extension e) const {
+  const Vec2 at = e == Extension::Repeat ? uv - glm::floor(uv) : glm::clamp(uv, Vec2(-1e6f), Vec2(1e6f));
+  const float x = at.x * width - 0.5f, y = at.y * height - 0.5f;
+  const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+  const std::array<float, 4> wx = spline_weights(x - float(x0)), wy = spline_weights(y - float(y0));
+  glm::vec4 sum(0.0f);
+  for (int j = 0; j < 4; ++j) {
+    glm::vec4 row(0.0f);
+    for (int i = 0; i < 4; ++i) row += wx[size_t(i)] * texel(x0 - 1 + i, y0 - 1 + j, e);
+    sum += wy[size_t(j)] * row;
+  }
+  return sum;
+}
+
 glm::vec4 Texture::lookup(const Vec2& uv, float footprint, Extension extension) const {
   // The finest level holds the texels as stored, so an sRGB image is interpolated in sRGB and
   // decoded after, as Cycles does with the sRGB images it keeps compressed (all of them); the
@@ -174,7 +196,7 @@ glm::vec4 Texture::lookup(const Vec2& uv, float footprint, Extension extension) 
       const Vec2 at = extension == Extension::Repeat ? uv - glm::floor(uv) : glm::clamp(uv, Vec2(-1e6f), Vec2(1e6f));
       return finest(base.texel(int(std::floor(at.x * width_)), int(std::floor(at.y * height_)), extension));
     }
-    return finest(base.bilinear(uv, extension));
+    return finest(interpolation_ == Interpolation::Cubic ? base.bicubic(uv, extension) : base.bilinear(uv, extension));
   }
   const float lod = std::min(std::log2(texels), float(levels_.size() - 1));
   const int l0 = int(lod);

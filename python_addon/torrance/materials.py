@@ -228,10 +228,6 @@ class MaterialReader:
         if node.extension != 'REPEAT':
             self.reporter.warning(f"{what}: extension '{node.extension.title()}' is not supported; "
                                   f"the image repeats")
-        interpolation = node.interpolation
-        if interpolation not in ("Linear", "Closest"):
-            self.reporter.info(f"{what}: '{interpolation}' interpolation is rendered as Linear")
-            interpolation = "Linear"
         vector = node.inputs.get("Vector")
         if vector is not None:
             src = source_socket(vector)
@@ -244,7 +240,7 @@ class MaterialReader:
                 self.reporter.warning(
                     f"{what}: the Vector input is linked to {node_label(src.node)}, which Torrance "
                     f"does not support here; using the mesh's active render UV map")
-        return self.textures.texture(node.image, interpolation)
+        return self.textures.texture(node.image, node.interpolation)
 
     def read(self, mat):
         """add_material() keyword arguments for a Blender material (None = default material)."""

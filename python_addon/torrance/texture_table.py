@@ -76,6 +76,10 @@ def _first_line(exc):
     return str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
 
 
+# An image node's interpolation -> the core's.
+INTERPOLATIONS = {"Linear": "Linear", "Closest": "Closest", "Cubic": "Cubic", "Smart": "Cubic"}
+
+
 class TextureTable:
     """Adds each Blender image to a tc.Scene once per render; maps images to texture ids.
 
@@ -97,11 +101,11 @@ class TextureTable:
         return image.as_pointer()
 
     def texture(self, image, interpolation="Linear"):
-        """The texture id of a Blender image (None when it can not be used)."""
+        """The texture id of a Blender image (None when it can not be used), interpolated as an
+        image node's interpolation says (Cycles' CPU renders Smart as Cubic)."""
         if image is None:
             return None
-        if interpolation not in ("Linear", "Closest"):
-            interpolation = "Linear"
+        interpolation = INTERPOLATIONS.get(interpolation, "Linear")
         key = (self._key(image), interpolation)
         if key in self.ids:
             return self.ids[key]

@@ -1,5 +1,5 @@
 // Image textures as Blender's Image Texture node samples them: UV (0,0) is the image's bottom-left
-// corner, REPEAT extension, Linear (bilinear) or Closest interpolation. sRGB-encoded images are
+// corner, REPEAT extension, Linear (bilinear), Closest or Cubic interpolation. sRGB-encoded images are
 // interpolated as stored and decoded after (as Cycles, which keeps sRGB images compressed), so
 // an edge between two colours ramps in sRGB, not in linear. A mip pyramid (2x2 box filter) lets lookups
 // with a footprint average what a pixel covers (trilinear), so distant detail does not alias.
@@ -13,7 +13,8 @@
 namespace torrance {
 
 enum class ColorSpace { Linear, SRGB };
-enum class Interpolation { Linear, Closest };
+// Cubic: Cycles' CPU bicubic, a uniform cubic B-spline over 4 x 4 texels (Smart renders as it).
+enum class Interpolation { Linear, Closest, Cubic };
 // The Image Texture node's Extension, as Cycles' CPU lookups: Repeat wraps; Extend clamps to the
 // edge texels; Clip reads 0 outside the image (Linear: texels beyond the edge are 0; Closest: 0
 // outside [0, 1]); Mirror (Blender 3.5+) reflects at each edge.
@@ -40,6 +41,7 @@ class Texture {
     std::vector<glm::vec4> texels;
     glm::vec4 texel(int x, int y, Extension e = Extension::Repeat) const;
     glm::vec4 bilinear(const Vec2& uv, Extension e = Extension::Repeat) const;
+    glm::vec4 bicubic(const Vec2& uv, Extension e = Extension::Repeat) const;
   };
   static void average_decoded(const Level& fine, Level& coarse);
   int width_, height_;

@@ -52,8 +52,7 @@ def _plain_hdri(node, textures):
             or env.image is None or env.projection != 'EQUIRECTANGULAR'
             or env.inputs["Vector"].is_linked or not is_identity(env.texture_mapping)):
         return None
-    interpolation = env.interpolation if env.interpolation in ("Linear", "Closest") else "Linear"
-    return textures.texture(env.image, interpolation)
+    return textures.texture(env.image, env.interpolation)
 
 
 def _map_resolution(world):

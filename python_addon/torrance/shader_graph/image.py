@@ -55,8 +55,7 @@ def _image(g, node, socket):
         raise Unsupported(f"{node_label(node)}: {node.projection.lower()} projection")
     if node.extension not in EXTENSIONS:
         raise Unsupported(f"{node_label(node)}: extension '{node.extension.title()}'")
-    interpolation = node.interpolation if node.interpolation in ("Linear", "Closest") else "Linear"
-    tid = g.textures.texture(node.image, interpolation)
+    tid = g.textures.texture(node.image, node.interpolation)
     if tid is None:
         raise Unsupported(f"{node_label(node)}: its image could not be loaded")
     co = texture_vector(g, node, lambda: g.builder.emit("TexCoordUV", 'vector'))
@@ -86,8 +85,7 @@ def _environment(g, node, socket):
         raise Unsupported(f"{node_label(node)} has no image")
     if node.projection not in ENVIRONMENT_PROJECTIONS:
         raise Unsupported(f"{node_label(node)}: {node.projection.lower()} projection")
-    interpolation = node.interpolation if node.interpolation in ("Linear", "Closest") else "Linear"
-    tid = g.textures.texture(node.image, interpolation)
+    tid = g.textures.texture(node.image, node.interpolation)
     if tid is None:
         raise Unsupported(f"{node_label(node)}: its image could not be loaded")
     if socket.identifier == "Alpha" and node.image.alpha_mode == 'NONE':
