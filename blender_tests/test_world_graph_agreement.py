@@ -150,7 +150,7 @@ def emission_left_out(original):
 
 def main():
     testing.addon()
-    from torrance.shader_graph.background import BackgroundCompiler
+    from torrance.shader_graph.emission_tree import EmissionTree
     from torrance.shader_graph.registry import READERS
     readers = DictAttr(READERS)
     scene = testing.clear_scene()
@@ -173,7 +173,7 @@ def main():
         scene, d, 64, BOUNCES, "a mirror-ball HDRI plus a glowing noise",
         faults=(("the mirror ball read as equirectangular", readers, 'ShaderNodeTexEnvironment',
                  read_with(projection='EQUIRECTANGULAR')),
-                ("the Emission left out", BackgroundCompiler, '_emitter', emission_left_out)),
+                ("the Emission left out", EmissionTree, '_emitter', emission_left_out)),
         tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
 
 

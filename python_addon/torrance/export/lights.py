@@ -6,7 +6,7 @@ import math
 import numpy as np
 
 from ..blender_versions import used_node_tree
-from ..nodes import node_label, source_socket
+from ..nodes import source_socket
 
 SUPPORTED_LIGHTS = {'SUN', 'POINT', 'SPOT', 'AREA'}
 
@@ -24,50 +24,40 @@ def _vec(v):
 
 
 def light_node_factor(obj, light, reporter):
-    """The colour factor of a light's node tree, as Cycles multiplies it onto colour x energy.
-
-    A tree whose Light Output is fed by an Emission node with constant Color and Strength
-    (what "Use Nodes" creates) is supported; anything else is reported once and ignored.
-    """
+    """The colour factor of a light's node tree, as Cycles multiplies it onto colour x energy:
+    the Emission (and Background) closures of its Light Output, through Mix and Add Shader
+    nodes, their Color and Strength from any node graph that folds to a constant (a Blackbody,
+    Math, RGB ...). A graph that varies over the light (textures, Light Falloff, IES) is
+    reported and the light renders with a factor of 1."""
     tree = used_node_tree(light)
     if tree is None:
         return (1.0, 1.0, 1.0)
-    unsupported = f"Light '{light.name}': Torrance does not support its node tree"
+    where = f"Light '{light.name}'"
     output = tree.get_output_node('CYCLES')
     surface = output.inputs.get("Surface") if output is not None else None
-    source = source_socket(surface) if surface is not None else None
-    if source is None:
-        reporter.warning(f"{unsupported} (nothing feeds the Light Output); the nodes are ignored")
+    if surface is None or source_socket(surface) is None:
+        reporter.warning(f"{where}: nothing feeds the Light Output; the nodes are ignored")
         return (1.0, 1.0, 1.0)
-    node = source.node
-    if node.bl_idname != 'ShaderNodeEmission' or node.mute:
-        reporter.warning(f"{unsupported} ({node_label(node)} feeds the Light Output; Torrance "
-                         f"reads an Emission node); the nodes are ignored")
+    from ..shader_graph.emission_tree import EmissionTree
+    from ..shader_graph.registry import READERS
+    radiance = EmissionTree(where, _NoTextures(), READERS, reporter,
+                            background=False).radiance(surface)
+    if not radiance.constant:
+        reporter.warning(f"{where}: its node tree varies over the light (Torrance renders a light "
+                         f"whose nodes fold to one colour); the nodes are ignored")
         return (1.0, 1.0, 1.0)
-    values = []
-    for name in ("Color", "Strength"):
-        socket = node.inputs[name]
-        src = source_socket(socket)
-        if src is None:
-            values.append(socket.default_value)
-        elif src.node.type in {'RGB', 'VALUE'} and not src.node.mute:
-            values.append(src.default_value)
-        else:
-            reporter.warning(f"{unsupported} (the Emission {name} is linked to "
-                             f"{node_label(src.node)}); using the socket's own value")
-            values.append(socket.default_value)
-    color, strength = values
-    try:
-        color = tuple(float(c) for c in tuple(color)[:3])
-    except TypeError:
-        color = (float(color),) * 3
-    strength = float(strength)
-    factor = tuple(c * strength for c in color)
+    factor = tuple(float(c) for c in radiance.value[:3])
     if not all(math.isfinite(c) for c in factor):
-        reporter.warning(f"Light '{light.name}': its Emission node is not finite; the nodes "
-                         f"are ignored")
+        reporter.warning(f"{where}: its Emission node is not finite; the nodes are ignored")
         return (1.0, 1.0, 1.0)
     return tuple(max(0.0, c) for c in factor)
+
+
+class _NoTextures:
+    """A light's graph reads no image: an image makes it vary (reported by the caller)."""
+
+    def texture(self, image, interpolation="Linear"):
+        return 0 if image is not None else None
 
 
 def export_light(tc_scene, obj, matrix, reporter):

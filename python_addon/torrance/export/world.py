@@ -2,7 +2,7 @@
 """The world: its node tree as the core renders it. A tree that folds to a constant is a uniform
 colour; a Background fed by a plain equirectangular Environment Texture is an HDRI (the core's
 EnvironmentMap, sampled over the image's own pixels); any other tree is compiled into a shader
-program (shader_graph/background.py) that the core runs per direction, as Cycles runs its
+program (shader_graph/emission_tree.py) that the core runs per direction, as Cycles runs its
 background shader."""
 
 import math
@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 from ..blender_versions import used_node_tree
 from ..nodes import source_socket
-from ..shader_graph.background import BackgroundCompiler
+from ..shader_graph.emission_tree import EmissionTree
 from ..shader_graph.registry import READERS
 from ..shader_graph.texture_mapping import is_identity
 
@@ -80,7 +80,7 @@ def read_world(world, reporter, textures):
     if hdri is not None:
         strength = _constant_input(source.node.inputs["Strength"])
         return WorldLook(texture=hdri, strength=float(strength))
-    compiler = BackgroundCompiler(world.name, textures, READERS, reporter)
+    compiler = EmissionTree(f"World '{world.name}'", textures, READERS, reporter)
     radiance = compiler.radiance(surface)
     if radiance.constant:
         return WorldLook(color=tuple(radiance.value[:3]))

@@ -27,7 +27,7 @@ class GraphCompiler:
         self.textures = textures          # texture_table.TextureTable
         self.readers = readers
         self.attributes = attributes if attributes is not None else AttributeIds()
-        # A world's tree (background.py): no mesh, the hit's position is the ray's direction.
+        # A world's tree (emission_tree.py): no mesh, the hit's position is the ray's direction.
         self.background = background
         self._cache = {}
         self._groups = []                 # the group nodes we are inside, outermost first

@@ -183,7 +183,10 @@ CLOSURES = {
                                 "Displacement as bump (Cycles' Bump Only; the other methods "
                                 "are reported and rendered as bump too)",
     'ShaderNodeOutputWorld': "rendered: the active output",
-    'ShaderNodeOutputLight': "partly: an Emission of constant Color and Strength",
+    'ShaderNodeOutputLight': "partly: Emission (and Background) closures in Mix and Add Shader "
+                             "trees whose Color and Strength graphs fold to constants "
+                             "(Blackbody, Math, ...); a graph that varies over the light "
+                             "(textures, Light Falloff, IES) is reported",
     # Read by graph.GraphCompiler itself.
     'ShaderNodeGroup': "rendered: node groups, nested, are compiled through (muted nodes pass "
                        "their inputs through as Blender does; reroutes are followed)",

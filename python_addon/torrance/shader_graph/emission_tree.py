@@ -1,12 +1,13 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The world's node tree compiled into one shader program: the radiance of its Background and
-Emission closures (Color x Strength), through Mix and Add Shader nodes, as Cycles sums a
-background shader's emission. The core runs it per direction (core/include/torrance/
-background_shader.h): the hit's position is the direction, so Generated and Object coordinates
-and an Environment Texture's unlinked Vector read it.
+"""A world's or a light's node tree compiled into one shader program: the radiance of its
+Background and Emission closures (Color x Strength), through Mix and Add Shader nodes, as Cycles
+sums an emitting shader's closures. A world's program the core runs per direction
+(core/include/torrance/background_shader.h; background=True): the hit's position is the
+direction, so Generated and Object coordinates and an Environment Texture's unlinked Vector
+read it. A light's tree must fold to a constant (export/lights.py).
 
-Other closures add nothing to a world in Cycles either (a BSDF has no light to reflect there):
-they are reported and left out.
+Other closures add nothing to a world or a light in Cycles either (a BSDF has no light to
+reflect there): they are reported and left out.
 """
 
 from ..nodes import node_label, source_socket
@@ -21,13 +22,14 @@ _BLACK = constant('color', (0.0, 0.0, 0.0))
 _ZERO = constant('float', 0.0)
 
 
-class BackgroundCompiler:
-    """Compiles a World Output's Surface into (ProgramBuilder, radiance Value)."""
+class EmissionTree:
+    """Compiles the Surface of a World or Light Output into (ProgramBuilder, radiance Value).
+    where: how messages name the owner ("World 'Sky'")."""
 
-    def __init__(self, world_name, textures, readers, reporter):
+    def __init__(self, where, textures, readers, reporter, background=True):
         self.builder = ProgramBuilder()
-        self.values = GraphCompiler(self.builder, textures, readers, background=True)
-        self.where = f"World '{world_name}'"
+        self.values = GraphCompiler(self.builder, textures, readers, background=background)
+        self.where = where
         self.reporter = reporter
 
     def radiance(self, surface):
@@ -55,7 +57,7 @@ class BackgroundCompiler:
         if kind == 'ShaderNodeMixShader':
             return self._mix(node, depth)
         self.reporter.warning(f"{self.where}: {node_label(node)} is not a light (Torrance, as "
-                              f"Cycles, renders a world's Background and Emission closures); "
+                              f"Cycles, renders the Background and Emission closures here); "
                               f"left out")
         return _BLACK
 
