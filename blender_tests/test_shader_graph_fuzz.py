@@ -122,6 +122,8 @@ class CoreTextures:
         self.scene, self.ids = scene, {}
 
     def texture(self, image, interpolation="Linear"):
+        from torrance.texture_table import INTERPOLATIONS
+        interpolation = INTERPOLATIONS.get(interpolation, "Linear")
         key = (image.name, interpolation)
         if key not in self.ids:
             w, h = image.size

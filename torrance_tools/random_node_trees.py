@@ -60,11 +60,12 @@ def _setting_strategy(prop):
 
 
 def catalogue(kinds):
-    """{kind: NodeType} of the shader node types `kinds`, read from a scratch node of each."""
+    """{kind: NodeType} of the shader node types `kinds` this Blender has (the registry reads
+    newer ones too, e.g. 4.3's Gabor Texture), read from a scratch node of each."""
     tree = bpy.data.node_groups.new("catalogue scratch", 'ShaderNodeTree')
     try:
         types = {}
-        for kind in sorted(kinds):
+        for kind in sorted(k for k in kinds if hasattr(bpy.types, k)):
             node = tree.nodes.new(kind)
             settings = []
             for prop in node.bl_rna.properties:
@@ -175,7 +176,8 @@ def _pick(sockets, choice, kinds=VALUE_SOCKETS):
 
 
 class _Builder:
-    """Makes plans into node trees (and node groups) with one image for Image Texture nodes."""
+    """Makes plans into node trees (and node groups) with one image for Image and Environment
+    Texture nodes."""
 
     def __init__(self, image, name):
         self.image, self.name, self.groups = image, name, []
@@ -189,7 +191,7 @@ class _Builder:
             node = tree.nodes.new(kind)
             for name, value in settings:
                 setattr(node, name, value)
-            if kind == 'ShaderNodeTexImage':
+            if kind in ('ShaderNodeTexImage', 'ShaderNodeTexEnvironment'):
                 node.image = self.image
             if extra is not None:
                 _set_extra(node, extra)

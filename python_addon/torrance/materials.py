@@ -474,7 +474,7 @@ def attribute_keys(m):
     if 'mixture' in m:
         mix = m['mixture']
         return tuple(sorted({k for _kind, args, _terms in mix['closures']
-                             for k in attribute_keys(args)} | set(attribute_keys(mix))))
+                             for k in attribute_keys(args)} | set(attribute_keys(mix)), key=repr))
     return m.get('program_attributes', ())
 
 
@@ -584,4 +584,4 @@ class MaterialTable:
             keys.update(self.attributes.get(i, ()))
         ids = self.attribute_ids.ids
         return MeshNeeds(any(i in self.textured for i in indices),
-                         tuple((k, ids[k]) for k in sorted(keys)))
+                         tuple((k, ids[k]) for k in sorted(keys, key=repr)))

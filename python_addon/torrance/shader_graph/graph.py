@@ -127,11 +127,12 @@ class AttributeIds:
         return self.ids.setdefault(key, len(self.ids))
 
     def keys_of(self, builder):
-        """The keys a program's Attribute instructions read (sorted)."""
+        """The keys a program's Attribute instructions read (sorted by repr: keys mix strings
+        and tuples)."""
         from .program import OPCODE
         op = OPCODE.get("Attribute")
         used = {row[3] for row in builder.code if row[0] == op}
-        return tuple(sorted(k for k, i in self.ids.items() if i in used))
+        return tuple(sorted((k for k, i in self.ids.items() if i in used), key=repr))
 
 
 def by_identifier(sockets, identifier):

@@ -87,6 +87,7 @@ def _object_space_normal(n, axes):
     return tuple(v / length) if length > 0 and math.isfinite(length) else (0.0, 0.0, 0.0)
 
 
+@np.errstate(over='ignore', invalid='ignore')      # float32 overflow: inf, as the core
 def direction_to_equirectangular(co):
     """Cycles' direction_to_equirectangular of the normalised co, in float32."""
     d = [_F(c) for c in co]
@@ -99,6 +100,7 @@ def direction_to_equirectangular(co):
             (_F(math.acos(c)) - _F(math.pi)) / _F(-math.pi))
 
 
+@np.errstate(over='ignore', invalid='ignore')
 def direction_to_mirror_ball(co):
     """Cycles' direction_to_mirrorball of the normalised co, in float32."""
     d = [_F(c) for c in co]
