@@ -4,6 +4,7 @@
 
 #include "torrance/shader_noise4.h"
 
+#include "fractal_sums.h"
 #include "torrance/shader_hash.h"
 
 #include <array>
@@ -17,12 +18,7 @@ namespace {
 
 // ---- Perlin noise's pieces ----
 
-// x86's float -> int32 truncation: values outside int32 (and NaN) give INT_MIN, as Cycles' kernel
-// gets from cvttss2si (C leaves the conversion undefined there).
-inline int32_t float_to_int(float f) {
-  if (f >= -2147483648.0f && f < 2147483648.0f) return int32_t(f);
-  return INT32_MIN;
-}
+using fractal::float_to_int;
 
 // The lattice cell of x (its floor as an int) and the offset within it.
 inline float floor_frac(float x, uint32_t* cell) {
@@ -138,149 +134,48 @@ float perlin(float x, float y, float z, float w) {
 
 inline float finite_or_zero(float v) { return std::isfinite(v) ? v : 0.0f; }
 
-// ---- fractal sums, generic over the point's dimension ----
+// ---- fractal sums, generic over the point's dimension (fractal_sums.h) ----
+
+const auto signed_noise = [](const auto& p) { return snoise(p); };
 
 template <typename P>
 float fbm(const P& p, float detail, float roughness) {
   const float octaves = std::fmin(std::fmax(detail, 0.0f), 15.0f);
   const float gain = std::fmin(std::fmax(roughness, 0.0f), 1.0f);
-  const int n = float_to_int(octaves);
-  float frequency = 1.0f, amplitude = 1.0f, total = 0.0f, sum = 0.0f;
-  for (int i = 0; i <= n; ++i) {
-    sum += unoise(frequency * p) * amplitude;
-    total += amplitude;
-    amplitude *= gain;
-    frequency *= 2.0f;
-  }
+  const auto unsigned_noise = [](const auto& x) { return unoise(x); };
+  const fractal::FbmSums s = fractal::fbm_sums(p, fractal::octaves(octaves, 1, gain, 2.0f), unsigned_noise);
   const float fraction = octaves - std::floor(octaves);
-  if (fraction == 0.0f) return sum / total;
-  const float more = (sum + unoise(frequency * p) * amplitude) / (total + amplitude);
-  return (1.0f - fraction) * (sum / total) + fraction * more;
+  if (fraction == 0.0f) return s.sum / s.total;
+  const float more = (s.sum + unoise(s.frequency * p) * s.amplitude) / (s.total + s.amplitude);
+  return (1.0f - fraction) * (s.sum / s.total) + fraction * more;
 }
 
+// The Musgrave Texture's fBM (3.4's alone: the point scaled octave by octave, no normalisation).
 template <typename P>
-float musgrave_fbm(P p, float h, float lacunarity, float octaves) {
-  const float step = std::pow(lacunarity, -h);
+float musgrave_fbm(P p, const fractal::Octaves& o) {
   float value = 0.0f, amplitude = 1.0f;
-  const int n = float_to_int(octaves);
-  for (int i = 0; i < n; ++i) {
+  for (int i = 0; i < o.whole; ++i) {
     value += snoise(p) * amplitude;
-    amplitude *= step;
-    p *= lacunarity;
+    amplitude *= o.step;
+    p *= o.lacunarity;
   }
-  const float fraction = octaves - std::floor(octaves);
-  if (fraction != 0.0f) value += fraction * snoise(p) * amplitude;
-  return value;
-}
-
-template <typename P>
-float musgrave_multifractal(P p, float h, float lacunarity, float octaves) {
-  const float step = std::pow(lacunarity, -h);
-  float value = 1.0f, amplitude = 1.0f;
-  const int n = float_to_int(octaves);
-  for (int i = 0; i < n; ++i) {
-    value *= amplitude * snoise(p) + 1.0f;
-    amplitude *= step;
-    p *= lacunarity;
-  }
-  const float fraction = octaves - std::floor(octaves);
-  if (fraction != 0.0f) value *= fraction * amplitude * snoise(p) + 1.0f;
-  return value;
-}
-
-template <typename P>
-float musgrave_hetero_terrain(P p, float h, float lacunarity, float octaves, float offset) {
-  const float step = std::pow(lacunarity, -h);
-  float amplitude = step;
-  float value = offset + snoise(p);
-  p *= lacunarity;
-  const int n = float_to_int(octaves);
-  for (int i = 1; i < n; ++i) {
-    value += (snoise(p) + offset) * amplitude * value;
-    amplitude *= step;
-    p *= lacunarity;
-  }
-  const float fraction = octaves - std::floor(octaves);
-  if (fraction != 0.0f) value += fraction * ((snoise(p) + offset) * amplitude * value);
-  return value;
-}
-
-template <typename P>
-float musgrave_hybrid_multifractal(P p, float h, float lacunarity, float octaves, float offset, float gain) {
-  const float step = std::pow(lacunarity, -h);
-  float amplitude = 1.0f, value = 0.0f, weight = 1.0f;
-  const int n = float_to_int(octaves);
-  for (int i = 0; weight > 0.001f && i < n; ++i) {
-    if (weight > 1.0f) weight = 1.0f;
-    const float signal = (snoise(p) + offset) * amplitude;
-    amplitude *= step;
-    value += weight * signal;
-    weight *= gain * signal;
-    p *= lacunarity;
-  }
-  const float fraction = octaves - std::floor(octaves);
-  if (fraction != 0.0f && weight > 0.001f) {
-    if (weight > 1.0f) weight = 1.0f;
-    value += fraction * weight * ((snoise(p) + offset) * amplitude);
-  }
-  return value;
-}
-
-template <typename P>
-float musgrave_ridged_multifractal(P p, float h, float lacunarity, float octaves, float offset, float gain) {
-  const float step = std::pow(lacunarity, -h);
-  float amplitude = step;
-  float signal = offset - std::fabs(snoise(p));
-  signal *= signal;
-  float value = signal;
-  const int n = float_to_int(octaves);
-  for (int i = 1; i < n; ++i) {
-    p *= lacunarity;
-    const float weight = std::fmin(std::fmax(signal * gain, 0.0f), 1.0f);
-    signal = offset - std::fabs(snoise(p));
-    signal *= signal;
-    signal *= weight;
-    value += signal * amplitude;
-    amplitude *= step;
-  }
+  if (o.fraction != 0.0f) value += o.fraction * snoise(p) * amplitude;
   return value;
 }
 
 template <typename P>
 float musgrave_at(MusgraveType type, const P& p, float h, float lacunarity, float octaves, float offset, float gain) {
-  switch (type) {
-    case MusgraveType::Multifractal: return musgrave_multifractal(p, h, lacunarity, octaves);
-    case MusgraveType::RidgedMultifractal: return musgrave_ridged_multifractal(p, h, lacunarity, octaves, offset, gain);
-    case MusgraveType::HybridMultifractal: return musgrave_hybrid_multifractal(p, h, lacunarity, octaves, offset, gain);
-    case MusgraveType::FBM: return musgrave_fbm(p, h, lacunarity, octaves);
-    case MusgraveType::HeteroTerrain: return musgrave_hetero_terrain(p, h, lacunarity, octaves, offset);
-  }
-  return 0.0f;
+  const fractal::Octaves o = fractal::octaves(octaves, 0, std::pow(lacunarity, -h), lacunarity);
+  return fractal::of_type(type, p, o, offset, gain, signed_noise,
+                          [](const P& x, const fractal::Octaves& oct) { return musgrave_fbm(x, oct); });
 }
 
 // The Noise Texture at a point of N dimensions (float, Vec2, Vec3 or Vec4).
 template <typename P>
 NoiseTextureResult noise_texture_at(P p, float detail, float roughness, float distortion, bool color) {
   constexpr int n = int(sizeof(P) / sizeof(float));
-  const auto offset = [](float seed) {
-    if constexpr (n == 1) {
-      return noise_offset1(seed);
-    } else {
-      const Vec4 o = noise_offset(n, seed);
-      P out;
-      for (int k = 0; k < n; ++k) out[k] = o[k];
-      return out;
-    }
-  };
-  if (distortion != 0.0f) {
-    if constexpr (n == 1) {
-      p += snoise(p + offset(0.0f)) * distortion;
-    } else {
-      P shift;
-      for (int k = 0; k < n; ++k) shift[k] = snoise(p + offset(float(k))) * distortion;
-      p += shift;
-    }
-  }
+  const auto offset = [](float seed) { return fractal::seed_offset<P>(seed); };
+  p = fractal::distorted(p, distortion, signed_noise);
   NoiseTextureResult r;
   r.fac = fbm(p, detail, roughness);
   if (color)

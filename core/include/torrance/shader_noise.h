@@ -1,6 +1,7 @@
 // Blender's noise textures as Cycles 3.4 computes them (kernel/svm/noise.h, fractal_noise.h,
 // noisetex.h, white_noise.h, musgrave.h, wave.h): the same hash (shader_hash.h), the same Perlin
-// noise and the same fractal sums, so the patterns are Cycles' own, not look-alikes.
+// noise and the same fractal sums (one loop per fractal type, shared with Cycles 4.x's Noise
+// Texture: core/src/fractal_sums.h), so the patterns are Cycles' own, not look-alikes.
 //
 // Perlin noise (1D to 4D) as Cycles has it:
 //   - the lattice cell of x is floor(x), converted to int as x86 does (a value outside int32,

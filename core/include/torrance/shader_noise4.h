@@ -15,7 +15,8 @@
 //   - the other types as Musgrave's formulas with one octave more (hybrid's weight test and cap,
 //     ridged's squared offset - |noise| weighted by the last octave's signal x gain; hetero
 //     terrain's octaves scaled by the value so far), never normalised.
-// Distortion, the colour's offsets and the point's scaling are 3.4's.
+// Distortion, the colour's offsets and the point's scaling are 3.4's, and so are the fractal
+// loops (core/src/fractal_sums.h: 3.4's with one whole octave more, Roughness as the step).
 //
 // The Wave Texture's distortion in Cycles 4.x is this fBM (lacunarity 2, normalised) of the
 // periodic noise: wave_fbm4 (the Wave op's flags & 2). Its detail is capped at 15 here (Cycles 4.x

@@ -4,6 +4,7 @@ core's voronoi4 in shader_voronoi.cpp): one octave without Normalize is 3.4's no
 the twin bit for bit over random instructions (Detail with fractions, Normalize, every mode)."""
 import numpy as np
 import pytest
+from voronoi_cases import core_against_twin, random_constants
 
 
 @pytest.fixture(scope="module")
@@ -46,12 +47,6 @@ def test_octaves_sum_by_hand(voronoi4):
     assert normal.color == pytest.approx(tuple(c / 1.4 for c in two.color), 1e-6)
 
 
-def _row(op, mode, flags, out, inputs):
-    row = [op, mode, flags, -1, out] + [-1] * 12
-    row[5:5 + len(inputs)] = inputs
-    return row
-
-
 def test_the_core_agrees_bit_for_bit(voronoi4, load_module):
     tc = pytest.importorskip("torrance_core")
     program = load_module("shader_graph.program")
@@ -60,25 +55,10 @@ def test_the_core_agrees_bit_for_bit(voronoi4, load_module):
     for k in range(200):
         mode = k % 80 if k < 160 else int(rng.integers(0, 80))
         normalize = voronoi4.NORMALIZE if rng.random() < 0.5 else 0
-        constants = np.zeros((9, 4), np.float32)
-        constants[0, :3] = rng.uniform(-20, 20, 3)
-        constants[1, 0] = rng.uniform(-20, 20)
-        constants[2, 0] = rng.choice([1.0, 2.7, -1.3, 0.0, 13.0])
-        constants[3, 0] = rng.choice([0.0, 0.3, 1.0, 2.5, rng.uniform(0, 2)])
-        constants[4, 0] = rng.choice([0.05, 0.7, 1.0, 1.5, 3.0, 0.0, -1.0])
-        constants[5, 0] = rng.choice([1.0, 0.6, 0.25, 0.0, 1.5, -0.5])
+        constants = random_constants(rng, 9)
         constants[6, 0] = rng.choice([0.0, 1.0, 2.0, 2.4, 3.7, -1.0, 20.0])
         constants[7, 0] = rng.choice([0.5, 0.0, 1.0, 0.73, 1.6])
         constants[8, 0] = rng.choice([2.0, 1.0, 0.5, 3.3, 0.0])
-        code = [_row(49, mode, flags | normalize, 9 + flags, range(9)) for flags in range(3)]
-        scene = tc.Scene()
-        pid = scene.add_shader_program(constants, np.asarray(code, np.int32), 12, None)
-        regs = scene.run_shader_program(pid, np.zeros((1, 2), np.float32))[0]
-        args = [tuple(float(x) for x in c) for c in constants]
-        for flags in range(3):
-            fold = voronoi4.FOLDS["VoronoiV4"](mode, flags | normalize, args, None)
-            want = np.float32(program.finite(fold))
-            if not np.array_equal(regs[9 + flags], want):
-                failures.append(f"mode {mode} flags {flags | normalize} {args}: core "
-                                f"{regs[9 + flags]}, twin {want}")
+        failures += core_against_twin(tc, program.finite, 49, voronoi4.FOLDS["VoronoiV4"], mode,
+                                      [flags | normalize for flags in range(3)], constants)
     assert not failures, f"{len(failures)} disagreements:\n" + "\n".join(failures[:10])

@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 import pytest
+from voronoi_cases import core_against_twin, random_constants
 
 
 @pytest.fixture(scope="module")
@@ -85,12 +86,6 @@ def test_float32_ties_and_signed_zero(voronoi):
     assert minus.distance != plus.distance
 
 
-def _row(op, mode, flags, out, inputs):
-    row = [op, mode, flags, -1, out] + [-1] * 12
-    row[5:5 + len(inputs)] = inputs
-    return row
-
-
 def test_the_core_agrees_bit_for_bit(voronoi, load_module):
     tc = pytest.importorskip("torrance_core")
     program = load_module("shader_graph.program")
@@ -98,21 +93,6 @@ def test_the_core_agrees_bit_for_bit(voronoi, load_module):
     failures = []
     for _ in range(240):
         mode = int(rng.integers(0, 80))
-        constants = np.zeros((6, 4), np.float32)
-        constants[0, :3] = rng.uniform(-20, 20, 3)
-        constants[1, 0] = rng.uniform(-20, 20)
-        constants[2, 0] = rng.choice([1.0, 2.7, -1.3, 0.0, 13.0])
-        constants[3, 0] = rng.choice([0.0, 0.3, 1.0, 2.5, rng.uniform(0, 2)])
-        constants[4, 0] = rng.choice([0.05, 0.7, 1.0, 1.5, 3.0, 0.0, -1.0])
-        constants[5, 0] = rng.choice([1.0, 0.6, 0.25, 0.0, 1.5, -0.5])
-        code = [_row(48, mode, flags, 6 + flags, range(6)) for flags in range(3)]
-        scene = tc.Scene()
-        pid = scene.add_shader_program(constants, np.asarray(code, np.int32), 9, None)
-        regs = scene.run_shader_program(pid, np.zeros((1, 2), np.float32))[0]
-        args = [tuple(float(x) for x in c) for c in constants]
-        for flags in range(3):
-            want = np.float32(program.finite(voronoi.FOLDS["Voronoi"](mode, flags, args, None)))
-            if not np.array_equal(regs[6 + flags], want):
-                failures.append(f"mode {mode} flags {flags} {args}: core {regs[6 + flags]}, "
-                                f"twin {want}")
+        failures += core_against_twin(tc, program.finite, 48, voronoi.FOLDS["Voronoi"], mode,
+                                      range(3), random_constants(rng, 6))
     assert not failures, "\n".join(failures[:10])

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """The noise family: Blender's Noise, White Noise, Musgrave and Wave textures as Cycles 3.4
 computes them. The Python twin of the core's shader_noise.cpp (shader_noise.h explains the
-Perlin noise, the fractal sums and each texture) and the family's readers.
+Perlin noise, the fractal sums and each texture) and the family's readers; the fractal loops
+are fractals.py's, which Blender 4.x's Noise Texture (noise4.py) shares.
 
 Single precision throughout, in the core's (and Cycles') order of operations: every value is a
 numpy float32 and every constant one too (numpy 1.x would turn float32 * a Python float into
@@ -23,7 +24,7 @@ import math
 
 import numpy as np
 
-from . import hash_ops
+from . import fractals, hash_ops
 from .node_versions import cycles4_wave_noise, input_socket, is_cycles4_noise
 from .program import Value, constant
 from .texture_mapping import texture_vector
@@ -41,9 +42,6 @@ BANDS_DIRECTIONS = ('X', 'Y', 'Z', 'DIAGONAL')
 RINGS_DIRECTIONS = ('X', 'Y', 'Z', 'SPHERICAL')
 WAVE_PROFILES = ('SIN', 'SAW', 'TRI')
 
-_INT_MIN = -2147483648
-
-
 def _quiet(function):
     """function with numpy's floating-point warnings off: overflow to inf and NaN from inf are
     IEEE's, as in the core (whose program then keeps values finite)."""
@@ -56,12 +54,6 @@ def _quiet(function):
 
 # -- Perlin noise ----------------------------------------------------------------------------------
 
-def _to_int(f):
-    """x86's float -> int32 truncation: outside int32 (and NaN) gives INT_MIN."""
-    f = float(f)
-    return int(f) if -2147483648.0 <= f < 2147483648.0 else _INT_MIN
-
-
 def _fade(t):
     return t * t * t * (t * (t * _F(6.0) - _F(15.0)) + _F(10.0))
 
@@ -71,7 +63,7 @@ def _cells(p):
     out = []
     for x in p:
         f = np.floor(x)
-        out.append((_to_int(f) & 0xFFFFFFFF, x - f))
+        out.append((fractals.to_int(f) & 0xFFFFFFFF, x - f))
     return out
 
 
@@ -164,8 +156,7 @@ def unoise(p):
     return _HALF * snoise(p) + _HALF
 
 
-def _scaled(s, p):
-    return tuple(_F(s) * _F(x) for x in p)
+_scaled = fractals.scaled
 
 
 def _add(p, q):
@@ -182,12 +173,8 @@ def fractal_noise(p, detail, roughness):
     p = tuple(_F(x) for x in p)
     octaves = _clamp(detail, 0.0, 15.0)
     gain = _clamp(roughness, 0.0, 1.0)
-    frequency, amplitude, total, total_sum = _1, _1, _0, _0
-    for _ in range(_to_int(octaves) + 1):
-        total_sum = total_sum + unoise(_scaled(frequency, p)) * amplitude
-        total = total + amplitude
-        amplitude = amplitude * gain
-        frequency = frequency * _2
+    total_sum, total, amplitude, frequency = fractals.fbm_sums(
+        unoise, p, fractals.octaves(octaves, 1, gain, _2))
     fraction = octaves - np.floor(octaves)
     if fraction == 0.0:
         return total_sum / total
@@ -250,83 +237,16 @@ def _pow(a, b):
     return _F(np.power(np.float64(a), np.float64(b)))
 
 
-def _musgrave_fbm(p, step, lacunarity, octaves, offset, gain):
+def _musgrave_fbm(p, o):
+    """The Musgrave Texture's fBM (3.4's alone: the point scaled octave by octave)."""
     value, amplitude = _0, _1
-    for _ in range(_to_int(octaves)):
+    for _ in range(o.whole):
         value = value + snoise(p) * amplitude
-        amplitude = amplitude * step
-        p = _scaled(lacunarity, p)
-    fraction = octaves - np.floor(octaves)
-    if fraction != 0.0:
-        value = value + fraction * snoise(p) * amplitude
+        amplitude = amplitude * o.step
+        p = _scaled(o.lacunarity, p)
+    if o.fraction != 0.0:
+        value = value + o.fraction * snoise(p) * amplitude
     return value
-
-
-def _musgrave_multifractal(p, step, lacunarity, octaves, offset, gain):
-    value, amplitude = _1, _1
-    for _ in range(_to_int(octaves)):
-        value = value * (amplitude * snoise(p) + _1)
-        amplitude = amplitude * step
-        p = _scaled(lacunarity, p)
-    fraction = octaves - np.floor(octaves)
-    if fraction != 0.0:
-        value = value * (fraction * amplitude * snoise(p) + _1)
-    return value
-
-
-def _musgrave_hetero_terrain(p, step, lacunarity, octaves, offset, gain):
-    amplitude = step
-    value = offset + snoise(p)
-    p = _scaled(lacunarity, p)
-    for _ in range(1, _to_int(octaves)):
-        value = value + (snoise(p) + offset) * amplitude * value
-        amplitude = amplitude * step
-        p = _scaled(lacunarity, p)
-    fraction = octaves - np.floor(octaves)
-    if fraction != 0.0:
-        value = value + fraction * ((snoise(p) + offset) * amplitude * value)
-    return value
-
-
-def _musgrave_hybrid_multifractal(p, step, lacunarity, octaves, offset, gain):
-    amplitude, value, weight = _1, _0, _1
-    n = _to_int(octaves)
-    i = 0
-    while weight > _F(0.001) and i < n:
-        if weight > _1:
-            weight = _1
-        signal = (snoise(p) + offset) * amplitude
-        amplitude = amplitude * step
-        value = value + weight * signal
-        weight = weight * (gain * signal)
-        p = _scaled(lacunarity, p)
-        i += 1
-    fraction = octaves - np.floor(octaves)
-    if fraction != 0.0 and weight > _F(0.001):
-        if weight > _1:
-            weight = _1
-        value = value + fraction * weight * ((snoise(p) + offset) * amplitude)
-    return value
-
-
-def _musgrave_ridged_multifractal(p, step, lacunarity, octaves, offset, gain):
-    amplitude = step
-    signal = offset - np.abs(snoise(p))
-    signal = signal * signal
-    value = signal
-    for _ in range(1, _to_int(octaves)):
-        p = _scaled(lacunarity, p)
-        weight = _clamp(signal * gain, 0.0, 1.0)
-        signal = offset - np.abs(snoise(p))
-        signal = signal * signal
-        signal = signal * weight
-        value = value + signal * amplitude
-        amplitude = amplitude * step
-    return value
-
-
-_MUSGRAVES = (_musgrave_multifractal, _musgrave_ridged_multifractal,
-              _musgrave_hybrid_multifractal, _musgrave_fbm, _musgrave_hetero_terrain)
 
 
 @_quiet
@@ -338,7 +258,8 @@ def musgrave(kind, dimensions, vector, w, scale, detail, dimension, lacunarity, 
     octaves = _clamp(detail, 0.0, 15.0)
     lac = np.fmax(_F(lacunarity), _F(1e-5))
     p = _noise_point(dimensions, vector, w, scale)
-    return _MUSGRAVES[kind](p, _pow(lac, -h), lac, octaves, _F(offset), _F(gain))
+    o = fractals.octaves(octaves, 0, _pow(lac, -h), lac)
+    return fractals.of_type(kind, snoise, p, o, _F(offset), _F(gain), _musgrave_fbm)
 
 
 # -- Wave Texture ----------------------------------------------------------------------------------

@@ -14,7 +14,7 @@ Opcode (the core's ShaderOpcode 36):
 
 import numpy as np
 
-from . import noise
+from . import fractals, noise
 from .node_versions import NOISE_TYPES, noise_settings
 
 _F = np.float32
@@ -39,98 +39,26 @@ def _lerp(a, b, t):
     return a + t * (b - a)
 
 
-def _scaled(s, p):
-    return tuple(s * x for x in p)
-
-
-def _fbm(p, detail, roughness, lacunarity, offset, gain, normalize):
-    frequency, amplitude, total, total_sum = _1, _1, _0, _0
-    for _ in range(noise._to_int(detail) + 1):
-        total_sum = total_sum + snoise4(_scaled(frequency, p)) * amplitude
-        total = total + amplitude
-        amplitude = amplitude * roughness
-        frequency = frequency * lacunarity
-    fraction = detail - np.floor(detail)
-    if fraction != 0.0:
-        more = total_sum + snoise4(_scaled(frequency, p)) * amplitude
+def _fbm(p, o, normalize):
+    """fBM of the periodic noise: 3.4's Noise Texture's sums with Lacunarity, the fraction
+    blended raw or normalised."""
+    total_sum, total, amplitude, frequency = fractals.fbm_sums(snoise4, p, o)
+    if o.fraction != 0.0:
+        more = total_sum + snoise4(fractals.scaled(frequency, p)) * amplitude
         if normalize:
             return _lerp(_HALF * total_sum / total + _HALF,
-                         _HALF * more / (total + amplitude) + _HALF, fraction)
-        return _lerp(total_sum, more, fraction)
+                         _HALF * more / (total + amplitude) + _HALF, o.fraction)
+        return _lerp(total_sum, more, o.fraction)
     return _HALF * total_sum / total + _HALF if normalize else total_sum
-
-
-def _multifractal(p, detail, roughness, lacunarity, offset, gain, normalize):
-    value, amplitude = _1, _1
-    for _ in range(noise._to_int(detail) + 1):
-        value = value * (amplitude * snoise4(p) + _1)
-        amplitude = amplitude * roughness
-        p = _scaled(lacunarity, p)
-    fraction = detail - np.floor(detail)
-    if fraction != 0.0:
-        value = value * (fraction * amplitude * snoise4(p) + _1)
-    return value
-
-
-def _hetero_terrain(p, detail, roughness, lacunarity, offset, gain, normalize):
-    amplitude = roughness
-    value = offset + snoise4(p)
-    p = _scaled(lacunarity, p)
-    for _ in range(1, noise._to_int(detail) + 1):
-        value = value + (snoise4(p) + offset) * amplitude * value
-        amplitude = amplitude * roughness
-        p = _scaled(lacunarity, p)
-    fraction = detail - np.floor(detail)
-    if fraction != 0.0:
-        value = value + fraction * ((snoise4(p) + offset) * amplitude * value)
-    return value
-
-
-def _hybrid_multifractal(p, detail, roughness, lacunarity, offset, gain, normalize):
-    amplitude, value, weight = _1, _0, _1
-    n = noise._to_int(detail)
-    i = 0
-    while weight > _F(0.001) and i <= n:
-        if weight > _1:
-            weight = _1
-        signal = (snoise4(p) + offset) * amplitude
-        amplitude = amplitude * roughness
-        value = value + weight * signal
-        weight = weight * (gain * signal)
-        p = _scaled(lacunarity, p)
-        i += 1
-    fraction = detail - np.floor(detail)
-    if fraction != 0.0 and weight > _F(0.001):
-        if weight > _1:
-            weight = _1
-        value = value + fraction * weight * ((snoise4(p) + offset) * amplitude)
-    return value
-
-
-def _ridged_multifractal(p, detail, roughness, lacunarity, offset, gain, normalize):
-    amplitude = roughness
-    signal = offset - np.abs(snoise4(p))
-    signal = signal * signal
-    value = signal
-    for _ in range(1, noise._to_int(detail) + 1):
-        p = _scaled(lacunarity, p)
-        weight = noise._clamp(signal * gain, 0.0, 1.0)
-        signal = offset - np.abs(snoise4(p))
-        signal = signal * signal
-        signal = signal * weight
-        value = value + signal * amplitude
-        amplitude = amplitude * roughness
-    return value
-
-
-_FRACTALS = (_multifractal, _ridged_multifractal, _hybrid_multifractal, _fbm, _hetero_terrain)
 
 
 @noise._quiet
 def fractal_noise4(kind, p, detail, roughness, lacunarity, offset, gain, normalize):
-    """The noise of type `kind` (an index of NOISE_TYPES) at p, as the core's fractal_noise4."""
-    return _FRACTALS[kind](tuple(_F(x) for x in p), _F(detail), _F(roughness), _F(lacunarity),
-                           _F(offset), _F(gain), normalize)
+    """The noise of type `kind` (an index of NOISE_TYPES) at p, as the core's fractal_noise4:
+    3.4's Musgrave sums (fractals.py) with one whole octave more."""
+    o = fractals.octaves(_F(detail), 1, roughness, lacunarity)
+    return fractals.of_type(kind, snoise4, tuple(_F(x) for x in p), o, _F(offset), _F(gain),
+                            lambda q, octaves: _fbm(q, octaves, normalize))
 
 
 @noise._quiet
