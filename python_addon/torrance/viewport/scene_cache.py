@@ -9,9 +9,11 @@ so only the top-level BVH is rebuilt at the next render. A material edit is in p
 material is read again (a new material id) and the instances showing it are added again with
 a table naming it (same prototypes). Anything else (a mesh, light or world edit, a light
 moved, an object's material slots, the view's shading options) builds a new tc.Scene from the
-cached meshes, as before: the core can neither change a prototype's mesh nor remove a light."""
+cached meshes, as before: the core can neither change a prototype's mesh nor remove a light.
 
-import math
+What the depsgraph shows (the plan and its fingerprint) is read by scene_plan.py; the studio
+world of Scene World off is studio_world.py's."""
+
 import time
 
 import numpy as np
@@ -21,24 +23,15 @@ from ..blender_versions import object_geometry_changed
 from ..export.mesh_attributes import instance_constant_layers, instances_info, object_random_id
 from ..materials import MaterialTable
 from ..texture_table import TextureTable
-
-
-def _matrix_tuple(m):
-    return tuple(float(x) for row in m for x in row)
-
+from .scene_plan import (instance_transform, lights_fingerprint, matrix_tuple, mesh_entries,
+                         plan_instances, slot_names)
+from .studio_world import StudioWorld
 
 _RELEVANT_ID_TYPES = ("Material", "Light", "World", "Mesh", "Curve", "MetaBall", "TextCurve",
                       "NodeTree", "ShaderNodeTree", "Image", "Texture", "Collection",
                       "GeometryNodeTree", "Curves", "PointCloud", "Volume")
 
 
-def _slot_names(slots):
-    return tuple(s.name if s is not None else "" for s in slots)
-
-
-def _transform(matrix):
-    """A mathutils 4x4 matrix as add_instances takes it: float64 (3, 4)."""
-    return np.array(matrix, dtype=np.float64)[:3]
 
 _GEOMETRY_ID_TYPES = ("Mesh", "Curve", "SurfaceCurve", "TextCurve", "MetaBall", "Curves",
                       "PointCloud", "Volume")
@@ -49,7 +42,7 @@ class _Entry:
     __slots__ = ("matrix", "slots", "iid", "triangles", "pkey")
 
     def __init__(self, matrix, slots, iid, triangles, pkey):
-        self.matrix = matrix          # _matrix_tuple of its world matrix
+        self.matrix = matrix          # matrix_tuple of its world matrix
         self.slots = slots            # its slots' material names
         self.iid = iid
         self.triangles = triangles
@@ -70,7 +63,7 @@ class SceneCache:
         self.instance_meshes = export.MeshCache()   # instances: dropped at any geometry edit
         self.fingerprint = None
         self.reads = 0            # meshes read from Blender by the last sync (for tests)
-        self.studio_cache = {}    # (path, rotation) -> float32 pixels, row 0 = bottom
+        self.studio_world = StudioWorld()
         self.builds = 0           # full builds (a new tc.Scene)
         self.updates = 0          # incremental updates of the live tc.Scene (issue 11)
         self.last_build = {}      # statistics of the last build or update (objects, ...)
@@ -197,60 +190,13 @@ class SceneCache:
     # -- what is in the scene ----------------------------------------------------------------
     def _plan(self, depsgraph, options):
         """The instances to render, and a fingerprint of everything read without meshes."""
-        use_lights = options.get("use_scene_lights", True)
-        plan = []
-        self._random_ids = {}     # an instance key -> its instances' random ids, in plan order
-        fp = []
-        for inst in depsgraph.object_instances:
-            role = export.instance_role(inst)
-            obj = inst.object
-            if role == 'LIGHT':
-                if use_lights:
-                    m = inst.matrix_world.copy()
-                    plan.append(('LIGHT', obj, m, None, None))
-                    fp.append(('L', obj.name, _matrix_tuple(m)))
-            elif role == 'UNSUPPORTED':
-                plan.append(('UNSUPPORTED', obj, None, None, None))
-                fp.append(('U', obj.name))
-            elif role == 'MESH':
-                m = inst.matrix_world.copy()
-                slots = tuple(slot.material for slot in obj.material_slots)
-                data_name = obj.data.name if obj.data is not None else ""
-                if inst.is_instance:
-                    parent = inst.parent.name if inst.parent is not None else ""
-                    key = ('I', parent, obj.name, data_name, obj.as_pointer(),
-                           obj.data.as_pointer() if obj.data is not None else 0)
-                    self._random_ids.setdefault(key, []).append(inst.random_id)
-                else:
-                    key = ('O', obj.name, data_name)
-                plan.append(('MESH', obj, m, slots, key))
-                fp.append(('M', key[:4], _matrix_tuple(m),
-                           tuple(s.name if s is not None else "" for s in slots)))
-        return plan, tuple(fp)
-
-    @staticmethod
-    def _mesh_entries(plan):
-        """entry id -> (obj, matrix, slots, key) for the plan's meshes; the id is the key and
-        the how-many-th entry with that key it is (instances of one object share a key)."""
-        out = {}
-        seen = {}
-        for kind, obj, matrix, slots, key in plan:
-            if kind != 'MESH':
-                continue
-            n = seen.get(key, 0)
-            seen[key] = n + 1
-            out[(key, n)] = (obj, matrix, slots, key)
-        return out
-
-    @staticmethod
-    def _lights_fp(plan):
-        return tuple((kind, obj.name, None if m is None else _matrix_tuple(m))
-                     for kind, obj, m, _slots, _key in plan if kind != 'MESH')
+        plan, fingerprint, self._random_ids = plan_instances(depsgraph, options)
+        return plan, fingerprint
 
     def _diff(self, plan):
         """(removed, moved, added) entries against the live scene, or None when the change
         needs a new scene (lights, or an entry's material slots)."""
-        if self._lights_fp(plan) != self.lights_fp:
+        if lights_fingerprint(plan) != self.lights_fp:
             return None
         # Prototypes cannot be removed: once most of them are no one's (deleted objects,
         # instances of meshes evaluated anew), a new scene drops them.
@@ -259,7 +205,7 @@ class SceneCache:
             return None
         if self.stale_materials > 256:     # materials replaced by edits (a slider dragged)
             return None
-        new = self._mesh_entries(plan)
+        new = mesh_entries(plan)
         removed = [eid for eid in self.entries if eid not in new]
         moved = []
         added = []
@@ -269,7 +215,7 @@ class SceneCache:
             if old is None:
                 added.append((eid, obj, matrix, slots, key))
                 continue
-            if old.slots != _slot_names(slots):
+            if old.slots != slot_names(slots):
                 return None
             if changed and changed.intersection(old.slots):
                 # An edited material: the instance again, with a table of re-read materials
@@ -277,7 +223,7 @@ class SceneCache:
                 removed.append(eid)
                 added.append((eid, obj, matrix, slots, key))
                 continue
-            mt = _matrix_tuple(matrix)
+            mt = matrix_tuple(matrix)
             if mt != old.matrix:
                 moved.append((eid, obj, matrix, slots, key, mt))
         return removed, moved, added
@@ -291,13 +237,13 @@ class SceneCache:
         if pkey not in self.prototypes:
             local = meshes.get(obj, key[1:], needs_uvs, reporter)
             self.prototypes[pkey] = self._prototype(pkey, local, obj.name, needs_uvs, reporter)
-        entry = _Entry(_matrix_tuple(matrix), _slot_names(slots), None, 0, pkey)
+        entry = _Entry(matrix_tuple(matrix), slot_names(slots), None, 0, pkey)
         self.entries[eid] = entry
         proto = self.prototypes[pkey]
         if proto is None:
             return entry
         pid, triangles = proto
-        transform = _transform(matrix)
+        transform = instance_transform(matrix)
         if not np.isfinite(transform).all():
             reporter.warning(f"Object '{obj.name}': an instance with a NaN/Inf transform (a "
                              f"driver?) is not rendered")
@@ -356,7 +302,7 @@ class SceneCache:
         for eid, obj, matrix, slots, key, mt in moved:
             entry = self.entries[eid]
             entry.matrix = mt
-            t = _transform(matrix)
+            t = instance_transform(matrix)
             if entry.iid is None or not np.isfinite(t).all():
                 # Not in the scene (no triangles, a NaN transform): add it afresh.
                 del self.entries[eid]
@@ -395,7 +341,7 @@ class SceneCache:
         if options.get("use_scene_world", True):
             export.export_world(tc_scene, scene.world, reporter, textures)
         else:
-            self._studio_world(tc, tc_scene, options, reporter)
+            self.studio_world.apply(tc, tc_scene, options, reporter)
 
         self.scene = tc_scene
         self.materials = materials
@@ -403,15 +349,15 @@ class SceneCache:
         self.prototypes = {}
         self.entries = {}
         self.n_lights = 0
-        self.lights_fp = self._lights_fp(plan)
+        self.lights_fp = lights_fingerprint(plan)
         unsupported = set()
         for kind, obj, matrix, _slots, _key in plan:
             if kind == 'LIGHT':
-                if export.export_light(tc_scene, obj, matrix, reporter):
+                if export.export_light(tc_scene, obj, matrix, reporter, textures):
                     self.n_lights += 1
             elif kind == 'UNSUPPORTED':
                 export.report_unsupported(obj, unsupported, reporter)
-        for eid, (obj, matrix, slots, key) in self._mesh_entries(plan).items():
+        for eid, (obj, matrix, slots, key) in mesh_entries(plan).items():
             self._add_entry(eid, obj, matrix, slots, key, reporter)
         live = {k for k in self.prototypes}
         self.proto_arrays = {k: v for k, v in self.proto_arrays.items() if k in live}
@@ -432,34 +378,3 @@ class SceneCache:
             objects=sum(1 for e in self.entries.values() if e.iid is not None) - hidden,
             triangles=self.scene.num_triangles, lights=self.n_lights, meshes_read=self.reads,
             prototypes=self.scene.num_prototypes, **extra)
-
-    def _studio_world(self, tc, tc_scene, options, reporter):
-        """The viewport's studio HDRI (shading: Scene World off), as Blender's Rendered mode."""
-        path = options.get("studio_path")
-        strength = float(options.get("studio_strength", 1.0))
-        rotation = float(options.get("studio_rotation", 0.0))
-        if not path:
-            tc_scene.set_world(color=(0.05, 0.05, 0.05), strength=1.0)
-            return
-        key = (path, round(rotation, 6))
-        pixels = self.studio_cache.get(key)
-        if pixels is None:
-            try:
-                img = np.asarray(tc.read_image(path), dtype=np.float32)
-            except Exception as exc:
-                reporter.warning(f"Studio light '{path}' could not be read ({exc})")
-                tc_scene.set_world(color=(0.05, 0.05, 0.05), strength=1.0)
-                return
-            img = img[::-1]                              # the core wants row 0 = bottom
-            if img.shape[2] > 4:
-                img = img[:, :, :4]
-            # Rotation about Z = a horizontal roll of the equirectangular map. Blender (as
-            # Cycles) rotates the lookup direction by +rotation: its azimuth grows, and the
-            # map coordinate u = 0.5 - azimuth / 2 pi falls, so the map moves to larger u.
-            shift = int(round(rotation / (2.0 * math.pi) * img.shape[1]))
-            if shift:
-                img = np.roll(img, shift, axis=1)
-            pixels = np.ascontiguousarray(img, dtype=np.float32)
-            self.studio_cache = {key: pixels}            # keep one
-        tid = tc_scene.add_texture(pixels, colorspace="Linear")
-        tc_scene.set_world_texture(tid, strength=strength)

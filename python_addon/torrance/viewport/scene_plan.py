@@ -1,0 +1,76 @@
+# SPDX-License-Identifier: Apache-2.0
+"""What the viewport's depsgraph shows, read without meshes (scene_cache.py's plan): the lights,
+the unsupported objects and every mesh object or instance with its world matrix, material slots
+and mesh key, and a fingerprint of it all that tells whether anything shown changed."""
+
+import numpy as np
+
+from .. import export
+
+
+def matrix_tuple(m):
+    return tuple(float(x) for row in m for x in row)
+
+
+def slot_names(slots):
+    return tuple(s.name if s is not None else "" for s in slots)
+
+
+def instance_transform(matrix):
+    """A mathutils 4x4 matrix as add_instances takes it: float64 (3, 4)."""
+    return np.array(matrix, dtype=np.float64)[:3]
+
+
+def plan_instances(depsgraph, options):
+    """(plan, fingerprint, random ids). plan: (kind, object, matrix, slots, mesh key) per
+    instance, kind 'LIGHT', 'UNSUPPORTED' or 'MESH'; random ids: a depsgraph instance's mesh
+    key -> its instances' random ids (Object Info), in plan order."""
+    use_lights = options.get("use_scene_lights", True)
+    plan = []
+    random_ids = {}
+    fp = []
+    for inst in depsgraph.object_instances:
+        role = export.instance_role(inst)
+        obj = inst.object
+        if role == 'LIGHT':
+            if use_lights:
+                m = inst.matrix_world.copy()
+                plan.append(('LIGHT', obj, m, None, None))
+                fp.append(('L', obj.name, matrix_tuple(m)))
+        elif role == 'UNSUPPORTED':
+            plan.append(('UNSUPPORTED', obj, None, None, None))
+            fp.append(('U', obj.name))
+        elif role == 'MESH':
+            m = inst.matrix_world.copy()
+            slots = tuple(slot.material for slot in obj.material_slots)
+            data_name = obj.data.name if obj.data is not None else ""
+            if inst.is_instance:
+                parent = inst.parent.name if inst.parent is not None else ""
+                key = ('I', parent, obj.name, data_name, obj.as_pointer(),
+                       obj.data.as_pointer() if obj.data is not None else 0)
+                random_ids.setdefault(key, []).append(inst.random_id)
+            else:
+                key = ('O', obj.name, data_name)
+            plan.append(('MESH', obj, m, slots, key))
+            fp.append(('M', key[:4], matrix_tuple(m), slot_names(slots)))
+    return plan, tuple(fp), random_ids
+
+
+def mesh_entries(plan):
+    """entry id -> (obj, matrix, slots, key) for the plan's meshes; the id is the key and the
+    how-many-th entry with that key it is (instances of one object share a key)."""
+    out = {}
+    seen = {}
+    for kind, obj, matrix, slots, key in plan:
+        if kind != 'MESH':
+            continue
+        n = seen.get(key, 0)
+        seen[key] = n + 1
+        out[(key, n)] = (obj, matrix, slots, key)
+    return out
+
+
+def lights_fingerprint(plan):
+    """The lights and unsupported objects of a plan, comparable."""
+    return tuple((kind, obj.name, None if m is None else matrix_tuple(m))
+                 for kind, obj, m, _slots, _key in plan if kind != 'MESH')
