@@ -3,7 +3,7 @@
 bpy 5.3: nodes_doc.doc_path) is what scripts/nodes_doc writes from the shader graph's registry
 now (regenerate them after adding a node: scripts/nodes_doc, scripts/nodes_doc 4.2,
 scripts/nodes_doc 5.3), and every registry entry names a shader node of this Blender (or one it
-removed).
+removed or has not yet: node_versions.REMOVED_NODES, ADDED_NODES).
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_nodes_doc.py

@@ -5,7 +5,7 @@ and what Torrance renders of it (rendered by the shader graph, a closure's note,
 Run: scripts/nodes_doc (writes docs/nodes.md, Blender 3.4's list) or scripts/nodes_doc 4.2
 (docs/nodes_blender4.2.md, bpy 4.2's); blender_tests/test_nodes_doc.py checks that the running
 Blender's file is current and that every registry entry names a node of this Blender (or one it
-removed: node_versions.REMOVED_NODES).
+removed or has not yet: node_versions.REMOVED_NODES, ADDED_NODES).
 """
 
 import os
@@ -69,11 +69,12 @@ def markdown():
 
 def unknown_entries():
     """Registry entries that name no node type of this Blender (a typo, or another version's),
-    but for the nodes this Blender removed (read where an older Blender has them)."""
-    from torrance.shader_graph.node_versions import REMOVED_NODES
+    but for the nodes this Blender removed or has not yet (read where a Blender has them)."""
+    from torrance.shader_graph.node_versions import ADDED_NODES, REMOVED_NODES
     readers, closures = registry()
     nodes = shader_nodes()
-    return sorted(k for k in (*readers, *closures) if k not in nodes and k not in REMOVED_NODES)
+    return sorted(k for k in (*readers, *closures)
+                  if k not in nodes and k not in REMOVED_NODES and k not in ADDED_NODES)
 
 
 def doc_path(version=None):

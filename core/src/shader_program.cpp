@@ -7,6 +7,7 @@
 #include "torrance/shader_convert.h"
 #include "torrance/shader_noise.h"
 #include "torrance/shader_noise4.h"
+#include "torrance/shader_gabor.h"
 #include "torrance/shader_voronoi.h"
 #include "torrance/shader_image.h"
 #include "torrance/shader_textures.h"
@@ -109,6 +110,7 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
     case ShaderOpcode::Musgrave: return {8, shader::kMusgraveModes, false, shader::musgrave_op};
     case ShaderOpcode::Wave: return {7, shader::kWaveModes, false, shader::wave_op};
     case ShaderOpcode::NoiseV4: return {9, shader::kNoise4Modes, false, shader::noise4_op};
+    case ShaderOpcode::TexGabor: return {6, shader::kGaborModes, false, shader::gabor_op};
     // [voronoi ops]
     case ShaderOpcode::Voronoi: return {6, shader::kVoronoiModes, false, shader::voronoi_op};
     case ShaderOpcode::VoronoiV4: return {9, shader::kVoronoiModes, false, shader::voronoi4_op};

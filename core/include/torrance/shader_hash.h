@@ -162,4 +162,15 @@ inline glm::vec3 hash_float4_to_float3(const glm::vec4& k) {
           hash_float4_to_float(glm::vec4(k.w, k.z, k.y, k.x))};
 }
 
+// Cycles 4.3 added these two for the Gabor Texture (its kernel centres and 3D orientations):
+// (h(x, y, z), h(z, x, y))
+inline glm::vec2 hash_float3_to_float2(const glm::vec3& k) {
+  return {hash_float3_to_float(k), hash_float3_to_float(glm::vec3(k.z, k.x, k.y))};
+}
+
+// (h(x, y, z, w), h(z, x, w, y))
+inline glm::vec2 hash_float4_to_float2(const glm::vec4& k) {
+  return {hash_float4_to_float(k), hash_float4_to_float(glm::vec4(k.z, k.x, k.w, k.y))};
+}
+
 }  // namespace torrance::shader

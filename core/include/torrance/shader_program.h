@@ -53,6 +53,7 @@ enum class ShaderOpcode : uint8_t {
   Musgrave = 34,    // Musgrave Texture: mode = type * 4 + dimensions - 1
   Wave = 35,        // Wave Texture: mode = (type * 4 + direction) * 3 + profile; flags & 1: Color
   NoiseV4 = 36,     // Blender 4.x's Noise Texture (shader_noise4.h): mode = type * 4 + dimensions - 1
+  TexGabor = 37,    // Blender 4.3+'s Gabor Texture (shader_gabor.h): mode 2D/3D; out (Value, Phase, Intensity)
   // [voronoi ops]
   Voronoi = 48,    // the Voronoi Texture node (shader_voronoi.h): mode, flags and inputs as voronoi_op says
   VoronoiV4 = 49,  // Blender 4.x's Voronoi Texture (fractal; shader_voronoi.h): as voronoi4_op says

@@ -15,6 +15,7 @@ from . import convert  # noqa: I001
 from . import textures  # noqa: I001
 from . import noise  # noqa: I001
 from . import noise4  # noqa: I001
+from . import gabor  # noqa: I001
 from . import geometry  # noqa: I001
 from . import image  # noqa: I001
 
@@ -27,6 +28,7 @@ FAMILIES = (
     textures,
     noise,
     noise4,
+    gabor,
     geometry,
     image,
 )

@@ -158,3 +158,13 @@ def hash_float2_to_float3(x, y):
 def hash_float4_to_float3(x, y, z, w):
     return (hash_float4_to_float(x, y, z, w), hash_float4_to_float(z, x, w, y),
             hash_float4_to_float(w, z, y, x))
+
+
+# Cycles 4.3 added these two for the Gabor Texture (its kernel centres and 3D orientations).
+
+def hash_float3_to_float2(x, y, z):
+    return hash_float3_to_float(x, y, z), hash_float3_to_float(z, x, y)
+
+
+def hash_float4_to_float2(x, y, z, w):
+    return hash_float4_to_float(x, y, z, w), hash_float4_to_float(z, x, w, y)

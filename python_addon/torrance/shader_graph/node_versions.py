@@ -21,6 +21,8 @@ materials.principled_version does, not by bpy.app.version:
               displacement_owner is where it is.
   Normal Map  5.1 adds the DirectX convention (green pointing down, in every space):
               normal_map_directx says whether the node uses it; bump.py flips green.
+  new nodes   4.3 adds the Gabor Texture (gabor.py; ADDED_NODES: the registry reads it where
+              the Blender has it).
   Separate/Combine RGB/HSV  5.0 removes them: files open with Separate/Combine Color in the
               mode RGB or HSV (COLOR_NODE_SUCCESSORS), which the registry reads.
 """
@@ -38,6 +40,11 @@ REMOVED_NODES = {
     'ShaderNodeTexMusgrave': "merged into the Noise Texture's types in 4.1",
     'ShaderNodeBsdfGlossy': "4.0: the Glossy BSDF is ShaderNodeBsdfAnisotropic (merged)",
     **{old: f"5.0: {new} in mode {mode}" for old, (new, mode) in COLOR_NODE_SUCCESSORS.items()},
+}
+
+# Node types a newer Blender added, which the registry reads where the running Blender has them.
+ADDED_NODES = {
+    'ShaderNodeTexGabor': "4.3: the Gabor Texture",
 }
 
 # The Noise Texture's noise types, Blender 4.1's names (the Musgrave types of 3.4).
