@@ -37,16 +37,6 @@ from torrance_tools.shader_graphs import DictAttr, agree_on_patches, read_output
 SKIPPED = 77
 
 
-def uvw(g):
-    """(u - 0.5, v - 0.5, 0.6 u + 0.8 v - 0.5): the UVs as a 3D point that varies in z too."""
-    u, v = g.uv_parts()
-    comb = g.node("ShaderNodeCombineXYZ")
-    g.link(g.math('SUBTRACT', u, value_b=0.5), comb.inputs[0])
-    g.link(g.math('SUBTRACT', v, value_b=0.5), comb.inputs[1])
-    g.link(g.multiply_add(u, 0.6, g.multiply_add(v, 0.8, -0.5)), comb.inputs[2])
-    return comb.outputs[0]
-
-
 def gabor_node(g, kind, vector=None, **inputs):
     """A Gabor Texture of type kind; inputs by socket identifier (Orientation_2D for
     "Orientation 2D"), numbers set, sockets linked."""
@@ -70,7 +60,7 @@ def outputs(g, n):
 
 def patch(name, kind, linked_vector='uv', **inputs):
     def make(g):
-        vector = {'uv': g.uv, 'uvw': lambda: uvw(g), None: lambda: None}[linked_vector]()
+        vector = {'uv': g.uv, 'uvw': g.uvw, None: lambda: None}[linked_vector]()
         return outputs(g, gabor_node(g, kind, vector, **inputs))
     make.__name__ = name
     return make
@@ -87,7 +77,7 @@ def varying_2d(g):
 
 def phase_and_intensity(g):
     """One node's Phase and Intensity (its Value unlinked) and another node's Value."""
-    a = gabor_node(g, '3D', uvw(g), Scale=2.5, Frequency=1.8, Anisotropy=0.5)
+    a = gabor_node(g, '3D', g.uvw(), Scale=2.5, Frequency=1.8, Anisotropy=0.5)
     b = gabor_node(g, '2D', g.uv(), Scale=3.5, Frequency=1.2, Anisotropy=0.0)
     return g.combine(a.outputs["Phase"], g.math('MULTIPLY', a.outputs["Intensity"], value_b=2.0),
                      b.outputs["Value"])

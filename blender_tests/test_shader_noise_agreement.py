@@ -31,16 +31,6 @@ from torrance_tools.shader_graphs import DictAttr, agree_on_patches, read_with
 
 # -- coordinates -----------------------------------------------------------------------------------
 
-def uvw(g):
-    """(u - 0.5, v - 0.5, 0.6 u + 0.8 v - 0.5): the UVs as a 3D point that varies in z too."""
-    u, v = g.uv_parts()
-    comb = g.node("ShaderNodeCombineXYZ")
-    g.link(g.math('SUBTRACT', u, value_b=0.5), comb.inputs[0])
-    g.link(g.math('SUBTRACT', v, value_b=0.5), comb.inputs[1])
-    g.link(g.multiply_add(u, 0.6, g.multiply_add(v, 0.8, -0.5)), comb.inputs[2])
-    return comb.outputs[0]
-
-
 def w_of_uv(g):
     """W = u + 0.37 v."""
     u, v = g.uv_parts()
@@ -57,7 +47,7 @@ def set_inputs(node, **values):
 def noise_node(g, dims, vector=True, w=None, **values):
     n = g.node("ShaderNodeTexNoise", noise_dimensions=dims)
     if vector:
-        g.link(uvw(g), g.socket(n, "Vector"))
+        g.link(g.uvw(), g.socket(n, "Vector"))
     if w is not None:
         g.link(w, g.socket(n, "W"))
     set_inputs(n, **values)
@@ -237,7 +227,7 @@ def musgrave_node(g, kind, dims, scale, detail, dimension, lacunarity, offset, g
 def musgrave_channel(g, spec):
     kind, dims, scale, detail, dimension, lacunarity, offset, gain, a, b = spec
     n = musgrave_node(g, kind, dims, scale, detail, dimension, lacunarity, offset, gain)
-    g.link(uvw(g), g.socket(n, "Vector"))
+    g.link(g.uvw(), g.socket(n, "Vector"))
     if dims in (1, 4):
         g.link(w_of_uv(g), g.socket(n, "W"))
     return g.math('MULTIPLY_ADD', n.outputs["Fac"], value_b=a, value_c=b, clamp=True)
@@ -264,7 +254,7 @@ MUSGRAVE = tuple(musgrave_patch([MUSGRAVES[i] for i in _ORDER[k:k + 3]], f"musgr
 def wave_patch(kind, direction, distorted):
     def make(g):
         channels = []
-        vector = uvw(g)
+        vector = g.uvw()
         for profile in ('SIN', 'SAW', 'TRI'):
             n = g.node("ShaderNodeTexWave", wave_type=kind, wave_profile=profile)
             if kind == 'BANDS':
@@ -294,7 +284,7 @@ def wave_color(g):
     """The Color output, (fac, fac, fac)."""
     n = g.node("ShaderNodeTexWave", wave_type='RINGS', rings_direction='SPHERICAL',
                wave_profile='SAW')
-    g.link(uvw(g), g.socket(n, "Vector"))
+    g.link(g.uvw(), g.socket(n, "Vector"))
     n.inputs["Scale"].default_value = 1.3
     return n.outputs["Color"]
 

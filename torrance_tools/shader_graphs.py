@@ -70,6 +70,15 @@ class Graph:
         self.link(self.uv(), sep.inputs[0])
         return sep.outputs[0], sep.outputs[1]
 
+    def uvw(self):
+        """(u - 0.5, v - 0.5, 0.6 u + 0.8 v - 0.5): the UVs as a 3D point that varies in z too."""
+        u, v = self.uv_parts()
+        comb = self.node("ShaderNodeCombineXYZ")
+        self.link(self.math('SUBTRACT', u, value_b=0.5), comb.inputs[0])
+        self.link(self.math('SUBTRACT', v, value_b=0.5), comb.inputs[1])
+        self.link(self.multiply_add(u, 0.6, self.multiply_add(v, 0.8, -0.5)), comb.inputs[2])
+        return comb.outputs[0]
+
     def uv_affine(self, scale, offset):
         """UV * (scale, scale, 0) + offset, a 3-vector (Vector Math Multiply Add)."""
         m = self.node("ShaderNodeVectorMath", operation='MULTIPLY_ADD')
