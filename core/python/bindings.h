@@ -21,6 +21,7 @@ void init_image(py::module_& m);
 void init_bsdf(py::module_& m);
 void init_rays(py::module_& m);  // record_rays, replay_rays
 void init_world_mesh(py::module_& m);  // triangle_normals, transform_points, corner_normals
+void init_sky(py::module_& m);  // preetham_sky_table, nishita_sky_table
 
 // "PAPER" / "PRINCIPLED" -> BrdfModel; ValueError otherwise.
 BrdfModel parse_model(const std::string& s);

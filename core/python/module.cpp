@@ -14,4 +14,5 @@ PYBIND11_MODULE(_core, m) {
   torrance::python::init_bsdf(m);
   torrance::python::init_rays(m);
   torrance::python::init_world_mesh(m);
+  torrance::python::init_sky(m);
 }

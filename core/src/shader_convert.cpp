@@ -249,6 +249,13 @@ Vec3 blackbody(float kelvin) {
   return Vec3(pick_max(rgb.x, 0.0f), pick_max(rgb.y, 0.0f), pick_max(rgb.z, 0.0f));
 }
 
+Vec3 xyz_to_rec709(const Vec3& xyz) {
+  Vec3 rgb;
+  for (int k = 0; k < 3; ++k)
+    rgb[k] = kXyzToRec709[k][0] * xyz.x + kXyzToRec709[k][1] * xyz.y + kXyzToRec709[k][2] * xyz.z;
+  return rgb;
+}
+
 Vec3 wavelength(float nanometres) {
   // The table index, truncated toward 0 (so -1 < index < 0 reads the first interval).
   const float index = (nanometres - kCieFirst) * (1.0f / kCieStep);
@@ -260,10 +267,7 @@ Vec3 wavelength(float nanometres) {
     const Vec3 b(kCie1931[i + 1][0], kCie1931[i + 1][1], kCie1931[i + 1][2]);
     xyz = a + t * (b - a);
   }
-  Vec3 rgb;
-  for (int k = 0; k < 3; ++k)
-    rgb[k] = (kXyzToRec709[k][0] * xyz.x + kXyzToRec709[k][1] * xyz.y + kXyzToRec709[k][2] * xyz.z) *
-             kWavelengthScale;
+  const Vec3 rgb = xyz_to_rec709(xyz) * kWavelengthScale;
   return Vec3(pick_max(rgb.x, 0.0f), pick_max(rgb.y, 0.0f), pick_max(rgb.z, 0.0f));
 }
 

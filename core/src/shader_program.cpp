@@ -10,6 +10,7 @@
 #include "torrance/shader_gabor.h"
 #include "torrance/shader_voronoi.h"
 #include "torrance/shader_image.h"
+#include "torrance/shader_sky.h"
 #include "torrance/shader_textures.h"
 #include "torrance/shader_geometry.h"
 #include "torrance/shader_vector.h"
@@ -121,6 +122,7 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
     case ShaderOpcode::TexMagic: return {3, shader::kMagicDepths, false, shader::magic_op};
     case ShaderOpcode::ImageProjection:
       return {7, shader::kImageProjectionModes, false, shader::image_projection_op};
+    case ShaderOpcode::TexSky: return {1, shader::kSkyModels, true, shader::sky_op};
     // [converter ops]
     case ShaderOpcode::ColorRamp: return {1, 1, true, shader::color_ramp_op};
     case ShaderOpcode::RGBCurves: return {2, 1, true, shader::rgb_curves_op};

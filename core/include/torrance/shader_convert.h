@@ -74,6 +74,8 @@ float clamp(ClampMode mode, float value, float min, float max);
 Vec3 blackbody(float kelvin);
 // Wavelength: the colour of light of `nanometres`, in scene linear Rec. 709.
 Vec3 wavelength(float nanometres);
+// CIE XYZ (D65) -> scene linear Rec. 709, Cycles 3.4's xyz_to_rgb of the default configuration.
+Vec3 xyz_to_rec709(const Vec3& xyz);
 
 // The ops (ShaderOpcode 72-80), each reading what its ShaderOpcode's comment says.
 glm::vec4 color_ramp_op(const ShaderOpContext& c);

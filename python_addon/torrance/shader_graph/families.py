@@ -18,6 +18,7 @@ from . import noise4  # noqa: I001
 from . import gabor  # noqa: I001
 from . import geometry  # noqa: I001
 from . import image  # noqa: I001
+from . import sky  # noqa: I001
 
 FAMILIES = (
     # [families]
@@ -31,6 +32,7 @@ FAMILIES = (
     gabor,
     geometry,
     image,
+    sky,
 )
 
 READERS = {}

@@ -23,6 +23,10 @@ materials.principled_version does, not by bpy.app.version:
               normal_map_directx says whether the node uses it; bump.py flips green.
   new nodes   4.3 adds the Gabor Texture (gabor.py; ADDED_NODES: the registry reads it where
               the Blender has it).
+  Sky Texture  Cycles 3.6 wraps the Nishita sun's elevation into [-pi/2, pi/2] (turning it
+              about z past the zenith; cycles_wraps_sun_elevation); 5.0 renames Dust to
+              Aerosol (sky_dust_density) and replaces Nishita by the Single and Multiple
+              Scattering models, which sky.py reports.
   Separate/Combine RGB/HSV  5.0 removes them: files open with Separate/Combine Color in the
               mode RGB or HSV (COLOR_NODE_SUCCESSORS), which the registry reads.
 """
@@ -117,3 +121,15 @@ def normal_map_directx(node):
     """True for a Normal Map of Blender 5.1+ set to the DirectX convention (green pointing down);
     older nodes and the default read OpenGL's."""
     return getattr(node, "convention", 'OPENGL') == 'DIRECTX'
+
+
+def cycles_wraps_sun_elevation():
+    """True where Cycles wraps a Nishita sky's sun elevation into [-pi/2, pi/2] first (3.6+;
+    3.4 takes it as it is): the node did not change, the running Blender tells."""
+    import bpy
+    return bpy.app.version >= (3, 6, 0)
+
+
+def sky_dust_density(node):
+    """A Sky Texture's dust density (Blender 5.0 calls it Aerosol)."""
+    return node.dust_density if hasattr(node, "dust_density") else node.aerosol_density

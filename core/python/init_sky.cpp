@@ -1,0 +1,44 @@
+#include "bindings.h"
+
+#include "torrance/shader_sky.h"
+
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <array>
+#include <vector>
+
+namespace torrance::python {
+
+// The Sky Texture node's tables (shader_sky.h), computed as Cycles' SkyTextureNode does.
+void init_sky(py::module_& m) {
+  m.def(
+      "preetham_sky_table",
+      [](const std::array<float, 3>& sun_direction, float turbidity) {
+        return shader::preetham_table(Vec3(sun_direction[0], sun_direction[1], sun_direction[2]), turbidity);
+      },
+      py::arg("sun_direction"), py::arg("turbidity"),
+      "The Sky Texture's Preetham table (TexSky mode 0) for a unit sun direction (z up).");
+  m.def(
+      "nishita_sky_table",
+      [](float sun_elevation, float sun_rotation, float sun_size, float sun_intensity, bool sun_disc, float altitude,
+         float air, float dust, float ozone, bool wrap_elevation) {
+        const shader::NishitaSky sky{sun_elevation, sun_rotation, sun_size, sun_intensity, sun_disc,
+                                     altitude,      air,          dust,     ozone,         wrap_elevation};
+        std::vector<float> table;
+        {
+          py::gil_scoped_release release;
+          table = shader::nishita_table(sky);
+        }
+        py::array_t<float> a(py::ssize_t(table.size()));
+        std::copy(table.begin(), table.end(), a.mutable_data());
+        return a;
+      },
+      py::arg("sun_elevation"), py::arg("sun_rotation"), py::arg("sun_size"), py::arg("sun_intensity"),
+      py::arg("sun_disc"), py::arg("altitude"), py::arg("air"), py::arg("dust"), py::arg("ozone"),
+      py::arg("wrap_elevation") = false,
+      "The Sky Texture's Nishita table (TexSky mode 1): the sun disc's colours and settings, then "
+      "the precomputed sky texture (float32).");
+}
+
+}  // namespace torrance::python

@@ -1,0 +1,116 @@
+"""The Sky Texture op (opcode 61, shader_sky.h): the tables the core computes as Cycles' host does
+(Preetham's zenith and Perez coefficients; the Nishita texture and sun disc) and the Python twin
+(python_addon/torrance/shader_graph/sky.py) against the core running the op, at directions over
+the whole sphere, along the horizon and across the sun disc. The images' agreement with Cycles
+3.4 is blender_tests/test_shader_sky_agreement.py's."""
+
+import math
+
+import numpy as np
+import pytest
+import torrance_core as tc
+
+COLUMNS = 17     # opcode, mode, flags, resource, out, 12 inputs
+
+
+@pytest.fixture(scope="module")
+def sky(load_module):
+    return load_module("shader_graph.sky")
+
+
+@pytest.fixture(scope="module")
+def nishita():
+    return tc.nishita_sky_table(math.radians(4.0), math.radians(30.0), math.radians(6.0), 1.0,
+                                True, 1200.0, 1.3, 2.0, 1.5)
+
+
+def run_core(mode, table, directions):
+    """The op's Color at each direction, run by the core (one instruction per direction)."""
+    data = np.concatenate([[len(table)], np.asarray(table, np.float32)]).astype(np.float32)
+    out = []
+    for start in range(0, len(directions), 60):
+        chunk = directions[start:start + 60]
+        n = len(chunk)
+        constants = np.zeros((n, 4), np.float32)
+        constants[:, :3] = chunk
+        code = np.full((n, COLUMNS), -1, np.int32)
+        for k in range(n):
+            code[k, :6] = (61, mode, 0, 0, n + k, k)
+        scene = tc.Scene()
+        pid = scene.add_shader_program(constants, code, 2 * n, data)
+        regs = scene.run_shader_program(pid, np.zeros((1, 2), np.float32))
+        out += [regs[0, n + k] for k in range(n)]
+    return np.array(out)
+
+
+def directions(rng, sun, count=240):
+    """Random unit directions, the horizon band and points scattered over the sun's disc."""
+    d = rng.normal(size=(count, 3))
+    d /= np.linalg.norm(d, axis=1)[:, None]
+    horizon = np.c_[np.cos(np.linspace(0, 6.2, 24)), np.sin(np.linspace(0, 6.2, 24)),
+                    np.linspace(-0.45, 0.05, 24)]
+    near_sun = sun + rng.normal(scale=0.03, size=(60, 3))
+    near_sun /= np.linalg.norm(near_sun, axis=1)[:, None]
+    return np.vstack([d, horizon, near_sun]).astype(np.float32)
+
+
+def agree(got, expected):
+    return np.abs(got - expected) <= 2e-4 * np.maximum(1.0, np.abs(expected))
+
+
+def test_opcodes(sky):
+    assert sky.OPCODES == {"TexSky": 61}
+    assert set(sky.FOLDS) == set(sky.OPCODES)
+    assert set(sky.READERS) == {'ShaderNodeTexSky'}
+
+
+def test_nishita_table_as_cycles(nishita):
+    assert nishita.shape == (12 + 512 * 128 * 3,)
+    assert nishita[10:12].tolist() == [512.0, 128.0]
+    assert nishita[8] == np.float32(math.radians(6.0))      # the disc's diameter
+    assert math.isclose(nishita[7], 2 * math.pi - math.radians(30.0), rel_tol=1e-6)
+    texels = nishita[12:].reshape(128, 512, 3)
+    assert np.all(texels >= 0) and np.all(np.isfinite(texels))
+    assert np.array_equal(texels[:, :256], texels[:, ::-1][:, :256])   # mirrored about the sun
+    no_disc = tc.nishita_sky_table(0.3, 0.0, 0.01, 1.0, False, 1.0, 1.0, 1.0, 1.0)
+    assert no_disc[8] == -1.0
+    clamped = tc.nishita_sky_table(0.3, 0.0, 0.0, 1.0, True, 0.0, 1.0, 1.0, 1.0)
+    assert clamped[8] == np.float32(0.0005)                 # Cycles' least sun size
+    assert np.array_equal(clamped[12:], tc.nishita_sky_table(
+        0.3, 0.0, 0.0, 1.0, True, 1.0, 1.0, 1.0, 1.0)[12:])  # altitude at least 1 m
+
+
+def test_ozone_absorbs_and_wrap_turns_the_sun():
+    base = tc.nishita_sky_table(0.3, 0.0, 0.01, 1.0, True, 1.0, 1.0, 1.0, 1.0)
+    ozone = tc.nishita_sky_table(0.3, 0.0, 0.01, 1.0, True, 1.0, 1.0, 1.0, 4.0)
+    assert ozone[12:].sum() < base[12:].sum()
+    # Past the zenith: Cycles 3.6+ takes elevation pi - e with the sun turned by pi.
+    wrapped = tc.nishita_sky_table(math.pi - 0.3, 0.0, 0.01, 1.0, True, 1.0, 1.0, 1.0, 1.0,
+                                   wrap_elevation=True)
+    assert math.isclose(wrapped[6], 0.3, rel_tol=1e-5)
+    assert math.isclose(wrapped[7], math.pi, rel_tol=1e-5)
+    assert np.allclose(wrapped[12:], base[12:], rtol=1e-4)
+
+
+def test_nishita_twin_matches_core(sky, nishita):
+    rng = np.random.default_rng(7)
+    e, r = float(nishita[6]), float(nishita[7]) + math.pi / 2
+    sun = np.array([math.cos(e) * math.cos(r), math.cos(e) * math.sin(r), math.sin(e)])
+    d = directions(rng, sun)
+    core = run_core(1, nishita, d)
+    twin = np.array([sky.nishita(v, nishita) for v in d])
+    ok = agree(core[:, :3], twin)
+    assert ok.all(), (d[~ok.all(axis=1)][:3], core[~ok.all(axis=1)][:3], twin[~ok.all(axis=1)][:3])
+    assert (core[-60:, :3].max(axis=1) > 1e3).sum() > 10      # the disc is seen
+
+
+def test_preetham_twin_matches_core(sky):
+    rng = np.random.default_rng(11)
+    for sun, turbidity in (((0.0, 0.6, 0.8), 2.2), ((0.7, -0.2, 0.1), 6.0)):
+        sun = np.array(sun) / np.linalg.norm(sun)
+        table = tc.preetham_sky_table(tuple(sun), turbidity)
+        assert len(table) == sky.PREETHAM_TABLE
+        d = directions(rng, sun, 120)
+        core = run_core(0, table, d)
+        twin = np.array([sky.preetham(v, table) for v in d])
+        assert agree(core[:, :3], twin).all()

@@ -1,0 +1,175 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The Sky Texture node as Cycles renders it (opcode 61, the core's shader_sky.h): Preetham's
+analytic sky and the Nishita sky (single scattering in an atmosphere of air, dust and ozone,
+precomputed as Cycles' host does into a 512 x 128 texture, plus the limb-darkened sun disc).
+Hosek / Wilkie (its fitted dataset is not reproduced here) and Blender 5.0's Single and Multiple
+Scattering models (a different precomputation and kernel) are reported.
+
+The reader asks the core for the op's table (torrance_core.preetham_sky_table /
+nishita_sky_table, the functions Cycles' SkyTextureNode::compile runs on the host); the twin
+here evaluates a table at a direction as the core's op does (float32 results, the angles and
+transcendental functions in float64 rounded to float32), the fold of a constant Vector and the
+reference evaluator's op.
+"""
+
+import math
+
+import numpy as np
+
+from .node_versions import cycles_wraps_sun_elevation, input_socket, sky_dust_density
+from .texture_mapping import mapped
+from .textures import _vector
+
+OPCODES = {"TexSky": 61}
+# The op's modes (the core's SkyModel) by Blender's sky_type.
+SKY_MODELS = {'PREETHAM': 0, 'NISHITA': 1}
+PREETHAM_TABLE = 20
+NISHITA_HEADER = 12
+
+_F = np.float32
+_HALF_PI = _F(math.pi / 2)
+_PI = _F(math.pi)
+_TWO_PI = _F(2 * math.pi)
+# CIE XYZ -> Rec. 709 (the inverse of Blender's srgb_to_xyz.spimtx, as the core's).
+_XYZ_TO_REC709 = np.array(((3.2404548360, -1.5371388501, -0.4985315469),
+                           (-0.9692663899, 1.8760109288, 0.0415560823),
+                           (0.0556434196, -0.2040258543, 1.0572251625)), np.float32)
+
+
+def _acos(c):
+    return _F(math.acos(min(max(float(c), -1.0), 1.0)))
+
+
+def _spherical(d):
+    return _acos(d[2]), _F(math.atan2(float(d[0]), float(d[1])))
+
+
+def _rec709(xyz):
+    return tuple(float(max(c, 0.0)) for c in _XYZ_TO_REC709 @ np.asarray(xyz, np.float32))
+
+
+def _perez(lam, theta, gamma):
+    cg = _F(math.cos(float(gamma)))
+    return ((_F(1) + lam[0] * _F(math.exp(float(lam[1] / _F(math.cos(float(theta)))))))
+            * (_F(1) + lam[2] * _F(math.exp(float(lam[3] * gamma))) + lam[4] * cg * cg))
+
+
+def preetham(d, table):
+    """Preetham's sky (Rec. 709) along d from the table (sun phi, theta, zenith Y, x, y, the
+    Perez coefficients of Y, x, y)."""
+    t = [_F(v) for v in table]
+    theta, phi = _spherical([_F(v) for v in d[:3]])
+    st, sp = t[1], t[0]
+    gamma = _acos(_F(math.sin(theta)) * _F(math.sin(st)) * _F(math.cos(sp - phi))
+                  + _F(math.cos(theta)) * _F(math.cos(st)))
+    theta = min(theta, _HALF_PI - _F(0.001))
+    with np.errstate(all='ignore'):
+        cx = t[3] * _perez(t[10:15], theta, gamma)
+        cy = t[4] * _perez(t[15:20], theta, gamma)
+        lum = t[2] * _perez(t[5:10], theta, gamma)
+        x = (cx / cy) * lum if cy != 0 else _F(0)
+        z = (_F(1) - cx - cy) / cy * lum if cy != 0 and lum != 0 else _F(0)
+    return _rec709((x, lum, z))
+
+
+def _lookup(texels, x, y):
+    """Cycles' linear lookup, Extension Extend, of texels (h, w, 3)."""
+    h, w = texels.shape[:2]
+    fx, fy = _F(x) * _F(w) - _F(0.5), _F(y) * _F(h) - _F(0.5)
+    ix, iy = math.floor(fx), math.floor(fy)
+    tx, ty = fx - _F(ix), fy - _F(iy)
+    x0, x1 = min(max(ix, 0), w - 1), min(max(ix + 1, 0), w - 1)
+    y0, y1 = min(max(iy, 0), h - 1), min(max(iy + 1, 0), h - 1)
+    return ((_F(1) - ty) * (_F(1) - tx) * texels[y0, x0] + (_F(1) - ty) * tx * texels[y0, x1]
+            + ty * (_F(1) - tx) * texels[y1, x0] + ty * tx * texels[y1, x1])
+
+
+def nishita(d, table):
+    """The Nishita sky (Rec. 709) along d from the table (sun disc colours and settings, the
+    texture's size, its texels)."""
+    t = np.asarray(table, np.float32)
+    w, h = int(t[10]), int(t[11])
+    if len(t) != NISHITA_HEADER + 3 * w * h:
+        return (0.0, 0.0, 0.0)
+    texels = t[NISHITA_HEADER:].reshape(h, w, 3)
+    bottom, top = t[0:3], t[3:6]
+    elevation, rotation, diameter, intensity = t[6], t[7], t[8], t[9]
+    d = np.asarray(d[:3], np.float32)
+    theta, phi = _spherical(d)
+    x = (phi + _PI + rotation) / _TWO_PI
+    if x > 1:
+        x -= _F(1)
+    xyz = np.zeros(3, np.float32)
+    if d[2] >= 0:
+        ce = math.cos(float(elevation))
+        lon = float(rotation + _HALF_PI)
+        sun = np.array((ce * math.cos(lon), ce * math.sin(lon), math.sin(float(elevation))),
+                       np.float32)
+        angle = _F(2 * math.atan2(float(np.linalg.norm(d - sun)), float(np.linalg.norm(d + sun))))
+        half = diameter / _F(2)
+        view_elevation = _HALF_PI - theta
+        if diameter >= 0 and angle < half:
+            if elevation + half > 0:
+                s = ((view_elevation - elevation) / diameter + _F(0.5) if elevation - half > 0
+                     else view_elevation / (elevation + half))
+                xyz = (bottom + s * (top - bottom)) * intensity
+            r = angle / half
+            xyz = xyz * (_F(1) - _F(0.6) * (_F(1) - _F(math.sqrt(max(float(1 - r * r), 0.0)))))
+        else:
+            xyz = _lookup(texels, x, _F(math.sqrt(max(float(view_elevation / _HALF_PI), 0.0))))
+    elif d[2] >= -0.4:
+        fade = _F(1) + d[2] * _F(2.5)
+        xyz = _lookup(texels, x, -0.5) * (fade * fade * fade)
+    return _rec709(xyz)
+
+
+def _fold_sky(mode, flags, a, table):
+    rgb = preetham(a[0], table) if mode == 0 else nishita(a[0], table)
+    return (*rgb, 1.0)
+
+
+FOLDS = {"TexSky": _fold_sky}
+
+
+# -- the reader -----------------------------------------------------------------------------------
+
+def _unsupported(node, what):
+    from ..nodes import node_label
+    from .graph import Unsupported
+    return Unsupported(f"{node_label(node)}: {what}")
+
+
+def sky_table(node):
+    """(mode, table) of a Sky Texture node, as Cycles' SkyTextureNode::compile computes them."""
+    kind = node.sky_type
+    if kind not in SKY_MODELS:
+        raise _unsupported(node, f"sky type {kind.replace('_', ' ').title()}")
+    from ..core_module import load_core
+    core = load_core()
+    if kind == 'PREETHAM':
+        d = np.asarray(node.sun_direction, np.float64)
+        length = float(np.linalg.norm(d))
+        d = d / length if length > 0 else d
+        return SKY_MODELS[kind], core.preetham_sky_table(tuple(float(c) for c in d),
+                                                         float(node.turbidity))
+    table = core.nishita_sky_table(
+        node.sun_elevation, node.sun_rotation, node.sun_size, node.sun_intensity,
+        bool(node.sun_disc), node.altitude, node.air_density, sky_dust_density(node),
+        node.ozone_density, wrap_elevation=cycles_wraps_sun_elevation())
+    return SKY_MODELS[kind], table
+
+
+def _direction(g, node):
+    """The Vector input as Blender gives it to Cycles: a Nishita sky with its sun disc makes the
+    socket unavailable (node_shader_update_sky), its link ignored: Generated coordinates."""
+    if input_socket(node, "Vector").enabled:
+        return _vector(g, node)
+    return mapped(g, node, g.generated())
+
+
+def _read_sky(g, node, socket):
+    mode, table = sky_table(node)
+    return g.builder.emit("TexSky", 'color', [_direction(g, node)], mode=mode, table=table)
+
+
+READERS = {'ShaderNodeTexSky': _read_sky}
