@@ -406,6 +406,10 @@ void init_scene(py::module_& m) {
       .def("set_world_texture", &Scene::set_world_texture, py::arg("texture"), py::arg("strength") = 1.0f,
            "HDRI world: an equirectangular texture (from add_texture*) around the scene, mapped like "
            "Cycles' Environment Texture, importance-sampled.")
+      .def("set_light_program", &Scene::set_light_program, py::arg("program"), py::arg("radiance_register"),
+           "The light added last takes its node graph: program (from add_shader_program) run at each point of "
+           "the light seen by a receiver (its ray length the distance), radiance_register's colour multiplying the "
+           "light's. ValueError for a bad program or register, or when there is no light.")
       .def("set_world_program", &Scene::set_world_program, py::arg("program"), py::arg("radiance_register"),
            py::arg("resolution") = 1024,
            "The world's node graph: program (from add_shader_program) run per direction as Cycles' background "

@@ -44,7 +44,7 @@ EnvironmentMap::EnvironmentMap(std::shared_ptr<const Texture> image, float stren
   average_luminance_ *= strength_;
 }
 
-EnvironmentMap::EnvironmentMap(std::shared_ptr<const BackgroundShader> shader, int resolution)
+EnvironmentMap::EnvironmentMap(std::shared_ptr<const EmissionShader> shader, int resolution)
     : shader_(std::move(shader)) {
   if (!shader_) throw std::invalid_argument("environment map needs a background shader");
   if (resolution < 4 || resolution > 16384)
@@ -59,7 +59,7 @@ EnvironmentMap::EnvironmentMap(std::shared_ptr<const BackgroundShader> shader, i
   tbb::parallel_for(0, height_, [&](int j) {
     for (int i = 0; i < width_; ++i) {
       const Vec3 dir = uv_to_direction(Vec2((i + 0.5f) / width_, (j + 0.5f) / height_));
-      lum[size_t(j) * width_ + i] = luminance(shader_->radiance(dir, baking));
+      lum[size_t(j) * width_ + i] = luminance(shader_->background(dir, baking));
     }
   });
   build(std::move(lum));
@@ -109,7 +109,7 @@ void EnvironmentMap::build(std::vector<float> lum) {
 }
 
 Vec3 EnvironmentMap::radiance(const Vec3& dir, const PathState& state) const {
-  if (shader_) return shader_->radiance(dir, state);
+  if (shader_) return shader_->background(dir, state);
   return Vec3(image_->lookup(direction_to_uv(dir))) * strength_;
 }
 

@@ -373,7 +373,25 @@ void Lights::set_world_map(std::shared_ptr<const Texture> image, float strength)
   world_ = WorldLight(std::make_shared<EnvironmentMap>(std::move(image), strength));
 }
 
-void Lights::set_world_shader(std::shared_ptr<const BackgroundShader> shader, int resolution) {
+void Lights::set_last_light_shader(std::shared_ptr<const EmissionShader> shader) {
+  if (lights_.empty()) throw std::invalid_argument("a light shader needs a light to belong to");
+  shaders_.resize(lights_.size());
+  shaders_.back() = std::move(shader);
+}
+
+Vec3 Lights::shader_factor(size_t index, const Vec3& p, const Vec3& wi, float distance,
+                           const PathState& state) const {
+  if (index >= shaders_.size() || !shaders_[index]) return Vec3(1.0f);
+  const bool far = !std::isfinite(distance);
+  const AreaLight* area = std::get_if<AreaLight>(&lights_[index]);
+  PathState seen_by = state;
+  seen_by.ray_flags = kRayEmission;
+  return shaders_[index]->radiance(EmissionShader::light_globals(far ? wi : p + wi * distance,
+                                                                 area ? area->normal() : -wi, -wi, distance,
+                                                                 seen_by));
+}
+
+void Lights::set_world_shader(std::shared_ptr<const EmissionShader> shader, int resolution) {
   world_ = WorldLight(std::make_shared<EnvironmentMap>(std::move(shader), resolution));
 }
 
@@ -452,13 +470,20 @@ LightSample Lights::sample(size_t index, const Vec3& p, const Vec3& shading_norm
   const LightSample s = mesh_ && index == lights_.size() ? mesh_->sample(p, shading_normal, u, receiver)
                         : world ? world_.sample(p, shading_normal, u, receiver)
                                 : visit(index, [&](const auto& light) { return light.sample(p, shading_normal, u); });
+  if (index < shaders_.size() && shaders_[index] && s.valid()) {
+    LightSample shaded = s;
+    shaded.weight *= shader_factor(index, p, s.wi, s.distance, receiver);
+    return shaded;
+  }
   // Only the world's map rejects directions below the normal: the same u seen from the other side.
   if (two_sided && !s.valid() && world) return world_.sample(p, -shading_normal, u, receiver);
   return s;
 }
 
 bool Lights::hit(size_t index, const Vec3& p, const Vec3& n, const Vec3& dir, LightHit& out) const {
-  return visit(index, [&](const auto& light) { return light.hit(p, n, dir, kInfinity, out); });
+  if (!visit(index, [&](const auto& light) { return light.hit(p, n, dir, kInfinity, out); })) return false;
+  out.radiance *= shader_factor(index, p, dir, out.distance, PathState{});
+  return true;
 }
 
 Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max, float bsdf_pdf,
@@ -477,6 +502,7 @@ Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Ve
     if (!std::visit([&](const auto& light) { return light.hit(p_prev, n_prev, dir, t_max, h); }, lights_[i]))
       continue;
     if (share) h.radiance *= share->of(i);
+    h.radiance *= shader_factor(i, p_prev, dir, h.distance, escaped);
     add(i, h, true);
   }
   LightHit h;

@@ -102,8 +102,17 @@ void Scene::set_world_program(uint32_t program, int radiance_register, int resol
   if (program >= programs_.size())
     throw std::invalid_argument("the world uses shader program " + std::to_string(program) + " but the scene has " +
                                 std::to_string(programs_.size()));
-  lights_.set_world_shader(std::make_shared<BackgroundShader>(programs_[program], radiance_register, textures_),
+  lights_.set_world_shader(std::make_shared<EmissionShader>(programs_[program], radiance_register, textures_),
                            resolution);
+}
+
+void Scene::set_light_program(uint32_t program, int radiance_register) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("change a light");
+  if (program >= programs_.size())
+    throw std::invalid_argument("the light uses shader program " + std::to_string(program) + " but the scene has " +
+                                std::to_string(programs_.size()));
+  lights_.set_last_light_shader(std::make_shared<EmissionShader>(programs_[program], radiance_register, textures_));
 }
 
 uint32_t Scene::add_shader_program(ShaderProgram program) {

@@ -136,10 +136,8 @@ def light_messages(light):
         reporter = Reporter(None)
         reporter.report = _collect(reporter)
 
-        class _Obj:
-            name = light.name
         try:
-            export.light_node_factor(_Obj(), light, reporter)
+            export.light_nodes(light, reporter, _DryTextures())
         except Exception:
             pass
         messages += _strip(reporter.messages, f"Light '{light.name}': ")

@@ -3,11 +3,11 @@
 // Cycles' Environment Texture maps directions), proportional to luminance * sin(theta), with a
 // floor so that no direction is impossible:
 //  * an HDRI: an equirectangular image times a strength, the grid its pixels;
-//  * a background shader (background_shader.h): the world's node graph, the grid its radiance at
+//  * a background shader (emission_shader.h): the world's node graph, the grid its radiance at
 //    the cells' centres (Cycles' world Map Resolution), the radiance itself run per direction.
 #pragma once
 
-#include "torrance/background_shader.h"
+#include "torrance/emission_shader.h"
 #include "torrance/texture.h"
 
 #include <memory>
@@ -19,7 +19,7 @@ class EnvironmentMap {
  public:
   EnvironmentMap(std::shared_ptr<const Texture> image, float strength);
   // resolution: the grid's width (its height is half of it), at least 4.
-  EnvironmentMap(std::shared_ptr<const BackgroundShader> shader, int resolution);
+  EnvironmentMap(std::shared_ptr<const EmissionShader> shader, int resolution);
 
   // state: the ray's (a background shader reads it; NEE: kRayEmission).
   Vec3 radiance(const Vec3& dir, const PathState& state = {}) const;
@@ -39,7 +39,7 @@ class EnvironmentMap {
 
   std::shared_ptr<const Texture> image_;
   float strength_ = 1.0f;
-  std::shared_ptr<const BackgroundShader> shader_;
+  std::shared_ptr<const EmissionShader> shader_;
   int width_ = 0, height_ = 0;       // of the sampling grid
   std::vector<float> row_cdf_;       // height_ + 1 entries, over v
   std::vector<float> column_cdf_;    // height_ rows of width_ + 1 entries, over u within a row

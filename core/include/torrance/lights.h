@@ -83,6 +83,7 @@ class AreaLight {
   bool hit(const Vec3& p, const Vec3& n, const Vec3& dir, float t_max, LightHit& out) const;
   float area() const { return area_; }
   const Vec3& center() const { return center_; }
+  const Vec3& normal() const { return normal_; }
   // The radius of a sphere about the centre that holds the light.
   float extent() const { return 0.5f * std::sqrt(glm::dot(edge_u_, edge_u_) + glm::dot(edge_v_, edge_v_)); }
 
@@ -140,8 +141,12 @@ class Lights {
                 float power, const Vec3& color, float spread);
   void set_world(const Vec3& color, float strength);
   void set_world_map(std::shared_ptr<const Texture> image, float strength);
-  // The world's node graph (background_shader.h), its NEE map `resolution` cells wide.
-  void set_world_shader(std::shared_ptr<const BackgroundShader> shader, int resolution);
+  // The world's node graph (emission_shader.h), its NEE map `resolution` cells wide.
+  void set_world_shader(std::shared_ptr<const EmissionShader> shader, int resolution);
+  // The node graph of the light added last (emission_shader.h): its radiance at each point of
+  // the light, seen from the receiver, multiplies the light's colour x power (Cycles' light
+  // shader: a Light Falloff, a texture).
+  void set_last_light_shader(std::shared_ptr<const EmissionShader> shader);
   // Emissive triangles (replaces any previous set); nullopt removes them.
   void set_mesh_light(std::optional<MeshLight> emitters) { mesh_ = std::move(emitters); }
   // MIS density of NEE producing point q on emissive triangle `triangle` from (p, n).
@@ -214,12 +219,16 @@ class Lights {
     return f(world_);
   }
   float importance(size_t index, const Vec3& p, const Vec3& n, bool two_sided = false) const;
+  // The factor light `index`'s shader (1 without one) gives the point at `distance` along wi
+  // from p (or, infinitely far, in direction wi).
+  Vec3 shader_factor(size_t index, const Vec3& p, const Vec3& wi, float distance, const PathState& state) const;
   template <typename Light>
   const Light* get(size_t index) const {
     return index < lights_.size() ? std::get_if<Light>(&lights_[index]) : nullptr;
   }
 
   std::vector<std::variant<SunLight, PointLight, AreaLight>> lights_;
+  std::vector<std::shared_ptr<const EmissionShader>> shaders_;  // per light of lights_; null: none
   std::optional<MeshLight> mesh_;
   WorldLight world_{Vec3(0.0f)};
   LightSelection selection_ = LightSelection::Contribution;

@@ -262,9 +262,12 @@ class Scene {
   // An HDRI world: texture `id` as an equirectangular environment, times strength.
   void set_world_texture(uint32_t id, float strength);
   // The world's node graph: shader program `program` (from add_shader_program), its radiance in
-  // register radiance_register (background_shader.h), NEE sampling a map `resolution` cells
+  // register radiance_register (emission_shader.h), NEE sampling a map `resolution` cells
   // wide (Cycles' world Map Resolution). Throws std::invalid_argument naming a bad argument.
   void set_world_program(uint32_t program, int radiance_register, int resolution);
+  // The light added last takes shader program `program`'s radiance register as its node graph
+  // (Lights::set_last_light_shader). Throws std::invalid_argument naming a bad argument.
+  void set_light_program(uint32_t program, int radiance_register);
   Lights& lights() { return lights_; }  // C++ set-up; bindings use edit_lights
   const Lights& lights() const { return lights_; }
   // Runs edit on the lights unless a render is using the scene (then std::runtime_error).

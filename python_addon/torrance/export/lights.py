@@ -23,45 +23,50 @@ def _vec(v):
     return tuple(float(x) for x in v)
 
 
-def light_node_factor(obj, light, reporter):
-    """The colour factor of a light's node tree, as Cycles multiplies it onto colour x energy:
+class LightNodes:
+    """What a light's node tree does to its colour x energy: a constant factor, or a shader
+    program (ProgramBuilder.build()'s arguments and its radiance register) the core runs at
+    each point of the light."""
+
+    def __init__(self, factor=(1.0, 1.0, 1.0), program=None, register=-1):
+        self.factor, self.program, self.register = factor, program, register
+
+
+def light_nodes(light, reporter, textures):
+    """The LightNodes of a light's node tree, as Cycles multiplies it onto colour x energy:
     the Emission (and Background) closures of its Light Output, through Mix and Add Shader
-    nodes, their Color and Strength from any node graph that folds to a constant (a Blackbody,
-    Math, RGB ...). A graph that varies over the light (textures, Light Falloff, IES) is
-    reported and the light renders with a factor of 1."""
+    nodes, their Color and Strength from any node graph: folded to a factor when it is
+    constant (a Blackbody, Math, RGB ...), else a program (a Light Falloff, a texture)."""
     tree = used_node_tree(light)
     if tree is None:
-        return (1.0, 1.0, 1.0)
+        return LightNodes()
     where = f"Light '{light.name}'"
     output = tree.get_output_node('CYCLES')
     surface = output.inputs.get("Surface") if output is not None else None
     if surface is None or source_socket(surface) is None:
         reporter.warning(f"{where}: nothing feeds the Light Output; the nodes are ignored")
-        return (1.0, 1.0, 1.0)
+        return LightNodes()
     from ..shader_graph.emission_tree import EmissionTree
     from ..shader_graph.registry import READERS
-    radiance = EmissionTree(where, _NoTextures(), READERS, reporter,
-                            background=False).radiance(surface)
+    tree = EmissionTree(where, textures, READERS, reporter, background=False)
+    radiance = tree.radiance(surface)
     if not radiance.constant:
-        reporter.warning(f"{where}: its node tree varies over the light (Torrance renders a light "
-                         f"whose nodes fold to one colour); the nodes are ignored")
-        return (1.0, 1.0, 1.0)
+        try:
+            return LightNodes(program=tree.builder.build(),
+                              register=tree.builder.register_of(radiance))
+        except ValueError as exc:
+            reporter.warning(f"{where}: {exc}; the nodes are ignored")
+            return LightNodes()
     factor = tuple(float(c) for c in radiance.value[:3])
     if not all(math.isfinite(c) for c in factor):
         reporter.warning(f"{where}: its Emission node is not finite; the nodes are ignored")
-        return (1.0, 1.0, 1.0)
-    return tuple(max(0.0, c) for c in factor)
+        return LightNodes()
+    return LightNodes(factor=tuple(max(0.0, c) for c in factor))
 
 
-class _NoTextures:
-    """A light's graph reads no image: an image makes it vary (reported by the caller)."""
-
-    def texture(self, image, interpolation="Linear"):
-        return 0 if image is not None else None
-
-
-def export_light(tc_scene, obj, matrix, reporter):
-    """Adds a SUN, POINT, SPOT or AREA light; returns True when a light was added.
+def export_light(tc_scene, obj, matrix, reporter, textures):
+    """Adds a SUN, POINT, SPOT or AREA light; returns True when a light was added. textures:
+    the export's TextureTable (a light's node graph may read images).
 
     Units as Cycles 3.4: colour x energy (x an Emission node's colour x strength), W for
     point, spot and area lights, W/m^2 for suns. Sun, spot and area lights emit along the
@@ -85,8 +90,8 @@ def export_light(tc_scene, obj, matrix, reporter):
         reporter.info(f"Area light '{obj.name}' is a portal, which Torrance does not use "
                       f"(portals emit no light): skipped")
         return False
-    factor = light_node_factor(obj, light, reporter)
-    color = tuple(c * f for c, f in zip(color, factor, strict=True))
+    nodes = light_nodes(light, reporter, textures)
+    color = tuple(c * f for c, f in zip(color, nodes.factor, strict=True))
     if energy == 0.0 or max(color) == 0.0:
         return False
     m = np.asarray(matrix, dtype=np.float64).reshape(4, 4)
@@ -131,4 +136,6 @@ def export_light(tc_scene, obj, matrix, reporter):
                                 direction=_vec(d),
                                 shape="ELLIPSE" if shape in {'DISK', 'ELLIPSE'} else "RECTANGLE",
                                 power=energy, color=color, spread=float(light.spread))
+    if nodes.program is not None:
+        tc_scene.set_light_program(tc_scene.add_shader_program(*nodes.program), nodes.register)
     return True

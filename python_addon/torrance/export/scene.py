@@ -182,13 +182,13 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
                     if what.random_ids is not None:         # its materials read Object Info
                         what.random_ids.append(inst.random_id)
                 elif what == 'LIGHT' and export_light(tc_scene, obj, inst.matrix_world.copy(),
-                                                      reporter):
+                                                      reporter, textures):
                     stats.lights += 1
                 continue
             poll()
             role = instance_role(inst)
             if role == 'LIGHT':
-                if export_light(tc_scene, obj, inst.matrix_world.copy(), reporter):
+                if export_light(tc_scene, obj, inst.matrix_world.copy(), reporter, textures):
                     stats.lights += 1
             elif role == 'UNSUPPORTED':
                 report_unsupported(obj, unsupported_types, reporter)

@@ -183,10 +183,10 @@ CLOSURES = {
                                 "Displacement as bump (Cycles' Bump Only; the other methods "
                                 "are reported and rendered as bump too)",
     'ShaderNodeOutputWorld': "rendered: the active output",
-    'ShaderNodeOutputLight': "partly: Emission (and Background) closures in Mix and Add Shader "
-                             "trees whose Color and Strength graphs fold to constants "
-                             "(Blackbody, Math, ...); a graph that varies over the light "
-                             "(textures, Light Falloff, IES) is reported",
+    'ShaderNodeOutputLight': "rendered: Emission (and Background) closures in Mix and Add "
+                             "Shader trees, Color and Strength from any graph: folded to a "
+                             "factor, or run at each point of the light a receiver sees (Light "
+                             "Falloff, Geometry, textures)",
     # Read by graph.GraphCompiler itself.
     'ShaderNodeGroup': "rendered: node groups, nested, are compiled through (muted nodes pass "
                        "their inputs through as Blender does; reroutes are followed)",

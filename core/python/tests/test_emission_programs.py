@@ -1,6 +1,7 @@
-"""The world as a shader program (Scene.set_world_program; core background_shader.h): bad
-arguments are rejected, the program sees the direction as Cycles' background does, and next-event
-estimation of its map and BSDF sampling together converge to the analytic irradiance."""
+"""Worlds and lights as shader programs (Scene.set_world_program, set_light_program; core
+emission_shader.h): bad arguments are rejected, a world's program sees the direction as Cycles'
+background does, next-event estimation of its map and BSDF sampling together converge to the
+analytic irradiance, and a light's program sees the distance to its receiver."""
 import numpy as np
 import pytest
 import torrance_core as tc
@@ -108,3 +109,42 @@ def test_environment_projections_agree_with_their_twins(load_module, mode):
     want = np.array([[float(x) for x in twin(d)] for d in constants[:, :3]])
     assert np.abs(got - want).max() < 2e-6
     assert ((0 <= got) & (got <= 1)).all()
+
+
+LIGHT_FALLOFF = 109
+
+
+def test_a_light_program_sees_the_distance_to_its_receiver():
+    # A point light of power P over a white Lambert floor at height h: irradiance P / (4 pi h^2)
+    # under it; a program of Light Falloff > Linear (strength 1) multiplies it by the distance.
+    def scene_with(program):
+        scene = tc.Scene()
+        m = scene.add_material(base_color=(1, 1, 1), specular=0.0, roughness=1.0)
+        scene.add_mesh(np.array([[-50, -50, 0], [50, -50, 0], [50, 50, 0], [-50, 50, 0]],
+                                np.float32), np.array([[0, 1, 2], [0, 2, 3]]),
+                       material_indices=np.array([m, m]))
+        scene.add_point_light(position=(0.0, 0.0, 2.0), power=100.0, radius=0.0)
+        if program:
+            pid = add(scene, [(1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0)],
+                      [code_row(LIGHT_FALLOFF, 2, (0, 1), mode=1)], 3)
+            scene.set_light_program(pid, 2)
+        cam = np.array([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 1], [0, 0, 0, 1]], np.float32)
+        scene.set_camera(cam, type="ORTHO", ortho_scale=0.01)
+        return scene
+    settings = tc.RenderSettings(width=2, height=2, samples=16, max_bounces=1)
+    plain = tc.render(scene_with(False), settings).image[..., 0].mean()
+    linear = tc.render(scene_with(True), settings).image[..., 0].mean()
+    assert plain == pytest.approx(100.0 / (4 * np.pi * 4.0) / np.pi, rel=0.02)
+    assert linear == pytest.approx(plain * 2.0, rel=0.01)
+
+
+def test_bad_light_programs_are_rejected():
+    scene = tc.Scene()
+    pid, out = sky_program(scene, (1.0, 1.0, 1.0))
+    with pytest.raises(ValueError, match="needs a light"):
+        scene.set_light_program(pid, out)
+    scene.add_point_light(position=(0.0, 0.0, 2.0))
+    with pytest.raises(ValueError, match="shader program 9"):
+        scene.set_light_program(9, out)
+    with pytest.raises(ValueError, match="not written"):
+        scene.set_light_program(pid, out + 5)
