@@ -236,22 +236,22 @@ def main():
         if not bad:
             missed.append(description)
 
-    # A light node tree that varies over the light (Light Falloff) is reported once (two
-    # instances of the light), and the light still renders by its colour x energy.
+    # A light node tree with a node Torrance does not render (IES Texture) is reported once
+    # (two instances of the light), and the light still renders by its colour x energy.
     scene = base_scene()
     ob = add_light(scene, 'POINT', "Hot", (0.0, -1.0, 2.5), energy=200.0)
     ob.data.use_nodes = True
     nt = ob.data.node_tree
     emit = next(n for n in nt.nodes if n.bl_idname == 'ShaderNodeEmission')
-    falloff = nt.nodes.new("ShaderNodeLightFalloff")
-    nt.links.new(falloff.outputs["Linear"], emit.inputs["Strength"])
+    ies = nt.nodes.new("ShaderNodeTexIES")
+    nt.links.new(ies.outputs["Fac"], emit.inputs["Strength"])
     twin = bpy.data.objects.new("Hot2", ob.data)
     twin.location = (1.0, -1.0, 2.5)
     scene.collection.objects.link(twin)
     render_torrance(scene, d, "light_nodes")
     messages = [m for _, m in testing.last_messages() if "Light 'Hot'" in m]
-    check(len(messages) == 1 and "varies over the light" in messages[0],
-          f"the Light Falloff tree must be reported once: {testing.last_messages()}")
+    check(len(messages) == 1 and "IES Texture" in messages[0],
+          f"the IES Texture must be reported once: {testing.last_messages()}")
     check(testing.addon().render.last_stats["lights"] == 2, "both point lights must render")
 
     check(not problems, "Torrance disagrees with Cycles: " + " | ".join(problems))
