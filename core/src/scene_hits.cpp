@@ -64,6 +64,9 @@ void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const 
     hit.attribute_ids = nullptr;
   }
   hit.position = w * p0 + u * p1 + v * p2;  // interpolated, more accurate than origin + t * dir
+  hit.corners[0] = p0;
+  hit.corners[1] = p1;
+  hit.corners[2] = p2;
   Vec3 ng = glm::cross(p1 - p0, p2 - p0);
   const float ng_len = glm::length(ng);
   ng = ng_len > 0.0f ? ng / ng_len : -dir;

@@ -101,6 +101,24 @@ glm::vec4 light_falloff_op(const ShaderOpContext& c) {
   return glm::vec4(strength, 0.0f, 0.0f, 0.0f);
 }
 
+glm::vec4 wireframe_op(const ShaderOpContext& c) {
+  const ShaderGlobals& g = c.globals;
+  float half_width = 1.0f;
+  if (c.ins.mode == 1) {
+    const Vec3& i = g.incoming;
+    half_width = 0.5f * (glm::length(g.dpdx - glm::dot(g.dpdx, i) * i) + glm::length(g.dpdy - glm::dot(g.dpdy, i) * i));
+  }
+  half_width *= 0.5f * c.value(0);  // the neighbouring triangle draws the other half
+  const float squared = half_width * half_width;
+  for (int k = 0; k < 3; ++k) {
+    const Vec3& corner = g.corners[k];
+    const Vec3 edge = corner - g.corners[k > 0 ? k - 1 : 2];
+    const Vec3 twice_area = glm::cross(edge, g.position - corner);  // |.|^2 / |edge|^2: distance^2
+    if (glm::dot(twice_area, twice_area) < glm::dot(edge, edge) * squared) return glm::vec4(1.0f, 0.0f, 0.0f, 0.0f);
+  }
+  return glm::vec4(0.0f);
+}
+
 glm::vec4 tangent_op(const ShaderOpContext& c) {
   const ShaderGlobals& g = c.globals;
   const ObjectTransform object(c, 1);

@@ -74,6 +74,7 @@ struct SurfaceHit {
   int num_instance_constants = 0;
   // The gradients (1/m, in the triangle's plane) of corner_weights.y and .z (with attributes).
   Vec3 weight_gradients[2] = {Vec3(0.0f), Vec3(0.0f)};
+  Vec3 corners[3] = {Vec3(0.0f), Vec3(0.0f), Vec3(0.0f)};  // the triangle's, world space
 };
 
 // Shader globals that know only a UV (what a mesh light's sample or a test has).
@@ -105,6 +106,7 @@ inline ShaderGlobals shader_globals(const SurfaceHit& hit, const Vec3& ray_dir, 
   g.num_instance_constants = hit.num_instance_constants;
   g.tangent = hit.tangent;
   g.bitangent_sign = hit.bitangent_sign;
+  for (int k = 0; k < 3; ++k) g.corners[k] = hit.corners[k];
   // Cycles' ray differentials: the cone's width along its tangent pair around the true normal,
   // and the UVs (through dP/du, dP/dv) and corner weights they move by.
   if (cone_width > 0.0f && std::isfinite(cone_width)) {

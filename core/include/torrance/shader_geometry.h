@@ -16,6 +16,10 @@
 //   LightFalloff (109) Light Falloff (svm/light_path.h): in0.x Strength, in1.x Smooth; mode 0
 //                     Quadratic (Strength), 1 Linear (x ray length), 2 Constant (x its square);
 //                     then, for Smooth > 0, x l^2 / (Smooth + l^2) (l the ray length, PathState)
+//   Wireframe (110)   the Wireframe node (svm/wireframe.h): 1 where the hit lies within in0.x Size / 2
+//                     of an edge of its triangle (ShaderGlobals::corners, world space), else 0;
+//                     mode 0: Size in metres, 1 (Pixel Size): in pixels, a pixel the mean length
+//                     of dP/dx and dP/dy projected onto the plane facing the viewer
 //   Tangent (101)     the Tangent node (svm/tex_coord.h): mode 0-2 Radial about X, Y, Z of in0
 //                     (Generated, w 0 where the mesh lacks it: then the position), 3 UV Map (the
 //                     hit's UV tangent, ShaderGlobals::tangent, taken back to object space);
@@ -43,6 +47,7 @@ constexpr int kLightPathModes = 13;
 glm::vec4 light_path_op(const ShaderOpContext& c);
 constexpr int kLightFalloffModes = 3;
 glm::vec4 light_falloff_op(const ShaderOpContext& c);
+glm::vec4 wireframe_op(const ShaderOpContext& c);
 constexpr int kTangentModes = 4;
 glm::vec4 tangent_op(const ShaderOpContext& c);
 constexpr int kCameraTransformModes = 5;

@@ -87,6 +87,7 @@ enum class ShaderOpcode : uint8_t {
   CameraTransform = 107,
   VectorTransform = 108,  // shader_vector.h
   LightFalloff = 109,     // shader_geometry.h
+  Wireframe = 110,
 };
 constexpr int kShaderOpcodes = 128;
 
@@ -134,6 +135,7 @@ struct ShaderGlobals {
   // The UV map's tangent (unit dP/du, as wound; 0 without UVs) and the bitangent's sign.
   Vec3 tangent{0.0f};
   float bitangent_sign = 1.0f;
+  Vec3 corners[3] = {Vec3(0.0f), Vec3(0.0f), Vec3(0.0f)};  // the hit triangle's, world space (0: none)
   // These globals at the hit moved by dx (which 1) or dy (which 2): position, UVs and corner
   // weights (normals, the view and footprint stay, as in Cycles' bump evaluation).
   ShaderGlobals offset(int which) const {

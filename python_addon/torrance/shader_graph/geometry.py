@@ -10,7 +10,8 @@ from .math_ops import VECTOR_MATH_OPS as _VECTOR_MATH
 from .program import constant
 
 OPCODES = {"Geometry": 96, "Reflection": 97, "Fresnel": 98, "LayerWeight": 99, "Attribute": 100,
-           "Tangent": 101, "LightPath": 106, "CameraTransform": 107, "LightFalloff": 109}
+           "Tangent": 101, "LightPath": 106, "CameraTransform": 107, "LightFalloff": 109,
+           "Wireframe": 110}
 VARYING = set(OPCODES)
 FOLDS = {}
 
@@ -176,6 +177,13 @@ def _light_falloff(g, node, socket):
     return g.builder.emit("LightFalloff", 'float', args, mode=mode)
 
 
+def _wireframe(g, node, socket):
+    """Wireframe: 1 within Size / 2 of the hit triangle's edges, in metres or (Pixel Size) in
+    pixels (core/include/torrance/shader_geometry.h)."""
+    size = g.input(node.inputs["Size"], 'float')
+    return g.builder.emit("Wireframe", 'float', [size], mode=1 if node.use_pixel_size else 0)
+
+
 def _scene_camera():
     import bpy
     scene = bpy.context.scene
@@ -317,6 +325,7 @@ READERS = {
     'ShaderNodeTangent': _tangent,
     'ShaderNodeLightPath': _light_path,
     'ShaderNodeLightFalloff': _light_falloff,
+    'ShaderNodeWireframe': _wireframe,
     'ShaderNodeCameraData': _camera_data,
     'ShaderNodeNormal': _normal,
     'ShaderNodeObjectInfo': _object_info,
