@@ -53,7 +53,9 @@ def _setting_strategy(prop):
         return st.one_of(st.sampled_from((lo, hi)), st.integers(lo, hi))
     if prop.type == 'FLOAT':
         lo, hi = max(prop.hard_min, -1e6), min(prop.hard_max, 1e6)
-        return st.one_of(st.sampled_from((lo, hi)), st.floats(lo, hi, width=32))
+        number = st.one_of(st.sampled_from((lo, hi)), st.floats(lo, hi, width=32))
+        n = prop.array_length          # a vector setting (the Sky Texture's Sun Direction)
+        return st.tuples(*[number] * n) if n > 0 else number
     if prop.type == 'STRING':
         return st.sampled_from(NAMES)
     return None
