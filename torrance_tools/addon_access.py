@@ -85,13 +85,20 @@ def core_proxy(core, settings_edit=None, scene_edit=None):
     return proxy
 
 
+def core_holder(mod):
+    """The add-on's module whose `_core` the export and render use (core_module; render in
+    add-ons before it, such as the older builds scripts/benchmark_shader_graph compares)."""
+    return getattr(mod, "core_module", mod.render)
+
+
 @contextlib.contextmanager
 def torrance_core(settings_edit=None, scene_edit=None):
     """Renders inside use a wrapped core (see core_proxy)."""
     mod = addon()
     core = mod.render.load_core()
-    mod.core_module._core = core_proxy(core, settings_edit, scene_edit)
+    holder = core_holder(mod)
+    holder._core = core_proxy(core, settings_edit, scene_edit)
     try:
         yield core
     finally:
-        mod.core_module._core = core
+        holder._core = core

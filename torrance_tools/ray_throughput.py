@@ -107,13 +107,13 @@ def measure(scene, samples=SAMPLES, rounds=ROUNDS):
     scene.torrance.samples = 1
     proxy = addon_access.core_proxy(core)
     proxy.render = measuring_render
-    mod.core_module._core = proxy
+    addon_access.core_holder(mod)._core = proxy
     try:
         t0 = time.perf_counter()
         bpy.ops.render.render(write_still=False, scene=scene.name)
         wall = time.perf_counter() - t0
     finally:
-        mod.core_module._core = core
+        addon_access.core_holder(mod)._core = core
         scene.render.engine, scene.torrance.samples = old_engine, old_samples
     if "fraction" not in out:
         raise RuntimeError(f"the Torrance render of {scene.name!r} did not run: "

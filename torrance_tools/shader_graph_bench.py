@@ -71,11 +71,11 @@ def capture(scene, bounces, scene_edit=None):
 
     proxy = addon_access.core_proxy(core)
     proxy.render = keep
-    mod.core_module._core = proxy        # render_torrance's wrapper wraps this one
+    addon_access.core_holder(mod)._core = proxy        # render_torrance's wrapper wraps this one
     try:
         references.render_torrance(scene, 1, 0, bounces, scene_edit=scene_edit)
     finally:
-        mod.core_module._core = core
+        addon_access.core_holder(mod)._core = core
     if "scene" not in got:
         raise RuntimeError(f"the Torrance export did not run: {addon_access.last_messages()}")
     return core, got["scene"], got["settings"]
