@@ -122,13 +122,14 @@ bool MixtureBsdf::transmits() const {
 }
 
 MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals& globals, bool textured,
-                           BrdfModel model, const MaterialBsdf& prebuilt, Material& resolved) {
+                           BrdfModel model, const MaterialBsdf& prebuilt, Material& resolved,
+                           glm::vec4* program_regs) {
   const Mixture* mixture = scene.mixture(id);
   if (!mixture) {
-    resolved = textured ? scene.textured_material(id, globals) : scene.material(id);
+    resolved = textured ? scene.textured_material(id, globals, program_regs) : scene.material(id);
     return textured ? MixtureBsdf(MaterialBsdf(resolved, model)) : MixtureBsdf(prebuilt);
   }
-  MixtureWeights w = scene.mixture_weights(id, globals);
+  MixtureWeights w = scene.mixture_weights(id, globals, program_regs);
   weights_when_opaque(*mixture, w);  // the path did not pass through its Transparent closures
   resolved = Material{};
   resolved.base_color = Vec3(0.0f);

@@ -370,15 +370,20 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
         if (bounce == 0) first_ray_length = path_state.ray_length;
       }
       ShaderGlobals globals;
-      if (textured) {
-        globals = shader_globals(hit, ray.dir, footprint, ctx.pixel_width + ctx.pixel_spread * path_length);
+      if (textured) {  // the ray differentials only where the material reads them (a bump)
+        const bool differentials = ctx.scene.reads_differentials(hit.material);
+        globals = shader_globals(hit, ray.dir, footprint,
+                                 differentials ? ctx.pixel_width + ctx.pixel_spread * path_length : 0.0f);
         globals.path = path_state;
       }
+      // The material's program runs once here; its Normal (normal_mapped below) reads these.
+      std::array<glm::vec4, ShaderProgram::kMaxRegisters> program_regs;
       if constexpr (kMixtures) {
         local_bsdf.emplace(shade_material(ctx.scene, hit.material, globals, textured, ctx.settings.brdf_model,
-                                          ctx.bsdfs[hit.material], material));
+                                          ctx.bsdfs[hit.material], material, program_regs.data()));
       } else {
-        material = textured ? ctx.scene.textured_material(hit.material, globals) : ctx.scene.material(hit.material);
+        material = textured ? ctx.scene.textured_material(hit.material, globals, program_regs.data())
+                            : ctx.scene.material(hit.material);
         if (textured) local_bsdf.emplace(material, ctx.settings.brdf_model);
       }
       const Bsdf* bsdf_used;
@@ -392,7 +397,9 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       // The surface's normal (interpolated, or displaced as bump by the Material Output's
       // Displacement: Cycles' sd->N) and the closure's (normal-mapped).
       Vec3 n_smooth = hit.shading_normal;
-      Vec3 ns = textured ? ctx.scene.normal_mapped(hit.material, hit, hit.shading_normal, globals, &n_smooth) : n_smooth;
+      Vec3 ns = textured ? ctx.scene.normal_mapped(hit.material, hit, hit.shading_normal, globals, &n_smooth,
+                                                   program_regs.data())
+                         : n_smooth;
       const bool normal_mapped = textured && ns != n_smooth;
       const bool backfacing = glm::dot(ng, wo_world) < 0.0f;  // inside, for glass
       const bool transmits = kGlass && bsdf.transmits();

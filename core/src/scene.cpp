@@ -122,7 +122,7 @@ uint32_t Scene::add_shader_program(ShaderProgram program) {
   return uint32_t(programs_.size() - 1);
 }
 
-Material Scene::textured_material(uint32_t id, const ShaderGlobals& g) const {
+Material Scene::textured_material(uint32_t id, const ShaderGlobals& g, glm::vec4* regs) const {
   const Vec2& uv = g.uv;
   const float footprint = g.footprint;
   Material m = materials_[id];
@@ -131,14 +131,15 @@ Material Scene::textured_material(uint32_t id, const ShaderGlobals& g) const {
   if (t.metallic >= 0) m.metallic = clamp01(blender_luminance(Vec3(textures_[t.metallic]->lookup(uv, footprint))));
   if (t.roughness >= 0) m.roughness = clamp01(blender_luminance(Vec3(textures_[t.roughness]->lookup(uv, footprint))));
   if (t.emission >= 0) m.emission = glm::max(Vec3(textures_[t.emission]->lookup(uv, footprint)), Vec3(0.0f)) * t.emission_strength;
-  if (t.program.any()) apply_program(t, g, m);
+  if (t.program.any()) apply_program(t, g, m, regs);
   return m;
 }
 
-void Scene::apply_program(const MaterialTextures& t, const ShaderGlobals& g, Material& m) const {
+void Scene::apply_program(const MaterialTextures& t, const ShaderGlobals& g, Material& m, glm::vec4* out) const {
   const ShaderOutputs& o = t.program;
-  std::array<glm::vec4, ShaderProgram::kMaxRegisters> regs;
-  run_shader_program(uint32_t(o.program), g, regs.data());
+  std::array<glm::vec4, ShaderProgram::kMaxRegisters> local;
+  glm::vec4* regs = out ? out : local.data();
+  run_shader_program(uint32_t(o.program), g, regs);
   if (o.base_color >= 0) m.base_color = glm::clamp(Vec3(regs[size_t(o.base_color)]), Vec3(0.0f), Vec3(1.0f));
   if (o.metallic >= 0) m.metallic = clamp01(regs[size_t(o.metallic)].x);
   if (o.roughness >= 0) m.roughness = clamp01(regs[size_t(o.roughness)].x);
@@ -146,17 +147,21 @@ void Scene::apply_program(const MaterialTextures& t, const ShaderGlobals& g, Mat
 }
 
 Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, const ShaderGlobals& g,
-                          Vec3* surface_normal) const {
+                          Vec3* surface_normal, const glm::vec4* program_regs) const {
   const MaterialTextures& t = material_textures_[id];
   // Cycles maps normals facing the viewer; the result goes back to the mesh's winding.
   const float side = g.backfacing ? -1.0f : 1.0f;
   const Vec3 n = side * ns;
   Vec3 out = n;
   if (t.program.normal >= 0) {
-    std::array<glm::vec4, ShaderProgram::kMaxRegisters> regs;
-    ShaderGlobals at = g;
-    at.normal = n;
-    run_shader_program(uint32_t(t.program.program), at, regs.data());
+    std::array<glm::vec4, ShaderProgram::kMaxRegisters> local;
+    const glm::vec4* regs = program_regs;
+    if (!regs) {
+      ShaderGlobals at = g;
+      at.normal = n;
+      run_shader_program(uint32_t(t.program.program), at, local.data());
+      regs = local.data();
+    }
     auto unit = [&](int16_t r) {
       const Vec3 v = Vec3(regs[size_t(r)]);
       const float len = glm::length(v);
@@ -171,6 +176,20 @@ Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, co
     out = bump_mapped(t, hit, n, g);
   }
   return side * out;
+}
+
+bool Scene::reads_differentials(uint32_t i) const {
+  auto own = [&](uint32_t m) {
+    const MaterialTextures& t = material_textures_[m];
+    return t.bump >= 0 || (t.program.any() && programs_[size_t(t.program.program)].reads_differentials());
+  };
+  if (own(i)) return true;
+  const Mixture* m = mixture(i);
+  if (!m) return false;
+  if (m->program >= 0 && programs_[size_t(m->program)].reads_differentials()) return true;
+  for (const MixtureComponent& c : m->components)
+    if (own(c.material)) return true;
+  return false;
 }
 
 void check_material(const Material& m) {

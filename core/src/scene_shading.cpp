@@ -71,7 +71,7 @@ uint32_t Scene::add_mixture(const Mixture& mixture, const MaterialTextures& norm
   return uint32_t(materials_.size() - 1);
 }
 
-MixtureWeights Scene::mixture_weights(uint32_t i, const ShaderGlobals& g) const {
+MixtureWeights Scene::mixture_weights(uint32_t i, const ShaderGlobals& g, glm::vec4* out) const {
   const Mixture* m = mixture(i);
   if (!m) {
     MixtureWeights w;
@@ -80,9 +80,10 @@ MixtureWeights Scene::mixture_weights(uint32_t i, const ShaderGlobals& g) const 
     return w;
   }
   if (m->program < 0) return torrance::mixture_weights(*m, textures_, g.uv, g.footprint);
-  std::array<glm::vec4, ShaderProgram::kMaxRegisters> regs;
-  run_shader_program(uint32_t(m->program), g, regs.data());
-  return torrance::mixture_weights(*m, textures_, g.uv, g.footprint, regs.data());
+  std::array<glm::vec4, ShaderProgram::kMaxRegisters> local;
+  glm::vec4* regs = out ? out : local.data();
+  run_shader_program(uint32_t(m->program), g, regs);
+  return torrance::mixture_weights(*m, textures_, g.uv, g.footprint, regs);
 }
 
 Vec3 Scene::emission_at(uint32_t i, const ShaderGlobals& g) const {

@@ -18,17 +18,30 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
+
+#include <xmmintrin.h>
 
 namespace torrance {
 namespace {
 
 constexpr float kMaxValue = 1e30f;  // program values stay finite and well inside float's range
 
-float finite_or_zero(float v) { return std::isfinite(v) ? std::clamp(v, -kMaxValue, kMaxValue) : 0.0f; }
+// Each component: NaN and infinities to 0, the rest clamped to [-kMaxValue, kMaxValue] (the sign
+// of a zero kept), four at once: run() does this to every instruction's output.
 glm::vec4 finite(const glm::vec4& v) {
-  return glm::vec4(finite_or_zero(v.x), finite_or_zero(v.y), finite_or_zero(v.z), finite_or_zero(v.w));
+  // Loaded as two halves: an op's result comes back in two registers (x, y and z, w), which the
+  // caller stores apart, and one 16-byte load across both stores would wait for them to retire.
+  const __m128 x = _mm_loadh_pi(_mm_loadl_pi(_mm_setzero_ps(), reinterpret_cast<const __m64*>(&v.x)),
+                                reinterpret_cast<const __m64*>(&v.z));
+  const __m128 clamped = _mm_min_ps(_mm_max_ps(x, _mm_set1_ps(-kMaxValue)), _mm_set1_ps(kMaxValue));
+  const __m128 magnitude = _mm_andnot_ps(_mm_set1_ps(-0.0f), x);
+  const __m128 is_finite = _mm_cmple_ps(magnitude, _mm_set1_ps(std::numeric_limits<float>::max()));
+  glm::vec4 out;
+  _mm_storeu_ps(&out.x, _mm_and_ps(clamped, is_finite));
+  return out;
 }
 glm::vec4 color(const Vec3& c, float w = 1.0f) { return glm::vec4(c, w); }
 glm::vec4 value(float v) { return glm::vec4(v, 0.0f, 0.0f, 0.0f); }
@@ -177,6 +190,7 @@ ShaderProgram::ShaderProgram(std::vector<glm::vec4> constants, std::vector<Shade
     if (ins.offset > 2)
       throw std::invalid_argument(where + ": offset " + std::to_string(int(ins.offset)) + " is not 0, 1 or 2");
     offsets_ = offsets_ || ins.offset != 0;
+    differentials_ = differentials_ || ins.offset != 0 || ins.op == ShaderOpcode::Bump;
     if (ins.mode >= s.modes)
       throw std::invalid_argument(where + ": mode " + std::to_string(int(ins.mode)) + " out of range [0, " +
                                   std::to_string(s.modes) + ")");

@@ -2,11 +2,13 @@
 // flat height and zero differentials leave the normal, a slope tilts it against the gradient by
 // Distance (Invert: the other way), Strength mixes, degenerate inputs stay finite.
 #include "torrance/shader_bump.h"
+#include "torrance/shader_program.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace torrance {
 namespace {
@@ -71,6 +73,23 @@ TEST(ShaderBump, Cycles4NormalMapStrengthScalesTheColour) {
   const Vec3 strong = shader::tangent_normal_map(Vec3(0.8f, 0.5f, 0.6f), n, t, 1.0f, 0.7f, true);
   const Vec3 strong34 = shader::tangent_normal_map(Vec3(0.8f, 0.5f, 0.6f), n, t, 1.0f, 0.7f);
   EXPECT_GT(strong.z, strong34.z);  // 4.x keeps more of the surface normal at a shallow colour
+}
+
+// A program reads the ray differentials where it has a Bump op or instructions at the offset
+// hits (what lets the integrator skip making them for every other program).
+TEST(ShaderBump, ProgramsSayWhetherTheyReadDifferentials) {
+  const std::vector<glm::vec4> constants(6, glm::vec4(0.5f));
+  ShaderInstruction bump;
+  bump.op = ShaderOpcode::Bump;
+  bump.out = 6;
+  for (int k = 0; k < 6; ++k) bump.in[size_t(k)] = int16_t(k);
+  EXPECT_TRUE(ShaderProgram(constants, {bump}, 7, 0).reads_differentials());
+  ShaderInstruction uv;  // TexCoordUV at the hit, then at the hit moved by dx
+  uv.out = 6;
+  EXPECT_FALSE(ShaderProgram(constants, {uv}, 7, 0).reads_differentials());
+  uv.offset = 1;
+  EXPECT_TRUE(ShaderProgram(constants, {uv}, 7, 0).reads_differentials());
+  EXPECT_FALSE(ShaderProgram(constants, {}, 6, 0).reads_differentials());
 }
 
 }  // namespace

@@ -98,9 +98,11 @@ class MixtureBsdf {
 // an ordinary material, a mixture's closures otherwise) and, in `resolved`, the material's
 // emission and an albedo (base_color, metallic 0 for mixtures) at the hit `globals` describe
 // (textures and shader programs read when `textured`). `prebuilt` is the material's BSDF when
-// untextured.
+// untextured. program_regs (if given): where the material's program (a mixture's: its factors'
+// and Normal's) leaves its registers, for Scene::normal_mapped at this hit.
 MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals& globals, bool textured,
-                           BrdfModel model, const MaterialBsdf& prebuilt, Material& resolved);
+                           BrdfModel model, const MaterialBsdf& prebuilt, Material& resolved,
+                           glm::vec4* program_regs = nullptr);
 
 // The estimated albedo a mixture samples a Principled closure by: luminance of the base colour
 // plus its dielectric F0.

@@ -159,7 +159,9 @@ class Scene {
   const MaterialTextures& material_textures(uint32_t i) const { return material_textures_[i]; }
   // The material at a hit with its textures applied (base colour, metallic, roughness, emission),
   // averaged over a footprint of that many UV units (0: the finest texels).
-  Material textured_material(uint32_t material, const ShaderGlobals& globals) const;
+  // regs (if given, kMaxRegisters entries): where the material's shader program, if it has one,
+  // leaves its registers, for normal_mapped at the same hit to reuse instead of running it again.
+  Material textured_material(uint32_t material, const ShaderGlobals& globals, glm::vec4* regs = nullptr) const;
   Material textured_material(uint32_t material, const Vec2& uv, float footprint = 0.0f) const {
     return textured_material(material, uv_globals(uv, footprint));
   }
@@ -175,7 +177,8 @@ class Scene {
   }
   bool has_mixtures() const { return !mixtures_.empty(); }
   // The weights of mixture material i's closures at uv (image factors over footprint UV units).
-  MixtureWeights mixture_weights(uint32_t i, const ShaderGlobals& globals) const;
+  // regs: as textured_material's (the mixture's program, which its Normal reads too).
+  MixtureWeights mixture_weights(uint32_t i, const ShaderGlobals& globals, glm::vec4* regs = nullptr) const;
   MixtureWeights mixture_weights(uint32_t i, const Vec2& uv, float footprint = 0.0f) const {
     return mixture_weights(i, uv_globals(uv, footprint));
   }
@@ -203,8 +206,13 @@ class Scene {
   // differentials, at least a hundredth of a texel apart), by shader_bump.h's formulas.
   // surface_normal (if given) becomes the surface's normal after the Material Output's Displacement
   // (ShaderOutputs::surface_normal, as wound) where the program computes it; else it is left as is.
+  // program_regs: the registers textured_material or mixture_weights of this material left at
+  // this hit (g, ns = hit.shading_normal), read instead of running the program again.
   Vec3 normal_mapped(uint32_t material, const SurfaceHit& hit, const Vec3& ns, const ShaderGlobals& g,
-                     Vec3* surface_normal = nullptr) const;
+                     Vec3* surface_normal = nullptr, const glm::vec4* program_regs = nullptr) const;
+  // Whether shading material i (its programs, its mixture's closures, an image bump) reads the
+  // ray differentials of ShaderGlobals (shader_globals' cone_width): else they need not be made.
+  bool reads_differentials(uint32_t i) const;
   // As above, seen from the front (along -geometric_normal); cone_width: the ray cone's width in
   // metres at the hit (the ray differentials' length).
   Vec3 normal_mapped(uint32_t material, const SurfaceHit& hit, const Vec3& ns, float footprint = 0.0f,
@@ -358,7 +366,8 @@ class Scene {
   void check_idle(const char* change) const;  // with mutex_ held
   Vec3 bump_mapped(const MaterialTextures& t, const SurfaceHit& hit, const Vec3& n, const ShaderGlobals& g) const;
   // Runs the material's shader program at uv and writes the inputs it feeds into m.
-  void apply_program(const MaterialTextures& t, const ShaderGlobals& g, Material& m) const;
+  // regs: where it runs (kMaxRegisters entries), or nullptr for a local array.
+  void apply_program(const MaterialTextures& t, const ShaderGlobals& g, Material& m, glm::vec4* regs = nullptr) const;
   void check_program_outputs(const ShaderOutputs& outputs) const;  // throws std::invalid_argument
 
   mutable std::mutex mutex_;  // changes vs. begin_render, and the camera

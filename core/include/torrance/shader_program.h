@@ -189,6 +189,9 @@ class ShaderProgram {
       if (ins.op == op) return true;
     return false;
   }
+  // Whether run() reads ShaderGlobals' ray differentials (dpdx, dpdy and what they move: a Bump
+  // op, or instructions at the offset hits); without them the caller need not compute those.
+  bool reads_differentials() const { return differentials_; }
   // Runs the program; regs must hold registers() entries. Every value written is finite.
   void run(const ShaderGlobals& g, const std::vector<std::shared_ptr<const Texture>>& textures,
            glm::vec4* regs) const;
@@ -200,6 +203,7 @@ class ShaderProgram {
   int registers_;
   std::vector<bool> written_;
   bool offsets_ = false;  // some instruction reads the hit at an offset
+  bool differentials_ = false;
 };
 
 // Which registers of a material's program feed its inputs (-1: the material's own value). A
