@@ -7,6 +7,8 @@
 #include "fractal_sums.h"
 #include "torrance/shader_hash.h"
 
+#include "cpu_dispatch.h"
+
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -307,8 +309,10 @@ float wave(WaveType type, int direction, WaveProfile profile, const Vec3& vector
 
 glm::vec4 noise_op(const ShaderOpContext& c) {
   const bool color = c.ins.flags & 1;
-  const NoiseTextureResult r = noise_texture(int(c.ins.mode) + 1, c.vector(0), c.value(1), c.value(2), c.value(3),
-                                             c.value(4), c.value(5), color);
+  const NoiseTextureResult r = cpu_dispatch::run_fast([&] {
+    return noise_texture(int(c.ins.mode) + 1, c.vector(0), c.value(1), c.value(2), c.value(3), c.value(4),
+                         c.value(5), color);
+  });
   return color ? glm::vec4(r.color, 1.0f) : glm::vec4(r.fac, 0.0f, 0.0f, 0.0f);
 }
 
@@ -319,8 +323,10 @@ glm::vec4 white_noise_op(const ShaderOpContext& c) {
 }
 
 glm::vec4 musgrave_op(const ShaderOpContext& c) {
-  const float fac = musgrave(MusgraveType(c.ins.mode / 4), int(c.ins.mode % 4) + 1, c.vector(0), c.value(1),
-                             c.value(2), c.value(3), c.value(4), c.value(5), c.value(6), c.value(7));
+  const float fac = cpu_dispatch::run_fast([&] {
+    return musgrave(MusgraveType(c.ins.mode / 4), int(c.ins.mode % 4) + 1, c.vector(0), c.value(1), c.value(2),
+                    c.value(3), c.value(4), c.value(5), c.value(6), c.value(7));
+  });
   return glm::vec4(fac, 0.0f, 0.0f, 0.0f);
 }
 

@@ -6,6 +6,7 @@
 #include "torrance/shader_hash.h"
 #include "torrance/shader_program.h"
 #include "torrance/shader_voronoi.h"
+#include "cpu_dispatch.h"
 #include "voronoi_cells.h"
 
 #include <algorithm>
@@ -213,9 +214,9 @@ float n_sphere_radius(const VecN<D>& p, float randomness, float start) {
 template <int D>
 Found<D> search(const VecN<D>& p, VoronoiFeature feature, const Params& q) {
   switch (feature) {
-    case VoronoiFeature::F1: return f1<D>(p, q);
-    case VoronoiFeature::F2: return f2<D>(p, q);
-    case VoronoiFeature::SmoothF1: return smooth_f1<D>(p, q);
+    case VoronoiFeature::F1: return cpu_dispatch::run_fast([&] { return f1<D>(p, q); });
+    case VoronoiFeature::F2: return cpu_dispatch::run_fast([&] { return f2<D>(p, q); });
+    case VoronoiFeature::SmoothF1: return cpu_dispatch::run_fast([&] { return smooth_f1<D>(p, q); });
     case VoronoiFeature::DistanceToEdge: {
       Found<D> out;
       out.distance = distance_to_edge<D>(p, q.randomness, q.cycles4);
