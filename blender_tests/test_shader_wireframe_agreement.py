@@ -16,7 +16,7 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \\
 """
 
 from torrance_tools import testing
-from torrance_tools.shader_graphs import DictAttr, agree_on_patches, object_matrix
+from torrance_tools.shader_graphs import DictAttr, agree_on_patches, object_matrix, read_with
 
 
 def _wireframe(g, size, pixel_size=False):
@@ -64,37 +64,14 @@ MAKERS = (wire_metres, wire_object_matrix, wire_grid, wire_pixels)
 SAMPLES = 128
 
 
-def _with_size(scale):
-    def fault(original):
-        def read(g, node, socket):
-            saved = node.inputs["Size"].default_value
-            node.inputs["Size"].default_value = saved * scale
-            try:
-                return original(g, node, socket)
-            finally:
-                node.inputs["Size"].default_value = saved
-        return read
-    return fault
-
-
-def pixel_size_ignored(original):
-    def read(g, node, socket):
-        saved = node.use_pixel_size
-        node.use_pixel_size = False
-        try:
-            return original(g, node, socket)
-        finally:
-            node.use_pixel_size = saved
-    return read
-
-
 def main():
     testing.addon()
     from torrance.shader_graph.registry import READERS
     readers = DictAttr(READERS)
     agree_on_patches(MAKERS, what="the Wireframe node", samples=SAMPLES, faults=(
-        ("Size read as half", readers, 'ShaderNodeWireframe', _with_size(0.5)),
-        ("Pixel Size ignored", readers, 'ShaderNodeWireframe', pixel_size_ignored)))
+        ("Size read as half", readers, 'ShaderNodeWireframe',
+         read_with(lambda node: {"socket:Size": 0.5 * node.inputs["Size"].default_value})),
+        ("Pixel Size ignored", readers, 'ShaderNodeWireframe', read_with(use_pixel_size=False))))
 
 
 testing.run(main)

@@ -47,7 +47,8 @@ LobeEval MixtureBsdf::eval_mixture(const Vec3& wo, const Vec3& wi, bool backfaci
     const LobeEval f = std::visit(
         [&](const auto& b) -> LobeEval {
           if constexpr (is<decltype(b), std::monostate>) return {};
-          else if constexpr (is<decltype(b), MaterialBsdf>) return b.eval_lobes(b.at(wo, backfacing, false, diffuse), wi);
+          else if constexpr (is<decltype(b), MaterialBsdf>)
+            return b.eval_lobes(b.at(wo, backfacing, false, diffuse), wi);
           else if constexpr (is<decltype(b), DiffuseBsdf>) return b.eval_lobes(d.to_local(wo), d.to_local(wi));
           else return b.eval_lobes(wo, wi);
         },
@@ -87,7 +88,8 @@ BsdfSample MixtureBsdf::sample_mixture(const Vec3& wo, float u_lobe, const Vec2&
   const BsdfSample s = std::visit(
       [&](const auto& b) -> BsdfSample {
         if constexpr (is<decltype(b), std::monostate>) return {};
-        else if constexpr (is<decltype(b), MaterialBsdf>) return b.sample(b.at(wo, backfacing, true, diffuse), u_rest, u);
+        else if constexpr (is<decltype(b), MaterialBsdf>)
+          return b.sample(b.at(wo, backfacing, true, diffuse), u_rest, u);
         else if constexpr (is<decltype(b), DiffuseBsdf>) {
           BsdfSample local = b.sample(d.to_local(wo), u_rest, u);
           local.wi = d.to_world(local.wi);

@@ -265,24 +265,23 @@ TEST(ChiSquare, TiltedDiffuseNormalSamplingMatchesPdf) {
     const Vec3 wo = test::direction(cos_o, 3.5f);  // on the side away from the tilt
     const MixtureBsdf::View mix_view = dg.at(wo, false, tilted);
     const MaterialBsdf::View v2_view = v2.at(wo, false, tilted);
-    EXPECT_EQ(chi_square(wo, 0.25f, seed++, significance,
-                         [&](Rng& rng) {
-                           const float u = rng.next_1d();
-                           const BsdfSample s = dg.sample(mix_view, u, rng.next_2d());
-                           return Sampled{s.wi, s.valid(), s.is_delta};
-                         },
-                         [&](const Vec3& wi) { return dg.pdf(mix_view, wi); }),
-              "")
-        << "diffuse+glossy cos_o=" << cos_o;
-    EXPECT_EQ(chi_square(wo, 0.25f, seed++, significance,
-                         [&](Rng& rng) {
-                           const float u = rng.next_1d();
-                           const BsdfSample s = v2.sample(v2_view, u, rng.next_2d());
-                           return Sampled{s.wi, s.valid(), s.is_delta};
-                         },
-                         [&](const Vec3& wi) { return v2.pdf(v2_view, wi); }),
-              "")
-        << "PRINCIPLED_V2 cos_o=" << cos_o;
+    auto check = [&](const char* name, auto sample, auto pdf) {
+      const std::string failure = chi_square(
+          wo, 0.25f, seed++, significance,
+          [&](Rng& rng) {
+            const float u = rng.next_1d();
+            const BsdfSample s = sample(u, rng.next_2d());
+            return Sampled{s.wi, s.valid(), s.is_delta};
+          },
+          pdf);
+      EXPECT_EQ(failure, "") << name << " cos_o=" << cos_o;
+    };
+    check(
+        "diffuse+glossy", [&](float u, const Vec2& u2) { return dg.sample(mix_view, u, u2); },
+        [&](const Vec3& wi) { return dg.pdf(mix_view, wi); });
+    check(
+        "PRINCIPLED_V2", [&](float u, const Vec2& u2) { return v2.sample(v2_view, u, u2); },
+        [&](const Vec3& wi) { return v2.pdf(v2_view, wi); });
   }
   // A viewer below the diffuse normal: the Diffuse closure's light along n is colour / pi.
   const Vec3 wo_below = glm::normalize(Vec3(-0.9f, 0.0f, 0.2f));

@@ -78,7 +78,9 @@ class MaterialBsdf {
     if (diffuse.tilted) std::visit([&](auto& lv) { lv.diffuse_normal = diffuse; }, v.lobes);
     return v;
   }
-  View at(const Vec3& wo, bool backfacing, const DiffuseNormal& diffuse) const { return at(wo, backfacing, true, diffuse); }
+  View at(const Vec3& wo, bool backfacing, const DiffuseNormal& diffuse) const {
+    return at(wo, backfacing, true, diffuse);
+  }
 
   // kGlass = false: the caller knows no material of the scene transmits (the integrator's
   // glass-free path), so the glass is not even checked for.
