@@ -17,13 +17,14 @@ up to the pixel filter's noise):
                      (the quad's texture space zoomed about it)
   nishita_disc_low   an 8 degree sun 28 degrees up, altitude 3 km, dust 3
   nishita_setting    a sun 3 degrees up and 8 wide, partly set
+  nishita_mapped     the node's Texture Mapping: the directions turned (Vector type)
   preetham           Preetham, turbidity 2.2, the sun up 37 degrees, the whole sphere
   preetham_hazy      Preetham, turbidity 7, a low sun, the whole sphere
 
 Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
 seeds 2 and 3. Deliberate faults must fail them: no ozone, the sun disc's colours at its bottom and
 top swapped, the Vector's link read though the sun disc hides it, the sun turned the other way
-(rotation not negated), Preetham's turbidity one higher.
+(rotation not negated), the Texture Mapping ignored, Preetham's turbidity one higher.
 Hosek / Wilkie must be reported naming the node and the sky type; in Blender 5.x, whose Cycles
 replaces Nishita by Single and Multiple Scattering (reported too), the Preetham patches remain.
 
@@ -152,6 +153,16 @@ for _name in ("nishita_disc", "nishita_disc_low", "nishita_setting"):
     globals()[_name].__name__ = _name
 
 
+def nishita_mapped(g):
+    """The node's Texture Mapping (its sidebar's Mapping panel): the directions turned 60 degrees
+    about z and tilted, as a Vector."""
+    tex = _sky(g, sun_disc=False, sun_elevation=math.radians(10.0)).node
+    m = tex.texture_mapping
+    m.vector_type = 'VECTOR'
+    m.rotation = (math.radians(20.0), 0.0, math.radians(60.0))
+    return tex.outputs["Color"]
+
+
 def preetham(g):
     return _sky(g, kind='PREETHAM', sun_direction=(0.3, 0.5, 0.6), turbidity=2.2)
 
@@ -161,8 +172,8 @@ def preetham_hazy(g):
 
 
 MAKERS = (nishita, nishita_low_sun, nishita_dense, nishita_ozone, nishita_near_sun,
-          nishita_generated, nishita_disc, nishita_disc_low, nishita_setting, preetham,
-          preetham_hazy)
+          nishita_generated, nishita_disc, nishita_disc_low, nishita_setting, nishita_mapped,
+          preetham, preetham_hazy)
 
 
 def fault_disc_upside_down(original):
@@ -234,7 +245,9 @@ def main():
         ("sun disc upside down", sky, 'sky_table', fault_disc_upside_down),
         (hidden_vector_label(), sky, '_direction', fault_hidden_vector_read),
         ("sun rotation not negated", readers, 'ShaderNodeTexSky',
-         read_with(lambda node: {"sun_rotation": -node.sun_rotation})))
+         read_with(lambda node: {"sun_rotation": -node.sun_rotation})),
+        ("texture mapping ignored", readers, 'ShaderNodeTexSky',
+         read_with(**{"texture_mapping.rotation": (0.0, 0.0, 0.0)})))
     agree_on_patches(makers, what="the Sky Texture",
                      faults=(*(nishita_faults if 'NISHITA' in types else ()), preetham_fault))
 
