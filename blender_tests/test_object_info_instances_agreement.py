@@ -6,12 +6,16 @@ Seen from above through Emission shaders, no lighting noise:
 * a quad instanced on the 24 vertices of a parent mesh (instancing Verts), its colour
   (Random, fract(7 Random), |Location x| / 4);
 * a quad instanced by two collection instances (Empties), its colour (Object Color's red,
-  Object Index / 10, Location y / 3 + 0.5).
+  Object Index / 10, Location y / 3 + 0.5);
+* then, added to the same scene, a quad instanced on the 6 faces of a UV-mapped grid
+  (instancing Faces), its colour the instancer's coordinates (UV Map and Texture Coordinate
+  "From Instancer": the face's UV, and Generated x + 0.5).
 
 Each instance is a prototype's instance in the core, its Object Info constants per instance
 (Scene.set_instance_constants). Cycles' reference (seed 0) and a second Cycles image (seed 1)
 set the bounds; Torrance renders seeds 2 and 3. Deliberate faults (every instance the same
-random number; the instances' locations dropped) must fail them. The viewport's scene (its
+random number; the instances' locations dropped; the instancer's coordinates dropped) must fail
+them. The viewport's scene (its
 SceneCache, instances added one by one, then moved in place) renders the same image as the
 final render's.
 
@@ -55,9 +59,24 @@ def color_index_location():
     return g.mat
 
 
-def quad(scene, name, size, mat):
+def from_instancer():
+    """The instancer's UV (R, G: u, v) and Generated x (B: 0.5 orco - 0.5 + 0.5, Cycles')."""
+    g = Graph("FromInstancer")
+    uv = g.node("ShaderNodeUVMap", from_instancer=True)
+    sep_uv = g.node("ShaderNodeSeparateXYZ")
+    g.link(uv.outputs["UV"], sep_uv.inputs[0])
+    coords = g.node("ShaderNodeTexCoord", from_instancer=True)
+    sep_g = g.node("ShaderNodeSeparateXYZ")
+    g.link(coords.outputs["Generated"], sep_g.inputs[0])
+    g.link(g.combine(sep_uv.outputs[0], sep_uv.outputs[1],
+                     g.multiply_add(sep_g.outputs[0], 1.0, 0.5)),
+           g.shader.inputs["Color"])
+    return g.mat
+
+
+def quad(scene, name, size, mat, z=0.0):
     h = size / 2
-    return testing.mesh_object(scene, name, [(-h, -h, 0), (h, -h, 0), (h, h, 0), (-h, h, 0)],
+    return testing.mesh_object(scene, name, [(-h, -h, z), (h, -h, z), (h, h, z), (-h, h, z)],
                                [(0, 1, 2, 3)], mat)
 
 
@@ -89,19 +108,44 @@ def build(scene):
     testing.set_world(scene, (0.0, 0.0, 0.0))
 
 
+def add_leaves(scene):
+    """A quad on each face of a UV-mapped grid (instancing Faces): the instancer's UV and orco
+    (lifted 2 cm: the leaf object itself, at the origin, lies over the Child, not level)."""
+    leaf = quad(scene, "Leaf", 0.4, from_instancer(), z=0.02)
+    faces = [(-3.6 + 0.7 * i, 1.0 + 0.7 * j, 0.0) for j in range(3) for i in range(4)]
+    grid = testing.mesh_object(scene, "Grid", faces,
+                               [(4 * j + i, 4 * j + i + 1, 4 * j + i + 5, 4 * j + i + 4)
+                                for j in range(2) for i in range(3)])
+    uvs = grid.data.uv_layers.new(name="UVMap")
+    for loop in grid.data.loops:
+        x, y, _z = grid.data.vertices[loop.vertex_index].co
+        uvs.data[loop.index].uv = ((x + 3.6) / 2.1, (y - 1.0) / 1.4)
+    grid.instance_type = 'FACES'
+    grid.show_instancer_for_render = False      # the grid itself not rendered (nor z-fighting)
+    grid.show_instancer_for_viewport = False
+    leaf.parent = grid
+
+
 def same_random(original):
     """A fault: every instance the same random id."""
-    def info(obj, matrices, random_ids):
-        return original(obj, matrices, [12345] * len(random_ids))
+    def info(obj, matrices, random_ids, *rest):
+        return original(obj, matrices, [12345] * len(random_ids), *rest)
     return info
 
 
 def no_location(original):
     """A fault: the instances' locations dropped (the prototype's: 0)."""
-    def info(obj, matrices, random_ids):
-        out = original(obj, matrices, random_ids)
+    def info(obj, matrices, random_ids, *rest):
+        out = original(obj, matrices, random_ids, *rest)
         out[('object_info', 'location')] = out[('object_info', 'location')] * 0.0
         return out
+    return info
+
+
+def no_duplis(original):
+    """A fault: the instancer's coordinates dropped (every instance reads 0)."""
+    def info(obj, matrices, random_ids, duplis=None, colors=None):
+        return original(obj, matrices, random_ids, None, colors)
     return info
 
 
@@ -145,6 +189,12 @@ def main():
                 ("the instances' locations dropped", instances, "instances_info", no_location)),
         tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
     viewport_matches_final(scene)
+    add_leaves(scene)
+    agree_within_seed_noise(
+        scene, testing.tempdir(), 64, 2, "the instancer's coordinates",
+        faults=(("the instancer's coordinates dropped", instances, "instances_info",
+                 no_duplis),),
+        tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
 
 
 testing.run(main)

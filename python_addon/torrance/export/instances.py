@@ -26,9 +26,9 @@ class Source:
     matrices of everything that shows it: copies kept by `add`, converted to float32 rows
     CHUNK at a time (transforms() gives them all)."""
     __slots__ = ("name", "mesh_key", "table", "instanced", "matrices", "converted", "_append",
-                 "info_of", "random_ids")
+                 "info_of", "random_ids", "colors", "duplis")
 
-    def __init__(self, name, mesh_key, table, instanced, info_of=None):
+    def __init__(self, name, mesh_key, table, instanced, info_of=None, duplis=False):
         self.name = name
         self.mesh_key = mesh_key      # (evaluated mesh pointer, needs UVs)
         self.table = table            # int32 (K,): material index per slot
@@ -40,6 +40,10 @@ class Source:
         # instances show, and (instanced) each instance's random id, as add() gets them.
         self.info_of = info_of
         self.random_ids = [] if info_of is not None and instanced else None
+        # ... and each instance's object colour (its instancer's, in an instance).
+        self.colors = [] if self.random_ids is not None else None
+        # With materials reading the instancer's coordinates: each instance's dupli_record.
+        self.duplis = [] if self.random_ids is not None and duplis else None
 
     def add(self, matrix):
         """Keeps a copy of a world matrix (a mathutils Matrix, e.g. inst.matrix_world: valid
@@ -63,7 +67,11 @@ class Source:
             return None
         ids = (np.asarray(self.random_ids, np.int64) if self.random_ids is not None
                else np.full(len(transforms), object_random_id(self.name), np.int64))
-        return instances_info(self.info_of, transforms[keep], ids[keep])
+        def kept(rows, width):
+            return np.asarray(rows, np.float32).reshape(-1, width)[keep] \
+                if rows is not None else None
+        return instances_info(self.info_of, transforms[keep], ids[keep],
+                              kept(self.duplis, 5), kept(self.colors, 4))
 
     def transforms(self):
         """float32 (N, 3, 4): the top three rows of every matrix added, in order."""
@@ -97,8 +105,12 @@ class InstanceExport:
         slot_to_material = self.materials.slot_indices([s.material for s in obj.material_slots])
         needs_uvs = self.materials.needs_uvs(slot_to_material.tolist())
         data = obj.data
+        # Object Info is read after the depsgraph pass: from the original object (an
+        # instance's evaluated object is a temporary the iteration reuses), but for what each
+        # instance keeps (Source.random_ids, colors, duplis).
+        info_of = getattr(obj, "original", obj) if needs_uvs.object_info() else None
         src = Source(name, (data.as_pointer() if data is not None else 0, needs_uvs),
-                     slot_to_material, instanced, obj if needs_uvs.object_info() else None)
+                     slot_to_material, instanced, info_of, needs_uvs.duplis())
         self.sources.append(src)
         return src
 

@@ -262,14 +262,26 @@ def object_info(obj, matrix, random_id=None):
                       single=True)
 
 
-def instances_info(obj, matrices, random_ids):
+def dupli_record(inst):
+    """What Cycles keeps of a depsgraph instance for the shader graph's from-instancer
+    coordinates: its orco (xyz) and uv, five floats."""
+    return (*inst.orco, *inst.uv)
+
+
+def instances_info(obj, matrices, random_ids, duplis=None, colors=None):
     """ObjectInfo {('object_info', k): float32 (N, 3)} of N instances of obj (Cycles 3.4's
     Object Info of each, and the object's attributes): matrices (N, 3, 4) object to world,
-    random_ids (N,) Blender's random ids
-    (DepsgraphObjectInstance.random_id; object_random_id for an object itself)."""
+    random_ids (N,) Blender's random ids (DepsgraphObjectInstance.random_id; object_random_id
+    for an object itself), duplis (N, 5) their dupli_record, or None (not instanced: 0); k
+    'dupli_generated' is Cycles' 0.5 orco - 0.5, 'dupli_uv' the (u, v, 0) the instancer gives.
+    colors (N, 4): each instance's object colour (an instance's evaluated object carries its
+    instancer's), or None: obj's."""
     m = np.asarray(matrices, dtype=np.float64)
     n = len(m)
-    color = np.asarray(tuple(obj.color), np.float32)
+    dupli = (np.asarray(duplis, np.float32).reshape(n, 5) if duplis is not None
+             else None)
+    color = (np.asarray(colors, np.float32).reshape(n, 4) if colors is not None
+             else np.broadcast_to(np.asarray(tuple(obj.color), np.float32), (n, 4)))
     rid = (np.asarray(random_ids, np.int64) & 0xFFFFFFFF).astype(np.float32)
     random = rid * (np.float32(1.0) / np.float32(0xFFFFFFFF))
 
@@ -280,10 +292,16 @@ def instances_info(obj, matrices, random_ids):
             ('object_info', 'axis_x'): m[:, :, 0].astype(np.float32),
             ('object_info', 'axis_y'): m[:, :, 1].astype(np.float32),
             ('object_info', 'axis_z'): m[:, :, 2].astype(np.float32),
-            ('object_info', 'color'): same(color[:3]),
-            ('object_info', 'alpha'): same(color[3]),
+            ('object_info', 'color'): np.ascontiguousarray(color[:, :3]),
+            ('object_info', 'alpha'): np.repeat(color[:, 3:], 3, axis=1),
             ('object_info', 'index'): same(float(obj.pass_index)),
-            ('object_info', 'random'): np.repeat(random[:, None], 3, axis=1)}, obj, n)
+            ('object_info', 'random'): np.repeat(random[:, None], 3, axis=1),
+            ('object_info', 'dupli_generated'): (
+                np.float32(0.5) * dupli[:, :3] - np.float32(0.5) if dupli is not None
+                else same((0.0, 0.0, 0.0))),
+            ('object_info', 'dupli_uv'): (
+                np.concatenate([dupli[:, 3:], np.zeros((n, 1), np.float32)], axis=1)
+                if dupli is not None else same((0.0, 0.0, 0.0)))}, obj, n)
 
 
 def instance_constant_layers(needs, info):

@@ -65,8 +65,17 @@ def object_space_normal(g):
                           mode=_NORMAL_WORLD_TO_OBJECT, flags=2)
 
 
+def _instancer_uv(g):
+    """The UV the instancer gives an instance (Cycles' dupli_uv; 0 for an object itself)."""
+    return g.attribute(('object_info', 'dupli_uv'))
+
+
 def _texture_coordinate(g, node, socket):
     out = socket.identifier
+    if node.from_instancer and out in ("Generated", "UV"):
+        # Cycles' dupli coordinates: the instancer's, per instance (0 for an object itself).
+        return (g.attribute(('object_info', 'dupli_generated')) if out == "Generated"
+                else _instancer_uv(g))
     if out == "Reflection":
         return g.builder.emit("Reflection", 'vector')
     if out == "Normal":
@@ -88,7 +97,7 @@ def _texture_coordinate(g, node, socket):
 
 def _uv_map(g, node, socket):
     if node.from_instancer:
-        raise Unsupported(f"{node_label(node)}: UVs from the instancer are not supported")
+        return _instancer_uv(g)
     if node.uv_map:
         return g.attribute(('uv', node.uv_map))
     return g.builder.emit("TexCoordUV", 'vector')
