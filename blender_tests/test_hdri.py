@@ -96,16 +96,7 @@ def set_hdri(scene, image, strength=STRENGTH):
 def build(d, pixels):
     scene = testing.clear_scene()
     testing.setup_render(scene, width=W, height=H, samples=SAMPLES)
-    # The camera looks a little up so that the sky fills the top of the frame.
-    testing.add_camera(scene, location=(0.0, -6.0, 1.6), target=(0.0, 0.0, 1.0), lens=30.0)
-    testing.plane(scene, "Floor", 8.0,
-                  material=testing.principled("Floor", (0.5, 0.5, 0.5), 0.0, 0.5))
-    testing.sphere_object(scene, "Chrome", (-1.2, 0.3, 0.7), 0.7,
-                          testing.principled("Chrome", (0.9, 0.9, 0.9), 1.0, 0.15),
-                          segments=32, rings=16)
-    testing.sphere_object(scene, "Matte", (1.2, 0.0, 0.7), 0.7,
-                          testing.principled("Matte", (0.8, 0.8, 0.8), 0.0, 0.6),
-                          segments=32, rings=16)
+    testing.chrome_and_matte(scene)
     image = exr_image(d, "sky", pixels)         # after clear_scene(), which removes images
     set_hdri(scene, image)
     return scene, image

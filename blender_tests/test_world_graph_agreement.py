@@ -127,15 +127,7 @@ def mirror_ball_glow(image):
 
 def build(scene):
     testing.setup_render(scene, width=W, height=H, max_bounces=BOUNCES)
-    testing.add_camera(scene, location=(0.0, -6.0, 1.6), target=(0.0, 0.0, 1.0), lens=30.0)
-    testing.plane(scene, "Floor", 8.0,
-                  material=testing.principled("Floor", (0.5, 0.5, 0.5), 0.0, 0.5))
-    testing.sphere_object(scene, "Chrome", (-1.2, 0.3, 0.7), 0.7,
-                          testing.principled("Chrome", (0.9, 0.9, 0.9), 1.0, 0.15),
-                          segments=32, rings=16)
-    testing.sphere_object(scene, "Matte", (1.2, 0.0, 0.7), 0.7,
-                          testing.principled("Matte", (0.8, 0.8, 0.8), 0.0, 0.6),
-                          segments=32, rings=16)
+    testing.chrome_and_matte(scene)
 
 
 def emission_left_out(original):

@@ -129,6 +129,18 @@ def sphere_on_floor(scene, red, segments=48, rings=24):
     add_camera(scene)
 
 
+def chrome_and_matte(scene):
+    """The world tests' scene (test_hdri, test_world_graph_agreement): a grey 8 m floor, a
+    chrome and a matte sphere, and a camera looking a little up, so the sky fills the top of
+    the frame."""
+    add_camera(scene, location=(0.0, -6.0, 1.6), target=(0.0, 0.0, 1.0), lens=30.0)
+    plane(scene, "Floor", 8.0, material=principled("Floor", (0.5, 0.5, 0.5), 0.0, 0.5))
+    sphere_object(scene, "Chrome", (-1.2, 0.3, 0.7), 0.7,
+                  principled("Chrome", (0.9, 0.9, 0.9), 1.0, 0.15), segments=32, rings=16)
+    sphere_object(scene, "Matte", (1.2, 0.0, 0.7), 0.7,
+                  principled("Matte", (0.8, 0.8, 0.8), 0.0, 0.6), segments=32, rings=16)
+
+
 # --------------------------------------------------------------------------------------------
 # Rendering
 

@@ -48,16 +48,23 @@ def _box(g, vector, lookup, node):
     return total
 
 
-def _image(g, node, socket):
+def _texture_id(g, node, projections):
+    """The texture id of an image node's image, Unsupported (naming why) when it has none, its
+    projection is not one of `projections` or its image could not be loaded."""
     if node.image is None:
         raise Unsupported(f"{node_label(node)} has no image")
-    if node.projection not in ('FLAT', 'BOX', *PROJECTIONS):
+    if node.projection not in projections:
         raise Unsupported(f"{node_label(node)}: {node.projection.lower()} projection")
-    if node.extension not in EXTENSIONS:
-        raise Unsupported(f"{node_label(node)}: extension '{node.extension.title()}'")
     tid = g.textures.texture(node.image, node.interpolation)
     if tid is None:
         raise Unsupported(f"{node_label(node)}: its image could not be loaded")
+    return tid
+
+
+def _image(g, node, socket):
+    if node.extension not in EXTENSIONS:
+        raise Unsupported(f"{node_label(node)}: extension '{node.extension.title()}'")
+    tid = _texture_id(g, node, ('FLAT', 'BOX', *PROJECTIONS))
     co = texture_vector(g, node, lambda: g.builder.emit("TexCoordUV", 'vector'))
 
     def lookup(uv):
@@ -81,13 +88,7 @@ def _environment(g, node, socket):
     """The Environment Texture node: its image (Repeat, as Cycles) at the Vector's direction
     (unlinked: the position, which in a world is the ray's direction), equirectangular or
     mirror ball."""
-    if node.image is None:
-        raise Unsupported(f"{node_label(node)} has no image")
-    if node.projection not in ENVIRONMENT_PROJECTIONS:
-        raise Unsupported(f"{node_label(node)}: {node.projection.lower()} projection")
-    tid = g.textures.texture(node.image, node.interpolation)
-    if tid is None:
-        raise Unsupported(f"{node_label(node)}: its image could not be loaded")
+    tid = _texture_id(g, node, ENVIRONMENT_PROJECTIONS)
     if socket.identifier == "Alpha" and node.image.alpha_mode == 'NONE':
         return constant('float', 1.0)
     co = texture_vector(g, node, lambda: g.builder.emit("Geometry", 'vector', mode=0))
