@@ -9,6 +9,7 @@
 #include "torrance/shader_noise4.h"
 #include "torrance/shader_gabor.h"
 #include "torrance/shader_voronoi.h"
+#include "torrance/shader_ies.h"
 #include "torrance/shader_image.h"
 #include "torrance/shader_sky.h"
 #include "torrance/shader_textures.h"
@@ -136,6 +137,7 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
     case ShaderOpcode::ImageProjection:
       return {7, shader::kImageProjectionModes, false, shader::image_projection_op};
     case ShaderOpcode::TexSky: return {1, shader::kSkyModels, true, shader::sky_op};
+    case ShaderOpcode::TexIES: return {2, 1, true, shader::ies_op};
     // [converter ops]
     case ShaderOpcode::ColorRamp: return {1, 1, true, shader::color_ramp_op};
     case ShaderOpcode::RGBCurves: return {2, 1, true, shader::rgb_curves_op};

@@ -32,11 +32,12 @@ class LightNodes:
         self.factor, self.program, self.register = factor, program, register
 
 
-def light_nodes(light, reporter, textures):
+def light_nodes(light, reporter, textures, matrix=None):
     """The LightNodes of a light's node tree, as Cycles multiplies it onto colour x energy:
     the Emission (and Background) closures of its Light Output, through Mix and Add Shader
     nodes, their Color and Strength from any node graph: folded to a factor when it is
-    constant (a Blackbody, Math, RGB ...), else a program (a Light Falloff, a texture)."""
+    constant (a Blackbody, Math, RGB ...), else a program (a Light Falloff, a texture).
+    matrix: the light object's matrix_world (4 x 4; None: the identity), its object space."""
     tree = used_node_tree(light)
     if tree is None:
         return LightNodes()
@@ -48,7 +49,9 @@ def light_nodes(light, reporter, textures):
         return LightNodes()
     from ..shader_graph.emission_tree import EmissionTree
     from ..shader_graph.registry import READERS
-    tree = EmissionTree(where, textures, READERS, reporter, background=False)
+    m = np.identity(4) if matrix is None else np.asarray(matrix, np.float64).reshape(4, 4)
+    tree = EmissionTree(where, textures, READERS, reporter, background=False,
+                        object_matrix=m.tolist())
     radiance = tree.radiance(surface)
     if not radiance.constant:
         try:
@@ -90,11 +93,11 @@ def export_light(tc_scene, obj, matrix, reporter, textures):
         reporter.info(f"Area light '{obj.name}' is a portal, which Torrance does not use "
                       f"(portals emit no light): skipped")
         return False
-    nodes = light_nodes(light, reporter, textures)
+    m = np.asarray(matrix, dtype=np.float64).reshape(4, 4)
+    nodes = light_nodes(light, reporter, textures, m)
     color = tuple(c * f for c, f in zip(color, nodes.factor, strict=True))
     if energy == 0.0 or max(color) == 0.0:
         return False
-    m = np.asarray(matrix, dtype=np.float64).reshape(4, 4)
     p = m[:3, 3]
     if kind != 'SUN' and not np.isfinite(p).all():
         reporter.warning(f"Light '{obj.name}' has a non-finite position: skipped")

@@ -25,11 +25,13 @@ _ZERO = constant('float', 0.0)
 
 class EmissionTree:
     """Compiles the Surface of a World or Light Output into (ProgramBuilder, radiance Value).
-    where: how messages name the owner ("World 'Sky'")."""
+    where: how messages name the owner ("World 'Sky'"); object_matrix: a light's matrix_world
+    (4 x 4), what its object-space coordinates are relative to."""
 
-    def __init__(self, where, textures, readers, reporter, background=True):
+    def __init__(self, where, textures, readers, reporter, background=True, object_matrix=None):
         self.builder = ProgramBuilder()
         self.values = GraphCompiler(self.builder, textures, readers, background=background)
+        self.values.object_matrix = object_matrix
         self.where = where
         self.reporter = reporter
 

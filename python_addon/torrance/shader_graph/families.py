@@ -19,6 +19,7 @@ from . import gabor  # noqa: I001
 from . import geometry  # noqa: I001
 from . import image  # noqa: I001
 from . import sky  # noqa: I001
+from . import ies  # noqa: I001
 
 FAMILIES = (
     # [families]
@@ -33,6 +34,7 @@ FAMILIES = (
     geometry,
     image,
     sky,
+    ies,
 )
 
 READERS = {}

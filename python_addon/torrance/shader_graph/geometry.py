@@ -31,7 +31,11 @@ def shading_normal(g):
 def object_transform(g):
     """The hit's object transform, four Values for the core's ObjectTransform (shader_vector.h):
     its matrix's columns and location, per-object attribute layers (export/mesh_attributes.py's
-    object_info; all 0 where unknown, which the core reads as no object)."""
+    object_info; all 0 where unknown, which the core reads as no object); a light's program
+    has its light's matrix (GraphCompiler.object_matrix) as constants."""
+    if g.object_matrix is not None:
+        m = g.object_matrix
+        return [constant('vector', tuple(float(m[r][c]) for r in range(3))) for c in range(4)]
     return [g.attribute(('object_info', k)) for k in ('axis_x', 'axis_y', 'axis_z', 'location')]
 
 
@@ -56,13 +60,17 @@ def _geometry(g, node, socket):
 _NORMAL_WORLD_TO_OBJECT = (2 * 3 + 0) * 3 + 1
 
 
-def object_space_normal(g):
-    """Texture Coordinate > Normal: the shading normal in object space, as Cycles' texco
-    (normalize(M^T n): the Vector Transform op's Normal with Cycles 4.x's normal transform,
+def to_object_space(g, n):
+    """A world-space normal n in the object's space as Cycles' object_inverse_normal_transform:
+    normalize(M^T n) (the Vector Transform op's Normal with Cycles 4.x's normal transform,
     flags 2, in every Blender); unchanged where there is no object (a world)."""
-    n = shading_normal(g)
     return g.builder.emit("VectorTransform", 'vector', [n, *object_transform(g), *[n] * 6],
                           mode=_NORMAL_WORLD_TO_OBJECT, flags=2)
+
+
+def object_space_normal(g):
+    """Texture Coordinate > Normal: the shading normal in object space, as Cycles' texco."""
+    return to_object_space(g, shading_normal(g))
 
 
 def _instancer_uv(g):

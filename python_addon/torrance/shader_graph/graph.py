@@ -29,6 +29,9 @@ class GraphCompiler:
         self.attributes = attributes if attributes is not None else AttributeIds()
         # A world's tree (emission_tree.py): no mesh, the hit's position is the ray's direction.
         self.background = background
+        # A light's program: its light's matrix_world (4 x 4, rows), the object Texture
+        # Coordinate > Normal and an IES Texture's Vector read (geometry.object_transform).
+        self.object_matrix = None
         self._cache = {}
         self._groups = []                 # the group nodes we are inside, outermost first
 

@@ -123,6 +123,14 @@ def normal_map_directx(node):
     return getattr(node, "convention", 'OPENGL') == 'DIRECTX'
 
 
+def cycles4_ies_incoming():
+    """True where Cycles links an IES Texture's unlinked Vector to Geometry > Incoming in
+    object space (4.0+, LINK_TEXTURE_INCOMING; 3.4: Texture Coordinate > Normal, the same
+    direction at a point or spot light, the light's normal at an area light)."""
+    import bpy
+    return bpy.app.version >= (4, 0, 0)
+
+
 def cycles_wraps_sun_elevation():
     """True where Cycles wraps a Nishita sky's sun elevation into [-pi/2, pi/2] first (3.6+;
     3.4 takes it as it is): the node did not change, the running Blender tells."""
