@@ -375,6 +375,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
         globals = shader_globals(hit, ray.dir, footprint,
                                  differentials ? ctx.pixel_width + ctx.pixel_spread * path_length : 0.0f);
         globals.path = path_state;
+        globals.tracer = &ctx.scene;
       }
       // The material's program runs once here; its Normal (normal_mapped below) reads these.
       std::array<glm::vec4, ShaderProgram::kMaxRegisters> program_regs;

@@ -104,6 +104,7 @@ float Scene::opacity(const SurfaceHit& hit, const Vec3& dir, const PathState& se
   if (o.alpha < 0 && !through_closures) return opacity(hit.material, hit.uv);
   ShaderGlobals g = shader_globals(hit, dir, 0.0f);
   g.path = seen_by;
+  g.tracer = this;
   if (through_closures) {
     const MixtureWeights w = mixture_weights(hit.material, g);
     if (tint) {
@@ -133,6 +134,7 @@ Vec3 Scene::sampled_emission(const EmissiveTriangle& triangle, const Vec2& b, co
   hit.t = seen_by.ray_length;
   ShaderGlobals g = shader_globals(hit, wi, 0.0f);
   g.path = seen_by;
+  g.tracer = this;
   return emission_at(i, g);
 }
 

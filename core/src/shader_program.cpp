@@ -160,6 +160,7 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
     case ShaderOpcode::LightPath: return {0, shader::kLightPathModes, false, shader::light_path_op};
     case ShaderOpcode::LightFalloff: return {2, shader::kLightFalloffModes, false, shader::light_falloff_op};
     case ShaderOpcode::Wireframe: return {1, 2, false, shader::wireframe_op};
+    case ShaderOpcode::AmbientOcclusion: return {4, 2, false, shader::ambient_occlusion_op};
     case ShaderOpcode::CameraTransform: return {4, shader::kCameraTransformModes, false, shader::camera_transform_op};
     case ShaderOpcode::VectorTransform: return {11, shader::kVectorTransformModes, false, shader::vector_transform_op};
     default: break;

@@ -137,7 +137,7 @@ inline ShaderGlobals shader_globals(const SurfaceHit& hit, const Vec3& ray_dir, 
 // Throws std::invalid_argument unless the material's values are finite and in range.
 void check_material(const Material& material);
 
-class Scene {
+class Scene final : public ShaderTracer {
  public:
   Scene();
   ~Scene();
@@ -217,7 +217,9 @@ class Scene {
   // metres at the hit (the ray differentials' length).
   Vec3 normal_mapped(uint32_t material, const SurfaceHit& hit, const Vec3& ns, float footprint = 0.0f,
                      float cone_width = 0.0f) const {
-    return normal_mapped(material, hit, ns, shader_globals(hit, -hit.geometric_normal, footprint, cone_width));
+    ShaderGlobals g = shader_globals(hit, -hit.geometric_normal, footprint, cone_width);
+    g.tracer = this;
+    return normal_mapped(material, hit, ns, g);
   }
 
   // positions: num_vertices xyz; triangles: num_triangles vertex-index triples;
@@ -310,7 +312,7 @@ class Scene {
   // of neighbouring samples): the same hits, bit for bit, as intersect of each. found[i]: hit.
   static constexpr int kPacketSize = 8;
   void intersect_packet(const Ray* rays, int n, SurfaceHit* hits, bool* found) const;
-  bool occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax) const;
+  bool occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax) const override;
   void* embree_scene() const { return scene_; }  // the RTCScene, for raw-Embree measurements (ray_replay.h)
   void bounds(Vec3& lo, Vec3& hi) const;  // of everything traced, after commit (lo > hi: nothing, or not committed)
   // The flat pieces that the triangles of material `material` make (mirror_images.h): either a

@@ -82,6 +82,7 @@ enum class ShaderOpcode : uint8_t {
   LayerWeight = 99,
   Attribute = 100,
   Tangent = 101,
+  AmbientOcclusion = 102,  // shader_geometry.h
   Mapping = 104,       // shader_vector.h
   VectorRotate = 105,
   LightPath = 106,     // shader_geometry.h
@@ -106,6 +107,16 @@ struct ShaderInstruction {
   uint8_t offset = 0;
 };
 
+// What a program may trace (the Ambient Occlusion node): the scene (Scene implements it).
+class ShaderTracer {
+ public:
+  // Whether anything lies along origin + t dir for t in (tmin, tmax).
+  virtual bool occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax) const = 0;
+
+ protected:
+  ~ShaderTracer() = default;
+};
+
 // What a program may read at a hit, as Cycles' ShaderData: world-space position, the shading and
 // true normals facing the viewer (flipped on a back face), the direction toward the viewer.
 struct ShaderGlobals {
@@ -128,6 +139,9 @@ struct ShaderGlobals {
   const int32_t* instance_constant_ids = nullptr;
   int num_instance_constants = 0;
   PathState path;  // the path's state where the program runs (the Light Path node)
+  // The scene a program may trace (Ambient Occlusion); null where there is none (a world, a
+  // light: as Cycles' for no object, the node then sees no occluder).
+  const ShaderTracer* tracer = nullptr;
   // Cycles' ray differentials at the hit: dP/dx and dP/dy (the footprint's width along its
   // tangent pair around the true normal), and what they move the UVs and corner weights by.
   Vec3 dpdx{0.0f}, dpdy{0.0f};
