@@ -194,6 +194,7 @@ ShaderProgram::ShaderProgram(std::vector<glm::vec4> constants, std::vector<Shade
       throw std::invalid_argument(where + ": offset " + std::to_string(int(ins.offset)) + " is not 0, 1 or 2");
     offsets_ = offsets_ || ins.offset != 0;
     differentials_ = differentials_ || ins.offset != 0 || ins.op == ShaderOpcode::Bump;
+    differentials_ = differentials_ || (ins.op == ShaderOpcode::Wireframe && ins.mode == 1);  // Pixel Size
     if (ins.mode >= s.modes)
       throw std::invalid_argument(where + ": mode " + std::to_string(int(ins.mode)) + " out of range [0, " +
                                   std::to_string(s.modes) + ")");
