@@ -12,6 +12,7 @@
 #include "torrance/shader_ies.h"
 #include "torrance/shader_image.h"
 #include "torrance/shader_sky.h"
+#include "torrance/shader_radial_tiling.h"
 #include "torrance/shader_textures.h"
 #include "torrance/shader_geometry.h"
 #include "torrance/shader_vector.h"
@@ -137,6 +138,7 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
     case ShaderOpcode::ImageProjection:
       return {7, shader::kImageProjectionModes, false, shader::image_projection_op};
     case ShaderOpcode::TexSky: return {1, shader::kSkyModels, true, shader::sky_op};
+    case ShaderOpcode::RadialTiling: return {3, shader::kRadialTilingModes, false, shader::radial_tiling_op};
     case ShaderOpcode::TexIES: return {2, 1, true, shader::ies_op};
     // [converter ops]
     case ShaderOpcode::ColorRamp: return {1, 1, true, shader::color_ramp_op};

@@ -64,6 +64,7 @@ enum class ShaderOpcode : uint8_t {
   TexMagic = 59,
   ImageProjection = 60,  // shader_image.h
   TexSky = 61,           // shader_sky.h: the Sky Texture node; mode: SkyModel, a table
+  RadialTiling = 62,     // shader_radial_tiling.h: Blender 5's Radial Tiling; mode: its outputs
   TexIES = 63,           // shader_ies.h: the IES Texture node (Fac); a table
   // [converter ops]
   ColorRamp = 72,       // shader_convert.h: RGBA = ramp(in0.x), table RGBA; flags & 1: interpolate

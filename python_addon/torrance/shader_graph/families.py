@@ -16,6 +16,7 @@ from . import textures  # noqa: I001
 from . import noise  # noqa: I001
 from . import noise4  # noqa: I001
 from . import gabor  # noqa: I001
+from . import radial_tiling  # noqa: I001
 from . import geometry  # noqa: I001
 from . import image  # noqa: I001
 from . import sky  # noqa: I001
@@ -31,6 +32,7 @@ FAMILIES = (
     noise,
     noise4,
     gabor,
+    radial_tiling,
     geometry,
     image,
     sky,

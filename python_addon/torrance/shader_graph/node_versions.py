@@ -21,8 +21,8 @@ materials.principled_version does, not by bpy.app.version:
               displacement_owner is where it is.
   Normal Map  5.1 adds the DirectX convention (green pointing down, in every space):
               normal_map_directx says whether the node uses it; bump.py flips green.
-  new nodes   4.3 adds the Gabor Texture (gabor.py; ADDED_NODES: the registry reads it where
-              the Blender has it).
+  new nodes   4.3 adds the Gabor Texture (gabor.py), 5.0 Radial Tiling (radial_tiling.py;
+              ADDED_NODES: the registry reads them where the Blender has them).
   Sky Texture  Cycles 3.6 wraps the Nishita sun's elevation into [-pi/2, pi/2] (turning it
               about z past the zenith; cycles_wraps_sun_elevation); 5.0 renames Dust to
               Aerosol (sky_dust_density) and replaces Nishita by the Single and Multiple
@@ -49,6 +49,7 @@ REMOVED_NODES = {
 # Node types a newer Blender added, which the registry reads where the running Blender has them.
 ADDED_NODES = {
     'ShaderNodeTexGabor': "4.3: the Gabor Texture",
+    'ShaderNodeRadialTiling': "5.0: Radial Tiling",
 }
 
 # The Noise Texture's noise types, Blender 4.1's names (the Musgrave types of 3.4).
