@@ -31,14 +31,12 @@ Not in Blender 3.4 or 4.2 (the node came with 4.3): there the test prints why an
 """
 
 import math
-import sys
 
 import bpy
 
 from torrance_tools import testing
-from torrance_tools.shader_graphs import DictAttr, agree_on_patches, read_output_as, read_with
-
-SKIPPED = 77
+from torrance_tools.shader_graphs import (agree_on_patches, read_output_as, read_with,
+                                          skip_without)
 
 
 def gabor_node(g, kind, vector=None, **inputs):
@@ -104,13 +102,7 @@ PATCHES = (
 
 
 def main():
-    if not hasattr(bpy.types, "ShaderNodeTexGabor"):
-        print(f"SKIPPED: Blender {bpy.app.version_string} has no Gabor Texture (4.3+)",
-              flush=True)
-        sys.exit(SKIPPED)
-    testing.addon()
-    from torrance.shader_graph.registry import READERS
-    readers = DictAttr(READERS)
+    readers = skip_without("ShaderNodeTexGabor", "Gabor Texture (4.3+)")
     other_type = read_with(lambda node: {"gabor_type": '3D' if node.gabor_type == '2D' else '2D'})
     agree_on_patches(PATCHES, what="Gabor Texture", faults=(
         ("Gabor type read as the other", readers, 'ShaderNodeTexGabor', other_type),

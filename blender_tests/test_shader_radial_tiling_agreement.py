@@ -20,14 +20,11 @@ Run: scripts/bpy 5.3 -b --factory-startup --python-exit-code 1 \
 """
 
 import math
-import sys
 
 import bpy
 
 from torrance_tools import testing
-from torrance_tools.shader_graphs import DictAttr, agree_on_patches, read_with
-
-SKIPPED = 77
+from torrance_tools.shader_graphs import agree_on_patches, read_with, skip_without
 
 
 def tiling(g, sides, roundness, normalize, vector=True):
@@ -87,13 +84,7 @@ PATCHES = (
 
 
 def main():
-    if not hasattr(bpy.types, "ShaderNodeRadialTiling"):
-        print(f"SKIPPED: Blender {bpy.app.version_string} has no Radial Tiling node (5.0+)",
-              flush=True)
-        sys.exit(SKIPPED)
-    testing.addon()
-    from torrance.shader_graph.registry import READERS
-    readers = DictAttr(READERS)
+    readers = skip_without("ShaderNodeRadialTiling", "Radial Tiling node (5.0+)")
     agree_on_patches(PATCHES, what="Radial Tiling", faults=(
         ("Radial Tiling Normalize read as the other", readers, 'ShaderNodeRadialTiling',
          read_with(lambda node: {"normalize": not node.normalize})),

@@ -306,6 +306,19 @@ def closure_left_out(bl_idname):
     return make_fault
 
 
+def skip_without(bl_idname, what):
+    """Exits 77 (ctest's skipped), saying why, where this Blender has no node bl_idname (what:
+    its name and the Blender that added it); else returns the registry's readers, patchable
+    (DictAttr) for agree_on_patches' faults, with the add-on enabled."""
+    import sys
+    if not hasattr(bpy.types, bl_idname):
+        print(f"SKIPPED: Blender {bpy.app.version_string} has no {what}", flush=True)
+        sys.exit(77)
+    testing.addon()
+    from torrance.shader_graph.registry import READERS
+    return DictAttr(READERS)
+
+
 def agree_on_patches(makers, faults=(), lit=(), what="the shader graph", samples=32):
     """Builds the grid and checks Torrance against Cycles within Cycles' seed-to-seed noise
     (agree_within_seed_noise), printing each patch's means when they disagree."""
