@@ -9,7 +9,8 @@ Seen from above through Emission shaders, no lighting noise:
   Object Index / 10, Location y / 3 + 0.5);
 * then, added to the same scene, a quad instanced on the 6 faces of a UV-mapped grid
   (instancing Faces), its colour the instancer's coordinates (UV Map and Texture Coordinate
-  "From Instancer": the face's UV, and Generated x + 0.5).
+  "From Instancer": the face's UV, and Generated x + 0.5), and the Tiles' colour an Instancer
+  attribute (each Empty's custom property 'tint').
 
 Each instance is a prototype's instance in the core, its Object Info constants per instance
 (Scene.set_instance_constants). Cycles' reference (seed 0) and a second Cycles image (seed 1)
@@ -108,9 +109,25 @@ def build(scene):
     testing.set_world(scene, (0.0, 0.0, 0.0))
 
 
-def add_leaves(scene):
-    """A quad on each face of a UV-mapped grid (instancing Faces): the instancer's UV and orco
-    (lifted 2 cm: the leaf object itself, at the origin, lies over the Child, not level)."""
+def instancer_tint():
+    """An Instancer attribute: 'tint', a custom property of each collection instance's Empty
+    (the Tile itself has its own, which only Object attributes would read)."""
+    g = Graph("InstancerTint")
+    attr = g.node("ShaderNodeAttribute", attribute_type='INSTANCER', attribute_name="tint")
+    g.link(attr.outputs["Color"], g.shader.inputs["Color"])
+    return g.mat
+
+
+def add_instancer_reads(scene):
+    """The instancer's coordinates and attributes: the Tiles read their Empty's 'tint' (each
+    Empty its own); a quad on each face of a UV-mapped grid (instancing Faces) shows the
+    instancer's UV and orco (lifted 2 cm: the leaf object itself, at the origin, lies over the
+    Child, not level)."""
+    tile = bpy.data.objects["Tile"]
+    tile["tint"] = (0.5, 0.5, 0.5)
+    tile.material_slots[0].material = instancer_tint()
+    bpy.data.objects["TilesAt0"]["tint"] = (1.0, 0.3, 0.2)
+    bpy.data.objects["TilesAt1"]["tint"] = (0.2, 0.4, 1.0)
     leaf = quad(scene, "Leaf", 0.4, from_instancer(), z=0.02)
     faces = [(-3.6 + 0.7 * i, 1.0 + 0.7 * j, 0.0) for j in range(3) for i in range(4)]
     grid = testing.mesh_object(scene, "Grid", faces,
@@ -142,10 +159,18 @@ def no_location(original):
     return info
 
 
+def no_instancers(original):
+    """A fault: the instances' instancer records dropped (Instancer attributes read as the
+    object's)."""
+    def info(obj, matrices, random_ids, duplis=None, colors=None, instancers=None):
+        return original(obj, matrices, random_ids, duplis, colors)
+    return info
+
+
 def no_duplis(original):
     """A fault: the instancer's coordinates dropped (every instance reads 0)."""
-    def info(obj, matrices, random_ids, duplis=None, colors=None):
-        return original(obj, matrices, random_ids, None, colors)
+    def info(obj, matrices, random_ids, duplis=None, colors=None, instancers=None):
+        return original(obj, matrices, random_ids, None, colors, instancers)
     return info
 
 
@@ -189,11 +214,13 @@ def main():
                 ("the instances' locations dropped", instances, "instances_info", no_location)),
         tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
     viewport_matches_final(scene)
-    add_leaves(scene)
+    add_instancer_reads(scene)
     agree_within_seed_noise(
-        scene, testing.tempdir(), 64, 2, "the instancer's coordinates",
+        scene, testing.tempdir(), 64, 2, "the instancer's coordinates and attributes",
         faults=(("the instancer's coordinates dropped", instances, "instances_info",
-                 no_duplis),),
+                 no_duplis),
+                ("Instancer attributes read on the object", instances, "instances_info",
+                 no_instancers)),
         tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
 
 

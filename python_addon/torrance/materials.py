@@ -500,6 +500,11 @@ class MeshNeeds(NamedTuple):
         flattened meshes only; instances' shared prototypes read 0)."""
         return any(k[0] == 'object_info' for k, _ in self.attributes)
 
+    def instancers(self):
+        """Whether the materials read an Instancer attribute (instancer_record per instance)."""
+        return any(k[0] == 'object_info' and isinstance(k[1], tuple)
+                   and k[1][0].startswith('instancer_') for k, _ in self.attributes)
+
     def duplis(self):
         """Whether the materials read an instance's instancer coordinates (dupli_record)."""
         return any(k in (('object_info', 'dupli_generated'), ('object_info', 'dupli_uv'))

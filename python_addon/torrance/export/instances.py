@@ -26,9 +26,10 @@ class Source:
     matrices of everything that shows it: copies kept by `add`, converted to float32 rows
     CHUNK at a time (transforms() gives them all)."""
     __slots__ = ("name", "mesh_key", "table", "instanced", "matrices", "converted", "_append",
-                 "info_of", "random_ids", "colors", "duplis")
+                 "info_of", "random_ids", "colors", "duplis", "instancers")
 
-    def __init__(self, name, mesh_key, table, instanced, info_of=None, duplis=False):
+    def __init__(self, name, mesh_key, table, instanced, info_of=None, duplis=False,
+                 instancers=False):
         self.name = name
         self.mesh_key = mesh_key      # (evaluated mesh pointer, needs UVs)
         self.table = table            # int32 (K,): material index per slot
@@ -44,6 +45,8 @@ class Source:
         self.colors = [] if self.random_ids is not None else None
         # With materials reading the instancer's coordinates: each instance's dupli_record.
         self.duplis = [] if self.random_ids is not None and duplis else None
+        # With materials reading Instancer attributes: each instance's instancer_record.
+        self.instancers = [] if self.random_ids is not None and instancers else None
 
     def add(self, matrix):
         """Keeps a copy of a world matrix (a mathutils Matrix, e.g. inst.matrix_world: valid
@@ -70,8 +73,10 @@ class Source:
         def kept(rows, width):
             return np.asarray(rows, np.float32).reshape(-1, width)[keep] \
                 if rows is not None else None
+        instancers = [r for r, k in zip(self.instancers, keep, strict=True) if k] \
+            if self.instancers is not None else None
         return instances_info(self.info_of, transforms[keep], ids[keep],
-                              kept(self.duplis, 5), kept(self.colors, 4))
+                              kept(self.duplis, 5), kept(self.colors, 4), instancers)
 
     def transforms(self):
         """float32 (N, 3, 4): the top three rows of every matrix added, in order."""
@@ -110,7 +115,8 @@ class InstanceExport:
         # instance keeps (Source.random_ids, colors, duplis).
         info_of = getattr(obj, "original", obj) if needs_uvs.object_info() else None
         src = Source(name, (data.as_pointer() if data is not None else 0, needs_uvs),
-                     slot_to_material, instanced, info_of, needs_uvs.duplis())
+                     slot_to_material, instanced, info_of, needs_uvs.duplis(),
+                     needs_uvs.instancers())
         self.sources.append(src)
         return src
 

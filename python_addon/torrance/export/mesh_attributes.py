@@ -218,33 +218,62 @@ def object_random_id(name):
     return _jenkins_final((init + h) & _U32, init, init)
 
 
+# An attribute key's kind -> (whether the instancer is searched first, whether it is Fac/Alpha).
+_ATTRIBUTE_KINDS = {'attribute': (False, False), 'attribute_fac_alpha': (False, True),
+                    'instancer_attribute': (True, False),
+                    'instancer_attribute_fac_alpha': (True, True)}
+
+
+def instancer_record(inst):
+    """What Cycles searches first for an instance's Instancer attribute: the particle system's
+    settings and the instancer object (originals; None where there is none)."""
+    psys = inst.particle_system
+    parent = inst.parent
+    return (psys.settings if psys is not None else None,
+            getattr(parent, "original", parent) if parent is not None else None)
+
+
 class ObjectInfo(dict):
     """instances_info's answer: the Object Info keys, and the keys of the object's attributes
-    (the Attribute node's Object type, export/object_attributes.py), computed when asked:
-    ('object_info', ('attribute', name)) its RGB, ('object_info', ('attribute_fac_alpha',
-    name)) its Fac (the RGB's mean) and Alpha as x and y. Each value: float32 (N, 3), or with
-    single=True one xyz tuple."""
+    (the Attribute node's Object and Instancer types, export/object_attributes.py), computed
+    when asked: ('object_info', ('attribute', name)) its RGB, ('object_info',
+    ('attribute_fac_alpha', name)) its Fac (the RGB's mean) and Alpha as x and y; the same with
+    'instancer_attribute' searched first on each instance's instancer_record. Each value:
+    float32 (N, 3), or with single=True one xyz tuple."""
 
-    def __init__(self, fixed, obj, n, single=False):
+    def __init__(self, fixed, obj, n, single=False, instancers=None):
         super().__init__(fixed)
-        self.obj, self.n, self.single = obj, n, single
+        self.obj, self.n, self.single, self.instancers = obj, n, single, instancers
 
     @staticmethod
-    def _is_attribute(key):
-        return (isinstance(key, tuple) and len(key) == 2 and key[0] == 'object_info'
-                and isinstance(key[1], tuple) and key[1][0] in ('attribute', 'attribute_fac_alpha'))
+    def _kind(key):
+        if (isinstance(key, tuple) and len(key) == 2 and key[0] == 'object_info'
+                and isinstance(key[1], tuple)):
+            return _ATTRIBUTE_KINDS.get(key[1][0])
+        return None
 
     def __contains__(self, key):
-        return dict.__contains__(self, key) or self._is_attribute(key)
+        return dict.__contains__(self, key) or self._kind(key) is not None
 
     def __missing__(self, key):
-        if not self._is_attribute(key):
+        kind = self._kind(key)
+        if kind is None:
             raise KeyError(key)
-        from .object_attributes import object_attribute
-        r, g, b, a = object_attribute(self.obj, key[1][1])
-        xyz = (r, g, b) if key[1][0] == 'attribute' else ((r + g + b) / 3.0, a, 0.0)
-        value = (tuple(float(np.float32(x)) for x in xyz) if self.single
-                 else np.broadcast_to(np.asarray(xyz, np.float32), (self.n, 3)))
+        from .object_attributes import rgba_attribute
+        instancer_first, scalars = kind
+        own = (self.obj, getattr(self.obj, "data", None))
+        firsts = self.instancers if instancer_first and self.instancers is not None \
+            else [()] * self.n
+        found = {}
+
+        def xyz(first):
+            if first not in found:
+                r, g, b, a = rgba_attribute((*first, *own), key[1][1])
+                found[first] = ((r + g + b) / 3.0, a, 0.0) if scalars else (r, g, b)
+            return found[first]
+
+        rows = np.asarray([xyz(tuple(f)) for f in firsts], np.float32).reshape(self.n, 3)
+        value = tuple(float(x) for x in rows[0]) if self.single else rows
         self[key] = value
         return value
 
@@ -268,14 +297,15 @@ def dupli_record(inst):
     return (*inst.orco, *inst.uv)
 
 
-def instances_info(obj, matrices, random_ids, duplis=None, colors=None):
+def instances_info(obj, matrices, random_ids, duplis=None, colors=None, instancers=None):
     """ObjectInfo {('object_info', k): float32 (N, 3)} of N instances of obj (Cycles 3.4's
     Object Info of each, and the object's attributes): matrices (N, 3, 4) object to world,
     random_ids (N,) Blender's random ids (DepsgraphObjectInstance.random_id; object_random_id
     for an object itself), duplis (N, 5) their dupli_record, or None (not instanced: 0); k
     'dupli_generated' is Cycles' 0.5 orco - 0.5, 'dupli_uv' the (u, v, 0) the instancer gives.
     colors (N, 4): each instance's object colour (an instance's evaluated object carries its
-    instancer's), or None: obj's."""
+    instancer's), or None: obj's. instancers (N): each instance's instancer_record, for the
+    Instancer attributes (None: not instanced)."""
     m = np.asarray(matrices, dtype=np.float64)
     n = len(m)
     dupli = (np.asarray(duplis, np.float32).reshape(n, 5) if duplis is not None
@@ -301,7 +331,8 @@ def instances_info(obj, matrices, random_ids, duplis=None, colors=None):
                 else same((0.0, 0.0, 0.0))),
             ('object_info', 'dupli_uv'): (
                 np.concatenate([dupli[:, 3:], np.zeros((n, 1), np.float32)], axis=1)
-                if dupli is not None else same((0.0, 0.0, 0.0)))}, obj, n)
+                if dupli is not None else same((0.0, 0.0, 0.0)))}, obj, n,
+        instancers=instancers)
 
 
 def instance_constant_layers(needs, info):

@@ -13,7 +13,7 @@ from .camera import export_camera
 from .instances import InstanceExport, Source
 from .lights import export_light
 from .mesh import MeshCache, add_world_mesh, mesh_materials
-from .mesh_attributes import dupli_record, object_info
+from .mesh_attributes import dupli_record, instancer_record, object_info
 from .world import export_world
 
 # Types whose geometry is a mesh. Only 'MESH' entries of the depsgraph are exported; the
@@ -184,6 +184,8 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
                         what.colors.append(tuple(obj.color))
                         if what.duplis is not None:         # ... and the instancer's coords
                             what.duplis.append(dupli_record(inst))
+                        if what.instancers is not None:     # ... and Instancer attributes
+                            what.instancers.append(instancer_record(inst))
                 elif what == 'LIGHT' and export_light(tc_scene, obj, inst.matrix_world.copy(),
                                                       reporter, textures):
                     stats.lights += 1

@@ -134,17 +134,20 @@ def _view_layer_attribute(node, socket):
 
 def _attribute(g, node, socket):
     """Attribute node: Geometry (a mesh attribute), Object (the object's, then its data's custom
-    property or RNA path: per-object constants) and View Layer (a constant); Color/Vector the
-    attribute, Fac and Alpha as Cycles' svm_node_attr gives them for the attribute's type
-    (export/mesh_attributes.py). Instancer attributes are reported."""
+    property or RNA path: per-object constants), Instancer (first the instance's particle
+    settings and instancer object: per-instance constants) and View Layer (a constant);
+    Color/Vector the attribute, Fac and Alpha as Cycles' svm_node_attr gives them for the
+    attribute's type (export/mesh_attributes.py)."""
     kind, name, out = node.attribute_type, node.attribute_name, socket.identifier
     if kind == 'VIEW_LAYER':
         return _view_layer_attribute(node, socket)
-    if kind not in ('GEOMETRY', 'OBJECT'):
+    if kind not in ('GEOMETRY', 'OBJECT', 'INSTANCER'):
         raise Unsupported(f"{node_label(node)}: {kind.lower()} attributes are not supported")
 
     def key(what):
-        return ('object_info', (what, name)) if kind == 'OBJECT' else (what, name)
+        if kind == 'GEOMETRY':
+            return (what, name)
+        return ('object_info', ('instancer_' + what if kind == 'INSTANCER' else what, name))
 
     if out in ("Fac", "Alpha"):
         scalars = g.attribute(key('attribute_fac_alpha'))

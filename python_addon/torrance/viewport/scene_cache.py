@@ -263,11 +263,13 @@ class SceneCache:
             return
         key, n = eid
         randoms = self._random_ids.get(key)
-        random_id, dupli, color, obj = randoms[n] if randoms is not None and n < len(randoms) \
-            else (object_random_id(obj.name), None, None, obj)
+        random_id, dupli, color, obj, instancer = randoms[n] \
+            if randoms is not None and n < len(randoms) \
+            else (object_random_id(obj.name), None, None, obj, None)
         info = instances_info(obj, np.asarray(transform)[None], [random_id],
                               None if dupli is None else [dupli],
-                              None if color is None else [color])
+                              None if color is None else [color],
+                              None if instancer is None else [instancer])
         layers = instance_constant_layers(needs, info)
         if layers is not None:
             self.scene.set_instance_constants([entry.iid], *layers)

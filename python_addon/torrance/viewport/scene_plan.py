@@ -6,7 +6,7 @@ and mesh key, and a fingerprint of it all that tells whether anything shown chan
 import numpy as np
 
 from .. import export
-from ..export.mesh_attributes import dupli_record
+from ..export.mesh_attributes import dupli_record, instancer_record
 
 
 def matrix_tuple(m):
@@ -26,8 +26,8 @@ def plan_instances(depsgraph, options):
     """(plan, fingerprint, random ids). plan: (kind, object, matrix, slots, mesh key) per
     instance, kind 'LIGHT', 'UNSUPPORTED' or 'MESH'; random ids: a depsgraph instance's mesh
     key -> its instances' (random id, dupli_record, object colour, original object: the
-    instance's evaluated object is a temporary the iteration reuses) (Object Info), in plan
-    order."""
+    instance's evaluated object is a temporary the iteration reuses, instancer_record) (Object
+    Info), in plan order."""
     use_lights = options.get("use_scene_lights", True)
     plan = []
     random_ids = {}
@@ -52,7 +52,8 @@ def plan_instances(depsgraph, options):
                 key = ('I', parent, obj.name, data_name, obj.as_pointer(),
                        obj.data.as_pointer() if obj.data is not None else 0)
                 random_ids.setdefault(key, []).append((inst.random_id, dupli_record(inst),
-                                                       tuple(obj.color), obj.original))
+                                                       tuple(obj.color), obj.original,
+                                                       instancer_record(inst)))
             else:
                 key = ('O', obj.name, data_name)
             plan.append(('MESH', obj, m, slots, key))
