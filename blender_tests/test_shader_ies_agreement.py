@@ -18,6 +18,11 @@ direction), linear instead of Cycles' cubic interpolation (the table resampled l
 1-degree steps). Then IES data Cycles can not read (no Text, a file whose last number ends
 it, a missing file) must be reported, naming the node.
 
+Blender 4.2 (scripts/bpy 4.2): the node's values agree exactly (4.x's parser and lookup, the
+op's mode 1, measured through an Emission plane), but the scene does not (ratio 0.85): its spot
+and point lights disagree without any node tree too (ratio 0.96), so it is not in the blender4
+list.
+
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_shader_ies_agreement.py
 """
@@ -125,8 +130,8 @@ def world_direction(original):
 def linear_table(original):
     """The table resampled linearly to 1-degree steps: Cycles' cubic interpolation of it is
     then linear interpolation of the original."""
-    def table(text):
-        t = np.asarray(original(text), np.float64)
+    def table(text, cycles4=False):
+        t = np.asarray(original(text, cycles4), np.float64)
         h_num, v_num = int(t[0]), int(t[1])
         hs, vs = t[2:2 + h_num], t[2 + h_num:2 + h_num + v_num]
         rows = t[2 + h_num + v_num:].reshape(h_num, v_num)

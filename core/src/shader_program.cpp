@@ -139,7 +139,7 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
       return {7, shader::kImageProjectionModes, false, shader::image_projection_op};
     case ShaderOpcode::TexSky: return {1, shader::kSkyModels, true, shader::sky_op};
     case ShaderOpcode::RadialTiling: return {3, shader::kRadialTilingModes, false, shader::radial_tiling_op};
-    case ShaderOpcode::TexIES: return {2, 1, true, shader::ies_op};
+    case ShaderOpcode::TexIES: return {2, shader::kIesLookups, true, shader::ies_op};
     // [converter ops]
     case ShaderOpcode::ColorRamp: return {1, 1, true, shader::color_ramp_op};
     case ShaderOpcode::RGBCurves: return {2, 1, true, shader::rgb_curves_op};

@@ -3,7 +3,8 @@ processing of it (python_addon/torrance/shader_graph/ies.py: the padded table, t
 quirks, what Cycles rejects) and the Python twin against the core running the op at
 directions over the whole sphere. The parser and twin were checked against Cycles 3.4.1
 rendering these texts (Fac through an Emission plane, 4 x 1024 directions each: equal to 5
-decimals); the images' agreement in lights is blender_tests/test_shader_ies_agreement.py's."""
+decimals; Cycles 4.2 likewise with 4.x's parser and lookup, the op's mode 1, for the type C
+texts); the images' agreement in lights is blender_tests/test_shader_ies_agreement.py's."""
 
 import math
 
@@ -82,7 +83,7 @@ def ies(load_module):
     return load_module("shader_graph.ies")
 
 
-def run_core(table, directions, strength=1.0):
+def run_core(table, directions, strength=1.0, mode=0):
     """The op's Fac at each direction, run by the core (one instruction per direction)."""
     data = np.concatenate([[len(table)], np.asarray(table, np.float32)]).astype(np.float32)
     out = []
@@ -94,7 +95,7 @@ def run_core(table, directions, strength=1.0):
         constants[n, 0] = strength
         code = np.full((n, COLUMNS), -1, np.int32)
         for k in range(n):
-            code[k, :7] = (63, 0, 0, 0, n + 1 + k, k, n)
+            code[k, :7] = (63, mode, 0, 0, n + 1 + k, k, n)
         scene = tc.Scene()
         pid = scene.add_shader_program(constants, code, 2 * n + 1, data)
         regs = scene.run_shader_program(pid, np.zeros((1, 2), np.float32))
@@ -155,17 +156,20 @@ def test_what_cycles_rejects(ies, text, why):
         ies.ies_table(text)
 
 
+@pytest.mark.parametrize("mode", [0, 1])
 @pytest.mark.parametrize("text", [TYPE_C_FULL, QUADRANT, TILTED_NO_360, TYPE_B, UPWARD])
-def test_twin_matches_core(ies, text):
-    table = ies.ies_table(text)
+def test_twin_matches_core(ies, text, mode):
+    if mode == 1 and text is TYPE_B:
+        pytest.skip("Cycles 4.x's type B processing is reported")
+    table = ies.ies_table(text, cycles4=mode == 1)
     d = directions(np.random.default_rng(5))
-    core = run_core(table, d, strength=0.7)
-    twin = np.array([ies._fold_ies(0, 0, [tuple(v), (0.7, 0, 0, 0)], table)[0] for v in d])
+    core = run_core(table, d, strength=0.7, mode=mode)
+    twin = np.array([ies._fold_ies(mode, 0, [tuple(v), (0.7, 0, 0, 0)], table)[0] for v in d])
     ok = np.abs(core - twin) <= 2e-4 * np.maximum(1.0, np.abs(twin))
     assert ok.all(), (d[~ok][:3], core[~ok][:3], twin[~ok][:3])
     assert core[-1] == 0.0                                   # a zero vector
     if text is UPWARD:
-        assert not core.any()
+        assert core.any() == (mode == 1)    # 3.4 turned it to 90..0: nothing; 4.x: upward
 
 
 def test_cubic_between_samples(ies):
@@ -178,3 +182,19 @@ def test_cubic_between_samples(ies):
     mid = ies.intensity(table, np.float32(math.pi / 2), np.float32(v))
     linear = 0.5 * (520 + 200) * 0.0706650768394
     assert abs(mid - linear) > 0.5
+
+
+def test_cycles4_parser_and_wraps(ies):
+    """Cycles 4.x reads a text whose last number ends it, keeps 90..180 and rejects nothing
+    else 3.4 reads but type B (reported); its lookup wraps no neighbour round a table ending
+    at exactly 2 pi (its float test), so next to 0 degrees it differs from 3.4's."""
+    assert ies.ies_table(QUADRANT.rstrip("\n"), cycles4=True) == ies.ies_table(QUADRANT)
+    with pytest.raises(ies.IESError, match="type B"):
+        ies.ies_table(TYPE_B, cycles4=True)
+    table = ies.ies_table(TYPE_C_FULL, cycles4=True)
+    assert table == ies.ies_table(TYPE_C_FULL)
+    near_seam = np.float32(math.radians(10.0)), np.float32(math.radians(60.0))
+    middle = np.float32(math.radians(120.0)), np.float32(math.radians(60.0))
+    assert ies.intensity(table, *near_seam, cycles4=True) != ies.intensity(table, *near_seam)
+    assert ies.intensity(table, *middle, cycles4=True) == ies.intensity(table, *middle)
+    assert ies.intensity(table, np.float32(2 * math.pi), np.float32(0.5), cycles4=True) == 0

@@ -10,6 +10,10 @@ Cycles' watts); the twin evaluates the table as the core's op does (float32, Cyc
 interpolation over vertical then horizontal angles): the fold of a constant Vector and the
 reference evaluator's op. Text Cycles can not read (no data-block, an unreadable file, type A,
 angle ranges it rejects) Cycles renders as 100 x Strength; the reader reports it instead.
+
+Cycles 4.x (node_versions.cycles4_ies; measured in 4.2) parses without 3.4's end-of-text
+failure, keeps a type C table of vertical angles 90-180 as it is, looks up with its own wraps
+(the op's mode 1) and processes type B photometry anew; that last is reported there.
 """
 
 import math
@@ -41,16 +45,18 @@ class _Numbers:
 
     def __init__(self, text, pos):
         self.text, self.pos = text, pos
+        self.error = False                  # a read past the end or of no number
 
     def eof(self):
         return self.pos is None or self.pos >= len(self.text) or self.text[self.pos] == "\0"
 
     def _read(self, pattern, cast):
         if self.eof():
+            self.error = True
             return cast(0)
         m = pattern.match(self.text, self.pos)
         if m is None:
-            self.pos = None
+            self.pos, self.error = None, True
             return cast(0)
         self.pos = m.end()
         return cast(m.group(1))
@@ -62,9 +68,9 @@ class _Numbers:
         return self._read(_LONG, int)
 
 
-def parse(text):
+def parse(text, cycles4=False):
     """(type, v_angles, h_angles, intensity rows per horizontal angle) of an LM-63 text, the
-    values as Cycles 3.4's IESFile::parse stores them (float32, intensities in its watts)."""
+    values as Cycles' IESFile::parse stores them (float32, intensities in its watts)."""
     text = text.replace(",", " ")
     start = text.find("\nTILT=")
     if start < 0:
@@ -98,10 +104,11 @@ def parse(text):
     v = [_F(n.double()) for _ in range(max(v_num, 0))]
     h = [_F(n.double()) for _ in range(max(h_num, 0))]
     rows = [[_F(factor * n.double()) for _ in range(max(v_num, 0))] for _ in range(max(h_num, 0))]
-    if n.eof():
+    if n.error if cycles4 else n.eof():
         # Cycles 3.4's parser fails when its cursor ends the text (a number missing, or the
-        # last one the text's last characters).
-        raise IESError("the candela values end the text or are missing")
+        # last one the text's last characters); 4.x's when a number is missing.
+        raise IESError("the candela values are missing" if cycles4
+                       else "the candela values end the text or are missing")
     return kind, v, h, rows
 
 
@@ -112,7 +119,7 @@ def _mirror(angles, rows, about):
         rows.append(rows[i])
 
 
-def _process_c(v, h, rows):
+def _process_c(v, h, rows, cycles4):
     if h[0] == _F(90):
         h[:] = [a - _F(90) for a in h]
     if h[0] != 0:
@@ -135,7 +142,8 @@ def _process_c(v, h, rows):
         if v[-1] != _F(180):
             raise IESError(f"vertical angles 90 to {float(v[-1]):g} degrees")
         # Cycles 3.4 turns 90..180 into 90..0 (descending: its kernel then gives 0 everywhere).
-        v[:] = [_F(180) - a for a in v]
+        if not cycles4:
+            v[:] = [_F(180) - a for a in v]
     elif v[0] != 0:
         raise IESError(f"vertical angles from {float(v[0]):g} degrees")
 
@@ -163,16 +171,20 @@ def _process_b(v, h, rows):
     return v, h
 
 
-def ies_table(text):
+def ies_table(text, cycles4=False):
     """The op's table (Cycles' packed IES: counts, horizontal and vertical angles in radians,
-    the rows) of an LM-63 text; raises IESError where Cycles' IESFile::load fails."""
-    kind, v, h, rows = parse(text)
+    the rows) of an LM-63 text; raises IESError where Cycles' IESFile::load fails (cycles4:
+    as Cycles 4.x's; its type B processing is not reproduced)."""
+    kind, v, h, rows = parse(text, cycles4)
     if not v or not h:
         raise IESError("no angles")
+    if kind == TYPE_B and cycles4:
+        raise IESError("type B photometry, which Cycles 4.x processes in a way Torrance does "
+                       "not reproduce")
     if kind == TYPE_B:
         v, h = _process_b(v, h, rows)
     else:
-        _process_c(v, h, rows)
+        _process_c(v, h, rows, cycles4)
     h = [a * _DEG for a in h]
     v = [a * _DEG for a in v]
     return [float(len(h)), float(len(v)), *map(float, h), *map(float, v),
@@ -190,9 +202,15 @@ def _fraction(a, b, x):
     return (x - a) / (b - a) if b != a else _F(0)
 
 
-def intensity(table, h, v):
+# Cycles 4.x's wrap tests, in float32 (pi - 1e-7 and 2 pi - 1e-7 round back to pi, 2 pi).
+_EPS = _F(1e-7)
+_NEAR_PI = _F(_PI - _EPS)
+_NEAR_TWO_PI = _F(_F(2) * _PI - _EPS)
+
+
+def intensity(table, h, v, cycles4=False):
     """The table's intensity at horizontal angle h and vertical angle v (radians), as the
-    core's ies_intensity."""
+    core's ies_intensity (cycles4: Cycles 4.x's lookup, the op's mode 1)."""
     t = np.asarray(table, np.float32)
     if len(t) < 2 or not (t[0] >= 2 and t[1] >= 1 and t[0] < 1e6 and t[1] < 1e6):
         return _F(0)
@@ -204,6 +222,12 @@ def intensity(table, h, v):
     h, v = _F(h), _F(v)
     if v_num < 2 or not v < vs[-1]:
         return _F(0)
+    low, high, clamp_high, around = True, False, True, True
+    if cycles4:
+        if v < vs[0] or h < hs[0] or h >= hs[-1]:
+            return _F(0)
+        low, high, clamp_high = vs[0] < _EPS, vs[-1] > _NEAR_PI, False
+        around = hs[0] < _EPS and hs[-1] > _NEAR_TWO_PI
     h_i = v_i = 0
     while h_i + 2 < h_num and hs[h_i + 1] < h:
         h_i += 1
@@ -213,12 +237,16 @@ def intensity(table, h, v):
 
     def vertical(k):
         r = rows[k]
-        return _catmull_rom(r[1 if v_i == 0 else v_i - 1], r[v_i], r[v_i + 1],
-                            r[min(v_i + 2, v_num - 1)], v_frac)
+        before = r[v_i - 1] if v_i > 0 else (r[1] if low else _F(0))
+        if clamp_high:
+            after = r[min(v_i + 2, v_num - 1)]
+        else:
+            after = r[v_i + 2] if v_i + 2 < v_num else (r[v_num - 2] if high else _F(0))
+        return _catmull_rom(before, r[v_i], r[v_i + 1], after, v_frac)
 
-    a = vertical(h_num - 2 if h_i == 0 else h_i - 1)
+    a = vertical(h_i - 1) if h_i > 0 else (vertical(h_num - 2) if around else _F(0))
     b, c = vertical(h_i), vertical(h_i + 1)
-    d = vertical(1 if h_i + 2 == h_num else h_i + 2)
+    d = vertical(h_i + 2) if h_i + 2 < h_num else (vertical(1) if around else _F(0))
     return max(_catmull_rom(a, b, c, d, h_frac), _F(0))
 
 
@@ -236,7 +264,7 @@ def angles(vector):
 
 def _fold_ies(mode, flags, a, table):
     hv = angles(a[0])
-    fac = 0.0 if hv is None else float(_F(a[1][0]) * intensity(table, *hv))
+    fac = 0.0 if hv is None else float(_F(a[1][0]) * intensity(table, *hv, cycles4=mode == 1))
     return (fac, 0.0, 0.0, 0.0)
 
 
@@ -269,8 +297,8 @@ def _default_vector(g):
     normal in the owner's object space; at a point or spot light, the direction from the light
     to the receiver), 4.x's Geometry > Incoming moved to object space as a normal."""
     from .geometry import object_space_normal, to_object_space
-    from .node_versions import cycles4_ies_incoming
-    if cycles4_ies_incoming():
+    from .node_versions import cycles4_ies
+    if cycles4_ies():
         return to_object_space(g, g.builder.emit("Geometry", 'vector', mode=3))
     return object_space_normal(g)
 
@@ -278,20 +306,22 @@ def _default_vector(g):
 def _read_ies(g, node, socket):
     from ..nodes import node_label
     from .graph import Unsupported
+    from .node_versions import cycles4_ies
+    cycles4 = cycles4_ies()
     text = ies_text(node)
     where = "its Text" if node.mode == 'INTERNAL' else f"the file '{node.filepath}'"
     try:
         if text is None:
             raise IESError("none given" if node.mode == 'INTERNAL' or not node.filepath
                            else "it can not be read")
-        table = ies_table(text)
+        table = ies_table(text, cycles4)
     except IESError as exc:
         raise Unsupported(f"{node_label(node)}: {where} is not IES data Cycles reads ({exc}); "
                           f"Cycles renders it as 100 x Strength") from None
     vector = node.inputs["Vector"]
     v = g.input(vector, 'vector') if vector.is_linked else _default_vector(g)
     return g.builder.emit("TexIES", 'float', [v, g.input(node.inputs["Strength"], 'float')],
-                          table=table)
+                          mode=int(cycles4), table=table)
 
 
 READERS = {'ShaderNodeTexIES': _read_ies}

@@ -124,10 +124,11 @@ def normal_map_directx(node):
     return getattr(node, "convention", 'OPENGL') == 'DIRECTX'
 
 
-def cycles4_ies_incoming():
-    """True where Cycles links an IES Texture's unlinked Vector to Geometry > Incoming in
-    object space (4.0+, LINK_TEXTURE_INCOMING; 3.4: Texture Coordinate > Normal, the same
-    direction at a point or spot light, the light's normal at an area light)."""
+def cycles4_ies():
+    """True where Cycles reads an IES Texture as 4.x does (ies.py; 4.0+, measured in 4.2): its
+    unlinked Vector Geometry > Incoming in object space (LINK_TEXTURE_INCOMING; 3.4: Texture
+    Coordinate > Normal, the same direction at a point or spot light, the light's normal at an
+    area light), its parser and lookup: the node did not change, the running Blender tells."""
     import bpy
     return bpy.app.version >= (4, 0, 0)
 
