@@ -22,25 +22,12 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
 
 import math
 
-import bpy
-
 from torrance_tools import testing
+from torrance_tools.scene import light_with_nodes as light
 from torrance_tools.seed_noise import agree_within_seed_noise
 
 W, H = 96, 72
 BOUNCES = 2
-
-
-def light(scene, kind, name, location, rotation=(0.0, 0.0, 0.0), **props):
-    data = bpy.data.lights.new(name, kind)
-    for key, value in props.items():
-        setattr(data, key, value)
-    ob = bpy.data.objects.new(name, data)
-    ob.location, ob.rotation_euler = location, rotation
-    scene.collection.objects.link(ob)
-    data.use_nodes = True
-    nt = data.node_tree
-    return nt, next(n for n in nt.nodes if n.bl_idname == 'ShaderNodeEmission')
 
 
 def falloff(nt, emit, output, strength, smooth=0.0):

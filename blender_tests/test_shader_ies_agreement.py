@@ -33,52 +33,17 @@ import bpy
 import numpy as np
 
 from torrance_tools import testing
-from torrance_tools.scene import quad
+from torrance_tools.ies_texts import QUADRANT
+from torrance_tools.ies_texts import TYPE_C_FULL as ASYMMETRIC
+from torrance_tools.scene import light_with_nodes, quad
 from torrance_tools.seed_noise import agree_within_seed_noise
 
 W, H = 96, 72
 BOUNCES = 2
 
-ASYMMETRIC = """IESNA:LM-63-2002
-[TEST] Torrance asymmetric type C
-[MANUFAC] none
-TILT=NONE
-1 1000 1.0 12 7 1 2 0.3 0.3 0.1
-1.0 1.0 60
-0 10 20 35 50 65 80 90 105 120 150 180
-0 45 90 180 270 315 360
-1000 980 900 640 300 120 60 30 20 15 10 5
-1000 900 700 420 380 520 260 90 40 20 10 5
-1000 860 520 200 90 60 30 10 5 0 0 0
-1000 990 950 880 700 420 200 80 50 30 20 5
-1000 800 400 150 60 260 700 300 100 40 10 5
-1000 940 820 600 420 300 160 70 30 15 10 5
-1000 980 900 640 300 120 60 30 20 15 10 5
-"""
-
-QUADRANT = """IESNA91
-TILT=NONE
-1 -1 2.5 6 3 1 1 0 0 0
-0.9 1.0 40
-0 15 30 45 70 90
-0 40 90
-500 420 300 180 60 0
-500 470 380 260 120 10
-500 300 120 60 20 0
-"""
-
-
 def ies_light(scene, kind, name, location, rotation, text, **props):
     """A light whose Emission Strength is an IES Texture of `text` (a Text data-block)."""
-    data = bpy.data.lights.new(name, kind)
-    for key, value in props.items():
-        setattr(data, key, value)
-    ob = bpy.data.objects.new(name, data)
-    ob.location, ob.rotation_euler = location, rotation
-    scene.collection.objects.link(ob)
-    data.use_nodes = True
-    nt = data.node_tree
-    emit = next(n for n in nt.nodes if n.bl_idname == 'ShaderNodeEmission')
+    nt, emit = light_with_nodes(scene, kind, name, location, rotation, **props)
     block = bpy.data.texts.new(f"{name}.ies")
     block.write(text)
     ies = nt.nodes.new("ShaderNodeTexIES")

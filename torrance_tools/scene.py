@@ -88,6 +88,15 @@ def light(scene, kind, name, energy, color=(1.0, 1.0, 1.0), location=None, rotat
     return ob
 
 
+def light_with_nodes(scene, kind, name, location, rotation=(0.0, 0.0, 0.0), energy=10.0,
+                     **props):
+    """A light (as light()) with its node tree on: (its node tree, its Emission node)."""
+    data = light(scene, kind, name, energy, location=location, rotation=rotation, **props).data
+    data.use_nodes = True
+    nt = data.node_tree
+    return nt, next(n for n in nt.nodes if n.bl_idname == 'ShaderNodeEmission')
+
+
 def sun(scene, elevation_deg, azimuth_deg, strength, angle_deg=0.526, color=(1.0, 1.0, 1.0),
         name="Sun"):
     """A sun `elevation_deg` above the horizon, in the compass direction `azimuth_deg`
