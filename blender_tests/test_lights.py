@@ -8,9 +8,10 @@ add-on default). Figures from 32-bit EXRs, as test_cycles_agreement.py: ratio of
 and per channel) and relative 8x8-block differences (mean and 90th percentile).
 
 The cases exercise what the export must get right: colour x energy, a light node tree's
-Emission strength and colour (from a Blackbody and a Math node: graphs that fold), spot cone and blend, the -Z axis of rotated lights, area light
-size / size_y with object scale, disk/ellipse areas, spread, and emissive meshes from an
-Emission node and from Principled emission.
+Emission strength and colour (from a Blackbody and a Math node: graphs that fold), spot cone
+and blend, the -Z axis of rotated lights, area light size / size_y with object scale,
+disk/ellipse areas, spread, and emissive meshes from an Emission node and from Principled
+emission.
 
 Measured (80x60, 128 spp, the disk 512 spp; ratio overall, block mean, p90):
     spot            1.002   0.021  0.045
