@@ -24,7 +24,8 @@ import math
 
 from torrance_tools import testing
 from torrance_tools.scene import light_with_nodes as light
-from torrance_tools.seed_noise import agree_within_seed_noise
+from torrance_tools.seed_noise import agree_on_scene
+from torrance_tools.shader_graphs import registry_readers
 
 W, H = 96, 72
 BOUNCES = 2
@@ -112,19 +113,13 @@ def incoming_reversed(original):
 def main():
     testing.addon()
     import torrance.export.scene as export_scene
-    from torrance.shader_graph.registry import READERS
-    from torrance_tools.shader_graphs import DictAttr
-    scene = testing.clear_scene()
-    build(scene)
-    agree_within_seed_noise(
-        scene, testing.tempdir(), 128, BOUNCES, "lights with node graphs",
+    readers = registry_readers()
+    agree_on_scene(
+        build, 128, BOUNCES, "lights with node graphs",
         faults=(("light programs not run", export_scene, "export_light", programs_not_run),
-                ("Light Falloff read as Quadratic", DictAttr(READERS), 'ShaderNodeLightFalloff',
+                ("Light Falloff read as Quadratic", readers, 'ShaderNodeLightFalloff',
                  falloff_of_the_path),
-                ("Incoming reversed", DictAttr(READERS), 'ShaderNodeNewGeometry',
-                 incoming_reversed)),
-        tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
-    testing.check(not testing.last_messages(), f"unexpected reports: {testing.last_messages()}")
+                ("Incoming reversed", readers, 'ShaderNodeNewGeometry', incoming_reversed)))
 
 
 testing.run(main)

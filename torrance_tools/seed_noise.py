@@ -75,6 +75,20 @@ def agree_within_seed_noise(scene, directory, samples, bounces, what, faults=(),
     testing.check(not missed, "faults the comparison does not see: " + ", ".join(missed))
 
 
+def agree_on_scene(build, samples, bounces, what, faults=(), silent=True):
+    """A fresh scene made by build(scene), Torrance against Cycles within Cycles' own noise
+    (agree_within_seed_noise with the shader-graph tests' tolerances), every fault caught;
+    silent: the renders report nothing either. Returns the scene."""
+    scene = testing.clear_scene()
+    build(scene)
+    agree_within_seed_noise(scene, testing.tempdir(), samples, bounces, what, faults=faults,
+                            tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
+    if silent:
+        testing.check(not testing.last_messages(),
+                      f"unexpected reports: {testing.last_messages()}")
+    return scene
+
+
 def agree_with_reference_noise(scene, directory, samples, ref_samples, bounces, faults=(),
                                patch_args=None):
     """Raises AssertionError unless Torrance (seed 0, `samples`) is within noise_limits of a

@@ -242,6 +242,12 @@ class DictAttr:
         self._table[key] = value
 
 
+def registry_readers():
+    """The registry's readers (bl_idname -> reader) as attributes, for faults that patch one."""
+    from torrance.shader_graph.registry import READERS
+    return DictAttr(READERS)
+
+
 def _setting(node, key):
     """(owner, attribute) of a read_with key: "socket:Name" an input's default value, "a.b" the
     node's a's b, else the node's attribute."""
