@@ -155,9 +155,9 @@ def color_swapped(original):
 
 def data_not_searched(original):
     """A fault: an Object attribute looked up on the object alone, not on its data."""
-    def lookup(obj, name):
+    def lookup(obj, name, instancer=()):
         from torrance.export.object_attributes import rgba_attribute
-        return rgba_attribute((obj,), name)
+        return rgba_attribute((*instancer, obj), name)
     return lookup
 
 

@@ -259,16 +259,15 @@ class ObjectInfo(dict):
         kind = self._kind(key)
         if kind is None:
             raise KeyError(key)
-        from .object_attributes import rgba_attribute
+        from .object_attributes import object_attribute
         instancer_first, scalars = kind
-        own = (self.obj, getattr(self.obj, "data", None))
         firsts = self.instancers if instancer_first and self.instancers is not None \
             else [()] * self.n
         found = {}
 
         def xyz(first):
             if first not in found:
-                r, g, b, a = rgba_attribute((*first, *own), key[1][1])
+                r, g, b, a = object_attribute(self.obj, key[1][1], first)
                 found[first] = ((r + g + b) / 3.0, a, 0.0) if scalars else (r, g, b)
             return found[first]
 

@@ -48,9 +48,11 @@ def rgba_attribute(blocks, name):
     return (0.0, 0.0, 0.0, 0.0)
 
 
-def object_attribute(obj, name):
-    """An object's attribute (the Attribute node's Object type): the object, then its data."""
-    return rgba_attribute((obj, getattr(obj, "data", None)), name)
+def object_attribute(obj, name, instancer=()):
+    """An object's attribute (the Attribute node's Object type): the object, then its data;
+    after the data-blocks `instancer` (the Instancer type: the instance's particle settings and
+    instancer object) where given."""
+    return rgba_attribute((*instancer, obj, getattr(obj, "data", None)), name)
 
 
 def view_layer_attribute(scene, view_layer, name):
