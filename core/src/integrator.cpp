@@ -197,6 +197,8 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
                   camera.pixel_width()};
   ctx.bsdfs.reserve(scene.num_materials());
   for (size_t i = 0; i < scene.num_materials(); ++i) ctx.bsdfs.emplace_back(scene.material(uint32_t(i)), settings.brdf_model);
+  ctx.globals_read.reserve(scene.num_materials());
+  for (size_t i = 0; i < scene.num_materials(); ++i) ctx.globals_read.push_back(cscene.globals_read(uint32_t(i)));
   const PixelFilter filter(settings.filter_width);
 
   const TraceFn trace = select_path_tracer(cscene, settings);

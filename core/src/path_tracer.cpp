@@ -370,10 +370,12 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
         if (bounce == 0) first_ray_length = path_state.ray_length;
       }
       ShaderGlobals globals;
-      if (textured) {  // the ray differentials only where the material reads them (a bump)
-        const bool differentials = ctx.scene.reads_differentials(hit.material);
+      if (textured) {  // only what the material reads of the hit (the ray differentials: a bump)
+        const uint8_t reads = ctx.globals_read.empty() ? ctx.scene.globals_read(hit.material)
+                                                       : ctx.globals_read[hit.material];
         globals = shader_globals(hit, ray.dir, footprint,
-                                 differentials ? ctx.pixel_width + ctx.pixel_spread * path_length : 0.0f);
+                                 reads & kReadsDifferentials ? ctx.pixel_width + ctx.pixel_spread * path_length : 0.0f,
+                                 reads);
         globals.path = path_state;
         globals.tracer = &ctx.scene;
       }

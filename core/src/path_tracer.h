@@ -33,6 +33,8 @@ struct PathContext {
   const MirrorImages* mirror_images = nullptr;
   bool nee_every_light = false;  // RenderSettings::nee_every_light, in a scene of few enough lights
   int first_bounce_splits = 1;   // branches at the first hit (first_bounce_splits.h): set or chosen
+  // Per material, what shading it reads of ShaderGlobals (Scene::globals_read; empty: all).
+  std::vector<uint8_t> globals_read = {};
 };
 
 // Where a camera sample goes.

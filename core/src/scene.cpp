@@ -178,18 +178,18 @@ Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, co
   return side * out;
 }
 
-bool Scene::reads_differentials(uint32_t i) const {
+uint8_t Scene::globals_read(uint32_t i) const {
   auto own = [&](uint32_t m) {
     const MaterialTextures& t = material_textures_[m];
-    return t.bump >= 0 || (t.program.any() && programs_[size_t(t.program.program)].reads_differentials());
+    return uint8_t((t.bump >= 0 ? kReadsDifferentials : 0) |
+                   (t.program.any() ? programs_[size_t(t.program.program)].globals_read() : 0));
   };
-  if (own(i)) return true;
-  const Mixture* m = mixture(i);
-  if (!m) return false;
-  if (m->program >= 0 && programs_[size_t(m->program)].reads_differentials()) return true;
-  for (const MixtureComponent& c : m->components)
-    if (own(c.material)) return true;
-  return false;
+  uint8_t reads = own(i);
+  if (const Mixture* m = mixture(i)) {
+    if (m->program >= 0) reads |= programs_[size_t(m->program)].globals_read();
+    for (const MixtureComponent& c : m->components) reads |= own(c.material);
+  }
+  return reads;
 }
 
 void check_material(const Material& m) {

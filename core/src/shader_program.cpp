@@ -95,6 +95,18 @@ glm::vec4 luminance(const ShaderOpContext& c) { return value(shader::rgb_to_bw(c
 glm::vec4 average(const ShaderOpContext& c) { return value((c.in(0).x + c.in(0).y + c.in(0).z) / 3.0f); }
 glm::vec4 uv(const ShaderOpContext& c) { return glm::vec4(c.globals.uv, 0.0f, 0.0f); }
 
+// The GlobalsRead flags of the globals an opcode reads beyond the hit's basics.
+uint8_t globals_read_by(ShaderOpcode op) {
+  switch (op) {
+    case ShaderOpcode::Attribute: return kReadsAttributes;
+    case ShaderOpcode::Tangent:
+    case ShaderOpcode::NormalMap:
+    case ShaderOpcode::VectorDisplacement: return kReadsTangent;
+    case ShaderOpcode::Wireframe: return kReadsCorners;
+    default: return 0;
+  }
+}
+
 }  // namespace
 
 ShaderOpInfo shader_op_info(ShaderOpcode op) {
@@ -197,6 +209,7 @@ ShaderProgram::ShaderProgram(std::vector<glm::vec4> constants, std::vector<Shade
     offsets_ = offsets_ || ins.offset != 0;
     differentials_ = differentials_ || ins.offset != 0 || ins.op == ShaderOpcode::Bump;
     differentials_ = differentials_ || (ins.op == ShaderOpcode::Wireframe && ins.mode == 1);  // Pixel Size
+    globals_read_ |= globals_read_by(ins.op);
     if (ins.mode >= s.modes)
       throw std::invalid_argument(where + ": mode " + std::to_string(int(ins.mode)) + " out of range [0, " +
                                   std::to_string(s.modes) + ")");
@@ -219,6 +232,7 @@ ShaderProgram::ShaderProgram(std::vector<glm::vec4> constants, std::vector<Shade
     written[size_t(ins.out)] = true;
   }
   written_ = std::move(written);
+  if (differentials_) globals_read_ |= kReadsDifferentials;
 }
 
 namespace {

@@ -1,6 +1,7 @@
 // The Bump and Normal Map formulas (core/src/shader_bump.cpp) as Cycles 3.4 computes them: a
 // flat height and zero differentials leave the normal, a slope tilts it against the gradient by
 // Distance (Invert: the other way), Strength mixes, degenerate inputs stay finite.
+#include "torrance/scene.h"
 #include "torrance/shader_bump.h"
 #include "torrance/shader_program.h"
 
@@ -90,6 +91,41 @@ TEST(ShaderBump, ProgramsSayWhetherTheyReadDifferentials) {
   uv.offset = 1;
   EXPECT_TRUE(ShaderProgram(constants, {uv}, 7, 0).reads_differentials());
   EXPECT_FALSE(ShaderProgram(constants, {}, 6, 0).reads_differentials());
+}
+
+// A program says which globals beyond the hit's basics it reads (what shader_globals fills).
+TEST(ShaderBump, ProgramsSayWhatGlobalsTheyRead) {
+  const std::vector<glm::vec4> constants(6, glm::vec4(0.5f));
+  auto reads = [&](ShaderOpcode op, uint8_t mode = 0, uint8_t offset = 0) {
+    ShaderInstruction ins;
+    ins.op = op;
+    ins.mode = mode;
+    ins.offset = offset;
+    ins.out = 6;
+    return ShaderProgram(constants, {ins}, 7, 0).globals_read();
+  };
+  EXPECT_EQ(ShaderProgram(constants, {}, 6, 0).globals_read(), 0);
+  EXPECT_EQ(reads(ShaderOpcode::TexCoordUV), 0);
+  EXPECT_EQ(reads(ShaderOpcode::TexCoordUV, 0, 1), kReadsDifferentials);
+  EXPECT_EQ(reads(ShaderOpcode::Attribute), kReadsAttributes);
+  EXPECT_EQ(reads(ShaderOpcode::Attribute, 0, 2), kReadsAttributes | kReadsDifferentials);
+  EXPECT_EQ(reads(ShaderOpcode::Tangent), kReadsTangent);
+  EXPECT_EQ(reads(ShaderOpcode::NormalMap), kReadsTangent);
+  EXPECT_EQ(reads(ShaderOpcode::Wireframe), kReadsCorners);
+  EXPECT_EQ(reads(ShaderOpcode::Wireframe, 1), kReadsCorners | kReadsDifferentials);  // Pixel Size
+  // shader_globals fills only what it is told to.
+  SurfaceHit hit;
+  hit.tangent = Vec3(1, 0, 0);
+  hit.corners[1] = Vec3(2, 0, 0);
+  hit.num_attributes = 3;
+  const ShaderGlobals none = shader_globals(hit, Vec3(0, 0, -1), 0.0f, 1.0f, 0);
+  EXPECT_EQ(none.tangent, Vec3(0.0f));
+  EXPECT_EQ(none.corners[1], Vec3(0.0f));
+  EXPECT_EQ(none.num_attributes, 0);
+  const ShaderGlobals all = shader_globals(hit, Vec3(0, 0, -1), 0.0f, 1.0f);
+  EXPECT_EQ(all.tangent, hit.tangent);
+  EXPECT_EQ(all.corners[1], hit.corners[1]);
+  EXPECT_EQ(all.num_attributes, 3);
 }
 
 }  // namespace

@@ -89,7 +89,7 @@ inline ShaderGlobals uv_globals(const Vec2& uv, float footprint = 0.0f) {
 // the viewer), textures averaged over `footprint` UV units; cone_width: the ray cone's width
 // at the hit in metres (Cycles' dP, the ray differentials' length).
 inline ShaderGlobals shader_globals(const SurfaceHit& hit, const Vec3& ray_dir, float footprint,
-                                    float cone_width = 0.0f) {
+                                    float cone_width = 0.0f, uint8_t reads = kReadsAll) {
   ShaderGlobals g = uv_globals(hit.uv, footprint);
   g.position = hit.position;
   g.incoming = -ray_dir;
@@ -97,19 +97,25 @@ inline ShaderGlobals shader_globals(const SurfaceHit& hit, const Vec3& ray_dir, 
   const float side = g.backfacing ? -1.0f : 1.0f;
   g.normal = side * hit.shading_normal;
   g.true_normal = side * hit.geometric_normal;
-  g.corner_attributes = hit.corner_attributes;
-  g.attribute_ids = hit.attribute_ids;
-  g.num_attributes = hit.num_attributes;
-  g.corner_weights = hit.corner_weights;
-  g.instance_constants = hit.instance_constants;
-  g.instance_constant_ids = hit.instance_constant_ids;
-  g.num_instance_constants = hit.num_instance_constants;
-  g.tangent = hit.tangent;
-  g.bitangent_sign = hit.bitangent_sign;
-  for (int k = 0; k < 3; ++k) g.corners[k] = hit.corners[k];
+  // Of the rest, only what `reads` (GlobalsRead flags) names.
+  if (reads & kReadsAttributes) {
+    g.corner_attributes = hit.corner_attributes;
+    g.attribute_ids = hit.attribute_ids;
+    g.num_attributes = hit.num_attributes;
+    g.corner_weights = hit.corner_weights;
+    g.instance_constants = hit.instance_constants;
+    g.instance_constant_ids = hit.instance_constant_ids;
+    g.num_instance_constants = hit.num_instance_constants;
+  }
+  if (reads & kReadsTangent) {
+    g.tangent = hit.tangent;
+    g.bitangent_sign = hit.bitangent_sign;
+  }
+  if (reads & kReadsCorners)
+    for (int k = 0; k < 3; ++k) g.corners[k] = hit.corners[k];
   // Cycles' ray differentials: the cone's width along its tangent pair around the true normal,
   // and the UVs (through dP/du, dP/dv) and corner weights they move by.
-  if (cone_width > 0.0f && std::isfinite(cone_width)) {
+  if ((reads & kReadsDifferentials) && cone_width > 0.0f && std::isfinite(cone_width)) {
     Vec3 a, b;
     shader::differential_axes(g.true_normal, a, b);
     g.dpdx = cone_width * a;
@@ -212,7 +218,10 @@ class Scene final : public ShaderTracer {
                      Vec3* surface_normal = nullptr, const glm::vec4* program_regs = nullptr) const;
   // Whether shading material i (its programs, its mixture's closures, an image bump) reads the
   // ray differentials of ShaderGlobals (shader_globals' cone_width): else they need not be made.
-  bool reads_differentials(uint32_t i) const;
+  bool reads_differentials(uint32_t i) const { return globals_read(i) & kReadsDifferentials; }
+  // GlobalsRead flags of what shading material i reads of ShaderGlobals (as above: its programs,
+  // its mixture's closures; an image bump reads the differentials).
+  uint8_t globals_read(uint32_t i) const;
   // As above, seen from the front (along -geometric_normal); cone_width: the ray cone's width in
   // metres at the hit (the ray differentials' length).
   Vec3 normal_mapped(uint32_t material, const SurfaceHit& hit, const Vec3& ns, float footprint = 0.0f,

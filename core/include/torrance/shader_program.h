@@ -186,6 +186,16 @@ struct ShaderOpInfo {
 };
 ShaderOpInfo shader_op_info(ShaderOpcode op);
 
+// What of ShaderGlobals beyond the hit's basics (UV, position, normals, view, path) a program
+// reads (ShaderProgram::globals_read): shader_globals fills only these.
+enum GlobalsRead : uint8_t {
+  kReadsAttributes = 1,     // the corner attributes and instance constants (Attribute)
+  kReadsTangent = 2,        // the UV tangent and bitangent sign (Tangent, Normal Map, Vector Displacement)
+  kReadsCorners = 4,        // the triangle's corners (Wireframe)
+  kReadsDifferentials = 8,  // the ray differentials (reads_differentials)
+  kReadsAll = 15,
+};
+
 class ShaderProgram {
  public:
   static constexpr int kMaxRegisters = 128;
@@ -208,6 +218,8 @@ class ShaderProgram {
   // Whether run() reads ShaderGlobals' ray differentials (dpdx, dpdy and what they move: a Bump
   // op, or instructions at the offset hits); without them the caller need not compute those.
   bool reads_differentials() const { return differentials_; }
+  // GlobalsRead flags of what run() reads, found once from the code.
+  uint8_t globals_read() const { return globals_read_; }
   // Runs the program; regs must hold registers() entries. Every value written is finite.
   void run(const ShaderGlobals& g, const std::vector<std::shared_ptr<const Texture>>& textures,
            glm::vec4* regs) const;
@@ -220,6 +232,7 @@ class ShaderProgram {
   std::vector<bool> written_;
   bool offsets_ = false;  // some instruction reads the hit at an offset
   bool differentials_ = false;
+  uint8_t globals_read_ = 0;
 };
 
 // Which registers of a material's program feed its inputs (-1: the material's own value). A
