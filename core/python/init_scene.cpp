@@ -370,16 +370,18 @@ void init_scene(py::module_& m) {
       .def(
           "add_spot_light",
           [](Scene& s, std::array<float, 3> position, std::array<float, 3> direction, float power,
-             std::array<float, 3> color, float radius, float spot_size, float spot_blend) {
+             std::array<float, 3> color, float radius, float spot_size, float spot_blend, bool cosine_falloff) {
             s.edit_lights([&](Lights& l) {
-              l.add_spot(vec3(position), vec3(direction), power, vec3(color), radius, spot_size, spot_blend);
+              l.add_spot(vec3(position), vec3(direction), power, vec3(color), radius, spot_size, spot_blend,
+                         cosine_falloff);
             });
           },
           py::arg("position"), py::arg("direction") = std::array<float, 3>{0, 0, -1}, py::arg("power") = 1000.0f,
           py::arg("color") = std::array<float, 3>{1, 1, 1}, py::arg("radius") = 0.1f,
-          py::arg("spot_size") = 0.785398f, py::arg("spot_blend") = 0.15f,
+          py::arg("spot_size") = 0.785398f, py::arg("spot_blend") = 0.15f, py::arg("cosine_falloff") = true,
           "Spot light: a point light (W, m) limited to a cone of full angle spot_size (radians), "
-          "pointing along direction (Blender: the light's -Z).")
+          "pointing along direction (Blender: the light's -Z). cosine_falloff: its light also falls off "
+          "with the cosine to its axis, as Cycles 3.x's (Cycles 4.x's does not).")
       .def(
           "add_area_light",
           [](Scene& s, std::array<float, 3> center, std::array<float, 3> edge_u, std::array<float, 3> edge_v,

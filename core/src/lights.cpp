@@ -142,11 +142,12 @@ float PointLight::spot_attenuation(const Vec3& p) const {
   const float c = glm::dot(d / len, spot_.axis);
   const float over = c - spot_.cos_half_angle;
   if (over <= 0.0f) return 0.0f;
+  const float cosine = spot_.cosine ? c : 1.0f;
   if (over < spot_.blend_width) {
     const float t = over / spot_.blend_width;
-    return c * t * t * (3.0f - 2.0f * t);
+    return cosine * t * t * (3.0f - 2.0f * t);
   }
-  return c;
+  return cosine;
 }
 
 LightSample PointLight::sample(const Vec3& p, const Vec3&, const Vec2& u) const {
@@ -349,13 +350,14 @@ void Lights::add_point(const Vec3& position, float power, const Vec3& color, flo
 }
 
 void Lights::add_spot(const Vec3& position, const Vec3& direction, float power, const Vec3& color, float radius,
-                      float spot_size, float spot_blend) {
+                      float spot_size, float spot_blend, bool cosine_falloff) {
   if (!(spot_size >= 0.0f) || !std::isfinite(spot_size)) throw std::invalid_argument("spot size must be >= 0");
   if (!(spot_blend >= 0.0f && spot_blend <= 1.0f)) throw std::invalid_argument("spot blend must be in [0, 1]");
   SpotShape spot;
   spot.axis = unit_direction(direction, "spot direction");
   spot.cos_half_angle = std::cos(std::min(spot_size, kPi) * 0.5f);
   spot.blend_width = (1.0f - spot.cos_half_angle) * spot_blend;
+  spot.cosine = cosine_falloff;
   lights_.emplace_back(PointLight(position, power, color, radius, spot));
 }
 

@@ -51,6 +51,9 @@ struct SpotShape {
   Vec3 axis{0.0f, 0.0f, -1.0f};  // unit, the direction the spot points
   float cos_half_angle = -1.0f;  // cos(spot_size / 2); -1 = not a spot
   float blend_width = 0.0f;      // (1 - cos_half_angle) * spot_blend
+  // Cycles 3.x also multiplies by the cosine to the axis (its attenuation starts from it);
+  // Cycles 4.x does not (light/spot.h: the blend's smoothstep alone).
+  bool cosine = true;
 };
 
 class PointLight {
@@ -135,8 +138,9 @@ class Lights {
  public:
   void add_sun(const Vec3& direction, float strength, const Vec3& color, float angle);
   void add_point(const Vec3& position, float power, const Vec3& color, float radius);
+  // cosine_falloff: SpotShape::cosine (Cycles 3.x true, 4.x false).
   void add_spot(const Vec3& position, const Vec3& direction, float power, const Vec3& color, float radius,
-                float spot_size, float spot_blend);
+                float spot_size, float spot_blend, bool cosine_falloff = true);
   void add_area(const Vec3& center, const Vec3& edge_u, const Vec3& edge_v, const Vec3& direction, bool ellipse,
                 float power, const Vec3& color, float spread);
   void set_world(const Vec3& color, float strength);

@@ -19,6 +19,13 @@ def _unit(v):
     return v / n
 
 
+def _cycles4_spots():
+    """Whether the running Blender's Cycles (4.0+) attenuates a spot by its blend alone, not
+    also by the cosine to its axis as Cycles 3.x does (light/spot.h)."""
+    import bpy
+    return bpy.app.version >= (4, 0, 0)
+
+
 def _vec(v):
     return tuple(float(x) for x in v)
 
@@ -119,7 +126,8 @@ def export_light(tc_scene, obj, matrix, reporter, textures):
         tc_scene.add_spot_light(position=_vec(p), direction=_vec(d), power=energy, color=color,
                                 radius=float(max(0.0, light.shadow_soft_size)),
                                 spot_size=float(min(max(light.spot_size, 0.0), math.pi)),
-                                spot_blend=float(min(max(light.spot_blend, 0.0), 1.0)))
+                                spot_blend=float(min(max(light.spot_blend, 0.0), 1.0)),
+                                cosine_falloff=not _cycles4_spots())
     else:
         shape = light.shape
         size_u = float(light.size)
