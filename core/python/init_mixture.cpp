@@ -18,8 +18,15 @@ ClosureType parse_closure(const std::string& s) {
   if (s == "glossy") return ClosureType::Glossy;
   if (s == "emission") return ClosureType::Emission;
   if (s == "transparent") return ClosureType::Transparent;
-  throw py::value_error("closure type must be 'principled', 'diffuse', 'glossy', 'emission' or 'transparent', got '" +
-                        s + "'");
+  if (s == "velvet") return ClosureType::Velvet;
+  if (s == "sheen") return ClosureType::Sheen;
+  if (s == "translucent") return ClosureType::Translucent;
+  if (s == "refraction") return ClosureType::Refraction;
+  if (s == "toon_diffuse") return ClosureType::ToonDiffuse;
+  if (s == "toon_glossy") return ClosureType::ToonGlossy;
+  throw py::value_error(
+      "closure type must be 'principled', 'diffuse', 'glossy', 'emission', 'transparent', 'velvet', 'sheen', "
+      "'translucent', 'refraction', 'toon_diffuse' or 'toon_glossy', got '" + s + "'");
 }
 
 MixFactor parse_factor(const py::handle& h) {
@@ -100,9 +107,12 @@ void init_mixture(py::module_& m) {
       py::arg("transparent_color") = std::array<float, 3>{1.0f, 1.0f, 1.0f}, py::arg("program") = -1,
       py::arg("normal_register") = -1, py::arg("surface_normal_register") = -1,
       "Adds a material made of weighted closures (Mix Shader / Add Shader); returns its material index. "
-      "closures: [(type, material, terms)], type 'principled' | 'diffuse' | 'glossy' | 'emission' | 'transparent', "
-      "material an add_material index holding the closure's inputs (diffuse/glossy: base_color = Color, roughness; "
-      "transparent: transparent_color = Color: rays pass through with the closures' weight), terms the "
+      "closures: [(type, material, terms)], type 'principled' | 'diffuse' | 'glossy' | 'emission' | 'transparent' | "
+      "'velvet' | 'sheen' | 'translucent' | 'refraction' | 'toon_diffuse' | 'toon_glossy', material an add_material "
+      "index holding the closure's inputs (diffuse/glossy/velvet/sheen: base_color = Color, roughness = Roughness "
+      "or Sigma; translucent: base_color; refraction: base_color, roughness, ior, glass_distribution; toon: "
+      "base_color, roughness = Size, transmission_roughness = Smooth; transparent: transparent_color = Color: "
+      "rays pass through with the closures' weight), terms the "
       "weight's factors (t >= 0: factor t, t < 0: 1 - factor -t-1). factors: dicts {'kind': 'constant', 'value'} | "
       "{'kind': 'image', 'texture'} (luminance) | {'kind': 'checker', 'scale', 'color1', 'color2'} (Blender's "
       "Checker Texture at the UV) | {'kind': 'program', 'register'} (register x of shader program `program`, "

@@ -12,10 +12,11 @@ Vec3 to_wo_side(const Vec3& w, float side) { return Vec3(w.x, w.y, w.z * side); 
 }  // namespace
 
 GlassBsdf::GlassBsdf(float reflect_roughness, float refract_roughness, float ior, const Vec3& reflect_color,
-                     const Vec3& refract_color, bool beckmann)
+                     const Vec3& refract_color, bool beckmann, bool refraction_only)
     : reflect_color_(glm::max(reflect_color, Vec3(0.0f))),
       refract_color_(glm::max(refract_color, Vec3(0.0f))),
-      beckmann_(beckmann) {
+      beckmann_(beckmann),
+      refraction_only_(refraction_only) {
   const float rr = clamp01(std::isfinite(reflect_roughness) ? reflect_roughness : 0.0f);
   const float rt = clamp01(std::isfinite(refract_roughness) ? refract_roughness : 0.0f);
   alpha_r_ = rr * rr;
@@ -64,8 +65,13 @@ float GlassBsdf::fresnel(const Vec3& wo) const {
 
 GlassBsdf::Weights GlassBsdf::weights(const Vec3& wo) const {
   Weights w;
-  const float F = fresnel(wo);
   w.etap = wo.z > 0.0f ? eta_ : 1.0f / eta_;
+  if (refraction_only_) {
+    w.refract = refract_color_;
+    w.p_reflect = 0.0f;
+    return w;
+  }
+  const float F = fresnel(wo);
   w.reflect = F * reflect_color_;
   w.refract = (invisible_ ? 1.0f : std::max(1e-4f, 1.0f - F)) * refract_color_;
   const float lr = luminance(w.reflect), lt = luminance(w.refract);

@@ -20,6 +20,12 @@ struct DiffuseFrame {
 template <typename B, typename T>
 constexpr bool is = std::is_same_v<std::decay_t<B>, T>;
 
+// Adds a closure sampled by its own estimate of its albedo.
+template <typename Closure>
+void add_closure(MixtureBsdf& bsdf, const Closure& closure, float weight) {
+  bsdf.add(closure, weight, closure.sampling_albedo());
+}
+
 }  // namespace
 
 float principled_sampling_albedo(const Material& m) {
@@ -50,6 +56,7 @@ LobeEval MixtureBsdf::eval_mixture(const Vec3& wo, const Vec3& wi, bool backfaci
           else if constexpr (is<decltype(b), MaterialBsdf>)
             return b.eval_lobes(b.at(wo, backfacing, false, diffuse), wi);
           else if constexpr (is<decltype(b), DiffuseBsdf>) return b.eval_lobes(d.to_local(wo), d.to_local(wi));
+          else if constexpr (is<decltype(b), RefractionBsdf>) return b.eval_lobes(wo, wi, backfacing);
           else return b.eval_lobes(wo, wi);
         },
         components_[k]);
@@ -70,6 +77,8 @@ float MixtureBsdf::pdf_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, 
                                      return b.pdf(b.at(wo, backfacing, true, diffuse), wi);
                                    else if constexpr (is<decltype(b), DiffuseBsdf>)
                                      return b.pdf(d.to_local(wo), d.to_local(wi));
+                                   else if constexpr (is<decltype(b), RefractionBsdf>)
+                                     return b.pdf(wo, wi, backfacing);
                                    else return b.pdf(wo, wi);
                                  },
                                  components_[k]);
@@ -94,7 +103,8 @@ BsdfSample MixtureBsdf::sample_mixture(const Vec3& wo, float u_lobe, const Vec2&
           BsdfSample local = b.sample(d.to_local(wo), u_rest, u);
           local.wi = d.to_world(local.wi);
           return local;
-        } else return b.sample(wo, u_rest, u);
+        } else if constexpr (is<decltype(b), RefractionBsdf>) return b.sample(wo, u_rest, u, backfacing);
+        else return b.sample(wo, u_rest, u);
       },
       components_[k]);
   if (!s.valid()) return {};
@@ -118,8 +128,11 @@ BsdfSample MixtureBsdf::sample_mixture(const Vec3& wo, float u_lobe, const Vec2&
 }
 
 bool MixtureBsdf::transmits() const {
-  for (int k = 0; k < count_; ++k)
+  for (int k = 0; k < count_; ++k) {
     if (const auto* m = std::get_if<MaterialBsdf>(&components_[k]); m && m->transmits()) return true;
+    if (std::holds_alternative<TranslucentBsdf>(components_[k]) || std::holds_alternative<RefractionBsdf>(components_[k]))
+      return true;
+  }
   return false;
 }
 
@@ -153,6 +166,18 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
         break;
       case ClosureType::Glossy:
         bsdf.add(GlossyBsdf(m.base_color, m.roughness), w.weight[k], luminance(m.base_color));
+        break;
+      case ClosureType::Velvet: add_closure(bsdf, VelvetBsdf(m.base_color, m.roughness), w.weight[k]); break;
+      case ClosureType::Sheen: add_closure(bsdf, SheenBsdf(m.base_color, m.roughness), w.weight[k]); break;
+      case ClosureType::Translucent: add_closure(bsdf, TranslucentBsdf(m.base_color), w.weight[k]); break;
+      case ClosureType::Refraction:
+        add_closure(bsdf, RefractionBsdf(m.base_color, m.roughness, m.ior, m.glass_beckmann), w.weight[k]);
+        break;
+      case ClosureType::ToonDiffuse:
+      case ClosureType::ToonGlossy:
+        add_closure(bsdf,
+                    ToonBsdf(m.base_color, m.roughness, m.transmission_roughness, c.type == ClosureType::ToonGlossy),
+                    w.weight[k]);
         break;
       case ClosureType::Emission:
       case ClosureType::Transparent: break;

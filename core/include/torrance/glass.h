@@ -26,6 +26,9 @@
 // with Cycles 3.4's Beckmann D = exp(-tan^2 / alpha^2) / (pi alpha^2 cos^4) and its rational
 // approximation of Smith's G1; its microfacet normals are sampled in proportion to D(h) cos(h)
 // (not visible normals: a different estimator of the same BSDF).
+//
+// refraction_only: the Refraction BSDF node's one closure (refraction_bsdf.h): no reflection
+// lobe and no Fresnel, the refraction lobe weighted by refract_color alone.
 #pragma once
 
 #include "torrance/bsdf.h"
@@ -36,7 +39,7 @@ namespace torrance {
 class GlassBsdf {
  public:
   GlassBsdf(float reflect_roughness, float refract_roughness, float ior, const Vec3& reflect_color,
-            const Vec3& refract_color, bool beckmann = false);
+            const Vec3& refract_color, bool beckmann = false, bool refraction_only = false);
 
   Vec3 eval(const Vec3& wo, const Vec3& wi) const;
   float pdf(const Vec3& wo, const Vec3& wi) const;
@@ -68,7 +71,7 @@ class GlassBsdf {
 
   Vec3 reflect_color_, refract_color_;
   float alpha_r_, alpha_t_, eta_;
-  bool reflect_delta_, refract_delta_, invisible_, beckmann_;
+  bool reflect_delta_, refract_delta_, invisible_, beckmann_, refraction_only_;
 };
 
 }  // namespace torrance

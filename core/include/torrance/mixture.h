@@ -44,6 +44,15 @@ enum class ClosureType {
   // closures' weights (clamped to [0, 1]); the path shades the other closures (their weights
   // divided by alpha) with probability alpha, so that their expectation is their weight.
   Transparent,
+  Velvet,       // Velvet BSDF (3.x) / Sheen BSDF, Ashikhmin: Color = base_color, Sigma or Roughness = roughness
+  Sheen,        // Sheen BSDF, Microfiber (4.x): Color = base_color, Roughness = roughness (sheen_bsdf.h)
+  Translucent,  // Translucent BSDF: Color = base_color (translucent_bsdf.h)
+  // Refraction BSDF: Color = base_color, Roughness = roughness, IOR = ior, Beckmann = glass_beckmann
+  // (refraction_bsdf.h).
+  Refraction,
+  // Toon BSDF (toon_bsdf.h): Color = base_color, Size = roughness, Smooth = transmission_roughness.
+  ToonDiffuse,
+  ToonGlossy,
 };
 
 struct MixtureComponent {

@@ -9,7 +9,8 @@
 //           lobe is returned as is, with weight w_k * its weight / P_k.
 //
 // Components are MaterialBsdf (whatever the render's model is: it composes any future variant),
-// DiffuseBsdf and GlossyBsdf; at most kMaxMixtureComponents, held by value (no allocation).
+// DiffuseBsdf, GlossyBsdf and the other nodes' closures (ClosureType); at most
+// kMaxMixtureComponents, held by value (no allocation).
 // See bsdf.h for the conventions.
 #pragma once
 
@@ -17,7 +18,12 @@
 #include "torrance/glossy_bsdf.h"
 #include "torrance/material_bsdf.h"
 #include "torrance/mixture.h"
+#include "torrance/refraction_bsdf.h"
 #include "torrance/shader_program.h"
+#include "torrance/sheen_bsdf.h"
+#include "torrance/toon_bsdf.h"
+#include "torrance/translucent_bsdf.h"
+#include "torrance/velvet_bsdf.h"
 
 #include <array>
 #include <variant>
@@ -28,7 +34,8 @@ class Scene;
 
 class MixtureBsdf {
  public:
-  using Component = std::variant<std::monostate, MaterialBsdf, DiffuseBsdf, GlossyBsdf>;
+  using Component = std::variant<std::monostate, MaterialBsdf, DiffuseBsdf, GlossyBsdf, VelvetBsdf, SheenBsdf,
+                                 TranslucentBsdf, RefractionBsdf, ToonBsdf>;
 
   MixtureBsdf() = default;
   explicit MixtureBsdf(const MaterialBsdf& single) { add(single, 1.0f, 1.0f); }
@@ -56,7 +63,7 @@ class MixtureBsdf {
   BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing = false) const {
     return sample_mixture(wo, u_lobe, u, backfacing);
   }
-  bool transmits() const;  // some closure is glass
+  bool transmits() const;  // some closure is glass, Translucent or Refraction
 
   // The View interface of MaterialBsdf: a mixture prepares nothing (each closure its own wo);
   // `diffuse`: its diffuse lobes' normal (bsdf.h).

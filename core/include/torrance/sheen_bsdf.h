@@ -1,0 +1,46 @@
+// The Sheen BSDF node's Microfiber distribution (Blender 4.0+) as Cycles 4.x/5.x renders it
+// (closure/bsdf_sheen.h): Zeltner, Burley and Chiang's "Practical Multiple-Scattering Sheen Using
+// Linearly Transformed Cosines" (2022). For a viewer at cos_o and roughness r (clamped to
+// [1e-3, 1]) three numbers are read from a 32 x 32 table over (cos_o, r) (sheen_ltc_table.h):
+// the LTC's a and b and the lobe's albedo R. In a frame whose x axis is wo's tangential
+// direction (y = z x x), a light direction l = (x, y, z) gets
+//
+//   f cos = colour * R * D(l),   D(l) = z / pi * (a / |M^-1 l|^2)^2,   |M^-1 l|^2 = (a x + b z)^2 + (a y)^2 + z^2,
+//
+// the cosine lobe transformed by M (D integrates to at most 1 over the hemisphere), and is
+// sampled exactly by D: a uniform point d of the disk, z_d = sqrt(1 - |d|^2), l the normalised
+// ((d_x - z_d b) / a, d_y / a, z_d). Everything it reflects is "diffuse" (Cycles' LABEL_DIFFUSE).
+// The table is read at each query for its wo (three bilinear lookups). See bsdf.h for the
+// conventions (eval includes the cosine).
+#pragma once
+
+#include "torrance/bsdf.h"
+
+namespace torrance {
+
+class SheenBsdf {
+ public:
+  SheenBsdf(const Vec3& color, float roughness);
+
+  LobeEval eval_lobes(const Vec3& wo, const Vec3& wi) const;
+  Vec3 eval(const Vec3& wo, const Vec3& wi) const { return eval_lobes(wo, wi).total(); }
+  float pdf(const Vec3& wo, const Vec3& wi) const;
+  BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const;
+  // What a mixture samples it by: its colour's luminance times its albedo at normal incidence.
+  float sampling_albedo() const;
+
+ private:
+  // The lobe for one viewer wo.
+  struct Lobe {
+    Vec3 weight{0.0f};  // colour * R (0: nothing reflected)
+    Vec3 x, y;          // the LTC frame's tangents (z: the normal)
+    float a = 1.0f, b = 0.0f;
+    float density(const Vec3& wi) const;  // D(l) for wi in the shading frame
+  };
+  Lobe lobe(const Vec3& wo) const;
+
+  Vec3 color_;
+  float roughness_;
+};
+
+}  // namespace torrance
