@@ -145,6 +145,41 @@ def case_area_ellipse(scene):
                      energy=180.0, color=(1.0, 0.95, 0.8), shape='ELLIPSE', size=2.0, size_y=0.5)
 
 
+def case_point(scene):
+    # A sphere light (radius 0.25) close to the wall.
+    return add_light(scene, 'POINT', "Point", (-1.4, 1.6, 1.6), energy=300.0,
+                     color=(1.0, 0.9, 0.75), shadow_soft_size=0.25)
+
+
+def case_sun(scene):
+    # A 12-degree sun at a grazing angle: its disk's size shows in the shadow edges.
+    return add_light(scene, 'SUN', "Sun", (0.0, 0.0, 5.0),
+                     rotation=(math.radians(55), math.radians(-20), math.radians(30)),
+                     energy=3.0, color=(1.0, 0.95, 0.85), angle=math.radians(12.0))
+
+
+def case_exposure_temperature(scene):
+    # Blender 5.x: Exposure (x 2^exposure) and Temperature (the colour x the blackbody's).
+    ob = case_area_square(scene)
+    ob.data.energy = 60.0
+    ob.data.exposure = 1.5
+    ob.data.use_temperature = True
+    ob.data.temperature = 3500.0
+    return ob
+
+
+def case_unnormalized(scene):
+    # Blender 5.x: Normalize off, strength no longer divided by the light's area: a disk light
+    # (Cycles' area x pi / 4) and a small point sphere.
+    disk = case_area_disk(scene)
+    disk.data.normalize = False
+    disk.data.energy = 150.0 / (0.9 * 1.4) ** 2
+    point = add_light(scene, 'POINT', "Small", (1.5, 1.2, 1.2), energy=20.0,
+                      color=(0.7, 0.8, 1.0), shadow_soft_size=0.1)
+    point.data.normalize = False
+    return disk
+
+
 def case_emissive(scene):
     # A quad with an Emission node and a small sphere with Principled emission, both in view.
     quad = emission_material("Panel", (1.0, 0.7, 0.4), 6.0)
@@ -159,7 +194,7 @@ def case_emissive(scene):
 # Samples per pixel where the default leaves too much noise: the disk's narrow spread makes
 # most of its light samples miss (Cycles 3.4 samples the area uniformly), so both renderers
 # are noisy there (Cycles seed 0 vs 1 at 128 spp: block mean 0.049, p90 0.118).
-CASE_SAMPLES = {"area_disk": 512}
+CASE_SAMPLES = {"area_disk": 512, "unnormalized": 512}
 
 CASES = {
     "spot": case_spot,
@@ -168,10 +203,26 @@ CASES = {
     "area_disk": case_area_disk,
     "area_ellipse": case_area_ellipse,
     "emissive": case_emissive,
+    "point": case_point,
+    "sun": case_sun,
 }
+if "normalize" in bpy.types.Light.bl_rna.properties:        # Blender 5.x's lights
+    CASES.update(exposure_temperature=case_exposure_temperature, unnormalized=case_unnormalized)
 
 
 # ------------------------------------------------------------------------------------------
+
+def drop_light_nodes(scene):
+    """The spot's node tree as if ignored: its Emission's Color and Strength unlinked, at their
+    defaults (Blender 5.x always uses a light's nodes: use_nodes can not switch them off)."""
+    nt = scene.objects["Spot"].data.node_tree
+    for link in list(nt.links):
+        if link.to_node.bl_idname == 'ShaderNodeEmission':
+            nt.links.remove(link)
+    emit = next(n for n in nt.nodes if n.bl_idname == 'ShaderNodeEmission')
+    emit.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+    emit.inputs["Strength"].default_value = 1.0
+
 
 def failures(m):
     return agreement.failures(m, dict(ratio=RATIO, block_mean=BLOCK_MEAN, block_p90=BLOCK_P90))
@@ -196,7 +247,7 @@ def main():
         img, t_img = render_torrance(scene, d, f"{case}_torrance", samples)
         messages = testing.last_messages()
         stats = testing.addon().render.last_stats
-        expected_lights = 0 if case == "emissive" else 1
+        expected_lights = {"emissive": 0, "unnormalized": 2}.get(case, 1)
         check(stats["lights"] == expected_lights, f"{case}: {stats['lights']} lights exported")
         check(not any(level == 'WARNING' for level, _ in messages),
               f"{case}: unexpected warnings {messages}")
@@ -214,8 +265,7 @@ def main():
     faults = {
         "spot blend ignored": ("spot",
                                lambda s: setattr(s.objects["Spot"].data, "spot_blend", 0.0)),
-        "light node tree ignored": ("spot",
-                                    lambda s: setattr(s.objects["Spot"].data, "use_nodes", False)),
+        "light node tree ignored": ("spot", drop_light_nodes),
         "area scale ignored": ("area_rectangle",
                                lambda s: setattr(s.objects["Rectangle"], "scale", (1, 1, 1))),
         "disk rendered as square": ("area_disk",
@@ -225,6 +275,19 @@ def main():
                                               .nodes["Emission"].inputs["Strength"],
                                               "default_value", 7.5)),
     }
+    if bpy.app.version >= (4, 0, 0):
+        faults["area light in Cycles 3.x's units"] = ("area_square", lambda s: setattr(
+            s.objects["Square"].data, "energy", s.objects["Square"].data.energy * math.pi / 4))
+    if "unnormalized" in CASES:
+        faults.update({
+            "exposure ignored": ("exposure_temperature",
+                                 lambda s: setattr(s.objects["Square"].data, "exposure", 0.0)),
+            "temperature ignored": ("exposure_temperature",
+                                    lambda s: setattr(s.objects["Square"].data,
+                                                      "use_temperature", False)),
+            "unnormalized disk's pi/4 dropped": ("unnormalized", lambda s: setattr(
+                s.objects["Disk"].data, "energy", s.objects["Disk"].data.energy * math.pi / 4)),
+        })
     for description, (case, alter) in faults.items():
         scene = base_scene()
         CASES[case](scene)

@@ -26,6 +26,40 @@ def _cycles4_spots():
     return bpy.app.version >= (4, 0, 0)
 
 
+def cycles_light_factor(light, size_area=None):
+    """The factor on colour x energy that makes the core's light (Cycles 3.4's units: radiance
+    energy / (4 area) for area lights) render as the running Blender's Cycles renders `light`.
+    size_area: an area light's |X edge| |Y edge|. Cycles 4.0+ converts an area light's power to
+    radiance by 1 / (pi area) (3.4: 1 / (4 area)); 5.x lights have an Exposure (x 2^exposure)
+    and a Normalize switch, which, off, drops the division by the light's area (Cycles'
+    Light::area: a point or spot sphere 4 pi r^2, or 4 for r = 0; a sun's disk
+    pi sin^2(angle / 2), or 1 for angle 0; an area's size, x pi / 4 for disks and ellipses)."""
+    import bpy
+    factor = 2.0 ** float(getattr(light, "exposure", 0.0))
+    kind = light.type
+    if kind == 'AREA' and bpy.app.version >= (4, 0, 0):
+        factor *= 4.0 / math.pi
+    if not getattr(light, "normalize", True):
+        if kind in {'POINT', 'SPOT'}:
+            r = max(0.0, float(light.shadow_soft_size))
+            factor *= 4.0 * math.pi * r * r if r > 0.0 else 4.0
+        elif kind == 'SUN':
+            half = 0.5 * max(0.0, float(light.angle))
+            factor *= math.pi * math.sin(half) ** 2 if half > 0.0 else 1.0
+        elif kind == 'AREA' and size_area is not None:
+            ellipse = light.shape in {'DISK', 'ELLIPSE'}
+            factor *= size_area * (math.pi / 4.0 if ellipse else 1.0)
+    return factor
+
+
+def light_color(light):
+    """colour, x the Temperature's colour where the light uses it (Blender 5.x)."""
+    color = tuple(float(c) for c in light.color)
+    if getattr(light, "use_temperature", False):
+        color = tuple(c * float(t) for c, t in zip(color, light.temperature_color, strict=True))
+    return color
+
+
 def _vec(v):
     return tuple(float(x) for x in v)
 
@@ -78,9 +112,10 @@ def export_light(tc_scene, obj, matrix, reporter, textures):
     """Adds a SUN, POINT, SPOT or AREA light; returns True when a light was added. textures:
     the export's TextureTable (a light's node graph may read images).
 
-    Units as Cycles 3.4: colour x energy (x an Emission node's colour x strength), W for
-    point, spot and area lights, W/m^2 for suns. Sun, spot and area lights emit along the
-    object's -Z axis; area light edges are the object's X and Y axes x size (scale counts).
+    Units as Cycles 3.4 (cycles_light_factor converts the running Blender's): colour x energy
+    (x an Emission node's colour x strength), W for point, spot and area lights, W/m^2 for
+    suns. Sun, spot and area lights emit along the object's -Z axis; area light edges are the
+    object's X and Y axes x size (scale counts).
     """
     light = obj.data
     kind = light.type
@@ -89,7 +124,7 @@ def export_light(tc_scene, obj, matrix, reporter, textures):
                          f"'{obj.name}' is skipped")
         return False
     energy = float(light.energy)
-    color = tuple(float(c) for c in light.color)
+    color = light_color(light)
     if not math.isfinite(energy) or not all(math.isfinite(c) for c in color):
         reporter.warning(f"Light '{obj.name}' has a non-finite colour or strength: skipped")
         return False
@@ -114,16 +149,17 @@ def export_light(tc_scene, obj, matrix, reporter, textures):
         if d is None:
             reporter.warning(f"Sun '{obj.name}' has a degenerate orientation: skipped")
             return False
-        tc_scene.add_sun(direction=_vec(d), strength=energy, color=color,
-                         angle=float(max(0.0, light.angle)))
+        tc_scene.add_sun(direction=_vec(d), strength=energy * cycles_light_factor(light),
+                         color=color, angle=float(max(0.0, light.angle)))
     elif kind == 'POINT':
-        tc_scene.add_point_light(position=_vec(p), power=energy, color=color,
-                                 radius=float(max(0.0, light.shadow_soft_size)))
+        tc_scene.add_point_light(position=_vec(p), power=energy * cycles_light_factor(light),
+                                 color=color, radius=float(max(0.0, light.shadow_soft_size)))
     elif kind == 'SPOT':
         if d is None:
             reporter.warning(f"Spot light '{obj.name}' has a degenerate orientation: skipped")
             return False
-        tc_scene.add_spot_light(position=_vec(p), direction=_vec(d), power=energy, color=color,
+        tc_scene.add_spot_light(position=_vec(p), direction=_vec(d),
+                                power=energy * cycles_light_factor(light), color=color,
                                 radius=float(max(0.0, light.shadow_soft_size)),
                                 spot_size=float(min(max(light.spot_size, 0.0), math.pi)),
                                 spot_blend=float(min(max(light.spot_blend, 0.0), 1.0)),
@@ -146,7 +182,8 @@ def export_light(tc_scene, obj, matrix, reporter, textures):
         tc_scene.add_area_light(center=_vec(p), edge_u=_vec(edge_u), edge_v=_vec(edge_v),
                                 direction=_vec(d),
                                 shape="ELLIPSE" if shape in {'DISK', 'ELLIPSE'} else "RECTANGLE",
-                                power=energy, color=color, spread=float(light.spread))
+                                power=energy * cycles_light_factor(light, area), color=color,
+                                spread=float(light.spread))
     if nodes.program is not None:
         tc_scene.set_light_program(tc_scene.add_shader_program(*nodes.program), nodes.register)
     return True
