@@ -10,7 +10,9 @@ Shader gives both the weight it received. The closures Torrance renders:
 * Principled BSDF and Glass BSDF (as a lone one is read), Diffuse BSDF (Color, Roughness:
   Lambert or Cycles' Oren-Nayar), Glossy BSDF (Color, Roughness; GGX, Sharp as roughness 0;
   Beckmann, Ashikhmin-Shirley and Multiscatter GGX are rendered as GGX and reported; Blender
-  4.x's Glossy, ShaderNodeBsdfAnisotropic, too, its Anisotropy reported), Emission.
+  4.x's Glossy, ShaderNodeBsdfAnisotropic, too, its Anisotropy reported), Emission;
+* Velvet (3.x) / Sheen (4.x: Ashikhmin, Microfiber), Translucent, Refraction and Toon BSDF
+  (closure_nodes.py).
 
 A Mix Shader's Fac may be any graph the shader graph compiles (a constant, an Image Texture's
 Color luminance and a Checker Texture of constant inputs at the UVs keep factor kinds of their
@@ -24,6 +26,7 @@ from .material_values import DEFAULT_MATERIAL, color3, sanitize
 from .shader_graph.graph import GraphCompiler, Unsupported
 from .shader_graph.program import ProgramBuilder
 from .shader_graph.registry import READERS
+from .closure_nodes import CLOSURE_NODES, read_closure_node
 from .nodes import finite_or, is_default_uv, node_label, plain_image, source_socket
 from .normal_inputs import begin_displacement, normal_source, read_normal_input
 
@@ -33,9 +36,9 @@ MAX_DEPTH = 8             # Mix/Add Shader nodes on one path
 
 SHADER_TREE_NODES = {'ShaderNodeMixShader', 'ShaderNodeAddShader'}
 # Surfaces read as a mixture (a one-closure one for a lone Diffuse or Glossy BSDF, 3.x's and
-# 4.x's node): a closure means the same alone and in a Mix.
+# 4.x's node, and closure_nodes.py's): a closure means the same alone and in a Mix.
 MIXTURE_SURFACES = SHADER_TREE_NODES | {'ShaderNodeBsdfDiffuse', 'ShaderNodeBsdfGlossy',
-                                        'ShaderNodeBsdfAnisotropic'}
+                                        'ShaderNodeBsdfAnisotropic'} | CLOSURE_NODES
 _GLOSSY_AS_GGX = {'BECKMANN', 'ASHIKHMIN_SHIRLEY', 'MULTI_GGX'}
 
 
@@ -265,9 +268,11 @@ class ShaderTreeReader:
             return 'principled', args
         if kind in ('ShaderNodeBsdfDiffuse', 'ShaderNodeBsdfGlossy', 'ShaderNodeBsdfAnisotropic'):
             return self._colour_roughness(node)
+        if kind in CLOSURE_NODES:
+            return read_closure_node(reader, mat, node)
         self.warn(f"the shader {node_label(node)} is not supported in a mix (Torrance mixes "
-                  f"Principled, Diffuse, Glossy, Glass, Transparent and Emission); it is left "
-                  f"out")
+                  f"Principled, Diffuse, Glossy, Glass, Transparent, Emission, Velvet / Sheen, "
+                  f"Translucent, Refraction and Toon); it is left out")
         return None
 
     def _colour_roughness(self, node):

@@ -166,12 +166,27 @@ CLOSURES = {
                            "(Multiscatter GGX rendered as GGX); alone and in Mix/Add Shader trees",
     'ShaderNodeBsdfTransparent': "rendered: Color; alone and anywhere in Mix/Add Shader trees "
                                  "(camera and shadow rays pass by its weight)",
+    'ShaderNodeBsdfVelvet': "rendered: Color, Sigma (any graph), Normal; Cycles' Ashikhmin velvet, "
+                            "alone and in Mix/Add Shader trees",
+    'ShaderNodeBsdfSheen': "rendered: Color, Roughness (any graph), Normal; Microfiber (Cycles' "
+                           "LTC sheen, its table) and Ashikhmin (as the Velvet BSDF), alone and "
+                           "in Mix/Add Shader trees",
+    'ShaderNodeBsdfTranslucent': "rendered: Color (any graph), Normal; alone and in Mix/Add "
+                                 "Shader trees",
+    'ShaderNodeBsdfRefraction': "rendered: Color, Roughness (any graph), IOR, Normal; GGX, "
+                                "Beckmann, Sharp (Multiscatter GGX rendered as GGX, reported); "
+                                "alone and in Mix/Add Shader trees",
+    'ShaderNodeBsdfToon': "partly: Color, Size (any graph), Smooth (a value), Normal; Diffuse and "
+                          "Glossy, alone and in Mix/Add Shader trees (Cycles 3.4 fades its "
+                          "sampled directions differently where Smooth > 0)",
     'ShaderNodeEmission': "rendered: Color, Strength",
-    'ShaderNodeMixShader': "partly: trees of Principled, Diffuse, Glossy, Glass, Transparent "
-                           "and Emission closures, Fac any graph",
-    'ShaderNodeAddShader': "partly: trees of Principled, Diffuse, Glossy, Glass, Transparent "
-                           "and Emission closures (a Transparent's weight and the others' "
-                           "summing past 1: the others shade only what it lets through)",
+    'ShaderNodeMixShader': "partly: trees of Principled, Diffuse, Glossy, Glass, Transparent, "
+                           "Emission, Velvet / Sheen, Translucent, Refraction and Toon closures, "
+                           "Fac any graph",
+    'ShaderNodeAddShader': "partly: trees of Principled, Diffuse, Glossy, Glass, Transparent, "
+                           "Emission, Velvet / Sheen, Translucent, Refraction and Toon closures (a "
+                           "Transparent's weight and the others' summing past 1: the others shade "
+                           "only what it lets through)",
     'ShaderNodeNormalMap': "rendered: Tangent (each mesh's active render UV map), Object, "
                            "World and the Blender spaces, Strength, any Color graph",
     'ShaderNodeBump': "rendered: any Height graph (evaluated at the hit and its ray-differential "

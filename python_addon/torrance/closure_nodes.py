@@ -1,0 +1,60 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The Velvet / Sheen, Translucent, Refraction and Toon BSDF nodes -> a mixture's closures (the
+core's velvet_bsdf.h, sheen_bsdf.h, translucent_bsdf.h, refraction_bsdf.h, toon_bsdf.h), alone
+at the Surface and in Mix/Add Shader trees alike (mixtures.py).
+
+Each becomes (closure type, add_material kwargs) with the inputs where the core's ClosureType
+reads them: Color -> base_color (any graph), Sigma / Roughness / Size -> roughness (any graph),
+the Refraction's IOR -> ior and distribution -> glass_distribution, the Toon's Smooth ->
+transmission_roughness (a value; a graph that varies is reported and its socket's value used).
+"""
+
+from .material_values import DEFAULT_MATERIAL, clamp, color3, sanitize
+from .nodes import finite_or, node_label
+
+CLOSURE_NODES = {'ShaderNodeBsdfVelvet', 'ShaderNodeBsdfSheen', 'ShaderNodeBsdfTranslucent',
+                 'ShaderNodeBsdfRefraction', 'ShaderNodeBsdfToon'}
+
+
+def read_closure_node(reader, mat, node):
+    """(closure type, add_material kwargs) of one of CLOSURE_NODES."""
+    kind = node.bl_idname
+    d = DEFAULT_MATERIAL
+    reader._begin_program(mat)
+    color, color_tex = reader._socket_input(mat, node, "Color", d['base_color'],
+                                            program_input='base_color')
+    args = dict(d, base_color=color3(color, d['base_color']), metallic=0.0, specular=0.0,
+                base_color_texture=color_tex)
+    if kind == 'ShaderNodeBsdfTranslucent':
+        closure = 'translucent'
+    elif kind in ('ShaderNodeBsdfVelvet', 'ShaderNodeBsdfSheen'):
+        microfiber = getattr(node, "distribution", 'ASHIKHMIN') == 'MICROFIBER'
+        closure = 'sheen' if microfiber else 'velvet'
+        name = "Sigma" if kind == 'ShaderNodeBsdfVelvet' else "Roughness"
+        _roughness(reader, mat, node, name, 1.0 if name == "Sigma" else 0.5, args)
+    elif kind == 'ShaderNodeBsdfRefraction':
+        closure = 'refraction'
+        distribution = getattr(node, "distribution", 'GGX')
+        if distribution == 'SHARP':
+            args['roughness'] = 0.0
+        else:
+            _roughness(reader, mat, node, "Roughness", 0.0, args)
+        if distribution not in ('SHARP', 'GGX', 'BECKMANN'):
+            reader.reporter.warning(f"Material '{mat.name}': {node_label(node)} uses the "
+                                    f"{distribution.replace('_', ' ').title()} distribution; "
+                                    f"Torrance renders GGX")
+        args.update(ior=reader._ior(mat, node, 1.45),
+                    glass_distribution='BECKMANN' if distribution == 'BECKMANN' else 'GGX')
+    else:                                                   # ShaderNodeBsdfToon
+        closure = 'toon_glossy' if getattr(node, "component", 'DIFFUSE') == 'GLOSSY' \
+            else 'toon_diffuse'
+        _roughness(reader, mat, node, "Size", 0.5, args)
+        smooth = finite_or(reader._socket_value(mat, node, "Smooth", 0.0), 0.0)
+        args['transmission_roughness'] = clamp(smooth, 0.0, 1.0)
+    return closure, sanitize(reader._with_program(args))
+
+
+def _roughness(reader, mat, node, name, fallback, args):
+    """Input `name` (a roughness-like value in [0, 1], any graph) into args' roughness."""
+    value, texture = reader._socket_input(mat, node, name, fallback, program_input='roughness')
+    args.update(roughness=clamp(finite_or(value, fallback), 0.0, 1.0), roughness_texture=texture)
