@@ -11,7 +11,8 @@
   moving, adding, hiding or deleting an object and editing a material update the live tc.Scene
   in place (no new scene), and its image equals that of a scene built afresh;
 * the viewport's studio HDRI (Scene World off) lights the scene;
-* the preview policy; the panels' messages.
+* the preview policy; the panels' messages;
+* instances of every kind (collections, geometry nodes' geometry) render as in the final render.
 """
 
 import os
@@ -545,6 +546,72 @@ def test_panels(addon):
     print(f"{len(enabled)} Blender panels checked; {len(own)} Torrance panels registered")
 
 
+def instances_scene():
+    """Instances of three kinds, one after another in the depsgraph: two collection instances
+    of a red ball, one of another collection's blue ball, and geometry nodes instancing ico
+    spheres (geometry, not an object). The depsgraph's iteration reuses one temporary object
+    for instances: read after it, every instance showed the last one's mesh."""
+    scene = testing.clear_scene()
+    testing.setup_render(scene, width=96, height=72, samples=4)
+    scene.torrance.viewport_samples = 4
+    testing.plane(scene, "Floor", 10, material=testing.principled("Grey", (0.3, 0.3, 0.3)))
+    testing.add_sun(scene)
+    testing.set_world(scene, (0.1, 0.1, 0.12))
+    testing.add_camera(scene)
+    for name, color, radius, segments, places in (
+            ("Red", (0.8, 0.05, 0.05), 0.5, 8, ((-1.5, 0.0, 0.6), (0.0, 0.0, 0.6))),
+            ("Blue", (0.05, 0.1, 0.8), 0.4, 24, ((1.8, 0.3, 0.5),))):
+        coll = bpy.data.collections.new(name)
+        ball = testing.sphere_object(scene, name + "Ball", (0, 0, 0), radius,
+                                     testing.principled(name, color), segments=segments,
+                                     rings=segments // 2)
+        scene.collection.objects.unlink(ball)
+        coll.objects.link(ball)
+        for i, place in enumerate(places):
+            empty = bpy.data.objects.new(f"{name}{i}", None)
+            empty.instance_type = 'COLLECTION'
+            empty.instance_collection = coll
+            empty.location = place
+            scene.collection.objects.link(empty)
+    host = testing.mesh_object(scene, "Scatter", [(0, 0, 0)], [], None)
+    host.location = (-2.5, -1.0, 0.3)
+    tree = bpy.data.node_groups.new("Scatter", 'GeometryNodeTree')
+    testing.make.geometry_in_out(tree)
+    n = tree.nodes
+    line, ico = n.new("GeometryNodeMeshLine"), n.new("GeometryNodeMeshIcoSphere")
+    line.inputs["Count"].default_value = 3
+    line.inputs["Offset"].default_value = (0.0, 1.0, 0.0)
+    ico.inputs["Radius"].default_value = 0.3
+    paint, place = n.new("GeometryNodeSetMaterial"), n.new("GeometryNodeInstanceOnPoints")
+    paint.inputs["Material"].default_value = testing.principled("Green", (0.1, 0.7, 0.1))
+    tree.links.new(line.outputs[0], place.inputs["Points"])
+    tree.links.new(ico.outputs[0], paint.inputs[0])
+    tree.links.new(paint.outputs[0], place.inputs["Instance"])
+    tree.links.new(place.outputs[0], n.new("NodeGroupOutput").inputs[0])
+    host.modifiers.new("Scatter", 'NODES').node_group = tree
+    bpy.context.view_layer.update()
+    return scene
+
+
+def test_instances(tv, tc):
+    """The viewport renders instances of every kind as the final render does."""
+    scene = instances_scene()
+    state = tv.ViewportState(tc)
+    state.sync(bpy.context.evaluated_depsgraph_get())
+    w, h = scene.render.resolution_x, scene.render.resolution_y
+    state.ensure_render(camera_view(tv, scene, w, h), tv.viewport_settings(scene), start_res=64)
+    wait_done(state)
+    scene.torrance.use_guiding = False
+    img_final, _ = testing.render(scene, testing.tempdir())
+    difference = np.abs(state.render.image - img_final).max(axis=2)
+    print(f"instances: viewport vs final render mean difference {difference.mean():.2e}, "
+          f"{int((difference > 2e-3).sum())} pixels apart by > 2e-3; viewport "
+          f"{state.cache.last_build['triangles']} triangles, final render "
+          f"{testing.addon().render.last_stats['triangles']}")
+    check(difference.mean() < 1e-5, "the viewport renders the instances as the final render")
+    state.close()
+
+
 def main():
     addon = testing.addon()
     tv = addon.viewport
@@ -557,7 +624,8 @@ def main():
             ("studio world", test_studio_world, (tv, tc, scene)),
             ("preview policy", test_preview_policy, (addon, scene)),
             ("panel messages", test_messages, (addon, scene)),
-            ("panels", test_panels, (addon,))):
+            ("panels", test_panels, (addon,)),
+            ("instances", test_instances, (tv, tc))):
         t0 = time.perf_counter()
         print(f"--- {name}")
         fn(*args)

@@ -11,7 +11,7 @@ lights.py, world.py, camera.py.
 
 from .camera import export_camera
 from .lights import SUPPORTED_LIGHTS, export_light, light_nodes
-from .mesh import (MAX_COORDINATE, LocalMesh, MeshCache, export_mesh, mesh_materials,
+from .mesh import (MAX_COORDINATE, LocalMesh, MeshCache, MeshData, export_mesh, mesh_materials,
                    prototype_arrays, read_local_mesh, world_mesh, world_uvs)
 from .scene import (MESH_TYPES, SKIPPED_TYPES, Cancelled, ExportStats, export_scene,
                     instance_role, report_unsupported)
@@ -19,8 +19,8 @@ from .world import export_world, read_world
 
 __all__ = [
     "MAX_COORDINATE", "MESH_TYPES", "SKIPPED_TYPES", "SUPPORTED_LIGHTS", "Cancelled",
-    "ExportStats", "LocalMesh", "MeshCache", "export_camera", "export_light", "export_mesh",
-    "export_scene", "export_world", "instance_role", "light_nodes", "mesh_materials",
+    "ExportStats", "LocalMesh", "MeshCache", "MeshData", "export_camera", "export_light",
+    "export_mesh", "export_scene", "export_world", "instance_role", "light_nodes", "mesh_materials",
     "prototype_arrays",
     "read_local_mesh", "report_unsupported", "read_world", "world_mesh", "world_uvs",
 ]

@@ -100,6 +100,23 @@ def _triangle_smooth(mesh, nt):
     return True, smooth
 
 
+class MeshData:
+    """An evaluated object's mesh, readable by read_local_mesh after the object is gone (an
+    instance's temporary object, which the depsgraph's iteration reuses): read as it is, not
+    through to_mesh()."""
+
+    def __init__(self, obj):
+        self.name = obj.name
+        self.data = obj.data if obj.type == 'MESH' else None
+        self.material_slots = [None] * len(obj.material_slots)   # read_local_mesh: how many
+
+    def to_mesh(self):
+        return self.data
+
+    def to_mesh_clear(self):
+        pass
+
+
 def read_local_mesh(obj, uvs=False):
     """The evaluated object's mesh as a LocalMesh, or None when it has no triangles.
 
