@@ -123,6 +123,41 @@ SensorFit parse_fit(const std::string& s) {
   throw py::value_error("sensor_fit must be 'AUTO', 'HORIZONTAL' or 'VERTICAL', got '" + s + "'");
 }
 
+PanoramaType parse_panorama_type(const std::string& s) {
+  if (s == "EQUIRECTANGULAR") return PanoramaType::Equirectangular;
+  if (s == "FISHEYE_EQUIDISTANT") return PanoramaType::FisheyeEquidistant;
+  if (s == "FISHEYE_EQUISOLID") return PanoramaType::FisheyeEquisolid;
+  if (s == "MIRRORBALL") return PanoramaType::MirrorBall;
+  if (s == "FISHEYE_LENS_POLYNOMIAL") return PanoramaType::FisheyeLensPolynomial;
+  if (s == "EQUIANGULAR_CUBEMAP_FACE") return PanoramaType::EquiangularCubemapFace;
+  throw py::value_error("panorama type must be one of EQUIRECTANGULAR, FISHEYE_EQUIDISTANT, "
+                        "FISHEYE_EQUISOLID, MIRRORBALL, FISHEYE_LENS_POLYNOMIAL, "
+                        "EQUIANGULAR_CUBEMAP_FACE; got '" + s + "'");
+}
+
+// set_camera's `panorama` dict (keys as PanoramaParams, Blender's names; missing keys keep the
+// defaults); unknown keys are an error.
+PanoramaParams parse_panorama(const py::dict& d) {
+  PanoramaParams p;
+  for (const auto& item : d) {
+    const std::string key = py::cast<std::string>(item.first);
+    const py::handle v = item.second;
+    if (key == "type") p.type = parse_panorama_type(py::cast<std::string>(v));
+    else if (key == "fisheye_fov") p.fisheye_fov = py::cast<float>(v);
+    else if (key == "fisheye_lens") p.fisheye_lens_mm = py::cast<float>(v);
+    else if (key == "latitude_min") p.latitude_min = py::cast<float>(v);
+    else if (key == "latitude_max") p.latitude_max = py::cast<float>(v);
+    else if (key == "longitude_min") p.longitude_min = py::cast<float>(v);
+    else if (key == "longitude_max") p.longitude_max = py::cast<float>(v);
+    else if (key == "polynomial") p.polynomial = py::cast<std::array<float, 5>>(v);
+    else if (key == "sensor_width") p.sensor_width_mm = py::cast<float>(v);
+    else if (key == "sensor_height") p.sensor_height_mm = py::cast<float>(v);
+    else if (key == "viewplane") p.viewplane = py::cast<std::array<float, 4>>(v);
+    else throw py::value_error("unknown panorama setting '" + key + "'");
+  }
+  return p;
+}
+
 }  // namespace
 
 void init_scene(py::module_& m) {
@@ -422,14 +457,19 @@ void init_scene(py::module_& m) {
           [](Scene& s, const py::object& matrix, float lens, float sensor_width, float sensor_height,
              const std::string& sensor_fit, float shift_x, float shift_y, float clip_start, float clip_end,
              const std::string& type, float ortho_scale, std::optional<float> fstop,
-             std::optional<float> aperture_radius, float focus_distance, int blades, float rotation, float ratio) {
+             std::optional<float> aperture_radius, float focus_distance, int blades, float rotation, float ratio,
+             std::optional<py::dict> panorama) {
             const FloatArray mat = FloatArray::ensure(numeric_array(matrix, "camera matrix", sizeof(float)));
             if (!mat || mat.size() != 16) throw py::value_error("camera matrix must be a 4x4 array");
             CameraParams c;
             std::copy_n(mat.data(), 16, c.camera_to_world.begin());
             if (type == "PERSP") c.type = CameraType::Perspective;
             else if (type == "ORTHO") c.type = CameraType::Orthographic;
-            else throw py::value_error("camera type must be 'PERSP' or 'ORTHO', got '" + type + "'");
+            else if (type == "PANO") c.type = CameraType::Panoramic;
+            else throw py::value_error("camera type must be 'PERSP', 'ORTHO' or 'PANO', got '" + type + "'");
+            if (panorama && c.type != CameraType::Panoramic)
+              throw py::value_error("panorama settings are for type 'PANO' only");
+            if (panorama) c.panorama = parse_panorama(*panorama);
             c.lens_mm = lens;
             c.ortho_scale = ortho_scale;
             c.sensor_width_mm = sensor_width;
@@ -454,8 +494,11 @@ void init_scene(py::module_& m) {
           py::arg("shift_y") = 0.0f, py::arg("clip_start") = 0.1f, py::arg("clip_end") = 100.0f,
           py::kw_only(), py::arg("type") = "PERSP", py::arg("ortho_scale") = 6.0f, py::arg("fstop") = py::none(),
           py::arg("aperture_radius") = py::none(), py::arg("focus_distance") = 10.0f, py::arg("blades") = 0,
-          py::arg("rotation") = 0.0f, py::arg("ratio") = 1.0f,
-          "Blender camera, PERSP or ORTHO; matrix is camera-to-world (row-major, like matrix_world). "
+          py::arg("rotation") = 0.0f, py::arg("ratio") = 1.0f, py::arg("panorama") = py::none(),
+          "Blender camera, PERSP, ORTHO or PANO; matrix is camera-to-world (row-major, like matrix_world). "
+          "PANO: panorama is a dict of type (Blender's panorama_type), fisheye_fov, fisheye_lens, "
+          "latitude_min/max, longitude_min/max (radians), polynomial (k0..k4), sensor_width/height (the "
+          "fitted sensor, mm), viewplane (left, right, bottom, top; default 0, 1, 0, 1, shift included). "
           "Depth of field: fstop (Blender's F-Stop, converted like Cycles) or aperture_radius (scene "
           "units), focus_distance, blades (< 3: round), rotation (radians), ratio (anamorphic).")
       .def_property_readonly("num_triangles", &Scene::num_triangles)

@@ -42,6 +42,8 @@ Camera::Camera(const CameraParams& p, int width, int height, float pixel_aspect_
       clip_start_(p.clip_start),
       clip_end_(p.clip_end),
       ortho_(p.type == CameraType::Orthographic),
+      pano_(p.type == CameraType::Panoramic),
+      panorama_(p.panorama),
       aperture_(p.aperture_radius),
       focus_(p.focus_distance),
       blade_rotation_(p.blade_rotation),
@@ -57,8 +59,9 @@ Camera::Camera(const CameraParams& p, int width, int height, float pixel_aspect_
   if (!(p.clip_start >= 0.0f) || !(p.clip_end > p.clip_start) || !std::isfinite(p.shift_x) ||
       !std::isfinite(p.shift_y))
     throw std::invalid_argument("camera clipping must satisfy 0 <= clip_start < clip_end, shifts finite");
-  if (p.type != CameraType::Perspective && p.type != CameraType::Orthographic)
-    throw std::invalid_argument("camera type must be perspective or orthographic");
+  if (p.type != CameraType::Perspective && p.type != CameraType::Orthographic && !pano_)
+    throw std::invalid_argument("camera type must be perspective, orthographic or panoramic");
+  if (pano_) validate_panorama(p.panorama);
   if (!(p.ortho_scale > 0.0f) || !std::isfinite(p.ortho_scale))
     throw std::invalid_argument("ortho_scale must be positive and finite");
   if (!(p.aperture_radius >= 0.0f) || !std::isfinite(p.aperture_radius))
@@ -108,10 +111,63 @@ Camera::Camera(const CameraParams& p, int width, int height, float pixel_aspect_
   // directions and clip distances would overflow into NaN, which Embree cannot trace.
   for (float v : {half_w_, half_h_, std::abs(offset_x_), std::abs(offset_y_)})
     if (!(v <= 1e6f)) throw std::invalid_argument("camera lens, sensor size, shift and pixel aspect give a degenerate view");
+  spread_ = 2.0f * half_h_ / float(height_);
+
+  if (pano_) {
+    // Cycles' blender_camera_matrix: the panorama's axes on the camera's.
+    const bool ball = p.panorama.type == PanoramaType::MirrorBall;
+    pano_x_ = ball ? right_ : forward_;
+    pano_y_ = ball ? -forward_ : -right_;
+    pano_z_ = up_;
+    // The angle between the pinhole rays of the frame's centre and the pixel to its right (the
+    // one above, where that is outside the projection); a pixel of the full range otherwise.
+    const float cx = 0.5f * float(width_), cy = 0.5f * float(height_);
+    const Vec3 c = panorama_pinhole(cx, cy);
+    Vec3 n = panorama_pinhole(cx + 1.0f, cy);
+    if (!(glm::dot(n, n) > 0.0f)) n = panorama_pinhole(cx, cy + 1.0f);
+    spread_ = glm::dot(c, c) > 0.0f && glm::dot(n, n) > 0.0f
+                  ? std::acos(std::min(std::max(glm::dot(c, n), -1.0f), 1.0f))
+                  : kTwoPi / float(std::max(width_, height_));
+  }
+}
+
+Vec3 Camera::panorama_pinhole(float x, float y_from_bottom) const {
+  const auto& vp = panorama_.viewplane;
+  const float u = vp[0] + (vp[1] - vp[0]) * x / float(width_);
+  const float v = vp[2] + (vp[3] - vp[2]) * y_from_bottom / float(height_);
+  return panorama_direction(panorama_, u, v);
+}
+
+Ray Camera::panorama_ray(float x, float y_from_bottom, const Vec2& u_lens) const {
+  Ray r;
+  Vec3 d = panorama_pinhole(x, y_from_bottom);
+  if (!(glm::dot(d, d) > 0.0f)) {  // outside the projection: Cycles' tmax = 0
+    r.origin = origin_;
+    r.tmin = r.tmax = 0.0f;
+    return r;
+  }
+  Vec3 lens(0.0f);
+  if (aperture_ > 0.0f) {
+    // Cycles: the aperture's axes are the panorama's +X made perpendicular to the ray, and the
+    // ray's cross product with that; every lens point aims at the point focus_distance along
+    // the pinhole ray.
+    const Vec2 l = aperture_ * sample_aperture(u_lens, blades_, blade_rotation_, aperture_ratio_);
+    Vec3 a = Vec3(1.0f, 0.0f, 0.0f) - d.x * d;
+    a = glm::dot(a, a) > 1e-12f ? glm::normalize(a) : Vec3(0.0f, 1.0f, 0.0f);  // the axis itself
+    const Vec3 b = glm::normalize(glm::cross(d, a));
+    lens = l.x * a + l.y * b;
+    d = glm::normalize(focus_ * d - lens);
+  }
+  r.origin = origin_ + lens.x * pano_x_ + lens.y * pano_y_ + lens.z * pano_z_;
+  r.dir = glm::normalize(d.x * pano_x_ + d.y * pano_y_ + d.z * pano_z_);
+  r.tmin = clip_start_;  // spherical clipping
+  r.tmax = clip_end_;
+  return r;
 }
 
 Ray Camera::generate_ray(float x, float y_from_top, const Vec2& u_lens) const {
   const float y_from_bottom = float(height_) - y_from_top;
+  if (pano_) return panorama_ray(x, y_from_bottom, u_lens);
   const float cx = half_w_ * (2.0f * x / float(width_) - 1.0f) + offset_x_;
   const float cy = half_h_ * (2.0f * y_from_bottom / float(height_) - 1.0f) + offset_y_;
   Ray r;

@@ -165,7 +165,8 @@ FirstBounceSplits first_bounce_pilot(const PathContext& ctx, const TraceFn& trac
         pixel.y = y - window[1];
         pixel.record = &record;
         record.rays_at_start = thread_ray_counts().total();
-        const float value = luminance(trace(pilot, ray, sampler, nullptr, pixel).combined());
+        const float value =
+            outside_projection(ray) ? 0.0f : luminance(trace(pilot, ray, sampler, nullptr, pixel).combined());
         record.rays_at_end = thread_ray_counts().total();
         values[i][size_t(s)] = std::isfinite(value) ? value : 0.0f;
       }
@@ -195,6 +196,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
 
   PathContext ctx{scene, cscene.lights(), settings, {}, camera.forward(), camera.pixel_spread(),
                   camera.pixel_width()};
+  if (camera.panoramic()) ctx.depth_from = camera.position();
   ctx.bsdfs.reserve(scene.num_materials());
   for (size_t i = 0; i < scene.num_materials(); ++i) ctx.bsdfs.emplace_back(scene.material(uint32_t(i)), settings.brdf_model);
   ctx.globals_read.reserve(scene.num_materials());
@@ -302,8 +304,11 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
     for (int i = 0; i < n; ++i) {
       const CameraSample& c = batch[size_t(i)];
       const bool inside = in_window(c.pixel);
-      PathRadiance r = trace(inside ? ctx : *ring_ctx, rays[size_t(i)], *samplers[size_t(i)],
-                             packet ? &first[size_t(i)] : nullptr, c.pixel);
+      // A panoramic camera's sample outside its projection brings nothing (Cycles: no path).
+      PathRadiance r = outside_projection(rays[size_t(i)])
+                           ? PathRadiance{}
+                           : trace(inside ? ctx : *ring_ctx, rays[size_t(i)], *samplers[size_t(i)],
+                                   packet ? &first[size_t(i)] : nullptr, c.pixel);
       if (!is_finite(r.combined())) {  // never expected; counted so tests can prove it never happens
         ++bad;
         const float alpha = r.alpha;

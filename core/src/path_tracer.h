@@ -11,6 +11,7 @@
 #include "torrance/mirror_images.h"
 #include "torrance/sampling.h"
 
+#include <optional>
 #include <vector>
 
 namespace torrance {
@@ -23,6 +24,9 @@ struct PathContext {
   Vec3 camera_forward;
   float pixel_spread;  // radians per pixel: texture footprints grow with the path's length
   float pixel_width = 0.0f;  // Camera::pixel_width: the ray differentials' length at the camera
+  // A panoramic camera's position: the Depth pass is the distance from it (Cycles'
+  // camera_z_depth), not the distance along camera_forward.
+  std::optional<Vec3> depth_from = std::nullopt;
   // Path guiding (RenderSettings::guiding): the field sampled where it has learned something, and
   // whether this pass also records into it (a training pass). Null: no guiding.
   GuidingField* guide = nullptr;

@@ -147,8 +147,12 @@ def light_messages(light):
 
 
 def camera_messages(cam):
+    from .export.panorama import RENDERED_TYPES, panorama_type
     messages = []
-    if cam.type not in ('PERSP', 'ORTHO'):
+    if cam.type == 'PANO' and panorama_type(cam) not in RENDERED_TYPES:
+        messages.append(('WARNING', f"{panorama_type(cam)} panoramas are not supported: "
+                                    f"rendered as a perspective camera of the same lens"))
+    elif cam.type not in ('PERSP', 'ORTHO', 'PANO'):
         messages.append(('WARNING', f"{cam.type.title()} cameras are not supported: "
                                     f"rendered as a perspective camera of the same lens"))
     return messages
@@ -480,6 +484,41 @@ class TORRANCE_CAMERA_PT_compatibility(TorrancePanel, Panel):
                   ok_text="Torrance renders this camera as it is")
 
 
+# The panorama settings Blender's Lens panel shows for Cycles only: per panorama type, the
+# settings it reads (and their labels).
+_PANORAMA_SETTINGS = {
+    'FISHEYE_EQUIDISTANT': (("fisheye_fov", None),),
+    'FISHEYE_EQUISOLID': (("fisheye_lens", "Lens"), ("fisheye_fov", None)),
+    'EQUIRECTANGULAR': (("latitude_min", "Latitude Min"), ("latitude_max", "Max"),
+                        ("longitude_min", "Longitude Min"), ("longitude_max", "Max")),
+    'FISHEYE_LENS_POLYNOMIAL': (("fisheye_fov", None),) + tuple(
+        (f"fisheye_polynomial_k{i}", f"K{i}") for i in range(5)),
+}
+
+
+class TORRANCE_CAMERA_PT_panorama(TorrancePanel, Panel):
+    """A panoramic camera's type and settings (on camera.data.cycles in 3.x, camera.data in
+    4.x+), which Blender's Lens panel shows for Cycles only."""
+    bl_label = "Panoramic"
+    bl_context = "data"
+
+    @classmethod
+    def poll(cls, context):
+        return (context.camera is not None and context.camera.type == 'PANO'
+                and super().poll(context))
+
+    def draw(self, context):
+        from .export.panorama import panorama_owner
+        owner = panorama_owner(context.camera)
+        if owner is None:
+            return
+        col = _split(self.layout).column()
+        col.prop(owner, "panorama_type")
+        for prop, label in _PANORAMA_SETTINGS.get(owner.panorama_type, ()):
+            if hasattr(owner, prop):
+                col.prop(owner, prop, **({"text": label} if label else {}))
+
+
 class TORRANCE_VIEW_LAYER_PT_passes(TorrancePanel, Panel):
     bl_label = "Passes"
     bl_context = "view_layer"
@@ -519,6 +558,7 @@ classes = (
     TORRANCE_LIGHT_PT_light,
     TORRANCE_LIGHT_PT_spot,
     TORRANCE_CAMERA_PT_compatibility,
+    TORRANCE_CAMERA_PT_panorama,
 )
 
 # Blender's own panels that Torrance uses as they are. Panels written for every engine

@@ -1,5 +1,5 @@
-// Blender's cameras, projected like Cycles 3.4 so pixels line up: perspective and orthographic,
-// each with an optional thin-lens depth of field.
+// Blender's cameras, projected like Cycles 3.4 so pixels line up: perspective, orthographic and
+// panoramic (panorama.h), each with an optional thin-lens depth of field.
 //
 // Frame: the camera looks down its local -Z with +Y up (matrix_world, scale ignored).
 // View plane (Cycles' blender_camera_viewplane): the sensor-fit dimension spans
@@ -11,24 +11,36 @@
 // cover clip_start..clip_end along it. Ray origins stay on the camera plane (the lens), so
 // t * dot(dir, forward) is the distance from the camera plane (the Depth pass).
 //
+// PANORAMIC (Cycles' camera_sample_panorama): raster (x, y) maps linearly onto the panorama's
+// view plane (PanoramaParams::viewplane), whose projection gives a direction in panorama space,
+// turned onto the camera as Cycles' blender_camera_matrix does: the view axis (+X) along the
+// camera's -Z, +Y along its -X, +Z along its +Y; MIRRORBALL's along (+X, -Z, +Y) instead (it
+// looks down -Y: the ball's centre is the camera's -Z). A point outside the projection gives an
+// empty ray (tmax = tmin = 0, outside_projection): the sample brings nothing (opaque black).
+// Clipping is spherical: clip_start..clip_end along every ray. sensor_*, lens and shift are not
+// read (the fisheyes' sensor and the shift are in PanoramaParams).
+//
 // Depth of field (thin lens, as Cycles): aperture_radius > 0 samples a lens point l on the aperture
 // (a disk, or a regular polygon of `blades` >= 3 corners on the unit circle, rotated by
 // blade_rotation; x then divided by aperture_ratio: anamorphic bokeh), scaled by aperture_radius,
 // in the camera's x/y plane. The ray leaves l towards the point its pinhole ray reaches
 //   PERSPECTIVE   on the focus plane at focus_distance along the view axis, or
-//   ORTHOGRAPHIC  at focus_distance along the view axis from the clip_start plane (Cycles' quirk).
+//   ORTHOGRAPHIC  at focus_distance along the view axis from the clip_start plane (Cycles' quirk),
+//   PANORAMIC     at focus_distance along the pinhole ray, the aperture perpendicular to that ray
+//                 (its x along the panorama's +X made perpendicular to the ray).
 // Blender's F-Stop gives aperture_radius = lens_mm * 1e-3 / (2 fstop) (ORTHO: 1 / (2 fstop)) in
 // scene units; Cycles 3.4 applies no unit scale (see aperture_radius_from_fstop).
 #pragma once
 
 #include "torrance/math.h"
+#include "torrance/panorama.h"
 
 #include <array>
 
 namespace torrance {
 
 enum class SensorFit { Auto, Horizontal, Vertical };
-enum class CameraType { Perspective, Orthographic };
+enum class CameraType { Perspective, Orthographic, Panoramic };
 
 struct CameraParams {
   std::array<float, 16> camera_to_world{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};  // row-major
@@ -46,6 +58,7 @@ struct CameraParams {
   int blades = 0;                // < 3: round aperture
   float blade_rotation = 0.0f;   // radians
   float aperture_ratio = 1.0f;   // anamorphic: the aperture's x is divided by it
+  PanoramaParams panorama;       // PANORAMIC only
 };
 
 // Blender's DOF F-Stop as Cycles 3.4 converts it (blender/camera.cpp: lens * 1e-3 / (2 fstop), or
@@ -64,6 +77,9 @@ struct Ray {
   float tmax = 1e30f;
 };
 
+// Whether a camera ray is empty: a panoramic camera's pixel outside its projection.
+inline bool outside_projection(const Ray& r) { return !(r.tmax > r.tmin); }
+
 class Camera {
  public:
   // Validates the parameters (throws std::invalid_argument) and precomputes the view plane for a
@@ -74,21 +90,31 @@ class Camera {
   // in [0,1)^2 picks the point on the aperture (ignored without depth of field).
   Ray generate_ray(float x, float y_from_top, const Vec2& u_lens = Vec2(0.5f)) const;
   const Vec3& forward() const { return forward_; }
+  const Vec3& position() const { return origin_; }
+  bool panoramic() const { return pano_; }
   // The angle one pixel spans at the image centre (radians), for texture footprints; 0 for
   // ORTHOGRAPHIC (parallel rays: the footprint does not grow with distance).
-  float pixel_spread() const { return ortho_ ? 0.0f : 2.0f * half_h_ / float(height_); }
+  float pixel_spread() const { return ortho_ ? 0.0f : spread_; }
   // A pixel's width in scene units where rays leave the camera (ORTHOGRAPHIC; 0 for perspective):
   // Cycles' dP of a camera ray, the ray differentials' length before the spread adds to it.
   float pixel_width() const { return ortho_ ? 2.0f * half_h_ / float(height_) : 0.0f; }
   bool has_depth_of_field() const { return aperture_ > 0.0f; }
 
  private:
+  // PANORAMIC: the pinhole direction (panorama space, zero outside the projection) at a raster
+  // point, and the ray.
+  Vec3 panorama_pinhole(float x, float y_from_bottom) const;
+  Ray panorama_ray(float x, float y_from_bottom, const Vec2& u_lens) const;
+
   Vec3 origin_, right_, up_, forward_;
   float half_w_, half_h_;  // half extents of the view plane (at unit distance for PERSPECTIVE)
   float offset_x_, offset_y_;
   int width_, height_;
   float clip_start_, clip_end_;
-  bool ortho_;
+  bool ortho_, pano_;
+  PanoramaParams panorama_;
+  Vec3 pano_x_, pano_y_, pano_z_;  // the panorama's axes in the world
+  float spread_;
   float aperture_, focus_, blade_rotation_, aperture_ratio_;
   int blades_;
 };

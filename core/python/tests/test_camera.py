@@ -48,7 +48,18 @@ def test_camera_argument_errors():
     scene = tc.Scene()
     eye = np.eye(4)
     with pytest.raises(ValueError, match="PERSP"):
-        scene.set_camera(eye, type="PANO")
+        scene.set_camera(eye, type="CUSTOM")
+    with pytest.raises(ValueError, match="PANO' only"):
+        scene.set_camera(eye, panorama=dict(type="MIRRORBALL"))
+    with pytest.raises(ValueError, match="unknown panorama setting"):
+        scene.set_camera(eye, type="PANO", panorama=dict(fov=1.0))
+    with pytest.raises(ValueError, match="panorama type"):
+        scene.set_camera(eye, type="PANO", panorama=dict(type="CENTRAL_CYLINDRICAL"))
+    with pytest.raises(ValueError, match="field of view"):
+        scene.set_camera(eye, type="PANO", panorama=dict(type="FISHEYE_EQUIDISTANT", fisheye_fov=0))
+    scene.set_camera(eye, type="PANO", panorama=dict(type="EQUIRECTANGULAR", latitude_min=-1.0,
+                                                     polynomial=[0, -0.02, 0, 0, 0],
+                                                     viewplane=[0.1, 1.1, 0, 1]))
     with pytest.raises(ValueError, match="not both"):
         scene.set_camera(eye, fstop=2.8, aperture_radius=0.01)
     with pytest.raises(ValueError, match="fstop"):

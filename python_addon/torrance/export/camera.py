@@ -1,8 +1,10 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The render camera: perspective and orthographic, with depth of field (Cycles 3.4's
+"""The render camera: perspective, orthographic and panoramic, with depth of field (Cycles'
 blender_camera sync)."""
 
 import numpy as np
+
+from .panorama import panorama_settings, panorama_type
 
 
 def focus_distance(cam_obj):
@@ -22,16 +24,27 @@ def focus_distance(cam_obj):
     return float(abs(np.dot(axis / n, m[:3, 3] - t[:3, 3])))
 
 
-def camera_arguments(cam_obj):
-    """The keyword arguments of tc.Scene.set_camera for a camera object, except the matrix;
-    None for the type when Torrance can't render it (PANO: rendered as perspective)."""
+def camera_arguments(cam_obj, render=None, viewplane=(0.0, 1.0, 0.0, 1.0)):
+    """The keyword arguments of tc.Scene.set_camera for a camera object, except the matrix, and
+    its type: 'PERSP', 'ORTHO', 'PANO', or None when Torrance can't render it (a panorama type
+    the core lacks: rendered as perspective). A panoramic camera needs the render settings
+    (its fisheyes' sensor fits the render's size; without them it is 'PERSP'); viewplane: its
+    frame's part of the panorama (panorama.panorama_settings)."""
     cam = cam_obj.data
     kind = cam.type if cam.type in ('PERSP', 'ORTHO') else None
+    panorama = None
+    if cam.type == 'PANO' and render is not None:
+        panorama = panorama_settings(cam, render, viewplane)
+        kind = 'PANO' if panorama is not None else None
+    elif cam.type == 'PANO':
+        kind = 'PERSP'
     args = dict(lens=float(cam.lens), sensor_width=float(cam.sensor_width),
                 sensor_height=float(cam.sensor_height), sensor_fit=cam.sensor_fit,
                 shift_x=float(cam.shift_x), shift_y=float(cam.shift_y),
                 clip_start=float(cam.clip_start), clip_end=float(cam.clip_end),
                 type=kind or 'PERSP', ortho_scale=float(cam.ortho_scale))
+    if panorama is not None:
+        args["panorama"] = panorama
     dof = cam.dof
     if dof.use_dof:
         fstop = max(float(dof.aperture_fstop), 1e-5)   # Cycles clamps too
@@ -41,12 +54,14 @@ def camera_arguments(cam_obj):
     return args, kind
 
 
-def export_camera(tc_scene, cam_obj, reporter, engine=None):
-    args, kind = camera_arguments(cam_obj)
+def export_camera(tc_scene, cam_obj, reporter, engine=None, render=None):
+    """Sets tc_scene's camera from cam_obj under render settings `render` (a panoramic camera
+    without them renders as perspective)."""
+    args, kind = camera_arguments(cam_obj, render)
     if kind is None:
-        reporter.warning(f"Camera '{cam_obj.name}': Torrance supports only perspective and "
-                         f"orthographic cameras; rendering with a perspective camera of the "
-                         f"same lens")
+        reporter.warning(f"Camera '{cam_obj.name}': Torrance does not render the "
+                         f"{panorama_type(cam_obj.data)} panorama; rendering with a "
+                         f"perspective camera of the same lens")
     matrix = None
     if engine is not None:
         try:

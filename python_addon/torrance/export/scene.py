@@ -161,7 +161,8 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
         return role
 
     with _keep_gil():
-        export_camera(tc_scene, _camera_object(depsgraph, engine), reporter, engine)
+        export_camera(tc_scene, _camera_object(depsgraph, engine), reporter, engine,
+                      depsgraph.scene.render)
         export_world(tc_scene, depsgraph.scene.world, reporter, textures)
         # (object name, evaluated mesh pointer) -> Source, 'LIGHT' or None, for instances
         seen = {}

@@ -111,8 +111,9 @@ class View:
         m = camera["matrix"]
         self.key = (self.width, self.height, tuple(np.round(m, 9).ravel().tolist()),
                     tuple((k, round(float(x), 9)) for k, x in sorted(camera.items())
-                          if k not in ("matrix", "sensor_fit", "type")), camera["sensor_fit"],
-                    camera.get("type", 'PERSP'), window)
+                          if k not in ("matrix", "sensor_fit", "type", "panorama")),
+                    camera["sensor_fit"], camera.get("type", 'PERSP'),
+                    repr(sorted(camera.get("panorama", {}).items())), window)
 
     @property
     def empty(self):
@@ -178,6 +179,48 @@ def view_dof(context):
                 blades=args["blades"], rotation=args["rotation"], ratio=args["ratio"])
 
 
+def panoramic_view_camera(cam_obj, render, matrix, frame, width, height):
+    """The core camera of a camera view of panoramic camera `cam_obj` (set_camera keywords; None
+    when its panorama type is not rendered), as Cycles' camera view: the region (width x height)
+    shows the panorama's part the camera frame (x0, y0, x1, y1 in region pixels, as drawn) maps
+    it to, the frame being the panorama's (0..1, 0..1) before its shift. matrix: the view's
+    camera-to-world."""
+    from ..export.camera import camera_arguments
+    x0, y0, x1, y1 = frame
+    if not (x1 > x0 and y1 > y0):
+        return None
+    viewplane = (-x0 / (x1 - x0), (width - x0) / (x1 - x0),
+                 -y0 / (y1 - y0), (height - y0) / (y1 - y0))
+    args, kind = camera_arguments(cam_obj, render, viewplane)
+    if kind != 'PANO':
+        return None
+    return dict(args, matrix=np.array(matrix, dtype=np.float64))
+
+
+def region_panoramic_camera(context, view):
+    """panoramic_view_camera of the 3D view being drawn (in camera view of a panoramic camera),
+    at the View's size; None otherwise."""
+    space = getattr(context, "space_data", None)
+    rv3d = context.region_data
+    try:
+        if rv3d.view_perspective != 'CAMERA':
+            return None
+        obj = space.camera if (space.use_local_camera and space.camera) else \
+            context.scene.camera
+        if obj is None or obj.type != 'CAMERA' or obj.data.type != 'PANO':
+            return None
+    except AttributeError:
+        return None
+    frame = camera_frame(context)
+    if frame is None:
+        return None
+    region = context.region
+    sx, sy = view.width / float(region.width), view.height / float(region.height)
+    frame = (frame[0] * sx, frame[1] * sy, frame[2] * sx, frame[3] * sy)
+    return panoramic_view_camera(obj, context.scene.render, view.camera["matrix"], frame,
+                                 view.width, view.height)
+
+
 def region_view(context, pixel_size=1):
     """The View of the 3D view being drawn (context.region / region_data)."""
     region = context.region
@@ -189,8 +232,11 @@ def region_view(context, pixel_size=1):
     view = View.from_matrices(rv3d.view_matrix, rv3d.window_matrix, width, height,
                               perspective, float(rv3d.view_distance),
                               view_clip(context) if perspective else None)
-    dof = view_dof(context)
-    if dof is not None:
+    panoramic = region_panoramic_camera(context, view)
+    dof = view_dof(context) if panoramic is None else None
+    if panoramic is not None:
+        view = View(width, height, panoramic)
+    elif dof is not None:
         view = View(width, height, dict(view.camera, **dof))
     border = region_border(context)
     if border is not None:

@@ -1,0 +1,53 @@
+# SPDX-License-Identifier: Apache-2.0
+"""A panoramic camera's settings as Cycles syncs them (blender/camera.cpp): the set_camera
+`panorama` dict. Blender 3.x keeps them on camera.data.cycles, 4.x+ on camera.data."""
+
+# Blender's panorama types the core renders (Cycles' kernel/camera/projection.h); 5.x's
+# Central Cylindrical is not among them.
+RENDERED_TYPES = ('EQUIRECTANGULAR', 'FISHEYE_EQUIDISTANT', 'FISHEYE_EQUISOLID', 'MIRRORBALL',
+                  'FISHEYE_LENS_POLYNOMIAL', 'EQUIANGULAR_CUBEMAP_FACE')
+
+
+def panorama_owner(cam):
+    """Where the camera data's panorama settings live: itself (4.x+) or its .cycles (3.x)."""
+    return cam if hasattr(cam, "panorama_type") else getattr(cam, "cycles", None)
+
+
+def panorama_type(cam):
+    owner = panorama_owner(cam)
+    return getattr(owner, "panorama_type", None) if owner is not None else None
+
+
+def fitted_sensor(cam, render):
+    """Cycles' sensorwidth, sensorheight of the fisheyes: the sensor of the camera's fit across
+    the render's width and height (resolution x percentage, pixel aspect included)."""
+    xr = render.resolution_x * render.resolution_percentage // 100 * render.pixel_aspect_x
+    yr = render.resolution_y * render.resolution_percentage // 100 * render.pixel_aspect_y
+    fit = cam.sensor_fit
+    horizontal = xr > yr if fit == 'AUTO' else fit == 'HORIZONTAL'
+    size = cam.sensor_height if fit == 'VERTICAL' else cam.sensor_width
+    if horizontal:
+        return float(size), float(size * yr / xr)
+    return float(size * xr / yr), float(size)
+
+
+def panorama_settings(cam, render, viewplane=(0.0, 1.0, 0.0, 1.0)):
+    """The set_camera `panorama` dict of camera data `cam` (type PANO) under render settings
+    `render`; None when its type is not rendered. viewplane: the frame's part of the panorama
+    before the shift, which moves it by (shift_x, shift_y) in Cycles 3.x and later."""
+    owner = panorama_owner(cam)
+    kind = panorama_type(cam)
+    if kind not in RENDERED_TYPES:
+        return None
+    width, height = fitted_sensor(cam, render)
+    left, right, bottom, top = viewplane
+    sx, sy = float(cam.shift_x), float(cam.shift_y)
+    return dict(
+        type=kind,
+        fisheye_fov=float(owner.fisheye_fov),
+        fisheye_lens=float(owner.fisheye_lens),
+        latitude_min=float(owner.latitude_min), latitude_max=float(owner.latitude_max),
+        longitude_min=float(owner.longitude_min), longitude_max=float(owner.longitude_max),
+        polynomial=[float(getattr(owner, f"fisheye_polynomial_k{i}", 0.0)) for i in range(5)],
+        sensor_width=width, sensor_height=height,
+        viewplane=[left + sx, right + sx, bottom + sy, top + sy])
