@@ -15,4 +15,5 @@ PYBIND11_MODULE(_core, m) {
   torrance::python::init_rays(m);
   torrance::python::init_world_mesh(m);
   torrance::python::init_sky(m);
+  torrance::python::init_denoise(m);
 }
