@@ -154,22 +154,28 @@ def view_clip(context):
         return None
 
 
+def camera_view_object(context):
+    """The camera object a 3D view in camera view looks through (its local camera or the
+    scene's); None in a user view or without one."""
+    space = getattr(context, "space_data", None)
+    try:
+        if context.region_data.view_perspective != 'CAMERA':
+            return None
+        obj = space.camera if (space.use_local_camera and space.camera) else \
+            context.scene.camera
+    except AttributeError:
+        return None
+    return obj if obj is not None and obj.type == 'CAMERA' else None
+
+
 def view_dof(context):
     """The depth of field of the camera view (set_camera keywords: aperture_radius,
     focus_distance, blades, rotation, ratio), as the final render's; None in a user view or
     without depth of field. The radius is the camera's own (from its lens, not the view's zoom);
     the focus distance is measured along the view axis, so it holds for the derived camera too
     (an orthographic one starts at clip_start, where Cycles measures its focus from)."""
-    space = getattr(context, "space_data", None)
-    rv3d = context.region_data
-    try:
-        if rv3d.view_perspective != 'CAMERA':
-            return None
-        obj = space.camera if (space.use_local_camera and space.camera) else \
-            context.scene.camera
-        if obj is None or obj.type != 'CAMERA' or not obj.data.dof.use_dof:
-            return None
-    except AttributeError:
+    obj = camera_view_object(context)
+    if obj is None or not obj.data.dof.use_dof:
         return None
     from ..export.camera import camera_arguments
     args, kind = camera_arguments(obj)
@@ -200,16 +206,8 @@ def panoramic_view_camera(cam_obj, render, matrix, frame, width, height):
 def region_panoramic_camera(context, view):
     """panoramic_view_camera of the 3D view being drawn (in camera view of a panoramic camera),
     at the View's size; None otherwise."""
-    space = getattr(context, "space_data", None)
-    rv3d = context.region_data
-    try:
-        if rv3d.view_perspective != 'CAMERA':
-            return None
-        obj = space.camera if (space.use_local_camera and space.camera) else \
-            context.scene.camera
-        if obj is None or obj.type != 'CAMERA' or obj.data.type != 'PANO':
-            return None
-    except AttributeError:
+    obj = camera_view_object(context)
+    if obj is None or obj.data.type != 'PANO':
         return None
     frame = camera_frame(context)
     if frame is None:
