@@ -286,6 +286,28 @@ void init_scene(py::module_& m) {
           "Constant attributes of instances (an instanced object's Object Info), which the Attribute op reads "
           "where the prototype has no such per-corner layer: ids (N,) instance ids, layer_ids (A,) int32, values "
           "(N, A, 3) float32. A layer an instance was never given reads 0; NaN/Inf read as 0.")
+      .def("set_mesh_pass_index", &Scene::set_mesh_pass_index, py::arg("mesh"), py::arg("index"),
+           "Blender's pass index of a mesh's object (from add_mesh), for the Object Index pass (default 0).")
+      .def(
+          "set_instance_pass_indices",
+          [](Scene& s, const py::object& ids, const py::object& values) {
+            const IndexArray id = as_indices(ids, "ids");
+            const auto v = shaped_array<float>(values, "values", {-1});
+            if (id.ndim() != 1 || v.size() != id.size())
+              throw py::value_error("ids and values must have shape (N,), got " + shape_string(id) + " and " +
+                                    shape_string(v));
+            s.set_instance_pass_indices(id.data(), size_t(id.size()), v.data());
+          },
+          py::arg("ids"), py::arg("values"),
+          "Blender's pass indices of instances (ids from add_instances), for the Object Index pass (default 0).")
+      .def(
+          "set_material_pass_indices",
+          [](Scene& s, const py::object& values) {
+            const auto v = shaped_array<float>(values, "values", {-1});
+            s.set_material_pass_indices(v.data(), size_t(v.size()));
+          },
+          py::arg("values"),
+          "Blender's pass index of each material (by material id), for the Material Index pass (others 0).")
       .def(
           "run_shader_program",
           [](const Scene& s, int program, const py::object& uvs, float footprint, const py::object& positions,

@@ -33,6 +33,7 @@ void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const 
                      mesh.corner_uvs.empty() ? nullptr : &mesh.corner_uvs[3 * prim]);
     hit.material = mesh.material_ids[prim];
     hit.emitter = mesh.emitter_index.empty() ? -1 : mesh.emitter_index[prim];
+    hit.object_pass_index = mesh.pass_index;
   } else {
     const Instance& inst = instances_[owner & ~kInstanceBit];
     const Binding& b = bindings_[inst.binding];
@@ -44,6 +45,7 @@ void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const 
     if (mirrored) std::swap(u, v);
     hit.material = b.material(mesh.material_ids[prim]);
     hit.emitter = inst.emitter_base >= 0 && b.emitter_rank[prim] >= 0 ? inst.emitter_base + b.emitter_rank[prim] : -1;
+    hit.object_pass_index = inst.pass_index;
     const size_t layers = instance_constant_ids_.size(), first = size_t(owner & ~kInstanceBit) * layers;
     if (layers > 0 && first + layers <= instance_constants_.size()) {
       hit.instance_constants = &instance_constants_[first];
@@ -52,6 +54,7 @@ void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const 
     }
   }
 
+  hit.has_uv = !hit_mesh->corner_uvs.empty();
   const Vec3 &p0 = c.p[0], &p1 = c.p[1], &p2 = c.p[2];
   const float w = 1.0f - u - v;
   hit.num_attributes = int(hit_mesh->attribute_ids.size());

@@ -26,6 +26,7 @@ struct Scene::Mesh {
   std::vector<Vec3> corner_attributes;
   std::vector<int32_t> attribute_ids;
   std::vector<int32_t> emitter_index;  // per triangle: index in the mesh light, or -1
+  float pass_index = 0.0f;             // Blender's object pass index (of a mesh from add_mesh)
 };
 
 namespace scene_detail {
@@ -64,6 +65,7 @@ struct Scene::Instance {
   uint32_t geometry = scene_detail::kNoGeometry;  // Embree geometry id in the top-level scene
   int32_t emitter_base = -1;        // mesh-light index of its first emissive triangle, or -1
   bool hidden = false;              // singular transform: disabled in Embree
+  float pass_index = 0.0f;          // Blender's object pass index
 };
 
 namespace scene_detail {

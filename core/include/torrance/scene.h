@@ -58,6 +58,8 @@ struct SurfaceHit {
   uint32_t material = 0;
   int32_t emitter = -1;       // index among the emissive triangles (Lights' mesh light), or -1
   Vec2 uv{0.0f};              // interpolated corner UVs (0 without UVs)
+  bool has_uv = false;        // the mesh has UVs (the UV pass: (u, v, 1), else 0)
+  float object_pass_index = 0.0f;  // the object's Blender pass index (Scene::set_mesh_pass_index)
   Vec3 tangent{0.0f};         // unit dP/du from the triangle's UVs (0 without usable UVs)
   float uv_per_metre = 0.0f;  // how fast UVs change across the triangle (sqrt of UV area / area)
   float bitangent_sign = 1.0f;
@@ -252,6 +254,15 @@ class Scene final : public ShaderTracer {
   void set_mesh_attributes(uint32_t mesh, bool prototype, const float* values, size_t num_corners,
                            const int32_t* ids, size_t num_attributes);
 
+  // Blender's pass indices, for the Object Index and Material Index passes (0 unless set): of a
+  // mesh from add_mesh, of instances (ids from add_instances), of materials 0 .. count - 1.
+  void set_mesh_pass_index(uint32_t mesh, float index);
+  void set_instance_pass_indices(const int64_t* ids, size_t count, const float* values);
+  void set_material_pass_indices(const float* values, size_t count);
+  float material_pass_index(uint32_t material) const {
+    return material < material_pass_indices_.size() ? material_pass_indices_[material] : 0.0f;
+  }
+
   // Instancing (a two-level BVH): a prototype is a mesh in object space, built once into its own
   // BVH, whose per-triangle `slots` (>= 0) index a material table given per instance, like
   // Blender's material slots (a slot past the table's end uses its last entry, as Cycles).
@@ -394,6 +405,7 @@ class Scene final : public ShaderTracer {
   // Instances' constant attributes: instance i's layer a at i * ids.size() + a (the vector may
   // end before the last instances: those have none).
   std::vector<Vec3> instance_constants_;
+  std::vector<float> material_pass_indices_;
   std::vector<int32_t> instance_constant_ids_;
   std::vector<std::unique_ptr<Prototype>> prototypes_;
   std::vector<Binding> bindings_;  // distinct (prototype, material table) pairs

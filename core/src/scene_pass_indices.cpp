@@ -1,0 +1,31 @@
+// Blender's pass indices of objects and materials (the Object Index and Material Index passes).
+#include "scene_internal.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace torrance {
+
+void Scene::set_mesh_pass_index(uint32_t mesh, float index) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set a mesh's pass index");
+  if (mesh >= meshes_.size()) throw std::invalid_argument("mesh " + std::to_string(mesh) + " does not exist");
+  meshes_[mesh]->pass_index = index;
+}
+
+void Scene::set_instance_pass_indices(const int64_t* ids, size_t count, const float* values) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set instances' pass indices");
+  for (size_t i = 0; i < count; ++i)
+    if (ids[i] < 0 || size_t(ids[i]) >= instances_.size())
+      throw std::invalid_argument("instance " + std::to_string(ids[i]) + " does not exist");
+  for (size_t i = 0; i < count; ++i) instances_[size_t(ids[i])].pass_index = values[i];
+}
+
+void Scene::set_material_pass_indices(const float* values, size_t count) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set materials' pass indices");
+  material_pass_indices_.assign(values, values + count);
+}
+
+}  // namespace torrance
