@@ -78,3 +78,34 @@ def test_camera_argument_errors():
         scene.set_camera(eye, 50.0, 36.0, 24.0, "AUTO", 0.0, 0.0, 0.1, 100.0, "ORTHO")  # kw-only
     scene.set_camera(eye, type="ORTHO", ortho_scale=2.0, fstop=4.0, blades=6, rotation=0.3,
                      ratio=1.5)
+
+
+def test_panoramic_fisheye_depth_and_outside_pixels():
+    # A fisheye (equidistant, 180 degrees) 5 units above a large plane, looking down: inside the
+    # circle a pixel's Depth is its distance to the plane, 5 / cos(theta) with theta = r * 90
+    # degrees (Cycles' camera_z_depth of panoramic cameras); outside it the pixel is black and
+    # opaque (no path), its Depth the background's 1e10.
+    scene = tc.Scene()
+    scene.add_material(base_color=(0.5, 0.5, 0.5), specular=0.0, roughness=1.0)
+    big = 1000.0
+    positions = np.array([[-big, -big, 0], [big, -big, 0], [big, big, 0], [-big, big, 0]],
+                         np.float32)
+    scene.add_mesh(positions, np.array([[0, 1, 2], [0, 2, 3]], np.int32))
+    scene.set_world(color=(1.0, 1.0, 1.0))
+    matrix = np.eye(4)
+    matrix[2, 3] = 5.0
+    scene.set_camera(matrix, clip_end=1e4, type="PANO",
+                     panorama=dict(type="FISHEYE_EQUIDISTANT", fisheye_fov=np.pi))
+    size = 32
+    result = tc.render(scene, tc.RenderSettings(width=size, height=size, samples=16,
+                                                passes=["Depth"]))
+    depth = result.passes["Depth"][..., 0]
+    centre = (np.arange(size) + 0.5) / size * 2.0 - 1.0
+    r = np.hypot(*np.meshgrid(centre, centre))
+    near = r < 0.6                                      # within 54 degrees of the axis
+    expected = 5.0 / np.cos(r * np.pi / 2.0)
+    assert np.allclose(depth[near], expected[near], rtol=0.02)
+    outside = r > 1.0 + 4.0 / size                # two pixels beyond the circle: the filter's reach
+    assert np.all(depth[outside] >= 1e9)
+    assert np.all(result.image[outside][:, :3] == 0.0)
+    assert np.all(result.image[outside][:, 3] == 1.0)
