@@ -53,6 +53,14 @@ inline ShaderProgram shader_program(const Scene& scene, const py::object& consta
   }
 }
 
+// A material's program register from Python (-1: none), checked.
+inline int16_t program_register(int r) {
+  if (r < -1 || r >= ShaderProgram::kMaxRegisters)
+    throw py::value_error("a material's program register must lie in [-1, " +
+                          std::to_string(ShaderProgram::kMaxRegisters) + "), got " + std::to_string(r));
+  return int16_t(r);
+}
+
 inline ShaderOutputs program_outputs(int program, int base_color, int metallic, int roughness, int emission,
                                     int normal = -1, int alpha = -1, int surface_normal = -1) {
   for (int r : {base_color, metallic, roughness, emission, normal, alpha, surface_normal})

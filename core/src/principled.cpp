@@ -30,6 +30,7 @@ PrincipledBsdf::PrincipledBsdf(const Material& m) {
   const Vec3 tint = lum > 0.0f ? base / lum : Vec3(1.0f);
   const Vec3 dielectric = f0_ * glm::mix(Vec3(1.0f), tint, clamp01(m.specular_tint)) * (1.0f - metallic);
   cspec0_ = glm::clamp(dielectric + base * metallic, Vec3(0.0f), Vec3(1.0f));
+  if (m.coat_weight > 0.0f) coat_ = ClearcoatV1(m.coat_weight, m.coat_roughness);
 }
 
 Vec3 PrincipledBsdf::fresnel(float cos_ih) const {
@@ -63,6 +64,17 @@ PrincipledBsdf::View PrincipledBsdf::geometry(const Vec3& wo) const {
 PrincipledBsdf::View PrincipledBsdf::at(const Vec3& wo) const {
   View v = geometry(wo);
   v.p_spec = specular_probability(wo);
+  if (coat_.active()) {
+    // Cycles' closure odds, unclamped: the clearcoat's w F(wo.z), the mean diffuse colour and the
+    // mean specular Fresnel. The clearcoat's estimator is biased (principled_coat.h) by an amount
+    // that depends on them: with Cycles' odds it is Cycles' bias.
+    const float coat = coat_.estimate(wo.z);
+    const float diffuse = (diffuse_color_.r + diffuse_color_.g + diffuse_color_.b) / 3.0f;
+    const float spec = glm::dot(fresnel(wo.z), Vec3(1.0f)) / 3.0f;
+    const float all = coat + diffuse + spec;
+    v.p_coat = all > 0.0f ? coat / all : 0.0f;
+    v.p_spec = spec + diffuse > 0.0f ? spec / (spec + diffuse) : 1.0f;
+  }
   return v;
 }
 
@@ -83,6 +95,7 @@ LobeEval PrincipledBsdf::eval_lobes(const View& v, const Vec3& wi) const {
     const float g = v.g1_o * ggx::smith_G1(wi.z, alpha_);
     f_cos.glossy = fresnel(cos_d) * (ggx::D(h, alpha_) * g / v.four_cos_o);
   }
+  if (coat_.active()) f_cos.glossy += Vec3(coat_.eval(wo, wi));
   return f_cos;
 }
 

@@ -3,21 +3,8 @@
 #include "torrance/microfacet.h"
 
 namespace torrance {
-namespace {
 
-// Kulla & Conty's fit of the cosine-weighted mean dielectric Fresnel, integral 2 mu F(mu, eta) dmu.
-float mean_dielectric_fresnel(float eta) {
-  if (eta < 1.0f) return 0.997118f + eta * (0.1014f - eta * (0.965241f + eta * 0.130607f));
-  return (eta - 1.0f) / (4.08567f + 1.00071f * eta);
-}
-
-// Multiscatter albedo scaling of a GGX layer whose mean Fresnel is fss: 1 + F_ms (1 - E) / E.
-Vec3 multiscatter_scale(const Vec3& fss, float e, float e_avg) {
-  const Vec3 fms = fss * e_avg / (Vec3(1.0f) - fss * (1.0f - e_avg));
-  return Vec3(1.0f) + fms * ((1.0f - e) / e);
-}
-
-}  // namespace
+using multiscatter::mean_dielectric_fresnel;
 
 PrincipledV2Bsdf::PrincipledV2Bsdf(const Material& m) {
   const Vec3 base = glm::max(m.base_color, Vec3(0.0f));
@@ -53,6 +40,7 @@ PrincipledV2Bsdf::PrincipledV2Bsdf(const Material& m) {
   const float f0_eta = ggx_tables::f0_from_ior(eta_);
   const float s_ss = f0_eta < 1.0f ? clamp01((mean_dielectric_fresnel(eta_) - f0_eta) / (1.0f - f0_eta)) : 1.0f;
   dielectric_fss_ = glm::mix(dielectric_f0_, Vec3(1.0f), s_ss);
+  if (m.coat_weight > 0.0f) coat_ = CoatV2(m.coat_weight, m.coat_roughness, m.coat_ior, m.coat_tint);
 }
 
 Vec3 PrincipledV2Bsdf::metal_fresnel(float cos_ih) const {
@@ -73,8 +61,8 @@ PrincipledV2Bsdf::ViewTerms PrincipledV2Bsdf::view_terms(float cos_o) const {
   if (multiscatter_) {
     const float e = std::max(ggx_tables::albedo(roughness_, cos_o), 1e-3f);
     const float e_avg = ggx_tables::average_albedo(roughness_);
-    metal_k = multiscatter_scale(metal_fss_, e, e_avg);
-    dielectric_k = multiscatter_scale(dielectric_fss_, e, e_avg);
+    metal_k = multiscatter::scale(metal_fss_, e, e_avg);
+    dielectric_k = multiscatter::scale(dielectric_fss_, e, e_avg);
     darkening = e * dielectric_k;
   }
   v.metal_scale = metallic_ * metal_k;
@@ -86,6 +74,12 @@ PrincipledV2Bsdf::ViewTerms PrincipledV2Bsdf::view_terms(float cos_o) const {
     diffuse_weight = clamp01(1.0f - max_component(v.dielectric_albedo));
   }
   v.diffuse = base_ * ((1.0f - metallic_) * diffuse_weight);
+  if (coat_.active()) {
+    v.coat = coat_.terms(cos_o);
+    v.metal_scale *= v.coat.base_weight;
+    v.dielectric_scale *= v.coat.base_weight;
+    v.diffuse *= v.coat.base_weight;
+  }
   return v;
 }
 
@@ -95,8 +89,8 @@ Vec3 PrincipledV2Bsdf::mirror_reflectance(const Vec3& wo) const {
 }
 
 float PrincipledV2Bsdf::specular_probability(const ViewTerms& v, float cos_o) const {
-  const float spec = luminance(metallic_ * metal_fresnel(cos_o) + (1.0f - metallic_) * v.dielectric_albedo);
-  return lobe_mixture::specular_probability(spec, luminance(v.diffuse));
+  const Vec3 spec = metallic_ * metal_fresnel(cos_o) + (1.0f - metallic_) * v.dielectric_albedo;
+  return lobe_mixture::specular_probability(luminance(spec * v.coat.base_weight), luminance(v.diffuse));
 }
 
 PrincipledV2Bsdf::View PrincipledV2Bsdf::geometry(const Vec3& wo) const {
@@ -110,6 +104,11 @@ PrincipledV2Bsdf::View PrincipledV2Bsdf::geometry(const Vec3& wo) const {
 PrincipledV2Bsdf::View PrincipledV2Bsdf::at(const Vec3& wo) const {
   View v = geometry(wo);
   v.p_spec = specular_probability(v.terms, wo.z);
+  if (coat_.reflects()) {
+    const ViewTerms& t = v.terms;
+    const Vec3 spec = metallic_ * metal_fresnel(wo.z) + (1.0f - metallic_) * t.dielectric_albedo;
+    v.p_coat = lobe_mixture::coat_probability(t.coat.albedo, luminance(spec * t.coat.base_weight + t.diffuse));
+  }
   return v;
 }
 
@@ -120,13 +119,15 @@ LobeEval PrincipledV2Bsdf::eval_lobes(const View& view, const Vec3& wi) const {
   LobeEval f_cos;
   const float cos_diffuse = view.diffuse_normal.cosine(wi);
   if (cos_diffuse > 0.0f) f_cos.diffuse = v.diffuse * (kInvPi * cos_diffuse);
-  if (wi.z <= 0.0f || has_delta()) return f_cos;
+  if (wi.z <= 0.0f) return f_cos;
+  if (coat_.reflects()) f_cos.glossy = Vec3(coat_.eval(v.coat, wo, wi));
+  if (has_delta()) return f_cos;
   Vec3 h;
   if (!ggx::reflection_half(wo, wi, h)) return f_cos;
   const float cos_d = clamp01(glm::dot(wi, h));
   const Vec3 fresnel = v.metal_scale * metal_fresnel(cos_d) + v.dielectric_scale * dielectric_fresnel(cos_d);
   const float g2 = ggx::smith_G2_correlated_given(view.lambda_o, wi.z, alpha_);
-  f_cos.glossy = fresnel * (ggx::D(h, alpha_) * g2 / view.four_cos_o);
+  f_cos.glossy += fresnel * (ggx::D(h, alpha_) * g2 / view.four_cos_o);
   return f_cos;
 }
 

@@ -55,6 +55,13 @@ struct Material {
   // (1 - alpha) transparent_color. Principled Alpha: alpha, white; Transparent BSDF: alpha 0, its Color.
   float alpha = 1.0f;
   Vec3 transparent_color{1.0f};
+  // The Principled BSDF's coat (principled_coat.h): v1's Clearcoat and Clearcoat Roughness
+  // (PRINCIPLED; its IOR is fixed), v2's Coat Weight, Roughness, IOR and Tint (PRINCIPLED_V2).
+  // A weight of 0 is no coat (and costs nothing).
+  float coat_weight = 0.0f;
+  float coat_roughness = 0.03f;
+  float coat_ior = 1.5f;
+  Vec3 coat_tint{1.0f};
 };
 
 // The normal a BSDF's diffuse lobes shade with, in its shading frame. The frame's z is the

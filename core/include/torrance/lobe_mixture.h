@@ -4,6 +4,10 @@
 // ggx::kDeltaAlpha the GGX lobe is a mirror whose reflectance the BSDF gives as
 // mirror_reflectance(wo). Only the models' eval() and lobe weights differ.
 //
+// A model with a coat (PRINCIPLED, PRINCIPLED_V2: principled_coat.h) adds a third lobe, chosen
+// first with its View's p_coat (0 without a coat: then nothing of it runs), by naming
+// coat_pdf(view, wi), coat_sample(view, u), coat_is_delta() and coat_mirror_reflectance(view).
+//
 // A shading point asks its BSDF several times with one wo (light choice, the light sample's eval
 // and MIS pdf, the BSDF sample's pdf and eval), so each model prepares what depends on wo alone
 // once, in a View (the model's at(wo)), which its eval/pdf/sample take instead of wo.
@@ -14,6 +18,7 @@
 #include "torrance/sampling.h"
 
 #include <algorithm>
+#include <type_traits>
 
 namespace torrance::lobe_mixture {
 
@@ -33,9 +38,37 @@ struct View {
   Vec3 wo{0.0f, 0.0f, 1.0f};
   float g1_o = 0.0f;       // ggx::smith_G1(wo.z, alpha)
   float four_cos_o = 0.0f;  // 4 wo.z
-  float p_spec = 1.0f;     // bsdf.specular_probability(wo)
+  float p_spec = 1.0f;     // bsdf.specular_probability(wo), of the lobes other than the coat
+  float p_coat = 0.0f;     // the coat lobe's probability (models with a coat)
   DiffuseNormal diffuse_normal;  // the diffuse lobe's (bsdf.h); PRINCIPLED_V2 alone reads it
 };
+
+// Whether a model has a coat lobe (names coat_pdf).
+template <typename Bsdf, typename = void>
+struct HasCoat : std::false_type {};
+template <typename Bsdf>
+struct HasCoat<Bsdf, std::void_t<decltype(&Bsdf::coat_pdf)>> : std::true_type {};
+
+// Whether a model's material has a coat (false for models without one).
+template <typename Bsdf>
+bool coated(const Bsdf& bsdf) {
+  if constexpr (HasCoat<Bsdf>::value) return bsdf.has_coat();
+  return false;
+}
+
+// The lobe choice's probability of the coat, from estimated reflectances (coat and the rest): the
+// coat's share, clamped to [0.1, 0.9] as specular_probability.
+inline float coat_probability(float coat, float rest) {
+  if (!(coat > 0.0f)) return 0.0f;
+  return 1.0f - specular_probability(rest, coat);
+}
+
+// The coat's sampled direction (models with a coat; never called for the others).
+template <typename Bsdf, typename View>
+Vec3 coat_direction(const Bsdf& bsdf, const View& v, const Vec2& u) {
+  if constexpr (HasCoat<Bsdf>::value) return bsdf.coat_sample(v, u);
+  return Vec3(0.0f);
+}
 
 // A cosine-distributed direction about the diffuse lobe's normal d.
 inline Vec3 sample_diffuse(const DiffuseNormal& d, const Vec2& u) {
@@ -58,6 +91,9 @@ float pdf(const Bsdf& bsdf, const View& v, const Vec3& wi, float alpha) {
   float pdf = (1.0f - v.p_spec) * cosine_hemisphere_pdf(v.diffuse_normal.cosine(wi));
   if (wi.z > 0.0f && !bsdf.has_delta() && v.p_spec > 0.0f)
     pdf += v.p_spec * ggx::reflected_pdf_given(v.g1_o, v.four_cos_o, glm::normalize(wo + wi), alpha);
+  if constexpr (HasCoat<Bsdf>::value) {
+    if (v.p_coat > 0.0f) pdf = (1.0f - v.p_coat) * pdf + v.p_coat * bsdf.coat_pdf(v, wi);
+  }
   return pdf;
 }
 
@@ -68,10 +104,28 @@ BsdfSample sample(const Bsdf& bsdf, const typename Bsdf::View& v, float u_lobe, 
   const Vec3& wo = v.wo;
   BsdfSample s;
   if (wo.z <= 0.0f) return s;
-  if (u_lobe < v.p_spec) {
+  float others = 1.0f;  // the probability of the lobes other than the coat
+  bool coat = false;
+  if constexpr (HasCoat<Bsdf>::value) {
+    if (v.p_coat > 0.0f) {
+      coat = u_lobe < v.p_coat;
+      if (coat && bsdf.coat_is_delta()) {
+        s.wi = Vec3(-wo.x, -wo.y, wo.z);
+        s.weight = bsdf.coat_mirror_reflectance(v) / v.p_coat;
+        s.is_delta = true;
+        return s;
+      }
+      others = 1.0f - v.p_coat;
+      u_lobe = std::min((u_lobe - v.p_coat) / others, 0.99999994f);
+    }
+  }
+  if (coat) {
+    s.wi = coat_direction(bsdf, v, u);
+    if (s.wi.z <= 0.0f) return BsdfSample{};
+  } else if (u_lobe < v.p_spec) {
     if (bsdf.has_delta()) {
       s.wi = Vec3(-wo.x, -wo.y, wo.z);
-      s.weight = bsdf.mirror_reflectance(wo) / v.p_spec;
+      s.weight = bsdf.mirror_reflectance(wo) / (v.p_spec * others);
       s.is_delta = true;
       return s;
     }

@@ -1,6 +1,6 @@
 // Principled BSDF, "PRINCIPLED" model: Blender 3.4's Principled BSDF (v1) as Cycles 3.4 renders it
-// with the GGX distribution (no sheen, clearcoat or anisotropy), so that Torrance and Cycles
-// differ by noise only. Transmission only scales these lobes down (see the constructor); its
+// with the GGX distribution (no sheen or anisotropy), so that Torrance and Cycles differ by noise
+// only. Transmission only scales these lobes down (see the constructor); its
 // glass is GlassBsdf, which MaterialBsdf adds.
 //
 //   diffuse  Burley's lobe weighted by (1 - metallic), using the unsquared roughness for
@@ -11,13 +11,19 @@
 //            F0 = 0.08 specular, eta from F0, and
 //            cspec0 = 0.08 specular mix(1, tint colour, specular_tint) (1 - metallic) + base metallic.
 //   mirror   below ggx::kDeltaAlpha the specular lobe is a delta with reflectance F(n.wo).
-// Sampling picks a lobe by estimated reflectance, then visible GGX normals or the cosine.
+//   clearcoat  Cycles 3.4's clearcoat lobe, added on top (principled_coat.h: ClearcoatV1), in the
+//            glossy part of LobeEval.
+// Sampling picks a lobe by estimated reflectance, then visible GGX normals or the cosine. With a
+// clearcoat all three lobes are chosen with Cycles' closure odds (w F(wo.z), the mean diffuse
+// colour, the mean specular Fresnel): the clearcoat's stated density is not the one it draws
+// from, as in Cycles, and the bias this gives every lobe depends on the odds.
 // See bsdf.h for the conventions (eval includes the cosine).
 #pragma once
 
 #include "torrance/bsdf.h"
 #include "torrance/lobe_mixture.h"
 #include "torrance/microfacet.h"
+#include "torrance/principled_coat.h"
 
 namespace torrance {
 
@@ -45,12 +51,21 @@ class PrincipledBsdf : public lobe_mixture::Queries<PrincipledBsdf> {
   float specular_probability(const Vec3& wo) const;
   Vec3 fresnel(float cos_ih) const;
 
+  // The clearcoat lobe (lobe_mixture.h).
+  bool has_coat() const { return coat_.active(); }
+  float coat_pdf(const lobe_mixture::View& v, const Vec3& wi) const { return coat_.pdf(v.wo, wi); }
+  Vec3 coat_sample(const lobe_mixture::View& v, const Vec2& u) const { return coat_.sample(v.wo, u); }
+  bool coat_is_delta() const { return coat_.is_delta(); }
+  Vec3 coat_mirror_reflectance(const lobe_mixture::View& v) const { return Vec3(coat_.mirror_reflectance(v.wo.z)); }
+  const ClearcoatV1& coat() const { return coat_; }
+
  private:
   Vec3 diffuse_color_;  // (1 - metallic) (1 - transmission) * base colour
   float diffuse_luminance_;  // luminance(diffuse_color_), for the lobe choice
   float specular_weight_;  // 1 - transmission (1 - metallic): the glass takes the rest
   Vec3 cspec0_;
   float roughness_, alpha_, eta_, f0_;
+  ClearcoatV1 coat_;
 };
 
 }  // namespace torrance

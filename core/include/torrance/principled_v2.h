@@ -1,8 +1,10 @@
 // Principled BSDF v2, "PRINCIPLED_V2": Blender 4.x's Principled BSDF as Cycles 4.x renders it, for
 // the inputs Torrance supports (base colour, metallic, roughness, IOR, Specular IOR Level through
-// Material::specular, Specular Tint as a colour, emission; no coat, sheen, subsurface, thin film,
-// transmission or anisotropy). Three layers, from the top, with alpha = roughness^2 (GGX):
+// Material::specular, Specular Tint as a colour, emission, coat; no sheen, subsurface, thin film,
+// transmission or anisotropy). Four layers, from the top, with alpha = roughness^2 (GGX):
 //
+//   coat        principled_coat.h's CoatV2 (its own roughness and IOR); the three layers under it
+//               are scaled by its base_weight(wo), as Cycles 4.x darkens and tints them.
 //   metal       weight metallic. GGX with height-correlated Smith G2 = 1 / (1 + L(wo) + L(wi))
 //               and the F82-tint Fresnel (Kutz et al., "Novel aspects of the Adobe Standard
 //               Material"):  F_m(c) = clamp(F_s(c) - b c (1 - c)^6, 0, 1),
@@ -37,6 +39,7 @@
 #include "torrance/bsdf.h"
 #include "torrance/ggx_tables.h"
 #include "torrance/lobe_mixture.h"
+#include "torrance/principled_coat.h"
 
 namespace torrance {
 
@@ -50,6 +53,7 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
     Vec3 dielectric_scale{0.0f};   // (1 - metallic) (x the multiscatter scale)
     Vec3 dielectric_albedo{0.0f};  // A_d, the estimate the diffuse layer is reduced by
     Vec3 diffuse{0.0f};            // (1 - metallic) base colour w(wo)
+    CoatV2::Terms coat;            // the coat's (its base_weight is in the three above)
   };
   ViewTerms view_terms(float cos_o) const;
 
@@ -74,12 +78,21 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
   Vec3 dielectric_fresnel(float cos_ih) const;  // F_d (0 without a dielectric lobe)
   float eta() const { return eta_; }
 
+  // The coat lobe (lobe_mixture.h).
+  bool has_coat() const { return coat_.reflects(); }
+  float coat_pdf(const lobe_mixture::View& v, const Vec3& wi) const { return coat_.pdf(v.wo, wi); }
+  Vec3 coat_sample(const lobe_mixture::View& v, const Vec2& u) const { return coat_.sample(v.wo, u); }
+  bool coat_is_delta() const { return coat_.is_delta(); }
+  Vec3 coat_mirror_reflectance(const View& v) const { return Vec3(coat_.mirror_reflectance(v.terms.coat, v.wo.z)); }
+  const CoatV2& coat() const { return coat_; }
+
  private:
   float specular_probability(const ViewTerms& v, float cos_o) const;
 
   Vec3 base_, metal_f0_, metal_b_, metal_fss_, dielectric_f0_, dielectric_fss_;
   float metallic_, roughness_, alpha_, eta_;
   bool has_dielectric_, multiscatter_;
+  CoatV2 coat_;
 };
 
 }  // namespace torrance

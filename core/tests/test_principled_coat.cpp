@@ -1,0 +1,161 @@
+// The Principled coat (principled_coat.h): Cycles 3.4's clearcoat (PRINCIPLED) against its
+// closed form, Cycles 4.x's coat (PRINCIPLED_V2) darkening and tinting the layers under it,
+// eval/pdf/sample agreeing for both, white furnaces of a coat over white metal, and hard cases
+// (roughness 0 and 1, grazing) without NaN or Inf. Sampling's chi-square: test_chi_square.cpp.
+#include "torrance/albedo.h"
+#include "torrance/ggx_tables.h"
+#include "torrance/principled.h"
+
+#include "test_helpers.h"
+
+#include <gtest/gtest.h>
+
+namespace torrance {
+namespace {
+
+Material coated(const Vec3& base, float metallic, float roughness, float coat, float coat_roughness) {
+  Material m;
+  m.base_color = base;
+  m.metallic = metallic;
+  m.roughness = roughness;
+  m.coat_weight = coat;
+  m.coat_roughness = coat_roughness;
+  return m;
+}
+
+TEST(PrincipledCoat, ClearcoatMatchesCyclesClosedForm) {
+  // Seen and lit along the normal: h = n, F = F0(1.5) = 0.04, G1 = 1, D1 = (a^2 - 1) / (pi ln(a^2) a^2).
+  for (float r : {0.1f, 0.3f, 0.7f}) {
+    const ClearcoatV1 coat(0.8f, r);
+    const float a = r * r, a2 = a * a;
+    const float d = (a2 - 1.0f) / (kPi * std::log(a2) * a2);
+    const Vec3 n(0.0f, 0.0f, 1.0f);
+    EXPECT_NEAR(coat.eval(n, n), 0.25f * 0.8f * 0.04f * d / 4.0f, 1e-4f * d) << r;
+    EXPECT_NEAR(coat.pdf(n, n), d / 4.0f, 1e-4f * d) << r;
+  }
+  // Clearcoat Roughness 1: D1 = 1 / pi. Off-specular: G1 of alpha 0.25 on both sides.
+  const ClearcoatV1 rough(1.0f, 1.0f);
+  const Vec3 wo = test::direction(0.6f, 0.0f), wi = test::direction(0.8f, 2.0f);
+  const Vec3 h = glm::normalize(wo + wi);
+  const float g = ggx::smith_G1(wo.z, 0.25f) * ggx::smith_G1(wi.z, 0.25f);
+  EXPECT_NEAR(rough.eval(wo, wi), 0.25f * fresnel_dielectric(glm::dot(wi, h), 1.5f) * kInvPi * g / (4.0f * wo.z), 1e-6f);
+  // The whole BSDF adds it to the glossy lobe and leaves the rest as without a coat.
+  const Material plain = coated(Vec3(0.8f, 0.1f, 0.1f), 0.0f, 0.4f, 0.0f, 0.1f);
+  const Material with = coated(Vec3(0.8f, 0.1f, 0.1f), 0.0f, 0.4f, 1.0f, 0.1f);
+  const PrincipledBsdf a(plain), b(with);
+  const LobeEval ea = a.eval_lobes(wo, wi), eb = b.eval_lobes(wo, wi);
+  EXPECT_EQ(ea.diffuse, eb.diffuse);
+  EXPECT_NEAR(eb.glossy.r - ea.glossy.r, ClearcoatV1(1.0f, 0.1f).eval(wo, wi), 1e-6f);
+}
+
+// Every sample: its pdf is pdf(wo, wi) and its weight eval / pdf (or a delta's reflectance).
+void expect_samples_agree(const Material& m, BrdfModel model, const Vec3& wo) {
+  const MaterialBsdf bsdf(m, model);
+  Rng rng(7, 0, 99);
+  for (int n = 0; n < 2000; ++n) {
+    const float u = rng.next_1d();
+    const BsdfSample s = bsdf.sample(wo, u, rng.next_2d());
+    if (!s.valid()) continue;
+    ASSERT_TRUE(std::isfinite(s.weight.r) && std::isfinite(s.weight.g) && std::isfinite(s.weight.b));
+    if (s.is_delta) continue;
+    const float pdf = bsdf.pdf(wo, s.wi);
+    ASSERT_NEAR(s.pdf, pdf, 1e-4f * pdf);
+    const Vec3 w = bsdf.eval(wo, s.wi) / pdf;
+    for (int c = 0; c < 3; ++c) ASSERT_NEAR(s.weight[c], w[c], 1e-4f * std::max(w[c], 1.0f));
+  }
+}
+
+TEST(PrincipledCoat, SampleEvalAndPdfAgree) {
+  for (BrdfModel model : {BrdfModel::Principled, BrdfModel::PrincipledV2})
+    for (float coat_r : {0.0f, 0.05f, 0.3f, 1.0f})
+      for (float r : {0.0f, 0.5f})
+        for (float cos_o : {1.0f, 0.5f, 0.05f}) {
+          SCOPED_TRACE(std::string(test::model_name(model)) + " coat_r " + std::to_string(coat_r) + " r " +
+                       std::to_string(r) + " cos_o " + std::to_string(cos_o));
+          Material m = coated(Vec3(0.8f, 0.1f, 0.1f), 0.0f, r, 1.0f, coat_r);
+          m.coat_tint = Vec3(0.9f, 0.5f, 0.2f);
+          expect_samples_agree(m, model, test::direction(cos_o, 0.3f));
+        }
+}
+
+TEST(PrincipledCoat, V2CoatDarkensAndTintsTheLayersUnder) {
+  Material m = coated(Vec3(0.8f, 0.1f, 0.1f), 0.0f, 0.5f, 1.0f, 0.2f);
+  m.coat_ior = 1.5f;
+  m.coat_tint = Vec3(0.5f, 1.0f, 0.25f);
+  const PrincipledV2Bsdf bsdf(m);
+  for (float cos_o : {1.0f, 0.5f, 0.1f}) {
+    const CoatV2::Terms t = bsdf.coat().terms(cos_o);
+    // Along the normal the coat's path is its unit thickness; obliquely 1 / cos of the refracted ray.
+    const float cos_t = std::sqrt(1.0f - (1.0f - cos_o * cos_o) / (1.5f * 1.5f));
+    const Vec3 expected = (1.0f - t.albedo) * glm::pow(m.coat_tint, Vec3(1.0f / cos_t));
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(t.base_weight[c], expected[c], 1e-5f) << cos_o;
+    EXPECT_GT(t.albedo, 0.03f);
+    EXPECT_LT(t.albedo, 1.0f);
+    // The diffuse layer under it: the uncoated one scaled by base_weight.
+    Material plain = m;
+    plain.coat_weight = 0.0f;
+    const Vec3 under = PrincipledV2Bsdf(plain).view_terms(cos_o).diffuse * t.base_weight;
+    const Vec3 diffuse = bsdf.view_terms(cos_o).diffuse;
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(diffuse[c], under[c], 1e-6f);
+  }
+  // Half a coat: half its albedo, the tint mixed halfway.
+  m.coat_weight = 0.5f;
+  const CoatV2::Terms half = PrincipledV2Bsdf(m).coat().terms(1.0f);
+  EXPECT_NEAR(half.base_weight.r, (1.0f - half.albedo) * 0.75f, 1e-5f);
+}
+
+TEST(PrincipledCoat, V2CoatOverWhiteMetalStaysInTheFurnace) {
+  // A white metal under a coat: what the coat reflects the metal does not get; the sum stays at
+  // most 1 (multiscatter keeps each layer's energy; the layering's estimate is Cycles').
+  for (float coat_r : {0.0f, 0.1f, 0.5f, 1.0f})
+    for (float r : {0.1f, 0.5f, 1.0f})
+      for (float cos_o : {1.0f, 0.5f, 0.2f}) {
+        const Material m = coated(Vec3(1.0f), 1.0f, r, 1.0f, coat_r);
+        const MaterialBsdf bsdf(m, BrdfModel::PrincipledV2);
+        const double a = directional_albedo_sampled(bsdf, test::direction(cos_o, 0.0f), 200000);
+        EXPECT_LE(a, 1.01) << coat_r << " " << r << " " << cos_o;
+        EXPECT_GE(a, 0.9) << coat_r << " " << r << " " << cos_o;
+      }
+}
+
+TEST(PrincipledCoat, V1ClearcoatAddsToWhiteMetal) {
+  // Cycles 3.4 adds the clearcoat on top: a white metal keeps its own albedo and gains the
+  // clearcoat's, at most 0.25 (F <= 1 and the GTR1 lobe with G <= 1).
+  for (float coat_r : {0.05f, 0.3f, 1.0f})
+    for (float cos_o : {1.0f, 0.5f, 0.2f}) {
+      const Vec3 wo = test::direction(cos_o, 0.0f);
+      const MaterialBsdf plain(coated(Vec3(1.0f), 1.0f, 0.5f, 0.0f, coat_r), BrdfModel::Principled);
+      const MaterialBsdf with(coated(Vec3(1.0f), 1.0f, 0.5f, 1.0f, coat_r), BrdfModel::Principled);
+      const double metal = directional_albedo_quadrature(plain, wo, 0.25f);
+      const double both = directional_albedo_quadrature(with, wo, std::min(0.25f, coat_r * coat_r));
+      EXPECT_GT(both - metal, 0.002) << coat_r << " " << cos_o;
+      EXPECT_LT(both - metal, 0.25) << coat_r << " " << cos_o;
+    }
+}
+
+TEST(PrincipledCoat, HardCasesStayFinite) {
+  Rng rng(3, 0, 5);
+  for (BrdfModel model : {BrdfModel::Principled, BrdfModel::PrincipledV2})
+    for (float coat_r : {0.0f, 1e-4f, 1.0f})
+      for (float r : {0.0f, 1.0f})
+        for (float cos_o : {1.0f, 1e-3f, 1e-6f}) {
+          Material m = coated(Vec3(0.9f, 0.2f, 0.1f), 0.5f, r, 1.0f, coat_r);
+          m.coat_ior = 1.0f + coat_r;  // IOR 1 (no reflection) included
+          m.coat_tint = Vec3(0.0f, 0.5f, 1.0f);
+          const MaterialBsdf bsdf(m, model);
+          const Vec3 wo = test::direction(cos_o, 1.0f);
+          for (int n = 0; n < 500; ++n) {
+            const Vec3 wi = test::uniform_sphere(rng);
+            const Vec3 f = bsdf.eval(wo, wi);
+            const float pdf = bsdf.pdf(wo, wi);
+            ASSERT_TRUE(std::isfinite(f.r) && std::isfinite(f.g) && std::isfinite(f.b) && std::isfinite(pdf));
+            ASSERT_GE(pdf, 0.0f);
+            const BsdfSample s = bsdf.sample(wo, rng.next_1d(), rng.next_2d());
+            ASSERT_TRUE(std::isfinite(s.weight.r) && std::isfinite(s.weight.g) && std::isfinite(s.weight.b));
+            ASSERT_TRUE(std::isfinite(s.pdf));
+          }
+        }
+}
+
+}  // namespace
+}  // namespace torrance
