@@ -4,7 +4,7 @@
 A camera looks straight down from 4 m on a flat plane (base colour (0.7, 0.4, 0.2), not
 metallic), a half-metallic blue sphere in the top half of the frame and an emissive panel in the
 bottom left, under a sun, a point light and a visible world. All of Torrance's passes are
-switched on (Z, Normal, Diffuse Color, Diffuse/Glossy Direct/Indirect, Emission, Environment)
+switched on (Z, Normal, Diffuse/Glossy Color, Diffuse/Glossy Direct/Indirect, Emission, Environment)
 and written by the compositor's File Output node (so they are Render Layers sockets) as 32-bit
 EXRs, and the render result is saved as a multilayer EXR. Checks:
 
@@ -13,8 +13,9 @@ EXRs, and the render result is saved as a multilayer EXR. Checks:
 * every pass has the frame's size; where the geometry is known (rows from the top), Depth is
   the planar distance (4 m on the plane), Normal is +Z on the plane, Diffuse Color is the base
   colour on the plane and base x (1 - metallic) on the sphere (so the rows are not flipped);
-* Emit + Env + DiffDir + DiffInd + GlossDir + GlossInd = Combined (Torrance's light passes
-  include the surface colour);
+* Emit + Env + DiffCol x (DiffDir + DiffInd) + GlossCol x (GlossDir + GlossInd) = Combined
+  (Direct/Indirect divided by the colour passes, as Cycles'; each pass against Cycles':
+  test_passes_agreement.py);
 * a border render fills the passes inside the border as the full render does.
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 --python blender_tests/test_passes.py
@@ -45,6 +46,7 @@ TOGGLES = {
     "use_pass_diffuse_indirect": "DiffInd",
     "use_pass_glossy_direct": "GlossDir",
     "use_pass_glossy_indirect": "GlossInd",
+    "use_pass_glossy_color": "GlossCol",
     "use_pass_emit": "Emit",
     "use_pass_environment": "Env",
 }
@@ -136,14 +138,14 @@ def main():
     vl = scene.view_layers[0]
     for toggle in TOGGLES:
         setattr(vl, toggle, True)
-    vl.use_pass_mist = True                         # not rendered by Torrance: reported
+    vl.use_pass_shadow = True                       # not rendered by Torrance: reported
     p, outputs = render_passes(scene, d, "all")
     messages = testing.last_messages()
-    check(any("mist" in m for _, m in messages), f"the Mist pass must be reported: {messages}")
+    check(any("shadow" in m for _, m in messages), f"the Shadow pass must be reported: {messages}")
     check(testing.addon().render.last_stats["nonfinite_pixels"] == 0, "NaN/Inf pixels")
     expected = {"Image", "Alpha", *TOGGLES.values()}
     print(f"[sockets] Render Layers outputs: {outputs}")
-    check(set(outputs) - {"Mist"} == expected,
+    check(set(outputs) - {"Shadow"} == expected,
           f"Render Layers outputs {outputs}, expected {sorted(expected)}")
     for name in ("Image", *TOGGLES.values()):
         check(name in p, f"no {name} pass written by the compositor")
@@ -197,11 +199,13 @@ def main():
     check(p["Emit"][:, :, :3].max() > 1.0 and p["Emit"][:6, :, :3].max() == 0.0,
           "Emit: the panel must show in the bottom rows only")
 
-    # The light passes sum to Combined.
-    total = sum(p[name][:, :, :3] for name in LIGHT_PASSES)
+    # The light passes compose to Combined as Cycles' do.
+    total = (p["Emit"][:, :, :3] + p["Env"][:, :, :3]
+             + p["DiffCol"][:, :, :3] * (p["DiffDir"][:, :, :3] + p["DiffInd"][:, :, :3])
+             + p["GlossCol"][:, :, :3] * (p["GlossDir"][:, :, :3] + p["GlossInd"][:, :, :3]))
     combined = p["Image"][:, :, :3]
     err = float(np.abs(total - combined).max() / combined.max())
-    print(f"[sum] max |sum of light passes - Combined| / max {err:.2e}; means "
+    print(f"[sum] max |composed light passes - Combined| / max {err:.2e}; means "
           + ", ".join(f"{n} {p[n][:, :, :3].mean():.4f}" for n in LIGHT_PASSES)
           + f", Combined {combined.mean():.4f}")
     check(err < 1e-4, "the light passes do not sum to Combined")
@@ -224,7 +228,7 @@ def main():
     # Toggles off: only Image and Alpha are left.
     for toggle in TOGGLES:
         setattr(vl, toggle, False)
-    vl.use_pass_mist = False
+    vl.use_pass_shadow = False
     q, outputs = render_passes(scene, d, "none")
     check(set(outputs) == {"Image", "Alpha"}, f"with no passes enabled: outputs {outputs}")
     check(testing.addon().render.last_stats["render_passes"] == [],

@@ -2,6 +2,7 @@
 // requested passes, sample counts, and adaptive sampling's per-pixel convergence.
 #pragma once
 
+#include "film_passes.h"
 #include "path_tracer.h"
 
 #include "torrance/sampling.h"
@@ -20,7 +21,8 @@ namespace torrance {
 inline bool sample_is_class_a(uint32_t sample) { return __builtin_popcount(sample & 0xaaaaaaaau) & 1; }
 
 // Per-pixel accumulation of sums for Combined (RGBA) and the requested passes, and sample counts,
-// for a window of the frame. Two ways in:
+// for a window of the frame. The passes of kFirstSamplePasses (the last of kPasses) hold the value
+// of the pixel's sample 0 instead, unfiltered (Cycles' Position and Index passes). Two ways in:
 // - add(): a sample drawn by the filter's importance (Cycles' way) counts once in its own pixel,
 //   which is the mean of its samples. With adaptive sampling also twice the sum of the class-A
 //   samples' RGB (an estimate of the pixel from half of its samples) and whether it converged.
@@ -43,10 +45,18 @@ class Film {
         margin_(splatting ? splatting->reach() : 0) {
     if (margin_ > kMaxReach) throw std::logic_error("Film: a splat reaches 2 pixels beyond its own at most");
     if (adaptive && margin_ > 1) throw std::logic_error("Film: adaptive sampling splats 1 pixel far at most");
+    accumulated_ = passes | pass_dependencies(passes);
     stride_ = 4;
-    for (const PassInfo& p : kPasses)
-      if (passes & p.pass) stride_ += p.channels;
+    filtered_ = -1;
+    for (const PassInfo& p : kPasses) {
+      if (!(accumulated_ & p.pass)) continue;
+      if ((p.pass & kFirstSamplePasses) && filtered_ < 0) filtered_ = stride_;
+      if (!(p.pass & kFirstSamplePasses) && filtered_ >= 0)
+        throw std::logic_error("Film: the first-sample passes must come last in kPasses");
+      stride_ += p.channels;
+    }
     values_ = stride_;
+    if (filtered_ < 0) filtered_ = values_;
     if (values_ > int(kMaxValues)) throw std::logic_error("Film: more channels than a sample holds");
     if (splatting_) stride_ += 1;  // the sum of the filter weights
     stride_ += 1;                  // the sample count
@@ -119,7 +129,8 @@ class Film {
       a[1] += 2.0 * v[1];
       a[2] += 2.0 * v[2];
     }
-    for (int c = 0; c < values_; ++c) acc[c] += v[size_t(c)];
+    for (int c = 0; c < filtered_; ++c) acc[c] += v[size_t(c)];
+    if (sample == 0) keep_first_sample(acc, v);
     acc[stride_ - 1] += 1.0;
   }
 
@@ -143,7 +154,7 @@ class Film {
         if (adaptive_ && !receiving_[index(tx, ty)]) continue;
         const double w = double(wx[size_t(kx + m)]) * double(wy[size_t(ky + m)]);
         double* acc = at(tx, ty);
-        for (int c = 0; c < values_; ++c) acc[c] += w * v[size_t(c)];
+        for (int c = 0; c < filtered_; ++c) acc[c] += w * v[size_t(c)];
         acc[norm_slot_] += w;
         if (class_a) {
           double* a = &half_[index(tx, ty) * half_stride_];
@@ -152,6 +163,7 @@ class Film {
         }
       }
     }
+    if (sample == 0) keep_first_sample(at(x, y), v);
     at(x, y)[stride_ - 1] += 1.0;
   }
 
@@ -171,14 +183,18 @@ class Film {
     return uint64_t(total);
   }
 
+  // The requested passes as Blender shows them (film_passes.h: finish_pass).
   std::vector<std::pair<std::string, Image>> resolve_passes() const {
     std::vector<std::pair<std::string, Image>> out;
+    std::vector<std::pair<Pass, Image>> resolved;
     int k = 4;
     for (const PassInfo& p : kPasses) {
-      if (!(passes_ & p.pass)) continue;
-      out.emplace_back(p.name, resolve(k, p.channels));
+      if (!(accumulated_ & p.pass)) continue;
+      resolved.emplace_back(p.pass, (p.pass & kFirstSamplePasses) ? copy(k, p.channels) : resolve(k, p.channels));
       k += p.channels;
     }
+    for (const PassInfo& p : kPasses)
+      if (passes_ & p.pass) out.emplace_back(p.name, finish_pass(p.pass, resolved));
     return out;
   }
 
@@ -196,7 +212,7 @@ class Film {
     v[3] = r.alpha;
     size_t k = 4;
     for (const PassInfo& p : kPasses) {
-      if (!(passes_ & p.pass)) continue;
+      if (!(accumulated_ & p.pass)) continue;
       if (p.channels == 1) {
         v[k++] = pass_scalar(p.pass, r);
       } else {
@@ -230,19 +246,18 @@ class Film {
     }
     return difference / (1e-4 + normalize) < threshold;  // the epsilon: the floor of black pixels
   }
-  static float pass_scalar(Pass, const PathRadiance& r) { return r.depth; }
-  static Vec3 pass_color(Pass pass, const PathRadiance& r) {
-    switch (pass) {
-      case kPassNormal: return r.normal;
-      case kPassAlbedo: return r.albedo;
-      case kPassDiffuseDirect: return r.diffuse_direct;
-      case kPassDiffuseIndirect: return r.diffuse_indirect;
-      case kPassGlossyDirect: return r.glossy_direct;
-      case kPassGlossyIndirect: return r.glossy_indirect;
-      case kPassEmission: return r.emission;
-      case kPassEnvironment: return r.environment;
-      default: return Vec3(0.0f);
-    }
+  // The first-sample passes' channels of sample 0's values v, kept as they are.
+  void keep_first_sample(double* acc, const Values& v) const {
+    for (int c = filtered_; c < values_; ++c) acc[c] = v[size_t(c)];
+  }
+  // A pass's channels as stored (the first-sample passes).
+  Image copy(int offset, int channels) const {
+    Image img{width_, height_, std::vector<float>(size_t(width_) * height_ * channels, 0.0f), channels};
+    for (int y = 0; y < height_; ++y)
+      for (int x = 0; x < width_; ++x)
+        for (int c = 0; c < channels; ++c)
+          img.rgba[(size_t(y) * width_ + x) * channels + c] = float(at(x, y)[offset + c]);
+    return img;
   }
   Image resolve(int offset, int channels) const {
     Image img{width_, height_, std::vector<float>(size_t(width_) * height_ * channels, 0.0f), channels};
@@ -259,11 +274,13 @@ class Film {
 
   int width_, height_;
   uint32_t passes_;
+  uint32_t accumulated_;  // passes_ and what they need (the colours the light passes are divided by)
   bool adaptive_;
   const PixelFilter* splatting_;  // null: samples drawn by the filter's importance
   int margin_;
   int buffer_width_;
   int values_;     // channels of a sample: Combined RGBA and the passes
+  int filtered_;   // the channels before it are summed; from it on, the first-sample passes
   int norm_slot_;  // what a pixel's sums are divided by: its weight sum, or its sample count
   int stride_;
   std::vector<double> sums_;

@@ -197,6 +197,8 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   PathContext ctx{scene, cscene.lights(), settings, {}, camera.forward(), camera.pixel_spread(),
                   camera.pixel_width()};
   if (camera.panoramic()) ctx.depth_from = camera.position();
+  ctx.camera_position = camera.position();
+  ctx.orthographic = scene.camera().type == CameraType::Orthographic;
   ctx.bsdfs.reserve(scene.num_materials());
   for (size_t i = 0; i < scene.num_materials(); ++i) ctx.bsdfs.emplace_back(scene.material(uint32_t(i)), settings.brdf_model);
   ctx.globals_read.reserve(scene.num_materials());
@@ -315,6 +317,10 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
         r = PathRadiance{};
         r.alpha = alpha;
       }
+      if (c.sample == 0 && (settings.passes & kFirstSamplePasses))
+        first_sample_data(ctx,
+                          camera.generate_ray(float(c.pixel.x + window[0]) + 0.5f, float(c.pixel.y + window[1]) + 0.5f),
+                          r);
       if (splatting) film.splat(c.pixel.x, c.pixel.y, offsets[size_t(i)], r, c.sample);
       else film.add(c.pixel.x, c.pixel.y, r, c.sample);
     }

@@ -18,13 +18,8 @@ namespace torrance {
 namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
-
-// Offsets a ray origin off the surface along the geometric normal, on the side `dir` leaves to.
-Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& dir) {
-  const float scale = std::max(1.0f, std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))));
-  const float eps = 2e-5f * scale;
-  return p + (glm::dot(ng, dir) >= 0.0f ? eps : -eps) * ng;
-}
+// The sampler's point index of the AO pass's ray: past every branch's (first_bounce_splits).
+constexpr uint32_t kAmbientOcclusionPoints = 0x40000000u;
 
 // The shadow ray of a light sample: from the offset origin to the sampled point on the light,
 // stopping short of it by the same kind of offset, so that a light close to and nearly parallel
@@ -78,6 +73,35 @@ Vec3 shadow_transmittance(const Scene& scene, const Vec3& p, const Vec3& ng, con
     travelled += hit.t;
     if (!(ray.tmax > 0.0f)) return transmittance;
   }
+}
+
+// The Mist pass's value of a surface at `position` (Cycles' film_write_data_passes): 1 - mist,
+// mist = ((distance - start) / depth) clamped to [0, 1], raised to the falloff; the distance
+// from the camera's position (orthographic: along its axis).
+float mist_clearance(const PathContext& ctx, const Vec3& position) {
+  const RenderSettings& s = ctx.settings;
+  const Vec3 d = position - ctx.camera_position;
+  const float distance = ctx.orthographic ? std::abs(glm::dot(d, ctx.camera_forward)) : glm::length(d);
+  const float inv_depth = s.mist_depth > 0.0f ? 1.0f / s.mist_depth : 0.0f;
+  float mist = std::clamp((distance - s.mist_start) * inv_depth, 0.0f, 1.0f);
+  if (s.mist_falloff == 2.0f) mist *= mist;
+  else if (s.mist_falloff == 0.5f) mist = std::sqrt(mist);
+  else if (s.mist_falloff != 1.0f) mist = std::pow(mist, s.mist_falloff);
+  return 1.0f - mist;
+}
+
+// The Glossy Color pass of a material: Cycles 3.4's Glossy Color of a Principled BSDF
+// (svm/closure.h: the weight of its specular closure, present with some Specular or Metallic,
+// 1 - the transmitting share; a clearcoat would add 1) plus its Transmission Color (the glass
+// closures' weight: the transmitting share; the Glass BSDF's colour), since Torrance files the
+// light through glass with the glossy passes (it has no Transmission passes).
+Vec3 glossy_color(const Material& m) {
+  if (m.glass_node) return m.base_color;
+  constexpr float kCutoff = 1e-5f;  // CLOSURE_WEIGHT_CUTOFF
+  const float metallic = std::clamp(m.metallic, 0.0f, 1.0f);
+  const float glass = std::clamp(m.transmission, 0.0f, 1.0f) * (1.0f - metallic);
+  const bool specular = 1.0f - glass > kCutoff && (m.specular > kCutoff || metallic > kCutoff);
+  return Vec3((specular ? 1.0f - glass : 0.0f) + (glass > kCutoff ? glass : 0.0f));
 }
 
 // Whether light can leave (or arrive) along world direction wi at a vertex with geometric normal
@@ -424,6 +448,15 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
                                                                           : (1.0f - material.metallic) *
                                                                                 (1.0f - material.transmission))
                             : material.base_color * (1.0f - material.metallic);
+        out.glossy_color = glossy_color(material);
+        if (kAlpha) {  // through the transparency passed, as Cycles
+          out.albedo *= throughput;
+          out.glossy_color *= throughput;
+        }
+        out.uv = hit.has_uv ? Vec3(hit.uv.x, hit.uv.y, 1.0f) : Vec3(0.0f);
+        if (ctx.settings.passes & kPassMist)
+          out.mist = mist_clearance(ctx, hit.position) * (kAlpha ? (throughput.x + throughput.y + throughput.z) / 3.0f
+                                                                 : 1.0f);
         out.emission = kAlpha ? throughput * material.emission : material.emission;
         if (const float k = clamp_scale(out.emission, true); k < 1.0f) out.emission *= k;
         path_luminance += luminance(out.emission);
@@ -442,6 +475,20 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       const DiffuseNormal diffuse = diffuse_normal(frame, ns, ns_closure, ctx.settings.brdf_model);
       const Vec3& n_diffuse = diffuse.tilted ? ns_closure : ns;
       const typename Bsdf::View view = bsdf.at(wo, backfacing, diffuse);  // wo's terms, once for this vertex's queries
+      if (bounce == 0 && !first_again && (ctx.settings.passes & kPassAO)) {
+        // The AO pass (Cycles' integrate_surface_ao): one cosine-distributed ray about the
+        // diffuse normal, from points of the sampler's own (the path's others stay as they are).
+        const uint32_t resume = sampler.point_index();
+        sampler.continue_at_point(kAmbientOcclusionPoints);
+        const glm::vec4 u_ao = sampler.next_4d();
+        sampler.continue_at_point(resume);
+        LightSample toward;
+        toward.wi = Frame(n_diffuse).to_world(sample_cosine_hemisphere(Vec2(u_ao.x, u_ao.y)));
+        toward.distance = ctx.settings.ao_distance;
+        out.ao = (kAlpha ? throughput : Vec3(1.0f)) *
+                 shadow_transmittance<kAlpha>(ctx.scene, hit.position, ng, toward,
+                                              ctx.settings.max_transparent_bounces, path_state);
+      }
       // Path guiding (guided_bsdf.h) on opaque single-material surfaces with a continuous lobe.
       const bool guidable =
           ctx.guide && !mixture && !transmits && (material.metallic < 1.0f || material.roughness >= 0.3f);

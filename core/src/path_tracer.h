@@ -39,6 +39,9 @@ struct PathContext {
   int first_bounce_splits = 1;   // branches at the first hit (first_bounce_splits.h): set or chosen
   // Per material, what shading it reads of ShaderGlobals (Scene::globals_read; empty: all).
   std::vector<uint8_t> globals_read = {};
+  // The camera's position and kind, for the Mist pass's distance (Cycles' camera_distance).
+  Vec3 camera_position{0.0f};
+  bool orthographic = false;
 };
 
 // Where a camera sample goes.
@@ -54,12 +57,26 @@ struct PathRadiance {
   Vec3 diffuse_direct{0.0f}, diffuse_indirect{0.0f}, glossy_direct{0.0f}, glossy_indirect{0.0f};
   float alpha = 1.0f;
   float depth = 1e10f;
-  Vec3 normal{0.0f}, albedo{0.0f};
+  Vec3 normal{0.0f}, albedo{0.0f}, glossy_color{0.0f};
+  // The data passes of the first hit (0 on the world): the Mist pass's (1 - mist) x the mean of
+  // the transparency the camera ray passed, the active UV map's (u, v, 1), the AO pass's
+  // unoccluded share (times that transparency), the position, the object's and the material's
+  // pass index.
+  float mist = 0.0f;
+  Vec3 uv{0.0f}, ao{0.0f}, position{0.0f};
+  float object_index = 0.0f, material_index = 0.0f;
 
   Vec3 combined() const {
     return emission + environment + diffuse_direct + diffuse_indirect + glossy_direct + glossy_indirect;
   }
 };
+
+// Offsets a ray origin off the surface along the geometric normal, on the side `dir` leaves to.
+inline Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& dir) {
+  const float scale = std::max(1.0f, std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))));
+  const float eps = 2e-5f * scale;
+  return p + (glm::dot(ng, dir) >= 0.0f ? eps : -eps) * ng;
+}
 
 // The camera ray's answer when the integrator traced it already (Scene::intersect_packet).
 struct FirstHit {

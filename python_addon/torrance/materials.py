@@ -491,9 +491,11 @@ def emits(m):
 class MeshNeeds(NamedTuple):
     """What a mesh must export for its materials: the render UV map, and the attributes their
     shader programs read, as (key, id) pairs (export/mesh_attributes.py's keys, the ids the
-    programs name them by). False when nothing."""
+    programs name them by). False when nothing. for_uv_pass: the UV map is for the UV pass only
+    (no material reads it)."""
     uvs: bool = False
     attributes: tuple = ()
+    for_uv_pass: bool = False
 
     def object_info(self):
         """Whether the materials read Object Info (per-object constants: exported for
@@ -531,6 +533,8 @@ class MaterialTable:
         self.textured = set()     # indices of materials that use textures
         self.attributes = {}      # index -> the mesh attribute keys its programs read
         self.emissive = set()     # indices of materials that emit light
+        self.pass_indices = {}    # index -> Blender's pass index (Material Index pass), if not 0
+        self.uv_pass = False      # the UV pass is on: every mesh exports its render UV map
         self._default = None
 
     def default_index(self):
@@ -555,6 +559,8 @@ class MaterialTable:
                 self.attributes[idx] = keys
             if emits(args):
                 self.emissive.add(idx)
+            if mat.pass_index:
+                self.pass_indices[idx] = float(mat.pass_index)
             self.indices[key] = idx
         return idx
 
@@ -593,5 +599,15 @@ class MaterialTable:
         for i in indices:
             keys.update(self.attributes.get(i, ()))
         ids = self.attribute_ids.ids
-        return MeshNeeds(any(i in self.textured for i in indices),
-                         tuple((k, ids[k]) for k in sorted(keys, key=repr)))
+        textured = any(i in self.textured for i in indices)
+        return MeshNeeds(self.uv_pass or textured,
+                         tuple((k, ids[k]) for k in sorted(keys, key=repr)),
+                         self.uv_pass and not textured)
+
+    def send_pass_indices(self):
+        """Gives the core the materials' pass indices (Scene.set_material_pass_indices)."""
+        if self.pass_indices:
+            values = np.zeros(max(self.pass_indices) + 1, np.float32)
+            for idx, value in self.pass_indices.items():
+                values[idx] = value
+            self.scene.set_material_pass_indices(values)

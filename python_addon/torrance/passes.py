@@ -6,11 +6,11 @@ passes. Each is registered with Blender (update_render_passes) so that it appear
 of the compositor's Render Layers node and as a layer of multilayer EXRs, under Blender's
 standard name for it.
 
-Torrance's light passes differ from Cycles' in one way: they **include the surface colour**.
-Combined = Emit + Env + DiffDir + DiffInd + GlossDir + GlossInd, exactly, whereas Cycles' Diffuse
-and Glossy Direct/Indirect are divided by the colour passes (Combined = DiffCol x (DiffDir +
-DiffInd) + GlossCol x (...) + ...). So in a Cycles-style compositing setup, do not multiply
-Torrance's light passes by Diffuse Color again. Torrance has no Glossy Color pass.
+The passes are Cycles 3.4's: Diffuse and Glossy Direct/Indirect are divided by Diffuse and
+Glossy Color, so that Combined = Emit + Env + DiffCol x (DiffDir + DiffInd) + GlossCol x
+(GlossDir + GlossInd), as Blender's compositing setups for Cycles expect. Position and the
+Index passes are of the ray through each pixel's centre (Cycles' first sample: not
+anti-aliased); Mist, UV and AO are filtered like the image.
 """
 
 from collections import namedtuple
@@ -22,25 +22,43 @@ PassInfo = namedtuple("PassInfo", "core name channels chanid type flag label des
 PASSES = (
     PassInfo("Depth", "Depth", 1, "Z", 'VALUE', "use_pass_z", "Z",
              "Distance along the camera's viewing axis (planar depth); 1e10 on the background"),
+    PassInfo("Mist", "Mist", 1, "Z", 'VALUE', "use_pass_mist", "Mist",
+             "0 near the camera to 1 far away, by World > Mist Pass; 1 on the background"),
+    PassInfo("Position", "Position", 3, "XYZ", 'VECTOR', "use_pass_position", "Position",
+             "World position of the first surface seen (the pixel's first sample); 0 on the "
+             "background"),
     PassInfo("Normal", "Normal", 3, "XYZ", 'VECTOR', "use_pass_normal", "Normal",
              "World-space shading normal at the first surface seen (with normal maps), facing "
              "the camera"),
+    PassInfo("UV", "UV", 3, "UVA", 'VECTOR', "use_pass_uv", "UV",
+             "(u, v, 1) of the active render UV map at the first surface seen; 0 without UVs "
+             "and on the background"),
+    PassInfo("IndexOB", "IndexOB", 1, "X", 'VALUE', "use_pass_object_index", "Object Index",
+             "Pass index of the object seen (the pixel's first sample); 0 on the background"),
+    PassInfo("IndexMA", "IndexMA", 1, "X", 'VALUE', "use_pass_material_index", "Material Index",
+             "Pass index of the material seen (the pixel's first sample); 0 on the background"),
+    PassInfo("AO", "AO", 3, "RGB", 'COLOR', "use_pass_ambient_occlusion", "Ambient Occlusion",
+             "Share of the directions about the first surface's normal (cosine-weighted) free "
+             "of geometry for World > Ambient Occlusion > Distance; 0 on the background"),
     PassInfo("Albedo", "DiffCol", 3, "RGB", 'COLOR', "use_pass_diffuse_color", "Diffuse Color",
              "Diffuse albedo of the first surface: Base Color x (1 - Metallic)"),
     PassInfo("DiffDir", "DiffDir", 3, "RGB", 'COLOR', "use_pass_diffuse_direct", "Diffuse Direct",
-             "Diffuse reflection of light arriving straight from lights and the world. Includes "
-             "the surface colour (unlike Cycles): the light passes sum exactly to Combined"),
+             "Diffuse reflection of light arriving straight from lights and the world, divided "
+             "by Diffuse Color (as Cycles)"),
     PassInfo("DiffInd", "DiffInd", 3, "RGB", 'COLOR', "use_pass_diffuse_indirect",
              "Diffuse Indirect",
-             "Diffuse reflection of light that bounced off other surfaces. Includes the surface "
-             "colour (unlike Cycles): the light passes sum exactly to Combined"),
+             "Diffuse reflection of light that bounced off other surfaces, divided by Diffuse "
+             "Color (as Cycles)"),
     PassInfo("GlossDir", "GlossDir", 3, "RGB", 'COLOR', "use_pass_glossy_direct", "Glossy Direct",
-             "Specular reflection of light arriving straight from lights and the world. Includes "
-             "the surface colour (unlike Cycles): the light passes sum exactly to Combined"),
+             "Specular reflection (and transmission) of light arriving straight from lights and "
+             "the world, divided by Glossy Color (as Cycles)"),
     PassInfo("GlossInd", "GlossInd", 3, "RGB", 'COLOR', "use_pass_glossy_indirect",
              "Glossy Indirect",
-             "Specular reflection of light that bounced off other surfaces. Includes the surface "
-             "colour (unlike Cycles): the light passes sum exactly to Combined"),
+             "Specular reflection (and transmission) of light that bounced off other surfaces, "
+             "divided by Glossy Color (as Cycles)"),
+    PassInfo("GlossCol", "GlossCol", 3, "RGB", 'COLOR', "use_pass_glossy_color", "Glossy Color",
+             "Weight of the first surface's specular closures: a Principled BSDF's 1, a Glass "
+             "BSDF's colour (Cycles puts glass in Transmission Color)"),
     PassInfo("Emit", "Emit", 3, "RGB", 'COLOR', "use_pass_emit", "Emission",
              "Light emitted by surfaces seen directly by the camera"),
     PassInfo("Env", "Env", 3, "RGB", 'COLOR', "use_pass_environment", "Environment",
@@ -51,9 +69,7 @@ BY_CORE_NAME = {p.core: p for p in PASSES}
 
 # The toggles Torrance can not honour (Cycles-only passes): for the UI and for reports.
 UNSUPPORTED_FLAGS = (
-    "use_pass_mist", "use_pass_position", "use_pass_vector", "use_pass_uv",
-    "use_pass_object_index", "use_pass_material_index", "use_pass_glossy_color",
-    "use_pass_shadow", "use_pass_ambient_occlusion",
+    "use_pass_vector", "use_pass_shadow",
     "use_pass_transmission_direct", "use_pass_transmission_indirect",
     "use_pass_transmission_color", "use_pass_subsurface_direct",
     "use_pass_subsurface_indirect", "use_pass_subsurface_color",
@@ -74,6 +90,21 @@ def unsupported_enabled(view_layer):
     if view_layer is None:
         return []
     return [flag for flag in UNSUPPORTED_FLAGS if getattr(view_layer, flag, False)]
+
+
+MIST_FALLOFF = {'QUADRATIC': 2.0, 'LINEAR': 1.0, 'INVERSE_QUADRATIC': 0.5}   # Cycles' exponents
+
+
+def world_pass_settings(scene):
+    """The core's settings of the Mist and AO passes from the scene's World (Mist Pass, Ambient
+    Occlusion > Distance); {}: no world, the core's defaults (Blender's)."""
+    world = scene.world if scene is not None else None
+    if world is None:
+        return {}
+    m = world.mist_settings
+    return dict(mist_start=float(m.start), mist_depth=float(m.depth),
+                mist_falloff=MIST_FALLOFF.get(m.falloff, 2.0),
+                ao_distance=float(world.light_settings.distance))
 
 
 def update_render_passes(engine, scene, renderlayer):

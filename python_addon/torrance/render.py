@@ -217,6 +217,8 @@ def _render(engine, depsgraph, reporter):
         else (x0, height - y1, x1, height - y0),
         threads=threads,
         passes=core_passes,
+        pass_alpha_threshold=float(getattr(view_layer, "pass_alpha_threshold", 0.5)),
+        **passes.world_pass_settings(depsgraph.scene),
         **core_settings(ts),
     )
 

@@ -39,6 +39,16 @@ TORRANCE_RENDER_SETTING(float, filter_width, 1.5f, "width of the Blackman-Harris
 // neighbourhood is sampled, film.h).
 TORRANCE_RENDER_SETTING(bool, filter_splatting, true, "samples splatted into every pixel their filter covers")
 TORRANCE_RENDER_SETTING(bool, transparent_background, false, "the world seen directly is transparent")
+// The Mist pass (Blender's World > Mist Pass; Cycles' falloff exponent: Quadratic 2, Linear 1,
+// Inverse Quadratic 0.5).
+TORRANCE_RENDER_SETTING(float, mist_start, 5.0f, "Mist pass: distance from the camera where mist starts")
+TORRANCE_RENDER_SETTING(float, mist_depth, 25.0f, "Mist pass: distance over which mist goes from 0 to 1")
+TORRANCE_RENDER_SETTING(float, mist_falloff, 2.0f, "Mist pass: exponent of the mist's rise (2 quadratic)")
+// The data passes stop at the first surface with at least this alpha (Blender's View Layer >
+// Passes > Alpha Threshold); 0: at the first surface.
+TORRANCE_RENDER_SETTING(float, pass_alpha_threshold, 0.5f, "data passes: the alpha of the surface they see")
+// The AO pass (Blender's World > Ambient Occlusion > Distance).
+TORRANCE_RENDER_SETTING(float, ao_distance, 10.0f, "AO pass: how far a ray must go unoccluded")
 // Compile-time paths for what the scene lacks (textures, passes, hittable lights, glass) and no
 // light choice when there is one light; false: the generic path.
 TORRANCE_RENDER_SETTING(bool, specialize, true, "compile-time paths for what the scene lacks")

@@ -62,8 +62,9 @@ def test_glass_pane_over_an_emitter_transmits_the_slab_closed_form():
     (dict(glass=True), 0.0),                             # the Glass node has no diffuse lobe
 ])
 def test_glass_passes_keep_combined_and_take_the_diffuse_colour(kwargs, albedo):
-    """Transmitted light goes to the glossy passes (the sum stays Combined); DiffCol ("Albedo")
-    is the diffuse lobe's colour, which transmission takes away."""
+    """Transmitted light goes to the glossy passes (they compose to Combined as Cycles' do, with
+    Glossy Color including the glass); DiffCol ("Albedo") is the diffuse lobe's colour, which
+    transmission takes away."""
     scene = tc.Scene()
     scene.add_material(base_color=(0.6, 0.6, 0.6), roughness=0.3, ior=1.5, **kwargs)
     tri = np.array([[0, 1, 2], [0, 2, 3]], np.int32)
@@ -78,7 +79,8 @@ def test_glass_passes_keep_combined_and_take_the_diffuse_colour(kwargs, albedo):
     result = tc.render(scene, tc.RenderSettings(width=8, height=8, samples=16, passes=names,
                                                 brdf_model="PRINCIPLED"))
     p = result.passes
-    total = sum(p[k] for k in ["Emit", "Env", "DiffDir", "DiffInd", "GlossDir", "GlossInd"])
+    total = (p["Emit"] + p["Env"] + p["Albedo"] * (p["DiffDir"] + p["DiffInd"])
+             + p["GlossCol"] * (p["GlossDir"] + p["GlossInd"]))
     assert np.allclose(total, result.image[..., :3], rtol=1e-4, atol=1e-5)
     assert np.allclose(p["Albedo"], albedo, atol=1e-5)
     assert p["GlossDir"].mean() + p["GlossInd"].mean() > 0.0

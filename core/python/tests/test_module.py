@@ -263,9 +263,13 @@ def test_render_passes_sum_to_combined_and_albedo_is_base_color():
     p = result.passes
     assert set(p) == set(names)
     assert p["Depth"].shape == (16, 16, 1) and p["Normal"].shape == (16, 16, 3)
-    total = sum(p[k] for k in ["Emit", "Env", "DiffDir", "DiffInd", "GlossDir", "GlossInd"])
+    # Composed as Cycles' passes: Direct/Indirect divided by the colour passes.
+    total = (p["Emit"] + p["Env"] + p["Albedo"] * (p["DiffDir"] + p["DiffInd"])
+             + p["GlossCol"] * (p["GlossDir"] + p["GlossInd"]))
     assert np.allclose(total, result.image[..., :3], rtol=1e-4, atol=1e-5)
-    assert p["DiffDir"].mean() > 0 and p["GlossDir"].mean() > 0 and p["DiffInd"].mean() > 0
+    assert p["DiffDir"].mean() > 0 and p["DiffInd"].mean() > 0
+    # The plane's Specular 0: no glossy closure (Cycles'), so Glossy Color and Direct are 0.
+    assert np.all(p["GlossCol"] == 0.0) and np.all(p["GlossDir"] == 0.0)
     assert np.allclose(p["Albedo"], 0.6, atol=1e-5)      # the camera sees only the plane
     assert np.allclose(p["Depth"], 5.0, atol=1e-3)       # planar depth from z = 5 to the plane
     assert np.allclose(p["Normal"], [0, 0, 1], atol=1e-5)

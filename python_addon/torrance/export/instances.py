@@ -26,11 +26,12 @@ class Source:
     matrices of everything that shows it: copies kept by `add`, converted to float32 rows
     CHUNK at a time (transforms() gives them all)."""
     __slots__ = ("name", "mesh_key", "table", "instanced", "matrices", "converted", "_append",
-                 "info_of", "random_ids", "colors", "duplis", "instancers")
+                 "info_of", "random_ids", "colors", "duplis", "instancers", "pass_index")
 
     def __init__(self, name, mesh_key, table, instanced, info_of=None, duplis=False,
-                 instancers=False):
+                 instancers=False, pass_index=0):
         self.name = name
+        self.pass_index = float(pass_index)   # the object's (the Object Index pass)
         self.mesh_key = mesh_key      # (evaluated mesh pointer, needs UVs)
         self.table = table            # int32 (K,): material index per slot
         self.instanced = instanced
@@ -116,7 +117,7 @@ class InstanceExport:
         info_of = getattr(obj, "original", obj) if needs_uvs.object_info() else None
         src = Source(name, (data.as_pointer() if data is not None else 0, needs_uvs),
                      slot_to_material, instanced, info_of, needs_uvs.duplis(),
-                     needs_uvs.instancers())
+                     needs_uvs.instancers(), obj.pass_index)
         self.sources.append(src)
         return src
 
@@ -143,7 +144,7 @@ class InstanceExport:
         local = read_local_mesh(obj, uvs=uvs)
         if local is None:
             return None
-        if uvs.uvs and local.corner_uvs is None:
+        if uvs.uvs and not uvs.for_uv_pass and local.corner_uvs is None:
             self.reporter.warning(f"Object '{name}' has textured materials but no UV map: "
                                   f"its textures are read at UV (0, 0)")
         p = prototype_arrays(local, uvs)
@@ -206,13 +207,16 @@ class InstanceExport:
 
     def _set_infos(self, first, parts):
         """The Object Info constants of the instances first, first + 1, ... (parts' order) that
-        their materials read (Scene.set_instance_constants)."""
+        their materials read (Scene.set_instance_constants), and their pass indices."""
         start = first
         for src, m, info in parts:
+            ids = np.arange(start, start + len(m), dtype=np.int64)
             layers = instance_constant_layers(src.mesh_key[1], info) if info is not None else None
             if layers is not None:
-                self.scene.set_instance_constants(
-                    np.arange(start, start + len(m), dtype=np.int64), *layers)
+                self.scene.set_instance_constants(ids, *layers)
+            if src.pass_index:
+                self.scene.set_instance_pass_indices(
+                    ids, np.full(len(m), src.pass_index, np.float32))
             start += len(m)
 
 

@@ -286,7 +286,7 @@ class MeshCache:
             return self.meshes[ckey]
         local = read_local_mesh(obj, uvs=needs)
         self.reads += 1
-        if local is not None and needs.uvs and local.corner_uvs is None:
+        if local is not None and needs.uvs and not needs.for_uv_pass and local.corner_uvs is None:
             reporter.warning(f"Object '{obj.name}' has textured materials but no UV map: "
                              f"its textures are read at UV (0, 0)")
         self.meshes[ckey] = local
@@ -310,9 +310,10 @@ def mesh_materials(slots, materials):
 
 
 def add_world_mesh(tc_scene, name, local, matrix, slot_to_material, needs_uvs, reporter,
-                   object_info=None):
+                   object_info=None, pass_index=0):
     """Adds a LocalMesh (or None) at `matrix` with add_mesh; returns the triangles added.
-    object_info: the object's Object Info constants (mesh_attributes.object_info), if known."""
+    object_info: the object's Object Info constants (mesh_attributes.object_info), if known;
+    pass_index: the object's (the Object Index pass)."""
     if local is None:
         return 0
     pos, tris, corner, keep, dropped = world_mesh(local, matrix)
@@ -335,6 +336,8 @@ def add_world_mesh(tc_scene, name, local, matrix, slot_to_material, needs_uvs, r
         layers = with_object_info(layers, object_info, dict(needs.attributes), len(tris))
     if layers is not None:
         tc_scene.set_mesh_attributes(mesh_id, *layers)
+    if pass_index:
+        tc_scene.set_mesh_pass_index(mesh_id, float(pass_index))
     return len(tris)
 
 

@@ -136,6 +136,7 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
     tc_scene = tc.Scene()
     textures = TextureTable(tc_scene, reporter)
     materials = MaterialTable(tc_scene, reporter, textures)
+    materials.uv_pass = bool(getattr(depsgraph.view_layer, "use_pass_uv", False))
     meshes = InstanceExport(tc_scene, materials, reporter)
     last_poll = [time.perf_counter()]
 
@@ -205,7 +206,7 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
                         if any(k[0] == 'object_info' for k, _ in getattr(needs, "attributes", ()))
                         else None)
                 flattened.append((obj, obj.name, inst.matrix_world.copy(), slot_to_material,
-                                  needs, info))
+                                  needs, info, obj.pass_index))
             elif role == 'MESH':
                 src = meshes.source(obj, obj.name, instanced=False)
                 src.add(inst.matrix_world)
@@ -215,15 +216,16 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
     meshes.read_pending(poll)
     meshes.flush(stats)
     cache = MeshCache()
-    for obj, name, matrix, slot_to_material, needs_uvs, info in flattened:
+    for obj, name, matrix, slot_to_material, needs_uvs, info, pass_index in flattened:
         poll()
         local = cache.get(obj, (obj.data.as_pointer(),), needs_uvs, reporter)
         triangles = add_world_mesh(tc_scene, name, local, matrix, slot_to_material, needs_uvs,
-                                   reporter, object_info=info)
+                                   reporter, object_info=info, pass_index=pass_index)
         if triangles:
             stats.objects += 1
             stats.names.append(name)
             stats.triangles += triangles
+    materials.send_pass_indices()
     stats.materials = len(materials.indices) + (1 if materials._default is not None else 0)
     stats.textures = textures.loaded
     stats.seconds = time.perf_counter() - t0
