@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """Torrance in Blender's GUI, as an artist uses it: Rendered shading in the 3D viewport,
-edits while it refines, camera view, a material preview, and the Properties panels.
+edits while it refines, camera view (also of a panoramic camera, against Cycles' viewport), a
+material preview, and the Properties panels.
 
 Run (as CTest does) in background Blender; it then
 1. builds a small scene (red sphere on a grey floor, sun, 0.18 grey world) and saves it;
@@ -14,6 +15,7 @@ are kept in build/test_gui_viewport/ (or $TORRANCE_GUI_SHOTS) and their paths pr
 """
 
 import json
+import math
 import os
 import sys
 import time
@@ -134,6 +136,35 @@ def _driver(result_path, shots_dir):
 
     sphere_center = (0.0, 0.0, 0.8)
     from mathutils import Euler, Vector
+
+    def cycles_screenshot(name, sub):
+        """Cycles' viewport image of the same view (a screenshot `name`), then Torrance again.
+        Cycles has no stats to poll: it has finished its samples when its image stops changing
+        (two screenshots 2 s apart alike in `sub`, the region) after it has shown one (the
+        viewport is a flat grey while Cycles loads; std over the region's middle < 5: the whole
+        region's std counts the camera frame's passepartout), however loaded the machine is."""
+        win, area, space, region = view3d()
+        scene = bpy.context.scene
+        scene.render.engine = 'CYCLES'
+        mid = (slice(region.y + region.height // 4, region.y + 3 * region.height // 4),
+               slice(region.x + region.width // 4, region.x + 3 * region.width // 4))
+        pixels, end = None, time.perf_counter() + 180.0
+        while time.perf_counter() < end:
+            yield 2.0
+            previous, pixels = pixels, screenshot(name)
+            if previous is not None and np.array_equal(previous[sub], pixels[sub]) \
+                    and pixels[mid].std() > 5.0:
+                break
+        scene.render.engine = 'TORRANCE'
+        return pixels
+
+    def block_difference(a, b):
+        """|a - b| of the 8x8 block means of two screenshots' grey (the two renders' noise
+        averages out) and the brightness ratio a / b."""
+        a, b = a.mean(axis=2), b.mean(axis=2)
+        hh, ww = (a.shape[0] // 8) * 8, (a.shape[1] // 8) * 8
+        blocks = lambda x: x[:hh, :ww].reshape(hh // 8, 8, ww // 8, 8).mean(axis=(1, 3))  # noqa: E731
+        return np.abs(blocks(a) - blocks(b)), float(a.mean() / max(b.mean(), 1e-6))
 
     def steps():
         win, area, space, region = view3d()
@@ -295,28 +326,9 @@ def _driver(result_path, shots_dir):
         yield 0.3
         yield from wait_samples(16, 90)
         torrance_px = screenshot("4b_studio_torrance")
-        scene.render.engine = 'CYCLES'
         sub = (slice(region.y, region.y + region.height), slice(region.x, region.x + region.width))
-        # Cycles has no stats to poll: it has finished its 16 samples when its image stops
-        # changing (two screenshots 2 s apart alike) after it has shown one (the viewport is a
-        # flat grey while Cycles loads; std over the region's middle < 5: the whole region's
-        # std counts the camera frame's passepartout), however loaded the machine is.
-        mid = (slice(region.y + region.height // 4, region.y + 3 * region.height // 4),
-               slice(region.x + region.width // 4, region.x + 3 * region.width // 4))
-        cycles_px, end = None, time.perf_counter() + 180.0
-        while time.perf_counter() < end:
-            yield 2.0
-            previous, cycles_px = cycles_px, screenshot("4c_studio_cycles")
-            if previous is not None and np.array_equal(previous[sub], cycles_px[sub]) \
-                    and cycles_px[mid].std() > 5.0:
-                break
-        scene.render.engine = 'TORRANCE'
-        # 8x8 block means: the two renders' noise (16 samples each) averages out.
-        a, b = torrance_px[sub].mean(axis=2), cycles_px[sub].mean(axis=2)
-        hh, ww = (a.shape[0] // 8) * 8, (a.shape[1] // 8) * 8
-        blocks = lambda x: x[:hh, :ww].reshape(hh // 8, 8, ww // 8, 8).mean(axis=(1, 3))  # noqa: E731
-        diff = np.abs(blocks(a) - blocks(b))
-        ratio = float(a.mean() / max(b.mean(), 1e-6))
+        cycles_px = yield from cycles_screenshot("4c_studio_cycles", sub)
+        diff, ratio = block_difference(torrance_px[sub], cycles_px[sub])
         results["studio_vs_cycles"] = dict(mean=float(diff.mean()),
                                            p95=float(np.percentile(diff, 95)),
                                            brightness_ratio=ratio)
@@ -327,6 +339,28 @@ def _driver(result_path, shots_dir):
         shading.use_scene_world_render = True
         shading.use_scene_lights_render = True
         yield 0.5
+
+        # -- Camera view of a panoramic camera (Fisheye Equidistant, 180 degrees), with the
+        # camera-view zoom and offset above: the panorama mapped onto the drawn camera frame
+        cam = scene.camera.data
+        owner = cam if hasattr(cam, "panorama_type") else cam.cycles    # 4.x+ / 3.x
+        cam.type = 'PANO'
+        owner.panorama_type = 'FISHEYE_EQUIDISTANT'
+        owner.fisheye_fov = math.pi
+        yield 0.3
+        yield from wait_samples(16, 90)
+        torrance_px = screenshot("4d_panoramic_torrance")
+        cycles_px = yield from cycles_screenshot("4e_panoramic_cycles", sub)
+        diff, ratio = block_difference(torrance_px[sub], cycles_px[sub])
+        results["panoramic_vs_cycles"] = dict(mean=float(diff.mean()),
+                                              p95=float(np.percentile(diff, 95)),
+                                              brightness_ratio=ratio)
+        check("camera view of a panoramic camera as Cycles shows it",
+              diff.mean() < 2.5 and np.percentile(diff, 95) < 8.0 and abs(ratio - 1) < 0.03,
+              f"|Torrance - Cycles| of 8x8 block means: mean {diff.mean():.2f}, 95th percentile "
+              f"{np.percentile(diff, 95):.2f} (of 255); brightness ratio {ratio:.4f}")
+        cam.type = 'PERSP'
+        yield 0.3
 
         # -- Leave Rendered mode: the engine is freed and its render thread stopped
         space.shading.type = 'SOLID'
