@@ -8,15 +8,16 @@ a grey world, 8 bounces:
 
 * Velvet (3.x; Sigma 0.25) / Sheen Ashikhmin (4.x; Roughness 0.25);
 * Refraction (GGX, Roughness 0.2, IOR 1.45);
-* Toon, Diffuse (Size 0.6) and Glossy (Size 0.25), Smooth 0 (toon_bsdf.h: Cycles weighs its
-  sampled directions differently where Smooth > 0);
+* Toon, Diffuse (Size 0.4, Smooth 0.4) and Glossy (Size 0.15, Smooth 0.3): Cycles weighs its
+  sampled directions by the fade at another angle than theirs, as toon_bsdf.h does;
 * 4.x: Sheen Microfiber (Roughness 0.3); 3.x: a Mix Shader of Velvet and a Diffuse BSDF;
 * the card: a Mix Shader (Fac 0.5) of a Translucent BSDF and the velvet / microfiber sheen.
 
 Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
 seeds 2 and 3. The faults (each must fail): the velvet's Sigma / Roughness ignored (its default
-1 / 0.5 instead), the Refraction and the Toon left out, the Translucent lighting the viewer's
-side (a Diffuse instead), and (4.x) the Microfiber rendered as Ashikhmin.
+1 / 0.5 instead), the Refraction and the Toon left out, the Toon's Smooth ignored, the
+Translucent lighting the viewer's side (a Diffuse instead), and (4.x) the Microfiber rendered
+as Ashikhmin and the Toon's samples weighted as Cycles 3.x weighs them.
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \\
          --python blender_tests/test_closure_nodes_agreement.py
@@ -108,9 +109,9 @@ def build(scene):
                single("Refraction", "ShaderNodeBsdfRefraction", distribution='GGX',
                       Color=(0.95, 0.97, 1.0, 1.0), Roughness=0.2, IOR=1.45),
                single("ToonDiffuse", "ShaderNodeBsdfToon", component='DIFFUSE',
-                      Color=(0.3, 0.6, 0.9, 1.0), Size=0.6, Smooth=0.0),
+                      Color=(0.3, 0.6, 0.9, 1.0), Size=0.4, Smooth=0.4),
                single("ToonGlossy", "ShaderNodeBsdfToon", component='GLOSSY',
-                      Color=(1.0, 0.85, 0.5, 1.0), Size=0.25, Smooth=0.0),
+                      Color=(1.0, 0.85, 0.5, 1.0), Size=0.15, Smooth=0.3),
                fifth_sphere())
     for k, mat in enumerate(spheres):
         testing.sphere_object(scene, mat.name, (-2.4 + 1.2 * k, 0.0, 0.5), 0.5, mat)
@@ -152,12 +153,17 @@ def main():
         ("Refraction left out", ShaderTreeReader, '_closure',
          closure_left_out('ShaderNodeBsdfRefraction')),
         ("Toon left out", ShaderTreeReader, '_closure', closure_left_out('ShaderNodeBsdfToon')),
+        ("Toon Smooth ignored", ShaderTreeReader, '_closure',
+         with_args('ShaderNodeBsdfToon', lambda n, k, a: (k, dict(a, transmission_roughness=0.0)))),
         ("Translucent on the viewer's side", ShaderTreeReader, '_closure',
          with_args('ShaderNodeBsdfTranslucent', lambda n, k, a: ('diffuse', a))),
     ]
     if SHEEN_NODES:
-        faults.append(("Microfiber as Ashikhmin", ShaderTreeReader, '_closure',
-                       with_args('ShaderNodeBsdfSheen', lambda n, k, a: ('velvet', a))))
+        faults += [("Microfiber as Ashikhmin", ShaderTreeReader, '_closure',
+                    with_args('ShaderNodeBsdfSheen', lambda n, k, a: ('velvet', a))),
+                   ("Toon weighted as Cycles 3.x", ShaderTreeReader, '_closure',
+                    with_args('ShaderNodeBsdfToon',
+                              lambda n, k, a: (k.replace('_cycles4', ''), a)))]
     agree_within_seed_noise(
         scene, testing.tempdir(), 64, BOUNCES, "Velvet/Sheen, Refraction, Toon, Translucent",
         faults=faults, tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)

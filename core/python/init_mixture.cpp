@@ -24,9 +24,12 @@ ClosureType parse_closure(const std::string& s) {
   if (s == "refraction") return ClosureType::Refraction;
   if (s == "toon_diffuse") return ClosureType::ToonDiffuse;
   if (s == "toon_glossy") return ClosureType::ToonGlossy;
+  if (s == "toon_diffuse_cycles4") return ClosureType::ToonDiffuseCycles4;
+  if (s == "toon_glossy_cycles4") return ClosureType::ToonGlossyCycles4;
   throw py::value_error(
       "closure type must be 'principled', 'diffuse', 'glossy', 'emission', 'transparent', 'velvet', 'sheen', "
-      "'translucent', 'refraction', 'toon_diffuse' or 'toon_glossy', got '" + s + "'");
+      "'translucent', 'refraction', 'toon_diffuse', 'toon_glossy', 'toon_diffuse_cycles4' or "
+      "'toon_glossy_cycles4', got '" + s + "'");
 }
 
 MixFactor parse_factor(const py::handle& h) {
@@ -108,7 +111,8 @@ void init_mixture(py::module_& m) {
       py::arg("normal_register") = -1, py::arg("surface_normal_register") = -1,
       "Adds a material made of weighted closures (Mix Shader / Add Shader); returns its material index. "
       "closures: [(type, material, terms)], type 'principled' | 'diffuse' | 'glossy' | 'emission' | 'transparent' | "
-      "'velvet' | 'sheen' | 'translucent' | 'refraction' | 'toon_diffuse' | 'toon_glossy', material an add_material "
+      "'velvet' | 'sheen' | 'translucent' | 'refraction' | 'toon_diffuse' | 'toon_glossy' (sampled as Cycles 3.x; "
+      "'toon_diffuse_cycles4' | 'toon_glossy_cycles4': as Cycles 4.x), material an add_material "
       "index holding the closure's inputs (diffuse/glossy/velvet/sheen: base_color = Color, roughness = Roughness "
       "or Sigma; translucent: base_color; refraction: base_color, roughness, ior, glass_distribution; toon: "
       "base_color, roughness = Size, transmission_roughness = Smooth; transparent: transparent_color = Color: "

@@ -175,10 +175,13 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
         break;
       case ClosureType::ToonDiffuse:
       case ClosureType::ToonGlossy:
-        add_closure(bsdf,
-                    ToonBsdf(m.base_color, m.roughness, m.transmission_roughness, c.type == ClosureType::ToonGlossy),
-                    w.weight[k]);
+      case ClosureType::ToonDiffuseCycles4:
+      case ClosureType::ToonGlossyCycles4: {
+        const bool glossy = c.type == ClosureType::ToonGlossy || c.type == ClosureType::ToonGlossyCycles4;
+        const bool cycles4 = c.type == ClosureType::ToonDiffuseCycles4 || c.type == ClosureType::ToonGlossyCycles4;
+        add_closure(bsdf, ToonBsdf(m.base_color, m.roughness, m.transmission_roughness, glossy, cycles4), w.weight[k]);
         break;
+      }
       case ClosureType::Emission:
       case ClosureType::Transparent: break;
     }

@@ -279,9 +279,14 @@ TEST(ChiSquare, ClosureNodesSamplingMatchesPdf) {
     cases.push_back({"refraction Beckmann inside" + rs, one(RefractionBsdf(Vec3(0.8f), r, 1.45f, true)),
                      {1.0f, 0.9f, 0.7f}, 0.25f, true, true});
   }
-  for (float size : {0.0f, 0.3f})
-    cases.push_back({"toon glossy size=" + std::to_string(size).substr(0, 3),
-                     one(ToonBsdf(Vec3(0.8f), size, 0.2f, true)), {1.0f, 0.8f}, (size + 0.2f) * half_pi});
+  for (bool cycles4 : {false, true}) {  // Cycles 3.x's and 4.x's cone sampling
+    const std::string version = cycles4 ? " (4.x)" : "";
+    for (float size : {0.0f, 0.3f})
+      cases.push_back({"toon glossy size=" + std::to_string(size).substr(0, 3) + version,
+                       one(ToonBsdf(Vec3(0.8f), size, 0.2f, true, cycles4)), {1.0f, 0.8f}, (size + 0.2f) * half_pi});
+    if (cycles4) cases.push_back({"toon diffuse (4.x)", one(ToonBsdf(Vec3(0.8f), 0.5f, 0.2f, false, true)), {1.0f},
+                                  0.7f * half_pi});
+  }
   cases.push_back({"translucent", one(TranslucentBsdf(Vec3(0.8f))), {1.0f}});
   MixtureBsdf mixed;  // a Mix of velvet and sheen over a translucent leaf and a rough refraction
   mixed.add(SheenBsdf(Vec3(0.9f), 0.4f), 0.5f, 0.3f);

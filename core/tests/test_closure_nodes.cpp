@@ -169,6 +169,29 @@ TEST(ClosureNodes, ToonIsCyclesFlatCone) {
   EXPECT_EQ(ToonBsdf(Vec3(1.0f), 0.0f, 0.0f, false).eval(wo, Vec3(0.0f, 0.0f, 1.0f)), Vec3(0.0f));
 }
 
+// Cycles 3.x weighs a Toon's sampled direction by the fade at theta_s u_1 (u_1 its first random
+// number), not at the direction's angle (toon_bsdf.h): the sample weights average to
+// (size + smooth / 2) / theta_s, where the evaluated lobe's albedo is less. Blender 4.x's Toon
+// (cycles4) samples the cone through the concentric disk and weighs by eval / pdf.
+TEST(ClosureNodes, ToonSamplesAreWeightedAsCycles) {
+  const float size = 0.3f, smooth = 0.4f;  // 27 and 36 degrees
+  const Vec3 wo(0.0f, 0.0f, 1.0f);
+  const double theta_s = (size + smooth) * M_PI / 2.0, cycles_albedo = (size + smooth / 2.0) / (size + smooth);
+  const ToonBsdf toon(Vec3(1.0f), size, smooth, false), toon4(Vec3(1.0f), size, smooth, false, true);
+  // u_1 = 0.75: the angle 0.75 theta_s = 47 degrees, faded 1 - (47 - 27) / 36.
+  const BsdfSample s = toon.sample(wo, 0.5f, Vec2(0.75f, 0.6f)), s4 = toon4.sample(wo, 0.5f, Vec2(0.75f, 0.6f));
+  ASSERT_TRUE(s.valid() && s4.valid());
+  EXPECT_NEAR(s.weight.x, 1.0 - (0.75 * theta_s - size * M_PI / 2.0) / (smooth * M_PI / 2.0), 1e-5);
+  EXPECT_NEAR(s4.weight.x, toon4.eval(wo, s4.wi).x / s4.pdf, 1e-5);
+  // The direction: 3.x 1 - cos = 0.25 (1 - cos theta_s); 4.x r = max(|0.5|, |0.2|) = 0.5, r^2 = 0.25.
+  EXPECT_NEAR(1.0 - s.wi.z, 0.25 * (1.0 - std::cos(theta_s)), 1e-5);
+  EXPECT_NEAR(1.0 - s4.wi.z, 0.25 * (1.0 - std::cos(theta_s)), 1e-5);
+  EXPECT_NEAR(sampled_albedo(toon, wo, 400000, 9), cycles_albedo, 2e-3);
+  const double evaluated = quadrature_albedo(toon, wo, 600);
+  EXPECT_LT(evaluated, cycles_albedo - 0.05);
+  EXPECT_NEAR(sampled_albedo(toon4, wo, 400000, 9), evaluated, 2e-3);
+}
+
 TEST(ClosureNodes, SampleWeightsAreEvalOverPdf) {
   for (float cos_o : {1.0f, 0.5f, 0.05f}) {
     const Vec3 wo = test::direction(cos_o, 0.4f);
@@ -179,8 +202,14 @@ TEST(ClosureNodes, SampleWeightsAreEvalOverPdf) {
         for (bool inside : {false, true})
           expect_weights_are_eval_over_pdf(RefractionSide{RefractionBsdf(Vec3(0.7f), r, 1.45f, r == 1.0f), inside},
                                            wo, "refraction", inside ? 0 : 1000);  // inside: mostly TIR
-      expect_weights_are_eval_over_pdf(ToonBsdf(Vec3(0.7f), r, 0.3f, false), wo, "toon diffuse");
-      if (cos_o > 0.1f) expect_weights_are_eval_over_pdf(ToonBsdf(Vec3(0.7f), r, 0.3f, true), wo, "toon glossy");
+      if (r > 0.0f) {  // (Smooth 0: Cycles 3.x's toon weight is eval / pdf; ToonSamplesAreWeightedAsCycles)
+        expect_weights_are_eval_over_pdf(ToonBsdf(Vec3(0.7f), r, 0.0f, false), wo, "toon diffuse");
+        if (cos_o > 0.1f) expect_weights_are_eval_over_pdf(ToonBsdf(Vec3(0.7f), r, 0.0f, true), wo, "toon glossy");
+      }
+      expect_weights_are_eval_over_pdf(ToonBsdf(Vec3(0.7f), r, 0.3f, false, true), wo, "toon diffuse 4.x",
+                                       r > 0.0f ? 1000 : 0);
+      if (cos_o > 0.1f)
+        expect_weights_are_eval_over_pdf(ToonBsdf(Vec3(0.7f), r, 0.3f, true, true), wo, "toon glossy 4.x", 0);
     }
     expect_weights_are_eval_over_pdf(TranslucentBsdf(Vec3(0.7f)), wo, "translucent");
   }

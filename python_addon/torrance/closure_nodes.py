@@ -11,6 +11,7 @@ transmission_roughness (a value; a graph that varies is reported and its socket'
 
 from .material_values import DEFAULT_MATERIAL, clamp, color3, sanitize
 from .nodes import finite_or, node_label
+from .shader_graph.node_versions import cycles4_toon
 
 CLOSURE_NODES = {'ShaderNodeBsdfVelvet', 'ShaderNodeBsdfSheen', 'ShaderNodeBsdfTranslucent',
                  'ShaderNodeBsdfRefraction', 'ShaderNodeBsdfToon'}
@@ -48,6 +49,8 @@ def read_closure_node(reader, mat, node):
     else:                                                   # ShaderNodeBsdfToon
         closure = 'toon_glossy' if getattr(node, "component", 'DIFFUSE') == 'GLOSSY' \
             else 'toon_diffuse'
+        if cycles4_toon():                  # sampled and weighted as Cycles 4.x (toon_bsdf.h)
+            closure += '_cycles4'
         _roughness(reader, mat, node, "Size", 0.5, args)
         smooth = finite_or(reader._socket_value(mat, node, "Smooth", 0.0), 0.0)
         args['transmission_roughness'] = clamp(smooth, 0.0, 1.0)

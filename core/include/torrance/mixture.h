@@ -50,9 +50,12 @@ enum class ClosureType {
   // Refraction BSDF: Color = base_color, Roughness = roughness, IOR = ior, Beckmann = glass_beckmann
   // (refraction_bsdf.h).
   Refraction,
-  // Toon BSDF (toon_bsdf.h): Color = base_color, Size = roughness, Smooth = transmission_roughness.
+  // Toon BSDF (toon_bsdf.h): Color = base_color, Size = roughness, Smooth = transmission_roughness;
+  // its directions sampled as Cycles 3.x samples them, or (the Cycles4 ones) as Cycles 4.x.
   ToonDiffuse,
   ToonGlossy,
+  ToonDiffuseCycles4,
+  ToonGlossyCycles4,
 };
 
 struct MixtureComponent {

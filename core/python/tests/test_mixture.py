@@ -103,7 +103,9 @@ def test_the_closure_nodes_types_render_under_a_sun():
     light is grazing): the reflecting ones shine, the Translucent and the Refraction pass the
     light on to the plane's far side (nothing below)."""
     for kind, reflects in (("velvet", True), ("sheen", True), ("toon_diffuse", True),
-                           ("toon_glossy", True), ("translucent", False), ("refraction", False)):
+                           ("toon_glossy", True), ("toon_diffuse_cycles4", True),
+                           ("toon_glossy_cycles4", True), ("translucent", False),
+                           ("refraction", False)):
         scene = tc.Scene()
         inputs = scene.add_material(base_color=(0.8, 0.8, 0.8), roughness=0.5, ior=1.45,
                                     transmission_roughness=0.0)

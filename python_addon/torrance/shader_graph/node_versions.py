@@ -16,7 +16,8 @@ materials.principled_version does, not by bpy.app.version:
               4.x's searches and octaves).
   kernels     Cycles 4.x computes some unchanged nodes differently (the Wave Texture's
               distortion, the Vector Transform of a Normal, the Bump's reflection check and
-              the tangent-space Normal Map's Strength): the running Blender tells.
+              the tangent-space Normal Map's Strength, the Toon BSDF's sampling): the
+              running Blender tells.
   materials   4.1 moves the displacement method from material.cycles to the material:
               displacement_owner is where it is.
   Normal Map  5.1 adds the DirectX convention (green pointing down, in every space):
@@ -88,6 +89,14 @@ def cycles4_normals():
     """True where Cycles' Bump leaves the reflection check to the closures and a tangent-space
     Normal Map applies Strength to its colour (4.0+; 3.4 checks the bumped normal and mixes the
     mapped one with the surface's): the nodes did not change, the running Blender tells."""
+    import bpy
+    return bpy.app.version >= (4, 0, 0)
+
+
+def cycles4_toon():
+    """True where Cycles' Toon BSDF samples its cone through the concentric disk and its sampled
+    light agrees with its evaluated light (4.0+; 3.4 fades a sampled direction at another angle
+    than its own, toon_bsdf.h): the node did not change, the running Blender tells."""
     import bpy
     return bpy.app.version >= (4, 0, 0)
 

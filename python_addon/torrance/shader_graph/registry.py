@@ -176,9 +176,9 @@ CLOSURES = {
     'ShaderNodeBsdfRefraction': "rendered: Color, Roughness (any graph), IOR, Normal; GGX, "
                                 "Beckmann, Sharp (Multiscatter GGX rendered as GGX, reported); "
                                 "alone and in Mix/Add Shader trees",
-    'ShaderNodeBsdfToon': "partly: Color, Size (any graph), Smooth (a value), Normal; Diffuse and "
-                          "Glossy, alone and in Mix/Add Shader trees (Cycles 3.4 fades its "
-                          "sampled directions differently where Smooth > 0)",
+    'ShaderNodeBsdfToon': "partly: Color, Size (any graph), Smooth (a value; a graph that varies "
+                          "is reported), Normal; Diffuse and Glossy, their sampled directions "
+                          "weighted as Cycles 3.4's or 4.x's; alone and in Mix/Add Shader trees",
     'ShaderNodeEmission': "rendered: Color, Strength",
     'ShaderNodeMixShader': "partly: trees of Principled, Diffuse, Glossy, Glass, Transparent, "
                            "Emission, Velvet / Sheen, Translucent, Refraction and Toon closures, "
