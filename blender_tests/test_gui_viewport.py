@@ -340,11 +340,12 @@ def _driver(result_path, shots_dir):
         shading.use_scene_lights_render = True
         yield 0.5
 
-        # -- Camera view of a panoramic camera (Fisheye Equidistant, 180 degrees), with the
-        # camera-view zoom and offset above: the panorama mapped onto the drawn camera frame
+        # -- Camera view of a panoramic camera (Fisheye Equidistant, 180 degrees, shifted), with
+        # the camera-view zoom and offset above: the panorama mapped onto the drawn camera frame
         cam = scene.camera.data
         owner = cam if hasattr(cam, "panorama_type") else cam.cycles    # 4.x+ / 3.x
         cam.type = 'PANO'
+        cam.shift_x = 0.1
         owner.panorama_type = 'FISHEYE_EQUIDISTANT'
         owner.fisheye_fov = math.pi
         yield 0.3
@@ -360,6 +361,7 @@ def _driver(result_path, shots_dir):
               f"|Torrance - Cycles| of 8x8 block means: mean {diff.mean():.2f}, 95th percentile "
               f"{np.percentile(diff, 95):.2f} (of 255); brightness ratio {ratio:.4f}")
         cam.type = 'PERSP'
+        cam.shift_x = 0.0
         yield 0.3
 
         # -- Leave Rendered mode: the engine is freed and its render thread stopped
