@@ -275,6 +275,21 @@ class TORRANCE_RENDER_PT_sampling_path_guiding(TorrancePanel, Panel):
         _setting(layout, ts, "guiding_training_fraction")
 
 
+class TORRANCE_RENDER_PT_sampling_denoise(TorrancePanel, Panel):
+    bl_label = "Denoise"
+    bl_context = "render"
+    bl_parent_id = "TORRANCE_RENDER_PT_sampling"
+
+    def draw_header(self, context):
+        _setting(self.layout, context.scene.torrance, "use_denoising")
+
+    def draw(self, context):
+        layout = _split(self.layout)
+        ts = context.scene.torrance
+        layout.active = ts.use_denoising
+        _panel_settings(layout, ts, self)
+
+
 class TORRANCE_RENDER_PT_light_paths(TorrancePanel, Panel):
     bl_label = "Light Paths"
     bl_context = "render"
@@ -357,7 +372,7 @@ class TORRANCE_RENDER_PT_compatibility(TorrancePanel, Panel):
         col.label(text="Not rendered by Torrance:")
         for text in ("Volumes, subsurface, transmission, sheen, clearcoat",
                      "Shader nodes other than Principled / Diffuse / Emission",
-                     "Motion blur, panoramic cameras"):
+                     "Motion blur, Central Cylindrical panoramas (5.x)"):
             col.label(text=text, icon='DOT')
 
 
@@ -544,6 +559,7 @@ classes = (
     TORRANCE_RENDER_PT_sampling_viewport,
     TORRANCE_RENDER_PT_sampling_render,
     TORRANCE_RENDER_PT_sampling_preview,
+    TORRANCE_RENDER_PT_sampling_denoise,
     TORRANCE_RENDER_PT_sampling_path_guiding,
     TORRANCE_RENDER_PT_sampling_advanced,
     TORRANCE_RENDER_PT_light_paths,
