@@ -1,0 +1,63 @@
+"""The Principled coat through the module (add_material(coat_*), core principled_coat.h): bad
+values are rejected, a coat from a shader program's register renders as the same constant coat,
+and a coat brightens a black floor under a white world by about its albedo (PRINCIPLED: Cycles
+3.4's clearcoat, 0.25 Clearcoat x its Fresnel; PRINCIPLED_V2: Cycles 4.x's coat layer, which also
+darkens what is under it)."""
+import numpy as np
+import pytest
+import torrance_core as tc
+
+COLUMNS = 17
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(coat_weight=-0.1), "coat"), (dict(coat_roughness=1.5), "coat"),
+    (dict(coat_ior=0.9), "coat"), (dict(coat_tint=(1.0, -1.0, 1.0)), "coat"),
+    (dict(coat_weight=float("nan")), "finite"), (dict(coat_weight_register=2), "program"),
+])
+def test_bad_coats_are_rejected(kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        tc.Scene().add_material(**kwargs)
+
+
+def floor(model, **coat):
+    """A floor of `coat` under a uniform white world, seen from above: its mean RGB."""
+    scene = tc.Scene()
+    if coat.pop("from_program", False):
+        constants = np.array([[coat["coat_weight"], 0, 0, 0], [*coat["coat_tint"], 0]], np.float32)
+        pid = scene.add_shader_program(constants, np.zeros((0, COLUMNS), np.int32), 2)
+        coat = dict(coat, program=pid, coat_weight=0.0, coat_weight_register=0,
+                    coat_tint=(1.0, 1.0, 1.0), coat_tint_register=1)
+    m = scene.add_material(base_color=(0.5, 0.5, 0.5), roughness=0.5, **coat)
+    scene.add_mesh(np.array([[-50, -50, 0], [50, -50, 0], [50, 50, 0], [-50, 50, 0]], np.float32),
+                   np.array([[0, 1, 2], [0, 2, 3]]), material_indices=np.array([m, m]))
+    scene.set_world((1.0, 1.0, 1.0), 1.0)
+    down = np.array([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 5], [0, 0, 0, 1]], np.float32)
+    scene.set_camera(down, type="ORTHO", ortho_scale=1.0)
+    settings = tc.RenderSettings(width=8, height=8, samples=256, max_bounces=1, seed=3,
+                                 brdf_model=model)
+    return tc.render(scene, settings).image[..., :3].reshape(-1, 3).mean(axis=0)
+
+
+@pytest.mark.parametrize("model", ["PRINCIPLED", "PRINCIPLED_V2"])
+def test_a_coat_from_a_program_renders_as_the_constant(model):
+    coat = dict(coat_weight=0.8, coat_roughness=0.2, coat_tint=(0.5, 0.8, 1.0))
+    constant = floor(model, **coat)
+    programmed = floor(model, from_program=True, **coat)
+    assert programmed == pytest.approx(constant, rel=1e-5)
+    assert not np.allclose(constant, floor(model), rtol=0.01)
+
+
+def test_the_v1_clearcoat_adds_and_the_v2_coat_darkens_and_tints():
+    plain_v1, coated_v1 = floor("PRINCIPLED"), floor("PRINCIPLED", coat_weight=1.0)
+    # Cycles 3.4's clearcoat adds 0.25 x its Fresnel albedo (~0.09 for IOR 1.5, grey).
+    added = coated_v1 - plain_v1
+    assert np.all(added > 0.005) and np.all(added < 0.05)
+    assert np.ptp(added) < 0.005
+    # Cycles 4.x's coat takes what it reflects off the layers under it: a tinted coat's
+    # colour shows, a clear one changes a grey floor by little.
+    plain_v2 = floor("PRINCIPLED_V2")
+    tinted = floor("PRINCIPLED_V2", coat_weight=1.0, coat_tint=(1.0, 0.5, 0.25))
+    assert tinted[0] > tinted[1] > tinted[2]
+    clear = floor("PRINCIPLED_V2", coat_weight=1.0)
+    assert clear == pytest.approx(plain_v2, abs=0.05)
