@@ -11,7 +11,8 @@ output node (the output Cycles would use):
   Alpha (a value, or an Image Texture's Alpha output: the image's alpha channel);
   Blender 4.x's Principled v2 by its names (Specular IOR Level with IOR, Emission
   Color; _PRINCIPLED_SOCKETS) and, for the PRINCIPLED_V2 model, its IOR, Specular Tint
-  colour and distribution (Multiscatter GGX or GGX);
+  colour and distribution (Multiscatter GGX or GGX); the coat (v1 Clearcoat, v2 Coat:
+  principled_coat.py);
 * Glass BSDF: Color, Roughness, IOR (GGX or Beckmann; Sharp is roughness 0);
 * Transparent BSDF: Color (rays pass straight through, tinted);
 * Emission: a black emitter;
@@ -45,6 +46,7 @@ from .shader_graph.program import ProgramBuilder, constant
 from .shader_graph.registry import READERS
 from .mixtures import MIXTURE_SURFACES, read_mixture
 from .normal_inputs import begin_displacement, read_normal_input
+from .principled_coat import read_coat
 from .transparent_mix import read_transparent_mix
 
 # The Principled BSDF's socket names per node version: v1 is Blender 3.x's, v2 Blender 4.0's
@@ -63,13 +65,11 @@ _IGNORED_PRINCIPLED_INPUTS = {
         ("Subsurface", 0.0),
         ("Anisotropic", 0.0),
         ("Sheen", 0.0),
-        ("Clearcoat", 0.0),
     ),
     'v2': (
         ("Subsurface Weight", 0.0),
         ("Anisotropic", 0.0),
         ("Sheen Weight", 0.0),
-        ("Coat Weight", 0.0),
         ("Transmission Weight", 0.0),
         ("Thin Film Thickness", 0.0),
         ("Diffuse Roughness", 0.0),
@@ -345,6 +345,7 @@ class MaterialReader:
             roughness_texture=roughness_tex, **emission,
             **v2_inputs,
             **glass,
+            **read_coat(self, mat, node, version),
         )
         alpha = _clamp(finite_or(alpha, 1.0), 0.0, 1.0)
         if alpha < 1.0 or alpha_tex >= 0:

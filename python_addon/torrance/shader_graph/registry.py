@@ -154,9 +154,11 @@ CLOSURES = {
     'ShaderNodeBsdfPrincipled': "partly: Base Color, Metallic, Roughness, Specular (v2: Specular "
                                 "IOR Level, IOR, Specular Tint), Emission and its Strength, Alpha "
                                 "(alone: any graph, camera and shadow rays), Normal; v1 "
-                                "Transmission, IOR, Transmission Roughness. Reported: Subsurface, "
-                                "Sheen, Clearcoat / Coat, Anisotropic, v2 Transmission Weight, "
-                                "Thin Film, Diffuse Roughness",
+                                "Transmission, IOR, Transmission Roughness; the coat (v1 "
+                                "Clearcoat and its Roughness; v2 Coat Weight, Roughness, IOR, "
+                                "Tint; any graph). Reported: Subsurface, Sheen, Clearcoat / Coat "
+                                "Normal, Anisotropic, v2 Transmission Weight, Thin Film, Diffuse "
+                                "Roughness",
     'ShaderNodeBsdfDiffuse': "rendered: Color, Roughness (Lambert, Cycles' Oren-Nayar), Normal; "
                              "alone and in Mix/Add Shader trees alike",
     'ShaderNodeBsdfGlossy': "partly: Color, Roughness (GGX, Sharp) alone and in Mix/Add Shader "

@@ -1,0 +1,56 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The Principled BSDF's coat as add_material() arguments (coat_weight, coat_roughness, coat_ior,
+coat_tint): v1's Clearcoat and Clearcoat Roughness (Cycles 3.4's clearcoat: IOR 1.5, no tint),
+v2's Coat Weight, Coat Roughness, Coat IOR and Coat Tint. Each may come from any node graph the
+shader graph compiles (the closure's shader program then computes it: coat_*_register); a coat
+whose weight is 0 is left out (it costs nothing). The Coat Normal is not read: the coat shades
+with the closure's normal, and a linked Coat Normal is reported."""
+
+from .material_values import clamp, color3
+from .nodes import finite_or, source_socket
+
+# add_material() argument <- socket name, per node version (materials.principled_version).
+_SOCKETS = {
+    'v1': dict(coat_weight="Clearcoat", coat_roughness="Clearcoat Roughness"),
+    'v2': dict(coat_weight="Coat Weight", coat_roughness="Coat Roughness", coat_ior="Coat IOR",
+               coat_tint="Coat Tint"),
+}
+_NORMAL = {'v1': "Clearcoat Normal", 'v2': "Coat Normal"}
+_DEFAULTS = dict(coat_weight=0.0, coat_roughness=0.03, coat_ior=1.5, coat_tint=(1.0, 1.0, 1.0))
+
+
+def _value(reader, mat, node, name, key):
+    """The socket's value (its default, or its graph folded to a constant); with a graph that
+    varies, its default, the reader's shader program computing the input `key`."""
+    socket = node.inputs.get(name)
+    if socket is None:
+        return _DEFAULTS[key]
+    if source_socket(socket) is None:
+        return socket.default_value
+    return reader._graph_input(mat, node, socket, key)
+
+
+def read_coat(reader, mat, node, version):
+    """The coat's add_material() arguments of Principled BSDF `node` ({} without a coat)."""
+    sockets = _SOCKETS[version]
+    mark = dict(reader._program_inputs)
+    values = {key: _value(reader, mat, node, name, key) for key, name in sockets.items()}
+    weight = max(0.0, finite_or(values['coat_weight'], 0.0))
+    if weight == 0.0 and 'coat_weight' not in reader._program_inputs:
+        # No coat: what the other coat inputs' graphs added to the program is not needed.
+        for key in sockets:
+            if key not in mark:
+                reader._program_inputs.pop(key, None)
+        return {}
+    normal = node.inputs.get(_NORMAL[version])
+    if normal is not None and normal.is_linked:
+        reader.reporter.warning(
+            f"Material '{mat.name}': Torrance ignores the Principled BSDF input {normal.name} "
+            f"(the coat shades with the closure's normal)")
+    out = dict(coat_weight=weight,
+               coat_roughness=clamp(finite_or(values['coat_roughness'], 0.03), 0.0, 1.0))
+    if version == 'v2':
+        out['coat_ior'] = max(1.0, finite_or(values['coat_ior'], 1.5))
+        out['coat_tint'] = tuple(max(0.0, c) for c in color3(values['coat_tint'],
+                                                              _DEFAULTS['coat_tint']))
+    return out

@@ -1,0 +1,130 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Agreement of Torrance with Cycles on a grid of spheres (the Principled tests:
+test_principled_v2_agreement, test_principled_coat_agreement).
+
+Cycles renders the scene with two seeds: the first is the reference, the second against it
+measures Cycles' own noise. Torrance's renders (two seeds, averaged) must agree within it
+(bias_metrics: ratio = mean Torrance / mean Cycles, block mean = mean over 8x8-pixel blocks of
+|T - C| / max(C, 0.1 mean C)):
+    |ratio - 1| <= max(3 |ratio_noise - 1|, 0.01) overall and per channel,
+    block mean <= 1.5 x block mean of the noise,
+    each sphere and channel: |T - C| <= 4 sd + 0.5 % of C, sd the standard error of T - C
+    estimated from the seed-to-seed differences of 2x2-pixel bins over the sphere (Cycles' two
+    seeds, Torrance's two); the figures show each sphere's worst channel.
+"""
+
+import bpy
+import numpy as np
+from bpy_extras.object_utils import world_to_camera_view
+from mathutils import Vector
+
+from torrance_tools import render_settings, testing
+from torrance_tools.compare import bias_metrics
+from torrance_tools.testing import check
+
+
+def sphere_masks(scene, centres, radius, width, height):
+    """name -> boolean (height/2, width/2) mask of the 2x2-pixel bins inside 95 % of each
+    sphere's disk; centres: name -> (x, y, z)."""
+    bpy.context.view_layer.update()      # the camera's matrix_world
+    cam = scene.camera
+    yy, xx = (np.mgrid[0:height // 2, 0:width // 2] + 0.5) * 2.0
+    masks = {}
+    for name, (x, y, z) in centres.items():
+        centre = world_to_camera_view(scene, cam, Vector((x, y, z)))
+        edge = world_to_camera_view(scene, cam, Vector((x + radius, y, z)))
+        cx, cy = centre.x * width, (1.0 - centre.y) * height
+        r = abs(edge.x - centre.x) * width
+        masks[name] = np.hypot(xx - cx, yy - cy) < 0.95 * r - 1.0
+        check(masks[name].sum() > 20, f"sphere {name} covers too few pixels")
+    return masks
+
+
+def bins(img):
+    """(H/2, W/2, 3) means of 2x2-pixel bins (neighbouring pixels share samples through the
+    pixel filter, bins much less)."""
+    h, w = img.shape[:2]
+    return img[:, :, :3].reshape(h // 2, 2, w // 2, 2, 3).mean(axis=(1, 3))
+
+
+def standard_error(a, b, mask):
+    """Per channel, the standard error of one render's mean over `mask`, from two renders a, b
+    of different seeds."""
+    d = (bins(a) - bins(b))[mask]
+    return d.std(axis=0) / np.sqrt(2.0 * len(d))
+
+
+def render_cycles(scene, directory, seed, samples, bounces):
+    render_settings.setup_cycles(scene, samples, bounces, seed=seed)
+    img, seconds = testing.render(scene, directory, f"cycles_{seed}")
+    check(np.isfinite(img).all(), "NaN/Inf in Cycles' image")
+    return img, seconds
+
+
+def render_torrance(scene, directory, label, seeds, samples, bounces, model='PRINCIPLED'):
+    """Torrance's renders of `seeds`, and their seconds."""
+    images, seconds = [], 0.0
+    for seed in seeds:
+        render_settings.setup_torrance(scene, samples, bounces, seed=seed, brdf_model=model,
+                                       progressive_display=False)
+        img, t = testing.render(scene, directory, f"torrance_{label}_{seed}")
+        check(np.isfinite(img).all(), f"NaN/Inf in Torrance's image ({label})")
+        images.append(img)
+        seconds += t
+    return images, seconds
+
+
+class Agreement:
+    """Bounds from Cycles' seed-to-seed noise (refs: Cycles' renders of two seeds)."""
+
+    def __init__(self, refs, masks):
+        self.ref, self.masks = refs[0], masks
+        self.noise = bias_metrics(refs[1], refs[0])
+        self.ratio = max(3.0 * abs(self.noise["ratio"] - 1.0), 0.01)
+        self.block_mean = 1.5 * self.noise["block_mean"]
+        self.cycles_error = {n: standard_error(refs[0], refs[1], m) for n, m in masks.items()}
+
+    def check(self, images):
+        """(figures, violations) of Torrance's renders (one per seed) against the reference."""
+        img = np.mean(images, axis=0)
+        m = bias_metrics(img, self.ref)
+        out = []
+        for label, r in [("ratio", m["ratio"])] + list(zip("RGB", m["channels"], strict=True)):
+            if abs(r - 1.0) > self.ratio:
+                out.append(f"{label} {r:.4f} off 1 by more than {self.ratio:.4f}")
+        if m["block_mean"] > self.block_mean:
+            out.append(f"block mean {m['block_mean']:.4f} > {self.block_mean:.4f}")
+        # Each sphere's mean, per channel: within 4 standard errors of the difference (Torrance's
+        # mean of two seeds minus Cycles' one render) plus 0.5 %. Figures: the worst channel.
+        m["spheres"] = {}
+        for name, mask in self.masks.items():
+            t, c = bins(img)[mask].mean(axis=0), bins(self.ref)[mask].mean(axis=0)
+            sd = np.hypot(standard_error(images[0], images[1], mask) / np.sqrt(2.0),
+                          self.cycles_error[name])
+            bound = (4.0 * sd + 0.005 * c) / c
+            excess = np.abs(t / c - 1.0) / bound
+            k = int(np.argmax(excess))
+            m["spheres"][name] = (float(t[k] / c[k]), float(bound[k]))
+            if excess[k] > 1.0:
+                out.append(f"sphere {name} {'RGB'[k]} ratio {t[k] / c[k]:.4f} off 1 by more than "
+                           f"{bound[k]:.4f}")
+        return m, out
+
+
+def describe(m):
+    ch = "/".join(f"{c:.4f}" for c in m["channels"])
+    spheres = " ".join(f"{r:.3f}(+-{b:.3f})" for r, b in m.get("spheres", {}).values())
+    return (f"ratio {m['ratio']:.4f} ({ch}), block mean {m['block_mean']:.4f}"
+            + (f", spheres {spheres}" if spheres else ""))
+
+
+def report_faults(agreement, faults):
+    """Prints each fault's figures; returns the descriptions of those the bounds miss."""
+    missed = []
+    for description, fault_images in faults:
+        fm, caught = agreement.check(fault_images)
+        print(f"fault '{description}': {describe(fm)} -> "
+              f"{'caught: ' + '; '.join(caught) if caught else 'NOT CAUGHT'}", flush=True)
+        if not caught:
+            missed.append(description)
+    return missed
