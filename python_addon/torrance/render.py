@@ -6,7 +6,7 @@ import traceback
 
 import numpy as np
 
-from . import export, passes, preview
+from . import denoising, export, passes, preview
 from .brdf_model import model_note
 from .core_module import CoreMissing, load_core
 from .core_settings import core_settings
@@ -204,6 +204,11 @@ def _render(engine, depsgraph, reporter):
         reporter.info(f"Torrance does not render these passes of view layer "
                       f"'{view_layer.name}': {names}")
 
+    # Denoise (not for material previews): the guides' passes rendered too.
+    denoise = bool(ts.use_denoising) and not engine.is_preview
+    guides = [g for g in denoising.guide_passes(ts, available) if g not in core_passes] \
+        if denoise else []
+
     threads = int(rd.threads) if rd.threads_mode == 'FIXED' else 0
     note = model_note(ts.brdf_model)
     if note:
@@ -216,11 +221,14 @@ def _render(engine, depsgraph, reporter):
         window=None if (x0, y0, x1, y1) == (0, 0, width, height)
         else (x0, height - y1, x1, height - y0),
         threads=threads,
-        passes=core_passes,
+        passes=core_passes + guides,
         pass_alpha_threshold=float(getattr(view_layer, "pass_alpha_threshold", 0.5)),
         **passes.world_pass_settings(depsgraph.scene),
         **core_settings(ts),
     )
+
+    if denoise:
+        settings.filter_splatting = False     # the film whose noise the denoiser handles best
 
     session.begin()
     try:
@@ -235,7 +243,15 @@ def _render(engine, depsgraph, reporter):
         if nonfinite:
             reporter.warning(f"Torrance: {nonfinite} NaN/Inf pixel values in the result "
                              f"were replaced by 0")
-        session.write(image, result.passes if core_passes else {})
+        if denoise and not engine.test_break():
+            engine.update_stats("", "Torrance | Denoising")
+
+            def progress(done):
+                engine.update_progress(0.99 * done)
+                return not engine.test_break()
+            image, denoise = denoising.denoise_image(tc, image, result.passes, ts, reporter,
+                                                     progress)
+        session.write(image, {k: v for k, v in result.passes.items() if k in core_passes})
         if session.missing_passes:
             reporter.warning(f"Torrance: the render result has no pass(es) "
                              f"{', '.join(session.missing_passes)}; they were not written")
@@ -259,7 +275,7 @@ def _render(engine, depsgraph, reporter):
     last_stats.update(samples_done=int(result.samples_done), stopped=bool(result.stopped),
                       seconds=float(result.seconds), setup_seconds=float(result.setup_seconds),
                       passes=session.passes,
-                      render_passes=list(core_passes), samples_spent=spent,
+                      render_passes=list(core_passes), denoised=denoise, samples_spent=spent,
                       samples_per_pixel=spent / pixels,
                       time_limit_reached=bool(result.time_limit_reached),
                       adaptive_threshold=float(settings.adaptive_threshold),

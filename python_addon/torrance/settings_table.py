@@ -31,6 +31,25 @@ BRDF_MODELS = (
      "Blender 4.x's Principled BSDF as Cycles 4.x renders it, in any Blender"),
 )
 
+# Cycles' Denoise settings' items (Render Properties > Sampling > Render > Denoise).
+DENOISING_INPUT_PASSES = (
+    ('RGB', "None", "Don't use utility passes for denoising"),
+    ('RGB_ALBEDO', "Albedo", "Use albedo pass for denoising"),
+    ('RGB_ALBEDO_NORMAL', "Albedo and Normal", "Use albedo and normal passes for denoising"),
+)
+DENOISING_PREFILTERS = (
+    ('NONE', "None", "No prefiltering, use when guiding passes are noise-free"),
+    ('FAST', "Fast", "Denoise color and guiding passes together. Improves quality when guiding "
+     "passes are noisy using least amount of extra processing time"),
+    ('ACCURATE', "Accurate", "Prefilter noisy guiding passes before denoising color. Improves "
+     "quality when guiding passes are noisy using extra processing time"),
+)
+DENOISING_QUALITIES = (
+    ('HIGH', "High", "High quality"),
+    ('BALANCED', "Balanced", "Balanced between performance and quality"),
+    ('FAST', "Fast", "High performance"),
+)
+
 KINDS = ('INT', 'FLOAT', 'BOOL', 'ENUM')
 
 
@@ -58,6 +77,7 @@ _RENDER = "TORRANCE_RENDER_PT_sampling_render"
 _PREVIEW = "TORRANCE_RENDER_PT_sampling_preview"
 _ADVANCED = "TORRANCE_RENDER_PT_sampling_advanced"
 _GUIDING = "TORRANCE_RENDER_PT_sampling_path_guiding"
+_DENOISE = "TORRANCE_RENDER_PT_sampling_denoise"
 _LIGHT_PATHS = "TORRANCE_RENDER_PT_light_paths"
 _CLAMPING = "TORRANCE_RENDER_PT_light_paths_clamping"
 _SHADING = "TORRANCE_RENDER_PT_shading"
@@ -127,6 +147,22 @@ SETTINGS = (
             "learning; every sample is in the image",
             _GUIDING, core="guiding_training_fraction", viewport=False,
             options=dict(min=0.0, max=1.0, subtype='FACTOR')),
+    # Sampling > Denoise (use_denoising is drawn in its header)
+    Setting("use_denoising", 'BOOL', False, "Denoise",
+            "Denoise the rendered image with Intel Open Image Denoise (the library "
+            "Blender 4.x and 5.x bring; Blender 3.x: scripts/oidn or TORRANCE_OIDN_LIBRARY), "
+            "as Cycles. The render then uses the importance-sampled film, whose noise the "
+            "denoiser handles best",
+            _DENOISE, text=""),
+    Setting("denoising_input_passes", 'ENUM', 'RGB_ALBEDO_NORMAL', "Passes",
+            "Passes used by the denoiser to distinguish noise from shader and geometry detail",
+            _DENOISE, options=dict(items=DENOISING_INPUT_PASSES)),
+    Setting("denoising_prefilter", 'ENUM', 'ACCURATE', "Prefilter",
+            "Prefilter noisy guiding (albedo and normal) passes to improve denoising quality",
+            _DENOISE, options=dict(items=DENOISING_PREFILTERS)),
+    Setting("denoising_quality", 'ENUM', 'HIGH', "Quality",
+            "Overall denoising quality when using Open Image Denoise",
+            _DENOISE, options=dict(items=DENOISING_QUALITIES)),
     # Sampling > Advanced
     Setting("seed", 'INT', 0, "Seed",
             "Seed of the random sequences; renders with the same seed and settings "
