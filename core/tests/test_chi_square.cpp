@@ -60,6 +60,16 @@ struct Sampled {
   bool valid, is_delta;
 };
 
+// chi_square's sampler from a BSDF's sample(u_lobe, u) for one wo.
+template <typename SampleFn>
+auto drawn_by(SampleFn sample) {
+  return [sample](Rng& rng) {
+    const float u = rng.next_1d();
+    const BsdfSample s = sample(u, rng.next_2d());
+    return Sampled{s.wi, s.valid(), s.is_delta};
+  };
+}
+
 // Runs the test for one wo; returns a failure message, or "" when sampling agrees with the pdf.
 template <typename SampleFn, typename PdfFn>
 std::string chi_square(const Vec3& wo, float scale, uint32_t seed, double significance, SampleFn sample, PdfFn pdf) {
@@ -304,11 +314,7 @@ TEST(ChiSquare, ClosureNodesSamplingMatchesPdf) {
       const Vec3 axis_of = c.through ? Vec3(wo.x, wo.y, -wo.z) : wo;  // chi_square bins about its mirror
       const std::string failure = chi_square(
           axis_of, c.scale, seed++, significance,
-          [&](Rng& rng) {
-            const float u = rng.next_1d();
-            const BsdfSample s = c.bsdf.sample(wo, u, rng.next_2d(), c.backfacing);
-            return Sampled{s.wi, s.valid(), s.is_delta};
-          },
+          drawn_by([&](float u, const Vec2& u2) { return c.bsdf.sample(wo, u, u2, c.backfacing); }),
           [&](const Vec3& wi) { return c.bsdf.pdf(wo, wi, c.backfacing); });
       EXPECT_EQ(failure, "") << c.name << " cos_o=" << cos_o;
     }

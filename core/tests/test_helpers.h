@@ -25,4 +25,18 @@ inline const char* model_name(BrdfModel m) {
   return m == BrdfModel::Paper ? "PAPER" : m == BrdfModel::Principled ? "PRINCIPLED" : "PRINCIPLED_V2";
 }
 
+// The mean red weight of n samples of a BSDF (anything with sample(wo, u_lobe, u)) for wo: its
+// albedo there, as a white furnace sees it.
+template <typename Bsdf>
+double mean_sample_weight(const Bsdf& bsdf, const Vec3& wo, int n, uint32_t seed) {
+  Rng rng(seed, 0, 99);
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const float u = rng.next_1d();
+    const BsdfSample s = bsdf.sample(wo, u, rng.next_2d());
+    if (s.valid()) sum += s.weight.x;
+  }
+  return sum / n;
+}
+
 }  // namespace torrance::test

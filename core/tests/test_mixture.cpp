@@ -26,17 +26,6 @@ Material principled(const Vec3& color, float metallic, float roughness) {
   return m;
 }
 
-double mean_sample_weight(const MixtureBsdf& bsdf, const Vec3& wo, int n, uint32_t seed) {
-  Rng rng(seed, 0, 99);
-  double sum = 0.0;
-  for (int i = 0; i < n; ++i) {
-    const float u = rng.next_1d();
-    const BsdfSample s = bsdf.sample(wo, u, rng.next_2d());
-    if (s.valid()) sum += s.weight.x;
-  }
-  return sum / n;
-}
-
 TEST(Mixture, EvalAndPdfAreTheWeightedSums) {
   const MaterialBsdf plastic(principled(Vec3(0.8f, 0.2f, 0.1f), 0.0f, 0.4f), BrdfModel::Principled);
   const DiffuseBsdf diffuse(Vec3(0.3f, 0.6f, 0.9f), 0.5f);
@@ -86,7 +75,7 @@ TEST(Mixture, FurnaceLambertAndMirrorConserveEnergyAtAnyMix) {
       MixtureBsdf mix;  // Mix Shader (1 - fac) white Lambert, fac white mirror
       mix.add(DiffuseBsdf(Vec3(1.0f), 0.0f), 1.0f - fac, 1.0f);
       mix.add(GlossyBsdf(Vec3(1.0f), 0.0f), fac, 1.0f);
-      const double a = mean_sample_weight(mix, test::direction(cos_o, 0.2f), 200000, 7);
+      const double a = test::mean_sample_weight(mix, test::direction(cos_o, 0.2f), 200000, 7);
       EXPECT_NEAR(a, 1.0, 0.005) << "fac=" << fac << " cos_o=" << cos_o;
     }
 }
@@ -107,7 +96,7 @@ TEST(Mixture, FurnaceAlbedoIsTheWeightedSumOfTheClosures) {
         mix.add(a, w1, principled_sampling_albedo(dielectric));
         mix.add(b, w2, principled_sampling_albedo(metal));
         const double expected = w1 * qa + w2 * qb;
-        EXPECT_NEAR(mean_sample_weight(mix, wo, 200000, 11), expected, 0.01 * expected)
+        EXPECT_NEAR(test::mean_sample_weight(mix, wo, 200000, 11), expected, 0.01 * expected)
             << "w=" << w1 << "," << w2 << " cos_o=" << cos_o;
       }
 }
