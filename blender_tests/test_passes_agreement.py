@@ -4,7 +4,7 @@
 A perspective camera sees a floor (planar UVs; object pass index 1, material pass index 2), a
 ball (planar UVs; 3 and 5) and a box without UVs (7, 0) under a sun and a visible
 world, the sky in the top rows; World > Mist Pass starts at 2 m, 10 m deep, Linear; World >
-Ambient Occlusion > Distance 0.5 m. The view layer asks for Mist, UV, Position, Object and
+Ambient Occlusion > Distance 0.5 m. The view layer asks for Z, Mist, UV, Position, Object and
 Material Index, AO, Diffuse and Glossy Color/Direct/Indirect, Emission and Environment; the
 Render Result is saved as a multilayer EXR, whose passes must be there under Blender's names.
 Checks:
@@ -17,9 +17,10 @@ Checks:
   inside the objects only: at an edge against the sky the colour is that of the few samples
   that hit the object (Torrance's splatting filter gives every such pixel a little, Cycles' a
   sample or none), and there the quotient differs between the two by design;
-* Position, Object Index and Material Index (of the ray through the pixel's centre, Cycles'
-  first sample, unfiltered) equal Cycles' pixel by pixel away from edges (Position within
-  1 mm), the objects exported as meshes and as instances; 0 on the sky, where Mist is 1 and UV 0;
+* Depth, Position, Object Index and Material Index (of the ray through the pixel's centre,
+  Cycles' first sample, unfiltered) equal Cycles' pixel by pixel away from edges (Depth and
+  Position within 1 mm), the objects exported as meshes and as instances; on the sky Depth is
+  1e10, Position and UV 0, Mist 1;
 * Emit + Env + DiffCol x (DiffDir + DiffInd) + GlossCol x (GlossDir + GlossInd) = Combined
   (Cycles' composition), in Cycles' images and in Torrance's.
 
@@ -42,8 +43,9 @@ from torrance_tools.compare import bias_metrics
 from torrance_tools.testing import check
 
 W, H, SAMPLES, BOUNCES = 80, 60, 128, 4
-TOGGLES = ("use_pass_mist", "use_pass_uv", "use_pass_position", "use_pass_object_index",
-           "use_pass_material_index", "use_pass_ambient_occlusion", "use_pass_diffuse_color",
+TOGGLES = ("use_pass_z", "use_pass_mist", "use_pass_uv", "use_pass_position",
+           "use_pass_object_index", "use_pass_material_index", "use_pass_ambient_occlusion",
+           "use_pass_diffuse_color",
            "use_pass_diffuse_direct", "use_pass_diffuse_indirect", "use_pass_glossy_color",
            "use_pass_glossy_direct", "use_pass_glossy_indirect", "use_pass_emit",
            "use_pass_environment")
@@ -52,7 +54,7 @@ FILTERED = ("Combined", "Mist", "UV", "AO", "DiffCol", "DiffDir", "DiffInd", "Gl
 QUOTIENTS = ("DiffDir", "DiffInd", "GlossDir", "GlossInd")   # compared inside the objects
 # Each pass's channels in Blender's order (an EXR stores them sorted by name).
 CHANNELS = {"Combined": "RGBA", "Mist": "Z", "UV": "UVA", "Position": "XYZ", "IndexOB": "X",
-            "IndexMA": "X"}
+            "IndexMA": "X", "Depth": "Z"}
 OBJECTS = {"Floor": (1, 2), "Ball": (3, 5), "Box": (7, 0)}     # object, material pass index
 
 
@@ -167,16 +169,22 @@ def exact_failures(p, ref):
     err = np.abs(p["Position"] - ref["Position"]).max(axis=2)
     objects = keep & (ref_ob > 0)
     over = objects & (err > 1e-3)
-    print(f"  Position: max |error| {float(err[objects].max()):.2e} m on {int(objects.sum())} "
-          f"interior pixels")
+    depth_err = np.abs(p["Depth"] - ref["Depth"])[:, :, 0]
+    print(f"  Position, Depth: max |error| {float(err[objects].max()):.2e}, "
+          f"{float(depth_err[objects].max()):.2e} m on {int(objects.sum())} interior pixels")
     if over.any():
         bad.append(f"Position: {int(over.sum())} interior pixels off by more than 1 mm")
+    if (objects & (depth_err > 1e-3)).any():
+        bad.append(f"Depth: {int((objects & (depth_err > 1e-3)).sum())} interior pixels off by "
+                   f"more than 1 mm")
     sky = interior(ref_ob, 3) & (ref_ob == 0)
     if sky.any():
         if np.abs(p["Position"][sky]).max() > 0 or np.abs(p["UV"][sky]).max() > 0:
             bad.append("Position/UV not 0 on the sky")
         if np.abs(p["Mist"][sky] - 1.0).max() > 1e-6:
             bad.append("Mist not 1 on the sky")
+        if p["Depth"][sky].min() < 1e10:
+            bad.append("Depth not 1e10 on the sky")
     return bad
 
 
@@ -292,7 +300,7 @@ def main():
     ref = render_passes(scene, d, "cycles0")
     render_settings.setup_cycles(scene, SAMPLES, BOUNCES, seed=1)
     other = render_passes(scene, d, "cycles1")
-    wanted = {"Combined", "Mist", "UV", "Position", "IndexOB", "IndexMA", "AO", "DiffCol",
+    wanted = {"Combined", "Depth", "Mist", "UV", "Position", "IndexOB", "IndexMA", "AO", "DiffCol",
               "DiffDir", "DiffInd", "GlossCol", "GlossDir", "GlossInd", "Emit", "Env"}
     check(wanted <= set(ref), f"Cycles' multilayer EXR lacks {sorted(wanted - set(ref))}")
     bounds = pass_bounds(ref, other)

@@ -28,8 +28,8 @@ inline Pass divisor_of(Pass pass) {
   }
 }
 
-// Position, Object Index and Material Index of the ray through the pixel's centre (data_passes.cpp)
-// into r: Cycles' first sample.
+// Depth, Position, Object Index and Material Index of the ray through the pixel's centre
+// (data_passes.cpp) into r: Cycles' first sample.
 void first_sample_data(const PathContext& ctx, Ray ray, PathRadiance& r);
 
 inline float pass_scalar(Pass pass, const PathRadiance& r) {

@@ -351,8 +351,6 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
           path_luminance = luminance(out.environment);
           return out;
         }
-        out.depth = ctx.depth_from ? glm::length(hit.position - *ctx.depth_from)
-                                   : (passed_length + hit.t) * glm::dot(ray.dir, ctx.camera_forward);
         first_vertex.hit = hit;
         first_vertex.ray = ray;
         first_transparent_depth = path_state.transparent_depth;

@@ -56,7 +56,7 @@ struct PathRadiance {
   Vec3 emission{0.0f}, environment{0.0f};
   Vec3 diffuse_direct{0.0f}, diffuse_indirect{0.0f}, glossy_direct{0.0f}, glossy_indirect{0.0f};
   float alpha = 1.0f;
-  float depth = 1e10f;
+  float depth = 1e10f;  // the Depth pass: set by first_sample_data (film_passes.h) only
   Vec3 normal{0.0f}, albedo{0.0f}, glossy_color{0.0f};
   // The data passes of the first hit (0 on the world): the Mist pass's (1 - mist) x the mean of
   // the transparency the camera ray passed, the active UV map's (u, v, 1), the AO pass's

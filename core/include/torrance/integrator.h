@@ -22,7 +22,7 @@ namespace torrance {
 // Diffuse and Glossy Direct/Indirect passes by Diffuse and Glossy Color (Cycles' division), so
 // that Combined = Emit + Env + (DiffDir + DiffInd) x DiffCol + (GlossDir + GlossInd) x GlossCol.
 enum Pass : uint32_t {
-  kPassDepth = 1u << 0,             // distance from the camera plane (1e10 for the background)
+  kPassDepth = 1u << 0,             // distance from the camera plane, of the first sample (1e10: world)
   kPassNormal = 1u << 1,            // world-space shading normal at the first hit
   kPassAlbedo = 1u << 2,            // diffuse colour at the first hit: base colour (1 - metallic)(1 - transmission)
   kPassDiffuseDirect = 1u << 3,     // light reflected by the first hit's diffuse lobe, one bounce, / DiffCol
@@ -33,7 +33,7 @@ enum Pass : uint32_t {
   kPassEnvironment = 1u << 8,       // the world seen directly
   kPassMist = 1u << 9,              // 1 - the sample-mean of (1 - mist(distance)) (Cycles' Mist; 1 on the world)
   kPassUV = 1u << 10,               // the first hit's (u, v, 1) of the active UV map (0: no UVs, the world)
-  kPassPosition = 1u << 11,         // world position of the first hit of the pixel's first sample (0: world)
+  kPassPosition = 1u << 11,         // world position of the first hit of the pixel's centre (0: world)
   kPassObjectIndex = 1u << 12,      // its object's pass index, of the first sample (0: world)
   kPassMaterialIndex = 1u << 13,    // its material's pass index, of the first sample (0: world)
   kPassGlossyColor = 1u << 15,      // the first hit's glossy (and glass) closures' weight (GlossCol)
@@ -41,19 +41,19 @@ enum Pass : uint32_t {
                                     // ao_distance unoccluded (Cycles' AO pass; 0 on the world)
 };
 // The passes whose pixel is the pixel's first sample's value, unfiltered (Cycles' sample-0 passes).
-inline constexpr uint32_t kFirstSamplePasses = kPassPosition | kPassObjectIndex | kPassMaterialIndex;
+inline constexpr uint32_t kFirstSamplePasses = kPassDepth | kPassPosition | kPassObjectIndex | kPassMaterialIndex;
 struct PassInfo {
   Pass pass;
   const char* name;  // Blender's short pass names (Cycles' "DiffDir" etc.; "Albedo" for DiffCol)
   int channels;
 };
 inline constexpr PassInfo kPasses[] = {
-    {kPassDepth, "Depth", 1},          {kPassNormal, "Normal", 3},         {kPassAlbedo, "Albedo", 3},
+    {kPassNormal, "Normal", 3},         {kPassAlbedo, "Albedo", 3},
     {kPassDiffuseDirect, "DiffDir", 3}, {kPassDiffuseIndirect, "DiffInd", 3}, {kPassGlossyDirect, "GlossDir", 3},
     {kPassGlossyIndirect, "GlossInd", 3}, {kPassGlossyColor, "GlossCol", 3}, {kPassEmission, "Emit", 3},
     {kPassEnvironment, "Env", 3},
     {kPassMist, "Mist", 1},            {kPassUV, "UV", 3},                 {kPassAO, "AO", 3},
-    {kPassPosition, "Position", 3},
+    {kPassDepth, "Depth", 1},           {kPassPosition, "Position", 3},
     {kPassObjectIndex, "IndexOB", 1},  {kPassMaterialIndex, "IndexMA", 1},
 };
 
