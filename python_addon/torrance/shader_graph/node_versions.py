@@ -44,11 +44,13 @@ COLOR_NODE_SUCCESSORS = {
 REMOVED_NODES = {
     'ShaderNodeTexMusgrave': "merged into the Noise Texture's types in 4.1",
     'ShaderNodeBsdfGlossy': "4.0: the Glossy BSDF is ShaderNodeBsdfAnisotropic (merged)",
+    'ShaderNodeBsdfVelvet': "4.0: the Velvet BSDF is the Sheen BSDF's Ashikhmin distribution",
     **{old: f"5.0: {new} in mode {mode}" for old, (new, mode) in COLOR_NODE_SUCCESSORS.items()},
 }
 
 # Node types a newer Blender added, which the registry reads where the running Blender has them.
 ADDED_NODES = {
+    'ShaderNodeBsdfSheen': "4.0: the Sheen BSDF (Ashikhmin, the former Velvet, and Microfiber)",
     'ShaderNodeTexGabor': "4.3: the Gabor Texture",
     'ShaderNodeRadialTiling': "5.0: Radial Tiling",
 }
