@@ -21,6 +21,8 @@ export) must fail them:
 * Equiangular Cubemap Face: the face mirrored left to right.
 * Fisheye Equidistant 180 degrees at f/0.1 focused on the near sphere: the depth of field
   ignored.
+* Central Cylindrical (Blender 5.0+; skipped before), longitude -150..100 degrees, heights
+  -1..1.5 on a cylinder of radius 2: the heights not divided by the radius.
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \\
          --python blender_tests/test_camera_panoramic_agreement.py
@@ -159,6 +161,17 @@ def cubemap_face(scene):
     reset(scene, 'EQUIANGULAR_CUBEMAP_FACE', 64, 64)
 
 
+CYLINDER_RADIUS = 2.0
+
+
+def central_cylindrical(scene):
+    _cam, owner = reset(scene, 'CENTRAL_CYLINDRICAL', 96, 48)
+    owner.central_cylindrical_range_u_min = math.radians(-150.0)
+    owner.central_cylindrical_range_u_max = math.radians(100.0)
+    owner.central_cylindrical_range_v_min, owner.central_cylindrical_range_v_max = -1.0, 1.5
+    owner.central_cylindrical_radius = CYLINDER_RADIUS
+
+
 def fisheye_dof(scene):
     cam, owner = reset(scene, 'FISHEYE_EQUIDISTANT', 64, 64)
     cam.dof.use_dof = True
@@ -212,6 +225,11 @@ def mirrored_face(args):
     args["panorama"]["viewplane"] = [vp[1], vp[0], vp[2], vp[3]]
 
 
+def heights_not_over_radius(args):
+    c = args["panorama"]["cylinder"]
+    args["panorama"]["cylinder"] = [c[0], c[1], c[2] * CYLINDER_RADIUS, c[3] * CYLINDER_RADIUS]
+
+
 def no_dof(args):
     del args["fstop"]
 
@@ -233,13 +251,22 @@ def looking_backwards(original):
     return faulty
 
 
-def variants():
+def has_central_cylindrical(scene):
+    owner = settings_owner(scene.camera.data)
+    items = owner.bl_rna.properties["panorama_type"].enum_items
+    return "CENTRAL_CYLINDRICAL" in items.keys()
+
+
+def variants(scene):
     import torrance.export.camera as camera
     import torrance.export.scene as export_scene
 
     def fault(label, patch):
         return (label, camera, "camera_arguments", panorama_fault(patch))
-    return (
+    newer = ((("Central Cylindrical", central_cylindrical,
+               (fault("heights not over the radius", heights_not_over_radius),)),)
+             if has_central_cylindrical(scene) else ())
+    return newer + (
         ("Equirectangular, limits, shifted", equirectangular,
          (fault("latitude range swapped", swap_latitudes),
           fault("shift ignored", ignore_shift))),
@@ -286,7 +313,7 @@ def main():
     build(scene)
     d = testing.tempdir()
     problems = []
-    for label, setup, faults in variants():
+    for label, setup, faults in variants(scene):
         setup(scene)
         bpy.context.view_layer.update()
         print(f"--- {label}", flush=True)

@@ -130,9 +130,10 @@ PanoramaType parse_panorama_type(const std::string& s) {
   if (s == "MIRRORBALL") return PanoramaType::MirrorBall;
   if (s == "FISHEYE_LENS_POLYNOMIAL") return PanoramaType::FisheyeLensPolynomial;
   if (s == "EQUIANGULAR_CUBEMAP_FACE") return PanoramaType::EquiangularCubemapFace;
+  if (s == "CENTRAL_CYLINDRICAL") return PanoramaType::CentralCylindrical;
   throw py::value_error("panorama type must be one of EQUIRECTANGULAR, FISHEYE_EQUIDISTANT, "
                         "FISHEYE_EQUISOLID, MIRRORBALL, FISHEYE_LENS_POLYNOMIAL, "
-                        "EQUIANGULAR_CUBEMAP_FACE; got '" + s + "'");
+                        "EQUIANGULAR_CUBEMAP_FACE, CENTRAL_CYLINDRICAL; got '" + s + "'");
 }
 
 // set_camera's `panorama` dict (keys as PanoramaParams, Blender's names; missing keys keep the
@@ -150,6 +151,7 @@ PanoramaParams parse_panorama(const py::dict& d) {
     else if (key == "longitude_min") p.longitude_min = py::cast<float>(v);
     else if (key == "longitude_max") p.longitude_max = py::cast<float>(v);
     else if (key == "polynomial") p.polynomial = py::cast<std::array<float, 5>>(v);
+    else if (key == "cylinder") p.cylinder = py::cast<std::array<float, 4>>(v);
     else if (key == "sensor_width") p.sensor_width_mm = py::cast<float>(v);
     else if (key == "sensor_height") p.sensor_height_mm = py::cast<float>(v);
     else if (key == "viewplane") p.viewplane = py::cast<std::array<float, 4>>(v);
@@ -534,7 +536,8 @@ void init_scene(py::module_& m) {
           py::arg("rotation") = 0.0f, py::arg("ratio") = 1.0f, py::arg("panorama") = py::none(),
           "Blender camera, PERSP, ORTHO or PANO; matrix is camera-to-world (row-major, like matrix_world). "
           "PANO: panorama is a dict of type (Blender's panorama_type), fisheye_fov, fisheye_lens, "
-          "latitude_min/max, longitude_min/max (radians), polynomial (k0..k4), sensor_width/height (the "
+          "latitude_min/max, longitude_min/max (radians), polynomial (k0..k4), cylinder (Central Cylindrical's "
+          "u_min, u_max, v_min / radius, v_max / radius), sensor_width/height (the "
           "fitted sensor, mm), viewplane (left, right, bottom, top; default 0, 1, 0, 1, shift included). "
           "Depth of field: fstop (Blender's F-Stop, converted like Cycles) or aperture_radius (scene "
           "units), focus_distance, blades (< 3: round), rotation (radians), ratio (anamorphic).")

@@ -74,6 +74,13 @@ Vec3 equiangular_cubemap_face(float u, float v) {
                              std::tan(v * 2.0f * quarter - quarter)));
 }
 
+Vec3 central_cylindrical(const PanoramaParams& p, float u, float v) {
+  const auto& c = p.cylinder;
+  const float azimuth = -(c[0] + (c[1] - c[0]) * u);
+  const float height = c[2] + (c[3] - c[2]) * v;
+  return glm::normalize(Vec3(std::cos(azimuth), std::sin(azimuth), height));
+}
+
 }  // namespace
 
 void validate_panorama(const PanoramaParams& p) {
@@ -89,9 +96,11 @@ void validate_panorama(const PanoramaParams& p) {
     if (!finite(x)) throw std::invalid_argument("latitude and longitude limits must be finite");
   for (float x : p.polynomial)
     if (!finite(x)) throw std::invalid_argument("fisheye polynomial coefficients must be finite");
+  for (float x : p.cylinder)
+    if (!finite(x) || std::abs(x) > 1e6f) throw std::invalid_argument("central cylindrical ranges must be finite");
   for (float x : p.viewplane)
     if (!finite(x) || std::abs(x) > 1e6f) throw std::invalid_argument("panorama view plane must be finite");
-  if (int(p.type) < 0 || int(p.type) > int(PanoramaType::EquiangularCubemapFace))
+  if (int(p.type) < 0 || int(p.type) > int(PanoramaType::CentralCylindrical))
     throw std::invalid_argument("unknown panorama type");
 }
 
@@ -103,6 +112,7 @@ Vec3 panorama_direction(const PanoramaParams& p, float u, float v) {
     case PanoramaType::MirrorBall: return mirror_ball(u, v);
     case PanoramaType::FisheyeLensPolynomial: return fisheye_lens_polynomial(p, u, v);
     case PanoramaType::EquiangularCubemapFace: return equiangular_cubemap_face(u, v);
+    case PanoramaType::CentralCylindrical: return central_cylindrical(p, u, v);
   }
   return Vec3(0.0f);
 }

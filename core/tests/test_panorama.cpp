@@ -118,6 +118,17 @@ TEST(Panorama, EquiangularCubemapFace) {
   expect_dir(cam.generate_ray(24, 16), off_axis(0.25f * kPi / 2.0f, kRight));  // equiangular
 }
 
+TEST(Panorama, CentralCylindrical) {
+  CameraParams p = panoramic(PanoramaType::CentralCylindrical);
+  p.panorama.cylinder = {-1.0f, 1.5f, -0.5f, 0.8f};  // longitudes; heights over the radius
+  const Camera cam(p, 50, 26, 1, 1);
+  // Longitude from the view axis towards the right, the height on a unit cylinder.
+  auto at = [](float lon, float h) { return std::cos(lon) * kForward + std::sin(lon) * kRight + h * kUp; };
+  expect_dir(cam.generate_ray(0, 13), at(-1.0f, 0.15f));
+  expect_dir(cam.generate_ray(50, 0), at(1.5f, 0.8f));
+  expect_dir(cam.generate_ray(25, 26), at(0.25f, -0.5f));
+}
+
 TEST(Panorama, CameraFrameAndSphericalClipping) {
   // A camera at (1, 2, 3) turned 90 degrees about Z: it looks down -Z, its right is +Y.
   CameraParams p = panoramic(PanoramaType::Equirectangular);

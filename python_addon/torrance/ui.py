@@ -372,7 +372,7 @@ class TORRANCE_RENDER_PT_compatibility(TorrancePanel, Panel):
         col.label(text="Not rendered by Torrance:")
         for text in ("Volumes, subsurface, transmission, sheen",
                      "Shader nodes other than Principled / Diffuse / Emission",
-                     "Motion blur, Central Cylindrical panoramas (5.x)"):
+                     "Motion blur"):
             col.label(text=text, icon='DOT')
 
 
@@ -508,6 +508,11 @@ _PANORAMA_SETTINGS = {
                         ("longitude_min", "Longitude Min"), ("longitude_max", "Max")),
     'FISHEYE_LENS_POLYNOMIAL': (("fisheye_fov", None),) + tuple(
         (f"fisheye_polynomial_k{i}", f"K{i}") for i in range(5)),
+    'CENTRAL_CYLINDRICAL': (("central_cylindrical_range_u_min", "Longitude Min"),
+                            ("central_cylindrical_range_u_max", "Max"),
+                            ("central_cylindrical_range_v_min", "Height Min"),
+                            ("central_cylindrical_range_v_max", "Max"),
+                            ("central_cylindrical_radius", "Radius")),
 }
 
 

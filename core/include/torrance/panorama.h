@@ -17,6 +17,9 @@
 //                     through (2u - 1, ., 2v - 1); the ball's centre reflects back along -Y.
 //   EQUIANGULAR_CUBEMAP_FACE  one face of an equiangular cube map: (1, tan(pi/2 (1 - u) - pi/4),
 //                     tan(pi/2 v - pi/4)), normalised.
+//   CENTRAL_CYLINDRICAL  (Blender 5.x) the point of a unit cylinder about +Z at azimuth
+//                     -(u_min + (u_max - u_min) u) (u_min.. measured towards the image's right)
+//                     and height v_min + (v_max - v_min) v (heights over the radius), normalised.
 #pragma once
 
 #include "torrance/math.h"
@@ -32,6 +35,7 @@ enum class PanoramaType {
   MirrorBall,
   FisheyeLensPolynomial,
   EquiangularCubemapFace,
+  CentralCylindrical,
 };
 
 struct PanoramaParams {
@@ -41,6 +45,8 @@ struct PanoramaParams {
   float latitude_min = -0.5f * kPi, latitude_max = 0.5f * kPi;  // radians
   float longitude_min = -kPi, longitude_max = kPi;
   std::array<float, 5> polynomial{0.0f, 0.0f, 0.0f, 0.0f, 0.0f};  // k0..k4
+  // CENTRAL_CYLINDRICAL: u_min, u_max (radians), v_min, v_max (heights divided by the radius).
+  std::array<float, 4> cylinder{-kPi, kPi, -1.0f, 1.0f};
   // The sensor the fisheyes (equisolid, polynomial) project onto, in mm: Cycles' sensorwidth and
   // sensorheight, the fitted sensor size across the render's width and height.
   float sensor_width_mm = 36.0f, sensor_height_mm = 24.0f;

@@ -2,10 +2,10 @@
 """A panoramic camera's settings as Cycles syncs them (blender/camera.cpp): the set_camera
 `panorama` dict. Blender 3.x keeps them on camera.data.cycles, 4.x+ on camera.data."""
 
-# Blender's panorama types the core renders (Cycles' kernel/camera/projection.h); 5.x's
-# Central Cylindrical is not among them.
+# Blender's panorama types the core renders (Cycles' kernel/camera/projection.h; Central
+# Cylindrical since Blender 5.0).
 RENDERED_TYPES = ('EQUIRECTANGULAR', 'FISHEYE_EQUIDISTANT', 'FISHEYE_EQUISOLID', 'MIRRORBALL',
-                  'FISHEYE_LENS_POLYNOMIAL', 'EQUIANGULAR_CUBEMAP_FACE')
+                  'FISHEYE_LENS_POLYNOMIAL', 'EQUIANGULAR_CUBEMAP_FACE', 'CENTRAL_CYLINDRICAL')
 
 
 def panorama_owner(cam):
@@ -42,7 +42,14 @@ def panorama_settings(cam, render, viewplane=(0.0, 1.0, 0.0, 1.0)):
     width, height = fitted_sensor(cam, render)
     left, right, bottom, top = viewplane
     sx, sy = float(cam.shift_x), float(cam.shift_y)
-    return dict(
+    extra = {}
+    if kind == 'CENTRAL_CYLINDRICAL':       # heights over the radius, as Cycles syncs them
+        radius = float(owner.central_cylindrical_radius)
+        extra["cylinder"] = [float(owner.central_cylindrical_range_u_min),
+                             float(owner.central_cylindrical_range_u_max),
+                             float(owner.central_cylindrical_range_v_min) / radius,
+                             float(owner.central_cylindrical_range_v_max) / radius]
+    return dict(extra,
         type=kind,
         fisheye_fov=float(owner.fisheye_fov),
         fisheye_lens=float(owner.fisheye_lens),
