@@ -54,7 +54,7 @@ def test_camera_argument_errors():
     with pytest.raises(ValueError, match="unknown panorama setting"):
         scene.set_camera(eye, type="PANO", panorama=dict(fov=1.0))
     with pytest.raises(ValueError, match="panorama type"):
-        scene.set_camera(eye, type="PANO", panorama=dict(type="CENTRAL_CYLINDRICAL"))
+        scene.set_camera(eye, type="PANO", panorama=dict(type="STEREOGRAPHIC"))
     with pytest.raises(ValueError, match="field of view"):
         scene.set_camera(eye, type="PANO", panorama=dict(type="FISHEYE_EQUIDISTANT", fisheye_fov=0))
     scene.set_camera(eye, type="PANO", panorama=dict(type="EQUIRECTANGULAR", latitude_min=-1.0,
