@@ -12,6 +12,7 @@
   in place (no new scene), and its image equals that of a scene built afresh;
 * the viewport's studio HDRI (Scene World off) lights the scene;
 * the preview policy; the panels' messages;
+* the viewport's denoiser shows denoised images, closer to converged;
 * instances of every kind (collections, geometry nodes' geometry) render as in the final render.
 """
 
@@ -612,6 +613,48 @@ def test_instances(tv, tc):
     state.close()
 
 
+def test_denoise(tv, tc, scene):
+    """Sampling > Viewport > Denoise: the full-resolution images from the start sample on are
+    denoised on a thread and shown once ready; the last one is denoised, and much closer to a
+    converged render than the same viewport undenoised."""
+    ts = scene.torrance
+    w, h = 96, 72
+    scene.render.resolution_x, scene.render.resolution_y = w, h
+    viewport_samples, ts.viewport_samples = ts.viewport_samples, 1
+    images = {}
+    for denoise in (False, True):
+        ts.use_preview_denoising = denoise
+        ts.preview_denoising_start_sample = 1
+        state = tv.ViewportState(tc)
+        state.sync(bpy.context.evaluated_depsgraph_get())
+        state.ensure_render(camera_view(tv, scene, w, h), tv.viewport_settings(scene),
+                            start_res=64, denoise=tv.viewport_denoise(scene))
+        wait_done(state)
+        st = state.render.stats()
+        check(st["denoised"] == denoise and st["denoise_error"] is None,
+              f"denoise {denoise}: {st} {state.denoise_error}")
+        images[denoise] = state.render.image.copy()
+        if denoise:
+            print(f"denoised viewport: first denoised image {st['first_denoised_seconds']:.3f} s "
+                  f"(first image {st['first_image_seconds']:.3f} s), "
+                  f"{state.render.denoiser.images} images denoised")
+        state.close()
+    ts.use_preview_denoising = False
+    ts.viewport_samples = viewport_samples
+    samples = ts.samples
+    ts.samples, ts.use_filter_splatting = 256, False
+    reference, _ = testing.render(scene, testing.tempdir())
+    ts.samples, ts.use_filter_splatting = samples, True
+
+    def rel_mse(img):
+        return float(np.mean((img[..., :3] - reference[..., :3]) ** 2
+                             / (reference[..., :3] ** 2 + 1e-2)))
+    noisy, denoised = rel_mse(images[False]), rel_mse(images[True])
+    print(f"viewport at 1 sample against 256 spp: relMSE {noisy:.4f}, "
+          f"denoised {denoised:.4f}")
+    check(denoised < 0.5 * noisy, "the denoised viewport must be much closer to converged")
+
+
 def main():
     addon = testing.addon()
     tv = addon.viewport
@@ -625,6 +668,7 @@ def main():
             ("preview policy", test_preview_policy, (addon, scene)),
             ("panel messages", test_messages, (addon, scene)),
             ("panels", test_panels, (addon,)),
+            ("denoise", test_denoise, (tv, tc, scene)),
             ("instances", test_instances, (tv, tc))):
         t0 = time.perf_counter()
         print(f"--- {name}")

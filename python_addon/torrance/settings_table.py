@@ -78,6 +78,7 @@ _PREVIEW = "TORRANCE_RENDER_PT_sampling_preview"
 _ADVANCED = "TORRANCE_RENDER_PT_sampling_advanced"
 _GUIDING = "TORRANCE_RENDER_PT_sampling_path_guiding"
 _DENOISE = "TORRANCE_RENDER_PT_sampling_denoise"
+_VIEWPORT_DENOISE = "TORRANCE_RENDER_PT_sampling_viewport_denoise"
 _LIGHT_PATHS = "TORRANCE_RENDER_PT_light_paths"
 _CLAMPING = "TORRANCE_RENDER_PT_light_paths_clamping"
 _SHADING = "TORRANCE_RENDER_PT_shading"
@@ -96,6 +97,20 @@ SETTINGS = (
             "shows after every change (drawn upscaled until the full resolution "
             "arrives). Smaller appears faster",
             _VIEWPORT, options=dict(min=16, max=2048, soft_max=512, subtype='PIXEL')),
+    # Sampling > Viewport > Denoise (use_preview_denoising is drawn in its header)
+    Setting("use_preview_denoising", 'BOOL', False, "Use Viewport Denoising",
+            "Denoise the image in the 3D viewport (Open Image Denoise, on a thread of its own: "
+            "the noisy image shows until the denoised one is ready; the colour alone guides it)",
+            _VIEWPORT_DENOISE, text=""),
+    Setting("preview_denoising_start_sample", 'INT', 1, "Start Sample",
+            "Sample to start denoising the preview at",
+            _VIEWPORT_DENOISE, options=dict(min=0, max=1 << 24)),
+    Setting("preview_denoising_prefilter", 'ENUM', 'FAST', "Prefilter",
+            "Prefilter noisy guiding (albedo and normal) passes to improve denoising quality",
+            _VIEWPORT_DENOISE, options=dict(items=DENOISING_PREFILTERS)),
+    Setting("preview_denoising_quality", 'ENUM', 'BALANCED', "Quality",
+            "Overall denoising quality when using Open Image Denoise",
+            _VIEWPORT_DENOISE, options=dict(items=DENOISING_QUALITIES)),
     # Sampling > Render
     Setting("use_adaptive_sampling", 'BOOL', False, "Use Adaptive Sampling",
             "Automatically reduce the number of samples per pixel based on estimated "

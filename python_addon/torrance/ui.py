@@ -214,6 +214,22 @@ class TORRANCE_RENDER_PT_sampling_viewport(TorrancePanel, Panel):
         layout.prop(context.scene.render, "preview_pixel_size", text="Pixel Size")
 
 
+class TORRANCE_RENDER_PT_sampling_viewport_denoise(TorrancePanel, Panel):
+    bl_label = "Denoise"
+    bl_context = "render"
+    bl_parent_id = "TORRANCE_RENDER_PT_sampling_viewport"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    def draw_header(self, context):
+        _setting(self.layout, context.scene.torrance, "use_preview_denoising")
+
+    def draw(self, context):
+        layout = _split(self.layout)
+        ts = context.scene.torrance
+        layout.active = ts.use_preview_denoising
+        _panel_settings(layout, ts, self)
+
+
 class TORRANCE_RENDER_PT_sampling_render(TorrancePanel, Panel):
     bl_label = "Render"
     bl_context = "render"
@@ -562,6 +578,7 @@ classes = (
     TORRANCE_VIEW_LAYER_PT_passes,
     TORRANCE_RENDER_PT_sampling,
     TORRANCE_RENDER_PT_sampling_viewport,
+    TORRANCE_RENDER_PT_sampling_viewport_denoise,
     TORRANCE_RENDER_PT_sampling_render,
     TORRANCE_RENDER_PT_sampling_preview,
     TORRANCE_RENDER_PT_sampling_denoise,

@@ -40,7 +40,8 @@ from .callbacks import free, view_draw, view_update
 from .camera import View, camera_from_matrices, region_view
 from .progressive import ProgressiveRender, coarse_sizes, running_renders, wait_stopped
 from .scene_cache import SceneCache
-from .settings import UNLIMITED_SAMPLES, shading_options, start_resolution, viewport_settings
+from .settings import (UNLIMITED_SAMPLES, shading_options, start_resolution, viewport_denoise,
+                       viewport_settings)
 from .state import ViewportState, last_stats, open_states
 
 __all__ = (
@@ -48,6 +49,7 @@ __all__ = (
     "View", "camera_from_matrices", "region_view",
     "ProgressiveRender", "coarse_sizes", "running_renders", "wait_stopped",
     "SceneCache",
-    "UNLIMITED_SAMPLES", "shading_options", "start_resolution", "viewport_settings",
+    "UNLIMITED_SAMPLES", "shading_options", "start_resolution", "viewport_denoise",
+    "viewport_settings",
     "ViewportState", "last_stats", "open_states",
 )

@@ -7,7 +7,8 @@ import traceback
 from ..core_module import load_core
 from ..reporting import Reporter
 from .camera import region_view
-from .settings import UNLIMITED_SAMPLES, shading_options, start_resolution, viewport_settings
+from .settings import (UNLIMITED_SAMPLES, shading_options, start_resolution, viewport_denoise,
+                       viewport_settings)
 from .state import ViewportState
 
 FIRST_IMAGE_WAIT = 0.05         # seconds view_draw may wait for the coarse image of a new view
@@ -83,7 +84,7 @@ def view_draw(engine, context, depsgraph):
             # below 0.5; Cycles shows Opacity x HDRI, black at the default 0).
             state.display.opaque = not settings["transparent_background"]
             settings["transparent_background"] = True
-        if state.ensure_render(view, settings, start_resolution(scene)):
+        if state.ensure_render(view, settings, start_resolution(scene), viewport_denoise(scene)):
             state.wait_first_image(FIRST_IMAGE_WAIT)
         state.poll()
         region = context.region
@@ -99,7 +100,8 @@ def view_draw(engine, context, depsgraph):
             else:
                 done = "" if not r.finished else " | Done"
                 total = "" if r.samples_total >= UNLIMITED_SAMPLES else f"/{r.samples_total}"
-                _status(engine, f"Torrance | Sample {r.samples_done}{total}{done}")
+                denoise = denoise_status(state, r)
+                _status(engine, f"Torrance | Sample {r.samples_done}{total}{denoise}{done}")
         if state.refining():
             state.ensure_timer(engine)
     except Exception as exc:
@@ -107,6 +109,14 @@ def view_draw(engine, context, depsgraph):
         if state is not None:
             state.error = str(exc)
         _status(engine, f"Torrance: {exc}")
+
+
+def denoise_status(state, render):
+    """The status line's word on viewport denoising ("" when it is off)."""
+    why = state.denoise_error or (render.denoiser.error if render.denoiser else None)
+    if why:
+        return f" | Not denoised: {why}"
+    return " | Denoised" if render.denoised else ""
 
 
 def free(engine):

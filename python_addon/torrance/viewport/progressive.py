@@ -10,6 +10,8 @@ import weakref
 
 import numpy as np
 
+from .denoise_worker import DenoiseWorker
+
 def coarse_sizes(width, height, start_res):
     """The sizes of the coarse images shown before the full resolution: the longer side
     start_res pixels, then doubled while the image stays below 0.35 of the view's side
@@ -70,9 +72,11 @@ def running_renders():
 
 class ProgressiveRender:
     """A coarse image (1 sample), then the full resolution up to `samples`, each on a
-    tc.RenderSession. poll() picks up new images; stop() ends it promptly."""
+    tc.RenderSession. poll() picks up new images; stop() ends it promptly. denoise: None, or
+    (DenoiseWorker's denoise function, start sample): the full-resolution images from that
+    many samples on are denoised on a thread and shown when ready."""
 
-    def __init__(self, tc, tc_scene, view, settings, start_res=128):
+    def __init__(self, tc, tc_scene, view, settings, start_res=128, denoise=None):
         self.tc = tc
         self.scene = tc_scene
         self.view = view
@@ -98,6 +102,10 @@ class ProgressiveRender:
         self.full_image_seconds = None    # ... to the first full-resolution image
         self.done_seconds = None          # ... to the last sample
         self.first_draw_seconds = None    # ... to its first image on screen (viewport)
+        self.first_denoised_seconds = None   # ... to the first denoised image
+        self.denoised = False             # the image shown is denoised
+        self._denoise_start = denoise[1] if denoise else 0
+        self.denoiser = DenoiseWorker(denoise[0]) if denoise else None
         _renders.add(self)
         self.stopped = False
         self._drained = False
@@ -133,9 +141,13 @@ class ProgressiveRender:
         """All samples at full resolution rendered (or failed/stopped): nothing more to poll."""
         if self.stopped or self.error is not None:
             return True
-        return (self.level == len(self.levels) - 1 and self.session is not None
+        done = (self.level == len(self.levels) - 1 and self.session is not None
                 and self.session.finished and self.image_level == self.level
                 and self._drained)
+        if (done and self.denoiser is not None and self.denoiser.error is None
+                and self.samples_done >= self._denoise_start):
+            return self.denoiser.idle and self.denoised   # the last image denoised and shown
+        return done
 
     def start(self):
         self.t_start = time.perf_counter()
@@ -172,12 +184,18 @@ class ProgressiveRender:
             self.samples_done = int(done)
             self.image_level = self.level
             self.image_serial += 1
+            self.denoised = False
             new = True
+            if (self.denoiser is not None and self.level == len(self.levels) - 1
+                    and self.samples_done >= self._denoise_start):
+                self.denoiser.submit(self.image_serial, image)
             now = time.perf_counter() - self.t_start
             if self.first_image_seconds is None:
                 self.first_image_seconds = now
             if self.level == len(self.levels) - 1 and self.full_image_seconds is None:
                 self.full_image_seconds = now
+        if self.denoiser is not None:
+            new = self._take_denoised() or new
         if finished:
             self._drained = session.latest(self.version) is None
             err = session.error
@@ -190,9 +208,23 @@ class ProgressiveRender:
                 self.done_seconds = time.perf_counter() - self.t_start
         return new
 
+    def _take_denoised(self):
+        """Shows the denoiser's newest image, if it has one. True if so."""
+        got = self.denoiser.result()
+        if got is None:
+            return False
+        self.image = got[1]
+        self.image_serial += 1
+        self.denoised = True
+        if self.first_denoised_seconds is None:
+            self.first_denoised_seconds = time.perf_counter() - self.t_start
+        return True
+
     def stop(self, wait=True):
         """Stops the render; with wait=False the core's thread ends in the background."""
         self.stopped = True
+        if self.denoiser is not None:
+            self.denoiser.close()
         if self.session is not None:
             if wait:
                 self.session.stop()
@@ -207,4 +239,7 @@ class ProgressiveRender:
                     first_image_seconds=self.first_image_seconds,
                     full_image_seconds=self.full_image_seconds,
                     done_seconds=self.done_seconds,
-                    first_draw_seconds=self.first_draw_seconds, error=self.error)
+                    first_draw_seconds=self.first_draw_seconds,
+                    first_denoised_seconds=self.first_denoised_seconds, denoised=self.denoised,
+                    denoise_error=None if self.denoiser is None else self.denoiser.error,
+                    error=self.error)

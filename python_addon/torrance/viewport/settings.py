@@ -22,7 +22,16 @@ def viewport_settings(scene):
         # would be too young to pay, and a render border then shows the full view's own pixels.
         guiding=False,
         efficiency_roulette=False,
-    )
+    ) | ({"filter_splatting": False} if ts.use_preview_denoising else {})  # (denoising.py)
+
+
+def viewport_denoise(scene):
+    """The viewport's denoising options (Sampling > Viewport > Denoise), or None when off."""
+    ts = scene.torrance
+    if not ts.use_preview_denoising:
+        return None
+    return dict(start_sample=int(ts.preview_denoising_start_sample),
+                prefilter=ts.preview_denoising_prefilter, quality=ts.preview_denoising_quality)
 
 
 def start_resolution(scene):

@@ -36,6 +36,7 @@ class ViewportState:
         self.reporter = Reporter(None)
         self.error = None
         self.restarts = 0
+        self.denoise_error = None         # why the viewport can not denoise (no library)
         self.options = {}
         self.t_created = time.perf_counter()
         self.first_draw_seconds = None      # engine created -> first image drawn
@@ -61,23 +62,43 @@ class ViewportState:
         return True
 
     # -- render ------------------------------------------------------------------------------
-    def ensure_render(self, view, settings, start_res=128):
-        """Restarts the progressive render if the scene, view or settings changed."""
+    def ensure_render(self, view, settings, start_res=128, denoise=None):
+        """Restarts the progressive render if the scene, view or settings changed. denoise:
+        None or viewport_denoise()'s options."""
         if self.tc_scene is None:
             return False
         if view.empty:                    # an empty render border: nothing to render
             self.stop_render()
             self.display.clear()
             return False
-        key = (self.scene_serial, view.key, tuple(sorted(settings.items())), start_res)
+        key = (self.scene_serial, view.key, tuple(sorted(settings.items())), start_res,
+               None if denoise is None else tuple(sorted(denoise.items())))
         if self.render is not None and key == self.render_key:
             return False
         self.stop_render()
-        self.render = ProgressiveRender(self.tc, self.tc_scene, view, settings, start_res)
+        self.render = ProgressiveRender(self.tc, self.tc_scene, view, settings, start_res,
+                                        self._denoise_function(denoise))
         self.render_key = key
         self.restarts += 1
         self.render.start()
         return True
+
+    def _denoise_function(self, options):
+        """ProgressiveRender's denoise argument for viewport_denoise()'s options, or None
+        (denoise_error says why when a library is missing)."""
+        self.denoise_error = None
+        if options is None:
+            return None
+        from ..denoising import denoiser
+        d, why = denoiser(self.tc)
+        if d is None:
+            self.denoise_error = why
+            return None
+
+        def denoise(rgb, progress):
+            return d.denoise(rgb, prefilter=options["prefilter"], quality=options["quality"],
+                             progress=progress)
+        return denoise, options["start_sample"]
 
     def wait_first_image(self, timeout):
         """Right after a restart: waits up to `timeout` seconds for the coarse image, so the
