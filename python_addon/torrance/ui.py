@@ -214,20 +214,29 @@ class TORRANCE_RENDER_PT_sampling_viewport(TorrancePanel, Panel):
         layout.prop(context.scene.render, "preview_pixel_size", text="Pixel Size")
 
 
-class TORRANCE_RENDER_PT_sampling_viewport_denoise(TorrancePanel, Panel):
-    bl_label = "Denoise"
-    bl_context = "render"
-    bl_parent_id = "TORRANCE_RENDER_PT_sampling_viewport"
-    bl_options = {'DEFAULT_CLOSED'}
+class _SwitchedPanel:
+    """A panel with a switch (the setting `switch`) in its header and, active with it, the other
+    settings the table puts in the panel."""
+    switch = None
 
     def draw_header(self, context):
-        _setting(self.layout, context.scene.torrance, "use_preview_denoising")
+        _setting(self.layout, context.scene.torrance, self.switch)
 
     def draw(self, context):
         layout = _split(self.layout)
         ts = context.scene.torrance
-        layout.active = ts.use_preview_denoising
-        _panel_settings(layout, ts, self)
+        layout.active = getattr(ts, self.switch)
+        for setting in in_panel(type(self).__name__):
+            if setting.prop != self.switch:
+                layout.prop(ts, setting.prop, text=setting.panel_text)
+
+
+class TORRANCE_RENDER_PT_sampling_viewport_denoise(_SwitchedPanel, TorrancePanel, Panel):
+    bl_label = "Denoise"
+    bl_context = "render"
+    bl_parent_id = "TORRANCE_RENDER_PT_sampling_viewport"
+    bl_options = {'DEFAULT_CLOSED'}
+    switch = "use_preview_denoising"
 
 
 class TORRANCE_RENDER_PT_sampling_render(TorrancePanel, Panel):
@@ -275,35 +284,19 @@ class TORRANCE_RENDER_PT_sampling_advanced(TorrancePanel, Panel):
         _panel_settings(_split(self.layout), context.scene.torrance, self)
 
 
-class TORRANCE_RENDER_PT_sampling_path_guiding(TorrancePanel, Panel):
+class TORRANCE_RENDER_PT_sampling_path_guiding(_SwitchedPanel, TorrancePanel, Panel):
     bl_label = "Path Guiding"
     bl_context = "render"
     bl_parent_id = "TORRANCE_RENDER_PT_sampling"
     bl_options = {'DEFAULT_CLOSED'}
-
-    def draw_header(self, context):
-        _setting(self.layout, context.scene.torrance, "use_guiding")
-
-    def draw(self, context):
-        layout = _split(self.layout)
-        ts = context.scene.torrance
-        layout.active = ts.use_guiding
-        _setting(layout, ts, "guiding_training_fraction")
+    switch = "use_guiding"
 
 
-class TORRANCE_RENDER_PT_sampling_denoise(TorrancePanel, Panel):
+class TORRANCE_RENDER_PT_sampling_denoise(_SwitchedPanel, TorrancePanel, Panel):
     bl_label = "Denoise"
     bl_context = "render"
     bl_parent_id = "TORRANCE_RENDER_PT_sampling"
-
-    def draw_header(self, context):
-        _setting(self.layout, context.scene.torrance, "use_denoising")
-
-    def draw(self, context):
-        layout = _split(self.layout)
-        ts = context.scene.torrance
-        layout.active = ts.use_denoising
-        _panel_settings(layout, ts, self)
+    switch = "use_denoising"
 
 
 class TORRANCE_RENDER_PT_light_paths(TorrancePanel, Panel):
