@@ -158,13 +158,20 @@ def _driver(result_path, shots_dir):
         scene.render.engine = 'TORRANCE'
         return pixels
 
-    def block_difference(a, b):
-        """|a - b| of the 8x8 block means of two screenshots' grey (the two renders' noise
-        averages out) and the brightness ratio a / b."""
-        a, b = a.mean(axis=2), b.mean(axis=2)
+    def check_like_cycles(key, label, torrance_px, cycles_px):
+        """Checks (as `label`, results[key]) that two screenshots' regions agree: |Torrance -
+        Cycles| of their grey's 8x8 block means (the two renders' noise averages out) below 2.5
+        on average and 8 at the 95th percentile (of 255), brightness within 3 %."""
+        a, b = torrance_px.mean(axis=2), cycles_px.mean(axis=2)
         hh, ww = (a.shape[0] // 8) * 8, (a.shape[1] // 8) * 8
         blocks = lambda x: x[:hh, :ww].reshape(hh // 8, 8, ww // 8, 8).mean(axis=(1, 3))  # noqa: E731
-        return np.abs(blocks(a) - blocks(b)), float(a.mean() / max(b.mean(), 1e-6))
+        diff = np.abs(blocks(a) - blocks(b))
+        ratio = float(a.mean() / max(b.mean(), 1e-6))
+        results[key] = dict(mean=float(diff.mean()), p95=float(np.percentile(diff, 95)),
+                            brightness_ratio=ratio)
+        check(label, diff.mean() < 2.5 and np.percentile(diff, 95) < 8.0 and abs(ratio - 1) < 0.03,
+              f"|Torrance - Cycles| of 8x8 block means: mean {diff.mean():.2f}, 95th percentile "
+              f"{np.percentile(diff, 95):.2f} (of 255); brightness ratio {ratio:.4f}")
 
     def steps():
         win, area, space, region = view3d()
@@ -328,14 +335,9 @@ def _driver(result_path, shots_dir):
         torrance_px = screenshot("4b_studio_torrance")
         sub = (slice(region.y, region.y + region.height), slice(region.x, region.x + region.width))
         cycles_px = yield from cycles_screenshot("4c_studio_cycles", sub)
-        diff, ratio = block_difference(torrance_px[sub], cycles_px[sub])
-        results["studio_vs_cycles"] = dict(mean=float(diff.mean()),
-                                           p95=float(np.percentile(diff, 95)),
-                                           brightness_ratio=ratio)
-        check("studio HDRI world as Cycles shows it (rotation, strength)",
-              diff.mean() < 2.5 and np.percentile(diff, 95) < 8.0 and abs(ratio - 1) < 0.03,
-              f"|Torrance - Cycles| of 8x8 block means: mean {diff.mean():.2f}, 95th percentile "
-              f"{np.percentile(diff, 95):.2f} (of 255); brightness ratio {ratio:.4f}")
+        check_like_cycles("studio_vs_cycles",
+                          "studio HDRI world as Cycles shows it (rotation, strength)",
+                          torrance_px[sub], cycles_px[sub])
         shading.use_scene_world_render = True
         shading.use_scene_lights_render = True
         yield 0.5
@@ -352,14 +354,9 @@ def _driver(result_path, shots_dir):
         yield from wait_samples(16, 90)
         torrance_px = screenshot("4d_panoramic_torrance")
         cycles_px = yield from cycles_screenshot("4e_panoramic_cycles", sub)
-        diff, ratio = block_difference(torrance_px[sub], cycles_px[sub])
-        results["panoramic_vs_cycles"] = dict(mean=float(diff.mean()),
-                                              p95=float(np.percentile(diff, 95)),
-                                              brightness_ratio=ratio)
-        check("camera view of a panoramic camera as Cycles shows it",
-              diff.mean() < 2.5 and np.percentile(diff, 95) < 8.0 and abs(ratio - 1) < 0.03,
-              f"|Torrance - Cycles| of 8x8 block means: mean {diff.mean():.2f}, 95th percentile "
-              f"{np.percentile(diff, 95):.2f} (of 255); brightness ratio {ratio:.4f}")
+        check_like_cycles("panoramic_vs_cycles",
+                          "camera view of a panoramic camera as Cycles shows it",
+                          torrance_px[sub], cycles_px[sub])
         cam.type = 'PERSP'
         cam.shift_x = 0.0
         yield 0.3
