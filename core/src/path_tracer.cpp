@@ -92,7 +92,7 @@ float mist_clearance(const PathContext& ctx, const Vec3& position) {
 
 // The Glossy Color pass of a material: Cycles 3.4's Glossy Color of a Principled BSDF
 // (svm/closure.h: the weight of its specular closure, present with some Specular or Metallic,
-// 1 - the transmitting share; a clearcoat would add 1) plus its Transmission Color (the glass
+// 1 - the transmitting share, and of its clearcoat, 1) plus its Transmission Color (the glass
 // closures' weight: the transmitting share; the Glass BSDF's colour), since Torrance files the
 // light through glass with the glossy passes (it has no Transmission passes).
 Vec3 glossy_color(const Material& m) {
@@ -101,7 +101,8 @@ Vec3 glossy_color(const Material& m) {
   const float metallic = std::clamp(m.metallic, 0.0f, 1.0f);
   const float glass = std::clamp(m.transmission, 0.0f, 1.0f) * (1.0f - metallic);
   const bool specular = 1.0f - glass > kCutoff && (m.specular > kCutoff || metallic > kCutoff);
-  return Vec3((specular ? 1.0f - glass : 0.0f) + (glass > kCutoff ? glass : 0.0f));
+  return Vec3((specular ? 1.0f - glass : 0.0f) + (glass > kCutoff ? glass : 0.0f) +
+              (m.coat_weight > kCutoff ? 1.0f : 0.0f));
 }
 
 // Whether light can leave (or arrive) along world direction wi at a vertex with geometric normal

@@ -57,8 +57,8 @@ PASSES = (
              "Specular reflection (and transmission) of light that bounced off other surfaces, "
              "divided by Glossy Color (as Cycles)"),
     PassInfo("GlossCol", "GlossCol", 3, "RGB", 'COLOR', "use_pass_glossy_color", "Glossy Color",
-             "Weight of the first surface's specular closures: a Principled BSDF's 1, a Glass "
-             "BSDF's colour (Cycles puts glass in Transmission Color)"),
+             "Weight of the first surface's specular closures: a Principled BSDF's 1 (+ 1 with "
+             "Clearcoat), a Glass BSDF's colour (Cycles puts glass in Transmission Color)"),
     PassInfo("Emit", "Emit", 3, "RGB", 'COLOR', "use_pass_emit", "Emission",
              "Light emitted by surfaces seen directly by the camera"),
     PassInfo("Env", "Env", 3, "RGB", 'COLOR', "use_pass_environment", "Environment",
