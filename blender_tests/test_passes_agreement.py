@@ -34,14 +34,12 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_passes_agreement.py
 """
 
-import os
-
 import bpy
 import numpy as np
 
 from torrance_tools import render_settings, testing
-from torrance_tools.agreement import noise_bounds
-from torrance_tools.compare import bias_metrics
+from torrance_tools.render_passes import (interior, pass_bounds, pass_failures, render_passes,
+                                          rgb)
 from torrance_tools.testing import check
 
 W, H, SAMPLES, BOUNCES = 80, 60, 128, 4
@@ -55,9 +53,6 @@ FILTERED = ("Combined", "Mist", "UV", "AO", "DiffCol", "DiffDir", "DiffInd", "Gl
             "GlossDir", "GlossInd")
 QUOTIENTS = ("DiffDir", "DiffInd", "GlossDir", "GlossInd")   # compared inside the objects
 QUOTIENT_OBJECTS = (1, 7)       # the floor and the box (the docstring: not the coated ball)
-# Each pass's channels in Blender's order (an EXR stores them sorted by name).
-CHANNELS = {"Combined": "RGBA", "Mist": "Z", "UV": "UVA", "Position": "XYZ", "IndexOB": "X",
-            "IndexMA": "X", "Depth": "Z"}
 OBJECTS = {"Floor": (1, 2), "Ball": (3, 5), "Box": (7, 0)}     # object, material pass index
 
 
@@ -106,59 +101,12 @@ def build(scene):
         setattr(vl, toggle, True)
 
 
-def read_layers(path):
-    """{pass name: float32 (H, W, C), row 0 = top} of a multilayer EXR."""
-    import OpenImageIO as oiio
-    inp = oiio.ImageInput.open(path)
-    check(inp is not None, f"can not open {path}")
-    spec = inp.spec()
-    pixels = np.asarray(inp.read_image(0, 0, 0, spec.nchannels, oiio.FLOAT), np.float32)
-    inp.close()
-    pixels = pixels.reshape(spec.height, spec.width, spec.nchannels)
-    columns = {}
-    for i, name in enumerate(spec.channelnames):
-        parts = name.split(".")
-        if len(parts) >= 3:
-            columns.setdefault(parts[-2], {})[parts[-1]] = i
-    out = {}
-    for name, chans in columns.items():
-        order = CHANNELS.get(name, "RGB" if set(chans) <= set("RGBA") else "XYZ")
-        check(set(chans) == set(order), f"{name}: channels {sorted(chans)}, expected {order}")
-        out[name] = pixels[:, :, [chans[c] for c in order]]
-    return out
-
-
-def render_passes(scene, directory, name):
-    """Renders with the scene's engine; the passes of its multilayer EXR."""
-    from torrance.blender_versions import set_multilayer_exr
-    bpy.ops.render.render()
-    path = os.path.join(directory, name + ".exr")
-    set_multilayer_exr(scene.render.image_settings)
-    scene.render.image_settings.color_depth = '32'
-    bpy.data.images["Render Result"].save_render(path, scene=scene)
-    return read_layers(path)
-
-
 def torrance(scene, directory, seed, name=None):
     render_settings.setup_torrance(scene, SAMPLES, BOUNCES, seed=seed)
     p = render_passes(scene, directory, name or f"torrance{seed}")
     for k, v in p.items():
         check(np.isfinite(v).all(), f"{name}: NaN/Inf in {k}")
     return p
-
-
-def rgb(img):
-    return img if img.shape[2] >= 3 else np.repeat(img, 3, axis=2)
-
-
-def interior(index, reach=1):
-    """Pixels whose (2 reach + 1)^2 neighbourhood shows one object, in an (H, W) index image."""
-    pad = np.pad(index, reach, mode='edge')
-    same = np.ones(index.shape, bool)
-    for dy in range(2 * reach + 1):
-        for dx in range(2 * reach + 1):
-            same &= pad[dy:dy + H, dx:dx + W] == index
-    return same
 
 
 def exact_failures(p, ref):
@@ -208,45 +156,6 @@ def compared(img, name, ref):
                    & np.isin(ref["IndexOB"][:, :, 0], QUOTIENT_OBJECTS))
         img = img * objects[:, :, None]
     return img
-
-
-def pass_bounds(ref, other):
-    """{pass: failures() thresholds} from Cycles' own noise, with floors for passes Cycles
-    renders almost without noise (Mist, UV, DiffCol: only the edges are noisy)."""
-    out = {}
-    for name in FILTERED:
-        own = bias_metrics(compared(other, name, ref), compared(ref, name, ref))
-        # The indirect passes are noisy: one seed's ratio says little of Cycles' spread.
-        floor = 0.015 if name in ("DiffInd", "GlossInd") else 0.004
-        b = noise_bounds(own, tolerance=1.5, ratio_sigmas=3.0, ratio_floor=floor)
-        b["block_mean"] = max(b["block_mean"], 0.004)
-        b["block_p90"] = max(b["block_p90"], 0.012)
-        out[name] = b
-        print(f"  Cycles' own {name:8s}: ratio {own['ratio']:.4f}, block mean "
-              f"{own['block_mean']:.4f}, p90 {own['block_p90']:.4f}")
-    return out
-
-
-def filtered_failures(images, ref, bounds, label):
-    """The filtered passes' failures of the mean metrics of `images` against ref, printed."""
-    bad = []
-    for name in FILTERED:
-        ms = [bias_metrics(compared(img, name, ref), compared(ref, name, ref)) for img in images]
-        ratio = float(np.mean([m["ratio"] for m in ms]))
-        block = float(np.mean([m["block_mean"] for m in ms]))
-        p90 = float(np.mean([m["block_p90"] for m in ms]))
-        b = bounds[name]
-        verdict = []
-        if not b["ratio"][0] <= ratio <= b["ratio"][1]:
-            verdict.append(f"ratio {ratio:.4f}")
-        if block > b["block_mean"]:
-            verdict.append(f"block mean {block:.4f} > {b['block_mean']:.4f}")
-        if p90 > b["block_p90"]:
-            verdict.append(f"p90 {p90:.4f} > {b['block_p90']:.4f}")
-        print(f"  {label} {name:8s}: ratio {ratio:.4f}, block mean {block:.4f}, p90 {p90:.4f}"
-              + (f"  FAIL: {'; '.join(verdict)}" if verdict else "  ok"))
-        bad += [f"{name} {v}" for v in verdict]
-    return bad
 
 
 def faults():
@@ -308,7 +217,7 @@ def main():
     wanted = {"Combined", "Depth", "Mist", "UV", "Position", "IndexOB", "IndexMA", "AO", "DiffCol",
               "DiffDir", "DiffInd", "GlossCol", "GlossDir", "GlossInd", "Emit", "Env"}
     check(wanted <= set(ref), f"Cycles' multilayer EXR lacks {sorted(wanted - set(ref))}")
-    bounds = pass_bounds(ref, other)
+    bounds = pass_bounds(ref, other, FILTERED, compared)
     print(f"  Cycles' own: {exact_failures(other, ref) or 'exact passes equal'}; composition "
           f"error {composition_error(ref):.2e}")
 
@@ -316,7 +225,7 @@ def main():
     check(wanted <= set(ours[0]),
           f"Torrance's multilayer EXR lacks {sorted(wanted - set(ours[0]))}")
     check(not testing.last_messages(), f"unexpected reports: {testing.last_messages()}")
-    bad = filtered_failures(ours, ref, bounds, "Torrance")
+    bad = pass_failures(ours, ref, bounds, compared, "Torrance")
     for p in ours:
         bad += exact_failures(p, ref)
     err = composition_error(ours[0])
@@ -344,7 +253,7 @@ def main():
             p = torrance(scene, d, 2, "fault")
         finally:
             setattr(owner, attr, original)
-        fbad = filtered_failures([p], ref, bounds, "fault") + exact_failures(p, ref)
+        fbad = pass_failures([p], ref, bounds, compared, "fault") + exact_failures(p, ref)
         if composition_error(p) > 1e-4:
             fbad.append(f"composition error {composition_error(p):.2e}")
         print(f"fault {label}: " + (f"caught: {'; '.join(fbad)}" if fbad else "NOT CAUGHT"),

@@ -248,6 +248,11 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
   PathState path_state;
   path_state.ray_flags = kRayCamera;
   uint8_t first_transparent_depth = 0;  // at the first vertex, for its later branches
+  // The Normal and UV passes are of the first surface the camera ray meets whose alpha reaches
+  // the Alpha Threshold, passed through or not (Cycles' PATH_RAY_SINGLE_PASS_DONE); a sample
+  // that stops at a surface below it has none (0).
+  bool surface_data_done = false;
+  float first_opacity = 1.0f;  // of the surface the camera ray stopped at
   auto count_up = [](uint8_t& depth) { depth = uint8_t(std::min(depth + 1, 255)); };
   float first_ray_length = 0.0f;
   // Cycles' clamping: a contribution whose RGB sum exceeds the limit is scaled down to it.
@@ -322,7 +327,17 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
           at.ray_length = passed_length + hit.t - ray.tmin;
           Vec3 tint;
           const float opacity = ctx.scene.opacity(hit, ray.dir, at, &tint);
-          if (opacity >= 1.0f || sampler.next_4d().x < opacity) break;
+          if (opacity >= 1.0f || sampler.next_4d().x < opacity) {  // the vertex below records it
+            if (bounce == 0) first_opacity = opacity;
+            break;
+          }
+          if (bounce == 0 && !surface_data_done && opacity >= ctx.settings.pass_alpha_threshold) {
+            // A surface the camera ray passes: its interpolated normal, facing the ray.
+            const bool facing = glm::dot(hit.geometric_normal, ray.dir) < 0.0f;
+            out.normal = facing ? hit.shading_normal : -hit.shading_normal;
+            out.uv = hit.has_uv ? Vec3(hit.uv.x, hit.uv.y, 1.0f) : Vec3(0.0f);
+            surface_data_done = true;
+          }
           if (passed >= ctx.settings.max_transparent_bounces) return out;  // Cycles: the path ends
           throughput *= tint;
           if (!(max_component(throughput) > 0.0f)) return out;
@@ -441,7 +456,10 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       // Emissive surfaces emit from both faces; NEE samples them too (the mesh light).
       if (first_again) {  // its emission: in the first branch
       } else if (bounce == 0) {
-        out.normal = ns;
+        if (!surface_data_done && first_opacity >= ctx.settings.pass_alpha_threshold) {
+          out.normal = ns;
+          out.uv = hit.has_uv ? Vec3(hit.uv.x, hit.uv.y, 1.0f) : Vec3(0.0f);
+        }
         // Diffuse colour (DiffCol): the diffuse lobe's weight, which glass takes away (Cycles' TransCol).
         out.albedo = kGlass ? material.base_color * (material.glass_node ? 0.0f
                                                                           : (1.0f - material.metallic) *
@@ -452,7 +470,6 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
           out.albedo *= throughput;
           out.glossy_color *= throughput;
         }
-        out.uv = hit.has_uv ? Vec3(hit.uv.x, hit.uv.y, 1.0f) : Vec3(0.0f);
         if (ctx.settings.passes & kPassMist)
           out.mist = mist_clearance(ctx, hit.position) * (kAlpha ? (throughput.x + throughput.y + throughput.z) / 3.0f
                                                                  : 1.0f);

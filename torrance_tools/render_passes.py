@@ -1,0 +1,108 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Render passes in Blender tests (test_passes_agreement.py, test_passes_alpha_agreement.py): a
+render's passes read back from the multilayer EXR Blender writes, and each pass compared with
+Cycles' within Cycles' own seed-to-seed noise (block means and the mean ratio,
+agreement.noise_bounds) with floors for the passes Cycles renders almost without noise.
+"""
+
+import os
+
+import numpy as np
+
+from torrance_tools.agreement import noise_bounds
+from torrance_tools.compare import bias_metrics
+from torrance_tools.testing import check
+
+# Each pass's channels in Blender's order (an EXR stores them sorted by name); the others RGB(A).
+CHANNELS = {"Combined": "RGBA", "Mist": "Z", "Depth": "Z", "UV": "UVA", "Position": "XYZ",
+            "Normal": "XYZ", "IndexOB": "X", "IndexMA": "X"}
+NOISY = ("DiffInd", "GlossInd")     # their ratio bound: 1.5 % at least
+
+
+def read_layers(path):
+    """{pass name: float32 (H, W, C), row 0 = top} of a multilayer EXR."""
+    import OpenImageIO as oiio
+    inp = oiio.ImageInput.open(path)
+    check(inp is not None, f"can not open {path}")
+    spec = inp.spec()
+    pixels = np.asarray(inp.read_image(0, 0, 0, spec.nchannels, oiio.FLOAT), np.float32)
+    inp.close()
+    pixels = pixels.reshape(spec.height, spec.width, spec.nchannels)
+    columns = {}
+    for i, name in enumerate(spec.channelnames):
+        parts = name.split(".")
+        if len(parts) >= 3:
+            columns.setdefault(parts[-2], {})[parts[-1]] = i
+    out = {}
+    for name, chans in columns.items():
+        order = CHANNELS.get(name, "RGBA" if "A" in chans else "RGB")
+        check(set(chans) == set(order), f"{name}: channels {sorted(chans)}, expected {order}")
+        out[name] = pixels[:, :, [chans[c] for c in order]]
+    return out
+
+
+def render_passes(scene, directory, name):
+    """Renders with the scene's engine; the passes of the multilayer EXR of its Render Result."""
+    import bpy
+    from torrance.blender_versions import set_multilayer_exr
+    bpy.ops.render.render()
+    path = os.path.join(directory, name + ".exr")
+    set_multilayer_exr(scene.render.image_settings)
+    scene.render.image_settings.color_depth = '32'
+    bpy.data.images["Render Result"].save_render(path, scene=scene)
+    return read_layers(path)
+
+
+def rgb(img):
+    """A pass as three channels (a scalar one repeated)."""
+    return img[:, :, :3] if img.shape[2] >= 3 else np.repeat(img, 3, axis=2)
+
+
+def interior(index, reach=1):
+    """Pixels whose (2 reach + 1)^2 neighbourhood shows one object, in an (H, W) index image."""
+    h, w = index.shape
+    pad = np.pad(index, reach, mode='edge')
+    same = np.ones(index.shape, bool)
+    for dy in range(2 * reach + 1):
+        for dx in range(2 * reach + 1):
+            same &= pad[dy:dy + h, dx:dx + w] == index
+    return same
+
+
+def pass_bounds(ref, other, names, compared):
+    """{pass: failures() thresholds} from Cycles' own noise (other against ref), printed;
+    compared(passes, name, ref): the image of a pass as compared."""
+    out = {}
+    for name in names:
+        own = bias_metrics(compared(other, name, ref), compared(ref, name, ref))
+        # The indirect passes are noisy: one seed's ratio says little of Cycles' spread.
+        floor = 0.015 if name in NOISY else 0.004
+        b = noise_bounds(own, tolerance=1.5, ratio_sigmas=3.0, ratio_floor=floor)
+        b["block_mean"] = max(b["block_mean"], 0.004)
+        b["block_p90"] = max(b["block_p90"], 0.012)
+        out[name] = b
+        print(f"  Cycles' own {name:8s}: ratio {own['ratio']:.4f}, block mean "
+              f"{own['block_mean']:.4f}, p90 {own['block_p90']:.4f}")
+    return out
+
+
+def pass_failures(images, ref, bounds, compared, label):
+    """What the mean metrics of `images` (one render's passes each) violate of `bounds`,
+    pass by pass, printed."""
+    bad = []
+    for name, b in bounds.items():
+        ms = [bias_metrics(compared(img, name, ref), compared(ref, name, ref)) for img in images]
+        ratio = float(np.mean([m["ratio"] for m in ms]))
+        block = float(np.mean([m["block_mean"] for m in ms]))
+        p90 = float(np.mean([m["block_p90"] for m in ms]))
+        verdict = []
+        if not b["ratio"][0] <= ratio <= b["ratio"][1]:
+            verdict.append(f"ratio {ratio:.4f}")
+        if block > b["block_mean"]:
+            verdict.append(f"block mean {block:.4f} > {b['block_mean']:.4f}")
+        if p90 > b["block_p90"]:
+            verdict.append(f"p90 {p90:.4f} > {b['block_p90']:.4f}")
+        print(f"  {label} {name:8s}: ratio {ratio:.4f}, block mean {block:.4f}, p90 {p90:.4f}"
+              + (f"  FAIL: {'; '.join(verdict)}" if verdict else "  ok"))
+        bad += [f"{name} {v}" for v in verdict]
+    return bad
