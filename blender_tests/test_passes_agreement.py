@@ -37,9 +37,9 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
 import bpy
 import numpy as np
 
-from torrance_tools import render_settings, testing
-from torrance_tools.render_passes import (interior, pass_bounds, pass_failures, render_passes,
-                                          rgb)
+from torrance_tools import testing
+from torrance_tools.render_passes import (cycles_reference_and_noise, interior, pass_bounds,
+                                          pass_failures, planar_uvs, rgb, torrance_passes)
 from torrance_tools.testing import check
 
 W, H, SAMPLES, BOUNCES = 80, 60, 128, 4
@@ -56,31 +56,18 @@ QUOTIENT_OBJECTS = (1, 7)       # the floor and the box (the docstring: not the 
 OBJECTS = {"Floor": (1, 2), "Ball": (3, 5), "Box": (7, 0)}     # object, material pass index
 
 
-def planar_uvs(obj, origin, size):
-    """A UV map projecting x, y onto [0, 1]^2 over `size` metres about `origin`."""
-    mesh = obj.data
-    layer = mesh.uv_layers.new(name="Planar")
-    co = np.empty(3 * len(mesh.vertices), np.float32)
-    mesh.vertices.foreach_get("co", co)
-    loops = np.empty(len(mesh.loops), np.int32)
-    mesh.loops.foreach_get("vertex_index", loops)
-    xy = co.reshape(-1, 3)[loops, :2]
-    uv = (xy - np.asarray(origin, np.float32)) / size + 0.5
-    layer.data.foreach_set("uv", uv.ravel())
-
-
 def build(scene):
     testing.setup_render(scene, width=W, height=H)
     testing.add_camera(scene, location=(0.0, -6.0, 1.4), target=(0.0, 0.0, 0.9), lens=32.0)
     floor = testing.plane(scene, "Floor", 8.0,
                           material=testing.principled("Floor", (0.7, 0.5, 0.3), 0.0, 0.5))
-    planar_uvs(floor, (0.0, 0.0), 8.0)
+    planar_uvs(floor, [0, 1], (0.0, 0.0), 8.0)
     ball_material = testing.principled("Ball", (0.2, 0.4, 0.8), 0.0, 0.3)
     ball_material.node_tree.nodes["Principled BSDF"].inputs["Clearcoat"].default_value = 0.5
     ball = testing.sphere_object(scene, "Ball", (-0.9, 0.3, 0.7), 0.7, ball_material,
                                  segments=32, rings=16)
     ball.location = (-0.9, 0.3, 0.7)
-    planar_uvs(ball, (0.0, 0.0), 1.4)
+    planar_uvs(ball, [0, 1], (0.0, 0.0), 1.4)
     s = 0.45
     corners = [(x, y, z) for z in (0.0, 2 * s) for y in (-s, s) for x in (-s, s)]
     faces = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
@@ -102,11 +89,7 @@ def build(scene):
 
 
 def torrance(scene, directory, seed, name=None):
-    render_settings.setup_torrance(scene, SAMPLES, BOUNCES, seed=seed)
-    p = render_passes(scene, directory, name or f"torrance{seed}")
-    for k, v in p.items():
-        check(np.isfinite(v).all(), f"{name}: NaN/Inf in {k}")
-    return p
+    return torrance_passes(scene, directory, SAMPLES, BOUNCES, seed, name)
 
 
 def exact_failures(p, ref):
@@ -210,10 +193,7 @@ def main():
     d = testing.tempdir()
     scene = testing.clear_scene()
     build(scene)
-    render_settings.setup_cycles(scene, SAMPLES, BOUNCES, seed=0)
-    ref = render_passes(scene, d, "cycles0")
-    render_settings.setup_cycles(scene, SAMPLES, BOUNCES, seed=1)
-    other = render_passes(scene, d, "cycles1")
+    ref, other = cycles_reference_and_noise(scene, d, SAMPLES, BOUNCES)
     wanted = {"Combined", "Depth", "Mist", "UV", "Position", "IndexOB", "IndexMA", "AO", "DiffCol",
               "DiffDir", "DiffInd", "GlossCol", "GlossDir", "GlossInd", "Emit", "Env"}
     check(wanted <= set(ref), f"Cycles' multilayer EXR lacks {sorted(wanted - set(ref))}")

@@ -29,8 +29,9 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
 import bpy
 import numpy as np
 
-from torrance_tools import render_settings, testing
-from torrance_tools.render_passes import interior, pass_bounds, pass_failures, render_passes, rgb
+from torrance_tools import testing
+from torrance_tools.render_passes import (cycles_reference_and_noise, interior, pass_bounds,
+                                          pass_failures, planar_uvs, rgb, torrance_passes)
 from torrance_tools.testing import check
 
 W, H, SAMPLES, BOUNCES = 80, 60, 128, 4
@@ -38,18 +39,6 @@ TOGGLES = ("use_pass_mist", "use_pass_uv", "use_pass_normal", "use_pass_position
            "use_pass_object_index", "use_pass_material_index", "use_pass_ambient_occlusion",
            "use_pass_diffuse_color")
 COMPARED = ("Combined", "Mist", "UV", "Normal", "AO", "DiffCol")
-
-
-def planar_uvs(obj, axes, origin, size):
-    """A UV map projecting the coordinates `axes` (two of 0, 1, 2) over `size` metres."""
-    mesh = obj.data
-    layer = mesh.uv_layers.new(name="Planar")
-    co = np.empty(3 * len(mesh.vertices), np.float32)
-    mesh.vertices.foreach_get("co", co)
-    loops = np.empty(len(mesh.loops), np.int32)
-    mesh.loops.foreach_get("vertex_index", loops)
-    uv = (co.reshape(-1, 3)[loops][:, axes] - np.asarray(origin, np.float32)) / size + 0.5
-    layer.data.foreach_set("uv", uv.ravel())
 
 
 def panel(scene, name, x0, x1, alpha, indices):
@@ -124,19 +113,13 @@ def main():
     d = testing.tempdir()
     scene = testing.clear_scene()
     build(scene)
-    render_settings.setup_cycles(scene, SAMPLES, BOUNCES, seed=0)
-    ref = render_passes(scene, d, "cycles0")
-    render_settings.setup_cycles(scene, SAMPLES, BOUNCES, seed=1)
-    other = render_passes(scene, d, "cycles1")
+    ref, other = cycles_reference_and_noise(scene, d, SAMPLES, BOUNCES)
     panels = set(np.unique(ref["IndexOB"]).tolist())
     check({1.0, 3.0, 5.0} <= panels, f"the frame must show the floor and both panels: {panels}")
     below = screen_box(scene, bpy.data.objects["Below"])
     compared = comparison(below)
     bounds = pass_bounds(ref, other, COMPARED, compared)
-    ours = []
-    for seed in (2, 3):
-        render_settings.setup_torrance(scene, SAMPLES, BOUNCES, seed=seed)
-        ours.append(render_passes(scene, d, f"torrance{seed}"))
+    ours = [torrance_passes(scene, d, SAMPLES, BOUNCES, seed) for seed in (2, 3)]
     check(not testing.last_messages(), f"unexpected reports: {testing.last_messages()}")
     bad = pass_failures(ours, ref, bounds, compared, "Torrance")
     for p in ours:

@@ -53,6 +53,39 @@ def render_passes(scene, directory, name):
     return read_layers(path)
 
 
+def cycles_reference_and_noise(scene, directory, samples, bounces):
+    """Cycles' passes at seed 0 (the reference) and seed 1 (its own noise)."""
+    from torrance_tools import render_settings
+    out = []
+    for seed in (0, 1):
+        render_settings.setup_cycles(scene, samples, bounces, seed=seed)
+        out.append(render_passes(scene, directory, f"cycles{seed}"))
+    return out
+
+
+def torrance_passes(scene, directory, samples, bounces, seed, name=None):
+    """Torrance's passes at `seed`, checked for NaN/Inf."""
+    from torrance_tools import render_settings
+    render_settings.setup_torrance(scene, samples, bounces, seed=seed)
+    p = render_passes(scene, directory, name or f"torrance{seed}")
+    for k, v in p.items():
+        check(np.isfinite(v).all(), f"{name}: NaN/Inf in {k}")
+    return p
+
+
+def planar_uvs(obj, axes, origin, size):
+    """A UV map "Planar" of obj's mesh: its coordinates `axes` (two of 0, 1, 2) about `origin`,
+    `size` metres onto [0, 1]^2."""
+    mesh = obj.data
+    layer = mesh.uv_layers.new(name="Planar")
+    co = np.empty(3 * len(mesh.vertices), np.float32)
+    mesh.vertices.foreach_get("co", co)
+    loops = np.empty(len(mesh.loops), np.int32)
+    mesh.loops.foreach_get("vertex_index", loops)
+    uv = (co.reshape(-1, 3)[loops][:, axes] - np.asarray(origin, np.float32)) / size + 0.5
+    layer.data.foreach_set("uv", uv.ravel())
+
+
 def rgb(img):
     """A pass as three channels (a scalar one repeated)."""
     return img[:, :, :3] if img.shape[2] >= 3 else np.repeat(img, 3, axis=2)
