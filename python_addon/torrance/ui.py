@@ -559,7 +559,7 @@ class TORRANCE_VIEW_LAYER_PT_passes(TorrancePanel, Panel):
         col = layout.column(heading="Include", align=True)
         for p in passes.PASSES:
             col.prop(view_layer, p.flag, text=p.label)
-        layout.label(text="Light passes include the surface colour: they sum to Combined",
+        layout.label(text="Direct/Indirect are divided by the Color passes, as Cycles'",
                      icon='INFO')
         unsupported = passes.unsupported_enabled(view_layer)
         if unsupported:
