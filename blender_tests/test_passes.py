@@ -208,7 +208,7 @@ def main():
     print(f"[sum] max |composed light passes - Combined| / max {err:.2e}; means "
           + ", ".join(f"{n} {p[n][:, :, :3].mean():.4f}" for n in LIGHT_PASSES)
           + f", Combined {combined.mean():.4f}")
-    check(err < 1e-4, "the light passes do not sum to Combined")
+    check(err < 1e-4, "the light passes do not compose to Combined")
     for name in ("DiffDir", "DiffInd", "GlossDir", "GlossInd", "Env"):
         check(p[name][:, :, :3].mean() > 1e-4, f"{name} is empty")
 
