@@ -2,8 +2,13 @@
 #pragma once
 
 #include "torrance/bsdf.h"
+#include "torrance/integrator.h"
 #include "torrance/math.h"
 #include "torrance/sampling.h"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace torrance::test {
 
@@ -23,6 +28,24 @@ inline Vec3 uniform_sphere(Rng& rng) {
 inline constexpr BrdfModel kAllModels[] = {BrdfModel::Paper, BrdfModel::Principled, BrdfModel::PrincipledV2};
 inline const char* model_name(BrdfModel m) {
   return m == BrdfModel::Paper ? "PAPER" : m == BrdfModel::Principled ? "PRINCIPLED" : "PRINCIPLED_V2";
+}
+
+// A render's pass by name (std::out_of_range if it was not rendered).
+inline const Image& pass_named(const RenderResult& r, const std::string& name) {
+  for (const auto& [pass, image] : r.passes)
+    if (pass == name) return image;
+  throw std::out_of_range("no pass " + name);
+}
+
+// A Direct/Indirect light pass times the colour pass the film divides it by (Albedo for the
+// diffuse ones, GlossCol for the glossy ones; both rendered): the light it holds, as Combined
+// sums it. Other passes as they are.
+inline std::vector<float> undivided_pass(const RenderResult& r, const std::string& name) {
+  std::vector<float> v = pass_named(r, name).rgba;
+  const char* colour = name.rfind("Diff", 0) == 0 ? "Albedo" : name.rfind("Gloss", 0) == 0 ? "GlossCol" : nullptr;
+  if (colour)
+    for (size_t i = 0; i < v.size(); ++i) v[i] *= pass_named(r, colour).rgba[i];
+  return v;
 }
 
 // The mean red weight of n samples of a BSDF (anything with sample(wo, u_lobe, u)) for wo: its
