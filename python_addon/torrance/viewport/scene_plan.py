@@ -22,23 +22,12 @@ def instance_transform(matrix):
     return np.array(matrix, dtype=np.float64)[:3]
 
 
-def lasting_object(obj, depsgraph):
-    """An instance's object whose mesh can still be read after the depsgraph's iteration
-    (inst.object is a temporary the iteration reuses for the next instance): the evaluated
-    object of its original when that holds the same mesh (collection, vertex and face
-    instances, geometry nodes instancing an object), else its evaluated mesh itself, as
-    export.MeshData (geometry nodes instancing geometry)."""
-    original = obj.original
-    if original is not None and obj.data is not None:
-        lasting = original.evaluated_get(depsgraph)
-        if lasting.data is not None and lasting.data.as_pointer() == obj.data.as_pointer():
-            return lasting
-    return export.MeshData(obj)
-
-
 def plan_instances(depsgraph, options):
     """(plan, fingerprint, random ids). plan: (kind, object, matrix, slots, mesh key) per
-    instance, kind 'LIGHT', 'UNSUPPORTED' or 'MESH', for an instance its lasting_object;
+    instance, kind 'LIGHT', 'UNSUPPORTED' or 'MESH', for an instance its evaluated mesh as
+    export.MeshData (inst.object is a temporary the iteration reuses for the next instance: read
+    after it, every instance showed the last one's mesh; evaluated_get of the original, tried
+    instead, changes the temporaries of later iterations: a collection instance's Object Color);
     random ids: a depsgraph instance's mesh key -> its instances' (random id, dupli_record,
     object colour, original object, instancer_record) (Object Info), in plan order."""
     use_lights = options.get("use_scene_lights", True)
@@ -67,7 +56,7 @@ def plan_instances(depsgraph, options):
                 random_ids.setdefault(key, []).append((inst.random_id, dupli_record(inst),
                                                        tuple(obj.color), obj.original,
                                                        instancer_record(inst)))
-                obj = lasting_object(obj, depsgraph)
+                obj = export.MeshData(obj)
             else:
                 key = ('O', obj.name, data_name)
             plan.append(('MESH', obj, m, slots, key))
