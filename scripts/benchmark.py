@@ -37,11 +37,19 @@ PRINCIPLED_V2 (the add-on's choice for 4.x) against the references of that Cycle
 torrance_tools.blender_versions.CYCLES_4X: light tree and path guiding each on and off, each a
 separate engine curve and equal-error ratio; "cycles" (both off) is configured as the 3.4 one.
 
+--denoised (Blender 4.x/5.x, whose Cycles has Open Image Denoise): the plain curves of Torrance and
+of Cycles ("cycles") without and with each engine's own denoising ("torrance_denoised",
+"cycles_denoised": Open Image Denoise with albedo and normal guides, prefilter Accurate, quality
+High; render_settings.DENOISING), the time including the denoising, the error of the denoised
+image against the same converged reference; no adaptive curves, other Cycles variants, ablation
+or rays/s. The report gives the equal-error ratio after denoising beside the undenoised one.
+
 Writes <out>/results.json; scripts/benchmark_report.py turns it into <out>/report.md + plots.
 
     scripts/blender -b --factory-startup --python-exit-code 1 --python scripts/benchmark.py -- \
         [--out DIR] [--seeds N] [--max-spp N] [--curve-seconds S] [--no-adaptive]
-        [--toggle-spp N] [--toggle-seeds N (0: no ablation)] [--fresh] [SCENE ...]
+        [--toggle-spp N] [--toggle-seeds N (0: no ablation)] [--fresh] [--denoised]
+        [SCENE ...]
 """
 
 import argparse
@@ -57,7 +65,7 @@ import bpy
 
 from torrance_tools import REPO as ROOT
 from torrance_tools import (addon_access, benchmark_points, benchmark_results, blender_versions,
-                            compare, comparison_scenes, references)
+                            compare, comparison_scenes, references, render_settings)
 
 KNOWN_SETTINGS = {"width", "height", "samples", "max_bounces", "seed", "pixel_aspect_x",
                   "pixel_aspect_y", "filter_width", "transparent_background", "brdf_model",
@@ -68,7 +76,7 @@ TRIM = 0.001          # rel_mse_trim leaves out the worst 0.1 % of pixels (firef
 def parse_args():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     p = argparse.ArgumentParser(prog="scripts/benchmark")
-    p.add_argument("--out", default=blender_versions.report_dir(bpy.app.version))
+    p.add_argument("--out", help="default: blender_versions.report_dir")
     p.add_argument("--seeds", type=int, default=8, help="seeds averaged in every point")
     p.add_argument("--max-spp", type=int, default=1024)
     p.add_argument("--curve-seconds", type=float, default=30.0,
@@ -81,8 +89,16 @@ def parse_args():
                    help="seeds of each ablation variant (0: no ablation)")
     p.add_argument("--fresh", action="store_true",
                    help="do not merge the scenes into an existing results.json")
+    p.add_argument("--denoised", action="store_true",
+                   help="plain curves of both engines without and with their denoising only")
     p.add_argument("scenes", nargs="*", default=[])
     args = p.parse_args(argv)
+    if args.denoised:
+        import _cycles
+        if not getattr(_cycles, "with_openimagedenoise", False):
+            p.error("--denoised: this Blender's Cycles has no Open Image Denoise (use 4.5, 5.3)")
+        args.no_adaptive, args.toggle_seeds = True, 0
+    args.out = args.out or blender_versions.report_dir(bpy.app.version, args.denoised)
     args.merge = bool(args.scenes) and not args.fresh
     if not args.scenes:
         # every scene with a reference for this Blender (4.x references are made separately)
@@ -124,28 +140,43 @@ def ablation_levers(core):
 
 CYCLES_VARIANTS = blender_versions.cycles_variants(bpy.app.version)
 ENGINES = ("torrance", *CYCLES_VARIANTS)
-# curve name -> (engine, adaptive); "cycles_adaptive" is Cycles as configured for "cycles"
-CURVES = {**{e: (e, False) for e in ENGINES},
-          "torrance_adaptive": ("torrance", True), "cycles_adaptive": ("cycles", True)}
+# curve name -> (engine, adaptive, denoised); "cycles_adaptive" is Cycles configured as "cycles"
+CURVES = {**{e: (e, False, False) for e in ENGINES},
+          "torrance_adaptive": ("torrance", True, False),
+          "cycles_adaptive": ("cycles", True, False)}
+DENOISED_CURVES = {"torrance": ("torrance", False, False), "cycles": ("cycles", False, False),
+                   "torrance_denoised": ("torrance", False, True),
+                   "cycles_denoised": ("cycles", False, True)}
 COMMAND = "scripts/benchmark" + ("" if bpy.app.version < (4, 0, 0) else
                                  f" --blender {blender_versions.series(bpy.app.version)}")
 
 
-def render_once(scene, engine, samples, bounces, seed, name, threshold=0.0, settings_edit=None):
+def run_curves(args):
+    """{curve: (engine, adaptive, denoised)} of this run."""
+    if args.denoised:
+        return DENOISED_CURVES
+    return {c: v for c, v in CURVES.items() if not (v[1] and args.no_adaptive)}
+
+
+def render_once(scene, engine, samples, bounces, seed, name, threshold=0.0, settings_edit=None,
+                denoise=False):
     """(image, seconds of bpy.ops.render.render, extra) -- the same timing for both engines.
     `engine`: "torrance" or a Cycles variant of CYCLES_VARIANTS; threshold > 0: adaptive
-    sampling at that noise threshold, at most `samples`."""
+    sampling at that noise threshold, at most `samples`; denoise: the engine's own denoising
+    (counted in the time)."""
     if engine == "torrance":
         img, t = references.render_torrance(scene, samples, seed, bounces, name=name,
                                             settings_edit=settings_edit,
-                                            adaptive_threshold=threshold)
+                                            adaptive_threshold=threshold, denoise=denoise)
         stats = addon_access.addon().render.last_stats
+        if denoise and not stats.get("denoised"):
+            raise RuntimeError(f"{name}: Torrance did not denoise (see its warning above)")
         extra = dict(export_seconds=stats.get("export_seconds"), core_seconds=stats.get("seconds"),
                      samples_per_pixel=stats.get("samples_per_pixel"))
     else:
         img, t = references.render_cycles(scene, samples, seed, bounces, name=name,
                                           variant=CYCLES_VARIANTS[engine],
-                                          adaptive_threshold=threshold)
+                                          adaptive_threshold=threshold, denoise=denoise)
         extra = {}
     return img, t, extra
 
@@ -163,8 +194,8 @@ def curve_ladders(args):
     adaptive curves' thresholds (at most --max-spp samples)."""
     plain = [(spp, 0.0) for spp in benchmark_points.spp_ladder(args.max_spp)]
     adaptive = [(args.max_spp, t) for t in benchmark_points.threshold_ladder()]
-    return {c: adaptive if is_adaptive else plain for c, (_e, is_adaptive) in CURVES.items()
-            if not (is_adaptive and args.no_adaptive)}
+    return {c: adaptive if is_adaptive else plain
+            for c, (_e, is_adaptive, _d) in run_curves(args).items()}
 
 
 def bench_curves(name, scene, bounces, ref, floor, seeds, args):
@@ -180,10 +211,11 @@ def bench_curves(name, scene, bounces, ref, floor, seeds, args):
         rows = {c: [] for c in active}
         for seed in seeds:
             for c in active:
-                engine = CURVES[c][0]
+                engine, _adaptive, denoise = run_curves(args)[c]
                 spp, threshold = ladders[c][step]
                 img, t, extra = render_once(scene, engine, spp, bounces, seed,
-                                            f"{c}_{name}_{step}_{seed}", threshold)
+                                            f"{c}_{name}_{step}_{seed}", threshold,
+                                            denoise=denoise)
                 rows[c].append(dict(spp=spp, threshold=threshold or None, seed=seed, seconds=t,
                                     **extra, **measure(img, ref)))
         for c in active:
@@ -282,12 +314,12 @@ def bench_scene(name, args, levers, run):
     out = dict(title=mod.TITLE, bounces=mod.BOUNCES, reference=dict(
         samples=meta["samples"], noise_rel_mse=floor, blender=meta["blender"],
         seeds=list(reference_seeds)), seeds=seeds)
-    rays = ray_throughput(scene)
+    rays = None if args.denoised else ray_throughput(scene)
     if rays is not None:
         out["rays"] = rays
-    # warm-up (untimed): first-render costs such as kernel and module loading
-    for engine in ENGINES:
-        render_once(scene, engine, 1, mod.BOUNCES, seeds[0], f"warm_{engine}")
+    # warm-up (untimed): first-render costs such as kernel, module and denoiser loading
+    for engine, _adaptive, denoise in sorted(set(run_curves(args).values())):
+        render_once(scene, engine, 1, mod.BOUNCES, seeds[0], f"warm_{engine}", denoise=denoise)
     out.update(bench_curves(name, scene, mod.BOUNCES, ref, floor, seeds, args))
     out["ablation"] = (bench_ablation(name, scene, mod.BOUNCES, ref, floor,
                                       seeds[:args.toggle_seeds], levers, args.toggle_spp)
@@ -320,7 +352,9 @@ def main():
                                            else benchmark_points.threshold_ladder()),
                       toggle_spp=args.toggle_spp, toggle_seeds=args.toggle_seeds, trim=TRIM,
                       torrance_model=addon_access.addon().brdf_model.core_model('PRINCIPLED'),
-                      cycles_variants=CYCLES_VARIANTS,
+                      cycles_variants=({"cycles": CYCLES_VARIANTS["cycles"]} if args.denoised
+                                       else CYCLES_VARIANTS),
+                      denoising=render_settings.DENOISING if args.denoised else None,
                       references=os.path.relpath(references.REFERENCE_DIR, ROOT),
                       threads="all (Blender threads AUTO; Torrance threads 0)"),
         levers=[dict(field=f, default=d, other=o) for f, d, o in levers],

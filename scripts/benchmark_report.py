@@ -13,7 +13,8 @@ SSIM of tone-mapped images. Equal-error time ratio (torrance_tools.equal_error):
 seed-averaged curves, plain (no adaptive sampling, no clamping: the headline) and adaptive (each
 engine's adaptive sampling at the same thresholds). Tables: torrance_tools.benchmark_tables;
 plots: torrance_tools.benchmark_plots. In Blender 4.x runs (several Cycles variants: light tree,
-path guiding) the ratio is also given against each variant.
+path guiding) the ratio is also given against each variant; in --denoised runs the ratio after
+each engine's own denoising beside the undenoised one (no ablation, no rays/s).
 """
 
 import json
@@ -25,6 +26,7 @@ from torrance_tools import benchmark_plots, benchmark_tables
 from torrance_tools.equal_error import equal_error, fmt_equal, fmt_ratio
 
 ADAPTIVE_CURVES = ("torrance_adaptive", "cycles_adaptive")
+DENOISED_CURVES = ("torrance_denoised", "cycles_denoised")      # scripts/benchmark --denoised
 
 
 def cycles_names(res):
@@ -68,9 +70,20 @@ def header(res, variants):
         f"same way for both after an untimed warm-up render. Blender start-up (with the add-on), "
         f"not included: {res['blender_startup_seconds']:.2f} s."]
     distribution = "GGX" if len(variants) == 1 else "the Principled nodes' own distribution"
-    lines.append("- Cycles: no denoising, no clamping, no glossy blur, light threshold 0, "
+    lines.append(f"- Cycles{' (plain curves)' if s.get('denoising') else ''}: no denoising, "
+                 "no clamping, no glossy blur, light threshold 0, "
                  f"Blackman-Harris 1.5 px, {distribution}; bounces as each scene's BOUNCES "
                  "(Torrance the same).")
+    if s.get("denoising"):
+        lines.append(
+            "- Denoised curves (`torrance_denoised`, `cycles_denoised`; `--denoised`): the plain "
+            "curves again, each engine denoising its render with its own Open Image Denoise "
+            "(Cycles' built-in on the CPU; Torrance's Denoise with the library Blender loaded) "
+            "and its own guides, "
+            + ", ".join(f"{k}={v}" for k, v in s["denoising"].items())
+            + "; Cycles with its default sampling pattern (Automatic), Torrance with the "
+            "importance-sampled film it uses for denoised renders. Time includes the denoising; "
+            "the error is the denoised image's against the same reference.")
     if len(variants) > 1:
         lines.append(
             "- Cycles variants, each a separate curve (\"cycles\" = the configuration above, "
@@ -131,7 +144,7 @@ def write_report(directory):
         res = json.load(f)
     scenes = res["scenes"]
     variants = cycles_names(res)
-    curves = ["torrance", *variants, *ADAPTIVE_CURVES]
+    curves = ["torrance", *variants, *ADAPTIVE_CURVES, *DENOISED_CURVES]
     for d in scenes.values():
         for c in curves:
             for r in d.get(c, []):
@@ -147,11 +160,20 @@ def write_report(directory):
               "needs at most its first point's time: the ratio is at most x (≥ x: the other way "
               "round).", "", *table, "",
               benchmark_tables.goal_line(plain), ""]
+    if any(d.get("torrance_denoised") for d in scenes.values()):
+        lines += ["## After denoising", "",
+                  "Equal-error time ratio Torrance / Cycles after each engine's own denoising "
+                  "(`torrance_denoised` against `cycles_denoised`), beside the ratio without "
+                  "denoising of the same run (`torrance` against `cycles`); below 1 Torrance is "
+                  "faster.", "", *benchmark_tables.denoised(scenes), ""]
     if len(variants) > 1:
         lines += variant_table(scenes, variants)
-    lines += ["## Ablation: what each lever buys", "", *benchmark_tables.ablation(res, scenes), "",
-              "## Per-sample cost: rays/s against raw Embree", "",
-              *benchmark_tables.rays(scenes), "", "## Scenes", ""]
+    if not res["settings"].get("denoising"):       # --denoised runs measure neither
+        lines += ["## Ablation: what each lever buys", "",
+                  *benchmark_tables.ablation(res, scenes), "",
+                  "## Per-sample cost: rays/s against raw Embree", "",
+                  *benchmark_tables.rays(scenes), ""]
+    lines += ["## Scenes", ""]
     try:
         benchmark_plots.plot_references(list(scenes), os.path.join(directory, "references.png"),
                                         res["settings"].get("references", "references"))

@@ -9,20 +9,23 @@ import numpy as np
 
 from torrance_tools import REPO
 
-# engine -> (colour, marker); an adaptive curve has its engine's colour, dashed
+# engine -> (colour, marker); an adaptive curve has its engine's colour, dashed; a denoised one
+# (scripts/benchmark --denoised) dotted
 ENGINE_STYLES = {"torrance": ("tab:red", "o"), "cycles": ("tab:blue", "s"),
                  "cycles_light_tree": ("tab:green", "^"), "cycles_guiding": ("tab:purple", "v"),
                  "cycles_guiding_light_tree": ("tab:orange", "D")}
 ADAPTIVE_SUFFIX = "_adaptive"
+DENOISED_SUFFIX = "_denoised"
 
 
 def curve_style(curve):
     """(colour, marker, line style, label) of a curve name such as "cycles_adaptive"."""
-    adaptive = curve.endswith(ADAPTIVE_SUFFIX)
-    engine = curve[:-len(ADAPTIVE_SUFFIX)] if adaptive else curve
+    adaptive, denoised = curve.endswith(ADAPTIVE_SUFFIX), curve.endswith(DENOISED_SUFFIX)
+    engine = curve.removesuffix(ADAPTIVE_SUFFIX).removesuffix(DENOISED_SUFFIX)
     color, marker = ENGINE_STYLES.get(engine, ("tab:gray", "x"))
-    label = engine.replace("_", " ").capitalize() + (" adaptive" if adaptive else "")
-    return color, marker, ("--" if adaptive else "-"), label
+    label = (engine.replace("_", " ").capitalize() + (" adaptive" if adaptive else "")
+             + (" denoised" if denoised else ""))
+    return color, marker, ("--" if adaptive else ":" if denoised else "-"), label
 
 
 def point_label(row):

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """The speed/error benchmark's Markdown tables (scripts/benchmark_report.py): the summary of
-equal-error ratios with and without adaptive sampling, the ablation tables, rays/s against raw
-Embree and each scene's points. Each function returns a list of lines. Needs no bpy."""
+equal-error ratios with and without adaptive sampling, the ratios after denoising (--denoised),
+the ablation tables, rays/s against raw Embree and each scene's points. Each function returns a
+list of lines. Needs no bpy."""
 
 from torrance_tools.benchmark_points import geometric_mean
 from torrance_tools.equal_error import equal_error, fmt_equal, fmt_ratio, meets
@@ -65,6 +66,28 @@ def summary(scenes):
         lines.append(f"| [{name}](#{name.replace('_', '-')}) | " + " | ".join(cells)
                      + f" | {len(seeds) if seeds else '—'} | {bias} |")
     return lines, plain_by_scene
+
+
+def denoised(scenes):
+    """Per scene the equal-error ratios after denoising (scripts/benchmark --denoised: each
+    engine's own denoiser) beside the undenoised ones of the same run."""
+    lines = [f"| scene | T/C denoised: relMSE (geo. mean) | range | goal ≤ {TARGET} | 1−SSIM "
+             "| T/C undenoised: relMSE | 1−SSIM | seeds |",
+             "|---|---|---|---|---|---|---|---|"]
+    for name, d in scenes.items():
+        after = ratios(d, "torrance_denoised", "cycles_denoised")
+        if after is None:
+            continue
+        before = ratios(d, "torrance", "cycles")
+        eq, _trim, dssim = after
+        rng = f"{fmt_ratio(eq['lo'])}–{fmt_ratio(eq['hi'])}" if eq["lo"] is not None else "—"
+        met = {None: "—", True: "yes", False: "no"}[meets(eq, TARGET)]
+        undenoised = ([fmt_equal(before[0]), fmt_equal(before[2])] if before
+                      else ["—", "—"])
+        lines.append(f"| [{name}](#{name.replace('_', '-')}) | {fmt_equal(eq)} | {rng} | {met} "
+                     f"| {fmt_equal(dssim)} | " + " | ".join(undenoised)
+                     + f" | {len(d.get('seeds') or [])} |")
+    return lines
 
 
 def lever_label(field, default, other):

@@ -48,9 +48,12 @@ def reference_dir(version):
     return base if tuple(version) < (4, 0, 0) else os.path.join(base, "blender" + series(version))
 
 
-def report_dir(version):
+def report_dir(version, denoised=False):
     """Where the benchmark of Blender `version` writes its report: docs/benchmark/ for 3.x,
-    docs/benchmark_blender<X.Y>/ for 4.x."""
+    docs/benchmark_blender<X.Y>/ for 4.x; denoised (scripts/benchmark --denoised):
+    docs/benchmark_denoised_blender<X.Y>/."""
     docs = os.path.join(REPO, "docs")
+    if denoised:
+        return os.path.join(docs, "benchmark_denoised_blender" + series(version))
     return (os.path.join(docs, "benchmark") if tuple(version) < (4, 0, 0)
             else os.path.join(docs, "benchmark_blender" + series(version)))

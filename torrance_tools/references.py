@@ -17,7 +17,8 @@ from torrance_tools.addon_access import torrance_core
 from torrance_tools.blender_versions import reference_dir
 from torrance_tools.compare import read_exr
 from torrance_tools.comparison_scenes import scene_digest
-from torrance_tools.render_settings import render_exr, setup_cycles, setup_torrance
+from torrance_tools.render_settings import (cycles_denoising, render_exr, setup_cycles,
+                                             setup_torrance, use_denoising)
 
 # references/ for Blender 3.4, references/blender<X.Y>/ for 4.x (rendered by that Cycles)
 REFERENCE_DIR = os.environ.get("TORRANCE_REFERENCE_DIR") or reference_dir(bpy.app.version)
@@ -43,14 +44,15 @@ def render(scene, name="render"):
 
 
 def render_torrance(scene, samples, seed, bounces, name="torrance", settings_edit=None,
-                    scene_edit=None, adaptive_threshold=0.0):
+                    scene_edit=None, adaptive_threshold=0.0, denoise=False):
     """A Torrance render with the PRINCIPLED model, the core wrapped by the edits (see
     addon_access.core_proxy). Unbiased: no clamping, no time limit. adaptive_threshold > 0:
     adaptive sampling at that noise threshold with the automatic minimum of samples (as
-    Cycles'); 0: every pixel gets `samples`."""
+    Cycles'); 0: every pixel gets `samples`. denoise: Torrance's Denoise on (DENOISING)."""
     ts = setup_torrance(scene, samples, bounces, seed, 'PRINCIPLED', progressive_display=False)
     ts.sample_clamp_direct = ts.sample_clamp_indirect = 0.0
     ts.time_limit = 0.0
+    use_denoising(ts, denoise)
     ts.use_adaptive_sampling = adaptive_threshold > 0
     if adaptive_threshold > 0:
         ts.adaptive_threshold = adaptive_threshold
@@ -60,14 +62,16 @@ def render_torrance(scene, samples, seed, bounces, name="torrance", settings_edi
 
 
 def render_cycles(scene, samples, seed, bounces, name="cycles", variant=None,
-                  adaptive_threshold=0.0):
+                  adaptive_threshold=0.0, denoise=False):
     """A Cycles render (setup_cycles), with the settings of `variant` (a dict of scene.cycles
     fields, e.g. blender_versions.CYCLES_4X's light tree and path guiding) on top.
     adaptive_threshold > 0: Cycles' adaptive sampling at that noise threshold with its automatic
-    minimum of samples; 0: none (setup_cycles)."""
+    minimum of samples; 0: none (setup_cycles). denoise: cycles_denoising."""
     setup_cycles(scene, samples, bounces, seed)
     for key, value in (variant or {}).items():
         setattr(scene.cycles, key, value)
+    if denoise:
+        cycles_denoising(scene)
     if adaptive_threshold > 0:
         scene.cycles.use_adaptive_sampling = True
         scene.cycles.adaptive_threshold = adaptive_threshold

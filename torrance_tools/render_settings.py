@@ -127,6 +127,36 @@ def setup_cycles(scene, samples, max_bounces, seed=0):
     ggx_everywhere()
 
 
+# The denoising of both engines in the denoised benchmark (scripts/benchmark --denoised): Cycles'
+# defaults for Open Image Denoise, fields of the same names in scene.cycles and scene.torrance.
+DENOISING = dict(denoising_input_passes='RGB_ALBEDO_NORMAL', denoising_prefilter='ACCURATE',
+                 denoising_quality='HIGH')
+
+
+def use_denoising(settings, on):
+    """scene.torrance or scene.cycles (`settings`) denoising its final render with DENOISING,
+    or not."""
+    settings.use_denoising = bool(on)
+    if on:
+        for key, value in DENOISING.items():
+            setattr(settings, key, value)
+
+
+def cycles_denoising(scene):
+    """Cycles (after setup_cycles) denoising with Open Image Denoise on the CPU (DENOISING), on
+    every view layer, with its default sampling pattern (Automatic: 4.2+ picks blue noise, which
+    Cycles chooses for the denoiser, instead of white_noise_pattern's)."""
+    cy = scene.cycles
+    use_denoising(cy, True)
+    cy.denoiser = 'OPENIMAGEDENOISE'
+    if hasattr(cy, "denoising_use_gpu"):
+        cy.denoising_use_gpu = False
+    if hasattr(cy, "sampling_pattern"):
+        cy.sampling_pattern = 'AUTOMATIC'
+    for layer in scene.view_layers:
+        layer.cycles.use_denoising = True
+
+
 def render_exr(scene, path, color_mode='RGBA'):
     """Renders the scene with its engine into a 32-bit ZIP EXR at `path`; returns the seconds of
     bpy.ops.render.render (scene sync/export + render)."""
