@@ -337,12 +337,15 @@ def main():
     t0 = time.perf_counter()
     made = datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")
     commit = git("rev-parse", "--short", "HEAD")
-    dirty = bool(git("status", "--porcelain", "--", "core", "python_addon", "CMakeLists.txt"))
+    # TORRANCE_ADDON_DIR (scripts/bpy): an add-on built elsewhere, the tree's changes not in it
+    addon_dir = os.environ.get("TORRANCE_ADDON_DIR")
+    dirty = not addon_dir and bool(git("status", "--porcelain", "--", "core", "python_addon",
+                                       "CMakeLists.txt"))
     results = dict(
         made=made,
         command=COMMAND + " " + " ".join(sys.argv[sys.argv.index("--") + 1:]
                                          if "--" in sys.argv else []),
-        torrance_commit=commit, torrance_dirty=dirty,
+        torrance_commit=commit, torrance_dirty=dirty, torrance_addon=addon_dir,
         **references.versions(), machine=machine(),
         settings=dict(width=comparison_scenes.WIDTH, height=comparison_scenes.HEIGHT,
                       seeds=args.seeds, first_seed=benchmark_points.FIRST_SEED,

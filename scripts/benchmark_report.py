@@ -45,6 +45,8 @@ def header(res, variants):
     m = res["machine"]
     dirty = (" (with uncommitted changes in core/ or python_addon/)"
              if res.get("torrance_dirty") else "")
+    if res.get("torrance_addon"):
+        dirty += f" (its add-on and core from `{res['torrance_addon']}`, not the tree's build)"
     ladder = ", ".join(str(x) for x in s.get("spp_ladder", [])) or "…"
     thresholds = ", ".join(f"{t:.3g}" for t in s.get("adaptive_thresholds", [])) or "none"
     lines = [
