@@ -178,7 +178,9 @@ void init_scene(py::module_& m) {
              int base_color_register, int metallic_register, int roughness_register, int emission_register,
              int normal_register, int alpha_register, int surface_normal_register, float coat_weight,
              float coat_roughness, float coat_ior, std::array<float, 3> coat_tint, int coat_weight_register,
-             int coat_roughness_register, int coat_ior_register, int coat_tint_register) {
+             int coat_roughness_register, int coat_ior_register, int coat_tint_register, float sheen_weight,
+             float sheen_roughness, float sheen_tint, std::array<float, 3> sheen_tint_color,
+             int sheen_weight_register, int sheen_roughness_register, int sheen_tint_register) {
             if (glass_distribution != "GGX" && glass_distribution != "BECKMANN")
               throw py::value_error("glass_distribution must be 'GGX' or 'BECKMANN', got '" + glass_distribution +
                                     "'");
@@ -202,6 +204,10 @@ void init_scene(py::module_& m) {
             mat.coat_roughness = coat_roughness;
             mat.coat_ior = coat_ior;
             mat.coat_tint = vec3(coat_tint);
+            mat.sheen_weight = sheen_weight;
+            mat.sheen_roughness = sheen_roughness;
+            mat.sheen_tint = sheen_tint;
+            mat.sheen_tint_color = vec3(sheen_tint_color);
             MaterialTextures tex;
             tex.base_color = base_color_texture;
             tex.metallic = metallic_texture;
@@ -223,6 +229,9 @@ void init_scene(py::module_& m) {
             tex.program.coat_roughness = program_register(coat_roughness_register);
             tex.program.coat_ior = program_register(coat_ior_register);
             tex.program.coat_tint = program_register(coat_tint_register);
+            tex.program.sheen_weight = program_register(sheen_weight_register);
+            tex.program.sheen_roughness = program_register(sheen_roughness_register);
+            tex.program.sheen_tint = program_register(sheen_tint_register);
             return s.add_material(mat, tex);
           },
           py::arg("base_color") = std::array<float, 3>{0.8f, 0.8f, 0.8f}, py::arg("metallic") = 0.0f,
@@ -243,7 +252,10 @@ void init_scene(py::module_& m) {
           py::arg("surface_normal_register") = -1, py::arg("coat_weight") = 0.0f, py::arg("coat_roughness") = 0.03f,
           py::arg("coat_ior") = 1.5f, py::arg("coat_tint") = std::array<float, 3>{1.0f, 1.0f, 1.0f},
           py::arg("coat_weight_register") = -1, py::arg("coat_roughness_register") = -1,
-          py::arg("coat_ior_register") = -1, py::arg("coat_tint_register") = -1,
+          py::arg("coat_ior_register") = -1, py::arg("coat_tint_register") = -1, py::arg("sheen_weight") = 0.0f,
+          py::arg("sheen_roughness") = 0.5f, py::arg("sheen_tint") = 0.5f,
+          py::arg("sheen_tint_color") = std::array<float, 3>{1.0f, 1.0f, 1.0f}, py::arg("sheen_weight_register") = -1,
+          py::arg("sheen_roughness_register") = -1, py::arg("sheen_tint_register") = -1,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
@@ -263,7 +275,10 @@ void init_scene(py::module_& m) {
           "surface_normal_register: the surface's normal after the Material Output's Displacement, as bump, "
           "what the shadow terminator's smoothing compares the Normal with). coat_*: the Principled BSDF's "
           "coat (weight >= 0, 0: none; roughness in [0, 1]; ior >= 1 and tint >= 0, PRINCIPLED_V2 only: v1's "
-          "clearcoat has IOR 1.5 and no tint), from the program's coat_*_register when given.")
+          "clearcoat has IOR 1.5 and no tint), from the program's coat_*_register when given. sheen_*: the "
+          "Principled BSDF's sheen (weight >= 0, 0: none; PRINCIPLED: sheen_tint in [0, 1]; PRINCIPLED_V2: "
+          "sheen_roughness in [0, 1] and sheen_tint_color >= 0), from the program's sheen_*_register when given "
+          "(sheen_tint_register: v1's factor its x, v2's colour).")
       .def(
           "add_shader_program",
           [](Scene& s, const py::object& constants, const py::object& code, int registers, const py::object& data) {

@@ -20,7 +20,8 @@ PrincipledBsdf::PrincipledBsdf(const Material& m) {
   // Transmission (Cycles 3.4): the diffuse lobe keeps (1 - metallic)(1 - transmission), the
   // specular lobe 1 - transmission (1 - metallic); the rest is glass (MaterialBsdf, glass.h).
   const float transmission = clamp01(m.transmission);
-  diffuse_color_ = (1.0f - metallic) * (1.0f - transmission) * base;
+  const float diffuse_weight = (1.0f - metallic) * (1.0f - transmission);
+  diffuse_color_ = diffuse_weight * base;
   diffuse_luminance_ = luminance(diffuse_color_);
   specular_weight_ = 1.0f - transmission * (1.0f - metallic);
   f0_ = std::min(0.08f * std::max(m.specular, 0.0f), 0.99f);
@@ -31,6 +32,7 @@ PrincipledBsdf::PrincipledBsdf(const Material& m) {
   const Vec3 dielectric = f0_ * glm::mix(Vec3(1.0f), tint, clamp01(m.specular_tint)) * (1.0f - metallic);
   cspec0_ = glm::clamp(dielectric + base * metallic, Vec3(0.0f), Vec3(1.0f));
   if (m.coat_weight > 0.0f) coat_ = ClearcoatV1(m.coat_weight, m.coat_roughness);
+  if (m.sheen_weight > 0.0f) sheen_ = SheenV1(m.sheen_weight, m.sheen_tint, base, diffuse_weight);
 }
 
 Vec3 PrincipledBsdf::fresnel(float cos_ih) const {
@@ -41,18 +43,12 @@ Vec3 PrincipledBsdf::fresnel(float cos_ih) const {
 }
 
 float PrincipledBsdf::specular_probability(const Vec3& wo) const {
+  // The sheen is sampled with the diffuse lobe (by the cosine): its estimate joins the diffuse's.
+  const float diffuse = sheen_.active() ? diffuse_luminance_ + sheen_.estimate(wo.z) : diffuse_luminance_;
   // Without a diffuse lobe the answer is 1 whatever F is: no Fresnel then (metals, mirrors).
-  if (!(diffuse_luminance_ > 0.0f)) return 1.0f;
-  return lobe_mixture::specular_probability(luminance(fresnel(wo.z)), diffuse_luminance_);
+  if (!(diffuse > 0.0f)) return 1.0f;
+  return lobe_mixture::specular_probability(luminance(fresnel(wo.z)), diffuse);
 }
-
-namespace {
-// Schlick's weight (1 - c)^5 of the Burley diffuse, c clamped to [0, 1].
-float schlick_weight(float c) {
-  const float m = 1.0f - clamp01(c);
-  return (m * m) * (m * m) * m;
-}
-}  // namespace
 
 PrincipledBsdf::View PrincipledBsdf::geometry(const Vec3& wo) const {
   View v;
@@ -69,7 +65,8 @@ PrincipledBsdf::View PrincipledBsdf::at(const Vec3& wo) const {
     // mean specular Fresnel. The clearcoat's estimator is biased (principled_coat.h) by an amount
     // that depends on them: with Cycles' odds it is Cycles' bias.
     const float coat = coat_.estimate(wo.z);
-    const float diffuse = (diffuse_color_.r + diffuse_color_.g + diffuse_color_.b) / 3.0f;
+    float diffuse = (diffuse_color_.r + diffuse_color_.g + diffuse_color_.b) / 3.0f;
+    if (sheen_.active()) diffuse += sheen_.estimate(wo.z);
     const float spec = glm::dot(fresnel(wo.z), Vec3(1.0f)) / 3.0f;
     const float all = coat + diffuse + spec;
     v.p_coat = all > 0.0f ? coat / all : 0.0f;
@@ -91,6 +88,7 @@ LobeEval PrincipledBsdf::eval_lobes(const View& v, const Vec3& wi) const {
   const float burley = (1.0f - 0.5f * fl) * (1.0f - 0.5f * fv) + rr * (fl + fv + fl * fv * (rr - 1.0f));
   LobeEval f_cos;
   f_cos.diffuse = diffuse_color_ * (kInvPi * burley * wi.z);
+  if (sheen_.active()) f_cos.diffuse += sheen_.eval(cos_d, wi.z);
   if (!has_delta()) {
     const float g = v.g1_o * ggx::smith_G1(wi.z, alpha_);
     f_cos.glossy = fresnel(cos_d) * (ggx::D(h, alpha_) * g / v.four_cos_o);

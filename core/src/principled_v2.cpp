@@ -41,6 +41,7 @@ PrincipledV2Bsdf::PrincipledV2Bsdf(const Material& m) {
   const float s_ss = f0_eta < 1.0f ? clamp01((mean_dielectric_fresnel(eta_) - f0_eta) / (1.0f - f0_eta)) : 1.0f;
   dielectric_fss_ = glm::mix(dielectric_f0_, Vec3(1.0f), s_ss);
   if (m.coat_weight > 0.0f) coat_ = CoatV2(m.coat_weight, m.coat_roughness, m.coat_ior, m.coat_tint);
+  if (m.sheen_weight > 0.0f) sheen_ = SheenV2(m.sheen_weight, m.sheen_roughness, m.sheen_tint_color);
 }
 
 Vec3 PrincipledV2Bsdf::metal_fresnel(float cos_ih) const {
@@ -80,6 +81,16 @@ PrincipledV2Bsdf::ViewTerms PrincipledV2Bsdf::view_terms(float cos_o) const {
     v.dielectric_scale *= v.coat.base_weight;
     v.diffuse *= v.coat.base_weight;
   }
+  if (sheen_.active()) {
+    // The sheen is the top layer: everything under it (the coat too) keeps 1 - max_rgb(A).
+    v.sheen = sheen_.terms(cos_o);
+    const float keep = SheenV2::keep(v.sheen);
+    v.metal_scale *= keep;
+    v.dielectric_scale *= keep;
+    v.diffuse *= keep;
+    v.coat.scale *= keep;
+    v.coat.albedo *= keep;
+  }
   return v;
 }
 
@@ -88,9 +99,13 @@ Vec3 PrincipledV2Bsdf::mirror_reflectance(const Vec3& wo) const {
   return v.metal_scale * metal_fresnel(wo.z) + v.dielectric_scale * dielectric_fresnel(wo.z);
 }
 
-float PrincipledV2Bsdf::specular_probability(const ViewTerms& v, float cos_o) const {
+Vec3 PrincipledV2Bsdf::specular_estimate(const ViewTerms& v, float cos_o) const {
   const Vec3 spec = metallic_ * metal_fresnel(cos_o) + (1.0f - metallic_) * v.dielectric_albedo;
-  return lobe_mixture::specular_probability(luminance(spec * v.coat.base_weight), luminance(v.diffuse));
+  return spec * v.coat.base_weight * (sheen_.active() ? SheenV2::keep(v.sheen) : 1.0f);
+}
+
+float PrincipledV2Bsdf::specular_probability(const ViewTerms& v, float cos_o) const {
+  return lobe_mixture::specular_probability(luminance(specular_estimate(v, cos_o)), luminance(v.diffuse));
 }
 
 PrincipledV2Bsdf::View PrincipledV2Bsdf::geometry(const Vec3& wo) const {
@@ -98,16 +113,19 @@ PrincipledV2Bsdf::View PrincipledV2Bsdf::geometry(const Vec3& wo) const {
   lobe_mixture::prepare(v, wo, alpha_);
   v.terms = view_terms(wo.z);
   v.lambda_o = ggx::smith_lambda(wo.z, alpha_);
+  if (sheen_.active()) v.sheen = SheenBsdf::oriented(v.terms.sheen, wo);
   return v;
 }
 
 PrincipledV2Bsdf::View PrincipledV2Bsdf::at(const Vec3& wo) const {
   View v = geometry(wo);
   v.p_spec = specular_probability(v.terms, wo.z);
-  if (coat_.reflects()) {
-    const ViewTerms& t = v.terms;
-    const Vec3 spec = metallic_ * metal_fresnel(wo.z) + (1.0f - metallic_) * t.dielectric_albedo;
-    v.p_coat = lobe_mixture::coat_probability(t.coat.albedo, luminance(spec * t.coat.base_weight + t.diffuse));
+  const ViewTerms& t = v.terms;
+  if (coat_.reflects() || sheen_.active()) {
+    const float under_coat = luminance(specular_estimate(t, wo.z) + t.diffuse);
+    if (coat_.reflects()) v.p_coat = lobe_mixture::coat_probability(t.coat.albedo, under_coat);
+    if (v.sheen.reflects())
+      v.p_sheen = lobe_mixture::coat_probability(luminance(v.sheen.weight), under_coat + t.coat.albedo);
   }
   return v;
 }
@@ -120,6 +138,7 @@ LobeEval PrincipledV2Bsdf::eval_lobes(const View& view, const Vec3& wi) const {
   const float cos_diffuse = view.diffuse_normal.cosine(wi);
   if (cos_diffuse > 0.0f) f_cos.diffuse = v.diffuse * (kInvPi * cos_diffuse);
   if (wi.z <= 0.0f) return f_cos;
+  if (view.sheen.reflects()) f_cos.diffuse += view.sheen.weight * view.sheen.density(wi);
   if (coat_.reflects()) f_cos.glossy = Vec3(coat_.eval(v.coat, wo, wi));
   if (has_delta()) return f_cos;
   Vec3 h;

@@ -148,6 +148,12 @@ void Scene::apply_program(const MaterialTextures& t, const ShaderGlobals& g, Mat
   if (o.coat_roughness >= 0) m.coat_roughness = clamp01(regs[size_t(o.coat_roughness)].x);
   if (o.coat_ior >= 0) m.coat_ior = std::max(regs[size_t(o.coat_ior)].x, 1.0f);
   if (o.coat_tint >= 0) m.coat_tint = glm::max(Vec3(regs[size_t(o.coat_tint)]), Vec3(0.0f));
+  if (o.sheen_weight >= 0) m.sheen_weight = std::max(regs[size_t(o.sheen_weight)].x, 0.0f);
+  if (o.sheen_roughness >= 0) m.sheen_roughness = clamp01(regs[size_t(o.sheen_roughness)].x);
+  if (o.sheen_tint >= 0) {
+    m.sheen_tint = clamp01(regs[size_t(o.sheen_tint)].x);
+    m.sheen_tint_color = glm::max(Vec3(regs[size_t(o.sheen_tint)]), Vec3(0.0f));
+  }
 }
 
 Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, const ShaderGlobals& g,
@@ -222,6 +228,13 @@ void check_material(const Material& m) {
       glm::any(glm::lessThan(m.coat_tint, Vec3(0.0f))))
     throw std::invalid_argument("material coat_weight must be >= 0, coat_roughness in [0, 1], coat_ior >= 1 and "
                                 "coat_tint >= 0");
+  if (!std::isfinite(m.sheen_weight) || !std::isfinite(m.sheen_roughness) || !std::isfinite(m.sheen_tint) ||
+      !is_finite(m.sheen_tint_color))
+    throw std::invalid_argument("material sheen values must be finite");
+  if (m.sheen_weight < 0.0f || m.sheen_roughness < 0.0f || m.sheen_roughness > 1.0f || m.sheen_tint < 0.0f ||
+      m.sheen_tint > 1.0f || glm::any(glm::lessThan(m.sheen_tint_color, Vec3(0.0f))))
+    throw std::invalid_argument("material sheen_weight must be >= 0, sheen_roughness and sheen_tint in [0, 1] and "
+                                "sheen_tint_color >= 0");
 }
 
 uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures) {
@@ -251,7 +264,8 @@ uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures
 void Scene::check_program_outputs(const ShaderOutputs& o) const {
   if (o.program < 0) {
     if (o.base_color >= 0 || o.metallic >= 0 || o.roughness >= 0 || o.emission >= 0 || o.normal >= 0 || o.alpha >= 0 ||
-        o.surface_normal >= 0 || o.coat_weight >= 0 || o.coat_roughness >= 0 || o.coat_ior >= 0 || o.coat_tint >= 0)
+        o.surface_normal >= 0 || o.coat_weight >= 0 || o.coat_roughness >= 0 || o.coat_ior >= 0 || o.coat_tint >= 0 ||
+        o.sheen_weight >= 0 || o.sheen_roughness >= 0 || o.sheen_tint >= 0)
       throw std::invalid_argument("material reads shader program registers but names no program");
     return;
   }
@@ -260,7 +274,7 @@ void Scene::check_program_outputs(const ShaderOutputs& o) const {
                                 std::to_string(programs_.size()) + " programs");
   const ShaderProgram& program = programs_[size_t(o.program)];
   for (int r : {o.base_color, o.metallic, o.roughness, o.emission, o.normal, o.alpha, o.surface_normal, o.coat_weight,
-                o.coat_roughness, o.coat_ior, o.coat_tint})
+                o.coat_roughness, o.coat_ior, o.coat_tint, o.sheen_weight, o.sheen_roughness, o.sheen_tint})
     if (r != -1 && !program.written(r))
       throw std::invalid_argument("material reads register " + std::to_string(r) + " of a shader program with " +
                                   std::to_string(program.registers()) + " registers, which the program does not write");

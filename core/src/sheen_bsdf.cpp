@@ -11,14 +11,19 @@ SheenBsdf::SheenBsdf(const Vec3& color, float roughness)
 
 float SheenBsdf::sampling_albedo() const { return luminance(color_) * sheen_ltc::lookup(1.0f, roughness_).albedo; }
 
-SheenBsdf::Lobe SheenBsdf::lobe(const Vec3& wo) const {
+SheenBsdf::Lobe SheenBsdf::lobe_at(float cos_o) const {
   Lobe l;
-  if (!(wo.z > 0.0f) || !is_finite(wo)) return l;
-  const sheen_ltc::Coefficients c = sheen_ltc::lookup(wo.z, roughness_);
+  if (!(cos_o > 0.0f) || !std::isfinite(cos_o)) return l;
+  const sheen_ltc::Coefficients c = sheen_ltc::lookup(cos_o, roughness_);
   if (!(c.a > 0.0f) || !(c.albedo > 0.0f)) return l;  // the table's empty corner (smooth, not grazing)
   l.a = c.a;
   l.b = c.b;
   l.weight = color_ * c.albedo;
+  return l;
+}
+
+SheenBsdf::Lobe SheenBsdf::oriented(Lobe l, const Vec3& wo) {
+  if (!is_finite(wo)) return Lobe{};
   // x: wo's tangential direction (any tangent at normal incidence, where the lobe is symmetric).
   const float t2 = wo.x * wo.x + wo.y * wo.y;
   l.x = t2 > 1e-12f ? Vec3(wo.x, wo.y, 0.0f) / std::sqrt(t2) : Vec3(1.0f, 0.0f, 0.0f);
@@ -32,10 +37,17 @@ float SheenBsdf::Lobe::density(const Vec3& wi) const {
   return wi.z * kInvPi * k * k;
 }
 
+Vec3 SheenBsdf::Lobe::sample(const Vec2& u) const {
+  const Vec2 d = sample_concentric_disk(u);
+  const float dz = safe_sqrt(1.0f - glm::dot(d, d));
+  const Vec3 local = glm::normalize(Vec3((d.x - dz * b) / a, d.y / a, dz));
+  return local.x * x + local.y * y + Vec3(0.0f, 0.0f, local.z);
+}
+
 LobeEval SheenBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
   if (!(wi.z > 0.0f)) return {};
   const Lobe l = lobe(wo);
-  if (!(max_component(l.weight) > 0.0f)) return {};
+  if (!l.reflects()) return {};
   LobeEval f;
   f.diffuse = l.weight * l.density(wi);
   return f;
@@ -44,17 +56,14 @@ LobeEval SheenBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
 float SheenBsdf::pdf(const Vec3& wo, const Vec3& wi) const {
   if (!(wi.z > 0.0f)) return 0.0f;
   const Lobe l = lobe(wo);
-  return max_component(l.weight) > 0.0f ? l.density(wi) : 0.0f;
+  return l.reflects() ? l.density(wi) : 0.0f;
 }
 
 BsdfSample SheenBsdf::sample(const Vec3& wo, float /*u_lobe*/, const Vec2& u) const {
   const Lobe l = lobe(wo);
-  if (!(max_component(l.weight) > 0.0f)) return {};
-  const Vec2 d = sample_concentric_disk(u);
-  const float dz = safe_sqrt(1.0f - glm::dot(d, d));
-  const Vec3 local = glm::normalize(Vec3((d.x - dz * l.b) / l.a, d.y / l.a, dz));
+  if (!l.reflects()) return {};
   BsdfSample s;
-  s.wi = local.x * l.x + local.y * l.y + Vec3(0.0f, 0.0f, local.z);
+  s.wi = l.sample(u);
   if (!(s.wi.z > 0.0f)) return {};
   s.diffuse = true;
   s.pdf = l.density(s.wi);

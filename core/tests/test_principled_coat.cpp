@@ -6,6 +6,7 @@
 #include "torrance/ggx_tables.h"
 #include "torrance/principled.h"
 
+#include "bsdf_checks.h"
 #include "test_helpers.h"
 
 #include <gtest/gtest.h>
@@ -48,23 +49,6 @@ TEST(PrincipledCoat, ClearcoatMatchesCyclesClosedForm) {
   EXPECT_NEAR(eb.glossy.r - ea.glossy.r, ClearcoatV1(1.0f, 0.1f).eval(wo, wi), 1e-6f);
 }
 
-// Every sample: its pdf is pdf(wo, wi) and its weight eval / pdf (or a delta's reflectance).
-void expect_samples_agree(const Material& m, BrdfModel model, const Vec3& wo) {
-  const MaterialBsdf bsdf(m, model);
-  Rng rng(7, 0, 99);
-  for (int n = 0; n < 2000; ++n) {
-    const float u = rng.next_1d();
-    const BsdfSample s = bsdf.sample(wo, u, rng.next_2d());
-    if (!s.valid()) continue;
-    ASSERT_TRUE(std::isfinite(s.weight.r) && std::isfinite(s.weight.g) && std::isfinite(s.weight.b));
-    if (s.is_delta) continue;
-    const float pdf = bsdf.pdf(wo, s.wi);
-    ASSERT_NEAR(s.pdf, pdf, 1e-4f * pdf);
-    const Vec3 w = bsdf.eval(wo, s.wi) / pdf;
-    for (int c = 0; c < 3; ++c) ASSERT_NEAR(s.weight[c], w[c], 1e-4f * std::max(w[c], 1.0f));
-  }
-}
-
 TEST(PrincipledCoat, SampleEvalAndPdfAgree) {
   for (BrdfModel model : {BrdfModel::Principled, BrdfModel::PrincipledV2})
     for (float coat_r : {0.0f, 0.05f, 0.3f, 1.0f})
@@ -74,7 +58,7 @@ TEST(PrincipledCoat, SampleEvalAndPdfAgree) {
                        std::to_string(r) + " cos_o " + std::to_string(cos_o));
           Material m = coated(Vec3(0.8f, 0.1f, 0.1f), 0.0f, r, 1.0f, coat_r);
           m.coat_tint = Vec3(0.9f, 0.5f, 0.2f);
-          expect_samples_agree(m, model, test::direction(cos_o, 0.3f));
+          test::expect_samples_agree(m, model, test::direction(cos_o, 0.3f));
         }
 }
 
@@ -142,18 +126,7 @@ TEST(PrincipledCoat, HardCasesStayFinite) {
           Material m = coated(Vec3(0.9f, 0.2f, 0.1f), 0.5f, r, 1.0f, coat_r);
           m.coat_ior = 1.0f + coat_r;  // IOR 1 (no reflection) included
           m.coat_tint = Vec3(0.0f, 0.5f, 1.0f);
-          const MaterialBsdf bsdf(m, model);
-          const Vec3 wo = test::direction(cos_o, 1.0f);
-          for (int n = 0; n < 500; ++n) {
-            const Vec3 wi = test::uniform_sphere(rng);
-            const Vec3 f = bsdf.eval(wo, wi);
-            const float pdf = bsdf.pdf(wo, wi);
-            ASSERT_TRUE(std::isfinite(f.r) && std::isfinite(f.g) && std::isfinite(f.b) && std::isfinite(pdf));
-            ASSERT_GE(pdf, 0.0f);
-            const BsdfSample s = bsdf.sample(wo, rng.next_1d(), rng.next_2d());
-            ASSERT_TRUE(std::isfinite(s.weight.r) && std::isfinite(s.weight.g) && std::isfinite(s.weight.b));
-            ASSERT_TRUE(std::isfinite(s.pdf));
-          }
+          test::expect_finite(m, model, test::direction(cos_o, 1.0f), rng);
         }
 }
 

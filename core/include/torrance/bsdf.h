@@ -62,6 +62,13 @@ struct Material {
   float coat_roughness = 0.03f;
   float coat_ior = 1.5f;
   Vec3 coat_tint{1.0f};
+  // The Principled BSDF's sheen (principled_sheen.h): v1's Sheen and Sheen Tint (PRINCIPLED: the
+  // tint a mix factor in [0, 1] towards the base colour's hue), v2's Sheen Weight, Roughness and
+  // Tint colour (PRINCIPLED_V2). A weight of 0 is no sheen (and costs nothing).
+  float sheen_weight = 0.0f;
+  float sheen_roughness = 0.5f;
+  float sheen_tint = 0.5f;
+  Vec3 sheen_tint_color{1.0f};
 };
 
 // The normal a BSDF's diffuse lobes shade with, in its shading frame. The frame's z is the

@@ -7,6 +7,9 @@
 // A model with a coat (PRINCIPLED, PRINCIPLED_V2: principled_coat.h) adds a third lobe, chosen
 // first with its View's p_coat (0 without a coat: then nothing of it runs), by naming
 // coat_pdf(view, wi), coat_sample(view, u), coat_is_delta() and coat_mirror_reflectance(view).
+// A model with a sheen layer above that (PRINCIPLED_V2: principled_sheen.h) adds a fourth lobe,
+// chosen before all others with its View's p_sheen (0 without a sheen), by naming
+// sheen_pdf(view, wi) and sheen_sample(view, u) of its own View; the sheen is a diffuse lobe.
 //
 // A shading point asks its BSDF several times with one wo (light choice, the light sample's eval
 // and MIS pdf, the BSDF sample's pdf and eval), so each model prepares what depends on wo alone
@@ -40,6 +43,7 @@ struct View {
   float four_cos_o = 0.0f;  // 4 wo.z
   float p_spec = 1.0f;     // bsdf.specular_probability(wo), of the lobes other than the coat
   float p_coat = 0.0f;     // the coat lobe's probability (models with a coat)
+  float p_sheen = 0.0f;    // the sheen lobe's probability (models with a sheen layer)
   DiffuseNormal diffuse_normal;  // the diffuse lobe's (bsdf.h); PRINCIPLED_V2 alone reads it
 };
 
@@ -53,6 +57,19 @@ struct HasCoat<Bsdf, std::void_t<decltype(&Bsdf::coat_pdf)>> : std::true_type {}
 template <typename Bsdf>
 bool coated(const Bsdf& bsdf) {
   if constexpr (HasCoat<Bsdf>::value) return bsdf.has_coat();
+  return false;
+}
+
+// Whether a model has a sheen lobe of its own (names sheen_pdf).
+template <typename Bsdf, typename = void>
+struct HasSheen : std::false_type {};
+template <typename Bsdf>
+struct HasSheen<Bsdf, std::void_t<decltype(&Bsdf::sheen_pdf)>> : std::true_type {};
+
+// Whether a model's material has a sheen lobe (false for models without one).
+template <typename Bsdf>
+bool sheened(const Bsdf& bsdf) {
+  if constexpr (HasSheen<Bsdf>::value) return bsdf.has_sheen();
   return false;
 }
 
@@ -70,6 +87,13 @@ Vec3 coat_direction(const Bsdf& bsdf, const View& v, const Vec2& u) {
   return Vec3(0.0f);
 }
 
+// The sheen's sampled direction (models with a sheen; never called for the others).
+template <typename Bsdf, typename View>
+Vec3 sheen_direction(const Bsdf& bsdf, const View& v, const Vec2& u) {
+  if constexpr (HasSheen<Bsdf>::value) return bsdf.sheen_sample(v, u);
+  return Vec3(0.0f);
+}
+
 // A cosine-distributed direction about the diffuse lobe's normal d.
 inline Vec3 sample_diffuse(const DiffuseNormal& d, const Vec2& u) {
   const Vec3 local = sample_cosine_hemisphere(u);
@@ -83,9 +107,9 @@ inline void prepare(View& v, const Vec3& wo, float alpha) {
   v.four_cos_o = 4.0f * wo.z;
 }
 
-// The mixture's pdf of wi seen from the prepared v.
-template <typename Bsdf>
-float pdf(const Bsdf& bsdf, const View& v, const Vec3& wi, float alpha) {
+// The mixture's pdf of wi seen from the prepared v (Bsdf::View, or View for models without a sheen).
+template <typename Bsdf, typename V>
+float pdf(const Bsdf& bsdf, const V& v, const Vec3& wi, float alpha) {
   const Vec3& wo = v.wo;
   if (wo.z <= 0.0f) return 0.0f;
   float pdf = (1.0f - v.p_spec) * cosine_hemisphere_pdf(v.diffuse_normal.cosine(wi));
@@ -93,6 +117,9 @@ float pdf(const Bsdf& bsdf, const View& v, const Vec3& wi, float alpha) {
     pdf += v.p_spec * ggx::reflected_pdf_given(v.g1_o, v.four_cos_o, glm::normalize(wo + wi), alpha);
   if constexpr (HasCoat<Bsdf>::value) {
     if (v.p_coat > 0.0f) pdf = (1.0f - v.p_coat) * pdf + v.p_coat * bsdf.coat_pdf(v, wi);
+  }
+  if constexpr (HasSheen<Bsdf>::value) {
+    if (v.p_sheen > 0.0f) pdf = (1.0f - v.p_sheen) * pdf + v.p_sheen * bsdf.sheen_pdf(v, wi);
   }
   return pdf;
 }
@@ -104,22 +131,33 @@ BsdfSample sample(const Bsdf& bsdf, const typename Bsdf::View& v, float u_lobe, 
   const Vec3& wo = v.wo;
   BsdfSample s;
   if (wo.z <= 0.0f) return s;
-  float others = 1.0f;  // the probability of the lobes other than the coat
-  bool coat = false;
+  float others = 1.0f;  // the probability of the lobes other than the sheen and the coat
+  bool sheen = false, coat = false;
+  if constexpr (HasSheen<Bsdf>::value) {
+    if (v.p_sheen > 0.0f) {
+      sheen = u_lobe < v.p_sheen;
+      others = 1.0f - v.p_sheen;
+      if (!sheen) u_lobe = std::min((u_lobe - v.p_sheen) / others, 0.99999994f);
+    }
+  }
   if constexpr (HasCoat<Bsdf>::value) {
-    if (v.p_coat > 0.0f) {
+    if (v.p_coat > 0.0f && !sheen) {
       coat = u_lobe < v.p_coat;
       if (coat && bsdf.coat_is_delta()) {
         s.wi = Vec3(-wo.x, -wo.y, wo.z);
-        s.weight = bsdf.coat_mirror_reflectance(v) / v.p_coat;
+        s.weight = bsdf.coat_mirror_reflectance(v) / (v.p_coat * others);
         s.is_delta = true;
         return s;
       }
-      others = 1.0f - v.p_coat;
-      u_lobe = std::min((u_lobe - v.p_coat) / others, 0.99999994f);
+      others *= 1.0f - v.p_coat;
+      u_lobe = std::min((u_lobe - v.p_coat) / (1.0f - v.p_coat), 0.99999994f);
     }
   }
-  if (coat) {
+  if (sheen) {
+    s.wi = sheen_direction(bsdf, v, u);
+    s.diffuse = true;
+    if (!(s.wi.z > 0.0f)) return BsdfSample{};
+  } else if (coat) {
     s.wi = coat_direction(bsdf, v, u);
     if (s.wi.z <= 0.0f) return BsdfSample{};
   } else if (u_lobe < v.p_spec) {

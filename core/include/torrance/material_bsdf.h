@@ -53,7 +53,7 @@ class MaterialBsdf {
     if (glass_) return false;
     return std::visit(
         [](const auto& b) {
-          return b.has_delta() && !lobe_mixture::coated(b) && b.specular_probability(Vec3(0.0f, 0.0f, 1.0f)) >= 1.0f &&
+          return b.has_delta() && !lobe_mixture::coated(b) && !lobe_mixture::sheened(b) && b.specular_probability(Vec3(0.0f, 0.0f, 1.0f)) >= 1.0f &&
                  b.specular_probability(Vec3(0.99498744f, 0.0f, 0.1f)) >= 1.0f;
         },
         bsdf_);

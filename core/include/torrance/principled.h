@@ -1,5 +1,5 @@
 // Principled BSDF, "PRINCIPLED" model: Blender 3.4's Principled BSDF (v1) as Cycles 3.4 renders it
-// with the GGX distribution (no sheen or anisotropy), so that Torrance and Cycles differ by noise
+// with the GGX distribution (no anisotropy), so that Torrance and Cycles differ by noise
 // only. Transmission only scales these lobes down (see the constructor); its
 // glass is GlassBsdf, which MaterialBsdf adds.
 //
@@ -13,6 +13,8 @@
 //   mirror   below ggx::kDeltaAlpha the specular lobe is a delta with reflectance F(n.wo).
 //   clearcoat  Cycles 3.4's clearcoat lobe, added on top (principled_coat.h: ClearcoatV1), in the
 //            glossy part of LobeEval.
+//   sheen    Cycles 3.4's principled sheen (principled_sheen.h: SheenV1), added to the diffuse
+//            lobe and sampled with it by the cosine.
 // Sampling picks a lobe by estimated reflectance, then visible GGX normals or the cosine. With a
 // clearcoat all three lobes are chosen with Cycles' closure odds (w F(wo.z), the mean diffuse
 // colour, the mean specular Fresnel): the clearcoat's stated density is not the one it draws
@@ -24,6 +26,7 @@
 #include "torrance/lobe_mixture.h"
 #include "torrance/microfacet.h"
 #include "torrance/principled_coat.h"
+#include "torrance/principled_sheen.h"
 
 namespace torrance {
 
@@ -58,6 +61,7 @@ class PrincipledBsdf : public lobe_mixture::Queries<PrincipledBsdf> {
   bool coat_is_delta() const { return coat_.is_delta(); }
   Vec3 coat_mirror_reflectance(const lobe_mixture::View& v) const { return Vec3(coat_.mirror_reflectance(v.wo.z)); }
   const ClearcoatV1& coat() const { return coat_; }
+  const SheenV1& sheen() const { return sheen_; }
 
  private:
   Vec3 diffuse_color_;  // (1 - metallic) (1 - transmission) * base colour
@@ -66,6 +70,7 @@ class PrincipledBsdf : public lobe_mixture::Queries<PrincipledBsdf> {
   Vec3 cspec0_;
   float roughness_, alpha_, eta_, f0_;
   ClearcoatV1 coat_;
+  SheenV1 sheen_;
 };
 
 }  // namespace torrance

@@ -1,8 +1,10 @@
 // Principled BSDF v2, "PRINCIPLED_V2": Blender 4.x's Principled BSDF as Cycles 4.x renders it, for
 // the inputs Torrance supports (base colour, metallic, roughness, IOR, Specular IOR Level through
-// Material::specular, Specular Tint as a colour, emission, coat; no sheen, subsurface, thin film,
-// transmission or anisotropy). Four layers, from the top, with alpha = roughness^2 (GGX):
+// Material::specular, Specular Tint as a colour, emission, coat, sheen; no subsurface, thin film,
+// transmission or anisotropy). Five layers, from the top, with alpha = roughness^2 (GGX):
 //
+//   sheen       principled_sheen.h's SheenV2 (Cycles' microfiber sheen); the four layers under it
+//               are scaled by its keep(wo) = clamp(1 - max_rgb(albedo), 0, 1), as Cycles 4.x's.
 //   coat        principled_coat.h's CoatV2 (its own roughness and IOR); the three layers under it
 //               are scaled by its base_weight(wo), as Cycles 4.x darkens and tints them.
 //   metal       weight metallic. GGX with height-correlated Smith G2 = 1 / (1 + L(wo) + L(wi))
@@ -40,6 +42,7 @@
 #include "torrance/ggx_tables.h"
 #include "torrance/lobe_mixture.h"
 #include "torrance/principled_coat.h"
+#include "torrance/principled_sheen.h"
 
 namespace torrance {
 
@@ -54,6 +57,7 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
     Vec3 dielectric_albedo{0.0f};  // A_d, the estimate the diffuse layer is reduced by
     Vec3 diffuse{0.0f};            // (1 - metallic) base colour w(wo)
     CoatV2::Terms coat;            // the coat's (its base_weight is in the three above)
+    SheenBsdf::Lobe sheen;         // the sheen's weight (its albedo), a, b (its keep is in all above)
   };
   ViewTerms view_terms(float cos_o) const;
 
@@ -62,6 +66,7 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
     using Model = PrincipledV2Bsdf;
     ViewTerms terms;
     float lambda_o = 0.0f;  // ggx::smith_lambda(wo.z, alpha)
+    SheenBsdf::Lobe sheen;  // terms.sheen in wo's frame (no weight without a sheen)
   };
   View at(const Vec3& wo) const;        // with the lobe choice p_spec
   View geometry(const Vec3& wo) const;  // without it (p_spec = 1): enough for eval
@@ -86,13 +91,20 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
   Vec3 coat_mirror_reflectance(const View& v) const { return Vec3(coat_.mirror_reflectance(v.terms.coat, v.wo.z)); }
   const CoatV2& coat() const { return coat_; }
 
+  // The sheen lobe (lobe_mixture.h), chosen first with View::p_sheen.
+  float sheen_pdf(const View& v, const Vec3& wi) const { return wi.z > 0.0f ? v.sheen.density(wi) : 0.0f; }
+  Vec3 sheen_sample(const View& v, const Vec2& u) const { return v.sheen.sample(u); }
+  bool has_sheen() const { return sheen_.active(); }
+
  private:
   float specular_probability(const ViewTerms& v, float cos_o) const;
+  Vec3 specular_estimate(const ViewTerms& v, float cos_o) const;  // the GGX layers' albedo, layered
 
   Vec3 base_, metal_f0_, metal_b_, metal_fss_, dielectric_f0_, dielectric_fss_;
   float metallic_, roughness_, alpha_, eta_;
   bool has_dielectric_, multiscatter_;
   CoatV2 coat_;
+  SheenV2 sheen_;
 };
 
 }  // namespace torrance

@@ -20,6 +20,7 @@ namespace torrance {
 
 class SheenBsdf {
  public:
+  SheenBsdf() = default;
   SheenBsdf(const Vec3& color, float roughness);
 
   LobeEval eval_lobes(const Vec3& wo, const Vec3& wi) const;
@@ -29,18 +30,22 @@ class SheenBsdf {
   // What a mixture samples it by: its colour's luminance times its albedo at normal incidence.
   float sampling_albedo() const;
 
- private:
-  // The lobe for one viewer wo.
+  // The lobe for one viewer wo (also a layer of PRINCIPLED_V2, principled_sheen.h).
   struct Lobe {
-    Vec3 weight{0.0f};  // colour * R (0: nothing reflected)
+    Vec3 weight{0.0f};  // colour * R: its albedo (0: nothing reflected)
     Vec3 x, y;          // the LTC frame's tangents (z: the normal)
     float a = 1.0f, b = 0.0f;
-    float density(const Vec3& wi) const;  // D(l) for wi in the shading frame
+    bool reflects() const { return max_component(weight) > 0.0f; }
+    float density(const Vec3& wi) const;  // D(l) for wi in the shading frame (wi.z > 0)
+    Vec3 sample(const Vec2& u) const;     // a direction drawn from D (z <= 0: none)
   };
-  Lobe lobe(const Vec3& wo) const;
+  Lobe lobe(const Vec3& wo) const { return oriented(lobe_at(wo.z), wo); }
+  Lobe lobe_at(float cos_o) const;                    // its weight, a and b (the frame unset)
+  static Lobe oriented(Lobe l, const Vec3& wo);       // l with the frame of wo
 
-  Vec3 color_;
-  float roughness_;
+ private:
+  Vec3 color_{0.0f};
+  float roughness_ = 1.0f;
 };
 
 }  // namespace torrance
