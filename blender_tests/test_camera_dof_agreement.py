@@ -169,8 +169,8 @@ def main():
         if bad:
             problems.append(f"{label}: {'; '.join(bad)}")
         for fault_label, patch in faults:
-            def faulty(obj, patch=patch):
-                args, kind = original(obj)
+            def faulty(obj, *more, patch=patch, **keywords):
+                args, kind = original(obj, *more, **keywords)
                 patch(args)
                 return args, kind
             export_camera.camera_arguments = faulty
