@@ -12,7 +12,7 @@ output node (the output Cycles would use):
   Blender 4.x's Principled v2 by its names (Specular IOR Level with IOR, Emission
   Color; _PRINCIPLED_SOCKETS) and, for the PRINCIPLED_V2 model, its IOR, Specular Tint
   colour and distribution (Multiscatter GGX or GGX); the coat (v1 Clearcoat, v2 Coat:
-  principled_coat.py);
+  principled_coat.py); the sheen (v1 Sheen, v2 Sheen Weight: principled_sheen.py);
 * Glass BSDF: Color, Roughness, IOR (GGX or Beckmann; Sharp is roughness 0);
 * Transparent BSDF: Color (rays pass straight through, tinted);
 * Emission: a black emitter;
@@ -47,6 +47,7 @@ from .shader_graph.registry import READERS
 from .mixtures import MIXTURE_SURFACES, read_mixture
 from .normal_inputs import begin_displacement, read_normal_input
 from .principled_coat import read_coat
+from .principled_sheen import read_sheen
 from .transparent_mix import read_transparent_mix
 
 # The Principled BSDF's socket names per node version: v1 is Blender 3.x's, v2 Blender 4.0's
@@ -64,12 +65,10 @@ _IGNORED_PRINCIPLED_INPUTS = {
     'v1': (
         ("Subsurface", 0.0),
         ("Anisotropic", 0.0),
-        ("Sheen", 0.0),
     ),
     'v2': (
         ("Subsurface Weight", 0.0),
         ("Anisotropic", 0.0),
-        ("Sheen Weight", 0.0),
         ("Transmission Weight", 0.0),
         ("Thin Film Thickness", 0.0),
         ("Diffuse Roughness", 0.0),
@@ -346,6 +345,7 @@ class MaterialReader:
             **v2_inputs,
             **glass,
             **read_coat(self, mat, node, version),
+            **read_sheen(self, mat, node, version),
         )
         alpha = _clamp(finite_or(alpha, 1.0), 0.0, 1.0)
         if alpha < 1.0 or alpha_tex >= 0:

@@ -19,29 +19,39 @@ _NORMAL = {'v1': "Clearcoat Normal", 'v2': "Coat Normal"}
 _DEFAULTS = dict(coat_weight=0.0, coat_roughness=0.03, coat_ior=1.5, coat_tint=(1.0, 1.0, 1.0))
 
 
-def _value(reader, mat, node, name, key):
+def _value(reader, mat, node, name, key, defaults):
     """The socket's value (its default, or its graph folded to a constant); with a graph that
     varies, its default, the reader's shader program computing the input `key`."""
     socket = node.inputs.get(name)
     if socket is None:
-        return _DEFAULTS[key]
+        return defaults[key]
     if source_socket(socket) is None:
         return socket.default_value
     return reader._graph_input(mat, node, socket, key)
 
 
-def read_coat(reader, mat, node, version):
-    """The coat's add_material() arguments of Principled BSDF `node` ({} without a coat)."""
-    sockets = _SOCKETS[version]
+def layer_inputs(reader, mat, node, sockets, defaults, weight_key):
+    """The values of a Principled layer's inputs ({add_material() argument: socket name}), or
+    None when its weight is 0 (a value, no graph): then what the other inputs' graphs added to
+    the reader's shader program is taken out again (the layer costs nothing)."""
     mark = dict(reader._program_inputs)
-    values = {key: _value(reader, mat, node, name, key) for key, name in sockets.items()}
-    weight = max(0.0, finite_or(values['coat_weight'], 0.0))
-    if weight == 0.0 and 'coat_weight' not in reader._program_inputs:
-        # No coat: what the other coat inputs' graphs added to the program is not needed.
+    values = {key: _value(reader, mat, node, name, key, defaults) for key, name in sockets.items()}
+    weight = max(0.0, finite_or(values[weight_key], 0.0))
+    if weight == 0.0 and weight_key not in reader._program_inputs:
         for key in sockets:
             if key not in mark:
                 reader._program_inputs.pop(key, None)
+        return None
+    values[weight_key] = weight
+    return values
+
+
+def read_coat(reader, mat, node, version):
+    """The coat's add_material() arguments of Principled BSDF `node` ({} without a coat)."""
+    values = layer_inputs(reader, mat, node, _SOCKETS[version], _DEFAULTS, 'coat_weight')
+    if values is None:
         return {}
+    weight = values['coat_weight']
     normal = node.inputs.get(_NORMAL[version])
     if normal is not None and normal.is_linked:
         reader.reporter.warning(

@@ -379,7 +379,7 @@ class TORRANCE_RENDER_PT_compatibility(TorrancePanel, Panel):
                   ok_text="Everything in this scene is supported")
         col = self.layout.column(align=True)
         col.label(text="Not rendered by Torrance:")
-        for text in ("Volumes, subsurface, transmission, sheen",
+        for text in ("Volumes, subsurface, transmission",
                      "Shader nodes other than Principled / Diffuse / Emission",
                      "Motion blur"):
             col.label(text=text, icon='DOT')

@@ -156,7 +156,9 @@ CLOSURES = {
                                 "(alone: any graph, camera and shadow rays), Normal; v1 "
                                 "Transmission, IOR, Transmission Roughness; the coat (v1 "
                                 "Clearcoat and its Roughness; v2 Coat Weight, Roughness, IOR, "
-                                "Tint; any graph). Reported: Subsurface, Sheen, Clearcoat / Coat "
+                                "Tint; any graph); the sheen (v1 Sheen, Sheen Tint; v2 Sheen "
+                                "Weight, Roughness, Tint; any graph). Reported: Subsurface, "
+                                "Clearcoat / Coat "
                                 "Normal, Anisotropic, v2 Transmission Weight, Thin Film, Diffuse "
                                 "Roughness",
     'ShaderNodeBsdfDiffuse': "rendered: Color, Roughness (Lambert, Cycles' Oren-Nayar), Normal; "
