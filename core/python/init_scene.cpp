@@ -176,7 +176,8 @@ void init_scene(py::module_& m) {
              float alpha, int alpha_texture, std::array<float, 3> transparent_color,
              const std::string& glass_distribution, bool alpha_from_luminance, bool alpha_inverted, int program,
              int base_color_register, int metallic_register, int roughness_register, int emission_register,
-             int normal_register, int alpha_register, int surface_normal_register, float coat_weight,
+             int normal_register, int alpha_register, int surface_normal_register, int transmission_register,
+             float coat_weight,
              float coat_roughness, float coat_ior, std::array<float, 3> coat_tint, int coat_weight_register,
              int coat_roughness_register, int coat_ior_register, int coat_tint_register, float sheen_weight,
              float sheen_roughness, float sheen_tint, std::array<float, 3> sheen_tint_color,
@@ -225,6 +226,7 @@ void init_scene(py::module_& m) {
             tex.program = program_outputs(program, base_color_register, metallic_register, roughness_register,
                                           emission_register, normal_register, alpha_register,
                                           surface_normal_register);
+            tex.program.transmission = program_register(transmission_register);
             tex.program.coat_weight = program_register(coat_weight_register);
             tex.program.coat_roughness = program_register(coat_roughness_register);
             tex.program.coat_ior = program_register(coat_ior_register);
@@ -249,7 +251,8 @@ void init_scene(py::module_& m) {
           py::arg("alpha_inverted") = false, py::arg("program") = -1, py::arg("base_color_register") = -1,
           py::arg("metallic_register") = -1, py::arg("roughness_register") = -1, py::arg("emission_register") = -1,
           py::arg("normal_register") = -1, py::arg("alpha_register") = -1,
-          py::arg("surface_normal_register") = -1, py::arg("coat_weight") = 0.0f, py::arg("coat_roughness") = 0.03f,
+          py::arg("surface_normal_register") = -1, py::arg("transmission_register") = -1,
+          py::arg("coat_weight") = 0.0f, py::arg("coat_roughness") = 0.03f,
           py::arg("coat_ior") = 1.5f, py::arg("coat_tint") = std::array<float, 3>{1.0f, 1.0f, 1.0f},
           py::arg("coat_weight_register") = -1, py::arg("coat_roughness_register") = -1,
           py::arg("coat_ior_register") = -1, py::arg("coat_tint_register") = -1, py::arg("sheen_weight") = 0.0f,
@@ -273,7 +276,8 @@ void init_scene(py::module_& m) {
           "which replaces normal_texture and bump_texture; alpha_register: the alpha, clamped to [0, 1], which "
           "replaces alpha and alpha_texture, run wherever a ray meets the surface, shadow rays included; "
           "surface_normal_register: the surface's normal after the Material Output's Displacement, as bump, "
-          "what the shadow terminator's smoothing compares the Normal with). coat_*: the Principled BSDF's "
+          "what the shadow terminator's smoothing compares the Normal with; transmission_register: PRINCIPLED_V2's "
+          "Transmission Weight, clamped to [0, 1], for a material added with transmission > 0). coat_*: the Principled BSDF's "
           "coat (weight >= 0, 0: none; roughness in [0, 1]; ior >= 1 and tint >= 0, PRINCIPLED_V2 only: v1's "
           "clearcoat has IOR 1.5 and no tint), from the program's coat_*_register when given. sheen_*: the "
           "Principled BSDF's sheen (weight >= 0, 0: none; PRINCIPLED: sheen_tint in [0, 1]; PRINCIPLED_V2: "

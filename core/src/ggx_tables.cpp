@@ -79,7 +79,10 @@ const Tables& tables() {
   return t;
 }
 
-// Linear interpolation over a regular grid on [0, 1] (the argument clamped), n >= 2 points.
+}  // namespace
+
+float f0_from_ior(float eta) { return sqr((eta - 1.0f) / (eta + 1.0f)); }
+
 float read_1d(const float* data, float x, int n) {
   x = clamp01(x) * float(n - 1);
   const int i = std::min(int(x), n - 1), j = std::min(i + 1, n - 1);
@@ -100,10 +103,6 @@ float read_3d(const float* data, float x, float y, float z, int n) {
   const float t = z - float(i);
   return (1.0f - t) * read_2d(data + n * n * i, x, y, n, n) + t * read_2d(data + n * n * j, x, y, n, n);
 }
-
-}  // namespace
-
-float f0_from_ior(float eta) { return sqr((eta - 1.0f) / (eta + 1.0f)); }
 
 float ior_from_f0(float f0) {
   const float root = std::sqrt(std::min(std::max(f0, 0.0f), 0.99f));

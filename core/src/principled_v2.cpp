@@ -10,6 +10,7 @@ PrincipledV2Bsdf::PrincipledV2Bsdf(const Material& m) {
   const Vec3 base = glm::max(m.base_color, Vec3(0.0f));
   const Vec3 tint = glm::max(m.specular_tint_color, Vec3(0.0f));
   metallic_ = clamp01(m.metallic);
+  dielectric_weight_ = (1.0f - metallic_) * (1.0f - clamp01(m.transmission));  // the glass takes the rest
   roughness_ = clamp01(m.roughness);
   alpha_ = roughness_ * roughness_;
   multiscatter_ = m.multiscatter_ggx;
@@ -69,12 +70,12 @@ PrincipledV2Bsdf::ViewTerms PrincipledV2Bsdf::view_terms(float cos_o) const {
   v.metal_scale = metallic_ * metal_k;
   float diffuse_weight = 1.0f;
   if (has_dielectric_) {
-    v.dielectric_scale = (1.0f - metallic_) * dielectric_k;
+    v.dielectric_scale = dielectric_weight_ * dielectric_k;
     const float s = ggx_tables::dielectric_fresnel_mix(roughness_, cos_o, eta_);
     v.dielectric_albedo = darkening * glm::mix(dielectric_f0_, Vec3(1.0f), s);
     diffuse_weight = clamp01(1.0f - max_component(v.dielectric_albedo));
   }
-  v.diffuse = base_ * ((1.0f - metallic_) * diffuse_weight);
+  v.diffuse = base_ * (dielectric_weight_ * diffuse_weight);
   if (coat_.active()) {
     v.coat = coat_.terms(cos_o);
     v.metal_scale *= v.coat.base_weight;

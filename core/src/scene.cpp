@@ -144,6 +144,7 @@ void Scene::apply_program(const MaterialTextures& t, const ShaderGlobals& g, Mat
   if (o.metallic >= 0) m.metallic = clamp01(regs[size_t(o.metallic)].x);
   if (o.roughness >= 0) m.roughness = clamp01(regs[size_t(o.roughness)].x);
   if (o.emission >= 0) m.emission = glm::max(Vec3(regs[size_t(o.emission)]), Vec3(0.0f)) * t.emission_strength;
+  if (o.transmission >= 0) m.transmission = clamp01(regs[size_t(o.transmission)].x);
   if (o.coat_weight >= 0) m.coat_weight = std::max(regs[size_t(o.coat_weight)].x, 0.0f);
   if (o.coat_roughness >= 0) m.coat_roughness = clamp01(regs[size_t(o.coat_roughness)].x);
   if (o.coat_ior >= 0) m.coat_ior = std::max(regs[size_t(o.coat_ior)].x, 1.0f);
@@ -264,7 +265,7 @@ uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures
 void Scene::check_program_outputs(const ShaderOutputs& o) const {
   if (o.program < 0) {
     if (o.base_color >= 0 || o.metallic >= 0 || o.roughness >= 0 || o.emission >= 0 || o.normal >= 0 || o.alpha >= 0 ||
-        o.surface_normal >= 0 || o.coat_weight >= 0 || o.coat_roughness >= 0 || o.coat_ior >= 0 || o.coat_tint >= 0 ||
+        o.surface_normal >= 0 || o.transmission >= 0 || o.coat_weight >= 0 || o.coat_roughness >= 0 || o.coat_ior >= 0 || o.coat_tint >= 0 ||
         o.sheen_weight >= 0 || o.sheen_roughness >= 0 || o.sheen_tint >= 0)
       throw std::invalid_argument("material reads shader program registers but names no program");
     return;
@@ -273,7 +274,7 @@ void Scene::check_program_outputs(const ShaderOutputs& o) const {
     throw std::invalid_argument("material uses shader program " + std::to_string(o.program) + " but the scene has " +
                                 std::to_string(programs_.size()) + " programs");
   const ShaderProgram& program = programs_[size_t(o.program)];
-  for (int r : {o.base_color, o.metallic, o.roughness, o.emission, o.normal, o.alpha, o.surface_normal, o.coat_weight,
+  for (int r : {o.base_color, o.metallic, o.roughness, o.emission, o.normal, o.alpha, o.surface_normal, o.transmission, o.coat_weight,
                 o.coat_roughness, o.coat_ior, o.coat_tint, o.sheen_weight, o.sheen_roughness, o.sheen_tint})
     if (r != -1 && !program.written(r))
       throw std::invalid_argument("material reads register " + std::to_string(r) + " of a shader program with " +

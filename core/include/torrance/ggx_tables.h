@@ -38,4 +38,10 @@ float dielectric_fresnel_factor(float cos_i, float eta);
 float f0_from_ior(float eta);
 float ior_from_f0(float f0);
 
+// Linear interpolation over a regular grid on [0, 1] (arguments clamped), as the tables above are
+// read: n (nx, ny) points per axis, x the fastest; shared by the other tables (ggx_glass_tables.h).
+float read_1d(const float* data, float x, int n);
+float read_2d(const float* data, float x, float y, int nx, int ny);
+float read_3d(const float* data, float x, float y, float z, int n);
+
 }  // namespace torrance::ggx_tables

@@ -3,6 +3,8 @@
 // of transmissive materials (glass.h) as Cycles 3.4 combines them: a Principled BSDF with
 // Transmission T and Metallic m is its opaque lobes (weights in principled.cpp) plus T (1 - m)
 // glass; the Glass BSDF node is glass only. (PAPER scales its opaque lobes by 1 - T (1 - m).)
+// PRINCIPLED_V2's Transmission Weight T is Cycles 4.x's glass closure (principled_glass_v2.h),
+// weight T (1 - m), its dielectric and diffuse layers keeping (1 - m)(1 - T) (principled_v2.h).
 //
 // Directions are in the shading frame turned towards the viewer (wo.z > 0), as for the opaque
 // models; `backfacing` says the viewer is behind the GEOMETRIC surface (inside the glass), which
@@ -13,6 +15,7 @@
 #include "torrance/cook_torrance.h"
 #include "torrance/glass.h"
 #include "torrance/principled.h"
+#include "torrance/principled_glass_v2.h"
 #include "torrance/principled_v2.h"
 
 #include <optional>
@@ -26,14 +29,21 @@ class MaterialBsdf {
     if (!m.transmits()) return;
     const float metallic = clamp01(m.metallic), roughness = clamp01(m.roughness);
     if (m.glass_node) {
-      glass_.emplace(roughness, roughness, m.ior, m.base_color, m.base_color, m.glass_beckmann);
+      glass_.emplace(GlassBsdf(roughness, roughness, m.ior, m.base_color, m.base_color, m.glass_beckmann));
       glass_weight_ = glass_probability_ = 1.0f;
       opaque_ = false;
       return;
     }
-    const float refract_roughness = 1.0f - (1.0f - roughness) * (1.0f - clamp01(m.transmission_roughness));
-    glass_.emplace(roughness, refract_roughness, m.ior, Vec3(1.0f), m.base_color);
     glass_weight_ = glass_probability_ = clamp01(m.transmission) * (1.0f - metallic);
+    if (model == BrdfModel::PrincipledV2) {
+      glass_.emplace(PrincipledGlassV2(roughness, m.ior, m.specular_tint_color, m.base_color, m.multiscatter_ggx));
+      // A coat over all-glass keeps its lobe (sampled at least 1 time in 10).
+      if (m.coat_weight > 0.0f) glass_probability_ = std::min(glass_probability_, 0.9f);
+      opaque_ = glass_probability_ < 1.0f;
+      return;
+    }
+    const float refract_roughness = 1.0f - (1.0f - roughness) * (1.0f - clamp01(m.transmission_roughness));
+    glass_.emplace(GlassBsdf(roughness, refract_roughness, m.ior, Vec3(1.0f), m.base_color));
     if (model == BrdfModel::Paper) opaque_scale_ = 1.0f - glass_weight_;
     opaque_ = glass_probability_ < 1.0f;
   }
@@ -91,7 +101,9 @@ class MaterialBsdf {
     if (!kGlass || !glass_) return f;
     f.diffuse *= opaque_scale_;
     f.glossy = f.glossy * opaque_scale_ +
-               glass_weight_ * glass_->eval(outward(v.wo, v.backfacing), outward(wi, v.backfacing));
+               glass_weight_ * glass([&](const auto& g) {
+                 return g.eval(outward(v.wo, v.backfacing), outward(wi, v.backfacing));
+               });
     return f;
   }
   template <bool kGlass = true>
@@ -101,7 +113,9 @@ class MaterialBsdf {
         opaque_ ? visit(v, [&](const auto& b, const auto& lv) { return b.pdf(lv, wi); }) * (1.0f - glass_probability_)
                 : 0.0f;
     if (!glass_) return opaque;
-    return opaque + glass_probability_ * glass_->pdf(outward(v.wo, v.backfacing), outward(wi, v.backfacing));
+    return opaque + glass_probability_ * glass([&](const auto& g) {
+             return g.pdf(outward(v.wo, v.backfacing), outward(wi, v.backfacing));
+           });
   }
   template <bool kGlass = true>
   BsdfSample sample(const View& v, float u_lobe, const Vec2& u) const {
@@ -109,7 +123,9 @@ class MaterialBsdf {
     BsdfSample s;
     const float p = glass_probability_;
     if (u_lobe < p) {
-      s = glass_->sample(outward(v.wo, v.backfacing), std::min(u_lobe / p, 0.99999994f), u);
+      s = glass([&](const auto& g) {
+        return g.sample(outward(v.wo, v.backfacing), std::min(u_lobe / p, 0.99999994f), u);
+      });
       s.wi = outward(s.wi, v.backfacing);
       if (s.is_delta) s.weight *= glass_weight_ / p;
     } else {
@@ -174,11 +190,17 @@ class MaterialBsdf {
     return CookTorranceBsdf(m);
   }
   static Vec3 outward(const Vec3& w, bool backfacing) { return backfacing ? Vec3(w.x, w.y, -w.z) : w; }
+  // Calls f(the glass) (PRINCIPLED_V2's or Cycles 3.4's); only with glass_.
+  template <typename F>
+  decltype(auto) glass(F&& f) const {
+    if (const auto* v2 = std::get_if<PrincipledGlassV2>(&*glass_)) return f(*v2);
+    return f(*std::get_if<GlassBsdf>(&*glass_));
+  }
 
   Variant bsdf_;
   bool opaque_ = true;         // the model's lobes reflect something
   float opaque_scale_ = 1.0f;  // PAPER with transmission: 1 - glass weight
-  std::optional<GlassBsdf> glass_;
+  std::optional<std::variant<GlassBsdf, PrincipledGlassV2>> glass_;
   float glass_weight_ = 0.0f, glass_probability_ = 0.0f;
 };
 

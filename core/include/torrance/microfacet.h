@@ -78,4 +78,14 @@ inline float reflected_pdf(const Vec3& wo, const Vec3& h, float alpha) {
 
 inline Vec3 reflect(const Vec3& w, const Vec3& n) { return 2.0f * glm::dot(w, n) * n - w; }
 
+// The direction wo refracts to through a microfacet h facing it (wo.h > 0), etap = IOR of the far
+// side / IOR of wo's side (Snell); false at total internal reflection.
+inline bool refract(const Vec3& wo, const Vec3& h, float etap, Vec3& wi) {
+  const float c = glm::dot(wo, h);
+  const float cos_t2 = 1.0f - (1.0f - c * c) / (etap * etap);
+  if (!(cos_t2 > 0.0f)) return false;
+  wi = glm::normalize((c / etap - std::sqrt(cos_t2)) * h - wo / etap);
+  return true;
+}
+
 }  // namespace torrance::ggx

@@ -1,7 +1,7 @@
 // Principled BSDF v2, "PRINCIPLED_V2": Blender 4.x's Principled BSDF as Cycles 4.x renders it, for
 // the inputs Torrance supports (base colour, metallic, roughness, IOR, Specular IOR Level through
-// Material::specular, Specular Tint as a colour, emission, coat, sheen; no subsurface, thin film,
-// transmission or anisotropy). Five layers, from the top, with alpha = roughness^2 (GGX):
+// Material::specular, Specular Tint as a colour, emission, coat, sheen; no subsurface, thin film
+// or anisotropy; transmission below). Five layers, from the top, with alpha = roughness^2 (GGX):
 //
 //   sheen       principled_sheen.h's SheenV2 (Cycles' microfiber sheen); the four layers under it
 //               are scaled by its keep(wo) = clamp(1 - max_rgb(albedo), 0, 1), as Cycles 4.x's.
@@ -13,15 +13,17 @@
 //               F_s(c) = f0 + (1 - f0)(1 - c)^5, f0 = base colour, c = wo.h, and b chosen so that
 //               F_m(1/7) = F_s(1/7) * tint (tint = Specular Tint, clamped to [0, 1]):
 //               b = F_s(1/7) (1 - tint) 7 / (6/7)^6.
-//   dielectric  weight (1 - metallic). The same GGX lobe with F_d(c) = mix(f0 tint, 1, s(c)),
+//   dielectric  weight (1 - metallic)(1 - transmission) (Transmission Weight: the glass of
+//               principled_glass_v2.h takes (1 - metallic) transmission). The same GGX lobe
+//               with F_d(c) = mix(f0 tint, 1, s(c)),
 //               s(c) = clamp((F(c, eta) - F0(eta)) / (1 - F0(eta)), 0, 1), F the exact dielectric
 //               Fresnel and F0(eta) = ((eta - 1) / (eta + 1))^2. The Specular IOR Level rescales
 //               F0: f0 = 2 level F0(ior) = 0.08 specular (Material::specular carries it, see
 //               bsdf.h), and eta = ior_from_F0(f0) = (1 + sqrt f0) / (1 - sqrt f0) (1 / that for
 //               ior < 1; eta = ior when f0 = F0(ior), i.e. level 0.5). No lobe when eta = 1.
 //   diffuse     Lambert about the View's diffuse_normal (bsdf.h: Cycles 4.x's diffuse keeps the
-//               unchecked normal), base colour (1 - metallic) w(wo): the light the dielectric
-//               layer does not reflect, w = clamp(1 - max_rgb(A_d(wo)), 0, 1), with the dielectric layer's
+//               unchecked normal), base colour (1 - metallic)(1 - transmission) w(wo): the
+//               light the dielectric layer does not reflect, w = clamp(1 - max_rgb(A_d(wo)), 0, 1), with the dielectric layer's
 //               estimated albedo A_d = k mix(f0 tint, 1, S(r, mu_o, eta)) (ggx_tables.h).
 //
 // Multiscatter GGX (Material::multiscatter_ggx, the node's default "Multiscatter GGX"): each GGX
@@ -101,6 +103,8 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
   Vec3 specular_estimate(const ViewTerms& v, float cos_o) const;  // the GGX layers' albedo, layered
 
   Vec3 base_, metal_f0_, metal_b_, metal_fss_, dielectric_f0_, dielectric_fss_;
+  float dielectric_weight_ = 1.0f;  // (1 - metallic)(1 - transmission): Transmission Weight's glass is
+                                   // principled_glass_v2.h's, which MaterialBsdf adds
   float metallic_, roughness_, alpha_, eta_;
   bool has_dielectric_, multiscatter_;
   CoatV2 coat_;

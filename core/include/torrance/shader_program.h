@@ -245,6 +245,8 @@ struct ShaderOutputs {
   // The surface's normal after the Material Output's Displacement (as bump: Cycles' sd->N, facing
   // the viewer), what the shadow terminator's smoothing compares the closure's Normal with.
   int16_t surface_normal = -1;
+  // Principled v2's Transmission Weight (Material::transmission, x).
+  int16_t transmission = -1;
   // The Principled BSDF's coat inputs (Material::coat_*): weight, roughness, IOR (x) and tint.
   int16_t coat_weight = -1, coat_roughness = -1, coat_ior = -1, coat_tint = -1;
   // The Principled BSDF's sheen inputs (Material::sheen_*): weight, roughness (x) and tint (v1's

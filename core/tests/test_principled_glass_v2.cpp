@@ -1,0 +1,185 @@
+// Principled v2's transmission (principled_glass_v2.h): chi-square of its sampling over both
+// hemispheres, eval / pdf / sample agreement, white furnace (<= 1 single-scattering, 1 smooth and
+// about 1 with Multiscatter GGX's table), the glass albedo table against its direct integral,
+// total internal reflection, and the hard cases (roughness 0 and 1, grazing, inside) without NaN or
+// Inf; through MaterialBsdf, the split T (1 - m) glass / (1 - m)(1 - T) dielectric and diffuse.
+#include "torrance/principled_glass_v2.h"
+
+#include "torrance/ggx_glass_tables.h"
+#include "torrance/material_bsdf.h"
+
+#include "dielectric_charts.h"
+#include "test_helpers.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <vector>
+
+namespace torrance {
+namespace {
+
+using test::Charts;
+
+const Vec3 kTint(0.9f, 0.8f, 1.0f), kBase(0.3f, 0.6f, 0.9f);
+
+Vec3 wo_of(float cos_o, bool inside) {
+  const Vec3 w = test::direction(cos_o, 0.7f);
+  return inside ? Vec3(w.x, w.y, -w.z) : w;
+}
+
+TEST(PrincipledGlassV2, ChiSquareSamplingMatchesPdfInBothHemispheres) {
+  constexpr int kSamples = 100000;
+  int cases = 0;
+  double min_p = 1.0;
+  uint32_t seed = 0;
+  for (float r : {0.1f, 0.4f, 1.0f})
+    for (float ior : {1.5f, 2.4f})
+      for (float cos_o : {1.0f, 0.5f, 0.1f})
+        for (bool inside : {false, true}) {
+          if (cos_o < 0.2f && r < 0.2f) continue;
+          const PrincipledGlassV2 bsdf(r, ior, kTint, kBase, true);
+          const Vec3 wo = wo_of(cos_o, inside);
+          const Charts charts(wo, ior, r * r);
+          Rng rng(seed++, 3, 4);
+          const std::vector<double> observed = test::sampled_bins(bsdf, wo, charts, rng, kSamples);
+          double mass = 0.0;
+          const std::vector<double> expected =
+              test::expected_bins(charts, [&](const Vec3& wi) { return bsdf.pdf(wo, wi); }, kSamples, mass);
+          ASSERT_LT(mass, 1.02) << r << " " << ior << " " << cos_o << " " << inside;
+          const test::ChiSquare x = test::pooled_chi_square(observed, expected);
+          if (!x.pooled_counted)
+            EXPECT_LE(x.pooled_observed, 5.0 + 10.0 * x.pooled_expected + 1e-4 * kSamples);
+          min_p = std::min(min_p, x.p());
+          EXPECT_GT(x.p(), 1e-3 / 64) << "r=" << r << " ior=" << ior << " cos_o=" << cos_o << " inside=" << inside
+                                      << " chi2=" << x.chi2 << " dof=" << x.dof;
+          ++cases;
+        }
+  std::printf("principled glass v2 chi-square: %d cases, smallest p = %.4f\n", cases, min_p);
+}
+
+TEST(PrincipledGlassV2, SampleAgreesWithEvalAndPdf) {
+  Rng rng(5, 6, 7);
+  int checked = 0;
+  for (int n = 0; n < 100000; ++n) {
+    const float r = 0.03f + 0.97f * rng.next_1d();
+    const float ior = (const float[]){1.33f, 1.5f, 2.4f, 0.75f}[rng.next_u32() % 4];
+    const PrincipledGlassV2 bsdf(r, ior, kTint, kBase, n % 2 == 0);
+    const Vec3 wo = test::uniform_sphere(rng);
+    const float ul = rng.next_1d();
+    const BsdfSample s = bsdf.sample(wo, ul, rng.next_2d());
+    if (!s.valid()) continue;
+    ASSERT_FALSE(s.is_delta);
+    const float pdf = bsdf.pdf(wo, s.wi);
+    const Vec3 f = bsdf.eval(wo, s.wi);
+    ASSERT_NEAR(s.pdf, pdf, 2e-3f * pdf) << "r=" << r << " ior=" << ior;
+    for (int k = 0; k < 3; ++k) ASSERT_NEAR(s.weight[k], f[k] / pdf, 2e-3f * f[k] / pdf + 1e-6f);
+    ++checked;
+  }
+  EXPECT_GT(checked, 80000);
+}
+
+// White glass: integral of f |cos_i| <= 1 single-scattering (quadrature and sampling agree), = 1
+// smooth, and about 1 with Multiscatter GGX (its scale 1 / E from the glass table).
+TEST(PrincipledGlassV2, WhiteFurnace) {
+  for (float ior : {1.33f, 1.5f, 2.4f})
+    for (bool inside : {false, true})
+      for (float cos_o : {1.0f, 0.5f, 0.1f}) {
+        const Vec3 wo = wo_of(cos_o, inside);
+        const PrincipledGlassV2 smooth(0.0f, ior, Vec3(1.0f), Vec3(1.0f), true);
+        EXPECT_NEAR(test::mean_sample_weight(smooth, wo, 20000, 17), 1.0, 1e-5);
+        std::printf("furnace ior=%.2f %s cos_o=%.1f:", ior, inside ? "inside " : "outside", cos_o);
+        for (float r : {0.1f, 0.3f, 0.6f, 1.0f}) {
+          const PrincipledGlassV2 single(r, ior, Vec3(1.0f), Vec3(1.0f), false);
+          const PrincipledGlassV2 multi(r, ior, Vec3(1.0f), Vec3(1.0f), true);
+          const Charts charts(wo, ior, r * r);
+          double q = 0.0;
+          for (double v : charts.integrate_all([&](const Vec3& wi) { return single.eval(wo, wi).x; })) q += v;
+          const double s = test::mean_sample_weight(single, wo, 200000, 17);
+          const double m = test::mean_sample_weight(multi, wo, 200000, 17);
+          std::printf(" r=%.1f %.4f/%.4f ms %.4f", r, q, s, m);
+          EXPECT_NEAR(s, q, 0.005) << ior << " " << inside << " " << cos_o << " " << r;
+          EXPECT_LE(q, 1.0 + 2e-3);
+          EXPECT_NEAR(m, 1.0, cos_o < 0.2f ? 0.04 : 0.02) << ior << " " << inside << " " << cos_o << " " << r;
+        }
+        std::printf("\n");
+      }
+}
+
+TEST(PrincipledGlassV2, AlbedoTableMatchesItsIntegral) {
+  double worst = 0.0;
+  for (float r : {0.2f, 0.5f, 0.9f})
+    for (float mu : {0.3f, 0.7f, 1.0f})
+      for (float eta : {1.5f, 1.0f / 1.5f, 2.0f}) {
+        const double direct = ggx_glass_tables::albedo_direct(r, mu, eta, 128);
+        worst = std::max(worst, std::abs(direct - ggx_glass_tables::albedo(r, mu, eta)));
+      }
+  std::printf("glass albedo table: worst difference %.4f\n", worst);
+  EXPECT_LT(worst, 0.02);
+}
+
+TEST(PrincipledGlassV2, TotalInternalReflection) {
+  const Vec3 wo = wo_of(0.3f, true);  // inside, sin = 0.954 > 1 / 1.5
+  const PrincipledGlassV2 smooth(0.0f, 1.5f, kTint, kBase, true);
+  Rng rng(1, 1, 1);
+  for (int i = 0; i < 1000; ++i) {
+    const float ul = rng.next_1d();
+    const BsdfSample s = smooth.sample(wo, ul, rng.next_2d());
+    ASSERT_TRUE(s.is_delta);
+    ASSERT_LT(s.wi.z, 0.0f);  // stays inside
+    ASSERT_EQ(s.weight, Vec3(1.0f));
+  }
+  const PrincipledGlassV2::Split sp = smooth.split(0.3f, 1.0f / 1.5f);
+  EXPECT_EQ(sp.reflect, Vec3(1.0f));
+  EXPECT_EQ(sp.transmit, Vec3(0.0f));
+  EXPECT_EQ(sp.p_reflect, 1.0f);
+}
+
+// Roughness 0 and 1, grazing and backfacing viewers, IOR near 1: every query finite.
+TEST(PrincipledGlassV2, HardCasesAreFinite) {
+  Rng rng(11, 12, 13);
+  for (int n = 0; n < 200000; ++n) {
+    const float r = (const float[]){0.0f, 1e-4f, 0.02f, 0.5f, 1.0f}[rng.next_u32() % 5];
+    const float ior = (const float[]){1.00005f, 1.5f, 0.5f, 3.0f}[rng.next_u32() % 4];
+    const PrincipledGlassV2 bsdf(r, ior, kTint, Vec3(rng.next_1d(), 0.0f, 1.0f), n % 2 == 0);
+    Vec3 wo = test::uniform_sphere(rng);
+    if (n % 7 == 0) wo = glm::normalize(Vec3(1.0f, 0.0f, (n % 14 == 0 ? 1e-7f : -1e-7f)));
+    const Vec3 wi = test::uniform_sphere(rng);
+    ASSERT_TRUE(is_finite(bsdf.eval(wo, wi)));
+    ASSERT_TRUE(std::isfinite(bsdf.pdf(wo, wi)));
+    const float ul = rng.next_1d();
+    const BsdfSample s = bsdf.sample(wo, ul, rng.next_2d());
+    ASSERT_TRUE(is_finite(s.weight) && std::isfinite(s.pdf) && is_finite(s.wi)) << r << " " << ior;
+  }
+}
+
+Material glass_material(float transmission, float metallic, float roughness, const Vec3& base = Vec3(1.0f)) {
+  Material m;
+  m.base_color = base;
+  m.metallic = metallic;
+  m.roughness = roughness;
+  m.transmission = transmission;
+  m.ior = 1.5f;
+  m.specular = 0.5f;
+  return m;
+}
+
+// Through MaterialBsdf: smooth white glass (T = 1) conserves energy; half transmission is the
+// mean of all-glass and the opaque Principled; metallic 1 leaves no glass.
+TEST(PrincipledGlassV2, MaterialSplitsGlassAndOpaqueLayers) {
+  const Vec3 wo = test::direction(0.6f, 0.3f);
+  const MaterialBsdf smooth(glass_material(1.0f, 0.0f, 0.0f), BrdfModel::PrincipledV2);
+  ASSERT_TRUE(smooth.transmits());
+  EXPECT_NEAR(test::mean_sample_weight(smooth, wo, 20000, 3), 1.0, 1e-4);
+  auto albedo = [&](float t) {
+    return test::mean_sample_weight(MaterialBsdf(glass_material(t, 0.0f, 0.4f, Vec3(0.5f)), BrdfModel::PrincipledV2), wo,
+                                    400000, 5);
+  };
+  const double full = albedo(1.0f), none = albedo(0.0f), half = albedo(0.5f);
+  std::printf("material albedo: glass %.4f, opaque %.4f, half %.4f\n", full, none, half);
+  EXPECT_NEAR(half, 0.5 * (full + none), 0.01);
+  EXPECT_FALSE(MaterialBsdf(glass_material(1.0f, 1.0f, 0.4f), BrdfModel::PrincipledV2).transmits());
+}
+
+}  // namespace
+}  // namespace torrance
