@@ -7,7 +7,8 @@ output node (the output Cycles would use):
 
 * Principled BSDF: the sockets Base Color, Metallic, Roughness, Specular,
   Emission and Emission Strength, and Normal (from a tangent-space Normal Map);
-  v1's Transmission, IOR and Transmission Roughness (glass, as Cycles 3.4);
+  v1's Transmission, IOR and Transmission Roughness (glass, as Cycles 3.4); v2's Transmission
+  Weight (Cycles 4.x's glass closure, from any graph: principled_transmission.py);
   Alpha (a value, or an Image Texture's Alpha output: the image's alpha channel);
   Blender 4.x's Principled v2 by its names (Specular IOR Level with IOR, Emission
   Color; _PRINCIPLED_SOCKETS) and, for the PRINCIPLED_V2 model, its IOR, Specular Tint
@@ -48,6 +49,7 @@ from .mixtures import MIXTURE_SURFACES, read_mixture
 from .normal_inputs import begin_displacement, read_normal_input
 from .principled_coat import read_coat
 from .principled_sheen import read_sheen
+from .principled_transmission import read_transmission
 from .transparent_mix import read_transparent_mix
 
 # The Principled BSDF's socket names per node version: v1 is Blender 3.x's, v2 Blender 4.0's
@@ -69,7 +71,6 @@ _IGNORED_PRINCIPLED_INPUTS = {
     'v2': (
         ("Subsurface Weight", 0.0),
         ("Anisotropic", 0.0),
-        ("Transmission Weight", 0.0),
         ("Thin Film Thickness", 0.0),
         ("Diffuse Roughness", 0.0),
     ),
@@ -330,6 +331,7 @@ class MaterialReader:
             tint = _color3(v(mat, node, names['specular_tint'], (1.0, 1.0, 1.0)), (1.0, 1.0, 1.0))
             v2_inputs = dict(ior=ior, specular_tint_color=tuple(max(0.0, c) for c in tint),
                              multiscatter_ggx=getattr(node, "distribution", "") == 'MULTI_GGX')
+            glass = read_transmission(self, mat, node)
         else:
             specular_tint = _clamp(finite_or(v(mat, node, names['specular_tint'], 0.0), 0.0),
                                    0.0, 1.0)

@@ -22,8 +22,8 @@ def quad(scene, z, material, down=False):
 
 
 def slab(transmission, from_program=False, base=(0.25, 0.5, 1.0)):
-    """A glass sheet (a closed slab's two faces, IOR 1.5, Roughness 0.2) over an emissive white floor, seen from
-    above in a black world: its mean RGB."""
+    """A glass sheet (a closed slab's two faces, IOR 1.5, Roughness 0.2) over an emissive white
+    floor, seen from above in a black world: its mean RGB."""
     scene = tc.Scene()
     args = dict(base_color=base, roughness=0.2, ior=1.5, transmission=transmission)
     if from_program:

@@ -153,13 +153,14 @@ READERS = {
 CLOSURES = {
     'ShaderNodeBsdfPrincipled': "partly: Base Color, Metallic, Roughness, Specular (v2: Specular "
                                 "IOR Level, IOR, Specular Tint), Emission and its Strength, Alpha "
-                                "(alone: any graph, camera and shadow rays), Normal; v1 "
+                                "(alone: any graph, camera and shadow rays), Normal; v2 "
+                                "Transmission Weight (any graph); v1 "
                                 "Transmission, IOR, Transmission Roughness; the coat (v1 "
                                 "Clearcoat and its Roughness; v2 Coat Weight, Roughness, IOR, "
                                 "Tint; any graph); the sheen (v1 Sheen, Sheen Tint; v2 Sheen "
                                 "Weight, Roughness, Tint; any graph). Reported: Subsurface, "
                                 "Clearcoat / Coat "
-                                "Normal, Anisotropic, v2 Transmission Weight, Thin Film, Diffuse "
+                                "Normal, Anisotropic, Thin Film, Diffuse "
                                 "Roughness",
     'ShaderNodeBsdfDiffuse': "rendered: Color, Roughness (Lambert, Cycles' Oren-Nayar), Normal; "
                              "alone and in Mix/Add Shader trees alike",
