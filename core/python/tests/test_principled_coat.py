@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 import torrance_core as tc
 
-COLUMNS = 17
+from layer_floor import floor
 
 
 @pytest.mark.parametrize("kwargs, message", [
@@ -20,30 +20,11 @@ def test_bad_coats_are_rejected(kwargs, message):
         tc.Scene().add_material(**kwargs)
 
 
-def floor(model, **coat):
-    """A floor of `coat` under a uniform white world, seen from above: its mean RGB."""
-    scene = tc.Scene()
-    if coat.pop("from_program", False):
-        constants = np.array([[coat["coat_weight"], 0, 0, 0], [*coat["coat_tint"], 0]], np.float32)
-        pid = scene.add_shader_program(constants, np.zeros((0, COLUMNS), np.int32), 2)
-        coat = dict(coat, program=pid, coat_weight=0.0, coat_weight_register=0,
-                    coat_tint=(1.0, 1.0, 1.0), coat_tint_register=1)
-    m = scene.add_material(base_color=(0.5, 0.5, 0.5), roughness=0.5, **coat)
-    scene.add_mesh(np.array([[-50, -50, 0], [50, -50, 0], [50, 50, 0], [-50, 50, 0]], np.float32),
-                   np.array([[0, 1, 2], [0, 2, 3]]), material_indices=np.array([m, m]))
-    scene.set_world((1.0, 1.0, 1.0), 1.0)
-    down = np.array([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 5], [0, 0, 0, 1]], np.float32)
-    scene.set_camera(down, type="ORTHO", ortho_scale=1.0)
-    settings = tc.RenderSettings(width=8, height=8, samples=256, max_bounces=1, seed=3,
-                                 brdf_model=model)
-    return tc.render(scene, settings).image[..., :3].reshape(-1, 3).mean(axis=0)
-
-
 @pytest.mark.parametrize("model", ["PRINCIPLED", "PRINCIPLED_V2"])
 def test_a_coat_from_a_program_renders_as_the_constant(model):
     coat = dict(coat_weight=0.8, coat_roughness=0.2, coat_tint=(0.5, 0.8, 1.0))
     constant = floor(model, **coat)
-    programmed = floor(model, from_program=True, **coat)
+    programmed = floor(model, from_program=("coat_weight", "coat_tint"), **coat)
     assert programmed == pytest.approx(constant, rel=1e-5)
     assert not np.allclose(constant, floor(model), rtol=0.01)
 
