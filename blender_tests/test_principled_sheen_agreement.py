@@ -33,8 +33,6 @@ import math
 import bpy
 
 from torrance_tools import sphere_agreement as sa, testing
-from torrance_tools.sphere_agreement import Agreement, describe
-from torrance_tools.testing import check
 
 W, H, SAMPLES, BOUNCES = 160, 80, 128, 4
 TORRANCE_SEEDS, CYCLES_SEEDS = (1, 2), (3, 4)
@@ -77,20 +75,6 @@ def sockets():
     return ("Sheen Weight", "Sheen Tint") if is_v2() else ("Sheen", "Sheen Tint")
 
 
-def graph_weight(mat, node, socket):
-    """Links the node's `socket` to object Z x 1.1 + 0.5 (about 0.04 .. 0.96 over the sphere)."""
-    nodes, links = mat.node_tree.nodes, mat.node_tree.links
-    coords = nodes.new("ShaderNodeTexCoord")
-    xyz = nodes.new("ShaderNodeSeparateXYZ")
-    math_node = nodes.new("ShaderNodeMath")
-    math_node.operation = 'MULTIPLY_ADD'
-    math_node.inputs[1].default_value = 1.1
-    math_node.inputs[2].default_value = 0.5
-    links.new(coords.outputs["Object"], xyz.inputs[0])
-    links.new(xyz.outputs["Z"], math_node.inputs[0])
-    links.new(math_node.outputs[0], node.inputs[socket])
-
-
 def tint_value(tint):
     return (*tint, 1.0) if isinstance(tint, tuple) else tint
 
@@ -106,7 +90,7 @@ def build(scene):
         mat = testing.make.principled(name, color, 0.0, 0.5, 0.5, distribution=distribution)
         node = mat.node_tree.nodes["Principled BSDF"]
         if sheen == GRAPH:
-            graph_weight(mat, node, weight)
+            sa.graph_weight(mat, node, weight)
         else:
             node.inputs[weight].default_value = sheen
         node.inputs[tint_socket].default_value = tint_value(tint)
@@ -120,14 +104,6 @@ def build(scene):
     testing.set_world(scene, (0.20, 0.24, 0.30))
 
 
-def set_inputs(names, **inputs):
-    """Sets inputs of the named spheres' Principled BSDFs."""
-    for name in names:
-        node = bpy.data.materials[name].node_tree.nodes["Principled BSDF"]
-        for socket, value in inputs.items():
-            node.inputs[socket].default_value = value
-
-
 def render_torrance(scene, directory, label):
     return sa.render_torrance(scene, directory, label, TORRANCE_SEEDS, SAMPLES, BOUNCES)[0]
 
@@ -137,19 +113,19 @@ def faults(scene, directory):
     weight, tint_socket = sockets()
     constant = [s[0] for s in spheres() if s[4] != GRAPH]
     out = []
-    set_inputs(constant, **{weight: 0.0})
+    sa.set_inputs(constant, **{weight: 0.0})
     out.append(("sheen ignored", render_torrance(scene, directory, "no_sheen")))
-    set_inputs(constant, **{weight: 1.0})
+    sa.set_inputs(constant, **{weight: 1.0})
     tinted = next(s for s in spheres() if s[0] == "Sheen_tinted")
-    set_inputs(["Sheen_tinted"], **{tint_socket: (1.0, 1.0, 1.0, 1.0) if is_v2() else 0.0})
+    sa.set_inputs(["Sheen_tinted"], **{tint_socket: (1.0, 1.0, 1.0, 1.0) if is_v2() else 0.0})
     out.append(("sheen tint ignored", render_torrance(scene, directory, "no_tint")))
-    set_inputs(["Sheen_tinted"], **{tint_socket: tint_value(tinted[5])})
+    sa.set_inputs(["Sheen_tinted"], **{tint_socket: tint_value(tinted[5])})
     if is_v2():
-        set_inputs(["Sheen_smooth", "Sheen_rough"], **{"Sheen Roughness": 0.5})
+        sa.set_inputs(["Sheen_smooth", "Sheen_rough"], **{"Sheen Roughness": 0.5})
         out.append(("sheen roughness ignored (0.5)",
                     render_torrance(scene, directory, "no_roughness")))
-        set_inputs(["Sheen_smooth"], **{"Sheen Roughness": 0.05})
-        set_inputs(["Sheen_rough"], **{"Sheen Roughness": 1.0})
+        sa.set_inputs(["Sheen_smooth"], **{"Sheen Roughness": 0.05})
+        sa.set_inputs(["Sheen_rough"], **{"Sheen Roughness": 1.0})
     tree = bpy.data.materials["Sheen_graph"].node_tree
     socket = tree.nodes["Principled BSDF"].inputs[weight]
     tree.links.remove(socket.links[0])     # the graph's weight lost: the socket's own 0
@@ -162,22 +138,9 @@ def main():
     scene = testing.clear_scene()
     testing.setup_render(scene, width=W, height=H)
     build(scene)
-    masks = sa.sphere_masks(scene, {s[0]: (s[1], 0.0, s[2]) for s in spheres()}, RADIUS, W, H)
-    agreement = Agreement([sa.render_cycles(scene, directory, s, SAMPLES, BOUNCES)[0]
-                           for s in CYCLES_SEEDS], masks)
-    print(f"Cycles {bpy.app.version_string} seed {CYCLES_SEEDS[1]} vs {CYCLES_SEEDS[0]} (noise): "
-          f"{describe(agreement.noise)}", flush=True)
-    print(f"bounds: |ratio - 1| <= {agreement.ratio:.4f}, block mean <= "
-          f"{agreement.block_mean:.4f}; spheres: " + " ".join(s[0] for s in spheres()),
-          flush=True)
-    images, seconds = sa.render_torrance(scene, directory, "sheen", TORRANCE_SEEDS, SAMPLES,
-                                         BOUNCES)
-    m, bad = agreement.check(images)
-    print(f"Torrance (seeds {TORRANCE_SEEDS}) vs Cycles: {describe(m)} ({seconds:.1f} s)"
-          + (f"  FAIL: {'; '.join(bad)}" if bad else "  ok"), flush=True)
-    missed = sa.report_faults(agreement, faults(scene, directory))
-    check(not bad, "Torrance's Principled sheen disagrees with Cycles: " + "; ".join(bad))
-    check(not missed, "the bounds miss these faults: " + ", ".join(missed))
+    sa.check_spheres(scene, directory, {s[0]: (s[1], 0.0, s[2]) for s in spheres()}, RADIUS,
+                     (W, H), "sheen", faults, "Principled sheen", SAMPLES, BOUNCES, TORRANCE_SEEDS,
+                     CYCLES_SEEDS)
 
 
 testing.run(main)

@@ -111,6 +111,50 @@ class Agreement:
         return m, out
 
 
+def set_inputs(names, **inputs):
+    """Sets inputs (socket name -> value) of the Principled BSDF of each named material."""
+    for name in names:
+        node = bpy.data.materials[name].node_tree.nodes["Principled BSDF"]
+        for socket, value in inputs.items():
+            node.inputs[socket].default_value = value
+
+
+def graph_weight(mat, node, socket):
+    """Links the node's `socket` to object Z x 1.1 + 0.5 (about 0.04 .. 0.96 over a sphere of
+    radius 0.42): a layer weight from a node graph that varies over the surface."""
+    nodes, links = mat.node_tree.nodes, mat.node_tree.links
+    coords = nodes.new("ShaderNodeTexCoord")
+    xyz = nodes.new("ShaderNodeSeparateXYZ")
+    math_node = nodes.new("ShaderNodeMath")
+    math_node.operation = 'MULTIPLY_ADD'
+    math_node.inputs[1].default_value = 1.1
+    math_node.inputs[2].default_value = 0.5
+    links.new(coords.outputs["Object"], xyz.inputs[0])
+    links.new(xyz.outputs["Z"], math_node.inputs[0])
+    links.new(math_node.outputs[0], node.inputs[socket])
+
+
+def check_spheres(scene, directory, centres, radius, size, label, faults, what, samples, bounces,
+                  torrance_seeds, cycles_seeds):
+    """The sphere-grid test: Cycles' reference and own noise (cycles_seeds), Torrance's images
+    (torrance_seeds) within the bounds, and each of faults(scene, directory)'s (description,
+    images) outside them; `what` names the feature in the failure message."""
+    masks = sphere_masks(scene, centres, radius, *size)
+    agreement = Agreement([render_cycles(scene, directory, s, samples, bounces)[0]
+                           for s in cycles_seeds], masks)
+    print(f"Cycles {bpy.app.version_string} seed {cycles_seeds[1]} vs {cycles_seeds[0]} (noise): "
+          f"{describe(agreement.noise)}", flush=True)
+    print(f"bounds: |ratio - 1| <= {agreement.ratio:.4f}, block mean <= "
+          f"{agreement.block_mean:.4f}; spheres: " + " ".join(centres), flush=True)
+    images, seconds = render_torrance(scene, directory, label, torrance_seeds, samples, bounces)
+    m, bad = agreement.check(images)
+    print(f"Torrance (seeds {torrance_seeds}) vs Cycles: {describe(m)} ({seconds:.1f} s)"
+          + (f"  FAIL: {'; '.join(bad)}" if bad else "  ok"), flush=True)
+    missed = report_faults(agreement, faults(scene, directory))
+    check(not bad, f"Torrance's {what} disagrees with Cycles: " + "; ".join(bad))
+    check(not missed, "the bounds miss these faults: " + ", ".join(missed))
+
+
 def describe(m):
     ch = "/".join(f"{c:.4f}" for c in m["channels"])
     spheres = " ".join(f"{r:.3f}(+-{b:.3f})" for r, b in m.get("spheres", {}).values())
