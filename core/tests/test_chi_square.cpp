@@ -368,6 +368,28 @@ TEST(ChiSquare, TiltedDiffuseNormalSamplingMatchesPdf) {
             DiffuseBsdf(Vec3(0.7f), 0.0f).eval(wo_below, tilted.n).x);
 }
 
+// chi_square of a Principled material's sampling: PRINCIPLED_V2 against the pdf it reports,
+// PRINCIPLED against the density it draws from (its clearcoat's stated pdf replaced by
+// ClearcoatV1::sampling_pdf, see below).
+std::string principled_chi_square(const Material& m, BrdfModel model, const Vec3& wo, float scale, uint32_t seed,
+                                  double significance) {
+  const MaterialBsdf bsdf(m, model);
+  const PrincipledBsdf v1(m);
+  const PrincipledBsdf::View view = v1.at(wo);
+  return chi_square(
+      wo, scale, seed, significance,
+      [&](Rng& rng) {
+        const float u = rng.next_1d();
+        const BsdfSample s = bsdf.sample(wo, u, rng.next_2d());
+        return Sampled{s.wi, s.valid(), s.is_delta};
+      },
+      [&](const Vec3& wi) {
+        const float pdf = bsdf.pdf(wo, wi);
+        if (model == BrdfModel::PrincipledV2) return pdf;
+        return pdf + view.p_coat * (v1.coat().sampling_pdf(wo, wi) - v1.coat().pdf(wo, wi));
+      });
+}
+
 // The Principled coat (principled_coat.h) as a lobe of the mixture: PRINCIPLED_V2's coat draws with
 // the pdf the BSDF reports; PRINCIPLED's clearcoat, like Cycles 3.4's, draws GGX visible normals
 // while it reports GTR1's density, so its draws are checked against the density it draws from
@@ -390,24 +412,10 @@ TEST(ChiSquare, PrincipledCoatSamplingMatchesPdf) {
             m.coat_weight = 1.0f;
             m.coat_roughness = coat_r;
             m.coat_tint = Vec3(0.9f, 0.6f, 0.3f);
-            const MaterialBsdf bsdf(m, model);
-            const PrincipledBsdf v1(m);
-            const Vec3 wo = test::direction(cos_o, 0.4f);
-            const PrincipledBsdf::View view = v1.at(wo);
             const float scale = std::max(3.0f * std::max(r * r, coat_r * coat_r), 0.25f);
             ++cases;
-            const std::string failure = chi_square(
-                wo, scale, seed++, significance,
-                [&](Rng& rng) {
-                  const float u = rng.next_1d();
-                  const BsdfSample s = bsdf.sample(wo, u, rng.next_2d());
-                  return Sampled{s.wi, s.valid(), s.is_delta};
-                },
-                [&](const Vec3& wi) {
-                  const float pdf = bsdf.pdf(wo, wi);
-                  if (model == BrdfModel::PrincipledV2) return pdf;
-                  return pdf + view.p_coat * (v1.coat().sampling_pdf(wo, wi) - v1.coat().pdf(wo, wi));
-                });
+            const std::string failure =
+                principled_chi_square(m, model, test::direction(cos_o, 0.4f), scale, seed++, significance);
             EXPECT_EQ(failure, "") << test::model_name(model) << " coat_r=" << coat_r << " r=" << r
                                    << " m=" << metallic << " cos_o=" << cos_o;
           }
@@ -433,23 +441,9 @@ TEST(ChiSquare, PrincipledSheenSamplingMatchesPdf) {
             m.sheen_tint_color = Vec3(0.9f, 0.6f, 0.3f);
             m.coat_weight = coat;
             m.coat_roughness = 0.5f;
-            const MaterialBsdf bsdf(m, model);
-            const PrincipledBsdf v1(m);
-            const Vec3 wo = test::direction(cos_o, 0.4f);
-            const PrincipledBsdf::View view = v1.at(wo);
             ++cases;
-            const std::string failure = chi_square(
-                wo, 0.5f, seed++, significance,
-                [&](Rng& rng) {
-                  const float u = rng.next_1d();
-                  const BsdfSample s = bsdf.sample(wo, u, rng.next_2d());
-                  return Sampled{s.wi, s.valid(), s.is_delta};
-                },
-                [&](const Vec3& wi) {
-                  const float pdf = bsdf.pdf(wo, wi);
-                  if (model == BrdfModel::PrincipledV2) return pdf;
-                  return pdf + view.p_coat * (v1.coat().sampling_pdf(wo, wi) - v1.coat().pdf(wo, wi));
-                });
+            const std::string failure =
+                principled_chi_square(m, model, test::direction(cos_o, 0.4f), 0.5f, seed++, significance);
             EXPECT_EQ(failure, "") << test::model_name(model) << " sheen_r=" << sheen_r << " r=" << r
                                    << " coat=" << coat << " cos_o=" << cos_o;
           }
