@@ -34,7 +34,7 @@ import math
 import bpy
 
 from torrance_tools import sphere_agreement as sa, testing
-from torrance_tools.sphere_agreement import Agreement, describe
+from torrance_tools.sphere_agreement import Agreement, describe, set_inputs
 from torrance_tools.testing import check
 
 W, H, SAMPLES, BOUNCES = 160, 80, 128, 4
@@ -117,14 +117,6 @@ def build(scene):
     # as Cycles' for a lone sun, not for a uniform world (Cycles samples it too, Torrance leaves it
     # to the BSDF).
     testing.set_world(scene, (0.20, 0.24, 0.30) if is_v2() else (0.0, 0.0, 0.0))
-
-
-def set_inputs(names, **inputs):
-    """Sets inputs of the named spheres' Principled BSDFs."""
-    for name in names:
-        node = bpy.data.materials[name].node_tree.nodes["Principled BSDF"]
-        for socket, value in inputs.items():
-            node.inputs[socket].default_value = value
 
 
 def render_torrance(scene, directory, label):

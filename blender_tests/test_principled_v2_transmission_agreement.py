@@ -34,7 +34,7 @@ import bpy
 
 from torrance_tools import sphere_agreement as sa, testing
 from torrance_tools.issue12_scenes import checker_floor
-from torrance_tools.sphere_agreement import Agreement, describe
+from torrance_tools.sphere_agreement import Agreement, describe, set_inputs
 from torrance_tools.testing import check
 
 W, H, SAMPLES, BOUNCES = 128, 64, 128, 8
@@ -64,14 +64,6 @@ def build(scene):
     testing.add_sun(scene, strength=3.0, rotation=(math.radians(50), 0, math.radians(-30)),
                     angle=math.radians(5.0))
     testing.set_world(scene, (0.30, 0.33, 0.38))
-
-
-def set_inputs(names, **inputs):
-    """Sets inputs of the named spheres' Principled BSDFs."""
-    for name in names:
-        node = bpy.data.materials[name].node_tree.nodes["Principled BSDF"]
-        for socket, value in inputs.items():
-            node.inputs[socket].default_value = value
 
 
 def render_torrance(scene, directory, label):

@@ -96,13 +96,10 @@ GlassBsdf::Lobe GlassBsdf::refraction(const Vec3& wo, const Vec3& wi, float etap
   Lobe out;
   if (refract_delta_ || invisible_ || !(wo.z > 0.0f) || !(wi.z < 0.0f)) return out;
   // The microfacet normal that refracts wo into wi, on wo's side: +-(wo + etap wi).
-  const Vec3 half = wo + etap * wi;
-  const float len2 = glm::dot(half, half);
-  if (!(len2 > 0.0f)) return out;
-  Vec3 h = half / std::sqrt(len2);
-  if (h.z < 0.0f) h = -h;
+  Vec3 h;
+  float len2;
+  if (!ggx::refraction_half(wo, wi, etap, h, len2)) return out;  // none visible from wo refracts into wi
   const float o_h = glm::dot(wo, h), i_h = glm::dot(wi, h);
-  if (!(o_h > 0.0f) || !(i_h < 0.0f)) return out;  // no microfacet visible from wo refracts into wi
   // The density of h times Walter's Jacobian dh/dwi = etap^2 |wi.h| / |wo + etap wi|^2.
   const float jacobian = etap * etap * -i_h / len2;
   out.pdf = normal_pdf(wo, h, alpha_t_) * jacobian;

@@ -66,13 +66,10 @@ PrincipledGlassV2::Lobe PrincipledGlassV2::evaluate(const Vec3& wo, const Vec3& 
     out.f_cos = sp.reflect * (common * g2);
     out.pdf = sp.p_reflect * common * g1_o;
   } else {
-    const Vec3 half = wo + etap * wi;
-    const float len2 = glm::dot(half, half);
-    if (!(len2 > 0.0f)) return out;
-    Vec3 h = half / std::sqrt(len2);
-    if (h.z < 0.0f) h = -h;
+    Vec3 h;
+    float len2;
+    if (!ggx::refraction_half(wo, wi, etap, h, len2)) return out;  // h must face wo and wi cross it
     const float o_h = glm::dot(wo, h), i_h = glm::dot(wi, h);
-    if (!(o_h > 0.0f) || !(i_h < 0.0f)) return out;  // h must face wo and wi cross it
     const Split sp = split(o_h, etap);
     const float common = ggx::D(h, alpha_) / wo.z * etap * etap * o_h * -i_h / len2;
     out.f_cos = sp.transmit * (common * g2);
