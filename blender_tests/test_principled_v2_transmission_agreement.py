@@ -34,7 +34,7 @@ import bpy
 
 from torrance_tools import sphere_agreement as sa, testing
 from torrance_tools.issue12_scenes import checker_floor
-from torrance_tools.sphere_agreement import Agreement, describe, set_inputs
+from torrance_tools.sphere_agreement import set_inputs
 from torrance_tools.testing import check
 
 W, H, SAMPLES, BOUNCES = 128, 64, 128, 8
@@ -96,22 +96,9 @@ def main():
     scene = testing.clear_scene()
     testing.setup_render(scene, width=W, height=H)
     build(scene)
-    masks = sa.sphere_masks(scene, {s[0]: (s[1], 0.0, Z) for s in SPHERES}, RADIUS, W, H)
-    agreement = Agreement([sa.render_cycles(scene, directory, s, SAMPLES, BOUNCES)[0]
-                           for s in CYCLES_SEEDS], masks)
-    print(f"Cycles {bpy.app.version_string} seed {CYCLES_SEEDS[1]} vs {CYCLES_SEEDS[0]} (noise): "
-          f"{describe(agreement.noise)}", flush=True)
-    print(f"bounds: |ratio - 1| <= {agreement.ratio:.4f}, block mean <= "
-          f"{agreement.block_mean:.4f}; spheres: " + " ".join(s[0] for s in SPHERES), flush=True)
-    images, seconds = sa.render_torrance(scene, directory, "glass", TORRANCE_SEEDS, SAMPLES,
-                                         BOUNCES)
-    m, bad = agreement.check(images)
-    print(f"Torrance (seeds {TORRANCE_SEEDS}) vs Cycles: {describe(m)} ({seconds:.1f} s)"
-          + (f"  FAIL: {'; '.join(bad)}" if bad else "  ok"), flush=True)
-    missed = sa.report_faults(agreement, faults(scene, directory))
-    check(not bad, "Torrance's Principled v2 transmission disagrees with Cycles: "
-          + "; ".join(bad))
-    check(not missed, "the bounds miss these faults: " + ", ".join(missed))
+    sa.check_spheres(scene, directory, {s[0]: (s[1], 0.0, Z) for s in SPHERES}, RADIUS, (W, H),
+                     "glass", faults, "Principled v2 transmission", SAMPLES, BOUNCES,
+                     TORRANCE_SEEDS, CYCLES_SEEDS)
 
 
 testing.run(main)
