@@ -18,6 +18,7 @@ ClosureType parse_closure(const std::string& s) {
   if (s == "glossy") return ClosureType::Glossy;
   if (s == "emission") return ClosureType::Emission;
   if (s == "transparent") return ClosureType::Transparent;
+  if (s == "holdout") return ClosureType::Holdout;
   if (s == "velvet") return ClosureType::Velvet;
   if (s == "sheen") return ClosureType::Sheen;
   if (s == "translucent") return ClosureType::Translucent;
@@ -27,7 +28,8 @@ ClosureType parse_closure(const std::string& s) {
   if (s == "toon_diffuse_cycles4") return ClosureType::ToonDiffuseCycles4;
   if (s == "toon_glossy_cycles4") return ClosureType::ToonGlossyCycles4;
   throw py::value_error(
-      "closure type must be 'principled', 'diffuse', 'glossy', 'emission', 'transparent', 'velvet', 'sheen', "
+      "closure type must be 'principled', 'diffuse', 'glossy', 'emission', 'transparent', 'holdout', 'velvet', "
+      "'sheen', "
       "'translucent', 'refraction', 'toon_diffuse', 'toon_glossy', 'toon_diffuse_cycles4' or "
       "'toon_glossy_cycles4', got '" + s + "'");
 }
@@ -111,12 +113,12 @@ void init_mixture(py::module_& m) {
       py::arg("normal_register") = -1, py::arg("surface_normal_register") = -1,
       "Adds a material made of weighted closures (Mix Shader / Add Shader); returns its material index. "
       "closures: [(type, material, terms)], type 'principled' | 'diffuse' | 'glossy' | 'emission' | 'transparent' | "
-      "'velvet' | 'sheen' | 'translucent' | 'refraction' | 'toon_diffuse' | 'toon_glossy' (sampled as Cycles 3.x; "
+      "'holdout' | 'velvet' | 'sheen' | 'translucent' | 'refraction' | 'toon_diffuse' | 'toon_glossy' (sampled as Cycles 3.x; "
       "'toon_diffuse_cycles4' | 'toon_glossy_cycles4': as Cycles 4.x), material an add_material "
       "index holding the closure's inputs (diffuse/glossy/velvet/sheen: base_color = Color, roughness = Roughness "
       "or Sigma; translucent: base_color; refraction: base_color, roughness, ior, glass_distribution; toon: "
       "base_color, roughness = Size, transmission_roughness = Smooth; transparent: transparent_color = Color: "
-      "rays pass through with the closures' weight), terms the "
+      "rays pass through with the closures' weight; holdout: its weight is taken off camera rays' alpha), terms the "
       "weight's factors (t >= 0: factor t, t < 0: 1 - factor -t-1). factors: dicts {'kind': 'constant', 'value'} | "
       "{'kind': 'image', 'texture'} (luminance) | {'kind': 'checker', 'scale', 'color1', 'color2'} (Blender's "
       "Checker Texture at the UV) | {'kind': 'program', 'register'} (register x of shader program `program`, "

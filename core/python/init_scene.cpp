@@ -336,6 +336,20 @@ void init_scene(py::module_& m) {
           },
           py::arg("ids"), py::arg("values"),
           "Blender's pass indices of instances (ids from add_instances), for the Object Index pass (default 0).")
+      .def("set_mesh_holdout", &Scene::set_mesh_holdout, py::arg("mesh"), py::arg("holdout") = true,
+           "Whether a mesh's object (from add_mesh) is a holdout (Blender's Object > Visibility > Holdout): "
+           "camera rays that meet it leave the pixel transparent (its alpha's transparency kept).")
+      .def(
+          "set_instance_holdouts",
+          [](Scene& s, const py::object& ids, bool holdout) {
+            const IndexArray id = as_indices(ids, "ids");
+            if (id.ndim() != 1) throw py::value_error("ids must have shape (N,), got " + shape_string(id));
+            s.set_instance_holdouts(id.data(), size_t(id.size()), holdout);
+          },
+          py::arg("ids"), py::arg("holdout") = true,
+          "Whether instances (ids from add_instances) are holdouts, as set_mesh_holdout.")
+      .def_property_readonly("has_holdouts", &Scene::has_holdouts,
+                             "Whether some object is a holdout or some mixture has a Holdout closure.")
       .def(
           "set_material_pass_indices",
           [](Scene& s, const py::object& values) {

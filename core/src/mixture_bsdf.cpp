@@ -183,7 +183,8 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
         break;
       }
       case ClosureType::Emission:
-      case ClosureType::Transparent: break;
+      case ClosureType::Transparent:
+      case ClosureType::Holdout: break;
     }
   }
   return bsdf;

@@ -327,7 +327,16 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
           at.ray_length = passed_length + hit.t - ray.tmin;
           Vec3 tint;
           const float opacity = ctx.scene.opacity(hit, ray.dir, at, &tint);
+          // Holdouts, for camera rays through transparency (Cycles' PATH_RAY_TRANSPARENT_BACKGROUND):
+          // their weight times the throughput off the alpha; a fully held-out surface ends the path.
+          bool held_out = false;
+          if (bounce == 0 && !again && ctx.scene.has_holdouts()) {
+            const float weight = ctx.scene.holdout(hit, ray.dir, at, opacity);
+            out.alpha -= weight * (throughput.x + throughput.y + throughput.z) / 3.0f;
+            held_out = hit.object_holdout || weight >= 1.0f;
+          }
           if (opacity >= 1.0f || sampler.next_4d().x < opacity) {  // the vertex below records it
+            if (held_out) return out;
             if (bounce == 0) first_opacity = opacity;
             break;
           }
@@ -361,7 +370,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       } else if (bounce == 0) {
         if (!found) {
           if (ctx.settings.transparent_background)
-            out.alpha = kAlpha ? 1.0f - (throughput.x + throughput.y + throughput.z) / 3.0f : 0.0f;
+            out.alpha -= kAlpha ? (throughput.x + throughput.y + throughput.z) / 3.0f : 1.0f;
           else out.environment = (kAlpha ? throughput : Vec3(1.0f)) * lights.world_radiance(ray.dir, escaped());
           if (const float k = clamp_scale(out.environment, true); k < 1.0f) out.environment *= k;
           path_luminance = luminance(out.environment);
@@ -686,7 +695,7 @@ TraceFn select_path_tracer(const Scene& scene, const RenderSettings& settings) {
     has_glass |= scene.material(uint32_t(i)).transmits();
   }
   has_textures |= scene.lights().world_reads_path();  // the path's state, tracked for its Light Path
-  const bool alpha = has_alpha(scene);
+  const bool alpha = has_alpha(scene) || scene.has_holdouts();  // holdouts: in the alpha loop
   const bool split_lobes =
       settings.passes & (kPassDiffuseDirect | kPassDiffuseIndirect | kPassGlossyDirect | kPassGlossyIndirect);
   const int lobes_and_lights = (split_lobes << 1) | int(scene.lights().any_hittable());

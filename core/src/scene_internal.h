@@ -27,6 +27,7 @@ struct Scene::Mesh {
   std::vector<int32_t> attribute_ids;
   std::vector<int32_t> emitter_index;  // per triangle: index in the mesh light, or -1
   float pass_index = 0.0f;             // Blender's object pass index (of a mesh from add_mesh)
+  bool holdout = false;                // a holdout object (of a mesh from add_mesh)
 };
 
 namespace scene_detail {
@@ -66,6 +67,7 @@ struct Scene::Instance {
   int32_t emitter_base = -1;        // mesh-light index of its first emissive triangle, or -1
   bool hidden = false;              // singular transform: disabled in Embree
   float pass_index = 0.0f;          // Blender's object pass index
+  bool holdout = false;             // a holdout object
 };
 
 namespace scene_detail {

@@ -1,4 +1,5 @@
-// Blender's pass indices of objects and materials (the Object Index and Material Index passes).
+// Blender's pass indices of objects and materials (the Object Index and Material Index passes),
+// and its holdout objects.
 #include "scene_internal.h"
 
 #include <stdexcept>
@@ -26,6 +27,24 @@ void Scene::set_material_pass_indices(const float* values, size_t count) {
   std::lock_guard<std::mutex> lock(mutex_);
   check_idle("set materials' pass indices");
   material_pass_indices_.assign(values, values + count);
+}
+
+void Scene::set_mesh_holdout(uint32_t mesh, bool holdout) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set a mesh's holdout");
+  if (mesh >= meshes_.size()) throw std::invalid_argument("mesh " + std::to_string(mesh) + " does not exist");
+  meshes_[mesh]->holdout = holdout;
+  object_holdouts_ = object_holdouts_ || holdout;
+}
+
+void Scene::set_instance_holdouts(const int64_t* ids, size_t count, bool holdout) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set instances' holdout");
+  for (size_t i = 0; i < count; ++i)
+    if (ids[i] < 0 || size_t(ids[i]) >= instances_.size())
+      throw std::invalid_argument("instance " + std::to_string(ids[i]) + " does not exist");
+  for (size_t i = 0; i < count; ++i) instances_[size_t(ids[i])].holdout = holdout;
+  object_holdouts_ = object_holdouts_ || (holdout && count > 0);
 }
 
 }  // namespace torrance

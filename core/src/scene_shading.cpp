@@ -67,6 +67,7 @@ uint32_t Scene::add_mixture(const Mixture& mixture, const MaterialTextures& norm
   material_textures_.push_back(textures);
   mixture_index_.push_back(int32_t(mixtures_.size()));
   mixtures_.push_back(mixture);
+  mixture_holdouts_ = mixture_holdouts_ || mixture.holdout();
   emitters_dirty_ = true;
   return uint32_t(materials_.size() - 1);
 }
@@ -123,6 +124,22 @@ float Scene::opacity(const SurfaceHit& hit, const Vec3& dir, const PathState& se
   run_shader_program(uint32_t(o.program), g, regs.data());
   const float alpha = regs[size_t(o.alpha)].x;
   return alpha == alpha ? clamp01(alpha) : 1.0f;  // a NaN alpha: opaque, as the socket's default
+}
+
+float Scene::holdout(const SurfaceHit& hit, const Vec3& dir, const PathState& seen_by, float opacity) const {
+  if (hit.object_holdout) return opacity;  // every closure but the transparent ones held out
+  const Mixture* m = mixture(hit.material);
+  if (!m || !m->holdout()) return 0.0f;
+  ShaderGlobals g = shader_globals(hit, dir, 0.0f);
+  g.path = seen_by;
+  g.tracer = this;
+  const MixtureWeights w = mixture_weights(hit.material, g);
+  float weight = 0.0f;
+  for (int k = 0; k < w.count; ++k)
+    if (m->components[size_t(k)].type == ClosureType::Holdout) weight += w.weight[k];
+  // Without Transparent closures the opacity is the material's alpha (a Mix Shader of a
+  // Transparent BSDF and this mixture), which scales all its closures.
+  return clamp01(m->transparent() ? weight : weight * opacity);
 }
 
 Vec3 Scene::sampled_emission(const EmissiveTriangle& triangle, const Vec2& b, const Vec3& wi,

@@ -56,6 +56,9 @@ enum class ClosureType {
   ToonGlossy,
   ToonDiffuseCycles4,
   ToonGlossyCycles4,
+  // Holdout: no light of its own; for camera rays (through transparency) its weight times the
+  // path's throughput is taken off the pixel's alpha (Cycles' holdout closure, Scene::holdout).
+  Holdout,
 };
 
 struct MixtureComponent {
@@ -71,6 +74,11 @@ struct Mixture {
   bool transparent() const {
     for (const MixtureComponent& c : components)
       if (c.type == ClosureType::Transparent) return true;
+    return false;
+  }
+  bool holdout() const {
+    for (const MixtureComponent& c : components)
+      if (c.type == ClosureType::Holdout) return true;
     return false;
   }
 };

@@ -60,6 +60,7 @@ struct SurfaceHit {
   Vec2 uv{0.0f};              // interpolated corner UVs (0 without UVs)
   bool has_uv = false;        // the mesh has UVs (the UV pass: (u, v, 1), else 0)
   float object_pass_index = 0.0f;  // the object's Blender pass index (Scene::set_mesh_pass_index)
+  bool object_holdout = false;     // the object is a holdout (Scene::set_mesh_holdout)
   Vec3 tangent{0.0f};         // unit dP/du from the triangle's UVs (0 without usable UVs)
   float uv_per_metre = 0.0f;  // how fast UVs change across the triangle (sqrt of UV area / area)
   float bitangent_sign = 1.0f;
@@ -197,6 +198,13 @@ class Scene final : public ShaderTracer {
   // tint (if given) becomes the colour that passes (Material::transparent_color, or a mixture's
   // Transparent closures' colours by their weights).
   float opacity(const SurfaceHit& hit, const Vec3& dir, const PathState& seen_by, Vec3* tint = nullptr) const;
+  // The holdout weight of the surface at hit for a camera ray (Cycles' surface_shader_apply_holdout):
+  // a holdout object's `opacity` (its surface's, from opacity() above: the object's transparency
+  // stays), else the weight of its mixture's Holdout closures (times the material's alpha); 0
+  // without either. The path takes it, times its throughput, off the pixel's alpha.
+  float holdout(const SurfaceHit& hit, const Vec3& dir, const PathState& seen_by, float opacity) const;
+  // Whether some object is a holdout or some mixture has a Holdout closure.
+  bool has_holdouts() const { return object_holdouts_ || mixture_holdouts_; }
   // The material's alpha at a hit: its alpha texture's alpha channel (or colour luminance, or 1 -
   // either: MaterialTextures) at uv, else Material::alpha (its program's alpha not run).
   float opacity(uint32_t material, const Vec2& uv) const {
@@ -259,6 +267,10 @@ class Scene final : public ShaderTracer {
   void set_mesh_pass_index(uint32_t mesh, float index);
   void set_instance_pass_indices(const int64_t* ids, size_t count, const float* values);
   void set_material_pass_indices(const float* values, size_t count);
+  // Holdout objects (Blender's Object > Visibility > Holdout, or a collection's in the view layer):
+  // a mesh from add_mesh, instances (ids from add_instances). See holdout().
+  void set_mesh_holdout(uint32_t mesh, bool holdout);
+  void set_instance_holdouts(const int64_t* ids, size_t count, bool holdout);
   float material_pass_index(uint32_t material) const {
     return material < material_pass_indices_.size() ? material_pass_indices_[material] : 0.0f;
   }
@@ -406,6 +418,8 @@ class Scene final : public ShaderTracer {
   // end before the last instances: those have none).
   std::vector<Vec3> instance_constants_;
   std::vector<float> material_pass_indices_;
+  bool object_holdouts_ = false;   // some mesh or instance is a holdout
+  bool mixture_holdouts_ = false;  // some mixture has a Holdout closure
   std::vector<int32_t> instance_constant_ids_;
   std::vector<std::unique_ptr<Prototype>> prototypes_;
   std::vector<Binding> bindings_;  // distinct (prototype, material table) pairs
