@@ -25,6 +25,17 @@ def render_torrance(scene, directory, seed, name, samples, bounces):
     return img, seconds
 
 
+def render_with_fault(scene, directory, seed, samples, bounces, owner, attr, make_fault):
+    """Torrance's image at seed (render_torrance, named "fault") with owner.attr replaced by
+    make_fault(original) for the render, and restored after."""
+    original = getattr(owner, attr)
+    setattr(owner, attr, make_fault(original))
+    try:
+        return render_torrance(scene, directory, seed, "fault", samples, bounces)[0]
+    finally:
+        setattr(owner, attr, original)
+
+
 def seed_noise_verdict(scene, directory, samples, bounces, seeds=(2, 3), tolerance=1.5,
                        ratio_sigmas=3.0, ratio_floor=0.015, prefix=""):
     """Torrance (seeds) against Cycles' reference within Cycles' own seed-to-seed noise, printed:
@@ -60,12 +71,8 @@ def agree_within_seed_noise(scene, directory, samples, bounces, what, faults=(),
     testing.check(not bad, f"{what} disagrees with Cycles: " + "; ".join(bad))
     missed = []
     for label, owner, attr, make_fault in faults:
-        original = getattr(owner, attr)
-        setattr(owner, attr, make_fault(original))
-        try:
-            img, _ = render_torrance(scene, directory, seeds[0], "fault", samples, bounces)
-        finally:
-            setattr(owner, attr, original)
+        img = render_with_fault(scene, directory, seeds[0], samples, bounces, owner, attr,
+                                make_fault)
         fm = metrics(img, ref)
         fbad = failures(fm, limits)
         print(f"  fault {label:30s}: {format_metrics(fm)}"

@@ -7,6 +7,9 @@ Shader gives both the weight it received. The closures Torrance renders:
 
 * Transparent BSDF (Color): rays pass through by its weight, Cycles' transparency (the other
   closures shade the rest; the core's ClosureType::Transparent);
+* Holdout: for camera rays (through transparency) its weight leaves the pixel transparent
+  (alpha and colour), as Cycles' holdout closure; it adds no light (the core's
+  ClosureType::Holdout);
 * Principled BSDF and Glass BSDF (as a lone one is read), Diffuse BSDF (Color, Roughness:
   Lambert or Cycles' Oren-Nayar), Glossy BSDF (Color, Roughness; GGX, Sharp as roughness 0;
   Beckmann, Ashikhmin-Shirley and Multiscatter GGX are rendered as GGX and reported; Blender
@@ -38,7 +41,8 @@ SHADER_TREE_NODES = {'ShaderNodeMixShader', 'ShaderNodeAddShader'}
 # Surfaces read as a mixture (a one-closure one for a lone Diffuse or Glossy BSDF, 3.x's and
 # 4.x's node, and closure_nodes.py's): a closure means the same alone and in a Mix.
 MIXTURE_SURFACES = SHADER_TREE_NODES | {'ShaderNodeBsdfDiffuse', 'ShaderNodeBsdfGlossy',
-                                        'ShaderNodeBsdfAnisotropic'} | CLOSURE_NODES
+                                        'ShaderNodeBsdfAnisotropic', 'ShaderNodeHoldout'} \
+    | CLOSURE_NODES
 _GLOSSY_AS_GGX = {'BECKMANN', 'ASHIKHMIN_SHIRLEY', 'MULTI_GGX'}
 
 
@@ -260,6 +264,8 @@ class ShaderTreeReader:
             return 'emission', reader._emission(mat, node)
         if kind == 'ShaderNodeBsdfTransparent':   # rays pass through by its weight
             return 'transparent', reader._transparent(mat, node)
+        if kind == 'ShaderNodeHoldout':           # camera rays' alpha taken off by its weight
+            return 'holdout', dict(DEFAULT_MATERIAL, base_color=(0.0, 0.0, 0.0), specular=0.0)
         if kind == 'ShaderNodeBsdfGlass':       # a material of its own, as a lone Glass BSDF
             args = reader._glass(mat, node)
             for key in ('normal_texture', 'normal_strength', 'bump_texture', 'bump_strength',
@@ -271,8 +277,8 @@ class ShaderTreeReader:
         if kind in CLOSURE_NODES:
             return read_closure_node(reader, mat, node)
         self.warn(f"the shader {node_label(node)} is not supported in a mix (Torrance mixes "
-                  f"Principled, Diffuse, Glossy, Glass, Transparent, Emission, Velvet / Sheen, "
-                  f"Translucent, Refraction and Toon); it is left out")
+                  f"Principled, Diffuse, Glossy, Glass, Transparent, Holdout, Emission, Velvet / "
+                  f"Sheen, Translucent, Refraction and Toon); it is left out")
         return None
 
     def _colour_roughness(self, node):

@@ -26,12 +26,14 @@ class Source:
     matrices of everything that shows it: copies kept by `add`, converted to float32 rows
     CHUNK at a time (transforms() gives them all)."""
     __slots__ = ("name", "mesh_key", "table", "instanced", "matrices", "converted", "_append",
-                 "info_of", "random_ids", "colors", "duplis", "instancers", "pass_index")
+                 "info_of", "random_ids", "colors", "duplis", "instancers", "pass_index",
+                 "holdout")
 
     def __init__(self, name, mesh_key, table, instanced, info_of=None, duplis=False,
                  instancers=False, pass_index=0):
         self.name = name
         self.pass_index = float(pass_index)   # the object's (the Object Index pass)
+        self.holdout = False          # a holdout object (holdouts.py), or its instancer is
         self.mesh_key = mesh_key      # (evaluated mesh pointer, needs UVs)
         self.table = table            # int32 (K,): material index per slot
         self.instanced = instanced
@@ -217,6 +219,8 @@ class InstanceExport:
             if src.pass_index:
                 self.scene.set_instance_pass_indices(
                     ids, np.full(len(m), src.pass_index, np.float32))
+            if src.holdout:
+                self.scene.set_instance_holdouts(ids, True)
             start += len(m)
 
 

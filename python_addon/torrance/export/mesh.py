@@ -310,10 +310,10 @@ def mesh_materials(slots, materials):
 
 
 def add_world_mesh(tc_scene, name, local, matrix, slot_to_material, needs_uvs, reporter,
-                   object_info=None, pass_index=0):
+                   object_info=None, pass_index=0, holdout=False):
     """Adds a LocalMesh (or None) at `matrix` with add_mesh; returns the triangles added.
     object_info: the object's Object Info constants (mesh_attributes.object_info), if known;
-    pass_index: the object's (the Object Index pass)."""
+    pass_index: the object's (the Object Index pass); holdout: it is a holdout (holdouts.py)."""
     if local is None:
         return 0
     pos, tris, corner, keep, dropped = world_mesh(local, matrix)
@@ -338,6 +338,8 @@ def add_world_mesh(tc_scene, name, local, matrix, slot_to_material, needs_uvs, r
         tc_scene.set_mesh_attributes(mesh_id, *layers)
     if pass_index:
         tc_scene.set_mesh_pass_index(mesh_id, float(pass_index))
+    if holdout:
+        tc_scene.set_mesh_holdout(mesh_id, True)
     return len(tris)
 
 

@@ -10,6 +10,7 @@ import time
 from ..materials import MaterialTable
 from ..texture_table import TextureTable
 from .camera import export_camera
+from .holdouts import holdout_names, instance_holdout
 from .instances import InstanceExport, Source
 from .lights import export_light
 from .mesh import MeshCache, add_world_mesh, mesh_materials
@@ -165,8 +166,10 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
         export_camera(tc_scene, _camera_object(depsgraph, engine), reporter, engine,
                       depsgraph.scene.render)
         export_world(tc_scene, depsgraph.scene.world, reporter, textures)
-        # (object name, evaluated mesh pointer) -> Source, 'LIGHT' or None, for instances
+        # (object name, evaluated mesh pointer[, holdout]) -> Source, 'LIGHT' or None, for
+        # instances
         seen = {}
+        holdouts = holdout_names(depsgraph)
         count = 0
         for inst in depsgraph.object_instances:
             count += 1
@@ -176,9 +179,13 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
             if inst.is_instance:
                 data = obj.data
                 key = (obj.name_full, data.as_pointer() if data is not None else 0)
+                if holdouts:
+                    key += (instance_holdout(inst, holdouts),)
                 what = seen.get(key, seen)
                 if what is seen:
                     what = seen[key] = classify(inst, obj)
+                    if what.__class__ is Source:
+                        what.holdout = bool(holdouts) and key[2]
                 if what.__class__ is Source:
                     what.add(inst.matrix_world)
                     if what.random_ids is not None:         # its materials read Object Info
@@ -206,9 +213,10 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
                         if any(k[0] == 'object_info' for k, _ in getattr(needs, "attributes", ()))
                         else None)
                 flattened.append((obj, obj.name, inst.matrix_world.copy(), slot_to_material,
-                                  needs, info, obj.pass_index))
+                                  needs, info, obj.pass_index, obj.name_full in holdouts))
             elif role == 'MESH':
                 src = meshes.source(obj, obj.name, instanced=False)
+                src.holdout = obj.name_full in holdouts
                 src.add(inst.matrix_world)
                 meshes.defer(obj, src)          # an evaluated object: read after the pass
     stats.capture_seconds = time.perf_counter() - t0
@@ -216,11 +224,12 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
     meshes.read_pending(poll)
     meshes.flush(stats)
     cache = MeshCache()
-    for obj, name, matrix, slot_to_material, needs_uvs, info, pass_index in flattened:
+    for obj, name, matrix, slot_to_material, needs_uvs, info, pass_index, holdout in flattened:
         poll()
         local = cache.get(obj, (obj.data.as_pointer(),), needs_uvs, reporter)
         triangles = add_world_mesh(tc_scene, name, local, matrix, slot_to_material, needs_uvs,
-                                   reporter, object_info=info, pass_index=pass_index)
+                                   reporter, object_info=info, pass_index=pass_index,
+                                   holdout=holdout)
         if triangles:
             stats.objects += 1
             stats.names.append(name)

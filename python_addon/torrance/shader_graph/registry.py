@@ -185,13 +185,16 @@ CLOSURES = {
                           "is reported), Normal; Diffuse and Glossy, their sampled directions "
                           "weighted as Cycles 3.4's or 4.x's; alone and in Mix/Add Shader trees",
     'ShaderNodeEmission': "rendered: Color, Strength",
+    'ShaderNodeHoldout': "rendered: alone and anywhere in Mix/Add Shader trees; camera rays "
+                         "(through transparency) lose its weight of alpha and colour, as Cycles' "
+                         "holdout; black elsewhere",
     'ShaderNodeMixShader': "partly: trees of Principled, Diffuse, Glossy, Glass, Transparent, "
-                           "Emission, Velvet / Sheen, Translucent, Refraction and Toon closures, "
-                           "Fac any graph",
+                           "Holdout, Emission, Velvet / Sheen, Translucent, Refraction and Toon "
+                           "closures, Fac any graph",
     'ShaderNodeAddShader': "partly: trees of Principled, Diffuse, Glossy, Glass, Transparent, "
-                           "Emission, Velvet / Sheen, Translucent, Refraction and Toon closures (a "
-                           "Transparent's weight and the others' summing past 1: the others shade "
-                           "only what it lets through)",
+                           "Holdout, Emission, Velvet / Sheen, Translucent, Refraction and Toon "
+                           "closures (a Transparent's weight and the others' summing past 1: the "
+                           "others shade only what it lets through)",
     'ShaderNodeNormalMap': "rendered: Tangent (each mesh's active render UV map), Object, "
                            "World and the Blender spaces, Strength, any Color graph",
     'ShaderNodeBump': "rendered: any Height graph (evaluated at the hit and its ray-differential "
