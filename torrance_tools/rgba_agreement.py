@@ -12,7 +12,7 @@ from torrance_tools import testing
 from torrance_tools.agreement import (failures, format_metrics, mean_metrics, metrics,
                                       noise_bounds, print_verdict)
 from torrance_tools.render_settings import setup_cycles
-from torrance_tools.seed_noise import render_torrance, render_with_fault
+from torrance_tools.seed_noise import faults_missed, measure_seeds
 
 
 def alpha_image(img):
@@ -58,28 +58,23 @@ def agree_rgba_within_seed_noise(scene, directory, samples, bounces, what, fault
     for part, b in limits.items():
         print(f"bounds {part:3s}: ratio {b['ratio'][0]:.4f}..{b['ratio'][1]:.4f}, block mean "
               f"{b['block_mean']:.4f}, p90 {b['block_p90']:.4f}")
-    results = []
-    for seed in seeds:
-        img, seconds = render_torrance(scene, directory, seed, f"torrance{seed}", samples,
-                                       bounces)
-        results.append(rgba_metrics(img, ref))
-        for part in results[-1]:
-            print(f"Torrance seed {seed}, {part:3s}: {format_metrics(results[-1][part])}"
-                  f"  ({seconds:.1f} s)")
+    results = measure_seeds(scene, directory, samples, bounces, seeds,
+                            lambda img: rgba_metrics(img, ref))
+    for seed, r in zip(seeds, results, strict=True):
+        for part in r:
+            print(f"Torrance seed {seed}, {part:3s}: {format_metrics(r[part])}")
     mean = {part: mean_metrics([r[part] for r in results]) for part in own}
     bad = _failures(mean, limits)
     for part in mean:
         print_verdict(f"Torrance mean {part:3s}", mean[part], failures(mean[part], limits[part]))
     testing.check(not bad, f"{what} disagrees with Cycles: " + "; ".join(bad))
-    missed = []
-    for label, owner, attr, make_fault in faults:
-        img = render_with_fault(scene, directory, seeds[0], samples, bounces, owner, attr,
-                                make_fault)
+
+    def judge(label, img):
         fm = rgba_metrics(img, ref)
         fbad = _failures(fm, limits)
         print(f"  fault {label:34s}: RGB {format_metrics(fm['RGB'])}; A block mean "
               f"{fm['A']['block_mean']:.4f}, ratio {fm['A']['ratio']:.4f}"
               + (f"  caught: {'; '.join(fbad[:3])}" if fbad else "  NOT CAUGHT"), flush=True)
-        if not fbad:
-            missed.append(label)
+        return fbad
+    missed = faults_missed(scene, directory, seeds[0], samples, bounces, faults, judge)
     testing.check(not missed, "faults the comparison does not see: " + ", ".join(missed))

@@ -36,6 +36,30 @@ def render_with_fault(scene, directory, seed, samples, bounces, owner, attr, mak
         setattr(owner, attr, original)
 
 
+def faults_missed(scene, directory, seed, samples, bounces, faults, judge):
+    """The labels of the faults ((label, owner, attribute, make_fault), render_with_fault) whose
+    image judge(label, image) finds nothing wrong with (it prints its figures and returns what
+    the image violates); a label beginning "info:" is reported only, never missed."""
+    missed = []
+    for label, owner, attr, make_fault in faults:
+        img = render_with_fault(scene, directory, seed, samples, bounces, owner, attr, make_fault)
+        if not judge(label, img) and not label.startswith("info:"):
+            missed.append(label)
+    return missed
+
+
+def measure_seeds(scene, directory, samples, bounces, seeds, measure, prefix=""):
+    """measure(image) of Torrance's render at each seed (render_torrance, named
+    prefix + "torrance<seed>"), each render's time printed."""
+    results = []
+    for seed in seeds:
+        img, seconds = render_torrance(scene, directory, seed, f"{prefix}torrance{seed}", samples,
+                                       bounces)
+        print(f"Torrance seed {seed}: {seconds:.1f} s", flush=True)
+        results.append(measure(img))
+    return results
+
+
 def seed_noise_verdict(scene, directory, samples, bounces, seeds=(2, 3), tolerance=1.5,
                        ratio_sigmas=3.0, ratio_floor=0.015, prefix=""):
     """Torrance (seeds) against Cycles' reference within Cycles' own seed-to-seed noise, printed:
@@ -45,13 +69,10 @@ def seed_noise_verdict(scene, directory, samples, bounces, seeds=(2, 3), toleran
     limits = noise_bounds(own, tolerance, ratio_sigmas, ratio_floor)
     print(f"bounds: ratio {limits['ratio'][0]:.4f}..{limits['ratio'][1]:.4f}, block mean "
           f"{limits['block_mean']:.4f}, p90 {limits['block_p90']:.4f}")
-    results = []
-    for seed in seeds:
-        img, seconds = render_torrance(scene, directory, seed, f"{prefix}torrance{seed}", samples,
-                                       bounces)
-        results.append(metrics(img, ref))
-        print(f"Torrance seed {seed}             : {format_metrics(results[-1])}"
-              f"  ({seconds:.1f} s)")
+    results = measure_seeds(scene, directory, samples, bounces, seeds,
+                            lambda img: metrics(img, ref), prefix)
+    for seed, r in zip(seeds, results, strict=True):
+        print(f"Torrance seed {seed}             : {format_metrics(r)}")
     m = mean_metrics(results)
     bad = failures(m, limits)
     print_verdict("Torrance mean over seeds    ", m, bad)
@@ -69,16 +90,14 @@ def agree_within_seed_noise(scene, directory, samples, bounces, what, faults=(),
     ref, m, _own, limits, bad = seed_noise_verdict(scene, directory, samples, bounces, seeds,
                                                    tolerance, ratio_sigmas, ratio_floor)
     testing.check(not bad, f"{what} disagrees with Cycles: " + "; ".join(bad))
-    missed = []
-    for label, owner, attr, make_fault in faults:
-        img = render_with_fault(scene, directory, seeds[0], samples, bounces, owner, attr,
-                                make_fault)
+
+    def judge(label, img):
         fm = metrics(img, ref)
         fbad = failures(fm, limits)
         print(f"  fault {label:30s}: {format_metrics(fm)}"
               + (f"  caught: {'; '.join(fbad)}" if fbad else "  NOT CAUGHT"), flush=True)
-        if not fbad and not label.startswith("info:"):
-            missed.append(label)
+        return fbad
+    missed = faults_missed(scene, directory, seeds[0], samples, bounces, faults, judge)
     testing.check(not missed, "faults the comparison does not see: " + ", ".join(missed))
 
 
