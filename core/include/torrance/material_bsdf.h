@@ -4,7 +4,8 @@
 // Transmission T and Metallic m is its opaque lobes (weights in principled.cpp) plus T (1 - m)
 // glass; the Glass BSDF node is glass only. (PAPER scales its opaque lobes by 1 - T (1 - m).)
 // PRINCIPLED_V2's Transmission Weight T is Cycles 4.x's glass closure (principled_glass_v2.h),
-// weight T (1 - m), its dielectric and diffuse layers keeping (1 - m)(1 - T) (principled_v2.h).
+// weight T (1 - m), its dielectric and diffuse layers keeping (1 - m)(1 - T) (principled_v2.h);
+// the coat and the sheen above darken and tint it as the other layers (glass_layering).
 //
 // Directions are in the shading frame turned towards the viewer (wo.z > 0), as for the opaque
 // models; `backfacing` says the viewer is behind the GEOMETRIC surface (inside the glass), which
@@ -37,8 +38,8 @@ class MaterialBsdf {
     glass_weight_ = glass_probability_ = clamp01(m.transmission) * (1.0f - metallic);
     if (model == BrdfModel::PrincipledV2) {
       glass_.emplace(PrincipledGlassV2(roughness, m.ior, m.specular_tint_color, m.base_color, m.multiscatter_ggx));
-      // A coat over all-glass keeps its lobe (sampled at least 1 time in 10).
-      if (m.coat_weight > 0.0f) glass_probability_ = std::min(glass_probability_, 0.9f);
+      // A coat or sheen over all-glass keeps its lobe (sampled at least 1 time in 10).
+      if (m.coat_weight > 0.0f || m.sheen_weight > 0.0f) glass_probability_ = std::min(glass_probability_, 0.9f);
       opaque_ = glass_probability_ < 1.0f;
       return;
     }
@@ -101,7 +102,7 @@ class MaterialBsdf {
     if (!kGlass || !glass_) return f;
     f.diffuse *= opaque_scale_;
     f.glossy = f.glossy * opaque_scale_ +
-               glass_weight_ * glass([&](const auto& g) {
+               glass_weight_ * glass_layering(v) * glass([&](const auto& g) {
                  return g.eval(outward(v.wo, v.backfacing), outward(wi, v.backfacing));
                });
     return f;
@@ -127,7 +128,7 @@ class MaterialBsdf {
         return g.sample(outward(v.wo, v.backfacing), std::min(u_lobe / p, 0.99999994f), u);
       });
       s.wi = outward(s.wi, v.backfacing);
-      if (s.is_delta) s.weight *= glass_weight_ / p;
+      if (s.is_delta) s.weight *= glass_weight_ * glass_layering(v) / p;
     } else {
       s = visit(v, [&](const auto& b, const auto& lv) {
         return b.sample(lv, std::min((u_lobe - p) / (1.0f - p), 0.99999994f), u);
@@ -190,6 +191,12 @@ class MaterialBsdf {
     return CookTorranceBsdf(m);
   }
   static Vec3 outward(const Vec3& w, bool backfacing) { return backfacing ? Vec3(w.x, w.y, -w.z) : w; }
+  // What the glass keeps under PRINCIPLED_V2's coat and sheen seen from v's wo (Cycles layers
+  // them over its transmission closure as over the other layers); 1 for the other models.
+  static Vec3 glass_layering(const View& v) {
+    const auto* lv = std::get_if<PrincipledV2Bsdf::View>(&v.lobes);
+    return lv ? lv->terms.coat.base_weight * SheenV2::keep(lv->terms.sheen) : Vec3(1.0f);
+  }
   // Calls f(the glass) (PRINCIPLED_V2's or Cycles 3.4's); only with glass_.
   template <typename F>
   decltype(auto) glass(F&& f) const {
