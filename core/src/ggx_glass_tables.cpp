@@ -50,15 +50,7 @@ struct Tables {
   }
 };
 
-const Tables& tables() {
-  // Computed once, thread-safe, isolated as ggx_tables.cpp's.
-  static const Tables t = [] {
-    std::unique_ptr<Tables> made;
-    tbb::this_task_arena::isolate([&] { made = std::make_unique<Tables>(); });
-    return std::move(*made);
-  }();
-  return t;
-}
+const Tables& tables() { return ggx_tables::built_once<Tables>(); }
 
 // The table side and z of a relative IOR.
 int side(float eta) { return eta < 1.0f ? 1 : 0; }

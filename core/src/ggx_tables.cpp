@@ -67,17 +67,7 @@ struct Tables {
   }
 };
 
-const Tables& tables() {
-  // Computed once, thread-safe. Isolated: while its parallel loops run, this thread must not
-  // pick up an outer task (e.g. another tile of the render that first asked for the tables),
-  // which would ask for them again inside their own initialisation.
-  static const Tables t = [] {
-    std::unique_ptr<Tables> made;
-    tbb::this_task_arena::isolate([&] { made = std::make_unique<Tables>(); });
-    return std::move(*made);
-  }();
-  return t;
-}
+const Tables& tables() { return built_once<Tables>(); }
 
 }  // namespace
 

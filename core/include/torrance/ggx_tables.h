@@ -18,6 +18,10 @@
 // rule on a regular grid: the table entry is E_u[w(u)] exactly as a sampled estimate would be.
 #pragma once
 
+#include <tbb/task_arena.h>
+
+#include <memory>
+
 namespace torrance::ggx_tables {
 
 // Below this alpha Cycles 4.x treats GGX as a mirror (alpha_x alpha_y <= 5e-7).
@@ -43,5 +47,19 @@ float ior_from_f0(float f0);
 float read_1d(const float* data, float x, int n);
 float read_2d(const float* data, float x, float y, int nx, int ny);
 float read_3d(const float* data, float x, float y, float z, int n);
+
+// The tables of type T (built by T's constructor), made once per process, thread-safe. Isolated:
+// while their parallel loops run, this thread must not pick up an outer task (e.g. another tile
+// of the render that first asked for them), which would ask for them again inside their own
+// initialisation.
+template <typename T>
+const T& built_once() {
+  static const T t = [] {
+    std::unique_ptr<T> made;
+    tbb::this_task_arena::isolate([&] { made = std::make_unique<T>(); });
+    return std::move(*made);
+  }();
+  return t;
+}
 
 }  // namespace torrance::ggx_tables
