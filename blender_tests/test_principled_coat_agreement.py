@@ -34,8 +34,7 @@ import math
 import bpy
 
 from torrance_tools import sphere_agreement as sa, testing
-from torrance_tools.sphere_agreement import Agreement, describe, set_inputs
-from torrance_tools.testing import check
+from torrance_tools.sphere_agreement import set_inputs
 
 W, H, SAMPLES, BOUNCES = 160, 80, 128, 4
 TORRANCE_SEEDS, CYCLES_SEEDS = (1, 2), (3, 4)
@@ -75,20 +74,6 @@ def sockets():
     return ("Coat Weight", "Coat Roughness") if is_v2() else ("Clearcoat", "Clearcoat Roughness")
 
 
-def graph_weight(mat, node, socket):
-    """Links the node's `socket` to object Z x 1.1 + 0.5 (about 0.04 .. 0.96 over the sphere)."""
-    nodes, links = mat.node_tree.nodes, mat.node_tree.links
-    coords = nodes.new("ShaderNodeTexCoord")
-    xyz = nodes.new("ShaderNodeSeparateXYZ")
-    math_node = nodes.new("ShaderNodeMath")
-    math_node.operation = 'MULTIPLY_ADD'
-    math_node.inputs[1].default_value = 1.1
-    math_node.inputs[2].default_value = 0.5
-    links.new(coords.outputs["Object"], xyz.inputs[0])
-    links.new(xyz.outputs["Z"], math_node.inputs[0])
-    links.new(math_node.outputs[0], node.inputs[socket])
-
-
 def build(scene):
     testing.add_camera(scene, location=(0.0, -10.0, 1.5), target=(0.0, 0.0, 1.0), lens=50.0)
     distribution = 'MULTI_GGX' if is_v2() else 'GGX'
@@ -101,7 +86,7 @@ def build(scene):
                                       distribution=distribution)
         node = mat.node_tree.nodes["Principled BSDF"]
         if coat == GRAPH:
-            graph_weight(mat, node, weight)
+            sa.graph_weight(mat, node, weight)
         else:
             node.inputs[weight].default_value = coat
         node.inputs[roughness].default_value = coat_r
@@ -158,22 +143,9 @@ def main():
     scene = testing.clear_scene()
     testing.setup_render(scene, width=W, height=H)
     build(scene)
-    masks = sa.sphere_masks(scene, {s[0]: (s[1], 0.0, s[2]) for s in spheres()}, RADIUS, W, H)
-    agreement = Agreement([sa.render_cycles(scene, directory, s, SAMPLES, BOUNCES)[0]
-                           for s in CYCLES_SEEDS], masks)
-    print(f"Cycles {bpy.app.version_string} seed {CYCLES_SEEDS[1]} vs {CYCLES_SEEDS[0]} (noise): "
-          f"{describe(agreement.noise)}", flush=True)
-    print(f"bounds: |ratio - 1| <= {agreement.ratio:.4f}, block mean <= "
-          f"{agreement.block_mean:.4f}; spheres: " + " ".join(s[0] for s in spheres()),
-          flush=True)
-    images, seconds = sa.render_torrance(scene, directory, "coat", TORRANCE_SEEDS, SAMPLES,
-                                         BOUNCES)
-    m, bad = agreement.check(images)
-    print(f"Torrance (seeds {TORRANCE_SEEDS}) vs Cycles: {describe(m)} ({seconds:.1f} s)"
-          + (f"  FAIL: {'; '.join(bad)}" if bad else "  ok"), flush=True)
-    missed = sa.report_faults(agreement, faults(scene, directory))
-    check(not bad, "Torrance's Principled coat disagrees with Cycles: " + "; ".join(bad))
-    check(not missed, "the bounds miss these faults: " + ", ".join(missed))
+    sa.check_spheres(scene, directory, {s[0]: (s[1], 0.0, s[2]) for s in spheres()}, RADIUS,
+                     (W, H), "coat", faults, "Principled coat", SAMPLES, BOUNCES, TORRANCE_SEEDS,
+                     CYCLES_SEEDS)
 
 
 testing.run(main)
