@@ -379,9 +379,9 @@ class TORRANCE_RENDER_PT_compatibility(TorrancePanel, Panel):
                   ok_text="Everything in this scene is supported")
         col = self.layout.column(align=True)
         col.label(text="Not rendered by Torrance:")
-        for text in ("Volumes, subsurface, transmission",
-                     "Shader nodes other than Principled / Diffuse / Emission",
-                     "Motion blur"):
+        for text in ("Volumes, hair, subsurface, thin film, anisotropy",
+                     "Bevel, Point Density, AOV Output, Hair and Volume nodes",
+                     "Motion blur, shader AOVs, Cryptomatte, light groups"):
             col.label(text=text, icon='DOT')
 
 
