@@ -55,7 +55,6 @@ Writes <out>/results.json; scripts/benchmark_report.py turns it into <out>/repor
 import argparse
 import datetime
 import os
-import platform
 import statistics
 import subprocess
 import sys
@@ -65,12 +64,13 @@ import bpy
 
 from torrance_tools import REPO as ROOT
 from torrance_tools import (addon_access, benchmark_points, benchmark_results, blender_versions,
-                            compare, comparison_scenes, references, render_settings)
+                            comparison_scenes, references, render_settings)
+from torrance_tools.benchmark_points import TRIM, measure
+from torrance_tools.benchmark_results import git, machine
 
 KNOWN_SETTINGS = {"width", "height", "samples", "max_bounces", "seed", "pixel_aspect_x",
                   "pixel_aspect_y", "filter_width", "transparent_background", "brdf_model",
                   "window", "threads"}
-TRIM = 0.001          # rel_mse_trim leaves out the worst 0.1 % of pixels (fireflies)
 
 
 def parse_args():
@@ -181,14 +181,6 @@ def render_once(scene, engine, samples, bounces, seed, name, threshold=0.0, sett
     return img, t, extra
 
 
-def measure(img, ref):
-    m = compare.bias_metrics(img, ref)
-    return dict(rel_mse=compare.rel_mse(img, ref),
-                rel_mse_trim=compare.rel_mse(img, ref, trim=TRIM),
-                ssim=compare.ssim(img, ref), ratio=m["ratio"], block_mean=m["block_mean"],
-                finite=compare.finite(img))
-
-
 def curve_ladders(args):
     """{curve: [(samples, threshold)]}: the plain curves' sample counts (threshold 0) and the
     adaptive curves' thresholds (at most --max-spp samples)."""
@@ -278,28 +270,6 @@ def blender_startup_seconds(repeats=3):
                        stderr=subprocess.DEVNULL, check=False)
         times.append(time.perf_counter() - t0)
     return float(statistics.median(times))
-
-
-def git(*args):
-    try:
-        return subprocess.run(["git", "-C", ROOT, *args], capture_output=True, text=True,
-                              check=False).stdout.strip()
-    except OSError:
-        return ""
-
-
-def machine():
-    cpu = ""
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    cpu = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    return dict(cpu=cpu, cores=os.cpu_count(), system=platform.platform(),
-                load_average=list(os.getloadavg()))
 
 
 def bench_scene(name, args, levers, run):

@@ -13,6 +13,8 @@ import statistics
 
 import numpy as np
 
+from torrance_tools import compare
+
 # Seeds of the benchmark renders start here; the references' own seeds (their JSON "seeds",
 # 1 and 2 for references/) and 0 are never used: a render with a reference's seed shares its
 # first samples with the reference, and its error against it is too small.
@@ -27,6 +29,7 @@ STEP = 2
 FIRST_SPP = 4
 FIRST_THRESHOLD = 0.1
 LAST_THRESHOLD = 0.001          # Cycles' smallest automatic threshold
+TRIM = 0.001          # rel_mse_trim leaves out the worst 0.1 % of pixels (fireflies)
 
 
 def benchmark_seeds(count, reference_seeds=REFERENCE_SEEDS):
@@ -90,6 +93,16 @@ class CurveBudget:
     def next_fits(self):
         return (self.points < self.MIN_POINTS
                 or self.spent + self.growth * self.last <= self.seconds)
+
+
+def measure(img, ref):
+    """The errors of one render against the reference: relMSE, relMSE without the worst TRIM of
+    pixels, SSIM, the bias figures (mean ratio, 8x8 block mean), whether it is finite."""
+    m = compare.bias_metrics(img, ref)
+    return dict(rel_mse=compare.rel_mse(img, ref),
+                rel_mse_trim=compare.rel_mse(img, ref, trim=TRIM),
+                ssim=compare.ssim(img, ref), ratio=m["ratio"], block_mean=m["block_mean"],
+                finite=compare.finite(img))
 
 
 def aggregate(rows, floor):

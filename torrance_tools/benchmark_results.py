@@ -9,6 +9,10 @@ made from pieces says which scene came from which run.
 
 import json
 import os
+import platform
+import subprocess
+
+from torrance_tools import REPO
 
 
 def load(directory):
@@ -46,3 +50,27 @@ def save(directory, results):
         json.dump(results, f, indent=1)
         f.write("\n")
     return path
+
+
+def git(*args):
+    """The output of `git ARGS` in the repository ('' when git fails)."""
+    try:
+        return subprocess.run(["git", "-C", REPO, *args], capture_output=True, text=True,
+                              check=False).stdout.strip()
+    except OSError:
+        return ""
+
+
+def machine():
+    """What ran the benchmark: CPU, cores, system, load average at the start."""
+    cpu = ""
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    cpu = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    return dict(cpu=cpu, cores=os.cpu_count(), system=platform.platform(),
+                load_average=list(os.getloadavg()))
