@@ -36,17 +36,21 @@ inline bool sample_is_class_a(uint32_t sample) { return __builtin_popcount(sampl
 //   sampled and its weighted mean stays consistent while the neighbours stop one by one.
 class Film {
  public:
-  Film(int w, int h, uint32_t passes, bool adaptive, const PixelFilter* splatting = nullptr)
+  // extra: the scene's AOV and light-group passes (extra_passes.h), summed like the image.
+  Film(int w, int h, uint32_t passes, bool adaptive, const PixelFilter* splatting = nullptr,
+       std::vector<ExtraPass> extra = {})
       : width_(w),
         height_(h),
         passes_(passes),
         adaptive_(adaptive),
         splatting_(splatting),
-        margin_(splatting ? splatting->reach() : 0) {
+        margin_(splatting ? splatting->reach() : 0),
+        extra_(std::move(extra)) {
+    for (const ExtraPass& e : extra_) extra_channels_ += e.channels;
     if (margin_ > kMaxReach) throw std::logic_error("Film: a splat reaches 2 pixels beyond its own at most");
     if (adaptive && margin_ > 1) throw std::logic_error("Film: adaptive sampling splats 1 pixel far at most");
     accumulated_ = passes | pass_dependencies(passes);
-    stride_ = 4;
+    stride_ = 4 + extra_channels_;
     filtered_ = -1;
     for (const PassInfo& p : kPasses) {
       if (!(accumulated_ & p.pass)) continue;
@@ -187,7 +191,7 @@ class Film {
   std::vector<std::pair<std::string, Image>> resolve_passes() const {
     std::vector<std::pair<std::string, Image>> out;
     std::vector<std::pair<Pass, Image>> resolved;
-    int k = 4;
+    int k = 4 + extra_channels_;
     for (const PassInfo& p : kPasses) {
       if (!(accumulated_ & p.pass)) continue;
       resolved.emplace_back(p.pass, (p.pass & kFirstSamplePasses) ? copy(k, p.channels) : resolve(k, p.channels));
@@ -195,12 +199,17 @@ class Film {
     }
     for (const PassInfo& p : kPasses)
       if (passes_ & p.pass) out.emplace_back(p.name, finish_pass(p.pass, resolved));
+    k = 4;
+    for (const ExtraPass& e : extra_) {
+      out.emplace_back(e.name, resolve(k, e.channels));
+      k += e.channels;
+    }
     return out;
   }
 
  private:
   static constexpr int kMaxReach = 2;  // pixels beyond its own that a splat may reach
-  static constexpr size_t kMaxValues = 64;
+  static constexpr size_t kMaxValues = 128;
   using Values = std::array<float, kMaxValues>;
   // A sample's values in the film's channel order: Combined RGBA, then the requested passes.
   Values values(const PathRadiance& r) const {
@@ -210,7 +219,8 @@ class Film {
     v[1] = c.g;
     v[2] = c.b;
     v[3] = r.alpha;
-    size_t k = 4;
+    for (int c = 0; c < extra_channels_; ++c) v[size_t(4 + c)] = r.extras[c];
+    size_t k = size_t(4 + extra_channels_);
     for (const PassInfo& p : kPasses) {
       if (!(accumulated_ & p.pass)) continue;
       if (p.channels == 1) {
@@ -278,6 +288,8 @@ class Film {
   bool adaptive_;
   const PixelFilter* splatting_;  // null: samples drawn by the filter's importance
   int margin_;
+  std::vector<ExtraPass> extra_;
+  int extra_channels_ = 0;
   int buffer_width_;
   int values_;     // channels of a sample: Combined RGBA and the passes
   int filtered_;   // the channels before it are summed; from it on, the first-sample passes

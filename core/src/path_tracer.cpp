@@ -1,5 +1,6 @@
 #include "path_tracer.h"
 
+#include "extra_passes_write.h"
 #include "guided_bsdf.h"
 #include "torrance/light_choice.h"
 #include "torrance/mirror_images.h"
@@ -7,6 +8,7 @@
 #include "torrance/ray_log.h"
 #include "torrance/shading_normal.h"
 
+#include <algorithm>
 #include <array>
 #include <limits>
 #include <optional>
@@ -223,6 +225,8 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
                         const PixelSample& pixel) {
   const Lights& lights = ctx.lights;
   PathRadiance out;
+  const ExtraPasses& extra = ctx.scene.extra_passes();
+  std::fill_n(out.extras, extra.channels(), 0.0f);
   GuidePathRecorder recorder(ctx.guide_training ? ctx.guide : nullptr, pixel.guide_weight);  // training: records at the end
   // The luminance the path has brought so far, for the roulette: summed contribution by
   // contribution, so that it does not depend on how the passes split them (out.combined() does, by
@@ -327,6 +331,9 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
           at.ray_length = passed_length + hit.t - ray.tmin;
           Vec3 tint;
           const float opacity = ctx.scene.opacity(hit, ray.dir, at, &tint);
+          // Shader AOVs: of every surface shaded until one reaches the Alpha Threshold (as Cycles).
+          if (bounce == 0 && !again && !surface_data_done && extra.writes_aovs())
+            add_aovs(ctx.scene, hit, ray.dir, at, 0.0f, out.extras);
           // Holdouts, for camera rays through transparency (Cycles' PATH_RAY_TRANSPARENT_BACKGROUND):
           // their weight times the throughput off the alpha; a fully held-out surface ends the path.
           bool held_out = false;
@@ -465,6 +472,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       // Emissive surfaces emit from both faces; NEE samples them too (the mesh light).
       if (first_again) {  // its emission: in the first branch
       } else if (bounce == 0) {
+        if (!kAlpha && extra.writes_aovs()) add_aovs(ctx.scene, hit, ray.dir, path_state, 0.0f, out.extras);
         if (!surface_data_done && first_opacity >= ctx.settings.pass_alpha_threshold) {
           out.normal = ns;
           out.uv = hit.has_uv ? Vec3(hit.uv.x, hit.uv.y, 1.0f) : Vec3(0.0f);

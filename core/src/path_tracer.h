@@ -6,6 +6,7 @@
 #include "torrance/roulette.h"
 #include "torrance/guiding.h"
 #include "torrance/first_bounce_splits.h"
+#include "torrance/extra_passes.h"
 #include "torrance/integrator.h"
 #include "torrance/material_bsdf.h"
 #include "torrance/mirror_images.h"
@@ -65,6 +66,9 @@ struct PathRadiance {
   float mist = 0.0f;
   Vec3 uv{0.0f}, ao{0.0f}, position{0.0f};
   float object_index = 0.0f, material_index = 0.0f;
+  // The scene's AOV and light-group channels (extra_passes.h): the first
+  // Scene::extra_passes().channels() are set by the tracer, the rest left uninitialised.
+  float extras[kMaxExtraChannels];
 
   Vec3 combined() const {
     return emission + environment + diffuse_direct + diffuse_indirect + glossy_direct + glossy_indirect;

@@ -48,6 +48,7 @@ from .shader_graph.registry import READERS
 from .mixtures import MIXTURE_SURFACES, read_mixture
 from .normal_inputs import begin_displacement, read_normal_input
 from .principled_coat import read_coat
+from .shader_aovs import AovPrograms
 from .principled_sheen import read_sheen
 from .principled_transmission import read_transmission
 from .transparent_mix import read_transparent_mix
@@ -527,11 +528,14 @@ class MeshNeeds(NamedTuple):
 class MaterialTable:
     """Adds each Blender material to a tc.Scene once; maps materials to indices."""
 
-    def __init__(self, tc_scene, reporter, textures):
+    def __init__(self, tc_scene, reporter, textures, aovs=()):
         self.scene = tc_scene
         self.textures = textures
         self.attribute_ids = AttributeIds()
         self.reader = MaterialReader(reporter, self.textures, self.attribute_ids)
+        # The view layer's shader AOVs [(name, type)]: the materials' AOV Output programs.
+        self.aov_programs = AovPrograms(tc_scene, list(aovs), reporter, textures,
+                                        self.attribute_ids)
         self.indices = {}
         self.textured = set()     # indices of materials that use textures
         self.attributes = {}      # index -> the mesh attribute keys its programs read
@@ -558,6 +562,11 @@ class MaterialTable:
             if uses_textures(args):
                 self.textured.add(idx)
             keys = attribute_keys(args)
+            aov_needs = self.aov_programs.add(mat, idx)
+            if aov_needs is not None:
+                if aov_needs[0]:
+                    self.textured.add(idx)        # its meshes export their UVs
+                keys = tuple(sorted(set(keys) | set(aov_needs[1]), key=repr))
             if keys:
                 self.attributes[idx] = keys
             if emits(args):

@@ -107,10 +107,38 @@ def world_pass_settings(scene):
                 ao_distance=float(world.light_settings.distance))
 
 
+def extra_passes(view_layer):
+    """(core name, Blender name, channels, chanid, type) of the view layer's shader AOVs (valid
+    ones: a value 'X', a colour 'RGBA') and light groups ('Combined_<name>', RGB), as Cycles
+    names and registers them; the core renders them as 'aov:<name>' and 'lightgroup:<name>'."""
+    if view_layer is None:
+        return []
+    out = []
+    for aov in getattr(view_layer, "aovs", ()):
+        if aov.is_valid:
+            out.append((f"aov:{aov.name}", aov.name, 1, "X", 'VALUE') if aov.type == 'VALUE'
+                       else (f"aov:{aov.name}", aov.name, 4, "RGBA", 'COLOR'))
+    for group in getattr(view_layer, "lightgroups", ()):
+        out.append((f"lightgroup:{group.name}", f"Combined_{group.name}", 3, "RGB", 'COLOR'))
+    return out
+
+
+def blender_name(core_name):
+    """Blender's name of a pass the core rendered (None: not one Blender shows)."""
+    info = BY_CORE_NAME.get(core_name)
+    if info is not None:
+        return info.name
+    kind, _, name = core_name.partition(":")
+    return {"aov": name, "lightgroup": f"Combined_{name}"}.get(kind) if name else None
+
+
 def update_render_passes(engine, scene, renderlayer):
-    """Registers Combined and the enabled passes (compositor sockets, multilayer EXR layers)."""
+    """Registers Combined, the enabled passes, the shader AOVs and the light groups (compositor
+    sockets, multilayer EXR layers)."""
     if scene is None or renderlayer is None:
         return
     engine.register_pass(scene, renderlayer, "Combined", 4, "RGBA", 'COLOR')
     for p in enabled_passes(renderlayer):
         engine.register_pass(scene, renderlayer, p.name, p.channels, p.chanid, p.type)
+    for _core, name, channels, chanid, kind in extra_passes(renderlayer):
+        engine.register_pass(scene, renderlayer, name, channels, chanid, kind)

@@ -102,13 +102,13 @@ class _Session:
         if extra_passes:
             missing = []
             for core_name, data in extra_passes.items():
-                info = passes.BY_CORE_NAME.get(core_name)
-                if info is None:
+                name = passes.blender_name(core_name)
+                if name is None:
                     continue
                 layer = self.result.layers[0]
-                target = layer.passes.find_by_name(info.name, "")
+                target = layer.passes.find_by_name(name, "")
                 if target is None:
-                    missing.append(info.name)
+                    missing.append(name)
                     continue
                 target.rect.foreach_set(self._window_pixels(data, target.channels))
             if missing:
@@ -251,7 +251,9 @@ def _render(engine, depsgraph, reporter):
                 return not engine.test_break()
             image, denoise = denoising.denoise_image(tc, image, result.passes, ts, reporter,
                                                      progress)
-        session.write(image, {k: v for k, v in result.passes.items() if k in core_passes})
+        extra = {core for core, *_ in passes.extra_passes(view_layer)}
+        session.write(image, {k: v for k, v in result.passes.items()
+                              if k in core_passes or k in extra})
         if session.missing_passes:
             reporter.warning(f"Torrance: the render result has no pass(es) "
                              f"{', '.join(session.missing_passes)}; they were not written")

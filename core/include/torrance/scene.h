@@ -7,6 +7,7 @@
 
 #include "torrance/bsdf.h"
 #include "torrance/camera.h"
+#include "torrance/extra_passes.h"
 #include "torrance/lights.h"
 #include "torrance/mixture.h"
 #include "torrance/shader_bump.h"
@@ -271,6 +272,10 @@ class Scene final : public ShaderTracer {
   // a mesh from add_mesh, instances (ids from add_instances). See holdout().
   void set_mesh_holdout(uint32_t mesh, bool holdout);
   void set_instance_holdouts(const int64_t* ids, size_t count, bool holdout);
+  // The view layer's shader AOVs and light groups, and the materials' AOV Output programs
+  // (extra_passes.h). Set before a render.
+  ExtraPasses& extra_passes() { return extra_passes_; }
+  const ExtraPasses& extra_passes() const { return extra_passes_; }
   float material_pass_index(uint32_t material) const {
     return material < material_pass_indices_.size() ? material_pass_indices_[material] : 0.0f;
   }
@@ -419,6 +424,7 @@ class Scene final : public ShaderTracer {
   std::vector<Vec3> instance_constants_;
   std::vector<float> material_pass_indices_;
   bool object_holdouts_ = false;   // some mesh or instance is a holdout
+  ExtraPasses extra_passes_;
   bool mixture_holdouts_ = false;  // some mixture has a Holdout closure
   std::vector<int32_t> instance_constant_ids_;
   std::vector<std::unique_ptr<Prototype>> prototypes_;

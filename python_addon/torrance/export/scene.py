@@ -8,6 +8,7 @@ import sys
 import time
 
 from ..materials import MaterialTable
+from ..shader_aovs import report_world_aovs, view_layer_aovs
 from ..texture_table import TextureTable
 from .camera import export_camera
 from .holdouts import holdout_names, instance_holdout
@@ -136,7 +137,10 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
     stats = ExportStats()
     tc_scene = tc.Scene()
     textures = TextureTable(tc_scene, reporter)
-    materials = MaterialTable(tc_scene, reporter, textures)
+    aovs = view_layer_aovs(depsgraph.view_layer)
+    materials = MaterialTable(tc_scene, reporter, textures, aovs)
+    if aovs:
+        report_world_aovs(depsgraph.scene.world, reporter)
     materials.uv_pass = bool(getattr(depsgraph.view_layer, "use_pass_uv", False))
     meshes = InstanceExport(tc_scene, materials, reporter)
     last_poll = [time.perf_counter()]

@@ -43,6 +43,15 @@ class GraphCompiler:
             return convert(self.builder, _default(socket), kind)
         return convert(self.builder, self.output(link.from_socket), kind)
 
+    def input_inside(self, groups, socket, kind):
+        """The Value of an input socket of a node inside the group nodes `groups` (outermost
+        first), as `input` gives it there."""
+        outer, self._groups = self._groups, list(groups)
+        try:
+            return self.input(socket, kind)
+        finally:
+            self._groups = outer
+
     def default(self, socket, kind):
         """An input socket's own value, converted to `kind`."""
         return convert(self.builder, _default(socket), kind)

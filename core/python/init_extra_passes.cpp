@@ -1,0 +1,62 @@
+// Scene.set_aovs, set_material_aovs and set_light_groups (extra_passes.h), bound onto the Scene
+// class that init_scene defines.
+#include "bindings.h"
+
+#include "torrance/scene.h"
+
+#include <pybind11/stl.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace torrance::python {
+
+void init_extra_passes(py::module_& m) {
+  py::object cls = m.attr("Scene");
+  auto method = [&](const char* name, auto f, auto... extra) {
+    cls.attr(name) = py::cpp_function(f, py::name(name), py::is_method(cls), extra...);
+  };
+  method(
+      "set_aovs",
+      [](Scene& s, const std::vector<std::pair<std::string, std::string>>& aovs) {
+        std::vector<std::pair<std::string, bool>> parsed;
+        for (const auto& [name, type] : aovs) {
+          if (type != "VALUE" && type != "COLOR") throw py::value_error("AOV type must be 'VALUE' or 'COLOR'");
+          parsed.emplace_back(name, type == "COLOR");
+        }
+        s.extra_passes().set_aovs(parsed);
+      },
+      py::arg("aovs"),
+      "The view layer's shader AOVs: [(name, 'VALUE' | 'COLOR')]. Each is a render pass 'aov:<name>' (a value: 1 "
+      "channel; a colour: RGBA, alpha the share of samples an AOV Output wrote), the per-sample mean of what the "
+      "materials' AOV Output nodes add at the surfaces camera rays shade (as Cycles).");
+  method(
+      "set_material_aovs",
+      [](Scene& s, uint32_t material, int program, const std::vector<std::pair<int, int>>& writes) {
+        if (material >= s.num_materials()) throw py::value_error("material " + std::to_string(material) + " does not exist");
+        if (program < 0 || size_t(program) >= s.num_shader_programs())
+          throw py::value_error("program " + std::to_string(program) + " does not exist");
+        std::vector<AovWrite> parsed;
+        for (const auto& [aov, reg] : writes) {
+          if (!s.shader_program(uint32_t(program)).written(reg))
+            throw py::value_error("register " + std::to_string(reg) + " is not written by the program");
+          parsed.push_back({aov, reg});
+        }
+        try {
+          s.extra_passes().set_material_aovs(material, program, std::move(parsed));
+        } catch (const std::invalid_argument& e) {
+          throw py::value_error(e.what());
+        }
+      },
+      py::arg("material"), py::arg("program"), py::arg("writes"),
+      "Material `material`'s AOV Output nodes: shader program `program` (add_shader_program) computes their "
+      "inputs; writes: [(aov index in set_aovs' list, register)] (x of a value AOV, xyz of a colour one).");
+  method(
+      "set_light_groups", [](Scene& s, const std::vector<std::string>& names) { s.extra_passes().set_light_groups(names); },
+      py::arg("names"),
+      "The view layer's light groups: each is a render pass 'lightgroup:<name>' (RGB), the light of the "
+      "emitters of that group (index in this list).");
+}
+
+}  // namespace torrance::python
