@@ -37,6 +37,7 @@ inline float pass_scalar(Pass pass, const PathRadiance& r) {
     case kPassMist: return r.mist;
     case kPassObjectIndex: return r.object_index;
     case kPassMaterialIndex: return r.material_index;
+    case kPassDenoisingDepth: return r.denoising_depth;
     default: return r.depth;
   }
 }
@@ -55,6 +56,8 @@ inline Vec3 pass_color(Pass pass, const PathRadiance& r) {
     case kPassUV: return r.uv;
     case kPassAO: return r.ao;
     case kPassPosition: return r.position;
+    case kPassDenoisingAlbedo: return r.denoising_albedo;
+    case kPassDenoisingNormal: return r.denoising_normal;
     default: return Vec3(0.0f);
   }
 }

@@ -198,6 +198,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
                   camera.pixel_width()};
   if (camera.panoramic()) ctx.depth_from = camera.position();
   ctx.camera_position = camera.position();
+  ctx.camera_axes = {camera.right(), camera.up(), camera.forward()};
   ctx.orthographic = scene.camera().type == CameraType::Orthographic;
   ctx.bsdfs.reserve(scene.num_materials());
   for (size_t i = 0; i < scene.num_materials(); ++i) ctx.bsdfs.emplace_back(scene.material(uint32_t(i)), settings.brdf_model);

@@ -1,5 +1,7 @@
 #include "torrance/mixture_bsdf.h"
 
+#include "denoising_features.h"
+
 #include "torrance/scene.h"
 
 #include <stdexcept>
@@ -138,7 +140,7 @@ bool MixtureBsdf::transmits() const {
 
 MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals& globals, bool textured,
                            BrdfModel model, const MaterialBsdf& prebuilt, Material& resolved,
-                           glm::vec4* program_regs) {
+                           glm::vec4* program_regs, ClosureList* closures) {
   const Mixture* mixture = scene.mixture(id);
   if (!mixture) {
     resolved = textured ? scene.textured_material(id, globals, program_regs) : scene.material(id);
@@ -155,6 +157,7 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
     const MixtureComponent& c = mixture->components[k];
     const Material m = textured ? scene.textured_material(c.material, globals) : scene.material(c.material);
     resolved.emission += w.weight[k] * m.emission;
+    if (closures) closures->add(c.type, w.weight[k], m);
     switch (c.type) {
       case ClosureType::Principled:
         bsdf.add(MaterialBsdf(m, model), w.weight[k], principled_sampling_albedo(m));

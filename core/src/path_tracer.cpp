@@ -1,6 +1,7 @@
 #include "path_tracer.h"
 
 #include "extra_passes_write.h"
+#include "denoising_features.h"
 #include "guided_bsdf.h"
 #include "torrance/light_choice.h"
 #include "torrance/mirror_images.h"
@@ -225,6 +226,9 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
                         const PixelSample& pixel) {
   const Lights& lights = ctx.lights;
   PathRadiance out;
+  // Cycles' denoising features (denoising_features.h), and their state after the first vertex,
+  // where later branches start.
+  DenoisingFeatures features(ctx.settings.passes & kDenoisingPasses), features_after_first(false);
   const ExtraPasses& extra = ctx.scene.extra_passes();
   std::fill_n(out.extras, extra.channels(), 0.0f);
   GuidePathRecorder recorder(ctx.guide_training ? ctx.guide : nullptr, pixel.guide_weight);  // training: records at the end
@@ -316,6 +320,8 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       path_state = PathState{};
       path_state.ray_flags = kRayCamera;
       path_state.transparent_depth = first_transparent_depth;
+      features = features_after_first;
+      features.set_share(branch_weight);
     }
     for (int bounce = 0;; ++bounce) {
       const bool first_again = again && bounce == 0;  // back at the first vertex
@@ -380,6 +386,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
             out.alpha -= kAlpha ? (throughput.x + throughput.y + throughput.z) / 3.0f : 1.0f;
           else out.environment = (kAlpha ? throughput : Vec3(1.0f)) * lights.world_radiance(ray.dir, escaped());
           if (const float k = clamp_scale(out.environment, true); k < 1.0f) out.environment *= k;
+          features.light(out.environment, out);
           path_luminance = luminance(out.environment);
           return out;
         }
@@ -392,6 +399,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
           const Vec3 e = lights.emission_along_ray(prev_position, prev_normal, ray.dir, t_max, prev_pdf, prev_delta,
                                                    kGlass && prev_two_sided, &light_choice, reflector_share.active(),
                                                    found ? PathState{} : escaped());
+          features.light(throughput * e * clamp_scale(throughput * e / branch_weight, bounce == 1), out);
           deposit(throughput * e, bounce == 1);
         }
         if (!found) break;
@@ -436,9 +444,12 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       }
       // The material's program runs once here; its Normal (normal_mapped below) reads these.
       std::array<glm::vec4, ShaderProgram::kMaxRegisters> program_regs;
+      std::optional<ClosureList> closure_list;  // a mixture's closures, for the denoising features
       if constexpr (kMixtures) {
+        if (mixture && features.open() && !first_again) closure_list.emplace();
         local_bsdf.emplace(shade_material(ctx.scene, hit.material, globals, textured, ctx.settings.brdf_model,
-                                          ctx.bsdfs[hit.material], material, program_regs.data()));
+                                          ctx.bsdfs[hit.material], material, program_regs.data(),
+                                          closure_list ? &*closure_list : nullptr));
       } else {
         material = textured ? ctx.scene.textured_material(hit.material, globals, program_regs.data())
                             : ctx.scene.material(hit.material);
@@ -492,6 +503,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
                                                                  : 1.0f);
         out.emission = kAlpha ? throughput * material.emission : material.emission;
         if (const float k = clamp_scale(out.emission, true); k < 1.0f) out.emission *= k;
+        features.light(out.emission, out);
         path_luminance += luminance(out.emission);
       } else if (hit.emitter >= 0) {
         // An emissive triangle found by BSDF sampling: MIS against NEE's choice of it.
@@ -499,9 +511,19 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
         if (!prev_delta)
           mis = power_heuristic(prev_pdf, lights.mesh_light_pdf(size_t(hit.emitter), prev_position, prev_normal,
                                                                 hit.position, kGlass && prev_two_sided, &light_choice));
-        deposit(throughput * material.emission * mis, bounce == 1);
+        const Vec3 e = throughput * material.emission * mis;
+        features.light(e * clamp_scale(e / branch_weight, bounce == 1), out);
+        deposit(e, bounce == 1);
       }
       if (bounce > ctx.settings.max_bounces) break;
+      if (features.open() && !first_again) {  // Cycles' denoising features at this surface
+        DenoisingClosures closures;
+        const float cos_no = glm::dot(ns, wo_world);
+        if (closure_list) closures.add_closures(*closure_list, cos_no, backfacing);
+        else closures.add_material(material, 1.0f, cos_no, backfacing);
+        features.surface(closures, passed_length + hit.t - ray.tmin, ns, ctx.camera_axes, out);
+      }
+      if (bounce == 0 && !again) features_after_first = features;
 
       const Frame frame(ns);
       const Vec3 wo = frame.to_local(wo_world);
@@ -577,6 +599,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
         first_vertex.choice = light_choice;
         branches = kAlpha || ctx.guide_training ? 1 : ctx.first_bounce_splits;
         branch_weight = 1.0f / float(branches);
+        features.set_share(branch_weight);
       }
       if (!first_again && ctx.mirror_images && bounce < ctx.settings.max_bounces) {
         LobeEval f;

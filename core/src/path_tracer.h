@@ -12,6 +12,7 @@
 #include "torrance/mirror_images.h"
 #include "torrance/sampling.h"
 
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -43,6 +44,8 @@ struct PathContext {
   // The camera's position and kind, for the Mist pass's distance (Cycles' camera_distance).
   Vec3 camera_position{0.0f};
   bool orthographic = false;
+  // The camera's right, up and forward: Cycles' camera space, of the Denoising Normal pass.
+  std::array<Vec3, 3> camera_axes{Vec3(1.0f, 0.0f, 0.0f), Vec3(0.0f, 1.0f, 0.0f), Vec3(0.0f, 0.0f, -1.0f)};
 };
 
 // Where a camera sample goes.
@@ -66,6 +69,10 @@ struct PathRadiance {
   float mist = 0.0f;
   Vec3 uv{0.0f}, ao{0.0f}, position{0.0f};
   float object_index = 0.0f, material_index = 0.0f;
+  // Cycles' denoising features (denoising_features.h): Denoising Albedo, Normal (camera space)
+  // and Depth.
+  Vec3 denoising_albedo{0.0f}, denoising_normal{0.0f};
+  float denoising_depth = 0.0f;
   // The scene's AOV and light-group channels (extra_passes.h): the first
   // Scene::extra_passes().channels() are set by the tracer, the rest left uninitialised.
   float extras[kMaxExtraChannels];

@@ -90,6 +90,8 @@ class Camera {
   // in [0,1)^2 picks the point on the aperture (ignored without depth of field).
   Ray generate_ray(float x, float y_from_top, const Vec2& u_lens = Vec2(0.5f)) const;
   const Vec3& forward() const { return forward_; }
+  const Vec3& right() const { return right_; }  // the camera's local +X and +Y in the world
+  const Vec3& up() const { return up_; }
   const Vec3& position() const { return origin_; }
   bool panoramic() const { return pano_; }
   // The angle one pixel spans at the image centre (radians), for texture footprints; 0 for

@@ -39,7 +39,14 @@ enum Pass : uint32_t {
   kPassGlossyColor = 1u << 15,      // the first hit's glossy (and glass) closures' weight (GlossCol)
   kPassAO = 1u << 14,               // the share of cosine-distributed rays from the first hit that travel
                                     // ao_distance unoccluded (Cycles' AO pass; 0 on the world)
+  // Cycles' denoising features (Denoising Data): through smooth mirrors and glass to the first
+  // rough surface, its albedo (the world's colour where the path escapes), its camera-space
+  // normal, and the depth along the path to it.
+  kPassDenoisingAlbedo = 1u << 16,
+  kPassDenoisingNormal = 1u << 17,
+  kPassDenoisingDepth = 1u << 18,
 };
+inline constexpr uint32_t kDenoisingPasses = kPassDenoisingAlbedo | kPassDenoisingNormal | kPassDenoisingDepth;
 // The passes whose pixel is the pixel's first sample's value, unfiltered (Cycles' sample-0 passes).
 inline constexpr uint32_t kFirstSamplePasses = kPassDepth | kPassPosition | kPassObjectIndex | kPassMaterialIndex;
 struct PassInfo {
@@ -53,6 +60,8 @@ inline constexpr PassInfo kPasses[] = {
     {kPassGlossyIndirect, "GlossInd", 3}, {kPassGlossyColor, "GlossCol", 3}, {kPassEmission, "Emit", 3},
     {kPassEnvironment, "Env", 3},
     {kPassMist, "Mist", 1},            {kPassUV, "UV", 3},                 {kPassAO, "AO", 3},
+    {kPassDenoisingAlbedo, "DenoisingAlbedo", 3}, {kPassDenoisingNormal, "DenoisingNormal", 3},
+    {kPassDenoisingDepth, "DenoisingDepth", 1},
     {kPassDepth, "Depth", 1},           {kPassPosition, "Position", 3},
     {kPassObjectIndex, "IndexOB", 1},  {kPassMaterialIndex, "IndexMA", 1},
 };

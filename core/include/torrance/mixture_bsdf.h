@@ -30,6 +30,8 @@
 
 namespace torrance {
 
+struct ClosureList;
+
 class Scene;
 
 class MixtureBsdf {
@@ -106,10 +108,11 @@ class MixtureBsdf {
 // emission and an albedo (base_color, metallic 0 for mixtures) at the hit `globals` describe
 // (textures and shader programs read when `textured`). `prebuilt` is the material's BSDF when
 // untextured. program_regs (if given): where the material's program (a mixture's: its factors'
-// and Normal's) leaves its registers, for Scene::normal_mapped at this hit.
+// and Normal's) leaves its registers, for Scene::normal_mapped at this hit. closures (if given):
+// a mixture's closures with their weights, for the denoising features (denoising_features.h).
 MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals& globals, bool textured,
                            BrdfModel model, const MaterialBsdf& prebuilt, Material& resolved,
-                           glm::vec4* program_regs = nullptr);
+                           glm::vec4* program_regs = nullptr, ClosureList* closures = nullptr);
 
 // The estimated albedo a mixture samples a Principled closure by: luminance of the base colour
 // plus its dielectric F0.

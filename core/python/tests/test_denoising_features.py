@@ -1,0 +1,72 @@
+"""Cycles' denoising features (Denoising Albedo, Normal, Depth) through the module, in closed form:
+a rough plane seen from above, a smooth mirror showing the world, the world itself, and the
+passes leaving Combined alone."""
+import numpy as np
+
+import torrance_core as tc
+
+NAMES = ["DenoisingAlbedo", "DenoisingNormal", "DenoisingDepth"]
+WORLD = (0.2, 0.3, 0.4)
+
+
+def plane_scene(**material):
+    """A 100 m plane at z = 0 under a world, a narrow camera 5 m above it looking down."""
+    scene = tc.Scene()
+    scene.add_material(**material)
+    tri = np.array([[0, 1, 2], [0, 2, 3]], np.int32)
+    quad = np.array([[-50, -50, 0], [50, -50, 0], [50, 50, 0], [-50, 50, 0]], np.float32)
+    scene.add_mesh(quad, tri)
+    scene.set_world(color=WORLD)
+    matrix = np.eye(4)
+    matrix[2, 3] = 5.0
+    scene.set_camera(matrix, lens=200.0)
+    return scene
+
+
+def render(scene, passes=NAMES):
+    settings = tc.RenderSettings(width=8, height=6, samples=16, passes=passes,
+                                 brdf_model="PRINCIPLED")
+    return tc.render(scene, settings)
+
+
+def features(scene):
+    p = render(scene).passes
+    return (np.asarray(p["DenoisingAlbedo"]), np.asarray(p["DenoisingNormal"]),
+            np.asarray(p["DenoisingDepth"]))
+
+
+def test_rough_plane_writes_its_albedo_normal_and_depth():
+    albedo, normal, depth = features(plane_scene(base_color=(0.6, 0.5, 0.4), roughness=0.5))
+    # The diffuse closure's colour plus the rough specular closure's Fresnel colour (0.04 head-on).
+    assert np.allclose(albedo, np.array([0.64, 0.54, 0.44]), atol=2e-3)
+    assert np.allclose(normal, [0.0, 0.0, -1.0], atol=1e-4)   # camera space: facing the camera
+    assert np.allclose(depth, 5.0, atol=0.15)                  # from the clip plane to the plane
+
+
+def test_smooth_mirror_passes_the_feature_on_to_the_world():
+    albedo, normal, depth = features(plane_scene(base_color=(0.9, 0.9, 0.9), metallic=1.0,
+                                                 roughness=0.0))
+    # The world's contribution (the mirror's weight in it) x the mirror's Fresnel colour, as
+    # Cycles; no surface after the mirror: no normal, the depth of the mirror alone.
+    reflected = np.asarray(render(plane_scene(base_color=(0.9, 0.9, 0.9), metallic=1.0,
+                                              roughness=0.0), []).image)[..., :3]
+    assert np.allclose(albedo, 0.9 * reflected, rtol=2e-3)
+    assert np.allclose(albedo, 0.81 * np.array(WORLD), rtol=0.05)
+    assert np.all(normal == 0.0)
+    assert np.allclose(depth, 5.0, atol=0.15)
+
+
+def test_world_seen_directly():
+    scene = plane_scene()
+    matrix = np.eye(4)
+    matrix[2, 3] = 5.0
+    matrix[:3, :3] = np.diag([1.0, -1.0, -1.0])       # looking up, away from the plane
+    scene.set_camera(matrix, lens=200.0)
+    albedo, normal, depth = features(scene)
+    assert np.allclose(albedo, WORLD, atol=1e-5)
+    assert np.all(normal == 0.0) and np.all(depth == 0.0)
+
+
+def test_combined_is_unchanged_by_the_features():
+    scene = plane_scene(base_color=(0.9, 0.9, 0.9), metallic=1.0, roughness=0.0)
+    assert np.array_equal(np.asarray(render(scene).image), np.asarray(render(scene, []).image))
