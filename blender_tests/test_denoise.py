@@ -5,6 +5,7 @@ Denoiser; Blender 4.x/5.x: Blender's own library, 3.4: scripts/oidn's):
 * a low-sample render comes out much closer to a converged one (Torrance at 1024 spp, another
   seed) than the same render without denoising, over two seeds, with each Passes setting;
 * the guides matter: denoised with albedo and normal beats colour alone;
+* the noisy Combined is kept as the Noisy Image pass, and Denoising Data gives its passes;
 * without a library the render is reported and kept noisy (the same pixels as Denoise off);
 * the panel is there.
 
@@ -82,6 +83,19 @@ def main():
           f"{e['RGB_ALBEDO_NORMAL']:.4f}; library {libraries}")
     check(e["RGB_ALBEDO_NORMAL"] < 0.25 * e["noisy"], "denoising must cut the error 4x")
     check(e["RGB_ALBEDO_NORMAL"] < e["RGB"], "the guides must help")
+
+    # The passes of a denoised render: the noisy Combined as Noisy Image, Denoising Data on request.
+    from torrance_tools.render_passes import render_passes
+    scene.view_layers[0].cycles.denoising_store_passes = True
+    ts.seed, ts.use_denoising = 2, True
+    layers = render_passes(scene, d, "layers")
+    check({"Noisy Image", "Denoising Albedo", "Denoising Normal", "Denoising Depth"} <= set(layers),
+          f"the passes of a denoised render: {sorted(layers)}")
+    noisy_error = rel_mse(layers["Noisy Image"], reference)
+    print(f"Noisy Image's relMSE {noisy_error:.4f}, Combined's (denoised) "
+          f"{rel_mse(layers['Combined'], reference):.4f}")
+    check(noisy_error > 4.0 * e["RGB_ALBEDO_NORMAL"], "Noisy Image must be the noisy render")
+    scene.view_layers[0].cycles.denoising_store_passes = False
 
     # No library: reported, and the same image as Denoise off (same seed).
     saved = denoising._candidates, dict(denoising._denoisers)

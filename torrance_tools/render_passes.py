@@ -6,6 +6,7 @@ agreement.noise_bounds) with floors for the passes Cycles renders almost without
 """
 
 import os
+import struct
 
 import numpy as np
 
@@ -15,21 +16,65 @@ from torrance_tools.testing import check
 
 # Each pass's channels in Blender's order (an EXR stores them sorted by name); the others RGB(A).
 CHANNELS = {"Combined": "RGBA", "Mist": "Z", "Depth": "Z", "UV": "UVA", "Position": "XYZ",
-            "Normal": "XYZ", "IndexOB": "X", "IndexMA": "X"}
+            "Normal": "XYZ", "IndexOB": "X", "IndexMA": "X", "Denoising Normal": "XYZ",
+            "Denoising Depth": "Z"}
 NOISY = ("DiffInd", "GlossInd")     # their ratio bound: 1.5 % at least
 
 
-def read_layers(path):
-    """{pass name: float32 (H, W, C), row 0 = top} of a multilayer EXR."""
-    import OpenImageIO as oiio
+def exr_channel_names(path):
+    """The channel names of an EXR's header ('channels', chlist), in the file's order."""
+    with open(path, "rb") as f:
+        data = f.read(1 << 20)
+    check(data[:4] == b"\x76\x2f\x31\x01", f"{path} is not an OpenEXR file")
+    i = 8
+    while data[i] != 0:                            # attributes: name, type, size, value
+        end_name = data.index(b"\0", i)
+        end_type = data.index(b"\0", end_name + 1)
+        size = struct.unpack("<i", data[end_type + 1:end_type + 5])[0]
+        value = data[end_type + 5:end_type + 5 + size]
+        if data[i:end_name] == b"channels":
+            names, p = [], 0
+            while value[p] != 0:                   # name, then type, pLinear, xSampling, ySampling
+                end = value.index(b"\0", p)
+                names.append(value[p:end].decode())
+                p = end + 1 + 16
+            return names
+        i = end_type + 5 + size
+    raise AssertionError(f"{path} has no channel list")
+
+
+def oiio_channel_order(names):
+    """The names in OpenImageIO's order: by layer, R G B A first within each, then the others in
+    the file's order (as its Python module lists them, seen in Blender 3.4)."""
+    first = {c: k for k, c in enumerate("RGBA")}
+    return sorted(names, key=lambda n: (n.rpartition(".")[0], first.get(n.rpartition(".")[2], 4),
+                                        names.index(n)))
+
+
+def read_pixels(path):
+    """(float32 (H, W, C), channel names) of an EXR: with OpenImageIO's Python module, or (the
+    bpy 4.x venv) the add-on's native module's reader and the header's names."""
+    try:
+        import OpenImageIO as oiio
+    except ImportError:
+        from torrance_tools.addon_access import core
+        pixels = np.asarray(core().read_image(path), np.float32)
+        return pixels, oiio_channel_order(exr_channel_names(path))
     inp = oiio.ImageInput.open(path)
     check(inp is not None, f"can not open {path}")
     spec = inp.spec()
     pixels = np.asarray(inp.read_image(0, 0, 0, spec.nchannels, oiio.FLOAT), np.float32)
     inp.close()
-    pixels = pixels.reshape(spec.height, spec.width, spec.nchannels)
+    return pixels.reshape(spec.height, spec.width, spec.nchannels), list(spec.channelnames)
+
+
+def read_layers(path):
+    """{pass name: float32 (H, W, C), row 0 = top} of a multilayer EXR."""
+    pixels, channel_names = read_pixels(path)
+    check(pixels.shape[2] == len(channel_names), f"{path}: {pixels.shape[2]} channels read, "
+          f"{len(channel_names)} named")
     columns = {}
-    for i, name in enumerate(spec.channelnames):
+    for i, name in enumerate(channel_names):
         parts = name.split(".")
         if len(parts) >= 3:
             columns.setdefault(parts[-2], {})[parts[-1]] = i

@@ -35,8 +35,16 @@ Vec3 tint_of(const Vec3& c, float lum) { return lum > 0.0f ? c / lum : Vec3(1.0f
 
 }  // namespace
 
-void DenoisingClosures::add(const Vec3& albedo, float sample_weight, float roughness_squared) {
+void DenoisingClosures::add_sampled(float sample_weight, bool transmits) {
+  if (!(sample_weight >= kWeightCutoff) || count >= kMaxClosures) return;
+  sample_weights[size_t(count)] = sample_weight;
+  transmitting[size_t(count++)] = transmits;
+}
+
+void DenoisingClosures::add(const Vec3& albedo, float sample_weight, float roughness_squared, bool transmits,
+                            bool sampled_alone) {
   if (!(sample_weight >= kWeightCutoff)) return;
+  if (sampled_alone) add_sampled(sample_weight, transmits);
   sum_weight += sample_weight;
   if (roughness_squared > 0.075f * 0.075f) {
     diffuse_albedo += albedo;
@@ -44,6 +52,20 @@ void DenoisingClosures::add(const Vec3& albedo, float sample_weight, float rough
   } else {
     specular_albedo += albedo;
   }
+}
+
+float DenoisingClosures::defensive_ratio(bool transmitted) const {
+  if (count <= 1 || !(sum_weight > 0.0f)) return 1.0f;
+  float plain = 0.0f, defended = 0.0f, defended_sum = 0.0f;
+  for (int i = 0; i < count; ++i) {
+    const float w = sample_weights[size_t(i)], d = std::max(w, 0.125f * sum_weight);
+    defended_sum += d;
+    if (transmitting[size_t(i)] == transmitted) {
+      plain += w;
+      defended += d;
+    }
+  }
+  return plain > 0.0f ? (defended / defended_sum) / (plain / sum_weight) : 1.0f;
 }
 
 void DenoisingClosures::add_material(const Material& m, float w, float cos_no, bool backfacing) {
@@ -54,8 +76,9 @@ void DenoisingClosures::add_material(const Material& m, float w, float cos_no, b
   const float fresnel = fresnel_dielectric(cos_no, ior);
   // Two glass closures (the reflection and the refraction), each with its alpha^2.
   auto add_glass = [&](const Vec3& reflect, const Vec3& refract, float reflect_r2, float refract_r2) {
-    add(reflect, std::abs(mean(reflect)), reflect_r2);
-    add(refract, std::abs(mean(refract)), refract_r2);
+    add(reflect, std::abs(mean(reflect)), reflect_r2, false, !one_glass_closure);
+    add(refract, std::abs(mean(refract)), refract_r2, true, !one_glass_closure);
+    if (one_glass_closure) add_sampled(std::abs(mean(reflect + refract)), false);
   };
   if (m.glass_node) {  // the Glass BSDF: both closures of its colour, untinted by Fresnel colour
     const Vec3 weight = w * base;
@@ -96,9 +119,9 @@ void DenoisingClosures::add_material(const Material& m, float w, float cos_no, b
     const Vec3 f = fresnel_color(cos_no, ior, cspec0);
     const float reflect = w * glass_weight * fresnel;
     const float refract_roughness = 1.0f - (1.0f - roughness) * (1.0f - std::clamp(m.transmission_roughness, 0.0f, 1.0f));
-    add(reflect * f, reflect * mean(f), microfacet_roughness_squared(roughness));
     const Vec3 refract = w * glass_weight * std::max(1e-4f, 1.0f - fresnel) * base;
-    add(refract, mean(refract), microfacet_roughness_squared(refract_roughness));
+    add_glass(reflect * f, refract, microfacet_roughness_squared(roughness),
+              microfacet_roughness_squared(refract_roughness));
   }
   if (m.coat_weight > kWeightCutoff) {  // the clearcoat: F0 0.04, IOR 1.5, a quarter of its weight
     const Vec3 f = fresnel_color(cos_no, 1.5f, Vec3(0.04f)) * (0.25f * m.coat_weight);
@@ -114,16 +137,16 @@ void DenoisingClosures::add_closures(const ClosureList& list, float cos_no, bool
     const float r2 = microfacet_roughness_squared(std::clamp(m.roughness, 0.0f, 1.0f));
     switch (e.type) {
       case ClosureType::Principled: add_material(m, e.weight, cos_no, backfacing); break;
-      case ClosureType::Glossy:
-      case ClosureType::Refraction: add(weight, mean(weight), r2); break;
+      case ClosureType::Glossy: add(weight, mean(weight), r2); break;
+      case ClosureType::Refraction: add(weight, mean(weight), r2, true); break;
       case ClosureType::Diffuse:
       case ClosureType::Velvet:
       case ClosureType::Sheen:
-      case ClosureType::Translucent:
       case ClosureType::ToonDiffuse:
       case ClosureType::ToonGlossy:
       case ClosureType::ToonDiffuseCycles4:
       case ClosureType::ToonGlossyCycles4: add(weight, mean(weight), kNotMicrofacet); break;
+      case ClosureType::Translucent: add(weight, mean(weight), kNotMicrofacet, true); break;
       case ClosureType::Emission:
       case ClosureType::Transparent:
       case ClosureType::Holdout: break;  // no BSDF (the Transparent one: passed by the path)
@@ -135,16 +158,20 @@ void DenoisingFeatures::surface(const DenoisingClosures& c, float segment, const
                                 const std::array<Vec3, 3>& camera_axes, PathRadiance& out) {
   if (!open_) return;
   auto finite = [](float v) { return std::isfinite(v) ? v : 0.0f; };
-  out.denoising_depth += share_ * finite(mean(throughput_) * segment);
+  const float share = share_ * choice_;
+  out.denoising_depth += share * finite(mean(throughput_) * segment);
+  const bool first = first_;
+  first_ = false;
   if (!c.stops()) {
     throughput_ *= c.specular_albedo;
+    if (first) first_closures_ = c;
     return;
   }
   if (c.sum_weight > 0.0f) {  // the closures share one normal: their weighted mean is it
-    for (int i = 0; i < 3; ++i) out.denoising_normal[i] += share_ * finite(glm::dot(normal, camera_axes[size_t(i)]));
+    for (int i = 0; i < 3; ++i) out.denoising_normal[i] += share * finite(glm::dot(normal, camera_axes[size_t(i)]));
   }
   const Vec3 albedo = throughput_ * c.diffuse_albedo;
-  for (int i = 0; i < 3; ++i) out.denoising_albedo[i] += share_ * finite(albedo[i]);
+  for (int i = 0; i < 3; ++i) out.denoising_albedo[i] += share * finite(albedo[i]);
   open_ = false;
 }
 

@@ -517,7 +517,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       }
       if (bounce > ctx.settings.max_bounces) break;
       if (features.open() && !first_again) {  // Cycles' denoising features at this surface
-        DenoisingClosures closures;
+        DenoisingClosures closures(ctx.settings.brdf_model == BrdfModel::PrincipledV2);
         const float cos_no = glm::dot(ns, wo_world);
         if (closure_list) closures.add_closures(*closure_list, cos_no, backfacing);
         else closures.add_material(material, 1.0f, cos_no, backfacing);
@@ -643,6 +643,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       const float vertex_weight = max_component(throughput);
       throughput *= bs.weight;
       if (bounce == 0) throughput *= branch_weight;
+      if (bounce == 0) features.left_first_hit(glm::dot(wi_world, ng) < 0.0f);
       if (kSplitLobes && bounce == 0 && !bs.is_delta) {
         const LobeEval f = bsdf.template eval_lobes<kGlass>(view, bs.wi);
         const Vec3 total = f.total();

@@ -10,12 +10,19 @@ The passes are Cycles 3.4's: Diffuse and Glossy Direct/Indirect are divided by D
 Glossy Color, so that Combined = Emit + Env + DiffCol x (DiffDir + DiffInd) + GlossCol x
 (GlossDir + GlossInd), as Blender's compositing setups for Cycles expect. Position and the
 Index passes are of the ray through each pixel's centre (Cycles' first sample: not
-anti-aliased); Mist, UV and AO are filtered like the image.
+anti-aliased); Mist, UV and AO are filtered like the image. Denoising Data (Cycles' toggle on
+the view layer's Cycles settings) gives Denoising Normal, Albedo and Depth as Cycles defines
+them, for the compositor's Denoise node; with Denoise on, the noisy Combined is kept as Noisy
+Image.
 """
 
 from collections import namedtuple
 
 PassInfo = namedtuple("PassInfo", "core name channels chanid type flag label description")
+
+# Cycles' toggle of the Denoising Data passes, on the view layer's Cycles settings.
+DENOISING_DATA = "cycles.denoising_store_passes"
+NOISY_IMAGE = "Noisy Image"     # Cycles' pass of the image before denoising
 
 # Torrance's passes in the order Blender lists them. core: the name in torrance_core.PASSES;
 # name/chanid/type: Blender's (Cycles') name of the pass; flag: the ViewLayer toggle.
@@ -63,6 +70,19 @@ PASSES = (
              "Light emitted by surfaces seen directly by the camera"),
     PassInfo("Env", "Env", 3, "RGB", 'COLOR', "use_pass_environment", "Environment",
              "The world (background) seen directly by the camera"),
+    # Cycles' Denoising Data (View Layer > Passes > Data > Denoising Data), one toggle for three.
+    PassInfo("DenoisingNormal", "Denoising Normal", 3, "XYZ", 'VECTOR', DENOISING_DATA,
+             "Denoising Data",
+             "Camera-space normal of the first rough surface the path meets (through smooth "
+             "mirrors and glass), as Cycles; 0 on the background"),
+    PassInfo("DenoisingAlbedo", "Denoising Albedo", 3, "RGB", 'COLOR', DENOISING_DATA,
+             "Denoising Data",
+             "Albedo of that surface's rough closures times the smooth ones' on the way, or the "
+             "world's colour where the path escapes, as Cycles"),
+    PassInfo("DenoisingDepth", "Denoising Depth", 1, "Z", 'VALUE', DENOISING_DATA,
+             "Denoising Data",
+             "Length of the path up to that surface, through smooth mirrors and glass, as "
+             "Cycles; 0 on the background"),
 )
 
 BY_CORE_NAME = {p.core: p for p in PASSES}
@@ -78,11 +98,34 @@ UNSUPPORTED_FLAGS = (
 )
 
 
+def flag_owner(view_layer, flag):
+    """(owner, attribute) of a pass toggle: the view layer's own, or for 'cycles.<name>' its
+    Cycles settings' (owner None when the Cycles add-on is not there)."""
+    path, _, attr = flag.rpartition(".")
+    owner = getattr(view_layer, path, None) if path else view_layer
+    return (owner if owner is not None and hasattr(owner, attr) else None), attr
+
+
+def flag_on(view_layer, flag):
+    owner, attr = flag_owner(view_layer, flag)
+    return owner is not None and bool(getattr(owner, attr, False))
+
+
 def enabled_passes(view_layer):
     """The PassInfo of every Torrance pass the view layer asks for (Combined excluded)."""
     if view_layer is None:
         return []
-    return [p for p in PASSES if getattr(view_layer, p.flag, False)]
+    return [p for p in PASSES if flag_on(view_layer, p.flag)]
+
+
+def noisy_image_wanted(scene, view_layer):
+    """Whether the render keeps its noisy Combined as the Noisy Image pass: denoising on in the
+    scene (Render > Sampling > Denoise) and not off for the view layer (Cycles' rule)."""
+    ts = getattr(scene, "torrance", None)
+    if ts is None or not getattr(ts, "use_denoising", False) or view_layer is None:
+        return False
+    crl = getattr(view_layer, "cycles", None)
+    return bool(getattr(crl, "use_denoising", True))
 
 
 def unsupported_enabled(view_layer):
@@ -128,6 +171,8 @@ def blender_name(core_name):
     info = BY_CORE_NAME.get(core_name)
     if info is not None:
         return info.name
+    if core_name == NOISY_IMAGE:
+        return NOISY_IMAGE
     kind, _, name = core_name.partition(":")
     return {"aov": name, "lightgroup": f"Combined_{name}"}.get(kind) if name else None
 
@@ -138,6 +183,8 @@ def update_render_passes(engine, scene, renderlayer):
     if scene is None or renderlayer is None:
         return
     engine.register_pass(scene, renderlayer, "Combined", 4, "RGBA", 'COLOR')
+    if noisy_image_wanted(scene, renderlayer):
+        engine.register_pass(scene, renderlayer, NOISY_IMAGE, 4, "RGBA", 'COLOR')
     for p in enabled_passes(renderlayer):
         engine.register_pass(scene, renderlayer, p.name, p.channels, p.chanid, p.type)
     for _core, name, channels, chanid, kind in extra_passes(renderlayer):

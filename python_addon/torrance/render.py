@@ -206,6 +206,7 @@ def _render(engine, depsgraph, reporter):
 
     # Denoise (not for material previews): the guides' passes rendered too.
     denoise = bool(ts.use_denoising) and not engine.is_preview
+    keep_noisy = denoise and passes.noisy_image_wanted(depsgraph.scene, view_layer)
     guides = [g for g in denoising.guide_passes(ts, available) if g not in core_passes] \
         if denoise else []
 
@@ -243,6 +244,7 @@ def _render(engine, depsgraph, reporter):
         if nonfinite:
             reporter.warning(f"Torrance: {nonfinite} NaN/Inf pixel values in the result "
                              f"were replaced by 0")
+        noisy = image
         if denoise and not engine.test_break():
             engine.update_stats("", "Torrance | Denoising")
 
@@ -252,8 +254,10 @@ def _render(engine, depsgraph, reporter):
             image, denoise = denoising.denoise_image(tc, image, result.passes, ts, reporter,
                                                      progress)
         extra = {core for core, *_ in passes.extra_passes(view_layer)}
-        session.write(image, {k: v for k, v in result.passes.items()
-                              if k in core_passes or k in extra})
+        written = {k: v for k, v in result.passes.items() if k in core_passes or k in extra}
+        if keep_noisy:
+            written[passes.NOISY_IMAGE] = noisy
+        session.write(image, written)
         if session.missing_passes:
             reporter.warning(f"Torrance: the render result has no pass(es) "
                              f"{', '.join(session.missing_passes)}; they were not written")

@@ -557,8 +557,12 @@ class TORRANCE_VIEW_LAYER_PT_passes(TorrancePanel, Panel):
         layout = _split(self.layout)
         view_layer = context.view_layer
         col = layout.column(heading="Include", align=True)
+        drawn = set()
         for p in passes.PASSES:
-            col.prop(view_layer, p.flag, text=p.label)
+            owner, attr = passes.flag_owner(view_layer, p.flag)
+            if owner is not None and p.flag not in drawn:
+                col.prop(owner, attr, text=p.label)
+                drawn.add(p.flag)
         layout.label(text="Direct/Indirect are divided by the Color passes, as Cycles'",
                      icon='INFO')
         unsupported = passes.unsupported_enabled(view_layer)

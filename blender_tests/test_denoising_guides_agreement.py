@@ -1,0 +1,102 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The Denoising Data passes (View Layer > Passes > Data > Denoising Data) as Cycles writes them.
+
+Cycles' Denoising Albedo and Normal follow the path through smooth mirrors and glass (closures
+with alpha_x alpha_y <= 0.075^2), multiplying the albedo by theirs, to the first surface whose
+closures are at least a quarter rough, and write there its rough closures' albedo and their
+normal in camera space; a path that escapes writes the world's colour as albedo and no normal.
+The scene has each case: a red Diffuse sphere and a Diffuse floor and wall seen directly, a
+smooth mirror (Glossy, roughness 0) and a smooth Glass sphere (roughness 0, IOR 1.45) showing
+them, a rough gold metal sphere (Glossy, roughness 0.5: rough, it stops the path), and the
+world above the wall. Checks, Cycles seed 0 the reference and seed 1 the bounds
+(torrance_tools.render_passes), Torrance seeds 2 and 3: Denoising Albedo, Normal and Depth
+agree within Cycles' own noise. Faults that must fail: the albedo and normal guides swapped
+(here, on Torrance's images), and the features written at the first surface whatever its
+roughness (albedo through glass and mirrors dropped; in the core, by hand: commit message).
+
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \
+         --python blender_tests/test_denoising_guides_agreement.py
+"""
+
+from torrance_tools import testing
+from torrance_tools.render_passes import (cycles_reference_and_noise, pass_bounds, pass_failures,
+                                          rgb, torrance_passes)
+from torrance_tools.scene import node_material
+from torrance_tools.testing import check
+
+W, H, SAMPLES, BOUNCES = 96, 72, 64, 8
+COMPARED = ("Denoising Albedo", "Denoising Normal", "Denoising Depth")
+
+
+def bsdf(name, kind, color, roughness=0.0, ior=None):
+    """A material of one BSDF node (Diffuse, Glossy or Glass; GGX) at the Surface."""
+    mat, nodes, links, out = node_material(name)
+    kinds = {"diffuse": ("ShaderNodeBsdfDiffuse",),
+             "glossy": ("ShaderNodeBsdfGlossy", "ShaderNodeBsdfAnisotropic"),
+             "glass": ("ShaderNodeBsdfGlass",)}[kind]
+    for idname in kinds:
+        try:
+            node = nodes.new(idname)
+            break
+        except RuntimeError:            # 4.x: the Glossy BSDF is the Anisotropic one
+            continue
+    if kind != "diffuse":
+        node.distribution = 'GGX'
+    node.inputs["Color"].default_value = (*color, 1.0)
+    node.inputs["Roughness"].default_value = roughness
+    if ior is not None:
+        node.inputs["IOR"].default_value = ior
+    links.new(node.outputs[0], out.inputs["Surface"])
+    return mat
+
+
+def build(scene):
+    testing.setup_render(scene, width=W, height=H)
+    testing.add_camera(scene, location=(0.0, -6.0, 2.0), target=(0.0, 0.0, 0.6), lens=35.0)
+    testing.plane(scene, "Floor", 8.0, material=bsdf("Floor", "diffuse", (0.5, 0.45, 0.4)))
+    testing.mesh_object(scene, "Wall", [(-4, 2.5, 0), (4, 2.5, 0), (4, 2.5, 1.6), (-4, 2.5, 1.6)],
+                        [(0, 1, 2, 3)], bsdf("Wall", "diffuse", (0.2, 0.4, 0.7)))
+    testing.mesh_object(scene, "Mirror", [(1.3, -0.8, 0.0), (2.5, 1.0, 0.0), (2.5, 1.0, 1.5),
+                                          (1.3, -0.8, 1.5)], [(0, 1, 2, 3)],
+                        bsdf("Mirror", "glossy", (0.9, 0.9, 0.9)))
+    testing.sphere_object(scene, "Red", (-1.7, 0.2, 0.5), 0.5,
+                          bsdf("Red", "diffuse", (0.7, 0.1, 0.05)))
+    testing.sphere_object(scene, "Glass", (-0.3, -0.6, 0.6), 0.6,
+                          bsdf("Glass", "glass", (1.0, 1.0, 1.0), ior=1.45))
+    testing.sphere_object(scene, "Gold", (0.7, 0.9, 0.45), 0.45,
+                          bsdf("Gold", "glossy", (0.9, 0.7, 0.3), roughness=0.5))
+    testing.add_sun(scene, strength=3.0)
+    testing.set_world(scene, (0.3, 0.35, 0.45))
+    scene.view_layers[0].cycles.denoising_store_passes = True
+
+
+def compared(img, name, _ref):
+    return rgb(img[name])
+
+
+def swapped(p):
+    """Torrance's passes with the albedo and normal guides swapped (the first fault)."""
+    out = dict(p)
+    out["Denoising Albedo"], out["Denoising Normal"] = p["Denoising Normal"], p["Denoising Albedo"]
+    return out
+
+
+def main():
+    testing.addon()
+    d = testing.tempdir()
+    scene = testing.clear_scene()
+    build(scene)
+    ref, other = cycles_reference_and_noise(scene, d, SAMPLES, BOUNCES)
+    check(all(name in ref for name in COMPARED), f"Cycles wrote no Denoising Data: {sorted(ref)}")
+    bounds = pass_bounds(ref, other, COMPARED, compared)
+    ours = [torrance_passes(scene, d, SAMPLES, BOUNCES, seed) for seed in (2, 3)]
+    check(not testing.last_messages(), f"unexpected reports: {testing.last_messages()}")
+    check(all(name in p for p in ours for name in COMPARED),
+          f"Torrance wrote no Denoising Data: {sorted(ours[0])}")
+    bad = pass_failures(ours, ref, bounds, compared, "Torrance")
+    check(not bad, "Torrance's Denoising Data disagree with Cycles': " + "; ".join(bad))
+    caught = pass_failures([swapped(p) for p in ours], ref, bounds, compared, "Swapped")
+    check(caught, "the guides swapped were not caught")
+
+
+testing.run(main)
