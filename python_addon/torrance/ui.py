@@ -381,8 +381,11 @@ class TORRANCE_RENDER_PT_compatibility(TorrancePanel, Panel):
         col.label(text="Not rendered by Torrance:")
         for text in ("Volumes, hair, subsurface, thin film, anisotropy",
                      "Bevel, Point Density, AOV Output, Hair and Volume nodes",
-                     "Motion blur, shader AOVs, Cryptomatte, light groups"):
+                     "Motion blur, shader AOVs, Cryptomatte, light groups",
+                     "Viewport denoising guides (colour only), Blender 5's guide options"):
             col.label(text=text, icon='DOT')
+        col.label(text="Denoising: Cycles' Denoising Albedo and Normal guide F12; "
+                       "Denoising Data and Noisy Image passes")
 
 
 # --------------------------------------------------------------------------------------------
