@@ -19,7 +19,7 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
 """
 
 from torrance_tools import testing
-from torrance_tools.render_passes import (cycles_reference_and_noise, pass_bounds, pass_failures,
+from torrance_tools.render_passes import (cycles_passes_of, pass_bounds, pass_failures,
                                           rgb, torrance_passes)
 from torrance_tools.scene import node_material
 from torrance_tools.testing import check
@@ -82,11 +82,7 @@ def swapped(p):
 
 
 def main():
-    testing.addon()
-    d = testing.tempdir()
-    scene = testing.clear_scene()
-    build(scene)
-    ref, other = cycles_reference_and_noise(scene, d, SAMPLES, BOUNCES)
+    scene, d, ref, other = cycles_passes_of(build, SAMPLES, BOUNCES)
     check(all(name in ref for name in COMPARED), f"Cycles wrote no Denoising Data: {sorted(ref)}")
     bounds = pass_bounds(ref, other, COMPARED, compared)
     ours = [torrance_passes(scene, d, SAMPLES, BOUNCES, seed) for seed in (2, 3)]

@@ -38,7 +38,7 @@ import bpy
 import numpy as np
 
 from torrance_tools import testing
-from torrance_tools.render_passes import (cycles_reference_and_noise, interior, pass_bounds,
+from torrance_tools.render_passes import (cycles_passes_of, interior, pass_bounds,
                                           pass_failures, planar_uvs, rgb, torrance_passes)
 from torrance_tools.testing import check
 
@@ -189,11 +189,7 @@ def faults():
 
 
 def main():
-    testing.addon()
-    d = testing.tempdir()
-    scene = testing.clear_scene()
-    build(scene)
-    ref, other = cycles_reference_and_noise(scene, d, SAMPLES, BOUNCES)
+    scene, d, ref, other = cycles_passes_of(build, SAMPLES, BOUNCES)
     wanted = {"Combined", "Depth", "Mist", "UV", "Position", "IndexOB", "IndexMA", "AO", "DiffCol",
               "DiffDir", "DiffInd", "GlossCol", "GlossDir", "GlossInd", "Emit", "Env"}
     check(wanted <= set(ref), f"Cycles' multilayer EXR lacks {sorted(wanted - set(ref))}")

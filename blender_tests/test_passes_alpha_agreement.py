@@ -30,7 +30,7 @@ import bpy
 import numpy as np
 
 from torrance_tools import testing
-from torrance_tools.render_passes import (cycles_reference_and_noise, interior, pass_bounds,
+from torrance_tools.render_passes import (cycles_passes_of, interior, pass_bounds,
                                           pass_failures, planar_uvs, rgb, torrance_passes)
 from torrance_tools.testing import check
 
@@ -109,11 +109,7 @@ def exact_failures(p, ref, below):
 
 
 def main():
-    testing.addon()
-    d = testing.tempdir()
-    scene = testing.clear_scene()
-    build(scene)
-    ref, other = cycles_reference_and_noise(scene, d, SAMPLES, BOUNCES)
+    scene, d, ref, other = cycles_passes_of(build, SAMPLES, BOUNCES)
     panels = set(np.unique(ref["IndexOB"]).tolist())
     check({1.0, 3.0, 5.0} <= panels, f"the frame must show the floor and both panels: {panels}")
     below = screen_box(scene, bpy.data.objects["Below"])

@@ -108,6 +108,18 @@ def cycles_reference_and_noise(scene, directory, samples, bounces):
     return out
 
 
+def cycles_passes_of(build, samples, bounces):
+    """The add-on enabled, a fresh scene made by build(scene), a temporary folder, and Cycles'
+    passes of the scene at seeds 0 and 1: (scene, folder, reference, noise)."""
+    from torrance_tools import testing
+    testing.addon()
+    directory = testing.tempdir()
+    scene = testing.clear_scene()
+    build(scene)
+    reference, noise = cycles_reference_and_noise(scene, directory, samples, bounces)
+    return scene, directory, reference, noise
+
+
 def torrance_passes(scene, directory, samples, bounces, seed, name=None):
     """Torrance's passes at `seed`, checked for NaN/Inf."""
     from torrance_tools import render_settings
