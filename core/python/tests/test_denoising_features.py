@@ -23,9 +23,9 @@ def plane_scene(**material):
     return scene
 
 
-def render(scene, passes=NAMES):
+def render(scene, passes=NAMES, **kwargs):
     settings = tc.RenderSettings(width=8, height=6, samples=16, passes=passes,
-                                 brdf_model="PRINCIPLED")
+                                 brdf_model="PRINCIPLED", **kwargs)
     return tc.render(scene, settings)
 
 
@@ -70,3 +70,17 @@ def test_world_seen_directly():
 def test_combined_is_unchanged_by_the_features():
     scene = plane_scene(base_color=(0.9, 0.9, 0.9), metallic=1.0, roughness=0.0)
     assert np.array_equal(np.asarray(render(scene).image), np.asarray(render(scene, []).image))
+
+
+def test_branches_at_the_first_hit_share_what_they_write():
+    """Split into 4 at a mirror, each branch writes a quarter of what follows it."""
+    scene = plane_scene(base_color=(0.9, 0.9, 0.9), metallic=1.0, roughness=0.0)
+    scene.add_material(base_color=(0.2, 0.7, 0.3), roughness=1.0)   # a ceiling behind the camera
+    ceiling = np.array([[-50, -50, 10], [50, -50, 10], [50, 50, 10], [-50, 50, 10]], np.float32)
+    scene.add_mesh(ceiling, np.array([[0, 1, 2], [0, 2, 3]], np.int32),
+                   material_indices=np.array([1, 1], np.int32))
+    one, four = (render(scene, first_bounce_splits=n).passes for n in (1, 4))
+    assert np.allclose(one["DenoisingAlbedo"], 0.9 * np.array([0.24, 0.74, 0.34]), rtol=0.05)
+    assert np.allclose(one["DenoisingDepth"], 5.0 + 0.9 * 10.0, rtol=0.03)
+    for name in NAMES:
+        assert np.allclose(one[name], four[name], rtol=1e-3, atol=1e-5), name
