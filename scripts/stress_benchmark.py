@@ -89,7 +89,7 @@ def reference(seed, scene, args, variant):
             meta = json.load(f)
         if meta.get("scene_digest") == digest:
             print(f"stress: scene {seed}: cached reference {exr}", flush=True)
-            return compare.read_exr(exr)[:, :, :3], meta
+            return compare.read_exr(exr)[:, :, :3], dict(meta, cached=True)
     half = args.reference_spp // 2
     images, seconds = [], []
     for s in REFERENCE_SEEDS:
@@ -130,7 +130,8 @@ def bench_scene(seed, args, cycles):
         render(engine, scene, 1, seeds[0], variant, f"warm_{engine}")
     out = dict(plan=plan, description=stress_plan.describe(plan), digest=scene_digest(scene),
                reference=dict(samples=meta["samples"], noise_rel_mse=floor,
-                              seeds=meta["seeds"], render_seconds=meta["render_seconds"]),
+                              seeds=meta["seeds"], render_seconds=meta["render_seconds"],
+                              cached=meta.get("cached", False)),
                seeds=seeds, torrance=[], cycles=[])
     for spp in args.spp:
         rows = {e: [] for e in engines}
@@ -174,7 +175,7 @@ def main():
                       reference_spp=args.reference_spp, bounces=stress_scenes.BOUNCES,
                       trim=benchmark_points.TRIM, cycles_variant=cycles[0],
                       cycles_settings=cycles[1],
-                      references=os.path.relpath(reference_dir(args), ROOT),
+                      references=os.path.relpath(os.path.realpath(reference_dir(args)), ROOT),
                       torrance_model=addon_access.addon().brdf_model.core_model('PRINCIPLED')),
         scenes={})
     for seed in seeds:
