@@ -120,6 +120,17 @@ def cycles_passes_of(build, samples, bounces):
     return scene, directory, reference, noise
 
 
+def torrance_passes_with_fault(scene, directory, samples, bounces, owner, attr, make_fault):
+    """Torrance's passes at seed 2 (named "fault") with owner.attr replaced by
+    make_fault(original) for the render, and restored after."""
+    original = getattr(owner, attr)
+    setattr(owner, attr, make_fault(original))
+    try:
+        return torrance_passes(scene, directory, samples, bounces, 2, name="fault")
+    finally:
+        setattr(owner, attr, original)
+
+
 def torrance_passes(scene, directory, samples, bounces, seed, name=None):
     """Torrance's passes at `seed`, checked for NaN/Inf."""
     from torrance_tools import render_settings

@@ -1,5 +1,5 @@
-// Scene.set_aovs, set_material_aovs and set_light_groups (extra_passes.h), bound onto the Scene
-// class that init_scene defines.
+// Scene.set_aovs, set_material_aovs, set_light_groups and the emitters' light groups
+// (extra_passes.h), bound onto the Scene class that init_scene defines.
 #include "bindings.h"
 
 #include "torrance/scene.h"
@@ -56,7 +56,46 @@ void init_extra_passes(py::module_& m) {
       "set_light_groups", [](Scene& s, const std::vector<std::string>& names) { s.extra_passes().set_light_groups(names); },
       py::arg("names"),
       "The view layer's light groups: each is a render pass 'lightgroup:<name>' (RGB), the light of the "
-      "emitters of that group (index in this list).");
+      "emitters of that group (index in this list), as Combined holds it.");
+  auto checked = [](const Scene& s, int group) {
+    if (group < -1 || group >= s.extra_passes().num_light_groups())
+      throw py::value_error("light group " + std::to_string(group) + " does not exist (set_light_groups first)");
+    return group;
+  };
+  method(
+      "set_last_light_group",
+      [checked](Scene& s, int group) {
+        checked(s, group);
+        s.edit_lights([&](Lights& l) { l.set_last_light_group(group); });
+      },
+      py::arg("group"), "The light added last is in light group `group` (-1: none).");
+  method(
+      "set_world_light_group",
+      [checked](Scene& s, int group) {
+        checked(s, group);
+        s.edit_lights([&](Lights& l) { l.set_world_group(group); });
+      },
+      py::arg("group"), "The world is in light group `group` (-1: none).");
+  method(
+      "set_mesh_light_group",
+      [](Scene& s, uint32_t mesh, int group) {
+        try {
+          s.set_mesh_light_group(mesh, group);
+        } catch (const std::invalid_argument& e) {
+          throw py::value_error(e.what());
+        }
+      },
+      py::arg("mesh"), py::arg("group"), "A mesh's object (from add_mesh) is in light group `group` (-1: none).");
+  method(
+      "set_instance_light_groups",
+      [](Scene& s, const std::vector<int64_t>& ids, int group) {
+        try {
+          s.set_instance_light_groups(ids.data(), ids.size(), group);
+        } catch (const std::invalid_argument& e) {
+          throw py::value_error(e.what());
+        }
+      },
+      py::arg("ids"), py::arg("group"), "Instances (ids from add_instances) are in light group `group` (-1: none).");
 }
 
 }  // namespace torrance::python

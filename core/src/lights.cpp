@@ -375,6 +375,12 @@ void Lights::set_world_map(std::shared_ptr<const Texture> image, float strength)
   world_ = WorldLight(std::make_shared<EnvironmentMap>(std::move(image), strength));
 }
 
+void Lights::set_last_light_group(int group) {
+  if (lights_.empty()) throw std::invalid_argument("a light group needs a light to belong to");
+  groups_.resize(lights_.size(), -1);
+  groups_.back() = int8_t(group);
+}
+
 void Lights::set_last_light_shader(std::shared_ptr<const EmissionShader> shader) {
   if (lights_.empty()) throw std::invalid_argument("a light shader needs a light to belong to");
   shaders_.resize(lights_.size());
@@ -490,14 +496,17 @@ bool Lights::hit(size_t index, const Vec3& p, const Vec3& n, const Vec3& dir, Li
 
 Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max, float bsdf_pdf,
                                 bool bsdf_delta, bool two_sided, const LightChoice* prev_choice,
-                                const LightShare* share, const PathState& escaped) const {
+                                const LightShare* share, const PathState& escaped, Vec3* by_group) const {
   Vec3 L(0.0f);
-  auto add = [&](size_t index, const LightHit& h, bool in_nee) {
-    if (!in_nee || bsdf_delta) return void(L += h.radiance);
-    const float selected = prev_choice ? prev_choice->probability(index)
-                                       : selection_probability(index, p_prev, n_prev, two_sided);
-    const float nee_pdf = selected * h.pdf;
-    L += h.radiance * (bsdf_delta ? 1.0f : power_heuristic(bsdf_pdf, nee_pdf));
+  auto add = [&](size_t index, const LightHit& h, bool in_nee, int group) {
+    Vec3 c = h.radiance;
+    if (in_nee && !bsdf_delta) {
+      const float selected = prev_choice ? prev_choice->probability(index)
+                                         : selection_probability(index, p_prev, n_prev, two_sided);
+      c *= power_heuristic(bsdf_pdf, selected * h.pdf);
+    }
+    L += c;
+    if (by_group && group >= 0) by_group[group] += c;
   };
   for (size_t i = 0; i < lights_.size(); ++i) {
     LightHit h;
@@ -505,10 +514,11 @@ Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Ve
       continue;
     if (share) h.radiance *= share->of(i);
     h.radiance *= shader_factor(i, p_prev, dir, h.distance, escaped);
-    add(i, h, true);
+    add(i, h, true, i < groups_.size() ? groups_[i] : -1);
   }
   LightHit h;
-  if (has_world() && world_.hit(p_prev, n_prev, dir, t_max, h, escaped)) add(count() - 1, h, world_in_nee());  // never shared
+  if (has_world() && world_.hit(p_prev, n_prev, dir, t_max, h, escaped))  // never shared
+    add(count() - 1, h, world_in_nee(), world_group_);
   return L;
 }
 

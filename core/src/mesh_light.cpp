@@ -54,6 +54,7 @@ LightSample MeshLight::sample(const Vec3& p, const Vec3&, const Vec2& u, const P
   seen_by.ray_flags = kRayEmission;
   seen_by.ray_length = dist;
   s.weight = emission_(t, Vec2(b1, b2), s.wi, seen_by) / s.pdf;
+  s.light_group = t.light_group;
   return s;
 }
 

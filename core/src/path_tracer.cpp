@@ -139,11 +139,12 @@ template <bool kGlass, typename Bsdf>
 bool mirror_image_light(const PathContext& ctx, const Bsdf& bsdf, const typename Bsdf::View& view, const Frame& frame,
                         const Vec3& position, uint32_t material, const Vec3& ng, const Vec3& n_smooth,
                         const Vec3& ns, bool normal_mapped, bool transmits, float path_weight, SobolSampler& sampler,
-                        LobeEval& f, Vec3& light) {
+                        LobeEval& f, Vec3& light, size_t& light_index) {
   const MirrorImages& images = *ctx.mirror_images;
   const glm::vec4 u = sampler.next_4d();
   MirrorImages::Sample ms;
   if (!images.sample({position, ns, material, path_weight}, u.x, Vec2(u.y, u.z), ms)) return false;
+  light_index = ms.light;
   const Vec3 wi = frame.to_local(ms.wi);
   if (!leaves_geometric_side(ms.wi, ng, wi.z, transmits)) return false;
   f = bsdf.template eval_lobes<kGlass>(view, wi);
@@ -231,6 +232,11 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
   DenoisingFeatures features(ctx.settings.passes & kDenoisingPasses), features_after_first(false);
   const ExtraPasses& extra = ctx.scene.extra_passes();
   std::fill_n(out.extras, extra.channels(), 0.0f);
+  // Light groups: each contribution as Combined takes it (clamped) also to its emitter's group.
+  const bool light_groups = extra.num_light_groups() > 0;
+  auto credit = [&](int group, const Vec3& c) {
+    if (group >= 0) add_to_light_group(extra, group, c, out.extras);
+  };
   GuidePathRecorder recorder(ctx.guide_training ? ctx.guide : nullptr, pixel.guide_weight);  // training: records at the end
   // The luminance the path has brought so far, for the roulette: summed contribution by
   // contribution, so that it does not depend on how the passes split them (out.combined() does, by
@@ -274,7 +280,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
   };
   // The share of the path's branch (1/n where it split at the first hit into n).
   float branch_weight = 1.0f;
-  auto deposit = [&](Vec3 c, bool direct) {  // a contribution arriving after the first hit
+  auto deposit = [&](Vec3 c, bool direct) {  // a contribution arriving after the first hit; returns it clamped
     // Clamped as the unsplit path's contribution would be: a branch's to 1/n of the limit.
     if (const float k = clamp_scale(c / branch_weight, direct); k < 1.0f) c *= k;
     if (recorder.enabled()) recorder.add_contribution(c);
@@ -282,16 +288,18 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
     path_luminance += luminance(c);
     (direct ? out.diffuse_direct : out.diffuse_indirect) += diffuse;
     (direct ? out.glossy_direct : out.glossy_indirect) += glossy;
+    return c;
   };
   // A light sample taken at this path's vertex `bounce` (light: what arrives, throughput
   // included; f: the vertex's lobes for it): at the first hit filed by those lobes, as direct light
   // (NEE of a light) or indirect (a sun through a mirror); later as deposit() files it.
-  auto deposit_light_sample = [&](Vec3 light, const LobeEval& f, int bounce, bool direct) {
+  auto deposit_light_sample = [&](Vec3 light, const LobeEval& f, int bounce, bool direct) {  // returns it clamped
     if (bounce > 0) return deposit(light * f.total(), false);
     if (const float k = clamp_scale(light * f.total(), direct); k < 1.0f) light *= k;
     path_luminance += luminance(light * f.total());
     (direct ? out.diffuse_direct : out.diffuse_indirect) += light * f.diffuse;
     (direct ? out.glossy_direct : out.glossy_indirect) += light * f.glossy;
+    return Vec3(light * f.total());
   };
 
   // Splitting at the first hit (RenderSettings::first_bounce_splits): each later branch goes back to
@@ -388,6 +396,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
           if (const float k = clamp_scale(out.environment, true); k < 1.0f) out.environment *= k;
           features.light(out.environment, out);
           path_luminance = luminance(out.environment);
+          if (light_groups) credit(lights.world_group(), out.environment);
           return out;
         }
         first_vertex.hit = hit;
@@ -396,11 +405,15 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       } else {
         if (kHittable) {
           const float t_max = found ? passed_length + hit.t : kInfinity;
+          std::array<Vec3, kMaxLightGroups> by_group;  // filled only with light groups
+          if (light_groups) std::fill_n(by_group.begin(), extra.num_light_groups(), Vec3(0.0f));
           const Vec3 e = lights.emission_along_ray(prev_position, prev_normal, ray.dir, t_max, prev_pdf, prev_delta,
                                                    kGlass && prev_two_sided, &light_choice, reflector_share.active(),
-                                                   found ? PathState{} : escaped());
+                                                   found ? PathState{} : escaped(),
+                                                   light_groups ? by_group.data() : nullptr);
           features.light(throughput * e * clamp_scale(throughput * e / branch_weight, bounce == 1), out);
-          deposit(throughput * e, bounce == 1);
+          const Vec3 arrived = deposit(throughput * e, bounce == 1);
+          if (light_groups) credit_split(extra, throughput * e, arrived, by_group.data(), throughput, out.extras);
         }
         if (!found) break;
         reflector_share.clear();
@@ -505,6 +518,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
         if (const float k = clamp_scale(out.emission, true); k < 1.0f) out.emission *= k;
         features.light(out.emission, out);
         path_luminance += luminance(out.emission);
+        if (light_groups) credit(hit.light_group, out.emission);
       } else if (hit.emitter >= 0) {
         // An emissive triangle found by BSDF sampling: MIS against NEE's choice of it.
         float mis = 1.0f;
@@ -513,7 +527,8 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
                                                                 hit.position, kGlass && prev_two_sided, &light_choice));
         const Vec3 e = throughput * material.emission * mis;
         features.light(e * clamp_scale(e / branch_weight, bounce == 1), out);
-        deposit(e, bounce == 1);
+        const Vec3 arrived = deposit(e, bounce == 1);
+        if (light_groups) credit(hit.light_group, arrived);
       }
       if (bounce > ctx.settings.max_bounces) break;
       if (features.open() && !first_again) {  // Cycles' denoising features at this surface
@@ -574,7 +589,8 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
         Vec3 light = throughput * ls.weight * (mis / probability);
         if (const LightShare* share = reflector_share.active()) light *= share->of(index);
         if (kAlpha) light *= transmittance;
-        deposit_light_sample(light, f, bounce, true);
+        const Vec3 arrived = deposit_light_sample(light, f, bounce, true);
+        if (light_groups) credit(lights.light_group(index, ls), arrived);
       };
       if (first_again) {  // its light samples: in the first branch
       } else if (ctx.nee_every_light) {
@@ -604,10 +620,13 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       if (!first_again && ctx.mirror_images && bounce < ctx.settings.max_bounces) {
         LobeEval f;
         Vec3 light;
+        size_t light_index = 0;
         if (mirror_image_light<kGlass>(ctx, bsdf, view, frame, hit.position, hit.material, ng, n_smooth, ns,
                                        normal_mapped, transmits,
-                                       max_component(throughput), sampler, f, light))
-          deposit_light_sample(light * throughput, f, bounce, false);
+                                       max_component(throughput), sampler, f, light, light_index)) {
+          const Vec3 arrived = deposit_light_sample(light * throughput, f, bounce, false);
+          if (light_groups) credit(lights.light_group(light_index, LightSample{}), arrived);
+        }
       }
 
       // Continue the path by sampling the BSDF.

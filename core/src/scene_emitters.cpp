@@ -27,6 +27,7 @@ void Scene::build_mesh_light() {
     EmissiveTriangle e;
     e.owner = owner;
     e.prim = prim;
+    e.light_group = owner & kInstanceBit ? instances_[owner & ~kInstanceBit].light_group : meshes_[owner]->light_group;
     e.mirrored = mirrored;
     e.p0 = c.p[0];
     e.edge1 = c.p[1] - e.p0;

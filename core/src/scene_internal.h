@@ -28,6 +28,7 @@ struct Scene::Mesh {
   std::vector<int32_t> emitter_index;  // per triangle: index in the mesh light, or -1
   float pass_index = 0.0f;             // Blender's object pass index (of a mesh from add_mesh)
   bool holdout = false;                // a holdout object (of a mesh from add_mesh)
+  int8_t light_group = -1;             // its light group (extra_passes.h), -1: none
 };
 
 namespace scene_detail {
@@ -68,6 +69,7 @@ struct Scene::Instance {
   bool hidden = false;              // singular transform: disabled in Embree
   float pass_index = 0.0f;          // Blender's object pass index
   bool holdout = false;             // a holdout object
+  int8_t light_group = -1;          // its light group (extra_passes.h), -1: none
 };
 
 namespace scene_detail {

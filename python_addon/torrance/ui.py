@@ -380,8 +380,8 @@ class TORRANCE_RENDER_PT_compatibility(TorrancePanel, Panel):
         col = self.layout.column(align=True)
         col.label(text="Not rendered by Torrance:")
         for text in ("Volumes, hair, subsurface, thin film, anisotropy",
-                     "Bevel, Point Density, AOV Output, Hair and Volume nodes",
-                     "Motion blur, shader AOVs, Cryptomatte, light groups",
+                     "Bevel, Point Density, Hair and Volume nodes; AOV Output in worlds",
+                     "Motion blur, Cryptomatte",
                      "Viewport denoising guides (colour only), Blender 5's guide options"):
             col.label(text=text, icon='DOT')
         col.label(text="Denoising: Cycles' Denoising Albedo and Normal guide F12; "

@@ -151,6 +151,15 @@ class Lights {
   // the light, seen from the receiver, multiplies the light's colour x power (Cycles' light
   // shader: a Light Falloff, a texture).
   void set_last_light_shader(std::shared_ptr<const EmissionShader> shader);
+  // Light groups (extra_passes.h): of the light added last, of the world; -1: none.
+  void set_last_light_group(int group);
+  void set_world_group(int group) { world_group_ = int8_t(group); }
+  int world_group() const { return world_group_; }
+  // The light group of NEE strategy `index`'s sample ls (an emissive triangle's its own).
+  int light_group(size_t index, const LightSample& ls) const {
+    if (index < lights_.size()) return index < groups_.size() ? groups_[index] : -1;
+    return mesh_ && index == lights_.size() ? ls.light_group : world_group_;
+  }
   // Emissive triangles (replaces any previous set); nullopt removes them.
   void set_mesh_light(std::optional<MeshLight> emitters) { mesh_ = std::move(emitters); }
   // MIS density of NEE producing point q on emissive triangle `triangle` from (p, n).
@@ -193,10 +202,12 @@ class Lights {
   // prev_choice: the LightChoice NEE used at p_prev (its probabilities), if any.
   // share: each light's light is multiplied by share->of(its index) (the caller shares it with
   // another strategy: mirror_images.h); nullptr: by 1. escaped: the ray's path state, which the
-  // world's node graph reads if the ray escaped.
+  // world's node graph reads if the ray escaped. by_group (if given): each light's part is also
+  // added to by_group[its light group] (light_group; none for lights of no group).
   Vec3 emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max, float bsdf_pdf,
                           bool bsdf_delta, bool two_sided = false, const LightChoice* prev_choice = nullptr,
-                          const LightShare* share = nullptr, const PathState& escaped = {}) const;
+                          const LightShare* share = nullptr, const PathState& escaped = {},
+                          Vec3* by_group = nullptr) const;
   // What a ray from p along dir sees of strategy `index` alone, unoccluded (its MIS density too).
   bool hit(size_t index, const Vec3& p, const Vec3& n, const Vec3& dir, LightHit& out) const;
   // Strategy `index`'s light of each kind, or nullptr when it is another kind.
@@ -233,6 +244,8 @@ class Lights {
 
   std::vector<std::variant<SunLight, PointLight, AreaLight>> lights_;
   std::vector<std::shared_ptr<const EmissionShader>> shaders_;  // per light of lights_; null: none
+  std::vector<int8_t> groups_;  // per light of lights_ (shorter: -1), its light group
+  int8_t world_group_ = -1;
   std::optional<MeshLight> mesh_;
   WorldLight world_{Vec3(0.0f)};
   LightSelection selection_ = LightSelection::Contribution;

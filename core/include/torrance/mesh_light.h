@@ -21,6 +21,7 @@ struct EmissiveTriangle {
   // and whether the corners above are that triangle's in mirrored order (u and v swapped).
   uint32_t owner = 0, prim = 0;
   bool mirrored = false;
+  int8_t light_group = -1;  // its object's (extra_passes.h), -1: none
 };
 
 class MeshLight {

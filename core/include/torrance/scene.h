@@ -62,6 +62,7 @@ struct SurfaceHit {
   bool has_uv = false;        // the mesh has UVs (the UV pass: (u, v, 1), else 0)
   float object_pass_index = 0.0f;  // the object's Blender pass index (Scene::set_mesh_pass_index)
   bool object_holdout = false;     // the object is a holdout (Scene::set_mesh_holdout)
+  int8_t light_group = -1;         // the object's light group (Scene::set_mesh_light_group), -1: none
   Vec3 tangent{0.0f};         // unit dP/du from the triangle's UVs (0 without usable UVs)
   float uv_per_metre = 0.0f;  // how fast UVs change across the triangle (sqrt of UV area / area)
   float bitangent_sign = 1.0f;
@@ -272,6 +273,10 @@ class Scene final : public ShaderTracer {
   // a mesh from add_mesh, instances (ids from add_instances). See holdout().
   void set_mesh_holdout(uint32_t mesh, bool holdout);
   void set_instance_holdouts(const int64_t* ids, size_t count, bool holdout);
+  // Light groups (extra_passes.h: Scene::extra_passes().set_light_groups) of emitting objects:
+  // a mesh from add_mesh, instances; group -1: none.
+  void set_mesh_light_group(uint32_t mesh, int group);
+  void set_instance_light_groups(const int64_t* ids, size_t count, int group);
   // The view layer's shader AOVs and light groups, and the materials' AOV Output programs
   // (extra_passes.h). Set before a render.
   ExtraPasses& extra_passes() { return extra_passes_; }

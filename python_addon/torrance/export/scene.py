@@ -13,6 +13,7 @@ from ..texture_table import TextureTable
 from .camera import export_camera
 from .holdouts import holdout_names, instance_holdout
 from .instances import InstanceExport, Source
+from .light_groups import LightGroups
 from .lights import export_light
 from .mesh import MeshCache, add_world_mesh, mesh_materials
 from .mesh_attributes import dupli_record, instancer_record, object_info
@@ -170,6 +171,19 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
         export_camera(tc_scene, _camera_object(depsgraph, engine), reporter, engine,
                       depsgraph.scene.render)
         export_world(tc_scene, depsgraph.scene.world, reporter, textures)
+        groups = LightGroups(tc_scene, depsgraph.view_layer)
+        if groups.of(depsgraph.scene.world) >= 0:
+            tc_scene.set_world_light_group(groups.of(depsgraph.scene.world))
+
+        def light(obj, matrix):
+            """Adds a light (export_light) in its light group; whether it was added."""
+            if not export_light(tc_scene, obj, matrix, reporter, textures):
+                return False
+            if groups.of(obj) >= 0:
+                tc_scene.set_last_light_group(groups.of(obj))
+            stats.lights += 1
+            return True
+
         # (object name, evaluated mesh pointer[, holdout]) -> Source, 'LIGHT' or None, for
         # instances
         seen = {}
@@ -190,6 +204,7 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
                     what = seen[key] = classify(inst, obj)
                     if what.__class__ is Source:
                         what.holdout = bool(holdouts) and key[2]
+                        what.light_group = groups.of(obj)
                 if what.__class__ is Source:
                     what.add(inst.matrix_world)
                     if what.random_ids is not None:         # its materials read Object Info
@@ -199,15 +214,13 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
                             what.duplis.append(dupli_record(inst))
                         if what.instancers is not None:     # ... and Instancer attributes
                             what.instancers.append(instancer_record(inst))
-                elif what == 'LIGHT' and export_light(tc_scene, obj, inst.matrix_world.copy(),
-                                                      reporter, textures):
-                    stats.lights += 1
+                elif what == 'LIGHT':
+                    light(obj, inst.matrix_world.copy())
                 continue
             poll()
             role = instance_role(inst)
             if role == 'LIGHT':
-                if export_light(tc_scene, obj, inst.matrix_world.copy(), reporter, textures):
-                    stats.lights += 1
+                light(obj, inst.matrix_world.copy())
             elif role == 'UNSUPPORTED':
                 report_unsupported(obj, unsupported_types, reporter)
             elif role == 'MESH' and not as_instances:
@@ -217,10 +230,12 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
                         if any(k[0] == 'object_info' for k, _ in getattr(needs, "attributes", ()))
                         else None)
                 flattened.append((obj, obj.name, inst.matrix_world.copy(), slot_to_material,
-                                  needs, info, obj.pass_index, obj.name_full in holdouts))
+                                  needs, info, obj.pass_index, obj.name_full in holdouts,
+                                  groups.of(obj)))
             elif role == 'MESH':
                 src = meshes.source(obj, obj.name, instanced=False)
                 src.holdout = obj.name_full in holdouts
+                src.light_group = groups.of(obj)
                 src.add(inst.matrix_world)
                 meshes.defer(obj, src)          # an evaluated object: read after the pass
     stats.capture_seconds = time.perf_counter() - t0
@@ -228,12 +243,13 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
     meshes.read_pending(poll)
     meshes.flush(stats)
     cache = MeshCache()
-    for obj, name, matrix, slot_to_material, needs_uvs, info, pass_index, holdout in flattened:
+    for (obj, name, matrix, slot_to_material, needs_uvs, info, pass_index, holdout,
+         light_group) in flattened:
         poll()
         local = cache.get(obj, (obj.data.as_pointer(),), needs_uvs, reporter)
         triangles = add_world_mesh(tc_scene, name, local, matrix, slot_to_material, needs_uvs,
                                    reporter, object_info=info, pass_index=pass_index,
-                                   holdout=holdout)
+                                   holdout=holdout, light_group=light_group)
         if triangles:
             stats.objects += 1
             stats.names.append(name)

@@ -205,6 +205,10 @@ CLOSURES = {
     'ShaderNodeOutputMaterial': "rendered: the active output (target All or Cycles); its "
                                 "Displacement as bump (Cycles' Bump Only; the other methods "
                                 "are reported and rendered as bump too)",
+    'ShaderNodeOutputAOV': "rendered in materials (in node groups too): Color or Value, by the "
+                           "view layer's AOV of its name, any graph, at the camera's hits as "
+                           "Cycles' shader AOVs; a name the view layer lacks is ignored, as "
+                           "Cycles; in the world's tree reported",
     'ShaderNodeOutputWorld': "rendered: the active output",
     'ShaderNodeOutputLight': "rendered: Emission (and Background) closures in Mix and Add "
                              "Shader trees, Color and Strength from any graph: folded to a "
