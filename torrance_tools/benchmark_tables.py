@@ -18,6 +18,7 @@ LEVER_LABELS = {"specialize": "specialised kernels", "sampler=RANDOM": "Sobol sa
                 "efficiency_roulette": "efficiency-aware Russian roulette",
                 "mirror_images": "NEE of lights in mirrors, glossy surfaces; lamp spots",
                 "nee_every_light": "NEE of both lights in two-light scenes",
+                "caustics": "caustics by light tracing",
                 "first_bounce_splits=0": "splitting at the first hit chosen by a pilot (opt-in)",
                 "filter_splatting": "samples splatted over the pixels their filter covers"}
 

@@ -214,4 +214,36 @@ Ray Camera::generate_ray(float x, float y_from_top, const Vec2& u_lens) const {
   return r;
 }
 
+// The inverse of generate_ray for PERSPECTIVE: the lens point (the camera's position without depth
+// of field), the pinhole direction d = (cx, cy, 1) in the camera's frame of the ray from it
+// through p -- with depth of field, of the point where that ray meets the focus plane -- and the
+// raster point of (cx, cy). Raster area per solid angle at the lens: width x height pixels span
+// the view plane (2 half_w x 2 half_h at unit distance), and a solid angle dw at angle theta from
+// the axis covers dw / cos^3(theta) of that plane (at the focus plane too, scaled by focus^2).
+bool Camera::connect(const Vec3& p, const Vec2& u_lens, CameraConnection& out) const {
+  if (ortho_ || pano_) return false;
+  Vec3 lens_point = origin_;
+  if (aperture_ > 0.0f) {
+    const Vec2 l = aperture_ * sample_aperture(u_lens, blades_, blade_rotation_, aperture_ratio_);
+    lens_point += l.x * right_ + l.y * up_;
+  }
+  const Vec3 w = p - lens_point;
+  const float along = glm::dot(w, forward_);
+  const float distance = glm::length(w);
+  if (!(along > 0.0f) || !(distance > 0.0f)) return false;
+  // The pinhole direction, scaled so that its forward component is 1.
+  const Vec3 d = aperture_ > 0.0f ? (lens_point - origin_ + w * (focus_ / along)) / focus_ : w / along;
+  const float cx = glm::dot(d, right_), cy = glm::dot(d, up_);
+  const float len = std::sqrt(1.0f + cx * cx + cy * cy);
+  if (distance < clip_start_ * len || distance > clip_end_ * len) return false;
+  out.x = (cx - offset_x_ + half_w_) / (2.0f * half_w_) * float(width_);
+  out.y = float(height_) - (cy - offset_y_ + half_h_) / (2.0f * half_h_) * float(height_);
+  out.toward = -w / distance;
+  out.distance = distance;
+  const float cos_axis = along / distance;
+  const float pixels_per_plane_area = float(width_) * float(height_) / (4.0f * half_w_ * half_h_);
+  out.importance = pixels_per_plane_area / (cos_axis * cos_axis * cos_axis * distance * distance);
+  return true;
+}
+
 }  // namespace torrance

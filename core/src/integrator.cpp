@@ -1,6 +1,7 @@
 #include "torrance/integrator.h"
 #include "torrance/light_choice.h"
 
+#include "caustics.h"
 #include "film.h"
 #include "path_tracer.h"
 
@@ -209,9 +210,13 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   const TraceFn trace = select_path_tracer(cscene, settings);
   ctx.nee_every_light = settings.nee_every_light && cscene.lights().count() > 1 &&
                         cscene.lights().count() <= LightChoice::kEveryLightLimit;
+  // Caustics by light tracing (caustics.h), where the scene has them: mirror images then skip
+  // the smooth surfaces, whose caustic paths are the light tracer's.
+  const std::optional<CausticPartition> caustics = CausticPartition::make(cscene, settings, has_alpha(cscene));
+  if (caustics) ctx.caustics = &*caustics;
   std::optional<MirrorImages> mirror_images;
   if (settings.mirror_images && !has_alpha(cscene)) {
-    mirror_images.emplace(cscene, ctx.bsdfs);
+    mirror_images.emplace(cscene, ctx.bsdfs, caustics ? &caustics->smooth_materials() : nullptr);
     if (!mirror_images->empty()) ctx.mirror_images = &*mirror_images;
   }
   std::optional<GuidingField> guide;
@@ -271,6 +276,8 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   // The ring's paths: ctx without learning (the roulette's and the guide's statistics are the
   // window's); made once ctx is final, before the first pass.
   std::optional<PathContext> ring_ctx;
+  std::optional<CausticTracer> caustic_tracer;
+  if (caustics) caustic_tracer.emplace(ctx, *caustics, camera, filter, window);
   auto in_window = [&](const PixelSample& p) {
     return p.x >= 0 && p.y >= 0 && p.x < window[2] - window[0] && p.y < window[3] - window[1];
   };
@@ -413,6 +420,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
           if (ctx.guide_training) step = std::min(step, guide_pass_end - done);
           if (roulette) step = std::min(step, roulette_update_at - done);
           arena.execute([&] { render_pass(done, step); });
+          if (caustic_tracer) arena.execute([&] { caustic_tracer->trace(done, step, stop); });
           if (stop) break;
           done += step;
           n += step;
@@ -454,6 +462,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
                                                          std::ceil((settings.time_limit - elapsed) / per_sample))));
         }
         Image snapshot = film.resolve_combined();
+        if (caustic_tracer) caustic_tracer->add_to(snapshot.rgba, snapshot.channels);
         std::lock_guard<std::mutex> lock(mutex);
         pass_image = std::move(snapshot);
         pass_samples = done;
@@ -502,6 +511,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   if (worker_error) std::rethrow_exception(worker_error);
 
   result.image = film.resolve_combined();
+  if (caustic_tracer) caustic_tracer->add_to(result.image.rgba, result.image.channels);
   result.passes = film.resolve_passes();
   result.nonfinite_samples = nonfinite.load();
   result.closest_rays = closest_rays.load();

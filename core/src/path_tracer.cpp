@@ -1,6 +1,7 @@
 #include "path_tracer.h"
 
 #include "extra_passes_write.h"
+#include "caustics.h"
 #include "denoising_features.h"
 #include "guided_bsdf.h"
 #include "torrance/light_choice.h"
@@ -106,29 +107,6 @@ Vec3 glossy_color(const Material& m) {
   const bool specular = 1.0f - glass > kCutoff && (m.specular > kCutoff || metallic > kCutoff);
   return Vec3((specular ? 1.0f - glass : 0.0f) + (glass > kCutoff ? glass : 0.0f) +
               (m.coat_weight > kCutoff ? 1.0f : 0.0f));
-}
-
-// Whether light can leave (or arrive) along world direction wi at a vertex with geometric normal
-// ng (turned towards the viewer) and wi's shading-frame z wi_z: an opaque surface only above its
-// geometric surface; a transmitting one on either side, where the geometric and the shading
-// normal agree on the side (as Cycles: a direction they disagree on carries nothing).
-bool leaves_geometric_side(const Vec3& wi, const Vec3& ng, float wi_z, bool transmits) {
-  const float cos_geometric = glm::dot(wi, ng);
-  return transmits ? cos_geometric != 0.0f && (cos_geometric > 0.0f) == (wi_z > 0.0f) : cos_geometric > 0.0f;
-}
-
-// Cycles 3.4's smoothing of diffuse light on bump- or normal-mapped surfaces near the terminator
-// ("Taming the Shadow Terminator", Chiang et al. 2019): n_smooth is the interpolated normal,
-// n_mapped the normal-mapped one, wi the light direction.
-float bump_shadowing(Vec3 n_smooth, const Vec3& n_mapped, const Vec3& wi) {
-  const float cos_mapped = glm::dot(n_mapped, wi);
-  if (cos_mapped < 0.0f) n_smooth = -n_smooth;
-  const float denom = cos_mapped * glm::dot(n_smooth, n_mapped);
-  if (denom == 0.0f) return 1.0f;
-  const float g = glm::dot(n_smooth, wi) / denom;
-  if (g >= 1.0f) return 1.0f;
-  if (g < 0.0f) return 0.0f;
-  return g + g * g - g * g * g;
 }
 
 // Next-event estimation of a light reflected once by a planar mirror, glossy plane or glossy
@@ -254,6 +232,8 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
   // the lights it reflects, found there by NEE or by the next BSDF-sampled ray, the path keeps
   // its share against NEE through the reflector at that vertex.
   MirrorImages::PathShare reflector_share(ctx.mirror_images);
+  // Whether the path is still a caustic one, the light tracer's (caustics.h).
+  CausticPartition::Chain caustic_chain;
   Vec3 prev_hit_position(0.0f);
   uint32_t prev_material = 0;
   float prev_path_weight = 1.0f;  // max_component(throughput) at the previous vertex (mirror_images.h)
@@ -408,7 +388,8 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
           std::array<Vec3, kMaxLightGroups> by_group;  // filled only with light groups
           if (light_groups) std::fill_n(by_group.begin(), extra.num_light_groups(), Vec3(0.0f));
           const Vec3 e = lights.emission_along_ray(prev_position, prev_normal, ray.dir, t_max, prev_pdf, prev_delta,
-                                                   kGlass && prev_two_sided, &light_choice, reflector_share.active(),
+                                                   kGlass && prev_two_sided, &light_choice,
+                                                   caustic_chain.share(reflector_share.active()),
                                                    found ? PathState{} : escaped(),
                                                    light_groups ? by_group.data() : nullptr);
           features.light(throughput * e * clamp_scale(throughput * e / branch_weight, bounce == 1), out);
@@ -423,6 +404,8 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
           reflector_share.met(reflector, {prev_hit_position, prev_normal, prev_material, prev_path_weight}, ray.dir,
                               prev_pdf);
       }
+
+      caustic_chain.at_vertex(ctx.caustics, bounce, hit.material);
 
       // Textures: the material's inputs and its normal map at this hit, averaged over the pixel's
       // footprint: its width across the ray. Not its length along a grazing surface: the lookups are
@@ -587,7 +570,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
         const float mis =
             ls.pdf > 0.0f ? power_heuristic(probability * ls.pdf, bsdf.template pdf<kGlass>(view, wi)) : 1.0f;
         Vec3 light = throughput * ls.weight * (mis / probability);
-        if (const LightShare* share = reflector_share.active()) light *= share->of(index);
+        if (const LightShare* share = caustic_chain.share(reflector_share.active())) light *= share->of(index);
         if (kAlpha) light *= transmittance;
         const Vec3 arrived = deposit_light_sample(light, f, bounce, true);
         if (light_groups) credit(lights.light_group(index, ls), arrived);

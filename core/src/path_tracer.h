@@ -18,6 +18,8 @@
 
 namespace torrance {
 
+class CausticPartition;
+
 struct PathContext {
   const Scene& scene;
   const Lights& lights;
@@ -35,6 +37,8 @@ struct PathContext {
   bool guide_training = false;
   // Efficiency-aware Russian roulette (roulette.h): learned and used; null: the classic rule only.
   RouletteField* roulette = nullptr;
+  // The caustic paths the light tracer takes (caustics.h); null: none.
+  const CausticPartition* caustics = nullptr;
   // Suns seen in planar mirrors (mirror_images.h), sampled by NEE; null: none, or not used.
   const MirrorImages* mirror_images = nullptr;
   bool nee_every_light = false;  // RenderSettings::nee_every_light, in a scene of few enough lights
@@ -87,6 +91,29 @@ inline Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& dir) {
   const float scale = std::max(1.0f, std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))));
   const float eps = 2e-5f * scale;
   return p + (glm::dot(ng, dir) >= 0.0f ? eps : -eps) * ng;
+}
+
+// Whether light can leave (or arrive) along world direction wi at a vertex with geometric normal
+// ng (turned towards the viewer) and wi's shading-frame z wi_z: an opaque surface only above its
+// geometric surface; a transmitting one on either side, where the geometric and the shading
+// normal agree on the side (as Cycles: a direction they disagree on carries nothing).
+inline bool leaves_geometric_side(const Vec3& wi, const Vec3& ng, float wi_z, bool transmits) {
+  const float cos_geometric = glm::dot(wi, ng);
+  return transmits ? cos_geometric != 0.0f && (cos_geometric > 0.0f) == (wi_z > 0.0f) : cos_geometric > 0.0f;
+}
+
+// Cycles 3.4's smoothing of diffuse light on bump- or normal-mapped surfaces near the terminator
+// ("Taming the Shadow Terminator", Chiang et al. 2019): n_smooth is the interpolated normal,
+// n_mapped the normal-mapped one, wi the light direction.
+inline float bump_shadowing(Vec3 n_smooth, const Vec3& n_mapped, const Vec3& wi) {
+  const float cos_mapped = glm::dot(n_mapped, wi);
+  if (cos_mapped < 0.0f) n_smooth = -n_smooth;
+  const float denom = cos_mapped * glm::dot(n_smooth, n_mapped);
+  if (denom == 0.0f) return 1.0f;
+  const float g = glm::dot(n_smooth, wi) / denom;
+  if (g >= 1.0f) return 1.0f;
+  if (g < 0.0f) return 0.0f;
+  return g + g * g - g * g * g;
 }
 
 // The camera ray's answer when the integrator traced it already (Scene::intersect_packet).

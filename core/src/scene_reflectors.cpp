@@ -1,4 +1,5 @@
-// Scene::material_planes and material_sphere: whether a material makes a few planes, one nearly
+// Scene::material_planes, material_sphere and material_bounds (the last: light tracing's targets,
+// caustics.h). The first two: whether a material makes a few planes, one nearly
 // flat sheet or one sphere (the reflectors of mirror_images.h).
 #include "scene_internal.h"
 
@@ -190,6 +191,27 @@ std::optional<Scene::Sphere> Scene::material_sphere(uint32_t material) const {
   each_vertex([&](const Vec3& p) { on_sphere &= std::abs(glm::length(p - center) - radius) <= 0.005f * radius; });
   if (!on_sphere || !is_finite(center) || !(radius > 0.0f)) return std::nullopt;
   return Sphere{center, radius};
+}
+
+std::optional<Scene::Sphere> Scene::material_bounds(uint32_t material) const {
+  if (in_a_material_table(bindings_, material)) return std::nullopt;
+  Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for_each_triangle(meshes_, material, [&](const Mesh& mesh, size_t i) {
+    for (int k = 0; k < 3; ++k) {
+      lo = glm::min(lo, mesh.positions[mesh.triangles[i][k]]);
+      hi = glm::max(hi, mesh.positions[mesh.triangles[i][k]]);
+    }
+  });
+  if (!(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z) || !is_finite(lo) || !is_finite(hi)) return std::nullopt;
+  const Vec3 center = 0.5f * (lo + hi);
+  float radius2 = 0.0f;
+  for_each_triangle(meshes_, material, [&](const Mesh& mesh, size_t i) {
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 d = mesh.positions[mesh.triangles[i][k]] - center;
+      radius2 = std::max(radius2, glm::dot(d, d));
+    }
+  });
+  return Sphere{center, std::sqrt(radius2) * 1.001f + 1e-6f};
 }
 
 }  // namespace torrance

@@ -304,5 +304,43 @@ TEST(Camera, FstopFollowsBlenderAndBadInputsThrow) {
   bad([](CameraParams& p) { p.blade_rotation = INFINITY; });
 }
 
+// Light tracing's connection (Camera::connect) inverts generate_ray: the point a ray reaches maps
+// back to that ray's raster position, with and without depth of field, and its importance is the
+// pixel density of the camera's rays there: pixels per steradian at the lens over distance^2,
+// measured from the solid angle generate_ray's rays span around it.
+TEST(Camera, ConnectInvertsGenerateRayAndMeasuresItsPixelDensity) {
+  for (const float aperture : {0.0f, 0.05f}) {
+    CameraParams p = turned_camera();
+    p.lens_mm = 35.0f;
+    p.shift_x = 0.1f;
+    p.aperture_radius = aperture;
+    p.focus_distance = 4.0f;
+    const int w = 80, h = 60;
+    const Camera cam(p, w, h, 1.0f, 1.0f);
+    for (const Vec2 raster : {Vec2(40.0f, 30.0f), Vec2(3.5f, 2.25f), Vec2(77.0f, 58.5f)}) {
+      const Vec2 lens(0.3f, 0.8f);
+      const Ray r = cam.generate_ray(raster.x, raster.y, lens);
+      const float t = 7.0f;
+      CameraConnection c;
+      ASSERT_TRUE(cam.connect(r.origin + t * r.dir, lens, c));
+      EXPECT_NEAR(c.x, raster.x, 1e-3f);
+      EXPECT_NEAR(c.y, raster.y, 1e-3f);
+      EXPECT_NEAR(c.distance, t, 1e-4f);
+      // Solid angle of a small raster square about the point, from its corners' rays (same lens point).
+      const float e = 0.01f;
+      const Vec3 a = cam.generate_ray(raster.x - e, raster.y - e, lens).dir;
+      const Vec3 b = cam.generate_ray(raster.x + e, raster.y - e, lens).dir;
+      const Vec3 d = cam.generate_ray(raster.x - e, raster.y + e, lens).dir;
+      const double solid_angle = glm::length(glm::cross(b - a, d - a));  // parallelogram, tiny
+      const double pixels_per_steradian = double(4.0f * e * e) / solid_angle;
+      EXPECT_NEAR(c.importance * t * t / pixels_per_steradian, 1.0, 2e-3) << "aperture " << aperture;
+    }
+  }
+  // Behind the camera: no ray.
+  CameraConnection c;
+  const Camera cam(turned_camera(), 80, 60, 1.0f, 1.0f);
+  EXPECT_FALSE(cam.connect(cam.position() - cam.forward(), Vec2(0.5f), c));
+}
+
 }  // namespace
 }  // namespace torrance

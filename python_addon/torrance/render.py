@@ -295,7 +295,8 @@ def _render(engine, depsgraph, reporter):
                       efficiency_roulette=bool(settings.efficiency_roulette),
                       first_bounce_splits=int(result.first_bounce_splits),
                       first_bounce_optimum=float(result.first_bounce_optimum),
-                      mirror_images=bool(settings.mirror_images))
+                      mirror_images=bool(settings.mirror_images),
+                      caustics=bool(settings.caustics))
     engine.update_progress(1.0)
     engine.update_stats("", msg)
     print(msg)

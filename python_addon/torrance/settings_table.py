@@ -201,6 +201,16 @@ SETTINGS = (
             "the same image. Suns of angle 0 and point lights of radius 0 are left out, "
             "as Cycles renders no light from them through a mirror",
             _ADVANCED, core="mirror_images"),
+    Setting("use_caustics", 'BOOL', True, "Caustics by Light Tracing",
+            "Where the scene has smooth glass or metal (roughness up to 0.1, no textures) "
+            "and a sun, point, spot or area light, trace rays from those lights through "
+            "the smooth surfaces to the first other surface and connect it to the camera: "
+            "the light a glass or a mirror throws on a floor or wall, without the "
+            "fireflies a path from the camera makes when it has to find a small light "
+            "through the glass. Those paths are then left to it alone, so the image "
+            "converges to the same result. Not with panoramic or orthographic cameras, "
+            "alpha, holdouts, light passes or light groups",
+            _ADVANCED, core="caustics"),
     Setting("use_nee_every_light", 'BOOL', True, "Both Lights",
             "In a scene of two lights (a sun and a lamp, a sun and an HDRI), sample both "
             "at every bounce instead of choosing one: a shadow ray more, no noise from "

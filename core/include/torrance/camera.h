@@ -80,6 +80,19 @@ struct Ray {
 // Whether a camera ray is empty: a panoramic camera's pixel outside its projection.
 inline bool outside_projection(const Ray& r) { return !(r.tmax > r.tmin); }
 
+// Light tracing's connection of a surface point to the camera (Camera::connect): the raster
+// position (x from the left, y from the top, in pixels) of the camera ray that reaches the point
+// from the lens point chosen, the unit direction from the point towards that lens point and its
+// distance, and `importance`: d(raster area)/d(solid angle at the lens) / distance^2, which turns
+// the light arriving at the lens from the point per unit of the point's projected area into the
+// pixel measurement of a camera ray (the filter and the 1/N of N light paths aside).
+struct CameraConnection {
+  float x = 0.0f, y = 0.0f;
+  Vec3 toward{0.0f};
+  float distance = 0.0f;
+  float importance = 0.0f;
+};
+
 class Camera {
  public:
   // Validates the parameters (throws std::invalid_argument) and precomputes the view plane for a
@@ -89,6 +102,10 @@ class Camera {
   // A ray through raster position (x from the left edge, y from the TOP edge), in pixels; u_lens
   // in [0,1)^2 picks the point on the aperture (ignored without depth of field).
   Ray generate_ray(float x, float y_from_top, const Vec2& u_lens = Vec2(0.5f)) const;
+  // Light tracing: the camera ray through lens point u_lens (as generate_ray draws it) that
+  // reaches p; false when none does (p behind the camera or outside its clipping, a camera other
+  // than PERSPECTIVE).
+  bool connect(const Vec3& p, const Vec2& u_lens, CameraConnection& out) const;
   const Vec3& forward() const { return forward_; }
   const Vec3& right() const { return right_; }  // the camera's local +X and +Y in the world
   const Vec3& up() const { return up_; }

@@ -36,6 +36,10 @@ class SunLight {
   LightSample sample(const Vec3& p, const Vec3& n, const Vec2& u) const;
   float importance(const Vec3& p, const Vec3& n) const;
   bool hit(const Vec3& p, const Vec3& n, const Vec3& dir, float t_max, LightHit& out) const;
+  // Light tracing (light_emission.cpp, lights_common.h's EmissionTargets): a ray of the sun's
+  // beam through a target, and the power the beam brings into the targets.
+  EmittedRay emit(const glm::vec4& u, float u_target, const EmissionTargets& targets) const;
+  float emitted_power(const EmissionTargets& targets) const;
   bool is_delta() const { return one_minus_cos_ <= 0.0f; }
   Vec3 to_light() const { return to_light_; }
   float one_minus_cos() const { return one_minus_cos_; }  // of its cone's half-angle
@@ -62,6 +66,11 @@ class PointLight {
   LightSample sample(const Vec3& p, const Vec3& n, const Vec2& u) const;
   float importance(const Vec3& p, const Vec3& n) const;
   bool hit(const Vec3& p, const Vec3& n, const Vec3& dir, float t_max, LightHit& out) const;
+  // Light tracing: a direction from the centre towards a target, leaving the disk of the radius
+  // that faces it, weighed by the intensity (a spot's cone and blend) that way; the power the
+  // light sends towards the targets.
+  EmittedRay emit(const glm::vec4& u, float u_target, const EmissionTargets& targets) const;
+  float emitted_power(const EmissionTargets& targets) const;
   bool is_delta() const { return radius_ <= 0.0f; }
   const Vec3& position() const { return position_; }
   float radius() const { return radius_; }
@@ -84,6 +93,10 @@ class AreaLight {
   LightSample sample(const Vec3& p, const Vec3& n, const Vec2& u) const;
   float importance(const Vec3& p, const Vec3& n) const;
   bool hit(const Vec3& p, const Vec3& n, const Vec3& dir, float t_max, LightHit& out) const;
+  // Light tracing: a point of the light by area, a direction from it towards a target (the
+  // cosine and the spread's attenuation in the weight); the power it sends out.
+  EmittedRay emit(const glm::vec4& u, float u_target, const EmissionTargets& targets) const;
+  float emitted_power(const EmissionTargets& targets) const;
   float area() const { return area_; }
   const Vec3& center() const { return center_; }
   const Vec3& normal() const { return normal_; }
@@ -210,6 +223,14 @@ class Lights {
                           Vec3* by_group = nullptr) const;
   // What a ray from p along dir sees of strategy `index` alone, unoccluded (its MIS density too).
   bool hit(size_t index, const Vec3& p, const Vec3& n, const Vec3& dir, LightHit& out) const;
+  // Light tracing (caustics.h): whether light `index` can emit rays (a sun, point, spot or area
+  // light without a node graph: the emissive triangles and the world cannot), a ray of it, and
+  // the power it sends into the scene's sphere.
+  bool can_emit(size_t index) const {
+    return index < lights_.size() && (index >= shaders_.size() || !shaders_[index]);
+  }
+  EmittedRay emit(size_t index, const glm::vec4& u, float u_target, const EmissionTargets& targets) const;
+  float emitted_power(size_t index, const EmissionTargets& targets) const;
   // Strategy `index`'s light of each kind, or nullptr when it is another kind.
   const SunLight* sun(size_t index) const { return get<SunLight>(index); }
   const PointLight* point(size_t index) const { return get<PointLight>(index); }

@@ -3,6 +3,8 @@
 
 #include "torrance/math.h"
 
+#include <vector>
+
 #include <limits>
 
 namespace torrance {
@@ -23,6 +25,31 @@ struct LightHit {
   Vec3 radiance{0.0f};
   float pdf = 0.0f;
   float distance = std::numeric_limits<float>::infinity();  // along dir to the light's surface
+};
+
+// A ray leaving a light, for light tracing (caustics.h): its origin and unit direction, and its
+// weight: the emitted radiance times the cosine at the light over the density of drawing the
+// ray (position and direction), i.e. the power the ray stands for (W, per colour channel).
+// A zero weight: the light sends nothing that way.
+struct EmittedRay {
+  Vec3 origin{0.0f};
+  Vec3 dir{0.0f, 0.0f, 1.0f};
+  Vec3 weight{0.0f};
+};
+
+struct BoundingSphere {
+  Vec3 center{0.0f};
+  float radius = 1.0f;
+};
+
+// Where light tracing aims its rays (caustics.h): spheres holding every surface a ray is worth
+// sending to. A light draws its rays only towards them -- one chosen uniformly, a direction
+// (a sun: a point of its beam) uniform over that sphere's cone (disk) -- and weighs each by the
+// density of them all, so the light reaching anything inside them is estimated without bias.
+// `scene` holds everything (a sun's rays start beyond it).
+struct EmissionTargets {
+  std::vector<BoundingSphere> spheres;
+  BoundingSphere scene;
 };
 
 // The part of each light's light that a path keeps where another strategy shares that light with

@@ -98,6 +98,7 @@ TORRANCE_RENDER_SETTING(float, guiding_training_fraction, 0.25f, "share of the s
 // lamp onto the scene, without its caustic fireflies. It changes nothing in scenes without such
 // a reflector (nor in scenes with alpha, where it is not used).
 TORRANCE_RENDER_SETTING(bool, mirror_images, true, "next-event estimation of lights seen in mirrors")
+TORRANCE_RENDER_SETTING(bool, caustics, true, "light tracing of caustics where the scene has smooth surfaces")
 // Next-event estimation of both lights at each vertex (a shadow ray each) instead of one
 // chosen light, in scenes with exactly LightChoice::kEveryLightLimit (2) NEE strategies (a sun
 // and a lamp, a sun and an HDRI): no variance from the choice where both shine. suzanne (a sun

@@ -383,6 +383,9 @@ class Scene final : public ShaderTracer {
     float radius = 0.0f;
   };
   std::optional<Sphere> material_sphere(uint32_t material) const;
+  // A sphere bounding every triangle of material `material` (about the centre of their bounds);
+  // nullopt when none has it or a prototype uses it (its instances are not examined).
+  std::optional<Sphere> material_bounds(uint32_t material) const;
 
  private:
   struct Mesh;
