@@ -32,7 +32,8 @@ inline void credit_split(const ExtraPasses& extra, const Vec3& total, const Vec3
   const int c = total.x >= total.y ? (total.x >= total.z ? 0 : 2) : (total.y >= total.z ? 1 : 2);
   if (!(total[c] > 0.0f)) return;
   const float kept = arrived[c] / total[c];
-  for (int g = 0; g < extra.num_light_groups(); ++g) add_to_light_group(extra, g, throughput * by_group[g] * kept, extras);
+  for (int g = 0; g < extra.num_light_groups(); ++g)
+    add_to_light_group(extra, g, throughput * by_group[g] * kept, extras);
 }
 
 }  // namespace torrance
