@@ -31,7 +31,7 @@ constexpr uint32_t kLightSeed = 0x1ca5715u;  // moves the light paths' points of
 }  // namespace
 
 std::optional<CausticPartition> CausticPartition::make(const Scene& scene, const RenderSettings& settings,
-                                                       bool alpha) {
+                                                       bool alpha, const MirrorImages* mirror_images) {
   const bool light_passes =
       settings.passes & (kPassDiffuseDirect | kPassDiffuseIndirect | kPassGlossyDirect | kPassGlossyIndirect);
   const bool light_groups = scene.extra_passes().num_light_groups() > 0;
@@ -48,7 +48,9 @@ std::optional<CausticPartition> CausticPartition::make(const Scene& scene, const
     // Only compact smooth objects: a light tracer aiming at a mirror floor or a lake spreads its
     // rays over all of it and brings next to nothing to the part the camera sees; their light
     // stays the path tracer's (and mirror_images.h's).
-    const std::optional<Scene::Sphere> bounds = smooth_material(scene, m) ? scene.material_bounds(m) : std::nullopt;
+    const bool reflector = mirror_images && mirror_images->is_reflector(m);
+    const std::optional<Scene::Sphere> bounds =
+        smooth_material(scene, m) && !reflector ? scene.material_bounds(m) : std::nullopt;
     const bool smooth = bounds && bounds->radius <= kCompact * scene_radius;
     if (smooth) p.targets_.push_back(BoundingSphere{bounds->center, bounds->radius});
     p.smooth_.push_back(smooth);

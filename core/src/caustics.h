@@ -16,8 +16,9 @@
 // path tracer's alone: each estimator is unbiased on its part and the parts add up to the whole
 // image, with no weights to balance. The path tracer keeps track of whether its path is still a
 // caustic one (CausticPartition::Chain) and drops the light of covered lights it would find at
-// a smooth vertex of such a path; mirror_images.h's reflectors are limited to surfaces that are
-// not smooth, so its paths stay the path tracer's.
+// a smooth vertex of such a path. The reflectors of mirror_images.h (glossy spheres and planes,
+// flat mirrors), whose caustics next-event estimation through them finds with little noise, do
+// not count as smooth: their paths stay the path tracer's.
 //
 // Chosen per render by what the scene holds (CausticPartition::make): a perspective camera, some
 // smooth material, some light that can emit, no alpha or holdouts (whose transparency the light
@@ -26,6 +27,8 @@
 #pragma once
 
 #include "path_tracer.h"
+
+#include "torrance/mirror_images.h"
 
 #include "torrance/camera.h"
 #include "torrance/fixed_point_sum.h"
@@ -48,14 +51,15 @@ class CausticPartition final : public LightShare {
   static constexpr float kCompact = 0.2f;
 
   // The partition for this render, or nullopt when the light tracer has nothing to do here.
-  static std::optional<CausticPartition> make(const Scene& scene, const RenderSettings& settings, bool alpha);
+  // mirror_images: the render's (null: none); its reflectors are left to it.
+  static std::optional<CausticPartition> make(const Scene& scene, const RenderSettings& settings, bool alpha,
+                                              const MirrorImages* mirror_images);
 
   bool smooth(uint32_t material) const { return smooth_[material] != 0; }
   bool receiver(uint32_t material) const { return receiver_[material] != 0; }
   bool covered(size_t light) const { return light < covered_.size() && covered_[light] != 0; }
   // LightShare: what the path tracer keeps of a light on a caustic path (0 for covered lights).
   float of(size_t light) const override { return covered(light) ? 0.0f : 1.0f; }
-  const std::vector<uint8_t>& smooth_materials() const { return smooth_; }
   // The smooth materials' bounding spheres, where the light tracer aims.
   const std::vector<BoundingSphere>& targets() const { return targets_; }
 

@@ -55,8 +55,7 @@ float MirrorImages::Source::irradiance(const Vec3& x, const Vec3& n) const {
 
 // ---- the reflectors and their pairs -------------------------------------------------------------
 
-MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& bsdfs,
-                           const std::vector<uint8_t>* skip)
+MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& bsdfs)
     : first_reflector_(scene.num_materials(), -1),
       num_reflectors_(scene.num_materials(), 0),
       num_lights_(scene.lights().count()) {
@@ -81,7 +80,7 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
     // Glossy: no delta lobe (its paths through the reflector are the BSDF's alone).
     const bool glossy =
         !mirror && !bsdf.transmits() && !bsdf.has_delta() && bsdf.specular_alpha() <= kMaxGlossyAlpha;
-    if (!plain_surface(scene, m) || (skip && (*skip)[m])) continue;
+    if (!plain_surface(scene, m)) continue;
     if (!mirror && !glossy) {
       if (!bsdf.transmits() && !bsdf.has_delta()) matte.push_back(m);
       continue;

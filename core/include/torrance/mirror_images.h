@@ -75,10 +75,8 @@ class MirrorImages {
   static constexpr size_t kMaxPairs = 32;
 
   // The scene's reflectors -- planar mirrors, glossy planes and glossy spheres (bsdfs: the
-  // render's, one per material) -- and the lights they reflect. skip: per material, nonzero for
-  // materials that are never reflectors (the light tracer's smooth surfaces, caustics.h).
-  MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& bsdfs,
-               const std::vector<uint8_t>* skip = nullptr);
+  // render's, one per material) -- and the lights they reflect.
+  MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& bsdfs);
   bool empty() const { return pairs_.empty(); }
   size_t num_reflectors() const { return reflectors_.size(); }
   size_t num_pairs() const { return pairs_.size(); }
