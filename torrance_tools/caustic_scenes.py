@@ -1,0 +1,79 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Scenes of caustics for the light tracer (core/src/caustics.h), built with the native module
+directly (no bpy): core/python/tests/test_caustics.py checks that the light-traced caustics
+converge to the plain path tracer's image on them, scripts/caustics_bench.py measures what the
+light tracer gains. Each function returns a new torrance_core.Scene (call with the module)."""
+
+import numpy as np
+
+from torrance_tools.geometry import uv_sphere_with_normals
+
+
+def quad(scene, corners, material, flip=False):
+    triangles = [[0, 2, 1], [0, 3, 2]] if flip else [[0, 1, 2], [0, 2, 3]]
+    scene.add_mesh(np.array(corners, np.float32), np.array(triangles, np.int32),
+                   material_indices=[material, material])
+
+
+def look_at(scene, eye, target, lens=35.0):
+    eye, target = np.asarray(eye, float), np.asarray(target, float)
+    forward = (target - eye) / np.linalg.norm(target - eye)
+    right = np.cross(forward, [0.0, 0.0, 1.0])
+    right /= np.linalg.norm(right)
+    matrix = np.eye(4)
+    matrix[:3, 0], matrix[:3, 1], matrix[:3, 2], matrix[:3, 3] = (right, np.cross(right, forward),
+                                                                  -forward, eye)
+    scene.set_camera(matrix, lens=lens)
+
+
+def _floor(tc, scene):
+    matte = scene.add_material(base_color=(0.7, 0.7, 0.7), roughness=0.8)
+    quad(scene, [[-4, -4, 0], [4, -4, 0], [4, 4, 0], [-4, 4, 0]], matte)
+    scene.set_world(color=(0.02, 0.02, 0.02))
+    return matte
+
+
+def mirror_on_a_wall(tc):
+    """A smooth metal mirror on a matte floor, an area light above it shining on the mirror, and
+    the light it reflects on a matte wall behind."""
+    s = tc.Scene()
+    matte = _floor(tc, s)
+    mirror = s.add_material(base_color=(0.95, 0.9, 0.8), metallic=1.0, roughness=0.0)
+    quad(s, [[-0.5, -0.5, 0.01], [0.5, -0.5, 0.01], [0.5, 0.5, 0.01], [-0.5, 0.5, 0.01]], mirror)
+    quad(s, [[-4, 1.5, 0], [4, 1.5, 0], [4, 1.5, 4], [-4, 1.5, 4]], matte, flip=True)
+    s.add_area_light(center=(0.0, -1.5, 2.0), edge_u=(0.5, 0, 0), edge_v=(0, 0.4, 0.3),
+                     direction=(0, 0.6, -0.8), power=300.0)
+    look_at(s, (0, -4.0, 2.5), (0, 0, 0.8))
+    return s
+
+
+def inverted_slab(tc):
+    """A smooth glass slab (two faces, normals pointing inwards) over a matte floor under an area
+    light: the light enters and leaves the glass 'from inside'."""
+    s = tc.Scene()
+    _floor(tc, s)
+    glass = s.add_material(glass=True, base_color=(1, 1, 1), roughness=0.0, ior=1.5)
+    for z, flip in ((0.5, False), (0.7, True)):
+        quad(s, [[-0.5, -0.5, z], [0.5, -0.5, z], [0.5, 0.5, z], [-0.5, 0.5, z]], glass, flip)
+    s.add_area_light(center=(0.3, 0.2, 2.0), edge_u=(0.4, 0, 0), edge_v=(0, 0.4, 0),
+                     direction=(0, 0, -1), power=300.0)
+    look_at(s, (0, -4.0, 2.5), (0, 0, 0.3))
+    return s
+
+
+def glass_ball(tc, light="point"):
+    """A smooth glass ball (IOR 1.5) on a matte floor under a small lamp: a point light of radius
+    2 cm above it, or a spot of radius 5 cm from the side (light="spot")."""
+    s = tc.Scene()
+    _floor(tc, s)
+    glass = s.add_material(glass=True, base_color=(1, 1, 1), roughness=0.0, ior=1.5)
+    positions, triangles, normals = uv_sphere_with_normals((0, 0, 0.6), 0.6)
+    s.add_mesh(positions, triangles, corner_normals=normals.reshape(-1, 3),
+               material_indices=[glass] * len(triangles))
+    if light == "spot":
+        s.add_spot_light(position=(1.2, 0.5, 1.8), direction=(-0.6, -0.25, -1), power=800.0,
+                         radius=0.05, spot_size=0.9, spot_blend=0.3)
+    else:
+        s.add_point_light(position=(0.3, 0.2, 2.5), power=500.0, radius=0.02)
+    look_at(s, (0, -4.0, 2.5), (0, 0, 0.3))
+    return s
