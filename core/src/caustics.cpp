@@ -79,6 +79,7 @@ CausticTracer::CausticTracer(const PathContext& ctx, const CausticPartition& par
       width_(window[2] - window[0]),
       height_(window[3] - window[1]),
       pixels_(uint32_t(width_) * uint32_t(height_)),
+      paths_per_sample_(pixels_),
       sums_(size_t(pixels_) * 3) {
   Vec3 lo, hi;
   ctx.scene.bounds(lo, hi);
@@ -109,15 +110,31 @@ CausticTracer::CausticTracer(const PathContext& ctx, const CausticPartition& par
 
 void CausticTracer::trace(int first_sample, int num_samples, const std::atomic<bool>& stop) {
   if (emitters_.empty()) return;
-  const uint32_t blocks = (pixels_ + kBlock - 1) / kBlock;
-  for (int s = first_sample; s < first_sample + num_samples && !stop; ++s)
+  for (int s = first_sample; s < first_sample + num_samples && !stop; ++s) {
+    if (s == kJudgeAtSample) judge_yield();
+    const uint32_t paths = paths_per_sample_;
+    const uint32_t blocks = (paths + kBlock - 1) / kBlock;
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, blocks, 1), [&](const tbb::blocked_range<uint32_t>& r) {
       for (uint32_t b = r.begin(); b != r.end() && !stop.load(std::memory_order_relaxed); ++b) {
-        const uint32_t end = std::min(pixels_, (b + 1) * kBlock);
+        const uint32_t end = std::min(paths, (b + 1) * kBlock);
         for (uint32_t i = b * kBlock; i < end; ++i) trace_path(i, uint32_t(s));
         paths_ += end - b * kBlock;
       }
     });
+  }
+}
+
+// The light paths' budget, once, after the first kJudgeAtSample samples (a fixed point of the
+// render, so the image never depends on timing): the share of paths that reached the camera
+// scales it, in full from kFullYield on, down to 1/16 of the pixels per sample where the
+// caustics lie out of sight or nearly nowhere. Any budget leaves the estimate unbiased (the
+// image is the sum over all paths traced divided by their number).
+void CausticTracer::judge_yield() {
+  const uint64_t traced = paths_.load();
+  if (traced == 0) return;
+  const double yield = double(reached_.load()) / double(traced);
+  const double share = std::clamp(yield / kFullYield, 1.0 / 16.0, 1.0);
+  paths_per_sample_ = std::max(1u, uint32_t(std::lround(share * double(pixels_))));
 }
 
 // One light path: a light chosen by its power, a ray from it, followed through smooth surfaces
@@ -233,7 +250,9 @@ void CausticTracer::connect(const SurfaceHit& hit, const Vec3& incoming, const V
   const Vec3 origin = offset_origin(hit.position, ng, wo_world);
   if (ctx_.scene.occluded(origin, wo_world, 0.0f, c.distance * (1.0f - 1e-4f))) return;
   const Vec3 value = beta * f.total() * (std::abs(glm::dot(ng, wo_world)) / cos_in * c.importance);
-  if (is_finite(value)) splat(x, y, value);
+  if (!is_finite(value)) return;
+  splat(x, y, value);
+  ++reached_;
 }
 
 void CausticTracer::splat(float x, float y, const Vec3& value) {

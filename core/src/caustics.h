@@ -103,9 +103,9 @@ class CausticPartition final : public LightShare {
   std::vector<BoundingSphere> targets_;
 };
 
-// The light tracer: its paths in passes of `pixels` paths per sample (as many as the camera
-// samples of a pass), splatted through the pixel filter into an image of the window that is
-// added to the path tracer's.
+// The light tracer: its paths in passes of up to `pixels` paths per sample (as many as the camera
+// samples of a pass; fewer where few reach the camera: judge_yield), splatted through the pixel
+// filter into an image of the window that is added to the path tracer's.
 class CausticTracer {
  public:
   CausticTracer(const PathContext& ctx, const CausticPartition& partition, const Camera& camera,
@@ -118,6 +118,10 @@ class CausticTracer {
   uint64_t paths() const { return paths_.load(); }
 
  private:
+  // After kJudgeAtSample samples: the budget is cut where few paths reach the camera.
+  static constexpr int kJudgeAtSample = 4;
+  static constexpr double kFullYield = 0.25;
+  void judge_yield();
   void trace_path(uint32_t index, uint32_t sample);
   void connect(const SurfaceHit& hit, const Vec3& incoming, const Vec3& beta, SobolSampler& sampler);
   void splat(float x, float y, const Vec3& value);
@@ -129,12 +133,14 @@ class CausticTracer {
   std::array<int, 4> window_;
   int width_, height_;
   uint32_t pixels_;
+  uint32_t paths_per_sample_;  // pixels_, or fewer once judge_yield has found few reaching the camera
   EmissionTargets targets_;  // the smooth surfaces' bounding spheres
   std::vector<size_t> emitters_;  // the lights that emit, and their cumulative choice
   std::vector<float> cdf_;
   float filter_norm_;  // 1 / (integral of the filter's weight over a pixel row)^2
   std::vector<FixedPointSum<24>> sums_;  // RGB per window pixel
   std::atomic<uint64_t> paths_{0};
+  std::atomic<uint64_t> reached_{0};  // paths whose light reached the camera (splatted)
 };
 
 }  // namespace torrance
