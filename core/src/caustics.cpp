@@ -11,9 +11,9 @@ namespace torrance {
 
 namespace {
 
-// Whether material m's BSDF is smooth (caustics.h; the partition also wants it compact): all of its lobes specular and no rougher than
-// kSmoothRoughness -- metal, glass, or both, under no sheen and no rough coat -- and no texture,
-// program, mixture or alpha changes that anywhere.
+// Whether material m's BSDF is smooth (caustics.h; the partition also wants it compact): all of
+// its lobes specular and no rougher than kSmoothRoughness -- metal, glass, or both, under no sheen
+// and no rough coat -- and no texture, program, mixture or alpha changes that anywhere.
 bool smooth_material(const Scene& scene, uint32_t m) {
   const Material& mat = scene.material(m);
   if (scene.material_textures(m).any() || scene.mixture(m) || mat.alpha < 1.0f) return false;
