@@ -96,15 +96,7 @@ CausticTracer::CausticTracer(const PathContext& ctx, const CausticPartition& par
       cdf_.push_back(total += power);
     }
   for (float& c : cdf_) c /= total;
-  // The filter's integral along one axis, by the trapezoid rule on its table's resolution.
-  double integral = 0.0;
-  const int steps = 2048;
-  const float w = filter.width();
-  for (int k = 0; k <= steps; ++k) {
-    const float d = -w + 2.0f * w * float(k) / float(steps);
-    integral += (k == 0 || k == steps ? 0.5 : 1.0) * filter.weight(d);
-  }
-  integral *= 2.0 * double(w) / steps;
+  const double integral = filter.weight_integral();
   filter_norm_ = float(1.0 / (integral * integral));
 }
 

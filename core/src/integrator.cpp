@@ -210,15 +210,16 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   const TraceFn trace = select_path_tracer(cscene, settings);
   ctx.nee_every_light = settings.nee_every_light && cscene.lights().count() > 1 &&
                         cscene.lights().count() <= LightChoice::kEveryLightLimit;
+  const bool alpha = has_alpha(cscene);
   std::optional<MirrorImages> mirror_images;
-  if (settings.mirror_images && !has_alpha(cscene)) {
+  if (settings.mirror_images && !alpha) {
     mirror_images.emplace(cscene, ctx.bsdfs);
     if (!mirror_images->empty()) ctx.mirror_images = &*mirror_images;
   }
   // Caustics by light tracing (caustics.h), where the scene has them (mirror images keep their
   // reflectors).
   const std::optional<CausticPartition> caustics =
-      CausticPartition::make(cscene, settings, has_alpha(cscene), ctx.mirror_images);
+      CausticPartition::make(cscene, settings, alpha, ctx.mirror_images);
   if (caustics) ctx.caustics = &*caustics;
   std::optional<GuidingField> guide;
   RenderResult result;

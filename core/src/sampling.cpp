@@ -184,6 +184,13 @@ PixelFilter::PixelFilter(float width, int table_size) : width_(std::max(width, 1
     weights_[i] = float(std::max(blackman_harris(0.5 + 0.5 * i / (kWeightTableSize - 1.0)), 0.0));
   weights_.back() = 0.0f;
   weight_scale_ = float(kWeightTableSize - 1) / width_;
+  double integral = 0.0;
+  const int steps = 2048;
+  for (int k = 0; k <= steps; ++k) {
+    const float d = -width_ + 2.0f * width_ * float(k) / float(steps);
+    integral += (k == 0 || k == steps ? 0.5 : 1.0) * weight(d);
+  }
+  weight_integral_ = integral * 2.0 * double(width_) / steps;
 }
 
 float PixelFilter::sample_offset(float u) const {

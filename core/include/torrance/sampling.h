@@ -112,12 +112,17 @@ class PixelFilter {
   }
   // How many pixels beyond its own a sample placed anywhere in its pixel reaches when splatted.
   int reach() const { return int(std::ceil(width_ - 0.5f)); }
+  // The integral of weight() over [-width, width] (trapezoid rule, 2048 steps): weight(dx)
+  // weight(dy) / integral^2 is the filter normalised to 1 over the pixel plane (light tracing's
+  // splats, caustics.h).
+  double weight_integral() const { return weight_integral_; }
 
  private:
   float width_;
   std::vector<float> inverse_cdf_;
   std::vector<float> weights_;  // weight at |d| = i * width / (size - 1)
   float weight_scale_;          // (size - 1) / width
+  double weight_integral_;
 };
 
 }  // namespace torrance
