@@ -16,7 +16,7 @@ sphere_agreement.py. The test re-renders Torrance with faults (on its side only)
 each to fail the bounds: the coat ignored; the coat weight's graph ignored (unlinked: 0); 3.4:
 the clearcoat's roughness wrong (1 on the rough and the black spheres); 4.x: the coat tint
 ignored, the coat IOR wrong (1.5). 3.4's world is black: Cycles 3.4's clearcoat states a density
-it does not sample from (core/include/torrance/principled_coat.h), so its image depends on how
+it does not sample from (core/include/torrance/bsdfs/principled_coat.h), so its image depends on how
 the lights are sampled, which for a lone sun Torrance does as Cycles (with the world colour below
 as well, the sphere means differ from Cycles' by -1.1 % to +1.4 %).
 

@@ -9,7 +9,7 @@ ColorRamp; Invert; Strength below 1; a Bump chained into another Bump's Normal; 
 (Strength 0.6); a Mix Shader whose closures share a bumped Normal.
 Cycles evaluates a Bump's Height at P, P + dPdx and P + dPdy; Torrance compiles the Height's
 graph three times, its hit-reading ops moved by the ray differentials (shader_graph/bump.py,
-core/src/shader_bump.cpp).
+core/src/shader/shader_bump.cpp).
 
 Cycles 3.4 keeps every closure's normal from reflecting below the surface; Cycles 4.x only its
 specular ones (its diffuse lobes shade with the bumped normal as it is: bsdf.h's DiffuseNormal).

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
-"""What Caustics by Light Tracing (core/src/caustics.h) gains, through the native module alone:
-on the scenes of torrance_tools/caustic_scenes.py (a glass ball under a small point light or
+"""What Caustics by Light Tracing (core/src/integrator/caustics.h) gains, through the native module
+alone: on the scenes of torrance_tools/caustic_scenes.py (a glass ball under a small point light or
 spot), Torrance at --spp samples over --seeds seeds with the light tracer and without it, against
 a reference rendered with it at --reference-spp (seeds 900 and 901; test_caustics checks that both
 converge to the same image). Prints per variant the mean, median and 95th percentile over seeds of

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Scenes of caustics for the light tracer (core/src/caustics.h), built with the native module
-directly (no bpy): core/python/tests/test_caustics.py checks that the light-traced caustics
+"""Scenes of caustics for the light tracer (core/src/integrator/caustics.h), built with the native
+module directly (no bpy): core/python/tests/test_caustics.py checks that the light-traced caustics
 converge to the plain path tracer's image on them, scripts/caustics_bench.py measures what the
 light tracer gains. Each function returns a new torrance_core.Scene (call with the module)."""
 

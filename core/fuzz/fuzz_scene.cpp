@@ -5,8 +5,8 @@
 // was accepted must give a finite image. ASan/UBSan report the rest.
 #include "fuzz_common.h"
 
-#include "torrance/integrator.h"
-#include "torrance/scene.h"
+#include "torrance/integrator/integrator.h"
+#include "torrance/scene/scene.h"
 
 #include <fuzzer/FuzzedDataProvider.h>
 

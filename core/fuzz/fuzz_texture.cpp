@@ -4,8 +4,8 @@
 // budget must be refused before any pixel buffer is allocated.
 #include "fuzz_common.h"
 
-#include "torrance/image_io.h"
-#include "torrance/texture.h"
+#include "torrance/film/image_io.h"
+#include "torrance/shader/texture.h"
 
 #include <unistd.h>
 

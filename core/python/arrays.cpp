@@ -1,6 +1,6 @@
 #include "bindings.h"
 
-#include "torrance/limits.h"
+#include "torrance/util/limits.h"
 
 #include <string>
 

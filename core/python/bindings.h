@@ -1,7 +1,7 @@
 // Shared declarations of the pybind11 module: one init_<concept> per file, bindings only.
 #pragma once
 
-#include "torrance/integrator.h"
+#include "torrance/integrator/integrator.h"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>

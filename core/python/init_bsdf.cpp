@@ -1,7 +1,7 @@
 #include "bindings.h"
 
-#include "torrance/albedo.h"
-#include "torrance/scene.h"
+#include "torrance/bsdfs/albedo.h"
+#include "torrance/scene/scene.h"
 
 #include <pybind11/stl.h>
 

@@ -4,7 +4,7 @@
 #include <memory>
 #include <optional>
 
-#include "torrance/denoiser.h"
+#include "torrance/film/denoiser.h"
 
 namespace torrance::python {
 

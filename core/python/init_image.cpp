@@ -1,6 +1,6 @@
 #include "bindings.h"
 
-#include "torrance/image_io.h"
+#include "torrance/film/image_io.h"
 
 #include <string>
 

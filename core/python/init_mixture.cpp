@@ -2,7 +2,7 @@
 // the Scene class that init_scene defines.
 #include "bindings.h"
 
-#include "torrance/scene.h"
+#include "torrance/scene/scene.h"
 
 #include <pybind11/stl.h>
 

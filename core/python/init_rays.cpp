@@ -1,7 +1,7 @@
 // The rays a render traces, recorded and replayed through raw Embree (ray_log.h, ray_replay.h).
 #include "bindings.h"
 
-#include "torrance/ray_replay.h"
+#include "torrance/integrator/ray_replay.h"
 
 #include <pybind11/stl.h>
 

@@ -5,7 +5,7 @@
 
 #include <memory>
 
-#include "torrance/session.h"
+#include "torrance/integrator/session.h"
 
 namespace torrance::python {
 

@@ -1,5 +1,5 @@
 // RenderSettings in Python: an attribute and a constructor keyword per setting. The numbers and
-// switches come from the one list, torrance/render_settings_fields.h; the settings that convert
+// switches come from the one list, torrance/integrator/render_settings_fields.h; the settings that convert
 // a string (or a list of pass names) to the core's enums and flags are bound by hand below it.
 // RenderSettings.FIELDS names them all, in that order (the add-on's table is checked against it).
 #include "bindings.h"
@@ -129,7 +129,7 @@ void init_render_settings(py::module_& m) {
 #define TORRANCE_RENDER_SETTING(type, name, default_value, doc) \
   cls.def_readwrite(#name, &RenderSettings::name, doc);        \
   fields.push_back({#name, python_type(#type), doc});
-#include "torrance/render_settings_fields.h"
+#include "torrance/integrator/render_settings_fields.h"
 #undef TORRANCE_RENDER_SETTING
 
   // Checked when set, as the constructor checks it (replaces the plain attribute of the list).

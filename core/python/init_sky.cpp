@@ -1,6 +1,6 @@
 #include "bindings.h"
 
-#include "torrance/shader_sky.h"
+#include "torrance/shader/shader_sky.h"
 
 #include <pybind11/stl.h>
 

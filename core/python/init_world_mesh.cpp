@@ -1,7 +1,7 @@
-// The export's bulk mesh arrays (torrance/world_mesh.h): forwarded with their shapes checked.
+// The export's bulk mesh arrays (torrance/scene/world_mesh.h): forwarded with their shapes checked.
 #include "bindings.h"
 
-#include "torrance/world_mesh.h"
+#include "torrance/scene/world_mesh.h"
 
 #include <cstdint>
 #include <string>

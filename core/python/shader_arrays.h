@@ -4,8 +4,8 @@
 
 #include "bindings.h"
 
-#include "torrance/scene.h"
-#include "torrance/shader_program.h"
+#include "torrance/scene/scene.h"
+#include "torrance/shader/shader_program.h"
 
 #include <limits>
 #include <vector>

@@ -1,7 +1,7 @@
 // GoogleTest checks of a whole material's BSDF shared by the layer tests (coat, sheen).
 #pragma once
 
-#include "torrance/material_bsdf.h"
+#include "torrance/bsdfs/material_bsdf.h"
 
 #include "test_helpers.h"
 

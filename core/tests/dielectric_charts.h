@@ -3,8 +3,8 @@
 // test_glass.cpp).
 #pragma once
 
-#include "torrance/bsdf.h"
-#include "torrance/sampling.h"
+#include "torrance/bsdfs/bsdf.h"
+#include "torrance/util/sampling.h"
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,7 @@
 // \" and \\ suffice), true/false (as the numbers 1 and 0), arrays and objects.
 #pragma once
 
-#include "torrance/math.h"
+#include "torrance/util/math.h"
 
 #include <cctype>
 #include <cstdint>

@@ -1,8 +1,8 @@
 // Small scenes for the core's render tests (test_glass_render.cpp, test_alpha.cpp).
 #pragma once
 
-#include "torrance/integrator.h"
-#include "torrance/material_bsdf.h"
+#include "torrance/integrator/integrator.h"
+#include "torrance/bsdfs/material_bsdf.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Adaptive sampling, time limit and clamping (RenderSettings::adaptive_threshold, time_limit,
 // clamp_direct/clamp_indirect), and the guarantee that with all of them off the image is the
 // one the renderer gave before they existed.
-#include "torrance/integrator.h"
+#include "torrance/integrator/integrator.h"
 #include "test_helpers.h"
 
 #include <gtest/gtest.h>

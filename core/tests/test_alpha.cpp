@@ -1,7 +1,7 @@
 // Alpha (Principled Alpha, an image's alpha channel, the Transparent BSDF) rendered end to end:
 // stochastic pass-through of camera and bounce rays, transparent shadows, the transparent bounce
 // limit, against closed forms of a card over a floor lit by an overhead sun.
-#include "torrance/integrator.h"
+#include "torrance/integrator/integrator.h"
 
 #include "scene_helpers.h"
 

@@ -1,4 +1,4 @@
-#include "torrance/material_bsdf.h"
+#include "torrance/bsdfs/material_bsdf.h"
 
 #include "test_helpers.h"
 

@@ -1,7 +1,7 @@
 // The prepared BSDF of a shading point (MaterialBsdf::at(wo), lobe_mixture.h): the terms of wo are
 // computed once and reused for every wi, and must give what each model's equations give when
 // written out per query from wo and wi, with nothing prepared.
-#include "torrance/material_bsdf.h"
+#include "torrance/bsdfs/material_bsdf.h"
 
 #include "test_helpers.h"
 

@@ -1,10 +1,10 @@
 // Cameras: Blender's orthographic projection, the thin-lens depth of field (focus plane sharp,
 // circle of confusion of the thin-lens formula, anamorphic ratio), uniform aperture sampling,
 // and pinhole rays that do not change when depth of field is off.
-#include "torrance/camera.h"
-#include "torrance/limits.h"
+#include "torrance/camera/camera.h"
+#include "torrance/util/limits.h"
 
-#include "torrance/sampling.h"
+#include "torrance/util/sampling.h"
 
 #include <gtest/gtest.h>
 

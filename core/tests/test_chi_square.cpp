@@ -5,8 +5,8 @@
 // bins, and the azimuth around R is binned uniformly. Expected counts integrate pdf() over each bin
 // (16 x 16 midpoint sub-cells); bins expecting fewer than 5 samples are pooled; delta samples get a
 // bin of their own. Significance 0.01, Bonferroni-corrected for the number of cases.
-#include "torrance/material_bsdf.h"
-#include "torrance/mixture_bsdf.h"
+#include "torrance/bsdfs/material_bsdf.h"
+#include "torrance/bsdfs/mixture_bsdf.h"
 
 #include "test_helpers.h"
 

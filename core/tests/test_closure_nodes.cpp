@@ -4,8 +4,8 @@
 // cases (roughness 0 and 1, grazing, viewers below the surface, total internal reflection) with
 // no NaN or Inf, and what a mixture of them transmits. (Chi-square tests of their sampling:
 // ChiSquare.ClosureNodesSamplingMatchesPdf in test_chi_square.cpp.)
-#include "torrance/mixture_bsdf.h"
-#include "torrance/sheen_ltc_table.h"
+#include "torrance/bsdfs/mixture_bsdf.h"
+#include "torrance/bsdfs/sheen_ltc_table.h"
 
 #include "test_helpers.h"
 

@@ -2,7 +2,7 @@
 // film.h): the splatted film converges to the filter-importance-sampled one (Cycles' way), at its
 // edges too (the ring of pixels sampled around the image), is exact on flat regions at one sample,
 // has clearly less noise per pixel, does not depend on the threads, and is used only where it can.
-#include "torrance/integrator.h"
+#include "torrance/integrator/integrator.h"
 #include "scene_helpers.h"
 #include <gtest/gtest.h>
 #include <cstring>

@@ -1,8 +1,8 @@
 // Splitting at the first hit (RenderSettings::first_bounce_splits, first_bounce_splits.h): the
 // split render converges to the plain one, has less noise where bounced light makes it, and the
 // automatic choice splits there and not where the first hit makes the noise.
-#include "torrance/first_bounce_splits.h"
-#include "torrance/integrator.h"
+#include "torrance/integrator/first_bounce_splits.h"
+#include "torrance/integrator/integrator.h"
 #include "scene_helpers.h"
 #include "test_helpers.h"
 #include <gtest/gtest.h>

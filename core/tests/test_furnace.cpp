@@ -1,7 +1,7 @@
 // White furnace: directional albedo of each model (base colour 1), by quadrature and by sampling.
 // They must agree with each other, and where a model is known to lose or gain energy the values
 // must be the ones computed independently (Cycles 3.4's formulas integrated numerically).
-#include "torrance/albedo.h"
+#include "torrance/bsdfs/albedo.h"
 
 #include "test_helpers.h"
 

@@ -2,10 +2,10 @@
 // of its sampling over both hemispheres, agreement of eval / pdf / sample, the macro-Fresnel split
 // of energy (smooth: exactly F and 1 - F; rough: sampled = quadrature, <= 1), the Principled
 // mixture, and 10^6 randomised evaluations without NaN or Inf.
-#include "torrance/glass.h"
+#include "torrance/bsdfs/glass.h"
 
-#include "torrance/material_bsdf.h"
-#include "torrance/principled.h"
+#include "torrance/bsdfs/material_bsdf.h"
+#include "torrance/bsdfs/principled.h"
 
 #include "dielectric_charts.h"
 #include "test_helpers.h"

@@ -1,7 +1,7 @@
 // Glass rendered end to end: a glass sphere in a white furnace, the closed form of a smooth slab at
 // normal incidence, lights seen through rough glass (NEE on the far side), and no NaN/Inf.
-#include "torrance/integrator.h"
-#include "torrance/material_bsdf.h"
+#include "torrance/integrator/integrator.h"
+#include "torrance/bsdfs/material_bsdf.h"
 
 #include "scene_helpers.h"
 

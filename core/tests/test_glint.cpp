@@ -4,8 +4,8 @@
 // pdf against it) estimate must agree, at grazing and moderate incidence, with the sun's disk
 // centred on the mirror direction, on its edge and in the lobe's tail; and the combination must
 // not be noisier than the better of the two alone (by more than a margin).
-#include "torrance/lights.h"
-#include "torrance/principled.h"
+#include "torrance/lights/lights.h"
+#include "torrance/bsdfs/principled.h"
 
 #include "test_helpers.h"
 

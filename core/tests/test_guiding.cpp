@@ -1,7 +1,7 @@
 // Path guiding's SD-tree (guiding.h): the quadtree's sample() and pdf() agree, its pdf is a
 // density, and recording concentrates it where radiance was recorded.
-#include "torrance/guiding.h"
-#include "torrance/sampling.h"
+#include "torrance/integrator/guiding.h"
+#include "torrance/util/sampling.h"
 
 #include "test_helpers.h"
 

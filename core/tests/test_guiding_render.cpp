@@ -1,6 +1,6 @@
 // Guided renders (RenderSettings::guiding) agree with plain ones within noise: a room lit only by
 // light bounced off its ceiling, over several seeds, by the mean and by blocks of pixels.
-#include "torrance/integrator.h"
+#include "torrance/integrator/integrator.h"
 
 #include "scene_helpers.h"
 

@@ -1,7 +1,7 @@
 // Numerical hard cases: 10^8 randomised BSDF evaluations (eval + pdf + sample) over the inputs
 // that break naive code, and the shading-normal repair on adversarial normals.
-#include "torrance/material_bsdf.h"
-#include "torrance/shading_normal.h"
+#include "torrance/bsdfs/material_bsdf.h"
+#include "torrance/bsdfs/shading_normal.h"
 
 #include "test_helpers.h"
 

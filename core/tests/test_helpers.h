@@ -1,10 +1,10 @@
 // Helpers shared by the core tests.
 #pragma once
 
-#include "torrance/bsdf.h"
-#include "torrance/integrator.h"
-#include "torrance/math.h"
-#include "torrance/sampling.h"
+#include "torrance/bsdfs/bsdf.h"
+#include "torrance/integrator/integrator.h"
+#include "torrance/util/math.h"
+#include "torrance/util/sampling.h"
 
 #include <stdexcept>
 #include <string>

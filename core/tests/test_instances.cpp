@@ -1,8 +1,8 @@
 // Instancing: a prototype placed by instance transforms must trace, shade and light exactly like
 // the world-space copies the flattening export used to make (positions by M, normals by M^-T,
 // corners 1 and 2 swapped when M mirrors), so both are compared hit by hit and pixel by pixel.
-#include "torrance/integrator.h"
-#include "torrance/sampling.h"
+#include "torrance/integrator/integrator.h"
+#include "torrance/util/sampling.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // Lamps' bright spots on matte planes (mirror_images.h, lamp_spots.cpp): which lamps and planes
 // pair, and agreement with BSDF sampling over seeds in a room lit by a lamp under its ceiling.
 #include "scene_helpers.h"
-#include "torrance/integrator.h"
-#include "torrance/mirror_images.h"
+#include "torrance/integrator/integrator.h"
+#include "torrance/lights/mirror_images.h"
 
 #include <gtest/gtest.h>
 

@@ -3,9 +3,9 @@
 // choice is unbiased.
 #include "scene_helpers.h"
 #include "test_helpers.h"
-#include "torrance/integrator.h"
-#include "torrance/light_choice.h"
-#include "torrance/lights.h"
+#include "torrance/integrator/integrator.h"
+#include "torrance/lights/light_choice.h"
+#include "torrance/lights/lights.h"
 
 #include <gtest/gtest.h>
 

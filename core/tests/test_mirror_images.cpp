@@ -1,9 +1,9 @@
 // Lights seen in mirrors, glossy planes and glossy spheres (mirror_images.h): which materials are
 // reflectors, closed forms for mirrored sunlight, and agreement with BSDF sampling over seeds.
 #include "scene_helpers.h"
-#include "torrance/integrator.h"
-#include "torrance/mirror_images.h"
-#include "torrance/sampling.h"
+#include "torrance/integrator/integrator.h"
+#include "torrance/lights/mirror_images.h"
+#include "torrance/util/sampling.h"
 
 #include <gtest/gtest.h>
 

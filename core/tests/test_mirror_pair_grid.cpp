@@ -1,8 +1,8 @@
 // The pair grid of MirrorImages (mirror_images_grid.cpp): odds() weighs only the pairs a cell of
 // space may see, and must come out bit for bit as weighing every pair would, everywhere.
 #include "scene_helpers.h"
-#include "torrance/mirror_images.h"
-#include "torrance/sampling.h"
+#include "torrance/lights/mirror_images.h"
+#include "torrance/util/sampling.h"
 
 #include <gtest/gtest.h>
 

@@ -3,11 +3,11 @@
 // without Fresnel) closures by their closed forms, the Checker Texture and mix weights by
 // Blender's definitions, the Bump node's normal from a height ramp, and malformed mixtures.
 // (Chi-square tests of mixture sampling: test_chi_square.cpp.)
-#include "torrance/albedo.h"
-#include "torrance/integrator.h"
-#include "torrance/mixture_bsdf.h"
-#include "torrance/scene.h"
-#include "torrance/shader_textures.h"
+#include "torrance/bsdfs/albedo.h"
+#include "torrance/integrator/integrator.h"
+#include "torrance/bsdfs/mixture_bsdf.h"
+#include "torrance/scene/scene.h"
+#include "torrance/shader/shader_textures.h"
 
 #include "test_helpers.h"
 

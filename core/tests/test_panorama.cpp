@@ -3,7 +3,7 @@
 // fisheyes' edges at fov / 2, the equirectangular corners at the latitude / longitude limits;
 // pixels outside a projection give empty rays; spherical clipping; depth of field focused at
 // focus_distance along the pinhole ray.
-#include "torrance/camera.h"
+#include "torrance/camera/camera.h"
 
 #include <gtest/gtest.h>
 

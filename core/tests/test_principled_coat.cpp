@@ -2,9 +2,9 @@
 // closed form, Cycles 4.x's coat (PRINCIPLED_V2) darkening and tinting the layers under it,
 // eval/pdf/sample agreeing for both, white furnaces of a coat over white metal, and hard cases
 // (roughness 0 and 1, grazing) without NaN or Inf. Sampling's chi-square: test_chi_square.cpp.
-#include "torrance/albedo.h"
-#include "torrance/ggx_tables.h"
-#include "torrance/principled.h"
+#include "torrance/bsdfs/albedo.h"
+#include "torrance/bsdfs/ggx_tables.h"
+#include "torrance/bsdfs/principled.h"
 
 #include "bsdf_checks.h"
 #include "test_helpers.h"

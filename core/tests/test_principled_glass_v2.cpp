@@ -3,10 +3,10 @@
 // about 1 with Multiscatter GGX's table), the glass albedo table against its direct integral,
 // total internal reflection, and the hard cases (roughness 0 and 1, grazing, inside) without NaN or
 // Inf; through MaterialBsdf, the split T (1 - m) glass / (1 - m)(1 - T) dielectric and diffuse.
-#include "torrance/principled_glass_v2.h"
+#include "torrance/bsdfs/principled_glass_v2.h"
 
-#include "torrance/ggx_glass_tables.h"
-#include "torrance/material_bsdf.h"
+#include "torrance/bsdfs/ggx_glass_tables.h"
+#include "torrance/bsdfs/material_bsdf.h"
 
 #include "dielectric_charts.h"
 #include "test_helpers.h"

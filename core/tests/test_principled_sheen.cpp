@@ -3,9 +3,9 @@
 // sample agreeing for both, white furnaces of a sheen over white diffuse, and hard cases (sheen
 // roughness 0 and 1, grazing, huge weights) without NaN or Inf. Sampling's chi-square:
 // test_chi_square.cpp.
-#include "torrance/albedo.h"
-#include "torrance/principled.h"
-#include "torrance/principled_v2.h"
+#include "torrance/bsdfs/albedo.h"
+#include "torrance/bsdfs/principled.h"
+#include "torrance/bsdfs/principled_v2.h"
 
 #include "bsdf_checks.h"
 #include "test_helpers.h"

@@ -1,8 +1,8 @@
 // PRINCIPLED_V2 (principled_v2.h): its tables against their integrals, its Fresnel terms against
 // their definitions, and white furnaces: with multiscatter GGX a white metal and a white
 // dielectric reflect all light (single-scattering GGX alone loses up to ~70 % at roughness 1).
-#include "torrance/albedo.h"
-#include "torrance/ggx_tables.h"
+#include "torrance/bsdfs/albedo.h"
+#include "torrance/bsdfs/ggx_tables.h"
 
 #include "test_helpers.h"
 

@@ -1,8 +1,8 @@
 // The render's ray counts, the ray log and its replay through raw Embree (ray_log.h, ray_replay.h).
 #include "scene_helpers.h"
 
-#include "torrance/first_bounce_splits.h"
-#include "torrance/ray_replay.h"
+#include "torrance/integrator/first_bounce_splits.h"
+#include "torrance/integrator/ray_replay.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Analytic scenes rendered end to end: the integrator's lights, units and estimators.
-#include "torrance/integrator.h"
-#include "torrance/sampling.h"
+#include "torrance/integrator/integrator.h"
+#include "torrance/util/sampling.h"
 
 #include <gtest/gtest.h>
 

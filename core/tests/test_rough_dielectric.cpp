@@ -1,9 +1,9 @@
 // The rough dielectric (glass) BSDF: chi-square of its sampling over both hemispheres, agreement of
 // eval / pdf / sample, reciprocity with the eta^2 factor, white-furnace energy against numerical
 // integration, total internal reflection, and 10^7 randomised evaluations without NaN or Inf.
-#include "torrance/rough_dielectric.h"
+#include "torrance/bsdfs/rough_dielectric.h"
 
-#include "torrance/principled.h"
+#include "torrance/bsdfs/principled.h"
 
 #include "dielectric_charts.h"
 #include "test_helpers.h"

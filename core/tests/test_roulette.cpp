@@ -2,9 +2,9 @@
 // closed form of its statistics; renders with it agree with the classic rule's within noise,
 // stop paths where their continuation carries little of the image and keep them where it
 // carries most of it; and they do not depend on the number of threads.
-#include "torrance/roulette.h"
+#include "torrance/integrator/roulette.h"
 
-#include "torrance/integrator.h"
+#include "torrance/integrator/integrator.h"
 
 #include "scene_helpers.h"
 

@@ -1,4 +1,4 @@
-#include "torrance/scene.h"
+#include "torrance/scene/scene.h"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
-// The Bump and Normal Map formulas (core/src/shader_bump.cpp) as Cycles 3.4 computes them: a
+// The Bump and Normal Map formulas (core/src/shader/shader_bump.cpp) as Cycles 3.4 computes them: a
 // flat height and zero differentials leave the normal, a slope tilts it against the gradient by
 // Distance (Invert: the other way), Strength mixes, degenerate inputs stay finite.
-#include "torrance/scene.h"
-#include "torrance/shader_bump.h"
-#include "torrance/shader_program.h"
+#include "torrance/scene/scene.h"
+#include "torrance/shader/shader_bump.h"
+#include "torrance/shader/shader_program.h"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 // (data/shader_color_cases.json, checked once against Blender 3.4's Cycles), colour-model round
 // trips, and finite results for awkward inputs.
 #include "json_table.h"
-#include "torrance/shader_color.h"
+#include "torrance/shader/shader_color.h"
 
 #include <gtest/gtest.h>
 

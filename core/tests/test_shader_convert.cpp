@@ -4,8 +4,8 @@
 // the add-on's Python twin is checked against the same table), the ops as a shader program runs
 // them (tables from the program's data), and no crash or NaN for degenerate tables and inputs.
 #include "json_table.h"
-#include "torrance/shader_convert.h"
-#include "torrance/shader_program.h"
+#include "torrance/shader/shader_convert.h"
+#include "torrance/shader/shader_program.h"
 
 #include <gtest/gtest.h>
 

@@ -2,9 +2,9 @@
 // for every op it covers (Voronoi of both Blender versions, Noise, Musgrave), over random inputs.
 #include <gtest/gtest.h>
 
-#include "../src/cpu_dispatch.h"
-#include "torrance/shader_program.h"
-#include "torrance/shader_voronoi.h"
+#include "../src/shader/cpu_dispatch.h"
+#include "torrance/shader/shader_program.h"
+#include "torrance/shader/shader_voronoi.h"
 
 #include <cstring>
 #include <random>

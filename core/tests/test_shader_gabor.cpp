@@ -1,9 +1,9 @@
-// Blender 4.3+'s Gabor Texture (core/src/shader_gabor.cpp) as Cycles computes it: the three
+// Blender 4.3+'s Gabor Texture (core/src/shader/shader_gabor.cpp) as Cycles computes it: the three
 // outputs are one phasor's imaginary part, angle and length; the node's inputs are clamped and
 // normalised as Cycles does; the noise is centred on 1/2. The Python twin's test
 // (core/python/tests/test_shader_gabor_ops.py) checks the op against gabor.py;
 // test_shader_gabor_agreement against Cycles 4.5 and 5.3.
-#include "torrance/shader_gabor.h"
+#include "torrance/shader/shader_gabor.h"
 
 #include <gtest/gtest.h>
 

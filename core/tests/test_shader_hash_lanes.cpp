@@ -1,8 +1,8 @@
 // shader_hash_lanes.h: the hashes over arrays (which Voronoi and Perlin noise use for speed)
 // give bit for bit what shader_hash.h's scalar hashes give, the float mapping included at the
 // values where a conversion rounds.
-#include "torrance/shader_hash.h"
-#include "torrance/shader_hash_lanes.h"
+#include "torrance/shader/shader_hash.h"
+#include "torrance/shader/shader_hash_lanes.h"
 
 #include <gtest/gtest.h>
 

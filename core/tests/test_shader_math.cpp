@@ -1,9 +1,9 @@
-// Blender's Math and Vector Math nodes (core/src/shader_math.cpp) as Cycles 3.4 computes them: the
+// Blender's Math and Vector Math nodes (core/src/shader/shader_math.cpp) as Cycles 3.4 computes them: the
 // hand-computed cases of core/tests/data/shader_math_cases.json (which the Python twin's test
 // checks too), the op names, the Clamp option, and over grids of awkward inputs no NaN or inf
 // except where Cycles itself gives them.
 #include "json_table.h"
-#include "torrance/shader_math.h"
+#include "torrance/shader/shader_math.h"
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,12 @@
-// Blender's Noise, White Noise, Musgrave and Wave textures (core/src/shader_noise.cpp) and Cycles'
+// Blender's Noise, White Noise, Musgrave and Wave textures (core/src/shader/shader_noise.cpp) and Cycles'
 // hash (shader_hash.h) as Cycles 3.4 computes them: the cases of
 // core/tests/data/shader_noise_cases.json (Cycles' own renders; the Python twin's test checks
 // them too), the hash's float mapping and -0's bits, Perlin noise's lattice zeros and range, the
 // ops in a shader program (modes, outputs), and finite values over awkward inputs.
 #include "json_table.h"
-#include "torrance/shader_hash.h"
-#include "torrance/shader_noise.h"
-#include "torrance/shader_program.h"
+#include "torrance/shader/shader_hash.h"
+#include "torrance/shader/shader_noise.h"
+#include "torrance/shader/shader_program.h"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
-// Blender's Checker, Gradient, Brick and Magic Texture nodes (core/src/shader_textures.cpp) as
+// Blender's Checker, Gradient, Brick and Magic Texture nodes (core/src/shader/shader_textures.cpp) as
 // Cycles 3.4 computes them: the cases of core/tests/data/shader_textures_cases.json, which Blender
 // 3.4.1's Cycles rendered (the Python twin's test checks them too), each also run as a shader
 // program (the ops' inputs, modes and flags), and the values' edges: the integer noise's wrap,
 // huge and degenerate inputs.
-#include "torrance/shader_program.h"
-#include "torrance/shader_textures.h"
+#include "torrance/shader/shader_program.h"
+#include "torrance/shader/shader_textures.h"
 
 #include "json_table.h"
 

@@ -1,12 +1,12 @@
-// Blender's Voronoi Texture (core/src/shader_voronoi.cpp) as Cycles 3.4 computes it: the cases of
+// Blender's Voronoi Texture (core/src/shader/shader_voronoi.cpp) as Cycles 3.4 computes it: the cases of
 // core/tests/data/shader_voronoi_cases.json, which Blender 3.4.1's Cycles rendered (the Python
 // twin's test checks them too), the op's modes and output groups in a shader program, and
 // properties over many points: F1's distance is continuous, its colour is the hash of the cell
 // its position lies in, F2 is never closer than F1.
 #include "json_table.h"
-#include "torrance/shader_hash.h"
-#include "torrance/shader_program.h"
-#include "torrance/shader_voronoi.h"
+#include "torrance/shader/shader_hash.h"
+#include "torrance/shader/shader_program.h"
+#include "torrance/shader/shader_voronoi.h"
 
 #include <gtest/gtest.h>
 

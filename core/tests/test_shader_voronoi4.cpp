@@ -1,9 +1,9 @@
-// Blender 4.x's Voronoi Texture (core/src/shader_voronoi4.cpp) as Cycles 4.x computes it: one
+// Blender 4.x's Voronoi Texture (core/src/shader/shader_voronoi4.cpp) as Cycles 4.x computes it: one
 // octave is Cycles 3.4's node (to a float's rounding: 4.x multiplies by 1 / Scale), Detail's
 // octaves are the sums shader_voronoi.h describes, Normalize keeps F1's distance within [0, 1].
 // The Python twin's test (core/python/tests/test_shader_voronoi4_ops.py) checks the op bit for
 // bit against voronoi4.py; test_shader_voronoi_agreement against Cycles 4.2.
-#include "torrance/shader_voronoi.h"
+#include "torrance/shader/shader_voronoi.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Image textures look up what Cycles' image texture node gives: sRGB images interpolated as
 // stored and decoded after, and a pixel footprint's average equal to the average of those lookups.
-#include "torrance/texture.h"
+#include "torrance/shader/texture.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // torrance_analysis OUTDIR: tables comparing the PAPER and PRINCIPLED models, as CSV files that
 // scripts/analysis plots (docs/analysis/). Every value comes from the models' own code.
-#include "torrance/albedo.h"
+#include "torrance/bsdfs/albedo.h"
 
 #include <cstdio>
 #include <string>

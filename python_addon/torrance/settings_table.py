@@ -5,8 +5,8 @@ properties (properties.py), the core's RenderSettings of a render and of the vie
 
 Each Setting names its property (saved in .blend files and set by scripts: never renamed), its
 kind, default and range, its label and tooltip, the panel that draws it, and the field of the
-core's RenderSettings it sets (core/include/torrance/render_settings_fields.h), if any. The
-core's fields that no Setting sets are in CORE_ONLY, with the reason; a module test
+core's RenderSettings it sets (core/include/torrance/integrator/render_settings_fields.h), if any.
+The core's fields that no Setting sets are in CORE_ONLY, with the reason; a module test
 (core/python/tests/test_settings_table.py) fails when the two lists disagree, a Blender test
 (blender_tests/test_settings_table.py) when the registered properties or the defaults do.
 
@@ -249,10 +249,11 @@ SETTINGS = (
             _CLAMPING, core="clamp_indirect", viewport=False, text="Indirect Light",
             options=dict(min=0.0, max=1e8)),
     # Shading
-    # PRINCIPLED here, PAPER in the core (RenderSettings in core/include/torrance/integrator.h),
-    # on purpose: Blender users expect F12 to look like Cycles' Principled BSDF on the same
-    # scene, while callers of the core check renders against closed forms of the brief's
-    # equations (a Lambert plane under a sun gives albedo * E / pi).
+    # PRINCIPLED here, PAPER in the core (RenderSettings in
+    # core/include/torrance/integrator/integrator.h), on purpose: Blender users expect F12 to look
+    # like Cycles' Principled BSDF on the same scene, while callers of the core check renders
+    # against closed forms of the brief's equations (a Lambert plane under a sun gives albedo * E /
+    # pi).
     Setting("brdf_model", 'ENUM', 'PRINCIPLED', "BRDF Model",
             "Reflection model used for all materials",
             _SHADING, core="brdf_model", computed=True, options=dict(items=BRDF_MODELS)),

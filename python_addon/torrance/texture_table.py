@@ -67,7 +67,7 @@ def image_pixels(image):
     return np.ascontiguousarray(pixels)
 
 
-# How the core's read_image (core/src/image_io.cpp) words an error of a file whose format
+# How the core's read_image (core/src/film/image_io.cpp) words an error of a file whose format
 # OpenImageIO recognised but whose pixel data it could not read.
 _DAMAGED_FILE = "failed reading '"
 

@@ -1,9 +1,9 @@
-"""Caustics by light tracing (core/src/caustics.h): with RenderSettings.caustics the caustic paths
-(a first surface that is not smooth, every later one smooth) are the light tracer's and every
-other path the path tracer's. Both halves together must converge to the plain path tracer's image:
-8x8 block means of seeds-averaged renders agree within their standard errors, where the light
-paths carry the caustic (a mirror's light on a wall, light through a glass slab whose normals point
-inwards, which exercises the adjoint's (eta_from / eta_to)^2)."""
+"""Caustics by light tracing (core/src/integrator/caustics.h): with RenderSettings.caustics the
+caustic paths (a first surface that is not smooth, every later one smooth) are the light tracer's
+and every other path the path tracer's. Both halves together must converge to the plain path
+tracer's image: 8x8 block means of seeds-averaged renders agree within their standard errors, where
+the light paths carry the caustic (a mirror's light on a wall, light through a glass slab whose
+normals point inwards, which exercises the adjoint's (eta_from / eta_to)^2)."""
 import numpy as np
 import pytest
 

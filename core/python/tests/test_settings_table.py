@@ -1,7 +1,8 @@
 """The add-on's settings table (python_addon/torrance/settings_table.py) against the core's
-RenderSettings (core/include/torrance/render_settings_fields.h, bound with RenderSettings.FIELDS):
-every core field is set by a setting of the table or listed, with its reason, in CORE_ONLY; every
-setting's field exists; the defaults and the kinds agree where the table passes the value on."""
+RenderSettings (core/include/torrance/integrator/render_settings_fields.h, bound with
+RenderSettings.FIELDS): every core field is set by a setting of the table or listed, with its
+reason, in CORE_ONLY; every setting's field exists; the defaults and the kinds agree where the
+table passes the value on."""
 import pytest
 
 import torrance_core as tc

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
 """The colour operations of Blender's shader nodes as Cycles 3.4 computes them: the reference
-twin of the core's core/include/torrance/shader_color.h (read its header for the node-by-node
+twin of the core's core/include/torrance/shader/shader_color.h (read its header for the node-by-node
 semantics and Cycles' edge cases, all kept here), used to fold constants.
 
 Colours, vectors and factors are Python floats (binary64) and sequences of three of them; the

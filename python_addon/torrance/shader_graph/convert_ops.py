@@ -1,8 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """Blender's converter nodes as Cycles 3.4 computes them: the Python twin of the core's
 shader_convert.cpp (the add-on's constant folder), checked against the same table of cases
-(core/tests/data/shader_convert_cases.json). See core/include/torrance/shader_convert.h for what
-each computes and the edge cases kept on purpose.
+(core/tests/data/shader_convert_cases.json). See core/include/torrance/shader/shader_convert.h for
+what each computes and the edge cases kept on purpose.
 
 Table lookups compute their index in float32, as the kernel does (where an entry begins is a
 matter of rounding); the rest is binary64. No bpy here: the node readers (convert.py) bake the

@@ -2,7 +2,7 @@
 """A world's or a light's node tree compiled into one shader program: the radiance of its
 Background and Emission closures (Color x Strength), through Mix and Add Shader nodes, as Cycles
 sums an emitting shader's closures. A world's program the core runs per direction
-(core/include/torrance/emission_shader.h; background=True): the hit's position is the
+(core/include/torrance/lights/emission_shader.h; background=True): the hit's position is the
 direction, so Generated and Object coordinates and an Environment Texture's unlinked Vector
 read it. A light's (background=False) the core runs at each point of the light a receiver
 sees, or export/lights.py folds it to a factor.

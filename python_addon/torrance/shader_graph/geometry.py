@@ -174,8 +174,8 @@ _LIGHT_PATH = {"Is Camera Ray": 0, "Is Shadow Ray": 1, "Is Diffuse Ray": 2, "Is 
 
 
 def _light_path(g, node, socket):
-    """Light Path: the path's state where the shader runs (core/include/torrance/path_state.h;
-    Is Volume Scatter Ray 0: no volumes)."""
+    """Light Path: the path's state where the shader runs
+    (core/include/torrance/integrator/path_state.h; Is Volume Scatter Ray 0: no volumes)."""
     if socket.identifier == "Is Volume Scatter Ray":
         return constant('float', 0.0)
     mode = _LIGHT_PATH.get(socket.identifier)
@@ -189,7 +189,7 @@ _FALLOFF = {"Quadratic": 0, "Linear": 1, "Constant": 2}
 
 def _light_falloff(g, node, socket):
     """Light Falloff: Strength times the ray length to the power the output says, smoothed
-    (core/include/torrance/shader_geometry.h)."""
+    (core/include/torrance/shader/shader_geometry.h)."""
     mode = _FALLOFF.get(socket.identifier)
     if mode is None:
         raise Unsupported(f"{node_label(node)}'s output '{socket.name}' is not supported")
@@ -199,7 +199,7 @@ def _light_falloff(g, node, socket):
 
 def _wireframe(g, node, socket):
     """Wireframe: 1 within Size / 2 of the hit triangle's edges, in metres or (Pixel Size) in
-    pixels (core/include/torrance/shader_geometry.h)."""
+    pixels (core/include/torrance/shader/shader_geometry.h)."""
     size = g.input(node.inputs["Size"], 'float')
     return g.builder.emit("Wireframe", 'float', [size], mode=1 if node.use_pixel_size else 0)
 

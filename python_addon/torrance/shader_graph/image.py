@@ -1,10 +1,10 @@
 # SPDX-License-Identifier: Apache-2.0
 """The Image Texture node as Cycles 3.4 renders it: its image at the UVs (the core's Image op,
 Extension Repeat, Extend, Clip, Mirror; Linear or Closest) after the node's projection, the
-ImageProjection op (opcode 60, core/include/torrance/shader_image.h): Flat reads the Vector's x
-and y; Sphere and Tube wrap the Vector's direction from the box's centre; Box reads the image on
-the three object-space cube faces the shading normal sees, blended by Blend across edges and
-corners (Cycles' svm_node_tex_image_box).
+ImageProjection op (opcode 60, core/include/torrance/shader/shader_image.h): Flat reads the
+Vector's x and y; Sphere and Tube wrap the Vector's direction from the box's centre; Box reads the
+image on the three object-space cube faces the shading normal sees, blended by Blend across edges
+and corners (Cycles' svm_node_tex_image_box).
 
 The Environment Texture node reads the same op's Equirectangular and Mirror Ball modes. The op's
 reference twins and fold: projections.py.

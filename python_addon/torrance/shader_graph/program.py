@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
 """A shader program under construction: values (constants or registers) and the instructions
-that compute them, in the core's format (core/include/torrance/shader_program.h).
+that compute them, in the core's format (core/include/torrance/shader/shader_program.h).
 
 Every instruction whose inputs are all constants and that reads nothing of the hit is folded:
 evaluated here with the reference twins of the core's ops (FOLDS: this module's core ops, and

@@ -1,8 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The ImageProjection op's reference twins (core/include/torrance/shader_image.h, opcode 60) and
-its fold: the Image Texture node's Sphere, Tube and Box projections and the Environment Texture
-node's Equirectangular and Mirror Ball ones, as Cycles 3.4 computes them. float32 results, atan2
-and acos in float64 rounded to float32. Pure numerics: no add-on imports, so the module tests
+"""The ImageProjection op's reference twins (core/include/torrance/shader/shader_image.h, opcode
+60) and its fold: the Image Texture node's Sphere, Tube and Box projections and the Environment
+Texture node's Equirectangular and Mirror Ball ones, as Cycles 3.4 computes them. float32 results,
+atan2 and acos in float64 rounded to float32. Pure numerics: no add-on imports, so the module tests
 load it alone."""
 
 import math

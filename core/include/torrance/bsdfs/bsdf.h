@@ -1,0 +1,102 @@
+// The BSDF interface of Torrance.
+//
+// Conventions shared by every BSDF in the core:
+//  * Directions are in the local shading frame (z = shading normal), unit length, and both point
+//    AWAY from the surface: wo towards the viewer, wi towards the light.
+//  * eval(wo, wi) returns f(wo, wi) * cos(theta_i): it INCLUDES the cosine foreshortening term,
+//    so NEE computes L += throughput * eval * Le / pdf_light. eval_lobes() is the same value
+//    split into its diffuse and glossy parts (eval = eval_lobes().total()).
+//  * pdf(wo, wi) is the solid-angle density with which sample() produces wi (continuous lobes
+//    only; a delta lobe has no density and is never returned by eval or pdf).
+//  * sample() returns weight = eval / pdf for continuous lobes, and the delta lobe's weight
+//    (its reflectance) for a delta direction.
+//  * Reflection only: eval and pdf are 0 unless wo.z > 0 and wi.z > 0 -- except glass (glass.h),
+//    whose frame's z is the outward normal and whose lobes also refract; MaterialBsdf combines
+//    both (material_bsdf.h).
+#pragma once
+
+#include "torrance/util/math.h"
+
+namespace torrance {
+
+// Which Cook-Torrance variant shades the scene.
+enum class BrdfModel {
+  Paper,         // exactly the brief's equations (GGX D, Schlick F, Schlick-GGX G, Lambert diffuse)
+  Principled,    // Blender 3.4's Principled BSDF v1 as Cycles renders it (Burley, exact Fresnel, Smith G)
+  PrincipledV2,  // Blender 4.x's Principled BSDF v2 as Cycles 4.x renders it (principled_v2.h)
+};
+
+// The metallic/roughness material, as Blender's Principled BSDF names its inputs.
+struct Material {
+  Vec3 base_color{0.8f, 0.8f, 0.8f};
+  float metallic = 0.0f;
+  float roughness = 0.5f;
+  float specular = 0.5f;  // dielectric F0 = 0.08 * specular (0.5 -> 0.04)
+  float specular_tint = 0.0f;  // PRINCIPLED only: tints dielectric reflection towards the base hue
+  Vec3 emission{0.0f};    // radiance emitted by both faces = emission colour * strength
+  // PRINCIPLED_V2 only (Blender 4.x's Principled inputs): the IOR input (with `specular` =
+  // Specular IOR Level * F0(ior) / 0.04, so that F0 = 0.08 specular holds for every model), the
+  // Specular Tint colour, and the node's distribution (Multiscatter GGX, or GGX when false).
+  // The IOR input, also glass's (of the inside, > 0): Blender 3.4's default 1.45 (4.x: 1.5).
+  float ior = 1.45f;
+  Vec3 specular_tint_color{1.0f};
+  bool multiscatter_ggx = true;
+  // Glass (glass.h): Principled Transmission (the share (1 - metallic) transmission of the
+  // surface is glass: reflection untinted, refraction tinted by base_color, refraction roughness
+  // 1 - (1 - roughness)(1 - transmission_roughness)), or Blender's Glass BSDF node (glass_node:
+  // all glass, both lobes tinted by base_color, one roughness). ior: of the inside, > 0.
+  float transmission = 0.0f;
+  float transmission_roughness = 0.0f;
+  bool glass_node = false;
+  bool glass_beckmann = false;  // the Glass node with the Beckmann distribution (else GGX)
+  bool transmits() const { return glass_node || (transmission > 0.0f && metallic < 1.0f); }
+  // Transparency (the integrator, as Cycles' Transparent BSDF): with probability 1 - alpha a ray
+  // goes straight through, tinted by transparent_color, and shadow rays are attenuated by
+  // (1 - alpha) transparent_color. Principled Alpha: alpha, white; Transparent BSDF: alpha 0, its Color.
+  float alpha = 1.0f;
+  Vec3 transparent_color{1.0f};
+  // The Principled BSDF's coat (principled_coat.h): v1's Clearcoat and Clearcoat Roughness
+  // (PRINCIPLED; its IOR is fixed), v2's Coat Weight, Roughness, IOR and Tint (PRINCIPLED_V2).
+  // A weight of 0 is no coat (and costs nothing).
+  float coat_weight = 0.0f;
+  float coat_roughness = 0.03f;
+  float coat_ior = 1.5f;
+  Vec3 coat_tint{1.0f};
+  // The Principled BSDF's sheen (principled_sheen.h): v1's Sheen and Sheen Tint (PRINCIPLED: the
+  // tint a mix factor in [0, 1] towards the base colour's hue), v2's Sheen Weight, Roughness and
+  // Tint colour (PRINCIPLED_V2). A weight of 0 is no sheen (and costs nothing).
+  float sheen_weight = 0.0f;
+  float sheen_roughness = 0.5f;
+  float sheen_tint = 0.5f;
+  Vec3 sheen_tint_color{1.0f};
+};
+
+// The normal a BSDF's diffuse lobes shade with, in its shading frame. The frame's z is the
+// shading normal after valid_shading_normal (shading_normal.h): Cycles 3.4 checks every closure's
+// normal so, Cycles 4.x (the PRINCIPLED_V2 model) only its specular, refracting, translucent
+// and subsurface ones, so that its diffuse lobes (Diffuse BSDF, Principled's diffuse) keep the
+// closure's normal as it came (`tilted`: it differs from z). A diffuse lobe then weighs a light
+// direction wi by max(n.wi, 0) whatever side of n the viewer is on, as Cycles' do.
+struct DiffuseNormal {
+  Vec3 n{0.0f, 0.0f, 1.0f};
+  bool tilted = false;
+  float cosine(const Vec3& wi) const { return tilted ? glm::dot(n, wi) : wi.z; }
+};
+
+// eval() split by lobe, for Blender's diffuse and glossy light passes.
+struct LobeEval {
+  Vec3 diffuse{0.0f};
+  Vec3 glossy{0.0f};
+  Vec3 total() const { return diffuse + glossy; }
+};
+
+struct BsdfSample {
+  Vec3 wi{0.0f};
+  Vec3 weight{0.0f};  // eval / pdf, or the delta lobe's reflectance
+  float pdf = 0.0f;   // 0 for a delta lobe
+  bool is_delta = false;
+  bool diffuse = false;  // drawn from a diffuse lobe (Cycles' LABEL_DIFFUSE; the Light Path node)
+  bool valid() const { return pdf > 0.0f || is_delta; }
+};
+
+}  // namespace torrance

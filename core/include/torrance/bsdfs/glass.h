@@ -1,0 +1,77 @@
+// Glass as Cycles 3.4 renders Blender's Glass BSDF node and the Principled BSDF's Transmission:
+// not one rough dielectric with a Fresnel term per microfacet (RoughDielectricBsdf, Walter et al.
+// 2007), but Cycles 3.4's pair of closures split by the Fresnel reflectance of the MACRO normal,
+// F = F_dielectric(|n.wo|, etap) (svm/closure.h, bsdf_microfacet.h):
+//
+//   reflection  weight F         * reflect_color,  GGX, alpha_r:  D G / (4 |cos_o|)  (no Fresnel inside)
+//   refraction  weight max(1e-4, 1 - F) * refract_color,  GGX, alpha_t, Walter's BTDF without Fresnel:
+//       f |cos_i| = G1(wo) G1(wi) D(h) etap^2 |wo.h| |wi.h| / (|cos_o| (wo.h + etap wi.h)^2)
+//
+// with separable Smith G, alpha = roughness^2, etap = IOR of wi's side / IOR of wo's side. The
+// Principled BSDF uses reflect_color 1 and refract_color = base colour, the refraction roughness
+// 1 - (1 - r)(1 - transmission roughness) (Cycles 3.4 with GGX); the Glass node tints both lobes
+// and uses one roughness. The energy is therefore not exactly conserved for rough glass (a
+// refracting microfacet whose own Fresnel would reflect still refracts; one at total internal
+// reflection loses its sample), exactly as in Cycles 3.4; smooth glass conserves it.
+//
+// Frame and sides as RoughDielectricBsdf: z is the surface's OUTWARD normal, a direction with
+// z > 0 is outside (IOR 1), z < 0 inside (IOR `ior`); reflection keeps wi on wo's side.
+// Sampling: a lobe with probability proportional to its weight's luminance, then a visible normal
+// of that lobe's GGX seen from wo; a refraction through a microfacet at total internal reflection
+// gives no sample (Cycles too). Below ggx::kDeltaAlpha a lobe is a delta (mirror / straight
+// refraction); with |ior - 1| < 1e-4 the interface is invisible (straight through, weight refract_color).
+// eval() includes |cos_i| (see bsdf.h); delta lobes have no eval or pdf.
+//
+// Beckmann (the Glass BSDF node's default distribution in Blender 3.4): the same two closures
+// with Cycles 3.4's Beckmann D = exp(-tan^2 / alpha^2) / (pi alpha^2 cos^4) and its rational
+// approximation of Smith's G1; its microfacet normals are sampled in proportion to D(h) cos(h)
+// (not visible normals: a different estimator of the same BSDF).
+//
+// refraction_only: the Refraction BSDF node's one closure (refraction_bsdf.h): no reflection
+// lobe and no Fresnel, the refraction lobe weighted by refract_color alone.
+#pragma once
+
+#include "torrance/bsdfs/bsdf.h"
+#include "torrance/bsdfs/microfacet.h"
+
+namespace torrance {
+
+class GlassBsdf {
+ public:
+  GlassBsdf(float reflect_roughness, float refract_roughness, float ior, const Vec3& reflect_color,
+            const Vec3& refract_color, bool beckmann = false, bool refraction_only = false);
+
+  Vec3 eval(const Vec3& wo, const Vec3& wi) const;
+  float pdf(const Vec3& wo, const Vec3& wi) const;
+  BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const;
+
+  // The macro Fresnel reflectance for wo (the weight of the reflection closure).
+  float fresnel(const Vec3& wo) const;
+  bool has_delta() const { return reflect_delta_ || refract_delta_; }
+
+ private:
+  struct Weights {
+    Vec3 reflect, refract;
+    float p_reflect;  // the probability of sampling the reflection lobe
+    float etap;       // IOR of the far side / IOR of wo's side
+  };
+  Weights weights(const Vec3& wo) const;
+  // f |cos_i| and pdf of one lobe, for wo and wi turned to wo.z > 0.
+  struct Lobe {
+    float f_cos = 0.0f, pdf = 0.0f;
+  };
+  Lobe reflection(const Vec3& wo, const Vec3& wi) const;
+  Lobe refraction(const Vec3& wo, const Vec3& wi, float etap) const;
+  // The microfacet distribution (GGX or Beckmann) for wo.z > 0: D, Smith G1, a sampled normal
+  // and its density.
+  float D(const Vec3& h, float alpha) const;
+  float G1(float cos_theta, float alpha) const;
+  Vec3 sample_normal(const Vec3& wo, float alpha, const Vec2& u) const;
+  float normal_pdf(const Vec3& wo, const Vec3& h, float alpha) const;
+
+  Vec3 reflect_color_, refract_color_;
+  float alpha_r_, alpha_t_, eta_;
+  bool reflect_delta_, refract_delta_, invisible_, beckmann_, refraction_only_;
+};
+
+}  // namespace torrance

@@ -1,0 +1,214 @@
+// The BSDF of a material under the selected model: one value type the integrator can hold per
+// material, forwarding eval / pdf / sample to the model's own class (see bsdf.h), plus the glass
+// of transmissive materials (glass.h) as Cycles 3.4 combines them: a Principled BSDF with
+// Transmission T and Metallic m is its opaque lobes (weights in principled.cpp) plus T (1 - m)
+// glass; the Glass BSDF node is glass only. (PAPER scales its opaque lobes by 1 - T (1 - m).)
+// PRINCIPLED_V2's Transmission Weight T is Cycles 4.x's glass closure (principled_glass_v2.h),
+// weight T (1 - m), its dielectric and diffuse layers keeping (1 - m)(1 - T) (principled_v2.h);
+// the coat and the sheen above darken and tint it as the other layers (glass_layering).
+//
+// Directions are in the shading frame turned towards the viewer (wo.z > 0), as for the opaque
+// models; `backfacing` says the viewer is behind the GEOMETRIC surface (inside the glass), which
+// only the glass needs: it is evaluated in its outward frame (z negated when backfacing).
+// Transmitted directions have wi.z < 0; their light goes to the glossy part of LobeEval.
+#pragma once
+
+#include "torrance/bsdfs/cook_torrance.h"
+#include "torrance/bsdfs/glass.h"
+#include "torrance/bsdfs/principled.h"
+#include "torrance/bsdfs/principled_glass_v2.h"
+#include "torrance/bsdfs/principled_v2.h"
+
+#include <optional>
+#include <variant>
+
+namespace torrance {
+
+class MaterialBsdf {
+ public:
+  MaterialBsdf(const Material& m, BrdfModel model) : bsdf_(make(m, model)) {
+    if (!m.transmits()) return;
+    const float metallic = clamp01(m.metallic), roughness = clamp01(m.roughness);
+    if (m.glass_node) {
+      glass_.emplace(GlassBsdf(roughness, roughness, m.ior, m.base_color, m.base_color, m.glass_beckmann));
+      glass_weight_ = glass_probability_ = 1.0f;
+      opaque_ = false;
+      return;
+    }
+    glass_weight_ = glass_probability_ = clamp01(m.transmission) * (1.0f - metallic);
+    if (model == BrdfModel::PrincipledV2) {
+      glass_.emplace(PrincipledGlassV2(roughness, m.ior, m.specular_tint_color, m.base_color, m.multiscatter_ggx));
+      // A coat or sheen over all-glass keeps its lobe (sampled at least 1 time in 10).
+      if (m.coat_weight > 0.0f || m.sheen_weight > 0.0f) glass_probability_ = std::min(glass_probability_, 0.9f);
+      opaque_ = glass_probability_ < 1.0f;
+      return;
+    }
+    const float refract_roughness = 1.0f - (1.0f - roughness) * (1.0f - clamp01(m.transmission_roughness));
+    glass_.emplace(GlassBsdf(roughness, refract_roughness, m.ior, Vec3(1.0f), m.base_color));
+    if (model == BrdfModel::Paper) opaque_scale_ = 1.0f - glass_weight_;
+    opaque_ = glass_probability_ < 1.0f;
+  }
+
+  bool transmits() const { return glass_.has_value(); }
+  // The GGX alpha of the model's specular lobe (0 with glass: not asked for).
+  float specular_alpha() const {
+    return glass_ ? 0.0f : std::visit([](const auto& b) { return b.alpha(); }, bsdf_);
+  }
+  // Whether the model's specular lobe is a delta (a mirror, with or without other lobes).
+  bool has_delta() const {
+    return !glass_ && std::visit([](const auto& b) { return b.has_delta(); }, bsdf_);
+  }
+  // Whether the material is a perfect mirror and nothing else: a delta reflection, no diffuse
+  // lobe, no glass (mirror_images.h).
+  bool pure_mirror() const {
+    if (glass_) return false;
+    return std::visit(
+        [](const auto& b) {
+          return b.has_delta() && !lobe_mixture::coated(b) && !lobe_mixture::sheened(b) && b.specular_probability(Vec3(0.0f, 0.0f, 1.0f)) >= 1.0f &&
+                 b.specular_probability(Vec3(0.99498744f, 0.0f, 0.1f)) >= 1.0f;
+        },
+        bsdf_);
+  }
+
+  // What eval, pdf and sample need of wo alone, prepared once per shading point: the model's
+  // View (its at(wo), lobe_mixture.h) and `backfacing` (the glass's side).
+  struct View {
+    std::variant<CookTorranceBsdf::View, PrincipledBsdf::View, PrincipledV2Bsdf::View> lobes;
+    Vec3 wo{0.0f, 0.0f, 1.0f};
+    bool backfacing = false;
+    // The opaque lobes' choice of their specular lobe for this wo (1 without opaque lobes).
+    float p_spec() const { return std::visit([](const auto& v) { return v.p_spec; }, lobes); }
+  };
+  // lobe_choice = false: without the lobe choice p_spec (1), for eval alone. diffuse: the diffuse
+  // lobe's normal (bsdf.h).
+  View at(const Vec3& wo, bool backfacing = false, bool lobe_choice = true, const DiffuseNormal& diffuse = {}) const {
+    const bool choice = lobe_choice && opaque_;
+    View v{std::visit([&](const auto& b) -> decltype(View::lobes) { return choice ? b.at(wo) : b.geometry(wo); },
+                      bsdf_),
+           wo, backfacing};
+    if (diffuse.tilted) std::visit([&](auto& lv) { lv.diffuse_normal = diffuse; }, v.lobes);
+    return v;
+  }
+  View at(const Vec3& wo, bool backfacing, const DiffuseNormal& diffuse) const {
+    return at(wo, backfacing, true, diffuse);
+  }
+
+  // kGlass = false: the caller knows no material of the scene transmits (the integrator's
+  // glass-free path), so the glass is not even checked for.
+  template <bool kGlass = true>
+  LobeEval eval_lobes(const View& v, const Vec3& wi) const {
+    LobeEval f;
+    if (!kGlass || opaque_) f = visit(v, [&](const auto& b, const auto& lv) { return b.eval_lobes(lv, wi); });
+    if (!kGlass || !glass_) return f;
+    f.diffuse *= opaque_scale_;
+    f.glossy = f.glossy * opaque_scale_ +
+               glass_weight_ * glass_layering(v) * glass([&](const auto& g) {
+                 return g.eval(outward(v.wo, v.backfacing), outward(wi, v.backfacing));
+               });
+    return f;
+  }
+  template <bool kGlass = true>
+  float pdf(const View& v, const Vec3& wi) const {
+    if (!kGlass) return visit(v, [&](const auto& b, const auto& lv) { return b.pdf(lv, wi); });
+    const float opaque =
+        opaque_ ? visit(v, [&](const auto& b, const auto& lv) { return b.pdf(lv, wi); }) * (1.0f - glass_probability_)
+                : 0.0f;
+    if (!glass_) return opaque;
+    return opaque + glass_probability_ * glass([&](const auto& g) {
+             return g.pdf(outward(v.wo, v.backfacing), outward(wi, v.backfacing));
+           });
+  }
+  template <bool kGlass = true>
+  BsdfSample sample(const View& v, float u_lobe, const Vec2& u) const {
+    if (!kGlass || !glass_) return visit(v, [&](const auto& b, const auto& lv) { return b.sample(lv, u_lobe, u); });
+    BsdfSample s;
+    const float p = glass_probability_;
+    if (u_lobe < p) {
+      s = glass([&](const auto& g) {
+        return g.sample(outward(v.wo, v.backfacing), std::min(u_lobe / p, 0.99999994f), u);
+      });
+      s.wi = outward(s.wi, v.backfacing);
+      if (s.is_delta) s.weight *= glass_weight_ * glass_layering(v) / p;
+    } else {
+      s = visit(v, [&](const auto& b, const auto& lv) {
+        return b.sample(lv, std::min((u_lobe - p) / (1.0f - p), 0.99999994f), u);
+      });
+      if (s.is_delta) s.weight *= opaque_scale_ / (1.0f - p);
+    }
+    if (!s.valid() || s.is_delta) return s;
+    // One-sample MIS over both parts: the density of either producing wi.
+    s.pdf = pdf(v, s.wi);
+    if (!(s.pdf > 0.0f)) return BsdfSample{};
+    s.weight = eval_lobes(v, s.wi).total() / s.pdf;
+    return s;
+  }
+
+  // The same, preparing wo for this one query (p_spec: the lobe choice, if known).
+  template <bool kGlass = true>
+  Vec3 eval(const Vec3& wo, const Vec3& wi, bool backfacing = false) const {
+    return eval_lobes<kGlass>(wo, wi, backfacing).total();
+  }
+  template <bool kGlass = true>
+  LobeEval eval_lobes(const Vec3& wo, const Vec3& wi, bool backfacing = false) const {
+    return eval_lobes<kGlass>(at(wo, backfacing, false), wi);
+  }
+  float specular_probability(const Vec3& wo) const { return at(wo).p_spec(); }
+  template <bool kGlass = true>
+  float pdf(const Vec3& wo, const Vec3& wi, bool backfacing = false) const {
+    return pdf<kGlass>(at(wo, backfacing), wi);
+  }
+  template <bool kGlass = true>
+  float pdf(const Vec3& wo, const Vec3& wi, bool backfacing, float p_spec) const {
+    return pdf<kGlass>(with_choice(at(wo, backfacing, false), p_spec), wi);
+  }
+  template <bool kGlass = true>
+  BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing = false) const {
+    return sample<kGlass>(at(wo, backfacing), u_lobe, u);
+  }
+  template <bool kGlass = true>
+  BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing, float p_spec) const {
+    return sample<kGlass>(with_choice(at(wo, backfacing, false), p_spec), u_lobe, u);
+  }
+
+ private:
+  // Calls f(model, its view) for the model of this material and v (prepared by at()).
+  template <typename F>
+  decltype(auto) visit(const View& v, F&& f) const {
+    if (const auto* p = std::get_if<PrincipledBsdf::View>(&v.lobes)) return f(*std::get_if<PrincipledBsdf>(&bsdf_), *p);
+    if (const auto* c = std::get_if<CookTorranceBsdf::View>(&v.lobes))
+      return f(*std::get_if<CookTorranceBsdf>(&bsdf_), *c);
+    return f(*std::get_if<PrincipledV2Bsdf>(&bsdf_), *std::get_if<PrincipledV2Bsdf::View>(&v.lobes));
+  }
+  static View with_choice(View v, float p_spec) {
+    std::visit([&](auto& lv) { lv.p_spec = p_spec; }, v.lobes);
+    return v;
+  }
+
+  using Variant = std::variant<CookTorranceBsdf, PrincipledBsdf, PrincipledV2Bsdf>;
+  static Variant make(const Material& m, BrdfModel model) {
+    if (model == BrdfModel::Principled) return PrincipledBsdf(m);
+    if (model == BrdfModel::PrincipledV2) return PrincipledV2Bsdf(m);
+    return CookTorranceBsdf(m);
+  }
+  static Vec3 outward(const Vec3& w, bool backfacing) { return backfacing ? Vec3(w.x, w.y, -w.z) : w; }
+  // What the glass keeps under PRINCIPLED_V2's coat and sheen seen from v's wo (Cycles layers
+  // them over its transmission closure as over the other layers); 1 for the other models.
+  static Vec3 glass_layering(const View& v) {
+    const auto* lv = std::get_if<PrincipledV2Bsdf::View>(&v.lobes);
+    return lv ? lv->terms.coat.base_weight * SheenV2::keep(lv->terms.sheen) : Vec3(1.0f);
+  }
+  // Calls f(the glass) (PRINCIPLED_V2's or Cycles 3.4's); only with glass_.
+  template <typename F>
+  decltype(auto) glass(F&& f) const {
+    if (const auto* v2 = std::get_if<PrincipledGlassV2>(&*glass_)) return f(*v2);
+    return f(*std::get_if<GlassBsdf>(&*glass_));
+  }
+
+  Variant bsdf_;
+  bool opaque_ = true;         // the model's lobes reflect something
+  float opaque_scale_ = 1.0f;  // PAPER with transmission: 1 - glass weight
+  std::optional<std::variant<GlassBsdf, PrincipledGlassV2>> glass_;
+  float glass_weight_ = 0.0f, glass_probability_ = 0.0f;
+};
+
+}  // namespace torrance

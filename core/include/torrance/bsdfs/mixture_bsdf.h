@@ -1,0 +1,121 @@
+// A weighted sum of closures (Mix Shader / Add Shader), as Cycles combines a shader's closures:
+//
+//   eval(wo, wi) = sum_k w_k eval_k(wo, wi)
+//   pdf(wo, wi)  = sum_k P_k pdf_k(wo, wi),   P_k = s_k / sum_j s_j,
+//   s_k = w_k * (the closure's estimated albedo + 0.01)   (Cycles: the closure weight's average)
+//   sample: choose closure k with probability P_k (by u_lobe, rescaled for the closure's own
+//           lobe choice), sample it, then evaluate every closure at wi, so that weight =
+//           eval / pdf of the whole mixture (one-sample MIS over closures). A closure's delta
+//           lobe is returned as is, with weight w_k * its weight / P_k.
+//
+// Components are MaterialBsdf (whatever the render's model is: it composes any future variant),
+// DiffuseBsdf, GlossyBsdf and the other nodes' closures (ClosureType); at most
+// kMaxMixtureComponents, held by value (no allocation).
+// See bsdf.h for the conventions.
+#pragma once
+
+#include "torrance/bsdfs/diffuse_bsdf.h"
+#include "torrance/bsdfs/glossy_bsdf.h"
+#include "torrance/bsdfs/material_bsdf.h"
+#include "torrance/bsdfs/mixture.h"
+#include "torrance/bsdfs/refraction_bsdf.h"
+#include "torrance/shader/shader_program.h"
+#include "torrance/bsdfs/sheen_bsdf.h"
+#include "torrance/bsdfs/toon_bsdf.h"
+#include "torrance/bsdfs/translucent_bsdf.h"
+#include "torrance/bsdfs/velvet_bsdf.h"
+
+#include <array>
+#include <variant>
+
+namespace torrance {
+
+struct ClosureList;
+
+class Scene;
+
+class MixtureBsdf {
+ public:
+  using Component = std::variant<std::monostate, MaterialBsdf, DiffuseBsdf, GlossyBsdf, VelvetBsdf, SheenBsdf,
+                                 TranslucentBsdf, RefractionBsdf, ToonBsdf>;
+
+  MixtureBsdf() = default;
+  explicit MixtureBsdf(const MaterialBsdf& single) { add(single, 1.0f, 1.0f); }
+
+  // Adds a closure with weight w (> 0) sampled in proportion to w * (sampling_albedo + 0.01).
+  // Beyond kMaxMixtureComponents closures, std::length_error.
+  void add(const Component& c, float w, float sampling_albedo);
+  int size() const { return count_; }
+
+  // The interface of MaterialBsdf (material_bsdf.h): `backfacing` goes to glass components;
+  // kGlass is accepted for the integrator's sake and ignored (a mixture always checks for glass).
+  template <bool kGlass = true>
+  LobeEval eval_lobes(const Vec3& wo, const Vec3& wi, bool backfacing = false) const {
+    return eval_mixture(wo, wi, backfacing);
+  }
+  template <bool kGlass = true>
+  Vec3 eval(const Vec3& wo, const Vec3& wi, bool backfacing = false) const {
+    return eval_mixture(wo, wi, backfacing).total();
+  }
+  template <bool kGlass = true>
+  float pdf(const Vec3& wo, const Vec3& wi, bool backfacing = false) const {
+    return pdf_mixture(wo, wi, backfacing);
+  }
+  template <bool kGlass = true>
+  BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing = false) const {
+    return sample_mixture(wo, u_lobe, u, backfacing);
+  }
+  bool transmits() const;  // some closure is glass, Translucent or Refraction
+
+  // The View interface of MaterialBsdf: a mixture prepares nothing (each closure its own wo);
+  // `diffuse`: its diffuse lobes' normal (bsdf.h).
+  struct View {
+    Vec3 wo{0.0f, 0.0f, 1.0f};
+    bool backfacing = false;
+    DiffuseNormal diffuse;
+  };
+  View at(const Vec3& wo, bool backfacing = false, const DiffuseNormal& diffuse = {}) const {
+    return View{wo, backfacing, diffuse};
+  }
+  template <bool kGlass = true>
+  LobeEval eval_lobes(const View& v, const Vec3& wi) const {
+    return eval_mixture(v.wo, wi, v.backfacing, v.diffuse);
+  }
+  template <bool kGlass = true>
+  float pdf(const View& v, const Vec3& wi) const {
+    return pdf_mixture(v.wo, wi, v.backfacing, v.diffuse);
+  }
+  template <bool kGlass = true>
+  BsdfSample sample(const View& v, float u_lobe, const Vec2& u) const {
+    return sample_mixture(v.wo, u_lobe, u, v.backfacing, v.diffuse);
+  }
+
+ private:
+  LobeEval eval_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse = {}) const;
+  float pdf_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse = {}) const;
+  BsdfSample sample_mixture(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing,
+                            const DiffuseNormal& diffuse = {}) const;
+
+  std::array<Component, kMaxMixtureComponents> components_{};
+  std::array<float, kMaxMixtureComponents> weights_{};
+  std::array<float, kMaxMixtureComponents> probabilities_{};  // P_k, normalised after each add
+  std::array<float, kMaxMixtureComponents> sampling_{};       // s_k
+  int count_ = 0;
+};
+
+// What the integrator shades with at a hit on material `id`: its BSDF (a single MaterialBsdf for
+// an ordinary material, a mixture's closures otherwise) and, in `resolved`, the material's
+// emission and an albedo (base_color, metallic 0 for mixtures) at the hit `globals` describe
+// (textures and shader programs read when `textured`). `prebuilt` is the material's BSDF when
+// untextured. program_regs (if given): where the material's program (a mixture's: its factors'
+// and Normal's) leaves its registers, for Scene::normal_mapped at this hit. closures (if given):
+// a mixture's closures with their weights, for the denoising features (denoising_features.h).
+MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals& globals, bool textured,
+                           BrdfModel model, const MaterialBsdf& prebuilt, Material& resolved,
+                           glm::vec4* program_regs = nullptr, ClosureList* closures = nullptr);
+
+// The estimated albedo a mixture samples a Principled closure by: luminance of the base colour
+// plus its dielectric F0.
+float principled_sampling_albedo(const Material& m);
+
+}  // namespace torrance

@@ -1,0 +1,76 @@
+// Principled BSDF, "PRINCIPLED" model: Blender 3.4's Principled BSDF (v1) as Cycles 3.4 renders it
+// with the GGX distribution (no anisotropy), so that Torrance and Cycles differ by noise
+// only. Transmission only scales these lobes down (see the constructor); its
+// glass is GlassBsdf, which MaterialBsdf adds.
+//
+//   diffuse  Burley's lobe weighted by (1 - metallic), using the unsquared roughness for
+//            retro-reflection; it is NOT scaled by (1 - F): the lobes add (and can exceed 1).
+//   specular GGX, alpha = roughness^2, separable exact Smith G = G1(wo) G1(wi) with
+//            G1 = 2 / (1 + sqrt(1 + alpha^2 tan^2)),
+//            F = cspec0 (1 - F_H) + F_H, F_H = (F_dielectric(wi.h, eta) - F0) / (1 - F0),
+//            F0 = 0.08 specular, eta from F0, and
+//            cspec0 = 0.08 specular mix(1, tint colour, specular_tint) (1 - metallic) + base metallic.
+//   mirror   below ggx::kDeltaAlpha the specular lobe is a delta with reflectance F(n.wo).
+//   clearcoat  Cycles 3.4's clearcoat lobe, added on top (principled_coat.h: ClearcoatV1), in the
+//            glossy part of LobeEval.
+//   sheen    Cycles 3.4's principled sheen (principled_sheen.h: SheenV1), added to the diffuse
+//            lobe and sampled with it by the cosine.
+// Sampling picks a lobe by estimated reflectance, then visible GGX normals or the cosine. With a
+// clearcoat all three lobes are chosen with Cycles' closure odds (w F(wo.z), the mean diffuse
+// colour, the mean specular Fresnel): the clearcoat's stated density is not the one it draws
+// from, as in Cycles, and the bias this gives every lobe depends on the odds.
+// See bsdf.h for the conventions (eval includes the cosine).
+#pragma once
+
+#include "torrance/bsdfs/bsdf.h"
+#include "torrance/bsdfs/lobe_mixture.h"
+#include "torrance/bsdfs/microfacet.h"
+#include "torrance/bsdfs/principled_coat.h"
+#include "torrance/bsdfs/principled_sheen.h"
+
+namespace torrance {
+
+// Unpolarised Fresnel reflectance of a dielectric interface with relative IOR eta (> 0).
+float fresnel_dielectric(float cos_i, float eta);
+
+class PrincipledBsdf : public lobe_mixture::Queries<PrincipledBsdf> {
+ public:
+  explicit PrincipledBsdf(const Material& m);
+
+  // What eval, pdf and sample need of wo alone (lobe_mixture.h), prepared once per shading point.
+  struct View : lobe_mixture::View {
+    using Model = PrincipledBsdf;
+    float burley_o = 0.0f;  // the Burley diffuse's Schlick weight (1 - wo.z)^5
+  };
+  View at(const Vec3& wo) const;        // with the lobe choice p_spec
+  View geometry(const Vec3& wo) const;  // without it (p_spec = 1): enough for eval
+
+  LobeEval eval_lobes(const View& v, const Vec3& wi) const;
+  using lobe_mixture::Queries<PrincipledBsdf>::eval_lobes;  // pdf, sample, eval: lobe_mixture::Queries
+
+  float alpha() const { return alpha_; }
+  bool has_delta() const { return alpha_ < ggx::kDeltaAlpha; }
+  Vec3 mirror_reflectance(const Vec3& wo) const { return fresnel(wo.z); }
+  float specular_probability(const Vec3& wo) const;
+  Vec3 fresnel(float cos_ih) const;
+
+  // The clearcoat lobe (lobe_mixture.h).
+  bool has_coat() const { return coat_.active(); }
+  float coat_pdf(const lobe_mixture::View& v, const Vec3& wi) const { return coat_.pdf(v.wo, wi); }
+  Vec3 coat_sample(const lobe_mixture::View& v, const Vec2& u) const { return coat_.sample(v.wo, u); }
+  bool coat_is_delta() const { return coat_.is_delta(); }
+  Vec3 coat_mirror_reflectance(const lobe_mixture::View& v) const { return Vec3(coat_.mirror_reflectance(v.wo.z)); }
+  const ClearcoatV1& coat() const { return coat_; }
+  const SheenV1& sheen() const { return sheen_; }
+
+ private:
+  Vec3 diffuse_color_;  // (1 - metallic) (1 - transmission) * base colour
+  float diffuse_luminance_;  // luminance(diffuse_color_), for the lobe choice
+  float specular_weight_;  // 1 - transmission (1 - metallic): the glass takes the rest
+  Vec3 cspec0_;
+  float roughness_, alpha_, eta_, f0_;
+  ClearcoatV1 coat_;
+  SheenV1 sheen_;
+};
+
+}  // namespace torrance

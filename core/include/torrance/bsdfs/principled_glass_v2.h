@@ -1,0 +1,71 @@
+// The transmission of Principled v2 (Blender 4.x/5.x's Transmission Weight) as Cycles 4.2-5.x
+// renders it (svm/closure.h's transmission component, closure/bsdf_microfacet.h's GGX glass): one
+// rough dielectric closure, reflection and refraction with a Fresnel term per microfacet, weighted
+// by Transmission Weight (1 - metallic) (MaterialBsdf; the dielectric and diffuse layers keep
+// (1 - metallic)(1 - transmission), principled_v2.h).
+//
+// With alpha = roughness^2, etap = IOR of the far side / IOR of the viewer's side (ior, or 1 / ior
+// seen from inside) and c = wo.h of the microfacet normal h:
+//   Fresnel     F(c) = mix(f0, 1, s(c)), s(c) = clamp((F_dielectric(c, etap) - F0(etap)) /
+//               (1 - F0(etap)), 0, 1), f0 = clamp(F0(ior) * Specular Tint, 0, 1): Specular Tint
+//               tints the reflection at normal incidence; Specular IOR Level does NOT act on this
+//               closure (Cycles uses the IOR input as it is). At total internal reflection F = 1.
+//   reflection  R = F(c),                     f |cos_i| = R D G2 / (4 cos_o)
+//   refraction  T = (1 - F(c)) sqrt(base),    f |cos_i| = T D G2 etap^2 |wo.h| |wi.h| /
+//                                                         (cos_o (wo.h + etap wi.h)^2)
+//               (the base colour, clamped to [0, 1], tints each crossing by its square root:
+//               a ray through a closed object is tinted by the base colour once in and out)
+// with the height-correlated G2 = 1 / (1 + L(wo) + L(wi)); refraction as Walter et al. 2007 with
+// etap^2 in the numerator (no 1 / etap^2 radiance compression), as rough_dielectric.h. A pair
+// whose generalised half vector does not face wo, or that wi does not cross, is 0.
+// Multiscatter GGX (the node's default): the whole closure is scaled by 1 + F_ms (1 - E) / E
+// with E = E(r, mu_o, etap), E_avg from ggx_glass_tables.h and F_ss = sqrt(base) (Cycles: "the
+// transmissive tint makes up most of the colour"; the reflective F_ss when that is black).
+// Sampling (Cycles): a visible normal h, then reflection with probability
+// P_r = mean(R) / mean(R + T) (RGB means), else refraction; pdf = P_r or (1 - P_r) times the
+// visible-normal density of the direction. Below ggx_tables::kDeltaAlpha both are deltas (mirror
+// or straight refraction, weight R / P_r or T / (1 - P_r)); with |ior - 1| < 1e-4 the interface
+// is invisible (straight through, weight sqrt(base)).
+//
+// Frame as GlassBsdf (glass.h), so that MaterialBsdf holds either: z is the surface's OUTWARD
+// normal, wo.z < 0 is a viewer inside. eval() includes |cos_i| (bsdf.h). Thin Wall (Blender 5.x)
+// and Thin Film are not rendered here.
+#pragma once
+
+#include "torrance/bsdfs/bsdf.h"
+
+namespace torrance {
+
+class PrincipledGlassV2 {
+ public:
+  PrincipledGlassV2(float roughness, float ior, const Vec3& specular_tint, const Vec3& base_color,
+                    bool multiscatter);
+
+  Vec3 eval(const Vec3& wo, const Vec3& wi) const;
+  float pdf(const Vec3& wo, const Vec3& wi) const;
+  BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const;
+  bool has_delta() const { return smooth_; }
+
+  // Reflectance R and transmittance T of a microfacet at cos c (viewer's side with etap).
+  struct Split {
+    Vec3 reflect{0.0f}, transmit{0.0f};
+    float p_reflect = 1.0f;  // mean(R) / mean(R + T)
+  };
+  Split split(float c, float etap) const;
+  // The multiscatter scale 1 + F_ms (1 - E) / E for a viewer at cos_o with etap (1 without).
+  Vec3 energy_scale(float cos_o, float etap) const;
+
+ private:
+  struct Lobe {
+    Vec3 f_cos{0.0f};
+    float pdf = 0.0f;
+  };
+  // wo.z > 0 (turned to the viewer's side), etap of that side.
+  Lobe evaluate(const Vec3& wo, const Vec3& wi, float etap) const;
+
+  Vec3 f0_, tint_t_;
+  float alpha_, roughness_, ior_;
+  bool smooth_, invisible_, multiscatter_;
+};
+
+}  // namespace torrance

@@ -1,0 +1,114 @@
+// Principled BSDF v2, "PRINCIPLED_V2": Blender 4.x's Principled BSDF as Cycles 4.x renders it, for
+// the inputs Torrance supports (base colour, metallic, roughness, IOR, Specular IOR Level through
+// Material::specular, Specular Tint as a colour, emission, coat, sheen; no subsurface, thin film
+// or anisotropy; transmission below). Five layers, from the top, with alpha = roughness^2 (GGX):
+//
+//   sheen       principled_sheen.h's SheenV2 (Cycles' microfiber sheen); the four layers under it
+//               are scaled by its keep(wo) = clamp(1 - max_rgb(albedo), 0, 1), as Cycles 4.x's.
+//   coat        principled_coat.h's CoatV2 (its own roughness and IOR); the three layers under it
+//               are scaled by its base_weight(wo), as Cycles 4.x darkens and tints them.
+//   metal       weight metallic. GGX with height-correlated Smith G2 = 1 / (1 + L(wo) + L(wi))
+//               and the F82-tint Fresnel (Kutz et al., "Novel aspects of the Adobe Standard
+//               Material"):  F_m(c) = clamp(F_s(c) - b c (1 - c)^6, 0, 1),
+//               F_s(c) = f0 + (1 - f0)(1 - c)^5, f0 = base colour, c = wo.h, and b chosen so that
+//               F_m(1/7) = F_s(1/7) * tint (tint = Specular Tint, clamped to [0, 1]):
+//               b = F_s(1/7) (1 - tint) 7 / (6/7)^6.
+//   dielectric  weight (1 - metallic)(1 - transmission) (Transmission Weight: the glass of
+//               principled_glass_v2.h takes (1 - metallic) transmission). The same GGX lobe
+//               with F_d(c) = mix(f0 tint, 1, s(c)),
+//               s(c) = clamp((F(c, eta) - F0(eta)) / (1 - F0(eta)), 0, 1), F the exact dielectric
+//               Fresnel and F0(eta) = ((eta - 1) / (eta + 1))^2. The Specular IOR Level rescales
+//               F0: f0 = 2 level F0(ior) = 0.08 specular (Material::specular carries it, see
+//               bsdf.h), and eta = ior_from_F0(f0) = (1 + sqrt f0) / (1 - sqrt f0) (1 / that for
+//               ior < 1; eta = ior when f0 = F0(ior), i.e. level 0.5). No lobe when eta = 1.
+//   diffuse     Lambert about the View's diffuse_normal (bsdf.h: Cycles 4.x's diffuse keeps the
+//               unchecked normal), base colour (1 - metallic)(1 - transmission) w(wo): the
+//               light the dielectric layer does not reflect, w = clamp(1 - max_rgb(A_d(wo)), 0, 1), with the dielectric layer's
+//               estimated albedo A_d = k mix(f0 tint, 1, S(r, mu_o, eta)) (ggx_tables.h).
+//
+// Multiscatter GGX (Material::multiscatter_ggx, the node's default "Multiscatter GGX"): each GGX
+// layer is scaled by 1 + F_ms (1 - E) / E (albedo scaling, Kulla & Conty 2017), E = E(r, mu_o)
+// and E_avg = E_avg(r) from ggx_tables.h, F_ms = F_ss E_avg / (1 - F_ss (1 - E_avg)) with F_ss
+// the layer's cosine-weighted mean Fresnel: metal mix(f0, 1, 1/21) - b / 126 (exact for F_m
+// before clamping), dielectric mix(f0 tint, 1, s_ss) with s_ss from Kulla & Conty's fit of
+// integral 2 mu F(mu, eta) dmu. The diffuse layer sees k = E (1 + F_ms (1 - E) / E) in A_d
+// (k = 1 without multiscatter). With F = 1 the scale is 1 / E: a white metal conserves energy.
+//
+// Below ggx_tables::kDeltaAlpha (Cycles 4.x's threshold) the GGX layers are a mirror with
+// reflectance sum(layer scale F(n.wo)). Like Cycles, the model is not reciprocal (the layer
+// weights depend on wo). Sampling: lobe_mixture.h (one GGX lobe for both layers, visible normals).
+// See bsdf.h for the conventions (eval includes the cosine).
+#pragma once
+
+#include "torrance/bsdfs/bsdf.h"
+#include "torrance/bsdfs/ggx_tables.h"
+#include "torrance/bsdfs/lobe_mixture.h"
+#include "torrance/bsdfs/principled_coat.h"
+#include "torrance/bsdfs/principled_sheen.h"
+
+namespace torrance {
+
+class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
+ public:
+  explicit PrincipledV2Bsdf(const Material& m);
+
+  // The wo-dependent layer weights.
+  struct ViewTerms {
+    Vec3 metal_scale{0.0f};        // metallic (x the multiscatter scale)
+    Vec3 dielectric_scale{0.0f};   // (1 - metallic) (x the multiscatter scale)
+    Vec3 dielectric_albedo{0.0f};  // A_d, the estimate the diffuse layer is reduced by
+    Vec3 diffuse{0.0f};            // (1 - metallic) base colour w(wo)
+    CoatV2::Terms coat;            // the coat's (its base_weight is in the three above)
+    SheenBsdf::Lobe sheen;         // the sheen's weight (its albedo), a, b (its keep is in all above)
+  };
+  ViewTerms view_terms(float cos_o) const;
+
+  // What eval, pdf and sample need of wo alone (lobe_mixture.h), prepared once per shading point.
+  struct View : lobe_mixture::View {
+    using Model = PrincipledV2Bsdf;
+    ViewTerms terms;
+    float lambda_o = 0.0f;  // ggx::smith_lambda(wo.z, alpha)
+    SheenBsdf::Lobe sheen;  // terms.sheen in wo's frame (no weight without a sheen)
+  };
+  View at(const Vec3& wo) const;        // with the lobe choice p_spec
+  View geometry(const Vec3& wo) const;  // without it (p_spec = 1): enough for eval
+
+  LobeEval eval_lobes(const View& v, const Vec3& wi) const;
+  using lobe_mixture::Queries<PrincipledV2Bsdf>::eval_lobes;  // pdf, sample, eval: lobe_mixture::Queries
+
+  float alpha() const { return alpha_; }
+  bool has_delta() const { return alpha_ < ggx_tables::kDeltaAlpha; }
+  Vec3 mirror_reflectance(const Vec3& wo) const;
+  float specular_probability(const Vec3& wo) const { return specular_probability(view_terms(wo.z), wo.z); }
+
+  Vec3 metal_fresnel(float cos_ih) const;       // F_m
+  Vec3 dielectric_fresnel(float cos_ih) const;  // F_d (0 without a dielectric lobe)
+  float eta() const { return eta_; }
+
+  // The coat lobe (lobe_mixture.h).
+  bool has_coat() const { return coat_.reflects(); }
+  float coat_pdf(const lobe_mixture::View& v, const Vec3& wi) const { return coat_.pdf(v.wo, wi); }
+  Vec3 coat_sample(const lobe_mixture::View& v, const Vec2& u) const { return coat_.sample(v.wo, u); }
+  bool coat_is_delta() const { return coat_.is_delta(); }
+  Vec3 coat_mirror_reflectance(const View& v) const { return Vec3(coat_.mirror_reflectance(v.terms.coat, v.wo.z)); }
+  const CoatV2& coat() const { return coat_; }
+
+  // The sheen lobe (lobe_mixture.h), chosen first with View::p_sheen.
+  float sheen_pdf(const View& v, const Vec3& wi) const { return wi.z > 0.0f ? v.sheen.density(wi) : 0.0f; }
+  Vec3 sheen_sample(const View& v, const Vec2& u) const { return v.sheen.sample(u); }
+  bool has_sheen() const { return sheen_.active(); }
+
+ private:
+  float specular_probability(const ViewTerms& v, float cos_o) const;
+  Vec3 specular_estimate(const ViewTerms& v, float cos_o) const;  // the GGX layers' albedo, layered
+
+  Vec3 base_, metal_f0_, metal_b_, metal_fss_, dielectric_f0_, dielectric_fss_;
+  float dielectric_weight_ = 1.0f;  // (1 - metallic)(1 - transmission): Transmission Weight's glass is
+                                   // principled_glass_v2.h's, which MaterialBsdf adds
+  float metallic_, roughness_, alpha_, eta_;
+  bool has_dielectric_, multiscatter_;
+  CoatV2 coat_;
+  SheenV2 sheen_;
+};
+
+}  // namespace torrance

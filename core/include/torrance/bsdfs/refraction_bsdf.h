@@ -1,0 +1,36 @@
+// The Refraction BSDF node as Cycles renders it (svm/closure.h with
+// bsdf_microfacet_*_refraction / bsdf_refraction): the refraction half of the Glass BSDF node
+// (glass.h) alone, with no Fresnel and no reflection, weighted by Color,
+//
+//   f |cos_i| = colour * G1(wo) G1(wi) D(h) etap^2 |wo.h| |wi.h| / (|cos_o| (wo.h + etap wi.h)^2),
+//
+// alpha = Roughness^2 (GGX, or Beckmann with Cycles' D and G1), a straight refraction (a delta)
+// below ggx::kDeltaAlpha and for the Sharp distribution, etap = IOR of wi's side / IOR of wo's.
+// Light leaving on the viewer's side is not reflected: the surface is dark there. Sampled as the
+// glass's refraction lobe; a microfacet at total internal reflection gives no sample (Cycles too).
+//
+// Frames as MixtureBsdf's closures: wo.z > 0 (the shading frame turned towards the viewer),
+// `backfacing` the viewer behind the geometric surface (inside, IOR `ior`); the glass is
+// evaluated in its outward frame. Its light is "glossy" (as the glass's, LobeEval).
+#pragma once
+
+#include "torrance/bsdfs/glass.h"
+
+namespace torrance {
+
+class RefractionBsdf {
+ public:
+  RefractionBsdf(const Vec3& color, float roughness, float ior, bool beckmann);
+
+  LobeEval eval_lobes(const Vec3& wo, const Vec3& wi, bool backfacing) const;
+  float pdf(const Vec3& wo, const Vec3& wi, bool backfacing) const;
+  BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing) const;
+  // What a mixture samples it by: its colour's luminance.
+  float sampling_albedo() const { return luminance(color_); }
+
+ private:
+  Vec3 color_;
+  GlassBsdf glass_;
+};
+
+}  // namespace torrance

@@ -1,0 +1,20 @@
+// Shading normals that never send reflections below the surface.
+#pragma once
+
+#include "torrance/bsdfs/bsdf.h"
+#include "torrance/util/math.h"
+
+namespace torrance {
+
+// Given the geometric normal ng facing wo (ng.wo > 0) and an interpolated shading normal ns
+// (already on ng's side), returns a unit normal for which the mirror reflection of wo stays above
+// the geometric surface: ng.R >= min(0.9 ng.wo, 0.01). Normals that fail are tilted towards ng,
+// only as far as needed (found by bisection). Always finite; ng itself satisfies the bound.
+Vec3 valid_shading_normal(const Vec3& ng, const Vec3& ns, const Vec3& wo);
+
+// The normal the diffuse lobes shade with (bsdf.h), in `frame`, whose z is `checked` =
+// valid_shading_normal(ng, unchecked, wo): Cycles 3.4 checks every closure's normal (not tilted),
+// Cycles 4.x (model PRINCIPLED_V2) only the specular ones, so its diffuse lobes keep `unchecked`.
+DiffuseNormal diffuse_normal(const Frame& frame, const Vec3& checked, const Vec3& unchecked, BrdfModel model);
+
+}  // namespace torrance

@@ -1,0 +1,456 @@
+// The scene: triangle meshes traced by Embree 3, their materials, the lights and the camera.
+//
+// Embree is driven in the order of its minimal tutorial: device -> error callback -> buffers ->
+// commit geometry -> commit scene -> trace. Every input is validated on the way in and rejected
+// with std::invalid_argument naming the problem, so nothing malformed ever reaches the tracer.
+#pragma once
+
+#include "torrance/bsdfs/bsdf.h"
+#include "torrance/camera/camera.h"
+#include "torrance/film/extra_passes.h"
+#include "torrance/lights/lights.h"
+#include "torrance/bsdfs/mixture.h"
+#include "torrance/shader/shader_bump.h"
+#include "torrance/shader/shader_program.h"
+#include "torrance/shader/texture.h"
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace torrance {
+
+// Image textures driving a material's inputs (indices from Scene::add_texture; -1 = none), like
+// Image Texture nodes linked to Principled BSDF sockets. Float inputs read the colour's luminance.
+struct MaterialTextures {
+  int base_color = -1, metallic = -1, roughness = -1, emission = -1;
+  int normal = -1;                 // a tangent-space normal map (Normal Map node)
+  int alpha = -1;                  // the material's alpha from the texture's ALPHA channel (Scene::opacity)
+  // How the alpha texture is read: its colour's luminance instead of its alpha channel (a Mix
+  // Shader's Fac fed by an Image Texture's Color), and 1 - that (the Transparent BSDF in the
+  // Mix Shader's second slot, so the opaque closure's weight is 1 - Fac).
+  bool alpha_from_luminance = false, alpha_inverted = false;
+  float emission_strength = 1.0f;  // emission = texture colour * strength
+  float normal_strength = 1.0f;
+  // A height map (Bump node fed by an image texture's luminance) when there is no normal map.
+  int bump = -1;
+  float bump_strength = 1.0f, bump_distance = 1.0f;
+  // Inputs computed by a shader program (node graphs the fields above do not express); an input
+  // the program feeds replaces both the constant and the texture (emission: x emission_strength).
+  ShaderOutputs program;
+  bool any() const {
+    return base_color >= 0 || metallic >= 0 || roughness >= 0 || emission >= 0 || normal >= 0 || bump >= 0 ||
+           program.any();
+  }
+  bool textured_emission() const { return emission >= 0 || program.emission >= 0; }
+};
+
+struct SurfaceHit {
+  float t = 0.0f;
+  Vec3 position{0.0f};
+  Vec3 geometric_normal{0.0f};  // unit, as wound (counter-clockwise), not yet facing the ray
+  Vec3 shading_normal{0.0f};    // unit, interpolated corner normal (= geometric for flat meshes)
+  uint32_t material = 0;
+  int32_t emitter = -1;       // index among the emissive triangles (Lights' mesh light), or -1
+  Vec2 uv{0.0f};              // interpolated corner UVs (0 without UVs)
+  bool has_uv = false;        // the mesh has UVs (the UV pass: (u, v, 1), else 0)
+  float object_pass_index = 0.0f;  // the object's Blender pass index (Scene::set_mesh_pass_index)
+  bool object_holdout = false;     // the object is a holdout (Scene::set_mesh_holdout)
+  int8_t light_group = -1;         // the object's light group (Scene::set_mesh_light_group), -1: none
+  Vec3 tangent{0.0f};         // unit dP/du from the triangle's UVs (0 without usable UVs)
+  float uv_per_metre = 0.0f;  // how fast UVs change across the triangle (sqrt of UV area / area)
+  float bitangent_sign = 1.0f;
+  Vec3 dpdu{0.0f}, dpdv{0.0f};  // dP/du and dP/dv of the triangle's UV mapping (0 without usable UVs)
+  // The hit triangle's corner attributes (Scene::set_mesh_attributes) and each stored corner's
+  // interpolation weight (nullptr / 0 without attributes).
+  const Vec3* corner_attributes = nullptr;
+  const int32_t* attribute_ids = nullptr;
+  int num_attributes = 0;
+  Vec3 corner_weights{0.0f};
+  // The hit instance's constant attributes (Scene::set_instance_constants; nullptr / 0: none).
+  const Vec3* instance_constants = nullptr;
+  const int32_t* instance_constant_ids = nullptr;
+  int num_instance_constants = 0;
+  // The gradients (1/m, in the triangle's plane) of corner_weights.y and .z (with attributes).
+  Vec3 weight_gradients[2] = {Vec3(0.0f), Vec3(0.0f)};
+  Vec3 corners[3] = {Vec3(0.0f), Vec3(0.0f), Vec3(0.0f)};  // the triangle's, world space
+};
+
+// Shader globals that know only a UV (what a mesh light's sample or a test has).
+inline ShaderGlobals uv_globals(const Vec2& uv, float footprint = 0.0f) {
+  ShaderGlobals g;
+  g.uv = uv;
+  g.footprint = footprint;
+  return g;
+}
+
+// What a shader program reads at a hit seen along ray_dir (Cycles' ShaderData: normals facing
+// the viewer), textures averaged over `footprint` UV units; cone_width: the ray cone's width
+// at the hit in metres (Cycles' dP, the ray differentials' length).
+inline ShaderGlobals shader_globals(const SurfaceHit& hit, const Vec3& ray_dir, float footprint,
+                                    float cone_width = 0.0f, uint8_t reads = kReadsAll) {
+  ShaderGlobals g = uv_globals(hit.uv, footprint);
+  g.position = hit.position;
+  g.incoming = -ray_dir;
+  g.backfacing = glm::dot(hit.geometric_normal, g.incoming) < 0.0f;
+  const float side = g.backfacing ? -1.0f : 1.0f;
+  g.normal = side * hit.shading_normal;
+  g.true_normal = side * hit.geometric_normal;
+  // Of the rest, only what `reads` (GlobalsRead flags) names.
+  if (reads & kReadsAttributes) {
+    g.corner_attributes = hit.corner_attributes;
+    g.attribute_ids = hit.attribute_ids;
+    g.num_attributes = hit.num_attributes;
+    g.corner_weights = hit.corner_weights;
+    g.instance_constants = hit.instance_constants;
+    g.instance_constant_ids = hit.instance_constant_ids;
+    g.num_instance_constants = hit.num_instance_constants;
+  }
+  if (reads & kReadsTangent) {
+    g.tangent = hit.tangent;
+    g.bitangent_sign = hit.bitangent_sign;
+  }
+  if (reads & kReadsCorners)
+    for (int k = 0; k < 3; ++k) g.corners[k] = hit.corners[k];
+  // Cycles' ray differentials: the cone's width along its tangent pair around the true normal,
+  // and the UVs (through dP/du, dP/dv) and corner weights they move by.
+  if ((reads & kReadsDifferentials) && cone_width > 0.0f && std::isfinite(cone_width)) {
+    Vec3 a, b;
+    shader::differential_axes(g.true_normal, a, b);
+    g.dpdx = cone_width * a;
+    g.dpdy = cone_width * b;
+    const Vec3 n = hit.geometric_normal;
+    const float det_uv = glm::dot(n, glm::cross(hit.dpdu, hit.dpdv));
+    if (std::abs(det_uv) > 0.0f && std::isfinite(det_uv)) {
+      const Vec3 grad_u = glm::cross(hit.dpdv, n) / det_uv, grad_v = glm::cross(n, hit.dpdu) / det_uv;
+      g.duvdx = Vec2(glm::dot(grad_u, g.dpdx), glm::dot(grad_v, g.dpdx));
+      g.duvdy = Vec2(glm::dot(grad_u, g.dpdy), glm::dot(grad_v, g.dpdy));
+      if (!std::isfinite(g.duvdx.x + g.duvdx.y + g.duvdy.x + g.duvdy.y)) g.duvdx = g.duvdy = Vec2(0.0f);
+    }
+    if (hit.num_attributes > 0) {
+      auto weights = [&](const Vec3& d) {
+        const float y = glm::dot(hit.weight_gradients[0], d), z = glm::dot(hit.weight_gradients[1], d);
+        return std::isfinite(y + z) ? Vec3(-y - z, y, z) : Vec3(0.0f);
+      };
+      g.dweights_dx = weights(g.dpdx);
+      g.dweights_dy = weights(g.dpdy);
+    }
+  }
+  return g;
+}
+
+// Throws std::invalid_argument unless the material's values are finite and in range.
+void check_material(const Material& material);
+
+class Scene final : public ShaderTracer {
+ public:
+  Scene();
+  ~Scene();
+  Scene(const Scene&) = delete;
+  Scene& operator=(const Scene&) = delete;
+
+  uint32_t add_material(const Material& material, const MaterialTextures& textures = {});
+  uint32_t add_texture(Texture texture);
+  // Adds a shader program (its textures must already be added); returns its index for
+  // MaterialTextures::program.
+  uint32_t add_shader_program(ShaderProgram program);
+  size_t num_shader_programs() const { return programs_.size(); }
+  const ShaderProgram& shader_program(uint32_t i) const { return programs_[i]; }
+  // Runs program i at a point; regs must hold its registers() entries.
+  void run_shader_program(uint32_t i, const ShaderGlobals& g, glm::vec4* regs) const {
+    programs_[i].run(g, textures_, regs);
+  }
+  size_t num_textures() const { return textures_.size(); }
+  const MaterialTextures& material_textures(uint32_t i) const { return material_textures_[i]; }
+  // The material at a hit with its textures applied (base colour, metallic, roughness, emission),
+  // averaged over a footprint of that many UV units (0: the finest texels).
+  // regs (if given, kMaxRegisters entries): where the material's shader program, if it has one,
+  // leaves its registers, for normal_mapped at the same hit to reuse instead of running it again.
+  Material textured_material(uint32_t material, const ShaderGlobals& globals, glm::vec4* regs = nullptr) const;
+  Material textured_material(uint32_t material, const Vec2& uv, float footprint = 0.0f) const {
+    return textured_material(material, uv_globals(uv, footprint));
+  }
+  // A material made of weighted closures (Mix/Add Shader, mixture.h); returns its material index.
+  // Its normal map or bump and its alpha texture come from `textures` (only those fields are read);
+  // alpha and transparent_color as Material's (a Mix Shader of a Transparent BSDF and this
+  // mixture). Checked by check_mixture; its closures' materials must not be mixtures themselves.
+  uint32_t add_mixture(const Mixture& mixture, const MaterialTextures& textures = {}, float alpha = 1.0f,
+                       const Vec3& transparent_color = Vec3(1.0f));
+  // The mixture of material i, or nullptr for an ordinary material.
+  const Mixture* mixture(uint32_t i) const {
+    return mixture_index_[i] >= 0 ? &mixtures_[size_t(mixture_index_[i])] : nullptr;
+  }
+  bool has_mixtures() const { return !mixtures_.empty(); }
+  // The weights of mixture material i's closures at uv (image factors over footprint UV units).
+  // regs: as textured_material's (the mixture's program, which its Normal reads too).
+  MixtureWeights mixture_weights(uint32_t i, const ShaderGlobals& globals, glm::vec4* regs = nullptr) const;
+  MixtureWeights mixture_weights(uint32_t i, const Vec2& uv, float footprint = 0.0f) const {
+    return mixture_weights(i, uv_globals(uv, footprint));
+  }
+  // The radiance material i emits at a point seen as g says (textures and mixtures included).
+  Vec3 emission_at(uint32_t i, const ShaderGlobals& g) const;
+  // The alpha of the surface a ray along dir meets at hit, the path being in state seen_by (a
+  // shadow ray's: kRayShadow): its program's alpha register run there, else as below.
+  // tint (if given) becomes the colour that passes (Material::transparent_color, or a mixture's
+  // Transparent closures' colours by their weights).
+  float opacity(const SurfaceHit& hit, const Vec3& dir, const PathState& seen_by, Vec3* tint = nullptr) const;
+  // The holdout weight of the surface at hit for a camera ray (Cycles' surface_shader_apply_holdout):
+  // a holdout object's `opacity` (its surface's, from opacity() above: the object's transparency
+  // stays), else the weight of its mixture's Holdout closures (times the material's alpha); 0
+  // without either. The path takes it, times its throughput, off the pixel's alpha.
+  float holdout(const SurfaceHit& hit, const Vec3& dir, const PathState& seen_by, float opacity) const;
+  // Whether some object is a holdout or some mixture has a Holdout closure.
+  bool has_holdouts() const { return object_holdouts_ || mixture_holdouts_; }
+  // The material's alpha at a hit: its alpha texture's alpha channel (or colour luminance, or 1 -
+  // either: MaterialTextures) at uv, else Material::alpha (its program's alpha not run).
+  float opacity(uint32_t material, const Vec2& uv) const {
+    const MaterialTextures& t = material_textures_[material];
+    if (t.alpha < 0) return materials_[material].alpha;
+    const glm::vec4 c = textures_[t.alpha]->lookup(uv);
+    const float a = clamp01(t.alpha_from_luminance ? blender_luminance(Vec3(c)) : c.a);
+    return t.alpha_inverted ? 1.0f - a : a;
+  }
+  // The shading normal ns (as wound) perturbed by the material's Normal at a hit seen as g says
+  // (shader_globals: the view, footprint and ray differentials), as wound; ns when none. The
+  // Normal is the material's program's normal register (Bump and Normal Map nodes of any graph,
+  // shader_bump.h), else its image normal map (tangent space) or image height map (a Bump node
+  // fed by an Image Texture's luminance: its heights at the hit and at the hit moved by the ray
+  // differentials, at least a hundredth of a texel apart), by shader_bump.h's formulas.
+  // surface_normal (if given) becomes the surface's normal after the Material Output's Displacement
+  // (ShaderOutputs::surface_normal, as wound) where the program computes it; else it is left as is.
+  // program_regs: the registers textured_material or mixture_weights of this material left at
+  // this hit (g, ns = hit.shading_normal), read instead of running the program again.
+  Vec3 normal_mapped(uint32_t material, const SurfaceHit& hit, const Vec3& ns, const ShaderGlobals& g,
+                     Vec3* surface_normal = nullptr, const glm::vec4* program_regs = nullptr) const;
+  // Whether shading material i (its programs, its mixture's closures, an image bump) reads the
+  // ray differentials of ShaderGlobals (shader_globals' cone_width): else they need not be made.
+  bool reads_differentials(uint32_t i) const { return globals_read(i) & kReadsDifferentials; }
+  // GlobalsRead flags of what shading material i reads of ShaderGlobals (as above: its programs,
+  // its mixture's closures; an image bump reads the differentials).
+  uint8_t globals_read(uint32_t i) const;
+  // As above, seen from the front (along -geometric_normal); cone_width: the ray cone's width in
+  // metres at the hit (the ray differentials' length).
+  Vec3 normal_mapped(uint32_t material, const SurfaceHit& hit, const Vec3& ns, float footprint = 0.0f,
+                     float cone_width = 0.0f) const {
+    ShaderGlobals g = shader_globals(hit, -hit.geometric_normal, footprint, cone_width);
+    g.tracer = this;
+    return normal_mapped(material, hit, ns, g);
+  }
+
+  // positions: num_vertices xyz; triangles: num_triangles vertex-index triples;
+  // corner_normals: nullptr or num_triangles * 3 xyz normals; material_ids: nullptr or num_triangles;
+  // corner_uvs: nullptr or num_triangles * 3 uv pairs.
+  // Degenerate triangles and zero-length normals are tolerated (the latter fall back to flat).
+  // Returns the mesh id; a mesh without triangles is accepted and ignored.
+  uint32_t add_mesh(const float* positions, size_t num_vertices, const int64_t* triangles, size_t num_triangles,
+                    const float* corner_normals, const int64_t* material_ids, const float* corner_uvs = nullptr);
+
+  // Per-corner attributes of mesh `mesh` (from add_mesh; with prototype = true, of a prototype)
+  // for shader programs: values (num_attributes, 3 * its triangles) xyz, ids naming each layer
+  // (the Attribute op's resource); num_corners must be 3 * its triangles. NaN/Inf values are read
+  // as 0. Replaces earlier ones.
+  // Per-instance constant attributes (an instanced object's Object Info: the Attribute op reads
+  // them where the prototype's corners have no layer of that id): values (count, num_layers, 3)
+  // for instances ids[0..count) of the layers layer_ids (any of them, in any order; a layer an
+  // instance was never given reads 0). Non-finite values are stored as 0.
+  void set_instance_constants(const int64_t* ids, size_t count, const int32_t* layer_ids, size_t num_layers,
+                              const float* values);
+  void set_mesh_attributes(uint32_t mesh, bool prototype, const float* values, size_t num_corners,
+                           const int32_t* ids, size_t num_attributes);
+
+  // Blender's pass indices, for the Object Index and Material Index passes (0 unless set): of a
+  // mesh from add_mesh, of instances (ids from add_instances), of materials 0 .. count - 1.
+  void set_mesh_pass_index(uint32_t mesh, float index);
+  void set_instance_pass_indices(const int64_t* ids, size_t count, const float* values);
+  void set_material_pass_indices(const float* values, size_t count);
+  // Holdout objects (Blender's Object > Visibility > Holdout, or a collection's in the view layer):
+  // a mesh from add_mesh, instances (ids from add_instances). See holdout().
+  void set_mesh_holdout(uint32_t mesh, bool holdout);
+  void set_instance_holdouts(const int64_t* ids, size_t count, bool holdout);
+  // Light groups (extra_passes.h: Scene::extra_passes().set_light_groups) of emitting objects:
+  // a mesh from add_mesh, instances; group -1: none.
+  void set_mesh_light_group(uint32_t mesh, int group);
+  void set_instance_light_groups(const int64_t* ids, size_t count, int group);
+  // The view layer's shader AOVs and light groups, and the materials' AOV Output programs
+  // (extra_passes.h). Set before a render.
+  ExtraPasses& extra_passes() { return extra_passes_; }
+  const ExtraPasses& extra_passes() const { return extra_passes_; }
+  float material_pass_index(uint32_t material) const {
+    return material < material_pass_indices_.size() ? material_pass_indices_[material] : 0.0f;
+  }
+
+  // Instancing (a two-level BVH): a prototype is a mesh in object space, built once into its own
+  // BVH, whose per-triangle `slots` (>= 0) index a material table given per instance, like
+  // Blender's material slots (a slot past the table's end uses its last entry, as Cycles).
+  // Arguments as add_mesh with slots for material_ids; slots nullptr = all 0. Returns its id.
+  uint32_t add_prototype(const float* positions, size_t num_vertices, const int64_t* triangles,
+                         size_t num_triangles, const float* corner_normals, const int64_t* slots,
+                         const float* corner_uvs = nullptr);
+  // Adds `count` instances of `prototype` with ids first, first + 1, ... (the returned first).
+  // transforms: count row-major 3x4 object-to-world matrices (12 floats each). materials: the
+  // slot -> material table, table_size entries shared by all (per_instance_tables false) or one
+  // table per instance (count * table_size). Tables are stored once per distinct content.
+  // A matrix with NaN/Inf, an entry beyond 1e12, or placing the prototype's vertex bounds beyond
+  // 1e12 from the origin is rejected (std::invalid_argument), as is a request beyond the memory
+  // budget (limits.h); a singular one (zero scale, or below 1e-5 in some direction: too thin for
+  // Embree to trace it in object space) leaves its instance hidden until
+  // set_instance_transforms gives it a regular matrix (see num_hidden_instances). Like add_mesh,
+  // add_prototype/add_instances/set_instance_transforms/remove_instances throw
+  // std::runtime_error while a render uses the scene (begin_render .. end_render).
+  uint32_t add_instances(uint32_t prototype, const float* transforms, size_t count, const int64_t* materials,
+                         size_t table_size, bool per_instance_tables = false);
+  // Moves instances (count ids and 12 floats each); only the top-level BVH is rebuilt at commit.
+  void set_instance_transforms(const int64_t* ids, const float* transforms, size_t count);
+  void remove_instances(const int64_t* ids, size_t count);
+  size_t num_prototypes() const { return prototypes_.size(); }
+  size_t num_instances() const { return live_instances_; }          // added and not removed
+  size_t num_hidden_instances() const { return hidden_instances_; }  // of those, (near-)singular
+  size_t num_material_tables() const;  // distinct (prototype, material table) pairs
+
+  // An HDRI world: texture `id` as an equirectangular environment, times strength.
+  void set_world_texture(uint32_t id, float strength);
+  // The world's node graph: shader program `program` (from add_shader_program), its radiance in
+  // register radiance_register (emission_shader.h), NEE sampling a map `resolution` cells
+  // wide (Cycles' world Map Resolution). Throws std::invalid_argument naming a bad argument.
+  void set_world_program(uint32_t program, int radiance_register, int resolution);
+  // The light added last takes shader program `program`'s radiance register as its node graph
+  // (Lights::set_last_light_shader). Throws std::invalid_argument naming a bad argument.
+  void set_light_program(uint32_t program, int radiance_register);
+  Lights& lights() { return lights_; }  // C++ set-up; bindings use edit_lights
+  const Lights& lights() const { return lights_; }
+  // Runs edit on the lights unless a render is using the scene (then std::runtime_error).
+  void edit_lights(const std::function<void(Lights&)>& edit);
+  // The camera may change while renders run (each copies it when it starts).
+  void set_camera(const CameraParams& camera) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    camera_ = camera;
+  }
+  CameraParams camera() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return camera_;
+  }
+
+  // Triangles traced: those of the world-space meshes plus, per visible instance, its prototype's.
+  size_t num_triangles() const;
+  size_t num_materials() const { return materials_.size(); }
+  const Material& material(uint32_t i) const { return materials_[i]; }
+
+  // Builds the BVH and the emissive-triangle light if the scene changed since the last commit.
+  // Must precede intersect/occluded.
+  void commit();
+  // A render holds the scene read-only from begin_render (default material if none, commit,
+  // light selection) to end_render; meanwhile add_*, set_world_texture and edit_lights throw
+  // std::runtime_error instead of racing with the render threads. Renders may overlap.
+  void begin_render(LightSelection selection);
+  void end_render() { --renders_; }
+  bool intersect(const Ray& ray, SurfaceHit& hit) const;
+  // intersect of up to kPacketSize coherent rays at once (an 8-wide Embree packet: camera rays
+  // of neighbouring samples): the same hits, bit for bit, as intersect of each. found[i]: hit.
+  static constexpr int kPacketSize = 8;
+  void intersect_packet(const Ray* rays, int n, SurfaceHit* hits, bool* found) const;
+  bool occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax) const override;
+  void* embree_scene() const { return scene_; }  // the RTCScene, for raw-Embree measurements (ray_replay.h)
+  void bounds(Vec3& lo, Vec3& hi) const;  // of everything traced, after commit (lo > hi: nothing, or not committed)
+  // The flat pieces that the triangles of material `material` make (mirror_images.h): either a
+  // few exact planes shaded flat (a quad, a box: every corner inside its plane to a relative 1e-5,
+  // corner normals along its normal), or else one nearly flat sheet (a wavy water surface: every
+  // face and corner normal within kMaxPlaneTilt of the area-weighted mean normal, facing one way).
+  // Each piece: a point on its (mean) plane, its unit normal (as its largest triangle winds), how
+  // far its normals tilt from it and its points lie off it, and a sphere bounding its triangles. Empty when no world-space
+  // triangle has the material, they make neither, or a prototype uses it (instances are not
+  // examined).
+  static constexpr size_t kMaxPlanes = 8;
+  static constexpr float kMaxPlaneTilt = 0.35f;  // radians (20 degrees)
+  struct Plane {
+    Vec3 point{0.0f}, normal{0.0f, 0.0f, 1.0f};
+    float tilt = 0.0f;   // 0: exact
+    float depth = 0.0f;  // how far its points lie from its plane (0: exact)
+    Vec3 center{0.0f};  // the bounding sphere
+    float radius = 0.0f;
+  };
+  std::vector<Plane> material_planes(uint32_t material) const;
+  // The sphere all triangles of material `material` make (every vertex within 0.5 % of the radius
+  // from the centre of their bounds, the bounds a cube): its centre and radius; nullopt otherwise,
+  // or when a prototype uses the material.
+  struct Sphere {
+    Vec3 center{0.0f};
+    float radius = 0.0f;
+  };
+  std::optional<Sphere> material_sphere(uint32_t material) const;
+  // A sphere bounding every triangle of material `material` (about the centre of their bounds);
+  // nullopt when none has it or a prototype uses it (its instances are not examined).
+  std::optional<Sphere> material_bounds(uint32_t material) const;
+
+ private:
+  struct Mesh;
+  struct Prototype;
+  struct Binding;
+  struct Instance;
+  void check_device(const char* during) const;
+  // The hit described by Embree's answer `rayhit` (an RTCRayHit) to a ray along dir; false: a miss.
+  bool surface_hit(const void* rayhit, const Vec3& dir, SurfaceHit& hit) const;
+  // The hit at Embree's barycentrics (u, v) of triangle prim of owner (a mesh index, or an instance
+  // index | kInstanceBit: geometry_owner_'s values) seen along dir; all but its t.
+  void triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const Vec3& dir, SurfaceHit& hit) const;
+  // The radiance a mesh light's sample emits (MeshLight::EmissionLookup): its material's emission
+  // with the shader globals Cycles' next-event estimation gives it (no ray differentials).
+  Vec3 sampled_emission(const EmissiveTriangle& triangle, const Vec2& b, const Vec3& wi, const PathState& seen_by) const;
+  std::unique_ptr<Mesh> make_mesh(const float* positions, size_t num_vertices, const int64_t* triangles,
+                                  size_t num_triangles, const float* corner_normals, const int64_t* materials,
+                                  const float* corner_uvs, bool slots) const;
+  void* new_triangle_geometry(const Mesh& mesh) const;  // RTCGeometry, committed
+  const Instance& live_instance(int64_t id, const char* during) const;
+  void place_instance(Instance& instance, const float* transform);
+  // Throws std::invalid_argument("<which> ...") unless the 3x4 matrix m keeps prototype within
+  // kMaxCoordinate (limits.h): finite entries within 1e12, the transformed vertex bounds too.
+  void check_transform(const float* m, uint32_t prototype, const std::string& which) const;
+  void check_idle(const char* change) const;  // with mutex_ held
+  Vec3 bump_mapped(const MaterialTextures& t, const SurfaceHit& hit, const Vec3& n, const ShaderGlobals& g) const;
+  // Runs the material's shader program at uv and writes the inputs it feeds into m.
+  // regs: where it runs (kMaxRegisters entries), or nullptr for a local array.
+  void apply_program(const MaterialTextures& t, const ShaderGlobals& g, Material& m, glm::vec4* regs = nullptr) const;
+  void check_program_outputs(const ShaderOutputs& outputs) const;  // throws std::invalid_argument
+
+  mutable std::mutex mutex_;  // changes vs. begin_render, and the camera
+  std::atomic<int> renders_{0};
+
+  std::vector<Material> materials_;
+  std::vector<MaterialTextures> material_textures_;
+  std::vector<int32_t> mixture_index_;  // per material: index in mixtures_, or -1
+  std::vector<Mixture> mixtures_;
+  std::vector<std::shared_ptr<const Texture>> textures_;
+  std::vector<ShaderProgram> programs_;
+  std::vector<std::unique_ptr<Mesh>> meshes_;  // world-space meshes, in the order added
+  // Instances' constant attributes: instance i's layer a at i * ids.size() + a (the vector may
+  // end before the last instances: those have none).
+  std::vector<Vec3> instance_constants_;
+  std::vector<float> material_pass_indices_;
+  bool object_holdouts_ = false;   // some mesh or instance is a holdout
+  ExtraPasses extra_passes_;
+  bool mixture_holdouts_ = false;  // some mixture has a Holdout closure
+  std::vector<int32_t> instance_constant_ids_;
+  std::vector<std::unique_ptr<Prototype>> prototypes_;
+  std::vector<Binding> bindings_;  // distinct (prototype, material table) pairs
+  std::map<std::vector<uint32_t>, uint32_t> binding_ids_;  // {prototype, table...} -> binding
+  std::vector<Instance> instances_;
+  // Embree geometry id in the top-level scene -> mesh index, or instance index | kInstanceBit.
+  std::vector<uint32_t> geometry_owner_;
+  size_t live_instances_ = 0, hidden_instances_ = 0;
+  Lights lights_;
+  CameraParams camera_;
+  void* device_ = nullptr;  // RTCDevice
+  void* scene_ = nullptr;   // RTCScene
+  void build_mesh_light();
+  bool dirty_ = true;
+  bool emitters_dirty_ = true;
+  mutable std::string embree_error_;
+  friend void embree_error_callback(void*, int, const char*);
+};
+
+}  // namespace torrance

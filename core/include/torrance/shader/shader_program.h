@@ -1,0 +1,258 @@
+// A shader program: the part of a Blender node graph that computes the values feeding a
+// closure's sockets (textures, colour and converter nodes, maths), compiled by the add-on
+// (python_addon/torrance/shader_graph/) into straight-line code over registers of four floats
+// and run by the core at each hit whose material needs it.
+//
+// Registers 0 .. constants-1 hold the graph's folded constants; every instruction reads up to
+// kShaderInputs registers written before it and writes one; ops with tables (ramps, curves) read
+// them from the program's data: at the instruction's resource, a length n and then n floats. A float lives in a register's x, a colour in xyz (w
+// is an image's alpha), a vector in xyz. The ops are Cycles' (shader_math.h, shader_color.h); the
+// add-on inserts Blender's implicit conversions (colour -> float: luminance, vector -> float:
+// average) as instructions, so every op reads exactly the kind it expects.
+#pragma once
+
+#include "torrance/util/math.h"
+#include "torrance/integrator/path_state.h"
+#include "torrance/shader/texture.h"
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace torrance {
+
+enum class ShaderOpcode : uint8_t {
+  TexCoordUV,      // out = (u, v, 0, 0): the mesh's UVs (Texture Coordinate > UV, UV Map, unlinked Vector)
+  Image,           // out = texture(in0.xy) RGBA; resource = its id; mode: the Extension (texture.h)
+  Channel,         // out = (in0[mode], 0, 0, 0): Separate RGB/XYZ/Color (RGB), an image's Alpha
+  Combine,         // out = (in0.x, in1.x, in2.x, 1): Combine RGB/XYZ/Color (RGB)
+  Math,            // out.x = math(mode, in0.x, in1.x, in2.x); flags & 1: clamp to [0, 1]
+  VectorMath,      // vector_math(mode, in0, in1, in2, in3.x): flags & 1 ? (value, 0, 0, 0) : vector
+  MixColor,        // mix_color(mode, factor(in0.x, flags & 2), in1, in2, flags & 1)
+  MixFloat,        // out.x = mix_float(factor(in0.x, flags & 2), in1.x, in2.x)
+  MixVector,       // mix_vector(flags & 4 ? in0 : in0.x, in1, in2); flags & 2: clamp the factor
+  ColorModel,      // mode 0: RGB -> HSV, 1: HSV -> RGB, 2: RGB -> HSL, 3: HSL -> RGB (of in0.xyz)
+  Invert,          // invert(in0.x, in1)
+  Gamma,           // gamma(in0, in1.x)
+  BrightContrast,  // bright_contrast(in0, in1.x, in2.x)
+  HueSaturation,   // hue_saturation_value(in0.x, in1.x, in2.x, in3.x, in4)
+  Luminance,       // out.x = rgb_to_bw(in0): colour -> float
+  Average,         // out.x = (in0.x + in0.y + in0.z) / 3: vector -> float
+  Bump = 16,       // the Bump node (shader_bump.h): a normal from heights at the hit and its offsets
+  NormalMap = 17,  // the Normal Map node (shader_bump.h)
+  Displacement = 18,        // the Displacement and Vector Displacement nodes (shader_bump.h)
+  VectorDisplacement = 19,
+  // The node families' ops, each family a range of numbers (its header says what each op reads;
+  // shader_op_info lists their shapes; python_addon/torrance/shader_graph/ the same numbers):
+  //   32-47 noise (shader_noise.h), 48-55 Voronoi (shader_voronoi.h), 56-71 textures
+  //   (shader_textures.h), 72-95 converters (shader_convert.h), 96-127 geometry and vectors.
+  // [noise ops]
+  Noise = 32,       // Noise Texture (shader_noise.h): mode = dimensions - 1; flags & 1: Color, else Fac
+  WhiteNoise = 33,  // White Noise Texture: mode = dimensions - 1; flags & 1: Color, else Value
+  Musgrave = 34,    // Musgrave Texture: mode = type * 4 + dimensions - 1
+  Wave = 35,        // Wave Texture: mode = (type * 4 + direction) * 3 + profile; flags & 1: Color
+  NoiseV4 = 36,     // Blender 4.x's Noise Texture (shader_noise4.h): mode = type * 4 + dimensions - 1
+  TexGabor = 37,    // Blender 4.3+'s Gabor Texture (shader_gabor.h): mode 2D/3D; out (Value, Phase, Intensity)
+  // [voronoi ops]
+  Voronoi = 48,    // the Voronoi Texture node (shader_voronoi.h): mode, flags and inputs as voronoi_op says
+  VoronoiV4 = 49,  // Blender 4.x's Voronoi Texture (fractal; shader_voronoi.h): as voronoi4_op says
+  // [texture ops]
+  TexChecker = 56,   // shader_textures.h (flags & 1: the Fac, else the Color)
+  TexGradient = 57,
+  TexBrick = 58,
+  TexMagic = 59,
+  ImageProjection = 60,  // shader_image.h
+  TexSky = 61,           // shader_sky.h: the Sky Texture node; mode: SkyModel, a table
+  RadialTiling = 62,     // shader_radial_tiling.h: Blender 5's Radial Tiling; mode: its outputs
+  TexIES = 63,           // shader_ies.h: the IES Texture node (Fac); a table
+  // [converter ops]
+  ColorRamp = 72,       // shader_convert.h: RGBA = ramp(in0.x), table RGBA; flags & 1: interpolate
+  RGBCurves = 73,       // curves(fac in0.x, colour in1), table (min_x, max_x, RGB); flags & 1: extrapolate
+  VectorCurves = 74,    // as RGBCurves on a vector (w 0)
+  FloatCurve = 75,      // float_curve(fac in0.x, value in1.x), table (min_x, max_x, values); flags & 1 as above
+  MapRange = 76,        // map_range(mode, in0-in5 .x: value, from min/max, to min/max, steps); flags & 1: clamp
+  VectorMapRange = 77,  // vector_map_range(mode, in0-in5 as vectors); flags & 1: clamp
+  Clamp = 78,           // clamp(mode, in0.x, min in1.x, max in2.x)
+  Blackbody = 79,       // blackbody(in0.x kelvin)
+  Wavelength = 80,      // wavelength(in0.x nanometres)
+  // [geometry ops]
+  Geometry = 96,     // shader_geometry.h
+  Reflection = 97,
+  Fresnel = 98,
+  LayerWeight = 99,
+  Attribute = 100,
+  Tangent = 101,
+  AmbientOcclusion = 102,  // shader_geometry.h
+  Mapping = 104,       // shader_vector.h
+  VectorRotate = 105,
+  LightPath = 106,     // shader_geometry.h
+  CameraTransform = 107,
+  VectorTransform = 108,  // shader_vector.h
+  LightFalloff = 109,     // shader_geometry.h
+  Wireframe = 110,
+};
+constexpr int kShaderOpcodes = 128;
+
+constexpr int kShaderInputs = 12;
+
+struct ShaderInstruction {
+  ShaderOpcode op = ShaderOpcode::TexCoordUV;
+  uint8_t mode = 0, flags = 0;
+  int32_t resource = -1;  // Image: the texture id; ops with tables: the offset of their data
+  int16_t out = 0;
+  std::array<int16_t, kShaderInputs> in{};
+  // Where the op reads the hit: 0 at the hit, 1 and 2 at the hit moved by the ray differentials
+  // dx and dy (ShaderGlobals::offset; a Bump node's height graph, compiled three times, as
+  // Cycles does). Python code rows carry it in flags bits 6-7.
+  uint8_t offset = 0;
+};
+
+// What a program may trace (the Ambient Occlusion node): the scene (Scene implements it).
+class ShaderTracer {
+ public:
+  // Whether anything lies along origin + t dir for t in (tmin, tmax).
+  virtual bool occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax) const = 0;
+
+ protected:
+  ~ShaderTracer() = default;
+};
+
+// What a program may read at a hit, as Cycles' ShaderData: world-space position, the shading and
+// true normals facing the viewer (flipped on a back face), the direction toward the viewer.
+struct ShaderGlobals {
+  Vec2 uv{0.0f};
+  float footprint = 0.0f;  // the texture lookups' footprint, in UV units
+  Vec3 position{0.0f};
+  Vec3 normal{0.0f, 0.0f, 1.0f};
+  Vec3 true_normal{0.0f, 0.0f, 1.0f};
+  Vec3 incoming{0.0f, 0.0f, 1.0f};
+  bool backfacing = false;
+  // The hit triangle's corner attributes (corner k's layer a at k * num_attributes + a), the
+  // layers' ids and the corners' interpolation weights.
+  const Vec3* corner_attributes = nullptr;
+  const int32_t* attribute_ids = nullptr;
+  int num_attributes = 0;
+  Vec3 corner_weights{0.0f};
+  // The hit instance's constant attributes (Object Info of an instanced object): layer a's value
+  // at instance_constants[a], its id instance_constant_ids[a].
+  const Vec3* instance_constants = nullptr;
+  const int32_t* instance_constant_ids = nullptr;
+  int num_instance_constants = 0;
+  PathState path;  // the path's state where the program runs (the Light Path node)
+  // The scene a program may trace (Ambient Occlusion); null where there is none (a world, a
+  // light: as Cycles' for no object, the node then sees no occluder).
+  const ShaderTracer* tracer = nullptr;
+  // Cycles' ray differentials at the hit: dP/dx and dP/dy (the footprint's width along its
+  // tangent pair around the true normal), and what they move the UVs and corner weights by.
+  Vec3 dpdx{0.0f}, dpdy{0.0f};
+  Vec2 duvdx{0.0f}, duvdy{0.0f};
+  Vec3 dweights_dx{0.0f}, dweights_dy{0.0f};
+  // The UV map's tangent (unit dP/du, as wound; 0 without UVs) and the bitangent's sign.
+  Vec3 tangent{0.0f};
+  float bitangent_sign = 1.0f;
+  Vec3 corners[3] = {Vec3(0.0f), Vec3(0.0f), Vec3(0.0f)};  // the hit triangle's, world space (0: none)
+  // These globals at the hit moved by dx (which 1) or dy (which 2): position, UVs and corner
+  // weights (normals, the view and footprint stay, as in Cycles' bump evaluation).
+  ShaderGlobals offset(int which) const {
+    ShaderGlobals g = *this;
+    const bool x = which == 1;
+    g.position += x ? dpdx : dpdy;
+    g.uv += x ? duvdx : duvdy;
+    g.corner_weights += x ? dweights_dx : dweights_dy;
+    return g;
+  }
+};
+
+// What an op sees when it runs: its instruction, the registers and the program's data.
+struct ShaderOpContext {
+  const ShaderInstruction& ins;
+  const glm::vec4* regs;
+  const ShaderGlobals& globals;
+  const float* data;  // the op's table (after its length), when it has one
+  int data_size;      // its length
+  const glm::vec4& in(int k) const { return regs[ins.in[size_t(k)]]; }
+  float value(int k) const { return in(k).x; }
+  Vec3 vector(int k) const { return Vec3(in(k)); }
+};
+
+// An opcode's shape: the inputs it reads, how many modes it has (0: not an opcode), whether it
+// reads data, and how it runs (Image needs the textures and runs in ShaderProgram::run itself).
+struct ShaderOpInfo {
+  int inputs = 0;
+  int modes = 0;
+  bool data = false;
+  glm::vec4 (*run)(const ShaderOpContext&) = nullptr;
+};
+ShaderOpInfo shader_op_info(ShaderOpcode op);
+
+// What of ShaderGlobals beyond the hit's basics (UV, position, normals, view, path) a program
+// reads (ShaderProgram::globals_read): shader_globals fills only these.
+enum GlobalsRead : uint8_t {
+  kReadsAttributes = 1,     // the corner attributes and instance constants (Attribute)
+  kReadsTangent = 2,        // the UV tangent and bitangent sign (Tangent, Normal Map, Vector Displacement)
+  kReadsCorners = 4,        // the triangle's corners (Wireframe)
+  kReadsDifferentials = 8,  // the ray differentials (reads_differentials)
+  kReadsAll = 15,
+};
+
+class ShaderProgram {
+ public:
+  static constexpr int kMaxRegisters = 128;
+
+  // Throws std::invalid_argument naming the problem unless every instruction's opcode, mode,
+  // registers (inputs written before they are read, outputs past the constants), texture (below
+  // num_textures) and table (within data) are valid and the constants and data are finite.
+  ShaderProgram(std::vector<glm::vec4> constants, std::vector<ShaderInstruction> code, int registers,
+                size_t num_textures, std::vector<float> data = {});
+
+  int registers() const { return registers_; }
+  // Whether register r holds a value after run() (a constant or an instruction's output).
+  bool written(int r) const { return r >= 0 && r < registers_ && written_[size_t(r)]; }
+  // Whether some instruction is of op.
+  bool reads(ShaderOpcode op) const {
+    for (const ShaderInstruction& ins : code_)
+      if (ins.op == op) return true;
+    return false;
+  }
+  // Whether run() reads ShaderGlobals' ray differentials (dpdx, dpdy and what they move: a Bump
+  // op, or instructions at the offset hits); without them the caller need not compute those.
+  bool reads_differentials() const { return differentials_; }
+  // GlobalsRead flags of what run() reads, found once from the code.
+  uint8_t globals_read() const { return globals_read_; }
+  // Runs the program; regs must hold registers() entries. Every value written is finite.
+  void run(const ShaderGlobals& g, const std::vector<std::shared_ptr<const Texture>>& textures,
+           glm::vec4* regs) const;
+
+ private:
+  std::vector<glm::vec4> constants_;
+  std::vector<ShaderInstruction> code_;
+  std::vector<float> data_;
+  int registers_;
+  std::vector<bool> written_;
+  bool offsets_ = false;  // some instruction reads the hit at an offset
+  bool differentials_ = false;
+  uint8_t globals_read_ = 0;
+};
+
+// Which registers of a material's program feed its inputs (-1: the material's own value). A
+// float input reads the register's x.
+struct ShaderOutputs {
+  int program = -1;  // index from Scene::add_shader_program
+  int16_t base_color = -1, metallic = -1, roughness = -1, emission = -1;
+  int16_t normal = -1;  // the closure's Normal (facing the viewer, as Cycles' N): Bump, Normal Map
+  int16_t alpha = -1;   // the material's alpha (x, clamped to [0, 1]): Scene::opacity
+  // The surface's normal after the Material Output's Displacement (as bump: Cycles' sd->N, facing
+  // the viewer), what the shadow terminator's smoothing compares the closure's Normal with.
+  int16_t surface_normal = -1;
+  // Principled v2's Transmission Weight (Material::transmission, x).
+  int16_t transmission = -1;
+  // The Principled BSDF's coat inputs (Material::coat_*): weight, roughness, IOR (x) and tint.
+  int16_t coat_weight = -1, coat_roughness = -1, coat_ior = -1, coat_tint = -1;
+  // The Principled BSDF's sheen inputs (Material::sheen_*): weight, roughness (x) and tint (v1's
+  // factor the x, v2's colour).
+  int16_t sheen_weight = -1, sheen_roughness = -1, sheen_tint = -1;
+  bool any() const { return program >= 0; }
+};
+
+}  // namespace torrance

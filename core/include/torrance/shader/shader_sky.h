@@ -1,0 +1,65 @@
+// The Sky Texture node (opcode 61 of the texture family) as Cycles 3.4 renders it (svm/sky.h and
+// the sky model Cycles precomputes on the host):
+//   TexSky (61)  in0 Vector (the direction; not normalised, as Cycles); mode: SkyModel; a table:
+//     Preetham: sun phi, sun theta, zenith x, y, Y (Cycles' radiance_x/y/z: Y, x, y), then the
+//       five Perez coefficients of Y, of x and of y (kPreethamTable floats)
+//     Nishita:  sun disc XYZ at its bottom and top, sun elevation, sun rotation (Cycles' wrapped
+//       2 pi - rotation), angular diameter (-1: no disc), sun intensity, width, height, then the
+//       sky texture's XYZ texels, row by row from the horizon up (kNishitaHeader + 3 w h floats)
+// The add-on fills the tables with the functions below (through the Python module), as Cycles'
+// SkyTextureNode::compile does; the op writes the Color (r, g, b, 1) in scene linear Rec. 709.
+#pragma once
+
+#include "torrance/shader/shader_program.h"
+
+#include <vector>
+
+namespace torrance::shader {
+
+// Hosek / Wilkie is not rendered (the add-on reports it).
+enum class SkyModel : uint8_t { Preetham, Nishita };
+constexpr int kSkyModels = int(SkyModel::Nishita) + 1;
+constexpr int kPreethamTable = 20;
+constexpr int kNishitaHeader = 12;
+// Cycles' precomputed Nishita texture: 512 x 128 texels (longitude x elevation).
+constexpr int kNishitaWidth = 512, kNishitaHeight = 128;
+
+// ---- host-side precomputation (what Cycles' SkyTextureNode::compile computes) -------------------
+
+// Preetham's table for a sun direction (unit, z up) and turbidity: the zenith's xyY and the
+// Perez coefficients of Preetham, Shirley and Smits' fits, the zenith values divided by the
+// Perez function at the zenith, as Cycles does.
+std::vector<float> preetham_table(const Vec3& sun_direction, float turbidity);
+
+// The Nishita model's atmosphere: single scattering of sunlight by air (Rayleigh), dust (Mie) and
+// absorption by ozone, 21 wavelengths 380..780 nm, integrated along each view ray in 32 segments
+// and toward the sun by 8-point Gauss-Laguerre quadrature (Blender's intern/sky), from
+// `altitude` metres above a 6360 km Earth under a 60 km atmosphere.
+struct NishitaSky {
+  float sun_elevation = 0.2618f;  // radians
+  float sun_rotation = 0.0f;      // radians, about z
+  float sun_size = 0.009512f;     // the disc's angular diameter, radians (Cycles: at least 0.0005)
+  float sun_intensity = 1.0f;
+  bool sun_disc = true;
+  float altitude = 1.0f;  // metres (Cycles clamps to [1, 59999])
+  float air = 1.0f, dust = 1.0f, ozone = 1.0f;  // density scales
+  // Cycles 3.6+ first wraps the elevation into [-pi/2, pi/2], turning the sun about z by pi where
+  // it passes the zenith or nadir (3.4 takes any elevation as it is).
+  bool wrap_elevation = false;
+};
+// The table of the op (header and the kNishitaWidth x kNishitaHeight texels), as Cycles computes
+// it (clamps included).
+std::vector<float> nishita_table(const NishitaSky& sky);
+
+// ---- evaluation --------------------------------------------------------------------------------
+
+// CIE XYZ -> the scene's linear Rec. 709, negative channels clamped (Cycles' xyz_to_rgb_clamped).
+Vec3 xyz_to_rec709_clamped(const Vec3& xyz);
+
+Vec3 sky_preetham(const Vec3& dir, const float* table);
+// table/size: the Nishita table (size its length); an inconsistent table gives black.
+Vec3 sky_nishita(const Vec3& dir, const float* table, int size);
+
+glm::vec4 sky_op(const ShaderOpContext& c);
+
+}  // namespace torrance::shader

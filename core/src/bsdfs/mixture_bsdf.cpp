@@ -1,0 +1,196 @@
+#include "torrance/bsdfs/mixture_bsdf.h"
+
+#include "film/denoising_features.h"
+
+#include "torrance/scene/scene.h"
+
+#include <stdexcept>
+
+namespace torrance {
+namespace {
+
+// The frame of a DiffuseBsdf closure: about the diffuse normal d (bsdf.h) where it is tilted,
+// else the shading frame itself.
+struct DiffuseFrame {
+  explicit DiffuseFrame(const DiffuseNormal& d) : tilted(d.tilted), frame(d.tilted ? Frame(d.n) : Frame()) {}
+  Vec3 to_local(const Vec3& v) const { return tilted ? frame.to_local(v) : v; }
+  Vec3 to_world(const Vec3& v) const { return tilted ? frame.to_world(v) : v; }
+  bool tilted;
+  Frame frame;
+};
+
+template <typename B, typename T>
+constexpr bool is = std::is_same_v<std::decay_t<B>, T>;
+
+// Adds a closure sampled by its own estimate of its albedo.
+template <typename Closure>
+void add_closure(MixtureBsdf& bsdf, const Closure& closure, float weight) {
+  bsdf.add(closure, weight, closure.sampling_albedo());
+}
+
+}  // namespace
+
+float principled_sampling_albedo(const Material& m) {
+  return luminance(glm::clamp(m.base_color, Vec3(0.0f), Vec3(1.0f))) +
+         0.08f * std::max(m.specular, 0.0f) * (1.0f - clamp01(m.metallic));
+}
+
+void MixtureBsdf::add(const Component& c, float w, float sampling_albedo) {
+  if (count_ >= kMaxMixtureComponents) throw std::length_error("a mixture holds at most 8 closures");
+  if (!(w > 0.0f) || std::holds_alternative<std::monostate>(c)) return;
+  components_[count_] = c;
+  weights_[count_] = w;
+  sampling_[count_] = w * (std::max(sampling_albedo, 0.0f) + 0.01f);
+  ++count_;
+  float sum = 0.0f;
+  for (int k = 0; k < count_; ++k) sum += sampling_[k];
+  for (int k = 0; k < count_; ++k) probabilities_[k] = sampling_[k] / sum;
+}
+
+LobeEval MixtureBsdf::eval_mixture(const Vec3& wo, const Vec3& wi, bool backfacing,
+                                   const DiffuseNormal& diffuse) const {
+  const DiffuseFrame d(diffuse);
+  LobeEval total;
+  for (int k = 0; k < count_; ++k) {
+    const LobeEval f = std::visit(
+        [&](const auto& b) -> LobeEval {
+          if constexpr (is<decltype(b), std::monostate>) return {};
+          else if constexpr (is<decltype(b), MaterialBsdf>)
+            return b.eval_lobes(b.at(wo, backfacing, false, diffuse), wi);
+          else if constexpr (is<decltype(b), DiffuseBsdf>) return b.eval_lobes(d.to_local(wo), d.to_local(wi));
+          else if constexpr (is<decltype(b), RefractionBsdf>) return b.eval_lobes(wo, wi, backfacing);
+          else return b.eval_lobes(wo, wi);
+        },
+        components_[k]);
+    total.diffuse += weights_[k] * f.diffuse;
+    total.glossy += weights_[k] * f.glossy;
+  }
+  return total;
+}
+
+float MixtureBsdf::pdf_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse) const {
+  const DiffuseFrame d(diffuse);
+  float p = 0.0f;
+  for (int k = 0; k < count_; ++k)
+    p += probabilities_[k] * std::visit(
+                                 [&](const auto& b) -> float {
+                                   if constexpr (is<decltype(b), std::monostate>) return 0.0f;
+                                   else if constexpr (is<decltype(b), MaterialBsdf>)
+                                     return b.pdf(b.at(wo, backfacing, true, diffuse), wi);
+                                   else if constexpr (is<decltype(b), DiffuseBsdf>)
+                                     return b.pdf(d.to_local(wo), d.to_local(wi));
+                                   else if constexpr (is<decltype(b), RefractionBsdf>)
+                                     return b.pdf(wo, wi, backfacing);
+                                   else return b.pdf(wo, wi);
+                                 },
+                                 components_[k]);
+  return p;
+}
+
+BsdfSample MixtureBsdf::sample_mixture(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing,
+                                       const DiffuseNormal& diffuse) const {
+  if (count_ == 0) return {};
+  // Choose closure k, and reuse what is left of u_lobe for the closure's own lobe choice.
+  int k = 0;
+  float lower = 0.0f;
+  while (k < count_ - 1 && u_lobe >= lower + probabilities_[k]) lower += probabilities_[k++];
+  const float u_rest = std::max(std::min((u_lobe - lower) / probabilities_[k], 0.99999994f), 0.0f);
+  const DiffuseFrame d(diffuse);
+  const BsdfSample s = std::visit(
+      [&](const auto& b) -> BsdfSample {
+        if constexpr (is<decltype(b), std::monostate>) return {};
+        else if constexpr (is<decltype(b), MaterialBsdf>)
+          return b.sample(b.at(wo, backfacing, true, diffuse), u_rest, u);
+        else if constexpr (is<decltype(b), DiffuseBsdf>) {
+          BsdfSample local = b.sample(d.to_local(wo), u_rest, u);
+          local.wi = d.to_world(local.wi);
+          return local;
+        } else if constexpr (is<decltype(b), RefractionBsdf>) return b.sample(wo, u_rest, u, backfacing);
+        else return b.sample(wo, u_rest, u);
+      },
+      components_[k]);
+  if (!s.valid()) return {};
+  if (s.is_delta) {
+    BsdfSample d = s;
+    d.weight = s.weight * (weights_[k] / probabilities_[k]);
+    return d;
+  }
+  if (count_ == 1) {
+    BsdfSample one = s;
+    one.weight = s.weight * weights_[0];
+    return one;
+  }
+  BsdfSample m;
+  m.wi = s.wi;
+  m.diffuse = s.diffuse;
+  m.pdf = pdf_mixture(wo, s.wi, backfacing, diffuse);
+  if (!(m.pdf > 0.0f)) return {};
+  m.weight = eval_mixture(wo, s.wi, backfacing, diffuse).total() / m.pdf;
+  return m;
+}
+
+bool MixtureBsdf::transmits() const {
+  for (int k = 0; k < count_; ++k) {
+    if (const auto* m = std::get_if<MaterialBsdf>(&components_[k]); m && m->transmits()) return true;
+    if (std::holds_alternative<TranslucentBsdf>(components_[k]) || std::holds_alternative<RefractionBsdf>(components_[k]))
+      return true;
+  }
+  return false;
+}
+
+MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals& globals, bool textured,
+                           BrdfModel model, const MaterialBsdf& prebuilt, Material& resolved,
+                           glm::vec4* program_regs, ClosureList* closures) {
+  const Mixture* mixture = scene.mixture(id);
+  if (!mixture) {
+    resolved = textured ? scene.textured_material(id, globals, program_regs) : scene.material(id);
+    return textured ? MixtureBsdf(MaterialBsdf(resolved, model)) : MixtureBsdf(prebuilt);
+  }
+  MixtureWeights w = scene.mixture_weights(id, globals, program_regs);
+  weights_when_opaque(*mixture, w);  // the path did not pass through its Transparent closures
+  resolved = Material{};
+  resolved.base_color = Vec3(0.0f);
+  resolved.metallic = 0.0f;
+  MixtureBsdf bsdf;
+  for (int k = 0; k < w.count; ++k) {
+    if (!(w.weight[k] > 0.0f)) continue;
+    const MixtureComponent& c = mixture->components[k];
+    const Material m = textured ? scene.textured_material(c.material, globals) : scene.material(c.material);
+    resolved.emission += w.weight[k] * m.emission;
+    if (closures) closures->add(c.type, w.weight[k], m);
+    switch (c.type) {
+      case ClosureType::Principled:
+        bsdf.add(MaterialBsdf(m, model), w.weight[k], principled_sampling_albedo(m));
+        resolved.base_color += w.weight[k] * m.base_color * (1.0f - m.metallic);
+        break;
+      case ClosureType::Diffuse:
+        bsdf.add(DiffuseBsdf(m.base_color, m.roughness), w.weight[k], luminance(m.base_color));
+        resolved.base_color += w.weight[k] * m.base_color;
+        break;
+      case ClosureType::Glossy:
+        bsdf.add(GlossyBsdf(m.base_color, m.roughness), w.weight[k], luminance(m.base_color));
+        break;
+      case ClosureType::Velvet: add_closure(bsdf, VelvetBsdf(m.base_color, m.roughness), w.weight[k]); break;
+      case ClosureType::Sheen: add_closure(bsdf, SheenBsdf(m.base_color, m.roughness), w.weight[k]); break;
+      case ClosureType::Translucent: add_closure(bsdf, TranslucentBsdf(m.base_color), w.weight[k]); break;
+      case ClosureType::Refraction:
+        add_closure(bsdf, RefractionBsdf(m.base_color, m.roughness, m.ior, m.glass_beckmann), w.weight[k]);
+        break;
+      case ClosureType::ToonDiffuse:
+      case ClosureType::ToonGlossy:
+      case ClosureType::ToonDiffuseCycles4:
+      case ClosureType::ToonGlossyCycles4: {
+        const bool glossy = c.type == ClosureType::ToonGlossy || c.type == ClosureType::ToonGlossyCycles4;
+        const bool cycles4 = c.type == ClosureType::ToonDiffuseCycles4 || c.type == ClosureType::ToonGlossyCycles4;
+        add_closure(bsdf, ToonBsdf(m.base_color, m.roughness, m.transmission_roughness, glossy, cycles4), w.weight[k]);
+        break;
+      }
+      case ClosureType::Emission:
+      case ClosureType::Transparent:
+      case ClosureType::Holdout: break;
+    }
+  }
+  return bsdf;
+}
+
+}  // namespace torrance

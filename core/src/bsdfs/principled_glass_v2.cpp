@@ -1,0 +1,130 @@
+#include "torrance/bsdfs/principled_glass_v2.h"
+
+#include "torrance/bsdfs/ggx_glass_tables.h"
+#include "torrance/bsdfs/ggx_tables.h"
+#include "torrance/bsdfs/microfacet.h"
+#include "torrance/bsdfs/principled.h"       // fresnel_dielectric
+#include "torrance/bsdfs/principled_coat.h"  // multiscatter
+
+namespace torrance {
+
+namespace {
+
+float mean(const Vec3& v) { return (v.x + v.y + v.z) / 3.0f; }
+// The frame turned so that the viewer is above (z negated for a viewer inside), and back.
+Vec3 flip_z(const Vec3& w) { return Vec3(w.x, w.y, -w.z); }
+
+}  // namespace
+
+PrincipledGlassV2::PrincipledGlassV2(float roughness, float ior, const Vec3& specular_tint, const Vec3& base_color,
+                                     bool multiscatter) {
+  roughness_ = clamp01(std::isfinite(roughness) ? roughness : 0.0f);
+  alpha_ = roughness_ * roughness_;
+  ior_ = std::isfinite(ior) ? std::min(std::max(ior, 1e-5f), 1e3f) : 1.5f;
+  f0_ = glm::clamp(ggx_tables::f0_from_ior(ior_) * glm::max(specular_tint, Vec3(0.0f)), Vec3(0.0f), Vec3(1.0f));
+  tint_t_ = glm::sqrt(glm::clamp(base_color, Vec3(0.0f), Vec3(1.0f)));
+  smooth_ = alpha_ < ggx_tables::kDeltaAlpha;
+  invisible_ = std::abs(ior_ - 1.0f) < 1e-4f;
+  multiscatter_ = multiscatter;
+}
+
+PrincipledGlassV2::Split PrincipledGlassV2::split(float c, float etap) const {
+  Split out;
+  const float f0_real = ggx_tables::f0_from_ior(etap);
+  const float s = f0_real < 1.0f ? clamp01((fresnel_dielectric(c, etap) - f0_real) / (1.0f - f0_real)) : 1.0f;
+  out.reflect = glm::mix(f0_, Vec3(1.0f), s);
+  out.transmit = (Vec3(1.0f) - out.reflect) * tint_t_;
+  const float total = mean(out.reflect + out.transmit);
+  out.p_reflect = total > 0.0f ? mean(out.reflect) / total : 1.0f;
+  return out;
+}
+
+Vec3 PrincipledGlassV2::energy_scale(float cos_o, float etap) const {
+  if (!multiscatter_ || smooth_) return Vec3(1.0f);
+  const float e = std::max(ggx_glass_tables::albedo(roughness_, cos_o, etap), 1e-3f);
+  const float e_avg = ggx_glass_tables::average_albedo(roughness_, etap);
+  Vec3 fss = tint_t_;
+  if (fss == Vec3(0.0f)) {  // no transmission tint: the reflection's mean Fresnel (Cycles)
+    const float f0_real = ggx_tables::f0_from_ior(etap);
+    const float s = clamp01((multiscatter::mean_dielectric_fresnel(etap) - f0_real) / (1.0f - f0_real));
+    fss = glm::mix(f0_, Vec3(1.0f), s);
+  }
+  return multiscatter::scale(fss, e, e_avg);
+}
+
+PrincipledGlassV2::Lobe PrincipledGlassV2::evaluate(const Vec3& wo, const Vec3& wi, float etap) const {
+  Lobe out;
+  if (smooth_ || invisible_ || !(wo.z > 0.0f) || wi.z == 0.0f) return out;
+  const float lambda_o = ggx::smith_lambda(wo.z, alpha_);
+  const float g2 = 1.0f / (1.0f + lambda_o + ggx::smith_lambda(std::abs(wi.z), alpha_));
+  const float g1_o = 1.0f / (1.0f + lambda_o);
+  if (wi.z > 0.0f) {
+    Vec3 h;
+    if (!ggx::reflection_half(wo, wi, h)) return out;
+    const Split sp = split(glm::dot(wo, h), etap);
+    const float common = ggx::D(h, alpha_) / (4.0f * wo.z);
+    out.f_cos = sp.reflect * (common * g2);
+    out.pdf = sp.p_reflect * common * g1_o;
+  } else {
+    Vec3 h;
+    float len2;
+    if (!ggx::refraction_half(wo, wi, etap, h, len2)) return out;  // h must face wo and wi cross it
+    const float o_h = glm::dot(wo, h), i_h = glm::dot(wi, h);
+    const Split sp = split(o_h, etap);
+    const float common = ggx::D(h, alpha_) / wo.z * etap * etap * o_h * -i_h / len2;
+    out.f_cos = sp.transmit * (common * g2);
+    out.pdf = (1.0f - sp.p_reflect) * common * g1_o;
+  }
+  out.f_cos *= energy_scale(wo.z, etap);
+  if (!is_finite(out.f_cos) || !std::isfinite(out.pdf)) return Lobe{};
+  return out;
+}
+
+Vec3 PrincipledGlassV2::eval(const Vec3& wo, const Vec3& wi) const {
+  const bool inside = wo.z < 0.0f;
+  return evaluate(inside ? flip_z(wo) : wo, inside ? flip_z(wi) : wi, inside ? 1.0f / ior_ : ior_).f_cos;
+}
+
+float PrincipledGlassV2::pdf(const Vec3& wo, const Vec3& wi) const {
+  const bool inside = wo.z < 0.0f;
+  return evaluate(inside ? flip_z(wo) : wo, inside ? flip_z(wi) : wi, inside ? 1.0f / ior_ : ior_).pdf;
+}
+
+BsdfSample PrincipledGlassV2::sample(const Vec3& wo_outward, float u_lobe, const Vec2& u) const {
+  BsdfSample s;
+  if (wo_outward.z == 0.0f || !is_finite(wo_outward)) return s;
+  const bool inside = wo_outward.z < 0.0f;
+  const Vec3 wo = inside ? flip_z(wo_outward) : wo_outward;
+  const float etap = inside ? 1.0f / ior_ : ior_;
+  if (invisible_) {
+    s.wi = -wo_outward;
+    s.weight = tint_t_;
+    s.is_delta = true;
+    return s;
+  }
+  const Vec3 h = smooth_ ? Vec3(0.0f, 0.0f, 1.0f) : ggx::sample_visible_normal(wo, alpha_, u);
+  const float c = glm::dot(wo, h);
+  if (!(c > 0.0f)) return s;
+  const Split sp = split(c, etap);
+  const bool reflect = u_lobe < sp.p_reflect;
+  Vec3 wi;
+  if (reflect) {
+    wi = ggx::reflect(wo, h);
+    if (!(wi.z > 0.0f)) return BsdfSample{};
+  } else if (!ggx::refract(wo, h, etap, wi) || !(wi.z < 0.0f)) {
+    return BsdfSample{};
+  }
+  s.wi = inside ? flip_z(wi) : wi;
+  if (smooth_) {
+    s.weight = reflect ? sp.reflect / sp.p_reflect : sp.transmit / (1.0f - sp.p_reflect);
+    s.is_delta = true;
+    return s;
+  }
+  const Lobe l = evaluate(wo, wi, etap);
+  if (!(l.pdf > 0.0f)) return BsdfSample{};
+  s.pdf = l.pdf;
+  s.weight = l.f_cos / l.pdf;
+  return s;
+}
+
+}  // namespace torrance

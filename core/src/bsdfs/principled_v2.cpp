@@ -1,0 +1,154 @@
+#include "torrance/bsdfs/principled_v2.h"
+
+#include "torrance/bsdfs/microfacet.h"
+
+namespace torrance {
+
+using multiscatter::mean_dielectric_fresnel;
+
+PrincipledV2Bsdf::PrincipledV2Bsdf(const Material& m) {
+  const Vec3 base = glm::max(m.base_color, Vec3(0.0f));
+  const Vec3 tint = glm::max(m.specular_tint_color, Vec3(0.0f));
+  metallic_ = clamp01(m.metallic);
+  dielectric_weight_ = (1.0f - metallic_) * (1.0f - clamp01(m.transmission));  // the glass takes the rest
+  roughness_ = clamp01(m.roughness);
+  alpha_ = roughness_ * roughness_;
+  multiscatter_ = m.multiscatter_ggx;
+  base_ = base;
+
+  // Metal: F82-tint with f0 = base colour (clamped to 1), tint clamped to 1.
+  metal_f0_ = glm::min(base, Vec3(1.0f));
+  const Vec3 tint82 = glm::min(tint, Vec3(1.0f));
+  metal_b_ = Vec3(0.0f);
+  if (tint82 != Vec3(1.0f)) {
+    const float f = 6.0f / 7.0f, f6 = f * f * f * f * f * f;
+    const Vec3 schlick_82 = glm::mix(metal_f0_, Vec3(1.0f), f6 / f);
+    metal_b_ = schlick_82 * (7.0f / f6) * (Vec3(1.0f) - tint82);
+  }
+  metal_fss_ = glm::mix(metal_f0_, Vec3(1.0f), 1.0f / 21.0f) - metal_b_ * (1.0f / 126.0f);
+
+  // Dielectric: F0 from the IOR rescaled by the Specular IOR Level (f0 = 0.08 specular).
+  const float ior = std::max(m.ior, 1e-5f);
+  const float f0 = 0.08f * std::max(m.specular, 0.0f);
+  const float f0_ior = ggx_tables::f0_from_ior(ior);
+  eta_ = ior;
+  if (std::abs(f0 - f0_ior) > 1e-6f * f0_ior) {
+    eta_ = ggx_tables::ior_from_f0(f0);
+    if (ior < 1.0f) eta_ = 1.0f / eta_;
+  }
+  has_dielectric_ = eta_ != 1.0f;
+  dielectric_f0_ = glm::clamp(ggx_tables::f0_from_ior(eta_) * tint, Vec3(0.0f), Vec3(1.0f));
+  const float f0_eta = ggx_tables::f0_from_ior(eta_);
+  const float s_ss = f0_eta < 1.0f ? clamp01((mean_dielectric_fresnel(eta_) - f0_eta) / (1.0f - f0_eta)) : 1.0f;
+  dielectric_fss_ = glm::mix(dielectric_f0_, Vec3(1.0f), s_ss);
+  if (m.coat_weight > 0.0f) coat_ = CoatV2(m.coat_weight, m.coat_roughness, m.coat_ior, m.coat_tint);
+  if (m.sheen_weight > 0.0f) sheen_ = SheenV2(m.sheen_weight, m.sheen_roughness, m.sheen_tint_color);
+}
+
+Vec3 PrincipledV2Bsdf::metal_fresnel(float cos_ih) const {
+  const float c = clamp01(cos_ih), mu = 1.0f - c;
+  const float mu5 = (mu * mu) * (mu * mu) * mu;
+  const Vec3 schlick = glm::mix(metal_f0_, Vec3(1.0f), mu5);
+  return glm::clamp(schlick - metal_b_ * (c * mu5 * mu), Vec3(0.0f), Vec3(1.0f));
+}
+
+Vec3 PrincipledV2Bsdf::dielectric_fresnel(float cos_ih) const {
+  if (!has_dielectric_) return Vec3(0.0f);
+  return glm::mix(dielectric_f0_, Vec3(1.0f), ggx_tables::dielectric_fresnel_factor(cos_ih, eta_));
+}
+
+PrincipledV2Bsdf::ViewTerms PrincipledV2Bsdf::view_terms(float cos_o) const {
+  ViewTerms v;
+  Vec3 metal_k(1.0f), dielectric_k(1.0f), darkening(1.0f);
+  if (multiscatter_) {
+    const float e = std::max(ggx_tables::albedo(roughness_, cos_o), 1e-3f);
+    const float e_avg = ggx_tables::average_albedo(roughness_);
+    metal_k = multiscatter::scale(metal_fss_, e, e_avg);
+    dielectric_k = multiscatter::scale(dielectric_fss_, e, e_avg);
+    darkening = e * dielectric_k;
+  }
+  v.metal_scale = metallic_ * metal_k;
+  float diffuse_weight = 1.0f;
+  if (has_dielectric_) {
+    v.dielectric_scale = dielectric_weight_ * dielectric_k;
+    const float s = ggx_tables::dielectric_fresnel_mix(roughness_, cos_o, eta_);
+    v.dielectric_albedo = darkening * glm::mix(dielectric_f0_, Vec3(1.0f), s);
+    diffuse_weight = clamp01(1.0f - max_component(v.dielectric_albedo));
+  }
+  v.diffuse = base_ * (dielectric_weight_ * diffuse_weight);
+  if (coat_.active()) {
+    v.coat = coat_.terms(cos_o);
+    v.metal_scale *= v.coat.base_weight;
+    v.dielectric_scale *= v.coat.base_weight;
+    v.diffuse *= v.coat.base_weight;
+  }
+  if (sheen_.active()) {
+    // The sheen is the top layer: everything under it (the coat too) keeps 1 - max_rgb(A).
+    v.sheen = sheen_.terms(cos_o);
+    const float keep = SheenV2::keep(v.sheen);
+    v.metal_scale *= keep;
+    v.dielectric_scale *= keep;
+    v.diffuse *= keep;
+    v.coat.scale *= keep;
+    v.coat.albedo *= keep;
+  }
+  return v;
+}
+
+Vec3 PrincipledV2Bsdf::mirror_reflectance(const Vec3& wo) const {
+  const ViewTerms v = view_terms(wo.z);
+  return v.metal_scale * metal_fresnel(wo.z) + v.dielectric_scale * dielectric_fresnel(wo.z);
+}
+
+Vec3 PrincipledV2Bsdf::specular_estimate(const ViewTerms& v, float cos_o) const {
+  const Vec3 spec = metallic_ * metal_fresnel(cos_o) + (1.0f - metallic_) * v.dielectric_albedo;
+  return spec * v.coat.base_weight * (sheen_.active() ? SheenV2::keep(v.sheen) : 1.0f);
+}
+
+float PrincipledV2Bsdf::specular_probability(const ViewTerms& v, float cos_o) const {
+  return lobe_mixture::specular_probability(luminance(specular_estimate(v, cos_o)), luminance(v.diffuse));
+}
+
+PrincipledV2Bsdf::View PrincipledV2Bsdf::geometry(const Vec3& wo) const {
+  View v;
+  lobe_mixture::prepare(v, wo, alpha_);
+  v.terms = view_terms(wo.z);
+  v.lambda_o = ggx::smith_lambda(wo.z, alpha_);
+  if (sheen_.active()) v.sheen = SheenBsdf::oriented(v.terms.sheen, wo);
+  return v;
+}
+
+PrincipledV2Bsdf::View PrincipledV2Bsdf::at(const Vec3& wo) const {
+  View v = geometry(wo);
+  v.p_spec = specular_probability(v.terms, wo.z);
+  const ViewTerms& t = v.terms;
+  if (coat_.reflects() || sheen_.active()) {
+    const float under_coat = luminance(specular_estimate(t, wo.z) + t.diffuse);
+    if (coat_.reflects()) v.p_coat = lobe_mixture::coat_probability(t.coat.albedo, under_coat);
+    if (v.sheen.reflects())
+      v.p_sheen = lobe_mixture::coat_probability(luminance(v.sheen.weight), under_coat + t.coat.albedo);
+  }
+  return v;
+}
+
+LobeEval PrincipledV2Bsdf::eval_lobes(const View& view, const Vec3& wi) const {
+  const Vec3& wo = view.wo;
+  if (wo.z <= 0.0f) return {};
+  const ViewTerms& v = view.terms;
+  LobeEval f_cos;
+  const float cos_diffuse = view.diffuse_normal.cosine(wi);
+  if (cos_diffuse > 0.0f) f_cos.diffuse = v.diffuse * (kInvPi * cos_diffuse);
+  if (wi.z <= 0.0f) return f_cos;
+  if (view.sheen.reflects()) f_cos.diffuse += view.sheen.weight * view.sheen.density(wi);
+  if (coat_.reflects()) f_cos.glossy = Vec3(coat_.eval(v.coat, wo, wi));
+  if (has_delta()) return f_cos;
+  Vec3 h;
+  if (!ggx::reflection_half(wo, wi, h)) return f_cos;
+  const float cos_d = clamp01(glm::dot(wi, h));
+  const Vec3 fresnel = v.metal_scale * metal_fresnel(cos_d) + v.dielectric_scale * dielectric_fresnel(cos_d);
+  const float g2 = ggx::smith_G2_correlated_given(view.lambda_o, wi.z, alpha_);
+  f_cos.glossy += fresnel * (ggx::D(h, alpha_) * g2 / view.four_cos_o);
+  return f_cos;
+}
+
+}  // namespace torrance

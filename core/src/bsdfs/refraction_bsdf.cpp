@@ -1,0 +1,31 @@
+#include "torrance/bsdfs/refraction_bsdf.h"
+
+namespace torrance {
+namespace {
+
+// w in the glass's outward frame (z the outward normal) from the frame turned towards the viewer.
+Vec3 outward(const Vec3& w, bool backfacing) { return backfacing ? Vec3(w.x, w.y, -w.z) : w; }
+
+}  // namespace
+
+RefractionBsdf::RefractionBsdf(const Vec3& color, float roughness, float ior, bool beckmann)
+    : color_(glm::max(color, Vec3(0.0f))),
+      glass_(0.0f, roughness, ior, Vec3(0.0f), color_, beckmann, /*refraction_only=*/true) {}
+
+LobeEval RefractionBsdf::eval_lobes(const Vec3& wo, const Vec3& wi, bool backfacing) const {
+  LobeEval f;
+  f.glossy = glass_.eval(outward(wo, backfacing), outward(wi, backfacing));
+  return f;
+}
+
+float RefractionBsdf::pdf(const Vec3& wo, const Vec3& wi, bool backfacing) const {
+  return glass_.pdf(outward(wo, backfacing), outward(wi, backfacing));
+}
+
+BsdfSample RefractionBsdf::sample(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing) const {
+  BsdfSample s = glass_.sample(outward(wo, backfacing), u_lobe, u);
+  s.wi = outward(s.wi, backfacing);
+  return s;
+}
+
+}  // namespace torrance

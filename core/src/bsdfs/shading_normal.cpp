@@ -1,0 +1,30 @@
+#include "torrance/bsdfs/shading_normal.h"
+
+namespace torrance {
+
+Vec3 valid_shading_normal(const Vec3& ng, const Vec3& ns, const Vec3& wo) {
+  const float threshold = std::min(0.9f * glm::dot(ng, wo), 0.01f);
+  auto reflection_ok = [&](const Vec3& n) { return glm::dot(ng, 2.0f * glm::dot(wo, n) * n - wo) >= threshold; };
+  if (reflection_ok(ns)) return ns;
+  float lo = 0.0f, hi = 1.0f;
+  for (int i = 0; i < 16; ++i) {
+    const float mid = 0.5f * (lo + hi);
+    const Vec3 n = glm::mix(ns, ng, mid);
+    const float len = glm::length(n);
+    if (len > 1e-6f && reflection_ok(n / len)) hi = mid;
+    else lo = mid;
+  }
+  const Vec3 n = glm::mix(ns, ng, hi);
+  const float len = glm::length(n);
+  return len > 1e-6f ? n / len : ng;
+}
+
+DiffuseNormal diffuse_normal(const Frame& frame, const Vec3& checked, const Vec3& unchecked, BrdfModel model) {
+  DiffuseNormal d;
+  if (model != BrdfModel::PrincipledV2 || checked == unchecked) return d;
+  d.n = frame.to_local(unchecked);
+  d.tilted = true;
+  return d;
+}
+
+}  // namespace torrance

@@ -1,0 +1,178 @@
+// The closures Cycles 3.4 makes of Torrance's materials (svm/closure.h), as the denoising
+// features weigh them, and the features' step at a surface (film/denoising_passes.h).
+#include "film/denoising_features.h"
+
+#include "torrance/bsdfs/principled.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace torrance {
+
+namespace {
+
+constexpr float kWeightCutoff = 1e-5f;  // CLOSURE_WEIGHT_CUTOFF
+constexpr float kNotMicrofacet = 1.0f;  // bsdf_get_specular_roughness_squared of other closures
+
+float mean(const Vec3& c) { return (c.x + c.y + c.z) / 3.0f; }
+
+// A GGX (or Beckmann) closure's alpha_x alpha_y for the node's Roughness r (alpha = r^2).
+float microfacet_roughness_squared(float r) {
+  const float alpha = r * r;
+  return alpha * alpha;
+}
+
+// Cycles' mean Fresnel colour of a *_FRESNEL microfacet closure (bsdf_microfacet_fresnel_color):
+// cspec0 blended to white by the dielectric Fresnel of `ior` at cos_no, normalised past F0.
+Vec3 fresnel_color(float cos_no, float ior, const Vec3& cspec0) {
+  const float f0 = fresnel_dielectric(1.0f, ior);
+  const float fh = (fresnel_dielectric(cos_no, ior) - f0) / (1.0f - f0);
+  return cspec0 * (1.0f - fh) + Vec3(fh);
+}
+
+// The colour normalised to luminance 1 (its hue and saturation), white for black.
+Vec3 tint_of(const Vec3& c, float lum) { return lum > 0.0f ? c / lum : Vec3(1.0f); }
+
+}  // namespace
+
+void DenoisingClosures::add_sampled(float sample_weight, bool transmits) {
+  if (!(sample_weight >= kWeightCutoff) || count >= kMaxClosures) return;
+  sample_weights[size_t(count)] = sample_weight;
+  transmitting[size_t(count++)] = transmits;
+}
+
+void DenoisingClosures::add(const Vec3& albedo, float sample_weight, float roughness_squared, bool transmits,
+                            bool sampled_alone) {
+  if (!(sample_weight >= kWeightCutoff)) return;
+  if (sampled_alone) add_sampled(sample_weight, transmits);
+  sum_weight += sample_weight;
+  if (roughness_squared > 0.075f * 0.075f) {
+    diffuse_albedo += albedo;
+    sum_nonspecular += sample_weight;
+  } else {
+    specular_albedo += albedo;
+  }
+}
+
+float DenoisingClosures::defensive_ratio(bool transmitted) const {
+  if (count <= 1 || !(sum_weight > 0.0f)) return 1.0f;
+  float plain = 0.0f, defended = 0.0f, defended_sum = 0.0f;
+  for (int i = 0; i < count; ++i) {
+    const float w = sample_weights[size_t(i)], d = std::max(w, 0.125f * sum_weight);
+    defended_sum += d;
+    if (transmitting[size_t(i)] == transmitted) {
+      plain += w;
+      defended += d;
+    }
+  }
+  return plain > 0.0f ? (defended / defended_sum) / (plain / sum_weight) : 1.0f;
+}
+
+void DenoisingClosures::add_material(const Material& m, float w, float cos_no, bool backfacing) {
+  const Vec3 base = glm::max(m.base_color, Vec3(0.0f));
+  const float roughness = std::clamp(m.roughness, 0.0f, 1.0f);
+  const float eta = std::max(m.ior, 1e-5f);
+  const float ior = backfacing ? 1.0f / eta : eta;
+  const float fresnel = fresnel_dielectric(cos_no, ior);
+  // Two glass closures (the reflection and the refraction), each with its alpha^2.
+  auto add_glass = [&](const Vec3& reflect, const Vec3& refract, float reflect_r2, float refract_r2) {
+    add(reflect, std::abs(mean(reflect)), reflect_r2, false, !one_glass_closure);
+    add(refract, std::abs(mean(refract)), refract_r2, true, !one_glass_closure);
+    if (one_glass_closure) add_sampled(std::abs(mean(reflect + refract)), false);
+  };
+  if (m.glass_node) {  // the Glass BSDF: both closures of its colour, untinted by Fresnel colour
+    const Vec3 weight = w * base;
+    const float r2 = microfacet_roughness_squared(roughness);
+    add_glass(weight * fresnel, weight * std::max(1e-4f, 1.0f - fresnel), r2, r2);
+    return;
+  }
+  // The Principled BSDF (v1's closures).
+  const float metallic = std::clamp(m.metallic, 0.0f, 1.0f);
+  const float transmission = std::clamp(m.transmission, 0.0f, 1.0f);
+  const float diffuse_weight = (1.0f - metallic) * (1.0f - transmission);
+  const float glass_weight = transmission * (1.0f - metallic);
+  const float specular_weight = 1.0f - glass_weight;
+  if (diffuse_weight > kWeightCutoff) {
+    const Vec3 diffuse = w * base * diffuse_weight;
+    add(diffuse, mean(diffuse), kNotMicrofacet);
+    if (m.sheen_weight > kWeightCutoff) {  // its albedo: the mean of Schlick's term x cos
+      const Vec3 tint = tint_of(base, luminance(base));
+      const Vec3 weight = w * m.sheen_weight * diffuse_weight * (Vec3(1.0f - m.sheen_tint) + tint * m.sheen_tint);
+      const float c = std::clamp(std::abs(cos_no), 0.0f, 1.0f);
+      const float schlick = std::pow(1.0f - c, 5.0f);
+      const float average = schlick * c;
+      add(weight * average, mean(weight) * average, kNotMicrofacet);
+    }
+  }
+  if (specular_weight > kWeightCutoff && (m.specular > kWeightCutoff || metallic > kWeightCutoff)) {
+    const float specular = std::max(m.specular, 0.0f);
+    const float spec_ior = 2.0f / (1.0f - std::sqrt(std::min(0.08f * specular, 0.99f))) - 1.0f;
+    const Vec3 tint = tint_of(base, 0.3f * base.x + 0.6f * base.y + 0.1f * base.z);
+    const Vec3 tinted = Vec3(1.0f - m.specular_tint) + tint * m.specular_tint;
+    const Vec3 cspec0 = specular * 0.08f * tinted * (1.0f - metallic) + base * metallic;
+    const Vec3 f = fresnel_color(cos_no, spec_ior, cspec0);
+    const float weight = w * specular_weight;
+    add(weight * f, weight * mean(f), microfacet_roughness_squared(roughness));
+  }
+  if (glass_weight > kWeightCutoff) {  // single-scatter GGX glass (3.4's GGX distribution)
+    const Vec3 cspec0 = base * m.specular_tint + Vec3(1.0f - m.specular_tint);
+    const Vec3 f = fresnel_color(cos_no, ior, cspec0);
+    const float reflect = w * glass_weight * fresnel;
+    const float refract_roughness = 1.0f - (1.0f - roughness) * (1.0f - std::clamp(m.transmission_roughness, 0.0f, 1.0f));
+    const Vec3 refract = w * glass_weight * std::max(1e-4f, 1.0f - fresnel) * base;
+    add_glass(reflect * f, refract, microfacet_roughness_squared(roughness),
+              microfacet_roughness_squared(refract_roughness));
+  }
+  if (m.coat_weight > kWeightCutoff) {  // the clearcoat: F0 0.04, IOR 1.5, a quarter of its weight
+    const Vec3 f = fresnel_color(cos_no, 1.5f, Vec3(0.04f)) * (0.25f * m.coat_weight);
+    add(w * f, w * mean(f), microfacet_roughness_squared(std::clamp(m.coat_roughness, 0.0f, 1.0f)));
+  }
+}
+
+void DenoisingClosures::add_closures(const ClosureList& list, float cos_no, bool backfacing) {
+  for (int k = 0; k < list.count; ++k) {
+    const ClosureList::Entry& e = list.entries[size_t(k)];
+    const Material& m = e.material;
+    const Vec3 weight = e.weight * glm::max(m.base_color, Vec3(0.0f));
+    const float r2 = microfacet_roughness_squared(std::clamp(m.roughness, 0.0f, 1.0f));
+    switch (e.type) {
+      case ClosureType::Principled: add_material(m, e.weight, cos_no, backfacing); break;
+      case ClosureType::Glossy: add(weight, mean(weight), r2); break;
+      case ClosureType::Refraction: add(weight, mean(weight), r2, true); break;
+      case ClosureType::Diffuse:
+      case ClosureType::Velvet:
+      case ClosureType::Sheen:
+      case ClosureType::ToonDiffuse:
+      case ClosureType::ToonGlossy:
+      case ClosureType::ToonDiffuseCycles4:
+      case ClosureType::ToonGlossyCycles4: add(weight, mean(weight), kNotMicrofacet); break;
+      case ClosureType::Translucent: add(weight, mean(weight), kNotMicrofacet, true); break;
+      case ClosureType::Emission:
+      case ClosureType::Transparent:
+      case ClosureType::Holdout: break;  // no BSDF (the Transparent one: passed by the path)
+    }
+  }
+}
+
+void DenoisingFeatures::surface(const DenoisingClosures& c, float segment, const Vec3& normal,
+                                const std::array<Vec3, 3>& camera_axes, PathRadiance& out) {
+  if (!open_) return;
+  auto finite = [](float v) { return std::isfinite(v) ? v : 0.0f; };
+  const float share = share_ * choice_;
+  out.denoising_depth += share * finite(mean(throughput_) * segment);
+  const bool first = first_;
+  first_ = false;
+  if (!c.stops()) {
+    throughput_ *= c.specular_albedo;
+    if (first) first_closures_ = c;
+    return;
+  }
+  if (c.sum_weight > 0.0f) {  // the closures share one normal: their weighted mean is it
+    for (int i = 0; i < 3; ++i) out.denoising_normal[i] += share * finite(glm::dot(normal, camera_axes[size_t(i)]));
+  }
+  const Vec3 albedo = throughput_ * c.diffuse_albedo;
+  for (int i = 0; i < 3; ++i) out.denoising_albedo[i] += share * finite(albedo[i]);
+  open_ = false;
+}
+
+}  // namespace torrance

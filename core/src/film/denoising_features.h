@@ -1,0 +1,103 @@
+// The denoising features of a camera sample as Cycles 3.4 writes them (kernel/film/
+// denoising_passes.h): Denoising Albedo, Denoising Normal and Denoising Depth. The path carries a
+// feature throughput (1 at the camera) and, at each surface it meets while the features are
+// still open, sorts the surface's closures by Cycles' roughness test (alpha_x alpha_y > 0.075^2:
+// diffuse-like, else specular-like, singular ones 0, non-microfacet ones 1). If more than a
+// quarter of the closures' sample weight is diffuse-like (or there are none), it writes the
+// feature throughput x the diffuse-like closures' albedo and their sample-weighted normal in
+// camera space, and closes the features; otherwise it multiplies the feature throughput by the
+// specular-like closures' albedo and goes on (smooth mirrors and glass). A closure's albedo is
+// its weight, times its mean Fresnel colour for Principled's specular, glass reflection and
+// clearcoat closures, times the sheen's mean for the sheen. Emission and the world met while the
+// features are open add the feature throughput x their contribution to the albedo; every
+// surface met adds mean(feature throughput) x its segment's length to the depth. Written once per
+// sample, so the passes are the mean over the samples (0 where nothing was written).
+//
+// Cycles samples the camera's first hit defensively (surface_shader_prepare_closures): every
+// closure's sample weight is at least 1/8 of their sum, so smooth glass seen by the camera is
+// reflected 11 % of the time, not 3 %. The radiance does not depend on it, the features do (a
+// reflected path writes no normal): where they go on past the first hit, what later surfaces
+// write is weighed by Cycles' probability of the side the path left on (reflected or
+// transmitted) over the undefended one, which Torrance's sampling follows. Cycles 4.x (the
+// PRINCIPLED_V2 model) makes one closure of a glass's reflection and refraction: alone, it is
+// not sampled defensively.
+#pragma once
+
+#include "integrator/path_tracer.h"
+#include "torrance/bsdfs/mixture.h"
+
+#include <array>
+
+namespace torrance {
+
+// A mixture's closures at a hit, as shade_material weighs them (filled only when asked for).
+struct ClosureList {
+  struct Entry {
+    ClosureType type = ClosureType::Principled;
+    float weight = 0.0f;
+    Material material;
+  };
+  std::array<Entry, kMaxMixtureComponents> entries;
+  int count = 0;
+  void add(ClosureType type, float weight, const Material& m) {
+    if (count < kMaxMixtureComponents) entries[size_t(count++)] = {type, weight, m};
+  }
+};
+
+// The closures of one surface, summed as the denoising features sort them.
+struct DenoisingClosures {
+  explicit DenoisingClosures(bool one_glass_closure = false) : one_glass_closure(one_glass_closure) {}
+  bool one_glass_closure;  // Cycles 4.x's glass: one closure for the defensive sampling
+  Vec3 diffuse_albedo{0.0f}, specular_albedo{0.0f};
+  float sum_weight = 0.0f, sum_nonspecular = 0.0f;  // Cycles' sample weights
+  // The closures' sample weights and whether they transmit, for the defensive sampling.
+  static constexpr int kMaxClosures = 4 * kMaxMixtureComponents;
+  std::array<float, kMaxClosures> sample_weights{};
+  std::array<bool, kMaxClosures> transmitting{};
+  int count = 0;
+  // One closure: albedo (Fresnel included), sample weight (mean of its weight, Fresnel included),
+  // alpha_x alpha_y (0: singular, 1: not a microfacet closure). Cycles drops closures whose
+  // weight's mean is under 1e-5.
+  void add(const Vec3& albedo, float sample_weight, float roughness_squared, bool transmits = false,
+           bool sampled_alone = true);
+  void add_sampled(float sample_weight, bool transmits);  // one closure for the defensive sampling
+  // Cycles' defensive probability of leaving on the transmitting side (or not) over the plain one.
+  float defensive_ratio(bool transmitted) const;
+  // A material (not a mixture) of weight w at cos(N, I) = cos_no; backfacing: seen from inside.
+  void add_material(const Material& m, float w, float cos_no, bool backfacing);
+  // A mixture's closures.
+  void add_closures(const ClosureList& list, float cos_no, bool backfacing);
+  // Whether the path stops collecting here: some diffuse-like share, or no closure at all.
+  bool stops() const { return sum_weight == 0.0f || sum_nonspecular * 4.0f > sum_weight; }
+};
+
+// The features' state along one path.
+class DenoisingFeatures {
+ public:
+  explicit DenoisingFeatures(bool wanted) : open_(wanted) {}
+  bool open() const { return open_; }
+  // Light reaching the camera (emission or the world, the path's throughput and MIS included)
+  // while the features are open.
+  void light(const Vec3& contribution, PathRadiance& out) const {
+    if (open_) out.denoising_albedo += throughput_ * contribution;
+  }
+  // A surface met: `segment` the length from the ray's origin (or the last surface), `normal`
+  // the world shading normal the closures share, camera_axes the camera's right, up and forward.
+  void surface(const DenoisingClosures& c, float segment, const Vec3& normal, const std::array<Vec3, 3>& camera_axes,
+               PathRadiance& out);
+  // A branch of the path split at the first hit: its share of what surfaces write.
+  void set_share(float share) { share_ = share; }
+  // The path left the first hit on the transmitting side (or not): Cycles' defensive sampling.
+  void left_first_hit(bool transmitted) {
+    if (open_) choice_ = first_closures_.defensive_ratio(transmitted);
+  }
+
+ private:
+  bool open_;
+  bool first_ = true;
+  Vec3 throughput_{1.0f};
+  float share_ = 1.0f, choice_ = 1.0f;
+  DenoisingClosures first_closures_;  // the first hit's, when the features went on past it
+};
+
+}  // namespace torrance

@@ -1,0 +1,17 @@
+// The one place the Scene's rays reach Embree (Scene::intersect and Scene::occluded call these):
+// each query is counted for its thread and, while a RayLog of that scene records, logged with
+// its answer (torrance/integrator/ray_log.h).
+#pragma once
+
+#include <embree3/rtcore.h>
+
+namespace torrance::ray_queries {
+
+// rtcIntersect1 of rh (its hit ids set to invalid by the caller) through scene.
+void intersect(RTCScene scene, RTCRayHit& rh);
+// rtcIntersect8 of the packet's valid lanes (valid[i] = -1) with the coherent flag.
+void intersect_coherent(RTCScene scene, const int* valid, RTCRayHit8& packet);
+// rtcOccluded1 of ray through scene; true when something lies in [tnear, tfar].
+bool occluded(RTCScene scene, RTCRay& ray);
+
+}  // namespace torrance::ray_queries

@@ -1,0 +1,77 @@
+// Blender's pass indices of objects and materials (the Object Index and Material Index passes),
+// its holdout objects and the light groups of its emitting objects.
+#include "scene/scene_internal.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace torrance {
+
+void Scene::set_mesh_pass_index(uint32_t mesh, float index) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set a mesh's pass index");
+  if (mesh >= meshes_.size()) throw std::invalid_argument("mesh " + std::to_string(mesh) + " does not exist");
+  meshes_[mesh]->pass_index = index;
+}
+
+void Scene::set_instance_pass_indices(const int64_t* ids, size_t count, const float* values) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set instances' pass indices");
+  for (size_t i = 0; i < count; ++i)
+    if (ids[i] < 0 || size_t(ids[i]) >= instances_.size())
+      throw std::invalid_argument("instance " + std::to_string(ids[i]) + " does not exist");
+  for (size_t i = 0; i < count; ++i) instances_[size_t(ids[i])].pass_index = values[i];
+}
+
+void Scene::set_material_pass_indices(const float* values, size_t count) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set materials' pass indices");
+  material_pass_indices_.assign(values, values + count);
+}
+
+void Scene::set_mesh_holdout(uint32_t mesh, bool holdout) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set a mesh's holdout");
+  if (mesh >= meshes_.size()) throw std::invalid_argument("mesh " + std::to_string(mesh) + " does not exist");
+  meshes_[mesh]->holdout = holdout;
+  object_holdouts_ = object_holdouts_ || holdout;
+}
+
+void Scene::set_instance_holdouts(const int64_t* ids, size_t count, bool holdout) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set instances' holdout");
+  for (size_t i = 0; i < count; ++i)
+    if (ids[i] < 0 || size_t(ids[i]) >= instances_.size())
+      throw std::invalid_argument("instance " + std::to_string(ids[i]) + " does not exist");
+  for (size_t i = 0; i < count; ++i) instances_[size_t(ids[i])].holdout = holdout;
+  object_holdouts_ = object_holdouts_ || (holdout && count > 0);
+}
+
+namespace {
+int8_t checked_group(int group, const ExtraPasses& extra) {
+  if (group < -1 || group >= extra.num_light_groups())
+    throw std::invalid_argument("light group " + std::to_string(group) + " does not exist (set_light_groups first)");
+  return int8_t(group);
+}
+}  // namespace
+
+void Scene::set_mesh_light_group(uint32_t mesh, int group) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set a mesh's light group");
+  if (mesh >= meshes_.size()) throw std::invalid_argument("mesh " + std::to_string(mesh) + " does not exist");
+  meshes_[mesh]->light_group = checked_group(group, extra_passes_);
+  emitters_dirty_ = true;
+}
+
+void Scene::set_instance_light_groups(const int64_t* ids, size_t count, int group) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set instances' light group");
+  const int8_t g = checked_group(group, extra_passes_);
+  for (size_t i = 0; i < count; ++i)
+    if (ids[i] < 0 || size_t(ids[i]) >= instances_.size())
+      throw std::invalid_argument("instance " + std::to_string(ids[i]) + " does not exist");
+  for (size_t i = 0; i < count; ++i) instances_[size_t(ids[i])].light_group = g;
+  emitters_dirty_ = true;
+}
+
+}  // namespace torrance

@@ -1,0 +1,182 @@
+// The cells a Voronoi search visits (shader_voronoi.cpp), their feature points and distances
+// computed for all cells together: every cell's hash and distance is independent of the others',
+// so they are computed over arrays (shader_hash_lanes.h), several cells per instruction; only
+// the choice among them (first closer point wins, the smooth blend's running sums) is left to a
+// loop in Cycles' order. Each value is the one the per-cell scalar code computes: the same float
+// operations in the same order, lane by lane (the build has no -ffast-math and no FMA contraction).
+#pragma once
+
+#include "torrance/util/math.h"
+#include "torrance/shader/shader_hash.h"
+#include "torrance/shader/shader_hash_lanes.h"
+#include "torrance/shader/shader_voronoi.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
+
+namespace torrance::shader::voronoi_cells {
+
+// v[i] = sqrt(v[i]) for N values (a multiple of 4). The compiler leaves std::sqrt one value at
+// a time (it keeps errno, which a negative argument sets), so SSE's sqrtps takes four: the same
+// correctly rounded square roots.
+template <int N>
+void square_roots(float* v) {
+#if defined(__SSE__)
+  for (int i = 0; i < N; i += 4) _mm_storeu_ps(v + i, _mm_sqrt_ps(_mm_loadu_ps(v + i)));
+#else
+  for (int i = 0; i < N; ++i) v[i] = std::sqrt(v[i]);
+#endif
+}
+
+template <int D>
+using VecN = glm::vec<D, float, glm::defaultp>;
+
+constexpr int power(int base, int exponent) { return exponent == 0 ? 1 : base * power(base, exponent - 1); }
+
+// The cells within `Reach` of p's cell on every axis, (2 Reach + 1)^D of them, indexed in Cycles'
+// loop order (x varying fastest, which decides ties and the smooth blend's order); the arrays
+// have kLanes >= kCount entries, the extra ones padding (computed, never read).
+template <int D, int Reach>
+struct Cells {
+  static constexpr int kSide = 2 * Reach + 1;
+  static constexpr int kCount = power(kSide, D);
+  static constexpr int kLanes = (kCount + 3) / 4 * 4;
+  static constexpr int kCenter = kCount / 2;  // offset 0 on every axis
+
+  // Cell i's offset from p's cell along axis k: offset(k)[i].
+  static constexpr std::array<std::array<float, kLanes>, D> make_offsets() {
+    std::array<std::array<float, kLanes>, D> out{};
+    for (int i = 0; i < kLanes; ++i) {
+      int rest = i < kCount ? i : kCenter;
+      for (int k = 0; k < D; ++k) {
+        out[size_t(k)][size_t(i)] = float(rest % kSide - Reach);
+        rest /= kSide;
+      }
+    }
+    return out;
+  }
+  static constexpr std::array<std::array<float, kLanes>, D> kOffsets = make_offsets();
+  static VecN<D> offset(int i) {
+    VecN<D> o;
+    for (int k = 0; k < D; ++k) o[k] = kOffsets[size_t(k)][size_t(i)];
+    return o;
+  }
+
+  alignas(16) uint32_t key[D][kLanes];    // the bits of cell + offset, the hashes' keys
+  alignas(16) float hash[D][kLanes];      // the cell's point within it (Cycles' hash of the cell)
+  alignas(16) float point[D][kLanes];     // offset + hash * randomness: relative to p's cell
+  alignas(16) float distance[kLanes];     // from the point to p, by the metric
+
+  VecN<D> point_at(int i) const {
+    VecN<D> v;
+    for (int k = 0; k < D; ++k) v[k] = point[k][i];
+    return v;
+  }
+
+  // Fills key, hash and point for the cells around `cell` (floor(p)).
+  void place_points(const VecN<D>& cell, float randomness) {
+    for (int k = 0; k < D; ++k) {
+      const float corner = cell[k];  // read once: glm's v[k] is a switch, which keeps a loop scalar
+      alignas(16) float coordinate[kLanes];
+      for (int i = 0; i < kLanes; ++i) coordinate[i] = corner + kOffsets[size_t(k)][size_t(i)];
+      lanes::float_bits<kLanes>(coordinate, key[k]);
+    }
+    // As cell_point in shader_voronoi.cpp: hash_float{,2,3,4}_to_float{,2,3,4}.
+    if constexpr (D == 1) {
+      lanes::hash1<kLanes>(key[0], hash[0]);
+    } else if constexpr (D == 2) {
+      lanes::hash2<kLanes>(key[0], key[1], hash[0]);
+      lanes::hash3_with<kLanes>(key[0], key[1], float_bits(1.0f), hash[1]);
+    } else if constexpr (D == 3) {
+      lanes::hash3<kLanes>(key[0], key[1], key[2], hash[0]);
+      lanes::hash4_with_two<kLanes>(key[0], key[1], key[2], float_bits(1.0f), float_bits(2.0f), hash[1], hash[2]);
+    } else {  // (x, y, z, w), (w, x, y, z), (z, w, x, y), (y, z, w, x)
+      lanes::hash4<kLanes>(key[0], key[1], key[2], key[3], hash[0]);
+      lanes::hash4<kLanes>(key[3], key[0], key[1], key[2], hash[1]);
+      lanes::hash4<kLanes>(key[2], key[3], key[0], key[1], hash[2]);
+      lanes::hash4<kLanes>(key[1], key[2], key[3], key[0], hash[3]);
+    }
+    for (int k = 0; k < D; ++k)
+      for (int i = 0; i < kLanes; ++i) point[k][i] = kOffsets[size_t(k)][size_t(i)] + hash[k][i] * randomness;
+  }
+
+  // The cells' colours (cell_color in shader_voronoi.cpp), each sharing the hashes it has in
+  // common with the point's; after place_points.
+  void colors(float out[3][kLanes]) const {
+    if constexpr (D == 1) {  // (h(x), h(x, 1), h(x, 2))
+      std::copy(hash[0], hash[0] + kLanes, out[0]);
+      lanes::hash2_with<kLanes>(key[0], float_bits(1.0f), out[1]);
+      lanes::hash2_with<kLanes>(key[0], float_bits(2.0f), out[2]);
+    } else if constexpr (D == 2) {  // (h(x, y), h(x, y, 1), h(x, y, 2))
+      std::copy(hash[0], hash[0] + kLanes, out[0]);
+      std::copy(hash[1], hash[1] + kLanes, out[1]);
+      lanes::hash3_with<kLanes>(key[0], key[1], float_bits(2.0f), out[2]);
+    } else if constexpr (D == 3) {  // the point's own hash
+      for (int k = 0; k < 3; ++k) std::copy(hash[k], hash[k] + kLanes, out[k]);
+    } else {  // (h(x, y, z, w), h(z, x, w, y), h(w, z, y, x))
+      std::copy(hash[0], hash[0] + kLanes, out[0]);
+      lanes::hash4<kLanes>(key[2], key[0], key[3], key[1], out[1]);
+      lanes::hash4<kLanes>(key[3], key[2], key[1], key[0], out[2]);
+    }
+  }
+
+  // distance[i] = the metric's distance from point i to `local` (p - cell), as Cycles'
+  // voronoi_distance(point, local): the differences point - local, Euclidean's squares summed
+  // left to right but four components in pairs (SSE's dpps), Chebychev's maximum from the last
+  // axis down; 1D is |local - point| whatever the metric.
+  void measure(const VecN<D>& local, VoronoiMetric metric, float exponent) {
+    alignas(16) float diff[D][kLanes];
+    for (int k = 0; k < D; ++k) {
+      const float to = local[k];
+      for (int i = 0; i < kLanes; ++i) diff[k][i] = point[k][i] - to;
+    }
+    if constexpr (D == 1) {
+      const float to = local[0];
+      for (int i = 0; i < kLanes; ++i) distance[i] = std::fabs(to - point[0][i]);
+      return;
+    }
+    switch (metric) {
+      case VoronoiMetric::Euclidean:
+        for (int i = 0; i < kLanes; ++i) {
+          if constexpr (D == 4)
+            distance[i] = (diff[0][i] * diff[0][i] + diff[1][i] * diff[1][i]) +
+                          (diff[2][i] * diff[2][i] + diff[3][i] * diff[3][i]);
+          else {
+            distance[i] = diff[0][i] * diff[0][i];
+            for (int k = 1; k < D; ++k) distance[i] += diff[k][i] * diff[k][i];
+          }
+        }
+        square_roots<kLanes>(distance);
+        return;
+      case VoronoiMetric::Manhattan:
+        for (int i = 0; i < kLanes; ++i) {
+          float sum = std::fabs(diff[0][i]);
+          for (int k = 1; k < D; ++k) sum += std::fabs(diff[k][i]);
+          distance[i] = sum;
+        }
+        return;
+      case VoronoiMetric::Chebychev:
+        for (int i = 0; i < kLanes; ++i) {
+          float most = std::fabs(diff[D - 1][i]);
+          for (int k = D - 2; k >= 0; --k) most = std::max(std::fabs(diff[k][i]), most);
+          distance[i] = most;
+        }
+        return;
+      case VoronoiMetric::Minkowski:
+        for (int i = 0; i < kCount; ++i) {
+          float sum = std::pow(std::fabs(diff[0][i]), exponent);
+          for (int k = 1; k < D; ++k) sum += std::pow(std::fabs(diff[k][i]), exponent);
+          distance[i] = std::pow(sum, 1.0f / exponent);
+        }
+        return;
+    }
+  }
+};
+
+}  // namespace torrance::shader::voronoi_cells
