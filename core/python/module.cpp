@@ -10,6 +10,7 @@ PYBIND11_MODULE(_core, m) {
   torrance::python::init_scene(m);
   torrance::python::init_mixture(m);
   torrance::python::init_extra_passes(m);
+  torrance::python::init_cryptomatte(m);
   torrance::python::init_render(m);
   torrance::python::init_image(m);
   torrance::python::init_bsdf(m);

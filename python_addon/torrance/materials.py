@@ -541,6 +541,7 @@ class MaterialTable:
         self.attributes = {}      # index -> the mesh attribute keys its programs read
         self.emissive = set()     # indices of materials that emit light
         self.pass_indices = {}    # index -> Blender's pass index (Material Index pass), if not 0
+        self.names = {}           # index -> the material's name (Cryptomatte's Material layer)
         self.uv_pass = False      # the UV pass is on: every mesh exports its render UV map
         self._default = None
 
@@ -573,6 +574,7 @@ class MaterialTable:
                 self.emissive.add(idx)
             if mat.pass_index:
                 self.pass_indices[idx] = float(mat.pass_index)
+            self.names[idx] = mat.name
             self.indices[key] = idx
         return idx
 

@@ -93,9 +93,24 @@ UNSUPPORTED_FLAGS = (
     "use_pass_transmission_direct", "use_pass_transmission_indirect",
     "use_pass_transmission_color", "use_pass_subsurface_direct",
     "use_pass_subsurface_indirect", "use_pass_subsurface_color",
-    "use_pass_cryptomatte_object", "use_pass_cryptomatte_material",
-    "use_pass_cryptomatte_asset",
 )
+
+# Cryptomatte's layers: the ViewLayer toggle and Cycles' name of its passes.
+CRYPTOMATTE_LAYERS = (("use_pass_cryptomatte_object", "CryptoObject"),
+                      ("use_pass_cryptomatte_material", "CryptoMaterial"),
+                      ("use_pass_cryptomatte_asset", "CryptoAsset"))
+
+
+def cryptomatte_layers(view_layer):
+    """The names of the view layer's enabled Cryptomatte layers ('CryptoObject', ...)."""
+    return [name for flag, name in CRYPTOMATTE_LAYERS if getattr(view_layer, flag, False)]
+
+
+def cryptomatte_passes(view_layer):
+    """Cycles' pass names of the view layer's Cryptomatte: CryptoObject00, ... (two of its
+    Levels a pass, at most 16 levels)."""
+    depth = (min(16, int(getattr(view_layer, "pass_cryptomatte_depth", 6))) + 1) // 2
+    return [f"{layer}{i:02d}" for layer in cryptomatte_layers(view_layer) for i in range(depth)]
 
 
 def flag_owner(view_layer, flag):
@@ -152,8 +167,9 @@ def world_pass_settings(scene):
 
 def extra_passes(view_layer):
     """(core name, Blender name, channels, chanid, type) of the view layer's shader AOVs (valid
-    ones: a value 'X', a colour 'RGBA') and light groups ('Combined_<name>', RGB), as Cycles
-    names and registers them; the core renders them as 'aov:<name>' and 'lightgroup:<name>'."""
+    ones: a value 'X', a colour 'RGBA'), light groups ('Combined_<name>', RGB) and Cryptomatte
+    passes ('CryptoObject00', ... RGBA), as Cycles names and registers them; the core renders
+    them as 'aov:<name>', 'lightgroup:<name>' and 'cryptomatte:<name>'."""
     if view_layer is None:
         return []
     out = []
@@ -163,6 +179,8 @@ def extra_passes(view_layer):
                        else (f"aov:{aov.name}", aov.name, 4, "RGBA", 'COLOR'))
     for group in getattr(view_layer, "lightgroups", ()):
         out.append((f"lightgroup:{group.name}", f"Combined_{group.name}", 3, "RGB", 'COLOR'))
+    for name in cryptomatte_passes(view_layer):
+        out.append((f"cryptomatte:{name}", name, 4, "rgba", 'COLOR'))   # Cycles: rgba
     return out
 
 
@@ -174,7 +192,8 @@ def blender_name(core_name):
     if core_name == NOISY_IMAGE:
         return NOISY_IMAGE
     kind, _, name = core_name.partition(":")
-    return {"aov": name, "lightgroup": f"Combined_{name}"}.get(kind) if name else None
+    return {"aov": name, "lightgroup": f"Combined_{name}", "cryptomatte": name}.get(kind) \
+        if name else None
 
 
 def update_render_passes(engine, scene, renderlayer):

@@ -258,6 +258,10 @@ def _render(engine, depsgraph, reporter):
         if keep_noisy:
             written[passes.NOISY_IMAGE] = noisy
         session.write(image, written)
+        if stats.cryptomatte:     # the manifests, as Cycles stamps them: on the whole result
+            full = engine.get_result()
+            for key, value in stats.cryptomatte.items():
+                full.stamp_data_add_field(key, value)
         if session.missing_passes:
             reporter.warning(f"Torrance: the render result has no pass(es) "
                              f"{', '.join(session.missing_passes)}; they were not written")

@@ -381,7 +381,7 @@ class TORRANCE_RENDER_PT_compatibility(TorrancePanel, Panel):
         col.label(text="Not rendered by Torrance:")
         for text in ("Volumes, hair, subsurface, thin film, anisotropy",
                      "Bevel, Point Density, Hair and Volume nodes; AOV Output in worlds",
-                     "Motion blur, Cryptomatte",
+                     "Motion blur",
                      "Viewport denoising guides (colour only), Blender 5's guide options"):
             col.label(text=text, icon='DOT')
         col.label(text="Denoising: Cycles' Denoising Albedo and Normal guide F12; "
@@ -574,8 +574,29 @@ class TORRANCE_VIEW_LAYER_PT_passes(TorrancePanel, Panel):
                          ", ".join(f.replace("use_pass_", "") for f in unsupported), icon='ERROR')
 
 
+class TORRANCE_VIEW_LAYER_PT_passes_cryptomatte(TorrancePanel, Panel):
+    bl_label = "Cryptomatte"
+    bl_context = "view_layer"
+    bl_parent_id = "TORRANCE_VIEW_LAYER_PT_passes"
+
+    def draw(self, context):
+        # Cycles' panel: the layers and Levels (Accurate Mode is EEVEE's).
+        layout = _split(self.layout)
+        view_layer = context.view_layer
+        col = layout.column()
+        col.prop(view_layer, "use_pass_cryptomatte_object", text="Object")
+        col.prop(view_layer, "use_pass_cryptomatte_material", text="Material")
+        col.prop(view_layer, "use_pass_cryptomatte_asset", text="Asset")
+        col = layout.column()
+        col.active = any((view_layer.use_pass_cryptomatte_object,
+                          view_layer.use_pass_cryptomatte_material,
+                          view_layer.use_pass_cryptomatte_asset))
+        col.prop(view_layer, "pass_cryptomatte_depth", text="Levels")
+
+
 classes = (
     TORRANCE_VIEW_LAYER_PT_passes,
+    TORRANCE_VIEW_LAYER_PT_passes_cryptomatte,
     TORRANCE_RENDER_PT_sampling,
     TORRANCE_RENDER_PT_sampling_viewport,
     TORRANCE_RENDER_PT_sampling_viewport_denoise,

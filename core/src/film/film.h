@@ -2,6 +2,7 @@
 // requested passes, sample counts, and adaptive sampling's per-pixel convergence.
 #pragma once
 
+#include "film/cryptomatte_film.h"
 #include "film/film_passes.h"
 #include "integrator/path_tracer.h"
 
@@ -10,6 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -36,9 +38,10 @@ inline bool sample_is_class_a(uint32_t sample) { return __builtin_popcount(sampl
 //   sampled and its weighted mean stays consistent while the neighbours stop one by one.
 class Film {
  public:
-  // extra: the scene's AOV and light-group passes (extra_passes.h), summed like the image.
+  // extra: the scene's AOV and light-group passes (extra_passes.h), summed like the image;
+  // cryptomatte: the scene's Cryptomatte layers (none when null or not enabled).
   Film(int w, int h, uint32_t passes, bool adaptive, const PixelFilter* splatting = nullptr,
-       std::vector<ExtraPass> extra = {})
+       std::vector<ExtraPass> extra = {}, const Cryptomatte* cryptomatte = nullptr)
       : width_(w),
         height_(h),
         passes_(passes),
@@ -67,6 +70,8 @@ class Film {
     norm_slot_ = splatting_ ? stride_ - 2 : stride_ - 1;
     buffer_width_ = w + 2 * margin_;
     sums_.assign(size_t(buffer_width_) * (h + 2 * margin_) * stride_, 0.0);
+    if (cryptomatte && cryptomatte->enabled())
+      cryptomatte_.emplace(*cryptomatte, size_t(buffer_width_) * (h + 2 * margin_));
     if (adaptive_) {
       const size_t pixels = size_t(buffer_width_) * (h + 2 * margin_);
       half_stride_ = splatting_ ? 4 : 3;
@@ -134,6 +139,7 @@ class Film {
       a[2] += 2.0 * v[2];
     }
     for (int c = 0; c < filtered_; ++c) acc[c] += v[size_t(c)];
+    if (cryptomatte_) cryptomatte_->add(index(x, y), 1.0, r.cryptomatte);
     if (sample == 0) keep_first_sample(acc, v);
     acc[stride_ - 1] += 1.0;
   }
@@ -160,6 +166,7 @@ class Film {
         double* acc = at(tx, ty);
         for (int c = 0; c < filtered_; ++c) acc[c] += w * v[size_t(c)];
         acc[norm_slot_] += w;
+        if (cryptomatte_) cryptomatte_->add(index(tx, ty), w, r.cryptomatte);
         if (class_a) {
           double* a = &half_[index(tx, ty) * half_stride_];
           for (int c = 0; c < 3; ++c) a[c] += w * v[size_t(c)];
@@ -203,6 +210,17 @@ class Film {
     for (const ExtraPass& e : extra_) {
       out.emplace_back(e.name, resolve(k, e.channels));
       k += e.channels;
+    }
+    if (cryptomatte_) {
+      std::vector<size_t> pixels;
+      std::vector<double> norms;
+      for (int y = 0; y < height_; ++y)
+        for (int x = 0; x < width_; ++x) {
+          pixels.push_back(index(x, y));
+          norms.push_back(at(x, y)[norm_slot_]);
+        }
+      for (auto& pass : cryptomatte_->resolve(width_, height_, pixels, norms))
+        out.emplace_back("cryptomatte:" + pass.first, std::move(pass.second));
     }
     return out;
   }
@@ -301,6 +319,7 @@ class Film {
   int half_stride_ = 3;
   std::vector<double> half_;
   std::vector<uint8_t> sampled_, receiving_;
+  std::optional<CryptomatteFilm> cryptomatte_;
 };
 
 }  // namespace torrance

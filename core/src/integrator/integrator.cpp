@@ -256,7 +256,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   const bool splatting =
       settings.filter_splatting && settings.filter_width >= 1.0f && filter.reach() <= (adaptive ? 1 : 2);
   Film film(window[2] - window[0], window[3] - window[1], settings.passes, adaptive, splatting ? &filter : nullptr,
-            cscene.extra_passes().passes());
+            cscene.extra_passes().passes(), &cscene.cryptomatte());
   const int margin = film.margin();
   if (settings.efficiency_roulette) {
     roulette.emplace(window[2] - window[0], window[3] - window[1], settings.roulette_min_survival);

@@ -212,6 +212,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
   std::fill_n(out.extras, extra.channels(), 0.0f);
   // Light groups: each contribution as Combined takes it (clamped) also to its emitter's group.
   const bool light_groups = extra.num_light_groups() > 0;
+  const bool cryptomatte = ctx.scene.cryptomatte().enabled();
   auto credit = [&](int group, const Vec3& c) {
     if (group >= 0) add_to_light_group(extra, group, c, out.extras);
   };
@@ -331,11 +332,17 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
           // Holdouts, for camera rays through transparency (Cycles' PATH_RAY_TRANSPARENT_BACKGROUND):
           // their weight times the throughput off the alpha; a fully held-out surface ends the path.
           bool held_out = false;
+          float holdout_weight = 0.0f;
           if (bounce == 0 && !again && ctx.scene.has_holdouts()) {
-            const float weight = ctx.scene.holdout(hit, ray.dir, at, opacity);
-            out.alpha -= weight * (throughput.x + throughput.y + throughput.z) / 3.0f;
-            held_out = hit.object_holdout || weight >= 1.0f;
+            holdout_weight = ctx.scene.holdout(hit, ray.dir, at, opacity);
+            out.alpha -= holdout_weight * (throughput.x + throughput.y + throughput.z) / 3.0f;
+            held_out = hit.object_holdout || holdout_weight >= 1.0f;
           }
+          // Cryptomatte: every surface the camera ray meets, weighted by what it leaves of it
+          // (Cycles: none of a fully held-out one).
+          if (bounce == 0 && !again && cryptomatte && holdout_weight < 1.0f)
+            out.cryptomatte.add(hit.cryptomatte_object, hit.material,
+                                (throughput.x + throughput.y + throughput.z) / 3.0f * opacity);
           if (opacity >= 1.0f || sampler.next_4d().x < opacity) {  // the vertex below records it
             if (held_out) return out;
             if (bounce == 0) first_opacity = opacity;
@@ -480,6 +487,7 @@ PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, 
       if (first_again) {  // its emission: in the first branch
       } else if (bounce == 0) {
         if (!kAlpha && extra.writes_aovs()) add_aovs(ctx.scene, hit, ray.dir, path_state, 0.0f, out.extras);
+        if (!kAlpha && cryptomatte) out.cryptomatte.add(hit.cryptomatte_object, hit.material, 1.0f);
         if (!surface_data_done && first_opacity >= ctx.settings.pass_alpha_threshold) {
           out.normal = ns;
           out.uv = hit.has_uv ? Vec3(hit.uv.x, hit.uv.y, 1.0f) : Vec3(0.0f);

@@ -6,6 +6,7 @@
 #include "torrance/integrator/roulette.h"
 #include "torrance/integrator/guiding.h"
 #include "torrance/integrator/first_bounce_splits.h"
+#include "torrance/film/cryptomatte.h"
 #include "torrance/film/extra_passes.h"
 #include "torrance/integrator/integrator.h"
 #include "torrance/bsdfs/material_bsdf.h"
@@ -80,6 +81,8 @@ struct PathRadiance {
   // The scene's AOV and light-group channels (extra_passes.h): the first
   // Scene::extra_passes().channels() are set by the tracer, the rest left uninitialised.
   float extras[kMaxExtraChannels];
+  // The surfaces the camera ray gave Cryptomatte ids to (film/cryptomatte.h; only with it).
+  CryptomatteSample cryptomatte;
 
   Vec3 combined() const {
     return emission + environment + diffuse_direct + diffuse_indirect + glossy_direct + glossy_indirect;

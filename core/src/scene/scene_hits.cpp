@@ -36,6 +36,7 @@ void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const 
     hit.object_pass_index = mesh.pass_index;
     hit.object_holdout = mesh.holdout;
     hit.light_group = mesh.light_group;
+    hit.cryptomatte_object = mesh.cryptomatte;
   } else {
     const Instance& inst = instances_[owner & ~kInstanceBit];
     const Binding& b = bindings_[inst.binding];
@@ -50,6 +51,7 @@ void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const 
     hit.object_pass_index = inst.pass_index;
     hit.object_holdout = inst.holdout;
     hit.light_group = inst.light_group;
+    hit.cryptomatte_object = inst.cryptomatte;
     const size_t layers = instance_constant_ids_.size(), first = size_t(owner & ~kInstanceBit) * layers;
     if (layers > 0 && first + layers <= instance_constants_.size()) {
       hit.instance_constants = &instance_constants_[first];

@@ -29,6 +29,7 @@ struct Scene::Mesh {
   float pass_index = 0.0f;             // Blender's object pass index (of a mesh from add_mesh)
   bool holdout = false;                // a holdout object (of a mesh from add_mesh)
   int8_t light_group = -1;             // its light group (extra_passes.h), -1: none
+  int32_t cryptomatte = -1;            // its Cryptomatte entry (film/cryptomatte.h), -1: none
 };
 
 namespace scene_detail {
@@ -70,6 +71,7 @@ struct Scene::Instance {
   float pass_index = 0.0f;          // Blender's object pass index
   bool holdout = false;             // a holdout object
   int8_t light_group = -1;          // its light group (extra_passes.h), -1: none
+  int32_t cryptomatte = -1;         // its Cryptomatte entry (film/cryptomatte.h), -1: none
 };
 
 namespace scene_detail {

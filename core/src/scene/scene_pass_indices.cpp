@@ -1,5 +1,6 @@
 // Blender's pass indices of objects and materials (the Object Index and Material Index passes),
-// its holdout objects and the light groups of its emitting objects.
+// its holdout objects, the light groups of its emitting objects and the objects' Cryptomatte
+// entries.
 #include "scene/scene_internal.h"
 
 #include <stdexcept>
@@ -72,6 +73,22 @@ void Scene::set_instance_light_groups(const int64_t* ids, size_t count, int grou
       throw std::invalid_argument("instance " + std::to_string(ids[i]) + " does not exist");
   for (size_t i = 0; i < count; ++i) instances_[size_t(ids[i])].light_group = g;
   emitters_dirty_ = true;
+}
+
+void Scene::set_mesh_cryptomatte(uint32_t mesh, int32_t entry) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set a mesh's Cryptomatte entry");
+  if (mesh >= meshes_.size()) throw std::invalid_argument("mesh " + std::to_string(mesh) + " does not exist");
+  meshes_[mesh]->cryptomatte = entry;
+}
+
+void Scene::set_instance_cryptomatte(const int64_t* ids, size_t count, int32_t entry) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set instances' Cryptomatte entry");
+  for (size_t i = 0; i < count; ++i)
+    if (ids[i] < 0 || size_t(ids[i]) >= instances_.size())
+      throw std::invalid_argument("instance " + std::to_string(ids[i]) + " does not exist");
+  for (size_t i = 0; i < count; ++i) instances_[size_t(ids[i])].cryptomatte = entry;
 }
 
 }  // namespace torrance

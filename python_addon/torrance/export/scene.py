@@ -13,6 +13,7 @@ from ..texture_table import TextureTable
 from .camera import export_camera
 from .holdouts import holdout_names, instance_holdout
 from .instances import InstanceExport, Source
+from .cryptomatte import CryptomatteIds
 from .light_groups import LightGroups
 from .lights import export_light
 from .mesh import MeshCache, add_world_mesh, mesh_materials
@@ -43,6 +44,7 @@ class ExportStats:
         self.seconds = 0.0
         self.capture_seconds = 0.0   # the pass over the depsgraph (see export_scene)
         self.names = []          # exported mesh objects, one entry per instance
+        self.cryptomatte = {}    # the render result's Cryptomatte metadata (cryptomatte.py)
 
     def __str__(self):
         return (f"{self.objects} objects, {self.triangles} triangles, {self.lights} lights, "
@@ -172,6 +174,7 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
                       depsgraph.scene.render)
         export_world(tc_scene, depsgraph.scene.world, reporter, textures)
         groups = LightGroups(tc_scene, depsgraph.view_layer)
+        crypto = CryptomatteIds(tc, tc_scene, depsgraph.view_layer)
         if groups.of(depsgraph.scene.world) >= 0:
             tc_scene.set_world_light_group(groups.of(depsgraph.scene.world))
 
@@ -205,6 +208,7 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
                     if what.__class__ is Source:
                         what.holdout = bool(holdouts) and key[2]
                         what.light_group = groups.of(obj)
+                        what.cryptomatte = crypto.entry(obj)
                 if what.__class__ is Source:
                     what.add(inst.matrix_world)
                     if what.random_ids is not None:         # its materials read Object Info
@@ -231,11 +235,12 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
                         else None)
                 flattened.append((obj, obj.name, inst.matrix_world.copy(), slot_to_material,
                                   needs, info, obj.pass_index, obj.name_full in holdouts,
-                                  groups.of(obj)))
+                                  groups.of(obj), crypto.entry(obj)))
             elif role == 'MESH':
                 src = meshes.source(obj, obj.name, instanced=False)
                 src.holdout = obj.name_full in holdouts
                 src.light_group = groups.of(obj)
+                src.cryptomatte = crypto.entry(obj)
                 src.add(inst.matrix_world)
                 meshes.defer(obj, src)          # an evaluated object: read after the pass
     stats.capture_seconds = time.perf_counter() - t0
@@ -244,17 +249,19 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
     meshes.flush(stats)
     cache = MeshCache()
     for (obj, name, matrix, slot_to_material, needs_uvs, info, pass_index, holdout,
-         light_group) in flattened:
+         light_group, cryptomatte) in flattened:
         poll()
         local = cache.get(obj, (obj.data.as_pointer(),), needs_uvs, reporter)
         triangles = add_world_mesh(tc_scene, name, local, matrix, slot_to_material, needs_uvs,
                                    reporter, object_info=info, pass_index=pass_index,
-                                   holdout=holdout, light_group=light_group)
+                                   holdout=holdout, light_group=light_group,
+                                   cryptomatte=cryptomatte)
         if triangles:
             stats.objects += 1
             stats.names.append(name)
             stats.triangles += triangles
     materials.send_pass_indices()
+    stats.cryptomatte = crypto.send(materials)
     stats.materials = len(materials.indices) + (1 if materials._default is not None else 0)
     stats.textures = textures.loaded
     stats.seconds = time.perf_counter() - t0

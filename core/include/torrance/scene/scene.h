@@ -7,6 +7,7 @@
 
 #include "torrance/bsdfs/bsdf.h"
 #include "torrance/camera/camera.h"
+#include "torrance/film/cryptomatte.h"
 #include "torrance/film/extra_passes.h"
 #include "torrance/lights/lights.h"
 #include "torrance/bsdfs/mixture.h"
@@ -63,6 +64,7 @@ struct SurfaceHit {
   float object_pass_index = 0.0f;  // the object's Blender pass index (Scene::set_mesh_pass_index)
   bool object_holdout = false;     // the object is a holdout (Scene::set_mesh_holdout)
   int8_t light_group = -1;         // the object's light group (Scene::set_mesh_light_group), -1: none
+  int32_t cryptomatte_object = -1;  // the object's Cryptomatte entry (Scene::set_mesh_cryptomatte), -1: none
   Vec3 tangent{0.0f};         // unit dP/du from the triangle's UVs (0 without usable UVs)
   float uv_per_metre = 0.0f;  // how fast UVs change across the triangle (sqrt of UV area / area)
   float bitangent_sign = 1.0f;
@@ -281,6 +283,12 @@ class Scene final : public ShaderTracer {
   // (extra_passes.h). Set before a render.
   ExtraPasses& extra_passes() { return extra_passes_; }
   const ExtraPasses& extra_passes() const { return extra_passes_; }
+  // Cryptomatte (film/cryptomatte.h): the view layer's layers and the ids of the object entries
+  // and materials; a mesh from add_mesh's or instances' entry (-1: none). Set before a render.
+  Cryptomatte& cryptomatte() { return cryptomatte_; }
+  const Cryptomatte& cryptomatte() const { return cryptomatte_; }
+  void set_mesh_cryptomatte(uint32_t mesh, int32_t entry);
+  void set_instance_cryptomatte(const int64_t* ids, size_t count, int32_t entry);
   float material_pass_index(uint32_t material) const {
     return material < material_pass_indices_.size() ? material_pass_indices_[material] : 0.0f;
   }
@@ -433,6 +441,7 @@ class Scene final : public ShaderTracer {
   std::vector<float> material_pass_indices_;
   bool object_holdouts_ = false;   // some mesh or instance is a holdout
   ExtraPasses extra_passes_;
+  Cryptomatte cryptomatte_;
   bool mixture_holdouts_ = false;  // some mixture has a Holdout closure
   std::vector<int32_t> instance_constant_ids_;
   std::vector<std::unique_ptr<Prototype>> prototypes_;
