@@ -21,33 +21,47 @@ CHANNELS = {"Combined": "RGBA", "Mist": "Z", "Depth": "Z", "UV": "UVA", "Positio
 NOISY = ("DiffInd", "GlossInd")     # their ratio bound: 1.5 % at least
 
 
-def exr_channel_names(path):
-    """The channel names of an EXR's header ('channels', chlist), in the file's order."""
+def exr_attributes(path):
+    """{name: (type, raw bytes)} of an EXR's header attributes (its first part)."""
     with open(path, "rb") as f:
         data = f.read(1 << 20)
     check(data[:4] == b"\x76\x2f\x31\x01", f"{path} is not an OpenEXR file")
-    i = 8
+    out, i = {}, 8
     while data[i] != 0:                            # attributes: name, type, size, value
         end_name = data.index(b"\0", i)
         end_type = data.index(b"\0", end_name + 1)
         size = struct.unpack("<i", data[end_type + 1:end_type + 5])[0]
-        value = data[end_type + 5:end_type + 5 + size]
-        if data[i:end_name] == b"channels":
-            names, p = [], 0
-            while value[p] != 0:                   # name, then type, pLinear, xSampling, ySampling
-                end = value.index(b"\0", p)
-                names.append(value[p:end].decode())
-                p = end + 1 + 16
-            return names
+        out[data[i:end_name].decode()] = (data[end_name + 1:end_type].decode(),
+                                          data[end_type + 5:end_type + 5 + size])
         i = end_type + 5 + size
-    raise AssertionError(f"{path} has no channel list")
+    return out
+
+
+def exr_strings(path):
+    """{name: text} of an EXR's string attributes (e.g. Cryptomatte's manifests)."""
+    return {k: v.decode("utf-8") for k, (t, v) in exr_attributes(path).items() if t == "string"}
+
+
+def exr_channel_names(path):
+    """The channel names of an EXR's header ('channels', chlist), in the file's order."""
+    attributes = exr_attributes(path)
+    check("channels" in attributes, f"{path} has no channel list")
+    value = attributes["channels"][1]
+    names, p = [], 0
+    while value[p] != 0:                           # name, then type, pLinear, xSampling, ySampling
+        end = value.index(b"\0", p)
+        names.append(value[p:end].decode())
+        p = end + 1 + 16
+    return names
 
 
 def oiio_channel_order(names):
-    """The names in OpenImageIO's order: by layer, R G B A first within each, then the others in
-    the file's order (as its Python module lists them, seen in Blender 3.4)."""
+    """The names in OpenImageIO's order: by layer, R G B A first within each (in either case:
+    Cycles' Cryptomatte passes are r g b a), then the others in the file's order (as its Python
+    module lists them, seen in Blender 3.4)."""
     first = {c: k for k, c in enumerate("RGBA")}
-    return sorted(names, key=lambda n: (n.rpartition(".")[0], first.get(n.rpartition(".")[2], 4),
+    return sorted(names, key=lambda n: (n.rpartition(".")[0],
+                                        first.get(n.rpartition(".")[2].upper(), 4),
                                         names.index(n)))
 
 
