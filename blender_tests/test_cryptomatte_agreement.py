@@ -31,7 +31,7 @@ import numpy as np
 
 from torrance_tools import render_settings, testing
 from torrance_tools.render_passes import (CHANNELS, exr_strings, pass_bounds, pass_failures,
-                                          read_layers, read_pixels)
+                                          read_layers, read_pixels, replaced)
 from torrance_tools.testing import check
 
 W, H, SAMPLES, BOUNCES = 64, 48, 128, 2
@@ -231,13 +231,9 @@ def main():
     check(not bad, "Torrance's Cryptomatte differs from Cycles': " + "; ".join(bad))
     missed = []
     for label, owner, attr, make_fault in faults():
-        original = getattr(owner, attr)
-        setattr(owner, attr, make_fault(original))
-        try:
+        with replaced(owner, attr, make_fault):
             render_settings.setup_torrance(scene, SAMPLES, BOUNCES, seed=2)
             out = render(scene, directory, "fault")
-        finally:
-            setattr(owner, attr, original)
         caught = pass_failures([coverages(out, hexes)], ref, bounds, compared, label[:24])
         if ids_of(out[0], "CryptoAsset") != ids_of(cycles[0][0], "CryptoAsset") or \
                 ids_of(out[0], "CryptoObject") != ids_of(cycles[0][0], "CryptoObject"):

@@ -5,6 +5,7 @@ Cycles' within Cycles' own seed-to-seed noise (block means and the mean ratio,
 agreement.noise_bounds) with floors for the passes Cycles renders almost without noise.
 """
 
+import contextlib
 import os
 import struct
 
@@ -134,15 +135,22 @@ def cycles_passes_of(build, samples, bounces):
     return scene, directory, reference, noise
 
 
-def torrance_passes_with_fault(scene, directory, samples, bounces, owner, attr, make_fault):
-    """Torrance's passes at seed 2 (named "fault") with owner.attr replaced by
-    make_fault(original) for the render, and restored after."""
+@contextlib.contextmanager
+def replaced(owner, attr, make_fault):
+    """owner.attr replaced by make_fault(original) inside the block, restored after."""
     original = getattr(owner, attr)
     setattr(owner, attr, make_fault(original))
     try:
-        return torrance_passes(scene, directory, samples, bounces, 2, name="fault")
+        yield
     finally:
         setattr(owner, attr, original)
+
+
+def torrance_passes_with_fault(scene, directory, samples, bounces, owner, attr, make_fault):
+    """Torrance's passes at seed 2 (named "fault") with owner.attr replaced by
+    make_fault(original) for the render, and restored after."""
+    with replaced(owner, attr, make_fault):
+        return torrance_passes(scene, directory, samples, bounces, 2, name="fault")
 
 
 def torrance_passes(scene, directory, samples, bounces, seed, name=None):
