@@ -10,11 +10,11 @@ Checks:
     agrees with Cycles' within Cycles' own seed-to-seed noise (seed 0 the reference, seed 1 the
     bounds, Torrance seeds 2 and 3: 8x8 block means and the mean ratio, render_passes);
 (b) the ids are Cycles' bit for bit (every id in each layer's passes), and the manifests in the
-    EXR metadata (cryptomatte/<hash>/name, manifest) are Cycles' (the materials': those of
-    Cycles' that the scene uses);
+    EXR metadata (cryptomatte/<hash>/name, manifest) are Cycles' entries of the scene's meshes
+    and materials (Cycles lists its default shaders too, and from 4.x its lights);
 (c) the compositor's Cryptomatte node (source Render) picks the ball's, the box's and the card's
-    mattes out of Torrance's render: equal to the coverage in Torrance's passes and, like (a),
-    to Cycles' mattes within Cycles' noise.
+    mattes out of Torrance's render (written by a File Output node): equal to the coverage in
+    Torrance's passes and, like (a), to Cycles' mattes within Cycles' noise.
 
 Faults that must fail: the asset named after the object itself (not its top-most parent), and
 the ids hashed from the objects' full names with a suffix (the ids and the node's mattes off).
@@ -23,6 +23,7 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \\
          --python blender_tests/test_cryptomatte_agreement.py
 """
 
+import glob
 import json
 import os
 
@@ -72,22 +73,22 @@ def build(scene):
     vl.use_pass_cryptomatte_object = True
     vl.use_pass_cryptomatte_material = True
     vl.use_pass_cryptomatte_asset = True
-    mattes_to_composite(scene)
+    mattes_to_file(scene)
 
 
 def _cube_verts(h):
     return np.array([(x, y, z) for x in (-h, h) for y in (-h, h) for z in (-h, h)], np.float32)
 
 
-def mattes_to_composite(scene):
+def mattes_to_file(scene):
     """The compositor: a Cryptomatte node (source Render, Object layer) per MATTES name, their
-    mattes as the composite's R, G, B."""
-    scene.use_nodes = True
+    mattes as R, G, B of an image a File Output node writes (render() sets its folder)."""
+    from torrance.blender_versions import compositor_tree, exr_file_output
     scene.render.use_compositing = True
-    tree = scene.node_tree
+    tree = compositor_tree(scene)
     for node in list(tree.nodes):
-        tree.nodes.remove(node)
-    tree.nodes.new('CompositorNodeRLayers')
+        if node.bl_idname != 'CompositorNodeRLayers':
+            tree.nodes.remove(node)
     combine = tree.nodes.new('CompositorNodeCombineColor')
     for name, socket in zip(MATTES, ("Red", "Green", "Blue"), strict=True):
         node = tree.nodes.new('CompositorNodeCryptomatteV2')
@@ -96,24 +97,25 @@ def mattes_to_composite(scene):
         node.layer_name = f"{scene.view_layers[0].name}.CryptoObject"
         node.matte_id = name
         tree.links.new(node.outputs["Matte"], combine.inputs[socket])
-    tree.links.new(combine.outputs["Image"],
-                   tree.nodes.new('CompositorNodeComposite').inputs["Image"])
+    exr_file_output(tree, "", [combine.outputs["Image"]])
 
 
 def render(scene, directory, name):
-    """(passes of the multilayer EXR, its string metadata, the composite's mattes (H, W, 3))."""
-    from torrance.blender_versions import set_multilayer_exr
+    """(passes of the multilayer EXR, its string metadata, the node's mattes (H, W, 3))."""
+    from torrance.blender_versions import compositor_tree, set_multilayer_exr
+    mattes_dir = os.path.join(directory, name + "_mattes")
+    out = next(n for n in compositor_tree(scene).nodes if n.bl_idname == 'CompositorNodeOutputFile')
+    setattr(out, "directory" if hasattr(out, "file_output_items") else "base_path", mattes_dir)
     bpy.ops.render.render()
     settings = scene.render.image_settings
     layers_path = os.path.join(directory, name + ".exr")
     set_multilayer_exr(settings)
     settings.color_depth = '32'
     bpy.data.images["Render Result"].save_render(layers_path, scene=scene)
-    composite_path = os.path.join(directory, name + "_composite.exr")
-    settings.file_format = 'OPEN_EXR'
-    bpy.data.images["Render Result"].save_render(composite_path, scene=scene)
-    composite, _names = read_pixels(composite_path)
-    return read_layers(layers_path), exr_strings(layers_path), composite[:, :, :3]
+    files = glob.glob(os.path.join(mattes_dir, "*.exr"))
+    check(len(files) == 1, f"the File Output node wrote {files}")
+    mattes, _names = read_pixels(files[0])
+    return read_layers(layers_path), exr_strings(layers_path), mattes[:, :, :3]
 
 
 def ids_of(passes, layer):
@@ -201,7 +203,12 @@ def main():
     hexes = {}
     for layer in LAYERS:
         hexes.update(cycles_manifests[layer_prefix + layer])
+    expected = {f"{layer}{i:02d}" for layer in LAYERS for i in range(3)}
+    for passes, _meta, _mattes in cycles:
+        check(expected <= set(passes), f"Cycles' EXR lacks {sorted(expected - set(passes))}")
     ref, other = (coverages(c, hexes) for c in cycles)
+    unseen = [name for name, img in ref.items() if not img.mean() > 0.005]
+    check(not unseen, f"Cycles' reference shows none of {unseen}")
     bounds = pass_bounds(ref, other, list(ref), compared)
     mine = []
     for seed in (2, 3):
@@ -209,11 +216,11 @@ def main():
         mine.append(render(scene, directory, f"torrance{seed}"))
     bad = pass_failures([coverages(m, hexes) for m in mine], ref, bounds, compared, "Torrance")
     for passes, meta, _composite in mine:
+        check(expected <= set(passes), f"Torrance's EXR lacks {sorted(expected - set(passes))}")
         got = manifests(meta)
         for layer in LAYERS:
             theirs, ours = cycles_manifests[layer_prefix + layer], got.get(layer_prefix + layer)
-            if layer == "CryptoMaterial":
-                theirs = {k: v for k, v in theirs.items() if k in NAMES[layer]}
+            theirs = {k: v for k, v in theirs.items() if k in NAMES[layer]}
             if ours != theirs:
                 bad.append(f"{layer} manifest {ours} != Cycles' {theirs}")
             if ids_of(passes, layer) != ids_of(cycles[0][0], layer):
