@@ -26,6 +26,7 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \\
 import glob
 import json
 import os
+import re
 
 import bpy
 import numpy as np
@@ -98,24 +99,35 @@ def mattes_to_file(scene):
         node.matte_id = name
         tree.links.new(node.outputs["Matte"], combine.inputs[socket])
     exr_file_output(tree, "", [combine.outputs["Image"]])
+    # The passes too, one file each: Blender 5's multilayer EXR is multi-part, which the bpy
+    # builds' reader (the add-on's read_image) reads only the first part of.
+    layers = next(n for n in tree.nodes if n.bl_idname == 'CompositorNodeRLayers')
+    layers.layer = scene.view_layers[0].name
+    exr_file_output(tree, "", [o for o in layers.outputs if o.name[:-2] in LAYERS])
 
 
 def render(scene, directory, name):
     """(passes of the multilayer EXR, its string metadata, the node's mattes (H, W, 3))."""
     from torrance.blender_versions import compositor_tree, set_multilayer_exr
     mattes_dir = os.path.join(directory, name + "_mattes")
-    out = next(n for n in compositor_tree(scene).nodes if n.bl_idname == 'CompositorNodeOutputFile')
-    setattr(out, "directory" if hasattr(out, "file_output_items") else "base_path", mattes_dir)
+    for out in compositor_tree(scene).nodes:
+        if out.bl_idname == 'CompositorNodeOutputFile':
+            setattr(out, "directory" if hasattr(out, "file_output_items") else "base_path",
+                    mattes_dir)
     bpy.ops.render.render()
     settings = scene.render.image_settings
     layers_path = os.path.join(directory, name + ".exr")
     set_multilayer_exr(settings)
     settings.color_depth = '32'
     bpy.data.images["Render Result"].save_render(layers_path, scene=scene)
-    files = glob.glob(os.path.join(mattes_dir, "*.exr"))
-    check(len(files) == 1, f"the File Output node wrote {files}")
-    mattes, _names = read_pixels(files[0])
-    return read_layers(layers_path), exr_strings(layers_path), mattes[:, :, :3]
+    files = {re.sub(r"(0001)?\.exr$", "", os.path.basename(f)): f     # 5.0: no frame number
+             for f in glob.glob(os.path.join(mattes_dir, "*.exr"))}
+    check("Image" in files, f"the File Output node wrote {sorted(files)}")
+    passes = read_layers(layers_path)
+    for pass_name, path in files.items():
+        if pass_name not in passes and pass_name != "Image":
+            passes[pass_name] = read_pixels(path)[0]
+    return passes, exr_strings(layers_path), read_pixels(files["Image"])[0][:, :, :3]
 
 
 def ids_of(passes, layer):
