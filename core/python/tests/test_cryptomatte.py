@@ -115,3 +115,32 @@ def test_a_render_without_it_is_the_same_image():
     without, passes = floor_and_card(card_alpha=0.6, cryptomatte=False)
     assert not any(k.startswith("cryptomatte:") for k in passes)
     assert np.array_equal(with_it, without)
+
+
+def test_ids_past_the_slots_go_into_the_last_one():
+    """Two levels (2 slots) and three surfaces in every pixel (two cards of alpha 0.5 over the
+    floor): the floor, found with both slots taken, adds into the last one (Cycles'
+    film_write_cryptomatte_slots), so the ranks still sum to 1."""
+    scene = tc.Scene()
+    tri = np.array([[0, 1, 2], [0, 2, 3]], np.int32)
+    quad = lambda z: np.array([[-5, -5, z], [5, -5, z], [5, 5, z], [-5, 5, z]], np.float32)  # noqa: E731
+    materials = [scene.add_material(base_color=(0.5, 0.5, 0.5), alpha=a) for a in (1.0, 0.5, 0.5)]
+    for entry, (z, material) in enumerate(zip((0.0, 0.5, 1.0), materials, strict=True)):
+        scene.set_mesh_cryptomatte(scene.add_mesh(quad(z), tri, material_indices=[material] * 2),
+                                   entry)
+    ids = [tc.cryptomatte_hash(n)[1] for n in ("Floor", "Low", "High")]
+    scene.set_cryptomatte(True, False, False, 2, ids, ids, [0.0] * 3)
+    scene.add_sun(direction=(0, 0, -1), strength=1.0, angle=0.0)
+    matrix = np.eye(4)
+    matrix[2, 3] = 5.0
+    scene.set_camera(matrix, type="ORTHO", ortho_scale=2.0)
+    result = tc.render(scene, tc.RenderSettings(width=4, height=4, samples=64, max_bounces=0))
+    p = np.asarray(result.passes["cryptomatte:CryptoObject00"])
+    assert sorted(k for k in result.passes if k.startswith("cryptomatte:")) == \
+        ["cryptomatte:CryptoObject00"]
+    # The high card's 0.5 (every sample meets it first) in the first slot it took; the low
+    # card's slot takes the floor's share too (0.25 + 0.25 as sampled); the floor has none.
+    passes = {"cryptomatte:CryptoObject00": p}
+    assert np.all(np.sort(p[..., [0, 2]], axis=-1) == np.sort(np.float32(ids[1:])))
+    np.testing.assert_allclose(coverage(passes, "CryptoObject", "High"), 0.5, atol=1e-5)
+    assert abs(float(coverage(passes, "CryptoObject", "Low").mean()) - 0.5) < 0.03
