@@ -1,6 +1,6 @@
 #include "integrator/caustics.h"
 
-#include "torrance/bsdfs/shading_normal.h"
+#include "integrator/surface_point.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -162,11 +162,10 @@ void CausticTracer::trace_path(uint32_t index, uint32_t sample) {
     // sample's weight, eval / pdf, is turned into the adjoint's below.
     const MaterialBsdf& bsdf = ctx_.bsdfs[m];
     const Vec3 from = -ray.dir;  // towards where the light came from
-    Vec3 ng = hit.geometric_normal, ns = hit.shading_normal;
-    const bool backfacing = glm::dot(ng, from) < 0.0f;
-    if (backfacing) ng = -ng, ns = -ns;
-    ns = valid_shading_normal(ng, ns, from);
-    const Frame frame(ns);
+    const ShadingPoint at = shading_point(ctx_, hit, from, false, ShaderGlobals{}, nullptr);  // untextured
+    const Vec3 &ng = at.ng, &ns = at.ns;
+    const bool backfacing = at.backfacing;
+    const Frame& frame = at.frame;
     const auto view = bsdf.at(frame.to_local(from), backfacing);
     const glm::vec4 u = sampler.next_4d();
     const BsdfSample bs = bsdf.sample<true>(view, u.x, Vec2(u.y, u.z));
@@ -206,36 +205,23 @@ void CausticTracer::connect(const SurfaceHit& hit, const Vec3& incoming, const V
   std::array<glm::vec4, ShaderProgram::kMaxRegisters> regs;
   ShaderGlobals globals;
   if (textured) {
-    const uint8_t reads = ctx_.globals_read.empty() ? ctx_.scene.globals_read(hit.material)
-                                                    : ctx_.globals_read[hit.material];
-    const float footprint = ctx_.pixel_spread * c.distance * hit.uv_per_metre;
-    globals = shader_globals(hit, -wo_world, footprint,
-                             reads & kReadsDifferentials ? ctx_.pixel_width + ctx_.pixel_spread * c.distance : 0.0f,
-                             reads);
-    globals.path.ray_flags = kRayCamera;
-    globals.path.ray_length = c.distance;
-    globals.tracer = &ctx_.scene;
+    PathState camera_ray;
+    camera_ray.ray_flags = kRayCamera;
+    camera_ray.ray_length = c.distance;
+    globals = hit_globals(ctx_, hit, -wo_world, c.distance, camera_ray);
     material = ctx_.scene.textured_material(hit.material, globals, regs.data());
   }
   std::optional<MaterialBsdf> local;
   if (textured) local.emplace(material, ctx_.settings.brdf_model);
   const MaterialBsdf& bsdf = textured ? *local : ctx_.bsdfs[hit.material];
-  Vec3 ng = hit.geometric_normal, n_smooth = hit.shading_normal;
-  Vec3 ns = textured ? ctx_.scene.normal_mapped(hit.material, hit, hit.shading_normal, globals, &n_smooth, regs.data())
-                     : n_smooth;
-  const bool normal_mapped = textured && ns != n_smooth;
-  const bool backfacing = glm::dot(ng, wo_world) < 0.0f;
-  if (backfacing) ng = -ng, ns = -ns, n_smooth = -n_smooth;
-  const Vec3 ns_closure = ns;
-  ns = valid_shading_normal(ng, ns, wo_world);
-  const Frame frame(ns);
-  const DiffuseNormal diffuse = diffuse_normal(frame, ns, ns_closure, ctx_.settings.brdf_model);
-  const Vec3& n_diffuse = diffuse.tilted ? ns_closure : ns;
-  const auto view = bsdf.at(frame.to_local(wo_world), backfacing, diffuse);
+  const ShadingPoint at = shading_point(ctx_, hit, wo_world, textured, globals, regs.data());
+  const Frame& frame = at.frame;
+  const Vec3& ng = at.ng;
+  const auto view = bsdf.at(frame.to_local(wo_world), at.backfacing, at.diffuse);
   const Vec3 wi = frame.to_local(incoming);
   if (!leaves_geometric_side(incoming, ng, wi.z, bsdf.transmits())) return;
   LobeEval f = bsdf.eval_lobes<true>(view, wi);
-  if (normal_mapped) f.diffuse *= bump_shadowing(n_smooth, n_diffuse, incoming);
+  if (at.normal_mapped) f.diffuse *= bump_shadowing(at.n_smooth, at.n_diffuse(), incoming);
   const float cos_in = std::abs(glm::dot(ng, incoming));
   if (!(max_component(f.total()) > 0.0f) || !(cos_in > 0.0f)) return;
   // Visible from the lens point: nothing in between (glass stops it too, as shadow rays).

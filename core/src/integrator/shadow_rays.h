@@ -1,0 +1,68 @@
+// Shadow rays: from a shading point to a light sample, and the light they let through (one
+// occlusion test, or Cycles' transparent shadows where materials have alpha).
+#pragma once
+
+#include "integrator/path_tracer.h"
+#include "torrance/scene/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace torrance {
+
+// The shadow ray of a light sample: from the offset origin to the sampled point on the light,
+// stopping short of it by the same kind of offset, so that a light close to and nearly parallel
+// with the surface is neither missed nor self-occluding. tmax <= 0: nothing can be in the way.
+inline Ray shadow_ray(const Vec3& p, const Vec3& ng, const LightSample& ls) {
+  Ray ray;
+  ray.origin = offset_origin(p, ng, ls.wi);
+  ray.tmin = 0.0f;
+  if (std::isinf(ls.distance)) {
+    ray.dir = ls.wi;
+    ray.tmax = std::numeric_limits<float>::infinity();
+    return ray;
+  }
+  const Vec3 target = p + ls.wi * ls.distance;
+  const Vec3 d = target - ray.origin;
+  const float len = glm::length(d);
+  const float end_offset = 2e-5f * std::max(1.0f, std::max(std::abs(target.x), std::max(std::abs(target.y),
+                                                                                          std::abs(target.z))));
+  ray.dir = d / len;
+  ray.tmax = len * (1.0f - 1e-4f) - end_offset;
+  return ray;
+}
+
+// The light a shadow ray carries to the shading point: 0 or 1 by one occlusion test, or with
+// kAlpha (some material has alpha) Cycles' transparent shadows: each surface in the way with
+// alpha < 1 lets (1 - alpha) x its transparent colour through, an opaque one (or more than
+// max_transparent_bounces transparent ones) nothing. Found by repeated closest hits, only once
+// the occlusion test has found something in the way.
+template <bool kAlpha>
+Vec3 shadow_transmittance(const Scene& scene, const Vec3& p, const Vec3& ng, const LightSample& ls,
+                          int max_transparent, const PathState& receiver = {}) {
+  Ray ray = shadow_ray(p, ng, ls);
+  if (!(ray.tmax > 0.0f) || !scene.occluded(ray.origin, ray.dir, 0.0f, ray.tmax)) return Vec3(1.0f);
+  if (!kAlpha) return Vec3(0.0f);
+  Vec3 transmittance(1.0f);
+  PathState shadow = receiver;  // what a shader sees on the shadow ray (Cycles' shadow path)
+  shadow.ray_flags = kRayShadow;
+  float travelled = 0.0f;
+  for (int passed = 0;; ++passed) {
+    SurfaceHit hit;
+    if (!scene.intersect(ray, hit)) return transmittance;
+    shadow.transparent_depth = uint8_t(std::min(receiver.transparent_depth + passed, 255));
+    shadow.ray_length = travelled + hit.t;
+    Vec3 tint;
+    const float opacity = scene.opacity(hit, ray.dir, shadow, &tint);
+    if (opacity >= 1.0f || passed >= max_transparent) return Vec3(0.0f);
+    transmittance *= (1.0f - opacity) * tint;
+    if (!(max_component(transmittance) > 0.0f)) return Vec3(0.0f);
+    ray.origin = offset_origin(hit.position, hit.geometric_normal, ray.dir);
+    ray.tmax -= hit.t;
+    travelled += hit.t;
+    if (!(ray.tmax > 0.0f)) return transmittance;
+  }
+}
+
+}  // namespace torrance
