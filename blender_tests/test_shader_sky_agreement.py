@@ -21,12 +21,27 @@ up to the pixel filter's noise):
   preetham           Preetham, turbidity 2.2, the sun up 37 degrees, the whole sphere
   preetham_hazy      Preetham, turbidity 7, a low sun, the whole sphere
 
+In Blender 5.x, whose Cycles replaces Nishita by Single and Multiple Scattering (one kernel,
+two precomputations), the patches are (with the Preetham ones):
+
+  single             Single Scattering, no disc, sun 15 degrees up, the whole sphere
+  multiple           Multiple Scattering, no disc (Blender's default otherwise), the whole sphere
+  multiple_dense     altitude 3 km, air 2, aerosol 3, ozone 4, sun 5 degrees up, turned 60
+  multiple_dusk      the sun 4 degrees below the horizon, the whole sphere
+  multiple_disc      a 15 degree sun 45 degrees up (limb darkened, the sky added under it)
+  single_disc_rim    a 6 degree sun 2 degrees below the horizon seen from 20 km up: the part
+                     above the Earth's rim (4.5 degrees down) shows, below the horizon black sky
+
+and each 5.x type lights a floor, a chrome and a matte sphere (its default 0.545 degree sun,
+sampled as Cycles' sun guiding does), the sky seen behind them (world_single, world_multiple).
+
 Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
 seeds 2 and 3. Deliberate faults must fail them: no ozone, the sun disc's colours at its bottom and
 top swapped, the Vector's link read though the sun disc hides it, the sun turned the other way
-(rotation not negated), the Texture Mapping ignored, Preetham's turbidity one higher.
-Hosek / Wilkie must be reported naming the node and the sky type; in Blender 5.x, whose Cycles
-replaces Nishita by Single and Multiple Scattering (reported too), the Preetham patches remain.
+(rotation not negated), the Texture Mapping ignored, Preetham's turbidity one higher; in 5.x
+Single read as Multiple Scattering, the Earth's rim ignored (the disc cut at the horizon), no
+ozone, the sun turned the other way, and in the lit scenes the sun disc left out and the
+aerosols ignored. Hosek / Wilkie must be reported naming the node and the sky type.
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_shader_sky_agreement.py
@@ -176,6 +191,58 @@ MAKERS = (nishita, nishita_low_sun, nishita_dense, nishita_ozone, nishita_near_s
           preetham, preetham_hazy)
 
 
+# -- Blender 5.x: Single and Multiple Scattering ------------------------------------------------
+
+def single(g):
+    return _sky(g, kind='SINGLE_SCATTERING', sun_disc=False)
+
+
+def multiple(g):
+    return _sky(g, kind='MULTIPLE_SCATTERING', sun_disc=False)
+
+
+def multiple_dense(g):
+    return _sky(g, kind='MULTIPLE_SCATTERING', sun_disc=False, altitude=3000.0, air_density=2.0,
+                dust_density=3.0, ozone_density=4.0, sun_elevation=math.radians(5.0),
+                sun_rotation=math.radians(60.0))
+
+
+def multiple_dusk(g):
+    return _sky(g, kind='MULTIPLE_SCATTERING', sun_disc=False, sun_elevation=math.radians(-4.0))
+
+
+multiple_disc = _disc(45.0, 45.0, 15.0, 1e-2, kind='MULTIPLE_SCATTERING')
+single_disc_rim = _disc(-2.0, 20.0, 6.0, 2e-2, view=-3.0, half_width=0.1, altitude=20000.0,
+                        kind='SINGLE_SCATTERING')
+for _name in ("multiple_disc", "single_disc_rim"):
+    globals()[_name].__name__ = _name
+
+MAKERS_5 = (single, multiple, multiple_dense, multiple_dusk, multiple_disc, single_disc_rim,
+            preetham, preetham_hazy)
+
+
+def world_sky(kind, **settings):
+    """A builder of the lit scene (testing.chrome_and_matte) under a world of a 5.x sky."""
+    def build(scene):
+        import bpy
+        testing.setup_render(scene, width=LIT_W, height=LIT_H, max_bounces=LIT_BOUNCES)
+        testing.chrome_and_matte(scene)
+        world = bpy.data.worlds.new(kind.title())
+        world.use_nodes = True
+        nt = world.node_tree
+        sky = nt.nodes.new("ShaderNodeTexSky")
+        sky.sky_type = kind
+        for key, value in settings.items():
+            setattr(sky, key, value)
+        nt.links.new(sky.outputs["Color"], nt.nodes["Background"].inputs["Color"])
+        nt.nodes["Background"].inputs["Strength"].default_value = 0.3
+        scene.world = world
+    return build
+
+
+LIT_W, LIT_H, LIT_BOUNCES, LIT_SAMPLES = 64, 48, 3, 64
+
+
 def fault_disc_upside_down(original):
     """The sun disc's colours at its bottom and top swapped."""
     def table(node):
@@ -229,14 +296,47 @@ def sky_types():
     return set(bpy.types.ShaderNodeTexSky.bl_rna.properties['sky_type'].enum_items.keys())
 
 
+def scattering_faults(readers, sky):
+    """The 5.x skies' faults (patches)."""
+    def rim_ignored(original):
+        def table(node):
+            mode, t = original(node)
+            if mode == 2:
+                t = np.array(t, np.float32)
+                t[10] = 0.0
+            return mode, t
+        return table
+    return (
+        ("Single read as Multiple", readers, 'ShaderNodeTexSky',
+         read_with(lambda node: {"sky_type": 'MULTIPLE_SCATTERING'}
+                   if node.sky_type == 'SINGLE_SCATTERING' else None)),
+        ("the Earth's rim ignored", sky, 'sky_table', rim_ignored),
+        ("no ozone", readers, 'ShaderNodeTexSky', read_with(ozone_density=0.0)),
+        ("sun rotation not negated", readers, 'ShaderNodeTexSky',
+         read_with(lambda node: {"sun_rotation": -node.sun_rotation})))
+
+
+def check_lit_scenes(readers):
+    """Each 5.x sky lighting the chrome-and-matte scene, its sun guided (agree_on_scene)."""
+    from torrance_tools.seed_noise import agree_on_scene
+    for kind in ('SINGLE_SCATTERING', 'MULTIPLE_SCATTERING'):
+        agree_on_scene(world_sky(kind, sun_elevation=math.radians(25.0),
+                                 sun_rotation=math.radians(-30.0)),
+                       LIT_SAMPLES, LIT_BOUNCES, f"a {kind.lower()} sky lighting a scene",
+                       faults=(("the sun disc left out", readers, 'ShaderNodeTexSky',
+                                read_with(sun_disc=False)),
+                               ("the aerosols ignored", readers, 'ShaderNodeTexSky',
+                                read_with(aerosol_density=0.0))))
+
+
 def main():
     testing.addon()
     from torrance.shader_graph import sky
     from torrance.shader_graph.registry import READERS
     types = sky_types()
-    # Blender 5.0 replaces Nishita by Single and Multiple Scattering (reported): Preetham remains.
     check_reported(sorted(types - set(sky.SKY_MODELS)))
-    makers = MAKERS if 'NISHITA' in types else (preetham, preetham_hazy)
+    scattering = 'MULTIPLE_SCATTERING' in types
+    makers = MAKERS if 'NISHITA' in types else MAKERS_5 if scattering else (preetham, preetham_hazy)
     readers = DictAttr(READERS)
     preetham_fault = ("Preetham turbidity + 1", readers, 'ShaderNodeTexSky',
                       read_with(lambda node: {"turbidity": node.turbidity + 1.0}))
@@ -249,7 +349,11 @@ def main():
         ("texture mapping ignored", readers, 'ShaderNodeTexSky',
          read_with(**{"texture_mapping.rotation": (0.0, 0.0, 0.0)})))
     agree_on_patches(makers, what="the Sky Texture",
-                     faults=(*(nishita_faults if 'NISHITA' in types else ()), preetham_fault))
+                     faults=(*(nishita_faults if 'NISHITA' in types else ()),
+                             *(scattering_faults(readers, sky) if scattering else ()),
+                             preetham_fault))
+    if scattering:
+        check_lit_scenes(readers)
 
 
 testing.run(main)

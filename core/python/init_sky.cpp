@@ -39,6 +39,27 @@ void init_sky(py::module_& m) {
       py::arg("wrap_elevation") = false,
       "The Sky Texture's Nishita table (TexSky mode 1): the sun disc's colours and settings, then "
       "the precomputed sky texture (float32).");
+  m.def(
+      "scattering_sky_table",
+      [](bool multiple, float sun_elevation, float sun_rotation, float sun_size, float sun_intensity, bool sun_disc,
+         float altitude, float air, float aerosol, float ozone) {
+        const shader::ScatteringSky sky{multiple, sun_elevation, sun_rotation, sun_size, sun_intensity,
+                                        sun_disc, altitude,      air,          aerosol,  ozone};
+        std::vector<float> table;
+        {
+          py::gil_scoped_release release;
+          table = shader::scattering_table(sky);
+        }
+        py::array_t<float> a(py::ssize_t(table.size()));
+        std::copy(table.begin(), table.end(), a.mutable_data());
+        return a;
+      },
+      py::arg("multiple"), py::arg("sun_elevation"), py::arg("sun_rotation"), py::arg("sun_size"),
+      py::arg("sun_intensity"), py::arg("sun_disc"), py::arg("altitude"), py::arg("air"), py::arg("aerosol"),
+      py::arg("ozone"),
+      "The Sky Texture's table of Blender 5.x's Single (multiple=False) or Multiple Scattering "
+      "(TexSky mode 2): the sun disc's colours and settings, then the precomputed sky texture "
+      "(float32).");
 }
 
 }  // namespace torrance::python

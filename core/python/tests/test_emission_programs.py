@@ -148,3 +148,35 @@ def test_bad_light_programs_are_rejected():
         scene.set_light_program(9, out)
     with pytest.raises(ValueError, match="not written"):
         scene.set_light_program(pid, out + 5)
+
+
+def sky_disc_world(guided):
+    """A world of Blender 5.x's Multiple Scattering sky (TexSky mode 2) with a 2 degree sun 40
+    degrees up; guided: its disc's cone given to set_world_program (Cycles' sun guiding)."""
+    elevation, size = np.radians(40.0), np.radians(2.0)
+    table = tc.scattering_sky_table(True, elevation, 0.0, size, 1.0, True, 100.0, 1.0, 1.0, 1.0)
+
+    def world(scene):
+        rows = [code_row(GEOMETRY, 1, mode=0), code_row(61, 2, (1,), mode=2, resource=0)]
+        data = np.concatenate([[len(table)], table]).astype(np.float32)
+        pid = scene.add_shader_program(np.zeros((1, 4), np.float32),
+                                       np.asarray(rows, np.int32), 3, data)
+        # Cycles' sun: elevation e, longitude (2 pi - rotation) + pi / 2.
+        sun = (0.0, np.cos(elevation), np.sin(elevation), size / 2) if guided else None
+        scene.set_world_program(pid, 2, sun=sun)
+    return world
+
+
+def test_sun_guiding_is_unbiased_and_less_noisy():
+    # The map alone meets the disc in a cell or two: fireflies (pixel std 11.6 at 1024 spp, its
+    # mean still 2.7 % off), where the guided cone gives 2.8 at any count.
+    settings = tc.RenderSettings(width=8, height=8, samples=1024, max_bounces=1)
+    images = {guided: tc.render(floor_scene(sky_disc_world(guided)), settings).image[..., :3]
+              for guided in (False, True)}
+    means = {k: img.reshape(-1, 3).mean(axis=0) for k, img in images.items()}
+    assert means[True] == pytest.approx(means[False], rel=0.05)
+    assert images[True].std() < 0.5 * images[False].std()
+    scene = tc.Scene()
+    pid, out = sky_program(scene, (1.0, 1.0, 1.0))
+    with pytest.raises(ValueError, match="half angle"):
+        scene.set_world_program(pid, out, sun=(0.0, 0.0, 1.0, 0.0 + 4.0))

@@ -114,3 +114,50 @@ def test_preetham_twin_matches_core(sky):
         core = run_core(0, table, d)
         twin = np.array([sky.preetham(v, table) for v in d])
         assert agree(core[:, :3], twin).all()
+
+
+@pytest.fixture(scope="module", params=[False, True], ids=["single", "multiple"])
+def scattering(request):
+    """Blender 5.x's Single / Multiple Scattering: a 6 degree sun 3 degrees up, turned 30, seen
+    from 2 km."""
+    return tc.scattering_sky_table(request.param, math.radians(3.0), math.radians(30.0),
+                                   math.radians(6.0), 1.0, True, 2000.0, 1.3, 2.0, 1.5)
+
+
+def test_scattering_table_as_cycles(scattering):
+    assert scattering.shape == (13 + 512 * 256 * 3,)
+    assert scattering[11:13].tolist() == [512.0, 256.0]
+    assert math.isclose(scattering[7], 2 * math.pi - math.radians(30.0), rel_tol=1e-6)
+    # The Earth's rim seen from 2 km: pi/2 - asin(6371 / 6373), below the horizon.
+    assert math.isclose(scattering[10], -(math.pi / 2 - math.asin(6371 / 6373)), rel_tol=1e-4)
+    texels = scattering[13:].reshape(256, 512, 3)
+    assert np.all(texels >= 0) and np.all(np.isfinite(texels))
+    assert np.array_equal(texels[:, :256], texels[:, ::-1][:, :256])   # mirrored about the sun
+    assert texels[200].sum() > 0 and np.all(scattering[0:6] > 0)
+
+
+def test_scattering_single_fades_below_and_multiple_sees_the_ground():
+    args = (math.radians(20.0), 0.0, 0.01, 1.0, True, 100.0, 1.0, 1.0, 1.0)
+    single = tc.scattering_sky_table(False, *args)[13:].reshape(256, 512, 3)
+    multiple = tc.scattering_sky_table(True, *args)[13:].reshape(256, 512, 3)
+    # Below the horizon, the horizon's row faded by (1 - 2.5 sin(mirrored latitude))^3 to 0.4.
+    assert not single[:62].any() and single[64:].all()
+    z = math.sin(math.pi / 2 * (100 / 128 - 1) ** 2)
+    assert np.allclose(single[100], single[128] * (1 - 2.5 * z) ** 3, rtol=1e-5)
+    assert multiple[:128].min() > 0                          # haze toward the ground
+    # A sun below the horizon: the single-scattering disc is black, the multiple one is not.
+    low = (math.radians(-1.0), 0.0, 0.02, 1.0, True, 100.0, 1.0, 1.0, 1.0)
+    assert not tc.scattering_sky_table(False, *low)[0:6].any()
+    assert tc.scattering_sky_table(True, *low)[3:6].all()
+
+
+def test_scattering_twin_matches_core(sky, scattering):
+    rng = np.random.default_rng(5)
+    e, r = float(scattering[6]), float(scattering[7]) + math.pi / 2
+    sun = np.array([math.cos(e) * math.cos(r), math.cos(e) * math.sin(r), math.sin(e)])
+    d = directions(rng, sun)
+    core = run_core(2, scattering, d)
+    twin = np.array([sky.scattering(v, scattering) for v in d])
+    ok = agree(core[:, :3], twin)
+    assert ok.all(), (d[~ok.all(axis=1)][:3], core[~ok.all(axis=1)][:3], twin[~ok.all(axis=1)][:3])
+    assert (core[-60:, :3].max(axis=1) > 1e3).sum() > 10      # the disc is seen

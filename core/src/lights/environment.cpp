@@ -1,6 +1,9 @@
 #include "torrance/lights/environment.h"
 
+#include "torrance/util/sampling.h"
+
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -65,6 +68,16 @@ EnvironmentMap::EnvironmentMap(std::shared_ptr<const EmissionShader> shader, int
   build(std::move(lum));
 }
 
+EnvironmentMap::EnvironmentMap(std::shared_ptr<const EmissionShader> shader, int resolution, const SunGuide& sun)
+    : EnvironmentMap(std::move(shader), std::max(resolution, 512)) {
+  const float length = glm::length(sun.direction);
+  if (!(length > 0.0f) || !std::isfinite(length) || !(sun.half_angle > 0.0f) || !(sun.half_angle < kPi))
+    throw std::invalid_argument("a sun guide needs a direction and a half angle in (0, pi)");
+  sun_axis_ = sun.direction / length;
+  sun_one_minus_cos_ = 2.0f * std::sin(0.5f * sun.half_angle) * std::sin(0.5f * sun.half_angle);
+  share_sun_ = 4.0f / 5.0f;  // Cycles' sun weight 4 against the map's 1
+}
+
 void EnvironmentMap::build(std::vector<float> lum) {
   // Cell (i, j) covers u in [i, i+1)/W and v in [j, j+1)/H; its weight is its luminance times
   // sin(theta) (the solid angle it spans), with a floor so no direction is impossible.
@@ -114,21 +127,43 @@ Vec3 EnvironmentMap::radiance(const Vec3& dir, const PathState& state) const {
 }
 
 Vec3 EnvironmentMap::sample(const Vec2& u, float& pdf) const {
+  Vec2 v = u;
+  if (share_sun_ > 0.0f) {
+    if (u.x < share_sun_) {
+      v.x = u.x / share_sun_;
+      const Vec3 dir = Frame(sun_axis_).to_world(sample_uniform_cone(v, sun_one_minus_cos_));
+      pdf = this->pdf(dir);
+      return dir;
+    }
+    v.x = (u.x - share_sun_) / (1.0f - share_sun_);
+  }
   float tv, tu;
-  const int j = find_interval(row_cdf_.data(), height_, u.y, tv);
-  const int i = find_interval(&column_cdf_[size_t(j) * (width_ + 1)], width_, u.x, tu);
+  const int j = find_interval(row_cdf_.data(), height_, v.y, tv);
+  const int i = find_interval(&column_cdf_[size_t(j) * (width_ + 1)], width_, v.x, tu);
   const Vec2 uv((i + tu) / width_, (j + tv) / height_);
   const Vec3 dir = uv_to_direction(uv);
+  if (share_sun_ > 0.0f) {
+    pdf = this->pdf(dir);
+    return dir;
+  }
   const float sin_theta = std::sin(kPi * (1.0f - uv.y));
   pdf = sin_theta > 1e-7f ? cell_pdf_[size_t(j) * width_ + i] / (2.0f * kPi * kPi * sin_theta) : 0.0f;
   return dir;
 }
 
-float EnvironmentMap::pdf(const Vec3& dir) const {
+float EnvironmentMap::grid_pdf(const Vec3& dir) const {
   const Vec2 uv = direction_to_uv(dir);
   const int i = std::clamp(int(uv.x * width_), 0, width_ - 1), j = std::clamp(int(uv.y * height_), 0, height_ - 1);
   const float sin_theta = safe_sqrt(1.0f - dir.z * dir.z);
   return sin_theta > 1e-7f ? cell_pdf_[size_t(j) * width_ + i] / (2.0f * kPi * kPi * sin_theta) : 0.0f;
+}
+
+float EnvironmentMap::pdf(const Vec3& dir) const {
+  if (share_sun_ <= 0.0f) return grid_pdf(dir);
+  // In the cone: 1 - cos(angle to the axis) <= 1 - cos(half angle), measured without cancellation.
+  const float chord = glm::length(dir - sun_axis_);
+  const float in_cone = 0.5f * chord * chord <= sun_one_minus_cos_ ? 1.0f / cone_solid_angle(sun_one_minus_cos_) : 0.0f;
+  return share_sun_ * in_cone + (1.0f - share_sun_) * grid_pdf(dir);
 }
 
 }  // namespace torrance

@@ -399,8 +399,9 @@ Vec3 Lights::shader_factor(size_t index, const Vec3& p, const Vec3& wi, float di
                                                                  seen_by));
 }
 
-void Lights::set_world_shader(std::shared_ptr<const EmissionShader> shader, int resolution) {
-  world_ = WorldLight(std::make_shared<EnvironmentMap>(std::move(shader), resolution));
+void Lights::set_world_shader(std::shared_ptr<const EmissionShader> shader, int resolution, const SunGuide& sun) {
+  world_ = WorldLight(sun.half_angle > 0.0f ? std::make_shared<EnvironmentMap>(std::move(shader), resolution, sun)
+                                            : std::make_shared<EnvironmentMap>(std::move(shader), resolution));
 }
 
 bool Lights::any_hittable() const {

@@ -96,14 +96,14 @@ void Scene::set_world_texture(uint32_t id, float strength) {
   lights_.set_world_map(textures_[id], strength);
 }
 
-void Scene::set_world_program(uint32_t program, int radiance_register, int resolution) {
+void Scene::set_world_program(uint32_t program, int radiance_register, int resolution, const SunGuide& sun) {
   std::lock_guard<std::mutex> lock(mutex_);
   check_idle("change the world");
   if (program >= programs_.size())
     throw std::invalid_argument("the world uses shader program " + std::to_string(program) + " but the scene has " +
                                 std::to_string(programs_.size()));
   lights_.set_world_shader(std::make_shared<EmissionShader>(programs_[program], radiance_register, textures_),
-                           resolution);
+                           resolution, sun);
 }
 
 void Scene::set_light_program(uint32_t program, int radiance_register) {

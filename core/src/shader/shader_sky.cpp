@@ -1,5 +1,6 @@
 // The Sky Texture node's evaluation (shader_sky.h) and Preetham's table, in float and in the order
-// of Cycles 3.4's svm/sky.h and SkyTextureNode; the Nishita texture is shader_sky_nishita.cpp's.
+// of Cycles' svm/sky.h and SkyTextureNode (3.4 to 5.x); the Nishita and Single Scattering
+// textures are shader_sky_nishita.cpp's, Multiple Scattering's shader_sky_multiple.cpp's.
 #include "torrance/shader/shader_sky.h"
 
 #include "torrance/shader/shader_convert.h"
@@ -148,6 +149,74 @@ Vec3 sky_nishita(const Vec3& dir, const float* table, int size) {
   return xyz_to_rec709_clamped(xyz);
 }
 
+Vec2 wrapped_sun(float elevation, float rotation) {
+  float e = std::fmod(elevation, kTwoPi);
+  if (std::fabs(e) >= kPi) e -= std::copysign(2.0f, e) * kPi;
+  if (e >= kHalfPi || e <= -kHalfPi) {
+    e = std::copysign(kPi, e) - e;
+    rotation += kPi;
+  }
+  return Vec2(e, rotation);
+}
+
+float cycles_sun_rotation(float rotation) {
+  rotation = std::fmod(rotation, kTwoPi);
+  if (rotation < 0.0f) rotation += kTwoPi;
+  return kTwoPi - rotation;
+}
+
+std::vector<float> scattering_table(const ScatteringSky& sky) {
+  const Vec2 sun = wrapped_sun(sky.sun_elevation, sky.sun_rotation);
+  const float elevation = sun.x, size = std::max(sky.sun_size, 0.0005f);
+  std::vector<float> table(size_t(kScatteringHeader) + size_t(3) * kScatteringWidth * kScatteringHeight);
+  float* texels = table.data() + kScatteringHeader;
+  if (sky.multiple) {
+    multiple_scattering_sun(table.data(), elevation, size, sky.altitude, sky.air, sky.aerosol, sky.ozone);
+    multiple_scattering_texture(texels, elevation, sky.altitude, sky.air, sky.aerosol, sky.ozone);
+  } else {
+    single_scattering_sun(table.data(), elevation, size, sky.altitude, sky.air, sky.aerosol);
+    single_scattering_texture(texels, elevation, sky.altitude, sky.air, sky.aerosol, sky.ozone);
+  }
+  // The elevation below which the Earth (6371 km) hides the disc, seen from the altitude.
+  const float earth = kHalfPi - std::asin(6371.0f / (6371.0f + sky.altitude / 1000.0f));
+  const float header[7] = {elevation,      cycles_sun_rotation(sun.y), sky.sun_disc ? size : -1.0f,
+                           sky.sun_intensity, -earth, float(kScatteringWidth), float(kScatteringHeight)};
+  std::copy(header, header + 7, table.begin() + 6);
+  for (float& v : table)
+    if (!std::isfinite(v)) v = 0.0f;
+  return table;
+}
+
+Vec3 sky_scattering(const Vec3& dir, const float* table, int size) {
+  if (size < kScatteringHeader) return Vec3(0.0f);
+  const Vec3 bottom(table[0], table[1], table[2]), top(table[3], table[4], table[5]);
+  const float sun_elevation = table[6], sun_rotation = table[7], diameter = table[8], intensity = table[9];
+  const float earth = table[10];
+  const int w = int(table[11]), h = int(table[12]);
+  if (w < 1 || h < 1 || size_t(size) != size_t(kScatteringHeader) + size_t(3) * size_t(w) * size_t(h))
+    return Vec3(0.0f);
+  const Vec2 view = spherical(dir);
+  const Vec3 sun = direction_at(sun_elevation, sun_rotation + kHalfPi);
+  const float angle = precise_angle(dir, sun);
+  const float half = diameter * 0.5f;
+  const float elevation = kHalfPi - view.x;
+  Vec3 xyz(0.0f);
+  if (diameter >= 0.0f && angle < half && elevation > earth) {
+    // The disc, its colour between its bottom's and top's by elevation, darkened toward the limb.
+    const float t = (elevation - sun_elevation) / diameter + 0.5f;
+    const float r = angle / half;
+    const float limb = 1.0f - 0.6f * (1.0f - std::sqrt(1.0f - r * r));
+    xyz = (bottom + t * (top - bottom)) * intensity * limb;
+  }
+  // The sky (added to the disc): the texture's rows undo its elevation mapping; Cycles 5.x's
+  // azimuth is atan2(y, x).
+  float x = (-std::atan2(dir.y, dir.x) - kHalfPi + sun_rotation) / kTwoPi;
+  x -= std::floor(x);
+  const float y = std::copysign(std::sqrt(std::fabs(elevation) * (2.0f / kPi)), elevation) * 0.5f + 0.5f;
+  xyz += texture_lookup(table + kScatteringHeader, w, h, x, y);
+  return xyz_to_rec709_clamped(xyz);
+}
+
 glm::vec4 sky_op(const ShaderOpContext& c) {
   const Vec3 dir = c.vector(0);
   Vec3 rgb(0.0f);
@@ -155,6 +224,8 @@ glm::vec4 sky_op(const ShaderOpContext& c) {
     rgb = sky_preetham(dir, c.data);
   else if (c.ins.mode == uint8_t(SkyModel::Nishita))
     rgb = sky_nishita(dir, c.data, c.data_size);
+  else if (c.ins.mode == uint8_t(SkyModel::Scattering))
+    rgb = sky_scattering(dir, c.data, c.data_size);
   return glm::vec4(rgb, 1.0f);
 }
 

@@ -185,17 +185,45 @@ F3 sun_radiance(float elevation, const NishitaSky& sky, float altitude, float so
   return to_xyz(s);
 }
 
-// Rows [first, last) of the texture: row y at elevation (pi/2 + half a row) (y / height)^2 (more
-// rows toward the horizon), column x at longitude x * 2 pi / width - pi, mirrored about the sun's
-// meridian (the sky is symmetric about it).
-void texture_rows(float* texels, int first, int last, float sun_elevation, float altitude, F3 scale) {
+// The latitude of texture row y: Cycles 3.4's 128 rows from the horizon up at (pi/2 + half a
+// row) (y / height)^2 (more rows toward the horizon); 5.x's 256 over the whole sphere, its upper
+// half at pi/2 (y / (height / 2) - 1)^2 (the lower half mirrors it: fill_below_horizon).
+float row_latitude(int y, bool whole_sphere) {
+  if (whole_sphere) {
+    const float t = float(y) / float(kScatteringHeight / 2) - 1.0f;
+    return kHalfPi * (t * t);
+  }
+  const float half_row = kHalfPi / float(kNishitaHeight) / 2.0f;
+  const float t = float(y) / float(kNishitaHeight);
+  return (kHalfPi + half_row) * (t * t);
+}
+
+// Cycles 5.x's rows below the horizon: the horizon's row faded by (1 - 2.5 z)^3, z the sine of
+// the row's mirrored latitude, black from z = 0.4 on.
+void fill_below_horizon(float* texels) {
+  const int half = kScatteringHeight / 2;
+  const float* horizon = texels + size_t(half) * kNishitaWidth * 3;
+  for (int y = 0; y < half; ++y) {
+    const float z = std::sin(row_latitude(y, true));
+    float fade = 0.0f;
+    if (z < 0.4f) {
+      fade = 1.0f - z * 2.5f;
+      fade = fade * fade * fade;
+    }
+    float* row = texels + size_t(y) * kNishitaWidth * 3;
+    for (int i = 0; i < kNishitaWidth * 3; ++i) row[i] = horizon[i] * fade;
+  }
+}
+
+// Rows [first, last) of the texture (width kNishitaWidth): column x at longitude x 2 pi / width
+// - pi, mirrored about the sun's meridian (the sky is symmetric about it).
+void texture_rows(float* texels, int first, int last, bool whole_sphere, float sun_elevation, float altitude,
+                  F3 scale) {
   const F3 eye{0.0f, 0.0f, kEarthRadius + altitude};
   const F3 sun = direction_at(sun_elevation, 0.0f);
-  const float half_row = kHalfPi / float(kNishitaHeight) / 2.0f;
   const float column_step = kTwoPi / float(kNishitaWidth);
   for (int y = first; y < last; ++y) {
-    const float t = float(y) / float(kNishitaHeight);
-    const float latitude = (kHalfPi + half_row) * (t * t);
+    const float latitude = row_latitude(y, whole_sphere);
     float* row = texels + size_t(y) * kNishitaWidth * 3;
     for (int x = 0; x < kNishitaWidth / 2; ++x) {
       const F3 xyz = to_xyz(scattered(direction_at(latitude, column_step * float(x) - kPi), sun, eye, scale));
@@ -208,18 +236,26 @@ void texture_rows(float* texels, int first, int last, float sun_elevation, float
   }
 }
 
+// Rows [first, height) by scattering, split among threads.
+void texture(float* texels, int first, int height, bool whole_sphere, float sun_elevation, float altitude,
+             F3 scale) {
+  const int workers = int(std::clamp(std::thread::hardware_concurrency(), 1u, 8u));
+  const int rows = height - first;
+  std::vector<std::thread> threads;
+  for (int k = 0; k < workers; ++k)
+    threads.emplace_back(texture_rows, texels, first + rows * k / workers, first + rows * (k + 1) / workers,
+                         whole_sphere, sun_elevation, altitude, scale);
+  for (auto& t : threads) t.join();
+}
+
 }  // namespace
 
 std::vector<float> nishita_table(const NishitaSky& settings) {
   NishitaSky sky = settings;
   if (sky.wrap_elevation) {
-    float e = std::fmod(sky.sun_elevation, kTwoPi);
-    if (std::fabs(e) >= kPi) e -= std::copysign(2.0f, e) * kPi;
-    if (e >= kHalfPi || e <= -kHalfPi) {
-      e = std::copysign(kPi, e) - e;
-      sky.sun_rotation += kPi;
-    }
-    sky.sun_elevation = e;
+    const Vec2 wrapped = wrapped_sun(sky.sun_elevation, sky.sun_rotation);
+    sky.sun_elevation = wrapped.x;
+    sky.sun_rotation = wrapped.y;
   }
   const float altitude = std::min(std::max(sky.altitude, 1.0f), 59999.0f);
   const float size = std::max(sky.sun_size, 0.0005f);
@@ -227,9 +263,7 @@ std::vector<float> nishita_table(const NishitaSky& settings) {
   const float solid_angle = kTwoPi * (1.0f - std::cos(half));
   const F3 bottom = sun_radiance(std::max(sky.sun_elevation - half, 0.0f), sky, altitude, solid_angle);
   const F3 top = sun_radiance(std::max(sky.sun_elevation + half, 0.0f), sky, altitude, solid_angle);
-  float rotation = std::fmod(sky.sun_rotation, kTwoPi);
-  if (rotation < 0.0f) rotation += kTwoPi;
-  rotation = kTwoPi - rotation;
+  const float rotation = cycles_sun_rotation(sky.sun_rotation);
 
   std::vector<float> table(size_t(kNishitaHeader) + size_t(3) * kNishitaWidth * kNishitaHeight);
   const float header[kNishitaHeader] = {bottom.x, bottom.y, bottom.z, top.x, top.y, top.z,
@@ -237,16 +271,33 @@ std::vector<float> nishita_table(const NishitaSky& settings) {
                                         sky.sun_intensity, float(kNishitaWidth), float(kNishitaHeight)};
   std::copy(header, header + kNishitaHeader, table.begin());
   float* texels = table.data() + kNishitaHeader;
-  const F3 scale{sky.air, sky.dust, sky.ozone};
-  const int workers = int(std::clamp(std::thread::hardware_concurrency(), 1u, 8u));
-  std::vector<std::thread> threads;
-  for (int k = 0; k < workers; ++k)
-    threads.emplace_back(texture_rows, texels, kNishitaHeight * k / workers, kNishitaHeight * (k + 1) / workers,
-                         sky.sun_elevation, altitude, scale);
-  for (auto& t : threads) t.join();
+  texture(texels, 0, kNishitaHeight, false, sky.sun_elevation, altitude, F3{sky.air, sky.dust, sky.ozone});
   for (float& v : table)
     if (!std::isfinite(v)) v = 0.0f;
   return table;
+}
+
+void single_scattering_texture(float* texels, float sun_elevation, float altitude, float air, float aerosol,
+                               float ozone) {
+  texture(texels, kScatteringHeight / 2, kScatteringHeight, true, sun_elevation,
+          std::min(std::max(altitude, 1.0f), 59999.0f), F3{air, aerosol, ozone});
+  fill_below_horizon(texels);
+}
+
+void single_scattering_sun(float* bottom_top, float sun_elevation, float size, float altitude, float air,
+                           float aerosol) {
+  NishitaSky sky;
+  sky.air = air;
+  sky.dust = aerosol;
+  const float half = size / 2.0f;
+  const float solid_angle = kTwoPi * (1.0f - std::cos(half));
+  const float clamped = std::min(std::max(altitude, 1.0f), 59999.0f);
+  const float bottom = std::max(sun_elevation - half, 0.0f), top = std::max(sun_elevation + half, 0.0f);
+  // A sun wholly below the horizon is black.
+  const F3 b = top > 0.0f ? sun_radiance(bottom, sky, clamped, solid_angle) : F3{0.0f, 0.0f, 0.0f};
+  const F3 t = top > 0.0f ? sun_radiance(top, sky, clamped, solid_angle) : F3{0.0f, 0.0f, 0.0f};
+  const float out[6] = {b.x, b.y, b.z, t.x, t.y, t.z};
+  std::copy(out, out + 6, bottom_top);
 }
 
 }  // namespace torrance::shader

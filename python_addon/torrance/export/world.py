@@ -26,6 +26,7 @@ class WorldLook:
     program: tuple = None          # ProgramBuilder.build()'s arguments
     radiance_register: int = -1
     resolution: int = DEFAULT_MAP_RESOLUTION
+    sun: tuple = None              # a sky's sun disc to guide sampling to: (x, y, z, half angle)
 
 
 def _constant_input(socket):
@@ -61,6 +62,13 @@ def _map_resolution(world):
     return min(max(int(resolution), 4), 16384)
 
 
+def _sun_guide(values):
+    """The one sun disc of the world's skies Cycles guides its samples to (sky.py's suns), else
+    None (no sky with a disc, several, or one Cycles leaves to the map)."""
+    suns = list(getattr(values, "suns", {}).values())
+    return suns[0] if len(suns) == 1 else None
+
+
 def read_world(world, reporter, textures):
     """The WorldLook of a world (None: black), reporting what it leaves out."""
     if world is None:
@@ -90,14 +98,14 @@ def read_world(world, reporter, textures):
         reporter.warning(f"World '{world.name}': {exc}; black background")
         return WorldLook()
     return WorldLook(program=program, radiance_register=compiler.builder.register_of(radiance),
-                     resolution=_map_resolution(world))
+                     resolution=_map_resolution(world), sun=_sun_guide(compiler.values))
 
 
 def export_world(tc_scene, world, reporter, textures):
     look = read_world(world, reporter, textures)
     if look.program is not None:
         program = tc_scene.add_shader_program(*look.program)
-        tc_scene.set_world_program(program, look.radiance_register, look.resolution)
+        tc_scene.set_world_program(program, look.radiance_register, look.resolution, sun=look.sun)
         return
     strength = look.strength
     if not math.isfinite(strength) or (look.texture is None

@@ -26,8 +26,10 @@ materials.principled_version does, not by bpy.app.version:
               ADDED_NODES: the registry reads them where the Blender has them).
   Sky Texture  Cycles 3.6 wraps the Nishita sun's elevation into [-pi/2, pi/2] (turning it
               about z past the zenith; cycles_wraps_sun_elevation); 5.0 renames Dust to
-              Aerosol (sky_dust_density) and replaces Nishita by the Single and Multiple
-              Scattering models, which sky.py reports.
+              Aerosol (sky_dust_density) and replaces Nishita by Single and Multiple
+              Scattering (SKY_TYPES_5; the sky_type tells): one new kernel (the texture over
+              the whole sphere, the disc under the Earth's rim hidden, the sky added under the
+              disc), Altitude's default 100 m; sky.py reads them.
   Separate/Combine RGB/HSV  5.0 removes them: files open with Separate/Combine Color in the
               mode RGB or HSV (COLOR_NODE_SUCCESSORS), which the registry reads.
 """
@@ -149,6 +151,10 @@ def cycles_wraps_sun_elevation():
     3.4 takes it as it is): the node did not change, the running Blender tells."""
     import bpy
     return bpy.app.version >= (3, 6, 0)
+
+
+# Blender 5.0's sky types, which replace Nishita (one Cycles kernel, two precomputations).
+SKY_TYPES_5 = ('SINGLE_SCATTERING', 'MULTIPLE_SCATTERING')
 
 
 def sky_dust_density(node):

@@ -1,12 +1,16 @@
 # SPDX-License-Identifier: Apache-2.0
 """The Sky Texture node as Cycles renders it (opcode 61, the core's shader_sky.h): Preetham's
-analytic sky and the Nishita sky (single scattering in an atmosphere of air, dust and ozone,
-precomputed as Cycles' host does into a 512 x 128 texture, plus the limb-darkened sun disc).
-Hosek / Wilkie (its fitted dataset is not reproduced here) and Blender 5.0's Single and Multiple
-Scattering models (a different precomputation and kernel) are reported.
+analytic sky, the Nishita sky of Blender 3.x-4.x (single scattering in an atmosphere of air,
+dust and ozone, precomputed as Cycles' host does into a 512 x 128 texture, plus the
+limb-darkened sun disc) and Blender 5.x's Single and Multiple Scattering (one kernel: a 512 x 256
+texture over the whole sphere, the disc hidden below the Earth's rim and the sky added under it;
+Single is Nishita's atmosphere, Multiple Fernando Garcia Linan's spectral model with multiple
+scattering and the ground's bounce). Hosek / Wilkie (its fitted dataset is not reproduced here)
+is reported.
 
 The reader asks the core for the op's table (torrance_core.preetham_sky_table /
-nishita_sky_table, the functions Cycles' SkyTextureNode::compile runs on the host); the twin
+nishita_sky_table / scattering_sky_table, the functions Cycles' SkyTextureNode::compile runs on
+the host); the twin
 here evaluates a table at a direction as the core's op does (float32 results, the angles and
 transcendental functions in float64 rounded to float32), the fold of a constant Vector and the
 reference evaluator's op.
@@ -16,15 +20,16 @@ import math
 
 import numpy as np
 
-from .node_versions import cycles_wraps_sun_elevation, input_socket, sky_dust_density
-from .texture_mapping import mapped
+from .node_versions import SKY_TYPES_5, cycles_wraps_sun_elevation, input_socket, sky_dust_density
+from .texture_mapping import is_identity, mapped
 from .textures import _vector
 
 OPCODES = {"TexSky": 61}
-# The op's modes (the core's SkyModel) by Blender's sky_type.
-SKY_MODELS = {'PREETHAM': 0, 'NISHITA': 1}
+# The op's modes (the core's SkyModel) by Blender's sky_type (node_versions.SKY_TYPES_5: 5.x's).
+SKY_MODELS = {'PREETHAM': 0, 'NISHITA': 1, 'SINGLE_SCATTERING': 2, 'MULTIPLE_SCATTERING': 2}
 PREETHAM_TABLE = 20
 NISHITA_HEADER = 12
+SCATTERING_HEADER = 13
 
 _F = np.float32
 _HALF_PI = _F(math.pi / 2)
@@ -101,11 +106,7 @@ def nishita(d, table):
         x -= _F(1)
     xyz = np.zeros(3, np.float32)
     if d[2] >= 0:
-        ce = math.cos(float(elevation))
-        lon = float(rotation + _HALF_PI)
-        sun = np.array((ce * math.cos(lon), ce * math.sin(lon), math.sin(float(elevation))),
-                       np.float32)
-        angle = _F(2 * math.atan2(float(np.linalg.norm(d - sun)), float(np.linalg.norm(d + sun))))
+        angle = _angle(d, _sun(elevation, rotation))
         half = diameter / _F(2)
         view_elevation = _HALF_PI - theta
         if diameter >= 0 and angle < half:
@@ -123,8 +124,50 @@ def nishita(d, table):
     return _rec709(xyz)
 
 
+def _sun(elevation, rotation):
+    """Cycles' sun direction at (elevation, Cycles' rotation)."""
+    ce, lon = math.cos(float(elevation)), float(rotation + _HALF_PI)
+    return np.array((ce * math.cos(lon), ce * math.sin(lon), math.sin(float(elevation))),
+                    np.float32)
+
+
+def _angle(d, sun):
+    return _F(2 * math.atan2(float(np.linalg.norm(d - sun)), float(np.linalg.norm(d + sun))))
+
+
+def scattering(d, table):
+    """Blender 5.x's Single / Multiple Scattering sky (Rec. 709) along d from the table (sun disc
+    colours and settings, the Earth's rim, the texture's size, its texels)."""
+    t = np.asarray(table, np.float32)
+    w, h = int(t[11]), int(t[12])
+    if len(t) != SCATTERING_HEADER + 3 * w * h:
+        return (0.0, 0.0, 0.0)
+    texels = t[SCATTERING_HEADER:].reshape(h, w, 3)
+    bottom, top = t[0:3], t[3:6]
+    elevation, rotation, diameter, intensity, earth = t[6], t[7], t[8], t[9], t[10]
+    d = np.asarray(d[:3], np.float32)
+    theta = _spherical(d)[0]
+    angle = _angle(d, _sun(elevation, rotation))
+    half = diameter * _F(0.5)
+    view_elevation = _HALF_PI - theta
+    xyz = np.zeros(3, np.float32)
+    if diameter >= 0 and angle < half and view_elevation > earth:
+        s = (view_elevation - elevation) / diameter + _F(0.5)
+        r = angle / half
+        limb = _F(1) - _F(0.6) * (_F(1) - _F(math.sqrt(max(float(1 - r * r), 0.0))))
+        xyz = (bottom + s * (top - bottom)) * intensity * limb
+    x = (-_F(math.atan2(float(d[1]), float(d[0]))) - _HALF_PI + rotation) / _TWO_PI   # 5.x's
+    x -= _F(math.floor(x))
+    y = _F(math.copysign(math.sqrt(abs(float(view_elevation)) * 2 / math.pi),
+                         float(view_elevation))) * _F(0.5) + _F(0.5)
+    return _rec709(xyz + _lookup(texels, x, y))
+
+
+_EVALUATORS = {0: preetham, 1: nishita, 2: scattering}
+
+
 def _fold_sky(mode, flags, a, table):
-    rgb = preetham(a[0], table) if mode == 0 else nishita(a[0], table)
+    rgb = _EVALUATORS[mode](a[0], table)
     return (*rgb, 1.0)
 
 
@@ -152,6 +195,12 @@ def sky_table(node):
         d = d / length if length > 0 else d
         return SKY_MODELS[kind], core.preetham_sky_table(tuple(float(c) for c in d),
                                                          float(node.turbidity))
+    if kind in SKY_TYPES_5:
+        table = core.scattering_sky_table(
+            kind == 'MULTIPLE_SCATTERING', node.sun_elevation, node.sun_rotation, node.sun_size,
+            node.sun_intensity, bool(node.sun_disc), node.altitude, node.air_density,
+            sky_dust_density(node), node.ozone_density)
+        return SKY_MODELS[kind], table
     table = core.nishita_sky_table(
         node.sun_elevation, node.sun_rotation, node.sun_size, node.sun_intensity,
         bool(node.sun_disc), node.altitude, node.air_density, sky_dust_density(node),
@@ -160,15 +209,53 @@ def sky_table(node):
 
 
 def _direction(g, node):
-    """The Vector input as Blender gives it to Cycles: a Nishita sky with its sun disc makes the
-    socket unavailable (node_shader_update_sky), its link ignored: Generated coordinates."""
+    """The Vector input as Blender gives it to Cycles: a Nishita (or 5.x scattering) sky with its
+    sun disc makes the socket unavailable (node_shader_update_sky), its link ignored: Generated
+    coordinates."""
     if input_socket(node, "Vector").enabled:
         return _vector(g, node)
     return mapped(g, node, g.generated())
 
 
+def _cycles_sun(node):
+    """(elevation, rotation) of a Nishita / scattering sun as Cycles' kernel takes them (wrapped
+    first where Cycles wraps: shader_sky.h's wrapped_sun, cycles_sun_rotation)."""
+    e, r = float(node.sun_elevation), float(node.sun_rotation)
+    if node.sky_type in SKY_TYPES_5 or cycles_wraps_sun_elevation():
+        e = math.fmod(e, 2 * math.pi)
+        if abs(e) >= math.pi:
+            e -= math.copysign(2.0, e) * math.pi
+        if e >= math.pi / 2 or e <= -math.pi / 2:
+            e, r = math.copysign(math.pi, e) - e, r + math.pi
+    r = math.fmod(r, 2 * math.pi)
+    return e, 2 * math.pi - (r + 2 * math.pi if r < 0 else r)
+
+
+def _note_sun(g, node):
+    """A world's sky with its sun disc, for Cycles' sun guiding (light/background.cpp): its
+    Vector unlinked or Texture Coordinate > Generated, the disc's direction (x, y, z) and half
+    angle in g.suns by node (None where Cycles would fall back to the map: a Vector from elsewhere
+    or, Torrance's own limit, a Texture Mapping other than the identity)."""
+    if not g.background or node.sky_type == 'PREETHAM' or not node.sun_disc:
+        return
+    socket = input_socket(node, "Vector")
+    links = [link for link in socket.links if link.is_valid and not link.is_muted]
+    suns = g.__dict__.setdefault("suns", {})
+    if links and (links[0].from_node.bl_idname != 'ShaderNodeTexCoord'
+                  or links[0].from_socket.identifier != "Generated"):
+        return
+    if not is_identity(node.texture_mapping):
+        suns[node.name] = None
+        return
+    e, r = _cycles_sun(node)
+    lon = r + math.pi / 2
+    suns[node.name] = (math.cos(e) * math.cos(lon), math.cos(e) * math.sin(lon), math.sin(e),
+                       max(float(node.sun_size), 0.0005) * 0.5)
+
+
 def _read_sky(g, node, socket):
     mode, table = sky_table(node)
+    _note_sun(g, node)
     return g.builder.emit("TexSky", 'color', [_direction(g, node)], mode=mode, table=table)
 
 

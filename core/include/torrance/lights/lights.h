@@ -159,7 +159,8 @@ class Lights {
   void set_world(const Vec3& color, float strength);
   void set_world_map(std::shared_ptr<const Texture> image, float strength);
   // The world's node graph (emission_shader.h), its NEE map `resolution` cells wide.
-  void set_world_shader(std::shared_ptr<const EmissionShader> shader, int resolution);
+  // sun: a sun disc in it to sample as Cycles' sun guiding does (half_angle 0: none).
+  void set_world_shader(std::shared_ptr<const EmissionShader> shader, int resolution, const SunGuide& sun = {});
   // The node graph of the light added last (emission_shader.h): its radiance at each point of
   // the light, seen from the receiver, multiplies the light's colour x power (Cycles' light
   // shader: a Light Falloff, a texture).

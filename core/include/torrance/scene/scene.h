@@ -325,8 +325,10 @@ class Scene final : public ShaderTracer {
   void set_world_texture(uint32_t id, float strength);
   // The world's node graph: shader program `program` (from add_shader_program), its radiance in
   // register radiance_register (emission_shader.h), NEE sampling a map `resolution` cells
-  // wide (Cycles' world Map Resolution). Throws std::invalid_argument naming a bad argument.
-  void set_world_program(uint32_t program, int radiance_register, int resolution);
+  // wide (Cycles' world Map Resolution), and the cone of `sun` where its half angle is above 0
+  // (a Sky Texture's sun disc: Cycles' sun guiding). Throws std::invalid_argument naming a bad
+  // argument.
+  void set_world_program(uint32_t program, int radiance_register, int resolution, const SunGuide& sun = {});
   // The light added last takes shader program `program`'s radiance register as its node graph
   // (Lights::set_last_light_shader). Throws std::invalid_argument naming a bad argument.
   void set_light_program(uint32_t program, int radiance_register);
