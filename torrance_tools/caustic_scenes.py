@@ -77,3 +77,22 @@ def glass_ball(tc, light="point"):
         s.add_point_light(position=(0.3, 0.2, 2.5), power=500.0, radius=0.02)
     look_at(s, (0, -4.0, 2.5), (0, 0, 0.3))
     return s
+
+
+def mirror_box_by_a_lamp(tc, radius=0.02):
+    """A smooth metal cube on a matte floor beside a small lamp (of `radius`) hung low over the
+    floor (a lamp's bright spot: a pair of mirror_images.h, which has none for the cube: mirrors
+    pair with suns), throwing the lamp's reflections onto the floor and a matte wall behind."""
+    s = tc.Scene()
+    matte = _floor(tc, s)
+    metal = s.add_material(base_color=(0.9, 0.9, 0.85), metallic=1.0, roughness=0.0)
+    h = 0.3
+    corners = np.array([[x, y, z] for x in (-h, h) for y in (-h, h) for z in (0.0, 2 * h)],
+                       np.float32)
+    faces = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
+    for face in faces:
+        quad(s, [corners[i] for i in face], metal)
+    quad(s, [[-4, 1.5, 0], [4, 1.5, 0], [4, 1.5, 4], [-4, 1.5, 4]], matte, flip=True)
+    s.add_point_light(position=(0.9, -0.5, 0.45), power=300.0, radius=radius)
+    look_at(s, (0, -4.0, 2.5), (0, 0, 0.8))
+    return s

@@ -48,7 +48,7 @@ std::optional<CausticPartition> CausticPartition::make(const Scene& scene, const
     // Only compact smooth objects: a light tracer aiming at a mirror floor or a lake spreads its
     // rays over all of it and brings next to nothing to the part the camera sees; their light
     // stays the path tracer's (and mirror_images.h's).
-    const bool reflector = mirror_images && mirror_images->is_reflector(m);
+    const bool reflector = mirror_images && mirror_images->reflects_light(m);
     const std::optional<Scene::Sphere> bounds =
         smooth_material(scene, m) && !reflector ? scene.material_bounds(m) : std::nullopt;
     const bool smooth = bounds && bounds->radius <= kCompact * scene_radius;

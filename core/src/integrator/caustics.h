@@ -17,8 +17,9 @@
 // image, with no weights to balance. The path tracer keeps track of whether its path is still a
 // caustic one (CausticPartition::Chain) and drops the light of covered lights it would find at
 // a smooth vertex of such a path. The reflectors of mirror_images.h (glossy spheres and planes,
-// flat mirrors), whose caustics next-event estimation through them finds with little noise, do
-// not count as smooth: their paths stay the path tracer's.
+// flat mirrors) that reflect some light by its pairs, whose caustics next-event estimation
+// through them finds with little noise, do not count as smooth: their paths stay the path
+// tracer's. One with no pair (a mirror box and no sun) does.
 //
 // Chosen per render by what the scene holds (CausticPartition::make): a perspective camera, some
 // smooth material, some light that can emit, no alpha or holdouts (whose transparency the light

@@ -143,8 +143,10 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
   } else {
     for (const Candidate& c : candidates) pairs_.push_back(c.pair);
   }
+  reflects_light_.assign(scene.num_materials(), false);
   for (Pair& pair : pairs_) {
     const Reflector& reflector = reflectors_[size_t(pair.reflector)];
+    reflects_light_[reflector.material] = true;
     const Source& source = sources_[size_t(pair.source)];
     if (reflector.radius > 0.0f || reflector.matte) continue;
     pair.light_above = source.above(reflector.point, reflector.normal);
