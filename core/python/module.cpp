@@ -9,6 +9,7 @@ PYBIND11_MODULE(_core, m) {
   m.attr("__version__") = TORRANCE_VERSION;  // CMake's project(VERSION)
   torrance::python::init_scene(m);
   torrance::python::init_mixture(m);
+  torrance::python::init_media(m);
   torrance::python::init_extra_passes(m);
   torrance::python::init_cryptomatte(m);
   torrance::python::init_render(m);

@@ -7,6 +7,7 @@
 // bin of their own. Significance 0.01, Bonferroni-corrected for the number of cases.
 #include "torrance/bsdfs/material_bsdf.h"
 #include "torrance/bsdfs/mixture_bsdf.h"
+#include "torrance/media/henyey_greenstein.h"
 
 #include "test_helpers.h"
 
@@ -448,6 +449,29 @@ TEST(ChiSquare, PrincipledSheenSamplingMatchesPdf) {
                                    << " coat=" << coat << " cos_o=" << cos_o;
           }
   EXPECT_EQ(cases, 72);
+}
+
+// The Henyey-Greenstein phase function (media/henyey_greenstein.h): binned around the direction the
+// path arrived travelling in, or the opposite one for backward scattering (chi_square bins around
+// wo's mirror image, so it is given that direction's mirror image), at the lobe's own width.
+TEST(ChiSquare, HenyeyGreensteinSamplingMatchesPdf) {
+  const float anisotropies[] = {-0.9f, -0.5f, -0.3f, 0.0f, 1e-4f, 0.3f, 0.6f, 0.9f, 0.99f};
+  const double significance = 0.01 / (9.0 * 2.0);
+  uint32_t seed = 9900;
+  for (float g : anisotropies)
+    for (const Vec3& wo : {Vec3(0.0f, 0.0f, 1.0f), glm::normalize(Vec3(0.3f, -0.5f, 0.2f))}) {
+      const HenyeyGreenstein phase(g);
+      const Vec3 peak = g >= 0.0f ? -wo : wo;  // forward or backward scattering
+      const std::string failure = chi_square(
+          Vec3(-peak.x, -peak.y, peak.z), std::max(0.5f * (1.0f - std::abs(g)), 0.02f), seed++,
+          significance,
+          [&](Rng& rng) {
+            const PhaseSample s = phase.sample(wo, rng.next_2d());
+            return Sampled{s.wi, s.valid() && std::abs(s.pdf - phase.pdf(wo, s.wi)) <= 1e-2f * s.pdf, false};
+          },
+          [&](const Vec3& wi) { return phase.pdf(wo, wi); });
+      EXPECT_EQ(failure, "") << "g=" << g << " wo=" << wo.x << "," << wo.y << "," << wo.z;
+    }
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "torrance/film/extra_passes.h"
 #include "torrance/lights/lights.h"
 #include "torrance/bsdfs/mixture.h"
+#include "torrance/media/scene_media.h"
 #include "torrance/shader/shader_bump.h"
 #include "torrance/shader/shader_program.h"
 #include "torrance/shader/texture.h"
@@ -189,6 +190,11 @@ class Scene final : public ShaderTracer {
     return mixture_index_[i] >= 0 ? &mixtures_[size_t(mixture_index_[i])] : nullptr;
   }
   bool has_mixtures() const { return !mixtures_.empty(); }
+  // Volumes (media/scene_media.h): material's closed meshes hold `medium`; pass_through: the
+  // material has no surface shader (a boundary paths cross). The world's volume surrounds all.
+  void set_material_volume(uint32_t material, const HomogeneousMedium& medium, bool pass_through);
+  void set_world_volume(const HomogeneousMedium& medium);
+  const SceneMedia& media() const { return media_; }
   // The weights of mixture material i's closures at uv (image factors over footprint UV units).
   // regs: as textured_material's (the mixture's program, which its Normal reads too).
   MixtureWeights mixture_weights(uint32_t i, const ShaderGlobals& globals, glm::vec4* regs = nullptr) const;
@@ -434,6 +440,7 @@ class Scene final : public ShaderTracer {
   std::vector<MaterialTextures> material_textures_;
   std::vector<int32_t> mixture_index_;  // per material: index in mixtures_, or -1
   std::vector<Mixture> mixtures_;
+  SceneMedia media_;
   std::vector<std::shared_ptr<const Texture>> textures_;
   std::vector<ShaderProgram> programs_;
   std::vector<std::unique_ptr<Mesh>> meshes_;  // world-space meshes, in the order added

@@ -1,0 +1,76 @@
+// Homogeneous participating media (Cycles' Volume Absorption, Volume Scatter and Principled
+// Volume with constant inputs), and free-flight sampling through them as Cycles 3.4 samples a
+// homogeneous segment (integrator/shade_volume.h): a colour channel chosen in proportion to the
+// path's throughput times the single-scattering albedo, a distance by that channel's extinction
+// (the segment's far end with its probability of no collision), every channel weighted by the
+// one-sample MIS (balance heuristic) over the channels; emission integrated along the segment in
+// closed form. Coefficients are per metre, per RGB channel.
+#pragma once
+
+#include "torrance/media/henyey_greenstein.h"
+
+#include <array>
+
+namespace torrance {
+
+struct HomogeneousMedium {
+  Vec3 sigma_a{0.0f};   // absorption
+  Vec3 sigma_s{0.0f};   // scattering
+  Vec3 emission{0.0f};  // emitted radiance per metre
+  float anisotropy = 0.0f;  // the Henyey-Greenstein g of its scattering
+
+  Vec3 sigma_t() const { return sigma_a + sigma_s; }
+  bool scatters() const { return max_component(sigma_s) > 0.0f; }
+  bool empty() const { return !(max_component(sigma_a + sigma_s) > 0.0f) && !(max_component(emission) > 0.0f); }
+};
+
+// exp(-sigma_t distance) per channel (1 at distance 0, 0 at infinity where sigma_t > 0).
+Vec3 transmittance(const Vec3& sigma_t, float distance);
+
+// The media a point is inside of at once (a path's medium stack): Cycles sums the volume shaders
+// of every volume the point is in, so the coefficients add and the phase function is the mixture
+// of their lobes weighted by their scattering.
+class MediumMix {
+ public:
+  static constexpr int kMaxLobes = 4;
+
+  void add(const HomogeneousMedium& m);
+  const Vec3& sigma_a() const { return sigma_a_; }
+  const Vec3& sigma_s() const { return sigma_s_; }
+  Vec3 sigma_t() const { return sigma_a_ + sigma_s_; }
+  const Vec3& emission() const { return emission_; }
+  bool scatters() const { return max_component(sigma_s_) > 0.0f; }
+  bool extinguishes() const { return max_component(sigma_a_ + sigma_s_) > 0.0f; }
+  bool emits() const { return max_component(emission_) > 0.0f; }
+  bool empty() const { return !extinguishes() && !emits(); }
+
+  // The emission reaching the segment's start from the segment [0, distance) (∫ E T(s) ds).
+  Vec3 emitted(float distance) const;
+
+  // The phase function of the scattering at a point: value = pdf (per steradian).
+  float phase_pdf(const Vec3& wo, const Vec3& wi) const;
+  PhaseSample sample_phase(const Vec3& wo, float u_lobe, const Vec2& u) const;
+
+ private:
+  Vec3 sigma_a_{0.0f}, sigma_s_{0.0f}, emission_{0.0f};
+  std::array<float, kMaxLobes> lobe_g_{}, lobe_weight_{};
+  int lobes_ = 0;
+  float lobe_weight_sum_ = 0.0f;
+};
+
+// One free flight through a homogeneous segment of length t_max (infinite: the ray escapes).
+struct FreeFlight {
+  bool scattered = false;
+  float t = 0.0f;            // where it scattered (t_max when it did not)
+  Vec3 weight{1.0f};         // the path's throughput is multiplied by it (sigma_s T / pdf when it scattered)
+  Vec3 emission{0.0f};       // the segment's emission, throughput not included
+};
+
+// A free flight as Cycles samples a homogeneous segment (above). throughput: the path's, for the
+// channel choice. Absorption-only media are not sampled: their transmittance is the weight; so
+// is every medium's where the path may not scatter any more (may_scatter false: Cycles' path
+// past its last bounce, whose media keep absorbing and emitting).
+FreeFlight sample_free_flight(const MediumMix& medium, float t_max, const Vec3& throughput, float u_channel,
+                              float u_distance, bool may_scatter = true);
+
+}  // namespace torrance

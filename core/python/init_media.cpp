@@ -1,0 +1,50 @@
+// Scene.set_material_volume and Scene.set_world_volume: homogeneous volumes (media/scene_media.h),
+// bound onto the Scene class that init_scene defines.
+#include "bindings.h"
+
+#include "torrance/scene/scene.h"
+
+#include <pybind11/stl.h>
+
+#include <array>
+
+namespace torrance::python {
+namespace {
+
+HomogeneousMedium medium(std::array<float, 3> sigma_a, std::array<float, 3> sigma_s, std::array<float, 3> emission,
+                         float anisotropy) {
+  HomogeneousMedium m;
+  m.sigma_a = Vec3(sigma_a[0], sigma_a[1], sigma_a[2]);
+  m.sigma_s = Vec3(sigma_s[0], sigma_s[1], sigma_s[2]);
+  m.emission = Vec3(emission[0], emission[1], emission[2]);
+  m.anisotropy = anisotropy;
+  return m;
+}
+
+}  // namespace
+
+void init_media(py::module_& m) {
+  auto scene = py::reinterpret_borrow<py::class_<Scene, std::shared_ptr<Scene>>>(m.attr("Scene"));
+  constexpr std::array<float, 3> kZero{0.0f, 0.0f, 0.0f};
+  scene.def(
+      "set_material_volume",
+      [](Scene& s, uint32_t material, std::array<float, 3> sigma_a, std::array<float, 3> sigma_s,
+         std::array<float, 3> emission, float anisotropy, bool pass_through) {
+        s.set_material_volume(material, medium(sigma_a, sigma_s, emission, anisotropy), pass_through);
+      },
+      py::arg("material"), py::arg("sigma_a") = kZero, py::arg("sigma_s") = kZero, py::arg("emission") = kZero,
+      py::arg("anisotropy") = 0.0f, py::arg("pass_through") = false,
+      "The homogeneous volume inside the closed meshes of `material`: absorption and scattering "
+      "coefficients per metre (RGB), emitted radiance per metre, the Henyey-Greenstein anisotropy of its "
+      "scattering. pass_through: the material has no surface shader (paths cross its surface without a "
+      "bounce). ValueError for a negative or non-finite value, |anisotropy| > 1 or an unknown material.");
+  scene.def(
+      "set_world_volume",
+      [](Scene& s, std::array<float, 3> sigma_a, std::array<float, 3> sigma_s, std::array<float, 3> emission,
+         float anisotropy) { s.set_world_volume(medium(sigma_a, sigma_s, emission, anisotropy)); },
+      py::arg("sigma_a") = kZero, py::arg("sigma_s") = kZero, py::arg("emission") = kZero,
+      py::arg("anisotropy") = 0.0f,
+      "The homogeneous volume around everything (the World's Volume), as set_material_volume's.");
+}
+
+}  // namespace torrance::python

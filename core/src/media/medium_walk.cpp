@@ -1,0 +1,92 @@
+#include "media/medium_walk.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace torrance {
+
+namespace {
+
+constexpr int kMaxBoundaries = 1024;  // Cycles' VOLUME_BOUNDS_MAX
+
+// The ray's origin moved past a surface it crosses (as offset_origin, on the far side).
+Vec3 past(const SurfaceHit& hit, const Vec3& dir) {
+  const Vec3& p = hit.position;
+  const float scale = std::max(1.0f, std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))));
+  const float eps = 2e-5f * scale;
+  return p + (glm::dot(hit.geometric_normal, dir) >= 0.0f ? eps : -eps) * hit.geometric_normal;
+}
+
+}  // namespace
+
+MediumWalk walk_media(const Scene& scene, Ray& ray, SurfaceHit& hit, bool& found, MediumStack& stack,
+                      Vec3& throughput, SobolSampler& sampler, bool may_scatter, float& passed_length) {
+  const SceneMedia& media = scene.media();
+  MediumWalk walk;
+  for (int crossed = 0;; ++crossed) {
+    const float t_end = found ? hit.t : std::numeric_limits<float>::infinity();
+    walk.light_throughput = throughput;
+    if (!stack.mix().empty()) {
+      const glm::vec4 u = sampler.next_4d();
+      const FreeFlight f =
+          sample_free_flight(stack.mix(), t_end - ray.tmin, throughput, u.x, u.y, may_scatter);
+      walk.emission += throughput * f.emission;
+      throughput *= f.weight;
+      if (f.scattered) {
+        walk.scattered = true;
+        walk.position = ray.origin + ray.dir * (ray.tmin + f.t);
+        walk.distance = passed_length + ray.tmin + f.t;
+        return walk;
+      }
+      walk.light_throughput = throughput;
+      if (!(max_component(throughput) > 0.0f)) {
+        found = false;  // nothing comes back through this stretch
+        walk.distance = passed_length + t_end;
+        return walk;
+      }
+    }
+    walk.distance = passed_length + t_end;
+    if (!found || !media.pass_through(hit.material) || crossed >= kMaxBoundaries) return walk;
+    stack.cross(media, hit.material, glm::dot(hit.geometric_normal, ray.dir) < 0.0f);
+    passed_length += hit.t;
+    ray.origin = past(hit, ray.dir);
+    ray.tmax -= hit.t;
+    ray.tmin = 0.0f;
+    found = ray.tmax > 0.0f && scene.intersect(ray, hit);
+  }
+}
+
+Vec3 media_shadow_transmittance(const Scene& scene, Ray ray, MediumStack stack, int max_transparent,
+                                const PathState& receiver) {
+  const SceneMedia& media = scene.media();
+  Vec3 transmittance(1.0f);
+  PathState shadow = receiver;
+  shadow.ray_flags = kRayShadow;
+  float travelled = 0.0f;
+  for (int passed = 0, crossed = 0; crossed < kMaxBoundaries; ++crossed) {
+    SurfaceHit hit;
+    const bool found = ray.tmax > ray.tmin && scene.intersect(ray, hit);
+    const float t_end = found ? hit.t : ray.tmax;
+    if (stack.mix().extinguishes())
+      transmittance *= torrance::transmittance(stack.mix().sigma_t(), std::max(t_end - ray.tmin, 0.0f));
+    if (!found || !(max_component(transmittance) > 0.0f)) return transmittance;
+    if (media.pass_through(hit.material)) {
+      stack.cross(media, hit.material, glm::dot(hit.geometric_normal, ray.dir) < 0.0f);
+    } else {
+      shadow.transparent_depth = uint8_t(std::min(receiver.transparent_depth + passed, 255));
+      shadow.ray_length = travelled + hit.t;
+      Vec3 tint;
+      const float opacity = scene.opacity(hit, ray.dir, shadow, &tint);
+      if (opacity >= 1.0f || passed >= max_transparent) return Vec3(0.0f);
+      transmittance *= (1.0f - opacity) * tint;
+      ++passed;
+    }
+    ray.origin = past(hit, ray.dir);
+    ray.tmax -= hit.t;
+    ray.tmin = 0.0f;
+    travelled += hit.t;
+  }
+  return transmittance;
+}
+
+}  // namespace torrance

@@ -1,0 +1,40 @@
+// A path's ray through its media (media/medium_stack.h), as Cycles' shade_volume follows a
+// segment: free flight through each homogeneous stretch between the surfaces it meets, crossing
+// volume-only boundaries (no bounce: Cycles' volume bounds), until it scatters or stops at a
+// surface. And a shadow ray's transmittance through the same media.
+#pragma once
+
+#include "media/medium_stack.h"
+#include "torrance/camera/camera.h"
+#include "torrance/integrator/path_state.h"
+#include "torrance/scene/scene.h"
+#include "torrance/util/sampling.h"
+
+namespace torrance {
+
+struct MediumWalk {
+  bool scattered = false;
+  Vec3 position{0.0f};  // where it scattered
+  float distance = 0.0f;  // from the ray's origin (before the boundaries) to there, or to the surface
+  Vec3 emission{0.0f};    // the media's emission reaching the ray's origin, throughput included
+  // The throughput that lights met before `distance` are seen with (the scattering stretch's
+  // free-flight weight left out; lights inside a chromatic medium: approximate).
+  Vec3 light_throughput{1.0f};
+};
+
+// Follows `ray` (tmin to the hit `hit`, if found) through `stack`'s media and the volume-only
+// boundaries it meets: at each, the stack enters or leaves its medium, the ray moves on past it
+// (its origin and tmax, passed_length growing by the stretch, as the alpha loop of trace_path does)
+// and `hit`/`found` become the next surface's. throughput takes each free flight's weight.
+// may_scatter false: past the path's last bounce (the media only absorb and emit).
+MediumWalk walk_media(const Scene& scene, Ray& ray, SurfaceHit& hit, bool& found, MediumStack& stack,
+                      Vec3& throughput, SobolSampler& sampler, bool may_scatter, float& passed_length);
+
+// The light a shadow ray (its origin to its tmax) carries through `stack`'s media: extinction
+// along every stretch, volume-only boundaries crossed, other surfaces as trace_path's
+// shadow_transmittance takes them (alpha < 1: (1 - alpha) x tint, at most max_transparent;
+// opaque: 0).
+Vec3 media_shadow_transmittance(const Scene& scene, Ray ray, MediumStack stack, int max_transparent,
+                                const PathState& receiver);
+
+}  // namespace torrance
