@@ -20,6 +20,8 @@ up to the pixel filter's noise):
   nishita_mapped     the node's Texture Mapping: the directions turned (Vector type)
   preetham           Preetham, turbidity 2.2, the sun up 37 degrees, the whole sphere
   preetham_hazy      Preetham, turbidity 7, a low sun, the whole sphere
+  hosek              Hosek / Wilkie, turbidity 2.2, ground albedo 1, the sun up 37 degrees
+  hosek_hazy         Hosek / Wilkie, turbidity 6.5, ground albedo 0.8, a low sun
 
 In Blender 5.x, whose Cycles replaces Nishita by Single and Multiple Scattering (one kernel,
 two precomputations), the patches are (with the Preetham ones):
@@ -41,7 +43,8 @@ top swapped, the Vector's link read though the sun disc hides it, the sun turned
 (rotation not negated), the Texture Mapping ignored, Preetham's turbidity one higher; in 5.x
 Single read as Multiple Scattering, the Earth's rim ignored (the disc cut at the horizon), no
 ozone, the sun turned the other way, and in the lit scenes the sun disc left out and the
-aerosols ignored. Hosek / Wilkie must be reported naming the node and the sky type.
+aerosols ignored; Hosek / Wilkie's ground albedo ignored (and turbidity one higher, with
+Preetham's). A sky type Torrance does not know would be reported naming the node and the type.
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_shader_sky_agreement.py
@@ -186,9 +189,19 @@ def preetham_hazy(g):
     return _sky(g, kind='PREETHAM', sun_direction=(-0.6, 0.7, 0.12), turbidity=7.0)
 
 
+def hosek(g):
+    return _sky(g, kind='HOSEK_WILKIE', sun_direction=(0.3, 0.5, 0.6), turbidity=2.2,
+                ground_albedo=1.0)
+
+
+def hosek_hazy(g):
+    return _sky(g, kind='HOSEK_WILKIE', sun_direction=(-0.6, 0.7, 0.12), turbidity=6.5,
+                ground_albedo=0.8)
+
+
 MAKERS = (nishita, nishita_low_sun, nishita_dense, nishita_ozone, nishita_near_sun,
           nishita_generated, nishita_disc, nishita_disc_low, nishita_setting, nishita_mapped,
-          preetham, preetham_hazy)
+          preetham, preetham_hazy, hosek, hosek_hazy)
 
 
 # -- Blender 5.x: Single and Multiple Scattering ------------------------------------------------
@@ -218,7 +231,7 @@ for _name in ("multiple_disc", "single_disc_rim"):
     globals()[_name].__name__ = _name
 
 MAKERS_5 = (single, multiple, multiple_dense, multiple_dusk, multiple_disc, single_disc_rim,
-            preetham, preetham_hazy)
+            preetham, preetham_hazy, hosek, hosek_hazy)
 
 
 def world_sky(kind, **settings):
@@ -336,10 +349,12 @@ def main():
     types = sky_types()
     check_reported(sorted(types - set(sky.SKY_MODELS)))
     scattering = 'MULTIPLE_SCATTERING' in types
-    makers = MAKERS if 'NISHITA' in types else MAKERS_5 if scattering else (preetham, preetham_hazy)
+    makers = MAKERS if 'NISHITA' in types else MAKERS_5
     readers = DictAttr(READERS)
-    preetham_fault = ("Preetham turbidity + 1", readers, 'ShaderNodeTexSky',
+    preetham_fault = ("Preetham, Hosek turbidity + 1", readers, 'ShaderNodeTexSky',
                       read_with(lambda node: {"turbidity": node.turbidity + 1.0}))
+    albedo_fault = ("Hosek ground albedo ignored", readers, 'ShaderNodeTexSky',
+                    read_with(ground_albedo=0.0))
     nishita_faults = (
         ("no ozone", readers, 'ShaderNodeTexSky', read_with(ozone_density=0.0)),
         ("sun disc upside down", sky, 'sky_table', fault_disc_upside_down),
@@ -351,7 +366,7 @@ def main():
     agree_on_patches(makers, what="the Sky Texture",
                      faults=(*(nishita_faults if 'NISHITA' in types else ()),
                              *(scattering_faults(readers, sky) if scattering else ()),
-                             preetham_fault))
+                             preetham_fault, albedo_fault))
     if scattering:
         check_lit_scenes(readers)
 

@@ -10,6 +10,23 @@
 
 namespace torrance::python {
 
+namespace {
+
+// A precomputed table (a fraction of a second of work) made with the GIL released, as float32.
+template <class Compute>
+py::array_t<float> table_without_gil(const Compute& compute) {
+  std::vector<float> table;
+  {
+    py::gil_scoped_release release;
+    table = compute();
+  }
+  py::array_t<float> a(py::ssize_t(table.size()));
+  std::copy(table.begin(), table.end(), a.mutable_data());
+  return a;
+}
+
+}  // namespace
+
 // The Sky Texture node's tables (shader_sky.h), computed as Cycles' SkyTextureNode does.
 void init_sky(py::module_& m) {
   m.def(
@@ -20,19 +37,20 @@ void init_sky(py::module_& m) {
       py::arg("sun_direction"), py::arg("turbidity"),
       "The Sky Texture's Preetham table (TexSky mode 0) for a unit sun direction (z up).");
   m.def(
+      "hosek_sky_table",
+      [](const std::array<float, 3>& sun_direction, float turbidity, float ground_albedo) {
+        return shader::hosek_table(Vec3(sun_direction[0], sun_direction[1], sun_direction[2]), turbidity,
+                                   ground_albedo);
+      },
+      py::arg("sun_direction"), py::arg("turbidity"), py::arg("ground_albedo"),
+      "The Sky Texture's Hosek / Wilkie table (TexSky mode 3) for a unit sun direction (z up).");
+  m.def(
       "nishita_sky_table",
       [](float sun_elevation, float sun_rotation, float sun_size, float sun_intensity, bool sun_disc, float altitude,
          float air, float dust, float ozone, bool wrap_elevation) {
         const shader::NishitaSky sky{sun_elevation, sun_rotation, sun_size, sun_intensity, sun_disc,
                                      altitude,      air,          dust,     ozone,         wrap_elevation};
-        std::vector<float> table;
-        {
-          py::gil_scoped_release release;
-          table = shader::nishita_table(sky);
-        }
-        py::array_t<float> a(py::ssize_t(table.size()));
-        std::copy(table.begin(), table.end(), a.mutable_data());
-        return a;
+        return table_without_gil([&] { return shader::nishita_table(sky); });
       },
       py::arg("sun_elevation"), py::arg("sun_rotation"), py::arg("sun_size"), py::arg("sun_intensity"),
       py::arg("sun_disc"), py::arg("altitude"), py::arg("air"), py::arg("dust"), py::arg("ozone"),
@@ -45,14 +63,7 @@ void init_sky(py::module_& m) {
          float altitude, float air, float aerosol, float ozone) {
         const shader::ScatteringSky sky{multiple, sun_elevation, sun_rotation, sun_size, sun_intensity,
                                         sun_disc, altitude,      air,          aerosol,  ozone};
-        std::vector<float> table;
-        {
-          py::gil_scoped_release release;
-          table = shader::scattering_table(sky);
-        }
-        py::array_t<float> a(py::ssize_t(table.size()));
-        std::copy(table.begin(), table.end(), a.mutable_data());
-        return a;
+        return table_without_gil([&] { return shader::scattering_table(sky); });
       },
       py::arg("multiple"), py::arg("sun_elevation"), py::arg("sun_rotation"), py::arg("sun_size"),
       py::arg("sun_intensity"), py::arg("sun_disc"), py::arg("altitude"), py::arg("air"), py::arg("aerosol"),

@@ -161,3 +161,22 @@ def test_scattering_twin_matches_core(sky, scattering):
     ok = agree(core[:, :3], twin)
     assert ok.all(), (d[~ok.all(axis=1)][:3], core[~ok.all(axis=1)][:3], twin[~ok.all(axis=1)][:3])
     assert (core[-60:, :3].max(axis=1) > 1e3).sum() > 10      # the disc is seen
+
+
+def test_hosek_table_and_twin_match_core(sky):
+    rng = np.random.default_rng(13)
+    for sun, turbidity, albedo in (((0.0, 0.6, 0.8), 2.2, 0.3), ((0.7, -0.2, 0.1), 6.5, 0.8),
+                                   ((0.2, 0.3, 0.9), 10.0, 0.0)):
+        sun = np.array(sun) / np.linalg.norm(sun)
+        table = tc.hosek_sky_table(tuple(sun), turbidity, albedo)
+        assert len(table) == sky.HOSEK_TABLE and np.all(np.isfinite(table))
+        assert math.isclose(table[1], math.acos(sun[2]), rel_tol=1e-6)
+        d = directions(rng, sun, 120)
+        core = run_core(3, table, d)
+        twin = np.array([sky.hosek(v, table) for v in d])
+        assert agree(core[:, :3], twin).all()
+        assert core[:120, 2].max() > 0
+    # The albedo blends the datasets: a brighter ground, a brighter sky.
+    low = tc.hosek_sky_table((0.0, 0.6, 0.8), 3.0, 0.0)
+    high = tc.hosek_sky_table((0.0, 0.6, 0.8), 3.0, 1.0)
+    assert not np.allclose(low[2:], high[2:])

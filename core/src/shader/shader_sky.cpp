@@ -226,6 +226,8 @@ glm::vec4 sky_op(const ShaderOpContext& c) {
     rgb = sky_nishita(dir, c.data, c.data_size);
   else if (c.ins.mode == uint8_t(SkyModel::Scattering))
     rgb = sky_scattering(dir, c.data, c.data_size);
+  else if (c.ins.mode == uint8_t(SkyModel::Hosek) && c.data_size >= kHosekTable)
+    rgb = sky_hosek(dir, c.data);
   return glm::vec4(rgb, 1.0f);
 }
 

@@ -16,9 +16,8 @@ namespace torrance::shader {
 
 namespace {
 
+// (kTwoPi, kInvPi: util/math.h's)
 constexpr float kHalfPi = 1.5707963267948966f;
-constexpr float kTwoPi = 6.2831853071795864f;
-constexpr float kInvPi = 0.3183098861837067f;
 constexpr float kInvFourPi = 0.0795774715459476f;
 
 constexpr float kEarthRadius = 6371.0f;  // km

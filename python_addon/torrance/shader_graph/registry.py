@@ -217,10 +217,10 @@ CLOSURES = {
     # Read by graph.GraphCompiler itself.
     'ShaderNodeGroup': "rendered: node groups, nested, are compiled through (muted nodes pass "
                        "their inputs through as Blender does; reroutes are followed)",
-    # a value node that Torrance reads in part (sky.py)
-    'ShaderNodeTexSky': "partly: Preetham, Nishita (3.x-4.x), Single and Multiple Scattering "
-                        "(5.x), their sun discs guiding the world's samples as Cycles does; "
-                        "Hosek / Wilkie is reported",
+    # the Sky Texture (sky.py): every type, with a note of the sun guiding
+    'ShaderNodeTexSky': "rendered (shader graph): Preetham, Hosek / Wilkie, Nishita (3.x-4.x), "
+                        "Single and Multiple Scattering (5.x); their sun discs guide the world's "
+                        "samples as Cycles does",
     # a value node that Torrance reads in part (radial_tiling.py)
     'ShaderNodeRadialTiling': "partly: whole Sides at any Roundness, any Sides at Roundness 0; "
                               "fractional or varying Sides with Roundness above 0 are reported",

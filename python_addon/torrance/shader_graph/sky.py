@@ -5,15 +5,14 @@ dust and ozone, precomputed as Cycles' host does into a 512 x 128 texture, plus 
 limb-darkened sun disc) and Blender 5.x's Single and Multiple Scattering (one kernel: a 512 x 256
 texture over the whole sphere, the disc hidden below the Earth's rim and the sky added under it;
 Single is Nishita's atmosphere, Multiple Fernando Garcia Linan's spectral model with multiple
-scattering and the ground's bounce). Hosek / Wilkie (its fitted dataset is not reproduced here)
-is reported.
+scattering and the ground's bounce), and Hosek / Wilkie (the published XYZ dataset, cooked for
+the sun, turbidity and ground albedo as Cycles' host does).
 
 The reader asks the core for the op's table (torrance_core.preetham_sky_table /
-nishita_sky_table / scattering_sky_table, the functions Cycles' SkyTextureNode::compile runs on
-the host); the twin
-here evaluates a table at a direction as the core's op does (float32 results, the angles and
-transcendental functions in float64 rounded to float32), the fold of a constant Vector and the
-reference evaluator's op.
+nishita_sky_table / scattering_sky_table / hosek_sky_table, the functions Cycles'
+SkyTextureNode::compile runs on the host); the twin here evaluates a table at a direction as the
+core's op does (float32 results, the angles and transcendental functions in float64 rounded to
+float32), the fold of a constant Vector and the reference evaluator's op.
 """
 
 import math
@@ -26,8 +25,10 @@ from .textures import _vector
 
 OPCODES = {"TexSky": 61}
 # The op's modes (the core's SkyModel) by Blender's sky_type (node_versions.SKY_TYPES_5: 5.x's).
-SKY_MODELS = {'PREETHAM': 0, 'NISHITA': 1, 'SINGLE_SCATTERING': 2, 'MULTIPLE_SCATTERING': 2}
+SKY_MODELS = {'PREETHAM': 0, 'NISHITA': 1, 'SINGLE_SCATTERING': 2, 'MULTIPLE_SCATTERING': 2,
+              'HOSEK_WILKIE': 3}
 PREETHAM_TABLE = 20
+HOSEK_TABLE = 32
 NISHITA_HEADER = 12
 SCATTERING_HEADER = 13
 
@@ -77,6 +78,29 @@ def preetham(d, table):
     return _rec709((x, lum, z))
 
 
+def _hosek_internal(c, theta, gamma):
+    ct, cg = _F(math.cos(float(theta))), _F(math.cos(float(gamma)))
+    exp_m = _F(math.exp(float(c[4] * gamma)))
+    ray_m = cg * cg
+    mie_m = (_F(1) + ray_m) / _F(math.pow(float(_F(1) + c[8] * c[8] - _F(2) * c[8] * cg), 1.5))
+    zenith = _F(math.sqrt(float(ct)))
+    return ((_F(1) + c[0] * _F(math.exp(float(c[1] / (ct + _F(0.01))))))
+            * (c[2] + c[3] * exp_m + c[5] * ray_m + c[6] * mie_m + c[7] * zenith))
+
+
+def hosek(d, table):
+    """Hosek / Wilkie's sky (Rec. 709) along d from the table (sun phi, theta, the XYZ radiance
+    scales, nine parameters per channel)."""
+    t = np.asarray(table, np.float32)
+    theta, phi = _spherical([_F(v) for v in d[:3]])
+    gamma = _acos(_F(math.sin(theta)) * _F(math.sin(t[1])) * _F(math.cos(t[0] - phi))
+                  + _F(math.cos(theta)) * _F(math.cos(t[1])))
+    theta = min(theta, _HALF_PI - _F(0.001))
+    with np.errstate(all='ignore'):
+        xyz = [_hosek_internal(t[5 + 9 * k:14 + 9 * k], theta, gamma) * t[2 + k] for k in range(3)]
+    return tuple(c * float(_F(2 * math.pi) / _F(683)) for c in _rec709(xyz))
+
+
 def _lookup(texels, x, y):
     """Cycles' linear lookup, Extension Extend, of texels (h, w, 3)."""
     h, w = texels.shape[:2]
@@ -115,7 +139,7 @@ def nishita(d, table):
                      else view_elevation / (elevation + half))
                 xyz = (bottom + s * (top - bottom)) * intensity
             r = angle / half
-            xyz = xyz * (_F(1) - _F(0.6) * (_F(1) - _F(math.sqrt(max(float(1 - r * r), 0.0)))))
+            xyz = xyz * _limb(r)
         else:
             xyz = _lookup(texels, x, _F(math.sqrt(max(float(view_elevation / _HALF_PI), 0.0))))
     elif d[2] >= -0.4:
@@ -129,6 +153,11 @@ def _sun(elevation, rotation):
     ce, lon = math.cos(float(elevation)), float(rotation + _HALF_PI)
     return np.array((ce * math.cos(lon), ce * math.sin(lon), math.sin(float(elevation))),
                     np.float32)
+
+
+def _limb(r):
+    """The disc's limb darkening at r, the distance from its centre over its radius."""
+    return _F(1) - _F(0.6) * (_F(1) - _F(math.sqrt(max(float(1 - r * r), 0.0))))
 
 
 def _angle(d, sun):
@@ -154,8 +183,7 @@ def scattering(d, table):
     if diameter >= 0 and angle < half and view_elevation > earth:
         s = (view_elevation - elevation) / diameter + _F(0.5)
         r = angle / half
-        limb = _F(1) - _F(0.6) * (_F(1) - _F(math.sqrt(max(float(1 - r * r), 0.0))))
-        xyz = (bottom + s * (top - bottom)) * intensity * limb
+        xyz = (bottom + s * (top - bottom)) * intensity * _limb(r)
     x = (-_F(math.atan2(float(d[1]), float(d[0]))) - _HALF_PI + rotation) / _TWO_PI   # 5.x's
     x -= _F(math.floor(x))
     y = _F(math.copysign(math.sqrt(abs(float(view_elevation)) * 2 / math.pi),
@@ -163,7 +191,7 @@ def scattering(d, table):
     return _rec709(xyz + _lookup(texels, x, y))
 
 
-_EVALUATORS = {0: preetham, 1: nishita, 2: scattering}
+_EVALUATORS = {0: preetham, 1: nishita, 2: scattering, 3: hosek}
 
 
 def _fold_sky(mode, flags, a, table):
@@ -189,12 +217,14 @@ def sky_table(node):
         raise _unsupported(node, f"sky type {kind.replace('_', ' ').title()}")
     from ..core_module import load_core
     core = load_core()
-    if kind == 'PREETHAM':
+    if kind in ('PREETHAM', 'HOSEK_WILKIE'):
         d = np.asarray(node.sun_direction, np.float64)
         length = float(np.linalg.norm(d))
-        d = d / length if length > 0 else d
-        return SKY_MODELS[kind], core.preetham_sky_table(tuple(float(c) for c in d),
-                                                         float(node.turbidity))
+        d = tuple(float(c) for c in (d / length if length > 0 else d))
+        if kind == 'HOSEK_WILKIE':
+            return SKY_MODELS[kind], core.hosek_sky_table(d, float(node.turbidity),
+                                                          float(node.ground_albedo))
+        return SKY_MODELS[kind], core.preetham_sky_table(d, float(node.turbidity))
     if kind in SKY_TYPES_5:
         table = core.scattering_sky_table(
             kind == 'MULTIPLE_SCATTERING', node.sun_elevation, node.sun_rotation, node.sun_size,
@@ -236,7 +266,7 @@ def _note_sun(g, node):
     Vector unlinked or Texture Coordinate > Generated, the disc's direction (x, y, z) and half
     angle in g.suns by node (None where Cycles would fall back to the map: a Vector from elsewhere
     or, Torrance's own limit, a Texture Mapping other than the identity)."""
-    if not g.background or node.sky_type == 'PREETHAM' or not node.sun_disc:
+    if not g.background or node.sky_type in ('PREETHAM', 'HOSEK_WILKIE') or not node.sun_disc:
         return
     socket = input_socket(node, "Vector")
     links = [link for link in socket.links if link.is_valid and not link.is_muted]

@@ -6,6 +6,7 @@
 //     Nishita:  sun disc XYZ at its bottom and top, sun elevation, sun rotation (Cycles' wrapped
 //       2 pi - rotation), angular diameter (-1: no disc), sun intensity, width, height, then the
 //       sky texture's XYZ texels, row by row from the horizon up (kNishitaHeader + 3 w h floats)
+//     Hosek / Wilkie: kHosekTable floats (below)
 //     Scattering (Blender 5.x's Single and Multiple Scattering, one kernel): sun disc XYZ at its
 //       bottom and top, sun elevation, rotation (wrapped as Nishita's), angular diameter (-1: no
 //       disc), sun intensity, the elevation below which the Earth hides the disc (negative),
@@ -20,9 +21,11 @@
 
 namespace torrance::shader {
 
-// Hosek / Wilkie is not rendered (the add-on reports it).
-enum class SkyModel : uint8_t { Preetham, Nishita, Scattering };
-constexpr int kSkyModels = int(SkyModel::Scattering) + 1;
+enum class SkyModel : uint8_t { Preetham, Nishita, Scattering, Hosek };
+constexpr int kSkyModels = int(SkyModel::Hosek) + 1;
+// Hosek / Wilkie's table: sun phi, theta, the radiance scale of X, Y, Z, then their nine
+// parameters each (Cycles' SVMNodeTexSkyPreethamData as Hosek fills it).
+constexpr int kHosekTable = 32;
 constexpr int kPreethamTable = 20;
 constexpr int kNishitaHeader = 12;
 // Cycles' precomputed Nishita texture: 512 x 128 texels (longitude x elevation).
@@ -64,6 +67,10 @@ Vec2 wrapped_sun(float elevation, float rotation);
 // The rotation as Cycles' kernel takes it: 2 pi - (rotation wrapped into [0, 2 pi)).
 float cycles_sun_rotation(float rotation);
 
+// Hosek / Wilkie's table for a sun direction (unit, z up), turbidity and ground albedo, cooked
+// from the published XYZ dataset as Cycles does (shader_sky_hosek.cpp).
+std::vector<float> hosek_table(const Vec3& sun_direction, float turbidity, float ground_albedo);
+
 // Blender 5.x's scattering skies. Single Scattering: the Nishita atmosphere above, its texture
 // now over the whole sphere (black below the horizon); Multiple Scattering: Fernando Garcia
 // Linan's spectral model (4 wavelengths, a transmittance table, a fitted multiple-scattering
@@ -99,6 +106,7 @@ Vec3 xyz_to_rec709_clamped(const Vec3& xyz);
 Vec3 sky_preetham(const Vec3& dir, const float* table);
 // table/size: the Nishita table (size its length); an inconsistent table gives black.
 Vec3 sky_nishita(const Vec3& dir, const float* table, int size);
+Vec3 sky_hosek(const Vec3& dir, const float* table);
 // table/size: the Scattering table; an inconsistent table gives black.
 Vec3 sky_scattering(const Vec3& dir, const float* table, int size);
 
