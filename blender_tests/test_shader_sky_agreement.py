@@ -34,8 +34,8 @@ two precomputations), the patches are (with the Preetham ones):
   single_disc_rim    a 6 degree sun 2 degrees below the horizon seen from 20 km up: the part
                      above the Earth's rim (4.5 degrees down) shows, below the horizon black sky
 
-and each 5.x type lights a floor, a chrome and a matte sphere (its default 0.545 degree sun,
-sampled as Cycles' sun guiding does), the sky seen behind them (world_single, world_multiple).
+and each 5.x type (before 5.0: Nishita) lights a floor, a chrome and a matte sphere (its default
+0.545 degree sun, sampled as Cycles' sun guiding does), the sky seen behind them (world_sky).
 
 Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
 seeds 2 and 3. Deliberate faults must fail them: no ozone, the sun disc's colours at its bottom and
@@ -329,17 +329,19 @@ def scattering_faults(readers, sky):
          read_with(lambda node: {"sun_rotation": -node.sun_rotation})))
 
 
-def check_lit_scenes(readers):
-    """Each 5.x sky lighting the chrome-and-matte scene, its sun guided (agree_on_scene)."""
+def check_lit_scenes(readers, kinds):
+    """Each sky with a sun disc (Nishita; 5.x: Single, Multiple Scattering) lighting the
+    chrome-and-matte scene, its sun guided (agree_on_scene)."""
     from torrance_tools.seed_noise import agree_on_scene
-    for kind in ('SINGLE_SCATTERING', 'MULTIPLE_SCATTERING'):
+    for kind in kinds:
         agree_on_scene(world_sky(kind, sun_elevation=math.radians(25.0),
                                  sun_rotation=math.radians(-30.0)),
                        LIT_SAMPLES, LIT_BOUNCES, f"a {kind.lower()} sky lighting a scene",
                        faults=(("the sun disc left out", readers, 'ShaderNodeTexSky',
                                 read_with(sun_disc=False)),
                                ("the aerosols ignored", readers, 'ShaderNodeTexSky',
-                                read_with(aerosol_density=0.0))))
+                                read_with(lambda node: {"dust_density" if hasattr(
+                                    node, "dust_density") else "aerosol_density": 0.0}))))
 
 
 def main():
@@ -367,8 +369,8 @@ def main():
                      faults=(*(nishita_faults if 'NISHITA' in types else ()),
                              *(scattering_faults(readers, sky) if scattering else ()),
                              preetham_fault, albedo_fault))
-    if scattering:
-        check_lit_scenes(readers)
+    check_lit_scenes(readers, ('SINGLE_SCATTERING', 'MULTIPLE_SCATTERING') if scattering
+                     else ('NISHITA',))
 
 
 testing.run(main)
