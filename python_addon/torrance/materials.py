@@ -52,6 +52,7 @@ from .shader_aovs import AovPrograms
 from .principled_sheen import read_sheen
 from .principled_transmission import read_transmission
 from .transparent_mix import read_transparent_mix
+from .volumes import has_only_volume, material_volume
 
 # The Principled BSDF's socket names per node version: v1 is Blender 3.x's, v2 Blender 4.0's
 # (renamed sockets; the version is told by the node's sockets, not by bpy.app.version).
@@ -272,6 +273,8 @@ class MaterialReader:
         surface = output.inputs.get("Surface")
         source = source_socket(surface) if surface is not None else None
         if source is None:
+            if has_only_volume(mat):    # a boundary of its volume (volumes.py), as in Cycles
+                return dict(DEFAULT_MATERIAL)
             return self._neutral(mat, "nothing is connected to the Surface of the Material Output")
 
         node = source.node
@@ -575,6 +578,9 @@ class MaterialTable:
             if mat.pass_index:
                 self.pass_indices[idx] = float(mat.pass_index)
             self.names[idx] = mat.name
+            volume = material_volume(mat, self.textures, self.reader.reporter)
+            if volume is not None:
+                self.scene.set_material_volume(idx, **volume[0], pass_through=volume[1])
             self.indices[key] = idx
         return idx
 

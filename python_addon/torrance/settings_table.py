@@ -235,6 +235,10 @@ SETTINGS = (
             "bounces",
             _LIGHT_PATHS, core="max_transparent_bounces",
             options=dict(min=0, max=1024, soft_max=64)),
+    Setting("volume_bounces", 'INT', 0, "Volume",
+            "Maximum number of scattering events in volumes, as Cycles' Volume bounces: 0 "
+            "gives single scattering (the light scattered once towards the camera)",
+            _LIGHT_PATHS, core="max_volume_bounces", options=dict(min=0, max=1024, soft_max=64)),
     # Light Paths > Clamping
     Setting("sample_clamp_direct", 'FLOAT', 0.0, "Clamp Direct",
             "If non-zero, the maximum value for a direct sample, higher values will be "

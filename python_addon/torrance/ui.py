@@ -379,8 +379,9 @@ class TORRANCE_RENDER_PT_compatibility(TorrancePanel, Panel):
                   ok_text="Everything in this scene is supported")
         col = self.layout.column(align=True)
         col.label(text="Not rendered by Torrance:")
-        for text in ("Volumes, hair, subsurface, thin film, anisotropy",
-                     "Bevel, Point Density, Hair and Volume nodes; AOV Output in worlds",
+        for text in ("Volume objects and varying volume density (homogeneous volumes are), "
+                     "hair, subsurface, thin film, anisotropy",
+                     "Bevel, Point Density, Hair and Volume Info nodes; AOV Output in worlds",
                      "Motion blur",
                      "Viewport denoising guides (colour only), Blender 5's guide options"):
             col.label(text=text, icon='DOT')

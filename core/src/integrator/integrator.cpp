@@ -36,6 +36,8 @@ void RenderSettings::validate() const {
   if (max_bounces < 0 || max_bounces > 1024) throw std::invalid_argument("max_bounces must be in [0, 1024]");
   if (max_transparent_bounces < 0 || max_transparent_bounces > 1024)
     throw std::invalid_argument("max_transparent_bounces must be in [0, 1024]");
+  if (max_volume_bounces < 0 || max_volume_bounces > 1024)
+    throw std::invalid_argument("max_volume_bounces must be in [0, 1024]");
   if (!(filter_width > 0.0f) || !std::isfinite(filter_width) || filter_width > 64.0f)
     throw std::invalid_argument("filter_width must be in (0, 64] pixels");
   if (threads < 0) throw std::invalid_argument("threads must be >= 0 (0 = all cores)");
@@ -211,19 +213,24 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   ctx.nee_every_light = settings.nee_every_light && cscene.lights().count() > 1 &&
                         cscene.lights().count() <= LightChoice::kEveryLightLimit;
   const bool alpha = has_alpha(cscene);
+  // Volumes (media/): the camera's media; the techniques that do not know media yet (mirror
+  // images, caustics by light tracing, guiding, the learned roulette, splitting at the first hit)
+  // stay off in scenes with volumes.
+  const bool media = cscene.media().any();
+  if (media) ctx.camera_media = media_at(cscene, camera.position());
   std::optional<MirrorImages> mirror_images;
-  if (settings.mirror_images && !alpha) {
+  if (settings.mirror_images && !alpha && !media) {
     mirror_images.emplace(cscene, ctx.bsdfs);
     if (!mirror_images->empty()) ctx.mirror_images = &*mirror_images;
   }
   // Caustics by light tracing (caustics.h), where the scene has them (mirror images keep their
   // reflectors).
   const std::optional<CausticPartition> caustics =
-      CausticPartition::make(cscene, settings, alpha, ctx.mirror_images);
+      media ? std::nullopt : CausticPartition::make(cscene, settings, alpha, ctx.mirror_images);
   if (caustics) ctx.caustics = &*caustics;
   std::optional<GuidingField> guide;
   RenderResult result;
-  const bool guided = settings.guiding && guide_can_be_judged(settings);
+  const bool guided = settings.guiding && !media && guide_can_be_judged(settings);
   if (settings.guiding) result.guiding = guided ? "guided" : "too few samples";
   if (guided) {
     Vec3 lo, hi;
@@ -258,7 +265,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   Film film(window[2] - window[0], window[3] - window[1], settings.passes, adaptive, splatting ? &filter : nullptr,
             cscene.extra_passes().passes(), &cscene.cryptomatte());
   const int margin = film.margin();
-  if (settings.efficiency_roulette) {
+  if (settings.efficiency_roulette && !media) {
     roulette.emplace(window[2] - window[0], window[3] - window[1], settings.roulette_min_survival);
     ctx.roulette = &*roulette;
   }
@@ -398,8 +405,8 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
       bool all_converged = false, out_of_time = false;
       const auto sampling_start = std::chrono::steady_clock::now();
       result.setup_seconds = std::chrono::duration<double>(sampling_start - start).count();
-      ctx.first_bounce_splits = settings.first_bounce_splits;
-      if (settings.first_bounce_splits == 0) {  // automatic: the pilot chooses
+      ctx.first_bounce_splits = media ? 1 : settings.first_bounce_splits;
+      if (ctx.first_bounce_splits == 0) {  // automatic: the pilot chooses
         const FirstBounceSplits pilot =
             arena.execute([&] {
               return first_bounce_pilot(ctx, trace, camera, filter, window, closest_rays, occlusion_rays);

@@ -13,6 +13,7 @@
 #include "integrator/mirror_image_nee.h"
 #include "integrator/shadow_rays.h"
 #include "integrator/surface_point.h"
+#include "media/medium_vertex.h"
 #include "torrance/bsdfs/mixture_bsdf.h"
 #include "torrance/integrator/ray_log.h"
 #include "torrance/lights/light_choice.h"
@@ -40,7 +41,8 @@ constexpr uint32_t kBranchPoints = 1u << 16;
 struct Segment {
   SurfaceHit hit;
   bool found = false;          // false: the ray left the scene
-  float passed_length = 0.0f;  // through transparent surfaces on the way (kAlpha)
+  float passed_length = 0.0f;  // through transparent surfaces on the way (kAlpha; kMedia: volume boundaries too)
+  bool scattered = false;      // kMedia: it ended in a medium, at PathTracer::media_'s walk.position
 };
 
 // The path's latest scattering vertex, as the next segment needs it: MIS of the light its ray
@@ -79,7 +81,13 @@ struct ScatterVertex {
 // Splitting at the first hit (RenderSettings::first_bounce_splits): each later branch goes back to
 // the first vertex, whose emission, light samples and light choice the first branch took, and
 // leaves it along a BSDF sample of its own; every branch carries 1/n of the throughput.
-template <bool kTextures, bool kSplitLobes, bool kHittable, bool kGlass, bool kAlpha, bool kMixtures>
+//
+// Volumes (kMedia: the scene has homogeneous media, core/src/media/): the path keeps a medium
+// stack; each segment is a free flight through its media (media/medium_walk.h), which may end
+// in a scattering vertex (NEE with the phase function, then phase sampling: scatter_in_medium)
+// instead of at the surface; shadow rays take the media's transmittance.
+template <bool kTextures, bool kSplitLobes, bool kHittable, bool kGlass, bool kAlpha, bool kMixtures,
+          bool kMedia = false>
 class PathTracer {
  public:
   using Bsdf = std::conditional_t<kMixtures, MixtureBsdf, MaterialBsdf>;
@@ -102,6 +110,7 @@ class PathTracer {
         reflector_share_(ctx.mirror_images) {
     std::fill_n(out_.extras, extra_.channels(), 0.0f);
     path_state_.ray_flags = kRayCamera;
+    if constexpr (kMedia) media_.stack = ctx.camera_media;
   }
 
   // The path, stage by stage.
@@ -115,20 +124,29 @@ class PathTracer {
         // 1. The next surface along the ray, past those the path passes through.
         Segment seg;
         if (!find_next_surface(bounce, branch > 0, seg)) return out_;
+        if constexpr (kMedia) travel_media(bounce, seg);  // 1b. through its media, maybe scattering there
 
         // 2. The light the ray met on its way: the world, lights a BSDF-sampled ray can hit.
         if (first_again) {
           light_choice_ = first_vertex_.choice;
         } else if (bounce == 0) {
-          if (!seg.found) {
+          if (seg.scattered) {
+          } else if (!seg.found) {
             camera_sees_world();
             return out_;
+          } else {
+            remember_first_vertex(seg.hit);
           }
-          remember_first_vertex(seg.hit);
         } else {
           if (kHittable) lights_along_ray(bounce, seg);
-          if (!seg.found) break;
-          note_reflector(seg.hit);
+          if (!seg.found && !seg.scattered) break;
+          if (!seg.scattered) note_reflector(seg.hit);
+        }
+        if constexpr (kMedia) {  // 2b. a scattering vertex in a medium: its light, then the next ray
+          if (seg.scattered) {
+            if (!scatter_in_medium(bounce)) break;
+            continue;
+          }
         }
         caustic_chain_.at_vertex(ctx_.caustics, bounce, seg.hit.material);
 
@@ -143,7 +161,7 @@ class PathTracer {
         } else if (!first_again && seg.hit.emitter >= 0) {
           emitter_found(v, bounce);
         }
-        if (bounce > ctx_.settings.max_bounces) break;
+        if (bounce > ctx_.settings.max_bounces || past_last_volume_bounce()) break;
         if (features_.open() && !first_again) denoising_features(v, seg);
         if (first_vertex) features_after_first_ = features_;
         if (bounce == 0 && !first_again && (ctx_.settings.passes & kPassAO)) ambient_occlusion_pass(v);
@@ -271,7 +289,7 @@ class PathTracer {
   void camera_sees_world() {
     if (ctx_.settings.transparent_background)
       out_.alpha -= kAlpha ? (throughput_.x + throughput_.y + throughput_.z) / 3.0f : 1.0f;
-    else out_.environment = (kAlpha ? throughput_ : Vec3(1.0f)) * lights_.world_radiance(ray_.dir, escaped_state(0));
+    else out_.environment = (kAlpha || kMedia ? throughput_ : Vec3(1.0f)) * lights_.world_radiance(ray_.dir, escaped_state(0));
     if (const float k = clamp_scale(out_.environment, true); k < 1.0f) out_.environment *= k;
     features_.light(out_.environment, out_);
     path_luminance_ = luminance(out_.environment);
@@ -287,7 +305,7 @@ class PathTracer {
   // The lights (and the world, if it escaped) a BSDF-sampled ray reached before its next surface,
   // MIS-weighted against NEE at the vertex it left.
   void lights_along_ray(int bounce, const Segment& seg) {
-    const float t_max = seg.found ? seg.passed_length + seg.hit.t : kInfinity;
+    const float t_max = seg.scattered ? media_distance() : seg.found ? seg.passed_length + seg.hit.t : kInfinity;
     std::array<Vec3, kMaxLightGroups> by_group;  // filled only with light groups
     if (light_groups_) std::fill_n(by_group.begin(), extra_.num_light_groups(), Vec3(0.0f));
     const Vec3 e = lights_.emission_along_ray(last_.ray_origin, last_.normal, ray_.dir, t_max, last_.pdf, last_.delta,
@@ -295,9 +313,27 @@ class PathTracer {
                                               caustic_chain_.share(reflector_share_.active()),
                                               seg.found ? PathState{} : escaped_state(bounce),
                                               light_groups_ ? by_group.data() : nullptr);
-    features_.light(throughput_ * e * clamp_scale(throughput_ * e / branch_weight_, bounce == 1), out_);
-    const Vec3 arrived = deposit(throughput_ * e, bounce == 1);
-    if (light_groups_) credit_split(extra_, throughput_ * e, arrived, by_group.data(), throughput_, out_.extras);
+    const Vec3& seen = seen_throughput();
+    features_.light(seen * e * clamp_scale(seen * e / branch_weight_, bounce == 1), out_);
+    const Vec3 arrived = deposit(seen * e, bounce == 1);
+    if (light_groups_) credit_split(extra_, seen * e, arrived, by_group.data(), seen, out_.extras);
+  }
+
+  // What lights met along the ray are seen with: the throughput, or in media the throughput
+  // before the stretch the path scattered in (medium_walk.h).
+  const Vec3& seen_throughput() const {
+    if constexpr (kMedia) return media_.walk.light_throughput;
+    else return throughput_;
+  }
+  // Cycles ends a path past its last volume bounce after the next segment (its light and
+  // emission still count: PATH_RAY_TERMINATE_AFTER_TRANSPARENT).
+  bool past_last_volume_bounce() const {
+    if constexpr (kMedia) return media_.scatters > ctx_.settings.max_volume_bounces;
+    else return false;
+  }
+  float media_distance() const {
+    if constexpr (kMedia) return media_.walk.distance;
+    else return kInfinity;
   }
 
   // A mirror reflector met right after a non-delta vertex (mirror_images.h): of the light it
@@ -381,11 +417,12 @@ class PathTracer {
 
   // Emissive surfaces emit from both faces; NEE samples them too (the mesh light).
   void camera_sees_emission(const Vertex& v) {
-    out_.emission = kAlpha ? throughput_ * v.material.emission : v.material.emission;
-    if (const float k = clamp_scale(out_.emission, true); k < 1.0f) out_.emission *= k;
-    features_.light(out_.emission, out_);
-    path_luminance_ += luminance(out_.emission);
-    if (light_groups_) credit(v.hit->light_group, out_.emission);
+    Vec3 e = kAlpha || kMedia ? throughput_ * v.material.emission : v.material.emission;
+    if (const float k = clamp_scale(e, true); k < 1.0f) e *= k;
+    out_.emission += e;  // after the media's in front of it (kMedia), else from 0
+    features_.light(e, out_);
+    path_luminance_ += luminance(e);
+    if (light_groups_) credit(v.hit->light_group, e);
   }
 
   // An emissive triangle found by BSDF sampling: MIS against NEE's choice of it.
@@ -457,8 +494,7 @@ class PathTracer {
     LobeEval f = v.bsdf->template eval_lobes<kGlass>(v.view, wi);
     if (v.at.normal_mapped) f.diffuse *= bump_shadowing(v.at.n_smooth, v.at.n_diffuse(), ls.wi);
     if (!(max_component(f.total()) > 0.0f)) return;
-    const Vec3 transmittance = shadow_transmittance<kAlpha>(ctx_.scene, position, v.at.ng, ls,
-                                                            ctx_.settings.max_transparent_bounces, path_state_);
+    const Vec3 transmittance = shadow_through(v, ls);
     if (!(max_component(transmittance) > 0.0f)) return;
     // Against the BSDF's pdf even where a guide samples the next direction: see ScatterVertex::pdf.
     const float mis =
@@ -468,6 +504,21 @@ class PathTracer {
     if (kAlpha) light *= transmittance;
     const Vec3 arrived = deposit_light_sample(light, f, bounce, true);
     if (light_groups_) credit(lights_.light_group(index, ls), arrived);
+  }
+
+  // The light a shadow ray from the vertex to a light sample lets through (kMedia: through the
+  // media on the light's side of the surface).
+  Vec3 shadow_through(const Vertex& v, const LightSample& ls) const {
+    if constexpr (kMedia) {
+      MediumStack beyond = media_.stack;
+      if (glm::dot(ls.wi, v.at.ng) < 0.0f)
+        beyond.cross(ctx_.scene.media(), v.hit->material, glm::dot(ls.wi, v.hit->geometric_normal) < 0.0f);
+      return media_shadow_transmittance(ctx_.scene, shadow_ray(v.hit->position, v.at.ng, ls), beyond,
+                                        ctx_.settings.max_transparent_bounces, path_state_);
+    } else {
+      return shadow_transmittance<kAlpha>(ctx_.scene, v.hit->position, v.at.ng, ls,
+                                          ctx_.settings.max_transparent_bounces, path_state_);
+    }
   }
 
   // Lights through planar mirrors, glossy planes and spheres, and lamps' bright spots on matte
@@ -498,6 +549,10 @@ class PathTracer {
     const Vec3 wi_world = frame.to_world(bs.wi);
     if (!leaves_geometric_side(wi_world, v.at.ng, bs.wi.z, v.transmits)) return false;
     if constexpr (kTextures) label_next_ray(bs, glm::dot(wi_world, v.at.ng) > 0.0f);
+    if constexpr (kMedia) {  // transmitted: into or out of the mesh's medium
+      if (glm::dot(wi_world, v.at.ng) < 0.0f)
+        media_.stack.cross(ctx_.scene.media(), v.hit->material, glm::dot(wi_world, v.hit->geometric_normal) < 0.0f);
+    }
     if (v.at.normal_mapped && !bs.is_delta) {
       LobeEval f = v.bsdf->template eval_lobes<kGlass>(v.view, bs.wi);
       f.diffuse *= bump_shadowing(v.at.n_smooth, v.at.n_diffuse(), wi_world);
@@ -560,6 +615,63 @@ class PathTracer {
     }
     roulette_.continued(bounce, q, t);
     return max_component(throughput_) > 0.0f;
+  }
+
+  // ---- Volumes (kMedia) ----
+
+  // The ray's free flights through its media and the volume-only boundaries it crosses
+  // (medium_walk.h), up to a scattering point (seg.scattered) or the surface; the media's
+  // emission on the way is filed as a light the ray met. A path scatters at most
+  // max_volume_bounces + 1 times (Cycles' Volume bounces; 0: single scattering), and not past
+  // max_bounces; after that its media only absorb and emit.
+  void travel_media(int bounce, Segment& seg) {
+    const bool may_scatter =
+        bounce <= ctx_.settings.max_bounces && media_.scatters <= ctx_.settings.max_volume_bounces;
+    media_.walk = walk_media(ctx_.scene, ray_, seg.hit, seg.found, media_.stack, throughput_, sampler_, may_scatter,
+                             seg.passed_length);
+    seg.scattered = media_.walk.scattered;
+    Vec3 e = media_.walk.emission;
+    if (!(max_component(e) > 0.0f)) return;
+    if (bounce > 0) {
+      deposit(e, bounce == 1);
+      return;
+    }
+    if (const float k = clamp_scale(e, true); k < 1.0f) e *= k;
+    out_.emission += e;
+    path_luminance_ += luminance(e);
+  }
+
+  // A scattering vertex in a medium (Cycles' integrate_volume_direct_light and
+  // integrate_volume_phase_scatter): NEE of one light with the phase function (medium_vertex.h),
+  // filed with the diffuse passes (Torrance has no Volume passes), then the next ray along a
+  // sample of the phase function (its weight 1), the roulette as at surfaces. False: the path ends.
+  bool scatter_in_medium(int bounce) {
+    ++media_.scatters;
+    const glm::vec4 u_light = sampler_.next_4d(), u_phase = sampler_.next_4d();
+    const Vec3 position = media_.walk.position, wo = -ray_.dir;
+    const MediumNextEvent nee = medium_next_event(ctx_.scene, position, wo, media_.stack, light_choice_, u_light,
+                                                  path_state_, ctx_.settings.max_transparent_bounces);
+    if (max_component(nee.light) > 0.0f) {
+      LobeEval phase;
+      phase.diffuse = Vec3(1.0f);
+      const Vec3 arrived = deposit_light_sample(throughput_ * nee.light, phase, bounce, true);
+      if (light_groups_) credit(lights_.light_group(nee.light_index, nee.sample), arrived);
+    }
+    const PhaseSample ps = media_.stack.mix().sample_phase(wo, u_phase.x, Vec2(u_phase.y, u_phase.z));
+    if (!ps.valid()) return false;
+    if (kSplitLobes && bounce == 0) diffuse_share_ = Vec3(1.0f);
+    if constexpr (kTextures) path_state_.ray_flags = 0;  // Cycles' volume scatter ray: none of these
+    const float vertex_weight = max_component(throughput_);
+    if (!survives_roulette(bounce, u_phase.w)) return false;
+    path_length_ += media_.walk.distance;
+    // MIS of a light the next ray meets: the phase function's pdf against NEE's choice here, made
+    // as at a two-sided surface facing along the ray (medium_next_event).
+    last_ = ScatterVertex{position, position, ray_.dir, 0u, ps.pdf, false, true, vertex_weight};
+    ray_.origin = position;
+    ray_.dir = ps.wi;
+    ray_.tmin = 0.0f;
+    ray_.tmax = kInfinity;
+    return true;
   }
 
   // ---- Branches at the first vertex ----
@@ -679,12 +791,23 @@ class PathTracer {
   int branches_ = 1;
   float branch_weight_ = 1.0f;  // the share of the path's branch (1/n where it split into n)
   float branch_start_ = 0.0f;   // path_luminance_ when the branch left (the pilot's record)
+  // kMedia: the media the path is in, its latest walk through them and its scattering events so
+  // far; nothing for scenes without volumes.
+  struct NoMedia {};
+  struct Media {
+    MediumStack stack;
+    MediumWalk walk;
+    int scatters = 0;
+  };
+  [[no_unique_address]] std::conditional_t<kMedia, Media, NoMedia> media_;
 };
 
-template <bool kTextures, bool kSplitLobes, bool kHittable, bool kGlass, bool kAlpha, bool kMixtures>
+template <bool kTextures, bool kSplitLobes, bool kHittable, bool kGlass, bool kAlpha, bool kMixtures,
+          bool kMedia = false>
 PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, const FirstHit* first,
                         const PixelSample& pixel) {
-  return PathTracer<kTextures, kSplitLobes, kHittable, kGlass, kAlpha, kMixtures>(ctx, ray, sampler, first, pixel)
+  return PathTracer<kTextures, kSplitLobes, kHittable, kGlass, kAlpha, kMixtures, kMedia>(ctx, ray, sampler, first,
+                                                                                          pixel)
       .trace();
 }
 
@@ -702,6 +825,13 @@ constexpr std::array<TraceFn, sizeof...(I)> make_mixture_tracers(std::index_sequ
   return {trace_path<true, bool(I & 2), bool(I & 1), true, true, true>...};
 }
 constexpr std::array<TraceFn, 4> kMixtureTracers = make_mixture_tracers(std::make_index_sequence<4>{});
+// Scenes with volumes: every other feature on too (bit 0 kHittable, 1 kSplitLobes), so that scenes
+// without pay nothing for them.
+template <size_t... I>
+constexpr std::array<TraceFn, sizeof...(I)> make_media_tracers(std::index_sequence<I...>) {
+  return {trace_path<true, bool(I & 2), bool(I & 1), true, true, true, true>...};
+}
+constexpr std::array<TraceFn, 4> kMediaTracers = make_media_tracers(std::make_index_sequence<4>{});
 
 }  // namespace
 
@@ -725,6 +855,7 @@ TraceFn select_path_tracer(const Scene& scene, const RenderSettings& settings) {
   const bool split_lobes =
       settings.passes & (kPassDiffuseDirect | kPassDiffuseIndirect | kPassGlossyDirect | kPassGlossyIndirect);
   const int lobes_and_lights = (split_lobes << 1) | int(scene.lights().any_hittable());
+  if (scene.media().any()) return kMediaTracers[settings.specialize ? lobes_and_lights : 3];
   if (scene.has_mixtures()) return kMixtureTracers[settings.specialize ? lobes_and_lights : 3];
   if (!settings.specialize) return kMixtureTracers[3];  // the generic path: every feature
   return kTracers[(alpha << 4) | (has_glass << 3) | (has_textures << 2) | lobes_and_lights];

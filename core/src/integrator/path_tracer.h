@@ -12,6 +12,7 @@
 #include "torrance/bsdfs/material_bsdf.h"
 #include "torrance/lights/mirror_images.h"
 #include "torrance/util/sampling.h"
+#include "media/medium_stack.h"
 
 #include <array>
 #include <optional>
@@ -51,6 +52,8 @@ struct PathContext {
   bool orthographic = false;
   // The camera's right, up and forward: Cycles' camera space, of the Denoising Normal pass.
   std::array<Vec3, 3> camera_axes{Vec3(1.0f, 0.0f, 0.0f), Vec3(0.0f, 1.0f, 0.0f), Vec3(0.0f, 0.0f, -1.0f)};
+  // The media around the camera (media/medium_stack.h), where paths start; empty without volumes.
+  MediumStack camera_media = {};
 };
 
 // Where a camera sample goes.

@@ -85,6 +85,10 @@ def report_unsupported(obj, reported_types, reporter):
     """Warns that objects of obj's type are not rendered, once per type (reported_types)."""
     if obj.type not in reported_types:
         reported_types.add(obj.type)
+        if obj.type == 'VOLUME':      # homogeneous volumes are read from materials (volumes.py)
+            reporter.warning(f"Volume objects (OpenVDB grids, smoke) are not yet rendered "
+                             f"(e.g. '{obj.name}'); homogeneous volumes of meshes are")
+            return
         reporter.warning(f"Torrance does not render objects of type {obj.type} "
                          f"(e.g. '{obj.name}')")
 

@@ -13,6 +13,7 @@ from ..nodes import source_socket
 from ..shader_graph.emission_tree import EmissionTree
 from ..shader_graph.registry import READERS
 from ..shader_graph.texture_mapping import is_identity
+from ..volumes import world_volume
 
 DEFAULT_MAP_RESOLUTION = 1024      # Cycles' world Map Resolution
 
@@ -102,6 +103,9 @@ def read_world(world, reporter, textures):
 
 
 def export_world(tc_scene, world, reporter, textures):
+    volume = world_volume(world, textures, reporter)
+    if volume is not None:
+        tc_scene.set_world_volume(**volume)
     look = read_world(world, reporter, textures)
     if look.program is not None:
         program = tc_scene.add_shader_program(*look.program)

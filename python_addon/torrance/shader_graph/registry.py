@@ -184,7 +184,7 @@ CLOSURES = {
     'ShaderNodeBsdfToon': "partly: Color, Size (any graph), Smooth (a value; a graph that varies "
                           "is reported), Normal; Diffuse and Glossy, their sampled directions "
                           "weighted as Cycles 3.4's or 4.x's; alone and in Mix/Add Shader trees",
-    'ShaderNodeEmission': "rendered: Color, Strength",
+    'ShaderNodeEmission': "rendered: Color, Strength (in a Volume socket: emission per metre)",
     'ShaderNodeHoldout': "rendered: alone and anywhere in Mix/Add Shader trees; camera rays "
                          "(through transparency) lose its weight of alpha and colour, as Cycles' "
                          "holdout; black elsewhere",
@@ -195,6 +195,19 @@ CLOSURES = {
                            "Holdout, Emission, Velvet / Sheen, Translucent, Refraction and Toon "
                            "closures (a Transparent's weight and the others' summing past 1: the "
                            "others shade only what it lets through)",
+    # Volume closures (volumes.py): homogeneous media, constant inputs.
+    'ShaderNodeVolumeAbsorption': "rendered in a Material Output's or World Output's Volume "
+                                  "(alone and in Mix/Add Shader trees): Color, Density, "
+                                  "homogeneous (inputs that vary through the volume reported, "
+                                  "not yet rendered)",
+    'ShaderNodeVolumeScatter': "rendered in a Volume socket (alone and in Mix/Add Shader "
+                               "trees): Color, Density, Anisotropy (Henyey-Greenstein; other "
+                               "phase functions reported and rendered as it), homogeneous",
+    'ShaderNodeVolumePrincipled': "partly: in a Volume socket, Color, Density, Anisotropy, "
+                                  "Absorption Color, Emission Strength and Color, Blackbody "
+                                  "Intensity, Temperature and Tint, homogeneous; density, colour "
+                                  "and temperature attributes (grids: Volume objects, smoke) not "
+                                  "yet",
     'ShaderNodeNormalMap': "rendered: Tangent (each mesh's active render UV map), Object, "
                            "World and the Blender spaces, Strength, any Color graph",
     'ShaderNodeBump': "rendered: any Height graph (evaluated at the hit and its ray-differential "

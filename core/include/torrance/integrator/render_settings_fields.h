@@ -20,6 +20,8 @@ TORRANCE_RENDER_SETTING(int, samples, 64, "samples per pixel")
 TORRANCE_RENDER_SETTING(int, max_bounces, 8, "bounces of a path; 0 = direct light only")
 // Surfaces passed straight through (alpha) per segment, as Cycles' Transparent bounces.
 TORRANCE_RENDER_SETTING(int, max_transparent_bounces, 8, "surfaces with alpha a ray passes straight through")
+// Scattering events in volumes per path, as Cycles' Volume bounces (0: single scattering).
+TORRANCE_RENDER_SETTING(int, max_volume_bounces, 0, "scattering events in volumes a path may have; 0 = single scattering")
 TORRANCE_RENDER_SETTING(uint32_t, seed, 0, "seed of the random sequences")
 TORRANCE_RENDER_SETTING(float, pixel_aspect_x, 1.0f, "horizontal pixel aspect")
 TORRANCE_RENDER_SETTING(float, pixel_aspect_y, 1.0f, "vertical pixel aspect")
