@@ -12,6 +12,7 @@ PYBIND11_MODULE(_core, m) {
   torrance::python::init_media(m);
   torrance::python::init_extra_passes(m);
   torrance::python::init_cryptomatte(m);
+  torrance::python::init_motion(m);
   torrance::python::init_render(m);
   torrance::python::init_image(m);
   torrance::python::init_bsdf(m);

@@ -85,6 +85,7 @@ Camera::Camera(const CameraParams& p, int width, int height, float pixel_aspect_
   forward_ = -unit(column(2), "Z");  // Blender cameras look down their local -Z
   origin_ = Vec3(m[3], m[7], m[11]);
   require_position(origin_, "camera position");
+  set_motion(p.motion);
 
   // Sensor fit (Cycles' blender_camera_viewplane): AUTO fits the larger side with sensor_width.
   const float xr = width * pixel_aspect_x, yr = height * pixel_aspect_y;

@@ -4,6 +4,7 @@
 #include "integrator/caustics.h"
 #include "film/film.h"
 #include "integrator/path_tracer.h"
+#include "scene/ray_queries.h"
 
 #include "torrance/util/limits.h"
 #include "torrance/integrator/ray_log.h"
@@ -116,14 +117,20 @@ bool guide_can_be_judged(const RenderSettings& s) {
 
 // A camera sample's ray through pixel (x, y) of the frame: its offset from the pixel's centre
 // (drawn by the pixel filter's importance, or uniform in the pixel when `splatting`; stored in
-// `offset`) and the lens point from the sampler's first four dimensions.
+// `offset`) and the lens point from the sampler's first four dimensions. Motion blur (`moving`):
+// the shutter time from the next point's first dimension (stratified like the pixel's), set as
+// the thread's ray time (every ray of the path carries it) and the camera moved to it.
 Ray camera_ray(const Camera& camera, const PixelFilter& filter, bool splatting, int x, int y, SobolSampler& sampler,
-               Vec2& offset) {
+               Vec2& offset, bool moving = false) {
   const glm::vec4 u_pixel = sampler.next_4d();
   offset = splatting ? Vec2(u_pixel.x - 0.5f, u_pixel.y - 0.5f)
                      : Vec2(filter.sample_offset(u_pixel.x), filter.sample_offset(u_pixel.y));
   // u_pixel.zw: the lens point (depth of field only).
-  return camera.generate_ray(x + 0.5f + offset.x, y + 0.5f + offset.y, Vec2(u_pixel.z, u_pixel.w));
+  const Ray ray = camera.generate_ray(x + 0.5f + offset.x, y + 0.5f + offset.y, Vec2(u_pixel.z, u_pixel.w));
+  if (!moving) return ray;
+  const float time = sampler.next_4d().x;
+  ray_queries::set_time(time);
+  return camera.at_time(ray, time);
 }
 
 // The sampler's pixel number of pixel (x, y) of the frame; pixels of the splatting ring outside
@@ -140,7 +147,7 @@ uint32_t sampler_pixel(const RenderSettings& s, int x, int y, int margin) {
 // rays are added to `closest` and `occlusion` (the render's counts).
 FirstBounceSplits first_bounce_pilot(const PathContext& ctx, const TraceFn& trace, const Camera& camera,
                                      const PixelFilter& filter, const std::array<int, 4>& window,
-                                     std::atomic<uint64_t>& closest, std::atomic<uint64_t>& occlusion) {
+                                     std::atomic<uint64_t>& closest, std::atomic<uint64_t>& occlusion, bool moving) {
   using Pilot = FirstBounceSplits;
   PathContext pilot = ctx;
   pilot.roulette = nullptr;
@@ -161,7 +168,7 @@ FirstBounceSplits first_bounce_pilot(const PathContext& ctx, const TraceFn& trac
       for (int s = 0; s < Pilot::kSamples; ++s) {
         SobolSampler sampler(sampler_pixel(ctx.settings, x, y, 0), uint32_t(s), seed, !ctx.settings.sobol);
         Vec2 offset;
-        const Ray ray = camera_ray(camera, filter, false, x, y, sampler, offset);
+        const Ray ray = camera_ray(camera, filter, false, x, y, sampler, offset, moving);
         BranchRecord& record = records[i][size_t(s)];
         PixelSample pixel;
         pixel.x = x - window[0];
@@ -215,18 +222,21 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   const bool alpha = has_alpha(cscene);
   // Volumes (media/): the camera's media; the techniques that do not know media yet (mirror
   // images, caustics by light tracing, guiding, the learned roulette, splitting at the first hit)
-  // stay off in scenes with volumes.
+  // stay off in scenes with volumes. Motion blur: a time per camera sample; the light tracer and
+  // mirror images, which see the scene at one time, are left out (the path tracer alone finds
+  // caustics then).
   const bool media = cscene.media().any();
   if (media) ctx.camera_media = media_at(cscene, camera.position());
+  const bool moving = cscene.has_motion() || camera.moves();
   std::optional<MirrorImages> mirror_images;
-  if (settings.mirror_images && !alpha && !media) {
+  if (settings.mirror_images && !alpha && !media && !moving) {
     mirror_images.emplace(cscene, ctx.bsdfs);
     if (!mirror_images->empty()) ctx.mirror_images = &*mirror_images;
   }
   // Caustics by light tracing (caustics.h), where the scene has them (mirror images keep their
   // reflectors).
   const std::optional<CausticPartition> caustics =
-      media ? std::nullopt : CausticPartition::make(cscene, settings, alpha, ctx.mirror_images);
+      media || moving ? std::nullopt : CausticPartition::make(cscene, settings, alpha, ctx.mirror_images);
   if (caustics) ctx.caustics = &*caustics;
   std::optional<GuidingField> guide;
   RenderResult result;
@@ -306,14 +316,16 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
     std::array<std::optional<SobolSampler>, Scene::kPacketSize> samplers;
     std::array<Ray, Scene::kPacketSize> rays;
     std::array<Vec2, Scene::kPacketSize> offsets;
+    std::array<float, Scene::kPacketSize> times{};
     for (int i = 0; i < n; ++i) {
       const CameraSample& c = batch[size_t(i)];
       const int x = c.pixel.x + window[0], y = c.pixel.y + window[1];  // in the frame
       SobolSampler& sampler =
           samplers[size_t(i)].emplace(sampler_pixel(settings, x, y, margin), c.sample, settings.seed, !settings.sobol);
-      rays[size_t(i)] = camera_ray(camera, filter, splatting, x, y, sampler, offsets[size_t(i)]);
+      rays[size_t(i)] = camera_ray(camera, filter, splatting, x, y, sampler, offsets[size_t(i)], moving);
+      if (moving) times[size_t(i)] = ray_queries::time();
     }
-    const bool packet = settings.camera_packets && n > 1;
+    const bool packet = settings.camera_packets && n > 1 && !moving;  // a packet's rays share a time
     std::array<FirstHit, Scene::kPacketSize> first;
     if (packet) {
       std::array<SurfaceHit, Scene::kPacketSize> hits;
@@ -324,6 +336,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
     for (int i = 0; i < n; ++i) {
       const CameraSample& c = batch[size_t(i)];
       const bool inside = in_window(c.pixel);
+      if (moving) ray_queries::set_time(times[size_t(i)]);
       // A panoramic camera's sample outside its projection brings nothing (Cycles: no path).
       PathRadiance r = outside_projection(rays[size_t(i)])
                            ? PathRadiance{}
@@ -409,7 +422,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
       if (ctx.first_bounce_splits == 0) {  // automatic: the pilot chooses
         const FirstBounceSplits pilot =
             arena.execute([&] {
-              return first_bounce_pilot(ctx, trace, camera, filter, window, closest_rays, occlusion_rays);
+              return first_bounce_pilot(ctx, trace, camera, filter, window, closest_rays, occlusion_rays, moving);
             });
         ctx.first_bounce_splits = pilot.choose();
         result.first_bounce_optimum = pilot.optimum();

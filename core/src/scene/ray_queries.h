@@ -7,6 +7,13 @@
 
 namespace torrance::ray_queries {
 
+// Motion blur: the time in [0, 1] over the shutter that every query of this thread carries
+// (Embree's ray.time) until changed, and at which a moving mesh's hit is interpolated. The
+// integrator sets it per camera sample (every ray of the path shares its sample's time); 0
+// otherwise, which geometry without motion ignores.
+void set_time(float time);
+float time();
+
 // rtcIntersect1 of rh (its hit ids set to invalid by the caller) through scene.
 void intersect(RTCScene scene, RTCRayHit& rh);
 // rtcIntersect8 of the packet's valid lanes (valid[i] = -1) with the coherent flag.

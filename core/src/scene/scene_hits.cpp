@@ -4,6 +4,7 @@
 
 #include "scene/embree_rays.h"
 #include "scene/scene_internal.h"
+#include "scene/scene_motion.h"
 
 #include <stdexcept>
 
@@ -31,6 +32,10 @@ void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const 
     c = mesh_corners(mesh.positions, mesh.triangles[prim],
                      mesh.corner_normals.empty() ? nullptr : &mesh.corner_normals[3 * prim],
                      mesh.corner_uvs.empty() ? nullptr : &mesh.corner_uvs[3 * prim]);
+    if (mesh.motion_steps > 1)
+      motion_corners({mesh.motion_steps, mesh.motion_positions.data(), mesh.positions.size(),
+                      mesh.motion_normals.empty() ? nullptr : mesh.motion_normals.data(), 3 * mesh.triangles.size()},
+                     mesh.triangles[prim], prim, c);
     hit.material = mesh.material_ids[prim];
     hit.emitter = mesh.emitter_index.empty() ? -1 : mesh.emitter_index[prim];
     hit.object_pass_index = mesh.pass_index;

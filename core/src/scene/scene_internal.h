@@ -30,6 +30,12 @@ struct Scene::Mesh {
   bool holdout = false;                // a holdout object (of a mesh from add_mesh)
   int8_t light_group = -1;             // its light group (extra_passes.h), -1: none
   int32_t cryptomatte = -1;            // its Cryptomatte entry (film/cryptomatte.h), -1: none
+  // Motion blur (Scene::set_mesh_motion): motion_steps >= 2 world-space positions per vertex,
+  // step s's at [s * positions.size(), ...) (one vertex of spare capacity for Embree), evenly
+  // over the shutter's time [0, 1], and the corner normals the same way (empty: none); 0: static.
+  uint32_t motion_steps = 0;
+  std::vector<Vec3> motion_positions;
+  std::vector<Vec3> motion_normals;
 };
 
 namespace scene_detail {

@@ -35,7 +35,10 @@
 #include "torrance/util/math.h"
 #include "torrance/camera/panorama.h"
 
+#include <glm/gtc/quaternion.hpp>
+
 #include <array>
+#include <vector>
 
 namespace torrance {
 
@@ -59,6 +62,9 @@ struct CameraParams {
   float blade_rotation = 0.0f;   // radians
   float aperture_ratio = 1.0f;   // anamorphic: the aperture's x is divided by it
   PanoramaParams panorama;       // PANORAMIC only
+  // Motion blur: the camera's camera_to_world (row-major) at >= 2 times evenly spaced over the
+  // shutter's time [0, 1]; empty: it does not move (camera_to_world is its frame throughout).
+  std::vector<std::array<float, 16>> motion;
 };
 
 // Blender's DOF F-Stop as Cycles 3.4 converts it (blender/camera.cpp: lens * 1e-3 / (2 fstop), or
@@ -118,12 +124,18 @@ class Camera {
   // Cycles' dP of a camera ray, the ray differentials' length before the spread adds to it.
   float pixel_width() const { return ortho_ ? 2.0f * half_h_ / float(height_) : 0.0f; }
   bool has_depth_of_field() const { return aperture_ > 0.0f; }
+  // Motion blur (CameraParams::motion): ray r of generate_ray carried from camera_to_world's
+  // frame to the camera's at shutter time `time` in [0, 1] (Cycles' camera motion: position
+  // linear, rotation by quaternion slerp between the two steps around it).
+  bool moves() const { return !motion_positions_.empty(); }
+  Ray at_time(Ray r, float time) const;
 
  private:
   // PANORAMIC: the pinhole direction (panorama space, zero outside the projection) at a raster
   // point, and the ray.
   Vec3 panorama_pinhole(float x, float y_from_bottom) const;
   Ray panorama_ray(float x, float y_from_bottom, const Vec2& u_lens) const;
+  void set_motion(const std::vector<std::array<float, 16>>& motion);  // camera_motion.cpp
 
   Vec3 origin_, right_, up_, forward_;
   float half_w_, half_h_;  // half extents of the view plane (at unit distance for PERSPECTIVE)
@@ -136,6 +148,8 @@ class Camera {
   float spread_;
   float aperture_, focus_, blade_rotation_, aperture_ratio_;
   int blades_;
+  std::vector<Vec3> motion_positions_;  // per motion step (empty: no motion)
+  std::vector<glm::quat> motion_rotations_;
 };
 
 }  // namespace torrance

@@ -259,6 +259,20 @@ class Scene final : public ShaderTracer {
   uint32_t add_mesh(const float* positions, size_t num_vertices, const int64_t* triangles, size_t num_triangles,
                     const float* corner_normals, const int64_t* material_ids, const float* corner_uvs = nullptr);
 
+  // Motion blur: mesh `mesh` (from add_mesh, before the next commit) moves through `steps` >= 2
+  // world-space positions (steps x num_vertices xyz), evenly spaced over the shutter's time
+  // [0, 1], with corner normals the same way (nullptr: its static ones, or flat). Embree
+  // interpolates linearly between steps (multi-segment motion triangles); a hit's position and
+  // normals are interpolated at the ray's time (ray_queries::set_time). Its add_mesh positions
+  // stay what light sampling and the other static queries see. Throws std::invalid_argument for
+  // a bad mesh id, fewer than 2 steps, a step count above 129, NaN/Inf or out-of-range values.
+  void set_mesh_motion(uint32_t mesh, size_t steps, const float* positions, const float* corner_normals);
+  // Whether some mesh moves (set_mesh_motion): the integrator then samples a time per path.
+  bool has_motion() const { return has_motion_; }
+  // Vertices and triangles of mesh `mesh` from add_mesh (std::invalid_argument for a bad id).
+  size_t mesh_vertex_count(uint32_t mesh) const;
+  size_t mesh_triangle_count(uint32_t mesh) const;
+
   // Per-corner attributes of mesh `mesh` (from add_mesh; with prototype = true, of a prototype)
   // for shader programs: values (num_attributes, 3 * its triangles) xyz, ids naming each layer
   // (the Attribute op's resource); num_corners must be 3 * its triangles. NaN/Inf values are read
@@ -467,6 +481,9 @@ class Scene final : public ShaderTracer {
   void build_mesh_light();
   bool dirty_ = true;
   bool emitters_dirty_ = true;
+  bool has_motion_ = false;
+  // Mesh `mesh`'s Embree geometry id in the top-level scene (meshes are attached in order).
+  uint32_t mesh_geometry_id(uint32_t mesh) const;
   mutable std::string embree_error_;
   friend void embree_error_callback(void*, int, const char*);
 };

@@ -1,0 +1,68 @@
+// Motion blur: Scene.set_mesh_motion (a mesh's world-space positions and corner normals at time
+// steps over the shutter) and Scene.set_camera_motion (the camera's transforms over it), bound
+// onto the Scene class that init_scene defines.
+#include "bindings.h"
+
+#include "torrance/camera/camera.h"
+#include "torrance/scene/scene.h"
+
+#include <string>
+
+namespace torrance::python {
+
+void init_motion(py::module_& m) {
+  py::object cls = m.attr("Scene");
+  auto method = [&](const char* name, auto f, auto... extra) {
+    cls.attr(name) = py::cpp_function(f, py::name(name), py::is_method(cls), extra...);
+  };
+  method(
+      "set_mesh_motion",
+      [](Scene& s, int64_t mesh, const py::object& positions, const py::object& corner_normals) {
+        if (mesh < 0) throw py::value_error("mesh must be an id from add_mesh, got " + std::to_string(mesh));
+        const auto p = shaped_array<float>(positions, "motion positions", {-1, -1, 3});
+        const size_t steps = size_t(p.shape(0));
+        if (p.ndim() != 3 || steps < 2)
+          throw py::value_error("motion positions must have shape (S, N, 3) with S >= 2 time steps, got " +
+                                shape_string(p));
+        py::array_t<float, py::array::c_style | py::array::forcecast> n;
+        const bool has_normals = !corner_normals.is_none();
+        if (has_normals) {
+          n = shaped_array<float>(corner_normals, "motion normals", {-1, -1, 3});
+          if (size_t(n.shape(0)) != steps)
+            throw py::value_error("motion normals must have as many time steps as the positions (" +
+                                  std::to_string(steps) + "), got " + shape_string(n));
+        }
+        const size_t vertices = s.mesh_vertex_count(uint32_t(mesh)), corners = 3 * s.mesh_triangle_count(uint32_t(mesh));
+        if (size_t(p.shape(1)) != vertices)
+          throw py::value_error("motion positions must have the mesh's " + std::to_string(vertices) +
+                                " vertices per step, got " + shape_string(p));
+        if (has_normals && size_t(n.shape(1)) != corners)
+          throw py::value_error("motion normals must have the mesh's " + std::to_string(corners) +
+                                " corners per step, got " + shape_string(n));
+        s.set_mesh_motion(uint32_t(mesh), steps, p.data(), has_normals ? n.data() : nullptr);  // invalid_argument: ValueError
+      },
+      py::arg("mesh"), py::arg("positions"), py::arg("corner_normals") = py::none(),
+      "Motion blur: mesh `mesh` (an add_mesh id) moves through positions (S, N, 3), S >= 2 world-space "
+      "time steps evenly over the shutter, with corner normals (S, 3T, 3) or None. ValueError for "
+      "mismatched shapes or step counts, NaN/Inf.");
+  method("has_motion", [](const Scene& s) { return s.has_motion(); },
+         "Whether some mesh moves (set_mesh_motion).");
+  method(
+      "set_camera_motion",
+      [](Scene& s, const py::object& transforms) {
+        const auto t = shaped_array<float>(transforms, "camera motion", {-1, 4, 4});
+        if (t.shape(0) < 2)
+          throw py::value_error("camera motion must have shape (S, 4, 4) with S >= 2 time steps, got " +
+                                shape_string(t));
+        CameraParams c = s.camera();
+        c.motion.resize(size_t(t.shape(0)));
+        for (size_t i = 0; i < c.motion.size(); ++i) std::copy_n(t.data() + 16 * i, 16, c.motion[i].begin());
+        Camera(c, 2, 2, 1.0f, 1.0f);  // validates now, so the error names this call
+        s.set_camera(c);
+      },
+      py::arg("transforms"),
+      "Motion blur: the camera's camera-to-world matrices (S, 4, 4), S >= 2, evenly over the shutter (a "
+      "later set_camera clears them). ValueError for a bad shape, NaN/Inf or a zero axis.");
+}
+
+}  // namespace torrance::python

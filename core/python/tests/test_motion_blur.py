@@ -1,0 +1,113 @@
+"""Motion blur through the module: Scene.set_mesh_motion and Scene.set_camera_motion (a time per
+camera sample over the shutter), their coverage against the analytic time-average, and their
+errors."""
+import numpy as np
+import pytest
+
+import torrance_core as tc
+
+SQUARE = np.array([[-0.5, -0.5, 0], [0.5, -0.5, 0], [0.5, 0.5, 0], [-0.5, 0.5, 0]], np.float32)
+TRIANGLES = np.array([[0, 1, 2], [0, 2, 3]], np.int32)
+SIZE = 40
+
+
+def square_scene(offset=(0.0, 0.0), camera_x=0.0):
+    """A 1 x 1 square at z = 0 seen from straight above by an orthographic camera 4 units wide
+    (10 px per unit at 40 px): its alpha is its coverage."""
+    scene = tc.Scene()
+    scene.add_material(base_color=(1.0, 1.0, 1.0), specular=0.0, roughness=1.0)
+    mesh = scene.add_mesh(SQUARE + np.array([*offset, 0.0], np.float32), TRIANGLES)
+    scene.add_sun(direction=(0, 0, -1), strength=np.pi, angle=0.0)
+    scene.set_camera(camera_matrix(camera_x), type="ORTHO", ortho_scale=4.0)
+    return scene, mesh
+
+
+def camera_matrix(x):
+    matrix = np.eye(4)
+    matrix[0, 3] = x
+    matrix[2, 3] = 5.0
+    return matrix
+
+
+def alpha(scene, samples=64, seed=0):
+    settings = tc.RenderSettings(width=SIZE, height=SIZE, samples=samples, seed=seed,
+                                 transparent_background=True)
+    return tc.render(scene, settings).image[..., 3]
+
+
+def render(scene, samples=16):
+    settings = tc.RenderSettings(width=SIZE, height=SIZE, samples=samples, seed=3)
+    return tc.render(scene, settings).image
+
+
+def moving_steps(distance, steps):
+    return np.stack([SQUARE + np.array([distance * s / (steps - 1), 0.0, 0.0], np.float32)
+                     for s in range(steps)])
+
+
+def test_moving_square_coverage_is_its_time_average():
+    # The square slides 1 unit along x over the shutter: at pixel column x (in units) it covers
+    # the share of the time the interval [x - 0.5, x + 0.5] of its centre holds.
+    scene, mesh = square_scene()
+    scene.set_mesh_motion(mesh, moving_steps(1.0, 3))
+    a = alpha(scene)
+    assert a.sum() == pytest.approx(100.0, rel=0.02)       # the area is kept: 1 unit^2 = 100 px
+    centres = (np.arange(SIZE) + 0.5) / 10.0 - 2.0           # pixel centres in units
+    expected = np.clip(np.minimum(centres + 0.5, 1.0) - np.maximum(centres - 0.5, 0.0), 0.0, 1.0)
+    row = a[SIZE // 2]
+    assert np.abs(row - expected).max() < 0.12
+    assert ((row > 0.05) & (row < 0.95)).sum() >= 8         # a ramp, not two sharp edges
+
+
+def test_camera_motion_blurs_a_still_square():
+    scene, _ = square_scene()
+    motion = np.stack([camera_matrix(-0.5 * s) for s in range(3)])   # pans 1 unit to -x
+    scene.set_camera_motion(motion)
+    a = alpha(scene)
+    assert a.sum() == pytest.approx(100.0, rel=0.02)
+    moved, mesh = square_scene()              # the same seen by a still camera: the square
+    moved.set_mesh_motion(mesh, moving_steps(1.0, 3))   # slides 1 unit to +x
+    assert np.abs(alpha(moved) - a).mean() < 0.01
+
+
+def test_static_motion_renders_identically():
+    still, _ = square_scene()
+    moving, mesh = square_scene()
+    moving.set_mesh_motion(mesh, np.stack([SQUARE, SQUARE, SQUARE]))
+    assert moving.has_motion()
+    a, b = render(still), render(moving)
+    # The same geometry at every time: the same hits, only the sampler's dimensions differ.
+    assert abs(a.mean() - b.mean()) < 0.01 * a.mean()
+    assert np.array_equal(a[..., 3], b[..., 3])
+
+
+def test_scene_without_motion_is_unchanged_by_the_feature():
+    a, b = render(square_scene()[0]), render(square_scene()[0])
+    assert np.array_equal(a, b)
+    assert not square_scene()[0].has_motion()
+
+
+def test_motion_errors():
+    scene, mesh = square_scene()
+    with pytest.raises(ValueError, match="2 time steps|S >= 2"):
+        scene.set_mesh_motion(mesh, SQUARE[None])
+    with pytest.raises(ValueError, match="4 vertices"):
+        scene.set_mesh_motion(mesh, np.zeros((2, 3, 3), np.float32))
+    bad = moving_steps(1.0, 2)
+    bad[1, 2, 0] = np.nan
+    with pytest.raises(ValueError, match="NaN"):
+        scene.set_mesh_motion(mesh, bad)
+    with pytest.raises(ValueError, match="as many time steps"):
+        scene.set_mesh_motion(mesh, moving_steps(1.0, 2), corner_normals=np.zeros((3, 6, 3)))
+    with pytest.raises(ValueError, match="6 corners"):
+        scene.set_mesh_motion(mesh, moving_steps(1.0, 2), corner_normals=np.zeros((2, 5, 3)))
+    with pytest.raises(ValueError, match="no mesh"):
+        scene.set_mesh_motion(7, moving_steps(1.0, 2))
+    with pytest.raises(ValueError, match="S >= 2"):
+        scene.set_camera_motion(np.eye(4)[None])
+    nan = np.stack([np.eye(4), np.eye(4)])
+    nan[1, 0, 3] = np.nan
+    with pytest.raises(ValueError, match="NaN"):
+        scene.set_camera_motion(nan)
+    with pytest.raises(ValueError, match="shape"):
+        scene.set_camera_motion(np.zeros((2, 3, 4)))

@@ -1,0 +1,98 @@
+// Motion blur of world-space meshes (Scene::set_mesh_motion): several time steps of positions and
+// corner normals as Embree's multi-segment linear motion triangles, and a hit's corners at the
+// ray's time (motion_corners, called by triangle_hit).
+#include "scene/scene_motion.h"
+
+#include "scene/ray_queries.h"
+#include "scene/scene_internal.h"
+#include "torrance/util/limits.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace torrance {
+
+using namespace scene_detail;
+
+namespace {
+constexpr size_t kMaxMotionSteps = 129;  // Embree's limit (RTC_MAX_TIME_STEP_COUNT)
+}
+
+uint32_t Scene::mesh_geometry_id(uint32_t mesh) const {
+  const auto it = std::find(geometry_owner_.begin(), geometry_owner_.end(), mesh);
+  return it == geometry_owner_.end() ? kNoGeometry : uint32_t(it - geometry_owner_.begin());
+}
+
+size_t Scene::mesh_vertex_count(uint32_t mesh) const {
+  if (mesh >= meshes_.size()) throw std::invalid_argument("no mesh " + std::to_string(mesh));
+  return meshes_[mesh]->positions.size();
+}
+
+size_t Scene::mesh_triangle_count(uint32_t mesh) const {
+  if (mesh >= meshes_.size()) throw std::invalid_argument("no mesh " + std::to_string(mesh));
+  return meshes_[mesh]->triangles.size();
+}
+
+void Scene::set_mesh_motion(uint32_t mesh_id, size_t steps, const float* positions, const float* corner_normals) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set a mesh's motion");
+  if (mesh_id >= meshes_.size()) throw std::invalid_argument("set_mesh_motion: no mesh " + std::to_string(mesh_id));
+  if (steps < 2 || steps > kMaxMotionSteps)
+    throw std::invalid_argument("motion needs 2 to 129 time steps, got " + std::to_string(steps));
+  Mesh& mesh = *meshes_[mesh_id];
+  const size_t n = mesh.positions.size(), corners = 3 * mesh.triangles.size();
+  std::vector<Vec3> moved;
+  moved.reserve(steps * n + 1);  // Embree's 16-byte load of the last vertex
+  for (size_t i = 0; i < steps * n; ++i) {
+    const Vec3 p(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
+    if (!is_finite(p))
+      throw std::invalid_argument("motion step " + std::to_string(i / n) + ", vertex " + std::to_string(i % n) +
+                                  " has a NaN or Inf coordinate");
+    require_position(p, "motion step " + std::to_string(i / n) + ", vertex " + std::to_string(i % n));
+    moved.push_back(p);
+  }
+  std::vector<Vec3> normals;
+  if (corner_normals) {
+    normals.resize(steps * corners);
+    for (size_t i = 0; i < steps * corners; ++i) {
+      const Vec3 v(corner_normals[3 * i], corner_normals[3 * i + 1], corner_normals[3 * i + 2]);
+      if (!is_finite(v)) throw std::invalid_argument("motion normals hold a NaN or Inf");
+      normals[i] = v;
+    }
+  }
+  const uint32_t geom_id = mesh_geometry_id(mesh_id);
+  mesh.motion_positions = std::move(moved);
+  mesh.motion_normals = std::move(normals);
+  mesh.motion_steps = uint32_t(steps);
+  if (geom_id == kNoGeometry) return;  // no triangles: nothing to trace
+  RTCGeometry geom = rtcGetGeometry(scene_of(scene_), geom_id);
+  rtcSetGeometryTimeStepCount(geom, unsigned(steps));
+  for (size_t s = 0; s < steps; ++s)
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, unsigned(s), RTC_FORMAT_FLOAT3,
+                               mesh.motion_positions.data() + s * n, 0, sizeof(Vec3), n);
+  rtcCommitGeometry(geom);
+  check_device("setting a mesh's motion");
+  has_motion_ = true;
+  dirty_ = true;
+}
+
+namespace scene_detail {
+
+void motion_corners(const MotionArrays& m, const glm::uvec3& tri, uint32_t prim, Corners& c) {
+  const float t = std::clamp(ray_queries::time(), 0.0f, 1.0f) * float(m.steps - 1);
+  const size_t step = std::min(size_t(t), size_t(m.steps - 2));
+  const float f = t - float(step);
+  const Vec3* a = m.positions + step * m.num_vertices;
+  const Vec3* b = a + m.num_vertices;
+  for (int k = 0; k < 3; ++k) c.p[k] = (1.0f - f) * a[tri[k]] + f * b[tri[k]];
+  if (m.corner_normals) {
+    const Vec3* na = m.corner_normals + step * m.num_corners + 3 * size_t(prim);
+    const Vec3* nb = na + m.num_corners;
+    for (int k = 0; k < 3; ++k) c.n[k] = (1.0f - f) * na[k] + f * nb[k];
+    c.has_n = true;
+  }
+}
+
+}  // namespace scene_detail
+}  // namespace torrance
