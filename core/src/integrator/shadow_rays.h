@@ -33,6 +33,23 @@ inline Ray shadow_ray(const Vec3& p, const Vec3& ng, const LightSample& ls) {
   return ray;
 }
 
+// A shadow ray meets a surface at `hit` after `passed` transparent ones and `travelled` metres:
+// Cycles' transparent shadows let (1 - alpha) x its transparent colour through (transmittance
+// takes it); false when the surface (or more than max_transparent of them) stops the ray.
+inline bool through_transparent_surface(const Scene& scene, const SurfaceHit& hit, const Vec3& dir,
+                                        const PathState& receiver, int passed, float travelled, int max_transparent,
+                                        Vec3& transmittance) {
+  PathState shadow = receiver;  // what a shader sees on the shadow ray (Cycles' shadow path)
+  shadow.ray_flags = kRayShadow;
+  shadow.transparent_depth = uint8_t(std::min(receiver.transparent_depth + passed, 255));
+  shadow.ray_length = travelled + hit.t;
+  Vec3 tint;
+  const float opacity = scene.opacity(hit, dir, shadow, &tint);
+  if (opacity >= 1.0f || passed >= max_transparent) return false;
+  transmittance *= (1.0f - opacity) * tint;
+  return true;
+}
+
 // The light a shadow ray carries to the shading point: 0 or 1 by one occlusion test, or with
 // kAlpha (some material has alpha) Cycles' transparent shadows: each surface in the way with
 // alpha < 1 lets (1 - alpha) x its transparent colour through, an opaque one (or more than
@@ -45,18 +62,12 @@ Vec3 shadow_transmittance(const Scene& scene, const Vec3& p, const Vec3& ng, con
   if (!(ray.tmax > 0.0f) || !scene.occluded(ray.origin, ray.dir, 0.0f, ray.tmax)) return Vec3(1.0f);
   if (!kAlpha) return Vec3(0.0f);
   Vec3 transmittance(1.0f);
-  PathState shadow = receiver;  // what a shader sees on the shadow ray (Cycles' shadow path)
-  shadow.ray_flags = kRayShadow;
   float travelled = 0.0f;
   for (int passed = 0;; ++passed) {
     SurfaceHit hit;
     if (!scene.intersect(ray, hit)) return transmittance;
-    shadow.transparent_depth = uint8_t(std::min(receiver.transparent_depth + passed, 255));
-    shadow.ray_length = travelled + hit.t;
-    Vec3 tint;
-    const float opacity = scene.opacity(hit, ray.dir, shadow, &tint);
-    if (opacity >= 1.0f || passed >= max_transparent) return Vec3(0.0f);
-    transmittance *= (1.0f - opacity) * tint;
+    if (!through_transparent_surface(scene, hit, ray.dir, receiver, passed, travelled, max_transparent, transmittance))
+      return Vec3(0.0f);
     if (!(max_component(transmittance) > 0.0f)) return Vec3(0.0f);
     ray.origin = offset_origin(hit.position, hit.geometric_normal, ray.dir);
     ray.tmax -= hit.t;

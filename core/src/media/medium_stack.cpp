@@ -1,5 +1,6 @@
 #include "media/medium_stack.h"
 
+#include "integrator/path_tracer.h"
 #include "torrance/scene/scene.h"
 
 #include <algorithm>
@@ -52,10 +53,7 @@ MediumStack media_at(const Scene& scene, const Vec3& p) {
       seen.push_back(hit.material);
       if (back_face) stack.enter(media, media.of(hit.material));
     }
-    const float scale = std::max(1.0f, std::max(std::abs(hit.position.x),
-                                                std::max(std::abs(hit.position.y), std::abs(hit.position.z))));
-    ray.origin = hit.position + ray.dir * (2e-5f * scale) +
-                 hit.geometric_normal * (back_face ? 2e-5f * scale : -2e-5f * scale);
+    ray.origin = offset_origin(hit.position, hit.geometric_normal, ray.dir);
   }
   return stack;
 }

@@ -1,5 +1,7 @@
 #include "media/medium_walk.h"
 
+#include "integrator/shadow_rays.h"
+
 #include <algorithm>
 #include <limits>
 
@@ -8,14 +10,6 @@ namespace torrance {
 namespace {
 
 constexpr int kMaxBoundaries = 1024;  // Cycles' VOLUME_BOUNDS_MAX
-
-// The ray's origin moved past a surface it crosses (as offset_origin, on the far side).
-Vec3 past(const SurfaceHit& hit, const Vec3& dir) {
-  const Vec3& p = hit.position;
-  const float scale = std::max(1.0f, std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))));
-  const float eps = 2e-5f * scale;
-  return p + (glm::dot(hit.geometric_normal, dir) >= 0.0f ? eps : -eps) * hit.geometric_normal;
-}
 
 }  // namespace
 
@@ -49,7 +43,7 @@ MediumWalk walk_media(const Scene& scene, Ray& ray, SurfaceHit& hit, bool& found
     if (!found || !media.pass_through(hit.material) || crossed >= kMaxBoundaries) return walk;
     stack.cross(media, hit.material, glm::dot(hit.geometric_normal, ray.dir) < 0.0f);
     passed_length += hit.t;
-    ray.origin = past(hit, ray.dir);
+    ray.origin = offset_origin(hit.position, hit.geometric_normal, ray.dir);
     ray.tmax -= hit.t;
     ray.tmin = 0.0f;
     found = ray.tmax > 0.0f && scene.intersect(ray, hit);
@@ -60,8 +54,6 @@ Vec3 media_shadow_transmittance(const Scene& scene, Ray ray, MediumStack stack, 
                                 const PathState& receiver) {
   const SceneMedia& media = scene.media();
   Vec3 transmittance(1.0f);
-  PathState shadow = receiver;
-  shadow.ray_flags = kRayShadow;
   float travelled = 0.0f;
   for (int passed = 0, crossed = 0; crossed < kMaxBoundaries; ++crossed) {
     SurfaceHit hit;
@@ -73,15 +65,12 @@ Vec3 media_shadow_transmittance(const Scene& scene, Ray ray, MediumStack stack, 
     if (media.pass_through(hit.material)) {
       stack.cross(media, hit.material, glm::dot(hit.geometric_normal, ray.dir) < 0.0f);
     } else {
-      shadow.transparent_depth = uint8_t(std::min(receiver.transparent_depth + passed, 255));
-      shadow.ray_length = travelled + hit.t;
-      Vec3 tint;
-      const float opacity = scene.opacity(hit, ray.dir, shadow, &tint);
-      if (opacity >= 1.0f || passed >= max_transparent) return Vec3(0.0f);
-      transmittance *= (1.0f - opacity) * tint;
+      if (!through_transparent_surface(scene, hit, ray.dir, receiver, passed, travelled, max_transparent,
+                                       transmittance))
+        return Vec3(0.0f);
       ++passed;
     }
-    ray.origin = past(hit, ray.dir);
+    ray.origin = offset_origin(hit.position, hit.geometric_normal, ray.dir);
     ray.tmax -= hit.t;
     ray.tmin = 0.0f;
     travelled += hit.t;
