@@ -17,6 +17,10 @@ and 8x8 block means), each with a deliberate fault that must fail the same bound
 * glow: a sphere of Principled Volume (density, colour, absorption colour and emission) over a
   floor lit by a sun; fault: the emission ignored.
 
+In bpy 4.2 the liquid and glow pass, but the fog's block mean (0.0188) is just past 1.5 x
+Cycles 4.2's own (0.0121: its equiangular sampling toward the spot light, which Torrance does
+not do yet), so the test is not in the blender4 list.
+
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_volume_agreement.py
 """
@@ -54,6 +58,7 @@ def liquid(scene):
     make.box(scene, "Tank", (-0.8, 0.3, 0.55), (1.0, 1.0, 1.0), ink)
     glass, nodes, links, output = make.node_material("Wine")
     bsdf = nodes.new('ShaderNodeBsdfGlass')
+    bsdf.distribution = 'GGX'     # 4.x's default Multiscatter GGX would be reported
     bsdf.inputs["IOR"].default_value = 1.33
     bsdf.inputs["Roughness"].default_value = 0.0
     links.new(bsdf.outputs[0], output.inputs["Surface"])
