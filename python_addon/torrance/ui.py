@@ -182,7 +182,8 @@ def scene_messages(scene):
         messages.append(('WARNING', f"Objects of type {kind.replace('_', ' ').title()} are not "
                                     f"rendered (e.g. '{name}')"))
     if rd.use_motion_blur:
-        messages.append(('INFO', "Motion blur is not rendered"))
+        messages.append(('INFO', "Motion blur: final renders only (not the viewport); "
+                                 "instanced objects stay still"))
     if scene.camera is not None and scene.camera.type == 'CAMERA':
         messages += camera_messages(scene.camera.data)
     elif scene.camera is None:
@@ -662,8 +663,13 @@ def _blender_panels():
     return panels
 
 
+def _all_classes():
+    from .ui_motion_blur import classes as motion_blur   # it imports this module's mixins
+    return classes + motion_blur
+
+
 def register():
-    for cls in classes:
+    for cls in _all_classes():
         bpy.utils.register_class(cls)
     for panel in _blender_panels():
         if ENGINE not in panel.COMPAT_ENGINES:
@@ -675,5 +681,5 @@ def unregister():
     for panel in _patched_panels:
         panel.COMPAT_ENGINES.discard(ENGINE)
     _patched_panels.clear()
-    for cls in reversed(classes):
+    for cls in reversed(_all_classes()):
         bpy.utils.unregister_class(cls)

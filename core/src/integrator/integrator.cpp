@@ -118,7 +118,7 @@ bool guide_can_be_judged(const RenderSettings& s) {
 // A camera sample's ray through pixel (x, y) of the frame: its offset from the pixel's centre
 // (drawn by the pixel filter's importance, or uniform in the pixel when `splatting`; stored in
 // `offset`) and the lens point from the sampler's first four dimensions. Motion blur (`moving`):
-// the shutter time from the next point's first dimension (stratified like the pixel's), set as
+// the shutter time from a stratified dimension (below), set as
 // the thread's ray time (every ray of the path carries it) and the camera moved to it.
 Ray camera_ray(const Camera& camera, const PixelFilter& filter, bool splatting, int x, int y, SobolSampler& sampler,
                Vec2& offset, bool moving = false) {
@@ -128,7 +128,9 @@ Ray camera_ray(const Camera& camera, const PixelFilter& filter, bool splatting, 
   // u_pixel.zw: the lens point (depth of field only).
   const Ray ray = camera.generate_ray(x + 0.5f + offset.x, y + 0.5f + offset.y, Vec2(u_pixel.z, u_pixel.w));
   if (!moving) return ray;
-  const float time = sampler.next_4d().x;
+  // Without depth of field the lens dimensions are free: the time takes the third, stratified
+  // jointly with the pixel position (at 32 spp the motion-blurred edges' noise matches Cycles').
+  const float time = camera.has_depth_of_field() ? sampler.next_4d().x : u_pixel.z;
   ray_queries::set_time(time);
   return camera.at_time(ray, time);
 }

@@ -18,6 +18,7 @@ from .light_groups import LightGroups
 from .lights import export_light
 from .mesh import MeshCache, add_world_mesh, mesh_materials
 from .mesh_attributes import dupli_record, instancer_record, object_info
+from .motion import MotionSampler, motion_blur_enabled, object_motion_steps, uses_deform_motion
 from .world import export_world
 
 # Types whose geometry is a mesh. Only 'MESH' entries of the depsgraph are exported; the
@@ -252,21 +253,31 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
     meshes.read_pending(poll)
     meshes.flush(stats)
     cache = MeshCache()
+    motion = (MotionSampler(engine, depsgraph, reporter)
+              if motion_blur_enabled(depsgraph.scene, engine) else None)
     for (obj, name, matrix, slot_to_material, needs_uvs, info, pass_index, holdout,
          light_group, cryptomatte) in flattened:
         poll()
         local = cache.get(obj, (obj.data.as_pointer(),), needs_uvs, reporter)
+        on_added = None
+        if motion is not None and object_motion_steps(obj) >= 2:
+            deform = uses_deform_motion(obj, depsgraph.scene)
+            motion.track(obj.name, object_motion_steps(obj), deform, needs_uvs)
+            on_added = motion.on_added(obj.name, local)
         triangles = add_world_mesh(tc_scene, name, local, matrix, slot_to_material, needs_uvs,
                                    reporter, object_info=info, pass_index=pass_index,
                                    holdout=holdout, light_group=light_group,
-                                   cryptomatte=cryptomatte)
+                                   cryptomatte=cryptomatte, on_added=on_added)
         if triangles:
             stats.objects += 1
             stats.names.append(name)
             stats.triangles += triangles
+    if motion is not None:
+        motion.export(tc_scene, _camera_object(depsgraph, engine))
     materials.send_pass_indices()
     stats.cryptomatte = crypto.send(materials)
     stats.materials = len(materials.indices) + (1 if materials._default is not None else 0)
     stats.textures = textures.loaded
     stats.seconds = time.perf_counter() - t0
     return tc_scene, stats
+

@@ -1,0 +1,205 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Motion blur as Cycles 3.4 renders it (Render Properties > Motion Blur; Object Properties >
+Motion Blur): the camera's and the moving objects' transforms, and the deformation of meshes,
+sampled at the shutter's sub-frame times through RenderEngine.frame_set, for
+Scene.set_camera_motion and Scene.set_mesh_motion. Final renders only (the viewport, as Cycles',
+shows none). Objects added as instances (particles, collection instances) stay still."""
+
+import numpy as np
+
+from .mesh import MeshCache, world_mesh
+
+# Cycles' Motion Steps limit (2^(steps-1) segments, steps in 1..7: up to 129 time steps).
+_MAX_STEPS = 129
+
+
+def motion_blur_enabled(scene, engine):
+    """Whether a render of `scene` by `engine` blurs motion: Render > Motion Blur on, a final
+    render (not a material preview) with RenderEngine.frame_set."""
+    return (bool(scene.render.use_motion_blur) and engine is not None
+            and not getattr(engine, "is_preview", False) and hasattr(engine, "frame_set"))
+
+
+def object_motion_steps(obj):
+    """Cycles' object_motion_steps: 0 without Object > Motion Blur, else 2^motion_steps + 1
+    time steps (an odd count: one is the frame itself)."""
+    settings = getattr(obj, "cycles", None)
+    if settings is None:
+        return 3                         # Cycles' defaults: motion blur on, 1 step
+    if not settings.use_motion_blur:
+        return 0
+    return min((2 << (max(1, int(settings.motion_steps)) - 1)) + 1, _MAX_STEPS)
+
+
+def uses_deform_motion(obj, scene):
+    """Whether an object's deformation is blurred: Object > Motion Blur > Deformation on, and
+    (as Cycles asks Blender) shape keys or modifiers deform its mesh; the others' meshes are
+    read once."""
+    settings = getattr(obj, "cycles", None)
+    if settings is not None and not settings.use_deform_motion:
+        return False
+    original = getattr(obj, "original", obj)
+    return bool(original.is_deform_modified(scene, 'RENDER'))
+
+
+def shutter_position(scene):
+    """Render > Motion Blur > Position: scene.render's in Blender 3.5+, scene.cycles' before."""
+    owner = scene.render if hasattr(scene.render, "motion_blur_position") else getattr(
+        scene, "cycles", None)
+    return getattr(owner, "motion_blur_position", 'CENTER')
+
+
+def shutter_offsets(scene, steps):
+    """The sub-frame offsets (in frames, from the current frame) of `steps` time steps evenly
+    over the shutter (Cycles' motion_time: -1..1 over Shutter frames), moved by Position: Start
+    on Frame opens the shutter at the frame, End on Frame closes it there."""
+    shutter = float(scene.render.motion_blur_shutter)
+    position = shutter_position(scene)
+    centre = {'START': 0.5 * shutter, 'END': -0.5 * shutter}.get(position, 0.0)
+    return [centre + 0.5 * shutter * (2.0 * s / (steps - 1) - 1.0) for s in range(steps)]
+
+
+def report_ignored(scene, reporter):
+    """What of Cycles' motion blur settings Torrance does not render."""
+    cycles = getattr(scene, "cycles", None)
+    if cycles is not None and getattr(cycles, "rolling_shutter_type", 'NONE') != 'NONE':
+        reporter.info("Torrance does not render Rolling Shutter: the shutter opens at once")
+    curve = getattr(scene.render, "motion_blur_shutter_curve", None)
+    if curve is not None and curve.curves:
+        points = curve.curves[0].points
+        if any(abs(p.location[1] - 1.0) > 1e-6 for p in points):
+            reporter.info("Torrance does not render the Shutter Curve: the shutter is open "
+                          "evenly over its time")
+
+
+class MotionSampler:
+    """The camera's and objects' states at the shutter's time steps.
+
+    track(name, steps, deform) before sample(); sample() visits every time step (the finest
+    grid of the tracked step counts: Cycles' steps nest, 2^k + 1 each) and restores the frame.
+    """
+
+    def __init__(self, engine, depsgraph, reporter):
+        self.engine = engine
+        self.depsgraph = depsgraph
+        self.reporter = reporter
+        self.tracked = {}        # object name -> (steps, deform, mesh needs)
+        self.camera = None       # the camera object's name, when tracked
+        self.states = {}         # object name -> [(matrix 4x4 float64, LocalMesh or None)]
+        self.meshes = []         # (name, mesh id, frame's LocalMesh, triangles, keep) added
+
+    def on_added(self, name, local):
+        """add_world_mesh's on_added for object `name` read as `local`: remembers its mesh."""
+        def added(mesh_id, triangles, keep):
+            self.meshes.append((name, mesh_id, local, triangles, keep))
+        return added
+
+    def export(self, tc_scene, camera):
+        """Samples the camera object and the tracked objects over the shutter and gives the
+        core the motion of those that move; the frame is restored after."""
+        report_ignored(self.depsgraph.scene, self.reporter)
+        self.track_camera(camera.name, object_motion_steps(camera))
+        self.sample()
+        matrices = self.camera_matrices()
+        if matrices is not None:
+            tc_scene.set_camera_motion(matrices)
+        for name, mesh_id, local, triangles, keep in self.meshes:
+            arrays = self.mesh_motion(name, local, triangles, keep)
+            if arrays is not None:
+                tc_scene.set_mesh_motion(mesh_id, arrays[0], corner_normals=arrays[1])
+
+    def track(self, name, steps, deform, needs=None):
+        """Samples object `name` at `steps` time steps (< 2: not at all); deform: its evaluated
+        mesh too (read with the MeshNeeds `needs`, as its frame's was)."""
+        if steps >= 2:
+            self.tracked[name] = (steps, deform, needs)
+
+    def track_camera(self, name, steps):
+        if steps >= 2:
+            self.tracked[name] = (steps, False, None)
+            self.camera = name
+
+    def sample(self):
+        if not self.tracked:
+            return
+        scene = self.depsgraph.scene
+        steps = max(s for s, _, _ in self.tracked.values())
+        frame = scene.frame_current
+        subframe = float(scene.frame_subframe)
+        try:
+            for k, offset in enumerate(shutter_offsets(scene, steps)):
+                whole = np.floor(subframe + offset)
+                self.engine.frame_set(int(frame + whole), float(subframe + offset - whole))
+                self._read_step(k, steps)
+        finally:
+            self.engine.frame_set(frame, subframe)
+
+    def _read_step(self, k, finest):
+        cache = MeshCache()
+        for name, (steps, deform, needs) in self.tracked.items():
+            stride = (finest - 1) // (steps - 1)
+            if k % stride:
+                continue
+            obj = self.depsgraph.objects.get(name)
+            if obj is None:
+                continue
+            matrix = obj.matrix_world
+            if name == self.camera:           # as export_camera reads it
+                matrix = self.engine.camera_model_matrix(obj, use_spherical_stereo=False)
+            matrix = np.array(matrix, dtype=np.float64).reshape(4, 4)
+            local = None
+            if deform and obj.type == 'MESH' and obj.data is not None:
+                local = cache.get(obj, (name,), needs, self.reporter)
+            self.states.setdefault(name, []).append((matrix, local))
+
+    def camera_matrices(self):
+        """The camera's matrices over the shutter (S, 4, 4), or None when it does not move."""
+        states = self.states.get(self.camera)
+        if not states or len(states) < 2:
+            return None
+        matrices = np.stack([m for m, _ in states])
+        return None if np.all(matrices == matrices[0]) else matrices
+
+    def mesh_motion(self, name, local, triangles, keep):
+        """(positions (S, N, 3), corner normals (S, 3T, 3) or None) of an object added with
+        world_mesh(local, its matrix) as `triangles` kept by `keep`, or None when it does not move.
+        Deformation whose mesh changes topology falls back to the transform (reported)."""
+        states = self.states.get(name)
+        if not states or len(states) < 2:
+            return None
+        if local is None:
+            return None
+        positions, normals = [], []
+        fell_back = False
+        for step_matrix, step_local in states:
+            arrays = _world_arrays(step_local, step_matrix, triangles, keep, len(local.positions))
+            if arrays is None:
+                fell_back = fell_back or step_local is not None
+                arrays = _world_arrays(local, step_matrix, triangles, keep, len(local.positions))
+            if arrays is None:
+                self.reporter.warning(f"Object '{name}': its motion drops triangles; rendered "
+                                      f"without motion blur")
+                return None
+            positions.append(arrays[0])
+            normals.append(arrays[1])
+        if fell_back:
+            self.reporter.warning(f"Object '{name}': its mesh changes topology over the "
+                                  f"shutter; only its transform is blurred")
+        positions = np.stack(positions)
+        if np.all(positions == positions[0]) and (normals[0] is None or np.all(
+                np.stack(normals) == normals[0])):
+            return None
+        return positions, (None if normals[0] is None
+                           else np.stack(normals).reshape(len(states), -1, 3))
+
+
+def _world_arrays(local, matrix, triangles, keep, num_vertices):
+    """world_mesh's positions and corner normals of local at matrix when they match the mesh
+    added (num_vertices, the same triangles and kept triangles), else None."""
+    if local is None or len(local.positions) != num_vertices:
+        return None
+    pos, tris, corner, step_keep, _ = world_mesh(local, matrix)
+    if (len(step_keep) != len(keep) or not np.array_equal(step_keep, keep)
+            or not np.array_equal(tris, triangles)):
+        return None
+    return pos, corner
