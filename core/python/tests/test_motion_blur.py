@@ -111,3 +111,13 @@ def test_motion_errors():
         scene.set_camera_motion(nan)
     with pytest.raises(ValueError, match="shape"):
         scene.set_camera_motion(np.zeros((2, 3, 4)))
+
+
+def test_motion_normals_are_normalized_like_static_ones():
+    normals = np.tile(np.array([0.0, 0.0, 1.0], np.float32), (3, 6, 1))
+    images = []
+    for scale in (1.0, 3.0):
+        scene, mesh = square_scene()
+        scene.set_mesh_motion(mesh, moving_steps(1.0, 3), corner_normals=scale * normals)
+        images.append(render(scene))
+    assert np.array_equal(images[0], images[1])

@@ -58,7 +58,8 @@ void Scene::set_mesh_motion(uint32_t mesh_id, size_t steps, const float* positio
     for (size_t i = 0; i < steps * corners; ++i) {
       const Vec3 v(corner_normals[3 * i], corner_normals[3 * i + 1], corner_normals[3 * i + 2]);
       if (!is_finite(v)) throw std::invalid_argument("motion normals hold a NaN or Inf");
-      normals[i] = v;
+      const float len = glm::length(v);
+      normals[i] = len > 1e-12f ? v / len : Vec3(0.0f);  // as add_mesh's corner normals
     }
   }
   const uint32_t geom_id = mesh_geometry_id(mesh_id);
