@@ -181,7 +181,9 @@ void init_scene(py::module_& m) {
              float coat_roughness, float coat_ior, std::array<float, 3> coat_tint, int coat_weight_register,
              int coat_roughness_register, int coat_ior_register, int coat_tint_register, float sheen_weight,
              float sheen_roughness, float sheen_tint, std::array<float, 3> sheen_tint_color,
-             int sheen_weight_register, int sheen_roughness_register, int sheen_tint_register) {
+             int sheen_weight_register, int sheen_roughness_register, int sheen_tint_register, float anisotropy,
+             float anisotropic_rotation, int anisotropy_register, int anisotropic_rotation_register,
+             int tangent_register) {
             if (glass_distribution != "GGX" && glass_distribution != "BECKMANN")
               throw py::value_error("glass_distribution must be 'GGX' or 'BECKMANN', got '" + glass_distribution +
                                     "'");
@@ -209,6 +211,8 @@ void init_scene(py::module_& m) {
             mat.sheen_roughness = sheen_roughness;
             mat.sheen_tint = sheen_tint;
             mat.sheen_tint_color = vec3(sheen_tint_color);
+            mat.anisotropy = anisotropy;
+            mat.anisotropic_rotation = anisotropic_rotation;
             MaterialTextures tex;
             tex.base_color = base_color_texture;
             tex.metallic = metallic_texture;
@@ -234,6 +238,9 @@ void init_scene(py::module_& m) {
             tex.program.sheen_weight = program_register(sheen_weight_register);
             tex.program.sheen_roughness = program_register(sheen_roughness_register);
             tex.program.sheen_tint = program_register(sheen_tint_register);
+            tex.program.anisotropy = program_register(anisotropy_register);
+            tex.program.anisotropic_rotation = program_register(anisotropic_rotation_register);
+            tex.program.tangent = program_register(tangent_register);
             return s.add_material(mat, tex);
           },
           py::arg("base_color") = std::array<float, 3>{0.8f, 0.8f, 0.8f}, py::arg("metallic") = 0.0f,
@@ -259,6 +266,8 @@ void init_scene(py::module_& m) {
           py::arg("sheen_roughness") = 0.5f, py::arg("sheen_tint") = 0.5f,
           py::arg("sheen_tint_color") = std::array<float, 3>{1.0f, 1.0f, 1.0f}, py::arg("sheen_weight_register") = -1,
           py::arg("sheen_roughness_register") = -1, py::arg("sheen_tint_register") = -1,
+          py::arg("anisotropy") = 0.0f, py::arg("anisotropic_rotation") = 0.0f, py::arg("anisotropy_register") = -1,
+          py::arg("anisotropic_rotation_register") = -1, py::arg("tangent_register") = -1,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
@@ -282,7 +291,10 @@ void init_scene(py::module_& m) {
           "clearcoat has IOR 1.5 and no tint), from the program's coat_*_register when given. sheen_*: the "
           "Principled BSDF's sheen (weight >= 0, 0: none; PRINCIPLED: sheen_tint in [0, 1]; PRINCIPLED_V2: "
           "sheen_roughness in [0, 1] and sheen_tint_color >= 0), from the program's sheen_*_register when given "
-          "(sheen_tint_register: v1's factor its x, v2's colour).")
+          "(sheen_tint_register: v1's factor its x, v2's colour). anisotropy in [-1, 1] and anisotropic_rotation "
+          "(turns about the normal): a Glossy closure's anisotropy (glossy_bsdf.h) along the tangent the "
+          "program's tangent_register gives (a world direction; none: isotropic), from the program's "
+          "anisotropy_register / anisotropic_rotation_register when given.")
       .def(
           "add_shader_program",
           [](Scene& s, const py::object& constants, const py::object& code, int registers, const py::object& data) {

@@ -138,6 +138,12 @@ bool MixtureBsdf::transmits() const {
   return false;
 }
 
+void MixtureBsdf::orient(const Frame& frame) {
+  for (int k = 0; k < count_; ++k)
+    if (GlossyBsdf* glossy = std::get_if<GlossyBsdf>(&components_[size_t(k)]); glossy && glossy->anisotropic())
+      glossy->orient(frame);
+}
+
 MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals& globals, bool textured,
                            BrdfModel model, const MaterialBsdf& prebuilt, Material& resolved,
                            glm::vec4* program_regs, ClosureList* closures) {
@@ -168,7 +174,8 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
         resolved.base_color += w.weight[k] * m.base_color;
         break;
       case ClosureType::Glossy:
-        bsdf.add(GlossyBsdf(m.base_color, m.roughness), w.weight[k], luminance(m.base_color));
+        bsdf.add(GlossyBsdf(m.base_color, m.roughness, m.anisotropy, m.tangent, m.anisotropic_rotation), w.weight[k],
+                 luminance(m.base_color));
         break;
       case ClosureType::Velvet: add_closure(bsdf, VelvetBsdf(m.base_color, m.roughness), w.weight[k]); break;
       case ClosureType::Sheen: add_closure(bsdf, SheenBsdf(m.base_color, m.roughness), w.weight[k]); break;

@@ -155,6 +155,9 @@ void Scene::apply_program(const MaterialTextures& t, const ShaderGlobals& g, Mat
     m.sheen_tint = clamp01(regs[size_t(o.sheen_tint)].x);
     m.sheen_tint_color = glm::max(Vec3(regs[size_t(o.sheen_tint)]), Vec3(0.0f));
   }
+  if (o.anisotropy >= 0) m.anisotropy = std::clamp(regs[size_t(o.anisotropy)].x, -1.0f, 1.0f);
+  if (o.anisotropic_rotation >= 0) m.anisotropic_rotation = regs[size_t(o.anisotropic_rotation)].x;
+  if (o.tangent >= 0) m.tangent = Vec3(regs[size_t(o.tangent)]);
 }
 
 Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, const ShaderGlobals& g,
@@ -236,6 +239,10 @@ void check_material(const Material& m) {
       m.sheen_tint > 1.0f || glm::any(glm::lessThan(m.sheen_tint_color, Vec3(0.0f))))
     throw std::invalid_argument("material sheen_weight must be >= 0, sheen_roughness and sheen_tint in [0, 1] and "
                                 "sheen_tint_color >= 0");
+  if (!std::isfinite(m.anisotropy) || !std::isfinite(m.anisotropic_rotation) || !is_finite(m.tangent))
+    throw std::invalid_argument("material anisotropy, anisotropic_rotation and tangent must be finite");
+  if (m.anisotropy < -1.0f || m.anisotropy > 1.0f)
+    throw std::invalid_argument("material anisotropy must be in [-1, 1]");
 }
 
 uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures) {
@@ -266,7 +273,8 @@ void Scene::check_program_outputs(const ShaderOutputs& o) const {
   if (o.program < 0) {
     if (o.base_color >= 0 || o.metallic >= 0 || o.roughness >= 0 || o.emission >= 0 || o.normal >= 0 || o.alpha >= 0 ||
         o.surface_normal >= 0 || o.transmission >= 0 || o.coat_weight >= 0 || o.coat_roughness >= 0 || o.coat_ior >= 0 || o.coat_tint >= 0 ||
-        o.sheen_weight >= 0 || o.sheen_roughness >= 0 || o.sheen_tint >= 0)
+        o.sheen_weight >= 0 || o.sheen_roughness >= 0 || o.sheen_tint >= 0 || o.anisotropy >= 0 ||
+        o.anisotropic_rotation >= 0 || o.tangent >= 0)
       throw std::invalid_argument("material reads shader program registers but names no program");
     return;
   }
@@ -275,7 +283,8 @@ void Scene::check_program_outputs(const ShaderOutputs& o) const {
                                 std::to_string(programs_.size()) + " programs");
   const ShaderProgram& program = programs_[size_t(o.program)];
   for (int r : {o.base_color, o.metallic, o.roughness, o.emission, o.normal, o.alpha, o.surface_normal, o.transmission, o.coat_weight,
-                o.coat_roughness, o.coat_ior, o.coat_tint, o.sheen_weight, o.sheen_roughness, o.sheen_tint})
+                o.coat_roughness, o.coat_ior, o.coat_tint, o.sheen_weight, o.sheen_roughness, o.sheen_tint,
+                o.anisotropy, o.anisotropic_rotation, o.tangent})
     if (r != -1 && !program.written(r))
       throw std::invalid_argument("material reads register " + std::to_string(r) + " of a shader program with " +
                                   std::to_string(program.registers()) + " registers, which the program does not write");

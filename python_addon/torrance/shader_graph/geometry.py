@@ -16,7 +16,8 @@ VARYING = set(OPCODES)
 FOLDS = {}
 
 # Geometry outputs -> the Geometry op's mode.
-_GEOMETRY = {"Position": 0, "Normal": 1, "True Normal": 2, "Incoming": 3, "Backfacing": 4}
+_GEOMETRY = {"Position": 0, "Normal": 1, "True Normal": 2, "Incoming": 3, "Backfacing": 4,
+             "Tangent": -1}
 
 
 def shading_normal(g):
@@ -52,6 +53,8 @@ def _geometry(g, node, socket):
         raise Unsupported(f"{node_label(node)}'s output '{socket.name}' is not supported")
     if mode == _GEOMETRY["Normal"]:
         return shading_normal(g)
+    if mode == _GEOMETRY["Tangent"]:
+        return default_tangent(g)
     return g.builder.emit("Geometry", 'float' if socket.identifier == "Backfacing" else 'vector',
                           mode=mode)
 
@@ -348,10 +351,21 @@ def _tangent(g, node, socket):
         mode, generated = _TANGENT_AXES[node.axis], g.generated()
     else:
         raise Unsupported(f"{node_label(node)}: direction {node.direction_type} {node.axis}")
+    return _emit_tangent(g, mode, generated)
+
+
+def _emit_tangent(g, mode, generated):
     normal = shading_normal(g)
     position = normal if generated is None else generated      # the UV Map mode reads none
     return g.builder.emit("Tangent", 'vector', [position, *object_transform(g), normal],
                           mode=mode)
+
+
+def default_tangent(g):
+    """Geometry > Tangent, which Cycles links to an unlinked Tangent input (the Anisotropic BSDF's,
+    4.x's Glossy's): with Generated coordinates (every mesh has them) the Tangent node's Radial Z,
+    Cycles' primitive_tangent."""
+    return _emit_tangent(g, _TANGENT_AXES['Z'], g.generated())
 
 
 READERS = {

@@ -164,9 +164,12 @@ CLOSURES = {
                                 "Roughness",
     'ShaderNodeBsdfDiffuse': "rendered: Color, Roughness (Lambert, Cycles' Oren-Nayar), Normal; "
                              "alone and in Mix/Add Shader trees alike",
-    'ShaderNodeBsdfGlossy': "partly: Color, Roughness (GGX, Sharp) alone and in Mix/Add Shader "
-                            "trees",
-    'ShaderNodeBsdfAnisotropic': "partly: as the Glossy BSDF (Anisotropy reported)",
+    'ShaderNodeBsdfGlossy': "partly: Color, Roughness (GGX, Sharp; 4.x: Anisotropy, Rotation, "
+                            "Tangent, any graph) alone and in Mix/Add Shader trees",
+    'ShaderNodeBsdfAnisotropic': "partly: Color, Roughness, Anisotropy, Rotation, Tangent (any "
+                                 "graph; unlinked: Geometry > Tangent) with GGX, alone and in "
+                                 "Mix/Add Shader trees (Beckmann, Ashikhmin-Shirley and "
+                                 "Multiscatter GGX rendered as GGX)",
     'ShaderNodeBsdfGlass': "partly: Color, Roughness, IOR, Normal; GGX, Beckmann, Sharp "
                            "(Multiscatter GGX rendered as GGX); alone and in Mix/Add Shader trees",
     'ShaderNodeBsdfTransparent': "rendered: Color; alone and anywhere in Mix/Add Shader trees "

@@ -69,6 +69,11 @@ struct Material {
   float sheen_roughness = 0.5f;
   float sheen_tint = 0.5f;
   Vec3 sheen_tint_color{1.0f};
+  // Anisotropy (glossy_bsdf.h; the Glossy/Anisotropic BSDF node): in [-1, 1], the tangent's turn
+  // about the normal in turns (Rotation) and the tangent (world; zero: none, isotropic).
+  float anisotropy = 0.0f;
+  float anisotropic_rotation = 0.0f;
+  Vec3 tangent{0.0f};
 };
 
 // The normal a BSDF's diffuse lobes shade with, in its shading frame. The frame's z is the

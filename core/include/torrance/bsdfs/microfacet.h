@@ -1,4 +1,5 @@
-// The GGX (Trowbridge-Reitz) microfacet distribution, isotropic, in the local frame (z = normal).
+// The GGX (Trowbridge-Reitz) microfacet distribution, in the local frame (z = normal): isotropic,
+// and anisotropic (*_aniso) along the frame's axes.
 #pragma once
 
 #include "torrance/util/math.h"
@@ -77,6 +78,31 @@ inline float reflected_pdf(const Vec3& wo, const Vec3& h, float alpha) {
 }
 
 inline Vec3 reflect(const Vec3& w, const Vec3& n) { return 2.0f * glm::dot(w, n) * n - w; }
+
+// Anisotropic GGX, alpha_x along the frame's x and alpha_y along its y (the isotropic functions
+// above with alpha_x = alpha_y):
+//   D(h) = 1 / (pi ax ay ((h.x / ax)^2 + (h.y / ay)^2 + h.z^2)^2),
+//   G1(w) = 2 w.z / (w.z + sqrt(ax^2 w.x^2 + ay^2 w.y^2 + w.z^2)) (exact Smith),
+// sampled by visible normals in the configuration stretched to alpha 1.
+inline float D_aniso(const Vec3& h, float ax, float ay) {
+  if (h.z <= 0.0f) return 0.0f;
+  const float x = h.x / ax, y = h.y / ay;
+  const float d = x * x + y * y + h.z * h.z;
+  return d > 0.0f ? 1.0f / (kPi * ax * ay * d * d) : 0.0f;
+}
+inline float smith_G1_aniso(const Vec3& w, float ax, float ay) {
+  if (w.z <= 0.0f) return 0.0f;
+  const float s = ax * ax * w.x * w.x + ay * ay * w.y * w.y;
+  return 2.0f * w.z / (w.z + std::sqrt(s + w.z * w.z));
+}
+inline Vec3 sample_visible_normal_aniso(const Vec3& wo, float ax, float ay, const Vec2& u) {
+  const Vec3 wo_std = glm::normalize(Vec3(ax * wo.x, ay * wo.y, wo.z));
+  const float phi = kTwoPi * u.x;
+  const float z = (1.0f - u.y) * (1.0f + wo_std.z) - wo_std.z;
+  const float sin_theta = safe_sqrt(1.0f - z * z);
+  const Vec3 h_std = Vec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), z) + wo_std;
+  return glm::normalize(Vec3(ax * h_std.x, ay * h_std.y, std::max(h_std.z, 1e-9f)));
+}
 
 // The microfacet normal h through which wo refracts into wi (etap = IOR of wi's side / IOR of wo's
 // side), turned to z > 0, and len2 = |wo + etap wi|^2 = (wo.h + etap wi.h)^2; false when there

@@ -66,6 +66,8 @@ class MixtureBsdf {
     return sample_mixture(wo, u_lobe, u, backfacing);
   }
   bool transmits() const;  // some closure is glass, Translucent or Refraction
+  // Its anisotropic closures' tangents into the shading frame (GlossyBsdf::orient); before at().
+  void orient(const Frame& frame);
 
   // The View interface of MaterialBsdf: a mixture prepares nothing (each closure its own wo);
   // `diffuse`: its diffuse lobes' normal (bsdf.h).

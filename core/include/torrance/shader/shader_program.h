@@ -252,6 +252,8 @@ struct ShaderOutputs {
   // The Principled BSDF's sheen inputs (Material::sheen_*): weight, roughness (x) and tint (v1's
   // factor the x, v2's colour).
   int16_t sheen_weight = -1, sheen_roughness = -1, sheen_tint = -1;
+  // Anisotropy (Material::anisotropy, anisotropic_rotation: x; tangent: a world direction).
+  int16_t anisotropy = -1, anisotropic_rotation = -1, tangent = -1;
   bool any() const { return program >= 0; }
 };
 

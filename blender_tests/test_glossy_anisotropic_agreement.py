@@ -1,0 +1,126 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Torrance's anisotropic Glossy BSDF agrees with Cycles: Blender 3.4's Anisotropic BSDF and
+4.x/5.x's Glossy BSDF with Anisotropy (GGX; glossy_bsdf.h), its Rotation and Tangent.
+
+Spheres on a matte floor under a sun from behind and a world colour, each a lone glossy closure
+(roughness 0.3 unless said):
+  anisotropy 0.8 along the default tangent (unlinked: Geometry > Tangent, radial about the
+  object's Z), -0.7 (roughness 0.4), 0.8 turned a quarter (Rotation 0.25), 0.8 along a Tangent
+  node's Radial X, anisotropy from a node graph (object Z), and an isotropic one (anisotropy 0).
+Rendered 160x80 at 512 spp, max bounces 4, by Cycles (seeds 3 and 4: reference and its own
+noise) and by Torrance (seeds 1 and 2, averaged); bounds and figures: torrance_tools/
+sphere_agreement.py. Faults (Torrance's side only) must fail the bounds: the anisotropy ignored
+(0), the rotation ignored, the Radial X tangent read as the default, the anisotropy's graph
+ignored (unlinked: the socket's own 0).
+
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \\
+         --python blender_tests/test_glossy_anisotropic_agreement.py
+     scripts/bpy 4.2 (or 5.3) -b --factory-startup --python-exit-code 1 \\
+         --python blender_tests/test_glossy_anisotropic_agreement.py
+"""
+
+import math
+
+import bpy
+
+from torrance_tools import sphere_agreement as sa, testing
+
+W, H, SAMPLES, BOUNCES = 160, 80, 512, 4
+TORRANCE_SEEDS, CYCLES_SEEDS = (1, 2), (3, 4)
+RADIUS = 0.42
+GRAPH = "graph"
+GOLD = (0.9, 0.7, 0.35)
+
+# name, x, z, anisotropy, roughness, rotation, tangent (None: unlinked; else a Tangent node axis)
+SPHERES = (
+    ("Aniso_default", -2.0, 1.45, 0.8, 0.3, 0.0, None),
+    ("Aniso_negative", 0.0, 1.45, -0.7, 0.4, 0.0, None),
+    ("Aniso_rotated", 2.0, 1.45, 0.8, 0.3, 0.25, None),
+    ("Aniso_radial_x", -2.0, 0.55, 0.8, 0.3, 0.0, 'X'),
+    ("Aniso_graph", 0.0, 0.55, GRAPH, 0.3, 0.0, None),
+    ("Isotropic", 2.0, 0.55, 0.0, 0.3, 0.0, None),
+)
+
+
+def glossy_material(name, anisotropy, roughness, rotation, tangent_axis):
+    """A material whose Surface is a lone anisotropic glossy closure (3.4: Anisotropic BSDF;
+    4.x: Glossy BSDF, GGX)."""
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    nodes, links = mat.node_tree.nodes, mat.node_tree.links
+    for n in list(nodes):
+        if n.type != 'OUTPUT_MATERIAL':
+            nodes.remove(n)
+    kind = "ShaderNodeBsdfAnisotropic" if bpy.app.version < (4, 0, 0) else "ShaderNodeBsdfGlossy"
+    node = nodes.new(kind)
+    node.name = "Glossy"
+    node.distribution = 'GGX'
+    node.inputs["Color"].default_value = (*GOLD, 1.0)
+    node.inputs["Roughness"].default_value = roughness
+    node.inputs["Rotation"].default_value = rotation
+    if anisotropy == GRAPH:
+        sa.graph_weight(mat, node, "Anisotropy")
+    else:
+        node.inputs["Anisotropy"].default_value = anisotropy
+    if tangent_axis is not None:
+        tangent = nodes.new("ShaderNodeTangent")
+        tangent.direction_type = 'RADIAL'
+        tangent.axis = tangent_axis
+        links.new(tangent.outputs["Tangent"], node.inputs["Tangent"])
+    links.new(node.outputs["BSDF"], nodes["Material Output"].inputs["Surface"])
+    return mat
+
+
+def build(scene):
+    testing.add_camera(scene, location=(0.0, -10.0, 1.5), target=(0.0, 0.0, 1.0), lens=50.0)
+    floor = testing.make.principled("Floor", (0.4, 0.4, 0.4), 0.0, 1.0, 0.0)
+    testing.plane(scene, "Floor", 30.0, z=0.0, material=floor)
+    for name, x, z, anisotropy, roughness, rotation, tangent in SPHERES:
+        mat = glossy_material(name, anisotropy, roughness, rotation, tangent)
+        testing.sphere_object(scene, name, (x, 0.0, z), RADIUS, mat, segments=64, rings=32)
+    testing.add_sun(scene, strength=3.0, rotation=(math.radians(-60), 0, math.radians(-25)),
+                    angle=math.radians(5.0))
+    testing.set_world(scene, (0.20, 0.24, 0.30))
+
+
+def glossy(name):
+    return bpy.data.materials[name].node_tree.nodes["Glossy"]
+
+
+def render_torrance(scene, directory, label):
+    return sa.render_torrance(scene, directory, label, TORRANCE_SEEDS, SAMPLES, BOUNCES)[0]
+
+
+def faults(scene, directory):
+    """(description, Torrance's images) of each fault, made on Torrance's side only."""
+    out = []
+    constant = [s for s in SPHERES if s[3] not in (GRAPH, 0.0)]
+    for s in constant:
+        glossy(s[0]).inputs["Anisotropy"].default_value = 0.0
+    out.append(("anisotropy ignored", render_torrance(scene, directory, "no_anisotropy")))
+    for s in constant:
+        glossy(s[0]).inputs["Anisotropy"].default_value = s[3]
+    glossy("Aniso_rotated").inputs["Rotation"].default_value = 0.0
+    out.append(("rotation ignored", render_torrance(scene, directory, "no_rotation")))
+    glossy("Aniso_rotated").inputs["Rotation"].default_value = 0.25
+    tree = bpy.data.materials["Aniso_radial_x"].node_tree
+    tree.links.remove(glossy("Aniso_radial_x").inputs["Tangent"].links[0])
+    out.append(("Radial X tangent read as the default",
+                render_torrance(scene, directory, "default_tangent")))
+    tree = bpy.data.materials["Aniso_graph"].node_tree
+    tree.links.remove(glossy("Aniso_graph").inputs["Anisotropy"].links[0])
+    out.append(("anisotropy graph ignored", render_torrance(scene, directory, "no_graph")))
+    return out
+
+
+def main():
+    directory = testing.tempdir()
+    scene = testing.clear_scene()
+    testing.setup_render(scene, width=W, height=H)
+    build(scene)
+    sa.check_spheres(scene, directory, {s[0]: (s[1], 0.0, s[2]) for s in SPHERES}, RADIUS,
+                     (W, H), "anisotropic", faults, "anisotropic glossy", SAMPLES, BOUNCES,
+                     TORRANCE_SEEDS, CYCLES_SEEDS)
+
+
+testing.run(main)
