@@ -22,6 +22,7 @@ ClosureType parse_closure(const std::string& s) {
   if (s == "velvet") return ClosureType::Velvet;
   if (s == "sheen") return ClosureType::Sheen;
   if (s == "translucent") return ClosureType::Translucent;
+  if (s == "principled_hair") return ClosureType::PrincipledHair;
   if (s == "refraction") return ClosureType::Refraction;
   if (s == "toon_diffuse") return ClosureType::ToonDiffuse;
   if (s == "toon_glossy") return ClosureType::ToonGlossy;
@@ -30,7 +31,7 @@ ClosureType parse_closure(const std::string& s) {
   throw py::value_error(
       "closure type must be 'principled', 'diffuse', 'glossy', 'emission', 'transparent', 'holdout', 'velvet', "
       "'sheen', "
-      "'translucent', 'refraction', 'toon_diffuse', 'toon_glossy', 'toon_diffuse_cycles4' or "
+      "'translucent', 'principled_hair', 'refraction', 'toon_diffuse', 'toon_glossy', 'toon_diffuse_cycles4' or "
       "'toon_glossy_cycles4', got '" + s + "'");
 }
 

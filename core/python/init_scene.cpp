@@ -183,7 +183,7 @@ void init_scene(py::module_& m) {
              float sheen_roughness, float sheen_tint, std::array<float, 3> sheen_tint_color,
              int sheen_weight_register, int sheen_roughness_register, int sheen_tint_register, float anisotropy,
              float anisotropic_rotation, int anisotropy_register, int anisotropic_rotation_register,
-             int tangent_register) {
+             int tangent_register, float hair_offset) {
             if (glass_distribution != "GGX" && glass_distribution != "BECKMANN")
               throw py::value_error("glass_distribution must be 'GGX' or 'BECKMANN', got '" + glass_distribution +
                                     "'");
@@ -199,6 +199,7 @@ void init_scene(py::module_& m) {
             mat.multiscatter_ggx = multiscatter_ggx;
             mat.transmission = transmission;
             mat.transmission_roughness = transmission_roughness;
+            mat.hair_offset = hair_offset;
             mat.glass_node = glass;
             mat.glass_beckmann = glass_distribution == "BECKMANN";
             mat.alpha = alpha;
@@ -268,6 +269,7 @@ void init_scene(py::module_& m) {
           py::arg("sheen_roughness_register") = -1, py::arg("sheen_tint_register") = -1,
           py::arg("anisotropy") = 0.0f, py::arg("anisotropic_rotation") = 0.0f, py::arg("anisotropy_register") = -1,
           py::arg("anisotropic_rotation_register") = -1, py::arg("tangent_register") = -1,
+          py::arg("hair_offset") = 0.0f,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
@@ -419,6 +421,33 @@ void init_scene(py::module_& m) {
           py::arg("positions"), py::arg("triangles"), py::arg("corner_normals") = py::none(),
           py::arg("material_indices") = py::none(), py::arg("corner_uvs") = py::none(),
           "Adds a triangle mesh in world space; raises ValueError for malformed input.")
+      .def(
+          "add_curves",
+          [](Scene& s, const py::object& keys, const py::object& radii, const py::object& curve_offsets,
+             const py::object& materials, const std::string& shape) {
+            if (shape != "ROUND" && shape != "RIBBON")
+              throw py::value_error("shape must be 'ROUND' or 'RIBBON', got '" + shape + "'");
+            const auto k = shaped_array<float>(keys, "keys", {-1, 3});
+            const size_t n = size_t(k.shape(0));
+            const auto r = shaped_array<float>(radii, "radii", {py::ssize_t(n)});
+            const auto offsets = shaped_array<int64_t>(curve_offsets, "curve_offsets", {-1});
+            if (offsets.size() < 1) throw py::value_error("curve_offsets must hold at least one offset (0)");
+            const size_t num_curves = size_t(offsets.size()) - 1;
+            for (size_t c = 0; c < num_curves; ++c)
+              if (offsets.data()[c + 1] < offsets.data()[c]) throw py::value_error("curve_offsets must ascend");
+            if (offsets.data()[0] != 0 || offsets.data()[num_curves] != int64_t(n))
+              throw py::value_error("curve_offsets must run from 0 to the number of keys (" + std::to_string(n) + ")");
+            py::array_t<int64_t, py::array::c_style | py::array::forcecast> m;
+            if (!materials.is_none()) m = shaped_array<int64_t>(materials, "materials", {py::ssize_t(num_curves)});
+            return s.add_curves(k.data(), r.data(), n, offsets.data(), num_curves, materials.is_none() ? nullptr : m.data(),
+                                shape == "ROUND" ? CurveShape::Round : CurveShape::Ribbon);
+          },
+          py::arg("keys"), py::arg("radii"), py::arg("curve_offsets"), py::arg("materials") = py::none(),
+          py::arg("shape") = "ROUND",
+          "Adds hair strands in world space: keys (K, 3), radii (K,), curve_offsets (C + 1,) from 0 to K "
+          "(curve c: keys offsets[c] .. offsets[c + 1] - 1), materials (C,) or None; traced as Cycles' "
+          "Catmull-Rom curves, shape 'ROUND' (3D Curves) or 'RIBBON' (Rounded Ribbons). Returns its id.")
+      .def_property_readonly("num_curve_segments", &Scene::num_curve_segments)
       .def(
           "add_prototype",
           [](Scene& s, const py::object& positions, const py::object& triangles, const py::object& corner_normals,

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The Velvet / Sheen, Translucent, Refraction and Toon BSDF nodes -> a mixture's closures (the
-core's velvet_bsdf.h, sheen_bsdf.h, translucent_bsdf.h, refraction_bsdf.h, toon_bsdf.h), alone
+"""The Velvet / Sheen, Translucent, Refraction, Toon and Principled Hair BSDF nodes -> a mixture's
+closures (the core's velvet_bsdf.h, sheen_bsdf.h, translucent_bsdf.h, refraction_bsdf.h,
+toon_bsdf.h, hair/principled_hair_bsdf.h; the hair node's inputs: principled_hair.py), alone
 at the Surface and in Mix/Add Shader trees alike (mixtures.py).
 
 Each becomes (closure type, add_material kwargs) with the inputs where the core's ClosureType
@@ -11,15 +12,18 @@ transmission_roughness (a value; a graph that varies is reported and its socket'
 
 from .material_values import DEFAULT_MATERIAL, clamp, color3, sanitize
 from .nodes import finite_or, node_label
+from .principled_hair import read_principled_hair
 from .shader_graph.node_versions import cycles4_toon
 
 CLOSURE_NODES = {'ShaderNodeBsdfVelvet', 'ShaderNodeBsdfSheen', 'ShaderNodeBsdfTranslucent',
-                 'ShaderNodeBsdfRefraction', 'ShaderNodeBsdfToon'}
+                 'ShaderNodeBsdfRefraction', 'ShaderNodeBsdfToon', 'ShaderNodeBsdfHairPrincipled'}
 
 
 def read_closure_node(reader, mat, node):
     """(closure type, add_material kwargs) of one of CLOSURE_NODES."""
     kind = node.bl_idname
+    if kind == 'ShaderNodeBsdfHairPrincipled':      # its inputs reduced to an absorption
+        return 'principled_hair', read_principled_hair(reader, mat, node)
     d = DEFAULT_MATERIAL
     reader._begin_program(mat)
     color, color_tex = reader._socket_input(mat, node, "Color", d['base_color'],

@@ -174,7 +174,7 @@ def scene_messages(scene):
         if ob.type == 'LIGHT':
             if ob.data is not None and ob.data.type not in export.SUPPORTED_LIGHTS:
                 lights.setdefault(ob.data.type, ob.name)
-        elif ob.type not in export.MESH_TYPES and ob.type not in export.SKIPPED_TYPES:
+        elif ob.type not in export.MESH_TYPES | export.SKIPPED_TYPES | {'CURVES'}:
             unsupported.setdefault(ob.type, ob.name)
     for kind, name in sorted(lights.items()):
         messages.append(('WARNING', f"{kind.title()} lights are not rendered (e.g. '{name}')"))
@@ -381,8 +381,9 @@ class TORRANCE_RENDER_PT_compatibility(TorrancePanel, Panel):
         col = self.layout.column(align=True)
         col.label(text="Not rendered by Torrance:")
         for text in ("Volume objects and varying volume density (homogeneous volumes are), "
-                     "hair, subsurface, thin film, anisotropy",
-                     "Bevel, Point Density, Hair and Volume Info nodes; AOV Output in worlds",
+                     "subsurface, thin film, anisotropy; hair in the viewport",
+                     "Bevel, Point Density, Hair BSDF, Curves Info and Volume Info nodes; "
+                     "AOV Output in worlds",
                      "Motion blur",
                      "Viewport denoising guides (colour only), Blender 5's guide options"):
             col.label(text=text, icon='DOT')

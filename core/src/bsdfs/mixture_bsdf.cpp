@@ -2,6 +2,7 @@
 
 #include "film/denoising_features.h"
 
+#include "torrance/bsdfs/shading_normal.h"
 #include "torrance/scene/scene.h"
 
 #include <stdexcept>
@@ -26,6 +27,23 @@ constexpr bool is = std::is_same_v<std::decay_t<B>, T>;
 template <typename Closure>
 void add_closure(MixtureBsdf& bsdf, const Closure& closure, float weight) {
   bsdf.add(closure, weight, closure.sampling_albedo());
+}
+
+// The strand's direction at a hit in the integrator's shading frame, whose z is the hit's normal
+// checked as the integrator checks it (valid_shading_normal; hair has no normal maps).
+Vec3 strand_tangent(const ShaderGlobals& g) {
+  return Frame(valid_shading_normal(g.true_normal, g.normal, g.incoming)).to_local(g.tangent);
+}
+
+PrincipledHairParams principled_hair_params(const Material& m) {
+  PrincipledHairParams p;
+  p.sigma = m.base_color;
+  p.roughness = m.roughness;
+  p.radial_roughness = m.transmission_roughness;
+  p.coat = m.coat_weight;
+  p.ior = m.ior;
+  p.offset = m.hair_offset;
+  return p;
 }
 
 }  // namespace
@@ -132,7 +150,8 @@ BsdfSample MixtureBsdf::sample_mixture(const Vec3& wo, float u_lobe, const Vec2&
 bool MixtureBsdf::transmits() const {
   for (int k = 0; k < count_; ++k) {
     if (const auto* m = std::get_if<MaterialBsdf>(&components_[k]); m && m->transmits()) return true;
-    if (std::holds_alternative<TranslucentBsdf>(components_[k]) || std::holds_alternative<RefractionBsdf>(components_[k]))
+    if (std::holds_alternative<TranslucentBsdf>(components_[k]) || std::holds_alternative<RefractionBsdf>(components_[k]) ||
+        std::holds_alternative<PrincipledHairBsdf>(components_[k]))
       return true;
   }
   return false;
@@ -192,6 +211,9 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
         add_closure(bsdf, ToonBsdf(m.base_color, m.roughness, m.transmission_roughness, glossy, cycles4), w.weight[k]);
         break;
       }
+      case ClosureType::PrincipledHair:
+        add_closure(bsdf, PrincipledHairBsdf(principled_hair_params(m), strand_tangent(globals)), w.weight[k]);
+        break;
       case ClosureType::Emission:
       case ClosureType::Transparent:
       case ClosureType::Holdout: break;

@@ -17,8 +17,13 @@ bool Scene::surface_hit(const void* rayhit, const Vec3& dir, SurfaceHit& hit) co
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   const uint32_t owner = rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID ? geometry_owner_[rh.hit.geomID]
                                                                       : geometry_owner_[rh.hit.instID[0]];
-  triangle_hit(owner, rh.hit.primID, rh.hit.u, rh.hit.v, dir, hit);
   hit.t = rh.ray.tfar;
+  if (owner != kNoOwner && (owner & kCurvesBit) && !(owner & kInstanceBit)) {
+    curve_hit(owner & ~kCurvesBit, rh.hit.primID, rh.hit.u, Vec3(rh.ray.org_x, rh.ray.org_y, rh.ray.org_z), dir,
+              hit.t, hit);
+    return true;
+  }
+  triangle_hit(owner, rh.hit.primID, rh.hit.u, rh.hit.v, dir, hit);
   return true;
 }
 
@@ -135,6 +140,9 @@ void Scene::intersect_packet(const Ray* rays, int n, SurfaceHit* hits, bool* fou
   ray_queries::intersect_coherent(scene_of(scene_), valid, packet);
   for (int i = 0; i < n; ++i) {
     RTCRayHit rh;  // lane i as a single ray's answer
+    rh.ray.org_x = packet.ray.org_x[i];
+    rh.ray.org_y = packet.ray.org_y[i];
+    rh.ray.org_z = packet.ray.org_z[i];
     rh.ray.tfar = packet.ray.tfar[i];
     rh.hit.u = packet.hit.u[i];
     rh.hit.v = packet.hit.v[i];

@@ -11,6 +11,7 @@ from ..materials import MaterialTable
 from ..shader_aovs import report_world_aovs, view_layer_aovs
 from ..texture_table import TextureTable
 from .camera import export_camera
+from . import hair as strands
 from .holdouts import holdout_names, instance_holdout
 from .instances import InstanceExport, Source
 from .cryptomatte import CryptomatteIds
@@ -39,6 +40,7 @@ class ExportStats:
     def __init__(self):
         self.objects = 0         # instances rendered (an object counts as one)
         self.triangles = 0       # world-space triangles (tc.Scene.num_triangles)
+        self.strands = 0         # hair strands (export/hair.py)
         self.lights = 0
         self.materials = 0
         self.textures = 0
@@ -48,7 +50,8 @@ class ExportStats:
         self.cryptomatte = {}    # the render result's Cryptomatte metadata (cryptomatte.py)
 
     def __str__(self):
-        return (f"{self.objects} objects, {self.triangles} triangles, {self.lights} lights, "
+        return (f"{self.objects} objects, {self.triangles} triangles, {self.strands} strands, "
+                f"{self.lights} lights, "
                 f"{self.materials} materials, {self.textures} textures, "
                 f"exported in {self.seconds:.2f} s (depsgraph pass {self.capture_seconds:.3f} s)")
 
@@ -62,12 +65,14 @@ def _is_visible(obj):
 
 
 def instance_role(inst):
-    """What an export does with a depsgraph instance: 'LIGHT' or 'MESH' (export it),
+    """What an export does with a depsgraph instance: 'LIGHT', 'MESH' or 'HAIR' (export it),
     'UNSUPPORTED' (report its type) or None (skip it silently)."""
     obj = inst.object
     kind = obj.type
     if kind == 'LIGHT':
         return 'LIGHT'
+    if kind == 'CURVES':            # hair strands (Blender 3.3+): export/hair.py
+        return 'HAIR' if _is_visible(obj) and (inst.is_instance or inst.show_self) else None
     if kind not in MESH_TYPES:
         return None if kind in SKIPPED_TYPES else 'UNSUPPORTED'
     if kind != 'MESH':
@@ -160,6 +165,7 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
                 raise Cancelled()
 
     unsupported_types = set()
+    hair = []             # (evaluated object, matrix): particle-hair emitters and Curves objects
     flattened = []        # OBJECTS_AS_INSTANCES off: (object, name, matrix, slot table, UVs)
     as_instances = OBJECTS_AS_INSTANCES
 
@@ -172,6 +178,10 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
             return src
         if role == 'UNSUPPORTED':
             report_unsupported(obj, unsupported_types, reporter)
+        if role == 'HAIR':
+            reporter.warning(f"Torrance does not render instanced hair curves yet (e.g. "
+                             f"'{obj.name}')")
+            return None
         return role
 
     with _keep_gil():
@@ -227,8 +237,12 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
                     light(obj, inst.matrix_world.copy())
                 continue
             poll()
+            if obj.type == 'MESH' and inst.show_particles and strands.has_particle_hair(obj):
+                hair.append((obj, inst.matrix_world.copy()))
             role = instance_role(inst)
-            if role == 'LIGHT':
+            if role == 'HAIR':
+                hair.append((obj, inst.matrix_world.copy()))
+            elif role == 'LIGHT':
                 light(obj, inst.matrix_world.copy())
             elif role == 'UNSUPPORTED':
                 report_unsupported(obj, unsupported_types, reporter)
@@ -274,6 +288,8 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
             stats.triangles += triangles
     if motion is not None:
         motion.export(tc_scene, _camera_object(depsgraph, engine))
+    stats.strands = strands.export_hair(tc_scene, hair, materials, reporter,
+                                        strands.curve_shape(depsgraph.scene))
     materials.send_pass_indices()
     stats.cryptomatte = crypto.send(materials)
     stats.materials = len(materials.indices) + (1 if materials._default is not None else 0)

@@ -187,17 +187,23 @@ CLOSURES = {
     'ShaderNodeBsdfToon': "partly: Color, Size (any graph), Smooth (a value; a graph that varies "
                           "is reported), Normal; Diffuse and Glossy, their sampled directions "
                           "weighted as Cycles 3.4's or 4.x's; alone and in Mix/Add Shader trees",
+    'ShaderNodeBsdfHairPrincipled': "partly: Chiang's model as Cycles 3.4 (4.x's Chiang; Huang "
+                                    "rendered as Chiang, reported): Direct Coloring, Melanin "
+                                    "Concentration and Absorption Coefficient, Roughness, "
+                                    "Radial Roughness, Coat, IOR, Offset (values; a graph that "
+                                    "varies and Random Color / Random Roughness are reported); "
+                                    "alone and in Mix/Add Shader trees",
     'ShaderNodeEmission': "rendered: Color, Strength (in a Volume socket: emission per metre)",
     'ShaderNodeHoldout': "rendered: alone and anywhere in Mix/Add Shader trees; camera rays "
                          "(through transparency) lose its weight of alpha and colour, as Cycles' "
                          "holdout; black elsewhere",
     'ShaderNodeMixShader': "partly: trees of Principled, Diffuse, Glossy, Glass, Transparent, "
-                           "Holdout, Emission, Velvet / Sheen, Translucent, Refraction and Toon "
-                           "closures, Fac any graph",
+                           "Holdout, Emission, Velvet / Sheen, Translucent, Refraction, Toon and "
+                           "Principled Hair closures, Fac any graph",
     'ShaderNodeAddShader': "partly: trees of Principled, Diffuse, Glossy, Glass, Transparent, "
-                           "Holdout, Emission, Velvet / Sheen, Translucent, Refraction and Toon "
-                           "closures (a Transparent's weight and the others' summing past 1: the "
-                           "others shade only what it lets through)",
+                           "Holdout, Emission, Velvet / Sheen, Translucent, Refraction, Toon and "
+                           "Principled Hair closures (a Transparent's weight and the others' "
+                           "summing past 1: the others shade only what it lets through)",
     # Volume closures (volumes.py): homogeneous media, constant inputs.
     'ShaderNodeVolumeAbsorption': "rendered in a Material Output's or World Output's Volume "
                                   "(alone and in Mix/Add Shader trees): Color, Density, "

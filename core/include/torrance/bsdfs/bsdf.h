@@ -74,6 +74,8 @@ struct Material {
   float anisotropy = 0.0f;
   float anisotropic_rotation = 0.0f;
   Vec3 tangent{0.0f};
+  // The Principled Hair BSDF's Offset (radians: the cuticle scales' tilt; ClosureType::PrincipledHair).
+  float hair_offset = 0.0f;
 };
 
 // The normal a BSDF's diffuse lobes shade with, in its shading frame. The frame's z is the

@@ -59,6 +59,10 @@ enum class ClosureType {
   // Holdout: no light of its own; for camera rays (through transparency) its weight times the
   // path's throughput is taken off the pixel's alpha (Cycles' holdout closure, Scene::holdout).
   Holdout,
+  // Principled Hair BSDF (hair/principled_hair_bsdf.h): base_color = the absorption coefficient
+  // (the add-on reduces the node's parametrisation to it), roughness = Roughness,
+  // transmission_roughness = Radial Roughness, coat_weight = Coat, ior = IOR, hair_offset = Offset.
+  PrincipledHair,
 };
 
 struct MixtureComponent {

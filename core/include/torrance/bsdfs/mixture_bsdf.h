@@ -16,6 +16,7 @@
 
 #include "torrance/bsdfs/diffuse_bsdf.h"
 #include "torrance/bsdfs/glossy_bsdf.h"
+#include "torrance/hair/principled_hair_bsdf.h"
 #include "torrance/bsdfs/material_bsdf.h"
 #include "torrance/bsdfs/mixture.h"
 #include "torrance/bsdfs/refraction_bsdf.h"
@@ -37,7 +38,7 @@ class Scene;
 class MixtureBsdf {
  public:
   using Component = std::variant<std::monostate, MaterialBsdf, DiffuseBsdf, GlossyBsdf, VelvetBsdf, SheenBsdf,
-                                 TranslucentBsdf, RefractionBsdf, ToonBsdf>;
+                                 TranslucentBsdf, RefractionBsdf, ToonBsdf, PrincipledHairBsdf>;
 
   MixtureBsdf() = default;
   explicit MixtureBsdf(const MaterialBsdf& single) { add(single, 1.0f, 1.0f); }
@@ -65,7 +66,7 @@ class MixtureBsdf {
   BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing = false) const {
     return sample_mixture(wo, u_lobe, u, backfacing);
   }
-  bool transmits() const;  // some closure is glass, Translucent or Refraction
+  bool transmits() const;  // some closure is glass, Translucent, Refraction or Principled Hair
   // Its anisotropic closures' tangents into the shading frame (GlossyBsdf::orient); before at().
   void orient(const Frame& frame);
 

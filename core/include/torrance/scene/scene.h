@@ -83,7 +83,15 @@ struct SurfaceHit {
   // The gradients (1/m, in the triangle's plane) of corner_weights.y and .z (with attributes).
   Vec3 weight_gradients[2] = {Vec3(0.0f), Vec3(0.0f)};
   Vec3 corners[3] = {Vec3(0.0f), Vec3(0.0f), Vec3(0.0f)};  // the triangle's, world space
+  // A hair strand's hit (Scene::add_curves): `tangent` is the strand's direction (Cycles' dPdu),
+  // the normals are Cycles' (a round curve's: from its centre line out through the hit; a
+  // ribbon's: geometric towards the viewer, shading rounded across the strand).
+  bool on_curve = false;
 };
+
+// How hair strands are traced (Blender's Render > Curves > Shape, Cycles 3.4): Round is Cycles'
+// "3D Curves" (a tube), Ribbon its "Rounded Ribbons" (flat, facing the ray, normals rounded).
+enum class CurveShape { Round, Ribbon };
 
 // Shader globals that know only a UV (what a mesh light's sample or a test has).
 inline ShaderGlobals uv_globals(const Vec2& uv, float footprint = 0.0f) {
@@ -313,6 +321,17 @@ class Scene final : public ShaderTracer {
     return material < material_pass_indices_.size() ? material_pass_indices_[material] : 0.0f;
   }
 
+  // Hair strands (hair/curve_set.h): num_curves curves through keys (num_keys xyz) of radii
+  // (num_keys, >= 0), curve c having keys curve_first[c] .. curve_first[c + 1] - 1 (num_curves + 1
+  // ascending offsets from 0 to num_keys), traced as Cycles 3.4's Catmull-Rom curves of `shape`;
+  // materials: nullptr or one material per curve. A curve of fewer than 2 keys is skipped;
+  // zero-length segments and zero radii are tolerated. Non-finite keys or radii, negative radii
+  // or bad offsets: std::invalid_argument. Returns the curve set's id.
+  uint32_t add_curves(const float* keys, const float* radii, size_t num_keys, const int64_t* curve_first,
+                      size_t num_curves, const int64_t* materials, CurveShape shape);
+  size_t num_curve_segments() const;
+  struct CurveSet;  // a curve set's storage (core/src/hair/curve_set.h), for its Embree filter
+
   // Instancing (a two-level BVH): a prototype is a mesh in object space, built once into its own
   // BVH, whose per-triangle `slots` (>= 0) index a material table given per instance, like
   // Blender's material slots (a slot past the table's end uses its last entry, as Cycles).
@@ -423,6 +442,9 @@ class Scene final : public ShaderTracer {
   struct Binding;
   struct Instance;
   void check_device(const char* during) const;
+  // The hit on segment prim of curve set `set` at Embree's u, t along the ray (origin, dir).
+  void curve_hit(uint32_t set, uint32_t prim, float u, const Vec3& origin, const Vec3& dir, float t,
+                 SurfaceHit& hit) const;
   // The hit described by Embree's answer `rayhit` (an RTCRayHit) to a ray along dir; false: a miss.
   bool surface_hit(const void* rayhit, const Vec3& dir, SurfaceHit& hit) const;
   // The hit at Embree's barycentrics (u, v) of triangle prim of owner (a mesh index, or an instance
@@ -458,6 +480,7 @@ class Scene final : public ShaderTracer {
   std::vector<std::shared_ptr<const Texture>> textures_;
   std::vector<ShaderProgram> programs_;
   std::vector<std::unique_ptr<Mesh>> meshes_;  // world-space meshes, in the order added
+  std::vector<std::unique_ptr<CurveSet>> curve_sets_;  // hair strands, in the order added
   // Instances' constant attributes: instance i's layer a at i * ids.size() + a (the vector may
   // end before the last instances: those have none).
   std::vector<Vec3> instance_constants_;

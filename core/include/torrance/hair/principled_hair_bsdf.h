@@ -1,0 +1,68 @@
+// The Principled Hair BSDF (Chiang, Bitterli, Tappan and Burley 2016), as Cycles 3.4 renders it
+// (closure/bsdf_hair_principled.h; the same model in Cycles 4.x as its "Chiang" variant): a
+// dielectric cylinder with absorbing interior, its light leaving as R (reflection), TT
+// (transmission), TRT and a residual TRRT+ lobe, each a longitudinal term M_p (a von Mises-Fisher
+// lobe about the mirror direction, tilted by the cuticle scales) times an azimuthal one N_p (a
+// trimmed logistic about the refracted direction) times an attenuation A_p (Fresnel and the
+// absorption along the path inside):
+//
+//   eval(wo, wi) = sum_p A_p M_p N_p    (includes the cosine, bsdf.h),
+//   sample: the lobe p by the shares |A_p| / sum_q |A_q| (|.|: the luminance), then theta by
+//           M_p and phi by N_p (Cycles' formulas), theta tilted by the lobe's scale angle;
+//   pdf(wo, wi)  = the density of those samples: sum_p share_p M_p N_p cos(theta'_p) / cos(theta_i),
+//           theta'_p = theta_i untilted, M_p without Cycles' approximations of the Bessel
+//           function I0. (Cycles' pdf is eval's sum: without the ratio, with the approximate
+//           M_p, so its samples are weighted a little off their density; eval here is Cycles'.)
+//
+// The strand's frame (Cycles' setup): X along the strand, Y = X x wo, Z = X x Y, and h = the
+// offset of the hit across the strand seen from wo (-1: grazing one edge, 0: the centre, 1: the
+// other) = -N.Y with N the hit's normal (Cycles' round curves: Ng . (X x Z) with Ng = N; its
+// ribbons: -v). Directions in the shading frame as everywhere (z = N, bsdf.h); `tangent` is the
+// strand's direction in that frame. Nothing is one-sided: light leaves through both sides.
+#pragma once
+
+#include "torrance/bsdfs/bsdf.h"
+
+namespace torrance {
+
+// The node's inputs, reduced as Cycles' svm_node_closure_bsdf reduces them.
+struct PrincipledHairParams {
+  Vec3 sigma{0.0f};              // absorption coefficient (per unit of the strand's diameter)
+  float roughness = 0.3f;        // longitudinal (Roughness)
+  float radial_roughness = 0.3f; // azimuthal (Radial Roughness)
+  float coat = 0.0f;             // Coat: R's roughness is (1 - coat) x the others'
+  float ior = 1.55f;
+  float offset = 0.0349066f;     // the cuticle scales' tilt (radians; Blender's default 2 degrees)
+};
+
+class PrincipledHairBsdf {
+ public:
+  PrincipledHairBsdf(const PrincipledHairParams& params, const Vec3& tangent);
+
+  LobeEval eval_lobes(const Vec3& wo, const Vec3& wi) const;
+  Vec3 eval(const Vec3& wo, const Vec3& wi) const { return eval_lobes(wo, wi).total(); }
+  float pdf(const Vec3& wo, const Vec3& wi) const;
+  BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const;
+  // What a mixture samples it by: Cycles' estimate of its albedo (bsdf_principled_hair_albedo).
+  float sampling_albedo() const;
+
+  // The Melanin Concentration parametrisation: sigma of eumelanin and pheomelanin amounts.
+  static Vec3 sigma_from_concentration(float eumelanin, float pheomelanin);
+  // The Direct Coloring parametrisation: the sigma whose multiple scattering looks `color`.
+  static Vec3 sigma_from_reflectance(const Vec3& color, float radial_roughness);
+
+ private:
+  struct Strand;  // wo in the strand's frame and what follows from it
+  Strand at(const Vec3& wo) const;
+  Vec3 eval_at(const Strand& s, const Vec3& wi, float& pdf) const;
+
+  Vec3 sigma_;
+  float v_ = 0.0f;   // the longitudinal variance (TT: v / 4, TRT and beyond: 4 v)
+  float s_ = 0.0f;   // the azimuthal logistic's scale
+  float v_r_ = 0.0f; // R's variance (with the coat)
+  float alpha_ = 0.0f;
+  float eta_ = 1.55f;
+  Vec3 tangent_;
+};
+
+}  // namespace torrance

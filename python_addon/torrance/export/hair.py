@@ -1,0 +1,145 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Hair strands -> tc.Scene.add_curves, as Cycles 3.4 exports them (blender/curves.cpp):
+
+* particle hair: each particle system of type Hair drawn as Path whose modifier renders, its
+  strands at 2^render_step + 1 keys (plus the spiral kink's extra steps), the children only when
+  it has some (else the parents), through ParticleSystem.co_hair (world space). The radius along a
+  strand follows Hair Shape: root and tip radius x radius scale / 2, blended by the arc length
+  fraction t as (1 - t)^(1 + shape) (shape < 0) or (1 - t)^(1 / (1 - shape)) (shape > 0), 0 at the
+  tip with Close Tip; the material is the settings' Material slot;
+* Curves objects (Blender 3.3+): their points' positions and `radius` attribute (0.005 without
+  one), curve offsets and `material_index` (curve domain) read with foreach_get.
+
+Radii scale with the object (by the cube root of its matrix's determinant, as Cycles applies a
+transform to hair). The shape is the scene's Render > Curves > Shape (Cycles' setting:
+Rounded Ribbons or 3D Curves). co_hair is the Python API's only way to child strands: one call
+per key (about a microsecond each), its results gathered into one numpy array.
+"""
+
+import numpy as np
+
+from ..matrices import inverse_transpose, times_transpose
+
+SHAPES = {'RIBBONS': 'RIBBON', 'THICK': 'ROUND'}
+CURVES_DEFAULT_RADIUS = 0.005
+
+
+def curve_shape(scene):
+    """'RIBBON' or 'ROUND': the scene's curve shape (Cycles' setting; its default RIBBONS)."""
+    settings = getattr(scene, "cycles_curves", None)
+    return SHAPES.get(getattr(settings, "shape", 'RIBBONS'), 'RIBBON')
+
+
+def hair_systems(obj):
+    """The particle systems of obj that Cycles renders as hair strands."""
+    for mod in getattr(obj, "modifiers", ()):
+        if mod.type == 'PARTICLE_SYSTEM' and mod.show_render:
+            psys = mod.particle_system
+            part = psys.settings
+            if part.type == 'HAIR' and part.render_type == 'PATH':
+                yield psys
+
+
+def has_particle_hair(obj):
+    return obj.type == 'MESH' and next(hair_systems(obj), None) is not None
+
+
+def _radius_scale(matrix):
+    _inverse_t, det = inverse_transpose(np.array(matrix, dtype=np.float64)[:3, :3])
+    return abs(det) ** (1.0 / 3.0) if np.isfinite(det) else 1.0
+
+
+def strand_radii(keys, part):
+    """Radii (curves, steps) of strands keys (curves, steps, 3) by the settings' Hair Shape."""
+    seg = np.linalg.norm(np.diff(keys, axis=1), axis=2)
+    arc = np.concatenate([np.zeros((len(keys), 1)), np.cumsum(seg, axis=1)], axis=1)
+    length = arc[:, -1:]
+    t = np.where(length > 0.0, arc / np.where(length > 0.0, length, 1.0), 0.0)
+    r = 1.0 - t
+    if part.shape < 0.0:
+        r = r ** (1.0 + part.shape)
+    elif part.shape > 0.0:
+        r = r ** (1.0 / (1.0 - part.shape))
+    half = part.radius_scale * 0.5
+    root, tip = half * part.root_radius, half * part.tip_radius
+    radii = r * (root - tip) + tip
+    if part.use_close_tip:
+        radii[:, -1] = 0.0
+    return radii
+
+
+def particle_strands(obj, psys):
+    """(keys (n, 3) world space, radii (n,) before the object's scale, offsets) of one system."""
+    part = psys.settings
+    parents, children = len(psys.particles), len(psys.child_particles)
+    first = parents if (part.child_type != 'NONE' and children) else 0
+    count = parents + children - first
+    steps = (1 << part.render_step) + 1
+    if part.kink == 'SPIRAL':
+        steps += part.kink_extra_steps
+    if count <= 0:
+        return None
+    co = psys.co_hair
+    flat = [c for p in range(first, first + count) for s in range(steps)
+            for c in co(obj, particle_no=p, step=s)]
+    keys = np.array(flat, dtype=np.float32).reshape(count, steps, 3)
+    radii = strand_radii(keys.astype(np.float64), part).astype(np.float32)
+    offsets = np.arange(count + 1, dtype=np.int64) * steps
+    return keys.reshape(-1, 3), radii.reshape(-1), offsets
+
+
+def curves_strands(obj, matrix):
+    """(keys world space, radii, offsets, material slot per curve) of a Curves object."""
+    data = obj.data
+    n = len(data.points)
+    num_curves = len(data.curves)
+    if n == 0 or num_curves == 0:
+        return None
+    local = np.empty(3 * n, dtype=np.float32)
+    data.points.foreach_get("position", local)
+    radii = np.full(n, CURVES_DEFAULT_RADIUS, dtype=np.float32)
+    attrs = data.attributes
+    radius = attrs.get("radius")
+    if radius is not None and radius.domain == 'POINT' and radius.data_type == 'FLOAT':
+        radius.data.foreach_get("value", radii)
+    offsets = np.empty(num_curves + 1, dtype=np.int32)
+    data.curve_offset_data.foreach_get("value", offsets)
+    slots = np.zeros(num_curves, dtype=np.int32)
+    if "material_index" in attrs and attrs["material_index"].domain == 'CURVE':
+        attrs["material_index"].data.foreach_get("value", slots)
+    m = np.array(matrix, dtype=np.float64)
+    keys = times_transpose(local.reshape(-1, 3).astype(np.float64), m[:3, :3]) + m[:3, 3]
+    return keys.astype(np.float32), radii, offsets.astype(np.int64), slots
+
+
+def export_hair(tc_scene, hair, materials, reporter, shape):
+    """Adds the strands of `hair`: (evaluated object, its world matrix) pairs, particle-hair
+    emitters and Curves objects. Returns the number of strands added."""
+    strands = 0
+    for obj, matrix in hair:
+        slot_to_material = materials.slot_indices([s.material for s in obj.material_slots])
+        scale = _radius_scale(matrix)
+        if obj.type == 'CURVES':
+            got = curves_strands(obj, matrix)
+            if got is None:
+                continue
+            keys, radii, offsets, slots = got
+            per_curve = slot_to_material[np.clip(slots, 0, len(slot_to_material) - 1)]
+            tc_scene.add_curves(keys, radii * scale, offsets, materials=per_curve.astype(np.int64),
+                                shape=shape)
+            strands += len(offsets) - 1
+            continue
+        for psys in hair_systems(obj):
+            got = particle_strands(obj, psys)
+            if got is None:
+                continue
+            keys, radii, offsets = got
+            slot = min(max(psys.settings.material - 1, 0), len(slot_to_material) - 1)
+            per_curve = np.full(len(offsets) - 1, slot_to_material[slot], dtype=np.int64)
+            if not np.isfinite(keys).all():
+                reporter.warning(f"Object '{obj.name}': hair '{psys.name}' has non-finite keys; "
+                                 f"not rendered")
+                continue
+            tc_scene.add_curves(keys, radii * scale, offsets, materials=per_curve, shape=shape)
+            strands += len(offsets) - 1
+    return strands
