@@ -1,0 +1,125 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Hair renders as Cycles 3.4 renders it (issue 38): a patch of grass-like strands (particle hair
+on a plane, 300 parents with 6 interpolated children each: 1800 strands, Hair Shape root 1,
+tip 0.2, radius scale 0.01) shaded by the Principled Hair BSDF (Melanin Concentration 0.45,
+Redness 0.6) on a grey floor, under a low sun and a bluish world; 8 bounces; Cycles' 3D Curves
+(Render > Curves > Shape). Its default Rounded Ribbons is not compared: Torrance's ribbons
+round their normals differently (a Diffuse BSDF on them: block mean 0.022 against Cycles' own
+0.006; the Principled Hair: ratio 0.968, block mean 0.076), docs/scene_support.md.
+
+The core: hair/scene_curves.cpp (Embree Catmull-Rom curves), hair/principled_hair_bsdf.h; the
+add-on: export/hair.py (co_hair, Hair Shape radii), principled_hair.py (the melanin -> sigma).
+Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
+seeds 2 and 3. The faults (each must fail): the melanin read as 0.2, the strands twice as thick,
+no hair at all, and the strands ending in a full-width tip (Hair Shape's tip radius ignored).
+
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \\
+         --python blender_tests/test_hair_agreement.py
+"""
+
+import math
+
+from torrance_tools import testing
+from torrance_tools.seed_noise import agree_within_seed_noise
+from torrance_tools.shader_graphs import Graph
+
+W, H = 96, 72
+BOUNCES = 8
+SAMPLES = 64
+
+
+def hair_material():
+    g = Graph("Hair", surface="ShaderNodeBsdfHairPrincipled")
+    g.shader.parametrization = 'MELANIN'
+    g.shader.inputs["Melanin"].default_value = 0.45
+    g.shader.inputs["Melanin Redness"].default_value = 0.6
+    g.shader.inputs["Roughness"].default_value = 0.35
+    g.shader.inputs["Radial Roughness"].default_value = 0.4
+    return g.mat
+
+
+def grass_patch(scene):
+    import bpy
+    soil = testing.principled("Soil", (0.3, 0.25, 0.2))
+    patch = testing.plane(scene, "Patch", 1.6, material=soil)
+    patch.data.materials.append(hair_material())
+    patch.modifiers.new("Grass", 'PARTICLE_SYSTEM')
+    part = patch.particle_systems[0].settings
+    part.type = 'HAIR'
+    part.count = 300
+    part.hair_length = 0.35
+    part.use_advanced_hair = True
+    part.factor_random = 0.25              # strands lean every which way
+    part.render_type = 'PATH'
+    part.render_step = 3
+    part.display_step = 3
+    part.child_type = 'INTERPOLATED'
+    part.child_nbr = 6
+    part.rendered_child_count = 6
+    part.root_radius = 1.0
+    part.tip_radius = 0.2
+    part.radius_scale = 0.01
+    part.material = 2                      # the patch's second slot: the hair material
+    bpy.context.view_layer.update()
+    return patch
+
+
+def build(scene):
+    testing.setup_render(scene, width=W, height=H, max_bounces=BOUNCES)
+    testing.add_camera(scene, location=(0.0, -2.6, 1.3), target=(0.0, 0.0, 0.15), lens=40.0)
+    floor = testing.principled("Floor", (0.5, 0.5, 0.5))
+    testing.plane(scene, "Floor", 8.0, z=-0.01, material=floor)
+    grass_patch(scene)
+    testing.add_sun(scene, strength=3.0, rotation=(math.radians(60), 0, math.radians(40)),
+                    angle=math.radians(5.0))
+    testing.set_world(scene, (0.25, 0.3, 0.4))
+
+
+def with_hair_args(change):
+    """A make_fault for ShaderTreeReader._closure: the Principled Hair's args changed."""
+    def make_fault(original):
+        def closure(self, node):
+            out = original(self, node)
+            if out is None or out[0] != 'principled_hair':
+                return out
+            return out[0], change(out[1])
+        return closure
+    return make_fault
+
+
+def main():
+    testing.addon()
+    from torrance import principled_hair
+    from torrance.export import hair
+    from torrance.mixtures import ShaderTreeReader
+    scene = testing.clear_scene()
+    build(scene)
+    light_melanin = principled_hair.sigma_from_melanin(0.2, 0.6, (1.0, 1.0, 1.0), 0.4)
+
+    def no_hair(original):
+        return lambda tc_scene, hair_list, *args: 0
+
+    def thicker(original):
+        return lambda keys, part: 2.0 * original(keys, part)
+
+    def full_tip(original):
+        def radii(keys, part):
+            r = original(keys, part)
+            return r * 0.0 + r[:, :1]          # every key as thick as the root
+        return radii
+
+    faults = [
+        ("melanin 0.2 instead of 0.45", ShaderTreeReader, '_closure',
+         with_hair_args(lambda a: dict(a, base_color=light_melanin))),
+        ("strands twice as thick", hair, 'strand_radii', thicker),
+        ("tip radius ignored", hair, 'strand_radii', full_tip),
+        ("no hair", hair, 'export_hair', no_hair),
+    ]
+    scene.cycles_curves.shape = 'THICK'
+    agree_within_seed_noise(scene, testing.tempdir(), SAMPLES, BOUNCES,
+                            "Principled Hair grass (3D Curves)", faults=faults,
+                            tolerance=1.5, ratio_sigmas=3.0)
+    testing.check(not testing.last_messages(), f"unexpected reports: {testing.last_messages()}")
+
+
+testing.run(main)
