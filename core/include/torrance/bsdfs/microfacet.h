@@ -57,14 +57,19 @@ inline float smith_G2_correlated_given(float lambda_o, float cos_i, float alpha)
 }
 
 // Samples a microfacet normal from the distribution of normals visible from wo (wo.z > 0),
-// using the spherical-cap construction (Dupuy & Benyoub 2023). Density of h: G1(wo) max(0, wo.h) D(h) / wo.z.
-inline Vec3 sample_visible_normal(const Vec3& wo, float alpha, const Vec2& u) {
-  const Vec3 wo_std = glm::normalize(Vec3(alpha * wo.x, alpha * wo.y, wo.z));
+// using the spherical-cap construction (Dupuy & Benyoub 2023), alpha_x along the frame's x and
+// alpha_y along its y (anisotropic GGX below; sample_visible_normal: the isotropic one). Density
+// of h: G1(wo) max(0, wo.h) D(h) / wo.z.
+inline Vec3 sample_visible_normal_aniso(const Vec3& wo, float ax, float ay, const Vec2& u) {
+  const Vec3 wo_std = glm::normalize(Vec3(ax * wo.x, ay * wo.y, wo.z));
   const float phi = kTwoPi * u.x;
   const float z = (1.0f - u.y) * (1.0f + wo_std.z) - wo_std.z;
   const float sin_theta = safe_sqrt(1.0f - z * z);
   const Vec3 h_std = Vec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), z) + wo_std;
-  return glm::normalize(Vec3(alpha * h_std.x, alpha * h_std.y, std::max(h_std.z, 1e-9f)));
+  return glm::normalize(Vec3(ax * h_std.x, ay * h_std.y, std::max(h_std.z, 1e-9f)));
+}
+inline Vec3 sample_visible_normal(const Vec3& wo, float alpha, const Vec2& u) {
+  return sample_visible_normal_aniso(wo, alpha, alpha, u);
 }
 
 // Solid-angle density of the reflected direction produced by sample_visible_normal.
@@ -94,14 +99,6 @@ inline float smith_G1_aniso(const Vec3& w, float ax, float ay) {
   if (w.z <= 0.0f) return 0.0f;
   const float s = ax * ax * w.x * w.x + ay * ay * w.y * w.y;
   return 2.0f * w.z / (w.z + std::sqrt(s + w.z * w.z));
-}
-inline Vec3 sample_visible_normal_aniso(const Vec3& wo, float ax, float ay, const Vec2& u) {
-  const Vec3 wo_std = glm::normalize(Vec3(ax * wo.x, ay * wo.y, wo.z));
-  const float phi = kTwoPi * u.x;
-  const float z = (1.0f - u.y) * (1.0f + wo_std.z) - wo_std.z;
-  const float sin_theta = safe_sqrt(1.0f - z * z);
-  const Vec3 h_std = Vec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), z) + wo_std;
-  return glm::normalize(Vec3(ax * h_std.x, ay * h_std.y, std::max(h_std.z, 1e-9f)));
 }
 
 // The microfacet normal h through which wo refracts into wi (etap = IOR of wi's side / IOR of wo's
