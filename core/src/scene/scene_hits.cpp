@@ -19,6 +19,7 @@ bool Scene::surface_hit(const void* rayhit, const Vec3& dir, SurfaceHit& hit) co
                                                                       : geometry_owner_[rh.hit.instID[0]];
   hit.t = rh.ray.tfar;
   if (owner != kNoOwner && (owner & kCurvesBit) && !(owner & kInstanceBit)) {
+    hit.uv.y = rh.hit.v;  // Embree's v across the strand, which a ribbon's normal is rounded by
     curve_hit(owner & ~kCurvesBit, rh.hit.primID, rh.hit.u, Vec3(rh.ray.org_x, rh.ray.org_y, rh.ray.org_z), dir,
               hit.t, hit);
     return true;
