@@ -61,7 +61,7 @@ std::vector<std::string> Cryptomatte::pass_names() const {
   for (int layer = 0; layer < kLayers; ++layer) {
     if (!has(Layer(layer))) continue;
     for (int p = 0; p < depth_; ++p) {
-      char suffix[8];
+      char suffix[12];  // any int
       std::snprintf(suffix, sizeof suffix, "%02d", p);
       names.push_back(std::string(kLayerNames[layer]) + suffix);
     }
