@@ -2,7 +2,6 @@
 
 #include "film/denoising_features.h"
 
-#include "torrance/bsdfs/shading_normal.h"
 #include "torrance/scene/scene.h"
 
 #include <stdexcept>
@@ -27,12 +26,6 @@ constexpr bool is = std::is_same_v<std::decay_t<B>, T>;
 template <typename Closure>
 void add_closure(MixtureBsdf& bsdf, const Closure& closure, float weight) {
   bsdf.add(closure, weight, closure.sampling_albedo());
-}
-
-// The strand's direction at a hit in the integrator's shading frame, whose z is the hit's normal
-// checked as the integrator checks it (valid_shading_normal; hair has no normal maps).
-Vec3 strand_tangent(const ShaderGlobals& g) {
-  return Frame(valid_shading_normal(g.true_normal, g.normal, g.incoming)).to_local(g.tangent);
 }
 
 PrincipledHairParams principled_hair_params(const Material& m) {
@@ -158,9 +151,11 @@ bool MixtureBsdf::transmits() const {
 }
 
 void MixtureBsdf::orient(const Frame& frame) {
-  for (int k = 0; k < count_; ++k)
-    if (GlossyBsdf* glossy = std::get_if<GlossyBsdf>(&components_[size_t(k)]); glossy && glossy->anisotropic())
-      glossy->orient(frame);
+  for (int k = 0; k < count_; ++k) {
+    Component& c = components_[size_t(k)];
+    if (GlossyBsdf* glossy = std::get_if<GlossyBsdf>(&c); glossy && glossy->anisotropic()) glossy->orient(frame);
+    else if (PrincipledHairBsdf* hair = std::get_if<PrincipledHairBsdf>(&c)) hair->orient(frame);
+  }
 }
 
 MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals& globals, bool textured,
@@ -212,7 +207,8 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
         break;
       }
       case ClosureType::PrincipledHair:
-        add_closure(bsdf, PrincipledHairBsdf(principled_hair_params(m), strand_tangent(globals)), w.weight[k]);
+        // The strand's world direction (Cycles' dPdu), into the shading frame by orient().
+        add_closure(bsdf, PrincipledHairBsdf(principled_hair_params(m), globals.tangent), w.weight[k]);
         break;
       case ClosureType::Emission:
       case ClosureType::Transparent:

@@ -147,7 +147,7 @@ struct PrincipledHairBsdf::Strand {
 };
 
 PrincipledHairBsdf::PrincipledHairBsdf(const PrincipledHairParams& p, const Vec3& tangent)
-    : sigma_(glm::max(p.sigma, Vec3(0.0f))), alpha_(p.offset), eta_(p.ior), tangent_(tangent) {
+    : sigma_(glm::max(p.sigma, Vec3(0.0f))), alpha_(p.offset), eta_(p.ior), tangent_(tangent), world_tangent_(tangent) {
   const float v = std::clamp(p.roughness, 0.001f, 1.0f);
   const float s = std::clamp(p.radial_roughness, 0.001f, 1.0f);
   const float v_r = std::clamp((1.0f - clamp01(p.coat)) * v, 0.001f, 1.0f);
@@ -157,6 +157,12 @@ PrincipledHairBsdf::PrincipledHairBsdf(const PrincipledHairParams& p, const Vec3
   if (!(eta_ > 0.0f) || !std::isfinite(eta_)) eta_ = 1.55f;
   const float len = glm::length(tangent_);
   tangent_ = len > 0.0f && std::isfinite(len) ? tangent_ / len : Vec3(1.0f, 0.0f, 0.0f);
+}
+
+void PrincipledHairBsdf::orient(const Frame& frame) {
+  const Vec3 local = frame.to_local(world_tangent_);
+  const float len = glm::length(local);
+  tangent_ = len > 0.0f && std::isfinite(len) ? local / len : Vec3(1.0f, 0.0f, 0.0f);
 }
 
 PrincipledHairBsdf::Strand PrincipledHairBsdf::at(const Vec3& wo) const {

@@ -67,7 +67,7 @@ class MixtureBsdf {
     return sample_mixture(wo, u_lobe, u, backfacing);
   }
   bool transmits() const;  // some closure is glass, Translucent, Refraction or Principled Hair
-  // Its anisotropic closures' tangents into the shading frame (GlossyBsdf::orient); before at().
+  // Its closures' world tangents into the shading frame (anisotropic glossy, hair); before at().
   void orient(const Frame& frame);
 
   // The View interface of MaterialBsdf: a mixture prepares nothing (each closure its own wo);

@@ -37,7 +37,11 @@ struct PrincipledHairParams {
 
 class PrincipledHairBsdf {
  public:
+  // tangent: the strand's direction in the frame eval, pdf and sample work in; or in world space,
+  // with orient() to follow (a mixture's closures are made before the shading frame is known).
   PrincipledHairBsdf(const PrincipledHairParams& params, const Vec3& tangent);
+  // The tangent given at construction, a world direction, into the shading frame.
+  void orient(const Frame& frame);
 
   LobeEval eval_lobes(const Vec3& wo, const Vec3& wi) const;
   Vec3 eval(const Vec3& wo, const Vec3& wi) const { return eval_lobes(wo, wi).total(); }
@@ -62,7 +66,8 @@ class PrincipledHairBsdf {
   float v_r_ = 0.0f; // R's variance (with the coat)
   float alpha_ = 0.0f;
   float eta_ = 1.55f;
-  Vec3 tangent_;
+  Vec3 tangent_;        // unit, in the shading frame
+  Vec3 world_tangent_;  // as given
 };
 
 }  // namespace torrance
