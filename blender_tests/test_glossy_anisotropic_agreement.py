@@ -13,6 +13,9 @@ sphere_agreement.py. Faults (Torrance's side only) must fail the bounds: the ani
 (0), the rotation ignored, the Radial X tangent read as the default, the anisotropy's graph
 ignored (unlinked: the socket's own 0).
 
+Figures (this machine): 3.4 ratio 0.9996, block mean 0.0028 (Cycles' own 0.0026, bound 0.0039);
+bpy 4.2 0.9982 / 0.0031 and 5.3 0.9983 / 0.0031 (Cycles' own 0.0038, bound 0.0057).
+
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \\
          --python blender_tests/test_glossy_anisotropic_agreement.py
      scripts/bpy 4.2 (or 5.3) -b --factory-startup --python-exit-code 1 \\
@@ -45,12 +48,7 @@ SPHERES = (
 def glossy_material(name, anisotropy, roughness, rotation, tangent_axis):
     """A material whose Surface is a lone anisotropic glossy closure (3.4: Anisotropic BSDF;
     4.x: Glossy BSDF, GGX)."""
-    mat = bpy.data.materials.new(name)
-    mat.use_nodes = True
-    nodes, links = mat.node_tree.nodes, mat.node_tree.links
-    for n in list(nodes):
-        if n.type != 'OUTPUT_MATERIAL':
-            nodes.remove(n)
+    mat, nodes, links, output = testing.make.node_material(name)
     kind = "ShaderNodeBsdfAnisotropic" if bpy.app.version < (4, 0, 0) else "ShaderNodeBsdfGlossy"
     node = nodes.new(kind)
     node.name = "Glossy"
@@ -67,7 +65,7 @@ def glossy_material(name, anisotropy, roughness, rotation, tangent_axis):
         tangent.direction_type = 'RADIAL'
         tangent.axis = tangent_axis
         links.new(tangent.outputs["Tangent"], node.inputs["Tangent"])
-    links.new(node.outputs["BSDF"], nodes["Material Output"].inputs["Surface"])
+    links.new(node.outputs["BSDF"], output.inputs["Surface"])
     return mat
 
 
