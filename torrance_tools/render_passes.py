@@ -113,12 +113,14 @@ def render_passes(scene, directory, name):
     return read_layers(path)
 
 
-def cycles_reference_and_noise(scene, directory, samples, bounces):
-    """Cycles' passes at seed 0 (the reference) and seed 1 (its own noise)."""
+def cycles_reference_and_noise(scene, directory, samples, bounces, ref_samples=None):
+    """Cycles' passes at seed 0 (the reference; ref_samples, default `samples`: more keeps its
+    own noise out of the bounds) and seed 1 (its own noise)."""
     from torrance_tools import render_settings
     out = []
     for seed in (0, 1):
-        render_settings.setup_cycles(scene, samples, bounces, seed=seed)
+        render_settings.setup_cycles(scene, (ref_samples or samples) if seed == 0 else samples,
+                                     bounces, seed=seed)
         out.append(render_passes(scene, directory, f"cycles{seed}"))
     return out
 

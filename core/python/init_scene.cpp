@@ -362,6 +362,20 @@ void init_scene(py::module_& m) {
           },
           py::arg("ids"), py::arg("holdout") = true,
           "Whether instances (ids from add_instances) are holdouts, as set_mesh_holdout.")
+      .def("set_mesh_shadow_catcher", &Scene::set_mesh_shadow_catcher, py::arg("mesh"), py::arg("catcher") = true,
+           "Whether a mesh's object (from add_mesh) is a shadow catcher (Blender's Object > Visibility > Shadow "
+           "Catcher): camera paths that meet it split as Cycles' (the Shadow Catcher pass, Combined's matte).")
+      .def(
+          "set_instance_shadow_catchers",
+          [](Scene& s, const py::object& ids, bool catcher) {
+            const IndexArray id = as_indices(ids, "ids");
+            if (id.ndim() != 1) throw py::value_error("ids must have shape (N,), got " + shape_string(id));
+            s.set_instance_shadow_catchers(id.data(), size_t(id.size()), catcher);
+          },
+          py::arg("ids"), py::arg("catcher") = true,
+          "Whether instances (ids from add_instances) are shadow catchers, as set_mesh_shadow_catcher.")
+      .def_property_readonly("has_shadow_catchers", &Scene::has_shadow_catchers,
+                             "Whether some object is a shadow catcher.")
       .def_property_readonly("has_holdouts", &Scene::has_holdouts,
                              "Whether some object is a holdout or some mixture has a Holdout closure.")
       .def(

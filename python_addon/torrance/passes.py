@@ -23,6 +23,11 @@ PassInfo = namedtuple("PassInfo", "core name channels chanid type flag label des
 # Cycles' toggle of the Denoising Data passes, on the view layer's Cycles settings.
 DENOISING_DATA = "cycles.denoising_store_passes"
 NOISY_IMAGE = "Noisy Image"     # Cycles' pass of the image before denoising
+# Cycles' Shadow Catcher pass (View Layer > Passes > Light), on the view layer's Cycles settings:
+# the core's pass of the same name (film/shadow_catcher.h). With it on, Combined is the matte
+# alone (Cycles' use_approximate_shadow_catcher off).
+SHADOW_CATCHER_FLAG = "cycles.use_pass_shadow_catcher"
+SHADOW_CATCHER = "Shadow Catcher"
 
 # Torrance's passes in the order Blender lists them. core: the name in torrance_core.PASSES;
 # name/chanid/type: Blender's (Cycles') name of the pass; flag: the ViewLayer toggle.
@@ -143,6 +148,11 @@ def noisy_image_wanted(scene, view_layer):
     return bool(getattr(crl, "use_denoising", True))
 
 
+def shadow_catcher_wanted(view_layer):
+    """Whether the view layer asks for the Shadow Catcher pass."""
+    return view_layer is not None and flag_on(view_layer, SHADOW_CATCHER_FLAG)
+
+
 def unsupported_enabled(view_layer):
     """The toggles the view layer has on that Torrance does not render."""
     if view_layer is None:
@@ -167,9 +177,10 @@ def world_pass_settings(scene):
 
 def extra_passes(view_layer):
     """(core name, Blender name, channels, chanid, type) of the view layer's shader AOVs (valid
-    ones: a value 'X', a colour 'RGBA'), light groups ('Combined_<name>', RGB) and Cryptomatte
-    passes ('CryptoObject00', ... RGBA), as Cycles names and registers them; the core renders
-    them as 'aov:<name>', 'lightgroup:<name>' and 'cryptomatte:<name>'."""
+    ones: a value 'X', a colour 'RGBA'), light groups ('Combined_<name>', RGB), Cryptomatte
+    passes ('CryptoObject00', ... RGBA) and Shadow Catcher pass (RGB), as Cycles names and
+    registers them; the core renders them as 'aov:<name>', 'lightgroup:<name>',
+    'cryptomatte:<name>' and 'Shadow Catcher'."""
     if view_layer is None:
         return []
     out = []
@@ -181,6 +192,8 @@ def extra_passes(view_layer):
         out.append((f"lightgroup:{group.name}", f"Combined_{group.name}", 3, "RGB", 'COLOR'))
     for name in cryptomatte_passes(view_layer):
         out.append((f"cryptomatte:{name}", name, 4, "rgba", 'COLOR'))   # Cycles: rgba
+    if shadow_catcher_wanted(view_layer):
+        out.append((SHADOW_CATCHER, SHADOW_CATCHER, 3, "RGB", 'COLOR'))
     return out
 
 
@@ -189,8 +202,8 @@ def blender_name(core_name):
     info = BY_CORE_NAME.get(core_name)
     if info is not None:
         return info.name
-    if core_name == NOISY_IMAGE:
-        return NOISY_IMAGE
+    if core_name in (NOISY_IMAGE, SHADOW_CATCHER):
+        return core_name
     kind, _, name = core_name.partition(":")
     return {"aov": name, "lightgroup": f"Combined_{name}", "cryptomatte": name}.get(kind) \
         if name else None

@@ -218,6 +218,7 @@ def _render(engine, depsgraph, reporter):
         width=width, height=height,
         pixel_aspect_x=float(rd.pixel_aspect_x), pixel_aspect_y=float(rd.pixel_aspect_y),
         transparent_background=bool(rd.film_transparent),
+        shadow_catcher_pass=passes.shadow_catcher_wanted(view_layer),
         # The core counts rows from the top, Blender from the bottom.
         window=None if (x0, y0, x1, y1) == (0, 0, width, height)
         else (x0, height - y1, x1, height - y0),

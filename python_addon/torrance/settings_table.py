@@ -289,6 +289,7 @@ CORE_ONLY = {
     "pixel_aspect_x": "Blender's Format panel (scene.render)",
     "pixel_aspect_y": "Blender's Format panel (scene.render)",
     "transparent_background": "Blender's Film > Transparent (scene.render.film_transparent)",
+    "shadow_catcher_pass": "the view layer's Shadow Catcher pass (passes.shadow_catcher_wanted)",
     "mist_start": "Blender's World > Mist Pass (passes.world_pass_settings)",
     "mist_depth": "Blender's World > Mist Pass (passes.world_pass_settings)",
     "mist_falloff": "Blender's World > Mist Pass (passes.world_pass_settings)",

@@ -569,6 +569,9 @@ class TORRANCE_VIEW_LAYER_PT_passes(TorrancePanel, Panel):
             if owner is not None and p.flag not in drawn:
                 col.prop(owner, attr, text=p.label)
                 drawn.add(p.flag)
+        owner, attr = passes.flag_owner(view_layer, passes.SHADOW_CATCHER_FLAG)
+        if owner is not None:
+            col.prop(owner, attr, text="Shadow Catcher")
         layout.label(text="Direct/Indirect are divided by the Color passes, as Cycles'",
                      icon='INFO')
         unsupported = passes.unsupported_enabled(view_layer)
@@ -597,6 +600,26 @@ class TORRANCE_VIEW_LAYER_PT_passes_cryptomatte(TorrancePanel, Panel):
         col.prop(view_layer, "pass_cryptomatte_depth", text="Levels")
 
 
+class TORRANCE_OBJECT_PT_visibility_mask(TorrancePanel, Panel):
+    """Object Properties > Visibility: the Shadow Catcher box below Blender's Holdout (Blender's
+    panel, shown for every engine, lacks it; Cycles' own has both under Mask)."""
+    bl_label = "Mask"
+    bl_context = "object"
+    bl_parent_id = "OBJECT_PT_visibility"
+    bl_options = {'HIDE_HEADER'}
+
+    @classmethod
+    def poll(cls, context):
+        ob = context.object
+        return super().poll(context) and ob is not None and \
+            ob.type in {'MESH', 'CURVE', 'SURFACE', 'FONT', 'META', 'CURVES', 'POINTCLOUD',
+                        'VOLUME'} and hasattr(ob, "is_shadow_catcher")
+
+    def draw(self, context):
+        layout = _split(self.layout)
+        layout.column(heading="Mask").prop(context.object, "is_shadow_catcher")
+
+
 classes = (
     TORRANCE_VIEW_LAYER_PT_passes,
     TORRANCE_VIEW_LAYER_PT_passes_cryptomatte,
@@ -621,6 +644,7 @@ classes = (
     TORRANCE_LIGHT_PT_spot,
     TORRANCE_CAMERA_PT_compatibility,
     TORRANCE_CAMERA_PT_panorama,
+    TORRANCE_OBJECT_PT_visibility_mask,
 )
 
 # Blender's own panels that Torrance uses as they are. Panels written for every engine

@@ -4,6 +4,7 @@
 
 #include "film/cryptomatte_film.h"
 #include "film/film_passes.h"
+#include "film/shadow_catcher.h"
 #include "integrator/path_tracer.h"
 
 #include "torrance/util/sampling.h"
@@ -39,9 +40,11 @@ inline bool sample_is_class_a(uint32_t sample) { return __builtin_popcount(sampl
 class Film {
  public:
   // extra: the scene's AOV and light-group passes (extra_passes.h), summed like the image;
-  // cryptomatte: the scene's Cryptomatte layers (none when null or not enabled).
+  // cryptomatte: the scene's Cryptomatte layers (none when null or not enabled); catcher: the
+  // shadow catcher's outputs (film/shadow_catcher.h; none when null).
   Film(int w, int h, uint32_t passes, bool adaptive, const PixelFilter* splatting = nullptr,
-       std::vector<ExtraPass> extra = {}, const Cryptomatte* cryptomatte = nullptr)
+       std::vector<ExtraPass> extra = {}, const Cryptomatte* cryptomatte = nullptr,
+       const ShadowCatcherOutput* catcher = nullptr)
       : width_(w),
         height_(h),
         passes_(passes),
@@ -50,10 +53,12 @@ class Film {
         margin_(splatting ? splatting->reach() : 0),
         extra_(std::move(extra)) {
     for (const ExtraPass& e : extra_) extra_channels_ += e.channels;
+    if (catcher) catcher_ = *catcher;
+    if (catcher_ && catcher_->catchers) catcher_channels_ = kShadowCatcherChannels;
     if (margin_ > kMaxReach) throw std::logic_error("Film: a splat reaches 2 pixels beyond its own at most");
     if (adaptive && margin_ > 1) throw std::logic_error("Film: adaptive sampling splats 1 pixel far at most");
     accumulated_ = passes | pass_dependencies(passes);
-    stride_ = 4 + extra_channels_;
+    stride_ = 4 + extra_channels_ + catcher_channels_;
     filtered_ = -1;
     for (const PassInfo& p : kPasses) {
       if (!(accumulated_ & p.pass)) continue;
@@ -178,7 +183,7 @@ class Film {
     at(x, y)[stride_ - 1] += 1.0;
   }
 
-  Image resolve_combined() const { return resolve(0, 4); }
+  Image resolve_combined() const { return catcher_channels_ ? resolve_catcher(true) : resolve(0, 4); }
 
   // The samples taken in each pixel of the window.
   Image sample_counts() const {
@@ -198,7 +203,7 @@ class Film {
   std::vector<std::pair<std::string, Image>> resolve_passes() const {
     std::vector<std::pair<std::string, Image>> out;
     std::vector<std::pair<Pass, Image>> resolved;
-    int k = 4 + extra_channels_;
+    int k = 4 + extra_channels_ + catcher_channels_;
     for (const PassInfo& p : kPasses) {
       if (!(accumulated_ & p.pass)) continue;
       resolved.emplace_back(p.pass, (p.pass & kFirstSamplePasses) ? copy(k, p.channels) : resolve(k, p.channels));
@@ -211,6 +216,7 @@ class Film {
       out.emplace_back(e.name, resolve(k, e.channels));
       k += e.channels;
     }
+    if (catcher_ && catcher_->pass) out.emplace_back("Shadow Catcher", resolve_catcher(false));
     if (cryptomatte_) {
       std::vector<size_t> pixels;
       std::vector<double> norms;
@@ -238,7 +244,11 @@ class Film {
     v[2] = c.b;
     v[3] = r.alpha;
     for (int c = 0; c < extra_channels_; ++c) v[size_t(4 + c)] = r.extras[c];
-    size_t k = size_t(4 + extra_channels_);
+    if (catcher_channels_) {
+      const ShadowCatcherValues sc = shadow_catcher_values(r.catcher, c, r.alpha, r.environment);
+      std::copy(sc.begin(), sc.end(), v.begin() + 4 + extra_channels_);
+    }
+    size_t k = size_t(4 + extra_channels_ + catcher_channels_);
     for (const PassInfo& p : kPasses) {
       if (!(accumulated_ & p.pass)) continue;
       if (p.channels == 1) {
@@ -287,6 +297,37 @@ class Film {
           img.rgba[(size_t(y) * width_ + x) * channels + c] = float(at(x, y)[offset + c]);
     return img;
   }
+  // With shadow catchers: Combined (RGBA) as Cycles shows it, or the Shadow Catcher pass (RGB;
+  // 1 without catchers), from the pixel's means.
+  Image resolve_catcher(bool combined) const {
+    const int channels = combined ? 4 : 3;
+    Image img{width_, height_, std::vector<float>(size_t(width_) * height_ * channels, 1.0f), channels};
+    if (!catcher_channels_) return img;
+    for (int y = 0; y < height_; ++y)
+      for (int x = 0; x < width_; ++x) {
+        const double* acc = at(x, y);
+        const double norm = acc[norm_slot_];
+        float* px = &img.rgba[(size_t(y) * width_ + x) * channels];
+        if (!(norm > 0)) {
+          std::fill_n(px, channels, combined ? 0.0f : 1.0f);
+          continue;
+        }
+        std::array<double, 4> mean_combined;
+        std::array<double, kShadowCatcherChannels> mean_catcher;
+        for (int c = 0; c < 4; ++c) mean_combined[size_t(c)] = acc[c] / norm;
+        for (int c = 0; c < kShadowCatcherChannels; ++c)
+          mean_catcher[size_t(c)] = acc[4 + extra_channels_ + c] / norm;
+        if (combined) {
+          const std::array<float, 4> rgba =
+              shadow_catcher_combined(*catcher_, mean_combined.data(), mean_catcher.data());
+          std::copy(rgba.begin(), rgba.end(), px);
+        } else {
+          const Vec3 ratio = shadow_catcher_pass(mean_combined.data(), mean_catcher.data());
+          for (int c = 0; c < 3; ++c) px[c] = ratio[c];
+        }
+      }
+    return img;
+  }
   Image resolve(int offset, int channels) const {
     Image img{width_, height_, std::vector<float>(size_t(width_) * height_ * channels, 0.0f), channels};
     for (int y = 0; y < height_; ++y)
@@ -308,6 +349,8 @@ class Film {
   int margin_;
   std::vector<ExtraPass> extra_;
   int extra_channels_ = 0;
+  std::optional<ShadowCatcherOutput> catcher_;
+  int catcher_channels_ = 0;  // kShadowCatcherChannels with catchers, after the extra channels
   int buffer_width_;
   int values_;     // channels of a sample: Combined RGBA and the passes
   int filtered_;   // the channels before it are summed; from it on, the first-sample passes

@@ -4,6 +4,7 @@
 #include "integrator/caustics.h"
 #include "film/film.h"
 #include "integrator/path_tracer.h"
+#include "integrator/shadow_catcher_split.h"
 #include "scene/ray_queries.h"
 
 #include "torrance/util/limits.h"
@@ -230,15 +231,19 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   const bool media = cscene.media().any();
   if (media) ctx.camera_media = media_at(cscene, camera.position());
   const bool moving = cscene.has_motion() || camera.moves();
+  // Shadow catchers (film/shadow_catcher.h): the light tracer and mirror images, which add light
+  // the split paths would not file as theirs, stay off.
+  const bool catchers = cscene.has_shadow_catchers();
+  ctx.split_at_catchers = catchers;
   std::optional<MirrorImages> mirror_images;
-  if (settings.mirror_images && !alpha && !media && !moving) {
+  if (settings.mirror_images && !alpha && !media && !moving && !catchers) {
     mirror_images.emplace(cscene, ctx.bsdfs);
     if (!mirror_images->empty()) ctx.mirror_images = &*mirror_images;
   }
   // Caustics by light tracing (caustics.h), where the scene has them (mirror images keep their
   // reflectors).
   const std::optional<CausticPartition> caustics =
-      media || moving ? std::nullopt : CausticPartition::make(cscene, settings, alpha, ctx.mirror_images);
+      media || moving || catchers ? std::nullopt : CausticPartition::make(cscene, settings, alpha, ctx.mirror_images);
   if (caustics) ctx.caustics = &*caustics;
   std::optional<GuidingField> guide;
   RenderResult result;
@@ -274,8 +279,11 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   };
   const bool splatting =
       settings.filter_splatting && settings.filter_width >= 1.0f && filter.reach() <= (adaptive ? 1 : 2);
+  const ShadowCatcherOutput catcher_output{!settings.shadow_catcher_pass, settings.transparent_background, catchers,
+                                           settings.shadow_catcher_pass};
   Film film(window[2] - window[0], window[3] - window[1], settings.passes, adaptive, splatting ? &filter : nullptr,
-            cscene.extra_passes().passes(), &cscene.cryptomatte());
+            cscene.extra_passes().passes(), &cscene.cryptomatte(),
+            catchers || settings.shadow_catcher_pass ? &catcher_output : nullptr);
   const int margin = film.margin();
   if (settings.efficiency_roulette && !media) {
     roulette.emplace(window[2] - window[0], window[3] - window[1], settings.roulette_min_survival);
@@ -297,6 +305,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   // The ring's paths: ctx without learning (the roulette's and the guide's statistics are the
   // window's); made once ctx is final, before the first pass.
   std::optional<PathContext> ring_ctx;
+  std::optional<PathContext> catcher_ctx;  // the catcher-only halves' (shadow_catcher_split.h)
   std::optional<CausticTracer> caustic_tracer;
   if (caustics) caustic_tracer.emplace(ctx, *caustics, camera, filter, window);
   auto in_window = [&](const PixelSample& p) {
@@ -339,11 +348,14 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
       const CameraSample& c = batch[size_t(i)];
       const bool inside = in_window(c.pixel);
       if (moving) ray_queries::set_time(times[size_t(i)]);
+      std::optional<SobolSampler> catcher_sampler;  // the split's other half draws the same numbers
+      if (catcher_ctx) catcher_sampler = *samplers[size_t(i)];
       // A panoramic camera's sample outside its projection brings nothing (Cycles: no path).
       PathRadiance r = outside_projection(rays[size_t(i)])
                            ? PathRadiance{}
                            : trace(inside ? ctx : *ring_ctx, rays[size_t(i)], *samplers[size_t(i)],
                                    packet ? &first[size_t(i)] : nullptr, c.pixel);
+      if (r.catcher.split) trace_catcher_half(*catcher_ctx, trace, rays[size_t(i)], *catcher_sampler, c.pixel, r);
       if (!is_finite(r.combined())) {  // never expected; counted so tests can prove it never happens
         ++bad;
         const float alpha = r.alpha;
@@ -434,6 +446,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
       ring_ctx->roulette = nullptr;
       ring_ctx->guide = nullptr;
       ring_ctx->guide_training = false;
+      if (catchers) catcher_ctx.emplace(catcher_half_context(ctx));
       result.filter_splatting = splatting;
       while (done < settings.samples && !stop && !all_converged && !out_of_time) {
         const int target = std::min(pass_size, settings.samples - done);

@@ -218,7 +218,20 @@ class PathTracer {
                 : bounce == 0 && first_ ? (hit = first_->hit, first_->found)
                                         : ctx_.scene.intersect(ray_, hit);
     if constexpr (kAlpha) return pass_transparent_surfaces(bounce, again, seg);
+    if (bounce == 0 && !again && seg.found && ctx_.split_at_catchers) meet_catcher(hit);
     return true;
+  }
+
+  // Shadow catchers (film/shadow_catcher.h): the first catcher the camera ray meets (through
+  // transparency, not a holdout) splits the path, as Cycles' integrator_split_shadow_catcher.
+  // This path goes on with the catcher as an ordinary object; the integrator traces the
+  // catcher-only half and the film files the light from before the split as the matte's.
+  void meet_catcher(const SurfaceHit& hit) {
+    if (!hit.shadow_catcher || hit.object_holdout || out_.catcher.split) return;
+    out_.catcher.split = true;
+    out_.catcher.throughput = throughput_;
+    out_.catcher.alpha_at_split = out_.alpha;
+    out_.catcher.before_split = out_.combined();
   }
 
   // Alpha: the ray goes straight through each surface with probability 1 - its opacity, tinted
@@ -228,6 +241,7 @@ class PathTracer {
   bool pass_transparent_surfaces(int bounce, bool again, Segment& seg) {
     SurfaceHit& hit = seg.hit;
     for (int passed = 0; seg.found; ++passed) {
+      if (bounce == 0 && !again && ctx_.split_at_catchers) meet_catcher(hit);
       PathState at = path_state_;  // the state a shader there sees (as set by shade())
       at.ray_depth = uint8_t(std::min(bounce, 255));
       at.ray_length = seg.passed_length + hit.t - ray_.tmin;

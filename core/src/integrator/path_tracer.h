@@ -13,6 +13,7 @@
 #include "torrance/lights/mirror_images.h"
 #include "torrance/util/sampling.h"
 #include "media/medium_stack.h"
+#include "film/shadow_catcher.h"
 
 #include <array>
 #include <optional>
@@ -54,6 +55,9 @@ struct PathContext {
   std::array<Vec3, 3> camera_axes{Vec3(1.0f, 0.0f, 0.0f), Vec3(0.0f, 1.0f, 0.0f), Vec3(0.0f, 0.0f, -1.0f)};
   // The media around the camera (media/medium_stack.h), where paths start; empty without volumes.
   MediumStack camera_media = {};
+  // Shadow catchers (film/shadow_catcher.h): camera paths split at the first catcher they meet
+  // (false without catchers, and for the catcher-only half).
+  bool split_at_catchers = false;
 };
 
 // Where a camera sample goes.
@@ -86,6 +90,8 @@ struct PathRadiance {
   float extras[kMaxExtraChannels];
   // The surfaces the camera ray gave Cryptomatte ids to (film/cryptomatte.h; only with it).
   CryptomatteSample cryptomatte;
+  // The split at a shadow catcher (film/shadow_catcher.h; only in scenes with catchers).
+  ShadowCatcherSample catcher;
 
   Vec3 combined() const {
     return emission + environment + diffuse_direct + diffuse_indirect + glossy_direct + glossy_indirect;

@@ -20,6 +20,7 @@ namespace {
 
 thread_local RayCounts counts_of_this_thread;
 thread_local float time_of_this_thread = 0.0f;
+thread_local uint32_t mask_of_this_thread = 0xFFFFFFFFu;
 std::atomic<RayLog::Storage*> recording{nullptr};
 
 LoggedRay logged_query(const RTCRay& ray, RayKind kind) {
@@ -68,12 +69,14 @@ namespace ray_queries {
 
 void set_time(float time) { time_of_this_thread = time; }
 float time() { return time_of_this_thread; }
+void set_mask(uint32_t mask) { mask_of_this_thread = mask; }
 
 void intersect(RTCScene scene, RTCRayHit& rh) {
   RayLog::Storage* log = recording_of(scene);
   LoggedRay logged;
   if (log) logged = logged_query(rh.ray, rh.ray.tnear > 0.0f ? RayKind::Camera : RayKind::Closest);
   rh.ray.time = time_of_this_thread;
+  rh.ray.mask = mask_of_this_thread;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   rtcIntersect1(scene, &context, &rh);
@@ -102,7 +105,10 @@ void intersect_coherent(RTCScene scene, const int* valid, RTCRayHit8& packet) {
         logged[i].kind = packet.ray.tnear[i] > 0.0f ? RayKind::Camera : RayKind::Closest;
       }
     }
-  for (int i = 0; i < 8; ++i) packet.ray.time[i] = time_of_this_thread;
+  for (int i = 0; i < 8; ++i) {
+    packet.ray.time[i] = time_of_this_thread;
+    packet.ray.mask[i] = mask_of_this_thread;
+  }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -126,6 +132,7 @@ bool occluded(RTCScene scene, RTCRay& ray) {
   LoggedRay logged;
   if (log) logged = logged_query(ray, RayKind::Occlusion);
   ray.time = time_of_this_thread;
+  ray.mask = mask_of_this_thread;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   rtcOccluded1(scene, &context, &ray);

@@ -5,6 +5,8 @@
 
 #include <embree3/rtcore.h>
 
+#include <cstdint>
+
 namespace torrance::ray_queries {
 
 // Motion blur: the time in [0, 1] over the shutter that every query of this thread carries
@@ -13,6 +15,9 @@ namespace torrance::ray_queries {
 // otherwise, which geometry without motion ignores.
 void set_time(float time);
 float time();
+// The Embree ray mask every query of this thread carries until changed (all bits by default):
+// Scene::kCatcherOnlyMask while the catcher-only half of a split path is traced.
+void set_mask(uint32_t mask);
 
 // rtcIntersect1 of rh (its hit ids set to invalid by the caller) through scene.
 void intersect(RTCScene scene, RTCRayHit& rh);

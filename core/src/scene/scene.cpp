@@ -496,6 +496,7 @@ size_t Scene::num_triangles() const {
 }
 
 void Scene::commit() {
+  if (catcher_masks_dirty_ || (dirty_ && shadow_catchers_)) apply_catcher_masks();
   if (dirty_) {
     for (const auto& prototype : prototypes_)
       if (prototype->scene && !prototype->built) {

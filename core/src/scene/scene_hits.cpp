@@ -46,6 +46,7 @@ void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const 
     hit.emitter = mesh.emitter_index.empty() ? -1 : mesh.emitter_index[prim];
     hit.object_pass_index = mesh.pass_index;
     hit.object_holdout = mesh.holdout;
+    hit.shadow_catcher = mesh.shadow_catcher;
     hit.light_group = mesh.light_group;
     hit.cryptomatte_object = mesh.cryptomatte;
   } else {
@@ -61,6 +62,7 @@ void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const 
     hit.emitter = inst.emitter_base >= 0 && b.emitter_rank[prim] >= 0 ? inst.emitter_base + b.emitter_rank[prim] : -1;
     hit.object_pass_index = inst.pass_index;
     hit.object_holdout = inst.holdout;
+    hit.shadow_catcher = inst.shadow_catcher;
     hit.light_group = inst.light_group;
     hit.cryptomatte_object = inst.cryptomatte;
     const size_t layers = instance_constant_ids_.size(), first = size_t(owner & ~kInstanceBit) * layers;

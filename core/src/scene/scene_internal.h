@@ -30,6 +30,7 @@ struct Scene::Mesh {
   std::vector<int32_t> emitter_index;  // per triangle: index in the mesh light, or -1
   float pass_index = 0.0f;             // Blender's object pass index (of a mesh from add_mesh)
   bool holdout = false;                // a holdout object (of a mesh from add_mesh)
+  bool shadow_catcher = false;         // a shadow catcher (of a mesh from add_mesh)
   int8_t light_group = -1;             // its light group (extra_passes.h), -1: none
   int32_t cryptomatte = -1;            // its Cryptomatte entry (film/cryptomatte.h), -1: none
   // Motion blur (Scene::set_mesh_motion): motion_steps >= 2 world-space positions per vertex,
@@ -79,6 +80,7 @@ struct Scene::Instance {
   bool hidden = false;              // singular transform: disabled in Embree
   float pass_index = 0.0f;          // Blender's object pass index
   bool holdout = false;             // a holdout object
+  bool shadow_catcher = false;      // a shadow catcher
   int8_t light_group = -1;          // its light group (extra_passes.h), -1: none
   int32_t cryptomatte = -1;         // its Cryptomatte entry (film/cryptomatte.h), -1: none
 };

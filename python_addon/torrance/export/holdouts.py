@@ -1,10 +1,15 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Holdout objects of the view layer: Object Properties > Visibility > Holdout, or a collection
+"""The masks of Object Properties > Visibility > Mask: holdouts and shadow catchers.
+
+Holdout objects of the view layer: Object Properties > Visibility > Holdout, or a collection
 set to Holdout in the view layer (both through Object.holdout_get, as Cycles syncs them). An
 instance is a holdout when the object that instances it is (Cycles' instance parent).
-
 The core's Scene.set_mesh_holdout / set_instance_holdouts take them: camera rays that meet one
 leave the pixel transparent, its material's transparency kept (Scene::holdout).
+
+Shadow catchers: Object.is_shadow_catcher; an instance is one when its object or the object that
+instances it is (Cycles' sync: the real object's or the parent's flag). The core's
+Scene.set_mesh_shadow_catcher / set_instance_shadow_catchers take them (film/shadow_catcher.h).
 """
 
 
@@ -27,3 +32,15 @@ def instance_holdout(inst, names):
     """Whether a depsgraph instance is a holdout (names: holdout_names' set, not empty)."""
     owner = inst.parent if inst.is_instance and inst.parent is not None else inst.object
     return owner.name_full in names
+
+
+def shadow_catcher_names(depsgraph):
+    """The names of the depsgraph's objects that are shadow catchers (empty when none is)."""
+    return {obj.name_full for obj in depsgraph.objects if getattr(obj, "is_shadow_catcher", False)}
+
+
+def instance_shadow_catcher(inst, names):
+    """Whether a depsgraph instance is a shadow catcher (names: shadow_catcher_names' set):
+    its object or its instancer is one."""
+    parent = inst.parent if inst.is_instance else None
+    return inst.object.name_full in names or (parent is not None and parent.name_full in names)

@@ -27,13 +27,14 @@ class Source:
     CHUNK at a time (transforms() gives them all)."""
     __slots__ = ("name", "mesh_key", "table", "instanced", "matrices", "converted", "_append",
                  "info_of", "random_ids", "colors", "duplis", "instancers", "pass_index",
-                 "holdout", "light_group", "cryptomatte")
+                 "holdout", "shadow_catcher", "light_group", "cryptomatte")
 
     def __init__(self, name, mesh_key, table, instanced, info_of=None, duplis=False,
                  instancers=False, pass_index=0):
         self.name = name
         self.pass_index = float(pass_index)   # the object's (the Object Index pass)
         self.holdout = False          # a holdout object (holdouts.py), or its instancer is
+        self.shadow_catcher = False   # a shadow catcher (holdouts.py), or its instancer is
         self.light_group = -1         # its light group (light_groups.py), -1: none
         self.cryptomatte = -1         # its Cryptomatte entry (cryptomatte.py), -1: none
         self.mesh_key = mesh_key      # (evaluated mesh pointer, needs UVs)
@@ -223,6 +224,8 @@ class InstanceExport:
                     ids, np.full(len(m), src.pass_index, np.float32))
             if src.holdout:
                 self.scene.set_instance_holdouts(ids, True)
+            if src.shadow_catcher:
+                self.scene.set_instance_shadow_catchers(ids, True)
             if src.light_group >= 0:
                 self.scene.set_instance_light_groups(ids, src.light_group)
             if src.cryptomatte >= 0:

@@ -12,7 +12,8 @@ from ..shader_aovs import report_world_aovs, view_layer_aovs
 from ..texture_table import TextureTable
 from .camera import export_camera
 from . import hair as strands
-from .holdouts import holdout_names, instance_holdout
+from .holdouts import (holdout_names, instance_holdout, instance_shadow_catcher,
+                       shadow_catcher_names)
 from .instances import InstanceExport, Source
 from .cryptomatte import CryptomatteIds
 from .light_groups import LightGroups
@@ -202,10 +203,12 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
             stats.lights += 1
             return True
 
-        # (object name, evaluated mesh pointer[, holdout]) -> Source, 'LIGHT' or None, for
-        # instances
+        # (object name, evaluated mesh pointer[, holdout, shadow catcher]) -> Source, 'LIGHT' or
+        # None, for instances
         seen = {}
         holdouts = holdout_names(depsgraph)
+        catchers = shadow_catcher_names(depsgraph)
+        masks = bool(holdouts or catchers)
         count = 0
         for inst in depsgraph.object_instances:
             count += 1
@@ -215,13 +218,15 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
             if inst.is_instance:
                 data = obj.data
                 key = (obj.name_full, data.as_pointer() if data is not None else 0)
-                if holdouts:
-                    key += (instance_holdout(inst, holdouts),)
+                if masks:
+                    key += (bool(holdouts) and instance_holdout(inst, holdouts),
+                            bool(catchers) and instance_shadow_catcher(inst, catchers))
                 what = seen.get(key, seen)
                 if what is seen:
                     what = seen[key] = classify(inst, obj)
                     if what.__class__ is Source:
-                        what.holdout = bool(holdouts) and key[2]
+                        what.holdout = masks and key[2]
+                        what.shadow_catcher = masks and key[3]
                         what.light_group = groups.of(obj)
                         what.cryptomatte = crypto.entry(obj)
                 if what.__class__ is Source:
@@ -254,10 +259,11 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
                         else None)
                 flattened.append((obj, obj.name, inst.matrix_world.copy(), slot_to_material,
                                   needs, info, obj.pass_index, obj.name_full in holdouts,
-                                  groups.of(obj), crypto.entry(obj)))
+                                  obj.name_full in catchers, groups.of(obj), crypto.entry(obj)))
             elif role == 'MESH':
                 src = meshes.source(obj, obj.name, instanced=False)
                 src.holdout = obj.name_full in holdouts
+                src.shadow_catcher = obj.name_full in catchers
                 src.light_group = groups.of(obj)
                 src.cryptomatte = crypto.entry(obj)
                 src.add(inst.matrix_world)
@@ -270,7 +276,7 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
     motion = (MotionSampler(engine, depsgraph, reporter)
               if motion_blur_enabled(depsgraph.scene, engine) else None)
     for (obj, name, matrix, slot_to_material, needs_uvs, info, pass_index, holdout,
-         light_group, cryptomatte) in flattened:
+         shadow_catcher, light_group, cryptomatte) in flattened:
         poll()
         local = cache.get(obj, (obj.data.as_pointer(),), needs_uvs, reporter)
         on_added = None
@@ -280,7 +286,8 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
             on_added = motion.on_added(obj.name, local)
         triangles = add_world_mesh(tc_scene, name, local, matrix, slot_to_material, needs_uvs,
                                    reporter, object_info=info, pass_index=pass_index,
-                                   holdout=holdout, light_group=light_group,
+                                   holdout=holdout, shadow_catcher=shadow_catcher,
+                                   light_group=light_group,
                                    cryptomatte=cryptomatte, on_added=on_added)
         if triangles:
             stats.objects += 1

@@ -41,6 +41,10 @@ TORRANCE_RENDER_SETTING(float, filter_width, 1.5f, "width of the Blackman-Harris
 // neighbourhood is sampled, film.h).
 TORRANCE_RENDER_SETTING(bool, filter_splatting, true, "samples splatted into every pixel their filter covers")
 TORRANCE_RENDER_SETTING(bool, transparent_background, false, "the world seen directly is transparent")
+// The Shadow Catcher pass (Blender's View Layer > Passes > Light > Shadow Catcher, Cycles'
+// use_pass_shadow_catcher). With it Combined is the matte alone, else the matte over the caught
+// shadow (Cycles' approximate shadow catcher; film/shadow_catcher.h).
+TORRANCE_RENDER_SETTING(bool, shadow_catcher_pass, false, "write the Shadow Catcher pass; Combined is then the matte")
 // The Mist pass (Blender's World > Mist Pass; Cycles' falloff exponent: Quadratic 2, Linear 1,
 // Inverse Quadratic 0.5).
 TORRANCE_RENDER_SETTING(float, mist_start, 5.0f, "Mist pass: distance from the camera where mist starts")

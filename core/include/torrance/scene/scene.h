@@ -64,6 +64,7 @@ struct SurfaceHit {
   bool has_uv = false;        // the mesh has UVs (the UV pass: (u, v, 1), else 0)
   float object_pass_index = 0.0f;  // the object's Blender pass index (Scene::set_mesh_pass_index)
   bool object_holdout = false;     // the object is a holdout (Scene::set_mesh_holdout)
+  bool shadow_catcher = false;     // the object is a shadow catcher (Scene::set_mesh_shadow_catcher)
   int8_t light_group = -1;         // the object's light group (Scene::set_mesh_light_group), -1: none
   int32_t cryptomatte_object = -1;  // the object's Cryptomatte entry (Scene::set_mesh_cryptomatte), -1: none
   Vec3 tangent{0.0f};         // unit dP/du from the triangle's UVs (0 without usable UVs)
@@ -303,6 +304,16 @@ class Scene final : public ShaderTracer {
   // a mesh from add_mesh, instances (ids from add_instances). See holdout().
   void set_mesh_holdout(uint32_t mesh, bool holdout);
   void set_instance_holdouts(const int64_t* ids, size_t count, bool holdout);
+  // Shadow catchers (Blender's Object > Visibility > Shadow Catcher): a mesh from add_mesh,
+  // instances (ids from add_instances). A camera path that meets one splits there as Cycles'
+  // (film/shadow_catcher.h); scenes without any pay nothing.
+  void set_mesh_shadow_catcher(uint32_t mesh, bool catcher);
+  void set_instance_shadow_catchers(const int64_t* ids, size_t count, bool catcher);
+  // Whether some mesh or instance is a shadow catcher.
+  bool has_shadow_catchers() const { return shadow_catchers_; }
+  // The Embree ray mask (ray_queries::set_mask) of rays that see only the shadow catchers: in a
+  // scene with some, every other geometry's mask is kOrdinaryMask (after commit).
+  static constexpr uint32_t kCatcherOnlyMask = 2u, kOrdinaryMask = 1u;
   // Light groups (extra_passes.h: Scene::extra_passes().set_light_groups) of emitting objects:
   // a mesh from add_mesh, instances; group -1: none.
   void set_mesh_light_group(uint32_t mesh, int group);
@@ -486,6 +497,9 @@ class Scene final : public ShaderTracer {
   std::vector<Vec3> instance_constants_;
   std::vector<float> material_pass_indices_;
   bool object_holdouts_ = false;   // some mesh or instance is a holdout
+  bool shadow_catchers_ = false;   // some mesh or instance is a shadow catcher
+  bool catcher_masks_dirty_ = false;  // the geometries' masks are to be set again at commit
+  void apply_catcher_masks();      // every geometry's mask from its object's shadow catcher flag
   ExtraPasses extra_passes_;
   Cryptomatte cryptomatte_;
   bool mixture_holdouts_ = false;  // some mixture has a Holdout closure
