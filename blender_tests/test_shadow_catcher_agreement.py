@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
 """The shadow catcher as Cycles renders it (Object Properties > Visibility > Shadow Catcher):
-a red ball on a grey catcher floor under a sun and a point light, a grey world, the sky in the
+an orange ball on a grey catcher floor under a sun and a point light, a grey world, the sky in the
 top rows, compared with Cycles' own images in three set-ups:
 - Film > Transparent with the view layer's Shadow Catcher pass: the pass, and Combined, then
   the matte alone (colour and alpha);
@@ -12,8 +12,8 @@ top rows, compared with Cycles' own images in three set-ups:
 Each figure within Cycles' own seed-to-seed noise (seed 0 the reference, seed 1 the bounds;
 Torrance seeds 2 and 3: the mean ratio and 8x8 block means, render_passes.pass_bounds). Faults
 that must fail: the catcher rendered as an ordinary object, the Shadow Catcher pass inverted
-(without over with the objects). (A core fault, the catcher-only half seeing the ball after its
-first surface, was shown to fail by hand: see the commit that added this test.)
+(without over with the objects). (A core fault, the catcher-only half's bounce rays seeing the
+ball, was shown to fail by hand: see the commit that gave the ball its orange.)
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_shadow_catcher_agreement.py
@@ -41,10 +41,10 @@ def build(scene):
     testing.setup_render(scene, width=W, height=H)
     testing.add_camera(scene, location=(0.0, -6.0, 2.0), target=(0.0, 0.0, 0.9), lens=35.0)
     floor = testing.plane(scene, "Floor", 12.0,
-                          material=testing.principled("Floor", (0.5, 0.5, 0.5), 0.0, 0.6))
+                          material=testing.principled("Floor", (0.7, 0.7, 0.7), 0.0, 0.6))
     floor.is_shadow_catcher = True
     testing.sphere_object(scene, "Ball", (0.3, 0.4, 0.8), 0.8,
-                          testing.principled("Ball", (0.8, 0.15, 0.1), 0.0, 0.35),
+                          testing.principled("Ball", (0.9, 0.45, 0.15), 0.0, 0.35),
                           segments=32, rings=16)
     testing.add_sun(scene, strength=3.0, rotation=(math.radians(45), 0, math.radians(40)))
     testing.add_point(scene, (-1.8, -1.0, 2.2), power=250.0, radius=0.15)
