@@ -69,15 +69,21 @@ void init_render(py::module_& m) {
            "Asks the render to stop without waiting; stop() (or dropping the session) joins it.")
       .def(
           "latest",
-          [](const RenderSession& s, uint64_t since_version) -> py::object {
+          [](const RenderSession& s, uint64_t since_version, bool with_passes) -> py::object {
             Image image;
             int done = 0;
             uint64_t version = since_version;
-            if (!s.latest(image, done, version)) return py::none();
-            return py::make_tuple(to_numpy(image), done, version);
+            std::vector<std::pair<std::string, Image>> passes;
+            if (!s.latest(image, done, version, with_passes ? &passes : nullptr)) return py::none();
+            if (!with_passes) return py::make_tuple(to_numpy(image), done, version);
+            py::dict d;
+            for (const auto& [name, pass] : passes) d[py::str(name)] = to_numpy(pass);
+            return py::make_tuple(to_numpy(image), done, version, d);
           },
-          py::arg("since_version") = 0,
-          "(image, samples_done, version) if a newer image than since_version exists, else None.")
+          py::arg("since_version") = 0, py::arg("passes") = false,
+          "(image, samples_done, version) if a newer image than since_version exists, else None; "
+          "with passes=True (image, samples_done, version, {name: the settings' pass of the same "
+          "samples}).")
       .def_property_readonly("running", &RenderSession::running)
       .def_property_readonly("finished", &RenderSession::finished)
       .def_property_readonly("error", &RenderSession::error);

@@ -130,11 +130,22 @@ def denoiser(tc):
 GUIDE_ALBEDO, GUIDE_NORMAL = "DenoisingAlbedo", "DenoisingNormal"
 
 
-def guide_passes(ts, available):
-    """The core passes the denoiser's guides need (Cycles' Denoising Input Passes)."""
-    wanted = {'RGB': (), 'RGB_ALBEDO': (GUIDE_ALBEDO,),
-              'RGB_ALBEDO_NORMAL': (GUIDE_ALBEDO, GUIDE_NORMAL)}[ts.denoising_input_passes]
-    return [name for name in wanted if name in available]
+_GUIDES = {'RGB': (), 'RGB_ALBEDO': (GUIDE_ALBEDO,),
+           'RGB_ALBEDO_NORMAL': (GUIDE_ALBEDO, GUIDE_NORMAL)}
+
+
+def guide_passes(input_passes, available=None):
+    """The core passes the denoiser's guides need for Cycles' Denoising Input Passes
+    ('RGB', 'RGB_ALBEDO', 'RGB_ALBEDO_NORMAL'), of those available (all when None)."""
+    return [name for name in _GUIDES[input_passes] if available is None or name in available]
+
+
+def guide_images(passes, input_passes):
+    """(albedo, normal): the guides' RGB images from a render's {core pass: image}, each None
+    when input_passes does not ask for it."""
+    wanted = _GUIDES[input_passes]
+    return tuple(np.asarray(passes[name])[..., :3] if name in wanted else None
+                 for name in (GUIDE_ALBEDO, GUIDE_NORMAL))
 
 
 def denoise_image(tc, image, result_passes, ts, reporter, progress=None):
@@ -145,11 +156,7 @@ def denoise_image(tc, image, result_passes, ts, reporter, progress=None):
     if d is None:
         reporter.warning(f"Torrance: Denoise is on, but {why}: the image is kept noisy")
         return image, False
-    albedo = normal = None
-    if ts.denoising_input_passes != 'RGB':
-        albedo = np.asarray(result_passes[GUIDE_ALBEDO])[..., :3]
-        if ts.denoising_input_passes == 'RGB_ALBEDO_NORMAL':
-            normal = np.asarray(result_passes[GUIDE_NORMAL])[..., :3]
+    albedo, normal = guide_images(result_passes, ts.denoising_input_passes)
     try:
         out = d.denoise(image[..., :3], albedo, normal, prefilter=ts.denoising_prefilter,
                         quality=ts.denoising_quality, progress=progress)

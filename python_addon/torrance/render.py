@@ -207,8 +207,8 @@ def _render(engine, depsgraph, reporter):
     # Denoise (not for material previews): the guides' passes rendered too.
     denoise = bool(ts.use_denoising) and not engine.is_preview
     keep_noisy = denoise and passes.noisy_image_wanted(depsgraph.scene, view_layer)
-    guides = [g for g in denoising.guide_passes(ts, available) if g not in core_passes] \
-        if denoise else []
+    guides = [g for g in denoising.guide_passes(ts.denoising_input_passes, available)
+              if g not in core_passes] if denoise else []
 
     threads = int(rd.threads) if rd.threads_mode == 'FIXED' else 0
     note = model_note(ts.brdf_model)

@@ -100,8 +100,11 @@ SETTINGS = (
     # Sampling > Viewport > Denoise (use_preview_denoising is drawn in its header)
     Setting("use_preview_denoising", 'BOOL', False, "Use Viewport Denoising",
             "Denoise the image in the 3D viewport (Open Image Denoise, on a thread of its own: "
-            "the noisy image shows until the denoised one is ready; the colour alone guides it)",
+            "the noisy image shows until the denoised one is ready)",
             _VIEWPORT_DENOISE, text=""),
+    Setting("preview_denoising_input_passes", 'ENUM', 'RGB_ALBEDO', "Passes",
+            "Passes used by the denoiser to distinguish noise from shader and geometry detail",
+            _VIEWPORT_DENOISE, options=dict(items=DENOISING_INPUT_PASSES)),
     Setting("preview_denoising_start_sample", 'INT', 1, "Start Sample",
             "Sample to start denoising the preview at",
             _VIEWPORT_DENOISE, options=dict(min=0, max=1 << 24)),

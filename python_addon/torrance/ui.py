@@ -385,10 +385,10 @@ class TORRANCE_RENDER_PT_compatibility(TorrancePanel, Panel):
                      "Bevel, Point Density, Hair BSDF, Curves Info and Volume Info nodes; "
                      "AOV Output in worlds",
                      "Motion blur",
-                     "Viewport denoising guides (colour only), Blender 5's guide options"):
+                     "Blender 5's denoising guide options"):
             col.label(text=text, icon='DOT')
-        col.label(text="Denoising: Cycles' Denoising Albedo and Normal guide F12; "
-                       "Denoising Data and Noisy Image passes")
+        col.label(text="Denoising: Cycles' Denoising Albedo and Normal guide F12 and the "
+                       "viewport; Denoising Data and Noisy Image passes")
 
 
 # --------------------------------------------------------------------------------------------

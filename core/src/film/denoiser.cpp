@@ -170,7 +170,9 @@ bool Denoiser::denoise(const float* color, const float* albedo, const float* nor
     if (!run({{"normal", normal}}, clean_normal.data(), false, false)) return false;
     normal = clean_normal.data();
   }
-  const bool clean_aux = options.prefilter != DenoisePrefilter::None && albedo;
+  // Cycles' meaning of the prefilter: None, the guides are clean as given; Accurate, cleaned by
+  // the runs above; Fast, the RT filter takes them as noisy (cleanAux off).
+  const bool clean_aux = options.prefilter != DenoisePrefilter::Fast && albedo;
   if (normal) return run({{"color", color}, {"albedo", albedo}, {"normal", normal}}, output,
                          options.hdr, clean_aux);
   if (albedo) return run({{"color", color}, {"albedo", albedo}}, output, options.hdr, clean_aux);

@@ -422,6 +422,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   bool finished = false;
   bool have_pass = false;
   Image pass_image;
+  std::vector<std::pair<std::string, Image>> pass_passes;  // with on_pass_passes only
   int pass_samples = 0;
   std::exception_ptr worker_error;
 
@@ -500,8 +501,11 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
         }
         Image snapshot = film.resolve_combined();
         if (caustic_tracer) caustic_tracer->add_to(snapshot.rgba, snapshot.channels);
+        std::vector<std::pair<std::string, Image>> snapshot_passes;
+        if (callbacks.on_pass_passes) snapshot_passes = film.resolve_passes();
         std::lock_guard<std::mutex> lock(mutex);
         pass_image = std::move(snapshot);
+        pass_passes = std::move(snapshot_passes);
         pass_samples = done;
         have_pass = true;
         wake.notify_all();
@@ -524,14 +528,17 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
       wake.wait_for(lock, std::chrono::milliseconds(50), [&] { return finished || have_pass; });
       const bool worker_done = finished;
       Image image;
+      std::vector<std::pair<std::string, Image>> passes;
       int samples = 0;
       const bool deliver = have_pass;
       if (deliver) {
         image = std::move(pass_image);
+        passes = std::move(pass_passes);
         samples = pass_samples;
         have_pass = false;
       }
       lock.unlock();
+      if (deliver && callbacks.on_pass_passes) callbacks.on_pass_passes(std::move(passes));
       if (deliver && callbacks.on_pass) callbacks.on_pass(image, samples, settings.samples);
       if (!stop && callbacks.should_stop && callbacks.should_stop()) {
         stop = true;

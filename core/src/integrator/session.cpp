@@ -28,9 +28,15 @@ void RenderSession::start() {
 void RenderSession::launch() {
   thread_ = std::thread([this] {
     RenderCallbacks callbacks;
-    callbacks.on_pass = [this](const Image& image, int done, int) {
+    std::vector<std::pair<std::string, Image>> pending_passes;  // on_pass_passes -> on_pass
+    if (settings_.passes)
+      callbacks.on_pass_passes = [&pending_passes](std::vector<std::pair<std::string, Image>>&& passes) {
+        pending_passes = std::move(passes);
+      };
+    callbacks.on_pass = [this, &pending_passes](const Image& image, int done, int) {
       std::lock_guard<std::mutex> lock(mutex_);
       image_ = image;
+      passes_ = std::move(pending_passes);
       samples_done_ = done;
       ++version_;
     };
@@ -40,6 +46,7 @@ void RenderSession::launch() {
       std::lock_guard<std::mutex> lock(mutex_);
       if (result.samples_done > samples_done_ || version_ == 0) {
         image_ = std::move(result.image);
+        passes_ = std::move(result.passes);
         samples_done_ = result.samples_done;
         ++version_;
       }
@@ -61,10 +68,12 @@ void RenderSession::stop() {
   running_ = false;
 }
 
-bool RenderSession::latest(Image& image, int& samples_done, uint64_t& version) const {
+bool RenderSession::latest(Image& image, int& samples_done, uint64_t& version,
+                           std::vector<std::pair<std::string, Image>>* passes) const {
   std::lock_guard<std::mutex> lock(mutex_);
   if (version_ == version) return false;
   image = image_;
+  if (passes) *passes = passes_;
   samples_done = samples_done_;
   version = version_;
   return true;

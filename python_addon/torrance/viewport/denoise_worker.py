@@ -8,15 +8,16 @@ import traceback
 
 
 class DenoiseWorker:
-    """submit(serial, image) hands an RGBA image (float32, (h, w, 4)) over; result() gives the
-    newest denoised one as (serial, image), once. denoise(rgb, progress) -> rgb (or None:
+    """submit(serial, image, passes) hands an RGBA image (float32, (h, w, 4)) and the render's
+    passes of the same samples ({core pass: image}: the guides) over; result() gives the newest
+    denoised one as (serial, image), once. denoise(rgb, passes, progress) -> rgb (or None:
     cancelled) runs on the worker's thread, progress(fraction) False once the worker is closed;
     its exceptions end the worker with `error` set."""
 
     def __init__(self, denoise):
         self._denoise = denoise
         self._lock = threading.Condition()
-        self._pending = None          # (serial, image) not yet started
+        self._pending = None          # (serial, image, passes) not yet started
         self._result = None           # (serial, image) not yet taken
         self._busy = False
         self._closed = False
@@ -26,9 +27,9 @@ class DenoiseWorker:
                                         daemon=True)
         self._thread.start()
 
-    def submit(self, serial, image):
+    def submit(self, serial, image, passes=None):
         with self._lock:
-            self._pending = (serial, image)
+            self._pending = (serial, image, passes or {})
             self._lock.notify()
 
     def result(self):
@@ -56,11 +57,11 @@ class DenoiseWorker:
                     self._lock.wait()
                 if self._closed:
                     return
-                serial, image = self._pending
+                serial, image, passes = self._pending
                 self._pending = None
                 self._busy = True
             try:
-                rgb = self._denoise(image[..., :3], lambda _done: not self._closed)
+                rgb = self._denoise(image[..., :3], passes, lambda _done: not self._closed)
             except Exception as exc:              # reported by the viewport's status line
                 traceback.print_exc()
                 with self._lock:

@@ -70,11 +70,19 @@ def running_renders():
                           if r.session is not None and not r.stopped and r.session.running)
 
 
+def _crop(image, width, height, window):
+    """The window's pixels of a full width x height frame (an image of the window alone as is)."""
+    if image.shape[:2] != (height, width):
+        return image
+    return image[height - window[3]:height - window[1], window[0]:window[2]]
+
+
 class ProgressiveRender:
     """A coarse image (1 sample), then the full resolution up to `samples`, each on a
     tc.RenderSession. poll() picks up new images; stop() ends it promptly. denoise: None, or
-    (DenoiseWorker's denoise function, start sample): the full-resolution images from that
-    many samples on are denoised on a thread and shown when ready."""
+    (DenoiseWorker's denoise function, start sample, the core passes its guides need): the
+    full-resolution images from that many samples on are denoised on a thread and shown when
+    ready; the full resolution renders the guides' passes too."""
 
     def __init__(self, tc, tc_scene, view, settings, start_res=128, denoise=None):
         self.tc = tc
@@ -105,6 +113,7 @@ class ProgressiveRender:
         self.first_denoised_seconds = None   # ... to the first denoised image
         self.denoised = False             # the image shown is denoised
         self._denoise_start = denoise[1] if denoise else 0
+        self._guides = list(denoise[2]) if denoise else []
         self.denoiser = DenoiseWorker(denoise[0]) if denoise else None
         _renders.add(self)
         self.stopped = False
@@ -158,6 +167,9 @@ class ProgressiveRender:
         w, h, samples, win = self.levels[level]
         kw = dict(self.settings)
         kw.update(width=int(w), height=int(h), samples=int(samples))
+        full = level == len(self.levels) - 1
+        if full and self._guides:
+            kw["passes"] = self._guides
         if win is not None:               # the core counts rows from the top
             kw["window"] = (win[0], h - win[3], win[2], h - win[1])
         self.scene.set_camera(**self.view.camera)
@@ -173,22 +185,24 @@ class ProgressiveRender:
         new = False
         session = self.session
         finished = session.finished       # read first: a finished session has its last image
-        got = session.latest(self.version)
+        full = self.level == len(self.levels) - 1
+        got = session.latest(self.version, passes=full and bool(self._guides))
         if got is not None:
-            image, done, self.version = got
+            image, done, self.version = got[:3]
+            passes = got[3] if len(got) > 3 else {}
             image = np.asarray(image)
             w, h, _samples, win = self.levels[self.level]
-            if win is not None and image.shape[:2] == (h, w):     # a full frame: crop it
-                image = image[h - win[3]:h - win[1], win[0]:win[2]]
+            if win is not None:                                   # a full frame: crop it
+                image = _crop(image, w, h, win)
+                passes = {k: _crop(np.asarray(v), w, h, win) for k, v in passes.items()}
             self.image = image
             self.samples_done = int(done)
             self.image_level = self.level
             self.image_serial += 1
             self.denoised = False
             new = True
-            if (self.denoiser is not None and self.level == len(self.levels) - 1
-                    and self.samples_done >= self._denoise_start):
-                self.denoiser.submit(self.image_serial, image)
+            if self.denoiser is not None and full and self.samples_done >= self._denoise_start:
+                self.denoiser.submit(self.image_serial, image, passes)
             now = time.perf_counter() - self.t_start
             if self.first_image_seconds is None:
                 self.first_image_seconds = now

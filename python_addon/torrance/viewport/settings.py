@@ -31,6 +31,7 @@ def viewport_denoise(scene):
     if not ts.use_preview_denoising:
         return None
     return dict(start_sample=int(ts.preview_denoising_start_sample),
+                input_passes=ts.preview_denoising_input_passes,
                 prefilter=ts.preview_denoising_prefilter, quality=ts.preview_denoising_quality)
 
 

@@ -89,16 +89,19 @@ class ViewportState:
         self.denoise_error = None
         if options is None:
             return None
-        from ..denoising import denoiser
+        from ..denoising import denoiser, guide_images, guide_passes
         d, why = denoiser(self.tc)
         if d is None:
             self.denoise_error = why
             return None
 
-        def denoise(rgb, progress):
-            return d.denoise(rgb, prefilter=options["prefilter"], quality=options["quality"],
-                             progress=progress)
-        return denoise, options["start_sample"]
+        input_passes = options["input_passes"]
+
+        def denoise(rgb, passes, progress):
+            albedo, normal = guide_images(passes, input_passes)
+            return d.denoise(rgb, albedo, normal, prefilter=options["prefilter"],
+                             quality=options["quality"], progress=progress)
+        return denoise, options["start_sample"], guide_passes(input_passes)
 
     def wait_first_image(self, timeout):
         """Right after a restart: waits up to `timeout` seconds for the coarse image, so the

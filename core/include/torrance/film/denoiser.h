@@ -7,9 +7,10 @@
 // stable across 2.x), so any 2.x library serves and a render without it loses nothing but the
 // denoising: the constructor throws std::runtime_error saying why it could not load one.
 //
-// Prefiltering follows Cycles' Denoise settings: None (the guides are taken as they are, maybe
-// noisy: cleanAux off), Fast (the guides are taken to be noise-free: cleanAux on), Accurate (the
-// albedo and the normal are denoised first, each by its own RT filter, then cleanAux on).
+// Prefiltering follows Cycles' Denoise settings (integrator/denoiser_oidn.cpp): None (the guides
+// are noise-free as given: cleanAux on), Fast (noisy guides, denoised together with the colour by
+// the one RT filter: cleanAux off), Accurate (the albedo and the normal are denoised first, each
+// by its own RT filter, then cleanAux on).
 #pragma once
 
 #include <functional>

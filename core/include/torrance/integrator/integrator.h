@@ -104,6 +104,9 @@ struct Image {
 struct RenderCallbacks {
   // Called on the thread that called render(), after each pass, with the image so far.
   std::function<void(const Image&, int samples_done, int samples_total)> on_pass;
+  // Optional: called just before on_pass with the requested passes of the same samples (they are
+  // resolved at every pass only when this is set: the viewport's denoising guides).
+  std::function<void(std::vector<std::pair<std::string, Image>>&& passes)> on_pass_passes;
   // Polled on the thread that called render() about every 50 ms; true stops the render promptly.
   std::function<bool()> should_stop;
 };

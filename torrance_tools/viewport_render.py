@@ -1,0 +1,38 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Driving the add-on's viewport package without a window (blender tests): a 3D view looking
+through the scene's camera, and waiting for a progressive render to finish."""
+
+import time
+
+import bpy
+
+
+def camera_matrices(cam_obj, depsgraph, width, height):
+    """(view matrix, window matrix) of a 3D view looking through cam_obj at width x height."""
+    ev = cam_obj.evaluated_get(depsgraph)
+    window = ev.calc_matrix_camera(depsgraph, x=width, y=height)
+    view = ev.matrix_world.normalized().inverted()
+    return view, window
+
+
+def camera_view(tv, scene, width, height):
+    """The viewport package's View (tv: the add-on's viewport module) of the scene's camera."""
+    dg = bpy.context.evaluated_depsgraph_get()
+    view_m, window_m = camera_matrices(scene.camera, dg, width, height)
+    return tv.View.from_matrices(view_m, window_m, width, height)
+
+
+def wait_done(state, timeout=60.0):
+    """Polls a ViewportState until its render finished; the (level, image shape) of each image
+    it showed. AssertionError after timeout seconds."""
+    end = time.perf_counter() + timeout
+    seen_levels = []
+    while time.perf_counter() < end:
+        if state.poll():
+            seen_levels.append((state.render.image_level, state.render.image.shape[:2]))
+        if state.render.finished:
+            state.poll()
+            return seen_levels
+        time.sleep(0.002)
+    raise AssertionError(f"the viewport render did not finish in {timeout} s: "
+                         f"{state.render.stats()}")
