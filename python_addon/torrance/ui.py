@@ -382,7 +382,7 @@ class TORRANCE_RENDER_PT_compatibility(TorrancePanel, Panel):
         col.label(text="Not rendered by Torrance:")
         for text in ("Volume objects and varying volume density (homogeneous volumes are), "
                      "subsurface, thin film, anisotropy; hair in the viewport",
-                     "Bevel, Point Density, Hair BSDF, Curves Info and Volume Info nodes; "
+                     "Point Density, Hair BSDF, Curves Info and Volume Info nodes; "
                      "AOV Output in worlds",
                      "Motion blur",
                      "Blender 5's denoising guide options"):

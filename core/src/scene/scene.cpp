@@ -42,6 +42,7 @@ Scene::Scene() {
 }
 
 Scene::~Scene() {
+  local_scenes_.reset();
   if (scene_) rtcReleaseScene(scene_of(scene_));
   prototypes_.clear();
   if (device_) rtcReleaseDevice(device_of(device_));
@@ -507,7 +508,11 @@ void Scene::commit() {
     rtcCommitScene(scene_of(scene_));
     check_device("building the BVH");
     dirty_ = false;
+    local_scenes_.reset();
   }
+  if (!local_scenes_ && std::any_of(programs_.begin(), programs_.end(),
+                                    [](const ShaderProgram& p) { return p.local_queries(); }))
+    build_local_scenes();
   if (emitters_dirty_) {
     build_mesh_light();
     emitters_dirty_ = false;

@@ -20,6 +20,7 @@ bool Scene::surface_hit(const void* rayhit, const Vec3& dir, SurfaceHit& hit) co
   hit.t = rh.ray.tfar;
   if (owner != kNoOwner && (owner & kCurvesBit) && !(owner & kInstanceBit)) {
     hit.uv.y = rh.hit.v;  // Embree's v across the strand, which a ribbon's normal is rounded by
+    hit.object = ShaderGlobals::kNoObject;
     curve_hit(owner & ~kCurvesBit, rh.hit.primID, rh.hit.u, Vec3(rh.ray.org_x, rh.ray.org_y, rh.ray.org_z), dir,
               hit.t, hit);
     return true;
@@ -73,6 +74,8 @@ void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const 
     }
   }
 
+  hit.object = owner;
+  hit.prim = prim;
   hit.has_uv = !hit_mesh->corner_uvs.empty();
   const Vec3 &p0 = c.p[0], &p1 = c.p[1], &p2 = c.p[2];
   const float w = 1.0f - u - v;

@@ -171,3 +171,24 @@ inline bool instance_corners(const std::vector<Vec3>& positions, const glm::uvec
 }  // namespace scene_detail
 
 }  // namespace torrance
+
+namespace torrance {
+
+// The objects' own BVHs that the local queries trace (scene_local.cpp): one scene per world-space
+// mesh and per prototype, each holding only that mesh (sharing its arrays), built by commit() when
+// some shader program traces local rays.
+struct Scene::LocalScenes {
+  std::vector<RTCScene> meshes;      // per world-space mesh (nullptr: no triangles)
+  std::vector<RTCScene> prototypes;  // per prototype, in its object space
+  LocalScenes() = default;
+  LocalScenes(const LocalScenes&) = delete;
+  LocalScenes& operator=(const LocalScenes&) = delete;
+  ~LocalScenes() {
+    for (RTCScene s : meshes)
+      if (s) rtcReleaseScene(s);
+    for (RTCScene s : prototypes)
+      if (s) rtcReleaseScene(s);
+  }
+};
+
+}  // namespace torrance

@@ -4,6 +4,7 @@
 #include "torrance/util/sampling.h"
 #include "torrance/shader/shader_hash.h"
 #include "torrance/shader/shader_vector.h"
+#include "shader/hit_lattice.h"
 
 #include <algorithm>
 #include <cmath>
@@ -125,32 +126,27 @@ glm::vec4 ambient_occlusion_op(const ShaderOpContext& c) {
   const ShaderGlobals& g = c.globals;
   const float distance = c.value(1);
   const float samples = std::min(c.value(3), 1024.0f);
+  const bool only_local = c.ins.flags & kAmbientOcclusionOnlyLocal;
   float ao = 1.0f;
   if (g.tracer && distance > 0.0f && samples >= 1.0f) {
     Vec3 n = safe_unit(c.vector(2));
     if (glm::dot(n, n) == 0.0f) n = g.normal;
-    if (c.ins.flags & 1) n = -n;
+    if (c.ins.flags & kAmbientOcclusionInside) n = -n;
     const Frame frame(n);
-    // The rays' directions: a Fibonacci lattice over the disk's square, shifted by the hit's
-    // own random offset (its position's and view's bits hashed; a pixel's samples meet
-    // different points), so that the few rays are spread as Cycles' stratified ones.
-    const uint32_t seed = hash_uint4(float_bits(g.position.x), float_bits(g.position.y), float_bits(g.position.z),
-                                     float_bits(g.incoming.x) ^ float_bits(g.incoming.y));
-    const float shift_u = float(hash_uint2(seed, 0u) >> 8) * 0x1p-24f;
-    const float shift_v = float(hash_uint2(seed, 1u) >> 8) * 0x1p-24f;
-    constexpr float kGoldenFraction = 0.618033988749895f;
+    const int count = int(samples);
+    const HitLattice lattice(g, count);
     const float scale = std::max(1.0f, std::max(std::abs(g.position.x), std::max(std::abs(g.position.y),
                                                                                  std::abs(g.position.z))));
-    const int count = int(samples);
     int unoccluded = 0;
     for (int k = 0; k < count; ++k) {
-      const float u0 = (float(k) + 0.5f) / float(count) + shift_u;
-      const float u1 = float(k) * kGoldenFraction + shift_v;
-      const Vec2 d = sample_concentric_disk(Vec2(u0 - std::floor(u0), u1 - std::floor(u1)));
+      const Vec2 d = sample_concentric_disk(lattice(k));
       const Vec3 dir = frame.to_world(Vec3(d, safe_sqrt(1.0f - glm::dot(d, d))));
       // Off the surface on the side the ray leaves to (Cycles skips the hit's own triangle).
       const float side = glm::dot(g.true_normal, dir) >= 0.0f ? 2e-5f : -2e-5f;
-      if (!g.tracer->occluded(g.position + side * scale * g.true_normal, dir, 0.0f, distance)) ++unoccluded;
+      const Vec3 origin = g.position + side * scale * g.true_normal;
+      const bool blocked = only_local ? g.tracer->local_occluded(g.object, origin, dir, 0.0f, distance)
+                                      : g.tracer->occluded(origin, dir, 0.0f, distance);
+      if (!blocked) ++unoccluded;
     }
     ao = float(unoccluded) / float(count);
   }

@@ -15,6 +15,7 @@
 #include "torrance/shader/shader_radial_tiling.h"
 #include "torrance/shader/shader_textures.h"
 #include "torrance/shader/shader_geometry.h"
+#include "torrance/shader/shader_bevel.h"
 #include "torrance/shader/shader_vector.h"
 
 #include <algorithm>
@@ -175,6 +176,7 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
     case ShaderOpcode::LightFalloff: return {2, shader::kLightFalloffModes, false, shader::light_falloff_op};
     case ShaderOpcode::Wireframe: return {1, 2, false, shader::wireframe_op};
     case ShaderOpcode::AmbientOcclusion: return {4, 2, false, shader::ambient_occlusion_op};
+    case ShaderOpcode::Bevel: return {3, 1, false, shader::bevel_op};
     case ShaderOpcode::CameraTransform: return {4, shader::kCameraTransformModes, false, shader::camera_transform_op};
     case ShaderOpcode::VectorTransform: return {11, shader::kVectorTransformModes, false, shader::vector_transform_op};
     default: break;
@@ -210,6 +212,8 @@ ShaderProgram::ShaderProgram(std::vector<glm::vec4> constants, std::vector<Shade
     differentials_ = differentials_ || ins.offset != 0 || ins.op == ShaderOpcode::Bump;
     differentials_ = differentials_ || (ins.op == ShaderOpcode::Wireframe && ins.mode == 1);  // Pixel Size
     globals_read_ |= globals_read_by(ins.op);
+    local_queries_ = local_queries_ || ins.op == ShaderOpcode::Bevel ||
+                     (ins.op == ShaderOpcode::AmbientOcclusion && (ins.flags & shader::kAmbientOcclusionOnlyLocal));
     if (ins.mode >= s.modes)
       throw std::invalid_argument(where + ": mode " + std::to_string(int(ins.mode)) + " out of range [0, " +
                                   std::to_string(s.modes) + ")");

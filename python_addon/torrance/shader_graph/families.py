@@ -18,6 +18,7 @@ from . import noise4  # noqa: I001
 from . import gabor  # noqa: I001
 from . import radial_tiling  # noqa: I001
 from . import geometry  # noqa: I001
+from . import local_rays  # noqa: I001
 from . import image  # noqa: I001
 from . import sky  # noqa: I001
 from . import ies  # noqa: I001
@@ -34,6 +35,7 @@ FAMILIES = (
     gabor,
     radial_tiling,
     geometry,
+    local_rays,
     image,
     sky,
     ies,

@@ -10,7 +10,7 @@ from .math_ops import VECTOR_MATH_OPS as _VECTOR_MATH
 from .program import constant
 
 OPCODES = {"Geometry": 96, "Reflection": 97, "Fresnel": 98, "LayerWeight": 99, "Attribute": 100,
-           "Tangent": 101, "AmbientOcclusion": 102, "LightPath": 106, "CameraTransform": 107,
+           "Tangent": 101, "LightPath": 106, "CameraTransform": 107,
            "LightFalloff": 109, "Wireframe": 110}
 VARYING = set(OPCODES)
 FOLDS = {}
@@ -325,19 +325,6 @@ def _object_info(g, node, socket):
     return value
 
 
-def _ambient_occlusion(g, node, socket):
-    """Ambient Occlusion: the share of Samples cosine-distributed rays about the Normal (its
-    reverse with Inside) that reach Distance unoccluded, traced in the scene where the program
-    runs (shader_geometry.h); Color its input times that. Only Local is reported."""
-    if node.only_local:
-        raise Unsupported(f"{node_label(node)}: Only Local")
-    args = [g.input(node.inputs["Color"], 'color'), g.input(node.inputs["Distance"], 'float'),
-            normal_input(g, node), constant('float', float(node.samples))]
-    ao = socket.identifier == "AO"
-    return g.builder.emit("AmbientOcclusion", 'float' if ao else 'color', args, mode=int(ao),
-                          flags=1 if node.inside else 0)
-
-
 _TANGENT_AXES = {'X': 0, 'Y': 1, 'Z': 2}
 
 
@@ -369,7 +356,6 @@ def default_tangent(g):
 
 
 READERS = {
-    'ShaderNodeAmbientOcclusion': _ambient_occlusion,
     'ShaderNodeTangent': _tangent,
     'ShaderNodeLightPath': _light_path,
     'ShaderNodeLightFalloff': _light_falloff,

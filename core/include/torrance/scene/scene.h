@@ -88,6 +88,9 @@ struct SurfaceHit {
   // the normals are Cycles' (a round curve's: from its centre line out through the hit; a
   // ribbon's: geometric towards the viewer, shading rounded across the strand).
   bool on_curve = false;
+  // The hit's object as the local queries name it (ShaderGlobals::object: a world-space mesh's
+  // index, or an instance's index with the top bit set; none on a hair strand) and its triangle.
+  uint32_t object = ShaderGlobals::kNoObject, prim = 0;
 };
 
 // How hair strands are traced (Blender's Render > Curves > Shape, Cycles 3.4): Round is Cycles'
@@ -114,6 +117,8 @@ inline ShaderGlobals shader_globals(const SurfaceHit& hit, const Vec3& ray_dir, 
   const float side = g.backfacing ? -1.0f : 1.0f;
   g.normal = side * hit.shading_normal;
   g.true_normal = side * hit.geometric_normal;
+  g.object = hit.object;
+  g.prim = hit.prim;
   // Of the rest, only what `reads` (GlobalsRead flags) names.
   if (reads & kReadsAttributes) {
     g.corner_attributes = hit.corner_attributes;
@@ -415,6 +420,11 @@ class Scene final : public ShaderTracer {
   static constexpr int kPacketSize = 8;
   void intersect_packet(const Ray* rays, int n, SurfaceHit* hits, bool* found) const;
   bool occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax) const override;
+  // Local queries (ShaderTracer): answered once commit() has built the objects' own BVHs, which
+  // it does only when some shader program traces local rays (ShaderProgram::local_queries).
+  bool local_occluded(uint32_t object, const Vec3& origin, const Vec3& dir, float tmin, float tmax) const override;
+  int local_hits(uint32_t object, const Vec3& origin, const Vec3& dir, float tmax, uint32_t seed, LocalHit* hits,
+                 int max_hits) const override;
   void* embree_scene() const { return scene_; }  // the RTCScene, for raw-Embree measurements (ray_replay.h)
   void bounds(Vec3& lo, Vec3& hi) const;  // of everything traced, after commit (lo > hi: nothing, or not committed)
   // The flat pieces that the triangles of material `material` make (mirror_images.h): either a
@@ -452,7 +462,12 @@ class Scene final : public ShaderTracer {
   struct Prototype;
   struct Binding;
   struct Instance;
+  struct LocalScenes;  // scene_local.cpp: a BVH per object for the local queries
   void check_device(const char* during) const;
+  void build_local_scenes();
+  // The BVH object's local queries trace (an RTCScene), the ray taken into its space; nullptr
+  // when there is none (no object, a hidden instance, no local BVHs built).
+  void* local_scene(uint32_t object, Vec3& origin, Vec3& dir) const;
   // The hit on segment prim of curve set `set` at Embree's u, t along the ray (origin, dir).
   void curve_hit(uint32_t set, uint32_t prim, float u, const Vec3& origin, const Vec3& dir, float t,
                  SurfaceHit& hit) const;
@@ -515,6 +530,7 @@ class Scene final : public ShaderTracer {
   CameraParams camera_;
   void* device_ = nullptr;  // RTCDevice
   void* scene_ = nullptr;   // RTCScene
+  std::unique_ptr<LocalScenes> local_scenes_;  // built by commit() when programs need them
   void build_mesh_light();
   bool dirty_ = true;
   bool emitters_dirty_ = true;

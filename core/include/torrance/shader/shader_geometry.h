@@ -23,8 +23,10 @@
 //   AmbientOcclusion (102) the Ambient Occlusion node (svm/ao.h): the share of in3.x Samples rays,
 //                     cosine-distributed about the normal in2 (reversed with flags & 1: Inside),
 //                     that reach in1.x Distance unoccluded (ShaderGlobals::tracer; 1 without
-//                     one, or a Distance or Samples below 1, as Cycles' for no object); mode 0
-//                     Color: in0 times it, 1 AO: it
+//                     one, or a Distance or Samples below 1, as Cycles' for no object); with
+//                     flags & 2 (Only Local) only the hit's own object occludes (the tracer's
+//                     local query: none occludes without an object); mode 0 Color: in0 times
+//                     it, 1 AO: it
 //   Tangent (101)     the Tangent node (svm/tex_coord.h): mode 0-2 Radial about X, Y, Z of in0
 //                     (Generated, w 0 where the mesh lacks it: then the position), 3 UV Map (the
 //                     hit's UV tangent, ShaderGlobals::tangent, taken back to object space);
@@ -53,6 +55,7 @@ glm::vec4 light_path_op(const ShaderOpContext& c);
 constexpr int kLightFalloffModes = 3;
 glm::vec4 light_falloff_op(const ShaderOpContext& c);
 glm::vec4 wireframe_op(const ShaderOpContext& c);
+constexpr uint8_t kAmbientOcclusionInside = 1, kAmbientOcclusionOnlyLocal = 2;  // its flags
 glm::vec4 ambient_occlusion_op(const ShaderOpContext& c);
 constexpr int kTangentModes = 4;
 glm::vec4 tangent_op(const ShaderOpContext& c);

@@ -84,6 +84,7 @@ enum class ShaderOpcode : uint8_t {
   Attribute = 100,
   Tangent = 101,
   AmbientOcclusion = 102,  // shader_geometry.h
+  Bevel = 103,             // shader_bevel.h
   Mapping = 104,       // shader_vector.h
   VectorRotate = 105,
   LightPath = 106,     // shader_geometry.h
@@ -108,11 +109,32 @@ struct ShaderInstruction {
   uint8_t offset = 0;
 };
 
-// What a program may trace (the Ambient Occlusion node): the scene (Scene implements it).
+// A hit of a local ray query (ShaderTracer::local_hits): world space, the normals as wound.
+struct LocalHit {
+  Vec3 position{0.0f};
+  Vec3 true_normal{0.0f};  // unit
+  Vec3 normal{0.0f};       // the interpolated (smooth) normal, unit
+};
+
+// What a program may trace (the Ambient Occlusion and Bevel nodes): the scene (Scene implements it).
 class ShaderTracer {
  public:
   // Whether anything lies along origin + t dir for t in (tmin, tmax).
   virtual bool occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax) const = 0;
+  // Local queries (Cycles' scene_intersect_local): against object `object`'s own triangles only
+  // (ShaderGlobals::object; an instance's its prototype's, placed), nothing else in the scene.
+  // Whether any of them lies along origin + t dir for t in (tmin, tmax); false for no object.
+  virtual bool local_occluded(uint32_t object, const Vec3& origin, const Vec3& dir, float tmin, float tmax) const {
+    (void)object, (void)origin, (void)dir, (void)tmin, (void)tmax;
+    return false;
+  }
+  // All hits on origin + t dir, t in [0, tmax]: how many there are, of which up to max_hits chosen
+  // uniformly at random (a reservoir drawn by `seed`, as Cycles keeps LOCAL_MAX_HITS) go to hits.
+  virtual int local_hits(uint32_t object, const Vec3& origin, const Vec3& dir, float tmax, uint32_t seed,
+                         LocalHit* hits, int max_hits) const {
+    (void)object, (void)origin, (void)dir, (void)tmax, (void)seed, (void)hits, (void)max_hits;
+    return 0;
+  }
 
  protected:
   ~ShaderTracer() = default;
@@ -143,6 +165,10 @@ struct ShaderGlobals {
   // The scene a program may trace (Ambient Occlusion); null where there is none (a world, a
   // light: as Cycles' for no object, the node then sees no occluder).
   const ShaderTracer* tracer = nullptr;
+  // The hit's object for the tracer's local queries (SurfaceHit::object; kNoObject: none) and
+  // its triangle.
+  static constexpr uint32_t kNoObject = 0xFFFFFFFFu;
+  uint32_t object = kNoObject, prim = 0;
   // Cycles' ray differentials at the hit: dP/dx and dP/dy (the footprint's width along its
   // tangent pair around the true normal), and what they move the UVs and corner weights by.
   Vec3 dpdx{0.0f}, dpdy{0.0f};
@@ -215,6 +241,9 @@ class ShaderProgram {
       if (ins.op == op) return true;
     return false;
   }
+  // Whether some instruction traces local rays (Bevel, Ambient Occlusion's Only Local): the
+  // scene then builds a BVH per object for ShaderTracer's local queries.
+  bool local_queries() const { return local_queries_; }
   // Whether run() reads ShaderGlobals' ray differentials (dpdx, dpdy and what they move: a Bump
   // op, or instructions at the offset hits); without them the caller need not compute those.
   bool reads_differentials() const { return differentials_; }
@@ -232,6 +261,7 @@ class ShaderProgram {
   std::vector<bool> written_;
   bool offsets_ = false;  // some instruction reads the hit at an offset
   bool differentials_ = false;
+  bool local_queries_ = false;
   uint8_t globals_read_ = 0;
 };
 
