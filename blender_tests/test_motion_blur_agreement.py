@@ -14,7 +14,9 @@ and by Torrance (seeds 2 and 3), compared by ratio and 8x8 block means
   motion). Smooth-shaded, Torrance's image is 0.08 % brighter than Cycles' (512 spp: ratio
   1.0008, block mean 0.0009 against 0.0005 flat and 0.0003 between Cycles' seeds), a gap in
   the interpolated normals of deforming meshes not found yet (both interpolate the steps'
-  vertex normals linearly), beyond Cycles' noise at 32 spp.
+  vertex normals linearly), beyond Cycles' noise at 32 spp;
+* an emissive panel sliding over the floor (Position Center): light sampling finds it where
+  the path's time puts it, as Cycles' motion triangles.
 
 Each has deliberate faults (torrance.export.motion.shutter_offsets patched) that must FAIL the
 same bounds: time ignored (every step at the frame: no blur), the shutter halved, and Position
@@ -121,6 +123,16 @@ def deforming_sphere(scene):
     set_position(scene, 'CENTER')
 
 
+def glowing_panel(scene):
+    """An emissive panel sliding over the floor: its light there comes from where the path's
+    time puts it (Cycles' light sampling of motion triangles)."""
+    base(scene)
+    panel = testing.plane(scene, "Glow", 1.0, material=testing.principled(
+        "Glow", (0.1, 0.1, 0.1), emission=(1.0, 0.7, 0.4), emission_strength=8.0))
+    linear_keys(panel, "location", [(-1.5, 0.0, 1.0), (1.5, 0.0, 1.0)])
+    set_position(scene, 'CENTER')
+
+
 # Faults: replacements of torrance.export.motion.shutter_offsets(scene, steps).
 def time_ignored(original):
     return lambda scene, steps: [0.0] * steps
@@ -145,6 +157,8 @@ VARIANTS = (
     ("camera panning, End", panning_camera,
      (("time ignored", time_ignored), ("End read as Center", position_as_center))),
     ("shape key deformation", deforming_sphere,
+     (("time ignored", time_ignored), ("shutter halved", shutter_halved))),
+    ("emissive panel sliding", glowing_panel,
      (("time ignored", time_ignored), ("shutter halved", shutter_halved))),
 )
 

@@ -1,12 +1,25 @@
 #include "torrance/lights/mesh_light.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace torrance {
 
-MeshLight::MeshLight(std::vector<EmissiveTriangle> triangles, const std::vector<float>& power, EmissionLookup emission)
-    : triangles_(std::move(triangles)), emission_(std::move(emission)) {
+bool place_emissive_triangle(EmissiveTriangle& t, const Vec3& p0, const Vec3& p1, const Vec3& p2) {
+  t.p0 = p0;
+  t.edge1 = p1 - p0;
+  t.edge2 = p2 - p0;
+  const Vec3 cross = glm::cross(t.edge1, t.edge2);
+  t.area = 0.5f * glm::length(cross);
+  if (!(t.area > 0.0f) || !std::isfinite(t.area)) return false;
+  t.normal = cross / (2.0f * t.area);
+  return true;
+}
+
+MeshLight::MeshLight(std::vector<EmissiveTriangle> triangles, const std::vector<float>& power, EmissionLookup emission,
+                     MovingTriangle moving)
+    : triangles_(std::move(triangles)), emission_(std::move(emission)), moving_(std::move(moving)) {
   if (triangles_.empty() || power.size() != triangles_.size())
     throw std::invalid_argument("mesh light needs one positive power per triangle");
   cdf_.assign(triangles_.size() + 1, 0.0f);
@@ -37,7 +50,9 @@ LightSample MeshLight::sample(const Vec3& p, const Vec3&, const Vec2& u, const P
   const float span = cdf_[i + 1] - cdf_[i];
   if (!(span > 0.0f)) return s;
   const float ux = std::clamp((u.x - cdf_[i]) / span, 0.0f, 0.99999994f);
-  const EmissiveTriangle& t = triangles_[i];
+  EmissiveTriangle moved;
+  const EmissiveTriangle& t = at_time(triangles_[i], moved);
+  if (!(t.area > 0.0f)) return s;
   const float su = std::sqrt(ux);
   const float b1 = 1.0f - su, b2 = u.y * su;
   const Vec3 q = t.p0 + b1 * t.edge1 + b2 * t.edge2;
@@ -64,7 +79,9 @@ float MeshLight::importance(const Vec3& p, const Vec3&) const {
 }
 
 float MeshLight::pdf(size_t index, const Vec3& p, const Vec3& q) const {
-  const EmissiveTriangle& t = triangles_[index];
+  EmissiveTriangle moved;
+  const EmissiveTriangle& t = at_time(triangles_[index], moved);
+  if (!(t.area > 0.0f)) return 0.0f;
   const Vec3 d = q - p;
   const float dist2 = glm::dot(d, d);
   const float cos_light = std::abs(glm::dot(d, t.normal)) / std::sqrt(dist2);

@@ -1,5 +1,6 @@
 // Scene: the emissive triangles of meshes and instances as one light (the mesh light).
 #include "scene/scene_internal.h"
+#include "scene/scene_motion.h"
 
 #include "torrance/util/limits.h"
 
@@ -29,13 +30,8 @@ void Scene::build_mesh_light() {
     e.prim = prim;
     e.light_group = owner & kInstanceBit ? instances_[owner & ~kInstanceBit].light_group : meshes_[owner]->light_group;
     e.mirrored = mirrored;
-    e.p0 = c.p[0];
-    e.edge1 = c.p[1] - e.p0;
-    e.edge2 = c.p[2] - e.p0;
-    const Vec3 cross = glm::cross(e.edge1, e.edge2);
-    e.area = 0.5f * glm::length(cross);
-    if (!(e.area > 0.0f) || !std::isfinite(e.area)) return false;
-    e.normal = cross / (2.0f * e.area);
+    e.moving = !(owner & kInstanceBit) && meshes_[owner]->motion_steps > 1;
+    if (!place_emissive_triangle(e, c.p[0], c.p[1], c.p[2])) return false;
     e.material = material;
     triangles.push_back(e);
     const float p = e.area * radiance;  // huge but finite inputs may overflow: keep the CDF finite
@@ -114,10 +110,23 @@ void Scene::build_mesh_light() {
     for (Instance& inst : instances_) inst.emitter_base = -1;
     return;
   }
-  lights_.set_mesh_light(MeshLight(std::move(triangles), power, [this](const EmissiveTriangle& t, const Vec2& b, const Vec3& wi,
-                                                                        const PathState& seen_by) {
-    return sampled_emission(t, b, wi, seen_by);
-  }));
+  // Motion blur: a moving mesh's triangle at the ray's time (scene_motion.h), as its hits are.
+  auto at_ray_time = [this](const EmissiveTriangle& t) {
+    const Mesh& mesh = *meshes_[t.owner];
+    const glm::uvec3& tri = mesh.triangles[t.prim];
+    Corners c = mesh_corners(mesh.positions, tri, nullptr, nullptr);
+    motion_corners({mesh.motion_steps, mesh.motion_positions.data(), mesh.positions.size(), nullptr, 0}, tri, t.prim,
+                   c);
+    EmissiveTriangle moved = t;
+    if (!place_emissive_triangle(moved, c.p[0], c.p[1], c.p[2])) moved.area = 0.0f;
+    return moved;
+  };
+  lights_.set_mesh_light(MeshLight(
+      std::move(triangles), power,
+      [this](const EmissiveTriangle& t, const Vec2& b, const Vec3& wi, const PathState& seen_by) {
+        return sampled_emission(t, b, wi, seen_by);
+      },
+      has_motion_ ? MeshLight::MovingTriangle(at_ray_time) : nullptr));
 }
 
 }  // namespace torrance

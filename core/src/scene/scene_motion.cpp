@@ -76,6 +76,7 @@ void Scene::set_mesh_motion(uint32_t mesh_id, size_t steps, const float* positio
   check_device("setting a mesh's motion");
   has_motion_ = true;
   dirty_ = true;
+  emitters_dirty_ = true;  // its emissive triangles now move (build_mesh_light)
 }
 
 namespace scene_detail {

@@ -22,7 +22,11 @@ struct EmissiveTriangle {
   uint32_t owner = 0, prim = 0;
   bool mirrored = false;
   int8_t light_group = -1;  // its object's (extra_passes.h), -1: none
+  bool moving = false;      // motion blur: its corners above are the frame's (MeshLight::MovingTriangle)
 };
+
+// p0, edges, unit normal and area of a triangle of corners p[0..2]; false for no area.
+bool place_emissive_triangle(EmissiveTriangle& t, const Vec3& p0, const Vec3& p1, const Vec3& p2);
 
 class MeshLight {
  public:
@@ -31,8 +35,12 @@ class MeshLight {
   // ray_length the distance).
   using EmissionLookup =
       std::function<Vec3(const EmissiveTriangle& triangle, const Vec2& b, const Vec3& wi, const PathState& seen_by)>;
-  // power[i] > 0 is the selection weight of triangle i.
-  MeshLight(std::vector<EmissiveTriangle> triangles, const std::vector<float>& power, EmissionLookup emission);
+  // Motion blur: a moving triangle where the thread's ray time puts it (Cycles' light sampling of
+  // motion triangles: triangle_world_space_vertices at the path's time).
+  using MovingTriangle = std::function<EmissiveTriangle(const EmissiveTriangle& triangle)>;
+  // power[i] > 0 is the selection weight of triangle i (the frame's: a moving triangle keeps it).
+  MeshLight(std::vector<EmissiveTriangle> triangles, const std::vector<float>& power, EmissionLookup emission,
+            MovingTriangle moving = nullptr);
 
   // receiver: the path's state at p (the emitter's shader sees it with kRayEmission).
   LightSample sample(const Vec3& p, const Vec3& n, const Vec2& u, const PathState& receiver = {}) const;
@@ -43,9 +51,17 @@ class MeshLight {
   size_t size() const { return triangles_.size(); }
 
  private:
+  // Triangle t, or where it is at the ray's time if it moves (into `moved`).
+  const EmissiveTriangle& at_time(const EmissiveTriangle& t, EmissiveTriangle& moved) const {
+    if (!t.moving) return t;
+    moved = moving_(t);
+    return moved;
+  }
+
   std::vector<EmissiveTriangle> triangles_;
   std::vector<float> cdf_;  // size + 1
   EmissionLookup emission_;
+  MovingTriangle moving_;
   float total_power_;
   Vec3 center_;
   float radius_;
