@@ -28,6 +28,15 @@ uint32_t add_mesh(Scene& scene, const std::vector<float>& pos, const std::vector
   return scene.add_mesh(pos.data(), pos.size() / 3, tris.data(), tris.size() / 3, nullptr, nullptr);
 }
 
+// One mesh of squares at the given heights (the scene's first material added if it has none).
+uint32_t add_squares(Scene& scene, const std::vector<float>& heights) {
+  if (scene.num_materials() == 0) scene.add_material(Material{});
+  std::vector<float> pos;
+  std::vector<int64_t> tris;
+  for (float z : heights) add_square(pos, tris, z);
+  return add_mesh(scene, pos, tris);
+}
+
 // A program with a Bevel instruction: the scene then builds the objects' own BVHs.
 ShaderProgram bevel_program() {
   ShaderInstruction ins;
@@ -39,12 +48,7 @@ ShaderProgram bevel_program() {
 
 TEST(LocalRays, SeeTheirOwnObjectOnly) {
   Scene scene;
-  scene.add_material(Material{});
-  std::vector<float> pa, pb;
-  std::vector<int64_t> ta, tb;
-  add_square(pa, ta, 0.0f);
-  add_square(pb, tb, 0.5f);
-  const uint32_t a = add_mesh(scene, pa, ta), b = add_mesh(scene, pb, tb);
+  const uint32_t a = add_squares(scene, {0.0f}), b = add_squares(scene, {0.5f});
   scene.add_shader_program(bevel_program());
   scene.commit();
   const Vec3 origin(0.2f, 0.1f, 1.0f), down(0.0f, 0.0f, -1.0f);
@@ -64,11 +68,9 @@ TEST(LocalRays, SeeTheirOwnObjectOnly) {
 
 TEST(LocalRays, CountEveryHitAndKeepAFew) {
   Scene scene;
-  scene.add_material(Material{});
-  std::vector<float> pos;
-  std::vector<int64_t> tris;
-  for (int k = 0; k < 10; ++k) add_square(pos, tris, 0.1f * float(k));
-  const uint32_t stack = add_mesh(scene, pos, tris);
+  std::vector<float> heights;
+  for (int k = 0; k < 10; ++k) heights.push_back(0.1f * float(k));
+  const uint32_t stack = add_squares(scene, heights);
   scene.add_shader_program(bevel_program());
   scene.commit();
   LocalHit hits[4];
@@ -112,11 +114,7 @@ TEST(LocalRays, InstancesTraceTheirPlacedPrototype) {
 
 TEST(LocalRays, NoneWithoutAProgramThatTracesThem) {
   Scene scene;
-  scene.add_material(Material{});
-  std::vector<float> pos;
-  std::vector<int64_t> tris;
-  add_square(pos, tris, 0.0f);
-  const uint32_t a = add_mesh(scene, pos, tris);
+  const uint32_t a = add_squares(scene, {0.0f});
   scene.commit();
   LocalHit hits[4];
   EXPECT_EQ(scene.local_hits(a, Vec3(0, 0, 1), Vec3(0, 0, -1), 2.0f, 1u, hits, 4), 0);

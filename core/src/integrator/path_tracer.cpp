@@ -33,6 +33,9 @@ namespace {
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 // The sampler's point index of the AO pass's ray: past every branch's (first_bounce_splits).
 constexpr uint32_t kAmbientOcclusionPoints = 0x40000000u;
+// The sampler's point index of a vertex's shader sample shift (ShaderGlobals::sample_shift):
+// past the AO pass's, one per bounce.
+constexpr uint32_t kShaderShiftPoints = 0x50000000u;
 // Branch k of a split path draws its points from kBranchPoints * k on past the first vertex's:
 // the same indices in every sample of the pixel, so each branch is as well stratified as the first.
 constexpr uint32_t kBranchPoints = 1u << 16;
@@ -384,7 +387,17 @@ class PathTracer {
       if (bounce == 0) first_ray_length_ = path_state_.ray_length;
     }
     ShaderGlobals globals;  // only what the material reads of the hit (the ray differentials: a bump)
-    if (v.textured) globals = hit_globals(ctx_, hit, ray_.dir, path_length_, path_state_);
+    if (v.textured) {
+      globals = hit_globals(ctx_, hit, ray_.dir, path_length_, path_state_);
+      if (material_reads(ctx_, hit.material) & kReadsSampleShift) {  // from points of its own
+        const uint32_t resume = sampler_.point_index();
+        sampler_.continue_at_point(kShaderShiftPoints + uint32_t(bounce));
+        const glm::vec4 u = sampler_.next_4d();
+        sampler_.continue_at_point(resume);
+        globals.sample_shift = Vec2(u.x, u.y);
+        globals.has_sample_shift = true;
+      }
+    }
     // The material's program runs once here; its Normal (shading_point) reads its registers.
     if constexpr (kMixtures) {
       if (v.mixture && features_.open() && !first_again) v.closure_list.emplace();

@@ -11,9 +11,14 @@ namespace torrance {
 
 // What a textured material's programs read of `hit` reached along `dir`, `distance` from the
 // camera along the path (texture footprints and ray differentials grow with it), in `state`.
+// GlobalsRead flags of what material `material`'s programs read.
+inline uint8_t material_reads(const PathContext& ctx, uint32_t material) {
+  return ctx.globals_read.empty() ? ctx.scene.globals_read(material) : ctx.globals_read[material];
+}
+
 inline ShaderGlobals hit_globals(const PathContext& ctx, const SurfaceHit& hit, const Vec3& dir, float distance,
                                  const PathState& state) {
-  const uint8_t reads = ctx.globals_read.empty() ? ctx.scene.globals_read(hit.material) : ctx.globals_read[hit.material];
+  const uint8_t reads = material_reads(ctx, hit.material);
   const float footprint = ctx.pixel_spread * distance * hit.uv_per_metre;
   ShaderGlobals globals = shader_globals(
       hit, dir, footprint, reads & kReadsDifferentials ? ctx.pixel_width + ctx.pixel_spread * distance : 0.0f, reads);

@@ -104,6 +104,7 @@ uint8_t globals_read_by(ShaderOpcode op) {
     case ShaderOpcode::NormalMap:
     case ShaderOpcode::VectorDisplacement: return kReadsTangent;
     case ShaderOpcode::Wireframe: return kReadsCorners;
+    case ShaderOpcode::Bevel: return kReadsSampleShift;
     default: return 0;
   }
 }

@@ -169,6 +169,11 @@ struct ShaderGlobals {
   // its triangle.
   static constexpr uint32_t kNoObject = 0xFFFFFFFFu;
   uint32_t object = kNoObject, prim = 0;
+  // A 2-D point of the path's sampler for this hit, stratified over the pixel's samples (the
+  // path tracer's, where kReadsSampleShift asks for it): ops that trace several rays rotate
+  // their points by it, as Cycles' branched sampling spreads them over the pixel's samples.
+  Vec2 sample_shift{0.0f};
+  bool has_sample_shift = false;
   // Cycles' ray differentials at the hit: dP/dx and dP/dy (the footprint's width along its
   // tangent pair around the true normal), and what they move the UVs and corner weights by.
   Vec3 dpdx{0.0f}, dpdy{0.0f};
@@ -219,7 +224,8 @@ enum GlobalsRead : uint8_t {
   kReadsTangent = 2,        // the UV tangent and bitangent sign (Tangent, Normal Map, Vector Displacement)
   kReadsCorners = 4,        // the triangle's corners (Wireframe)
   kReadsDifferentials = 8,  // the ray differentials (reads_differentials)
-  kReadsAll = 15,
+  kReadsSampleShift = 16,   // the path's sample shift (ops that trace several rays: Bevel)
+  kReadsAll = 31,
 };
 
 class ShaderProgram {
