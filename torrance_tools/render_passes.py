@@ -18,24 +18,36 @@ from torrance_tools.testing import check
 # Each pass's channels in Blender's order (an EXR stores them sorted by name); the others RGB(A).
 CHANNELS = {"Combined": "RGBA", "Mist": "Z", "Depth": "Z", "UV": "UVA", "Position": "XYZ",
             "Normal": "XYZ", "IndexOB": "X", "IndexMA": "X", "Denoising Normal": "XYZ",
-            "Denoising Depth": "Z"}
+            "Denoising Depth": "Z", "Denoising Roughness": "X"}
 NOISY = ("DiffInd", "GlossInd")     # their ratio bound: 1.5 % at least
+
+
+def exr_parts(path):
+    """[{name: (type, raw bytes)}]: the header attributes of each part of an EXR (one part, or
+    a multi-part file's: Blender 5.x writes each pass of a multilayer EXR as a part)."""
+    with open(path, "rb") as f:
+        data = f.read(1 << 20)
+    check(data[:4] == b"\x76\x2f\x31\x01", f"{path} is not an OpenEXR file")
+    multipart = bool(struct.unpack("<i", data[4:8])[0] & 0x1000)
+    parts, i = [], 8
+    while True:
+        out = {}
+        while data[i] != 0:                        # attributes: name, type, size, value
+            end_name = data.index(b"\0", i)
+            end_type = data.index(b"\0", end_name + 1)
+            size = struct.unpack("<i", data[end_type + 1:end_type + 5])[0]
+            out[data[i:end_name].decode()] = (data[end_name + 1:end_type].decode(),
+                                              data[end_type + 5:end_type + 5 + size])
+            i = end_type + 5 + size
+        parts.append(out)
+        i += 1
+        if not multipart or data[i] == 0:          # an empty header ends a multi-part list
+            return parts
 
 
 def exr_attributes(path):
     """{name: (type, raw bytes)} of an EXR's header attributes (its first part)."""
-    with open(path, "rb") as f:
-        data = f.read(1 << 20)
-    check(data[:4] == b"\x76\x2f\x31\x01", f"{path} is not an OpenEXR file")
-    out, i = {}, 8
-    while data[i] != 0:                            # attributes: name, type, size, value
-        end_name = data.index(b"\0", i)
-        end_type = data.index(b"\0", end_name + 1)
-        size = struct.unpack("<i", data[end_type + 1:end_type + 5])[0]
-        out[data[i:end_name].decode()] = (data[end_name + 1:end_type].decode(),
-                                          data[end_type + 5:end_type + 5 + size])
-        i = end_type + 5 + size
-    return out
+    return exr_parts(path)[0]
 
 
 def exr_strings(path):
@@ -43,9 +55,9 @@ def exr_strings(path):
     return {k: v.decode("utf-8") for k, (t, v) in exr_attributes(path).items() if t == "string"}
 
 
-def exr_channel_names(path):
-    """The channel names of an EXR's header ('channels', chlist), in the file's order."""
-    attributes = exr_attributes(path)
+def exr_channel_names(path, part=0):
+    """The channel names of an EXR part's header ('channels', chlist), in the file's order."""
+    attributes = exr_parts(path)[part]
     check("channels" in attributes, f"{path} has no channel list")
     value = attributes["channels"][1]
     names, p = [], 0
@@ -67,20 +79,28 @@ def oiio_channel_order(names):
 
 
 def read_pixels(path):
-    """(float32 (H, W, C), channel names) of an EXR: with OpenImageIO's Python module, or (the
-    bpy 4.x venv) the add-on's native module's reader and the header's names."""
+    """(float32 (H, W, C), channel names) of an EXR, every part's channels (Blender 5.x's
+    multi-part files) after the other's: with OpenImageIO's Python module, or (the bpy venvs)
+    the add-on's native module's reader and the headers' names."""
+    parts = range(len(exr_parts(path)))
     try:
         import OpenImageIO as oiio
     except ImportError:
         from torrance_tools.addon_access import core
-        pixels = np.asarray(core().read_image(path), np.float32)
-        return pixels, oiio_channel_order(exr_channel_names(path))
-    inp = oiio.ImageInput.open(path)
-    check(inp is not None, f"can not open {path}")
-    spec = inp.spec()
-    pixels = np.asarray(inp.read_image(0, 0, 0, spec.nchannels, oiio.FLOAT), np.float32)
-    inp.close()
-    return pixels.reshape(spec.height, spec.width, spec.nchannels), list(spec.channelnames)
+        read = [(np.asarray(core().read_image(path, subimage=k), np.float32),
+                 oiio_channel_order(exr_channel_names(path, k))) for k in parts]
+    else:
+        inp = oiio.ImageInput.open(path)
+        check(inp is not None, f"can not open {path}")
+        read = []
+        for k in parts:
+            check(inp.seek_subimage(k, 0), f"{path}: no part {k}")
+            spec = inp.spec()
+            pixels = np.asarray(inp.read_image(k, 0, 0, spec.nchannels, oiio.FLOAT), np.float32)
+            read.append((pixels.reshape(spec.height, spec.width, spec.nchannels),
+                         list(spec.channelnames)))
+        inp.close()
+    return (np.concatenate([p for p, _ in read], axis=2), [n for _, names in read for n in names])
 
 
 def read_layers(path):

@@ -26,17 +26,19 @@ void init_image(py::module_& m) {
       "Writes linear RGB(A): EXR/TIFF/HDR as float, PNG/JPEG as sRGB 8-bit.");
   m.def(
       "read_image",
-      [](const std::string& path) {
+      [](const std::string& path, int subimage) {
         ImageData data;
         {
           py::gil_scoped_release release;
-          data = read_image(path);
+          data = read_image(path, 0.0, subimage);
         }
         py::array_t<float> a({py::ssize_t(data.height), py::ssize_t(data.width), py::ssize_t(data.channels)});
         std::copy(data.pixels.begin(), data.pixels.end(), a.mutable_data());
         return a;
       },
-      py::arg("path"), "Reads an image's stored values as float32 (height, width, channels).");
+      py::arg("path"), py::arg("subimage") = 0,
+      "Reads an image's stored values as float32 (height, width, channels); subimage: the part of a "
+      "multi-part file (an EXR Blender 5.x writes holds one pass a part).");
 }
 
 }  // namespace torrance::python

@@ -61,6 +61,24 @@ TEST(PrincipledV2Tables, TablesMatchTheirIntegrals) {
   EXPECT_NEAR(ggx_tables::albedo(1.0f, 1.0f), 0.307f, 0.01f);
 }
 
+TEST(PrincipledV2Tables, SchlickMixIsCyclesTableReadBetweenItsExponentSlices) {
+  // Cycles reads its generalized-Schlick table at z = 0.5: halfway between the slices of
+  // exponents 5 (1 - z) / z at z = 7/15 and 8/15, not at exponent 5 itself.
+  const float p7 = 5.0f * 8.0f / 7.0f, p8 = 5.0f * 7.0f / 8.0f;
+  for (int i : {1, 4, 9, 15})
+    for (int j : {0, 1, 5, 15}) {
+      const float r = i / 15.0f, mu = std::max(j / 15.0f, 1e-4f);
+      const double slices = 0.5 * (ggx_tables::schlick_fresnel_mix_direct(r, mu, p7, 256) +
+                                   ggx_tables::schlick_fresnel_mix_direct(r, mu, p8, 256));
+      EXPECT_NEAR(ggx_tables::schlick_fresnel_mix(r, mu), slices, 0.003) << r << " " << mu;
+    }
+  // A mirror: the factor at the one normal, (1 - mu)^p.
+  const float mu = 0.3f;
+  EXPECT_NEAR(ggx_tables::schlick_fresnel_mix_direct(0.0f, mu, 5.0f, 8), std::pow(1.0f - mu, 5.0f), 1e-6);
+  // Rougher surfaces see more of the steep normals: a larger factor at normal incidence.
+  EXPECT_LT(ggx_tables::schlick_fresnel_mix(0.1f, 1.0f), ggx_tables::schlick_fresnel_mix(0.9f, 1.0f));
+}
+
 TEST(PrincipledV2Furnace, WhiteMetalConservesEnergyWithMultiscatterGgx) {
   for (float r : {0.0f, 0.2f, 0.5f, 0.8f, 1.0f})
     for (float cos_o : {1.0f, 0.5f, 0.1f, 0.02f}) {

@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -45,6 +46,12 @@ double visible_normal_mean(float roughness, float mu, int n, F&& f) {
   return sum / double(n * n);
 }
 
+// The exponent of Cycles' generalized-Schlick table's slice k (of kS): 5 (1 - z) / z.
+float schlick_exponent(int k) {
+  const float z = float(k) / float(kS - 1);
+  return 5.0f * (1.0f - z) / z;
+}
+
 struct Tables {
   std::vector<float> e, e_avg, s;
   Tables() : e(kE * kE), e_avg(kE), s(kS * kS * kS) {
@@ -68,6 +75,20 @@ struct Tables {
 };
 
 const Tables& tables() { return built_once<Tables>(); }
+
+// Only the denoising features read it: built apart, when first asked for.
+struct SchlickTable {
+  std::vector<float> s5;
+  SchlickTable() : s5(kS * kS) {
+    tbb::parallel_for(0, kS * kS, [&](int k) {
+      const float r = grid_value(k % kS, kS, 1.0f), mu = grid_value(k / kS, kS, 1.0f);
+      double sum = 0.0;
+      for (int slice : {kS / 2 - 1, kS / 2})
+        sum += std::min(schlick_fresnel_mix_direct(r, mu, schlick_exponent(slice), kGridS), 1.0);
+      s5[k] = float(0.5 * sum);
+    });
+  }
+};
 
 }  // namespace
 
@@ -120,6 +141,14 @@ double dielectric_fresnel_mix_direct(float roughness, float mu, float eta, int n
     return double(dielectric_fresnel_factor(glm::dot(wo, h), eta));
   });
 }
+
+double schlick_fresnel_mix_direct(float roughness, float mu, float exponent, int n) {
+  return visible_normal_mean(roughness, mu, n, [&](const Vec3& h, const Vec3&, const Vec3& wo) {
+    return std::pow(double(clamp01(1.0f - glm::dot(wo, h))), double(exponent));
+  });
+}
+
+float schlick_fresnel_mix(float roughness, float mu) { return read_2d(built_once<SchlickTable>().s5.data(), roughness, mu, kS, kS); }
 
 float albedo(float roughness, float mu) { return read_2d(tables().e.data(), roughness, mu, kE, kE); }
 

@@ -95,6 +95,26 @@ PrincipledV2Bsdf::ViewTerms PrincipledV2Bsdf::view_terms(float cos_o) const {
   return v;
 }
 
+PrincipledV2Bsdf::ClosureAlbedos PrincipledV2Bsdf::closure_albedos(float cos_o) const {
+  const ViewTerms v = view_terms(cos_o);
+  ClosureAlbedos a;
+  // The multiscatter darkening E k: the scales above carry k (the lobe's factor).
+  const float e = multiscatter_ ? std::max(ggx_tables::albedo(roughness_, cos_o), 1e-3f) : 1.0f;
+  a.diffuse = v.diffuse;
+  if (has_dielectric_)
+    a.dielectric = v.dielectric_scale * e *
+                   glm::mix(dielectric_f0_, Vec3(1.0f), ggx_tables::dielectric_fresnel_mix(roughness_, cos_o, eta_));
+  a.metal = v.metal_scale * e * glm::mix(metal_f0_, Vec3(1.0f), ggx_tables::schlick_fresnel_mix(roughness_, cos_o));
+  if (coat_.active()) a.coat = Vec3(v.coat.albedo);
+  if (sheen_.active()) {
+    a.sheen = v.sheen.weight;
+    a.layers = v.coat.base_weight * SheenV2::keep(v.sheen);
+  } else {
+    a.layers = v.coat.base_weight;
+  }
+  return a;
+}
+
 Vec3 PrincipledV2Bsdf::mirror_reflectance(const Vec3& wo) const {
   const ViewTerms v = view_terms(wo.z);
   return v.metal_scale * metal_fresnel(wo.z) + v.dielectric_scale * dielectric_fresnel(wo.z);

@@ -2,7 +2,9 @@
 // features weigh them, and the features' step at a surface (film/denoising_passes.h).
 #include "film/denoising_features.h"
 
+#include "torrance/bsdfs/ggx_tables.h"
 #include "torrance/bsdfs/principled.h"
+#include "torrance/bsdfs/principled_v2.h"
 
 #include <algorithm>
 #include <cmath>
@@ -68,25 +70,53 @@ float DenoisingClosures::defensive_ratio(bool transmitted) const {
   return plain > 0.0f ? (defended / defended_sum) / (plain / sum_weight) : 1.0f;
 }
 
+void DenoisingClosures::add_glass(const Vec3& reflect, const Vec3& refract, float reflect_r2, float refract_r2) {
+  add(reflect, std::abs(mean(reflect)), reflect_r2, false, !one_glass_closure);
+  add(refract, std::abs(mean(refract)), refract_r2, true, !one_glass_closure);
+  if (one_glass_closure) add_sampled(std::abs(mean(reflect + refract)), false);
+}
+
+void DenoisingClosures::add_principled_v2(const Material& m, float w, float cos_no, bool backfacing) {
+  const float c = std::clamp(std::abs(cos_no), 0.0f, 1.0f);  // Cycles' N faces the viewer
+  const PrincipledV2Bsdf bsdf(m);
+  const PrincipledV2Bsdf::ClosureAlbedos a = bsdf.closure_albedos(c);
+  const float r2 = sqr(bsdf.alpha());
+  add(w * a.sheen, w * mean(a.sheen), kNotMicrofacet);
+  add(w * a.coat, w * mean(a.coat), sqr(bsdf.coat_alpha()));
+  add(w * a.metal, w * mean(a.metal), r2);
+  const float metallic = std::clamp(m.metallic, 0.0f, 1.0f);
+  const float glass = std::clamp(m.transmission, 0.0f, 1.0f) * (1.0f - metallic);
+  if (glass > kWeightCutoff) {  // one GGX glass closure, f0 = F0(ior) x Specular Tint
+    const float eta = std::max(m.ior, 1e-5f), etap = backfacing ? 1.0f / eta : eta;
+    const Vec3 f0 = glm::clamp(ggx_tables::f0_from_ior(etap) * glm::max(m.specular_tint_color, Vec3(0.0f)),
+                               Vec3(0.0f), Vec3(1.0f));
+    const Vec3 weight = w * glass * a.layers;
+    const Vec3 reflect = glm::mix(f0, Vec3(1.0f), ggx_tables::dielectric_fresnel_mix(bsdf.roughness(), c, etap));
+    const Vec3 smooth = glm::mix(f0, Vec3(1.0f), ggx_tables::dielectric_fresnel_factor(c, etap));
+    const Vec3 refract = (Vec3(1.0f) - smooth) * glm::sqrt(glm::clamp(m.base_color, Vec3(0.0f), Vec3(1.0f)));
+    add_glass(weight * reflect, weight * refract, r2, r2);
+  }
+  add(w * a.dielectric, w * mean(a.dielectric), r2);
+  add(w * a.diffuse, w * mean(a.diffuse), kNotMicrofacet);
+}
+
 void DenoisingClosures::add_material(const Material& m, float w, float cos_no, bool backfacing) {
+  if (principled_v2 && !m.glass_node) {
+    add_principled_v2(m, w, cos_no, backfacing);
+    return;
+  }
   const Vec3 base = glm::max(m.base_color, Vec3(0.0f));
   const float roughness = std::clamp(m.roughness, 0.0f, 1.0f);
   const float eta = std::max(m.ior, 1e-5f);
   const float ior = backfacing ? 1.0f / eta : eta;
   const float fresnel = fresnel_dielectric(cos_no, ior);
-  // Two glass closures (the reflection and the refraction), each with its alpha^2.
-  auto add_glass = [&](const Vec3& reflect, const Vec3& refract, float reflect_r2, float refract_r2) {
-    add(reflect, std::abs(mean(reflect)), reflect_r2, false, !one_glass_closure);
-    add(refract, std::abs(mean(refract)), refract_r2, true, !one_glass_closure);
-    if (one_glass_closure) add_sampled(std::abs(mean(reflect + refract)), false);
-  };
   if (m.glass_node) {  // the Glass BSDF: both closures of its colour, untinted by Fresnel colour
     const Vec3 weight = w * base;
     const float r2 = microfacet_roughness_squared(roughness);
     add_glass(weight * fresnel, weight * std::max(1e-4f, 1.0f - fresnel), r2, r2);
     return;
   }
-  // The Principled BSDF (v1's closures).
+  // The Principled BSDF, v1's closures (Cycles 3.x).
   const float metallic = std::clamp(m.metallic, 0.0f, 1.0f);
   const float transmission = std::clamp(m.transmission, 0.0f, 1.0f);
   const float diffuse_weight = (1.0f - metallic) * (1.0f - transmission);

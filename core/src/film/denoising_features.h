@@ -8,7 +8,11 @@
 // camera space, and closes the features; otherwise it multiplies the feature throughput by the
 // specular-like closures' albedo and goes on (smooth mirrors and glass). A closure's albedo is
 // its weight, times its mean Fresnel colour for Principled's specular, glass reflection and
-// clearcoat closures, times the sheen's mean for the sheen. Emission and the world met while the
+// clearcoat closures, times the sheen's mean for the sheen; with Cycles 4.x's closures (the
+// PRINCIPLED_V2 model) the Principled BSDF's are its diffuse, dielectric, metal, glass, coat and
+// sheen closures with their albedo as Cycles 4.x's bsdf_albedo estimates it (layering and
+// multiscatter darkening in the weights, Fresnel from the S and S5 tables; principled_v2.h's
+// closure_albedos; the tinted glass's multiscatter darkening left out). Emission and the world met while the
 // features are open add the feature throughput x their contribution to the albedo; every
 // surface met adds mean(feature throughput) x its segment's length to the depth. Written once per
 // sample, so the passes are the mean over the samples (0 where nothing was written).
@@ -46,8 +50,10 @@ struct ClosureList {
 
 // The closures of one surface, summed as the denoising features sort them.
 struct DenoisingClosures {
-  explicit DenoisingClosures(bool one_glass_closure = false) : one_glass_closure(one_glass_closure) {}
+  // cycles4: Cycles 4.x's closures (the PRINCIPLED_V2 model), else Cycles 3.4's.
+  explicit DenoisingClosures(bool cycles4 = false) : one_glass_closure(cycles4), principled_v2(cycles4) {}
   bool one_glass_closure;  // Cycles 4.x's glass: one closure for the defensive sampling
+  bool principled_v2;      // the Principled BSDF's closures as Cycles 4.x makes them
   Vec3 diffuse_albedo{0.0f}, specular_albedo{0.0f};
   float sum_weight = 0.0f, sum_nonspecular = 0.0f;  // Cycles' sample weights
   // The closures' sample weights and whether they transmit, for the defensive sampling.
@@ -67,6 +73,10 @@ struct DenoisingClosures {
   void add_material(const Material& m, float w, float cos_no, bool backfacing);
   // A mixture's closures.
   void add_closures(const ClosureList& list, float cos_no, bool backfacing);
+  // A glass's reflection and refraction (one closure in Cycles 4.x), each with its alpha^2.
+  void add_glass(const Vec3& reflect, const Vec3& refract, float reflect_r2, float refract_r2);
+  // Principled v2's closures (Cycles 4.x: PrincipledV2Bsdf::closure_albedos, the glass).
+  void add_principled_v2(const Material& m, float w, float cos_no, bool backfacing);
   // Whether the path stops collecting here: some diffuse-like share, or no closure at all.
   bool stops() const { return sum_weight == 0.0f || sum_nonspecular * 4.0f > sum_weight; }
 };

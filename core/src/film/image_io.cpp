@@ -44,9 +44,11 @@ void write_image(const std::string& path, const Image& image) {
   if (!ok || !out->close()) throw std::runtime_error("failed writing '" + path + "': " + out->geterror());
 }
 
-ImageData read_image(const std::string& path, double extra_bytes_per_pixel) {
+ImageData read_image(const std::string& path, double extra_bytes_per_pixel, int subimage) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw std::runtime_error("cannot read '" + path + "': " + OIIO::geterror());
+  if (subimage != 0 && !in->seek_subimage(subimage, 0))
+    throw std::runtime_error("cannot read '" + path + "': no subimage " + std::to_string(subimage));
   const OIIO::ImageSpec& spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1 || spec.nchannels <= 0 || spec.deep)
     throw std::runtime_error("cannot read '" + path + "': unsupported image size " + std::to_string(spec.width) + " x " +
@@ -60,7 +62,7 @@ ImageData read_image(const std::string& path, double extra_bytes_per_pixel) {
   data.height = spec.height;
   data.channels = spec.nchannels;
   data.pixels.resize(size_t(spec.width) * spec.height * spec.nchannels);
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.pixels.data()))
+  if (!in->read_image(subimage, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.pixels.data()))
     throw std::runtime_error("failed reading '" + path + "': " + in->geterror());
   in->close();
   return data;

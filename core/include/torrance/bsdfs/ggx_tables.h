@@ -30,11 +30,17 @@ inline constexpr float kDeltaAlpha = 7.0710678e-4f;
 float albedo(float roughness, float mu);                             // E(r, mu)
 float average_albedo(float roughness);                               // E_avg(r)
 float dielectric_fresnel_mix(float roughness, float mu, float eta);  // S(r, mu, z(eta))
+// The same interpolation factor for Schlick's Fresnel, the visible-normal mean of (1 - wo.h)^p,
+// as Cycles 4.x reads its generalized-Schlick table for F82-tint metals (at z = 0.5, between its
+// slices of exponents p = 5(1 - z)/z at z = 7/15 and 8/15, in equal parts): the metal's albedo
+// estimate mix(f0, 1, S5).
+float schlick_fresnel_mix(float roughness, float mu);  // S5(r, mu)
 
 // The same integrals at one point, evaluated directly (no table), with an n x n grid over u:
 // what the tables store at grid points; the tests use them to check table accuracy.
 double albedo_direct(float roughness, float mu, int n);
 double dielectric_fresnel_mix_direct(float roughness, float mu, float eta, int n);
+double schlick_fresnel_mix_direct(float roughness, float mu, float exponent, int n);
 
 // The Fresnel interpolation factor s(cos) for relative IOR eta (see above).
 float dielectric_fresnel_factor(float cos_i, float eta);

@@ -63,6 +63,18 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
   };
   ViewTerms view_terms(float cos_o) const;
 
+  // The albedo of each closure Cycles 4.x makes of the material (closure/bsdf.h's bsdf_albedo:
+  // the closure's weight, its layering and multiscatter darkening included, times its Fresnel
+  // estimate for microfacet closures), as its Denoising Albedo and Diff/Gloss Color passes take
+  // them: diffuse; dielectric mix(f0 tint, 1, S); metal mix(f0, 1, S5) (ggx_tables.h); the coat's
+  // and the sheen's. `layers`: what the coat and the sheen leave the layers under them (the
+  // Transmission Weight's glass, principled_glass_v2.h, takes it too).
+  struct ClosureAlbedos {
+    Vec3 diffuse{0.0f}, dielectric{0.0f}, metal{0.0f}, coat{0.0f}, sheen{0.0f}, layers{1.0f};
+  };
+  ClosureAlbedos closure_albedos(float cos_o) const;
+  float coat_alpha() const { return coat_.alpha(); }
+
   // What eval, pdf and sample need of wo alone (lobe_mixture.h), prepared once per shading point.
   struct View : lobe_mixture::View {
     using Model = PrincipledV2Bsdf;
@@ -77,6 +89,7 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
   using lobe_mixture::Queries<PrincipledV2Bsdf>::eval_lobes;  // pdf, sample, eval: lobe_mixture::Queries
 
   float alpha() const { return alpha_; }
+  float roughness() const { return roughness_; }
   bool has_delta() const { return alpha_ < ggx_tables::kDeltaAlpha; }
   Vec3 mirror_reflectance(const Vec3& wo) const;
   float specular_probability(const Vec3& wo) const { return specular_probability(view_terms(wo.z), wo.z); }

@@ -15,7 +15,7 @@ struct ImageData {
 };
 // The header is checked before any pixel is read: a size the file cannot have, or one whose
 // floats (plus extra_bytes_per_pixel the caller will add) exceed the memory budget, is refused.
-ImageData read_image(const std::string& path, double extra_bytes_per_pixel = 0.0);
+ImageData read_image(const std::string& path, double extra_bytes_per_pixel = 0.0, int subimage = 0);
 
 inline float linear_to_srgb(float x) {
   x = std::min(std::max(x, 0.0f), 1.0f);
