@@ -14,8 +14,8 @@ Blender 3.4 0.0048 -> 0.0046, bpy 4.2 0.0048 -> 0.0045 (colour alone 0.0052, 0.0
 
 A denoised render uses the importance-sampled film (each sample in its own pixel, as Cycles):
 the splatting film's noise, correlated between neighbours, is what the denoiser handles worst
-(core/python/tests/test_denoiser.py: 4 spp relMSE after denoising 0.0045 against 0.020 with
-splatting).
+where lighting makes the noise (core/python/tests/test_denoiser.py: 4 spp relMSE after denoising
+0.0045 against 0.020 with splatting), not where sub-pixel geometry does (splatting_when_denoised).
 """
 
 import os
@@ -26,6 +26,16 @@ import threading
 import time
 
 import numpy as np
+
+def splatting_when_denoised(settings):
+    """The film of a render that is denoised (the core's RenderSettings, filled): whether it
+    splats its samples. Always the importance-sampled film (False), as Cycles. Measured after
+    denoising (docs/speed/denoised_film.md, scripts/denoised_film.py): it wins by up to 7x where
+    fireflies and indirect light make the noise (sphere_chart, interior) and loses by up to 9x
+    where sub-pixel geometry does (grass_stone, water); a choice per render from the scene's
+    noise is not made yet."""
+    return False
+
 
 _denoisers = {}            # library path ('' = already loaded) -> Denoiser or ChildDenoiser
 _failures = {}             # library path -> why it could not be loaded

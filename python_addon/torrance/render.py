@@ -229,8 +229,8 @@ def _render(engine, depsgraph, reporter):
         **core_settings(ts),
     )
 
-    if denoise:
-        settings.filter_splatting = False     # the film whose noise the denoiser handles best
+    if denoise:     # the film whose noise the denoiser handles best (measured: denoising.py)
+        settings.filter_splatting = denoising.splatting_when_denoised(settings)
 
     session.begin()
     try:
