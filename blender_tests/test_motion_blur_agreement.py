@@ -20,7 +20,8 @@ and by Torrance (seeds 2 and 3), compared by ratio and 8x8 block means
 
 Each has deliberate faults (torrance.export.motion.shutter_offsets patched) that must FAIL the
 same bounds: time ignored (every step at the frame: no blur), the shutter halved, and Position
-Start/End read as Center.
+Start/End read as Center. (A core fault, the panel's light sampled at the frame, was shown to
+fail by hand: see the commit that recorded its figures.)
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_motion_blur_agreement.py
