@@ -39,6 +39,29 @@ void init_media(py::module_& m) {
       "scattering. pass_through: the material has no surface shader (paths cross its surface without a "
       "bounce). ValueError for a negative or non-finite value, |anisotropy| > 1 or an unknown material.");
   scene.def(
+      "set_material_volume_program",
+      [](Scene& s, uint32_t material, uint32_t program, int sigma_a, int sigma_s, int emission, float anisotropy,
+         std::array<float, 3> bounds_min, std::array<float, 3> bounds_max, bool pass_through) {
+        VaryingMedium v;
+        v.program = program;
+        v.sigma_a = int16_t(sigma_a);
+        v.sigma_s = int16_t(sigma_s);
+        v.emission = int16_t(emission);
+        v.anisotropy = anisotropy;
+        v.bounds_min = Vec3(bounds_min[0], bounds_min[1], bounds_min[2]);
+        v.bounds_max = Vec3(bounds_max[0], bounds_max[1], bounds_max[2]);
+        s.set_material_volume(material, v, pass_through);
+      },
+      py::arg("material"), py::arg("program"), py::arg("sigma_a") = -1, py::arg("sigma_s") = -1,
+      py::arg("emission") = -1, py::arg("anisotropy") = 0.0f, py::arg("bounds_min") = kZero,
+      py::arg("bounds_max") = kZero, py::arg("pass_through") = false,
+      "A heterogeneous volume inside the closed meshes of `material`: shader program `program` (from "
+      "add_shader_program), run at points inside (Geometry > Position the point's), computes the absorption "
+      "and scattering coefficients and the emitted radiance per metre in colour registers sigma_a, sigma_s "
+      "and emission (-1: zero; negative values count as 0); the Henyey-Greenstein anisotropy is constant. "
+      "bounds_min/bounds_max: a world box holding the material's meshes, where the majorant is found. "
+      "ValueError for an unknown material or program, a register the program does not write, |anisotropy| > 1.");
+  scene.def(
       "set_world_volume",
       [](Scene& s, std::array<float, 3> sigma_a, std::array<float, 3> sigma_s, std::array<float, 3> emission,
          float anisotropy) { s.set_world_volume(medium(sigma_a, sigma_s, emission, anisotropy)); },

@@ -579,7 +579,11 @@ class MaterialTable:
                 self.pass_indices[idx] = float(mat.pass_index)
             self.names[idx] = mat.name
             volume = material_volume(mat, self.textures, self.reader.reporter)
-            if volume is not None:
+            if volume is not None and 'program' in volume[0]:
+                keywords = dict(volume[0])
+                keywords['program'] = self.scene.add_shader_program(*keywords['program'])
+                self.scene.set_material_volume_program(idx, **keywords, pass_through=volume[1])
+            elif volume is not None:
                 self.scene.set_material_volume(idx, **volume[0], pass_through=volume[1])
             self.indices[key] = idx
         return idx

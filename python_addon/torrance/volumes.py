@@ -1,9 +1,10 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Volume shaders -> the core's homogeneous media (Scene.set_material_volume, set_world_volume).
+"""Volume shaders -> the core's media (Scene.set_material_volume, set_material_volume_program,
+set_world_volume).
 
 What feeds the Volume of a Material Output (the medium inside the material's closed meshes) or of
 a World Output (the medium around everything) is read as Cycles 3.4 sums volume closures
-(svm/closure.h), with constant inputs:
+(svm/closure.h):
 
 * Volume Absorption: absorption (1 - Color) x Density;
 * Volume Scatter: scattering Color x Density, Henyey-Greenstein with its Anisotropy;
@@ -13,81 +14,117 @@ a World Output (the medium around everything) is read as Cycles 3.4 sums volume 
 * Emission (in a Volume socket): emitted radiance per metre Color x Strength;
 * Mix Shader (its Fac clamped to [0, 1]) and Add Shader of those.
 
-Coefficients are per metre. Scattering closures of different anisotropies become one lobe of
-their scattering-weighted mean anisotropy (reported). An input whose graph varies over space
-(textures, attributes: heterogeneous volumes) is not yet rendered: it keeps its own value and is
-reported; so are phase functions other than Henyey-Greenstein (Blender 4.4+) and surface closures
-in a Volume socket (Cycles renders nothing for them either).
+Coefficients are per metre. With constant inputs they are summed here (a homogeneous medium).
+When an input of a material's volume varies through it (Density, Color, Absorption Color,
+Emission Strength and Color, Strength, a Mix Shader's Fac fed by textures, maths, ramps ...) the
+same sums are compiled into a shader program the core runs at points inside the volume (a
+heterogeneous medium; Object and Generated coordinates as volume_space.py says). Anisotropy and
+the blackbody's inputs stay constant (one that varies keeps its own value, reported), as does a
+World's volume. Scattering closures of different anisotropies become one lobe of their
+scattering-weighted mean anisotropy (reported; equal weights in a program). Phase functions other
+than Henyey-Greenstein (Blender 4.4+) and surface closures in a Volume socket (Cycles renders
+nothing for them either) are reported.
 """
 
 import math
+from functools import partial
 
 from .blender_versions import used_node_tree
 from .nodes import node_label, source_socket
 from .shader_graph.convert_ops import blackbody
 from .shader_graph.graph import GraphCompiler, Unsupported
-from .shader_graph.program import ProgramBuilder
+from .shader_graph.program import ProgramBuilder, Value, constant
 from .shader_graph.registry import READERS
+from .volume_space import volume_space
+from .volume_sums import CUTOFF, Constants, Program, Varies
 
 _MAX_DEPTH = 64
-_CUTOFF = 1e-5                      # Cycles' CLOSURE_WEIGHT_CUTOFF
 _STEFAN_BOLTZMANN = 5.670373e-8 * 1e-6 / math.pi   # as Cycles' Principled Volume scales it
-
-
-class _Medium:
-    """Coefficients summed over closures (RGB lists), and the anisotropies by their scattering."""
-
-    def __init__(self):
-        self.sigma_a = [0.0, 0.0, 0.0]
-        self.sigma_s = [0.0, 0.0, 0.0]
-        self.emission = [0.0, 0.0, 0.0]
-        self.lobes = []             # (g, mean scattering)
-
-    def add(self, field, rgb, weight):
-        target = getattr(self, field)
-        for i in range(3):
-            target[i] += max(float(rgb[i]), 0.0) * weight
-
-    def scatter(self, rgb, g, weight):
-        self.add('sigma_s', rgb, weight)
-        mean = sum(max(float(c), 0.0) for c in rgb) * weight / 3.0
-        if mean > 0.0:
-            self.lobes.append((g, mean))
-
-    def empty(self):
-        return max(self.sigma_a + self.sigma_s + self.emission) <= 0.0
+# Inputs read as constants in heterogeneous volumes too (one that varies: its own value, reported).
+_CONSTANT_INPUTS = frozenset(("Anisotropy", "Blackbody Intensity", "Temperature",
+                              "Blackbody Tint"))
 
 
 class VolumeReader:
-    """Reads the closure tree feeding a Volume socket; `where` names its owner in messages."""
+    """Reads the closure tree feeding a Volume socket; `where` names its owner in messages.
+    space: a function giving the VolumeSpace (volume_space.py) of the meshes holding the volume
+    (or None), called when an input varies through it (None: a world, whose varying inputs are
+    not yet rendered)."""
 
-    def __init__(self, where, textures, reporter):
+    def __init__(self, where, textures, reporter, space=None):
         self.where = where
         self.reporter = reporter
+        self.textures = textures
+        self.space = space
         self.values = GraphCompiler(ProgramBuilder(), textures, READERS)
+        self._warned = set()
+
+    def _warn(self, text):
+        """A warning once (a tree read twice, as constants and then as a program)."""
+        if text not in self._warned:
+            self._warned.add(text)
+            self.reporter.warning(text)
 
     def read(self, socket):
         """set_material_volume/set_world_volume keywords (sigma_a, sigma_s, emission,
-        anisotropy), or None when nothing renders."""
-        medium = _Medium()
-        self._shader(source_socket(socket), 1.0, medium, 0)
+        anisotropy), or with a program set_material_volume_program's (program, registers,
+        anisotropy, bounds), or None when nothing renders."""
+        medium = Constants()
+        try:
+            self._shader(source_socket(socket), 1.0, medium, 0)
+        except Varies:
+            space = self.space() if self.space is not None else None
+            if space is not None:
+                return self._read_program(socket, space)
+            medium = Constants()
+            self.values = GraphCompiler(ProgramBuilder(), self.textures, READERS)
+            self._report_varying = True
+            self._shader(source_socket(socket), 1.0, medium, 0)
         if medium.empty():
             return None
-        total = sum(w for _, w in medium.lobes)
-        anisotropy = sum(g * w for g, w in medium.lobes) / total if total > 0.0 else 0.0
-        if len({g for g, _ in medium.lobes}) > 1:
-            self.reporter.warning(f"{self.where}: scattering closures of different anisotropies "
-                                  f"are rendered as one of their mean anisotropy {anisotropy:.3g}")
         return dict(sigma_a=tuple(medium.sigma_a), sigma_s=tuple(medium.sigma_s),
-                    emission=tuple(medium.emission),
-                    anisotropy=max(-1.0, min(1.0, anisotropy)))
+                    emission=tuple(medium.emission), anisotropy=self._anisotropy(medium.lobes))
+
+    _report_varying = False
+    _medium = None
+
+    def _read_program(self, socket, space):
+        builder = ProgramBuilder()
+        self.values = GraphCompiler(builder, self.textures, READERS)
+        space.apply(self.values)
+        medium = Program(builder)
+        self._shader(source_socket(socket), 1.0, medium, 0)
+        registers = medium.registers()
+        if all(isinstance(r, int) and r == -1 for r in registers.values()):
+            return None
+        out = {k: r if isinstance(r, int) else builder.register_of(r)
+               for k, r in registers.items()}
+        try:
+            program = builder.build()
+        except ValueError as exc:
+            self._warn(f"{self.where}: {exc}; the volume is left out")
+            return None
+        return dict(program=program, **out, anisotropy=self._anisotropy(medium.lobes),
+                    bounds_min=space.bounds_min, bounds_max=space.bounds_max)
+
+    def _anisotropy(self, lobes):
+        """One anisotropy for the closures' lobes: their mean weighted by scattering (equal
+        weights where the scattering varies), reported when they differ."""
+        weights = [1.0 if w is None else w for _, w in lobes]
+        total = sum(weights)
+        g = sum(g * w for (g, _), w in zip(lobes, weights, strict=True)) / total \
+            if total > 0.0 else 0.0
+        if len({g for g, _ in lobes}) > 1:
+            self._warn(f"{self.where}: scattering closures of different anisotropies "
+                                  f"are rendered as one of their mean anisotropy {g:.3g}")
+        return max(-1.0, min(1.0, g))
 
     def _shader(self, output, weight, medium, depth):
-        if output is None or weight <= 0.0:
+        if output is None or (not isinstance(weight, Value) and weight <= 0.0):
             return
         node = output.node
         if depth > _MAX_DEPTH:
-            self.reporter.warning(f"{self.where}: shader nodes nested deeper than {_MAX_DEPTH} "
+            self._warn(f"{self.where}: shader nodes nested deeper than {_MAX_DEPTH} "
                                   f"at {node_label(node)}; left out")
             return
         if node.mute:
@@ -97,86 +134,109 @@ class VolumeReader:
                 self._shader(source_socket(passed[0]), weight, medium, depth + 1)
             return
         kind = node.bl_idname
+        self._medium = medium
+        value = partial(self._value, node)
         if kind == 'ShaderNodeAddShader':
             for s in node.inputs[:2]:
                 self._shader(source_socket(s), weight, medium, depth + 1)
         elif kind == 'ShaderNodeMixShader':
-            fac = min(max(self._value(node, "Fac", 'float'), 0.0), 1.0)
+            fac = medium.clamp01(value("Fac", 'float'))
             a, b = node.inputs[1:3]
-            self._shader(source_socket(a), weight * (1.0 - fac), medium, depth + 1)
-            self._shader(source_socket(b), weight * fac, medium, depth + 1)
+            weight_a, weight_b = medium.mix_weights(weight, fac)
+            self._shader(source_socket(a), weight_a, medium, depth + 1)
+            self._shader(source_socket(b), weight_b, medium, depth + 1)
         elif kind == 'ShaderNodeVolumeAbsorption':
-            density = max(self._value(node, "Density", 'float'), 0.0)
-            color = self._value(node, "Color", 'color')
-            medium.add('sigma_a', [1.0 - c for c in color], weight * density)
+            density = medium.positive(value("Density", 'float'))
+            color = value("Color", 'color')
+            medium.add('sigma_a', medium.one_minus(color), medium.times(weight, density))
         elif kind == 'ShaderNodeVolumeScatter':
             self._check_phase(node)
-            density = max(self._value(node, "Density", 'float'), 0.0)
-            color = self._value(node, "Color", 'color')
-            medium.scatter(color, self._value(node, "Anisotropy", 'float'), weight * density)
+            density = medium.positive(value("Density", 'float'))
+            color = value("Color", 'color')
+            medium.scatter(color, self._anisotropy_input(node), medium.times(weight, density))
         elif kind == 'ShaderNodeVolumePrincipled':
             self._principled(node, weight, medium)
         elif kind == 'ShaderNodeEmission':
-            strength = self._value(node, "Strength", 'float')
-            medium.add('emission', self._value(node, "Color", 'color'), weight * strength)
+            strength = value("Strength", 'float')
+            medium.add('emission', value("Color", 'color'), medium.times(weight, strength))
         else:
-            self.reporter.warning(f"{self.where}: {node_label(node)} is not a volume shader "
+            self._warn(f"{self.where}: {node_label(node)} is not a volume shader "
                                   f"(Torrance reads Volume Absorption, Volume Scatter, Principled "
                                   f"Volume, Emission, Mix and Add Shader); left out")
 
     def _principled(self, node, weight, medium):
-        density = max(self._value(node, "Density", 'float'), 0.0) * weight
-        if density > _CUTOFF:
-            color = self._value(node, "Color", 'color')
-            medium.scatter(color, self._value(node, "Anisotropy", 'float'), density)
-            absorption_color = [math.sqrt(max(c, 0.0))
-                                for c in self._value(node, "Absorption Color", 'color')]
-            medium.add('sigma_a', [max(1.0 - c, 0.0) * max(1.0 - a, 0.0)
-                                   for c, a in zip(color, absorption_color, strict=True)], density)
-        strength = self._value(node, "Emission Strength", 'float')
-        if strength > _CUTOFF:
-            medium.add('emission', self._value(node, "Emission Color", 'color'), weight * strength)
-        intensity = self._value(node, "Blackbody Intensity", 'float')
-        if intensity > _CUTOFF:
-            kelvin = max(self._value(node, "Temperature", 'float'), 0.0)
+        value = partial(self._value, node)
+        density = medium.times(medium.positive(value("Density", 'float')), weight)
+        if medium.above_cutoff(density):
+            color = value("Color", 'color')
+            medium.scatter(color, self._anisotropy_input(node), density)
+            absorption_color = medium.sqrt_positive(value("Absorption Color", 'color'))
+            medium.add('sigma_a', medium.product(medium.one_minus_positive(color),
+                                                 medium.one_minus_positive(absorption_color)),
+                       density)
+        strength = value("Emission Strength", 'float')
+        if medium.above_cutoff(strength):
+            medium.add('emission', value("Emission Color", 'color'),
+                       medium.times(weight, strength))
+        intensity = value("Blackbody Intensity", 'float')
+        if intensity > CUTOFF:
+            kelvin = max(value("Temperature", 'float'), 0.0)
             power = _STEFAN_BOLTZMANN * (1.0 + (kelvin ** 4 - 1.0) * intensity)
-            if power > _CUTOFF:
-                tint = self._value(node, "Blackbody Tint", 'color')
+            if power > CUTOFF:
+                tint = value("Blackbody Tint", 'color')
                 rgb = [t * c for t, c in zip(tint, blackbody(kelvin), strict=True)]
-                medium.add('emission', rgb, weight * power)
+                medium.add('emission', rgb, medium.times(weight, power))
+
+    def _anisotropy_input(self, node):
+        return self._value(node, "Anisotropy", 'float')
 
     def _check_phase(self, node):
         phase = getattr(node, "phase", 'HENYEY_GREENSTEIN')
         if phase != 'HENYEY_GREENSTEIN':
-            self.reporter.warning(f"{self.where}: the {phase.replace('_', '-').title()} phase "
+            self._warn(f"{self.where}: the {phase.replace('_', '-').title()} phase "
                                   f"function of {node_label(node)} is not yet rendered; "
                                   f"Henyey-Greenstein with its Anisotropy instead")
 
-    def _value(self, node, name, kind):
-        """A closure input's constant value (a float, or an RGB list); an input that varies
-        over space or that the graph can not compile keeps its own value, reported."""
+    def _read(self, node, name, kind):
+        """A closure input's Value; one the graph can not compile keeps its own value,
+        reported."""
         socket = node.inputs.get(name)
         if socket is None:
-            return 0.0 if kind == 'float' else [0.0, 0.0, 0.0]
+            return constant(kind, 0.0 if kind == 'float' else (0.0, 0.0, 0.0))
         mark = self.values.builder.mark()
         try:
-            value = self.values.input(socket, kind)
+            return self.values.input(socket, kind)
         except Unsupported as exc:
-            value = None
-            self.reporter.warning(f"{self.where}: input '{name}' of {node_label(node)}: {exc}; "
+            self._warn(f"{self.where}: input '{name}' of {node_label(node)}: {exc}; "
                                   f"using the socket's own value")
-        if value is not None and not value.constant:
-            value = None
-            self.reporter.warning(f"{self.where}: input '{name}' of {node_label(node)} varies "
-                                  f"through the volume (heterogeneous volumes are not yet "
-                                  f"rendered); using the socket's own value")
-        if value is None:
-            self.values.builder.rollback(mark)
-            value = self.values.default(socket, kind)
-        if kind == 'float':
-            v = float(value.value[0])
-            return v if math.isfinite(v) else 0.0
-        return [float(c) if math.isfinite(c) else 0.0 for c in tuple(value.value)[:3]]
+        self.values.builder.rollback(mark)
+        return self.values.default(socket, kind)
+
+    def _value(self, node, name, kind):
+        """An input as the medium being read takes it (Constants: a number or RGB list, raising
+        Varies for one that varies over space unless such inputs are being reported; Program:
+        a Value); those Torrance takes as constant (_CONSTANT_INPUTS) a number or RGB list."""
+        if name in _CONSTANT_INPUTS:
+            return self._constant(node, name, kind)
+        medium = self._medium
+        read = self._read(node, name, kind)
+        if isinstance(medium, Constants) and not read.constant and self._report_varying:
+            self._warn(f"{self.where}: input '{name}' of {node_label(node)} varies "
+                                  f"through the volume (heterogeneous volumes are rendered only "
+                                  f"inside meshes); using the socket's own value")
+            read = self.values.default(node.inputs.get(name), kind)
+        return medium.value(read, kind)
+
+    def _constant(self, node, name, kind):
+        """An input Torrance takes as constant (Anisotropy, the blackbody's): its value; one
+        that varies keeps the socket's own value, reported."""
+        read = self._read(node, name, kind)
+        if not read.constant:
+            self._warn(f"{self.where}: input '{name}' of {node_label(node)} varies "
+                                  f"through the volume, which Torrance does not yet render for "
+                                  f"it; using the socket's own value")
+            read = self.values.default(node.inputs.get(name), kind)
+        return Constants().value(read, kind)
 
 
 def _output_sockets(owner):
@@ -190,12 +250,16 @@ def _output_sockets(owner):
 
 def material_volume(mat, textures, reporter):
     """(set_material_volume keywords without the material, pass_through) for a material whose
-    output's Volume is linked to something that renders, else None. pass_through: its Surface
-    is unlinked (Cycles renders such a surface as a boundary rays cross)."""
+    output's Volume is linked to something that renders, else None; keywords with a 'program'
+    (its add_shader_program arguments) are set_material_volume_program's (a heterogeneous
+    volume). pass_through: its Surface is unlinked (Cycles renders such a surface as a boundary
+    rays cross)."""
     sockets = _output_sockets(mat) if mat is not None else None
     if sockets is None or sockets[1] is None or source_socket(sockets[1]) is None:
         return None
-    medium = VolumeReader(f"Material '{mat.name}'", textures, reporter).read(sockets[1])
+    where = f"Material '{mat.name}'"
+    medium = VolumeReader(where, textures, reporter,
+                          space=lambda: volume_space(mat, where, reporter)).read(sockets[1])
     if medium is None:
         return None
     return medium, sockets[0] is None or source_socket(sockets[0]) is None

@@ -522,7 +522,7 @@ class PathTracer {
     LobeEval f = v.bsdf->template eval_lobes<kGlass>(v.view, wi);
     if (v.at.normal_mapped) f.diffuse *= bump_shadowing(v.at.n_smooth, v.at.n_diffuse(), ls.wi);
     if (!(max_component(f.total()) > 0.0f)) return;
-    const Vec3 transmittance = shadow_through(v, ls);
+    const Vec3 transmittance = shadow_through(v, ls, u_light.w);
     if (!(max_component(transmittance) > 0.0f)) return;
     // Against the BSDF's pdf even where a guide samples the next direction: see ScatterVertex::pdf.
     const float mis =
@@ -536,14 +536,15 @@ class PathTracer {
 
   // The light a shadow ray from the vertex to a light sample lets through (kMedia: through the
   // media on the light's side of the surface).
-  Vec3 shadow_through(const Vertex& v, const LightSample& ls) const {
+  Vec3 shadow_through(const Vertex& v, const LightSample& ls, float seed) const {
     if constexpr (kMedia) {
       MediumStack beyond = media_.stack;
       if (glm::dot(ls.wi, v.at.ng) < 0.0f)
         beyond.cross(ctx_.scene.media(), v.hit->material, glm::dot(ls.wi, v.hit->geometric_normal) < 0.0f);
       return media_shadow_transmittance(ctx_.scene, shadow_ray(v.hit->position, v.at.ng, ls), beyond,
-                                        ctx_.settings.max_transparent_bounces, path_state_);
+                                        ctx_.settings.max_transparent_bounces, path_state_, seed);
     } else {
+      (void)seed;
       return shadow_transmittance<kAlpha>(ctx_.scene, v.hit->position, v.at.ng, ls,
                                           ctx_.settings.max_transparent_bounces, path_state_);
     }
@@ -677,15 +678,16 @@ class PathTracer {
     ++media_.scatters;
     const glm::vec4 u_light = sampler_.next_4d(), u_phase = sampler_.next_4d();
     const Vec3 position = media_.walk.position, wo = -ray_.dir;
-    const MediumNextEvent nee = medium_next_event(ctx_.scene, position, wo, media_.stack, light_choice_, u_light,
-                                                  path_state_, ctx_.settings.max_transparent_bounces);
+    const MediumNextEvent nee = medium_next_event(ctx_.scene, position, wo, media_.stack, media_.walk.local,
+                                                  light_choice_, u_light, path_state_,
+                                                  ctx_.settings.max_transparent_bounces);
     if (max_component(nee.light) > 0.0f) {
       LobeEval phase;
       phase.diffuse = Vec3(1.0f);
       const Vec3 arrived = deposit_light_sample(throughput_ * nee.light, phase, bounce, true);
       if (light_groups_) credit(lights_.light_group(nee.light_index, nee.sample), arrived);
     }
-    const PhaseSample ps = media_.stack.mix().sample_phase(wo, u_phase.x, Vec2(u_phase.y, u_phase.z));
+    const PhaseSample ps = media_.walk.local.sample_phase(wo, u_phase.x, Vec2(u_phase.y, u_phase.z));
     if (!ps.valid()) return false;
     if (kSplitLobes && bounce == 0) diffuse_share_ = Vec3(1.0f);
     if constexpr (kTextures) path_state_.ray_flags = 0;  // Cycles' volume scatter ray: none of these

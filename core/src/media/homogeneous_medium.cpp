@@ -33,6 +33,12 @@ void MediumMix::add(const HomogeneousMedium& m) {
   ++lobes_;
 }
 
+void MediumMix::add_varying(int32_t index, float majorant) {
+  if (varying_count_ == kMaxVarying) return;  // as MediumStack::kMaxDepth: the innermost left out
+  varying_[size_t(varying_count_++)] = index;
+  varying_majorant_ += majorant;
+}
+
 Vec3 MediumMix::emitted(float distance) const {
   const Vec3 sigma_t = this->sigma_t();
   Vec3 e;

@@ -33,7 +33,11 @@ void MediumStack::leave(const SceneMedia& media, int32_t id) {
 
 void MediumStack::update(const SceneMedia& media) {
   mix_ = MediumMix();
-  for (int i = 0; i < count_; ++i) mix_.add(media.medium(ids_[size_t(i)]));
+  for (int i = 0; i < count_; ++i) {
+    const int32_t id = ids_[size_t(i)], varying = media.varying_index(id);
+    if (varying >= 0) mix_.add_varying(varying, media.varying(varying).majorant);
+    else mix_.add(media.medium(id));
+  }
 }
 
 MediumStack media_at(const Scene& scene, const Vec3& p) {

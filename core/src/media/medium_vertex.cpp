@@ -3,7 +3,7 @@
 namespace torrance {
 
 MediumNextEvent medium_next_event(const Scene& scene, const Vec3& p, const Vec3& wo, const MediumStack& stack,
-                                  LightChoice& choice, const glm::vec4& u, const PathState& state,
+                                  const MediumMix& at, LightChoice& choice, const glm::vec4& u, const PathState& state,
                                   int max_transparent) {
   MediumNextEvent out;
   const Lights& lights = scene.lights();
@@ -14,14 +14,14 @@ MediumNextEvent medium_next_event(const Scene& scene, const Vec3& p, const Vec3&
   out.light_index = chosen.index;
   const LightSample ls = lights.sample(chosen.index, p, n, Vec2(u.y, u.z), true, state);
   if (!ls.valid()) return out;
-  const float phase = stack.mix().phase_pdf(wo, ls.wi);
+  const float phase = at.phase_pdf(wo, ls.wi);
   if (!(phase > 0.0f)) return out;
   Ray ray;
   ray.origin = p;
   ray.dir = ls.wi;
   ray.tmin = 0.0f;
   ray.tmax = std::isinf(ls.distance) ? ls.distance : ls.distance * (1.0f - 1e-4f);
-  const Vec3 transmittance = media_shadow_transmittance(scene, ray, stack, max_transparent, state);
+  const Vec3 transmittance = media_shadow_transmittance(scene, ray, stack, max_transparent, state, u.w);
   if (!(max_component(transmittance) > 0.0f)) return out;
   const float mis = ls.pdf > 0.0f ? power_heuristic(chosen.probability * ls.pdf, phase) : 1.0f;
   out.light = ls.weight * transmittance * (phase * mis / chosen.probability);

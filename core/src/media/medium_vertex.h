@@ -18,8 +18,9 @@ struct MediumNextEvent {
 // NEE at p inside `stack`'s media, the path having arrived travelling along -wo. The light is chosen
 // as at a two-sided surface whose normal is the path's direction (choice keeps the
 // probabilities, for the MIS of a light the phase-sampled ray meets); u: choice, position on the light.
+// at: the media's coefficients at p (its phase function); u.w seeds heterogeneous media's tracking.
 MediumNextEvent medium_next_event(const Scene& scene, const Vec3& p, const Vec3& wo, const MediumStack& stack,
-                                  LightChoice& choice, const glm::vec4& u, const PathState& state,
+                                  const MediumMix& at, LightChoice& choice, const glm::vec4& u, const PathState& state,
                                   int max_transparent);
 
 }  // namespace torrance

@@ -1,6 +1,7 @@
 #include "media/medium_walk.h"
 
 #include "integrator/shadow_rays.h"
+#include "media/varying_tracking.h"
 
 #include <algorithm>
 #include <limits>
@@ -22,8 +23,15 @@ MediumWalk walk_media(const Scene& scene, Ray& ray, SurfaceHit& hit, bool& found
     walk.light_throughput = throughput;
     if (!stack.mix().empty()) {
       const glm::vec4 u = sampler.next_4d();
-      const FreeFlight f =
-          sample_free_flight(stack.mix(), t_end - ray.tmin, throughput, u.x, u.y, may_scatter);
+      FreeFlight f;
+      if (stack.mix().varies()) {
+        Rng rng = tracking_rng(u.z, u.w);
+        f = track_free_flight(scene, stack.mix(), ray.origin + ray.dir * ray.tmin, ray.dir, t_end - ray.tmin,
+                              throughput, rng, may_scatter, walk.local);
+      } else {
+        f = sample_free_flight(stack.mix(), t_end - ray.tmin, throughput, u.x, u.y, may_scatter);
+        if (f.scattered) walk.local = stack.mix();
+      }
       walk.emission += throughput * f.emission;
       throughput *= f.weight;
       if (f.scattered) {
@@ -51,7 +59,7 @@ MediumWalk walk_media(const Scene& scene, Ray& ray, SurfaceHit& hit, bool& found
 }
 
 Vec3 media_shadow_transmittance(const Scene& scene, Ray ray, MediumStack stack, int max_transparent,
-                                const PathState& receiver) {
+                                const PathState& receiver, float seed) {
   const SceneMedia& media = scene.media();
   Vec3 transmittance(1.0f);
   float travelled = 0.0f;
@@ -59,8 +67,13 @@ Vec3 media_shadow_transmittance(const Scene& scene, Ray ray, MediumStack stack, 
     SurfaceHit hit;
     const bool found = ray.tmax > ray.tmin && scene.intersect(ray, hit);
     const float t_end = found ? hit.t : ray.tmax;
-    if (stack.mix().extinguishes())
+    if (stack.mix().varies()) {
+      Rng rng = tracking_rng(seed, ray.origin.x + ray.dir.y, ray.origin.y + ray.origin.z + ray.dir.z);
+      transmittance *= ratio_tracking(scene, stack.mix(), ray.origin + ray.dir * ray.tmin, ray.dir,
+                                      std::max(t_end - ray.tmin, 0.0f), rng);
+    } else if (stack.mix().extinguishes()) {
       transmittance *= torrance::transmittance(stack.mix().sigma_t(), std::max(t_end - ray.tmin, 0.0f));
+    }
     if (!found || !(max_component(transmittance) > 0.0f)) return transmittance;
     if (media.pass_through(hit.material)) {
       stack.cross(media, hit.material, glm::dot(hit.geometric_normal, ray.dir) < 0.0f);

@@ -20,6 +20,7 @@ struct MediumWalk {
   // The throughput that lights met before `distance` are seen with (the scattering stretch's
   // free-flight weight left out; lights inside a chromatic medium: approximate).
   Vec3 light_throughput{1.0f};
+  MediumMix local;  // the media's coefficients where it scattered (heterogeneous: at that point)
 };
 
 // Follows `ray` (tmin to the hit `hit`, if found) through `stack`'s media and the volume-only
@@ -34,7 +35,8 @@ MediumWalk walk_media(const Scene& scene, Ray& ray, SurfaceHit& hit, bool& found
 // along every stretch, volume-only boundaries crossed, other surfaces as trace_path's
 // shadow_transmittance takes them (alpha < 1: (1 - alpha) x tint, at most max_transparent;
 // opaque: 0).
+// Heterogeneous media take ratio tracking, its random numbers from `seed` and the ray.
 Vec3 media_shadow_transmittance(const Scene& scene, Ray ray, MediumStack stack, int max_transparent,
-                                const PathState& receiver);
+                                const PathState& receiver, float seed = 0.0f);
 
 }  // namespace torrance

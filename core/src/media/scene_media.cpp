@@ -15,19 +15,37 @@ void SceneMedia::check(const HomogeneousMedium& m) {
     throw std::invalid_argument("volume anisotropy must be in [-1, 1]");
 }
 
-void SceneMedia::set_material(uint32_t material, const HomogeneousMedium& medium, bool pass_through) {
-  check(medium);
+int32_t SceneMedia::id_for(uint32_t material, bool pass_through) {
   if (material >= id_of_material_.size()) {
     id_of_material_.resize(material + 1, -1);
     pass_through_.resize(material + 1, 0);
   }
   pass_through_[material] = pass_through;
-  if (id_of_material_[material] >= 0) {
-    media_[size_t(id_of_material_[material])] = medium;
-    return;
+  if (id_of_material_[material] < 0) {
+    id_of_material_[material] = int32_t(media_.size());
+    media_.emplace_back();
   }
-  id_of_material_[material] = int32_t(media_.size());
-  media_.push_back(medium);
+  return id_of_material_[material];
+}
+
+void SceneMedia::set_material(uint32_t material, const HomogeneousMedium& medium, bool pass_through) {
+  check(medium);
+  const int32_t id = id_for(material, pass_through);
+  media_[size_t(id)] = medium;
+  if (size_t(id) < varying_of_.size()) varying_of_[size_t(id)] = -1;
+}
+
+void SceneMedia::set_material(uint32_t material, const VaryingMedium& medium, bool pass_through) {
+  check(HomogeneousMedium{Vec3(0.0f), Vec3(0.0f), Vec3(0.0f), medium.anisotropy});
+  const int32_t id = id_for(material, pass_through);
+  media_[size_t(id)] = HomogeneousMedium{};
+  if (size_t(id) >= varying_of_.size()) varying_of_.resize(size_t(id) + 1, -1);
+  if (varying_of_[size_t(id)] < 0) {
+    varying_of_[size_t(id)] = int32_t(varying_.size());
+    varying_.push_back(medium);
+  } else {
+    varying_[size_t(varying_of_[size_t(id)])] = medium;
+  }
 }
 
 void SceneMedia::set_world(const HomogeneousMedium& medium) {

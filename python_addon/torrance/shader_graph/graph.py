@@ -32,6 +32,9 @@ class GraphCompiler:
         # A light's program: its light's matrix_world (4 x 4, rows), the object Texture
         # Coordinate > Normal and an IES Texture's Vector read (geometry.object_transform).
         self.object_matrix = None
+        # A heterogeneous volume's program (volume_space.VolumeSpace): the Object and Generated
+        # coordinates of points inside the volume instead of a mesh's attributes.
+        self.volume = None
         self._cache = {}
         self._groups = []                 # the group nodes we are inside, outermost first
 
@@ -60,6 +63,8 @@ class GraphCompiler:
         """A per-corner mesh attribute (export/mesh_attributes.py's keys), interpolated at the
         hit; the meshes of the material export it. In a world, as in Cycles' background: the
         Generated and Object coordinates are the direction, any other attribute 0."""
+        if self.volume is not None:
+            return self.volume.attribute(self, key)
         if self.background:
             if key in (('generated',), ('object',)):
                 return self.builder.emit("Geometry", 'vector', mode=0)

@@ -194,6 +194,10 @@ class ProgramBuilder:
         return self.reads("TexCoordUV") or any(
             (OPCODE_NAME[row[0]], row[1]) in READS_TANGENT for row in self.code)
 
+    def constant_register(self, v):
+        """The final register index of a constant Value, placed in the program's constants."""
+        return self._operand(v)[1]
+
     def register_of(self, v):
         """The final register index of a computed (non-constant) Value."""
         return len(self.constants) + v.register

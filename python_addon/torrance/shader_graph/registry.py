@@ -204,19 +204,20 @@ CLOSURES = {
                            "Holdout, Emission, Velvet / Sheen, Translucent, Refraction, Toon and "
                            "Principled Hair closures (a Transparent's weight and the others' "
                            "summing past 1: the others shade only what it lets through)",
-    # Volume closures (volumes.py): homogeneous media, constant inputs.
+    # Volume closures (volumes.py): homogeneous media, or heterogeneous ones in meshes.
     'ShaderNodeVolumeAbsorption': "rendered in a Material Output's or World Output's Volume "
-                                  "(alone and in Mix/Add Shader trees): Color, Density, "
-                                  "homogeneous (inputs that vary through the volume reported, "
-                                  "not yet rendered)",
+                                  "(alone and in Mix/Add Shader trees): Color, Density, any "
+                                  "graph inside meshes (heterogeneous: evaluated at points in "
+                                  "the volume); a World's constant (varying inputs reported)",
     'ShaderNodeVolumeScatter': "rendered in a Volume socket (alone and in Mix/Add Shader "
-                               "trees): Color, Density, Anisotropy (Henyey-Greenstein; other "
-                               "phase functions reported and rendered as it), homogeneous",
-    'ShaderNodeVolumePrincipled': "partly: in a Volume socket, Color, Density, Anisotropy, "
-                                  "Absorption Color, Emission Strength and Color, Blackbody "
-                                  "Intensity, Temperature and Tint, homogeneous; density, colour "
-                                  "and temperature attributes (grids: Volume objects, smoke) not "
-                                  "yet",
+                               "trees): Color, Density (any graph inside meshes, as Volume "
+                               "Absorption's), Anisotropy constant (Henyey-Greenstein; other "
+                               "phase functions reported and rendered as it)",
+    'ShaderNodeVolumePrincipled': "partly: in a Volume socket, Color, Density, Absorption Color, "
+                                  "Emission Strength and Color (any graph inside meshes, as "
+                                  "Volume Absorption's), Anisotropy, Blackbody Intensity, "
+                                  "Temperature and Tint constant; density, colour and "
+                                  "temperature attributes (grids: Volume objects, smoke) not yet",
     'ShaderNodeNormalMap': "rendered: Tangent (each mesh's active render UV map), Object, "
                            "World and the Blender spaces, Strength, any Color graph",
     'ShaderNodeBump': "rendered: any Height graph (evaluated at the hit and its ray-differential "

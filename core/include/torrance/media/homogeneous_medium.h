@@ -34,7 +34,25 @@ class MediumMix {
  public:
   static constexpr int kMaxLobes = 4;
 
+  static constexpr int kMaxVarying = 8;
+
   void add(const HomogeneousMedium& m);
+  // A heterogeneous medium (SceneMedia::varying(index)) among the media: its coefficients are
+  // found point by point (media/varying_tracking.h); majorant bounds its extinction.
+  void add_varying(int32_t index, float majorant);
+  bool varies() const { return varying_count_ > 0; }
+  int varying_count() const { return varying_count_; }
+  int32_t varying(int i) const { return varying_[size_t(i)]; }
+  // A bound of the extinction of the whole mix (per metre): its constant part's largest
+  // channel and the heterogeneous media's majorants.
+  float majorant() const { return max_component(sigma_a_ + sigma_s_) + varying_majorant_; }
+  // The mix without its heterogeneous media (what their values at a point are added to).
+  MediumMix constant_part() const {
+    MediumMix m = *this;
+    m.varying_count_ = 0;
+    m.varying_majorant_ = 0.0f;
+    return m;
+  }
   const Vec3& sigma_a() const { return sigma_a_; }
   const Vec3& sigma_s() const { return sigma_s_; }
   Vec3 sigma_t() const { return sigma_a_ + sigma_s_; }
@@ -42,7 +60,7 @@ class MediumMix {
   bool scatters() const { return max_component(sigma_s_) > 0.0f; }
   bool extinguishes() const { return max_component(sigma_a_ + sigma_s_) > 0.0f; }
   bool emits() const { return max_component(emission_) > 0.0f; }
-  bool empty() const { return !extinguishes() && !emits(); }
+  bool empty() const { return !extinguishes() && !emits() && !varies(); }
 
   // The emission reaching the segment's start from the segment [0, distance) (∫ E T(s) ds).
   Vec3 emitted(float distance) const;
@@ -56,6 +74,9 @@ class MediumMix {
   std::array<float, kMaxLobes> lobe_g_{}, lobe_weight_{};
   int lobes_ = 0;
   float lobe_weight_sum_ = 0.0f;
+  std::array<int32_t, kMaxVarying> varying_{};
+  int varying_count_ = 0;
+  float varying_majorant_ = 0.0f;
 };
 
 // One free flight through a homogeneous segment of length t_max (infinite: the ray escapes).

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "torrance/media/homogeneous_medium.h"
+#include "torrance/media/varying_medium.h"
 
 #include <cstdint>
 #include <vector>
@@ -17,6 +18,8 @@ class SceneMedia {
   static void check(const HomogeneousMedium& medium);
   void set_material(uint32_t material, const HomogeneousMedium& medium, bool pass_through);
   void set_world(const HomogeneousMedium& medium);
+  // A heterogeneous medium inside material's meshes (checked and its majorant set by Scene).
+  void set_material(uint32_t material, const VaryingMedium& medium, bool pass_through);
 
   bool any() const { return !media_.empty(); }
   // The medium id of material's volume, or -1.
@@ -26,9 +29,16 @@ class SceneMedia {
   }
   int32_t world() const { return world_; }  // -1: none
   const HomogeneousMedium& medium(int32_t id) const { return media_[size_t(id)]; }
+  // The index (for varying()) of medium id's heterogeneous medium, or -1 (homogeneous).
+  int32_t varying_index(int32_t id) const { return size_t(id) < varying_of_.size() ? varying_of_[size_t(id)] : -1; }
+  const VaryingMedium& varying(int32_t index) const { return varying_[size_t(index)]; }
+  bool any_varying() const { return !varying_.empty(); }
 
  private:
+  int32_t id_for(uint32_t material, bool pass_through);
   std::vector<HomogeneousMedium> media_;
+  std::vector<int32_t> varying_of_;  // per medium id
+  std::vector<VaryingMedium> varying_;
   std::vector<int32_t> id_of_material_;
   std::vector<uint8_t> pass_through_;
   int32_t world_ = -1;

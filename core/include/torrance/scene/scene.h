@@ -207,6 +207,9 @@ class Scene final : public ShaderTracer {
   // Volumes (media/scene_media.h): material's closed meshes hold `medium`; pass_through: the
   // material has no surface shader (a boundary paths cross). The world's volume surrounds all.
   void set_material_volume(uint32_t material, const HomogeneousMedium& medium, bool pass_through);
+  // A heterogeneous volume (media/varying_medium.h): its program must be added; its majorant is
+  // found here from the program's values over the bounds.
+  void set_material_volume(uint32_t material, VaryingMedium medium, bool pass_through);
   void set_world_volume(const HomogeneousMedium& medium);
   const SceneMedia& media() const { return media_; }
   // The weights of mixture material i's closures at uv (image factors over footprint UV units).
