@@ -21,6 +21,10 @@ block means), each with deliberate faults that must fail the same bounds:
 A third fault, the shadow rays' ratio tracking left out (transmittance 1 through heterogeneous
 media), needs a core change: it was shown to fail by hand (see the commit that added the test).
 
+It passes in bpy 4.2 (blender4 list: fog 0.9993 / 0.0058, Cycles' own 0.0051; sphere 0.9987 /
+0.0033, own 0.0033) and bpy 5.3 (blender5 on_request: 1.0019 / 0.0053, own 0.0059; 0.9991 /
+0.0034, own 0.0037), every fault caught there too.
+
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_volume_heterogeneous_agreement.py
 """
