@@ -152,6 +152,13 @@ def agree(label, build):
     check(not bad, "Torrance's Denoising Data disagree with Cycles': " + "; ".join(bad))
     caught = pass_failures([swapped(p) for p in ours], ref, bounds, compared, "Swapped")
     check(caught, "the guides swapped were not caught")
+    layer = scene.view_layers[0].cycles
+    if hasattr(layer, "denoising_pass_follow_reflections"):     # Blender 5.x: not read, said so
+        layer.denoising_pass_follow_reflections = False
+        torrance_passes(scene, d, 1, BOUNCES, 2, name="options")
+        layer.denoising_pass_follow_reflections = True
+        said = [m for m in testing.last_messages() if "Follow Reflections" in m[1]]
+        check(said, f"Follow Reflections off was not reported: {testing.last_messages()}")
 
 
 def main():

@@ -136,6 +136,21 @@ def denoiser(tc):
                   f"TORRANCE_OIDN_LIBRARY to a libOpenImageDenoise.so.2")
 
 
+# Blender 5.x's options of the denoising features (the view layer's Cycles settings, shown with
+# the developer extras; both on by default). Cycles 5.x writes the features otherwise with them
+# off; Torrance writes them as Cycles 3.4/4.x does whatever they say.
+CYCLES5_FEATURE_OPTIONS = (("denoising_pass_follow_reflections", "Follow Reflections"),
+                           ("denoising_pass_use_albedo_roughness_weighting",
+                            "Albedo Roughness Weighting"))
+
+
+def unread_feature_options(view_layer):
+    """The labels of Blender 5.x's denoising-feature options that the view layer turned off."""
+    cycles = getattr(view_layer, "cycles", None)
+    return [label for prop, label in CYCLES5_FEATURE_OPTIONS
+            if cycles is not None and getattr(cycles, prop, True) is False]
+
+
 # The core's passes that guide the denoiser: Cycles' Denoising Albedo and Normal.
 GUIDE_ALBEDO, GUIDE_NORMAL = "DenoisingAlbedo", "DenoisingNormal"
 

@@ -209,6 +209,11 @@ def _render(engine, depsgraph, reporter):
     keep_noisy = denoise and passes.noisy_image_wanted(depsgraph.scene, view_layer)
     guides = [g for g in denoising.guide_passes(ts.denoising_input_passes, available)
               if g not in core_passes] if denoise else []
+    unread = denoising.unread_feature_options(view_layer) if (
+        guides or any(p.startswith("Denoising") for p in core_passes)) else []
+    if unread:
+        reporter.info(f"Torrance writes the denoising features as Cycles 4.x does: view layer "
+                      f"'{view_layer.name}' has {', '.join(unread)} off, which it does not read")
 
     threads = int(rd.threads) if rd.threads_mode == 'FIXED' else 0
     note = model_note(ts.brdf_model)
