@@ -48,7 +48,7 @@ Vec3 bevel_normal(const ShaderGlobals& g, float radius, int samples) {
     return g.normal;
   samples = std::min(samples, kMaxSamples);
   const Frame frame(g.true_normal);
-  const HitLattice lattice(g, samples, 0x64c6a40eu);
+  const HitLattice lattice(g, samples, 0x64c6a40eu, HitLattice::Kind::Net);
   Vec3 sum(0.0f);
   LocalHit hits[kMaxLocalHits];
   for (int k = 0; k < samples; ++k) {

@@ -1,5 +1,7 @@
 #include "torrance/util/sampling.h"
 
+#include "torrance/util/owen_sobol.h"
+
 #include <emmintrin.h>
 
 #include <array>
@@ -124,6 +126,12 @@ glm::vec4 SobolSampler::next_4d() {
   glm::vec4 u;
   _mm_storeu_ps(&u[0], _mm_mul_ps(_mm_cvtepi32_ps((scrambled >> 8).v), _mm_set1_ps(0x1p-24f)));
   return u;
+}
+
+Vec2 owen_sobol_2d(uint32_t index, uint32_t seed) {
+  const uint32_t x = owen_scramble_reversed(reversed_sobol(index, 0), hash_combine(seed, 1u));
+  const uint32_t y = owen_scramble_reversed(reversed_sobol(index, 1), hash_combine(seed, 2u));
+  return Vec2(float(x >> 8) * 0x1p-24f, float(y >> 8) * 0x1p-24f);
 }
 
 Vec2 sample_concentric_disk(const Vec2& u) {
