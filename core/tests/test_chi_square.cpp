@@ -537,5 +537,41 @@ TEST(ChiSquare, AnisotropicGlossySamplingMatchesPdf) {
     }
 }
 
+// The Principled BSDF's anisotropic specular lobe (v1 and v2, ggx_shape.h) beside its diffuse
+// lobe: the mixture's sampling against its pdf.
+TEST(ChiSquare, AnisotropicPrincipledSamplingMatchesPdf) {
+  const double significance = 0.01 / 12.0;
+  uint32_t seed = 9100;
+  Material m;
+  m.base_color = Vec3(0.7f, 0.5f, 0.3f);
+  m.metallic = 0.5f;
+  m.anisotropy = 0.9f;
+  m.tangent = glm::normalize(Vec3(0.6f, 0.8f, 0.3f));
+  m.anisotropic_rotation = 0.1f;
+  for (float roughness : {0.3f, 0.7f}) {
+    m.roughness = roughness;
+    PrincipledBsdf v1(m);
+    PrincipledV2Bsdf v2(m);
+    v1.orient(Frame(Vec3(0.0f, 0.0f, 1.0f)));
+    v2.orient(Frame(Vec3(0.0f, 0.0f, 1.0f)));
+    for (float cos_o : {1.0f, 0.5f, 0.1f}) {
+      const Vec3 wo = test::direction(cos_o, 0.9f);
+      const auto check = [&](const auto& bsdf, const char* name) {
+        const std::string failure = chi_square(
+            wo, 0.25f, seed++, significance,
+            [&](Rng& rng) {
+              const float u = rng.next_1d();
+              const BsdfSample s = bsdf.sample(wo, u, rng.next_2d());
+              return Sampled{s.wi, s.valid(), s.is_delta};
+            },
+            [&](const Vec3& wi) { return bsdf.pdf(wo, wi); });
+        EXPECT_EQ(failure, "") << name << " r=" << roughness << " cos_o=" << cos_o;
+      };
+      check(v1, "v1");
+      check(v2, "v2");
+    }
+  }
+}
+
 }  // namespace
 }  // namespace torrance

@@ -13,7 +13,8 @@ output node (the output Cycles would use):
   Blender 4.x's Principled v2 by its names (Specular IOR Level with IOR, Emission
   Color; _PRINCIPLED_SOCKETS) and, for the PRINCIPLED_V2 model, its IOR, Specular Tint
   colour and distribution (Multiscatter GGX or GGX); the coat (v1 Clearcoat, v2 Coat:
-  principled_coat.py); the sheen (v1 Sheen, v2 Sheen Weight: principled_sheen.py);
+  principled_coat.py); the sheen (v1 Sheen, v2 Sheen Weight: principled_sheen.py); Anisotropic,
+  Anisotropic Rotation and Tangent (anisotropy.py);
 * Glass BSDF: Color, Roughness, IOR (GGX or Beckmann; Sharp is roughness 0);
 * Transparent BSDF: Color (rays pass straight through, tinted);
 * Emission: a black emitter;
@@ -35,6 +36,7 @@ the neutral default material and is reported.
 
 from typing import NamedTuple
 
+import bpy
 import numpy as np
 
 from .blender_versions import used_node_tree
@@ -46,6 +48,7 @@ from .shader_graph.math_ops import VECTOR_MATH_OPS
 from .shader_graph.program import ProgramBuilder, constant
 from .shader_graph.registry import READERS
 from .mixtures import MIXTURE_SURFACES, read_mixture
+from .anisotropy import PRINCIPLED_V1, PRINCIPLED_V2, read_anisotropy
 from .normal_inputs import begin_displacement, read_normal_input
 from .principled_coat import read_coat
 from .shader_aovs import AovPrograms
@@ -68,11 +71,9 @@ _PRINCIPLED_SOCKETS = {
 _IGNORED_PRINCIPLED_INPUTS = {
     'v1': (
         ("Subsurface", 0.0),
-        ("Anisotropic", 0.0),
     ),
     'v2': (
         ("Subsurface Weight", 0.0),
-        ("Anisotropic", 0.0),
         ("Thin Film Thickness", 0.0),
         ("Diffuse Roughness", 0.0),
     ),
@@ -340,6 +341,13 @@ class MaterialReader:
             specular_tint = _clamp(finite_or(v(mat, node, names['specular_tint'], 0.0), 0.0),
                                    0.0, 1.0)
             glass = self._principled_glass(mat, node)
+        anisotropy = read_anisotropy(self, mat, node,
+                                     PRINCIPLED_V2 if version == 'v2' else PRINCIPLED_V1)
+        if anisotropy and glass and bpy.app.version >= (5, 1, 0):
+            self.reporter.warning(
+                f"Material '{mat.name}': Cycles 5.x stretches the transmission of "
+                f"{node_label(node)} along its tangent too; Torrance renders the transmission "
+                f"isotropic")
         out = dict(
             base_color=_color3(base, d['base_color']),
             metallic=_clamp(finite_or(metallic, d['metallic']), 0.0, 1.0),
@@ -352,6 +360,7 @@ class MaterialReader:
             **glass,
             **read_coat(self, mat, node, version),
             **read_sheen(self, mat, node, version),
+            **anisotropy,
         )
         alpha = _clamp(finite_or(alpha, 1.0), 0.0, 1.0)
         if alpha < 1.0 or alpha_tex >= 0:

@@ -32,7 +32,7 @@ from .shader_graph.registry import READERS
 from .closure_nodes import CLOSURE_NODES, read_closure_node
 from .nodes import finite_or, is_default_uv, node_label, plain_image, source_socket
 from .normal_inputs import begin_displacement, normal_source, read_normal_input
-from .shader_graph.geometry import default_tangent
+from .anisotropy import GLOSSY, read_anisotropy
 
 MAX_CLOSURES = 8          # the core's kMaxMixtureComponents
 MAX_FACTORS = 8           # the core's kMaxMixFactors
@@ -297,7 +297,7 @@ class ShaderTreeReader:
         if node.bl_idname in ('ShaderNodeBsdfGlossy', 'ShaderNodeBsdfAnisotropic'):
             kind = 'glossy'
             if not sharp:
-                anisotropic = read_anisotropy(reader, mat, node)
+                anisotropic = read_anisotropy(reader, mat, node, GLOSSY)
             if node.distribution in _GLOSSY_AS_GGX:
                 self.warn(f"{node_label(node)}: the {node.distribution.replace('_', ' ').title()} "
                           f"distribution is rendered as GGX")
@@ -305,34 +305,6 @@ class ShaderTreeReader:
                     roughness=roughness, base_color_texture=color_tex,
                     roughness_texture=roughness_tex, **anisotropic)
         return kind, sanitize(reader._with_program(args))
-
-
-def read_anisotropy(reader, mat, node):
-    """A Glossy / Anisotropic BSDF's Anisotropy, Rotation and Tangent as add_material()
-    arguments (glossy_bsdf.h), with the closure's program (begun by the caller) computing what
-    varies; {} for an isotropic lobe. The tangent always comes from the program: the Tangent
-    input's graph, or Geometry > Tangent, which Cycles links to an unlinked one."""
-    if node.inputs.get("Anisotropy") is None:         # 3.x's Glossy BSDF
-        return {}
-    anisotropy = _program_value(reader, mat, node, "Anisotropy", 'anisotropy')
-    anisotropy = min(max(finite_or(anisotropy, 0.0), -1.0), 1.0)
-    if anisotropy == 0.0 and 'anisotropy' not in reader._program_inputs:
-        return {}
-    rotation = _program_value(reader, mat, node, "Rotation", 'anisotropic_rotation')
-    _program_value(reader, mat, node, "Tangent", 'tangent')
-    if 'tangent' not in reader._program_inputs:   # unlinked, or its graph folded to a constant
-        g = GraphCompiler(reader._program, reader.textures, READERS, reader.attributes)
-        reader._program_inputs['tangent'] = default_tangent(g)
-    return dict(anisotropy=anisotropy, anisotropic_rotation=finite_or(rotation, 0.0))
-
-
-def _program_value(reader, mat, node, name, program_input):
-    """Input `name`'s value: its default when unlinked, else its graph's constant, or the
-    socket's default with the graph compiled into the closure's program as `program_input`."""
-    socket = node.inputs.get(name)
-    if socket is None or source_socket(socket) is None:
-        return None if socket is None else socket.default_value
-    return reader._graph_input(mat, node, socket, program_input)
 
 
 def _plain_checker(node):

@@ -381,7 +381,7 @@ class TORRANCE_RENDER_PT_compatibility(TorrancePanel, Panel):
         col = self.layout.column(align=True)
         col.label(text="Not rendered by Torrance:")
         for text in ("Volume objects and varying volume density (homogeneous volumes are), "
-                     "subsurface, thin film, anisotropy; hair in the viewport",
+                     "subsurface, thin film; hair in the viewport",
                      "Point Density, Hair BSDF, Curves Info and Volume Info nodes; "
                      "AOV Output in worlds",
                      "Motion blur",

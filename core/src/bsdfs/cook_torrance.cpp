@@ -10,6 +10,7 @@ CookTorranceBsdf::CookTorranceBsdf(const Material& m) {
   diffuse_color_ = (1.0f - metallic) * base;
   f0_ = glm::clamp(glm::mix(Vec3(dielectric_f0), base, metallic), Vec3(0.0f), Vec3(1.0f));
   alpha_ = roughness * roughness;
+  shape_ = ggx::Shape(alpha_);
   k_ = sqr(alpha_ + 1.0f) / 8.0f;
 }
 
@@ -32,7 +33,7 @@ float CookTorranceBsdf::specular_probability(const Vec3& wo) const {
 
 CookTorranceBsdf::View CookTorranceBsdf::geometry(const Vec3& wo) const {
   View v;
-  lobe_mixture::prepare(v, wo, alpha_);
+  lobe_mixture::prepare(v, wo, shape_);
   v.geometry_o = geometry_G1(wo.z);
   return v;
 }

@@ -154,6 +154,7 @@ void MixtureBsdf::orient(const Frame& frame) {
   for (int k = 0; k < count_; ++k) {
     Component& c = components_[size_t(k)];
     if (GlossyBsdf* glossy = std::get_if<GlossyBsdf>(&c); glossy && glossy->anisotropic()) glossy->orient(frame);
+    else if (MaterialBsdf* material = std::get_if<MaterialBsdf>(&c)) material->orient(frame);
     else if (PrincipledHairBsdf* hair = std::get_if<PrincipledHairBsdf>(&c)) hair->orient(frame);
   }
 }

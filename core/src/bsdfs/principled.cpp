@@ -17,6 +17,15 @@ PrincipledBsdf::PrincipledBsdf(const Material& m) {
   const float metallic = clamp01(m.metallic);
   roughness_ = clamp01(m.roughness);
   alpha_ = roughness_ * roughness_;
+  shape_ = ggx::Shape(alpha_);
+  if (m.anisotropy != 0.0f && std::isfinite(m.anisotropy)) {
+    // Cycles 3.4: aspect = sqrt(1 - 0.9 a) (Blender's socket keeps a in [0, 1]; Material's [-1, 1]
+    // keeps it positive), each alpha clamped to 1 by the closure's set-up.
+    const float aspect = std::sqrt(1.0f - 0.9f * std::clamp(m.anisotropy, -1.0f, 1.0f));
+    shape_ = ggx::Shape(std::min(alpha_ / aspect, 1.0f), std::min(alpha_ * aspect, 1.0f), m.tangent,
+                        kTwoPi * m.anisotropic_rotation);
+    if (!shape_.anisotropic()) shape_ = ggx::Shape(alpha_);
+  }
   // Transmission (Cycles 3.4): the diffuse lobe keeps (1 - metallic)(1 - transmission), the
   // specular lobe 1 - transmission (1 - metallic); the rest is glass (MaterialBsdf, glass.h).
   const float transmission = clamp01(m.transmission);
@@ -52,7 +61,7 @@ float PrincipledBsdf::specular_probability(const Vec3& wo) const {
 
 PrincipledBsdf::View PrincipledBsdf::geometry(const Vec3& wo) const {
   View v;
-  lobe_mixture::prepare(v, wo, alpha_);
+  lobe_mixture::prepare(v, wo, shape_);
   v.burley_o = schlick_weight(wo.z);
   return v;
 }
@@ -90,8 +99,8 @@ LobeEval PrincipledBsdf::eval_lobes(const View& v, const Vec3& wi) const {
   f_cos.diffuse = diffuse_color_ * (kInvPi * burley * wi.z);
   if (sheen_.active()) f_cos.diffuse += sheen_.eval(cos_d, wi.z);
   if (!has_delta()) {
-    const float g = v.g1_o * ggx::smith_G1(wi.z, alpha_);
-    f_cos.glossy = fresnel(cos_d) * (ggx::D(h, alpha_) * g / v.four_cos_o);
+    const float g = v.g1_o * shape_.G1(wi);
+    f_cos.glossy = fresnel(cos_d) * (shape_.D(h) * g / v.four_cos_o);
   }
   if (coat_.active()) f_cos.glossy += Vec3(coat_.eval(wo, wi));
   return f_cos;

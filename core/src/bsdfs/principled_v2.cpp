@@ -13,6 +13,15 @@ PrincipledV2Bsdf::PrincipledV2Bsdf(const Material& m) {
   dielectric_weight_ = (1.0f - metallic_) * (1.0f - clamp01(m.transmission));  // the glass takes the rest
   roughness_ = clamp01(m.roughness);
   alpha_ = roughness_ * roughness_;
+  shape_ = ggx::Shape(alpha_);
+  table_roughness_ = roughness_;
+  if (const float a = std::isfinite(m.anisotropy) ? clamp01(m.anisotropy) : 0.0f; a > 0.0f) {
+    const float aspect = std::sqrt(1.0f - 0.9f * a);
+    const float alpha_x = std::min(alpha_ / aspect, 1.0f), alpha_y = alpha_ * aspect;
+    shape_ = ggx::Shape(alpha_x, alpha_y, m.tangent, kTwoPi * m.anisotropic_rotation);
+    if (shape_.anisotropic()) table_roughness_ = std::sqrt(std::sqrt(alpha_x * alpha_y));
+    else shape_ = ggx::Shape(alpha_);
+  }
   multiscatter_ = m.multiscatter_ggx;
   base_ = base;
 
@@ -61,8 +70,8 @@ PrincipledV2Bsdf::ViewTerms PrincipledV2Bsdf::view_terms(float cos_o) const {
   ViewTerms v;
   Vec3 metal_k(1.0f), dielectric_k(1.0f), darkening(1.0f);
   if (multiscatter_) {
-    const float e = std::max(ggx_tables::albedo(roughness_, cos_o), 1e-3f);
-    const float e_avg = ggx_tables::average_albedo(roughness_);
+    const float e = std::max(ggx_tables::albedo(table_roughness_, cos_o), 1e-3f);
+    const float e_avg = ggx_tables::average_albedo(table_roughness_);
     metal_k = multiscatter::scale(metal_fss_, e, e_avg);
     dielectric_k = multiscatter::scale(dielectric_fss_, e, e_avg);
     darkening = e * dielectric_k;
@@ -71,7 +80,7 @@ PrincipledV2Bsdf::ViewTerms PrincipledV2Bsdf::view_terms(float cos_o) const {
   float diffuse_weight = 1.0f;
   if (has_dielectric_) {
     v.dielectric_scale = dielectric_weight_ * dielectric_k;
-    const float s = ggx_tables::dielectric_fresnel_mix(roughness_, cos_o, eta_);
+    const float s = ggx_tables::dielectric_fresnel_mix(table_roughness_, cos_o, eta_);
     v.dielectric_albedo = darkening * glm::mix(dielectric_f0_, Vec3(1.0f), s);
     diffuse_weight = clamp01(1.0f - max_component(v.dielectric_albedo));
   }
@@ -131,9 +140,9 @@ float PrincipledV2Bsdf::specular_probability(const ViewTerms& v, float cos_o) co
 
 PrincipledV2Bsdf::View PrincipledV2Bsdf::geometry(const Vec3& wo) const {
   View v;
-  lobe_mixture::prepare(v, wo, alpha_);
+  lobe_mixture::prepare(v, wo, shape_);
   v.terms = view_terms(wo.z);
-  v.lambda_o = ggx::smith_lambda(wo.z, alpha_);
+  v.lambda_o = shape_.lambda(wo);
   if (sheen_.active()) v.sheen = SheenBsdf::oriented(v.terms.sheen, wo);
   return v;
 }
@@ -166,8 +175,8 @@ LobeEval PrincipledV2Bsdf::eval_lobes(const View& view, const Vec3& wi) const {
   if (!ggx::reflection_half(wo, wi, h)) return f_cos;
   const float cos_d = clamp01(glm::dot(wi, h));
   const Vec3 fresnel = v.metal_scale * metal_fresnel(cos_d) + v.dielectric_scale * dielectric_fresnel(cos_d);
-  const float g2 = ggx::smith_G2_correlated_given(view.lambda_o, wi.z, alpha_);
-  f_cos.glossy += fresnel * (ggx::D(h, alpha_) * g2 / view.four_cos_o);
+  const float g2 = 1.0f / (1.0f + view.lambda_o + shape_.lambda(wi));  // height-correlated Smith
+  f_cos.glossy += fresnel * (shape_.D(h) * g2 / view.four_cos_o);
   return f_cos;
 }
 

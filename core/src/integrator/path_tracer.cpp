@@ -415,7 +415,7 @@ class PathTracer {
     // The frame turned towards the viewer (two-sided surfaces), keeping reflections valid.
     v.wo_world = -ray_.dir;
     v.at = shading_point(ctx_, hit, v.wo_world, v.textured, globals, v.program_regs.data());
-    if constexpr (kMixtures) v.local_bsdf->orient(v.at.frame);  // anisotropic closures' tangents
+    if (v.local_bsdf) v.local_bsdf->orient(v.at.frame);  // anisotropic closures' tangents
     v.wo = v.at.frame.to_local(v.wo_world);
     v.view = v.bsdf->at(v.wo, v.at.backfacing, v.at.diffuse);
     // Path guiding on opaque single-material surfaces with a continuous lobe.

@@ -158,10 +158,10 @@ CLOSURES = {
                                 "Transmission, IOR, Transmission Roughness; the coat (v1 "
                                 "Clearcoat and its Roughness; v2 Coat Weight, Roughness, IOR, "
                                 "Tint; any graph); the sheen (v1 Sheen, Sheen Tint; v2 Sheen "
-                                "Weight, Roughness, Tint; any graph). Reported: Subsurface, "
-                                "Clearcoat / Coat "
-                                "Normal, Anisotropic, Thin Film, Diffuse "
-                                "Roughness",
+                                "Weight, Roughness, Tint; any graph); Anisotropic, Anisotropic "
+                                "Rotation, Tangent (any graph; unlinked: Geometry > Tangent). "
+                                "Reported: Subsurface, Clearcoat / Coat Normal, Thin Film, "
+                                "Diffuse Roughness",
     'ShaderNodeBsdfDiffuse': "rendered: Color, Roughness (Lambert, Cycles' Oren-Nayar), Normal; "
                              "alone and in Mix/Add Shader trees alike",
     'ShaderNodeBsdfGlossy': "partly: Color, Roughness (GGX, Sharp; 4.x: Anisotropy, Rotation, "

@@ -36,6 +36,7 @@ class CookTorranceBsdf : public lobe_mixture::Queries<CookTorranceBsdf> {
   bool has_delta() const { return alpha_ < ggx::kDeltaAlpha; }
   Vec3 mirror_reflectance(const Vec3& wo) const { return fresnel(wo.z) * sqr(geometry_G1(wo.z)); }
   float alpha() const { return alpha_; }
+  const ggx::Shape& shape() const { return shape_; }
   // Probability of choosing the specular lobe for this wo (exposed for tests).
   float specular_probability(const Vec3& wo) const;
 
@@ -46,6 +47,7 @@ class CookTorranceBsdf : public lobe_mixture::Queries<CookTorranceBsdf> {
   Vec3 diffuse_color_;  // (1 - metallic) * base colour / pi is applied with (1 - F)
   Vec3 f0_;
   float alpha_;
+  ggx::Shape shape_;  // isotropic alpha_
   float k_;
 };
 

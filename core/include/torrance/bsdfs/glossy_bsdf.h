@@ -14,7 +14,7 @@
 #pragma once
 
 #include "torrance/bsdfs/bsdf.h"
-#include "torrance/bsdfs/microfacet.h"
+#include "torrance/bsdfs/ggx_shape.h"
 
 namespace torrance {
 
@@ -29,32 +29,21 @@ class GlossyBsdf {
   // The lobe's axes in the shading frame the integrator evaluates it in: the tangent projected
   // onto the frame's plane (a tangent along the normal, or none: the frame's own x), turned by
   // the rotation.
-  void orient(const Frame& frame);
+  void orient(const Frame& frame) { shape_.orient(frame); }
 
   LobeEval eval_lobes(const Vec3& wo, const Vec3& wi) const;
   Vec3 eval(const Vec3& wo, const Vec3& wi) const { return eval_lobes(wo, wi).total(); }
   float pdf(const Vec3& wo, const Vec3& wi) const;
   BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const;
 
-  bool has_delta() const {
-    return anisotropic_ ? alpha_x_ * alpha_y_ <= ggx::kDeltaAlpha * ggx::kDeltaAlpha : alpha_x_ < ggx::kDeltaAlpha;
-  }
-  bool anisotropic() const { return anisotropic_; }
+  bool has_delta() const { return shape_.is_delta(ggx::kDeltaAlpha); }
+  bool anisotropic() const { return shape_.anisotropic(); }
   // What a mixture samples it by: its colour's luminance.
   float sampling_albedo() const { return luminance(color_); }
 
  private:
-  // From the shading frame into the lobe's (x along the tangent) and back: a turn about z.
-  Vec3 to_lobe(const Vec3& w) const { return Vec3(cos_ * w.x + sin_ * w.y, -sin_ * w.x + cos_ * w.y, w.z); }
-  Vec3 from_lobe(const Vec3& w) const { return Vec3(cos_ * w.x - sin_ * w.y, sin_ * w.x + cos_ * w.y, w.z); }
-  float reflected_pdf(const Vec3& wo, const Vec3& h) const;  // in the lobe's frame
-
   Vec3 color_;
-  float alpha_x_, alpha_y_;  // equal unless anisotropic_
-  bool anisotropic_ = false;
-  Vec3 tangent_{0.0f};       // world
-  float rotation_ = 0.0f;    // radians
-  float cos_ = 1.0f, sin_ = 0.0f;  // the tangent's direction in the shading frame
+  ggx::Shape shape_;
 };
 
 }  // namespace torrance

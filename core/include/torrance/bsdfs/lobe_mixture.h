@@ -17,7 +17,7 @@
 #pragma once
 
 #include "torrance/bsdfs/bsdf.h"
-#include "torrance/bsdfs/microfacet.h"
+#include "torrance/bsdfs/ggx_shape.h"
 #include "torrance/util/sampling.h"
 
 #include <algorithm>
@@ -39,7 +39,7 @@ inline float specular_probability(float spec, float diff) {
 // (ggx::reflected_pdf = g1_o D(h) / four_cos_o) and the lobe choice p_spec.
 struct View {
   Vec3 wo{0.0f, 0.0f, 1.0f};
-  float g1_o = 0.0f;       // ggx::smith_G1(wo.z, alpha)
+  float g1_o = 0.0f;       // the GGX shape's G1(wo)
   float four_cos_o = 0.0f;  // 4 wo.z
   float p_spec = 1.0f;     // bsdf.specular_probability(wo), of the lobes other than the coat
   float p_coat = 0.0f;     // the coat lobe's probability (models with a coat)
@@ -101,20 +101,20 @@ inline Vec3 sample_diffuse(const DiffuseNormal& d, const Vec2& u) {
 }
 
 // Fills the geometric terms of `v` for wo (not p_spec: the model's at() adds it).
-inline void prepare(View& v, const Vec3& wo, float alpha) {
+inline void prepare(View& v, const Vec3& wo, const ggx::Shape& shape) {
   v.wo = wo;
-  v.g1_o = ggx::smith_G1(wo.z, alpha);
+  v.g1_o = shape.G1(wo);
   v.four_cos_o = 4.0f * wo.z;
 }
 
 // The mixture's pdf of wi seen from the prepared v (Bsdf::View, or View for models without a sheen).
 template <typename Bsdf, typename V>
-float pdf(const Bsdf& bsdf, const V& v, const Vec3& wi, float alpha) {
+float pdf(const Bsdf& bsdf, const V& v, const Vec3& wi, const ggx::Shape& shape) {
   const Vec3& wo = v.wo;
   if (wo.z <= 0.0f) return 0.0f;
   float pdf = (1.0f - v.p_spec) * cosine_hemisphere_pdf(v.diffuse_normal.cosine(wi));
   if (wi.z > 0.0f && !bsdf.has_delta() && v.p_spec > 0.0f)
-    pdf += v.p_spec * ggx::reflected_pdf_given(v.g1_o, v.four_cos_o, glm::normalize(wo + wi), alpha);
+    pdf += v.p_spec * (v.g1_o * shape.D(glm::normalize(wo + wi)) / v.four_cos_o);
   if constexpr (HasCoat<Bsdf>::value) {
     if (v.p_coat > 0.0f) pdf = (1.0f - v.p_coat) * pdf + v.p_coat * bsdf.coat_pdf(v, wi);
   }
@@ -127,7 +127,8 @@ float pdf(const Bsdf& bsdf, const V& v, const Vec3& wi, float alpha) {
 // Samples the mixture seen from the prepared v (Bsdf::View derives from View); eval and pdf of
 // the sampled direction use the same view.
 template <typename Bsdf>
-BsdfSample sample(const Bsdf& bsdf, const typename Bsdf::View& v, float u_lobe, const Vec2& u, float alpha) {
+BsdfSample sample(const Bsdf& bsdf, const typename Bsdf::View& v, float u_lobe, const Vec2& u,
+                  const ggx::Shape& shape) {
   const Vec3& wo = v.wo;
   BsdfSample s;
   if (wo.z <= 0.0f) return s;
@@ -167,21 +168,21 @@ BsdfSample sample(const Bsdf& bsdf, const typename Bsdf::View& v, float u_lobe, 
       s.is_delta = true;
       return s;
     }
-    s.wi = ggx::reflect(wo, ggx::sample_visible_normal(wo, alpha, u));
+    s.wi = ggx::reflect(wo, shape.sample_visible_normal(wo, u));
     if (s.wi.z <= 0.0f) return BsdfSample{};
   } else {
     s.wi = sample_diffuse(v.diffuse_normal, u);
     s.diffuse = true;
     if (v.diffuse_normal.cosine(s.wi) <= 0.0f) return BsdfSample{};
   }
-  s.pdf = pdf(bsdf, v, s.wi, alpha);
+  s.pdf = pdf(bsdf, v, s.wi, shape);
   if (!(s.pdf > 0.0f)) return BsdfSample{};
   s.weight = bsdf.eval_lobes(v, s.wi).total() / s.pdf;
   return s;
 }
 
 // The queries every model answers the same way from its geometry(wo), at(wo), eval_lobes(view, wi)
-// and alpha(): pdf and sample of a prepared view, and eval, pdf and sample preparing wo for one
+// and shape() (its GGX lobe, ggx_shape.h): pdf and sample of a prepared view, and eval, pdf and sample preparing wo for one
 // query. A model derives from Queries<Model> and names `using Queries<Model>::eval_lobes;` beside
 // its own eval_lobes(view, wi). (View overloads are templates: the model is incomplete here.)
 template <typename Bsdf>
@@ -189,11 +190,11 @@ class Queries {
  public:
   template <typename View>
   float pdf(const View& v, const Vec3& wi) const {
-    return lobe_mixture::pdf(self(), v, wi, self().alpha());
+    return lobe_mixture::pdf(self(), v, wi, self().shape());
   }
   template <typename View>
   BsdfSample sample(const View& v, float u_lobe, const Vec2& u) const {
-    return lobe_mixture::sample(self(), v, u_lobe, u, self().alpha());
+    return lobe_mixture::sample(self(), v, u_lobe, u, self().shape());
   }
   LobeEval eval_lobes(const Vec3& wo, const Vec3& wi) const { return self().eval_lobes(self().geometry(wo), wi); }
   Vec3 eval(const Vec3& wo, const Vec3& wi) const { return eval_lobes(wo, wi).total(); }

@@ -20,6 +20,7 @@
 #include "torrance/bsdfs/principled_v2.h"
 
 #include <optional>
+#include <type_traits>
 #include <variant>
 
 namespace torrance {
@@ -50,6 +51,14 @@ class MaterialBsdf {
   }
 
   bool transmits() const { return glass_.has_value(); }
+  // An anisotropic model's tangent into the shading frame (ggx_shape.h); before at().
+  void orient(const Frame& frame) {
+    std::visit(
+        [&](auto& b) {
+          if constexpr (!std::is_same_v<std::decay_t<decltype(b)>, CookTorranceBsdf>) b.orient(frame);
+        },
+        bsdf_);
+  }
   // The GGX alpha of the model's specular lobe (0 with glass: not asked for).
   float specular_alpha() const {
     return glass_ ? 0.0f : std::visit([](const auto& b) { return b.alpha(); }, bsdf_);

@@ -1,12 +1,13 @@
 // Principled BSDF, "PRINCIPLED" model: Blender 3.4's Principled BSDF (v1) as Cycles 3.4 renders it
-// with the GGX distribution (no anisotropy), so that Torrance and Cycles differ by noise
-// only. Transmission only scales these lobes down (see the constructor); its
+// with the GGX distribution, so that Torrance and Cycles differ by noise only. Transmission only scales these lobes down (see the constructor); its
 // glass is GlassBsdf, which MaterialBsdf adds.
 //
 //   diffuse  Burley's lobe weighted by (1 - metallic), using the unsquared roughness for
 //            retro-reflection; it is NOT scaled by (1 - F): the lobes add (and can exceed 1).
 //   specular GGX, alpha = roughness^2, separable exact Smith G = G1(wo) G1(wi) with
-//            G1 = 2 / (1 + sqrt(1 + alpha^2 tan^2)),
+//            G1 = 2 / (1 + sqrt(1 + alpha^2 tan^2)); Anisotropic a stretches it along the
+//            tangent (ggx_shape.h): alpha_x = alpha / s, alpha_y = alpha s, s = sqrt(1 - 0.9 a),
+//            each at most 1, the tangent turned by Anisotropic Rotation (turns) about the normal,
 //            F = cspec0 (1 - F_H) + F_H, F_H = (F_dielectric(wi.h, eta) - F0) / (1 - F0),
 //            F0 = 0.08 specular, eta from F0, and
 //            cspec0 = 0.08 specular mix(1, tint colour, specular_tint) (1 - metallic) + base metallic.
@@ -49,7 +50,10 @@ class PrincipledBsdf : public lobe_mixture::Queries<PrincipledBsdf> {
   using lobe_mixture::Queries<PrincipledBsdf>::eval_lobes;  // pdf, sample, eval: lobe_mixture::Queries
 
   float alpha() const { return alpha_; }
-  bool has_delta() const { return alpha_ < ggx::kDeltaAlpha; }
+  const ggx::Shape& shape() const { return shape_; }
+  // Anisotropic: the tangent into the shading frame (ggx_shape.h); before at().
+  void orient(const Frame& frame) { shape_.orient(frame); }
+  bool has_delta() const { return shape_.is_delta(ggx::kDeltaAlpha); }
   Vec3 mirror_reflectance(const Vec3& wo) const { return fresnel(wo.z); }
   float specular_probability(const Vec3& wo) const;
   Vec3 fresnel(float cos_ih) const;
@@ -69,6 +73,7 @@ class PrincipledBsdf : public lobe_mixture::Queries<PrincipledBsdf> {
   float specular_weight_;  // 1 - transmission (1 - metallic): the glass takes the rest
   Vec3 cspec0_;
   float roughness_, alpha_, eta_, f0_;
+  ggx::Shape shape_;  // the specular lobe: alpha_, or stretched by Anisotropic
   ClearcoatV1 coat_;
   SheenV1 sheen_;
 };

@@ -1,7 +1,10 @@
 // Principled BSDF v2, "PRINCIPLED_V2": Blender 4.x's Principled BSDF as Cycles 4.x renders it, for
 // the inputs Torrance supports (base colour, metallic, roughness, IOR, Specular IOR Level through
-// Material::specular, Specular Tint as a colour, emission, coat, sheen; no subsurface, thin film
-// or anisotropy; transmission below). Five layers, from the top, with alpha = roughness^2 (GGX):
+// Material::specular, Specular Tint as a colour, emission, coat, sheen, anisotropy; no subsurface
+// or thin film; transmission below). Five layers, from the top, with alpha = roughness^2 (GGX;
+// Anisotropic a in [0, 1] stretches the metal and dielectric lobes along the tangent as Cycles
+// 4.x: alpha_x = alpha / s, alpha_y = alpha s, s = sqrt(1 - 0.9 a), ggx_shape.h, and the tables
+// below are read at the roughness (alpha_x alpha_y)^(1/4)):
 //
 //   sheen       principled_sheen.h's SheenV2 (Cycles' microfiber sheen); the four layers under it
 //               are scaled by its keep(wo) = clamp(1 - max_rgb(albedo), 0, 1), as Cycles 4.x's.
@@ -79,7 +82,7 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
   struct View : lobe_mixture::View {
     using Model = PrincipledV2Bsdf;
     ViewTerms terms;
-    float lambda_o = 0.0f;  // ggx::smith_lambda(wo.z, alpha)
+    float lambda_o = 0.0f;  // the GGX shape's Lambda(wo)
     SheenBsdf::Lobe sheen;  // terms.sheen in wo's frame (no weight without a sheen)
   };
   View at(const Vec3& wo) const;        // with the lobe choice p_spec
@@ -89,8 +92,11 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
   using lobe_mixture::Queries<PrincipledV2Bsdf>::eval_lobes;  // pdf, sample, eval: lobe_mixture::Queries
 
   float alpha() const { return alpha_; }
-  float roughness() const { return roughness_; }
-  bool has_delta() const { return alpha_ < ggx_tables::kDeltaAlpha; }
+  float roughness() const { return table_roughness_; }  // what the albedo tables are read at
+  const ggx::Shape& shape() const { return shape_; }
+  // Anisotropic: the tangent into the shading frame (ggx_shape.h); before at().
+  void orient(const Frame& frame) { shape_.orient(frame); }
+  bool has_delta() const { return shape_.is_delta(ggx_tables::kDeltaAlpha); }
   Vec3 mirror_reflectance(const Vec3& wo) const;
   float specular_probability(const Vec3& wo) const { return specular_probability(view_terms(wo.z), wo.z); }
 
@@ -119,6 +125,8 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
   float dielectric_weight_ = 1.0f;  // (1 - metallic)(1 - transmission): Transmission Weight's glass is
                                    // principled_glass_v2.h's, which MaterialBsdf adds
   float metallic_, roughness_, alpha_, eta_;
+  float table_roughness_;  // the roughness the albedo tables are read at: roughness_ unless anisotropic
+  ggx::Shape shape_;       // the metal and dielectric lobes: alpha_, or stretched by Anisotropic
   bool has_dielectric_, multiscatter_;
   CoatV2 coat_;
   SheenV2 sheen_;
