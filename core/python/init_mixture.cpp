@@ -28,11 +28,12 @@ ClosureType parse_closure(const std::string& s) {
   if (s == "toon_glossy") return ClosureType::ToonGlossy;
   if (s == "toon_diffuse_cycles4") return ClosureType::ToonDiffuseCycles4;
   if (s == "toon_glossy_cycles4") return ClosureType::ToonGlossyCycles4;
+  if (s == "subsurface") return ClosureType::Subsurface;
   throw py::value_error(
       "closure type must be 'principled', 'diffuse', 'glossy', 'emission', 'transparent', 'holdout', 'velvet', "
       "'sheen', "
-      "'translucent', 'principled_hair', 'refraction', 'toon_diffuse', 'toon_glossy', 'toon_diffuse_cycles4' or "
-      "'toon_glossy_cycles4', got '" + s + "'");
+      "'translucent', 'principled_hair', 'refraction', 'toon_diffuse', 'toon_glossy', 'toon_diffuse_cycles4', "
+      "'toon_glossy_cycles4' or 'subsurface', got '" + s + "'");
 }
 
 MixFactor parse_factor(const py::handle& h) {

@@ -183,7 +183,10 @@ void init_scene(py::module_& m) {
              float sheen_roughness, float sheen_tint, std::array<float, 3> sheen_tint_color,
              int sheen_weight_register, int sheen_roughness_register, int sheen_tint_register, float anisotropy,
              float anisotropic_rotation, int anisotropy_register, int anisotropic_rotation_register,
-             int tangent_register, float hair_offset) {
+             int tangent_register, float hair_offset, float subsurface, std::array<float, 3> subsurface_radius,
+             std::array<float, 3> subsurface_color, float subsurface_ior, float subsurface_anisotropy,
+             int subsurface_register, int subsurface_radius_register, int subsurface_color_register,
+             bool subsurface_fixed_radius, float subsurface_entry_alpha, bool subsurface_skin) {
             if (glass_distribution != "GGX" && glass_distribution != "BECKMANN")
               throw py::value_error("glass_distribution must be 'GGX' or 'BECKMANN', got '" + glass_distribution +
                                     "'");
@@ -214,6 +217,14 @@ void init_scene(py::module_& m) {
             mat.sheen_tint_color = vec3(sheen_tint_color);
             mat.anisotropy = anisotropy;
             mat.anisotropic_rotation = anisotropic_rotation;
+            mat.subsurface = subsurface;
+            mat.subsurface_radius = vec3(subsurface_radius);
+            mat.subsurface_color = vec3(subsurface_color);
+            mat.subsurface_ior = subsurface_ior;
+            mat.subsurface_anisotropy = subsurface_anisotropy;
+            mat.subsurface_fixed_radius = subsurface_fixed_radius;
+            mat.subsurface_entry_alpha = subsurface_entry_alpha;
+            mat.subsurface_skin = subsurface_skin;
             MaterialTextures tex;
             tex.base_color = base_color_texture;
             tex.metallic = metallic_texture;
@@ -242,6 +253,9 @@ void init_scene(py::module_& m) {
             tex.program.anisotropy = program_register(anisotropy_register);
             tex.program.anisotropic_rotation = program_register(anisotropic_rotation_register);
             tex.program.tangent = program_register(tangent_register);
+            tex.program.subsurface = program_register(subsurface_register);
+            tex.program.subsurface_radius = program_register(subsurface_radius_register);
+            tex.program.subsurface_color = program_register(subsurface_color_register);
             return s.add_material(mat, tex);
           },
           py::arg("base_color") = std::array<float, 3>{0.8f, 0.8f, 0.8f}, py::arg("metallic") = 0.0f,
@@ -269,7 +283,13 @@ void init_scene(py::module_& m) {
           py::arg("sheen_roughness_register") = -1, py::arg("sheen_tint_register") = -1,
           py::arg("anisotropy") = 0.0f, py::arg("anisotropic_rotation") = 0.0f, py::arg("anisotropy_register") = -1,
           py::arg("anisotropic_rotation_register") = -1, py::arg("tangent_register") = -1,
-          py::arg("hair_offset") = 0.0f,
+          py::arg("hair_offset") = 0.0f, py::arg("subsurface") = 0.0f,
+          py::arg("subsurface_radius") = std::array<float, 3>{1.0f, 0.2f, 0.1f},
+          py::arg("subsurface_color") = std::array<float, 3>{0.8f, 0.8f, 0.8f}, py::arg("subsurface_ior") = 1.4f,
+          py::arg("subsurface_anisotropy") = 0.0f, py::arg("subsurface_register") = -1,
+          py::arg("subsurface_radius_register") = -1, py::arg("subsurface_color_register") = -1,
+          py::arg("subsurface_fixed_radius") = false, py::arg("subsurface_entry_alpha") = -1.0f,
+          py::arg("subsurface_skin") = false,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
@@ -296,7 +316,13 @@ void init_scene(py::module_& m) {
           "(sheen_tint_register: v1's factor its x, v2's colour). anisotropy in [-1, 1] and anisotropic_rotation "
           "(turns about the normal): a Glossy closure's anisotropy (glossy_bsdf.h) along the tangent the "
           "program's tangent_register gives (a world direction; none: isotropic), from the program's "
-          "anisotropy_register / anisotropic_rotation_register when given.")
+          "anisotropy_register / anisotropic_rotation_register when given. subsurface_*: subsurface scattering by "
+          "Cycles' Random Walk: PRINCIPLED's Subsurface in [0, 1] (0: none) with its Radius (metres, >= 0), "
+          "Color, IOR and Anisotropy (subsurface_fixed_radius: Cycles' Random Walk (Fixed Radius): the "
+          "radius / 4 pi, no IOR adjustment; subsurface_entry_alpha >= 0: Cycles 4.x's rough refractive entry "
+          "of that GGX alpha, < 0: 3.4's Lambertian one; subsurface_skin: 4.x's Random Walk (Skin)), or a Subsurface Scattering node's closure (a mixture's 'subsurface' "
+          "component: base_color its Color, subsurface_radius its Radius x Scale), from the program's "
+          "subsurface_register / subsurface_radius_register / subsurface_color_register when given.")
       .def(
           "add_shader_program",
           [](Scene& s, const py::object& constants, const py::object& code, int registers, const py::object& data) {

@@ -256,8 +256,8 @@ TEST(ChiSquare, MixtureSamplingMatchesPdf) {
     }
 }
 
-// The Velvet / Sheen, Translucent, Refraction (both sides) and Toon closures, alone and mixed,
-// draw their directions with the pdf they report (transmitted directions included). Lobes with a
+// The Velvet / Sheen, Translucent, Refraction (both sides), Toon and subsurface exit closures, alone
+// and mixed, draw their directions with the pdf they report (transmitted directions included). Lobes with a
 // hard edge symmetric about the bins' axis (the horizon seen from straight above, a Toon's cone)
 // are binned with that edge on a bin boundary (scale = its angle): cut by the midpoint rule, the
 // edge's whole ring would otherwise be off by the same amount. Closures whose sampling does not
@@ -299,6 +299,8 @@ TEST(ChiSquare, ClosureNodesSamplingMatchesPdf) {
                                   0.7f * half_pi});
   }
   cases.push_back({"translucent", one(TranslucentBsdf(Vec3(0.8f))), {1.0f}});
+  cases.push_back({"subsurface exit (Lambert)", one(SubsurfaceExitBsdf(false)), {1.0f}});
+  cases.push_back({"subsurface exit (Cycles' Lambert exit)", one(SubsurfaceExitBsdf(true)), {1.0f}});
   MixtureBsdf mixed;  // a Mix of velvet and sheen over a translucent leaf and a rough refraction
   mixed.add(SheenBsdf(Vec3(0.9f), 0.4f), 0.5f, 0.3f);
   mixed.add(VelvetBsdf(Vec3(0.9f), 0.4f), 0.5f, 0.3f);

@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The Velvet / Sheen, Translucent, Refraction, Toon and Principled Hair BSDF nodes -> a mixture's
-closures (the core's velvet_bsdf.h, sheen_bsdf.h, translucent_bsdf.h, refraction_bsdf.h,
-toon_bsdf.h, hair/principled_hair_bsdf.h; the hair node's inputs: principled_hair.py), alone
-at the Surface and in Mix/Add Shader trees alike (mixtures.py).
+"""The Velvet / Sheen, Translucent, Refraction, Toon, Principled Hair BSDF and Subsurface Scattering
+nodes -> a mixture's closures (the core's velvet_bsdf.h, sheen_bsdf.h, translucent_bsdf.h,
+refraction_bsdf.h, toon_bsdf.h, hair/principled_hair_bsdf.h, subsurface/; the hair node's inputs:
+principled_hair.py, the subsurface node's: principled_subsurface.py), alone at the Surface and in
+Mix/Add Shader trees alike (mixtures.py).
 
 Each becomes (closure type, add_material kwargs) with the inputs where the core's ClosureType
 reads them: Color -> base_color (any graph), Sigma / Roughness / Size -> roughness (any graph),
@@ -13,10 +14,12 @@ transmission_roughness (a value; a graph that varies is reported and its socket'
 from .material_values import DEFAULT_MATERIAL, clamp, color3, sanitize
 from .nodes import finite_or, node_label
 from .principled_hair import read_principled_hair
+from .principled_subsurface import read_subsurface_node
 from .shader_graph.node_versions import cycles4_toon
 
 CLOSURE_NODES = {'ShaderNodeBsdfVelvet', 'ShaderNodeBsdfSheen', 'ShaderNodeBsdfTranslucent',
-                 'ShaderNodeBsdfRefraction', 'ShaderNodeBsdfToon', 'ShaderNodeBsdfHairPrincipled'}
+                 'ShaderNodeBsdfRefraction', 'ShaderNodeBsdfToon', 'ShaderNodeBsdfHairPrincipled',
+                 'ShaderNodeSubsurfaceScattering'}
 
 
 def read_closure_node(reader, mat, node):
@@ -30,7 +33,10 @@ def read_closure_node(reader, mat, node):
                                             program_input='base_color')
     args = dict(d, base_color=color3(color, d['base_color']), metallic=0.0, specular=0.0,
                 base_color_texture=color_tex)
-    if kind == 'ShaderNodeBsdfTranslucent':
+    if kind == 'ShaderNodeSubsurfaceScattering':
+        closure = 'subsurface'
+        args.update(read_subsurface_node(reader, mat, node))
+    elif kind == 'ShaderNodeBsdfTranslucent':
         closure = 'translucent'
     elif kind in ('ShaderNodeBsdfVelvet', 'ShaderNodeBsdfSheen'):
         microfiber = getattr(node, "distribution", 'ASHIKHMIN') == 'MICROFIBER'

@@ -14,7 +14,8 @@ output node (the output Cycles would use):
   Color; _PRINCIPLED_SOCKETS) and, for the PRINCIPLED_V2 model, its IOR, Specular Tint
   colour and distribution (Multiscatter GGX or GGX); the coat (v1 Clearcoat, v2 Coat:
   principled_coat.py); the sheen (v1 Sheen, v2 Sheen Weight: principled_sheen.py); Anisotropic,
-  Anisotropic Rotation and Tangent (anisotropy.py);
+  Anisotropic Rotation and Tangent (anisotropy.py); v1's subsurface (Cycles' Random Walk:
+  principled_subsurface.py);
 * Glass BSDF: Color, Roughness, IOR (GGX or Beckmann; Sharp is roughness 0);
 * Transparent BSDF: Color (rays pass straight through, tinted);
 * Emission: a black emitter;
@@ -53,6 +54,7 @@ from .normal_inputs import begin_displacement, read_normal_input
 from .principled_coat import read_coat
 from .shader_aovs import AovPrograms
 from .principled_sheen import read_sheen
+from .principled_subsurface import read_subsurface
 from .principled_transmission import read_transmission
 from .transparent_mix import read_transparent_mix
 from .volumes import has_only_volume, material_volume
@@ -70,7 +72,6 @@ _PRINCIPLED_SOCKETS = {
 # (a tuple: a colour socket). v2's Specular Tint colour is read (PRINCIPLED_V2 renders it).
 _IGNORED_PRINCIPLED_INPUTS = {
     'v1': (
-        ("Subsurface", 0.0),
     ),
     'v2': (
         ("Subsurface Weight", 0.0),
@@ -361,6 +362,7 @@ class MaterialReader:
             **read_coat(self, mat, node, version),
             **read_sheen(self, mat, node, version),
             **anisotropy,
+            **read_subsurface(self, mat, node, version),
         )
         alpha = _clamp(finite_or(alpha, 1.0), 0.0, 1.0)
         if alpha < 1.0 or alpha_tex >= 0:

@@ -1,5 +1,6 @@
 #include "torrance/bsdfs/diffuse_bsdf.h"
 
+#include "torrance/bsdfs/cosine_sampled.h"
 #include "torrance/util/sampling.h"
 
 namespace torrance {
@@ -29,13 +30,7 @@ LobeEval DiffuseBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
 float DiffuseBsdf::pdf(const Vec3& /*wo*/, const Vec3& wi) const { return cosine_hemisphere_pdf(wi.z); }
 
 BsdfSample DiffuseBsdf::sample(const Vec3& wo, float /*u_lobe*/, const Vec2& u) const {
-  BsdfSample s;
-  s.wi = sample_cosine_hemisphere(u);
-  s.diffuse = true;
-  s.pdf = pdf(wo, s.wi);
-  if (!(s.pdf > 0.0f)) return BsdfSample{};
-  s.weight = eval(wo, s.wi) / s.pdf;
-  return s;
+  return sample_cosine_weighted(*this, wo, u);
 }
 
 }  // namespace torrance

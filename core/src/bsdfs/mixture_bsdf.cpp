@@ -28,6 +28,15 @@ void add_closure(MixtureBsdf& bsdf, const Closure& closure, float weight) {
   bsdf.add(closure, weight, closure.sampling_albedo());
 }
 
+// Principled v1 as Cycles shades it after a diffuse bounce: its Subsurface becomes the full
+// diffuse lobe of the mixed colour.
+Material principled_as_diffuse(const Material& m) {
+  Material d = m;
+  d.base_color = principled_subsurface_albedo(m);
+  d.subsurface = 0.0f;
+  return d;
+}
+
 PrincipledHairParams principled_hair_params(const Material& m) {
   PrincipledHairParams p;
   p.sigma = m.base_color;
@@ -161,10 +170,15 @@ void MixtureBsdf::orient(const Frame& frame) {
 
 MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals& globals, bool textured,
                            BrdfModel model, const MaterialBsdf& prebuilt, Material& resolved,
-                           glm::vec4* program_regs, ClosureList* closures) {
+                           glm::vec4* program_regs, ClosureList* closures, SubsurfaceLobe* subsurface,
+                           bool diffuse_ancestor) {
   const Mixture* mixture = scene.mixture(id);
   if (!mixture) {
     resolved = textured ? scene.textured_material(id, globals, program_regs) : scene.material(id);
+    if (subsurface && resolved.subsurface > 0.0f && model == BrdfModel::Principled) {
+      if (diffuse_ancestor) return MixtureBsdf(MaterialBsdf(principled_as_diffuse(resolved), model));
+      *subsurface = principled_subsurface(resolved);
+    }
     return textured ? MixtureBsdf(MaterialBsdf(resolved, model)) : MixtureBsdf(prebuilt);
   }
   MixtureWeights w = scene.mixture_weights(id, globals, program_regs);
@@ -180,10 +194,24 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
     resolved.emission += w.weight[k] * m.emission;
     if (closures) closures->add(c.type, w.weight[k], m);
     switch (c.type) {
-      case ClosureType::Principled:
-        bsdf.add(MaterialBsdf(m, model), w.weight[k], principled_sampling_albedo(m));
+      case ClosureType::Principled: {
+        const bool walked = subsurface && m.subsurface > 0.0f && model == BrdfModel::Principled;
+        if (walked && !diffuse_ancestor && !subsurface->active()) *subsurface = principled_subsurface(m, w.weight[k]);
+        const Material& shaded = walked && diffuse_ancestor ? principled_as_diffuse(m) : m;
+        bsdf.add(MaterialBsdf(shaded, model), w.weight[k], principled_sampling_albedo(shaded));
         resolved.base_color += w.weight[k] * m.base_color * (1.0f - m.metallic);
         break;
+      }
+      case ClosureType::Subsurface: {
+        const SubsurfaceLobe lobe = node_subsurface(m, w.weight[k]);
+        const bool walked = subsurface && !diffuse_ancestor && !subsurface->active() && lobe.active();
+        if (walked) *subsurface = lobe;
+        // What is not walked is Lambert (Cycles: channels of too small a radius; all after a diffuse bounce).
+        const Vec3 lambert = walked ? m.base_color * (Vec3(1.0f) - glm::sign(lobe.weight)) : m.base_color;
+        if (max_component(lambert) > 0.0f) bsdf.add(DiffuseBsdf(lambert, 0.0f), w.weight[k], luminance(lambert));
+        resolved.base_color += w.weight[k] * m.base_color;
+        break;
+      }
       case ClosureType::Diffuse:
         bsdf.add(DiffuseBsdf(m.base_color, m.roughness), w.weight[k], luminance(m.base_color));
         resolved.base_color += w.weight[k] * m.base_color;

@@ -1,5 +1,7 @@
 #include "torrance/bsdfs/principled.h"
 
+#include "torrance/subsurface/subsurface_lobe.h"
+
 namespace torrance {
 
 float fresnel_dielectric(float cos_i, float eta) {
@@ -30,7 +32,11 @@ PrincipledBsdf::PrincipledBsdf(const Material& m) {
   // specular lobe 1 - transmission (1 - metallic); the rest is glass (MaterialBsdf, glass.h).
   const float transmission = clamp01(m.transmission);
   const float diffuse_weight = (1.0f - metallic) * (1.0f - transmission);
-  diffuse_color_ = diffuse_weight * base;
+  // Subsurface (Cycles 3.4): the diffuse lobe's colour is the subsurface-mixed one, and the random
+  // walk takes its Lambertian part (subsurface_lobe.h), but in channels whose radius is too small.
+  subsurface_ = m.subsurface > 0.0f;
+  if (subsurface_) lambert_channels_ = principled_lambert_channels(m);
+  diffuse_color_ = diffuse_weight * (subsurface_ ? glm::clamp(principled_subsurface_albedo(m), Vec3(0.0f), Vec3(1.0f)) : base);
   diffuse_luminance_ = luminance(diffuse_color_);
   specular_weight_ = 1.0f - transmission * (1.0f - metallic);
   f0_ = std::min(0.08f * std::max(m.specular, 0.0f), 0.99f);
@@ -94,9 +100,14 @@ LobeEval PrincipledBsdf::eval_lobes(const View& v, const Vec3& wi) const {
   // Burley diffuse (Cycles 3.4's principled diffuse, roughness unsquared).
   const float fl = schlick_weight(wi.z), fv = v.burley_o;
   const float rr = 2.0f * roughness_ * cos_d * cos_d;
-  const float burley = (1.0f - 0.5f * fl) * (1.0f - 0.5f * fv) + rr * (fl + fv + fl * fv * (rr - 1.0f));
   LobeEval f_cos;
-  f_cos.diffuse = diffuse_color_ * (kInvPi * burley * wi.z);
+  if (subsurface_) {
+    const float lambert = (1.0f - 0.5f * fl) * (1.0f - 0.5f * fv), retro = rr * (fl + fv + fl * fv * (rr - 1.0f));
+    f_cos.diffuse = diffuse_color_ * (lambert_channels_ * lambert + Vec3(retro)) * (kInvPi * wi.z);
+  } else {
+    const float burley = (1.0f - 0.5f * fl) * (1.0f - 0.5f * fv) + rr * (fl + fv + fl * fv * (rr - 1.0f));
+    f_cos.diffuse = diffuse_color_ * (kInvPi * burley * wi.z);
+  }
   if (sheen_.active()) f_cos.diffuse += sheen_.eval(cos_d, wi.z);
   if (!has_delta()) {
     const float g = v.g1_o * shape_.G1(wi);

@@ -170,6 +170,7 @@ void DenoisingClosures::add_closures(const ClosureList& list, float cos_no, bool
       case ClosureType::Glossy: add(weight, mean(weight), r2); break;
       case ClosureType::Refraction: add(weight, mean(weight), r2, true); break;
       case ClosureType::Diffuse:
+      case ClosureType::Subsurface:  // Cycles' BSSRDF counts as diffuse for the denoising albedo
       case ClosureType::Velvet:
       case ClosureType::Sheen:
       case ClosureType::ToonDiffuse:

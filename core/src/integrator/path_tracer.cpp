@@ -18,6 +18,7 @@
 #include "torrance/integrator/ray_log.h"
 #include "torrance/lights/light_choice.h"
 #include "torrance/lights/mirror_images.h"
+#include "torrance/subsurface/random_walk.h"
 
 #include <algorithm>
 #include <array>
@@ -25,6 +26,7 @@
 #include <optional>
 #include <type_traits>
 #include <utility>
+#include <variant>
 
 namespace torrance {
 
@@ -89,8 +91,15 @@ struct ScatterVertex {
 // stack; each segment is a free flight through its media (media/medium_walk.h), which may end
 // in a scattering vertex (NEE with the phase function, then phase sampling: scatter_in_medium)
 // instead of at the surface; shadow rays take the media's transmittance.
+//
+// Subsurface (kSubsurface: some material has a subsurface closure, core/src/subsurface/): where
+// the continuation chooses the closure (with its probability, against the vertex's BSDF), the
+// path walks through the mesh (random_walk.h) and goes on from the exit point, shaded by the
+// exit's BSDF (exit_bsdf.h): NEE there, then its sample, at the same bounce (Cycles counts no
+// bounce for the walk). NEE at the entry sees the BSDF alone. After a diffuse bounce subsurface
+// closures shade as diffuse (Cycles' PATH_RAY_DIFFUSE_ANCESTOR).
 template <bool kTextures, bool kSplitLobes, bool kHittable, bool kGlass, bool kAlpha, bool kMixtures,
-          bool kMedia = false>
+          bool kMedia = false, bool kSubsurface = false>
 class PathTracer {
  public:
   using Bsdf = std::conditional_t<kMixtures, MixtureBsdf, MaterialBsdf>;
@@ -209,6 +218,8 @@ class PathTracer {
     ShadingPoint at;
     Vec3 wo_world{0.0f}, wo{0.0f};  // towards the viewer; wo in the shading frame
     typename Bsdf::View view;       // wo's terms, once for this vertex's queries
+    // kSubsurface: the material's subsurface closure at this hit (inactive: none).
+    [[no_unique_address]] std::conditional_t<kSubsurface, SubsurfaceLobe, std::monostate> subsurface{};
   };
 
   // ---- 1. The next surface ----
@@ -401,9 +412,12 @@ class PathTracer {
     // The material's program runs once here; its Normal (shading_point) reads its registers.
     if constexpr (kMixtures) {
       if (v.mixture && features_.open() && !first_again) v.closure_list.emplace();
+      SubsurfaceLobe* subsurface = nullptr;
+      if constexpr (kSubsurface) subsurface = &v.subsurface;
       v.local_bsdf.emplace(shade_material(ctx_.scene, hit.material, globals, v.textured, ctx_.settings.brdf_model,
                                           ctx_.bsdfs[hit.material], v.material, v.program_regs.data(),
-                                          v.closure_list ? &*v.closure_list : nullptr));
+                                          v.closure_list ? &*v.closure_list : nullptr, subsurface,
+                                          diffuse_ancestor()));
       v.bsdf = &*v.local_bsdf;
     } else {
       v.material = v.textured ? ctx_.scene.textured_material(hit.material, globals, v.program_regs.data())
@@ -420,6 +434,7 @@ class PathTracer {
     v.view = v.bsdf->at(v.wo, v.at.backfacing, v.at.diffuse);
     // Path guiding on opaque single-material surfaces with a continuous lobe.
     v.guidable = ctx_.guide && !v.mixture && !v.transmits && (v.material.metallic < 1.0f || v.material.roughness >= 0.3f);
+    if constexpr (kSubsurface) v.guidable = v.guidable && !v.subsurface.active();
   }
 
   // ---- 4. Emission and the first surface's passes ----
@@ -525,8 +540,9 @@ class PathTracer {
     const Vec3 transmittance = shadow_through(v, ls, u_light.w);
     if (!(max_component(transmittance) > 0.0f)) return;
     // Against the BSDF's pdf even where a guide samples the next direction: see ScatterVertex::pdf.
-    const float mis =
-        ls.pdf > 0.0f ? power_heuristic(probability * ls.pdf, v.bsdf->template pdf<kGlass>(v.view, wi)) : 1.0f;
+    const float mis = ls.pdf > 0.0f
+                           ? power_heuristic(probability * ls.pdf, v.bsdf->template pdf<kGlass>(v.view, wi) * bsdf_share(v))
+                           : 1.0f;
     Vec3 light = throughput_ * ls.weight * (mis / probability);
     if (const LightShare* share = caustic_chain_.share(reflector_share_.active())) light *= share->of(index);
     if (kAlpha) light *= transmittance;
@@ -567,14 +583,28 @@ class PathTracer {
   // ---- 6. Continuation ----
 
   // The next ray along a sample of the BSDF (or of the guided mixture); false: the path ends.
-  bool scatter(const Vertex& v, int bounce, const GuideDistribution& guide, const glm::vec4& u_bsdf) {
+  bool scatter(const Vertex& v, int bounce, const GuideDistribution& guide, glm::vec4 u_bsdf) {
     const Frame& frame = v.at.frame;
+    [[maybe_unused]] const float share = bsdf_share(v);  // of the continuation, the BSDF's (the rest: the walk)
+    if constexpr (kSubsurface) {
+      if (share < 1.0f) {
+        if (u_bsdf.x >= share) return walk_subsurface(v, bounce, 1.0f - share, u_bsdf);
+        u_bsdf.x = std::min(u_bsdf.x / share, 0.99999994f);
+      }
+    }
     float bsdf_pdf = 0.0f, guide_pdf = 0.0f;  // the parts of a guided sample's pdf
     Vec2 square(-1.0f);                        // and its direction on the guide's square (-1: not known yet)
     BsdfSample bs = guide ? sample_guided<kGlass>(*v.bsdf, guide, frame, v.wo, v.at.backfacing, u_bsdf, bsdf_pdf,
                                                   guide_pdf, square)
                           : v.bsdf->template sample<kGlass>(v.view, u_bsdf.x, Vec2(u_bsdf.y, u_bsdf.z));
     if (!bs.valid()) return false;
+    if constexpr (kSubsurface) {
+      if (share < 1.0f) {
+        bs.weight /= share;
+        if (!bs.is_delta) bs.pdf *= share;
+      }
+      if (bs.diffuse && !bs.is_delta) subsurface_.diffuse_ancestor = true;
+    }
     const Vec3 wi_world = frame.to_world(bs.wi);
     if (!leaves_geometric_side(wi_world, v.at.ng, bs.wi.z, v.transmits)) return false;
     if constexpr (kTextures) label_next_ray(bs, glm::dot(wi_world, v.at.ng) > 0.0f);
@@ -616,6 +646,70 @@ class PathTracer {
     ray_.tmin = 0.0f;
     ray_.tmax = kInfinity;
     return true;
+  }
+
+  // ---- Subsurface (kSubsurface) ----
+
+  // Of the vertex's continuation, the share its BSDF samples (1 without a subsurface closure).
+  float bsdf_share(const Vertex& v) const {
+    if constexpr (kSubsurface) return v.subsurface.active() ? 1.0f - v.subsurface.choice_probability() : 1.0f;
+    else return 1.0f;
+  }
+  bool diffuse_ancestor() const {
+    if constexpr (kSubsurface) return subsurface_.diffuse_ancestor;
+    else return false;
+  }
+
+  // The mesh the walk is in, as Scene::intersect_object sees it; the exit's hit kept.
+  class ObjectBoundary : public WalkBoundary {
+   public:
+    ObjectBoundary(const Scene& scene, uint32_t object, SurfaceHit& exit) : scene_(scene), object_(object), exit_(exit) {}
+    bool nearest(const Vec3& origin, const Vec3& dir, float t_max, float& t) override {
+      Ray ray;
+      ray.origin = origin;
+      ray.dir = dir;
+      ray.tmin = 0.0f;
+      ray.tmax = t_max;
+      if (!scene_.intersect_object(ray, object_, exit_)) return false;
+      t = exit_.t;
+      return true;
+    }
+
+   private:
+    const Scene& scene_;
+    uint32_t object_;
+    SurfaceHit& exit_;
+  };
+
+  // The walk the continuation chose (with `probability`) at vertex v, then the exit point: NEE
+  // there and its BSDF's sample, as vertex `bounce` still. False: the path ends (no exit).
+  bool walk_subsurface(const Vertex& v, int bounce, float probability, const glm::vec4& u_bsdf) {
+    static_assert(kMixtures, "subsurface tracers shade every hit with a MixtureBsdf");
+    const auto seed = [](float u) { return uint32_t(double(u) * 4294967295.0); };
+    Rng rng(seed(u_bsdf.y), seed(u_bsdf.z), 0x55u);
+    ObjectBoundary boundary(ctx_.scene, v.hit->object, subsurface_.exit);
+    const Vec3& p = v.hit->position;
+    const float offset = 2e-5f * std::max(1.0f, std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))));
+    const WalkExit walk = random_walk(boundary, v.subsurface, p, v.at.ns, v.at.ng, v.wo_world, offset,
+                                      throughput_ * v.subsurface.weight / probability, rng);
+    if (!walk.exited || !(max_component(walk.throughput) > 0.0f)) return false;
+    throughput_ = walk.throughput;
+    // The exit, shaded as if the path arrived there from outside (Cycles turns the walk's last
+    // ray around), with its interpolated normal.
+    Vertex x;
+    x.hit = &subsurface_.exit;
+    x.local_bsdf.emplace();
+    x.local_bsdf->add(SubsurfaceExitBsdf(v.subsurface.exit_fresnel), 1.0f, 1.0f);
+    x.bsdf = &*x.local_bsdf;
+    x.material.roughness = 1.0f;
+    x.wo_world = walk.direction;
+    x.at = shading_point(ctx_, subsurface_.exit, x.wo_world, false, ShaderGlobals{}, nullptr);
+    x.wo = x.at.frame.to_local(x.wo_world);
+    x.view = x.bsdf->at(x.wo, x.at.backfacing, x.at.diffuse);
+    path_length_ += glm::length(subsurface_.exit.position - p);
+    const glm::vec4 u_light = sampler_.next_4d(), u_next = sampler_.next_4d();
+    sample_lights(x, bounce, u_light);
+    return scatter(x, bounce, GuideDistribution(), u_next);
   }
 
   // The next ray's Light Path state, as Cycles labels the sample (only shader programs read it:
@@ -723,6 +817,7 @@ class PathTracer {
     path_state_ = PathState{};
     path_state_.ray_flags = kRayCamera;
     path_state_.transparent_depth = first_transparent_depth_;
+    if constexpr (kSubsurface) subsurface_.diffuse_ancestor = false;
     features_ = features_after_first_;
     features_.set_share(branch_weight_);
   }
@@ -830,14 +925,21 @@ class PathTracer {
     int scatters = 0;
   };
   [[no_unique_address]] std::conditional_t<kMedia, Media, NoMedia> media_;
+  // kSubsurface: whether the path took a diffuse bounce (Cycles' PATH_RAY_DIFFUSE_ANCESTOR), and
+  // the latest walk's exit.
+  struct Subsurface {
+    bool diffuse_ancestor = false;
+    SurfaceHit exit;
+  };
+  [[no_unique_address]] std::conditional_t<kSubsurface, Subsurface, NoMedia> subsurface_;
 };
 
 template <bool kTextures, bool kSplitLobes, bool kHittable, bool kGlass, bool kAlpha, bool kMixtures,
-          bool kMedia = false>
+          bool kMedia = false, bool kSubsurface = false>
 PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, const FirstHit* first,
                         const PixelSample& pixel) {
-  return PathTracer<kTextures, kSplitLobes, kHittable, kGlass, kAlpha, kMixtures, kMedia>(ctx, ray, sampler, first,
-                                                                                          pixel)
+  return PathTracer<kTextures, kSplitLobes, kHittable, kGlass, kAlpha, kMixtures, kMedia, kSubsurface>(
+             ctx, ray, sampler, first, pixel)
       .trace();
 }
 
@@ -862,6 +964,25 @@ constexpr std::array<TraceFn, sizeof...(I)> make_media_tracers(std::index_sequen
   return {trace_path<true, bool(I & 2), bool(I & 1), true, true, true, true>...};
 }
 constexpr std::array<TraceFn, 4> kMediaTracers = make_media_tracers(std::make_index_sequence<4>{});
+// Scenes with subsurface closures: every other feature on too, volumes included (bit 0 kHittable,
+// 1 kSplitLobes), so that scenes without pay nothing for them.
+template <size_t... I>
+constexpr std::array<TraceFn, sizeof...(I)> make_subsurface_tracers(std::index_sequence<I...>) {
+  return {trace_path<true, bool(I & 2), bool(I & 1), true, true, true, true, true>...};
+}
+constexpr std::array<TraceFn, 4> kSubsurfaceTracers = make_subsurface_tracers(std::make_index_sequence<4>{});
+
+// Whether some material (or a mixture's closure) has a subsurface closure.
+bool has_subsurface(const Scene& scene) {
+  for (size_t i = 0; i < scene.num_materials(); ++i) {
+    const uint32_t id = uint32_t(i);
+    if (scene.material(id).subsurface > 0.0f || scene.material_textures(id).program.subsurface >= 0) return true;
+    if (const Mixture* mixture = scene.mixture(id))
+      for (const MixtureComponent& c : mixture->components)
+        if (c.type == ClosureType::Subsurface) return true;
+  }
+  return false;
+}
 
 }  // namespace
 
@@ -885,6 +1006,7 @@ TraceFn select_path_tracer(const Scene& scene, const RenderSettings& settings) {
   const bool split_lobes =
       settings.passes & (kPassDiffuseDirect | kPassDiffuseIndirect | kPassGlossyDirect | kPassGlossyIndirect);
   const int lobes_and_lights = (split_lobes << 1) | int(scene.lights().any_hittable());
+  if (has_subsurface(scene)) return kSubsurfaceTracers[settings.specialize ? lobes_and_lights : 3];
   if (scene.media().any()) return kMediaTracers[settings.specialize ? lobes_and_lights : 3];
   if (scene.has_mixtures()) return kMixtureTracers[settings.specialize ? lobes_and_lights : 3];
   if (!settings.specialize) return kMixtureTracers[3];  // the generic path: every feature

@@ -159,6 +159,10 @@ void Scene::apply_program(const MaterialTextures& t, const ShaderGlobals& g, Mat
   if (o.anisotropy >= 0) m.anisotropy = std::clamp(regs[size_t(o.anisotropy)].x, -1.0f, 1.0f);
   if (o.anisotropic_rotation >= 0) m.anisotropic_rotation = regs[size_t(o.anisotropic_rotation)].x;
   if (o.tangent >= 0) m.tangent = Vec3(regs[size_t(o.tangent)]);
+  if (o.subsurface >= 0) m.subsurface = clamp01(regs[size_t(o.subsurface)].x);
+  if (o.subsurface_radius >= 0) m.subsurface_radius = glm::max(Vec3(regs[size_t(o.subsurface_radius)]), Vec3(0.0f));
+  if (o.subsurface_color >= 0)
+    m.subsurface_color = glm::clamp(Vec3(regs[size_t(o.subsurface_color)]), Vec3(0.0f), Vec3(1.0f));
 }
 
 Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, const ShaderGlobals& g,
@@ -247,6 +251,14 @@ void check_material(const Material& m) {
     throw std::invalid_argument("material anisotropy, anisotropic_rotation and tangent must be finite");
   if (m.anisotropy < -1.0f || m.anisotropy > 1.0f)
     throw std::invalid_argument("material anisotropy must be in [-1, 1]");
+  if (!std::isfinite(m.subsurface) || !is_finite(m.subsurface_radius) || !is_finite(m.subsurface_color) ||
+      !std::isfinite(m.subsurface_ior) || !std::isfinite(m.subsurface_anisotropy) ||
+      !std::isfinite(m.subsurface_entry_alpha))
+    throw std::invalid_argument("material subsurface values must be finite");
+  if (m.subsurface < 0.0f || m.subsurface > 1.0f || glm::any(glm::lessThan(m.subsurface_radius, Vec3(0.0f))) ||
+      glm::any(glm::lessThan(m.subsurface_color, Vec3(0.0f))) || !(m.subsurface_ior > 0.0f))
+    throw std::invalid_argument("material subsurface must be in [0, 1], subsurface_radius and subsurface_color >= 0 "
+                                "and subsurface_ior > 0");
 }
 
 uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures) {
@@ -278,7 +290,8 @@ void Scene::check_program_outputs(const ShaderOutputs& o) const {
     if (o.base_color >= 0 || o.metallic >= 0 || o.roughness >= 0 || o.emission >= 0 || o.normal >= 0 || o.alpha >= 0 ||
         o.surface_normal >= 0 || o.transmission >= 0 || o.coat_weight >= 0 || o.coat_roughness >= 0 || o.coat_ior >= 0 || o.coat_tint >= 0 ||
         o.sheen_weight >= 0 || o.sheen_roughness >= 0 || o.sheen_tint >= 0 || o.anisotropy >= 0 ||
-        o.anisotropic_rotation >= 0 || o.tangent >= 0)
+        o.anisotropic_rotation >= 0 || o.tangent >= 0 || o.subsurface >= 0 || o.subsurface_radius >= 0 ||
+        o.subsurface_color >= 0)
       throw std::invalid_argument("material reads shader program registers but names no program");
     return;
   }
@@ -288,7 +301,8 @@ void Scene::check_program_outputs(const ShaderOutputs& o) const {
   const ShaderProgram& program = programs_[size_t(o.program)];
   for (int r : {o.base_color, o.metallic, o.roughness, o.emission, o.normal, o.alpha, o.surface_normal, o.transmission, o.coat_weight,
                 o.coat_roughness, o.coat_ior, o.coat_tint, o.sheen_weight, o.sheen_roughness, o.sheen_tint,
-                o.anisotropy, o.anisotropic_rotation, o.tangent})
+                o.anisotropy, o.anisotropic_rotation, o.tangent, o.subsurface, o.subsurface_radius,
+                o.subsurface_color})
     if (r != -1 && !program.written(r))
       throw std::invalid_argument("material reads register " + std::to_string(r) + " of a shader program with " +
                                   std::to_string(program.registers()) + " registers, which the program does not write");
@@ -535,6 +549,17 @@ bool Scene::intersect(const Ray& ray, SurfaceHit& hit) const {
   RTCRayHit rh = embree_ray_hit(ray.origin, ray.dir, ray.tmin, ray.tmax);
   ray_queries::intersect(scene_of(scene_), rh);
   return surface_hit(&rh, ray.dir, hit);
+}
+
+bool Scene::intersect_object(Ray ray, uint32_t object, SurfaceHit& hit) const {
+  constexpr int kMaxPassed = 64;  // other objects' surfaces passed on the way
+  for (int passed = 0; passed <= kMaxPassed; ++passed) {
+    if (!intersect(ray, hit)) return false;
+    if (hit.object == object) return true;
+    ray.tmin = std::nextafter(hit.t, std::numeric_limits<float>::infinity());
+    if (!(ray.tmin < ray.tmax)) return false;
+  }
+  return false;
 }
 
 bool Scene::occluded(const Vec3& origin, const Vec3& dir, float tmin, float tmax) const {

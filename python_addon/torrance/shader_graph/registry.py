@@ -159,9 +159,12 @@ CLOSURES = {
                                 "Clearcoat and its Roughness; v2 Coat Weight, Roughness, IOR, "
                                 "Tint; any graph); the sheen (v1 Sheen, Sheen Tint; v2 Sheen "
                                 "Weight, Roughness, Tint; any graph); Anisotropic, Anisotropic "
-                                "Rotation, Tangent (any graph; unlinked: Geometry > Tangent). "
-                                "Reported: Subsurface, Clearcoat / Coat Normal, Thin Film, "
-                                "Diffuse Roughness",
+                                "Rotation, Tangent (any graph; unlinked: Geometry > Tangent); "
+                                "v1 subsurface (Cycles' Random Walk: Subsurface, Subsurface "
+                                "Radius, Subsurface Color, any graph; Subsurface IOR, Subsurface "
+                                "Anisotropy; Random Walk (Fixed Radius); Christensen-Burley "
+                                "rendered as it, reported). Reported: v2 Subsurface Weight, "
+                                "Clearcoat / Coat Normal, Thin Film, Diffuse Roughness",
     'ShaderNodeBsdfDiffuse': "rendered: Color, Roughness (Lambert, Cycles' Oren-Nayar), Normal; "
                              "alone and in Mix/Add Shader trees alike",
     'ShaderNodeBsdfGlossy': "partly: Color, Roughness (GGX, Sharp; 4.x: Anisotropy, Rotation, "
@@ -181,6 +184,13 @@ CLOSURES = {
                            "in Mix/Add Shader trees",
     'ShaderNodeBsdfTranslucent': "rendered: Color (any graph), Normal; alone and in Mix/Add "
                                  "Shader trees",
+    'ShaderNodeSubsurfaceScattering': "rendered: Color (any graph), Scale, Radius, IOR, "
+                                      "Anisotropy, 4.x Roughness (values), Normal; 3.x: Random "
+                                      "Walk and Random Walk (Fixed Radius) as Cycles 3.4, 4.x/5.x: "
+                                      "Random Walk (its rough refractive entry) and Random Walk "
+                                      "(Skin) as Cycles 4.x; Christensen-Burley rendered as a "
+                                      "random walk of its radius, reported; alone and in Mix/Add "
+                                      "Shader trees",
     'ShaderNodeBsdfRefraction': "rendered: Color, Roughness (any graph), IOR, Normal; GGX, "
                                 "Beckmann, Sharp (Multiscatter GGX rendered as GGX, reported); "
                                 "alone and in Mix/Add Shader trees",
@@ -198,12 +208,13 @@ CLOSURES = {
                          "(through transparency) lose its weight of alpha and colour, as Cycles' "
                          "holdout; black elsewhere",
     'ShaderNodeMixShader': "partly: trees of Principled, Diffuse, Glossy, Glass, Transparent, "
-                           "Holdout, Emission, Velvet / Sheen, Translucent, Refraction, Toon and "
-                           "Principled Hair closures, Fac any graph",
+                           "Holdout, Emission, Velvet / Sheen, Translucent, Refraction, Toon, "
+                           "Principled Hair and Subsurface Scattering closures, Fac any graph",
     'ShaderNodeAddShader': "partly: trees of Principled, Diffuse, Glossy, Glass, Transparent, "
-                           "Holdout, Emission, Velvet / Sheen, Translucent, Refraction, Toon and "
-                           "Principled Hair closures (a Transparent's weight and the others' "
-                           "summing past 1: the others shade only what it lets through)",
+                           "Holdout, Emission, Velvet / Sheen, Translucent, Refraction, Toon, "
+                           "Principled Hair and Subsurface Scattering closures (a "
+                           "Transparent's weight and the others' summing past 1: the others "
+                           "shade only what it lets through)",
     # Volume closures (volumes.py): homogeneous media, or heterogeneous ones in meshes.
     'ShaderNodeVolumeAbsorption': "rendered in a Material Output's or World Output's Volume "
                                   "(alone and in Mix/Add Shader trees): Color, Density, any "

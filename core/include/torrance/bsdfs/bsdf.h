@@ -74,6 +74,25 @@ struct Material {
   float anisotropy = 0.0f;
   float anisotropic_rotation = 0.0f;
   Vec3 tangent{0.0f};
+  // Subsurface scattering (core/src/subsurface/, Cycles' Random Walk): v1's Subsurface factor
+  // (PRINCIPLED: the diffuse lobe becomes the walk, its albedo base_color mixed towards
+  // subsurface_color by it, its radius subsurface_radius times it) or the Subsurface Scattering
+  // node's closure (ClosureType::Subsurface: base_color is its Color). subsurface_radius is the
+  // per-channel mean free path in metres, Scale included. 0: no subsurface (and it costs nothing).
+  float subsurface = 0.0f;
+  Vec3 subsurface_radius{1.0f, 0.2f, 0.1f};
+  Vec3 subsurface_color{0.8f};
+  float subsurface_ior = 1.4f;
+  float subsurface_anisotropy = 0.0f;
+  // Cycles' "Random Walk (Fixed Radius)" (and Christensen-Burley, rendered so): the radius is
+  // scaled by 1 / (4 pi) instead of being adjusted for the IOR and the colour.
+  bool subsurface_fixed_radius = false;
+  // Cycles 4.x's entry (the Subsurface Scattering node of Blender 4.x/5.x): a rough refraction of
+  // GGX alpha subsurface_entry_alpha through subsurface_ior into the mesh (< 0: Cycles 3.4's
+  // Lambertian entry); subsurface_skin: 4.x's Random Walk (Skin), half its entries Lambertian,
+  // the others of alpha 1, its radius adjusted as 3.4's Random Walk.
+  float subsurface_entry_alpha = -1.0f;
+  bool subsurface_skin = false;
   // The Principled Hair BSDF's Offset (radians: the cuticle scales' tilt; ClosureType::PrincipledHair).
   float hair_offset = 0.0f;
 };

@@ -63,6 +63,9 @@ enum class ClosureType {
   // (the add-on reduces the node's parametrisation to it), roughness = Roughness,
   // transmission_roughness = Radial Roughness, coat_weight = Coat, ior = IOR, hair_offset = Offset.
   PrincipledHair,
+  // Subsurface Scattering node (core/src/subsurface/: Cycles' Random Walk): Color = base_color,
+  // Radius x Scale = subsurface_radius, IOR = subsurface_ior, Anisotropy = subsurface_anisotropy.
+  Subsurface,
 };
 
 struct MixtureComponent {

@@ -25,6 +25,8 @@
 #include "torrance/bsdfs/toon_bsdf.h"
 #include "torrance/bsdfs/translucent_bsdf.h"
 #include "torrance/bsdfs/velvet_bsdf.h"
+#include "torrance/subsurface/exit_bsdf.h"
+#include "torrance/subsurface/subsurface_lobe.h"
 
 #include <array>
 #include <variant>
@@ -38,7 +40,7 @@ class Scene;
 class MixtureBsdf {
  public:
   using Component = std::variant<std::monostate, MaterialBsdf, DiffuseBsdf, GlossyBsdf, VelvetBsdf, SheenBsdf,
-                                 TranslucentBsdf, RefractionBsdf, ToonBsdf, PrincipledHairBsdf>;
+                                 TranslucentBsdf, RefractionBsdf, ToonBsdf, PrincipledHairBsdf, SubsurfaceExitBsdf>;
 
   MixtureBsdf() = default;
   explicit MixtureBsdf(const MaterialBsdf& single) { add(single, 1.0f, 1.0f); }
@@ -113,9 +115,15 @@ class MixtureBsdf {
 // untextured. program_regs (if given): where the material's program (a mixture's: its factors'
 // and Normal's) leaves its registers, for Scene::normal_mapped at this hit. closures (if given):
 // a mixture's closures with their weights, for the denoising features (denoising_features.h).
+// subsurface (if given): where the material's first subsurface closure goes (Principled v1's
+// Subsurface, a Subsurface Scattering node; subsurface_lobe.h), the path tracer walking it
+// instead of a BSDF sample; without it a Subsurface Scattering node is a white Lambert of its
+// Color. diffuse_ancestor: the path has taken a diffuse bounce, after which Cycles shades
+// subsurface closures as diffuse (Principled's Burley of the mixed colour, the node's Lambert).
 MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals& globals, bool textured,
                            BrdfModel model, const MaterialBsdf& prebuilt, Material& resolved,
-                           glm::vec4* program_regs = nullptr, ClosureList* closures = nullptr);
+                           glm::vec4* program_regs = nullptr, ClosureList* closures = nullptr,
+                           SubsurfaceLobe* subsurface = nullptr, bool diffuse_ancestor = false);
 
 // The estimated albedo a mixture samples a Principled closure by: luminance of the base colour
 // plus its dielectric F0.

@@ -14,6 +14,9 @@
 //   mirror   below ggx::kDeltaAlpha the specular lobe is a delta with reflectance F(n.wo).
 //   clearcoat  Cycles 3.4's clearcoat lobe, added on top (principled_coat.h: ClearcoatV1), in the
 //            glossy part of LobeEval.
+//   subsurface  with Subsurface > 0 the diffuse lobe's colour is the base colour mixed towards
+//            Subsurface Color and its Lambertian part is left to the random walk (subsurface/), as
+//            Cycles 3.4's BSSRDF setup leaves its retro-reflection as a BSDF.
 //   sheen    Cycles 3.4's principled sheen (principled_sheen.h: SheenV1), added to the diffuse
 //            lobe and sampled with it by the cosine.
 // Sampling picks a lobe by estimated reflectance, then visible GGX normals or the cosine. With a
@@ -76,6 +79,10 @@ class PrincipledBsdf : public lobe_mixture::Queries<PrincipledBsdf> {
   ggx::Shape shape_;  // the specular lobe: alpha_, or stretched by Anisotropic
   ClearcoatV1 coat_;
   SheenV1 sheen_;
+  // Subsurface (subsurface_lobe.h): the diffuse keeps its retro-reflection, its Lambertian part only
+  // in lambert_channels_ (where the walk does not go).
+  bool subsurface_ = false;
+  Vec3 lambert_channels_{1.0f};
 };
 
 }  // namespace torrance

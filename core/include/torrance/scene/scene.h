@@ -89,7 +89,8 @@ struct SurfaceHit {
   // ribbon's: geometric towards the viewer, shading rounded across the strand).
   bool on_curve = false;
   // The hit's object as the local queries name it (ShaderGlobals::object: a world-space mesh's
-  // index, or an instance's index with the top bit set; none on a hair strand) and its triangle.
+  // index, or an instance's index with the top bit set; none on a hair strand) and its triangle;
+  // what Scene::intersect_object follows.
   uint32_t object = ShaderGlobals::kNoObject, prim = 0;
 };
 
@@ -418,6 +419,9 @@ class Scene final : public ShaderTracer {
   void begin_render(LightSelection selection);
   void end_render() { --renders_; }
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
+  // The nearest hit of the ray on `object` (SurfaceHit::object) alone, other objects' surfaces
+  // passed (what a subsurface walk sees: Cycles' local intersection).
+  bool intersect_object(Ray ray, uint32_t object, SurfaceHit& hit) const;
   // intersect of up to kPacketSize coherent rays at once (an 8-wide Embree packet: camera rays
   // of neighbouring samples): the same hits, bit for bit, as intersect of each. found[i]: hit.
   static constexpr int kPacketSize = 8;

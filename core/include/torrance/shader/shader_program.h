@@ -290,6 +290,8 @@ struct ShaderOutputs {
   int16_t sheen_weight = -1, sheen_roughness = -1, sheen_tint = -1;
   // Anisotropy (Material::anisotropy, anisotropic_rotation: x; tangent: a world direction).
   int16_t anisotropy = -1, anisotropic_rotation = -1, tangent = -1;
+  // The subsurface inputs (Material::subsurface x, subsurface_radius and subsurface_color).
+  int16_t subsurface = -1, subsurface_radius = -1, subsurface_color = -1;
   bool any() const { return program >= 0; }
 };
 

@@ -1,0 +1,93 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Subsurface scattering as add_material() arguments (subsurface, subsurface_radius,
+subsurface_color, subsurface_ior, subsurface_anisotropy, subsurface_fixed_radius; the core's
+Random Walk, core/src/subsurface/):
+
+* the Principled BSDF v1's (Blender 3.x) Subsurface, Subsurface Radius and Subsurface Color
+  (each from any node graph the shader graph compiles: the closure's program then computes it,
+  subsurface*_register), Subsurface IOR and Subsurface Anisotropy (values);
+* the Subsurface Scattering node (a mixture's 'subsurface' closure, alone and in Mix/Add Shader
+  trees): Color (any graph), Radius x Scale, IOR, Anisotropy (values).
+
+Cycles' methods: Random Walk and Random Walk (Fixed Radius) are rendered as they are;
+Christensen-Burley is rendered as Random Walk (Fixed Radius), whose radius it shares, and
+reported. Blender 4.x's node: Random Walk and Random Walk (Skin) as Cycles 4.x
+(read_subsurface_node).
+Principled v2's (Blender 4.x) subsurface is not read yet (materials.py reports it)."""
+
+from .material_values import clamp, color3
+from .nodes import finite_or, node_label
+from .principled_coat import layer_inputs
+
+_SOCKETS_V1 = dict(subsurface="Subsurface", subsurface_radius="Subsurface Radius",
+                   subsurface_color="Subsurface Color")
+_DEFAULTS = dict(subsurface=0.0, subsurface_radius=(1.0, 0.2, 0.1),
+                 subsurface_color=(0.8, 0.8, 0.8))
+_METHODS = {'RANDOM_WALK': False, 'RANDOM_WALK_FIXED_RADIUS': True}
+
+
+def _radius(value, fallback=(1.0, 0.2, 0.1)):
+    try:
+        r = tuple(finite_or(float(c), f) for c, f in zip(tuple(value)[:3], fallback, strict=True))
+    except (TypeError, ValueError):
+        r = fallback
+    return tuple(max(0.0, c) for c in r)
+
+
+def _fixed_radius(reader, mat, node, method):
+    """Whether Cycles 3.4's `method` scales the radius as Fixed Radius; Burley reported."""
+    if method in _METHODS:
+        return _METHODS[method]
+    reader.reporter.warning(f"Material '{mat.name}': {node_label(node)} uses the "
+                            f"{method.replace('_', ' ').title()} subsurface method; Torrance "
+                            f"renders it as Random Walk (Fixed Radius)")
+    return True
+
+
+def _medium(reader, mat, node, ior_name, anisotropy_name):
+    v = reader._socket_value
+    return dict(subsurface_ior=max(1e-5, finite_or(v(mat, node, ior_name, 1.4), 1.4)),
+                subsurface_anisotropy=clamp(finite_or(v(mat, node, anisotropy_name, 0.0), 0.0),
+                                            0.0, 1.0))
+
+
+def read_subsurface(reader, mat, node, version):
+    """The subsurface arguments of Principled BSDF `node` ({} without subsurface, or v2)."""
+    if version != 'v1':
+        return {}
+    values = layer_inputs(reader, mat, node, _SOCKETS_V1, _DEFAULTS, 'subsurface')
+    if values is None:
+        return {}
+    method = getattr(node, "subsurface_method", 'RANDOM_WALK')
+    return dict(subsurface=clamp(values['subsurface'], 0.0, 1.0),
+                subsurface_radius=_radius(values['subsurface_radius']),
+                subsurface_color=tuple(clamp(c, 0.0, 1.0) for c in color3(
+                    values['subsurface_color'], _DEFAULTS['subsurface_color'])),
+                subsurface_fixed_radius=_fixed_radius(reader, mat, node, method),
+                **_medium(reader, mat, node, "Subsurface IOR", "Subsurface Anisotropy"))
+
+
+def read_subsurface_node(reader, mat, node):
+    """The Subsurface Scattering node's arguments beside its Color (base_color): its radius
+    (Radius x Scale, values), IOR, Anisotropy and method; Blender 4.x's (it has a Roughness) as
+    Cycles 4.x: Random Walk is 3.4's Fixed Radius entering by a rough refraction of GGX alpha
+    Roughness, Random Walk (Skin) 3.4's Random Walk entering half by it (alpha 1), half by a
+    Lambertian transmission."""
+    v = reader._socket_value          # a graph that varies is reported there
+    scale = max(0.0, finite_or(v(mat, node, "Scale", 1.0), 1.0))
+    radius = _radius(v(mat, node, "Radius", (1.0, 0.2, 0.1)))
+    method = getattr(node, "falloff", 'RANDOM_WALK')
+    out = dict(subsurface_radius=tuple(scale * r for r in radius),
+               **_medium(reader, mat, node, "IOR", "Anisotropy"))
+    if 'RANDOM_WALK_SKIN' not in node.bl_rna.properties['falloff'].enum_items:   # Blender 3.x
+        out['subsurface_fixed_radius'] = _fixed_radius(reader, mat, node, method)
+        return out
+    if method == 'RANDOM_WALK_SKIN':
+        out['subsurface_skin'] = True
+        return out
+    if method != 'RANDOM_WALK':
+        _fixed_radius(reader, mat, node, method)                   # reported
+    roughness = clamp(finite_or(v(mat, node, "Roughness", 1.0), 1.0), 0.0, 1.0)
+    out.update(subsurface_fixed_radius=True, subsurface_entry_alpha=roughness)
+    return out
+
