@@ -25,6 +25,8 @@ out of the sum (it contributes nothing). One Normal input serves all closures: t
 closure's; a closure with a different normal source is reported.
 """
 
+import bpy
+
 from .material_values import DEFAULT_MATERIAL, color3, sanitize
 from .shader_graph.graph import GraphCompiler, Unsupported
 from .shader_graph.program import ProgramBuilder
@@ -293,17 +295,21 @@ class ShaderTreeReader:
         roughness, roughness_tex = ((0.0, -1) if sharp else reader._socket_input(
             mat, node, "Roughness", 0.0, program_input='roughness'))
         roughness = min(max(finite_or(roughness, 0.0), 0.0), 1.0)
-        anisotropic = {}
+        lobe = {}       # the glossy lobe's anisotropy and distribution
         if node.bl_idname in ('ShaderNodeBsdfGlossy', 'ShaderNodeBsdfAnisotropic'):
             kind = 'glossy'
             if not sharp:
-                anisotropic = read_anisotropy(reader, mat, node, GLOSSY)
-            if node.distribution in _GLOSSY_AS_GGX:
+                lobe = read_anisotropy(reader, mat, node, GLOSSY)
+            # Cycles 4.x's Multiscatter GGX is GGX scaled by its albedo (glossy_bsdf.h);
+            # 3.x's is a random walk among the microfacets, which Torrance does not render.
+            multiscatter = node.distribution == 'MULTI_GGX' and bpy.app.version >= (4, 0, 0)
+            lobe['multiscatter_ggx'] = multiscatter
+            if node.distribution in _GLOSSY_AS_GGX and not multiscatter:
                 self.warn(f"{node_label(node)}: the {node.distribution.replace('_', ' ').title()} "
                           f"distribution is rendered as GGX")
         args = dict(d, base_color=color3(color, d['base_color']), metallic=0.0, specular=0.0,
                     roughness=roughness, base_color_texture=color_tex,
-                    roughness_texture=roughness_tex, **anisotropic)
+                    roughness_texture=roughness_tex, **lobe)
         return kind, sanitize(reader._with_program(args))
 
 

@@ -1,31 +1,39 @@
 #include "torrance/bsdfs/glossy_bsdf.h"
 
+#include "torrance/bsdfs/principled_coat.h"  // multiscatter::scale
+
 #include <algorithm>
 
 namespace torrance {
 
-GlossyBsdf::GlossyBsdf(const Vec3& color, float roughness, float anisotropy, const Vec3& tangent, float rotation)
-    : color_(glm::clamp(color, Vec3(0.0f), Vec3(1.0f))) {
+GlossyBsdf::GlossyBsdf(const Vec3& color, float roughness, float anisotropy, const Vec3& tangent, float rotation,
+                       bool cycles4, bool multiscatter)
+    : color_(glm::clamp(color, Vec3(0.0f), Vec3(1.0f))), cycles4_(cycles4) {
   const float r = std::isfinite(roughness) ? clamp01(roughness) : 0.0f;
   const float alpha = r * r;
   const float a = std::isfinite(anisotropy) ? std::clamp(anisotropy, -0.99f, 0.99f) : 0.0f;
-  if (a == 0.0f) {
-    shape_ = ggx::Shape(alpha);
-    return;
+  shape_ = ggx::Shape(alpha);
+  if (a != 0.0f) {
+    const float alpha_x = std::min(a < 0.0f ? alpha / (1.0f + a) : alpha * (1.0f - a), 1.0f);
+    const float alpha_y = std::min(a < 0.0f ? alpha * (1.0f + a) : alpha / (1.0f - a), 1.0f);
+    shape_ = ggx::Shape(alpha_x, alpha_y, tangent, std::isfinite(rotation) ? kTwoPi * rotation : 0.0f);
+    if (!shape_.anisotropic()) shape_ = ggx::Shape(alpha);  // no tangent: Cycles' isotropic lobe
   }
-  const float alpha_x = std::min(a < 0.0f ? alpha / (1.0f + a) : alpha * (1.0f - a), 1.0f);
-  const float alpha_y = std::min(a < 0.0f ? alpha * (1.0f + a) : alpha / (1.0f - a), 1.0f);
-  shape_ = ggx::Shape(alpha_x, alpha_y, tangent, std::isfinite(rotation) ? kTwoPi * rotation : 0.0f);
-  if (!shape_.anisotropic()) shape_ = ggx::Shape(alpha);  // no tangent: Cycles' isotropic lobe
+  if (cycles4 && multiscatter)
+    multiscatter_roughness_ = shape_.anisotropic() ? std::sqrt(std::sqrt(shape_.alpha_x() * shape_.alpha_y())) : r;
 }
 
 LobeEval GlossyBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
   if (wo.z <= 0.0f || wi.z <= 0.0f || has_delta()) return {};
   Vec3 h;
   if (!ggx::reflection_half(wo, wi, h)) return {};
-  const float g = shape_.G1(wo) * shape_.G1(wi);
+  const float g = cycles4_ ? 1.0f / (1.0f + shape_.lambda(wo) + shape_.lambda(wi)) : shape_.G1(wo) * shape_.G1(wi);
   LobeEval f;
   f.glossy = color_ * (shape_.D(h) * g / (4.0f * wo.z));
+  if (multiscatter_roughness_ >= 0.0f) {
+    const float e = std::max(ggx_tables::albedo(multiscatter_roughness_, wo.z), 1e-3f);
+    f.glossy *= multiscatter::scale(color_, e, ggx_tables::average_albedo(multiscatter_roughness_));
+  }
   return f;
 }
 

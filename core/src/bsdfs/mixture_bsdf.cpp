@@ -217,8 +217,10 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
         resolved.base_color += w.weight[k] * m.base_color;
         break;
       case ClosureType::Glossy:
-        bsdf.add(GlossyBsdf(m.base_color, m.roughness, m.anisotropy, m.tangent, m.anisotropic_rotation), w.weight[k],
-                 luminance(m.base_color));
+        // Blender 4.x's Glossy (the PRINCIPLED_V2 model): Cycles 4.x's G and Multiscatter GGX.
+        bsdf.add(GlossyBsdf(m.base_color, m.roughness, m.anisotropy, m.tangent, m.anisotropic_rotation,
+                            model == BrdfModel::PrincipledV2, m.multiscatter_ggx),
+                 w.weight[k], luminance(m.base_color));
         break;
       case ClosureType::Velvet: add_closure(bsdf, VelvetBsdf(m.base_color, m.roughness), w.weight[k]); break;
       case ClosureType::Sheen: add_closure(bsdf, SheenBsdf(m.base_color, m.roughness), w.weight[k]); break;

@@ -171,8 +171,9 @@ CLOSURES = {
                             "Tangent, any graph) alone and in Mix/Add Shader trees",
     'ShaderNodeBsdfAnisotropic': "partly: Color, Roughness, Anisotropy, Rotation, Tangent (any "
                                  "graph; unlinked: Geometry > Tangent) with GGX, alone and in "
-                                 "Mix/Add Shader trees (Beckmann, Ashikhmin-Shirley and "
-                                 "Multiscatter GGX rendered as GGX)",
+                                 "Mix/Add Shader trees; 4.x/5.x: Cycles 4.x's lobe and its "
+                                 "Multiscatter GGX (albedo scaling); Beckmann, Ashikhmin-Shirley "
+                                 "(and 3.x's Multiscatter GGX) rendered as GGX",
     'ShaderNodeBsdfGlass': "partly: Color, Roughness, IOR, Normal; GGX, Beckmann, Sharp "
                            "(Multiscatter GGX rendered as GGX); alone and in Mix/Add Shader trees",
     'ShaderNodeBsdfTransparent': "rendered: Color; alone and anywhere in Mix/Add Shader trees "

@@ -36,7 +36,8 @@ struct Material {
   Vec3 emission{0.0f};    // radiance emitted by both faces = emission colour * strength
   // PRINCIPLED_V2 only (Blender 4.x's Principled inputs): the IOR input (with `specular` =
   // Specular IOR Level * F0(ior) / 0.04, so that F0 = 0.08 specular holds for every model), the
-  // Specular Tint colour, and the node's distribution (Multiscatter GGX, or GGX when false).
+  // Specular Tint colour, and the node's distribution (Multiscatter GGX, or GGX when false; also
+  // the Glossy BSDF's under PRINCIPLED_V2, glossy_bsdf.h).
   // The IOR input, also glass's (of the inside, > 0): Blender 3.4's default 1.45 (4.x: 1.5).
   float ior = 1.45f;
   Vec3 specular_tint_color{1.0f};

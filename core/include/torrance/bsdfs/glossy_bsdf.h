@@ -11,10 +11,17 @@
 // shading frame). Where alpha_x alpha_y is below ggx::kDeltaAlpha^2 (Cycles' 1e-7) it is a mirror
 // (a delta lobe of reflectance colour). Sampled by visible normals; all "glossy" for the light
 // passes. See bsdf.h for the conventions (eval includes the cosine).
+//
+// As Cycles 4.x (cycles4; the PRINCIPLED_V2 model's Blender): Smith's G is height-correlated,
+// G2 = 1 / (1 + Lambda(wo) + Lambda(wi)), the mirror threshold is ggx_tables::kDeltaAlpha, and
+// Multiscatter GGX (4.x's default distribution) is the single-scattering lobe scaled by
+// 1 + F_ms (1 - E) / E (Kulla & Conty's albedo scaling with a constant Fresnel F = colour),
+// E = E(r, wo.z) and E_avg(r) of ggx_tables.h at r = (alpha_x alpha_y)^(1/4).
 #pragma once
 
 #include "torrance/bsdfs/bsdf.h"
 #include "torrance/bsdfs/ggx_shape.h"
+#include "torrance/bsdfs/ggx_tables.h"
 
 namespace torrance {
 
@@ -24,7 +31,7 @@ class GlossyBsdf {
   // normal, counter-clockwise seen from its side, as Cycles' rotate_around_axis); zero, or with
   // anisotropy 0, the lobe is isotropic.
   GlossyBsdf(const Vec3& color, float roughness, float anisotropy = 0.0f, const Vec3& tangent = Vec3(0.0f),
-             float rotation = 0.0f);
+             float rotation = 0.0f, bool cycles4 = false, bool multiscatter = false);
 
   // The lobe's axes in the shading frame the integrator evaluates it in: the tangent projected
   // onto the frame's plane (a tangent along the normal, or none: the frame's own x), turned by
@@ -36,7 +43,7 @@ class GlossyBsdf {
   float pdf(const Vec3& wo, const Vec3& wi) const;
   BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const;
 
-  bool has_delta() const { return shape_.is_delta(ggx::kDeltaAlpha); }
+  bool has_delta() const { return shape_.is_delta(cycles4_ ? ggx_tables::kDeltaAlpha : ggx::kDeltaAlpha); }
   bool anisotropic() const { return shape_.anisotropic(); }
   // What a mixture samples it by: its colour's luminance.
   float sampling_albedo() const { return luminance(color_); }
@@ -44,6 +51,8 @@ class GlossyBsdf {
  private:
   Vec3 color_;
   ggx::Shape shape_;
+  bool cycles4_ = false;
+  float multiscatter_roughness_ = -1.0f;  // r of the albedo tables; < 0: single scattering
 };
 
 }  // namespace torrance
