@@ -64,11 +64,11 @@ def nested_tree():
 
 
 def unsupported_tree():
-    """Mix(Bevel, Hair BSDF, Diffuse with a Bump from an image) and a checker on
+    """Mix(Particle Info, Hair BSDF, Diffuse with a Bump from an image) and a checker on
     Generated (read by the shader graph: a program factor)."""
     mat, nodes, links, out = node_material("Unsupported")
     mix = nodes.new("ShaderNodeMixShader")
-    links.new(nodes.new("ShaderNodeBevel").outputs["Normal"], mix.inputs["Fac"])
+    links.new(nodes.new("ShaderNodeParticleInfo").outputs["Random"], mix.inputs["Fac"])
     links.new(nodes.new("ShaderNodeBsdfHair").outputs[0], mix.inputs[1])
     diffuse = shader(nodes, "ShaderNodeBsdfDiffuse")
     bump = nodes.new("ShaderNodeBump")
@@ -157,7 +157,7 @@ def main():
     texts = [t for _l, t in messages]
     print("\n".join(texts), flush=True)
     kinds = [(kind, terms) for kind, _a, terms in mix["closures"]]
-    # Fac from a Bevel: the socket's 0.5 (a constant: 0.5 and 0.5);
+    # Fac from a Particle Info: the socket's 0.5 (a constant: 0.5 and 0.5);
     # the Hair BSDF left out; the checker on Generated coordinates a program factor of the
     # mixture's shader program.
     check(kinds[0][0] == "diffuse" and len(kinds) == 2 and kinds[1][0] == "glossy",
@@ -169,7 +169,7 @@ def main():
     check([f["kind"] for f in mix["factors"]] == ["constant", "program"] and "shader_program" in mix
           and ('generated',) in mix["program_attributes"],
           f"the checker on Generated: a program factor reading Generated: {mix['factors']}")
-    for expected in ("'Bevel' is not supported",
+    for expected in ("'Particle Info' is not supported",
                      "the shader 'Hair BSDF' is not supported in a mix",
                      "'Glossy BSDF' has another Normal than 'Diffuse BSDF'"):
         hits = [t for t in texts if expected in t]

@@ -480,10 +480,11 @@ def test_preview_policy(addon, scene):
 def test_messages(addon, scene):
     ui = addon.ui
     mat = testing.principled("Waxy")
-    inputs = mat.node_tree.nodes["Principled BSDF"].inputs
-    (inputs.get("Subsurface Weight") or inputs["Subsurface"]).default_value = 0.5   # 4.x / 3.x
+    tree = mat.node_tree
+    particle = tree.nodes.new("ShaderNodeParticleInfo")     # a node Torrance does not render
+    tree.links.new(particle.outputs["Random"], tree.nodes["Principled BSDF"].inputs["Roughness"])
     msgs = ui.material_messages(mat)
-    check(any("Subsurface" in t for _l, t in msgs), f"subsurface reported: {msgs}")
+    check(any("Particle Info" in t for _l, t in msgs), f"Particle Info reported: {msgs}")
     check(ui.material_messages(bpy.data.materials["Grey"]) == [], "a plain material has none")
     cam = scene.camera.data
     cam.dof.use_dof = True

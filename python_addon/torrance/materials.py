@@ -589,6 +589,14 @@ class MaterialTable:
             if mat.pass_index:
                 self.pass_indices[idx] = float(mat.pass_index)
             self.names[idx] = mat.name
+            self._add_volume(mat, idx)
+            self.indices[key] = idx
+        return idx
+
+    def _add_volume(self, mat, idx):
+        """The material's volume (volumes.py), if it has one; one that can not be read or that
+        the core refuses is reported and left out (the render goes on without it)."""
+        try:
             volume = material_volume(mat, self.textures, self.reader.reporter)
             if volume is not None and 'program' in volume[0]:
                 keywords = dict(volume[0])
@@ -596,8 +604,9 @@ class MaterialTable:
                 self.scene.set_material_volume_program(idx, **keywords, pass_through=volume[1])
             elif volume is not None:
                 self.scene.set_material_volume(idx, **volume[0], pass_through=volume[1])
-            self.indices[key] = idx
-        return idx
+        except Exception as exc:         # a broken volume must not stop the render
+            self.reader.reporter.warning(f"Material '{mat.name}': its volume could not be read "
+                                         f"({exc}); it is left out")
 
     def _add(self, args):
         """Adds add_material() arguments, or a mixture's closures and then the mixture."""

@@ -137,6 +137,8 @@ class Program:
         return self._vector("MULTIPLY", a, b)
 
     def add(self, field, rgb, weight):
+        if not isinstance(rgb, Value):            # a constant colour (the blackbody's)
+            rgb = constant('color', tuple(rgb))
         if not isinstance(weight, Value):
             weight = constant('float', weight)
         term = self._vector("SCALE", self._vector("MAXIMUM", rgb, self._zero), self._zero,

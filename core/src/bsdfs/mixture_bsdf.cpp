@@ -195,10 +195,16 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
     if (closures) closures->add(c.type, w.weight[k], m);
     switch (c.type) {
       case ClosureType::Principled: {
-        const bool walked = subsurface && m.subsurface > 0.0f && model == BrdfModel::Principled;
-        if (walked && !diffuse_ancestor && !subsurface->active()) *subsurface = principled_subsurface(m, w.weight[k]);
-        const Material& shaded = walked && diffuse_ancestor ? principled_as_diffuse(m) : m;
-        bsdf.add(MaterialBsdf(shaded, model), w.weight[k], principled_sampling_albedo(shaded));
+        const bool has_walk = subsurface && m.subsurface > 0.0f && model == BrdfModel::Principled;
+        const bool walked = has_walk && !diffuse_ancestor && !subsurface->active();
+        if (walked) *subsurface = principled_subsurface(m, w.weight[k]);
+        if (has_walk && !walked) {
+          // Not walked (after a diffuse bounce, as Cycles; or a second subsurface closure): Lambert.
+          const Material diffuse = principled_as_diffuse(m);
+          bsdf.add(MaterialBsdf(diffuse, model), w.weight[k], principled_sampling_albedo(diffuse));
+        } else {
+          bsdf.add(MaterialBsdf(m, model), w.weight[k], principled_sampling_albedo(m));
+        }
         resolved.base_color += w.weight[k] * m.base_color * (1.0f - m.metallic);
         break;
       }

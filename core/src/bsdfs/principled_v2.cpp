@@ -108,12 +108,12 @@ PrincipledV2Bsdf::ClosureAlbedos PrincipledV2Bsdf::closure_albedos(float cos_o) 
   const ViewTerms v = view_terms(cos_o);
   ClosureAlbedos a;
   // The multiscatter darkening E k: the scales above carry k (the lobe's factor).
-  const float e = multiscatter_ ? std::max(ggx_tables::albedo(roughness_, cos_o), 1e-3f) : 1.0f;
+  const float e = multiscatter_ ? std::max(ggx_tables::albedo(table_roughness_, cos_o), 1e-3f) : 1.0f;
   a.diffuse = v.diffuse;
   if (has_dielectric_)
     a.dielectric = v.dielectric_scale * e *
-                   glm::mix(dielectric_f0_, Vec3(1.0f), ggx_tables::dielectric_fresnel_mix(roughness_, cos_o, eta_));
-  a.metal = v.metal_scale * e * glm::mix(metal_f0_, Vec3(1.0f), ggx_tables::schlick_fresnel_mix(roughness_, cos_o));
+                   glm::mix(dielectric_f0_, Vec3(1.0f), ggx_tables::dielectric_fresnel_mix(table_roughness_, cos_o, eta_));
+  a.metal = v.metal_scale * e * glm::mix(metal_f0_, Vec3(1.0f), ggx_tables::schlick_fresnel_mix(table_roughness_, cos_o));
   if (coat_.active()) a.coat = Vec3(v.coat.albedo);
   if (sheen_.active()) {
     a.sheen = v.sheen.weight;

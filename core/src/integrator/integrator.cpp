@@ -235,15 +235,19 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   // the split paths would not file as theirs, stay off.
   const bool catchers = cscene.has_shadow_catchers();
   ctx.split_at_catchers = catchers;
+  // Subsurface: the light tracer and mirror images do not walk it (their paths would drop the
+  // light that crosses a subsurface object to a smooth surface); the path tracer alone.
+  const bool subsurface = has_subsurface(cscene);
   std::optional<MirrorImages> mirror_images;
-  if (settings.mirror_images && !alpha && !media && !moving && !catchers) {
+  if (settings.mirror_images && !alpha && !media && !moving && !catchers && !subsurface) {
     mirror_images.emplace(cscene, ctx.bsdfs);
     if (!mirror_images->empty()) ctx.mirror_images = &*mirror_images;
   }
   // Caustics by light tracing (caustics.h), where the scene has them (mirror images keep their
   // reflectors).
   const std::optional<CausticPartition> caustics =
-      media || moving || catchers ? std::nullopt : CausticPartition::make(cscene, settings, alpha, ctx.mirror_images);
+      media || moving || catchers || subsurface ? std::nullopt
+                                                : CausticPartition::make(cscene, settings, alpha, ctx.mirror_images);
   if (caustics) ctx.caustics = &*caustics;
   std::optional<GuidingField> guide;
   RenderResult result;

@@ -417,7 +417,7 @@ class PathTracer {
       v.local_bsdf.emplace(shade_material(ctx_.scene, hit.material, globals, v.textured, ctx_.settings.brdf_model,
                                           ctx_.bsdfs[hit.material], v.material, v.program_regs.data(),
                                           v.closure_list ? &*v.closure_list : nullptr, subsurface,
-                                          diffuse_ancestor()));
+                                          no_walk(hit)));
       v.bsdf = &*v.local_bsdf;
     } else {
       v.material = v.textured ? ctx_.scene.textured_material(hit.material, globals, v.program_regs.data())
@@ -658,6 +658,11 @@ class PathTracer {
   bool diffuse_ancestor() const {
     if constexpr (kSubsurface) return subsurface_.diffuse_ancestor;
     else return false;
+  }
+  // Subsurface closures shade as Lambert instead of walking: after a diffuse bounce (Cycles), and
+  // on hair strands (no object to walk in).
+  bool no_walk(const SurfaceHit& hit) const {
+    return diffuse_ancestor() || hit.on_curve || hit.object == ShaderGlobals::kNoObject;
   }
 
   // The mesh the walk is in, as Scene::intersect_object sees it; the exit's hit kept.
@@ -972,7 +977,9 @@ constexpr std::array<TraceFn, sizeof...(I)> make_subsurface_tracers(std::index_s
 }
 constexpr std::array<TraceFn, 4> kSubsurfaceTracers = make_subsurface_tracers(std::make_index_sequence<4>{});
 
-// Whether some material (or a mixture's closure) has a subsurface closure.
+
+}  // namespace
+
 bool has_subsurface(const Scene& scene) {
   for (size_t i = 0; i < scene.num_materials(); ++i) {
     const uint32_t id = uint32_t(i);
@@ -983,8 +990,6 @@ bool has_subsurface(const Scene& scene) {
   }
   return false;
 }
-
-}  // namespace
 
 bool has_alpha(const Scene& scene) {
   for (size_t i = 0; i < scene.num_materials(); ++i)

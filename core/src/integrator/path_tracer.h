@@ -143,5 +143,7 @@ TraceFn select_path_tracer(const Scene& scene, const RenderSettings& settings);
 
 // Whether some material of the scene has alpha below 1 or an alpha texture.
 bool has_alpha(const Scene& scene);
+// Whether some material (or a mixture's closure) has a subsurface closure.
+bool has_subsurface(const Scene& scene);
 
 }  // namespace torrance
