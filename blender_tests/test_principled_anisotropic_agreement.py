@@ -34,7 +34,6 @@ import bpy
 from torrance_tools import sphere_agreement as sa, testing
 
 W, H, SAMPLES, BOUNCES = 160, 80, 512, 4
-TORRANCE_SEEDS, CYCLES_SEEDS = (1, 2), (3, 4)
 RADIUS = 0.42
 GRAPH = "graph"
 GOLD, RED = (0.9, 0.7, 0.35), (0.7, 0.12, 0.08)
@@ -101,7 +100,7 @@ def principled(name):
 
 
 def render_torrance(scene, directory, label):
-    return sa.render_torrance(scene, directory, label, TORRANCE_SEEDS, SAMPLES, BOUNCES)[0]
+    return sa.render_torrance(scene, directory, label, sa.TORRANCE_SEEDS, SAMPLES, BOUNCES)[0]
 
 
 def faults(scene, directory):
@@ -130,13 +129,8 @@ def faults(scene, directory):
 
 
 def main():
-    directory = testing.tempdir()
-    scene = testing.clear_scene()
-    testing.setup_render(scene, width=W, height=H)
-    build(scene)
-    sa.check_spheres(scene, directory, {s[0]: (s[1], 0.0, s[2]) for s in SPHERES}, RADIUS,
-                     (W, H), "anisotropic", faults, "anisotropic Principled", SAMPLES, BOUNCES,
-                     TORRANCE_SEEDS, CYCLES_SEEDS)
+    sa.run(build, {s[0]: (s[1], 0.0, s[2]) for s in SPHERES}, RADIUS, (W, H), "anisotropic",
+           faults, "anisotropic Principled", SAMPLES, BOUNCES)
 
 
 testing.run(main)

@@ -37,7 +37,6 @@ from torrance_tools import sphere_agreement as sa, testing
 from torrance_tools.sphere_agreement import set_inputs
 
 W, H, SAMPLES, BOUNCES = 160, 80, 128, 4
-TORRANCE_SEEDS, CYCLES_SEEDS = (1, 2), (3, 4)
 RED, GOLD, GREY = (0.80, 0.12, 0.08), (1.00, 0.71, 0.29), (0.7, 0.7, 0.7)
 BLACK, NAVY = (0.02, 0.02, 0.02), (0.05, 0.08, 0.25)
 RADIUS = 0.42
@@ -105,7 +104,7 @@ def build(scene):
 
 
 def render_torrance(scene, directory, label):
-    return sa.render_torrance(scene, directory, label, TORRANCE_SEEDS, SAMPLES, BOUNCES)[0]
+    return sa.render_torrance(scene, directory, label, sa.TORRANCE_SEEDS, SAMPLES, BOUNCES)[0]
 
 
 def faults(scene, directory):
@@ -139,13 +138,8 @@ def faults(scene, directory):
 
 
 def main():
-    directory = testing.tempdir()
-    scene = testing.clear_scene()
-    testing.setup_render(scene, width=W, height=H)
-    build(scene)
-    sa.check_spheres(scene, directory, {s[0]: (s[1], 0.0, s[2]) for s in spheres()}, RADIUS,
-                     (W, H), "coat", faults, "Principled coat", SAMPLES, BOUNCES, TORRANCE_SEEDS,
-                     CYCLES_SEEDS)
+    sa.run(build, {s[0]: (s[1], 0.0, s[2]) for s in spheres()}, RADIUS, (W, H), "coat", faults,
+           "Principled coat", SAMPLES, BOUNCES)
 
 
 testing.run(main)

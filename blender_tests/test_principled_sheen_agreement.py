@@ -35,7 +35,6 @@ import bpy
 from torrance_tools import sphere_agreement as sa, testing
 
 W, H, SAMPLES, BOUNCES = 160, 80, 128, 4
-TORRANCE_SEEDS, CYCLES_SEEDS = (1, 2), (3, 4)
 RED, GREY, DARK = (0.80, 0.12, 0.08), (0.8, 0.8, 0.8), (0.02, 0.02, 0.03)
 ORANGE = (1.0, 0.35, 0.1)
 RADIUS = 0.42
@@ -105,7 +104,7 @@ def build(scene):
 
 
 def render_torrance(scene, directory, label):
-    return sa.render_torrance(scene, directory, label, TORRANCE_SEEDS, SAMPLES, BOUNCES)[0]
+    return sa.render_torrance(scene, directory, label, sa.TORRANCE_SEEDS, SAMPLES, BOUNCES)[0]
 
 
 def faults(scene, directory):
@@ -134,13 +133,8 @@ def faults(scene, directory):
 
 
 def main():
-    directory = testing.tempdir()
-    scene = testing.clear_scene()
-    testing.setup_render(scene, width=W, height=H)
-    build(scene)
-    sa.check_spheres(scene, directory, {s[0]: (s[1], 0.0, s[2]) for s in spheres()}, RADIUS,
-                     (W, H), "sheen", faults, "Principled sheen", SAMPLES, BOUNCES, TORRANCE_SEEDS,
-                     CYCLES_SEEDS)
+    sa.run(build, {s[0]: (s[1], 0.0, s[2]) for s in spheres()}, RADIUS, (W, H), "sheen", faults,
+           "Principled sheen", SAMPLES, BOUNCES)
 
 
 testing.run(main)

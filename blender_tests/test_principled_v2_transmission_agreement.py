@@ -38,7 +38,6 @@ from torrance_tools.sphere_agreement import set_inputs
 from torrance_tools.testing import check
 
 W, H, SAMPLES, BOUNCES = 128, 64, 128, 8
-TORRANCE_SEEDS, CYCLES_SEEDS = (1, 2), (3, 4)
 RADIUS, Z = 0.62, 1.0
 WHITE = (1.0, 1.0, 1.0)
 
@@ -67,7 +66,7 @@ def build(scene):
 
 
 def render_torrance(scene, directory, label):
-    return sa.render_torrance(scene, directory, label, TORRANCE_SEEDS, SAMPLES, BOUNCES)[0]
+    return sa.render_torrance(scene, directory, label, sa.TORRANCE_SEEDS, SAMPLES, BOUNCES)[0]
 
 
 def faults(scene, directory):
@@ -92,13 +91,8 @@ def faults(scene, directory):
 def main():
     check(bpy.app.version >= (4, 0, 0), "this test compares with Cycles 4.x/5.x: run it with "
                                         "scripts/bpy 4.2 or 5.3")
-    directory = testing.tempdir()
-    scene = testing.clear_scene()
-    testing.setup_render(scene, width=W, height=H)
-    build(scene)
-    sa.check_spheres(scene, directory, {s[0]: (s[1], 0.0, Z) for s in SPHERES}, RADIUS, (W, H),
-                     "glass", faults, "Principled v2 transmission", SAMPLES, BOUNCES,
-                     TORRANCE_SEEDS, CYCLES_SEEDS)
+    sa.run(build, {s[0]: (s[1], 0.0, Z) for s in SPHERES}, RADIUS, (W, H), "glass", faults,
+           "Principled v2 transmission", SAMPLES, BOUNCES)
 
 
 testing.run(main)

@@ -35,7 +35,7 @@ import bpy
 from torrance_tools import sphere_agreement as sa, testing
 
 W, H, SAMPLES, BOUNCES = 160, 80, 64, 4
-TORRANCE_SEEDS, CYCLES_SEEDS = (2, 3), (0, 1)
+TORRANCE_SEEDS, CYCLES_SEEDS = (2, 3), (0, 1)   # not sphere_agreement's defaults
 RADIUS = 0.42
 SKIN, JADE, ORANGE = (0.9, 0.55, 0.4), (0.25, 0.7, 0.4), (0.95, 0.45, 0.15)
 # name, x, z, base colour, Subsurface, Subsurface Color, Subsurface Radius, Subsurface IOR
@@ -196,14 +196,10 @@ def faults(scene, directory):
 
 
 def main():
-    directory = testing.tempdir()
-    scene = testing.clear_scene()
-    testing.setup_render(scene, width=W, height=H)
-    build(scene)
     centres = {s[0]: (s[1], 0.0, s[2]) for s in SPHERES}
     centres[SUZANNE[0]] = (SUZANNE[1], 0.0, SUZANNE[2])
-    sa.check_spheres(scene, directory, centres, 0.28, (W, H), "subsurface", faults,
-                     "subsurface scattering", SAMPLES, BOUNCES, TORRANCE_SEEDS, CYCLES_SEEDS)
+    sa.run(build, centres, 0.28, (W, H), "subsurface", faults, "subsurface scattering", SAMPLES,
+           BOUNCES, TORRANCE_SEEDS, CYCLES_SEEDS)
 
 
 testing.run(main)

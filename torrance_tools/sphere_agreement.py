@@ -54,6 +54,10 @@ def standard_error(a, b, mask):
     return d.std(axis=0) / np.sqrt(2.0 * len(d))
 
 
+# The seeds of the sphere tests: Torrance's two, and Cycles' reference and its own noise.
+TORRANCE_SEEDS, CYCLES_SEEDS = (1, 2), (3, 4)
+
+
 def render_cycles(scene, directory, seed, samples, bounces):
     render_settings.setup_cycles(scene, samples, bounces, seed=seed)
     img, seconds = testing.render(scene, directory, f"cycles_{seed}")
@@ -134,8 +138,20 @@ def graph_weight(mat, node, socket):
     links.new(math_node.outputs[0], node.inputs[socket])
 
 
+def run(build, centres, radius, size, label, faults, what, samples, bounces,
+        torrance_seeds=TORRANCE_SEEDS, cycles_seeds=CYCLES_SEEDS):
+    """A whole sphere-grid test: a cleared scene of `size` (width, height) pixels filled by
+    build(scene), then check_spheres."""
+    directory = testing.tempdir()
+    scene = testing.clear_scene()
+    testing.setup_render(scene, width=size[0], height=size[1])
+    build(scene)
+    check_spheres(scene, directory, centres, radius, size, label, faults, what, samples, bounces,
+                  torrance_seeds, cycles_seeds)
+
+
 def check_spheres(scene, directory, centres, radius, size, label, faults, what, samples, bounces,
-                  torrance_seeds, cycles_seeds):
+                  torrance_seeds=TORRANCE_SEEDS, cycles_seeds=CYCLES_SEEDS):
     """The sphere-grid test: Cycles' reference and own noise (cycles_seeds), Torrance's images
     (torrance_seeds) within the bounds, and each of faults(scene, directory)'s (description,
     images) outside them; `what` names the feature in the failure message."""
