@@ -77,8 +77,12 @@ _IGNORED_PRINCIPLED_INPUTS = {
         ("Subsurface Weight", 0.0),
         ("Thin Film Thickness", 0.0),
         ("Diffuse Roughness", 0.0),
+        ("Thin Wall", False),                       # Blender 5.0+
+        ("Transmission Dispersion Scale", 0.0),     # Blender 5.0+
     ),
 }
+# Glass BSDF inputs of Blender 5.0+ that Torrance ignores (as above).
+_IGNORED_GLASS_INPUTS = (("Anisotropy", 0.0), ("Thin Film Thickness", 0.0))
 
 
 # Blender's names of the microfacet distributions Torrance renders as GGX.
@@ -367,17 +371,7 @@ class MaterialReader:
         alpha = _clamp(finite_or(alpha, 1.0), 0.0, 1.0)
         if alpha < 1.0 or alpha_tex >= 0:
             out.update(alpha=alpha, alpha_texture=alpha_tex)
-        ignored = []
-        for name, neutral in _IGNORED_PRINCIPLED_INPUTS[version]:
-            socket = node.inputs.get(name)
-            if socket is None:
-                continue
-            if socket.is_linked or not _is_neutral(socket.default_value, neutral):
-                ignored.append(name)
-        if ignored:
-            self.reporter.warning(
-                f"Material '{mat.name}': Torrance ignores the Principled BSDF input(s) "
-                f"{', '.join(ignored)}")
+        self._report_ignored_inputs(mat, node, _IGNORED_PRINCIPLED_INPUTS[version])
         out.update(read_normal_input(self, mat, node))
         return _sanitize(self._with_program(out))
 
@@ -396,6 +390,21 @@ class MaterialReader:
         return dict(transmission=transmission, ior=self._ior(mat, node, 1.45),
                     transmission_roughness=_clamp(
                         finite_or(v(mat, node, "Transmission Roughness", 0.0), 0.0), 0.0, 1.0))
+
+    def _report_ignored_inputs(self, mat, node, table):
+        """Warns of the inputs of `table` ((name, neutral value), ...) that `node` links or sets
+        away from their neutral value: Torrance renders the node without them."""
+        ignored = []
+        for name, neutral in table:
+            socket = node.inputs.get(name)
+            if socket is None:
+                continue
+            if socket.is_linked or not _is_neutral(socket.default_value, neutral):
+                ignored.append(name)
+        if ignored:
+            self.reporter.warning(
+                f"Material '{mat.name}': Torrance ignores the {node.bl_label} input(s) "
+                f"{', '.join(ignored)}")
 
     def _ior(self, mat, node, fallback):
         """The IOR socket of `node`, as Cycles uses it (max(IOR, 1e-5)); at most 1000."""
@@ -417,6 +426,7 @@ class MaterialReader:
             self.reporter.warning(f"Material '{mat.name}': {node_label(node)} uses "
                                   f"{_DISTRIBUTIONS.get(distribution, distribution)}; Torrance "
                                   f"renders GGX")
+        self._report_ignored_inputs(mat, node, _IGNORED_GLASS_INPUTS)
         out = dict(d, base_color=_color3(color, (1.0, 1.0, 1.0)), metallic=0.0, specular=0.0,
                    roughness=roughness, glass=True, transmission=1.0,
                    glass_distribution='BECKMANN' if distribution == 'BECKMANN' else 'GGX',
