@@ -140,8 +140,9 @@ def shape_object(scene, o, mat):
 # World, lights, camera
 
 def world(scene, w):
-    """A Sky Texture (Nishita where the Blender has it, else Preetham) or a gradient on the
-    view direction's Z (ground below the horizon, horizon to zenith above)."""
+    """A Sky Texture (Nishita up to Blender 4.x, Multiple Scattering in 5.x, which replaces it)
+    or a gradient on the view direction's Z (ground below the horizon, horizon to zenith
+    above)."""
     wo = bpy.data.worlds.new("StressWorld")
     wo.use_nodes = True
     nodes, links = wo.node_tree.nodes, wo.node_tree.links
@@ -150,9 +151,10 @@ def world(scene, w):
     if w["kind"] == "sky":
         sky = nodes.new("ShaderNodeTexSky")
         types = bpy.types.ShaderNodeTexSky.bl_rna.properties["sky_type"].enum_items.keys()
-        sky.sky_type = 'NISHITA' if 'NISHITA' in types else 'PREETHAM'
+        sky.sky_type = next(t for t in ('NISHITA', 'MULTIPLE_SCATTERING', 'PREETHAM')
+                            if t in types)
         el, rot = math.radians(w["sun_elevation_deg"]), math.radians(w["sun_rotation_deg"])
-        if sky.sky_type == 'NISHITA':
+        if sky.sky_type != 'PREETHAM':
             sky.sun_disc = False
             sky.sun_elevation, sky.sun_rotation = el, rot
         else:
