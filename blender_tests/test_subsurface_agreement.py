@@ -11,20 +11,25 @@ through the thin parts: ears, rims) and a world colour, radii scaled to the obje
   Checker: Principled, the Subsurface from a Checker Texture (0.2 and 1: the radius and the
       mixed colour vary over the surface; a graph the closure's program computes);
   Suzanne: the Subsurface Scattering node, Color orange, Scale 0.2, Radius (1, 0.5, 0.25).
-Blender 4.x/5.x: Principled v2's subsurface is not rendered yet (reported); there the spheres are
-  the Subsurface Scattering node too, as Cycles 4.x renders it (its rough refractive entry):
-  Skin and Checker (a node whose Color is the checker) Random Walk, Jade Random Walk (Skin).
+Blender 4.x/5.x: the spheres are Principled v2 (the base colour is the subsurface colour), as
+  Cycles of the version renders them (the walk takes Subsurface Weight of the diffuse layer under
+  the dielectric's reflection, entering by a rough refraction):
+  Skin: Subsurface Weight 1, Random Walk (5.3: its new model), Radius (1, 0.4, 0.2) x Scale 0.25;
+  Jade: Weight 0.6, Random Walk (Skin), Radius (0.5, 1.5, 1) x Scale 0.2, Subsurface IOR 2;
+  Checker: the Weight from the checker, Random Walk (5.3: Legacy), Radius (0.3, 0.15, 0.1);
+  Suzanne the node as in 3.4, Random Walk (5.3: its new model).
 Rendered 160x80 at 64 spp, max bounces 4, by Cycles (seed 0: reference, seed 1: its own noise)
 and by Torrance (seeds 2 and 3, averaged); bounds: torrance_tools/sphere_agreement.py (Suzanne's
 disk: its face). The test re-renders Torrance with faults (on its side only) and requires each to
-fail the bounds: subsurface treated as diffuse (Subsurface 0 with the mixed colour as base; the
-node as a Diffuse BSDF of its Color), the radius ignored (1 m in every channel), the IOR ignored
-(Jade's 2 as 1.4), the checker ignored.
+fail the bounds: subsurface treated as diffuse (Subsurface 0 with the mixed colour as base; v2:
+Subsurface Weight 0; the node as a Diffuse BSDF of its Color), the radius ignored (1 m in every
+channel; v2: Subsurface Scale ignored), the IOR ignored (Jade's 2 as 1.4), the checker ignored;
+v2: Jade's method read as Random Walk; 5.3: Skin's Random Walk read as Random Walk (Legacy).
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \\
          --python blender_tests/test_subsurface_agreement.py
      scripts/bpy 4.2 -b --factory-startup --python-exit-code 1 \\
-         --python blender_tests/test_subsurface_agreement.py
+         --python blender_tests/test_subsurface_agreement.py   (and 5.3: on request)
 """
 
 import math
@@ -39,6 +44,7 @@ TORRANCE_SEEDS, CYCLES_SEEDS = (2, 3), (0, 1)   # not sphere_agreement's default
 RADIUS = 0.42
 SKIN, JADE, ORANGE = (0.9, 0.55, 0.4), (0.25, 0.7, 0.4), (0.95, 0.45, 0.15)
 # name, x, z, base colour, Subsurface, Subsurface Color, Subsurface Radius, Subsurface IOR
+# (Blender 4.x/5.x: V2_SPHERES' weight, method, radius and scale instead)
 SPHERES = (
     ("Skin", -1.9, 0.5, (0.8, 0.75, 0.7), 1.0, SKIN, (0.25, 0.1, 0.05), 1.4),
     ("Jade", -0.7, 0.5, (0.6, 0.6, 0.6), 0.6, JADE, (0.1, 0.3, 0.2), 2.0),
@@ -46,6 +52,12 @@ SPHERES = (
 )
 SUZANNE = ("Suzanne", 1.8, 0.55)
 NODE_SCALE, NODE_RADIUS = 0.2, (1.0, 0.5, 0.25)
+# name: Subsurface Weight, method, Subsurface Radius, Subsurface Scale
+V2_SPHERES = {
+    "Skin": (1.0, 'RANDOM_WALK', (1.0, 0.4, 0.2), 0.25),
+    "Jade": (0.6, 'RANDOM_WALK_SKIN', (0.5, 1.5, 1.0), 0.2),
+    "Checker": ("checker", 'RANDOM_WALK_LEGACY', (0.3, 0.15, 0.1), 1.0),
+}
 
 
 def is_v2():
@@ -71,25 +83,39 @@ def subsurface_node(name, color, scale, radius, ior=1.4):
     return mat, node
 
 
-def sphere_material(name, base, sss, color, radius, ior):
-    if is_v2():
-        mat, node = subsurface_node(name, color, 1.0, radius, ior)
-        if name == "Jade":      # Cycles 4.x's Skin: the IOR adjusts the radius, as 3.4's walk
-            node.falloff = 'RANDOM_WALK_SKIN'
-        if sss == "checker":
-            checker(mat.node_tree.nodes, mat.node_tree.links, node.inputs["Color"])
-        return mat
+def v2_method(method):
+    """`method`, or Random Walk where the Blender has no Random Walk (Legacy)."""
+    node = bpy.types.ShaderNodeBsdfPrincipled
+    return method if method in node.bl_rna.properties['subsurface_method'].enum_items.keys() \
+        else 'RANDOM_WALK'
+
+
+def principled_subsurface(name, base, method, weight_socket, weight, **inputs):
+    """A Principled BSDF of `base` whose subsurface `weight_socket` is `weight` (or the checker)
+    with the other `inputs` ({socket name: value}; v2's Subsurface IOR only where the method has
+    it: it is unavailable otherwise)."""
     mat = testing.principled(name, base, 0.0, 0.5, 0.5)
     node = mat.node_tree.nodes["Principled BSDF"]
-    node.subsurface_method = 'RANDOM_WALK'
-    node.inputs["Subsurface Color"].default_value = (*color, 1.0)
-    node.inputs["Subsurface Radius"].default_value = radius
-    node.inputs["Subsurface IOR"].default_value = ior
-    if sss == "checker":
-        checker(mat.node_tree.nodes, mat.node_tree.links, node.inputs["Subsurface"])
+    node.subsurface_method = method
+    for socket, value in inputs.items():
+        if node.inputs.get(socket) is not None:
+            node.inputs[socket].default_value = value
+    if weight == "checker":
+        checker(mat.node_tree.nodes, mat.node_tree.links, node.inputs[weight_socket])
     else:
-        node.inputs["Subsurface"].default_value = sss
+        node.inputs[weight_socket].default_value = weight
     return mat
+
+
+def sphere_material(name, base, sss, color, radius, ior):
+    if is_v2():
+        weight, method, radius, scale = V2_SPHERES[name]
+        return principled_subsurface(name, color, v2_method(method), "Subsurface Weight", weight,
+                                     **{"Subsurface Radius": radius, "Subsurface Scale": scale,
+                                        "Subsurface IOR": ior})
+    return principled_subsurface(name, base, 'RANDOM_WALK', "Subsurface", sss,
+                                 **{"Subsurface Color": (*color, 1.0),
+                                    "Subsurface Radius": radius, "Subsurface IOR": ior})
 
 
 def suzanne(scene, material):
@@ -162,11 +188,11 @@ def faults(scene, directory):
     out = []
     constant = [s for s in SPHERES if s[4] != "checker"]
     names = [s[0] for s in (constant if not is_v2() else SPHERES)] + [SUZANNE[0]]
-    # Subsurface treated as diffuse.
+    # Subsurface treated as diffuse (v2: Subsurface Weight ignored).
     restores, saved = [swap_surface(SUZANNE[0], "ShaderNodeBsdfDiffuse")], {}
     for name, _x, _z, base, sss, color, _r, _ior in constant:
         if is_v2():
-            restores.append(swap_surface(name, "ShaderNodeBsdfDiffuse"))
+            saved[name] = node_inputs(name, **{"Subsurface Weight": 0.0})
         else:
             mixed = tuple(sss * c + (1.0 - sss) * b for b, c in zip(base, color, strict=True))
             saved[name] = node_inputs(name, **{"Subsurface": 0.0, "Base Color": (*mixed, 1.0)})
@@ -175,21 +201,37 @@ def faults(scene, directory):
         restore()
     for name, inputs in saved.items():
         node_inputs(name, **inputs)
-    # The radius ignored: 1 m in every channel.
-    socket = "Radius" if is_v2() else "Subsurface Radius"
-    saved = {n: node_inputs(n, **{("Radius" if n == SUZANNE[0] else socket): (1.0, 1.0, 1.0)})
-             for n in names}
-    out.append(("radius ignored (1 m)", render_torrance(scene, directory, "radius")))
+    # The radius ignored: 1 m in every channel (v2: Subsurface Scale ignored, the node's 1).
+    if is_v2():
+        saved = {n: node_inputs(n, **{("Scale" if n == SUZANNE[0] else "Subsurface Scale"): 1.0})
+                 for n in names}
+    else:
+        saved = {n: node_inputs(n, **{("Radius" if n == SUZANNE[0] else "Subsurface Radius"):
+                                      (1.0, 1.0, 1.0)}) for n in names}
+    label = "scale ignored (1)" if is_v2() else "radius ignored (1 m)"
+    out.append((label, render_torrance(scene, directory, "radius")))
     for name, inputs in saved.items():
         node_inputs(name, **inputs)
     # Jade's IOR ignored.
-    ior_socket = "IOR" if is_v2() else "Subsurface IOR"
-    saved = node_inputs("Jade", **{ior_socket: 1.4})
+    saved = node_inputs("Jade", **{"Subsurface IOR": 1.4})
     out.append(("IOR ignored (1.4)", render_torrance(scene, directory, "ior")))
     node_inputs("Jade", **saved)
+    if is_v2():     # Jade's method read wrong: Random Walk (Skin) as Random Walk
+        _tree, node = surface_node("Jade")
+        node.subsurface_method = 'RANDOM_WALK'
+        out.append(("Skin method read as Random Walk", render_torrance(scene, directory,
+                                                                      "method")))
+        node.subsurface_method = 'RANDOM_WALK_SKIN'
+    if is_v2() and v2_method('RANDOM_WALK_LEGACY') == 'RANDOM_WALK_LEGACY':
+        # Blender 5.3: Skin's Random Walk (the new model) read as Random Walk (Legacy).
+        _tree, node = surface_node("Skin")
+        node.subsurface_method = 'RANDOM_WALK_LEGACY'
+        out.append(("5.3 Random Walk read as Legacy", render_torrance(scene, directory,
+                                                                     "legacy")))
+        node.subsurface_method = 'RANDOM_WALK'
     # The checker ignored.
     tree, node = surface_node("Checker")
-    target = node.inputs["Color" if is_v2() else "Subsurface"]
+    target = node.inputs["Subsurface Weight" if is_v2() else "Subsurface"]
     tree.links.remove(target.links[0])
     out.append(("checker ignored", render_torrance(scene, directory, "checker")))
     return out

@@ -186,7 +186,8 @@ void init_scene(py::module_& m) {
              int tangent_register, float hair_offset, float subsurface, std::array<float, 3> subsurface_radius,
              std::array<float, 3> subsurface_color, float subsurface_ior, float subsurface_anisotropy,
              int subsurface_register, int subsurface_radius_register, int subsurface_color_register,
-             bool subsurface_fixed_radius, float subsurface_entry_alpha, bool subsurface_skin) {
+             bool subsurface_fixed_radius, float subsurface_entry_alpha, bool subsurface_skin,
+             float subsurface_min_footprint, bool subsurface_after_diffuse, bool subsurface_van_de_hulst) {
             if (glass_distribution != "GGX" && glass_distribution != "BECKMANN")
               throw py::value_error("glass_distribution must be 'GGX' or 'BECKMANN', got '" + glass_distribution +
                                     "'");
@@ -225,6 +226,9 @@ void init_scene(py::module_& m) {
             mat.subsurface_fixed_radius = subsurface_fixed_radius;
             mat.subsurface_entry_alpha = subsurface_entry_alpha;
             mat.subsurface_skin = subsurface_skin;
+            mat.subsurface_min_footprint = subsurface_min_footprint;
+            mat.subsurface_after_diffuse = subsurface_after_diffuse;
+            mat.subsurface_van_de_hulst = subsurface_van_de_hulst;
             MaterialTextures tex;
             tex.base_color = base_color_texture;
             tex.metallic = metallic_texture;
@@ -289,7 +293,8 @@ void init_scene(py::module_& m) {
           py::arg("subsurface_anisotropy") = 0.0f, py::arg("subsurface_register") = -1,
           py::arg("subsurface_radius_register") = -1, py::arg("subsurface_color_register") = -1,
           py::arg("subsurface_fixed_radius") = false, py::arg("subsurface_entry_alpha") = -1.0f,
-          py::arg("subsurface_skin") = false,
+          py::arg("subsurface_skin") = false, py::arg("subsurface_min_footprint") = 0.0f,
+          py::arg("subsurface_after_diffuse") = false, py::arg("subsurface_van_de_hulst") = false,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
@@ -320,7 +325,11 @@ void init_scene(py::module_& m) {
           "Cycles' Random Walk: PRINCIPLED's Subsurface in [0, 1] (0: none) with its Radius (metres, >= 0), "
           "Color, IOR and Anisotropy (subsurface_fixed_radius: Cycles' Random Walk (Fixed Radius): the "
           "radius / 4 pi, no IOR adjustment; subsurface_entry_alpha >= 0: Cycles 4.x's rough refractive entry "
-          "of that GGX alpha, < 0: 3.4's Lambertian one; subsurface_skin: 4.x's Random Walk (Skin)), or a Subsurface Scattering node's closure (a mixture's 'subsurface' "
+          "of that GGX alpha, < 0: 3.4's Lambertian one; subsurface_skin: 4.x's Random Walk (Skin); "
+          "subsurface_min_footprint: Cycles 4.0-4.4's diffuse fallback below that share of the ray's footprint; "
+          "subsurface_after_diffuse: Cycles 5.x's walks after a diffuse bounce; subsurface_van_de_hulst: "
+          "Blender 5.3's Random Walk), Principled v2's Subsurface Weight (brdf_model PRINCIPLED_V2: "
+          "subsurface), or a Subsurface Scattering node's closure (a mixture's 'subsurface' "
           "component: base_color its Color, subsurface_radius its Radius x Scale), from the program's "
           "subsurface_register / subsurface_radius_register / subsurface_color_register when given.")
       .def(

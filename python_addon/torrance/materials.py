@@ -14,7 +14,7 @@ output node (the output Cycles would use):
   Color; _PRINCIPLED_SOCKETS) and, for the PRINCIPLED_V2 model, its IOR, Specular Tint
   colour and distribution (Multiscatter GGX or GGX); the coat (v1 Clearcoat, v2 Coat:
   principled_coat.py); the sheen (v1 Sheen, v2 Sheen Weight: principled_sheen.py); Anisotropic,
-  Anisotropic Rotation and Tangent (anisotropy.py); v1's subsurface (Cycles' Random Walk:
+  Anisotropic Rotation and Tangent (anisotropy.py); v1's and v2's subsurface (Cycles' Random Walk:
   principled_subsurface.py);
 * Glass BSDF: Color, Roughness, IOR (GGX or Beckmann; Sharp is roughness 0);
 * Transparent BSDF: Color (rays pass straight through, tinted);
@@ -74,7 +74,6 @@ _IGNORED_PRINCIPLED_INPUTS = {
     'v1': (
     ),
     'v2': (
-        ("Subsurface Weight", 0.0),
         ("Thin Film Thickness", 0.0),
         ("Diffuse Roughness", 0.0),
         ("Thin Wall", False),                       # Blender 5.0+

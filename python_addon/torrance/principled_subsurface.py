@@ -9,11 +9,18 @@ Random Walk, core/src/subsurface/):
 * the Subsurface Scattering node (a mixture's 'subsurface' closure, alone and in Mix/Add Shader
   trees): Color (any graph), Radius x Scale, IOR, Anisotropy (values).
 
+* the Principled BSDF v2's (Blender 4.x/5.x) Subsurface Weight (any graph), Subsurface Radius x
+  Subsurface Scale, Subsurface IOR (Skin) and Subsurface Anisotropy (values), read_subsurface.
+
 Cycles' methods: Random Walk and Random Walk (Fixed Radius) are rendered as they are;
 Christensen-Burley is rendered as Random Walk (Fixed Radius), whose radius it shares, and
-reported. Blender 4.x's node: Random Walk and Random Walk (Skin) as Cycles 4.x
-(read_subsurface_node).
-Principled v2's (Blender 4.x) subsurface is not read yet (materials.py reports it)."""
+reported. Blender 4.x/5.x: Random Walk and Random Walk (Skin) as Cycles of the version
+(version_flags): 4.0-4.4 shade a radius below a quarter of the ray's footprint as diffuse, 5.x
+walks after a diffuse bounce, and 5.3's Random Walk is its new model (the radius as given, d'Eon's
+albedo mapping; Random Walk (Legacy) is 4.x's). Christensen-Burley is rendered as 4.x's Random Walk
+(5.3: Legacy) and reported."""
+
+import bpy
 
 from .material_values import clamp, color3
 from .nodes import finite_or, node_label
@@ -24,6 +31,7 @@ _SOCKETS_V1 = dict(subsurface="Subsurface", subsurface_radius="Subsurface Radius
 _DEFAULTS = dict(subsurface=0.0, subsurface_radius=(1.0, 0.2, 0.1),
                  subsurface_color=(0.8, 0.8, 0.8))
 _METHODS = {'RANDOM_WALK': False, 'RANDOM_WALK_FIXED_RADIUS': True}
+_SOCKETS_V2 = dict(subsurface="Subsurface Weight")
 
 
 def _radius(value, fallback=(1.0, 0.2, 0.1)):
@@ -51,10 +59,57 @@ def _medium(reader, mat, node, ior_name, anisotropy_name):
                                             0.0, 1.0))
 
 
-def read_subsurface(reader, mat, node, version):
-    """The subsurface arguments of Principled BSDF `node` ({} without subsurface, or v2)."""
-    if version != 'v1':
+def version_flags(anisotropy):
+    """The arguments of the running Blender's Cycles (4.x/5.x) for a walk of `anisotropy`:
+    4.0-4.4's quarter-footprint fallback, 5.x's walks after a diffuse bounce and its negative
+    anisotropy (Cycles clamps it to [-0.99, 0.99]; 4.x to [0, 0.9])."""
+    out = dict(subsurface_anisotropy=clamp(anisotropy, -1.0, 1.0))
+    if bpy.app.version >= (5, 0, 0):
+        out['subsurface_after_diffuse'] = True
+    elif bpy.app.version < (4, 5, 0):
+        out['subsurface_min_footprint'] = 0.25
+    return out
+
+
+def _method_v4(reader, mat, node, method, methods):
+    """Blender 4.x/5.x's method as arguments: Random Walk (5.3's new model where the version
+    has Random Walk (Legacy)), Skin, Legacy; Christensen-Burley reported, rendered as the 4.x
+    Random Walk (5.3: Legacy)."""
+    if method == 'RANDOM_WALK_SKIN':
+        return dict(subsurface_skin=True)
+    if method == 'RANDOM_WALK' and 'RANDOM_WALK_LEGACY' in methods:
+        return dict(subsurface_van_de_hulst=True)
+    if method not in ('RANDOM_WALK', 'RANDOM_WALK_LEGACY'):
+        legacy = 'Random Walk (Legacy)' if 'RANDOM_WALK_LEGACY' in methods else 'Random Walk'
+        reader.reporter.warning(f"Material '{mat.name}': {node_label(node)} uses the "
+                                f"{method.replace('_', ' ').title()} subsurface method; Torrance "
+                                f"renders it as {legacy}")
+    return dict(subsurface_fixed_radius=True)
+
+
+def _read_subsurface_v2(reader, mat, node):
+    """Principled v2's arguments ({} without Subsurface Weight): the weight (any graph),
+    Radius x Scale, Subsurface IOR (Skin's; the others refract through the IOR, in the core),
+    Anisotropy (values) and the method."""
+    values = layer_inputs(reader, mat, node, _SOCKETS_V2, _DEFAULTS, 'subsurface')
+    if values is None:
         return {}
+    v = reader._socket_value          # a graph that varies is reported there
+    scale = max(0.0, finite_or(v(mat, node, "Subsurface Scale", 0.05), 0.05))
+    radius = _radius(v(mat, node, "Subsurface Radius", (1.0, 0.2, 0.1)))
+    method = getattr(node, "subsurface_method", 'RANDOM_WALK')
+    methods = node.bl_rna.properties['subsurface_method'].enum_items
+    anisotropy = finite_or(v(mat, node, "Subsurface Anisotropy", 0.0), 0.0)
+    return dict(subsurface=clamp(values['subsurface'], 0.0, 1.0),
+                subsurface_radius=tuple(scale * r for r in radius),
+                subsurface_ior=max(1e-5, finite_or(v(mat, node, "Subsurface IOR", 1.4), 1.4)),
+                **version_flags(anisotropy), **_method_v4(reader, mat, node, method, methods))
+
+
+def read_subsurface(reader, mat, node, version):
+    """The subsurface arguments of Principled BSDF `node` ({} without subsurface)."""
+    if version != 'v1':
+        return _read_subsurface_v2(reader, mat, node)
     values = layer_inputs(reader, mat, node, _SOCKETS_V1, _DEFAULTS, 'subsurface')
     if values is None:
         return {}
@@ -79,15 +134,14 @@ def read_subsurface_node(reader, mat, node):
     method = getattr(node, "falloff", 'RANDOM_WALK')
     out = dict(subsurface_radius=tuple(scale * r for r in radius),
                **_medium(reader, mat, node, "IOR", "Anisotropy"))
-    if 'RANDOM_WALK_SKIN' not in node.bl_rna.properties['falloff'].enum_items:   # Blender 3.x
+    methods = node.bl_rna.properties['falloff'].enum_items
+    if 'RANDOM_WALK_SKIN' not in methods:   # Blender 3.x
         out['subsurface_fixed_radius'] = _fixed_radius(reader, mat, node, method)
         return out
-    if method == 'RANDOM_WALK_SKIN':
-        out['subsurface_skin'] = True
-        return out
-    if method != 'RANDOM_WALK':
-        _fixed_radius(reader, mat, node, method)                   # reported
-    roughness = clamp(finite_or(v(mat, node, "Roughness", 1.0), 1.0), 0.0, 1.0)
-    out.update(subsurface_fixed_radius=True, subsurface_entry_alpha=roughness)
+    out.update(version_flags(finite_or(v(mat, node, "Anisotropy", 0.0), 0.0)))
+    out.update(_method_v4(reader, mat, node, method, methods))
+    if method != 'RANDOM_WALK_SKIN':
+        roughness = clamp(finite_or(v(mat, node, "Roughness", 1.0), 1.0), 0.0, 1.0)
+        out['subsurface_entry_alpha'] = roughness
     return out
 

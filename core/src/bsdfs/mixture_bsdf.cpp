@@ -4,6 +4,7 @@
 
 #include "torrance/scene/scene.h"
 
+#include <limits>
 #include <stdexcept>
 
 namespace torrance {
@@ -168,17 +169,42 @@ void MixtureBsdf::orient(const Frame& frame) {
   }
 }
 
+void MixtureBsdf::finish_subsurface(SubsurfaceLobe& lobe, const Vec3& wo) const {
+  if (lobe.layered_component < 0 || lobe.layered_component >= count_) return;
+  const auto* m = std::get_if<MaterialBsdf>(&components_[size_t(lobe.layered_component)]);
+  lobe.weight *= m ? m->subsurface_weight(wo) : Vec3(0.0f);
+  lobe.layered_component = -1;
+}
+
+namespace {
+
+// Principled v2 with Subsurface Weight as closure `component` of a vertex's mixture (weight w):
+// the material its BSDF is built from (unwalked channels' radius 0: diffuse) and, when walked
+// here (`subsurface` given and no walk yet), its lobe.
+Material principled_v2_walk(const Material& m, const WalkState& walk, SubsurfaceLobe* subsurface, int component,
+                            float w) {
+  const bool first = subsurface && !subsurface->active();
+  const Material walked = walked_only(m, first ? min_walk_radius(m, walk) : std::numeric_limits<float>::infinity());
+  if (first) *subsurface = principled_v2_subsurface(walked, PrincipledV2Bsdf::dielectric_eta(walked), component, w);
+  return walked;
+}
+
+}  // namespace
+
 MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals& globals, bool textured,
                            BrdfModel model, const MaterialBsdf& prebuilt, Material& resolved,
                            glm::vec4* program_regs, ClosureList* closures, SubsurfaceLobe* subsurface,
-                           bool diffuse_ancestor) {
+                           const WalkState& walk) {
   const Mixture* mixture = scene.mixture(id);
+  const bool diffuse_ancestor = !walk.walkable || walk.diffuse_ancestor;  // Principled v1 (3.x)
   if (!mixture) {
     resolved = textured ? scene.textured_material(id, globals, program_regs) : scene.material(id);
     if (subsurface && resolved.subsurface > 0.0f && model == BrdfModel::Principled) {
       if (diffuse_ancestor) return MixtureBsdf(MaterialBsdf(principled_as_diffuse(resolved), model));
       *subsurface = principled_subsurface(resolved);
     }
+    if (subsurface && resolved.subsurface > 0.0f && model == BrdfModel::PrincipledV2)
+      return MixtureBsdf(MaterialBsdf(principled_v2_walk(resolved, walk, subsurface, 0, 1.0f), model));
     return textured ? MixtureBsdf(MaterialBsdf(resolved, model)) : MixtureBsdf(prebuilt);
   }
   MixtureWeights w = scene.mixture_weights(id, globals, program_regs);
@@ -195,6 +221,12 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
     if (closures) closures->add(c.type, w.weight[k], m);
     switch (c.type) {
       case ClosureType::Principled: {
+        if (subsurface && m.subsurface > 0.0f && model == BrdfModel::PrincipledV2) {
+          const Material walked = principled_v2_walk(m, walk, subsurface, bsdf.size(), w.weight[k]);
+          bsdf.add(MaterialBsdf(walked, model), w.weight[k], principled_sampling_albedo(walked));
+          resolved.base_color += w.weight[k] * m.base_color * (1.0f - m.metallic);
+          break;
+        }
         const bool has_walk = subsurface && m.subsurface > 0.0f && model == BrdfModel::Principled;
         const bool walked = has_walk && !diffuse_ancestor && !subsurface->active();
         if (walked) *subsurface = principled_subsurface(m, w.weight[k]);
@@ -209,8 +241,8 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
         break;
       }
       case ClosureType::Subsurface: {
-        const SubsurfaceLobe lobe = node_subsurface(m, w.weight[k]);
-        const bool walked = subsurface && !diffuse_ancestor && !subsurface->active() && lobe.active();
+        const SubsurfaceLobe lobe = node_subsurface(walked_only(m, min_walk_radius(m, walk)), w.weight[k]);
+        const bool walked = subsurface && !subsurface->active() && lobe.active();
         if (walked) *subsurface = lobe;
         // What is not walked is Lambert (Cycles: channels of too small a radius; all after a diffuse bounce).
         const Vec3 lambert = walked ? m.base_color * (Vec3(1.0f) - glm::sign(lobe.weight)) : m.base_color;

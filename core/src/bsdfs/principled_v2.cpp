@@ -23,7 +23,6 @@ PrincipledV2Bsdf::PrincipledV2Bsdf(const Material& m) {
     else shape_ = ggx::Shape(alpha_);
   }
   multiscatter_ = m.multiscatter_ggx;
-  base_ = base;
 
   // Metal: F82-tint with f0 = base colour (clamped to 1), tint clamped to 1.
   metal_f0_ = glm::min(base, Vec3(1.0f));
@@ -36,15 +35,18 @@ PrincipledV2Bsdf::PrincipledV2Bsdf(const Material& m) {
   }
   metal_fss_ = glm::mix(metal_f0_, Vec3(1.0f), 1.0f / 21.0f) - metal_b_ * (1.0f / 126.0f);
 
-  // Dielectric: F0 from the IOR rescaled by the Specular IOR Level (f0 = 0.08 specular).
-  const float ior = std::max(m.ior, 1e-5f);
-  const float f0 = 0.08f * std::max(m.specular, 0.0f);
-  const float f0_ior = ggx_tables::f0_from_ior(ior);
-  eta_ = ior;
-  if (std::abs(f0 - f0_ior) > 1e-6f * f0_ior) {
-    eta_ = ggx_tables::ior_from_f0(f0);
-    if (ior < 1.0f) eta_ = 1.0f / eta_;
+  // Subsurface Weight: the walk takes that share of the diffuse layer in the channels it walks
+  // (radius above 0: shade_material zeroes the others, subsurface_lobe.h), the diffuse the rest.
+  diffuse_color_ = base;
+  if (const float ssw = clamp01(m.subsurface); ssw > 0.0f) {
+    const Vec3 walked(m.subsurface_radius.x > 0.0f, m.subsurface_radius.y > 0.0f, m.subsurface_radius.z > 0.0f);
+    const Vec3 clamped = glm::min(base, Vec3(1.0f));
+    subsurface_color_ = clamped * ssw * walked;
+    diffuse_color_ = base * (1.0f - ssw) + clamped * ssw * (Vec3(1.0f) - walked);
   }
+
+  // Dielectric: F0 from the IOR rescaled by the Specular IOR Level (f0 = 0.08 specular).
+  eta_ = dielectric_eta(m);
   has_dielectric_ = eta_ != 1.0f;
   dielectric_f0_ = glm::clamp(ggx_tables::f0_from_ior(eta_) * tint, Vec3(0.0f), Vec3(1.0f));
   const float f0_eta = ggx_tables::f0_from_ior(eta_);
@@ -52,6 +54,15 @@ PrincipledV2Bsdf::PrincipledV2Bsdf(const Material& m) {
   dielectric_fss_ = glm::mix(dielectric_f0_, Vec3(1.0f), s_ss);
   if (m.coat_weight > 0.0f) coat_ = CoatV2(m.coat_weight, m.coat_roughness, m.coat_ior, m.coat_tint);
   if (m.sheen_weight > 0.0f) sheen_ = SheenV2(m.sheen_weight, m.sheen_roughness, m.sheen_tint_color);
+}
+
+float PrincipledV2Bsdf::dielectric_eta(const Material& m) {
+  const float ior = std::max(m.ior, 1e-5f);
+  const float f0 = 0.08f * std::max(m.specular, 0.0f);
+  const float f0_ior = ggx_tables::f0_from_ior(ior);
+  if (!(std::abs(f0 - f0_ior) > 1e-6f * f0_ior)) return ior;
+  const float eta = ggx_tables::ior_from_f0(f0);
+  return ior < 1.0f ? 1.0f / eta : eta;
 }
 
 Vec3 PrincipledV2Bsdf::metal_fresnel(float cos_ih) const {
@@ -84,12 +95,14 @@ PrincipledV2Bsdf::ViewTerms PrincipledV2Bsdf::view_terms(float cos_o) const {
     v.dielectric_albedo = darkening * glm::mix(dielectric_f0_, Vec3(1.0f), s);
     diffuse_weight = clamp01(1.0f - max_component(v.dielectric_albedo));
   }
-  v.diffuse = base_ * (dielectric_weight_ * diffuse_weight);
+  v.diffuse = diffuse_color_ * (dielectric_weight_ * diffuse_weight);
+  if (has_subsurface()) v.subsurface = subsurface_color_ * (dielectric_weight_ * diffuse_weight);
   if (coat_.active()) {
     v.coat = coat_.terms(cos_o);
     v.metal_scale *= v.coat.base_weight;
     v.dielectric_scale *= v.coat.base_weight;
     v.diffuse *= v.coat.base_weight;
+    v.subsurface *= v.coat.base_weight;
   }
   if (sheen_.active()) {
     // The sheen is the top layer: everything under it (the coat too) keeps 1 - max_rgb(A).
@@ -98,6 +111,7 @@ PrincipledV2Bsdf::ViewTerms PrincipledV2Bsdf::view_terms(float cos_o) const {
     v.metal_scale *= keep;
     v.dielectric_scale *= keep;
     v.diffuse *= keep;
+    v.subsurface *= keep;
     v.coat.scale *= keep;
     v.coat.albedo *= keep;
   }
@@ -109,7 +123,7 @@ PrincipledV2Bsdf::ClosureAlbedos PrincipledV2Bsdf::closure_albedos(float cos_o) 
   ClosureAlbedos a;
   // The multiscatter darkening E k: the scales above carry k (the lobe's factor).
   const float e = multiscatter_ ? std::max(ggx_tables::albedo(table_roughness_, cos_o), 1e-3f) : 1.0f;
-  a.diffuse = v.diffuse;
+  a.diffuse = v.diffuse + v.subsurface;  // a BSSRDF's albedo is its weight, diffuse-like (Cycles)
   if (has_dielectric_)
     a.dielectric = v.dielectric_scale * e *
                    glm::mix(dielectric_f0_, Vec3(1.0f), ggx_tables::dielectric_fresnel_mix(table_roughness_, cos_o, eta_));

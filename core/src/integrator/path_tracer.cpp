@@ -417,7 +417,7 @@ class PathTracer {
       v.local_bsdf.emplace(shade_material(ctx_.scene, hit.material, globals, v.textured, ctx_.settings.brdf_model,
                                           ctx_.bsdfs[hit.material], v.material, v.program_regs.data(),
                                           v.closure_list ? &*v.closure_list : nullptr, subsurface,
-                                          no_walk(hit)));
+                                          walk_state(hit)));
       v.bsdf = &*v.local_bsdf;
     } else {
       v.material = v.textured ? ctx_.scene.textured_material(hit.material, globals, v.program_regs.data())
@@ -432,6 +432,7 @@ class PathTracer {
     if (v.local_bsdf) v.local_bsdf->orient(v.at.frame);  // anisotropic closures' tangents
     v.wo = v.at.frame.to_local(v.wo_world);
     v.view = v.bsdf->at(v.wo, v.at.backfacing, v.at.diffuse);
+    if constexpr (kSubsurface) v.local_bsdf->finish_subsurface(v.subsurface, v.wo);  // Principled v2's layers
     // Path guiding on opaque single-material surfaces with a continuous lobe.
     v.guidable = ctx_.guide && !v.mixture && !v.transmits && (v.material.metallic < 1.0f || v.material.roughness >= 0.3f);
     if constexpr (kSubsurface) v.guidable = v.guidable && !v.subsurface.active();
@@ -659,10 +660,15 @@ class PathTracer {
     if constexpr (kSubsurface) return subsurface_.diffuse_ancestor;
     else return false;
   }
-  // Subsurface closures shade as Lambert instead of walking: after a diffuse bounce (Cycles), and
-  // on hair strands (no object to walk in).
-  bool no_walk(const SurfaceHit& hit) const {
-    return diffuse_ancestor() || hit.on_curve || hit.object == ShaderGlobals::kNoObject;
+  // What subsurface closures at the hit need of the path (subsurface_lobe.h): they shade as Lambert
+  // instead of walking on hair strands (no object to walk in) and, but in Cycles 5.x, after a
+  // diffuse bounce; the ray's footprint there (Cycles' sd->dP: the ray cone's width).
+  WalkState walk_state(const SurfaceHit& hit) const {
+    WalkState s;
+    s.walkable = !hit.on_curve && hit.object != ShaderGlobals::kNoObject;
+    s.diffuse_ancestor = diffuse_ancestor();
+    s.footprint = ctx_.pixel_width + ctx_.pixel_spread * path_length_;
+    return s;
   }
 
   // The mesh the walk is in, as Scene::intersect_object sees it; the exit's hit kept.

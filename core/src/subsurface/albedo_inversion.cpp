@@ -78,4 +78,16 @@ WalkMedium walk_medium(const Vec3& colour, const Vec3& radius, float g) {
   return m;
 }
 
+WalkMedium van_de_hulst_medium(const Vec3& colour, const Vec3& radius, float g) {
+  WalkMedium m;
+  for (int c = 0; c < 3; ++c) {
+    const float a = colour[c];
+    const float s = 4.20863f * a - std::sqrt(9.59217f + 41.6808f * a + 17.7126f * a * a) + 4.09712f;
+    const float s2 = s * s, denominator = 1.0f - g * s2;
+    m.alpha[c] = std::clamp(denominator != 0.0f ? (1.0f - s2) / denominator : 0.0f, 0.0f, 0.999999f);
+    m.sigma_t[c] = 1.0f / std::max(radius[c], 1e-16f);
+  }
+  return m;
+}
+
 }  // namespace torrance

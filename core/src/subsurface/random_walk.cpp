@@ -24,8 +24,11 @@ struct Coefficients {
 
 Coefficients coefficients(const SubsurfaceLobe& lobe, Vec3& throughput) {
   const float g = lobe.anisotropy;
-  const Vec3 radius = lobe.fixed_radius ? lobe.radius * (0.25f / kPi) : walk_radius(lobe.radius, lobe.albedo, lobe.ior);
-  const WalkMedium medium = walk_medium(lobe.albedo, radius, g);
+  const Vec3 radius = lobe.fixed_radius   ? lobe.radius * (0.25f / kPi)
+                      : lobe.plain_radius ? lobe.radius
+                                          : walk_radius(lobe.radius, lobe.albedo, lobe.ior);
+  const WalkMedium medium = lobe.van_de_hulst ? van_de_hulst_medium(lobe.albedo, radius, g)
+                                              : walk_medium(lobe.albedo, radius, g);
   Coefficients k;
   k.sigma_t = medium.sigma_t;
   k.alpha = medium.alpha;

@@ -1,6 +1,7 @@
 #include "torrance/subsurface/subsurface_lobe.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace torrance {
 
@@ -20,8 +21,13 @@ SubsurfaceLobe lobe(const Vec3& weight, const Vec3& albedo, const Vec3& radius, 
   s.albedo = glm::clamp(albedo, Vec3(0.0f), Vec3(1.0f));
   s.radius = r;
   s.ior = std::clamp(m.subsurface_ior, 1.01f, 3.8f);
-  s.anisotropy = std::clamp(m.subsurface_anisotropy, 0.0f, 0.9f);
-  s.fixed_radius = m.subsurface_fixed_radius && !m.subsurface_skin;
+  s.plain_radius = s.van_de_hulst = m.subsurface_van_de_hulst && !m.subsurface_skin;
+  // Cycles 5.x allows a negative anisotropy (its legacy walks take d'Eon's mapping for it) and up
+  // to 0.99 in its Random Walk; 3.x/4.x clamp to [0, 0.9].
+  const float g_min = m.subsurface_after_diffuse ? -0.99f : 0.0f;
+  s.anisotropy = std::clamp(m.subsurface_anisotropy, g_min, s.van_de_hulst ? 0.99f : 0.9f);
+  if (s.anisotropy < 0.0f) s.van_de_hulst = true;
+  s.fixed_radius = m.subsurface_fixed_radius && !m.subsurface_skin && !m.subsurface_van_de_hulst;
   s.entry_alpha = m.subsurface_skin ? 1.0f : std::min(m.subsurface_entry_alpha, 1.0f);
   s.entry_half_lambertian = m.subsurface_skin;
   return s;
@@ -47,6 +53,36 @@ SubsurfaceLobe principled_subsurface(const Material& m, float mix_weight) {
   SubsurfaceLobe s = lobe(mix_weight * diffuse_weight * albedo, albedo, m.subsurface_radius * m.subsurface, m);
   s.exit_fresnel = true;
   s.others = 0.25f;  // the specular, retro-reflection, sheen and coat lobes: sampled 1 time in 4 or more
+  return s;
+}
+
+float min_walk_radius(const Material& m, const WalkState& s) {
+  if (!s.walkable || (s.diffuse_ancestor && !m.subsurface_after_diffuse)) return std::numeric_limits<float>::infinity();
+  return std::max(m.subsurface_min_footprint * s.footprint, kMinSubsurfaceRadius);
+}
+
+Material walked_only(const Material& m, float min_radius) {
+  Material w = m;
+  for (int c = 0; c < 3; ++c)
+    if (!(w.subsurface_radius[c] >= min_radius)) w.subsurface_radius[c] = 0.0f;
+  return w;
+}
+
+SubsurfaceLobe principled_v2_subsurface(const Material& m, float eta, int component, float mix_weight) {
+  if (!(m.subsurface > kWeightCutoff)) return {};
+  const float diffuse_weight = (1.0f - clamp01(m.metallic)) * (1.0f - clamp01(m.transmission));
+  if (!(diffuse_weight > kWeightCutoff)) return {};
+  const Vec3 albedo = glm::clamp(m.base_color, Vec3(0.0f), Vec3(1.0f));
+  // The weight's colour, Subsurface Weight and layers come from PrincipledV2Bsdf::subsurface_weight.
+  SubsurfaceLobe s = lobe(Vec3(mix_weight), albedo, m.subsurface_radius, m);
+  if (!m.subsurface_skin) {
+    s.ior = std::clamp(eta, 1.01f, 3.8f);
+    const float roughness = clamp01(m.roughness);
+    s.entry_alpha = roughness * roughness;
+  }
+  s.layered_component = component;
+  // The diffuse, specular, coat and sheen closures' Cycles sample weights, roughly.
+  s.others = 0.25f + 3.0f * (1.0f - clamp01(m.subsurface)) * diffuse_weight * luminance(albedo);
   return s;
 }
 

@@ -94,6 +94,19 @@ struct Material {
   // the others of alpha 1, its radius adjusted as 3.4's Random Walk.
   float subsurface_entry_alpha = -1.0f;
   bool subsurface_skin = false;
+  // PRINCIPLED_V2 (Blender 4.x/5.x's Principled): `subsurface` is the Subsurface Weight, the walk
+  // takes that share of the diffuse layer (its colour the base colour, its radius Radius x Scale,
+  // its entry a rough refraction of alpha roughness^2 through the Principled's IOR; Skin: through
+  // subsurface_ior), subsurface_lobe.h.
+  // Cycles 4.0-4.4: channels whose radius is below this fraction of the ray's footprint at the hit
+  // (Cycles' sd->dP) shade as diffuse instead of being walked (0.25; 0: only BSSRDF_MIN_RADIUS).
+  float subsurface_min_footprint = 0.0f;
+  // Cycles 5.x: walks go on after a diffuse bounce (4.x and 3.x shade them as diffuse there), and
+  // Blender 5.3's Random Walk (subsurface_van_de_hulst): the radius is the mean free path as given
+  // (no 1 / (4 pi), no IOR adjustment) and the single-scattering albedo is d'Eon's van de Hulst
+  // mapping of the colour and the anisotropy (which may be negative), albedo_inversion.h.
+  bool subsurface_after_diffuse = false;
+  bool subsurface_van_de_hulst = false;
   // The Principled Hair BSDF's Offset (radians: the cuticle scales' tilt; ClosureType::PrincipledHair).
   float hair_offset = 0.0f;
 };

@@ -59,6 +59,11 @@ class MaterialBsdf {
         },
         bsdf_);
   }
+  // PRINCIPLED_V2's random-walk closure weight for the view wo (principled_v2.h; 0 otherwise).
+  Vec3 subsurface_weight(const Vec3& wo) const {
+    const auto* v2 = std::get_if<PrincipledV2Bsdf>(&bsdf_);
+    return v2 && v2->has_subsurface() ? v2->subsurface_weight(wo.z) : Vec3(0.0f);
+  }
   // The GGX alpha of the model's specular lobe (0 with glass: not asked for).
   float specular_alpha() const {
     return glass_ ? 0.0f : std::visit([](const auto& b) { return b.alpha(); }, bsdf_);

@@ -71,6 +71,9 @@ class MixtureBsdf {
   bool transmits() const;  // some closure is glass, Translucent, Refraction or Principled Hair
   // Its closures' world tangents into the shading frame (anisotropic glossy, hair); before at().
   void orient(const Frame& frame);
+  // A Principled v2 subsurface lobe's weight for the view wo: its layered closure's
+  // (subsurface_lobe.h: SubsurfaceLobe::layered_component) times that closure's mixture weight.
+  void finish_subsurface(SubsurfaceLobe& lobe, const Vec3& wo) const;
 
   // The View interface of MaterialBsdf: a mixture prepares nothing (each closure its own wo);
   // `diffuse`: its diffuse lobes' normal (bsdf.h).
@@ -116,14 +119,16 @@ class MixtureBsdf {
 // and Normal's) leaves its registers, for Scene::normal_mapped at this hit. closures (if given):
 // a mixture's closures with their weights, for the denoising features (denoising_features.h).
 // subsurface (if given): where the material's first subsurface closure goes (Principled v1's
-// Subsurface, a Subsurface Scattering node; subsurface_lobe.h), the path tracer walking it
-// instead of a BSDF sample; without it a Subsurface Scattering node is a white Lambert of its
-// Color. diffuse_ancestor: the path has taken a diffuse bounce, after which Cycles shades
-// subsurface closures as diffuse (Principled's Burley of the mixed colour, the node's Lambert).
+// Subsurface, v2's Subsurface Weight, a Subsurface Scattering node; subsurface_lobe.h), the path
+// tracer walking it instead of a BSDF sample (a v2 lobe after finish_subsurface); without it a
+// Subsurface Scattering node is a white Lambert of its Color. walk: where the path is; channels
+// it does not walk (min_walk_radius: all after a diffuse bounce but in Cycles 5.x, Cycles 4.0-4.4's
+// quarter footprint) shade as diffuse (Principled v1's Burley of the mixed colour, the node's and
+// v2's Lambert).
 MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals& globals, bool textured,
                            BrdfModel model, const MaterialBsdf& prebuilt, Material& resolved,
                            glm::vec4* program_regs = nullptr, ClosureList* closures = nullptr,
-                           SubsurfaceLobe* subsurface = nullptr, bool diffuse_ancestor = false);
+                           SubsurfaceLobe* subsurface = nullptr, const WalkState& walk = {});
 
 // The estimated albedo a mixture samples a Principled closure by: luminance of the base colour
 // plus its dielectric F0.

@@ -1,7 +1,7 @@
 // Principled BSDF v2, "PRINCIPLED_V2": Blender 4.x's Principled BSDF as Cycles 4.x renders it, for
 // the inputs Torrance supports (base colour, metallic, roughness, IOR, Specular IOR Level through
-// Material::specular, Specular Tint as a colour, emission, coat, sheen, anisotropy; no subsurface
-// or thin film; transmission below). Five layers, from the top, with alpha = roughness^2 (GGX;
+// Material::specular, Specular Tint as a colour, emission, coat, sheen, anisotropy, subsurface
+// weight; no thin film; transmission below). Five layers, from the top, with alpha = roughness^2 (GGX;
 // Anisotropic a in [0, 1] stretches the metal and dielectric lobes along the tangent as Cycles
 // 4.x: alpha_x = alpha / s, alpha_y = alpha s, s = sqrt(1 - 0.9 a), ggx_shape.h, and the tables
 // below are read at the roughness (alpha_x alpha_y)^(1/4)):
@@ -28,6 +28,10 @@
 //               unchecked normal), base colour (1 - metallic)(1 - transmission) w(wo): the
 //               light the dielectric layer does not reflect, w = clamp(1 - max_rgb(A_d(wo)), 0, 1), with the dielectric layer's
 //               estimated albedo A_d = k mix(f0 tint, 1, S(r, mu_o, eta)) (ggx_tables.h).
+//               Subsurface Weight w_s (Material::subsurface): the diffuse keeps base (1 - w_s)
+//               and the random walk (subsurface_lobe.h) takes min(base, 1) w_s under the same
+//               layer weights (ViewTerms::subsurface), in the channels it walks; the others
+//               shade that part as diffuse too (Cycles' fallback).
 //
 // Multiscatter GGX (Material::multiscatter_ggx, the node's default "Multiscatter GGX"): each GGX
 // layer is scaled by 1 + F_ms (1 - E) / E (albedo scaling, Kulla & Conty 2017), E = E(r, mu_o)
@@ -61,6 +65,7 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
     Vec3 dielectric_scale{0.0f};   // (1 - metallic) (x the multiscatter scale)
     Vec3 dielectric_albedo{0.0f};  // A_d, the estimate the diffuse layer is reduced by
     Vec3 diffuse{0.0f};            // (1 - metallic) base colour w(wo)
+    Vec3 subsurface{0.0f};         // the random walk's weight: as diffuse, of its own colour
     CoatV2::Terms coat;            // the coat's (its base_weight is in the three above)
     SheenBsdf::Lobe sheen;         // the sheen's weight (its albedo), a, b (its keep is in all above)
   };
@@ -103,6 +108,11 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
   Vec3 metal_fresnel(float cos_ih) const;       // F_m
   Vec3 dielectric_fresnel(float cos_ih) const;  // F_d (0 without a dielectric lobe)
   float eta() const { return eta_; }
+  // The IOR the dielectric layer has: the IOR, or as the Specular IOR Level rescales its F0.
+  static float dielectric_eta(const Material& m);
+  bool has_subsurface() const { return subsurface_color_ != Vec3(0.0f); }
+  // The random walk's closure weight for a view at cos_o (Cycles' BSSRDF weight, layers included).
+  Vec3 subsurface_weight(float cos_o) const { return view_terms(cos_o).subsurface; }
 
   // The coat lobe (lobe_mixture.h).
   bool has_coat() const { return coat_.reflects(); }
@@ -121,7 +131,8 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
   float specular_probability(const ViewTerms& v, float cos_o) const;
   Vec3 specular_estimate(const ViewTerms& v, float cos_o) const;  // the GGX layers' albedo, layered
 
-  Vec3 base_, metal_f0_, metal_b_, metal_fss_, dielectric_f0_, dielectric_fss_;
+  Vec3 diffuse_color_{0.0f}, subsurface_color_{0.0f};  // the diffuse and walked parts of the base
+  Vec3 metal_f0_, metal_b_, metal_fss_, dielectric_f0_, dielectric_fss_;
   float dielectric_weight_ = 1.0f;  // (1 - metallic)(1 - transmission): Transmission Weight's glass is
                                    // principled_glass_v2.h's, which MaterialBsdf adds
   float metallic_, roughness_, alpha_, eta_;

@@ -30,5 +30,11 @@ struct WalkMedium {
 };
 // Step 2, per channel: colour and the walk's radius (from walk_radius), anisotropy g in [0, 0.9].
 WalkMedium walk_medium(const Vec3& colour, const Vec3& radius, float g);
+// Blender 5.3's Random Walk instead of step 2 (Cycles 5.3's subsurface_random_walk_remap): d'Eon's
+// van de Hulst mapping ("A Hitchhiker's Guide to Multiple Scattering", eq. 53.7) of the colour c
+// and anisotropy g (in [-0.99, 0.99]) to the single-scattering albedo
+//   alpha = (1 - s^2) / (1 - g s^2),  s = 4.09712 + 4.20863 c - sqrt(9.59217 + 41.6808 c + 17.7126 c^2),
+// clamped to [0, 0.999999]; extinction sigma_t = 1 / radius.
+WalkMedium van_de_hulst_medium(const Vec3& colour, const Vec3& radius, float g);
 
 }  // namespace torrance
