@@ -1,8 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Motion blur renders like Cycles 3.4's (Render > Motion Blur: Position, Shutter; Object >
-Motion Blur: steps, deformation).
+"""Motion blur renders like Cycles 3.4's (Render > Motion Blur: Position, Shutter, Rolling
+Shutter, Shutter Curve; Object > Motion Blur: steps, deformation; moving instances and lamps).
 
-Four animated scenes on a grey floor under a sun, rendered at frame 1 with the shutter open one
+Nine animated scenes on a grey floor under a sun, rendered at frame 1 with the shutter open one
 frame, each by Cycles (seed 0: the reference; seed 1: Cycles' own noise, which sets the bounds)
 and by Torrance (seeds 2 and 3), compared by ratio and 8x8 block means
 (seed_noise.agree_within_seed_noise):
@@ -16,12 +16,19 @@ and by Torrance (seeds 2 and 3), compared by ratio and 8x8 block means
   the interpolated normals of deforming meshes not found yet (both interpolate the steps'
   vertex normals linearly), beyond Cycles' noise at 32 spp;
 * an emissive panel sliding over the floor (Position Center): light sampling finds it where
-  the path's time puts it, as Cycles' motion triangles.
+  the path's time puts it, as Cycles' motion triangles;
+* a collection instance whose instancer slides and turns (Embree instance motion);
+* a point lamp moving (Position Start): Cycles does not blur lamps but reads them, as the
+  whole scene, at the shutter's centre;
+* Rolling Shutter Top-Bottom (Duration 0.1) and a rising Shutter Curve on the moving sphere.
 
-Each has deliberate faults (torrance.export.motion.shutter_offsets patched) that must FAIL the
-same bounds: time ignored (every step at the frame: no blur), the shutter halved, and Position
-Start/End read as Center. (A core fault, the panel's light sampled at the frame, was shown to
-fail by hand: see the commit that recorded its figures.)
+Each has deliberate faults that must FAIL the same bounds: torrance.export.motion's
+shutter_offsets patched (time ignored: every step at the shutter's centre, no blur; the shutter
+halved) or shutter_centre (Position Start/End read as Center); instance motion off
+(instance_motion.instance_motion_steps), the lamp read at the frame (scene.export_light), the
+rolling shutter and the curve ignored (shutter.rolling_shutter_duration,
+shutter.shutter_curve_values). (A core fault, the panel's light sampled at the frame, was shown
+to fail by hand: see the commit that recorded its figures.)
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_motion_blur_agreement.py
@@ -66,7 +73,20 @@ def base(scene):
     testing.add_camera(scene, location=(0.0, -6.0, 2.2), target=(0.0, 0.0, 0.6), lens=40.0)
     scene.render.use_motion_blur = True
     scene.render.motion_blur_shutter = 1.0
+    scene.cycles.rolling_shutter_type = 'NONE'      # the variants below change them
+    set_shutter_curve(scene, 1.0, 1.0)
     scene.frame_set(1)
+
+
+def set_shutter_curve(scene, start, end):
+    """The Shutter Curve as the line from (0, start) to (1, end)."""
+    mapping = scene.render.motion_blur_shutter_curve
+    points = mapping.curves[0].points
+    while len(points) > 2:
+        points.remove(points[1])
+    points[0].location = (0.0, start)
+    points[-1].location = (1.0, end)
+    mapping.update()
 
 
 def moving_sphere(scene):
@@ -134,6 +154,55 @@ def glowing_panel(scene):
     set_position(scene, 'CENTER')
 
 
+def moving_instance(scene):
+    """A collection instance whose instancer (an empty) slides and turns: Embree instance
+    motion, the instance found again at each step by its persistent id."""
+    base(scene)
+    box = make.box(scene, "Crate", (0.8, 0.0, 0.5), (1.0, 0.5, 1.0),
+                   testing.principled("Orange", (0.8, 0.4, 0.1)))
+    crates = bpy.data.collections.new("Crates")
+    for owner in list(box.users_collection):
+        owner.objects.unlink(box)
+    crates.objects.link(box)
+    empty = bpy.data.objects.new("Instancer", None)
+    empty.instance_type = 'COLLECTION'
+    empty.instance_collection = crates
+    scene.collection.objects.link(empty)
+    linear_keys(empty, "location", [(-1.2, 0.0, 0.0), (1.2, 0.0, 0.0)])
+    linear_keys(empty, "rotation_euler", [(0.0, 0.0, 0.0), (0.0, 0.0, math.radians(90.0))])
+    set_position(scene, 'CENTER')
+
+
+LAMP_PATH = ((-1.5, -0.5, 1.6), (1.5, -0.5, 1.6))    # frames 0 and 2
+
+
+def moving_lamp(scene):
+    """A point lamp moving over a post: Cycles (3.4 to 5.x) does not blur lamps; its sync reads
+    them at the shutter's centre (Position Start: half a frame after the frame), so does
+    Torrance's export."""
+    base(scene)
+    make.box(scene, "Post", (0.0, 0.3, 0.6), (0.3, 0.3, 1.2),
+             testing.principled("White", (0.7, 0.7, 0.7)))
+    lamp = testing.add_point(scene, LAMP_PATH[0], power=400.0, radius=0.05)
+    linear_keys(lamp, "location", list(LAMP_PATH))
+    set_position(scene, 'START')
+
+
+def rolling_shutter(scene):
+    """Rolling Shutter Top-Bottom (Duration 0.1) on a sphere moving sideways: each row sees it
+    at its own time (a slanted sphere)."""
+    moving_sphere(scene)
+    scene.cycles.rolling_shutter_type = 'TOP'
+    scene.cycles.rolling_shutter_duration = 0.1
+
+
+def shutter_curve(scene):
+    """A rising Shutter Curve (0 at opening, 1 at closing) on a sphere moving sideways: the
+    shutter's time drawn by the inverted CDF, the blur heavier towards the end."""
+    moving_sphere(scene)
+    set_shutter_curve(scene, 0.0, 1.0)
+
+
 # Faults: replacements of torrance.export.motion.shutter_offsets(scene, steps).
 def time_ignored(original):
     return lambda scene, steps: [0.0] * steps
@@ -143,38 +212,76 @@ def shutter_halved(original):
     return lambda scene, steps: [0.5 * t for t in original(scene, steps)]
 
 
-def position_as_center(original):
-    def offsets(scene, steps):
-        shutter = scene.render.motion_blur_shutter
-        return [0.5 * shutter * (2.0 * s / (steps - 1) - 1.0) for s in range(steps)]
-    return offsets
+def position_as_center(original):      # replaces motion.shutter_centre
+    return lambda scene: 0.0
+
+
+def no_instance_motion(original):
+    return lambda inst: 0
+
+
+def lamp_at_frame(original):
+    """The lamp read at the frame (the shutter's opening) instead of the shutter's centre, half
+    a frame later, where Cycles' sync reads it (replaces scene.export_light)."""
+    shift = -0.25 * (np.array(LAMP_PATH[1]) - np.array(LAMP_PATH[0]))
+
+    def export(tc_scene, obj, matrix, *args, **kwargs):
+        moved = matrix.copy()
+        if obj.type == 'LIGHT' and obj.data.type == 'POINT':
+            moved.translation = moved.translation + type(moved.translation)(shift)
+        return original(tc_scene, obj, moved, *args, **kwargs)
+    return export
+
+
+def rolling_ignored(original):
+    return lambda scene: None
+
+
+def curve_ignored(original):
+    return lambda scene: None
 
 
 VARIANTS = (
     ("sphere moving sideways", moving_sphere,
      (("time ignored", time_ignored), ("shutter halved", shutter_halved))),
     ("cube rotating, 3 steps, Start", rotating_cube,
-     (("time ignored", time_ignored), ("Start read as Center", position_as_center))),
+     (("time ignored", time_ignored),
+      ("Start read as Center", "motion", "shutter_centre", position_as_center))),
     ("camera panning, End", panning_camera,
-     (("time ignored", time_ignored), ("End read as Center", position_as_center))),
+     (("time ignored", time_ignored),
+      ("End read as Center", "motion", "shutter_centre", position_as_center))),
     ("shape key deformation", deforming_sphere,
      (("time ignored", time_ignored), ("shutter halved", shutter_halved))),
     ("emissive panel sliding", glowing_panel,
      (("time ignored", time_ignored), ("shutter halved", shutter_halved))),
+    ("collection instance sliding and turning", moving_instance,
+     (("instance motion off", "instance_motion", "instance_motion_steps", no_instance_motion),
+      ("shutter halved", shutter_halved))),
+    ("point lamp moving, Start", moving_lamp,
+     (("lamp read at the frame", "scene", "export_light", lamp_at_frame),)),
+    ("rolling shutter", rolling_shutter,
+     (("rolling shutter ignored", "shutter", "rolling_shutter_duration", rolling_ignored),)),
+    ("shutter curve rising", shutter_curve,
+     (("curve ignored", "shutter", "shutter_curve_values", curve_ignored),)),
 )
 
 
 def main():
     testing.addon()
-    import torrance.export.motion as motion
+    import importlib
     d = testing.tempdir()
     scene = bpy.context.scene
     for label, build, faults in VARIANTS:
         build(scene)
         bpy.context.view_layer.update()
         print(f"--- {label}", flush=True)
-        agree_within_seed_noise(scene, d, SAMPLES, 2, label, faults=[
-            (fault, motion, "shutter_offsets", make_fault) for fault, make_fault in faults])
+        patched = []
+        for fault in faults:     # (label, make_fault) patches motion.shutter_offsets
+            name, module, attribute, make_fault = (
+                fault if len(fault) == 4 else (fault[0], "motion", "shutter_offsets", fault[1]))
+            owner = importlib.import_module(f"torrance.export.{module}")
+            patched.append((name, owner, attribute, make_fault))
+        agree_within_seed_noise(scene, d, SAMPLES, 2, label, faults=patched)
 
 
 testing.run(main)

@@ -45,8 +45,22 @@ void init_motion(py::module_& m) {
       "Motion blur: mesh `mesh` (an add_mesh id) moves through positions (S, N, 3), S >= 2 world-space "
       "time steps evenly over the shutter, with corner normals (S, 3T, 3) or None. ValueError for "
       "mismatched shapes or step counts, NaN/Inf.");
+  method(
+      "set_instance_motion",
+      [](Scene& s, const py::object& ids, const py::object& transforms) {
+        const auto i = shaped_array<int64_t>(ids, "instance ids", {-1});
+        const auto t = shaped_array<float>(transforms, "instance motion", {-1, -1, 3, 4});
+        if (t.shape(0) < 2 || t.shape(1) != i.shape(0))
+          throw py::value_error("instance motion must have shape (S, " + std::to_string(i.shape(0)) +
+                                ", 3, 4) with S >= 2 time steps, got " + shape_string(t));
+        s.set_instance_motion(i.data(), size_t(i.shape(0)), size_t(t.shape(0)), t.data());  // ValueError
+      },
+      py::arg("ids"), py::arg("transforms"),
+      "Motion blur: instances `ids` (from add_instances) move through transforms (S, len(ids), 3, 4), "
+      "S >= 2 object-to-world matrices evenly over the shutter (a later set_instance_transforms ends "
+      "an instance's motion). ValueError for removed or unknown ids, bad shapes, NaN/Inf.");
   method("has_motion", [](const Scene& s) { return s.has_motion(); },
-         "Whether some mesh moves (set_mesh_motion).");
+         "Whether some mesh or instance moves (set_mesh_motion, set_instance_motion).");
   method(
       "set_camera_motion",
       [](Scene& s, const py::object& transforms) {
@@ -63,6 +77,26 @@ void init_motion(py::module_& m) {
       py::arg("transforms"),
       "Motion blur: the camera's camera-to-world matrices (S, 4, 4), S >= 2, evenly over the shutter (a "
       "later set_camera clears them). ValueError for a bad shape, NaN/Inf or a zero axis.");
+  method(
+      "set_shutter",
+      [](Scene& s, const py::object& table, const py::object& rolling_shutter_duration) {
+        CameraParams c = s.camera();
+        c.shutter_table.clear();
+        if (!table.is_none()) {
+          const auto t = shaped_array<float>(table, "shutter table", {-1});
+          c.shutter_table.assign(t.data(), t.data() + t.shape(0));
+        }
+        c.rolling_shutter = !rolling_shutter_duration.is_none();
+        if (c.rolling_shutter) c.rolling_shutter_duration = rolling_shutter_duration.cast<float>();
+        Camera(c, 2, 2, 1.0f, 1.0f);  // validates now, so the error names this call
+        s.set_camera(c);
+      },
+      py::arg("table") = py::none(), py::arg("rolling_shutter_duration") = py::none(),
+      "Motion blur: how a camera sample's time u in [0, 1) spreads over the shutter. table: the "
+      "inverted CDF of the shutter curve at evenly spaced u (N >= 2 values in [0, 1], read with linear "
+      "interpolation; None: open evenly). rolling_shutter_duration: a rolling shutter from the top row "
+      "(time 0) to the bottom (time 1), blended with the sample's time by this duration in [0, 1] "
+      "(Cycles' Rolling Shutter Duration); None: none. A later set_camera clears both.");
 }
 
 }  // namespace torrance::python

@@ -158,3 +158,71 @@ def test_a_moving_emitter_lights_as_its_time_average():
     profile_moving = moving[rows].mean(axis=(0, 2))
     profile_still = still[rows].mean(axis=(0, 2))
     assert np.abs(profile_moving / profile_still - 1.0).max() < 0.02
+
+
+def instance_scene(distance):
+    """The square as an instance (add_prototype, add_instances) sliding `distance` along x."""
+    scene, _ = square_scene(offset=(50.0, 50.0))     # the mesh far outside the view
+    prototype = scene.add_prototype(SQUARE, TRIANGLES)
+    first = scene.add_instances(prototype, np.eye(4, dtype=np.float32)[None, :3, :], [0])
+    steps = np.stack([np.eye(4, dtype=np.float32)[:3, :] for _ in range(3)])
+    steps[:, 0, 3] = distance * np.arange(3) / 2.0
+    scene.set_instance_motion([first], steps[:, None])
+    return scene
+
+
+def test_moving_instance_covers_as_the_moving_mesh():
+    scene = instance_scene(1.0)
+    assert scene.has_motion()
+    a = alpha(scene)
+    mesh_scene, mesh = square_scene()
+    mesh_scene.set_mesh_motion(mesh, moving_steps(1.0, 3))
+    assert a.sum() == pytest.approx(100.0, rel=0.02)
+    assert np.abs(alpha(mesh_scene) - a).mean() < 0.01
+
+
+def row_centroids(a):
+    """The coverage centroid (in px) of each row the square covers fully in y."""
+    rows = [y for y in range(SIZE) if a[y].sum() > 9.0]
+    cols = np.arange(SIZE) + 0.5
+    return np.array(rows), np.array([(a[y] * cols).sum() / a[y].sum() for y in rows])
+
+
+def test_rolling_shutter_gives_each_row_its_time():
+    # Duration 0: a row's time is (its row from the top + 1) / height, so the square, sliding
+    # 10 px over the shutter, leans 10 / 40 px per row.
+    scene, mesh = square_scene()
+    scene.set_mesh_motion(mesh, moving_steps(1.0, 3))
+    scene.set_shutter(rolling_shutter_duration=0.0)
+    rows, centroids = row_centroids(alpha(scene))
+    slope = np.polyfit(rows, centroids, 1)[0]
+    assert slope == pytest.approx(0.25, abs=0.03)
+    # ... the centroid where the row's time puts it (the square's left edge at 15 px at time 0).
+    expected = 20.0 + 10.0 * (rows + 1) / SIZE
+    assert np.abs(centroids - expected).max() < 0.3
+
+
+def test_shutter_table_draws_the_time_by_its_inverted_cdf():
+    # A table sqrt(u) (the inverted CDF of a rising ramp): mean time 2/3, the blurred square's
+    # centroid 10 * 2/3 px right of its place at time 0 (5 px with the shutter open evenly).
+    scene, mesh = square_scene()
+    scene.set_mesh_motion(mesh, moving_steps(1.0, 3))
+    scene.set_shutter(np.sqrt((np.arange(256) + 0.5) / 256).astype(np.float32))
+    _, ramp = row_centroids(alpha(scene))
+    even_scene, even_mesh = square_scene()
+    even_scene.set_mesh_motion(even_mesh, moving_steps(1.0, 3))
+    _, even = row_centroids(alpha(even_scene))
+    assert even.mean() == pytest.approx(25.0, abs=0.2)
+    assert ramp.mean() == pytest.approx(20.0 + 20.0 / 3.0, abs=0.2)
+
+
+def test_shutter_errors():
+    scene, _ = square_scene()
+    with pytest.raises(ValueError):
+        scene.set_shutter(np.array([0.5], np.float32))
+    with pytest.raises(ValueError):
+        scene.set_shutter(np.array([0.0, 2.0], np.float32))
+    with pytest.raises(ValueError):
+        scene.set_shutter(rolling_shutter_duration=1.5)
+    with pytest.raises(ValueError):
+        instance_scene(1.0).set_instance_motion([7], np.zeros((3, 1, 3, 4), np.float32))

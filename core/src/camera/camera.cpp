@@ -86,6 +86,7 @@ Camera::Camera(const CameraParams& p, int width, int height, float pixel_aspect_
   origin_ = Vec3(m[3], m[7], m[11]);
   require_position(origin_, "camera position");
   set_motion(p.motion);
+  set_shutter(p);
 
   // Sensor fit (Cycles' blender_camera_viewplane): AUTO fits the larger side with sensor_width.
   const float xr = width * pixel_aspect_x, yr = height * pixel_aspect_y;

@@ -4,6 +4,7 @@
 
 #include "torrance/util/limits.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -43,6 +44,36 @@ Ray Camera::at_time(Ray r, float time) const {
   r.origin = position + rotation * (to_local * (r.origin - origin_));
   r.dir = rotation * (to_local * r.dir);
   return r;
+}
+
+void Camera::set_shutter(const CameraParams& p) {
+  if (p.shutter_table.size() == 1 || p.shutter_table.size() > 65536)
+    throw std::invalid_argument("the shutter table needs 2 to 65536 entries, got " +
+                                std::to_string(p.shutter_table.size()));
+  for (float v : p.shutter_table)
+    if (!(v >= 0.0f && v <= 1.0f)) throw std::invalid_argument("shutter table entries must be in [0, 1]");
+  if (!(p.rolling_shutter_duration >= 0.0f && p.rolling_shutter_duration <= 1.0f))
+    throw std::invalid_argument("rolling_shutter_duration must be in [0, 1]");
+  shutter_table_ = p.shutter_table;
+  rolling_shutter_ = p.rolling_shutter;
+  rolling_duration_ = p.rolling_shutter_duration;
+}
+
+float Camera::shutter_time(float u, int y_from_top) const {
+  float time = u;
+  if (!shutter_table_.empty()) {  // Cycles' lookup_table_read: linear between the entries
+    const float x = std::clamp(u, 0.0f, 1.0f) * float(shutter_table_.size() - 1);
+    const size_t i = std::min(size_t(x), shutter_table_.size() - 1), j = std::min(i + 1, shutter_table_.size() - 1);
+    const float f = x - float(i);
+    time = (1.0f - f) * shutter_table_[i] + f * shutter_table_[j];
+  }
+  if (!rolling_shutter_) return time;
+  // Cycles counts rows from the bottom (y_b): the row's time is 1 - y_b / height, the top row's
+  // 1 / height, the bottom row's 1.
+  // Rows of the splatting ring beyond the frame take the nearest row's.
+  const float row_time = std::clamp(float(y_from_top + 1) / float(height_), 1.0f / float(height_), 1.0f);
+  if (rolling_duration_ == 0.0f) return row_time;
+  return (time - 0.5f) * rolling_duration_ + (row_time - 0.5f) * (1.0f - rolling_duration_) + 0.5f;
 }
 
 }  // namespace torrance

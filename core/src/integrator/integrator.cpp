@@ -131,7 +131,7 @@ Ray camera_ray(const Camera& camera, const PixelFilter& filter, bool splatting, 
   if (!moving) return ray;
   // Without depth of field the lens dimensions are free: the time takes the third, stratified
   // jointly with the pixel position (at 32 spp the motion-blurred edges' noise matches Cycles').
-  const float time = camera.has_depth_of_field() ? sampler.next_4d().x : u_pixel.z;
+  const float time = camera.shutter_time(camera.has_depth_of_field() ? sampler.next_4d().x : u_pixel.z, y);
   ray_queries::set_time(time);
   return camera.at_time(ray, time);
 }

@@ -30,7 +30,8 @@ void Scene::build_mesh_light() {
     e.prim = prim;
     e.light_group = owner & kInstanceBit ? instances_[owner & ~kInstanceBit].light_group : meshes_[owner]->light_group;
     e.mirrored = mirrored;
-    e.moving = !(owner & kInstanceBit) && meshes_[owner]->motion_steps > 1;
+    e.moving = owner & kInstanceBit ? instances_[owner & ~kInstanceBit].motion.size() > 1
+                                    : meshes_[owner]->motion_steps > 1;
     if (!place_emissive_triangle(e, c.p[0], c.p[1], c.p[2])) return false;
     e.material = material;
     triangles.push_back(e);
@@ -110,13 +111,21 @@ void Scene::build_mesh_light() {
     for (Instance& inst : instances_) inst.emitter_base = -1;
     return;
   }
-  // Motion blur: a moving mesh's triangle at the ray's time (scene_motion.h), as its hits are.
+  // Motion blur: a moving mesh's triangle at the ray's time (scene_motion.h), as its hits are; a
+  // moving instance's triangle under its transform at that time.
   auto at_ray_time = [this](const EmissiveTriangle& t) {
-    const Mesh& mesh = *meshes_[t.owner];
-    const glm::uvec3& tri = mesh.triangles[t.prim];
-    Corners c = mesh_corners(mesh.positions, tri, nullptr, nullptr);
-    motion_corners({mesh.motion_steps, mesh.motion_positions.data(), mesh.positions.size(), nullptr, 0}, tri, t.prim,
-                   c);
+    Corners c;
+    if (t.owner & kInstanceBit) {
+      const Instance& inst = instances_[t.owner & ~kInstanceBit];
+      const Mesh& mesh = *prototypes_[bindings_[inst.binding].prototype]->mesh;
+      instance_corners(mesh.positions, mesh.triangles[t.prim], nullptr, nullptr, instance_transform(inst), c);
+    } else {
+      const Mesh& mesh = *meshes_[t.owner];
+      const glm::uvec3& tri = mesh.triangles[t.prim];
+      c = mesh_corners(mesh.positions, tri, nullptr, nullptr);
+      motion_corners({mesh.motion_steps, mesh.motion_positions.data(), mesh.positions.size(), nullptr, 0}, tri,
+                     t.prim, c);
+    }
     EmissiveTriangle moved = t;
     if (!place_emissive_triangle(moved, c.p[0], c.p[1], c.p[2])) moved.area = 0.0f;
     return moved;

@@ -57,7 +57,8 @@ void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const 
     hit_mesh = &mesh;
     mirrored = instance_corners(mesh.positions, mesh.triangles[prim],
                                 mesh.corner_normals.empty() ? nullptr : &mesh.corner_normals[3 * prim],
-                                mesh.corner_uvs.empty() ? nullptr : &mesh.corner_uvs[3 * prim], inst.transform, c);
+                                mesh.corner_uvs.empty() ? nullptr : &mesh.corner_uvs[3 * prim],
+                                instance_transform(inst), c);
     if (mirrored) std::swap(u, v);
     hit.material = b.material(mesh.material_ids[prim]);
     hit.emitter = inst.emitter_base >= 0 && b.emitter_rank[prim] >= 0 ? inst.emitter_base + b.emitter_rank[prim] : -1;

@@ -102,6 +102,10 @@ void Scene::place_instance(Instance& instance, const float* transform) {
   if (instance.hidden != was_hidden) hidden_instances_ += instance.hidden ? 1 : size_t(-1);
   if (instance.geometry == kNoGeometry) return;
   RTCGeometry geom = rtcGetGeometry(scene_of(scene_), instance.geometry);
+  if (!instance.motion.empty()) {  // a new transform ends its motion blur
+    instance.motion.clear();
+    rtcSetGeometryTimeStepCount(geom, 1);
+  }
   if (!instance.hidden) {
     rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, instance.transform.data());
     rtcCommitGeometry(geom);

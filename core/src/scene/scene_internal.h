@@ -83,6 +83,9 @@ struct Scene::Instance {
   bool shadow_catcher = false;      // a shadow catcher
   int8_t light_group = -1;          // its light group (extra_passes.h), -1: none
   int32_t cryptomatte = -1;         // its Cryptomatte entry (film/cryptomatte.h), -1: none
+  // Motion blur (Scene::set_instance_motion): its transforms at time steps evenly over the
+  // shutter (empty: it stays at `transform`).
+  std::vector<std::array<float, 12>> motion;
 };
 
 namespace scene_detail {

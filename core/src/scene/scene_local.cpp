@@ -92,7 +92,7 @@ void* Scene::local_scene(uint32_t object, Vec3& origin, Vec3& dir) const {
   const uint32_t prototype = bindings_[inst.binding].prototype;
   if (prototype >= local_scenes_->prototypes.size()) return nullptr;
   // World to object space: the inverse of the 3x3 part is the transpose of normal_matrix's.
-  const std::array<float, 12>& m = inst.transform;
+  const std::array<float, 12> m = instance_transform(inst);
   const std::array<double, 9> n = normal_matrix(m);
   auto to_object = [&](const Vec3& v) {
     return Vec3(float(n[0] * v.x + n[3] * v.y + n[6] * v.z), float(n[1] * v.x + n[4] * v.y + n[7] * v.z),

@@ -79,6 +79,45 @@ void Scene::set_mesh_motion(uint32_t mesh_id, size_t steps, const float* positio
   emitters_dirty_ = true;  // its emissive triangles now move (build_mesh_light)
 }
 
+void Scene::set_instance_motion(const int64_t* ids, size_t count, size_t steps, const float* transforms) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set instances' motion");
+  if (steps < 2 || steps > kMaxMotionSteps)
+    throw std::invalid_argument("motion needs 2 to 129 time steps, got " + std::to_string(steps));
+  for (size_t i = 0; i < count; ++i) {
+    const Instance& inst = live_instance(ids[i], "set_instance_motion");
+    for (size_t s = 0; s < steps; ++s)
+      check_transform(transforms + 12 * (s * count + i), bindings_[inst.binding].prototype,
+                      "motion step " + std::to_string(s) + " of instance " + std::to_string(ids[i]));
+  }
+  for (size_t i = 0; i < count; ++i) {
+    Instance& inst = instances_[size_t(ids[i])];
+    inst.motion.resize(steps);
+    for (size_t s = 0; s < steps; ++s) std::copy_n(transforms + 12 * (s * count + i), 12, inst.motion[s].begin());
+    if (inst.geometry == kNoGeometry || inst.hidden) continue;
+    RTCGeometry geom = rtcGetGeometry(scene_of(scene_), inst.geometry);
+    rtcSetGeometryTimeStepCount(geom, unsigned(steps));
+    for (size_t s = 0; s < steps; ++s)
+      rtcSetGeometryTransform(geom, unsigned(s), RTC_FORMAT_FLOAT3X4_ROW_MAJOR, inst.motion[s].data());
+    rtcCommitGeometry(geom);
+    if (bindings_[inst.binding].num_emissive > 0) emitters_dirty_ = true;
+  }
+  check_device("setting instances' motion");
+  if (count > 0) has_motion_ = true;
+  dirty_ = true;
+}
+
+std::array<float, 12> Scene::instance_transform(const Instance& inst) const {
+  if (inst.motion.size() < 2) return inst.transform;
+  // As Embree's instance motion: the matrices' entries linear between the two steps around it.
+  const float t = std::clamp(ray_queries::time(), 0.0f, 1.0f) * float(inst.motion.size() - 1);
+  const size_t step = std::min(size_t(t), inst.motion.size() - 2);
+  const float f = t - float(step);
+  std::array<float, 12> m;
+  for (int k = 0; k < 12; ++k) m[k] = (1.0f - f) * inst.motion[step][k] + f * inst.motion[step + 1][k];
+  return m;
+}
+
 namespace scene_detail {
 
 void motion_corners(const MotionArrays& m, const glm::uvec3& tri, uint32_t prim, Corners& c) {

@@ -27,7 +27,7 @@ class Source:
     CHUNK at a time (transforms() gives them all)."""
     __slots__ = ("name", "mesh_key", "table", "instanced", "matrices", "converted", "_append",
                  "info_of", "random_ids", "colors", "duplis", "instancers", "pass_index",
-                 "holdout", "shadow_catcher", "light_group", "cryptomatte")
+                 "holdout", "shadow_catcher", "light_group", "cryptomatte", "core_ids")
 
     def __init__(self, name, mesh_key, table, instanced, info_of=None, duplis=False,
                  instancers=False, pass_index=0):
@@ -37,6 +37,7 @@ class Source:
         self.shadow_catcher = False   # a shadow catcher (holdouts.py), or its instancer is
         self.light_group = -1         # its light group (light_groups.py), -1: none
         self.cryptomatte = -1         # its Cryptomatte entry (cryptomatte.py), -1: none
+        self.core_ids = None          # after flush: int64 core instance id per add(), -1: none
         self.mesh_key = mesh_key      # (evaluated mesh pointer, needs UVs)
         self.table = table            # int32 (K,): material index per slot
         self.instanced = instanced
@@ -175,31 +176,35 @@ class InstanceExport:
                 m = src.transforms()
                 finite = np.isfinite(m).all(axis=(1, 2))
                 info = src.infos(m, finite)
+                src.core_ids = np.full(len(m), -1, dtype=np.int64)
                 if not finite.all():
                     bad = int(len(m) - np.count_nonzero(finite))
                     self.reporter.warning(f"Object '{src.name}': {bad} instance(s) with a NaN/Inf "
                                           f"transform (a driver?) are not rendered")
                     m = m[finite]
                 if len(m):
-                    parts.append((src, m, info))
+                    parts.append((src, m, info, finite))
             if not parts:
                 continue
             transforms = (parts[0][1] if len(parts) == 1
-                          else np.concatenate([m for _, m, _ in parts]))
+                          else np.concatenate([m for _, m, _, _ in parts]))
             try:
                 first = self.scene.add_instances(pid, transforms, srcs[0].table)
             except ValueError as exc:
-                names = ", ".join(sorted({f"'{src.name}'" for src, _, _ in parts}))
+                names = ", ".join(sorted({f"'{src.name}'" for src, _, _, _ in parts}))
                 self.reporter.warning(f"Object {names}: {len(transforms)} instance(s) not "
                                       f"rendered ({exc})")
                 continue
             self._set_infos(first, parts)
             instances += len(transforms)
-            for src, m, _ in parts:
+            start = first
+            for src, m, _, finite in parts:
                 stats.names.extend([src.name] * len(m))
+                src.core_ids[finite] = np.arange(start, start + len(m), dtype=np.int64)
+                start += len(m)
             emissive = self.materials.emissive
             if any(i in emissive for i in srcs[0].table.tolist()) \
-                    and any(src.instanced for src, _, _ in parts):
+                    and any(src.instanced for src, _, _, _ in parts):
                 self.reporter.info(f"{len(transforms)} instance(s) of '{parts[0][0].name}' have "
                                    f"an emissive material: each one is a light (rendered, but "
                                    f"many emitting instances make light sampling noisier)")
@@ -214,7 +219,7 @@ class InstanceExport:
         """The Object Info constants of the instances first, first + 1, ... (parts' order) that
         their materials read (Scene.set_instance_constants), and their pass indices."""
         start = first
-        for src, m, info in parts:
+        for src, m, info, _ in parts:
             ids = np.arange(start, start + len(m), dtype=np.int64)
             layers = instance_constant_layers(src.mesh_key[1], info) if info is not None else None
             if layers is not None:

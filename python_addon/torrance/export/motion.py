@@ -2,12 +2,16 @@
 """Motion blur as Cycles 3.4 renders it (Render Properties > Motion Blur; Object Properties >
 Motion Blur): the camera's and the moving objects' transforms, and the deformation of meshes,
 sampled at the shutter's sub-frame times through RenderEngine.frame_set, for
-Scene.set_camera_motion and Scene.set_mesh_motion. Final renders only (the viewport, as Cycles',
-shows none). Objects added as instances (particles, collection instances) stay still."""
+Scene.set_camera_motion and Scene.set_mesh_motion; instances through instance_motion.py, the
+shutter's curve and rolling through shutter.py. Final renders only (the viewport, as Cycles',
+shows none). Lamps stay where the frame puts them, as in Cycles (3.4 to 5.x move no lamp)."""
+
+from contextlib import contextmanager
 
 import numpy as np
 
 from .mesh import MeshCache, world_mesh
+from .shutter import export_shutter
 
 # Cycles' Motion Steps limit (2^(steps-1) segments, steps in 1..7: up to 129 time steps).
 _MAX_STEPS = 129
@@ -49,44 +53,61 @@ def shutter_position(scene):
     return getattr(owner, "motion_blur_position", 'CENTER')
 
 
-def shutter_offsets(scene, steps):
-    """The sub-frame offsets (in frames, from the current frame) of `steps` time steps evenly
-    over the shutter (Cycles' motion_time: -1..1 over Shutter frames), moved by Position: Start
-    on Frame opens the shutter at the frame, End on Frame closes it there."""
+def shutter_centre(scene):
+    """The shutter's centre in frames from the current frame (Position: Start on Frame opens
+    the shutter at the frame, End on Frame closes it there)."""
     shutter = float(scene.render.motion_blur_shutter)
-    position = shutter_position(scene)
-    centre = {'START': 0.5 * shutter, 'END': -0.5 * shutter}.get(position, 0.0)
-    return [centre + 0.5 * shutter * (2.0 * s / (steps - 1) - 1.0) for s in range(steps)]
+    return {'START': 0.5 * shutter, 'END': -0.5 * shutter}.get(shutter_position(scene), 0.0)
 
 
-def report_ignored(scene, reporter):
-    """What of Cycles' motion blur settings Torrance does not render."""
-    cycles = getattr(scene, "cycles", None)
-    if cycles is not None and getattr(cycles, "rolling_shutter_type", 'NONE') != 'NONE':
-        reporter.info("Torrance does not render Rolling Shutter: the shutter opens at once")
-    curve = getattr(scene.render, "motion_blur_shutter_curve", None)
-    if curve is not None and curve.curves:
-        points = curve.curves[0].points
-        if any(abs(p.location[1] - 1.0) > 1e-6 for p in points):
-            reporter.info("Torrance does not render the Shutter Curve: the shutter is open "
-                          "evenly over its time")
+def shutter_offsets(scene, steps):
+    """The sub-frame offsets (in frames, from the shutter's centre) of `steps` time steps evenly
+    over the shutter (Cycles' motion_time: -1..1 over Shutter frames)."""
+    shutter = float(scene.render.motion_blur_shutter)
+    return [0.5 * shutter * (2.0 * s / (steps - 1) - 1.0) for s in range(steps)]
+
+
+def frame_set(engine, time):
+    """RenderEngine.frame_set at a time in frames (whole frame and subframe)."""
+    whole = int(np.floor(time))
+    engine.frame_set(whole, float(time - whole))
+
+
+@contextmanager
+def at_shutter_centre(engine, scene):
+    """The export's frame, as Cycles' sync: with motion blur and Position Start or End on Frame
+    the scene is read at the shutter's centre (what does not move there: lamps, objects
+    without Motion Blur, the world), the current frame restored after. Yields the centre's
+    time in frames."""
+    frame, subframe = scene.frame_current, float(scene.frame_subframe)
+    delta = shutter_centre(scene) if motion_blur_enabled(scene, engine) else 0.0
+    if delta:
+        frame_set(engine, frame + subframe + delta)
+    try:
+        yield frame + subframe + delta
+    finally:
+        if delta:
+            engine.frame_set(frame, subframe)
 
 
 class MotionSampler:
     """The camera's and objects' states at the shutter's time steps.
 
     track(name, steps, deform) before sample(); sample() visits every time step (the finest
-    grid of the tracked step counts: Cycles' steps nest, 2^k + 1 each) and restores the frame.
+    grid of the tracked step counts: Cycles' steps nest, 2^k + 1 each) and returns to the
+    shutter's centre.
     """
 
-    def __init__(self, engine, depsgraph, reporter):
+    def __init__(self, engine, depsgraph, reporter, centre):
         self.engine = engine
+        self.centre = centre     # the shutter's centre, in frames (at_shutter_centre)
         self.depsgraph = depsgraph
         self.reporter = reporter
         self.tracked = {}        # object name -> (steps, deform, mesh needs)
         self.camera = None       # the camera object's name, when tracked
         self.states = {}         # object name -> [(matrix 4x4 float64, LocalMesh or None)]
         self.meshes = []         # (name, mesh id, frame's LocalMesh, triangles, keep) added
+        self.instances = None    # an InstanceMotion (instance_motion.py) sampled too, or None
 
     def on_added(self, name, local):
         """add_world_mesh's on_added for object `name` read as `local`: remembers its mesh."""
@@ -97,16 +118,18 @@ class MotionSampler:
     def export(self, tc_scene, camera):
         """Samples the camera object and the tracked objects over the shutter and gives the
         core the motion of those that move; the frame is restored after."""
-        report_ignored(self.depsgraph.scene, self.reporter)
         self.track_camera(camera.name, object_motion_steps(camera))
         self.sample()
         matrices = self.camera_matrices()
         if matrices is not None:
             tc_scene.set_camera_motion(matrices)
+        export_shutter(tc_scene, self.depsgraph.scene, self.reporter)
         for name, mesh_id, local, triangles, keep in self.meshes:
             arrays = self.mesh_motion(name, local, triangles, keep)
             if arrays is not None:
                 tc_scene.set_mesh_motion(mesh_id, arrays[0], corner_normals=arrays[1])
+        if self.instances is not None:
+            self.instances.export(tc_scene, self.reporter)
 
     def track(self, name, steps, deform, needs=None):
         """Samples object `name` at `steps` time steps (< 2: not at all); deform: its evaluated
@@ -120,19 +143,19 @@ class MotionSampler:
             self.camera = name
 
     def sample(self):
-        if not self.tracked:
+        moving = self.instances.max_steps if self.instances is not None else 0
+        if not self.tracked and not moving:
             return
         scene = self.depsgraph.scene
-        steps = max(s for s, _, _ in self.tracked.values())
-        frame = scene.frame_current
-        subframe = float(scene.frame_subframe)
+        steps = max([s for s, _, _ in self.tracked.values()] + [moving])
         try:
             for k, offset in enumerate(shutter_offsets(scene, steps)):
-                whole = np.floor(subframe + offset)
-                self.engine.frame_set(int(frame + whole), float(subframe + offset - whole))
+                frame_set(self.engine, self.centre + offset)
                 self._read_step(k, steps)
+                if moving:
+                    self.instances.read_step(self.depsgraph, k, steps)
         finally:
-            self.engine.frame_set(frame, subframe)
+            frame_set(self.engine, self.centre)
 
     def _read_step(self, k, finest):
         cache = MeshCache()

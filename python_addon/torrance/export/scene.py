@@ -20,7 +20,9 @@ from .light_groups import LightGroups
 from .lights import export_light
 from .mesh import MeshCache, add_world_mesh, mesh_materials
 from .mesh_attributes import dupli_record, instancer_record, object_info
-from .motion import MotionSampler, motion_blur_enabled, object_motion_steps, uses_deform_motion
+from .instance_motion import InstanceMotion
+from .motion import (MotionSampler, at_shutter_centre, motion_blur_enabled, object_motion_steps,
+                     uses_deform_motion)
 from .world import export_world
 
 # Types whose geometry is a mesh. Only 'MESH' entries of the depsgraph are exported; the
@@ -146,7 +148,15 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
     call (~3.5 us per instance in all: Blender's iteration 0.7, the key 1.0, the matrix 1.8);
     the instanced meshes go to the core once each as prototypes, and each (prototype,
     material table) is one add_instances call.
+
+    With motion blur the scene is read at the shutter's centre (at_shutter_centre, as Cycles).
     """
+    with at_shutter_centre(engine, depsgraph.scene) as centre:
+        return _export(tc, depsgraph, reporter, engine, should_stop, centre)
+
+
+def _export(tc, depsgraph, reporter, engine, should_stop, centre):
+    """export_scene at the shutter's centre `centre` (frames)."""
     t0 = time.perf_counter()
     stats = ExportStats()
     tc_scene = tc.Scene()
@@ -206,6 +216,11 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
         # (object name, evaluated mesh pointer[, holdout, shadow catcher]) -> Source, 'LIGHT' or
         # None, for instances
         seen = {}
+        motion = (MotionSampler(engine, depsgraph, reporter, centre)
+                  if motion_blur_enabled(depsgraph.scene, engine) else None)
+        moving_instances = None
+        if motion is not None:
+            moving_instances = motion.instances = InstanceMotion(depsgraph.scene, reporter)
         holdouts = holdout_names(depsgraph)
         catchers = shadow_catcher_names(depsgraph)
         masks = bool(holdouts or catchers)
@@ -230,6 +245,8 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
                         what.light_group = groups.of(obj)
                         what.cryptomatte = crypto.entry(obj)
                 if what.__class__ is Source:
+                    if moving_instances is not None:
+                        moving_instances.note(inst, what)
                     what.add(inst.matrix_world)
                     if what.random_ids is not None:         # its materials read Object Info
                         what.random_ids.append(inst.random_id)
@@ -273,8 +290,6 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
     meshes.read_pending(poll)
     meshes.flush(stats)
     cache = MeshCache()
-    motion = (MotionSampler(engine, depsgraph, reporter)
-              if motion_blur_enabled(depsgraph.scene, engine) else None)
     for (obj, name, matrix, slot_to_material, needs_uvs, info, pass_index, holdout,
          shadow_catcher, light_group, cryptomatte) in flattened:
         poll()

@@ -65,6 +65,14 @@ struct CameraParams {
   // Motion blur: the camera's camera_to_world (row-major) at >= 2 times evenly spaced over the
   // shutter's time [0, 1]; empty: it does not move (camera_to_world is its frame throughout).
   std::vector<std::array<float, 16>> motion;
+  // The shutter (Cycles' camera_sample): how a camera sample's time u in [0, 1) becomes its time
+  // over the shutter. shutter_table: the inverted CDF of Render > Motion Blur > Shutter Curve at
+  // evenly spaced u, read with linear interpolation (empty: the shutter is open evenly, time = u).
+  // rolling_shutter: Rolling Shutter > Top-Bottom, the top row at time 0 and the bottom at 1,
+  // blended with the shutter's time by rolling_shutter_duration (0: rolling only).
+  std::vector<float> shutter_table;
+  bool rolling_shutter = false;
+  float rolling_shutter_duration = 0.1f;
 };
 
 // Blender's DOF F-Stop as Cycles 3.4 converts it (blender/camera.cpp: lens * 1e-3 / (2 fstop), or
@@ -129,6 +137,9 @@ class Camera {
   // linear, rotation by quaternion slerp between the two steps around it).
   bool moves() const { return !motion_positions_.empty(); }
   Ray at_time(Ray r, float time) const;
+  // The shutter time of a camera sample of pixel row y_from_top drawn with u in [0, 1]
+  // (CameraParams::shutter_table, rolling_shutter).
+  float shutter_time(float u, int y_from_top) const;
 
  private:
   // PANORAMIC: the pinhole direction (panorama space, zero outside the projection) at a raster
@@ -136,6 +147,7 @@ class Camera {
   Vec3 panorama_pinhole(float x, float y_from_bottom) const;
   Ray panorama_ray(float x, float y_from_bottom, const Vec2& u_lens) const;
   void set_motion(const std::vector<std::array<float, 16>>& motion);  // camera_motion.cpp
+  void set_shutter(const CameraParams& p);                             // camera_motion.cpp
 
   Vec3 origin_, right_, up_, forward_;
   float half_w_, half_h_;  // half extents of the view plane (at unit distance for PERSPECTIVE)
@@ -150,6 +162,9 @@ class Camera {
   int blades_;
   std::vector<Vec3> motion_positions_;  // per motion step (empty: no motion)
   std::vector<glm::quat> motion_rotations_;
+  std::vector<float> shutter_table_;
+  bool rolling_shutter_ = false;
+  float rolling_duration_ = 0.0f;
 };
 
 }  // namespace torrance

@@ -285,7 +285,13 @@ class Scene final : public ShaderTracer {
   // stay what light sampling and the other static queries see. Throws std::invalid_argument for
   // a bad mesh id, fewer than 2 steps, a step count above 129, NaN/Inf or out-of-range values.
   void set_mesh_motion(uint32_t mesh, size_t steps, const float* positions, const float* corner_normals);
-  // Whether some mesh moves (set_mesh_motion): the integrator then samples a time per path.
+  // Motion blur of instances: instances ids[0..count) (from add_instances) move through `steps`
+  // >= 2 transforms each (steps x count row-major 3x4 matrices, step-major), evenly over the
+  // shutter: Embree's instance motion (linear between steps, as the hits and the emissive
+  // triangles interpolate them at the ray's time). Throws std::invalid_argument for a removed or
+  // unknown id, a step count outside 2..129 or a transform add_instances would refuse.
+  void set_instance_motion(const int64_t* ids, size_t count, size_t steps, const float* transforms);
+  // Whether some mesh or instance moves: the integrator then samples a time per path.
   bool has_motion() const { return has_motion_; }
   // Vertices and triangles of mesh `mesh` from add_mesh (std::invalid_argument for a bad id).
   size_t mesh_vertex_count(uint32_t mesh) const;
@@ -491,6 +497,8 @@ class Scene final : public ShaderTracer {
                                   const float* corner_uvs, bool slots) const;
   void* new_triangle_geometry(const Mesh& mesh) const;  // RTCGeometry, committed
   const Instance& live_instance(int64_t id, const char* during) const;
+  // An instance's object-to-world transform at the thread's ray time (its frame's without motion).
+  std::array<float, 12> instance_transform(const Instance& instance) const;
   void place_instance(Instance& instance, const float* transform);
   // Throws std::invalid_argument("<which> ...") unless the 3x4 matrix m keeps prototype within
   // kMaxCoordinate (limits.h): finite entries within 1e12, the transformed vertex bounds too.
