@@ -2,7 +2,7 @@
 """Motion blur renders like Cycles 3.4's (Render > Motion Blur: Position, Shutter, Rolling
 Shutter, Shutter Curve; Object > Motion Blur: steps, deformation; moving instances and lamps).
 
-Nine animated scenes on a grey floor under a sun, rendered at frame 1 with the shutter open one
+Ten animated scenes on a grey floor under a sun, rendered at frame 1 with the shutter open one
 frame, each by Cycles (seed 0: the reference; seed 1: Cycles' own noise, which sets the bounds)
 and by Torrance (seeds 2 and 3), compared by ratio and 8x8 block means
 (seed_noise.agree_within_seed_noise):
@@ -18,6 +18,7 @@ and by Torrance (seeds 2 and 3), compared by ratio and 8x8 block means
 * an emissive panel sliding over the floor (Position Center): light sampling finds it where
   the path's time puts it, as Cycles' motion triangles;
 * a collection instance whose instancer slides and turns (Embree instance motion);
+* geometry-nodes instances turning with the frame on a still object;
 * a point lamp moving (Position Start): Cycles does not blur lamps but reads them, as the
   whole scene, at the shutter's centre;
 * Rolling Shutter Top-Bottom (Duration 0.1) and a rising Shutter Curve on the moving sphere.
@@ -173,6 +174,40 @@ def moving_instance(scene):
     set_position(scene, 'CENTER')
 
 
+def spinning_gn_instances(scene):
+    """Geometry-nodes instances turning with the scene's frame (Scene Time into Instance on
+    Points' Rotation) on a still object: each instance's own transform moves."""
+    base(scene)
+    owner = testing.plane(scene, "Spinners", 1.0)
+    tree = bpy.data.node_groups.new("Spinners", 'GeometryNodeTree')
+    make.geometry_in_out(tree)
+    n, links = tree.nodes, tree.links
+    out = n.new('NodeGroupOutput')
+    line = n.new('GeometryNodeMeshLine')
+    line.inputs["Count"].default_value = 3
+    line.inputs["Start Location"].default_value = (-1.6, 0.0, 0.5)
+    line.inputs["Offset"].default_value = (1.6, 0.0, 0.0)
+    bar = n.new('GeometryNodeMeshCube')
+    bar.inputs["Size"].default_value = (1.4, 0.3, 0.6)
+    paint = n.new('GeometryNodeSetMaterial')
+    paint.inputs["Material"].default_value = testing.principled("Teal", (0.1, 0.6, 0.6))
+    time = n.new('GeometryNodeInputSceneTime')
+    speed = n.new('ShaderNodeMath')
+    speed.operation = 'MULTIPLY'
+    speed.inputs[1].default_value = 1.2               # radians per frame
+    turn = n.new('ShaderNodeCombineXYZ')
+    iop = n.new('GeometryNodeInstanceOnPoints')
+    links.new(bar.outputs["Mesh"], paint.inputs["Geometry"])
+    links.new(paint.outputs["Geometry"], iop.inputs["Instance"])
+    links.new(line.outputs["Mesh"], iop.inputs["Points"])
+    links.new(time.outputs["Frame"], speed.inputs[0])
+    links.new(speed.outputs[0], turn.inputs["Z"])
+    links.new(turn.outputs[0], iop.inputs["Rotation"])
+    links.new(iop.outputs["Instances"], out.inputs[0])
+    owner.modifiers.new("Spinners", 'NODES').node_group = tree
+    set_position(scene, 'CENTER')
+
+
 LAMP_PATH = ((-1.5, -0.5, 1.6), (1.5, -0.5, 1.6))    # frames 0 and 2
 
 
@@ -257,6 +292,8 @@ VARIANTS = (
     ("collection instance sliding and turning", moving_instance,
      (("instance motion off", "instance_motion", "instance_motion_steps", no_instance_motion),
       ("shutter halved", shutter_halved))),
+    ("geometry-nodes instances turning", spinning_gn_instances,
+     (("instance motion off", "instance_motion", "instance_motion_steps", no_instance_motion),)),
     ("point lamp moving, Start", moving_lamp,
      (("lamp read at the frame", "scene", "export_light", lamp_at_frame),)),
     ("rolling shutter", rolling_shutter,
