@@ -25,7 +25,8 @@ from mathutils import Matrix, Vector
 
 from torrance_tools import testing
 from torrance_tools.testing import check
-from torrance_tools.viewport_render import camera_matrices, camera_view, wait_done
+from torrance_tools.viewport_render import (camera_matrices, camera_view, same_as_fresh,
+                                             synced_viewport, wait_done)
 
 
 def build_scene():
@@ -283,31 +284,9 @@ def test_viewport_matches_final_render(tv, tc, scene):
     check(tv.running_renders() == 0, "closing stops the render")
 
 
-def same_as_fresh(state, view, settings, what):
-    """The image of the scene as updated in place equals that of a scene built afresh."""
-    state.ensure_render(view, settings)
-    wait_done(state)
-    updated = state.render.image.copy()
-    fresh = type(state)(state.tc)
-    fresh.sync(bpy.context.evaluated_depsgraph_get())
-    fresh.ensure_render(view, settings)
-    wait_done(fresh)
-    diff = float(np.abs(fresh.render.image - updated).max())
-    fresh.close()
-    print(f"{what}: in-place scene vs a fresh one: max difference {diff:.2e}")
-    check(diff < 1e-4, f"{what}: the updated scene renders as a fresh one (difference {diff})")
-
-
 def test_restarts_and_cache(tv, tc, scene):
     """Edits arrive as depsgraph updates: driven through depsgraph_update_post, like view_update."""
-    state = tv.ViewportState(tc)
-    state.sync(bpy.context.evaluated_depsgraph_get())
-    log = []
-
-    def handler(_scene, depsgraph):
-        log.append(state.sync(depsgraph))
-    bpy.app.handlers.depsgraph_update_post.append(handler)
-    try:
+    with synced_viewport(tv, tc) as (state, log):
         w, h = 96, 72
         settings = tv.viewport_settings(scene)
         view = camera_view(tv, scene, w, h)
@@ -405,9 +384,6 @@ def test_restarts_and_cache(tv, tc, scene):
         check(state.render_key[0] == serial, "the render uses the newest scene")
         wait_done(state)
         check(state.render.error is None, f"render error {state.render.error}")
-    finally:
-        bpy.app.handlers.depsgraph_update_post.remove(handler)
-        state.close()
 
 
 def test_studio_world(tv, tc, scene):

@@ -149,4 +149,5 @@ def main():
         ("coordinates wrong", VolumeSpace, "attribute", coordinates_world)))
 
 
-testing.run(main)
+if __name__ == "__main__":
+    testing.run(main)

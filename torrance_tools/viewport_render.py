@@ -2,9 +2,13 @@
 """Driving the add-on's viewport package without a window (blender tests): a 3D view looking
 through the scene's camera, and waiting for a progressive render to finish."""
 
+import contextlib
 import time
 
 import bpy
+import numpy as np
+
+from torrance_tools.testing import check
 
 
 def camera_matrices(cam_obj, depsgraph, width, height):
@@ -36,3 +40,37 @@ def wait_done(state, timeout=60.0):
         time.sleep(0.002)
     raise AssertionError(f"the viewport render did not finish in {timeout} s: "
                          f"{state.render.stats()}")
+
+
+def same_as_fresh(state, view, settings, what):
+    """The image of the scene as updated in place equals that of a scene built afresh."""
+    state.ensure_render(view, settings)
+    wait_done(state)
+    updated = state.render.image.copy()
+    fresh = type(state)(state.tc)
+    fresh.sync(bpy.context.evaluated_depsgraph_get())
+    fresh.ensure_render(view, settings)
+    wait_done(fresh)
+    diff = float(np.abs(fresh.render.image - updated).max())
+    fresh.close()
+    print(f"{what}: in-place scene vs a fresh one: max difference {diff:.2e}")
+    check(diff < 1e-4, f"{what}: the updated scene renders as a fresh one (difference {diff})")
+
+
+@contextlib.contextmanager
+def synced_viewport(tv, tc):
+    """A ViewportState (tv: the add-on's viewport module) synced with the scene, then with each
+    depsgraph update as view_update would be (through depsgraph_update_post); yields (state, the
+    list of what each sync returned); closed afterwards."""
+    state = tv.ViewportState(tc)
+    state.sync(bpy.context.evaluated_depsgraph_get())
+    log = []
+
+    def handler(_scene, depsgraph):
+        log.append(state.sync(depsgraph))
+    bpy.app.handlers.depsgraph_update_post.append(handler)
+    try:
+        yield state, log
+    finally:
+        bpy.app.handlers.depsgraph_update_post.remove(handler)
+        state.close()

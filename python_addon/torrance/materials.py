@@ -551,8 +551,12 @@ class MeshNeeds(NamedTuple):
 class MaterialTable:
     """Adds each Blender material to a tc.Scene once; maps materials to indices."""
 
-    def __init__(self, tc_scene, reporter, textures, aovs=()):
+    def __init__(self, tc_scene, reporter, textures, aovs=(), depsgraph=None):
         self.scene = tc_scene
+        # The depsgraph being exported (heterogeneous volumes find their meshes in it; the
+        # viewport sets it anew at each update).
+        self.depsgraph = depsgraph
+        self.varying_volumes = set()   # names of the materials with a heterogeneous volume
         self.textures = textures
         self.attribute_ids = AttributeIds()
         self.reader = MaterialReader(reporter, self.textures, self.attribute_ids)
@@ -606,8 +610,9 @@ class MaterialTable:
         """The material's volume (volumes.py), if it has one; one that can not be read or that
         the core refuses is reported and left out (the render goes on without it)."""
         try:
-            volume = material_volume(mat, self.textures, self.reader.reporter)
+            volume = material_volume(mat, self.textures, self.reader.reporter, self.depsgraph)
             if volume is not None and 'program' in volume[0]:
+                self.varying_volumes.add(mat.name)
                 keywords = dict(volume[0])
                 keywords['program'] = self.scene.add_shader_program(*keywords['program'])
                 self.scene.set_material_volume_program(idx, **keywords, pass_through=volume[1])

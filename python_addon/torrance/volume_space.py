@@ -53,33 +53,33 @@ class VolumeSpace:
                               mode=VECTOR_MATH_OPS.index("MULTIPLY_ADD"))
 
 
-def _holders(mat):
-    """The renderable mesh objects with `mat` in a slot (its original datablock compared)."""
-    import bpy
+def _holders(mat, depsgraph):
+    """The depsgraph's (evaluated) mesh objects with `mat` in a slot (original datablocks
+    compared): the objects the render shows."""
     original = getattr(mat, "original", mat)
-    return [obj for obj in bpy.context.scene.objects
-            if obj.type == 'MESH' and not obj.hide_render
+    return [obj for obj in depsgraph.objects
+            if obj.type == 'MESH'
             and any(s.material is not None and s.material.original == original
                     for s in obj.material_slots)]
 
 
-def volume_space(mat, where, reporter):
-    """The VolumeSpace of material `mat`'s volume, or None when no mesh holds it."""
-    import bpy
-    holders = _holders(mat)
+def volume_space(mat, where, reporter, depsgraph):
+    """The VolumeSpace of material `mat`'s volume in the depsgraph being exported (never
+    bpy.context's: a render's depsgraph is its own, the viewport's moves with each update), or
+    None when no mesh holds it (or no depsgraph is given)."""
+    holders = _holders(mat, depsgraph) if depsgraph is not None else []
     if not holders:
         return None
     if len(holders) > 1:
         reporter.warning(f"{where}: its volume is in {len(holders)} objects; Object and Generated "
                          f"coordinates inside it are those of '{holders[0].name}'")
-    depsgraph = bpy.context.evaluated_depsgraph_get()
     corners = []
     for obj in holders:
-        m = np.array(obj.evaluated_get(depsgraph).matrix_world, np.float64)
-        box = np.array([tuple(c) for c in obj.evaluated_get(depsgraph).bound_box], np.float64)
+        m = np.array(obj.matrix_world, np.float64)
+        box = np.array([tuple(c) for c in obj.bound_box], np.float64)
         corners.append(box @ m[:3, :3].T + m[:3, 3])
     corners = np.concatenate(corners)
-    first = holders[0].evaluated_get(depsgraph)
+    first = holders[0]
     mesh = first.data
     return VolumeSpace(np.array(first.matrix_world), tuple(mesh.texspace_location),
                        tuple(mesh.texspace_size), corners.min(axis=0), corners.max(axis=0))

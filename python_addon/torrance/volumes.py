@@ -248,18 +248,20 @@ def _output_sockets(owner):
     return output.inputs.get("Surface"), output.inputs.get("Volume")
 
 
-def material_volume(mat, textures, reporter):
+def material_volume(mat, textures, reporter, depsgraph=None):
     """(set_material_volume keywords without the material, pass_through) for a material whose
     output's Volume is linked to something that renders, else None; keywords with a 'program'
     (its add_shader_program arguments) are set_material_volume_program's (a heterogeneous
     volume). pass_through: its Surface is unlinked (Cycles renders such a surface as a boundary
-    rays cross)."""
+    rays cross). depsgraph: the one being exported, where a heterogeneous volume's meshes are
+    found (volume_space.py); without it the volume is read as homogeneous."""
     sockets = _output_sockets(mat) if mat is not None else None
     if sockets is None or sockets[1] is None or source_socket(sockets[1]) is None:
         return None
     where = f"Material '{mat.name}'"
     medium = VolumeReader(where, textures, reporter,
-                          space=lambda: volume_space(mat, where, reporter)).read(sockets[1])
+                          space=lambda: volume_space(mat, where, reporter,
+                                                     depsgraph)).read(sockets[1])
     if medium is None:
         return None
     return medium, sockets[0] is None or source_socket(sockets[0]) is None

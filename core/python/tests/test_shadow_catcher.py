@@ -12,9 +12,11 @@ LIT = np.cos(np.pi / 4)
 CARD, SHADOW, FLOOR = slice(0, 3), slice(6, 11), slice(13, 16)
 
 
-def render(catcher=True, instanced=False, transparent=True, shadow_catcher_pass=False):
+def render(catcher=True, instanced=False, transparent=True, shadow_catcher_pass=False, fog=None):
     """(image, passes) of the card (z = 0.5, x < -0.25) over the floor (z = 0); its shadow falls
-    on the floor for x < 0.25; an orthographic camera sees x, y in [-0.5, 0.5]."""
+    on the floor for x < 0.25; an orthographic camera sees x, y in [-0.5, 0.5]. fog: the
+    (z0, z1, sigma_a) of an absorbing volume-only box (x in [-0.5, 0.6]) the camera looks
+    through, clear of the sun's way to the floor's lit columns."""
     scene = tc.Scene()
     white = scene.add_material(base_color=(1, 1, 1), specular=0.0, roughness=0.0)
     tri = np.array([[0, 1, 2], [0, 2, 3]], np.int32)
@@ -31,6 +33,12 @@ def render(catcher=True, instanced=False, transparent=True, shadow_catcher_pass=
         if catcher:
             scene.set_mesh_shadow_catcher(mesh)
     scene.add_sun(direction=(1, 0, -1), strength=np.pi, angle=0.0)
+    if fog is not None:
+        from test_volumes import box
+        v, t = box((-0.5, -50, fog[0]), (0.6, 50, fog[1]))
+        haze = scene.add_material()
+        scene.add_mesh(v, t, material_indices=[haze] * len(t))
+        scene.set_material_volume(haze, sigma_a=(fog[2],) * 3, pass_through=True)
     matrix = np.eye(4)
     matrix[2, 3] = 5.0
     scene.set_camera(matrix, type="ORTHO", ortho_scale=1.0)
@@ -90,3 +98,15 @@ def test_without_catchers_nothing_changes():
     assert np.all(passes["Shadow Catcher"] == 1.0)
     assert column_means(plain, FLOOR, 0) == pytest.approx(LIT, abs=2e-3)
     assert column_means(plain, SHADOW, 0) < 1e-6
+
+
+@pytest.mark.parametrize("fog", [(2.0, 2.2, 2.0), (1.0, 6.0, 0.1)],
+                         ids=["in front", "around the camera"])
+def test_the_shadow_catcher_pass_through_a_volume(fog):
+    """A volume between the camera and the catcher: Cycles splits the path after the volume
+    segment, so the pass (the light with over without the objects) is 1 in the light, as
+    without it (T = exp(-0.4) either way)."""
+    image, passes = render(shadow_catcher_pass=True, fog=fog)
+    catcher = passes["Shadow Catcher"]
+    assert np.abs(catcher[:, FLOOR] - 1.0).max() < 1e-3
+    assert np.abs(catcher[:, SHADOW]).max() < 1e-6

@@ -58,6 +58,9 @@ struct PathContext {
   // Shadow catchers (film/shadow_catcher.h): camera paths split at the first catcher they meet
   // (false without catchers, and for the catcher-only half).
   bool split_at_catchers = false;
+  // The catcher-only half (shadow_catcher_split.h): its camera ray's media are the split
+  // path's, whose throughput it takes, so its first segment passes them untouched.
+  bool catcher_half = false;
 };
 
 // Where a camera sample goes.
@@ -65,6 +68,8 @@ struct PixelSample {
   int x = 0, y = 0;           // in the rendered window
   float guide_weight = 1.0f;  // what the path records for guiding is multiplied by it (pixel_weight, guiding.h)
   BranchRecord* record = nullptr;  // the pilot's (first_bounce_splits.h); null in the render
+  // The media the path starts in, if not the camera's: the catcher-only half's, the split's.
+  const MediumStack* start_media = nullptr;
 };
 
 // Everything one camera sample brings back, split as Blender's passes.
@@ -92,6 +97,7 @@ struct PathRadiance {
   CryptomatteSample cryptomatte;
   // The split at a shadow catcher (film/shadow_catcher.h; only in scenes with catchers).
   ShadowCatcherSample catcher;
+  MediumStack catcher_media;  // with media: those at the split (shadow_catcher_split.h)
 
   Vec3 combined() const {
     return emission + environment + diffuse_direct + diffuse_indirect + glossy_direct + glossy_indirect;

@@ -7,6 +7,7 @@ namespace torrance {
 PathContext catcher_half_context(const PathContext& ctx) {
   PathContext half = ctx;
   half.split_at_catchers = false;
+  half.catcher_half = true;
   half.guide = nullptr;
   half.guide_training = false;
   half.roulette = nullptr;
@@ -23,6 +24,7 @@ void trace_catcher_half(const PathContext& catcher_ctx, TraceFn trace, const Ray
   };
   PixelSample half_pixel = pixel;
   half_pixel.record = nullptr;
+  half_pixel.start_media = &r.catcher_media;  // (empty without media: unused then)
   Vec3 light;
   {
     CatchersOnly only;

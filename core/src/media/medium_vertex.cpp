@@ -22,7 +22,7 @@ MediumNextEvent medium_next_event(const Scene& scene, const Vec3& p, const Vec3&
   ray.tmin = 0.0f;
   ray.tmax = std::isinf(ls.distance) ? ls.distance : ls.distance * (1.0f - 1e-4f);
   const Vec3 transmittance = media_shadow_transmittance(scene, ray, stack, max_transparent, state, u.w);
-  if (!(max_component(transmittance) > 0.0f)) return out;
+  if (!(max_abs_component(transmittance) > 0.0f)) return out;
   const float mis = ls.pdf > 0.0f ? power_heuristic(chosen.probability * ls.pdf, phase) : 1.0f;
   out.light = ls.weight * transmittance * (phase * mis / chosen.probability);
   out.sample = ls;

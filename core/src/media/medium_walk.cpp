@@ -41,7 +41,7 @@ MediumWalk walk_media(const Scene& scene, Ray& ray, SurfaceHit& hit, bool& found
         return walk;
       }
       walk.light_throughput = throughput;
-      if (!(max_component(throughput) > 0.0f)) {
+      if (!(max_abs_component(throughput) > 0.0f)) {
         found = false;  // nothing comes back through this stretch
         walk.distance = passed_length + t_end;
         return walk;
@@ -74,7 +74,7 @@ Vec3 media_shadow_transmittance(const Scene& scene, Ray ray, MediumStack stack, 
     } else if (stack.mix().extinguishes()) {
       transmittance *= torrance::transmittance(stack.mix().sigma_t(), std::max(t_end - ray.tmin, 0.0f));
     }
-    if (!found || !(max_component(transmittance) > 0.0f)) return transmittance;
+    if (!found || !(max_abs_component(transmittance) > 0.0f)) return transmittance;
     if (media.pass_through(hit.material)) {
       stack.cross(media, hit.material, glm::dot(hit.geometric_normal, ray.dir) < 0.0f);
     } else {

@@ -2,9 +2,13 @@
 // converges to what Cycles' ray marching converges to as its step shrinks: free flights by
 // spectral tracking (Kutz et al. 2017: tentative collisions at the mix's majorant rate, each a
 // real scattering or a null collision chosen in proportion to the path's throughput times the
-// coefficients, the weights correcting every channel; a point above the majorant gives a
-// negative null coefficient, still unbiased), emission estimated at every tentative collision,
-// shadow transmittance by ratio tracking. The homogeneous part of a mix is evaluated alongside.
+// coefficients, the weights correcting every channel), emission estimated at every tentative
+// collision, shadow transmittance by ratio tracking. A point whose extinction exceeds the
+// majorant (a feature the majorant's grid missed) gives a negative null coefficient: the choice
+// takes |p_scatter| / (|p_scatter| + |p_null|) and the path carries the signed weight (weighted
+// delta tracking), so the estimate stays unbiased; the path tracer's checks take |weight|.
+// A heterogeneous medium exists only inside its bounds: tracking covers the hull of the ray's
+// spans through them, the stretches before and after take the mix's constant part alone.
 #pragma once
 
 #include "torrance/media/homogeneous_medium.h"

@@ -162,7 +162,7 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre):
     tc_scene = tc.Scene()
     textures = TextureTable(tc_scene, reporter)
     aovs = view_layer_aovs(depsgraph.view_layer)
-    materials = MaterialTable(tc_scene, reporter, textures, aovs)
+    materials = MaterialTable(tc_scene, reporter, textures, aovs, depsgraph)
     if aovs:
         report_world_aovs(depsgraph.scene.world, reporter)
     materials.uv_pass = bool(getattr(depsgraph.view_layer, "use_pass_uv", False))

@@ -167,6 +167,8 @@ class SceneCache:
         place (transforms, added and removed objects; `stop()` is called first, it must end
         every render of the live scene) or a new one (anything else)."""
         options = options or {}
+        if self.materials is not None:
+            self.materials.depsgraph = depsgraph
         relevant, needs_full = self._invalidate(depsgraph)
         plan, fingerprint = self._plan(depsgraph, options)
         if not (force or relevant or fingerprint != self.fingerprint):
@@ -209,7 +211,9 @@ class SceneCache:
         removed = [eid for eid in self.entries if eid not in new]
         moved = []
         added = []
-        changed = self.changed_materials
+        # A heterogeneous volume's object space and bounds are its meshes' (volume_space.py):
+        # when one of them moves or comes, its material is read again as if edited.
+        changed = self.changed_materials = self.changed_materials | self._moved_volumes(new)
         for eid, (obj, matrix, slots, key) in new.items():
             old = self.entries.get(eid)
             if old is None:
@@ -227,6 +231,18 @@ class SceneCache:
             if mt != old.matrix:
                 moved.append((eid, obj, matrix, slots, key, mt))
         return removed, moved, added
+
+    def _moved_volumes(self, new):
+        """Names of the heterogeneous volumes' materials in entries that moved or are new."""
+        varying = self.materials.varying_volumes if self.materials is not None else set()
+        names = set()
+        for eid, (_obj, matrix, slots, _key) in new.items() if varying else ():
+            old = self.entries.get(eid)
+            if old is None:
+                names.update(varying.intersection(slot_names(slots)))
+            elif matrix_tuple(matrix) != old.matrix:
+                names.update(varying.intersection(old.slots))
+        return names
 
     # -- the live scene's instances ---------------------------------------------------------
     def _add_entry(self, eid, obj, matrix, slots, key, reporter):
@@ -341,7 +357,7 @@ class SceneCache:
         scene = depsgraph.scene
         tc_scene = tc.Scene()
         textures = TextureTable(tc_scene, reporter)
-        materials = MaterialTable(tc_scene, reporter, textures)
+        materials = MaterialTable(tc_scene, reporter, textures, depsgraph=depsgraph)
         if options.get("use_scene_world", True):
             export.export_world(tc_scene, scene.world, reporter, textures)
         else:
