@@ -49,15 +49,27 @@ W, H = 96, 72
 SAMPLES = 32
 
 
-def linear_keys(obj, path, values, frames=(0, 2)):
-    """Keys obj.<path> to values at frames, linearly interpolated."""
-    owner = obj
-    for value, frame in zip(values, frames, strict=True):
-        setattr(owner, path, value)
-        owner.keyframe_insert(path, frame=frame)
-    for fc in owner.animation_data.action.fcurves:
+def action_fcurves(action):
+    """An action's F-curves: Action.fcurves up to Blender 4.x, the layered action's channel
+    bags' in 5.x."""
+    if hasattr(action, "fcurves"):
+        return list(action.fcurves)
+    return [fc for layer in action.layers for strip in layer.strips
+            for bag in strip.channelbags for fc in bag.fcurves]
+
+
+def make_linear(owner):
+    for fc in action_fcurves(owner.animation_data.action):
         for key in fc.keyframe_points:
             key.interpolation = 'LINEAR'
+
+
+def linear_keys(obj, path, values, frames=(0, 2)):
+    """Keys obj.<path> to values at frames, linearly interpolated."""
+    for value, frame in zip(values, frames, strict=True):
+        setattr(obj, path, value)
+        obj.keyframe_insert(path, frame=frame)
+    make_linear(obj)
 
 
 def set_position(scene, position):
@@ -140,9 +152,7 @@ def deforming_sphere(scene):
     key.keyframe_insert("value", frame=0)
     key.value = 1.0
     key.keyframe_insert("value", frame=2)
-    for fc in ob.data.shape_keys.animation_data.action.fcurves:
-        for k in fc.keyframe_points:
-            k.interpolation = 'LINEAR'
+    make_linear(ob.data.shape_keys)
     set_position(scene, 'CENTER')
 
 
