@@ -16,7 +16,8 @@ Blender 4.x/5.x: the spheres are Principled v2 (the base colour is the subsurfac
   the dielectric's reflection, entering by a rough refraction):
   Skin: Subsurface Weight 1, Random Walk (5.3: its new model), Radius (1, 0.4, 0.2) x Scale 0.25;
   Jade: Weight 0.6, Random Walk (Skin), Radius (0.5, 1.5, 1) x Scale 0.2, Subsurface IOR 2;
-  Checker: the Weight from the checker, Random Walk (5.3: Legacy), Radius (0.3, 0.15, 0.1);
+  Checker: the Weight from the checker, Christensen-Burley (Cycles' disk sampling), Radius
+      (1, 0.6, 0.4);
   Suzanne the node as in 3.4, Random Walk (5.3: its new model).
 Rendered 160x80 at 64 spp, max bounces 4, by Cycles (seed 0: reference, seed 1: its own noise)
 and by Torrance (seeds 2 and 3, averaged); bounds: torrance_tools/sphere_agreement.py (Suzanne's
@@ -24,7 +25,8 @@ disk: its face). The test re-renders Torrance with faults (on its side only) and
 fail the bounds: subsurface treated as diffuse (Subsurface 0 with the mixed colour as base; v2:
 Subsurface Weight 0; the node as a Diffuse BSDF of its Color), the radius ignored (1 m in every
 channel; v2: Subsurface Scale ignored), the IOR ignored (Jade's 2 as 1.4), the checker ignored;
-v2: Jade's method read as Random Walk; 5.3: Skin's Random Walk read as Random Walk (Legacy).
+v2: Jade's method read as Random Walk, Checker's Christensen-Burley read as Random Walk; 5.3:
+Skin's Random Walk read as Random Walk (Legacy).
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \\
          --python blender_tests/test_subsurface_agreement.py
@@ -56,7 +58,7 @@ NODE_SCALE, NODE_RADIUS = 0.2, (1.0, 0.5, 0.25)
 V2_SPHERES = {
     "Skin": (1.0, 'RANDOM_WALK', (1.0, 0.4, 0.2), 0.25),
     "Jade": (0.6, 'RANDOM_WALK_SKIN', (0.5, 1.5, 1.0), 0.2),
-    "Checker": ("checker", 'RANDOM_WALK_LEGACY', (0.3, 0.15, 0.1), 1.0),
+    "Checker": ("checker", 'BURLEY', (1.0, 0.6, 0.4), 1.0),
 }
 
 
@@ -222,6 +224,11 @@ def faults(scene, directory):
         out.append(("Skin method read as Random Walk", render_torrance(scene, directory,
                                                                       "method")))
         node.subsurface_method = 'RANDOM_WALK_SKIN'
+        _tree, node = surface_node("Checker")      # Christensen-Burley as Random Walk
+        node.subsurface_method = 'RANDOM_WALK'
+        out.append(("Christensen-Burley read as Random Walk", render_torrance(scene, directory,
+                                                                             "burley")))
+        node.subsurface_method = 'BURLEY'
     if is_v2() and v2_method('RANDOM_WALK_LEGACY') == 'RANDOM_WALK_LEGACY':
         # Blender 5.3: Skin's Random Walk (the new model) read as Random Walk (Legacy).
         _tree, node = surface_node("Skin")

@@ -187,7 +187,8 @@ void init_scene(py::module_& m) {
              std::array<float, 3> subsurface_color, float subsurface_ior, float subsurface_anisotropy,
              int subsurface_register, int subsurface_radius_register, int subsurface_color_register,
              bool subsurface_fixed_radius, float subsurface_entry_alpha, bool subsurface_skin,
-             float subsurface_min_footprint, bool subsurface_after_diffuse, bool subsurface_van_de_hulst) {
+             float subsurface_min_footprint, bool subsurface_after_diffuse, bool subsurface_van_de_hulst,
+             bool subsurface_burley) {
             if (glass_distribution != "GGX" && glass_distribution != "BECKMANN")
               throw py::value_error("glass_distribution must be 'GGX' or 'BECKMANN', got '" + glass_distribution +
                                     "'");
@@ -229,6 +230,7 @@ void init_scene(py::module_& m) {
             mat.subsurface_min_footprint = subsurface_min_footprint;
             mat.subsurface_after_diffuse = subsurface_after_diffuse;
             mat.subsurface_van_de_hulst = subsurface_van_de_hulst;
+            mat.subsurface_burley = subsurface_burley;
             MaterialTextures tex;
             tex.base_color = base_color_texture;
             tex.metallic = metallic_texture;
@@ -295,6 +297,7 @@ void init_scene(py::module_& m) {
           py::arg("subsurface_fixed_radius") = false, py::arg("subsurface_entry_alpha") = -1.0f,
           py::arg("subsurface_skin") = false, py::arg("subsurface_min_footprint") = 0.0f,
           py::arg("subsurface_after_diffuse") = false, py::arg("subsurface_van_de_hulst") = false,
+          py::arg("subsurface_burley") = false,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
@@ -328,7 +331,7 @@ void init_scene(py::module_& m) {
           "of that GGX alpha, < 0: 3.4's Lambertian one; subsurface_skin: 4.x's Random Walk (Skin); "
           "subsurface_min_footprint: Cycles 4.0-4.4's diffuse fallback below that share of the ray's footprint; "
           "subsurface_after_diffuse: Cycles 5.x's walks after a diffuse bounce; subsurface_van_de_hulst: "
-          "Blender 5.3's Random Walk), Principled v2's Subsurface Weight (brdf_model PRINCIPLED_V2: "
+          "Blender 5.3's Random Walk; subsurface_burley: Christensen-Burley's disk), Principled v2's Subsurface Weight (brdf_model PRINCIPLED_V2: "
           "subsurface), or a Subsurface Scattering node's closure (a mixture's 'subsurface' "
           "component: base_color its Color, subsurface_radius its Radius x Scale), from the program's "
           "subsurface_register / subsurface_radius_register / subsurface_color_register when given.")

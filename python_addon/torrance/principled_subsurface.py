@@ -12,18 +12,17 @@ Random Walk, core/src/subsurface/):
 * the Principled BSDF v2's (Blender 4.x/5.x) Subsurface Weight (any graph), Subsurface Radius x
   Subsurface Scale, Subsurface IOR (Skin) and Subsurface Anisotropy (values), read_subsurface.
 
-Cycles' methods: Random Walk and Random Walk (Fixed Radius) are rendered as they are;
-Christensen-Burley is rendered as Random Walk (Fixed Radius), whose radius it shares, and
-reported. Blender 4.x/5.x: Random Walk and Random Walk (Skin) as Cycles of the version
-(version_flags): 4.0-4.4 shade a radius below a quarter of the ray's footprint as diffuse, 5.x
-walks after a diffuse bounce, and 5.3's Random Walk is its new model (the radius as given, d'Eon's
-albedo mapping; Random Walk (Legacy) is 4.x's). Christensen-Burley is rendered as 4.x's Random Walk
-(5.3: Legacy) and reported."""
+Cycles' methods: Random Walk, Random Walk (Fixed Radius) and Christensen-Burley (its disk
+sampling of Burley's profile) are rendered as they are. Blender 4.x/5.x: Random Walk, Random Walk
+(Skin) and Christensen-Burley as Cycles of the version (version_flags): 4.0-4.4 shade a radius
+below a quarter of the ray's footprint as diffuse, 5.x walks after a diffuse bounce, and 5.3's
+Random Walk is its new model (the radius as given, d'Eon's albedo mapping; Random Walk (Legacy) is
+4.x's)."""
 
 import bpy
 
 from .material_values import clamp, color3
-from .nodes import finite_or, node_label
+from .nodes import finite_or
 from .principled_coat import layer_inputs
 
 _SOCKETS_V1 = dict(subsurface="Subsurface", subsurface_radius="Subsurface Radius",
@@ -42,14 +41,12 @@ def _radius(value, fallback=(1.0, 0.2, 0.1)):
     return tuple(max(0.0, c) for c in r)
 
 
-def _fixed_radius(reader, mat, node, method):
-    """Whether Cycles 3.4's `method` scales the radius as Fixed Radius; Burley reported."""
-    if method in _METHODS:
-        return _METHODS[method]
-    reader.reporter.warning(f"Material '{mat.name}': {node_label(node)} uses the "
-                            f"{method.replace('_', ' ').title()} subsurface method; Torrance "
-                            f"renders it as Random Walk (Fixed Radius)")
-    return True
+def _method_v3(method):
+    """Cycles 3.4's `method` as arguments: Fixed Radius scales the radius by 1 / (4 pi),
+    Christensen-Burley is its disk sampling."""
+    if method == 'BURLEY':
+        return dict(subsurface_burley=True)
+    return dict(subsurface_fixed_radius=_METHODS.get(method, True))
 
 
 def _medium(reader, mat, node, ior_name, anisotropy_name):
@@ -71,19 +68,15 @@ def version_flags(anisotropy):
     return out
 
 
-def _method_v4(reader, mat, node, method, methods):
+def _method_v4(method, methods):
     """Blender 4.x/5.x's method as arguments: Random Walk (5.3's new model where the version
-    has Random Walk (Legacy)), Skin, Legacy; Christensen-Burley reported, rendered as the 4.x
-    Random Walk (5.3: Legacy)."""
+    has Random Walk (Legacy)), Skin, Christensen-Burley (its disk sampling), Legacy."""
     if method == 'RANDOM_WALK_SKIN':
         return dict(subsurface_skin=True)
+    if method == 'BURLEY':
+        return dict(subsurface_burley=True)
     if method == 'RANDOM_WALK' and 'RANDOM_WALK_LEGACY' in methods:
         return dict(subsurface_van_de_hulst=True)
-    if method not in ('RANDOM_WALK', 'RANDOM_WALK_LEGACY'):
-        legacy = 'Random Walk (Legacy)' if 'RANDOM_WALK_LEGACY' in methods else 'Random Walk'
-        reader.reporter.warning(f"Material '{mat.name}': {node_label(node)} uses the "
-                                f"{method.replace('_', ' ').title()} subsurface method; Torrance "
-                                f"renders it as {legacy}")
     return dict(subsurface_fixed_radius=True)
 
 
@@ -103,7 +96,7 @@ def _read_subsurface_v2(reader, mat, node):
     return dict(subsurface=clamp(values['subsurface'], 0.0, 1.0),
                 subsurface_radius=tuple(scale * r for r in radius),
                 subsurface_ior=max(1e-5, finite_or(v(mat, node, "Subsurface IOR", 1.4), 1.4)),
-                **version_flags(anisotropy), **_method_v4(reader, mat, node, method, methods))
+                **version_flags(anisotropy), **_method_v4(method, methods))
 
 
 def read_subsurface(reader, mat, node, version):
@@ -118,7 +111,7 @@ def read_subsurface(reader, mat, node, version):
                 subsurface_radius=_radius(values['subsurface_radius']),
                 subsurface_color=tuple(clamp(c, 0.0, 1.0) for c in color3(
                     values['subsurface_color'], _DEFAULTS['subsurface_color'])),
-                subsurface_fixed_radius=_fixed_radius(reader, mat, node, method),
+                **_method_v3(method),
                 **_medium(reader, mat, node, "Subsurface IOR", "Subsurface Anisotropy"))
 
 
@@ -136,10 +129,10 @@ def read_subsurface_node(reader, mat, node):
                **_medium(reader, mat, node, "IOR", "Anisotropy"))
     methods = node.bl_rna.properties['falloff'].enum_items
     if 'RANDOM_WALK_SKIN' not in methods:   # Blender 3.x
-        out['subsurface_fixed_radius'] = _fixed_radius(reader, mat, node, method)
+        out.update(_method_v3(method))
         return out
     out.update(version_flags(finite_or(v(mat, node, "Anisotropy", 0.0), 0.0)))
-    out.update(_method_v4(reader, mat, node, method, methods))
+    out.update(_method_v4(method, methods))
     if method != 'RANDOM_WALK_SKIN':
         roughness = clamp(finite_or(v(mat, node, "Roughness", 1.0), 1.0), 0.0, 1.0)
         out['subsurface_entry_alpha'] = roughness

@@ -18,6 +18,7 @@
 #include "torrance/integrator/ray_log.h"
 #include "torrance/lights/light_choice.h"
 #include "torrance/lights/mirror_images.h"
+#include "torrance/subsurface/burley_disk.h"
 #include "torrance/subsurface/random_walk.h"
 
 #include <algorithm>
@@ -681,7 +682,9 @@ class PathTracer {
   // The mesh the walk is in, as Scene::intersect_object sees it; the exit's hit kept.
   class ObjectBoundary : public WalkBoundary {
    public:
-    ObjectBoundary(const Scene& scene, uint32_t object, SurfaceHit& exit) : scene_(scene), object_(object), exit_(exit) {}
+    ObjectBoundary(const Scene& scene, uint32_t object, SurfaceHit& exit,
+                   std::array<SurfaceHit, kMaxProbeHits>& probed)
+        : scene_(scene), object_(object), exit_(exit), probed_(probed) {}
     bool nearest(const Vec3& origin, const Vec3& dir, float t_max, float& t) override {
       Ray ray;
       ray.origin = origin;
@@ -692,11 +695,32 @@ class PathTracer {
       t = exit_.t;
       return true;
     }
+    // Christensen-Burley's probe: the object's surfaces one after another along the segment.
+    int probe(const Vec3& origin, const Vec3& dir, float t_max, ProbeHit* hits, int capacity) override {
+      int n = 0;
+      float start = 0.0f;
+      while (n < std::min(capacity, int(probed_.size()))) {
+        Ray ray;
+        ray.origin = origin;
+        ray.dir = dir;
+        ray.tmin = start;
+        ray.tmax = t_max;
+        SurfaceHit& hit = probed_[size_t(n)];
+        if (!scene_.intersect_object(ray, object_, hit)) break;
+        hits[n].t = hit.t;
+        hits[n].normal = hit.geometric_normal;
+        start = hit.t + 1e-6f * std::max(1.0f, hit.t);
+        ++n;
+      }
+      return n;
+    }
+    void keep(int index) override { exit_ = probed_[size_t(index)]; }
 
    private:
     const Scene& scene_;
     uint32_t object_;
     SurfaceHit& exit_;
+    std::array<SurfaceHit, kMaxProbeHits>& probed_;
   };
 
   // The walk the continuation chose (with `probability`) at vertex v, then the exit point: NEE
@@ -705,11 +729,13 @@ class PathTracer {
     static_assert(kMixtures, "subsurface tracers shade every hit with a MixtureBsdf");
     const auto seed = [](float u) { return uint32_t(double(u) * 4294967295.0); };
     Rng rng(seed(u_bsdf.y), seed(u_bsdf.z), 0x55u);
-    ObjectBoundary boundary(ctx_.scene, v.hit->object, subsurface_.exit);
+    ObjectBoundary boundary(ctx_.scene, v.hit->object, subsurface_.exit, subsurface_.probed);
     const Vec3& p = v.hit->position;
     const float offset = 2e-5f * std::max(1.0f, std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))));
-    const WalkExit walk = random_walk(boundary, v.subsurface, p, v.at.ns, v.at.ng, v.wo_world, offset,
-                                      throughput_ * v.subsurface.weight / probability, rng);
+    const Vec3 entering = throughput_ * v.subsurface.weight / probability;
+    const WalkExit walk = v.subsurface.burley
+                              ? burley_disk(boundary, v.subsurface, p, v.at.ng, v.at.backfacing, entering, rng)
+                              : random_walk(boundary, v.subsurface, p, v.at.ns, v.at.ng, v.wo_world, offset, entering, rng);
     if (!walk.exited || !(max_component(walk.throughput) > 0.0f)) return false;
     throughput_ = walk.throughput;
     // The exit, shaded as if the path arrived there from outside (Cycles turns the walk's last
@@ -949,6 +975,7 @@ class PathTracer {
   struct Subsurface {
     bool diffuse_ancestor = false;
     SurfaceHit exit;
+    std::array<SurfaceHit, kMaxProbeHits> probed;  // Christensen-Burley's probe hits
   };
   [[no_unique_address]] std::conditional_t<kSubsurface, Subsurface, NoMedia> subsurface_;
 };

@@ -28,6 +28,7 @@ SubsurfaceLobe lobe(const Vec3& weight, const Vec3& albedo, const Vec3& radius, 
   s.anisotropy = std::clamp(m.subsurface_anisotropy, g_min, s.van_de_hulst ? 0.99f : 0.9f);
   if (s.anisotropy < 0.0f) s.van_de_hulst = true;
   s.fixed_radius = m.subsurface_fixed_radius && !m.subsurface_skin && !m.subsurface_van_de_hulst;
+  s.burley = m.subsurface_burley && !m.subsurface_skin;
   s.entry_alpha = m.subsurface_skin ? 1.0f : std::min(m.subsurface_entry_alpha, 1.0f);
   s.entry_half_lambertian = m.subsurface_skin;
   return s;
@@ -57,7 +58,9 @@ SubsurfaceLobe principled_subsurface(const Material& m, float mix_weight) {
 }
 
 float min_walk_radius(const Material& m, const WalkState& s) {
-  if (!s.walkable || (s.diffuse_ancestor && !m.subsurface_after_diffuse)) return std::numeric_limits<float>::infinity();
+  // Cycles 5.x keeps Christensen-Burley's fallback after a diffuse bounce.
+  const bool after_diffuse = m.subsurface_after_diffuse && !m.subsurface_burley;
+  if (!s.walkable || (s.diffuse_ancestor && !after_diffuse)) return std::numeric_limits<float>::infinity();
   return std::max(m.subsurface_min_footprint * s.footprint, kMinSubsurfaceRadius);
 }
 

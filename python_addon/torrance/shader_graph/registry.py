@@ -162,11 +162,11 @@ CLOSURES = {
                                 "Rotation, Tangent (any graph; unlinked: Geometry > Tangent); "
                                 "v1 subsurface (Cycles' Random Walk: Subsurface, Subsurface "
                                 "Radius, Subsurface Color, any graph; Subsurface IOR, Subsurface "
-                                "Anisotropy; Random Walk (Fixed Radius); Christensen-Burley "
-                                "rendered as it, reported); v2 subsurface (Subsurface Weight, any "
-                                "graph; Radius, Scale, IOR, Anisotropy; Random Walk, Random Walk "
-                                "(Skin), 5.3 Random Walk (Legacy) as Cycles of the version; "
-                                "Christensen-Burley rendered as a walk, reported). Reported: "
+                                "Anisotropy; Random Walk (Fixed Radius), Christensen-Burley); "
+                                "v2 subsurface (Subsurface Weight, any graph; Radius, Scale, "
+                                "IOR, Anisotropy; Random Walk, Random Walk (Skin), "
+                                "Christensen-Burley, 5.3 Random Walk (Legacy) as Cycles of the "
+                                "version). Reported: "
                                 "Clearcoat / Coat Normal, Thin Film, Diffuse Roughness",
     'ShaderNodeBsdfDiffuse': "rendered: Color, Roughness (Lambert, Cycles' Oren-Nayar), Normal; "
                              "alone and in Mix/Add Shader trees alike",
@@ -190,11 +190,12 @@ CLOSURES = {
                                  "Shader trees",
     'ShaderNodeSubsurfaceScattering': "rendered: Color (any graph), Scale, Radius, IOR, "
                                       "Anisotropy, 4.x Roughness (values), Normal; 3.x: Random "
-                                      "Walk and Random Walk (Fixed Radius) as Cycles 3.4, 4.x/5.x: "
-                                      "Random Walk (its rough refractive entry), Random Walk "
-                                      "(Skin) and 5.3's Random Walk (Legacy) as Cycles of the "
-                                      "version; Christensen-Burley rendered as a random walk of "
-                                      "its radius, reported; alone and in Mix/Add Shader trees",
+                                      "Walk, Random Walk (Fixed Radius), Christensen-Burley as "
+                                      "Cycles 3.4; 4.x/5.x: Random Walk (its rough refractive "
+                                      "entry), Random Walk "
+                                      "(Skin), Christensen-Burley (Cycles' disk sampling) and "
+                                      "5.3's Random Walk (Legacy) as Cycles of the version; alone "
+                                      "and in Mix/Add Shader trees",
     'ShaderNodeBsdfRefraction': "rendered: Color, Roughness (any graph), IOR, Normal; GGX, "
                                 "Beckmann, Sharp (Multiscatter GGX rendered as GGX, reported); "
                                 "alone and in Mix/Add Shader trees",

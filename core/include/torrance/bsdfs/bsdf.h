@@ -107,6 +107,9 @@ struct Material {
   // mapping of the colour and the anisotropy (which may be negative), albedo_inversion.h.
   bool subsurface_after_diffuse = false;
   bool subsurface_van_de_hulst = false;
+  // Christensen-Burley (any version): Cycles' disk sampling of Burley's profile instead of a walk
+  // (subsurface/burley_disk.h); after a diffuse bounce it shades as diffuse in 5.x too.
+  bool subsurface_burley = false;
   // The Principled Hair BSDF's Offset (radians: the cuticle scales' tilt; ClosureType::PrincipledHair).
   float hair_offset = 0.0f;
 };

@@ -32,6 +32,14 @@ namespace torrance {
 
 inline constexpr int kMaxWalkSteps = 256;
 
+inline constexpr int kMaxProbeHits = 32;  // the surfaces a Christensen-Burley probe collects at most
+
+// A surface a probe met (burley_disk.h): its distance and geometric normal (world, the mesh's).
+struct ProbeHit {
+  float t = 0.0f;
+  Vec3 normal{0.0f, 0.0f, 1.0f};
+};
+
 // The mesh a walk is inside, as the walk sees it.
 class WalkBoundary {
  public:
@@ -39,6 +47,11 @@ class WalkBoundary {
   // The distance to the mesh's nearest surface along origin + t dir for t in (0, t_max]; false
   // if none.
   virtual bool nearest(const Vec3& origin, const Vec3& dir, float t_max, float& t) = 0;
+  // Every surface of the mesh along origin + t dir for t in [0, t_max] (at most `capacity`, the
+  // nearest first); their number. None by default.
+  virtual int probe(const Vec3&, const Vec3&, float, ProbeHit*, int) { return 0; }
+  // The probe's hit `index` is the exit.
+  virtual void keep(int) {}
 };
 
 struct WalkExit {

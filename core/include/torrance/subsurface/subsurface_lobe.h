@@ -44,6 +44,7 @@ struct SubsurfaceLobe {
   // (plain_radius) and d'Eon's albedo mapping (van_de_hulst: also any negative anisotropy).
   bool plain_radius = false;
   bool van_de_hulst = false;
+  bool burley = false;  // Christensen-Burley (Material::subsurface_burley): burley_disk.h, no walk
   // Principled v2: the index of its closure in the vertex's MixtureBsdf, whose layers scale
   // `weight` once the view is known (MixtureBsdf::subsurface_weight); -1: weight is final.
   int layered_component = -1;
