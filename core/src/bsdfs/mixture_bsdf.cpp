@@ -198,7 +198,8 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
   const Mixture* mixture = scene.mixture(id);
   const bool diffuse_ancestor = !walk.walkable || walk.diffuse_ancestor;  // Principled v1 (3.x)
   if (!mixture) {
-    resolved = textured ? scene.textured_material(id, globals, program_regs) : scene.material(id);
+    resolved = scene.material(id);
+    if (textured) scene.apply_textures(id, globals, resolved, program_regs);
     if (subsurface && resolved.subsurface > 0.0f && model == BrdfModel::Principled) {
       if (diffuse_ancestor) return MixtureBsdf(MaterialBsdf(principled_as_diffuse(resolved), model));
       *subsurface = principled_subsurface(resolved);

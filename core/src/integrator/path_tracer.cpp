@@ -405,9 +405,10 @@ class PathTracer {
       path_state_.ray_length = first_again ? first_ray_length_ : seg.passed_length + hit.t - ray_.tmin;
       if (bounce == 0) first_ray_length_ = path_state_.ray_length;
     }
-    ShaderGlobals globals;  // only what the material reads of the hit (the ray differentials: a bump)
+    // Only what the material reads of the hit (the ray differentials: a bump); made once, in place
+    // (ShaderGlobals is large: a default one assigned over costs a share of a textured hit).
+    ShaderGlobals globals = v.textured ? hit_globals(ctx_, hit, ray_.dir, path_length_, path_state_) : ShaderGlobals();
     if (v.textured) {
-      globals = hit_globals(ctx_, hit, ray_.dir, path_length_, path_state_);
       if (material_reads(ctx_, hit.material) & kReadsSampleShift) {  // from points of its own
         const uint32_t resume = sampler_.point_index();
         sampler_.continue_at_point(kShaderShiftPoints + uint32_t(bounce));
@@ -428,8 +429,8 @@ class PathTracer {
                                           walk_state(hit)));
       v.bsdf = &*v.local_bsdf;
     } else {
-      v.material = v.textured ? ctx_.scene.textured_material(hit.material, globals, v.program_regs.data())
-                              : ctx_.scene.material(hit.material);
+      v.material = ctx_.scene.material(hit.material);
+      if (v.textured) ctx_.scene.apply_textures(hit.material, globals, v.material, v.program_regs.data());
       if (v.textured) v.local_bsdf.emplace(v.material, ctx_.settings.brdf_model);
       v.bsdf = v.textured ? &*v.local_bsdf : &ctx_.bsdfs[hit.material];
     }

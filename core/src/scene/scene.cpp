@@ -123,17 +123,15 @@ uint32_t Scene::add_shader_program(ShaderProgram program) {
   return uint32_t(programs_.size() - 1);
 }
 
-Material Scene::textured_material(uint32_t id, const ShaderGlobals& g, glm::vec4* regs) const {
+void Scene::apply_textures(uint32_t id, const ShaderGlobals& g, Material& m, glm::vec4* regs) const {
   const Vec2& uv = g.uv;
   const float footprint = g.footprint;
-  Material m = materials_[id];
   const MaterialTextures& t = material_textures_[id];
   if (t.base_color >= 0) m.base_color = glm::clamp(Vec3(textures_[t.base_color]->lookup(uv, footprint)), Vec3(0.0f), Vec3(1.0f));
   if (t.metallic >= 0) m.metallic = clamp01(blender_luminance(Vec3(textures_[t.metallic]->lookup(uv, footprint))));
   if (t.roughness >= 0) m.roughness = clamp01(blender_luminance(Vec3(textures_[t.roughness]->lookup(uv, footprint))));
   if (t.emission >= 0) m.emission = glm::max(Vec3(textures_[t.emission]->lookup(uv, footprint)), Vec3(0.0f)) * t.emission_strength;
   if (t.program.any()) apply_program(t, g, m, regs);
-  return m;
 }
 
 void Scene::apply_program(const MaterialTextures& t, const ShaderGlobals& g, Material& m, glm::vec4* out) const {

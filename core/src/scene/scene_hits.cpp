@@ -83,6 +83,12 @@ void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const 
   hit.num_attributes = int(hit_mesh->attribute_ids.size());
   if (hit.num_attributes > 0) {
     hit.corner_attributes = &hit_mesh->corner_attributes[3 * size_t(prim) * hit_mesh->attribute_ids.size()];
+    // Fetched now, beside the corners' positions: a program's Attribute op (Object and Generated
+    // coordinates, colours) reads them soon after, and waited for them there (2 % of a
+    // procedural material's time).
+    const char* first = reinterpret_cast<const char*>(hit.corner_attributes);
+    __builtin_prefetch(first);
+    __builtin_prefetch(first + 3 * sizeof(Vec3) * size_t(hit.num_attributes) - 1);
     hit.attribute_ids = hit_mesh->attribute_ids.data();
     hit.corner_weights = mirrored ? Vec3(w, v, u) : Vec3(w, u, v);  // the stored corners' order
   } else {

@@ -18,6 +18,8 @@ inline float saturate(float v) { return clamp_to(v, 0.0f, 1.0f); }
 inline float safe_divide(float a, float b) { return b != 0.0f ? a / b : 0.0f; }
 
 glm::vec4 table_entry(const float* table, int stride, int i) {
+  // A colour ramp's RGBA entries (the common case) as one load instead of a loop of four.
+  if (stride == 4) return glm::vec4(table[4 * i], table[4 * i + 1], table[4 * i + 2], table[4 * i + 3]);
   glm::vec4 e(0.0f);
   for (int k = 0; k < stride; ++k) e[k] = table[i * stride + k];
   return e;

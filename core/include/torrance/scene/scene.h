@@ -190,7 +190,14 @@ class Scene final : public ShaderTracer {
   // averaged over a footprint of that many UV units (0: the finest texels).
   // regs (if given, kMaxRegisters entries): where the material's shader program, if it has one,
   // leaves its registers, for normal_mapped at the same hit to reuse instead of running it again.
-  Material textured_material(uint32_t material, const ShaderGlobals& globals, glm::vec4* regs = nullptr) const;
+  Material textured_material(uint32_t material, const ShaderGlobals& globals, glm::vec4* regs = nullptr) const {
+    Material m = materials_[material];
+    apply_textures(material, globals, m, regs);
+    return m;
+  }
+  // The same into `m`, which holds material(material): the path tracer's vertex keeps its
+  // material in place instead of copying a returned one (Material is large).
+  void apply_textures(uint32_t material, const ShaderGlobals& globals, Material& m, glm::vec4* regs = nullptr) const;
   Material textured_material(uint32_t material, const Vec2& uv, float footprint = 0.0f) const {
     return textured_material(material, uv_globals(uv, footprint));
   }
