@@ -7,13 +7,28 @@
 #include <pybind11/stl.h>
 
 #include <array>
+#include <string>
 
 namespace torrance::python {
 namespace {
 
+// Blender's names of the Volume Scatter node's Phase menu (its enum identifiers).
+PhaseKind phase_kind(const std::string& name) {
+  if (name == "HENYEY_GREENSTEIN") return PhaseKind::HenyeyGreenstein;
+  if (name == "RAYLEIGH") return PhaseKind::Rayleigh;
+  if (name == "DRAINE") return PhaseKind::Draine;
+  if (name == "FOURNIER_FORAND") return PhaseKind::FournierForand;
+  if (name == "MIE") return PhaseKind::Mie;
+  throw py::value_error("unknown volume phase '" + name +
+                        "' (HENYEY_GREENSTEIN, RAYLEIGH, DRAINE, FOURNIER_FORAND or MIE)");
+}
+
 HomogeneousMedium medium(std::array<float, 3> sigma_a, std::array<float, 3> sigma_s, std::array<float, 3> emission,
-                         float anisotropy) {
+                         float anisotropy, const std::string& phase, float phase_a, float phase_b) {
   HomogeneousMedium m;
+  m.phase = phase_kind(phase);
+  m.phase_a = phase_a;
+  m.phase_b = phase_b;
   m.sigma_a = Vec3(sigma_a[0], sigma_a[1], sigma_a[2]);
   m.sigma_s = Vec3(sigma_s[0], sigma_s[1], sigma_s[2]);
   m.emission = Vec3(emission[0], emission[1], emission[2]);
@@ -29,20 +44,29 @@ void init_media(py::module_& m) {
   scene.def(
       "set_material_volume",
       [](Scene& s, uint32_t material, std::array<float, 3> sigma_a, std::array<float, 3> sigma_s,
-         std::array<float, 3> emission, float anisotropy, bool pass_through) {
-        s.set_material_volume(material, medium(sigma_a, sigma_s, emission, anisotropy), pass_through);
+         std::array<float, 3> emission, float anisotropy, bool pass_through, const std::string& phase, float phase_a,
+         float phase_b) {
+        s.set_material_volume(material, medium(sigma_a, sigma_s, emission, anisotropy, phase, phase_a, phase_b),
+                              pass_through);
       },
       py::arg("material"), py::arg("sigma_a") = kZero, py::arg("sigma_s") = kZero, py::arg("emission") = kZero,
-      py::arg("anisotropy") = 0.0f, py::arg("pass_through") = false,
+      py::arg("anisotropy") = 0.0f, py::arg("pass_through") = false, py::arg("phase") = "HENYEY_GREENSTEIN",
+      py::arg("phase_a") = 0.0f, py::arg("phase_b") = 0.0f,
       "The homogeneous volume inside the closed meshes of `material`: absorption and scattering "
-      "coefficients per metre (RGB), emitted radiance per metre, the Henyey-Greenstein anisotropy of its "
-      "scattering. pass_through: the material has no surface shader (paths cross its surface without a "
+      "coefficients per metre (RGB), emitted radiance per metre, the anisotropy g of its scattering. phase: "
+      "its phase function as Blender's Volume Scatter names it (HENYEY_GREENSTEIN, RAYLEIGH, DRAINE: g and "
+      "alpha = phase_a, FOURNIER_FORAND: IOR = phase_a and backscatter = phase_b, MIE: diameter in "
+      "micrometres = phase_a). pass_through: the material has no surface shader (paths cross its surface without a "
       "bounce). ValueError for a negative or non-finite value, |anisotropy| > 1 or an unknown material.");
   scene.def(
       "set_material_volume_program",
       [](Scene& s, uint32_t material, uint32_t program, int sigma_a, int sigma_s, int emission, float anisotropy,
-         std::array<float, 3> bounds_min, std::array<float, 3> bounds_max, bool pass_through) {
+         std::array<float, 3> bounds_min, std::array<float, 3> bounds_max, bool pass_through,
+         const std::string& phase, float phase_a, float phase_b) {
         VaryingMedium v;
+        v.phase = phase_kind(phase);
+        v.phase_a = phase_a;
+        v.phase_b = phase_b;
         v.program = program;
         v.sigma_a = int16_t(sigma_a);
         v.sigma_s = int16_t(sigma_s);
@@ -54,19 +78,24 @@ void init_media(py::module_& m) {
       },
       py::arg("material"), py::arg("program"), py::arg("sigma_a") = -1, py::arg("sigma_s") = -1,
       py::arg("emission") = -1, py::arg("anisotropy") = 0.0f, py::arg("bounds_min") = kZero,
-      py::arg("bounds_max") = kZero, py::arg("pass_through") = false,
+      py::arg("bounds_max") = kZero, py::arg("pass_through") = false, py::arg("phase") = "HENYEY_GREENSTEIN",
+      py::arg("phase_a") = 0.0f, py::arg("phase_b") = 0.0f,
       "A heterogeneous volume inside the closed meshes of `material`: shader program `program` (from "
       "add_shader_program), run at points inside (Geometry > Position the point's), computes the absorption "
       "and scattering coefficients and the emitted radiance per metre in colour registers sigma_a, sigma_s "
-      "and emission (-1: zero; negative values count as 0); the Henyey-Greenstein anisotropy is constant. "
+      "and emission (-1: zero; negative values count as 0); the anisotropy and phase function (as "
+      "set_material_volume's) are constant. "
       "bounds_min/bounds_max: a world box holding the material's meshes, where the majorant is found. "
       "ValueError for an unknown material or program, a register the program does not write, |anisotropy| > 1.");
   scene.def(
       "set_world_volume",
       [](Scene& s, std::array<float, 3> sigma_a, std::array<float, 3> sigma_s, std::array<float, 3> emission,
-         float anisotropy) { s.set_world_volume(medium(sigma_a, sigma_s, emission, anisotropy)); },
+         float anisotropy, const std::string& phase, float phase_a, float phase_b) {
+        s.set_world_volume(medium(sigma_a, sigma_s, emission, anisotropy, phase, phase_a, phase_b));
+      },
       py::arg("sigma_a") = kZero, py::arg("sigma_s") = kZero, py::arg("emission") = kZero,
-      py::arg("anisotropy") = 0.0f,
+      py::arg("anisotropy") = 0.0f, py::arg("phase") = "HENYEY_GREENSTEIN", py::arg("phase_a") = 0.0f,
+      py::arg("phase_b") = 0.0f,
       "The homogeneous volume around everything (the World's Volume), as set_material_volume's.");
 }
 

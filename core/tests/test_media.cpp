@@ -2,6 +2,7 @@
 // of a slab's transmittance and emission, single scattering off a thin slab, the phase function's
 // normalisation, and an albedo-1 furnace (a sphere of scattering medium in a uniform white world
 // is as bright as the world from inside, whatever the channels' extinctions).
+#include "torrance/media/fournier_forand_phase.h"
 #include "torrance/media/homogeneous_medium.h"
 #include "torrance/util/sampling.h"
 
@@ -32,6 +33,40 @@ TEST(Media, HenyeyGreensteinIntegratesToOne) {
   const HenyeyGreenstein forward(0.5f);
   const Vec3 wo(0.0f, 0.0f, 1.0f);
   EXPECT_GT(forward.eval(wo, -wo), forward.eval(wo, wo));
+}
+
+// Every phase function of Blender 4.3+'s Volume Scatter integrates to one over the sphere
+// (integrated over log theta from 1e-6 rad, Fournier-Forand's mass below that by its cdf), and
+// the special cases meet: Draine at g 0, alpha 1 is Rayleigh; at alpha 0 Henyey-Greenstein.
+TEST(Media, PhaseFunctionsIntegrateToOne) {
+  const PhaseLobe lobes[] = {{PhaseKind::Rayleigh},
+                             {PhaseKind::Draine, 0.3f, 0.5f},
+                             {PhaseKind::Draine, 0.8f, 250.0f},
+                             {PhaseKind::FournierForand, 0.0f, 1.33f, 0.1f},
+                             {PhaseKind::FournierForand, 0.0f, 1.05f, 0.01f},
+                             {PhaseKind::Mie, 0.0f, 0.05f},
+                             {PhaseKind::Mie, 0.0f, 1.0f},
+                             {PhaseKind::Mie, 0.0f, 3.0f},
+                             {PhaseKind::Mie, 0.0f, 20.0f}};
+  const Vec3 wo(0.0f, 0.0f, 1.0f);
+  for (const PhaseLobe& lobe : lobes) {
+    double sum = 0.0;
+    constexpr int kN = 400000;
+    const double lo = std::log(1e-6), hi = std::log(M_PI);
+    for (int i = 0; i < kN; ++i) {
+      const double t = std::exp(lo + (hi - lo) * (i + 0.5) / kN), dt = t * (hi - lo) / kN;
+      const Vec3 wi(float(std::sin(t)), 0.0f, float(-std::cos(t)));  // t from the forward direction -wo
+      sum += double(phase_pdf(lobe, wo, wi)) * 2.0 * M_PI * std::sin(t) * dt;
+    }
+    if (lobe.kind == PhaseKind::FournierForand)  // its peak's mass within 1e-6 rad, by its cdf
+      sum += FournierForandPhase(lobe.a, lobe.b).cdf(std::pow(std::sin(0.5e-6), 2.0));
+    EXPECT_NEAR(sum, 1.0, 2e-3) << "kind=" << int(lobe.kind) << " g=" << lobe.g << " a=" << lobe.a;
+  }
+  for (float c : {-0.9f, -0.2f, 0.4f, 0.95f}) {
+    const Vec3 wi(std::sqrt(1.0f - c * c), 0.0f, -c);
+    EXPECT_NEAR(phase_pdf({PhaseKind::Draine, 0.0f, 1.0f}, wo, wi), phase_pdf({PhaseKind::Rayleigh}, wo, wi), 1e-6f);
+    EXPECT_NEAR(phase_pdf({PhaseKind::Draine, 0.4f, 0.0f}, wo, wi), henyey_greenstein(c, 0.4f), 1e-5f);
+  }
 }
 
 // The mean weight of the flights that cross a slab without scattering is its transmittance,

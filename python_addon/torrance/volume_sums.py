@@ -24,7 +24,7 @@ class Constants:
         self.sigma_a = [0.0, 0.0, 0.0]
         self.sigma_s = [0.0, 0.0, 0.0]
         self.emission = [0.0, 0.0, 0.0]
-        self.lobes = []             # (g, mean scattering)
+        self.lobes = []             # ((phase, g, a, b), mean scattering): volume_phase.py
 
     def value(self, read, kind):
         if not read.constant:
@@ -75,11 +75,11 @@ class Constants:
         for i in range(3):
             target[i] += max(float(rgb[i]), 0.0) * weight
 
-    def scatter(self, rgb, g, weight):
+    def scatter(self, rgb, phase, weight):
         self.add('sigma_s', rgb, weight)
         mean = sum(max(float(c), 0.0) for c in rgb) * weight / 3.0
         if mean > 0.0:
-            self.lobes.append((g, mean))
+            self.lobes.append((phase, mean))
 
     def empty(self):
         return max(self.sigma_a + self.sigma_s + self.emission) <= 0.0
@@ -92,7 +92,7 @@ class Program:
     def __init__(self, builder):
         self.builder = builder
         self.sigma_a = self.sigma_s = self.emission = None
-        self.lobes = []             # (g, None): the anisotropies, unweighted
+        self.lobes = []             # ((phase, g, a, b), None): unweighted
         self._zero = constant('color', (0.0, 0.0, 0.0))
         self._one = constant('color', (1.0, 1.0, 1.0))
 
@@ -146,9 +146,9 @@ class Program:
         before = getattr(self, field)
         setattr(self, field, term if before is None else self._vector("ADD", before, term))
 
-    def scatter(self, rgb, g, weight):
+    def scatter(self, rgb, phase, weight):
         self.add('sigma_s', rgb, weight)
-        self.lobes.append((g, None))
+        self.lobes.append((phase, None))
 
     def mix_weights(self, weight, fac):
         return self.times(weight, self._math("SUBTRACT", constant('float', 1.0), fac)), \

@@ -18,12 +18,10 @@ Coefficients are per metre. With constant inputs they are summed here (a homogen
 When an input of a material's volume varies through it (Density, Color, Absorption Color,
 Emission Strength and Color, Strength, a Mix Shader's Fac fed by textures, maths, ramps ...) the
 same sums are compiled into a shader program the core runs at points inside the volume (a
-heterogeneous medium; Object and Generated coordinates as volume_space.py says). Anisotropy and
-the blackbody's inputs stay constant (one that varies keeps its own value, reported), as does a
-World's volume. Scattering closures of different anisotropies become one lobe of their
-scattering-weighted mean anisotropy (reported; equal weights in a program). Phase functions other
-than Henyey-Greenstein (Blender 4.4+) and surface closures in a Volume socket (Cycles renders
-nothing for them either) are reported.
+heterogeneous medium; Object and Generated coordinates as volume_space.py says). The phase
+functions' inputs (volume_phase.py) and the blackbody's stay constant (one that varies keeps its
+own value, reported), as does a World's volume. Surface closures in a Volume socket (Cycles
+renders nothing for them either) are reported.
 """
 
 import math
@@ -35,14 +33,14 @@ from .shader_graph.convert_ops import blackbody
 from .shader_graph.graph import GraphCompiler, Unsupported
 from .shader_graph.program import ProgramBuilder, Value, constant
 from .shader_graph.registry import READERS
+from .volume_phase import PHASE_INPUTS, node_phase, one_phase
 from .volume_space import volume_space
 from .volume_sums import CUTOFF, Constants, Program, Varies
 
 _MAX_DEPTH = 64
 _STEFAN_BOLTZMANN = 5.670373e-8 * 1e-6 / math.pi   # as Cycles' Principled Volume scales it
 # Inputs read as constants in heterogeneous volumes too (one that varies: its own value, reported).
-_CONSTANT_INPUTS = frozenset(("Anisotropy", "Blackbody Intensity", "Temperature",
-                              "Blackbody Tint"))
+_CONSTANT_INPUTS = PHASE_INPUTS | {"Blackbody Intensity", "Temperature", "Blackbody Tint"}
 
 
 class VolumeReader:
@@ -83,7 +81,7 @@ class VolumeReader:
         if medium.empty():
             return None
         return dict(sigma_a=tuple(medium.sigma_a), sigma_s=tuple(medium.sigma_s),
-                    emission=tuple(medium.emission), anisotropy=self._anisotropy(medium.lobes))
+                    emission=tuple(medium.emission), **self._phase(medium.lobes))
 
     _report_varying = False
     _medium = None
@@ -104,20 +102,12 @@ class VolumeReader:
         except ValueError as exc:
             self._warn(f"{self.where}: {exc}; the volume is left out")
             return None
-        return dict(program=program, **out, anisotropy=self._anisotropy(medium.lobes),
+        return dict(program=program, **out, **self._phase(medium.lobes),
                     bounds_min=space.bounds_min, bounds_max=space.bounds_max)
 
-    def _anisotropy(self, lobes):
-        """One anisotropy for the closures' lobes: their mean weighted by scattering (equal
-        weights where the scattering varies), reported when they differ."""
-        weights = [1.0 if w is None else w for _, w in lobes]
-        total = sum(weights)
-        g = sum(g * w for (g, _), w in zip(lobes, weights, strict=True)) / total \
-            if total > 0.0 else 0.0
-        if len({g for g, _ in lobes}) > 1:
-            self._warn(f"{self.where}: scattering closures of different anisotropies "
-                                  f"are rendered as one of their mean anisotropy {g:.3g}")
-        return max(-1.0, min(1.0, g))
+    def _phase(self, lobes):
+        """The phase function keywords of the closures' lobes (volume_phase.one_phase)."""
+        return one_phase(lobes, self._warn, self.where)
 
     def _shader(self, output, weight, medium, depth):
         if output is None or (not isinstance(weight, Value) and weight <= 0.0):
@@ -150,10 +140,9 @@ class VolumeReader:
             color = value("Color", 'color')
             medium.add('sigma_a', medium.one_minus(color), medium.times(weight, density))
         elif kind == 'ShaderNodeVolumeScatter':
-            self._check_phase(node)
             density = medium.positive(value("Density", 'float'))
             color = value("Color", 'color')
-            medium.scatter(color, self._anisotropy_input(node), medium.times(weight, density))
+            medium.scatter(color, self._node_phase(node), medium.times(weight, density))
         elif kind == 'ShaderNodeVolumePrincipled':
             self._principled(node, weight, medium)
         elif kind == 'ShaderNodeEmission':
@@ -169,7 +158,7 @@ class VolumeReader:
         density = medium.times(medium.positive(value("Density", 'float')), weight)
         if medium.above_cutoff(density):
             color = value("Color", 'color')
-            medium.scatter(color, self._anisotropy_input(node), density)
+            medium.scatter(color, self._node_phase(node), density)
             absorption_color = medium.sqrt_positive(value("Absorption Color", 'color'))
             medium.add('sigma_a', medium.product(medium.one_minus_positive(color),
                                                  medium.one_minus_positive(absorption_color)),
@@ -187,15 +176,8 @@ class VolumeReader:
                 rgb = [t * c for t, c in zip(tint, blackbody(kelvin), strict=True)]
                 medium.add('emission', rgb, medium.times(weight, power))
 
-    def _anisotropy_input(self, node):
-        return self._value(node, "Anisotropy", 'float')
-
-    def _check_phase(self, node):
-        phase = getattr(node, "phase", 'HENYEY_GREENSTEIN')
-        if phase != 'HENYEY_GREENSTEIN':
-            self._warn(f"{self.where}: the {phase.replace('_', '-').title()} phase "
-                                  f"function of {node_label(node)} is not yet rendered; "
-                                  f"Henyey-Greenstein with its Anisotropy instead")
+    def _node_phase(self, node):
+        return node_phase(node, lambda name: self._value(node, name, 'float'))
 
     def _read(self, node, name, kind):
         """A closure input's Value; one the graph can not compile keeps its own value,

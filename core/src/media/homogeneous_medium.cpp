@@ -20,14 +20,15 @@ void MediumMix::add(const HomogeneousMedium& m) {
   sigma_s_ += sigma_s;
   // Cycles' closure sample weight: the mean of the weight's channels.
   const float weight = (sigma_s.x + sigma_s.y + sigma_s.z) / 3.0f;
+  const PhaseLobe lobe = m.lobe();
   for (int i = 0; i < lobes_; ++i)
-    if (lobe_g_[size_t(i)] == m.anisotropy) {
+    if (lobe_[size_t(i)] == lobe) {
       lobe_weight_[size_t(i)] += weight;
       lobe_weight_sum_ += weight;
       return;
     }
   if (lobes_ == kMaxLobes) return;  // more distinct lobes than that: the first ones' shapes
-  lobe_g_[size_t(lobes_)] = m.anisotropy;
+  lobe_[size_t(lobes_)] = lobe;
   lobe_weight_[size_t(lobes_)] = weight;
   lobe_weight_sum_ += weight;
   ++lobes_;
@@ -51,9 +52,9 @@ Vec3 MediumMix::emitted(float distance) const {
 }
 
 float MediumMix::phase_pdf(const Vec3& wo, const Vec3& wi) const {
-  if (lobes_ == 1) return HenyeyGreenstein(lobe_g_[0]).pdf(wo, wi);
+  if (lobes_ == 1) return torrance::phase_pdf(lobe_[0], wo, wi);
   float pdf = 0.0f;
-  for (int i = 0; i < lobes_; ++i) pdf += lobe_weight_[size_t(i)] * HenyeyGreenstein(lobe_g_[size_t(i)]).pdf(wo, wi);
+  for (int i = 0; i < lobes_; ++i) pdf += lobe_weight_[size_t(i)] * torrance::phase_pdf(lobe_[size_t(i)], wo, wi);
   return lobe_weight_sum_ > 0.0f ? pdf / lobe_weight_sum_ : 0.0f;
 }
 
@@ -68,7 +69,7 @@ PhaseSample MediumMix::sample_phase(const Vec3& wo, float u_lobe, const Vec2& u)
       break;
     }
   }
-  PhaseSample s = HenyeyGreenstein(lobe_g_[size_t(chosen)]).sample(wo, u);
+  PhaseSample s = torrance::sample_phase(lobe_[size_t(chosen)], wo, u);
   if (lobes_ > 1) s.pdf = phase_pdf(wo, s.wi);
   return s;
 }

@@ -13,6 +13,8 @@ void SceneMedia::check(const HomogeneousMedium& m) {
       throw std::invalid_argument(std::string("volume ") + name + " must be finite and not negative");
   if (!std::isfinite(m.anisotropy) || std::abs(m.anisotropy) > 1.0f)
     throw std::invalid_argument("volume anisotropy must be in [-1, 1]");
+  if (!std::isfinite(m.phase_a) || !std::isfinite(m.phase_b))
+    throw std::invalid_argument("volume phase parameters must be finite");
 }
 
 int32_t SceneMedia::id_for(uint32_t material, bool pass_through) {
@@ -36,7 +38,8 @@ void SceneMedia::set_material(uint32_t material, const HomogeneousMedium& medium
 }
 
 void SceneMedia::set_material(uint32_t material, const VaryingMedium& medium, bool pass_through) {
-  check(HomogeneousMedium{Vec3(0.0f), Vec3(0.0f), Vec3(0.0f), medium.anisotropy});
+  check(HomogeneousMedium{Vec3(0.0f), Vec3(0.0f), Vec3(0.0f), medium.anisotropy, medium.phase, medium.phase_a,
+                          medium.phase_b});
   const int32_t id = id_for(material, pass_through);
   media_[size_t(id)] = HomogeneousMedium{};
   if (size_t(id) >= varying_of_.size()) varying_of_.resize(size_t(id) + 1, -1);

@@ -44,6 +44,9 @@ HomogeneousMedium varying_coefficients(const Scene& scene, const VaryingMedium& 
   m.sigma_s = reg(regs, medium.sigma_s);
   m.emission = reg(regs, medium.emission);
   m.anisotropy = medium.anisotropy;
+  m.phase = medium.phase;
+  m.phase_a = medium.phase_a;
+  m.phase_b = medium.phase_b;
   return m;
 }
 

@@ -227,8 +227,9 @@ CLOSURES = {
                                   "the volume); a World's constant (varying inputs reported)",
     'ShaderNodeVolumeScatter': "rendered in a Volume socket (alone and in Mix/Add Shader "
                                "trees): Color, Density (any graph inside meshes, as Volume "
-                               "Absorption's), Anisotropy constant (Henyey-Greenstein; other "
-                               "phase functions reported and rendered as it)",
+                               "Absorption's), the Phase menu (4.3+: Henyey-Greenstein, "
+                               "Fournier-Forand, Draine, Rayleigh, Mie) with Anisotropy, IOR, "
+                               "Backscatter, Alpha and Diameter constant",
     'ShaderNodeVolumePrincipled': "partly: in a Volume socket, Color, Density, Absorption Color, "
                                   "Emission Strength and Color (any graph inside meshes, as "
                                   "Volume Absorption's), Anisotropy, Blackbody Intensity, "

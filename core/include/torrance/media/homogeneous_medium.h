@@ -7,7 +7,7 @@
 // closed form. Coefficients are per metre, per RGB channel.
 #pragma once
 
-#include "torrance/media/henyey_greenstein.h"
+#include "torrance/media/phase_function.h"
 
 #include <array>
 
@@ -17,7 +17,12 @@ struct HomogeneousMedium {
   Vec3 sigma_a{0.0f};   // absorption
   Vec3 sigma_s{0.0f};   // scattering
   Vec3 emission{0.0f};  // emitted radiance per metre
-  float anisotropy = 0.0f;  // the Henyey-Greenstein g of its scattering
+  float anisotropy = 0.0f;  // the g of its scattering's phase function (Henyey-Greenstein, Draine)
+  // Its phase function and parameters a, b (phase_function.h's PhaseLobe).
+  PhaseKind phase = PhaseKind::HenyeyGreenstein;
+  float phase_a = 0.0f, phase_b = 0.0f;
+
+  PhaseLobe lobe() const { return {phase, anisotropy, phase_a, phase_b}; }
 
   Vec3 sigma_t() const { return sigma_a + sigma_s; }
   bool scatters() const { return max_component(sigma_s) > 0.0f; }
@@ -71,7 +76,8 @@ class MediumMix {
 
  private:
   Vec3 sigma_a_{0.0f}, sigma_s_{0.0f}, emission_{0.0f};
-  std::array<float, kMaxLobes> lobe_g_{}, lobe_weight_{};
+  std::array<PhaseLobe, kMaxLobes> lobe_{};
+  std::array<float, kMaxLobes> lobe_weight_{};
   int lobes_ = 0;
   float lobe_weight_sum_ = 0.0f;
   std::array<int32_t, kMaxVarying> varying_{};

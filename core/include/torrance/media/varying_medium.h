@@ -7,7 +7,7 @@
 // program's values over the bounds): the free-flight tracking's rate of tentative collisions.
 #pragma once
 
-#include "torrance/util/math.h"
+#include "torrance/media/phase_function.h"
 
 #include <cstdint>
 
@@ -17,6 +17,8 @@ struct VaryingMedium {
   uint32_t program = 0;  // from Scene::add_shader_program
   int16_t sigma_a = -1, sigma_s = -1, emission = -1;  // colour registers (xyz); -1: zero
   float anisotropy = 0.0f;
+  PhaseKind phase = PhaseKind::HenyeyGreenstein;  // its phase function, constant (as HomogeneousMedium's)
+  float phase_a = 0.0f, phase_b = 0.0f;
   Vec3 bounds_min{0.0f}, bounds_max{0.0f};  // world box the medium's meshes lie in
   float majorant = 0.0f;  // per metre, > 0 (set by Scene)
 };
