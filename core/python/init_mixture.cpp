@@ -28,12 +28,14 @@ ClosureType parse_closure(const std::string& s) {
   if (s == "toon_glossy") return ClosureType::ToonGlossy;
   if (s == "toon_diffuse_cycles4") return ClosureType::ToonDiffuseCycles4;
   if (s == "toon_glossy_cycles4") return ClosureType::ToonGlossyCycles4;
+  if (s == "metallic_f82") return ClosureType::MetallicF82;
+  if (s == "metallic_conductor") return ClosureType::MetallicConductor;
   if (s == "subsurface") return ClosureType::Subsurface;
   throw py::value_error(
       "closure type must be 'principled', 'diffuse', 'glossy', 'emission', 'transparent', 'holdout', 'velvet', "
       "'sheen', "
       "'translucent', 'principled_hair', 'refraction', 'toon_diffuse', 'toon_glossy', 'toon_diffuse_cycles4', "
-      "'toon_glossy_cycles4' or 'subsurface', got '" + s + "'");
+      "'toon_glossy_cycles4', 'metallic_f82', 'metallic_conductor' or 'subsurface', got '" + s + "'");
 }
 
 MixFactor parse_factor(const py::handle& h) {
@@ -116,7 +118,8 @@ void init_mixture(py::module_& m) {
       "Adds a material made of weighted closures (Mix Shader / Add Shader); returns its material index. "
       "closures: [(type, material, terms)], type 'principled' | 'diffuse' | 'glossy' | 'emission' | 'transparent' | "
       "'holdout' | 'velvet' | 'sheen' | 'translucent' | 'refraction' | 'toon_diffuse' | 'toon_glossy' (sampled as Cycles 3.x; "
-      "'toon_diffuse_cycles4' | 'toon_glossy_cycles4': as Cycles 4.x), material an add_material "
+      "'toon_diffuse_cycles4' | 'toon_glossy_cycles4': as Cycles 4.x) | 'metallic_f82' | 'metallic_conductor' "
+      "(the Metallic BSDF: mixture.h's ClosureType), material an add_material "
       "index holding the closure's inputs (diffuse/glossy/velvet/sheen: base_color = Color, roughness = Roughness "
       "or Sigma; translucent: base_color; refraction: base_color, roughness, ior, glass_distribution; toon: "
       "base_color, roughness = Size, transmission_roughness = Smooth; transparent: transparent_color = Color: "

@@ -620,6 +620,31 @@ TEST(ChiSquare, AnisotropicGlossySamplingMatchesPdf) {
     }
 }
 
+// The Metallic BSDF (metallic_bsdf.h): its visible-normal sampling, isotropic and stretched,
+// against its pdf.
+TEST(ChiSquare, MetallicSamplingMatchesPdf) {
+  const double significance = 0.01 / 12.0;
+  uint32_t seed = 9050;
+  for (float anisotropy : {0.0f, 0.9f})
+    for (float roughness : {0.3f, 0.8f}) {
+      MetallicBsdf metal(true, Vec3(0.2f, 0.9f, 1.1f), Vec3(3.9f, 2.4f, 2.2f), roughness, anisotropy,
+                         glm::normalize(Vec3(0.6f, 0.8f, 0.3f)), 0.15f, true);
+      metal.orient(Frame(Vec3(0.0f, 0.0f, 1.0f)));
+      for (float cos_o : {1.0f, 0.5f, 0.1f}) {
+        const Vec3 wo = test::direction(cos_o, 0.9f);
+        const std::string failure = chi_square(
+            wo, 0.25f, seed++, significance,
+            [&](Rng& rng) {
+              const float u = rng.next_1d();
+              const BsdfSample s = metal.sample(wo, u, rng.next_2d());
+              return Sampled{s.wi, s.valid(), s.is_delta};
+            },
+            [&](const Vec3& wi) { return metal.pdf(wo, wi); });
+        EXPECT_EQ(failure, "") << "anisotropy " << anisotropy << " r=" << roughness << " cos_o=" << cos_o;
+      }
+    }
+}
+
 // The Principled BSDF's anisotropic specular lobe (v1 and v2, ggx_shape.h) beside its diffuse
 // lobe: the mixture's sampling against its pdf.
 TEST(ChiSquare, AnisotropicPrincipledSamplingMatchesPdf) {

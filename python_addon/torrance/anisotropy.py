@@ -19,6 +19,7 @@ from .shader_graph.registry import READERS
 GLOSSY = dict(anisotropy="Anisotropy", rotation="Rotation", lowest=-1.0)
 PRINCIPLED_V1 = dict(anisotropy="Anisotropic", rotation="Anisotropic Rotation", lowest=-1.0)
 PRINCIPLED_V2 = dict(anisotropy="Anisotropic", rotation="Anisotropic Rotation", lowest=0.0)
+METALLIC = dict(anisotropy="Anisotropy", rotation="Rotation", lowest=0.0)   # Blender 4.3+
 
 
 def read_anisotropy(reader, mat, node, sockets):

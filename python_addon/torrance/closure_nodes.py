@@ -1,16 +1,22 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The Velvet / Sheen, Translucent, Refraction, Toon, Principled Hair BSDF and Subsurface Scattering
-nodes -> a mixture's closures (the core's velvet_bsdf.h, sheen_bsdf.h, translucent_bsdf.h,
-refraction_bsdf.h, toon_bsdf.h, hair/principled_hair_bsdf.h, subsurface/; the hair node's inputs:
+"""The Velvet / Sheen, Translucent, Refraction, Toon, Principled Hair BSDF, Subsurface Scattering
+and Metallic BSDF nodes -> a mixture's closures (the core's velvet_bsdf.h, sheen_bsdf.h,
+translucent_bsdf.h, refraction_bsdf.h, toon_bsdf.h, hair/principled_hair_bsdf.h, subsurface/,
+metallic_bsdf.h; the hair node's inputs:
 principled_hair.py, the subsurface node's: principled_subsurface.py), alone at the Surface and in
 Mix/Add Shader trees alike (mixtures.py).
 
 Each becomes (closure type, add_material kwargs) with the inputs where the core's ClosureType
 reads them: Color -> base_color (any graph), Sigma / Roughness / Size -> roughness (any graph),
 the Refraction's IOR -> ior and distribution -> glass_distribution, the Toon's Smooth ->
-transmission_roughness (a value; a graph that varies is reported and its socket's value used).
+transmission_roughness (a value; a graph that varies is reported and its socket's value used);
+the Metallic's Base Color -> base_color (any graph), Edge Tint -> specular_tint_color, or the
+Physical Conductor's IOR -> specular_tint_color and Extinction -> sheen_tint_color (values),
+Roughness (any graph), Anisotropy, Rotation and Tangent (anisotropy.py), Multiscatter GGX ->
+multiscatter_ggx (Beckmann rendered as GGX and a Thin Film reported).
 """
 
+from .anisotropy import METALLIC, read_anisotropy
 from .material_values import DEFAULT_MATERIAL, clamp, color3, sanitize
 from .nodes import finite_or, node_label
 from .principled_hair import read_principled_hair
@@ -19,7 +25,7 @@ from .shader_graph.node_versions import cycles4_toon
 
 CLOSURE_NODES = {'ShaderNodeBsdfVelvet', 'ShaderNodeBsdfSheen', 'ShaderNodeBsdfTranslucent',
                  'ShaderNodeBsdfRefraction', 'ShaderNodeBsdfToon', 'ShaderNodeBsdfHairPrincipled',
-                 'ShaderNodeSubsurfaceScattering'}
+                 'ShaderNodeSubsurfaceScattering', 'ShaderNodeBsdfMetallic'}
 
 
 def read_closure_node(reader, mat, node):
@@ -29,6 +35,8 @@ def read_closure_node(reader, mat, node):
         return 'principled_hair', read_principled_hair(reader, mat, node)
     d = DEFAULT_MATERIAL
     reader._begin_program(mat)
+    if kind == 'ShaderNodeBsdfMetallic':
+        return _metallic(reader, mat, node)
     color, color_tex = reader._socket_input(mat, node, "Color", d['base_color'],
                                             program_input='base_color')
     args = dict(d, base_color=color3(color, d['base_color']), metallic=0.0, specular=0.0,
@@ -64,6 +72,34 @@ def read_closure_node(reader, mat, node):
         _roughness(reader, mat, node, "Size", 0.5, args)
         smooth = finite_or(reader._socket_value(mat, node, "Smooth", 0.0), 0.0)
         args['transmission_roughness'] = clamp(smooth, 0.0, 1.0)
+    return closure, sanitize(reader._with_program(args))
+
+
+def _metallic(reader, mat, node):
+    """The Metallic BSDF (Blender 4.3+) as the core's metallic_f82 / metallic_conductor."""
+    d = DEFAULT_MATERIAL
+    conductor = getattr(node, "fresnel_type", 'F82') == 'PHYSICAL_CONDUCTOR'
+    distribution = getattr(node, "distribution", 'MULTI_GGX')
+    args = dict(d, metallic=0.0, specular=0.0, multiscatter_ggx=distribution == 'MULTI_GGX')
+    if conductor:
+        n = reader._socket_value(mat, node, "IOR", (2.757, 2.513, 2.231))
+        k = reader._socket_value(mat, node, "Extinction", (3.867, 3.404, 3.009))
+        args.update(specular_tint_color=tuple(max(0.0, c) for c in color3(n, (1.0, 1.0, 1.0))),
+                    sheen_tint_color=tuple(max(0.0, c) for c in color3(k, (0.0, 0.0, 0.0))))
+    else:
+        color, color_tex = reader._socket_input(mat, node, "Base Color", d['base_color'],
+                                                program_input='base_color')
+        tint = reader._socket_value(mat, node, "Edge Tint", (1.0, 1.0, 1.0))
+        args.update(base_color=color3(color, d['base_color']), base_color_texture=color_tex,
+                    specular_tint_color=tuple(clamp(c, 0.0, 1.0)
+                                              for c in color3(tint, (1.0, 1.0, 1.0))))
+    _roughness(reader, mat, node, "Roughness", 0.5, args)
+    args.update(read_anisotropy(reader, mat, node, METALLIC))
+    if distribution == 'BECKMANN':
+        reader.reporter.warning(f"Material '{mat.name}': {node_label(node)} uses the Beckmann "
+                                f"distribution; Torrance renders GGX")
+    reader._report_ignored_inputs(mat, node, (("Thin Film Thickness", 0.0),))
+    closure = 'metallic_conductor' if conductor else 'metallic_f82'
     return closure, sanitize(reader._with_program(args))
 
 

@@ -281,7 +281,8 @@ class ShaderTreeReader:
             return read_closure_node(reader, mat, node)
         self.warn(f"the shader {node_label(node)} is not supported in a mix (Torrance mixes "
                   f"Principled, Diffuse, Glossy, Glass, Transparent, Holdout, Emission, Velvet / "
-                  f"Sheen, Translucent, Refraction, Toon and Principled Hair); it is left out")
+                  f"Sheen, Translucent, Refraction, Toon, Principled Hair, Subsurface Scattering "
+                  f"and Metallic); it is left out")
         return None
 
     def _colour_roughness(self, node):

@@ -38,10 +38,7 @@ LobeEval GlossyBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
 }
 
 float GlossyBsdf::pdf(const Vec3& wo, const Vec3& wi) const {
-  if (wo.z <= 0.0f || wi.z <= 0.0f || has_delta()) return 0.0f;
-  Vec3 h;
-  if (!ggx::reflection_half(wo, wi, h)) return 0.0f;
-  return shape_.G1(wo) * shape_.D(h) / (4.0f * wo.z);
+  return has_delta() ? 0.0f : shape_.reflection_pdf(wo, wi);
 }
 
 BsdfSample GlossyBsdf::sample(const Vec3& wo, float /*u_lobe*/, const Vec2& u) const {
@@ -53,7 +50,7 @@ BsdfSample GlossyBsdf::sample(const Vec3& wo, float /*u_lobe*/, const Vec2& u) c
     s.is_delta = true;
     return s;
   }
-  s.wi = ggx::reflect(wo, shape_.sample_visible_normal(wo, u));
+  s.wi = shape_.sample_reflection(wo, u);
   if (s.wi.z <= 0.0f) return BsdfSample{};
   s.pdf = pdf(wo, s.wi);
   if (!(s.pdf > 0.0f)) return BsdfSample{};

@@ -164,6 +164,7 @@ void MixtureBsdf::orient(const Frame& frame) {
   for (int k = 0; k < count_; ++k) {
     Component& c = components_[size_t(k)];
     if (GlossyBsdf* glossy = std::get_if<GlossyBsdf>(&c); glossy && glossy->anisotropic()) glossy->orient(frame);
+    else if (MetallicBsdf* metal = std::get_if<MetallicBsdf>(&c); metal && metal->anisotropic()) metal->orient(frame);
     else if (MaterialBsdf* material = std::get_if<MaterialBsdf>(&c)) material->orient(frame);
     else if (PrincipledHairBsdf* hair = std::get_if<PrincipledHairBsdf>(&c)) hair->orient(frame);
   }
@@ -261,6 +262,16 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
                             model == BrdfModel::PrincipledV2, m.multiscatter_ggx),
                  w.weight[k], luminance(m.base_color));
         break;
+      case ClosureType::MetallicF82:
+      case ClosureType::MetallicConductor: {
+        const bool conductor = c.type == ClosureType::MetallicConductor;
+        add_closure(bsdf,
+                    MetallicBsdf(conductor, conductor ? m.specular_tint_color : m.base_color,
+                                 conductor ? m.sheen_tint_color : m.specular_tint_color, m.roughness, m.anisotropy,
+                                 m.tangent, m.anisotropic_rotation, m.multiscatter_ggx),
+                    w.weight[k]);
+        break;
+      }
       case ClosureType::Velvet: add_closure(bsdf, VelvetBsdf(m.base_color, m.roughness), w.weight[k]); break;
       case ClosureType::Sheen: add_closure(bsdf, SheenBsdf(m.base_color, m.roughness), w.weight[k]); break;
       case ClosureType::Translucent: add_closure(bsdf, TranslucentBsdf(m.base_color), w.weight[k]); break;

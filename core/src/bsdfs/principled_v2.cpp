@@ -25,15 +25,8 @@ PrincipledV2Bsdf::PrincipledV2Bsdf(const Material& m) {
   multiscatter_ = m.multiscatter_ggx;
 
   // Metal: F82-tint with f0 = base colour (clamped to 1), tint clamped to 1.
-  metal_f0_ = glm::min(base, Vec3(1.0f));
-  const Vec3 tint82 = glm::min(tint, Vec3(1.0f));
-  metal_b_ = Vec3(0.0f);
-  if (tint82 != Vec3(1.0f)) {
-    const float f = 6.0f / 7.0f, f6 = f * f * f * f * f * f;
-    const Vec3 schlick_82 = glm::mix(metal_f0_, Vec3(1.0f), f6 / f);
-    metal_b_ = schlick_82 * (7.0f / f6) * (Vec3(1.0f) - tint82);
-  }
-  metal_fss_ = glm::mix(metal_f0_, Vec3(1.0f), 1.0f / 21.0f) - metal_b_ * (1.0f / 126.0f);
+  metal_ = F82Tint(base, tint);
+  metal_fss_ = metal_.fss();
 
   // Subsurface Weight: the walk takes that share of the diffuse layer in the channels it walks
   // (radius above 0: shade_material zeroes the others, subsurface_lobe.h), the diffuse the rest.
@@ -65,12 +58,7 @@ float PrincipledV2Bsdf::dielectric_eta(const Material& m) {
   return ior < 1.0f ? 1.0f / eta : eta;
 }
 
-Vec3 PrincipledV2Bsdf::metal_fresnel(float cos_ih) const {
-  const float c = clamp01(cos_ih), mu = 1.0f - c;
-  const float mu5 = (mu * mu) * (mu * mu) * mu;
-  const Vec3 schlick = glm::mix(metal_f0_, Vec3(1.0f), mu5);
-  return glm::clamp(schlick - metal_b_ * (c * mu5 * mu), Vec3(0.0f), Vec3(1.0f));
-}
+Vec3 PrincipledV2Bsdf::metal_fresnel(float cos_ih) const { return metal_.eval(cos_ih); }
 
 Vec3 PrincipledV2Bsdf::dielectric_fresnel(float cos_ih) const {
   if (!has_dielectric_) return Vec3(0.0f);
@@ -127,7 +115,7 @@ PrincipledV2Bsdf::ClosureAlbedos PrincipledV2Bsdf::closure_albedos(float cos_o) 
   if (has_dielectric_)
     a.dielectric = v.dielectric_scale * e *
                    glm::mix(dielectric_f0_, Vec3(1.0f), ggx_tables::dielectric_fresnel_mix(table_roughness_, cos_o, eta_));
-  a.metal = v.metal_scale * e * glm::mix(metal_f0_, Vec3(1.0f), ggx_tables::schlick_fresnel_mix(table_roughness_, cos_o));
+  a.metal = v.metal_scale * e * glm::mix(metal_.f0, Vec3(1.0f), ggx_tables::schlick_fresnel_mix(table_roughness_, cos_o));
   if (coat_.active()) a.coat = Vec3(v.coat.albedo);
   if (sheen_.active()) {
     a.sheen = v.sheen.weight;

@@ -3,6 +3,7 @@
 #include "film/denoising_features.h"
 
 #include "torrance/bsdfs/ggx_tables.h"
+#include "torrance/bsdfs/metallic_bsdf.h"
 #include "torrance/bsdfs/principled.h"
 #include "torrance/bsdfs/principled_v2.h"
 
@@ -169,6 +170,15 @@ void DenoisingClosures::add_closures(const ClosureList& list, float cos_no, bool
       case ClosureType::Principled: add_material(m, e.weight, cos_no, backfacing); break;
       case ClosureType::Glossy: add(weight, mean(weight), r2); break;
       case ClosureType::Refraction: add(weight, mean(weight), r2, true); break;
+      case ClosureType::MetallicF82:
+      case ClosureType::MetallicConductor: {  // Cycles' albedo of a Fresnel closure: its F at wo
+        const bool conductor = e.type == ClosureType::MetallicConductor;
+        const MetallicBsdf metal(conductor, conductor ? m.specular_tint_color : m.base_color,
+                                 conductor ? m.sheen_tint_color : m.specular_tint_color, m.roughness);
+        const Vec3 f = e.weight * metal.fresnel(std::abs(cos_no));
+        add(f, mean(f), r2);
+        break;
+      }
       case ClosureType::Diffuse:
       case ClosureType::Subsurface:  // Cycles' BSSRDF counts as diffuse for the denoising albedo
       case ClosureType::Velvet:

@@ -54,6 +54,7 @@ REMOVED_NODES = {
 ADDED_NODES = {
     'ShaderNodeBsdfSheen': "4.0: the Sheen BSDF (Ashikhmin, the former Velvet, and Microfiber)",
     'ShaderNodeTexGabor': "4.3: the Gabor Texture",
+    'ShaderNodeBsdfMetallic': "4.3: the Metallic BSDF",
     'ShaderNodeRadialTiling': "5.0: Radial Tiling",
 }
 

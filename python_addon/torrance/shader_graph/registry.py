@@ -179,6 +179,12 @@ CLOSURES = {
                                  "(and 3.x's Multiscatter GGX) rendered as GGX",
     'ShaderNodeBsdfGlass': "partly: Color, Roughness, IOR, Normal; GGX, Beckmann, Sharp "
                            "(Multiscatter GGX rendered as GGX); alone and in Mix/Add Shader trees",
+    'ShaderNodeBsdfMetallic': "partly: F82 Tint (Base Color, any graph; Edge Tint) and Physical "
+                              "Conductor (IOR, Extinction: values), Roughness (any graph), "
+                              "Anisotropy, Rotation, Tangent (any graph; unlinked: Geometry > "
+                              "Tangent), Normal; GGX and Multiscatter GGX as Cycles 4.x/5.x "
+                              "(Beckmann rendered as GGX, reported; Thin Film reported); alone "
+                              "and in Mix/Add Shader trees",
     'ShaderNodeBsdfTransparent': "rendered: Color; alone and anywhere in Mix/Add Shader trees "
                                  "(camera and shadow rays pass by its weight)",
     'ShaderNodeBsdfVelvet': "rendered: Color, Sigma (any graph), Normal; Cycles' Ashikhmin velvet, "
@@ -214,10 +220,11 @@ CLOSURES = {
                          "holdout; black elsewhere",
     'ShaderNodeMixShader': "partly: trees of Principled, Diffuse, Glossy, Glass, Transparent, "
                            "Holdout, Emission, Velvet / Sheen, Translucent, Refraction, Toon, "
-                           "Principled Hair and Subsurface Scattering closures, Fac any graph",
+                           "Principled Hair, Subsurface Scattering and Metallic closures, Fac "
+                           "any graph",
     'ShaderNodeAddShader': "partly: trees of Principled, Diffuse, Glossy, Glass, Transparent, "
                            "Holdout, Emission, Velvet / Sheen, Translucent, Refraction, Toon, "
-                           "Principled Hair and Subsurface Scattering closures (a "
+                           "Principled Hair, Subsurface Scattering and Metallic closures (a "
                            "Transparent's weight and the others' summing past 1: the others "
                            "shade only what it lets through)",
     # Volume closures (volumes.py): homogeneous media, or heterogeneous ones in meshes.

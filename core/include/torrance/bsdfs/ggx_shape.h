@@ -69,6 +69,16 @@ class Shape {
     if (!anisotropic_) return ggx::sample_visible_normal(wo, alpha_x_, u);
     return from_lobe(sample_visible_normal_aniso(to_lobe(wo), alpha_x_, alpha_y_, u));
   }
+  // A reflection lobe sampled by visible normals: the density of its reflected directions,
+  // G1(wo) D(h) / (4 wo.z) (0 unless both lie above the surface), and a direction drawn from it
+  // (wo.z > 0; it may lie below the surface).
+  float reflection_pdf(const Vec3& wo, const Vec3& wi) const {
+    if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
+    Vec3 h;
+    if (!reflection_half(wo, wi, h)) return 0.0f;
+    return G1(wo) * D(h) / (4.0f * wo.z);
+  }
+  Vec3 sample_reflection(const Vec3& wo, const Vec2& u) const { return reflect(wo, sample_visible_normal(wo, u)); }
 
  private:
   Vec3 to_lobe(const Vec3& w) const { return Vec3(cos_ * w.x + sin_ * w.y, -sin_ * w.x + cos_ * w.y, w.z); }

@@ -66,6 +66,12 @@ enum class ClosureType {
   // Subsurface Scattering node (core/src/subsurface/: Cycles' Random Walk): Color = base_color,
   // Radius x Scale = subsurface_radius, IOR = subsurface_ior, Anisotropy = subsurface_anisotropy.
   Subsurface,
+  // Metallic BSDF (Blender 4.3+; metallic_bsdf.h), Roughness = roughness, Anisotropy, Rotation and
+  // Tangent as the Glossy's fields, its distribution's Multiscatter GGX = multiscatter_ggx; F82 Tint:
+  // Base Color = base_color, Edge Tint = specular_tint_color; Physical Conductor: IOR (n) =
+  // specular_tint_color, Extinction (k) = sheen_tint_color.
+  MetallicF82,
+  MetallicConductor,
 };
 
 struct MixtureComponent {

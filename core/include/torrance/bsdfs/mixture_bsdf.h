@@ -16,6 +16,7 @@
 
 #include "torrance/bsdfs/diffuse_bsdf.h"
 #include "torrance/bsdfs/glossy_bsdf.h"
+#include "torrance/bsdfs/metallic_bsdf.h"
 #include "torrance/hair/principled_hair_bsdf.h"
 #include "torrance/bsdfs/material_bsdf.h"
 #include "torrance/bsdfs/mixture.h"
@@ -40,7 +41,8 @@ class Scene;
 class MixtureBsdf {
  public:
   using Component = std::variant<std::monostate, MaterialBsdf, DiffuseBsdf, GlossyBsdf, VelvetBsdf, SheenBsdf,
-                                 TranslucentBsdf, RefractionBsdf, ToonBsdf, PrincipledHairBsdf, SubsurfaceExitBsdf>;
+                                 TranslucentBsdf, RefractionBsdf, ToonBsdf, PrincipledHairBsdf, SubsurfaceExitBsdf,
+                                 MetallicBsdf>;
 
   MixtureBsdf() = default;
   explicit MixtureBsdf(const MaterialBsdf& single) { add(single, 1.0f, 1.0f); }

@@ -50,6 +50,7 @@
 #include "torrance/bsdfs/bsdf.h"
 #include "torrance/bsdfs/ggx_tables.h"
 #include "torrance/bsdfs/lobe_mixture.h"
+#include "torrance/bsdfs/metal_fresnel.h"
 #include "torrance/bsdfs/principled_coat.h"
 #include "torrance/bsdfs/principled_sheen.h"
 
@@ -132,7 +133,8 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
   Vec3 specular_estimate(const ViewTerms& v, float cos_o) const;  // the GGX layers' albedo, layered
 
   Vec3 diffuse_color_{0.0f}, subsurface_color_{0.0f};  // the diffuse and walked parts of the base
-  Vec3 metal_f0_, metal_b_, metal_fss_, dielectric_f0_, dielectric_fss_;
+  F82Tint metal_;  // the metal's Fresnel
+  Vec3 metal_fss_, dielectric_f0_, dielectric_fss_;
   float dielectric_weight_ = 1.0f;  // (1 - metallic)(1 - transmission): Transmission Weight's glass is
                                    // principled_glass_v2.h's, which MaterialBsdf adds
   float metallic_, roughness_, alpha_, eta_;
