@@ -162,14 +162,34 @@ def check_ignored_inputs():
                       f"{[t for _l, t in messages]}")
                 tried.append((kind, name, in_mix, set_it))
     print(f"ignored inputs: {len(tried)} cases checked", flush=True)
-    if bpy.app.version >= (5, 0, 0):        # Blender 5.x has every one of them
-        check(len(tried) == 4 * len(IGNORED_INPUTS), f"5.x: {len(tried)} cases, not all inputs")
+    if bpy.app.version >= (5, 3, 0):        # Blender 5.3 has every one of them (5.0: two)
+        check(len(tried) == 4 * len(IGNORED_INPUTS), f"5.3: {len(tried)} cases, not all inputs")
+
+
+def check_subsurface_anisotropy():
+    """A negative Subsurface Anisotropy is Cycles 5.3's (its new Random Walk); Cycles 4.x and 5.0
+    clamp it to 0 (a review finding: 5.0 read it as 5.3)."""
+    mat, nodes, links, out = node_material("NegativeAnisotropy")
+    node = shader(nodes, "ShaderNodeBsdfPrincipled")
+    if "Subsurface Weight" not in node.inputs:      # Blender 3.x: v1's anisotropy, [0, 1]
+        return
+    node.inputs["Subsurface Weight"].default_value = 1.0
+    node.inputs["Subsurface Anisotropy"].default_value = -0.5
+    links.new(node.outputs[0], out.inputs["Surface"])
+    args, _messages = read(mat)
+    got = args.get("subsurface_anisotropy")
+    print(f"subsurface anisotropy -0.5 read as {got}", flush=True)
+    if bpy.app.version >= (5, 3, 0):
+        check(got == -0.5, f"5.3 keeps a negative anisotropy: {got}")
+    elif bpy.app.version < (5, 1, 0):
+        check(got == 0.0, f"4.x/5.0 clamp the anisotropy to 0: {got}")
 
 
 def main():
     testing.addon()
     check_transparent_mix()
     check_ignored_inputs()
+    check_subsurface_anisotropy()
     testing.clear_scene()
     args, messages = read(nested_tree())
     mix = args.get("mixture")

@@ -56,11 +56,14 @@ def _medium(reader, mat, node, ior_name, anisotropy_name):
                                             0.0, 1.0))
 
 
-def version_flags(anisotropy):
-    """The arguments of the running Blender's Cycles (4.x/5.x) for a walk of `anisotropy`:
-    4.0-4.4's quarter-footprint fallback, 5.x's walks after a diffuse bounce and its negative
-    anisotropy (Cycles clamps it to [-0.99, 0.99]; 4.x to [0, 0.9])."""
-    out = dict(subsurface_anisotropy=clamp(anisotropy, -1.0, 1.0))
+def version_flags(anisotropy, methods):
+    """The arguments of the running Blender's Cycles (4.x/5.x) for a walk of `anisotropy`, the
+    node's methods `methods`: 4.0-4.4's quarter-footprint fallback, 5.x's walks after a diffuse
+    bounce, and a negative anisotropy only where the version has 5.3's new Random Walk (Random
+    Walk (Legacy) among the methods: Cycles 5.3 clamps to [-0.99, 0.99]; 4.x and 5.0 to [0, 0.9],
+    the core's clamp for a non-negative one)."""
+    lowest = -1.0 if 'RANDOM_WALK_LEGACY' in methods else 0.0
+    out = dict(subsurface_anisotropy=clamp(anisotropy, lowest, 1.0))
     if bpy.app.version >= (5, 0, 0):
         out['subsurface_after_diffuse'] = True
     elif bpy.app.version < (4, 5, 0):
@@ -96,7 +99,7 @@ def _read_subsurface_v2(reader, mat, node):
     return dict(subsurface=clamp(values['subsurface'], 0.0, 1.0),
                 subsurface_radius=tuple(scale * r for r in radius),
                 subsurface_ior=max(1e-5, finite_or(v(mat, node, "Subsurface IOR", 1.4), 1.4)),
-                **version_flags(anisotropy), **_method_v4(method, methods))
+                **version_flags(anisotropy, methods), **_method_v4(method, methods))
 
 
 def read_subsurface(reader, mat, node, version):
@@ -131,7 +134,7 @@ def read_subsurface_node(reader, mat, node):
     if 'RANDOM_WALK_SKIN' not in methods:   # Blender 3.x
         out.update(_method_v3(method))
         return out
-    out.update(version_flags(finite_or(v(mat, node, "Anisotropy", 0.0), 0.0)))
+    out.update(version_flags(finite_or(v(mat, node, "Anisotropy", 0.0), 0.0), methods))
     out.update(_method_v4(method, methods))
     if method != 'RANDOM_WALK_SKIN':
         roughness = clamp(finite_or(v(mat, node, "Roughness", 1.0), 1.0), 0.0, 1.0)
