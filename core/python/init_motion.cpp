@@ -53,12 +53,14 @@ void init_motion(py::module_& m) {
         if (t.shape(0) < 2 || t.shape(1) != i.shape(0))
           throw py::value_error("instance motion must have shape (S, " + std::to_string(i.shape(0)) +
                                 ", 3, 4) with S >= 2 time steps, got " + shape_string(t));
-        s.set_instance_motion(i.data(), size_t(i.shape(0)), size_t(t.shape(0)), t.data());  // ValueError
+        return s.set_instance_motion(i.data(), size_t(i.shape(0)), size_t(t.shape(0)), t.data());  // ValueError
       },
       py::arg("ids"), py::arg("transforms"),
       "Motion blur: instances `ids` (from add_instances) move through transforms (S, len(ids), 3, 4), "
       "S >= 2 object-to-world matrices evenly over the shutter (a later set_instance_transforms ends "
-      "an instance's motion). ValueError for removed or unknown ids, bad shapes, NaN/Inf.");
+      "an instance's motion). Returns how many of them keep their transform without motion: those with "
+      "a step of (nearly) zero scale, which Embree could not trace. ValueError for removed or unknown "
+      "ids, bad shapes, NaN/Inf.");
   method("has_motion", [](const Scene& s) { return s.has_motion(); },
          "Whether some mesh or instance moves (set_mesh_motion, set_instance_motion).");
   method(

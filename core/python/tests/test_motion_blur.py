@@ -171,6 +171,20 @@ def instance_scene(distance):
     return scene
 
 
+def test_instance_shrinking_to_nothing_stays_still():
+    """A step of zero scale (a particle dying during the shutter) can not be traced: that instance
+    keeps its transform without motion, and set_instance_motion says how many did."""
+    scene, _ = square_scene(offset=(50.0, 50.0))
+    prototype = scene.add_prototype(SQUARE, TRIANGLES)
+    first = scene.add_instances(prototype, np.eye(4, dtype=np.float32)[None, :3, :], [0])
+    steps = np.stack([np.eye(4, dtype=np.float32)[:3, :] for _ in range(3)])
+    steps[2, :, :3] = 0.0
+    assert scene.set_instance_motion([first], steps[:, None]) == 1
+    a = alpha(scene)
+    assert np.isfinite(a).all()
+    assert a.sum() == pytest.approx(100.0, rel=0.02)     # the still square's coverage
+
+
 def test_moving_instance_covers_as_the_moving_mesh():
     scene = instance_scene(1.0)
     assert scene.has_motion()

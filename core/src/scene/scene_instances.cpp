@@ -78,20 +78,6 @@ void Scene::check_transform(const float* m, uint32_t prototype, const std::strin
 
 namespace {
 
-// Embree traces an instance in object space: a world ray's origin o becomes M^-1 (o - t), which
-// Embree rejects (Debian's build asserts, aborting Blender) beyond about 1.8e18. With o and t
-// within kMaxCoordinate (1e12), an inverse entry up to 1e5 keeps it within 3 * 1e5 * 2e12 = 6e17.
-constexpr double kMaxInverseEntry = 1e5;
-
-// Zero scale in some direction (a common way of hiding instances), or so nearly zero (below 1e-5
-// of the prototype in some direction) that Embree could not trace it: nothing to trace.
-bool singular(const std::array<float, 12>& m) {
-  const double det = determinant3(m);
-  if (!(std::abs(det) > 1e-30) || !std::isfinite(1.0 / det)) return true;
-  for (const double entry : normal_matrix(m))  // the inverse's entries, transposed
-    if (!(std::abs(entry) <= kMaxInverseEntry)) return true;
-  return false;
-}
 }  // namespace
 
 // Sets the instance's matrix, in Embree too, and hides it while the matrix is singular.
@@ -100,7 +86,10 @@ void Scene::place_instance(Instance& instance, const float* transform) {
   const bool was_hidden = instance.hidden;
   instance.hidden = singular(instance.transform);
   if (instance.hidden != was_hidden) hidden_instances_ += instance.hidden ? 1 : size_t(-1);
-  if (instance.geometry == kNoGeometry) return;
+  if (instance.geometry == kNoGeometry) {
+    instance.motion.clear();  // a new transform ends its motion blur (nothing to place)
+    return;
+  }
   RTCGeometry geom = rtcGetGeometry(scene_of(scene_), instance.geometry);
   if (!instance.motion.empty()) {  // a new transform ends its motion blur
     instance.motion.clear();

@@ -132,6 +132,21 @@ inline Vec3 transform_normal(const std::array<double, 9>& n, const Vec3& v) {
   const double dlen = std::sqrt(rx * rx + ry * ry + rz * rz);
   return dlen > 0.0 && std::isfinite(dlen) ? Vec3(float(rx / dlen), float(ry / dlen), float(rz / dlen)) : Vec3(0.0f);
 }
+
+// Embree traces an instance in object space: a world ray's origin o becomes M^-1 (o - t), which
+// Embree rejects (Debian's build asserts, aborting Blender) beyond about 1.8e18. With o and t
+// within kMaxCoordinate (1e12), an inverse entry up to 1e5 keeps it within 3 * 1e5 * 2e12 = 6e17.
+inline constexpr double kMaxInverseEntry = 1e5;
+
+// Zero scale in some direction (a common way of hiding instances), or so nearly zero (below 1e-5
+// of the prototype in some direction) that Embree could not trace it: nothing to trace.
+inline bool singular(const std::array<float, 12>& m) {
+  const double det = determinant3(m);
+  if (!(std::abs(det) > 1e-30) || !std::isfinite(1.0 / det)) return true;
+  for (const double entry : normal_matrix(m))  // the inverse's entries, transposed
+    if (!(std::abs(entry) <= kMaxInverseEntry)) return true;
+  return false;
+}
 }  // namespace scene_detail
 
 namespace scene_detail {

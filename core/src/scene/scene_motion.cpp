@@ -79,7 +79,7 @@ void Scene::set_mesh_motion(uint32_t mesh_id, size_t steps, const float* positio
   emitters_dirty_ = true;  // its emissive triangles now move (build_mesh_light)
 }
 
-void Scene::set_instance_motion(const int64_t* ids, size_t count, size_t steps, const float* transforms) {
+size_t Scene::set_instance_motion(const int64_t* ids, size_t count, size_t steps, const float* transforms) {
   std::lock_guard<std::mutex> lock(mutex_);
   check_idle("set instances' motion");
   if (steps < 2 || steps > kMaxMotionSteps)
@@ -90,8 +90,21 @@ void Scene::set_instance_motion(const int64_t* ids, size_t count, size_t steps, 
       check_transform(transforms + 12 * (s * count + i), bindings_[inst.binding].prototype,
                       "motion step " + std::to_string(s) + " of instance " + std::to_string(ids[i]));
   }
+  size_t still = 0;
   for (size_t i = 0; i < count; ++i) {
     Instance& inst = instances_[size_t(ids[i])];
+    // A step of zero (or nearly zero) scale, e.g. a particle born or dying during the shutter,
+    // is one Embree can not trace: that instance stays where it is.
+    bool traceable = true;
+    for (size_t s = 0; s < steps && traceable; ++s) {
+      std::array<float, 12> step;
+      std::copy_n(transforms + 12 * (s * count + i), 12, step.begin());
+      traceable = !singular(step);
+    }
+    if (!traceable) {
+      ++still;
+      continue;
+    }
     inst.motion.resize(steps);
     for (size_t s = 0; s < steps; ++s) std::copy_n(transforms + 12 * (s * count + i), 12, inst.motion[s].begin());
     if (inst.geometry == kNoGeometry || inst.hidden) continue;
@@ -103,8 +116,9 @@ void Scene::set_instance_motion(const int64_t* ids, size_t count, size_t steps, 
     if (bindings_[inst.binding].num_emissive > 0) emitters_dirty_ = true;
   }
   check_device("setting instances' motion");
-  if (count > 0) has_motion_ = true;
+  if (count > still) has_motion_ = true;
   dirty_ = true;
+  return still;
 }
 
 std::array<float, 12> Scene::instance_transform(const Instance& inst) const {

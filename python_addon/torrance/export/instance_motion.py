@@ -83,12 +83,17 @@ class InstanceMotion:
             ids, blocks = groups.setdefault(len(rows), ([], []))
             ids.append(src.core_ids[index])
             blocks.append(rows)
+        still = 0
         for ids, blocks in groups.values():
             try:
-                tc_scene.set_instance_motion(np.array(ids, dtype=np.int64), np.stack(blocks, 1))
+                still += tc_scene.set_instance_motion(np.array(ids, dtype=np.int64),
+                                                      np.stack(blocks, 1))
             except ValueError as exc:
                 reporter.warning(f"{len(ids)} moving instance(s) rendered without motion blur "
                                  f"({exc})")
+        if still:
+            reporter.info(f"{still} moving instance(s) shrink to zero scale during the shutter: "
+                          f"rendered without motion blur")
         if lost:
             reporter.info(f"{lost} instance(s) do not exist over the whole shutter: rendered "
                           f"without motion blur")

@@ -4,7 +4,9 @@ Motion Blur): the camera's and the moving objects' transforms, and the deformati
 sampled at the shutter's sub-frame times through RenderEngine.frame_set, for
 Scene.set_camera_motion and Scene.set_mesh_motion; instances through instance_motion.py, the
 shutter's curve and rolling through shutter.py. Final renders only (the viewport, as Cycles',
-shows none). Lamps stay where the frame puts them, as in Cycles (3.4 to 5.x move no lamp)."""
+shows none). Lamps do not move during the shutter (3.4 to 5.x move no lamp); with the shutter's
+Position at Start or End the scene is read at the shutter's centre (at_shutter_centre), where
+Cycles re-syncs its objects and lamps."""
 
 from contextlib import contextmanager
 

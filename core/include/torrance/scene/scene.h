@@ -296,8 +296,10 @@ class Scene final : public ShaderTracer {
   // >= 2 transforms each (steps x count row-major 3x4 matrices, step-major), evenly over the
   // shutter: Embree's instance motion (linear between steps, as the hits and the emissive
   // triangles interpolate them at the ray's time). Throws std::invalid_argument for a removed or
-  // unknown id, a step count outside 2..129 or a transform add_instances would refuse.
-  void set_instance_motion(const int64_t* ids, size_t count, size_t steps, const float* transforms);
+  // unknown id, a step count outside 2..129 or a transform add_instances would refuse. An
+  // instance with a step of (nearly) zero scale, which Embree could not trace, keeps its transform
+  // without motion; returns how many did.
+  size_t set_instance_motion(const int64_t* ids, size_t count, size_t steps, const float* transforms);
   // Whether some mesh or instance moves: the integrator then samples a time per path.
   bool has_motion() const { return has_motion_; }
   // Vertices and triangles of mesh `mesh` from add_mesh (std::invalid_argument for a bad id).
