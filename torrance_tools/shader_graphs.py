@@ -137,6 +137,14 @@ def test_image():
     return new_image("Colours", np.dstack([px, np.ones_like(x)]).astype(np.float32))
 
 
+def image_height(count):
+    """The render's height that shows every one of `count` patches at W / ORTHO_SCALE pixels per
+    unit: H up to three rows (12 patches); taller for more rows (which fell outside the view
+    before), in whole 8-pixel blocks."""
+    rows = math.ceil(count / COLUMNS)
+    return max(H, 8 * math.ceil(rows * (PATCH + GAP) * W / ORTHO_SCALE / 8))
+
+
 def _patch_corner(k, rows):
     i, j = k % COLUMNS, k // COLUMNS
     return (i - COLUMNS / 2) * (PATCH + GAP), (rows / 2 - j - 1) * (PATCH + GAP)
@@ -147,10 +155,10 @@ def build(scene, makers, lit=()):
     name names the material), then one patch per lit material (made by lit's makers, of
     materials), under a sun and a sky; a maker's `setup(obj)`, if it has one, then edits its
     quad (e.g. adds attributes, object_matrix)."""
-    testing.setup_render(scene, width=W, height=H)
+    height = image_height(len(makers) + len(lit))
+    testing.setup_render(scene, width=W, height=height)
     cam = testing.add_camera(scene, location=(0.0, -0.001, 10.0), target=(0.0, 0.0, 0.0))
     cam.data.type = 'ORTHO'
-    cam.data.ortho_scale = ORTHO_SCALE
     materials = []
     for make in makers:
         g = Graph(make.__name__)
@@ -158,6 +166,7 @@ def build(scene, makers, lit=()):
         materials.append(g.mat)
     materials += [make() for make in lit]
     setups = [getattr(make, "setup", None) for make in (*makers, *lit)]
+    cam.data.ortho_scale = ORTHO_SCALE * max(W, height) / W    # it spans the longer side
     rows = math.ceil(len(materials) / COLUMNS)
     for k, (mat, setup) in enumerate(zip(materials, setups, strict=True)):
         x0, y0 = _patch_corner(k, rows)
@@ -207,11 +216,12 @@ def patch_means(img, count):
     """Mean RGB of each patch's inner pixels, in the grid's order."""
     rows = math.ceil(count / COLUMNS)
     px = W / ORTHO_SCALE
+    height = img.shape[0]
     out = []
     for k in range(count):
         x0, y0 = _patch_corner(k, rows)
         c0, c1 = int(W / 2 + x0 * px) + 3, int(W / 2 + (x0 + PATCH) * px) - 3
-        r0, r1 = int(H / 2 - (y0 + PATCH) * px) + 3, int(H / 2 - y0 * px) - 3
+        r0, r1 = int(height / 2 - (y0 + PATCH) * px) + 3, int(height / 2 - y0 * px) - 3
         out.append(img[r0:r1, c0:c1, :3].mean(axis=(0, 1)))
     return out
 
