@@ -9,8 +9,8 @@ renders it at SAMPLES with a seed of its own (not the references' 1 and 2) and T
 automatic BRDF model: Principled v2) at the same samples with another; Torrance's ratio, per
 channel too, and its 8x8 block mean and p90 against the reference must stay within
 agreement.noise_bounds of Cycles' own figures (1.5x the block figures, glint's p90 2x: see
-P90_TOLERANCE; 3x the ratio's offset, at least 1.5 %). A fault (FAULT: the BRDF model Principled v1 instead of v2) must fail on the scenes
-in FAULT_SCENES.
+P90_TOLERANCE; 3x the ratio's offset, at least 1.5 %). A fault (the BRDF model Principled v1
+instead of v2) must fail on the scenes in FAULT_SCENES.
 
 Run: scripts/bpy 5.3 -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_comparison_scenes_agreement.py
