@@ -73,7 +73,10 @@ def point_world_to_object(g):
 
 
 def vector_object_to_camera(g):
-    return _transform(g, _position(g), 'VECTOR', 'OBJECT', 'CAMERA')
+    """The position scaled to stay within the unit ball once the object's matrix (up to 1.6x)
+    has moved it anywhere on a grid of four rows: a shown component below -1 would be a negative
+    colour, which Cycles renders and Torrance clamps at 0 (its emission is never negative)."""
+    return _transform(g, _position(g, 0.2), 'VECTOR', 'OBJECT', 'CAMERA')
 
 
 def normal_camera_to_object(g):
