@@ -45,8 +45,9 @@ Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; To
 seeds 2 and 3. A deliberate fault per feature and setting family (the reader patched: F1's
 Randomness read as 1, F2 read as F1, Smooth F1 read as F1, Distance to Edge read as F1's
 Distance, N-Sphere Radius's Randomness read as 1, the metrics read as Euclidean, each dimension
-count read as the next) must fail them; in Blender 4.x also Detail read as 0, Normalize read as
-off, Lacunarity read as 2 and Roughness read as 0.5.
+count read as the next) must fail them; in Blender 4.x and 5.x also Detail read as 0, Normalize
+read as off, Lacunarity read as 2, Roughness read as 0.5, and the cells hashed as the other
+Cycles hashes them (4.x: lookup3 of the floats, 5.0+: PCG of the integers).
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_shader_voronoi_agreement.py
@@ -278,9 +279,14 @@ def main():
     patches, faults = PATCHES, FAULTS
     if fractal:
         patches, faults = PATCHES + FRACTAL_PATCHES, FAULTS + FRACTAL_FAULTS
-    agree_on_patches(patches, what="the Voronoi Texture",
-                     faults=[(label, readers, 'ShaderNodeTexVoronoi', read_with(change))
-                             for label, change in faults])
+    faults = [(label, readers, 'ShaderNodeTexVoronoi', read_with(change))
+              for label, change in faults]
+    if fractal:
+        from torrance.shader_graph import voronoi4
+        faults.append(("cells hashed as the other Cycles hashes them (4.x: floats, 5.0+: "
+                       "integers)", voronoi4, 'cycles5_voronoi',
+                       lambda original: lambda: not original()))
+    agree_on_patches(patches, what="the Voronoi Texture", faults=faults)
 
 
 testing.run(main)

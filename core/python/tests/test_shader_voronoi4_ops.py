@@ -1,7 +1,8 @@
 """Blender 4.x's Voronoi Texture (python_addon/torrance/shader_graph/voronoi4.py, the twin of the
 core's voronoi4 in shader_voronoi.cpp): one octave without Normalize is 3.4's node (up to 4.x's
 1 / Scale for positions), the octaves' sums by hand, and the core's VoronoiV4 op agreeing with
-the twin bit for bit over random instructions (Detail with fractions, Normalize, every mode)."""
+the twin bit for bit over random instructions (Detail with fractions, Normalize, Cycles 5.0+'s
+integer-hashed cells, every mode)."""
 import numpy as np
 import pytest
 from voronoi_cases import core_against_twin, random_constants
@@ -55,6 +56,7 @@ def test_the_core_agrees_bit_for_bit(voronoi4, load_module):
     for k in range(200):
         mode = k % 80 if k < 160 else int(rng.integers(0, 80))
         normalize = voronoi4.NORMALIZE if rng.random() < 0.5 else 0
+        normalize |= voronoi4.INTEGER_HASH if rng.random() < 0.5 else 0
         constants = random_constants(rng, 9)
         constants[6, 0] = rng.choice([0.0, 1.0, 2.0, 2.4, 3.7, -1.0, 20.0])
         constants[7, 0] = rng.choice([0.5, 0.0, 1.0, 0.73, 1.6])
@@ -62,3 +64,23 @@ def test_the_core_agrees_bit_for_bit(voronoi4, load_module):
         failures += core_against_twin(tc, program.finite, 49, voronoi4.FOLDS["VoronoiV4"], mode,
                                       [flags | normalize for flags in range(3)], constants)
     assert not failures, f"{len(failures)} disagreements:\n" + "\n".join(failures[:10])
+
+
+def test_cycles5_cells(voronoi4):
+    """Cycles 5.0+'s integer-hashed cells: 1D keeps the float hash; 2D-4D get new points (the
+    distance changes), whose colours stay in [0, 1] and whose F1 distance stays below the
+    farthest a point of the 3^n cells can be."""
+    rng = np.random.default_rng(17)
+    changed = {2: 0, 3: 0, 4: 0}
+    for _ in range(40):
+        v, w = tuple(rng.uniform(-50, 50, 3)), float(rng.uniform(-50, 50))
+        for dims in (1, 2, 3, 4):
+            old = voronoi4.voronoi4(dims, 'F1', 'EUCLIDEAN', v, w, 1.0)
+            new = voronoi4.voronoi4(dims, 'F1', 'EUCLIDEAN', v, w, 1.0, integer_hash=True)
+            if dims == 1:
+                assert new == old
+                continue
+            changed[dims] += new.distance != old.distance
+            assert all(0.0 <= c <= 1.0 for c in new.color)
+            assert 0.0 <= new.distance <= np.sqrt(dims)
+    assert all(n >= 30 for n in changed.values()), changed

@@ -48,6 +48,7 @@ float metric_length(const VecN<D>& v, VoronoiMetric metric, float exponent) {
 struct Octaves {
   float detail, roughness, lacunarity;
   bool normalize;
+  bool integer_hash;          // Cycles 5.0+'s cells (voronoi_search::cell_words)
   float max_distance = 0.0f;  // the largest distance the feature has, which Normalize divides by
   bool single() const { return detail == 0.0f || roughness == 0.0f; }
 };
@@ -111,7 +112,7 @@ float fractal_edge(const VecN<D>& p, const Params& q, const Octaves& o) {
   float amplitude = 1.0f, max_amplitude = o.max_distance, scale = 1.0f, distance = 8.0f;
   const float last = std::ceil(o.detail);
   for (int i = 0; float(i) <= last; ++i) {
-    const float octave = distance_to_edge<D>(p * scale, q.randomness, true);
+    const float octave = distance_to_edge<D>(p * scale, q.randomness, true, q.integer_hash);
     if (o.single()) {
       distance = octave;
       break;
@@ -136,7 +137,9 @@ Found<D> search4(const VecN<D>& p, VoronoiFeature feature, const Params& q, Octa
   Found<D> out;
   o.max_distance = max_distance<D>(feature, q);
   switch (feature) {
-    case VoronoiFeature::NSphereRadius: out.radius = n_sphere_radius<D>(p, q.randomness, FLT_MAX); break;
+    case VoronoiFeature::NSphereRadius:
+      out.radius = n_sphere_radius<D>(p, q.randomness, FLT_MAX, q.integer_hash);
+      break;
     case VoronoiFeature::DistanceToEdge: out.distance = fractal_edge<D>(p, q, o); break;
     default:
       out = fractal_points<D>(p, feature, q, o);
@@ -147,13 +150,20 @@ Found<D> search4(const VecN<D>& p, VoronoiFeature feature, const Params& q, Octa
 
 
 Octaves octaves_of(const VoronoiFractal& f) {
-  return {clamp_to(f.detail, 0.0f, 15.0f), clamp_to(f.roughness, 0.0f, 1.0f), f.lacunarity, f.normalize};
+  return {clamp_to(f.detail, 0.0f, 15.0f), clamp_to(f.roughness, 0.0f, 1.0f), f.lacunarity, f.normalize,
+          f.integer_hash};
 }
 
 VoronoiOutputs evaluate(const VoronoiSettings& settings, const VoronoiInputs& in, const Octaves& octaves,
                         bool color) {
-  const Params q{clamp_to(in.smoothness / 2.0f, 0.0f, 0.5f), in.exponent, clamp_to(in.randomness, 0.0f, 1.0f),
-                 settings.metric, color, true, FLT_MAX};
+  const Params q{clamp_to(in.smoothness / 2.0f, 0.0f, 0.5f),
+                 in.exponent,
+                 clamp_to(in.randomness, 0.0f, 1.0f),
+                 settings.metric,
+                 color,
+                 true,
+                 FLT_MAX,
+                 octaves.integer_hash};
   return for_dimensions(settings.dimensions, [&](auto dimensions) {
     constexpr int D = decltype(dimensions)::value;
     return outputs_of<D>(search4<D>(coordinate<D>(in), settings.feature, q, octaves, in.scale));
@@ -167,9 +177,9 @@ VoronoiOutputs voronoi4(const VoronoiSettings& settings, const VoronoiInputs& in
 }
 
 glm::vec4 voronoi4_op(const ShaderOpContext& c) {
-  if (c.ins.flags > (kVoronoiRadius | kVoronoiNormalize)) return glm::vec4(0.0f);
-  const Octaves octaves =
-      octaves_of({c.value(6), c.value(7), c.value(8), (c.ins.flags & kVoronoiNormalize) != 0});
+  if (c.ins.flags > (kVoronoiRadius | kVoronoiNormalize | kVoronoiIntegerHash)) return glm::vec4(0.0f);
+  const Octaves octaves = octaves_of({c.value(6), c.value(7), c.value(8), (c.ins.flags & kVoronoiNormalize) != 0,
+                                      (c.ins.flags & kVoronoiIntegerHash) != 0});
   return op_outputs(c, [&](const VoronoiSettings& settings, const VoronoiInputs& in, bool color) {
     return evaluate(settings, in, octaves, color);
   });

@@ -79,8 +79,39 @@ struct Cells {
     return v;
   }
 
-  // Fills key, hash and point for the cells around `cell` (floor(p)).
-  void place_points(const VecN<D>& cell, float randomness) {
+  bool integer_hash = false;  // Cycles 5.0+'s cells (voronoi_search.h's cell_words): keys are ints
+
+  // Fills key, hash and point for the cells around `cell` (floor(p)), hashed as Cycles 5.0+
+  // hashes them where integer_hash (2D-4D), else as 3.4 and 4.x do.
+  void place_points(const VecN<D>& cell, float randomness, bool integer) {
+    integer_hash = integer && D > 1;
+    if (integer_hash) {
+      place_integer_points(cell);
+    } else {
+      place_float_points(cell);
+    }
+    for (int k = 0; k < D; ++k)
+      for (int i = 0; i < kLanes; ++i) point[k][i] = kOffsets[size_t(k)][size_t(i)] + hash[k][i] * randomness;
+  }
+
+  // key: each cell's integer words (its integer corner plus the offset); hash: their PCG hash.
+  void place_integer_points(const VecN<D>& cell) {
+    for (int k = 0; k < D; ++k) {
+      const uint32_t corner = cell_int(cell[k]);
+      for (int i = 0; i < kLanes; ++i) key[k][i] = corner + uint32_t(int32_t(kOffsets[size_t(k)][size_t(i)]));
+    }
+    if constexpr (D > 1) {
+      for (int i = 0; i < kLanes; ++i) {
+        std::array<uint32_t, D> words;
+        for (int k = 0; k < D; ++k) words[size_t(k)] = key[k][i];
+        const std::array<uint32_t, D> h = pcg_hash<D>(words);
+        for (int k = 0; k < D; ++k) hash[k][i] = pcg_to_float(h[size_t(k)]);
+      }
+    }
+  }
+
+  // key: the bits of each cell's float corner; hash: lookup3's hashes of them.
+  void place_float_points(const VecN<D>& cell) {
     for (int k = 0; k < D; ++k) {
       const float corner = cell[k];  // read once: glm's v[k] is a switch, which keeps a loop scalar
       alignas(16) float coordinate[kLanes];
@@ -102,13 +133,22 @@ struct Cells {
       lanes::hash4<kLanes>(key[2], key[3], key[0], key[1], hash[2]);
       lanes::hash4<kLanes>(key[1], key[2], key[3], key[0], hash[3]);
     }
-    for (int k = 0; k < D; ++k)
-      for (int i = 0; i < kLanes; ++i) point[k][i] = kOffsets[size_t(k)][size_t(i)] + hash[k][i] * randomness;
   }
 
   // The cells' colours (cell_color in shader_voronoi.cpp), each sharing the hashes it has in
   // common with the point's; after place_points.
   void colors(float out[3][kLanes]) const {
+    if (integer_hash) {  // 2D: the hash of (x, y, 0); 3D and 4D: the point's own hash
+      if constexpr (D == 2) {
+        for (int i = 0; i < kLanes; ++i) {
+          const std::array<uint32_t, 3> h = pcg_hash<3>({key[0][i], key[1][i], 0u});
+          for (int k = 0; k < 3; ++k) out[k][i] = pcg_to_float(h[size_t(k)]);
+        }
+      } else if constexpr (D > 2) {
+        for (int k = 0; k < 3; ++k) std::copy(hash[k], hash[k] + kLanes, out[k]);
+      }
+      return;
+    }
     if constexpr (D == 1) {  // (h(x), h(x, 1), h(x, 2))
       std::copy(hash[0], hash[0] + kLanes, out[0]);
       lanes::hash2_with<kLanes>(key[0], float_bits(1.0f), out[1]);

@@ -10,6 +10,7 @@
 #include "shader/voronoi_cells.h"
 
 #include <algorithm>
+#include <array>
 #include <cfloat>
 #include <cmath>
 #include <type_traits>
@@ -31,6 +32,47 @@ inline Vec3 cell_color(const VecN<1>& c) { return hash_float_to_float3(c.x); }
 inline Vec3 cell_color(const VecN<2>& c) { return hash_float2_to_float3(c); }
 inline Vec3 cell_color(const VecN<3>& c) { return hash_float3_to_float3(c); }
 inline Vec3 cell_color(const VecN<4>& c) { return hash_float4_to_float3(c); }
+
+// Cycles 5.0+ hashes a cell of 2 to 4 dimensions as integers (shader_hash.h's PCG): the cell's
+// integer corner plus the offset, its point the hash of those words, its colour the hash of
+// (x, y, 0) in 2D, the point's own first three components in 3D and 4D; 1D keeps the float hash.
+template <int D>
+std::array<uint32_t, D> cell_words(const VecN<D>& cell, const VecN<D>& offset) {
+  std::array<uint32_t, D> words;
+  for (int k = 0; k < D; ++k) words[size_t(k)] = cell_int(cell[k]) + uint32_t(int32_t(offset[k]));
+  return words;
+}
+
+template <int D>
+VecN<D> cell_point(const VecN<D>& cell, const VecN<D>& offset, bool integer_hash) {
+  if constexpr (D == 1) {
+    return cell_point(cell + offset);
+  } else {
+    if (!integer_hash) return cell_point(cell + offset);
+    const std::array<uint32_t, D> h = pcg_hash<D>(cell_words<D>(cell, offset));
+    VecN<D> point;
+    for (int k = 0; k < D; ++k) point[k] = pcg_to_float(h[size_t(k)]);
+    return point;
+  }
+}
+
+template <int D>
+Vec3 cell_color(const VecN<D>& cell, const VecN<D>& offset, bool integer_hash) {
+  if constexpr (D == 1) {
+    return cell_color(cell + offset);
+  } else {
+    if (!integer_hash) return cell_color(cell + offset);
+    const std::array<uint32_t, D> words = cell_words<D>(cell, offset);
+    std::array<uint32_t, 3> h{};
+    if constexpr (D == 2) {
+      h = pcg_hash<3>({words[0], words[1], 0u});
+    } else {
+      const std::array<uint32_t, D> all = pcg_hash<D>(words);
+      std::copy(all.begin(), all.begin() + 3, h.begin());
+    }
+    return Vec3(pcg_to_float(h[0]), pcg_to_float(h[1]), pcg_to_float(h[2]));
+  }
+}
 
 // Cycles' dot products: summed left to right, but four components in pairs (as SSE's dpps).
 inline float dot(const VecN<1>& a, const VecN<1>& b) { return a.x * b.x; }
@@ -81,13 +123,14 @@ struct Params {
   bool color;     // whether the smooth blend needs the cells' colours
   bool cycles4;   // Cycles 4.x's searches: from FLT_MAX, Smooth F1 taking its first cell as it is
   float start;    // the best distance a search starts from: 8 (3.4) or FLT_MAX (4.x)
+  bool integer_hash = false;  // Cycles 5.0+'s cells (cell_words), 2D-4D
 };
 
 template <int D>
 Found<D> f1(const VecN<D>& p, const Params& q) {
   const VecN<D> cell = glm::floor(p);
   voronoi_cells::Cells<D, 1> cells;
-  cells.place_points(cell, q.randomness);
+  cells.place_points(cell, q.randomness, q.integer_hash);
   cells.measure(p - cell, q.metric, q.exponent);
   float best = q.start;
   int chosen = -1;
@@ -96,14 +139,14 @@ Found<D> f1(const VecN<D>& p, const Params& q) {
   // None closer than 8: the own cell's colour and the cell corner (Cycles' initial values).
   const VecN<D> offset = chosen >= 0 ? cells.offset(chosen) : VecN<D>(0.0f);
   const VecN<D> point = chosen >= 0 ? cells.point_at(chosen) : VecN<D>(0.0f);
-  return {best, cell_color(cell + offset), point + cell, 0.0f};
+  return {best, cell_color<D>(cell, offset, q.integer_hash), point + cell, 0.0f};
 }
 
 template <int D>
 Found<D> f2(const VecN<D>& p, const Params& q) {
   const VecN<D> cell = glm::floor(p);
   voronoi_cells::Cells<D, 1> cells;
-  cells.place_points(cell, q.randomness);
+  cells.place_points(cell, q.randomness, q.integer_hash);
   cells.measure(p - cell, q.metric, q.exponent);
   float first = q.start, second = q.start;
   int first_cell = -1, second_cell = -1;
@@ -118,7 +161,7 @@ Found<D> f2(const VecN<D>& p, const Params& q) {
   }
   const VecN<D> offset = second_cell >= 0 ? cells.offset(second_cell) : VecN<D>(0.0f);
   const VecN<D> point = second_cell >= 0 ? cells.point_at(second_cell) : VecN<D>(0.0f);
-  return {second, cell_color(cell + offset), point + cell, 0.0f};
+  return {second, cell_color<D>(cell, offset, q.integer_hash), point + cell, 0.0f};
 }
 
 template <int D>
@@ -126,7 +169,7 @@ Found<D> smooth_f1(const VecN<D>& p, const Params& q) {
   using Cells = voronoi_cells::Cells<D, 2>;
   const VecN<D> cell = glm::floor(p);
   Cells cells;
-  cells.place_points(cell, q.randomness);
+  cells.place_points(cell, q.randomness, q.integer_hash);
   cells.measure(p - cell, q.metric, q.exponent);
   alignas(16) float colors[3][Cells::kLanes];
   if (q.color) cells.colors(colors);
@@ -149,7 +192,7 @@ Found<D> smooth_f1(const VecN<D>& p, const Params& q) {
 // The distance to the closest edge: from the closest point's bisectors with every other point
 // (the 3^n cells, Euclidean).
 template <int D>
-float distance_to_edge(const VecN<D>& p, float randomness, bool cycles4) {
+float distance_to_edge(const VecN<D>& p, float randomness, bool cycles4, bool integer_hash) {
   const VecN<D> cell = glm::floor(p);
   const VecN<D> local = p - cell;
   if constexpr (D == 1) {
@@ -161,7 +204,7 @@ float distance_to_edge(const VecN<D>& p, float randomness, bool cycles4) {
     return std::min(to_left, to_right);
   } else {
     voronoi_cells::Cells<D, 1> cells;
-    cells.place_points(cell, randomness);
+    cells.place_points(cell, randomness, integer_hash);
     float best = cycles4 ? FLT_MAX : 8.0f;
     VecN<D> to_closest(0.0f);
     for (int i = 0; i < cells.kCount; ++i) {
@@ -186,10 +229,10 @@ float distance_to_edge(const VecN<D>& p, float randomness, bool cycles4) {
 // Half the (Euclidean) distance from the closest point to the point closest to it, searched
 // among the 3^n - 1 cells around the closest point's cell.
 template <int D>
-float n_sphere_radius(const VecN<D>& p, float randomness, float start) {
+float n_sphere_radius(const VecN<D>& p, float randomness, float start, bool integer_hash) {
   const VecN<D> cell = glm::floor(p);
   voronoi_cells::Cells<D, 1> cells;
-  cells.place_points(cell, randomness);
+  cells.place_points(cell, randomness, integer_hash);
   cells.measure(p - cell, VoronoiMetric::Euclidean, 0.0f);
   float best = start;
   VecN<D> closest(0.0f), closest_offset(0.0f);
@@ -201,7 +244,7 @@ float n_sphere_radius(const VecN<D>& p, float randomness, float start) {
     for (int k = 0; k < D; ++k)
       if (step[k] != 0.0f) {
         const VecN<D> offset = step + closest_offset;
-        const VecN<D> point = offset + cell_point(cell + offset) * randomness;
+        const VecN<D> point = offset + cell_point<D>(cell, offset, integer_hash) * randomness;
         const float d = D == 1 ? std::fabs(closest[0] - point[0]) : length<D>(closest - point);
         if (d < best) best = d, nearest = point;
         return;
@@ -219,12 +262,12 @@ Found<D> search(const VecN<D>& p, VoronoiFeature feature, const Params& q) {
     case VoronoiFeature::SmoothF1: return cpu_dispatch::run_fast([&] { return smooth_f1<D>(p, q); });
     case VoronoiFeature::DistanceToEdge: {
       Found<D> out;
-      out.distance = distance_to_edge<D>(p, q.randomness, q.cycles4);
+      out.distance = distance_to_edge<D>(p, q.randomness, q.cycles4, q.integer_hash);
       return out;
     }
     case VoronoiFeature::NSphereRadius: {
       Found<D> out;
-      out.radius = n_sphere_radius<D>(p, q.randomness, q.start);
+      out.radius = n_sphere_radius<D>(p, q.randomness, q.start, q.integer_hash);
       return out;
     }
   }

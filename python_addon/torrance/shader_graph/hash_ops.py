@@ -168,3 +168,41 @@ def hash_float3_to_float2(x, y, z):
 
 def hash_float4_to_float2(x, y, z, w):
     return hash_float4_to_float(x, y, z, w), hash_float4_to_float(z, x, w, y)
+
+
+# -- Cycles 5.0+'s integer hashes (the Voronoi Texture's cells in 2D-4D), shader_hash.h's PCG --
+
+_PCG_MULTIPLIER, _PCG_INCREMENT = _U(1664525), _U(1013904223)
+
+
+def cell_int(floored):
+    """Cycles' integer cell of floored float32 values (uint32 words): their truncation,
+    0x80000000 where there is none (NaN, out of int's range), as x86 converts."""
+    f = np.asarray(floored, _F)
+    inside = (f >= _F(-2147483648.0)) & (f < _F(2147483648.0))
+    return np.where(inside, np.where(inside, f, 0).astype(np.int64).astype(_U), _U(0x80000000))
+
+
+def _stir(v):
+    if len(v) == 2:
+        v[0] = v[0] + v[1] * _PCG_MULTIPLIER
+        v[1] = v[1] + v[0] * _PCG_MULTIPLIER
+        return
+    pairs = {3: ((1, 2), (2, 0), (0, 1)), 4: ((1, 3), (2, 0), (0, 1), (1, 2))}[len(v)]
+    for k, (a, b) in enumerate(pairs):
+        v[k] = v[k] + v[a] * v[b]
+
+
+def pcg_hash(*words):
+    """The PCG hash of 2, 3 or 4 uint32 words (equal-shaped arrays): a tuple of uint32 arrays of
+    words in [0, 2^31)."""
+    v = [np.atleast_1d(np.asarray(w, _U)) * _PCG_MULTIPLIER + _PCG_INCREMENT for w in words]
+    _stir(v)
+    v = [x ^ (x.view(np.int32) >> np.int32(16)).view(_U) for x in v]
+    _stir(v)
+    return tuple(x & _U(0x7FFFFFFF) for x in v)
+
+
+def pcg_to_float(h):
+    """A PCG word as a float in [0, 1]: float(h) * 2^-31."""
+    return np.asarray(h, _U).view(np.int32).astype(_F) * _F(1.0 / 2147483648.0)

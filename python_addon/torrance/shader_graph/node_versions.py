@@ -13,7 +13,8 @@ materials.principled_version does, not by bpy.app.version:
               gives (type, normalize, cycles4): 3.4's node is fBM normalised, Cycles 3.4's sum.
   Voronoi     4.0 adds fractal Voronoi (Detail, Roughness, Lacunarity, Normalize):
               voronoi_fractal says whether the node has them (then voronoi4.py's op, Cycles
-              4.x's searches and octaves).
+              4.x's searches and octaves); Cycles 5.0 hashes the cells as integers
+              (cycles5_voronoi: the running Blender tells).
   kernels     Cycles 4.x computes some unchanged nodes differently (the Wave Texture's
               distortion, the Vector Transform of a Normal, the Bump's reflection check and
               the tangent-space Normal Map's Strength, the Toon BSDF's sampling): the
@@ -116,6 +117,14 @@ def cycles4_normal_transform():
 def noise_settings(node):
     """(noise type, normalize) of a Noise Texture: 3.4's node is fBM, normalised."""
     return getattr(node, "noise_type", 'FBM'), bool(getattr(node, "normalize", True))
+
+
+def cycles5_voronoi():
+    """True where Cycles hashes the Voronoi Texture's cells of 2 to 4 dimensions as integers
+    (PCG; 5.0+, measured in 5.3; 4.x: lookup3 of the floats): the node did not change, the
+    running Blender tells."""
+    import bpy
+    return bpy.app.version >= (5, 0, 0)
 
 
 def voronoi_fractal(node):

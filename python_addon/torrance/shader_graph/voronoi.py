@@ -64,8 +64,21 @@ def _offsets(dimensions, reach):
     return out
 
 
-def _cell_points(cells):
-    """hash_float<n>_to_float<n> of each row of cells (N, n): the points' places in their cells."""
+def _integer_words(cell, offsets):
+    """Cycles 5.0+'s words of the cells cell + offsets (N, n): the integer corner plus each
+    offset, uint32 (wrapping)."""
+    corner = hash_ops.cell_int(cell)
+    steps = np.asarray(offsets).astype(np.int64).astype(np.uint32)
+    return [corner[k] + steps[:, k] for k in range(steps.shape[1])]
+
+
+def _cell_points(cell, offsets, integer_hash=False):
+    """The points' places in the cells cell + offsets (N, n): hash_float<n>_to_float<n> of each
+    cell, or (integer_hash, Cycles 5.0+, 2D-4D) the PCG hash of its integer words."""
+    if integer_hash and len(cell) > 1:
+        h = hash_ops.pcg_hash(*_integer_words(cell, offsets))
+        return np.stack([hash_ops.pcg_to_float(x) for x in h], axis=1)
+    cells = cell + offsets
     c = [cells[:, k] for k in range(cells.shape[1])]
     hashes = {1: lambda: (hash_ops.hash_float_to_float(c[0]),),
               2: lambda: hash_ops.hash_float2_to_float2(*c),
@@ -74,8 +87,16 @@ def _cell_points(cells):
     return np.stack([np.asarray(h, _F) for h in hashes], axis=1)
 
 
-def _cell_colors(cells):
-    """hash_float<n>_to_float3 of each row of cells: the cells' colours (N, 3)."""
+def _cell_colors(cell, offsets, integer_hash=False):
+    """The colours of the cells cell + offsets (N, 3): hash_float<n>_to_float3 of each cell, or
+    (integer_hash, 2D-4D) the PCG hash of (x, y, 0) in 2D, of the cell's words in 3D and 4D."""
+    if integer_hash and len(cell) > 1:
+        words = _integer_words(cell, offsets)
+        if len(words) == 2:
+            words.append(np.zeros_like(words[0]))
+        h = hash_ops.pcg_hash(*words)[:3]
+        return np.stack([hash_ops.pcg_to_float(x) for x in h], axis=1)
+    cells = cell + offsets
     c = [cells[:, k] for k in range(cells.shape[1])]
     hashes = {1: hash_ops.hash_float_to_float3, 2: hash_ops.hash_float2_to_float3,
               3: hash_ops.hash_float3_to_float3, 4: hash_ops.hash_float4_to_float3}[len(c)](*c)
@@ -136,25 +157,25 @@ def _first_below(values, limit=_EIGHT):
 
 # -- the features (p: the scaled coordinate, (n,) float32) ----------------------------------------
 
-def _neighbourhood(p, reach, randomness):
+def _neighbourhood(p, reach, randomness, integer_hash=False):
     cell = np.floor(p)
     local = p - cell
     offsets = _offsets(len(p), reach)
-    points = offsets + _cell_points(cell + offsets) * randomness
+    points = offsets + _cell_points(cell, offsets, integer_hash) * randomness
     return cell, local, offsets, points
 
 
 def _f1(p, q):
-    cell, local, offsets, points = _neighbourhood(p, 1, q['randomness'])
+    cell, local, offsets, points = _neighbourhood(p, 1, q['randomness'], q['integer_hash'])
     d = _distances(points, local, q['metric'], q['exponent'])
     i = _first_below(d, q['start'])
     distance, offset, point = (q['start'], np.zeros_like(cell), np.zeros_like(cell)) if i is None \
         else (d[i], offsets[i], points[i])
-    return distance, _cell_colors((cell + offset)[None, :])[0], point + cell
+    return distance, _cell_colors(cell, offset[None, :], q['integer_hash'])[0], point + cell
 
 
 def _f2(p, q):
-    cell, local, offsets, points = _neighbourhood(p, 1, q['randomness'])
+    cell, local, offsets, points = _neighbourhood(p, 1, q['randomness'], q['integer_hash'])
     d = _distances(points, local, q['metric'], q['exponent'])
     first = second = q['start']
     i1 = i2 = None
@@ -166,13 +187,13 @@ def _f2(p, q):
             second, i2 = di, i
     offset = offsets[i2] if i2 is not None else np.zeros_like(cell)
     point = points[i2] if i2 is not None else np.zeros_like(cell)
-    return second, _cell_colors((cell + offset)[None, :])[0], point + cell
+    return second, _cell_colors(cell, offset[None, :], q['integer_hash'])[0], point + cell
 
 
 def _smooth_f1(p, q):
-    cell, local, offsets, points = _neighbourhood(p, 2, q['randomness'])
+    cell, local, offsets, points = _neighbourhood(p, 2, q['randomness'], q['integer_hash'])
     d = _distances(points, local, q['metric'], q['exponent'])
-    colors = _cell_colors(cell + offsets)
+    colors = _cell_colors(cell, offsets, q['integer_hash'])
     s = q['smoothness']
     distance = _ZERO if q['cycles4'] else _EIGHT
     color, position = np.zeros(3, _F), np.zeros(len(p), _F)
@@ -203,15 +224,15 @@ def cycles_min(a, b):
     return a if a < b else b
 
 
-def distance_to_edge(p, randomness, cycles4=False):
+def distance_to_edge(p, randomness, cycles4=False, integer_hash=False):
     if len(p) == 1:
         cell = np.floor(p)
         local = (p - cell)[0]
-        around = np.array([cell[0], cell[0] - _ONE, cell[0] + _ONE], _F)[:, None]
-        h = _cell_points(around)[:, 0] * randomness
+        around = np.array([cell[0], cell[0] - _ONE, cell[0] + _ONE], _F)   # -0 stays -0
+        h = hash_ops.hash_float_to_float(around) * randomness
         mid, left, right = h[0], -_ONE + h[1], _ONE + h[2]
         return min(np.abs((mid + left) / _TWO - local), np.abs((mid + right) / _TWO - local))
-    cell, local, offsets, points = _neighbourhood(p, 1, randomness)
+    cell, local, offsets, points = _neighbourhood(p, 1, randomness, integer_hash)
     to_points = points - local
     start = FLT_MAX if cycles4 else _EIGHT
     i = _first_below(_dot(to_points, to_points), start)
@@ -226,15 +247,15 @@ def distance_to_edge(p, randomness, cycles4=False):
     return edges.min() if len(edges) else _EIGHT
 
 
-def n_sphere_radius(p, randomness, start=_EIGHT):
+def n_sphere_radius(p, randomness, start=_EIGHT, integer_hash=False):
     n = len(p)
-    cell, local, offsets, points = _neighbourhood(p, 1, randomness)
+    cell, local, offsets, points = _neighbourhood(p, 1, randomness, integer_hash)
     i = _first_below(length_of(points - local) if n > 1 else np.abs(points[:, 0] - local[0]), start)
     closest = points[i] if i is not None else np.zeros_like(local)
     closest_offset = offsets[i] if i is not None else np.zeros_like(local)
     steps = offsets[np.any(offsets != 0, axis=1)]
     around = steps + closest_offset
-    others = around + _cell_points(cell + around) * randomness
+    others = around + _cell_points(cell, around, integer_hash) * randomness
     j = _first_below(length_of(closest - others) if n > 1 else np.abs(closest[0] - others[:, 0]),
                      start)
     nearest = others[j] if j is not None else np.zeros_like(local)
@@ -248,12 +269,14 @@ def cycles_clamp(v, lo, hi):
     return v if v < hi else hi
 
 
-def settings(metric, smoothness, exponent, randomness, cycles4=False):
+def settings(metric, smoothness, exponent, randomness, cycles4=False, integer_hash=False):
     """The searches' settings (clamped as Cycles clamps them); cycles4: Cycles 4.x's searches
-    (from FLT_MAX, Smooth F1 taking its first cell as it is)."""
+    (from FLT_MAX, Smooth F1 taking its first cell as it is); integer_hash: Cycles 5.0+'s cells
+    (2D-4D hashed as integers)."""
     return {'smoothness': cycles_clamp(_F(smoothness) / _TWO, _ZERO, _HALF),
             'exponent': _F(exponent), 'randomness': cycles_clamp(_F(randomness), _ZERO, _ONE),
-            'metric': metric, 'start': FLT_MAX if cycles4 else _EIGHT, 'cycles4': cycles4}
+            'metric': metric, 'start': FLT_MAX if cycles4 else _EIGHT, 'cycles4': cycles4,
+            'integer_hash': integer_hash}
 
 
 def coordinate(dimensions, vector, w, scale):

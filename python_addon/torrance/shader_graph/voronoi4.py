@@ -9,17 +9,18 @@ FLT_MAX, Smooth F1 taking its first cell as it is).
 
 Opcode (the core's ShaderOpcode 49):
   VoronoiV4  Voronoi's six inputs, then Detail, Roughness, Lacunarity; Voronoi's modes and output
-             groups (flags & 3), flags & 4 (NORMALIZE) Normalize
+             groups (flags & 3), flags & 4 (NORMALIZE) Normalize, flags & 8 (INTEGER_HASH)
+             Cycles 5.0+'s cells (2D-4D hashed as integers: node_versions.cycles5_voronoi)
 """
 
 import numpy as np
 
 from . import voronoi
-from .node_versions import input_socket
+from .node_versions import cycles5_voronoi, input_socket
 from .program import constant
 
 OPCODES = {"VoronoiV4": 49}
-NORMALIZE = 4
+NORMALIZE, INTEGER_HASH = 4, 8
 
 _F = np.float32
 _0, _HALF, _1, _2 = _F(0.0), _F(0.5), _F(1.0), _F(2.0)
@@ -100,7 +101,8 @@ def _fractal_edge(p, q, o):
     """Distance to Edge over the octaves: a blended running minimum."""
     amplitude, max_amplitude, scale, distance = _1, o['max_distance'], _1, _F(8.0)
     for i in range(_octave_count(o['detail'])):
-        octave = voronoi.distance_to_edge(p * scale, q['randomness'], cycles4=True)
+        octave = voronoi.distance_to_edge(p * scale, q['randomness'], cycles4=True,
+                                          integer_hash=q['integer_hash'])
         if o['single']:
             distance = octave
             break
@@ -124,11 +126,13 @@ def _fractal_edge(p, q, o):
 
 def voronoi4(dimensions, feature, metric, vector=(0.0, 0.0, 0.0), w=0.0, scale=5.0,
              detail=0.0, roughness=0.5, lacunarity=2.0, normalize=False, smoothness=1.0,
-             exponent=0.5, randomness=1.0):
-    """The 4.x node's outputs (voronoi.VoronoiOutputs of Python floats)."""
+             exponent=0.5, randomness=1.0, integer_hash=False):
+    """The 4.x node's outputs (voronoi.VoronoiOutputs of Python floats); integer_hash: as
+    Cycles 5.0+ computes them."""
     with np.errstate(all='ignore'):
         scale = _F(scale)
-        q = voronoi.settings(metric, smoothness, exponent, randomness, cycles4=True)
+        q = voronoi.settings(metric, smoothness, exponent, randomness, cycles4=True,
+                             integer_hash=integer_hash)
         detail = voronoi.cycles_clamp(_F(detail), _0, _F(15.0))
         roughness = voronoi.cycles_clamp(_F(roughness), _0, _1)
         o = {'detail': detail, 'roughness': roughness, 'lacunarity': _F(lacunarity),
@@ -137,7 +141,8 @@ def voronoi4(dimensions, feature, metric, vector=(0.0, 0.0, 0.0), w=0.0, scale=5
         p = voronoi.coordinate(dimensions, vector, w, scale)
         distance, color, position, radius = _0, np.zeros(3, _F), np.zeros(len(p), _F), _0
         if feature == 'N_SPHERE_RADIUS':
-            radius = voronoi.n_sphere_radius(p, q['randomness'], voronoi.FLT_MAX)
+            radius = voronoi.n_sphere_radius(p, q['randomness'], voronoi.FLT_MAX,
+                                             q['integer_hash'])
         elif feature == 'DISTANCE_TO_EDGE':
             distance = _fractal_edge(p, q, o)
         elif feature in ('F1', 'F2', 'SMOOTH_F1'):
@@ -151,10 +156,11 @@ def voronoi4(dimensions, feature, metric, vector=(0.0, 0.0, 0.0), w=0.0, scale=5
 def _fold(mode, flags, a, _table):
     dimensions, feature, metric = voronoi.settings_of(mode)
     group = flags & 3
-    if flags > (voronoi.RADIUS | NORMALIZE) or group == 3:
+    if flags > (voronoi.RADIUS | NORMALIZE | INTEGER_HASH) or group == 3:
         return (0.0, 0.0, 0.0, 0.0)
     out = voronoi4(dimensions, feature, metric, a[0][:3], a[1][0], a[2][0], a[6][0], a[7][0],
-                   a[8][0], bool(flags & NORMALIZE), a[3][0], a[4][0], a[5][0])
+                   a[8][0], bool(flags & NORMALIZE), a[3][0], a[4][0], a[5][0],
+                   bool(flags & INTEGER_HASH))
     if group == voronoi.COLOR_DISTANCE:
         return (*out.color, out.distance)
     if group == voronoi.POSITION_W:
@@ -176,4 +182,6 @@ def emit_fractal(g, node, kind, args, mode, flags):
                    for name in ("Detail", "Roughness", "Lacunarity")]
         if node.normalize:
             flags |= NORMALIZE
+    if cycles5_voronoi():
+        flags |= INTEGER_HASH
     return g.builder.emit("VoronoiV4", kind, args + fractal, mode=mode, flags=flags)

@@ -17,6 +17,7 @@
 
 #include <glm/glm.hpp>
 
+#include <array>
 #include <cstdint>
 #include <cstring>
 
@@ -172,5 +173,47 @@ inline glm::vec2 hash_float3_to_float2(const glm::vec3& k) {
 inline glm::vec2 hash_float4_to_float2(const glm::vec4& k) {
   return {hash_float4_to_float(k), hash_float4_to_float(glm::vec4(k.z, k.x, k.w, k.y))};
 }
+
+// ---- Cycles 5.0+'s integer hashes (the Voronoi Texture's cells in 2D-4D) ----
+//
+// Jarzynski and Olano's PCG hashes of 2, 3 or 4 words ("Hash Functions for GPU Rendering",
+// JCGT 2020) on signed 32-bit integers as Cycles computes them: each word through one LCG step,
+// the words stirred into each other, xor-shifted right by 16 (an arithmetic shift: the sign
+// bit spreads), stirred again, the sign bit cleared. A result word h becomes float(h) * 2^-31.
+// Cycles' integer cell of a float is its truncation, 0x80000000 when it has none (NaN, out of
+// int's range), as x86's conversion gives. The Python twin is hash_ops.pcg_hash.
+
+inline uint32_t cell_int(float floored) {
+  return floored >= -2147483648.0f && floored < 2147483648.0f ? uint32_t(int32_t(floored)) : 0x80000000u;
+}
+
+template <int N>
+std::array<uint32_t, N> pcg_hash(std::array<uint32_t, N> v) {
+  static_assert(N >= 2 && N <= 4, "PCG hashes 2, 3 or 4 words");
+  constexpr uint32_t kMultiplier = 1664525u, kIncrement = 1013904223u;
+  const auto stir = [&v] {
+    if constexpr (N == 2) {
+      v[0] += v[1] * kMultiplier;
+      v[1] += v[0] * kMultiplier;
+    } else if constexpr (N == 3) {
+      v[0] += v[1] * v[2];
+      v[1] += v[2] * v[0];
+      v[2] += v[0] * v[1];
+    } else {
+      v[0] += v[1] * v[3];
+      v[1] += v[2] * v[0];
+      v[2] += v[0] * v[1];
+      v[3] += v[1] * v[2];
+    }
+  };
+  for (uint32_t& x : v) x = x * kMultiplier + kIncrement;
+  stir();
+  for (uint32_t& x : v) x ^= uint32_t(int32_t(x) >> 16);
+  stir();
+  for (uint32_t& x : v) x &= 0x7FFFFFFFu;
+  return v;
+}
+
+inline float pcg_to_float(uint32_t h) { return float(int32_t(h)) * (1.0f / 2147483648.0f); }
 
 }  // namespace torrance::shader

@@ -30,6 +30,11 @@
 //     Distance to Edge 0.5 + 0.5 Randomness scaled like the distances), the colour by the sum;
 //   - searches start from FLT_MAX instead of 8, Smooth F1 takes the first cell as it is (then
 //     blends), Smoothness 0 is F1, and positions are multiplied by 1 / scale (4.x's divisions).
+// Cycles 5.0 hashes the cells of 2 to 4 dimensions as integers (PCG, shader_hash.h: faster, a
+// new pattern; 1D keeps the float hash): VoronoiFractal::integer_hash, measured in 5.3. (5.x also
+// picks F1's and N-Sphere Radius's closest point by a cheaper monotone measure, the squared
+// Euclidean distance or the Minkowski sum before its root, then measures it: the same point but
+// at ties, not modelled.)
 // N-Sphere Radius has no octaves. (4.2.0's kernel read Lacunarity from Smoothness's slot; the
 // 4.2 LTS Blender the tests run, 4.2.23, reads Lacunarity, as this does.)
 // Cycles 3.4's node is shader_voronoi.cpp, 4.x's shader_voronoi4.cpp, over the searches both
@@ -79,12 +84,13 @@ struct VoronoiOutputs {
   float radius = 0.0f;
 };
 
-// Blender 4.x's fractal sockets and setting.
+// Blender 4.x's fractal sockets and setting, and which hash the Cycles uses.
 struct VoronoiFractal {
   float detail = 0.0f;
   float roughness = 0.5f;
   float lacunarity = 2.0f;
   bool normalize = false;
+  bool integer_hash = false;  // Cycles 5.0+: cells of 2 to 4 dimensions hashed as integers (PCG)
 };
 
 // All the node's outputs (any inputs; non-finite ones give what Cycles' float arithmetic does).
@@ -116,9 +122,9 @@ constexpr VoronoiSettings voronoi_settings(int mode) {
 glm::vec4 voronoi_op(const ShaderOpContext& c);
 
 // ShaderOpcode::VoronoiV4 (Blender 4.0+'s node, voronoi4): modes and output groups as Voronoi's
-// (flags & 3), flags & 4 (kVoronoiNormalize): Normalize; inputs Voronoi's six, then in6 Detail,
-// in7 Roughness, in8 Lacunarity.
-constexpr uint8_t kVoronoiNormalize = 4;
+// (flags & 3), flags & 4 (kVoronoiNormalize): Normalize, flags & 8 (kVoronoiIntegerHash): Cycles
+// 5.0+'s cells; inputs Voronoi's six, then in6 Detail, in7 Roughness, in8 Lacunarity.
+constexpr uint8_t kVoronoiNormalize = 4, kVoronoiIntegerHash = 8;
 glm::vec4 voronoi4_op(const ShaderOpContext& c);
 
 }  // namespace torrance::shader
