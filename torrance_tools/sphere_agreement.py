@@ -123,16 +123,17 @@ def set_inputs(names, **inputs):
             node.inputs[socket].default_value = value
 
 
-def graph_weight(mat, node, socket):
-    """Links the node's `socket` to object Z x 1.1 + 0.5 (about 0.04 .. 0.96 over a sphere of
-    radius 0.42): a layer weight from a node graph that varies over the surface."""
+def graph_weight(mat, node, socket, scale=1.1, offset=0.5):
+    """Links the node's `socket` to object Z x scale + offset (by default about 0.04 .. 0.96
+    over a sphere of radius 0.42): a layer weight (or any input) from a node graph that varies
+    over the surface."""
     nodes, links = mat.node_tree.nodes, mat.node_tree.links
     coords = nodes.new("ShaderNodeTexCoord")
     xyz = nodes.new("ShaderNodeSeparateXYZ")
     math_node = nodes.new("ShaderNodeMath")
     math_node.operation = 'MULTIPLY_ADD'
-    math_node.inputs[1].default_value = 1.1
-    math_node.inputs[2].default_value = 0.5
+    math_node.inputs[1].default_value = scale
+    math_node.inputs[2].default_value = offset
     links.new(coords.outputs["Object"], xyz.inputs[0])
     links.new(xyz.outputs["Z"], math_node.inputs[0])
     links.new(math_node.outputs[0], node.inputs[socket])

@@ -188,7 +188,8 @@ void init_scene(py::module_& m) {
              int subsurface_register, int subsurface_radius_register, int subsurface_color_register,
              bool subsurface_fixed_radius, float subsurface_entry_alpha, bool subsurface_skin,
              float subsurface_min_footprint, bool subsurface_after_diffuse, bool subsurface_van_de_hulst,
-             bool subsurface_burley) {
+             bool subsurface_burley, float thin_film_thickness, float thin_film_ior, bool thin_film_cycles5,
+             int thin_film_thickness_register, int thin_film_ior_register) {
             if (glass_distribution != "GGX" && glass_distribution != "BECKMANN")
               throw py::value_error("glass_distribution must be 'GGX' or 'BECKMANN', got '" + glass_distribution +
                                     "'");
@@ -231,6 +232,9 @@ void init_scene(py::module_& m) {
             mat.subsurface_after_diffuse = subsurface_after_diffuse;
             mat.subsurface_van_de_hulst = subsurface_van_de_hulst;
             mat.subsurface_burley = subsurface_burley;
+            mat.thin_film_thickness = thin_film_thickness;
+            mat.thin_film_ior = thin_film_ior;
+            mat.thin_film_cycles5 = thin_film_cycles5;
             MaterialTextures tex;
             tex.base_color = base_color_texture;
             tex.metallic = metallic_texture;
@@ -262,6 +266,8 @@ void init_scene(py::module_& m) {
             tex.program.subsurface = program_register(subsurface_register);
             tex.program.subsurface_radius = program_register(subsurface_radius_register);
             tex.program.subsurface_color = program_register(subsurface_color_register);
+            tex.program.thin_film_thickness = program_register(thin_film_thickness_register);
+            tex.program.thin_film_ior = program_register(thin_film_ior_register);
             return s.add_material(mat, tex);
           },
           py::arg("base_color") = std::array<float, 3>{0.8f, 0.8f, 0.8f}, py::arg("metallic") = 0.0f,
@@ -297,7 +303,9 @@ void init_scene(py::module_& m) {
           py::arg("subsurface_fixed_radius") = false, py::arg("subsurface_entry_alpha") = -1.0f,
           py::arg("subsurface_skin") = false, py::arg("subsurface_min_footprint") = 0.0f,
           py::arg("subsurface_after_diffuse") = false, py::arg("subsurface_van_de_hulst") = false,
-          py::arg("subsurface_burley") = false,
+          py::arg("subsurface_burley") = false, py::arg("thin_film_thickness") = 0.0f,
+          py::arg("thin_film_ior") = 1.33f, py::arg("thin_film_cycles5") = false,
+          py::arg("thin_film_thickness_register") = -1, py::arg("thin_film_ior_register") = -1,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
@@ -334,7 +342,10 @@ void init_scene(py::module_& m) {
           "Blender 5.3's Random Walk; subsurface_burley: Christensen-Burley's disk), Principled v2's Subsurface Weight (brdf_model PRINCIPLED_V2: "
           "subsurface), or a Subsurface Scattering node's closure (a mixture's 'subsurface' "
           "component: base_color its Color, subsurface_radius its Radius x Scale), from the program's "
-          "subsurface_register / subsurface_radius_register / subsurface_color_register when given.")
+          "subsurface_register / subsurface_radius_register / subsurface_color_register when given. "
+          "thin_film_*: a Thin Film (PRINCIPLED_V2's Principled BSDF, a Metallic closure): thickness in nm "
+          "(<= 0.1: none) and IOR (> 0), from the program's thin_film_*_register when given; "
+          "thin_film_cycles5: Cycles 5.x's film (else 4.x's).")
       .def(
           "add_shader_program",
           [](Scene& s, const py::object& constants, const py::object& code, int registers, const py::object& data) {

@@ -13,7 +13,8 @@ transmission_roughness (a value; a graph that varies is reported and its socket'
 the Metallic's Base Color -> base_color (any graph), Edge Tint -> specular_tint_color, or the
 Physical Conductor's IOR -> specular_tint_color and Extinction -> sheen_tint_color (values),
 Roughness (any graph), Anisotropy, Rotation and Tangent (anisotropy.py), Multiscatter GGX ->
-multiscatter_ggx (Beckmann rendered as GGX and a Thin Film reported).
+multiscatter_ggx (Beckmann rendered as GGX), Thin Film Thickness and IOR (thin_film.py, any
+graph).
 """
 
 from .anisotropy import METALLIC, read_anisotropy
@@ -22,6 +23,7 @@ from .nodes import finite_or, node_label
 from .principled_hair import read_principled_hair
 from .principled_subsurface import read_subsurface_node
 from .shader_graph.node_versions import cycles4_toon
+from .thin_film import read_thin_film
 
 CLOSURE_NODES = {'ShaderNodeBsdfVelvet', 'ShaderNodeBsdfSheen', 'ShaderNodeBsdfTranslucent',
                  'ShaderNodeBsdfRefraction', 'ShaderNodeBsdfToon', 'ShaderNodeBsdfHairPrincipled',
@@ -98,7 +100,7 @@ def _metallic(reader, mat, node):
     if distribution == 'BECKMANN':
         reader.reporter.warning(f"Material '{mat.name}': {node_label(node)} uses the Beckmann "
                                 f"distribution; Torrance renders GGX")
-    reader._report_ignored_inputs(mat, node, (("Thin Film Thickness", 0.0),))
+    args.update(read_thin_film(reader, mat, node))
     closure = 'metallic_conductor' if conductor else 'metallic_f82'
     return closure, sanitize(reader._with_program(args))
 

@@ -56,6 +56,7 @@ from .shader_aovs import AovPrograms
 from .principled_sheen import read_sheen
 from .principled_subsurface import read_subsurface
 from .principled_transmission import read_transmission
+from .thin_film import read_thin_film
 from .transparent_mix import read_transparent_mix
 from .volumes import has_only_volume, material_volume
 
@@ -74,7 +75,6 @@ _IGNORED_PRINCIPLED_INPUTS = {
     'v1': (
     ),
     'v2': (
-        ("Thin Film Thickness", 0.0),
         ("Diffuse Roughness", 0.0),
         ("Thin Wall", False),                       # Blender 5.0+
         ("Transmission Dispersion Scale", 0.0),     # Blender 5.0+
@@ -366,6 +366,7 @@ class MaterialReader:
             **read_sheen(self, mat, node, version),
             **anisotropy,
             **read_subsurface(self, mat, node, version),
+            **(read_thin_film(self, mat, node) if version == 'v2' else {}),
         )
         alpha = _clamp(finite_or(alpha, 1.0), 0.0, 1.0)
         if alpha < 1.0 or alpha_tex >= 0:

@@ -8,8 +8,8 @@
 namespace torrance {
 
 MetallicBsdf::MetallicBsdf(bool conductor, const Vec3& first, const Vec3& second, float roughness, float anisotropy,
-                           const Vec3& tangent, float rotation, bool multiscatter)
-    : conductor_(conductor) {
+                           const Vec3& tangent, float rotation, bool multiscatter, const ThinFilm& film)
+    : conductor_(conductor), film_(film) {
   if (conductor) {
     n_ = glm::max(first, Vec3(0.0f));
     k_ = glm::max(second, Vec3(0.0f));
@@ -31,9 +31,17 @@ MetallicBsdf::MetallicBsdf(bool conductor, const Vec3& first, const Vec3& second
     else shape_ = ggx::Shape(alpha);  // no tangent: Cycles' isotropic lobe
   }
   if (multiscatter) multiscatter_roughness_ = table_roughness;
+  if (conductor) {
+    film_n_ = n_;
+    film_k_ = k_;
+  } else {
+    film_f82_ = f82_.eval(1.0f / 7.0f);
+    conductor_from_f82(f82_.f0, film_f82_, film_n_, film_k_);
+  }
 }
 
 Vec3 MetallicBsdf::fresnel(float cos_i) const {
+  if (film_.active()) return film_.over_conductor(clamp01(cos_i), film_n_, film_k_, film_f82_);
   return conductor_ ? conductor_fresnel(cos_i, n_, k_) : f82_.eval(cos_i);
 }
 

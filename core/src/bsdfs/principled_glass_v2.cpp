@@ -17,7 +17,8 @@ Vec3 flip_z(const Vec3& w) { return Vec3(w.x, w.y, -w.z); }
 }  // namespace
 
 PrincipledGlassV2::PrincipledGlassV2(float roughness, float ior, const Vec3& specular_tint, const Vec3& base_color,
-                                     bool multiscatter) {
+                                     bool multiscatter, const ThinFilm& film)
+    : film_(film), film_inside_(film) {
   roughness_ = clamp01(std::isfinite(roughness) ? roughness : 0.0f);
   alpha_ = roughness_ * roughness_;
   ior_ = std::isfinite(ior) ? std::min(std::max(ior, 1e-5f), 1e3f) : 1.5f;
@@ -26,13 +27,19 @@ PrincipledGlassV2::PrincipledGlassV2(float roughness, float ior, const Vec3& spe
   smooth_ = alpha_ < ggx_tables::kDeltaAlpha;
   invisible_ = std::abs(ior_ - 1.0f) < 1e-4f;
   multiscatter_ = multiscatter;
+  film_inside_.ior = film.ior / ior_;
 }
 
 PrincipledGlassV2::Split PrincipledGlassV2::split(float c, float etap) const {
   Split out;
-  const float f0_real = ggx_tables::f0_from_ior(etap);
-  const float s = f0_real < 1.0f ? clamp01((fresnel_dielectric(c, etap) - f0_real) / (1.0f - f0_real)) : 1.0f;
-  out.reflect = glm::mix(f0_, Vec3(1.0f), s);
+  if (film_.active()) {
+    const ThinFilm& film = etap == ior_ ? film_ : film_inside_;
+    out.reflect = tinted_film_fresnel(film.over_dielectric(clamp01(c), etap), f0_, etap);
+  } else {
+    const float f0_real = ggx_tables::f0_from_ior(etap);
+    const float s = f0_real < 1.0f ? clamp01((fresnel_dielectric(c, etap) - f0_real) / (1.0f - f0_real)) : 1.0f;
+    out.reflect = glm::mix(f0_, Vec3(1.0f), s);
+  }
   out.transmit = (Vec3(1.0f) - out.reflect) * tint_t_;
   const float total = mean(out.reflect + out.transmit);
   out.p_reflect = total > 0.0f ? mean(out.reflect) / total : 1.0f;

@@ -27,6 +27,12 @@ PrincipledV2Bsdf::PrincipledV2Bsdf(const Material& m) {
   // Metal: F82-tint with f0 = base colour (clamped to 1), tint clamped to 1.
   metal_ = F82Tint(base, tint);
   metal_fss_ = metal_.fss();
+  film_ = m.thin_film();
+  if (film_.active() && film_.cycles5) {
+    metal_film_ = true;
+    metal_f82_ = metal_.eval(1.0f / 7.0f);
+    conductor_from_f82(metal_.f0, metal_f82_, metal_n_, metal_k_);
+  }
 
   // Subsurface Weight: the walk takes that share of the diffuse layer in the channels it walks
   // (radius above 0: shade_material zeroes the others, subsurface_lobe.h), the diffuse the rest.
@@ -40,7 +46,7 @@ PrincipledV2Bsdf::PrincipledV2Bsdf(const Material& m) {
 
   // Dielectric: F0 from the IOR rescaled by the Specular IOR Level (f0 = 0.08 specular).
   eta_ = dielectric_eta(m);
-  has_dielectric_ = eta_ != 1.0f;
+  has_dielectric_ = eta_ != 1.0f || film_.active();
   dielectric_f0_ = glm::clamp(ggx_tables::f0_from_ior(eta_) * tint, Vec3(0.0f), Vec3(1.0f));
   const float f0_eta = ggx_tables::f0_from_ior(eta_);
   const float s_ss = f0_eta < 1.0f ? clamp01((mean_dielectric_fresnel(eta_) - f0_eta) / (1.0f - f0_eta)) : 1.0f;
@@ -58,11 +64,21 @@ float PrincipledV2Bsdf::dielectric_eta(const Material& m) {
   return ior < 1.0f ? 1.0f / eta : eta;
 }
 
-Vec3 PrincipledV2Bsdf::metal_fresnel(float cos_ih) const { return metal_.eval(cos_ih); }
+Vec3 PrincipledV2Bsdf::metal_fresnel(float cos_ih) const {
+  if (metal_film_) return film_.over_conductor(clamp01(cos_ih), metal_n_, metal_k_, metal_f82_);
+  return metal_.eval(cos_ih);
+}
 
 Vec3 PrincipledV2Bsdf::dielectric_fresnel(float cos_ih) const {
   if (!has_dielectric_) return Vec3(0.0f);
+  if (film_.active()) return tinted_film_fresnel(film_.over_dielectric(clamp01(cos_ih), eta_), dielectric_f0_, eta_);
   return glm::mix(dielectric_f0_, Vec3(1.0f), ggx_tables::dielectric_fresnel_factor(cos_ih, eta_));
+}
+
+Vec3 PrincipledV2Bsdf::dielectric_albedo(float cos_o) const {
+  // With a film, Cycles' estimate is the Fresnel at the macro normal (it has no tables for it).
+  if (film_.active()) return dielectric_fresnel(cos_o);
+  return glm::mix(dielectric_f0_, Vec3(1.0f), ggx_tables::dielectric_fresnel_mix(table_roughness_, cos_o, eta_));
 }
 
 PrincipledV2Bsdf::ViewTerms PrincipledV2Bsdf::view_terms(float cos_o) const {
@@ -79,8 +95,7 @@ PrincipledV2Bsdf::ViewTerms PrincipledV2Bsdf::view_terms(float cos_o) const {
   float diffuse_weight = 1.0f;
   if (has_dielectric_) {
     v.dielectric_scale = dielectric_weight_ * dielectric_k;
-    const float s = ggx_tables::dielectric_fresnel_mix(table_roughness_, cos_o, eta_);
-    v.dielectric_albedo = darkening * glm::mix(dielectric_f0_, Vec3(1.0f), s);
+    v.dielectric_albedo = darkening * dielectric_albedo(cos_o);
     diffuse_weight = clamp01(1.0f - max_component(v.dielectric_albedo));
   }
   v.diffuse = diffuse_color_ * (dielectric_weight_ * diffuse_weight);
@@ -112,10 +127,10 @@ PrincipledV2Bsdf::ClosureAlbedos PrincipledV2Bsdf::closure_albedos(float cos_o) 
   // The multiscatter darkening E k: the scales above carry k (the lobe's factor).
   const float e = multiscatter_ ? std::max(ggx_tables::albedo(table_roughness_, cos_o), 1e-3f) : 1.0f;
   a.diffuse = v.diffuse + v.subsurface;  // a BSSRDF's albedo is its weight, diffuse-like (Cycles)
-  if (has_dielectric_)
-    a.dielectric = v.dielectric_scale * e *
-                   glm::mix(dielectric_f0_, Vec3(1.0f), ggx_tables::dielectric_fresnel_mix(table_roughness_, cos_o, eta_));
-  a.metal = v.metal_scale * e * glm::mix(metal_.f0, Vec3(1.0f), ggx_tables::schlick_fresnel_mix(table_roughness_, cos_o));
+  if (has_dielectric_) a.dielectric = v.dielectric_scale * e * dielectric_albedo(cos_o);
+  a.metal = v.metal_scale * e *
+            (metal_film_ ? metal_fresnel(cos_o)
+                         : glm::mix(metal_.f0, Vec3(1.0f), ggx_tables::schlick_fresnel_mix(table_roughness_, cos_o)));
   if (coat_.active()) a.coat = Vec3(v.coat.albedo);
   if (sheen_.active()) {
     a.sheen = v.sheen.weight;

@@ -161,6 +161,15 @@ void Scene::apply_program(const MaterialTextures& t, const ShaderGlobals& g, Mat
   if (o.subsurface_radius >= 0) m.subsurface_radius = glm::max(Vec3(regs[size_t(o.subsurface_radius)]), Vec3(0.0f));
   if (o.subsurface_color >= 0)
     m.subsurface_color = glm::clamp(Vec3(regs[size_t(o.subsurface_color)]), Vec3(0.0f), Vec3(1.0f));
+  // Cycles: max(thickness, 1e-5) and max(IOR, 1e-5); a NaN is no film.
+  if (o.thin_film_thickness >= 0) {
+    const float d = regs[size_t(o.thin_film_thickness)].x;
+    m.thin_film_thickness = std::isfinite(d) ? d : 0.0f;
+  }
+  if (o.thin_film_ior >= 0) {
+    const float n = regs[size_t(o.thin_film_ior)].x;
+    m.thin_film_ior = std::isfinite(n) ? std::max(n, 1e-5f) : 1.33f;
+  }
 }
 
 Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, const ShaderGlobals& g,
@@ -257,6 +266,8 @@ void check_material(const Material& m) {
       glm::any(glm::lessThan(m.subsurface_color, Vec3(0.0f))) || !(m.subsurface_ior > 0.0f))
     throw std::invalid_argument("material subsurface must be in [0, 1], subsurface_radius and subsurface_color >= 0 "
                                 "and subsurface_ior > 0");
+  if (!std::isfinite(m.thin_film_thickness) || !std::isfinite(m.thin_film_ior) || !(m.thin_film_ior > 0.0f))
+    throw std::invalid_argument("material thin_film_thickness must be finite and thin_film_ior finite and > 0");
 }
 
 uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures) {
@@ -289,7 +300,7 @@ void Scene::check_program_outputs(const ShaderOutputs& o) const {
         o.surface_normal >= 0 || o.transmission >= 0 || o.coat_weight >= 0 || o.coat_roughness >= 0 || o.coat_ior >= 0 || o.coat_tint >= 0 ||
         o.sheen_weight >= 0 || o.sheen_roughness >= 0 || o.sheen_tint >= 0 || o.anisotropy >= 0 ||
         o.anisotropic_rotation >= 0 || o.tangent >= 0 || o.subsurface >= 0 || o.subsurface_radius >= 0 ||
-        o.subsurface_color >= 0)
+        o.subsurface_color >= 0 || o.thin_film_thickness >= 0 || o.thin_film_ior >= 0)
       throw std::invalid_argument("material reads shader program registers but names no program");
     return;
   }
@@ -300,7 +311,7 @@ void Scene::check_program_outputs(const ShaderOutputs& o) const {
   for (int r : {o.base_color, o.metallic, o.roughness, o.emission, o.normal, o.alpha, o.surface_normal, o.transmission, o.coat_weight,
                 o.coat_roughness, o.coat_ior, o.coat_tint, o.sheen_weight, o.sheen_roughness, o.sheen_tint,
                 o.anisotropy, o.anisotropic_rotation, o.tangent, o.subsurface, o.subsurface_radius,
-                o.subsurface_color})
+                o.subsurface_color, o.thin_film_thickness, o.thin_film_ior})
     if (r != -1 && !program.written(r))
       throw std::invalid_argument("material reads register " + std::to_string(r) + " of a shader program with " +
                                   std::to_string(program.registers()) + " registers, which the program does not write");

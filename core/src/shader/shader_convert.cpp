@@ -258,7 +258,7 @@ Vec3 xyz_to_rec709(const Vec3& xyz) {
   return rgb;
 }
 
-Vec3 wavelength(float nanometres) {
+Vec3 cie_1931(float nanometres) {
   // The table index, truncated toward 0 (so -1 < index < 0 reads the first interval).
   const float index = (nanometres - kCieFirst) * (1.0f / kCieStep);
   Vec3 xyz(0.0f);
@@ -269,7 +269,11 @@ Vec3 wavelength(float nanometres) {
     const Vec3 b(kCie1931[i + 1][0], kCie1931[i + 1][1], kCie1931[i + 1][2]);
     xyz = a + t * (b - a);
   }
-  const Vec3 rgb = xyz_to_rec709(xyz) * kWavelengthScale;
+  return xyz;
+}
+
+Vec3 wavelength(float nanometres) {
+  const Vec3 rgb = xyz_to_rec709(cie_1931(nanometres)) * kWavelengthScale;
   return Vec3(pick_max(rgb.x, 0.0f), pick_max(rgb.y, 0.0f), pick_max(rgb.z, 0.0f));
 }
 

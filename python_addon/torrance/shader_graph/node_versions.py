@@ -31,6 +31,8 @@ materials.principled_version does, not by bpy.app.version:
               Scattering (SKY_TYPES_5; the sky_type tells): one new kernel (the texture over
               the whole sphere, the disc under the Earth's rim hidden, the sky added under the
               disc), Altitude's default 100 m; sky.py reads them.
+  Thin Film   4.2 adds it to the Principled BSDF; Cycles 5.x computes it from a table and over
+              metals (the Principled's metal, the Metallic BSDF) too: cycles5_thin_film.
   Separate/Combine RGB/HSV  5.0 removes them: files open with Separate/Combine Color in the
               mode RGB or HSV (COLOR_NODE_SUCCESSORS), which the registry reads.
 """
@@ -105,6 +107,15 @@ def cycles4_toon():
     than its own, toon_bsdf.h): the node did not change, the running Blender tells."""
     import bpy
     return bpy.app.version >= (4, 0, 0)
+
+
+def cycles5_thin_film():
+    """True where Cycles renders a Thin Film as 5.x does (its tabulated Rec. 709 sensitivity, the
+    film over metals too; the core's thin_film.h) rather than as 4.2 (a Gaussian XYZ fit, over
+    dielectrics only): the nodes' sockets did not change, the running Blender tells. Checked
+    against Cycles 4.2 and 5.3; 4.3-4.5 are taken as 4.2, 5.0-5.2 as 5.3."""
+    import bpy
+    return bpy.app.version >= (5, 0, 0)
 
 
 def cycles4_normal_transform():

@@ -166,8 +166,10 @@ CLOSURES = {
                                 "v2 subsurface (Subsurface Weight, any graph; Radius, Scale, "
                                 "IOR, Anisotropy; Random Walk, Random Walk (Skin), "
                                 "Christensen-Burley, 5.3 Random Walk (Legacy) as Cycles of the "
-                                "version). Reported: "
-                                "Clearcoat / Coat Normal, Thin Film, Diffuse Roughness",
+                                "version); 4.2+ Thin Film Thickness and IOR (any graph; over "
+                                "the dielectric and the transmission, in 5.x the metal too, as "
+                                "Cycles of the version). Reported: "
+                                "Clearcoat / Coat Normal, Diffuse Roughness",
     'ShaderNodeBsdfDiffuse': "rendered: Color, Roughness (Lambert, Cycles' Oren-Nayar), Normal; "
                              "alone and in Mix/Add Shader trees alike",
     'ShaderNodeBsdfGlossy': "partly: Color, Roughness (GGX, Sharp; 4.x: Anisotropy, Rotation, "
@@ -178,12 +180,14 @@ CLOSURES = {
                                  "Multiscatter GGX (albedo scaling); Beckmann, Ashikhmin-Shirley "
                                  "(and 3.x's Multiscatter GGX) rendered as GGX",
     'ShaderNodeBsdfGlass': "partly: Color, Roughness, IOR, Normal; GGX, Beckmann, Sharp "
-                           "(Multiscatter GGX rendered as GGX); alone and in Mix/Add Shader trees",
+                           "(Multiscatter GGX rendered as GGX); alone and in Mix/Add Shader "
+                           "trees. Reported: 5.x Anisotropy, Thin Film",
     'ShaderNodeBsdfMetallic': "partly: F82 Tint (Base Color, any graph; Edge Tint) and Physical "
                               "Conductor (IOR, Extinction: values), Roughness (any graph), "
                               "Anisotropy, Rotation, Tangent (any graph; unlinked: Geometry > "
                               "Tangent), Normal; GGX and Multiscatter GGX as Cycles 4.x/5.x "
-                              "(Beckmann rendered as GGX, reported; Thin Film reported); alone "
+                              "(Beckmann rendered as GGX, reported); Thin Film Thickness and "
+                              "IOR (any graph; Cycles 5.x's film); alone "
                               "and in Mix/Add Shader trees",
     'ShaderNodeBsdfTransparent': "rendered: Color; alone and anywhere in Mix/Add Shader trees "
                                  "(camera and shadow rays pass by its weight)",

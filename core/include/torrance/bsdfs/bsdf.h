@@ -15,6 +15,7 @@
 //    both (material_bsdf.h).
 #pragma once
 
+#include "torrance/bsdfs/thin_film.h"
 #include "torrance/util/math.h"
 
 namespace torrance {
@@ -110,6 +111,13 @@ struct Material {
   // Christensen-Burley (any version): Cycles' disk sampling of Burley's profile instead of a walk
   // (subsurface/burley_disk.h); after a diffuse bounce it shades as diffuse in 5.x too.
   bool subsurface_burley = false;
+  // Thin Film (thin_film.h; PRINCIPLED_V2's Principled BSDF of Blender 4.2+, and in 5.x the
+  // Metallic BSDF): Thickness in nm (<= 0.1: no film, the closures' plain Fresnel) and IOR;
+  // thin_film_cycles5: Cycles 5.x's film (its table, the metal under a film too), else 4.x's.
+  float thin_film_thickness = 0.0f;
+  float thin_film_ior = 1.33f;
+  bool thin_film_cycles5 = false;
+  ThinFilm thin_film() const { return ThinFilm{thin_film_thickness, thin_film_ior, thin_film_cycles5}; }
   // The Principled Hair BSDF's Offset (radians: the cuticle scales' tilt; ClosureType::PrincipledHair).
   float hair_offset = 0.0f;
 };

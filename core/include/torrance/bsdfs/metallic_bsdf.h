@@ -10,8 +10,11 @@
 // (each at most 1), along the tangent turned by Rotation (orient()). Multiscatter GGX (the node's
 // default) scales the lobe by Kulla & Conty's 1 + F_ms (1 - E) / E with the Fresnel's mean fss
 // (ggx_tables.h at (alpha_x alpha_y)^(1/4)). Below ggx_tables::kDeltaAlpha it is a mirror of
-// reflectance F(wo.z). Sampled by visible normals; "glossy" for the light passes. Beckmann and
-// thin films are the add-on's to report (rendered as GGX, without the film).
+// reflectance F(wo.z). Sampled by visible normals; "glossy" for the light passes. Beckmann is the
+// add-on's to report (rendered as GGX). Thin Film (Blender 5.x, thin_film.h): F is the film's
+// reflectance over the conductor (n, k), or for F82-tint over the conductor Gulbrandsen's fit
+// gives for (Base Color, F(1/7)) with R23 the F82 model refitted under the film, as Cycles 5.x;
+// the multiscatter fss stays the film-less one (Cycles).
 #pragma once
 
 #include "torrance/bsdfs/bsdf.h"
@@ -24,7 +27,8 @@ class MetallicBsdf {
  public:
   // conductor: first = n, second = k; else first = Base Color (f0), second = Edge Tint.
   MetallicBsdf(bool conductor, const Vec3& first, const Vec3& second, float roughness, float anisotropy = 0.0f,
-               const Vec3& tangent = Vec3(0.0f), float rotation = 0.0f, bool multiscatter = false);
+               const Vec3& tangent = Vec3(0.0f), float rotation = 0.0f, bool multiscatter = false,
+               const ThinFilm& film = ThinFilm{});
 
   void orient(const Frame& frame) { shape_.orient(frame); }
 
@@ -46,6 +50,8 @@ class MetallicBsdf {
   Vec3 fss_{0.0f};
   ggx::Shape shape_;
   float multiscatter_roughness_ = -1.0f;  // r of the albedo tables; < 0: single scattering
+  ThinFilm film_;                         // inactive: none
+  Vec3 film_n_{0.0f}, film_k_{0.0f}, film_f82_{-1.0f};  // the conductor under the film (f82 < 0: exact)
 };
 
 }  // namespace torrance

@@ -29,7 +29,10 @@
 //
 // Frame as GlassBsdf (glass.h), so that MaterialBsdf holds either: z is the surface's OUTWARD
 // normal, wo.z < 0 is a viewer inside. eval() includes |cos_i| (bsdf.h). Thin Wall (Blender 5.x)
-// and Thin Film are not rendered here.
+// is not rendered here. Thin Film (thin_film.h): F(c) = the film's reflectance over etap (its
+// IOR / ior seen from inside, as Cycles), scaled towards f0 / F0 per channel as the Principled's
+// dielectric layer (tinted_film_fresnel); R and T follow from it as above, and a film at total
+// internal reflection reflects all.
 #pragma once
 
 #include "torrance/bsdfs/bsdf.h"
@@ -39,7 +42,7 @@ namespace torrance {
 class PrincipledGlassV2 {
  public:
   PrincipledGlassV2(float roughness, float ior, const Vec3& specular_tint, const Vec3& base_color,
-                    bool multiscatter);
+                    bool multiscatter, const ThinFilm& film = ThinFilm{});
 
   Vec3 eval(const Vec3& wo, const Vec3& wi) const;
   float pdf(const Vec3& wo, const Vec3& wi) const;
@@ -66,6 +69,7 @@ class PrincipledGlassV2 {
   Vec3 f0_, tint_t_;
   float alpha_, roughness_, ior_;
   bool smooth_, invisible_, multiscatter_;
+  ThinFilm film_, film_inside_;  // the film seen from outside and from inside (IOR / ior)
 };
 
 }  // namespace torrance

@@ -1,7 +1,7 @@
 // Principled BSDF v2, "PRINCIPLED_V2": Blender 4.x's Principled BSDF as Cycles 4.x renders it, for
 // the inputs Torrance supports (base colour, metallic, roughness, IOR, Specular IOR Level through
 // Material::specular, Specular Tint as a colour, emission, coat, sheen, anisotropy, subsurface
-// weight; no thin film; transmission below). Five layers, from the top, with alpha = roughness^2 (GGX;
+// weight, thin film; transmission below). Five layers, from the top, with alpha = roughness^2 (GGX;
 // Anisotropic a in [0, 1] stretches the metal and dielectric lobes along the tangent as Cycles
 // 4.x: alpha_x = alpha / s, alpha_y = alpha s, s = sqrt(1 - 0.9 a), ggx_shape.h, and the tables
 // below are read at the roughness (alpha_x alpha_y)^(1/4)):
@@ -23,7 +23,13 @@
 //               Fresnel and F0(eta) = ((eta - 1) / (eta + 1))^2. The Specular IOR Level rescales
 //               F0: f0 = 2 level F0(ior) = 0.08 specular (Material::specular carries it, see
 //               bsdf.h), and eta = ior_from_F0(f0) = (1 + sqrt f0) / (1 - sqrt f0) (1 / that for
-//               ior < 1; eta = ior when f0 = F0(ior), i.e. level 0.5). No lobe when eta = 1.
+//               ior < 1; eta = ior when f0 = F0(ior), i.e. level 0.5). No lobe when eta = 1
+//               and no film. Thin Film (thin_film.h): F_d = the film's reflectance over eta,
+//               each channel scaled towards f0 tint / F0(eta) as far as it lies from 1 towards
+//               F0(eta) (tinted_film_fresnel), and A_d below that at cos_o (Cycles' estimate
+//               without its tables); the multiscatter F_ss stays the film-less one (Cycles).
+//               Cycles 5.x puts the film over the metal too: F_m = the film over the conductor
+//               whose n, k Gulbrandsen's fit gives for (f0, F_m(1/7)), its albedo F_m(cos_o).
 //   diffuse     Lambert about the View's diffuse_normal (bsdf.h: Cycles 4.x's diffuse keeps the
 //               unchecked normal), base colour (1 - metallic)(1 - transmission) w(wo): the
 //               light the dielectric layer does not reflect, w = clamp(1 - max_rgb(A_d(wo)), 0, 1), with the dielectric layer's
@@ -131,6 +137,7 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
  private:
   float specular_probability(const ViewTerms& v, float cos_o) const;
   Vec3 specular_estimate(const ViewTerms& v, float cos_o) const;  // the GGX layers' albedo, layered
+  Vec3 dielectric_albedo(float cos_o) const;  // the dielectric layer's Fresnel estimate (x E k: A_d)
 
   Vec3 diffuse_color_{0.0f}, subsurface_color_{0.0f};  // the diffuse and walked parts of the base
   F82Tint metal_;  // the metal's Fresnel
@@ -143,6 +150,9 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
   bool has_dielectric_, multiscatter_;
   CoatV2 coat_;
   SheenV2 sheen_;
+  ThinFilm film_;          // Thin Film (inactive: none)
+  bool metal_film_ = false;  // Cycles 5.x: the film over the metal, a conductor of index n + ik:
+  Vec3 metal_n_{0.0f}, metal_k_{0.0f}, metal_f82_{0.0f};  // (f82: F_m(1/7), R23's F82 fit)
 };
 
 }  // namespace torrance

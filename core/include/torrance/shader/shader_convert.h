@@ -74,6 +74,9 @@ float clamp(ClampMode mode, float value, float min, float max);
 Vec3 blackbody(float kelvin);
 // Wavelength: the colour of light of `nanometres`, in scene linear Rec. 709.
 Vec3 wavelength(float nanometres);
+// The CIE 1931 2-degree colour-matching functions (x, y, z) at `nanometres`: the 5 nm table from
+// 380 to 780 nm interpolated linearly (0 outside; below 380 the first interval extrapolated to 375).
+Vec3 cie_1931(float nanometres);
 // CIE XYZ (D65) -> scene linear Rec. 709, Cycles 3.4's xyz_to_rgb of the default configuration.
 Vec3 xyz_to_rec709(const Vec3& xyz);
 

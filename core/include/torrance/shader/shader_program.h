@@ -292,6 +292,8 @@ struct ShaderOutputs {
   int16_t anisotropy = -1, anisotropic_rotation = -1, tangent = -1;
   // The subsurface inputs (Material::subsurface x, subsurface_radius and subsurface_color).
   int16_t subsurface = -1, subsurface_radius = -1, subsurface_color = -1;
+  // Thin Film (Material::thin_film_thickness, thin_film_ior: x).
+  int16_t thin_film_thickness = -1, thin_film_ior = -1;
   bool any() const { return program >= 0; }
 };
 

@@ -1,0 +1,153 @@
+// Thin-film interference (thin_film.h) and the closures that use it: no film (thickness <= 0.1
+// nm) leaves Principled v2's dielectric and metal, its glass and the Metallic BSDF bit for bit
+// as they were; a film whose IOR is the ambient's or the substrate's is that interface's plain
+// Fresnel; values against an independent reference (the exact, infinite Airy sum of complex
+// amplitudes integrated over wavelength against the CIE 1931 functions in double precision:
+// core/tests/data/thin_film_reference.py prints the figures below); reflectance in [0, 1] and
+// finite everywhere (grazing, total internal reflection, film IOR below 1 or equal to the
+// outside's, thick films).
+#include "torrance/bsdfs/thin_film.h"
+
+#include "torrance/bsdfs/ggx_tables.h"
+#include "torrance/bsdfs/metallic_bsdf.h"
+#include "torrance/bsdfs/principled.h"  // fresnel_dielectric
+#include "torrance/bsdfs/principled_glass_v2.h"
+#include "torrance/bsdfs/principled_v2.h"
+
+#include <gtest/gtest.h>
+
+namespace torrance {
+namespace {
+
+ThinFilm film(float thickness, float ior, bool cycles5) { return ThinFilm{thickness, ior, cycles5}; }
+
+void expect_vec_near(const Vec3& got, const Vec3& want, float tol, const char* what) {
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], tol) << what << " channel " << c;
+}
+
+Material principled(float thickness, float metallic, bool cycles5) {
+  Material m;
+  m.base_color = Vec3(0.8f, 0.5f, 0.3f);
+  m.metallic = metallic;
+  m.roughness = 0.3f;
+  m.ior = 1.5f;
+  m.specular_tint_color = Vec3(0.9f, 1.0f, 0.8f);
+  m.thin_film_thickness = thickness;
+  m.thin_film_ior = 1.33f;
+  m.thin_film_cycles5 = cycles5;
+  return m;
+}
+
+TEST(ThinFilm, NoFilmLeavesTheClosuresAsTheyWere) {
+  for (bool cycles5 : {false, true}) {
+    for (float thickness : {0.0f, -5.0f, ThinFilm::kCutoff}) {
+      const PrincipledV2Bsdf plain(principled(0.0f, 0.5f, false)), filmless(principled(thickness, 0.5f, cycles5));
+      const PrincipledGlassV2 glass(0.3f, 1.5f, Vec3(0.9f), Vec3(0.5f), true),
+          glass_film(0.3f, 1.5f, Vec3(0.9f), Vec3(0.5f), true, film(thickness, 1.33f, cycles5));
+      const MetallicBsdf metal(true, Vec3(0.2f, 0.4f, 1.3f), Vec3(3.4f, 2.4f, 1.8f), 0.3f),
+          metal_film(true, Vec3(0.2f, 0.4f, 1.3f), Vec3(3.4f, 2.4f, 1.8f), 0.3f, 0.0f, Vec3(0.0f), 0.0f, false,
+                     film(thickness, 1.33f, cycles5));
+      for (float c : {0.0f, 0.1f, 0.5f, 0.99f, 1.0f}) {
+        EXPECT_EQ(plain.dielectric_fresnel(c), filmless.dielectric_fresnel(c));
+        EXPECT_EQ(plain.metal_fresnel(c), filmless.metal_fresnel(c));
+        EXPECT_EQ(plain.view_terms(c).diffuse, filmless.view_terms(c).diffuse);
+        EXPECT_EQ(plain.closure_albedos(c).metal, filmless.closure_albedos(c).metal);
+        EXPECT_EQ(glass.split(c, 1.5f).reflect, glass_film.split(c, 1.5f).reflect);
+        EXPECT_EQ(glass.split(c, 1.0f / 1.5f).transmit, glass_film.split(c, 1.0f / 1.5f).transmit);
+        EXPECT_EQ(metal.fresnel(c), metal_film.fresnel(c));
+      }
+    }
+  }
+}
+
+TEST(ThinFilm, AFilmOfTheOutsidesOrTheSubstratesIndexIsPlainFresnel) {
+  for (bool cycles5 : {false, true}) {
+    for (float c : {1.0f, 0.7f, 0.3f}) {
+      // Film IOR 1 (= outside): R12 = 0, the light meets the substrate alone.
+      const float f = fresnel_dielectric(c, 1.5f);
+      expect_vec_near(film(350.0f, 1.0f, cycles5).over_dielectric(c, 1.5f), Vec3(f), cycles5 ? 1e-5f : 4e-3f,
+                      "film IOR 1");
+      // Film IOR = the substrate's: R23 = 0, the film's top interface alone.
+      expect_vec_near(film(350.0f, 1.5f, cycles5).over_dielectric(c, 1.5f), Vec3(f), cycles5 ? 1e-5f : 4e-3f,
+                      "film IOR = substrate's");
+    }
+  }
+}
+
+TEST(ThinFilm, MatchesTheExactAirySumIntegratedOverWavelength) {
+  // The reference (double precision, 0.5 nm steps, the exact Airy sum): Cycles 5.x's film (its
+  // truncated sum and table within 4e-4 of it here).
+  expect_vec_near(film(250.0f, 1.33f, true).over_dielectric(1.0f, 1.5f), Vec3(0.04161f, 0.02596f, 0.00579f), 1e-3f,
+                  "250 nm, normal");
+  expect_vec_near(film(250.0f, 1.33f, true).over_dielectric(0.5f, 1.5f), Vec3(0.07156f, 0.08779f, 0.08148f), 1e-3f,
+                  "250 nm, cos 0.5");
+  expect_vec_near(film(500.0f, 1.33f, true).over_dielectric(0.8f, 1.5f), Vec3(0.04749f, 0.03108f, 0.01507f), 1e-3f,
+                  "500 nm, cos 0.8");
+  expect_vec_near(film(300.0f, 2.0f, true).over_dielectric(0.7f, 1.5f), Vec3(0.10204f, 0.06610f, 0.21566f), 1e-3f,
+                  "300 nm of IOR 2, cos 0.7");
+  expect_vec_near(film(400.0f, 0.8f, true).over_dielectric(0.9f, 1.5f), Vec3(0.06936f, 0.03846f, 0.09115f), 1e-3f,
+                  "400 nm of IOR 0.8, cos 0.9");
+  // A conductor (gold-like n, k per channel) under 300 nm of IOR 1.5: the phases are complex.
+  const Vec3 n(0.18f, 0.42f, 1.37f), k(3.42f, 2.35f, 1.77f);
+  expect_vec_near(film(300.0f, 1.5f, true).over_conductor(0.9f, n, k, Vec3(-1.0f)), Vec3(0.88442f, 0.75370f, 0.42029f),
+                  2e-3f, "conductor");
+  // Cycles 4.x's Gaussian fit of the CIE functions: within 2.2e-3 of the reference here.
+  expect_vec_near(film(250.0f, 1.33f, false).over_dielectric(1.0f, 1.5f), Vec3(0.04485f, 0.02611f, 0.00601f), 4e-3f,
+                  "4.x, 250 nm");
+  expect_vec_near(film(500.0f, 1.33f, false).over_dielectric(0.8f, 1.5f), Vec3(0.05056f, 0.03130f, 0.01525f), 4e-3f,
+                  "4.x, 500 nm");
+}
+
+TEST(ThinFilm, ReflectanceStaysInZeroOneAndFiniteEverywhere) {
+  const Vec3 n(0.18f, 0.42f, 1.37f), k(3.42f, 2.35f, 1.77f);
+  int checked = 0;
+  for (bool cycles5 : {false, true})
+    for (float d : {0.11f, 0.5f, 1.0f, 29.0f, 250.0f, 500.0f, 5000.0f, 100000.0f})
+      for (float ior : {1e-5f, 0.5f, 1.0f, 1.33f, 2.5f, 40.0f})
+        for (float eta : {1e-5f, 0.5f, 1.0f / 1.5f, 1.0f, 1.5f, 3.0f, 1000.0f})
+          for (float c : {0.0f, 1e-6f, 0.01f, 0.3f, 0.7f, 0.999f, 1.0f}) {
+            const ThinFilm f = film(d, ior, cycles5);
+            for (const Vec3& r : {f.over_dielectric(c, eta), f.over_conductor(c, n, k, Vec3(-1.0f)),
+                                  f.over_conductor(c, n, k, Vec3(0.6f))}) {
+              ASSERT_TRUE(is_finite(r)) << d << " " << ior << " " << eta << " " << c;
+              ASSERT_TRUE(glm::all(glm::greaterThanEqual(r, Vec3(0.0f))) && glm::all(glm::lessThanEqual(r, Vec3(1.0f))))
+                  << d << " " << ior << " " << eta << " " << c;
+              ++checked;
+            }
+          }
+  EXPECT_EQ(checked, 2 * 8 * 6 * 7 * 7 * 3);
+}
+
+TEST(ThinFilm, TotalInternalReflectionReflectsAll) {
+  for (bool cycles5 : {false, true}) {
+    // At the film's top: IOR 0.8 seen at sin > 0.8.
+    EXPECT_EQ(film(300.0f, 0.8f, cycles5).over_dielectric(0.5f, 1.5f), Vec3(1.0f));
+    // At the bottom: from inside glass (eta 1 / 1.5) past the critical angle, through any film.
+    EXPECT_EQ(film(300.0f, 1.33f, cycles5).over_dielectric(0.5f, 1.0f / 1.5f), Vec3(1.0f));
+    // Below the critical angle it is not.
+    EXPECT_LT(max_component(film(300.0f, 1.33f, cycles5).over_dielectric(0.95f, 1.0f / 1.5f)), 0.5f);
+  }
+}
+
+TEST(ThinFilm, PrincipledDielectricScalesTheFilmTowardsItsTint) {
+  // Specular Tint scales the film's colour at normal incidence by the tint (f0 tint / F0 = tint
+  // where the film's reflectance is F0's), and leaves 1 at grazing.
+  const Vec3 film_only = film(250.0f, 1.33f, true).over_dielectric(1.0f, 1.5f);
+  const Vec3 tint(0.9f, 1.0f, 0.8f), f0 = ggx_tables::f0_from_ior(1.5f) * tint;
+  const Vec3 tinted = tinted_film_fresnel(film_only, f0, 1.5f);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_LE(tinted[c], film_only[c] + 1e-7f);
+    EXPECT_GE(tinted[c], film_only[c] * tint[c] - 1e-7f);
+  }
+  EXPECT_EQ(tinted_film_fresnel(Vec3(1.0f), f0, 1.5f), Vec3(1.0f));
+  // Through the closure: the dielectric's Fresnel is the tinted film, finite at every angle.
+  const PrincipledV2Bsdf b(principled(250.0f, 0.0f, true));
+  Material m = principled(250.0f, 0.0f, true);
+  m.specular_tint_color = Vec3(1.0f);
+  const PrincipledV2Bsdf untinted(m);
+  expect_vec_near(untinted.dielectric_fresnel(1.0f), film_only, 1e-6f, "untinted film");
+  for (float c : {0.0f, 0.2f, 1.0f}) EXPECT_TRUE(is_finite(b.view_terms(c).diffuse));
+}
+
+}  // namespace
+}  // namespace torrance
