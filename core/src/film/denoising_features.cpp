@@ -41,7 +41,7 @@ Vec3 tint_of(const Vec3& c, float lum) { return lum > 0.0f ? c / lum : Vec3(1.0f
 void DenoisingClosures::add_sampled(float sample_weight, bool transmits) {
   if (!(sample_weight >= kWeightCutoff) || count >= kMaxClosures) return;
   sample_weights[size_t(count)] = sample_weight;
-  transmitting[size_t(count++)] = transmits;
+  transmitting[size_t(count++)] = uint8_t(transmits);
 }
 
 void DenoisingClosures::add(const Vec3& albedo, float sample_weight, float roughness_squared, bool transmits,
@@ -63,7 +63,7 @@ float DenoisingClosures::defensive_ratio(bool transmitted) const {
   for (int i = 0; i < count; ++i) {
     const float w = sample_weights[size_t(i)], d = std::max(w, 0.125f * sum_weight);
     defended_sum += d;
-    if (transmitting[size_t(i)] == transmitted) {
+    if (bool(transmitting[size_t(i)]) == transmitted) {
       plain += w;
       defended += d;
     }

@@ -58,8 +58,9 @@ struct DenoisingClosures {
   float sum_weight = 0.0f, sum_nonspecular = 0.0f;  // Cycles' sample weights
   // The closures' sample weights and whether they transmit, for the defensive sampling.
   static constexpr int kMaxClosures = 4 * kMaxMixtureComponents;
-  std::array<float, kMaxClosures> sample_weights{};
-  std::array<bool, kMaxClosures> transmitting{};
+  // Only the first `count` are set (not cleared: a surface's closures are built per path vertex).
+  std::array<float, kMaxClosures> sample_weights;
+  std::array<uint8_t, kMaxClosures> transmitting;  // bools (bytes: copied while unset)
   int count = 0;
   // One closure: albedo (Fresnel included), sample weight (mean of its weight, Fresnel included),
   // alpha_x alpha_y (0: singular, 1: not a microfacet closure). Cycles drops closures whose

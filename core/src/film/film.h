@@ -66,6 +66,7 @@ class Film {
       if (!(p.pass & kFirstSamplePasses) && filtered_ >= 0)
         throw std::logic_error("Film: the first-sample passes must come last in kPasses");
       stride_ += p.channels;
+      accumulated_list_.push_back(p);
     }
     values_ = stride_;
     if (filtered_ < 0) filtered_ = values_;
@@ -249,8 +250,7 @@ class Film {
       std::copy(sc.begin(), sc.end(), v.begin() + 4 + extra_channels_);
     }
     size_t k = size_t(4 + extra_channels_ + catcher_channels_);
-    for (const PassInfo& p : kPasses) {
-      if (!(accumulated_ & p.pass)) continue;
+    for (const PassInfo& p : accumulated_list_) {
       if (p.channels == 1) {
         v[k++] = pass_scalar(p.pass, r);
       } else {
@@ -344,6 +344,7 @@ class Film {
   int width_, height_;
   uint32_t passes_;
   uint32_t accumulated_;  // passes_ and what they need (the colours the light passes are divided by)
+  std::vector<PassInfo> accumulated_list_;  // their PassInfos in kPasses order (each sample's loop)
   bool adaptive_;
   const PixelFilter* splatting_;  // null: samples drawn by the filter's importance
   int margin_;

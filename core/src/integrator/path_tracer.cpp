@@ -7,6 +7,7 @@
 
 #include "film/denoising_features.h"
 #include "film/extra_passes_write.h"
+#include "film/film_passes.h"
 #include "integrator/caustics.h"
 #include "integrator/first_hit_passes.h"
 #include "integrator/guided_bsdf.h"
@@ -105,8 +106,10 @@ class PathTracer {
  public:
   using Bsdf = std::conditional_t<kMixtures, MixtureBsdf, MaterialBsdf>;
 
+  // The path's radiance is written into `out`, the caller's (a PathRadiance is large: copying
+  // it per sample cost more than a few stages of the path).
   PathTracer(const PathContext& ctx, const Ray& ray, SobolSampler& sampler, const FirstHit* first,
-             const PixelSample& pixel)
+             const PixelSample& pixel, PathRadiance& out)
       : ctx_(ctx),
         lights_(ctx.lights),
         extra_(ctx.scene.extra_passes()),
@@ -114,20 +117,23 @@ class PathTracer {
         sampler_(sampler),
         first_(first),
         pixel_(pixel),
+        out_(out),
         features_(ctx.settings.passes & kDenoisingPasses),
         features_after_first_(false),
         light_groups_(extra_.num_light_groups() > 0),
         cryptomatte_(ctx.scene.cryptomatte().enabled()),
         recorder_(ctx.guide_training ? ctx.guide : nullptr, pixel.guide_weight),
         roulette_(ctx.roulette, path_luminance_, pixel.x, pixel.y),
-        reflector_share_(ctx.mirror_images) {
+        reflector_share_(ctx.mirror_images),
+        may_split_(!kAlpha && !ctx.guide_training && ctx.first_bounce_splits > 1),
+        colour_passes_((ctx.settings.passes | pass_dependencies(ctx.settings.passes)) & (kPassAlbedo | kPassGlossyColor)) {
     std::fill_n(out_.extras, extra_.channels(), 0.0f);
     path_state_.ray_flags = kRayCamera;
     if constexpr (kMedia) media_.stack = pixel.start_media ? *pixel.start_media : ctx.camera_media;
   }
 
   // The path, stage by stage.
-  PathRadiance trace() {
+  void trace() {
     for (int branch = 0; branch < branches_; ++branch) {
       if (branch > 0) restart_at_first_vertex(branch);
       for (int bounce = 0;; ++bounce) {
@@ -136,7 +142,7 @@ class PathTracer {
 
         // 1. The next surface along the ray, past those the path passes through.
         Segment seg;
-        if (!find_next_surface(bounce, branch > 0, seg)) return out_;
+        if (!find_next_surface(bounce, branch > 0, seg)) return;
         if constexpr (kMedia) travel_media(bounce, seg);  // 1b. through its media, maybe scattering there
         if (kMedia && bounce == 0 && branch == 0 && seg.found && !seg.scattered && ctx_.split_at_catchers)
           meet_catcher(seg.hit);
@@ -148,7 +154,7 @@ class PathTracer {
           if (seg.scattered) {
           } else if (!seg.found) {
             camera_sees_world();
-            return out_;
+            return;
           } else {
             remember_first_vertex(seg.hit);
           }
@@ -178,7 +184,7 @@ class PathTracer {
         }
         if (bounce > ctx_.settings.max_bounces || past_last_volume_bounce()) break;
         if (features_.open() && !first_again) denoising_features(v, seg);
-        if (first_vertex) features_after_first_ = features_;
+        if (first_vertex && may_split_) features_after_first_ = features_;
         if (bounce == 0 && !first_again && (ctx_.settings.passes & kPassAO)) ambient_occlusion_pass(v);
 
         // 5. Light sampled at the vertex: NEE of one light (or every light), then of lights seen
@@ -202,7 +208,6 @@ class PathTracer {
       }
       record_branch(branch);
     }
-    return out_;
   }
 
  private:
@@ -333,6 +338,7 @@ class PathTracer {
   }
 
   void remember_first_vertex(const SurfaceHit& hit) {
+    if (!may_split_) return;  // nothing to go back to
     first_vertex_.hit = hit;
     first_vertex_.ray = ray_;
     first_transparent_depth_ = path_state_.transparent_depth;
@@ -457,11 +463,13 @@ class PathTracer {
       out_.normal = v.at.ns;
       out_.uv = hit.has_uv ? Vec3(hit.uv.x, hit.uv.y, 1.0f) : Vec3(0.0f);
     }
-    out_.albedo = diffuse_color<kGlass>(v.material);
-    out_.glossy_color = glossy_color(v.material);
-    if (kAlpha) {  // through the transparency passed, as Cycles
-      out_.albedo *= throughput_;
-      out_.glossy_color *= throughput_;
+    if (colour_passes_) {
+      out_.albedo = diffuse_color<kGlass>(v.material);
+      out_.glossy_color = glossy_color(v.material);
+      if (kAlpha) {  // through the transparency passed, as Cycles
+        out_.albedo *= throughput_;
+        out_.glossy_color *= throughput_;
+      }
     }
     if (ctx_.settings.passes & kPassMist)
       out_.mist = mist_clearance(ctx_, hit.position) * (kAlpha ? (throughput_.x + throughput_.y + throughput_.z) / 3.0f
@@ -847,8 +855,9 @@ class PathTracer {
   // ---- Branches at the first vertex ----
 
   void plan_branches() {
+    if (!may_split_) return;
     first_vertex_.choice = light_choice_;
-    branches_ = kAlpha || ctx_.guide_training ? 1 : ctx_.first_bounce_splits;
+    branches_ = ctx_.first_bounce_splits;
     branch_weight_ = 1.0f / float(branches_);
     features_.set_share(branch_weight_);
   }
@@ -925,7 +934,7 @@ class PathTracer {
   SobolSampler& sampler_;
   const FirstHit* first_;     // the camera ray's answer, if traced already
   const PixelSample& pixel_;
-  PathRadiance out_;
+  PathRadiance& out_;
   // Cycles' denoising features (denoising_features.h), and their state after the first vertex,
   // where later branches start.
   DenoisingFeatures features_, features_after_first_;
@@ -959,6 +968,10 @@ class PathTracer {
   } first_vertex_;
   uint32_t first_vertex_points_ = 0;
   uint8_t first_transparent_depth_ = 0;
+  // Whether the path splits at its first vertex (the first vertex is kept only then; the pilot of
+  // first_bounce_splits.h records a path that does not split).
+  const bool may_split_;
+  const bool colour_passes_;  // the Diffuse or Glossy Color pass is accumulated (first_surface_passes)
   int branches_ = 1;
   float branch_weight_ = 1.0f;  // the share of the path's branch (1/n where it split into n)
   float branch_start_ = 0.0f;   // path_luminance_ when the branch left (the pilot's record)
@@ -985,9 +998,11 @@ template <bool kTextures, bool kSplitLobes, bool kHittable, bool kGlass, bool kA
           bool kMedia = false, bool kSubsurface = false>
 PathRadiance trace_path(const PathContext& ctx, Ray ray, SobolSampler& sampler, const FirstHit* first,
                         const PixelSample& pixel) {
-  return PathTracer<kTextures, kSplitLobes, kHittable, kGlass, kAlpha, kMixtures, kMedia, kSubsurface>(
-             ctx, ray, sampler, first, pixel)
+  PathRadiance out;
+  PathTracer<kTextures, kSplitLobes, kHittable, kGlass, kAlpha, kMixtures, kMedia, kSubsurface>(ctx, ray, sampler, first,
+                                                                                              pixel, out)
       .trace();
+  return out;
 }
 
 // trace_path for every feature set: index bit 0 kHittable, 1 kSplitLobes, 2 kTextures, 3 kGlass, 4 kAlpha.
