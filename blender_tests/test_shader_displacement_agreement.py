@@ -19,10 +19,14 @@ Cycles renders the output's Displacement as bump: the offset's component along t
 the hit and at the hit moved by the ray differentials, as heights of a Bump node (Strength 1,
 Distance 1) whose normal becomes the shading normal.
 
+Cycles 4.3+ takes the bump's heights at the hit moved by 0.1 of the ray differentials (the Bump
+node's default Filter Width), earlier Cycles by the whole differentials.
+
 Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
 seeds 2 and 3. Deliberate faults must fail: the nodes read in World space, Displacement's Scale
-halved, the output's Displacement ignored. A material whose method is Displacement Only is
-reported (true displacement is not done) and rendered as bump.
+halved, the output's Displacement ignored, the Filter Width the other Cycles takes. A material
+whose method is Displacement Only is reported (true displacement is not done) and rendered as
+bump.
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_shader_displacement_agreement.py
@@ -192,9 +196,15 @@ def without_surface_normal(original):
     return read
 
 
+def other_filter_width(original):
+    """The Filter Width of the other Cycles: 0.1 (4.3+'s default) where it is 1, else 1."""
+    return lambda node=None: 0.1 if original(node) == 1.0 else 1.0
+
+
 def main():
     testing.addon()
     import torrance.normal_inputs as normal_inputs
+    from torrance.shader_graph import bump
     from torrance.shader_graph.registry import READERS
     check_method_report()
     readers = DictAttr(READERS)
@@ -207,7 +217,9 @@ def main():
         ("Displacement's Scale halved", readers, 'ShaderNodeDisplacement',
          read_with(lambda node: {"socket:Scale": node.inputs["Scale"].default_value / 2})),
         ("the output's Displacement ignored", normal_inputs, 'bump_from_displacement',
-         displacement_ignored)))
+         displacement_ignored),
+        ("the bump's Filter Width as the other Cycles takes it (before 4.3: 1, 4.3+: 0.1)",
+         bump, 'bump_filter_width', other_filter_width)))
     from torrance.materials import MaterialReader
     from torrance.mixtures import ShaderTreeReader
     agree_on_patches((), lit=DIFFUSE, what="diffuse light on displaced surfaces", samples=128,

@@ -7,8 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 namespace torrance {
@@ -83,7 +85,7 @@ TEST(ShaderBump, ProgramsSayWhetherTheyReadDifferentials) {
   ShaderInstruction bump;
   bump.op = ShaderOpcode::Bump;
   bump.out = 6;
-  for (int k = 0; k < 6; ++k) bump.in[size_t(k)] = int16_t(k);
+  for (int k = 0; k < 7; ++k) bump.in[size_t(k)] = int16_t(k % 6);
   EXPECT_TRUE(ShaderProgram(constants, {bump}, 7, 0).reads_differentials());
   ShaderInstruction uv;  // TexCoordUV at the hit, then at the hit moved by dx
   uv.out = 6;
@@ -91,6 +93,54 @@ TEST(ShaderBump, ProgramsSayWhetherTheyReadDifferentials) {
   uv.offset = 1;
   EXPECT_TRUE(ShaderProgram(constants, {uv}, 7, 0).reads_differentials());
   EXPECT_FALSE(ShaderProgram(constants, {}, 6, 0).reads_differentials());
+}
+
+// Cycles 4.3+'s Filter Width: the heights' offset hits lie at width times the ray differentials
+// (a UV read at offset 1 sees uv + width duv/dx), the bumped normal divides the heights' change
+// by it; a program has one width, a constant.
+TEST(ShaderBump, FilterWidthMovesTheOffsetHits) {
+  // Constants: 0 Strength 1, 1 Distance 0.1, 2 the width 0.1, 3 the normal (0, 0, 1).
+  const std::vector<glm::vec4> constants = {glm::vec4(1.0f), glm::vec4(0.1f), glm::vec4(0.1f),
+                                            glm::vec4(0.0f, 0.0f, 1.0f, 0.0f)};
+  std::vector<ShaderInstruction> code(4);
+  for (int k = 0; k < 3; ++k) {  // the UV at the hit and at its offsets: registers 4, 5, 6
+    code[size_t(k)].out = int16_t(4 + k);
+    code[size_t(k)].offset = uint8_t(k);
+  }
+  ShaderInstruction& bump = code[3];
+  bump.op = ShaderOpcode::Bump;
+  bump.in = {0, 1, 4, 5, 6, 3, 2};
+  bump.flags = shader::kBumpCycles4;
+  bump.out = 7;
+  ShaderGlobals g;
+  g.uv = Vec2(0.25f, 0.5f);
+  g.dpdx = Vec3(0.01f, 0.0f, 0.0f), g.dpdy = Vec3(0.0f, 0.01f, 0.0f);
+  g.duvdx = Vec2(0.02f, 0.0f), g.duvdy = Vec2(0.0f, 0.02f);
+  std::array<glm::vec4, 8> regs{};
+  const ShaderProgram narrow(constants, code, 8, 0);
+  narrow.run(g, {}, regs.data());
+  EXPECT_FLOAT_EQ(regs[5].x, 0.25f + 0.1f * 0.02f);
+  EXPECT_FLOAT_EQ(regs[6].y, 0.5f + 0.1f * 0.02f);
+  // Height u: its slope 2 per unit of x (du/dx = 0.02 / 0.01), whatever the width.
+  const Vec3 expected = glm::normalize(Vec3(-0.1f * 2.0f, 0.0f, 1.0f));
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(regs[7][k], expected[k], 1e-5f) << k;
+  std::vector<glm::vec4> wide = constants;
+  wide[2] = glm::vec4(1.0f);
+  const ShaderProgram cycles42(wide, code, 8, 0);
+  cycles42.run(g, {}, regs.data());
+  EXPECT_FLOAT_EQ(regs[5].x, 0.25f + 0.02f);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(regs[7][k], expected[k], 1e-5f) << k;
+  // A width read from a computed register, or two Bumps of different widths: refused.
+  std::vector<ShaderInstruction> computed = code;
+  computed[3].in[6] = 4;
+  EXPECT_THROW(ShaderProgram(constants, computed, 8, 0), std::invalid_argument);
+  std::vector<ShaderInstruction> two = code;
+  two.push_back(bump);
+  two.back().in[6] = 0;  // width 1
+  two.back().out = 8;
+  EXPECT_THROW(ShaderProgram(constants, two, 9, 0), std::invalid_argument);
+  two.back().in[6] = 2;
+  EXPECT_NO_THROW(ShaderProgram(constants, two, 9, 0));
 }
 
 // A program says which globals beyond the hit's basics it reads (what shader_globals fills).

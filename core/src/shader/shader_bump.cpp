@@ -27,13 +27,14 @@ void differential_axes(const Vec3& n, Vec3& a, Vec3& b) {
 }
 
 Vec3 bump_normal(const Vec3& n, const Vec3& dx, const Vec3& dy, float h_c, float h_x, float h_y, float distance,
-                 float strength) {
+                 float strength, float filter_width) {
   // The surface's tangents scaled so that (h_x - h_c) rx + (h_y - h_c) ry is det times the
-  // height's gradient in the tangent plane.
+  // height's gradient in the tangent plane times the filter width (the heights' step).
   const Vec3 rx = glm::cross(dy, n), ry = glm::cross(n, dx);
   const float det = glm::dot(dx, rx);
   const Vec3 gradient = (h_x - h_c) * rx + (h_y - h_c) * ry;
-  const Vec3 bumped = unit_or_zero(std::abs(det) * n - distance * (det < 0.0f ? -1.0f : 1.0f) * gradient);
+  const Vec3 bumped =
+      unit_or_zero(filter_width * std::abs(det) * n - distance * (det < 0.0f ? -1.0f : 1.0f) * gradient);
   if (is_zero(bumped)) return n;
   const float s = std::max(strength, 0.0f);
   const Vec3 mixed = unit_or_zero(s * bumped + (1.0f - s) * n);
@@ -66,7 +67,7 @@ glm::vec4 bump_op(const ShaderOpContext& c) {
   Vec3 n = unit_or_zero(c.vector(5));
   if (is_zero(n)) n = g.normal;
   const float distance = (c.ins.flags & kBumpInvert) ? -c.value(1) : c.value(1);
-  const Vec3 out = bump_normal(n, g.dpdx, g.dpdy, c.value(2), c.value(3), c.value(4), distance, c.value(0));
+  const Vec3 out = bump_normal(n, g.dpdx, g.dpdy, c.value(2), c.value(3), c.value(4), distance, c.value(0), c.value(6));
   if (c.ins.flags & kBumpCycles4) return glm::vec4(out, 0.0f);
   return glm::vec4(valid_shading_normal(g.true_normal, out, g.incoming), 0.0f);
 }

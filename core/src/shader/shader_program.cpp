@@ -129,7 +129,7 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
     case ShaderOpcode::HueSaturation: return {5, 1, false, hue_saturation};
     case ShaderOpcode::Luminance: return {1, 1, false, luminance};
     case ShaderOpcode::Average: return {1, 1, false, average};
-    case ShaderOpcode::Bump: return {6, 1, false, shader::bump_op};
+    case ShaderOpcode::Bump: return {7, 1, false, shader::bump_op};
     case ShaderOpcode::NormalMap: return {6, shader::kNormalMapModes, false, shader::normal_map_op};
     case ShaderOpcode::Displacement: return {8, 2, false, shader::displacement_op};
     case ShaderOpcode::VectorDisplacement: return {7, 3, false, shader::vector_displacement_op};
@@ -185,6 +185,17 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
   return {0, 0, false, nullptr};
 }
 
+void ShaderProgram::check_bump_filter_width(const ShaderInstruction& ins, const std::string& where, int earlier) {
+  const int r = ins.in[6];
+  if (r < 0 || r >= int(constants_.size()))
+    throw std::invalid_argument(where + ": a Bump's Filter Width (input 6) must be a constant");
+  const float width = constants_[size_t(r)].x;
+  if (!(width >= 0.0f)) throw std::invalid_argument(where + ": a Bump's Filter Width must be 0 or more");
+  if (earlier > 0 && width != bump_filter_width_)
+    throw std::invalid_argument(where + ": a Bump's Filter Width differs from an earlier Bump's (one per program)");
+  bump_filter_width_ = width;
+}
+
 ShaderProgram::ShaderProgram(std::vector<glm::vec4> constants, std::vector<ShaderInstruction> code, int registers,
                              size_t num_textures, std::vector<float> data)
     : constants_(std::move(constants)), code_(std::move(code)), data_(std::move(data)), registers_(registers) {
@@ -201,6 +212,7 @@ ShaderProgram::ShaderProgram(std::vector<glm::vec4> constants, std::vector<Shade
     if (!std::isfinite(d)) throw std::invalid_argument("a shader program's data must be finite");
   std::vector<bool> written(size_t(registers_), false);
   for (size_t r = 0; r < constants_.size(); ++r) written[r] = true;
+  int bump_filter_widths = 0;
   for (size_t i = 0; i < code_.size(); ++i) {
     const ShaderInstruction& ins = code_[i];
     const std::string where = "shader instruction " + std::to_string(i);
@@ -224,6 +236,7 @@ ShaderProgram::ShaderProgram(std::vector<glm::vec4> constants, std::vector<Shade
         throw std::invalid_argument(where + ": input " + std::to_string(k) + " reads register " + std::to_string(r) +
                                     ", which is not written before it");
     }
+    if (ins.op == ShaderOpcode::Bump) check_bump_filter_width(ins, where, bump_filter_widths++);
     if (ins.out < int(constants_.size()) || ins.out >= registers_)
       throw std::invalid_argument(where + ": output register " + std::to_string(ins.out) + " outside [" +
                                   std::to_string(constants_.size()) + ", " + std::to_string(registers_) + ")");
@@ -279,7 +292,7 @@ void ShaderProgram::run(const ShaderGlobals& g, const std::vector<std::shared_pt
   // The globals at the offset hits are made only for programs that read them (a Bump's
   // heights): ShaderGlobals is large enough that making two at every run costs a noticeable share.
   if (offsets_) {
-    const ShaderGlobals dx = g.offset(1), dy = g.offset(2);
+    const ShaderGlobals dx = g.offset(1, bump_filter_width_), dy = g.offset(2, bump_filter_width_);
     const ShaderGlobals* const at[3] = {&g, &dx, &dy};
     run_code(code_, data_, at, textures, regs);
   } else {

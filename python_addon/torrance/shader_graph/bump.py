@@ -5,15 +5,17 @@
 A Bump node's Height graph is compiled three times: at the hit, and with every op that reads the
 hit reading it moved by the ray differentials dx and dy (ProgramBuilder.offset 1 and 2), as
 Cycles evaluates the height subgraph at P, P + dPdx and P + dPdy. Strength, Distance and the
-Normal input (another Bump or Normal Map: chaining) are read at the hit. The outputs are normals
-facing the viewer, like Geometry > Normal.
+Normal input (another Bump or Normal Map: chaining) are read at the hit. Blender 4.3's Filter
+Width scales the offsets (P + w dPdx; node_versions.bump_filter_width): a program has one, so a
+second Bump of another width is reported. The outputs are normals facing the viewer, like
+Geometry > Normal.
 """
 
 from ..nodes import node_label
 from .geometry import normal_input, object_transform
 from .graph import Unsupported
 from .math_ops import VECTOR_MATH_OPS
-from .node_versions import cycles4_normals, normal_map_directx
+from .node_versions import bump_filter_width, cycles4_normals, normal_map_directx
 from .program import constant
 
 # Normal Map spaces -> the NormalMap op's mode (Object spaces read the object's transform).
@@ -28,10 +30,24 @@ def bump_flags(invert=False):
     return (BUMP_INVERT if invert else 0) | (BUMP_CYCLES4 if cycles4_normals() else 0)
 
 
+def filter_width(g, node=None):
+    """The Filter Width of a Bump node (None: the Material Output's Displacement's bump) as a
+    constant for the Bump op, the program's one (ProgramBuilder.bump_filter_width)."""
+    width = bump_filter_width(node)
+    b = g.builder
+    if b.bump_filter_width is not None and b.bump_filter_width != width:
+        what = node_label(node) if node is not None else "The Material Output's Displacement"
+        raise Unsupported(f"{what}: Filter Width {width:g} differs from another bump's "
+                          f"{b.bump_filter_width:g} in this material (Torrance takes one)")
+    b.bump_filter_width = width
+    return constant('float', width)
+
+
 def _bump(g, node, socket):
     b = g.builder
     if b.offset:
         raise Unsupported(f"{node_label(node)} inside another Bump node's Height")
+    width = filter_width(g, node)
     height = node.inputs["Height"]
     heights = []
     try:
@@ -42,7 +58,7 @@ def _bump(g, node, socket):
         b.offset = 0
     strength = g.input(node.inputs["Strength"], 'float')
     distance = g.input(node.inputs["Distance"], 'float')
-    return b.emit("Bump", 'vector', [strength, distance, *heights, normal_input(g, node)],
+    return b.emit("Bump", 'vector', [strength, distance, *heights, normal_input(g, node), width],
                   flags=bump_flags(node.invert))
 
 

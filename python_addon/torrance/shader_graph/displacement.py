@@ -9,7 +9,7 @@ surface shader (svm_node_set_normal). True displacement (the other methods) is n
 """
 
 from ..nodes import node_label
-from .bump import bump_flags
+from .bump import bump_flags, filter_width
 from .geometry import normal_input, object_transform, shading_normal
 from .graph import Unsupported
 from .math_ops import VECTOR_MATH_OPS
@@ -55,6 +55,7 @@ def bump_from_displacement(g, displacement):
     b = g.builder
     if b.offset:
         raise Unsupported("a displacement inside a Bump node's Height")
+    width = filter_width(g)
     normal = shading_normal(g)
     heights = []
     try:
@@ -67,7 +68,7 @@ def bump_from_displacement(g, displacement):
     finally:
         b.offset = 0
     one = constant('float', 1.0)
-    return b.emit("Bump", 'vector', [one, one, *heights, normal], flags=bump_flags())
+    return b.emit("Bump", 'vector', [one, one, *heights, normal, width], flags=bump_flags())
 
 
 READERS = {

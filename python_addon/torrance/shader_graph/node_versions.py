@@ -21,6 +21,9 @@ materials.principled_version does, not by bpy.app.version:
               running Blender tells.
   materials   4.1 moves the displacement method from material.cycles to the material:
               displacement_owner is where it is.
+  Bump        4.3 adds the Filter Width (the height's samples at that share of the ray
+              differentials): bump_filter_width reads it, or gives the one Cycles' bump of a
+              Material Output's Displacement uses.
   Normal Map  5.1 adds the DirectX convention (green pointing down, in every space):
               normal_map_directx says whether the node uses it; bump.py flips green.
   new nodes   4.3 adds the Gabor Texture (gabor.py), 5.0 Radial Tiling (radial_tiling.py;
@@ -141,6 +144,18 @@ def cycles5_voronoi():
 def voronoi_fractal(node):
     """True for a Voronoi Texture of Blender 4.0+ (Detail, Roughness, Lacunarity, Normalize)."""
     return hasattr(node, "normalize")
+
+
+def bump_filter_width(node):
+    """A Bump node's Filter Width (4.3+: how far, in ray differentials, Cycles takes the
+    height's samples; its default 0.1, files from before 4.3 opened at 1), or None (the
+    Material Output's Displacement rendered as bump) Cycles' own Bump's default there: 0.1 from
+    4.3, the whole differentials (1) before."""
+    if node is not None:
+        socket = node.inputs.get("Filter Width")
+        return float(socket.default_value) if socket is not None else 1.0
+    import bpy
+    return 0.1 if bpy.app.version >= (4, 3, 0) else 1.0
 
 
 def displacement_owner(mat):

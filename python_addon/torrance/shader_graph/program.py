@@ -144,6 +144,8 @@ class ProgramBuilder:
         # Where the varying ops emitted now read the hit: 0 at it, 1 and 2 at it moved by the
         # ray differentials dx and dy (a Bump node's Height, compiled three times).
         self.offset = 0
+        # The Filter Width of the program's Bumps (None before the first): the core takes one.
+        self.bump_filter_width = None
         # The shading normal the graph's reads of the hit's Normal see: None for the hit's own,
         # else a Value computed first (a Material Output's Displacement, rendered as bump).
         self.shading_normal = None
@@ -175,10 +177,11 @@ class ProgramBuilder:
 
     def mark(self):
         """A point to roll back to (rollback) when a graph can not be compiled or used."""
-        return len(self.code), self.registers, len(self.constants), len(self.data)
+        return (len(self.code), self.registers, len(self.constants), len(self.data),
+                self.bump_filter_width)
 
     def rollback(self, mark):
-        code, registers, constants, data = mark
+        code, registers, constants, data, self.bump_filter_width = mark
         del self.code[code:]
         del self.data[data:]
         self.registers = registers

@@ -249,13 +249,15 @@ CLOSURES = {
     'ShaderNodeNormalMap': "rendered: Tangent (each mesh's active render UV map), Object, "
                            "World and the Blender spaces, Strength, any Color graph",
     'ShaderNodeBump': "rendered: any Height graph (evaluated at the hit and its ray-differential "
-                      "offsets, as Cycles), Strength, Distance, Invert, Normal (chained bumps)",
+                      "offsets, as Cycles), Strength, Distance, Invert, Normal (chained bumps), "
+                      "Filter Width (4.3+: one per material; another is reported)",
     'ShaderNodeBackground': "rendered: Color and Strength from any graph, in Mix and Add Shader "
                             "trees (with Emission closures) of the world: its tree runs per "
                             "direction, as Cycles' background shader",
     'ShaderNodeOutputMaterial': "rendered: the active output (target All or Cycles); its "
-                                "Displacement as bump (Cycles' Bump Only; the other methods "
-                                "are reported and rendered as bump too)",
+                                "Displacement as bump (Cycles' Bump Only, at 4.3+'s Filter "
+                                "Width 0.1; the other methods are reported and rendered as "
+                                "bump too)",
     'ShaderNodeOutputAOV': "rendered in materials (in node groups too): Color or Value, by the "
                            "view layer's AOV of its name, any graph, at the camera's hits as "
                            "Cycles' shader AOVs; a name the view layer lacks is ignored, as "

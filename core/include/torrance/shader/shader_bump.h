@@ -4,10 +4,12 @@
 //                   the height at the hit moved by the ray differentials dx and dy (the add-on
 //                   compiles the Height's graph three times, the copies' ops reading the hit
 //                   at ShaderInstruction::offset 1 and 2), in5 the Normal input (facing the
-//                   viewer); flags & 1: Invert; flags & 2 (kBumpCycles4): Cycles 4.x's, which
-//                   leaves the reflection check to the closures (3.4 makes the normal keep
-//                   reflections above the surface here). Out: the bumped normal, facing the
-//                   viewer.
+//                   viewer), in6.x the Filter Width (Cycles 4.3+; 1 before): a constant, the
+//                   offsets' length in ray differentials (one per program: ShaderProgram moves
+//                   its offset hits by it); flags & 1: Invert; flags & 2 (kBumpCycles4): Cycles
+//                   4.x's, which leaves the reflection check to the closures (3.4 makes the
+//                   normal keep reflections above the surface here). Out: the bumped normal,
+//                   facing the viewer.
 //   NormalMap (17)  in0 Color, in1.x Strength; mode 0 tangent space (the hit's UV tangent),
 //                   1 world space, 2 Blender world space (y and z negated), 3 object space,
 //                   4 Blender object space (through the object's normal transform); in2-in5
@@ -34,11 +36,12 @@ namespace torrance::shader {
 // a = normalize((1, 1, 1) x n) (another axis when n lies along (1, 1, 1)), b = n x a.
 void differential_axes(const Vec3& n, Vec3& a, Vec3& b);
 
-// The Bump node's normal: n' = normalize(|det| n - distance sign(det) g) with
-// g = (h_x - h_c) (dy x n) + (h_y - h_c) (n x dx), det = dx . (dy x n), mixed with n by
-// strength (clamped at 0); n where that has no direction (zero differentials). n: unit.
+// The Bump node's normal: n' = normalize(w |det| n - distance sign(det) g) with
+// g = (h_x - h_c) (dy x n) + (h_y - h_c) (n x dx), det = dx . (dy x n), w the filter width (the
+// heights h_x, h_y taken at the hit moved by w dx, w dy), mixed with n by strength (clamped at
+// 0); n where that has no direction (zero differentials). n: unit.
 Vec3 bump_normal(const Vec3& n, const Vec3& dx, const Vec3& dy, float h_c, float h_x, float h_y, float distance,
-                 float strength);
+                 float strength, float filter_width = 1.0f);
 
 // A tangent-space normal map's normal from colour c (0..1 per axis): the colour mapped to
 // [-1, 1] over (tangent, sign * n x tangent, n), then mixed with n by strength (clamped at 0).

@@ -18,6 +18,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace torrance {
@@ -183,14 +184,15 @@ struct ShaderGlobals {
   Vec3 tangent{0.0f};
   float bitangent_sign = 1.0f;
   Vec3 corners[3] = {Vec3(0.0f), Vec3(0.0f), Vec3(0.0f)};  // the hit triangle's, world space (0: none)
-  // These globals at the hit moved by dx (which 1) or dy (which 2): position, UVs and corner
-  // weights (normals, the view and footprint stay, as in Cycles' bump evaluation).
-  ShaderGlobals offset(int which) const {
+  // These globals at the hit moved by width times dx (which 1) or dy (which 2): position, UVs
+  // and corner weights (normals, the view and footprint stay, as in Cycles' bump evaluation;
+  // width: the Bump's Filter Width, 1 before Cycles 4.3).
+  ShaderGlobals offset(int which, float width = 1.0f) const {
     ShaderGlobals g = *this;
     const bool x = which == 1;
-    g.position += x ? dpdx : dpdy;
-    g.uv += x ? duvdx : duvdy;
-    g.corner_weights += x ? dweights_dx : dweights_dy;
+    g.position += width * (x ? dpdx : dpdy);
+    g.uv += width * (x ? duvdx : duvdy);
+    g.corner_weights += width * (x ? dweights_dx : dweights_dy);
     return g;
   }
 };
@@ -260,12 +262,18 @@ class ShaderProgram {
            glm::vec4* regs) const;
 
  private:
+  // Checks a Bump instruction's Filter Width (after `earlier` Bumps) and keeps it.
+  void check_bump_filter_width(const ShaderInstruction& ins, const std::string& where, int earlier);
+
   std::vector<glm::vec4> constants_;
   std::vector<ShaderInstruction> code_;
   std::vector<float> data_;
   int registers_;
   std::vector<bool> written_;
   bool offsets_ = false;  // some instruction reads the hit at an offset
+  // How far the offset hits lie, in ray differentials: the Bump ops' Filter Width (their in6, a
+  // constant, one for the program), 1 without Bumps.
+  float bump_filter_width_ = 1.0f;
   bool differentials_ = false;
   bool local_queries_ = false;
   uint8_t globals_read_ = 0;
