@@ -128,11 +128,21 @@ def check_transparent_mix():
 
 
 # Inputs of newer Blenders that Torrance does not render: (node, input, a value that needs it).
-IGNORED_INPUTS = (("ShaderNodeBsdfPrincipled", "Thin Wall", True),
-                  ("ShaderNodeBsdfPrincipled", "Transmission Dispersion Scale", 0.5),
+IGNORED_INPUTS = (("ShaderNodeBsdfPrincipled", "Transmission Dispersion Scale", 0.5),
                   ("ShaderNodeBsdfPrincipled", "Diffuse Roughness", 0.5),
                   ("ShaderNodeBsdfGlass", "Anisotropy", 0.5),
                   ("ShaderNodeBsdfGlass", "Thin Film Thickness", 300.0))
+
+
+def as_surface(nodes, links, out, node, in_mix):
+    """Links `node` to the output's Surface, alone or (in_mix) mixed with a Diffuse BSDF."""
+    if not in_mix:
+        links.new(node.outputs[0], out.inputs["Surface"])
+        return
+    mix = nodes.new("ShaderNodeMixShader")
+    links.new(node.outputs[0], mix.inputs[1])
+    links.new(shader(nodes, "ShaderNodeBsdfDiffuse").outputs[0], mix.inputs[2])
+    links.new(mix.outputs[0], out.inputs["Surface"])
 
 
 def check_ignored_inputs():
@@ -148,13 +158,7 @@ def check_ignored_inputs():
                     break
                 if set_it:
                     node.inputs[name].default_value = value
-                if in_mix:
-                    mix = nodes.new("ShaderNodeMixShader")
-                    links.new(node.outputs[0], mix.inputs[1])
-                    links.new(shader(nodes, "ShaderNodeBsdfDiffuse").outputs[0], mix.inputs[2])
-                    links.new(mix.outputs[0], out.inputs["Surface"])
-                else:
-                    links.new(node.outputs[0], out.inputs["Surface"])
+                as_surface(nodes, links, out, node, in_mix)
                 _args, messages = read(mat)
                 hits = [t for _l, t in messages if "ignores the" in t and name in t]
                 check(len(hits) == (1 if set_it else 0),
@@ -162,8 +166,32 @@ def check_ignored_inputs():
                       f"{[t for _l, t in messages]}")
                 tried.append((kind, name, in_mix, set_it))
     print(f"ignored inputs: {len(tried)} cases checked", flush=True)
-    if bpy.app.version >= (5, 3, 0):        # Blender 5.3 has every one of them (5.0: two)
+    if bpy.app.version >= (5, 3, 0):        # Blender 5.3 has every one of them (5.0: one)
         check(len(tried) == 4 * len(IGNORED_INPUTS), f"5.3: {len(tried)} cases, not all inputs")
+
+
+def check_thin_wall():
+    """Blender 5.x's Thin Wall is read (thin_wall, alone and in a mix) and not reported; off, or
+    in a Blender without the input, no thin_wall argument."""
+    for in_mix in (False, True):
+        for on in (False, True):
+            mat, nodes, links, out = node_material(f"Thin{int(in_mix)}{int(on)}")
+            node = nodes.new("ShaderNodeBsdfPrincipled")
+            has_input = "Thin Wall" in node.inputs
+            if has_input:
+                node.inputs["Thin Wall"].default_value = on
+            as_surface(nodes, links, out, node, in_mix)
+            args, messages = read(mat)
+            if in_mix:
+                args = args["mixture"]["closures"][0][1]
+            want = has_input and on
+            check(bool(args.get("thin_wall")) == want and not [t for _l, t in messages
+                                                               if "Thin Wall" in t],
+                  f"Thin Wall {on} (mix: {in_mix}, input: {has_input}): "
+                  f"{args.get('thin_wall')} {messages}")
+    if bpy.app.version >= (5, 0, 0):
+        check(has_input, "Blender 5.x's Principled has Thin Wall")
+    print("thin wall read: 4 cases", flush=True)
 
 
 def check_subsurface_anisotropy():
@@ -189,6 +217,7 @@ def main():
     testing.addon()
     check_transparent_mix()
     check_ignored_inputs()
+    check_thin_wall()
     check_subsurface_anisotropy()
     testing.clear_scene()
     args, messages = read(nested_tree())

@@ -15,7 +15,7 @@ output node (the output Cycles would use):
   colour and distribution (Multiscatter GGX or GGX); the coat (v1 Clearcoat, v2 Coat:
   principled_coat.py); the sheen (v1 Sheen, v2 Sheen Weight: principled_sheen.py); Anisotropic,
   Anisotropic Rotation and Tangent (anisotropy.py); v1's and v2's subsurface (Cycles' Random Walk:
-  principled_subsurface.py);
+  principled_subsurface.py); v2's Thin Wall (Blender 5.x: principled_thin_wall.py);
 * Glass BSDF: Color, Roughness, IOR (GGX or Beckmann; Sharp is roughness 0);
 * Transparent BSDF: Color (rays pass straight through, tinted);
 * Emission: a black emitter;
@@ -55,6 +55,7 @@ from .principled_coat import read_coat
 from .shader_aovs import AovPrograms
 from .principled_sheen import read_sheen
 from .principled_subsurface import read_subsurface
+from .principled_thin_wall import read_thin_wall, report_film_on_thin_wall
 from .principled_transmission import read_transmission
 from .thin_film import read_thin_film
 from .transparent_mix import read_transparent_mix
@@ -76,7 +77,6 @@ _IGNORED_PRINCIPLED_INPUTS = {
     ),
     'v2': (
         ("Diffuse Roughness", 0.0),
-        ("Thin Wall", False),                       # Blender 5.0+
         ("Transmission Dispersion Scale", 0.0),     # Blender 5.0+
     ),
 }
@@ -340,7 +340,7 @@ class MaterialReader:
             tint = _color3(v(mat, node, names['specular_tint'], (1.0, 1.0, 1.0)), (1.0, 1.0, 1.0))
             v2_inputs = dict(ior=ior, specular_tint_color=tuple(max(0.0, c) for c in tint),
                              multiscatter_ggx=getattr(node, "distribution", "") == 'MULTI_GGX')
-            glass = read_transmission(self, mat, node)
+            glass = dict(read_transmission(self, mat, node), **read_thin_wall(self, mat, node))
         else:
             specular_tint = _clamp(finite_or(v(mat, node, names['specular_tint'], 0.0), 0.0),
                                    0.0, 1.0)
@@ -372,6 +372,7 @@ class MaterialReader:
         if alpha < 1.0 or alpha_tex >= 0:
             out.update(alpha=alpha, alpha_texture=alpha_tex)
         self._report_ignored_inputs(mat, node, _IGNORED_PRINCIPLED_INPUTS[version])
+        report_film_on_thin_wall(self, mat, node, out)
         out.update(read_normal_input(self, mat, node))
         return _sanitize(self._with_program(out))
 

@@ -205,7 +205,7 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
       if (diffuse_ancestor) return MixtureBsdf(MaterialBsdf(principled_as_diffuse(resolved), model));
       *subsurface = principled_subsurface(resolved);
     }
-    if (subsurface && resolved.subsurface > 0.0f && model == BrdfModel::PrincipledV2)
+    if (subsurface && resolved.subsurface > 0.0f && !resolved.thin_wall && model == BrdfModel::PrincipledV2)
       return MixtureBsdf(MaterialBsdf(principled_v2_walk(resolved, walk, subsurface, 0, 1.0f), model));
     return textured ? MixtureBsdf(MaterialBsdf(resolved, model)) : MixtureBsdf(prebuilt);
   }
@@ -223,7 +223,7 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
     if (closures) closures->add(c.type, w.weight[k], m);
     switch (c.type) {
       case ClosureType::Principled: {
-        if (subsurface && m.subsurface > 0.0f && model == BrdfModel::PrincipledV2) {
+        if (subsurface && m.subsurface > 0.0f && !m.thin_wall && model == BrdfModel::PrincipledV2) {
           const Material walked = principled_v2_walk(m, walk, subsurface, bsdf.size(), w.weight[k]);
           bsdf.add(MaterialBsdf(walked, model), w.weight[k], principled_sampling_albedo(walked));
           resolved.base_color += w.weight[k] * m.base_color * (1.0f - m.metallic);

@@ -37,7 +37,13 @@ PrincipledV2Bsdf::PrincipledV2Bsdf(const Material& m) {
   // Subsurface Weight: the walk takes that share of the diffuse layer in the channels it walks
   // (radius above 0: shade_material zeroes the others, subsurface_lobe.h), the diffuse the rest.
   diffuse_color_ = base;
-  if (const float ssw = clamp01(m.subsurface); ssw > 0.0f) {
+  if (const float ssw = clamp01(m.subsurface); ssw > 0.0f && m.thin_wall) {
+    // Thin Wall: a Lambertian reflection and translucency share the subsurface part (Cycles 5.x).
+    const float g = std::isfinite(m.subsurface_anisotropy) ? m.subsurface_anisotropy : 0.0f;
+    const Vec3 clamped = glm::min(base, Vec3(1.0f)) * ssw;
+    diffuse_color_ = base * (1.0f - ssw) + clamped * clamp01(0.5f * (1.0f - g));
+    translucent_color_ = clamped * clamp01(0.5f * (1.0f + g));
+  } else if (ssw > 0.0f) {
     const Vec3 walked(m.subsurface_radius.x > 0.0f, m.subsurface_radius.y > 0.0f, m.subsurface_radius.z > 0.0f);
     const Vec3 clamped = glm::min(base, Vec3(1.0f));
     subsurface_color_ = clamped * ssw * walked;
@@ -100,12 +106,14 @@ PrincipledV2Bsdf::ViewTerms PrincipledV2Bsdf::view_terms(float cos_o) const {
   }
   v.diffuse = diffuse_color_ * (dielectric_weight_ * diffuse_weight);
   if (has_subsurface()) v.subsurface = subsurface_color_ * (dielectric_weight_ * diffuse_weight);
+  v.translucent = translucent_color_ * (dielectric_weight_ * diffuse_weight);
   if (coat_.active()) {
     v.coat = coat_.terms(cos_o);
     v.metal_scale *= v.coat.base_weight;
     v.dielectric_scale *= v.coat.base_weight;
     v.diffuse *= v.coat.base_weight;
     v.subsurface *= v.coat.base_weight;
+    v.translucent *= v.coat.base_weight;
   }
   if (sheen_.active()) {
     // The sheen is the top layer: everything under it (the coat too) keeps 1 - max_rgb(A).
@@ -115,6 +123,7 @@ PrincipledV2Bsdf::ViewTerms PrincipledV2Bsdf::view_terms(float cos_o) const {
     v.dielectric_scale *= keep;
     v.diffuse *= keep;
     v.subsurface *= keep;
+    v.translucent *= keep;
     v.coat.scale *= keep;
     v.coat.albedo *= keep;
   }
@@ -126,7 +135,7 @@ PrincipledV2Bsdf::ClosureAlbedos PrincipledV2Bsdf::closure_albedos(float cos_o) 
   ClosureAlbedos a;
   // The multiscatter darkening E k: the scales above carry k (the lobe's factor).
   const float e = multiscatter_ ? std::max(ggx_tables::albedo(table_roughness_, cos_o), 1e-3f) : 1.0f;
-  a.diffuse = v.diffuse + v.subsurface;  // a BSSRDF's albedo is its weight, diffuse-like (Cycles)
+  a.diffuse = v.diffuse + v.subsurface + v.translucent;  // a BSSRDF's albedo is its weight (Cycles)
   if (has_dielectric_) a.dielectric = v.dielectric_scale * e * dielectric_albedo(cos_o);
   a.metal = v.metal_scale * e *
             (metal_film_ ? metal_fresnel(cos_o)

@@ -16,7 +16,7 @@ namespace {
 // and no rough coat -- and no texture, program, mixture or alpha changes that anywhere.
 bool smooth_material(const Scene& scene, uint32_t m) {
   const Material& mat = scene.material(m);
-  if (scene.material_textures(m).any() || scene.mixture(m) || mat.alpha < 1.0f) return false;
+  if (scene.material_textures(m).any() || scene.mixture(m) || mat.alpha < 1.0f || mat.thin_wall) return false;
   constexpr float r = CausticPartition::kSmoothRoughness;
   const bool no_diffuse = mat.glass_node || mat.metallic >= 1.0f || (mat.transmission >= 1.0f);
   const float refraction = 1.0f - (1.0f - mat.roughness) * (1.0f - mat.transmission_roughness);

@@ -168,7 +168,9 @@ CLOSURES = {
                                 "Christensen-Burley, 5.3 Random Walk (Legacy) as Cycles of the "
                                 "version); 4.2+ Thin Film Thickness and IOR (any graph; over "
                                 "the dielectric and the transmission, in 5.x the metal too, as "
-                                "Cycles of the version). Reported: "
+                                "Cycles of the version); 5.x Thin Wall (a thin slab and "
+                                "translucency, as Cycles 5.x, without the film; shadow rays "
+                                "stop at it). Reported: "
                                 "Clearcoat / Coat Normal, Diffuse Roughness",
     'ShaderNodeBsdfDiffuse': "rendered: Color, Roughness (Lambert, Cycles' Oren-Nayar), Normal; "
                              "alone and in Mix/Add Shader trees alike",

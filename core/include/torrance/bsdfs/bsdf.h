@@ -51,7 +51,11 @@ struct Material {
   float transmission_roughness = 0.0f;
   bool glass_node = false;
   bool glass_beckmann = false;  // the Glass node with the Beckmann distribution (else GGX)
-  bool transmits() const { return glass_node || (transmission > 0.0f && metallic < 1.0f); }
+  // PRINCIPLED_V2's Thin Wall (Blender 5.x, thin_wall_v2.h): the surface is a thin sheet, its
+  // transmission a slab seen alike from both sides and its subsurface a diffuse reflection and
+  // translucency instead of a walk. Such a surface may send light through whatever its weights.
+  bool thin_wall = false;
+  bool transmits() const { return glass_node || thin_wall || (transmission > 0.0f && metallic < 1.0f); }
   // Transparency (the integrator, as Cycles' Transparent BSDF): with probability 1 - alpha a ray
   // goes straight through, tinted by transparent_color, and shadow rays are attenuated by
   // (1 - alpha) transparent_color. Principled Alpha: alpha, white; Transparent BSDF: alpha 0, its Color.

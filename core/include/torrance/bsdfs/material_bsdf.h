@@ -7,6 +7,10 @@
 // weight T (1 - m), its dielectric and diffuse layers keeping (1 - m)(1 - T) (principled_v2.h);
 // the coat and the sheen above darken and tint it as the other layers (glass_layering).
 //
+// PRINCIPLED_V2 with Thin Wall (Blender 5.x): the transmission and the subsurface's translucency
+// are thin_wall_v2.h's sheet (chosen with a fixed probability against the model's lobes), the
+// same from both sides (no `backfacing`).
+//
 // Directions are in the shading frame turned towards the viewer (wo.z > 0), as for the opaque
 // models; `backfacing` says the viewer is behind the GEOMETRIC surface (inside the glass), which
 // only the glass needs: it is evaluated in its outward frame (z negated when backfacing).
@@ -18,6 +22,7 @@
 #include "torrance/bsdfs/principled.h"
 #include "torrance/bsdfs/principled_glass_v2.h"
 #include "torrance/bsdfs/principled_v2.h"
+#include "torrance/bsdfs/thin_wall_v2.h"
 
 #include <optional>
 #include <type_traits>
@@ -28,8 +33,12 @@ namespace torrance {
 class MaterialBsdf {
  public:
   MaterialBsdf(const Material& m, BrdfModel model) : bsdf_(make(m, model)) {
-    if (!m.transmits()) return;
     const float metallic = clamp01(m.metallic), roughness = clamp01(m.roughness);
+    if (m.thin_wall && model == BrdfModel::PrincipledV2 && !m.glass_node) {
+      make_thin_wall(m, metallic, roughness);
+      return;
+    }
+    if (!m.glass_node && !(m.transmission > 0.0f && metallic < 1.0f)) return;
     if (m.glass_node) {
       glass_.emplace(GlassBsdf(roughness, roughness, m.ior, m.base_color, m.base_color, m.glass_beckmann));
       glass_weight_ = glass_probability_ = 1.0f;
@@ -51,7 +60,7 @@ class MaterialBsdf {
     opaque_ = glass_probability_ < 1.0f;
   }
 
-  bool transmits() const { return glass_.has_value(); }
+  bool transmits() const { return glass_.has_value() || thin_.has_value(); }
   // An anisotropic model's tangent into the shading frame (ggx_shape.h); before at().
   void orient(const Frame& frame) {
     std::visit(
@@ -67,16 +76,16 @@ class MaterialBsdf {
   }
   // The GGX alpha of the model's specular lobe (0 with glass: not asked for).
   float specular_alpha() const {
-    return glass_ ? 0.0f : std::visit([](const auto& b) { return b.alpha(); }, bsdf_);
+    return glass_ || thin_ ? 0.0f : std::visit([](const auto& b) { return b.alpha(); }, bsdf_);
   }
   // Whether the model's specular lobe is a delta (a mirror, with or without other lobes).
   bool has_delta() const {
-    return !glass_ && std::visit([](const auto& b) { return b.has_delta(); }, bsdf_);
+    return !glass_ && !thin_ && std::visit([](const auto& b) { return b.has_delta(); }, bsdf_);
   }
   // Whether the material is a perfect mirror and nothing else: a delta reflection, no diffuse
   // lobe, no glass (mirror_images.h).
   bool pure_mirror() const {
-    if (glass_) return false;
+    if (glass_ || thin_) return false;
     return std::visit(
         [](const auto& b) {
           return b.has_delta() && !lobe_mixture::coated(b) && !lobe_mixture::sheened(b) && b.specular_probability(Vec3(0.0f, 0.0f, 1.0f)) >= 1.0f &&
@@ -91,6 +100,7 @@ class MaterialBsdf {
     std::variant<CookTorranceBsdf::View, PrincipledBsdf::View, PrincipledV2Bsdf::View> lobes;
     Vec3 wo{0.0f, 0.0f, 1.0f};
     bool backfacing = false;
+    ThinWallV2::View thin;  // Thin Wall's lobes seen from wo (with thin_)
     // The opaque lobes' choice of their specular lobe for this wo (1 without opaque lobes).
     float p_spec() const { return std::visit([](const auto& v) { return v.p_spec; }, lobes); }
   };
@@ -100,8 +110,12 @@ class MaterialBsdf {
     const bool choice = lobe_choice && opaque_;
     View v{std::visit([&](const auto& b) -> decltype(View::lobes) { return choice ? b.at(wo) : b.geometry(wo); },
                       bsdf_),
-           wo, backfacing};
+           wo, backfacing, {}};
     if (diffuse.tilted) std::visit([&](auto& lv) { lv.diffuse_normal = diffuse; }, v.lobes);
+    if (thin_) {
+      const auto& lv = *std::get_if<PrincipledV2Bsdf::View>(&v.lobes);
+      v.thin = thin_->at(wo, glass_weight_ * glass_layering(v), lv.terms.translucent);
+    }
     return v;
   }
   View at(const Vec3& wo, bool backfacing, const DiffuseNormal& diffuse) const {
@@ -114,6 +128,12 @@ class MaterialBsdf {
   LobeEval eval_lobes(const View& v, const Vec3& wi) const {
     LobeEval f;
     if (!kGlass || opaque_) f = visit(v, [&](const auto& b, const auto& lv) { return b.eval_lobes(lv, wi); });
+    if (kGlass && thin_) {
+      const LobeEval t = thin_->eval(v.thin, wi);
+      f.diffuse += t.diffuse;
+      f.glossy += t.glossy;
+      return f;
+    }
     if (!kGlass || !glass_) return f;
     f.diffuse *= opaque_scale_;
     f.glossy = f.glossy * opaque_scale_ +
@@ -128,6 +148,7 @@ class MaterialBsdf {
     const float opaque =
         opaque_ ? visit(v, [&](const auto& b, const auto& lv) { return b.pdf(lv, wi); }) * (1.0f - glass_probability_)
                 : 0.0f;
+    if (thin_) return opaque + glass_probability_ * thin_->pdf(v.thin, wi);
     if (!glass_) return opaque;
     return opaque + glass_probability_ * glass([&](const auto& g) {
              return g.pdf(outward(v.wo, v.backfacing), outward(wi, v.backfacing));
@@ -135,10 +156,13 @@ class MaterialBsdf {
   }
   template <bool kGlass = true>
   BsdfSample sample(const View& v, float u_lobe, const Vec2& u) const {
-    if (!kGlass || !glass_) return visit(v, [&](const auto& b, const auto& lv) { return b.sample(lv, u_lobe, u); });
+    if (!kGlass || !transmits()) return visit(v, [&](const auto& b, const auto& lv) { return b.sample(lv, u_lobe, u); });
     BsdfSample s;
     const float p = glass_probability_;
-    if (u_lobe < p) {
+    if (u_lobe < p && thin_) {
+      s = thin_->sample(v.thin, std::min(u_lobe / p, 0.99999994f), u);
+      if (s.is_delta) s.weight /= p;
+    } else if (u_lobe < p) {
       s = glass([&](const auto& g) {
         return g.sample(outward(v.wo, v.backfacing), std::min(u_lobe / p, 0.99999994f), u);
       });
@@ -212,6 +236,19 @@ class MaterialBsdf {
     const auto* lv = std::get_if<PrincipledV2Bsdf::View>(&v.lobes);
     return lv ? lv->terms.coat.base_weight * SheenV2::keep(lv->terms.sheen) : Vec3(1.0f);
   }
+  // Thin Wall: the sheet, weighted transmission (1 - metallic), chosen with a probability that
+  // follows its share of the weights (at most 0.9 while the model's lobes reflect something).
+  void make_thin_wall(const Material& m, float metallic, float roughness) {
+    thin_.emplace(ThinWallV2(roughness, m.ior, m.specular_tint_color, m.base_color));
+    glass_weight_ = clamp01(m.transmission) * (1.0f - metallic);
+    const float g = std::isfinite(m.subsurface_anisotropy) ? m.subsurface_anisotropy : 0.0f;
+    const float translucent = (1.0f - metallic) * (1.0f - clamp01(m.transmission)) * clamp01(m.subsurface) *
+                              clamp01(0.5f * (1.0f + g)) * clamp01(luminance(glm::min(m.base_color, Vec3(1.0f))));
+    glass_probability_ = clamp01(glass_weight_ + translucent);
+    const bool lobes_above = glass_weight_ < 1.0f || m.coat_weight > 0.0f || m.sheen_weight > 0.0f;
+    if (lobes_above) glass_probability_ = std::min(glass_probability_, 0.9f);
+    opaque_ = glass_probability_ < 1.0f;
+  }
   // Calls f(the glass) (PRINCIPLED_V2's or Cycles 3.4's); only with glass_.
   template <typename F>
   decltype(auto) glass(F&& f) const {
@@ -223,6 +260,7 @@ class MaterialBsdf {
   bool opaque_ = true;         // the model's lobes reflect something
   float opaque_scale_ = 1.0f;  // PAPER with transmission: 1 - glass weight
   std::optional<std::variant<GlassBsdf, PrincipledGlassV2>> glass_;
+  std::optional<ThinWallV2> thin_;  // PRINCIPLED_V2's Thin Wall (instead of glass_)
   float glass_weight_ = 0.0f, glass_probability_ = 0.0f;
 };
 

@@ -29,7 +29,7 @@
 //
 // Frame as GlassBsdf (glass.h), so that MaterialBsdf holds either: z is the surface's OUTWARD
 // normal, wo.z < 0 is a viewer inside. eval() includes |cos_i| (bsdf.h). Thin Wall (Blender 5.x)
-// is not rendered here. Thin Film (thin_film.h): F(c) = the film's reflectance over etap (its
+// is thin_wall_v2.h's instead. Thin Film (thin_film.h): F(c) = the film's reflectance over etap (its
 // IOR / ior seen from inside, as Cycles), scaled towards f0 / F0 per channel as the Principled's
 // dielectric layer (tinted_film_fresnel); R and T follow from it as above, and a film at total
 // internal reflection reflects all.

@@ -37,7 +37,11 @@
 //               Subsurface Weight w_s (Material::subsurface): the diffuse keeps base (1 - w_s)
 //               and the random walk (subsurface_lobe.h) takes min(base, 1) w_s under the same
 //               layer weights (ViewTerms::subsurface), in the channels it walks; the others
-//               shade that part as diffuse too (Cycles' fallback).
+//               shade that part as diffuse too (Cycles' fallback). With Thin Wall (Blender
+//               5.x) there is no walk: the diffuse keeps min(base, 1) w_s (1 - g) / 2 more and
+//               ViewTerms::translucent is min(base, 1) w_s (1 + g) / 2 under the same layer
+//               weights (g = Subsurface Anisotropy, each share clamped to [0, 1]), the Lambertian
+//               translucency that thin_wall_v2.h renders.
 //
 // Multiscatter GGX (Material::multiscatter_ggx, the node's default "Multiscatter GGX"): each GGX
 // layer is scaled by 1 + F_ms (1 - E) / E (albedo scaling, Kulla & Conty 2017), E = E(r, mu_o)
@@ -73,6 +77,7 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
     Vec3 dielectric_albedo{0.0f};  // A_d, the estimate the diffuse layer is reduced by
     Vec3 diffuse{0.0f};            // (1 - metallic) base colour w(wo)
     Vec3 subsurface{0.0f};         // the random walk's weight: as diffuse, of its own colour
+    Vec3 translucent{0.0f};        // Thin Wall: the subsurface's translucency (thin_wall_v2.h)
     CoatV2::Terms coat;            // the coat's (its base_weight is in the three above)
     SheenBsdf::Lobe sheen;         // the sheen's weight (its albedo), a, b (its keep is in all above)
   };
@@ -140,6 +145,7 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
   Vec3 dielectric_albedo(float cos_o) const;  // the dielectric layer's Fresnel estimate (x E k: A_d)
 
   Vec3 diffuse_color_{0.0f}, subsurface_color_{0.0f};  // the diffuse and walked parts of the base
+  Vec3 translucent_color_{0.0f};  // Thin Wall: the translucent part of the base
   F82Tint metal_;  // the metal's Fresnel
   Vec3 metal_fss_, dielectric_f0_, dielectric_fss_;
   float dielectric_weight_ = 1.0f;  // (1 - metallic)(1 - transmission): Transmission Weight's glass is
