@@ -19,7 +19,10 @@ inline constexpr float kTwoPi = 2.0f * kPi;
 inline float luminance(const Vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
 inline float max_component(const Vec3& c) { return std::max(c.r, std::max(c.g, c.b)); }
 // Of a weight that may be signed (heterogeneous media's unbiased tracking, media/varying_tracking.h).
-inline float max_abs_component(const Vec3& c) { return max_component(glm::abs(c)); }
+// Written out (not via glm::abs, whose functor layers kept it from being inlined in the path loop).
+inline float max_abs_component(const Vec3& c) {
+  return std::max(std::abs(c.r), std::max(std::abs(c.g), std::abs(c.b)));
+}
 inline bool is_finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 inline float clamp01(float x) { return std::min(std::max(x, 0.0f), 1.0f); }
 inline float safe_sqrt(float x) { return std::sqrt(std::max(x, 0.0f)); }
