@@ -130,8 +130,7 @@ def check_transparent_mix():
 # Inputs of newer Blenders that Torrance does not render: (node, input, a value that needs it).
 IGNORED_INPUTS = (("ShaderNodeBsdfPrincipled", "Transmission Dispersion Scale", 0.5),
                   ("ShaderNodeBsdfPrincipled", "Diffuse Roughness", 0.5),
-                  ("ShaderNodeBsdfGlass", "Anisotropy", 0.5),
-                  ("ShaderNodeBsdfGlass", "Thin Film Thickness", 300.0))
+                  ("ShaderNodeBsdfGlass", "Anisotropy", 0.5))
 
 
 def as_surface(nodes, links, out, node, in_mix):

@@ -9,6 +9,7 @@
 #include "torrance/bsdfs/thin_film.h"
 
 #include "torrance/bsdfs/ggx_tables.h"
+#include "torrance/bsdfs/glass.h"
 #include "torrance/bsdfs/metallic_bsdf.h"
 #include "torrance/bsdfs/principled.h"  // fresnel_dielectric
 #include "torrance/bsdfs/principled_glass_v2.h"
@@ -55,6 +56,17 @@ TEST(ThinFilm, NoFilmLeavesTheClosuresAsTheyWere) {
         EXPECT_EQ(glass.split(c, 1.5f).reflect, glass_film.split(c, 1.5f).reflect);
         EXPECT_EQ(glass.split(c, 1.0f / 1.5f).transmit, glass_film.split(c, 1.0f / 1.5f).transmit);
         EXPECT_EQ(metal.fresnel(c), metal_film.fresnel(c));
+      }
+      // The Glass BSDF: the same samples, both sides.
+      const GlassBsdf node(0.2f, 0.2f, 1.5f, Vec3(0.9f), Vec3(0.9f)),
+          node_film(0.2f, 0.2f, 1.5f, Vec3(0.9f), Vec3(0.9f), false, false, film(thickness, 1.33f, cycles5));
+      for (float z : {0.9f, 0.3f, -0.4f}) {
+        const Vec3 wo = glm::normalize(Vec3(0.3f, 0.1f, z));
+        for (float u : {0.02f, 0.5f, 0.97f}) {
+          const BsdfSample a = node.sample(wo, u, Vec2(0.3f, 0.6f)), b = node_film.sample(wo, u, Vec2(0.3f, 0.6f));
+          EXPECT_EQ(a.wi, b.wi);
+          EXPECT_EQ(a.weight, b.weight);
+        }
       }
     }
   }
@@ -116,6 +128,23 @@ TEST(ThinFilm, ReflectanceStaysInZeroOneAndFiniteEverywhere) {
             }
           }
   EXPECT_EQ(checked, 2 * 8 * 6 * 7 * 7 * 3);
+}
+
+TEST(ThinFilm, SharpGlassWeighsItsLobesByTheFilm) {
+  // Smooth Glass BSDF under a film: reflection and refraction weights F c / P and (1 - F) c / (1
+  // - P), F the film over the glass seen from each side; finite at grazing and inside.
+  const ThinFilm f = film(320.0f, 1.3f, true);
+  const GlassBsdf glass(0.0f, 0.0f, 1.5f, Vec3(1.0f), Vec3(1.0f), false, false, f);
+  for (float z : {1.0f, 0.6f, 0.05f, -0.95f, -0.5f}) {
+    const Vec3 wo = glm::normalize(Vec3(std::sqrt(std::max(1.0f - z * z, 0.0f)), 0.0f, z));
+    const Vec3 F = (z > 0.0f ? f : film(320.0f, 1.3f / 1.5f, true))
+                       .over_dielectric(std::abs(wo.z), z > 0.0f ? 1.5f : 1.0f / 1.5f);
+    const BsdfSample r = glass.sample(wo, 0.0f, Vec2(0.5f)), t = glass.sample(wo, 0.9999f, Vec2(0.5f));
+    ASSERT_TRUE(r.is_delta && is_finite(r.weight));
+    const float p = luminance(F) / (luminance(F) + luminance(glm::max(Vec3(1e-4f), Vec3(1.0f) - F)));
+    expect_vec_near(r.weight * p, F, 1e-5f, "reflection");
+    if (t.valid() && t.wi.z * wo.z < 0.0f) expect_vec_near(t.weight * (1.0f - p), Vec3(1.0f) - F, 1e-5f, "refraction");
+  }
 }
 
 TEST(ThinFilm, TotalInternalReflectionReflectsAll) {

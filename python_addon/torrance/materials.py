@@ -80,8 +80,8 @@ _IGNORED_PRINCIPLED_INPUTS = {
         ("Transmission Dispersion Scale", 0.0),     # Blender 5.0+
     ),
 }
-# Glass BSDF inputs of Blender 5.0+ that Torrance ignores (as above).
-_IGNORED_GLASS_INPUTS = (("Anisotropy", 0.0), ("Thin Film Thickness", 0.0))
+# Glass BSDF inputs of Blender 5.0+ that Torrance ignores (as above); its Thin Film is read.
+_IGNORED_GLASS_INPUTS = (("Anisotropy", 0.0),)
 
 
 # Blender's names of the microfacet distributions Torrance renders as GGX.
@@ -413,8 +413,8 @@ class MaterialReader:
         return _clamp(ior, 1e-5, 1000.0)
 
     def _glass(self, mat, node):
-        """Glass BSDF: Color (or an Image Texture), Roughness, IOR; GGX or Beckmann (Sharp =
-        roughness 0; Multiscatter GGX is reported and rendered as GGX)."""
+        """Glass BSDF: Color (or an Image Texture), Roughness, IOR, 5.x's Thin Film; GGX or
+        Beckmann (Sharp = roughness 0; Multiscatter GGX is reported and rendered as GGX)."""
         d = DEFAULT_MATERIAL
         self._begin_program(mat)
         color, tex = self._socket_input(mat, node, "Color", (1.0, 1.0, 1.0))
@@ -431,7 +431,8 @@ class MaterialReader:
         out = dict(d, base_color=_color3(color, (1.0, 1.0, 1.0)), metallic=0.0, specular=0.0,
                    roughness=roughness, glass=True, transmission=1.0,
                    glass_distribution='BECKMANN' if distribution == 'BECKMANN' else 'GGX',
-                   ior=self._ior(mat, node, 1.45), base_color_texture=tex)
+                   ior=self._ior(mat, node, 1.45), base_color_texture=tex,
+                   **read_thin_film(self, mat, node))
         out.update(read_normal_input(self, mat, node))
         return _sanitize(self._with_program(out))
 

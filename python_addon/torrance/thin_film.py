@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """A Thin Film as add_material() arguments (thin_film_thickness, thin_film_ior,
 thin_film_cycles5): the Thin Film Thickness (nm) and Thin Film IOR of Blender 4.2+'s Principled
-BSDF and of 5.x's Metallic BSDF, each from any node graph the shader graph compiles (the
+BSDF and of 5.x's Metallic and Glass BSDFs, each from any node graph the shader graph compiles (the
 closure's shader program then computes it: thin_film_*_register), rendered by the core's
 thin_film.h as the running Blender's Cycles does (node_versions.cycles5_thin_film). A Thickness
 that is a value of 0 or less is no film (it costs nothing); Cycles' cutoff of 0.1 nm is the

@@ -12,7 +12,7 @@ Vec3 to_wo_side(const Vec3& w, float side) { return Vec3(w.x, w.y, w.z * side); 
 }  // namespace
 
 GlassBsdf::GlassBsdf(float reflect_roughness, float refract_roughness, float ior, const Vec3& reflect_color,
-                     const Vec3& refract_color, bool beckmann, bool refraction_only)
+                     const Vec3& refract_color, bool beckmann, bool refraction_only, const ThinFilm& film)
     : reflect_color_(glm::max(reflect_color, Vec3(0.0f))),
       refract_color_(glm::max(refract_color, Vec3(0.0f))),
       beckmann_(beckmann),
@@ -25,6 +25,10 @@ GlassBsdf::GlassBsdf(float reflect_roughness, float refract_roughness, float ior
   reflect_delta_ = alpha_r_ < ggx::kDeltaAlpha;
   refract_delta_ = alpha_t_ < ggx::kDeltaAlpha;
   invisible_ = std::abs(eta_ - 1.0f) < 1e-4f;
+  if (film.active() && !refraction_only) {
+    film_ = film_inside_ = film;
+    film_inside_.ior = film.ior / eta_;
+  }
 }
 
 float GlassBsdf::D(const Vec3& h, float alpha) const {
@@ -71,9 +75,15 @@ GlassBsdf::Weights GlassBsdf::weights(const Vec3& wo) const {
     w.p_reflect = 0.0f;
     return w;
   }
-  const float F = fresnel(wo);
-  w.reflect = F * reflect_color_;
-  w.refract = (invisible_ ? 1.0f : std::max(1e-4f, 1.0f - F)) * refract_color_;
+  if (film_.active() && !invisible_) {
+    const Vec3 F = (wo.z > 0.0f ? film_ : film_inside_).over_dielectric(std::abs(wo.z), w.etap);
+    w.reflect = F * reflect_color_;
+    w.refract = glm::max(Vec3(1e-4f), Vec3(1.0f) - F) * refract_color_;
+  } else {
+    const float F = fresnel(wo);
+    w.reflect = F * reflect_color_;
+    w.refract = (invisible_ ? 1.0f : std::max(1e-4f, 1.0f - F)) * refract_color_;
+  }
   const float lr = luminance(w.reflect), lt = luminance(w.refract);
   w.p_reflect = lr + lt > 0.0f ? lr / (lr + lt) : 0.5f;
   return w;

@@ -183,7 +183,8 @@ CLOSURES = {
                                  "(and 3.x's Multiscatter GGX) rendered as GGX",
     'ShaderNodeBsdfGlass': "partly: Color, Roughness, IOR, Normal; GGX, Beckmann, Sharp "
                            "(Multiscatter GGX rendered as GGX); alone and in Mix/Add Shader "
-                           "trees. Reported: 5.x Anisotropy, Thin Film",
+                           "trees; 5.x Thin Film Thickness and IOR (any graph). Reported: 5.x "
+                           "Anisotropy",
     'ShaderNodeBsdfMetallic': "partly: F82 Tint (Base Color, any graph; Edge Tint) and Physical "
                               "Conductor (IOR, Extinction: values), Roughness (any graph), "
                               "Anisotropy, Rotation, Tangent (any graph; unlinked: Geometry > "

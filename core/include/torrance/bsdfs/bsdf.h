@@ -116,7 +116,7 @@ struct Material {
   // (subsurface/burley_disk.h); after a diffuse bounce it shades as diffuse in 5.x too.
   bool subsurface_burley = false;
   // Thin Film (thin_film.h; PRINCIPLED_V2's Principled BSDF of Blender 4.2+, and in 5.x the
-  // Metallic BSDF): Thickness in nm (<= 0.1: no film, the closures' plain Fresnel) and IOR;
+  // Metallic and Glass BSDFs): Thickness in nm (<= 0.1: no film, the closures' plain Fresnel) and IOR;
   // thin_film_cycles5: Cycles 5.x's film (its table, the metal under a film too), else 4.x's.
   float thin_film_thickness = 0.0f;
   float thin_film_ior = 1.33f;

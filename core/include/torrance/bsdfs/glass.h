@@ -29,6 +29,11 @@
 //
 // refraction_only: the Refraction BSDF node's one closure (refraction_bsdf.h): no reflection
 // lobe and no Fresnel, the refraction lobe weighted by refract_color alone.
+//
+// Thin Film (the Glass BSDF of Blender 5.x, thin_film.h): F becomes the film's colour over etap
+// (its IOR / ior seen from inside, as Cycles), the lobes weighted F reflect_color and
+// max(1e-4, 1 - F) refract_color per channel (Cycles 5.x applies the film per microfacet: the
+// same for smooth glass).
 #pragma once
 
 #include "torrance/bsdfs/bsdf.h"
@@ -39,7 +44,8 @@ namespace torrance {
 class GlassBsdf {
  public:
   GlassBsdf(float reflect_roughness, float refract_roughness, float ior, const Vec3& reflect_color,
-            const Vec3& refract_color, bool beckmann = false, bool refraction_only = false);
+            const Vec3& refract_color, bool beckmann = false, bool refraction_only = false,
+            const ThinFilm& film = ThinFilm{});
 
   Vec3 eval(const Vec3& wo, const Vec3& wi) const;
   float pdf(const Vec3& wo, const Vec3& wi) const;
@@ -72,6 +78,7 @@ class GlassBsdf {
   Vec3 reflect_color_, refract_color_;
   float alpha_r_, alpha_t_, eta_;
   bool reflect_delta_, refract_delta_, invisible_, beckmann_, refraction_only_;
+  ThinFilm film_, film_inside_;  // the film seen from outside and from inside (IOR / ior)
 };
 
 }  // namespace torrance

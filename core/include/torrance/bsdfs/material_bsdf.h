@@ -40,7 +40,8 @@ class MaterialBsdf {
     }
     if (!m.glass_node && !(m.transmission > 0.0f && metallic < 1.0f)) return;
     if (m.glass_node) {
-      glass_.emplace(GlassBsdf(roughness, roughness, m.ior, m.base_color, m.base_color, m.glass_beckmann));
+      glass_.emplace(
+          GlassBsdf(roughness, roughness, m.ior, m.base_color, m.base_color, m.glass_beckmann, false, m.thin_film()));
       glass_weight_ = glass_probability_ = 1.0f;
       opaque_ = false;
       return;
