@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Bump and Normal Map nodes of any graph render like Cycles 3.4 (and 4.2: `ctest -L blender4`).
+"""Bump and Normal Map nodes of any graph render like Cycles 3.4 (and 4.2, 5.3: `ctest -L blender4`,
+`-L blender5`).
 
 Lit patches (torrance_tools.shader_graphs' grid under a sun 30 degrees from the zenith and a
 sky), each a closure whose Normal a node graph computes: Bump nodes whose Height is a Noise
@@ -15,6 +16,11 @@ Cycles 3.4 keeps every closure's normal from reflecting below the surface; Cycle
 specular ones (its diffuse lobes shade with the bumped normal as it is: bsdf.h's DiffuseNormal).
 In 4.2, the 3.4 rule (every closure checked) fails: block mean 0.0030 > 0.0023 (noise_normal_map
 1.1 % bright).
+
+Cycles 5.x dims the light near a bump's shadow terminator with Conty Estevez et al.'s microfacet
+term in place of Chiang et al.'s (core bump_shadowing.h; blender_versions.cycles5_bump_shadowing):
+with 4.x's term, 5.3 fails (ratio 0.987, every lit patch ~1.3 % dark), the fault "other Cycles'
+bump terminator" below.
 
 Agreement: within Cycles' own seed-to-seed noise (agree_within_seed_noise, 32 spp, seeds 2
 and 3). Deliberate faults must fail: Distance ignored (read as 1), Invert ignored, the offsets'
@@ -165,14 +171,16 @@ def world_normal_map():
 
 
 def mixed_bump():
-    """A Mix Shader of a Diffuse and a Glossy BSDF sharing one bumped Normal."""
+    """A Mix Shader of a Diffuse (Lambert: Roughness 0, as Cycles 5.x's Oren-Nayar is its new
+    energy-preserving one, which Torrance does not have) and a Glossy BSDF sharing one bumped
+    Normal."""
     g = _closure("mixed_bump", "ShaderNodeMixShader")
     g.shader.inputs["Fac"].default_value = 0.4
     normal = _bump(g, _noise(g, 6.0), distance=0.12)
-    for k, kind in ((1, "ShaderNodeBsdfDiffuse"), (2, "ShaderNodeBsdfGlossy")):
+    for k, kind, roughness in ((1, "ShaderNodeBsdfDiffuse", 0.0), (2, "ShaderNodeBsdfGlossy", 0.4)):
         c = g.node(kind)
         c.inputs["Color"].default_value = (0.7, 0.6, 0.5, 1.0)
-        c.inputs["Roughness"].default_value = 0.4
+        c.inputs["Roughness"].default_value = roughness
         if hasattr(c, "distribution"):
             c.distribution = 'GGX'       # 4.x's default is Multiscatter GGX (rendered as GGX)
         g.link(normal, c.inputs["Normal"])
@@ -237,14 +245,23 @@ def _mirror(b, centre, moved):
     return out
 
 
+def other_cycles_terminator(original):
+    """The bump terminator's smoothing of the other Cycles generation (3.x/4.x's in 5.x, 5.x's
+    before)."""
+    return lambda: not original()
+
+
 def main():
     testing.addon()
+    from torrance import blender_versions
     from torrance.shader_graph.registry import READERS
     readers = DictAttr(READERS)
     agree_on_patches((), lit=LIT, what="the Bump and Normal Map nodes", faults=(
         ("Distance ignored", readers, 'ShaderNodeBump', distance_ignored),
         ("Invert ignored", readers, 'ShaderNodeBump', invert_ignored),
-        ("offsets' sign flipped", readers, 'ShaderNodeBump', offsets_flipped)))
+        ("offsets' sign flipped", readers, 'ShaderNodeBump', offsets_flipped),
+        ("other Cycles' bump terminator", blender_versions, 'cycles5_bump_shadowing',
+         other_cycles_terminator)))
 
 
 testing.run(main)

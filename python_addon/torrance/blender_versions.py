@@ -13,6 +13,10 @@ difference is named once and told by the API itself where it can be:
               shading only, as in 4.x): object_geometry_changed tells a real geometry change.
   image formats  5.0 offers the format OPEN_EXR_MULTILAYER only under the media type
               Multi-Layer Image (and OPEN_EXR only under Image): set_multilayer_exr.
+  bump terminator  Cycles 5.0 smooths the shadow terminator of bump- and normal-mapped
+              surfaces with a microfacet shadowing term (and drops light the smooth and the
+              mapped normal put on different sides): cycles5_bump_shadowing, the running
+              Blender tells (no setting or node changed).
 """
 
 
@@ -20,6 +24,13 @@ def always_uses_nodes(owner):
     """True where owner's use_nodes is deprecated, i.e. its node tree is always used (5.0+)."""
     prop = owner.bl_rna.properties.get("use_nodes")
     return prop is None or getattr(prop, "is_deprecated", False)
+
+
+def cycles5_bump_shadowing():
+    """True where Cycles smooths bump terminators as 5.x does (RenderSettings'
+    microfacet_bump_shadowing; measured in 5.3, 5.0-5.2 taken as 5.3), False for 3.x-4.x's."""
+    import bpy
+    return bpy.app.version >= (5, 0, 0)
 
 
 def used_node_tree(owner):

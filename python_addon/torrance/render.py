@@ -6,7 +6,7 @@ import traceback
 
 import numpy as np
 
-from . import denoising, export, passes, preview
+from . import blender_versions, denoising, export, passes, preview
 from .brdf_model import model_note
 from .core_module import CoreMissing, load_core
 from .core_settings import core_settings
@@ -230,6 +230,7 @@ def _render(engine, depsgraph, reporter):
         threads=threads,
         passes=core_passes + guides,
         pass_alpha_threshold=float(getattr(view_layer, "pass_alpha_threshold", 0.5)),
+        microfacet_bump_shadowing=blender_versions.cycles5_bump_shadowing(),
         **passes.world_pass_settings(depsgraph.scene),
         **core_settings(ts),
     )

@@ -300,6 +300,7 @@ CORE_ONLY = {
     "ao_distance": "Blender's World > Ambient Occlusion > Distance (passes.world_pass_settings)",
     "window": "Blender's render border (render.py)",
     "threads": "Blender's Performance > Threads (scene.render)",
+    "microfacet_bump_shadowing": "the running Blender's Cycles (render.py, viewport)",
     "passes": "the view layer's passes (passes.py)",
     "specialize": "a lever of the core for tests and the benchmark; always on",
     "camera_packets": "a lever of the core for tests and the benchmark; always on",

@@ -221,7 +221,8 @@ void CausticTracer::connect(const SurfaceHit& hit, const Vec3& incoming, const V
   const Vec3 wi = frame.to_local(incoming);
   if (!leaves_geometric_side(incoming, ng, wi.z, bsdf.transmits())) return;
   LobeEval f = bsdf.eval_lobes<true>(view, wi);
-  if (at.normal_mapped) f.diffuse *= bump_shadowing(at.n_smooth, at.n_diffuse(), incoming);
+  if (at.normal_mapped)
+    shadow_bumps(f, ctx_.settings.microfacet_bump_shadowing, at.n_smooth, at.n_diffuse(), at.ns, incoming, true);
   const float cos_in = std::abs(glm::dot(ng, incoming));
   if (!(max_component(f.total()) > 0.0f) || !(cos_in > 0.0f)) return;
   // Visible from the lens point: nothing in between (glass stops it too, as shadow rays).

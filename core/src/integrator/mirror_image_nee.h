@@ -28,7 +28,7 @@ bool mirror_image_light(const PathContext& ctx, const Bsdf& bsdf, const typename
   const Vec3 wi = frame.to_local(ms.wi);
   if (!leaves_geometric_side(ms.wi, ng, wi.z, transmits)) return false;
   f = bsdf.template eval_lobes<kGlass>(view, wi);
-  if (normal_mapped) f.diffuse *= bump_shadowing(n_smooth, ns, ms.wi);
+  if (normal_mapped) shadow_bumps(f, ctx.settings.microfacet_bump_shadowing, n_smooth, ns, ns, ms.wi, true);
   if (!(max_component(f.total()) > 0.0f)) return false;
   Ray ray;
   ray.origin = offset_origin(position, ng, ms.wi);

@@ -553,7 +553,8 @@ class PathTracer {
     const Vec3 wi = v.at.frame.to_local(ls.wi);
     if (!ls.valid() || !leaves_geometric_side(ls.wi, v.at.ng, wi.z, v.transmits)) return;
     LobeEval f = v.bsdf->template eval_lobes<kGlass>(v.view, wi);
-    if (v.at.normal_mapped) f.diffuse *= bump_shadowing(v.at.n_smooth, v.at.n_diffuse(), ls.wi);
+    if (v.at.normal_mapped)
+      shadow_bumps(f, ctx_.settings.microfacet_bump_shadowing, v.at.n_smooth, v.at.n_diffuse(), v.at.ns, ls.wi, true);
     if (!(max_component(f.total()) > 0.0f)) return;
     const Vec3 transmittance = shadow_through(v, ls, u_light.w);
     if (!(max_abs_component(transmittance) > 0.0f)) return;
@@ -632,7 +633,8 @@ class PathTracer {
     }
     if (v.at.normal_mapped && !bs.is_delta) {
       LobeEval f = v.bsdf->template eval_lobes<kGlass>(v.view, bs.wi);
-      f.diffuse *= bump_shadowing(v.at.n_smooth, v.at.n_diffuse(), wi_world);
+      shadow_bumps(f, ctx_.settings.microfacet_bump_shadowing, v.at.n_smooth, v.at.n_diffuse(), v.at.ns, wi_world,
+                   false);
       bs.weight = f.total() / bs.pdf;
     }
     if (recorder_.enabled() && v.guidable && !bs.is_delta)

@@ -9,6 +9,7 @@
 #include "torrance/film/cryptomatte.h"
 #include "torrance/film/extra_passes.h"
 #include "torrance/integrator/integrator.h"
+#include "torrance/integrator/bump_shadowing.h"
 #include "torrance/bsdfs/material_bsdf.h"
 #include "torrance/lights/mirror_images.h"
 #include "torrance/util/sampling.h"
@@ -118,20 +119,6 @@ inline Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& dir) {
 inline bool leaves_geometric_side(const Vec3& wi, const Vec3& ng, float wi_z, bool transmits) {
   const float cos_geometric = glm::dot(wi, ng);
   return transmits ? cos_geometric != 0.0f && (cos_geometric > 0.0f) == (wi_z > 0.0f) : cos_geometric > 0.0f;
-}
-
-// Cycles 3.4's smoothing of diffuse light on bump- or normal-mapped surfaces near the terminator
-// ("Taming the Shadow Terminator", Chiang et al. 2019): n_smooth is the interpolated normal,
-// n_mapped the normal-mapped one, wi the light direction.
-inline float bump_shadowing(Vec3 n_smooth, const Vec3& n_mapped, const Vec3& wi) {
-  const float cos_mapped = glm::dot(n_mapped, wi);
-  if (cos_mapped < 0.0f) n_smooth = -n_smooth;
-  const float denom = cos_mapped * glm::dot(n_smooth, n_mapped);
-  if (denom == 0.0f) return 1.0f;
-  const float g = glm::dot(n_smooth, wi) / denom;
-  if (g >= 1.0f) return 1.0f;
-  if (g < 0.0f) return 0.0f;
-  return g + g * g - g * g * g;
 }
 
 // The camera ray's answer when the integrator traced it already (Scene::intersect_packet).

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """What the viewport render reads from the scene and from the 3D view's shading."""
 
+from .. import blender_versions
 from ..core_settings import core_settings
 
 UNLIMITED_SAMPLES = 1 << 16     # "0 = unlimited" viewport samples
@@ -16,6 +17,7 @@ def viewport_settings(scene):
         samples=UNLIMITED_SAMPLES if samples <= 0 else samples,
         transparent_background=bool(rd.film_transparent),
         threads=int(rd.threads) if rd.threads_mode == 'FIXED' else 0,
+        microfacet_bump_shadowing=blender_versions.cycles5_bump_shadowing(),
         # Unguided: the viewport restarts at every edit, and a guide's training passes (1, 2, 4,
         # ... samples per pixel) would delay its first images for a gain only long renders see.
         # The classic roulette: what the efficiency roulette learns from a viewport's few samples

@@ -122,3 +122,8 @@ TORRANCE_RENDER_SETTING(bool, nee_every_light, true, "both lights sampled in two
 // a pilot before the render chooses n in 1-4 (first_bounce_splits.h); 2-16: that many. Not
 // used while path guiding trains, nor in scenes with alpha.
 TORRANCE_RENDER_SETTING(int, first_bounce_splits, 1, "branches at the first hit: 1 = off, 0 = automatic, 2-16")
+// Which smoothing of the shadow terminator of bump- and normal-mapped surfaces (bump_shadowing.h):
+// false, Chiang et al.'s (Cycles 3.x and 4.x); true, Conty Estevez et al.'s microfacet shadowing
+// with the side check against the smooth normal (Cycles 5.x). The add-on sets the running
+// Blender's (blender_versions.cycles5_bump_shadowing).
+TORRANCE_RENDER_SETTING(bool, microfacet_bump_shadowing, false, "Cycles 5.x's bump terminator smoothing (else 3.x/4.x's)")
