@@ -3,7 +3,7 @@
 #include "torrance/bsdfs/ggx_glass_tables.h"
 #include "torrance/bsdfs/ggx_tables.h"
 #include "torrance/bsdfs/microfacet.h"
-#include "torrance/bsdfs/principled.h"       // fresnel_dielectric
+#include "torrance/bsdfs/outward.h"
 #include "torrance/bsdfs/principled_coat.h"  // multiscatter
 
 namespace torrance {
@@ -11,8 +11,6 @@ namespace torrance {
 namespace {
 
 float mean(const Vec3& v) { return (v.x + v.y + v.z) / 3.0f; }
-// The frame turned so that the viewer is above (z negated for a viewer inside), and back.
-Vec3 flip_z(const Vec3& w) { return Vec3(w.x, w.y, -w.z); }
 
 }  // namespace
 
@@ -36,9 +34,7 @@ PrincipledGlassV2::Split PrincipledGlassV2::split(float c, float etap) const {
     const ThinFilm& film = etap == ior_ ? film_ : film_inside_;
     out.reflect = tinted_film_fresnel(film.over_dielectric(clamp01(c), etap), f0_, etap);
   } else {
-    const float f0_real = ggx_tables::f0_from_ior(etap);
-    const float s = f0_real < 1.0f ? clamp01((fresnel_dielectric(c, etap) - f0_real) / (1.0f - f0_real)) : 1.0f;
-    out.reflect = glm::mix(f0_, Vec3(1.0f), s);
+    out.reflect = glm::mix(f0_, Vec3(1.0f), ggx_tables::dielectric_fresnel_factor(c, etap));
   }
   out.transmit = (Vec3(1.0f) - out.reflect) * tint_t_;
   const float total = mean(out.reflect + out.transmit);
@@ -89,19 +85,19 @@ PrincipledGlassV2::Lobe PrincipledGlassV2::evaluate(const Vec3& wo, const Vec3& 
 
 Vec3 PrincipledGlassV2::eval(const Vec3& wo, const Vec3& wi) const {
   const bool inside = wo.z < 0.0f;
-  return evaluate(inside ? flip_z(wo) : wo, inside ? flip_z(wi) : wi, inside ? 1.0f / ior_ : ior_).f_cos;
+  return evaluate(outward(wo, inside), outward(wi, inside), inside ? 1.0f / ior_ : ior_).f_cos;
 }
 
 float PrincipledGlassV2::pdf(const Vec3& wo, const Vec3& wi) const {
   const bool inside = wo.z < 0.0f;
-  return evaluate(inside ? flip_z(wo) : wo, inside ? flip_z(wi) : wi, inside ? 1.0f / ior_ : ior_).pdf;
+  return evaluate(outward(wo, inside), outward(wi, inside), inside ? 1.0f / ior_ : ior_).pdf;
 }
 
 BsdfSample PrincipledGlassV2::sample(const Vec3& wo_outward, float u_lobe, const Vec2& u) const {
   BsdfSample s;
   if (wo_outward.z == 0.0f || !is_finite(wo_outward)) return s;
   const bool inside = wo_outward.z < 0.0f;
-  const Vec3 wo = inside ? flip_z(wo_outward) : wo_outward;
+  const Vec3 wo = outward(wo_outward, inside);
   const float etap = inside ? 1.0f / ior_ : ior_;
   if (invisible_) {
     s.wi = -wo_outward;
@@ -121,7 +117,7 @@ BsdfSample PrincipledGlassV2::sample(const Vec3& wo_outward, float u_lobe, const
   } else if (!ggx::refract(wo, h, etap, wi) || !(wi.z < 0.0f)) {
     return BsdfSample{};
   }
-  s.wi = inside ? flip_z(wi) : wi;
+  s.wi = outward(wi, inside);
   if (smooth_) {
     s.weight = reflect ? sp.reflect / sp.p_reflect : sp.transmit / (1.0f - sp.p_reflect);
     s.is_delta = true;

@@ -1,12 +1,8 @@
 #include "torrance/bsdfs/refraction_bsdf.h"
 
+#include "torrance/bsdfs/outward.h"
+
 namespace torrance {
-namespace {
-
-// w in the glass's outward frame (z the outward normal) from the frame turned towards the viewer.
-Vec3 outward(const Vec3& w, bool backfacing) { return backfacing ? Vec3(w.x, w.y, -w.z) : w; }
-
-}  // namespace
 
 RefractionBsdf::RefractionBsdf(const Vec3& color, float roughness, float ior, bool beckmann)
     : color_(glm::max(color, Vec3(0.0f))),

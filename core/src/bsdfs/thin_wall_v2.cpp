@@ -2,6 +2,7 @@
 
 #include "torrance/bsdfs/ggx_tables.h"
 #include "torrance/bsdfs/microfacet.h"
+#include "torrance/bsdfs/outward.h"
 #include "torrance/bsdfs/principled.h"       // fresnel_dielectric
 #include "torrance/bsdfs/principled_coat.h"  // multiscatter
 #include "torrance/util/sampling.h"
@@ -12,9 +13,6 @@
 namespace torrance {
 
 namespace {
-
-// The sheet's far side: a direction mirrored through the surface.
-Vec3 through(const Vec3& w) { return Vec3(w.x, w.y, -w.z); }
 
 // A GGX reflection lobe of alpha for a viewer at wo (wo.z > 0) towards wi (wi.z > 0): f cos
 // (without its weight) and the visible-normal density of wi.
@@ -62,10 +60,8 @@ bool ThinWallV2::transmission_is_delta() const { return alpha_t_ < ggx_tables::k
 ThinWallV2::Slab ThinWallV2::slab(float c) const {
   Slab out;
   c = clamp01(c);
-  const float f0_real = ggx_tables::f0_from_ior(ior_);
   const float f_real = fresnel_dielectric(c, ior_);
-  const float s = f0_real < 1.0f ? clamp01((f_real - f0_real) / (1.0f - f0_real)) : 1.0f;
-  const Vec3 f = glm::mix(f0_, Vec3(1.0f), s);
+  const Vec3 f = glm::mix(f0_, Vec3(1.0f), ggx_tables::dielectric_fresnel_factor(c, ior_));
   // The refracted cosine inside the slab; none at total internal reflection (ior < 1).
   const float cos_t2 = 1.0f - (1.0f - c * c) / (ior_ * ior_);
   if (!(cos_t2 > 0.0f) || f_real >= 1.0f) {
@@ -111,7 +107,7 @@ LobeEval ThinWallV2::eval(const View& v, const Vec3& wi) const {
     if (!reflection_is_delta()) f.glossy = v.reflect * ggx_reflection(wo, wi, alpha_).f_cos;
     return f;
   }
-  if (!transmission_is_delta()) f.glossy = v.transmit * ggx_reflection(wo, through(wi), alpha_t_).f_cos;
+  if (!transmission_is_delta()) f.glossy = v.transmit * ggx_reflection(wo, mirror_z(wi), alpha_t_).f_cos;
   f.diffuse = v.translucent * (-wi.z * kInvPi);
   return f;
 }
@@ -121,7 +117,7 @@ float ThinWallV2::pdf(const View& v, const Vec3& wi) const {
   if (!(wo.z > 0.0f) || wi.z == 0.0f) return 0.0f;
   if (wi.z > 0.0f) return reflection_is_delta() ? 0.0f : v.p_reflect * ggx_reflection(wo, wi, alpha_).pdf;
   float p = v.p_translucent * (-wi.z * kInvPi);
-  if (!transmission_is_delta()) p += v.p_transmit * ggx_reflection(wo, through(wi), alpha_t_).pdf;
+  if (!transmission_is_delta()) p += v.p_transmit * ggx_reflection(wo, mirror_z(wi), alpha_t_).pdf;
   return p;
 }
 
@@ -147,9 +143,9 @@ BsdfSample ThinWallV2::sample(const View& v, float u_lobe, const Vec2& u) const 
     }
     const Vec3 mirrored = ggx::reflect(wo, ggx::sample_visible_normal(wo, alpha_t_, u));
     if (!(mirrored.z > 0.0f)) return BsdfSample{};
-    s.wi = through(mirrored);
+    s.wi = mirror_z(mirrored);
   } else {
-    s.wi = through(sample_cosine_hemisphere(u));
+    s.wi = mirror_z(sample_cosine_hemisphere(u));
     s.diffuse = true;
     if (!(s.wi.z < 0.0f)) return BsdfSample{};
   }

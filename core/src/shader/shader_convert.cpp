@@ -3,6 +3,8 @@
 // rounding of the last operation.
 #include "torrance/shader/shader_convert.h"
 
+#include "torrance/util/smoothstep.h"
+
 #include <cmath>
 #include <iterator>
 
@@ -23,14 +25,6 @@ glm::vec4 table_entry(const float* table, int stride, int i) {
   glm::vec4 e(0.0f);
   for (int k = 0; k < stride; ++k) e[k] = table[i * stride + k];
   return e;
-}
-
-// The factor of a smooth step from e0 to e1 (0 below e0, 1 from e1 on): 3t^2 - 2t^3.
-float smooth_step(float e0, float e1, float x) {
-  if (x < e0) return 0.0f;
-  if (x >= e1) return 1.0f;
-  const float t = (x - e0) / (e1 - e0);
-  return (3.0f - 2.0f * t) * (t * t);
 }
 
 // The smoother step (6t^5 - 15t^4 + 10t^3) of t = (x - e0) / (e1 - e0) within [0, 1].
@@ -208,10 +202,7 @@ Vec3 vector_map_range(MapRangeMode mode, const Vec3& value, const Vec3& from_min
       for (int k = 0; k < 3; ++k) factor[k] = stepped(factor[k], steps[k]);
       break;
     case MapRangeMode::SmoothStep:
-      for (int k = 0; k < 3; ++k) {
-        const float t = saturate(factor[k]);
-        factor[k] = (3.0f - 2.0f * t) * (t * t);
-      }
+      for (int k = 0; k < 3; ++k) factor[k] = smooth_step(0.0f, 1.0f, saturate(factor[k]));
       break;
     case MapRangeMode::SmootherStep:
       for (int k = 0; k < 3; ++k) {

@@ -1,5 +1,7 @@
 #include "torrance/shader/shader_textures.h"
 
+#include "torrance/util/smoothstep.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -24,11 +26,6 @@ int32_t floor_to_int(float f) { return to_int(std::floor(f)); }
 float saturate(float v) {
   const float at_least_0 = v > 0.0f ? v : 0.0f;
   return at_least_0 < 1.0f ? at_least_0 : 1.0f;
-}
-
-float smoothstep_unit(float t) {
-  const float t2 = t * t;
-  return 3.0f * t2 - 2.0f * t2 * t;
 }
 
 // 2 pi as Cycles' float constant (6.2831855).
@@ -68,9 +65,7 @@ float gradient_unclamped(GradientType type, const Vec3& p) {
       return r * r;
     }
     case GradientType::Easing: {
-      const float r = std::fmin(std::fmax(p.x, 0.0f), 1.0f);
-      const float t = r * r;
-      return 3.0f * t - 2.0f * t * r;
+      return smooth_step_unclamped(std::fmin(std::fmax(p.x, 0.0f), 1.0f));
     }
     case GradientType::Diagonal: return (p.x + p.y) * 0.5f;
     case GradientType::Spherical: return sphere_falloff(p);
@@ -123,7 +118,7 @@ BrickSample brick(const Vec3& p, float mortar_size, float mortar_smooth, float b
     s.mortar = 1.0f;
   } else {
     const float depth = 1.0f - edge_distance / mortar_size;  // 0 at the band's inner edge, 1 at the brick's
-    s.mortar = depth < mortar_smooth ? smoothstep_unit(depth / mortar_smooth) : 1.0f;
+    s.mortar = depth < mortar_smooth ? smooth_step_unclamped(depth / mortar_smooth) : 1.0f;
   }
   return s;
 }

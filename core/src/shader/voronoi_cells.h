@@ -37,6 +37,16 @@ void square_roots(float* v) {
 template <int D>
 using VecN = glm::vec<D, float, glm::defaultp>;
 
+// Cycles 5.0+'s integer cells (2 to 4 dimensions): a cell's word on one axis is the integer
+// corner of the point's cell (cell_int of its floored coordinate) plus the cell's offset from
+// it, wrapping; a 2D cell's colour is the PCG hash of (x, y, 0), a 3D or 4D cell's the first
+// three words of its point's hash.
+inline uint32_t cell_word(uint32_t corner, float offset) { return corner + uint32_t(int32_t(offset)); }
+inline Vec3 cell_color2(uint32_t x, uint32_t y) {
+  const std::array<uint32_t, 3> h = pcg_hash<3>({x, y, 0u});
+  return Vec3(pcg_to_float(h[0]), pcg_to_float(h[1]), pcg_to_float(h[2]));
+}
+
 constexpr int power(int base, int exponent) { return exponent == 0 ? 1 : base * power(base, exponent - 1); }
 
 // The cells within `Reach` of p's cell on every axis, (2 Reach + 1)^D of them, indexed in Cycles'
@@ -98,7 +108,7 @@ struct Cells {
   void place_integer_points(const VecN<D>& cell) {
     for (int k = 0; k < D; ++k) {
       const uint32_t corner = cell_int(cell[k]);
-      for (int i = 0; i < kLanes; ++i) key[k][i] = corner + uint32_t(int32_t(kOffsets[size_t(k)][size_t(i)]));
+      for (int i = 0; i < kLanes; ++i) key[k][i] = cell_word(corner, kOffsets[size_t(k)][size_t(i)]);
     }
     if constexpr (D > 1) {
       for (int i = 0; i < kLanes; ++i) {
@@ -141,8 +151,8 @@ struct Cells {
     if (integer_hash) {  // 2D: the hash of (x, y, 0); 3D and 4D: the point's own hash
       if constexpr (D == 2) {
         for (int i = 0; i < kLanes; ++i) {
-          const std::array<uint32_t, 3> h = pcg_hash<3>({key[0][i], key[1][i], 0u});
-          for (int k = 0; k < 3; ++k) out[k][i] = pcg_to_float(h[size_t(k)]);
+          const Vec3 color = cell_color2(key[0][i], key[1][i]);
+          for (int k = 0; k < 3; ++k) out[k][i] = color[k];
         }
       } else if constexpr (D > 2) {
         for (int k = 0; k < 3; ++k) std::copy(hash[k], hash[k] + kLanes, out[k]);

@@ -6,6 +6,7 @@
 #include "torrance/shader/shader_hash.h"
 #include "torrance/shader/shader_program.h"
 #include "torrance/shader/shader_voronoi.h"
+#include "torrance/util/smoothstep.h"
 #include "shader/cpu_dispatch.h"
 #include "shader/voronoi_cells.h"
 
@@ -33,13 +34,13 @@ inline Vec3 cell_color(const VecN<2>& c) { return hash_float2_to_float3(c); }
 inline Vec3 cell_color(const VecN<3>& c) { return hash_float3_to_float3(c); }
 inline Vec3 cell_color(const VecN<4>& c) { return hash_float4_to_float3(c); }
 
-// Cycles 5.0+ hashes a cell of 2 to 4 dimensions as integers (shader_hash.h's PCG): the cell's
-// integer corner plus the offset, its point the hash of those words, its colour the hash of
-// (x, y, 0) in 2D, the point's own first three components in 3D and 4D; 1D keeps the float hash.
+// Cycles 5.0+ hashes a cell of 2 to 4 dimensions as integers (shader_hash.h's PCG): its words
+// (voronoi_cells::cell_word), its point the hash of those words, its colour as cell_color2 says;
+// 1D keeps the float hash.
 template <int D>
 std::array<uint32_t, D> cell_words(const VecN<D>& cell, const VecN<D>& offset) {
   std::array<uint32_t, D> words;
-  for (int k = 0; k < D; ++k) words[size_t(k)] = cell_int(cell[k]) + uint32_t(int32_t(offset[k]));
+  for (int k = 0; k < D; ++k) words[size_t(k)] = voronoi_cells::cell_word(cell_int(cell[k]), offset[k]);
   return words;
 }
 
@@ -63,14 +64,12 @@ Vec3 cell_color(const VecN<D>& cell, const VecN<D>& offset, bool integer_hash) {
   } else {
     if (!integer_hash) return cell_color(cell + offset);
     const std::array<uint32_t, D> words = cell_words<D>(cell, offset);
-    std::array<uint32_t, 3> h{};
     if constexpr (D == 2) {
-      h = pcg_hash<3>({words[0], words[1], 0u});
+      return voronoi_cells::cell_color2(words[0], words[1]);
     } else {
-      const std::array<uint32_t, D> all = pcg_hash<D>(words);
-      std::copy(all.begin(), all.begin() + 3, h.begin());
+      const std::array<uint32_t, D> h = pcg_hash<D>(words);
+      return Vec3(pcg_to_float(h[0]), pcg_to_float(h[1]), pcg_to_float(h[2]));
     }
-    return Vec3(pcg_to_float(h[0]), pcg_to_float(h[1]), pcg_to_float(h[2]));
   }
 }
 
@@ -101,13 +100,6 @@ void for_each_offset(int reach, Visit&& visit) {
 
 // Cycles' min: the first when it is smaller, else the second (NaN where either is).
 inline float cycles_min(float a, float b) { return a < b ? a : b; }
-
-// Cycles' smoothstep from 0 to 1.
-inline float smoothstep01(float x) {
-  if (x < 0.0f) return 0.0f;
-  if (x >= 1.0f) return 1.0f;
-  return (3.0f - 2.0f * x) * (x * x);
-}
 
 template <int D>
 struct Found {
@@ -179,7 +171,7 @@ Found<D> smooth_f1(const VecN<D>& p, const Params& q) {
   VecN<D> position(0.0f);
   for (int i = 0; i < cells.kCount; ++i) {
     const float d = cells.distance[i];
-    const float h = q.cycles4 && i == 0 ? 1.0f : smoothstep01(0.5f + 0.5f * (distance - d) / s);
+    const float h = q.cycles4 && i == 0 ? 1.0f : smooth_step(0.0f, 1.0f, 0.5f + 0.5f * (distance - d) / s);
     float correction = s * h * (1.0f - h);
     distance = distance + h * (d - distance) - correction;
     correction /= 1.0f + 3.0f * s;

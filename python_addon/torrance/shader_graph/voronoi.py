@@ -16,9 +16,7 @@ The op (core: ShaderOpcode::Voronoi, shader_voronoi.h): mode = (dimensions - 1) 
 """
 
 import functools
-import itertools
 from collections import namedtuple
-from functools import lru_cache
 
 import numpy as np
 
@@ -26,6 +24,7 @@ from . import hash_ops
 from .node_versions import input_socket, voronoi_fractal
 from .program import constant
 from .texture_mapping import texture_vector
+from .voronoi_cells import cell_colors, cell_points, offsets_of
 
 OPCODES = {"Voronoi": 48}
 
@@ -52,55 +51,7 @@ def settings_of(mode):
     return mode % 4 + 1, FEATURES[mode // 4 % len(FEATURES)], METRICS[mode // (4 * len(FEATURES))]
 
 
-# -- the neighbourhood ----------------------------------------------------------------------------
-
-@lru_cache(maxsize=None)
-def _offsets(dimensions, reach):
-    """The cell offsets in [-reach, reach]^n, x varying fastest (the core's and Cycles' order)."""
-    steps = range(-reach, reach + 1)
-    rows = [t[::-1] for t in itertools.product(steps, repeat=dimensions)]
-    out = np.array(rows, _F)
-    out.flags.writeable = False
-    return out
-
-
-def _integer_words(cell, offsets):
-    """Cycles 5.0+'s words of the cells cell + offsets (N, n): the integer corner plus each
-    offset, uint32 (wrapping)."""
-    corner = hash_ops.cell_int(cell)
-    steps = np.asarray(offsets).astype(np.int64).astype(np.uint32)
-    return [corner[k] + steps[:, k] for k in range(steps.shape[1])]
-
-
-def _cell_points(cell, offsets, integer_hash=False):
-    """The points' places in the cells cell + offsets (N, n): hash_float<n>_to_float<n> of each
-    cell, or (integer_hash, Cycles 5.0+, 2D-4D) the PCG hash of its integer words."""
-    if integer_hash and len(cell) > 1:
-        h = hash_ops.pcg_hash(*_integer_words(cell, offsets))
-        return np.stack([hash_ops.pcg_to_float(x) for x in h], axis=1)
-    cells = cell + offsets
-    c = [cells[:, k] for k in range(cells.shape[1])]
-    hashes = {1: lambda: (hash_ops.hash_float_to_float(c[0]),),
-              2: lambda: hash_ops.hash_float2_to_float2(*c),
-              3: lambda: hash_ops.hash_float3_to_float3(*c),
-              4: lambda: hash_ops.hash_float4_to_float4(*c)}[len(c)]()
-    return np.stack([np.asarray(h, _F) for h in hashes], axis=1)
-
-
-def _cell_colors(cell, offsets, integer_hash=False):
-    """The colours of the cells cell + offsets (N, 3): hash_float<n>_to_float3 of each cell, or
-    (integer_hash, 2D-4D) the PCG hash of (x, y, 0) in 2D, of the cell's words in 3D and 4D."""
-    if integer_hash and len(cell) > 1:
-        words = _integer_words(cell, offsets)
-        if len(words) == 2:
-            words.append(np.zeros_like(words[0]))
-        h = hash_ops.pcg_hash(*words)[:3]
-        return np.stack([hash_ops.pcg_to_float(x) for x in h], axis=1)
-    cells = cell + offsets
-    c = [cells[:, k] for k in range(cells.shape[1])]
-    hashes = {1: hash_ops.hash_float_to_float3, 2: hash_ops.hash_float2_to_float3,
-              3: hash_ops.hash_float3_to_float3, 4: hash_ops.hash_float4_to_float3}[len(c)](*c)
-    return np.stack([np.asarray(h, _F) for h in hashes], axis=1)
+# -- the neighbourhood (its cells: voronoi_cells.py) -------------------------------------------
 
 
 def _dot(a, b):
@@ -160,8 +111,8 @@ def _first_below(values, limit=_EIGHT):
 def _neighbourhood(p, reach, randomness, integer_hash=False):
     cell = np.floor(p)
     local = p - cell
-    offsets = _offsets(len(p), reach)
-    points = offsets + _cell_points(cell, offsets, integer_hash) * randomness
+    offsets = offsets_of(len(p), reach)
+    points = offsets + cell_points(cell, offsets, integer_hash) * randomness
     return cell, local, offsets, points
 
 
@@ -171,7 +122,7 @@ def _f1(p, q):
     i = _first_below(d, q['start'])
     distance, offset, point = (q['start'], np.zeros_like(cell), np.zeros_like(cell)) if i is None \
         else (d[i], offsets[i], points[i])
-    return distance, _cell_colors(cell, offset[None, :], q['integer_hash'])[0], point + cell
+    return distance, cell_colors(cell, offset[None, :], q['integer_hash'])[0], point + cell
 
 
 def _f2(p, q):
@@ -187,13 +138,13 @@ def _f2(p, q):
             second, i2 = di, i
     offset = offsets[i2] if i2 is not None else np.zeros_like(cell)
     point = points[i2] if i2 is not None else np.zeros_like(cell)
-    return second, _cell_colors(cell, offset[None, :], q['integer_hash'])[0], point + cell
+    return second, cell_colors(cell, offset[None, :], q['integer_hash'])[0], point + cell
 
 
 def _smooth_f1(p, q):
     cell, local, offsets, points = _neighbourhood(p, 2, q['randomness'], q['integer_hash'])
     d = _distances(points, local, q['metric'], q['exponent'])
-    colors = _cell_colors(cell, offsets, q['integer_hash'])
+    colors = cell_colors(cell, offsets, q['integer_hash'])
     s = q['smoothness']
     distance = _ZERO if q['cycles4'] else _EIGHT
     color, position = np.zeros(3, _F), np.zeros(len(p), _F)
@@ -255,7 +206,7 @@ def n_sphere_radius(p, randomness, start=_EIGHT, integer_hash=False):
     closest_offset = offsets[i] if i is not None else np.zeros_like(local)
     steps = offsets[np.any(offsets != 0, axis=1)]
     around = steps + closest_offset
-    others = around + _cell_points(cell, around, integer_hash) * randomness
+    others = around + cell_points(cell, around, integer_hash) * randomness
     j = _first_below(length_of(closest - others) if n > 1 else np.abs(closest[0] - others[:, 0]),
                      start)
     nearest = others[j] if j is not None else np.zeros_like(local)

@@ -19,6 +19,7 @@
 
 #include "torrance/bsdfs/cook_torrance.h"
 #include "torrance/bsdfs/glass.h"
+#include "torrance/bsdfs/outward.h"
 #include "torrance/bsdfs/principled.h"
 #include "torrance/bsdfs/principled_glass_v2.h"
 #include "torrance/bsdfs/principled_v2.h"
@@ -230,7 +231,6 @@ class MaterialBsdf {
     if (model == BrdfModel::PrincipledV2) return PrincipledV2Bsdf(m);
     return CookTorranceBsdf(m);
   }
-  static Vec3 outward(const Vec3& w, bool backfacing) { return backfacing ? Vec3(w.x, w.y, -w.z) : w; }
   // What the glass keeps under PRINCIPLED_V2's coat and sheen seen from v's wo (Cycles layers
   // them over its transmission closure as over the other layers); 1 for the other models.
   static Vec3 glass_layering(const View& v) {
