@@ -342,11 +342,11 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
     }
     const bool packet = settings.camera_packets && n > 1 && !moving;  // a packet's rays share a time
     std::array<FirstHit, Scene::kPacketSize> first;
+    std::optional<std::array<SurfaceHit, Scene::kPacketSize>> hits;  // only for a packet
     if (packet) {
-      std::array<SurfaceHit, Scene::kPacketSize> hits;
       std::array<bool, Scene::kPacketSize> found;
-      scene.intersect_packet(rays.data(), n, hits.data(), found.data());
-      for (int i = 0; i < n; ++i) first[size_t(i)] = {hits[size_t(i)], found[size_t(i)]};
+      scene.intersect_packet(rays.data(), n, hits.emplace().data(), found.data());
+      for (int i = 0; i < n; ++i) first[size_t(i)] = {&(*hits)[size_t(i)], found[size_t(i)]};
     }
     for (int i = 0; i < n; ++i) {
       const CameraSample& c = batch[size_t(i)];

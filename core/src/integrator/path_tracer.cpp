@@ -237,7 +237,7 @@ class PathTracer {
   bool find_next_surface(int bounce, bool again, Segment& seg) {
     SurfaceHit& hit = seg.hit;
     seg.found = again && bounce == 0 ? (hit = first_vertex_.hit, true)
-                : bounce == 0 && first_ ? (hit = first_->hit, first_->found)
+                : bounce == 0 && first_ ? (hit = *first_->hit, first_->found)
                                         : ctx_.scene.intersect(ray_, hit);
     if constexpr (kAlpha) return pass_transparent_surfaces(bounce, again, seg);
     if (bounce == 0 && !again && seg.found && ctx_.split_at_catchers && !kMedia) meet_catcher(hit);

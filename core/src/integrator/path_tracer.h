@@ -121,9 +121,10 @@ inline bool leaves_geometric_side(const Vec3& wi, const Vec3& ng, float wi_z, bo
   return transmits ? cos_geometric != 0.0f && (cos_geometric > 0.0f) == (wi_z > 0.0f) : cos_geometric > 0.0f;
 }
 
-// The camera ray's answer when the integrator traced it already (Scene::intersect_packet).
+// The camera ray's answer when the integrator traced it already (Scene::intersect_packet): the
+// hit lives in the integrator's packet (not copied per sample: a SurfaceHit is large).
 struct FirstHit {
-  SurfaceHit hit;
+  const SurfaceHit* hit = nullptr;
   bool found = false;
 };
 
