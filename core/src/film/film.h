@@ -205,8 +205,7 @@ class Film {
     std::vector<std::pair<std::string, Image>> out;
     std::vector<std::pair<Pass, Image>> resolved;
     int k = 4 + extra_channels_ + catcher_channels_;
-    for (const PassInfo& p : kPasses) {
-      if (!(accumulated_ & p.pass)) continue;
+    for (const PassInfo& p : accumulated_list_) {
       resolved.emplace_back(p.pass, (p.pass & kFirstSamplePasses) ? copy(k, p.channels) : resolve(k, p.channels));
       k += p.channels;
     }
