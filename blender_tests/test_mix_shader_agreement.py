@@ -123,7 +123,7 @@ def add_averaged(mix):
 
 def lambert_for_oren_nayar(mix):
     for _kind, args, _terms in mix["closures"]:
-        if _kind == "diffuse":
+        if _kind in ("diffuse", "diffuse_energy_preserving"):
             args["roughness"] = 0.0
 
 

@@ -171,13 +171,12 @@ def world_normal_map():
 
 
 def mixed_bump():
-    """A Mix Shader of a Diffuse (Lambert: Roughness 0, as Cycles 5.x's Oren-Nayar is its new
-    energy-preserving one, which Torrance does not have) and a Glossy BSDF sharing one bumped
-    Normal."""
+    """A Mix Shader of a rough Diffuse (Roughness 0.4: Cycles 3.4/4.2's Oren-Nayar, 4.3+'s
+    energy-preserving one) and a Glossy BSDF sharing one bumped Normal."""
     g = _closure("mixed_bump", "ShaderNodeMixShader")
     g.shader.inputs["Fac"].default_value = 0.4
     normal = _bump(g, _noise(g, 6.0), distance=0.12)
-    for k, kind, roughness in ((1, "ShaderNodeBsdfDiffuse", 0.0), (2, "ShaderNodeBsdfGlossy", 0.4)):
+    for k, kind, roughness in ((1, "ShaderNodeBsdfDiffuse", 0.4), (2, "ShaderNodeBsdfGlossy", 0.4)):
         c = g.node(kind)
         c.inputs["Color"].default_value = (0.7, 0.6, 0.5, 1.0)
         c.inputs["Roughness"].default_value = roughness

@@ -15,6 +15,7 @@ namespace {
 ClosureType parse_closure(const std::string& s) {
   if (s == "principled") return ClosureType::Principled;
   if (s == "diffuse") return ClosureType::Diffuse;
+  if (s == "diffuse_energy_preserving") return ClosureType::DiffuseEnergyPreserving;
   if (s == "glossy") return ClosureType::Glossy;
   if (s == "emission") return ClosureType::Emission;
   if (s == "transparent") return ClosureType::Transparent;
@@ -32,7 +33,7 @@ ClosureType parse_closure(const std::string& s) {
   if (s == "metallic_conductor") return ClosureType::MetallicConductor;
   if (s == "subsurface") return ClosureType::Subsurface;
   throw py::value_error(
-      "closure type must be 'principled', 'diffuse', 'glossy', 'emission', 'transparent', 'holdout', 'velvet', "
+      "closure type must be 'principled', 'diffuse', 'diffuse_energy_preserving', 'glossy', 'emission', 'transparent', 'holdout', 'velvet', "
       "'sheen', "
       "'translucent', 'principled_hair', 'refraction', 'toon_diffuse', 'toon_glossy', 'toon_diffuse_cycles4', "
       "'toon_glossy_cycles4', 'metallic_f82', 'metallic_conductor' or 'subsurface', got '" + s + "'");
@@ -116,7 +117,8 @@ void init_mixture(py::module_& m) {
       py::arg("transparent_color") = std::array<float, 3>{1.0f, 1.0f, 1.0f}, py::arg("program") = -1,
       py::arg("normal_register") = -1, py::arg("surface_normal_register") = -1,
       "Adds a material made of weighted closures (Mix Shader / Add Shader); returns its material index. "
-      "closures: [(type, material, terms)], type 'principled' | 'diffuse' | 'glossy' | 'emission' | 'transparent' | "
+      "closures: [(type, material, terms)], type 'principled' | 'diffuse' | 'diffuse_energy_preserving' (Blender 4.3+'s Diffuse BSDF: a rough one is the "
+      "energy-preserving Oren-Nayar) | 'glossy' | 'emission' | 'transparent' | "
       "'holdout' | 'velvet' | 'sheen' | 'translucent' | 'refraction' | 'toon_diffuse' | 'toon_glossy' (sampled as Cycles 3.x; "
       "'toon_diffuse_cycles4' | 'toon_glossy_cycles4': as Cycles 4.x) | 'metallic_f82' | 'metallic_conductor' "
       "(the Metallic BSDF: mixture.h's ClosureType), material an add_material "

@@ -189,7 +189,8 @@ void init_scene(py::module_& m) {
              bool subsurface_fixed_radius, float subsurface_entry_alpha, bool subsurface_skin,
              float subsurface_min_footprint, bool subsurface_after_diffuse, bool subsurface_van_de_hulst,
              bool subsurface_burley, float thin_film_thickness, float thin_film_ior, bool thin_film_cycles5,
-             int thin_film_thickness_register, int thin_film_ior_register, bool thin_wall) {
+             int thin_film_thickness_register, int thin_film_ior_register, bool thin_wall,
+             float diffuse_roughness) {
             if (glass_distribution != "GGX" && glass_distribution != "BECKMANN")
               throw py::value_error("glass_distribution must be 'GGX' or 'BECKMANN', got '" + glass_distribution +
                                     "'");
@@ -236,6 +237,7 @@ void init_scene(py::module_& m) {
             mat.thin_film_ior = thin_film_ior;
             mat.thin_film_cycles5 = thin_film_cycles5;
             mat.thin_wall = thin_wall;
+            mat.diffuse_roughness = std::isfinite(diffuse_roughness) ? clamp01(diffuse_roughness) : 0.0f;
             MaterialTextures tex;
             tex.base_color = base_color_texture;
             tex.metallic = metallic_texture;
@@ -307,7 +309,7 @@ void init_scene(py::module_& m) {
           py::arg("subsurface_burley") = false, py::arg("thin_film_thickness") = 0.0f,
           py::arg("thin_film_ior") = 1.33f, py::arg("thin_film_cycles5") = false,
           py::arg("thin_film_thickness_register") = -1, py::arg("thin_film_ior_register") = -1,
-          py::arg("thin_wall") = false,
+          py::arg("thin_wall") = false, py::arg("diffuse_roughness") = 0.0f,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
@@ -350,7 +352,8 @@ void init_scene(py::module_& m) {
           "thin_film_cycles5: Cycles 5.x's film (else 4.x's). "
           "thin_wall: PRINCIPLED_V2's Thin Wall (Blender 5.x): the transmission is a thin slab and the "
           "subsurface a diffuse reflection and translucency (Subsurface Anisotropy splits them), "
-          "no walk.")
+          "no walk. diffuse_roughness: PRINCIPLED_V2's Diffuse Roughness (Blender 4.3+), the diffuse layer "
+          "an energy-preserving Oren-Nayar above 0.")
       .def(
           "add_shader_program",
           [](Scene& s, const py::object& constants, const py::object& code, int registers, const py::object& data) {

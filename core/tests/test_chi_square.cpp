@@ -241,6 +241,11 @@ TEST(ChiSquare, MixtureSamplingMatchesPdf) {
   three.add(GlossyBsdf(Vec3(1.0f), 0.0f), 0.4f, 1.0f);
   three.add(MaterialBsdf(plastic, BrdfModel::Principled), 0.6f, 0.5f);
   cases.push_back({"oren-nayar+mirror+principled", three});
+  for (float r : {0.4f, 1.0f}) {  // Cycles 4.3+'s energy-preserving Oren-Nayar (oren_nayar_eon.h)
+    MixtureBsdf eon;
+    eon.add(DiffuseBsdf(Vec3(0.5f, 0.6f, 0.7f), r, true), 1.0f, 0.6f);
+    cases.push_back({r == 0.4f ? "energy-preserving oren-nayar r=0.4" : "energy-preserving oren-nayar r=1", eon});
+  }
   const double significance = 0.01 / double(cases.size() * 3);
   uint32_t seed = 5000;
   for (const Case& c : cases)

@@ -76,7 +76,6 @@ _IGNORED_PRINCIPLED_INPUTS = {
     'v1': (
     ),
     'v2': (
-        ("Diffuse Roughness", 0.0),
         ("Transmission Dispersion Scale", 0.0),     # Blender 5.0+
     ),
 }
@@ -338,8 +337,14 @@ class MaterialReader:
             specular = specular_from_ior_level(specular, ior)
             specular_tint = 0.0            # v1's float; v2's colour is read for PRINCIPLED_V2
             tint = _color3(v(mat, node, names['specular_tint'], (1.0, 1.0, 1.0)), (1.0, 1.0, 1.0))
+            # Diffuse Roughness (4.3+; a value or a constant graph): the energy-preserving
+            # Oren-Nayar diffuse layer.
+            diffuse_roughness = _clamp(finite_or(v(mat, node, "Diffuse Roughness", 0.0), 0.0),
+                                       0.0, 1.0)
             v2_inputs = dict(ior=ior, specular_tint_color=tuple(max(0.0, c) for c in tint),
-                             multiscatter_ggx=getattr(node, "distribution", "") == 'MULTI_GGX')
+                             multiscatter_ggx=getattr(node, "distribution", "") == 'MULTI_GGX',
+                             **({'diffuse_roughness': diffuse_roughness}
+                                if diffuse_roughness > 0.0 else {}))
             glass = dict(read_transmission(self, mat, node), **read_thin_wall(self, mat, node))
         else:
             specular_tint = _clamp(finite_or(v(mat, node, names['specular_tint'], 0.0), 0.0),

@@ -35,6 +35,7 @@ from .closure_nodes import CLOSURE_NODES, read_closure_node
 from .nodes import finite_or, is_default_uv, node_label, plain_image, source_socket
 from .normal_inputs import begin_displacement, normal_source, read_normal_input
 from .anisotropy import GLOSSY, read_anisotropy
+from .shader_graph.node_versions import cycles4_3_diffuse
 
 MAX_CLOSURES = 8          # the core's kMaxMixtureComponents
 MAX_FACTORS = 8           # the core's kMaxMixFactors
@@ -296,6 +297,8 @@ class ShaderTreeReader:
         roughness, roughness_tex = ((0.0, -1) if sharp else reader._socket_input(
             mat, node, "Roughness", 0.0, program_input='roughness'))
         roughness = min(max(finite_or(roughness, 0.0), 0.0), 1.0)
+        if cycles4_3_diffuse() and (roughness > 0.0 or node.inputs["Roughness"].is_linked):
+            kind = 'diffuse_energy_preserving'  # a rough Diffuse of 4.3+ (at 0 both are Lambert)
         lobe = {}       # the glossy lobe's anisotropy and distribution
         if node.bl_idname in ('ShaderNodeBsdfGlossy', 'ShaderNodeBsdfAnisotropic'):
             kind = 'glossy'

@@ -5,7 +5,9 @@ Transmission Weight a slab seen alike from both sides (no refraction), its Subsu
 diffuse reflection and translucency split by Subsurface Anisotropy (no walk). Blender 3.x/4.x's
 Principled has no such input: nothing is added there. A graph feeding the input must fold to a
 constant (one that varies is reported and the socket's own value used). A Thin Film over the
-thin wall's transmission is not rendered (reported): the film colours the other layers only."""
+thin wall's transmission is not rendered (reported): the film colours the other layers only. With
+Diffuse Roughness its diffuse reflection is the energy-preserving Oren-Nayar (as Cycles 5.x) but
+its translucency stays Lambertian (Cycles': the rough one; reported)."""
 
 from .nodes import finite_or, node_label
 
@@ -31,3 +33,8 @@ def report_film_on_thin_wall(reader, mat, node, args):
             and args.get("thin_film_thickness", 0.0) > 0.1):
         reader.reporter.warning(f"Material '{mat.name}': Torrance renders the transmission of "
                                 f"{node_label(node)} with Thin Wall without its Thin Film")
+    if (args.get("thin_wall") and args.get("subsurface", 0.0) > 0.0
+            and args.get("diffuse_roughness", 0.0) > 0.0):
+        reader.reporter.warning(f"Material '{mat.name}': Torrance renders the translucency of "
+                                f"{node_label(node)} with Thin Wall Lambertian, without its "
+                                f"Diffuse Roughness")

@@ -119,3 +119,27 @@ def test_the_closure_nodes_types_render_under_a_sun():
         assert (centre > 1e-3) if reflects else (centre < 1e-6), (kind, centre)
     with pytest.raises(ValueError, match="toon_glossy"):
         tc.Scene().add_mixture([("toon", 0, [])])
+
+
+def _sunlit_plane(kind, roughness, **material):
+    """The centre of a plane of one `kind` closure (Color 0.8) lit by a sun 37 degrees off."""
+    scene = tc.Scene()
+    inputs = scene.add_material(base_color=(0.8, 0.8, 0.8), roughness=roughness, **material)
+    facing_plane(scene, scene.add_mixture([(kind, inputs, [])]) if kind else inputs)
+    scene.add_sun(direction=(0.6, 0.0, -0.8), strength=3.0, angle=0.0)
+    image = tc.render(scene, tc.RenderSettings(width=8, height=8, samples=4, max_bounces=0,
+                                               brdf_model="PRINCIPLED_V2")).image
+    assert np.isfinite(image).all()
+    return image[2:6, 2:6, 0].mean()
+
+
+def test_energy_preserving_diffuse_is_lambert_at_roughness_0_and_brighter_when_rough():
+    """Blender 4.3+'s Diffuse BSDF ('diffuse_energy_preserving', issue 35): roughness 0 is
+    Lambert exactly; rough, the energy-preserving Oren-Nayar reflects more of a sun seen from
+    straight above than Cycles 3.4/4.2's Oren-Nayar ('diffuse'). The Principled's
+    diffuse_roughness (PRINCIPLED_V2, no specular) is the same closure."""
+    assert _sunlit_plane("diffuse_energy_preserving", 0.0) == _sunlit_plane("diffuse", 0.0)
+    eon, old = _sunlit_plane("diffuse_energy_preserving", 1.0), _sunlit_plane("diffuse", 1.0)
+    assert eon > 1.02 * old, (eon, old)
+    principled = _sunlit_plane(None, 0.5, diffuse_roughness=1.0, specular=0.0, ior=1.0)
+    assert principled == pytest.approx(eon, rel=1e-4)

@@ -253,7 +253,9 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
         break;
       }
       case ClosureType::Diffuse:
-        bsdf.add(DiffuseBsdf(m.base_color, m.roughness), w.weight[k], luminance(m.base_color));
+      case ClosureType::DiffuseEnergyPreserving:
+        bsdf.add(DiffuseBsdf(m.base_color, m.roughness, c.type == ClosureType::DiffuseEnergyPreserving), w.weight[k],
+                 luminance(m.base_color));
         resolved.base_color += w.weight[k] * m.base_color;
         break;
       case ClosureType::Glossy:

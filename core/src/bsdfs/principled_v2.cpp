@@ -37,6 +37,7 @@ PrincipledV2Bsdf::PrincipledV2Bsdf(const Material& m) {
   // Subsurface Weight: the walk takes that share of the diffuse layer in the channels it walks
   // (radius above 0: shade_material zeroes the others, subsurface_lobe.h), the diffuse the rest.
   diffuse_color_ = base;
+  diffuse_lobe_ = EnergyPreservingOrenNayar(base, m.diffuse_roughness);
   if (const float ssw = clamp01(m.subsurface); ssw > 0.0f && m.thin_wall) {
     // Thin Wall: a Lambertian reflection and translucency share the subsurface part (Cycles 5.x).
     const float g = std::isfinite(m.subsurface_anisotropy) ? m.subsurface_anisotropy : 0.0f;
@@ -192,7 +193,12 @@ LobeEval PrincipledV2Bsdf::eval_lobes(const View& view, const Vec3& wi) const {
   const ViewTerms& v = view.terms;
   LobeEval f_cos;
   const float cos_diffuse = view.diffuse_normal.cosine(wi);
-  if (cos_diffuse > 0.0f) f_cos.diffuse = v.diffuse * (kInvPi * cos_diffuse);
+  if (cos_diffuse > 0.0f && diffuse_lobe_.lambertian()) {
+    f_cos.diffuse = v.diffuse * (kInvPi * cos_diffuse);
+  } else if (cos_diffuse > 0.0f) {
+    const float cos_o = view.diffuse_normal.cosine(wo);
+    f_cos.diffuse = v.diffuse * diffuse_lobe_.reflectance_cos(cos_diffuse, cos_o, glm::dot(wi, wo));
+  }
   if (wi.z <= 0.0f) return f_cos;
   if (view.sheen.reflects()) f_cos.diffuse += view.sheen.weight * view.sheen.density(wi);
   if (coat_.reflects()) f_cos.glossy = Vec3(coat_.eval(v.coat, wo, wi));

@@ -180,6 +180,7 @@ void DenoisingClosures::add_closures(const ClosureList& list, float cos_no, bool
         break;
       }
       case ClosureType::Diffuse:
+      case ClosureType::DiffuseEnergyPreserving:
       case ClosureType::Subsurface:  // Cycles' BSSRDF counts as diffuse for the denoising albedo
       case ClosureType::Velvet:
       case ClosureType::Sheen:

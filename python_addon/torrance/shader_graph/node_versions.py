@@ -34,6 +34,9 @@ materials.principled_version does, not by bpy.app.version:
               Scattering (SKY_TYPES_5; the sky_type tells): one new kernel (the texture over
               the whole sphere, the disc under the Earth's rim hidden, the sky added under the
               disc), Altitude's default 100 m; sky.py reads them.
+  Oren-Nayar  Cycles 4.3 renders a rough Diffuse BSDF with the energy-preserving Oren-Nayar
+              (EON, the core's oren_nayar_eon.h; 3.x-4.2: Cycles' older Oren-Nayar) and adds the
+              Principled BSDF's Diffuse Roughness, which uses it: cycles4_3_diffuse.
   Thin Film   4.2 adds it to the Principled BSDF; Cycles 5.x computes it from a table and over
               metals (the Principled's metal, the Metallic BSDF) too: cycles5_thin_film.
   Separate/Combine RGB/HSV  5.0 removes them: files open with Separate/Combine Color in the
@@ -119,6 +122,14 @@ def cycles5_thin_film():
     against Cycles 4.2 and 5.3; 4.3-4.5 are taken as 4.2, 5.0-5.2 as 5.3."""
     import bpy
     return bpy.app.version >= (5, 0, 0)
+
+
+def cycles4_3_diffuse():
+    """True where Cycles renders a rough Diffuse BSDF as the energy-preserving Oren-Nayar (4.3+,
+    measured in 5.3; 4.3-4.5 taken as 5.3) rather than 3.x-4.2's Oren-Nayar: the node did not
+    change, the running Blender tells."""
+    import bpy
+    return bpy.app.version >= (4, 3, 0)
 
 
 def cycles4_normal_transform():

@@ -170,10 +170,12 @@ CLOSURES = {
                                 "the dielectric and the transmission, in 5.x the metal too, as "
                                 "Cycles of the version); 5.x Thin Wall (a thin slab and "
                                 "translucency, as Cycles 5.x, without the film; shadow rays "
-                                "stop at it). Reported: "
-                                "Clearcoat / Coat Normal, Diffuse Roughness",
-    'ShaderNodeBsdfDiffuse': "rendered: Color, Roughness (Lambert, Cycles' Oren-Nayar), Normal; "
-                             "alone and in Mix/Add Shader trees alike",
+                                "stop at it); 4.3+ Diffuse Roughness (a value; Cycles' "
+                                "energy-preserving Oren-Nayar). Reported: "
+                                "Clearcoat / Coat Normal",
+    'ShaderNodeBsdfDiffuse': "rendered: Color, Roughness (Lambert, Cycles' Oren-Nayar; 4.3+: "
+                             "its energy-preserving Oren-Nayar), Normal; alone and in Mix/Add "
+                             "Shader trees alike",
     'ShaderNodeBsdfGlossy': "partly: Color, Roughness (GGX, Sharp; 4.x: Anisotropy, Rotation, "
                             "Tangent, any graph) alone and in Mix/Add Shader trees",
     'ShaderNodeBsdfAnisotropic': "partly: Color, Roughness, Anisotropy, Rotation, Tangent (any "

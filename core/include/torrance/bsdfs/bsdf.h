@@ -55,6 +55,9 @@ struct Material {
   // transmission a slab seen alike from both sides and its subsurface a diffuse reflection and
   // translucency instead of a walk. Such a surface may send light through whatever its weights.
   bool thin_wall = false;
+  // PRINCIPLED_V2's Diffuse Roughness (Blender 4.3+): above 0 the diffuse layer is the
+  // energy-preserving Oren-Nayar of oren_nayar_eon.h (Cycles 4.3+), its albedo the base colour.
+  float diffuse_roughness = 0.0f;
   bool transmits() const { return glass_node || thin_wall || (transmission > 0.0f && metallic < 1.0f); }
   // Transparency (the integrator, as Cycles' Transparent BSDF): with probability 1 - alpha a ray
   // goes straight through, tinted by transparent_color, and shadow rays are attenuated by

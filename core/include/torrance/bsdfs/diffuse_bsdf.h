@@ -1,5 +1,6 @@
-// The Diffuse BSDF node as Cycles 3.4 renders it: Lambert for Roughness 0, otherwise Cycles'
-// Oren-Nayar variant (closure/bsdf_oren_nayar.h):
+// The Diffuse BSDF node as Cycles renders it: Lambert for Roughness 0, otherwise (Cycles 3.x-4.2)
+// Cycles' Oren-Nayar variant (closure/bsdf_oren_nayar.h), or (energy_preserving, Cycles 4.3+) the
+// energy-preserving Oren-Nayar of oren_nayar_eon.h with the node's colour as its albedo. 3.4's:
 //
 //   f cos = colour * cos_i * (A + B t),  A = 1 / (pi + (3 pi - 4) / 6 sigma),  B = sigma A,
 //   t = wi.wo - cos_i cos_o, divided by max(cos_i, cos_o) where positive (Cycles keeps negative t
@@ -11,12 +12,13 @@
 #pragma once
 
 #include "torrance/bsdfs/bsdf.h"
+#include "torrance/bsdfs/oren_nayar_eon.h"
 
 namespace torrance {
 
 class DiffuseBsdf {
  public:
-  DiffuseBsdf(const Vec3& color, float roughness);
+  DiffuseBsdf(const Vec3& color, float roughness, bool energy_preserving = false);
 
   LobeEval eval_lobes(const Vec3& wo, const Vec3& wi) const;
   Vec3 eval(const Vec3& wo, const Vec3& wi) const { return eval_lobes(wo, wi).total(); }
@@ -28,6 +30,8 @@ class DiffuseBsdf {
  private:
   Vec3 color_;
   float a_, b_;
+  bool energy_preserving_ = false;
+  EnergyPreservingOrenNayar eon_;  // energy_preserving_ only
 };
 
 }  // namespace torrance

@@ -72,6 +72,9 @@ enum class ClosureType {
   // specular_tint_color, Extinction (k) = sheen_tint_color.
   MetallicF82,
   MetallicConductor,
+  // Diffuse BSDF of Blender 4.3+: as Diffuse, a Roughness above 0 the energy-preserving
+  // Oren-Nayar (oren_nayar_eon.h) instead of Cycles 3.x-4.2's.
+  DiffuseEnergyPreserving,
 };
 
 struct MixtureComponent {

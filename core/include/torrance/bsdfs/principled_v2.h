@@ -31,7 +31,8 @@
 //               Cycles 5.x puts the film over the metal too: F_m = the film over the conductor
 //               whose n, k Gulbrandsen's fit gives for (f0, F_m(1/7)), its albedo F_m(cos_o).
 //   diffuse     Lambert about the View's diffuse_normal (bsdf.h: Cycles 4.x's diffuse keeps the
-//               unchecked normal), base colour (1 - metallic)(1 - transmission) w(wo): the
+//               unchecked normal; Diffuse Roughness above 0, Blender 4.3+: the energy-preserving
+//               Oren-Nayar of oren_nayar_eon.h, albedo the base colour in [0, 1]), base colour (1 - metallic)(1 - transmission) w(wo): the
 //               light the dielectric layer does not reflect, w = clamp(1 - max_rgb(A_d(wo)), 0, 1), with the dielectric layer's
 //               estimated albedo A_d = k mix(f0 tint, 1, S(r, mu_o, eta)) (ggx_tables.h).
 //               Subsurface Weight w_s (Material::subsurface): the diffuse keeps base (1 - w_s)
@@ -61,6 +62,7 @@
 #include "torrance/bsdfs/ggx_tables.h"
 #include "torrance/bsdfs/lobe_mixture.h"
 #include "torrance/bsdfs/metal_fresnel.h"
+#include "torrance/bsdfs/oren_nayar_eon.h"
 #include "torrance/bsdfs/principled_coat.h"
 #include "torrance/bsdfs/principled_sheen.h"
 
@@ -146,6 +148,7 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
 
   Vec3 diffuse_color_{0.0f}, subsurface_color_{0.0f};  // the diffuse and walked parts of the base
   Vec3 translucent_color_{0.0f};  // Thin Wall: the translucent part of the base
+  EnergyPreservingOrenNayar diffuse_lobe_;  // Diffuse Roughness (Lambert at 0), per unit weight
   F82Tint metal_;  // the metal's Fresnel
   Vec3 metal_fss_, dielectric_f0_, dielectric_fss_;
   float dielectric_weight_ = 1.0f;  // (1 - metallic)(1 - transmission): Transmission Weight's glass is
