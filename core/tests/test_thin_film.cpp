@@ -147,6 +147,66 @@ TEST(ThinFilm, SharpGlassWeighsItsLobesByTheFilm) {
   }
 }
 
+TEST(ThinFilm, AFilmFlaggedCycles4LeavesTheMetallicAndGlassBsdfsBare) {
+  // Cycles 4.x has no Thin Film on the Metallic or Glass BSDF (nor over conductors): a 4.x film
+  // passed to them is ignored, bit for bit.
+  for (bool conductor : {false, true}) {
+    const MetallicBsdf bare(conductor, Vec3(0.9f, 0.6f, 0.3f), Vec3(0.7f, 0.8f, 0.9f), 0.3f),
+        filmed(conductor, Vec3(0.9f, 0.6f, 0.3f), Vec3(0.7f, 0.8f, 0.9f), 0.3f, 0.0f, Vec3(0.0f), 0.0f, false,
+               film(300.0f, 1.33f, false));
+    for (float c : {0.05f, 0.5f, 1.0f}) EXPECT_EQ(bare.fresnel(c), filmed.fresnel(c)) << conductor << " " << c;
+  }
+  const GlassBsdf bare(0.0f, 0.0f, 1.5f, Vec3(1.0f), Vec3(1.0f)),
+      filmed(0.0f, 0.0f, 1.5f, Vec3(1.0f), Vec3(1.0f), false, false, film(300.0f, 1.33f, false));
+  const BsdfSample a = bare.sample(Vec3(0.0f, 0.0f, 1.0f), 0.0f, Vec2(0.5f)),
+                   b = filmed.sample(Vec3(0.0f, 0.0f, 1.0f), 0.0f, Vec2(0.5f));
+  EXPECT_EQ(a.weight, b.weight);
+}
+
+TEST(ThinFilm, ASoapBubbleReflectsItsFilm) {
+  // IOR 1 under a film (Principled glass, Glass BSDF): the interface bends nothing but the film
+  // reflects F = the film over index 1 (Cycles 4.2-5.x); the rest passes straight through.
+  for (bool cycles5 : {false, true}) {
+    const ThinFilm f = film(400.0f, 1.33f, cycles5);
+    for (float z : {0.9f, 0.4f, -0.6f}) {
+      const Vec3 wo = glm::normalize(Vec3(std::sqrt(1.0f - z * z), 0.0f, z));
+      const Vec3 F = f.over_dielectric(std::abs(wo.z), 1.0f);
+      ASSERT_GT(luminance(F), 0.01f);
+      const PrincipledGlassV2 sharp(0.0f, 1.0f, Vec3(1.0f), Vec3(1.0f), true, f);
+      const float p = (F.x + F.y + F.z) / 3.0f;
+      const BsdfSample r = sharp.sample(wo, 0.0f, Vec2(0.5f)), t = sharp.sample(wo, 0.9999f, Vec2(0.5f));
+      ASSERT_TRUE(r.is_delta && t.is_delta);
+      EXPECT_GT(r.wi.z * wo.z, 0.0f) << "reflected";
+      expect_vec_near(r.weight * p, F, 1e-5f, "principled reflection");
+      EXPECT_EQ(t.wi, -wo);
+      expect_vec_near(t.weight * (1.0f - p), Vec3(1.0f) - F, 1e-5f, "principled straight through");
+      // Rough: the reflection lobe is there (eval and pdf), the refraction still a delta.
+      const PrincipledGlassV2 rough(0.3f, 1.0f, Vec3(1.0f), Vec3(1.0f), true, f);
+      const Vec3 mirror(-wo.x, -wo.y, wo.z);
+      EXPECT_GT(luminance(rough.eval(wo, mirror)), 0.0f);
+      EXPECT_GT(rough.pdf(wo, mirror), 0.0f);
+      EXPECT_EQ(rough.eval(wo, -mirror), Vec3(0.0f));
+      const BsdfSample rt = rough.sample(wo, 0.9999f, Vec2(0.3f, 0.6f));
+      EXPECT_TRUE(rt.is_delta && rt.wi == -wo);
+      // Multiscatter: Cycles' glass albedo at IOR 1 is 1 (its straight refraction loses nothing),
+      // so its scale leaves the reflection as it is.
+      expect_vec_near(rough.energy_scale(std::abs(wo.z), 1.0f), Vec3(1.0f), 1e-4f, "energy scale at IOR 1");
+      if (!cycles5) continue;  // the Glass BSDF's film is 5.x's
+      const GlassBsdf node(0.0f, 0.0f, 1.0f, Vec3(1.0f), Vec3(1.0f), false, false, f);
+      const float pl = luminance(F) / (luminance(F) + luminance(Vec3(1.0f) - F));
+      const BsdfSample nr = node.sample(wo, 0.0f, Vec2(0.5f)), nt = node.sample(wo, 0.9999f, Vec2(0.5f));
+      EXPECT_GT(nr.wi.z * wo.z, 0.0f) << "Glass BSDF reflected";
+      expect_vec_near(nr.weight * pl, F, 1e-5f, "Glass BSDF reflection");
+      EXPECT_EQ(nt.wi, -wo);
+      expect_vec_near(nt.weight * (1.0f - pl), Vec3(1.0f) - F, 1e-5f, "Glass BSDF straight through");
+    }
+  }
+  // Without a film IOR 1 stays invisible: straight through, all of it.
+  const BsdfSample s = PrincipledGlassV2(0.0f, 1.0f, Vec3(1.0f), Vec3(1.0f), true).sample(Vec3(0, 0, 1), 0.0f, Vec2(0.5f));
+  EXPECT_EQ(s.wi, Vec3(0, 0, -1));
+  EXPECT_EQ(s.weight, Vec3(1.0f));
+}
+
 TEST(ThinFilm, TotalInternalReflectionReflectsAll) {
   for (bool cycles5 : {false, true}) {
     // At the film's top: IOR 0.8 seen at sin > 0.8.

@@ -66,6 +66,9 @@ double albedo_direct(float roughness, float mu, float eta, int n) {
   const Vec3 wo(safe_sqrt(1.0f - mu * mu), 0.0f, mu);
   if (alpha < ggx_tables::kDeltaAlpha) return 1.0;  // smooth glass loses nothing
   const float lambda_o = ggx::smith_lambda(wo.z, alpha);
+  // |eta - 1| < 1e-4 (the tables' first z, where eta rounds to 1): the refraction is a delta
+  // straight through that nothing shadows, as Cycles samples it (and tabulated E: 1 there).
+  const bool straight = std::abs(eta - 1.0f) < 1e-4f;
   double sum = 0.0;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
@@ -77,7 +80,9 @@ double albedo_direct(float roughness, float mu, float eta, int n) {
       const Vec3 r = ggx::reflect(wo, h);
       if (r.z > 0.0f) value += F / (1.0f + lambda_o + ggx::smith_lambda(r.z, alpha));
       Vec3 t;
-      if (F < 1.0f && ggx::refract(wo, h, eta, t) && t.z < 0.0f)
+      if (straight)
+        value += (1.0f - F) / (1.0f + lambda_o);
+      else if (F < 1.0f && ggx::refract(wo, h, eta, t) && t.z < 0.0f)
         value += (1.0f - F) / (1.0f + lambda_o + ggx::smith_lambda(-t.z, alpha));
       sum += 2.0 * v * value * (1.0f + lambda_o);
     }

@@ -25,7 +25,7 @@ GlassBsdf::GlassBsdf(float reflect_roughness, float refract_roughness, float ior
   reflect_delta_ = alpha_r_ < ggx::kDeltaAlpha;
   refract_delta_ = alpha_t_ < ggx::kDeltaAlpha;
   invisible_ = std::abs(eta_ - 1.0f) < 1e-4f;
-  if (film.active() && !refraction_only) {
+  if (film.active() && film.cycles5 && !refraction_only) {  // the node's film is 5.x's
     film_ = film_inside_ = film;
     film_inside_.ior = film.ior / eta_;
   }
@@ -75,7 +75,7 @@ GlassBsdf::Weights GlassBsdf::weights(const Vec3& wo) const {
     w.p_reflect = 0.0f;
     return w;
   }
-  if (film_.active() && !invisible_) {
+  if (film_.active()) {  // at IOR 1 too: a soap bubble's film still reflects (Cycles)
     const Vec3 F = (wo.z > 0.0f ? film_ : film_inside_).over_dielectric(std::abs(wo.z), w.etap);
     w.reflect = F * reflect_color_;
     w.refract = glm::max(Vec3(1e-4f), Vec3(1.0f) - F) * refract_color_;

@@ -9,7 +9,7 @@ namespace torrance {
 
 MetallicBsdf::MetallicBsdf(bool conductor, const Vec3& first, const Vec3& second, float roughness, float anisotropy,
                            const Vec3& tangent, float rotation, bool multiscatter, const ThinFilm& film)
-    : conductor_(conductor), film_(film) {
+    : conductor_(conductor) {
   if (conductor) {
     n_ = glm::max(first, Vec3(0.0f));
     k_ = glm::max(second, Vec3(0.0f));
@@ -31,6 +31,8 @@ MetallicBsdf::MetallicBsdf(bool conductor, const Vec3& first, const Vec3& second
     else shape_ = ggx::Shape(alpha);  // no tangent: Cycles' isotropic lobe
   }
   if (multiscatter) multiscatter_roughness_ = table_roughness;
+  if (!film.over_conductors()) return;  // no film, or a Blender whose Metallic BSDF has none (4.x)
+  film_ = film;
   if (conductor) {
     film_n_ = n_;
     film_k_ = k_;

@@ -23,7 +23,8 @@ PrincipledGlassV2::PrincipledGlassV2(float roughness, float ior, const Vec3& spe
   f0_ = glm::clamp(ggx_tables::f0_from_ior(ior_) * glm::max(specular_tint, Vec3(0.0f)), Vec3(0.0f), Vec3(1.0f));
   tint_t_ = glm::sqrt(glm::clamp(base_color, Vec3(0.0f), Vec3(1.0f)));
   smooth_ = alpha_ < ggx_tables::kDeltaAlpha;
-  invisible_ = std::abs(ior_ - 1.0f) < 1e-4f;
+  straight_ = std::abs(ior_ - 1.0f) < 1e-4f;
+  invisible_ = straight_ && !film.active();  // a film still reflects (a soap bubble)
   multiscatter_ = multiscatter;
   film_inside_.ior = film.ior / ior_;
 }
@@ -71,6 +72,7 @@ PrincipledGlassV2::Lobe PrincipledGlassV2::evaluate(const Vec3& wo, const Vec3& 
   } else {
     Vec3 h;
     float len2;
+    if (straight_) return out;  // a delta straight through, sampled only
     if (!ggx::refraction_half(wo, wi, etap, h, len2)) return out;  // h must face wo and wi cross it
     const float o_h = glm::dot(wo, h), i_h = glm::dot(wi, h);
     const Split sp = split(o_h, etap);
@@ -114,6 +116,11 @@ BsdfSample PrincipledGlassV2::sample(const Vec3& wo_outward, float u_lobe, const
   if (reflect) {
     wi = ggx::reflect(wo, h);
     if (!(wi.z > 0.0f)) return BsdfSample{};
+  } else if (straight_) {  // under a film: what the microfacet does not reflect passes straight (Cycles)
+    s.wi = -wo_outward;
+    s.weight = sp.transmit / (1.0f - sp.p_reflect);
+    s.is_delta = true;
+    return s;
   } else if (!ggx::refract(wo, h, etap, wi) || !(wi.z < 0.0f)) {
     return BsdfSample{};
   }

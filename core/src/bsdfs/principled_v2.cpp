@@ -28,7 +28,7 @@ PrincipledV2Bsdf::PrincipledV2Bsdf(const Material& m) {
   metal_ = F82Tint(base, tint);
   metal_fss_ = metal_.fss();
   film_ = m.thin_film();
-  if (film_.active() && film_.cycles5) {
+  if (film_.over_conductors()) {
     metal_film_ = true;
     metal_f82_ = metal_.eval(1.0f / 7.0f);
     conductor_from_f82(metal_.f0, metal_f82_, metal_n_, metal_k_);

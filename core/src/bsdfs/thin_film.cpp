@@ -3,6 +3,7 @@
 #include "torrance/bsdfs/ggx_tables.h"     // f0_from_ior
 #include "torrance/bsdfs/metal_fresnel.h"  // F82Tint
 #include "torrance/shader/shader_convert.h"  // cie_1931, xyz_to_rec709
+#include "torrance/util/smoothstep.h"
 
 #include <array>
 #include <complex>
@@ -14,14 +15,9 @@ namespace {
 
 using Complex = std::complex<float>;
 
-float smoothstep01(float t) {
-  t = clamp01(t);
-  return t * t * (3.0f - 2.0f * t);
-}
-
 // The film's index as Cycles blends it towards the ambient 1 for films thinner than `full` nm.
 float blended_ior(const ThinFilm& f, float full) {
-  return f.thickness < full ? 1.0f + (f.ior - 1.0f) * smoothstep01(f.thickness / full) : f.ior;
+  return f.thickness < full ? 1.0f + (f.ior - 1.0f) * smooth_step(0.0f, full, f.thickness) : f.ior;
 }
 
 // One dielectric interface at incidence cos_i (> 0) into relative index eta: the s and p

@@ -6,7 +6,8 @@
 //                 Fresnel per microfacet (reflection F, refraction 1 - F; height-correlated Smith
 //                 G2; a direction that leaves on the wrong side of the macro surface is lost), for
 //                 a viewer at cos mu, alpha = r^2, relative IOR eta = ior_from_f0(z^4) (> 1) or its
-//                 inverse (the _inv_ table); 16 x 16 x 16 points.
+//                 inverse (the _inv_ table); 16 x 16 x 16 points. At |eta - 1| < 1e-4 (z's first
+//                 point) the refraction passes straight, unshadowed (Cycles' singular case): E = 1.
 //   E_avg(r, z)   its cosine-weighted average, integral of 2 mu E(mu) dmu; 16 x 16 points.
 //
 // Grid and interpolation as ggx_tables.h (r, mu clamped to [1e-4, 1], z to [1e-4, 0.99]); a

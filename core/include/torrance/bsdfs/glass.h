@@ -19,7 +19,8 @@
 // Sampling: a lobe with probability proportional to its weight's luminance, then a visible normal
 // of that lobe's GGX seen from wo; a refraction through a microfacet at total internal reflection
 // gives no sample (Cycles too). Below ggx::kDeltaAlpha a lobe is a delta (mirror / straight
-// refraction); with |ior - 1| < 1e-4 the interface is invisible (straight through, weight refract_color).
+// refraction); with |ior - 1| < 1e-4 the interface is invisible (straight through, weight refract_color)
+// unless it has a film (below).
 // eval() includes |cos_i| (see bsdf.h); delta lobes have no eval or pdf.
 //
 // Beckmann (the Glass BSDF node's default distribution in Blender 3.4): the same two closures
@@ -33,7 +34,9 @@
 // Thin Film (the Glass BSDF of Blender 5.x, thin_film.h): F becomes the film's colour over etap
 // (its IOR / ior seen from inside, as Cycles), the lobes weighted F reflect_color and
 // max(1e-4, 1 - F) refract_color per channel (Cycles 5.x applies the film per microfacet: the
-// same for smooth glass).
+// same for smooth glass). At IOR 1 the film still reflects (a soap bubble; Cycles too), the rest
+// passing straight through. A film flagged 4.x (ThinFilm::cycles5 false) is ignored: Cycles 4.x's
+// Glass BSDF has none.
 #pragma once
 
 #include "torrance/bsdfs/bsdf.h"

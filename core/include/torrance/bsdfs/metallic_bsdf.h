@@ -14,7 +14,8 @@
 // add-on's to report (rendered as GGX). Thin Film (Blender 5.x, thin_film.h): F is the film's
 // reflectance over the conductor (n, k), or for F82-tint over the conductor Gulbrandsen's fit
 // gives for (Base Color, F(1/7)) with R23 the F82 model refitted under the film, as Cycles 5.x;
-// the multiscatter fss stays the film-less one (Cycles).
+// the multiscatter fss stays the film-less one (Cycles). A film flagged 4.x (ThinFilm::cycles5
+// false: Cycles 4.x has no film on this node nor over conductors) is ignored.
 #pragma once
 
 #include "torrance/bsdfs/bsdf.h"
@@ -50,7 +51,7 @@ class MetallicBsdf {
   Vec3 fss_{0.0f};
   ggx::Shape shape_;
   float multiscatter_roughness_ = -1.0f;  // r of the albedo tables; < 0: single scattering
-  ThinFilm film_;                         // inactive: none
+  ThinFilm film_;                         // inactive: none (or not over conductors)
   Vec3 film_n_{0.0f}, film_k_{0.0f}, film_f82_{-1.0f};  // the conductor under the film (f82 < 0: exact)
 };
 

@@ -25,7 +25,10 @@
 // P_r = mean(R) / mean(R + T) (RGB means), else refraction; pdf = P_r or (1 - P_r) times the
 // visible-normal density of the direction. Below ggx_tables::kDeltaAlpha both are deltas (mirror
 // or straight refraction, weight R / P_r or T / (1 - P_r)); with |ior - 1| < 1e-4 the interface
-// is invisible (straight through, weight sqrt(base)).
+// is invisible (straight through, weight sqrt(base)) unless it has a film (a soap bubble): then
+// it reflects as above and what it refracts passes straight through, a delta of weight
+// T / (1 - P_r) at the sampled microfacet (Cycles 4.2-5.x: their refraction at |etap - 1| < 1e-4
+// is singular, their reflection keeps the film's Fresnel).
 //
 // Frame as GlassBsdf (glass.h), so that MaterialBsdf holds either: z is the surface's OUTWARD
 // normal, wo.z < 0 is a viewer inside. eval() includes |cos_i| (bsdf.h). Thin Wall (Blender 5.x)
@@ -68,7 +71,9 @@ class PrincipledGlassV2 {
 
   Vec3 f0_, tint_t_;
   float alpha_, roughness_, ior_;
-  bool smooth_, invisible_, multiscatter_;
+  bool smooth_, multiscatter_;
+  bool straight_;   // |ior - 1| < 1e-4: refraction passes straight through (a delta)
+  bool invisible_;  // ... and without a film nothing reflects: the interface is not there
   ThinFilm film_, film_inside_;  // the film seen from outside and from inside (IOR / ior)
 };
 

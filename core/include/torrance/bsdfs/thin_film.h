@@ -45,6 +45,9 @@ struct ThinFilm {
   bool cycles5 = false;  // Cycles 5.x's table and conductors, else 4.x's closed form
 
   bool active() const { return thickness > kCutoff; }
+  // Whether the film lies over conductors too (the Principled's metal, the Metallic BSDF): Cycles
+  // 5.x's; 4.x puts it over dielectrics only.
+  bool over_conductors() const { return active() && cycles5; }
   // The film's reflectance over a dielectric of relative index eta (substrate / ambient) for
   // incidence cos_i (from the ambient side, > 0).
   Vec3 over_dielectric(float cos_i, float eta) const;
