@@ -37,8 +37,9 @@ materials.principled_version does, not by bpy.app.version:
   Oren-Nayar  Cycles 4.3 renders a rough Diffuse BSDF with the energy-preserving Oren-Nayar
               (EON, the core's oren_nayar_eon.h; 3.x-4.2: Cycles' older Oren-Nayar) and adds the
               Principled BSDF's Diffuse Roughness, which uses it: cycles4_3_diffuse.
-  Thin Film   4.2 adds it to the Principled BSDF; Cycles 5.x computes it from a table and over
-              metals (the Principled's metal, the Metallic BSDF) too: cycles5_thin_film.
+  Thin Film   4.2 adds it to the Principled BSDF; 5.0 to the Metallic and Glass BSDFs, and
+              Cycles 5.0+ computes it from a table and over metals (the Principled's metal, the
+              Metallic BSDF) too: cycles5_thin_film.
   Separate/Combine RGB/HSV  5.0 removes them: files open with Separate/Combine Color in the
               mode RGB or HSV (COLOR_NODE_SUCCESSORS), which the registry reads.
 """
@@ -118,8 +119,11 @@ def cycles4_toon():
 def cycles5_thin_film():
     """True where Cycles renders a Thin Film as 5.x does (its tabulated Rec. 709 sensitivity, the
     film over metals too; the core's thin_film.h) rather than as 4.2 (a Gaussian XYZ fit, over
-    dielectrics only): the nodes' sockets did not change, the running Blender tells. Checked
-    against Cycles 4.2 and 5.3; 4.3-4.5 are taken as 4.2, 5.0-5.2 as 5.3."""
+    dielectrics only): the Principled's sockets did not change, the running Blender tells (the
+    Metallic and Glass BSDFs' Thin Film sockets arrived with it, in 5.0). Cycles' kernels read:
+    4.2's and 4.5's film are the same Gaussian fit, 5.0's and 5.3's the same table and
+    conductors (5.3 computes it a channel at a time); 4.3-4.4 lie between the former, 5.1-5.2
+    between the latter."""
     import bpy
     return bpy.app.version >= (5, 0, 0)
 
