@@ -24,13 +24,24 @@ fail the bounds: Thin Wall ignored (solid glass that refracts, a random walk); t
 reflected instead (Subsurface Anisotropy -1); the slab's absorption ignored (Rough_amber white).
 Figures: in the commit that added the test.
 
+A second scene (pane_scene) lights a grey floor by a sun (40 degrees off the vertical, angle 2)
+through three thin-walled panes above it: clear and amber smooth ones (Cycles makes their
+transmission a Transparent closure for rays other than the camera's, so shadow rays carry the
+slab's transmittance) and a rough clear one (which keeps its lobe and stops shadow rays; light
+through it comes by NEE at its underside). Dim world, 96x48 at 64 spp, max bounces 4; the same
+seeds and bounds (one region: the whole image); fault: the smooth panes rough enough (0.05)
+that Torrance's shadow rays stop at them). TORRANCE_THIN_WALL_PANES_ONLY=1 runs this scene alone.
+Figures: in the commit that added the panes.
+
 Run: scripts/bpy 5.3 -b --factory-startup --python-exit-code 1 \\
          --python blender_tests/test_principled_thin_wall_agreement.py
 """
 
 import math
+import os
 
 import bpy
+import numpy as np
 
 from torrance_tools import sphere_agreement as sa, testing
 from torrance_tools.sphere_agreement import set_inputs
@@ -95,11 +106,65 @@ def faults(scene, directory):
     return out
 
 
+# name, x, base colour, roughness (pane_scene)
+PANES = (
+    ("Clear_pane", -1.7, WHITE, 0.0),
+    ("Amber_pane", 0.0, (0.95, 0.55, 0.2), 0.0),
+    ("Rough_pane", 1.7, WHITE, 0.5),
+)
+PANE_W, PANE_H, PANE_SAMPLES, PANE_BOUNCES = 96, 48, 128, 4
+
+
+def pane_scene(scene):
+    """A floor lit by a sun through three thin-walled panes 1.2 m above it (shadows in view)."""
+    testing.add_camera(scene, location=(0.0, -7.0, 6.0), target=(0.0, 0.4, 0.0), lens=30.0)
+    floor = testing.principled("Floor", (0.6, 0.6, 0.6), 0.0, 0.8)
+    testing.plane(scene, "Floor", 14.0, material=floor)
+    for name, x, color, roughness in PANES:
+        mat = testing.make.principled(name, color, 0.0, roughness, 0.5, distribution='MULTI_GGX')
+        set_inputs([name], **{"IOR": 1.5, "Transmission Weight": 1.0, "Thin Wall": True})
+        corners = [(x + dx * 0.7, dy * 0.7, 1.2) for dx, dy in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
+        testing.make.quad(scene, name, corners, mat)
+    testing.add_sun(scene, strength=3.0, rotation=(math.radians(40.0), 0.0, math.radians(15.0)),
+                    angle=math.radians(2.0))
+    testing.set_world(scene, (0.04, 0.05, 0.06))
+
+
+def check_panes():
+    """pane_scene against Cycles (seeds and bounds as the spheres', the whole image one region)."""
+    directory = testing.tempdir()
+    scene = testing.clear_scene()
+    testing.setup_render(scene, width=PANE_W, height=PANE_H)
+    pane_scene(scene)
+    refs = [sa.render_cycles(scene, directory, seed, PANE_SAMPLES, PANE_BOUNCES)[0]
+            for seed in sa.CYCLES_SEEDS]
+    whole = np.ones(sa.bins(refs[0]).shape[:2], dtype=bool)
+    agreement = sa.Agreement(refs, {"image": whole})
+    print(f"panes: Cycles {bpy.app.version_string} seed {sa.CYCLES_SEEDS[1]} vs "
+          f"{sa.CYCLES_SEEDS[0]} (noise): {sa.describe(agreement.noise)}; "
+          f"bounds |ratio - 1| <= {agreement.ratio:.4f}, "
+          f"block mean <= {agreement.block_mean:.4f}", flush=True)
+    images, seconds = sa.render_torrance(scene, directory, "panes", sa.TORRANCE_SEEDS, PANE_SAMPLES,
+                                         PANE_BOUNCES)
+    m, bad = agreement.check(images)
+    print(f"panes: Torrance vs Cycles: {sa.describe(m)} ({seconds:.1f} s)"
+          + (f"  FAIL: {'; '.join(bad)}" if bad else "  ok"), flush=True)
+    set_inputs([p[0] for p in PANES[:2]], **{"Roughness": 0.05})
+    fault = sa.render_torrance(scene, directory, "panes_rough", sa.TORRANCE_SEEDS, PANE_SAMPLES,
+                               PANE_BOUNCES)[0]
+    missed = sa.report_faults(agreement, [("smooth panes made rough (shadow rays stop)", fault)])
+    check(not bad, "Torrance's sun through thin-walled panes disagrees with Cycles: "
+          + "; ".join(bad))
+    check(not missed, "the bounds miss these faults: " + ", ".join(missed))
+
+
 def main():
     check(bpy.app.version >= (5, 0, 0), "Thin Wall is Blender 5.x's: run this test with "
                                         "scripts/bpy 5.3")
-    sa.run(build, {s[0]: (s[1], 0.0, Z) for s in SPHERES}, RADIUS, (W, H), "thin", faults,
-           "Principled Thin Wall", SAMPLES, BOUNCES)
+    if os.environ.get("TORRANCE_THIN_WALL_PANES_ONLY") != "1":
+        sa.run(build, {s[0]: (s[1], 0.0, Z) for s in SPHERES}, RADIUS, (W, H), "thin", faults,
+               "Principled Thin Wall", SAMPLES, BOUNCES)
+    check_panes()
 
 
 testing.run(main)

@@ -65,6 +65,16 @@ inline void add_wavy_sheet(Scene& scene, float x0, float x1, float y0, float y1,
                  corner_normals.data(), materials.data());
 }
 
+// A size x size render of `samples` per pixel, `bounces` bounces, shaded by `model`.
+inline RenderSettings square_render(int size, int samples, int bounces, BrdfModel model) {
+  RenderSettings s;
+  s.width = s.height = size;
+  s.samples = samples;
+  s.max_bounces = bounces;
+  s.brdf_model = model;
+  return s;
+}
+
 // A narrow camera at (0, 0, height) looking straight down (-z); lens 2000 mm sees +-0.045 h/5.
 inline void look_down(Scene& scene, float height, float lens_mm) {
   CameraParams cam;

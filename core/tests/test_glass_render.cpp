@@ -57,12 +57,7 @@ Material glass(float roughness, float ior = 1.5f) {
 }
 
 RenderSettings settings(int size, int samples, int bounces) {
-  RenderSettings s;
-  s.width = s.height = size;
-  s.samples = samples;
-  s.max_bounces = bounces;
-  s.brdf_model = BrdfModel::Principled;
-  return s;
+  return test::square_render(size, samples, bounces, BrdfModel::Principled);
 }
 
 // A smooth glass sphere under a uniform white world: F + (1 - F) = 1 at every interface, so every

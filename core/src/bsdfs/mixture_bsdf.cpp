@@ -160,6 +160,20 @@ bool MixtureBsdf::transmits() const {
   return false;
 }
 
+bool MixtureBsdf::passes_straight() const {
+  for (int k = 0; k < count_; ++k)
+    if (const auto* m = std::get_if<MaterialBsdf>(&components_[k]); m && m->passes_straight()) return true;
+  return false;
+}
+
+Vec3 MixtureBsdf::straight_through(const View& v) const {
+  Vec3 sum(0.0f);
+  for (int k = 0; k < count_; ++k)
+    if (const auto* m = std::get_if<MaterialBsdf>(&components_[k]); m && m->passes_straight())
+      sum += weights_[k] * m->straight_through(m->at(v.wo, v.backfacing, v.diffuse));
+  return sum;
+}
+
 void MixtureBsdf::orient(const Frame& frame) {
   for (int k = 0; k < count_; ++k) {
     Component& c = components_[size_t(k)];

@@ -139,6 +139,7 @@ BsdfSample ThinWallV2::sample(const View& v, float u_lobe, const Vec2& u) const 
       s.wi = -wo;
       s.weight = v.transmit / v.p_transmit;
       s.is_delta = true;
+      s.straight_through = true;
       return s;
     }
     const Vec3 mirrored = ggx::reflect(wo, ggx::sample_visible_normal(wo, alpha_t_, u));

@@ -195,6 +195,7 @@ class PathTracer {
         if (first_vertex) first_vertex_points_ = sampler_.point_index();
         const glm::vec4 u_light = sampler_.next_4d();  // light choice, position on the light
         const glm::vec4 u_bsdf = sampler_.next_4d();   // lobe, direction, roulette
+        if (v.may_pass) choice_before_sheet_ = light_choice_;  // the vertex before's, if the ray passes
         if (!first_again) sample_lights(v, bounce, u_light);
         if (first_vertex) plan_branches();
         if (!first_again && ctx_.mirror_images && bounce < ctx_.settings.max_bounces) sample_mirror_images(v, bounce);
@@ -205,6 +206,10 @@ class PathTracer {
           branch_start_ = path_luminance_;
         }
         if (!scatter(v, bounce, guide, u_bsdf)) break;
+        if (passed_sheet_) {  // no bounce (pass_sheet)
+          passed_sheet_ = false;
+          --bounce;
+        }
       }
       record_branch(branch);
     }
@@ -218,6 +223,7 @@ class PathTracer {
     std::optional<Bsdf> local_bsdf;   // a textured material's or a mixture's own
     const Bsdf* bsdf = nullptr;       // local_bsdf or the material's, built once per render
     bool mixture = false, textured = false, transmits = false;
+    bool may_pass = false;  // off the camera ray a smooth thin wall may let the ray on (pass_sheet)
     bool guidable = false;  // path guiding may sample here (guided_bsdf.h)
     // The material's program's registers (its Normal reads them), and a mixture's closures for
     // the denoising features.
@@ -347,10 +353,11 @@ class PathTracer {
   // The lights (and the world, if it escaped) a BSDF-sampled ray reached before its next surface,
   // MIS-weighted against NEE at the vertex it left.
   void lights_along_ray(int bounce, const Segment& seg) {
-    const float t_max = seg.scattered ? media_distance() : seg.found ? seg.passed_length + seg.hit.t : kInfinity;
+    // From the vertex before (last_), past the smooth sheets the ray went through (run_).
+    const float t_max = run_ + (seg.scattered ? media_distance() : seg.found ? seg.passed_length + seg.hit.t : kInfinity);
     std::array<Vec3, kMaxLightGroups> by_group;  // filled only with light groups
     if (light_groups_) std::fill_n(by_group.begin(), extra_.num_light_groups(), Vec3(0.0f));
-    const Vec3 e = lights_.emission_along_ray(last_.ray_origin, last_.normal, ray_.dir, t_max, last_.pdf, last_.delta,
+    const Vec3 e = lights_.emission_along_ray(last_.ray_origin, last_.normal, ray_.dir, run_, t_max, last_.pdf, last_.delta,
                                               kGlass && last_.two_sided, &light_choice_,
                                               caustic_chain_.share(reflector_share_.active()),
                                               seg.found ? PathState{} : escaped_state(bounce),
@@ -441,6 +448,7 @@ class PathTracer {
       v.bsdf = v.textured ? &*v.local_bsdf : &ctx_.bsdfs[hit.material];
     }
     v.transmits = kGlass && v.bsdf->transmits();
+    v.may_pass = kAlpha && kGlass && bounce > 0 && v.transmits && v.bsdf->passes_straight();
     // The frame turned towards the viewer (two-sided surfaces), keeping reflections valid.
     v.wo_world = -ray_.dir;
     v.at = shading_point(ctx_, hit, v.wo_world, v.textured, globals, v.program_regs.data());
@@ -626,7 +634,9 @@ class PathTracer {
     }
     const Vec3 wi_world = frame.to_world(bs.wi);
     if (!leaves_geometric_side(wi_world, v.at.ng, bs.wi.z, v.transmits)) return false;
-    if constexpr (kTextures) label_next_ray(bs, glm::dot(wi_world, v.at.ng) > 0.0f);
+    const bool through_sheet = v.may_pass && bs.straight_through;
+    if constexpr (kTextures)
+      if (!through_sheet) label_next_ray(bs, glm::dot(wi_world, v.at.ng) > 0.0f);
     if constexpr (kMedia) {  // transmitted: into or out of the mesh's medium
       if (glm::dot(wi_world, v.at.ng) < 0.0f)
         media_.stack.cross(ctx_.scene.media(), v.hit->material, glm::dot(wi_world, v.hit->geometric_normal) < 0.0f);
@@ -652,6 +662,7 @@ class PathTracer {
       }
     }
     if (!survives_roulette(bounce, u_bsdf.w)) return false;
+    if (through_sheet) return pass_sheet(v);
 
     // MIS between next-event estimation and the emitter this sample may hit weighs the BSDF's pdf
     // against the light's, also where the guided mixture drew the sample (its weight above still
@@ -662,9 +673,27 @@ class PathTracer {
     ray_.origin = offset_origin(v.hit->position, v.at.ng, wi_world);
     last_ = ScatterVertex{ray_.origin,  v.hit->position, v.at.ns,       v.hit->material,
                           guide && !bs.is_delta ? bsdf_pdf : bs.pdf, bs.is_delta, v.transmits, vertex_weight};
+    run_ = 0.0f;
     ray_.dir = wi_world;
     ray_.tmin = 0.0f;
     ray_.tmax = kInfinity;
+    return true;
+  }
+
+  // Cycles 5.x: off the camera ray, a smooth thin wall's straight pass is a Transparent closure
+  // (thin_wall_shadow.h). The ray goes on unbent without a bounce (a transparent one, at most
+  // max_transparent_bounces a path); the lights it meets are MIS-weighted against NEE at the
+  // vertex before (last_ and that vertex's light choice kept), whose shadow rays passed the sheet.
+  // The sheet's own NEE and emission were taken as at any vertex (Cycles shades it too).
+  bool pass_sheet(const Vertex& v) {
+    if (++sheets_passed_ > ctx_.settings.max_transparent_bounces) return false;
+    if constexpr (kTextures) count_up(path_state_.transparent_depth);
+    ray_.origin = offset_origin(v.hit->position, v.at.ng, ray_.dir);
+    run_ = glm::dot(ray_.origin - last_.ray_origin, ray_.dir);
+    light_choice_ = choice_before_sheet_;
+    ray_.tmin = 0.0f;
+    ray_.tmax = kInfinity;
+    passed_sheet_ = true;
     return true;
   }
 
@@ -847,6 +876,7 @@ class PathTracer {
     // MIS of a light the next ray meets: the phase function's pdf against NEE's choice here, made
     // as at a two-sided surface facing along the ray (medium_next_event).
     last_ = ScatterVertex{position, position, ray_.dir, 0u, ps.pdf, false, true, vertex_weight};
+    run_ = 0.0f;
     ray_.origin = position;
     ray_.dir = ps.wi;
     ray_.tmin = 0.0f;
@@ -952,6 +982,12 @@ class PathTracer {
   Vec3 diffuse_share_{0.0f};  // per channel, of the energy that left the first hit
   ScatterVertex last_;
   LightChoice light_choice_;  // NEE's choice at the latest vertex, for MIS when the next ray hits a light
+  // Smooth thin walls passed (pass_sheet): the ray's start past last_.ray_origin along it, the
+  // choice of the vertex before the sheet, the sheets so far, and whether scatter() just passed one.
+  float run_ = 0.0f;
+  LightChoice choice_before_sheet_;
+  int sheets_passed_ = 0;
+  bool passed_sheet_ = false;
   MirrorImages::PathShare reflector_share_;
   CausticPartition::Chain caustic_chain_;  // whether the path is still a caustic one, the light tracer's
   float path_length_ = 0.0f;               // for texture footprints (a ray cone of the pixel's spread)
@@ -1054,7 +1090,8 @@ bool has_alpha(const Scene& scene) {
   for (size_t i = 0; i < scene.num_materials(); ++i)
     if (scene.material(uint32_t(i)).alpha < 1.0f || scene.material_textures(uint32_t(i)).alpha >= 0 ||
         scene.material_textures(uint32_t(i)).program.alpha >= 0 ||
-        (scene.mixture(uint32_t(i)) && scene.mixture(uint32_t(i))->transparent()))
+        (scene.mixture(uint32_t(i)) && scene.mixture(uint32_t(i))->transparent()) ||
+        scene.material(uint32_t(i)).thin_wall)  // a smooth sheet: transparent off camera rays
       return true;
   return false;
 }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "integrator/path_tracer.h"
+#include "integrator/thin_wall_shadow.h"
 #include "torrance/scene/scene.h"
 
 #include <algorithm>
@@ -35,7 +36,8 @@ inline Ray shadow_ray(const Vec3& p, const Vec3& ng, const LightSample& ls) {
 
 // A shadow ray meets a surface at `hit` after `passed` transparent ones and `travelled` metres:
 // Cycles' transparent shadows let (1 - alpha) x its transparent colour through (transmittance
-// takes it); false when the surface (or more than max_transparent of them) stops the ray.
+// takes it), plus alpha x a smooth thin wall's straight pass (thin_wall_shadow.h); false when the
+// surface (or more than max_transparent of them) stops the ray.
 inline bool through_transparent_surface(const Scene& scene, const SurfaceHit& hit, const Vec3& dir,
                                         const PathState& receiver, int passed, float travelled, int max_transparent,
                                         Vec3& transmittance) {
@@ -45,6 +47,13 @@ inline bool through_transparent_surface(const Scene& scene, const SurfaceHit& hi
   shadow.ray_length = travelled + hit.t;
   Vec3 tint;
   const float opacity = scene.opacity(hit, dir, shadow, &tint);
+  if (opacity > 0.0f && may_pass_straight(scene, hit.material)) {  // a smooth thin wall under its opaque share
+    const Vec3 sheet = straight_through(scene, hit, dir, shadow);
+    if (!(max_component(sheet) > 0.0f) && opacity >= 1.0f) return false;
+    if (passed >= max_transparent) return false;
+    transmittance *= (1.0f - opacity) * tint + opacity * sheet;
+    return true;
+  }
   if (opacity >= 1.0f || passed >= max_transparent) return false;
   transmittance *= (1.0f - opacity) * tint;
   return true;

@@ -43,12 +43,13 @@ struct ShadingPoint {
 
 // textured: the material's normal map and bump are evaluated (globals and regs: its program's,
 // already run for this hit); otherwise the interpolated normal is the closures'.
-inline ShadingPoint shading_point(const PathContext& ctx, const SurfaceHit& hit, const Vec3& wo_world, bool textured,
-                                  const ShaderGlobals& globals, glm::vec4* regs) {
+// (scene, model: the render's; the path's context holds both.)
+inline ShadingPoint shading_point(const Scene& scene, BrdfModel model, const SurfaceHit& hit, const Vec3& wo_world,
+                                  bool textured, const ShaderGlobals& globals, glm::vec4* regs) {
   ShadingPoint p;
   p.ng = hit.geometric_normal;
   p.n_smooth = hit.shading_normal;
-  p.ns = textured ? ctx.scene.normal_mapped(hit.material, hit, hit.shading_normal, globals, &p.n_smooth, regs)
+  p.ns = textured ? scene.normal_mapped(hit.material, hit, hit.shading_normal, globals, &p.n_smooth, regs)
                   : p.n_smooth;
   p.normal_mapped = textured && p.ns != p.n_smooth;
   p.backfacing = glm::dot(p.ng, wo_world) < 0.0f;
@@ -60,8 +61,12 @@ inline ShadingPoint shading_point(const PathContext& ctx, const SurfaceHit& hit,
   p.ns_closure = p.ns;
   p.ns = valid_shading_normal(p.ng, p.ns, wo_world);
   p.frame = Frame(p.ns);
-  p.diffuse = diffuse_normal(p.frame, p.ns, p.ns_closure, ctx.settings.brdf_model);
+  p.diffuse = diffuse_normal(p.frame, p.ns, p.ns_closure, model);
   return p;
+}
+inline ShadingPoint shading_point(const PathContext& ctx, const SurfaceHit& hit, const Vec3& wo_world, bool textured,
+                                  const ShaderGlobals& globals, glm::vec4* regs) {
+  return shading_point(ctx.scene, ctx.settings.brdf_model, hit, wo_world, textured, globals, regs);
 }
 
 }  // namespace torrance

@@ -495,7 +495,8 @@ bool Lights::hit(size_t index, const Vec3& p, const Vec3& n, const Vec3& dir, Li
   return true;
 }
 
-Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max, float bsdf_pdf,
+Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_min, float t_max,
+                                float bsdf_pdf,
                                 bool bsdf_delta, bool two_sided, const LightChoice* prev_choice,
                                 const LightShare* share, const PathState& escaped, Vec3* by_group) const {
   Vec3 L(0.0f);
@@ -511,7 +512,8 @@ Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Ve
   };
   for (size_t i = 0; i < lights_.size(); ++i) {
     LightHit h;
-    if (!std::visit([&](const auto& light) { return light.hit(p_prev, n_prev, dir, t_max, h); }, lights_[i]))
+    if (!std::visit([&](const auto& light) { return light.hit(p_prev, n_prev, dir, t_max, h); }, lights_[i]) ||
+        h.distance < t_min)
       continue;
     if (share) h.radiance *= share->of(i);
     h.radiance *= shader_factor(i, p_prev, dir, h.distance, escaped);

@@ -63,6 +63,10 @@ class MaterialBsdf {
   }
 
   bool transmits() const { return glass_.has_value() || thin_.has_value(); }
+  // Thin Wall's straight pass (the smooth sheet's delta transmission, thin_wall_v2.h): what rays
+  // other than the camera's carry through it seen from v's wo, Cycles 5.x's Transparent closure
+  // of that weight there (shadow rays pass it, thin_wall_shadow.h); 0 without one.
+  bool passes_straight() const { return thin_ && thin_->transmission_is_delta() && glass_weight_ > 0.0f; }
   // An anisotropic model's tangent into the shading frame (ggx_shape.h); before at().
   void orient(const Frame& frame) {
     std::visit(
@@ -123,6 +127,8 @@ class MaterialBsdf {
   View at(const Vec3& wo, bool backfacing, const DiffuseNormal& diffuse) const {
     return at(wo, backfacing, true, diffuse);
   }
+  // passes_straight()'s weight seen from v's wo.
+  Vec3 straight_through(const View& v) const { return passes_straight() ? v.thin.transmit : Vec3(0.0f); }
 
   // kGlass = false: the caller knows no material of the scene transmits (the integrator's
   // glass-free path), so the glass is not even checked for.

@@ -71,6 +71,8 @@ class MixtureBsdf {
     return sample_mixture(wo, u_lobe, u, backfacing);
   }
   bool transmits() const;  // some closure is glass, Translucent, Refraction or Principled Hair
+  // MaterialBsdf's straight pass of a smooth thin wall, summed over the closures by weight.
+  bool passes_straight() const;
   // Its closures' world tangents into the shading frame (anisotropic glossy, hair); before at().
   void orient(const Frame& frame);
   // A Principled v2 subsurface lobe's weight for the view wo: its layered closure's
@@ -99,6 +101,7 @@ class MixtureBsdf {
   BsdfSample sample(const View& v, float u_lobe, const Vec2& u) const {
     return sample_mixture(v.wo, u_lobe, u, v.backfacing, v.diffuse);
   }
+  Vec3 straight_through(const View& v) const;
 
  private:
   LobeEval eval_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse = {}) const;

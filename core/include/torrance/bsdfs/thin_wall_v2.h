@@ -18,8 +18,10 @@
 //   albedo compensation 1 + F_ms (1 - E) / E whatever the distribution (Cycles always applies
 //   it to these closures), with F_ss = Specular Tint for R and 1 for T (so T's is 1 / E).
 //   A lobe of alpha below ggx_tables::kDeltaAlpha is a delta: a mirror, or straight through.
-//   Unlike Cycles, shadow rays stop at the sheet (as at glass, path_tracer.cpp): Cycles makes the
-//   smooth sheet a Transparent BSDF for rays other than camera rays, so its shadow rays pass it.
+//   As Cycles, rays other than the camera's see a smooth sheet's T as transparent (Cycles
+//   allocates a Transparent closure instead): shadow rays pass it (integrator/thin_wall_shadow.h)
+//   and the path tracer takes the straight pass (BsdfSample::straight_through) as a transparent
+//   step; the camera's ray sees the delta lobe.
 //
 //   Subsurface (weight the subsurface layer's, ViewTerms::translucent + the diffuse share): the
 //   walk becomes a Lambertian reflection of weight (1 - g) / 2 and a Lambertian transmission

@@ -218,7 +218,8 @@ class Lights {
   // another strategy: mirror_images.h); nullptr: by 1. escaped: the ray's path state, which the
   // world's node graph reads if the ray escaped. by_group (if given): each light's part is also
   // added to by_group[its light group] (light_group; none for lights of no group).
-  Vec3 emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_max, float bsdf_pdf,
+  // Lights nearer than t_min are left out (those the ray met before it passed a thin wall).
+  Vec3 emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_min, float t_max, float bsdf_pdf,
                           bool bsdf_delta, bool two_sided = false, const LightChoice* prev_choice = nullptr,
                           const LightShare* share = nullptr, const PathState& escaped = {},
                           Vec3* by_group = nullptr) const;
