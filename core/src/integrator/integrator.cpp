@@ -121,8 +121,9 @@ bool guide_can_be_judged(const RenderSettings& s) {
 // `offset`) and the lens point from the sampler's first four dimensions. Motion blur (`moving`):
 // the shutter time from a stratified dimension (below), set as
 // the thread's ray time (every ray of the path carries it) and the camera moved to it.
-Ray camera_ray(const Camera& camera, const PixelFilter& filter, bool splatting, int x, int y, SobolSampler& sampler,
-               Vec2& offset, bool moving = false) {
+// Always inlined into the camera loop (a call per camera sample otherwise, since motion blur).
+[[gnu::always_inline]] inline Ray camera_ray(const Camera& camera, const PixelFilter& filter, bool splatting, int x,
+                                             int y, SobolSampler& sampler, Vec2& offset, bool moving = false) {
   const glm::vec4 u_pixel = sampler.next_4d();
   offset = splatting ? Vec2(u_pixel.x - 0.5f, u_pixel.y - 0.5f)
                      : Vec2(filter.sample_offset(u_pixel.x), filter.sample_offset(u_pixel.y));

@@ -106,7 +106,8 @@ struct PathRadiance {
 };
 
 // Offsets a ray origin off the surface along the geometric normal, on the side `dir` leaves to.
-inline Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& dir) {
+// Always inlined: GCC had come to keep it out of line in the path loop.
+[[gnu::always_inline]] inline Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& dir) {
   const float scale = std::max(1.0f, std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))));
   const float eps = 2e-5f * scale;
   return p + (glm::dot(ng, dir) >= 0.0f ? eps : -eps) * ng;
