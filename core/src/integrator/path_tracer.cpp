@@ -119,7 +119,6 @@ class PathTracer {
         pixel_(pixel),
         out_(out),
         features_(ctx.settings.passes & kDenoisingPasses),
-        features_after_first_(false),
         light_groups_(extra_.num_light_groups() > 0),
         cryptomatte_(ctx.scene.cryptomatte().enabled()),
         recorder_(ctx.guide_training ? ctx.guide : nullptr, pixel.guide_weight),
@@ -149,7 +148,7 @@ class PathTracer {
 
         // 2. The light the ray met on its way: the world, lights a BSDF-sampled ray can hit.
         if (first_again) {
-          light_choice_ = first_vertex_.choice;
+          light_choice_ = first_vertex_->choice;
         } else if (bounce == 0) {
           if (seg.scattered) {
           } else if (!seg.found) {
@@ -184,7 +183,7 @@ class PathTracer {
         }
         if (bounce > ctx_.settings.max_bounces || past_last_volume_bounce()) break;
         if (features_.open() && !first_again) denoising_features(v, seg);
-        if (first_vertex && may_split_) features_after_first_ = features_;
+        if (first_vertex && may_split_) features_after_first_.emplace(features_);
         if (bounce == 0 && !first_again && (ctx_.settings.passes & kPassAO)) ambient_occlusion_pass(v);
 
         // 5. Light sampled at the vertex: NEE of one light (or every light), then of lights seen
@@ -242,7 +241,7 @@ class PathTracer {
   // with kAlpha on through transparent surfaces. False: the path ends here.
   bool find_next_surface(int bounce, bool again, Segment& seg) {
     SurfaceHit& hit = seg.hit;
-    seg.found = again && bounce == 0 ? (hit = first_vertex_.hit, true)
+    seg.found = again && bounce == 0 ? (hit = first_vertex_->hit, true)
                 : bounce == 0 && first_ ? (hit = *first_->hit, first_->found)
                                         : ctx_.scene.intersect(ray_, hit);
     if constexpr (kAlpha) return pass_transparent_surfaces(bounce, again, seg);
@@ -345,8 +344,9 @@ class PathTracer {
 
   void remember_first_vertex(const SurfaceHit& hit) {
     if (!may_split_) return;  // nothing to go back to
-    first_vertex_.hit = hit;
-    first_vertex_.ray = ray_;
+    FirstVertex& first = first_vertex_.emplace();
+    first.hit = hit;
+    first.ray = ray_;
     first_transparent_depth_ = path_state_.transparent_depth;
   }
 
@@ -888,7 +888,7 @@ class PathTracer {
 
   void plan_branches() {
     if (!may_split_) return;
-    first_vertex_.choice = light_choice_;
+    first_vertex_->choice = light_choice_;
     branches_ = ctx_.first_bounce_splits;
     branch_weight_ = 1.0f / float(branches_);
     features_.set_share(branch_weight_);
@@ -898,14 +898,14 @@ class PathTracer {
     sampler_.continue_at_point(first_vertex_points_ + uint32_t(branch) * kBranchPoints);
     roulette_.end_branch();
     reflector_share_.clear();
-    ray_ = first_vertex_.ray;
+    ray_ = first_vertex_->ray;
     throughput_ = Vec3(1.0f);
     path_length_ = 0.0f;
     path_state_ = PathState{};
     path_state_.ray_flags = kRayCamera;
     path_state_.transparent_depth = first_transparent_depth_;
     if constexpr (kSubsurface) subsurface_.diffuse_ancestor = false;
-    features_ = features_after_first_;
+    features_ = *features_after_first_;
     features_.set_share(branch_weight_);
   }
 
@@ -968,8 +968,9 @@ class PathTracer {
   const PixelSample& pixel_;
   PathRadiance& out_;
   // Cycles' denoising features (denoising_features.h), and their state after the first vertex,
-  // where later branches start.
-  DenoisingFeatures features_, features_after_first_;
+  // where later branches start (only for a path that may split).
+  DenoisingFeatures features_;
+  std::optional<DenoisingFeatures> features_after_first_;
   const bool light_groups_;
   const bool cryptomatte_;  // the Cryptomatte passes are rendered (film/cryptomatte.h)
   GuidePathRecorder recorder_;  // training: records at the end
@@ -998,12 +999,14 @@ class PathTracer {
   float first_opacity_ = 1.0f;  // of the surface the camera ray stopped at
   float first_ray_length_ = 0.0f;
   // The first vertex, where later branches start: its hit, ray, NEE's light choice, the sampler's
-  // point index after it and the transparent surfaces passed before it.
+  // point index after it and the transparent surfaces passed before it. Made only for a path that
+  // may split (a SurfaceHit and a LightChoice are large: constructing them per path showed).
   struct FirstVertex {
     SurfaceHit hit;
     Ray ray;
     LightChoice choice;
-  } first_vertex_;
+  };
+  std::optional<FirstVertex> first_vertex_;
   uint32_t first_vertex_points_ = 0;
   uint8_t first_transparent_depth_ = 0;
   // Whether the path splits at its first vertex (the first vertex is kept only then; the pilot of

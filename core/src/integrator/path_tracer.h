@@ -98,7 +98,9 @@ struct PathRadiance {
   CryptomatteSample cryptomatte;
   // The split at a shadow catcher (film/shadow_catcher.h; only in scenes with catchers).
   ShadowCatcherSample catcher;
-  MediumStack catcher_media;  // with media: those at the split (shadow_catcher_split.h)
+  // With media: those at the split (shadow_catcher_split.h); optional, so that a sample does not
+  // zero a MediumStack it never uses.
+  std::optional<MediumStack> catcher_media;
 
   Vec3 combined() const {
     return emission + environment + diffuse_direct + diffuse_indirect + glossy_direct + glossy_indirect;

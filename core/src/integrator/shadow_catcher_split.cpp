@@ -24,7 +24,7 @@ void trace_catcher_half(const PathContext& catcher_ctx, TraceFn trace, const Ray
   };
   PixelSample half_pixel = pixel;
   half_pixel.record = nullptr;
-  half_pixel.start_media = &r.catcher_media;  // (empty without media: unused then)
+  half_pixel.start_media = r.catcher_media ? &*r.catcher_media : nullptr;  // (set by a path with media)
   Vec3 light;
   {
     CatchersOnly only;
