@@ -44,9 +44,13 @@ constexpr uint32_t kShaderShiftPoints = 0x50000000u;
 // the same indices in every sample of the pixel, so each branch is as well stratified as the first.
 constexpr uint32_t kBranchPoints = 1u << 16;
 
-// The ray from the camera or the last vertex to the next surface, and that surface.
+// The ray from the camera or the last vertex to the next surface, and that surface: the hit this
+// segment's query found (traced), or, without alpha and media (which change it), the camera ray's
+// in the integrator's packet or the first vertex's, not copied (a SurfaceHit is large: making and
+// copying one per camera sample showed).
 struct Segment {
-  SurfaceHit hit;
+  std::optional<SurfaceHit> traced;
+  const SurfaceHit* hit = nullptr;
   bool found = false;          // false: the ray left the scene
   float passed_length = 0.0f;  // through transparent surfaces on the way (kAlpha; kMedia: volume boundaries too)
   bool scattered = false;      // kMedia: it ended in a medium, at PathTracer::media_'s walk.position
@@ -144,7 +148,7 @@ class PathTracer {
         if (!find_next_surface(bounce, branch > 0, seg)) return;
         if constexpr (kMedia) travel_media(bounce, seg);  // 1b. through its media, maybe scattering there
         if (kMedia && bounce == 0 && branch == 0 && seg.found && !seg.scattered && ctx_.split_at_catchers)
-          meet_catcher(seg.hit);
+          meet_catcher(*seg.hit);
 
         // 2. The light the ray met on its way: the world, lights a BSDF-sampled ray can hit.
         if (first_again) {
@@ -155,12 +159,12 @@ class PathTracer {
             camera_sees_world();
             return;
           } else {
-            remember_first_vertex(seg.hit);
+            remember_first_vertex(*seg.hit);
           }
         } else {
           if (kHittable) lights_along_ray(bounce, seg);
           if (!seg.found && !seg.scattered) break;
-          if (!seg.scattered) note_reflector(seg.hit);
+          if (!seg.scattered) note_reflector(*seg.hit);
         }
         if constexpr (kMedia) {  // 2b. a scattering vertex in a medium: its light, then the next ray
           if (seg.scattered) {
@@ -168,7 +172,7 @@ class PathTracer {
             continue;
           }
         }
-        caustic_chain_.at_vertex(ctx_.caustics, bounce, seg.hit.material);
+        caustic_chain_.at_vertex(ctx_.caustics, bounce, seg.hit->material);
 
         // 3. The surface: its material, BSDF, normals and shading frame.
         Vertex v;
@@ -178,7 +182,7 @@ class PathTracer {
         if (first_vertex) {
           first_surface_passes(v);
           camera_sees_emission(v);
-        } else if (!first_again && seg.hit.emitter >= 0) {
+        } else if (!first_again && seg.hit->emitter >= 0) {
           emitter_found(v, bounce);
         }
         if (bounce > ctx_.settings.max_bounces || past_last_volume_bounce()) break;
@@ -188,7 +192,7 @@ class PathTracer {
 
         // 5. Light sampled at the vertex: NEE of one light (or every light), then of lights seen
         // in mirror reflectors.
-        const GuideDistribution guide = v.guidable ? ctx_.guide->at(seg.hit.position, ctx_.guide_training)
+        const GuideDistribution guide = v.guidable ? ctx_.guide->at(seg.hit->position, ctx_.guide_training)
                                                    : GuideDistribution();
         if (recorder_.enabled()) recorder_.reached_next_vertex();
         if (first_vertex) first_vertex_points_ = sampler_.point_index();
@@ -240,7 +244,14 @@ class PathTracer {
   // The camera ray's answer (given, or the first vertex again for a later branch) or the scene's;
   // with kAlpha on through transparent surfaces. False: the path ends here.
   bool find_next_surface(int bounce, bool again, Segment& seg) {
-    SurfaceHit& hit = seg.hit;
+    if (!kAlpha && !kMedia && bounce == 0 && (again || first_)) {  // read where it is
+      seg.hit = again ? &first_vertex_->hit : first_->hit;
+      seg.found = again || first_->found;
+      if (!again && seg.found && ctx_.split_at_catchers) meet_catcher(*seg.hit);
+      return true;
+    }
+    SurfaceHit& hit = seg.traced.emplace();
+    seg.hit = &hit;
     seg.found = again && bounce == 0 ? (hit = first_vertex_->hit, true)
                 : bounce == 0 && first_ ? (hit = *first_->hit, first_->found)
                                         : ctx_.scene.intersect(ray_, hit);
@@ -271,7 +282,7 @@ class PathTracer {
   // the Normal and UV passes (Cycles' PATH_RAY_SINGLE_PASS_DONE: of the first whose alpha reaches
   // the Alpha Threshold), and holdouts take their share of the alpha.
   bool pass_transparent_surfaces(int bounce, bool again, Segment& seg) {
-    SurfaceHit& hit = seg.hit;
+    SurfaceHit& hit = *seg.traced;
     for (int passed = 0; seg.found; ++passed) {
       if (bounce == 0 && !again && ctx_.split_at_catchers && !kMedia) meet_catcher(hit);
       PathState at = path_state_;  // the state a shader there sees (as set by shade())
@@ -354,7 +365,7 @@ class PathTracer {
   // MIS-weighted against NEE at the vertex it left.
   void lights_along_ray(int bounce, const Segment& seg) {
     // From the vertex before (last_), past the smooth sheets the ray went through (run_).
-    const float t_max = run_ + (seg.scattered ? media_distance() : seg.found ? seg.passed_length + seg.hit.t : kInfinity);
+    const float t_max = run_ + (seg.scattered ? media_distance() : seg.found ? seg.passed_length + seg.hit->t : kInfinity);
     std::array<Vec3, kMaxLightGroups> by_group;  // filled only with light groups
     if (light_groups_) std::fill_n(by_group.begin(), extra_.num_light_groups(), Vec3(0.0f));
     const Vec3 e = lights_.emission_along_ray(last_.ray_origin, last_.normal, ray_.dir, run_, t_max, last_.pdf, last_.delta,
@@ -405,7 +416,7 @@ class PathTracer {
   // (which does not filter): a floor seen at 12 degrees, 8x8 block means 0.010 from Cycles'
   // with it (x4 at most), 0.0027 without (Cycles' own seed-to-seed 0.0013).
   void shade(Vertex& v, const Segment& seg, int bounce, bool first_again) {
-    const SurfaceHit& hit = seg.hit;
+    const SurfaceHit& hit = *seg.hit;
     v.hit = &hit;
     path_length_ += seg.passed_length + hit.t;
     v.mixture = kMixtures && ctx_.scene.mixture(hit.material);
@@ -513,7 +524,7 @@ class PathTracer {
     const float cos_no = glm::dot(v.at.ns, v.wo_world);
     if (v.closure_list) closures.add_closures(*v.closure_list, cos_no, v.at.backfacing);
     else closures.add_material(v.material, 1.0f, cos_no, v.at.backfacing);
-    features_.surface(closures, seg.passed_length + seg.hit.t - ray_.tmin, v.at.ns, ctx_.camera_axes, out_);
+    features_.surface(closures, seg.passed_length + seg.hit->t - ray_.tmin, v.at.ns, ctx_.camera_axes, out_);
   }
 
   // The AO pass (Cycles' integrate_surface_ao): one cosine-distributed ray about the diffuse
@@ -835,7 +846,7 @@ class PathTracer {
     if (bounce == 0 && ctx_.catcher_half) return;  // it starts at the catcher: the split's media were before
     const bool may_scatter =
         bounce <= ctx_.settings.max_bounces && media_.scatters <= ctx_.settings.max_volume_bounces;
-    media_.walk = walk_media(ctx_.scene, ray_, seg.hit, seg.found, media_.stack, throughput_, sampler_, may_scatter,
+    media_.walk = walk_media(ctx_.scene, ray_, *seg.traced, seg.found, media_.stack, throughput_, sampler_, may_scatter,
                              seg.passed_length);
     seg.scattered = media_.walk.scattered;
     Vec3 e = media_.walk.emission;
