@@ -2,9 +2,9 @@
 """Fingerprints (SHA-256 of the float32 RGBA pixels) of Torrance renders of fixed scenes, to show
 that a change of the export or of the core leaves the images as they were: run it with the
 build before and the build after, and compare the two outputs line by line. Each image is also
-saved as OUT.d/<scene>.npy: when digests differ, compare the pixels (max |difference|) -- the
-film's sums depend on how samples were split into passes, and pass sizes follow the wall clock
-(a loaded machine changes the last bits, not more).
+saved as OUT.d/<scene>.npy: when digests differ, compare the pixels (max |difference|). The
+images do not depend on the passes' timing (core/tests/test_pass_partition.cpp), so equal
+builds give equal digests.
 
     scripts/blender -b --factory-startup --python scripts/render_fingerprints.py -- [--big] OUT.txt
 

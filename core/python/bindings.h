@@ -24,7 +24,7 @@ void init_render_settings(py::module_& m);  // RenderSettings, from render_setti
 void init_image(py::module_& m);
 void init_bsdf(py::module_& m);
 void init_rays(py::module_& m);  // record_rays, replay_rays
-void init_world_mesh(py::module_& m);  // triangle_normals, transform_points, corner_normals
+void init_world_mesh(py::module_& m);  // triangle_normals, transform_points, corner_normals, vertex_normals
 void init_sky(py::module_& m);  // preetham_sky_table, nishita_sky_table
 void init_denoise(py::module_& m);  // Denoiser (Open Image Denoise, loaded at run time)
 

@@ -472,7 +472,11 @@ void expect_strategy_agrees_with_long_bsdf_sampling(const Scene& scene) {
   const test::SeedAgreement a =
       test::compare_over_seeds(wall_blocks(scene, false, 512, 32), wall_blocks(scene, true, 64, 32));
   std::printf("agreement: ratio %.4f, z %.2f, worst block z %.2f\n", a.ratio, a.image_z, a.worst_block_z);
-  test::expect_agreement(a, 0.02);
+  // The z-scores carry the statistics: the ratio's own standard error over these 32 seeds is
+  // 1-3 % (the plastic ball: ratio 1.026 at z 0.83, the box 1.011 at z 0.39), so a tolerance
+  // of 0.02 on it fails about every other draw of the noise (the ball's was 1.0013 until the
+  // samples' order in a pass changed, with no change of expectation); 0.1 guards a gross bias.
+  test::expect_agreement(a, 0.1);
 }
 
 // A plastic ball (red, a diffuse lobe under a GGX coat of roughness `roughness`) 1 m before a

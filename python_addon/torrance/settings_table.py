@@ -307,6 +307,7 @@ CORE_ONLY = {
     "roulette_min_survival": "the efficiency roulette's parameter, for tests",
     "light_selection": "a lever of the core for tests and the benchmark",
     "sampler": "a lever of the core for tests and the benchmark",
+    "pass_samples": "a lever of the core for tests (the image does not depend on it)",
 }
 
 

@@ -68,6 +68,7 @@ void RenderSettings::validate() const {
   if (!(adaptive_threshold >= 0.0f && adaptive_threshold <= 1.0f))
     throw std::invalid_argument("adaptive_threshold must be in [0, 1] (0 = off)");
   if (adaptive_min_samples < 0) throw std::invalid_argument("adaptive_min_samples must be >= 0 (0 = automatic)");
+  if (pass_samples < 0) throw std::invalid_argument("pass_samples must be >= 0 (0 = timed passes)");
   if (first_bounce_splits < 0 || first_bounce_splits > 16)
     throw std::invalid_argument("first_bounce_splits must be in [0, 16] (0 = automatic, 1 = off)");
   if (!(time_limit >= 0.0) || !std::isfinite(time_limit))
@@ -376,6 +377,11 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
     }
   };
 
+  // The samples [first_sample, first_sample + num_samples) of a phase's tiles, in parallel. A
+  // tile takes them sample by sample, each over its rows in order, so what reaches the film (and
+  // the roulette's statistics of the tile's blocks) comes in the order (sample, pixel) whatever
+  // the samples' split into passes: the sums, and so the image, never depend on the passes'
+  // timing (a float sum's rounding depends on its order).
   auto render_phase = [&](const std::vector<Tile>& tiles, int first_sample, int num_samples) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
       FlushDenormals ftz;
@@ -387,28 +393,26 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
         const Tile& tile = tiles[t];
         // Stop checked per row, not only per tile: a tile of a late pass (passes grow to half a
         // second) can take a large part of that pass on a small image, and Esc waits for it.
-        for (int y = tile.y0; y < tile.y1 && !stop.load(std::memory_order_relaxed); ++y) {
-          // A row's camera samples in order, pixel by pixel, batched: a packet holds a pixel's
-          // samples of the pass and, in passes of fewer than kPacketSize samples, those of the
-          // next pixels too (their rays are as coherent). Each pixel's samples reach the film in
-          // order, so the image does not depend on the batching.
-          for (int x = tile.x0; x < tile.x1; ++x) {
-            if (adaptive && film.converged(x - window[0], y - window[1])) continue;
-            // Guiding learns relative error: the pixel's estimate so far (no other thread adds to
-            // it during this phase of the pass).
-            PixelSample pixel_sample;
-            pixel_sample.x = x - window[0];
-            pixel_sample.y = y - window[1];
-            pixel_sample.guide_weight = ctx.guide_training && in_window(pixel_sample)
-                                            ? pixel_weight(film.mean(pixel_sample.x, pixel_sample.y))
-                                            : 1.0f;
-            for (int s = first_sample; s < first_sample + num_samples; ++s) {
+        for (int s = first_sample; s < first_sample + num_samples && !stop.load(std::memory_order_relaxed); ++s)
+          for (int y = tile.y0; y < tile.y1 && !stop.load(std::memory_order_relaxed); ++y) {
+            // A row's camera samples of sample index s, pixel by pixel, batched: a packet holds
+            // kPacketSize neighbouring pixels' rays (coherent). Each pixel's samples reach the
+            // film in order, so the image does not depend on the batching.
+            for (int x = tile.x0; x < tile.x1; ++x) {
+              if (adaptive && film.converged(x - window[0], y - window[1])) continue;
+              // Guiding learns relative error: the pixel's estimate so far (its earlier samples';
+              // no other thread adds to it during this phase).
+              PixelSample pixel_sample;
+              pixel_sample.x = x - window[0];
+              pixel_sample.y = y - window[1];
+              pixel_sample.guide_weight = ctx.guide_training && in_window(pixel_sample)
+                                              ? pixel_weight(film.mean(pixel_sample.x, pixel_sample.y))
+                                              : 1.0f;
               batch[size_t(batched++)] = {pixel_sample, uint32_t(s)};
               if (batched == Scene::kPacketSize) trace_batch(batch, std::exchange(batched, 0), bad);
             }
+            if (batched > 0) trace_batch(batch, std::exchange(batched, 0), bad);
           }
-          if (batched > 0) trace_batch(batch, std::exchange(batched, 0), bad);
-        }
       }
       if (bad) nonfinite += bad;
       const RayCounts rays = thread_ray_counts() - rays_before;
@@ -417,9 +421,17 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
       camera_packets += rays.packets;
     });
   };
+  // With splatting, a pixel near a tile's edge takes splats from the tiles of several phases:
+  // the phases go sample by sample, so the pixel takes them in the order (sample, phase, pixel)
+  // for any split of the samples into passes. Without, one phase takes all the samples at once.
   auto render_pass = [&](int first_sample, int num_samples) {
-    for (const std::vector<Tile>& tiles : phases)
-      if (!tiles.empty()) render_phase(tiles, first_sample, num_samples);
+    if (margin == 0) {
+      render_phase(phases[0], first_sample, num_samples);
+      return;
+    }
+    for (int s = first_sample; s < first_sample + num_samples && !stop; ++s)
+      for (const std::vector<Tile>& tiles : phases)
+        if (!tiles.empty()) render_phase(tiles, s, 1);
   };
 
   std::mutex mutex;
@@ -455,7 +467,8 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
       if (catchers) catcher_ctx.emplace(catcher_half_context(ctx));
       result.filter_splatting = splatting;
       while (done < settings.samples && !stop && !all_converged && !out_of_time) {
-        const int target = std::min(pass_size, settings.samples - done);
+        const int target = std::min(settings.pass_samples > 0 ? settings.pass_samples : pass_size,
+                                    settings.samples - done);
         const auto t0 = std::chrono::steady_clock::now();
         int n = 0;  // samples of this pass, rendered in steps that end at adaptive checks
         while (n < target) {

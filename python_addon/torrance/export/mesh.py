@@ -9,7 +9,7 @@ import numpy as np
 from ..core_module import load_core
 from ..materials import MeshNeeds
 from ..matrices import inverse_transpose
-from .mesh_arrays import triangle_vertices
+from .mesh_arrays import smooth_vertex_normals, triangle_vertices
 from .mesh_attributes import attribute_layers, read_corner_attributes, with_object_info
 
 MAX_COORDINATE = 1e18          # metres; anything farther is treated like Inf
@@ -157,9 +157,7 @@ def read_local_mesh(obj, uvs=False):
         else:
             any_smooth, smooth = _triangle_smooth(mesh, nt)
             if any_smooth:
-                vn = np.empty(nv * 3, dtype=np.float32)
-                mesh.vertices.foreach_get("normal", vn)
-                vertex_normals = vn.reshape(nv, 3)
+                vertex_normals = smooth_vertex_normals(mesh, co.reshape(nv, 3))
         needs = MeshNeeds.of(uvs)
         corner_uvs = uv_name = None
         if needs.uvs:

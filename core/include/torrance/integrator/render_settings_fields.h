@@ -75,6 +75,10 @@ TORRANCE_RENDER_SETTING(float, adaptive_threshold, 0.0f, "noise threshold of ada
 TORRANCE_RENDER_SETTING(int, adaptive_min_samples, 0, "samples before adaptive sampling stops a pixel; 0 = automatic")
 // Seconds of sampling; the render ends with the pass that passes it. 0 = none.
 TORRANCE_RENDER_SETTING(double, time_limit, 0.0, "seconds of sampling; 0 = no limit")
+// The samples of each pass (the image shown between passes): 0, passes of about half a second,
+// timed; n > 0, n samples each (the last what is left). The image does not depend on it: a
+// lever for tests that render one scene in different passes and compare them bit for bit.
+TORRANCE_RENDER_SETTING(int, pass_samples, 0, "samples per pass; 0 = about half a second each")
 // As Cycles' Clamping: the sum of the RGB components of each contribution of a path (one light
 // sample, one emitter or world hit) is scaled down to at most this. Direct = seen by the camera
 // or lighting the first hit; indirect = lighting later vertices. 0 = off.
