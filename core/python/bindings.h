@@ -19,6 +19,7 @@ void init_cryptomatte(py::module_& m);   // after init_scene: cryptomatte_hash, 
 void init_media(py::module_& m);    // after init_scene: adds Scene.set_material_volume, set_world_volume
 void init_motion(py::module_& m);  // after init_scene: Scene.set_mesh_motion, set_camera_motion
 void init_extra_passes(py::module_& m);  // after init_scene: Scene.set_aovs, set_light_groups
+void init_light_linking(py::module_& m);  // after init_scene: Scene.set_light_link_table, ...
 void init_render(py::module_& m);  // init_render_settings first
 void init_render_settings(py::module_& m);  // RenderSettings, from render_settings_fields.h
 void init_image(py::module_& m);

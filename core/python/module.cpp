@@ -11,6 +11,7 @@ PYBIND11_MODULE(_core, m) {
   torrance::python::init_mixture(m);
   torrance::python::init_media(m);
   torrance::python::init_extra_passes(m);
+  torrance::python::init_light_linking(m);
   torrance::python::init_cryptomatte(m);
   torrance::python::init_motion(m);
   torrance::python::init_render(m);

@@ -17,6 +17,9 @@ difference is named once and told by the API itself where it can be:
               surfaces with a microfacet shadowing term (and drops light the smooth and the
               mapped normal put on different sides): cycles5_bump_shadowing, the running
               Blender tells (no setting or node changed).
+  light linking  4.0 adds Object.light_linking (receiver and blocker collections) and
+              CollectionObject/CollectionChild.light_linking (include/exclude): has_light_linking;
+              3.x has none, and the export then sends nothing (export/light_linking.py).
 """
 
 
@@ -31,6 +34,12 @@ def cycles5_bump_shadowing():
     microfacet_bump_shadowing; measured in 5.3, 5.0-5.2 taken as 5.3), False for 3.x-4.x's."""
     import bpy
     return bpy.app.version >= (5, 0, 0)
+
+
+def has_light_linking():
+    """Whether this Blender has light and shadow linking (Object.light_linking, 4.0+)."""
+    import bpy
+    return "light_linking" in bpy.types.Object.bl_rna.properties
 
 
 def used_node_tree(owner):

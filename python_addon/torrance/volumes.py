@@ -249,6 +249,12 @@ def material_volume(mat, textures, reporter, depsgraph=None):
     return medium, sockets[0] is None or source_socket(sockets[0]) is None
 
 
+def has_volume(owner):
+    """Whether a material's or world's output has a linked Volume."""
+    sockets = _output_sockets(owner) if owner is not None else None
+    return sockets is not None and sockets[1] is not None and source_socket(sockets[1]) is not None
+
+
 def has_only_volume(mat):
     """Whether a material's output has a linked Volume and nothing on its Surface."""
     sockets = _output_sockets(mat) if mat is not None else None

@@ -240,15 +240,17 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   // Subsurface: the light tracer and mirror images do not walk it (their paths would drop the
   // light that crosses a subsurface object to a smooth surface); the path tracer alone.
   const bool subsurface = has_subsurface(cscene);
+  // Light linking (lights/light_linking.h): neither knows the receivers and blockers either.
+  const bool linked = cscene.lights().links().any();
   std::optional<MirrorImages> mirror_images;
-  if (settings.mirror_images && !alpha && !media && !moving && !catchers && !subsurface) {
+  if (settings.mirror_images && !alpha && !media && !moving && !catchers && !subsurface && !linked) {
     mirror_images.emplace(cscene, ctx.bsdfs);
     if (!mirror_images->empty()) ctx.mirror_images = &*mirror_images;
   }
   // Caustics by light tracing (caustics.h), where the scene has them (mirror images keep their
   // reflectors).
   const std::optional<CausticPartition> caustics =
-      media || moving || catchers || subsurface ? std::nullopt
+      media || moving || catchers || subsurface || linked ? std::nullopt
                                                 : CausticPartition::make(cscene, settings, alpha, ctx.mirror_images);
   if (caustics) ctx.caustics = &*caustics;
   std::optional<GuidingField> guide;

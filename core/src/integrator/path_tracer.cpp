@@ -66,6 +66,7 @@ struct ScatterVertex {
   float pdf = 0.0f;          // the BSDF's pdf of the ray's direction (also where a guide drew it)
   bool delta = true;         // drawn from a delta lobe, or the camera's ray: no MIS
   bool two_sided = false;    // it transmits: NEE there chose among lights on both sides
+  uint8_t receiver_set = 0;  // its object's light linking receiver set (lights/light_linking.h)
   float path_weight = 1.0f;  // max_abs_component(throughput) there
 };
 
@@ -372,7 +373,7 @@ class PathTracer {
                                               kGlass && last_.two_sided, &light_choice_,
                                               caustic_chain_.share(reflector_share_.active()),
                                               seg.found ? PathState{} : escaped_state(bounce),
-                                              light_groups_ ? by_group.data() : nullptr);
+                                              light_groups_ ? by_group.data() : nullptr, last_.receiver_set);
     const Vec3& seen = seen_throughput();
     features_.light(seen * e * clamp_scale(seen * e / branch_weight_, bounce == 1), out_);
     const Vec3 arrived = deposit(seen * e, bounce == 1);
@@ -508,6 +509,11 @@ class PathTracer {
   // An emissive triangle found by BSDF sampling: MIS against NEE's choice of it.
   void emitter_found(const Vertex& v, int bounce) {
     const SurfaceHit& hit = *v.hit;
+    if (const LightLinks& links = lights_.links(); links.any()) {  // light_linking.h
+      if (!links.lights(hit.emitter_links, last_.receiver_set) ||
+          (!last_.delta && links.shadow_linked(hit.emitter_links)))
+        return;
+    }
     float mis = 1.0f;
     if (!last_.delta)
       mis = power_heuristic(last_.pdf, lights_.mesh_light_pdf(size_t(hit.emitter), last_.ray_origin, last_.normal,
@@ -571,14 +577,22 @@ class PathTracer {
         lights_.sample(index, position, v.at.ns, Vec2(u_light.y, u_light.z), v.transmits, path_state_);
     const Vec3 wi = v.at.frame.to_local(ls.wi);
     if (!ls.valid() || !leaves_geometric_side(ls.wi, v.at.ng, wi.z, v.transmits)) return;
+    uint64_t shadow_sets = kAllLinkSets;  // light linking (light_linking.h): of the chosen emitter
+    if (const LightLinks& links = lights_.links(); links.any()) {
+      const uint8_t entry = lights_.link_entry(index, ls);
+      if (!links.lights(entry, v.hit->receiver_set)) return;
+      shadow_sets = links.shadow_sets(entry);
+    }
     LobeEval f = v.bsdf->template eval_lobes<kGlass>(v.view, wi);
     if (v.at.normal_mapped)
       shadow_bumps(f, ctx_.settings.microfacet_bump_shadowing, v.at.n_smooth, v.at.n_diffuse(), v.at.ns, ls.wi, true);
     if (!(max_component(f.total()) > 0.0f)) return;
-    const Vec3 transmittance = shadow_through(v, ls, u_light.w);
+    const Vec3 transmittance = shadow_sets == kAllLinkSets ? shadow_through(v, ls, u_light.w)
+                                                           : linked_shadow_through(v, ls, shadow_sets);
     if (!(max_abs_component(transmittance) > 0.0f)) return;
     // Against the BSDF's pdf even where a guide samples the next direction: see ScatterVertex::pdf.
-    const float mis = ls.pdf > 0.0f
+    // A shadow-linked emitter: NEE alone (light_linking.h).
+    const float mis = ls.pdf > 0.0f && shadow_sets == kAllLinkSets
                            ? power_heuristic(probability * ls.pdf, v.bsdf->template pdf<kGlass>(v.view, wi) * bsdf_share(v))
                            : 1.0f;
     Vec3 light = throughput_ * ls.weight * (mis / probability);
@@ -602,6 +616,13 @@ class PathTracer {
       return shadow_transmittance<kAlpha>(ctx_.scene, v.hit->position, v.at.ng, ls,
                                           ctx_.settings.max_transparent_bounces, path_state_);
     }
+  }
+
+  // The light a shadow ray to a shadow-linked emitter's sample lets through: only its blockers
+  // stop it (with media, their attenuation is not counted: light_linking.h).
+  Vec3 linked_shadow_through(const Vertex& v, const LightSample& ls, uint64_t shadow_sets) const {
+    return linked_shadow_transmittance(ctx_.scene, v.hit->position, v.at.ng, ls, shadow_sets,
+                                       ctx_.settings.max_transparent_bounces, path_state_);
   }
 
   // Lights through planar mirrors, glossy planes and spheres, and lamps' bright spots on matte
@@ -683,7 +704,8 @@ class PathTracer {
     // the same error (x0.91); see docs/speed/path_guiding.md.
     ray_.origin = offset_origin(v.hit->position, v.at.ng, wi_world);
     last_ = ScatterVertex{ray_.origin,  v.hit->position, v.at.ns,       v.hit->material,
-                          guide && !bs.is_delta ? bsdf_pdf : bs.pdf, bs.is_delta, v.transmits, vertex_weight};
+                          guide && !bs.is_delta ? bsdf_pdf : bs.pdf, bs.is_delta, v.transmits,
+                          v.hit->receiver_set,  vertex_weight};
     run_ = 0.0f;
     ray_.dir = wi_world;
     ray_.tmin = 0.0f;
@@ -886,7 +908,7 @@ class PathTracer {
     path_length_ += media_.walk.distance;
     // MIS of a light the next ray meets: the phase function's pdf against NEE's choice here, made
     // as at a two-sided surface facing along the ray (medium_next_event).
-    last_ = ScatterVertex{position, position, ray_.dir, 0u, ps.pdf, false, true, vertex_weight};
+    last_ = ScatterVertex{position, position, ray_.dir, 0u, ps.pdf, false, true, 0, vertex_weight};
     run_ = 0.0f;
     ray_.origin = position;
     ray_.dir = ps.wi;

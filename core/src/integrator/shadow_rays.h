@@ -85,4 +85,28 @@ Vec3 shadow_transmittance(const Scene& scene, const Vec3& p, const Vec3& ng, con
   }
 }
 
+// The light a shadow ray towards a shadow-linked emitter (lights/light_linking.h) lets through:
+// surfaces that are not among the emitter's blockers are passed as if absent; the blockers stop
+// it, or with alpha let their transparency through as in shadow_transmittance.
+inline Vec3 linked_shadow_transmittance(const Scene& scene, const Vec3& p, const Vec3& ng, const LightSample& ls,
+                                        uint64_t shadow_sets, int max_transparent, const PathState& receiver = {}) {
+  Ray ray = shadow_ray(p, ng, ls);
+  Vec3 transmittance(1.0f);
+  float travelled = 0.0f;
+  for (int passed = 0; ray.tmax > 0.0f;) {
+    SurfaceHit hit;
+    if (!scene.intersect(ray, hit)) break;
+    if (blocks_shadow(shadow_sets, hit.blocker_set)) {
+      if (!through_transparent_surface(scene, hit, ray.dir, receiver, passed++, travelled, max_transparent,
+                                       transmittance) ||
+          !(max_component(transmittance) > 0.0f))
+        return Vec3(0.0f);
+    }
+    ray.origin = offset_origin(hit.position, hit.geometric_normal, ray.dir);
+    ray.tmax -= hit.t;
+    travelled += hit.t;
+  }
+  return transmittance;
+}
+
 }  // namespace torrance

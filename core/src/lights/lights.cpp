@@ -375,6 +375,12 @@ void Lights::set_world_map(std::shared_ptr<const Texture> image, float strength)
   world_ = WorldLight(std::make_shared<EnvironmentMap>(std::move(image), strength));
 }
 
+void Lights::set_last_light_links(int entry) {
+  if (lights_.empty()) throw std::invalid_argument("light linking needs a light to belong to");
+  link_entries_.resize(lights_.size(), 0);
+  link_entries_.back() = LightLinks::checked_entry(entry, links_.size());
+}
+
 void Lights::set_last_light_group(int group) {
   if (lights_.empty()) throw std::invalid_argument("a light group needs a light to belong to");
   groups_.resize(lights_.size(), -1);
@@ -498,7 +504,8 @@ bool Lights::hit(size_t index, const Vec3& p, const Vec3& n, const Vec3& dir, Li
 Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_min, float t_max,
                                 float bsdf_pdf,
                                 bool bsdf_delta, bool two_sided, const LightChoice* prev_choice,
-                                const LightShare* share, const PathState& escaped, Vec3* by_group) const {
+                                const LightShare* share, const PathState& escaped, Vec3* by_group,
+                                uint8_t receiver_set) const {
   Vec3 L(0.0f);
   auto add = [&](size_t index, const LightHit& h, bool in_nee, int group) {
     Vec3 c = h.radiance;
@@ -512,6 +519,10 @@ Vec3 Lights::emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Ve
   };
   for (size_t i = 0; i < lights_.size(); ++i) {
     LightHit h;
+    if (links_.any()) {
+      const uint8_t entry = i < link_entries_.size() ? link_entries_[i] : 0;
+      if (!links_.lights(entry, receiver_set) || (!bsdf_delta && links_.shadow_linked(entry))) continue;
+    }
     if (!std::visit([&](const auto& light) { return light.hit(p_prev, n_prev, dir, t_max, h); }, lights_[i]) ||
         h.distance < t_min)
       continue;

@@ -70,6 +70,7 @@ LightSample MeshLight::sample(const Vec3& p, const Vec3&, const Vec2& u, const P
   seen_by.ray_length = dist;
   s.weight = emission_(t, Vec2(b1, b2), s.wi, seen_by) / s.pdf;
   s.light_group = t.light_group;
+  s.emitter_links = t.emitter_links;
   return s;
 }
 

@@ -49,6 +49,9 @@ void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const 
     hit.object_holdout = mesh.holdout;
     hit.shadow_catcher = mesh.shadow_catcher;
     hit.light_group = mesh.light_group;
+    hit.receiver_set = mesh.receiver_set;
+    hit.blocker_set = mesh.blocker_set;
+    hit.emitter_links = mesh.emitter_links;
     hit.cryptomatte_object = mesh.cryptomatte;
   } else {
     const Instance& inst = instances_[owner & ~kInstanceBit];
@@ -66,6 +69,9 @@ void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const 
     hit.object_holdout = inst.holdout;
     hit.shadow_catcher = inst.shadow_catcher;
     hit.light_group = inst.light_group;
+    hit.receiver_set = inst.receiver_set;
+    hit.blocker_set = inst.blocker_set;
+    hit.emitter_links = inst.emitter_links;
     hit.cryptomatte_object = inst.cryptomatte;
     const size_t layers = instance_constant_ids_.size(), first = size_t(owner & ~kInstanceBit) * layers;
     if (layers > 0 && first + layers <= instance_constants_.size()) {

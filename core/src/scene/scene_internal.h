@@ -32,6 +32,7 @@ struct Scene::Mesh {
   bool holdout = false;                // a holdout object (of a mesh from add_mesh)
   bool shadow_catcher = false;         // a shadow catcher (of a mesh from add_mesh)
   int8_t light_group = -1;             // its light group (extra_passes.h), -1: none
+  uint8_t receiver_set = 0, blocker_set = 0, emitter_links = 0;  // light linking (light_linking.h)
   int32_t cryptomatte = -1;            // its Cryptomatte entry (film/cryptomatte.h), -1: none
   // Motion blur (Scene::set_mesh_motion): motion_steps >= 2 world-space positions per vertex,
   // step s's at [s * positions.size(), ...) (one vertex of spare capacity for Embree), evenly
@@ -82,6 +83,7 @@ struct Scene::Instance {
   bool holdout = false;             // a holdout object
   bool shadow_catcher = false;      // a shadow catcher
   int8_t light_group = -1;          // its light group (extra_passes.h), -1: none
+  uint8_t receiver_set = 0, blocker_set = 0, emitter_links = 0;  // light linking (light_linking.h)
   int32_t cryptomatte = -1;         // its Cryptomatte entry (film/cryptomatte.h), -1: none
   // Motion blur (Scene::set_instance_motion): its transforms at time steps evenly over the
   // shutter (empty: it stays at `transform`).

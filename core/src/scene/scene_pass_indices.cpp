@@ -2,6 +2,7 @@
 // its holdout objects, the light groups of its emitting objects and the objects' Cryptomatte
 // entries.
 #include "scene/scene_internal.h"
+#include "torrance/lights/light_linking.h"
 
 #include <stdexcept>
 #include <string>
@@ -72,6 +73,35 @@ void Scene::set_instance_light_groups(const int64_t* ids, size_t count, int grou
     if (ids[i] < 0 || size_t(ids[i]) >= instances_.size())
       throw std::invalid_argument("instance " + std::to_string(ids[i]) + " does not exist");
   for (size_t i = 0; i < count; ++i) instances_[size_t(ids[i])].light_group = g;
+  emitters_dirty_ = true;
+}
+
+void Scene::set_mesh_light_linking(uint32_t mesh, int receiver_set, int blocker_set, int emitter_entry) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set a mesh's light linking");
+  if (mesh >= meshes_.size()) throw std::invalid_argument("mesh " + std::to_string(mesh) + " does not exist");
+  Mesh& m = *meshes_[mesh];
+  m.receiver_set = LightLinks::checked_set(receiver_set);
+  m.blocker_set = LightLinks::checked_set(blocker_set);
+  m.emitter_links = LightLinks::checked_entry(emitter_entry, 255);
+  emitters_dirty_ = true;
+}
+
+void Scene::set_instance_light_linking(const int64_t* ids, size_t count, int receiver_set, int blocker_set,
+                                       int emitter_entry) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set instances' light linking");
+  const uint8_t receiver = LightLinks::checked_set(receiver_set), blocker = LightLinks::checked_set(blocker_set);
+  const uint8_t entry = LightLinks::checked_entry(emitter_entry, 255);
+  for (size_t i = 0; i < count; ++i)
+    if (ids[i] < 0 || size_t(ids[i]) >= instances_.size())
+      throw std::invalid_argument("instance " + std::to_string(ids[i]) + " does not exist");
+  for (size_t i = 0; i < count; ++i) {
+    Instance& inst = instances_[size_t(ids[i])];
+    inst.receiver_set = receiver;
+    inst.blocker_set = blocker;
+    inst.emitter_links = entry;
+  }
   emitters_dirty_ = true;
 }
 

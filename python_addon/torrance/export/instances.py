@@ -27,7 +27,8 @@ class Source:
     CHUNK at a time (transforms() gives them all)."""
     __slots__ = ("name", "mesh_key", "table", "instanced", "matrices", "converted", "_append",
                  "info_of", "random_ids", "colors", "duplis", "instancers", "pass_index",
-                 "holdout", "shadow_catcher", "light_group", "cryptomatte", "core_ids")
+                 "holdout", "shadow_catcher", "light_group", "light_links", "cryptomatte",
+                 "core_ids")
 
     def __init__(self, name, mesh_key, table, instanced, info_of=None, duplis=False,
                  instancers=False, pass_index=0):
@@ -36,6 +37,7 @@ class Source:
         self.holdout = False          # a holdout object (holdouts.py), or its instancer is
         self.shadow_catcher = False   # a shadow catcher (holdouts.py), or its instancer is
         self.light_group = -1         # its light group (light_groups.py), -1: none
+        self.light_links = (0, 0, 0)  # its light linking sets and entry (light_linking.py)
         self.cryptomatte = -1         # its Cryptomatte entry (cryptomatte.py), -1: none
         self.core_ids = None          # after flush: int64 core instance id per add(), -1: none
         self.mesh_key = mesh_key      # (evaluated mesh pointer, needs UVs)
@@ -233,6 +235,8 @@ class InstanceExport:
                 self.scene.set_instance_shadow_catchers(ids, True)
             if src.light_group >= 0:
                 self.scene.set_instance_light_groups(ids, src.light_group)
+            if src.light_links != (0, 0, 0):
+                self.scene.set_instance_light_linking(ids, *src.light_links)
             if src.cryptomatte >= 0:
                 self.scene.set_instance_cryptomatte(ids, src.cryptomatte)
             start += len(m)

@@ -309,13 +309,14 @@ def mesh_materials(slots, materials):
 
 def add_world_mesh(tc_scene, name, local, matrix, slot_to_material, needs_uvs, reporter,
                    object_info=None, pass_index=0, holdout=False, shadow_catcher=False,
-                   light_group=-1, cryptomatte=-1, on_added=None):
+                   light_group=-1, cryptomatte=-1, on_added=None, light_links=(0, 0, 0)):
     """Adds a LocalMesh (or None) at `matrix` with add_mesh; returns the triangles added.
     object_info: the object's Object Info constants (mesh_attributes.object_info), if known;
     pass_index: the object's (the Object Index pass); holdout, shadow_catcher: it is a holdout,
     a shadow catcher (holdouts.py);
     light_group: its light group index (light_groups.py, -1: none); cryptomatte: its
-    Cryptomatte entry (cryptomatte.py, -1: none); on_added(mesh_id, triangles, keep): told the
+    Cryptomatte entry (cryptomatte.py, -1: none); light_links: its light linking sets and
+    entry (light_linking.py); on_added(mesh_id, triangles, keep): told the
     mesh's id, its triangles and kept-triangle mask (world_mesh's), e.g. for its motion."""
     if local is None:
         return 0
@@ -349,6 +350,8 @@ def add_world_mesh(tc_scene, name, local, matrix, slot_to_material, needs_uvs, r
         tc_scene.set_mesh_light_group(mesh_id, light_group)
     if cryptomatte >= 0:
         tc_scene.set_mesh_cryptomatte(mesh_id, cryptomatte)
+    if light_links != (0, 0, 0):
+        tc_scene.set_mesh_light_linking(mesh_id, *light_links)
     if on_added is not None:
         on_added(mesh_id, tris, keep)
     return len(tris)

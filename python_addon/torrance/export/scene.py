@@ -17,6 +17,7 @@ from .holdouts import (holdout_names, instance_holdout, instance_shadow_catcher,
 from .instances import InstanceExport, Source
 from .cryptomatte import CryptomatteIds
 from .light_groups import LightGroups
+from .light_linking import LightLinking
 from .lights import export_light
 from .mesh import MeshCache, add_world_mesh, mesh_materials
 from .mesh_attributes import dupli_record, instancer_record, object_info
@@ -201,6 +202,7 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre):
         export_world(tc_scene, depsgraph.scene.world, reporter, textures)
         groups = LightGroups(tc_scene, depsgraph.view_layer)
         crypto = CryptomatteIds(tc, tc_scene, depsgraph.view_layer)
+        links = LightLinking(tc_scene, depsgraph, reporter)
         if groups.of(depsgraph.scene.world) >= 0:
             tc_scene.set_world_light_group(groups.of(depsgraph.scene.world))
 
@@ -210,6 +212,8 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre):
                 return False
             if groups.of(obj) >= 0:
                 tc_scene.set_last_light_group(groups.of(obj))
+            if links and links.of(obj)[2]:
+                tc_scene.set_last_light_links(links.of(obj)[2])
             stats.lights += 1
             return True
 
@@ -243,6 +247,7 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre):
                         what.holdout = masks and key[2]
                         what.shadow_catcher = masks and key[3]
                         what.light_group = groups.of(obj)
+                        what.light_links = links.of(obj)
                         what.cryptomatte = crypto.entry(obj)
                 if what.__class__ is Source:
                     if moving_instances is not None:
@@ -276,12 +281,14 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre):
                         else None)
                 flattened.append((obj, obj.name, inst.matrix_world.copy(), slot_to_material,
                                   needs, info, obj.pass_index, obj.name_full in holdouts,
-                                  obj.name_full in catchers, groups.of(obj), crypto.entry(obj)))
+                                  obj.name_full in catchers, groups.of(obj), crypto.entry(obj),
+                                  links.of(obj)))
             elif role == 'MESH':
                 src = meshes.source(obj, obj.name, instanced=False)
                 src.holdout = obj.name_full in holdouts
                 src.shadow_catcher = obj.name_full in catchers
                 src.light_group = groups.of(obj)
+                src.light_links = links.of(obj)
                 src.cryptomatte = crypto.entry(obj)
                 src.add(inst.matrix_world)
                 meshes.defer(obj, src)          # an evaluated object: read after the pass
@@ -291,7 +298,7 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre):
     meshes.flush(stats)
     cache = MeshCache()
     for (obj, name, matrix, slot_to_material, needs_uvs, info, pass_index, holdout,
-         shadow_catcher, light_group, cryptomatte) in flattened:
+         shadow_catcher, light_group, cryptomatte, light_links) in flattened:
         poll()
         local = cache.get(obj, (obj.data.as_pointer(),), needs_uvs, reporter)
         on_added = None
@@ -303,7 +310,8 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre):
                                    reporter, object_info=info, pass_index=pass_index,
                                    holdout=holdout, shadow_catcher=shadow_catcher,
                                    light_group=light_group,
-                                   cryptomatte=cryptomatte, on_added=on_added)
+                                   cryptomatte=cryptomatte, on_added=on_added,
+                                   light_links=light_links)
         if triangles:
             stats.objects += 1
             stats.names.append(name)

@@ -17,6 +17,7 @@
 #pragma once
 
 #include "torrance/lights/environment.h"
+#include "torrance/lights/light_linking.h"
 #include "torrance/lights/lights_common.h"
 #include "torrance/lights/mesh_light.h"
 
@@ -174,6 +175,16 @@ class Lights {
     if (index < lights_.size()) return index < groups_.size() ? groups_[index] : -1;
     return mesh_ && index == lights_.size() ? ls.light_group : world_group_;
   }
+  // Light linking (light_linking.h): the emitter table's entries 1.. (empty: no linking), the
+  // entry of the light added last (0: unlinked), and the entry of NEE strategy `index`'s sample
+  // ls (an emissive triangle's object's; the world's is 0).
+  void set_link_table(const std::vector<EmitterLinks>& table) { links_.set(table); }
+  void set_last_light_links(int entry);
+  const LightLinks& links() const { return links_; }
+  uint8_t link_entry(size_t index, const LightSample& ls) const {
+    if (index < lights_.size()) return index < link_entries_.size() ? link_entries_[index] : 0;
+    return mesh_ && index == lights_.size() ? ls.emitter_links : 0;
+  }
   // Emissive triangles (replaces any previous set); nullopt removes them.
   void set_mesh_light(std::optional<MeshLight> emitters) { mesh_ = std::move(emitters); }
   // MIS density of NEE producing point q on emissive triangle `triangle` from (p, n).
@@ -219,10 +230,12 @@ class Lights {
   // world's node graph reads if the ray escaped. by_group (if given): each light's part is also
   // added to by_group[its light group] (light_group; none for lights of no group).
   // Lights nearer than t_min are left out (those the ray met before it passed a thin wall).
+  // receiver_set: p_prev's object's (light_linking.h): only lights lighting it count, and
+  // shadow-linked ones only after a delta lobe.
   Vec3 emission_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_min, float t_max, float bsdf_pdf,
                           bool bsdf_delta, bool two_sided = false, const LightChoice* prev_choice = nullptr,
                           const LightShare* share = nullptr, const PathState& escaped = {},
-                          Vec3* by_group = nullptr) const;
+                          Vec3* by_group = nullptr, uint8_t receiver_set = 0) const;
   // What a ray from p along dir sees of strategy `index` alone, unoccluded (its MIS density too).
   bool hit(size_t index, const Vec3& p, const Vec3& n, const Vec3& dir, LightHit& out) const;
   // Light tracing (caustics.h): whether light `index` can emit rays (a sun, point, spot or area
@@ -268,6 +281,8 @@ class Lights {
   std::vector<std::variant<SunLight, PointLight, AreaLight>> lights_;
   std::vector<std::shared_ptr<const EmissionShader>> shaders_;  // per light of lights_; null: none
   std::vector<int8_t> groups_;  // per light of lights_ (shorter: -1), its light group
+  std::vector<uint8_t> link_entries_;  // per light of lights_ (shorter: 0), its light linking entry
+  LightLinks links_;
   int8_t world_group_ = -1;
   std::optional<MeshLight> mesh_;
   WorldLight world_{Vec3(0.0f)};

@@ -15,6 +15,7 @@ struct LightSample {
   Vec3 weight{0.0f};                                        // Le / pdf (or irradiance for delta lights)
   float pdf = 0.0f;                                         // solid-angle density; 0 for delta lights
   int8_t light_group = -1;  // an emissive triangle's light group (extra_passes.h; Lights::light_group)
+  uint8_t emitter_links = 0;  // an emissive triangle's light linking entry (light_linking.h)
   bool valid() const { return weight.x > 0.0f || weight.y > 0.0f || weight.z > 0.0f; }
 };
 

@@ -22,6 +22,7 @@ struct EmissiveTriangle {
   uint32_t owner = 0, prim = 0;
   bool mirrored = false;
   int8_t light_group = -1;  // its object's (extra_passes.h), -1: none
+  uint8_t emitter_links = 0;  // its object's entry of the light linking table (light_linking.h)
   bool moving = false;      // motion blur: its corners above are the frame's (MeshLight::MovingTriangle)
 };
 

@@ -66,6 +66,9 @@ struct SurfaceHit {
   bool object_holdout = false;     // the object is a holdout (Scene::set_mesh_holdout)
   bool shadow_catcher = false;     // the object is a shadow catcher (Scene::set_mesh_shadow_catcher)
   int8_t light_group = -1;         // the object's light group (Scene::set_mesh_light_group), -1: none
+  // Light linking (lights/light_linking.h; Scene::set_mesh_light_linking): the object's receiver
+  // and blocker sets, and its entry of the emitter table (0: unlinked).
+  uint8_t receiver_set = 0, blocker_set = 0, emitter_links = 0;
   int32_t cryptomatte_object = -1;  // the object's Cryptomatte entry (Scene::set_mesh_cryptomatte), -1: none
   Vec3 tangent{0.0f};         // unit dP/du from the triangle's UVs (0 without usable UVs)
   float uv_per_metre = 0.0f;  // how fast UVs change across the triangle (sqrt of UV area / area)
@@ -342,6 +345,11 @@ class Scene final : public ShaderTracer {
   // a mesh from add_mesh, instances; group -1: none.
   void set_mesh_light_group(uint32_t mesh, int group);
   void set_instance_light_groups(const int64_t* ids, size_t count, int group);
+  // Light linking (lights/light_linking.h) of a mesh from add_mesh or of instances: its receiver
+  // set and blocker set (0..63) and, as an emitter, its entry of the Lights' table (0: unlinked).
+  void set_mesh_light_linking(uint32_t mesh, int receiver_set, int blocker_set, int emitter_entry);
+  void set_instance_light_linking(const int64_t* ids, size_t count, int receiver_set, int blocker_set,
+                                  int emitter_entry);
   // The view layer's shader AOVs and light groups, and the materials' AOV Output programs
   // (extra_passes.h). Set before a render.
   ExtraPasses& extra_passes() { return extra_passes_; }
