@@ -602,6 +602,28 @@ def _tent_instance_seen_at_its_apex(scene):
     return first, tc.RenderSettings(width=4, height=4, samples=1, max_bounces=0)
 
 
+def test_a_surface_behind_a_transparent_instance_has_no_instance_constants():
+    """The camera ray passes a fully transparent instance that has constants and stops at a plain
+    mesh behind it: the mesh's Attribute op reads 0 there, not the instance's layer (the hit is
+    the same object, intersected again: Scene::triangle_hit must write every field)."""
+    scene = tc.Scene()
+    scene.add_material(alpha=0.0)                      # 0: the instance, fully transparent
+    attribute_row = [100, 0, 0, 5, 0] + [-1] * 12    # register 0 = layer 5 at the hit
+    pid = scene.add_shader_program(np.zeros((0, 4), np.float32),
+                                   np.array([attribute_row], np.int32), 1)
+    scene.add_material(emission=(1, 1, 1), emission_strength=1.0, program=pid,
+                       emission_register=0)            # 1: the mesh behind
+    first, settings = _tent_instance_seen_at_its_apex(scene)
+    scene.set_instance_constants([first], np.array([5], np.int32),
+                                 np.array([[[0.25, 0.5, 0.75]]], np.float32))
+    behind = np.array([[-5, -5, -1], [5, -5, -1], [5, 5, -1], [-5, 5, -1]], np.float32)
+    scene.add_mesh(behind, np.array([[0, 1, 2], [0, 2, 3]], np.int32),
+                   material_indices=np.array([1, 1], np.int32))
+    image = tc.render(scene, settings).image
+    assert np.all(image[..., 3] == 1.0)                # the rays reached the mesh
+    assert np.abs(image[..., :3]).max() == 0.0
+
+
 def test_instance_transform_update_and_removal():
     scene = tc.Scene()
     scene.add_material(emission=(1, 1, 1), emission_strength=2.0)

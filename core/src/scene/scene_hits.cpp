@@ -29,8 +29,16 @@ bool Scene::surface_hit(const void* rayhit, const Vec3& dir, SurfaceHit& hit) co
   return true;
 }
 
+// Every field of the hit is written (those the triangle does not give, as a new SurfaceHit has
+// them): a ray that passes a surface (alpha, volume boundaries) is intersected again into the
+// same hit, and the surface behind must not keep the instance constants or the UV frame of the
+// one in front.
 void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const Vec3& dir, SurfaceHit& hit) const {
   Corners c;
+  hit.on_curve = false;
+  hit.instance_constants = nullptr;
+  hit.instance_constant_ids = nullptr;
+  hit.num_instance_constants = 0;
   const Mesh* hit_mesh = nullptr;
   bool mirrored = false;
   if (!(owner & kInstanceBit)) {
@@ -100,6 +108,7 @@ void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const 
   } else {
     hit.corner_attributes = nullptr;
     hit.attribute_ids = nullptr;
+    hit.corner_weights = Vec3(0.0f);
   }
   hit.position = w * p0 + u * p1 + v * p2;  // interpolated, more accurate than origin + t * dir
   hit.corners[0] = p0;
@@ -116,12 +125,15 @@ void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const 
     const Vec3 grad_u = glm::cross(p2 - p0, n), grad_v = glm::cross(n, p1 - p0);
     hit.weight_gradients[0] = mirrored ? grad_v : grad_u;
     hit.weight_gradients[1] = mirrored ? grad_u : grad_v;
+  } else {
+    hit.weight_gradients[0] = hit.weight_gradients[1] = Vec3(0.0f);
   }
   if (c.has_n) {
     const Vec3 n = w * c.n[0] + u * c.n[1] + v * c.n[2];
     const float len = glm::length(n);
     if (len > 1e-6f && std::isfinite(len)) hit.shading_normal = n / len;
   }
+  bool uv_frame = false;  // the tangent frame below was set
   if (c.has_uv) {
     const Vec2 &t0 = c.uv[0], &t1 = c.uv[1], &t2 = c.uv[2];
     hit.uv = w * t0 + u * t1 + v * t2;
@@ -138,12 +150,17 @@ void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const 
         hit.bitangent_sign = det > 0.0f ? 1.0f : -1.0f;
         hit.dpdu = dpdu;
         hit.dpdv = ((p2 - p0) * d1.x - (p1 - p0) * d2.x) / det;
+        uv_frame = true;
       }
     }
   } else {
     hit.uv = Vec2(0.0f);
-    hit.tangent = Vec3(0.0f);
     hit.uv_per_metre = 0.0f;
+  }
+  if (!uv_frame) {  // as a new SurfaceHit has it
+    hit.tangent = Vec3(0.0f);
+    hit.bitangent_sign = 1.0f;
+    hit.dpdu = hit.dpdv = Vec3(0.0f);
   }
 }
 
