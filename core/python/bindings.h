@@ -8,6 +8,7 @@
 
 #include <initializer_list>
 #include <string>
+#include <utility>
 
 namespace torrance::python {
 
@@ -64,6 +65,13 @@ py::array_t<T, py::array::c_style | py::array::forcecast> shaped_array(const py:
     throw py::value_error(std::string(name) + " must have shape " + want + "), got " + shape_string(a));
   }
   return a;
+}
+
+// Adds `f` as the method `name` of the already bound class `cls` (for bindings split over
+// several files, each adding its methods to Scene).
+template <typename F, typename... Extra>
+void add_method(py::object& cls, const char* name, F&& f, const Extra&... extra) {
+  cls.attr(name) = py::cpp_function(std::forward<F>(f), py::name(name), py::is_method(cls), extra...);
 }
 
 }  // namespace torrance::python

@@ -22,10 +22,7 @@ void init_cryptomatte(py::module_& m) {
       "(MurmurHash3_x86_32 of `name` (UTF-8) with seed 0, that hash as Cryptomatte's float id): the manifest "
       "holds the first as 8 hex digits, the passes the second.");
   py::object cls = m.attr("Scene");
-  auto method = [&](const char* name, auto f, auto... extra) {
-    cls.attr(name) = py::cpp_function(f, py::name(name), py::is_method(cls), extra...);
-  };
-  method(
+  add_method(cls,
       "set_cryptomatte",
       [](Scene& s, bool object, bool material, bool asset, int levels, std::vector<float> object_ids,
          std::vector<float> asset_ids, std::vector<float> material_ids) {
@@ -39,11 +36,11 @@ void init_cryptomatte(py::module_& m) {
       "The view layer's Cryptomatte layers and Levels, the ids (cryptomatte_hash's floats) of each object entry's "
       "object and asset, and of each material. The render's passes 'cryptomatte:CryptoObject00', ... (RGBA: id, "
       "coverage, id, coverage), as Cycles writes them.");
-  method(
+  add_method(cls,
       "set_mesh_cryptomatte",
       [](Scene& s, uint32_t mesh, int32_t entry) { s.set_mesh_cryptomatte(mesh, entry); }, py::arg("mesh"),
       py::arg("entry"), "A mesh's object (from add_mesh) is Cryptomatte object entry `entry` (-1: none).");
-  method(
+  add_method(cls,
       "set_instance_cryptomatte",
       [](Scene& s, const std::vector<int64_t>& ids, int32_t entry) {
         s.set_instance_cryptomatte(ids.data(), ids.size(), entry);

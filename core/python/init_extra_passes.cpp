@@ -14,10 +14,7 @@ namespace torrance::python {
 
 void init_extra_passes(py::module_& m) {
   py::object cls = m.attr("Scene");
-  auto method = [&](const char* name, auto f, auto... extra) {
-    cls.attr(name) = py::cpp_function(f, py::name(name), py::is_method(cls), extra...);
-  };
-  method(
+  add_method(cls,
       "set_aovs",
       [](Scene& s, const std::vector<std::pair<std::string, std::string>>& aovs) {
         std::vector<std::pair<std::string, bool>> parsed;
@@ -31,7 +28,7 @@ void init_extra_passes(py::module_& m) {
       "The view layer's shader AOVs: [(name, 'VALUE' | 'COLOR')]. Each is a render pass 'aov:<name>' (a value: 1 "
       "channel; a colour: RGBA, alpha the share of samples an AOV Output wrote), the per-sample mean of what the "
       "materials' AOV Output nodes add at the surfaces camera rays shade (as Cycles).");
-  method(
+  add_method(cls,
       "set_material_aovs",
       [](Scene& s, uint32_t material, int program, const std::vector<std::pair<int, int>>& writes) {
         if (material >= s.num_materials())
@@ -49,7 +46,7 @@ void init_extra_passes(py::module_& m) {
       py::arg("material"), py::arg("program"), py::arg("writes"),
       "Material `material`'s AOV Output nodes: shader program `program` (add_shader_program) computes their "
       "inputs; writes: [(aov index in set_aovs' list, register)] (x of a value AOV, xyz of a colour one).");
-  method(
+  add_method(cls,
       "set_light_groups",
       [](Scene& s, const std::vector<std::string>& names) { s.extra_passes().set_light_groups(names); },
       py::arg("names"),
@@ -57,7 +54,7 @@ void init_extra_passes(py::module_& m) {
       "emitters of that group (index in this list), as Combined holds it.");
   // The light added last's or the world's light group (Lights::set_last_light_group, set_world_group).
   auto light_group_method = [&](const char* name, void (Lights::*set)(int), const char* doc) {
-    method(
+    add_method(cls,
         name,
         [set](Scene& s, int group) {
           if (group < -1 || group >= s.extra_passes().num_light_groups())
@@ -70,10 +67,10 @@ void init_extra_passes(py::module_& m) {
                      "The light added last is in light group `group` (-1: none).");
   light_group_method("set_world_light_group", &Lights::set_world_group,
                      "The world is in light group `group` (-1: none).");
-  method(
+  add_method(cls,
       "set_mesh_light_group", [](Scene& s, uint32_t mesh, int group) { s.set_mesh_light_group(mesh, group); },
       py::arg("mesh"), py::arg("group"), "A mesh's object (from add_mesh) is in light group `group` (-1: none).");
-  method(
+  add_method(cls,
       "set_instance_light_groups",
       [](Scene& s, const std::vector<int64_t>& ids, int group) {
         s.set_instance_light_groups(ids.data(), ids.size(), group);

@@ -12,10 +12,7 @@ namespace torrance::python {
 
 void init_motion(py::module_& m) {
   py::object cls = m.attr("Scene");
-  auto method = [&](const char* name, auto f, auto... extra) {
-    cls.attr(name) = py::cpp_function(f, py::name(name), py::is_method(cls), extra...);
-  };
-  method(
+  add_method(cls,
       "set_mesh_motion",
       [](Scene& s, int64_t mesh, const py::object& positions, const py::object& corner_normals) {
         if (mesh < 0) throw py::value_error("mesh must be an id from add_mesh, got " + std::to_string(mesh));
@@ -45,7 +42,7 @@ void init_motion(py::module_& m) {
       "Motion blur: mesh `mesh` (an add_mesh id) moves through positions (S, N, 3), S >= 2 world-space "
       "time steps evenly over the shutter, with corner normals (S, 3T, 3) or None. ValueError for "
       "mismatched shapes or step counts, NaN/Inf.");
-  method(
+  add_method(cls,
       "set_instance_motion",
       [](Scene& s, const py::object& ids, const py::object& transforms) {
         const auto i = shaped_array<int64_t>(ids, "instance ids", {-1});
@@ -61,9 +58,9 @@ void init_motion(py::module_& m) {
       "an instance's motion). Returns how many of them keep their transform without motion: those with "
       "a step of (nearly) zero scale, which Embree could not trace. ValueError for removed or unknown "
       "ids, bad shapes, NaN/Inf.");
-  method("has_motion", [](const Scene& s) { return s.has_motion(); },
+  add_method(cls, "has_motion", [](const Scene& s) { return s.has_motion(); },
          "Whether some mesh or instance moves (set_mesh_motion, set_instance_motion).");
-  method(
+  add_method(cls,
       "set_camera_motion",
       [](Scene& s, const py::object& transforms) {
         const auto t = shaped_array<float>(transforms, "camera motion", {-1, 4, 4});
@@ -79,7 +76,7 @@ void init_motion(py::module_& m) {
       py::arg("transforms"),
       "Motion blur: the camera's camera-to-world matrices (S, 4, 4), S >= 2, evenly over the shutter (a "
       "later set_camera clears them). ValueError for a bad shape, NaN/Inf or a zero axis.");
-  method(
+  add_method(cls,
       "set_shutter",
       [](Scene& s, const py::object& table, const py::object& rolling_shutter_duration) {
         CameraParams c = s.camera();
