@@ -43,33 +43,11 @@ import numpy as np
 
 from torrance_tools import scene as make
 from torrance_tools import testing
+from torrance_tools.animation import linear_keys, make_linear
 from torrance_tools.seed_noise import agree_within_seed_noise
 
 W, H = 96, 72
 SAMPLES = 32
-
-
-def action_fcurves(action):
-    """An action's F-curves: Action.fcurves up to Blender 4.x, the layered action's channel
-    bags' in 5.x."""
-    if hasattr(action, "fcurves"):
-        return list(action.fcurves)
-    return [fc for layer in action.layers for strip in layer.strips
-            for bag in strip.channelbags for fc in bag.fcurves]
-
-
-def make_linear(owner):
-    for fc in action_fcurves(owner.animation_data.action):
-        for key in fc.keyframe_points:
-            key.interpolation = 'LINEAR'
-
-
-def linear_keys(obj, path, values, frames=(0, 2)):
-    """Keys obj.<path> to values at frames, linearly interpolated."""
-    for value, frame in zip(values, frames, strict=True):
-        setattr(obj, path, value)
-        obj.keyframe_insert(path, frame=frame)
-    make_linear(obj)
 
 
 def set_position(scene, position):

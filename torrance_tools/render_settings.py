@@ -157,16 +157,46 @@ def cycles_denoising(scene):
         layer.cycles.use_denoising = True
 
 
-def render_exr(scene, path, color_mode='RGBA'):
-    """Renders the scene with its engine into a 32-bit ZIP EXR at `path`; returns the seconds of
-    bpy.ops.render.render (scene sync/export + render)."""
+def _exr_output(scene, color_mode):
     settings = scene.render.image_settings
     settings.file_format = 'OPEN_EXR'
     settings.color_depth = '32'
     settings.exr_codec = 'ZIP'
     settings.color_mode = color_mode
+    return settings
+
+
+def render_exr(scene, path, color_mode='RGBA'):
+    """Renders the scene with its engine into a 32-bit ZIP EXR at `path`; returns the seconds of
+    bpy.ops.render.render (scene sync/export + render)."""
+    _exr_output(scene, color_mode)
     t0 = time.perf_counter()
     bpy.ops.render.render(write_still=False)
     seconds = time.perf_counter() - t0
     bpy.data.images["Render Result"].save_render(path, scene=scene)
     return seconds
+
+
+def rendered_views(scene):
+    """The views a Multi-View render of the scene holds, in Blender's order: Stereo 3D's left and
+    right, or Multi-View's enabled views."""
+    rd = scene.render
+    return [v for v in rd.views
+            if v.use and (rd.views_format == 'MULTIVIEW' or v.name in ('left', 'right'))]
+
+
+def render_exr_views(scene, stem, color_mode='RGBA'):
+    """Renders a Multi-View scene, each view into a 32-bit ZIP EXR that Blender names stem + the
+    view's file suffix + ".exr" (the Render Result of several views can not be saved as one).
+    Returns (seconds of bpy.ops.render.render, the views' paths in the result's order)."""
+    settings = _exr_output(scene, color_mode)
+    settings.views_format = 'INDIVIDUAL'
+    rd = scene.render
+    filepath, rd.filepath = rd.filepath, stem
+    try:
+        t0 = time.perf_counter()
+        bpy.ops.render.render(write_still=True)
+        seconds = time.perf_counter() - t0
+    finally:
+        rd.filepath = filepath
+    return seconds, [stem + v.file_suffix + ".exr" for v in rendered_views(scene)]

@@ -15,11 +15,14 @@ import tempfile
 import time
 import traceback
 
+import numpy as np
+
 from torrance_tools import scene as make
 from torrance_tools.addon_access import addon, core, last_messages  # noqa: F401 (for the tests)
 from torrance_tools.compare import read_exr
 from torrance_tools.memory import rss_mb  # noqa: F401 (for the tests)
-from torrance_tools.render_settings import plain_output, render_exr, torrance_settings
+from torrance_tools.render_settings import (plain_output, render_exr, render_exr_views,
+                                             torrance_settings)
 from torrance_tools.scene import mesh_object, sphere_object  # noqa: F401 (for the tests)
 
 
@@ -146,7 +149,11 @@ def chrome_and_matte(scene):
 
 def render(scene, directory, name="render"):
     """Renders the scene with its engine; returns (float32 (H, W, 4) linear RGBA, row 0 = TOP,
-    seconds). The result goes through a 32-bit EXR (compare.read_exr)."""
+    seconds). The result goes through a 32-bit EXR (compare.read_exr). Multi-View: the views
+    side by side (H, views x W, 4), in the result's order (left, right)."""
+    if scene.render.use_multiview:
+        seconds, paths = render_exr_views(scene, os.path.join(directory, name))
+        return np.concatenate([read_exr(p) for p in paths], axis=1), seconds
     path = os.path.join(directory, name + ".exr")
     seconds = render_exr(scene, path, 'RGBA')
     return read_exr(path), seconds

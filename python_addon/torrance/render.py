@@ -6,7 +6,7 @@ import traceback
 
 import numpy as np
 
-from . import blender_versions, denoising, export, passes, preview
+from . import blender_versions, denoising, export, multiview, passes, preview
 from .brdf_model import model_note
 from .core_module import CoreMissing, load_core
 from .core_settings import core_settings
@@ -66,6 +66,12 @@ class _Session:
         self.last_samples = 0
         self.passes = 0
         self.missing_passes = []
+        self.view = ""             # the result's view being rendered (Multi-View), "" without
+        self.view_index, self.view_count = 0, 1
+
+    def progress(self, fraction):
+        """Reports `fraction` of the current view's render as the whole render's progress."""
+        self.engine.update_progress((self.view_index + fraction) / self.view_count)
 
     # -- pixels --------------------------------------------------------------------------
     def _window_pixels(self, image, channels=4):
@@ -92,7 +98,8 @@ class _Session:
         return win.reshape(-1) if _rect_is_flat() else win.reshape(-1, channels)
 
     def begin(self):
-        self.result = self.engine.begin_result(0, 0, self.w, self.h, layer=self.layer_name)
+        self.result = self.engine.begin_result(0, 0, self.w, self.h, layer=self.layer_name,
+                                               view=self.view)
 
     def write(self, image, extra_passes=None):
         """Writes Combined and, given {tc name: array}, the other passes into the result."""
@@ -128,7 +135,7 @@ class _Session:
             if self.progressive and samples_done < samples_total:
                 self.write(image)
             elapsed = time.perf_counter() - self.t0
-            self.engine.update_progress(samples_done / max(1, samples_total))
+            self.progress(samples_done / max(1, samples_total))
             self.engine.update_stats("", f"Torrance | Sample {samples_done}/{samples_total} | "
                                          f"Time {_format_time(elapsed)}")
         except Exception as exc:            # never let an exception into the core
@@ -183,6 +190,8 @@ def _render(engine, depsgraph, reporter):
         return
 
     tc = load_core()
+    views = multiview.render_views(engine, depsgraph.view_layer.name)
+    multiview.activate(engine, views[0])
     engine.update_stats("", "Torrance | Exporting scene")
     session = _Session(engine, depsgraph.view_layer.name, window, (width, height),
                        bool(ts.use_progressive_display))
@@ -238,42 +247,20 @@ def _render(engine, depsgraph, reporter):
     if denoise:     # the film whose noise the denoiser handles best (measured: denoising.py)
         settings.filter_splatting = denoising.splatting_when_denoised(settings)
 
-    session.begin()
-    try:
-        session.t0 = time.perf_counter()
-        result = tc.render(tc_scene, settings, on_pass=session.on_pass,
-                           should_stop=session.should_stop)
-        if session.callback_error is not None:
-            raise RuntimeError(f"while showing the render: {session.callback_error}")
-        image = np.asarray(result.image)
-        nonfinite = int(image.size - np.count_nonzero(np.isfinite(image)))
-        last_stats["nonfinite_pixels"] = nonfinite
-        if nonfinite:
-            reporter.warning(f"Torrance: {nonfinite} NaN/Inf pixel values in the result "
-                             f"were replaced by 0")
-        noisy = image
-        if denoise and not engine.test_break():
-            engine.update_stats("", "Torrance | Denoising")
-
-            def progress(done):
-                engine.update_progress(0.99 * done)
-                return not engine.test_break()
-            image, denoise = denoising.denoise_image(tc, image, result.passes, ts, reporter,
-                                                     progress)
-        extra = {core for core, *_ in passes.extra_passes(view_layer)}
-        written = {k: v for k, v in result.passes.items() if k in core_passes or k in extra}
-        if keep_noisy:
-            written[passes.NOISY_IMAGE] = noisy
-        session.write(image, written)
-        if stats.cryptomatte:     # the manifests, as Cycles stamps them: on the whole result
-            full = engine.get_result()
-            for key, value in stats.cryptomatte.items():
-                full.stamp_data_add_field(key, value)
-        if session.missing_passes:
-            reporter.warning(f"Torrance: the render result has no pass(es) "
-                             f"{', '.join(session.missing_passes)}; they were not written")
-    finally:
-        session.end()
+    multiview.report_differences(depsgraph, engine, views, reporter)
+    cameras = multiview.ViewCameras(tc_scene, depsgraph, engine, reporter, stats) \
+        if len(views) > 1 else None
+    session.view_count = len(views)
+    for index, view in enumerate(views):
+        if index:
+            cameras.set_view(view)
+        session.view, session.view_index = view, index
+        result, denoise = _render_view(tc, tc_scene, settings, session, reporter, ts, denoise,
+                                       keep_noisy, core_passes, view_layer,
+                                       stats.cryptomatte if index == 0 else None)
+        if result.stopped or session.stop_requested:
+            break
+    last_stats["views"] = list(views)
 
     msg = (f"Torrance | {result.samples_done}/{ts.samples} samples | "
            f"Time {_format_time(result.seconds)}")
@@ -315,3 +302,47 @@ def _render(engine, depsgraph, reporter):
     last_stats["nonfinite_samples"] = nonfinite
     if nonfinite:
         reporter.warning(f"Torrance discarded {nonfinite} NaN/Inf samples")
+
+
+def _render_view(tc, tc_scene, settings, session, reporter, ts, denoise, keep_noisy, core_passes,
+                 view_layer, cryptomatte):
+    """Renders the scene into session.view of the result: the core's render, the denoiser, the
+    passes and (given) the Cryptomatte manifests. Returns (core result, whether it denoised)."""
+    engine = session.engine
+    session.begin()
+    try:
+        session.t0 = time.perf_counter()
+        result = tc.render(tc_scene, settings, on_pass=session.on_pass,
+                           should_stop=session.should_stop)
+        if session.callback_error is not None:
+            raise RuntimeError(f"while showing the render: {session.callback_error}")
+        image = np.asarray(result.image)
+        nonfinite = int(image.size - np.count_nonzero(np.isfinite(image)))
+        last_stats["nonfinite_pixels"] = nonfinite
+        if nonfinite:
+            reporter.warning(f"Torrance: {nonfinite} NaN/Inf pixel values in the result "
+                             f"were replaced by 0")
+        noisy = image
+        if denoise and not engine.test_break():
+            engine.update_stats("", "Torrance | Denoising")
+
+            def progress(done):
+                session.progress(0.99 * done)
+                return not engine.test_break()
+            image, denoise = denoising.denoise_image(tc, image, result.passes, ts, reporter,
+                                                     progress)
+        extra = {core for core, *_ in passes.extra_passes(view_layer)}
+        written = {k: v for k, v in result.passes.items() if k in core_passes or k in extra}
+        if keep_noisy:
+            written[passes.NOISY_IMAGE] = noisy
+        session.write(image, written)
+        if cryptomatte:     # the manifests, as Cycles stamps them: on the whole result
+            full = engine.get_result()
+            for key, value in cryptomatte.items():
+                full.stamp_data_add_field(key, value)
+        if session.missing_passes:
+            reporter.warning(f"Torrance: the render result has no pass(es) "
+                             f"{', '.join(session.missing_passes)}; they were not written")
+    finally:
+        session.end()
+    return result, denoise

@@ -24,23 +24,25 @@ def focus_distance(cam_obj):
     return float(abs(np.dot(axis / n, m[:3, 3] - t[:3, 3])))
 
 
-def camera_arguments(cam_obj, render=None, viewplane=(0.0, 1.0, 0.0, 1.0)):
+def camera_arguments(cam_obj, render=None, viewplane=(0.0, 1.0, 0.0, 1.0), shift_x=None):
     """The keyword arguments of tc.Scene.set_camera for a camera object, except the matrix, and
     its type: 'PERSP', 'ORTHO', 'PANO', or None when Torrance can't render it (a panorama type
     the core lacks: rendered as perspective). A panoramic camera needs the render settings
     (its fisheyes' sensor fits the render's size; without them it is 'PERSP'); viewplane: its
-    frame's part of the panorama (panorama.panorama_settings)."""
+    frame's part of the panorama (panorama.panorama_settings); shift_x: the view's horizontal
+    shift (RenderEngine.camera_shift_x: a stereo view's off-axis shift), default the camera's."""
     cam = cam_obj.data
+    shift_x = float(cam.shift_x) if shift_x is None else float(shift_x)
     kind = cam.type if cam.type in ('PERSP', 'ORTHO') else None
     panorama = None
     if cam.type == 'PANO' and render is not None:
-        panorama = panorama_settings(cam, render, viewplane)
+        panorama = panorama_settings(cam, render, viewplane, shift_x)
         kind = 'PANO' if panorama is not None else None
     elif cam.type == 'PANO':
         kind = 'PERSP'
     args = dict(lens=float(cam.lens), sensor_width=float(cam.sensor_width),
                 sensor_height=float(cam.sensor_height), sensor_fit=cam.sensor_fit,
-                shift_x=float(cam.shift_x), shift_y=float(cam.shift_y),
+                shift_x=shift_x, shift_y=float(cam.shift_y),
                 clip_start=float(cam.clip_start), clip_end=float(cam.clip_end),
                 type=kind or 'PERSP', ortho_scale=float(cam.ortho_scale))
     if panorama is not None:
@@ -56,12 +58,26 @@ def camera_arguments(cam_obj, render=None, viewplane=(0.0, 1.0, 0.0, 1.0)):
 
 def export_camera(tc_scene, cam_obj, reporter, engine=None, render=None):
     """Sets tc_scene's camera from cam_obj under render settings `render` (a panoramic camera
-    without them renders as perspective)."""
-    args, kind = camera_arguments(cam_obj, render)
+    without them renders as perspective). With an engine, the camera of its active view (Multi-View:
+    camera_model_matrix and camera_shift_x place a stereo eye, as Cycles syncs it)."""
+    shift_x = None
+    if engine is not None:
+        try:
+            shift_x = engine.camera_shift_x(cam_obj, use_spherical_stereo=False)
+        except Exception:
+            shift_x = None
+    args, kind = camera_arguments(cam_obj, render, shift_x=shift_x)
     if kind is None:
         reporter.warning(f"Camera '{cam_obj.name}': Torrance does not render the "
                          f"{panorama_type(cam_obj.data)} panorama; rendering with a "
                          f"perspective camera of the same lens")
+    tc_scene.set_camera(matrix=camera_matrix(engine, cam_obj), **args)
+
+
+def camera_matrix(engine, cam_obj):
+    """The camera-to-world matrix (4x4 float64) of cam_obj as the engine's active view sees it
+    (RenderEngine.camera_model_matrix: a stereo eye's place; the object's matrix without an
+    engine)."""
     matrix = None
     if engine is not None:
         try:
@@ -70,5 +86,4 @@ def export_camera(tc_scene, cam_obj, reporter, engine=None, render=None):
             matrix = None
     if matrix is None:
         matrix = cam_obj.matrix_world
-    m = np.array(matrix, dtype=np.float64).reshape(4, 4)
-    tc_scene.set_camera(matrix=m, **args)
+    return np.array(matrix, dtype=np.float64).reshape(4, 4)

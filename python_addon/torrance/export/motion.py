@@ -12,6 +12,7 @@ from contextlib import contextmanager
 
 import numpy as np
 
+from .camera import camera_matrix
 from .mesh import MeshCache, world_mesh
 from .shutter import export_shutter
 
@@ -168,10 +169,10 @@ class MotionSampler:
             obj = self.depsgraph.objects.get(name)
             if obj is None:
                 continue
-            matrix = obj.matrix_world
             if name == self.camera:           # as export_camera reads it
-                matrix = self.engine.camera_model_matrix(obj, use_spherical_stereo=False)
-            matrix = np.array(matrix, dtype=np.float64).reshape(4, 4)
+                matrix = camera_matrix(self.engine, obj)
+            else:
+                matrix = np.array(obj.matrix_world, dtype=np.float64).reshape(4, 4)
             local = None
             if deform and obj.type == 'MESH' and obj.data is not None:
                 local = cache.get(obj, (name,), needs, self.reporter)

@@ -31,17 +31,19 @@ def fitted_sensor(cam, render):
     return float(size * xr / yr), float(size)
 
 
-def panorama_settings(cam, render, viewplane=(0.0, 1.0, 0.0, 1.0)):
+def panorama_settings(cam, render, viewplane=(0.0, 1.0, 0.0, 1.0), shift_x=None):
     """The set_camera `panorama` dict of camera data `cam` (type PANO) under render settings
     `render`; None when its type is not rendered. viewplane: the frame's part of the panorama
-    before the shift, which moves it by (shift_x, shift_y) in Cycles 3.x and later."""
+    before the shift, which moves it by (shift_x, shift_y) in Cycles 3.x and later; shift_x:
+    the view's (a stereo eye's), default the camera's."""
     owner = panorama_owner(cam)
     kind = panorama_type(cam)
     if kind not in RENDERED_TYPES:
         return None
     width, height = fitted_sensor(cam, render)
     left, right, bottom, top = viewplane
-    sx, sy = float(cam.shift_x), float(cam.shift_y)
+    sx = float(cam.shift_x) if shift_x is None else float(shift_x)
+    sy = float(cam.shift_y)
     extra = {}
     if kind == 'CENTRAL_CYLINDRICAL':       # heights over the radius, as Cycles syncs them
         radius = float(owner.central_cylindrical_radius)

@@ -52,6 +52,8 @@ class ExportStats:
         self.capture_seconds = 0.0   # the pass over the depsgraph (see export_scene)
         self.names = []          # exported mesh objects, one entry per instance
         self.cryptomatte = {}    # the render result's Cryptomatte metadata (cryptomatte.py)
+        self.motion_blur = False     # the shutter was given to the core (export/shutter.py)
+        self.camera_motion = None    # the camera's matrices over the shutter, when it moves
 
     def __str__(self):
         return (f"{self.objects} objects, {self.triangles} triangles, {self.strands} strands, "
@@ -116,7 +118,9 @@ def _keep_gil():
         sys.setswitchinterval(interval)
 
 
-def _camera_object(depsgraph, engine):
+def camera_object(depsgraph, engine):
+    """The render's camera: engine.camera_override (Multi-View: the active view's camera) or the
+    scene camera, evaluated; ValueError when there is none."""
     cam_obj = getattr(engine, "camera_override", None) if engine is not None else None
     if cam_obj is None:
         cam_obj = depsgraph.scene.camera
@@ -197,7 +201,7 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre):
         return role
 
     with _keep_gil():
-        export_camera(tc_scene, _camera_object(depsgraph, engine), reporter, engine,
+        export_camera(tc_scene, camera_object(depsgraph, engine), reporter, engine,
                       depsgraph.scene.render)
         export_world(tc_scene, depsgraph.scene.world, reporter, textures)
         groups = LightGroups(tc_scene, depsgraph.view_layer)
@@ -317,7 +321,9 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre):
             stats.names.append(name)
             stats.triangles += triangles
     if motion is not None:
-        motion.export(tc_scene, _camera_object(depsgraph, engine))
+        motion.export(tc_scene, camera_object(depsgraph, engine))
+        stats.motion_blur = True
+        stats.camera_motion = motion.camera_matrices()
     stats.strands = strands.export_hair(tc_scene, hair, materials, reporter,
                                         strands.curve_shape(depsgraph.scene))
     materials.send_pass_indices()

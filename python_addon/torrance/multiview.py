@@ -1,0 +1,88 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Multi-View (Output Properties > Stereoscopy) in a final render, as Cycles renders it.
+
+Blender's render result holds one view per eye (Stereo 3D: left and right) or per enabled view
+(Multi-View: each its camera by suffix). As Cycles' render loop does, a render asks the result
+which views it holds, makes each the engine's active view in turn - so that camera_override,
+camera_model_matrix and camera_shift_x answer for that view: a stereo eye's offset, toe-in and
+off-axis shift, or a Multi-View view's own camera - and renders it into that view of the result.
+The scene is exported once; only the camera changes between views.
+"""
+
+import numpy as np
+
+from .export.camera import camera_matrix, export_camera
+from .export.panorama import panorama_type
+from .export.scene import camera_object
+from .export.shutter import export_shutter
+from .matrices import inverse
+
+
+def render_views(engine, layer_name):
+    """The names of the views the render result of view layer `layer_name` holds, in its order
+    ([""] for a render without Multi-View), from a probe result that is discarded."""
+    probe = engine.begin_result(0, 0, 1, 1, layer=layer_name)
+    try:
+        names = [view.name for view in probe.views]
+    finally:
+        engine.end_result(probe, cancel=True)
+    return names or [""]
+
+
+def activate(engine, view):
+    """Makes `view` the engine's active view (nothing for the single unnamed view)."""
+    if view:
+        engine.active_view_set(view)
+
+
+def report_differences(depsgraph, engine, views, reporter):
+    """Says what a Multi-View render does not do as Cycles does."""
+    if len(views) < 2:
+        return
+    cam_obj = camera_object(depsgraph, engine)
+    if cam_obj.data.type == 'PANO':
+        reporter.warning(f"Camera '{cam_obj.name}': Torrance renders each stereo view of the "
+                         f"{panorama_type(cam_obj.data)} panorama from its eye's position "
+                         f"(Cycles' spherical stereo turns the eyes with each direction)")
+
+
+class ViewCameras:
+    """The camera of each view after the first, given the exported scene's state.
+
+    export_scene set the first view's camera (and, with motion blur, its motion and the
+    shutter). set_camera clears both, so a later view sets its camera and gives back the
+    shutter, and the motion moved by that view's offset from the first view (a stereo eye sits
+    at a fixed place in the camera's frame: left-multiplying by the first eye's inverse gives it).
+    """
+
+    def __init__(self, tc_scene, depsgraph, engine, reporter, stats):
+        self.tc_scene = tc_scene
+        self.depsgraph = depsgraph
+        self.engine = engine
+        self.reporter = reporter
+        self.stats = stats
+        first = camera_object(depsgraph, engine)
+        self.first_camera = first.name
+        self.first_matrix = camera_matrix(engine, first)
+
+    def set_view(self, view):
+        """Activates `view` and sets its camera in the scene."""
+        activate(self.engine, view)
+        cam_obj = camera_object(self.depsgraph, self.engine)
+        export_camera(self.tc_scene, cam_obj, self.reporter, self.engine,
+                      self.depsgraph.scene.render)
+        if self.stats.camera_motion is not None:
+            if cam_obj.name == self.first_camera:
+                self.tc_scene.set_camera_motion(self.motion(cam_obj))
+            else:
+                self.reporter.warning(f"Multi-View: view '{view}' (camera '{cam_obj.name}') is "
+                                      f"rendered without camera motion blur")
+        if self.stats.motion_blur:
+            export_shutter(self.tc_scene, self.depsgraph.scene, self.reporter)
+
+    def motion(self, cam_obj):
+        """The first view's camera motion moved to the active view's eye of the same camera."""
+        # einsum, not @: no BLAS call at export time (matrices.py says why)
+        offset = np.einsum('ij,jk->ik', inverse(self.first_matrix),
+                           camera_matrix(self.engine, cam_obj))
+        return np.einsum('sij,jk->sik', self.stats.camera_motion, offset)
