@@ -15,6 +15,10 @@ and 3 must lie within them, and each deliberate fault must fail them:
   left eye's motion.
 * Multi-View with a camera per view (suffixes _L and _R; the right camera higher and turned):
   every view from the scene camera.
+* Spherical Stereo (each ray's own eye, Cycles' spherical stereo) of the perspective camera,
+  converging at 3 m: the eyes ignored (both views the centre camera's); the eyes swapped.
+* Spherical Stereo of an equirectangular panorama with Pole Merge (60..75 degrees), the eyes
+  0.6 m apart: the eyes ignored; the pole merge ignored.
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \\
          --python blender_tests/test_stereo_agreement.py
@@ -74,15 +78,35 @@ def camera(scene, name, location, turn=0.0):
     return ob
 
 
-def stereo(mode):
+def stereo(mode, spherical=False):
     def setup(scene):
         scene.render.views_format = 'STEREO_3D'
         scene.render.use_motion_blur = False
+        scene.render.resolution_x, scene.render.resolution_y = 64, 48
         cam_obj = scene.camera
-        cam_obj.data.stereo.convergence_mode = mode
+        cam = cam_obj.data
+        cam.type = 'PERSP'
+        cam.stereo.convergence_mode = mode
+        cam.stereo.use_spherical_stereo = spherical
+        cam.stereo.use_pole_merge = False
+        cam.stereo.interocular_distance = 0.3
         cam_obj.animation_data_clear()
         cam_obj.location = (0.0, -6.0, 1.6)
     return setup
+
+
+def spherical_panorama(scene):
+    """An equirectangular panorama (96x48) with spherical stereo and Pole Merge."""
+    from torrance.export.panorama import panorama_owner
+    stereo('OFFAXIS', spherical=True)(scene)
+    scene.render.resolution_x, scene.render.resolution_y = 96, 48
+    cam = scene.camera.data
+    cam.type = 'PANO'
+    panorama_owner(cam).panorama_type = 'EQUIRECTANGULAR'
+    cam.stereo.interocular_distance = 0.6
+    cam.stereo.use_pole_merge = True
+    cam.stereo.pole_merge_angle_from = math.radians(60.0)
+    cam.stereo.pole_merge_angle_to = math.radians(75.0)
 
 
 def moving_camera(scene):
@@ -123,10 +147,33 @@ def scene_camera_only(_original):
     return faulty
 
 
+def no_eye(_original):
+    return lambda cam, view: None
+
+
+def eyes_swapped(original):
+    return lambda cam, view: original(cam, {"left": "right", "right": "left"}.get(view, view))
+
+
+def no_pole_merge(original):
+    def faulty(cam, view):
+        eye = original(cam, view)
+        if eye is not None:
+            eye["pole_merge_from"] = eye["pole_merge_to"] = -1.0
+        return eye
+    return faulty
+
+
 def variants():
     import torrance.export.camera as camera_module
     import torrance.multiview as multiview
     return (
+        ("Spherical Stereo, perspective", stereo('OFFAXIS', spherical=True),
+         (("eyes ignored", camera_module, "stereo_eye", no_eye),
+          ("eyes swapped", camera_module, "stereo_eye", eyes_swapped))),
+        ("Spherical Stereo, equirectangular, pole merge", spherical_panorama,
+         (("eyes ignored", camera_module, "stereo_eye", no_eye),
+          ("pole merge ignored", camera_module, "stereo_eye", no_pole_merge))),
         ("Stereo 3D, Off-Axis", stereo('OFFAXIS'),
          (("views never active", multiview, "activate", never_active),
           ("off-axis shift ignored", camera_module, "camera_arguments", shift_ignored))),

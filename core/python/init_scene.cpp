@@ -160,6 +160,21 @@ PanoramaParams parse_panorama(const py::dict& d) {
   return p;
 }
 
+// set_camera's `stereo` dict (keys as SphericalStereo's); unknown keys are an error.
+SphericalStereo parse_stereo(const py::dict& d) {
+  SphericalStereo st;
+  for (const auto& item : d) {
+    const std::string key = py::cast<std::string>(item.first);
+    const float v = py::cast<float>(item.second);
+    if (key == "eye_offset") st.eye_offset = v;
+    else if (key == "convergence_distance") st.convergence_distance = v;
+    else if (key == "pole_merge_from") st.pole_merge_from = v;
+    else if (key == "pole_merge_to") st.pole_merge_to = v;
+    else throw py::value_error("unknown stereo setting '" + key + "'");
+  }
+  return st;
+}
+
 }  // namespace
 
 void init_scene(py::module_& m) {
@@ -653,7 +668,7 @@ void init_scene(py::module_& m) {
              const std::string& sensor_fit, float shift_x, float shift_y, float clip_start, float clip_end,
              const std::string& type, float ortho_scale, std::optional<float> fstop,
              std::optional<float> aperture_radius, float focus_distance, int blades, float rotation, float ratio,
-             std::optional<py::dict> panorama) {
+             std::optional<py::dict> panorama, std::optional<py::dict> stereo) {
             const FloatArray mat = FloatArray::ensure(numeric_array(matrix, "camera matrix", sizeof(float)));
             if (!mat || mat.size() != 16) throw py::value_error("camera matrix must be a 4x4 array");
             CameraParams c;
@@ -665,6 +680,7 @@ void init_scene(py::module_& m) {
             if (panorama && c.type != CameraType::Panoramic)
               throw py::value_error("panorama settings are for type 'PANO' only");
             if (panorama) c.panorama = parse_panorama(*panorama);
+            if (stereo) c.stereo = parse_stereo(*stereo);
             c.lens_mm = lens;
             c.ortho_scale = ortho_scale;
             c.sensor_width_mm = sensor_width;
@@ -690,13 +706,16 @@ void init_scene(py::module_& m) {
           py::kw_only(), py::arg("type") = "PERSP", py::arg("ortho_scale") = 6.0f, py::arg("fstop") = py::none(),
           py::arg("aperture_radius") = py::none(), py::arg("focus_distance") = 10.0f, py::arg("blades") = 0,
           py::arg("rotation") = 0.0f, py::arg("ratio") = 1.0f, py::arg("panorama") = py::none(),
+          py::arg("stereo") = py::none(),
           "Blender camera, PERSP, ORTHO or PANO; matrix is camera-to-world (row-major, like matrix_world). "
           "PANO: panorama is a dict of type (Blender's panorama_type), fisheye_fov, fisheye_lens, "
           "latitude_min/max, longitude_min/max (radians), polynomial (k0..k4), cylinder (Central Cylindrical's "
           "u_min, u_max, v_min / radius, v_max / radius), sensor_width/height (the "
           "fitted sensor, mm), viewplane (left, right, bottom, top; default 0, 1, 0, 1, shift included). "
           "Depth of field: fstop (Blender's F-Stop, converted like Cycles) or aperture_radius (scene "
-          "units), focus_distance, blades (< 3: round), rotation (radians), ratio (anamorphic).")
+          "units), focus_distance, blades (< 3: round), rotation (radians), ratio (anamorphic). "
+          "stereo (Spherical Stereo's eye, PERSP and PANO): a dict of eye_offset (left -interocular/2, right "
+          "+interocular/2), convergence_distance (inf: parallel), pole_merge_from/to (radians; to <= 0: off).")
       .def_property_readonly("num_triangles", &Scene::num_triangles)
       .def_property_readonly("num_materials", &Scene::num_materials)
       .def_property_readonly("num_textures", &Scene::num_textures)

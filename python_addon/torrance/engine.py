@@ -14,6 +14,7 @@ class TorranceRenderEngine(bpy.types.RenderEngine):
     bl_use_postprocess = True         # compositing and sequencer run on our results
     bl_use_shading_nodes_custom = False   # Blender's shader nodes are our materials
     bl_use_eevee_viewport = True      # Material Preview shading in the viewport uses EEVEE
+    bl_use_spherical_stereo = True    # Stereoscopy's Spherical Stereo: the core places each eye
 
     def render(self, depsgraph):
         render.render(self, depsgraph)

@@ -12,7 +12,6 @@ The scene is exported once; only the camera changes between views.
 import numpy as np
 
 from .export.camera import camera_matrix, export_camera
-from .export.panorama import panorama_type
 from .export.scene import camera_object
 from .export.shutter import export_shutter
 from .matrices import inverse
@@ -33,17 +32,6 @@ def activate(engine, view):
     """Makes `view` the engine's active view (nothing for the single unnamed view)."""
     if view:
         engine.active_view_set(view)
-
-
-def report_differences(depsgraph, engine, views, reporter):
-    """Says what a Multi-View render does not do as Cycles does."""
-    if len(views) < 2:
-        return
-    cam_obj = camera_object(depsgraph, engine)
-    if cam_obj.data.type == 'PANO':
-        reporter.warning(f"Camera '{cam_obj.name}': Torrance renders each stereo view of the "
-                         f"{panorama_type(cam_obj.data)} panorama from its eye's position "
-                         f"(Cycles' spherical stereo turns the eyes with each direction)")
 
 
 class ViewCameras:

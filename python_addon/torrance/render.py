@@ -247,7 +247,6 @@ def _render(engine, depsgraph, reporter):
     if denoise:     # the film whose noise the denoiser handles best (measured: denoising.py)
         settings.filter_splatting = denoising.splatting_when_denoised(settings)
 
-    multiview.report_differences(depsgraph, engine, views, reporter)
     cameras = multiview.ViewCameras(tc_scene, depsgraph, engine, reporter, stats) \
         if len(views) > 1 else None
     session.view_count = len(views)

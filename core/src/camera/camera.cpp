@@ -44,6 +44,7 @@ Camera::Camera(const CameraParams& p, int width, int height, float pixel_aspect_
       ortho_(p.type == CameraType::Orthographic),
       pano_(p.type == CameraType::Panoramic),
       panorama_(p.panorama),
+      stereo_(p.stereo),
       aperture_(p.aperture_radius),
       focus_(p.focus_distance),
       blade_rotation_(p.blade_rotation),
@@ -62,6 +63,8 @@ Camera::Camera(const CameraParams& p, int width, int height, float pixel_aspect_
   if (p.type != CameraType::Perspective && p.type != CameraType::Orthographic && !pano_)
     throw std::invalid_argument("camera type must be perspective, orthographic or panoramic");
   if (pano_) validate_panorama(p.panorama);
+  p.stereo.validate();
+  if (ortho_ && p.stereo.active()) throw std::invalid_argument("spherical stereo needs a perspective or panoramic camera");
   if (!(p.ortho_scale > 0.0f) || !std::isfinite(p.ortho_scale))
     throw std::invalid_argument("ortho_scale must be positive and finite");
   if (!(p.aperture_radius >= 0.0f) || !std::isfinite(p.aperture_radius))
@@ -160,6 +163,7 @@ Ray Camera::panorama_ray(float x, float y_from_bottom, const Vec2& u_lens) const
     lens = l.x * a + l.y * b;
     d = glm::normalize(focus_ * d - lens);
   }
+  if (stereo_.active()) stereo_.apply(lens, d);  // panorama space: +Z is the camera's up
   r.origin = origin_ + lens.x * pano_x_ + lens.y * pano_y_ + lens.z * pano_z_;
   r.dir = glm::normalize(d.x * pano_x_ + d.y * pano_y_ + d.z * pano_z_);
   r.tmin = clip_start_;  // spherical clipping
@@ -210,9 +214,10 @@ Ray Camera::generate_ray(float x, float y_from_top, const Vec2& u_lens) const {
     r.dir = d / len;
   }
   // Planar clipping, like Cycles: distances measured along the view axis (of the pinhole ray, also
-  // with depth of field, as Cycles does).
+  // with depth of field and spherical stereo, as Cycles does).
   r.tmin = clip_start_ * len;
   r.tmax = clip_end_ * len;
+  if (stereo_.active() && motion_positions_.empty()) stereo_.apply(r.origin, r.dir);  // else at_time
   return r;
 }
 
@@ -223,7 +228,7 @@ Ray Camera::generate_ray(float x, float y_from_top, const Vec2& u_lens) const {
 // the view plane (2 half_w x 2 half_h at unit distance), and a solid angle dw at angle theta from
 // the axis covers dw / cos^3(theta) of that plane (at the focus plane too, scaled by focus^2).
 bool Camera::connect(const Vec3& p, const Vec2& u_lens, CameraConnection& out) const {
-  if (ortho_ || pano_) return false;
+  if (ortho_ || pano_ || stereo_.active()) return false;
   Vec3 lens_point = origin_;
   if (aperture_ > 0.0f) {
     const Vec2 l = aperture_ * sample_aperture(u_lens, blades_, blade_rotation_, aperture_ratio_);

@@ -43,6 +43,9 @@ Ray Camera::at_time(Ray r, float time) const {
   const glm::mat3 to_local = glm::transpose(base);
   r.origin = position + rotation * (to_local * (r.origin - origin_));
   r.dir = rotation * (to_local * r.dir);
+  // A perspective camera's spherical stereo acts in the world, after the motion (generate_ray
+  // leaves it to here when the camera moves); a panorama's moved with the camera.
+  if (stereo_.active() && !pano_) stereo_.apply(r.origin, r.dir);
   return r;
 }
 

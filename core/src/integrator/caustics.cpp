@@ -36,7 +36,7 @@ std::optional<CausticPartition> CausticPartition::make(const Scene& scene, const
       settings.passes & (kPassDiffuseDirect | kPassDiffuseIndirect | kPassGlossyDirect | kPassGlossyIndirect);
   const bool light_groups = scene.extra_passes().num_light_groups() > 0;
   if (!settings.caustics || alpha || scene.has_holdouts() || light_passes || light_groups || settings.max_bounces < 1 ||
-      scene.camera().type != CameraType::Perspective)
+      scene.camera().type != CameraType::Perspective || scene.camera().stereo.active())
     return std::nullopt;
   CausticPartition p;
   bool any_smooth = false, any_light = false;

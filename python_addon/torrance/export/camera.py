@@ -61,12 +61,17 @@ def export_camera(tc_scene, cam_obj, reporter, engine=None, render=None):
     without them renders as perspective). With an engine, the camera of its active view (Multi-View:
     camera_model_matrix and camera_shift_x place a stereo eye, as Cycles syncs it)."""
     shift_x = None
+    spherical = spherical_stereo(engine, cam_obj)
     if engine is not None:
         try:
-            shift_x = engine.camera_shift_x(cam_obj, use_spherical_stereo=False)
+            shift_x = engine.camera_shift_x(cam_obj, use_spherical_stereo=spherical)
         except Exception:
             shift_x = None
     args, kind = camera_arguments(cam_obj, render, shift_x=shift_x)
+    if spherical and kind != 'ORTHO':
+        eye = stereo_eye(cam_obj.data, engine.active_view_get())
+        if eye is not None:
+            args["stereo"] = eye
     if kind is None:
         reporter.warning(f"Camera '{cam_obj.name}': Torrance does not render the "
                          f"{panorama_type(cam_obj.data)} panorama; rendering with a "
@@ -76,14 +81,45 @@ def export_camera(tc_scene, cam_obj, reporter, engine=None, render=None):
 
 def camera_matrix(engine, cam_obj):
     """The camera-to-world matrix (4x4 float64) of cam_obj as the engine's active view sees it
-    (RenderEngine.camera_model_matrix: a stereo eye's place; the object's matrix without an
-    engine)."""
+    (RenderEngine.camera_model_matrix: a stereo eye's place, or the centre camera under spherical
+    stereo; the object's matrix without an engine)."""
     matrix = None
     if engine is not None:
         try:
-            matrix = engine.camera_model_matrix(cam_obj, use_spherical_stereo=False)
+            matrix = engine.camera_model_matrix(
+                cam_obj, use_spherical_stereo=spherical_stereo(engine, cam_obj))
         except Exception:
             matrix = None
     if matrix is None:
         matrix = cam_obj.matrix_world
     return np.array(matrix, dtype=np.float64).reshape(4, 4)
+
+
+def spherical_stereo(engine, cam_obj):
+    """Whether Blender asks the engine for spherical stereo of cam_obj (Stereo 3D with the
+    camera's Spherical Stereo on, a perspective or panoramic camera): Blender then gives the
+    centre camera, and the core places each ray's eye (stereo_eye)."""
+    if engine is None:
+        return False
+    try:
+        return bool(engine.use_spherical_stereo(cam_obj))
+    except Exception:
+        return False
+
+
+def stereo_eye(cam, view):
+    """set_camera's `stereo` dict for view `view` ("left" or "right") of camera data `cam`, as
+    Cycles syncs it: the eye half the Interocular Distance to the left or right, the Convergence
+    Distance (Parallel: infinite), the pole merge angles when Pole Merge is on; None for
+    another view."""
+    half = 0.5 * float(cam.stereo.interocular_distance)
+    offset = {"left": -half, "right": half}.get(view)
+    if offset is None:
+        return None
+    st = cam.stereo
+    merge = bool(st.use_pole_merge)
+    return dict(eye_offset=offset,
+                convergence_distance=(float("inf") if st.convergence_mode == 'PARALLEL'
+                                      else float(st.convergence_distance)),
+                pole_merge_from=float(st.pole_merge_angle_from) if merge else -1.0,
+                pole_merge_to=float(st.pole_merge_angle_to) if merge else -1.0)

@@ -34,6 +34,7 @@
 
 #include "torrance/util/math.h"
 #include "torrance/camera/panorama.h"
+#include "torrance/camera/spherical_stereo.h"
 
 #include <glm/gtc/quaternion.hpp>
 
@@ -62,6 +63,10 @@ struct CameraParams {
   float blade_rotation = 0.0f;   // radians
   float aperture_ratio = 1.0f;   // anamorphic: the aperture's x is divided by it
   PanoramaParams panorama;       // PANORAMIC only
+  // A stereo eye of the camera's Spherical Stereo (spherical_stereo.h; PERSPECTIVE and PANORAMIC):
+  // applied after depth of field, in panorama space for a panorama (before the camera's motion)
+  // and in the world for a perspective camera (after its motion), as Cycles does.
+  SphericalStereo stereo;
   // Motion blur: the camera's camera_to_world (row-major) at >= 2 times evenly spaced over the
   // shutter's time [0, 1]; empty: it does not move (camera_to_world is its frame throughout).
   std::vector<std::array<float, 16>> motion;
@@ -118,7 +123,7 @@ class Camera {
   Ray generate_ray(float x, float y_from_top, const Vec2& u_lens = Vec2(0.5f)) const;
   // Light tracing: the camera ray through lens point u_lens (as generate_ray draws it) that
   // reaches p; false when none does (p behind the camera or outside its clipping, a camera other
-  // than PERSPECTIVE).
+  // than PERSPECTIVE, spherical stereo).
   bool connect(const Vec3& p, const Vec2& u_lens, CameraConnection& out) const;
   const Vec3& forward() const { return forward_; }
   const Vec3& right() const { return right_; }  // the camera's local +X and +Y in the world
@@ -132,6 +137,7 @@ class Camera {
   // Cycles' dP of a camera ray, the ray differentials' length before the spread adds to it.
   float pixel_width() const { return ortho_ ? 2.0f * half_h_ / float(height_) : 0.0f; }
   bool has_depth_of_field() const { return aperture_ > 0.0f; }
+  bool spherical_stereo() const { return stereo_.active(); }
   // Motion blur (CameraParams::motion): ray r of generate_ray carried from camera_to_world's
   // frame to the camera's at shutter time `time` in [0, 1] (Cycles' camera motion: position
   // linear, rotation by quaternion slerp between the two steps around it).
@@ -156,6 +162,7 @@ class Camera {
   float clip_start_, clip_end_;
   bool ortho_, pano_;
   PanoramaParams panorama_;
+  SphericalStereo stereo_;
   Vec3 pano_x_, pano_y_, pano_z_;  // the panorama's axes in the world
   float spread_;
   float aperture_, focus_, blade_rotation_, aperture_ratio_;
