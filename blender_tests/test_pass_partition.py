@@ -23,20 +23,11 @@ import numpy as np
 
 from torrance_tools import comparison_scenes, testing
 from torrance_tools.addon_access import addon, torrance_core
-from torrance_tools.compare import read_exr
+from torrance_tools.render_settings import render_multilayer_exr
 from torrance_tools.testing import check
 
 # (name, samples, guiding)
 CASES = (("defaults", 16, False), ("guiding", 32, True))
-
-
-def render_multilayer(scene, path):
-    """F12 into a 32-bit multilayer EXR; returns its channels (H, W, C): image and passes."""
-    scene.render.image_settings.file_format = 'OPEN_EXR_MULTILAYER'
-    scene.render.image_settings.color_depth = '32'
-    scene.render.filepath = path
-    bpy.ops.render.render(write_still=True)
-    return read_exr(path)
 
 
 def check_case(scene, name, samples, guiding, directory):
@@ -49,7 +40,8 @@ def check_case(scene, name, samples, guiding, directory):
         def edit(settings, size=size):
             settings.pass_samples = size
         with torrance_core(settings_edit=edit):
-            images[size] = render_multilayer(scene, os.path.join(directory, f"{name}_{size}.exr"))
+            path = os.path.join(directory, f"{name}_{size}.exr")
+            images[size] = render_multilayer_exr(scene, path)
         if guiding:
             said = addon().render.last_stats.get("guiding_outcome", "")
             check(said.startswith("guided") or said.startswith("stopped after"),

@@ -200,3 +200,16 @@ def render_exr_views(scene, stem, color_mode='RGBA'):
     finally:
         rd.filepath = filepath
     return seconds, [stem + v.file_suffix + ".exr" for v in rendered_views(scene)]
+
+
+def render_multilayer_exr(scene, path):
+    """F12 (write_still) into a 32-bit multilayer EXR at `path`, every pass of the view layer
+    in it; returns all its channels (H, W, C), every part's (Blender 5.x writes one per pass)."""
+    from torrance.blender_versions import set_multilayer_exr
+
+    from torrance_tools.render_passes import read_pixels
+    set_multilayer_exr(scene.render.image_settings)
+    scene.render.image_settings.color_depth = '32'
+    scene.render.filepath = path
+    bpy.ops.render.render(write_still=True)
+    return read_pixels(path)[0]
