@@ -27,11 +27,25 @@ Vec3 rotate_around_axis(const Vec3& p, const Vec3& a, float angle) {
               (k * a.x * a.z - a.y * s) * p.x + (k * a.y * a.z + a.x * s) * p.y + (c + k * a.z * a.z) * p.z);
 }
 
+// The cosine and sine of an angle; a zero angle (the usual Mapping's) without the library's
+// calls: cos(+-0) is 1 and sin(+-0) the zero itself, the values the calls return.
+void cos_sin(float angle, float* c, float* s) {
+  if (angle == 0.0f) {
+    *c = 1.0f;
+    *s = angle;
+  } else {
+    *c = std::cos(angle);
+    *s = std::sin(angle);
+  }
+}
+
 }  // namespace
 
 glm::mat3 euler_rows(const Vec3& e) {
-  const float cx = std::cos(e.x), cy = std::cos(e.y), cz = std::cos(e.z);
-  const float sx = std::sin(e.x), sy = std::sin(e.y), sz = std::sin(e.z);
+  float cx, cy, cz, sx, sy, sz;
+  cos_sin(e.x, &cx, &sx);
+  cos_sin(e.y, &cy, &sy);
+  cos_sin(e.z, &cz, &sz);
   glm::mat3 rows;
   rows[0] = Vec3(cy * cz, sy * sx * cz - cx * sz, sy * cx * cz + sx * sz);
   rows[1] = Vec3(cy * sz, sy * sx * sz + cx * cz, sy * cx * sz - sx * cz);
