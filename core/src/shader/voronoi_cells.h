@@ -176,6 +176,37 @@ struct Cells {
     }
   }
 
+  // Whether a cell's colour is its point's hash (3D float cells, 3D and 4D integer cells):
+  // color_at reads it from the hash lanes instead of hashing the cell again.
+  bool color_is_point_hash() const { return integer_hash ? D > 2 : D == 3; }
+  Vec3 point_hash_color(int i) const { return Vec3(hash[0][i], hash[1 % D][i], hash[2 % D][i]); }
+
+  // The first cell whose distance is the smallest of those below `start`, or -1 (none below it,
+  // NaN never): what a loop over the cells in order keeping the first strictly closer one
+  // chooses. The minimum four lanes at a time (minps(d, m) is d < m ? d : m, so NaN is passed
+  // over as the loop's comparison does), then the first cell at that distance.
+  int closest(float start, float* best) const {
+#if defined(__SSE__)
+    __m128 m = _mm_set1_ps(start);
+    for (int i = 0; i < kLanes; i += 4) m = _mm_min_ps(_mm_load_ps(distance + i), m);
+    m = _mm_min_ps(_mm_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2)), m);
+    m = _mm_min_ps(_mm_shuffle_ps(m, m, _MM_SHUFFLE(2, 3, 0, 1)), m);
+    *best = _mm_cvtss_f32(m);
+    if (!(*best < start)) return -1;
+    for (int i = 0; i < kLanes; i += 4) {
+      const int equal = _mm_movemask_ps(_mm_cmpeq_ps(_mm_load_ps(distance + i), m));
+      if (equal != 0) return i + __builtin_ctz(unsigned(equal));
+    }
+    return -1;
+#else
+    *best = start;
+    int chosen = -1;
+    for (int i = 0; i < kCount; ++i)
+      if (distance[i] < *best) *best = distance[i], chosen = i;
+    return chosen;
+#endif
+  }
+
   // distance[i] = the metric's distance from point i to `local` (p - cell), as Cycles'
   // voronoi_distance(point, local): the differences point - local, Euclidean's squares summed
   // left to right but four components in pairs (SSE's dpps), Chebychev's maximum from the last
@@ -219,11 +250,13 @@ struct Cells {
         }
         return;
       case VoronoiMetric::Minkowski:
+      default:  // (no other metric: the switch leaves no distance unset)
         for (int i = 0; i < kCount; ++i) {
           float sum = std::pow(std::fabs(diff[0][i]), exponent);
           for (int k = 1; k < D; ++k) sum += std::pow(std::fabs(diff[k][i]), exponent);
           distance[i] = std::pow(sum, 1.0f / exponent);
         }
+        for (int i = kCount; i < kLanes; ++i) distance[i] = distance[kCenter];  // the padding, as the others'
         return;
     }
   }

@@ -124,14 +124,14 @@ Found<D> f1(const VecN<D>& p, const Params& q) {
   voronoi_cells::Cells<D, 1> cells;
   cells.place_points(cell, q.randomness, q.integer_hash);
   cells.measure(p - cell, q.metric, q.exponent);
-  float best = q.start;
-  int chosen = -1;
-  for (int i = 0; i < cells.kCount; ++i)
-    if (cells.distance[i] < best) best = cells.distance[i], chosen = i;
+  float best;
+  const int chosen = cells.closest(q.start, &best);
   // None closer than 8: the own cell's colour and the cell corner (Cycles' initial values).
   const VecN<D> offset = chosen >= 0 ? cells.offset(chosen) : VecN<D>(0.0f);
   const VecN<D> point = chosen >= 0 ? cells.point_at(chosen) : VecN<D>(0.0f);
-  return {best, cell_color<D>(cell, offset, q.integer_hash), point + cell, 0.0f};
+  const Vec3 color = cells.color_is_point_hash() ? cells.point_hash_color(chosen >= 0 ? chosen : cells.kCenter)
+                                                 : cell_color<D>(cell, offset, q.integer_hash);
+  return {best, color, point + cell, 0.0f};
 }
 
 template <int D>
@@ -153,7 +153,10 @@ Found<D> f2(const VecN<D>& p, const Params& q) {
   }
   const VecN<D> offset = second_cell >= 0 ? cells.offset(second_cell) : VecN<D>(0.0f);
   const VecN<D> point = second_cell >= 0 ? cells.point_at(second_cell) : VecN<D>(0.0f);
-  return {second, cell_color<D>(cell, offset, q.integer_hash), point + cell, 0.0f};
+  const Vec3 color = cells.color_is_point_hash()
+                         ? cells.point_hash_color(second_cell >= 0 ? second_cell : cells.kCenter)
+                         : cell_color<D>(cell, offset, q.integer_hash);
+  return {second, color, point + cell, 0.0f};
 }
 
 template <int D>
@@ -226,10 +229,10 @@ float n_sphere_radius(const VecN<D>& p, float randomness, float start, bool inte
   voronoi_cells::Cells<D, 1> cells;
   cells.place_points(cell, randomness, integer_hash);
   cells.measure(p - cell, VoronoiMetric::Euclidean, 0.0f);
-  float best = start;
-  VecN<D> closest(0.0f), closest_offset(0.0f);
-  for (int i = 0; i < cells.kCount; ++i)
-    if (cells.distance[i] < best) best = cells.distance[i], closest = cells.point_at(i), closest_offset = cells.offset(i);
+  float best;
+  const int first = cells.closest(start, &best);
+  const VecN<D> closest = first >= 0 ? cells.point_at(first) : VecN<D>(0.0f);
+  const VecN<D> closest_offset = first >= 0 ? cells.offset(first) : VecN<D>(0.0f);
   best = start;
   VecN<D> nearest(0.0f);
   for_each_offset<D>(1, [&](const VecN<D>& step) {
