@@ -49,34 +49,11 @@ inline Vec3 cell_color2(uint32_t x, uint32_t y) {
 
 constexpr int power(int base, int exponent) { return exponent == 0 ? 1 : base * power(base, exponent - 1); }
 
-// The cells within `Reach` of p's cell on every axis, (2 Reach + 1)^D of them, indexed in Cycles'
-// loop order (x varying fastest, which decides ties and the smooth blend's order); the arrays
-// have kLanes >= kCount entries, the extra ones padding (computed, never read).
-template <int D, int Reach>
-struct Cells {
-  static constexpr int kSide = 2 * Reach + 1;
-  static constexpr int kCount = power(kSide, D);
-  static constexpr int kLanes = (kCount + 3) / 4 * 4;
-  static constexpr int kCenter = kCount / 2;  // offset 0 on every axis
-
-  // Cell i's offset from p's cell along axis k: offset(k)[i].
-  static constexpr std::array<std::array<float, kLanes>, D> make_offsets() {
-    std::array<std::array<float, kLanes>, D> out{};
-    for (int i = 0; i < kLanes; ++i) {
-      int rest = i < kCount ? i : kCenter;
-      for (int k = 0; k < D; ++k) {
-        out[size_t(k)][size_t(i)] = float(rest % kSide - Reach);
-        rest /= kSide;
-      }
-    }
-    return out;
-  }
-  static constexpr std::array<std::array<float, kLanes>, D> kOffsets = make_offsets();
-  static VecN<D> offset(int i) {
-    VecN<D> o;
-    for (int k = 0; k < D; ++k) o[k] = kOffsets[size_t(k)][size_t(i)];
-    return o;
-  }
+// N cells at offsets from p's cell (offsets[k][i]: cell i's on axis k, whole numbers), their
+// points, colours and distances computed lane by lane (N a multiple of 4; callers pad).
+template <int D, int N>
+struct CellLanes {
+  static constexpr int kLanes = N;
 
   alignas(16) uint32_t key[D][kLanes];    // the bits of cell + offset, the hashes' keys
   alignas(16) float hash[D][kLanes];      // the cell's point within it (Cycles' hash of the cell)
@@ -91,24 +68,24 @@ struct Cells {
 
   bool integer_hash = false;  // Cycles 5.0+'s cells (voronoi_search.h's cell_words): keys are ints
 
-  // Fills key, hash and point for the cells around `cell` (floor(p)), hashed as Cycles 5.0+
-  // hashes them where integer_hash (2D-4D), else as 3.4 and 4.x do.
-  void place_points(const VecN<D>& cell, float randomness, bool integer) {
+  // Fills key, hash and point for the cells at `offsets` from `cell` (floor(p)), hashed as
+  // Cycles 5.0+ hashes them where integer_hash (2D-4D), else as 3.4 and 4.x do.
+  void place_points(const VecN<D>& cell, const float (*offsets)[N], float randomness, bool integer) {
     integer_hash = integer && D > 1;
     if (integer_hash) {
-      place_integer_points(cell);
+      place_integer_points(cell, offsets);
     } else {
-      place_float_points(cell);
+      place_float_points(cell, offsets);
     }
     for (int k = 0; k < D; ++k)
-      for (int i = 0; i < kLanes; ++i) point[k][i] = kOffsets[size_t(k)][size_t(i)] + hash[k][i] * randomness;
+      for (int i = 0; i < kLanes; ++i) point[k][i] = offsets[k][i] + hash[k][i] * randomness;
   }
 
   // key: each cell's integer words (its integer corner plus the offset); hash: their PCG hash.
-  void place_integer_points(const VecN<D>& cell) {
+  void place_integer_points(const VecN<D>& cell, const float (*offsets)[N]) {
     for (int k = 0; k < D; ++k) {
       const uint32_t corner = cell_int(cell[k]);
-      for (int i = 0; i < kLanes; ++i) key[k][i] = cell_word(corner, kOffsets[size_t(k)][size_t(i)]);
+      for (int i = 0; i < kLanes; ++i) key[k][i] = cell_word(corner, offsets[k][i]);
     }
     if constexpr (D > 1) {
       for (int i = 0; i < kLanes; ++i) {
@@ -121,11 +98,11 @@ struct Cells {
   }
 
   // key: the bits of each cell's float corner; hash: lookup3's hashes of them.
-  void place_float_points(const VecN<D>& cell) {
+  void place_float_points(const VecN<D>& cell, const float (*offsets)[N]) {
     for (int k = 0; k < D; ++k) {
       const float corner = cell[k];  // read once: glm's v[k] is a switch, which keeps a loop scalar
       alignas(16) float coordinate[kLanes];
-      for (int i = 0; i < kLanes; ++i) coordinate[i] = corner + kOffsets[size_t(k)][size_t(i)];
+      for (int i = 0; i < kLanes; ++i) coordinate[i] = corner + offsets[k][i];
       lanes::float_bits<kLanes>(coordinate, key[k]);
     }
     // As cell_point in shader_voronoi.cpp: hash_float{,2,3,4}_to_float{,2,3,4}.
@@ -177,7 +154,7 @@ struct Cells {
   }
 
   // Whether a cell's colour is its point's hash (3D float cells, 3D and 4D integer cells):
-  // color_at reads it from the hash lanes instead of hashing the cell again.
+  // point_hash_color reads it from the hash lanes instead of hashing the cell again.
   bool color_is_point_hash() const { return integer_hash ? D > 2 : D == 3; }
   Vec3 point_hash_color(int i) const { return Vec3(hash[0][i], hash[1 % D][i], hash[2 % D][i]); }
 
@@ -192,19 +169,29 @@ struct Cells {
     m = _mm_min_ps(_mm_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2)), m);
     m = _mm_min_ps(_mm_shuffle_ps(m, m, _MM_SHUFFLE(2, 3, 0, 1)), m);
     *best = _mm_cvtss_f32(m);
-    if (!(*best < start)) return -1;
+    return *best < start ? first_at(*best) : -1;
+#else
+    *best = start;
+    int chosen = -1;
+    for (int i = 0; i < kLanes; ++i)
+      if (distance[i] < *best) *best = distance[i], chosen = i;
+    return chosen;
+#endif
+  }
+
+  // The first cell at distance d, or -1.
+  int first_at(float d) const {
+#if defined(__SSE__)
+    const __m128 m = _mm_set1_ps(d);
     for (int i = 0; i < kLanes; i += 4) {
       const int equal = _mm_movemask_ps(_mm_cmpeq_ps(_mm_load_ps(distance + i), m));
       if (equal != 0) return i + __builtin_ctz(unsigned(equal));
     }
-    return -1;
 #else
-    *best = start;
-    int chosen = -1;
-    for (int i = 0; i < kCount; ++i)
-      if (distance[i] < *best) *best = distance[i], chosen = i;
-    return chosen;
+    for (int i = 0; i < kLanes; ++i)
+      if (distance[i] == d) return i;
 #endif
+    return -1;
   }
 
   // distance[i] = the metric's distance from point i to `local` (p - cell), as Cycles'
@@ -251,14 +238,52 @@ struct Cells {
         return;
       case VoronoiMetric::Minkowski:
       default:  // (no other metric: the switch leaves no distance unset)
-        for (int i = 0; i < kCount; ++i) {
+        for (int i = 0; i < kLanes; ++i) {
           float sum = std::pow(std::fabs(diff[0][i]), exponent);
           for (int k = 1; k < D; ++k) sum += std::pow(std::fabs(diff[k][i]), exponent);
           distance[i] = std::pow(sum, 1.0f / exponent);
         }
-        for (int i = kCount; i < kLanes; ++i) distance[i] = distance[kCenter];  // the padding, as the others'
         return;
     }
+  }
+};
+
+// The cells within `Reach` of p's cell on every axis, (2 Reach + 1)^D of them, indexed in Cycles'
+// loop order (x varying fastest, which decides ties and the smooth blend's order); the arrays
+// have kLanes >= kCount entries, the extra ones copies of the centre cell (computed, never chosen:
+// the centre comes first).
+template <int D, int Reach>
+struct Cells : CellLanes<D, (power(2 * Reach + 1, D) + 3) / 4 * 4> {
+  using Lanes = CellLanes<D, (power(2 * Reach + 1, D) + 3) / 4 * 4>;
+  using Lanes::kLanes;
+  static constexpr int kSide = 2 * Reach + 1;
+  static constexpr int kCount = power(kSide, D);
+  static constexpr int kCenter = kCount / 2;  // offset 0 on every axis
+
+  // Cell i's offset from p's cell along axis k: kOffsets[k][i].
+  struct Offsets {
+    float of[D][kLanes];
+  };
+  static constexpr Offsets make_offsets() {
+    Offsets out{};
+    for (int i = 0; i < kLanes; ++i) {
+      int rest = i < kCount ? i : kCenter;
+      for (int k = 0; k < D; ++k) {
+        out.of[k][i] = float(rest % kSide - Reach);
+        rest /= kSide;
+      }
+    }
+    return out;
+  }
+  static constexpr Offsets kOffsets = make_offsets();
+  static VecN<D> offset(int i) {
+    VecN<D> o;
+    for (int k = 0; k < D; ++k) o[k] = kOffsets.of[k][i];
+    return o;
+  }
+
+  void place_points(const VecN<D>& cell, float randomness, bool integer) {
+    Lanes::place_points(cell, kOffsets.of, randomness, integer);
   }
 };
 

@@ -9,6 +9,7 @@
 #include "torrance/util/smoothstep.h"
 #include "shader/cpu_dispatch.h"
 #include "shader/voronoi_cells.h"
+#include "shader/voronoi_nearest.h"
 
 #include <algorithm>
 #include <array>
@@ -118,8 +119,9 @@ struct Params {
   bool integer_hash = false;  // Cycles 5.0+'s cells (cell_words), 2D-4D
 };
 
+// F1 by measuring all 3^D cells around p.
 template <int D>
-Found<D> f1(const VecN<D>& p, const Params& q) {
+Found<D> f1_all(const VecN<D>& p, const Params& q) {
   const VecN<D> cell = glm::floor(p);
   voronoi_cells::Cells<D, 1> cells;
   cells.place_points(cell, q.randomness, q.integer_hash);
@@ -132,6 +134,22 @@ Found<D> f1(const VecN<D>& p, const Params& q) {
   const Vec3 color = cells.color_is_point_hash() ? cells.point_hash_color(chosen >= 0 ? chosen : cells.kCenter)
                                                  : cell_color<D>(cell, offset, q.integer_hash);
   return {best, color, point + cell, 0.0f};
+}
+
+// F1: the closest point; the Euclidean metric in 3D and 4D measures only the cells that could be
+// closest (voronoi_nearest.h), the same choice as f1_all.
+template <int D>
+Found<D> f1(const VecN<D>& p, const Params& q) {
+  if constexpr (D >= 3) {
+    if (q.metric == VoronoiMetric::Euclidean && q.randomness >= 0.0f && q.randomness <= 1.0f) {
+      const VecN<D> cell = glm::floor(p);
+      const voronoi_cells::Nearest<D> n =
+          voronoi_cells::NearestSearch<D>(cell, p - cell, q.randomness, q.integer_hash, q.start).run();
+      const VecN<D> offset = n.index >= 0 ? voronoi_cells::Cells<D, 1>::offset(n.index) : VecN<D>(0.0f);
+      return {n.distance, n.has_color ? n.color : cell_color<D>(cell, offset, q.integer_hash), n.point + cell, 0.0f};
+    }
+  }
+  return f1_all<D>(p, q);
 }
 
 template <int D>
