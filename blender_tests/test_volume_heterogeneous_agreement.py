@@ -130,8 +130,8 @@ def density_constant(mean):
 
 
 def coordinates_world(original):
-    def fault(self, g, key):
-        original(self, g, key)
+    def fault(self, g, key, *kind):
+        original(self, g, key, *kind)
         return g.builder.emit("Geometry", 'vector', mode=0)
     return fault
 

@@ -88,6 +88,34 @@ void init_media(py::module_& m) {
       "bounds_min/bounds_max: a world box holding the material's meshes, where the majorant is found. "
       "ValueError for an unknown material or program, a register the program does not write, |anisotropy| > 1.");
   scene.def(
+      "add_volume_grid",
+      [](Scene& s, const py::object& bricks, const py::object& origins, const py::object& world_to_index) {
+        const auto b = shaped_array<float>(bricks, "bricks", {-1, VolumeGrid::kBrickSize, VolumeGrid::kBrickSize,
+                                                              VolumeGrid::kBrickSize, -1});
+        const auto o = shaped_array<int32_t>(origins, "origins", {-1, 3});
+        const auto m = shaped_array<double>(world_to_index, "world_to_index", {4, 4});
+        if (o.shape(0) != b.shape(0)) throw py::value_error("bricks and origins must have as many rows");
+        std::vector<glm::ivec3> corner(size_t(o.shape(0)));
+        for (size_t i = 0; i < corner.size(); ++i)
+          corner[i] = glm::ivec3(o.data()[3 * i], o.data()[3 * i + 1], o.data()[3 * i + 2]);
+        Mat4 matrix;
+        for (int r = 0; r < 4; ++r)
+          for (int c = 0; c < 4; ++c) matrix[c][r] = float(m.data()[4 * r + c]);
+        try {
+          return s.add_volume_grid(
+              VolumeGrid(b.ndim() == 5 ? int(b.shape(4)) : 1, matrix, corner, std::vector<float>(b.data(), b.data() + b.size())));
+        } catch (const std::invalid_argument& e) {
+          throw py::value_error(e.what());
+        }
+      },
+      py::arg("bricks"), py::arg("origins"), py::arg("world_to_index"),
+      "A sparse voxel grid heterogeneous volumes' programs read (VolumeGrid ops): bricks (N, 8, 8, 8, C) "
+      "float32 indexed [z, y, x, channel], C 1 (a scalar) to 4 (RGBA), brick i's first voxel at origins[i] "
+      "(index space, multiples of 8), world_to_index (4, 4, row-major) taking a world point to index "
+      "space, where voxel centres lie at integers. Trilinear lookups; voxels outside the bricks are 0, "
+      "NaN and infinite ones read as 0. Returns the grid's id. ValueError for a bad shape, an unaligned "
+      "or repeated origin, a singular transform.");
+  scene.def(
       "set_world_volume",
       [](Scene& s, std::array<float, 3> sigma_a, std::array<float, 3> sigma_s, std::array<float, 3> emission,
          float anisotropy, const std::string& phase, float phase_a, float phase_b) {

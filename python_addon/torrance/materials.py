@@ -59,6 +59,7 @@ from .principled_thin_wall import read_thin_wall, report_film_on_thin_wall
 from .principled_transmission import read_transmission
 from .thin_film import read_thin_film
 from .transparent_mix import read_transparent_mix
+from .volume_grids import GridTable
 from .volumes import has_only_volume, material_volume
 
 # The Principled BSDF's socket names per node version: v1 is Blender 3.x's, v2 Blender 4.0's
@@ -565,6 +566,7 @@ class MaterialTable:
         # viewport sets it anew at each update).
         self.depsgraph = depsgraph
         self.varying_volumes = set()   # names of the materials with a heterogeneous volume
+        self.volume_grids = GridTable(tc_scene)   # smoke domains' grids (volume_grids.py)
         self.textures = textures
         self.attribute_ids = AttributeIds()
         self.reader = MaterialReader(reporter, self.textures, self.attribute_ids)
@@ -618,7 +620,8 @@ class MaterialTable:
         """The material's volume (volumes.py), if it has one; one that can not be read or that
         the core refuses is reported and left out (the render goes on without it)."""
         try:
-            volume = material_volume(mat, self.textures, self.reader.reporter, self.depsgraph)
+            volume = material_volume(mat, self.textures, self.reader.reporter, self.depsgraph,
+                                     self.volume_grids)
             if volume is not None and 'program' in volume[0]:
                 self.varying_volumes.add(mat.name)
                 keywords = dict(volume[0])

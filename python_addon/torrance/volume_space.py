@@ -5,8 +5,15 @@ space that Texture Coordinate > Object and Generated read inside it, as Cycles' 
 does (kernel/geom/volume.h: the point in object space, Generated through the mesh's texture
 space, (co - location + size) / (2 size) as on its surface).
 
+Inside a fluid simulation's smoke or fire domain (volume_grids.py) the domain's grids are the
+attributes an Attribute node or a Principled Volume's Density/Color/Temperature Attribute reads
+by name (density, flame, heat, temperature, color), as Cycles' volume attributes: trilinear, a
+scalar grid's value v as the colour (v, v, v), a colour grid's average as a float.
+
 A material's volume is one medium in the core, so when several objects hold it their Object and
-Generated coordinates are the first one's (reported)."""
+Generated coordinates (and grids) are the first one's (reported)."""
+
+from functools import partial
 
 import numpy as np
 
@@ -14,6 +21,7 @@ from .shader_graph.geometry import object_transform
 from .shader_graph.graph import Unsupported
 from .shader_graph.math_ops import VECTOR_MATH_OPS
 from .shader_graph.program import constant
+from .volume_grids import SmokeGrids, fluid_domain
 
 # The Vector Transform op's mode for a Point from World to Object (vector.py numbers them).
 _POINT_WORLD_TO_OBJECT = (0 * 3 + 0) * 3 + 1
@@ -22,7 +30,8 @@ _POINT_WORLD_TO_OBJECT = (0 * 3 + 0) * 3 + 1
 class VolumeSpace:
     """The object space (matrix_world, texture space) and world bounds of a volume's meshes."""
 
-    def __init__(self, matrix, texspace_location, texspace_size, bounds_min, bounds_max):
+    def __init__(self, matrix, texspace_location, texspace_size, bounds_min, bounds_max,
+                 grids=None):
         self.matrix = np.asarray(matrix, np.float64).reshape(4, 4)
         size = np.asarray(texspace_size, np.float64)
         self.generated_scale = np.divide(0.5, size, out=np.zeros(3), where=size != 0.0)
@@ -30,14 +39,44 @@ class VolumeSpace:
             self.generated_scale
         self.bounds_min = tuple(float(x) for x in bounds_min)
         self.bounds_max = tuple(float(x) for x in bounds_max)
+        # name -> a function giving the core grid's (id, channels) or None (volume_grids.py).
+        self.grids = grids or {}
+
+    def has_grid(self, name):
+        return name in self.grids
+
+    def _grid(self, g, name):
+        """(the VolumeGrid op's RGBA Value at the point, channels), or None without the grid."""
+        found = self.grids[name]() if name in self.grids else None
+        if found is None:
+            return None
+        grid, channels = found
+        position = g.builder.emit("Geometry", 'vector', mode=0)
+        return g.builder.emit("VolumeGrid", 'color', [position], texture=grid), channels
+
+    def grid_value(self, g, name, kind):
+        """Grid `name` at the point as a float (a colour grid's average) or colour, or None."""
+        found = self._grid(g, name)
+        if found is None:
+            return None
+        rgba, channels = found
+        if kind != 'float':
+            return rgba
+        if channels == 1:
+            return g.builder.emit("Channel", 'float', [rgba], mode=0)
+        return g.builder.emit("Average", 'float', [rgba])
 
     def apply(self, compiler):
         """Makes a GraphCompiler read this space's coordinates (its attribute requests)."""
         compiler.object_matrix = self.matrix.tolist()
         compiler.volume = self
 
-    def attribute(self, g, key):
-        """A mesh attribute inside the volume: the Object and Generated coordinates."""
+    def attribute(self, g, key, kind='vector'):
+        """A mesh attribute inside the volume: the Object and Generated coordinates, and the
+        grids by name (an Attribute node's Color/Vector, or its Fac and Alpha)."""
+        if len(key) == 2 and key[0] in ('attribute', 'attribute_fac_alpha') and \
+                self.has_grid(key[1]):
+            return self._grid_attribute(g, key, kind)
         if key not in (('object',), ('generated',)):
             raise Unsupported(f"the attribute {key[-1]!r} inside a volume")
         position = g.builder.emit("Geometry", 'vector', mode=0)
@@ -53,6 +92,24 @@ class VolumeSpace:
                               mode=VECTOR_MATH_OPS.index("MULTIPLY_ADD"))
 
 
+    def _grid_attribute(self, g, key, kind):
+        """An Attribute node's read of a grid: Color/Vector the grid's RGB; Fac and Alpha (x, y)
+        a scalar grid's value and 1, a colour grid's average and alpha, as Cycles' svm_node_attr."""
+        found = self._grid(g, key[1])
+        if found is None:
+            return constant(kind, (0.0, 0.0, 0.0))
+        rgba, channels = found
+        if key[0] == 'attribute':
+            return rgba if kind == 'color' else g.builder.emit("Combine", 'vector', [
+                g.builder.emit("Channel", 'float', [rgba], mode=i) for i in range(3)])
+        if channels == 1:
+            fac, alpha = g.builder.emit("Channel", 'float', [rgba], mode=0), constant('float', 1.0)
+        else:
+            fac = g.builder.emit("Average", 'float', [rgba])
+            alpha = g.builder.emit("Channel", 'float', [rgba], mode=3)
+        return g.builder.emit("Combine", 'vector', [fac, alpha, constant('float', 0.0)])
+
+
 def _holders(mat, depsgraph):
     """The depsgraph's (evaluated) mesh objects with `mat` in a slot (original datablocks
     compared): the objects the render shows."""
@@ -63,10 +120,23 @@ def _holders(mat, depsgraph):
                     for s in obj.material_slots)]
 
 
-def volume_space(mat, where, reporter, depsgraph):
+def _smoke_grids(obj, grid_table):
+    """name -> a function adding grid `name` of obj's smoke/fire domain to the core (giving
+    its id and channels)."""
+    settings = fluid_domain(obj) if grid_table is not None else None
+    if settings is None:
+        return {}
+    smoke = SmokeGrids(obj, settings)
+    key = getattr(obj, "name", "")
+    return {name: partial(grid_table.add, (key, name), partial(smoke.voxels, name))
+            for name in smoke.names}
+
+
+def volume_space(mat, where, reporter, depsgraph, grid_table=None):
     """The VolumeSpace of material `mat`'s volume in the depsgraph being exported (never
     bpy.context's: a render's depsgraph is its own, the viewport's moves with each update), or
-    None when no mesh holds it (or no depsgraph is given)."""
+    None when no mesh holds it (or no depsgraph is given). grid_table (volume_grids.GridTable):
+    where a smoke domain's grids are added to the core."""
     holders = _holders(mat, depsgraph) if depsgraph is not None else []
     if not holders:
         return None
@@ -82,4 +152,5 @@ def volume_space(mat, where, reporter, depsgraph):
     first = holders[0]
     mesh = first.data
     return VolumeSpace(np.array(first.matrix_world), tuple(mesh.texspace_location),
-                       tuple(mesh.texspace_size), corners.min(axis=0), corners.max(axis=0))
+                       tuple(mesh.texspace_size), corners.min(axis=0), corners.max(axis=0),
+                       grids=_smoke_grids(first, grid_table))

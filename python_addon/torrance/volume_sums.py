@@ -43,6 +43,10 @@ class Constants:
         return max(x, 0.0)
 
     @staticmethod
+    def plus(a, b):
+        return a + b
+
+    @staticmethod
     def clamp01(x):
         return min(max(x, 0.0), 1.0)
 
@@ -113,6 +117,10 @@ class Program:
 
     def positive(self, x):
         return self._math("MAXIMUM", x, constant('float', 0.0))
+
+    def plus(self, a, b):
+        return self._math("ADD", *(x if isinstance(x, Value) else constant('float', x)
+                                   for x in (a, b)))
 
     def clamp01(self, x):
         return self._math("ADD", x, constant('float', 0.0), flags=1)

@@ -53,7 +53,7 @@ class VolumeReader:
         self.where = where
         self.reporter = reporter
         self.textures = textures
-        self.space = space
+        self.space = _once(space) if space is not None else None
         self.values = GraphCompiler(ProgramBuilder(), textures, READERS)
         self._warned = set()
 
@@ -153,11 +153,31 @@ class VolumeReader:
                                   f"(Torrance reads Volume Absorption, Volume Scatter, Principled "
                                   f"Volume, Emission, Mix and Add Shader); left out")
 
+    def _grid(self, node, name, kind):
+        """The grid a Principled Volume's `name` (Density/Color/Temperature Attribute) names, at
+        the point (VolumeSpace.grid_value), or None where the volume has no such grid (Cycles
+        then leaves the input as it is). A grid makes a constant medium vary (Varies)."""
+        socket = node.inputs.get(name)
+        grid = getattr(socket, "default_value", "") if socket is not None else ""
+        space = self.space() if self.space is not None and grid else None
+        if space is None or not space.has_grid(grid):
+            return None
+        if isinstance(self._medium, Constants):
+            raise Varies
+        return space.grid_value(self.values, grid, kind)
+
     def _principled(self, node, weight, medium):
         value = partial(self._value, node)
-        density = medium.times(medium.positive(value("Density", 'float')), weight)
+        density = value("Density", 'float')
+        grid = self._grid(node, "Density Attribute", 'float')
+        if grid is not None:
+            density = medium.times(density, grid)
+        density = medium.times(medium.positive(density), weight)
         if medium.above_cutoff(density):
             color = value("Color", 'color')
+            grid = self._grid(node, "Color Attribute", 'color')
+            if grid is not None:
+                color = medium.product(color, grid)
             medium.scatter(color, self._node_phase(node), density)
             absorption_color = medium.sqrt_positive(value("Absorption Color", 'color'))
             medium.add('sigma_a', medium.product(medium.one_minus_positive(color),
@@ -168,13 +188,31 @@ class VolumeReader:
             medium.add('emission', value("Emission Color", 'color'),
                        medium.times(weight, strength))
         intensity = value("Blackbody Intensity", 'float')
-        if intensity > CUTOFF:
+        grid = self._grid(node, "Temperature Attribute", 'float') if intensity > CUTOFF else None
+        if grid is not None:
+            self._varying_blackbody(node, weight, medium, intensity, grid)
+        elif intensity > CUTOFF:
             kelvin = max(value("Temperature", 'float'), 0.0)
             power = _STEFAN_BOLTZMANN * (1.0 + (kelvin ** 4 - 1.0) * intensity)
             if power > CUTOFF:
                 tint = value("Blackbody Tint", 'color')
                 rgb = [t * c for t, c in zip(tint, blackbody(kelvin), strict=True)]
                 medium.add('emission', rgb, medium.times(weight, power))
+
+    def _varying_blackbody(self, node, weight, medium, intensity, grid):
+        """The blackbody's emission with Temperature x max(grid, 0) per point (Cycles' flame
+        temperature from an attribute): power sigma (1 + (T^4 - 1) Intensity) x Tint x
+        blackbody(T)."""
+        kelvin = medium.positive(medium.times(self._value(node, "Temperature", 'float'),
+                                              medium.positive(grid)))
+        squared = medium.times(kelvin, kelvin)
+        fourth = medium.times(squared, squared)
+        power = medium.times(medium.times(medium.plus(fourth, -1.0), intensity), _STEFAN_BOLTZMANN)
+        power = medium.plus(power, _STEFAN_BOLTZMANN)
+        tint = self._value(node, "Blackbody Tint", 'color')
+        rgb = medium.product(self.values.builder.emit("Blackbody", 'color', [kelvin]),
+                             constant('color', tuple(tint)))
+        medium.add('emission', rgb, medium.times(weight, power))
 
     def _node_phase(self, node):
         return node_phase(node, lambda name: self._value(node, name, 'float'))
@@ -221,6 +259,17 @@ class VolumeReader:
         return Constants().value(read, kind)
 
 
+def _once(make):
+    """make(), called at most once."""
+    made = []
+
+    def get():
+        if not made:
+            made.append(make())
+        return made[0]
+    return get
+
+
 def _output_sockets(owner):
     """The (Surface, Volume) input sockets of the output Cycles uses, or None."""
     tree = used_node_tree(owner)
@@ -230,20 +279,21 @@ def _output_sockets(owner):
     return output.inputs.get("Surface"), output.inputs.get("Volume")
 
 
-def material_volume(mat, textures, reporter, depsgraph=None):
+def material_volume(mat, textures, reporter, depsgraph=None, grid_table=None):
     """(set_material_volume keywords without the material, pass_through) for a material whose
     output's Volume is linked to something that renders, else None; keywords with a 'program'
     (its add_shader_program arguments) are set_material_volume_program's (a heterogeneous
     volume). pass_through: its Surface is unlinked (Cycles renders such a surface as a boundary
     rays cross). depsgraph: the one being exported, where a heterogeneous volume's meshes are
-    found (volume_space.py); without it the volume is read as homogeneous."""
+    found (volume_space.py); without it the volume is read as homogeneous. grid_table
+    (volume_grids.GridTable): where the grids of a smoke domain holding it are added."""
     sockets = _output_sockets(mat) if mat is not None else None
     if sockets is None or sockets[1] is None or source_socket(sockets[1]) is None:
         return None
     where = f"Material '{mat.name}'"
     medium = VolumeReader(where, textures, reporter,
-                          space=lambda: volume_space(mat, where, reporter,
-                                                     depsgraph)).read(sockets[1])
+                          space=lambda: volume_space(mat, where, reporter, depsgraph,
+                                                     grid_table)).read(sockets[1])
     if medium is None:
         return None
     return medium, sockets[0] is None or source_socket(sockets[0]) is None

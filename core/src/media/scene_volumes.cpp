@@ -27,6 +27,7 @@ void Scene::set_material_volume(uint32_t material, VaryingMedium medium, bool pa
     throw std::invalid_argument("volume program " + std::to_string(medium.program) + " but the scene has " +
                                 std::to_string(programs_.size()) + " programs");
   const ShaderProgram& program = programs_[medium.program];
+  program.check_grids(volume_grids_.size());
   for (const int16_t r : {medium.sigma_a, medium.sigma_s, medium.emission})
     if (r >= 0 && !program.written(r))
       throw std::invalid_argument("volume register " + std::to_string(r) + " is not written by its program");
@@ -34,6 +35,13 @@ void Scene::set_material_volume(uint32_t material, VaryingMedium medium, bool pa
     throw std::invalid_argument("volume bounds must be finite");
   medium.majorant = varying_majorant(*this, medium);
   media_.set_material(material, medium, pass_through);
+}
+
+uint32_t Scene::add_volume_grid(VolumeGrid grid) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("add a volume grid");
+  volume_grids_.push_back(std::make_shared<const VolumeGrid>(std::move(grid)));
+  return uint32_t(volume_grids_.size() - 1);
 }
 
 void Scene::set_world_volume(const HomogeneousMedium& medium) {

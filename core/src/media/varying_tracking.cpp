@@ -31,9 +31,13 @@ Vec3 reg(const glm::vec4* regs, int16_t r) { return r >= 0 ? glm::max(Vec3(regs[
 
 Rng tracking_rng(float a, float b, float c) { return Rng(bits(a), bits(b), bits(c)); }
 
-HomogeneousMedium varying_coefficients(const Scene& scene, const VaryingMedium& medium, const Vec3& p,
-                                       const Vec3& dir) {
+namespace {
+
+HomogeneousMedium coefficients(const Scene& scene, const VaryingMedium& medium, const Vec3& p, const Vec3& dir,
+                               bool grid_bounds) {
   ShaderGlobals g;
+  g.grids = &scene.volume_grids();
+  g.grid_bounds = grid_bounds;
   g.position = p;
   g.incoming = -dir;
   g.normal = g.true_normal = -dir;  // Cycles' volume ShaderData: N = Ng = I = -D
@@ -48,6 +52,13 @@ HomogeneousMedium varying_coefficients(const Scene& scene, const VaryingMedium& 
   m.phase_a = medium.phase_a;
   m.phase_b = medium.phase_b;
   return m;
+}
+
+}  // namespace
+
+HomogeneousMedium varying_coefficients(const Scene& scene, const VaryingMedium& medium, const Vec3& p,
+                                       const Vec3& dir) {
+  return coefficients(scene, medium, p, dir, false);
 }
 
 namespace {
@@ -187,6 +198,14 @@ float varying_majorant(const Scene& scene, const VaryingMedium& medium) {
           largest = std::max(largest, max_component(m.sigma_a + m.sigma_s));
         }
   }
+  // Grids' bricks: the program with every grid read as its brick's bound (the largest voxel a
+  // lookup there reads), at each of the grids' bricks, so thin features between the lattice's
+  // points count (a bound for programs that grow with their grids' values, as densities do).
+  for (const int32_t id : scene.shader_program(medium.program).resources(ShaderOpcode::VolumeGrid))
+    for (const Vec3& centre : scene.volume_grids()[size_t(id)]->brick_centres()) {
+      const HomogeneousMedium m = coefficients(scene, medium, centre, Vec3(0.0f, 0.0f, -1.0f), true);
+      largest = std::max(largest, max_component(m.sigma_a + m.sigma_s));
+    }
   const float diagonal = glm::length(size);
   const float floor_rate = diagonal > 0.0f && std::isfinite(diagonal) ? 4.0f / diagonal : 1.0f;
   return std::max(largest * kMargin, floor_rate);

@@ -14,6 +14,7 @@
 #include "torrance/shader/shader_sky.h"
 #include "torrance/shader/shader_radial_tiling.h"
 #include "torrance/shader/shader_textures.h"
+#include "torrance/media/volume_grid.h"
 #include "torrance/shader/shader_geometry.h"
 #include "torrance/shader/shader_bevel.h"
 #include "torrance/shader/shader_vector.h"
@@ -176,6 +177,7 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
     case ShaderOpcode::LightPath: return {0, shader::kLightPathModes, false, shader::light_path_op};
     case ShaderOpcode::LightFalloff: return {2, shader::kLightFalloffModes, false, shader::light_falloff_op};
     case ShaderOpcode::Wireframe: return {1, 2, false, shader::wireframe_op};
+    case ShaderOpcode::VolumeGrid: return {1, 1, false, volume_grid_op};
     case ShaderOpcode::AmbientOcclusion: return {4, 2, false, shader::ambient_occlusion_op};
     case ShaderOpcode::Bevel: return {3, 1, false, shader::bevel_op};
     case ShaderOpcode::CameraTransform: return {4, shader::kCameraTransformModes, false, shader::camera_transform_op};
@@ -251,6 +253,14 @@ ShaderProgram::ShaderProgram(std::vector<glm::vec4> constants, std::vector<Shade
   }
   written_ = std::move(written);
   if (differentials_) globals_read_ |= kReadsDifferentials;
+}
+
+void ShaderProgram::check_grids(size_t num_grids) const {
+  for (size_t i = 0; i < code_.size(); ++i)
+    if (code_[i].op == ShaderOpcode::VolumeGrid && (code_[i].resource < 0 || size_t(code_[i].resource) >= num_grids))
+      throw std::invalid_argument("shader instruction " + std::to_string(i) + ": volume grid " +
+                                  std::to_string(code_[i].resource) + " but the scene has " +
+                                  std::to_string(num_grids) + " grids");
 }
 
 namespace {

@@ -11,7 +11,7 @@ from .program import constant
 
 OPCODES = {"Geometry": 96, "Reflection": 97, "Fresnel": 98, "LayerWeight": 99, "Attribute": 100,
            "Tangent": 101, "LightPath": 106, "CameraTransform": 107,
-           "LightFalloff": 109, "Wireframe": 110}
+           "LightFalloff": 109, "Wireframe": 110, "VolumeGrid": 111}
 VARYING = set(OPCODES)
 FOLDS = {}
 

@@ -64,7 +64,7 @@ class GraphCompiler:
         hit; the meshes of the material export it. In a world, as in Cycles' background: the
         Generated and Object coordinates are the direction, any other attribute 0."""
         if self.volume is not None:
-            return self.volume.attribute(self, key)
+            return self.volume.attribute(self, key, kind)
         if self.background:
             if key in (('generated',), ('object',)):
                 return self.builder.emit("Geometry", 'vector', mode=0)

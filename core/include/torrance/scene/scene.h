@@ -12,6 +12,7 @@
 #include "torrance/lights/lights.h"
 #include "torrance/bsdfs/mixture.h"
 #include "torrance/media/scene_media.h"
+#include "torrance/media/volume_grid.h"
 #include "torrance/shader/shader_bump.h"
 #include "torrance/shader/shader_program.h"
 #include "torrance/shader/texture.h"
@@ -223,6 +224,10 @@ class Scene final : public ShaderTracer {
   void set_material_volume(uint32_t material, VaryingMedium medium, bool pass_through);
   void set_world_volume(const HomogeneousMedium& medium);
   const SceneMedia& media() const { return media_; }
+  // A sparse voxel grid (media/volume_grid.h) heterogeneous volumes' programs read (their
+  // VolumeGrid ops' resource); returns its id.
+  uint32_t add_volume_grid(VolumeGrid grid);
+  const std::vector<std::shared_ptr<const VolumeGrid>>& volume_grids() const { return volume_grids_; }
   // The weights of mixture material i's closures at uv (image factors over footprint UV units).
   // regs: as textured_material's (the mixture's program, which its Normal reads too).
   MixtureWeights mixture_weights(uint32_t i, const ShaderGlobals& globals, glm::vec4* regs = nullptr) const;
@@ -537,6 +542,7 @@ class Scene final : public ShaderTracer {
   SceneMedia media_;
   std::vector<std::shared_ptr<const Texture>> textures_;
   std::vector<ShaderProgram> programs_;
+  std::vector<std::shared_ptr<const VolumeGrid>> volume_grids_;
   std::vector<std::unique_ptr<Mesh>> meshes_;  // world-space meshes, in the order added
   std::vector<std::unique_ptr<CurveSet>> curve_sets_;  // hair strands, in the order added
   // Instances' constant attributes: instance i's layer a at i * ids.size() + a (the vector may

@@ -23,6 +23,8 @@
 
 namespace torrance {
 
+class VolumeGrid;
+
 enum class ShaderOpcode : uint8_t {
   TexCoordUV,      // out = (u, v, 0, 0): the mesh's UVs (Texture Coordinate > UV, UV Map, unlinked Vector)
   Image,           // out = texture(in0.xy) RGBA; resource = its id; mode: the Extension (texture.h)
@@ -93,6 +95,7 @@ enum class ShaderOpcode : uint8_t {
   VectorTransform = 108,  // shader_vector.h
   LightFalloff = 109,     // shader_geometry.h
   Wireframe = 110,
+  VolumeGrid = 111,       // media/volume_grid.h: a grid (resource) at in0 (a world point), RGBA
 };
 constexpr int kShaderOpcodes = 128;
 
@@ -184,6 +187,11 @@ struct ShaderGlobals {
   Vec3 tangent{0.0f};
   float bitangent_sign = 1.0f;
   Vec3 corners[3] = {Vec3(0.0f), Vec3(0.0f), Vec3(0.0f)};  // the hit triangle's, world space (0: none)
+  // The scene's volume grids a heterogeneous volume's program reads (VolumeGrid ops; null
+  // elsewhere: they read 0), and whether those ops give their bricks' bounds instead of values
+  // (VolumeGrid::brick_max: the majorant's search).
+  const std::vector<std::shared_ptr<const VolumeGrid>>* grids = nullptr;
+  bool grid_bounds = false;
   // These globals at the hit moved by width times dx (which 1) or dy (which 2): position, UVs
   // and corner weights (normals, the view and footprint stay, as in Cycles' bump evaluation;
   // width: the Bump's Filter Width, 1 before Cycles 4.3).
@@ -249,6 +257,15 @@ class ShaderProgram {
       if (ins.op == op) return true;
     return false;
   }
+  // The resources (texture, grid ids) of op's instructions, in order.
+  std::vector<int32_t> resources(ShaderOpcode op) const {
+    std::vector<int32_t> out;
+    for (const ShaderInstruction& ins : code_)
+      if (ins.op == op) out.push_back(ins.resource);
+    return out;
+  }
+  // Throws std::invalid_argument unless every VolumeGrid instruction names one of num_grids grids.
+  void check_grids(size_t num_grids) const;
   // Whether some instruction traces local rays (Bevel, Ambient Occlusion's Only Local): the
   // scene then builds a BVH per object for ShaderTracer's local queries.
   bool local_queries() const { return local_queries_; }
