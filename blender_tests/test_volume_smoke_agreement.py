@@ -18,41 +18,13 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \\
 
 import math
 
-from torrance_tools import scene as make
 from torrance_tools import testing
 from torrance_tools.seed_noise import agree_on_scene
+from torrance_tools.smoke import attribute_ignored, smoke_domain
 
 W, H = 48, 36
 BOUNCES = 4
 FRAMES = 8
-
-
-def smoke_domain(scene, resolution=24, fire=False):
-    """A simulated smoke (or fire) domain with Quick Smoke's material at frame FRAMES."""
-    mat, nodes, links, output = make.node_material("Smoke")
-    principled = nodes.new('ShaderNodeVolumePrincipled')
-    principled.inputs["Density"].default_value = 5.0
-    if fire:
-        principled.inputs["Blackbody Intensity"].default_value = 1.0
-    links.new(principled.outputs[0], output.inputs["Volume"])
-    domain = make.box(scene, "Domain", (0.3, 0.2, 1.2), (2.0, 2.0, 2.0), mat, rotation_z_deg=25.0)
-    fluid = domain.modifiers.new("Fluid", 'FLUID')
-    fluid.fluid_type = 'DOMAIN'
-    settings = fluid.domain_settings
-    settings.domain_type = 'GAS'
-    settings.resolution_max = resolution
-    settings.cache_type = 'REPLAY'
-    settings.cache_directory = testing.tempdir()
-    emitter = make.sphere_object(scene, "Emitter", (0.3, 0.2, 0.55), 0.3, None, segments=16,
-                                 rings=8)
-    flow = emitter.modifiers.new("Fluid", 'FLUID')
-    flow.fluid_type = 'FLOW'
-    flow.flow_settings.flow_type = 'BOTH' if fire else 'SMOKE'
-    flow.flow_settings.flow_behavior = 'INFLOW'
-    emitter.hide_render = True
-    for frame in range(1, FRAMES + 1):
-        scene.frame_set(frame)
-    return domain
 
 
 def smoke(scene):
@@ -60,7 +32,7 @@ def smoke(scene):
     testing.add_camera(scene, location=(0.5, -4.6, 1.6), target=(0.3, 0.2, 1.1), lens=35.0)
     scene.cycles.volume_step_rate = 0.25
     testing.plane(scene, "Floor", 6.0, material=testing.principled("Floor", (0.6, 0.6, 0.6)))
-    smoke_domain(scene)
+    smoke_domain(scene, (0.3, 0.2, 1.2), rotation_z_deg=25.0, frames=FRAMES)
     testing.add_sun(scene, strength=3.0, rotation=(math.radians(40), 0, math.radians(30)))
     testing.set_world(scene, (0.1, 0.1, 0.12))
 
@@ -70,12 +42,12 @@ def fire(scene):
     testing.add_camera(scene, location=(0.5, -4.6, 1.6), target=(0.3, 0.2, 1.1), lens=35.0)
     scene.cycles.volume_step_rate = 0.25
     testing.plane(scene, "Floor", 6.0, material=testing.principled("Floor", (0.6, 0.6, 0.6)))
-    smoke_domain(scene, fire=True)
+    smoke_domain(scene, (0.3, 0.2, 1.2), rotation_z_deg=25.0, frames=FRAMES, fire=True)
     testing.add_sun(scene, strength=1.0, rotation=(math.radians(40), 0, math.radians(30)))
     testing.set_world(scene, (0.02, 0.02, 0.03))
 
 
-# Faults: wrappers of volume_grids.SmokeGrids.voxels and VolumeReader._grid.
+# Faults: wrappers of volume_grids.SmokeGrids.voxels (and of VolumeReader._grid: smoke.py).
 def object_space(original):
     def fault(self, name):
         from torrance.volume_grids import _texspace_to_index, world_to_index
@@ -86,27 +58,16 @@ def object_space(original):
     return fault
 
 
-def density_ignored(original):
-    def fault(self, node, name, kind):
-        return None if name == "Density Attribute" else original(self, node, name, kind)
-    return fault
-
-
-def temperature_ignored(original):
-    def fault(self, node, name, kind):
-        return None if name == "Temperature Attribute" else original(self, node, name, kind)
-    return fault
-
-
 def main():
     testing.addon()
     from torrance.volume_grids import SmokeGrids
     from torrance.volumes import VolumeReader
     agree_on_scene(smoke, 64, BOUNCES, "fluid-simulated smoke", faults=(
         ("grid in object space", SmokeGrids, "voxels", object_space),
-        ("density grid ignored", VolumeReader, "_grid", density_ignored)))
+        ("density grid ignored", VolumeReader, "_grid", attribute_ignored("Density Attribute"))))
     agree_on_scene(fire, 64, BOUNCES, "fluid-simulated fire", faults=(
-        ("temperature grid ignored", VolumeReader, "_grid", temperature_ignored),))
+        ("temperature grid ignored", VolumeReader, "_grid",
+         attribute_ignored("Temperature Attribute")),))
 
 
 if __name__ == "__main__":

@@ -89,7 +89,8 @@ void init_media(py::module_& m) {
       "ValueError for an unknown material or program, a register the program does not write, |anisotropy| > 1.");
   scene.def(
       "add_volume_grid",
-      [](Scene& s, const py::object& bricks, const py::object& origins, const py::object& world_to_index) {
+      [](Scene& s, const py::object& bricks, const py::object& origins, const py::object& world_to_index,
+         const py::object& clip_min, const py::object& clip_max) {
         const auto b = shaped_array<float>(bricks, "bricks", {-1, VolumeGrid::kBrickSize, VolumeGrid::kBrickSize,
                                                               VolumeGrid::kBrickSize, -1});
         const auto o = shaped_array<int32_t>(origins, "origins", {-1, 3});
@@ -102,18 +103,27 @@ void init_media(py::module_& m) {
         for (int r = 0; r < 4; ++r)
           for (int c = 0; c < 4; ++c) matrix[c][r] = float(m.data()[4 * r + c]);
         try {
-          return s.add_volume_grid(
-              VolumeGrid(b.ndim() == 5 ? int(b.shape(4)) : 1, matrix, corner, std::vector<float>(b.data(), b.data() + b.size())));
+          VolumeGrid grid(b.ndim() == 5 ? int(b.shape(4)) : 1, matrix, corner,
+                          std::vector<float>(b.data(), b.data() + b.size()));
+          if (!clip_min.is_none() || !clip_max.is_none()) {
+            const auto lo = shaped_array<double>(clip_min, "clip_min", {3});
+            const auto hi = shaped_array<double>(clip_max, "clip_max", {3});
+            grid.clip(Vec3(float(lo.data()[0]), float(lo.data()[1]), float(lo.data()[2])),
+                      Vec3(float(hi.data()[0]), float(hi.data()[1]), float(hi.data()[2])));
+          }
+          return s.add_volume_grid(std::move(grid));
         } catch (const std::invalid_argument& e) {
           throw py::value_error(e.what());
         }
       },
-      py::arg("bricks"), py::arg("origins"), py::arg("world_to_index"),
+      py::arg("bricks"), py::arg("origins"), py::arg("world_to_index"), py::arg("clip_min") = py::none(),
+      py::arg("clip_max") = py::none(),
       "A sparse voxel grid heterogeneous volumes' programs read (VolumeGrid ops): bricks (N, 8, 8, 8, C) "
       "float32 indexed [z, y, x, channel], C 1 (a scalar) to 4 (RGBA), brick i's first voxel at origins[i] "
       "(index space, multiples of 8), world_to_index (4, 4, row-major) taking a world point to index "
       "space, where voxel centres lie at integers. Trilinear lookups; voxels outside the bricks are 0, "
-      "NaN and infinite ones read as 0. Returns the grid's id. ValueError for a bad shape, an unaligned "
+      "NaN and infinite ones read as 0; clip_min/clip_max (index space, both or neither): lookups outside that box "
+      "read 0. Returns the grid's id. ValueError for a bad shape, an unaligned "
       "or repeated origin, a singular transform.");
   scene.def(
       "set_world_volume",

@@ -119,6 +119,19 @@ TEST(VolumeGrid, EmptyGridsAndNanVoxelsGiveFiniteValues) {
   EXPECT_THROW(VolumeGrid(5, Mat4(1.0f), {}, {}), std::invalid_argument);
 }
 
+// A clip box (Cycles 3.4's dense textures end at the active bounding box): lookups inside it
+// unchanged, outside it 0, and a box with lo > hi refused.
+TEST(VolumeGrid, ClipBoxZeroesLookupsOutsideIt) {
+  VolumeGrid grid(1, Mat4(1.0f), {glm::ivec3(0)}, std::vector<float>(size_t(VolumeGrid::kBrickVoxels), 1.0f));
+  EXPECT_FLOAT_EQ(grid.lookup(Vec3(7.3f, 3.0f, 3.0f)).x, 0.7f);  // fading past the last voxel centre
+  grid.clip(Vec3(-0.5f), Vec3(7.5f));
+  EXPECT_FLOAT_EQ(grid.lookup(Vec3(7.4f, 3.0f, 3.0f)).x, 0.6f);
+  EXPECT_EQ(grid.lookup(Vec3(7.6f, 3.0f, 3.0f)).x, 0.0f);
+  EXPECT_EQ(grid.lookup(Vec3(3.0f, -0.6f, 3.0f)).x, 0.0f);
+  EXPECT_EQ(grid.lookup(Vec3(3.0f, 3.0f, 3.0f)).x, 1.0f);
+  EXPECT_THROW(grid.clip(Vec3(1.0f), Vec3(0.0f)), std::invalid_argument);
+}
+
 // Ratio tracking's transmittance across a box of bricks of constant density, read by a volume
 // program (Geometry > Position -> VolumeGrid as the absorption), against exp(-sigma d).
 TEST(VolumeGrid, TransmittanceThroughAConstantBoxIsBeerLambert) {

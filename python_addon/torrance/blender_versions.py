@@ -17,6 +17,10 @@ difference is named once and told by the API itself where it can be:
               surfaces with a microfacet shadowing term (and drops light the smooth and the
               mapped normal put on different sides): cycles5_bump_shadowing, the running
               Blender tells (no setting or node changed).
+  volume grids  Debian's Cycles 3.4 (built without NanoVDB) samples a Volume object's grid as a
+              dense texture of its active bounding box: voxel i's centre at index i + 0.5 and
+              nothing outside the box's voxels (scene/image_vdb.cpp); later Cycles sample NanoVDB
+              in index space: cycles_dense_volume_textures (export/volume_objects.py).
   light linking  4.0 adds Object.light_linking (receiver and blocker collections) and
               CollectionObject/CollectionChild.light_linking (include/exclude): has_light_linking;
               3.x has none, and the export then sends nothing (export/light_linking.py).
@@ -34,6 +38,14 @@ def cycles5_bump_shadowing():
     microfacet_bump_shadowing; measured in 5.3, 5.0-5.2 taken as 5.3), False for 3.x-4.x's."""
     import bpy
     return bpy.app.version >= (5, 0, 0)
+
+
+def cycles_dense_volume_textures():
+    """True where Cycles samples OpenVDB grids as dense textures (Blender 3.4, measured against
+    Debian's build; later versions taken as NanoVDB's, not yet measured: their bpy wheels have
+    no openvdb module)."""
+    import bpy
+    return bpy.app.version < (3, 5, 0)
 
 
 def has_light_linking():

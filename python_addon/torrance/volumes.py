@@ -33,7 +33,7 @@ from .shader_graph.convert_ops import blackbody
 from .shader_graph.graph import GraphCompiler, Unsupported
 from .shader_graph.program import ProgramBuilder, Value, constant
 from .shader_graph.registry import READERS
-from .volume_phase import PHASE_INPUTS, node_phase, one_phase
+from .volume_phase import HENYEY_GREENSTEIN, PHASE_INPUTS, node_phase, one_phase
 from .volume_space import volume_space
 from .volume_sums import CUTOFF, Constants, Program, Varies
 
@@ -63,21 +63,22 @@ class VolumeReader:
             self._warned.add(text)
             self.reporter.warning(text)
 
-    def read(self, socket):
+    def read(self, socket, weight=1.0):
         """set_material_volume/set_world_volume keywords (sigma_a, sigma_s, emission,
         anisotropy), or with a program set_material_volume_program's (program, registers,
-        anisotropy, bounds), or None when nothing renders."""
+        anisotropy, bounds), or None when nothing renders. weight scales every closure (a
+        Volume object's density in object space)."""
         medium = Constants()
         try:
-            self._shader(source_socket(socket), 1.0, medium, 0)
+            self._shader(source_socket(socket), weight, medium, 0)
         except Varies:
             space = self.space() if self.space is not None else None
             if space is not None:
-                return self._read_program(socket, space)
+                return self._read_program(socket, space, weight)
             medium = Constants()
             self.values = GraphCompiler(ProgramBuilder(), self.textures, READERS)
             self._report_varying = True
-            self._shader(source_socket(socket), 1.0, medium, 0)
+            self._shader(source_socket(socket), weight, medium, 0)
         if medium.empty():
             return None
         return dict(sigma_a=tuple(medium.sigma_a), sigma_s=tuple(medium.sigma_s),
@@ -86,24 +87,17 @@ class VolumeReader:
     _report_varying = False
     _medium = None
 
-    def _read_program(self, socket, space):
+    def _read_program(self, socket, space, weight):
         builder = ProgramBuilder()
         self.values = GraphCompiler(builder, self.textures, READERS)
         space.apply(self.values)
         medium = Program(builder)
-        self._shader(source_socket(socket), 1.0, medium, 0)
-        registers = medium.registers()
-        if all(isinstance(r, int) and r == -1 for r in registers.values()):
-            return None
-        out = {k: r if isinstance(r, int) else builder.register_of(r)
-               for k, r in registers.items()}
+        self._shader(source_socket(socket), weight, medium, 0)
         try:
-            program = builder.build()
+            return _program_keywords(builder, medium, self._phase(medium.lobes), space)
         except ValueError as exc:
             self._warn(f"{self.where}: {exc}; the volume is left out")
             return None
-        return dict(program=program, **out, **self._phase(medium.lobes),
-                    bounds_min=space.bounds_min, bounds_max=space.bounds_max)
 
     def _phase(self, lobes):
         """The phase function keywords of the closures' lobes (volume_phase.one_phase)."""
@@ -259,6 +253,17 @@ class VolumeReader:
         return Constants().value(read, kind)
 
 
+def _program_keywords(builder, medium, phase, space):
+    """set_material_volume_program's keywords of a Program's sums (None: nothing renders);
+    ValueError when the program needs more registers than the core has."""
+    registers = medium.registers()
+    if all(isinstance(r, int) and r == -1 for r in registers.values()):
+        return None
+    out = {k: r if isinstance(r, int) else builder.register_of(r) for k, r in registers.items()}
+    return dict(program=builder.build(), **out, **phase, bounds_min=space.bounds_min,
+                bounds_max=space.bounds_max)
+
+
 def _once(make):
     """make(), called at most once."""
     made = []
@@ -318,3 +323,34 @@ def world_volume(world, textures, reporter):
     if sockets is None or sockets[1] is None or source_socket(sockets[1]) is None:
         return None
     return VolumeReader(f"World '{world.name}'", textures, reporter).read(sockets[1])
+
+
+def object_volume(mat, where, textures, reporter, space, density=1.0):
+    """The volume keywords (as material_volume's first item) of material mat's Volume inside a
+    Volume object's VolumeSpace (its grids), its closures scaled by density, or None when nothing
+    renders."""
+    sockets = _output_sockets(mat)
+    if sockets is None or sockets[1] is None or source_socket(sockets[1]) is None:
+        return None
+    return VolumeReader(f"{where}, material '{mat.name}'", textures, reporter,
+                        space=lambda: space).read(sockets[1], density)
+
+
+def default_volume(space, textures, density=1.0):
+    """Cycles' default volume (scene/shader.cpp: a Principled Volume of its defaults) inside a
+    Volume object without a material: scattering and absorption 0.5 x max(density grid, 0),
+    Henyey-Greenstein of anisotropy 0; constant 0.5 without a "density" grid; all scaled by
+    density."""
+    builder = ProgramBuilder()
+    values = GraphCompiler(builder, textures, READERS)
+    space.apply(values)
+    grid = space.grid_value(values, "density", 'float')
+    if grid is None:
+        return dict(sigma_a=(0.5 * density,) * 3, sigma_s=(0.5 * density,) * 3,
+                    emission=(0.0,) * 3, anisotropy=0.0)
+    medium = Program(builder)
+    density = medium.times(medium.positive(grid), density)
+    medium.scatter(constant('color', (0.5, 0.5, 0.5)), (HENYEY_GREENSTEIN, 0.0, 0.0, 0.0),
+                   density)
+    medium.add('sigma_a', (0.5, 0.5, 0.5), density)
+    return _program_keywords(builder, medium, one_phase(medium.lobes, None, ""), space)

@@ -85,6 +85,13 @@ VolumeGrid::VolumeGrid(int channels, const Mat4& world_to_index, const std::vect
       }
 }
 
+void VolumeGrid::clip(const Vec3& lo, const Vec3& hi) {
+  if (!(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z))
+    throw std::invalid_argument("a volume grid's clip box must have lo <= hi");
+  clip_lo_ = lo;
+  clip_hi_ = hi;
+}
+
 int32_t VolumeGrid::brick_at(const glm::ivec3& brick) const {
   const glm::ivec3 c = brick - lo_;
   if (c.x < 0 || c.y < 0 || c.z < 0 || c.x >= dims_.x || c.y >= dims_.y || c.z >= dims_.z) return -1;
@@ -119,7 +126,9 @@ glm::vec4 as_rgba(const glm::vec4& v, int channels) {
 
 glm::vec4 VolumeGrid::lookup(const Vec3& world) const {
   const Vec3 p = Vec3(world_to_index_ * glm::vec4(world, 1.0f));
-  if (index_.empty() || !within(p, lo_, dims_)) return as_rgba(glm::vec4(0.0f), channels_);
+  if (index_.empty() || !within(p, lo_, dims_) || glm::any(glm::lessThan(p, clip_lo_)) ||
+      glm::any(glm::greaterThan(p, clip_hi_)))
+    return as_rgba(glm::vec4(0.0f), channels_);
   const Vec3 floor_p = glm::floor(p);
   const Vec3 f = p - floor_p;
   const glm::ivec3 i(floor_p);

@@ -24,6 +24,7 @@ from .mesh_attributes import dupli_record, instancer_record, object_info
 from .instance_motion import InstanceMotion
 from .motion import (MotionSampler, at_shutter_centre, motion_blur_enabled, object_motion_steps,
                      uses_deform_motion)
+from .volume_objects import VolumeObjects
 from .world import export_world
 
 # Types whose geometry is a mesh. Only 'MESH' entries of the depsgraph are exported; the
@@ -71,12 +72,14 @@ def _is_visible(obj):
 
 
 def instance_role(inst):
-    """What an export does with a depsgraph instance: 'LIGHT', 'MESH' or 'HAIR' (export it),
-    'UNSUPPORTED' (report its type) or None (skip it silently)."""
+    """What an export does with a depsgraph instance: 'LIGHT', 'MESH', 'HAIR' or 'VOLUME'
+    (export it), 'UNSUPPORTED' (report its type) or None (skip it silently)."""
     obj = inst.object
     kind = obj.type
     if kind == 'LIGHT':
         return 'LIGHT'
+    if kind == 'VOLUME':            # OpenVDB grids: volume_objects.py
+        return 'VOLUME' if _is_visible(obj) and (inst.is_instance or inst.show_self) else None
     if kind == 'CURVES':            # hair strands (Blender 3.3+): export/hair.py
         return 'HAIR' if _is_visible(obj) and (inst.is_instance or inst.show_self) else None
     if kind not in MESH_TYPES:
@@ -97,9 +100,9 @@ def report_unsupported(obj, reported_types, reporter):
     """Warns that objects of obj's type are not rendered, once per type (reported_types)."""
     if obj.type not in reported_types:
         reported_types.add(obj.type)
-        if obj.type == 'VOLUME':      # homogeneous volumes are read from materials (volumes.py)
-            reporter.warning(f"Volume objects (OpenVDB grids, smoke) are not yet rendered "
-                             f"(e.g. '{obj.name}'); homogeneous volumes of meshes are")
+        if obj.type == 'VOLUME':      # final renders: volume_objects.py
+            reporter.warning(f"Volume objects are rendered in final renders only, not yet in "
+                             f"the viewport or as instances (e.g. '{obj.name}')")
             return
         reporter.warning(f"Torrance does not render objects of type {obj.type} "
                          f"(e.g. '{obj.name}')")
@@ -182,6 +185,7 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre):
 
     unsupported_types = set()
     hair = []             # (evaluated object, matrix): particle-hair emitters and Curves objects
+    volume_objects = []   # (evaluated object, matrix): Volume objects
     flattened = []        # OBJECTS_AS_INSTANCES off: (object, name, matrix, slot table, UVs)
     as_instances = OBJECTS_AS_INSTANCES
 
@@ -192,8 +196,9 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre):
             src = meshes.source(obj, obj.name, instanced=True)
             meshes.read_now(obj, src)
             return src
-        if role == 'UNSUPPORTED':
+        if role in ('UNSUPPORTED', 'VOLUME'):
             report_unsupported(obj, unsupported_types, reporter)
+            return None
         if role == 'HAIR':
             reporter.warning(f"Torrance does not render instanced hair curves yet (e.g. "
                              f"'{obj.name}')")
@@ -275,6 +280,8 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre):
                 hair.append((obj, inst.matrix_world.copy()))
             elif role == 'LIGHT':
                 light(obj, inst.matrix_world.copy())
+            elif role == 'VOLUME':
+                volume_objects.append((obj, inst.matrix_world.copy()))
             elif role == 'UNSUPPORTED':
                 report_unsupported(obj, unsupported_types, reporter)
             elif role == 'MESH' and not as_instances:
@@ -324,6 +331,8 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre):
         motion.export(tc_scene, camera_object(depsgraph, engine))
         stats.motion_blur = True
         stats.camera_motion = motion.camera_matrices()
+    volumes = VolumeObjects(tc_scene, materials, reporter)
+    stats.objects += sum(volumes.add(obj, matrix) for obj, matrix in volume_objects)
     stats.strands = strands.export_hair(tc_scene, hair, materials, reporter,
                                         strands.curve_shape(depsgraph.scene))
     materials.send_pass_indices()

@@ -250,8 +250,8 @@ CLOSURES = {
                                   "Emission Strength and Color (any graph inside meshes, as "
                                   "Volume Absorption's), Anisotropy, Blackbody Intensity, "
                                   "Temperature and Tint constant; its Density, Color and "
-                                  "Temperature Attributes read a smoke/fire domain's grids "
-                                  "(Volume objects' grids not yet)",
+                                  "Temperature Attributes read a smoke/fire domain's or a "
+                                  "Volume object's grids",
     'ShaderNodeNormalMap': "rendered: Tangent (each mesh's active render UV map), Object, "
                            "World and the Blender spaces, Strength, any Color graph",
     'ShaderNodeBump': "rendered: any Height graph (evaluated at the hit and its ray-differential "

@@ -10,6 +10,7 @@
 
 #include "torrance/util/math.h"
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -30,6 +31,10 @@ class VolumeGrid {
   VolumeGrid(int channels, const Mat4& world_to_index, const std::vector<glm::ivec3>& origins,
              const std::vector<float>& values);
 
+  // Lookups outside the index-space box [lo, hi] read 0 (Cycles 3.4's dense volume textures
+  // end at the grid's active bounding box). Throws std::invalid_argument unless lo <= hi.
+  void clip(const Vec3& lo, const Vec3& hi);
+
   // RGBA at world point p: a scalar grid's value v as (v, v, v, 1), a colour grid's channels
   // (alpha 1 without a fourth).
   glm::vec4 lookup(const Vec3& world) const;
@@ -46,6 +51,7 @@ class VolumeGrid {
 
   int channels_;
   Mat4 world_to_index_, index_to_world_;
+  Vec3 clip_lo_{-INFINITY}, clip_hi_{INFINITY};
   glm::ivec3 lo_{0}, dims_{0};  // the brick lattice's first brick and its size, in bricks
   std::vector<int32_t> index_;  // brick lattice cell -> brick, -1: empty
   std::vector<glm::ivec3> origins_;
