@@ -510,7 +510,7 @@ void init_scene(py::module_& m) {
       .def(
           "add_curves",
           [](Scene& s, const py::object& keys, const py::object& radii, const py::object& curve_offsets,
-             const py::object& materials, const std::string& shape) {
+             const py::object& materials, const std::string& shape, const py::object& random) {
             if (shape != "ROUND" && shape != "RIBBON")
               throw py::value_error("shape must be 'ROUND' or 'RIBBON', got '" + shape + "'");
             const auto k = shaped_array<float>(keys, "keys", {-1, 3});
@@ -525,14 +525,18 @@ void init_scene(py::module_& m) {
               throw py::value_error("curve_offsets must run from 0 to the number of keys (" + std::to_string(n) + ")");
             py::array_t<int64_t, py::array::c_style | py::array::forcecast> m;
             if (!materials.is_none()) m = shaped_array<int64_t>(materials, "materials", {py::ssize_t(num_curves)});
+            py::array_t<float, py::array::c_style | py::array::forcecast> rnd;
+            if (!random.is_none()) rnd = shaped_array<float>(random, "random", {py::ssize_t(num_curves)});
             return s.add_curves(k.data(), r.data(), n, offsets.data(), num_curves, materials.is_none() ? nullptr : m.data(),
-                                shape == "ROUND" ? CurveShape::Round : CurveShape::Ribbon);
+                                shape == "ROUND" ? CurveShape::Round : CurveShape::Ribbon,
+                                random.is_none() ? nullptr : rnd.data());
           },
           py::arg("keys"), py::arg("radii"), py::arg("curve_offsets"), py::arg("materials") = py::none(),
-          py::arg("shape") = "ROUND",
+          py::arg("shape") = "ROUND", py::arg("random") = py::none(),
           "Adds hair strands in world space: keys (K, 3), radii (K,), curve_offsets (C + 1,) from 0 to K "
           "(curve c: keys offsets[c] .. offsets[c + 1] - 1), materials (C,) or None; traced as Cycles' "
-          "Catmull-Rom curves, shape 'ROUND' (3D Curves) or 'RIBBON' (Rounded Ribbons). Returns its id.")
+          "Catmull-Rom curves, shape 'ROUND' (3D Curves) or 'RIBBON' (Rounded Ribbons); random (C,) or None: the "
+          "Curves Info node's Random per curve. Returns its id.")
       .def_property_readonly("num_curve_segments", &Scene::num_curve_segments)
       .def(
           "add_prototype",

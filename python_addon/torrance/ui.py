@@ -380,11 +380,8 @@ class TORRANCE_RENDER_PT_compatibility(TorrancePanel, Panel):
                   ok_text="Everything in this scene is supported")
         col = self.layout.column(align=True)
         col.label(text="Not rendered by Torrance:")
-        for text in ("Volume objects and varying volume density (homogeneous volumes are), "
-                     "subsurface, thin film; hair in the viewport",
-                     "Point Density, Hair BSDF, Curves Info and Volume Info nodes; "
-                     "AOV Output in worlds",
-                     "Motion blur",
+        for text in ("Volume objects (OpenVDB grids, smoke); hair in the viewport",
+                     "Point Density, Hair BSDF and Volume Info nodes; AOV Output in worlds",
                      "Blender 5's denoising guide options"):
             col.label(text=text, icon='DOT')
         col.label(text="Denoising: Cycles' Denoising Albedo and Normal guide F12 and the "

@@ -33,6 +33,12 @@ def test_add_curves_rejects_malformed_input():
     bad[3, 1] = np.nan
     with pytest.raises(ValueError, match="finite"):
         scene.add_curves(bad, radii, offsets)
+    scene.add_material()
+    with pytest.raises(ValueError, match="random"):
+        scene.add_curves(keys, radii, offsets, random=[0.5])
+    with pytest.raises(ValueError, match="random"):
+        scene.add_curves(keys, radii, offsets, random=[0.5, np.nan])
+    scene.add_curves(keys, radii, offsets, random=[0.25, 0.75])
 
 
 @pytest.mark.parametrize("shape", ["ROUND", "RIBBON"])

@@ -17,6 +17,11 @@ struct Scene::CurveSet {
   std::vector<glm::vec4> keys;        // x, y, z, radius; each curve's end keys duplicated
   std::vector<uint32_t> segment_key;  // per segment: index in keys of its first control point
   std::vector<uint32_t> segment_material;
+  // The Curves Info node's inputs, as Cycles' curve attributes: per key (aligned with keys) the
+  // Intercept (arc length along the key polyline over the curve's length, 0 at the root), per
+  // segment its curve's Length and Random.
+  std::vector<float> key_intercept;
+  std::vector<float> segment_length, segment_random;
   CurveShape shape = CurveShape::Round;
 };
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace torrance {
 
@@ -43,7 +44,7 @@ void skip_own_strand(const RTCFilterFunctionNArguments* args) {
 }  // namespace
 
 uint32_t Scene::add_curves(const float* keys, const float* radii, size_t num_keys, const int64_t* curve_first,
-                           size_t num_curves, const int64_t* materials, CurveShape shape) {
+                           size_t num_curves, const int64_t* materials, CurveShape shape, const float* random) {
   std::lock_guard<std::mutex> lock(mutex_);
   check_idle("add curves");
   if (num_keys > UINT32_MAX / 2 || num_curves > UINT32_MAX / 2) throw std::invalid_argument("too many curve keys");
@@ -54,6 +55,9 @@ uint32_t Scene::add_curves(const float* keys, const float* radii, size_t num_key
       throw std::invalid_argument("curve keys must be finite and within 1e12 of the origin");
   for (size_t i = 0; i < num_keys; ++i)
     if (!std::isfinite(radii[i]) || radii[i] < 0.0f) throw std::invalid_argument("curve radii must be finite, >= 0");
+  if (random)
+    for (size_t c = 0; c < num_curves; ++c)
+      if (!std::isfinite(random[c])) throw std::invalid_argument("curve random values must be finite");
   auto set = std::make_unique<CurveSet>();
   set->shape = shape;
   set->keys.reserve(num_keys + 2 * num_curves);
@@ -72,9 +76,21 @@ uint32_t Scene::add_curves(const float* keys, const float* radii, size_t num_key
     set->keys.push_back(key(first));
     for (int64_t k = first; k < end; ++k) set->keys.push_back(key(k));
     set->keys.push_back(key(end - 1));
+    // Intercept and Length as Cycles' curve attributes: the distance along the key polyline.
+    double length = 0.0;
+    std::vector<double> along{0.0};
+    for (int64_t k = first + 1; k < end; ++k) {
+      length += double(glm::length(Vec3(key(k)) - Vec3(key(k - 1))));
+      along.push_back(length);
+    }
+    set->key_intercept.push_back(0.0f);
+    for (double a : along) set->key_intercept.push_back(length > 0.0 ? float(a / length) : 0.0f);
+    set->key_intercept.push_back(set->key_intercept.back());
     for (int64_t s = 0; s + 1 < end - first; ++s) {
       set->segment_key.push_back(base + uint32_t(s));
       set->segment_material.push_back(material);
+      set->segment_length.push_back(float(length));
+      set->segment_random.push_back(random ? random[c] : 0.0f);
     }
   }
   if (!materials && materials_.empty() && !set->segment_key.empty())
@@ -129,6 +145,11 @@ void Scene::curve_hit(uint32_t set_index, uint32_t prim, float u, const Vec3& or
   tangent = glm::normalize(tangent);
   hit.tangent = tangent;
   hit.uv = Vec2(u, 0.0f);
+  // Curves Info, as Cycles reads its curve attributes: key values interpolated linearly over the
+  // segment (c[1] -> c[2]); Thickness the radii's, doubled (kernel curve_thickness).
+  const float* intercept = &set.key_intercept[set.segment_key[prim]];
+  hit.curve_info = glm::vec4(intercept[1] + u * (intercept[2] - intercept[1]), set.segment_length[prim],
+                             2.0f * (c[1].w + u * (c[2].w - c[1].w)), set.segment_random[prim]);
   if (set.shape == CurveShape::Round) {
     // Cycles' thick curves: the normal from the centre line at u out through the hit (the view
     // when they coincide).

@@ -15,6 +15,7 @@
 #include "torrance/shader/shader_radial_tiling.h"
 #include "torrance/shader/shader_textures.h"
 #include "torrance/media/volume_grid.h"
+#include "torrance/shader/shader_curves_info.h"
 #include "torrance/shader/shader_geometry.h"
 #include "torrance/shader/shader_bevel.h"
 #include "torrance/shader/shader_vector.h"
@@ -105,6 +106,7 @@ uint8_t globals_read_by(ShaderOpcode op) {
     case ShaderOpcode::NormalMap:
     case ShaderOpcode::VectorDisplacement: return kReadsTangent;
     case ShaderOpcode::Wireframe: return kReadsCorners;
+    case ShaderOpcode::CurvesInfo: return kReadsTangent;  // Tangent Normal
     case ShaderOpcode::Bevel: return kReadsSampleShift;
     default: return 0;
   }
@@ -178,6 +180,7 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
     case ShaderOpcode::LightFalloff: return {2, shader::kLightFalloffModes, false, shader::light_falloff_op};
     case ShaderOpcode::Wireframe: return {1, 2, false, shader::wireframe_op};
     case ShaderOpcode::VolumeGrid: return {1, 1, false, volume_grid_op};
+    case ShaderOpcode::CurvesInfo: return {0, shader::kCurvesInfoModes, false, shader::curves_info_op};
     case ShaderOpcode::AmbientOcclusion: return {4, 2, false, shader::ambient_occlusion_op};
     case ShaderOpcode::Bevel: return {3, 1, false, shader::bevel_op};
     case ShaderOpcode::CameraTransform: return {4, shader::kCameraTransformModes, false, shader::camera_transform_op};

@@ -19,6 +19,7 @@ per key (about a microsecond each), its results gathered into one numpy array.
 import numpy as np
 
 from ..matrices import inverse_transpose, times_transpose
+from ..shader_graph.hash_ops import hash_uint2, uint_to_float_incl
 
 SHAPES = {'RIBBONS': 'RIBBON', 'THICK': 'ROUND'}
 CURVES_DEFAULT_RADIUS = 0.005
@@ -112,11 +113,20 @@ def curves_strands(obj, matrix):
     return keys.astype(np.float32), radii, offsets.astype(np.int64), slots
 
 
+def strand_random(first, count):
+    """The Curves Info node's Random of an object's strands first .. first + count - 1 (counted
+    over its particle systems in order, or its Curves' curves), as Cycles' curve export:
+    hash_uint2_to_float(index, 0)."""
+    index = np.arange(first, first + count, dtype=np.uint32)
+    return np.asarray(uint_to_float_incl(hash_uint2(index, np.zeros_like(index))), np.float32)
+
+
 def export_hair(tc_scene, hair, materials, reporter, shape):
     """Adds the strands of `hair`: (evaluated object, its world matrix) pairs, particle-hair
     emitters and Curves objects. Returns the number of strands added."""
     strands = 0
     for obj, matrix in hair:
+        first_strand = 0         # the object's strands so far (Curves Info's Random)
         slot_to_material = materials.slot_indices([s.material for s in obj.material_slots])
         scale = _radius_scale(matrix)
         if obj.type == 'CURVES':
@@ -126,7 +136,7 @@ def export_hair(tc_scene, hair, materials, reporter, shape):
             keys, radii, offsets, slots = got
             per_curve = slot_to_material[np.clip(slots, 0, len(slot_to_material) - 1)]
             tc_scene.add_curves(keys, radii * scale, offsets, materials=per_curve.astype(np.int64),
-                                shape=shape)
+                                shape=shape, random=strand_random(0, len(offsets) - 1))
             strands += len(offsets) - 1
             continue
         for psys in hair_systems(obj):
@@ -140,6 +150,9 @@ def export_hair(tc_scene, hair, materials, reporter, shape):
                 reporter.warning(f"Object '{obj.name}': hair '{psys.name}' has non-finite keys; "
                                  f"not rendered")
                 continue
-            tc_scene.add_curves(keys, radii * scale, offsets, materials=per_curve, shape=shape)
-            strands += len(offsets) - 1
+            count = len(offsets) - 1
+            tc_scene.add_curves(keys, radii * scale, offsets, materials=per_curve, shape=shape,
+                                random=strand_random(first_strand, count))
+            first_strand += count
+            strands += count
     return strands

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """The geometry family: nodes that read the hit (the core's shader_geometry.h, opcodes 96-127):
-Geometry, Texture Coordinate, UV Map, Color Attribute, Attribute, Fresnel, Layer Weight. None
+Geometry, Texture Coordinate, UV Map, Color Attribute, Attribute, Fresnel, Layer Weight, Curves
+Info (shader_curves_info.h). None
 folds: each reads the hit. Mesh attributes (Generated, Object, named UV maps, colour and geometry
 attributes) are read through GraphCompiler.attribute (export/mesh_attributes.py's keys)."""
 
@@ -11,9 +12,22 @@ from .program import constant
 
 OPCODES = {"Geometry": 96, "Reflection": 97, "Fresnel": 98, "LayerWeight": 99, "Attribute": 100,
            "Tangent": 101, "LightPath": 106, "CameraTransform": 107,
-           "LightFalloff": 109, "Wireframe": 110, "VolumeGrid": 111}
+           "LightFalloff": 109, "Wireframe": 110, "VolumeGrid": 111, "CurvesInfo": 112}
 VARYING = set(OPCODES)
 FOLDS = {}
+
+# Curves Info outputs -> the CurvesInfo op's mode (all 0 off a hair strand, as Cycles).
+_CURVES_INFO = {"Is Strand": 0, "Intercept": 1, "Length": 2, "Thickness": 3, "Tangent Normal": 4,
+                "Random": 5}
+
+
+def _curves_info(g, node, socket):
+    mode = _CURVES_INFO.get(socket.identifier)
+    if mode is None:
+        raise Unsupported(f"{node_label(node)}'s output '{socket.name}' is not supported")
+    return g.builder.emit("CurvesInfo", 'vector' if socket.identifier == "Tangent Normal"
+                          else 'float', mode=mode)
+
 
 # Geometry outputs -> the Geometry op's mode.
 _GEOMETRY = {"Position": 0, "Normal": 1, "True Normal": 2, "Incoming": 3, "Backfacing": 4,
@@ -364,6 +378,7 @@ READERS = {
     'ShaderNodeNormal': _normal,
     'ShaderNodeObjectInfo': _object_info,
     'ShaderNodeNewGeometry': _geometry,
+    'ShaderNodeHairInfo': _curves_info,
     'ShaderNodeTexCoord': _texture_coordinate,
     'ShaderNodeUVMap': _uv_map,
     'ShaderNodeVertexColor': _color_attribute,

@@ -92,6 +92,8 @@ struct SurfaceHit {
   // the normals are Cycles' (a round curve's: from its centre line out through the hit; a
   // ribbon's: geometric towards the viewer, shading rounded across the strand).
   bool on_curve = false;
+  // On a strand (only then set): Intercept, Length, Thickness, Random (ShaderGlobals::curve_info).
+  glm::vec4 curve_info{0.0f};
   // The hit's object as the local queries name it (ShaderGlobals::object: a world-space mesh's
   // index, or an instance's index with the top bit set; none on a hair strand) and its triangle;
   // what Scene::intersect_object follows.
@@ -124,6 +126,10 @@ inline ShaderGlobals shader_globals(const SurfaceHit& hit, const Vec3& ray_dir, 
   g.true_normal = side * hit.geometric_normal;
   g.object = hit.object;
   g.prim = hit.prim;
+  if (hit.on_curve) {
+    g.on_curve = true;
+    g.curve_info = hit.curve_info;
+  }
   // Of the rest, only what `reads` (GlobalsRead flags) names.
   if (reads & kReadsAttributes) {
     g.corner_attributes = hit.corner_attributes;
@@ -372,11 +378,13 @@ class Scene final : public ShaderTracer {
   // Hair strands (hair/curve_set.h): num_curves curves through keys (num_keys xyz) of radii
   // (num_keys, >= 0), curve c having keys curve_first[c] .. curve_first[c + 1] - 1 (num_curves + 1
   // ascending offsets from 0 to num_keys), traced as Cycles 3.4's Catmull-Rom curves of `shape`;
-  // materials: nullptr or one material per curve. A curve of fewer than 2 keys is skipped;
-  // zero-length segments and zero radii are tolerated. Non-finite keys or radii, negative radii
-  // or bad offsets: std::invalid_argument. Returns the curve set's id.
+  // materials: nullptr or one material per curve; random: nullptr (0) or the Curves Info node's
+  // Random per curve (Cycles hashes the curve's index). A curve of fewer than 2 keys is skipped;
+  // zero-length segments and zero radii are tolerated. Non-finite keys, radii or random values,
+  // negative radii or bad offsets: std::invalid_argument. Returns the curve set's id.
   uint32_t add_curves(const float* keys, const float* radii, size_t num_keys, const int64_t* curve_first,
-                      size_t num_curves, const int64_t* materials, CurveShape shape);
+                      size_t num_curves, const int64_t* materials, CurveShape shape,
+                      const float* random = nullptr);
   size_t num_curve_segments() const;
   struct CurveSet;  // a curve set's storage (core/src/hair/curve_set.h), for its Embree filter
 

@@ -96,6 +96,7 @@ enum class ShaderOpcode : uint8_t {
   LightFalloff = 109,     // shader_geometry.h
   Wireframe = 110,
   VolumeGrid = 111,       // media/volume_grid.h: a grid (resource) at in0 (a world point), RGBA
+  CurvesInfo = 112,       // shader_curves_info.h
 };
 constexpr int kShaderOpcodes = 128;
 
@@ -154,6 +155,10 @@ struct ShaderGlobals {
   Vec3 true_normal{0.0f, 0.0f, 1.0f};
   Vec3 incoming{0.0f, 0.0f, 1.0f};
   bool backfacing = false;
+  // A hair strand's hit (SurfaceHit::on_curve; the Curves Info node): its Intercept (0 at the
+  // root, 1 at the tip), its strand's Length, its Thickness and the strand's Random.
+  bool on_curve = false;
+  glm::vec4 curve_info{0.0f};
   // The hit triangle's corner attributes (corner k's layer a at k * num_attributes + a), the
   // layers' ids and the corners' interpolation weights.
   const Vec3* corner_attributes = nullptr;

@@ -1,0 +1,19 @@
+// The Curves Info node (Cycles' svm_node_hair_info and its curve attributes; opcode 112): on a
+// hair strand's hit (ShaderGlobals::on_curve, curve_info), mode
+//   0 Is Strand   1
+//   1 Intercept   the arc length along the strand's keys to the hit over its length: 0 root, 1 tip
+//   2 Length      the strand's length (its key polyline's)
+//   3 Thickness   twice the radius, the segment's two key radii interpolated linearly
+//   4 Tangent Normal  the view direction made perpendicular to the strand (ShaderGlobals::tangent)
+//   5 Random      the strand's random value (Cycles: its index hashed)
+// and 0 (all of them) on anything else. Value outputs in x, Tangent Normal in xyz.
+#pragma once
+
+#include "torrance/shader/shader_program.h"
+
+namespace torrance::shader {
+
+constexpr int kCurvesInfoModes = 6;
+glm::vec4 curves_info_op(const ShaderOpContext& c);
+
+}  // namespace torrance::shader
