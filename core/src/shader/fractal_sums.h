@@ -17,13 +17,21 @@
 #include <cmath>
 #include <cstdint>
 
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
+
 namespace torrance::shader::fractal {
 
 // x86's float -> int32 truncation: values outside int32 (and NaN) give INT_MIN, as Cycles' kernel
 // gets from cvttss2si (C leaves the conversion undefined there).
 inline int32_t float_to_int(float f) {
+#if defined(__SSE__)
+  return _mm_cvtt_ss2si(_mm_set_ss(f));  // that instruction itself: no range test and branch
+#else
   if (f >= -2147483648.0f && f < 2147483648.0f) return int32_t(f);
   return INT32_MIN;
+#endif
 }
 
 struct Octaves {

@@ -31,6 +31,14 @@ inline float floor_frac(float x, uint32_t* cell) {
 
 inline float fade(float t) { return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f); }
 
+// fade of up to four values at once (GCC's vector extension, SSE2 and AVX2 alike): each lane
+// the same multiplications and additions in the same order as fade.
+typedef float Four __attribute__((vector_size(16)));
+inline Four fade4(float x, float y, float z, float w) {
+  const Four t = {x, y, z, w};
+  return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f);
+}
+
 // The gradients choose coordinates and signs by the hash's low bits, which are random: as
 // branches they would be mispredicted half the time (most of Perlin noise's cost), so the
 // choices are bit operations on the floats' bits: the same floats, chosen without branching.
@@ -118,7 +126,8 @@ float perlin(float x, float y, float z) {
     const uint32_t i = k & 1u, j = (k >> 1) & 1u, l = (k >> 2) & 1u;
     g[k] = gradient(hash_uint3(X + i, Y + j, Z + l), fx - float(i), fy - float(j), fz - float(l));
   }
-  return blend3(g.data(), fade(fx), fade(fy), fade(fz));
+  const Four t = fade4(fx, fy, fz, 0.0f);
+  return blend3(g.data(), t[0], t[1], t[2]);
 }
 
 float perlin(float x, float y, float z, float w) {
@@ -130,8 +139,8 @@ float perlin(float x, float y, float z, float w) {
     g[k] = gradient(hash_uint4(X + i, Y + j, Z + l, W + m), fx - float(i), fy - float(j), fz - float(l),
                     fw - float(m));
   }
-  const float u = fade(fx), v = fade(fy), t = fade(fz);
-  return lerp(blend3(g.data(), u, v, t), blend3(g.data() + 8, u, v, t), fade(fw));
+  const Four f = fade4(fx, fy, fz, fw);
+  return lerp(blend3(g.data(), f[0], f[1], f[2]), blend3(g.data() + 8, f[0], f[1], f[2]), f[3]);
 }
 
 inline float finite_or_zero(float v) { return std::isfinite(v) ? v : 0.0f; }
