@@ -118,8 +118,8 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
   switch (op) {
     case ShaderOpcode::TexCoordUV: return {0, 1, false, uv};
     case ShaderOpcode::Image: return {1, 4, false, nullptr};
-    case ShaderOpcode::Channel: return {1, 4, false, channel};
-    case ShaderOpcode::Combine: return {3, 1, false, combine};
+    case ShaderOpcode::Channel: return {1, 4, false, channel, true};
+    case ShaderOpcode::Combine: return {3, 1, false, combine, true};
     case ShaderOpcode::Math: return {3, shader::kMathOpCount, false, math};
     case ShaderOpcode::VectorMath: return {4, shader::kVectorMathOpCount, false, vector_math};
     case ShaderOpcode::MixColor: return {3, shader::kMixBlendCount, false, mix_color};
@@ -253,6 +253,7 @@ ShaderProgram::ShaderProgram(std::vector<glm::vec4> constants, std::vector<Shade
       throw std::invalid_argument(where + ": its table at " + std::to_string(ins.resource) +
                                   " does not lie within the program's " + std::to_string(data_.size()) + " data");
     written[size_t(ins.out)] = true;
+    steps_.push_back({s.run, s.data ? ins.resource + 1 : 0, s.data ? int32_t(data_[size_t(ins.resource)]) : 0, !s.copies});
   }
   written_ = std::move(written);
   if (differentials_) globals_read_ |= kReadsDifferentials;
@@ -268,32 +269,19 @@ void ShaderProgram::check_grids(size_t num_grids) const {
 
 namespace {
 
-// shader_op_info of every opcode, looked up once: run() reads an instruction's entry instead of
-// going through shader_op_info's switch for each instruction at each hit.
-const std::array<ShaderOpInfo, kShaderOpcodes>& op_table() {
-  static const std::array<ShaderOpInfo, kShaderOpcodes> table = [] {
-    std::array<ShaderOpInfo, kShaderOpcodes> t;
-    for (int op = 0; op < kShaderOpcodes; ++op) t[size_t(op)] = shader_op_info(ShaderOpcode(op));
-    return t;
-  }();
-  return table;
-}
-
-// Runs the code; at[k] holds the globals an instruction of offset k reads.
-void run_code(const std::vector<ShaderInstruction>& code, const std::vector<float>& data,
-              const ShaderGlobals* const at[3], const std::vector<std::shared_ptr<const Texture>>& textures,
-              glm::vec4* regs) {
-  const std::array<ShaderOpInfo, kShaderOpcodes>& ops = op_table();
+// Runs the code (steps: ShaderProgram::Step of each instruction); at[k] holds the globals an
+// instruction of offset k reads.
+void run_code(const std::vector<ShaderInstruction>& code, const std::vector<ShaderProgram::Step>& steps,
+              const std::vector<float>& data, const ShaderGlobals* const at[3],
+              const std::vector<std::shared_ptr<const Texture>>& textures, glm::vec4* regs) {
+  const ShaderProgram::Step* step = steps.data();
   for (const ShaderInstruction& ins : code) {
-    const ShaderOpInfo& info = ops[size_t(ins.op)];
-    const bool table = info.data;
+    const ShaderProgram::Step& s = *step++;
     const ShaderGlobals& g = *at[ins.offset];
-    const ShaderOpContext c{ins, regs, g, table ? data.data() + ins.resource + 1 : nullptr,
-                            table ? int(data[size_t(ins.resource)]) : 0};
-    const glm::vec4 out = info.run ? info.run(c)
-                                   : textures[size_t(ins.resource)]->lookup(Vec2(c.in(0)), g.footprint,
-                                                                            Extension(ins.mode));
-    regs[ins.out] = finite(out);
+    const ShaderOpContext c{ins, regs, g, data.data() + s.table, s.table_size};
+    const glm::vec4 out =
+        s.run ? s.run(c) : textures[size_t(ins.resource)]->lookup(Vec2(c.in(0)), g.footprint, Extension(ins.mode));
+    regs[ins.out] = s.clamp ? finite(out) : out;
   }
 }
 
@@ -301,16 +289,16 @@ void run_code(const std::vector<ShaderInstruction>& code, const std::vector<floa
 
 void ShaderProgram::run(const ShaderGlobals& g, const std::vector<std::shared_ptr<const Texture>>& textures,
                         glm::vec4* regs) const {
-  for (size_t r = 0; r < constants_.size(); ++r) regs[r] = constants_[r];
+  std::copy(constants_.begin(), constants_.end(), regs);
   // The globals at the offset hits are made only for programs that read them (a Bump's
   // heights): ShaderGlobals is large enough that making two at every run costs a noticeable share.
   if (offsets_) {
     const ShaderGlobals dx = g.offset(1, bump_filter_width_), dy = g.offset(2, bump_filter_width_);
     const ShaderGlobals* const at[3] = {&g, &dx, &dy};
-    run_code(code_, data_, at, textures, regs);
+    run_code(code_, steps_, data_, at, textures, regs);
   } else {
     const ShaderGlobals* const at[3] = {&g, &g, &g};
-    run_code(code_, data_, at, textures, regs);
+    run_code(code_, steps_, data_, at, textures, regs);
   }
 }
 

@@ -229,6 +229,9 @@ struct ShaderOpInfo {
   int modes = 0;
   bool data = false;
   glm::vec4 (*run)(const ShaderOpContext&) = nullptr;
+  // Whether its outputs are its input registers' values moved around (Channel, Combine): finite
+  // already, so run() need not clamp them.
+  bool copies = false;
 };
 ShaderOpInfo shader_op_info(ShaderOpcode op);
 
@@ -299,6 +302,19 @@ class ShaderProgram {
   bool differentials_ = false;
   bool local_queries_ = false;
   uint8_t globals_read_ = 0;
+
+ public:
+  // An instruction as run() runs it, found once at construction: its op's function (nullptr:
+  // Image), its table (offset into data_ after the length, and the length) and whether its
+  // output needs clamping to finite values.
+  struct Step {
+    glm::vec4 (*run)(const ShaderOpContext&) = nullptr;
+    int32_t table = 0, table_size = 0;
+    bool clamp = true;
+  };
+
+ private:
+  std::vector<Step> steps_;
 };
 
 // Which registers of a material's program feed its inputs (-1: the material's own value). A
