@@ -19,6 +19,7 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \\
 import bpy
 import numpy as np
 
+from torrance_tools import scene as make
 from torrance_tools import testing
 from torrance_tools.seed_noise import agree_within_seed_noise
 from torrance_tools.shader_graphs import Graph
@@ -62,22 +63,9 @@ def hair_patch(scene, name, x, material, children):
     patch = testing.plane(scene, name, 0.9, material=info_material(f"{name}Floor", is_strand))
     patch.location = (x, 0.0, 0.0)
     patch.data.materials.append(material)
-    patch.modifiers.new("Hair", 'PARTICLE_SYSTEM')
-    part = patch.particle_systems[0].settings
-    part.type = 'HAIR'
-    part.count = 60
-    part.hair_length = 0.5
-    part.use_advanced_hair = True
-    part.factor_random = 0.35
-    part.render_step = 3
-    part.root_radius = 1.0
-    part.tip_radius = 0.3
-    part.radius_scale = 0.02
-    part.material = 2
-    if children:
-        part.child_type = 'INTERPOLATED'
-        setattr(part, "child_nbr" if hasattr(part, "child_nbr") else "child_percent", 3)
-        part.rendered_child_count = 3
+    make.particle_hair(patch, 60, 0.5, children=3 if children else 0, factor_random=0.35,
+                       material_slot=2, render_step=3, root_radius=1.0, tip_radius=0.3,
+                       radius_scale=0.02)
 
 
 def build(scene):

@@ -50,45 +50,15 @@ def deforming_sphere(scene):
 def hair_patch(scene):
     patch = testing.plane(scene, "Patch", 1.0, material=testing.principled("Soil", (0.3, 0.2, 0.1)))
     patch.location = (0.8, 0.4, 0.0)
-    patch.modifiers.new("Grass", 'PARTICLE_SYSTEM')
-    part = patch.particle_systems[0].settings
-    part.type = 'HAIR'
-    part.count = 150
-    part.hair_length = 0.3
-    part.use_advanced_hair = True
-    part.factor_random = 0.3
-    part.child_type = 'INTERPOLATED'
-    setattr(part, "child_nbr" if hasattr(part, "child_nbr") else "child_percent", 4)  # 4.x name
-    part.rendered_child_count = 4
-    part.radius_scale = 0.01
+    make.particle_hair(patch, 150, 0.3, children=4, factor_random=0.3, radius_scale=0.01)
     linear_keys(patch, "location", [(0.6, 0.4, 0.0), (1.0, 0.4, 0.0)])
 
 
 def turning_cubes(scene):
     owner = testing.plane(scene, "Turners", 1.0)
     owner.location = (0.0, -0.8, 0.0)
-    tree = bpy.data.node_groups.new("Turners", 'GeometryNodeTree')
-    make.geometry_in_out(tree)
-    n, links = tree.nodes, tree.links
-    out = n.new('NodeGroupOutput')
-    points = n.new('GeometryNodeMeshLine')
-    points.inputs["Count"].default_value = 4
-    points.inputs["Start Location"].default_value = (-0.9, 0.0, 0.2)
-    points.inputs["Offset"].default_value = (0.6, 0.0, 0.0)
-    cube = n.new('GeometryNodeMeshCube')
-    cube.inputs["Size"].default_value = (0.3, 0.3, 0.3)
-    paint = n.new('GeometryNodeSetMaterial')
-    paint.inputs["Material"].default_value = testing.principled("Red", (0.7, 0.1, 0.1))
-    time = n.new('GeometryNodeInputSceneTime')
-    turn = n.new('ShaderNodeCombineXYZ')
-    iop = n.new('GeometryNodeInstanceOnPoints')
-    links.new(cube.outputs["Mesh"], paint.inputs["Geometry"])
-    links.new(paint.outputs["Geometry"], iop.inputs["Instance"])
-    links.new(points.outputs["Mesh"], iop.inputs["Points"])
-    links.new(time.outputs["Frame"], turn.inputs["Z"])     # one radian per frame
-    links.new(turn.outputs[0], iop.inputs["Rotation"])
-    links.new(iop.outputs["Instances"], out.inputs[0])
-    owner.modifiers.new("Turners", 'NODES').node_group = tree
+    make.turning_instances(owner, "Turners", 4, (-0.9, 0.0, 0.2), (0.6, 0.0, 0.0),
+                           (0.3, 0.3, 0.3), testing.principled("Red", (0.7, 0.1, 0.1)), 1.0)
 
 
 def build(scene):

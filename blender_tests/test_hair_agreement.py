@@ -18,6 +18,7 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \\
 
 import math
 
+from torrance_tools import scene as make
 from torrance_tools import testing
 from torrance_tools.seed_noise import agree_within_seed_noise
 from torrance_tools.shader_graphs import Graph
@@ -42,23 +43,10 @@ def grass_patch(scene):
     soil = testing.principled("Soil", (0.3, 0.25, 0.2))
     patch = testing.plane(scene, "Patch", 1.6, material=soil)
     patch.data.materials.append(hair_material())
-    patch.modifiers.new("Grass", 'PARTICLE_SYSTEM')
-    part = patch.particle_systems[0].settings
-    part.type = 'HAIR'
-    part.count = 300
-    part.hair_length = 0.35
-    part.use_advanced_hair = True
-    part.factor_random = 0.25              # strands lean every which way
-    part.render_type = 'PATH'
-    part.render_step = 3
-    part.display_step = 3
-    part.child_type = 'INTERPOLATED'
-    part.child_nbr = 6
-    part.rendered_child_count = 6
-    part.root_radius = 1.0
-    part.tip_radius = 0.2
-    part.radius_scale = 0.01
-    part.material = 2                      # the patch's second slot: the hair material
+    make.particle_hair(patch, 300, 0.35, children=6, factor_random=0.25,  # strands lean
+                       material_slot=2,         # the patch's second slot: the hair material
+                       render_type='PATH', render_step=3, display_step=3, root_radius=1.0,
+                       tip_radius=0.2, radius_scale=0.01)
     bpy.context.view_layer.update()
     return patch
 

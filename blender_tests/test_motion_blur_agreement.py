@@ -168,32 +168,8 @@ def spinning_gn_instances(scene):
     Points' Rotation) on a still object: each instance's own transform moves."""
     base(scene)
     owner = testing.plane(scene, "Spinners", 1.0)
-    tree = bpy.data.node_groups.new("Spinners", 'GeometryNodeTree')
-    make.geometry_in_out(tree)
-    n, links = tree.nodes, tree.links
-    out = n.new('NodeGroupOutput')
-    line = n.new('GeometryNodeMeshLine')
-    line.inputs["Count"].default_value = 3
-    line.inputs["Start Location"].default_value = (-1.6, 0.0, 0.5)
-    line.inputs["Offset"].default_value = (1.6, 0.0, 0.0)
-    bar = n.new('GeometryNodeMeshCube')
-    bar.inputs["Size"].default_value = (1.4, 0.3, 0.6)
-    paint = n.new('GeometryNodeSetMaterial')
-    paint.inputs["Material"].default_value = testing.principled("Teal", (0.1, 0.6, 0.6))
-    time = n.new('GeometryNodeInputSceneTime')
-    speed = n.new('ShaderNodeMath')
-    speed.operation = 'MULTIPLY'
-    speed.inputs[1].default_value = 1.2               # radians per frame
-    turn = n.new('ShaderNodeCombineXYZ')
-    iop = n.new('GeometryNodeInstanceOnPoints')
-    links.new(bar.outputs["Mesh"], paint.inputs["Geometry"])
-    links.new(paint.outputs["Geometry"], iop.inputs["Instance"])
-    links.new(line.outputs["Mesh"], iop.inputs["Points"])
-    links.new(time.outputs["Frame"], speed.inputs[0])
-    links.new(speed.outputs[0], turn.inputs["Z"])
-    links.new(turn.outputs[0], iop.inputs["Rotation"])
-    links.new(iop.outputs["Instances"], out.inputs[0])
-    owner.modifiers.new("Spinners", 'NODES').node_group = tree
+    make.turning_instances(owner, "Spinners", 3, (-1.6, 0.0, 0.5), (1.6, 0.0, 0.0),
+                           (1.4, 0.3, 0.6), testing.principled("Teal", (0.1, 0.6, 0.6)), 1.2)
     set_position(scene, 'CENTER')
 
 

@@ -31,7 +31,7 @@ import bpy
 from torrance_tools import testing
 from torrance_tools.animation import linear_keys
 from torrance_tools.scene import sphere_object
-from torrance_tools.seed_noise import agree_within_seed_noise
+from torrance_tools.seed_noise import agree_on_variants
 
 SAMPLES = 16
 BOUNCES = 2
@@ -188,26 +188,16 @@ def variants():
     )
 
 
+def both_views(_scene):
+    views = testing.addon().render.last_stats.get("views")
+    testing.check(views == ["left", "right"], f"views rendered: {views}")
+
+
 def main():
     testing.addon()
     scene = testing.clear_scene()
     build(scene)
-    d = testing.tempdir()
-    problems = []
-    for label, setup, faults in variants():
-        setup(scene)
-        bpy.context.view_layer.update()
-        print(f"--- {label}", flush=True)
-        try:
-            agree_within_seed_noise(scene, d, SAMPLES, BOUNCES, label, faults=faults,
-                                    tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.015)
-            testing.check(not testing.last_messages(),
-                          f"unexpected reports: {testing.last_messages()}")
-            views = testing.addon().render.last_stats.get("views")
-            testing.check(views == ["left", "right"], f"views rendered: {views}")
-        except AssertionError as e:
-            problems.append(f"{label}: {e}")
-    testing.check(not problems, " | ".join(problems))
+    agree_on_variants(scene, variants(), SAMPLES, BOUNCES, after_each=both_views)
 
 
 testing.run(main)

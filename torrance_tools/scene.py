@@ -244,6 +244,63 @@ def geometry_in_out(tree):
         tree.outputs.new('NodeSocketGeometry', "Geometry")
 
 
+def turning_instances(owner, name, count, start, offset, size, material, radians_per_frame):
+    """A geometry-nodes modifier on `owner` putting `count` cubes of `size` (x, y, z) with
+    `material` on a line from `start` by `offset`, each turning about its Z by radians_per_frame
+    times the scene's frame (Scene Time into Instance on Points' Rotation): instances whose own
+    transforms move. Returns the node group."""
+    tree = bpy.data.node_groups.new(name, 'GeometryNodeTree')
+    geometry_in_out(tree)
+    n, links = tree.nodes, tree.links
+    out = n.new('NodeGroupOutput')
+    line = n.new('GeometryNodeMeshLine')
+    line.inputs["Count"].default_value = count
+    line.inputs["Start Location"].default_value = start
+    line.inputs["Offset"].default_value = offset
+    cube = n.new('GeometryNodeMeshCube')
+    cube.inputs["Size"].default_value = size
+    paint = n.new('GeometryNodeSetMaterial')
+    paint.inputs["Material"].default_value = material
+    time = n.new('GeometryNodeInputSceneTime')
+    speed = n.new('ShaderNodeMath')
+    speed.operation = 'MULTIPLY'
+    speed.inputs[1].default_value = radians_per_frame
+    turn = n.new('ShaderNodeCombineXYZ')
+    iop = n.new('GeometryNodeInstanceOnPoints')
+    links.new(cube.outputs["Mesh"], paint.inputs["Geometry"])
+    links.new(paint.outputs["Geometry"], iop.inputs["Instance"])
+    links.new(line.outputs["Mesh"], iop.inputs["Points"])
+    links.new(time.outputs["Frame"], speed.inputs[0])
+    links.new(speed.outputs[0], turn.inputs["Z"])
+    links.new(turn.outputs[0], iop.inputs["Rotation"])
+    links.new(iop.outputs["Instances"], out.inputs[0])
+    owner.modifiers.new(name, 'NODES').node_group = tree
+    return tree
+
+
+def particle_hair(obj, count, length, children=0, factor_random=0.0, material_slot=1,
+                  **settings):
+    """A Hair particle system on mesh `obj`, drawn as Path: `count` strands of Hair Length
+    `length` (Advanced, Random `factor_random`), `children` interpolated children per strand
+    (render and display: Blender 3.x's child_nbr, 4.x's child_percent), the strands' material
+    slot (1-based), and any other ParticleSettings given. Returns the settings."""
+    obj.modifiers.new("Hair", 'PARTICLE_SYSTEM')
+    part = obj.particle_systems[-1].settings
+    part.type = 'HAIR'
+    part.count = count
+    part.hair_length = length
+    part.use_advanced_hair = True
+    part.factor_random = factor_random
+    part.material = material_slot
+    if children:
+        part.child_type = 'INTERPOLATED'
+        setattr(part, "child_nbr" if hasattr(part, "child_nbr") else "child_percent", children)
+        part.rendered_child_count = children
+    for key, value in settings.items():
+        setattr(part, key, value)
+    return part
+
+
 def sphere_object(scene, name, center, radius, material=None, segments=48, rings=24):
     """A smooth-shaded UV sphere (uv_sphere) of `radius` at `center`."""
     verts, tris = uv_sphere(segments, rings)

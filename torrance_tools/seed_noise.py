@@ -101,6 +101,30 @@ def agree_within_seed_noise(scene, directory, samples, bounces, what, faults=(),
     testing.check(not missed, "faults the comparison does not see: " + ", ".join(missed))
 
 
+def agree_on_variants(scene, variants, samples, bounces, after_each=None):
+    """Each variant (label, setup(scene), faults) of one scene against Cycles within Cycles' own
+    noise (agree_within_seed_noise with the camera tests' tolerances), every fault caught, the
+    renders reporting nothing, then after_each(scene) if given. All variants run; an
+    AssertionError then names every one that failed."""
+    import bpy
+    directory = testing.tempdir()
+    problems = []
+    for label, setup, faults in variants:
+        setup(scene)
+        bpy.context.view_layer.update()
+        print(f"--- {label}", flush=True)
+        try:
+            agree_within_seed_noise(scene, directory, samples, bounces, label, faults=faults,
+                                    tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.015)
+            testing.check(not testing.last_messages(),
+                          f"unexpected reports: {testing.last_messages()}")
+            if after_each is not None:
+                after_each(scene)
+        except AssertionError as e:
+            problems.append(f"{label}: {e}")
+    testing.check(not problems, " | ".join(problems))
+
+
 def agree_on_scene(build, samples, bounces, what, faults=(), silent=True):
     """A fresh scene made by build(scene), Torrance against Cycles within Cycles' own noise
     (agree_within_seed_noise with the shader-graph tests' tolerances), every fault caught;
