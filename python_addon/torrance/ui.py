@@ -380,8 +380,9 @@ class TORRANCE_RENDER_PT_compatibility(TorrancePanel, Panel):
                   ok_text="Everything in this scene is supported")
         col = self.layout.column(align=True)
         col.label(text="Not rendered by Torrance:")
-        for text in ("Volume objects (OpenVDB grids, smoke); hair in the viewport",
-                     "Point Density, Hair BSDF and Volume Info nodes; AOV Output in worlds",
+        for text in ("Volume objects in Blender 4.x/5.x (no openvdb module); hair and "
+                     "Volume objects in the viewport",
+                     "Point Density and Hair BSDF nodes; AOV Output in worlds",
                      "Blender 5's denoising guide options"):
             col.label(text=text, icon='DOT')
         col.label(text="Denoising: Cycles' Denoising Albedo and Normal guide F12 and the "

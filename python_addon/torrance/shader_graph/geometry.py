@@ -172,6 +172,22 @@ def _attribute(g, node, socket):
     return g.attribute(key('attribute'), 'vector' if out == "Vector" else 'color')
 
 
+# Volume Info outputs -> the grid each reads, as Cycles expands the node into Attribute nodes:
+# Color the "color" grid's colour, the others their grid's Fac (a float grid's value, a colour
+# grid's average); 0 where there is no such grid (a surface, a volume without it).
+_VOLUME_INFO = {"Color": "color", "Density": "density", "Flame": "flame",
+                "Temperature": "temperature"}
+
+
+def _volume_info(g, node, socket):
+    name = _VOLUME_INFO.get(socket.identifier)
+    if name is None:
+        raise Unsupported(f"{node_label(node)}'s output '{socket.name}' is not supported")
+    if socket.identifier == "Color":
+        return g.attribute(('attribute', name), 'color')
+    return g.builder.emit("Channel", 'float', [g.attribute(('attribute_fac_alpha', name))], mode=0)
+
+
 def _fresnel(g, node, socket):
     return g.builder.emit("Fresnel", 'float', [g.input(node.inputs["IOR"], 'float'),
                                                normal_input(g, node)])
@@ -379,6 +395,7 @@ READERS = {
     'ShaderNodeObjectInfo': _object_info,
     'ShaderNodeNewGeometry': _geometry,
     'ShaderNodeHairInfo': _curves_info,
+    'ShaderNodeVolumeInfo': _volume_info,
     'ShaderNodeTexCoord': _texture_coordinate,
     'ShaderNodeUVMap': _uv_map,
     'ShaderNodeVertexColor': _color_attribute,
