@@ -194,7 +194,8 @@ void init_scene(py::module_& m) {
              int normal_register, int alpha_register, int surface_normal_register, int transmission_register,
              float coat_weight,
              float coat_roughness, float coat_ior, std::array<float, 3> coat_tint, int coat_weight_register,
-             int coat_roughness_register, int coat_ior_register, int coat_tint_register, float sheen_weight,
+             int coat_roughness_register, int coat_ior_register, int coat_tint_register, int coat_normal_register,
+             float sheen_weight,
              float sheen_roughness, float sheen_tint, std::array<float, 3> sheen_tint_color,
              int sheen_weight_register, int sheen_roughness_register, int sheen_tint_register, float anisotropy,
              float anisotropic_rotation, int anisotropy_register, int anisotropic_rotation_register,
@@ -205,7 +206,7 @@ void init_scene(py::module_& m) {
              float subsurface_min_footprint, bool subsurface_after_diffuse, bool subsurface_van_de_hulst,
              bool subsurface_burley, float thin_film_thickness, float thin_film_ior, bool thin_film_cycles5,
              int thin_film_thickness_register, int thin_film_ior_register, bool thin_wall,
-             float diffuse_roughness) {
+             float diffuse_roughness, bool emission_under_layers) {
             if (glass_distribution != "GGX" && glass_distribution != "BECKMANN")
               throw py::value_error("glass_distribution must be 'GGX' or 'BECKMANN', got '" + glass_distribution +
                                     "'");
@@ -252,6 +253,7 @@ void init_scene(py::module_& m) {
             mat.thin_film_ior = thin_film_ior;
             mat.thin_film_cycles5 = thin_film_cycles5;
             mat.thin_wall = thin_wall;
+            mat.emission_under_layers = emission_under_layers;
             mat.diffuse_roughness = std::isfinite(diffuse_roughness) ? clamp01(diffuse_roughness) : 0.0f;
             MaterialTextures tex;
             tex.base_color = base_color_texture;
@@ -275,6 +277,7 @@ void init_scene(py::module_& m) {
             tex.program.coat_roughness = program_register(coat_roughness_register);
             tex.program.coat_ior = program_register(coat_ior_register);
             tex.program.coat_tint = program_register(coat_tint_register);
+            tex.program.coat_normal = program_register(coat_normal_register);
             tex.program.sheen_weight = program_register(sheen_weight_register);
             tex.program.sheen_roughness = program_register(sheen_roughness_register);
             tex.program.sheen_tint = program_register(sheen_tint_register);
@@ -307,7 +310,8 @@ void init_scene(py::module_& m) {
           py::arg("coat_weight") = 0.0f, py::arg("coat_roughness") = 0.03f,
           py::arg("coat_ior") = 1.5f, py::arg("coat_tint") = std::array<float, 3>{1.0f, 1.0f, 1.0f},
           py::arg("coat_weight_register") = -1, py::arg("coat_roughness_register") = -1,
-          py::arg("coat_ior_register") = -1, py::arg("coat_tint_register") = -1, py::arg("sheen_weight") = 0.0f,
+          py::arg("coat_ior_register") = -1, py::arg("coat_tint_register") = -1,
+          py::arg("coat_normal_register") = -1, py::arg("sheen_weight") = 0.0f,
           py::arg("sheen_roughness") = 0.5f, py::arg("sheen_tint") = 0.5f,
           py::arg("sheen_tint_color") = std::array<float, 3>{1.0f, 1.0f, 1.0f}, py::arg("sheen_weight_register") = -1,
           py::arg("sheen_roughness_register") = -1, py::arg("sheen_tint_register") = -1,
@@ -325,6 +329,7 @@ void init_scene(py::module_& m) {
           py::arg("thin_film_ior") = 1.33f, py::arg("thin_film_cycles5") = false,
           py::arg("thin_film_thickness_register") = -1, py::arg("thin_film_ior_register") = -1,
           py::arg("thin_wall") = false, py::arg("diffuse_roughness") = 0.0f,
+          py::arg("emission_under_layers") = false,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
@@ -345,7 +350,9 @@ void init_scene(py::module_& m) {
           "what the shadow terminator's smoothing compares the Normal with; transmission_register: PRINCIPLED_V2's "
           "Transmission Weight, clamped to [0, 1], for a material added with transmission > 0). coat_*: the Principled BSDF's "
           "coat (weight >= 0, 0: none; roughness in [0, 1]; ior >= 1 and tint >= 0, PRINCIPLED_V2 only: v1's "
-          "clearcoat has IOR 1.5 and no tint), from the program's coat_*_register when given. sheen_*: the "
+          "clearcoat has IOR 1.5 and no tint), from the program's coat_*_register when given (coat_normal_register: "
+          "the Clearcoat / Coat Normal, a vector facing the viewer; without it the coat shades with the surface's "
+          "normal before the Normal's bump or normal map). sheen_*: the "
           "Principled BSDF's sheen (weight >= 0, 0: none; PRINCIPLED: sheen_tint in [0, 1]; PRINCIPLED_V2: "
           "sheen_roughness in [0, 1] and sheen_tint_color >= 0), from the program's sheen_*_register when given "
           "(sheen_tint_register: v1's factor its x, v2's colour). anisotropy in [-1, 1] and anisotropic_rotation "
@@ -368,7 +375,8 @@ void init_scene(py::module_& m) {
           "thin_wall: PRINCIPLED_V2's Thin Wall (Blender 5.x): the transmission is a thin slab and the "
           "subsurface a diffuse reflection and translucency (Subsurface Anisotropy splits them), "
           "no walk. diffuse_roughness: PRINCIPLED_V2's Diffuse Roughness (Blender 4.3+), the diffuse layer "
-          "an energy-preserving Oren-Nayar above 0.")
+          "an energy-preserving Oren-Nayar above 0. emission_under_layers: PRINCIPLED_V2's Principled BSDF, whose "
+          "emission Cycles 4.x darkens by its coat and sheen seen from the view (as the layers under them).")
       .def(
           "add_shader_program",
           [](Scene& s, const py::object& constants, const py::object& code, int registers, const py::object& data) {

@@ -1,10 +1,14 @@
 // The Principled coat (principled_coat.h): Cycles 3.4's clearcoat (PRINCIPLED) against its
 // closed form, Cycles 4.x's coat (PRINCIPLED_V2) darkening and tinting the layers under it,
 // eval/pdf/sample agreeing for both, white furnaces of a coat over white metal, and hard cases
-// (roughness 0 and 1, grazing) without NaN or Inf. Sampling's chi-square: test_chi_square.cpp.
+// (roughness 0 and 1, grazing) without NaN or Inf; the coat's own normal (Clearcoat / Coat Normal,
+// coat_normal in shading_normal.h) tilted away from the shading normal: the coat lobe and the v2
+// layering follow it, eval/pdf/sample agree, the furnace holds, and normals facing away from the
+// view or below the surface stay finite. Sampling's chi-square: test_chi_square.cpp.
 #include "torrance/bsdfs/albedo.h"
 #include "torrance/bsdfs/ggx_tables.h"
 #include "torrance/bsdfs/principled.h"
+#include "torrance/bsdfs/shading_normal.h"
 
 #include "bsdf_checks.h"
 #include "test_helpers.h"
@@ -128,6 +132,121 @@ TEST(PrincipledCoat, HardCasesStayFinite) {
           m.coat_tint = Vec3(0.0f, 0.5f, 1.0f);
           test::expect_finite(m, model, test::direction(cos_o, 1.0f), rng);
         }
+}
+
+
+// The coat's normal n (unit, in the shading frame whose z is the shading normal; the geometric
+// normal ng) seen from wo, as the integrator makes it (one place: coat_normal).
+CoatNormal tilted_coat(const Vec3& n, const Vec3& wo, const Vec3& ng = Vec3(0.0f, 0.0f, 1.0f)) {
+  return coat_normal(Frame(), Vec3(0.0f, 0.0f, 1.0f), ng, glm::normalize(n), wo);
+}
+
+TEST(PrincipledCoat, CoatNormalIsTheShadingNormalUnlessTilted) {
+  const Vec3 wo = test::direction(0.7f, 0.4f);
+  EXPECT_FALSE(tilted_coat(Vec3(0.0f, 0.0f, 1.0f), wo).tilted);  // costs nothing then
+  const CoatNormal c = tilted_coat(Vec3(0.3f, 0.1f, 1.0f), wo);
+  ASSERT_TRUE(c.tilted);
+  EXPECT_NEAR(glm::dot(c.frame.n, glm::normalize(Vec3(0.3f, 0.1f, 1.0f))), 1.0f, 1e-6f);
+  // to_coat / from_coat are inverse rotations.
+  const Vec3 w = test::direction(0.2f, 2.0f);
+  const Vec3 back = c.from_coat(c.to_coat(w));
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(back[k], w[k], 1e-6f);
+}
+
+TEST(PrincipledCoat, TiltedCoatNormalMovesTheCoatLobe) {
+  // A smooth-ish coat over black: its highlight is the mirror of wo about the coat's normal.
+  for (BrdfModel model : {BrdfModel::Principled, BrdfModel::PrincipledV2}) {
+    const MaterialBsdf bsdf(coated(Vec3(0.0f), 0.0f, 0.5f, 1.0f, 0.15f), model);
+    const Vec3 wo = test::direction(0.8f, 0.0f);
+    const CoatNormal c = tilted_coat(Vec3(0.25f, 0.0f, 1.0f), wo);
+    const auto view = bsdf.at(wo, false, DiffuseNormal{}, c);
+    const Vec3 n = c.frame.n;
+    const Vec3 about_coat = 2.0f * glm::dot(wo, n) * n - wo, about_z(-wo.x, -wo.y, wo.z);
+    const float at_coat = bsdf.eval_lobes(view, about_coat).glossy.r;
+    const float at_z = bsdf.eval_lobes(view, about_z).glossy.r;
+    EXPECT_GT(at_coat, 3.0f * at_z) << test::model_name(model);
+    // Untilted, the other way round.
+    const auto flat = bsdf.at(wo);
+    EXPECT_GT(bsdf.eval_lobes(flat, about_z).glossy.r, 3.0f * bsdf.eval_lobes(flat, about_coat).glossy.r);
+  }
+}
+
+TEST(PrincipledCoat, V2LayeringSeesWoAboutTheCoatNormal) {
+  // Cycles 4.x darkens and tints the layers under the coat for wo's angle to the coat's normal.
+  Material m = coated(Vec3(0.8f, 0.1f, 0.1f), 0.0f, 0.5f, 1.0f, 0.2f);
+  m.coat_tint = Vec3(0.5f, 1.0f, 0.25f);
+  const PrincipledV2Bsdf bsdf(m);
+  const Vec3 wo = test::direction(0.9f, 0.0f);
+  const CoatNormal c = tilted_coat(Vec3(-0.8f, 0.0f, 1.0f), wo);  // leaning away from wo
+  const float cos_coat = glm::dot(c.frame.n, wo);
+  ASSERT_LT(cos_coat, 0.6f);
+  const PrincipledV2Bsdf::View v = bsdf.at(wo, c);
+  const CoatV2::Terms expected = bsdf.coat().terms(cos_coat);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(v.terms.coat.base_weight[k], expected.base_weight[k], 1e-6f);
+  EXPECT_NEAR(v.terms.coat.albedo, expected.albedo, 1e-6f);
+  EXPECT_GT(std::abs(v.terms.coat.base_weight.b - bsdf.coat().terms(wo.z).base_weight.b), 0.01f);
+}
+
+TEST(PrincipledCoat, TiltedCoatNormalSampleEvalAndPdfAgree) {
+  for (BrdfModel model : {BrdfModel::Principled, BrdfModel::PrincipledV2})
+    for (float coat_r : {0.0f, 0.05f, 0.3f, 1.0f})
+      for (float cos_o : {1.0f, 0.5f, 0.05f})
+        for (const Vec3& n : {Vec3(0.3f, 0.0f, 1.0f), Vec3(-0.5f, 0.4f, 1.0f), Vec3(2.0f, 0.0f, 1.0f)}) {
+          SCOPED_TRACE(std::string(test::model_name(model)) + " coat_r " + std::to_string(coat_r) + " cos_o " +
+                       std::to_string(cos_o) + " n.x " + std::to_string(n.x));
+          Material m = coated(Vec3(0.8f, 0.1f, 0.1f), 0.3f, 0.4f, 1.0f, coat_r);
+          m.coat_tint = Vec3(0.9f, 0.5f, 0.2f);
+          const MaterialBsdf bsdf(m, model);
+          const Vec3 wo = test::direction(cos_o, 0.3f);
+          test::expect_samples_agree(bsdf, bsdf.at(wo, false, DiffuseNormal{}, tilted_coat(n, wo)));
+        }
+}
+
+TEST(PrincipledCoat, TiltedCoatOverWhiteMetalStaysInTheFurnace) {
+  // The v2 coat over a white metal, its normal tilted: the mean sample weight stays at most 1.
+  for (float coat_r : {0.05f, 0.5f})
+    for (float cos_o : {1.0f, 0.5f, 0.2f})
+      for (const Vec3& n : {Vec3(0.3f, 0.0f, 1.0f), Vec3(-1.0f, 0.5f, 1.0f)}) {
+        const MaterialBsdf bsdf(coated(Vec3(1.0f), 1.0f, 0.3f, 1.0f, coat_r), BrdfModel::PrincipledV2);
+        const Vec3 wo = test::direction(cos_o, 0.0f);
+        const auto view = bsdf.at(wo, false, DiffuseNormal{}, tilted_coat(n, wo));
+        Rng rng(11, 0, 3);
+        double sum = 0.0;
+        const int count = 100000;
+        for (int k = 0; k < count; ++k) {
+          const BsdfSample s = bsdf.sample(view, rng.next_1d(), rng.next_2d());
+          if (s.valid() && s.wi.z > -1.0f) sum += luminance(s.weight);
+        }
+        EXPECT_LE(sum / count, 1.01) << coat_r << " " << cos_o << " " << n.x;
+        EXPECT_GE(sum / count, 0.5) << coat_r << " " << cos_o << " " << n.x;
+      }
+}
+
+TEST(PrincipledCoat, CoatNormalAwayFromTheViewOrBelowTheSurfaceStaysFinite) {
+  Rng rng(5, 0, 9);
+  for (BrdfModel model : {BrdfModel::Principled, BrdfModel::PrincipledV2})
+    for (float coat_r : {0.0f, 0.2f, 1.0f})
+      for (float cos_o : {1.0f, 0.3f, 1e-3f}) {
+        Material m = coated(Vec3(0.9f, 0.2f, 0.1f), 0.5f, 0.3f, 1.0f, coat_r);
+        m.coat_tint = Vec3(0.0f, 0.5f, 1.0f);
+        const MaterialBsdf bsdf(m, model);
+        const Vec3 wo = test::direction(cos_o, 0.0f);
+        // Facing away from wo, and below the geometric surface: coat_normal bends them back
+        // until the mirror reflection of wo leaves the surface.
+        for (const Vec3& n : {Vec3(1.0f, 0.0f, 0.05f), Vec3(0.3f, 0.2f, -1.0f), Vec3(0.0f, 0.0f, -1.0f)}) {
+          const CoatNormal c = tilted_coat(n, wo);
+          if (c.tilted) {
+            const Vec3 mirror = 2.0f * glm::dot(wo, c.frame.n) * c.frame.n - wo;
+            EXPECT_GE(mirror.z, std::min(0.9f * wo.z, 0.01f) - 1e-4f);
+          }
+          test::expect_finite(bsdf, bsdf.at(wo, false, DiffuseNormal{}, c), rng);
+        }
+        // Unchecked (a coat normal the view is behind): nothing but zeros and finite numbers.
+        CoatNormal raw;
+        raw.frame = Frame(glm::normalize(Vec3(1.0f, 0.0f, -0.2f)));
+        raw.tilted = true;
+        test::expect_finite(bsdf, bsdf.at(wo, false, DiffuseNormal{}, raw), rng);
+      }
 }
 
 }  // namespace

@@ -78,6 +78,14 @@ def read_normal_input(reader, mat, node, builder=None):
         plain = plain_reader(reader, mat, src, where)
         if plain is not None:
             return plain
+    value = compile_normal(reader, socket, builder, where)
+    return {} if value is None else dict(normal_value=value)
+
+
+def compile_normal(reader, socket, builder, where):
+    """The program Value of the node graph feeding the normal input `socket` (compiled into
+    `builder`), or None, reported (`where`: the input's description), when it can not be
+    compiled or is a constant vector (not a surface Torrance can shade)."""
     mark = builder.mark()
     try:
         value = GraphCompiler(builder, reader.textures, READERS, reader.attributes).input(
@@ -85,12 +93,12 @@ def read_normal_input(reader, mat, node, builder=None):
     except Unsupported as exc:
         builder.rollback(mark)
         reader.reporter.warning(f"{where}: {exc}; the normal is ignored")
-        return {}
-    if value.constant:                # a constant Normal: not a surface Torrance can shade
+        return None
+    if value.constant:
         builder.rollback(mark)
         reader.reporter.warning(f"{where} is a constant vector; the normal is ignored")
-        return {}
-    return dict(normal_value=value)
+        return None
+    return value
 
 
 def _constant_input(node, name):

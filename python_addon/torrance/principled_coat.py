@@ -3,11 +3,15 @@
 coat_tint): v1's Clearcoat and Clearcoat Roughness (Cycles 3.4's clearcoat: IOR 1.5, no tint),
 v2's Coat Weight, Coat Roughness, Coat IOR and Coat Tint. Each may come from any node graph the
 shader graph compiles (the closure's shader program then computes it: coat_*_register); a coat
-whose weight is 0 is left out (it costs nothing). The Coat Normal is not read: the coat shades
-with the closure's normal, and a linked Coat Normal is reported."""
+whose weight is 0 is left out (it costs nothing). A linked Clearcoat / Coat Normal is compiled
+into the closure's program (coat_normal_register); unlinked, the core shades the coat with the
+surface's normal without the Normal input's bump or normal map, as Cycles. In a mixture (whose
+closures share the mixture's normal) a linked one is reported and the coat takes the unlinked
+one's normal."""
 
 from .material_values import clamp, color3
-from .nodes import finite_or, source_socket
+from .nodes import finite_or, node_label, source_socket
+from .normal_inputs import compile_normal
 
 # add_material() argument <- socket name, per node version (materials.principled_version).
 _SOCKETS = {
@@ -52,11 +56,7 @@ def read_coat(reader, mat, node, version):
     if values is None:
         return {}
     weight = values['coat_weight']
-    normal = node.inputs.get(_NORMAL[version])
-    if normal is not None and normal.is_linked:
-        reader.reporter.warning(
-            f"Material '{mat.name}': Torrance ignores the Principled BSDF input {normal.name} "
-            f"(the coat shades with the closure's normal)")
+    _read_coat_normal(reader, mat, node, node.inputs.get(_NORMAL[version]))
     out = dict(coat_weight=weight,
                coat_roughness=clamp(finite_or(values['coat_roughness'], 0.03), 0.0, 1.0))
     if version == 'v2':
@@ -64,3 +64,18 @@ def read_coat(reader, mat, node, version):
         out['coat_tint'] = tuple(max(0.0, c) for c in color3(values['coat_tint'],
                                                               _DEFAULTS['coat_tint']))
     return out
+
+
+def _read_coat_normal(reader, mat, node, socket):
+    """A linked Clearcoat / Coat Normal `socket` of `node` as the closure program's coat_normal
+    input (reported where it can not be read)."""
+    if socket is None or source_socket(socket) is None:
+        return
+    where = f"Material '{mat.name}': input '{socket.name}' of {node_label(node)}"
+    if getattr(reader, "skip_normals", False):
+        reader.reporter.warning(f"{where}: Torrance ignores a linked {socket.name} inside a mix "
+                                f"of shaders (the coat shades with the surface's normal)")
+        return
+    value = compile_normal(reader, socket, reader._program, where)
+    if value is not None:
+        reader._program_inputs['coat_normal'] = value

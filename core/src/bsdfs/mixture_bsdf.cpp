@@ -68,8 +68,8 @@ void MixtureBsdf::add(const Component& c, float w, float sampling_albedo) {
   for (int k = 0; k < count_; ++k) probabilities_[k] = sampling_[k] / sum;
 }
 
-LobeEval MixtureBsdf::eval_mixture(const Vec3& wo, const Vec3& wi, bool backfacing,
-                                   const DiffuseNormal& diffuse) const {
+LobeEval MixtureBsdf::eval_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse,
+                                   const CoatNormal& coat) const {
   const DiffuseFrame d(diffuse);
   LobeEval total;
   for (int k = 0; k < count_; ++k) {
@@ -77,7 +77,7 @@ LobeEval MixtureBsdf::eval_mixture(const Vec3& wo, const Vec3& wi, bool backfaci
         [&](const auto& b) -> LobeEval {
           if constexpr (is<decltype(b), std::monostate>) return {};
           else if constexpr (is<decltype(b), MaterialBsdf>)
-            return b.eval_lobes(b.at(wo, backfacing, false, diffuse), wi);
+            return b.eval_lobes(b.at(wo, backfacing, false, diffuse, coat), wi);
           else if constexpr (is<decltype(b), DiffuseBsdf>) return b.eval_lobes(d.to_local(wo), d.to_local(wi));
           else if constexpr (is<decltype(b), RefractionBsdf>) return b.eval_lobes(wo, wi, backfacing);
           else return b.eval_lobes(wo, wi);
@@ -89,7 +89,8 @@ LobeEval MixtureBsdf::eval_mixture(const Vec3& wo, const Vec3& wi, bool backfaci
   return total;
 }
 
-float MixtureBsdf::pdf_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse) const {
+float MixtureBsdf::pdf_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse,
+                               const CoatNormal& coat) const {
   const DiffuseFrame d(diffuse);
   float p = 0.0f;
   for (int k = 0; k < count_; ++k)
@@ -97,7 +98,7 @@ float MixtureBsdf::pdf_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, 
                                  [&](const auto& b) -> float {
                                    if constexpr (is<decltype(b), std::monostate>) return 0.0f;
                                    else if constexpr (is<decltype(b), MaterialBsdf>)
-                                     return b.pdf(b.at(wo, backfacing, true, diffuse), wi);
+                                     return b.pdf(b.at(wo, backfacing, true, diffuse, coat), wi);
                                    else if constexpr (is<decltype(b), DiffuseBsdf>)
                                      return b.pdf(d.to_local(wo), d.to_local(wi));
                                    else if constexpr (is<decltype(b), RefractionBsdf>)
@@ -109,7 +110,7 @@ float MixtureBsdf::pdf_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, 
 }
 
 BsdfSample MixtureBsdf::sample_mixture(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing,
-                                       const DiffuseNormal& diffuse) const {
+                                       const DiffuseNormal& diffuse, const CoatNormal& coat) const {
   if (count_ == 0) return {};
   // Choose closure k, and reuse what is left of u_lobe for the closure's own lobe choice.
   int k = 0;
@@ -121,7 +122,7 @@ BsdfSample MixtureBsdf::sample_mixture(const Vec3& wo, float u_lobe, const Vec2&
       [&](const auto& b) -> BsdfSample {
         if constexpr (is<decltype(b), std::monostate>) return {};
         else if constexpr (is<decltype(b), MaterialBsdf>)
-          return b.sample(b.at(wo, backfacing, true, diffuse), u_rest, u);
+          return b.sample(b.at(wo, backfacing, true, diffuse, coat), u_rest, u);
         else if constexpr (is<decltype(b), DiffuseBsdf>) {
           BsdfSample local = b.sample(d.to_local(wo), u_rest, u);
           local.wi = d.to_world(local.wi);
@@ -144,9 +145,9 @@ BsdfSample MixtureBsdf::sample_mixture(const Vec3& wo, float u_lobe, const Vec2&
   BsdfSample m;
   m.wi = s.wi;
   m.diffuse = s.diffuse;
-  m.pdf = pdf_mixture(wo, s.wi, backfacing, diffuse);
+  m.pdf = pdf_mixture(wo, s.wi, backfacing, diffuse, coat);
   if (!(m.pdf > 0.0f)) return {};
-  m.weight = eval_mixture(wo, s.wi, backfacing, diffuse).total() / m.pdf;
+  m.weight = eval_mixture(wo, s.wi, backfacing, diffuse, coat).total() / m.pdf;
   return m;
 }
 
@@ -170,7 +171,7 @@ Vec3 MixtureBsdf::straight_through(const View& v) const {
   Vec3 sum(0.0f);
   for (int k = 0; k < count_; ++k)
     if (const auto* m = std::get_if<MaterialBsdf>(&components_[k]); m && m->passes_straight())
-      sum += weights_[k] * m->straight_through(m->at(v.wo, v.backfacing, v.diffuse));
+      sum += weights_[k] * m->straight_through(m->at(v.wo, v.backfacing, v.diffuse, v.coat));
   return sum;
 }
 

@@ -65,21 +65,22 @@ float PrincipledBsdf::specular_probability(const Vec3& wo) const {
   return lobe_mixture::specular_probability(luminance(fresnel(wo.z)), diffuse);
 }
 
-PrincipledBsdf::View PrincipledBsdf::geometry(const Vec3& wo) const {
+PrincipledBsdf::View PrincipledBsdf::geometry(const Vec3& wo, const CoatNormal& coat) const {
   View v;
   lobe_mixture::prepare(v, wo, shape_);
+  v.coat_normal = coat;
   v.burley_o = schlick_weight(wo.z);
   return v;
 }
 
-PrincipledBsdf::View PrincipledBsdf::at(const Vec3& wo) const {
-  View v = geometry(wo);
+PrincipledBsdf::View PrincipledBsdf::at(const Vec3& wo, const CoatNormal& coat_normal) const {
+  View v = geometry(wo, coat_normal);
   v.p_spec = specular_probability(wo);
   if (coat_.active()) {
     // Cycles' closure odds, unclamped: the clearcoat's w F(wo.z), the mean diffuse colour and the
     // mean specular Fresnel. The clearcoat's estimator is biased (principled_coat.h) by an amount
     // that depends on them: with Cycles' odds it is Cycles' bias.
-    const float coat = coat_.estimate(wo.z);
+    const float coat = coat_.estimate(v.coat_normal.cosine(wo));
     float diffuse = (diffuse_color_.r + diffuse_color_.g + diffuse_color_.b) / 3.0f;
     if (sheen_.active()) diffuse += sheen_.estimate(wo.z);
     const float spec = glm::dot(fresnel(wo.z), Vec3(1.0f)) / 3.0f;
@@ -92,15 +93,17 @@ PrincipledBsdf::View PrincipledBsdf::at(const Vec3& wo) const {
 
 LobeEval PrincipledBsdf::eval_lobes(const View& v, const Vec3& wi) const {
   const Vec3& wo = v.wo;
-  if (wo.z <= 0.0f || wi.z <= 0.0f) return {};
+  if (wo.z <= 0.0f) return {};
+  LobeEval f_cos;
+  // The clearcoat about its own normal (whatever side of the shading normal wi lies on).
+  if (coat_.active()) f_cos.glossy = Vec3(coat_.eval(v.coat_normal.to_coat(wo), v.coat_normal.to_coat(wi)));
   Vec3 h;
-  if (!ggx::reflection_half(wo, wi, h)) return {};
+  if (wi.z <= 0.0f || !ggx::reflection_half(wo, wi, h)) return f_cos;
   const float cos_d = clamp01(glm::dot(wi, h));
 
   // Burley diffuse (Cycles 3.4's principled diffuse, roughness unsquared).
   const float fl = schlick_weight(wi.z), fv = v.burley_o;
   const float rr = 2.0f * roughness_ * cos_d * cos_d;
-  LobeEval f_cos;
   if (subsurface_) {
     const float lambert = (1.0f - 0.5f * fl) * (1.0f - 0.5f * fv), retro = rr * (fl + fv + fl * fv * (rr - 1.0f));
     f_cos.diffuse = diffuse_color_ * (lambert_channels_ * lambert + Vec3(retro)) * (kInvPi * wi.z);
@@ -111,9 +114,8 @@ LobeEval PrincipledBsdf::eval_lobes(const View& v, const Vec3& wi) const {
   if (sheen_.active()) f_cos.diffuse += sheen_.eval(cos_d, wi.z);
   if (!has_delta()) {
     const float g = v.g1_o * shape_.G1(wi);
-    f_cos.glossy = fresnel(cos_d) * (shape_.D(h) * g / v.four_cos_o);
+    f_cos.glossy = fresnel(cos_d) * (shape_.D(h) * g / v.four_cos_o) + f_cos.glossy;
   }
-  if (coat_.active()) f_cos.glossy += Vec3(coat_.eval(wo, wi));
   return f_cos;
 }
 

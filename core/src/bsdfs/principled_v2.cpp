@@ -88,7 +88,7 @@ Vec3 PrincipledV2Bsdf::dielectric_albedo(float cos_o) const {
   return glm::mix(dielectric_f0_, Vec3(1.0f), ggx_tables::dielectric_fresnel_mix(table_roughness_, cos_o, eta_));
 }
 
-PrincipledV2Bsdf::ViewTerms PrincipledV2Bsdf::view_terms(float cos_o) const {
+PrincipledV2Bsdf::ViewTerms PrincipledV2Bsdf::view_terms(float cos_o, float cos_coat) const {
   ViewTerms v;
   Vec3 metal_k(1.0f), dielectric_k(1.0f), darkening(1.0f);
   if (multiscatter_) {
@@ -109,7 +109,7 @@ PrincipledV2Bsdf::ViewTerms PrincipledV2Bsdf::view_terms(float cos_o) const {
   if (has_subsurface()) v.subsurface = subsurface_color_ * (dielectric_weight_ * diffuse_weight);
   v.translucent = translucent_color_ * (dielectric_weight_ * diffuse_weight);
   if (coat_.active()) {
-    v.coat = coat_.terms(cos_o);
+    v.coat = coat_.terms(cos_coat);
     v.metal_scale *= v.coat.base_weight;
     v.dielectric_scale *= v.coat.base_weight;
     v.diffuse *= v.coat.base_weight;
@@ -151,6 +151,15 @@ PrincipledV2Bsdf::ClosureAlbedos PrincipledV2Bsdf::closure_albedos(float cos_o) 
   return a;
 }
 
+Vec3 PrincipledV2Bsdf::emission_weight(const Material& m, float cos_o, float cos_coat) {
+  Vec3 w(1.0f);
+  if (m.coat_weight > 0.0f)
+    w *= CoatV2(m.coat_weight, m.coat_roughness, m.coat_ior, m.coat_tint).terms(clamp01(cos_coat)).base_weight;
+  if (m.sheen_weight > 0.0f)
+    w *= SheenV2::keep(SheenV2(m.sheen_weight, m.sheen_roughness, m.sheen_tint_color).terms(clamp01(cos_o)));
+  return w;
+}
+
 Vec3 PrincipledV2Bsdf::mirror_reflectance(const Vec3& wo) const {
   const ViewTerms v = view_terms(wo.z);
   return v.metal_scale * metal_fresnel(wo.z) + v.dielectric_scale * dielectric_fresnel(wo.z);
@@ -165,17 +174,18 @@ float PrincipledV2Bsdf::specular_probability(const ViewTerms& v, float cos_o) co
   return lobe_mixture::specular_probability(luminance(specular_estimate(v, cos_o)), luminance(v.diffuse));
 }
 
-PrincipledV2Bsdf::View PrincipledV2Bsdf::geometry(const Vec3& wo) const {
+PrincipledV2Bsdf::View PrincipledV2Bsdf::geometry(const Vec3& wo, const CoatNormal& coat) const {
   View v;
   lobe_mixture::prepare(v, wo, shape_);
-  v.terms = view_terms(wo.z);
+  v.coat_normal = coat;
+  v.terms = view_terms(wo.z, v.coat_normal.cosine(wo));
   v.lambda_o = shape_.lambda(wo);
   if (sheen_.active()) v.sheen = SheenBsdf::oriented(v.terms.sheen, wo);
   return v;
 }
 
-PrincipledV2Bsdf::View PrincipledV2Bsdf::at(const Vec3& wo) const {
-  View v = geometry(wo);
+PrincipledV2Bsdf::View PrincipledV2Bsdf::at(const Vec3& wo, const CoatNormal& coat) const {
+  View v = geometry(wo, coat);
   v.p_spec = specular_probability(v.terms, wo.z);
   const ViewTerms& t = v.terms;
   if (coat_.reflects() || sheen_.active()) {
@@ -199,9 +209,11 @@ LobeEval PrincipledV2Bsdf::eval_lobes(const View& view, const Vec3& wi) const {
     const float cos_o = view.diffuse_normal.cosine(wo);
     f_cos.diffuse = v.diffuse * diffuse_lobe_.reflectance_cos(cos_diffuse, cos_o, glm::dot(wi, wo));
   }
+  // The coat about its own normal (whatever side of the shading normal wi lies on).
+  if (coat_.reflects())
+    f_cos.glossy = Vec3(coat_.eval(v.coat, view.coat_normal.to_coat(wo), view.coat_normal.to_coat(wi)));
   if (wi.z <= 0.0f) return f_cos;
   if (view.sheen.reflects()) f_cos.diffuse += view.sheen.weight * view.sheen.density(wi);
-  if (coat_.reflects()) f_cos.glossy = Vec3(coat_.eval(v.coat, wo, wi));
   if (has_delta()) return f_cos;
   Vec3 h;
   if (!ggx::reflection_half(wo, wi, h)) return f_cos;

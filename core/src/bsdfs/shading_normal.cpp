@@ -27,4 +27,16 @@ DiffuseNormal diffuse_normal(const Frame& frame, const Vec3& checked, const Vec3
   return d;
 }
 
+CoatNormal coat_normal(const Frame& frame, const Vec3& checked, const Vec3& ng, const Vec3& coat, const Vec3& wo) {
+  CoatNormal c;
+  const Vec3 valid = valid_shading_normal(ng, coat, wo);
+  if (valid == checked) return c;
+  const Vec3 local = frame.to_local(valid);
+  const float len = glm::length(local);
+  if (!(len > 1e-6f) || !std::isfinite(len)) return c;
+  c.frame = Frame(local / len);
+  c.tilted = true;
+  return c;
+}
+
 }  // namespace torrance

@@ -217,7 +217,7 @@ void CausticTracer::connect(const SurfaceHit& hit, const Vec3& incoming, const V
   const ShadingPoint at = shading_point(ctx_, hit, wo_world, textured, globals, regs.data());
   const Frame& frame = at.frame;
   const Vec3& ng = at.ng;
-  const auto view = bsdf.at(frame.to_local(wo_world), at.backfacing, at.diffuse);
+  const auto view = bsdf.at(frame.to_local(wo_world), at.backfacing, at.diffuse, at.coat);
   const Vec3 wi = frame.to_local(incoming);
   if (!leaves_geometric_side(incoming, ng, wi.z, bsdf.transmits())) return;
   LobeEval f = bsdf.eval_lobes<true>(view, wi);

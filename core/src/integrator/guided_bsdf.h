@@ -18,13 +18,15 @@ namespace torrance {
 // the direction. A delta lobe (only BSDF sampling produces it) gets its weight over the
 // probability of choosing the BSDF; continuous directions get eval / mixture pdf. bsdf_pdf and
 // guide_pdf: the parts of that pdf, square: the direction on the guide's square (for
-// GuidingField::record), each found once.
+// GuidingField::record), each found once. view: the BSDF's prepared at the vertex (its lobes' own
+// normals included).
 template <bool kGlass, typename Bsdf>
-BsdfSample sample_guided(const Bsdf& bsdf, const GuideDistribution& guide, const Frame& frame, const Vec3& wo,
-                         bool backfacing, const glm::vec4& u, float& bsdf_pdf, float& guide_pdf, Vec2& square) {
+BsdfSample sample_guided(const Bsdf& bsdf, const GuideDistribution& guide, const Frame& frame,
+                         const typename Bsdf::View& view, const glm::vec4& u, float& bsdf_pdf, float& guide_pdf,
+                         Vec2& square) {
   const float a = guide.bsdf_fraction();
   if (u.x < a) {
-    BsdfSample s = bsdf.template sample<kGlass>(wo, std::min(u.x / a, 0.99999994f), Vec2(u.y, u.z), backfacing);
+    BsdfSample s = bsdf.template sample<kGlass>(view, std::min(u.x / a, 0.99999994f), Vec2(u.y, u.z));
     if (!s.valid()) return s;
     if (s.is_delta) {
       s.weight /= a;
@@ -42,10 +44,10 @@ BsdfSample sample_guided(const Bsdf& bsdf, const GuideDistribution& guide, const
   BsdfSample s;
   s.wi = frame.to_local(wi_world);
   s.diffuse = true;  // the Light Path node's label of a guide-drawn direction (Cycles has no guiding)
-  bsdf_pdf = bsdf.template pdf<kGlass>(wo, s.wi, backfacing);
+  bsdf_pdf = bsdf.template pdf<kGlass>(view, s.wi);
   s.pdf = a * bsdf_pdf + (1.0f - a) * guide_pdf;
   if (!(s.pdf > 0.0f)) return BsdfSample{};
-  s.weight = bsdf.template eval_lobes<kGlass>(wo, s.wi, backfacing).total() / s.pdf;
+  s.weight = bsdf.template eval_lobes<kGlass>(view, s.wi).total() / s.pdf;
   return s;
 }
 

@@ -466,7 +466,10 @@ class PathTracer {
     v.at = shading_point(ctx_, hit, v.wo_world, v.textured, globals, v.program_regs.data());
     if (v.local_bsdf) v.local_bsdf->orient(v.at.frame);  // anisotropic closures' tangents
     v.wo = v.at.frame.to_local(v.wo_world);
-    v.view = v.bsdf->at(v.wo, v.at.backfacing, v.at.diffuse);
+    v.view = v.bsdf->at(v.wo, v.at.backfacing, v.at.diffuse, v.at.coat);
+    // Principled v2's emission under its coat and sheen, as Cycles 4.x (Scene::emission_at likewise).
+    if (v.material.emission_under_layers && !v.mixture && max_component(v.material.emission) > 0.0f)
+      v.material.emission *= PrincipledV2Bsdf::emission_weight(v.material, v.wo.z, v.at.coat.cosine(v.wo));
     if constexpr (kSubsurface) v.local_bsdf->finish_subsurface(v.subsurface, v.wo);  // Principled v2's layers
     // Path guiding on opaque single-material surfaces with a continuous lobe.
     v.guidable = ctx_.guide && !v.mixture && !v.transmits && (v.material.metallic < 1.0f || v.material.roughness >= 0.3f);
@@ -653,7 +656,7 @@ class PathTracer {
     }
     float bsdf_pdf = 0.0f, guide_pdf = 0.0f;  // the parts of a guided sample's pdf
     Vec2 square(-1.0f);                        // and its direction on the guide's square (-1: not known yet)
-    BsdfSample bs = guide ? sample_guided<kGlass>(*v.bsdf, guide, frame, v.wo, v.at.backfacing, u_bsdf, bsdf_pdf,
+    BsdfSample bs = guide ? sample_guided<kGlass>(*v.bsdf, guide, frame, v.view, u_bsdf, bsdf_pdf,
                                                   guide_pdf, square)
                           : v.bsdf->template sample<kGlass>(v.view, u_bsdf.x, Vec2(u_bsdf.y, u_bsdf.z));
     if (!bs.valid()) return false;

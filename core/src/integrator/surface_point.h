@@ -37,6 +37,7 @@ struct ShadingPoint {
   bool normal_mapped;
   Frame frame;  // about ns
   DiffuseNormal diffuse;
+  CoatNormal coat;  // the Principled coat's: tilted only where a Normal input or a Coat Normal sets it apart
 
   const Vec3& n_diffuse() const { return diffuse.tilted ? ns_closure : ns; }
 };
@@ -62,6 +63,15 @@ inline ShadingPoint shading_point(const Scene& scene, BrdfModel model, const Sur
   p.ns = valid_shading_normal(p.ng, p.ns, wo_world);
   p.frame = Frame(p.ns);
   p.diffuse = diffuse_normal(p.frame, p.ns, p.ns_closure, model);
+  // The coat's own normal (Cycles' Clearcoat / Coat Normal, unlinked the surface's n_smooth): only
+  // where it can differ from ns and the material has a coat.
+  if (textured && scene.coated(hit.material)) {
+    Vec3 coat = p.n_smooth;
+    // (The program's Coat Normal faces the viewer already, as its Normal does.)
+    if (scene.coat_normal(hit.material, globals, regs, coat) || p.normal_mapped) {
+      p.coat = coat_normal(p.frame, p.ns, p.ng, coat, wo_world);
+    }
+  }
   return p;
 }
 inline ShadingPoint shading_point(const PathContext& ctx, const SurfaceHit& hit, const Vec3& wo_world, bool textured,

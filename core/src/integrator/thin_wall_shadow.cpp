@@ -30,7 +30,7 @@ Vec3 straight_through(const Scene& scene, const SurfaceHit& hit, const Vec3& dir
   if (!bsdf.passes_straight()) return Vec3(0.0f);
   const Vec3 wo_world = -dir;
   const ShadingPoint at = shading_point(scene, kModel, hit, wo_world, textured, g, regs.data());
-  return bsdf.straight_through(bsdf.at(at.frame.to_local(wo_world), at.backfacing, at.diffuse));
+  return bsdf.straight_through(bsdf.at(at.frame.to_local(wo_world), at.backfacing, at.diffuse, at.coat));
 }
 
 }  // namespace torrance

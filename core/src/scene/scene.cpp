@@ -204,6 +204,32 @@ Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, co
   return side * out;
 }
 
+bool Scene::coated(uint32_t i) const {
+  auto own = [&](uint32_t m) { return materials_[m].coat_weight > 0.0f || material_textures_[m].program.coat_weight >= 0; };
+  if (const Mixture* m = mixture(i)) {
+    for (const MixtureComponent& c : m->components)
+      if (own(c.material)) return true;
+    return false;
+  }
+  return own(i);
+}
+
+bool Scene::coat_normal(uint32_t i, const ShaderGlobals& g, const glm::vec4* program_regs, Vec3& n) const {
+  const ShaderOutputs& o = material_textures_[i].program;
+  if (o.coat_normal < 0) return false;
+  std::array<glm::vec4, ShaderProgram::kMaxRegisters> local;
+  const glm::vec4* regs = program_regs;
+  if (!regs) {
+    run_shader_program(uint32_t(o.program), g, local.data());
+    regs = local.data();
+  }
+  const Vec3 v = Vec3(regs[size_t(o.coat_normal)]);
+  const float len = glm::length(v);
+  if (!(len > 1e-6f) || !std::isfinite(len)) return false;  // Cycles: the surface's normal then
+  n = v / len;
+  return true;
+}
+
 uint8_t Scene::globals_read(uint32_t i) const {
   auto own = [&](uint32_t m) {
     const MaterialTextures& t = material_textures_[m];
@@ -297,7 +323,7 @@ uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures
 void Scene::check_program_outputs(const ShaderOutputs& o) const {
   if (o.program < 0) {
     if (o.base_color >= 0 || o.metallic >= 0 || o.roughness >= 0 || o.emission >= 0 || o.normal >= 0 || o.alpha >= 0 ||
-        o.surface_normal >= 0 || o.transmission >= 0 || o.coat_weight >= 0 || o.coat_roughness >= 0 || o.coat_ior >= 0 || o.coat_tint >= 0 ||
+        o.surface_normal >= 0 || o.transmission >= 0 || o.coat_weight >= 0 || o.coat_roughness >= 0 || o.coat_ior >= 0 || o.coat_tint >= 0 || o.coat_normal >= 0 ||
         o.sheen_weight >= 0 || o.sheen_roughness >= 0 || o.sheen_tint >= 0 || o.anisotropy >= 0 ||
         o.anisotropic_rotation >= 0 || o.tangent >= 0 || o.subsurface >= 0 || o.subsurface_radius >= 0 ||
         o.subsurface_color >= 0 || o.thin_film_thickness >= 0 || o.thin_film_ior >= 0)
@@ -309,7 +335,7 @@ void Scene::check_program_outputs(const ShaderOutputs& o) const {
                                 std::to_string(programs_.size()) + " programs");
   const ShaderProgram& program = programs_[size_t(o.program)];
   for (int r : {o.base_color, o.metallic, o.roughness, o.emission, o.normal, o.alpha, o.surface_normal, o.transmission, o.coat_weight,
-                o.coat_roughness, o.coat_ior, o.coat_tint, o.sheen_weight, o.sheen_roughness, o.sheen_tint,
+                o.coat_roughness, o.coat_ior, o.coat_tint, o.coat_normal, o.sheen_weight, o.sheen_roughness, o.sheen_tint,
                 o.anisotropy, o.anisotropic_rotation, o.tangent, o.subsurface, o.subsurface_radius,
                 o.subsurface_color, o.thin_film_thickness, o.thin_film_ior})
     if (r != -1 && !program.written(r))

@@ -2,6 +2,8 @@
 // that read the scene's materials and textures; scene.cpp holds the geometry).
 #include "torrance/scene/scene.h"
 
+#include "torrance/bsdfs/principled_v2.h"
+
 #include <stdexcept>
 
 namespace torrance {
@@ -89,6 +91,13 @@ MixtureWeights Scene::mixture_weights(uint32_t i, const ShaderGlobals& g, glm::v
 
 Vec3 Scene::emission_at(uint32_t i, const ShaderGlobals& g) const {
   const Mixture* m = mixture(i);
+  if (!m && materials_[i].emission_under_layers) {
+    // Under Principled v2's coat and sheen (seen from g's viewer about the surface's normal: a
+    // Normal input's bump or a Coat Normal is not evaluated at a light's sample).
+    const Material mat = material_textures_[i].any() ? textured_material(i, g) : materials_[i];
+    const float cos_o = glm::dot(g.normal, g.incoming);
+    return mat.emission * PrincipledV2Bsdf::emission_weight(mat, cos_o, cos_o);
+  }
   if (!m) return material_textures_[i].textured_emission() ? textured_material(i, g).emission : materials_[i].emission;
   const MixtureWeights w = mixture_weights(i, g);
   Vec3 e(0.0f);
@@ -145,7 +154,8 @@ float Scene::holdout(const SurfaceHit& hit, const Vec3& dir, const PathState& se
 Vec3 Scene::sampled_emission(const EmissiveTriangle& triangle, const Vec2& b, const Vec3& wi,
                              const PathState& seen_by) const {
   const uint32_t i = triangle.material;
-  if (!mixture(i) && !material_textures_[i].textured_emission()) return materials_[i].emission;
+  if (!mixture(i) && !material_textures_[i].textured_emission() && !materials_[i].emission_under_layers)
+    return materials_[i].emission;
   SurfaceHit hit;
   triangle_hit(triangle.owner, triangle.prim, triangle.mirrored ? b.y : b.x, triangle.mirrored ? b.x : b.y, wi, hit);
   hit.t = seen_by.ray_length;

@@ -157,7 +157,10 @@ CLOSURES = {
                                 "Transmission Weight (any graph); v1 "
                                 "Transmission, IOR, Transmission Roughness; the coat (v1 "
                                 "Clearcoat and its Roughness; v2 Coat Weight, Roughness, IOR, "
-                                "Tint; any graph); the sheen (v1 Sheen, Sheen Tint; v2 Sheen "
+                                "Tint; any graph; Clearcoat / Coat Normal of any graph, unlinked "
+                                "the surface's normal without the Normal's bump, as Cycles; v2: "
+                                "the emission darkened by the coat and sheen); the sheen (v1 "
+                                "Sheen, Sheen Tint; v2 Sheen "
                                 "Weight, Roughness, Tint; any graph); Anisotropic, Anisotropic "
                                 "Rotation, Tangent (any graph; unlinked: Geometry > Tangent); "
                                 "v1 subsurface (Cycles' Random Walk: Subsurface, Subsurface "
@@ -172,7 +175,7 @@ CLOSURES = {
                                 "translucency, as Cycles 5.x, without the film; shadow rays "
                                 "stop at it); 4.3+ Diffuse Roughness (a value; Cycles' "
                                 "energy-preserving Oren-Nayar). Reported: "
-                                "Clearcoat / Coat Normal",
+                                "a linked Clearcoat / Coat Normal inside a mix of shaders",
     'ShaderNodeBsdfDiffuse': "rendered: Color, Roughness (Lambert, Cycles' Oren-Nayar; 4.3+: "
                              "its energy-preserving Oren-Nayar), Normal; alone and in Mix/Add "
                              "Shader trees alike",

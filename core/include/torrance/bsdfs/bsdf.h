@@ -35,6 +35,10 @@ struct Material {
   float specular = 0.5f;  // dielectric F0 = 0.08 * specular (0.5 -> 0.04)
   float specular_tint = 0.0f;  // PRINCIPLED only: tints dielectric reflection towards the base hue
   Vec3 emission{0.0f};    // radiance emitted by both faces = emission colour * strength
+  // PRINCIPLED_V2's Principled BSDF (Cycles 4.x): the emission lies under the coat and the sheen,
+  // which darken (and tint) it as they do the layers under them, seen from the view
+  // (PrincipledV2Bsdf::emission_weight). False: the emission as it is (every other closure, v1).
+  bool emission_under_layers = false;
   // PRINCIPLED_V2 only (Blender 4.x's Principled inputs): the IOR input (with `specular` =
   // Specular IOR Level * F0(ior) / 0.04, so that F0 = 0.08 specular holds for every model), the
   // Specular Tint colour, and the node's distribution (Multiscatter GGX, or GGX when false; also
@@ -139,6 +143,18 @@ struct DiffuseNormal {
   Vec3 n{0.0f, 0.0f, 1.0f};
   bool tilted = false;
   float cosine(const Vec3& wi) const { return tilted ? glm::dot(n, wi) : wi.z; }
+};
+
+// The normal the Principled BSDF's coat shades with (principled_coat.h), in its shading frame:
+// Cycles' Clearcoat / Coat Normal, which unlinked is the surface's normal without the Normal
+// input's bump or normal map, checked as the specular closures' (coat_normal, shading_normal.h).
+// `tilted`: it differs from z; the coat's eval, pdf and sample then work in `frame` about it.
+struct CoatNormal {
+  Frame frame;
+  bool tilted = false;
+  Vec3 to_coat(const Vec3& w) const { return tilted ? frame.to_local(w) : w; }
+  float cosine(const Vec3& w) const { return tilted ? glm::dot(frame.n, w) : w.z; }
+  Vec3 from_coat(const Vec3& w) const { return tilted ? frame.to_world(w) : w; }
 };
 
 // eval() split by lobe, for Blender's diffuse and glossy light passes.

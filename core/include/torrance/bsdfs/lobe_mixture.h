@@ -6,7 +6,8 @@
 //
 // A model with a coat (PRINCIPLED, PRINCIPLED_V2: principled_coat.h) adds a third lobe, chosen
 // first with its View's p_coat (0 without a coat: then nothing of it runs), by naming
-// coat_pdf(view, wi), coat_sample(view, u), coat_is_delta() and coat_mirror_reflectance(view).
+// coat_pdf(view, wi), coat_sample(view, u), coat_is_delta() and coat_mirror_reflectance(view); the
+// coat works in the frame of its View's coat_normal (bsdf.h; coat_pdf / coat_sample below).
 // A model with a sheen layer above that (PRINCIPLED_V2: principled_sheen.h) adds a fourth lobe,
 // chosen before all others with its View's p_sheen (0 without a sheen), by naming
 // sheen_pdf(view, wi) and sheen_sample(view, u) of its own View; the sheen is a diffuse lobe.
@@ -45,7 +46,23 @@ struct View {
   float p_coat = 0.0f;     // the coat lobe's probability (models with a coat)
   float p_sheen = 0.0f;    // the sheen lobe's probability (models with a sheen layer)
   DiffuseNormal diffuse_normal;  // the diffuse lobe's (bsdf.h); PRINCIPLED_V2 alone reads it
+  CoatNormal coat_normal;        // the coat's (bsdf.h; models with a coat), set before at()'s terms
 };
+
+// A model's coat lobe (principled_coat.h, in its own frame) seen through v's coat normal: its
+// pdf of wi, a sampled direction, and its mirror direction (all in the shading frame).
+template <typename Coat>
+float coat_pdf(const Coat& coat, const View& v, const Vec3& wi) {
+  return coat.pdf(v.coat_normal.to_coat(v.wo), v.coat_normal.to_coat(wi));
+}
+template <typename Coat>
+Vec3 coat_sample(const Coat& coat, const View& v, const Vec2& u) {
+  return v.coat_normal.from_coat(coat.sample(v.coat_normal.to_coat(v.wo), u));
+}
+inline Vec3 coat_mirror(const View& v) {
+  const Vec3 wo = v.coat_normal.to_coat(v.wo);
+  return v.coat_normal.from_coat(Vec3(-wo.x, -wo.y, wo.z));
+}
 
 // Whether a model has a coat lobe (names coat_pdf).
 template <typename Bsdf, typename = void>
@@ -145,7 +162,7 @@ BsdfSample sample(const Bsdf& bsdf, const typename Bsdf::View& v, float u_lobe, 
     if (v.p_coat > 0.0f && !sheen) {
       coat = u_lobe < v.p_coat;
       if (coat && bsdf.coat_is_delta()) {
-        s.wi = Vec3(-wo.x, -wo.y, wo.z);
+        s.wi = coat_mirror(v);
         s.weight = bsdf.coat_mirror_reflectance(v) / (v.p_coat * others);
         s.is_delta = true;
         return s;
@@ -160,7 +177,7 @@ BsdfSample sample(const Bsdf& bsdf, const typename Bsdf::View& v, float u_lobe, 
     if (!(s.wi.z > 0.0f)) return BsdfSample{};
   } else if (coat) {
     s.wi = coat_direction(bsdf, v, u);
-    if (s.wi.z <= 0.0f) return BsdfSample{};
+    if (v.coat_normal.cosine(s.wi) <= 0.0f) return BsdfSample{};
   } else if (u_lobe < v.p_spec) {
     if (bsdf.has_delta()) {
       s.wi = Vec3(-wo.x, -wo.y, wo.z);

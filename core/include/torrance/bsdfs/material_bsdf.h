@@ -110,12 +110,18 @@ class MaterialBsdf {
     // The opaque lobes' choice of their specular lobe for this wo (1 without opaque lobes).
     float p_spec() const { return std::visit([](const auto& v) { return v.p_spec; }, lobes); }
   };
-  // lobe_choice = false: without the lobe choice p_spec (1), for eval alone. diffuse: the diffuse
-  // lobe's normal (bsdf.h).
-  View at(const Vec3& wo, bool backfacing = false, bool lobe_choice = true, const DiffuseNormal& diffuse = {}) const {
+  // lobe_choice = false: without the lobe choice p_spec (1), for eval alone. diffuse, coat: the
+  // diffuse lobe's and the coat's normals (bsdf.h).
+  View at(const Vec3& wo, bool backfacing = false, bool lobe_choice = true, const DiffuseNormal& diffuse = {},
+          const CoatNormal& coat = {}) const {
     const bool choice = lobe_choice && opaque_;
-    View v{std::visit([&](const auto& b) -> decltype(View::lobes) { return choice ? b.at(wo) : b.geometry(wo); },
-                      bsdf_),
+    View v{std::visit(
+               [&](const auto& b) -> decltype(View::lobes) {
+                 if constexpr (lobe_mixture::HasCoat<std::decay_t<decltype(b)>>::value)
+                   return choice ? b.at(wo, coat) : b.geometry(wo, coat);
+                 else return choice ? b.at(wo) : b.geometry(wo);
+               },
+               bsdf_),
            wo, backfacing, {}};
     if (diffuse.tilted) std::visit([&](auto& lv) { lv.diffuse_normal = diffuse; }, v.lobes);
     if (thin_) {
@@ -124,8 +130,8 @@ class MaterialBsdf {
     }
     return v;
   }
-  View at(const Vec3& wo, bool backfacing, const DiffuseNormal& diffuse) const {
-    return at(wo, backfacing, true, diffuse);
+  View at(const Vec3& wo, bool backfacing, const DiffuseNormal& diffuse, const CoatNormal& coat = {}) const {
+    return at(wo, backfacing, true, diffuse, coat);
   }
   // passes_straight()'s weight seen from v's wo.
   Vec3 straight_through(const View& v) const { return passes_straight() ? v.thin.transmit : Vec3(0.0f); }

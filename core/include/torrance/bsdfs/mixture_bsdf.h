@@ -80,34 +80,37 @@ class MixtureBsdf {
   void finish_subsurface(SubsurfaceLobe& lobe, const Vec3& wo) const;
 
   // The View interface of MaterialBsdf: a mixture prepares nothing (each closure its own wo);
-  // `diffuse`: its diffuse lobes' normal (bsdf.h).
+  // `diffuse`, `coat`: its diffuse lobes' and its Principled coats' normals (bsdf.h).
   struct View {
     Vec3 wo{0.0f, 0.0f, 1.0f};
     bool backfacing = false;
     DiffuseNormal diffuse;
+    CoatNormal coat;
   };
-  View at(const Vec3& wo, bool backfacing = false, const DiffuseNormal& diffuse = {}) const {
-    return View{wo, backfacing, diffuse};
+  View at(const Vec3& wo, bool backfacing = false, const DiffuseNormal& diffuse = {}, const CoatNormal& coat = {}) const {
+    return View{wo, backfacing, diffuse, coat};
   }
   template <bool kGlass = true>
   LobeEval eval_lobes(const View& v, const Vec3& wi) const {
-    return eval_mixture(v.wo, wi, v.backfacing, v.diffuse);
+    return eval_mixture(v.wo, wi, v.backfacing, v.diffuse, v.coat);
   }
   template <bool kGlass = true>
   float pdf(const View& v, const Vec3& wi) const {
-    return pdf_mixture(v.wo, wi, v.backfacing, v.diffuse);
+    return pdf_mixture(v.wo, wi, v.backfacing, v.diffuse, v.coat);
   }
   template <bool kGlass = true>
   BsdfSample sample(const View& v, float u_lobe, const Vec2& u) const {
-    return sample_mixture(v.wo, u_lobe, u, v.backfacing, v.diffuse);
+    return sample_mixture(v.wo, u_lobe, u, v.backfacing, v.diffuse, v.coat);
   }
   Vec3 straight_through(const View& v) const;
 
  private:
-  LobeEval eval_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse = {}) const;
-  float pdf_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse = {}) const;
+  LobeEval eval_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse = {},
+                        const CoatNormal& coat = {}) const;
+  float pdf_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse = {},
+                    const CoatNormal& coat = {}) const;
   BsdfSample sample_mixture(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing,
-                            const DiffuseNormal& diffuse = {}) const;
+                            const DiffuseNormal& diffuse = {}, const CoatNormal& coat = {}) const;
 
   std::array<Component, kMaxMixtureComponents> components_{};
   std::array<float, kMaxMixtureComponents> weights_{};

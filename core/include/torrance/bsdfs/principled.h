@@ -13,7 +13,7 @@
 //            cspec0 = 0.08 specular mix(1, tint colour, specular_tint) (1 - metallic) + base metallic.
 //   mirror   below ggx::kDeltaAlpha the specular lobe is a delta with reflectance F(n.wo).
 //   clearcoat  Cycles 3.4's clearcoat lobe, added on top (principled_coat.h: ClearcoatV1), in the
-//            glossy part of LobeEval.
+//            glossy part of LobeEval, about the View's coat_normal (Clearcoat Normal, bsdf.h).
 //   subsurface  with Subsurface > 0 the diffuse lobe's colour is the base colour mixed towards
 //            Subsurface Color and its Lambertian part is left to the random walk (subsurface/), as
 //            Cycles 3.4's BSSRDF setup leaves its retro-reflection as a BSDF.
@@ -46,8 +46,9 @@ class PrincipledBsdf : public lobe_mixture::Queries<PrincipledBsdf> {
     using Model = PrincipledBsdf;
     float burley_o = 0.0f;  // the Burley diffuse's Schlick weight (1 - wo.z)^5
   };
-  View at(const Vec3& wo) const;        // with the lobe choice p_spec
-  View geometry(const Vec3& wo) const;  // without it (p_spec = 1): enough for eval
+  // coat: the clearcoat's normal (bsdf.h; by default the shading normal).
+  View at(const Vec3& wo, const CoatNormal& coat = {}) const;        // with the lobe choice p_spec
+  View geometry(const Vec3& wo, const CoatNormal& coat = {}) const;  // without it (p_spec = 1): enough for eval
 
   LobeEval eval_lobes(const View& v, const Vec3& wi) const;
   using lobe_mixture::Queries<PrincipledBsdf>::eval_lobes;  // pdf, sample, eval: lobe_mixture::Queries
@@ -63,10 +64,12 @@ class PrincipledBsdf : public lobe_mixture::Queries<PrincipledBsdf> {
 
   // The clearcoat lobe (lobe_mixture.h).
   bool has_coat() const { return coat_.active(); }
-  float coat_pdf(const lobe_mixture::View& v, const Vec3& wi) const { return coat_.pdf(v.wo, wi); }
-  Vec3 coat_sample(const lobe_mixture::View& v, const Vec2& u) const { return coat_.sample(v.wo, u); }
+  float coat_pdf(const lobe_mixture::View& v, const Vec3& wi) const { return lobe_mixture::coat_pdf(coat_, v, wi); }
+  Vec3 coat_sample(const lobe_mixture::View& v, const Vec2& u) const { return lobe_mixture::coat_sample(coat_, v, u); }
   bool coat_is_delta() const { return coat_.is_delta(); }
-  Vec3 coat_mirror_reflectance(const lobe_mixture::View& v) const { return Vec3(coat_.mirror_reflectance(v.wo.z)); }
+  Vec3 coat_mirror_reflectance(const lobe_mixture::View& v) const {
+    return Vec3(coat_.mirror_reflectance(v.coat_normal.cosine(v.wo)));
+  }
   const ClearcoatV1& coat() const { return coat_; }
   const SheenV1& sheen() const { return sheen_; }
 

@@ -8,8 +8,9 @@
 //
 //   sheen       principled_sheen.h's SheenV2 (Cycles' microfiber sheen); the four layers under it
 //               are scaled by its keep(wo) = clamp(1 - max_rgb(albedo), 0, 1), as Cycles 4.x's.
-//   coat        principled_coat.h's CoatV2 (its own roughness and IOR); the three layers under it
-//               are scaled by its base_weight(wo), as Cycles 4.x darkens and tints them.
+//   coat        principled_coat.h's CoatV2 (its own roughness, IOR and normal: the View's
+//               coat_normal, bsdf.h); the three layers under it are scaled by its base_weight(wo),
+//               as Cycles 4.x darkens and tints them, wo's cosine taken about the coat's normal.
 //   metal       weight metallic. GGX with height-correlated Smith G2 = 1 / (1 + L(wo) + L(wi))
 //               and the F82-tint Fresnel (Kutz et al., "Novel aspects of the Adobe Standard
 //               Material"):  F_m(c) = clamp(F_s(c) - b c (1 - c)^6, 0, 1),
@@ -83,7 +84,9 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
     CoatV2::Terms coat;            // the coat's (its base_weight is in the three above)
     SheenBsdf::Lobe sheen;         // the sheen's weight (its albedo), a, b (its keep is in all above)
   };
-  ViewTerms view_terms(float cos_o) const;
+  // cos_coat: wo's cosine about the coat's normal (cos_o without a coat normal of its own).
+  ViewTerms view_terms(float cos_o, float cos_coat) const;
+  ViewTerms view_terms(float cos_o) const { return view_terms(cos_o, cos_o); }
 
   // The albedo of each closure Cycles 4.x makes of the material (closure/bsdf.h's bsdf_albedo:
   // the closure's weight, its layering and multiscatter darkening included, times its Fresnel
@@ -95,6 +98,10 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
     Vec3 diffuse{0.0f}, dielectric{0.0f}, metal{0.0f}, coat{0.0f}, sheen{0.0f}, layers{1.0f};
   };
   ClosureAlbedos closure_albedos(float cos_o) const;
+  // What Cycles 4.x leaves of material m's emission (Material::emission_under_layers) seen from a
+  // view at cos_o to the closure's normal and cos_coat to the coat's: the coat's base_weight times
+  // the sheen's keep (1 without them), as the layers under them.
+  static Vec3 emission_weight(const Material& m, float cos_o, float cos_coat);
   float coat_alpha() const { return coat_.alpha(); }
 
   // What eval, pdf and sample need of wo alone (lobe_mixture.h), prepared once per shading point.
@@ -104,8 +111,9 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
     float lambda_o = 0.0f;  // the GGX shape's Lambda(wo)
     SheenBsdf::Lobe sheen;  // terms.sheen in wo's frame (no weight without a sheen)
   };
-  View at(const Vec3& wo) const;        // with the lobe choice p_spec
-  View geometry(const Vec3& wo) const;  // without it (p_spec = 1): enough for eval
+  // coat: the coat's normal (bsdf.h; by default the shading normal).
+  View at(const Vec3& wo, const CoatNormal& coat = {}) const;        // with the lobe choice p_spec
+  View geometry(const Vec3& wo, const CoatNormal& coat = {}) const;  // without it (p_spec = 1): enough for eval
 
   LobeEval eval_lobes(const View& v, const Vec3& wi) const;
   using lobe_mixture::Queries<PrincipledV2Bsdf>::eval_lobes;  // pdf, sample, eval: lobe_mixture::Queries
@@ -130,10 +138,12 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
 
   // The coat lobe (lobe_mixture.h).
   bool has_coat() const { return coat_.reflects(); }
-  float coat_pdf(const lobe_mixture::View& v, const Vec3& wi) const { return coat_.pdf(v.wo, wi); }
-  Vec3 coat_sample(const lobe_mixture::View& v, const Vec2& u) const { return coat_.sample(v.wo, u); }
+  float coat_pdf(const lobe_mixture::View& v, const Vec3& wi) const { return lobe_mixture::coat_pdf(coat_, v, wi); }
+  Vec3 coat_sample(const lobe_mixture::View& v, const Vec2& u) const { return lobe_mixture::coat_sample(coat_, v, u); }
   bool coat_is_delta() const { return coat_.is_delta(); }
-  Vec3 coat_mirror_reflectance(const View& v) const { return Vec3(coat_.mirror_reflectance(v.terms.coat, v.wo.z)); }
+  Vec3 coat_mirror_reflectance(const View& v) const {
+    return Vec3(coat_.mirror_reflectance(v.terms.coat, v.coat_normal.cosine(v.wo)));
+  }
   const CoatV2& coat() const { return coat_; }
 
   // The sheen lobe (lobe_mixture.h), chosen first with View::p_sheen.

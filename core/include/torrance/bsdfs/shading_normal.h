@@ -17,4 +17,10 @@ Vec3 valid_shading_normal(const Vec3& ng, const Vec3& ns, const Vec3& wo);
 // Cycles 4.x (model PRINCIPLED_V2) only the specular ones, so its diffuse lobes keep `unchecked`.
 DiffuseNormal diffuse_normal(const Frame& frame, const Vec3& checked, const Vec3& unchecked, BrdfModel model);
 
+// The normal the Principled coat shades with (bsdf.h), in `frame`, whose z is `checked` (the
+// closures' normal after valid_shading_normal): `coat` (the Coat Normal, or the surface's normal
+// without the Normal input's bump; facing the viewer, as ng) made valid for wo as every specular
+// closure's normal is (Cycles 3.4 and 4.x alike). Not tilted when that is `checked` itself.
+CoatNormal coat_normal(const Frame& frame, const Vec3& checked, const Vec3& ng, const Vec3& coat, const Vec3& wo);
+
 }  // namespace torrance

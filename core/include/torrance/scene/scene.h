@@ -275,6 +275,13 @@ class Scene final : public ShaderTracer {
   // this hit (g, ns = hit.shading_normal), read instead of running the program again.
   Vec3 normal_mapped(uint32_t material, const SurfaceHit& hit, const Vec3& ns, const ShaderGlobals& g,
                      Vec3* surface_normal = nullptr, const glm::vec4* program_regs = nullptr) const;
+  // Whether material i (a mixture: one of its closures) has a Principled coat (a weight above 0,
+  // or one its program computes), whose normal may then differ from the closures' (bsdf.h).
+  bool coated(uint32_t i) const;
+  // The Coat Normal material i's program computes (ShaderOutputs::coat_normal: facing the viewer,
+  // as the Normal) at the hit g describes, into n; false (n left as is) without one.
+  // program_regs: as for normal_mapped.
+  bool coat_normal(uint32_t i, const ShaderGlobals& g, const glm::vec4* program_regs, Vec3& n) const;
   // Whether shading material i (its programs, its mixture's closures, an image bump) reads the
   // ray differentials of ShaderGlobals (shader_globals' cone_width): else they need not be made.
   bool reads_differentials(uint32_t i) const { return globals_read(i) & kReadsDifferentials; }

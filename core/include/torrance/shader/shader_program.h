@@ -331,6 +331,8 @@ struct ShaderOutputs {
   int16_t transmission = -1;
   // The Principled BSDF's coat inputs (Material::coat_*): weight, roughness, IOR (x) and tint.
   int16_t coat_weight = -1, coat_roughness = -1, coat_ior = -1, coat_tint = -1;
+  // The Principled BSDF's Clearcoat / Coat Normal where linked (facing the viewer, as normal).
+  int16_t coat_normal = -1;
   // The Principled BSDF's sheen inputs (Material::sheen_*): weight, roughness (x) and tint (v1's
   // factor the x, v2's colour).
   int16_t sheen_weight = -1, sheen_roughness = -1, sheen_tint = -1;
