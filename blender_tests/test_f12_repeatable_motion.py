@@ -22,7 +22,7 @@ import numpy as np
 
 from torrance_tools import scene as make
 from torrance_tools import testing
-from torrance_tools.animation import linear_keys, make_linear
+from torrance_tools.animation import linear_keys, shape_key_motion
 from torrance_tools.render_settings import render_multilayer_exr
 from torrance_tools.testing import check
 
@@ -33,18 +33,8 @@ def deforming_sphere(scene):
     ob = make.sphere_object(scene, "Blob", (-0.9, 0.3, 0.6), 0.5,
                             testing.principled("Green", (0.1, 0.7, 0.2), roughness=0.3),
                             segments=32, rings=16)
-    ob.shape_key_add(name="Basis")
-    key = ob.shape_key_add(name="Bulge")
-    co = np.empty(3 * len(key.data))
-    key.data.foreach_get("co", co)
-    co = co.reshape(-1, 3)
-    co[:, 2] += 0.3 * np.sin(4.0 * co[:, 0])          # a wavy, still smooth surface
-    key.data.foreach_set("co", co.ravel())
-    key.value = 0.0
-    key.keyframe_insert("value", frame=0)
-    key.value = 1.0
-    key.keyframe_insert("value", frame=2)
-    make_linear(ob.data.shape_keys)
+    shape_key_motion(ob, "Bulge", lambda co: co + np.stack(
+        [0.0 * co[:, 0], 0.0 * co[:, 0], 0.3 * np.sin(4.0 * co[:, 0])], axis=1))  # wavy, smooth
 
 
 def hair_patch(scene):

@@ -43,7 +43,7 @@ import numpy as np
 
 from torrance_tools import scene as make
 from torrance_tools import testing
-from torrance_tools.animation import linear_keys, make_linear
+from torrance_tools.animation import linear_keys, shape_key_motion
 from torrance_tools.seed_noise import agree_within_seed_noise
 
 W, H = 96, 72
@@ -120,17 +120,7 @@ def deforming_sphere(scene):
                             testing.principled("Green", (0.1, 0.7, 0.2)), segments=32, rings=16)
     for polygon in ob.data.polygons:   # flat: see the module docstring
         polygon.use_smooth = False
-    ob.shape_key_add(name="Basis")
-    key = ob.shape_key_add(name="Slide")
-    co = np.empty(3 * len(key.data))
-    key.data.foreach_get("co", co)
-    co = co.reshape(-1, 3) * 1.4 + np.array([1.5, 0.0, 0.25])
-    key.data.foreach_set("co", co.ravel())
-    key.value = 0.0
-    key.keyframe_insert("value", frame=0)
-    key.value = 1.0
-    key.keyframe_insert("value", frame=2)
-    make_linear(ob.data.shape_keys)
+    shape_key_motion(ob, "Slide", lambda co: co * 1.4 + np.array([1.5, 0.0, 0.25]))
     set_position(scene, 'CENTER')
 
 
