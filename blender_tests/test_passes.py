@@ -8,8 +8,9 @@ switched on (Z, Normal, Diffuse/Glossy Color, Diffuse/Glossy Direct/Indirect, Em
 and written by the compositor's File Output node (so they are Render Layers sockets) as 32-bit
 EXRs, and the render result is saved as a multilayer EXR. Checks:
 
-* the Render Layers node offers exactly Image, Alpha and the enabled passes; the multilayer
-  EXR has a layer for each; switching toggles off removes them;
+* the Render Layers node offers exactly Image, Alpha and the enabled passes, under the running
+  Blender's names (5.x: "Diffuse Color" for "DiffCol" ...); the multilayer EXR has a layer for
+  each; switching toggles off removes them;
 * every pass has the frame's size; where the geometry is known (rows from the top), Depth is
   the planar distance (4 m on the plane), Normal is +Z on the plane, Diffuse Color is the base
   colour on the plane and base x (1 - metallic) on the sphere (so the rows are not flipped);
@@ -94,15 +95,18 @@ def compositor_outputs(scene, directory):
 
 
 def render_passes(scene, d, tag):
-    """Renders; returns ({pass: float32 (H, W, 4) rows from the top}, Render Layers outputs)."""
+    """Renders; returns ({pass (3.x-4.x name): float32 (H, W, 4) rows from the top}, Render
+    Layers outputs)."""
     directory = os.path.join(d, tag)
     os.makedirs(directory, exist_ok=True)
     outputs = compositor_outputs(scene, directory)
     bpy.ops.render.render()
+    from torrance.blender_versions import pass_name
+    short = {pass_name(name): name for name in TOGGLES.values()}    # 5.x: names in words
     out = {}
     for path in glob.glob(os.path.join(directory, "*.exr")):
         name = re.sub(r"(0001)?\.exr$", "", os.path.basename(path))     # 5.0: no frame
-        out[name] = compare.read_exr(path)
+        out[short.get(name, name)] = compare.read_exr(path)
     return out, outputs
 
 
@@ -143,7 +147,8 @@ def main():
     messages = testing.last_messages()
     check(any("shadow" in m for _, m in messages), f"the Shadow pass must be reported: {messages}")
     check(testing.addon().render.last_stats["nonfinite_pixels"] == 0, "NaN/Inf pixels")
-    expected = {"Image", "Alpha", *TOGGLES.values()}
+    from torrance.blender_versions import pass_name
+    expected = {"Image", "Alpha", *map(pass_name, TOGGLES.values())}   # the running Blender's
     print(f"[sockets] Render Layers outputs: {outputs}")
     check(set(outputs) - {"Shadow"} == expected,
           f"Render Layers outputs {outputs}, expected {sorted(expected)}")

@@ -17,7 +17,8 @@ from torrance_tools.testing import check
 
 # Each pass's channels in Blender's order (an EXR stores them sorted by name); the others RGB(A).
 CHANNELS = {"Combined": "RGBA", "Mist": "Z", "Depth": "Z", "UV": "UVA", "Position": "XYZ",
-            "Normal": "XYZ", "IndexOB": "X", "IndexMA": "X", "Denoising Normal": "XYZ",
+            "Normal": "XYZ", "Vector": "XYZW", "IndexOB": "X", "IndexMA": "X",
+            "Object Index": "X", "Material Index": "X", "Denoising Normal": "XYZ",
             "Denoising Depth": "Z", "Denoising Roughness": "X"}
 NOISY = ("DiffInd", "GlossInd")     # their ratio bound: 1.5 % at least
 

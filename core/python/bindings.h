@@ -19,6 +19,7 @@ void init_mixture(py::module_& m);  // after init_scene: adds Scene.add_mixture
 void init_cryptomatte(py::module_& m);   // after init_scene: cryptomatte_hash, Scene.set_cryptomatte
 void init_media(py::module_& m);    // after init_scene: adds Scene.set_material_volume, set_world_volume
 void init_motion(py::module_& m);  // after init_scene: Scene.set_mesh_motion, set_camera_motion
+void init_frame_motion(py::module_& m);  // after init_scene: Scene.set_frame_motion_* (the Vector pass)
 void init_extra_passes(py::module_& m);  // after init_scene: Scene.set_aovs, set_light_groups
 void init_light_linking(py::module_& m);  // after init_scene: Scene.set_light_link_table, ...
 void init_render(py::module_& m);  // init_render_settings first

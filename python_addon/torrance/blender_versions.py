@@ -21,6 +21,9 @@ difference is named once and told by the API itself where it can be:
               dense texture of its active bounding box: voxel i's centre at index i + 0.5 and
               nothing outside the box's voxels (scene/image_vdb.cpp); later Cycles sample NanoVDB
               in index space: cycles_dense_volume_textures (export/volume_objects.py).
+  pass names  5.0 names the render passes in words (Cycles' engine.py, the compositor's
+              Render Layers sockets, multilayer EXR layers): "Object Index", "Diffuse Direct",
+              "Emission" ... for 3.x-4.x's "IndexOB", "DiffDir", "Emit": pass_name.
   light linking  4.0 adds Object.light_linking (receiver and blocker collections) and
               CollectionObject/CollectionChild.light_linking (include/exclude): has_light_linking;
               3.x has none, and the export then sends nothing (export/light_linking.py).
@@ -38,6 +41,22 @@ def cycles5_bump_shadowing():
     microfacet_bump_shadowing; measured in 5.3, 5.0-5.2 taken as 5.3), False for 3.x-4.x's."""
     import bpy
     return bpy.app.version >= (5, 0, 0)
+
+
+# Blender 5.0's names of the render passes whose 3.x-4.x names are short (Cycles' engine.py).
+_PASS_NAMES_SINCE_5 = {
+    "IndexOB": "Object Index", "IndexMA": "Material Index", "DiffDir": "Diffuse Direct",
+    "DiffInd": "Diffuse Indirect", "DiffCol": "Diffuse Color", "GlossDir": "Glossy Direct",
+    "GlossInd": "Glossy Indirect", "GlossCol": "Glossy Color", "TransDir": "Transmission Direct",
+    "TransInd": "Transmission Indirect", "TransCol": "Transmission Color", "Emit": "Emission",
+    "Env": "Environment", "AO": "Ambient Occlusion",
+}
+
+
+def pass_name(name):
+    """The running Blender's name of a render pass Blender 3.x-4.x call `name` (Cycles')."""
+    import bpy
+    return _PASS_NAMES_SINCE_5.get(name, name) if bpy.app.version >= (5, 0, 0) else name
 
 
 def cycles_dense_volume_textures():

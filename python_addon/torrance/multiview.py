@@ -67,10 +67,28 @@ class ViewCameras:
                                       f"rendered without camera motion blur")
         if self.stats.motion_blur:
             export_shutter(self.tc_scene, self.depsgraph.scene, self.reporter)
+        if self.stats.frame_camera is not None:
+            self.set_frame_camera(view, cam_obj)
+
+    def set_frame_camera(self, view, cam_obj):
+        """The Vector pass's previous and next camera of the active view: the first view's moved
+        to this view's eye of the same camera; another camera's standing still (reported)."""
+        if cam_obj.name == self.first_camera:
+            frames = np.einsum('sij,jk->sik', np.stack(self.stats.frame_camera),
+                               self.offset(cam_obj))
+        else:
+            self.reporter.warning(f"Multi-View: view '{view}' (camera "
+                                  f"'{cam_obj.name}'): its camera's motion is left out of the "
+                                  f"Vector pass")
+            frames = np.stack([camera_matrix(self.engine, cam_obj)] * 2)
+        self.tc_scene.set_frame_motion_camera(frames[0], frames[1])
+
+    def offset(self, cam_obj):
+        """The active view's eye of the first view's camera, in that first eye's frame."""
+        # einsum, not @: no BLAS call at export time (matrices.py says why)
+        return np.einsum('ij,jk->ik', inverse(self.first_matrix),
+                         camera_matrix(self.engine, cam_obj))
 
     def motion(self, cam_obj):
         """The first view's camera motion moved to the active view's eye of the same camera."""
-        # einsum, not @: no BLAS call at export time (matrices.py says why)
-        offset = np.einsum('ij,jk->ik', inverse(self.first_matrix),
-                           camera_matrix(self.engine, cam_obj))
-        return np.einsum('sij,jk->sik', self.stats.camera_motion, offset)
+        return np.einsum('sij,jk->sik', self.stats.camera_motion, self.offset(cam_obj))

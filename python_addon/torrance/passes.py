@@ -10,13 +10,16 @@ The passes are Cycles 3.4's: Diffuse and Glossy Direct/Indirect are divided by D
 Glossy Color, so that Combined = Emit + Env + DiffCol x (DiffDir + DiffInd) + GlossCol x
 (GlossDir + GlossInd), as Blender's compositing setups for Cycles expect. Position and the
 Index passes are of the ray through each pixel's centre (Cycles' first sample: not
-anti-aliased); Mist, UV and AO are filtered like the image. Denoising Data (Cycles' toggle on
+anti-aliased); Mist, UV and AO are filtered like the image, Vector averaged over the samples
+that hit a surface (export/frame_motion.py). Denoising Data (Cycles' toggle on
 the view layer's Cycles settings) gives Denoising Normal, Albedo and Depth as Cycles defines
 them, for the compositor's Denoise node; with Denoise on, the noisy Combined is kept as Noisy
 Image.
 """
 
 from collections import namedtuple
+
+from .blender_versions import pass_name
 
 PassInfo = namedtuple("PassInfo", "core name channels chanid type flag label description")
 
@@ -30,7 +33,8 @@ SHADOW_CATCHER_FLAG = "cycles.use_pass_shadow_catcher"
 SHADOW_CATCHER = "Shadow Catcher"
 
 # Torrance's passes in the order Blender lists them. core: the name in torrance_core.PASSES;
-# name/chanid/type: Blender's (Cycles') name of the pass; flag: the ViewLayer toggle.
+# name/chanid/type: Blender's (Cycles') name of the pass in 3.x-4.x (5.x's: pass_name); flag:
+# the ViewLayer toggle.
 PASSES = (
     PassInfo("Depth", "Depth", 1, "Z", 'VALUE', "use_pass_z", "Z",
              "Distance along the camera's viewing axis (planar depth); 1e10 on the background"),
@@ -42,6 +46,10 @@ PASSES = (
     PassInfo("Normal", "Normal", 3, "XYZ", 'VECTOR', "use_pass_normal", "Normal",
              "World-space shading normal at the first surface seen (with normal maps), facing "
              "the camera"),
+    PassInfo("Vector", "Vector", 4, "XYZW", 'VECTOR', "use_pass_vector", "Vector",
+             "Motion of the first surface seen, in pixels: (previous frame - this frame, this "
+             "frame - next frame), x then y up, as Cycles; 0 on the background and with motion "
+             "blur on"),
     PassInfo("UV", "UV", 3, "UVA", 'VECTOR', "use_pass_uv", "UV",
              "(u, v, 1) of the active render UV map at the first surface seen; 0 without UVs "
              "and on the background"),
@@ -94,7 +102,7 @@ BY_CORE_NAME = {p.core: p for p in PASSES}
 
 # The toggles Torrance can not honour (Cycles-only passes): for the UI and for reports.
 UNSUPPORTED_FLAGS = (
-    "use_pass_vector", "use_pass_shadow",
+    "use_pass_shadow",
     "use_pass_transmission_direct", "use_pass_transmission_indirect",
     "use_pass_transmission_color", "use_pass_subsurface_direct",
     "use_pass_subsurface_indirect", "use_pass_subsurface_color",
@@ -201,7 +209,7 @@ def blender_name(core_name):
     """Blender's name of a pass the core rendered (None: not one Blender shows)."""
     info = BY_CORE_NAME.get(core_name)
     if info is not None:
-        return info.name
+        return pass_name(info.name)
     if core_name in (NOISY_IMAGE, SHADOW_CATCHER):
         return core_name
     kind, _, name = core_name.partition(":")
@@ -218,6 +226,7 @@ def update_render_passes(engine, scene, renderlayer):
     if noisy_image_wanted(scene, renderlayer):
         engine.register_pass(scene, renderlayer, NOISY_IMAGE, 4, "RGBA", 'COLOR')
     for p in enabled_passes(renderlayer):
-        engine.register_pass(scene, renderlayer, p.name, p.channels, p.chanid, p.type)
+        engine.register_pass(scene, renderlayer, pass_name(p.name), p.channels, p.chanid,
+                             p.type)
     for _core, name, channels, chanid, kind in extra_passes(renderlayer):
         engine.register_pass(scene, renderlayer, name, channels, chanid, kind)

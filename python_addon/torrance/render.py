@@ -207,6 +207,8 @@ def _render(engine, depsgraph, reporter):
     wanted = passes.enabled_passes(view_layer)
     available = {name for name, _channels in tc.PASSES}
     core_passes = [p.core for p in wanted if p.core in available]
+    if "Vector" in core_passes and stats.motion_blur:
+        reporter.info("The Vector pass stays 0 with motion blur on (as in Cycles)")
     unsupported = passes.unsupported_enabled(view_layer)
     if unsupported:
         names = ", ".join(f.replace("use_pass_", "").replace("_", " ") for f in unsupported)

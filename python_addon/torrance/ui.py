@@ -565,7 +565,10 @@ class TORRANCE_VIEW_LAYER_PT_passes(TorrancePanel, Panel):
         for p in passes.PASSES:
             owner, attr = passes.flag_owner(view_layer, p.flag)
             if owner is not None and p.flag not in drawn:
-                col.prop(owner, attr, text=p.label)
+                row = col.row()
+                # As Cycles' panel: no vectors under motion blur.
+                row.active = p.core != "Vector" or not context.scene.render.use_motion_blur
+                row.prop(owner, attr, text=p.label)
                 drawn.add(p.flag)
         owner, attr = passes.flag_owner(view_layer, passes.SHADOW_CATCHER_FLAG)
         if owner is not None:

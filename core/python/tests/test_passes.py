@@ -77,3 +77,36 @@ def test_bad_pass_indices_are_rejected():
         scene.set_instance_pass_indices(np.array([0], np.int64), np.array([1.0], np.float32))
     with pytest.raises(ValueError):
         scene.set_instance_pass_indices(np.array([0, 1], np.int64), np.array([1.0], np.float32))
+
+
+def test_vector_pass_of_a_moving_camera():
+    """The camera 0.3 m to the left (-x) one frame before and to the right one after: the
+    still plane's points stood further right in the frame before and further left after, so
+    both halves of the vector (previous - now, now - next) are equal and positive in x, 0 in y;
+    without the camera's frames the pass is 0."""
+    scene = plane_scene()
+    assert np.all(np.asarray(render(scene, ["Vector"]).passes["Vector"]) == 0.0)
+    before, after = np.eye(4), np.eye(4)
+    before[:3, 3] = (-0.3, 0.0, 5.0)
+    after[:3, 3] = (0.3, 0.0, 5.0)
+    scene.set_frame_motion_camera(before, after)
+    v = np.asarray(render(scene, ["Vector"]).passes["Vector"])
+    assert v.shape == (6, 8, 4)
+    assert np.allclose(v[..., 0], v[0, 0, 0], atol=1e-3) and v[0, 0, 0] > 1.0
+    assert np.allclose(v[..., 2], v[..., 0], atol=1e-3)
+    assert np.allclose(v[..., 1], 0.0, atol=1e-3) and np.allclose(v[..., 3], 0.0, atol=1e-3)
+
+
+def test_bad_neighbouring_frames_are_rejected():
+    scene = plane_scene()
+    with pytest.raises(ValueError):
+        scene.set_frame_motion_camera(np.eye(3), np.eye(4))
+    with pytest.raises(ValueError):
+        scene.set_frame_motion_mesh(0, np.zeros((3, 3)), np.zeros((4, 3)))
+    with pytest.raises(ValueError):
+        scene.set_frame_motion_mesh(0, np.full((4, 3), np.nan), np.zeros((4, 3)))
+    with pytest.raises(ValueError):
+        scene.set_frame_motion_mesh(5, np.zeros((4, 3)), np.zeros((4, 3)))
+    with pytest.raises(ValueError):
+        scene.set_frame_motion_instances(np.array([0], np.int64), np.zeros((1, 3, 4)),
+                                         np.zeros((1, 3, 4)))

@@ -221,6 +221,26 @@ Ray Camera::generate_ray(float x, float y_from_top, const Vec2& u_lens) const {
   return r;
 }
 
+Vec2 Camera::raster_position(const Vec3& p) const {
+  const Vec3 w = p - origin_;
+  if (pano_) {
+    const Vec3 d(glm::dot(w, pano_x_), glm::dot(w, pano_y_), glm::dot(w, pano_z_));
+    const float len = glm::length(d);
+    if (!(len > 0.0f)) return Vec2(0.0f);
+    const Vec2 uv = panorama_coordinates(panorama_, d / len);
+    return Vec2(uv.x * float(width_), uv.y * float(height_));
+  }
+  float cx = glm::dot(w, right_), cy = glm::dot(w, up_);
+  if (!ortho_) {
+    const float along = glm::dot(w, forward_);
+    if (along == 0.0f) return Vec2(0.0f);
+    cx /= along;
+    cy /= along;
+  }
+  return Vec2((cx - offset_x_ + half_w_) / (2.0f * half_w_) * float(width_),
+              (cy - offset_y_ + half_h_) / (2.0f * half_h_) * float(height_));
+}
+
 // The inverse of generate_ray for PERSPECTIVE: the lens point (the camera's position without depth
 // of field), the pinhole direction d = (cx, cy, 1) in the camera's frame of the ray from it
 // through p -- with depth of field, of the point where that ray meets the focus plane -- and the

@@ -81,7 +81,71 @@ Vec3 central_cylindrical(const PanoramaParams& p, float u, float v) {
   return glm::normalize(Vec3(std::cos(azimuth), std::sin(azimuth), height));
 }
 
+// The inverses (panorama_coordinates). A fisheye's radius r (in its image-plane units) along the
+// direction's in-plane angle: the image's right is panorama -Y, its up +Z.
+Vec2 fisheye_point(const Vec3& d, float r, float width, float height) {
+  const float across = std::sqrt(d.y * d.y + d.z * d.z);
+  if (!(across > 0.0f)) return Vec2(0.5f);
+  return Vec2(0.5f - r * (d.y / across) / width, 0.5f + r * (d.z / across) / height);
+}
+
+float angle_to_axis(const Vec3& d) { return std::atan2(std::sqrt(d.y * d.y + d.z * d.z), d.x); }
+
+// The polynomial fisheye's sensor radius r with -(k0 + k1 r + ... + k4 r^4) = theta: Newton's
+// method from the linear solution (as Cycles 5.x), 20 steps at most.
+float polynomial_radius(const PanoramaParams& p, float theta) {
+  const auto& k = p.polynomial;
+  if (k[1] == 0.0f) return 0.0f;
+  const float target = -theta;
+  float r = (target - k[0]) / k[1];
+  for (int i = 0; i < 20; ++i) {
+    const float f = k[0] + r * (k[1] + r * (k[2] + r * (k[3] + r * k[4]))) - target;
+    const float df = k[1] + r * (2.0f * k[2] + r * (3.0f * k[3] + r * 4.0f * k[4]));
+    if (!(std::abs(df) > 0.0f)) break;
+    const float next = r - f / df;
+    if (!std::isfinite(next)) break;
+    if (std::abs(next - r) <= 1e-7f * std::max(1.0f, std::abs(r))) return next;
+    r = next;
+  }
+  return r;
+}
+
 }  // namespace
+
+Vec2 panorama_coordinates(const PanoramaParams& p, const Vec3& d) {
+  switch (p.type) {
+    case PanoramaType::Equirectangular: {
+      const float u = (std::atan2(d.y, d.x) + p.longitude_min) / (p.longitude_min - p.longitude_max);
+      const float theta = std::acos(std::min(std::max(d.z, -1.0f), 1.0f));
+      const float v = (theta + p.latitude_min - 0.5f * kPi) / (p.latitude_min - p.latitude_max);
+      return Vec2(u, v);
+    }
+    case PanoramaType::FisheyeEquidistant:
+      return fisheye_point(d, 2.0f * angle_to_axis(d) / p.fisheye_fov, 2.0f, 2.0f);
+    case PanoramaType::FisheyeEquisolid:
+      return fisheye_point(d, 2.0f * p.fisheye_lens_mm * std::sin(0.5f * angle_to_axis(d)), p.sensor_width_mm,
+                           p.sensor_height_mm);
+    case PanoramaType::FisheyeLensPolynomial:
+      return fisheye_point(d, polynomial_radius(p, angle_to_axis(d)), p.sensor_width_mm, p.sensor_height_mm);
+    case PanoramaType::MirrorBall: {
+      // The ball's normal halves the way from the view direction (0, 1, 0) back to d.
+      Vec3 n = d - Vec3(0.0f, 1.0f, 0.0f);
+      const float len = 2.0f * std::sqrt(std::max(-0.5f * n.y, 0.0f));
+      if (len > 0.0f) n /= len;
+      return Vec2(0.5f * (n.x + 1.0f), 0.5f * (n.z + 1.0f));
+    }
+    case PanoramaType::EquiangularCubemapFace:
+      return Vec2(0.5f - std::atan2(d.y, d.x) * 2.0f / kPi, std::atan2(d.z, d.x) * 2.0f / kPi + 0.5f);
+    case PanoramaType::CentralCylindrical: {
+      const auto& c = p.cylinder;
+      const float across = std::sqrt(d.x * d.x + d.y * d.y);
+      const float u = (-std::atan2(d.y, d.x) - c[0]) / (c[1] - c[0]);
+      const float v = ((across > 0.0f ? d.z / across : 0.0f) - c[2]) / (c[3] - c[2]);
+      return Vec2(u, v);
+    }
+  }
+  return Vec2(0.0f);
+}
 
 void validate_panorama(const PanoramaParams& p) {
   const auto finite = [](float x) { return std::isfinite(x); };

@@ -239,6 +239,9 @@ class Film {
     for (const PassInfo& p : accumulated_list_) {
       if (p.channels == 1) {
         v[k++] = pass_scalar(p.pass, r);
+      } else if (p.channels == 4) {
+        const glm::vec4 q = pass_quad(p.pass, r);
+        for (int c = 0; c < 4; ++c) v[k++] = q[c];
       } else {
         const Vec3 pv = pass_color(p.pass, r);
         v[k++] = pv.x;

@@ -14,7 +14,8 @@ namespace torrance {
 // passes are divided by Diffuse and Glossy Color.
 inline uint32_t pass_dependencies(uint32_t passes) {
   return ((passes & (kPassDiffuseDirect | kPassDiffuseIndirect)) ? uint32_t(kPassAlbedo) : 0u) |
-         ((passes & (kPassGlossyDirect | kPassGlossyIndirect)) ? uint32_t(kPassGlossyColor) : 0u);
+         ((passes & (kPassGlossyDirect | kPassGlossyIndirect)) ? uint32_t(kPassGlossyColor) : 0u) |
+         ((passes & kPassVector) ? uint32_t(kPassVectorWeight) : 0u);
 }
 
 // The colour pass a light pass is divided by (0: none).
@@ -38,6 +39,7 @@ inline float pass_scalar(Pass pass, const PathRadiance& r) {
     case kPassObjectIndex: return r.object_index;
     case kPassMaterialIndex: return r.material_index;
     case kPassDenoisingDepth: return r.denoising_depth;
+    case kPassVectorWeight: return r.motion_weight;
     default: return r.depth;
   }
 }
@@ -62,6 +64,9 @@ inline Vec3 pass_color(Pass pass, const PathRadiance& r) {
   }
 }
 
+// The passes of 4 channels.
+inline glm::vec4 pass_quad(Pass pass, const PathRadiance& r) { return pass == kPassVector ? r.motion : glm::vec4(0.0f); }
+
 // a / b per channel, 0 where b is 0, and there the mean of the channels that could be divided
 // (Cycles' safe_divide_even_color: a grey rather than a hue where the colour has a 0).
 inline Vec3 divide_even_color(const Vec3& a, const Vec3& b) {
@@ -83,7 +88,8 @@ inline Vec3 divide_even_color(const Vec3& a, const Vec3& b) {
 
 // The pass Blender shows from the film's per-pixel means of the accumulated passes: the Mist
 // pass is 1 - the mean of (1 - mist) (clamped to [0, 1]); the Diffuse and Glossy Direct/Indirect
-// means are divided by Diffuse and Glossy Color's; the others as they are.
+// means are divided by Diffuse and Glossy Color's, the Vector pass by the share of samples that
+// wrote one (Cycles' motion weight; 0 where none did); the others as they are.
 inline Image finish_pass(Pass pass, const std::vector<std::pair<Pass, Image>>& resolved) {
   auto find = [&](Pass p) -> const Image& {
     return std::find_if(resolved.begin(), resolved.end(), [&](const auto& e) { return e.first == p; })->second;
@@ -91,6 +97,12 @@ inline Image finish_pass(Pass pass, const std::vector<std::pair<Pass, Image>>& r
   Image img = find(pass);
   if (pass == kPassMist) {
     for (float& v : img.rgba) v = std::clamp(1.0f - v, 0.0f, 1.0f);
+  } else if (pass == kPassVector) {
+    const Image& weight = find(kPassVectorWeight);
+    for (size_t i = 0; i < weight.rgba.size(); ++i) {
+      const float w = weight.rgba[i];
+      for (int c = 0; c < 4; ++c) img.rgba[4 * i + size_t(c)] = w > 0.0f ? img.rgba[4 * i + size_t(c)] / w : 0.0f;
+    }
   } else if (const Pass divisor = divisor_of(pass)) {
     const Image& color = find(divisor);
     for (size_t i = 0; i + 2 < img.rgba.size(); i += 3) {

@@ -3,6 +3,7 @@
 
 #include "integrator/caustics.h"
 #include "film/film.h"
+#include "film/motion_vectors.h"
 #include "integrator/path_tracer.h"
 #include "integrator/shadow_catcher_split.h"
 #include "scene/ray_queries.h"
@@ -215,6 +216,8 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   ctx.camera_position = camera.position();
   ctx.camera_axes = {camera.right(), camera.up(), camera.forward()};
   ctx.orthographic = scene.camera().type == CameraType::Orthographic;
+  const std::optional<MotionVectors> motion_vectors = motion_vectors_for(cscene, settings);
+  if (motion_vectors) ctx.motion_vectors = &*motion_vectors;
   ctx.bsdfs.reserve(scene.num_materials());
   for (size_t i = 0; i < scene.num_materials(); ++i) ctx.bsdfs.emplace_back(scene.material(uint32_t(i)), settings.brdf_model);
   ctx.globals_read.reserve(scene.num_materials());

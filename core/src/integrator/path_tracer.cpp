@@ -8,6 +8,7 @@
 #include "film/denoising_features.h"
 #include "film/extra_passes_write.h"
 #include "film/film_passes.h"
+#include "film/motion_vectors.h"
 #include "integrator/caustics.h"
 #include "integrator/first_hit_passes.h"
 #include "integrator/guided_bsdf.h"
@@ -318,6 +319,7 @@ class PathTracer {
         const bool facing = glm::dot(hit.geometric_normal, ray_.dir) < 0.0f;
         out_.normal = facing ? hit.shading_normal : -hit.shading_normal;
         out_.uv = hit.has_uv ? Vec3(hit.uv.x, hit.uv.y, 1.0f) : Vec3(0.0f);
+        write_motion_vector(hit);
         surface_data_done_ = true;
       }
       if (passed >= ctx_.settings.max_transparent_bounces) return false;  // Cycles: the path ends
@@ -478,6 +480,13 @@ class PathTracer {
 
   // ---- 4. Emission and the first surface's passes ----
 
+  // The Vector pass's motion of the first surface's point (written with the UV pass).
+  void write_motion_vector(const SurfaceHit& hit) {
+    if (!ctx_.motion_vectors) return;
+    out_.motion = ctx_.motion_vectors->at(hit);
+    out_.motion_weight = 1.0f;
+  }
+
   void first_surface_passes(const Vertex& v) {
     const SurfaceHit& hit = *v.hit;
     if (!kAlpha && extra_.writes_aovs()) add_aovs(ctx_.scene, hit, ray_.dir, path_state_, 0.0f, out_.extras);
@@ -485,6 +494,7 @@ class PathTracer {
     if (!surface_data_done_ && first_opacity_ >= ctx_.settings.pass_alpha_threshold) {
       out_.normal = v.at.ns;
       out_.uv = hit.has_uv ? Vec3(hit.uv.x, hit.uv.y, 1.0f) : Vec3(0.0f);
+      write_motion_vector(hit);
     }
     if (colour_passes_) {
       out_.albedo = diffuse_color<kGlass>(v.material);

@@ -23,6 +23,7 @@
 namespace torrance {
 
 class CausticPartition;
+class MotionVectors;
 
 struct PathContext {
   const Scene& scene;
@@ -62,6 +63,8 @@ struct PathContext {
   // The catcher-only half (shadow_catcher_split.h): its camera ray's media are the split
   // path's, whose throughput it takes, so its first segment passes them untouched.
   bool catcher_half = false;
+  // The Vector pass's motion of the first surfaces (film/motion_vectors.h); null: none made.
+  const MotionVectors* motion_vectors = nullptr;
 };
 
 // Where a camera sample goes.
@@ -91,6 +94,9 @@ struct PathRadiance {
   // and Depth.
   Vec3 denoising_albedo{0.0f}, denoising_normal{0.0f};
   float denoising_depth = 0.0f;
+  // The Vector pass's (film/motion_vectors.h) vector of the first surface, and 1 where one was made.
+  glm::vec4 motion{0.0f};
+  float motion_weight = 0.0f;
   // The scene's AOV and light-group channels (extra_passes.h): the first
   // Scene::extra_passes().channels() are set by the tracer, the rest left uninitialised.
   float extras[kMaxExtraChannels];

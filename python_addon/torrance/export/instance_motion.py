@@ -33,9 +33,11 @@ class InstanceMotion:
     """The instances that may move: note() them in the export's pass, read_step() at each time
     step, export() after the instances are in the core."""
 
-    def __init__(self, scene, reporter):
+    def __init__(self, scene, reporter, steps_of=None):
         self.scene = scene
         self.reporter = reporter
+        # An instance's time steps (None: instance_motion_steps; frame_motion.py: 3 for all).
+        self.steps_of = steps_of
         self.deforming = {}     # instanced object name -> whether its deformation is blurred
         self.records = {}       # key -> (Source, its index in the Source, steps)
         self.matrices = {}      # key -> [(time step k, 4x4 float64)]
@@ -43,12 +45,13 @@ class InstanceMotion:
 
     def note(self, inst, src):
         """Instance inst, about to be added to src (Source.add)."""
-        steps = instance_motion_steps(inst)
+        steps = (self.steps_of or instance_motion_steps)(inst)
         if steps >= 2 and inst.object.name not in self.deforming:
             deforms = self.deforming[inst.object.name] = uses_deform_motion(inst.object, self.scene)
             if deforms:
-                self.reporter.info(f"Torrance does not blur the deformation of instanced "
-                                   f"objects ('{inst.object.name}'): only their transforms")
+                self.reporter.info(f"Torrance follows only the transforms of instanced objects "
+                                   f"('{inst.object.name}'), not their deformation, in motion "
+                                   f"blur and the Vector pass")
         if steps >= 2:
             self.records[instance_key(inst)] = (src, src.count(), steps)
             self.max_steps = max(self.max_steps, steps)

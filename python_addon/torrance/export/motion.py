@@ -98,8 +98,11 @@ class MotionSampler:
 
     track(name, steps, deform) before sample(); sample() visits every time step (the finest
     grid of the tracked step counts: Cycles' steps nest, 2^k + 1 each) and returns to the
-    shutter's centre.
+    shutter's centre. A subclass samples other times (frame_motion.py: the Vector pass's
+    neighbouring frames) by its own offsets(), object_steps() and instance_steps().
     """
+
+    blurs = True    # the samples are motion blur's (the core's shutter)
 
     def __init__(self, engine, depsgraph, reporter, centre):
         self.engine = engine
@@ -111,6 +114,21 @@ class MotionSampler:
         self.states = {}         # object name -> [(matrix 4x4 float64, LocalMesh or None)]
         self.meshes = []         # (name, mesh id, frame's LocalMesh, triangles, keep) added
         self.instances = None    # an InstanceMotion (instance_motion.py) sampled too, or None
+
+    @staticmethod
+    def object_steps(obj):
+        """The time steps object obj is sampled at (< 2: none)."""
+        return object_motion_steps(obj)
+
+    def instance_motion(self):
+        """The InstanceMotion (instance_motion.py) that samples the instances too."""
+        from .instance_motion import InstanceMotion
+        self.instances = InstanceMotion(self.depsgraph.scene, self.reporter)
+        return self.instances
+
+    def offsets(self, steps):
+        """The times (frames from the centre) of `steps` time steps."""
+        return shutter_offsets(self.depsgraph.scene, steps)
 
     def on_added(self, name, local):
         """add_world_mesh's on_added for object `name` read as `local`: remembers its mesh."""
@@ -149,10 +167,9 @@ class MotionSampler:
         moving = self.instances.max_steps if self.instances is not None else 0
         if not self.tracked and not moving:
             return
-        scene = self.depsgraph.scene
         steps = max([s for s, _, _ in self.tracked.values()] + [moving])
         try:
-            for k, offset in enumerate(shutter_offsets(scene, steps)):
+            for k, offset in enumerate(self.offsets(steps)):
                 frame_set(self.engine, self.centre + offset)
                 self._read_step(k, steps)
                 if moving:
@@ -200,10 +217,10 @@ class MotionSampler:
         positions, normals = [], []
         fell_back = False
         for step_matrix, step_local in states:
-            arrays = _world_arrays(step_local, step_matrix, triangles, keep, len(local.positions))
+            arrays = world_arrays(step_local, step_matrix, triangles, keep, len(local.positions))
             if arrays is None:
                 fell_back = fell_back or step_local is not None
-                arrays = _world_arrays(local, step_matrix, triangles, keep, len(local.positions))
+                arrays = world_arrays(local, step_matrix, triangles, keep, len(local.positions))
             if arrays is None:
                 self.reporter.warning(f"Object '{name}': its motion drops triangles; rendered "
                                       f"without motion blur")
@@ -246,7 +263,7 @@ def densified(matrices, substeps=_TRANSFORM_SUBSTEPS):
     return out
 
 
-def _world_arrays(local, matrix, triangles, keep, num_vertices):
+def world_arrays(local, matrix, triangles, keep, num_vertices):
     """world_mesh's positions and corner normals of local at matrix when they match the mesh
     added (num_vertices, the same triangles and kept triangles), else None."""
     if local is None or len(local.positions) != num_vertices:

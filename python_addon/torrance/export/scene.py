@@ -21,9 +21,8 @@ from .light_linking import LightLinking
 from .lights import export_light
 from .mesh import MeshCache, add_world_mesh, mesh_materials
 from .mesh_attributes import dupli_record, instancer_record, object_info
-from .instance_motion import InstanceMotion
-from .motion import (MotionSampler, at_shutter_centre, motion_blur_enabled, object_motion_steps,
-                     uses_deform_motion)
+from .frame_motion import FrameMotionSampler, vector_pass_wanted
+from .motion import MotionSampler, at_shutter_centre, motion_blur_enabled, uses_deform_motion
 from .volume_objects import VolumeObjects
 from .world import export_world
 
@@ -55,6 +54,7 @@ class ExportStats:
         self.cryptomatte = {}    # the render result's Cryptomatte metadata (cryptomatte.py)
         self.motion_blur = False     # the shutter was given to the core (export/shutter.py)
         self.camera_motion = None    # the camera's matrices over the shutter, when it moves
+        self.frame_camera = None     # the Vector pass: the camera's (previous, next frame) matrices
 
     def __str__(self):
         return (f"{self.objects} objects, {self.triangles} triangles, {self.strands} strands, "
@@ -119,6 +119,16 @@ def _keep_gil():
         yield
     finally:
         sys.setswitchinterval(interval)
+
+
+def motion_sampler(engine, depsgraph, reporter, centre):
+    """What samples the scene at other times: motion blur's shutter (MotionSampler), the Vector
+    pass's neighbouring frames (FrameMotionSampler), or None."""
+    if motion_blur_enabled(depsgraph.scene, engine):
+        return MotionSampler(engine, depsgraph, reporter, centre)
+    if vector_pass_wanted(depsgraph, engine):
+        return FrameMotionSampler(engine, depsgraph, reporter, centre)
+    return None
 
 
 def camera_object(depsgraph, engine):
@@ -229,11 +239,8 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre):
         # (object name, evaluated mesh pointer[, holdout, shadow catcher]) -> Source, 'LIGHT' or
         # None, for instances
         seen = {}
-        motion = (MotionSampler(engine, depsgraph, reporter, centre)
-                  if motion_blur_enabled(depsgraph.scene, engine) else None)
-        moving_instances = None
-        if motion is not None:
-            moving_instances = motion.instances = InstanceMotion(depsgraph.scene, reporter)
+        motion = motion_sampler(engine, depsgraph, reporter, centre)
+        moving_instances = motion.instance_motion() if motion is not None else None
         holdouts = holdout_names(depsgraph)
         catchers = shadow_catcher_names(depsgraph)
         masks = bool(holdouts or catchers)
@@ -313,9 +320,9 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre):
         poll()
         local = cache.get(obj, (obj.data.as_pointer(),), needs_uvs, reporter)
         on_added = None
-        if motion is not None and object_motion_steps(obj) >= 2:
+        if motion is not None and motion.object_steps(obj) >= 2:
             deform = uses_deform_motion(obj, depsgraph.scene)
-            motion.track(obj.name, object_motion_steps(obj), deform, needs_uvs)
+            motion.track(obj.name, motion.object_steps(obj), deform, needs_uvs)
             on_added = motion.on_added(obj.name, local)
         triangles = add_world_mesh(tc_scene, name, local, matrix, slot_to_material, needs_uvs,
                                    reporter, object_info=info, pass_index=pass_index,
@@ -329,8 +336,11 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre):
             stats.triangles += triangles
     if motion is not None:
         motion.export(tc_scene, camera_object(depsgraph, engine))
-        stats.motion_blur = True
-        stats.camera_motion = motion.camera_matrices()
+        if motion.blurs:
+            stats.motion_blur = True
+            stats.camera_motion = motion.camera_matrices()
+        else:
+            stats.frame_camera = motion.frame_camera
     volumes = VolumeObjects(tc_scene, materials, reporter)
     stats.objects += sum(volumes.add(obj, matrix) for obj, matrix in volume_objects)
     stats.strands = strands.export_hair(tc_scene, hair, materials, reporter,

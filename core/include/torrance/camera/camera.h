@@ -125,6 +125,12 @@ class Camera {
   // reaches p; false when none does (p behind the camera or outside its clipping, a camera other
   // than PERSPECTIVE, spherical stereo).
   bool connect(const Vec3& p, const Vec2& u_lens, CameraConnection& out) const;
+  // Where world point p lies in the frame, as Cycles' Vector pass projects it (its worldtoraster,
+  // a panorama's direction_to_panorama): x from the left edge and y from the BOTTOM edge, in
+  // pixels. PERSPECTIVE and ORTHOGRAPHIC through the pinhole's view plane (a perspective point on
+  // the camera plane gives (0, 0), as Cycles' projective divide by 0); PANORAMIC at
+  // panorama_coordinates of its direction times the frame's size (the view plane not applied).
+  Vec2 raster_position(const Vec3& p) const;
   const Vec3& forward() const { return forward_; }
   const Vec3& right() const { return right_; }  // the camera's local +X and +Y in the world
   const Vec3& up() const { return up_; }

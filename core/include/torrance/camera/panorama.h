@@ -63,4 +63,11 @@ void validate_panorama(const PanoramaParams& p);
 // projection's domain.
 Vec3 panorama_direction(const PanoramaParams& p, float u, float v);
 
+// Its inverse: the image-plane point (u, v) at which unit direction d (panorama space) appears,
+// over the whole panorama (the view plane not applied): Cycles' direction_to_panorama (the
+// Vector pass). As Cycles 5.x defines it; Cycles 3.4-4.x mirror the fisheyes' u and solve the
+// polynomial fisheye's radius by an iteration that does not converge to it (fixed in 5.0).
+// Directions outside the projection's domain map by the same formulas (beyond 0..1).
+Vec2 panorama_coordinates(const PanoramaParams& p, const Vec3& d);
+
 }  // namespace torrance

@@ -45,6 +45,12 @@ enum Pass : uint32_t {
   kPassDenoisingAlbedo = 1u << 16,
   kPassDenoisingNormal = 1u << 17,
   kPassDenoisingDepth = 1u << 18,
+  // Cycles' Vector pass (film/motion_vectors.h): where the first surface's point was one frame
+  // before and will be one after, in pixels (previous - now, now - next; y up), the mean over the
+  // samples that hit a surface; and that count's share, which it is divided by (accumulated with
+  // it, not a pass of its own). 0 without the scene's neighbouring frames.
+  kPassVector = 1u << 19,
+  kPassVectorWeight = 1u << 20,
 };
 inline constexpr uint32_t kDenoisingPasses = kPassDenoisingAlbedo | kPassDenoisingNormal | kPassDenoisingDepth;
 // The passes whose pixel is the pixel's first sample's value, unfiltered (Cycles' sample-0 passes).
@@ -62,6 +68,7 @@ inline constexpr PassInfo kPasses[] = {
     {kPassMist, "Mist", 1},            {kPassUV, "UV", 3},                 {kPassAO, "AO", 3},
     {kPassDenoisingAlbedo, "DenoisingAlbedo", 3}, {kPassDenoisingNormal, "DenoisingNormal", 3},
     {kPassDenoisingDepth, "DenoisingDepth", 1},
+    {kPassVector, "Vector", 4},         {kPassVectorWeight, "VectorWeight", 1},
     {kPassDepth, "Depth", 1},           {kPassPosition, "Position", 3},
     {kPassObjectIndex, "IndexOB", 1},  {kPassMaterialIndex, "IndexMA", 1},
 };

@@ -9,6 +9,7 @@
 #include "torrance/camera/camera.h"
 #include "torrance/film/cryptomatte.h"
 #include "torrance/film/extra_passes.h"
+#include "torrance/scene/frame_motion.h"
 #include "torrance/lights/lights.h"
 #include "torrance/bsdfs/mixture.h"
 #include "torrance/media/scene_media.h"
@@ -323,6 +324,22 @@ class Scene final : public ShaderTracer {
   size_t set_instance_motion(const int64_t* ids, size_t count, size_t steps, const float* transforms);
   // Whether some mesh or instance moves: the integrator then samples a time per path.
   bool has_motion() const { return has_motion_; }
+
+  // The Vector pass (kPassVector; Cycles' motion pass, frame_motion.h): the scene one frame
+  // before and one frame after the rendered frame. The camera's camera_to_world then (row-major,
+  // as CameraParams'); world mesh `mesh`'s vertices then (num_vertices xyz each: its deformation
+  // and its object's transform); instances ids[0..count)'s object-to-world 3x4 row-major
+  // transforms then (count of them each). Later calls replace earlier ones. Throws
+  // std::invalid_argument for a bad mesh or instance id and NaN/Inf or out-of-range values.
+  void set_frame_motion_camera(const std::array<float, 16>& before, const std::array<float, 16>& after);
+  void set_frame_motion_mesh(uint32_t mesh, const float* before, const float* after);
+  void set_frame_motion_instances(const int64_t* ids, size_t count, const float* before, const float* after);
+  const FrameMotion& frame_motion() const { return frame_motion_; }
+  // Where the surface point `hit` found was one frame before and will be one after (world
+  // space): its mesh's vertices then at its barycentric weights, or its instance's transforms
+  // then applied to its position in the instance; the point itself for what was not given
+  // (hair strands among them).
+  std::array<Vec3, 2> frame_motion_points(const SurfaceHit& hit) const;
   // Vertices and triangles of mesh `mesh` from add_mesh (std::invalid_argument for a bad id).
   size_t mesh_vertex_count(uint32_t mesh) const;
   size_t mesh_triangle_count(uint32_t mesh) const;
@@ -588,6 +605,7 @@ class Scene final : public ShaderTracer {
   bool dirty_ = true;
   bool emitters_dirty_ = true;
   bool has_motion_ = false;
+  FrameMotion frame_motion_;
   // Mesh `mesh`'s Embree geometry id in the top-level scene (meshes are attached in order).
   uint32_t mesh_geometry_id(uint32_t mesh) const;
   mutable std::string embree_error_;

@@ -1,0 +1,196 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The Vector pass (View Layer > Passes > Data > Vector) against Cycles' of the same Blender.
+
+Frame 1 of an animation keyed at frames 0 and 2, linearly: a camera moving and turning, a box
+moving and turning (a world-space mesh: its transform), a sphere deforming through a shape key
+(its deformation), geometry-nodes cubes turning with the scene's time (instances: their own
+transforms) and a static floor (the camera's motion alone), the sky in the top rows. Object pass
+indices tell the objects apart. Checks, on pixels whose 5x5 neighbourhood shows one object in
+Cycles' Object Index pass (away from edges, where the pass mixes two objects' vectors):
+
+* Torrance's vectors (seeds 2 and 3) differ from Cycles' (seed 0) by at most 1.5x Cycles' own
+  seed-to-seed difference plus 0.02 px (mean and 99th percentile of |difference| per object),
+  and are 0 on the sky;
+* the same with an equirectangular panoramic camera (the Vector pass through
+  direction_to_panorama; the fisheyes are left out: Cycles 3.4-4.x mirror their u);
+* with Motion Blur on the pass is there and 0, as Cycles'.
+
+Faults that must fail: the camera's neighbouring frames ignored, the sphere's deformation
+ignored, the instances' neighbouring frames not given, and the previous and next frames swapped.
+
+Run: scripts/blender -b --factory-startup --python-exit-code 1 \
+         --python blender_tests/test_vector_pass_agreement.py
+"""
+
+import math
+
+import bpy
+import numpy as np
+
+from torrance_tools import testing
+from torrance_tools.animation import linear_keys, shape_key_motion
+from torrance_tools.render_passes import interior, render_passes
+from torrance_tools.render_settings import setup_cycles, setup_torrance
+from torrance_tools.scene import turning_instances
+from torrance_tools.testing import check
+
+W, H, SAMPLES, BOUNCES = 96, 64, 16, 1
+OBJECTS = {"Floor": 1, "Box": 2, "Ball": 3, "Cubes": 4}
+TOLERANCE, FLOOR = 1.5, 0.02      # times Cycles' own difference, plus pixels
+
+
+def build(scene):
+    testing.setup_render(scene, width=W, height=H)
+    scene.frame_start, scene.frame_end = 0, 2
+    cam = testing.add_camera(scene, location=(0.0, -7.0, 1.6), target=(0.0, 0.0, 0.8), lens=30.0)
+    linear_keys(cam, "location", [(-0.4, -7.2, 1.5), (0.3, -6.8, 1.7)])
+    linear_keys(cam, "rotation_euler", [tuple(cam.rotation_euler),
+                                        tuple(np.add(cam.rotation_euler, (0.03, 0.0, 0.05)))])
+    grey = testing.principled("Grey", (0.5, 0.5, 0.5), 0.0, 0.5)
+    testing.plane(scene, "Floor", 12.0, material=grey)
+    s = 0.5
+    corners = [(x, y, z) for z in (-s, s) for y in (-s, s) for x in (-s, s)]
+    faces = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
+    box = testing.mesh_object(scene, "Box", corners, faces, grey)
+    linear_keys(box, "location", [(-2.2, 0.5, 0.6), (-1.6, 0.3, 0.9)])
+    linear_keys(box, "rotation_euler", [(0.0, 0.0, 0.0), (0.2, 0.1, 0.6)])
+    ball = testing.sphere_object(scene, "Ball", (0.3, 0.0, 0.8), 0.8, grey, segments=32, rings=16)
+    shape_key_motion(ball, "Squash", lambda p: p * (1.3, 1.0, 0.7) + (0.0, 0.0, 0.15))
+    holder = testing.mesh_object(scene, "Cubes", [(0, 0, 0)], [], None)
+    turning_instances(holder, "Turning", 3, (1.6, -0.6, 0.4), (0.6, 0.6, 0.3), (0.45, 0.45, 0.45),
+                      grey, 0.35)
+    for name, index in OBJECTS.items():
+        bpy.data.objects[name].pass_index = index
+    testing.add_sun(scene, strength=3.0)
+    testing.set_world(scene, (0.3, 0.35, 0.45))
+    layer = scene.view_layers[0]
+    layer.use_pass_vector = True
+    layer.use_pass_object_index = True
+    scene.frame_set(1)
+
+
+def render(scene, d, engine_setup, seed, name):
+    engine_setup(scene, SAMPLES, BOUNCES, seed=seed)
+    p = render_passes(scene, d, name)
+    check("Vector" in p, f"{name}: no Vector pass in the multilayer EXR")
+    check(np.isfinite(p["Vector"]).all(), f"{name}: NaN/Inf in the Vector pass")
+    return p
+
+
+def object_index(p):
+    """The Object Index pass (its name in the running Blender)."""
+    from torrance.blender_versions import pass_name
+    return p[pass_name("IndexOB")][:, :, 0]
+
+
+def differences(p, ref):
+    """{object: (mean, p99) of max_channel |p's Vector - ref's|} over ref's interior pixels of
+    each object (pass index); 'sky' for the world."""
+    index = object_index(ref)
+    inside = interior(index, 2)
+    err = np.abs(p["Vector"] - ref["Vector"]).max(axis=2)
+    out = {}
+    for name, i in list(OBJECTS.items()) + [("sky", 0)]:
+        keep = inside & (index == i)
+        if keep.any():
+            out[name] = (float(err[keep].mean()), float(np.percentile(err[keep], 99)))
+    return out
+
+
+def failures(ours, ref, other, label):
+    """What Torrance's renders `ours` violate against Cycles' ref, bounded by Cycles' other."""
+    own = differences(other, ref)
+    bad = []
+    for name, (own_mean, own_p99) in own.items():
+        ms = [differences(p, ref)[name] for p in ours]
+        mean = float(np.mean([m[0] for m in ms]))
+        p99 = float(np.mean([m[1] for m in ms]))
+        mean_limit = TOLERANCE * own_mean + FLOOR
+        p99_limit = TOLERANCE * own_p99 + FLOOR
+        verdict = ("ok" if mean <= mean_limit and p99 <= p99_limit
+                   else f"FAIL (limits {mean_limit:.4f}, {p99_limit:.4f})")
+        print(f"  {label} {name:6s}: |difference| mean {mean:.4f} px, p99 {p99:.4f} "
+              f"(Cycles' own {own_mean:.4f}, {own_p99:.4f})  {verdict}")
+        if verdict != "ok":
+            bad.append(f"{name}: mean {mean:.4f} > {mean_limit:.4f} or p99 {p99:.4f} > "
+                       f"{p99_limit:.4f}")
+    return bad
+
+
+def moving_share(ref):
+    """The share of Cycles' object pixels whose vector exceeds 0.5 px (the scene moves)."""
+    objects = object_index(ref) > 0
+    return float((np.abs(ref["Vector"]).max(axis=2)[objects] > 0.5).mean())
+
+
+def faults():
+    """(label, owner, attribute, make_fault), each replacing owner.attribute for one render."""
+    import torrance.export.frame_motion as frame_motion
+    import torrance.export.scene as export_scene
+
+    def camera_still(original):
+        def export(self, tc_scene, camera):
+            original(self, tc_scene, camera)
+            now = self.states[camera.name][1][0]
+            tc_scene.set_frame_motion_camera(now, now)
+        return export
+
+    return (("camera's neighbouring frames ignored", frame_motion.FrameMotionSampler, "export",
+             camera_still),
+            ("deformation ignored", export_scene, "uses_deform_motion",
+             lambda _original: lambda obj, scene: False),
+            ("instances' frames not given", frame_motion, "export_instance_frames",
+             lambda _original: lambda tc_scene, instances: None),
+            ("previous and next frames swapped", frame_motion.FrameMotionSampler, "offsets",
+             lambda _original: lambda self, steps: [1.0, 0.0, -1.0]))
+
+
+def main():
+    from torrance_tools.render_passes import replaced
+    testing.addon()
+    d = testing.tempdir()
+    scene = testing.clear_scene()
+    build(scene)
+    ref = render(scene, d, setup_cycles, 0, "cycles0")
+    other = render(scene, d, setup_cycles, 1, "cycles1")
+    share = moving_share(ref)
+    print(f"Cycles: {share:.0%} of the objects' pixels move by more than 0.5 px")
+    check(share > 0.5, "the test scene hardly moves in Cycles' Vector pass")
+    ours = [render(scene, d, setup_torrance, seed, f"torrance{seed}") for seed in (2, 3)]
+    bad = failures(ours, ref, other, "Torrance")
+
+    # Faults: each must fail.
+    for label, owner, attr, make_fault in faults():
+        with replaced(owner, attr, make_fault):
+            fault = render(scene, d, setup_torrance, 2, "fault")
+        caught = failures([fault], ref, other, "fault")
+        print(f"  fault '{label}': {'caught' if caught else 'NOT caught'}")
+        if not caught:
+            bad.append(f"fault '{label}' passes")
+
+    # An equirectangular camera.
+    cam = scene.camera.data
+    cam.type = 'PANO'
+    if hasattr(cam, "panorama_type"):
+        cam.panorama_type = 'EQUIRECTANGULAR'
+    else:
+        cam.cycles.panorama_type = 'EQUIRECTANGULAR'
+    pano = [render(scene, d, setup_cycles, seed, f"pano_cycles{seed}") for seed in (0, 1)]
+    pano_ours = [render(scene, d, setup_torrance, seed, f"pano_torrance{seed}") for seed in (2, 3)]
+    bad += [f"equirectangular: {b}" for b in failures(pano_ours, pano[0], pano[1], "Pano")]
+    cam.type = 'PERSP'
+
+    # Motion blur on: the pass is there, and 0.
+    scene.render.use_motion_blur = True
+    blurred = render(scene, d, setup_torrance, 2, "blurred")
+    cycles_blurred = render(scene, d, setup_cycles, 0, "cycles_blurred")
+    print(f"  motion blur: max |Vector| Torrance {np.abs(blurred['Vector']).max():.3g}, "
+          f"Cycles {np.abs(cycles_blurred['Vector']).max():.3g}")
+    if np.abs(blurred["Vector"]).max() != 0.0:
+        bad.append("the Vector pass is not 0 under motion blur")
+    scene.render.use_motion_blur = False
+    check(not bad, "; ".join(bad))
+    print(f"OK: Vector pass within Cycles' noise ({math.prod(ref['Vector'].shape[:2])} pixels)")
+
+
+testing.run(main)

@@ -1,0 +1,26 @@
+// The Vector pass's view of the scene (Cycles' motion pass): where the camera, the world-space
+// meshes' vertices and the instances were one frame before the rendered frame and will be one
+// frame after it, as Scene::set_frame_motion_* gave them. What was not given did not move.
+#pragma once
+
+#include "torrance/util/math.h"
+
+#include <array>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace torrance {
+
+struct FrameMotion {
+  bool has_camera = false;  // the Vector pass is made only when the camera's frames are known
+  std::array<std::array<float, 16>, 2> camera{};  // camera_to_world (row-major) before, after
+  struct MeshFrames {
+    std::vector<Vec3> before, after;  // every vertex, world space
+  };
+  std::unordered_map<uint32_t, MeshFrames> meshes;  // by mesh id
+  // By instance id: its object-to-world 3x4 row-major transform before and after.
+  std::unordered_map<uint32_t, std::array<std::array<float, 12>, 2>> instances;
+};
+
+}  // namespace torrance

@@ -1,0 +1,105 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The Vector pass (View Layer > Passes > Data > Vector) as Cycles renders it: where the camera,
+the meshes' vertices and the instances were one frame before the rendered frame and will be one
+frame after it, read through RenderEngine.frame_set for Scene.set_frame_motion_*.
+
+Cycles' motion pass samples every object at three times (the previous, the rendered and the
+next frame) whatever its Object > Motion Blur settings, a mesh's deformation where Motion Blur >
+Deformation is on and modifiers or shape keys deform it (a mesh whose topology changes follows
+its transform only), instances by their instancer and persistent id. Under motion blur Cycles
+writes no vectors (the pass stays 0: its UI greys the toggle out), and neither does Torrance; the
+viewport and material previews have no Vector pass.
+"""
+
+import numpy as np
+
+from .instance_motion import InstanceMotion
+from .motion import MotionSampler, motion_blur_enabled, world_arrays
+
+_NEIGHBOURS = 3     # the previous, the rendered and the next frame
+
+
+def vector_pass_wanted(depsgraph, engine):
+    """Whether the render needs the neighbouring frames: a final render (frame_set, not a
+    preview) of a view layer with the Vector pass on and motion blur off."""
+    view_layer = depsgraph.view_layer
+    return (bool(getattr(view_layer, "use_pass_vector", False)) and engine is not None
+            and not getattr(engine, "is_preview", False) and hasattr(engine, "frame_set")
+            and not motion_blur_enabled(depsgraph.scene, engine))
+
+
+class FrameMotionSampler(MotionSampler):
+    """MotionSampler at the previous, the rendered and the next frame, for every object."""
+
+    blurs = False
+
+    @staticmethod
+    def object_steps(obj):
+        return _NEIGHBOURS
+
+    def offsets(self, steps):
+        return [-1.0, 0.0, 1.0]
+
+    def instance_motion(self):
+        """The InstanceMotion that samples every instance at the three frames."""
+        self.instances = InstanceMotion(self.depsgraph.scene, self.reporter,
+                                        steps_of=lambda inst: _NEIGHBOURS)
+        return self.instances
+
+    def export(self, tc_scene, camera):
+        """Samples the camera and the tracked objects and instances at the three frames and gives
+        the core the previous and the next (the camera's always: it turns the pass on)."""
+        self.track_camera(camera.name, _NEIGHBOURS)
+        self.sample()
+        frames = self.states.get(camera.name)
+        tc_scene.set_frame_motion_camera(frames[0][0], frames[-1][0])
+        self.frame_camera = (frames[0][0], frames[-1][0])
+        for name, mesh_id, local, triangles, keep in self.meshes:
+            neighbours = self.neighbour_positions(name, local, triangles, keep)
+            if neighbours is not None:
+                tc_scene.set_frame_motion_mesh(mesh_id, *neighbours)
+        if self.instances is not None:
+            export_instance_frames(tc_scene, self.instances)
+
+    def neighbour_positions(self, name, local, triangles, keep):
+        """(before, after) world positions (N, 3) of an object added with world_mesh(local, its
+        matrix) as `triangles` kept by `keep`, or None when it stays put. A deformation whose
+        mesh changes topology falls back to the transform (reported)."""
+        states = self.states.get(name)
+        if not states or len(states) != _NEIGHBOURS or local is None:
+            return None
+        out = []
+        for matrix, step_local in (states[0], states[-1]):
+            arrays = world_arrays(step_local, matrix, triangles, keep, len(local.positions))
+            if arrays is None:
+                if step_local is not None:
+                    self.reporter.info(f"Object '{name}': its mesh changes topology between "
+                                       f"frames; the Vector pass follows its transform only")
+                arrays = world_arrays(local, matrix, triangles, keep, len(local.positions))
+            if arrays is None:
+                return None
+            out.append(np.asarray(arrays[0], np.float32))
+        centre = states[len(states) // 2]
+        if all(np.array_equal(m, centre[0]) for m, _ in states) and all(
+                s is None for _, s in states):
+            return None                      # neither moved nor deforms
+        return out[0], out[1]
+
+
+def export_instance_frames(tc_scene, instances):
+    """The previous and next frames' matrices of the instances found at all three frames
+    (instance_motion.InstanceMotion's records), to Scene.set_frame_motion_instances."""
+    ids, before, after = [], [], []
+    for key, (src, index, _steps) in instances.records.items():
+        matrices = instances.matrices.get(key, [])
+        if len(matrices) != _NEIGHBOURS or src.core_ids is None or src.core_ids[index] < 0:
+            continue
+        if all(np.array_equal(m, matrices[1]) for m in matrices):
+            continue
+        ids.append(src.core_ids[index])
+        before.append(matrices[0][:3, :])
+        after.append(matrices[-1][:3, :])
+    if ids:
+        tc_scene.set_frame_motion_instances(np.array(ids, dtype=np.int64),
+                                            np.array(before, np.float32),
+                                            np.array(after, np.float32))
