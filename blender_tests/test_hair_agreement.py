@@ -21,7 +21,7 @@ import math
 from torrance_tools import scene as make
 from torrance_tools import testing
 from torrance_tools.seed_noise import agree_within_seed_noise
-from torrance_tools.shader_graphs import Graph
+from torrance_tools.shader_graphs import Graph, closure_changed
 
 W, H = 96, 72
 BOUNCES = 8
@@ -62,18 +62,6 @@ def build(scene):
     testing.set_world(scene, (0.25, 0.3, 0.4))
 
 
-def with_hair_args(change):
-    """A make_fault for ShaderTreeReader._closure: the Principled Hair's args changed."""
-    def make_fault(original):
-        def closure(self, node):
-            out = original(self, node)
-            if out is None or out[0] != 'principled_hair':
-                return out
-            return out[0], change(out[1])
-        return closure
-    return make_fault
-
-
 def main():
     testing.addon()
     from torrance import principled_hair
@@ -97,7 +85,7 @@ def main():
 
     faults = [
         ("melanin 0.2 instead of 0.45", ShaderTreeReader, '_closure',
-         with_hair_args(lambda a: dict(a, base_color=light_melanin))),
+         closure_changed({'principled_hair'}, lambda c, a: (c, dict(a, base_color=light_melanin)))),
         ("strands twice as thick", hair, 'strand_radii', thicker),
         ("tip radius ignored", hair, 'strand_radii', full_tip),
         ("no hair", hair, 'export_hair', no_hair),

@@ -64,12 +64,12 @@ def nested_tree():
 
 
 def unsupported_tree():
-    """Mix(Particle Info, Hair BSDF, Diffuse with a Bump from an image) and a checker on
+    """Mix(Particle Info, Specular BSDF, Diffuse with a Bump from an image) and a checker on
     Generated (read by the shader graph: a program factor)."""
     mat, nodes, links, out = node_material("Unsupported")
     mix = nodes.new("ShaderNodeMixShader")
     links.new(nodes.new("ShaderNodeParticleInfo").outputs["Random"], mix.inputs["Fac"])
-    links.new(nodes.new("ShaderNodeBsdfHair").outputs[0], mix.inputs[1])
+    links.new(nodes.new("ShaderNodeEeveeSpecular").outputs[0], mix.inputs[1])
     diffuse = shader(nodes, "ShaderNodeBsdfDiffuse")
     bump = nodes.new("ShaderNodeBump")
     bump.invert = True
@@ -246,10 +246,10 @@ def main():
     print("\n".join(texts), flush=True)
     kinds = [(kind, terms) for kind, _a, terms in mix["closures"]]
     # Fac from a Particle Info: the socket's 0.5 (a constant: 0.5 and 0.5);
-    # the Hair BSDF left out; the checker on Generated coordinates a program factor of the
+    # the Specular BSDF left out; the checker on Generated coordinates a program factor of the
     # mixture's shader program.
     check(kinds[0][0] == "diffuse" and len(kinds) == 2 and kinds[1][0] == "glossy",
-          f"Hair BSDF left out, Diffuse and Glossy kept: {kinds}")
+          f"Specular BSDF left out, Diffuse and Glossy kept: {kinds}")
     normal = mix["normal"]
     check(normal.get("bump_texture") == 7 and abs(normal.get("bump_strength", 0) - 0.7) < 1e-6
           and abs(normal.get("bump_distance", 0) + 0.2) < 1e-6,
@@ -258,7 +258,7 @@ def main():
           and ('generated',) in mix["program_attributes"],
           f"the checker on Generated: a program factor reading Generated: {mix['factors']}")
     for expected in ("'Particle Info' is not supported",
-                     "the shader 'Hair BSDF' is not supported in a mix",
+                     "the shader 'Specular BSDF' is not supported in a mix",
                      "'Glossy BSDF' has another Normal than 'Diffuse BSDF'"):
         hits = [t for t in texts if expected in t]
         check(len(hits) == 1, f"reported once: {expected!r} in {texts}")

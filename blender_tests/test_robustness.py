@@ -145,7 +145,7 @@ def main():
     check(centre[0] > 2 * centre[2], f"nan_vertex: the red sphere is missing: {centre}")
 
     # 5. Unsupported nodes: a Principled Base Color from a Particle Info (not read by the shader
-    #    graph); a Hair BSDF surface;
+    #    graph); a Specular BSDF surface (Eevee's only);
     #    an Emission surface (supported); a material without output; a Mix Shader.
     scene = base_scene()
     testing.add_sun(scene)
@@ -154,12 +154,12 @@ def main():
     particle = nt.nodes.new("ShaderNodeParticleInfo")
     nt.links.new(particle.outputs["Velocity"], nt.nodes["Principled BSDF"].inputs["Base Color"])
     nt.links.new(particle.outputs["Random"], nt.nodes["Principled BSDF"].inputs["Roughness"])
-    hair_mat = bpy.data.materials.new("HairMat")
-    hair_mat.use_nodes = True
-    nt = hair_mat.node_tree
+    specular_mat = bpy.data.materials.new("SpecularMat")
+    specular_mat.use_nodes = True
+    nt = specular_mat.node_tree
     nt.nodes.remove(nt.nodes["Principled BSDF"])
-    hair = nt.nodes.new("ShaderNodeBsdfHair")
-    nt.links.new(hair.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
+    specular = nt.nodes.new("ShaderNodeEeveeSpecular")
+    nt.links.new(specular.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
     emit_mat = bpy.data.materials.new("EmitMat")
     emit_mat.use_nodes = True
     nt = emit_mat.node_tree
@@ -177,12 +177,12 @@ def main():
     mix = nt.nodes.new("ShaderNodeMixShader")
     nt.links.new(nt.nodes["Principled BSDF"].outputs[0], mix.inputs[1])
     nt.links.new(mix.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
-    for i, mat in enumerate((noise_mat, hair_mat, emit_mat, no_output, mix_mat)):
+    for i, mat in enumerate((noise_mat, specular_mat, emit_mat, no_output, mix_mat)):
         testing.sphere_object(scene, mat.name + "Sphere", (-2.4 + 1.2 * i, 0, 0.5), 0.5, mat,
                               segments=16, rings=8)
     img = render_case("unsupported_nodes", scene, d, expect=[
         "'NoiseMat': input 'Base Color'", "Particle Info", "'NoiseMat': input 'Roughness'",
-        "'HairMat': the surface shader", "Hair BSDF",
+        "'SpecularMat': the surface shader", "Specular BSDF",
         "'NoOutputMat': no active Material Output", "'MixMat'", "Mix Shader"])
     messages = testing.last_messages()
     check(not any("EmitMat" in m for _, m in messages), "EmitMat must not be reported")

@@ -322,6 +322,19 @@ def closure_left_out(bl_idname):
     return make_fault
 
 
+def closure_changed(closure_types, change):
+    """A make_fault for mixtures.ShaderTreeReader._closure: every closure of closure_types (the
+    core's names, e.g. 'principled_hair') read as change(closure, args) -> (closure, args)."""
+    def make_fault(original):
+        def closure(self, node):
+            out = original(self, node)
+            if out is None or out[0] not in closure_types:
+                return out
+            return change(*out)
+        return closure
+    return make_fault
+
+
 def skip_without(bl_idname, what):
     """Exits 77 (ctest's skipped), saying why, where this Blender has no node bl_idname (what:
     its name and the Blender that added it); else returns the registry's readers, patchable

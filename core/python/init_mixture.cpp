@@ -32,11 +32,14 @@ ClosureType parse_closure(const std::string& s) {
   if (s == "metallic_f82") return ClosureType::MetallicF82;
   if (s == "metallic_conductor") return ClosureType::MetallicConductor;
   if (s == "subsurface") return ClosureType::Subsurface;
+  if (s == "hair_reflection") return ClosureType::HairReflection;
+  if (s == "hair_transmission") return ClosureType::HairTransmission;
   throw py::value_error(
       "closure type must be 'principled', 'diffuse', 'diffuse_energy_preserving', 'glossy', 'emission', 'transparent', 'holdout', 'velvet', "
       "'sheen', "
       "'translucent', 'principled_hair', 'refraction', 'toon_diffuse', 'toon_glossy', 'toon_diffuse_cycles4', "
-      "'toon_glossy_cycles4', 'metallic_f82', 'metallic_conductor' or 'subsurface', got '" + s + "'");
+      "'toon_glossy_cycles4', 'metallic_f82', 'metallic_conductor', 'subsurface', 'hair_reflection' or "
+      "'hair_transmission', got '" + s + "'");
 }
 
 MixFactor parse_factor(const py::handle& h) {

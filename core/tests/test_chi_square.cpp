@@ -7,6 +7,7 @@
 // bin of their own. Significance 0.01, Bonferroni-corrected for the number of cases.
 #include "torrance/bsdfs/material_bsdf.h"
 #include "torrance/bsdfs/mixture_bsdf.h"
+#include "torrance/hair/hair_bsdf.h"
 #include "torrance/media/fournier_forand_phase.h"
 #include "torrance/media/henyey_greenstein.h"
 #include "torrance/media/phase_function.h"
@@ -365,6 +366,74 @@ TEST(ChiSquare, PrincipledHairSamplingMatchesPdf) {
                      drawn_by([&](float u, const Vec2& u2) { return hair.sample(wo, u, u2); }),
                      [&](const Vec3& wi) { return hair.pdf(wo, wi); });
       EXPECT_EQ(failure, "") << c.name << " cos_o=" << cos_o;
+    }
+  }
+}
+
+// The Hair BSDF node's closure (hair/hair_bsdf.h) draws its directions, over the whole sphere,
+// with the density its sampling_density reports (Cycles' formulas without its eval's cut-offs;
+// its pdf() is that density cut off): both components, smooth to rough, with an Offset, across
+// views. Binned in the strand's own coordinates (longitude theta_i, azimuth phi about the strand
+// from wo), where the density is smooth: about the mirror direction its 1 / cos theta_i at the
+// strand's poles defeats chi_square's quadrature.
+TEST(ChiSquare, HairBsdfSamplingMatchesDensity) {
+  const Vec3 tangent = glm::normalize(Vec3(0.9f, 0.2f, 0.1f));
+  struct Case {
+    bool transmission;
+    float r1, r2, offset;
+  };
+  const std::vector<Case> cases = {{false, 0.1f, 0.3f, 0.0f}, {false, 0.4f, 1.0f, 0.2f}, {false, 1.0f, 0.6f, -0.3f},
+                                   {true, 0.1f, 0.3f, 0.0f},  {true, 0.4f, 1.0f, 0.2f},  {true, 1.0f, 0.6f, -0.3f}};
+  const double significance = 0.01 / double(cases.size() * 3);
+  constexpr int kLongitudes = 20, kAzimuths = 24, kCells = 32;
+  uint32_t seed = 12000;
+  for (const Case& c : cases) {
+    const HairBsdf hair(Vec3(0.8f), c.transmission, c.r1, c.r2, c.offset, tangent);
+    for (float cos_o : {1.0f, 0.6f, 0.15f}) {
+      const Vec3 wo = test::direction(cos_o, 2.0f);
+      const Vec3 locy = glm::normalize(wo - tangent * glm::dot(tangent, wo)), locx = glm::cross(locy, tangent);
+      auto bin_of = [&](const Vec3& wi) {
+        const float along = std::clamp(glm::dot(tangent, wi), -1.0f, 1.0f);
+        float phi = std::atan2(-glm::dot(wi, locx), glm::dot(wi, locy));
+        if (phi < 0.0f) phi += kTwoPi;
+        const int i = std::min(int((std::asin(along) / kPi + 0.5f) * kLongitudes), kLongitudes - 1);
+        return i * kAzimuths + std::min(int(phi / kTwoPi * kAzimuths), kAzimuths - 1);
+      };
+      std::vector<double> observed(kLongitudes * kAzimuths, 0.0), expected(observed.size(), 0.0);
+      Rng rng(seed++, 0, 77);
+      int drawn = 0;
+      for (int n = 0; n < kSamples; ++n) {
+        const float u = rng.next_1d();
+        const BsdfSample s = hair.sample(wo, u, rng.next_2d());
+        if (s.valid()) observed[size_t(bin_of(s.wi))] += 1.0, ++drawn;
+      }
+      for (int i = 0; i < kLongitudes; ++i)
+        for (int j = 0; j < kAzimuths; ++j) {
+          double sum = 0.0;
+          for (int a = 0; a < kCells; ++a)
+            for (int b = 0; b < kCells; ++b) {
+              const double theta = ((i + (a + 0.5) / kCells) / kLongitudes - 0.5) * M_PI;
+              const double phi = (j + (b + 0.5) / kCells) / kAzimuths * 2.0 * M_PI;
+              const Vec3 wi = float(std::cos(phi) * std::cos(theta)) * locy -
+                              float(std::sin(phi) * std::cos(theta)) * locx + float(std::sin(theta)) * tangent;
+              sum += hair.sampling_density(wo, wi) * std::cos(theta);  // solid angle per (theta, phi)
+            }
+          expected[size_t(i * kAzimuths + j)] = sum * (M_PI / kLongitudes) * (2.0 * M_PI / kAzimuths) / (kCells * kCells);
+        }
+      double chi2 = 0.0, mass = 0.0;
+      int dof = -1;
+      for (size_t k = 0; k < expected.size(); ++k) {
+        mass += expected[k];
+        const double e = expected[k] * kSamples;
+        if (e < 5.0) continue;
+        chi2 += (observed[k] - e) * (observed[k] - e) / e;
+        ++dof;
+      }
+      const std::string name = std::string(c.transmission ? "transmission" : "reflection") + " r1=" +
+                               std::to_string(c.r1) + " r2=" + std::to_string(c.r2) + " cos_o=" + std::to_string(cos_o);
+      EXPECT_NEAR(mass, 1.0, 0.01) << name;
+      EXPECT_GT(drawn, kSamples * 0.99) << name;
+      EXPECT_GT(chi_square_p_value(chi2, dof), significance) << name << ": chi2 " << chi2 << " with " << dof << " dof";
     }
   }
 }

@@ -1,9 +1,9 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The Velvet / Sheen, Translucent, Refraction, Toon, Principled Hair BSDF, Subsurface Scattering
-and Metallic BSDF nodes -> a mixture's closures (the core's velvet_bsdf.h, sheen_bsdf.h,
-translucent_bsdf.h, refraction_bsdf.h, toon_bsdf.h, hair/principled_hair_bsdf.h, subsurface/,
-metallic_bsdf.h; the hair node's inputs:
-principled_hair.py, the subsurface node's: principled_subsurface.py), alone at the Surface and in
+"""The Velvet / Sheen, Translucent, Refraction, Toon, Principled Hair BSDF, Hair BSDF, Subsurface
+Scattering and Metallic BSDF nodes -> a mixture's closures (the core's velvet_bsdf.h,
+sheen_bsdf.h, translucent_bsdf.h, refraction_bsdf.h, toon_bsdf.h, hair/principled_hair_bsdf.h,
+hair/hair_bsdf.h, subsurface/, metallic_bsdf.h; the hair nodes' inputs: principled_hair.py,
+hair_bsdf.py, the subsurface node's: principled_subsurface.py), alone at the Surface and in
 Mix/Add Shader trees alike (mixtures.py).
 
 Each becomes (closure type, add_material kwargs) with the inputs where the core's ClosureType
@@ -20,6 +20,7 @@ graph).
 from .anisotropy import METALLIC, read_anisotropy
 from .material_values import DEFAULT_MATERIAL, clamp, color3, sanitize
 from .nodes import finite_or, node_label
+from .hair_bsdf import read_hair_bsdf
 from .principled_hair import read_principled_hair
 from .principled_subsurface import read_subsurface_node
 from .shader_graph.node_versions import cycles4_toon
@@ -27,7 +28,7 @@ from .thin_film import read_thin_film
 
 CLOSURE_NODES = {'ShaderNodeBsdfVelvet', 'ShaderNodeBsdfSheen', 'ShaderNodeBsdfTranslucent',
                  'ShaderNodeBsdfRefraction', 'ShaderNodeBsdfToon', 'ShaderNodeBsdfHairPrincipled',
-                 'ShaderNodeSubsurfaceScattering', 'ShaderNodeBsdfMetallic'}
+                 'ShaderNodeSubsurfaceScattering', 'ShaderNodeBsdfMetallic', 'ShaderNodeBsdfHair'}
 
 
 def read_closure_node(reader, mat, node):
@@ -35,6 +36,8 @@ def read_closure_node(reader, mat, node):
     kind = node.bl_idname
     if kind == 'ShaderNodeBsdfHairPrincipled':      # its inputs reduced to an absorption
         return 'principled_hair', read_principled_hair(reader, mat, node)
+    if kind == 'ShaderNodeBsdfHair':
+        return read_hair_bsdf(reader, mat, node)
     d = DEFAULT_MATERIAL
     reader._begin_program(mat)
     if kind == 'ShaderNodeBsdfMetallic':

@@ -166,9 +166,11 @@ class MaterialReader:
             return socket.default_value, (-1 if tid is None else tid)
         return self._graph_input(mat, node, socket, textures and program_input), -1
 
-    def _graph_input(self, mat, node, socket, program_input):
+    def _graph_input(self, mat, node, socket, program_input, constant_in_program=False):
         """The value of a linked input from its node graph: a constant when the graph folds to
-        one; else, with program_input, the socket's default (the program computes it)."""
+        one; else, with program_input, the socket's default (the program computes it).
+        constant_in_program: a constant too becomes the program's input (the core reading that
+        input from the program only, as the Hair BSDF's Tangent)."""
         where = f"Material '{mat.name}': input '{socket.name}' of {node_label(node)}"
         kind = KIND_OF_SOCKET.get(socket.type, 'float')
         builder = self._program
@@ -180,7 +182,7 @@ class MaterialReader:
             builder.rollback(mark)
             self.reporter.warning(f"{where}: {exc}; using the socket's own value")
             return socket.default_value
-        if value.constant:
+        if value.constant and not (program_input and constant_in_program):
             return value.value[0] if kind == 'float' else value.value[:len(socket.default_value)]
         if program_input:
             self._program_inputs[program_input] = value
@@ -207,11 +209,15 @@ class MaterialReader:
             if self._program.shading_normal is not None:     # the Displacement's, as bump
                 self._program_inputs['surface_normal'] = self._program.shading_normal
         if self._program_inputs:
+            for value in self._program_inputs.values():
+                if value.constant:          # placed among the program's constants before build
+                    self._program.constant_register(value)
             out['shader_program'] = self._program.build()
             out['program_reads_uvs'] = self._program.uses_uvs()
             out['program_attributes'] = self.attributes.keys_of(self._program)
             for key, value in self._program_inputs.items():
-                out[f'{key}_register'] = self._program.register_of(value)
+                out[f'{key}_register'] = (self._program.constant_register(value) if value.constant
+                                          else self._program.register_of(value))
                 out.pop(f'{key}_texture', None)
         return out
 

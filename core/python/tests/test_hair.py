@@ -50,7 +50,12 @@ def test_principled_hair_strands_render_lit_and_finite(shape):
     keys, radii, offsets = strands()
     scene.add_curves(keys, radii, offsets, materials=[mix] * (len(offsets) - 1), shape=shape)
     assert scene.num_curve_segments == 40 * 4
-    scene.add_sun(direction=(0.3, 0.5, -1.0), strength=3.0, angle=0.1)
+    assert_lit_and_finite(scene, sun=(0.3, 0.5, -1.0))
+
+
+def assert_lit_and_finite(scene, sun):
+    """The scene under a sun from `sun`, seen along +y: finite, and lit somewhere."""
+    scene.add_sun(direction=sun, strength=3.0, angle=0.1)
     camera = np.eye(4)
     camera[:3, :3] = [[1, 0, 0], [0, 0, -1], [0, 1, 0]]     # looking along +y
     camera[:3, 3] = [0.0, -3.0, 0.25]
@@ -59,3 +64,21 @@ def test_principled_hair_strands_render_lit_and_finite(shape):
                                                           max_bounces=4)).image)
     assert np.isfinite(image).all()
     assert image[..., :3].max() > 0.002
+
+
+@pytest.mark.parametrize("closure", ["hair_reflection", "hair_transmission"])
+def test_hair_bsdf_strands_and_mesh_render_lit_and_finite(closure):
+    """The Hair BSDF node's closures on strands (the strand's direction) and on a triangle (its
+    second edge, no tangent given): finite, lit."""
+    scene = tc.Scene()
+    hair = scene.add_material(base_color=(0.8, 0.6, 0.4), roughness=0.2,
+                              transmission_roughness=0.6, hair_offset=0.2)
+    mix = scene.add_mixture([(closure, hair, [])], [])
+    keys, radii, offsets = strands()
+    scene.add_curves(keys, radii, offsets, materials=[mix] * (len(offsets) - 1), shape="RIBBON")
+    scene.add_mesh(np.array([[-1, 0.3, -0.2], [1, 0.3, -0.2], [0, 0.3, 0.05]], np.float32),
+                   np.array([[0, 1, 2]], np.int32), material_indices=np.array([mix], np.int32))
+    assert_lit_and_finite(scene, (0.3, 0.5, -1.0) if closure == "hair_reflection"
+                          else (0.3, -0.5, -1.0))
+    with pytest.raises(ValueError, match="hair_reflection"):
+        scene.add_mixture([("hair", hair, [])], [])

@@ -23,6 +23,12 @@ struct DiffuseFrame {
 template <typename B, typename T>
 constexpr bool is = std::is_same_v<std::decay_t<B>, T>;
 
+// Whether a closure type declares kSampleIsOwnEval true (hair_bsdf.h).
+template <typename T, typename = void>
+struct SampleIsOwnEval : std::false_type {};
+template <typename T>
+struct SampleIsOwnEval<T, std::void_t<decltype(T::kSampleIsOwnEval)>> : std::bool_constant<T::kSampleIsOwnEval> {};
+
 // Adds a closure sampled by its own estimate of its albedo.
 template <typename Closure>
 void add_closure(MixtureBsdf& bsdf, const Closure& closure, float weight) {
@@ -49,6 +55,23 @@ PrincipledHairParams principled_hair_params(const Material& m) {
   return p;
 }
 
+// The Hair BSDF node's closure at a hit, its strand's direction as Cycles' svm closure node
+// takes it: a linked Tangent (a world direction); else on a curve the strand's (dPdu), on a
+// triangle its second edge (dPdv: corner 2 - corner 0), the Offset then 0.
+HairBsdf hair_bsdf(const Material& m, bool transmission, const ShaderGlobals& g) {
+  float offset = m.hair_offset;
+  Vec3 tangent = m.tangent;
+  if (!(glm::length(tangent) > 0.0f)) {
+    if (g.on_curve) {
+      tangent = g.tangent;
+    } else {
+      tangent = g.corners[2] - g.corners[0];
+      offset = 0.0f;
+    }
+  }
+  return HairBsdf(m.base_color, transmission, m.roughness, m.transmission_roughness, offset, tangent);
+}
+
 }  // namespace
 
 float principled_sampling_albedo(const Material& m) {
@@ -69,10 +92,11 @@ void MixtureBsdf::add(const Component& c, float w, float sampling_albedo) {
 }
 
 LobeEval MixtureBsdf::eval_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse,
-                                   const CoatNormal& coat) const {
+                                   const CoatNormal& coat, int skip) const {
   const DiffuseFrame d(diffuse);
   LobeEval total;
   for (int k = 0; k < count_; ++k) {
+    if (k == skip) continue;
     const LobeEval f = std::visit(
         [&](const auto& b) -> LobeEval {
           if constexpr (is<decltype(b), std::monostate>) return {};
@@ -90,11 +114,11 @@ LobeEval MixtureBsdf::eval_mixture(const Vec3& wo, const Vec3& wi, bool backfaci
 }
 
 float MixtureBsdf::pdf_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse,
-                               const CoatNormal& coat) const {
+                               const CoatNormal& coat, int skip) const {
   const DiffuseFrame d(diffuse);
   float p = 0.0f;
   for (int k = 0; k < count_; ++k)
-    p += probabilities_[k] * std::visit(
+    if (k != skip) p += probabilities_[k] * std::visit(
                                  [&](const auto& b) -> float {
                                    if constexpr (is<decltype(b), std::monostate>) return 0.0f;
                                    else if constexpr (is<decltype(b), MaterialBsdf>)
@@ -145,20 +169,39 @@ BsdfSample MixtureBsdf::sample_mixture(const Vec3& wo, float u_lobe, const Vec2&
   BsdfSample m;
   m.wi = s.wi;
   m.diffuse = s.diffuse;
+  if (sample_is_own_eval(components_[k])) {
+    // The others evaluated at wi, the sampled one as its sample says (Cycles' one-sample MIS).
+    m.pdf = probabilities_[k] * s.pdf + pdf_mixture(wo, s.wi, backfacing, diffuse, coat, k);
+    if (!(m.pdf > 0.0f)) return {};
+    m.weight = (weights_[k] * s.weight * s.pdf + eval_mixture(wo, s.wi, backfacing, diffuse, coat, k).total()) / m.pdf;
+    return m;
+  }
   m.pdf = pdf_mixture(wo, s.wi, backfacing, diffuse, coat);
   if (!(m.pdf > 0.0f)) return {};
   m.weight = eval_mixture(wo, s.wi, backfacing, diffuse, coat).total() / m.pdf;
   return m;
 }
 
+bool MixtureBsdf::sample_is_own_eval(const Component& c) {
+  return std::visit(
+      [](const auto& b) { return SampleIsOwnEval<std::decay_t<decltype(b)>>::value; },
+      c);
+}
+
 bool MixtureBsdf::transmits() const {
   for (int k = 0; k < count_; ++k) {
     if (const auto* m = std::get_if<MaterialBsdf>(&components_[k]); m && m->transmits()) return true;
     if (std::holds_alternative<TranslucentBsdf>(components_[k]) || std::holds_alternative<RefractionBsdf>(components_[k]) ||
-        std::holds_alternative<PrincipledHairBsdf>(components_[k]))
+        std::holds_alternative<PrincipledHairBsdf>(components_[k]) || std::holds_alternative<HairBsdf>(components_[k]))
       return true;
   }
   return false;
+}
+
+bool MixtureBsdf::hair_only() const {
+  for (int k = 0; k < count_; ++k)
+    if (!std::holds_alternative<HairBsdf>(components_[k])) return false;
+  return count_ > 0;
 }
 
 bool MixtureBsdf::passes_straight() const {
@@ -182,6 +225,7 @@ void MixtureBsdf::orient(const Frame& frame) {
     else if (MetallicBsdf* metal = std::get_if<MetallicBsdf>(&c); metal && metal->anisotropic()) metal->orient(frame);
     else if (MaterialBsdf* material = std::get_if<MaterialBsdf>(&c)) material->orient(frame);
     else if (PrincipledHairBsdf* hair = std::get_if<PrincipledHairBsdf>(&c)) hair->orient(frame);
+    else if (HairBsdf* strand = std::get_if<HairBsdf>(&c)) strand->orient(frame);
   }
 }
 
@@ -307,6 +351,10 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
       case ClosureType::PrincipledHair:
         // The strand's world direction (Cycles' dPdu), into the shading frame by orient().
         add_closure(bsdf, PrincipledHairBsdf(principled_hair_params(m), globals.tangent), w.weight[k]);
+        break;
+      case ClosureType::HairReflection:
+      case ClosureType::HairTransmission:
+        add_closure(bsdf, hair_bsdf(m, c.type == ClosureType::HairTransmission, globals), w.weight[k]);
         break;
       case ClosureType::Emission:
       case ClosureType::Transparent:

@@ -190,6 +190,8 @@ void DenoisingClosures::add_closures(const ClosureList& list, float cos_no, bool
       case ClosureType::ToonGlossyCycles4: add(weight, mean(weight), kNotMicrofacet); break;
       case ClosureType::Translucent: add(weight, mean(weight), kNotMicrofacet, true); break;
       case ClosureType::PrincipledHair: add(weight, mean(weight), kNotMicrofacet, true); break;
+      case ClosureType::HairReflection: add(weight, mean(weight), kNotMicrofacet); break;
+      case ClosureType::HairTransmission: add(weight, mean(weight), kNotMicrofacet, true); break;
       case ClosureType::Emission:
       case ClosureType::Transparent:
       case ClosureType::Holdout: break;  // no BSDF (the Transparent one: passed by the path)

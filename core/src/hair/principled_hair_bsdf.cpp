@@ -1,6 +1,8 @@
 // The Principled Hair BSDF: eval, pdf and sample side by side (see the header for the model).
 #include "torrance/hair/principled_hair_bsdf.h"
 
+#include "torrance/hair/strand_direction.h"
+
 #include "torrance/bsdfs/principled.h"  // fresnel_dielectric
 
 #include <algorithm>
@@ -159,11 +161,7 @@ PrincipledHairBsdf::PrincipledHairBsdf(const PrincipledHairParams& p, const Vec3
   tangent_ = len > 0.0f && std::isfinite(len) ? tangent_ / len : Vec3(1.0f, 0.0f, 0.0f);
 }
 
-void PrincipledHairBsdf::orient(const Frame& frame) {
-  const Vec3 local = frame.to_local(world_tangent_);
-  const float len = glm::length(local);
-  tangent_ = len > 0.0f && std::isfinite(len) ? local / len : Vec3(1.0f, 0.0f, 0.0f);
-}
+void PrincipledHairBsdf::orient(const Frame& frame) { tangent_ = strand_in_frame(frame, world_tangent_); }
 
 PrincipledHairBsdf::Strand PrincipledHairBsdf::at(const Vec3& wo) const {
   Strand s;

@@ -228,6 +228,7 @@ class PathTracer {
     std::optional<Bsdf> local_bsdf;   // a textured material's or a mixture's own
     const Bsdf* bsdf = nullptr;       // local_bsdf or the material's, built once per render
     bool mixture = false, textured = false, transmits = false;
+    bool strands = false;  // only Hair BSDF closures: light on either geometric side, as Cycles'
     bool may_pass = false;  // off the camera ray a smooth thin wall may let the ray on (pass_sheet)
     bool guidable = false;  // path guiding may sample here (guided_bsdf.h)
     // The material's program's registers (its Normal reads them), and a mixture's closures for
@@ -455,6 +456,7 @@ class PathTracer {
                                           v.closure_list ? &*v.closure_list : nullptr, subsurface,
                                           walk_state(hit)));
       v.bsdf = &*v.local_bsdf;
+      v.strands = v.local_bsdf->hair_only();
     } else {
       v.material = ctx_.scene.material(hit.material);
       if (v.textured) ctx_.scene.apply_textures(hit.material, globals, v.material, v.program_regs.data());
@@ -589,7 +591,7 @@ class PathTracer {
     const LightSample ls =
         lights_.sample(index, position, v.at.ns, Vec2(u_light.y, u_light.z), v.transmits, path_state_);
     const Vec3 wi = v.at.frame.to_local(ls.wi);
-    if (!ls.valid() || !leaves_geometric_side(ls.wi, v.at.ng, wi.z, v.transmits)) return;
+    if (!ls.valid() || !(v.strands || leaves_geometric_side(ls.wi, v.at.ng, wi.z, v.transmits))) return;
     uint64_t shadow_sets = kAllLinkSets;  // light linking (light_linking.h): of the chosen emitter
     if (const LightLinks& links = lights_.links(); links.any()) {
       const uint8_t entry = lights_.link_entry(index, ls);
@@ -678,7 +680,7 @@ class PathTracer {
       if (bs.diffuse && !bs.is_delta) subsurface_.diffuse_ancestor = true;
     }
     const Vec3 wi_world = frame.to_world(bs.wi);
-    if (!leaves_geometric_side(wi_world, v.at.ng, bs.wi.z, v.transmits)) return false;
+    if (!v.strands && !leaves_geometric_side(wi_world, v.at.ng, bs.wi.z, v.transmits)) return false;
     const bool through_sheet = v.may_pass && bs.straight_through;
     if constexpr (kTextures)
       if (!through_sheet) label_next_ray(bs, glm::dot(wi_world, v.at.ng) > 0.0f);

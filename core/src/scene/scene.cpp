@@ -242,6 +242,8 @@ uint8_t Scene::globals_read(uint32_t i) const {
     for (const MixtureComponent& c : m->components) {
       reads |= own(c.material);
       if (c.type == ClosureType::PrincipledHair) reads |= kReadsTangent;  // the strand's direction
+      if (c.type == ClosureType::HairReflection || c.type == ClosureType::HairTransmission)
+        reads |= kReadsTangent | kReadsCorners;  // the strand's, or the triangle's edge
     }
   }
   return reads;

@@ -226,17 +226,22 @@ CLOSURES = {
                                     "Radial Roughness, Coat, IOR, Offset (values; a graph that "
                                     "varies and Random Color / Random Roughness are reported); "
                                     "alone and in Mix/Add Shader trees",
+    'ShaderNodeBsdfHair': "rendered: Reflection and Transmission as Cycles 3.4 (its kernel "
+                          "unchanged in 4.x/5.x): Color, RoughnessU (any graph), RoughnessV, "
+                          "Offset (values; a graph that varies is reported), Tangent (any graph; "
+                          "unlinked: the strand's direction on curves, the triangle's edge on "
+                          "meshes, the Offset then 0); alone and in Mix/Add Shader trees",
     'ShaderNodeEmission': "rendered: Color, Strength (in a Volume socket: emission per metre)",
     'ShaderNodeHoldout': "rendered: alone and anywhere in Mix/Add Shader trees; camera rays "
                          "(through transparency) lose its weight of alpha and colour, as Cycles' "
                          "holdout; black elsewhere",
     'ShaderNodeMixShader': "partly: trees of Principled, Diffuse, Glossy, Glass, Transparent, "
                            "Holdout, Emission, Velvet / Sheen, Translucent, Refraction, Toon, "
-                           "Principled Hair, Subsurface Scattering and Metallic closures, Fac "
-                           "any graph",
+                           "Principled Hair, Hair, Subsurface Scattering and Metallic closures, "
+                           "Fac any graph",
     'ShaderNodeAddShader': "partly: trees of Principled, Diffuse, Glossy, Glass, Transparent, "
                            "Holdout, Emission, Velvet / Sheen, Translucent, Refraction, Toon, "
-                           "Principled Hair, Subsurface Scattering and Metallic closures (a "
+                           "Principled Hair, Hair, Subsurface Scattering and Metallic closures (a "
                            "Transparent's weight and the others' summing past 1: the others "
                            "shade only what it lets through)",
     # Volume closures (volumes.py): homogeneous media, or heterogeneous ones in meshes.

@@ -75,6 +75,11 @@ enum class ClosureType {
   // Diffuse BSDF of Blender 4.3+: as Diffuse, a Roughness above 0 the energy-preserving
   // Oren-Nayar (oren_nayar_eon.h) instead of Cycles 3.x-4.2's.
   DiffuseEnergyPreserving,
+  // Hair BSDF node (hair/hair_bsdf.h), its Reflection or Transmission component: Color =
+  // base_color, RoughnessU = roughness, RoughnessV = transmission_roughness, Offset = hair_offset,
+  // a linked Tangent = tangent (world; zero: unlinked, the strand's or the triangle's direction).
+  HairReflection,
+  HairTransmission,
 };
 
 struct MixtureComponent {

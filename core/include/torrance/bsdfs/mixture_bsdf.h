@@ -6,7 +6,10 @@
 //   sample: choose closure k with probability P_k (by u_lobe, rescaled for the closure's own
 //           lobe choice), sample it, then evaluate every closure at wi, so that weight =
 //           eval / pdf of the whole mixture (one-sample MIS over closures). A closure's delta
-//           lobe is returned as is, with weight w_k * its weight / P_k.
+//           lobe is returned as is, with weight w_k * its weight / P_k. A closure whose sample
+//           is its own eval (kSampleIsOwnEval: the Hair BSDF's, Cycles' being inconsistent)
+//           counts with its sample's weight x pdf and pdf in place of its eval and pdf at wi, as
+//           Cycles' surface_shader_bsdf_sample_closure counts the sampled closure.
 //
 // Components are MaterialBsdf (whatever the render's model is: it composes any future variant),
 // DiffuseBsdf, GlossyBsdf and the other nodes' closures (ClosureType); at most
@@ -17,6 +20,7 @@
 #include "torrance/bsdfs/diffuse_bsdf.h"
 #include "torrance/bsdfs/glossy_bsdf.h"
 #include "torrance/bsdfs/metallic_bsdf.h"
+#include "torrance/hair/hair_bsdf.h"
 #include "torrance/hair/principled_hair_bsdf.h"
 #include "torrance/bsdfs/material_bsdf.h"
 #include "torrance/bsdfs/mixture.h"
@@ -42,7 +46,7 @@ class MixtureBsdf {
  public:
   using Component = std::variant<std::monostate, MaterialBsdf, DiffuseBsdf, GlossyBsdf, VelvetBsdf, SheenBsdf,
                                  TranslucentBsdf, RefractionBsdf, ToonBsdf, PrincipledHairBsdf, SubsurfaceExitBsdf,
-                                 MetallicBsdf>;
+                                 MetallicBsdf, HairBsdf>;
 
   MixtureBsdf() = default;
   explicit MixtureBsdf(const MaterialBsdf& single) { add(single, 1.0f, 1.0f); }
@@ -70,7 +74,10 @@ class MixtureBsdf {
   BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing = false) const {
     return sample_mixture(wo, u_lobe, u, backfacing);
   }
-  bool transmits() const;  // some closure is glass, Translucent, Refraction or Principled Hair
+  bool transmits() const;  // some closure is glass, Translucent, Refraction, Principled Hair or Hair
+  // Every closure is a Hair BSDF's: Cycles' hair closures check no geometric side (the path
+  // tracer then leaves out its check that the geometric and shading normals agree on wi's side).
+  bool hair_only() const;
   // MaterialBsdf's straight pass of a smooth thin wall, summed over the closures by weight.
   bool passes_straight() const;
   // Its closures' world tangents into the shading frame (anisotropic glossy, hair); before at().
@@ -105,10 +112,13 @@ class MixtureBsdf {
   Vec3 straight_through(const View& v) const;
 
  private:
+  // (skip: a closure left out of the sum, -1 none.)
   LobeEval eval_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse = {},
-                        const CoatNormal& coat = {}) const;
+                        const CoatNormal& coat = {}, int skip = -1) const;
   float pdf_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse = {},
-                    const CoatNormal& coat = {}) const;
+                    const CoatNormal& coat = {}, int skip = -1) const;
+  // Whether closure c's sample counts as its own eval (kSampleIsOwnEval).
+  static bool sample_is_own_eval(const Component& c);
   BsdfSample sample_mixture(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing,
                             const DiffuseNormal& diffuse = {}, const CoatNormal& coat = {}) const;
 
