@@ -72,7 +72,7 @@ def main():
     light_melanin = principled_hair.sigma_from_melanin(0.2, 0.6, (1.0, 1.0, 1.0), 0.4)
 
     def no_hair(original):
-        return lambda tc_scene, hair_list, *args: 0
+        return lambda tc_scene, hair_list, *args, **kwargs: 0
 
     def thicker(original):
         return lambda keys, part: 2.0 * original(keys, part)

@@ -4,9 +4,11 @@
 Frame 1 of an animation keyed at frames 0 and 2, linearly: a camera moving and turning, a box
 moving and turning (a world-space mesh: its transform), a sphere deforming through a shape key
 (its deformation), geometry-nodes cubes turning with the scene's time (instances: their own
-transforms) and a static floor (the camera's motion alone), the sky in the top rows. Object pass
-indices tell the objects apart. Checks, on pixels whose 5x5 neighbourhood shows one object in
-Cycles' Object Index pass (away from edges, where the pass mixes two objects' vectors):
+transforms), thick hair strands on a moving emitter (their keys) and a static floor (the
+camera's motion alone), the sky in the top rows. Object pass
+indices tell the objects apart. Checks, on pixels whose 5x5 neighbourhood (3x3 on the strands)
+shows one object in Cycles' Object Index pass (away from edges, where the pass mixes two
+objects' vectors):
 
 * Torrance's vectors (seeds 2 and 3) differ from Cycles' (seed 0) by at most 1.5x Cycles' own
   seed-to-seed difference plus 0.02 px (mean and 99th percentile of |difference| per object),
@@ -16,7 +18,8 @@ Cycles' Object Index pass (away from edges, where the pass mixes two objects' ve
 * with Motion Blur on the pass is there and 0, as Cycles'.
 
 Faults that must fail: the camera's neighbouring frames ignored, the sphere's deformation
-ignored, the instances' neighbouring frames not given, and the previous and next frames swapped.
+ignored, the instances' or the hair's neighbouring frames not given, and the previous and next
+frames swapped.
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_vector_pass_agreement.py
@@ -31,11 +34,12 @@ from torrance_tools import testing
 from torrance_tools.animation import linear_keys, shape_key_motion
 from torrance_tools.render_passes import interior, render_passes
 from torrance_tools.render_settings import setup_cycles, setup_torrance
-from torrance_tools.scene import turning_instances
+from torrance_tools.scene import particle_hair, turning_instances
 from torrance_tools.testing import check
 
 W, H, SAMPLES, BOUNCES = 96, 64, 16, 1
-OBJECTS = {"Floor": 1, "Box": 2, "Ball": 3, "Cubes": 4}
+OBJECTS = {"Floor": 1, "Box": 2, "Ball": 3, "Cubes": 4, "Fur": 5}
+REACH = {"Fur": 1}                # 3x3 inside a strand (5x5 elsewhere)
 TOLERANCE, FLOOR = 1.5, 0.02      # times Cycles' own difference, plus pixels
 
 
@@ -56,6 +60,12 @@ def build(scene):
     linear_keys(box, "rotation_euler", [(0.0, 0.0, 0.0), (0.2, 0.1, 0.6)])
     ball = testing.sphere_object(scene, "Ball", (0.3, 0.0, 0.8), 0.8, grey, segments=32, rings=16)
     shape_key_motion(ball, "Squash", lambda p: p * (1.3, 1.0, 0.7) + (0.0, 0.0, 0.15))
+    fur = testing.mesh_object(scene, "Fur", [(-0.6, -0.15, 0), (0.6, -0.15, 0), (0.6, 0.15, 0),
+                                             (-0.6, 0.15, 0)], [(0, 1, 2, 3)], grey)
+    linear_keys(fur, "location", [(1.3, -2.6, 1.3), (1.7, -2.4, 1.5)])
+    particle_hair(fur, 5, 0.9, radius_scale=0.24, root_radius=1.0, tip_radius=1.0,
+                  use_close_tip=False)
+    fur.show_instancer_for_render = False      # the strands alone
     holder = testing.mesh_object(scene, "Cubes", [(0, 0, 0)], [], None)
     turning_instances(holder, "Turning", 3, (1.6, -0.6, 0.4), (0.6, 0.6, 0.3), (0.45, 0.45, 0.45),
                       grey, 0.35)
@@ -87,11 +97,11 @@ def differences(p, ref):
     """{object: (mean, p99) of max_channel |p's Vector - ref's|} over ref's interior pixels of
     each object (pass index); 'sky' for the world."""
     index = object_index(ref)
-    inside = interior(index, 2)
+    inside = {reach: interior(index, reach) for reach in (1, 2)}
     err = np.abs(p["Vector"] - ref["Vector"]).max(axis=2)
     out = {}
     for name, i in list(OBJECTS.items()) + [("sky", 0)]:
-        keep = inside & (index == i)
+        keep = inside[REACH.get(name, 2)] & (index == i)
         if keep.any():
             out[name] = (float(err[keep].mean()), float(np.percentile(err[keep], 99)))
     return out
@@ -141,6 +151,8 @@ def faults():
              lambda _original: lambda obj, scene: False),
             ("instances' frames not given", frame_motion, "export_instance_frames",
              lambda _original: lambda tc_scene, instances: None),
+            ("hair's frames not given", frame_motion.FrameMotionSampler, "export_hair_frames",
+             lambda _original: lambda self, tc_scene: None),
             ("previous and next frames swapped", frame_motion.FrameMotionSampler, "offsets",
              lambda _original: lambda self, steps: [1.0, 0.0, -1.0]))
 

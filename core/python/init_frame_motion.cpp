@@ -1,5 +1,5 @@
 // The Vector pass's neighbouring frames (torrance/scene/frame_motion.h): Scene.set_frame_motion_camera,
-// set_frame_motion_mesh and set_frame_motion_instances, bound onto the Scene class that init_scene
+// set_frame_motion_mesh, set_frame_motion_instances and set_frame_motion_curves, bound onto the Scene class that init_scene
 // defines. They only check shapes and forward.
 #include "bindings.h"
 
@@ -56,6 +56,20 @@ void init_frame_motion(py::module_& m) {
       py::arg("ids"), py::arg("before"), py::arg("after"),
       "The Vector pass: instances `ids`' (from add_instances) object-to-world matrices (len(ids), 3, 4) "
       "one frame before and one after. ValueError for removed or unknown ids, bad shapes, NaN/Inf.");
+  add_method(cls,
+      "set_frame_motion_curves",
+      [](Scene& s, int64_t set, const py::object& curve_first, const py::object& before, const py::object& after) {
+        if (set < 0) throw py::value_error("set must be an id from add_curves, got " + std::to_string(set));
+        const auto first = shaped_array<int64_t>(curve_first, "curve offsets", {-1});
+        if (first.shape(0) < 1) throw py::value_error("curve offsets must hold at least one offset");
+        const auto b = shaped_array<float>(before, "previous frame's keys", {-1, 3});
+        const auto a = shaped_array<float>(after, "next frame's keys", {b.shape(0), 3});
+        s.set_frame_motion_curves(uint32_t(set), first.data(), size_t(first.shape(0) - 1), b.data(), a.data(),
+                                  size_t(b.shape(0)));  // ValueError
+      },
+      py::arg("set"), py::arg("curve_first"), py::arg("before"), py::arg("after"),
+      "The Vector pass: curve set `set`'s (an add_curves id) keys (N, 3) one frame before and one after, "
+      "with the curve offsets add_curves was given. ValueError for a bad id, offsets or shape, NaN/Inf.");
 }
 
 }  // namespace torrance::python

@@ -127,6 +127,40 @@ TEST(VectorPass, AMovingInstanceAndAMovingCamera) {
   EXPECT_NEAR(p[3], 0.5f * kPixelsPerMetre, 1e-3f);
 }
 
+TEST(VectorPass, AMovingStrand) {
+  Scene scene;
+  scene.add_material(Material{});
+  // A thick strand along y through the frame's centre, 0.5 m to the left before and 0.5 m
+  // right and 0.25 m up after.
+  const float keys[] = {0, -1.5f, 0, 0, -0.5f, 0, 0, 0.5f, 0, 0, 1.5f, 0};
+  const float radii[] = {0.3f, 0.3f, 0.3f, 0.3f};
+  const int64_t first[] = {0, 4};
+  const uint32_t set = scene.add_curves(keys, radii, 4, first, 1, nullptr, CurveShape::Round);
+  look_down_orthographic(scene);
+  scene.set_frame_motion_camera(translation(0, 0, 10), translation(0, 0, 10));
+  std::array<float, 12> before, after;
+  for (int i = 0; i < 12; ++i) before[size_t(i)] = after[size_t(i)] = keys[i];
+  for (int k = 0; k < 4; ++k) {
+    before[size_t(3 * k)] -= 0.5f;
+    after[size_t(3 * k)] += 0.5f;
+    after[size_t(3 * k + 1)] += 0.25f;
+  }
+  scene.set_frame_motion_curves(set, first, 1, before.data(), after.data(), 4);
+  const RenderResult r = render(scene, vector_render());
+  const Image& v = vector_pass(r);
+  const glm::vec4 expected = glm::vec4(-0.5f, 0.0f, -0.5f, -0.25f) * kPixelsPerMetre;
+  int checked = 0;
+  for (int y = 20; y < 44; ++y)  // the strand's middle segment, its 0.6 m (9.6 px) wide core
+    for (int x = kSize / 2 - 2; x < kSize / 2 + 2; ++x) {
+      for (int c = 0; c < 4; ++c)
+        EXPECT_NEAR(v.rgba[(size_t(y) * kSize + x) * 4 + size_t(c)], expected[c], 1e-3f) << x << ", " << y;
+      ++checked;
+    }
+  EXPECT_EQ(checked, 96);
+  const int64_t wrong[] = {0, 3};
+  EXPECT_THROW(scene.set_frame_motion_curves(set, wrong, 1, before.data(), after.data(), 3), std::invalid_argument);
+}
+
 TEST(VectorPass, ZeroWithoutTheCamerasNeighbouringFrames) {
   Scene scene;
   const uint32_t m = scene.add_material(Material{});

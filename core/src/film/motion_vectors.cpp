@@ -31,10 +31,10 @@ MotionVectors::MotionVectors(const Scene& scene, int width, int height, float pi
              pixel_aspect_y) {}
 
 glm::vec4 MotionVectors::at(const SurfaceHit& hit) const {
-  const std::array<Vec3, 2> frames = scene_.frame_motion_points(hit);
-  const Vec2 now = now_.raster_position(hit.position);
-  const Vec2 before = before_.raster_position(frames[0]);
-  const Vec2 after = after_.raster_position(frames[1]);
+  const std::array<Vec3, 3> points = scene_.frame_motion_points(hit);
+  const Vec2 now = now_.raster_position(points[0]);
+  const Vec2 before = before_.raster_position(points[1]);
+  const Vec2 after = after_.raster_position(points[2]);
   const glm::vec4 v(before.x - now.x, before.y - now.y, now.x - after.x, now.y - after.y);
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w) ? v : glm::vec4(0.0f);
 }

@@ -145,6 +145,8 @@ void Scene::curve_hit(uint32_t set_index, uint32_t prim, float u, const Vec3& or
   tangent = glm::normalize(tangent);
   hit.tangent = tangent;
   hit.uv = Vec2(u, 0.0f);
+  hit.prim = prim;
+  hit.curve_set = set_index;
   // Curves Info, as Cycles reads its curve attributes: key values interpolated linearly over the
   // segment (c[1] -> c[2]); Thickness the radii's, doubled (kernel curve_thickness).
   const float* intercept = &set.key_intercept[set.segment_key[prim]];

@@ -1,7 +1,9 @@
 // The Vector pass's scene data (Scene::set_frame_motion_*, frame_motion.h) and where a hit's point
 // was one frame before and will be one frame after (Scene::frame_motion_points), as Cycles'
 // primitive_motion_vector finds it: a deforming mesh's vertices then at the hit's barycentric
-// weights, an instance's transforms then applied to the point in the instance.
+// weights, an instance's transforms then applied to the point in the instance, a strand's keys
+// then along its segment.
+#include "hair/curve_set.h"
 #include "scene/scene_internal.h"
 #include "torrance/util/limits.h"
 
@@ -77,27 +79,66 @@ void Scene::set_frame_motion_instances(const int64_t* ids, size_t count, const f
   }
 }
 
-std::array<Vec3, 2> Scene::frame_motion_points(const SurfaceHit& hit) const {
+void Scene::set_frame_motion_curves(uint32_t set_id, const int64_t* curve_first, size_t num_curves,
+                                    const float* before, const float* after, size_t num_keys) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set curves' neighbouring frames");
+  if (set_id >= curve_sets_.size())
+    throw std::invalid_argument("set_frame_motion_curves: no curve set " + std::to_string(set_id));
+  if (curve_first[0] != 0 || curve_first[num_curves] != int64_t(num_keys))
+    throw std::invalid_argument("curve offsets must run from 0 to the number of keys");
+  const std::vector<Vec3> b = checked_positions(before, num_keys, "previous frame's keys");
+  const std::vector<Vec3> a = checked_positions(after, num_keys, "next frame's keys");
+  // The set's layout (add_curves): each curve of 2 keys or more, its end keys doubled.
+  FrameMotion::MeshFrames frames;
+  for (size_t c = 0; c < num_curves; ++c) {
+    const int64_t first = curve_first[c], end = curve_first[c + 1];
+    if (end < first) throw std::invalid_argument("curve offsets must ascend");
+    if (end - first < 2) continue;
+    for (const auto& [from, to] : {std::pair(&b, &frames.before), std::pair(&a, &frames.after)}) {
+      to->push_back((*from)[size_t(first)]);
+      to->insert(to->end(), from->begin() + first, from->begin() + end);
+      to->push_back((*from)[size_t(end - 1)]);
+    }
+  }
+  if (frames.before.size() != curve_sets_[set_id]->keys.size())
+    throw std::invalid_argument("the curves' offsets are not those curve set " + std::to_string(set_id) +
+                                " was added with");
+  frame_motion_.curves[set_id] = std::move(frames);
+}
+
+std::array<Vec3, 3> Scene::frame_motion_points(const SurfaceHit& hit) const {
   const Vec3& p = hit.position;
-  if (hit.object == ShaderGlobals::kNoObject) return {p, p};
+  if (hit.on_curve) {
+    const auto it = frame_motion_.curves.find(hit.curve_set);
+    const CurveSet& set = *curve_sets_[hit.curve_set];
+    const uint32_t k = set.segment_key[hit.prim] + 1;  // the segment runs from key k to k + 1
+    const float u = hit.uv.x;
+    const auto along = [&](const Vec3& a, const Vec3& b) { return (1.0f - u) * a + u * b; };
+    const Vec3 centre = along(Vec3(set.keys[k]), Vec3(set.keys[k + 1]));
+    if (it == frame_motion_.curves.end()) return {centre, centre, centre};
+    const FrameMotion::MeshFrames& f = it->second;
+    return {centre, along(f.before[k], f.before[k + 1]), along(f.after[k], f.after[k + 1])};
+  }
+  if (hit.object == ShaderGlobals::kNoObject) return {p, p, p};
   if (!(hit.object & kInstanceBit)) {
     const auto it = frame_motion_.meshes.find(hit.object);
-    if (it == frame_motion_.meshes.end()) return {p, p};
+    if (it == frame_motion_.meshes.end()) return {p, p, p};
     const glm::uvec3& tri = meshes_[hit.object]->triangles[hit.prim];
     const Vec3 w = barycentric(p, hit.corners);
     const auto at = [&](const std::vector<Vec3>& v) { return w.x * v[tri.x] + w.y * v[tri.y] + w.z * v[tri.z]; };
-    return {at(it->second.before), at(it->second.after)};
+    return {p, at(it->second.before), at(it->second.after)};
   }
   const uint32_t index = hit.object & ~kInstanceBit;
   const auto it = frame_motion_.instances.find(index);
-  if (it == frame_motion_.instances.end()) return {p, p};
+  if (it == frame_motion_.instances.end()) return {p, p, p};
   // The point in the instance: M^-1 (p - t), M^-1 the transpose of normal_matrix's rows.
   const std::array<float, 12> m = instance_transform(instances_[index]);
   const std::array<double, 9> n = normal_matrix(m);
   const double x = double(p.x) - m[3], y = double(p.y) - m[7], z = double(p.z) - m[11];
   const Vec3 local(float(n[0] * x + n[3] * y + n[6] * z), float(n[1] * x + n[4] * y + n[7] * z),
                    float(n[2] * x + n[5] * y + n[8] * z));
-  return {transform_point(it->second[0], local), transform_point(it->second[1], local)};
+  return {p, transform_point(it->second[0], local), transform_point(it->second[1], local)};
 }
 
 }  // namespace torrance

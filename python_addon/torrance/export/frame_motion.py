@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """The Vector pass (View Layer > Passes > Data > Vector) as Cycles renders it: where the camera,
 the meshes' vertices and the instances were one frame before the rendered frame and will be one
-frame after it, read through RenderEngine.frame_set for Scene.set_frame_motion_*.
+frame after it, and the hair strands' keys, read through RenderEngine.frame_set for
+Scene.set_frame_motion_*.
 
 Cycles' motion pass samples every object at three times (the previous, the rendered and the
 next frame) whatever its Object > Motion Blur settings, a mesh's deformation where Motion Blur >
@@ -13,6 +14,7 @@ viewport and material previews have no Vector pass.
 
 import numpy as np
 
+from .hair import read_strands
 from .instance_motion import InstanceMotion
 from .motion import MotionSampler, motion_blur_enabled, world_arrays
 
@@ -32,6 +34,29 @@ class FrameMotionSampler(MotionSampler):
     """MotionSampler at the previous, the rendered and the next frame, for every object."""
 
     blurs = False
+
+    def __init__(self, *args):
+        super().__init__(*args)
+        self.hair = []          # (curve set id, object name, particle system name or None,
+        self.hair_keys = {}     #  offsets) added; set id -> [keys (N, 3) per time step]
+        self.frame_camera = None
+
+    def track_hair(self, set_id, name, psys_name, offsets):
+        """export_hair's on_added: a curve set whose keys are read at the three frames too."""
+        self.hair.append((set_id, name, psys_name, offsets))
+
+    def _read_step(self, k, finest):
+        super()._read_step(k, finest)
+        for set_id, name, psys_name, offsets in self.hair:
+            obj = self.depsgraph.objects.get(name)
+            psys = None
+            if obj is not None and psys_name is not None:
+                psys = obj.particle_systems.get(psys_name)
+            got = None
+            if obj is not None and (psys_name is None or psys is not None):
+                got = read_strands(obj, psys, obj.matrix_world)
+            keys = got[0] if got is not None and np.array_equal(got[2], offsets) else None
+            self.hair_keys.setdefault(set_id, []).append(keys)
 
     @staticmethod
     def object_steps(obj):
@@ -60,6 +85,24 @@ class FrameMotionSampler(MotionSampler):
                 tc_scene.set_frame_motion_mesh(mesh_id, *neighbours)
         if self.instances is not None:
             export_instance_frames(tc_scene, self.instances)
+        self.export_hair_frames(tc_scene)
+
+    def export_hair_frames(self, tc_scene):
+        """The curve sets' keys at the previous and next frames (those whose strands keep their
+        counts; the others take the camera's motion only, reported)."""
+        changed = []
+        for set_id, name, _psys, offsets in self.hair:
+            steps = self.hair_keys.get(set_id, [])
+            if len(steps) != _NEIGHBOURS or any(k is None or not np.isfinite(k).all()
+                                                for k in steps):
+                changed.append(name)
+                continue
+            if all(np.array_equal(k, steps[1]) for k in steps):
+                continue
+            tc_scene.set_frame_motion_curves(set_id, offsets, steps[0], steps[-1])
+        if changed:
+            self.reporter.info(f"Hair of {', '.join(sorted(set(changed)))}: its strands change "
+                               f"between frames; the Vector pass gives them the camera's motion")
 
     def neighbour_positions(self, name, local, triangles, keep):
         """(before, after) world positions (N, 3) of an object added with world_mesh(local, its

@@ -121,26 +121,36 @@ def strand_random(first, count):
     return np.asarray(uint_to_float_incl(hash_uint2(index, np.zeros_like(index))), np.float32)
 
 
-def export_hair(tc_scene, hair, materials, reporter, shape):
+def read_strands(obj, psys, matrix):
+    """(keys, radii, offsets[, slots]) of obj's particle system psys, or of Curves object obj
+    (psys None) at its world matrix; None without strands."""
+    return curves_strands(obj, matrix) if psys is None else particle_strands(obj, psys)
+
+
+def export_hair(tc_scene, hair, materials, reporter, shape, on_added=None):
     """Adds the strands of `hair`: (evaluated object, its world matrix) pairs, particle-hair
-    emitters and Curves objects. Returns the number of strands added."""
+    emitters and Curves objects. Returns the number of strands added. on_added(set id, object
+    name, particle system name or None, offsets), if given, hears of each curve set added."""
     strands = 0
     for obj, matrix in hair:
         first_strand = 0         # the object's strands so far (Curves Info's Random)
         slot_to_material = materials.slot_indices([s.material for s in obj.material_slots])
         scale = _radius_scale(matrix)
         if obj.type == 'CURVES':
-            got = curves_strands(obj, matrix)
+            got = read_strands(obj, None, matrix)
             if got is None:
                 continue
             keys, radii, offsets, slots = got
             per_curve = slot_to_material[np.clip(slots, 0, len(slot_to_material) - 1)]
-            tc_scene.add_curves(keys, radii * scale, offsets, materials=per_curve.astype(np.int64),
-                                shape=shape, random=strand_random(0, len(offsets) - 1))
+            set_id = tc_scene.add_curves(keys, radii * scale, offsets,
+                                         materials=per_curve.astype(np.int64), shape=shape,
+                                         random=strand_random(0, len(offsets) - 1))
+            if on_added is not None:
+                on_added(set_id, obj.name, None, offsets)
             strands += len(offsets) - 1
             continue
         for psys in hair_systems(obj):
-            got = particle_strands(obj, psys)
+            got = read_strands(obj, psys, matrix)
             if got is None:
                 continue
             keys, radii, offsets = got
@@ -151,8 +161,10 @@ def export_hair(tc_scene, hair, materials, reporter, shape):
                                  f"not rendered")
                 continue
             count = len(offsets) - 1
-            tc_scene.add_curves(keys, radii * scale, offsets, materials=per_curve, shape=shape,
-                                random=strand_random(first_strand, count))
+            set_id = tc_scene.add_curves(keys, radii * scale, offsets, materials=per_curve,
+                                         shape=shape, random=strand_random(first_strand, count))
+            if on_added is not None:
+                on_added(set_id, obj.name, psys.name, offsets)
             first_strand += count
             strands += count
     return strands

@@ -334,6 +334,11 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre):
             stats.objects += 1
             stats.names.append(name)
             stats.triangles += triangles
+    volumes = VolumeObjects(tc_scene, materials, reporter)
+    stats.objects += sum(volumes.add(obj, matrix) for obj, matrix in volume_objects)
+    stats.strands = strands.export_hair(tc_scene, hair, materials, reporter,
+                                        strands.curve_shape(depsgraph.scene),
+                                        on_added=getattr(motion, "track_hair", None))
     if motion is not None:
         motion.export(tc_scene, camera_object(depsgraph, engine))
         if motion.blurs:
@@ -341,10 +346,6 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre):
             stats.camera_motion = motion.camera_matrices()
         else:
             stats.frame_camera = motion.frame_camera
-    volumes = VolumeObjects(tc_scene, materials, reporter)
-    stats.objects += sum(volumes.add(obj, matrix) for obj, matrix in volume_objects)
-    stats.strands = strands.export_hair(tc_scene, hair, materials, reporter,
-                                        strands.curve_shape(depsgraph.scene))
     materials.send_pass_indices()
     stats.cryptomatte = crypto.send(materials)
     stats.materials = len(materials.indices) + (1 if materials._default is not None else 0)

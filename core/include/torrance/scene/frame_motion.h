@@ -1,5 +1,5 @@
 // The Vector pass's view of the scene (Cycles' motion pass): where the camera, the world-space
-// meshes' vertices and the instances were one frame before the rendered frame and will be one
+// meshes' vertices, the instances and the hair strands' keys were one frame before the rendered frame and will be one
 // frame after it, as Scene::set_frame_motion_* gave them. What was not given did not move.
 #pragma once
 
@@ -21,6 +21,8 @@ struct FrameMotion {
   std::unordered_map<uint32_t, MeshFrames> meshes;  // by mesh id
   // By instance id: its object-to-world 3x4 row-major transform before and after.
   std::unordered_map<uint32_t, std::array<std::array<float, 12>, 2>> instances;
+  // By curve set id: its keys before and after, in the set's layout (its stored keys).
+  std::unordered_map<uint32_t, MeshFrames> curves;
 };
 
 }  // namespace torrance

@@ -96,9 +96,10 @@ struct SurfaceHit {
   // On a strand (only then set): Intercept, Length, Thickness, Random (ShaderGlobals::curve_info).
   glm::vec4 curve_info{0.0f};
   // The hit's object as the local queries name it (ShaderGlobals::object: a world-space mesh's
-  // index, or an instance's index with the top bit set; none on a hair strand) and its triangle;
-  // what Scene::intersect_object follows.
+  // index, or an instance's index with the top bit set; none on a hair strand) and its triangle
+  // (on a strand: its segment, uv.x along it); what Scene::intersect_object follows.
   uint32_t object = ShaderGlobals::kNoObject, prim = 0;
+  uint32_t curve_set = 0;  // on a strand: its curve set (Scene::add_curves' id)
 };
 
 // How hair strands are traced (Blender's Render > Curves > Shape, Cycles 3.4): Round is Cycles'
@@ -334,12 +335,17 @@ class Scene final : public ShaderTracer {
   void set_frame_motion_camera(const std::array<float, 16>& before, const std::array<float, 16>& after);
   void set_frame_motion_mesh(uint32_t mesh, const float* before, const float* after);
   void set_frame_motion_instances(const int64_t* ids, size_t count, const float* before, const float* after);
+  // Curve set `set`'s keys then (num_keys xyz each, in add_curves' order), whose curves start at
+  // curve_first (num_curves + 1 offsets, as add_curves was given them).
+  void set_frame_motion_curves(uint32_t set, const int64_t* curve_first, size_t num_curves, const float* before,
+                               const float* after, size_t num_keys);
   const FrameMotion& frame_motion() const { return frame_motion_; }
-  // Where the surface point `hit` found was one frame before and will be one after (world
-  // space): its mesh's vertices then at its barycentric weights, or its instance's transforms
-  // then applied to its position in the instance; the point itself for what was not given
-  // (hair strands among them).
-  std::array<Vec3, 2> frame_motion_points(const SurfaceHit& hit) const;
+  // The point `hit` found, now and where it was one frame before and will be one after (world
+  // space), as Cycles' primitive_motion_vector takes them: its mesh's vertices then at its
+  // barycentric weights, or its instance's transforms then applied to its position in the
+  // instance; on a strand the point of its segment's key polyline at the hit (Cycles' curve
+  // centre), with its keys then; the point itself for what was not given.
+  std::array<Vec3, 3> frame_motion_points(const SurfaceHit& hit) const;
   // Vertices and triangles of mesh `mesh` from add_mesh (std::invalid_argument for a bad id).
   size_t mesh_vertex_count(uint32_t mesh) const;
   size_t mesh_triangle_count(uint32_t mesh) const;
