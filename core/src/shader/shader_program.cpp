@@ -35,25 +35,29 @@ namespace {
 constexpr float kMaxValue = 1e30f;  // program values stay finite and well inside float's range
 
 // Each component: NaN and infinities to 0, the rest clamped to [-kMaxValue, kMaxValue] (the sign
-// of a zero kept), four at once: run() does this to every instruction's output.
-glm::vec4 finite(const glm::vec4& v) {
-  // Loaded as two halves: an op's result comes back in two registers (x, y and z, w), which the
-  // caller stores apart, and one 16-byte load across both stores would wait for them to retire.
-  const __m128 x = _mm_loadh_pi(_mm_loadl_pi(_mm_setzero_ps(), reinterpret_cast<const __m64*>(&v.x)),
-                                reinterpret_cast<const __m64*>(&v.z));
+// of a zero kept), four at once, stored at `to`: run() does this to every instruction's output.
+// A lane is finite where x - x is a number (0; NaN for an infinity or a NaN): no constants to load
+// beyond the two bounds.
+void store_finite(const glm::vec4& v, glm::vec4* to) {
+  const __m128 x = _mm_setr_ps(v.x, v.y, v.z, v.w);
   const __m128 clamped = _mm_min_ps(_mm_max_ps(x, _mm_set1_ps(-kMaxValue)), _mm_set1_ps(kMaxValue));
-  const __m128 magnitude = _mm_andnot_ps(_mm_set1_ps(-0.0f), x);
-  const __m128 is_finite = _mm_cmple_ps(magnitude, _mm_set1_ps(std::numeric_limits<float>::max()));
-  glm::vec4 out;
-  _mm_storeu_ps(&out.x, _mm_and_ps(clamped, is_finite));
-  return out;
+  const __m128 zero_if_finite = _mm_sub_ps(x, x);
+  _mm_storeu_ps(&to->x, _mm_and_ps(clamped, _mm_cmpord_ps(zero_if_finite, zero_if_finite)));
 }
 glm::vec4 color(const Vec3& c, float w = 1.0f) { return glm::vec4(c, w); }
 glm::vec4 value(float v) { return glm::vec4(v, 0.0f, 0.0f, 0.0f); }
 
 // The core node families' ops (shader_math.h, shader_color.h); a register's kinds as the header says.
-glm::vec4 channel(const ShaderOpContext& c) { return value(c.in(0)[c.ins.mode]); }
-glm::vec4 combine(const ShaderOpContext& c) { return glm::vec4(c.value(0), c.value(1), c.value(2), 1.0f); }
+// Channel and Combine only move lanes of registers: run() does them in its loop (Step::kChannel,
+// kCombine), their functions here for anything that calls an op through shader_op_info.
+glm::vec4 channel_of(const ShaderInstruction& ins, const glm::vec4* regs) {
+  return value((&regs[ins.in[0]].x)[ins.mode]);  // mode < 4 (checked at construction)
+}
+glm::vec4 combined(const ShaderInstruction& ins, const glm::vec4* regs) {
+  return glm::vec4(regs[ins.in[0]].x, regs[ins.in[1]].x, regs[ins.in[2]].x, 1.0f);
+}
+glm::vec4 channel(const ShaderOpContext& c) { return channel_of(c.ins, c.regs); }
+glm::vec4 combine(const ShaderOpContext& c) { return combined(c.ins, c.regs); }
 glm::vec4 math(const ShaderOpContext& c) {
   const float v = shader::math(shader::MathOp(c.ins.mode), c.value(0), c.value(1), c.value(2));
   return value((c.ins.flags & 1) ? std::clamp(v, 0.0f, 1.0f) : v);
@@ -253,10 +257,18 @@ ShaderProgram::ShaderProgram(std::vector<glm::vec4> constants, std::vector<Shade
       throw std::invalid_argument(where + ": its table at " + std::to_string(ins.resource) +
                                   " does not lie within the program's " + std::to_string(data_.size()) + " data");
     written[size_t(ins.out)] = true;
-    steps_.push_back({s.run, s.data ? ins.resource + 1 : 0, s.data ? int32_t(data_[size_t(ins.resource)]) : 0, !s.copies});
+    const Step::Kind kind = ins.op == ShaderOpcode::Channel   ? Step::kChannel
+                            : ins.op == ShaderOpcode::Combine ? Step::kCombine
+                                                              : Step::kCall;
+    steps_.push_back(
+        {s.run, s.data ? ins.resource + 1 : 0, s.data ? int32_t(data_[size_t(ins.resource)]) : 0, !s.copies, kind});
   }
   written_ = std::move(written);
   if (differentials_) globals_read_ |= kReadsDifferentials;
+  for (size_t i = 0; i + 3 < steps_.size(); ++i)
+    if (steps_[i].kind == Step::kChannel && steps_[i + 1].kind == Step::kChannel &&
+        steps_[i + 2].kind == Step::kChannel && steps_[i + 3].kind == Step::kCombine)
+      steps_[i].kind = Step::kSeparateCombine;
 }
 
 void ShaderProgram::check_grids(size_t num_grids) const {
@@ -274,14 +286,36 @@ namespace {
 void run_code(const std::vector<ShaderInstruction>& code, const std::vector<ShaderProgram::Step>& steps,
               const std::vector<float>& data, const ShaderGlobals* const at[3],
               const std::vector<std::shared_ptr<const Texture>>& textures, glm::vec4* regs) {
-  const ShaderProgram::Step* step = steps.data();
-  for (const ShaderInstruction& ins : code) {
-    const ShaderProgram::Step& s = *step++;
-    const ShaderGlobals& g = *at[ins.offset];
-    const ShaderOpContext c{ins, regs, g, data.data() + s.table, s.table_size};
-    const glm::vec4 out =
-        s.run ? s.run(c) : textures[size_t(ins.resource)]->lookup(Vec2(c.in(0)), g.footprint, Extension(ins.mode));
-    regs[ins.out] = s.clamp ? finite(out) : out;
+  using Step = ShaderProgram::Step;
+  // Plain pointers, read once: the stores to regs could otherwise alias the vectors' own.
+  const ShaderInstruction* ins = code.data();
+  const ShaderInstruction* const end = ins + code.size();
+  const Step* s = steps.data();
+  const float* const tables = data.data();
+  while (ins != end) {
+    if (s->kind != Step::kCall) {  // the moves, inline
+      if (s->kind == Step::kSeparateCombine) {
+        regs[ins[0].out] = channel_of(ins[0], regs);
+        regs[ins[1].out] = channel_of(ins[1], regs);
+        regs[ins[2].out] = channel_of(ins[2], regs);
+        regs[ins[3].out] = combined(ins[3], regs);
+        ins += 4, s += 4;
+      } else {
+        regs[ins->out] = s->kind == Step::kChannel ? channel_of(*ins, regs) : combined(*ins, regs);
+        ++ins, ++s;
+      }
+      continue;
+    }
+    const ShaderGlobals& g = *at[ins->offset];
+    const ShaderOpContext c{*ins, regs, g, tables + s->table, s->table_size};
+    const glm::vec4 out = s->run ? s->run(c)
+                                 : textures[size_t(ins->resource)]->lookup(Vec2(c.in(0)), g.footprint,
+                                                                           Extension(ins->mode));
+    if (s->clamp)
+      store_finite(out, &regs[ins->out]);
+    else
+      regs[ins->out] = out;
+    ++ins, ++s;
   }
 }
 

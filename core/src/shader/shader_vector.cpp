@@ -1,5 +1,7 @@
 #include "torrance/shader/shader_vector.h"
 
+#include "torrance/shader/shader_hash.h"
+
 #include <cmath>
 
 namespace torrance::shader {
@@ -42,6 +44,10 @@ void cos_sin(float angle, float* c, float* s) {
 }  // namespace
 
 glm::mat3 euler_rows(const Vec3& e) {
+  // No rotation (the usual Mapping's, all three +0): the rows the products below give for
+  // cosines 1 and sines +0, the third row's first -0 (the sine negated).
+  if (float_bits(e.x) == 0u && float_bits(e.y) == 0u && float_bits(e.z) == 0u)
+    return glm::mat3(Vec3(1.0f, 0.0f, 0.0f), Vec3(0.0f, 1.0f, 0.0f), Vec3(-0.0f, 0.0f, 1.0f));
   float cx, cy, cz, sx, sy, sz;
   cos_sin(e.x, &cx, &sx);
   cos_sin(e.y, &cy, &sy);

@@ -304,13 +304,20 @@ class ShaderProgram {
   uint8_t globals_read_ = 0;
 
  public:
-  // An instruction as run() runs it, found once at construction: its op's function (nullptr:
-  // Image), its table (offset into data_ after the length, and the length) and whether its
-  // output needs clamping to finite values.
+  // An instruction as run() runs it, found once at construction: how (Kind), its op's function
+  // (kCall; nullptr for Image), its table (offset into data_ after the length, and the length) and
+  // whether its output needs clamping to finite values.
   struct Step {
+    // kCall: through run (an Image through its texture); kChannel, kCombine: moves of register
+    // lanes (a Separate's channel, a Combine's three floats) done in run()'s loop itself, their
+    // values their inputs' bits (finite already); kSeparateCombine: this Channel, the two
+    // Channels after it and the Combine after those (a Separate feeding a Combine, as the
+    // add-on compiles it) run as one step, the same four moves in the same order.
+    enum Kind : uint8_t { kCall, kChannel, kCombine, kSeparateCombine };
     glm::vec4 (*run)(const ShaderOpContext&) = nullptr;
     int32_t table = 0, table_size = 0;
     bool clamp = true;
+    Kind kind = kCall;
   };
 
  private:
