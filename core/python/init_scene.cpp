@@ -116,6 +116,13 @@ Interpolation parse_interpolation(const std::string& s) {
   throw py::value_error("interpolation must be 'Linear', 'Closest' or 'Cubic', got '" + s + "'");
 }
 
+CoatLayering parse_coat_layering(const std::string& s) {
+  if (s == "CYCLES_4_2") return CoatLayering::Cycles4_2;
+  if (s == "CYCLES_4_5") return CoatLayering::Cycles4_5;
+  if (s == "CYCLES_5_1") return CoatLayering::Cycles5_1;
+  throw py::value_error("coat_layering must be 'CYCLES_4_2', 'CYCLES_4_5' or 'CYCLES_5_1', got '" + s + "'");
+}
+
 SensorFit parse_fit(const std::string& s) {
   if (s == "AUTO") return SensorFit::Auto;
   if (s == "HORIZONTAL") return SensorFit::Horizontal;
@@ -206,11 +213,12 @@ void init_scene(py::module_& m) {
              float subsurface_min_footprint, bool subsurface_after_diffuse, bool subsurface_van_de_hulst,
              bool subsurface_burley, float thin_film_thickness, float thin_film_ior, bool thin_film_cycles5,
              int thin_film_thickness_register, int thin_film_ior_register, bool thin_wall,
-             float diffuse_roughness, bool emission_under_layers) {
+             float diffuse_roughness, bool emission_under_layers, const std::string& coat_layering) {
             if (glass_distribution != "GGX" && glass_distribution != "BECKMANN")
               throw py::value_error("glass_distribution must be 'GGX' or 'BECKMANN', got '" + glass_distribution +
                                     "'");
             Material mat;
+            mat.coat_layering = parse_coat_layering(coat_layering);
             mat.base_color = vec3(base_color);
             mat.metallic = metallic;
             mat.roughness = roughness;
@@ -329,7 +337,7 @@ void init_scene(py::module_& m) {
           py::arg("thin_film_ior") = 1.33f, py::arg("thin_film_cycles5") = false,
           py::arg("thin_film_thickness_register") = -1, py::arg("thin_film_ior_register") = -1,
           py::arg("thin_wall") = false, py::arg("diffuse_roughness") = 0.0f,
-          py::arg("emission_under_layers") = false,
+          py::arg("emission_under_layers") = false, py::arg("coat_layering") = "CYCLES_4_5",
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
@@ -376,7 +384,9 @@ void init_scene(py::module_& m) {
           "subsurface a diffuse reflection and translucency (Subsurface Anisotropy splits them), "
           "no walk. diffuse_roughness: PRINCIPLED_V2's Diffuse Roughness (Blender 4.3+), the diffuse layer "
           "an energy-preserving Oren-Nayar above 0. emission_under_layers: PRINCIPLED_V2's Principled BSDF, whose "
-          "emission Cycles 4.x darkens by its coat and sheen seen from the view (as the layers under them).")
+          "emission Cycles 4.x darkens by its coat and sheen seen from the view (as the layers under them). "
+          "coat_layering: how PRINCIPLED_V2's coat darkens the layers under it, as Cycles 'CYCLES_4_2' (4.0-4.4), "
+          "'CYCLES_4_5' (4.5-5.0) or 'CYCLES_5_1' (5.1+) does (principled_coat.h).")
       .def(
           "add_shader_program",
           [](Scene& s, const py::object& constants, const py::object& code, int registers, const py::object& data) {

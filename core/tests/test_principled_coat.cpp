@@ -92,18 +92,56 @@ TEST(PrincipledCoat, V2CoatDarkensAndTintsTheLayersUnder) {
   EXPECT_NEAR(half.base_weight.r, (1.0f - half.albedo) * 0.75f, 1e-5f);
 }
 
+TEST(PrincipledCoat, V2CoatLayeringFollowsEachCyclesGeneration) {
+  // principled_coat.h: 4.2 takes the smooth Fresnel off the layers under an uncompensated coat,
+  // 4.5 its tables' estimate with the compensation, 5.1+ the estimate without it, the tint inside.
+  const float w = 0.7f, r = 0.3f, ior = 1.6f;
+  const Vec3 tint(0.5f, 1.0f, 0.25f);
+  for (float cos_o : {1.0f, 0.5f, 0.05f}) {
+    const float cos_t = std::sqrt(1.0f - (1.0f - cos_o * cos_o) / (ior * ior));
+    const Vec3 through = glm::pow(tint, Vec3(1.0f / cos_t));
+    const float table = glm::mix(ggx_tables::f0_from_ior(ior), 1.0f, ggx_tables::dielectric_fresnel_mix(r, cos_o, ior));
+    const CoatV2::Terms c42 = CoatV2(w, r, ior, tint, CoatLayering::Cycles4_2).terms(cos_o);
+    const CoatV2::Terms c45 = CoatV2(w, r, ior, tint, CoatLayering::Cycles4_5).terms(cos_o);
+    const CoatV2::Terms c51 = CoatV2(w, r, ior, tint, CoatLayering::Cycles5_1).terms(cos_o);
+    EXPECT_FLOAT_EQ(c42.scale, w) << cos_o;
+    EXPECT_GT(c45.scale, w) << cos_o;  // compensated
+    EXPECT_FLOAT_EQ(c51.scale, c45.scale) << cos_o;
+    const float e = ggx_tables::albedo(r, cos_o);
+    EXPECT_NEAR(c45.albedo, c45.scale * e * table, 1e-5f) << cos_o;
+    for (int c = 0; c < 3; ++c) {
+      const float mixed_tint = glm::mix(1.0f, through[c], w);
+      EXPECT_NEAR(c42.base_weight[c], (1.0f - w * fresnel_dielectric(cos_o, ior)) * mixed_tint, 1e-5f) << cos_o;
+      EXPECT_NEAR(c45.base_weight[c], (1.0f - c45.albedo) * mixed_tint, 1e-5f) << cos_o;
+      EXPECT_NEAR(c51.base_weight[c], clamp01(1.0f - w * (1.0f - through[c] * (1.0f - table))), 1e-5f) << cos_o;
+    }
+  }
+  // Seen at grazing angles, a rough coat still takes nearly all of the base in 4.2 (the smooth
+  // Fresnel), far more than the tables' rough estimate does: the silhouettes' brightness.
+  const Vec3 white(1.0f);
+  const float grazing = 0.02f;
+  const float kept_4_2 = CoatV2(1.0f, r, 1.5f, white, CoatLayering::Cycles4_2).terms(grazing).base_weight.x;
+  EXPECT_NEAR(kept_4_2, 1.0f - fresnel_dielectric(grazing, 1.5f), 1e-5f);
+  EXPECT_GT(CoatV2(1.0f, r, 1.5f, white, CoatLayering::Cycles4_5).terms(grazing).base_weight.x, 2.0f * kept_4_2);
+}
+
 TEST(PrincipledCoat, V2CoatOverWhiteMetalStaysInTheFurnace) {
   // A white metal under a coat: what the coat reflects the metal does not get; the sum stays at
   // most 1 (multiscatter keeps each layer's energy; the layering's estimate is Cycles').
   for (float coat_r : {0.0f, 0.1f, 0.5f, 1.0f})
     for (float r : {0.1f, 0.5f, 1.0f})
-      for (float cos_o : {1.0f, 0.5f, 0.2f}) {
-        const Material m = coated(Vec3(1.0f), 1.0f, r, 1.0f, coat_r);
-        const MaterialBsdf bsdf(m, BrdfModel::PrincipledV2);
-        const double a = directional_albedo_sampled(bsdf, test::direction(cos_o, 0.0f), 200000);
-        EXPECT_LE(a, 1.01) << coat_r << " " << r << " " << cos_o;
-        EXPECT_GE(a, 0.9) << coat_r << " " << r << " " << cos_o;
-      }
+      for (float cos_o : {1.0f, 0.5f, 0.2f})
+        for (CoatLayering layering : {CoatLayering::Cycles4_2, CoatLayering::Cycles4_5, CoatLayering::Cycles5_1}) {
+          Material m = coated(Vec3(1.0f), 1.0f, r, 1.0f, coat_r);
+          m.coat_layering = layering;
+          const MaterialBsdf bsdf(m, BrdfModel::PrincipledV2);
+          const double a = directional_albedo_sampled(bsdf, test::direction(cos_o, 0.0f), 200000);
+          EXPECT_LE(a, 1.01) << coat_r << " " << r << " " << cos_o << " " << int(layering);
+          // Cycles 4.2's coat has no energy compensation and its layering takes the smooth
+          // Fresnel: a rough coat seen obliquely loses light (0.70 at cos 0.2, coat roughness 1).
+          const double least = layering == CoatLayering::Cycles4_2 ? 0.65 : 0.9;
+          EXPECT_GE(a, least) << coat_r << " " << r << " " << cos_o << " " << int(layering);
+        }
 }
 
 TEST(PrincipledCoat, V1ClearcoatAddsToWhiteMetal) {
@@ -138,7 +176,7 @@ TEST(PrincipledCoat, HardCasesStayFinite) {
 // The coat's normal n (unit, in the shading frame whose z is the shading normal; the geometric
 // normal ng) seen from wo, as the integrator makes it (one place: coat_normal).
 CoatNormal tilted_coat(const Vec3& n, const Vec3& wo, const Vec3& ng = Vec3(0.0f, 0.0f, 1.0f)) {
-  return coat_normal(Frame(), Vec3(0.0f, 0.0f, 1.0f), ng, glm::normalize(n), wo);
+  return coat_normal(Frame(), Vec3(0.0f, 0.0f, 1.0f), ng, glm::normalize(n), wo, Vec3(0.0f, 0.0f, 1.0f));
 }
 
 TEST(PrincipledCoat, CoatNormalIsTheShadingNormalUnlessTilted) {

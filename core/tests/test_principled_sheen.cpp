@@ -6,6 +6,7 @@
 #include "torrance/bsdfs/albedo.h"
 #include "torrance/bsdfs/principled.h"
 #include "torrance/bsdfs/principled_v2.h"
+#include "torrance/bsdfs/shading_normal.h"
 
 #include "bsdf_checks.h"
 #include "test_helpers.h"
@@ -138,6 +139,58 @@ TEST(PrincipledSheen, HardCasesStayFinite) {
             m.coat_weight = r;
             test::expect_finite(m, model, test::direction(cos_o, 1.0f), rng);
           }
+}
+
+// A sheen alone under an invisible coat (IOR 1: it reflects nothing but its weight still leans
+// the sheen's normal), the coat's normal n tilted from the closure's z as the integrator makes it.
+Material sheen_under_clear_coat(float coat_weight) {
+  Material m = sheened(Vec3(0.0f), 0.0f, 0.5f, 1.0f, 0.8f);
+  m.ior = 1.0f;  // no dielectric layer (F0 0)
+  m.specular = 0.0f;
+  m.coat_weight = coat_weight;
+  m.coat_ior = 1.0f;
+  return m;
+}
+CoatNormal coat_tilted_to(const Vec3& n, const Vec3& wo) {
+  return coat_normal(Frame(), Vec3(0.0f, 0.0f, 1.0f), Vec3(0.0f, 0.0f, 1.0f), glm::normalize(n), wo,
+                     Vec3(0.0f, 0.0f, 1.0f));
+}
+
+TEST(PrincipledSheen, V2SheenNormalLeansTowardsTheCoatNormalByTheCoatWeight) {
+  // Cycles 4.x/5.x: the sheen's normal is normalize(mix(N, Coat Normal, clamp(Coat Weight))).
+  const Vec3 n = glm::normalize(Vec3(0.6f, 0.0f, 1.0f));
+  const Vec3 wo = test::direction(0.7f, 0.3f);
+  for (float w : {0.0f, 0.5f, 1.0f, 2.0f}) {
+    const Material m = sheen_under_clear_coat(w);
+    const PrincipledV2Bsdf bsdf(m);
+    const CoatNormal sheen = coat_tilted_to(n, wo).sheen_normal(m.coat_weight);
+    const Vec3 expected = glm::normalize(glm::mix(Vec3(0.0f, 0.0f, 1.0f), n, std::min(w, 1.0f)));
+    EXPECT_EQ(sheen.tilted, w > 0.0f) << w;
+    if (sheen.tilted) EXPECT_NEAR(glm::dot(sheen.frame.n, expected), 1.0f, 1e-6f) << w;
+    // The whole BSDF is the sheen, seen about that normal: an untilted one at the rotated directions.
+    const PrincipledV2Bsdf::View tilted = bsdf.at(wo, coat_tilted_to(n, wo));
+    const PrincipledV2Bsdf::View flat = bsdf.at(sheen.to_coat(wo));
+    ASSERT_GT(luminance(flat.sheen.weight), 0.01f);
+    for (const Vec3& wi : {test::direction(0.9f, 2.0f), test::direction(0.4f, -1.0f), test::direction(0.2f, 3.5f)}) {
+      if (sheen.to_coat(wi).z <= 0.0f) continue;
+      const float f = bsdf.eval_lobes(tilted, wi).total().g, g = bsdf.eval_lobes(flat, sheen.to_coat(wi)).total().g;
+      EXPECT_NEAR(f, g, 1e-5f * std::max(g, 1.0f)) << w << " " << wi.z;
+      EXPECT_NEAR(bsdf.pdf(tilted, wi), bsdf.pdf(flat, sheen.to_coat(wi)), 1e-4f) << w << " " << wi.z;
+    }
+  }
+}
+
+TEST(PrincipledSheen, V2LeanedSheenSampleEvalAndPdfAgree) {
+  for (float cos_o : {1.0f, 0.5f, 0.1f})
+    for (const Vec3& n : {Vec3(0.3f, 0.0f, 1.0f), Vec3(-0.5f, 0.4f, 1.0f), Vec3(2.0f, 0.0f, 1.0f)}) {
+      SCOPED_TRACE("cos_o " + std::to_string(cos_o) + " n.x " + std::to_string(n.x));
+      Material m = sheened(Vec3(0.6f, 0.3f, 0.1f), 0.2f, 0.4f, 1.0f, 0.3f);
+      m.coat_weight = 0.7f;
+      m.coat_roughness = 0.2f;
+      const MaterialBsdf bsdf(m, BrdfModel::PrincipledV2);
+      const Vec3 wo = test::direction(cos_o, 0.3f);
+      test::expect_samples_agree(bsdf, bsdf.at(wo, false, DiffuseNormal{}, coat_tilted_to(n, wo)));
+    }
 }
 
 }  // namespace

@@ -12,6 +12,7 @@ one's normal."""
 from .material_values import clamp, color3
 from .nodes import finite_or, node_label, source_socket
 from .normal_inputs import compile_normal
+from .shader_graph.node_versions import cycles_coat_layering
 
 # add_material() argument <- socket name, per node version (materials.principled_version).
 _SOCKETS = {
@@ -63,6 +64,7 @@ def read_coat(reader, mat, node, version):
         out['coat_ior'] = max(1.0, finite_or(values['coat_ior'], 1.5))
         out['coat_tint'] = tuple(max(0.0, c) for c in color3(values['coat_tint'],
                                                               _DEFAULTS['coat_tint']))
+        out['coat_layering'] = cycles_coat_layering()
     return out
 
 

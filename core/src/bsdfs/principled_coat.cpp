@@ -81,7 +81,7 @@ Vec3 ClearcoatV1::sample(const Vec3& wo, const Vec2& u) const { return visible_n
 
 // ---- CoatV2 (Cycles 4.x) ---------------------------------------------------------------------
 
-CoatV2::CoatV2(float weight, float roughness, float ior, const Vec3& tint) {
+CoatV2::CoatV2(float weight, float roughness, float ior, const Vec3& tint, CoatLayering layering) {
   weight_ = std::isfinite(weight) ? std::max(weight, 0.0f) : 0.0f;
   roughness_ = std::isfinite(roughness) ? clamp01(roughness) : 0.0f;
   alpha_ = roughness_ * roughness_;
@@ -89,31 +89,41 @@ CoatV2::CoatV2(float weight, float roughness, float ior, const Vec3& tint) {
   fss_ = multiscatter::mean_dielectric_fresnel(eta_);
   tint_ = glm::max(tint, Vec3(0.0f));
   tinted_ = tint_ != Vec3(1.0f);
+  layering_ = layering;
 }
 
 bool CoatV2::is_delta() const { return alpha_ < ggx_tables::kDeltaAlpha; }
 
+Vec3 CoatV2::through_coat(float cos_o) const {
+  // wo refracted into the coat (no total internal reflection from outside).
+  const float inv_eta = 1.0f / eta_;
+  const float cos_t = std::sqrt(std::max(1.0f - inv_eta * inv_eta * (1.0f - cos_o * cos_o), 0.0f));
+  return glm::pow(tint_, Vec3(1.0f / std::max(cos_t, 1e-6f)));
+}
+
 CoatV2::Terms CoatV2::terms(float cos_o) const {
   Terms t;
   if (!active()) return t;
-  float keep = 1.0f;
-  if (eta_ > 1.0f) {
+  float estimate = 0.0f;  // A
+  if (eta_ > 1.0f && layering_ == CoatLayering::Cycles4_2) {
+    t.scale = weight_;
+    estimate = fresnel_dielectric(cos_o, eta_);
+  } else if (eta_ > 1.0f) {
     const float e = std::max(ggx_tables::albedo(roughness_, cos_o), 1e-3f);
     const float k = multiscatter::scale(Vec3(fss_), e, ggx_tables::average_albedo(roughness_)).x;
     t.scale = weight_ * k;
-    const float s = ggx_tables::dielectric_fresnel_mix(roughness_, cos_o, eta_);
-    t.albedo = weight_ * e * k * glm::mix(ggx_tables::f0_from_ior(eta_), 1.0f, s);
-    keep = clamp01(1.0f - t.albedo);
+    const float fresnel = glm::mix(ggx_tables::f0_from_ior(eta_), 1.0f,
+                                   ggx_tables::dielectric_fresnel_mix(roughness_, cos_o, eta_));
+    estimate = layering_ == CoatLayering::Cycles5_1 ? fresnel : e * k * fresnel;
   }
-  t.base_weight = Vec3(keep);
-  if (tinted_) {
-    // wo refracted into the coat (no total internal reflection from outside).
-    const float inv_eta = 1.0f / eta_;
-    const float cos_t = std::sqrt(std::max(1.0f - inv_eta * inv_eta * (1.0f - cos_o * cos_o), 0.0f));
-    const float depth = 1.0f / std::max(cos_t, 1e-6f);
-    const Vec3 through = glm::pow(tint_, Vec3(depth));
-    t.base_weight *= glm::max(glm::mix(Vec3(1.0f), through, weight_), Vec3(0.0f));
+  t.albedo = weight_ * estimate;
+  const Vec3 through = tinted_ ? through_coat(cos_o) : Vec3(1.0f);
+  if (layering_ == CoatLayering::Cycles5_1) {
+    t.base_weight = glm::clamp(Vec3(1.0f) - weight_ * (Vec3(1.0f) - through * (1.0f - estimate)), Vec3(0.0f), Vec3(1.0f));
+    return t;
   }
+  t.base_weight = Vec3(clamp01(1.0f - t.albedo));
+  if (tinted_) t.base_weight *= glm::max(glm::mix(Vec3(1.0f), through, weight_), Vec3(0.0f));
   return t;
 }
 

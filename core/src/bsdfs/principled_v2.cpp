@@ -58,7 +58,7 @@ PrincipledV2Bsdf::PrincipledV2Bsdf(const Material& m) {
   const float f0_eta = ggx_tables::f0_from_ior(eta_);
   const float s_ss = f0_eta < 1.0f ? clamp01((mean_dielectric_fresnel(eta_) - f0_eta) / (1.0f - f0_eta)) : 1.0f;
   dielectric_fss_ = glm::mix(dielectric_f0_, Vec3(1.0f), s_ss);
-  if (m.coat_weight > 0.0f) coat_ = CoatV2(m.coat_weight, m.coat_roughness, m.coat_ior, m.coat_tint);
+  if (m.coat_weight > 0.0f) coat_ = CoatV2(m);
   if (m.sheen_weight > 0.0f) sheen_ = SheenV2(m.sheen_weight, m.sheen_roughness, m.sheen_tint_color);
 }
 
@@ -88,7 +88,7 @@ Vec3 PrincipledV2Bsdf::dielectric_albedo(float cos_o) const {
   return glm::mix(dielectric_f0_, Vec3(1.0f), ggx_tables::dielectric_fresnel_mix(table_roughness_, cos_o, eta_));
 }
 
-PrincipledV2Bsdf::ViewTerms PrincipledV2Bsdf::view_terms(float cos_o, float cos_coat) const {
+PrincipledV2Bsdf::ViewTerms PrincipledV2Bsdf::view_terms(float cos_o, float cos_coat, float cos_sheen) const {
   ViewTerms v;
   Vec3 metal_k(1.0f), dielectric_k(1.0f), darkening(1.0f);
   if (multiscatter_) {
@@ -118,7 +118,7 @@ PrincipledV2Bsdf::ViewTerms PrincipledV2Bsdf::view_terms(float cos_o, float cos_
   }
   if (sheen_.active()) {
     // The sheen is the top layer: everything under it (the coat too) keeps 1 - max_rgb(A).
-    v.sheen = sheen_.terms(cos_o);
+    v.sheen = sheen_.terms(cos_sheen);
     const float keep = SheenV2::keep(v.sheen);
     v.metal_scale *= keep;
     v.dielectric_scale *= keep;
@@ -151,12 +151,12 @@ PrincipledV2Bsdf::ClosureAlbedos PrincipledV2Bsdf::closure_albedos(float cos_o) 
   return a;
 }
 
-Vec3 PrincipledV2Bsdf::emission_weight(const Material& m, float cos_o, float cos_coat) {
+Vec3 PrincipledV2Bsdf::emission_weight(const Material& m, float cos_coat, float cos_sheen) {
   Vec3 w(1.0f);
   if (m.coat_weight > 0.0f)
-    w *= CoatV2(m.coat_weight, m.coat_roughness, m.coat_ior, m.coat_tint).terms(clamp01(cos_coat)).base_weight;
+    w *= CoatV2(m).terms(clamp01(cos_coat)).base_weight;
   if (m.sheen_weight > 0.0f)
-    w *= SheenV2::keep(SheenV2(m.sheen_weight, m.sheen_roughness, m.sheen_tint_color).terms(clamp01(cos_o)));
+    w *= SheenV2::keep(SheenV2(m.sheen_weight, m.sheen_roughness, m.sheen_tint_color).terms(clamp01(cos_sheen)));
   return w;
 }
 
@@ -178,9 +178,10 @@ PrincipledV2Bsdf::View PrincipledV2Bsdf::geometry(const Vec3& wo, const CoatNorm
   View v;
   lobe_mixture::prepare(v, wo, shape_);
   v.coat_normal = coat;
-  v.terms = view_terms(wo.z, v.coat_normal.cosine(wo));
+  if (sheen_.active()) v.sheen_normal = coat.sheen_normal(coat_.weight());
+  v.terms = view_terms(wo.z, v.coat_normal.cosine(wo), v.sheen_normal.cosine(wo));
   v.lambda_o = shape_.lambda(wo);
-  if (sheen_.active()) v.sheen = SheenBsdf::oriented(v.terms.sheen, wo);
+  if (sheen_.active()) v.sheen = SheenBsdf::oriented(v.terms.sheen, v.sheen_normal.to_coat(wo));
   return v;
 }
 
@@ -212,8 +213,9 @@ LobeEval PrincipledV2Bsdf::eval_lobes(const View& view, const Vec3& wi) const {
   // The coat about its own normal (whatever side of the shading normal wi lies on).
   if (coat_.reflects())
     f_cos.glossy = Vec3(coat_.eval(v.coat, view.coat_normal.to_coat(wo), view.coat_normal.to_coat(wi)));
+  // The sheen about its own normal likewise.
+  if (view.sheen.reflects()) f_cos.diffuse += view.sheen.weight * sheen_pdf(view, wi);
   if (wi.z <= 0.0f) return f_cos;
-  if (view.sheen.reflects()) f_cos.diffuse += view.sheen.weight * view.sheen.density(wi);
   if (has_delta()) return f_cos;
   Vec3 h;
   if (!ggx::reflection_half(wo, wi, h)) return f_cos;

@@ -473,7 +473,8 @@ class PathTracer {
     v.view = v.bsdf->at(v.wo, v.at.backfacing, v.at.diffuse, v.at.coat);
     // Principled v2's emission under its coat and sheen, as Cycles 4.x (Scene::emission_at likewise).
     if (v.material.emission_under_layers && !v.mixture && max_component(v.material.emission) > 0.0f)
-      v.material.emission *= PrincipledV2Bsdf::emission_weight(v.material, v.wo.z, v.at.coat.cosine(v.wo));
+      v.material.emission *= PrincipledV2Bsdf::emission_weight(
+          v.material, v.at.coat.cosine(v.wo), v.at.coat.sheen_normal(v.material.coat_weight).cosine(v.wo));
     if constexpr (kSubsurface) v.local_bsdf->finish_subsurface(v.subsurface, v.wo);  // Principled v2's layers
     // Path guiding on opaque single-material surfaces with a continuous lobe.
     v.guidable = ctx_.guide && !v.mixture && !v.transmits && (v.material.metallic < 1.0f || v.material.roughness >= 0.3f);

@@ -69,7 +69,7 @@ inline ShadingPoint shading_point(const Scene& scene, BrdfModel model, const Sur
     Vec3 coat = p.n_smooth;
     // (The program's Coat Normal faces the viewer already, as its Normal does.)
     if (scene.coat_normal(hit.material, globals, regs, coat) || p.normal_mapped) {
-      p.coat = coat_normal(p.frame, p.ns, p.ng, coat, wo_world);
+      p.coat = coat_normal(p.frame, p.ns, p.ng, coat, wo_world, p.ns_closure);
     }
   }
   return p;

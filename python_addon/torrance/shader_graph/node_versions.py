@@ -128,6 +128,19 @@ def cycles5_thin_film():
     return bpy.app.version >= (5, 0, 0)
 
 
+def cycles_coat_layering():
+    """How the running Blender's Cycles lays Principled v2's coat over the layers under it (the
+    core's principled_coat.h): 'CYCLES_4_2' (no energy compensation, the base darkened by the
+    smooth surface's Fresnel), 'CYCLES_4_5' (compensated, the darkening from its tables) or
+    'CYCLES_5_1' (compensated, the tint inside the layering, per channel). Cycles' kernels read:
+    4.2's; 4.5's and 5.0's the same; 5.3's bsdf_coat_setup. 4.3-4.4 are taken as 4.2, 5.1-5.2
+    as 5.3 (not read)."""
+    import bpy
+    if bpy.app.version >= (5, 1, 0):
+        return 'CYCLES_5_1'
+    return 'CYCLES_4_5' if bpy.app.version >= (4, 5, 0) else 'CYCLES_4_2'
+
+
 def cycles4_3_diffuse():
     """True where Cycles renders a rough Diffuse BSDF as the energy-preserving Oren-Nayar (4.3+,
     measured in 5.3; 4.3-4.5 taken as 5.3) rather than 3.x-4.2's Oren-Nayar: the node did not

@@ -27,6 +27,14 @@ enum class BrdfModel {
   PrincipledV2,  // Blender 4.x's Principled BSDF v2 as Cycles 4.x renders it (principled_v2.h)
 };
 
+// How Cycles' Principled v2 coat darkens the layers under it (principled_coat.h's CoatV2), per
+// the Cycles generation that renders it.
+enum class CoatLayering {
+  Cycles4_2,  // 4.0-4.4 (4.2 checked): no energy compensation, albedo the smooth Fresnel F(cos)
+  Cycles4_5,  // 4.5-5.0: compensated, albedo scale k mix(F0, 1, S) from the tables
+  Cycles5_1,  // 5.1+ (5.3 checked): compensated lobe, per channel 1 - w (1 - tint (1 - A))
+};
+
 // The metallic/roughness material, as Blender's Principled BSDF names its inputs.
 struct Material {
   Vec3 base_color{0.8f, 0.8f, 0.8f};
@@ -75,6 +83,9 @@ struct Material {
   float coat_roughness = 0.03f;
   float coat_ior = 1.5f;
   Vec3 coat_tint{1.0f};
+  // v2's coat as which Cycles layers it (principled_coat.h's CoatV2): the add-on sets the running
+  // Blender's.
+  CoatLayering coat_layering = CoatLayering::Cycles4_5;
   // The Principled BSDF's sheen (principled_sheen.h): v1's Sheen and Sheen Tint (PRINCIPLED: the
   // tint a mix factor in [0, 1] towards the base colour's hue), v2's Sheen Weight, Roughness and
   // Tint colour (PRINCIPLED_V2). A weight of 0 is no sheen (and costs nothing).
@@ -149,12 +160,22 @@ struct DiffuseNormal {
 // Cycles' Clearcoat / Coat Normal, which unlinked is the surface's normal without the Normal
 // input's bump or normal map, checked as the specular closures' (coat_normal, shading_normal.h).
 // `tilted`: it differs from z; the coat's eval, pdf and sample then work in `frame` about it.
+// The same struct holds Principled v2's sheen normal (sheen_normal below): a frame tilted from z.
 struct CoatNormal {
   Frame frame;
   bool tilted = false;
+  // Both before the specular check, in the shading frame: the coat's normal and the closure's own
+  // (the Normal input's). `leans`: they differ, and Cycles 4.x/5.x's Principled v2 sheen, whose
+  // normal is the closure's leaned towards the coat's by the Coat Weight, tilts from z.
+  Vec3 unchecked{0.0f, 0.0f, 1.0f};
+  Vec3 closure{0.0f, 0.0f, 1.0f};
+  bool leans = false;
   Vec3 to_coat(const Vec3& w) const { return tilted ? frame.to_local(w) : w; }
   float cosine(const Vec3& w) const { return tilted ? glm::dot(frame.n, w) : w.z; }
   Vec3 from_coat(const Vec3& w) const { return tilted ? frame.to_world(w) : w; }
+  // Principled v2's sheen normal for a Coat Weight of coat_weight: normalize(mix(closure,
+  // unchecked, clamp01(coat_weight))); not tilted unless `leans` (shading_normal.cpp).
+  CoatNormal sheen_normal(float coat_weight) const;
 };
 
 // eval() split by lobe, for Blender's diffuse and glossy light passes.

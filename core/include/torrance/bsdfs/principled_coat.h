@@ -16,17 +16,26 @@
 //   Below a = ggx::kDeltaAlpha (Cycles 3.4's alpha^2 <= 1e-7) the lobe is a mirror of
 //   reflectance w F(wo.z). The lobe choice weighs it as Cycles' closure sample weight, w F(wo.z).
 //
-// CoatV2: Cycles 4.x's Principled coat (4.2-5.x svm/closure.h): a GGX layer (alpha = Coat
-// Roughness^2, height-correlated Smith G2, sampled by visible normals) of weight Coat Weight
-// with the exact dielectric Fresnel of Coat IOR (>= 1), always energy-compensated as Cycles'
-// dielectric Fresnel set-up: scale 1 + F_ms (1 - E) / E (principled_v2.h's multiscatter, F_ss the
-// mean dielectric Fresnel of Coat IOR). The layers under it keep
-//   base_weight(mu) = clamp(1 - w k E mix(F0, 1, S(r, mu, ior)), 0, 1) mix(1, tint^(1 / cos_t), w),
-// k E the darkening of the compensation (principled_v2.h), S ggx_tables.h's table, cos_t the cosine
-// of wo refracted into the coat (Beer's law over a coat of unit thickness). Below
-// ggx_tables::kDeltaAlpha the coat is a mirror of reflectance scale F(wo.z).
+// CoatV2: Cycles 4.x/5.x's Principled coat (svm/closure.h): a GGX layer (alpha = Coat
+// Roughness^2, height-correlated Smith G2, sampled by visible normals) of weight w = Coat Weight
+// with the exact dielectric Fresnel F of Coat IOR (>= 1). What it does to the layers under it
+// (their base_weight) depends on the Cycles generation (Material::coat_layering), mu the cosine
+// of wo to the coat's normal, A its albedo estimate and tint^d the Coat Tint over the path
+// d = 1 / cos_t through a coat of unit thickness (cos_t: wo refracted into the coat):
+//   Cycles4_2  no energy compensation; A = F(mu) (Cycles' estimate for its plain dielectric
+//              Fresnel: the smooth surface's, whatever the roughness, so that a rough coat seen
+//              at grazing angles still takes nearly all of the base);
+//              base_weight = clamp(1 - w A, 0, 1) mix(1, tint^d, w).
+//   Cycles4_5  energy-compensated as the other GGX layers, scale k = 1 + F_ms (1 - E) / E
+//              (principled_v2.h's multiscatter, F_ss the mean dielectric Fresnel of Coat IOR);
+//              A = k E mix(F0, 1, S(r, mu, ior)) (ggx_tables.h); base_weight as Cycles4_2's.
+//   Cycles5_1  the lobe compensated as Cycles4_5's, but A = mix(F0, 1, S) without k and the
+//              tint inside the layering, per channel:
+//              base_weight = clamp(1 - w (1 - tint^d (1 - A)), 0, 1).
+// Below ggx_tables::kDeltaAlpha the coat is a mirror of reflectance scale F(wo.z).
 #pragma once
 
+#include "torrance/bsdfs/bsdf.h"
 #include "torrance/util/math.h"
 
 namespace torrance {
@@ -61,17 +70,21 @@ class ClearcoatV1 {
 class CoatV2 {
  public:
   CoatV2() = default;
-  CoatV2(float weight, float roughness, float ior, const Vec3& tint);
+  CoatV2(float weight, float roughness, float ior, const Vec3& tint,
+         CoatLayering layering = CoatLayering::Cycles4_5);
+  explicit CoatV2(const Material& m)
+      : CoatV2(m.coat_weight, m.coat_roughness, m.coat_ior, m.coat_tint, m.coat_layering) {}
 
   bool active() const { return weight_ > 0.0f; }
   bool reflects() const { return active() && eta_ > 1.0f; }
   bool is_delta() const;
   float alpha() const { return alpha_; }
+  float weight() const { return weight_; }
 
   // What depends on wo alone.
   struct Terms {
     float scale = 0.0f;     // weight x the compensation: the lobe's factor
-    float albedo = 0.0f;    // w k E mix(F0, 1, S): what the layering takes off the layers under it
+    float albedo = 0.0f;    // w A: the coat's own albedo estimate (Cycles' bsdf_albedo)
     Vec3 base_weight{1.0f};  // what the layers under the coat keep
   };
   Terms terms(float cos_o) const;
@@ -85,6 +98,8 @@ class CoatV2 {
   float weight_ = 0.0f, roughness_ = 0.0f, alpha_ = 0.0f, eta_ = 1.0f, fss_ = 0.0f;
   Vec3 tint_{1.0f};
   bool tinted_ = false;
+  CoatLayering layering_ = CoatLayering::Cycles4_5;
+  Vec3 through_coat(float cos_o) const;  // tint^d
 };
 
 }  // namespace torrance

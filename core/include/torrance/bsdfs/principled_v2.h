@@ -6,8 +6,10 @@
 // 4.x: alpha_x = alpha / s, alpha_y = alpha s, s = sqrt(1 - 0.9 a), ggx_shape.h, and the tables
 // below are read at the roughness (alpha_x alpha_y)^(1/4)):
 //
-//   sheen       principled_sheen.h's SheenV2 (Cycles' microfiber sheen); the four layers under it
-//               are scaled by its keep(wo) = clamp(1 - max_rgb(albedo), 0, 1), as Cycles 4.x's.
+//   sheen       principled_sheen.h's SheenV2 (Cycles' microfiber sheen) about its own normal, the
+//               closure's leaned towards the coat's by the Coat Weight (View::sheen_normal); the
+//               four layers under it are scaled by its keep(wo) = clamp(1 - max_rgb(albedo), 0, 1),
+//               as Cycles 4.x's.
 //   coat        principled_coat.h's CoatV2 (its own roughness, IOR and normal: the View's
 //               coat_normal, bsdf.h); the three layers under it are scaled by its base_weight(wo),
 //               as Cycles 4.x darkens and tints them, wo's cosine taken about the coat's normal.
@@ -84,9 +86,11 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
     CoatV2::Terms coat;            // the coat's (its base_weight is in the three above)
     SheenBsdf::Lobe sheen;         // the sheen's weight (its albedo), a, b (its keep is in all above)
   };
-  // cos_coat: wo's cosine about the coat's normal (cos_o without a coat normal of its own).
-  ViewTerms view_terms(float cos_o, float cos_coat) const;
-  ViewTerms view_terms(float cos_o) const { return view_terms(cos_o, cos_o); }
+  // cos_coat, cos_sheen: wo's cosines about the coat's and the sheen's normals (cos_o without
+  // normals of their own).
+  ViewTerms view_terms(float cos_o, float cos_coat, float cos_sheen) const;
+  ViewTerms view_terms(float cos_o, float cos_coat) const { return view_terms(cos_o, cos_coat, cos_o); }
+  ViewTerms view_terms(float cos_o) const { return view_terms(cos_o, cos_o, cos_o); }
 
   // The albedo of each closure Cycles 4.x makes of the material (closure/bsdf.h's bsdf_albedo:
   // the closure's weight, its layering and multiscatter darkening included, times its Fresnel
@@ -99,9 +103,9 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
   };
   ClosureAlbedos closure_albedos(float cos_o) const;
   // What Cycles 4.x leaves of material m's emission (Material::emission_under_layers) seen from a
-  // view at cos_o to the closure's normal and cos_coat to the coat's: the coat's base_weight times
-  // the sheen's keep (1 without them), as the layers under them.
-  static Vec3 emission_weight(const Material& m, float cos_o, float cos_coat);
+  // view at cos_coat to the coat's normal and cos_sheen to the sheen's: the coat's base_weight
+  // times the sheen's keep (1 without them), as the layers under them.
+  static Vec3 emission_weight(const Material& m, float cos_coat, float cos_sheen);
   float coat_alpha() const { return coat_.alpha(); }
 
   // What eval, pdf and sample need of wo alone (lobe_mixture.h), prepared once per shading point.
@@ -110,6 +114,10 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
     ViewTerms terms;
     float lambda_o = 0.0f;  // the GGX shape's Lambda(wo)
     SheenBsdf::Lobe sheen;  // terms.sheen in wo's frame (no weight without a sheen)
+    // The sheen's normal: the closure's leaned towards the coat's by the Coat Weight, as Cycles
+    // 4.x/5.x (CoatNormal::sheen_normal; tilted only where a Normal input or Coat Normal sets
+    // them apart); the sheen's eval, pdf and sample work about it.
+    CoatNormal sheen_normal;
   };
   // coat: the coat's normal (bsdf.h; by default the shading normal).
   View at(const Vec3& wo, const CoatNormal& coat = {}) const;        // with the lobe choice p_spec
@@ -147,8 +155,11 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
   const CoatV2& coat() const { return coat_; }
 
   // The sheen lobe (lobe_mixture.h), chosen first with View::p_sheen.
-  float sheen_pdf(const View& v, const Vec3& wi) const { return wi.z > 0.0f ? v.sheen.density(wi) : 0.0f; }
-  Vec3 sheen_sample(const View& v, const Vec2& u) const { return v.sheen.sample(u); }
+  float sheen_pdf(const View& v, const Vec3& wi) const {
+    const Vec3 w = v.sheen_normal.to_coat(wi);
+    return w.z > 0.0f ? v.sheen.density(w) : 0.0f;
+  }
+  Vec3 sheen_sample(const View& v, const Vec2& u) const { return v.sheen_normal.from_coat(v.sheen.sample(u)); }
   bool has_sheen() const { return sheen_.active(); }
 
  private:

@@ -21,6 +21,8 @@ DiffuseNormal diffuse_normal(const Frame& frame, const Vec3& checked, const Vec3
 // closures' normal after valid_shading_normal): `coat` (the Coat Normal, or the surface's normal
 // without the Normal input's bump; facing the viewer, as ng) made valid for wo as every specular
 // closure's normal is (Cycles 3.4 and 4.x alike). Not tilted when that is `checked` itself.
-CoatNormal coat_normal(const Frame& frame, const Vec3& checked, const Vec3& ng, const Vec3& coat, const Vec3& wo);
+// `closure`: the closures' normal before the check (for the sheen's, CoatNormal::sheen_normal).
+CoatNormal coat_normal(const Frame& frame, const Vec3& checked, const Vec3& ng, const Vec3& coat, const Vec3& wo,
+                       const Vec3& closure);
 
 }  // namespace torrance
