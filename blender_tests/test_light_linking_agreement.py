@@ -10,6 +10,10 @@ A floor, a ball, a second ball and a pillar under two point lights and a glowing
 * the glowing panel (an emissive mesh) lights every object but the floor (excluded), though the
   camera still sees it.
 
+A second scene (build_mirror) shows shadow-linked emitters, a lamp and a glowing panel, only in
+a mirror, each behind a ball that is none of its blockers: a delta lobe's ray looks past the
+ball, as Cycles' dedicated shadow-linking ray does.
+
 Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
 seeds 2 and 3. Faults that must fail: the sets ignored (what Torrance did before Blender 4's
 linking was read), the receiver sets alone ignored (shadow linking kept) and the blocker sets
@@ -72,6 +76,39 @@ def build(scene):
                                                                 [(floor, 'EXCLUDE')])
 
 
+def build_mirror(scene):
+    """Shadow linking seen in a mirror (a delta lobe, which NEE can not sample): the camera sees a
+    lamp and a glowing panel only in a mirror, each hidden there behind a ball that is none of
+    its blockers (Blockers: the ball, excluded), so both show through the ball's reflection as
+    Cycles' dedicated shadow-linking ray shows them."""
+    testing.setup_render(scene, width=W, height=H, max_bounces=BOUNCES)
+    testing.add_camera(scene, location=(0.0, -5.0, 1.2), target=(0.0, 2.0, 1.4), lens=32.0)
+    testing.plane(scene, "Floor", 12.0,
+                  material=testing.principled("Floor", (0.5, 0.5, 0.5), 0.0, 0.6))
+    mirror = testing.plane(scene, "Mirror", 4.0,
+                           material=testing.principled("Mirror", (0.9, 0.9, 0.9), 1.0, 0.0))
+    mirror.location = (0.0, 2.0, 1.8)
+    mirror.rotation_euler = (1.5708, 0.0, 0.0)          # upright, facing -Y
+    grey = testing.principled("Grey", (0.5, 0.5, 0.5), 0.0, 0.5)
+    lamp_ball = testing.sphere_object(scene, "LampBall", (-0.7, -2.0, 2.6), 0.35, grey,
+                                      segments=24, rings=12)
+    panel_ball = testing.sphere_object(scene, "PanelBall", (0.8, -2.0, 1.9), 0.4, grey,
+                                       segments=24, rings=12)
+    key = testing.add_point(scene, (-0.8, -3.0, 2.75), power=400.0, radius=0.3)
+    key.name = "Key"
+    panel = testing.plane(scene, "Panel", 0.8,
+                          material=testing.principled("Glow", (0.1, 0.1, 0.1), 0.0, 0.5,
+                                                      emission=(1.0, 0.6, 0.3),
+                                                      emission_strength=8.0))
+    panel.location = (0.95, -3.2, 2.0)
+    panel.rotation_euler = (-1.5708, 0.0, 0.0)          # facing +Y, the mirror
+    testing.set_world(scene, (0.03, 0.03, 0.035))
+    key.light_linking.blocker_collection = linked_collection("KeyBlockers",
+                                                             [(lamp_ball, 'EXCLUDE')])
+    panel.light_linking.blocker_collection = linked_collection("PanelBlockers",
+                                                               [(panel_ball, 'EXCLUDE')])
+
+
 def sets_ignored(original):
     def init(self, tc_scene, depsgraph, reporter):
         self.entries, self.emitter_entry = {}, {}
@@ -104,6 +141,9 @@ def main():
         faults=(("the light sets ignored", LightLinking, "__init__", sets_ignored),
                 ("the receiver sets ignored", LightLinking, "of", receivers_ignored),
                 ("the blocker sets ignored", LightLinking, "of", blockers_ignored)))
+    agree_on_scene(
+        build_mirror, 64, BOUNCES, "shadow linking in a mirror",
+        faults=(("the blocker sets ignored", LightLinking, "of", blockers_ignored),))
 
 
 testing.run(main)

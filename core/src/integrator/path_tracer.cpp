@@ -165,6 +165,7 @@ class PathTracer {
           }
         } else {
           if (kHittable) lights_along_ray(bounce, seg);
+          if (!kMedia && shadow_links_ && last_.delta && seg.found) shadow_linked_behind(bounce, seg);
           if (!seg.found && !seg.scattered) break;
           if (!seg.scattered) note_reflector(*seg.hit);
         }
@@ -382,6 +383,53 @@ class PathTracer {
     const Vec3 arrived = deposit(seen * e, bounce == 1);
     if (light_groups_) credit_split(extra_, seen * e, arrived, by_group.data(), seen, out_.extras);
   }
+
+  // Shadow linking after a delta lobe (light_linking.h): NEE can not sample the lobe, so a
+  // shadow-linked emitter behind a surface that is none of its blockers would stay hidden; as
+  // Cycles' dedicated shadow-linking ray, the ray goes on past the surfaces it meets while some
+  // shadow-linked emitter has none of them among its blockers, and brings back what such
+  // emitters (lamps, emissive surfaces) send along it. (Not in media.)
+  void shadow_linked_behind(int bounce, const Segment& seg) {
+    const LightLinks& links = lights_.links();
+    const Vec3 dir = ray_.dir;
+    std::array<Vec3, kMaxLightGroups> by_group;  // filled only with light groups
+    if (light_groups_) std::fill_n(by_group.begin(), extra_.num_light_groups(), Vec3(0.0f));
+    Vec3 e(0.0f);
+    SurfaceHit hit = *seg.hit;
+    float t_near = glm::length(hit.position - last_.ray_origin);
+    uint64_t passed = 0;
+    for (int surfaces = 0; surfaces < kMaxShadowLinkedSurfaces; ++surfaces) {
+      passed |= uint64_t(1) << (hit.blocker_set & 63u);
+      if (!links.shadow_linked_past(passed)) break;
+      Ray next;
+      next.origin = offset_origin(hit.position, hit.geometric_normal, dir);
+      next.dir = dir;
+      SurfaceHit behind;
+      const bool found = ctx_.scene.intersect(next, behind);
+      const float t_far = found ? glm::length(behind.position - last_.ray_origin) : kInfinity;
+      e += lights_.shadow_linked_along_ray(last_.ray_origin, last_.normal, dir, t_near, t_far, passed,
+                                           last_.receiver_set, light_groups_ ? by_group.data() : nullptr);
+      if (!found) break;
+      const uint8_t entry = behind.emitter_links;
+      if (behind.emitter >= 0 && links.shadow_linked(entry) && !(links.shadow_sets(entry) & passed) &&
+          links.lights(entry, last_.receiver_set)) {
+        ShaderGlobals g = shader_globals(behind, dir, 0.0f);
+        g.path = path_state_;
+        g.tracer = &ctx_.scene;
+        const Vec3 emitted = ctx_.scene.emission_at(behind.material, g);
+        e += emitted;
+        if (light_groups_ && behind.light_group >= 0) by_group[size_t(behind.light_group)] += emitted;
+      }
+      hit = behind;
+      t_near = t_far;
+    }
+    if (!(max_component(e) > 0.0f)) return;
+    const Vec3& seen = seen_throughput();
+    features_.light(seen * e * clamp_scale(seen * e / branch_weight_, bounce == 1), out_);
+    const Vec3 arrived = deposit(seen * e, bounce == 1);
+    if (light_groups_) credit_split(extra_, seen * e, arrived, by_group.data(), seen, out_.extras);
+  }
+  static constexpr int kMaxShadowLinkedSurfaces = 64;  // surfaces passed at most (ends a loop of coplanar ones)
 
   // What lights met along the ray are seen with: the throughput, or in media the throughput
   // before the stretch the path scattered in (medium_walk.h).
@@ -1045,6 +1093,8 @@ class PathTracer {
   // The Normal and UV passes are of the first surface the camera ray meets whose alpha reaches
   // the Alpha Threshold, passed through or not; a sample that stops at a surface below it has none.
   bool surface_data_done_ = false;
+  // Some emitter is shadow-linked (light_linking.h): delta lobes look past non-blockers.
+  const bool shadow_links_ = lights_.links().shadow_linked_past(0);
   float first_opacity_ = 1.0f;  // of the surface the camera ray stopped at
   float first_ray_length_ = 0.0f;
   // The first vertex, where later branches start: its hit, ray, NEE's light choice, the sampler's

@@ -16,7 +16,8 @@
 // estimation alone at vertices NEE can sample (its MIS weight 1, its forward hits there not
 // counted), as a BSDF-sampled ray towards it could be stopped by a non-blocker; Cycles instead
 // traces an extra ray past the non-blockers (its dedicated shadow-linking light). Delta lobes,
-// which NEE cannot sample, still see it by their ray.
+// which NEE cannot sample, see it by their ray, and past the surfaces that ray meets that are
+// none of its blockers (the path tracer's shadow_linked_behind, Lights::shadow_linked_along_ray).
 #pragma once
 
 #include <cstdint>
@@ -62,6 +63,13 @@ class LightLinks {
     return entry >= table_.size() || (table_[entry].light_sets >> (receiver_set & 63u)) & 1u;
   }
   bool shadow_linked(uint8_t entry) const { return shadow_sets(entry) != kAllLinkSets; }
+  // Whether some shadow-linked entry's shadow sets leave out every blocker set in `passed` (bit
+  // s: set s), i.e. its emitter is still seen past surfaces of those sets.
+  bool shadow_linked_past(uint64_t passed) const {
+    for (size_t e = 1; e < table_.size(); ++e)
+      if (table_[e].shadow_sets != kAllLinkSets && !(table_[e].shadow_sets & passed)) return true;
+    return false;
+  }
   uint64_t shadow_sets(uint8_t entry) const { return entry < table_.size() ? table_[entry].shadow_sets : kAllLinkSets; }
 
  private:

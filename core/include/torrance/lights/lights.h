@@ -236,6 +236,12 @@ class Lights {
                           bool bsdf_delta, bool two_sided = false, const LightChoice* prev_choice = nullptr,
                           const LightShare* share = nullptr, const PathState& escaped = {},
                           Vec3* by_group = nullptr, uint8_t receiver_set = 0) const;
+  // Shadow linking after a delta lobe (light_linking.h): the radiance of the shadow-linked lights
+  // (not the world) that a ray from p_prev along dir meets between t_min and t_max (infinite:
+  // suns too), that light receiver_set and whose shadow sets leave out every blocker set in
+  // `passed` (bit s: set s; the surfaces the ray went through before t_min). by_group as above.
+  Vec3 shadow_linked_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_min, float t_max,
+                               uint64_t passed, uint8_t receiver_set, Vec3* by_group = nullptr) const;
   // What a ray from p along dir sees of strategy `index` alone, unoccluded (its MIS density too).
   bool hit(size_t index, const Vec3& p, const Vec3& n, const Vec3& dir, LightHit& out) const;
   // Light tracing (caustics.h): whether light `index` can emit rays (a sun, point, spot or area
