@@ -22,7 +22,6 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \\
          --python blender_tests/test_principled_coat_normal_agreement.py
 """
 
-import math
 
 import bpy
 
@@ -31,7 +30,6 @@ from torrance_tools import sphere_agreement as sa, testing
 W, H, SAMPLES, BOUNCES = 160, 80, 128, 4
 RADIUS = 0.42
 DARK_RED, NEAR_BLACK = (0.30, 0.05, 0.03), (0.02, 0.02, 0.02)
-ORANGE, BLUE_TINT = (1.0, 0.45, 0.1), (0.3, 0.6, 1.0)
 BUMP = "Coat test bump"
 
 # name, x, base colour, what the Bump feeds ("Normal", "coat" or None)
@@ -64,26 +62,10 @@ def coat_sockets():
     return "Clearcoat", "Clearcoat Roughness", "Clearcoat Normal"
 
 
-def noise_bump(mat):
-    """A strong Bump node of a Noise Texture's Fac."""
-    nodes = mat.node_tree.nodes
-    noise = nodes.new("ShaderNodeTexNoise")
-    noise.inputs["Scale"].default_value = 6.0
-    noise.inputs["Detail"].default_value = 2.0
-    bump = nodes.new("ShaderNodeBump")
-    bump.name = BUMP
-    bump.inputs["Distance"].default_value = 0.2
-    mat.node_tree.links.new(noise.outputs["Fac"], bump.inputs["Height"])
-    return bump.outputs["Normal"]
-
-
 def build(scene):
     # From above: the spheres stand against the lit floor, not the black sky.
-    testing.add_camera(scene, location=(0.0, -4.0, 2.4), target=(0.0, 0.0, 0.5), lens=50.0)
     distribution = 'MULTI_GGX' if is_v2() else 'GGX'
-    floor = testing.make.principled("Floor", (0.4, 0.4, 0.4), 0.0, 1.0, 0.0,
-                                    distribution=distribution)
-    testing.plane(scene, "Floor", 30.0, z=0.0, material=floor)
+    sa.coat_stage(scene, distribution)
     weight, roughness, normal = coat_sockets()
     for name, x, color, target in spheres():
         mat = testing.make.principled(name, color, 0.0, 0.5, 0.5, distribution=distribution)
@@ -92,17 +74,11 @@ def build(scene):
         node.inputs[roughness].default_value = coat_roughness()
         if target is not None:
             socket = node.inputs["Normal" if target == "Normal" else normal]
-            mat.node_tree.links.new(noise_bump(mat), socket)
+            mat.node_tree.links.new(sa.noise_bump(mat, BUMP), socket)
         if name == "emissive":
-            node.inputs["Coat Tint"].default_value = (*BLUE_TINT, 1.0)
-            node.inputs["Emission Color"].default_value = (*ORANGE, 1.0)
-            node.inputs["Emission Strength"].default_value = 0.3
+            sa.emissive_under_tinted_coat(node)
         testing.sphere_object(scene, name, (x, 0.0, Z), RADIUS, mat, segments=64, rings=32)
-    testing.add_sun(scene, strength=3.0, rotation=(math.radians(45), 0, math.radians(-30)),
-                    angle=math.radians(5.0))
-    # The sun alone: a world's noise would hide the coat's highlight (and Cycles 3.4's clearcoat
-    # under a uniform world is biased: principled_coat.h).
-    testing.set_world(scene, (0.0, 0.0, 0.0))
+    # (Cycles 3.4's clearcoat under a uniform world is biased, principled_coat.h: a sun alone.)
 
 
 def render_torrance(scene, directory, label):
@@ -126,24 +102,9 @@ def faults(scene, directory):
     out.append(("linked coat normal ignored", render_torrance(scene, directory, "no_coat_normal")))
     tree.links.new(bump, socket)
     if is_v2():
-        out.append(("emission not darkened by the coat", undarkened_emission(scene, directory)))
+        out.append(("emission not darkened by the coat", sa.without_emission_layers(
+            lambda: render_torrance(scene, directory, "undarkened"))))
     return out
-
-
-def undarkened_emission(scene, directory):
-    """Torrance's images with the Principled's emission left as it is under the coat."""
-    from torrance import materials
-    sanitize = materials._sanitize
-
-    def keep_emission(m):
-        m = sanitize(m)
-        m.pop('emission_under_layers', None)
-        return m
-    materials._sanitize = keep_emission
-    try:
-        return render_torrance(scene, directory, "undarkened")
-    finally:
-        materials._sanitize = sanitize
 
 
 def main():

@@ -13,6 +13,8 @@ measures Cycles' own noise. Torrance's renders (two seeds, averaged) must agree 
     seeds, Torrance's two); the figures show each sphere's worst channel.
 """
 
+import math
+
 import bpy
 import numpy as np
 from bpy_extras.object_utils import world_to_camera_view
@@ -113,6 +115,56 @@ class Agreement:
                 out.append(f"sphere {name} {'RGB'[k]} ratio {t[k] / c[k]:.4f} off 1 by more than "
                            f"{bound[k]:.4f}")
         return m, out
+
+
+def noise_bump(mat, name):
+    """A strong Bump node (named `name`) of a Noise Texture's Fac in `mat`: its Normal output."""
+    nodes = mat.node_tree.nodes
+    noise = nodes.new("ShaderNodeTexNoise")
+    noise.inputs["Scale"].default_value = 6.0
+    noise.inputs["Detail"].default_value = 2.0
+    bump = nodes.new("ShaderNodeBump")
+    bump.name = name
+    bump.inputs["Distance"].default_value = 0.2
+    mat.node_tree.links.new(noise.outputs["Fac"], bump.inputs["Height"])
+    return bump.outputs["Normal"]
+
+
+def coat_stage(scene, distribution):
+    """The coat tests' stage (test_principled_coat_normal_agreement, _coat_mix_agreement): a
+    camera from above (the spheres against the lit grey floor, of `distribution`), a sun alone
+    (a world's noise would hide the coat's highlight) and a black world."""
+    testing.add_camera(scene, location=(0.0, -4.0, 2.4), target=(0.0, 0.0, 0.5), lens=50.0)
+    floor = testing.make.principled("Floor", (0.4, 0.4, 0.4), 0.0, 1.0, 0.0,
+                                    distribution=distribution)
+    testing.plane(scene, "Floor", 30.0, z=0.0, material=floor)
+    testing.add_sun(scene, strength=3.0, rotation=(math.radians(45), 0, math.radians(-30)),
+                    angle=math.radians(5.0))
+    testing.set_world(scene, (0.0, 0.0, 0.0))
+
+
+def emissive_under_tinted_coat(node):
+    """An orange emission (0.3) under a blue-tinted coat of Principled v2 `node`."""
+    node.inputs["Coat Tint"].default_value = (0.3, 0.6, 1.0, 1.0)
+    node.inputs["Emission Color"].default_value = (1.0, 0.45, 0.1, 1.0)
+    node.inputs["Emission Strength"].default_value = 0.3
+
+
+def without_emission_layers(render):
+    """render() with the add-on's Principled v2 emission left as it is under its coat and sheen
+    (emission_under_layers dropped): a fault, Torrance's side only."""
+    from torrance import materials
+    sanitize = materials._sanitize
+
+    def keep_emission(m):
+        m = sanitize(m)
+        m.pop('emission_under_layers', None)
+        return m
+    materials._sanitize = keep_emission
+    try:
+        return render()
+    finally:
+        materials._sanitize = sanitize
 
 
 def set_inputs(names, **inputs):

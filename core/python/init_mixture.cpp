@@ -84,7 +84,7 @@ void init_mixture(py::module_& m) {
                         const py::list& factors, int normal_texture, float normal_strength, int bump_texture,
                         float bump_strength, float bump_distance, float alpha, int alpha_texture,
                         bool alpha_from_luminance, bool alpha_inverted, std::array<float, 3> transparent_color,
-                        int program, int normal_register, int surface_normal_register) {
+                        int program, int normal_register, int surface_normal_register, int coat_normal_register) {
     Mixture mixture;
     mixture.program = program;
     for (const auto& f : factors) mixture.factors.push_back(parse_factor(f));
@@ -102,12 +102,13 @@ void init_mixture(py::module_& m) {
     normal.alpha = alpha_texture;
     normal.alpha_from_luminance = alpha_from_luminance;
     normal.alpha_inverted = alpha_inverted;
-    for (int r : {normal_register, surface_normal_register})
+    for (int r : {normal_register, surface_normal_register, coat_normal_register})
       if (r < -1 || r >= ShaderProgram::kMaxRegisters)
-        throw py::value_error("normal_register and surface_normal_register must lie in [-1, " +
+        throw py::value_error("normal_register, surface_normal_register and coat_normal_register must lie in [-1, " +
                               std::to_string(ShaderProgram::kMaxRegisters) + "), got " + std::to_string(r));
     normal.program.normal = int16_t(normal_register);
     normal.program.surface_normal = int16_t(surface_normal_register);
+    normal.program.coat_normal = int16_t(coat_normal_register);
     return s.add_mixture(mixture, normal, alpha, Vec3(transparent_color[0], transparent_color[1], transparent_color[2]));
   };
   cls.attr("add_mixture") = py::cpp_function(
@@ -118,7 +119,7 @@ void init_mixture(py::module_& m) {
       py::arg("bump_distance") = 1.0f, py::arg("alpha") = 1.0f, py::arg("alpha_texture") = -1,
       py::arg("alpha_from_luminance") = false, py::arg("alpha_inverted") = false,
       py::arg("transparent_color") = std::array<float, 3>{1.0f, 1.0f, 1.0f}, py::arg("program") = -1,
-      py::arg("normal_register") = -1, py::arg("surface_normal_register") = -1,
+      py::arg("normal_register") = -1, py::arg("surface_normal_register") = -1, py::arg("coat_normal_register") = -1,
       "Adds a material made of weighted closures (Mix Shader / Add Shader); returns its material index. "
       "closures: [(type, material, terms)], type 'principled' | 'diffuse' | 'diffuse_energy_preserving' (Blender 4.3+'s Diffuse BSDF: a rough one is the "
       "energy-preserving Oren-Nayar) | 'glossy' | 'emission' | 'transparent' | "
@@ -135,7 +136,8 @@ void init_mixture(py::module_& m) {
       "from add_shader_program: the Fac's node graph). alpha, alpha_texture, alpha_from_luminance, alpha_inverted, "
       "transparent_color: as add_material's (a Mix Shader of a Transparent BSDF and this mixture). "
       "normal_register: register of `program` holding the Normal of all closures, surface_normal_register the "
-      "surface's after the Material Output's Displacement (as add_material's). ValueError "
+      "surface's after the Material Output's Displacement (as add_material's), coat_normal_register the Coat Normal "
+      "of its coated Principled closures (as add_material's). ValueError "
       "for malformed mixtures.");
 }
 

@@ -385,9 +385,8 @@ class MaterialReader:
             out.update(alpha=alpha, alpha_texture=alpha_tex)
         self._report_ignored_inputs(mat, node, _IGNORED_PRINCIPLED_INPUTS[version])
         report_film_on_thin_wall(self, mat, node, out)
-        if (version == 'v2' and ('coat_weight' in out or 'sheen_weight' in out)
-                and not getattr(self, "skip_normals", False)):
-            # Cycles 4.x: the coat and sheen darken the emission (not done in a mix of shaders)
+        if version == 'v2' and ('coat_weight' in out or 'sheen_weight' in out):
+            # Cycles 4.x: the coat and sheen darken the emission (in a mix of shaders too)
             out['emission_under_layers'] = True
         out.update(read_normal_input(self, mat, node))
         return _sanitize(self._with_program(out))

@@ -22,7 +22,8 @@ Color luminance and a Checker Texture of constant inputs at the UVs keep factor 
 own). Up to MAX_CLOSURES closures, MAX_FACTORS factors, MAX_DEPTH nested shader nodes;
 what is beyond, and every other shader node, is reported once per node and material and left
 out of the sum (it contributes nothing). One Normal input serves all closures: the first
-closure's; a closure with a different normal source is reported.
+closure's; a closure with a different normal source is reported. Likewise one Coat Normal serves
+all coated Principled BSDFs: the first linked one's (compiled into the mixture's program).
 """
 
 import bpy
@@ -33,7 +34,7 @@ from .shader_graph.program import ProgramBuilder
 from .shader_graph.registry import READERS
 from .closure_nodes import CLOSURE_NODES, read_closure_node
 from .nodes import finite_or, is_default_uv, node_label, plain_image, source_socket
-from .normal_inputs import begin_displacement, normal_source, read_normal_input
+from .normal_inputs import begin_displacement, compile_normal, normal_source, read_normal_input
 from .anisotropy import GLOSSY, read_anisotropy
 from .shader_graph.node_versions import cycles4_3_diffuse
 
@@ -66,6 +67,9 @@ class ShaderTreeReader:
         self.normal = None        # the normal arguments of the first closure
         self.normal_from = None
         self.normal_key = None            # (node, output) feeding the first closure's Normal
+        self.coat_normal = None           # the first linked Coat Normal's program Value
+        self.coat_normal_from = None
+        self.coat_normal_key = None
         self.program = ProgramBuilder()   # the factors the shader graph computes
         self.program_factors = {}         # factor index -> its Value in self.program
         begin_displacement(reader, mat, self.program)
@@ -86,7 +90,9 @@ class ShaderTreeReader:
             if self.program.shading_normal is not None:       # the Displacement's, as bump
                 normal['surface_normal_register'] = self.program.register_of(
                     self.program.shading_normal)
-        if self.program_factors or normal_value is not None:
+        if self.coat_normal is not None:
+            normal['coat_normal_register'] = self.program.register_of(self.coat_normal)
+        if self.program_factors or normal_value is not None or self.coat_normal is not None:
             out.update(shader_program=self.program.build(),
                        program_reads_uvs=self.program.uses_uvs(),
                        program_attributes=self.reader.attributes.keys_of(self.program))
@@ -153,7 +159,27 @@ class ShaderTreeReader:
             self.warn(f"{node_label(node)} has another Normal than {node_label(self.normal_from)}; "
                       f"Torrance uses one normal for all mixed shaders (that of "
                       f"{node_label(self.normal_from)})")
+        if node.bl_idname == 'ShaderNodeBsdfPrincipled' and 'coat_weight' in args:
+            self._coat_normal(node)
         self.closures.append((kind_name, args, self._resolve(terms)))
+
+    def _coat_normal(self, node):
+        """Compiles a coated Principled's linked Clearcoat / Coat Normal into the mixture's
+        program: the first one serves all coats; another one is reported."""
+        socket = node.inputs.get("Coat Normal") or node.inputs.get("Clearcoat Normal")
+        source = source_socket(socket) if socket is not None else None
+        if source is None:
+            return
+        key = (source.node.as_pointer(), source.identifier)
+        if self.coat_normal_key is None:
+            where = f"Material '{self.mat.name}': input '{socket.name}' of {node_label(node)}"
+            value = compile_normal(self.reader, socket, self.program, where)
+            if value is not None:
+                self.coat_normal, self.coat_normal_from, self.coat_normal_key = value, node, key
+        elif key != self.coat_normal_key:
+            self.warn(f"{node_label(node)} has another {socket.name} than "
+                      f"{node_label(self.coat_normal_from)}; Torrance uses one for all mixed "
+                      f"shaders (that of {node_label(self.coat_normal_from)})")
 
     def _follow(self, socket, terms, depth):
         source = source_socket(socket) if socket is not None else None

@@ -6,8 +6,8 @@ shader graph compiles (the closure's shader program then computes it: coat_*_reg
 whose weight is 0 is left out (it costs nothing). A linked Clearcoat / Coat Normal is compiled
 into the closure's program (coat_normal_register); unlinked, the core shades the coat with the
 surface's normal without the Normal input's bump or normal map, as Cycles. In a mixture (whose
-closures share the mixture's normal) a linked one is reported and the coat takes the unlinked
-one's normal."""
+closures share the mixture's normal) the mixture reads it (mixtures.py: one Coat Normal for all
+its coats)."""
 
 from .material_values import clamp, color3
 from .nodes import finite_or, node_label, source_socket
@@ -73,11 +73,9 @@ def _read_coat_normal(reader, mat, node, socket):
     input (reported where it can not be read)."""
     if socket is None or source_socket(socket) is None:
         return
-    where = f"Material '{mat.name}': input '{socket.name}' of {node_label(node)}"
     if getattr(reader, "skip_normals", False):
-        reader.reporter.warning(f"{where}: Torrance ignores a linked {socket.name} inside a mix "
-                                f"of shaders (the coat shades with the surface's normal)")
-        return
+        return          # a mixture's closure: the mixture reads it (mixtures.py)
+    where = f"Material '{mat.name}': input '{socket.name}' of {node_label(node)}"
     value = compile_normal(reader, socket, reader._program, where)
     if value is not None:
         reader._program_inputs['coat_normal'] = value

@@ -91,6 +91,25 @@ void MixtureBsdf::add(const Component& c, float w, float sampling_albedo) {
   for (int k = 0; k < count_; ++k) probabilities_[k] = sampling_[k] / sum;
 }
 
+void MixtureBsdf::add_layered_emission(const Material& m, const Vec3& weighted_emission) {
+  if (layered_count_ >= kMaxMixtureComponents) return;
+  LayeredEmission& e = layered_[layered_count_++];
+  e.emission = weighted_emission;
+  e.coat = m.coat_weight > 0.0f ? CoatV2(m) : CoatV2();
+  e.sheen = m.sheen_weight > 0.0f ? SheenV2(m.sheen_weight, m.sheen_roughness, m.sheen_tint_color) : SheenV2();
+  e.coat_weight = m.coat_weight;
+}
+
+Vec3 MixtureBsdf::layered_emission(const Vec3& wo, const CoatNormal& coat) const {
+  Vec3 sum(0.0f);
+  for (int k = 0; k < layered_count_; ++k) {
+    const LayeredEmission& e = layered_[k];
+    sum += e.emission * PrincipledV2Bsdf::emission_weight(e.coat, e.sheen, coat.cosine(wo),
+                                                          coat.sheen_normal(e.coat_weight).cosine(wo));
+  }
+  return sum;
+}
+
 LobeEval MixtureBsdf::eval_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse,
                                    const CoatNormal& coat, int skip) const {
   const DiffuseFrame d(diffuse);
@@ -278,7 +297,11 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
     if (!(w.weight[k] > 0.0f)) continue;
     const MixtureComponent& c = mixture->components[k];
     const Material m = textured ? scene.textured_material(c.material, globals) : scene.material(c.material);
-    resolved.emission += w.weight[k] * m.emission;
+    if (m.emission_under_layers && c.type == ClosureType::Principled) {
+      if (max_component(m.emission) > 0.0f) bsdf.add_layered_emission(m, w.weight[k] * m.emission);
+    } else {
+      resolved.emission += w.weight[k] * m.emission;
+    }
     if (closures) closures->add(c.type, w.weight[k], m);
     switch (c.type) {
       case ClosureType::Principled: {

@@ -152,11 +152,15 @@ PrincipledV2Bsdf::ClosureAlbedos PrincipledV2Bsdf::closure_albedos(float cos_o) 
 }
 
 Vec3 PrincipledV2Bsdf::emission_weight(const Material& m, float cos_coat, float cos_sheen) {
+  const CoatV2 coat = m.coat_weight > 0.0f ? CoatV2(m) : CoatV2();
+  const SheenV2 sheen = m.sheen_weight > 0.0f ? SheenV2(m.sheen_weight, m.sheen_roughness, m.sheen_tint_color) : SheenV2();
+  return emission_weight(coat, sheen, cos_coat, cos_sheen);
+}
+
+Vec3 PrincipledV2Bsdf::emission_weight(const CoatV2& coat, const SheenV2& sheen, float cos_coat, float cos_sheen) {
   Vec3 w(1.0f);
-  if (m.coat_weight > 0.0f)
-    w *= CoatV2(m).terms(clamp01(cos_coat)).base_weight;
-  if (m.sheen_weight > 0.0f)
-    w *= SheenV2::keep(SheenV2(m.sheen_weight, m.sheen_roughness, m.sheen_tint_color).terms(clamp01(cos_sheen)));
+  if (coat.active()) w *= coat.terms(clamp01(cos_coat)).base_weight;
+  if (sheen.active()) w *= SheenV2::keep(sheen.terms(clamp01(cos_sheen)));
   return w;
 }
 

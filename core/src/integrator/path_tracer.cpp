@@ -523,6 +523,9 @@ class PathTracer {
     if (v.material.emission_under_layers && !v.mixture && max_component(v.material.emission) > 0.0f)
       v.material.emission *= PrincipledV2Bsdf::emission_weight(
           v.material, v.at.coat.cosine(v.wo), v.at.coat.sheen_normal(v.material.coat_weight).cosine(v.wo));
+    if constexpr (kMixtures) {  // a mixture's Principled v2 closures' likewise
+      if (v.mixture) v.material.emission += v.local_bsdf->layered_emission(v.wo, v.at.coat);
+    }
     if constexpr (kSubsurface) v.local_bsdf->finish_subsurface(v.subsurface, v.wo);  // Principled v2's layers
     // Path guiding on opaque single-material surfaces with a continuous lobe.
     v.guidable = ctx_.guide && !v.mixture && !v.transmits && (v.material.metallic < 1.0f || v.material.roughness >= 0.3f);

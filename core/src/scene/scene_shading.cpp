@@ -28,7 +28,7 @@ uint32_t Scene::add_mixture(const Mixture& mixture, const MaterialTextures& norm
     if (id < -1 || id >= int(textures_.size()))
       throw std::invalid_argument("material uses texture " + std::to_string(id) + " but the scene has " +
                                   std::to_string(textures_.size()) + " textures");
-  for (int16_t r : {normal.program.normal, normal.program.surface_normal})
+  for (int16_t r : {normal.program.normal, normal.program.surface_normal, normal.program.coat_normal})
     if (r >= 0 && (mixture.program < 0 || size_t(mixture.program) >= programs_.size() ||
                    !programs_[size_t(mixture.program)].written(r)))
       throw std::invalid_argument("a mixture's normal reads register " + std::to_string(r) + " of shader program " +
@@ -59,6 +59,10 @@ uint32_t Scene::add_mixture(const Mixture& mixture, const MaterialTextures& norm
     textures.program.program = mixture.program;
     textures.program.normal = normal.program.normal;
     textures.program.surface_normal = normal.program.surface_normal;
+  }
+  if (normal.program.coat_normal >= 0) {  // its coats' Coat Normal likewise
+    textures.program.program = mixture.program;
+    textures.program.coat_normal = normal.program.coat_normal;
   }
   textures.alpha = normal.alpha;
   textures.alpha_from_luminance = normal.alpha_from_luminance;

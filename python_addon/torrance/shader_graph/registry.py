@@ -174,8 +174,9 @@ CLOSURES = {
                                 "Cycles of the version); 5.x Thin Wall (a thin slab and "
                                 "translucency, as Cycles 5.x, without the film; shadow rays "
                                 "stop at it); 4.3+ Diffuse Roughness (a value; Cycles' "
-                                "energy-preserving Oren-Nayar). Reported: "
-                                "a linked Clearcoat / Coat Normal inside a mix of shaders",
+                                "energy-preserving Oren-Nayar). In a mix of shaders the first "
+                                "linked Clearcoat / Coat Normal serves all coats; reported: "
+                                "another, different one",
     'ShaderNodeBsdfDiffuse': "rendered: Color, Roughness (Lambert, Cycles' Oren-Nayar; 4.3+: "
                              "its energy-preserving Oren-Nayar), Normal; alone and in Mix/Add "
                              "Shader trees alike",

@@ -111,6 +111,13 @@ class MixtureBsdf {
   }
   Vec3 straight_through(const View& v) const;
 
+  // Principled v2 closures' emission, which Cycles 4.x/5.x darkens by their coat and sheen seen
+  // from the view (Material::emission_under_layers): shade_material keeps it here apart from the
+  // resolved emission (weighted by the closure's mixture weight), layered_emission weighs it for
+  // the view wo about the mixture's coat normal (each closure's sheen leaning by its Coat Weight).
+  void add_layered_emission(const Material& m, const Vec3& weighted_emission);
+  Vec3 layered_emission(const Vec3& wo, const CoatNormal& coat) const;
+
  private:
   // (skip: a closure left out of the sum, -1 none.)
   LobeEval eval_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse = {},
@@ -127,6 +134,14 @@ class MixtureBsdf {
   std::array<float, kMaxMixtureComponents> probabilities_{};  // P_k, normalised after each add
   std::array<float, kMaxMixtureComponents> sampling_{};       // s_k
   int count_ = 0;
+  struct LayeredEmission {
+    Vec3 emission{0.0f};
+    CoatV2 coat;
+    SheenV2 sheen;
+    float coat_weight = 0.0f;
+  };
+  std::array<LayeredEmission, kMaxMixtureComponents> layered_;
+  int layered_count_ = 0;
 };
 
 // What the integrator shades with at a hit on material `id`: its BSDF (a single MaterialBsdf for

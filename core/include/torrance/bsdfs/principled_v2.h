@@ -106,6 +106,7 @@ class PrincipledV2Bsdf : public lobe_mixture::Queries<PrincipledV2Bsdf> {
   // view at cos_coat to the coat's normal and cos_sheen to the sheen's: the coat's base_weight
   // times the sheen's keep (1 without them), as the layers under them.
   static Vec3 emission_weight(const Material& m, float cos_coat, float cos_sheen);
+  static Vec3 emission_weight(const CoatV2& coat, const SheenV2& sheen, float cos_coat, float cos_sheen);
   float coat_alpha() const { return coat_.alpha(); }
 
   // What eval, pdf and sample need of wo alone (lobe_mixture.h), prepared once per shading point.
