@@ -33,6 +33,13 @@ void look_down_orthographic(Scene& scene) {
 const float kQuad[] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
 const int64_t kTriangles[] = {0, 1, 2, 0, 2, 3};
 
+// The quad as a world-space mesh of a default material; its mesh id.
+uint32_t add_quad_mesh(Scene& scene) {
+  const int64_t m = scene.add_material(Material{});
+  const int64_t mats[] = {m, m};
+  return scene.add_mesh(kQuad, 4, kTriangles, 2, nullptr, mats);
+}
+
 RenderSettings vector_render() {
   RenderSettings s;
   s.width = s.height = kSize;
@@ -72,9 +79,7 @@ void expect_vectors(const RenderResult& r, const glm::vec4& inside) {
 
 TEST(VectorPass, AMovingMeshInPixelsYUp) {
   Scene scene;
-  const uint32_t m = scene.add_material(Material{});
-  const int64_t mats[] = {m, m};
-  const uint32_t mesh = scene.add_mesh(kQuad, 4, kTriangles, 2, nullptr, mats);
+  const uint32_t mesh = add_quad_mesh(scene);
   look_down_orthographic(scene);
   scene.set_frame_motion_camera(translation(0, 0, 10), translation(0, 0, 10));
   // One frame before 0.5 m to the left (-X), one after 0.5 m right and 0.25 m up (+Y).
@@ -163,9 +168,7 @@ TEST(VectorPass, AMovingStrand) {
 
 TEST(VectorPass, ZeroWithoutTheCamerasNeighbouringFrames) {
   Scene scene;
-  const uint32_t m = scene.add_material(Material{});
-  const int64_t mats[] = {m, m};
-  const uint32_t mesh = scene.add_mesh(kQuad, 4, kTriangles, 2, nullptr, mats);
+  const uint32_t mesh = add_quad_mesh(scene);
   look_down_orthographic(scene);
   std::array<float, 12> moved;
   for (int i = 0; i < 12; ++i) moved[size_t(i)] = kQuad[i] + (i % 3 == 0 ? 0.5f : 0.0f);
@@ -175,9 +178,7 @@ TEST(VectorPass, ZeroWithoutTheCamerasNeighbouringFrames) {
 
 TEST(VectorPass, BadNeighbouringFramesAreRejected) {
   Scene scene;
-  const uint32_t m = scene.add_material(Material{});
-  const int64_t mats[] = {m, m};
-  const uint32_t mesh = scene.add_mesh(kQuad, 4, kTriangles, 2, nullptr, mats);
+  const uint32_t mesh = add_quad_mesh(scene);
   std::array<float, 12> bad;
   std::copy(std::begin(kQuad), std::end(kQuad), bad.begin());
   bad[4] = std::nanf("");
