@@ -38,8 +38,8 @@ def color3(value, fallback):
 def sanitize(m):
     """Keep values in the ranges the core accepts; drop textures that can not matter."""
     m['base_color'] = tuple(clamp(c, 0.0, 1.0) for c in m['base_color'])
-    m['emission'] = tuple(max(0.0, c) for c in m['emission'])
-    m['emission_strength'] = max(0.0, m['emission_strength'])
+    # Emission stays signed: Cycles takes Color x Strength as it is (a negative one takes light
+    # away, light-sampled by its magnitude).
     if m.get('emission_texture', -1) >= 0 or m.get('emission_register', -1) >= 0:
         # The texture (or program) replaces the Emission colour; the core multiplies it by the
         # strength.
@@ -47,7 +47,7 @@ def sanitize(m):
             m['emission_texture'] = -1
             m['emission_register'] = -1
             m['emission'] = (0.0, 0.0, 0.0)
-    elif m['emission_strength'] == 0.0 or max(m['emission']) == 0.0:
+    elif m['emission_strength'] == 0.0 or not any(m['emission']):
         m['emission'] = (0.0, 0.0, 0.0)
         m['emission_strength'] = 0.0
     return m

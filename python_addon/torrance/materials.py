@@ -529,8 +529,8 @@ def emits(m):
         return any(emits(args) for _kind, args, _terms in m['mixture']['closures'])
     strength = m.get("emission_strength", 0.0)
     color = m.get("emission", (0.0, 0.0, 0.0))
-    return strength > 0.0 and (max(color) > 0.0 or m.get("emission_texture", -1) >= 0
-                                or m.get("emission_register", -1) >= 0)
+    return strength != 0.0 and (any(color) or m.get("emission_texture", -1) >= 0
+                                 or m.get("emission_register", -1) >= 0)
 
 
 class MeshNeeds(NamedTuple):

@@ -520,7 +520,7 @@ class PathTracer {
     v.wo = v.at.frame.to_local(v.wo_world);
     v.view = v.bsdf->at(v.wo, v.at.backfacing, v.at.diffuse, v.at.coat);
     // Principled v2's emission under its coat and sheen, as Cycles 4.x (Scene::emission_at likewise).
-    if (v.material.emission_under_layers && !v.mixture && max_component(v.material.emission) > 0.0f)
+    if (v.material.emission_under_layers && !v.mixture && max_component(glm::abs(v.material.emission)) > 0.0f)
       v.material.emission *= PrincipledV2Bsdf::emission_weight(
           v.material, v.at.coat.cosine(v.wo), v.at.coat.sheen_normal(v.material.coat_weight).cosine(v.wo));
     if constexpr (kMixtures) {  // a mixture's Principled v2 closures' likewise

@@ -26,7 +26,7 @@ bool plain_surface(const Scene& scene, uint32_t m) {
   const Material& material = scene.material(m);
   const MaterialTextures& textures = scene.material_textures(m);
   return !scene.mixture(m) && !textures.any() && textures.alpha < 0 && material.alpha >= 1.0f &&
-         !(max_component(material.emission) > 0.0f);
+         !(max_component(glm::abs(material.emission)) > 0.0f);
 }
 
 }  // namespace

@@ -130,7 +130,8 @@ void Scene::apply_textures(uint32_t id, const ShaderGlobals& g, Material& m, glm
   if (t.base_color >= 0) m.base_color = glm::clamp(Vec3(textures_[t.base_color]->lookup(uv, footprint)), Vec3(0.0f), Vec3(1.0f));
   if (t.metallic >= 0) m.metallic = clamp01(blender_luminance(Vec3(textures_[t.metallic]->lookup(uv, footprint))));
   if (t.roughness >= 0) m.roughness = clamp01(blender_luminance(Vec3(textures_[t.roughness]->lookup(uv, footprint))));
-  if (t.emission >= 0) m.emission = glm::max(Vec3(textures_[t.emission]->lookup(uv, footprint)), Vec3(0.0f)) * t.emission_strength;
+  // Emission as Cycles' closure weight: Color x Strength, signed (negative emission takes light away).
+  if (t.emission >= 0) m.emission = Vec3(textures_[t.emission]->lookup(uv, footprint)) * t.emission_strength;
   if (t.program.any()) apply_program(t, g, m, regs);
 }
 
@@ -142,7 +143,7 @@ void Scene::apply_program(const MaterialTextures& t, const ShaderGlobals& g, Mat
   if (o.base_color >= 0) m.base_color = glm::clamp(Vec3(regs[size_t(o.base_color)]), Vec3(0.0f), Vec3(1.0f));
   if (o.metallic >= 0) m.metallic = clamp01(regs[size_t(o.metallic)].x);
   if (o.roughness >= 0) m.roughness = clamp01(regs[size_t(o.roughness)].x);
-  if (o.emission >= 0) m.emission = glm::max(Vec3(regs[size_t(o.emission)]), Vec3(0.0f)) * t.emission_strength;
+  if (o.emission >= 0) m.emission = Vec3(regs[size_t(o.emission)]) * t.emission_strength;  // signed, as Cycles
   if (o.transmission >= 0) m.transmission = clamp01(regs[size_t(o.transmission)].x);
   if (o.coat_weight >= 0) m.coat_weight = std::max(regs[size_t(o.coat_weight)].x, 0.0f);
   if (o.coat_roughness >= 0) m.coat_roughness = clamp01(regs[size_t(o.coat_roughness)].x);
@@ -313,7 +314,6 @@ uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures
   check_material(m);
   Material clean = m;
   clean.base_color = glm::clamp(m.base_color, Vec3(0.0f), Vec3(1.0f));
-  clean.emission = glm::max(m.emission, Vec3(0.0f));
   clean.transparent_color = glm::clamp(m.transparent_color, Vec3(0.0f), Vec3(1.0f));
   materials_.push_back(clean);
   material_textures_.push_back(textures);

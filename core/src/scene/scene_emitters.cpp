@@ -14,13 +14,15 @@ using namespace scene_detail;
 void Scene::build_mesh_light() {
   std::vector<EmissiveTriangle> triangles;
   std::vector<float> power;
-  // Power estimate for choosing among emitters: a textured emission counts as its strength.
+  // Power estimate for choosing among emitters: a textured emission counts as its strength; a
+  // negative emission (light taken away, as Cycles) is sampled by its magnitude.
   // Once per material: the scans below look it up per triangle (10 M triangles: 0.2 s before).
   std::vector<float> material_radiance(materials_.size());
   bool any_emissive = false;
   for (size_t m = 0; m < materials_.size(); ++m) {
     const MaterialTextures& tex = material_textures_[m];
-    material_radiance[m] = tex.textured_emission() ? tex.emission_strength : luminance(materials_[m].emission);
+    material_radiance[m] =
+        tex.textured_emission() ? std::abs(tex.emission_strength) : luminance(glm::abs(materials_[m].emission));
     any_emissive |= material_radiance[m] > 0.0f;
   }
   auto radiance_of = [&material_radiance](uint32_t m) { return material_radiance[m]; };

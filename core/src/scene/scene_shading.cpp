@@ -46,7 +46,8 @@ uint32_t Scene::add_mixture(const Mixture& mixture, const MaterialTextures& norm
   summary.emission = Vec3(0.0f);
   for (const MixtureComponent& c : mixture.components) {
     const MaterialTextures& t = material_textures_[c.material];
-    summary.emission += t.textured_emission() ? Vec3(std::max(t.emission_strength, 0.0f)) : materials_[c.material].emission;
+    summary.emission +=
+        t.textured_emission() ? Vec3(std::abs(t.emission_strength)) : glm::abs(materials_[c.material].emission);
     summary.base_color = glm::max(summary.base_color, materials_[c.material].base_color);
   }
   MaterialTextures textures;

@@ -16,7 +16,8 @@ struct LightSample {
   float pdf = 0.0f;                                         // solid-angle density; 0 for delta lights
   int8_t light_group = -1;  // an emissive triangle's light group (extra_passes.h; Lights::light_group)
   uint8_t emitter_links = 0;  // an emissive triangle's light linking entry (light_linking.h)
-  bool valid() const { return weight.x > 0.0f || weight.y > 0.0f || weight.z > 0.0f; }
+  // Any light at all: a negative emission (Cycles' emission closure has no cut-off) takes light away.
+  bool valid() const { return std::abs(weight.x) > 0.0f || std::abs(weight.y) > 0.0f || std::abs(weight.z) > 0.0f; }
 };
 
 // What a ray from p (shading normal n) along dir sees of one light: its radiance and the
