@@ -111,6 +111,9 @@ class FrameMotionSampler(MotionSampler):
         states = self.states.get(name)
         if not states or len(states) != _NEIGHBOURS or local is None:
             return None
+        centre = states[len(states) // 2][0]
+        if all(np.array_equal(m, centre) for m, _ in states) and all(s is None for _, s in states):
+            return None                      # neither moved nor deforms: nothing to compute
         out = []
         for matrix, step_local in (states[0], states[-1]):
             arrays = world_arrays(step_local, matrix, triangles, keep, len(local.positions))
@@ -122,10 +125,6 @@ class FrameMotionSampler(MotionSampler):
             if arrays is None:
                 return None
             out.append(np.asarray(arrays[0], np.float32))
-        centre = states[len(states) // 2]
-        if all(np.array_equal(m, centre[0]) for m, _ in states) and all(
-                s is None for _, s in states):
-            return None                      # neither moved nor deforms
         return out[0], out[1]
 
 
