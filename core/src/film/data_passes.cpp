@@ -21,7 +21,7 @@ void first_sample_data(const PathContext& ctx, Ray ray, PathRadiance& r) {
     r.depth = ctx.depth_from ? glm::length(hit.position - *ctx.depth_from)
                              : glm::dot(hit.position - ctx.camera_position, ctx.camera_forward);
     r.position = hit.position;
-    r.object_index = hit.object_pass_index;
+    r.object_index = hit.object_settings.pass_index;
     r.material_index = ctx.scene.material_pass_index(hit.material);
     if (!(threshold > 0.0f) || passed >= ctx.settings.max_transparent_bounces) return;
     state.transparent_depth = uint8_t(std::min(passed, 255));

@@ -273,7 +273,7 @@ class PathTracer {
   // This path goes on with the catcher as an ordinary object; the integrator traces the
   // catcher-only half and the film files the light from before the split as the matte's.
   void meet_catcher(const SurfaceHit& hit) {
-    if (!hit.shadow_catcher || hit.object_holdout || out_.catcher.split) return;
+    if (!hit.object_settings.shadow_catcher || hit.object_settings.holdout || out_.catcher.split) return;
     out_.catcher.split = true;
     out_.catcher.throughput = throughput_;
     out_.catcher.alpha_at_split = out_.alpha;
@@ -304,12 +304,12 @@ class PathTracer {
       if (bounce == 0 && !again && ctx_.scene.has_holdouts()) {
         holdout_weight = ctx_.scene.holdout(hit, ray_.dir, at, opacity);
         out_.alpha -= holdout_weight * (throughput_.x + throughput_.y + throughput_.z) / 3.0f;
-        held_out = hit.object_holdout || holdout_weight >= 1.0f;
+        held_out = hit.object_settings.holdout || holdout_weight >= 1.0f;
       }
       // Cryptomatte: every surface the camera ray meets, weighted by what it leaves of it
       // (Cycles: none of a fully held-out one).
       if (bounce == 0 && !again && cryptomatte_ && holdout_weight < 1.0f)
-        out_.cryptomatte.add(hit.cryptomatte_object, hit.material,
+        out_.cryptomatte.add(hit.object_settings.cryptomatte, hit.material,
                              (throughput_.x + throughput_.y + throughput_.z) / 3.0f * opacity);
       if (opacity >= 1.0f || sampler_.next_4d().x < opacity) {  // the vertex below records it
         if (held_out) return false;
@@ -399,7 +399,7 @@ class PathTracer {
     float t_near = glm::length(hit.position - last_.ray_origin);
     uint64_t passed = 0;
     for (int surfaces = 0; surfaces < kMaxShadowLinkedSurfaces; ++surfaces) {
-      passed |= uint64_t(1) << (hit.blocker_set & 63u);
+      passed |= uint64_t(1) << (hit.object_settings.blocker_set & 63u);
       if (!links.shadow_linked_past(passed)) break;
       Ray next;
       next.origin = offset_origin(hit.position, hit.geometric_normal, dir);
@@ -410,7 +410,7 @@ class PathTracer {
       e += lights_.shadow_linked_along_ray(last_.ray_origin, last_.normal, dir, t_near, t_far, passed,
                                            last_.receiver_set, light_groups_ ? by_group.data() : nullptr);
       if (!found) break;
-      const uint8_t entry = behind.emitter_links;
+      const uint8_t entry = behind.object_settings.emitter_links;
       if (behind.emitter >= 0 && links.shadow_linked(entry) && !(links.shadow_sets(entry) & passed) &&
           links.lights(entry, last_.receiver_set)) {
         ShaderGlobals g = shader_globals(behind, dir, 0.0f);
@@ -418,7 +418,7 @@ class PathTracer {
         g.tracer = &ctx_.scene;
         const Vec3 emitted = ctx_.scene.emission_at(behind.material, g);
         e += emitted;
-        if (light_groups_ && behind.light_group >= 0) by_group[size_t(behind.light_group)] += emitted;
+        if (light_groups_ && behind.object_settings.light_group >= 0) by_group[size_t(behind.object_settings.light_group)] += emitted;
       }
       hit = behind;
       t_near = t_far;
@@ -544,7 +544,7 @@ class PathTracer {
   void first_surface_passes(const Vertex& v) {
     const SurfaceHit& hit = *v.hit;
     if (!kAlpha && extra_.writes_aovs()) add_aovs(ctx_.scene, hit, ray_.dir, path_state_, 0.0f, out_.extras);
-    if (!kAlpha && cryptomatte_) out_.cryptomatte.add(hit.cryptomatte_object, hit.material, 1.0f);
+    if (!kAlpha && cryptomatte_) out_.cryptomatte.add(hit.object_settings.cryptomatte, hit.material, 1.0f);
     if (!surface_data_done_ && first_opacity_ >= ctx_.settings.pass_alpha_threshold) {
       out_.normal = v.at.ns;
       out_.uv = hit.has_uv ? Vec3(hit.uv.x, hit.uv.y, 1.0f) : Vec3(0.0f);
@@ -570,15 +570,15 @@ class PathTracer {
     out_.emission += e;  // after the media's in front of it (kMedia), else from 0
     features_.light(e, out_);
     path_luminance_ += luminance(e);
-    if (light_groups_) credit(v.hit->light_group, e);
+    if (light_groups_) credit(v.hit->object_settings.light_group, e);
   }
 
   // An emissive triangle found by BSDF sampling: MIS against NEE's choice of it.
   void emitter_found(const Vertex& v, int bounce) {
     const SurfaceHit& hit = *v.hit;
     if (const LightLinks& links = lights_.links(); links.any()) {  // light_linking.h
-      if (!links.lights(hit.emitter_links, last_.receiver_set) ||
-          (!last_.delta && links.shadow_linked(hit.emitter_links)))
+      if (!links.lights(hit.object_settings.emitter_links, last_.receiver_set) ||
+          (!last_.delta && links.shadow_linked(hit.object_settings.emitter_links)))
         return;
     }
     float mis = 1.0f;
@@ -588,7 +588,7 @@ class PathTracer {
     const Vec3 e = throughput_ * v.material.emission * mis;
     features_.light(e * clamp_scale(e / branch_weight_, bounce == 1), out_);
     const Vec3 arrived = deposit(e, bounce == 1);
-    if (light_groups_) credit(hit.light_group, arrived);
+    if (light_groups_) credit(hit.object_settings.light_group, arrived);
   }
 
   // Cycles' denoising features at this surface.
@@ -647,7 +647,7 @@ class PathTracer {
     uint64_t shadow_sets = kAllLinkSets;  // light linking (light_linking.h): of the chosen emitter
     if (const LightLinks& links = lights_.links(); links.any()) {
       const uint8_t entry = lights_.link_entry(index, ls);
-      if (!links.lights(entry, v.hit->receiver_set)) return;
+      if (!links.lights(entry, v.hit->object_settings.receiver_set)) return;
       shadow_sets = links.shadow_sets(entry);
     }
     LobeEval f = v.bsdf->template eval_lobes<kGlass>(v.view, wi);
@@ -772,7 +772,7 @@ class PathTracer {
     ray_.origin = offset_origin(v.hit->position, v.at.ng, wi_world);
     last_ = ScatterVertex{ray_.origin,  v.hit->position, v.at.ns,       v.hit->material,
                           guide && !bs.is_delta ? bsdf_pdf : bs.pdf, bs.is_delta, v.transmits,
-                          v.hit->receiver_set,  vertex_weight};
+                          v.hit->object_settings.receiver_set,  vertex_weight};
     run_ = 0.0f;
     ray_.dir = wi_world;
     ray_.tmin = 0.0f;

@@ -96,7 +96,7 @@ inline Vec3 linked_shadow_transmittance(const Scene& scene, const Vec3& p, const
   for (int passed = 0; ray.tmax > 0.0f;) {
     SurfaceHit hit;
     if (!scene.intersect(ray, hit)) break;
-    if (blocks_shadow(shadow_sets, hit.blocker_set)) {
+    if (blocks_shadow(shadow_sets, hit.object_settings.blocker_set)) {
       if (!through_transparent_surface(scene, hit, ray.dir, receiver, passed++, travelled, max_transparent,
                                        transmittance) ||
           !(max_component(transmittance) > 0.0f))

@@ -30,9 +30,9 @@ void Scene::build_mesh_light() {
     EmissiveTriangle e;
     e.owner = owner;
     e.prim = prim;
-    e.light_group = owner & kInstanceBit ? instances_[owner & ~kInstanceBit].light_group : meshes_[owner]->light_group;
+    e.light_group = owner & kInstanceBit ? instances_[owner & ~kInstanceBit].settings.light_group : meshes_[owner]->settings.light_group;
     e.emitter_links =
-        owner & kInstanceBit ? instances_[owner & ~kInstanceBit].emitter_links : meshes_[owner]->emitter_links;
+        owner & kInstanceBit ? instances_[owner & ~kInstanceBit].settings.emitter_links : meshes_[owner]->settings.emitter_links;
     e.mirrored = mirrored;
     e.moving = owner & kInstanceBit ? instances_[owner & ~kInstanceBit].motion.size() > 1
                                     : meshes_[owner]->motion_steps > 1;

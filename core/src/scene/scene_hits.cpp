@@ -53,14 +53,7 @@ void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const 
                      mesh.triangles[prim], prim, c);
     hit.material = mesh.material_ids[prim];
     hit.emitter = mesh.emitter_index.empty() ? -1 : mesh.emitter_index[prim];
-    hit.object_pass_index = mesh.pass_index;
-    hit.object_holdout = mesh.holdout;
-    hit.shadow_catcher = mesh.shadow_catcher;
-    hit.light_group = mesh.light_group;
-    hit.receiver_set = mesh.receiver_set;
-    hit.blocker_set = mesh.blocker_set;
-    hit.emitter_links = mesh.emitter_links;
-    hit.cryptomatte_object = mesh.cryptomatte;
+    hit.object_settings = mesh.settings;
   } else {
     const Instance& inst = instances_[owner & ~kInstanceBit];
     const Binding& b = bindings_[inst.binding];
@@ -73,14 +66,7 @@ void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const 
     if (mirrored) std::swap(u, v);
     hit.material = b.material(mesh.material_ids[prim]);
     hit.emitter = inst.emitter_base >= 0 && b.emitter_rank[prim] >= 0 ? inst.emitter_base + b.emitter_rank[prim] : -1;
-    hit.object_pass_index = inst.pass_index;
-    hit.object_holdout = inst.holdout;
-    hit.shadow_catcher = inst.shadow_catcher;
-    hit.light_group = inst.light_group;
-    hit.receiver_set = inst.receiver_set;
-    hit.blocker_set = inst.blocker_set;
-    hit.emitter_links = inst.emitter_links;
-    hit.cryptomatte_object = inst.cryptomatte;
+    hit.object_settings = inst.settings;
     const size_t layers = instance_constant_ids_.size(), first = size_t(owner & ~kInstanceBit) * layers;
     if (layers > 0 && first + layers <= instance_constants_.size()) {
       hit.instance_constants = &instance_constants_[first];

@@ -28,12 +28,7 @@ struct Scene::Mesh {
   std::vector<Vec3> corner_attributes;
   std::vector<int32_t> attribute_ids;
   std::vector<int32_t> emitter_index;  // per triangle: index in the mesh light, or -1
-  float pass_index = 0.0f;             // Blender's object pass index (of a mesh from add_mesh)
-  bool holdout = false;                // a holdout object (of a mesh from add_mesh)
-  bool shadow_catcher = false;         // a shadow catcher (of a mesh from add_mesh)
-  int8_t light_group = -1;             // its light group (extra_passes.h), -1: none
-  uint8_t receiver_set = 0, blocker_set = 0, emitter_links = 0;  // light linking (light_linking.h)
-  int32_t cryptomatte = -1;            // its Cryptomatte entry (film/cryptomatte.h), -1: none
+  ObjectSettings settings;             // of a mesh from add_mesh (scene/object_settings.h)
   // Motion blur (Scene::set_mesh_motion): motion_steps >= 2 world-space positions per vertex,
   // step s's at [s * positions.size(), ...) (one vertex of spare capacity for Embree), evenly
   // over the shutter's time [0, 1], and the corner normals the same way (empty: none); 0: static.
@@ -79,12 +74,7 @@ struct Scene::Instance {
   uint32_t geometry = scene_detail::kNoGeometry;  // Embree geometry id in the top-level scene
   int32_t emitter_base = -1;        // mesh-light index of its first emissive triangle, or -1
   bool hidden = false;              // singular transform: disabled in Embree
-  float pass_index = 0.0f;          // Blender's object pass index
-  bool holdout = false;             // a holdout object
-  bool shadow_catcher = false;      // a shadow catcher
-  int8_t light_group = -1;          // its light group (extra_passes.h), -1: none
-  uint8_t receiver_set = 0, blocker_set = 0, emitter_links = 0;  // light linking (light_linking.h)
-  int32_t cryptomatte = -1;         // its Cryptomatte entry (film/cryptomatte.h), -1: none
+  ObjectSettings settings;          // scene/object_settings.h
   // Motion blur (Scene::set_instance_motion): its transforms at time steps evenly over the
   // shutter (empty: it stays at `transform`).
   std::vector<std::array<float, 12>> motion;

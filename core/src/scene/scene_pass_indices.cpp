@@ -13,7 +13,7 @@ void Scene::set_mesh_pass_index(uint32_t mesh, float index) {
   std::lock_guard<std::mutex> lock(mutex_);
   check_idle("set a mesh's pass index");
   if (mesh >= meshes_.size()) throw std::invalid_argument("mesh " + std::to_string(mesh) + " does not exist");
-  meshes_[mesh]->pass_index = index;
+  meshes_[mesh]->settings.pass_index = index;
 }
 
 void Scene::set_instance_pass_indices(const int64_t* ids, size_t count, const float* values) {
@@ -22,7 +22,7 @@ void Scene::set_instance_pass_indices(const int64_t* ids, size_t count, const fl
   for (size_t i = 0; i < count; ++i)
     if (ids[i] < 0 || size_t(ids[i]) >= instances_.size())
       throw std::invalid_argument("instance " + std::to_string(ids[i]) + " does not exist");
-  for (size_t i = 0; i < count; ++i) instances_[size_t(ids[i])].pass_index = values[i];
+  for (size_t i = 0; i < count; ++i) instances_[size_t(ids[i])].settings.pass_index = values[i];
 }
 
 void Scene::set_material_pass_indices(const float* values, size_t count) {
@@ -35,7 +35,7 @@ void Scene::set_mesh_holdout(uint32_t mesh, bool holdout) {
   std::lock_guard<std::mutex> lock(mutex_);
   check_idle("set a mesh's holdout");
   if (mesh >= meshes_.size()) throw std::invalid_argument("mesh " + std::to_string(mesh) + " does not exist");
-  meshes_[mesh]->holdout = holdout;
+  meshes_[mesh]->settings.holdout = holdout;
   object_holdouts_ = object_holdouts_ || holdout;
 }
 
@@ -45,7 +45,7 @@ void Scene::set_instance_holdouts(const int64_t* ids, size_t count, bool holdout
   for (size_t i = 0; i < count; ++i)
     if (ids[i] < 0 || size_t(ids[i]) >= instances_.size())
       throw std::invalid_argument("instance " + std::to_string(ids[i]) + " does not exist");
-  for (size_t i = 0; i < count; ++i) instances_[size_t(ids[i])].holdout = holdout;
+  for (size_t i = 0; i < count; ++i) instances_[size_t(ids[i])].settings.holdout = holdout;
   object_holdouts_ = object_holdouts_ || (holdout && count > 0);
 }
 
@@ -61,7 +61,7 @@ void Scene::set_mesh_light_group(uint32_t mesh, int group) {
   std::lock_guard<std::mutex> lock(mutex_);
   check_idle("set a mesh's light group");
   if (mesh >= meshes_.size()) throw std::invalid_argument("mesh " + std::to_string(mesh) + " does not exist");
-  meshes_[mesh]->light_group = checked_group(group, extra_passes_);
+  meshes_[mesh]->settings.light_group = checked_group(group, extra_passes_);
   emitters_dirty_ = true;
 }
 
@@ -72,7 +72,7 @@ void Scene::set_instance_light_groups(const int64_t* ids, size_t count, int grou
   for (size_t i = 0; i < count; ++i)
     if (ids[i] < 0 || size_t(ids[i]) >= instances_.size())
       throw std::invalid_argument("instance " + std::to_string(ids[i]) + " does not exist");
-  for (size_t i = 0; i < count; ++i) instances_[size_t(ids[i])].light_group = g;
+  for (size_t i = 0; i < count; ++i) instances_[size_t(ids[i])].settings.light_group = g;
   emitters_dirty_ = true;
 }
 
@@ -81,9 +81,9 @@ void Scene::set_mesh_light_linking(uint32_t mesh, int receiver_set, int blocker_
   check_idle("set a mesh's light linking");
   if (mesh >= meshes_.size()) throw std::invalid_argument("mesh " + std::to_string(mesh) + " does not exist");
   Mesh& m = *meshes_[mesh];
-  m.receiver_set = LightLinks::checked_set(receiver_set);
-  m.blocker_set = LightLinks::checked_set(blocker_set);
-  m.emitter_links = LightLinks::checked_entry(emitter_entry, 255);
+  m.settings.receiver_set = LightLinks::checked_set(receiver_set);
+  m.settings.blocker_set = LightLinks::checked_set(blocker_set);
+  m.settings.emitter_links = LightLinks::checked_entry(emitter_entry, 255);
   emitters_dirty_ = true;
 }
 
@@ -98,9 +98,9 @@ void Scene::set_instance_light_linking(const int64_t* ids, size_t count, int rec
       throw std::invalid_argument("instance " + std::to_string(ids[i]) + " does not exist");
   for (size_t i = 0; i < count; ++i) {
     Instance& inst = instances_[size_t(ids[i])];
-    inst.receiver_set = receiver;
-    inst.blocker_set = blocker;
-    inst.emitter_links = entry;
+    inst.settings.receiver_set = receiver;
+    inst.settings.blocker_set = blocker;
+    inst.settings.emitter_links = entry;
   }
   emitters_dirty_ = true;
 }
@@ -109,7 +109,7 @@ void Scene::set_mesh_cryptomatte(uint32_t mesh, int32_t entry) {
   std::lock_guard<std::mutex> lock(mutex_);
   check_idle("set a mesh's Cryptomatte entry");
   if (mesh >= meshes_.size()) throw std::invalid_argument("mesh " + std::to_string(mesh) + " does not exist");
-  meshes_[mesh]->cryptomatte = entry;
+  meshes_[mesh]->settings.cryptomatte = entry;
 }
 
 void Scene::set_instance_cryptomatte(const int64_t* ids, size_t count, int32_t entry) {
@@ -118,7 +118,7 @@ void Scene::set_instance_cryptomatte(const int64_t* ids, size_t count, int32_t e
   for (size_t i = 0; i < count; ++i)
     if (ids[i] < 0 || size_t(ids[i]) >= instances_.size())
       throw std::invalid_argument("instance " + std::to_string(ids[i]) + " does not exist");
-  for (size_t i = 0; i < count; ++i) instances_[size_t(ids[i])].cryptomatte = entry;
+  for (size_t i = 0; i < count; ++i) instances_[size_t(ids[i])].settings.cryptomatte = entry;
 }
 
 }  // namespace torrance

@@ -141,7 +141,7 @@ float Scene::opacity(const SurfaceHit& hit, const Vec3& dir, const PathState& se
 }
 
 float Scene::holdout(const SurfaceHit& hit, const Vec3& dir, const PathState& seen_by, float opacity) const {
-  if (hit.object_holdout) return opacity;  // every closure but the transparent ones held out
+  if (hit.object_settings.holdout) return opacity;  // every closure but the transparent ones held out
   const Mixture* m = mixture(hit.material);
   if (!m || !m->holdout()) return 0.0f;
   ShaderGlobals g = shader_globals(hit, dir, 0.0f);

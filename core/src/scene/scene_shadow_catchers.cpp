@@ -15,7 +15,7 @@ void Scene::set_mesh_shadow_catcher(uint32_t mesh, bool catcher) {
   std::lock_guard<std::mutex> lock(mutex_);
   check_idle("set a mesh's shadow catcher");
   if (mesh >= meshes_.size()) throw std::invalid_argument("mesh " + std::to_string(mesh) + " does not exist");
-  meshes_[mesh]->shadow_catcher = catcher;
+  meshes_[mesh]->settings.shadow_catcher = catcher;
   shadow_catchers_ = shadow_catchers_ || catcher;
   catcher_masks_dirty_ = shadow_catchers_;
 }
@@ -26,7 +26,7 @@ void Scene::set_instance_shadow_catchers(const int64_t* ids, size_t count, bool 
   for (size_t i = 0; i < count; ++i)
     if (ids[i] < 0 || size_t(ids[i]) >= instances_.size())
       throw std::invalid_argument("instance " + std::to_string(ids[i]) + " does not exist");
-  for (size_t i = 0; i < count; ++i) instances_[size_t(ids[i])].shadow_catcher = catcher;
+  for (size_t i = 0; i < count; ++i) instances_[size_t(ids[i])].settings.shadow_catcher = catcher;
   shadow_catchers_ = shadow_catchers_ || (catcher && count > 0);
   catcher_masks_dirty_ = shadow_catchers_;
 }
@@ -39,8 +39,8 @@ void Scene::apply_catcher_masks() {
     const uint32_t owner = geometry_owner_[id];
     if (owner == kNoOwner) continue;
     bool catcher = false;
-    if (owner & kInstanceBit) catcher = instances_[owner & ~kInstanceBit].shadow_catcher;
-    else if (!(owner & kCurvesBit)) catcher = meshes_[owner]->shadow_catcher;
+    if (owner & kInstanceBit) catcher = instances_[owner & ~kInstanceBit].settings.shadow_catcher;
+    else if (!(owner & kCurvesBit)) catcher = meshes_[owner]->settings.shadow_catcher;
     RTCGeometry geom = rtcGetGeometry(scene, id);
     rtcSetGeometryMask(geom, catcher ? 0xFFFFFFFFu : kOrdinaryMask);
     rtcCommitGeometry(geom);

@@ -10,6 +10,7 @@
 #include "torrance/film/cryptomatte.h"
 #include "torrance/film/extra_passes.h"
 #include "torrance/scene/frame_motion.h"
+#include "torrance/scene/object_settings.h"
 #include "torrance/lights/lights.h"
 #include "torrance/bsdfs/mixture.h"
 #include "torrance/media/scene_media.h"
@@ -64,14 +65,7 @@ struct SurfaceHit {
   int32_t emitter = -1;       // index among the emissive triangles (Lights' mesh light), or -1
   Vec2 uv{0.0f};              // interpolated corner UVs (0 without UVs)
   bool has_uv = false;        // the mesh has UVs (the UV pass: (u, v, 1), else 0)
-  float object_pass_index = 0.0f;  // the object's Blender pass index (Scene::set_mesh_pass_index)
-  bool object_holdout = false;     // the object is a holdout (Scene::set_mesh_holdout)
-  bool shadow_catcher = false;     // the object is a shadow catcher (Scene::set_mesh_shadow_catcher)
-  int8_t light_group = -1;         // the object's light group (Scene::set_mesh_light_group), -1: none
-  // Light linking (lights/light_linking.h; Scene::set_mesh_light_linking): the object's receiver
-  // and blocker sets, and its entry of the emitter table (0: unlinked).
-  uint8_t receiver_set = 0, blocker_set = 0, emitter_links = 0;
-  int32_t cryptomatte_object = -1;  // the object's Cryptomatte entry (Scene::set_mesh_cryptomatte), -1: none
+  ObjectSettings object_settings;  // its object's (scene/object_settings.h)
   Vec3 tangent{0.0f};         // unit dP/du from the triangle's UVs (0 without usable UVs)
   float uv_per_metre = 0.0f;  // how fast UVs change across the triangle (sqrt of UV area / area)
   float bitangent_sign = 1.0f;
