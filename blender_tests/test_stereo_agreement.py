@@ -13,8 +13,10 @@ and 3 must lie within them, and each deliberate fault must fail them:
 * Stereo 3D, Toe-in: the view never made active.
 * Stereo 3D, Off-Axis, the camera moving sideways under motion blur: the right eye given the
   left eye's motion.
-* Multi-View with a camera per view (suffixes _L and _R; the right camera higher and turned):
-  every view from the scene camera.
+* Multi-View with a camera per view (suffixes _L and _R; the right camera higher and turned,
+  and under motion blur swinging to the right and back while the left one stands still, so
+  that its blurred image sits 0.13 m right of its sharp one): every view from the scene camera;
+  the right camera's motion left out.
 * Spherical Stereo (each ray's own eye, Cycles' spherical stereo) of the perspective camera,
   converging at 3 m: the eyes ignored (both views the centre camera's); the eyes swapped.
 * Spherical Stereo of an equirectangular panorama with Pole Merge (60..75 degrees), the eyes
@@ -119,10 +121,15 @@ def moving_camera(scene):
 
 
 def camera_per_view(scene):
+    """Multi-View, the right view's camera at 0.15 m at frame 1 and 0.4 m at the shutter's ends."""
     scene.render.views_format = 'MULTIVIEW'
-    scene.render.use_motion_blur = False
+    scene.render.use_motion_blur = True
+    scene.render.motion_blur_shutter = 1.0
     scene.camera.animation_data_clear()
     scene.camera.location = (0.0, -6.0, 1.6)
+    linear_keys(bpy.data.objects["Cam_R"], "location",
+                ((0.65, -6.0, 2.1), (0.15, -6.0, 2.1), (0.65, -6.0, 2.1)), frames=(0, 1, 2))
+    scene.frame_set(1)
 
 
 # Faults
@@ -138,7 +145,11 @@ def shift_ignored(original):
 
 
 def first_eye_motion(_original):
-    return lambda self, cam_obj: self.stats.camera_motion
+    return lambda self, cam_obj: self.stats.camera_motion[self.first_camera]
+
+
+def other_cameras_still(_original):
+    return lambda engine, depsgraph, views: []
 
 
 def scene_camera_only(_original):
@@ -184,7 +195,9 @@ def variants():
            first_eye_motion),)),
         ("Multi-View, a camera per view", camera_per_view,
          (("the scene camera for every view", multiview, "camera_object",
-           scene_camera_only),)),
+           scene_camera_only),
+          ("the right camera's motion left out", multiview, "other_view_cameras",
+           other_cameras_still))),
     )
 
 

@@ -15,11 +15,13 @@ objects' vectors):
   and are 0 on the sky;
 * the same with an equirectangular panoramic camera (the Vector pass through
   direction_to_panorama; the fisheyes are left out: Cycles 3.4-4.x mirror their u);
+* the same in both views of a Multi-View render whose right view has a camera of its own that
+  moves otherwise (its own neighbouring frames);
 * with Motion Blur on the pass is there and 0, as Cycles'.
 
 Faults that must fail: the camera's neighbouring frames ignored, the sphere's deformation
 ignored, the instances' or the hair's neighbouring frames not given, and the previous and next
-frames swapped.
+frames swapped; in Multi-View, the right view's camera left standing still.
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_vector_pass_agreement.py
@@ -139,8 +141,8 @@ def faults():
     import torrance.export.scene as export_scene
 
     def camera_still(original):
-        def export(self, tc_scene, camera):
-            original(self, tc_scene, camera)
+        def export(self, tc_scene, camera, view_cameras=()):
+            original(self, tc_scene, camera, view_cameras)
             now = self.states[camera.name][1][0]
             tc_scene.set_frame_motion_camera(now, now)
         return export
@@ -155,6 +157,48 @@ def faults():
              lambda _original: lambda self, tc_scene: None),
             ("previous and next frames swapped", frame_motion.FrameMotionSampler, "offsets",
              lambda _original: lambda self, steps: [1.0, 0.0, -1.0]))
+
+
+def multi_view(scene, d):
+    """Both views of a Multi-View render: the scene camera as the left view's (Cam_L) and a copy
+    (Cam_R) moving and turning the other way; what fails, with the right camera's neighbouring
+    frames left out as the fault. The geometry-nodes cubes are hidden: Cycles 3.4 leaves them
+    out of its second view."""
+    import torrance.multiview as multiview
+
+    from torrance_tools.render_passes import render_view_passes, replaced
+    left = scene.camera
+    left.name = "Cam_L"
+    right = left.copy()
+    right.animation_data_clear()
+    scene.collection.objects.link(right)
+    right.name = "Cam_R"
+    start = np.array(left.rotation_euler)
+    linear_keys(right, "location", [(0.5, -7.0, 1.8), (-0.2, -6.6, 1.6)])
+    linear_keys(right, "rotation_euler", [tuple(start), tuple(start + (-0.02, 0.0, -0.06))])
+    bpy.data.objects["Cubes"].hide_render = True
+    rd = scene.render
+    rd.use_multiview, rd.views_format = True, 'MULTIVIEW'
+    rd.views["left"].camera_suffix, rd.views["right"].camera_suffix = "_L", "_R"
+    scene.frame_set(1)
+
+    def views(setup, seed, name):
+        setup(scene, SAMPLES, BOUNCES, seed=seed)
+        return render_view_passes(scene, d, name)
+
+    ref, other = (views(setup_cycles, seed, f"mv_cycles{seed}") for seed in (0, 1))
+    ours = [views(setup_torrance, seed, f"mv_torrance{seed}") for seed in (2, 3)]
+    bad = [f"Multi-View {view}: {b}" for k, view in enumerate(("left", "right"))
+           for b in failures([o[k] for o in ours], ref[k], other[k], f"MV {view:5s}")]
+    with replaced(multiview, "other_view_cameras", lambda _original: lambda *args: []):
+        fault = views(setup_torrance, 2, "mv_fault")
+    caught = failures([fault[1]], ref[1], other[1], "fault")
+    print(f"  fault 'the right view's camera still': {'caught' if caught else 'NOT caught'}")
+    if not caught:
+        bad.append("fault 'the right view's camera still' passes")
+    rd.use_multiview = False
+    bpy.data.objects["Cubes"].hide_render = False
+    return bad
 
 
 def main():
@@ -191,6 +235,8 @@ def main():
     pano_ours = [render(scene, d, setup_torrance, seed, f"pano_torrance{seed}") for seed in (2, 3)]
     bad += [f"equirectangular: {b}" for b in failures(pano_ours, pano[0], pano[1], "Pano")]
     cam.type = 'PERSP'
+
+    bad += multi_view(scene, d)
 
     # Motion blur on: the pass is there, and 0.
     scene.render.use_motion_blur = True

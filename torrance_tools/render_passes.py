@@ -134,6 +134,26 @@ def render_passes(scene, directory, name):
     return read_layers(path)
 
 
+def render_view_passes(scene, directory, name):
+    """Renders a Multi-View scene with its engine (F12); each view's passes, from the multilayer
+    EXR Blender writes per view (name + the view's file suffix), in the result's order."""
+    import bpy
+    from torrance.blender_versions import set_multilayer_exr
+
+    from torrance_tools.render_settings import rendered_views
+    settings = scene.render.image_settings
+    set_multilayer_exr(settings)
+    settings.color_depth = '32'
+    settings.views_format = 'INDIVIDUAL'
+    stem = os.path.join(directory, name)
+    filepath, scene.render.filepath = scene.render.filepath, stem
+    try:
+        bpy.ops.render.render(write_still=True)
+    finally:
+        scene.render.filepath = filepath
+    return [read_layers(stem + v.file_suffix + ".exr") for v in rendered_views(scene)]
+
+
 def cycles_reference_and_noise(scene, directory, samples, bounces, ref_samples=None):
     """Cycles' passes at seed 0 (the reference; ref_samples, default `samples`: more keeps its
     own noise out of the bounds) and seed 1 (its own noise)."""

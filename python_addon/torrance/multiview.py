@@ -34,6 +34,22 @@ def activate(engine, view):
         engine.active_view_set(view)
 
 
+def other_view_cameras(engine, depsgraph, views):
+    """The evaluated cameras of `views` other than the first view's (Multi-View: a camera per
+    view), each once; the first view is active again after."""
+    if len(views) < 2:
+        return []
+    cameras = {}
+    try:
+        for view in views:
+            activate(engine, view)
+            cam_obj = camera_object(depsgraph, engine)
+            cameras.setdefault(cam_obj.name, cam_obj)
+    finally:
+        activate(engine, views[0])
+    return list(cameras.values())[1:]
+
+
 class ViewCameras:
     """The camera of each view after the first, given the exported scene's state.
 
@@ -60,27 +76,22 @@ class ViewCameras:
         export_camera(self.tc_scene, cam_obj, self.reporter, self.engine,
                       self.depsgraph.scene.render)
         if self.stats.camera_motion is not None:
-            if cam_obj.name == self.first_camera:
-                self.tc_scene.set_camera_motion(self.motion(cam_obj))
-            else:
-                self.reporter.warning(f"Multi-View: view '{view}' (camera '{cam_obj.name}') is "
-                                      f"rendered without camera motion blur")
+            motion = self.motion(cam_obj) if cam_obj.name == self.first_camera \
+                else self.stats.camera_motion.get(cam_obj.name)
+            if motion is not None:
+                self.tc_scene.set_camera_motion(motion)
         if self.stats.motion_blur:
             export_shutter(self.tc_scene, self.depsgraph.scene, self.reporter)
         if self.stats.frame_camera is not None:
-            self.set_frame_camera(view, cam_obj)
+            self.set_frame_camera(cam_obj)
 
-    def set_frame_camera(self, view, cam_obj):
+    def set_frame_camera(self, cam_obj):
         """The Vector pass's previous and next camera of the active view: the first view's moved
-        to this view's eye of the same camera; another camera's standing still (reported)."""
+        to this view's eye of the same camera, or another camera's own."""
+        frames = self.stats.frame_camera.get(cam_obj.name)
+        frames = np.stack(frames or [camera_matrix(self.engine, cam_obj)] * 2)
         if cam_obj.name == self.first_camera:
-            frames = np.einsum('sij,jk->sik', np.stack(self.stats.frame_camera),
-                               self.offset(cam_obj))
-        else:
-            self.reporter.warning(f"Multi-View: view '{view}' (camera "
-                                  f"'{cam_obj.name}'): its camera's motion is left out of the "
-                                  f"Vector pass")
-            frames = np.stack([camera_matrix(self.engine, cam_obj)] * 2)
+            frames = np.einsum('sij,jk->sik', frames, self.offset(cam_obj))
         self.tc_scene.set_frame_motion_camera(frames[0], frames[1])
 
     def offset(self, cam_obj):
@@ -90,5 +101,8 @@ class ViewCameras:
                          camera_matrix(self.engine, cam_obj))
 
     def motion(self, cam_obj):
-        """The first view's camera motion moved to the active view's eye of the same camera."""
-        return np.einsum('sij,jk->sik', self.stats.camera_motion, self.offset(cam_obj))
+        """The first view's camera motion moved to the active view's eye of the same camera, or
+        None when it does not move."""
+        matrices = self.stats.camera_motion.get(self.first_camera)
+        return None if matrices is None else np.einsum('sij,jk->sik', matrices,
+                                                       self.offset(cam_obj))

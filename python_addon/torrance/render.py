@@ -191,12 +191,14 @@ def _render(engine, depsgraph, reporter):
 
     tc = load_core()
     views = multiview.render_views(engine, depsgraph.view_layer.name)
+    view_cameras = multiview.other_view_cameras(engine, depsgraph, views)
     multiview.activate(engine, views[0])
     engine.update_stats("", "Torrance | Exporting scene")
     session = _Session(engine, depsgraph.view_layer.name, window, (width, height),
                        bool(ts.use_progressive_display))
     tc_scene, stats = export.export_scene(tc, depsgraph, reporter, engine=engine,
-                                          should_stop=session.should_stop)
+                                          should_stop=session.should_stop,
+                                          view_cameras=view_cameras)
     print(f"Torrance: {stats}")
     last_stats.update(objects=stats.objects, triangles=stats.triangles, lights=stats.lights,
                       materials=stats.materials, textures=stats.textures,

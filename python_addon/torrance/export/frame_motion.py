@@ -39,7 +39,7 @@ class FrameMotionSampler(MotionSampler):
         super().__init__(*args)
         self.hair = []          # (curve set id, object name, particle system name or None,
         self.hair_keys = {}     #  offsets) added; set id -> [keys (N, 3) per time step]
-        self.frame_camera = None
+        self.frame_camera = None  # camera name -> its (previous, next frame) matrices
 
     def track_hair(self, set_id, name, psys_name, offsets):
         """export_hair's on_added: a curve set whose keys are read at the three frames too."""
@@ -71,14 +71,16 @@ class FrameMotionSampler(MotionSampler):
                                         steps_of=lambda inst: _NEIGHBOURS)
         return self.instances
 
-    def export(self, tc_scene, camera):
-        """Samples the camera and the tracked objects and instances at the three frames and gives
-        the core the previous and the next (the camera's always: it turns the pass on)."""
-        self.track_camera(camera.name, _NEIGHBOURS)
+    def export(self, tc_scene, camera, view_cameras=()):
+        """Samples the camera (and Multi-View's other views' cameras) and the tracked objects and
+        instances at the three frames and gives the core the previous and the next (the render
+        camera's always: it turns the pass on)."""
+        for cam in (camera, *view_cameras):
+            self.track_camera(cam.name, _NEIGHBOURS, render_camera=cam is camera)
         self.sample()
-        frames = self.states.get(camera.name)
-        tc_scene.set_frame_motion_camera(frames[0][0], frames[-1][0])
-        self.frame_camera = (frames[0][0], frames[-1][0])
+        self.frame_camera = {name: (self.states[name][0][0], self.states[name][-1][0])
+                             for name in self.cameras}
+        tc_scene.set_frame_motion_camera(*self.frame_camera[camera.name])
         for name, mesh_id, local, triangles, keep in self.meshes:
             neighbours = self.neighbour_positions(name, local, triangles, keep)
             if neighbours is not None:

@@ -110,7 +110,8 @@ class MotionSampler:
         self.depsgraph = depsgraph
         self.reporter = reporter
         self.tracked = {}        # object name -> (steps, deform, mesh needs)
-        self.camera = None       # the camera object's name, when tracked
+        self.camera = None       # the render camera object's name, when tracked
+        self.cameras = set()     # every tracked camera's name (Multi-View: the views' cameras)
         self.states = {}         # object name -> [(matrix 4x4 float64, LocalMesh or None)]
         self.meshes = []         # (name, mesh id, frame's LocalMesh, triangles, keep) added
         self.instances = None    # an InstanceMotion (instance_motion.py) sampled too, or None
@@ -136,10 +137,13 @@ class MotionSampler:
             self.meshes.append((name, mesh_id, local, triangles, keep))
         return added
 
-    def export(self, tc_scene, camera):
+    def export(self, tc_scene, camera, view_cameras=()):
         """Samples the camera object and the tracked objects over the shutter and gives the
-        core the motion of those that move; the frame is restored after."""
+        core the motion of those that move; the frame is restored after. view_cameras: the
+        cameras of Multi-View's other views, sampled too (camera_matrices(name))."""
         self.track_camera(camera.name, object_motion_steps(camera))
+        for other in view_cameras:
+            self.track_camera(other.name, object_motion_steps(other), render_camera=False)
         self.sample()
         matrices = self.camera_matrices()
         if matrices is not None:
@@ -158,10 +162,12 @@ class MotionSampler:
         if steps >= 2:
             self.tracked[name] = (steps, deform, needs)
 
-    def track_camera(self, name, steps):
+    def track_camera(self, name, steps, render_camera=True):
         if steps >= 2:
             self.tracked[name] = (steps, False, None)
-            self.camera = name
+            self.cameras.add(name)
+            if render_camera:
+                self.camera = name
 
     def sample(self):
         moving = self.instances.max_steps if self.instances is not None else 0
@@ -186,7 +192,7 @@ class MotionSampler:
             obj = self.depsgraph.objects.get(name)
             if obj is None:
                 continue
-            if name == self.camera:           # as export_camera reads it
+            if name in self.cameras:          # as export_camera reads it
                 matrix = camera_matrix(self.engine, obj)
             else:
                 matrix = np.array(obj.matrix_world, dtype=np.float64).reshape(4, 4)
@@ -195,9 +201,10 @@ class MotionSampler:
                 local = cache.get(obj, (name,), needs, self.reporter)
             self.states.setdefault(name, []).append((matrix, local))
 
-    def camera_matrices(self):
-        """The camera's matrices over the shutter (S, 4, 4), or None when it does not move."""
-        states = self.states.get(self.camera)
+    def camera_matrices(self, name=None):
+        """The render camera's (or camera `name`'s) matrices over the shutter (S, 4, 4), or None
+        when it does not move."""
+        states = self.states.get(name or self.camera)
         if not states or len(states) < 2:
             return None
         matrices = np.stack([m for m, _ in states])

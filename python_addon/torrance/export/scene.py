@@ -53,8 +53,10 @@ class ExportStats:
         self.names = []          # exported mesh objects, one entry per instance
         self.cryptomatte = {}    # the render result's Cryptomatte metadata (cryptomatte.py)
         self.motion_blur = False     # the shutter was given to the core (export/shutter.py)
-        self.camera_motion = None    # the camera's matrices over the shutter, when it moves
-        self.frame_camera = None     # the Vector pass: the camera's (previous, next frame) matrices
+        # With motion blur: camera name -> its matrices over the shutter (None: it does not move),
+        # for the render camera and Multi-View's other views' cameras
+        self.camera_motion = None
+        self.frame_camera = None     # the Vector pass: camera name -> (previous, next) matrices
 
     def __str__(self):
         return (f"{self.objects} objects, {self.triangles} triangles, {self.strands} strands, "
@@ -144,10 +146,12 @@ def camera_object(depsgraph, engine):
     return cam_obj
 
 
-def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
+def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None, view_cameras=()):
     """Builds a tc.Scene from a render depsgraph. Returns (tc_scene, ExportStats).
 
     Camera: engine.camera_override or the scene camera; raises ValueError when there is none.
+    view_cameras: the evaluated cameras of Multi-View's other views, whose motion (blur or the
+    Vector pass's neighbouring frames) is sampled with the render camera's.
 
     A final render runs this on Blender's render thread while the main thread may still edit
     and delete datablocks, so the export reads the main database only in one short pass:
@@ -170,10 +174,10 @@ def export_scene(tc, depsgraph, reporter, engine=None, should_stop=None):
     With motion blur the scene is read at the shutter's centre (at_shutter_centre, as Cycles).
     """
     with at_shutter_centre(engine, depsgraph.scene) as centre:
-        return _export(tc, depsgraph, reporter, engine, should_stop, centre)
+        return _export(tc, depsgraph, reporter, engine, should_stop, centre, view_cameras)
 
 
-def _export(tc, depsgraph, reporter, engine, should_stop, centre):
+def _export(tc, depsgraph, reporter, engine, should_stop, centre, view_cameras):
     """export_scene at the shutter's centre `centre` (frames)."""
     t0 = time.perf_counter()
     stats = ExportStats()
@@ -340,10 +344,10 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre):
                                         strands.curve_shape(depsgraph.scene),
                                         on_added=getattr(motion, "track_hair", None))
     if motion is not None:
-        motion.export(tc_scene, camera_object(depsgraph, engine))
+        motion.export(tc_scene, camera_object(depsgraph, engine), view_cameras)
         if motion.blurs:
             stats.motion_blur = True
-            stats.camera_motion = motion.camera_matrices()
+            stats.camera_motion = {name: motion.camera_matrices(name) for name in motion.cameras}
         else:
             stats.frame_camera = motion.frame_camera
     materials.send_pass_indices()
