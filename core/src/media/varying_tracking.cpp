@@ -186,6 +186,9 @@ float varying_majorant(const Scene& scene, const VaryingMedium& medium) {
   // Two interleaved lattices (a body-centred grid): the cells' corners, which hold the bounds'
   // faces where gradients peak, and their centres.
   const Vec3 size = medium.bounds_max - medium.bounds_min;
+  // A Point Density op reads its voxels' largest values at every point with the bounds on (its
+  // features may be thinner than the lattice's spacing).
+  const bool voxel_bounds = scene.shader_program(medium.program).reads(ShaderOpcode::TexPointDensity);
   float largest = 0.0f;
   for (const float offset : {0.0f, 0.5f}) {
     const int points = offset == 0.0f ? kGrid + 1 : kGrid;
@@ -194,7 +197,7 @@ float varying_majorant(const Scene& scene, const VaryingMedium& medium) {
         for (int k = 0; k < points; ++k) {
           const Vec3 f = (Vec3(float(i), float(j), float(k)) + offset) / float(kGrid);
           const HomogeneousMedium m =
-              varying_coefficients(scene, medium, medium.bounds_min + f * size, Vec3(0.0f, 0.0f, -1.0f));
+              coefficients(scene, medium, medium.bounds_min + f * size, Vec3(0.0f, 0.0f, -1.0f), voxel_bounds);
           largest = std::max(largest, max_component(m.sigma_a + m.sigma_s));
         }
   }

@@ -10,6 +10,7 @@
 #include "torrance/shader/shader_gabor.h"
 #include "torrance/shader/shader_voronoi.h"
 #include "torrance/shader/shader_ies.h"
+#include "torrance/shader/shader_voxel.h"
 #include "torrance/shader/shader_image.h"
 #include "torrance/shader/shader_sky.h"
 #include "torrance/shader/shader_radial_tiling.h"
@@ -161,6 +162,8 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
     case ShaderOpcode::TexSky: return {1, shader::kSkyModels, true, shader::sky_op};
     case ShaderOpcode::RadialTiling: return {3, shader::kRadialTilingModes, false, shader::radial_tiling_op};
     case ShaderOpcode::TexIES: return {2, shader::kIesLookups, true, shader::ies_op};
+    case ShaderOpcode::TexPointDensity:
+      return {1, shader::kVoxelInterpolations, true, shader::point_density_op};
     // [converter ops]
     case ShaderOpcode::ColorRamp: return {1, 1, true, shader::color_ramp_op};
     case ShaderOpcode::RGBCurves: return {2, 1, true, shader::rgb_curves_op};

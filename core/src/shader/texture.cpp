@@ -1,5 +1,7 @@
 #include "torrance/shader/texture.h"
 
+#include "torrance/shader/cubic_bspline.h"
+
 #include "torrance/film/image_io.h"
 #include "torrance/util/limits.h"
 
@@ -159,18 +161,12 @@ glm::vec4 Texture::Level::bilinear(const Vec2& uv, Extension e) const {
                   glm::mix(texel(x0, y0 + 1, e), texel(x0 + 1, y0 + 1, e), tx), ty);
 }
 
-// The uniform cubic B-spline's weights of the four texels around a point t (in [0, 1)) past the
-// second one.
-static std::array<float, 4> spline_weights(float t) {
-  return {(((-1.0f / 6.0f) * t + 0.5f) * t - 0.5f) * t + 1.0f / 6.0f, ((0.5f * t - 1.0f) * t) * t + 2.0f / 3.0f,
-          ((-0.5f * t + 0.5f) * t + 0.5f) * t + 1.0f / 6.0f, (1.0f / 6.0f) * t * t * t};
-}
-
 glm::vec4 Texture::Level::bicubic(const Vec2& uv, Extension e) const {
   const Vec2 at = e == Extension::Repeat ? uv - glm::floor(uv) : glm::clamp(uv, Vec2(-1e6f), Vec2(1e6f));
   const float x = at.x * width - 0.5f, y = at.y * height - 0.5f;
   const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
-  const std::array<float, 4> wx = spline_weights(x - float(x0)), wy = spline_weights(y - float(y0));
+  const std::array<float, 4> wx = cubic_bspline_weights(x - float(x0)),
+                               wy = cubic_bspline_weights(y - float(y0));
   glm::vec4 sum(0.0f);
   for (int j = 0; j < 4; ++j) {
     glm::vec4 row(0.0f);

@@ -69,6 +69,7 @@ enum class ShaderOpcode : uint8_t {
   TexSky = 61,           // shader_sky.h: the Sky Texture node; mode: SkyModel, a table
   RadialTiling = 62,     // shader_radial_tiling.h: Blender 5's Radial Tiling; mode: its outputs
   TexIES = 63,           // shader_ies.h: the IES Texture node (Fac); a table
+  TexPointDensity = 64,  // shader_voxel.h: the Point Density node (Color xyz, Density w); a table
   // [converter ops]
   ColorRamp = 72,       // shader_convert.h: RGBA = ramp(in0.x), table RGBA; flags & 1: interpolate
   RGBCurves = 73,       // curves(fac in0.x, colour in1), table (min_x, max_x, RGB); flags & 1: extrapolate
