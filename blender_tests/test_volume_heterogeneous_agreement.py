@@ -56,15 +56,6 @@ def _ramp(nodes, stops):
     return ramp
 
 
-def _math(nodes, links, operation, source, value):
-    """A Math node: `operation` of `source` (an output socket) and the constant `value`."""
-    node = nodes.new('ShaderNodeMath')
-    node.operation = operation
-    node.inputs[1].default_value = value
-    links.new(source, node.inputs[0])
-    return node
-
-
 def noise_fog(scene):
     _stage(scene, (0.4, -5.0, 1.8), (0.0, 0.0, 0.9))
     testing.plane(scene, "Floor", 3.0, z=0.01, material=testing.principled("Floor", (0.7,) * 3))
@@ -76,7 +67,7 @@ def noise_fog(scene):
     links.new(coords.outputs["Object"], noise.inputs["Vector"])
     ramp = _ramp(nodes, [(0.35, (0.0, 0.0, 0.0, 1.0)), (0.65, (1.0, 1.0, 1.0, 1.0))])
     links.new(noise.outputs["Fac"], ramp.inputs["Fac"])
-    scale = _math(nodes, links, 'MULTIPLY', ramp.outputs["Color"], 1.4)
+    scale = make.math_node(nodes, links, 'MULTIPLY', ramp.outputs["Color"], 1.4)
     scatter = nodes.new('ShaderNodeVolumeScatter')
     scatter.inputs["Color"].default_value = (0.85, 0.8, 0.7, 1.0)
     scatter.inputs["Anisotropy"].default_value = 0.2
@@ -98,8 +89,8 @@ def gradient_cloud(scene):
     gradient = nodes.new('ShaderNodeTexGradient')
     gradient.gradient_type = 'LINEAR'
     links.new(coords.outputs["Generated"], gradient.inputs["Vector"])
-    density = _math(nodes, links, 'MULTIPLY', gradient.outputs["Fac"], 3.0)
-    glow = _math(nodes, links, 'POWER', gradient.outputs["Fac"], 3.0)
+    density = make.math_node(nodes, links, 'MULTIPLY', gradient.outputs["Fac"], 3.0)
+    glow = make.math_node(nodes, links, 'POWER', gradient.outputs["Fac"], 3.0)
     ramp = _ramp(nodes, [(0.0, (0.9, 0.3, 0.2, 1.0)), (1.0, (0.3, 0.6, 0.9, 1.0))])
     links.new(gradient.outputs["Fac"], ramp.inputs["Fac"])
     cloud = nodes.new('ShaderNodeVolumePrincipled')

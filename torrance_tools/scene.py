@@ -175,6 +175,15 @@ def node_material(name):
     return mat, nodes, mat.node_tree.links, output
 
 
+def math_node(nodes, links, operation, source, value):
+    """A Math node of `operation` on `source` (an output socket) and the constant `value`."""
+    node = nodes.new('ShaderNodeMath')
+    node.operation = operation
+    node.inputs[1].default_value = value
+    links.new(source, node.inputs[0])
+    return node
+
+
 # --------------------------------------------------------------------------------------------
 # Meshes from numpy
 

@@ -94,6 +94,10 @@ class TextureTable:
         self.ids = {}              # (image key, interpolation) -> texture id or None
         self.seconds = 0.0
         self.loaded = 0            # textures added to the scene
+        # The depsgraph being exported (Point Density nodes have Blender compute their voxels
+        # in it; None: bpy.context's) and those voxels, by (node tree pointer, node name).
+        self.depsgraph = None
+        self.point_density_grids = {}
 
     @staticmethod
     def _key(image):

@@ -382,7 +382,7 @@ class TORRANCE_RENDER_PT_compatibility(TorrancePanel, Panel):
         col.label(text="Not rendered by Torrance:")
         for text in ("Volume objects in Blender 4.x/5.x (no openvdb module); hair and "
                      "Volume objects in the viewport",
-                     "Point Density nodes; AOV Output in worlds",
+                     "AOV Output in worlds",
                      "Blender 5's denoising guide options"):
             col.label(text=text, icon='DOT')
         col.label(text="Denoising: Cycles' Denoising Albedo and Normal guide F12 and the "

@@ -17,15 +17,11 @@ from functools import partial
 
 import numpy as np
 
-from .shader_graph.geometry import object_transform
+from .shader_graph.geometry import world_point_to_object
 from .shader_graph.graph import Unsupported
 from .shader_graph.math_ops import VECTOR_MATH_OPS
 from .shader_graph.program import constant
 from .volume_grids import SmokeGrids, fluid_domain
-
-# The Vector Transform op's mode for a Point from World to Object (vector.py numbers them).
-_POINT_WORLD_TO_OBJECT = (0 * 3 + 0) * 3 + 1
-
 
 class VolumeSpace:
     """The object space (matrix_world, texture space) and world bounds of a volume's meshes."""
@@ -80,9 +76,7 @@ class VolumeSpace:
         if key not in (('object',), ('generated',)):
             raise Unsupported(f"the attribute {key[-1]!r} inside a volume")
         position = g.builder.emit("Geometry", 'vector', mode=0)
-        co = g.builder.emit("VectorTransform", 'vector',
-                            [position, *object_transform(g), *[position] * 6],
-                            mode=_POINT_WORLD_TO_OBJECT)
+        co = world_point_to_object(g, position)
         if key == ('object',):
             return co
         return g.builder.emit("VectorMath", 'vector',

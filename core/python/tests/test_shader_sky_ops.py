@@ -9,8 +9,7 @@ import math
 import numpy as np
 import pytest
 import torrance_core as tc
-
-COLUMNS = 17     # opcode, mode, flags, resource, out, 12 inputs
+from table_ops import run_table_op
 
 
 @pytest.fixture(scope="module")
@@ -26,21 +25,7 @@ def nishita():
 
 def run_core(mode, table, directions):
     """The op's Color at each direction, run by the core (one instruction per direction)."""
-    data = np.concatenate([[len(table)], np.asarray(table, np.float32)]).astype(np.float32)
-    out = []
-    for start in range(0, len(directions), 60):
-        chunk = directions[start:start + 60]
-        n = len(chunk)
-        constants = np.zeros((n, 4), np.float32)
-        constants[:, :3] = chunk
-        code = np.full((n, COLUMNS), -1, np.int32)
-        for k in range(n):
-            code[k, :6] = (61, mode, 0, 0, n + k, k)
-        scene = tc.Scene()
-        pid = scene.add_shader_program(constants, code, 2 * n, data)
-        regs = scene.run_shader_program(pid, np.zeros((1, 2), np.float32))
-        out += [regs[0, n + k] for k in range(n)]
-    return np.array(out)
+    return run_table_op(61, mode, table, directions)
 
 
 def directions(rng, sun, count=240):

@@ -183,6 +183,7 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre, view_cameras):
     stats = ExportStats()
     tc_scene = tc.Scene()
     textures = TextureTable(tc_scene, reporter)
+    textures.depsgraph = depsgraph
     aovs = view_layer_aovs(depsgraph.view_layer)
     materials = MaterialTable(tc_scene, reporter, textures, aovs, depsgraph)
     if aovs:

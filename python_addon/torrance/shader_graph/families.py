@@ -22,6 +22,7 @@ from . import local_rays  # noqa: I001
 from . import image  # noqa: I001
 from . import sky  # noqa: I001
 from . import ies  # noqa: I001
+from . import point_density  # noqa: I001
 
 FAMILIES = (
     # [families]
@@ -39,6 +40,7 @@ FAMILIES = (
     image,
     sky,
     ies,
+    point_density,
 )
 
 READERS = {}

@@ -54,6 +54,16 @@ def object_transform(g):
     return [g.attribute(('object_info', k)) for k in ('axis_x', 'axis_y', 'axis_z', 'location')]
 
 
+# The Vector Transform op's mode for a Point from World to Object (vector.py numbers them).
+_POINT_WORLD_TO_OBJECT = (0 * 3 + 0) * 3 + 1
+
+
+def world_point_to_object(g, point):
+    """A world point in the hit's object space (Cycles' object_inverse_position_transform)."""
+    return g.builder.emit("VectorTransform", 'vector', [point, *object_transform(g), *[point] * 6],
+                          mode=_POINT_WORLD_TO_OBJECT)
+
+
 def normal_input(g, node, name="Normal"):
     socket = node.inputs.get(name)
     if socket is None or not socket.is_linked:

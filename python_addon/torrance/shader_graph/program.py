@@ -125,12 +125,10 @@ def fold(op, mode, flags, args, table=None):
 
 
 def finite(t):
-    """As the core keeps every value: finite, within +-1e30 (NaN -> 0), float32."""
-    out = []
-    for x in t:
-        x = float(x)
-        out.append(0.0 if x != x or abs(x) == float('inf') else min(max(x, -1e30), 1e30))
-    return tuple(np.float32(out).tolist())
+    """As the core keeps every value: finite, within +-1e30 (NaN and infinities -> 0), float32."""
+    a = np.asarray(t, np.float64).ravel()
+    a = np.where(np.isfinite(a), np.clip(a, -1e30, 1e30), 0.0)
+    return tuple(a.astype(np.float32).tolist())
 
 
 class ProgramBuilder:
@@ -163,7 +161,8 @@ class ProgramBuilder:
             flags |= self.offset << OFFSET_SHIFT
         if table is not None:
             resource = len(self.data)
-            self.data += [float(len(table)), *(float(x) for x in table)]
+            self.data.append(float(len(table)))
+            self.data.extend(table)
         inputs = [self._operand(a) for a in args]
         out = ('r', self.registers)
         self.registers += 1

@@ -289,6 +289,13 @@ CLOSURES = {
     'ShaderNodeTexSky': "rendered (shader graph): Preetham, Hosek / Wilkie, Nishita (3.x-4.x), "
                         "Single and Multiple Scattering (5.x); their sun discs guide the world's "
                         "samples as Cycles does",
+    # a texture Blender computes the voxels of (point_density.py)
+    'ShaderNodeTexPointDensity': "rendered (shader graph): Particle System and Object Vertices, "
+                                 "every colour source, Radius, World and Object space, Closest, "
+                                 "Linear and Cubic, in surfaces and volumes; reported: no Object "
+                                 "or Particle System, an empty grid (0, as Cycles), Resolution "
+                                 "above 160, Object space of a linked Vector in a material with "
+                                 "a volume",
     # a value node that Torrance reads in part (radial_tiling.py)
     'ShaderNodeRadialTiling': "partly: whole Sides at any Roundness, any Sides at Roundness 0; "
                               "fractional or varying Sides with Roundness above 0 are reported",

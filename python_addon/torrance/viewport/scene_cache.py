@@ -357,6 +357,7 @@ class SceneCache:
         scene = depsgraph.scene
         tc_scene = tc.Scene()
         textures = TextureTable(tc_scene, reporter)
+        textures.depsgraph = depsgraph
         materials = MaterialTable(tc_scene, reporter, textures, depsgraph=depsgraph)
         if options.get("use_scene_world", True):
             export.export_world(tc_scene, scene.world, reporter, textures)
