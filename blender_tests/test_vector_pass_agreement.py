@@ -15,13 +15,15 @@ objects' vectors):
   and are 0 on the sky;
 * the same with an equirectangular panoramic camera (the Vector pass through
   direction_to_panorama; the fisheyes are left out: Cycles 3.4-4.x mirror their u);
+* Torrance's Object Index pass equals Cycles' on those pixels (the strands: their object's);
 * the same in both views of a Multi-View render whose right view has a camera of its own that
   moves otherwise (its own neighbouring frames);
 * with Motion Blur on the pass is there and 0, as Cycles'.
 
 Faults that must fail: the camera's neighbouring frames ignored, the sphere's deformation
 ignored, the instances' or the hair's neighbouring frames not given, and the previous and next
-frames swapped; in Multi-View, the right view's camera left standing still.
+frames swapped; in Multi-View, the right view's camera left standing still; the hair's object
+settings not given (its Object Index 0).
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_vector_pass_agreement.py
@@ -129,6 +131,29 @@ def failures(ours, ref, other, label):
     return bad
 
 
+def index_failures(p, ref, label):
+    """Where p's Object Index pass differs from Cycles' (ref) on ref's interior pixels of each
+    object (the strands too: their object's pass index)."""
+    index, ours = object_index(ref), object_index(p)
+    bad = []
+    for name, i in OBJECTS.items():
+        keep = interior(index, REACH.get(name, 2)) & (index == i)
+        wrong = int((ours[keep] != i).sum())
+        print(f"  {label} {name:6s}: Object Index {i} on {keep.sum()} pixels, {wrong} differ")
+        if wrong:
+            bad.append(f"{name}: {wrong} of {keep.sum()} pixels' Object Index is not {i}")
+    return bad
+
+
+def export_hair_module():
+    import torrance.export.hair as hair
+    return hair
+
+
+def without_hair_settings(original):
+    return lambda *args, settings_of=None, **kwargs: original(*args, **kwargs)
+
+
 def moving_share(ref):
     """The share of Cycles' object pixels whose vector exceeds 0.5 px (the scene moves)."""
     objects = object_index(ref) > 0
@@ -214,6 +239,12 @@ def main():
     check(share > 0.5, "the test scene hardly moves in Cycles' Vector pass")
     ours = [render(scene, d, setup_torrance, seed, f"torrance{seed}") for seed in (2, 3)]
     bad = failures(ours, ref, other, "Torrance")
+    bad += index_failures(ours[0], ref, "Torrance")
+    with replaced(export_hair_module(), "export_hair", without_hair_settings):
+        caught = index_failures(render(scene, d, setup_torrance, 2, "no_hair_index"), ref, "fault")
+    print(f"  fault 'hair without its object's settings': {'caught' if caught else 'NOT caught'}")
+    if not caught:
+        bad.append("fault 'hair without its object's settings' passes")
 
     # Faults: each must fail.
     for label, owner, attr, make_fault in faults():

@@ -82,3 +82,46 @@ def test_hair_bsdf_strands_and_mesh_render_lit_and_finite(closure):
                           else (0.3, -0.5, -1.0))
     with pytest.raises(ValueError, match="hair_reflection"):
         scene.add_mixture([("hair", hair, [])], [])
+
+
+def strand_passes(**settings):
+    """Thick strands seen along +y (RenderResult): the first curve set given `settings` through
+    set_curves_settings (none when empty), the Object Index pass and a transparent background."""
+    scene = tc.Scene()
+    scene.add_material(base_color=(0.8, 0.8, 0.8))
+    keys, radii, offsets = strands(n=20, spacing=0.05, radius=0.02)
+    set_id = scene.add_curves(keys, radii, offsets)
+    if settings:
+        scene.set_curves_settings(set_id, **settings)
+    scene.add_sun(direction=(0.3, 0.5, -1.0), strength=3.0, angle=0.1)
+    camera = np.eye(4)
+    camera[:3, :3] = [[1, 0, 0], [0, 0, -1], [0, 1, 0]]
+    camera[:3, 3] = [0.0, -3.0, 0.25]
+    scene.set_camera(camera, lens=50.0)
+    return tc.render(scene, tc.RenderSettings(width=24, height=16, samples=4, max_bounces=2,
+                                              passes=["IndexOB"], transparent_background=True))
+
+
+def test_strands_carry_their_objects_settings():
+    """A hair object's pass index and holdout reach its strands' hits (set_curves_settings),
+    as a mesh's do; bad ids, groups and linking sets are ValueErrors."""
+    plain = strand_passes()
+    covered = np.asarray(plain.image)[..., 3] > 0.5
+    assert covered.sum() > 20
+    assert np.all(np.asarray(plain.passes["IndexOB"])[..., 0] == 0.0)
+    indexed = np.asarray(strand_passes(pass_index=7.0).passes["IndexOB"])[..., 0]
+    # (the pass takes one sample's object per pixel, the alpha all samples' coverage)
+    assert np.mean(indexed[covered] == 7.0) > 0.7 and set(np.unique(indexed)) <= {0.0, 7.0}
+    assert np.all(indexed[np.asarray(plain.image)[..., 3] == 0.0] == 0.0)
+    held_out = np.asarray(strand_passes(holdout=True).image)
+    assert np.isfinite(held_out).all() and held_out[..., 3].max() < 1e-6
+    scene = tc.Scene()
+    scene.add_material()
+    keys, radii, offsets = strands(2)
+    set_id = scene.add_curves(keys, radii, offsets)
+    with pytest.raises(ValueError, match="curve set"):
+        scene.set_curves_settings(set_id + 1, pass_index=1.0)
+    with pytest.raises(ValueError, match="light group"):
+        scene.set_curves_settings(set_id, light_group=0)
+    with pytest.raises(ValueError, match="light linking set"):
+        scene.set_curves_settings(set_id, receiver_set=64)

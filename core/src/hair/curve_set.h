@@ -23,6 +23,7 @@ struct Scene::CurveSet {
   std::vector<float> key_intercept;
   std::vector<float> segment_length, segment_random;
   CurveShape shape = CurveShape::Round;
+  ObjectSettings settings;  // its object's (Scene::set_curves_settings)
 };
 
 namespace curve_basis {

@@ -133,6 +133,7 @@ void Scene::curve_hit(uint32_t set_index, uint32_t prim, float u, const Vec3& or
   hit = SurfaceHit{};
   hit.t = t;
   hit.on_curve = true;
+  hit.object_settings = set.settings;
   hit.material = set.segment_material[prim];
   hit.position = origin + t * dir;
   const glm::vec4 centre = curve_basis::eval(c, u);

@@ -1,6 +1,7 @@
 // Blender's pass indices of objects and materials (the Object Index and Material Index passes),
 // its holdout objects, the light groups of its emitting objects and the objects' Cryptomatte
-// entries.
+// entries; a hair object's curve set takes them all at once.
+#include "hair/curve_set.h"
 #include "scene/scene_internal.h"
 #include "torrance/lights/light_linking.h"
 
@@ -119,6 +120,23 @@ void Scene::set_instance_cryptomatte(const int64_t* ids, size_t count, int32_t e
     if (ids[i] < 0 || size_t(ids[i]) >= instances_.size())
       throw std::invalid_argument("instance " + std::to_string(ids[i]) + " does not exist");
   for (size_t i = 0; i < count; ++i) instances_[size_t(ids[i])].settings.cryptomatte = entry;
+}
+
+void Scene::set_curves_settings(uint32_t set, const ObjectSettings& settings) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set a curve set's object settings");
+  if (set >= curve_sets_.size()) throw std::invalid_argument("curve set " + std::to_string(set) + " does not exist");
+  ObjectSettings checked = settings;
+  checked.light_group = checked_group(settings.light_group, extra_passes_);
+  checked.receiver_set = LightLinks::checked_set(settings.receiver_set);
+  checked.blocker_set = LightLinks::checked_set(settings.blocker_set);
+  checked.emitter_links = 0;
+  curve_sets_[set]->settings = checked;
+  object_holdouts_ = object_holdouts_ || checked.holdout;
+  if (checked.shadow_catcher) {
+    shadow_catchers_ = true;
+    catcher_masks_dirty_ = true;
+  }
 }
 
 }  // namespace torrance

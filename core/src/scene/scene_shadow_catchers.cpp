@@ -2,6 +2,7 @@
 // carry, and the Embree masks that let the catcher-only half of a split path (Cycles'
 // PATH_RAY_SHADOW_CATCHER_PASS, film/shadow_catcher.h) see the catchers alone, as Cycles'
 // SHADOW_CATCHER_OBJECT_VISIBILITY does with its visibility bits.
+#include "hair/curve_set.h"
 #include "scene/scene_internal.h"
 
 #include <stdexcept>
@@ -40,7 +41,8 @@ void Scene::apply_catcher_masks() {
     if (owner == kNoOwner) continue;
     bool catcher = false;
     if (owner & kInstanceBit) catcher = instances_[owner & ~kInstanceBit].settings.shadow_catcher;
-    else if (!(owner & kCurvesBit)) catcher = meshes_[owner]->settings.shadow_catcher;
+    else if (owner & kCurvesBit) catcher = curve_sets_[owner & ~kCurvesBit]->settings.shadow_catcher;
+    else catcher = meshes_[owner]->settings.shadow_catcher;
     RTCGeometry geom = rtcGetGeometry(scene, id);
     rtcSetGeometryMask(geom, catcher ? 0xFFFFFFFFu : kOrdinaryMask);
     rtcCommitGeometry(geom);

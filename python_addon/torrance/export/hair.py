@@ -127,11 +127,21 @@ def read_strands(obj, psys, matrix):
     return curves_strands(obj, matrix) if psys is None else particle_strands(obj, psys)
 
 
-def export_hair(tc_scene, hair, materials, reporter, shape, on_added=None):
+def export_hair(tc_scene, hair, materials, reporter, shape, on_added=None, settings_of=None):
     """Adds the strands of `hair`: (evaluated object, its world matrix) pairs, particle-hair
     emitters and Curves objects. Returns the number of strands added. on_added(set id, object
-    name, particle system name or None, offsets), if given, hears of each curve set added."""
+    name, particle system name or None, offsets), if given, hears of each curve set added;
+    settings_of(obj), if given, gives the keyword arguments of Scene.set_curves_settings for
+    obj's strands (its pass index, holdout, light group, ...; {}: the defaults)."""
     strands = 0
+
+    def added(set_id, obj, psys_name, offsets):
+        settings = settings_of(obj) if settings_of is not None else None
+        if settings:
+            tc_scene.set_curves_settings(set_id, **settings)
+        if on_added is not None:
+            on_added(set_id, obj.name, psys_name, offsets)
+
     for obj, matrix in hair:
         first_strand = 0         # the object's strands so far (Curves Info's Random)
         slot_to_material = materials.slot_indices([s.material for s in obj.material_slots])
@@ -145,8 +155,7 @@ def export_hair(tc_scene, hair, materials, reporter, shape, on_added=None):
             set_id = tc_scene.add_curves(keys, radii * scale, offsets,
                                          materials=per_curve.astype(np.int64), shape=shape,
                                          random=strand_random(0, len(offsets) - 1))
-            if on_added is not None:
-                on_added(set_id, obj.name, None, offsets)
+            added(set_id, obj, None, offsets)
             strands += len(offsets) - 1
             continue
         for psys in hair_systems(obj):
@@ -163,8 +172,7 @@ def export_hair(tc_scene, hair, materials, reporter, shape, on_added=None):
             count = len(offsets) - 1
             set_id = tc_scene.add_curves(keys, radii * scale, offsets, materials=per_curve,
                                          shape=shape, random=strand_random(first_strand, count))
-            if on_added is not None:
-                on_added(set_id, obj.name, psys.name, offsets)
+            added(set_id, obj, psys.name, offsets)
             first_strand += count
             strands += count
     return strands

@@ -395,6 +395,11 @@ class Scene final : public ShaderTracer {
   const Cryptomatte& cryptomatte() const { return cryptomatte_; }
   void set_mesh_cryptomatte(uint32_t mesh, int32_t entry);
   void set_instance_cryptomatte(const int64_t* ids, size_t count, int32_t entry);
+  // A curve set's (add_curves) object settings at once, as its mesh's setters above give them:
+  // pass index, holdout, shadow catcher, light group, light linking sets (a strand emits no
+  // light, so no emitter entry), Cryptomatte entry. std::invalid_argument for a bad set, group
+  // or linking set.
+  void set_curves_settings(uint32_t set, const ObjectSettings& settings);
   float material_pass_index(uint32_t material) const {
     return material < material_pass_indices_.size() ? material_pass_indices_[material] : 0.0f;
   }
