@@ -23,9 +23,19 @@ PhaseKind phase_kind(const std::string& name) {
                         "' (HENYEY_GREENSTEIN, RAYLEIGH, DRAINE, FOURNIER_FORAND or MIE)");
 }
 
+// Blender's names of the material's and world's Volume Sampling (cycles' volume_sampling).
+VolumeSampling volume_sampling(const std::string& name) {
+  if (name == "DISTANCE") return VolumeSampling::Distance;
+  if (name == "EQUIANGULAR") return VolumeSampling::Equiangular;
+  if (name == "MULTIPLE_IMPORTANCE") return VolumeSampling::MultipleImportance;
+  throw py::value_error("unknown volume sampling '" + name + "' (DISTANCE, EQUIANGULAR or MULTIPLE_IMPORTANCE)");
+}
+
 HomogeneousMedium medium(std::array<float, 3> sigma_a, std::array<float, 3> sigma_s, std::array<float, 3> emission,
-                         float anisotropy, const std::string& phase, float phase_a, float phase_b) {
+                         float anisotropy, const std::string& phase, float phase_a, float phase_b,
+                         const std::string& sampling) {
   HomogeneousMedium m;
+  m.sampling = volume_sampling(sampling);
   m.phase = phase_kind(phase);
   m.phase_a = phase_a;
   m.phase_b = phase_b;
@@ -45,19 +55,21 @@ void init_media(py::module_& m) {
       "set_material_volume",
       [](Scene& s, uint32_t material, std::array<float, 3> sigma_a, std::array<float, 3> sigma_s,
          std::array<float, 3> emission, float anisotropy, bool pass_through, const std::string& phase, float phase_a,
-         float phase_b) {
-        s.set_material_volume(material, medium(sigma_a, sigma_s, emission, anisotropy, phase, phase_a, phase_b),
-                              pass_through);
+         float phase_b, const std::string& sampling) {
+        s.set_material_volume(
+            material, medium(sigma_a, sigma_s, emission, anisotropy, phase, phase_a, phase_b, sampling), pass_through);
       },
       py::arg("material"), py::arg("sigma_a") = kZero, py::arg("sigma_s") = kZero, py::arg("emission") = kZero,
       py::arg("anisotropy") = 0.0f, py::arg("pass_through") = false, py::arg("phase") = "HENYEY_GREENSTEIN",
-      py::arg("phase_a") = 0.0f, py::arg("phase_b") = 0.0f,
+      py::arg("phase_a") = 0.0f, py::arg("phase_b") = 0.0f, py::arg("sampling") = "MULTIPLE_IMPORTANCE",
       "The homogeneous volume inside the closed meshes of `material`: absorption and scattering "
       "coefficients per metre (RGB), emitted radiance per metre, the anisotropy g of its scattering. phase: "
       "its phase function as Blender's Volume Scatter names it (HENYEY_GREENSTEIN, RAYLEIGH, DRAINE: g and "
       "alpha = phase_a, FOURNIER_FORAND: IOR = phase_a and backscatter = phase_b, MIE: diameter in "
       "micrometres = phase_a). pass_through: the material has no surface shader (paths cross its surface without a "
-      "bounce). ValueError for a negative or non-finite value, |anisotropy| > 1 or an unknown material.");
+      "bounce). sampling: the material's Volume Sampling (DISTANCE, EQUIANGULAR or MULTIPLE_IMPORTANCE, "
+      "Cycles' default): how the point lit by next-event estimation is drawn (equiangular toward a point, spot or "
+      "area light: media/equiangular.h). ValueError for a negative or non-finite value, |anisotropy| > 1 or an unknown material.");
   scene.def(
       "set_material_volume_program",
       [](Scene& s, uint32_t material, uint32_t program, int sigma_a, int sigma_s, int emission, float anisotropy,
@@ -85,7 +97,8 @@ void init_media(py::module_& m) {
       "and scattering coefficients and the emitted radiance per metre in colour registers sigma_a, sigma_s "
       "and emission (-1: zero; negative values count as 0); the anisotropy and phase function (as "
       "set_material_volume's) are constant. "
-      "bounds_min/bounds_max: a world box holding the material's meshes, where the majorant is found. "
+      "bounds_min/bounds_max: a world box holding the material's meshes, where the majorant is found. Its points are "
+      "drawn by distance sampling (delta tracking) whatever the material's Volume Sampling. "
       "ValueError for an unknown material or program, a register the program does not write, |anisotropy| > 1.");
   scene.def(
       "add_volume_grid",
@@ -128,12 +141,12 @@ void init_media(py::module_& m) {
   scene.def(
       "set_world_volume",
       [](Scene& s, std::array<float, 3> sigma_a, std::array<float, 3> sigma_s, std::array<float, 3> emission,
-         float anisotropy, const std::string& phase, float phase_a, float phase_b) {
-        s.set_world_volume(medium(sigma_a, sigma_s, emission, anisotropy, phase, phase_a, phase_b));
+         float anisotropy, const std::string& phase, float phase_a, float phase_b, const std::string& sampling) {
+        s.set_world_volume(medium(sigma_a, sigma_s, emission, anisotropy, phase, phase_a, phase_b, sampling));
       },
       py::arg("sigma_a") = kZero, py::arg("sigma_s") = kZero, py::arg("emission") = kZero,
       py::arg("anisotropy") = 0.0f, py::arg("phase") = "HENYEY_GREENSTEIN", py::arg("phase_a") = 0.0f,
-      py::arg("phase_b") = 0.0f,
+      py::arg("phase_b") = 0.0f, py::arg("sampling") = "MULTIPLE_IMPORTANCE",
       "The homogeneous volume around everything (the World's Volume), as set_material_volume's.");
 }
 

@@ -134,7 +134,10 @@ class PathTracer {
         colour_passes_((ctx.settings.passes | pass_dependencies(ctx.settings.passes)) & (kPassAlbedo | kPassGlossyColor)) {
     std::fill_n(out_.extras, extra_.channels(), 0.0f);
     path_state_.ray_flags = kRayCamera;
-    if constexpr (kMedia) media_.stack = pixel.start_media ? *pixel.start_media : ctx.camera_media;
+    if constexpr (kMedia) {
+      media_.stack = pixel.start_media ? *pixel.start_media : ctx.camera_media;
+      media_.aims = ctx.scene.media().aims() && aimable_lights(lights_) > 0;
+    }
   }
 
   // The path, stage by stage.
@@ -932,11 +935,23 @@ class PathTracer {
   // max_volume_bounces + 1 times (Cycles' Volume bounces; 0: single scattering), and not past
   // max_bounces; after that its media only absorb and emit.
   void travel_media(int bounce, Segment& seg) {
+    media_.aimed = false;
     if (bounce == 0 && ctx_.catcher_half) return;  // it starts at the catcher: the split's media were before
     const bool may_scatter =
         bounce <= ctx_.settings.max_bounces && media_.scatters <= ctx_.settings.max_volume_bounces;
+    // Equiangular sampling (medium_walk.h): a light chosen ahead of the walk, its random numbers
+    // also the NEE's where the path scatters (the two strategies estimate the same function).
+    DirectAim aim;
+    media_.aimed = may_scatter && media_.aims;
+    if (media_.aimed) {
+      media_.u_aim = sampler_.next_4d();
+      media_.bounce = bounce;
+      aim.context = this;
+      aim.receive = &PathTracer::receive_equiangular;
+    }
+    const bool aims = media_.aimed && aim_at_light(lights_, media_.u_aim.x, aim.light_point);
     media_.walk = walk_media(ctx_.scene, ray_, *seg.traced, seg.found, media_.stack, throughput_, sampler_, may_scatter,
-                             seg.passed_length);
+                             seg.passed_length, aims ? &aim : nullptr);
     seg.scattered = media_.walk.scattered;
     Vec3 e = media_.walk.emission;
     if (!(max_abs_component(e) > 0.0f)) return;
@@ -949,17 +964,38 @@ class PathTracer {
     path_luminance_ += luminance(e);
   }
 
+  // The direct light at an equiangular point of the walk (medium_walk.h), its own light choice
+  // (light_choice_ stays the scattering vertex's, for the phase-sampled ray's MIS).
+  static void receive_equiangular(void* context, const EquiangularPoint& point) {
+    if constexpr (kMedia) {
+      auto& self = *static_cast<PathTracer*>(context);
+      const MediumNextEvent nee =
+          medium_next_event(self.ctx_.scene, point.position, -self.ray_.dir, *point.stack, point.local,
+                            self.media_.aim_choice, self.media_.u_aim, self.path_state_,
+                            self.ctx_.settings.max_transparent_bounces);
+      if (!(max_abs_component(nee.light) > 0.0f)) return;
+      LobeEval phase;
+      phase.diffuse = Vec3(1.0f);
+      const Vec3 arrived = self.deposit_light_sample(point.weight * nee.light, phase, self.media_.bounce, true);
+      if (self.light_groups_) self.credit(self.lights_.light_group(nee.light_index, nee.sample), arrived);
+    } else {
+      (void)context, (void)point;
+    }
+  }
+
   // A scattering vertex in a medium (Cycles' integrate_volume_direct_light and
   // integrate_volume_phase_scatter): NEE of one light with the phase function (medium_vertex.h),
   // filed with the diffuse passes (Torrance has no Volume passes), then the next ray along a
   // sample of the phase function (its weight 1), the roulette as at surfaces. False: the path ends.
   bool scatter_in_medium(int bounce) {
     ++media_.scatters;
-    const glm::vec4 u_light = sampler_.next_4d(), u_phase = sampler_.next_4d();
+    glm::vec4 u_light = sampler_.next_4d();
+    const glm::vec4 u_phase = sampler_.next_4d();
+    if (media_.aimed) u_light = media_.u_aim;
     const Vec3 position = media_.walk.position, wo = -ray_.dir;
     const MediumNextEvent nee = medium_next_event(ctx_.scene, position, wo, media_.stack, media_.walk.local,
                                                   light_choice_, u_light, path_state_,
-                                                  ctx_.settings.max_transparent_bounces);
+                                                  ctx_.settings.max_transparent_bounces, media_.walk.direct_weight);
     if (max_abs_component(nee.light) > 0.0f) {
       LobeEval phase;
       phase.diffuse = Vec3(1.0f);
@@ -1125,6 +1161,13 @@ class PathTracer {
     MediumStack stack;
     MediumWalk walk;
     int scatters = 0;
+    // Equiangular sampling: the walk chose a light ahead (aimed) with these random numbers; the
+    // equiangular points' own light choice; the bounce of the walk.
+    bool aimed = false;
+    glm::vec4 u_aim{0.0f};
+    bool aims = false;  // some medium asks for equiangular sampling and some light can be aimed at
+    LightChoice aim_choice;
+    int bounce = 0;
   };
   [[no_unique_address]] std::conditional_t<kMedia, Media, NoMedia> media_;
   // kSubsurface: whether the path took a diffuse bounce (Cycles' PATH_RAY_DIFFUSE_ANCESTOR), and

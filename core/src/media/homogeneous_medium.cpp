@@ -15,6 +15,7 @@ Vec3 transmittance(const Vec3& sigma_t, float distance) {
 void MediumMix::add(const HomogeneousMedium& m) {
   sigma_a_ += glm::max(m.sigma_a, Vec3(0.0f));
   emission_ += glm::max(m.emission, Vec3(0.0f));
+  sampling_.add(m.sampling);
   const Vec3 sigma_s = glm::max(m.sigma_s, Vec3(0.0f));
   if (!(max_component(sigma_s) > 0.0f)) return;
   sigma_s_ += sigma_s;
@@ -74,6 +75,25 @@ PhaseSample MediumMix::sample_phase(const Vec3& wo, float u_lobe, const Vec2& u)
   return s;
 }
 
+namespace {
+
+// The channel a free flight samples its distance by: in proportion to throughput x albedo
+// (Chiang et al. 2016, as Cycles); uniform when that is zero everywhere.
+Vec3 flight_channel_pdf(const MediumMix& medium, const Vec3& sigma_t, const Vec3& throughput) {
+  Vec3 weights;
+  for (int c = 0; c < 3; ++c)
+    weights[c] = sigma_t[c] > 0.0f ? std::abs(throughput[c] * medium.sigma_s()[c] / sigma_t[c]) : 0.0f;
+  const float sum = weights.x + weights.y + weights.z;
+  return sum > 0.0f ? weights / sum : Vec3(1.0f / 3.0f);
+}
+
+}  // namespace
+
+float free_flight_pdf(const MediumMix& medium, const Vec3& throughput, float t) {
+  const Vec3 sigma_t = medium.sigma_t();
+  return glm::dot(flight_channel_pdf(medium, sigma_t, throughput), sigma_t * transmittance(sigma_t, t));
+}
+
 FreeFlight sample_free_flight(const MediumMix& medium, float t_max, const Vec3& throughput, float u_channel,
                               float u_distance, bool may_scatter) {
   FreeFlight f;
@@ -85,13 +105,7 @@ FreeFlight sample_free_flight(const MediumMix& medium, float t_max, const Vec3& 
     f.weight = t_full;
     return f;
   }
-  // The channel: in proportion to throughput x albedo (Chiang et al. 2016, as Cycles).
-  Vec3 channel_pdf(1.0f / 3.0f);
-  Vec3 weights;
-  for (int c = 0; c < 3; ++c)
-    weights[c] = sigma_t[c] > 0.0f ? std::abs(throughput[c] * medium.sigma_s()[c] / sigma_t[c]) : 0.0f;
-  const float sum = weights.x + weights.y + weights.z;
-  if (sum > 0.0f) channel_pdf = weights / sum;
+  const Vec3 channel_pdf = flight_channel_pdf(medium, sigma_t, throughput);
   int channel = 2;
   float cumulative = 0.0f;
   for (int c = 0; c < 2; ++c) {
@@ -108,6 +122,7 @@ FreeFlight sample_free_flight(const MediumMix& medium, float t_max, const Vec3& 
     const float pdf = glm::dot(channel_pdf, sigma_t * t_at);
     if (pdf > 0.0f) {
       f.scattered = true;
+      f.pdf = pdf;
       f.t = std::min(t, t_max);
       f.weight = medium.sigma_s() * t_at / pdf;
       return f;

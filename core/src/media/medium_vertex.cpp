@@ -1,16 +1,18 @@
 #include "media/medium_vertex.h"
 
+#include <algorithm>
+
 namespace torrance {
 
 MediumNextEvent medium_next_event(const Scene& scene, const Vec3& p, const Vec3& wo, const MediumStack& stack,
                                   const MediumMix& at, LightChoice& choice, const glm::vec4& u, const PathState& state,
-                                  int max_transparent) {
+                                  int max_transparent, float weight) {
   MediumNextEvent out;
   const Lights& lights = scene.lights();
   const Vec3 n = -wo;
   choice.score(lights, p, n, true, false, [](const Vec3&) { return 0.0f; });
   const Lights::Choice chosen = choice.select(u.x);
-  if (!(chosen.probability > 0.0f)) return out;
+  if (!(chosen.probability > 0.0f) || weight == 0.0f) return out;
   out.light_index = chosen.index;
   const LightSample ls = lights.sample(chosen.index, p, n, Vec2(u.y, u.z), true, state);
   if (!ls.valid()) return out;
@@ -30,9 +32,31 @@ MediumNextEvent medium_next_event(const Scene& scene, const Vec3& p, const Vec3&
   const Vec3 transmittance = media_shadow_transmittance(scene, ray, stack, max_transparent, state, u.w);
   if (!(max_abs_component(transmittance) > 0.0f)) return out;
   const float mis = ls.pdf > 0.0f && !shadow_linked ? power_heuristic(chosen.probability * ls.pdf, phase) : 1.0f;
-  out.light = ls.weight * transmittance * (phase * mis / chosen.probability);
+  out.light = ls.weight * transmittance * (phase * mis * weight / chosen.probability);
   out.sample = ls;
   return out;
+}
+
+size_t aimable_lights(const Lights& lights) {
+  size_t aimable = 0;
+  for (size_t i = 0; i < lights.count(); ++i) aimable += lights.point(i) || lights.area(i);
+  return aimable;
+}
+
+bool aim_at_light(const Lights& lights, float u, Vec3& point) {
+  const size_t aimable = aimable_lights(lights);
+  if (aimable == 0) return false;
+  size_t pick = std::min(size_t(u * float(aimable)), aimable - 1);
+  for (size_t i = 0; i < lights.count(); ++i) {
+    const PointLight* pl = lights.point(i);
+    const AreaLight* al = lights.area(i);
+    if (!pl && !al) continue;
+    if (pick-- == 0) {
+      point = pl ? pl->position() : al->center();
+      return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace torrance

@@ -1,7 +1,8 @@
 // A path's scattering vertex in a medium (Cycles' integrate_volume_direct_light and
 // integrate_volume_phase_scatter): next-event estimation of one light with the phase function,
 // MIS-weighted (power heuristic) against phase sampling, its shadow ray through the media; then
-// the phase function sampled for the path's next direction (its weight is 1: exact sampling).
+// the phase function sampled for the path's next direction (its weight is 1: exact sampling). The
+// direct light's point may be another one than the path's (equiangular sampling: medium_walk.h).
 #pragma once
 
 #include "media/medium_walk.h"
@@ -19,8 +20,19 @@ struct MediumNextEvent {
 // as at a two-sided surface whose normal is the path's direction (choice keeps the
 // probabilities, for the MIS of a light the phase-sampled ray meets); u: choice, position on the light.
 // at: the media's coefficients at p (its phase function); u.w seeds heterogeneous media's tracking.
+// weight: the point's share of the direct light (MediumWalk::direct_weight); 0: the choice is
+// made (for the phase-sampled ray's MIS) but no light sampled.
 MediumNextEvent medium_next_event(const Scene& scene, const Vec3& p, const Vec3& wo, const MediumStack& stack,
                                   const MediumMix& at, LightChoice& choice, const glm::vec4& u, const PathState& state,
-                                  int max_transparent);
+                                  int max_transparent, float weight = 1.0f);
+
+// The point a path's walk through media aims its equiangular sampling at (medium_walk.h's
+// DirectAim): one of the point, spot and area lights, each with probability 1 / their number (by
+// u), at its centre; false when there is none (suns, the world and emitting meshes are left to
+// distance sampling, as Cycles leaves distant lights).
+bool aim_at_light(const Lights& lights, float u, Vec3& point);
+// How many lights aim_at_light chooses among (0: a path never aims, and draws no random numbers
+// for it: a scene lit by suns alone renders as with distance sampling).
+size_t aimable_lights(const Lights& lights);
 
 }  // namespace torrance

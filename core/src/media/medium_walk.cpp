@@ -12,10 +12,41 @@ namespace {
 
 constexpr int kMaxBoundaries = 1024;  // Cycles' VOLUME_BOUNDS_MAX
 
+// The direct light's point of one homogeneous stretch [ray.tmin, t_end] whose free flight f has
+// been drawn (throughput: the path's at the stretch's start): an equiangular point handed to aim,
+// or the weight of the direct light at f's scattering point (walk.direct_weight).
+void aim_direct_light(const DirectAim& aim, const Ray& ray, float t_end, const MediumStack& stack,
+                      const Vec3& throughput, const FreeFlight& f, const glm::vec4& u, MediumWalk& walk) {
+  const MediumMix& mix = stack.mix();
+  const EquiangularSegment segment(ray.origin, ray.dir, aim.light_point, ray.tmin, t_end);
+  if (!segment.valid()) return;  // distance sampling alone (weight 1)
+  const bool mis = mix.sampling() == VolumeSampling::MultipleImportance;
+  const bool equiangular = !mis || u.z >= 0.5f;
+  if (!equiangular) {  // the free flight's point, weighed against equiangular's density there
+    if (f.scattered)
+      walk.direct_weight = 2.0f * power_heuristic(f.pdf, segment.pdf(ray.tmin + f.t));
+    return;
+  }
+  if (f.scattered) walk.direct_weight = 0.0f;
+  float pdf = 0.0f;
+  const float t = segment.sample(u.w, pdf);
+  if (!(pdf > 0.0f)) return;
+  const float along = t - ray.tmin;
+  EquiangularPoint point;
+  point.weight = throughput * mix.sigma_s() * transmittance(mix.sigma_t(), along) / pdf;
+  if (mis) point.weight *= 2.0f * power_heuristic(pdf, free_flight_pdf(mix, throughput, along));
+  if (!(max_abs_component(point.weight) > 0.0f) || !is_finite(point.weight)) return;
+  point.position = ray.origin + ray.dir * t;
+  point.stack = &stack;
+  point.local = mix;
+  aim.receive(aim.context, point);
+}
+
 }  // namespace
 
 MediumWalk walk_media(const Scene& scene, Ray& ray, SurfaceHit& hit, bool& found, MediumStack& stack,
-                      Vec3& throughput, SobolSampler& sampler, bool may_scatter, float& passed_length) {
+                      Vec3& throughput, SobolSampler& sampler, bool may_scatter, float& passed_length,
+                      const DirectAim* aim) {
   const SceneMedia& media = scene.media();
   MediumWalk walk;
   for (int crossed = 0;; ++crossed) {
@@ -31,6 +62,8 @@ MediumWalk walk_media(const Scene& scene, Ray& ray, SurfaceHit& hit, bool& found
       } else {
         f = sample_free_flight(stack.mix(), t_end - ray.tmin, throughput, u.x, u.y, may_scatter);
         if (f.scattered) walk.local = stack.mix();
+        if (aim && may_scatter && stack.mix().scatters() && stack.mix().sampling() != VolumeSampling::Distance)
+          aim_direct_light(*aim, ray, t_end, stack, throughput, f, u, walk);
       }
       walk.emission += throughput * f.emission;
       throughput *= f.weight;

@@ -12,6 +12,25 @@
 
 namespace torrance {
 
+// A scattering point drawn by equiangular sampling (media/equiangular.h) in one homogeneous
+// stretch of a walk: where the direct light is to be estimated, and its weight (the path's
+// throughput at the stretch's start x sigma_s T / pdf, its MIS weight against the free flight's
+// point included).
+struct EquiangularPoint {
+  Vec3 position{0.0f};
+  Vec3 weight{0.0f};
+  const MediumStack* stack = nullptr;  // the media there
+  MediumMix local;
+};
+
+// Where a walk's direct light aims (Cycles' light sampled ahead of the volume segment): a point of
+// the chosen light, and what takes each equiangular point. nullptr: distance sampling only.
+struct DirectAim {
+  Vec3 light_point{0.0f};
+  void* context = nullptr;
+  void (*receive)(void* context, const EquiangularPoint& point) = nullptr;
+};
+
 struct MediumWalk {
   bool scattered = false;
   Vec3 position{0.0f};  // where it scattered
@@ -21,6 +40,10 @@ struct MediumWalk {
   // free-flight weight left out; lights inside a chromatic medium: approximate).
   Vec3 light_throughput{1.0f};
   MediumMix local;  // the media's coefficients where it scattered (heterogeneous: at that point)
+  // The weight of the direct light estimated where it scattered: 1 (distance sampling), 0 (the
+  // stretch's direct light came from an equiangular point) or its MIS weight x 2 (Multiple
+  // Importance, distance chosen).
+  float direct_weight = 1.0f;
 };
 
 // Follows `ray` (tmin to the hit `hit`, if found) through `stack`'s media and the volume-only
@@ -28,8 +51,13 @@ struct MediumWalk {
 // (its origin and tmax, passed_length growing by the stretch, as the alpha loop of trace_path does)
 // and `hit`/`found` become the next surface's. throughput takes each free flight's weight.
 // may_scatter false: past the path's last bounce (the media only absorb and emit).
+// aim (may_scatter only): each homogeneous scattering stretch whose media's Volume Sampling is
+// not Distance has its direct light's point drawn as that asks (equiangular toward
+// aim->light_point, or one of the two, chosen with probability 1/2 each: Cycles' one-sample MIS,
+// power heuristic); equiangular points go to aim->receive.
 MediumWalk walk_media(const Scene& scene, Ray& ray, SurfaceHit& hit, bool& found, MediumStack& stack,
-                      Vec3& throughput, SobolSampler& sampler, bool may_scatter, float& passed_length);
+                      Vec3& throughput, SobolSampler& sampler, bool may_scatter, float& passed_length,
+                      const DirectAim* aim = nullptr);
 
 // The light a shadow ray (its origin to its tmax) carries through `stack`'s media: extinction
 // along every stretch, volume-only boundaries crossed, other surfaces as trace_path's

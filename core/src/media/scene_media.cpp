@@ -32,6 +32,7 @@ int32_t SceneMedia::id_for(uint32_t material, bool pass_through) {
 
 void SceneMedia::set_material(uint32_t material, const HomogeneousMedium& medium, bool pass_through) {
   check(medium);
+  note_sampling(medium);
   const int32_t id = id_for(material, pass_through);
   media_[size_t(id)] = medium;
   if (size_t(id) < varying_of_.size()) varying_of_[size_t(id)] = -1;
@@ -51,8 +52,13 @@ void SceneMedia::set_material(uint32_t material, const VaryingMedium& medium, bo
   }
 }
 
+void SceneMedia::note_sampling(const HomogeneousMedium& medium) {
+  aims_ = aims_ || (medium.scatters() && medium.sampling != VolumeSampling::Distance);
+}
+
 void SceneMedia::set_world(const HomogeneousMedium& medium) {
   check(medium);
+  note_sampling(medium);
   if (world_ >= 0) {
     media_[size_t(world_)] = medium;
     return;

@@ -7,6 +7,7 @@
 // closed form. Coefficients are per metre, per RGB channel.
 #pragma once
 
+#include "torrance/media/equiangular.h"
 #include "torrance/media/phase_function.h"
 
 #include <array>
@@ -21,6 +22,8 @@ struct HomogeneousMedium {
   // Its phase function and parameters a, b (phase_function.h's PhaseLobe).
   PhaseKind phase = PhaseKind::HenyeyGreenstein;
   float phase_a = 0.0f, phase_b = 0.0f;
+  // How a point receiving direct light is found in it (media/equiangular.h; Cycles' default).
+  VolumeSampling sampling = VolumeSampling::MultipleImportance;
 
   PhaseLobe lobe() const { return {phase, anisotropy, phase_a, phase_b}; }
 
@@ -73,6 +76,8 @@ class MediumMix {
   // The phase function of the scattering at a point: value = pdf (per steradian).
   float phase_pdf(const Vec3& wo, const Vec3& wi) const;
   PhaseSample sample_phase(const Vec3& wo, float u_lobe, const Vec2& u) const;
+  // The Volume Sampling of its media together (VolumeSamplingCombiner; Distance when none).
+  VolumeSampling sampling() const { return sampling_.method; }
 
  private:
   Vec3 sigma_a_{0.0f}, sigma_s_{0.0f}, emission_{0.0f};
@@ -80,6 +85,7 @@ class MediumMix {
   std::array<float, kMaxLobes> lobe_weight_{};
   int lobes_ = 0;
   float lobe_weight_sum_ = 0.0f;
+  VolumeSamplingCombiner sampling_;
   std::array<int32_t, kMaxVarying> varying_{};
   int varying_count_ = 0;
   float varying_majorant_ = 0.0f;
@@ -91,12 +97,17 @@ struct FreeFlight {
   float t = 0.0f;            // where it scattered (t_max when it did not)
   Vec3 weight{1.0f};         // the path's throughput is multiplied by it (sigma_s T / pdf when it scattered)
   Vec3 emission{0.0f};       // the segment's emission, throughput not included
+  float pdf = 0.0f;          // scattered: the density of t (free_flight_pdf)
 };
 
 // A free flight as Cycles samples a homogeneous segment (above). throughput: the path's, for the
 // channel choice. Absorption-only media are not sampled: their transmittance is the weight; so
 // is every medium's where the path may not scatter any more (may_scatter false: Cycles' path
 // past its last bounce, whose media keep absorbing and emitting).
+// The density with which sample_free_flight (may_scatter) scatters at t inside its segment, the
+// path's throughput `throughput` (for the multiple importance of equiangular sampling).
+float free_flight_pdf(const MediumMix& medium, const Vec3& throughput, float t);
+
 FreeFlight sample_free_flight(const MediumMix& medium, float t_max, const Vec3& throughput, float u_channel,
                               float u_distance, bool may_scatter = true);
 

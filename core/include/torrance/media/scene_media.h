@@ -33,15 +33,20 @@ class SceneMedia {
   int32_t varying_index(int32_t id) const { return size_t(id) < varying_of_.size() ? varying_of_[size_t(id)] : -1; }
   const VaryingMedium& varying(int32_t index) const { return varying_[size_t(index)]; }
   bool any_varying() const { return !varying_.empty(); }
+  // Some homogeneous medium scatters and asks for equiangular sampling (its Volume Sampling is
+  // not Distance): paths through media then choose a light to aim at (media/medium_walk.h).
+  bool aims() const { return aims_; }
 
  private:
   int32_t id_for(uint32_t material, bool pass_through);
+  void note_sampling(const HomogeneousMedium& medium);
   std::vector<HomogeneousMedium> media_;
   std::vector<int32_t> varying_of_;  // per medium id
   std::vector<VaryingMedium> varying_;
   std::vector<int32_t> id_of_material_;
   std::vector<uint8_t> pass_through_;
   int32_t world_ = -1;
+  bool aims_ = false;
 };
 
 }  // namespace torrance
