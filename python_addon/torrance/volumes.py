@@ -275,6 +275,18 @@ def _once(make):
     return get
 
 
+def _with_sampling(keywords, owner):
+    """A homogeneous volume's keywords with the material's or world's Volume Sampling (Cycles'
+    volume_sampling: DISTANCE, EQUIANGULAR or MULTIPLE_IMPORTANCE; defaults Multiple Importance on a
+    material, Equiangular on a world); a heterogeneous one's (a 'program') take distance
+    sampling only and are left as they are."""
+    if keywords is None or 'program' in keywords:
+        return keywords
+    cycles = getattr(owner, "cycles", None)
+    default = 'EQUIANGULAR' if owner.__class__.__name__ == "World" else 'MULTIPLE_IMPORTANCE'
+    return dict(keywords, sampling=getattr(cycles, "volume_sampling", default))
+
+
 def _output_sockets(owner):
     """The (Surface, Volume) input sockets of the output Cycles uses, or None."""
     tree = used_node_tree(owner)
@@ -301,7 +313,7 @@ def material_volume(mat, textures, reporter, depsgraph=None, grid_table=None):
                                                      grid_table)).read(sockets[1])
     if medium is None:
         return None
-    return medium, sockets[0] is None or source_socket(sockets[0]) is None
+    return _with_sampling(medium, mat), sockets[0] is None or source_socket(sockets[0]) is None
 
 
 def has_volume(owner):
@@ -322,7 +334,8 @@ def world_volume(world, textures, reporter):
     sockets = _output_sockets(world) if world is not None else None
     if sockets is None or sockets[1] is None or source_socket(sockets[1]) is None:
         return None
-    return VolumeReader(f"World '{world.name}'", textures, reporter).read(sockets[1])
+    medium = VolumeReader(f"World '{world.name}'", textures, reporter).read(sockets[1])
+    return _with_sampling(medium, world)
 
 
 def object_volume(mat, where, textures, reporter, space, density=1.0):
@@ -332,8 +345,8 @@ def object_volume(mat, where, textures, reporter, space, density=1.0):
     sockets = _output_sockets(mat)
     if sockets is None or sockets[1] is None or source_socket(sockets[1]) is None:
         return None
-    return VolumeReader(f"{where}, material '{mat.name}'", textures, reporter,
-                        space=lambda: space).read(sockets[1], density)
+    return _with_sampling(VolumeReader(f"{where}, material '{mat.name}'", textures, reporter,
+                                       space=lambda: space).read(sockets[1], density), mat)
 
 
 def default_volume(space, textures, density=1.0):
