@@ -2,14 +2,21 @@
 """Negative emission renders as Cycles renders it: Color x Strength as it is, a negative one taking
 light away (Cycles 3.4's emission closure has no cut-off, and its emissive triangles are light
 sampled whatever the sign: the floor under a Strength -2 emitter darkens by as much as a +2 one
-brightens it, 512 spp: 0.2456 / 0.2700 / 0.2944).
+brightens it, 512 spp: 0.2456 / 0.2700 / 0.2944). So do lamps and a plain world of negative
+strength (Cycles 3.4, 32x24 at 64 spp, floor mean with +10 / 0 / -10 W: point 0.1042 / 0.0899 /
+0.0756, area 0.1239 / 0.0899 / 0.0559; sun +1 / 0 / -1: 0.2944 / 0.0899 / -0.1146; world
+strength +1 / 0 / -1: 0.0899 / 0 / -0.0899).
 
-A floor and a wall under a grey world and a sun; a card of Emission (Strength -1.5, orange)
-facing the floor and the camera (its own pixels negative), a sphere of Principled BSDF with
-Emission Strength -2 (bluish), and a card of a Mix Shader (Fac 0.5) of a Diffuse BSDF and an
-Emission of Strength -3 (the emission in a mixture). Cycles' reference (seed 0) and a second
-Cycles image (seed 1) set the bounds; Torrance renders seeds 2 and 3. The faults (each must
-fail): the emission clamped at 0 (Torrance before this test) and its sign dropped.
+A floor and a wall under a grey world and a sun. Variants, each against Cycles (its seed 0 the
+reference, its seed 1 the bounds; Torrance's seeds 2 and 3), each fault must fail:
+* emission: a card of Emission (Strength -1.5, orange) facing the floor and the camera (its own
+  pixels negative), a sphere of Principled BSDF with Emission Strength -2 (bluish), and a card of
+  a Mix Shader (Fac 0.5) of a Diffuse BSDF and an Emission of Strength -3 (the emission in a
+  mixture). Faults: the emission clamped at 0 (Torrance before), its sign dropped.
+* lamps: a point light (-15 W), a spot light (-40 W) and an area light (-10 W) beside the
+  positive sun. Faults: negative lamps skipped (Torrance before), their sign dropped.
+* world: the world's Background at Strength -0.3 (light taken from every direction), the sun
+  as before. Fault: the strength clamped at 0 (Torrance before).
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \\
          --python blender_tests/test_negative_emission_agreement.py
@@ -19,7 +26,7 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \\
 import math
 
 from torrance_tools import testing
-from torrance_tools.seed_noise import agree_within_seed_noise
+from torrance_tools.seed_noise import agree_on_variants
 from torrance_tools.shader_graphs import Graph
 
 W, H = 80, 60
@@ -80,18 +87,78 @@ def emission_changed(change):
     return make_fault
 
 
+def negative_lamps(scene):
+    import bpy
+    testing.add_point(scene, (-1.4, 0.2, 1.0), power=-15.0, radius=0.1)
+    spot = bpy.data.lights.new("NegativeSpot", 'SPOT')
+    spot.energy, spot.spot_size, spot.shadow_soft_size = -40.0, math.radians(50.0), 0.05
+    ob = bpy.data.objects.new("NegativeSpot", spot)
+    scene.collection.objects.link(ob)
+    ob.location = (1.2, -0.6, 2.2)
+    area = bpy.data.lights.new("NegativeArea", 'AREA')
+    area.energy, area.size = -10.0, 0.6
+    ob = bpy.data.objects.new("NegativeArea", area)
+    scene.collection.objects.link(ob)
+    ob.location, ob.rotation_euler = (0.0, 1.2, 1.4), (math.radians(-70.0), 0.0, 0.0)
+
+
+def negative_world(scene):
+    import bpy
+    for ob in [o for o in scene.objects if o.type == 'LIGHT' and o.data.energy < 0.0]:
+        bpy.data.objects.remove(ob)
+    scene.world.node_tree.nodes["Background"].inputs["Strength"].default_value = -0.3
+
+
+def lamps_changed(change):
+    """A make_fault for export_light: each negative lamp skipped (change None) or its strength
+    changed for the export."""
+    def make_fault(original):
+        def export(tc_scene, obj, matrix, reporter, textures):
+            energy = obj.data.energy
+            if energy >= 0.0:
+                return original(tc_scene, obj, matrix, reporter, textures)
+            if change is None:
+                return False
+            obj.data.energy = change(energy)
+            try:
+                return original(tc_scene, obj, matrix, reporter, textures)
+            finally:
+                obj.data.energy = energy
+        return export
+    return make_fault
+
+
+def world_clamped(original):
+    """A make_fault for export_world: the plain world's strength clamped at 0."""
+    def export(tc_scene, world, reporter, textures):
+        class Clamping:
+            def __getattr__(self, name):
+                return getattr(tc_scene, name)
+
+            def set_world(self, color, strength):
+                tc_scene.set_world(color=color, strength=max(0.0, strength))
+        return original(Clamping(), world, reporter, textures)
+    return export
+
+
 def main():
     testing.addon()
     from torrance import materials
+    from torrance.export import scene as export_scene
     scene = testing.clear_scene()
     build(scene)
-    faults = [
-        ("emission clamped at 0", materials, '_sanitize', emission_changed(lambda s: max(s, 0.0))),
-        ("emission's sign dropped", materials, '_sanitize', emission_changed(abs)),
-    ]
-    agree_within_seed_noise(scene, testing.tempdir(), SAMPLES, BOUNCES, "negative emission",
-                            faults=faults, tolerance=1.5, ratio_sigmas=3.0)
-    testing.check(not testing.last_messages(), f"unexpected reports: {testing.last_messages()}")
+    variants = (
+        ("emission", lambda _scene: None,
+         (("emission clamped at 0", materials, '_sanitize',
+           emission_changed(lambda s: max(s, 0.0))),
+          ("emission's sign dropped", materials, '_sanitize', emission_changed(abs)))),
+        ("lamps", negative_lamps,
+         (("negative lamps skipped", export_scene, 'export_light', lamps_changed(None)),
+          ("lamps' sign dropped", export_scene, 'export_light', lamps_changed(abs)))),
+        ("world", negative_world,
+         (("world strength clamped at 0", export_scene, 'export_world', world_clamped),)),
+    )
+    agree_on_variants(scene, variants, SAMPLES, BOUNCES)
 
 
 testing.run(main)

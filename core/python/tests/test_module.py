@@ -113,7 +113,7 @@ def test_other_bad_inputs():
     with pytest.raises(ValueError, match="NaN"):
         scene.add_material(base_color=(float("nan"), 0, 0))
     with pytest.raises(ValueError, match="power"):
-        scene.add_point_light(position=(0, 0, 1), power=-5.0)
+        scene.add_point_light(position=(0, 0, 1), power=float("nan"))
     with pytest.raises(ValueError, match="sun angle"):
         scene.add_sun(angle=-1.0)
     with pytest.raises(ValueError, match="positive"):

@@ -141,7 +141,7 @@ void CausticTracer::trace_path(uint32_t index, uint32_t sample) {
   if (!(probability > 0.0f)) return;
   const EmittedRay emitted = ctx_.lights.emit(emitters_[chosen], sampler.next_4d(), u_choice.y, targets_);
   Vec3 beta = emitted.weight / probability;
-  if (!(max_component(beta) > 0.0f)) return;
+  if (!(max_component(glm::abs(beta)) > 0.0f)) return;  // (a negative light's is negative)
   Ray ray;
   ray.origin = emitted.origin;
   ray.dir = emitted.dir;
@@ -182,7 +182,7 @@ void CausticTracer::trace_path(uint32_t index, uint32_t sample) {
       const float ior = std::max(ctx_.scene.material(m).ior, 1e-5f);
       beta *= backfacing ? ior * ior : 1.0f / (ior * ior);
     }
-    if (!(max_component(beta) > 0.0f) || !is_finite(beta)) return;
+    if (!(max_component(glm::abs(beta)) > 0.0f) || !is_finite(beta)) return;
     ray.origin = offset_origin(hit.position, ng, to);
     ray.dir = to;
   }

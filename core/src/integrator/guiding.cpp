@@ -150,7 +150,9 @@ void GuidePathRecorder::flush() {
       if (v.throughput[c] > 0.0f) incident[c] = v.radiance[c] / v.throughput[c];
       if (v.throughput_before[c] > 0.0f) reflected[c] = v.radiance[c] / v.throughput_before[c];
     }
-    field_->record(v.leaf, v.square, weight_ * luminance(incident) / v.pdf, weight_ * luminance(reflected), v.bsdf_pdf,
+    // By magnitude: light taken away (negative emission) is light to find too.
+    field_->record(v.leaf, v.square, weight_ * std::abs(luminance(incident)) / v.pdf,
+                   weight_ * std::abs(luminance(reflected)), v.bsdf_pdf,
                    v.guide_pdf);
   }
   count_ = 0;

@@ -55,7 +55,7 @@ bool mirror_image_light(const PathContext& ctx, const Bsdf& bsdf, const typename
   if (images.is_mirror(ms.reflector)) {
     if (!unoccluded(ms.to_sun, std::numeric_limits<float>::infinity())) return false;
     light = ms.sun_weight * images.reflectance(ms.reflector, ms.to_sun) * mis;
-    return max_component(light) > 0.0f;
+    return max_component(glm::abs(light)) > 0.0f;
   }
   // A glossy plane or sphere: the light at its point, by NEE and by sampling its BSDF, weighed
   // against each other (a lobe narrower than the light is the BSDF's to sample).
@@ -80,7 +80,7 @@ bool mirror_image_light(const PathContext& ctx, const Bsdf& bsdf, const typename
       arriving += bs.weight * h.radiance * power_heuristic(bs.pdf, h.pdf);
   }
   light = arriving * (mis / ms.pdf);
-  return max_component(light) > 0.0f;
+  return max_component(glm::abs(light)) > 0.0f;
 }
 
 // Radiance along a camera ray. Contributions are filed by the lobe the path left its first hit

@@ -426,7 +426,7 @@ class PathTracer {
       hit = behind;
       t_near = t_far;
     }
-    if (!(max_component(e) > 0.0f)) return;
+    if (!(max_component(glm::abs(e)) > 0.0f)) return;
     const Vec3& seen = seen_throughput();
     features_.light(seen * e * clamp_scale(seen * e / branch_weight_, bounce == 1), out_);
     const Vec3 arrived = deposit(seen * e, bounce == 1);

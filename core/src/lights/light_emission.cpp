@@ -134,7 +134,7 @@ EmittedRay AreaLight::emit(const glm::vec4& u, float u_target, const EmissionTar
 }
 
 float AreaLight::emitted_power(const EmissionTargets& targets) const {
-  return luminance(radiance_) * area_ * std::min(kPi, targets_solid_angle(center_, targets, extent()));
+  return std::abs(luminance(radiance_)) * area_ * std::min(kPi, targets_solid_angle(center_, targets, extent()));
 }
 
 EmittedRay Lights::emit(size_t index, const glm::vec4& u, float u_target, const EmissionTargets& targets) const {

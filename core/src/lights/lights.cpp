@@ -19,6 +19,11 @@ void require_finite(const Vec3& v, const char* what) {
 void require_non_negative(float v, const char* what) {
   if (!(v >= 0.0f) || !std::isfinite(v)) throw std::invalid_argument(std::string(what) + " must be finite and >= 0");
 }
+// A light's strength or power: any finite value. A negative one takes light away, as Cycles
+// renders it (the light is chosen by its magnitude; what it adds keeps the sign).
+void require_finite(float v, const char* what) {
+  if (!std::isfinite(v)) throw std::invalid_argument(std::string(what) + " must be finite");
+}
 Vec3 checked_color(const Vec3& c, const char* what) {
   require_finite(c, what);
   return glm::max(c, Vec3(0.0f));
@@ -89,14 +94,14 @@ constexpr double kMinSphericalSolidAngle = 1e-5;
 // ---- sun ------------------------------------------------------------------------------------
 
 SunLight::SunLight(const Vec3& direction, float strength, const Vec3& color, float angle) {
-  require_non_negative(strength, "sun strength");
+  require_finite(strength, "sun strength");
   require_non_negative(angle, "sun angle");
   to_light_ = -unit_direction(direction, "sun direction");
   irradiance_ = scaled_color(color, strength, "sun color");
   const float s = std::sin(std::min(angle, kPi) * 0.25f);
   one_minus_cos_ = 2.0f * s * s;
   sin_half_ = std::sqrt(one_minus_cos_ * (2.0f - one_minus_cos_));
-  luminance_ = luminance(irradiance_);
+  luminance_ = std::abs(luminance(irradiance_));
 }
 
 LightSample SunLight::sample(const Vec3&, const Vec3&, const Vec2& u) const {
@@ -128,10 +133,10 @@ bool SunLight::hit(const Vec3&, const Vec3&, const Vec3& dir, float t_max, Light
 PointLight::PointLight(const Vec3& position, float power, const Vec3& color, float radius, const SpotShape& spot)
     : position_(position), radius_(radius), spot_(spot) {
   require_position(position, "light position");
-  require_non_negative(power, "light power");
+  require_finite(power, "light power");
   require_non_negative(radius, "light radius");
   intensity_ = scaled_color(color, power / (4.0f * kPi), "light color");
-  luminance_ = luminance(intensity_);
+  luminance_ = std::abs(luminance(intensity_));
 }
 
 float PointLight::spot_attenuation(const Vec3& p) const {
@@ -223,7 +228,7 @@ AreaLight::AreaLight(const Vec3& center, const Vec3& edge_u, const Vec3& edge_v,
   require_position(edge_u, "area light size");
   require_position(edge_v, "area light size");
   if (std::isnan(spread) || spread < 0.0f) throw std::invalid_argument("area light spread must be >= 0");
-  require_non_negative(power, "area light power");
+  require_finite(power, "area light power");
   normal_ = unit_direction(normal, "area light direction");
   area_ = glm::length(edge_u) * glm::length(edge_v) * (ellipse ? kPi / 4.0f : 1.0f);
   if (!(area_ > 0.0f)) throw std::invalid_argument("area light must have a non-zero size");
@@ -283,7 +288,7 @@ float AreaLight::importance(const Vec3& p, const Vec3& n) const {
   const float extent = 0.5f * std::max(glm::length(edge_u_), glm::length(edge_v_));
   const float inv_d = 1.0f / std::sqrt(std::max(d2, 1e-12f));
   const float cos_bound = std::max(glm::dot(n, d) * inv_d + std::min(extent * inv_d, 1.0f), 0.0f);
-  return luminance(radiance_) * area_ * cos_bound / std::max(d2, area_);
+  return std::abs(luminance(radiance_)) * area_ * cos_bound / std::max(d2, area_);
 }
 
 bool AreaLight::hit(const Vec3& p, const Vec3&, const Vec3& dir, float t_max, LightHit& out) const {
@@ -367,7 +372,7 @@ void Lights::add_area(const Vec3& center, const Vec3& edge_u, const Vec3& edge_v
 }
 
 void Lights::set_world(const Vec3& color, float strength) {
-  require_non_negative(strength, "world strength");
+  require_finite(strength, "world strength");
   world_ = WorldLight(scaled_color(color, strength, "world color"));
 }
 

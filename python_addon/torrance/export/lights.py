@@ -128,8 +128,8 @@ def export_light(tc_scene, obj, matrix, reporter, textures):
     if not math.isfinite(energy) or not all(math.isfinite(c) for c in color):
         reporter.warning(f"Light '{obj.name}' has a non-finite colour or strength: skipped")
         return False
-    if energy < 0.0 or min(color) < 0.0:
-        reporter.warning(f"Light '{obj.name}' has a negative colour or strength: skipped")
+    if min(color) < 0.0:     # (a negative strength takes light away, as Cycles renders it)
+        reporter.warning(f"Light '{obj.name}' has a negative colour: skipped")
         return False
     if kind == 'AREA' and getattr(getattr(light, "cycles", None), "is_portal", False):
         reporter.info(f"Area light '{obj.name}' is a portal, which Torrance does not use "

@@ -122,7 +122,7 @@ class WorldLight {
   explicit WorldLight(std::shared_ptr<const EnvironmentMap> map) : map_(std::move(map)) {}
   LightSample sample(const Vec3& p, const Vec3& n, const Vec2& u, const PathState& receiver = {}) const;
   float importance(const Vec3&, const Vec3&) const {
-    return (map_ ? map_->average_luminance() : luminance(radiance_)) * kPi;
+    return (map_ ? map_->average_luminance() : std::abs(luminance(radiance_))) * kPi;
   }
   bool hit(const Vec3& p, const Vec3& n, const Vec3& dir, float t_max, LightHit& out,
            const PathState& state = {}) const;
@@ -131,7 +131,7 @@ class WorldLight {
   }
   // A map whose samples all came out black may still shine on some rays (a node graph reading
   // the Light Path): only a uniform black world is no world.
-  bool black() const { return map_ ? false : !(max_component(radiance_) > 0.0f); }
+  bool black() const { return map_ ? false : !(max_component(glm::abs(radiance_)) > 0.0f); }
   bool is_map() const { return map_ != nullptr; }
   bool in_nee() const { return map_ && map_->average_luminance() > 0.0f; }
   bool reads_path() const { return map_ && map_->reads_path(); }
