@@ -213,7 +213,8 @@ void init_scene(py::module_& m) {
              float subsurface_min_footprint, bool subsurface_after_diffuse, bool subsurface_van_de_hulst,
              bool subsurface_burley, float thin_film_thickness, float thin_film_ior, bool thin_film_cycles5,
              int thin_film_thickness_register, int thin_film_ior_register, bool thin_wall,
-             float diffuse_roughness, bool emission_under_layers, const std::string& coat_layering) {
+             float diffuse_roughness, bool emission_under_layers, const std::string& coat_layering,
+             bool multiscatter_walk) {
             if (glass_distribution != "GGX" && glass_distribution != "BECKMANN")
               throw py::value_error("glass_distribution must be 'GGX' or 'BECKMANN', got '" + glass_distribution +
                                     "'");
@@ -228,6 +229,7 @@ void init_scene(py::module_& m) {
             mat.ior = ior;
             mat.specular_tint_color = vec3(specular_tint_color);
             mat.multiscatter_ggx = multiscatter_ggx;
+            mat.multiscatter_walk = multiscatter_walk;
             mat.transmission = transmission;
             mat.transmission_roughness = transmission_roughness;
             mat.hair_offset = hair_offset;
@@ -338,10 +340,13 @@ void init_scene(py::module_& m) {
           py::arg("thin_film_thickness_register") = -1, py::arg("thin_film_ior_register") = -1,
           py::arg("thin_wall") = false, py::arg("diffuse_roughness") = 0.0f,
           py::arg("emission_under_layers") = false, py::arg("coat_layering") = "CYCLES_4_5",
+          py::arg("multiscatter_walk") = false,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
-          "specular_tint_color and multiscatter_ggx are read by PRINCIPLED_V2 only. "
+          "specular_tint_color and multiscatter_ggx are read by PRINCIPLED_V2 only; multiscatter_walk by "
+          "PRINCIPLED only (Blender 3.x's Multiscatter GGX: the specular lobe a random walk when roughness > "
+          "0.075 and the material has no glass). "
           "transmission, ior, transmission_roughness: the Principled BSDF's glass (transmission and "
           "transmission_roughness in [0, 1], ior in (0, 1000]; ior is also PRINCIPLED_V2's IOR); glass=True: "
           "Blender's Glass BSDF node "

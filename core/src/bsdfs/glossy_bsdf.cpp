@@ -6,21 +6,25 @@
 
 namespace torrance {
 
-GlossyBsdf::GlossyBsdf(const Vec3& color, float roughness, float anisotropy, const Vec3& tangent, float rotation,
-                       bool cycles4, bool multiscatter)
-    : color_(glm::clamp(color, Vec3(0.0f), Vec3(1.0f))), cycles4_(cycles4) {
+ggx::Shape GlossyBsdf::lobe_shape(float roughness, float anisotropy, const Vec3& tangent, float rotation) {
   const float r = std::isfinite(roughness) ? clamp01(roughness) : 0.0f;
   const float alpha = r * r;
   const float a = std::isfinite(anisotropy) ? std::clamp(anisotropy, -0.99f, 0.99f) : 0.0f;
-  shape_ = ggx::Shape(alpha);
-  if (a != 0.0f) {
-    const float alpha_x = std::min(a < 0.0f ? alpha / (1.0f + a) : alpha * (1.0f - a), 1.0f);
-    const float alpha_y = std::min(a < 0.0f ? alpha * (1.0f + a) : alpha / (1.0f - a), 1.0f);
-    shape_ = ggx::Shape(alpha_x, alpha_y, tangent, std::isfinite(rotation) ? kTwoPi * rotation : 0.0f);
-    if (!shape_.anisotropic()) shape_ = ggx::Shape(alpha);  // no tangent: Cycles' isotropic lobe
-  }
+  if (a == 0.0f) return ggx::Shape(alpha);
+  const float alpha_x = std::min(a < 0.0f ? alpha / (1.0f + a) : alpha * (1.0f - a), 1.0f);
+  const float alpha_y = std::min(a < 0.0f ? alpha * (1.0f + a) : alpha / (1.0f - a), 1.0f);
+  const ggx::Shape shape(alpha_x, alpha_y, tangent, std::isfinite(rotation) ? kTwoPi * rotation : 0.0f);
+  return shape.anisotropic() ? shape : ggx::Shape(alpha);  // no tangent: Cycles' isotropic lobe
+}
+
+GlossyBsdf::GlossyBsdf(const Vec3& color, float roughness, float anisotropy, const Vec3& tangent, float rotation,
+                       bool cycles4, bool multiscatter)
+    : color_(glm::clamp(color, Vec3(0.0f), Vec3(1.0f))),
+      shape_(lobe_shape(roughness, anisotropy, tangent, rotation)),
+      cycles4_(cycles4) {
   if (cycles4 && multiscatter)
-    multiscatter_roughness_ = shape_.anisotropic() ? std::sqrt(std::sqrt(shape_.alpha_x() * shape_.alpha_y())) : r;
+    multiscatter_roughness_ = shape_.anisotropic() ? std::sqrt(std::sqrt(shape_.alpha_x() * shape_.alpha_y()))
+                                                   : (std::isfinite(roughness) ? clamp01(roughness) : 0.0f);
 }
 
 LobeEval GlossyBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {

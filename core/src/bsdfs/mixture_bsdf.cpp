@@ -202,6 +202,7 @@ BsdfSample MixtureBsdf::sample_mixture(const Vec3& wo, float u_lobe, const Vec2&
 }
 
 bool MixtureBsdf::sample_is_own_eval(const Component& c) {
+  if (const MaterialBsdf* m = std::get_if<MaterialBsdf>(&c)) return m->walks();
   return std::visit(
       [](const auto& b) { return SampleIsOwnEval<std::decay_t<decltype(b)>>::value; },
       c);
@@ -241,6 +242,8 @@ void MixtureBsdf::orient(const Frame& frame) {
   for (int k = 0; k < count_; ++k) {
     Component& c = components_[size_t(k)];
     if (GlossyBsdf* glossy = std::get_if<GlossyBsdf>(&c); glossy && glossy->anisotropic()) glossy->orient(frame);
+    else if (MultiscatterGlossyBsdf* walk = std::get_if<MultiscatterGlossyBsdf>(&c); walk && walk->anisotropic())
+      walk->orient(frame);
     else if (MetallicBsdf* metal = std::get_if<MetallicBsdf>(&c); metal && metal->anisotropic()) metal->orient(frame);
     else if (MaterialBsdf* material = std::get_if<MaterialBsdf>(&c)) material->orient(frame);
     else if (PrincipledHairBsdf* hair = std::get_if<PrincipledHairBsdf>(&c)) hair->orient(frame);
@@ -345,6 +348,10 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
         bsdf.add(GlossyBsdf(m.base_color, m.roughness, m.anisotropy, m.tangent, m.anisotropic_rotation,
                             model == BrdfModel::PrincipledV2, m.multiscatter_ggx),
                  w.weight[k], luminance(m.base_color));
+        break;
+      case ClosureType::GlossyMultiscatterV1:
+        add_closure(bsdf, MultiscatterGlossyBsdf(m.base_color, m.roughness, m.anisotropy, m.tangent, m.anisotropic_rotation),
+                    w.weight[k]);
         break;
       case ClosureType::MetallicF82:
       case ClosureType::MetallicConductor: {

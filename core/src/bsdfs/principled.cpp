@@ -46,6 +46,17 @@ PrincipledBsdf::PrincipledBsdf(const Material& m) {
   const Vec3 tint = lum > 0.0f ? base / lum : Vec3(1.0f);
   const Vec3 dielectric = f0_ * glm::mix(Vec3(1.0f), tint, clamp01(m.specular_tint)) * (1.0f - metallic);
   cspec0_ = glm::clamp(dielectric + base * metallic, Vec3(0.0f), Vec3(1.0f));
+  // Cycles 3.4's Multiscatter GGX above roughness 0.075 (single-scattering GGX below); with glass
+  // the material keeps single scattering (MaterialBsdf's glass mix counts eval / pdf).
+  if (m.multiscatter_walk && roughness_ > 0.075f && !m.transmits()) {
+    microsurface::Reflectance r;
+    r.fresnel = true;
+    r.cspec0 = cspec0_;
+    r.eta = eta_;
+    r.f0 = f0_;
+    walk_ = microsurface::Walk(shape_, r);
+    walks_ = true;
+  }
   if (m.coat_weight > 0.0f) coat_ = ClearcoatV1(m.coat_weight, m.coat_roughness);
   if (m.sheen_weight > 0.0f) sheen_ = SheenV1(m.sheen_weight, m.sheen_tint, base, diffuse_weight);
 }
@@ -91,7 +102,7 @@ PrincipledBsdf::View PrincipledBsdf::at(const Vec3& wo, const CoatNormal& coat_n
   return v;
 }
 
-LobeEval PrincipledBsdf::eval_lobes(const View& v, const Vec3& wi) const {
+LobeEval PrincipledBsdf::eval_parts(const View& v, const Vec3& wi, bool with_walk) const {
   const Vec3& wo = v.wo;
   if (wo.z <= 0.0f) return {};
   LobeEval f_cos;
@@ -112,7 +123,9 @@ LobeEval PrincipledBsdf::eval_lobes(const View& v, const Vec3& wi) const {
     f_cos.diffuse = diffuse_color_ * (kInvPi * burley * wi.z);
   }
   if (sheen_.active()) f_cos.diffuse += sheen_.eval(cos_d, wi.z);
-  if (!has_delta()) {
+  if (walks_) {
+    if (with_walk) f_cos.glossy += specular_weight_ * walk_.eval(wo, wi);
+  } else if (!has_delta()) {
     const float g = v.g1_o * shape_.G1(wi);
     f_cos.glossy = fresnel(cos_d) * (shape_.D(h) * g / v.four_cos_o) + f_cos.glossy;
   }

@@ -168,7 +168,8 @@ void DenoisingClosures::add_closures(const ClosureList& list, float cos_no, bool
     const float r2 = microfacet_roughness_squared(std::clamp(m.roughness, 0.0f, 1.0f));
     switch (e.type) {
       case ClosureType::Principled: add_material(m, e.weight, cos_no, backfacing); break;
-      case ClosureType::Glossy: add(weight, mean(weight), r2); break;
+      case ClosureType::Glossy:
+      case ClosureType::GlossyMultiscatterV1: add(weight, mean(weight), r2); break;
       case ClosureType::Refraction: add(weight, mean(weight), r2, true); break;
       case ClosureType::MetallicF82:
       case ClosureType::MetallicConductor: {  // Cycles' albedo of a Fresnel closure: its F at wo

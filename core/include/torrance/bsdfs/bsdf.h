@@ -55,6 +55,10 @@ struct Material {
   float ior = 1.45f;
   Vec3 specular_tint_color{1.0f};
   bool multiscatter_ggx = true;
+  // PRINCIPLED only: Blender 3.x's Multiscatter GGX, as Cycles 3.4 renders it: above roughness
+  // 0.075 the specular lobe is the random walk of microsurface_walk.h with the lobe's Fresnel
+  // (principled.h). Not with glass (transmission): that material renders GGX.
+  bool multiscatter_walk = false;
   // Glass (glass.h): Principled Transmission (the share (1 - metallic) transmission of the
   // surface is glass: reflection untinted, refraction tinted by base_color, refraction roughness
   // 1 - (1 - roughness)(1 - transmission_roughness)), or Blender's Glass BSDF node (glass_node:

@@ -80,10 +80,12 @@ class Shape {
   }
   Vec3 sample_reflection(const Vec3& wo, const Vec2& u) const { return reflect(wo, sample_visible_normal(wo, u)); }
 
- private:
+  // A direction of the shading frame into the lobe's (x along the turned tangent) and back; the
+  // identity for an isotropic shape.
   Vec3 to_lobe(const Vec3& w) const { return Vec3(cos_ * w.x + sin_ * w.y, -sin_ * w.x + cos_ * w.y, w.z); }
   Vec3 from_lobe(const Vec3& w) const { return Vec3(cos_ * w.x - sin_ * w.y, sin_ * w.x + cos_ * w.y, w.z); }
 
+ private:
   float alpha_x_ = 0.0f, alpha_y_ = 0.0f;  // equal unless anisotropic_
   bool anisotropic_ = false;
   Vec3 tangent_{0.0f};             // world

@@ -33,6 +33,9 @@ class GlossyBsdf {
   GlossyBsdf(const Vec3& color, float roughness, float anisotropy = 0.0f, const Vec3& tangent = Vec3(0.0f),
              float rotation = 0.0f, bool cycles4 = false, bool multiscatter = false);
 
+  // The lobe's shape for Roughness, Anisotropy, the tangent and Rotation (turns), as above.
+  static ggx::Shape lobe_shape(float roughness, float anisotropy, const Vec3& tangent, float rotation);
+
   // The lobe's axes in the shading frame the integrator evaluates it in: the tangent projected
   // onto the frame's plane (a tangent along the normal, or none: the frame's own x), turned by
   // the rotation.

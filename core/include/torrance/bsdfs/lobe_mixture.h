@@ -12,6 +12,13 @@
 // chosen before all others with its View's p_sheen (0 without a sheen), by naming
 // sheen_pdf(view, wi) and sheen_sample(view, u) of its own View; the sheen is a diffuse lobe.
 //
+// A model whose specular lobe may be a random walk (PRINCIPLED with Blender 3.x's Multiscatter
+// GGX: microsurface_walk.h) names walks(), walk_pdf(wo, wi), walk_sample(wo, u_lobe, u) and
+// eval_lobes_but_walk(view, wi). When it walks, the lobe's density is the walk's estimate and a
+// direction the walk drew is weighted as Cycles weighs it: the walk's weight x its pdf in place of
+// the lobe's eval, plus the other lobes' eval, over the mixture's pdf (so that the sum stays
+// unbiased for the walk whose true density is unknown; mixture_bsdf.h's kSampleIsOwnEval).
+//
 // A shading point asks its BSDF several times with one wo (light choice, the light sample's eval
 // and MIS pdf, the BSDF sample's pdf and eval), so each model prepares what depends on wo alone
 // once, in a View (the model's at(wo)), which its eval/pdf/sample take instead of wo.
@@ -62,6 +69,17 @@ Vec3 coat_sample(const Coat& coat, const View& v, const Vec2& u) {
 inline Vec3 coat_mirror(const View& v) {
   const Vec3 wo = v.coat_normal.to_coat(v.wo);
   return v.coat_normal.from_coat(Vec3(-wo.x, -wo.y, wo.z));
+}
+
+// Whether a model may walk (names walks; see above), and whether it does.
+template <typename Bsdf, typename = void>
+struct HasWalk : std::false_type {};
+template <typename Bsdf>
+struct HasWalk<Bsdf, std::void_t<decltype(&Bsdf::walks)>> : std::true_type {};
+template <typename Bsdf>
+bool walks(const Bsdf& bsdf) {
+  if constexpr (HasWalk<Bsdf>::value) return bsdf.walks();
+  return false;
 }
 
 // Whether a model has a coat lobe (names coat_pdf).
@@ -124,14 +142,10 @@ inline void prepare(View& v, const Vec3& wo, const ggx::Shape& shape) {
   v.four_cos_o = 4.0f * wo.z;
 }
 
-// The mixture's pdf of wi seen from the prepared v (Bsdf::View, or View for models without a sheen).
+// The pdf of the lobes inside the coat and sheen (`inner`) with theirs around it.
 template <typename Bsdf, typename V>
-float pdf(const Bsdf& bsdf, const V& v, const Vec3& wi, const ggx::Shape& shape) {
-  const Vec3& wo = v.wo;
-  if (wo.z <= 0.0f) return 0.0f;
-  float pdf = (1.0f - v.p_spec) * cosine_hemisphere_pdf(v.diffuse_normal.cosine(wi));
-  if (wi.z > 0.0f && !bsdf.has_delta() && v.p_spec > 0.0f)
-    pdf += v.p_spec * (v.g1_o * shape.D(glm::normalize(wo + wi)) / v.four_cos_o);
+float pdf_around(const Bsdf& bsdf, const V& v, const Vec3& wi, float inner) {
+  float pdf = inner;
   if constexpr (HasCoat<Bsdf>::value) {
     if (v.p_coat > 0.0f) pdf = (1.0f - v.p_coat) * pdf + v.p_coat * bsdf.coat_pdf(v, wi);
   }
@@ -139,6 +153,21 @@ float pdf(const Bsdf& bsdf, const V& v, const Vec3& wi, const ggx::Shape& shape)
     if (v.p_sheen > 0.0f) pdf = (1.0f - v.p_sheen) * pdf + v.p_sheen * bsdf.sheen_pdf(v, wi);
   }
   return pdf;
+}
+
+// The mixture's pdf of wi seen from the prepared v (Bsdf::View, or View for models without a sheen).
+template <typename Bsdf, typename V>
+float pdf(const Bsdf& bsdf, const V& v, const Vec3& wi, const ggx::Shape& shape) {
+  const Vec3& wo = v.wo;
+  if (wo.z <= 0.0f) return 0.0f;
+  float pdf = (1.0f - v.p_spec) * cosine_hemisphere_pdf(v.diffuse_normal.cosine(wi));
+  if (wi.z > 0.0f && !bsdf.has_delta() && v.p_spec > 0.0f) {
+    if constexpr (HasWalk<Bsdf>::value) {
+      if (bsdf.walks()) return pdf_around(bsdf, v, wi, pdf + v.p_spec * bsdf.walk_pdf(wo, wi));
+    }
+    pdf += v.p_spec * (v.g1_o * shape.D(glm::normalize(wo + wi)) / v.four_cos_o);
+  }
+  return pdf_around(bsdf, v, wi, pdf);
 }
 
 // Samples the mixture seen from the prepared v (Bsdf::View derives from View); eval and pdf of
@@ -184,6 +213,17 @@ BsdfSample sample(const Bsdf& bsdf, const typename Bsdf::View& v, float u_lobe, 
       s.weight = bsdf.mirror_reflectance(wo) / (v.p_spec * others);
       s.is_delta = true;
       return s;
+    }
+    if constexpr (HasWalk<Bsdf>::value) {
+      if (bsdf.walks()) {
+        const BsdfSample walk = bsdf.walk_sample(wo, u_lobe / v.p_spec, u);
+        if (!walk.valid()) return BsdfSample{};
+        s.wi = walk.wi;
+        s.pdf = pdf(bsdf, v, s.wi, shape);
+        if (!(s.pdf > 0.0f)) return BsdfSample{};
+        s.weight = (bsdf.eval_lobes_but_walk(v, s.wi).total() + walk.weight * walk.pdf) / s.pdf;
+        return s;
+      }
     }
     s.wi = ggx::reflect(wo, shape.sample_visible_normal(wo, u));
     if (s.wi.z <= 0.0f) return BsdfSample{};

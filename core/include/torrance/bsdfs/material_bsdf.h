@@ -84,6 +84,11 @@ class MaterialBsdf {
   float specular_alpha() const {
     return glass_ || thin_ ? 0.0f : std::visit([](const auto& b) { return b.alpha(); }, bsdf_);
   }
+  // Whether the model's specular lobe is Blender 3.x's Multiscatter GGX walk (principled.h): its
+  // samples count as their own eval in a mixture (mixture_bsdf.h).
+  bool walks() const {
+    return !glass_ && !thin_ && std::visit([](const auto& b) { return lobe_mixture::walks(b); }, bsdf_);
+  }
   // Whether the model's specular lobe is a delta (a mirror, with or without other lobes).
   bool has_delta() const {
     return !glass_ && !thin_ && std::visit([](const auto& b) { return b.has_delta(); }, bsdf_);

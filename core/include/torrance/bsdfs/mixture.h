@@ -38,6 +38,9 @@ enum class ClosureType {
   Principled,  // the material as it is (the render's BRDF model)
   Diffuse,     // Diffuse BSDF: Color = base_color, Roughness = roughness (diffuse_bsdf.h)
   Glossy,      // Glossy BSDF (GGX): Color = base_color, Roughness = roughness (glossy_bsdf.h)
+  // Glossy BSDF of Blender 3.x with Multiscatter GGX: as Glossy, Cycles 3.4's random walk
+  // (multiscatter_glossy_bsdf.h).
+  GlossyMultiscatterV1,
   Emission,    // Emission: emission only
   // Transparent BSDF: rays pass straight through, tinted by the material's transparent_color.
   // Cycles' transparency: the mixture lets 1 - alpha through, alpha = 1 - the sum of these

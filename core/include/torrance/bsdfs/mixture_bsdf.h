@@ -7,12 +7,13 @@
 //           lobe choice), sample it, then evaluate every closure at wi, so that weight =
 //           eval / pdf of the whole mixture (one-sample MIS over closures). A closure's delta
 //           lobe is returned as is, with weight w_k * its weight / P_k. A closure whose sample
-//           is its own eval (kSampleIsOwnEval: the Hair BSDF's, Cycles' being inconsistent)
+//           is its own eval (kSampleIsOwnEval: the Hair BSDF's, Cycles' being inconsistent, and
+//           3.x's Multiscatter GGX Glossy and Principled v1, whose pdf is an estimate)
 //           counts with its sample's weight x pdf and pdf in place of its eval and pdf at wi, as
 //           Cycles' surface_shader_bsdf_sample_closure counts the sampled closure.
 //
 // Components are MaterialBsdf (whatever the render's model is: it composes any future variant),
-// DiffuseBsdf, GlossyBsdf and the other nodes' closures (ClosureType); at most
+// DiffuseBsdf, GlossyBsdf, MultiscatterGlossyBsdf and the other nodes' closures (ClosureType); at most
 // kMaxMixtureComponents, held by value (no allocation).
 // See bsdf.h for the conventions.
 #pragma once
@@ -24,6 +25,7 @@
 #include "torrance/hair/principled_hair_bsdf.h"
 #include "torrance/bsdfs/material_bsdf.h"
 #include "torrance/bsdfs/mixture.h"
+#include "torrance/bsdfs/multiscatter_glossy_bsdf.h"
 #include "torrance/bsdfs/refraction_bsdf.h"
 #include "torrance/shader/shader_program.h"
 #include "torrance/bsdfs/sheen_bsdf.h"
@@ -46,7 +48,7 @@ class MixtureBsdf {
  public:
   using Component = std::variant<std::monostate, MaterialBsdf, DiffuseBsdf, GlossyBsdf, VelvetBsdf, SheenBsdf,
                                  TranslucentBsdf, RefractionBsdf, ToonBsdf, PrincipledHairBsdf, SubsurfaceExitBsdf,
-                                 MetallicBsdf, HairBsdf>;
+                                 MetallicBsdf, HairBsdf, MultiscatterGlossyBsdf>;
 
   MixtureBsdf() = default;
   explicit MixtureBsdf(const MaterialBsdf& single) { add(single, 1.0f, 1.0f); }

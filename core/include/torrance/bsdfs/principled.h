@@ -12,6 +12,10 @@
 //            F0 = 0.08 specular, eta from F0, and
 //            cspec0 = 0.08 specular mix(1, tint colour, specular_tint) (1 - metallic) + base metallic.
 //   mirror   below ggx::kDeltaAlpha the specular lobe is a delta with reflectance F(n.wo).
+//   multiscatter  Blender 3.x's Multiscatter GGX (Material::multiscatter_walk), as Cycles 3.4:
+//            above roughness 0.075 the specular lobe is the random walk of microsurface_walk.h,
+//            F inside the walk at every facet; its pdf is the walk's estimate and a sample drawn
+//            from it counts as its own eval (lobe_mixture.h), as Cycles' closures do.
 //   clearcoat  Cycles 3.4's clearcoat lobe, added on top (principled_coat.h: ClearcoatV1), in the
 //            glossy part of LobeEval, about the View's coat_normal (Clearcoat Normal, bsdf.h).
 //   subsurface  with Subsurface > 0 the diffuse lobe's colour is the base colour mixed towards
@@ -29,6 +33,7 @@
 #include "torrance/bsdfs/bsdf.h"
 #include "torrance/bsdfs/lobe_mixture.h"
 #include "torrance/bsdfs/microfacet.h"
+#include "torrance/bsdfs/microsurface_walk.h"
 #include "torrance/bsdfs/principled_coat.h"
 #include "torrance/bsdfs/principled_sheen.h"
 
@@ -50,17 +55,31 @@ class PrincipledBsdf : public lobe_mixture::Queries<PrincipledBsdf> {
   View at(const Vec3& wo, const CoatNormal& coat = {}) const;        // with the lobe choice p_spec
   View geometry(const Vec3& wo, const CoatNormal& coat = {}) const;  // without it (p_spec = 1): enough for eval
 
-  LobeEval eval_lobes(const View& v, const Vec3& wi) const;
+  LobeEval eval_lobes(const View& v, const Vec3& wi) const { return eval_parts(v, wi, true); }
   using lobe_mixture::Queries<PrincipledBsdf>::eval_lobes;  // pdf, sample, eval: lobe_mixture::Queries
 
   float alpha() const { return alpha_; }
   const ggx::Shape& shape() const { return shape_; }
   // Anisotropic: the tangent into the shading frame (ggx_shape.h); before at().
-  void orient(const Frame& frame) { shape_.orient(frame); }
+  void orient(const Frame& frame) {
+    shape_.orient(frame);
+    walk_.orient(frame);
+  }
   bool has_delta() const { return shape_.is_delta(ggx::kDeltaAlpha); }
   Vec3 mirror_reflectance(const Vec3& wo) const { return fresnel(wo.z); }
   float specular_probability(const Vec3& wo) const;
   Vec3 fresnel(float cos_ih) const;
+
+  // Multiscatter GGX's walk (lobe_mixture.h): whether the specular lobe is one, its pdf estimate,
+  // a sample (weight: the walk's throughput times the lobe's weight) and the other lobes' eval.
+  bool walks() const { return walks_; }
+  float walk_pdf(const Vec3& wo, const Vec3& wi) const { return walk_.pdf(wo, wi); }
+  BsdfSample walk_sample(const Vec3& wo, float u_lobe, const Vec2& u) const {
+    BsdfSample s = walk_.sample(wo, u_lobe, u);
+    s.weight *= specular_weight_;
+    return s;
+  }
+  LobeEval eval_lobes_but_walk(const View& v, const Vec3& wi) const { return eval_parts(v, wi, false); }
 
   // The clearcoat lobe (lobe_mixture.h).
   bool has_coat() const { return coat_.active(); }
@@ -74,12 +93,16 @@ class PrincipledBsdf : public lobe_mixture::Queries<PrincipledBsdf> {
   const SheenV1& sheen() const { return sheen_; }
 
  private:
+  LobeEval eval_parts(const View& v, const Vec3& wi, bool with_walk) const;
+
   Vec3 diffuse_color_;  // (1 - metallic) (1 - transmission) * base colour
   float diffuse_luminance_;  // luminance(diffuse_color_), for the lobe choice
   float specular_weight_;  // 1 - transmission (1 - metallic): the glass takes the rest
   Vec3 cspec0_;
   float roughness_, alpha_, eta_, f0_;
   ggx::Shape shape_;  // the specular lobe: alpha_, or stretched by Anisotropic
+  bool walks_ = false;
+  microsurface::Walk walk_;  // with walks_: the specular lobe
   ClearcoatV1 coat_;
   SheenV1 sheen_;
   // Subsurface (subsurface_lobe.h): the diffuse keeps its retro-reflection, its Lambertian part only
