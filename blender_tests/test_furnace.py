@@ -8,8 +8,8 @@ interreflection (a sphere is convex). So
   * a rough white metal (PRINCIPLED, roughness 1): the disk mean equals the directional albedo
     integrated over the disk, computed by the core's quadrature (torrance_core.directional_albedo)
     for the model the setting means in this Blender (brdf_model.core_model): in 3.x Principled
-    v1 shows single scattering's loss, ~0.39 of the world colour; in 4.x Principled v2 with
-    Multiscatter GGX (the node's distribution here) keeps all of it;
+    v1 with GGX (3.x's default) shows single scattering's loss, ~0.39 of the world colour; in
+    4.x Principled v2 with Multiscatter GGX (the node's default there) keeps all of it;
   * a white Principled dielectric: v1 gains energy (up to ~1.4 at grazing), as Cycles 3.4 does;
     v2 reflects about all of it.
 
@@ -17,6 +17,7 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_furnace.py
 """
 
+import bpy
 import numpy as np
 
 from torrance_tools import testing
@@ -32,8 +33,11 @@ def render_sphere(model, metallic, specular, roughness, directory):
     scene.torrance.brdf_model = model
     mat = testing.principled("White", base_color=(1, 1, 1), metallic=metallic, roughness=roughness,
                              specular=specular)
-    # Blender 4.x's default, which directional_albedo's PRINCIPLED_V2 assumes (v1 ignores it).
-    mat.node_tree.nodes["Principled BSDF"].distribution = 'MULTI_GGX'
+    # Blender 4.x's default, which directional_albedo's PRINCIPLED_V2 assumes; 3.x's default GGX,
+    # the single scattering directional_albedo's PRINCIPLED integrates (3.x's Multiscatter GGX,
+    # a random walk: core test MultiscatterGgx.*, test_multiscatter_ggx_agreement).
+    mat.node_tree.nodes["Principled BSDF"].distribution = \
+        'MULTI_GGX' if bpy.app.version >= (4, 0, 0) else 'GGX'
     testing.sphere_object(scene, "Sphere", (0, 0, 0), 1.0, mat, segments=128, rings=64)
     testing.set_world(scene, (WORLD, WORLD, WORLD))
     # Far and long: nearly orthographic, the sphere spans the central 60% of the frame.

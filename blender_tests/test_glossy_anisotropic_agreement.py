@@ -24,7 +24,6 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \\
          --python blender_tests/test_glossy_anisotropic_agreement.py
 """
 
-import math
 
 import bpy
 
@@ -74,15 +73,10 @@ def glossy_material(name, anisotropy, roughness, rotation, tangent_axis):
 
 
 def build(scene):
-    testing.add_camera(scene, location=(0.0, -10.0, 1.5), target=(0.0, 0.0, 1.0), lens=50.0)
-    floor = testing.make.principled("Floor", (0.4, 0.4, 0.4), 0.0, 1.0, 0.0)
-    testing.plane(scene, "Floor", 30.0, z=0.0, material=floor)
+    sa.row_stage(scene)
     for name, x, z, anisotropy, roughness, rotation, tangent in SPHERES:
         mat = glossy_material(name, anisotropy, roughness, rotation, tangent)
         testing.sphere_object(scene, name, (x, 0.0, z), RADIUS, mat, segments=64, rings=32)
-    testing.add_sun(scene, strength=3.0, rotation=(math.radians(-60), 0, math.radians(-25)),
-                    angle=math.radians(5.0))
-    testing.set_world(scene, (0.20, 0.24, 0.30))
 
 
 def glossy(name):

@@ -74,9 +74,10 @@ def cycles_settings(samples, seed, bounces):
 
 
 def ggx_everywhere():
-    """In Blender 3.x, every Principled BSDF of every material set to GGX (the default, enforced:
-    Torrance's Principled v1 has no multiscatter GGX). Blender 4.x's nodes keep their
-    distribution: Torrance's Principled v2 renders GGX and Multiscatter GGX as Cycles 4.x does."""
+    """In Blender 3.x, every Principled BSDF of every material set to GGX (the default; the glTF
+    assets' references were rendered so, gltf_assets.py). Blender 4.x's nodes keep their
+    distribution. Both engines render 3.x's Multiscatter GGX now (issue 35): Cycles' renders of
+    setup_cycles keep the scene's distributions."""
     if bpy.app.version >= (4, 0, 0):
         return
     for mat in bpy.data.materials:
@@ -124,7 +125,6 @@ def setup_cycles(scene, samples, max_bounces, seed=0):
     white_noise_pattern(cy)
     for layer in scene.view_layers:
         layer.cycles.use_denoising = False
-    ggx_everywhere()
 
 
 # The denoising of both engines in the denoised benchmark (scripts/benchmark --denoised): Cycles'

@@ -143,6 +143,18 @@ def coat_stage(scene, distribution):
     testing.set_world(scene, (0.0, 0.0, 0.0))
 
 
+def row_stage(scene):
+    """The stage of two rows of spheres (test_multiscatter_ggx_agreement,
+    test_glossy_anisotropic_agreement): a camera level with the rows, a matte grey floor, a sun
+    from behind (5 degrees) and a blue-grey world."""
+    testing.add_camera(scene, location=(0.0, -10.0, 1.5), target=(0.0, 0.0, 1.0), lens=50.0)
+    floor = testing.make.principled("Floor", (0.4, 0.4, 0.4), 0.0, 1.0, 0.0)
+    testing.plane(scene, "Floor", 30.0, z=0.0, material=floor)
+    testing.add_sun(scene, strength=3.0, rotation=(math.radians(-60), 0, math.radians(-25)),
+                    angle=math.radians(5.0))
+    testing.set_world(scene, (0.20, 0.24, 0.30))
+
+
 def emissive_under_tinted_coat(node):
     """An orange emission (0.3) under a blue-tinted coat of Principled v2 `node`."""
     node.inputs["Coat Tint"].default_value = (0.3, 0.6, 1.0, 1.0)

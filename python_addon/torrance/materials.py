@@ -336,7 +336,7 @@ class MaterialReader:
         alpha, alpha_tex = t(mat, node, "Alpha", 1.0, image_output="Alpha",
                              program_input=None if in_mixture else 'alpha')
         specular = finite_or(v(mat, node, names['specular'], d['specular']), d['specular'])
-        v2_inputs = {}
+        version_inputs = {}
         glass = {}
         if version == 'v2':
             ior = finite_or(v(mat, node, "IOR", 1.5), 1.5)
@@ -348,7 +348,7 @@ class MaterialReader:
             # Oren-Nayar diffuse layer.
             diffuse_roughness = _clamp(finite_or(v(mat, node, "Diffuse Roughness", 0.0), 0.0),
                                        0.0, 1.0)
-            v2_inputs = dict(ior=ior, specular_tint_color=tuple(max(0.0, c) for c in tint),
+            version_inputs = dict(ior=ior, specular_tint_color=tuple(max(0.0, c) for c in tint),
                              multiscatter_ggx=getattr(node, "distribution", "") == 'MULTI_GGX',
                              **({'diffuse_roughness': diffuse_roughness}
                                 if diffuse_roughness > 0.0 else {}))
@@ -357,6 +357,10 @@ class MaterialReader:
             specular_tint = _clamp(finite_or(v(mat, node, names['specular_tint'], 0.0), 0.0),
                                    0.0, 1.0)
             glass = self._principled_glass(mat, node)
+            if bpy.app.version < (4, 0, 0) and getattr(node, "distribution", "") == 'MULTI_GGX':
+                # Cycles 3.4's Multiscatter GGX: a random walk on the microsurface (principled.h;
+                # a material with glass keeps GGX, reported by _principled_glass).
+                version_inputs = dict(multiscatter_walk=True)
         anisotropy = read_anisotropy(self, mat, node,
                                      PRINCIPLED_V2 if version == 'v2' else PRINCIPLED_V1)
         if anisotropy and glass and bpy.app.version >= (5, 1, 0):
@@ -372,7 +376,7 @@ class MaterialReader:
             specular_tint=specular_tint,
             base_color_texture=base_tex, metallic_texture=metallic_tex,
             roughness_texture=roughness_tex, **emission,
-            **v2_inputs,
+            **version_inputs,
             **glass,
             **read_coat(self, mat, node, version),
             **read_sheen(self, mat, node, version),
@@ -399,10 +403,11 @@ class MaterialReader:
             return {}
         if getattr(node, "distribution", 'GGX') != 'GGX':
             # Cycles 3.4 renders rough (> 0.05) transmission of Multiscatter GGX as its
-            # multiple-scattering glass, brighter than single-scattering GGX.
+            # multiple-scattering glass, brighter than single-scattering GGX; Torrance renders
+            # such a material's reflection and glass as GGX.
             self.reporter.warning(f"Material '{mat.name}': the transmission of {node_label(node)} "
                                   f"uses {_DISTRIBUTIONS.get(node.distribution, node.distribution)}"
-                                  f"; Torrance renders GGX")
+                                  f"; Torrance renders its reflection and glass as GGX")
         return dict(transmission=transmission, ior=self._ior(mat, node, 1.45),
                     transmission_roughness=_clamp(
                         finite_or(v(mat, node, "Transmission Roughness", 0.0), 0.0), 0.0, 1.0))

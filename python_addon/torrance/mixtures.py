@@ -12,8 +12,9 @@ Shader gives both the weight it received. The closures Torrance renders:
   ClosureType::Holdout);
 * Principled BSDF and Glass BSDF (as a lone one is read), Diffuse BSDF (Color, Roughness:
   Lambert or Cycles' Oren-Nayar), Glossy BSDF (Color, Roughness; GGX, Sharp as roughness 0;
-  Beckmann, Ashikhmin-Shirley and Multiscatter GGX are rendered as GGX and reported; Blender
-  4.x's Glossy, ShaderNodeBsdfAnisotropic, too, its Anisotropy reported), Emission;
+  Multiscatter GGX as the Blender's Cycles: 3.x's random walk, 4.x's albedo scaling; Beckmann
+  and Ashikhmin-Shirley are rendered as GGX and reported; Blender 4.x's Glossy,
+  ShaderNodeBsdfAnisotropic, too), Emission;
 * Velvet (3.x) / Sheen (4.x: Ashikhmin, Microfiber), Translucent, Refraction and Toon BSDF
   (closure_nodes.py).
 
@@ -48,7 +49,7 @@ SHADER_TREE_NODES = {'ShaderNodeMixShader', 'ShaderNodeAddShader'}
 MIXTURE_SURFACES = SHADER_TREE_NODES | {'ShaderNodeBsdfDiffuse', 'ShaderNodeBsdfGlossy',
                                         'ShaderNodeBsdfAnisotropic', 'ShaderNodeHoldout'} \
     | CLOSURE_NODES
-_GLOSSY_AS_GGX = {'BECKMANN', 'ASHIKHMIN_SHIRLEY', 'MULTI_GGX'}
+_GLOSSY_AS_GGX = {'BECKMANN', 'ASHIKHMIN_SHIRLEY'}
 
 
 def _luminance(c):
@@ -331,10 +332,12 @@ class ShaderTreeReader:
             if not sharp:
                 lobe = read_anisotropy(reader, mat, node, GLOSSY)
             # Cycles 4.x's Multiscatter GGX is GGX scaled by its albedo (glossy_bsdf.h);
-            # 3.x's is a random walk among the microfacets, which Torrance does not render.
+            # 3.x's is a random walk among the microfacets (multiscatter_glossy_bsdf.h).
             multiscatter = node.distribution == 'MULTI_GGX' and bpy.app.version >= (4, 0, 0)
             lobe['multiscatter_ggx'] = multiscatter
-            if node.distribution in _GLOSSY_AS_GGX and not multiscatter:
+            if node.distribution == 'MULTI_GGX' and not multiscatter:
+                kind = 'glossy_multiscatter_v1'
+            elif node.distribution in _GLOSSY_AS_GGX and not multiscatter:
                 self.warn(f"{node_label(node)}: the {node.distribution.replace('_', ' ').title()} "
                           f"distribution is rendered as GGX")
         args = dict(d, base_color=color3(color, d['base_color']), metallic=0.0, specular=0.0,

@@ -180,13 +180,16 @@ CLOSURES = {
     'ShaderNodeBsdfDiffuse': "rendered: Color, Roughness (Lambert, Cycles' Oren-Nayar; 4.3+: "
                              "its energy-preserving Oren-Nayar), Normal; alone and in Mix/Add "
                              "Shader trees alike",
-    'ShaderNodeBsdfGlossy': "partly: Color, Roughness (GGX, Sharp; 4.x: Anisotropy, Rotation, "
-                            "Tangent, any graph) alone and in Mix/Add Shader trees",
+    'ShaderNodeBsdfGlossy': "partly: Color, Roughness (GGX, Sharp, Multiscatter GGX as the "
+                            "Blender's Cycles: 3.x's random walk, 4.x's albedo scaling; 4.x: "
+                            "Anisotropy, Rotation, Tangent, any graph) alone and in Mix/Add "
+                            "Shader trees",
     'ShaderNodeBsdfAnisotropic': "partly: Color, Roughness, Anisotropy, Rotation, Tangent (any "
                                  "graph; unlinked: Geometry > Tangent) with GGX, alone and in "
-                                 "Mix/Add Shader trees; 4.x/5.x: Cycles 4.x's lobe and its "
-                                 "Multiscatter GGX (albedo scaling); Beckmann, Ashikhmin-Shirley "
-                                 "(and 3.x's Multiscatter GGX) rendered as GGX",
+                                 "Mix/Add Shader trees; Multiscatter GGX as the Blender's "
+                                 "Cycles (3.x: its random walk; 4.x/5.x: Cycles 4.x's lobe and "
+                                 "its albedo scaling); Beckmann, Ashikhmin-Shirley rendered as "
+                                 "GGX",
     'ShaderNodeBsdfGlass': "partly: Color, Roughness, IOR, Normal; GGX, Beckmann, Sharp "
                            "(Multiscatter GGX rendered as GGX); alone and in Mix/Add Shader "
                            "trees; 5.x Thin Film Thickness and IOR (any graph). Reported: 5.x "
