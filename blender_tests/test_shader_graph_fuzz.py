@@ -119,7 +119,15 @@ class CoreTextures:
     """The reader's texture table: each image added once to a core Scene."""
 
     def __init__(self, scene):
+        from torrance.reporting import Reporter
         self.scene, self.ids = scene, {}
+        # What readers find on the add-on's TextureTable besides texture(): its reporter (here
+        # silent: check_material_reader looks at the reports), the depsgraph (None: bpy.context's)
+        # and the Point Density nodes' voxels.
+        self.reporter = Reporter(None)
+        self.reporter.report = lambda level, text: None
+        self.depsgraph = None
+        self.point_density_grids = {}
 
     def texture(self, image, interpolation="Linear"):
         from torrance.texture_table import INTERPOLATIONS
