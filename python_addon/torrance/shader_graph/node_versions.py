@@ -57,6 +57,7 @@ REMOVED_NODES = {
     'ShaderNodeTexMusgrave': "merged into the Noise Texture's types in 4.1",
     'ShaderNodeBsdfGlossy': "4.0: the Glossy BSDF is ShaderNodeBsdfAnisotropic (merged)",
     'ShaderNodeBsdfVelvet': "4.0: the Velvet BSDF is the Sheen BSDF's Ashikhmin distribution",
+    'ShaderNodeTexPointDensity': "5.0: the Point Density Texture is gone",
     **{old: f"5.0: {new} in mode {mode}" for old, (new, mode) in COLOR_NODE_SUCCESSORS.items()},
 }
 
