@@ -145,11 +145,6 @@ def index_failures(p, ref, label):
     return bad
 
 
-def export_hair_module():
-    import torrance.export.hair as hair
-    return hair
-
-
 def without_hair_settings(original):
     return lambda *args, settings_of=None, **kwargs: original(*args, **kwargs)
 
@@ -240,7 +235,8 @@ def main():
     ours = [render(scene, d, setup_torrance, seed, f"torrance{seed}") for seed in (2, 3)]
     bad = failures(ours, ref, other, "Torrance")
     bad += index_failures(ours[0], ref, "Torrance")
-    with replaced(export_hair_module(), "export_hair", without_hair_settings):
+    import torrance.export.hair as hair_export
+    with replaced(hair_export, "export_hair", without_hair_settings):
         caught = index_failures(render(scene, d, setup_torrance, 2, "no_hair_index"), ref, "fault")
     print(f"  fault 'hair without its object's settings': {'caught' if caught else 'NOT caught'}")
     if not caught:

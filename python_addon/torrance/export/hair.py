@@ -132,13 +132,12 @@ def export_hair(tc_scene, hair, materials, reporter, shape, on_added=None, setti
     emitters and Curves objects. Returns the number of strands added. on_added(set id, object
     name, particle system name or None, offsets), if given, hears of each curve set added;
     settings_of(obj), if given, gives the keyword arguments of Scene.set_curves_settings for
-    obj's strands (its pass index, holdout, light group, ...; {}: the defaults)."""
+    obj's strands (its pass index, holdout, light group, ...)."""
     strands = 0
 
     def added(set_id, obj, psys_name, offsets):
-        settings = settings_of(obj) if settings_of is not None else None
-        if settings:
-            tc_scene.set_curves_settings(set_id, **settings)
+        if settings_of is not None:
+            tc_scene.set_curves_settings(set_id, **settings_of(obj))
         if on_added is not None:
             on_added(set_id, obj.name, psys_name, offsets)
 

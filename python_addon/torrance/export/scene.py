@@ -38,9 +38,6 @@ SKIPPED_TYPES = {'CAMERA', 'EMPTY', 'ARMATURE', 'LATTICE', 'LIGHT_PROBE', 'SPEAK
 OBJECTS_AS_INSTANCES = False
 _VISIBILITY = ("visible_camera", "visible_diffuse", "visible_glossy",
                "visible_transmission", "visible_shadow")
-# A hair object's settings (Scene.set_curves_settings) when it has none of its own.
-_DEFAULT_HAIR_SETTINGS = dict(pass_index=0.0, holdout=False, shadow_catcher=False, light_group=-1,
-                              receiver_set=0, blocker_set=0, cryptomatte=-1)
 
 
 class ExportStats:
@@ -348,11 +345,10 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre, view_cameras):
     def hair_settings(obj):
         """Scene.set_curves_settings' arguments for hair object obj (as its mesh would have)."""
         receiver_set, blocker_set, _emitter = links.of(obj)
-        settings = dict(pass_index=float(obj.pass_index), holdout=obj.name_full in holdouts,
-                        shadow_catcher=obj.name_full in catchers, light_group=groups.of(obj),
-                        receiver_set=receiver_set, blocker_set=blocker_set,
-                        cryptomatte=crypto.entry(obj))
-        return settings if settings != _DEFAULT_HAIR_SETTINGS else {}
+        return dict(pass_index=float(obj.pass_index), holdout=obj.name_full in holdouts,
+                    shadow_catcher=obj.name_full in catchers, light_group=groups.of(obj),
+                    receiver_set=receiver_set, blocker_set=blocker_set,
+                    cryptomatte=crypto.entry(obj))
 
     stats.strands = strands.export_hair(tc_scene, hair, materials, reporter,
                                         strands.curve_shape(depsgraph.scene),
