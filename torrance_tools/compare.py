@@ -77,7 +77,8 @@ def bias_metrics(img, ref, block=8):
     """Bias figures of img against ref, on downsampled data so noise averages out.
 
     ratio        mean(img) / mean(ref) over the image, and per channel;
-    block_mean   mean over 8x8 blocks of |B_img - B_ref| / max(B_ref, 0.1 mean(B_ref));
+    block_mean   mean over 8x8 blocks of |B_img - B_ref| / max(|B_ref|, 0.1 mean(|B_ref|)) (a
+                 negative block, light taken away, weighed by its magnitude);
     block_p90    90th percentile of the same;
     block_max    its maximum.
     """
@@ -86,7 +87,8 @@ def bias_metrics(img, ref, block=8):
     channels = [float(a / max(b, 1e-12))
                 for a, b in zip(img.mean(axis=(0, 1)), ref.mean(axis=(0, 1)), strict=True)]
     bi, br = block_means(img, block), block_means(ref, block)
-    rel = np.abs(bi - br) / np.maximum(br, 0.1 * br.mean())
+    magnitude = np.abs(br)
+    rel = np.abs(bi - br) / np.maximum(magnitude, 0.1 * magnitude.mean())
     return dict(ratio=ratio, channels=channels, block_mean=float(rel.mean()),
                 block_p90=float(np.percentile(rel, 90)), block_max=float(rel.max()))
 

@@ -1,7 +1,7 @@
 """Negative emission, as Cycles renders it: Color x Strength as it is (Cycles' emission closure
 has no cut-off), so an emitter of Strength -s seen directly is -s x Color, and it takes from what
 it lights exactly what +s adds, by light sampling (the mesh light picks it by its magnitude) and
-BSDF sampling alike. Lamps and a plain world of negative strength the same."""
+BSDF sampling alike. Lamps and a world (plain or an image) of negative strength the same."""
 import numpy as np
 import pytest
 import torrance_core as tc
@@ -46,6 +46,12 @@ def test_negative_emitter_seen_directly_is_negative():
     np.testing.assert_allclose(image[..., :3].mean(axis=(0, 1)), (-2.0, -1.0, -0.5), rtol=1e-4)
 
 
+# An equirectangular sky (rows bottom to top): brighter and bluer towards the zenith, one bright
+# patch that the world's map should find.
+SKY = np.stack(np.broadcast_arrays(*[np.linspace(0.1, hi, 8)[:, None] * np.ones((8, 16))
+                                     for hi in (0.5, 0.7, 1.0)]), axis=-1).astype(np.float32)
+SKY[6, 3] = (40.0, 30.0, 20.0)
+
 LAMPS = {
     "point": lambda scene, k: scene.add_point_light(position=(0.5, 0.0, 1.0), power=40.0 * k,
                                                     radius=0.1),
@@ -55,6 +61,8 @@ LAMPS = {
     "area": lambda scene, k: scene.add_area_light(center=(0.0, 0.8, 1.0), edge_u=(0.5, 0.0, 0.0),
                                                   edge_v=(0.0, 0.5, 0.0), power=30.0 * k),
     "world": lambda scene, k: scene.set_world(color=(0.5, 0.6, 0.7), strength=0.8 * k),
+    "world image": lambda scene, k: scene.set_world_texture(
+        scene.add_texture(SKY, colorspace="Linear"), strength=0.8 * k),
 }
 
 

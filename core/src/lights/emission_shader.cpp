@@ -1,6 +1,7 @@
 #include "torrance/lights/emission_shader.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -38,7 +39,12 @@ ShaderGlobals EmissionShader::light_globals(const Vec3& position, const Vec3& no
 Vec3 EmissionShader::radiance(const ShaderGlobals& g) const {
   glm::vec4 regs[ShaderProgram::kMaxRegisters];
   program_.run(g, textures_, regs);
-  return glm::max(Vec3(regs[radiance_register_]), Vec3(0.0f));
+  // Negative radiance takes light away, as Cycles renders it (a world or lamp of negative
+  // strength); only what is not finite is dropped.
+  Vec3 radiance(regs[radiance_register_]);
+  for (int c = 0; c < 3; ++c)
+    if (!std::isfinite(radiance[c])) radiance[c] = 0.0f;
+  return radiance;
 }
 
 }  // namespace torrance

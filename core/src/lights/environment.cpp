@@ -36,7 +36,7 @@ Vec3 EnvironmentMap::uv_to_direction(const Vec2& uv) {
 EnvironmentMap::EnvironmentMap(std::shared_ptr<const Texture> image, float strength)
     : image_(std::move(image)), strength_(strength) {
   if (!image_) throw std::invalid_argument("environment map needs an image");
-  if (!(strength >= 0.0f) || !std::isfinite(strength)) throw std::invalid_argument("world strength must be >= 0");
+  if (!std::isfinite(strength)) throw std::invalid_argument("world strength must be finite");
   width_ = image_->width();
   height_ = image_->height();
   std::vector<float> lum(size_t(width_) * height_);
@@ -44,7 +44,7 @@ EnvironmentMap::EnvironmentMap(std::shared_ptr<const Texture> image, float stren
     for (int i = 0; i < width_; ++i)
       lum[size_t(j) * width_ + i] = luminance(Vec3(image_->lookup(Vec2((i + 0.5f) / width_, (j + 0.5f) / height_))));
   build(std::move(lum));
-  average_luminance_ *= strength_;
+  average_luminance_ *= std::abs(strength_);  // a negative strength takes light away: chosen by magnitude
 }
 
 EnvironmentMap::EnvironmentMap(std::shared_ptr<const EmissionShader> shader, int resolution)
@@ -80,14 +80,15 @@ EnvironmentMap::EnvironmentMap(std::shared_ptr<const EmissionShader> shader, int
 
 void EnvironmentMap::build(std::vector<float> lum) {
   // Cell (i, j) covers u in [i, i+1)/W and v in [j, j+1)/H; its weight is its luminance times
-  // sin(theta) (the solid angle it spans), with a floor so no direction is impossible.
+  // sin(theta) (the solid angle it spans), with a floor so no direction is impossible. Negative
+  // light (a world taking light away) is sampled by its magnitude, as negative lamps are.
   std::vector<float>& weight = lum;
   double total = 0.0, lum_sum = 0.0, solid_sum = 0.0;
   for (int j = 0; j < height_; ++j) {
     const float sin_theta = std::sin(kPi * (1.0f - (j + 0.5f) / height_));
     for (int i = 0; i < width_; ++i) {
       float& w = weight[size_t(j) * width_ + i];
-      const float l = std::isfinite(w) ? std::max(w, 0.0f) : 0.0f;
+      const float l = std::isfinite(w) ? std::abs(w) : 0.0f;
       w = l * sin_theta;
       lum_sum += double(l) * sin_theta;
       solid_sum += sin_theta;

@@ -117,15 +117,11 @@ def export_world(tc_scene, world, reporter, textures):
         reporter.warning("The world colour is not finite: black background")
         look = WorldLook()
         strength = 0.0
-    if look.texture is not None:
-        if strength < 0.0:
-            reporter.warning("The world's Background has a negative strength over an image, "
-                             "which Torrance renders as 0 (a plain colour's takes light away, "
-                             "as in Cycles)")
-        tc_scene.set_world_texture(look.texture, strength=max(0.0, strength))
+    if look.texture is not None:   # a negative strength takes light away, as Cycles renders it
+        tc_scene.set_world_texture(look.texture, strength=strength)
         return
-    # A negative strength takes light away, as Cycles renders it (folded into a node graph's
-    # constant colour: given back to the strength, the core's colour being >= 0).
+    # So does a plain colour's (folded into a node graph's constant colour: given back to the
+    # strength, the core's colour being >= 0).
     color = look.color
     if max(color) <= 0.0 < -min(color):
         color, strength = tuple(-c for c in color), -strength

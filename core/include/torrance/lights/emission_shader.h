@@ -24,7 +24,7 @@ class EmissionShader {
   // Throws std::invalid_argument unless radiance_register is written by the program.
   EmissionShader(ShaderProgram program, int radiance_register, std::vector<std::shared_ptr<const Texture>> textures);
 
-  // The program's radiance register at g, negative parts 0.
+  // The program's radiance register at g (negative parts take light away), parts not finite 0.
   Vec3 radiance(const ShaderGlobals& g) const;
   // A world's radiance that a ray of state `state` travelling along unit direction dir receives.
   Vec3 background(const Vec3& dir, const PathState& state) const { return radiance(background_globals(dir, state)); }
