@@ -1,6 +1,6 @@
 // The Vector pass's neighbouring frames (torrance/scene/frame_motion.h): Scene.set_frame_motion_camera,
-// set_frame_motion_mesh, set_frame_motion_instances and set_frame_motion_curves, bound onto the Scene class that init_scene
-// defines. They only check shapes and forward.
+// set_frame_motion_mesh, set_frame_motion_instances, set_frame_motion_prototype and set_frame_motion_curves,
+// bound onto the Scene class that init_scene defines. They only check shapes and forward.
 #include "bindings.h"
 
 #include "torrance/scene/scene.h"
@@ -56,6 +56,20 @@ void init_frame_motion(py::module_& m) {
       py::arg("ids"), py::arg("before"), py::arg("after"),
       "The Vector pass: instances `ids`' (from add_instances) object-to-world matrices (len(ids), 3, 4) "
       "one frame before and one after. ValueError for removed or unknown ids, bad shapes, NaN/Inf.");
+  add_method(cls,
+      "set_frame_motion_prototype",
+      [](Scene& s, int64_t prototype, const py::object& before, const py::object& after) {
+        if (prototype < 0)
+          throw py::value_error("prototype must be an id from add_prototype, got " + std::to_string(prototype));
+        const size_t vertices = s.prototype_vertex_count(uint32_t(prototype));
+        const auto b = shaped_array<float>(before, "previous frame's positions", {int64_t(vertices), 3});
+        const auto a = shaped_array<float>(after, "next frame's positions", {int64_t(vertices), 3});
+        s.set_frame_motion_prototype(uint32_t(prototype), b.data(), a.data());  // ValueError
+      },
+      py::arg("prototype"), py::arg("before"), py::arg("after"),
+      "The Vector pass of a deforming instanced mesh: prototype `prototype`'s (an add_prototype id) "
+      "object-space vertex positions (N, 3) one frame before and one after, which its instances' "
+      "transforms then place. ValueError for a bad id or shape, NaN/Inf or coordinates beyond 1e12.");
   add_method(cls,
       "set_frame_motion_curves",
       [](Scene& s, int64_t set, const py::object& curve_first, const py::object& before, const py::object& after) {

@@ -1,5 +1,6 @@
 // Motion blur: Scene.set_mesh_motion (a mesh's world-space positions and corner normals at time
-// steps over the shutter) and Scene.set_camera_motion (the camera's transforms over it), bound
+// steps over the shutter), set_prototype_motion (a deforming prototype's, in object space),
+// set_instance_motion and Scene.set_camera_motion (the camera's transforms over it), bound
 // onto the Scene class that init_scene defines.
 #include "bindings.h"
 
@@ -10,38 +11,67 @@
 
 namespace torrance::python {
 
+namespace {
+
+// Motion positions (S, N, 3) and corner normals (S, 3T, 3) or None of a mesh (or prototype) of
+// `vertices` vertices and `corners` corners, shapes checked; calls set(steps, positions, normals).
+template <typename Set>
+void with_motion_arrays(const py::object& positions, const py::object& corner_normals, size_t vertices,
+                        size_t corners, const char* what, Set set) {
+  const auto p = shaped_array<float>(positions, "motion positions", {-1, -1, 3});
+  const size_t steps = size_t(p.shape(0));
+  if (p.ndim() != 3 || steps < 2)
+    throw py::value_error("motion positions must have shape (S, N, 3) with S >= 2 time steps, got " +
+                          shape_string(p));
+  py::array_t<float, py::array::c_style | py::array::forcecast> n;
+  const bool has_normals = !corner_normals.is_none();
+  if (has_normals) {
+    n = shaped_array<float>(corner_normals, "motion normals", {-1, -1, 3});
+    if (size_t(n.shape(0)) != steps)
+      throw py::value_error("motion normals must have as many time steps as the positions (" + std::to_string(steps) +
+                            "), got " + shape_string(n));
+  }
+  if (size_t(p.shape(1)) != vertices)
+    throw py::value_error(std::string("motion positions must have the ") + what + "'s " + std::to_string(vertices) +
+                          " vertices per step, got " + shape_string(p));
+  if (has_normals && size_t(n.shape(1)) != corners)
+    throw py::value_error(std::string("motion normals must have the ") + what + "'s " + std::to_string(corners) +
+                          " corners per step, got " + shape_string(n));
+  set(steps, p.data(), has_normals ? n.data() : nullptr);  // invalid_argument: ValueError
+}
+
+}  // namespace
+
 void init_motion(py::module_& m) {
   py::object cls = m.attr("Scene");
   add_method(cls,
       "set_mesh_motion",
       [](Scene& s, int64_t mesh, const py::object& positions, const py::object& corner_normals) {
         if (mesh < 0) throw py::value_error("mesh must be an id from add_mesh, got " + std::to_string(mesh));
-        const auto p = shaped_array<float>(positions, "motion positions", {-1, -1, 3});
-        const size_t steps = size_t(p.shape(0));
-        if (p.ndim() != 3 || steps < 2)
-          throw py::value_error("motion positions must have shape (S, N, 3) with S >= 2 time steps, got " +
-                                shape_string(p));
-        py::array_t<float, py::array::c_style | py::array::forcecast> n;
-        const bool has_normals = !corner_normals.is_none();
-        if (has_normals) {
-          n = shaped_array<float>(corner_normals, "motion normals", {-1, -1, 3});
-          if (size_t(n.shape(0)) != steps)
-            throw py::value_error("motion normals must have as many time steps as the positions (" +
-                                  std::to_string(steps) + "), got " + shape_string(n));
-        }
-        const size_t vertices = s.mesh_vertex_count(uint32_t(mesh)), corners = 3 * s.mesh_triangle_count(uint32_t(mesh));
-        if (size_t(p.shape(1)) != vertices)
-          throw py::value_error("motion positions must have the mesh's " + std::to_string(vertices) +
-                                " vertices per step, got " + shape_string(p));
-        if (has_normals && size_t(n.shape(1)) != corners)
-          throw py::value_error("motion normals must have the mesh's " + std::to_string(corners) +
-                                " corners per step, got " + shape_string(n));
-        s.set_mesh_motion(uint32_t(mesh), steps, p.data(), has_normals ? n.data() : nullptr);  // invalid_argument: ValueError
+        const uint32_t id = uint32_t(mesh);
+        with_motion_arrays(positions, corner_normals, s.mesh_vertex_count(id), 3 * s.mesh_triangle_count(id), "mesh",
+                           [&](size_t steps, const float* p, const float* n) { s.set_mesh_motion(id, steps, p, n); });
       },
       py::arg("mesh"), py::arg("positions"), py::arg("corner_normals") = py::none(),
       "Motion blur: mesh `mesh` (an add_mesh id) moves through positions (S, N, 3), S >= 2 world-space "
       "time steps evenly over the shutter, with corner normals (S, 3T, 3) or None. ValueError for "
       "mismatched shapes or step counts, NaN/Inf.");
+  add_method(cls,
+      "set_prototype_motion",
+      [](Scene& s, int64_t prototype, const py::object& positions, const py::object& corner_normals) {
+        if (prototype < 0)
+          throw py::value_error("prototype must be an id from add_prototype, got " + std::to_string(prototype));
+        const uint32_t id = uint32_t(prototype);
+        with_motion_arrays(positions, corner_normals, s.prototype_vertex_count(id), 3 * s.prototype_triangle_count(id),
+                           "prototype",
+                           [&](size_t steps, const float* p, const float* n) { s.set_prototype_motion(id, steps, p, n); });
+      },
+      py::arg("prototype"), py::arg("positions"), py::arg("corner_normals") = py::none(),
+      "Motion blur of a deforming instanced mesh: prototype `prototype` (an add_prototype id) moves "
+      "through object-space positions (S, N, 3), S >= 2 time steps evenly over the shutter, with corner "
+      "normals (S, 3T, 3) or None; each instance of it deforms so under its transform at that time. "
+      "ValueError for mismatched shapes or step counts, NaN/Inf, or a step that would take an instance "
+      "beyond 1e12.");
   add_method(cls,
       "set_instance_motion",
       [](Scene& s, const py::object& ids, const py::object& transforms) {
@@ -59,7 +89,8 @@ void init_motion(py::module_& m) {
       "a step of (nearly) zero scale, which Embree could not trace. ValueError for removed or unknown "
       "ids, bad shapes, NaN/Inf.");
   add_method(cls, "has_motion", [](const Scene& s) { return s.has_motion(); },
-         "Whether some mesh or instance moves (set_mesh_motion, set_instance_motion).");
+         "Whether some mesh, prototype or instance moves (set_mesh_motion, set_prototype_motion, "
+         "set_instance_motion).");
   add_method(cls,
       "set_camera_motion",
       [](Scene& s, const py::object& transforms) {

@@ -1,8 +1,8 @@
 // The Vector pass (kPassVector, film/motion_vectors.h) on closed forms: an orthographic camera
-// 4 m wide over 64 pixels (16 px per metre) looks straight down at a quad; a mesh, an instance or
-// the camera moved between the neighbouring frames gives interior pixels exactly (previous - now,
-// now - next) in pixels with y up, the sky 0; without the camera's neighbouring frames the pass
-// is 0 (Cycles under motion blur).
+// 4 m wide over 64 pixels (16 px per metre) looks straight down at a quad; a mesh, an instance, a
+// deforming instance or the camera moved between the neighbouring frames gives interior pixels
+// exactly (previous - now, now - next) in pixels with y up, the sky 0; without the camera's
+// neighbouring frames the pass is 0 (Cycles under motion blur).
 #include "torrance/integrator/integrator.h"
 
 #include <gtest/gtest.h>
@@ -130,6 +130,37 @@ TEST(VectorPass, AMovingInstanceAndAMovingCamera) {
   EXPECT_NEAR(p[1], (wx - wy) * kPixelsPerMetre, 0.15f);
   EXPECT_NEAR(p[2], 0.25f * kPixelsPerMetre, 1e-3f);
   EXPECT_NEAR(p[3], 0.5f * kPixelsPerMetre, 1e-3f);
+}
+
+TEST(VectorPass, ADeformingInstance) {
+  // An instance (a quarter turn about Z: object (x, y) at world (-y, x)) of a prototype whose
+  // vertices were 0.5 m along object -X one frame before and 0.5 m along +X, 0.25 m along +Y
+  // one frame after: in world space 0.5 m along -Y before, (-0.25, 0.5) m after.
+  Scene scene;
+  const uint32_t m = scene.add_material(Material{});
+  const int64_t slots[] = {0, 0}, table[] = {m};
+  const uint32_t proto = scene.add_prototype(kQuad, 4, kTriangles, 2, nullptr, slots);
+  const float turn[] = {0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0};
+  const int64_t id = scene.add_instances(proto, turn, 1, table, 1);
+  look_down_orthographic(scene);
+  scene.set_frame_motion_camera(translation(0, 0, 10), translation(0, 0, 10));
+  std::array<float, 12> before, after;
+  for (int i = 0; i < 4; ++i) {
+    for (int c = 0; c < 3; ++c) before[3 * i + c] = after[3 * i + c] = kQuad[3 * i + c];
+    before[3 * i] -= 0.5f;
+    after[3 * i] += 0.5f;
+    after[3 * i + 1] += 0.25f;
+  }
+  scene.set_frame_motion_prototype(proto, before.data(), after.data());
+  expect_vectors(render(scene, vector_render()), glm::vec4(0.0f, -0.5f, 0.25f, -0.5f) * kPixelsPerMetre);
+  // The instance moving as well: 0.25 m along +X before, 0.5 m along -Y after, added to it.
+  const float turn_before[] = {0, -1, 0, 0.25f, 1, 0, 0, 0, 0, 0, 1, 0};
+  const float turn_after[] = {0, -1, 0, 0, 1, 0, 0, -0.5f, 0, 0, 1, 0};
+  scene.set_frame_motion_instances(&id, 1, turn_before, turn_after);
+  expect_vectors(render(scene, vector_render()), glm::vec4(0.25f, -0.5f, 0.25f, 0.0f) * kPixelsPerMetre);
+  EXPECT_THROW(scene.set_frame_motion_prototype(proto + 1, before.data(), after.data()), std::invalid_argument);
+  before[2] = std::nanf("");
+  EXPECT_THROW(scene.set_frame_motion_prototype(proto, before.data(), after.data()), std::invalid_argument);
 }
 
 TEST(VectorPass, AMovingStrand) {

@@ -1,6 +1,6 @@
-"""Motion blur through the module: Scene.set_mesh_motion and Scene.set_camera_motion (a time per
-camera sample over the shutter), their coverage against the analytic time-average, and their
-errors."""
+"""Motion blur through the module: Scene.set_mesh_motion, set_prototype_motion,
+set_instance_motion and Scene.set_camera_motion (a time per camera sample over the shutter),
+their coverage against the analytic time-average, and their errors."""
 import numpy as np
 import pytest
 
@@ -193,6 +193,53 @@ def test_moving_instance_covers_as_the_moving_mesh():
     mesh_scene.set_mesh_motion(mesh, moving_steps(1.0, 3))
     assert a.sum() == pytest.approx(100.0, rel=0.02)
     assert np.abs(alpha(mesh_scene) - a).mean() < 0.01
+
+
+def test_deforming_instance_covers_as_the_moving_mesh():
+    """A still instance of a prototype whose object-space vertices slide (set_prototype_motion)
+    is blurred as the world-space mesh moving so; under a turning instance motion (a quarter
+    turn), as the mesh moving through the turned steps."""
+    scene, _ = square_scene(offset=(50.0, 50.0))
+    prototype = scene.add_prototype(SQUARE, TRIANGLES)
+    first = scene.add_instances(prototype, np.eye(4, dtype=np.float32)[None, :3, :], [0])
+    scene.set_prototype_motion(prototype, moving_steps(1.0, 3))
+    assert scene.has_motion()
+    a = alpha(scene)
+    mesh_scene, mesh = square_scene()
+    mesh_scene.set_mesh_motion(mesh, moving_steps(1.0, 3))
+    assert a.sum() == pytest.approx(100.0, rel=0.02)
+    assert np.abs(alpha(mesh_scene) - a).mean() < 0.01
+    # The instance also turning a quarter about z over the shutter (3 steps): at step s the
+    # vertices slid s / 2 along x, then turned by s * 45 degrees.
+    turns = np.stack([np.eye(4, dtype=np.float32)[:3, :] for _ in range(3)])
+    for s, angle in enumerate(np.radians([0.0, 45.0, 90.0])):
+        turns[s, :2, :2] = [[np.cos(angle), -np.sin(angle)], [np.sin(angle), np.cos(angle)]]
+    scene.set_instance_motion([first], turns[:, None])
+    turned_scene, turned = square_scene()
+    slid = moving_steps(1.0, 3)
+    turned_scene.set_mesh_motion(turned, np.einsum("sij,snj->sni", turns[:, :, :3], slid))
+    b = alpha(turned_scene)
+    assert np.abs(alpha(scene) - b).mean() < 0.02
+    assert np.abs(b - a).mean() > 0.05         # the turn shows
+
+
+def test_prototype_motion_errors():
+    scene, _ = square_scene()
+    prototype = scene.add_prototype(SQUARE, TRIANGLES)
+    with pytest.raises(ValueError, match="4 vertices"):
+        scene.set_prototype_motion(prototype, np.zeros((2, 3, 3), np.float32))
+    with pytest.raises(ValueError, match="6 corners"):
+        scene.set_prototype_motion(prototype, moving_steps(1.0, 2),
+                                   corner_normals=np.zeros((2, 5, 3)))
+    with pytest.raises(ValueError, match="no prototype"):
+        scene.set_prototype_motion(prototype + 1, moving_steps(1.0, 2))
+    bad = moving_steps(1.0, 2)
+    bad[1, 2, 0] = np.inf
+    with pytest.raises(ValueError, match="NaN or Inf"):
+        scene.set_prototype_motion(prototype, bad)
+    with pytest.raises(ValueError, match="4 vertices|shape"):
+        scene.set_frame_motion_prototype(prototype, SQUARE[:3], SQUARE)
+    assert not scene.has_motion()
 
 
 def row_centroids(a):

@@ -34,8 +34,12 @@ void Scene::build_mesh_light() {
     e.emitter_links =
         owner & kInstanceBit ? instances_[owner & ~kInstanceBit].settings.emitter_links : meshes_[owner]->settings.emitter_links;
     e.mirrored = mirrored;
-    e.moving = owner & kInstanceBit ? instances_[owner & ~kInstanceBit].motion.size() > 1
-                                    : meshes_[owner]->motion_steps > 1;
+    if (owner & kInstanceBit) {  // moving: its transform, or its prototype deforms
+      const Instance& inst = instances_[owner & ~kInstanceBit];
+      e.moving = inst.motion.size() > 1 || prototypes_[bindings_[inst.binding].prototype]->mesh->motion_steps > 1;
+    } else {
+      e.moving = meshes_[owner]->motion_steps > 1;
+    }
     if (!place_emissive_triangle(e, c.p[0], c.p[1], c.p[2])) return false;
     e.material = material;
     triangles.push_back(e);
@@ -116,13 +120,17 @@ void Scene::build_mesh_light() {
     return;
   }
   // Motion blur: a moving mesh's triangle at the ray's time (scene_motion.h), as its hits are; a
-  // moving instance's triangle under its transform at that time.
+  // moving instance's triangle (a deforming prototype's at that time) under its transform then.
   auto at_ray_time = [this](const EmissiveTriangle& t) {
     Corners c;
     if (t.owner & kInstanceBit) {
       const Instance& inst = instances_[t.owner & ~kInstanceBit];
       const Mesh& mesh = *prototypes_[bindings_[inst.binding].prototype]->mesh;
-      instance_corners(mesh.positions, mesh.triangles[t.prim], nullptr, nullptr, instance_transform(inst), c);
+      c = mesh_corners(mesh.positions, mesh.triangles[t.prim], nullptr, nullptr);
+      if (mesh.motion_steps > 1)  // a deforming prototype
+        motion_corners({mesh.motion_steps, mesh.motion_positions.data(), mesh.positions.size(), nullptr, 0},
+                       mesh.triangles[t.prim], t.prim, c);
+      place_corners(instance_transform(inst), c);
     } else {
       const Mesh& mesh = *meshes_[t.owner];
       const glm::uvec3& tri = mesh.triangles[t.prim];

@@ -1,8 +1,9 @@
 // The Vector pass's scene data (Scene::set_frame_motion_*, frame_motion.h) and where a hit's point
 // was one frame before and will be one frame after (Scene::frame_motion_points), as Cycles'
 // primitive_motion_vector finds it: a deforming mesh's vertices then at the hit's barycentric
-// weights, an instance's transforms then applied to the point in the instance, a strand's keys
-// then along its segment.
+// weights, an instance's transforms then applied to the point in the instance (a deforming
+// prototype's point then: its vertices then at the same weights), a strand's keys then along its
+// segment.
 #include "hair/curve_set.h"
 #include "scene/scene_internal.h"
 #include "torrance/util/limits.h"
@@ -79,6 +80,17 @@ void Scene::set_frame_motion_instances(const int64_t* ids, size_t count, const f
   }
 }
 
+void Scene::set_frame_motion_prototype(uint32_t prototype, const float* before, const float* after) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set a prototype's neighbouring frames");
+  if (prototype >= prototypes_.size())
+    throw std::invalid_argument("set_frame_motion_prototype: no prototype " + std::to_string(prototype));
+  const size_t n = prototypes_[prototype]->mesh->positions.size();
+  FrameMotion::MeshFrames frames{checked_positions(before, n, "previous frame"),
+                                 checked_positions(after, n, "next frame")};
+  frame_motion_.prototypes[prototype] = std::move(frames);
+}
+
 void Scene::set_frame_motion_curves(uint32_t set_id, const int64_t* curve_first, size_t num_curves,
                                     const float* before, const float* after, size_t num_keys) {
   std::lock_guard<std::mutex> lock(mutex_);
@@ -131,14 +143,28 @@ std::array<Vec3, 3> Scene::frame_motion_points(const SurfaceHit& hit) const {
   }
   const uint32_t index = hit.object & ~kInstanceBit;
   const auto it = frame_motion_.instances.find(index);
-  if (it == frame_motion_.instances.end()) return {p, p, p};
+  const uint32_t prototype = bindings_[instances_[index].binding].prototype;
+  const auto deformed = frame_motion_.prototypes.find(prototype);
+  const bool moved = it != frame_motion_.instances.end(), deforms = deformed != frame_motion_.prototypes.end();
+  if (!moved && !deforms) return {p, p, p};
   // The point in the instance: M^-1 (p - t), M^-1 the transpose of normal_matrix's rows.
   const std::array<float, 12> m = instance_transform(instances_[index]);
   const std::array<double, 9> n = normal_matrix(m);
   const double x = double(p.x) - m[3], y = double(p.y) - m[7], z = double(p.z) - m[11];
   const Vec3 local(float(n[0] * x + n[3] * y + n[6] * z), float(n[1] * x + n[4] * y + n[7] * z),
                    float(n[2] * x + n[5] * y + n[8] * z));
-  return {p, transform_point(it->second[0], local), transform_point(it->second[1], local)};
+  Vec3 local_before = local, local_after = local;
+  if (deforms) {  // the point of the deforming mesh at the same barycentric weights then
+    const Mesh& mesh = *prototypes_[prototype]->mesh;
+    const glm::uvec3& tri = mesh.triangles[hit.prim];
+    const Vec3 corners[3] = {mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z]};
+    const Vec3 w = barycentric(local, corners);
+    const auto at = [&](const std::vector<Vec3>& v) { return w.x * v[tri.x] + w.y * v[tri.y] + w.z * v[tri.z]; };
+    local_before = at(deformed->second.before);
+    local_after = at(deformed->second.after);
+  }
+  return {p, transform_point(moved ? it->second[0] : m, local_before),
+          transform_point(moved ? it->second[1] : m, local_after)};
 }
 
 }  // namespace torrance

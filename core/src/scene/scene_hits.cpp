@@ -59,10 +59,14 @@ void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const 
     const Binding& b = bindings_[inst.binding];
     const Mesh& mesh = *prototypes_[b.prototype]->mesh;
     hit_mesh = &mesh;
-    mirrored = instance_corners(mesh.positions, mesh.triangles[prim],
-                                mesh.corner_normals.empty() ? nullptr : &mesh.corner_normals[3 * prim],
-                                mesh.corner_uvs.empty() ? nullptr : &mesh.corner_uvs[3 * prim],
-                                instance_transform(inst), c);
+    c = mesh_corners(mesh.positions, mesh.triangles[prim],
+                     mesh.corner_normals.empty() ? nullptr : &mesh.corner_normals[3 * prim],
+                     mesh.corner_uvs.empty() ? nullptr : &mesh.corner_uvs[3 * prim]);
+    if (mesh.motion_steps > 1)  // a deforming prototype: its object-space corners at the ray's time
+      motion_corners({mesh.motion_steps, mesh.motion_positions.data(), mesh.positions.size(),
+                      mesh.motion_normals.empty() ? nullptr : mesh.motion_normals.data(), 3 * mesh.triangles.size()},
+                     mesh.triangles[prim], prim, c);
+    mirrored = place_corners(instance_transform(inst), c);
     if (mirrored) std::swap(u, v);
     hit.material = b.material(mesh.material_ids[prim]);
     hit.emitter = inst.emitter_base >= 0 && b.emitter_rank[prim] >= 0 ? inst.emitter_base + b.emitter_rank[prim] : -1;

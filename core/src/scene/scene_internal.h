@@ -29,9 +29,10 @@ struct Scene::Mesh {
   std::vector<int32_t> attribute_ids;
   std::vector<int32_t> emitter_index;  // per triangle: index in the mesh light, or -1
   ObjectSettings settings;             // of a mesh from add_mesh (scene/object_settings.h)
-  // Motion blur (Scene::set_mesh_motion): motion_steps >= 2 world-space positions per vertex,
-  // step s's at [s * positions.size(), ...) (one vertex of spare capacity for Embree), evenly
-  // over the shutter's time [0, 1], and the corner normals the same way (empty: none); 0: static.
+  // Motion blur (Scene::set_mesh_motion; a prototype's, object-space: set_prototype_motion):
+  // motion_steps >= 2 positions per vertex, step s's at [s * positions.size(), ...) (one vertex
+  // of spare capacity for Embree), evenly over the shutter's time [0, 1], and the corner normals
+  // the same way (empty: none); 0: static.
   uint32_t motion_steps = 0;
   std::vector<Vec3> motion_positions;
   std::vector<Vec3> motion_normals;
@@ -159,14 +160,12 @@ inline Corners mesh_corners(const std::vector<Vec3>& positions, const glm::uvec3
   return c;
 }
 
-// A prototype triangle placed by an instance's matrix: what the flattening export would have
-// added as a world-space mesh (positions by M, normals by M^-T, corners 1 and 2 swapped when M
-// mirrors). Returns whether they were swapped.
-inline bool instance_corners(const std::vector<Vec3>& positions, const glm::uvec3& tri, const Vec3* normals,
-                             const Vec2* uvs, const std::array<float, 12>& m, Corners& c) {
-  c = mesh_corners(positions, tri, normals, uvs);
+// A prototype triangle's object-space corners c placed by an instance's matrix: what the
+// flattening export would have added as a world-space mesh (positions by M, normals by M^-T,
+// corners 1 and 2 swapped when M mirrors). Returns whether they were swapped.
+inline bool place_corners(const std::array<float, 12>& m, Corners& c) {
   for (int k = 0; k < 3; ++k) c.p[k] = transform_point(m, c.p[k]);
-  if (normals) {
+  if (c.has_n) {
     const std::array<double, 9> nm = normal_matrix(m);
     for (int k = 0; k < 3; ++k) c.n[k] = transform_normal(nm, c.n[k]);
   }
@@ -177,6 +176,13 @@ inline bool instance_corners(const std::vector<Vec3>& positions, const glm::uvec
     std::swap(c.uv[1], c.uv[2]);
   }
   return mirrored;
+}
+
+// A still prototype triangle placed by an instance's matrix (place_corners).
+inline bool instance_corners(const std::vector<Vec3>& positions, const glm::uvec3& tri, const Vec3* normals,
+                             const Vec2* uvs, const std::array<float, 12>& m, Corners& c) {
+  c = mesh_corners(positions, tri, normals, uvs);
+  return place_corners(m, c);
 }
 }  // namespace scene_detail
 

@@ -1,6 +1,8 @@
-// Motion blur of world-space meshes (Scene::set_mesh_motion): several time steps of positions and
-// corner normals as Embree's multi-segment linear motion triangles, and a hit's corners at the
-// ray's time (motion_corners, called by triangle_hit).
+// Motion blur of world-space meshes (Scene::set_mesh_motion) and of deforming prototypes (their
+// object-space vertices, Scene::set_prototype_motion): several time steps of positions and corner
+// normals as Embree's multi-segment linear motion triangles (inside the instanced scene for a
+// prototype: Embree carries the ray's time through the instance), a hit's corners at the ray's
+// time (motion_corners, called by triangle_hit), and instances' transform motion.
 #include "scene/scene_motion.h"
 
 #include "scene/ray_queries.h"
@@ -34,16 +36,26 @@ size_t Scene::mesh_triangle_count(uint32_t mesh) const {
   return meshes_[mesh]->triangles.size();
 }
 
-void Scene::set_mesh_motion(uint32_t mesh_id, size_t steps, const float* positions, const float* corner_normals) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  check_idle("set a mesh's motion");
-  if (mesh_id >= meshes_.size()) throw std::invalid_argument("set_mesh_motion: no mesh " + std::to_string(mesh_id));
+size_t Scene::prototype_vertex_count(uint32_t prototype) const {
+  if (prototype >= prototypes_.size()) throw std::invalid_argument("no prototype " + std::to_string(prototype));
+  return prototypes_[prototype]->mesh->positions.size();
+}
+
+size_t Scene::prototype_triangle_count(uint32_t prototype) const {
+  if (prototype >= prototypes_.size()) throw std::invalid_argument("no prototype " + std::to_string(prototype));
+  return prototypes_[prototype]->mesh->triangles.size();
+}
+
+namespace {
+
+// Motion arrays as set_mesh_motion and set_prototype_motion keep them: steps x n positions (one
+// vertex of spare capacity for Embree's 16-byte load of the last one) and steps x corners unit
+// normals (empty without normals), checked as add_mesh checks its own.
+void read_motion(size_t steps, size_t n, size_t corners, const float* positions, const float* corner_normals,
+                 std::vector<Vec3>& moved, std::vector<Vec3>& normals) {
   if (steps < 2 || steps > kMaxMotionSteps)
     throw std::invalid_argument("motion needs 2 to 129 time steps, got " + std::to_string(steps));
-  Mesh& mesh = *meshes_[mesh_id];
-  const size_t n = mesh.positions.size(), corners = 3 * mesh.triangles.size();
-  std::vector<Vec3> moved;
-  moved.reserve(steps * n + 1);  // Embree's 16-byte load of the last vertex
+  moved.reserve(steps * n + 1);
   for (size_t i = 0; i < steps * n; ++i) {
     const Vec3 p(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
     if (!is_finite(p))
@@ -52,7 +64,6 @@ void Scene::set_mesh_motion(uint32_t mesh_id, size_t steps, const float* positio
     require_position(p, "motion step " + std::to_string(i / n) + ", vertex " + std::to_string(i % n));
     moved.push_back(p);
   }
-  std::vector<Vec3> normals;
   if (corner_normals) {
     normals.resize(steps * corners);
     for (size_t i = 0; i < steps * corners; ++i) {
@@ -62,21 +73,82 @@ void Scene::set_mesh_motion(uint32_t mesh_id, size_t steps, const float* positio
       normals[i] = len > 1e-12f ? v / len : Vec3(0.0f);  // as add_mesh's corner normals
     }
   }
+}
+
+// Embree's triangle geometry geom moving through `steps` x n positions (multi-segment linear
+// motion, Embree reading them where they are), committed.
+void share_motion(RTCGeometry geom, uint32_t steps, const std::vector<Vec3>& positions, size_t n) {
+  rtcSetGeometryTimeStepCount(geom, steps);
+  for (size_t s = 0; s < steps; ++s)
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, unsigned(s), RTC_FORMAT_FLOAT3, positions.data() + s * n,
+                               0, sizeof(Vec3), n);
+  rtcCommitGeometry(geom);
+}
+
+}  // namespace
+
+void Scene::set_mesh_motion(uint32_t mesh_id, size_t steps, const float* positions, const float* corner_normals) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set a mesh's motion");
+  if (mesh_id >= meshes_.size()) throw std::invalid_argument("set_mesh_motion: no mesh " + std::to_string(mesh_id));
+  Mesh& mesh = *meshes_[mesh_id];
+  std::vector<Vec3> moved, normals;
+  read_motion(steps, mesh.positions.size(), 3 * mesh.triangles.size(), positions, corner_normals, moved, normals);
   const uint32_t geom_id = mesh_geometry_id(mesh_id);
   mesh.motion_positions = std::move(moved);
   mesh.motion_normals = std::move(normals);
   mesh.motion_steps = uint32_t(steps);
   if (geom_id == kNoGeometry) return;  // no triangles: nothing to trace
-  RTCGeometry geom = rtcGetGeometry(scene_of(scene_), geom_id);
-  rtcSetGeometryTimeStepCount(geom, unsigned(steps));
-  for (size_t s = 0; s < steps; ++s)
-    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, unsigned(s), RTC_FORMAT_FLOAT3,
-                               mesh.motion_positions.data() + s * n, 0, sizeof(Vec3), n);
-  rtcCommitGeometry(geom);
+  share_motion(rtcGetGeometry(scene_of(scene_), geom_id), mesh.motion_steps, mesh.motion_positions, mesh.positions.size());
   check_device("setting a mesh's motion");
   has_motion_ = true;
   dirty_ = true;
   emitters_dirty_ = true;  // its emissive triangles now move (build_mesh_light)
+}
+
+void Scene::set_prototype_motion(uint32_t prototype_id, size_t steps, const float* positions,
+                                 const float* corner_normals) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set a prototype's motion");
+  if (prototype_id >= prototypes_.size())
+    throw std::invalid_argument("set_prototype_motion: no prototype " + std::to_string(prototype_id));
+  Prototype& proto = *prototypes_[prototype_id];
+  Mesh& mesh = *proto.mesh;
+  std::vector<Vec3> moved, normals;
+  read_motion(steps, mesh.positions.size(), 3 * mesh.triangles.size(), positions, corner_normals, moved, normals);
+  // Its instances must place every step within bounds, as add_instances checked its frame's.
+  const Vec3 lo = proto.lo, hi = proto.hi;
+  for (size_t i = 0; i < steps * mesh.positions.size(); ++i) {
+    proto.lo = glm::min(proto.lo, moved[i]);
+    proto.hi = glm::max(proto.hi, moved[i]);
+  }
+  try {
+    for (const Instance& inst : instances_) {
+      if (inst.binding == kRemoved || bindings_[inst.binding].prototype != prototype_id) continue;
+      check_transform(inst.transform.data(), prototype_id, "an instance of the moving prototype");
+      for (const auto& m : inst.motion) check_transform(m.data(), prototype_id, "an instance of the moving prototype");
+    }
+  } catch (...) {
+    proto.lo = lo;
+    proto.hi = hi;
+    throw;
+  }
+  mesh.motion_positions = std::move(moved);
+  mesh.motion_normals = std::move(normals);
+  mesh.motion_steps = uint32_t(steps);
+  if (!proto.scene) return;  // no triangles: nothing to trace
+  share_motion(rtcGetGeometry(proto.scene, 0), mesh.motion_steps, mesh.motion_positions, mesh.positions.size());
+  // Its BVH is (re)built with the time steps by the next commit, and the instances of it taken
+  // into the top-level BVH again with its new bounds.
+  if (proto.built)
+    for (const Instance& inst : instances_)
+      if (inst.binding != kRemoved && inst.geometry != kNoGeometry && bindings_[inst.binding].prototype == prototype_id)
+        rtcCommitGeometry(rtcGetGeometry(scene_of(scene_), inst.geometry));
+  proto.built = false;
+  check_device("setting a prototype's motion");
+  has_motion_ = true;
+  dirty_ = true;
+  emitters_dirty_ = true;  // its instances' emissive triangles now move (build_mesh_light)
 }
 
 size_t Scene::set_instance_motion(const int64_t* ids, size_t count, size_t steps, const float* transforms) {

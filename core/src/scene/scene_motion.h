@@ -1,4 +1,5 @@
-// Motion blur's hit geometry (scene_motion.cpp): a moving mesh's triangle at the ray's time.
+// Motion blur's hit geometry (scene_motion.cpp): a moving mesh's (or deforming prototype's)
+// triangle at the ray's time.
 #pragma once
 
 #include "scene/scene_internal.h"

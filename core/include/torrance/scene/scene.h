@@ -317,6 +317,12 @@ class Scene final : public ShaderTracer {
   // instance with a step of (nearly) zero scale, which Embree could not trace, keeps its transform
   // without motion; returns how many did.
   size_t set_instance_motion(const int64_t* ids, size_t count, size_t steps, const float* transforms);
+  // Motion blur of a deforming instanced mesh: prototype `prototype` (from add_prototype) moves
+  // through `steps` >= 2 object-space positions (steps x num_vertices xyz) and corner normals
+  // (nullptr: its static ones, or flat), as set_mesh_motion's; every instance of it deforms so,
+  // under its own transform (or transform motion) at the ray's time. Throws std::invalid_argument
+  // as set_mesh_motion, and when a step would take an instance of it beyond add_instances' bounds.
+  void set_prototype_motion(uint32_t prototype, size_t steps, const float* positions, const float* corner_normals);
   // Whether some mesh or instance moves: the integrator then samples a time per path.
   bool has_motion() const { return has_motion_; }
 
@@ -329,6 +335,9 @@ class Scene final : public ShaderTracer {
   void set_frame_motion_camera(const std::array<float, 16>& before, const std::array<float, 16>& after);
   void set_frame_motion_mesh(uint32_t mesh, const float* before, const float* after);
   void set_frame_motion_instances(const int64_t* ids, size_t count, const float* before, const float* after);
+  // Prototype `prototype`'s object-space vertices then (num_vertices xyz each: a deforming
+  // instanced mesh), which its instances' transforms then (or now) place.
+  void set_frame_motion_prototype(uint32_t prototype, const float* before, const float* after);
   // Curve set `set`'s keys then (num_keys xyz each, in add_curves' order), whose curves start at
   // curve_first (num_curves + 1 offsets, as add_curves was given them).
   void set_frame_motion_curves(uint32_t set, const int64_t* curve_first, size_t num_curves, const float* before,
@@ -337,12 +346,15 @@ class Scene final : public ShaderTracer {
   // The point `hit` found, now and where it was one frame before and will be one after (world
   // space), as Cycles' primitive_motion_vector takes them: its mesh's vertices then at its
   // barycentric weights, or its instance's transforms then applied to its position in the
-  // instance; on a strand the point of its segment's key polyline at the hit (Cycles' curve
+  // instance (a deforming prototype's: its vertices then at the barycentric weights); on a strand the point of its segment's key polyline at the hit (Cycles' curve
   // centre), with its keys then; the point itself for what was not given.
   std::array<Vec3, 3> frame_motion_points(const SurfaceHit& hit) const;
   // Vertices and triangles of mesh `mesh` from add_mesh (std::invalid_argument for a bad id).
   size_t mesh_vertex_count(uint32_t mesh) const;
   size_t mesh_triangle_count(uint32_t mesh) const;
+  // The same of prototype `prototype` from add_prototype.
+  size_t prototype_vertex_count(uint32_t prototype) const;
+  size_t prototype_triangle_count(uint32_t prototype) const;
 
   // Per-corner attributes of mesh `mesh` (from add_mesh; with prototype = true, of a prototype)
   // for shader programs: values (num_attributes, 3 * its triangles) xyz, ids naming each layer
