@@ -2,7 +2,7 @@
 """Motion blur renders like Cycles 3.4's (Render > Motion Blur: Position, Shutter, Rolling
 Shutter, Shutter Curve; Object > Motion Blur: steps, deformation; moving instances and lamps).
 
-Ten animated scenes on a grey floor under a sun, rendered at frame 1 with the shutter open one
+Eleven animated scenes on a grey floor under a sun, rendered at frame 1 with the shutter open one
 frame, each by Cycles (seed 0: the reference; seed 1: Cycles' own noise, which sets the bounds)
 and by Torrance (seeds 2 and 3), compared by ratio and 8x8 block means
 (seed_noise.agree_within_seed_noise):
@@ -18,19 +18,26 @@ and by Torrance (seeds 2 and 3), compared by ratio and 8x8 block means
 * an emissive panel sliding over the floor (Position Center): light sampling finds it where
   the path's time puts it, as Cycles' motion triangles;
 * a collection instance whose instancer slides and turns (Embree instance motion);
+* a shape-keyed sphere shown only through a collection instance (turned, lifted): its
+  deformation as the prototype's motion, inside Embree's instanced scene;
 * geometry-nodes instances turning with the frame on a still object;
 * a point lamp moving (Position Start): Cycles does not blur lamps but reads them, as the
   whole scene, at the shutter's centre;
 * Rolling Shutter Top-Bottom (Duration 0.1) and a rising Shutter Curve on the moving sphere.
 
+An instanced shape-keyed mesh whose faces a Build modifier adds over the frames must be
+reported (its instance then follows its transform only).
+
 Each has deliberate faults that must FAIL the same bounds: torrance.export.motion's
 shutter_offsets patched (time ignored: every step at the shutter's centre, no blur; the shutter
 halved) or shutter_centre (Position Start/End read as Center); instance motion off
-(instance_motion.instance_motion_steps), the lamp read at the frame (scene.export_light), the
-rolling shutter and the curve ignored (shutter.rolling_shutter_duration,
-shutter.shutter_curve_values). (Core faults shown to fail by hand: the panel's light sampled at
-the frame, see the commit that recorded its figures; rows timed bottom-first in
-Camera::shutter_time: the rolling panel's block mean 0.027 > 0.0017, p90 0.053 > 0.0040.)
+(instance_motion.instance_motion_steps), the instanced sphere's deformation ignored
+(instance_motion.uses_deform_motion: transforms only), the lamp read at the frame
+(scene.export_light), the rolling shutter and the curve ignored
+(shutter.rolling_shutter_duration, shutter.shutter_curve_values). (Core faults shown to fail
+by hand: the panel's light sampled at the frame, see the commit that recorded its figures; rows
+timed bottom-first in Camera::shutter_time: the rolling panel's block mean 0.027 > 0.0017, p90
+0.053 > 0.0040.)
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_motion_blur_agreement.py
@@ -140,16 +147,25 @@ def moving_instance(scene):
     base(scene)
     box = make.box(scene, "Crate", (0.8, 0.0, 0.5), (1.0, 0.5, 1.0),
                    testing.principled("Orange", (0.8, 0.4, 0.1)))
-    crates = bpy.data.collections.new("Crates")
-    for owner in list(box.users_collection):
-        owner.objects.unlink(box)
-    crates.objects.link(box)
-    empty = bpy.data.objects.new("Instancer", None)
-    empty.instance_type = 'COLLECTION'
-    empty.instance_collection = crates
-    scene.collection.objects.link(empty)
+    empty = make.collection_instance(scene, box, "Crates", "Instancer")
     linear_keys(empty, "location", [(-1.2, 0.0, 0.0), (1.2, 0.0, 0.0)])
     linear_keys(empty, "rotation_euler", [(0.0, 0.0, 0.0), (0.0, 0.0, math.radians(90.0))])
+    set_position(scene, 'CENTER')
+
+
+def deforming_instance(scene):
+    """A shape-keyed flat sphere (it slides and grows, as deforming_sphere's) shown only through
+    a collection instance turned and lifted by its still instancer: the instanced mesh's
+    object-space vertices at each step (the prototype's motion), under the instance's transform."""
+    base(scene)
+    ob = make.sphere_object(scene, "Blob", (0.0, 0.0, 0.0), 0.6,
+                            testing.principled("Green", (0.1, 0.7, 0.2)), segments=32, rings=16)
+    for polygon in ob.data.polygons:
+        polygon.use_smooth = False
+    shape_key_motion(ob, "Slide", lambda co: co * 1.4 + np.array([1.2, 0.0, 0.25]))
+    empty = make.collection_instance(scene, ob, "Blobs", "Instancer")
+    empty.location = (-0.6, 0.3, 0.6)
+    empty.rotation_euler = (0.0, 0.0, math.radians(-30.0))
     set_position(scene, 'CENTER')
 
 
@@ -210,6 +226,12 @@ def no_instance_motion(original):
     return lambda inst: 0
 
 
+def no_deformation(original):
+    """Instanced objects' deformation not followed: their transforms only (replaces
+    instance_motion.uses_deform_motion; the behaviour before prototype motion)."""
+    return lambda obj, scene: False
+
+
 def lamp_at_frame(original):
     """The lamp read at the frame (the shutter's opening) instead of the shutter's centre, half
     a frame later, where Cycles' sync reads it (replaces scene.export_light)."""
@@ -247,6 +269,9 @@ VARIANTS = (
     ("collection instance sliding and turning", moving_instance,
      (("instance motion off", "instance_motion", "instance_motion_steps", no_instance_motion),
       ("shutter halved", shutter_halved))),
+    ("shape-keyed mesh in a collection instance", deforming_instance,
+     (("instance's deformation ignored", "instance_motion", "uses_deform_motion",
+       no_deformation),)),
     ("geometry-nodes instances turning", spinning_gn_instances,
      (("instance motion off", "instance_motion", "instance_motion_steps", no_instance_motion),)),
     ("point lamp moving, Start", moving_lamp,
@@ -256,6 +281,24 @@ VARIANTS = (
     ("shutter curve rising", shutter_curve,
      (("curve ignored", "shutter", "shutter_curve_values", curve_ignored),)),
 )
+
+
+def topology_change_reported(scene, d):
+    """deforming_instance's sphere with a Build modifier adding its faces over the frames: its
+    mesh changes topology over the shutter, so its instance follows its transform only, and
+    that is reported (the render goes on, finite)."""
+    deforming_instance(scene)
+    build = bpy.data.objects["Blob"].modifiers.new("Build", 'BUILD')
+    build.frame_start, build.frame_duration = 0.0, 4.0
+    scene.render.engine = 'TORRANCE'
+    scene.torrance.samples = 4
+    bpy.context.view_layer.update()
+    img, _ = testing.render(scene, d, "topology")
+    messages = [m for _, m in testing.last_messages()]
+    print(f"--- instanced mesh changing topology: reports {messages}")
+    testing.check(np.isfinite(img).all(), "NaN/Inf in the image")
+    testing.check(any("'Blob': its mesh changes topology" in m for m in messages),
+                  f"the topology change is not reported: {messages}")
 
 
 def main():
@@ -274,6 +317,7 @@ def main():
             owner = importlib.import_module(f"torrance.export.{module}")
             patched.append((name, owner, attribute, make_fault))
         agree_within_seed_noise(scene, d, SAMPLES, 2, label, faults=patched)
+    topology_change_reported(scene, d)
 
 
 testing.run(main)

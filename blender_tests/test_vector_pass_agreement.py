@@ -4,8 +4,9 @@
 Frame 1 of an animation keyed at frames 0 and 2, linearly: a camera moving and turning, a box
 moving and turning (a world-space mesh: its transform), a sphere deforming through a shape key
 (its deformation), geometry-nodes cubes turning with the scene's time (instances: their own
-transforms), thick hair strands on a moving emitter (their keys) and a static floor (the
-camera's motion alone), the sky in the top rows. Object pass
+transforms), a shape-keyed sphere shown only through a sliding collection instance (its
+deformation under the instance's transforms), thick hair strands on a moving emitter (their
+keys) and a static floor (the camera's motion alone), the sky in the top rows. Object pass
 indices tell the objects apart. Checks, on pixels whose 5x5 neighbourhood (3x3 on the strands)
 shows one object in Cycles' Object Index pass (away from edges, where the pass mixes two
 objects' vectors):
@@ -21,8 +22,9 @@ objects' vectors):
 * with Motion Blur on the pass is there and 0, as Cycles'.
 
 Faults that must fail: the camera's neighbouring frames ignored, the sphere's deformation
-ignored, the instances' or the hair's neighbouring frames not given, and the previous and next
-frames swapped; in Multi-View, the right view's camera left standing still; the hair's object
+ignored, the instanced sphere's deformation ignored (its instance's transforms only), the
+instances' or the hair's neighbouring frames not given, and the previous and next frames
+swapped; in Multi-View, the right view's camera left standing still; the hair's object
 settings not given (its Object Index 0).
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
@@ -38,11 +40,11 @@ from torrance_tools import testing
 from torrance_tools.animation import linear_keys, shape_key_motion
 from torrance_tools.render_passes import interior, render_passes
 from torrance_tools.render_settings import setup_cycles, setup_torrance
-from torrance_tools.scene import particle_hair, turning_instances
+from torrance_tools.scene import collection_instance, particle_hair, turning_instances
 from torrance_tools.testing import check
 
 W, H, SAMPLES, BOUNCES = 96, 64, 16, 1
-OBJECTS = {"Floor": 1, "Box": 2, "Ball": 3, "Cubes": 4, "Fur": 5}
+OBJECTS = {"Floor": 1, "Box": 2, "Ball": 3, "Cubes": 4, "Fur": 5, "Blob": 6}
 REACH = {"Fur": 1}                # 3x3 inside a strand (5x5 elsewhere)
 TOLERANCE, FLOOR = 1.5, 0.02      # times Cycles' own difference, plus pixels
 
@@ -73,6 +75,7 @@ def build(scene):
     holder = testing.mesh_object(scene, "Cubes", [(0, 0, 0)], [], None)
     turning_instances(holder, "Turning", 3, (1.6, -0.6, 0.4), (0.6, 0.6, 0.3), (0.45, 0.45, 0.45),
                       grey, 0.35)
+    deforming_instance(scene, grey)
     for name, index in OBJECTS.items():
         bpy.data.objects[name].pass_index = index
     testing.add_sun(scene, strength=3.0)
@@ -81,6 +84,18 @@ def build(scene):
     layer.use_pass_vector = True
     layer.use_pass_object_index = True
     scene.frame_set(1)
+
+
+def deforming_instance(scene, material):
+    """A shape-keyed sphere (Blob) shown only through a collection instance, turned and moved by
+    its instancer (Dancer), which also slides: the instanced mesh's object-space vertices one
+    frame before and after (the prototype's) under the instance's transforms then."""
+    blob = testing.sphere_object(scene, "Blob", (0.0, 0.0, 0.0), 0.45, material, segments=24,
+                                 rings=12)
+    shape_key_motion(blob, "Stretch", lambda p: p * (1.0, 0.6, 1.5) + (0.35, 0.0, 0.2))
+    dancer = collection_instance(scene, blob, "Blobs", "Dancer")
+    dancer.rotation_euler = (0.0, 0.0, math.radians(40.0))
+    linear_keys(dancer, "location", [(-1.0, -2.6, 0.5), (-0.8, -2.6, 0.5)])
 
 
 def render(scene, d, engine_setup, seed, name):
@@ -158,6 +173,7 @@ def moving_share(ref):
 def faults():
     """(label, owner, attribute, make_fault), each replacing owner.attribute for one render."""
     import torrance.export.frame_motion as frame_motion
+    import torrance.export.instance_motion as instance_motion
     import torrance.export.scene as export_scene
 
     def camera_still(original):
@@ -171,8 +187,10 @@ def faults():
              camera_still),
             ("deformation ignored", export_scene, "uses_deform_motion",
              lambda _original: lambda obj, scene: False),
+            ("instanced deformation ignored", instance_motion, "uses_deform_motion",
+             lambda _original: lambda obj, scene: False),
             ("instances' frames not given", frame_motion, "export_instance_frames",
-             lambda _original: lambda tc_scene, instances: None),
+             lambda _original: lambda tc_scene, instances, reporter: None),
             ("hair's frames not given", frame_motion.FrameMotionSampler, "export_hair_frames",
              lambda _original: lambda self, tc_scene: None),
             ("previous and next frames swapped", frame_motion.FrameMotionSampler, "offsets",
@@ -197,6 +215,7 @@ def multi_view(scene, d):
     linear_keys(right, "location", [(0.5, -7.0, 1.8), (-0.2, -6.6, 1.6)])
     linear_keys(right, "rotation_euler", [tuple(start), tuple(start + (-0.02, 0.0, -0.06))])
     bpy.data.objects["Cubes"].hide_render = True
+    bpy.data.objects["Dancer"].hide_render = True
     rd = scene.render
     rd.use_multiview, rd.views_format = True, 'MULTIVIEW'
     rd.views["left"].camera_suffix, rd.views["right"].camera_suffix = "_L", "_R"
@@ -218,6 +237,7 @@ def multi_view(scene, d):
         bad.append("fault 'the right view's camera still' passes")
     rd.use_multiview = False
     bpy.data.objects["Cubes"].hide_render = False
+    bpy.data.objects["Dancer"].hide_render = False
     return bad
 
 

@@ -310,6 +310,20 @@ def particle_hair(obj, count, length, children=0, factor_random=0.0, material_sl
     return part
 
 
+def collection_instance(scene, ob, collection_name, instancer_name):
+    """Object ob moved out of the scene into a new collection `collection_name`, shown only
+    through an empty `instancer_name` (at the origin) instancing that collection; the empty."""
+    collection = bpy.data.collections.new(collection_name)
+    for owner in list(ob.users_collection):
+        owner.objects.unlink(ob)
+    collection.objects.link(ob)
+    empty = bpy.data.objects.new(instancer_name, None)
+    empty.instance_type = 'COLLECTION'
+    empty.instance_collection = collection
+    scene.collection.objects.link(empty)
+    return empty
+
+
 def sphere_object(scene, name, center, radius, material=None, segments=48, rings=24):
     """A smooth-shaded UV sphere (uv_sphere) of `radius` at `center`."""
     verts, tris = uv_sphere(segments, rings)

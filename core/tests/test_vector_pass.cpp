@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <string>
+#include <utility>
 
 namespace torrance {
 namespace {
@@ -77,12 +78,9 @@ void expect_vectors(const RenderResult& r, const glm::vec4& inside) {
   EXPECT_GT(checked_sky, 100);
 }
 
-TEST(VectorPass, AMovingMeshInPixelsYUp) {
-  Scene scene;
-  const uint32_t mesh = add_quad_mesh(scene);
-  look_down_orthographic(scene);
-  scene.set_frame_motion_camera(translation(0, 0, 10), translation(0, 0, 10));
-  // One frame before 0.5 m to the left (-X), one after 0.5 m right and 0.25 m up (+Y).
+// The quad's vertices one frame before, 0.5 m to the left (-X), and one after, 0.5 m right and
+// 0.25 m up (+Y).
+std::pair<std::array<float, 12>, std::array<float, 12>> shifted_quads() {
   std::array<float, 12> before, after;
   for (int i = 0; i < 4; ++i) {
     for (int c = 0; c < 3; ++c) before[3 * i + c] = after[3 * i + c] = kQuad[3 * i + c];
@@ -90,6 +88,15 @@ TEST(VectorPass, AMovingMeshInPixelsYUp) {
     after[3 * i] += 0.5f;
     after[3 * i + 1] += 0.25f;
   }
+  return {before, after};
+}
+
+TEST(VectorPass, AMovingMeshInPixelsYUp) {
+  Scene scene;
+  const uint32_t mesh = add_quad_mesh(scene);
+  look_down_orthographic(scene);
+  scene.set_frame_motion_camera(translation(0, 0, 10), translation(0, 0, 10));
+  const auto [before, after] = shifted_quads();
   scene.set_frame_motion_mesh(mesh, before.data(), after.data());
   const RenderResult r = render(scene, vector_render());
   expect_vectors(r, glm::vec4(-0.5f, 0.0f, -0.5f, -0.25f) * kPixelsPerMetre);
@@ -144,13 +151,7 @@ TEST(VectorPass, ADeformingInstance) {
   const int64_t id = scene.add_instances(proto, turn, 1, table, 1);
   look_down_orthographic(scene);
   scene.set_frame_motion_camera(translation(0, 0, 10), translation(0, 0, 10));
-  std::array<float, 12> before, after;
-  for (int i = 0; i < 4; ++i) {
-    for (int c = 0; c < 3; ++c) before[3 * i + c] = after[3 * i + c] = kQuad[3 * i + c];
-    before[3 * i] -= 0.5f;
-    after[3 * i] += 0.5f;
-    after[3 * i + 1] += 0.25f;
-  }
+  auto [before, after] = shifted_quads();
   scene.set_frame_motion_prototype(proto, before.data(), after.data());
   expect_vectors(render(scene, vector_render()), glm::vec4(0.0f, -0.5f, 0.25f, -0.5f) * kPixelsPerMetre);
   // The instance moving as well: 0.25 m along +X before, 0.5 m along -Y after, added to it.

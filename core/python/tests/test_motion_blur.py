@@ -160,11 +160,18 @@ def test_a_moving_emitter_lights_as_its_time_average():
     assert np.abs(profile_moving / profile_still - 1.0).max() < 0.02
 
 
-def instance_scene(distance):
-    """The square as an instance (add_prototype, add_instances) sliding `distance` along x."""
-    scene, _ = square_scene(offset=(50.0, 50.0))     # the mesh far outside the view
+def still_instance_scene():
+    """(scene, prototype, instance id): the square as one instance (add_prototype,
+    add_instances) at the origin, the world mesh far outside the view."""
+    scene, _ = square_scene(offset=(50.0, 50.0))
     prototype = scene.add_prototype(SQUARE, TRIANGLES)
     first = scene.add_instances(prototype, np.eye(4, dtype=np.float32)[None, :3, :], [0])
+    return scene, prototype, first
+
+
+def instance_scene(distance):
+    """The square as an instance sliding `distance` along x."""
+    scene, _prototype, first = still_instance_scene()
     steps = np.stack([np.eye(4, dtype=np.float32)[:3, :] for _ in range(3)])
     steps[:, 0, 3] = distance * np.arange(3) / 2.0
     scene.set_instance_motion([first], steps[:, None])
@@ -174,9 +181,7 @@ def instance_scene(distance):
 def test_instance_shrinking_to_nothing_stays_still():
     """A step of zero scale (a particle dying during the shutter) can not be traced: that instance
     keeps its transform without motion, and set_instance_motion says how many did."""
-    scene, _ = square_scene(offset=(50.0, 50.0))
-    prototype = scene.add_prototype(SQUARE, TRIANGLES)
-    first = scene.add_instances(prototype, np.eye(4, dtype=np.float32)[None, :3, :], [0])
+    scene, _prototype, first = still_instance_scene()
     steps = np.stack([np.eye(4, dtype=np.float32)[:3, :] for _ in range(3)])
     steps[2, :, :3] = 0.0
     assert scene.set_instance_motion([first], steps[:, None]) == 1
@@ -185,30 +190,29 @@ def test_instance_shrinking_to_nothing_stays_still():
     assert a.sum() == pytest.approx(100.0, rel=0.02)     # the still square's coverage
 
 
-def test_moving_instance_covers_as_the_moving_mesh():
-    scene = instance_scene(1.0)
+def covers_as_the_sliding_mesh(scene):
+    """scene's alpha, checked against the square as a world mesh sliding 1 unit along x (3
+    steps): the same area, the same coverage within 0.01 on average."""
     assert scene.has_motion()
     a = alpha(scene)
     mesh_scene, mesh = square_scene()
     mesh_scene.set_mesh_motion(mesh, moving_steps(1.0, 3))
     assert a.sum() == pytest.approx(100.0, rel=0.02)
     assert np.abs(alpha(mesh_scene) - a).mean() < 0.01
+    return a
+
+
+def test_moving_instance_covers_as_the_moving_mesh():
+    covers_as_the_sliding_mesh(instance_scene(1.0))
 
 
 def test_deforming_instance_covers_as_the_moving_mesh():
     """A still instance of a prototype whose object-space vertices slide (set_prototype_motion)
     is blurred as the world-space mesh moving so; under a turning instance motion (a quarter
     turn), as the mesh moving through the turned steps."""
-    scene, _ = square_scene(offset=(50.0, 50.0))
-    prototype = scene.add_prototype(SQUARE, TRIANGLES)
-    first = scene.add_instances(prototype, np.eye(4, dtype=np.float32)[None, :3, :], [0])
+    scene, prototype, first = still_instance_scene()
     scene.set_prototype_motion(prototype, moving_steps(1.0, 3))
-    assert scene.has_motion()
-    a = alpha(scene)
-    mesh_scene, mesh = square_scene()
-    mesh_scene.set_mesh_motion(mesh, moving_steps(1.0, 3))
-    assert a.sum() == pytest.approx(100.0, rel=0.02)
-    assert np.abs(alpha(mesh_scene) - a).mean() < 0.01
+    a = covers_as_the_sliding_mesh(scene)
     # The instance also turning a quarter about z over the shutter (3 steps): at step s the
     # vertices slid s / 2 along x, then turned by s * 45 degrees.
     turns = np.stack([np.eye(4, dtype=np.float32)[:3, :] for _ in range(3)])

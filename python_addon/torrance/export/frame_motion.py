@@ -7,9 +7,10 @@ Scene.set_frame_motion_*.
 Cycles' motion pass samples every object at three times (the previous, the rendered and the
 next frame) whatever its Object > Motion Blur settings, a mesh's deformation where Motion Blur >
 Deformation is on and modifiers or shape keys deform it (a mesh whose topology changes follows
-its transform only), instances by their instancer and persistent id. Under motion blur Cycles
-writes no vectors (the pass stays 0: its UI greys the toggle out), and neither does Torrance; the
-viewport and material previews have no Vector pass.
+its transform only), instances by their instancer and persistent id (a deforming instanced
+mesh's vertices too: prototype_motion.py). Under motion blur Cycles writes no vectors (the pass
+stays 0: its UI greys the toggle out), and neither does Torrance; the viewport and material
+previews have no Vector pass.
 """
 
 import numpy as np
@@ -86,7 +87,7 @@ class FrameMotionSampler(MotionSampler):
             if neighbours is not None:
                 tc_scene.set_frame_motion_mesh(mesh_id, *neighbours)
         if self.instances is not None:
-            export_instance_frames(tc_scene, self.instances)
+            export_instance_frames(tc_scene, self.instances, self.reporter)
         self.export_hair_frames(tc_scene)
 
     def export_hair_frames(self, tc_scene):
@@ -130,9 +131,13 @@ class FrameMotionSampler(MotionSampler):
         return out[0], out[1]
 
 
-def export_instance_frames(tc_scene, instances):
+def export_instance_frames(tc_scene, instances, reporter):
     """The previous and next frames' matrices of the instances found at all three frames
-    (instance_motion.InstanceMotion's records), to Scene.set_frame_motion_instances."""
+    (instance_motion.InstanceMotion's records), to Scene.set_frame_motion_instances, and the
+    deforming instanced meshes' vertices then, to Scene.set_frame_motion_prototype."""
+    for pid, positions, _normals in instances.deformation.steps(instances.prototypes, reporter,
+                                                                "between frames"):
+        tc_scene.set_frame_motion_prototype(pid, positions[0], positions[-1])
     ids, before, after = [], [], []
     for key, (src, index, _steps) in instances.records.items():
         matrices = instances.matrices.get(key, [])

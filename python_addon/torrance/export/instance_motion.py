@@ -3,12 +3,14 @@
 Cycles 3.4 renders it: an instance is found again at each of the shutter's time steps by its
 instancer and persistent id (Cycles' motion sync of duplis), its world matrices go to the core as
 Embree instance motion (Scene.set_instance_motion), interpolated as Cycles interpolates a
-transform (export/motion.py densified). Its steps: Object > Motion Blur of the instanced object
-and of its instancer (both on; the larger Steps), as Cycles' object_motion_steps."""
+transform (export/motion.py densified); a deforming instanced object's mesh at each step goes to
+its prototype (prototype_motion.py). Its steps: Object > Motion Blur of the instanced object and
+of its instancer (both on; the larger Steps), as Cycles' object_motion_steps."""
 
 import numpy as np
 
 from .motion import densified, object_motion_steps, uses_deform_motion
+from .prototype_motion import PrototypeDeformation
 
 
 def instance_motion_steps(inst):
@@ -38,7 +40,9 @@ class InstanceMotion:
         self.reporter = reporter
         # An instance's time steps (None: instance_motion_steps; frame_motion.py: 3 for all).
         self.steps_of = steps_of
-        self.deforming = {}     # instanced object name -> whether its deformation is blurred
+        self.deforming = {}     # instanced object name -> whether its deformation is followed
+        self.deformation = PrototypeDeformation()   # ... and their prototypes' meshes per step
+        self.prototypes = {}    # the export's prototypes (InstanceExport.prototypes), set by it
         self.records = {}       # key -> (Source, its index in the Source, steps)
         self.matrices = {}      # key -> [(time step k, 4x4 float64)]
         self.max_steps = 0
@@ -46,15 +50,17 @@ class InstanceMotion:
     def note(self, inst, src):
         """Instance inst, about to be added to src (Source.add)."""
         steps = (self.steps_of or instance_motion_steps)(inst)
-        if steps >= 2 and inst.object.name not in self.deforming:
-            deforms = self.deforming[inst.object.name] = uses_deform_motion(inst.object, self.scene)
-            if deforms:
-                self.reporter.info(f"Torrance follows only the transforms of instanced objects "
-                                   f"('{inst.object.name}'), not their deformation, in motion "
-                                   f"blur and the Vector pass")
-        if steps >= 2:
-            self.records[instance_key(inst)] = (src, src.count(), steps)
-            self.max_steps = max(self.max_steps, steps)
+        if steps < 2:
+            return
+        obj = inst.object
+        deforms = self.deforming.get(obj.name)
+        if deforms is None:
+            deforms = self.deforming[obj.name] = uses_deform_motion(obj, self.scene)
+        key = instance_key(inst)
+        if deforms:
+            self.deformation.note(src.mesh_key, key, steps, obj.name)
+        self.records[key] = (src, src.count(), steps)
+        self.max_steps = max(self.max_steps, steps)
 
     def read_step(self, depsgraph, k, finest):
         """Time step k of finest: the matrices of the noted instances it falls on."""
@@ -68,9 +74,18 @@ class InstanceMotion:
                 continue
             matrix = np.array(inst.matrix_world, dtype=np.float64).reshape(4, 4)
             self.matrices.setdefault(key, []).append(matrix)
+            self.deformation.read(key, inst.object)
 
     def export(self, tc_scene, reporter):
-        """Gives the core the motion of the noted instances that move, grouped by step count."""
+        """Gives the core the motion of the noted instances that move, grouped by step count,
+        and of the prototypes that deform."""
+        for pid, positions, normals in self.deformation.steps(self.prototypes, reporter,
+                                                              "over the shutter"):
+            try:
+                tc_scene.set_prototype_motion(pid, positions, corner_normals=normals)
+            except ValueError as exc:
+                reporter.warning(f"A deforming instanced mesh is rendered without its "
+                                 f"deformation's motion blur ({exc})")
         groups = {}             # steps -> ([core id], [(S, 3, 4)])
         lost = 0
         for key, (src, index, steps) in self.records.items():

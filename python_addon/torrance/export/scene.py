@@ -246,6 +246,8 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre, view_cameras):
         seen = {}
         motion = motion_sampler(engine, depsgraph, reporter, centre)
         moving_instances = motion.instance_motion() if motion is not None else None
+        if moving_instances is not None:
+            moving_instances.prototypes = meshes.prototypes
         holdouts = holdout_names(depsgraph)
         catchers = shadow_catcher_names(depsgraph)
         masks = bool(holdouts or catchers)
