@@ -17,11 +17,17 @@ reference, its seed 1 the bounds; Torrance's seeds 2 and 3), each fault must fai
   positive sun. Faults: negative lamps skipped (Torrance before), their sign dropped.
 * world: the world's Background at Strength -0.3 (light taken from every direction), the sun
   as before. Fault: the strength clamped at 0 (Torrance before).
+* volumes: a cube whose Volume is an Emission of Strength -1.5 (taking light away along the
+  rays through it, as Cycles renders it: 0.3 - 2.01 through a 2 m cube where Strength +1 gives
+  0.3 + 2.01) and a cube of Principled Volume with Emission Strength -3 (which Cycles does not
+  emit: only a Strength above its cutoff emits). Fault: the volume emission clamped at 0
+  (Torrance before).
 * world image: its Color from an Environment Texture (a float sky with a bright patch), Strength
   -0.15; world graph: that image through a Multiply (a node-graph world). Fault each: the
   Strength clamped at 0 (Torrance before: an image's rendered 0, a graph's output clamped at 0).
-  These two run in Blender 4.2+ only: Cycles 3.4 renders a negative world map wrongly, not
-  linearly in its strength (its background map's CDF is built from the signed values; measured,
+  World image and world graph run in Blender 4.2+ only: Cycles 3.4 renders a negative world map
+  wrongly, not linearly in its strength (its background map's CDF is built from the signed
+  values; measured,
   the floor's lower quarter, Red, 256 spp: 0.3844 at Strength 0, 0.5411 at +0.3, so 0.2277 at
   -0.3 by linearity, which Torrance renders, 0.2283, where Cycles 3.4 renders 0.2502; Cycles 4.2
   and 5.3 render 0.2249 of their own 0.3810 / 0.5370, linear as Torrance's 0.2257).
@@ -113,7 +119,8 @@ def negative_lamps(scene):
 
 def negative_world(scene):
     import bpy
-    for ob in [o for o in scene.objects if o.type == 'LIGHT' and o.data.energy < 0.0]:
+    for ob in [o for o in scene.objects if o.type == 'LIGHT' and o.data.energy < 0.0
+               or o.name in ("NegativeGlow", "NegativeSmoke")]:
         bpy.data.objects.remove(ob)
     scene.world.node_tree.nodes["Background"].inputs["Strength"].default_value = -0.3
 
@@ -147,6 +154,41 @@ def world_graph(scene):
     mix.inputs["Color2"].default_value = (1.0, 0.8, 0.6, 1.0)
     links.new(nodes["Environment Texture"].outputs["Color"], mix.inputs["Color1"])
     links.new(mix.outputs["Color"], nodes["Background"].inputs["Color"])
+
+
+def volume_cube(scene, name, location, shader, **inputs):
+    """A 0.6 m cube whose material's Volume is a `shader` node with those inputs."""
+    import bpy
+    bpy.ops.mesh.primitive_cube_add(size=0.6, location=location)
+    cube = bpy.context.active_object
+    cube.name = name
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    nodes = mat.node_tree.nodes
+    nodes.remove(nodes["Principled BSDF"])
+    node = nodes.new(shader)
+    for key, value in inputs.items():
+        nodes[node.name].inputs[key].default_value = value
+    mat.node_tree.links.new(node.outputs[0], nodes["Material Output"].inputs["Volume"])
+    cube.data.materials.append(mat)
+
+
+def negative_volumes(scene):
+    """An Emission in a Volume socket at Strength -1.5 (bluish: takes light away along the rays
+    through it) and a Principled Volume whose Emission Strength is -3 (Cycles: no emission)."""
+    volume_cube(scene, "NegativeGlow", (-0.5, -1.3, 0.35), "ShaderNodeEmission",
+                Color=(0.5, 0.8, 1.0, 1.0), Strength=-1.5)
+    volume_cube(scene, "NegativeSmoke", (0.8, -1.1, 0.35), "ShaderNodeVolumePrincipled",
+                Density=0.8, **{"Emission Strength": -3.0})
+
+
+def volume_emission_clamped(original):
+    """A make_fault for volume_sums.Constants.add: a volume's emission clamped at 0."""
+    def add(self, field, rgb, weight):
+        if field == 'emission':
+            rgb, weight = [max(c * weight, 0.0) for c in rgb], 1.0
+        return original(self, field, rgb, weight)
+    return add
 
 
 def lamps_changed(change):
@@ -197,7 +239,7 @@ def background_clamped(original):
 def main():
     import bpy
     testing.addon()
-    from torrance import materials
+    from torrance import materials, volume_sums
     from torrance.export import scene as export_scene
     scene = testing.clear_scene()
     build(scene)
@@ -209,6 +251,9 @@ def main():
         ("lamps", negative_lamps,
          (("negative lamps skipped", export_scene, 'export_light', lamps_changed(None)),
           ("lamps' sign dropped", export_scene, 'export_light', lamps_changed(abs)))),
+        ("volumes", negative_volumes,
+         (("volume emission clamped at 0", volume_sums.Constants, 'add',
+           volume_emission_clamped),)),
         ("world", negative_world,
          (("world strength clamped at 0", export_scene, 'export_world', world_clamped),)),
     )

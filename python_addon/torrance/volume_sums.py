@@ -75,9 +75,12 @@ class Constants:
         return [x * y for x, y in zip(a, b, strict=True)]
 
     def add(self, field, rgb, weight):
+        """target += rgb x weight; an extinction's colour clamped at 0, an emission's signed (a
+        negative one takes light away, as Cycles' volume Emission closure renders it)."""
         target = getattr(self, field)
         for i in range(3):
-            target[i] += max(float(rgb[i]), 0.0) * weight
+            c = float(rgb[i])
+            target[i] += (c if field == 'emission' else max(c, 0.0)) * weight
 
     def scatter(self, rgb, phase, weight):
         self.add('sigma_s', rgb, weight)
@@ -86,7 +89,7 @@ class Constants:
             self.lobes.append((phase, mean))
 
     def empty(self):
-        return max(self.sigma_a + self.sigma_s + self.emission) <= 0.0
+        return max(self.sigma_a + self.sigma_s + [abs(e) for e in self.emission]) <= 0.0
 
 
 class Program:
@@ -149,8 +152,9 @@ class Program:
             rgb = constant('color', tuple(rgb))
         if not isinstance(weight, Value):
             weight = constant('float', weight)
-        term = self._vector("SCALE", self._vector("MAXIMUM", rgb, self._zero), self._zero,
-                            scale=weight)
+        if field != 'emission':                   # as Constants.add: emission signed
+            rgb = self._vector("MAXIMUM", rgb, self._zero)
+        term = self._vector("SCALE", rgb, self._zero, scale=weight)
         before = getattr(self, field)
         setattr(self, field, term if before is None else self._vector("ADD", before, term))
 

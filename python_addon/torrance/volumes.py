@@ -9,9 +9,11 @@ a World Output (the medium around everything) is read as Cycles 3.4 sums volume 
 * Volume Absorption: absorption (1 - Color) x Density;
 * Volume Scatter: scattering Color x Density, Henyey-Greenstein with its Anisotropy;
 * Principled Volume: scattering Color x Density, absorption max(1 - Color, 0) x
-  max(1 - sqrt(Absorption Color), 0) x Density, emission Emission Strength x Emission Color plus
-  the blackbody's (Blackbody Intensity, Temperature, Blackbody Tint);
-* Emission (in a Volume socket): emitted radiance per metre Color x Strength;
+  max(1 - sqrt(Absorption Color), 0) x Density, emission Emission Strength x Emission Color
+  (only a Strength above Cycles' cutoff: a negative one emits nothing) plus the blackbody's
+  (Blackbody Intensity, Temperature, Blackbody Tint);
+* Emission (in a Volume socket): emitted radiance per metre Color x Strength, signed (a negative
+  one takes light away, as in Cycles);
 * Mix Shader (its Fac clamped to [0, 1]) and Add Shader of those.
 
 Coefficients are per metre. With constant inputs they are summed here (a homogeneous medium).
@@ -178,9 +180,9 @@ class VolumeReader:
                                                  medium.one_minus_positive(absorption_color)),
                        density)
         strength = value("Emission Strength", 'float')
-        if medium.above_cutoff(strength):
+        if medium.above_cutoff(strength):       # Cycles: emission only above the cutoff
             medium.add('emission', value("Emission Color", 'color'),
-                       medium.times(weight, strength))
+                       medium.times(weight, medium.positive(strength)))
         intensity = value("Blackbody Intensity", 'float')
         grid = self._grid(node, "Temperature Attribute", 'float') if intensity > CUTOFF else None
         if grid is not None:

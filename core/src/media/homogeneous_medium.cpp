@@ -14,7 +14,7 @@ Vec3 transmittance(const Vec3& sigma_t, float distance) {
 
 void MediumMix::add(const HomogeneousMedium& m) {
   sigma_a_ += glm::max(m.sigma_a, Vec3(0.0f));
-  emission_ += glm::max(m.emission, Vec3(0.0f));
+  emission_ += m.emission;  // signed: negative emission takes light away, as in Cycles
   sampling_.add(m.sampling);
   const Vec3 sigma_s = glm::max(m.sigma_s, Vec3(0.0f));
   if (!(max_component(sigma_s) > 0.0f)) return;
@@ -45,7 +45,7 @@ Vec3 MediumMix::emitted(float distance) const {
   const Vec3 sigma_t = this->sigma_t();
   Vec3 e;
   for (int c = 0; c < 3; ++c) {
-    if (!(emission_[c] > 0.0f)) e[c] = 0.0f;
+    if (!(emission_[c] != 0.0f) || !std::isfinite(emission_[c])) e[c] = 0.0f;
     else if (sigma_t[c] > 0.0f) e[c] = emission_[c] * -std::expm1(-sigma_t[c] * distance) / sigma_t[c];
     else e[c] = std::isfinite(distance) ? emission_[c] * distance : 0.0f;  // an endless glow: nothing
   }

@@ -7,10 +7,11 @@
 namespace torrance {
 
 void SceneMedia::check(const HomogeneousMedium& m) {
-  for (const auto& [name, v] : {std::pair<const char*, Vec3>{"sigma_a", m.sigma_a}, {"sigma_s", m.sigma_s},
-                                {"emission", m.emission}})
+  for (const auto& [name, v] : {std::pair<const char*, Vec3>{"sigma_a", m.sigma_a}, {"sigma_s", m.sigma_s}})
     if (!is_finite(v) || v.x < 0.0f || v.y < 0.0f || v.z < 0.0f)
       throw std::invalid_argument(std::string("volume ") + name + " must be finite and not negative");
+  // Negative emission takes light away, as Cycles' volume Emission closure renders it.
+  if (!is_finite(m.emission)) throw std::invalid_argument("volume emission must be finite");
   if (!std::isfinite(m.anisotropy) || std::abs(m.anisotropy) > 1.0f)
     throw std::invalid_argument("volume anisotropy must be in [-1, 1]");
   if (!std::isfinite(m.phase_a) || !std::isfinite(m.phase_b))

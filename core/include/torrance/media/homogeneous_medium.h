@@ -29,7 +29,7 @@ struct HomogeneousMedium {
 
   Vec3 sigma_t() const { return sigma_a + sigma_s; }
   bool scatters() const { return max_component(sigma_s) > 0.0f; }
-  bool empty() const { return !(max_component(sigma_a + sigma_s) > 0.0f) && !(max_component(emission) > 0.0f); }
+  bool empty() const { return !(max_component(sigma_a + sigma_s) > 0.0f) && !(max_component(glm::abs(emission)) > 0.0f); }
 };
 
 // exp(-sigma_t distance) per channel (1 at distance 0, 0 at infinity where sigma_t > 0).
@@ -67,7 +67,7 @@ class MediumMix {
   const Vec3& emission() const { return emission_; }
   bool scatters() const { return max_component(sigma_s_) > 0.0f; }
   bool extinguishes() const { return max_component(sigma_a_ + sigma_s_) > 0.0f; }
-  bool emits() const { return max_component(emission_) > 0.0f; }
+  bool emits() const { return max_component(glm::abs(emission_)) > 0.0f; }  // either sign
   bool empty() const { return !extinguishes() && !emits() && !varies(); }
 
   // The emission reaching the segment's start from the segment [0, distance) (∫ E T(s) ds).
