@@ -128,8 +128,7 @@ def check_transparent_mix():
 
 
 # Inputs of newer Blenders that Torrance does not render: (node, input, a value that needs it).
-IGNORED_INPUTS = (("ShaderNodeBsdfPrincipled", "Transmission Dispersion Scale", 0.5),
-                  ("ShaderNodeBsdfGlass", "Anisotropy", 0.5))
+IGNORED_INPUTS = (("ShaderNodeBsdfGlass", "Anisotropy", 0.5),)
 
 
 def as_surface(nodes, links, out, node, in_mix):
@@ -164,7 +163,7 @@ def check_ignored_inputs():
                       f"{[t for _l, t in messages]}")
                 tried.append((kind, name, in_mix, set_it))
     print(f"ignored inputs: {len(tried)} cases checked", flush=True)
-    if bpy.app.version >= (5, 3, 0):        # Blender 5.3 has every one of them (5.0: one)
+    if bpy.app.version >= (5, 3, 0):        # Blender 5.3 has every one of them
         check(len(tried) == 4 * len(IGNORED_INPUTS), f"5.3: {len(tried)} cases, not all inputs")
 
 
@@ -192,6 +191,33 @@ def check_thin_wall():
     print("thin wall read: 4 cases", flush=True)
 
 
+def check_dispersion():
+    """Blender 5.x's Transmission Dispersion Scale / Abbe Number are read as their quotient
+    (dispersion, alone and in a mix) and not reported; none at Scale 0 or without transmission."""
+    cases = 0
+    for in_mix in (False, True):
+        for scale, transmission in ((0.5, 1.0), (0.0, 1.0), (0.5, 0.0)):
+            mat, nodes, links, out = node_material(f"Dispersion{cases}")
+            node = nodes.new("ShaderNodeBsdfPrincipled")
+            if "Transmission Dispersion Scale" not in node.inputs:
+                return
+            node.inputs["Transmission Weight"].default_value = transmission
+            node.inputs["Transmission Dispersion Scale"].default_value = scale
+            node.inputs["Transmission Dispersion Abbe Number"].default_value = 25.0
+            as_surface(nodes, links, out, node, in_mix)
+            args, messages = read(mat)
+            if in_mix:
+                args = args["mixture"]["closures"][0][1]
+            want = 0.5 / 25.0 if scale > 0.0 and transmission > 0.0 else None
+            got = args.get("dispersion")
+            check((got is None and want is None) or abs(got - want) < 1e-7,
+                  f"dispersion {got}, want {want} (mix: {in_mix}, scale {scale}, "
+                  f"transmission {transmission})")
+            check(not [t for _l, t in messages if "Dispersion" in t], f"reported: {messages}")
+            cases += 1
+    print(f"dispersion read: {cases} cases", flush=True)
+
+
 def check_subsurface_anisotropy():
     """A negative Subsurface Anisotropy is Cycles 5.3's (its new Random Walk); Cycles 4.x and 5.0
     clamp it to 0 (a review finding: 5.0 read it as 5.3)."""
@@ -216,6 +242,7 @@ def main():
     check_transparent_mix()
     check_ignored_inputs()
     check_thin_wall()
+    check_dispersion()
     check_subsurface_anisotropy()
     testing.clear_scene()
     args, messages = read(nested_tree())

@@ -214,7 +214,7 @@ void init_scene(py::module_& m) {
              bool subsurface_burley, float thin_film_thickness, float thin_film_ior, bool thin_film_cycles5,
              int thin_film_thickness_register, int thin_film_ior_register, bool thin_wall,
              float diffuse_roughness, bool emission_under_layers, const std::string& coat_layering,
-             bool multiscatter_walk) {
+             bool multiscatter_walk, float dispersion) {
             if (glass_distribution != "GGX" && glass_distribution != "BECKMANN")
               throw py::value_error("glass_distribution must be 'GGX' or 'BECKMANN', got '" + glass_distribution +
                                     "'");
@@ -263,6 +263,7 @@ void init_scene(py::module_& m) {
             mat.thin_film_ior = thin_film_ior;
             mat.thin_film_cycles5 = thin_film_cycles5;
             mat.thin_wall = thin_wall;
+            mat.dispersion = dispersion;
             mat.emission_under_layers = emission_under_layers;
             mat.diffuse_roughness = std::isfinite(diffuse_roughness) ? clamp01(diffuse_roughness) : 0.0f;
             MaterialTextures tex;
@@ -340,13 +341,15 @@ void init_scene(py::module_& m) {
           py::arg("thin_film_thickness_register") = -1, py::arg("thin_film_ior_register") = -1,
           py::arg("thin_wall") = false, py::arg("diffuse_roughness") = 0.0f,
           py::arg("emission_under_layers") = false, py::arg("coat_layering") = "CYCLES_4_5",
-          py::arg("multiscatter_walk") = false,
+          py::arg("multiscatter_walk") = false, py::arg("dispersion") = 0.0f,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
           "specular_tint_color and multiscatter_ggx are read by PRINCIPLED_V2 only; multiscatter_walk by "
           "PRINCIPLED only (Blender 3.x's Multiscatter GGX: the specular lobe a random walk when roughness > "
-          "0.075 and the material has no glass). "
+          "0.075 and the material has no glass). dispersion: PRINCIPLED_V2's transmission's inverse Abbe number "
+          "(Blender 5.x's Transmission Dispersion Scale / Abbe Number; finite, >= 0, 0: none), rendered as Cycles "
+          "5.x (dispersion.h). "
           "transmission, ior, transmission_roughness: the Principled BSDF's glass (transmission and "
           "transmission_roughness in [0, 1], ior in (0, 1000]; ior is also PRINCIPLED_V2's IOR); glass=True: "
           "Blender's Glass BSDF node "

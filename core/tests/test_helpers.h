@@ -6,6 +6,9 @@
 #include "torrance/util/math.h"
 #include "torrance/util/sampling.h"
 
+#include <gtest/gtest.h>
+
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -46,6 +49,23 @@ inline std::vector<float> undivided_pass(const RenderResult& r, const std::strin
   if (colour)
     for (size_t i = 0; i < v.size(); ++i) v[i] *= pass_named(r, colour).rgba[i];
   return v;
+}
+
+// Whether a (non-delta) sample s of bsdf from wo is what eval and pdf say: its pdf pdf(wo, wi)
+// and its weight eval / pdf per channel, each to a relative `tolerance`.
+template <typename Bsdf>
+::testing::AssertionResult sample_matches_eval(const Bsdf& bsdf, const Vec3& wo, const BsdfSample& s,
+                                               float tolerance = 2e-3f) {
+  if (s.is_delta) return ::testing::AssertionFailure() << "a delta sample";
+  const float pdf = bsdf.pdf(wo, s.wi);
+  const Vec3 f = bsdf.eval(wo, s.wi);
+  if (!(std::abs(s.pdf - pdf) <= tolerance * pdf))
+    return ::testing::AssertionFailure() << "sample pdf " << s.pdf << ", pdf() " << pdf;
+  for (int k = 0; k < 3; ++k)
+    if (!(std::abs(s.weight[k] - f[k] / pdf) <= tolerance * f[k] / pdf + 1e-6f))
+      return ::testing::AssertionFailure() << "channel " << k << " weight " << s.weight[k] << ", eval / pdf "
+                                           << f[k] / pdf;
+  return ::testing::AssertionSuccess();
 }
 
 // The mean red weight of n samples of a BSDF (anything with sample(wo, u_lobe, u)) for wo: its

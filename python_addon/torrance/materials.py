@@ -56,7 +56,7 @@ from .shader_aovs import AovPrograms
 from .principled_sheen import read_sheen
 from .principled_subsurface import read_subsurface
 from .principled_thin_wall import read_thin_wall, report_film_on_thin_wall
-from .principled_transmission import read_transmission
+from .principled_transmission import read_dispersion, read_transmission
 from .thin_film import read_thin_film
 from .transparent_mix import read_transparent_mix
 from .volume_grids import GridTable
@@ -77,7 +77,6 @@ _IGNORED_PRINCIPLED_INPUTS = {
     'v1': (
     ),
     'v2': (
-        ("Transmission Dispersion Scale", 0.0),     # Blender 5.0+
     ),
 }
 # Glass BSDF inputs of Blender 5.0+ that Torrance ignores (as above); its Thin Film is read.
@@ -352,7 +351,9 @@ class MaterialReader:
                              multiscatter_ggx=getattr(node, "distribution", "") == 'MULTI_GGX',
                              **({'diffuse_roughness': diffuse_roughness}
                                 if diffuse_roughness > 0.0 else {}))
-            glass = dict(read_transmission(self, mat, node), **read_thin_wall(self, mat, node))
+            transmission = read_transmission(self, mat, node)
+            glass = dict(transmission, **read_thin_wall(self, mat, node),
+                         **read_dispersion(self, mat, node, transmission))
         else:
             specular_tint = _clamp(finite_or(v(mat, node, names['specular_tint'], 0.0), 0.0),
                                    0.0, 1.0)

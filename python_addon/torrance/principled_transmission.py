@@ -5,12 +5,15 @@ core principled_glass_v2.h; the closure uses the IOR, Roughness, Specular Tint a
 node reads anyway). The weight may come from any node graph the shader graph compiles: the
 closure's shader program then computes it (transmission_register), and the material is added as
 transmitting (transmission 1) so that the render takes its glass path. A weight of 0 is left out.
-v1's Transmission is materials.py's _principled_glass (Cycles 3.4's glass)."""
+v1's Transmission is materials.py's _principled_glass (Cycles 3.4's glass). Blender 5.x's
+Transmission Dispersion: read_dispersion."""
 
 from .material_values import clamp
 from .nodes import finite_or, source_socket
 
 _SOCKET = "Transmission Weight"
+_DISPERSION_SCALE = "Transmission Dispersion Scale"
+_ABBE_NUMBER = "Transmission Dispersion Abbe Number"
 
 
 def read_transmission(reader, mat, node):
@@ -26,3 +29,17 @@ def read_transmission(reader, mat, node):
         return dict(transmission=1.0)
     weight = clamp(finite_or(value, 0.0), 0.0, 1.0)
     return dict(transmission=weight) if weight > 0.0 else {}
+
+
+def read_dispersion(reader, mat, node, transmission):
+    """Blender 5.x's Transmission Dispersion Scale and Abbe Number of a v2 Principled BSDF `node`
+    as add_material()'s dispersion, their quotient (Cycles: Scale clamped to [0, 1], Abbe to
+    >= 0, 0 when it is 0), for core dispersion.h; {} without dispersion or without
+    `transmission` (read_transmission's arguments), and on a node without the sockets. Values or
+    constant graphs (a graph that varies over the surface is reported, its socket's value used)."""
+    if not transmission or node.inputs.get(_DISPERSION_SCALE) is None:
+        return {}
+    scale = clamp(finite_or(reader._socket_value(mat, node, _DISPERSION_SCALE, 0.0), 0.0), 0.0, 1.0)
+    abbe = max(0.0, finite_or(reader._socket_value(mat, node, _ABBE_NUMBER, 20.0), 20.0))
+    inverse_abbe = scale / abbe if scale > 0.0 and abbe > 0.0 else 0.0
+    return dict(dispersion=inverse_abbe) if inverse_abbe > 0.0 else {}

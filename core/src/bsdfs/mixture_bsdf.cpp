@@ -276,19 +276,21 @@ Material principled_v2_walk(const Material& m, const WalkState& walk, Subsurface
 MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals& globals, bool textured,
                            BrdfModel model, const MaterialBsdf& prebuilt, Material& resolved,
                            glm::vec4* program_regs, ClosureList* closures, SubsurfaceLobe* subsurface,
-                           const WalkState& walk) {
+                           const WalkState& walk, float wavelength) {
   const Mixture* mixture = scene.mixture(id);
   const bool diffuse_ancestor = !walk.walkable || walk.diffuse_ancestor;  // Principled v1 (3.x)
   if (!mixture) {
     resolved = scene.material(id);
     if (textured) scene.apply_textures(id, globals, resolved, program_regs);
+    const bool dispersive = wavelength > 0.0f && dispersion::disperses(resolved, model);
+    if (dispersive) resolved.wavelength = wavelength;
     if (subsurface && resolved.subsurface > 0.0f && model == BrdfModel::Principled) {
       if (diffuse_ancestor) return MixtureBsdf(MaterialBsdf(principled_as_diffuse(resolved), model));
       *subsurface = principled_subsurface(resolved);
     }
     if (subsurface && resolved.subsurface > 0.0f && !resolved.thin_wall && model == BrdfModel::PrincipledV2)
       return MixtureBsdf(MaterialBsdf(principled_v2_walk(resolved, walk, subsurface, 0, 1.0f), model));
-    return textured ? MixtureBsdf(MaterialBsdf(resolved, model)) : MixtureBsdf(prebuilt);
+    return textured || dispersive ? MixtureBsdf(MaterialBsdf(resolved, model)) : MixtureBsdf(prebuilt);
   }
   MixtureWeights w = scene.mixture_weights(id, globals, program_regs);
   weights_when_opaque(*mixture, w);  // the path did not pass through its Transparent closures
@@ -299,7 +301,9 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
   for (int k = 0; k < w.count; ++k) {
     if (!(w.weight[k] > 0.0f)) continue;
     const MixtureComponent& c = mixture->components[k];
-    const Material m = textured ? scene.textured_material(c.material, globals) : scene.material(c.material);
+    Material m = textured ? scene.textured_material(c.material, globals) : scene.material(c.material);
+    if (wavelength > 0.0f && c.type == ClosureType::Principled && dispersion::disperses(m, model))
+      m.wavelength = resolved.wavelength = wavelength;
     if (m.emission_under_layers && c.type == ClosureType::Principled) {
       if (max_component(m.emission) > 0.0f) bsdf.add_layered_emission(m, w.weight[k] * m.emission);
     } else {

@@ -12,15 +12,22 @@ namespace {
 
 float mean(const Vec3& v) { return (v.x + v.y + v.z) / 3.0f; }
 
+float valid_ior(float ior) { return std::isfinite(ior) ? std::min(std::max(ior, 1e-5f), 1e3f) : 1.5f; }
+
 }  // namespace
 
 PrincipledGlassV2::PrincipledGlassV2(float roughness, float ior, const Vec3& specular_tint, const Vec3& base_color,
                                      bool multiscatter, const ThinFilm& film)
+    : PrincipledGlassV2(roughness, ior, specular_tint, base_color, multiscatter, film, ior) {}
+
+PrincipledGlassV2::PrincipledGlassV2(float roughness, float ior, const Vec3& specular_tint, const Vec3& base_color,
+                                     bool multiscatter, const ThinFilm& film, float refracting_ior)
     : film_(film), film_inside_(film) {
   roughness_ = clamp01(std::isfinite(roughness) ? roughness : 0.0f);
   alpha_ = roughness_ * roughness_;
-  ior_ = std::isfinite(ior) ? std::min(std::max(ior, 1e-5f), 1e3f) : 1.5f;
-  f0_ = glm::clamp(ggx_tables::f0_from_ior(ior_) * glm::max(specular_tint, Vec3(0.0f)), Vec3(0.0f), Vec3(1.0f));
+  ior_ = valid_ior(refracting_ior);
+  f0_ = glm::clamp(ggx_tables::f0_from_ior(valid_ior(ior)) * glm::max(specular_tint, Vec3(0.0f)), Vec3(0.0f),
+                   Vec3(1.0f));
   tint_t_ = glm::sqrt(glm::clamp(base_color, Vec3(0.0f), Vec3(1.0f)));
   smooth_ = alpha_ < ggx_tables::kDeltaAlpha;
   straight_ = std::abs(ior_ - 1.0f) < 1e-4f;

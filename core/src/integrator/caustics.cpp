@@ -13,10 +13,12 @@ namespace {
 
 // Whether material m's BSDF is smooth (caustics.h; the partition also wants it compact): all of
 // its lobes specular and no rougher than kSmoothRoughness -- metal, glass, or both, under no sheen
-// and no rough coat -- and no texture, program, mixture or alpha changes that anywhere.
+// and no rough coat -- and no texture, program, mixture or alpha changes that anywhere; not
+// dispersive (below).
 bool smooth_material(const Scene& scene, uint32_t m) {
   const Material& mat = scene.material(m);
-  if (scene.material_textures(m).any() || scene.mixture(m) || mat.alpha < 1.0f || mat.thin_wall) return false;
+  if (scene.material_textures(m).any() || scene.mixture(m) || mat.alpha < 1.0f || mat.thin_wall || mat.dispersion > 0.0f)
+    return false;
   constexpr float r = CausticPartition::kSmoothRoughness;
   const bool no_diffuse = mat.glass_node || mat.metallic >= 1.0f || (mat.transmission >= 1.0f);
   const float refraction = 1.0f - (1.0f - mat.roughness) * (1.0f - mat.transmission_roughness);
@@ -54,7 +56,9 @@ std::optional<CausticPartition> CausticPartition::make(const Scene& scene, const
     const bool smooth = bounds && bounds->radius <= kCompact * scene_radius;
     if (smooth) p.targets_.push_back(BoundingSphere{bounds->center, bounds->radius});
     p.smooth_.push_back(smooth);
-    p.receiver_.push_back(!smooth && !scene.mixture(m));
+    // Dispersive glass (dispersion.h) is neither: a light path carries RGB, not the one
+    // wavelength a camera path through it keeps, so its paths stay the path tracer's.
+    p.receiver_.push_back(!smooth && !scene.mixture(m) && !(scene.material(m).dispersion > 0.0f));
     any_smooth |= smooth;
   }
   const Lights& lights = scene.lights();

@@ -220,6 +220,7 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
   if (motion_vectors) ctx.motion_vectors = &*motion_vectors;
   ctx.bsdfs.reserve(scene.num_materials());
   for (size_t i = 0; i < scene.num_materials(); ++i) ctx.bsdfs.emplace_back(scene.material(uint32_t(i)), settings.brdf_model);
+  ctx.dispersion = settings.brdf_model == BrdfModel::PrincipledV2 && has_dispersion(cscene);
   ctx.globals_read.reserve(scene.num_materials());
   for (size_t i = 0; i < scene.num_materials(); ++i) ctx.globals_read.push_back(cscene.globals_read(uint32_t(i)));
   const PixelFilter filter(settings.filter_width);

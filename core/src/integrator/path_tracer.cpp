@@ -41,6 +41,8 @@ constexpr uint32_t kAmbientOcclusionPoints = 0x40000000u;
 // The sampler's point index of a vertex's shader sample shift (ShaderGlobals::sample_shift):
 // past the AO pass's, one per bounce.
 constexpr uint32_t kShaderShiftPoints = 0x50000000u;
+// The sampler's point index of the path's wavelength (dispersion.h): past the shader shifts'.
+constexpr uint32_t kWavelengthPoints = 0x60000000u;
 // Branch k of a split path draws its points from kBranchPoints * k on past the first vertex's:
 // the same indices in every sample of the pixel, so each branch is as well stratified as the first.
 constexpr uint32_t kBranchPoints = 1u << 16;
@@ -137,6 +139,12 @@ class PathTracer {
     if constexpr (kMedia) {
       media_.stack = pixel.start_media ? *pixel.start_media : ctx.camera_media;
       media_.aims = ctx.scene.media().aims() && aimable_lights(lights_) > 0;
+    }
+    if (kMixtures && ctx.dispersion) {  // the path's wavelength, from a point of its own
+      const uint32_t resume = sampler_.point_index();
+      sampler_.continue_at_point(kWavelengthPoints);
+      wavelength_ = dispersion::sample_wavelength(sampler_.next_4d().x);
+      sampler_.continue_at_point(resume);
     }
   }
 
@@ -505,9 +513,14 @@ class PathTracer {
       v.local_bsdf.emplace(shade_material(ctx_.scene, hit.material, globals, v.textured, ctx_.settings.brdf_model,
                                           ctx_.bsdfs[hit.material], v.material, v.program_regs.data(),
                                           v.closure_list ? &*v.closure_list : nullptr, subsurface,
-                                          walk_state(hit)));
+                                          walk_state(hit), wavelength_.micrometres));
       v.bsdf = &*v.local_bsdf;
       v.strands = v.local_bsdf->hair_only();
+      // Dispersion (dispersion.h): the first dispersive closure makes the path monochromatic.
+      if (v.material.wavelength > 0.0f && !monochromatic_) {
+        throughput_ *= wavelength_.weight;
+        monochromatic_ = true;
+      }
     } else {
       v.material = ctx_.scene.material(hit.material);
       if (v.textured) ctx_.scene.apply_textures(hit.material, globals, v.material, v.program_regs.data());
@@ -1036,6 +1049,7 @@ class PathTracer {
     reflector_share_.clear();
     ray_ = first_vertex_->ray;
     throughput_ = Vec3(1.0f);
+    monochromatic_ = false;  // a dispersive first vertex weighs the branch again (same wavelength)
     path_length_ = 0.0f;
     path_state_ = PathState{};
     path_state_.ray_flags = kRayCamera;
@@ -1116,6 +1130,10 @@ class PathTracer {
   float path_luminance_ = 0.0f;
   RoulettePath roulette_;  // learns at the end
   Vec3 throughput_{1.0f};
+  // Dispersion (PathContext::dispersion, mixture tracers only): the path's wavelength, and
+  // whether its throughput took the wavelength's weight (at its first dispersive vertex).
+  dispersion::Wavelength wavelength_{};
+  bool monochromatic_ = false;
   Vec3 diffuse_share_{0.0f};  // per channel, of the energy that left the first hit
   ScatterVertex last_;
   LightChoice light_choice_;  // NEE's choice at the latest vertex, for MIS when the next ray hits a light
@@ -1234,6 +1252,17 @@ bool has_subsurface(const Scene& scene) {
   return false;
 }
 
+bool has_dispersion(const Scene& scene) {
+  for (size_t i = 0; i < scene.num_materials(); ++i) {
+    const uint32_t id = uint32_t(i);
+    if (scene.material(id).dispersion > 0.0f) return true;
+    if (const Mixture* mixture = scene.mixture(id))
+      for (const MixtureComponent& c : mixture->components)
+        if (scene.material(c.material).dispersion > 0.0f) return true;
+  }
+  return false;
+}
+
 bool has_alpha(const Scene& scene) {
   for (size_t i = 0; i < scene.num_materials(); ++i)
     if (scene.material(uint32_t(i)).alpha < 1.0f || scene.material_textures(uint32_t(i)).alpha >= 0 ||
@@ -1257,7 +1286,8 @@ TraceFn select_path_tracer(const Scene& scene, const RenderSettings& settings) {
   const int lobes_and_lights = (split_lobes << 1) | int(scene.lights().any_hittable());
   if (has_subsurface(scene)) return kSubsurfaceTracers[settings.specialize ? lobes_and_lights : 3];
   if (scene.media().any()) return kMediaTracers[settings.specialize ? lobes_and_lights : 3];
-  if (scene.has_mixtures()) return kMixtureTracers[settings.specialize ? lobes_and_lights : 3];
+  // Dispersion: shade_material hands the path's wavelength to the closures.
+  if (scene.has_mixtures() || has_dispersion(scene)) return kMixtureTracers[settings.specialize ? lobes_and_lights : 3];
   if (!settings.specialize) return kMixtureTracers[3];  // the generic path: every feature
   return kTracers[(alpha << 4) | (has_glass << 3) | (has_textures << 2) | lobes_and_lights];
 }

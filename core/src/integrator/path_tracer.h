@@ -64,7 +64,8 @@ struct PathContext {
   // path's, whose throughput it takes, so its first segment passes them untouched.
   bool catcher_half = false;
   // The Vector pass's motion of the first surfaces (film/motion_vectors.h); null: none made.
-  const MotionVectors* motion_vectors = nullptr;
+  const MotionVectors* motion_vectors = nullptr;  // Some material disperses (has_dispersion): each path draws a wavelength (dispersion.h).
+  bool dispersion = false;
 };
 
 // Where a camera sample goes.
@@ -148,5 +149,7 @@ TraceFn select_path_tracer(const Scene& scene, const RenderSettings& settings);
 bool has_alpha(const Scene& scene);
 // Whether some material (or a mixture's closure) has a subsurface closure.
 bool has_subsurface(const Scene& scene);
+// Whether some material (or a mixture's closure) has dispersion (Material::dispersion > 0).
+bool has_dispersion(const Scene& scene);
 
 }  // namespace torrance

@@ -297,6 +297,8 @@ void check_material(const Material& m) {
                                 "and subsurface_ior > 0");
   if (!std::isfinite(m.thin_film_thickness) || !std::isfinite(m.thin_film_ior) || !(m.thin_film_ior > 0.0f))
     throw std::invalid_argument("material thin_film_thickness must be finite and thin_film_ior finite and > 0");
+  if (!(m.dispersion >= 0.0f) || !std::isfinite(m.dispersion))
+    throw std::invalid_argument("material dispersion (the inverse Abbe number) must be finite and >= 0");
 }
 
 uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures) {

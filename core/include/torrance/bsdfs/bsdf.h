@@ -144,6 +144,11 @@ struct Material {
   float thin_film_ior = 1.33f;
   bool thin_film_cycles5 = false;
   ThinFilm thin_film() const { return ThinFilm{thin_film_thickness, thin_film_ior, thin_film_cycles5}; }
+  // PRINCIPLED_V2's Transmission Dispersion (Blender 5.x, dispersion.h): the inverse Abbe number
+  // Scale / Abbe Number of its transmission (0: none; it costs nothing), and the wavelength (um)
+  // of the path that shades it, which the integrator sets (0: the d line, no dispersion).
+  float dispersion = 0.0f;
+  float wavelength = 0.0f;
   // The Principled Hair BSDF's Offset (radians: the cuticle scales' tilt; ClosureType::PrincipledHair).
   float hair_offset = 0.0f;
 };

@@ -18,6 +18,7 @@
 #pragma once
 
 #include "torrance/bsdfs/cook_torrance.h"
+#include "torrance/bsdfs/dispersion.h"
 #include "torrance/bsdfs/glass.h"
 #include "torrance/bsdfs/outward.h"
 #include "torrance/bsdfs/principled.h"
@@ -50,7 +51,8 @@ class MaterialBsdf {
     glass_weight_ = glass_probability_ = clamp01(m.transmission) * (1.0f - metallic);
     if (model == BrdfModel::PrincipledV2) {
       glass_.emplace(
-          PrincipledGlassV2(roughness, m.ior, m.specular_tint_color, m.base_color, m.multiscatter_ggx, m.thin_film()));
+          PrincipledGlassV2(roughness, m.ior, m.specular_tint_color, m.base_color, m.multiscatter_ggx, m.thin_film(),
+                            dispersion::refracting_ior(m)));
       // A coat or sheen over all-glass keeps its lobe (sampled at least 1 time in 10).
       if (m.coat_weight > 0.0f || m.sheen_weight > 0.0f) glass_probability_ = std::min(glass_probability_, 0.9f);
       opaque_ = glass_probability_ < 1.0f;

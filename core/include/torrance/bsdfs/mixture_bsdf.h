@@ -159,11 +159,13 @@ class MixtureBsdf {
 // Subsurface Scattering node is a white Lambert of its Color. walk: where the path is; channels
 // it does not walk (min_walk_radius: all after a diffuse bounce but in Cycles 5.x, Cycles 4.0-4.4's
 // quarter footprint) shade as diffuse (Principled v1's Burley of the mixed colour, the node's and
-// v2's Lambert).
+// v2's Lambert). wavelength: the path's (um; 0: none), which dispersive closures refract with
+// (dispersion.h); `resolved.wavelength` is it where one of the closures disperses, else 0.
 MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals& globals, bool textured,
                            BrdfModel model, const MaterialBsdf& prebuilt, Material& resolved,
                            glm::vec4* program_regs = nullptr, ClosureList* closures = nullptr,
-                           SubsurfaceLobe* subsurface = nullptr, const WalkState& walk = {});
+                           SubsurfaceLobe* subsurface = nullptr, const WalkState& walk = {},
+                           float wavelength = 0.0f);
 
 // The estimated albedo a mixture samples a Principled closure by: luminance of the base colour
 // plus its dielectric F0.

@@ -44,8 +44,13 @@ namespace torrance {
 
 class PrincipledGlassV2 {
  public:
+  // refracting_ior: the IOR at the path's wavelength with dispersion (dispersion.h; Cycles 5.x),
+  // which refracts, shapes the Fresnel curve s(c), the multiscatter scale and the film seen from
+  // inside, while f0 stays F0(ior) x Specular Tint; ior itself without.
   PrincipledGlassV2(float roughness, float ior, const Vec3& specular_tint, const Vec3& base_color,
                     bool multiscatter, const ThinFilm& film = ThinFilm{});
+  PrincipledGlassV2(float roughness, float ior, const Vec3& specular_tint, const Vec3& base_color,
+                    bool multiscatter, const ThinFilm& film, float refracting_ior);
 
   Vec3 eval(const Vec3& wo, const Vec3& wi) const;
   float pdf(const Vec3& wo, const Vec3& wi) const;
