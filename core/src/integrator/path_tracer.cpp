@@ -962,7 +962,11 @@ class PathTracer {
       aim.context = this;
       aim.receive = &PathTracer::receive_equiangular;
     }
-    const bool aims = media_.aimed && aim_at_light(lights_, media_.u_aim.x, aim.light_point);
+    AimTarget target;
+    const bool aims = media_.aimed && choose_aim(lights_, ray_.origin, ray_.dir, ray_.tmin, kInfinity,
+                                                 media_.u_aim.x, target);
+    aim.light_point = target.point;
+    aim.reach = target.reach;
     media_.walk = walk_media(ctx_.scene, ray_, *seg.traced, seg.found, media_.stack, throughput_, sampler_, may_scatter,
                              seg.passed_length, aims ? &aim : nullptr);
     seg.scattered = media_.walk.scattered;

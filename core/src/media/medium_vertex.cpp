@@ -37,26 +37,4 @@ MediumNextEvent medium_next_event(const Scene& scene, const Vec3& p, const Vec3&
   return out;
 }
 
-size_t aimable_lights(const Lights& lights) {
-  size_t aimable = 0;
-  for (size_t i = 0; i < lights.count(); ++i) aimable += lights.point(i) || lights.area(i);
-  return aimable;
-}
-
-bool aim_at_light(const Lights& lights, float u, Vec3& point) {
-  const size_t aimable = aimable_lights(lights);
-  if (aimable == 0) return false;
-  size_t pick = std::min(size_t(u * float(aimable)), aimable - 1);
-  for (size_t i = 0; i < lights.count(); ++i) {
-    const PointLight* pl = lights.point(i);
-    const AreaLight* al = lights.area(i);
-    if (!pl && !al) continue;
-    if (pick-- == 0) {
-      point = pl ? pl->position() : al->center();
-      return true;
-    }
-  }
-  return false;
-}
-
 }  // namespace torrance

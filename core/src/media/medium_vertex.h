@@ -26,13 +26,4 @@ MediumNextEvent medium_next_event(const Scene& scene, const Vec3& p, const Vec3&
                                   const MediumMix& at, LightChoice& choice, const glm::vec4& u, const PathState& state,
                                   int max_transparent, float weight = 1.0f);
 
-// The point a path's walk through media aims its equiangular sampling at (medium_walk.h's
-// DirectAim): one of the point, spot and area lights, each with probability 1 / their number (by
-// u), at its centre; false when there is none (suns, the world and emitting meshes are left to
-// distance sampling, as Cycles leaves distant lights).
-bool aim_at_light(const Lights& lights, float u, Vec3& point);
-// How many lights aim_at_light chooses among (0: a path never aims, and draws no random numbers
-// for it: a scene lit by suns alone renders as with distance sampling).
-size_t aimable_lights(const Lights& lights);
-
 }  // namespace torrance

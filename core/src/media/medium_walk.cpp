@@ -18,9 +18,13 @@ constexpr int kMaxBoundaries = 1024;  // Cycles' VOLUME_BOUNDS_MAX
 void aim_direct_light(const DirectAim& aim, const Ray& ray, float t_end, const MediumStack& stack,
                       const Vec3& throughput, const FreeFlight& f, const glm::vec4& u, MediumWalk& walk) {
   const MediumMix& mix = stack.mix();
-  const EquiangularSegment segment(ray.origin, ray.dir, aim.light_point, ray.tmin, t_end);
-  if (!segment.valid()) return;  // distance sampling alone (weight 1)
   const bool mis = mix.sampling() == VolumeSampling::MultipleImportance;
+  // With MIS, equiangular points only where the light can shine (distance sampling covers the
+  // rest); alone, the whole stretch (the NEE at a point may choose another light).
+  float t0 = ray.tmin, t1 = t_end;
+  if (mis && !aim.reach.narrow(ray.origin, ray.dir, t0, t1)) return;  // distance sampling alone (weight 1)
+  const EquiangularSegment segment(ray.origin, ray.dir, aim.light_point, t0, t1);
+  if (!segment.valid()) return;
   const bool equiangular = !mis || u.z >= 0.5f;
   if (!equiangular) {  // the free flight's point, weighed against equiangular's density there
     if (f.scattered)

@@ -4,6 +4,7 @@
 // surface. And a shadow ray's transmittance through the same media.
 #pragma once
 
+#include "media/equiangular_aim.h"
 #include "media/medium_stack.h"
 #include "torrance/camera/camera.h"
 #include "torrance/integrator/path_state.h"
@@ -24,9 +25,11 @@ struct EquiangularPoint {
 };
 
 // Where a walk's direct light aims (Cycles' light sampled ahead of the volume segment): a point of
-// the chosen light, and what takes each equiangular point. nullptr: distance sampling only.
+// the chosen light, where along each stretch it can shine (media/equiangular_aim.h; used with
+// Multiple Importance only), and what takes each equiangular point. nullptr: distance sampling only.
 struct DirectAim {
   Vec3 light_point{0.0f};
+  LightReach reach;
   void* context = nullptr;
   void (*receive)(void* context, const EquiangularPoint& point) = nullptr;
 };

@@ -76,6 +76,8 @@ class PointLight {
   const Vec3& position() const { return position_; }
   float radius() const { return radius_; }
   bool is_spot() const { return spot_.cos_half_angle > -1.0f; }
+  const SpotShape& spot() const { return spot_; }
+  float intensity_luminance() const { return luminance_; }  // |luminance| of its radiant intensity
 
  private:
   float spot_attenuation(const Vec3& p) const;
@@ -101,6 +103,8 @@ class AreaLight {
   float area() const { return area_; }
   const Vec3& center() const { return center_; }
   const Vec3& normal() const { return normal_; }
+  // |luminance| of its radiant intensity along its normal (radiance x area).
+  float intensity_luminance() const { return std::abs(luminance(radiance_)) * area_; }
   // The radius of a sphere about the centre that holds the light.
   float extent() const { return 0.5f * std::sqrt(glm::dot(edge_u_, edge_u_) + glm::dot(edge_v_, edge_v_)); }
 
