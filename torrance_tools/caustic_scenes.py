@@ -96,3 +96,48 @@ def mirror_box_by_a_lamp(tc, radius=0.02):
     s.add_point_light(position=(0.9, -0.5, 0.45), power=300.0, radius=radius)
     look_at(s, (0, -4.0, 2.5), (0, 0, 0.8))
     return s
+
+
+def polished_ball(tc, textured=False):
+    """A polished plastic ball (Principled, roughness 0: a delta reflection over its diffuse base,
+    a delta caster of caustics.h) on a matte floor before a matte wall, an area light beside it
+    whose reflection it throws onto both. textured: half metallic, its base colour a texture (a
+    colour other than the material's own, which the light tracer must not use)."""
+    s = tc.Scene()
+    matte = _floor(tc, s)
+    quad(s, [[-4, 1.5, 0], [4, 1.5, 0], [4, 1.5, 4], [-4, 1.5, 4]], matte, flip=True)
+    colour = np.full((2, 2, 3), (0.9, 0.5, 0.2), np.float32)
+    texture = s.add_texture(colour, colorspace="Non-Color") if textured else -1
+    ball = s.add_material(base_color=(0.1, 0.2, 0.6), metallic=0.6 if textured else 0.0,
+                          roughness=0.0, base_color_texture=texture)
+    positions, triangles, normals = uv_sphere_with_normals((0, 0.5, 0.5), 0.5)
+    s.add_mesh(positions, triangles, corner_normals=normals.reshape(-1, 3),
+               material_indices=[ball] * len(triangles))
+    direction = np.array([-0.9, 0.3, -0.3]) / np.linalg.norm([-0.9, 0.3, -0.3])
+    edge_u = 0.4 * np.array([0.3, 0.9, 0.0]) / np.linalg.norm([0.3, 0.9, 0.0])
+    edge_v = 0.3 * np.cross(direction, edge_u) / np.linalg.norm(np.cross(direction, edge_u))
+    s.add_area_light(center=(1.2, -0.3, 1.0), edge_u=tuple(edge_u), edge_v=tuple(edge_v),
+                     direction=tuple(direction), power=200.0)
+    look_at(s, (0, -4.0, 2.5), (0, 0.5, 0.5))
+    return s
+
+
+def metal_ball_on_a_mirror_floor(tc):
+    """A smooth metal ball on a polished metal floor (roughness 0, too large to be smooth in
+    caustics.h's sense: a receiver with a delta lobe) before a matte wall, an area light above:
+    the camera sees the ball's highlight in the floor, a path whose first surface leaves through
+    a delta lobe and so stays the path tracer's (the light tracer's camera connection has none)."""
+    s = tc.Scene()
+    floor = s.add_material(base_color=(0.9, 0.9, 0.9), metallic=1.0, roughness=0.0)
+    quad(s, [[-4, -4, 0], [4, -4, 0], [4, 4, 0], [-4, 4, 0]], floor)
+    s.set_world(color=(0.02, 0.02, 0.02))
+    matte = s.add_material(base_color=(0.7, 0.7, 0.7), roughness=0.8)
+    quad(s, [[-4, 1.5, 0], [4, 1.5, 0], [4, 1.5, 4], [-4, 1.5, 4]], matte, flip=True)
+    ball = s.add_material(base_color=(0.95, 0.9, 0.8), metallic=1.0, roughness=0.0)
+    positions, triangles, normals = uv_sphere_with_normals((0, 0.3, 0.5), 0.5)
+    s.add_mesh(positions, triangles, corner_normals=normals.reshape(-1, 3),
+               material_indices=[ball] * len(triangles))
+    s.add_area_light(center=(0.0, -1.0, 2.0), edge_u=(1.0, 0, 0), edge_v=(0, 0.8, 0.6),
+                     direction=(0, 0.6, -0.8), power=400.0)
+    look_at(s, (0, -4.0, 1.5), (0, 0.3, 0.3))
+    return s

@@ -3,13 +3,17 @@ caustic paths (a first surface that is not smooth, every later one smooth) are t
 and every other path the path tracer's. Both halves together must converge to the plain path
 tracer's image: 8x8 block means of seeds-averaged renders agree within their standard errors, where
 the light paths carry the caustic (a mirror's light on a wall, light through a glass slab whose
-normals point inwards, which exercises the adjoint's (eta_from / eta_to)^2)."""
+normals point inwards, which exercises the adjoint's (eta_from / eta_to)^2; a polished plastic
+ball, a delta caster whose delta lobe alone casts, plain and textured; a metal ball's highlight
+seen in a polished metal floor, a path that leaves its first surface through a delta lobe and so
+stays the path tracer's)."""
 import numpy as np
 import pytest
 
 import torrance_core as tc
 from torrance_tools.caustic_scenes import (inverted_slab, look_at, mirror_box_by_a_lamp,
-                                           mirror_on_a_wall, quad)
+                                           mirror_on_a_wall, polished_ball,
+                                           metal_ball_on_a_mirror_floor, quad)
 
 W, H, SPP, SEEDS = 48, 36, 64, 12
 
@@ -35,9 +39,16 @@ def lamp_by_a_mirror_box(tc):
     return mirror_box_by_a_lamp(tc, radius=0.25)
 
 
+def textured_polished_ball(tc):
+    return polished_ball(tc, textured=True)
+
+
 @pytest.mark.parametrize("make_scene, mirror_images", [(mirror_on_a_wall, False),
                                                         (inverted_slab, False),
-                                                        (lamp_by_a_mirror_box, True)])
+                                                        (lamp_by_a_mirror_box, True),
+                                                        (polished_ball, False),
+                                                        (textured_polished_ball, False),
+                                                        (metal_ball_on_a_mirror_floor, False)])
 def test_light_traced_caustics_converge_to_the_path_tracers_image(make_scene, mirror_images):
     plain, plain_se = block_means(make_scene, caustics=False, mirror_images=mirror_images)
     traced, traced_se = block_means(make_scene, caustics=True, mirror_images=mirror_images)

@@ -27,6 +27,18 @@ bool smooth_material(const Scene& scene, uint32_t m) {
          (mat.coat_weight <= 0.0f || mat.coat_roughness <= r);
 }
 
+// Whether material m (not smooth) is a delta caster (caustics.h): opaque, one BSDF (no mixture,
+// alpha, thin wall or transmission), a delta reflection lobe among its others (untextured; its
+// textures may take it away here and there: the lobe drawn decides, on both sides).
+bool delta_caster(const Scene& scene, uint32_t m, BrdfModel model) {
+  const Material& mat = scene.material(m);
+  if (scene.mixture(m) || mat.alpha < 1.0f || scene.material_textures(m).alpha >= 0 || mat.thin_wall ||
+      mat.transmits())
+    return false;
+  const MaterialBsdf bsdf(mat, model);
+  return !bsdf.transmits() && bsdf.has_delta();
+}
+
 constexpr uint32_t kBlock = 256;  // light paths per task
 constexpr uint32_t kLightSeed = 0x1ca5715u;  // moves the light paths' points off the camera's
 
@@ -51,15 +63,19 @@ std::optional<CausticPartition> CausticPartition::make(const Scene& scene, const
     // rays over all of it and brings next to nothing to the part the camera sees; their light
     // stays the path tracer's (and mirror_images.h's).
     const bool reflector = mirror_images && mirror_images->reflects_light(m);
+    const bool smooth_bsdf = smooth_material(scene, m);
+    const bool caster_bsdf = !smooth_bsdf && delta_caster(scene, m, settings.brdf_model);
     const std::optional<Scene::Sphere> bounds =
-        smooth_material(scene, m) && !reflector ? scene.material_bounds(m) : std::nullopt;
-    const bool smooth = bounds && bounds->radius <= kCompact * scene_radius;
-    if (smooth) p.targets_.push_back(BoundingSphere{bounds->center, bounds->radius});
+        (smooth_bsdf || caster_bsdf) && !reflector ? scene.material_bounds(m) : std::nullopt;
+    const bool compact = bounds && bounds->radius <= kCompact * scene_radius;
+    if (compact) p.targets_.push_back(BoundingSphere{bounds->center, bounds->radius});
+    const bool smooth = compact && smooth_bsdf;
     p.smooth_.push_back(smooth);
+    p.caster_.push_back(compact && caster_bsdf);
     // Dispersive glass (dispersion.h) is neither: a light path carries RGB, not the one
     // wavelength a camera path through it keeps, so its paths stay the path tracer's.
     p.receiver_.push_back(!smooth && !scene.mixture(m) && !(scene.material(m).dispersion > 0.0f));
-    any_smooth |= smooth;
+    any_smooth |= compact;
   }
   const Lights& lights = scene.lights();
   // Delta lights (a sun of angle 0, a point or spot of radius 0) are left out: no path from the
@@ -155,25 +171,30 @@ void CausticTracer::trace_path(uint32_t index, uint32_t sample) {
     SurfaceHit hit;
     if (!ctx_.scene.intersect(ray, hit)) return;
     const uint32_t m = hit.material;
+    const bool caster = partition_.caster(m);
     if (!partition_.smooth(m)) {
       if (bounce > 0 && partition_.receiver(m)) connect(hit, -ray.dir, beta, sampler);
-      return;
+      if (!caster) return;
     }
     if (bounce == ctx_.settings.max_bounces) return;  // the path tracer's longest caustic path
-    // A smooth surface: the light goes on along a direction its BSDF draws. The BSDF is the
-    // path tracer's, asked with wo = the direction the light came from (the path tracer's wi at
-    // this vertex) and sampling the direction it leaves along (the path tracer's wo); the
-    // sample's weight, eval / pdf, is turned into the adjoint's below.
-    const MaterialBsdf& bsdf = ctx_.bsdfs[m];
+    // A smooth surface or a delta caster: the light goes on along a direction its BSDF draws (a
+    // caster's: only its delta lobe's). The BSDF is the path tracer's, asked with wo = the
+    // direction the light came from (the path tracer's wi at this vertex) and sampling the
+    // direction it leaves along (the path tracer's wo); the sample's weight, eval / pdf, is turned
+    // into the adjoint's below. Smooth surfaces have no textures; a caster's are evaluated.
     const Vec3 from = -ray.dir;  // towards where the light came from
-    const ShadingPoint at = shading_point(ctx_, hit, from, false, ShaderGlobals{}, nullptr);  // untextured
+    PathState light_ray;  // (the path tracer's state there is not known: a caster's graph sees a reflection)
+    light_ray.ray_flags = kRayReflect;
+    std::optional<MaterialBsdf> local;
+    ShadingPoint at;
+    const MaterialBsdf& bsdf = shade(hit, from, 0.0f, light_ray, local, at);
     const Vec3 &ng = at.ng, &ns = at.ns;
     const bool backfacing = at.backfacing;
     const Frame& frame = at.frame;
     const auto view = bsdf.at(frame.to_local(from), backfacing);
     const glm::vec4 u = sampler.next_4d();
     const BsdfSample bs = bsdf.sample<true>(view, u.x, Vec2(u.y, u.z));
-    if (!bs.valid()) return;
+    if (!bs.valid() || (caster && !bs.is_delta)) return;
     const Vec3 to = frame.to_world(bs.wi);
     if (!leaves_geometric_side(to, ng, bs.wi.z, bsdf.transmits())) return;
     // Shading normals: the adjoint's |ns.from| |ng.to| / (|ng.from| |ns.to|) (1 where ns = ng).
@@ -204,21 +225,12 @@ void CausticTracer::connect(const SurfaceHit& hit, const Vec3& incoming, const V
   if (x < -reach || y < -reach || x > float(width_) + reach || y > float(height_) + reach) return;
   const Vec3 wo_world = c.toward;  // from the receiver to the lens point
   // The receiver as the path tracer shades it for a camera ray (its textures, normal map).
-  const bool textured = ctx_.scene.material_textures(hit.material).any();
-  Material material;
-  std::array<glm::vec4, ShaderProgram::kMaxRegisters> regs;
-  ShaderGlobals globals;
-  if (textured) {
-    PathState camera_ray;
-    camera_ray.ray_flags = kRayCamera;
-    camera_ray.ray_length = c.distance;
-    globals = hit_globals(ctx_, hit, -wo_world, c.distance, camera_ray);
-    material = ctx_.scene.textured_material(hit.material, globals, regs.data());
-  }
+  PathState camera_ray;
+  camera_ray.ray_flags = kRayCamera;
+  camera_ray.ray_length = c.distance;
   std::optional<MaterialBsdf> local;
-  if (textured) local.emplace(material, ctx_.settings.brdf_model);
-  const MaterialBsdf& bsdf = textured ? *local : ctx_.bsdfs[hit.material];
-  const ShadingPoint at = shading_point(ctx_, hit, wo_world, textured, globals, regs.data());
+  ShadingPoint at;
+  const MaterialBsdf& bsdf = shade(hit, wo_world, c.distance, camera_ray, local, at);
   const Frame& frame = at.frame;
   const Vec3& ng = at.ng;
   const auto view = bsdf.at(frame.to_local(wo_world), at.backfacing, at.diffuse, at.coat);
@@ -236,6 +248,20 @@ void CausticTracer::connect(const SurfaceHit& hit, const Vec3& incoming, const V
   if (!is_finite(value)) return;
   splat(x, y, value);
   ++reached_;
+}
+
+const MaterialBsdf& CausticTracer::shade(const SurfaceHit& hit, const Vec3& wo_world, float distance,
+                                         const PathState& state, std::optional<MaterialBsdf>& local,
+                                         ShadingPoint& at) const {
+  if (!ctx_.scene.material_textures(hit.material).any()) {
+    at = shading_point(ctx_, hit, wo_world, false, ShaderGlobals{}, nullptr);
+    return ctx_.bsdfs[hit.material];
+  }
+  std::array<glm::vec4, ShaderProgram::kMaxRegisters> regs;
+  const ShaderGlobals globals = hit_globals(ctx_, hit, -wo_world, distance, state);
+  local.emplace(ctx_.scene.textured_material(hit.material, globals, regs.data()), ctx_.settings.brdf_model);
+  at = shading_point(ctx_, hit, wo_world, true, globals, regs.data());
+  return *local;
 }
 
 void CausticTracer::splat(float x, float y, const Vec3& value) {

@@ -10,6 +10,17 @@
 // through glass or a mirror is impossible): fireflies. A light tracer finds them easily: it
 // follows rays from the lights through the smooth surfaces to x1 and connects x1 to the camera.
 //
+// Delta casters: a compact opaque surface that is not smooth but has a delta reflection lobe
+// among others (a polished plastic ball: Principled of roughness 0 over its diffuse base, its
+// base colour textured or not) casts caustics through that lobe alone. Path space splits by
+// lobe there: a path whose vertex x2 ... x(k-1) is a delta caster is a caustic one where its
+// direction at that vertex came from the delta lobe (the light tracer samples the caster's
+// textured BSDF and goes on only when it draws that lobe; the path tracer keeps the light it
+// finds after drawing it only while not a caustic path), any other lobe ends the caustic chain;
+// its NEE (of the other lobes) stays the path tracer's. The first surface x1 is connected to
+// the camera by its BSDF's eval, which has no delta lobe: a path that leaves x1 through a delta
+// lobe (a textured mirror reflecting a glass ball's caustic) is the path tracer's alone.
+//
 // So the caustic paths to lights the light tracer can emit from (Lights::can_emit: suns, points,
 // spots and area lights without node graphs, and not delta lights, whose caustics no camera path
 // finds: Cycles renders none) are the light tracer's alone, every other path the
@@ -28,6 +39,7 @@
 #pragma once
 
 #include "integrator/path_tracer.h"
+#include "integrator/surface_point.h"
 
 #include "torrance/lights/mirror_images.h"
 
@@ -57,11 +69,13 @@ class CausticPartition final : public LightShare {
                                               const MirrorImages* mirror_images);
 
   bool smooth(uint32_t material) const { return smooth_[material] != 0; }
+  // A delta caster (see above): not smooth, but its delta lobe casts caustics.
+  bool caster(uint32_t material) const { return caster_[material] != 0; }
   bool receiver(uint32_t material) const { return receiver_[material] != 0; }
   bool covered(size_t light) const { return light < covered_.size() && covered_[light] != 0; }
   // LightShare: what the path tracer keeps of a light on a caustic path (0 for covered lights).
   float of(size_t light) const override { return covered(light) ? 0.0f : 1.0f; }
-  // The smooth materials' bounding spheres, where the light tracer aims.
+  // The smooth materials' and delta casters' bounding spheres, where the light tracer aims.
   const std::vector<BoundingSphere>& targets() const { return targets_; }
 
   // Whether the path tracer's path is still a caustic one: its first surface a receiver and
@@ -72,9 +86,19 @@ class CausticPartition final : public LightShare {
     // At the path's vertex `bounce` (0: the first surface) of `material`.
     void at_vertex(const CausticPartition* p, int bounce, uint32_t material) {
       if (!p) return;
-      open_ = bounce == 0 ? p->receiver(material) : open_ && p->smooth(material);
-      drop_ = open_ && bounce > 0;
+      first_ = bounce == 0;
+      caster_ = !first_ && p->caster(material);
+      open_ = first_ ? p->receiver(material) : open_ && (p->smooth(material) || caster_);
+      drop_ = open_ && !first_ && !caster_;  // a caster's NEE is of its other lobes
       partition_ = p;
+    }
+    // The direction the path leaves the vertex along was drawn from a delta lobe or not: at the
+    // first surface a delta lobe ends the caustic chain (the light tracer's connection has none),
+    // at a delta caster any other lobe does.
+    void left_vertex(bool delta) {
+      if (!partition_) return;
+      if (first_ && delta) open_ = false;
+      if (caster_) open_ = drop_ = open_ && delta;
     }
     // The LightShare for the light found at this vertex (null: all of it), combined with
     // `other` (mirror_images.h's), which applies on top.
@@ -94,13 +118,13 @@ class CausticPartition final : public LightShare {
       const LightShare* a_ = nullptr;
       const LightShare* b_ = nullptr;
     };
-    bool open_ = false, drop_ = false;
+    bool open_ = false, drop_ = false, first_ = false, caster_ = false;
     const CausticPartition* partition_ = nullptr;
     Combined combined_;
   };
 
  private:
-  std::vector<uint8_t> smooth_, receiver_, covered_;
+  std::vector<uint8_t> smooth_, caster_, receiver_, covered_;
   std::vector<BoundingSphere> targets_;
 };
 
@@ -125,6 +149,11 @@ class CausticTracer {
   void judge_yield();
   void trace_path(uint32_t index, uint32_t sample);
   void connect(const SurfaceHit& hit, const Vec3& incoming, const Vec3& beta, SobolSampler& sampler);
+  // The BSDF at `hit` seen from wo_world (the ray that found it in `state`, `distance` from the
+  // camera) as the path tracer shades it: with its textures and normal map (built in `local`)
+  // where it has them, else the render's. `at`: its shading point.
+  const MaterialBsdf& shade(const SurfaceHit& hit, const Vec3& wo_world, float distance, const PathState& state,
+                            std::optional<MaterialBsdf>& local, ShadingPoint& at) const;
   void splat(float x, float y, const Vec3& value);
 
   const PathContext& ctx_;

@@ -730,7 +730,10 @@ class PathTracer {
     [[maybe_unused]] const float share = bsdf_share(v);  // of the continuation, the BSDF's (the rest: the walk)
     if constexpr (kSubsurface) {
       if (share < 1.0f) {
-        if (u_bsdf.x >= share) return walk_subsurface(v, bounce, 1.0f - share, u_bsdf);
+        if (u_bsdf.x >= share) {
+          caustic_chain_.left_vertex(false);
+          return walk_subsurface(v, bounce, 1.0f - share, u_bsdf);
+        }
         u_bsdf.x = std::min(u_bsdf.x / share, 0.99999994f);
       }
     }
@@ -740,6 +743,7 @@ class PathTracer {
                                                   guide_pdf, square)
                           : v.bsdf->template sample<kGlass>(v.view, u_bsdf.x, Vec2(u_bsdf.y, u_bsdf.z));
     if (!bs.valid()) return false;
+    caustic_chain_.left_vertex(bs.is_delta);
     if constexpr (kSubsurface) {
       if (share < 1.0f) {
         bs.weight /= share;
