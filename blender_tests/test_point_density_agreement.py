@@ -28,11 +28,17 @@ gave ratio 0.9998 and block mean 0.0019 against Cycles' own 0.0012: Torrance's t
 the voxels is noisier than Cycles' ray marching at equal samples there, not off (512 spp: mean
 0.137833 against Cycles' 0.137823).
 
-On request (CMakeLists.txt: TORRANCE_BLENDER34_ON_REQUEST_TESTS), ~7 s. Not in the bpy lists:
-bpy 4.2's Cycles renders both scenes' Point Density as 0 (Blender's API gives the grids there,
-Torrance renders them); Blender 5.0 removed the node.
+Cycles 4.x reads the node in volume shaders only (its svm/voxel.h under the kernel's VOLUME
+node feature; node_versions.cycles4_volume_only_point_density): in 4.2 the two surface scenes
+agree with Torrance's 0 and their fault is the node read there as in 3.4; the volume scene and
+its faults are as in 3.4; the bad inputs (surfaces, where 4.x computes no grid) run in 3.4 only.
+
+On request (CMakeLists.txt: TORRANCE_BLENDER34_ON_REQUEST_TESTS), ~7 s; in bpy 4.2 on request in
+the blender4 list. Blender 5.0 removed the node.
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
+         --python blender_tests/test_point_density_agreement.py
+     scripts/bpy 4.2 -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_point_density_agreement.py
 """
 
@@ -42,10 +48,11 @@ import numpy as np
 
 from torrance_tools import scene as make
 from torrance_tools import testing
-from torrance_tools.seed_noise import agree_on_scene
+from torrance_tools.seed_noise import agree_on_scene, agree_within_seed_noise
 
 W, H = 64, 48
 BOUNCES = 4
+VOLUME_TOLERANCE = 2.5   # Cycles 4.x only (main: the volume scene)
 
 
 def _stage(scene, camera_location, target):
@@ -226,21 +233,56 @@ def check_bad_inputs():
         testing.check(expected in messages, f"no report of '{expected}': {messages}")
 
 
+def read_in_surfaces(original):
+    def fault():
+        return False
+    return fault
+
+
 def main():
     testing.addon()
-    check_bad_inputs()
     from torrance.shader_graph import point_density
-    agree_on_scene(particle_cloud, 32, BOUNCES, "particle cloud (World, Cubic)", faults=(
-        ("emitter matrix left out", point_density, "unit_box_map", matrix_left_out),
-        ("Linear instead of Cubic", point_density, "_INTERPOLATION", interpolation_as('Linear'))))
-    agree_on_scene(vertex_colours, 32, BOUNCES, "vertex colours (Object, Closest)", faults=(
-        ("point left in world space", point_density, "world_point_to_object", point_left_in_world),
-        ("Linear instead of Closest", point_density, "_INTERPOLATION",
-         interpolation_as('Linear'))))
-    agree_on_scene(volume_object_space, 128, BOUNCES, "volume (Object, Linear)", faults=(
+    if point_density.cycles4_volume_only_point_density():
+        print("bad inputs: not checked here (surfaces, where Cycles 4.x reads no Point Density "
+              "and Torrance computes no grid); Blender 3.4 checks them")
+        in_surfaces = ("read in surfaces, as Cycles 3.4", point_density,
+                       "cycles4_volume_only_point_density", read_in_surfaces)
+        particle_faults = vertex_faults = (in_surfaces,)
+    else:
+        check_bad_inputs()
+        particle_faults = (
+            ("emitter matrix left out", point_density, "unit_box_map", matrix_left_out),
+            ("Linear instead of Cubic", point_density, "_INTERPOLATION",
+             interpolation_as('Linear')))
+        vertex_faults = (
+            ("point left in world space", point_density, "world_point_to_object",
+             point_left_in_world),
+            ("Linear instead of Closest", point_density, "_INTERPOLATION",
+             interpolation_as('Linear')))
+    agree_on_scene(particle_cloud, 32, BOUNCES, "particle cloud (World, Cubic)",
+                   faults=particle_faults)
+    agree_on_scene(vertex_colours, 32, BOUNCES, "vertex colours (Object, Closest)",
+                   faults=vertex_faults)
+    volume_faults = (
         ("texture space left out", point_density, "_object_space", texture_space_left_out),
         ("Closest instead of Linear", point_density, "_INTERPOLATION",
-         interpolation_as('Closest'))))
+         interpolation_as('Closest')))
+    if not point_density.cycles4_volume_only_point_density():
+        agree_on_scene(volume_object_space, 128, BOUNCES, "volume (Object, Linear)",
+                       faults=volume_faults)
+        return
+    # Cycles 4.2's ray marching is quieter here than 3.4's (seed to seed 0.0007 against 0.0010)
+    # while Torrance's tracking is as noisy as in 3.4 (0.0015): against a 1024-spp Cycles 4.2,
+    # Torrance's block mean is 0.0017 at 128 spp and 0.0010 at 512 (noise, halving with 4x the
+    # samples; Cycles' 0.0005 and 0.0004), so the bounds here are Cycles' noise x VOLUME_TOLERANCE.
+    print(f"volume: bounds of Cycles 4.x's own noise x {VOLUME_TOLERANCE} (Torrance's tracking "
+          f"is noisier than its ray marching at equal samples)")
+    scene = testing.clear_scene()
+    volume_object_space(scene)
+    agree_within_seed_noise(scene, testing.tempdir(), 128, BOUNCES, "volume (Object, Linear)",
+                            faults=volume_faults, tolerance=VOLUME_TOLERANCE,
+                            ratio_floor=0.004)
+    testing.check(not testing.last_messages(), f"unexpected reports: {testing.last_messages()}")
 
 
 if __name__ == "__main__":

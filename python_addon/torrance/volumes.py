@@ -56,7 +56,7 @@ class VolumeReader:
         self.reporter = reporter
         self.textures = textures
         self.space = _once(space) if space is not None else None
-        self.values = GraphCompiler(ProgramBuilder(), textures, READERS)
+        self.values = GraphCompiler(ProgramBuilder(), textures, READERS, volume_shader=True)
         self._warned = set()
 
     def _warn(self, text):
@@ -78,7 +78,8 @@ class VolumeReader:
             if space is not None:
                 return self._read_program(socket, space, weight)
             medium = Constants()
-            self.values = GraphCompiler(ProgramBuilder(), self.textures, READERS)
+            self.values = GraphCompiler(ProgramBuilder(), self.textures, READERS,
+                                        volume_shader=True)
             self._report_varying = True
             self._shader(source_socket(socket), weight, medium, 0)
         if medium.empty():
@@ -91,7 +92,7 @@ class VolumeReader:
 
     def _read_program(self, socket, space, weight):
         builder = ProgramBuilder()
-        self.values = GraphCompiler(builder, self.textures, READERS)
+        self.values = GraphCompiler(builder, self.textures, READERS, volume_shader=True)
         space.apply(self.values)
         medium = Program(builder)
         self._shader(source_socket(socket), weight, medium, 0)
@@ -357,7 +358,7 @@ def default_volume(space, textures, density=1.0):
     Henyey-Greenstein of anisotropy 0; constant 0.5 without a "density" grid; all scaled by
     density."""
     builder = ProgramBuilder()
-    values = GraphCompiler(builder, textures, READERS)
+    values = GraphCompiler(builder, textures, READERS, volume_shader=True)
     space.apply(values)
     grid = space.grid_value(values, "density", 'float')
     if grid is None:

@@ -22,13 +22,17 @@ class Unsupported(Exception):
 class GraphCompiler:
     """Compiles sockets of one material's node tree into one ProgramBuilder."""
 
-    def __init__(self, builder, textures, readers, attributes=None, background=False):
+    def __init__(self, builder, textures, readers, attributes=None, background=False,
+                 volume_shader=False):
         self.builder = builder
         self.textures = textures          # texture_table.TextureTable
         self.readers = readers
         self.attributes = attributes if attributes is not None else AttributeIds()
         # A world's tree (emission_tree.py): no mesh, the hit's position is the ray's direction.
         self.background = background
+        # A volume's tree (Cycles' volume shader, read as constants or as a program): nodes
+        # Cycles reads only there (the Point Density in 4.x) give 0 elsewhere.
+        self.volume_shader = volume_shader
         # A light's program: its light's matrix_world (4 x 4, rows), the object Texture
         # Coordinate > Normal and an IES Texture's Vector read (geometry.object_transform).
         self.object_matrix = None

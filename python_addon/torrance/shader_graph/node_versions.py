@@ -37,6 +37,8 @@ materials.principled_version does, not by bpy.app.version:
   Oren-Nayar  Cycles 4.3 renders a rough Diffuse BSDF with the energy-preserving Oren-Nayar
               (EON, the core's oren_nayar_eon.h; 3.x-4.2: Cycles' older Oren-Nayar) and adds the
               Principled BSDF's Diffuse Roughness, which uses it: cycles4_3_diffuse.
+  Point Density  Cycles 4.x reads it in volume shaders only (0 in surfaces):
+              cycles4_volume_only_point_density; Blender 5.0 removes the node.
   Thin Film   4.2 adds it to the Principled BSDF; 5.0 to the Metallic and Glass BSDFs, and
               Cycles 5.0+ computes it from a table and over metals (the Principled's metal, the
               Metallic BSDF) too: cycles5_thin_film.
@@ -148,6 +150,16 @@ def cycles4_3_diffuse():
     change, the running Blender tells."""
     import bpy
     return bpy.app.version >= (4, 3, 0)
+
+
+def cycles4_volume_only_point_density():
+    """True where Cycles reads the Point Density texture in volume shaders only (its voxel node
+    runs under the kernel's VOLUME node feature: surface, background, light, bump and
+    displacement shaders get 0 and black; 4.2's and 4.5's svm/voxel.h read, and the 4.0 manual
+    says "available in volume shaders"; Cycles 3.4 reads it in every shader): the node did not
+    change, the running Blender tells. 3.5-3.6 are not read (the add-on does not load there)."""
+    import bpy
+    return bpy.app.version >= (4, 0, 0)
 
 
 def cycles4_normal_transform():

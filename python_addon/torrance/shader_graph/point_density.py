@@ -18,6 +18,10 @@ particles exist), which the reader finds in the render's depsgraph. A node witho
 particle system, or whose grid is all 0, gives 0 (as Cycles' empty grid) and is reported; a
 Resolution past point_density_grid.MAX_RESOLUTION is reported and left out. 3.4's Clip (0
 outside the unit box, the edge voxels clamped inside) is the op's flags 0.
+
+Cycles 4.x reads the node in volume shaders only (cycles4_volume_only_point_density):
+there a Point Density outside a volume's tree (a surface, a bump, a light, the world's
+background) gives 0 and black without computing the grid, as Cycles' kernel does.
 """
 
 import numpy as np
@@ -26,6 +30,7 @@ from ..matrices import inverse
 from ..nodes import node_label
 from .geometry import world_point_to_object
 from .graph import Unsupported
+from .node_versions import cycles4_volume_only_point_density
 from .point_density_grid import EmptyGrid, TooFine, table, unit_box_map, voxels
 from .program import constant
 
@@ -111,6 +116,8 @@ def _point_density(g, node, socket):
     if socket.identifier == "Density":
         rgba = g.output(node.outputs["Color"])
         return g.builder.emit("Channel", 'float', [rgba], mode=3)
+    if not g.volume_shader and cycles4_volume_only_point_density():
+        return constant('color', (0.0, 0.0, 0.0, 0.0))
     grid = _grid(g, node)
     if grid is None:
         return constant('color', (0.0, 0.0, 0.0, 0.0))

@@ -297,7 +297,8 @@ CLOSURES = {
     # a texture Blender computes the voxels of (point_density.py)
     'ShaderNodeTexPointDensity': "rendered (shader graph): Particle System and Object Vertices, "
                                  "every colour source, Radius, World and Object space, Closest, "
-                                 "Linear and Cubic, in surfaces and volumes; reported: no Object "
+                                 "Linear and Cubic, in surfaces and volumes (Cycles 4.x: volumes "
+                                 "only, 0 elsewhere); reported: no Object "
                                  "or Particle System, an empty grid (0, as Cycles), Resolution "
                                  "above 160, Object space of a linked Vector in a material with "
                                  "a volume",
