@@ -12,7 +12,11 @@ A floor, a ball, a second ball and a pillar under two point lights and a glowing
 
 A second scene (build_mirror) shows shadow-linked emitters, a lamp and a glowing panel, only in
 a mirror, each behind a ball that is none of its blockers: a delta lobe's ray looks past the
-ball, as Cycles' dedicated shadow-linking ray does.
+ball, as Cycles' dedicated shadow-linking ray does. A third (build_mirror_in_fog) is the second
+with a box of scattering fog between the mirror and the emitters, holding the balls: the
+looked-past light takes the fog's transmittance from the mirror to the emitter, the
+shadow-linked lights' shadow rays (from the floor and from the fog's scattering points) the fog's
+attenuation past the balls.
 
 Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
 seeds 2 and 3. Faults that must fail: the sets ignored (what Torrance did before Blender 4's
@@ -25,6 +29,7 @@ Run: TORRANCE_BUILD_DIR=$PWD/build scripts/bpy 4.2 -b --factory-startup --python
 
 import bpy
 
+from torrance_tools import scene as make
 from torrance_tools import testing
 from torrance_tools.seed_noise import agree_on_scene
 
@@ -109,6 +114,18 @@ def build_mirror(scene):
                                                                [(panel_ball, 'EXCLUDE')])
 
 
+def build_mirror_in_fog(scene):
+    """build_mirror with a box of Volume Scatter (no surface: a boundary paths cross) from the
+    mirror to just past the balls: the mirror, the camera, the lamp and the panel are outside it,
+    so the looked-past light crosses the fog, the ball and the box's far wall."""
+    build_mirror(scene)
+    fog, nodes, links, output = make.node_material("Fog")
+    scatter = nodes.new('ShaderNodeVolumeScatter')
+    scatter.inputs["Density"].default_value = 0.25
+    links.new(scatter.outputs[0], output.inputs["Volume"])
+    make.box(scene, "FogBox", (0.0, -0.4, 1.8), (4.4, 4.4, 3.4), fog)
+
+
 def sets_ignored(original):
     def init(self, tc_scene, depsgraph, reporter):
         self.entries, self.emitter_entry = {}, {}
@@ -144,6 +161,8 @@ def main():
     agree_on_scene(
         build_mirror, 64, BOUNCES, "shadow linking in a mirror",
         faults=(("the blocker sets ignored", LightLinking, "of", blockers_ignored),))
+    # 32 samples (the fog is the slow part); its faults are in the core (the commit's message).
+    agree_on_scene(build_mirror_in_fog, 32, BOUNCES, "shadow linking in a mirror, in fog")
 
 
 testing.run(main)

@@ -159,6 +159,7 @@ class PathTracer {
         // 1. The next surface along the ray, past those the path passes through.
         Segment seg;
         if (!find_next_surface(bounce, branch > 0, seg)) return;
+        if (kMedia && shadow_links_ && bounce > 0 && last_.delta && seg.found) shadow_linked_behind_media(bounce, seg);
         if constexpr (kMedia) travel_media(bounce, seg);  // 1b. through its media, maybe scattering there
         if (kMedia && bounce == 0 && branch == 0 && seg.found && !seg.scattered && ctx_.split_at_catchers)
           meet_catcher(*seg.hit);
@@ -176,7 +177,7 @@ class PathTracer {
           }
         } else {
           if (kHittable) lights_along_ray(bounce, seg);
-          if (!kMedia && shadow_links_ && last_.delta && seg.found) shadow_linked_behind(bounce, seg);
+          if (!kMedia && shadow_links_ && last_.delta && seg.found) shadow_linked_behind(bounce, *seg.hit, throughput_);
           if (!seg.found && !seg.scattered) break;
           if (!seg.scattered) note_reflector(*seg.hit);
         }
@@ -399,19 +400,25 @@ class PathTracer {
   // shadow-linked emitter behind a surface that is none of its blockers would stay hidden; as
   // Cycles' dedicated shadow-linking ray, the ray goes on past the surfaces it meets while some
   // shadow-linked emitter has none of them among its blockers, and brings back what such
-  // emitters (lamps, emissive surfaces) send along it. (Not in media.)
-  void shadow_linked_behind(int bounce, const Segment& seg) {
+  // emitters (lamps, emissive surfaces) send along it. `first`: the surface the path meets (its
+  // light is the path's own); `seen`: the throughput the light is seen with. In media (kMedia) the
+  // light takes, as Cycles' dedicated shadow ray, the transmittance from the vertex to the
+  // emitter (shadow_linked_behind_media).
+  void shadow_linked_behind(int bounce, const SurfaceHit& first, const Vec3& seen) {
     const LightLinks& links = lights_.links();
     const Vec3 dir = ray_.dir;
     std::array<Vec3, kMaxLightGroups> by_group;  // filled only with light groups
     if (light_groups_) std::fill_n(by_group.begin(), extra_.num_light_groups(), Vec3(0.0f));
+    const LinkedMediaAttenuation attenuation(*this);
     Vec3 e(0.0f);
-    SurfaceHit hit = *seg.hit;
+    SurfaceHit hit = first;
     float t_near = glm::length(hit.position - last_.ray_origin);
     uint64_t passed = 0;
     for (int surfaces = 0; surfaces < kMaxShadowLinkedSurfaces; ++surfaces) {
-      passed |= uint64_t(1) << (hit.object_settings.blocker_set & 63u);
-      if (!links.shadow_linked_past(passed)) break;
+      if (!(kMedia && ctx_.scene.media().pass_through(hit.material))) {  // a volume's boundary: no blocker
+        passed |= uint64_t(1) << (hit.object_settings.blocker_set & 63u);
+        if (!links.shadow_linked_past(passed)) break;
+      }
       Ray next;
       next.origin = offset_origin(hit.position, hit.geometric_normal, dir);
       next.dir = dir;
@@ -419,7 +426,8 @@ class PathTracer {
       const bool found = ctx_.scene.intersect(next, behind);
       const float t_far = found ? glm::length(behind.position - last_.ray_origin) : kInfinity;
       e += lights_.shadow_linked_along_ray(last_.ray_origin, last_.normal, dir, t_near, t_far, passed,
-                                           last_.receiver_set, light_groups_ ? by_group.data() : nullptr);
+                                           last_.receiver_set, light_groups_ ? by_group.data() : nullptr,
+                                           kMedia ? &attenuation : nullptr);
       if (!found) break;
       const uint8_t entry = behind.object_settings.emitter_links;
       if (behind.emitter >= 0 && links.shadow_linked(entry) && !(links.shadow_sets(entry) & passed) &&
@@ -427,7 +435,8 @@ class PathTracer {
         ShaderGlobals g = shader_globals(behind, dir, 0.0f);
         g.path = path_state_;
         g.tracer = &ctx_.scene;
-        const Vec3 emitted = ctx_.scene.emission_at(behind.material, g);
+        Vec3 emitted = ctx_.scene.emission_at(behind.material, g);
+        if (kMedia) emitted *= attenuation.at(t_far, links.shadow_sets(entry));
         e += emitted;
         if (light_groups_ && behind.object_settings.light_group >= 0) by_group[size_t(behind.object_settings.light_group)] += emitted;
       }
@@ -435,12 +444,51 @@ class PathTracer {
       t_near = t_far;
     }
     if (!(max_component(glm::abs(e)) > 0.0f)) return;
-    const Vec3& seen = seen_throughput();
     features_.light(seen * e * clamp_scale(seen * e / branch_weight_, bounce == 1), out_);
     const Vec3 arrived = deposit(seen * e, bounce == 1);
     if (light_groups_) credit_split(extra_, seen * e, arrived, by_group.data(), seen, out_.extras);
   }
   static constexpr int kMaxShadowLinkedSurfaces = 64;  // surfaces passed at most (ends a loop of coplanar ones)
+
+  // In media, before the ray's walk (media_.stack is still the stack it starts in): past the
+  // volume boundaries to the first surface, then shadow_linked_behind with the throughput at the
+  // vertex. The main path's walk may scatter before that surface; the look-past does not depend
+  // on it (Cycles traces its dedicated ray from the vertex whatever the path does next).
+  void shadow_linked_behind_media(int bounce, const Segment& seg) {
+    SurfaceHit hit = *seg.hit;
+    for (int crossed = 0; ctx_.scene.media().pass_through(hit.material); ++crossed) {
+      Ray next;
+      next.origin = offset_origin(hit.position, hit.geometric_normal, ray_.dir);
+      next.dir = ray_.dir;
+      if (crossed == kMaxShadowLinkedSurfaces || !ctx_.scene.intersect(next, hit)) return;
+    }
+    shadow_linked_behind(bounce, hit, throughput_);
+  }
+
+  // What a shadow-linked emitter's light keeps from `distance` along the ray back to its origin
+  // (kMedia): a shadow ray through the media the ray starts in, passing the emitter's non-blockers.
+  class LinkedMediaAttenuation final : public Lights::LinkedAttenuation {
+   public:
+    explicit LinkedMediaAttenuation(const PathTracer& path) : path_(path) {}
+    Vec3 at(float distance, uint64_t shadow_sets) const override {
+      if constexpr (kMedia) {
+        Ray ray;
+        ray.origin = path_.last_.ray_origin;
+        ray.dir = path_.ray_.dir;
+        ray.tmin = 0.0f;
+        ray.tmax = std::isinf(distance) ? distance : distance * (1.0f - 1e-4f);
+        return media_shadow_transmittance(path_.ctx_.scene, ray, path_.media_.stack,
+                                          path_.ctx_.settings.max_transparent_bounces, path_.path_state_, 0.0f,
+                                          shadow_sets);
+      } else {
+        (void)distance, (void)shadow_sets;
+        return Vec3(1.0f);
+      }
+    }
+
+   private:
+    const PathTracer& path_;
+  };
 
   // What lights met along the ray are seen with: the throughput, or in media the throughput
   // before the stretch the path scattered in (medium_walk.h).
@@ -670,8 +718,7 @@ class PathTracer {
     if (v.at.normal_mapped)
       shadow_bumps(f, ctx_.settings.microfacet_bump_shadowing, v.at.n_smooth, v.at.n_diffuse(), v.at.ns, ls.wi, true);
     if (!(max_component(f.total()) > 0.0f)) return;
-    const Vec3 transmittance = shadow_sets == kAllLinkSets ? shadow_through(v, ls, u_light.w)
-                                                           : linked_shadow_through(v, ls, shadow_sets);
+    const Vec3 transmittance = shadow_through(v, ls, u_light.w, shadow_sets);
     if (!(max_abs_component(transmittance) > 0.0f)) return;
     // Against the BSDF's pdf even where a guide samples the next direction: see ScatterVertex::pdf.
     // A shadow-linked emitter: NEE alone (light_linking.h).
@@ -686,26 +733,23 @@ class PathTracer {
   }
 
   // The light a shadow ray from the vertex to a light sample lets through (kMedia: through the
-  // media on the light's side of the surface).
-  Vec3 shadow_through(const Vertex& v, const LightSample& ls, float seed) const {
+  // media on the light's side of the surface). A shadow-linked emitter's (shadow_sets: its
+  // blocker sets, light_linking.h): only its blockers stop it.
+  Vec3 shadow_through(const Vertex& v, const LightSample& ls, float seed, uint64_t shadow_sets) const {
     if constexpr (kMedia) {
       MediumStack beyond = media_.stack;
       if (glm::dot(ls.wi, v.at.ng) < 0.0f)
         beyond.cross(ctx_.scene.media(), v.hit->material, glm::dot(ls.wi, v.hit->geometric_normal) < 0.0f);
       return media_shadow_transmittance(ctx_.scene, shadow_ray(v.hit->position, v.at.ng, ls), beyond,
-                                        ctx_.settings.max_transparent_bounces, path_state_, seed);
+                                        ctx_.settings.max_transparent_bounces, path_state_, seed, shadow_sets);
     } else {
       (void)seed;
+      if (shadow_sets != kAllLinkSets)
+        return linked_shadow_transmittance(ctx_.scene, v.hit->position, v.at.ng, ls, shadow_sets,
+                                           ctx_.settings.max_transparent_bounces, path_state_);
       return shadow_transmittance<kAlpha>(ctx_.scene, v.hit->position, v.at.ng, ls,
                                           ctx_.settings.max_transparent_bounces, path_state_);
     }
-  }
-
-  // The light a shadow ray to a shadow-linked emitter's sample lets through: only its blockers
-  // stop it (with media, their attenuation is not counted: light_linking.h).
-  Vec3 linked_shadow_through(const Vertex& v, const LightSample& ls, uint64_t shadow_sets) const {
-    return linked_shadow_transmittance(ctx_.scene, v.hit->position, v.at.ng, ls, shadow_sets,
-                                       ctx_.settings.max_transparent_bounces, path_state_);
   }
 
   // Lights through planar mirrors, glossy planes and spheres, and lamps' bright spots on matte

@@ -501,7 +501,8 @@ LightSample Lights::sample(size_t index, const Vec3& p, const Vec3& shading_norm
 }
 
 Vec3 Lights::shadow_linked_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_min,
-                                     float t_max, uint64_t passed, uint8_t receiver_set, Vec3* by_group) const {
+                                     float t_max, uint64_t passed, uint8_t receiver_set, Vec3* by_group,
+                                     const LinkedAttenuation* attenuation) const {
   Vec3 L(0.0f);
   for (size_t i = 0; i < lights_.size() && i < link_entries_.size(); ++i) {
     const uint8_t entry = link_entries_[i];
@@ -511,7 +512,8 @@ Vec3 Lights::shadow_linked_along_ray(const Vec3& p_prev, const Vec3& n_prev, con
     if (!std::visit([&](const auto& light) { return light.hit(p_prev, n_prev, dir, t_max, h); }, lights_[i]) ||
         h.distance < t_min)
       continue;
-    const Vec3 c = h.radiance * shader_factor(i, p_prev, dir, h.distance, PathState{});
+    Vec3 c = h.radiance * shader_factor(i, p_prev, dir, h.distance, PathState{});
+    if (attenuation) c *= attenuation->at(h.distance, links_.shadow_sets(entry));
     L += c;
     if (by_group && i < groups_.size() && groups_[i] >= 0) by_group[groups_[i]] += c;
   }

@@ -16,12 +16,15 @@ MediumNextEvent medium_next_event(const Scene& scene, const Vec3& p, const Vec3&
   out.light_index = chosen.index;
   const LightSample ls = lights.sample(chosen.index, p, n, Vec2(u.y, u.z), true, state);
   if (!ls.valid()) return out;
-  bool shadow_linked = false;  // light linking (light_linking.h): a medium's receiver set is the default
+  // Light linking (light_linking.h): a medium's receiver set is the default; a shadow-linked
+  // emitter's shadow ray passes its non-blockers.
+  uint64_t shadow_sets = kAllLinkSets;
   if (const LightLinks& links = lights.links(); links.any()) {
     const uint8_t entry = lights.link_entry(chosen.index, ls);
     if (!links.lights(entry, 0)) return out;
-    shadow_linked = links.shadow_linked(entry);
+    shadow_sets = links.shadow_sets(entry);
   }
+  const bool shadow_linked = shadow_sets != kAllLinkSets;
   const float phase = at.phase_pdf(wo, ls.wi);
   if (!(phase > 0.0f)) return out;
   Ray ray;
@@ -29,7 +32,7 @@ MediumNextEvent medium_next_event(const Scene& scene, const Vec3& p, const Vec3&
   ray.dir = ls.wi;
   ray.tmin = 0.0f;
   ray.tmax = std::isinf(ls.distance) ? ls.distance : ls.distance * (1.0f - 1e-4f);
-  const Vec3 transmittance = media_shadow_transmittance(scene, ray, stack, max_transparent, state, u.w);
+  const Vec3 transmittance = media_shadow_transmittance(scene, ray, stack, max_transparent, state, u.w, shadow_sets);
   if (!(max_abs_component(transmittance) > 0.0f)) return out;
   const float mis = ls.pdf > 0.0f && !shadow_linked ? power_heuristic(chosen.probability * ls.pdf, phase) : 1.0f;
   out.light = ls.weight * transmittance * (phase * mis * weight / chosen.probability);

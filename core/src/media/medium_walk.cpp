@@ -96,7 +96,7 @@ MediumWalk walk_media(const Scene& scene, Ray& ray, SurfaceHit& hit, bool& found
 }
 
 Vec3 media_shadow_transmittance(const Scene& scene, Ray ray, MediumStack stack, int max_transparent,
-                                const PathState& receiver, float seed) {
+                                const PathState& receiver, float seed, uint64_t shadow_sets) {
   const SceneMedia& media = scene.media();
   Vec3 transmittance(1.0f);
   float travelled = 0.0f;
@@ -112,13 +112,13 @@ Vec3 media_shadow_transmittance(const Scene& scene, Ray ray, MediumStack stack, 
       transmittance *= torrance::transmittance(stack.mix().sigma_t(), std::max(t_end - ray.tmin, 0.0f));
     }
     if (!found || !(max_abs_component(transmittance) > 0.0f)) return transmittance;
-    if (media.pass_through(hit.material)) {
+    if (!blocks_shadow(shadow_sets, hit.object_settings.blocker_set)) {
+      // none of the shadow-linked emitter's blockers: passed as if absent
+    } else if (media.pass_through(hit.material)) {
       stack.cross(media, hit.material, glm::dot(hit.geometric_normal, ray.dir) < 0.0f);
-    } else {
-      if (!through_transparent_surface(scene, hit, ray.dir, receiver, passed, travelled, max_transparent,
-                                       transmittance))
-        return Vec3(0.0f);
-      ++passed;
+    } else if (!through_transparent_surface(scene, hit, ray.dir, receiver, passed++, travelled, max_transparent,
+                                            transmittance)) {
+      return Vec3(0.0f);
     }
     ray.origin = offset_origin(hit.position, hit.geometric_normal, ray.dir);
     ray.tmax -= hit.t;

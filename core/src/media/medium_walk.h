@@ -8,6 +8,7 @@
 #include "media/medium_stack.h"
 #include "torrance/camera/camera.h"
 #include "torrance/integrator/path_state.h"
+#include "torrance/lights/light_linking.h"
 #include "torrance/scene/scene.h"
 #include "torrance/util/sampling.h"
 
@@ -67,7 +68,10 @@ MediumWalk walk_media(const Scene& scene, Ray& ray, SurfaceHit& hit, bool& found
 // shadow_transmittance takes them (alpha < 1: (1 - alpha) x tint, at most max_transparent;
 // opaque: 0).
 // Heterogeneous media take ratio tracking, its random numbers from `seed` and the ray.
+// A shadow-linked emitter's ray (shadow_sets: its blocker sets, light_linking.h) passes the
+// surfaces that are none of its blockers as if absent, volume boundaries too (Cycles' shadow
+// linking filter).
 Vec3 media_shadow_transmittance(const Scene& scene, Ray ray, MediumStack stack, int max_transparent,
-                                const PathState& receiver, float seed = 0.0f);
+                                const PathState& receiver, float seed = 0.0f, uint64_t shadow_sets = kAllLinkSets);
 
 }  // namespace torrance

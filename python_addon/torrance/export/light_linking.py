@@ -115,9 +115,6 @@ class LightLinking:
                 self.emitter_entry[name] = self.entries.setdefault(key, len(self.entries) + 1)
         if self.entries:
             tc_scene.set_light_link_table(list(self.entries))
-        if any(key[1] != ALL_SETS for key in self.entries) and _has_volumes(depsgraph):
-            reporter.warning("Shadow linking: shadow-linked lights' shadow rays ignore the "
-                             "attenuation of volumes")
 
     def __bool__(self):
         return bool(self.entries)
@@ -129,10 +126,3 @@ class LightLinking:
         name = obj.original.name_full if obj.original is not None else obj.name_full
         return (self.receivers.object_set.get(name, 0), self.blockers.object_set.get(name, 0),
                 self.emitter_entry.get(name, 0))
-
-
-def _has_volumes(depsgraph):
-    """Whether the world or a material the depsgraph holds has a volume."""
-    from ..volumes import has_volume
-    return has_volume(depsgraph.scene.world) or any(
-        has_volume(owner) for owner in depsgraph.ids if owner.__class__.__name__ == "Material")

@@ -243,9 +243,19 @@ class Lights {
   // Shadow linking after a delta lobe (light_linking.h): the radiance of the shadow-linked lights
   // (not the world) that a ray from p_prev along dir meets between t_min and t_max (infinite:
   // suns too), that light receiver_set and whose shadow sets leave out every blocker set in
-  // `passed` (bit s: set s; the surfaces the ray went through before t_min). by_group as above.
+  // `passed` (bit s: set s; the surfaces the ray went through before t_min). by_group as above;
+  // `attenuation` (in media): what each lamp's light keeps on its way.
+  struct LinkedAttenuation {
+    // The share of an emitter's light (its blocker sets shadow_sets) that reaches p_prev from
+    // `distance` along the ray.
+    virtual Vec3 at(float distance, uint64_t shadow_sets) const = 0;
+
+   protected:
+    ~LinkedAttenuation() = default;
+  };
   Vec3 shadow_linked_along_ray(const Vec3& p_prev, const Vec3& n_prev, const Vec3& dir, float t_min, float t_max,
-                               uint64_t passed, uint8_t receiver_set, Vec3* by_group = nullptr) const;
+                               uint64_t passed, uint8_t receiver_set, Vec3* by_group = nullptr,
+                               const LinkedAttenuation* attenuation = nullptr) const;
   // What a ray from p along dir sees of strategy `index` alone, unoccluded (its MIS density too).
   bool hit(size_t index, const Vec3& p, const Vec3& n, const Vec3& dir, LightHit& out) const;
   // Light tracing (caustics.h): whether light `index` can emit rays (a sun, point, spot or area
