@@ -2,7 +2,7 @@
 """Motion blur renders like Cycles 3.4's (Render > Motion Blur: Position, Shutter, Rolling
 Shutter, Shutter Curve; Object > Motion Blur: steps, deformation; moving instances and lamps).
 
-Eleven animated scenes on a grey floor under a sun, rendered at frame 1 with the shutter open one
+Twelve animated scenes on a grey floor under a sun, rendered at frame 1 with the shutter open one
 frame, each by Cycles (seed 0: the reference; seed 1: Cycles' own noise, which sets the bounds)
 and by Torrance (seeds 2 and 3), compared by ratio and 8x8 block means
 (seed_noise.agree_within_seed_noise):
@@ -20,6 +20,8 @@ and by Torrance (seeds 2 and 3), compared by ratio and 8x8 block means
 * a collection instance whose instancer slides and turns (Embree instance motion);
 * a shape-keyed sphere shown only through a collection instance (turned, lifted): its
   deformation as the prototype's motion, inside Embree's instanced scene;
+* the same sphere (out of the scene) put twice by geometry nodes (Object Info, As Instance,
+  into Instance on Points): each instance deforms under its own transform;
 * geometry-nodes instances turning with the frame on a still object;
 * a point lamp moving (Position Start): Cycles does not blur lamps but reads them, as the
   whole scene, at the shutter's centre;
@@ -31,7 +33,7 @@ reported (its instance then follows its transform only).
 Each has deliberate faults that must FAIL the same bounds: torrance.export.motion's
 shutter_offsets patched (time ignored: every step at the shutter's centre, no blur; the shutter
 halved) or shutter_centre (Position Start/End read as Center); instance motion off
-(instance_motion.instance_motion_steps), the instanced sphere's deformation ignored
+(instance_motion.instance_motion_steps), the instanced spheres' deformation ignored
 (instance_motion.uses_deform_motion: transforms only), the lamp read at the frame
 (scene.export_light), the rolling shutter and the curve ignored
 (shutter.rolling_shutter_duration, shutter.shutter_curve_values). (Core faults shown to fail
@@ -153,19 +155,57 @@ def moving_instance(scene):
     set_position(scene, 'CENTER')
 
 
+def flat_blob(scene, radius, segments, rings, slide):
+    """A flat-shaded green sphere "Blob" at the origin whose animated shape key grows it 1.4 x
+    and moves it by `slide` over the shutter."""
+    ob = make.sphere_object(scene, "Blob", (0.0, 0.0, 0.0), radius,
+                            testing.principled("Green", (0.1, 0.7, 0.2)), segments=segments,
+                            rings=rings)
+    for polygon in ob.data.polygons:
+        polygon.use_smooth = False
+    shape_key_motion(ob, "Slide", lambda co: co * 1.4 + np.array(slide))
+    return ob
+
+
 def deforming_instance(scene):
     """A shape-keyed flat sphere (it slides and grows, as deforming_sphere's) shown only through
     a collection instance turned and lifted by its still instancer: the instanced mesh's
     object-space vertices at each step (the prototype's motion), under the instance's transform."""
     base(scene)
-    ob = make.sphere_object(scene, "Blob", (0.0, 0.0, 0.0), 0.6,
-                            testing.principled("Green", (0.1, 0.7, 0.2)), segments=32, rings=16)
-    for polygon in ob.data.polygons:
-        polygon.use_smooth = False
-    shape_key_motion(ob, "Slide", lambda co: co * 1.4 + np.array([1.2, 0.0, 0.25]))
+    ob = flat_blob(scene, 0.6, 32, 16, (1.2, 0.0, 0.25))
     empty = make.collection_instance(scene, ob, "Blobs", "Instancer")
     empty.location = (-0.6, 0.3, 0.6)
     empty.rotation_euler = (0.0, 0.0, math.radians(-30.0))
+    set_position(scene, 'CENTER')
+
+
+def deforming_gn_instances(scene):
+    """The shape-keyed flat sphere of deforming_instance, out of the scene, put twice on a line
+    by a plane's geometry nodes (Object Info, As Instance, into Instance on Points): each
+    instance shows the sphere's object-space vertices at each step under its own transform."""
+    base(scene)
+    ob = flat_blob(scene, 0.4, 24, 12, (0.9, 0.0, 0.2))
+    hidden = bpy.data.collections.new("BlobSource")    # referenced, not in the scene
+    for owner in list(ob.users_collection):
+        owner.objects.unlink(ob)
+    hidden.objects.link(ob)
+    carrier = testing.plane(scene, "Carrier", 1.0)
+    tree = bpy.data.node_groups.new("BlobInstances", 'GeometryNodeTree')
+    make.geometry_in_out(tree)
+    n, links = tree.nodes, tree.links
+    out = n.new('NodeGroupOutput')
+    line = n.new('GeometryNodeMeshLine')
+    line.inputs["Count"].default_value = 2
+    line.inputs["Start Location"].default_value = (-1.3, 0.2, 0.5)
+    line.inputs["Offset"].default_value = (1.2, 0.0, 0.3)
+    info = n.new('GeometryNodeObjectInfo')
+    info.inputs["Object"].default_value = ob
+    info.inputs["As Instance"].default_value = True
+    iop = n.new('GeometryNodeInstanceOnPoints')
+    links.new(line.outputs["Mesh"], iop.inputs["Points"])
+    links.new(info.outputs["Geometry"], iop.inputs["Instance"])
+    links.new(iop.outputs["Instances"], out.inputs[0])
+    carrier.modifiers.new("BlobInstances", 'NODES').node_group = tree
     set_position(scene, 'CENTER')
 
 
@@ -271,6 +311,9 @@ VARIANTS = (
       ("shutter halved", shutter_halved))),
     ("shape-keyed mesh in a collection instance", deforming_instance,
      (("instance's deformation ignored", "instance_motion", "uses_deform_motion",
+       no_deformation),)),
+    ("shape-keyed mesh in geometry-nodes instances", deforming_gn_instances,
+     (("instances' deformation ignored", "instance_motion", "uses_deform_motion",
        no_deformation),)),
     ("geometry-nodes instances turning", spinning_gn_instances,
      (("instance motion off", "instance_motion", "instance_motion_steps", no_instance_motion),)),
