@@ -3,6 +3,7 @@
 // matches what sample() draws, degenerate segments give no NaN, Volume Sampling combines as
 // Cycles', and the single scattering of a point light seen along a ray through fog converges to
 // its quadrature with distance, equiangular and MIS sampling alike, MIS with far less noise.
+#include "fog_single_scattering.h"
 #include "media/medium_walk.h"
 #include "torrance/media/equiangular.h"
 
@@ -133,10 +134,6 @@ TEST(Equiangular, VolumeSamplingCombinesAsCycles) {
 // light of intensity I beside the ray: L = ∫ sigma_s T(t) p I T(r) / r^2 dt (isotropic p), by
 // quadrature; estimated by walk_media with each Volume Sampling, the light's part at the walk's
 // scattering point (direct_weight) and at its equiangular points (aim).
-struct Estimate {
-  double mean = 0.0, std_error = 0.0;
-};
-
 constexpr float kSigmaS = 0.08f, kSigmaA = 0.02f, kIntensity = 1.0f;
 const Vec3 kLight(0.25f, 0.0f, 6.0f);
 
@@ -146,47 +143,14 @@ double direct_at(const Vec3& p) {
   return kIntensity * std::exp(-(kSigmaS + kSigmaA) * std::sqrt(r2)) / r2 / (4.0 * M_PI);
 }
 
-Estimate single_scattering(VolumeSampling method, int n) {
+test::Estimate single_scattering(VolumeSampling method, int n) {
   HomogeneousMedium fog;
   fog.sigma_s = Vec3(kSigmaS);
   fog.sigma_a = Vec3(kSigmaA);
   fog.sampling = method;
-  Scene scene;
-  scene.set_world_volume(fog);
-  scene.commit();
-  struct Received {
-    double sum = 0.0;
-  } received;
   DirectAim aim;
   aim.light_point = kLight;
-  aim.context = &received;
-  aim.receive = [](void* context, const EquiangularPoint& p) {
-    static_cast<Received*>(context)->sum += double(p.weight.x) * direct_at(p.position);
-  };
-  double sum = 0.0, sum2 = 0.0;
-  for (int i = 0; i < n; ++i) {
-    SobolSampler sampler(7u, uint32_t(i), 3u);
-    Ray ray;
-    ray.origin = Vec3(0.0f);
-    ray.dir = Vec3(0.0f, 0.0f, 1.0f);
-    ray.tmin = 0.0f;
-    ray.tmax = kInf;
-    SurfaceHit hit;
-    bool found = false;
-    MediumStack stack;
-    stack.enter(scene.media(), scene.media().world());
-    Vec3 throughput(1.0f);
-    float passed = 0.0f;
-    received.sum = 0.0;
-    const MediumWalk walk =
-        walk_media(scene, ray, hit, found, stack, throughput, sampler, true, passed, &aim);
-    double x = received.sum;
-    if (walk.scattered) x += double(throughput.x) * walk.direct_weight * direct_at(walk.position);
-    sum += x;
-    sum2 += x * x;
-  }
-  const double mean = sum / n;
-  return {mean, std::sqrt(std::max(sum2 / n - mean * mean, 0.0) / n)};
+  return test::fog_single_scattering(fog, aim, direct_at, n, 7u, 3u);
 }
 
 double single_scattering_quadrature() {
@@ -207,10 +171,10 @@ double single_scattering_quadrature() {
 TEST(Equiangular, SingleScatteringConvergesWithEveryVolumeSampling) {
   const double expected = single_scattering_quadrature();
   constexpr int kN = 1 << 16;
-  const Estimate distance = single_scattering(VolumeSampling::Distance, kN);
-  const Estimate equiangular = single_scattering(VolumeSampling::Equiangular, kN);
-  const Estimate mis = single_scattering(VolumeSampling::MultipleImportance, kN);
-  for (const Estimate& e : {distance, equiangular, mis}) {
+  const test::Estimate distance = single_scattering(VolumeSampling::Distance, kN);
+  const test::Estimate equiangular = single_scattering(VolumeSampling::Equiangular, kN);
+  const test::Estimate mis = single_scattering(VolumeSampling::MultipleImportance, kN);
+  for (const test::Estimate& e : {distance, equiangular, mis}) {
     EXPECT_NEAR(e.mean, expected, 4.0 * e.std_error + 1e-3 * expected) << "std error " << e.std_error;
     EXPECT_NEAR(e.mean, expected, 0.05 * expected);
   }

@@ -2,8 +2,8 @@
 // front cut a line where they should, the light is chosen by how much of it a ray sees, and the
 // single scattering of a spot light in fog, sampled with the cone's reach, converges to its
 // quadrature with less noise than without it.
+#include "fog_single_scattering.h"
 #include "media/equiangular_aim.h"
-#include "media/medium_walk.h"
 
 #include <gtest/gtest.h>
 
@@ -98,21 +98,11 @@ double spot_direct_at(const Vec3& p) {
   return std::exp(-(kSigmaS + kSigmaA) * r) / (r * r) / (4.0 * M_PI);
 }
 
-struct Estimate {
-  double mean = 0.0, std_error = 0.0;
-};
-
-Estimate spot_single_scattering(bool with_reach, int n) {
+test::Estimate spot_single_scattering(bool with_reach, int n) {
   HomogeneousMedium fog;
   fog.sigma_s = Vec3(kSigmaS);
   fog.sigma_a = Vec3(kSigmaA);
   fog.sampling = VolumeSampling::MultipleImportance;
-  Scene scene;
-  scene.set_world_volume(fog);
-  scene.commit();
-  struct Received {
-    double sum = 0.0;
-  } received;
   DirectAim aim;
   aim.light_point = kSpot;
   if (with_reach) {
@@ -121,33 +111,7 @@ Estimate spot_single_scattering(bool with_reach, int n) {
     aim.reach.axis = kAxis;
     aim.reach.cos_half = kCosHalf;
   }
-  aim.context = &received;
-  aim.receive = [](void* context, const EquiangularPoint& p) {
-    static_cast<Received*>(context)->sum += double(p.weight.x) * spot_direct_at(p.position);
-  };
-  double sum = 0.0, sum2 = 0.0;
-  for (int i = 0; i < n; ++i) {
-    SobolSampler sampler(11u, uint32_t(i), 5u);
-    Ray ray;
-    ray.origin = Vec3(0.0f);
-    ray.dir = Vec3(0.0f, 0.0f, 1.0f);
-    ray.tmin = 0.0f;
-    ray.tmax = kInf;
-    SurfaceHit hit;
-    bool found = false;
-    MediumStack stack;
-    stack.enter(scene.media(), scene.media().world());
-    Vec3 throughput(1.0f);
-    float passed = 0.0f;
-    received.sum = 0.0;
-    const MediumWalk walk = walk_media(scene, ray, hit, found, stack, throughput, sampler, true, passed, &aim);
-    double x = received.sum;
-    if (walk.scattered) x += double(throughput.x) * walk.direct_weight * spot_direct_at(walk.position);
-    sum += x;
-    sum2 += x * x;
-  }
-  const double mean = sum / n;
-  return {mean, std::sqrt(std::max(sum2 / n - mean * mean, 0.0) / n)};
+  return test::fog_single_scattering(fog, aim, spot_direct_at, n, 11u, 5u);
 }
 
 double spot_quadrature() {
@@ -164,9 +128,9 @@ double spot_quadrature() {
 TEST(EquiangularAim, SpotInFogConvergesWithLessNoiseInsideItsCone) {
   const double expected = spot_quadrature();
   constexpr int kN = 1 << 15;
-  const Estimate whole = spot_single_scattering(false, kN);
-  const Estimate cone = spot_single_scattering(true, kN);
-  for (const Estimate& e : {whole, cone}) {
+  const test::Estimate whole = spot_single_scattering(false, kN);
+  const test::Estimate cone = spot_single_scattering(true, kN);
+  for (const test::Estimate& e : {whole, cone}) {
     EXPECT_NEAR(e.mean, expected, 4.0 * e.std_error + 1e-3 * expected) << "std error " << e.std_error;
     EXPECT_NEAR(e.mean, expected, 0.03 * expected);
   }
