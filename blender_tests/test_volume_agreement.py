@@ -120,7 +120,7 @@ def main():
     from torrance.volumes import VolumeReader
     agree_on_scene(liquid, 64, BOUNCES, "absorbing liquid",
                    faults=(("absorption Color grey", VolumeReader, "_value", absorption_grey),))
-    agree_on_scene(fog, 64, BOUNCES, "fog with a spot light",
+    agree_on_scene(fog, 128, BOUNCES, "fog with a spot light",
                    faults=(("anisotropy ignored", VolumeReader, "_value", anisotropy_ignored),))
     agree_on_scene(glow, 64, BOUNCES, "emitting Principled Volume",
                    faults=(("emission ignored", VolumeReader, "_value", emission_ignored),))

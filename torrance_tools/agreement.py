@@ -51,8 +51,9 @@ THRESHOLDS = dict(
 
 
 def metrics(img, ref):
-    """bias_metrics (RGB) and the image offset in pixels of img against ref."""
-    return dict(bias_metrics(img, ref), offset=image_offset(img, ref))
+    """bias_metrics (RGB; signed: a Combined image may be negative) and the image offset in
+    pixels of img against ref."""
+    return dict(bias_metrics(img, ref, signed=True), offset=image_offset(img, ref))
 
 
 def format_metrics(m):

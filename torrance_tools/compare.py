@@ -73,12 +73,15 @@ def block_means(img, block=8):
     return v.reshape(hb // block, block, wb // block, block).mean(axis=(1, 3))
 
 
-def bias_metrics(img, ref, block=8):
+def bias_metrics(img, ref, block=8, signed=False):
     """Bias figures of img against ref, on downsampled data so noise averages out.
 
     ratio        mean(img) / mean(ref) over the image, and per channel;
-    block_mean   mean over 8x8 blocks of |B_img - B_ref| / max(|B_ref|, 0.1 mean(|B_ref|)) (a
-                 negative block, light taken away, weighed by its magnitude);
+    block_mean   mean over 8x8 blocks of |B_img - B_ref| / max(B_ref, 0.1 mean(B_ref)); signed:
+                 / max(|B_ref|, 0.1 mean(|B_ref|)) (a negative block, light taken away, weighed
+                 by its magnitude: the Combined image of negative emission; the same for images
+                 >= 0). The passes' checks (render_passes) keep the unsigned form their bounds
+                 were measured with (a Normal pass's negative blocks count as 0.1 x the mean);
     block_p90    90th percentile of the same;
     block_max    its maximum.
     """
@@ -87,7 +90,7 @@ def bias_metrics(img, ref, block=8):
     channels = [float(a / max(b, 1e-12))
                 for a, b in zip(img.mean(axis=(0, 1)), ref.mean(axis=(0, 1)), strict=True)]
     bi, br = block_means(img, block), block_means(ref, block)
-    magnitude = np.abs(br)
+    magnitude = np.abs(br) if signed else br
     rel = np.abs(bi - br) / np.maximum(magnitude, 0.1 * magnitude.mean())
     return dict(ratio=ratio, channels=channels, block_mean=float(rel.mean()),
                 block_p90=float(np.percentile(rel, 90)), block_max=float(rel.max()))

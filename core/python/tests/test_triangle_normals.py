@@ -1,5 +1,5 @@
 """torrance_core.triangle_normals: numpy's row-wise cross product and normalisation in float32,
-bit for bit (the add-on's export relies on it: export/mesh.py _usable_triangles), and its
+bit for bit (the add-on's export relies on it: export/mesh.py usable_triangles), and its
 input errors."""
 import numpy as np
 import pytest

@@ -1,5 +1,5 @@
 """torrance_core.transform_points and corner_normals: what the add-on's export computed with
-numpy (export/mesh.py world_mesh and _corner_normals before they moved to the core), bit for
+numpy (export/mesh.py world_mesh and corner_normals before they moved to the core), bit for
 bit on awkward meshes, their input errors, and any input under test_fuzz_api's rules."""
 import numpy as np
 import pytest
@@ -23,7 +23,7 @@ def numpy_transform(pos, matrix):
 
 
 def numpy_corner_normals(normals, tris, ng, matrix, smooth, per_vertex):
-    """The export's corner normals before (_corner_normals with its _normalize)."""
+    """The export's corner normals before (corner_normals with its _normalize)."""
     def normalize(v):
         length = np.sqrt(np.einsum("...i,...i->...", v, v))
         ok = (length > 1e-30) & np.isfinite(length)

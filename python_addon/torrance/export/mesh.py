@@ -175,7 +175,7 @@ def _core():
     return load_core()
 
 
-def _usable_triangles(pos, tris):
+def usable_triangles(pos, tris):
     """(positions, unit geometric normals, kept-triangle mask, number of triangles dropped for
     NaN/Inf vertices) of float32 positions (N,3) and triangles (M,3).
 
@@ -200,7 +200,7 @@ def _usable_triangles(pos, tris):
     return pos, ng, keep, dropped_nonfinite
 
 
-def _corner_normals(local, tris, ng, normal_matrix=None):
+def corner_normals(local, tris, ng, normal_matrix=None):
     """Unit corner normals float32 (M,3,3) of a LocalMesh, or None (all flat): its vertex or
     corner normals (times normal_matrix, if given), with the geometric normal ng on flat
     triangles and on corners without a usable normal (the core's corner_normals: one parallel
@@ -225,7 +225,7 @@ def world_mesh(local, matrix):
     pos = _core().transform_points(local.positions, m)  # in float64, rounded to float32
     # Triangles touching a NaN/Inf vertex (before or after the transform) and zero-area
     # triangles are dropped.
-    pos, ng, keep, dropped_nonfinite = _usable_triangles(pos, local.triangles)
+    pos, ng, keep, dropped_nonfinite = usable_triangles(pos, local.triangles)
     tris = local.triangles
 
     # A mirroring transform turns the winding around: two corners are swapped below so that
@@ -237,7 +237,7 @@ def world_mesh(local, matrix):
 
     # Normals by M^-T.
     normal_matrix = inv_t if inv_t is not None and abs(det) > 1e-300 else lin
-    corner = _corner_normals(local, tris, ng, normal_matrix.astype(np.float32))
+    corner = corner_normals(local, tris, ng, normal_matrix.astype(np.float32))
 
     if not keep.all():
         tris = tris[keep]
@@ -404,8 +404,8 @@ def prototype_arrays(local, uvs):
     them to world space per instance (normals by M^-T, a mirroring M keeps the flat normal's
     side), so each mesh is checked here once, whatever its number of instances."""
     tris = local.triangles
-    pos, ng, keep, dropped = _usable_triangles(local.positions, tris)
-    corner = _corner_normals(local, tris, ng)
+    pos, ng, keep, dropped = usable_triangles(local.positions, tris)
+    corner = corner_normals(local, tris, ng)
     slots = np.maximum(local.material_slots, 0)
     needs = MeshNeeds.of(uvs)
     corner_uvs = local.corner_uvs if needs.uvs else None

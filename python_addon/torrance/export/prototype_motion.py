@@ -11,7 +11,7 @@ object's does (motion.py)."""
 
 import numpy as np
 
-from .mesh import _corner_normals, _usable_triangles, read_local_mesh
+from .mesh import corner_normals, usable_triangles, read_local_mesh
 
 
 class DeformTrack:
@@ -97,9 +97,9 @@ def prototype_step_arrays(local, keep):
     """A deforming prototype's mesh at one time step as prototype_arrays makes its frame's:
     (object-space positions (N, 3), unit corner normals of the triangles kept or None, the kept
     triangles' mask); keep: the frame's mask (None: this mesh's own)."""
-    pos, ng, own_keep, _dropped = _usable_triangles(local.positions, local.triangles)
+    pos, ng, own_keep, _dropped = usable_triangles(local.positions, local.triangles)
     keep = own_keep if keep is None else keep
-    corner = _corner_normals(local, local.triangles, ng)
+    corner = corner_normals(local, local.triangles, ng)
     if corner is not None and not keep.all():
         corner = corner[keep]
     return (np.ascontiguousarray(pos, np.float32),
