@@ -35,7 +35,7 @@ reference, its seed 1 the bounds; Torrance's seeds 2 and 3), each fault must fai
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \\
          --python blender_tests/test_negative_emission_agreement.py
      scripts/bpy 4.2 (or 5.3) -b --factory-startup --python-exit-code 1 --python <the same>
-     (the default run: 3.4 and 5.3)
+     (the default run: 3.4; 5.3 on request, the blender5 list)
 """
 
 import math
