@@ -84,8 +84,9 @@ def deformation_arrays(meshes, steps):
         return None
     if all(np.array_equal(m.positions, frame.positions) for m in meshes):
         return False
-    keep = prototype_step_arrays(frame, None)[2]
-    arrays = [prototype_step_arrays(m, keep) for m in meshes]
+    frame_arrays = prototype_step_arrays(frame, None)
+    keep = frame_arrays[2]
+    arrays = [frame_arrays if m is frame else prototype_step_arrays(m, keep) for m in meshes]
     positions = np.stack([a[0] for a in arrays])
     normals = None
     if all(a[1] is not None for a in arrays):
