@@ -35,9 +35,10 @@ Faults injected at B=1 between the add-on and the core (the same proxy as FAULTS
     extra bounce (B+1)        ratio 1.006  block mean 0.025  (undetectable at B=1; B=0 catches it)
 Thresholds (agreement.THRESHOLDS: ratio in [0.93, 1.06] overall and per channel,
 block mean <= 0.045, p90 <= 0.12, |offset| <= 0.5 px) sit between the two groups. The test
-re-runs a few faults every time (FAULTS) and requires each to fail, so the thresholds keep
-their teeth; the bounce count off by one either way is checked by comparing Torrance at
-B=0 with Cycles at B=1 (ratio 0.858) and Torrance at B=1 with Cycles at B=0 (ratio 1.118).
+re-runs the narrow faults every time (NARROW_FAULTS; all of FAULTS with TORRANCE_ALL_FAULTS=1)
+and requires each to fail, so the thresholds keep their teeth; the bounce count off by one
+either way is checked by comparing Torrance at B=0 with Cycles at B=1 (ratio 0.858) and Torrance
+at B=1 with Cycles at B=0 (ratio 1.118).
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_cycles_agreement.py
@@ -66,6 +67,9 @@ FAULTS = {
     "shift_y_2": "camera shifted 2 px up",
     # (the bounce count off by one either way is checked with the B=0 and B=1 renders)
 }
+# Re-rendered every run: the camera shifts sit within 1.1-1.3x the thresholds; the light-unit
+# and normal faults miss them by far (above) and render with TORRANCE_ALL_FAULTS=1.
+NARROW_FAULTS = ("camera shifted 2 px right", "camera shifted 2 px up")
 
 
 # ------------------------------------------------------------------------------------------
@@ -174,6 +178,8 @@ def main():
     render_settings.setup_torrance(scene, SAMPLES, FAULT_BOUNCES, brdf_model='PAPER')
     try:
         for fault, description in FAULTS.items():
+            if not testing.fault_renders(description, NARROW_FAULTS):
+                continue
             addon.core_module._core = faulty_core(core, fault)
             img, t_img = testing.render(scene, d, f"fault_{fault}")
             m = metrics(img, cycles_ref[FAULT_BOUNCES])

@@ -90,6 +90,10 @@ def main():
         ("tip radius ignored", hair, 'strand_radii', full_tip),
         ("no hair", hair, 'export_hair', no_hair),
     ]
+    # Every fault misses the bounds by far (ratios 0.75-1.66 against 0.985..1.015): each run
+    # re-renders one of the shader and one of the geometry (testing.fault_renders).
+    faults = testing.faults_to_render(faults, ("melanin 0.2 instead of 0.45",
+                                               "strands twice as thick"))
     for shape in ('RIBBONS', 'THICK'):
         scene.cycles_curves.shape = shape
         print(f"Curve shape {shape}", flush=True)

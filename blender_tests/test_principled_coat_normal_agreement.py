@@ -101,7 +101,9 @@ def faults(scene, directory):
     tree.links.remove(socket.links[0])
     out.append(("linked coat normal ignored", render_torrance(scene, directory, "no_coat_normal")))
     tree.links.new(bump, socket)
-    if is_v2():
+    # Far outside the bounds (block mean 0.148 against 0.014 in 4.2; the emissive sphere x3.2):
+    # rendered with TORRANCE_ALL_FAULTS=1 (testing.fault_renders).
+    if is_v2() and testing.fault_renders("emission not darkened by the coat", ()):
         out.append(("emission not darkened by the coat", sa.without_emission_layers(
             lambda: render_torrance(scene, directory, "undarkened"))))
     return out

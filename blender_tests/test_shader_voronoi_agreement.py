@@ -47,7 +47,9 @@ Randomness read as 1, F2 read as F1, Smooth F1 read as F1, Distance to Edge read
 Distance, N-Sphere Radius's Randomness read as 1, the metrics read as Euclidean, each dimension
 count read as the next) must fail them; in Blender 4.x and 5.x also Detail read as 0, Normalize
 read as off, Lacunarity read as 2, Roughness read as 0.5, and the cells hashed as the other
-Cycles hashes them (4.x: lookup3 of the floats, 5.0+: PCG of the integers).
+Cycles hashes them (4.x: lookup3 of the floats, 5.0+: PCG of the integers). Every run
+re-renders those within a few times the bounds (NARROW_FAULTS); the others (block means 10-130x
+the bound in 3.4 and 4.2) render with TORRANCE_ALL_FAULTS=1 (testing.fault_renders).
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_shader_voronoi_agreement.py
@@ -270,6 +272,14 @@ FRACTAL_FAULTS = (
 )
 
 
+# 3.4 / 4.2 block means against the bound 0.0015: Randomness 0.0036 / 0.0027, Smooth F1 0.0094 /
+# 0.0082 (ratio 1.007 against 1.004), N-Sphere ratio 0.991 / 0.994 (against 0.996), Lacunarity
+# 0.0017, Roughness ratio 0.987, metrics ratio 0.987 / 0.993.
+NARROW_FAULTS = ("F1: Randomness read as 1", "Smooth F1 read as F1",
+                 "N-Sphere: Randomness read as 1", "metrics read as Euclidean",
+                 "Lacunarity read as 2", "Roughness read as 0.5")
+
+
 def main():
     import bpy
     testing.addon()
@@ -286,7 +296,8 @@ def main():
         faults.append(("cells hashed as the other Cycles hashes them (4.x: floats, 5.0+: "
                        "integers)", voronoi4, 'cycles5_voronoi',
                        lambda original: lambda: not original()))
-    agree_on_patches(patches, what="the Voronoi Texture", faults=faults)
+    agree_on_patches(patches, what="the Voronoi Texture",
+                     faults=testing.faults_to_render(faults, NARROW_FAULTS))
 
 
 testing.run(main)

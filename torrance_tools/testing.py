@@ -70,6 +70,26 @@ def check(condition, message):
         raise AssertionError(message)
 
 
+def fault_renders(label, narrow):
+    """Whether a test renders its deliberate fault `label` in this run.
+
+    Every fault was shown failing its test when it was written (the figures are in the test's
+    docstring or commit). Faults far outside a test's bounds stay caught whatever the noise, so by
+    default a test re-renders only its `narrow` faults, those within a few times its bounds: they
+    keep the bounds honest as the core changes. TORRANCE_ALL_FAULTS=1 renders every fault (do so
+    after changing a test's bounds, samples or scene)."""
+    if os.environ.get("TORRANCE_ALL_FAULTS") == "1" or label in narrow:
+        return True
+    print(f"fault {label!r}: far outside the bounds when measured, not re-rendered "
+          "(TORRANCE_ALL_FAULTS=1 renders it)", flush=True)
+    return False
+
+
+def faults_to_render(faults, narrow):
+    """The faults ((label, ...) tuples) that fault_renders(label, narrow) lets render."""
+    return [f for f in faults if fault_renders(f[0], narrow)]
+
+
 def tempdir():
     d = tempfile.mkdtemp(prefix="torrance_test_")
     _tempdirs.append(d)
