@@ -10,9 +10,16 @@ smooth mirror (Glossy, roughness 0) and a smooth Glass sphere (roughness 0, IOR 
 them, a rough gold metal sphere (Glossy, roughness 0.5: rough, it stops the path), and the
 world above the wall. Checks, Cycles seed 0 the reference and seed 1 the bounds
 (torrance_tools.render_passes), Torrance seeds 2 and 3: Denoising Albedo, Normal and Depth
-agree within Cycles' own noise. Faults that must fail: the albedo and normal guides swapped
-(here, on Torrance's images), and the features written at the first surface whatever its
-roughness (albedo through glass and mirrors dropped; in the core, by hand: commit message).
+agree within Cycles' own noise (the Normal on the signed block metric, bounded by Cycles' own
+noise alone: its negative blocks count). Faults that must fail: the albedo and normal guides
+swapped (here, on Torrance's images), in Blender 5.3 the features as Cycles 3.x/4.x write them
+(here: the normal seen in the mirror not weighed by the mirror's albedo), and the features written
+at the first surface whatever its roughness (albedo through glass and mirrors dropped; in the
+core, by hand: commit message).
+
+Cycles 5.3 blends the features (film/denoising_features.h): a closure diffuse-like by its alpha's
+smoothstep, a surface writing its share of them and passing the rest on, the normal weighed by
+the feature throughput, a glass's albedo 1 at every angle.
 
 A second scene does the same with Principled BSDFs (v1's closures in Blender 3.x, v2's, as
 Cycles 4.x makes them, in 4.x and 5.x): a rough plastic, a rough F82 metal, a coated and a
@@ -28,7 +35,7 @@ import bpy
 
 from torrance_tools import testing
 from torrance_tools.render_passes import (cycles_passes_of, pass_bounds, pass_failures,
-                                          rgb, torrance_passes)
+                                          rgb, torrance_passes, torrance_passes_with_fault)
 from torrance_tools.scene import node_material
 from torrance_tools.scene import principled as make_principled
 from torrance_tools.testing import check
@@ -137,13 +144,15 @@ def swapped(p):
     return out
 
 
-def agree(label, build):
+def agree(label, build, switched_features_fault=False):
     """Cycles' and Torrance's Denoising Data of the scene build() makes agree; swapped guides
-    do not."""
+    do not, nor (switched_features_fault, where Cycles blends them: 5.3) 3.x/4.x's switched
+    features."""
+    from torrance import blender_versions
     print(f"--- {label}")
     scene, d, ref, other = cycles_passes_of(build, SAMPLES, BOUNCES)
     check(all(name in ref for name in COMPARED), f"Cycles wrote no Denoising Data: {sorted(ref)}")
-    bounds = pass_bounds(ref, other, COMPARED, compared)
+    bounds = pass_bounds(ref, other, COMPARED, compared, signed=("Denoising Normal",))
     ours = [torrance_passes(scene, d, SAMPLES, BOUNCES, seed) for seed in (2, 3)]
     check(not testing.last_messages(), f"unexpected reports: {testing.last_messages()}")
     check(all(name in p for p in ours for name in COMPARED),
@@ -152,6 +161,12 @@ def agree(label, build):
     check(not bad, "Torrance's Denoising Data disagree with Cycles': " + "; ".join(bad))
     caught = pass_failures([swapped(p) for p in ours], ref, bounds, compared, "Swapped")
     check(caught, "the guides swapped were not caught")
+    if switched_features_fault and blender_versions.cycles_smooth_denoising_features():
+        switched = torrance_passes_with_fault(scene, d, SAMPLES, BOUNCES, blender_versions,
+                                              "cycles_smooth_denoising_features",
+                                              lambda _blended: lambda: False)
+        caught = pass_failures([switched], ref, bounds, compared, "Switched")
+        check(caught, "3.x/4.x's switched features were not caught in a Blender that blends them")
     layer = scene.view_layers[0].cycles
     if hasattr(layer, "denoising_pass_follow_reflections"):     # Blender 5.x: not read, said so
         layer.denoising_pass_follow_reflections = False
@@ -162,7 +177,7 @@ def agree(label, build):
 
 
 def main():
-    agree("BSDF nodes", build)
+    agree("BSDF nodes", build, switched_features_fault=True)
     agree("Principled BSDFs", build_principled)
 
 

@@ -235,17 +235,23 @@ def interior(index, reach=1):
     return same
 
 
-def pass_bounds(ref, other, names, compared):
+def pass_bounds(ref, other, names, compared, signed=()):
     """{pass: failures() thresholds} from Cycles' own noise (other against ref), printed;
-    compared(passes, name, ref): the image of a pass as compared."""
+    compared(passes, name, ref): the image of a pass as compared; the passes named in `signed`
+    measured with the signed block metric (compare.bias_metrics: a negative block weighed by its
+    magnitude, e.g. a normal pass's) and bounded by Cycles' own noise alone (it is measurable
+    there: no floors), the others with the unsigned one."""
     out = {}
     for name in names:
-        own = bias_metrics(compared(other, name, ref), compared(ref, name, ref))
+        own = bias_metrics(compared(other, name, ref), compared(ref, name, ref),
+                           signed=name in signed)
         # The indirect passes are noisy: one seed's ratio says little of Cycles' spread.
         floor = 0.015 if name in NOISY else 0.004
         b = noise_bounds(own, tolerance=1.5, ratio_sigmas=3.0, ratio_floor=floor)
-        b["block_mean"] = max(b["block_mean"], 0.004)
-        b["block_p90"] = max(b["block_p90"], 0.012)
+        if name not in signed:
+            b["block_mean"] = max(b["block_mean"], 0.004)
+            b["block_p90"] = max(b["block_p90"], 0.012)
+        b["signed"] = name in signed
         out[name] = b
         print(f"  Cycles' own {name:8s}: ratio {own['ratio']:.4f}, block mean "
               f"{own['block_mean']:.4f}, p90 {own['block_p90']:.4f}")
@@ -257,7 +263,9 @@ def pass_failures(images, ref, bounds, compared, label):
     pass by pass, printed."""
     bad = []
     for name, b in bounds.items():
-        ms = [bias_metrics(compared(img, name, ref), compared(ref, name, ref)) for img in images]
+        ms = [bias_metrics(compared(img, name, ref), compared(ref, name, ref),
+                           signed=b.get("signed", False))
+              for img in images]
         ratio = float(np.mean([m["ratio"] for m in ms]))
         block = float(np.mean([m["block_mean"] for m in ms]))
         p90 = float(np.mean([m["block_p90"] for m in ms]))

@@ -17,6 +17,10 @@ difference is named once and told by the API itself where it can be:
               surfaces with a microfacet shadowing term (and drops light the smooth and the
               mapped normal put on different sides): cycles5_bump_shadowing, the running
               Blender tells (no setting or node changed).
+  denoising features  Cycles 5.3 blends its Denoising Albedo and Normal by the closures'
+              roughness (and gives the view layer options Follow Reflections and Albedo Roughness
+              Weighting for it); 3.x-5.0 switch: cycles_smooth_denoising_features, told by the
+              options' presence.
   volume grids  Debian's Cycles 3.4 (built without NanoVDB) samples a Volume object's grid as a
               dense texture of its active bounding box: voxel i's centre at index i + 0.5 and
               nothing outside the box's voxels (scene/image_vdb.cpp); later Cycles sample NanoVDB
@@ -41,6 +45,17 @@ def cycles5_bump_shadowing():
     microfacet_bump_shadowing; measured in 5.3, 5.0-5.2 taken as 5.3), False for 3.x-4.x's."""
     import bpy
     return bpy.app.version >= (5, 0, 0)
+
+
+def cycles_smooth_denoising_features():
+    """True where Cycles writes the denoising features with 5.3's blended weights
+    (RenderSettings' smooth_denoising_features): where its view layer settings have the options
+    that came with them (5.0 has not; 5.1-5.2 are not at hand), else from 5.3 on."""
+    import bpy
+    layer_settings = getattr(bpy.types, "CyclesRenderLayerSettings", None)
+    if layer_settings is None:          # Cycles' add-on not loaded
+        return bpy.app.version >= (5, 3, 0)
+    return "denoising_pass_follow_reflections" in layer_settings.bl_rna.properties
 
 
 # Blender 5.0's names of the render passes whose 3.x-4.x names are short (Cycles' engine.py).

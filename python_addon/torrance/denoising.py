@@ -138,7 +138,7 @@ def denoiser(tc):
 
 # Blender 5.x's options of the denoising features (the view layer's Cycles settings, shown with
 # the developer extras; both on by default). Cycles 5.x writes the features otherwise with them
-# off; Torrance writes them as Cycles 3.4/4.x does whatever they say.
+# off; Torrance writes them as Cycles does with both on whatever they say.
 CYCLES5_FEATURE_OPTIONS = (("denoising_pass_follow_reflections", "Follow Reflections"),
                            ("denoising_pass_use_albedo_roughness_weighting",
                             "Albedo Roughness Weighting"))

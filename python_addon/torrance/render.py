@@ -225,8 +225,9 @@ def _render(engine, depsgraph, reporter):
     unread = denoising.unread_feature_options(view_layer) if (
         guides or any(p.startswith("Denoising") for p in core_passes)) else []
     if unread:
-        reporter.info(f"Torrance writes the denoising features as Cycles 4.x does: view layer "
-                      f"'{view_layer.name}' has {', '.join(unread)} off, which it does not read")
+        reporter.info(f"Torrance writes the denoising features as Cycles does with its options "
+                      f"on: view layer '{view_layer.name}' has {', '.join(unread)} off, which it "
+                      f"does not read")
 
     threads = int(rd.threads) if rd.threads_mode == 'FIXED' else 0
     note = model_note(ts.brdf_model)
@@ -244,6 +245,7 @@ def _render(engine, depsgraph, reporter):
         passes=core_passes + guides,
         pass_alpha_threshold=float(getattr(view_layer, "pass_alpha_threshold", 0.5)),
         microfacet_bump_shadowing=blender_versions.cycles5_bump_shadowing(),
+        smooth_denoising_features=blender_versions.cycles_smooth_denoising_features(),
         **passes.world_pass_settings(depsgraph.scene),
         **core_settings(ts),
     )

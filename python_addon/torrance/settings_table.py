@@ -301,6 +301,7 @@ CORE_ONLY = {
     "window": "Blender's render border (render.py)",
     "threads": "Blender's Performance > Threads (scene.render)",
     "microfacet_bump_shadowing": "the running Blender's Cycles (render.py, viewport)",
+    "smooth_denoising_features": "the running Blender's Cycles (render.py, viewport)",
     "passes": "the view layer's passes (passes.py)",
     "specialize": "a lever of the core for tests and the benchmark; always on",
     "camera_packets": "a lever of the core for tests and the benchmark; always on",

@@ -72,15 +72,55 @@ def test_combined_is_unchanged_by_the_features():
     assert np.array_equal(np.asarray(render(scene).image), np.asarray(render(scene, []).image))
 
 
-def test_branches_at_the_first_hit_share_what_they_write():
-    """Split into 4 at a mirror, each branch writes a quarter of what follows it."""
+def mirror_under_ceiling():
+    """The plane a smooth mirror (0.9) under a green rough ceiling behind the camera."""
     scene = plane_scene(base_color=(0.9, 0.9, 0.9), metallic=1.0, roughness=0.0)
     scene.add_material(base_color=(0.2, 0.7, 0.3), roughness=1.0)   # a ceiling behind the camera
     ceiling = np.array([[-50, -50, 10], [50, -50, 10], [50, 50, 10], [-50, 50, 10]], np.float32)
     scene.add_mesh(ceiling, np.array([[0, 1, 2], [0, 2, 3]], np.int32),
                    material_indices=np.array([1, 1], np.int32))
+    return scene
+
+
+def test_branches_at_the_first_hit_share_what_they_write():
+    """Split into 4 at a mirror, each branch writes a quarter of what follows it."""
+    scene = mirror_under_ceiling()
     one, four = (render(scene, first_bounce_splits=n).passes for n in (1, 4))
     assert np.allclose(one["DenoisingAlbedo"], 0.9 * np.array([0.24, 0.74, 0.34]), rtol=0.05)
     assert np.allclose(one["DenoisingDepth"], 5.0 + 0.9 * 10.0, rtol=0.03)
     for name in NAMES:
         assert np.allclose(one[name], four[name], rtol=1e-3, atol=1e-5), name
+
+
+def smoothstep(e0, e1, x):
+    t = min(max((x - e0) / (e1 - e0), 0.0), 1.0)
+    return (3.0 - 2.0 * t) * t * t
+
+
+def test_cycles53_writes_a_slightly_rough_metal_in_part():
+    """Cycles 5.3's blend: a metal of alpha 0.05 (v1's closure: albedo its colour 0.9 head-on)
+    is smoothstep(0, 0.15, 0.05) diffuse-like, writes smoothstep(0, 0.5, that) of its features and
+    carries the rest on to the world; 3.x/4.x's switch passes it on whole (alpha < 0.075): the
+    world's light off the metal (0.9 x the world, less where a reflection sampled under the plane
+    ends the path) x the metal's albedo."""
+    scene = plane_scene(base_color=(0.9, 0.9, 0.9), metallic=1.0, roughness=0.05 ** 0.5)
+    hard, smooth = (render(scene, smooth_denoising_features=s).passes for s in (False, True))
+    hard_albedo = np.asarray(hard["DenoisingAlbedo"])
+    assert np.allclose(hard_albedo.mean(axis=(0, 1)), 0.81 * np.array(WORLD), rtol=0.02)
+    assert np.all(np.asarray(hard["DenoisingNormal"]) == 0.0)
+    diffuse_like = smoothstep(0.0, 0.15, 0.05)
+    written = smoothstep(0.0, 0.5, diffuse_like)
+    expected = 0.9 * diffuse_like * written + (1 - diffuse_like) * (1 - written) * hard_albedo
+    assert np.allclose(smooth["DenoisingAlbedo"], expected, rtol=2e-3)
+    assert np.allclose(smooth["DenoisingNormal"], [0.0, 0.0, -written], atol=1e-4)
+
+
+def test_cycles53_weighs_the_normal_seen_in_a_mirror():
+    """Cycles 5.3 weighs the normal by the feature throughput: the ceiling's, seen in the 0.9
+    mirror, is 0.9 long (3.x/4.x: 1); the albedo is the same."""
+    scene = mirror_under_ceiling()
+    hard, smooth = (render(scene, smooth_denoising_features=s).passes for s in (False, True))
+    assert np.allclose(np.linalg.norm(hard["DenoisingNormal"], axis=2), 1.0, atol=1e-3)
+    assert np.allclose(smooth["DenoisingNormal"], 0.9 * np.asarray(hard["DenoisingNormal"]),
+                       rtol=2e-3, atol=1e-4)
+    assert np.allclose(smooth["DenoisingAlbedo"], hard["DenoisingAlbedo"], rtol=1e-4)

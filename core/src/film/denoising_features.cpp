@@ -6,6 +6,7 @@
 #include "torrance/bsdfs/metallic_bsdf.h"
 #include "torrance/bsdfs/principled.h"
 #include "torrance/bsdfs/principled_v2.h"
+#include "torrance/util/smoothstep.h"
 
 #include <algorithm>
 #include <cmath>
@@ -49,16 +50,20 @@ void DenoisingClosures::add(const Vec3& albedo, float sample_weight, float rough
   if (!(sample_weight >= kWeightCutoff)) return;
   if (sampled_alone) add_sampled(sample_weight, transmits);
   sum_weight += sample_weight;
-  if (roughness_squared > 0.075f * 0.075f) {
-    diffuse_albedo += albedo;
-    sum_nonspecular += sample_weight;
-  } else {
-    specular_albedo += albedo;
-  }
+  const float diffuse_like = smooth_weights ? smooth_step(0.0f, 0.15f, std::sqrt(roughness_squared))
+                                            : float(roughness_squared > 0.075f * 0.075f);
+  diffuse_albedo += albedo * diffuse_like;
+  specular_albedo += albedo * (1.0f - diffuse_like);
+  sum_nonspecular += sample_weight * diffuse_like;
+}
+
+float DenoisingClosures::feature_weight() const {
+  if (smooth_weights) return sum_weight > 0.0f ? smooth_step(0.0f, 0.5f, sum_nonspecular / sum_weight) : 0.0f;
+  return sum_weight == 0.0f || sum_nonspecular * 4.0f > sum_weight ? 1.0f : 0.0f;
 }
 
 float DenoisingClosures::defensive_ratio(bool transmitted) const {
-  if (count <= 1 || !(sum_weight > 0.0f)) return 1.0f;
+  if (cycles4_closures || count <= 1 || !(sum_weight > 0.0f)) return 1.0f;
   float plain = 0.0f, defended = 0.0f, defended_sum = 0.0f;
   for (int i = 0; i < count; ++i) {
     const float w = sample_weights[size_t(i)], d = std::max(w, 0.125f * sum_weight);
@@ -72,9 +77,9 @@ float DenoisingClosures::defensive_ratio(bool transmitted) const {
 }
 
 void DenoisingClosures::add_glass(const Vec3& reflect, const Vec3& refract, float reflect_r2, float refract_r2) {
-  add(reflect, std::abs(mean(reflect)), reflect_r2, false, !one_glass_closure);
-  add(refract, std::abs(mean(refract)), refract_r2, true, !one_glass_closure);
-  if (one_glass_closure) add_sampled(std::abs(mean(reflect + refract)), false);
+  add(reflect, std::abs(mean(reflect)), reflect_r2, false, !cycles4_closures);
+  add(refract, std::abs(mean(refract)), refract_r2, true, !cycles4_closures);
+  if (cycles4_closures) add_sampled(std::abs(mean(reflect + refract)), false);
 }
 
 void DenoisingClosures::add_principled_v2(const Material& m, float w, float cos_no, bool backfacing) {
@@ -93,7 +98,10 @@ void DenoisingClosures::add_principled_v2(const Material& m, float w, float cos_
                                Vec3(0.0f), Vec3(1.0f));
     const Vec3 weight = w * glass * a.layers;
     const Vec3 reflect = glm::mix(f0, Vec3(1.0f), ggx_tables::dielectric_fresnel_mix(bsdf.roughness(), c, etap));
-    const Vec3 smooth = glm::mix(f0, Vec3(1.0f), ggx_tables::dielectric_fresnel_factor(c, etap));
+    // Cycles 4.x: the refraction's share by the smooth Fresnel; 5.3: by the table's, the rest of
+    // the reflection (bsdf_microfacet_estimate_albedo: a white glass's albedo 1 at every angle).
+    const Vec3 smooth = smooth_weights ? reflect
+                                       : glm::mix(f0, Vec3(1.0f), ggx_tables::dielectric_fresnel_factor(c, etap));
     const Vec3 refract = (Vec3(1.0f) - smooth) * glm::sqrt(glm::clamp(m.base_color, Vec3(0.0f), Vec3(1.0f)));
     add_glass(weight * reflect, weight * refract, r2, r2);
   }
@@ -102,7 +110,7 @@ void DenoisingClosures::add_principled_v2(const Material& m, float w, float cos_
 }
 
 void DenoisingClosures::add_material(const Material& m, float w, float cos_no, bool backfacing) {
-  if (principled_v2 && !m.glass_node) {
+  if (cycles4_closures && !m.glass_node) {
     add_principled_v2(m, w, cos_no, backfacing);
     return;
   }
@@ -208,17 +216,22 @@ void DenoisingFeatures::surface(const DenoisingClosures& c, float segment, const
   out.denoising_depth += share * finite(mean(throughput_) * segment);
   const bool first = first_;
   first_ = false;
-  if (!c.stops()) {
-    throughput_ *= c.specular_albedo;
-    if (first) first_closures_ = c;
+  const float written = c.feature_weight();
+  if (written > 0.0f && c.sum_weight > 0.0f) {  // 5.3 weighs the normal as the albedo
+    const float weight = share * written * (c.smooth_weights ? mean(throughput_) : 1.0f);
+    for (int i = 0; i < 3; ++i)
+      out.denoising_normal[i] += finite(weight * glm::dot(normal, camera_axes[size_t(i)]));
+  }
+  const Vec3 albedo = throughput_ * c.diffuse_albedo * written;
+  for (int i = 0; i < 3; ++i) out.denoising_albedo[i] += share * finite(albedo[i]);
+  const Vec3 carried = c.specular_albedo * (1.0f - written);
+  const bool goes_on = c.smooth_weights ? std::max({std::abs(carried.x), std::abs(carried.y), std::abs(carried.z)}) > 1e-4f : written == 0.0f;
+  if (!goes_on) {
+    open_ = false;
     return;
   }
-  if (c.sum_weight > 0.0f) {  // the closures share one normal: their weighted mean is it
-    for (int i = 0; i < 3; ++i) out.denoising_normal[i] += share * finite(glm::dot(normal, camera_axes[size_t(i)]));
-  }
-  const Vec3 albedo = throughput_ * c.diffuse_albedo;
-  for (int i = 0; i < 3; ++i) out.denoising_albedo[i] += share * finite(albedo[i]);
-  open_ = false;
+  throughput_ *= carried;
+  if (first) first_closures_ = c;
 }
 
 }  // namespace torrance

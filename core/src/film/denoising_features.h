@@ -17,14 +17,22 @@
 // surface met adds mean(feature throughput) x its segment's length to the depth. Written once per
 // sample, so the passes are the mean over the samples (0 where nothing was written).
 //
-// Cycles samples the camera's first hit defensively (surface_shader_prepare_closures): every
+// Cycles 5.3 (RenderSettings::smooth_denoising_features) blends where 3.x/4.x switch: a closure
+// counts as diffuse-like by smoothstep(0, 0.15, alpha) of its alpha = sqrt(alpha_x alpha_y) (its
+// albedo split between the two sorts by it), the surface writes its features by
+// smoothstep(0, 0.5, the diffuse-like share of the closures' albedo) and the path carries the
+// rest on (the feature throughput x the specular-like albedo x the share not written) while any
+// of it is left (max above 1e-4); the normal, too, is weighed by the feature throughput and the
+// share written (a normal seen in a mirror of albedo 0.9 is 0.9 long); a Principled glass's
+// refraction albedo is 1 minus its tabulated reflection albedo (4.x: minus the smooth Fresnel).
+//
+// Cycles 3.4 samples the camera's first hit defensively (surface_shader_prepare_closures): every
 // closure's sample weight is at least 1/8 of their sum, so smooth glass seen by the camera is
 // reflected 11 % of the time, not 3 %. The radiance does not depend on it, the features do (a
 // reflected path writes no normal): where they go on past the first hit, what later surfaces
 // write is weighed by Cycles' probability of the side the path left on (reflected or
 // transmitted) over the undefended one, which Torrance's sampling follows. Cycles 4.x (the
-// PRINCIPLED_V2 model) makes one closure of a glass's reflection and refraction: alone, it is
-// not sampled defensively.
+// PRINCIPLED_V2 model) samples no hit defensively (surface_shader_prepare_closures of 4.x and 5.x).
 #pragma once
 
 #include "integrator/path_tracer.h"
@@ -50,10 +58,12 @@ struct ClosureList {
 
 // The closures of one surface, summed as the denoising features sort them.
 struct DenoisingClosures {
-  // cycles4: Cycles 4.x's closures (the PRINCIPLED_V2 model), else Cycles 3.4's.
-  explicit DenoisingClosures(bool cycles4 = false) : one_glass_closure(cycles4), principled_v2(cycles4) {}
-  bool one_glass_closure;  // Cycles 4.x's glass: one closure for the defensive sampling
-  bool principled_v2;      // the Principled BSDF's closures as Cycles 4.x makes them
+  // cycles4: Cycles 4.x's closures (the PRINCIPLED_V2 model), else Cycles 3.4's; smooth: Cycles
+  // 5.3's blended weights, else the 3.x/4.x switches.
+  explicit DenoisingClosures(bool cycles4 = false, bool smooth = false)
+      : cycles4_closures(cycles4), smooth_weights(smooth) {}
+  bool cycles4_closures;  // Cycles 4.x's: the Principled BSDF's, one glass closure, no defensive sampling
+  bool smooth_weights;    // Cycles 5.3's: smooth roughness and feature weights, its glass albedo
   Vec3 diffuse_albedo{0.0f}, specular_albedo{0.0f};
   float sum_weight = 0.0f, sum_nonspecular = 0.0f;  // Cycles' sample weights
   // The closures' sample weights and whether they transmit, for the defensive sampling.
@@ -78,8 +88,9 @@ struct DenoisingClosures {
   void add_glass(const Vec3& reflect, const Vec3& refract, float reflect_r2, float refract_r2);
   // Principled v2's closures (Cycles 4.x: PrincipledV2Bsdf::closure_albedos, the glass).
   void add_principled_v2(const Material& m, float w, float cos_no, bool backfacing);
-  // Whether the path stops collecting here: some diffuse-like share, or no closure at all.
-  bool stops() const { return sum_weight == 0.0f || sum_nonspecular * 4.0f > sum_weight; }
+  // The share of the features this surface writes: 3.x/4.x, all where more than a quarter of
+  // the closures' weight is diffuse-like (or there is no closure), else none; 5.3, smoothly.
+  float feature_weight() const;
 };
 
 // The features' state along one path.
@@ -93,7 +104,8 @@ class DenoisingFeatures {
     if (open_) out.denoising_albedo += throughput_ * contribution;
   }
   // A surface met: `segment` the length from the ray's origin (or the last surface), `normal`
-  // the world shading normal the closures share, camera_axes the camera's right, up and forward.
+  // the world shading normal the closures share (their weighted mean), camera_axes the camera's
+  // right, up and forward.
   void surface(const DenoisingClosures& c, float segment, const Vec3& normal, const std::array<Vec3, 3>& camera_axes,
                PathRadiance& out);
   // A branch of the path split at the first hit: its share of what surfaces write.

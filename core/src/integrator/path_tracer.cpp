@@ -657,7 +657,8 @@ class PathTracer {
 
   // Cycles' denoising features at this surface.
   void denoising_features(const Vertex& v, const Segment& seg) {
-    DenoisingClosures closures(ctx_.settings.brdf_model == BrdfModel::PrincipledV2);
+    DenoisingClosures closures(ctx_.settings.brdf_model == BrdfModel::PrincipledV2,
+                               ctx_.settings.smooth_denoising_features);
     const float cos_no = glm::dot(v.at.ns, v.wo_world);
     if (v.closure_list) closures.add_closures(*v.closure_list, cos_no, v.at.backfacing);
     else closures.add_material(v.material, 1.0f, cos_no, v.at.backfacing);

@@ -18,6 +18,7 @@ def viewport_settings(scene):
         transparent_background=bool(rd.film_transparent),
         threads=int(rd.threads) if rd.threads_mode == 'FIXED' else 0,
         microfacet_bump_shadowing=blender_versions.cycles5_bump_shadowing(),
+        smooth_denoising_features=blender_versions.cycles_smooth_denoising_features(),
         # Unguided: the viewport restarts at every edit, and a guide's training passes (1, 2, 4,
         # ... samples per pixel) would delay its first images for a gain only long renders see.
         # The classic roulette: what the efficiency roulette learns from a viewport's few samples

@@ -131,3 +131,8 @@ TORRANCE_RENDER_SETTING(int, first_bounce_splits, 1, "branches at the first hit:
 // with the side check against the smooth normal (Cycles 5.x). The add-on sets the running
 // Blender's (blender_versions.cycles5_bump_shadowing).
 TORRANCE_RENDER_SETTING(bool, microfacet_bump_shadowing, false, "Cycles 5.x's bump terminator smoothing (else 3.x/4.x's)")
+// Which Cycles' denoising features (film/denoising_features.h): false, 3.x/4.x's (a closure is
+// diffuse- or specular-like, a surface writes all or nothing); true, Cycles 5.3's blended weights
+// (the normal weighed by the feature throughput, too). The add-on sets the running Blender's
+// (blender_versions.cycles_smooth_denoising_features).
+TORRANCE_RENDER_SETTING(bool, smooth_denoising_features, false, "Cycles 5.3's blended denoising features (else 3.x/4.x's)")
