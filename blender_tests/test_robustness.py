@@ -198,7 +198,16 @@ def main():
     spot = bpy.data.lights.new("Spot", 'SPOT')
     scene.collection.objects.link(bpy.data.objects.new("Spot", spot))
     area = bpy.data.lights.new("Area", 'AREA')
-    scene.collection.objects.link(bpy.data.objects.new("Area", area))
+    area_ob = bpy.data.objects.new("Area", area)
+    scene.collection.objects.link(area_ob)
+    # Sheared: turned 45 degrees under a parent scaled along Y, its X and Y axes are not
+    # perpendicular (the export keeps the Y edge's part across X; the core takes rectangles only).
+    squash = bpy.data.objects.new("Squash", None)
+    squash.scale = (1.0, 3.0, 1.0)
+    scene.collection.objects.link(squash)
+    area_ob.parent = squash
+    area_ob.rotation_euler = (0.3, 0.0, math.radians(45))
+    area_ob.location = (0.5, -0.4, 2.5)
     ob = testing.sphere_object(scene, "Mirrored", (0, 0, 0.6), 0.6, testing.principled("M"))
     ob.scale = (-1, 1, 1)
     font = bpy.data.curves.new("Text", 'FONT')

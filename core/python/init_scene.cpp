@@ -661,8 +661,10 @@ void init_scene(py::module_& m) {
           py::arg("center"), py::arg("edge_u"), py::arg("edge_v"), py::arg("direction") = std::array<float, 3>{0, 0, -1},
           py::arg("shape") = "RECTANGLE", py::arg("power") = 10.0f, py::arg("color") = std::array<float, 3>{1, 1, 1},
           py::arg("spread") = 3.14159265f,
-          "Area light: edges are full-size vectors (object X * size, Y * size_y, scale included); "
-          "it emits one-sided along direction with radiance power / (4 area), like Cycles.")
+          "Area light: edges are full-size perpendicular vectors (object X * size, Y * size_y, scale "
+          "included); it emits one-sided, on the side of its plane that direction points to, with "
+          "radiance power / (4 area), like Cycles. ValueError for edges not perpendicular or a "
+          "direction in the plane.")
       .def(
           "set_world",
           [](Scene& s, std::array<float, 3> color, float strength) {

@@ -784,6 +784,16 @@ def test_huge_requests_fail_clearly_before_allocating(tmp_path, monkeypatch):
 positions3 = st.tuples(wild_floats, wild_floats, wild_floats)
 
 
+def rectangle(u, v):
+    """An area light's second edge and normal from edges u, v (the core takes rectangles): v's
+    part across u (v where u is 0) and u x that, in float32, overflows and all."""
+    with np.errstate(all="ignore"):
+        u, v = np.asarray(u, np.float32), np.asarray(v, np.float32)
+        uu = np.dot(u, u)
+        across = v - u * (np.dot(v, u) / uu) if np.isfinite(uu) and uu > 0 else v
+        return across, np.cross(u, across)
+
+
 @examples(100)
 @given(
     st.sampled_from(["sun", "point", "spot", "area", "world"]),
@@ -815,8 +825,8 @@ def test_lights(kind, a, b, c, color, strength, size, extra, shape):
         "area": lambda: scene.add_area_light(
             center=a,
             edge_u=b,
-            edge_v=c,
-            direction=(0, 0, -1),
+            edge_v=rectangle(b, c)[0],
+            direction=rectangle(b, c)[1],
             shape=shape,
             power=strength,
             color=color,

@@ -229,9 +229,18 @@ AreaLight::AreaLight(const Vec3& center, const Vec3& edge_u, const Vec3& edge_v,
   require_position(edge_v, "area light size");
   if (std::isnan(spread) || spread < 0.0f) throw std::invalid_argument("area light spread must be >= 0");
   require_finite(power, "area light power");
-  normal_ = unit_direction(normal, "area light direction");
   area_ = glm::length(edge_u) * glm::length(edge_v) * (ellipse ? kPi / 4.0f : 1.0f);
   if (!(area_ > 0.0f)) throw std::invalid_argument("area light must have a non-zero size");
+  // The light is the rectangle (or ellipse) the edges span, and every strategy (sampling it from a
+  // point, hitting it, emitting from it) uses its normal: `normal` only picks the emitting side.
+  const Vec3 side = unit_direction(normal, "area light direction");
+  const Vec3 u = glm::normalize(edge_u), v = glm::normalize(edge_v);
+  if (std::abs(glm::dot(u, v)) > 1e-3f)
+    throw std::invalid_argument("area light edges must be perpendicular (a sheared light's: orthogonalise them)");
+  normal_ = glm::normalize(glm::cross(u, v));
+  if (glm::dot(normal_, side) < 0.0f) normal_ = -normal_;
+  if (glm::dot(normal_, side) < 1e-3f) throw std::invalid_argument("area light direction lies in its plane");
+  if (glm::dot(normal_, side) > 1.0f - 1e-6f) normal_ = side;  // the given normal, to rounding: kept as given
   radiance_ = scaled_color(color, power / (4.0f * area_), "area light color");
   if (std::isfinite(spread) && spread < kPi) {  // Cycles' spread attenuation, normalised
     const float half = (kPi - std::max(spread, kPi / 180.0f)) * 0.5f;

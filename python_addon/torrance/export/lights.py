@@ -170,6 +170,12 @@ def export_light(tc_scene, obj, matrix, reporter, textures):
         size_v = float(light.size_y) if shape in {'RECTANGLE', 'ELLIPSE'} else size_u
         edge_u = m[:3, 0] * size_u
         edge_v = m[:3, 1] * size_v
+        # A sheared transform (a parent's non-uniform scale, rotated) skews the edges; the core
+        # takes a rectangle, so the Y edge keeps only its part across the X edge (same plane and
+        # parallelogram area). Edges perpendicular to rounding are passed on as they are.
+        skew = float(np.dot(edge_u, edge_v))
+        if abs(skew) > 1e-6 * float(np.linalg.norm(edge_u) * np.linalg.norm(edge_v)):
+            edge_v = edge_v - edge_u * (skew / float(np.dot(edge_u, edge_u)))
         area = float(np.linalg.norm(edge_u) * np.linalg.norm(edge_v))
         if not (area > 0.0 and math.isfinite(area)):
             reporter.warning(f"Area light '{obj.name}' has no area (size or scale 0): skipped")

@@ -89,8 +89,9 @@ class PointLight {
 
 class AreaLight {
  public:
-  // centre; full-size edge vectors (object X * size, object Y * size_y, scale included); the
-  // emitting side is along `normal` (Blender: the light's -Z).
+  // centre; full-size edge vectors (object X * size, object Y * size_y, scale included), which
+  // must be perpendicular; the light's normal is theirs, on the side of `normal` (Blender: the
+  // light's -Z). std::invalid_argument for sheared edges or a `normal` in the light's plane.
   AreaLight(const Vec3& center, const Vec3& edge_u, const Vec3& edge_v, const Vec3& normal, bool ellipse,
             float power, const Vec3& color, float spread);
   LightSample sample(const Vec3& p, const Vec3& n, const Vec2& u) const;
