@@ -93,9 +93,12 @@ def main():
     build(scene, cube_gap=0.001)
     agree_within_seed_noise(
         scene, directory, SAMPLES, BOUNCES, "the glass cube above the floor",
-        faults=(("tint ignored", MaterialReader, "_principled", tint_ignored),
-                ("transmission read as 0", MaterialReader, "_principled_glass",
-                 transmission_ignored)),
+        # Transmission read as 0 misses the bounds by far (ratio 1.30 against 0.99..1.01):
+        # rendered with TORRANCE_ALL_FAULTS=1 only.
+        faults=testing.faults_to_render(
+            (("tint ignored", MaterialReader, "_principled", tint_ignored),
+             ("transmission read as 0", MaterialReader, "_principled_glass",
+              transmission_ignored)), ("tint ignored",)),
         tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.01)
 
     print("--- 2. the cube resting on the floor", flush=True)

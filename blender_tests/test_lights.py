@@ -294,6 +294,12 @@ def main():
             "unnormalized disk's pi/4 dropped": ("unnormalized", lambda s: setattr(
                 s.objects["Disk"].data, "energy", s.objects["Disk"].data.energy * math.pi / 4)),
         })
+    # Re-rendered every run: those within a few times the thresholds; the spot blend, the node
+    # tree, the emission x 1.25 and 3.x's units miss them by far (ratios 1.18, 1.16, 1.14, 0.79
+    # against 0.97..1.03) and render with TORRANCE_ALL_FAULTS=1 (testing.fault_renders).
+    narrow = ("area scale ignored", "disk rendered as square", "exposure ignored",
+              "temperature ignored", "unnormalized disk's pi/4 dropped")
+    faults = {d: f for d, f in faults.items() if testing.fault_renders(d, narrow)}
     for description, (case, alter) in faults.items():
         scene = base_scene()
         CASES[case](scene)

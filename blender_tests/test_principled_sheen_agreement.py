@@ -112,14 +112,17 @@ def faults(scene, directory):
     weight, tint_socket = sockets()
     constant = [s[0] for s in spheres() if s[4] != GRAPH]
     out = []
-    sa.set_inputs(constant, **{weight: 0.0})
-    out.append(("sheen ignored", render_torrance(scene, directory, "no_sheen")))
-    sa.set_inputs(constant, **{weight: 1.0})
+    # Far outside the bounds (4.2 block means 0.0288 and 0.0214 against 0.0019): rendered with
+    # TORRANCE_ALL_FAULTS=1 only (testing.fault_renders).
+    if testing.fault_renders("sheen ignored", ()):
+        sa.set_inputs(constant, **{weight: 0.0})
+        out.append(("sheen ignored", render_torrance(scene, directory, "no_sheen")))
+        sa.set_inputs(constant, **{weight: 1.0})
     tinted = next(s for s in spheres() if s[0] == "Sheen_tinted")
     sa.set_inputs(["Sheen_tinted"], **{tint_socket: (1.0, 1.0, 1.0, 1.0) if is_v2() else 0.0})
     out.append(("sheen tint ignored", render_torrance(scene, directory, "no_tint")))
     sa.set_inputs(["Sheen_tinted"], **{tint_socket: tint_value(tinted[5])})
-    if is_v2():
+    if is_v2() and testing.fault_renders("sheen roughness ignored (0.5)", ()):
         sa.set_inputs(["Sheen_smooth", "Sheen_rough"], **{"Sheen Roughness": 0.5})
         out.append(("sheen roughness ignored (0.5)",
                     render_torrance(scene, directory, "no_roughness")))
