@@ -48,17 +48,19 @@ PrincipledBsdf::PrincipledBsdf(const Material& m) {
   cspec0_ = glm::clamp(dielectric + base * metallic, Vec3(0.0f), Vec3(1.0f));
   // Cycles 3.4's Multiscatter GGX above roughness 0.075 (single-scattering GGX below); with glass
   // the material keeps single scattering (MaterialBsdf's glass mix counts eval / pdf).
-  if (m.multiscatter_walk && roughness_ > 0.075f && !m.transmits()) {
-    microsurface::Reflectance r;
-    r.fresnel = true;
-    r.cspec0 = cspec0_;
-    r.eta = eta_;
-    r.f0 = f0_;
-    walk_ = microsurface::Walk(shape_, r);
-    walks_ = true;
-  }
+  if (shape_.is_delta(ggx::kDeltaAlpha)) specular_ = Specular::Mirror;
+  else if (m.multiscatter_walk && roughness_ > 0.075f && !m.transmits()) specular_ = Specular::Walk;
   if (m.coat_weight > 0.0f) coat_ = ClearcoatV1(m.coat_weight, m.coat_roughness);
   if (m.sheen_weight > 0.0f) sheen_ = SheenV1(m.sheen_weight, m.sheen_tint, base, diffuse_weight);
+}
+
+microsurface::Walk PrincipledBsdf::walk() const {
+  microsurface::Reflectance r;
+  r.fresnel = true;
+  r.cspec0 = cspec0_;
+  r.eta = eta_;
+  r.f0 = f0_;
+  return microsurface::Walk(shape_, r);
 }
 
 Vec3 PrincipledBsdf::fresnel(float cos_ih) const {
@@ -102,7 +104,8 @@ PrincipledBsdf::View PrincipledBsdf::at(const Vec3& wo, const CoatNormal& coat_n
   return v;
 }
 
-LobeEval PrincipledBsdf::eval_parts(const View& v, const Vec3& wi, bool with_walk) const {
+template <bool kWithWalk>
+LobeEval PrincipledBsdf::eval_parts(const View& v, const Vec3& wi) const {
   const Vec3& wo = v.wo;
   if (wo.z <= 0.0f) return {};
   LobeEval f_cos;
@@ -123,13 +126,15 @@ LobeEval PrincipledBsdf::eval_parts(const View& v, const Vec3& wi, bool with_wal
     f_cos.diffuse = diffuse_color_ * (kInvPi * burley * wi.z);
   }
   if (sheen_.active()) f_cos.diffuse += sheen_.eval(cos_d, wi.z);
-  if (walks_) {
-    if (with_walk) f_cos.glossy += specular_weight_ * walk_.eval(wo, wi);
-  } else if (!has_delta()) {
+  if (specular_ == Specular::Ggx) {
     const float g = v.g1_o * shape_.G1(wi);
     f_cos.glossy = fresnel(cos_d) * (shape_.D(h) * g / v.four_cos_o) + f_cos.glossy;
+  } else if (kWithWalk && specular_ == Specular::Walk) {
+    f_cos.glossy += specular_weight_ * walk().eval(wo, wi);
   }
   return f_cos;
 }
+template LobeEval PrincipledBsdf::eval_parts<true>(const View& v, const Vec3& wi) const;
+template LobeEval PrincipledBsdf::eval_parts<false>(const View& v, const Vec3& wi) const;
 
 }  // namespace torrance

@@ -140,11 +140,13 @@ class PathTracer {
       media_.stack = pixel.start_media ? *pixel.start_media : ctx.camera_media;
       media_.aims = ctx.scene.media().aims() && aimable_lights(lights_) > 0;
     }
-    if (kMixtures && ctx.dispersion) {  // the path's wavelength, from a point of its own
-      const uint32_t resume = sampler_.point_index();
-      sampler_.continue_at_point(kWavelengthPoints);
-      wavelength_ = dispersion::sample_wavelength(sampler_.next_4d().x);
-      sampler_.continue_at_point(resume);
+    if constexpr (kMixtures) {
+      if (ctx.dispersion) {  // the path's wavelength, from a point of its own
+        const uint32_t resume = sampler_.point_index();
+        sampler_.continue_at_point(kWavelengthPoints);
+        dispersion_.wavelength = dispersion::sample_wavelength(sampler_.next_4d().x);
+        sampler_.continue_at_point(resume);
+      }
     }
   }
 
@@ -561,13 +563,13 @@ class PathTracer {
       v.local_bsdf.emplace(shade_material(ctx_.scene, hit.material, globals, v.textured, ctx_.settings.brdf_model,
                                           ctx_.bsdfs[hit.material], v.material, v.program_regs.data(),
                                           v.closure_list ? &*v.closure_list : nullptr, subsurface,
-                                          walk_state(hit), wavelength_.micrometres));
+                                          walk_state(hit), dispersion_.wavelength.micrometres));
       v.bsdf = &*v.local_bsdf;
       v.strands = v.local_bsdf->hair_only();
       // Dispersion (dispersion.h): the first dispersive closure makes the path monochromatic.
-      if (v.material.wavelength > 0.0f && !monochromatic_) {
-        throughput_ *= wavelength_.weight;
-        monochromatic_ = true;
+      if (v.material.wavelength > 0.0f && !dispersion_.monochromatic) {
+        throughput_ *= dispersion_.wavelength.weight;
+        dispersion_.monochromatic = true;
       }
     } else {
       v.material = ctx_.scene.material(hit.material);
@@ -745,11 +747,11 @@ class PathTracer {
                                         ctx_.settings.max_transparent_bounces, path_state_, seed, shadow_sets);
     } else {
       (void)seed;
-      if (shadow_sets != kAllLinkSets)
-        return linked_shadow_transmittance(ctx_.scene, v.hit->position, v.at.ng, ls, shadow_sets,
-                                           ctx_.settings.max_transparent_bounces, path_state_);
-      return shadow_transmittance<kAlpha>(ctx_.scene, v.hit->position, v.at.ng, ls,
-                                          ctx_.settings.max_transparent_bounces, path_state_);
+      if (shadow_sets == kAllLinkSets)
+        return shadow_transmittance<kAlpha>(ctx_.scene, v.hit->position, v.at.ng, ls,
+                                            ctx_.settings.max_transparent_bounces, path_state_);
+      return linked_shadow_transmittance(ctx_.scene, v.hit->position, v.at.ng, ls, shadow_sets,
+                                         ctx_.settings.max_transparent_bounces, path_state_);
     }
   }
 
@@ -1102,7 +1104,7 @@ class PathTracer {
     reflector_share_.clear();
     ray_ = first_vertex_->ray;
     throughput_ = Vec3(1.0f);
-    monochromatic_ = false;  // a dispersive first vertex weighs the branch again (same wavelength)
+    if constexpr (kMixtures) dispersion_.monochromatic = false;  // a dispersive first vertex weighs the branch again
     path_length_ = 0.0f;
     path_state_ = PathState{};
     path_state_.ray_flags = kRayCamera;
@@ -1183,10 +1185,6 @@ class PathTracer {
   float path_luminance_ = 0.0f;
   RoulettePath roulette_;  // learns at the end
   Vec3 throughput_{1.0f};
-  // Dispersion (PathContext::dispersion, mixture tracers only): the path's wavelength, and
-  // whether its throughput took the wavelength's weight (at its first dispersive vertex).
-  dispersion::Wavelength wavelength_{};
-  bool monochromatic_ = false;
   Vec3 diffuse_share_{0.0f};  // per channel, of the energy that left the first hit
   ScatterVertex last_;
   LightChoice light_choice_;  // NEE's choice at the latest vertex, for MIS when the next ray hits a light
@@ -1249,6 +1247,14 @@ class PathTracer {
     std::array<SurfaceHit, kMaxProbeHits> probed;  // Christensen-Burley's probe hits
   };
   [[no_unique_address]] std::conditional_t<kSubsurface, Subsurface, NoMedia> subsurface_;
+  // Dispersion (PathContext::dispersion, kMixtures: only mixture tracers shade dispersive
+  // closures, select_path_tracer): the path's wavelength, and whether its throughput took the
+  // wavelength's weight (at its first dispersive vertex); nothing for the other tracers.
+  struct Dispersion {
+    dispersion::Wavelength wavelength{};
+    bool monochromatic = false;
+  };
+  [[no_unique_address]] std::conditional_t<kMixtures, Dispersion, NoMedia> dispersion_;
 };
 
 template <bool kTextures, bool kSplitLobes, bool kHittable, bool kGlass, bool kAlpha, bool kMixtures,

@@ -142,10 +142,17 @@ inline void prepare(View& v, const Vec3& wo, const ggx::Shape& shape) {
   v.four_cos_o = 4.0f * wo.z;
 }
 
-// The pdf of the lobes inside the coat and sheen (`inner`) with theirs around it.
-template <typename Bsdf, typename V>
-float pdf_around(const Bsdf& bsdf, const V& v, const Vec3& wi, float inner) {
-  float pdf = inner;
+// The mixture's pdf of wi seen from the prepared v, its specular lobe the walk's estimate (kWalk)
+// or GGX's visible normals'.
+template <bool kWalk, typename Bsdf, typename V>
+float pdf_of(const Bsdf& bsdf, const V& v, const Vec3& wi, const ggx::Shape& shape) {
+  const Vec3& wo = v.wo;
+  if (wo.z <= 0.0f) return 0.0f;
+  float pdf = (1.0f - v.p_spec) * cosine_hemisphere_pdf(v.diffuse_normal.cosine(wi));
+  if (wi.z > 0.0f && !bsdf.has_delta() && v.p_spec > 0.0f) {
+    if constexpr (kWalk) pdf += v.p_spec * bsdf.walk_pdf(wo, wi);
+    else pdf += v.p_spec * (v.g1_o * shape.D(glm::normalize(wo + wi)) / v.four_cos_o);
+  }
   if constexpr (HasCoat<Bsdf>::value) {
     if (v.p_coat > 0.0f) pdf = (1.0f - v.p_coat) * pdf + v.p_coat * bsdf.coat_pdf(v, wi);
   }
@@ -155,19 +162,36 @@ float pdf_around(const Bsdf& bsdf, const V& v, const Vec3& wi, float inner) {
   return pdf;
 }
 
-// The mixture's pdf of wi seen from the prepared v (Bsdf::View, or View for models without a sheen).
+// pdf_of<true>, out of line (see pdf below).
+template <typename Bsdf, typename V>
+[[gnu::noinline]] float walking_pdf(const Bsdf& bsdf, const V& v, const Vec3& wi, const ggx::Shape& shape) {
+  return pdf_of<true>(bsdf, v, wi, shape);
+}
+
+// The mixture's pdf of wi seen from the prepared v (Bsdf::View, or View for models without a
+// sheen). The walk's is a call of its own: GGX's stays free of it (and of the registers it saves).
 template <typename Bsdf, typename V>
 float pdf(const Bsdf& bsdf, const V& v, const Vec3& wi, const ggx::Shape& shape) {
-  const Vec3& wo = v.wo;
-  if (wo.z <= 0.0f) return 0.0f;
-  float pdf = (1.0f - v.p_spec) * cosine_hemisphere_pdf(v.diffuse_normal.cosine(wi));
-  if (wi.z > 0.0f && !bsdf.has_delta() && v.p_spec > 0.0f) {
-    if constexpr (HasWalk<Bsdf>::value) {
-      if (bsdf.walks()) return pdf_around(bsdf, v, wi, pdf + v.p_spec * bsdf.walk_pdf(wo, wi));
-    }
-    pdf += v.p_spec * (v.g1_o * shape.D(glm::normalize(wo + wi)) / v.four_cos_o);
+  if constexpr (HasWalk<Bsdf>::value) {
+    if (bsdf.walks()) return walking_pdf(bsdf, v, wi, shape);
   }
-  return pdf_around(bsdf, v, wi, pdf);
+  return pdf_of<false>(bsdf, v, wi, shape);
+}
+
+// The specular lobe's walk drawn (u_lobe: the lobe choice's number, rescaled), weighed as above.
+// Out of line: only Blender 3.x's Multiscatter GGX walks, and inlined it would push GGX's own
+// sampling out of sample() below.
+template <typename Bsdf>
+[[gnu::noinline]] BsdfSample sample_walk(const Bsdf& bsdf, const typename Bsdf::View& v, float u_lobe, const Vec2& u,
+                                         const ggx::Shape& shape) {
+  const BsdfSample walk = bsdf.walk_sample(v.wo, u_lobe, u);
+  if (!walk.valid()) return BsdfSample{};
+  BsdfSample s;
+  s.wi = walk.wi;
+  s.pdf = pdf(bsdf, v, s.wi, shape);
+  if (!(s.pdf > 0.0f)) return BsdfSample{};
+  s.weight = (bsdf.eval_lobes_but_walk(v, s.wi).total() + walk.weight * walk.pdf) / s.pdf;
+  return s;
 }
 
 // Samples the mixture seen from the prepared v (Bsdf::View derives from View); eval and pdf of
@@ -215,15 +239,7 @@ BsdfSample sample(const Bsdf& bsdf, const typename Bsdf::View& v, float u_lobe, 
       return s;
     }
     if constexpr (HasWalk<Bsdf>::value) {
-      if (bsdf.walks()) {
-        const BsdfSample walk = bsdf.walk_sample(wo, u_lobe / v.p_spec, u);
-        if (!walk.valid()) return BsdfSample{};
-        s.wi = walk.wi;
-        s.pdf = pdf(bsdf, v, s.wi, shape);
-        if (!(s.pdf > 0.0f)) return BsdfSample{};
-        s.weight = (bsdf.eval_lobes_but_walk(v, s.wi).total() + walk.weight * walk.pdf) / s.pdf;
-        return s;
-      }
+      if (bsdf.walks()) return sample_walk(bsdf, v, u_lobe / v.p_spec, u, shape);
     }
     s.wi = ggx::reflect(wo, shape.sample_visible_normal(wo, u));
     if (s.wi.z <= 0.0f) return BsdfSample{};

@@ -55,31 +55,28 @@ class PrincipledBsdf : public lobe_mixture::Queries<PrincipledBsdf> {
   View at(const Vec3& wo, const CoatNormal& coat = {}) const;        // with the lobe choice p_spec
   View geometry(const Vec3& wo, const CoatNormal& coat = {}) const;  // without it (p_spec = 1): enough for eval
 
-  LobeEval eval_lobes(const View& v, const Vec3& wi) const { return eval_parts(v, wi, true); }
+  LobeEval eval_lobes(const View& v, const Vec3& wi) const { return eval_parts<true>(v, wi); }
   using lobe_mixture::Queries<PrincipledBsdf>::eval_lobes;  // pdf, sample, eval: lobe_mixture::Queries
 
   float alpha() const { return alpha_; }
   const ggx::Shape& shape() const { return shape_; }
   // Anisotropic: the tangent into the shading frame (ggx_shape.h); before at().
-  void orient(const Frame& frame) {
-    shape_.orient(frame);
-    walk_.orient(frame);
-  }
-  bool has_delta() const { return shape_.is_delta(ggx::kDeltaAlpha); }
+  void orient(const Frame& frame) { shape_.orient(frame); }
+  bool has_delta() const { return specular_ == Specular::Mirror; }
   Vec3 mirror_reflectance(const Vec3& wo) const { return fresnel(wo.z); }
   float specular_probability(const Vec3& wo) const;
   Vec3 fresnel(float cos_ih) const;
 
   // Multiscatter GGX's walk (lobe_mixture.h): whether the specular lobe is one, its pdf estimate,
   // a sample (weight: the walk's throughput times the lobe's weight) and the other lobes' eval.
-  bool walks() const { return walks_; }
-  float walk_pdf(const Vec3& wo, const Vec3& wi) const { return walk_.pdf(wo, wi); }
+  bool walks() const { return specular_ == Specular::Walk; }
+  float walk_pdf(const Vec3& wo, const Vec3& wi) const { return walk().pdf(wo, wi); }
   BsdfSample walk_sample(const Vec3& wo, float u_lobe, const Vec2& u) const {
-    BsdfSample s = walk_.sample(wo, u_lobe, u);
+    BsdfSample s = walk().sample(wo, u_lobe, u);
     s.weight *= specular_weight_;
     return s;
   }
-  LobeEval eval_lobes_but_walk(const View& v, const Vec3& wi) const { return eval_parts(v, wi, false); }
+  LobeEval eval_lobes_but_walk(const View& v, const Vec3& wi) const { return eval_parts<false>(v, wi); }
 
   // The clearcoat lobe (lobe_mixture.h).
   bool has_coat() const { return coat_.active(); }
@@ -93,7 +90,12 @@ class PrincipledBsdf : public lobe_mixture::Queries<PrincipledBsdf> {
   const SheenV1& sheen() const { return sheen_; }
 
  private:
-  LobeEval eval_parts(const View& v, const Vec3& wi, bool with_walk) const;
+  // The lobes' eval, the walk's (Specular::Walk) with kWithWalk.
+  template <bool kWithWalk>
+  LobeEval eval_parts(const View& v, const Vec3& wi) const;
+  // Specular::Walk: the walk, made where it is asked for from shape_ (oriented) and the lobe's
+  // Fresnel (held, it would make every PrincipledBsdf 80 bytes larger to build).
+  microsurface::Walk walk() const;
 
   Vec3 diffuse_color_;  // (1 - metallic) (1 - transmission) * base colour
   float diffuse_luminance_;  // luminance(diffuse_color_), for the lobe choice
@@ -101,8 +103,10 @@ class PrincipledBsdf : public lobe_mixture::Queries<PrincipledBsdf> {
   Vec3 cspec0_;
   float roughness_, alpha_, eta_, f0_;
   ggx::Shape shape_;  // the specular lobe: alpha_, or stretched by Anisotropic
-  bool walks_ = false;
-  microsurface::Walk walk_;  // with walks_: the specular lobe
+  // What the specular lobe is, fixed at construction (eval, pdf and sample ask it every time):
+  // GGX, a mirror (below ggx::kDeltaAlpha) or Multiscatter GGX's walk (walk()).
+  enum class Specular : uint8_t { Ggx, Mirror, Walk };
+  Specular specular_ = Specular::Ggx;
   ClearcoatV1 coat_;
   SheenV1 sheen_;
   // Subsurface (subsurface_lobe.h): the diffuse keeps its retro-reflection, its Lambertian part only

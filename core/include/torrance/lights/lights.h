@@ -123,12 +123,13 @@ class AreaLight {
 // world's node graph reads it; NEE reads it with kRayEmission).
 class WorldLight {
  public:
-  explicit WorldLight(const Vec3& radiance) : radiance_(radiance) {}
+  explicit WorldLight(const Vec3& radiance)
+      : radiance_(radiance),
+        luminance_(std::abs(luminance(radiance))),
+        black_(!(max_component(glm::abs(radiance)) > 0.0f)) {}
   explicit WorldLight(std::shared_ptr<const EnvironmentMap> map) : map_(std::move(map)) {}
   LightSample sample(const Vec3& p, const Vec3& n, const Vec2& u, const PathState& receiver = {}) const;
-  float importance(const Vec3&, const Vec3&) const {
-    return (map_ ? map_->average_luminance() : std::abs(luminance(radiance_))) * kPi;
-  }
+  float importance(const Vec3&, const Vec3&) const { return (map_ ? map_->average_luminance() : luminance_) * kPi; }
   bool hit(const Vec3& p, const Vec3& n, const Vec3& dir, float t_max, LightHit& out,
            const PathState& state = {}) const;
   Vec3 radiance(const Vec3& dir, const PathState& state = {}) const {
@@ -136,7 +137,7 @@ class WorldLight {
   }
   // A map whose samples all came out black may still shine on some rays (a node graph reading
   // the Light Path): only a uniform black world is no world.
-  bool black() const { return map_ ? false : !(max_component(glm::abs(radiance_)) > 0.0f); }
+  bool black() const { return black_; }
   bool is_map() const { return map_ != nullptr; }
   bool in_nee() const { return map_ && map_->average_luminance() > 0.0f; }
   bool reads_path() const { return map_ && map_->reads_path(); }
@@ -144,6 +145,10 @@ class WorldLight {
  private:
   Vec3 radiance_{0.0f};
   std::shared_ptr<const EnvironmentMap> map_;
+  // Of a uniform colour, made with it (every ray that leaves the scene asks black()): |luminance|
+  // of radiance_, and whether it is black (a negative world is not).
+  float luminance_ = 0.0f;
+  bool black_ = false;
 };
 
 // How next-event estimation chooses a light at a shading point.
