@@ -7,8 +7,12 @@ closures are at least a quarter rough, and write there its rough closures' albed
 normal in camera space; a path that escapes writes the world's colour as albedo and no normal.
 The scene has each case: a red Diffuse sphere and a Diffuse floor and wall seen directly, a
 smooth mirror (Glossy, roughness 0) and a smooth Glass sphere (roughness 0, IOR 1.45) showing
-them, a rough gold metal sphere (Glossy, roughness 0.5: rough, it stops the path), and the
-world above the wall. Checks, Cycles seed 0 the reference and seed 1 the bounds
+them, a rough gold metal sphere (Glossy, roughness 0.5: rough, it stops the path), the
+world above the wall, and two partly transparent sheets: a leaf (Mix of 60 % Transparent and 40 %
+Diffuse) and a veil (Principled Alpha 0.3). Cycles counts the Transparent closure among the
+surface's closures (3.x/4.x: a singular one; 5.3: always carried through) and takes it by its
+sample weight; Torrance passes a sheet before shading it, with probability 1 - opacity.
+Checks, Cycles seed 0 the reference and seed 1 the bounds
 (torrance_tools.render_passes), Torrance seeds 2 and 3: Denoising Albedo, Normal and Depth
 agree within Cycles' own noise (the Normal on the signed block metric, bounded by Cycles' own
 noise alone: its negative blocks count). Faults that must fail: the albedo and normal guides
@@ -128,9 +132,35 @@ def build(scene):
                           bsdf("Glass", "glass", (1.0, 1.0, 1.0), ior=1.45))
     testing.sphere_object(scene, "Gold", (0.7, 0.9, 0.45), 0.45,
                           bsdf("Gold", "glossy", (0.9, 0.7, 0.3), roughness=0.5))
+    testing.mesh_object(scene, "Leaf", [(-2.8, -0.9, 0.1), (-1.3, -0.9, 0.1), (-1.3, -0.9, 1.2),
+                                        (-2.8, -0.9, 1.2)], [(0, 1, 2, 3)], leaf())
+    testing.mesh_object(scene, "Veil", [(0.1, -0.3, 0.05), (1.2, -0.3, 0.05), (1.2, -0.3, 1.1),
+                                        (0.1, -0.3, 1.1)], [(0, 1, 2, 3)], veil())
     testing.add_sun(scene, strength=3.0)
     testing.set_world(scene, (0.3, 0.35, 0.45))
     scene.view_layers[0].cycles.denoising_store_passes = True
+
+
+def leaf():
+    """A leaf of 60 % Transparent BSDF and 40 % Diffuse: mostly diffuse by its sample weights
+    (Cycles 3.x/4.x write its features, 5.3 a part of its normal and carry the rest through)."""
+    mat, nodes, links, out = node_material("Leaf")
+    mix = nodes.new("ShaderNodeMixShader")
+    mix.inputs["Fac"].default_value = 0.4
+    links.new(nodes.new("ShaderNodeBsdfTransparent").outputs[0], mix.inputs[1])
+    diffuse = nodes.new("ShaderNodeBsdfDiffuse")
+    diffuse.inputs["Color"].default_value = (0.8, 0.7, 0.3, 1.0)
+    links.new(diffuse.outputs[0], mix.inputs[2])
+    links.new(mix.outputs[0], out.inputs["Surface"])
+    return mat
+
+
+def veil():
+    """A Principled BSDF of Alpha 0.3: mostly transparent (Cycles 3.x/4.x carry its features
+    through it, and on along whichever closure the path takes)."""
+    mat = principled("Veil", (0.2, 0.6, 0.15), 0.5)
+    mat.node_tree.nodes["Principled BSDF"].inputs["Alpha"].default_value = 0.3
+    return mat
 
 
 def compared(img, name, _ref):

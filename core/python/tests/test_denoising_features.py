@@ -124,3 +124,39 @@ def test_cycles53_weighs_the_normal_seen_in_a_mirror():
     assert np.allclose(smooth["DenoisingNormal"], 0.9 * np.asarray(hard["DenoisingNormal"]),
                        rtol=2e-3, atol=1e-4)
     assert np.allclose(smooth["DenoisingAlbedo"], hard["DenoisingAlbedo"], rtol=1e-4)
+
+
+def plane_under_sheet(alpha, grey):
+    """The rough plane (albedo 0.64, 0.54, 0.44 head-on) under a Diffuse-only sheet (Principled,
+    Specular 0) of Alpha `alpha` 2 m above it, between it and the camera."""
+    scene = plane_scene(base_color=(0.6, 0.5, 0.4), roughness=0.5)
+    scene.add_material(base_color=(grey, grey, grey), roughness=0.5, specular=0.0, alpha=alpha)
+    sheet = np.array([[-50, -50, 2], [50, -50, 2], [50, 50, 2], [-50, 50, 2]], np.float32)
+    scene.add_mesh(sheet, np.array([[0, 1, 2], [0, 2, 3]], np.int32),
+                   material_indices=np.array([1, 1], np.int32))
+    return scene
+
+
+def test_a_mostly_diffuse_sheet_writes_its_features_whichever_way_the_path_goes():
+    """Cycles 3.x: Alpha 0.5 of grey 0.8 is a Transparent closure of sample weight 0.5 and a
+    diffuse one of 0.4 (more than a quarter: the sheet writes): albedo 0.4, its normal and its
+    depth on every sample, passed through or not (Torrance passes half of them before shading)."""
+    albedo, normal, depth = features(plane_under_sheet(0.5, 0.8))
+    assert np.allclose(albedo, 0.4, atol=1e-5)
+    assert np.allclose(normal, [0.0, 0.0, -1.0], atol=1e-4)
+    assert np.allclose(depth, 3.0, atol=0.1)
+
+
+def test_a_mostly_transparent_sheet_carries_its_features_on_by_cycles_choice():
+    """Cycles 3.x: Alpha 0.2 of grey 0.5: sample weights 0.8 (Transparent) and 0.1 (diffuse, under
+    a quarter): the features go on x 0.8 along the closure the path takes, the Transparent one with
+    Cycles' defended probability at the first hit (the floor 0.9 / 8 lifts the diffuse one to
+    0.1125): q = 0.8 / 0.9125 to the plane, else a diffuse bounce up to the world. Torrance passes
+    with probability 0.8. The world's light found on the bounce adds at most 0.8 x the diffuse
+    weight 0.1 x the world (its path throughput weighs the choice already; MIS takes some)."""
+    albedo, normal, _depth = features(plane_under_sheet(0.2, 0.5))
+    q = 0.8 / 0.9125
+    plane = 0.8 * q * np.array([0.64, 0.54, 0.44])
+    mean = albedo.mean(axis=(0, 1))
+    assert np.all(mean > 0.97 * plane) and np.all(mean < 1.03 * (plane + 0.08 * np.array(WORLD)))
+    assert abs(normal[..., 2].mean() + q) < 0.04 and np.abs(normal[..., :2]).max() < 1e-4

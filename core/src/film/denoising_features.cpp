@@ -64,6 +64,8 @@ float DenoisingClosures::feature_weight() const {
 
 float DenoisingClosures::defensive_ratio(bool transmitted) const {
   if (cycles4_closures || count <= 1 || !(sum_weight > 0.0f)) return 1.0f;
+  // The path stayed on the surface: of its closures but the Transparent one (whose sample weight
+  // is in sum_weight, so in Cycles' floor, not in the side's plain probability).
   float plain = 0.0f, defended = 0.0f, defended_sum = 0.0f;
   for (int i = 0; i < count; ++i) {
     const float w = sample_weights[size_t(i)], d = std::max(w, 0.125f * sum_weight);
@@ -73,7 +75,34 @@ float DenoisingClosures::defensive_ratio(bool transmitted) const {
       defended += d;
     }
   }
-  return plain > 0.0f ? (defended / defended_sum) / (plain / sum_weight) : 1.0f;
+  return plain > 0.0f ? (defended / defended_sum) / (plain / (sum_weight - transparent_weight)) : 1.0f;
+}
+
+void DenoisingClosures::add_transparent(float opacity, const Vec3& through) {
+  diffuse_albedo *= opacity;
+  specular_albedo *= opacity;
+  sum_weight *= opacity;
+  sum_nonspecular *= opacity;
+  for (int i = 0; i < count; ++i) sample_weights[size_t(i)] *= opacity;
+  const float w = std::abs(mean(through));
+  if (!(w >= kWeightCutoff)) return;
+  transparent_albedo = through;
+  transparent_weight = w;
+  if (smooth_weights) return;  // 5.3: outside the decision, carried on whole (DenoisingFeatures::surface)
+  specular_albedo += through;  // 3.x/4.x: a singular closure
+  sum_weight += w;
+}
+
+float DenoisingClosures::transparent_probability(bool defended) const {
+  if (!(transparent_weight > 0.0f)) return 0.0f;
+  float others = 0.0f;
+  for (int i = 0; i < count; ++i) others += sample_weights[size_t(i)];
+  if (!defended) return transparent_weight / (transparent_weight + others);
+  const float floor = 0.125f * (transparent_weight + others);
+  float defended_others = 0.0f;
+  for (int i = 0; i < count; ++i) defended_others += std::max(sample_weights[size_t(i)], floor);
+  const float t = std::max(transparent_weight, floor);
+  return t / (t + defended_others);
 }
 
 void DenoisingClosures::add_glass(const Vec3& reflect, const Vec3& refract, float reflect_r2, float refract_r2) {
@@ -212,19 +241,23 @@ void DenoisingFeatures::surface(const DenoisingClosures& c, float segment, const
                                 const std::array<Vec3, 3>& camera_axes, PathRadiance& out) {
   if (!open_) return;
   auto finite = [](float v) { return std::isfinite(v) ? v : 0.0f; };
-  const float share = share_ * choice_;
+  const float share = share_ * choice_ * transparency_choice_;
   out.denoising_depth += share * finite(mean(throughput_) * segment);
   const bool first = first_;
   first_ = false;
+  defended_ = first && !c.cycles4_closures;
   const float written = c.feature_weight();
   if (written > 0.0f && c.sum_weight > 0.0f) {  // 5.3 weighs the normal as the albedo
-    const float weight = share * written * (c.smooth_weights ? mean(throughput_) : 1.0f);
+    float weight = share * written * (c.smooth_weights ? mean(throughput_) : 1.0f);
+    if (c.smooth_weights && c.transparent_weight > 0.0f)  // 5.3: x the opaque closures' share
+      weight *= c.sum_weight / (c.sum_weight + c.transparent_weight);
     for (int i = 0; i < 3; ++i)
       out.denoising_normal[i] += finite(weight * glm::dot(normal, camera_axes[size_t(i)]));
   }
   const Vec3 albedo = throughput_ * c.diffuse_albedo * written;
   for (int i = 0; i < 3; ++i) out.denoising_albedo[i] += share * finite(albedo[i]);
-  const Vec3 carried = c.specular_albedo * (1.0f - written);
+  Vec3 carried = c.specular_albedo * (1.0f - written);
+  if (c.smooth_weights && c.transparent_weight > 0.0f) carried += c.transparent_albedo;  // 5.3: always on
   const bool goes_on = c.smooth_weights ? std::max({std::abs(carried.x), std::abs(carried.y), std::abs(carried.z)}) > 1e-4f : written == 0.0f;
   if (!goes_on) {
     open_ = false;
@@ -232,6 +265,13 @@ void DenoisingFeatures::surface(const DenoisingClosures& c, float segment, const
   }
   throughput_ *= carried;
   if (first) first_closures_ = c;
+}
+
+void DenoisingFeatures::left_transparent_surface(const DenoisingClosures& c, bool passed, float opacity) {
+  if (!open_) return;
+  const float q = c.transparent_probability(defended_);
+  const float torrance = passed ? 1.0f - opacity : opacity;
+  if (torrance > 0.0f) transparency_choice_ *= (passed ? q : 1.0f - q) / torrance;
 }
 
 }  // namespace torrance

@@ -33,6 +33,17 @@
 // write is weighed by Cycles' probability of the side the path left on (reflected or
 // transmitted) over the undefended one, which Torrance's sampling follows. Cycles 4.x (the
 // PRINCIPLED_V2 model) samples no hit defensively (surface_shader_prepare_closures of 4.x and 5.x).
+//
+// Transparency: Cycles counts a surface's Transparent closure (a Mix with a Transparent BSDF, a
+// Principled Alpha below 1: weight (1 - alpha) x its colour, the others x alpha) among its
+// closures. 3.x/4.x: a singular one (specular-like: its sample weight in the sum, its weight in the
+// specular albedo carried on); 5.3: left out of the decision, always carried on (the feature
+// throughput x its weight) and the normal written x the opaque share of the closures' weight. The
+// path then takes it with probability its sample weight over all (3.4's first hit: defended).
+// Torrance passes a surface with probability 1 - opacity before shading it, so the surface's
+// features are written on both sides of that choice (add_transparent) and what later surfaces
+// write is weighed by Cycles' probability of the side taken over Torrance's
+// (left_transparent_surface).
 #pragma once
 
 #include "integrator/path_tracer.h"
@@ -66,6 +77,8 @@ struct DenoisingClosures {
   bool smooth_weights;    // Cycles 5.3's: smooth roughness and feature weights, its glass albedo
   Vec3 diffuse_albedo{0.0f}, specular_albedo{0.0f};
   float sum_weight = 0.0f, sum_nonspecular = 0.0f;  // Cycles' sample weights
+  Vec3 transparent_albedo{0.0f};  // the Transparent closure's weight
+  float transparent_weight = 0.0f;  // its sample weight
   // The closures' sample weights and whether they transmit, for the defensive sampling.
   static constexpr int kMaxClosures = 4 * kMaxMixtureComponents;
   // Only the first `count` are set (not cleared: a surface's closures are built per path vertex).
@@ -88,6 +101,11 @@ struct DenoisingClosures {
   void add_glass(const Vec3& reflect, const Vec3& refract, float reflect_r2, float refract_r2);
   // Principled v2's closures (Cycles 4.x: PrincipledV2Bsdf::closure_albedos, the glass).
   void add_principled_v2(const Material& m, float w, float cos_no, bool backfacing);
+  // The closures added so far are the opaque part's, weighed as if opaque: scale them by the
+  // surface's opacity and add its Transparent closure of weight `through` (3.x/4.x: specular-like).
+  void add_transparent(float opacity, const Vec3& through);
+  // Cycles' probability of taking the Transparent closure (defended: 3.4's first hit).
+  float transparent_probability(bool defended) const;
   // The share of the features this surface writes: 3.x/4.x, all where more than a quarter of
   // the closures' weight is diffuse-like (or there is no closure), else none; 5.3, smoothly.
   float feature_weight() const;
@@ -114,12 +132,17 @@ class DenoisingFeatures {
   void left_first_hit(bool transmitted) {
     if (open_) choice_ = first_closures_.defensive_ratio(transmitted);
   }
+  // The path passed the surface just written (c: its closures, add_transparent's) or stayed, as
+  // Torrance chose it with probability 1 - opacity: what later surfaces write is weighed by
+  // Cycles' probability of that side over Torrance's.
+  void left_transparent_surface(const DenoisingClosures& c, bool passed, float opacity);
 
  private:
   bool open_;
   bool first_ = true;
+  bool defended_ = false;  // the last surface written was the camera's first one in Cycles 3.4
   Vec3 throughput_{1.0f};
-  float share_ = 1.0f, choice_ = 1.0f;
+  float share_ = 1.0f, choice_ = 1.0f, transparency_choice_ = 1.0f;
   DenoisingClosures first_closures_;  // the first hit's, when the features went on past it
 };
 

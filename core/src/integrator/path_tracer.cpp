@@ -57,6 +57,9 @@ struct Segment {
   bool found = false;          // false: the ray left the scene
   float passed_length = 0.0f;  // through transparent surfaces on the way (kAlpha; kMedia: volume boundaries too)
   bool scattered = false;      // kMedia: it ended in a medium, at PathTracer::media_'s walk.position
+  float opacity = 1.0f;        // kAlpha: of the surface it stopped at (passed with 1 - it)
+  Vec3 through{0.0f};          // that surface's Transparent closure's weight
+  float features_from = 0.0f;  // passed_length (less tmin) at the last passed surface the features met
 };
 
 // The path's latest scattering vertex, as the next segment needs it: MIS of the light its ray
@@ -328,8 +331,11 @@ class PathTracer {
       if (opacity >= 1.0f || sampler_.next_4d().x < opacity) {  // the vertex below records it
         if (held_out) return false;
         if (bounce == 0) first_opacity_ = opacity;
+        seg.opacity = opacity;
+        seg.through = (1.0f - opacity) * tint;
         return true;
       }
+      if (features_.open() && !again) features_at_passed_surface(seg, bounce, opacity, tint);
       if (bounce == 0 && !surface_data_done_ && opacity >= ctx_.settings.pass_alpha_threshold) {
         // A surface the camera ray passes: its interpolated normal, facing the ray.
         const bool facing = glm::dot(hit.geometric_normal, ray_.dir) < 0.0f;
@@ -657,14 +663,54 @@ class PathTracer {
     if (light_groups_) credit(hit.object_settings.light_group, arrived);
   }
 
-  // Cycles' denoising features at this surface.
+  // Cycles' denoising features at this surface (a partly transparent one: the path stayed).
   void denoising_features(const Vertex& v, const Segment& seg) {
+    DenoisingClosures closures = closures_for_features(v);
+    const float segment = seg.passed_length + seg.hit->t - ray_.tmin - seg.features_from;
+    if (!(seg.opacity < 1.0f)) {
+      features_.surface(closures, segment, v.at.ns, ctx_.camera_axes, out_);
+      return;
+    }
+    closures.add_transparent(seg.opacity, seg.through);
+    features_.surface(closures, segment, v.at.ns, ctx_.camera_axes, out_);
+    features_.left_transparent_surface(closures, false, seg.opacity);
+  }
+
+  DenoisingClosures closures_for_features(const Vertex& v) const {
     DenoisingClosures closures(ctx_.settings.brdf_model == BrdfModel::PrincipledV2,
                                ctx_.settings.smooth_denoising_features);
     const float cos_no = glm::dot(v.at.ns, v.wo_world);
     if (v.closure_list) closures.add_closures(*v.closure_list, cos_no, v.at.backfacing);
     else closures.add_material(v.material, 1.0f, cos_no, v.at.backfacing);
-    features_.surface(closures, seg.passed_length + seg.hit->t - ray_.tmin, v.at.ns, ctx_.camera_axes, out_);
+    return closures;
+  }
+
+  // A surface the ray passes while the features are open: Cycles writes its features whichever
+  // way the path goes (denoising_features.h), so its closures are shaded here for them alone.
+  void features_at_passed_surface(Segment& seg, int bounce, float opacity, const Vec3& tint) {
+    const SurfaceHit& hit = *seg.hit;
+    DenoisingClosures closures(ctx_.settings.brdf_model == BrdfModel::PrincipledV2,
+                               ctx_.settings.smooth_denoising_features);
+    Vec3 normal = glm::dot(hit.geometric_normal, ray_.dir) < 0.0f ? hit.shading_normal : -hit.shading_normal;
+    if (opacity > 0.0f) {  // shade() moves the path's state on: kept as it was
+      const float path_length = path_length_, first_ray_length = first_ray_length_;
+      const PathState path_state = path_state_;
+      const Vec3 throughput = throughput_;
+      const bool monochromatic = monochromatic_;
+      Vertex v;
+      shade(v, seg, bounce, false);
+      closures = closures_for_features(v);
+      normal = v.at.ns;
+      path_length_ = path_length, first_ray_length_ = first_ray_length;
+      path_state_ = path_state;
+      throughput_ = throughput;
+      monochromatic_ = monochromatic;
+    }
+    closures.add_transparent(opacity, (1.0f - opacity) * tint);
+    const float at = seg.passed_length + hit.t - ray_.tmin;
+    features_.surface(closures, at - seg.features_from, normal, ctx_.camera_axes, out_);
+    features_.left_transparent_surface(closures, true, opacity);
+    seg.features_from = at;
   }
 
   // The AO pass (Cycles' integrate_surface_ao): one cosine-distributed ray about the diffuse
