@@ -7,50 +7,30 @@
 #include <cstring>
 
 namespace torrance::microsurface {
+float Random::next() { return float(hash_combine(seed_, count_++) >> 8) * 0x1p-24f; }
+
 namespace {
-
-constexpr int kMaxBounces = 10;  // Cycles 3.4's
-
-// The walk's random numbers: a counter hashed with a seed taken from the query's arguments.
-class Random {
- public:
-  explicit Random(uint32_t seed) : seed_(seed) {}
-  float next() { return float(hash_combine(seed_, count_++) >> 8) * 0x1p-24f; }
-  Vec2 next_2d() {
-    const float a = next();
-    return Vec2(a, next());
-  }
-
- private:
-  uint32_t seed_, count_ = 0;
-};
-
 uint32_t bits(float f) {
   uint32_t b;
   std::memcpy(&b, &f, sizeof b);
   return b;
 }
+float height_of(float c1) { return 2.0f * clamp01(c1) - 1.0f; }
+}  // namespace
+
 uint32_t seed_of(const Vec3& a, const Vec3& b) {
   uint32_t s = 0x6d2b79f5U;
   for (const float f : {a.x, a.y, a.z, b.x, b.y, b.z}) s = hash_combine(s, bits(f));
   return s;
 }
 
-// The height model: C1(h) = (h + 1) / 2 on [-1, 1], and G1(w, h) = C1(h)^Lambda(w) for an
-// upward w (1 straight up, 0 at and below the horizon).
 float c1_of(float h) { return clamp01(0.5f * (h + 1.0f)); }
-float height_of(float c1) { return 2.0f * clamp01(c1) - 1.0f; }
 float escape(const Vec3& w, float c1, float lambda_w) {
   if (w.z > 0.9999f) return 1.0f;
   if (w.z < 1e-5f) return 0.0f;
   return std::pow(c1, lambda_w);
 }
 
-// Where a ray of direction w meets the surface again: its C1, height and escape chance in `s`;
-// false when it leaves the surface instead.
-struct Height {
-  float h = 1.0f, c1 = 1.0f, g1 = 0.0f, lambda = 0.0f;
-};
 bool next_height(const Vec3& w, Height& s, float u, HeightStep step) {
   if (w.z > 0.9999f) return false;
   if (w.z < -0.9999f) {
@@ -59,7 +39,8 @@ bool next_height(const Vec3& w, Height& s, float u, HeightStep step) {
     if (u > 1.0f - s.g1) return false;
     // Heitz's inversion of the height CDF; Cycles 3.4 puts an upward ray at the top instead.
     if (step == HeightStep::Cycles && s.lambda >= 0.0f) s.c1 = 1.0f;
-    else s.c1 = std::min(s.c1 * std::pow(1.0f - u, -1.0f / s.lambda), 1.0f);
+    // (min(1, x): a ray at the bottom, C1 = 0, times an infinite step is NaN: the top.)
+    else s.c1 = std::min(1.0f, s.c1 * std::pow(1.0f - u, -1.0f / s.lambda));
   } else {
     return true;  // along the horizon: the same height
   }
@@ -70,7 +51,18 @@ bool next_height(const Vec3& w, Height& s, float u, HeightStep step) {
 
 Vec3 reflect_ray(const Vec3& w, const Vec3& m) { return w - 2.0f * glm::dot(w, m) * m; }
 
-}  // namespace
+float signed_lambda(const ggx::Shape& shape, const Vec3& w) {
+  if (w.z > 0.9999f) return 0.0f;
+  if (w.z < -0.9999f) return -1.0f;
+  const float ax = shape.alpha_x(), ay = shape.alpha_y();
+  const float s = (ax * ax * w.x * w.x + ay * ay * w.y * w.y) / std::max(w.z * w.z, 1e-7f);
+  const float v = std::sqrt(1.0f + s);
+  return 0.5f * ((w.z > 0.0f ? v : -v) - 1.0f);
+}
+
+float facet_density(const ggx::Shape& shape, const Vec3& h) {
+  return shape.anisotropic() ? ggx::D_aniso(h, shape.alpha_x(), shape.alpha_y()) : ggx::D(h, shape.alpha_x());
+}
 
 Vec3 Reflectance::at(float cos_d) const {
   if (!fresnel) return color;
@@ -78,18 +70,8 @@ Vec3 Reflectance::at(float cos_d) const {
   return cspec0 * (1.0f - fh) + Vec3(fh);
 }
 
-float Walk::lambda(const Vec3& w) const {
-  if (w.z > 0.9999f) return 0.0f;
-  if (w.z < -0.9999f) return -1.0f;
-  const float ax = shape_.alpha_x(), ay = shape_.alpha_y();
-  const float s = (ax * ax * w.x * w.x + ay * ay * w.y * w.y) / std::max(w.z * w.z, 1e-7f);
-  const float v = std::sqrt(1.0f + s);
-  return 0.5f * ((w.z > 0.0f ? v : -v) - 1.0f);
-}
-
-float Walk::D(const Vec3& h) const {
-  return shape_.anisotropic() ? ggx::D_aniso(h, shape_.alpha_x(), shape_.alpha_y()) : ggx::D(h, shape_.alpha_x());
-}
+float Walk::lambda(const Vec3& w) const { return signed_lambda(shape_, w); }
+float Walk::D(const Vec3& h) const { return facet_density(shape_, h); }
 
 // The density (per solid angle of `out`) that a ray of direction w, meeting the surface, reflects
 // towards out: D(h) / (4 x the surface's area projected along w), h = normalize(out - w).

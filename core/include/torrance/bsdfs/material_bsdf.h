@@ -20,6 +20,7 @@
 #include "torrance/bsdfs/cook_torrance.h"
 #include "torrance/bsdfs/dispersion.h"
 #include "torrance/bsdfs/glass.h"
+#include "torrance/bsdfs/multiscatter_glass_bsdf.h"
 #include "torrance/bsdfs/outward.h"
 #include "torrance/bsdfs/principled.h"
 #include "torrance/bsdfs/principled_glass_v2.h"
@@ -42,8 +43,9 @@ class MaterialBsdf {
     }
     if (!m.glass_node && !(m.transmission > 0.0f && metallic < 1.0f)) return;
     if (m.glass_node) {
-      glass_.emplace(
-          GlassBsdf(roughness, roughness, m.ior, m.base_color, m.base_color, m.glass_beckmann, false, m.thin_film()));
+      if (m.multiscatter_walk && !m.glass_beckmann) glass_.emplace(MultiscatterGlassBsdf(roughness, m.ior, m.base_color));
+      else
+        glass_.emplace(GlassBsdf(roughness, roughness, m.ior, m.base_color, m.base_color, m.glass_beckmann, false, m.thin_film()));
       glass_weight_ = glass_probability_ = 1.0f;
       opaque_ = false;
       return;
@@ -59,7 +61,10 @@ class MaterialBsdf {
       return;
     }
     const float refract_roughness = 1.0f - (1.0f - roughness) * (1.0f - clamp01(m.transmission_roughness));
-    glass_.emplace(GlassBsdf(roughness, refract_roughness, m.ior, Vec3(1.0f), m.base_color));
+    // Blender 3.x's Multiscatter GGX above roughness 0.05 (Cycles 3.4): the walk, one roughness.
+    if (m.multiscatter_walk && model == BrdfModel::Principled && roughness > 0.05f)
+      glass_.emplace(MultiscatterGlassBsdf::principled(roughness, m.ior, m.base_color, m.specular_tint));
+    else glass_.emplace(GlassBsdf(roughness, refract_roughness, m.ior, Vec3(1.0f), m.base_color));
     if (model == BrdfModel::Paper) opaque_scale_ = 1.0f - glass_weight_;
     opaque_ = glass_probability_ < 1.0f;
   }
@@ -86,11 +91,14 @@ class MaterialBsdf {
   float specular_alpha() const {
     return glass_ || thin_ ? 0.0f : std::visit([](const auto& b) { return b.alpha(); }, bsdf_);
   }
-  // Whether the model's specular lobe is Blender 3.x's Multiscatter GGX walk (principled.h): its
-  // samples count as their own eval in a mixture (mixture_bsdf.h).
+  // Whether the model's specular lobe or the glass is Blender 3.x's Multiscatter GGX walk
+  // (principled.h, multiscatter_glass_bsdf.h): its samples count as their own eval in a mixture
+  // (mixture_bsdf.h).
   bool walks() const {
+    if (glass_walks()) return true;
     return !glass_ && !thin_ && std::visit([](const auto& b) { return lobe_mixture::walks(b); }, bsdf_);
   }
+  bool glass_walks() const { return glass_ && std::holds_alternative<MultiscatterGlassBsdf>(*glass_); }
   // Whether the model's specular lobe is a delta (a mirror, with or without other lobes).
   bool has_delta() const {
     return !glass_ && !thin_ && std::visit([](const auto& b) { return b.has_delta(); }, bsdf_);
@@ -189,6 +197,7 @@ class MaterialBsdf {
       });
       s.wi = outward(s.wi, v.backfacing);
       if (s.is_delta) s.weight *= glass_weight_ * glass_layering(v) / p;
+      else if (s.valid() && glass_walks()) return own_walk_sample(v, s);
     } else {
       s = visit(v, [&](const auto& b, const auto& lv) {
         return b.sample(lv, std::min((u_lobe - p) / (1.0f - p), 0.99999994f), u);
@@ -239,6 +248,19 @@ class MaterialBsdf {
       return f(*std::get_if<CookTorranceBsdf>(&bsdf_), *c);
     return f(*std::get_if<PrincipledV2Bsdf>(&bsdf_), *std::get_if<PrincipledV2Bsdf::View>(&v.lobes));
   }
+  // The walking glass's sample s (its weight the walk's, not eval / pdf): its own eval
+  // (weight x pdf) in place of the glass's eval, plus the opaque lobes', over the mixture's pdf
+  // (lobe_mixture.h's walk, Cycles' one-sample MIS).
+  BsdfSample own_walk_sample(const View& v, BsdfSample s) const {
+    const Vec3 own = glass_weight_ * glass_layering(v) * s.weight * s.pdf;
+    s.pdf = pdf(v, s.wi);
+    if (!(s.pdf > 0.0f)) return BsdfSample{};
+    const Vec3 opaque =
+        opaque_ ? visit(v, [&](const auto& b, const auto& lv) { return b.eval_lobes(lv, s.wi); }).total() * opaque_scale_
+                : Vec3(0.0f);
+    s.weight = (opaque + own) / s.pdf;
+    return s;
+  }
   static View with_choice(View v, float p_spec) {
     std::visit([&](auto& lv) { lv.p_spec = p_spec; }, v.lobes);
     return v;
@@ -273,13 +295,14 @@ class MaterialBsdf {
   template <typename F>
   decltype(auto) glass(F&& f) const {
     if (const auto* v2 = std::get_if<PrincipledGlassV2>(&*glass_)) return f(*v2);
+    if (const auto* walk = std::get_if<MultiscatterGlassBsdf>(&*glass_)) return f(*walk);
     return f(*std::get_if<GlassBsdf>(&*glass_));
   }
 
   Variant bsdf_;
   bool opaque_ = true;         // the model's lobes reflect something
   float opaque_scale_ = 1.0f;  // PAPER with transmission: 1 - glass weight
-  std::optional<std::variant<GlassBsdf, PrincipledGlassV2>> glass_;
+  std::optional<std::variant<GlassBsdf, PrincipledGlassV2, MultiscatterGlassBsdf>> glass_;
   std::optional<ThinWallV2> thin_;  // PRINCIPLED_V2's Thin Wall (instead of glass_)
   float glass_weight_ = 0.0f, glass_probability_ = 0.0f;
 };

@@ -53,6 +53,41 @@ namespace torrance::microsurface {
 // step is the model whose eval and sample agree (the core tests check the estimators on it).
 enum class HeightStep { Cycles, Heitz };
 
+// The walk's steps, shared by the glossy walk (Walk below) and the glass walk
+// (multiscatter_glass_bsdf.h).
+constexpr int kMaxBounces = 10;  // Cycles 3.4's
+
+// The walk's random numbers: a counter hashed with a seed taken from the query's arguments.
+class Random {
+ public:
+  explicit Random(uint32_t seed) : seed_(seed) {}
+  float next();
+  Vec2 next_2d() {
+    const float a = next();
+    return Vec2(a, next());
+  }
+
+ private:
+  uint32_t seed_, count_ = 0;
+};
+uint32_t seed_of(const Vec3& a, const Vec3& b);
+
+// The height model: C1(h) = (h + 1) / 2 on [-1, 1], and G1(w, h) = C1(h)^Lambda(w) for an
+// upward w (1 straight up, 0 at and below the horizon).
+float c1_of(float h);
+float escape(const Vec3& w, float c1, float lambda_w);
+// Where a ray of direction w meets the surface again: its C1, height and escape chance in `s`;
+// false when it leaves the surface instead.
+struct Height {
+  float h = 1.0f, c1 = 1.0f, g1 = 0.0f, lambda = 0.0f;
+};
+bool next_height(const Vec3& w, Height& s, float u, HeightStep step);
+// The signed Smith Lambda (Lambda(w) for w.z > 0, -1 - Lambda(-w) below) and D of `shape`, in
+// its lobe frame.
+float signed_lambda(const ggx::Shape& shape, const Vec3& w);
+float facet_density(const ggx::Shape& shape, const Vec3& h);
+Vec3 reflect_ray(const Vec3& w, const Vec3& m);
+
 // What one bounce off a facet keeps (see above).
 struct Reflectance {
   bool fresnel = false;   // Principled v1's Fresnel (else the colour)
