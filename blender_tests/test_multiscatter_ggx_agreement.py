@@ -64,22 +64,13 @@ def build(scene):
                               material(name, kind, color, roughness), segments=64, rings=32)
 
 
-def faults(scene, directory):
-    """Every Multiscatter GGX read as GGX (Torrance's side only)."""
-    for s in SPHERES:
-        for node in bpy.data.materials[s[0]].node_tree.nodes:
-            if getattr(node, "distribution", None) == 'MULTI_GGX':
-                node.distribution = 'GGX'
-    return [("rendered as GGX", sa.render_torrance(scene, directory, "ggx", sa.TORRANCE_SEEDS,
-                                                   SAMPLES, BOUNCES)[0])]
-
-
 def main():
     if bpy.app.version >= (4, 0, 0):
         print("skipped: Blender 3.x's Multiscatter GGX is tested in Blender 3.4 only")
         sys.exit(77)
     sa.run(build, {s[0]: (s[1], 0.0, s[2]) for s in SPHERES}, RADIUS, (W, H), "multiscatter",
-           faults, "Multiscatter GGX", SAMPLES, BOUNCES)
+           sa.read_as_ggx([s[0] for s in SPHERES], SAMPLES, BOUNCES), "Multiscatter GGX",
+           SAMPLES, BOUNCES)
 
 
 testing.run(main)

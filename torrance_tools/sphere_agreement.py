@@ -117,6 +117,22 @@ class Agreement:
         return m, out
 
 
+def read_as_ggx(names, samples, bounces):
+    """faults(scene, directory) of the Multiscatter GGX tests: every Multiscatter GGX of the
+    materials `names` read as GGX (Torrance's side only). A broad fault (far outside the bounds
+    when measured): rendered with TORRANCE_ALL_FAULTS=1 only (testing.fault_renders)."""
+    def faults(scene, directory):
+        if not testing.fault_renders("rendered as GGX", ()):
+            return []
+        for name in names:
+            for node in bpy.data.materials[name].node_tree.nodes:
+                if getattr(node, "distribution", None) == 'MULTI_GGX':
+                    node.distribution = 'GGX'
+        return [("rendered as GGX", render_torrance(scene, directory, "ggx", TORRANCE_SEEDS,
+                                                    samples, bounces)[0])]
+    return faults
+
+
 def noise_bump(mat, name):
     """A strong Bump node (named `name`) of a Noise Texture's Fac in `mat`: its Normal output."""
     nodes = mat.node_tree.nodes

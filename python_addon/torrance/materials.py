@@ -360,7 +360,8 @@ class MaterialReader:
             glass = self._principled_glass(mat, node)
             if bpy.app.version < (4, 0, 0) and getattr(node, "distribution", "") == 'MULTI_GGX':
                 # Cycles 3.4's Multiscatter GGX: a random walk on the microsurface (principled.h;
-                # a material with glass keeps GGX, reported by _principled_glass).
+                # its glass: multiscatter_glass_bsdf.h; the reflection lobe of a material with
+                # glass keeps GGX, reported by _principled_glass).
                 version_inputs = dict(multiscatter_walk=True)
         anisotropy = read_anisotropy(self, mat, node,
                                      PRINCIPLED_V2 if version == 'v2' else PRINCIPLED_V1)
@@ -402,13 +403,14 @@ class MaterialReader:
         transmission = _clamp(finite_or(v(mat, node, "Transmission", 0.0), 0.0), 0.0, 1.0)
         if transmission == 0.0:
             return {}
-        if getattr(node, "distribution", 'GGX') != 'GGX':
+        metallic = _clamp(finite_or(v(mat, node, "Metallic", 0.0), 0.0), 0.0, 1.0)
+        if getattr(node, "distribution", 'GGX') != 'GGX' and (transmission < 1.0 or metallic > 0.0):
             # Cycles 3.4 renders rough (> 0.05) transmission of Multiscatter GGX as its
-            # multiple-scattering glass, brighter than single-scattering GGX; Torrance renders
-            # such a material's reflection and glass as GGX.
-            self.reporter.warning(f"Material '{mat.name}': the transmission of {node_label(node)} "
+            # multiple-scattering glass (so does Torrance: multiscatter_glass_bsdf.h) and the
+            # specular lobe beside it as its walk too; Torrance renders that lobe as GGX.
+            self.reporter.warning(f"Material '{mat.name}': {node_label(node)} with transmission "
                                   f"uses {_DISTRIBUTIONS.get(node.distribution, node.distribution)}"
-                                  f"; Torrance renders its reflection and glass as GGX")
+                                  f"; Torrance renders its specular reflection lobe as GGX")
         return dict(transmission=transmission, ior=self._ior(mat, node, 1.45),
                     transmission_roughness=_clamp(
                         finite_or(v(mat, node, "Transmission Roughness", 0.0), 0.0), 0.0, 1.0))
@@ -435,16 +437,18 @@ class MaterialReader:
 
     def _glass(self, mat, node):
         """Glass BSDF: Color (or an Image Texture), Roughness, IOR, 5.x's Thin Film; GGX or
-        Beckmann (Sharp = roughness 0; Multiscatter GGX is reported and rendered as GGX)."""
+        Beckmann (Sharp = roughness 0); Multiscatter GGX as Cycles 3.4's random walk in Blender
+        3.x (multiscatter_glass_bsdf.h), reported and rendered as GGX in 4.x/5.x."""
         d = DEFAULT_MATERIAL
         self._begin_program(mat)
         color, tex = self._socket_input(mat, node, "Color", (1.0, 1.0, 1.0))
         roughness = _clamp(finite_or(self._socket_value(mat, node, "Roughness", 0.0), 0.0),
                            0.0, 1.0)
         distribution = getattr(node, "distribution", 'GGX')
+        walk = distribution == 'MULTI_GGX' and bpy.app.version < (4, 0, 0)
         if distribution == 'SHARP':
             roughness = 0.0
-        elif distribution not in ('GGX', 'BECKMANN'):
+        elif distribution not in ('GGX', 'BECKMANN') and not walk:
             self.reporter.warning(f"Material '{mat.name}': {node_label(node)} uses "
                                   f"{_DISTRIBUTIONS.get(distribution, distribution)}; Torrance "
                                   f"renders GGX")
@@ -453,6 +457,7 @@ class MaterialReader:
                    roughness=roughness, glass=True, transmission=1.0,
                    glass_distribution='BECKMANN' if distribution == 'BECKMANN' else 'GGX',
                    ior=self._ior(mat, node, 1.45), base_color_texture=tex,
+                   **({'multiscatter_walk': True} if walk else {}),
                    **read_thin_film(self, mat, node))
         out.update(read_normal_input(self, mat, node))
         return _sanitize(self._with_program(out))

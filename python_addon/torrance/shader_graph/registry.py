@@ -193,9 +193,9 @@ CLOSURES = {
                                  "its albedo scaling); Beckmann, Ashikhmin-Shirley rendered as "
                                  "GGX",
     'ShaderNodeBsdfGlass': "partly: Color, Roughness, IOR, Normal; GGX, Beckmann, Sharp "
-                           "(Multiscatter GGX rendered as GGX); alone and in Mix/Add Shader "
-                           "trees; 5.x Thin Film Thickness and IOR (any graph). Reported: 5.x "
-                           "Anisotropy",
+                           "(Multiscatter GGX: 3.x's random walk, rendered as GGX in 4.x/5.x); "
+                           "alone and in Mix/Add Shader trees; 5.x Thin Film Thickness and IOR "
+                           "(any graph). Reported: 5.x Anisotropy",
     'ShaderNodeBsdfMetallic': "partly: F82 Tint (Base Color, any graph; Edge Tint) and Physical "
                               "Conductor (IOR, Extinction: values), Roughness (any graph), "
                               "Anisotropy, Rotation, Tangent (any graph; unlinked: Geometry > "
