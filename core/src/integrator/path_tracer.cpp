@@ -696,7 +696,7 @@ class PathTracer {
       const float path_length = path_length_, first_ray_length = first_ray_length_;
       const PathState path_state = path_state_;
       const Vec3 throughput = throughput_;
-      const bool monochromatic = monochromatic_;
+      const auto dispersion = dispersion_;
       Vertex v;
       shade(v, seg, bounce, false);
       closures = closures_for_features(v);
@@ -704,7 +704,7 @@ class PathTracer {
       path_length_ = path_length, first_ray_length_ = first_ray_length;
       path_state_ = path_state;
       throughput_ = throughput;
-      monochromatic_ = monochromatic;
+      dispersion_ = dispersion;
     }
     closures.add_transparent(opacity, (1.0f - opacity) * tint);
     const float at = seg.passed_length + hit.t - ray_.tmin;
