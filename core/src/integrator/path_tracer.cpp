@@ -667,13 +667,10 @@ class PathTracer {
   void denoising_features(const Vertex& v, const Segment& seg) {
     DenoisingClosures closures = closures_for_features(v);
     const float segment = seg.passed_length + seg.hit->t - ray_.tmin - seg.features_from;
-    if (!(seg.opacity < 1.0f)) {
-      features_.surface(closures, segment, v.at.ns, ctx_.camera_axes, out_);
-      return;
-    }
-    closures.add_transparent(seg.opacity, seg.through);
+    const bool partly_transparent = seg.opacity < 1.0f;
+    if (partly_transparent) closures.add_transparent(seg.opacity, seg.through);
     features_.surface(closures, segment, v.at.ns, ctx_.camera_axes, out_);
-    features_.left_transparent_surface(closures, false, seg.opacity);
+    if (partly_transparent) features_.left_transparent_surface(closures, false, seg.opacity);
   }
 
   DenoisingClosures closures_for_features(const Vertex& v) const {
