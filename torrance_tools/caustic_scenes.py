@@ -79,10 +79,12 @@ def glass_ball(tc, light="point"):
     return s
 
 
-def mirror_box_by_a_lamp(tc, radius=0.02):
+def mirror_box_by_a_lamp(tc, radius=0.02, sun=False):
     """A smooth metal cube on a matte floor beside a small lamp (of `radius`) hung low over the
     floor (a lamp's bright spot: a pair of mirror_images.h, which has none for the cube: mirrors
-    pair with suns), throwing the lamp's reflections onto the floor and a matte wall behind."""
+    pair with suns), throwing the lamp's reflections onto the floor and a matte wall behind.
+    sun: and a low sun of 4 degrees, which the cube's faces pair with (the cube a reflector, its
+    lamp's caustics still the light tracer's)."""
     s = tc.Scene()
     matte = _floor(tc, s)
     metal = s.add_material(base_color=(0.9, 0.9, 0.85), metallic=1.0, roughness=0.0)
@@ -94,6 +96,8 @@ def mirror_box_by_a_lamp(tc, radius=0.02):
         quad(s, [corners[i] for i in face], metal)
     quad(s, [[-4, 1.5, 0], [4, 1.5, 0], [4, 1.5, 4], [-4, 1.5, 4]], matte, flip=True)
     s.add_point_light(position=(0.9, -0.5, 0.45), power=300.0, radius=radius)
+    if sun:
+        s.add_sun(direction=(-0.8, 0.3, -0.5), strength=30.0, angle=np.radians(4.0))
     look_at(s, (0, -4.0, 2.5), (0, 0, 0.8))
     return s
 

@@ -4,7 +4,9 @@ and every other path the path tracer's. Both halves together must converge to th
 tracer's image: 8x8 block means of seeds-averaged renders agree within their standard errors, where
 the light paths carry the caustic (a mirror's light on a wall, light through a glass slab whose
 normals point inwards, which exercises the adjoint's (eta_from / eta_to)^2; a polished plastic
-ball, a delta caster whose delta lobe alone casts, plain and textured; a metal ball's highlight
+ball, a delta caster whose delta lobe alone casts, plain and textured; a mirror cube's lamp
+caustics under a sun its faces reflect by mirror images, the sun's light through it the path
+tracer's and the lamp's the light tracer's; a metal ball's highlight
 seen in a polished metal floor, a path that leaves its first surface through a delta lobe and so
 stays the path tracer's)."""
 import numpy as np
@@ -32,11 +34,12 @@ def block_means(make_scene, caustics, mirror_images=False):
     return blocks.mean(axis=0), blocks.std(axis=0, ddof=1) / np.sqrt(SEEDS)
 
 
-def lamp_by_a_mirror_box(tc):
-    """The mirror box beside a lamp large enough for the plain path tracer to converge, rendered
-    with mirror images on (their lamp-spot pair makes them run): the cube, a reflector with no
-    pair, is the light tracer's (caustics.h)."""
-    return mirror_box_by_a_lamp(tc, radius=0.25)
+def lamp_and_sun_by_a_mirror_box(tc):
+    """The mirror box beside a lamp large enough for the plain path tracer to converge, under a
+    low sun, rendered with mirror images on: the cube's faces are reflectors paired with the sun,
+    whose light through them mirror images find; the lamp's caustics through the cube (a mirror
+    pairs with suns only) are the light tracer's (caustics.h)."""
+    return mirror_box_by_a_lamp(tc, radius=0.25, sun=True)
 
 
 def textured_polished_ball(tc):
@@ -45,7 +48,7 @@ def textured_polished_ball(tc):
 
 @pytest.mark.parametrize("make_scene, mirror_images", [(mirror_on_a_wall, False),
                                                         (inverted_slab, False),
-                                                        (lamp_by_a_mirror_box, True),
+                                                        (lamp_and_sun_by_a_mirror_box, True),
                                                         (polished_ball, False),
                                                         (textured_polished_ball, False),
                                                         (metal_ball_on_a_mirror_floor, False)])

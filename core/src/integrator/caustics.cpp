@@ -53,6 +53,7 @@ std::optional<CausticPartition> CausticPartition::make(const Scene& scene, const
       scene.camera().type != CameraType::Perspective || scene.camera().stereo.active())
     return std::nullopt;
   CausticPartition p;
+  p.mirror_images_ = mirror_images;
   bool any_smooth = false, any_light = false;
   Vec3 lo, hi;
   scene.bounds(lo, hi);
@@ -62,11 +63,10 @@ std::optional<CausticPartition> CausticPartition::make(const Scene& scene, const
     // Only compact smooth objects: a light tracer aiming at a mirror floor or a lake spreads its
     // rays over all of it and brings next to nothing to the part the camera sees; their light
     // stays the path tracer's (and mirror_images.h's).
-    const bool reflector = mirror_images && mirror_images->reflects_light(m);
     const bool smooth_bsdf = smooth_material(scene, m);
     const bool caster_bsdf = !smooth_bsdf && delta_caster(scene, m, settings.brdf_model);
     const std::optional<Scene::Sphere> bounds =
-        (smooth_bsdf || caster_bsdf) && !reflector ? scene.material_bounds(m) : std::nullopt;
+        smooth_bsdf || caster_bsdf ? scene.material_bounds(m) : std::nullopt;
     const bool compact = bounds && bounds->radius <= kCompact * scene_radius;
     if (compact) p.targets_.push_back(BoundingSphere{bounds->center, bounds->radius});
     const bool smooth = compact && smooth_bsdf;
@@ -167,13 +167,16 @@ void CausticTracer::trace_path(uint32_t index, uint32_t sample) {
   ray.dir = emitted.dir;
   ray.tmin = 0.0f;
   ray.tmax = 1e30f;
+  uint32_t first_material = 0;  // of the first smooth surface
   for (int bounce = 0; bounce <= ctx_.settings.max_bounces; ++bounce) {
     SurfaceHit hit;
     if (!ctx_.scene.intersect(ray, hit)) return;
     const uint32_t m = hit.material;
     const bool caster = partition_.caster(m);
+    if (bounce == 0) first_material = m;
     if (!partition_.smooth(m)) {
-      if (bounce > 0 && partition_.receiver(m)) connect(hit, -ray.dir, beta, sampler);
+      if (bounce > 0 && partition_.receiver(m) && partition_.traced(emitters_[chosen], bounce, first_material))
+        connect(hit, -ray.dir, beta, sampler);
       if (!caster) return;
     }
     if (bounce == ctx_.settings.max_bounces) return;  // the path tracer's longest caustic path

@@ -28,9 +28,11 @@
 // image, with no weights to balance. The path tracer keeps track of whether its path is still a
 // caustic one (CausticPartition::Chain) and drops the light of covered lights it would find at
 // a smooth vertex of such a path. The reflectors of mirror_images.h (glossy spheres and planes,
-// flat mirrors) that reflect some light by its pairs, whose caustics next-event estimation
-// through them finds with little noise, do not count as smooth: their paths stay the path
-// tracer's. One with no pair (a mirror box and no sun) does.
+// flat mirrors) find the light of the lights they pair with by next-event estimation through
+// them, with little noise: a caustic path whose one smooth vertex is such a reflector, paired
+// with the path's light, stays the path tracer's (a mirror cube under a sun: the sun's). Their
+// other lights' caustics (a mirror cube's lamps: mirrors pair with suns only), and longer chains
+// through them, are the light tracer's.
 //
 // Chosen per render by what the scene holds (CausticPartition::make): a perspective camera, some
 // smooth material, some light that can emit, no alpha or holdouts (whose transparency the light
@@ -73,6 +75,13 @@ class CausticPartition final : public LightShare {
   bool caster(uint32_t material) const { return caster_[material] != 0; }
   bool receiver(uint32_t material) const { return receiver_[material] != 0; }
   bool covered(size_t light) const { return light < covered_.size() && covered_[light] != 0; }
+  // Whether the light tracer has the caustic paths from light `light` (a Lights index) through
+  // `smooth_vertices` smooth vertices, the first of material first_material: not where that one
+  // vertex is a reflector pairing with the light (above).
+  bool traced(size_t light, int smooth_vertices, uint32_t first_material) const {
+    return covered(light) &&
+           !(smooth_vertices == 1 && mirror_images_ && mirror_images_->reflects_light(first_material, light));
+  }
   // LightShare: what the path tracer keeps of a light on a caustic path (0 for covered lights).
   float of(size_t light) const override { return covered(light) ? 0.0f : 1.0f; }
   // The smooth materials' and delta casters' bounding spheres, where the light tracer aims.
@@ -90,6 +99,8 @@ class CausticPartition final : public LightShare {
       caster_ = !first_ && p->caster(material);
       open_ = first_ ? p->receiver(material) : open_ && (p->smooth(material) || caster_);
       drop_ = open_ && !first_ && !caster_;  // a caster's NEE is of its other lobes
+      smooth_vertices_ = bounce;  // while open_ (x2 is the path's vertex 1)
+      material_ = material;
       partition_ = p;
     }
     // The direction the path leaves the vertex along was drawn from a delta lobe or not: at the
@@ -104,27 +115,39 @@ class CausticPartition final : public LightShare {
     // `other` (mirror_images.h's), which applies on top.
     const LightShare* share(const LightShare* other) {
       if (!drop_) return other;
-      combined_.set(partition_, other);
+      combined_.set(partition_, smooth_vertices_, material_, other);
       return &combined_;
     }
 
    private:
+    // Of a light found at the chain's latest smooth vertex: none where the light tracer has the
+    // path, else `other`'s share.
     class Combined final : public LightShare {
      public:
-      void set(const LightShare* a, const LightShare* b) { a_ = a, b_ = b; }
-      float of(size_t light) const override { return a_->of(light) * (b_ ? b_->of(light) : 1.0f); }
+      void set(const CausticPartition* p, int smooth_vertices, uint32_t material, const LightShare* other) {
+        partition_ = p, smooth_vertices_ = smooth_vertices, material_ = material, other_ = other;
+      }
+      float of(size_t light) const override {
+        if (partition_->traced(light, smooth_vertices_, material_)) return 0.0f;
+        return other_ ? other_->of(light) : 1.0f;
+      }
 
      private:
-      const LightShare* a_ = nullptr;
-      const LightShare* b_ = nullptr;
+      const CausticPartition* partition_ = nullptr;
+      int smooth_vertices_ = 0;
+      uint32_t material_ = 0;
+      const LightShare* other_ = nullptr;
     };
     bool open_ = false, drop_ = false, first_ = false, caster_ = false;
+    int smooth_vertices_ = 0;
+    uint32_t material_ = 0;
     const CausticPartition* partition_ = nullptr;
     Combined combined_;
   };
 
  private:
   std::vector<uint8_t> smooth_, caster_, receiver_, covered_;
+  const MirrorImages* mirror_images_ = nullptr;  // the render's (null: none)
   std::vector<BoundingSphere> targets_;
 };
 

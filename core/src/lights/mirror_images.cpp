@@ -143,11 +143,11 @@ MirrorImages::MirrorImages(const Scene& scene, const std::vector<MaterialBsdf>& 
   } else {
     for (const Candidate& c : candidates) pairs_.push_back(c.pair);
   }
-  reflects_light_.assign(scene.num_materials(), false);
+  reflects_light_.assign(scene.num_materials() * num_lights_, false);
   for (Pair& pair : pairs_) {
     const Reflector& reflector = reflectors_[size_t(pair.reflector)];
-    reflects_light_[reflector.material] = true;
     const Source& source = sources_[size_t(pair.source)];
+    reflects_light_[size_t(reflector.material) * num_lights_ + source.index] = true;
     if (reflector.radius > 0.0f || reflector.matte) continue;
     pair.light_above = source.above(reflector.point, reflector.normal);
     if (source.sun) {  // a mirror's too (its bounds test; a mirror's samples follow the sun's cone)

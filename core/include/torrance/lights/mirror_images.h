@@ -87,11 +87,13 @@ class MirrorImages {
   bool is_reflector(uint32_t material) const {
     return material < first_reflector_.size() && first_reflector_[material] >= 0;
   }
-  // Whether some kept (reflector, light) pair has a reflector of this material: the strategy
-  // finds light through it. A smooth reflector without one (a mirror box and no sun) leaves its
-  // caustics to the other strategies (caustics.h's light tracer).
-  bool reflects_light(uint32_t material) const {
-    return material < reflects_light_.size() && reflects_light_[material];
+  // Whether some kept (reflector, light) pair has a reflector of this material and light `light`
+  // (a Lights index): the strategy finds that light through it. The lights a smooth reflector
+  // has no pair with (a mirror box's lamps: mirrors pair with suns only) leave their caustics
+  // through it to the other strategies (caustics.h's light tracer).
+  bool reflects_light(uint32_t material, size_t light) const {
+    return material < first_reflector_.size() && light < num_lights_ &&
+           reflects_light_[size_t(material) * num_lights_ + light];
   }
   bool is_mirror(int reflector) const { return reflectors_[size_t(reflector)].mirror; }
   const MaterialBsdf& bsdf(int reflector) const { return *reflectors_[size_t(reflector)].bsdf; }
@@ -308,7 +310,7 @@ class MirrorImages {
   std::vector<Pair> pairs_;
   std::vector<int> first_reflector_;  // per material: its first reflector (a box's planes follow), or -1
   std::vector<int> num_reflectors_;   // per material
-  std::vector<bool> reflects_light_;  // per material: reflects_light()
+  std::vector<bool> reflects_light_;  // [material * num_lights_ + light]: reflects_light()
   std::vector<int> pair_of_;  // [reflector * num_lights_ + light]: the pair's index, or -1
   size_t num_lights_ = 0;
 };
