@@ -9,8 +9,10 @@ Per scene: the equal-error time ratio Torrance / Cycles on the seed-averaged rel
 (torrance_tools.equal_error, as scripts/benchmark_report.py: corrected by the reference's own
 noise, log-error against log-time), the same on the trimmed relMSE, and the tails: p95 / median
 and max / median of the per-seed relMSE at the largest sample count, for both engines (one seed
-with a firefly raises p95 and max while the median stays). Summary: the median ratio, the worst
-decile (the ratios at or above the 90th percentile), the scenes with the worst Torrance tails.
+with a firefly raises p95 and max while the median stays), and the two engines' p95 of per-seed
+relMSE against each other (their worst seeds compared directly). Summary: the median ratio, the
+worst decile (the ratios at or above the 90th percentile), the scenes with the worst Torrance
+tails.
 """
 
 import json
@@ -32,12 +34,17 @@ def tails(point):
     return float(np.percentile(e, 95)) / med, float(e.max()) / med
 
 
+def p95(point):
+    return float(np.percentile(np.asarray(point["rel_mse_seeds"], dtype=float), 95))
+
+
 def scene_figures(d):
     """Ratios and tails of one scene's data."""
     floor = d["reference"]["noise_rel_mse"]
     eq = equal_error(d["torrance"], d["cycles"], floor=floor)
     trim = equal_error(d["torrance"], d["cycles"], key="rel_mse_trim_corrected", floor=floor)
     return dict(eq=eq, trim=trim, t_tail=tails(d["torrance"][-1]), c_tail=tails(d["cycles"][-1]),
+                p95_ratio=p95(d["torrance"][-1]) / p95(d["cycles"][-1]),
                 finite=all(p["finite"] for c in CURVES for p in d[c]),
                 stuck=[c for c in CURVES if d[c][-1]["rel_mse"] > d[c][0]["rel_mse"] / STUCK],
                 spp_ratio=d["torrance"][-1]["spp"] / d["torrance"][0]["spp"])
@@ -123,6 +130,7 @@ def findings(figures):
                if f["t_tail"][0] > FIREFLY_TAIL and f["t_tail"][0] > f["c_tail"][0]]
     c_heavy = [n for n, f in figures.items()
                if f["c_tail"][0] > FIREFLY_TAIL and f["c_tail"][0] >= f["t_tail"][0]]
+    worse_seeds = [n for n, f in figures.items() if f["p95_ratio"] > 1]
     slower = [n for n, f in figures.items() if f["eq"]["geomean"] is not None
               and f["eq"]["geomean"] > 1 and f["eq"]["bound"] != "≤"]
 
@@ -134,6 +142,9 @@ def findings(figures):
     return [f"- Torrance fireflies (its p95/median > {FIREFLY_TAIL:g} and above Cycles'): "
             f"{names(t_heavy)}.",
             f"- Cycles' tail the heavier one (> {FIREFLY_TAIL:g}): {names(c_heavy)}.",
+            "- Torrance's worst seeds worse than Cycles' worst (the p95 of its per-seed relMSE "
+            "above Cycles' p95; the tail ratio divides by each engine's own median, which is "
+            f"often Torrance's much lower): {names(worse_seeds)}.",
             f"- Torrance slower than Cycles at equal error (ratio > 1): {names(slower)}.",
             f"- † Mean relMSE not converging (at the last sample count above 1/{STUCK:g} of the "
             f"first's, where 1/samples would fall by "
@@ -175,15 +186,16 @@ def summary(scenes, figures):
     bad = [n for n, f in figures.items() if not f["finite"]]
     lines.append("- NaN/Inf pixels: " + (", ".join(bad) if bad else "none, either engine") + ".")
     lines += ["", "| scene | what | T/C relMSE | T/C trimmed | T tail p95/med (max/med) "
-              "| C tail p95/med (max/med) | ref. noise | T relMSE at top spp | C relMSE |",
-              "|---|---|---|---|---|---|---|---|---|"]
+              "| C tail p95/med (max/med) | p95 T/C | ref. noise | T relMSE at top spp "
+              "| C relMSE |",
+              "|---|---|---|---|---|---|---|---|---|---|"]
     for n, d in scenes.items():
         f = figures[n]
         lines.append(
             f"| [{n}](#scene-{n}) | {d['description']} | {fmt_equal(f['eq'])}"
             f"{' †' if f['stuck'] else ''} | "
             f"{fmt_equal(f['trim'])} | {f['t_tail'][0]:.2f} ({f['t_tail'][1]:.1f}) | "
-            f"{f['c_tail'][0]:.2f} ({f['c_tail'][1]:.1f}) | "
+            f"{f['c_tail'][0]:.2f} ({f['c_tail'][1]:.1f}) | {f['p95_ratio']:.2g} | "
             f"{d['reference']['noise_rel_mse']:.1e} | {d['torrance'][-1]['rel_mse']:.2e} | "
             f"{d['cycles'][-1]['rel_mse']:.2e} |")
     return lines + [""]
