@@ -54,7 +54,23 @@ std::optional<CausticPartition> CausticPartition::make(const Scene& scene, const
     return std::nullopt;
   CausticPartition p;
   p.mirror_images_ = mirror_images;
-  bool any_smooth = false, any_light = false;
+  const Lights& lights = scene.lights();
+  // Delta lights (a sun of angle 0, a point or spot of radius 0) are left out: no path from the
+  // camera ever reaches them through a smooth surface, so Cycles renders none of their caustics.
+  bool any_light = false;
+  for (size_t i = 0; i < lights.count(); ++i) {
+    const bool delta = (lights.sun(i) && lights.sun(i)->is_delta()) || (lights.point(i) && lights.point(i)->is_delta());
+    p.covered_.push_back(lights.can_emit(i) && !delta);
+    any_light |= p.covered_.back() != 0;
+  }
+  // A reflector whose pairs take every covered light's caustics through it (a lone metal ball
+  // under a sun) leaves the light tracer nothing of its own.
+  auto all_reflected = [&](uint32_t m) {
+    for (size_t i = 0; i < lights.count(); ++i)
+      if (p.traced(i, 1, m)) return false;
+    return true;
+  };
+  size_t own_targets = 0;  // the targets whose caustics through them alone are the light tracer's
   Vec3 lo, hi;
   scene.bounds(lo, hi);
   const float scene_radius = 0.5f * glm::length(hi - lo);
@@ -69,23 +85,18 @@ std::optional<CausticPartition> CausticPartition::make(const Scene& scene, const
         smooth_bsdf || caster_bsdf ? scene.material_bounds(m) : std::nullopt;
     const bool compact = bounds && bounds->radius <= kCompact * scene_radius;
     if (compact) p.targets_.push_back(BoundingSphere{bounds->center, bounds->radius});
+    if (compact && !all_reflected(m)) ++own_targets;
     const bool smooth = compact && smooth_bsdf;
     p.smooth_.push_back(smooth);
     p.caster_.push_back(compact && caster_bsdf);
     // Dispersive glass (dispersion.h) is neither: a light path carries RGB, not the one
     // wavelength a camera path through it keeps, so its paths stay the path tracer's.
     p.receiver_.push_back(!smooth && !scene.mixture(m) && !(scene.material(m).dispersion > 0.0f));
-    any_smooth |= compact;
   }
-  const Lights& lights = scene.lights();
-  // Delta lights (a sun of angle 0, a point or spot of radius 0) are left out: no path from the
-  // camera ever reaches them through a smooth surface, so Cycles renders none of their caustics.
-  for (size_t i = 0; i < lights.count(); ++i) {
-    const bool delta = (lights.sun(i) && lights.sun(i)->is_delta()) || (lights.point(i) && lights.point(i)->is_delta());
-    p.covered_.push_back(lights.can_emit(i) && !delta);
-    any_light |= p.covered_.back() != 0;
-  }
-  if (!any_smooth || !any_light) return std::nullopt;
+  // Nothing to trace: no smooth surface, no light to emit, or one reflector whose pairs take all
+  // its one-bounce caustics (a ball or a box sends no light to itself; without a partition the
+  // path tracer keeps every path, as for any scene without one).
+  if (p.targets_.empty() || !any_light || (own_targets == 0 && p.targets_.size() == 1)) return std::nullopt;
   return p;
 }
 
