@@ -27,15 +27,16 @@ from torrance_tools.equal_error import equal_error, fmt_equal
 CURVES = ("torrance", "cycles")
 
 
+def p95(point):
+    """The 95th percentile of a point's per-seed relMSE."""
+    return float(np.percentile(np.asarray(point["rel_mse_seeds"], dtype=float), 95))
+
+
 def tails(point):
     """(p95 / median, max / median) of a point's per-seed relMSE."""
     e = np.asarray(point["rel_mse_seeds"], dtype=float)
     med = float(np.median(e))
-    return float(np.percentile(e, 95)) / med, float(e.max()) / med
-
-
-def p95(point):
-    return float(np.percentile(np.asarray(point["rel_mse_seeds"], dtype=float), 95))
+    return p95(point) / med, float(e.max()) / med
 
 
 def scene_figures(d):

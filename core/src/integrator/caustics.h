@@ -57,7 +57,7 @@
 
 namespace torrance {
 
-class CausticPartition final : public LightShare {
+class CausticPartition {
  public:
   // Blender roughness at or below which a surface counts as smooth (GGX alpha 0.01).
   static constexpr float kSmoothRoughness = 0.1f;
@@ -82,8 +82,6 @@ class CausticPartition final : public LightShare {
     return covered(light) &&
            !(smooth_vertices == 1 && mirror_images_ && mirror_images_->reflects_light(first_material, light));
   }
-  // LightShare: what the path tracer keeps of a light on a caustic path (0 for covered lights).
-  float of(size_t light) const override { return covered(light) ? 0.0f : 1.0f; }
   // The smooth materials' and delta casters' bounding spheres, where the light tracer aims.
   const std::vector<BoundingSphere>& targets() const { return targets_; }
 
