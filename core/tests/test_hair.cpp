@@ -69,7 +69,9 @@ TEST(Hair, RibbonFacesTheRayWithNormalsRoundedAcrossIt) {
 }
 
 // A ray leaving a strand through it (transmission, shadow rays to the far side) does not meet
-// the strand it left; the next strand below is met.
+// the strand it left; the next strand below is met. The rays cross the strands off the middle of
+// a segment: on an AVX2-only CPU (AMD EPYC) Embree 3.13.5's ribbon intersector reports no hit for
+// a ray along the exact middle (x = 0) of the ribbon 1 m below, and never calls the filter.
 TEST(Hair, RaysLeavingAStrandPassThroughItButMeetTheNext) {
   for (CurveShape shape : {CurveShape::Round, CurveShape::Ribbon}) {
     Scene scene;
@@ -77,7 +79,7 @@ TEST(Hair, RaysLeavingAStrandPassThroughItButMeetTheNext) {
     add_straight_strand(scene, -1.0f, 0.05f, shape);
     scene.commit();
     SurfaceHit top;
-    ASSERT_TRUE(scene.intersect(down_from(0.0f, 0.0f, 5.0f), top));
+    ASSERT_TRUE(scene.intersect(down_from(0.137f, 0.0f, 5.0f), top));
     Ray through;
     through.origin = top.position - 1e-4f * top.geometric_normal;
     through.dir = Vec3(0, 0, -1);
