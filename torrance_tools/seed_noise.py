@@ -61,11 +61,13 @@ def measure_seeds(scene, directory, samples, bounces, seeds, measure, prefix="")
 
 
 def seed_noise_verdict(scene, directory, samples, bounces, seeds=(2, 3), tolerance=1.5,
-                       ratio_sigmas=3.0, ratio_floor=0.015, prefix=""):
+                       ratio_sigmas=3.0, ratio_floor=0.015, prefix="", noise_seeds=(1,)):
     """Torrance (seeds) against Cycles' reference within Cycles' own seed-to-seed noise, printed:
     (reference image, Torrance's mean metrics, Cycles' own metrics, the bounds, what the mean
-    violates). prefix: before the Torrance images' names."""
-    ref, own = cycles_reference_and_noise(scene, directory, samples, bounces)
+    violates). prefix: before the Torrance images' names; noise_seeds: Cycles' renders whose
+    typical noise against the reference (seed 0) sets the bounds."""
+    ref, own = cycles_reference_and_noise(scene, directory, samples, bounces,
+                                          seeds=(0, *noise_seeds))
     limits = noise_bounds(own, tolerance, ratio_sigmas, ratio_floor)
     print(f"bounds: ratio {limits['ratio'][0]:.4f}..{limits['ratio'][1]:.4f}, block mean "
           f"{limits['block_mean']:.4f}, p90 {limits['block_p90']:.4f}")
@@ -80,15 +82,17 @@ def seed_noise_verdict(scene, directory, samples, bounces, seeds=(2, 3), toleran
 
 
 def agree_within_seed_noise(scene, directory, samples, bounces, what, faults=(), seeds=(2, 3),
-                            tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.015):
+                            tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.015, noise_seeds=(1,)):
     """Raises AssertionError unless Torrance agrees with Cycles and every fault is caught.
 
     faults: (label, owner, attribute, make_fault) - owner.attribute is replaced by
     make_fault(original) for one Torrance render (seeds[0]) and restored. A label beginning
-    "info:" is reported only (a fault these figures are known not to see).
+    "info:" is reported only (a fault these figures are known not to see). noise_seeds: as
+    seed_noise_verdict's.
     """
     ref, m, _own, limits, bad = seed_noise_verdict(scene, directory, samples, bounces, seeds,
-                                                   tolerance, ratio_sigmas, ratio_floor)
+                                                   tolerance, ratio_sigmas, ratio_floor,
+                                                   noise_seeds=noise_seeds)
     testing.check(not bad, f"{what} disagrees with Cycles: " + "; ".join(bad))
 
     def judge(label, img):
@@ -125,14 +129,15 @@ def agree_on_variants(scene, variants, samples, bounces, after_each=None):
     testing.check(not problems, " | ".join(problems))
 
 
-def agree_on_scene(build, samples, bounces, what, faults=(), silent=True):
+def agree_on_scene(build, samples, bounces, what, faults=(), silent=True, noise_seeds=(1,)):
     """A fresh scene made by build(scene), Torrance against Cycles within Cycles' own noise
     (agree_within_seed_noise with the shader-graph tests' tolerances), every fault caught;
     silent: the renders report nothing either. Returns the scene."""
     scene = testing.clear_scene()
     build(scene)
     agree_within_seed_noise(scene, testing.tempdir(), samples, bounces, what, faults=faults,
-                            tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
+                            tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004,
+                            noise_seeds=noise_seeds)
     if silent:
         testing.check(not testing.last_messages(),
                       f"unexpected reports: {testing.last_messages()}")
