@@ -51,12 +51,17 @@ def material(name, kind, color, roughness):
         node.inputs["Transmission"].default_value = 1.0
         node.inputs["IOR"].default_value = IOR
         return mat
+    return glass_material(name, 'MULTI_GGX', color, roughness, IOR)
+
+
+def glass_material(name, distribution, color, roughness, ior):
+    """A material of one Glass BSDF (also test_glass_node_v4_agreement's)."""
     mat, nodes, links, output = node_material(name)
     node = nodes.new("ShaderNodeBsdfGlass")
-    node.distribution = 'MULTI_GGX'
+    node.distribution = distribution
     node.inputs["Color"].default_value = (*color, 1.0)
     node.inputs["Roughness"].default_value = roughness
-    node.inputs["IOR"].default_value = IOR
+    node.inputs["IOR"].default_value = ior
     links.new(node.outputs["BSDF"], output.inputs["Surface"])
     return mat
 
@@ -96,4 +101,5 @@ def main():
            SAMPLES, BOUNCES)
 
 
-testing.run(main)
+if __name__ == "__main__":
+    testing.run(main)

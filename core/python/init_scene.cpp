@@ -214,7 +214,7 @@ void init_scene(py::module_& m) {
              bool subsurface_burley, float thin_film_thickness, float thin_film_ior, bool thin_film_cycles5,
              int thin_film_thickness_register, int thin_film_ior_register, bool thin_wall,
              float diffuse_roughness, bool emission_under_layers, const std::string& coat_layering,
-             bool multiscatter_walk, float dispersion) {
+             bool multiscatter_walk, float dispersion, bool glass_cycles4) {
             if (glass_distribution != "GGX" && glass_distribution != "BECKMANN")
               throw py::value_error("glass_distribution must be 'GGX' or 'BECKMANN', got '" + glass_distribution +
                                     "'");
@@ -235,6 +235,7 @@ void init_scene(py::module_& m) {
             mat.hair_offset = hair_offset;
             mat.glass_node = glass;
             mat.glass_beckmann = glass_distribution == "BECKMANN";
+            mat.glass_cycles4 = glass_cycles4;
             mat.alpha = alpha;
             mat.transparent_color = vec3(transparent_color);
             mat.coat_weight = coat_weight;
@@ -341,7 +342,7 @@ void init_scene(py::module_& m) {
           py::arg("thin_film_thickness_register") = -1, py::arg("thin_film_ior_register") = -1,
           py::arg("thin_wall") = false, py::arg("diffuse_roughness") = 0.0f,
           py::arg("emission_under_layers") = false, py::arg("coat_layering") = "CYCLES_4_5",
-          py::arg("multiscatter_walk") = false, py::arg("dispersion") = 0.0f,
+          py::arg("multiscatter_walk") = false, py::arg("dispersion") = 0.0f, py::arg("glass_cycles4") = false,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
@@ -354,7 +355,9 @@ void init_scene(py::module_& m) {
           "transmission, ior, transmission_roughness: the Principled BSDF's glass (transmission and "
           "transmission_roughness in [0, 1], ior in (0, 1000]; ior is also PRINCIPLED_V2's IOR); glass=True: "
           "Blender's Glass BSDF node "
-          "(base_color its Color, roughness, ior; glass_distribution 'GGX' or 'BECKMANN'). alpha in "
+          "(base_color its Color, roughness, ior; glass_distribution 'GGX' or 'BECKMANN'; glass_cycles4: as "
+          "Cycles 4.0+ renders it, GGX with the Fresnel per microfacet and multiscatter_ggx its Multiscatter GGX, "
+          "else as Cycles 3.4). alpha in "
           "[0, 1] (or alpha_texture: a texture's alpha channel; its colour's luminance with alpha_from_luminance; 1 - "
           "that with alpha_inverted): rays pass straight through with "
           "probability 1 - alpha, tinted by transparent_color (Principled Alpha: white; Transparent "

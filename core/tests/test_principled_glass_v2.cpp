@@ -205,3 +205,55 @@ TEST(PrincipledGlassV2, CoatOverGlassDarkensIt) {
 
 }  // namespace
 }  // namespace torrance
+
+namespace torrance {
+namespace {
+
+// Blender 4.x/5.x's Glass node (glass_node): white, it is Principled v2's glass with Specular Tint
+// and base colour 1, bit for bit; a Color tints reflection and refraction alike (f, and a
+// sample's weight for the same direction), leaving the pdf and the lobe choice as white glass's.
+// With Multiscatter GGX its F_ss is the Color itself (not the Principled's square root): a white
+// furnace of the tinted glass is the Color times the white one's, channel by channel, only if
+// the compensation follows the tint as Cycles' does (1 + F_ss (1 - E) / E per channel).
+TEST(PrincipledGlassV2, GlassNodeTintsBothLobesByItsColor) {
+  const Vec3 color(0.9f, 0.5f, 0.2f);
+  Rng rng(11, 12, 13);
+  int reflected = 0, refracted = 0;
+  for (int n = 0; n < 4000; ++n) {
+    const float r = (const float[]){0.0f, 0.2f, 0.6f, 1.0f}[n % 4];
+    const float ior = (const float[]){1.33f, 1.5f, 0.75f}[n % 3];
+    const bool multiscatter = n % 2 == 0;
+    const PrincipledGlassV2 principled(r, ior, Vec3(1.0f), Vec3(1.0f), multiscatter);
+    const PrincipledGlassV2 white = PrincipledGlassV2::glass_node(r, ior, Vec3(1.0f), multiscatter);
+    const PrincipledGlassV2 tinted = PrincipledGlassV2::glass_node(r, ior, color, multiscatter);
+    const Vec3 wo = test::uniform_sphere(rng), wi = test::uniform_sphere(rng);
+    ASSERT_EQ(white.eval(wo, wi), principled.eval(wo, wi));
+    ASSERT_EQ(white.pdf(wo, wi), principled.pdf(wo, wi));
+    ASSERT_NEAR(tinted.pdf(wo, wi), white.pdf(wo, wi), 1e-4f * white.pdf(wo, wi));  // R, T both tinted: same split
+    const Vec3 f = tinted.eval(wo, wi), f_white = white.eval(wo, wi);
+    const Vec3 compensation = multiscatter ? tinted.energy_scale(std::abs(wo.z), wo.z < 0.0f ? 1.0f / ior : ior) /
+                                                 white.energy_scale(std::abs(wo.z), wo.z < 0.0f ? 1.0f / ior : ior)
+                                           : Vec3(1.0f);
+    for (int c = 0; c < 3; ++c) ASSERT_NEAR(f[c], color[c] * compensation[c] * f_white[c], 1e-5f * (1.0f + f_white[c]));
+    const float ul = rng.next_1d();
+    const Vec2 u = rng.next_2d();
+    const BsdfSample s = tinted.sample(wo, ul, u), s_white = white.sample(wo, ul, u);
+    ASSERT_EQ(s.valid(), s_white.valid());
+    if (!s.valid()) continue;
+    ASSERT_LT(glm::length(s.wi - s_white.wi), 1e-6f);
+    for (int c = 0; c < 3; ++c)
+      ASSERT_NEAR(s.weight[c], color[c] * compensation[c] * s_white.weight[c], 1e-5f * (1.0f + s_white.weight[c]));
+    (s.wi.z * wo.z > 0.0f ? reflected : refracted)++;
+  }
+  EXPECT_GT(reflected, 100);
+  EXPECT_GT(refracted, 1000);
+  // Multiscatter GGX's F_ss is the Color: at roughness 0.6 the tinted glass's compensation is
+  // 1 + c (1 - E) / E... per channel, so a dark channel is compensated less than a bright one.
+  const PrincipledGlassV2 tinted = PrincipledGlassV2::glass_node(0.6f, 1.5f, color, true);
+  const Vec3 scale = tinted.energy_scale(0.7f, 1.5f);
+  EXPECT_GT(scale.x, scale.z);
+  EXPECT_GT(scale.z, 1.0f);
+}
+
+}  // namespace
+}  // namespace torrance

@@ -437,18 +437,21 @@ class MaterialReader:
 
     def _glass(self, mat, node):
         """Glass BSDF: Color (or an Image Texture), Roughness, IOR, 5.x's Thin Film; GGX or
-        Beckmann (Sharp = roughness 0); Multiscatter GGX as Cycles 3.4's random walk in Blender
-        3.x (multiscatter_glass_bsdf.h), reported and rendered as GGX in 4.x/5.x."""
+        Beckmann (Sharp = roughness 0) as the running Blender's Cycles renders them: in 3.x two
+        closures split by the macro normal's Fresnel, Multiscatter GGX as Cycles 3.4's random walk
+        (multiscatter_glass_bsdf.h); in 4.x/5.x GGX and Multiscatter GGX one closure with the
+        Fresnel per microfacet and energy compensation (principled_glass_v2.h, glass_cycles4)."""
         d = DEFAULT_MATERIAL
         self._begin_program(mat)
         color, tex = self._socket_input(mat, node, "Color", (1.0, 1.0, 1.0))
         roughness = _clamp(finite_or(self._socket_value(mat, node, "Roughness", 0.0), 0.0),
                            0.0, 1.0)
         distribution = getattr(node, "distribution", 'GGX')
-        walk = distribution == 'MULTI_GGX' and bpy.app.version < (4, 0, 0)
+        cycles4 = bpy.app.version >= (4, 0, 0)
+        walk = distribution == 'MULTI_GGX' and not cycles4
         if distribution == 'SHARP':
             roughness = 0.0
-        elif distribution not in ('GGX', 'BECKMANN') and not walk:
+        elif distribution not in ('GGX', 'BECKMANN', 'MULTI_GGX'):
             self.reporter.warning(f"Material '{mat.name}': {node_label(node)} uses "
                                   f"{_DISTRIBUTIONS.get(distribution, distribution)}; Torrance "
                                   f"renders GGX")
@@ -458,6 +461,8 @@ class MaterialReader:
                    glass_distribution='BECKMANN' if distribution == 'BECKMANN' else 'GGX',
                    ior=self._ior(mat, node, 1.45), base_color_texture=tex,
                    **({'multiscatter_walk': True} if walk else {}),
+                   **({'glass_cycles4': True, 'multiscatter_ggx': distribution == 'MULTI_GGX'}
+                      if cycles4 else {}),
                    **read_thin_film(self, mat, node))
         out.update(read_normal_input(self, mat, node))
         return _sanitize(self._with_program(out))

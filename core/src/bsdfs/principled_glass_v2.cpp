@@ -36,6 +36,14 @@ PrincipledGlassV2::PrincipledGlassV2(float roughness, float ior, const Vec3& spe
   film_inside_.ior = film.ior / ior_;
 }
 
+PrincipledGlassV2 PrincipledGlassV2::glass_node(float roughness, float ior, const Vec3& color, bool multiscatter,
+                                                const ThinFilm& film) {
+  PrincipledGlassV2 glass(roughness, ior, Vec3(1.0f), Vec3(1.0f), multiscatter, film);
+  const Vec3 tint = is_finite(color) ? glm::max(color, Vec3(0.0f)) : Vec3(0.0f);
+  glass.tint_r_ = glass.tint_t_ = tint;
+  return glass;
+}
+
 PrincipledGlassV2::Split PrincipledGlassV2::split(float c, float etap) const {
   Split out;
   if (film_.active()) {
@@ -45,6 +53,7 @@ PrincipledGlassV2::Split PrincipledGlassV2::split(float c, float etap) const {
     out.reflect = glm::mix(f0_, Vec3(1.0f), ggx_tables::dielectric_fresnel_factor(c, etap));
   }
   out.transmit = (Vec3(1.0f) - out.reflect) * tint_t_;
+  out.reflect *= tint_r_;
   const float total = mean(out.reflect + out.transmit);
   out.p_reflect = total > 0.0f ? mean(out.reflect) / total : 1.0f;
   return out;
@@ -58,7 +67,7 @@ Vec3 PrincipledGlassV2::energy_scale(float cos_o, float etap) const {
   if (fss == Vec3(0.0f)) {  // no transmission tint: the reflection's mean Fresnel (Cycles)
     const float f0_real = ggx_tables::f0_from_ior(etap);
     const float s = clamp01((multiscatter::mean_dielectric_fresnel(etap) - f0_real) / (1.0f - f0_real));
-    fss = glm::mix(f0_, Vec3(1.0f), s);
+    fss = tint_r_ * glm::mix(f0_, Vec3(1.0f), s);
   }
   return multiscatter::scale(fss, e, e_avg);
 }

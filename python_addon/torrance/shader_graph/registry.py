@@ -193,7 +193,10 @@ CLOSURES = {
                                  "its albedo scaling); Beckmann, Ashikhmin-Shirley rendered as "
                                  "GGX",
     'ShaderNodeBsdfGlass': "partly: Color, Roughness, IOR, Normal; GGX, Beckmann, Sharp "
-                           "(Multiscatter GGX: 3.x's random walk, rendered as GGX in 4.x/5.x); "
+                           "and Multiscatter GGX as the Blender's Cycles (3.x: two closures "
+                           "split by the macro Fresnel, Multiscatter GGX its random walk; "
+                           "4.x/5.x: one closure, Fresnel per microfacet, Multiscatter GGX its "
+                           "albedo scaling; Beckmann there as 3.x's); "
                            "alone and in Mix/Add Shader trees; 5.x Thin Film Thickness and IOR "
                            "(any graph). Reported: 5.x Anisotropy",
     'ShaderNodeBsdfMetallic': "partly: F82 Tint (Base Color, any graph; Edge Tint) and Physical "

@@ -43,7 +43,10 @@ class MaterialBsdf {
     }
     if (!m.glass_node && !(m.transmission > 0.0f && metallic < 1.0f)) return;
     if (m.glass_node) {
-      if (m.multiscatter_walk && !m.glass_beckmann) glass_.emplace(MultiscatterGlassBsdf(roughness, m.ior, m.base_color));
+      if (m.glass_cycles4 && !m.glass_beckmann)
+        glass_.emplace(PrincipledGlassV2::glass_node(roughness, m.ior, m.base_color, m.multiscatter_ggx, m.thin_film()));
+      else if (m.multiscatter_walk && !m.glass_beckmann)
+        glass_.emplace(MultiscatterGlassBsdf(roughness, m.ior, m.base_color));
       else
         glass_.emplace(GlassBsdf(roughness, roughness, m.ior, m.base_color, m.base_color, m.glass_beckmann, false, m.thin_film()));
       glass_weight_ = glass_probability_ = 1.0f;

@@ -30,6 +30,9 @@
 // T / (1 - P_r) at the sampled microfacet (Cycles 4.2-5.x: their refraction at |etap - 1| < 1e-4
 // is singular, their reflection keeps the film's Fresnel).
 //
+// The Glass BSDF node of Blender 4.x/5.x (glass_node()): the same closure with Specular Tint 1,
+// both R and T tinted by its Color (R = F(c) Color, T = (1 - F(c)) Color, Cycles 4.2-5.x's
+// svm_node_closure_bsdf glass case) and F_ss = Color for Multiscatter GGX.
 // Frame as GlassBsdf (glass.h), so that MaterialBsdf holds either: z is the surface's OUTWARD
 // normal, wo.z < 0 is a viewer inside. eval() includes |cos_i| (bsdf.h). Thin Wall (Blender 5.x)
 // is thin_wall_v2.h's instead. Thin Film (thin_film.h): F(c) = the film's reflectance over etap (its
@@ -51,6 +54,10 @@ class PrincipledGlassV2 {
                     bool multiscatter, const ThinFilm& film = ThinFilm{});
   PrincipledGlassV2(float roughness, float ior, const Vec3& specular_tint, const Vec3& base_color,
                     bool multiscatter, const ThinFilm& film, float refracting_ior);
+
+  // Blender 4.x/5.x's Glass BSDF node: color (>= 0) tints reflection and refraction alike.
+  static PrincipledGlassV2 glass_node(float roughness, float ior, const Vec3& color, bool multiscatter,
+                                      const ThinFilm& film = ThinFilm{});
 
   Vec3 eval(const Vec3& wo, const Vec3& wi) const;
   float pdf(const Vec3& wo, const Vec3& wi) const;
@@ -75,6 +82,7 @@ class PrincipledGlassV2 {
   Lobe evaluate(const Vec3& wo, const Vec3& wi, float etap) const;
 
   Vec3 f0_, tint_t_;
+  Vec3 tint_r_{1.0f};  // the reflection's tint: 1, or the Glass node's Color
   float alpha_, roughness_, ior_;
   bool smooth_, multiscatter_;
   bool straight_;   // |ior - 1| < 1e-4: refraction passes straight through (a delta)
