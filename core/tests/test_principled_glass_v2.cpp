@@ -203,18 +203,12 @@ TEST(PrincipledGlassV2, CoatOverGlassDarkensIt) {
   EXPECT_GT(sum.x, 3.0f * sum.y);  // the refracted light is tinted red
 }
 
-}  // namespace
-}  // namespace torrance
-
-namespace torrance {
-namespace {
-
 // Blender 4.x/5.x's Glass node (glass_node): white, it is Principled v2's glass with Specular Tint
 // and base colour 1, bit for bit; a Color tints reflection and refraction alike (f, and a
-// sample's weight for the same direction), leaving the pdf and the lobe choice as white glass's.
-// With Multiscatter GGX its F_ss is the Color itself (not the Principled's square root): a white
-// furnace of the tinted glass is the Color times the white one's, channel by channel, only if
-// the compensation follows the tint as Cycles' does (1 + F_ss (1 - E) / E per channel).
+// sample's weight for the same direction, times the ratio of the two multiscatter scales), leaving
+// the pdf and the lobe choice as white glass's. With Multiscatter GGX its F_ss is the Color itself
+// (not the Principled's square root), so the scale 1 + F_ss (1 - E) / E ... differs per channel:
+// a dark channel is compensated less than a bright one (Cycles' F_ss = the transmission tint).
 TEST(PrincipledGlassV2, GlassNodeTintsBothLobesByItsColor) {
   const Vec3 color(0.9f, 0.5f, 0.2f);
   Rng rng(11, 12, 13);
@@ -247,8 +241,7 @@ TEST(PrincipledGlassV2, GlassNodeTintsBothLobesByItsColor) {
   }
   EXPECT_GT(reflected, 100);
   EXPECT_GT(refracted, 1000);
-  // Multiscatter GGX's F_ss is the Color: at roughness 0.6 the tinted glass's compensation is
-  // 1 + c (1 - E) / E... per channel, so a dark channel is compensated less than a bright one.
+  // At roughness 0.6 the tinted glass's scale is larger in its bright channel than its dark one.
   const PrincipledGlassV2 tinted = PrincipledGlassV2::glass_node(0.6f, 1.5f, color, true);
   const Vec3 scale = tinted.energy_scale(0.7f, 1.5f);
   EXPECT_GT(scale.x, scale.z);
