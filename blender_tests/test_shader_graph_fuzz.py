@@ -49,6 +49,7 @@ import numpy as np
 from hypothesis import HealthCheck, given, note, settings
 
 from torrance_tools import testing
+from torrance_tools.addon_access import core_holder, core_proxy
 from torrance_tools.random_node_trees import (build_material, catalogue, remove_material,
                                               tree_plans)
 from torrance_tools.textures import new_image
@@ -138,6 +139,41 @@ class CoreTextures:
             pixels = np.array(image.pixels[:], np.float32).reshape(h, w, 4)
             self.ids[key] = self.scene.add_texture(pixels, "sRGB", interpolation)
         return self.ids[key]
+
+
+SKY_TABLES = ("nishita_sky_table", "scattering_sky_table", "hosek_sky_table", "preetham_sky_table")
+
+
+@contextlib.contextmanager
+def sky_tables_once():
+    """The add-on's readers get each sky table (a pure function of the node's settings) computed
+    once for each set of arguments: every tree is compiled three times (compile_targets,
+    check_folding's unfolded compile, the MaterialReader), and a Nishita table costs the core
+    ~0.3 s of CPU. The arguments are told apart by their repr (-0.0 from 0.0)."""
+    mod = testing.addon()
+    holder, core = core_holder(mod), mod.render.load_core()
+    proxy = core_proxy(core)
+
+    def once(name):
+        compute, tables = getattr(core, name), {}
+
+        def table(*args, **kwargs):
+            key = repr((args, sorted(kwargs.items())))
+            if key not in tables:
+                tables[key] = compute(*args, **kwargs)
+            else:
+                STATS["sky tables reused"] += 1
+            return tables[key]
+        return table
+
+    for name in SKY_TABLES:
+        if hasattr(core, name):
+            setattr(proxy, name, once(name))
+    holder._core = proxy
+    try:
+        yield
+    finally:
+        holder._core = core
 
 
 @contextlib.contextmanager
@@ -364,10 +400,11 @@ def main():
     testing.clear_scene()
     image = new_image("fuzz image", np.random.default_rng(1).random((4, 5, 4)).astype(np.float32))
     types = catalogue(registry.READERS)
-    fuzz(types, image, core, examples=400)
-    fuzz(types, image, core, examples=250, sources=HIT_SOURCES)
-    fuzz({k: t for k, t in types.items() if k in CONSTANT_NODES}, image, core, examples=120,
-         constant_only=True)
+    with sky_tables_once():
+        fuzz(types, image, core, examples=400)
+        fuzz(types, image, core, examples=250, sources=HIT_SOURCES)
+        fuzz({k: t for k, t in types.items() if k in CONSTANT_NODES}, image, core,
+             examples=120, constant_only=True)
     print("covered:", dict(STATS.most_common()), flush=True)
 
 
