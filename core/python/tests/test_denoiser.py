@@ -84,7 +84,7 @@ def test_denoising_brings_a_noisy_render_near_the_converged_one(denoiser):
                               ("guided", denoiser.denoise(noisy, albedo, normal))):
                 errors.setdefault((name, splatting), []).append(rel_mse(img, reference))
     e = {k: float(np.mean(v)) for k, v in errors.items()}
-    print("relMSE against 1024 spp:", {f"{k[0]}{' (splatting)' if k[1] else ''}": round(v, 4)
+    print("relMSE against 256 spp:", {f"{k[0]}{' (splatting)' if k[1] else ''}": round(v, 4)
                                        for k, v in e.items()})
     assert e["color only", False] < 0.15 * e["noisy", False]
     assert e["guided", False] < 0.15 * e["noisy", False]
