@@ -326,7 +326,7 @@ TEST(ChiSquare, ClosureNodesSamplingMatchesPdf) {
       const std::string failure = chi_square(
           axis_of, c.scale, seed++, significance,
           drawn_by([&](float u, const Vec2& u2) { return c.bsdf.sample(wo, u, u2, c.backfacing); }),
-          [&](const Vec3& wi) { return c.bsdf.pdf(wo, wi, c.backfacing); });
+          [&](const Vec3& wi) { return c.bsdf.pdf_drawn(wo, wi, c.backfacing); });
       EXPECT_EQ(failure, "") << c.name << " cos_o=" << cos_o;
     }
 }

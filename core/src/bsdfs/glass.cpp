@@ -1,6 +1,7 @@
 #include "torrance/bsdfs/glass.h"
 
 #include "torrance/bsdfs/principled.h"  // fresnel_dielectric
+#include "torrance/bsdfs/refraction_pair.h"
 
 namespace torrance {
 
@@ -57,8 +58,8 @@ Vec3 GlassBsdf::sample_normal(const Vec3& wo, float alpha, const Vec2& u) const 
   return Vec3(sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t);
 }
 
-float GlassBsdf::normal_pdf(const Vec3& wo, const Vec3& h, float alpha) const {
-  if (!beckmann_) return G1(wo.z, alpha) * D(h, alpha) * std::max(glm::dot(wo, h), 0.0f) / wo.z;
+float GlassBsdf::normal_pdf(const Vec3& wo, const Vec3& h, float o_h, float alpha) const {
+  if (!beckmann_) return G1(wo.z, alpha) * D(h, alpha) * o_h / wo.z;
   return D(h, alpha) * h.z;
 }
 
@@ -97,7 +98,7 @@ GlassBsdf::Lobe GlassBsdf::reflection(const Vec3& wo, const Vec3& wi) const {
   const float o_h = glm::dot(wo, h);
   if (!(o_h > 0.0f)) return out;
   const float d = D(h, alpha_r_);
-  out.pdf = normal_pdf(wo, h, alpha_r_) / (4.0f * o_h);
+  out.pdf = normal_pdf(wo, h, o_h, alpha_r_) / (4.0f * o_h);
   out.f_cos = d * G1(wo.z, alpha_r_) * G1(wi.z, alpha_r_) / (4.0f * wo.z);
   return out;
 }
@@ -105,15 +106,13 @@ GlassBsdf::Lobe GlassBsdf::reflection(const Vec3& wo, const Vec3& wi) const {
 GlassBsdf::Lobe GlassBsdf::refraction(const Vec3& wo, const Vec3& wi, float etap) const {
   Lobe out;
   if (refract_delta_ || invisible_ || !(wo.z > 0.0f) || !(wi.z < 0.0f)) return out;
-  // The microfacet normal that refracts wo into wi, on wo's side: +-(wo + etap wi).
-  Vec3 h;
-  float len2;
-  if (!ggx::refraction_half(wo, wi, etap, h, len2)) return out;  // none visible from wo refracts into wi
-  const float o_h = glm::dot(wo, h), i_h = glm::dot(wi, h);
+  // The microfacet normal along +-(wo + etap wi); also where none refracts wo into wi, as Cycles.
+  RefractionPair p;
+  if (!refraction_pair(wo, wi, etap, p)) return out;
   // The density of h times Walter's Jacobian dh/dwi = etap^2 |wi.h| / |wo + etap wi|^2.
-  const float jacobian = etap * etap * -i_h / len2;
-  out.pdf = normal_pdf(wo, h, alpha_t_) * jacobian;
-  out.f_cos = G1(wo.z, alpha_t_) * G1(-wi.z, alpha_t_) * D(h, alpha_t_) * o_h / wo.z * jacobian;
+  const float jacobian = etap * etap * p.i_h / p.len2;
+  out.pdf = normal_pdf(wo, p.h, p.o_h, alpha_t_) * jacobian;
+  out.f_cos = G1(wo.z, alpha_t_) * G1(-wi.z, alpha_t_) * D(p.h, alpha_t_) * p.o_h / wo.z * jacobian;
   if (!std::isfinite(out.f_cos) || !std::isfinite(out.pdf)) return Lobe{};
   return out;
 }
@@ -134,6 +133,13 @@ float GlassBsdf::pdf(const Vec3& wo, const Vec3& wi) const {
   const Weights w = weights(wo);
   if (i.z > 0.0f) return w.p_reflect * reflection(o, i).pdf;
   return (1.0f - w.p_reflect) * refraction(o, i, w.etap).pdf;
+}
+
+bool GlassBsdf::connects(const Vec3& wo, const Vec3& wi) const {
+  if (wo.z == 0.0f) return true;
+  const float side = wo.z > 0.0f ? 1.0f : -1.0f;
+  const Vec3 o = to_wo_side(wo, side), i = to_wo_side(wi, side);
+  return !(i.z < 0.0f) || refraction_connects(o, i, wo.z > 0.0f ? eta_ : 1.0f / eta_);
 }
 
 BsdfSample GlassBsdf::sample(const Vec3& wo, float u_lobe, const Vec2& u) const {

@@ -133,7 +133,7 @@ LobeEval MixtureBsdf::eval_mixture(const Vec3& wo, const Vec3& wi, bool backfaci
 }
 
 float MixtureBsdf::pdf_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse,
-                               const CoatNormal& coat, int skip) const {
+                               const CoatNormal& coat, int skip, bool drawn_only) const {
   const DiffuseFrame d(diffuse);
   float p = 0.0f;
   for (int k = 0; k < count_; ++k)
@@ -145,7 +145,8 @@ float MixtureBsdf::pdf_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, 
                                    else if constexpr (is<decltype(b), DiffuseBsdf>)
                                      return b.pdf(d.to_local(wo), d.to_local(wi));
                                    else if constexpr (is<decltype(b), RefractionBsdf>)
-                                     return b.pdf(wo, wi, backfacing);
+                                     return drawn_only && !b.connects(wo, wi, backfacing) ? 0.0f
+                                                                                          : b.pdf(wo, wi, backfacing);
                                    else return b.pdf(wo, wi);
                                  },
                                  components_[k]);

@@ -5,6 +5,7 @@
 #include "torrance/bsdfs/microfacet.h"
 #include "torrance/bsdfs/outward.h"
 #include "torrance/bsdfs/principled_coat.h"  // multiscatter
+#include "torrance/bsdfs/refraction_pair.h"
 
 namespace torrance {
 
@@ -86,13 +87,11 @@ PrincipledGlassV2::Lobe PrincipledGlassV2::evaluate(const Vec3& wo, const Vec3& 
     out.f_cos = sp.reflect * (common * g2);
     out.pdf = sp.p_reflect * common * g1_o;
   } else {
-    Vec3 h;
-    float len2;
+    RefractionPair p;
     if (straight_) return out;  // a delta straight through, sampled only
-    if (!ggx::refraction_half(wo, wi, etap, h, len2)) return out;  // h must face wo and wi cross it
-    const float o_h = glm::dot(wo, h), i_h = glm::dot(wi, h);
-    const Split sp = split(o_h, etap);
-    const float common = ggx::D(h, alpha_) / wo.z * etap * etap * o_h * -i_h / len2;
+    if (!refraction_pair(wo, wi, etap, p)) return out;  // also pairs no microfacet connects, as Cycles
+    const Split sp = split(p.o_h, etap);
+    const float common = ggx::D(p.h, alpha_) / wo.z * etap * etap * p.o_h * p.i_h / p.len2;
     out.f_cos = sp.transmit * (common * g2);
     out.pdf = (1.0f - sp.p_reflect) * common * g1_o;
   }
@@ -109,6 +108,12 @@ Vec3 PrincipledGlassV2::eval(const Vec3& wo, const Vec3& wi) const {
 float PrincipledGlassV2::pdf(const Vec3& wo, const Vec3& wi) const {
   const bool inside = wo.z < 0.0f;
   return evaluate(outward(wo, inside), outward(wi, inside), inside ? 1.0f / ior_ : ior_).pdf;
+}
+
+bool PrincipledGlassV2::connects(const Vec3& wo, const Vec3& wi) const {
+  const bool inside = wo.z < 0.0f;
+  const Vec3 o = outward(wo, inside), i = outward(wi, inside);
+  return !(o.z > 0.0f && i.z < 0.0f) || refraction_connects(o, i, inside ? 1.0f / ior_ : ior_);
 }
 
 BsdfSample PrincipledGlassV2::sample(const Vec3& wo_outward, float u_lobe, const Vec2& u) const {

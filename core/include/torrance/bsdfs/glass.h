@@ -53,6 +53,9 @@ class GlassBsdf {
   Vec3 eval(const Vec3& wo, const Vec3& wi) const;
   float pdf(const Vec3& wo, const Vec3& wi) const;
   BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const;
+  // Whether sampling can draw wi from wo: false for a refraction pair no microfacet connects,
+  // which eval() and pdf() still value as Cycles (refraction_pair.h).
+  bool connects(const Vec3& wo, const Vec3& wi) const;
 
   // The macro Fresnel reflectance for wo (the weight of the reflection closure).
   float fresnel(const Vec3& wo) const;
@@ -72,11 +75,11 @@ class GlassBsdf {
   Lobe reflection(const Vec3& wo, const Vec3& wi) const;
   Lobe refraction(const Vec3& wo, const Vec3& wi, float etap) const;
   // The microfacet distribution (GGX or Beckmann) for wo.z > 0: D, Smith G1, a sampled normal
-  // and its density.
+  // and its density (o_h = |wo.h|: GGX's visible normals; Cycles takes it unsigned).
   float D(const Vec3& h, float alpha) const;
   float G1(float cos_theta, float alpha) const;
   Vec3 sample_normal(const Vec3& wo, float alpha, const Vec2& u) const;
-  float normal_pdf(const Vec3& wo, const Vec3& h, float alpha) const;
+  float normal_pdf(const Vec3& wo, const Vec3& h, float o_h, float alpha) const;
 
   Vec3 reflect_color_, refract_color_;
   float alpha_r_, alpha_t_, eta_;

@@ -76,6 +76,12 @@ class MixtureBsdf {
   BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing = false) const {
     return sample_mixture(wo, u_lobe, u, backfacing);
   }
+  // The density of the directions sample() draws: pdf() less the Refraction closures' pairs that
+  // no microfacet connects, which they value as Cycles does but never draw (refraction_pair.h).
+  // (A MaterialBsdf closure's glass counts whole: its own tests check its drawn pairs.)
+  float pdf_drawn(const Vec3& wo, const Vec3& wi, bool backfacing = false) const {
+    return pdf_mixture(wo, wi, backfacing, {}, {}, -1, true);
+  }
   bool transmits() const;  // some closure is glass, Translucent, Refraction, Principled Hair or Hair
   // Every closure is a Hair BSDF's: Cycles' hair closures check no geometric side (the path
   // tracer then leaves out its check that the geometric and shading normals agree on wi's side).
@@ -125,7 +131,7 @@ class MixtureBsdf {
   LobeEval eval_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse = {},
                         const CoatNormal& coat = {}, int skip = -1) const;
   float pdf_mixture(const Vec3& wo, const Vec3& wi, bool backfacing, const DiffuseNormal& diffuse = {},
-                    const CoatNormal& coat = {}, int skip = -1) const;
+                    const CoatNormal& coat = {}, int skip = -1, bool drawn_only = false) const;
   // Whether closure c's sample counts as its own eval (kSampleIsOwnEval).
   static bool sample_is_own_eval(const Component& c);
   BsdfSample sample_mixture(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing,

@@ -17,7 +17,8 @@
 //               a ray through a closed object is tinted by the base colour once in and out)
 // with the height-correlated G2 = 1 / (1 + L(wo) + L(wi)); refraction as Walter et al. 2007 with
 // etap^2 in the numerator (no 1 / etap^2 radiance compression), as rough_dielectric.h. A pair
-// whose generalised half vector does not face wo, or that wi does not cross, is 0.
+// whose generalised half vector does not face wo, or that wi does not cross, is evaluated with
+// |wo.h| |wi.h| as Cycles does (refraction_pair.h): sampling never draws it, NEE does.
 // Multiscatter GGX (the node's default): the whole closure is scaled by 1 + F_ms (1 - E) / E
 // with E = E(r, mu_o, etap), E_avg from ggx_glass_tables.h and F_ss = sqrt(base) (Cycles: "the
 // transmissive tint makes up most of the colour"; the reflective F_ss when that is black).
@@ -63,6 +64,9 @@ class PrincipledGlassV2 {
   float pdf(const Vec3& wo, const Vec3& wi) const;
   BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const;
   bool has_delta() const { return smooth_; }
+  // Whether sampling can draw wi from wo: false for a refraction pair no microfacet connects,
+  // which eval() and pdf() still value as Cycles (refraction_pair.h).
+  bool connects(const Vec3& wo, const Vec3& wi) const;
 
   // Reflectance R and transmittance T of a microfacet at cos c (viewer's side with etap).
   struct Split {

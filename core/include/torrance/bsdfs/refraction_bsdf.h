@@ -15,6 +15,7 @@
 #pragma once
 
 #include "torrance/bsdfs/glass.h"
+#include "torrance/bsdfs/outward.h"
 
 namespace torrance {
 
@@ -25,6 +26,9 @@ class RefractionBsdf {
   LobeEval eval_lobes(const Vec3& wo, const Vec3& wi, bool backfacing) const;
   float pdf(const Vec3& wo, const Vec3& wi, bool backfacing) const;
   BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u, bool backfacing) const;
+  bool connects(const Vec3& wo, const Vec3& wi, bool backfacing) const {  // GlassBsdf::connects
+    return glass_.connects(outward(wo, backfacing), outward(wi, backfacing));
+  }
   // What a mixture samples it by: its colour's luminance.
   float sampling_albedo() const { return luminance(color_); }
 
