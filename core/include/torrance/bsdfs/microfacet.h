@@ -101,18 +101,6 @@ inline float smith_G1_aniso(const Vec3& w, float ax, float ay) {
   return 2.0f * w.z / (w.z + std::sqrt(s + w.z * w.z));
 }
 
-// The microfacet normal h through which wo refracts into wi (etap = IOR of wi's side / IOR of wo's
-// side), turned to z > 0, and len2 = |wo + etap wi|^2 = (wo.h + etap wi.h)^2; false when there
-// is none that faces wo and that wi crosses (wo.h > 0 > wi.h). wo.z > 0.
-inline bool refraction_half(const Vec3& wo, const Vec3& wi, float etap, Vec3& h, float& len2) {
-  const Vec3 half = wo + etap * wi;
-  len2 = glm::dot(half, half);
-  if (!(len2 > 0.0f)) return false;
-  h = half / std::sqrt(len2);
-  if (h.z < 0.0f) h = -h;
-  return glm::dot(wo, h) > 0.0f && glm::dot(wi, h) < 0.0f;
-}
-
 // The direction wo refracts to through a microfacet h facing it (wo.h > 0), etap = IOR of the far
 // side / IOR of wo's side (Snell); false at total internal reflection.
 inline bool refract(const Vec3& wo, const Vec3& h, float etap, Vec3& wi) {

@@ -1,10 +1,10 @@
 // A pair of directions across a rough dielectric boundary, as Cycles evaluates it.
 //
 // A microfacet refracts wo into wi only along h = +-(wo + etap wi) / |wo + etap wi| (etap = IOR of
-// wi's side / IOR of wo's side), and only if h faces wo and wi crosses it: wo.h > 0 > wi.h
-// (ggx::refraction_half). Cycles asks nothing of the pair (3.4's bsdf_microfacet_*_eval_transmit,
-// 4.x and 5.x's bsdf_microfacet_eval: "TODO: check if the refraction configuration is valid"): its
-// D and Fresnel are even in h and it takes |wo.h| |wi.h|, so a pair that no microfacet connects
+// wi's side / IOR of wo's side), and only if h faces wo and wi crosses it: wo.h > 0 > wi.h.
+// Cycles asks nothing of the pair (3.4's bsdf_microfacet_*_eval_transmit, 4.x and 5.x's
+// bsdf_microfacet_eval: "TODO: check if the refraction configuration is valid"): its D and
+// Fresnel are even in h and it takes |wo.h| |wi.h|, so a pair that no microfacet connects
 // still has a value and a pdf. Such pairs are mostly wo inside the glass beyond the critical angle
 // with wi outside. BSDF sampling never draws one; next-event estimation does, and Cycles' rough
 // glass shows their light on top of the microfacet model's. Measured in bpy 4.2, GGX roughness 1,
