@@ -82,4 +82,16 @@ double mean_sample_weight(const Bsdf& bsdf, const Vec3& wo, int n, uint32_t seed
   return sum / n;
 }
 
+// A rough glass's pdf and eval on the pairs of directions its sampling draws: 0 on the refraction
+// pairs no microfacet connects, which it values as Cycles does but never draws (connects(),
+// refraction_pair.h). For the checks of sampling against pdf and eval.
+template <typename Glass>
+float drawn_pdf(const Glass& glass, const Vec3& wo, const Vec3& wi) {
+  return glass.connects(wo, wi) ? glass.pdf(wo, wi) : 0.0f;
+}
+template <typename Glass>
+Vec3 drawn_eval(const Glass& glass, const Vec3& wo, const Vec3& wi) {
+  return glass.connects(wo, wi) ? glass.eval(wo, wi) : Vec3(0.0f);
+}
+
 }  // namespace torrance::test
