@@ -1,5 +1,6 @@
 #include "torrance/bsdfs/glass.h"
 
+#include "torrance/bsdfs/beckmann.h"
 #include "torrance/bsdfs/principled.h"  // fresnel_dielectric
 #include "torrance/bsdfs/refraction_pair.h"
 
@@ -33,20 +34,12 @@ GlassBsdf::GlassBsdf(float reflect_roughness, float refract_roughness, float ior
 }
 
 float GlassBsdf::D(const Vec3& h, float alpha) const {
-  if (!beckmann_) return ggx::D(h, alpha);
-  if (!(h.z > 0.0f)) return 0.0f;
-  const float a2 = alpha * alpha, c2 = h.z * h.z;
-  const float tan2 = (h.x * h.x + h.y * h.y) / c2;
-  return std::exp(-tan2 / a2) / (kPi * a2 * c2 * c2);
+  return beckmann_ ? beckmann::D(h, alpha) : ggx::D(h, alpha);
 }
 
 float GlassBsdf::G1(float cos_theta, float alpha) const {
   if (!beckmann_) return ggx::smith_G1(cos_theta, alpha);
-  if (!(cos_theta > 0.0f)) return 0.0f;
-  const float alpha_tan = alpha * safe_sqrt(1.0f - cos_theta * cos_theta) / cos_theta;
-  if (!(alpha_tan >= 0.625f)) return 1.0f;  // Cycles' rational fit of Smith's Beckmann G1
-  const float a = 1.0f / alpha_tan;
-  return ((2.181f * a + 3.535f) * a) / ((2.577f * a + 2.276f) * a + 1.0f);
+  return cos_theta > 0.0f ? beckmann::smith_G1(cos_theta, alpha) : 0.0f;
 }
 
 Vec3 GlassBsdf::sample_normal(const Vec3& wo, float alpha, const Vec2& u) const {

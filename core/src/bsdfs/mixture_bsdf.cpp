@@ -372,7 +372,7 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
       case ClosureType::Sheen: add_closure(bsdf, SheenBsdf(m.base_color, m.roughness), w.weight[k]); break;
       case ClosureType::Translucent: add_closure(bsdf, TranslucentBsdf(m.base_color), w.weight[k]); break;
       case ClosureType::Refraction:
-        add_closure(bsdf, RefractionBsdf(m.base_color, m.roughness, m.ior, m.glass_beckmann), w.weight[k]);
+        add_closure(bsdf, RefractionBsdf(m.base_color, m.roughness, m.ior, m.glass_beckmann, m.glass_cycles4), w.weight[k]);
         break;
       case ClosureType::ToonDiffuse:
       case ClosureType::ToonGlossy:

@@ -1,5 +1,6 @@
 #include "torrance/bsdfs/principled_glass_v2.h"
 
+#include "torrance/bsdfs/beckmann.h"
 #include "torrance/bsdfs/ggx_glass_tables.h"
 #include "torrance/bsdfs/ggx_tables.h"
 #include "torrance/bsdfs/microfacet.h"
@@ -38,15 +39,38 @@ PrincipledGlassV2::PrincipledGlassV2(float roughness, float ior, const Vec3& spe
 }
 
 PrincipledGlassV2 PrincipledGlassV2::glass_node(float roughness, float ior, const Vec3& color, bool multiscatter,
-                                                const ThinFilm& film) {
-  PrincipledGlassV2 glass(roughness, ior, Vec3(1.0f), Vec3(1.0f), multiscatter, film);
+                                                const ThinFilm& film, bool beckmann) {
+  PrincipledGlassV2 glass(roughness, ior, Vec3(1.0f), Vec3(1.0f), multiscatter && !beckmann, film);
   const Vec3 tint = is_finite(color) ? glm::max(color, Vec3(0.0f)) : Vec3(0.0f);
   glass.tint_r_ = glass.tint_t_ = tint;
+  glass.beckmann_ = beckmann;
   return glass;
+}
+
+PrincipledGlassV2 PrincipledGlassV2::refraction_node(float roughness, float ior, const Vec3& color, bool beckmann) {
+  PrincipledGlassV2 glass = glass_node(roughness, ior, color, false, ThinFilm{}, beckmann);
+  glass.tint_r_ = Vec3(0.0f);
+  glass.reflective_ = false;
+  return glass;
+}
+
+float PrincipledGlassV2::D(const Vec3& h) const { return beckmann_ ? beckmann::D(h, alpha_) : ggx::D(h, alpha_); }
+
+float PrincipledGlassV2::lambda(float cos_theta) const {
+  return beckmann_ ? beckmann::lambda(cos_theta, alpha_) : ggx::smith_lambda(cos_theta, alpha_);
+}
+
+float PrincipledGlassV2::visible_g1(float cos_o) const {
+  return 1.0f / (1.0f + (beckmann_ ? beckmann::lambda_exact(cos_o, alpha_) : ggx::smith_lambda(cos_o, alpha_)));
 }
 
 PrincipledGlassV2::Split PrincipledGlassV2::split(float c, float etap) const {
   Split out;
+  if (!reflective_) {  // the Refraction node: no Fresnel, nothing at total internal reflection
+    out.p_reflect = 0.0f;
+    if (1.0f - (1.0f - c * c) / (etap * etap) > 0.0f) out.transmit = tint_t_;
+    return out;
+  }
   if (film_.active()) {
     const ThinFilm& film = etap == ior_ ? film_ : film_inside_;
     out.reflect = tinted_film_fresnel(film.over_dielectric(clamp01(c), etap), f0_, etap);
@@ -76,14 +100,13 @@ Vec3 PrincipledGlassV2::energy_scale(float cos_o, float etap) const {
 PrincipledGlassV2::Lobe PrincipledGlassV2::evaluate(const Vec3& wo, const Vec3& wi, float etap) const {
   Lobe out;
   if (smooth_ || invisible_ || !(wo.z > 0.0f) || wi.z == 0.0f) return out;
-  const float lambda_o = ggx::smith_lambda(wo.z, alpha_);
-  const float g2 = 1.0f / (1.0f + lambda_o + ggx::smith_lambda(std::abs(wi.z), alpha_));
-  const float g1_o = 1.0f / (1.0f + lambda_o);
+  const float g2 = 1.0f / (1.0f + lambda(wo.z) + lambda(std::abs(wi.z)));
+  const float g1_o = visible_g1(wo.z);
   if (wi.z > 0.0f) {
     Vec3 h;
-    if (!ggx::reflection_half(wo, wi, h)) return out;
+    if (!reflective_ || !ggx::reflection_half(wo, wi, h)) return out;
     const Split sp = split(glm::dot(wo, h), etap);
-    const float common = ggx::D(h, alpha_) / (4.0f * wo.z);
+    const float common = D(h) / (4.0f * wo.z);
     out.f_cos = sp.reflect * (common * g2);
     out.pdf = sp.p_reflect * common * g1_o;
   } else {
@@ -91,7 +114,8 @@ PrincipledGlassV2::Lobe PrincipledGlassV2::evaluate(const Vec3& wo, const Vec3& 
     if (straight_) return out;  // a delta straight through, sampled only
     if (!refraction_pair(wo, wi, etap, p)) return out;  // also pairs no microfacet connects, as Cycles
     const Split sp = split(p.o_h, etap);
-    const float common = ggx::D(p.h, alpha_) / wo.z * etap * etap * p.o_h * p.i_h / p.len2;
+    if (sp.transmit == Vec3(0.0f)) return out;  // Cycles: nothing reflected or transmitted, no pdf
+    const float common = D(p.h) / wo.z * etap * etap * p.o_h * p.i_h / p.len2;
     out.f_cos = sp.transmit * (common * g2);
     out.pdf = (1.0f - sp.p_reflect) * common * g1_o;
   }
@@ -128,10 +152,13 @@ BsdfSample PrincipledGlassV2::sample(const Vec3& wo_outward, float u_lobe, const
     s.is_delta = true;
     return s;
   }
-  const Vec3 h = smooth_ ? Vec3(0.0f, 0.0f, 1.0f) : ggx::sample_visible_normal(wo, alpha_, u);
+  const Vec3 h = smooth_         ? Vec3(0.0f, 0.0f, 1.0f)
+                 : beckmann_ ? beckmann::sample_visible_normal(wo, alpha_, u)
+                             : ggx::sample_visible_normal(wo, alpha_, u);
   const float c = glm::dot(wo, h);
   if (!(c > 0.0f)) return s;
   const Split sp = split(c, etap);
+  if (sp.reflect == Vec3(0.0f) && sp.transmit == Vec3(0.0f)) return s;
   const bool reflect = u_lobe < sp.p_reflect;
   Vec3 wi;
   if (reflect) {

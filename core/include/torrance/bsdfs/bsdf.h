@@ -66,11 +66,12 @@ struct Material {
   float transmission = 0.0f;
   float transmission_roughness = 0.0f;
   bool glass_node = false;
-  bool glass_beckmann = false;  // the Glass node with the Beckmann distribution (else GGX)
-  // The Glass node as Cycles 4.0+ renders it (GGX and Multiscatter GGX, multiscatter_ggx telling
-  // which): one closure with the Fresnel per microfacet, both lobes tinted by its Color
-  // (PrincipledGlassV2::glass_node). False: Cycles 3.4's pair of closures split by the Fresnel of
-  // the macro normal (glass.h), or its random walk (multiscatter_walk).
+  bool glass_beckmann = false;  // the Glass / Refraction node with the Beckmann distribution (else GGX)
+  // The Glass node as Cycles 4.0+ renders it (GGX, Multiscatter GGX, multiscatter_ggx telling
+  // which, and Beckmann): one closure with the Fresnel per microfacet, both lobes tinted by its
+  // Color (PrincipledGlassV2::glass_node); the Refraction node its refraction alone
+  // (refraction_node). False: Cycles 3.4's pair of closures split by the Fresnel of the macro
+  // normal (glass.h), or its random walk (multiscatter_walk); its Refraction closure.
   bool glass_cycles4 = false;
   // PRINCIPLED_V2's Thin Wall (Blender 5.x, thin_wall_v2.h): the surface is a thin sheet, its
   // transmission a slab seen alike from both sides and its subsurface a diffuse reflection and

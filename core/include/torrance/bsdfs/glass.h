@@ -24,8 +24,8 @@
 // eval() includes |cos_i| (see bsdf.h); delta lobes have no eval or pdf.
 //
 // Beckmann (the Glass BSDF node's default distribution in Blender 3.4): the same two closures
-// with Cycles 3.4's Beckmann D = exp(-tan^2 / alpha^2) / (pi alpha^2 cos^4) and its rational
-// approximation of Smith's G1; its microfacet normals are sampled in proportion to D(h) cos(h)
+// with Cycles' Beckmann D and its rational approximation of Smith's G1 (beckmann.h); its
+// microfacet normals are sampled in proportion to D(h) cos(h)
 // (not visible normals: a different estimator of the same BSDF).
 //
 // refraction_only: the Refraction BSDF node's one closure (refraction_bsdf.h): no reflection

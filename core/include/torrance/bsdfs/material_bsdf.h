@@ -43,8 +43,9 @@ class MaterialBsdf {
     }
     if (!m.glass_node && !(m.transmission > 0.0f && metallic < 1.0f)) return;
     if (m.glass_node) {
-      if (m.glass_cycles4 && !m.glass_beckmann)
-        glass_.emplace(PrincipledGlassV2::glass_node(roughness, m.ior, m.base_color, m.multiscatter_ggx, m.thin_film()));
+      if (m.glass_cycles4)
+        glass_.emplace(PrincipledGlassV2::glass_node(roughness, m.ior, m.base_color, m.multiscatter_ggx, m.thin_film(),
+                                                     m.glass_beckmann));
       else if (m.multiscatter_walk && !m.glass_beckmann)
         glass_.emplace(MultiscatterGlassBsdf(roughness, m.ior, m.base_color));
       else

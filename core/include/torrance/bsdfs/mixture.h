@@ -50,8 +50,8 @@ enum class ClosureType {
   Velvet,       // Velvet BSDF (3.x) / Sheen BSDF, Ashikhmin: Color = base_color, Sigma or Roughness = roughness
   Sheen,        // Sheen BSDF, Microfiber (4.x): Color = base_color, Roughness = roughness (sheen_bsdf.h)
   Translucent,  // Translucent BSDF: Color = base_color (translucent_bsdf.h)
-  // Refraction BSDF: Color = base_color, Roughness = roughness, IOR = ior, Beckmann = glass_beckmann
-  // (refraction_bsdf.h).
+  // Refraction BSDF: Color = base_color, Roughness = roughness, IOR = ior, Beckmann = glass_beckmann,
+  // as Cycles 4.x/5.x = glass_cycles4 (refraction_bsdf.h).
   Refraction,
   // Toon BSDF (toon_bsdf.h): Color = base_color, Size = roughness, Smooth = transmission_roughness;
   // its directions sampled as Cycles 3.x samples them, or (the Cycles4 ones) as Cycles 4.x.

@@ -33,7 +33,14 @@
 //
 // The Glass BSDF node of Blender 4.x/5.x (glass_node()): the same closure with Specular Tint 1,
 // both R and T tinted by its Color (R = F(c) Color, T = (1 - F(c)) Color, Cycles 4.2-5.x's
-// svm_node_closure_bsdf glass case) and F_ss = Color for Multiscatter GGX.
+// svm_node_closure_bsdf glass case) and F_ss = Color for Multiscatter GGX. With the Beckmann
+// distribution (beckmann_): Cycles 4.x/5.x's Beckmann glass, the same closure with Beckmann's D and
+// Cycles' rational Lambda in G2 (beckmann.h), no energy compensation, microfacet normals drawn
+// from Beckmann's visible normals; the pdf is their exact density (G1 of the exact Lambda, within
+// 0.32 % of Cycles' stated one).
+// The Refraction BSDF node of Blender 4.x/5.x (refraction_node()): the closure's refraction alone,
+// no Fresnel (T = Color; 0 where the microfacet totally reflects), no reflection (P_r = 0), GGX or
+// Beckmann: Cycles 4.2-5.x's *_refraction closures with Fresnel NONE.
 // Frame as GlassBsdf (glass.h), so that MaterialBsdf holds either: z is the surface's OUTWARD
 // normal, wo.z < 0 is a viewer inside. eval() includes |cos_i| (bsdf.h). Thin Wall (Blender 5.x)
 // is thin_wall_v2.h's instead. Thin Film (thin_film.h): F(c) = the film's reflectance over etap (its
@@ -58,7 +65,9 @@ class PrincipledGlassV2 {
 
   // Blender 4.x/5.x's Glass BSDF node: color (>= 0) tints reflection and refraction alike.
   static PrincipledGlassV2 glass_node(float roughness, float ior, const Vec3& color, bool multiscatter,
-                                      const ThinFilm& film = ThinFilm{});
+                                      const ThinFilm& film = ThinFilm{}, bool beckmann = false);
+  // Blender 4.x/5.x's Refraction BSDF node (color >= 0).
+  static PrincipledGlassV2 refraction_node(float roughness, float ior, const Vec3& color, bool beckmann);
 
   Vec3 eval(const Vec3& wo, const Vec3& wi) const;
   float pdf(const Vec3& wo, const Vec3& wi) const;
@@ -84,11 +93,17 @@ class PrincipledGlassV2 {
   };
   // wo.z > 0 (turned to the viewer's side), etap of that side.
   Lobe evaluate(const Vec3& wo, const Vec3& wi, float etap) const;
+  // The distribution's D, Lambda as Cycles evaluates it, and the G1 of the visible normals drawn.
+  float D(const Vec3& h) const;
+  float lambda(float cos_theta) const;
+  float visible_g1(float cos_o) const;
 
   Vec3 f0_, tint_t_;
   Vec3 tint_r_{1.0f};  // the reflection's tint: 1, or the Glass node's Color
   float alpha_, roughness_, ior_;
   bool smooth_, multiscatter_;
+  bool beckmann_ = false;   // Beckmann's microfacets instead of GGX's
+  bool reflective_ = true;  // false: the Refraction node (no Fresnel, no reflection)
   bool straight_;   // |ior - 1| < 1e-4: refraction passes straight through (a delta)
   bool invisible_;  // ... and without a film nothing reflects: the interface is not there
   ThinFilm film_, film_inside_;  // the film seen from outside and from inside (IOR / ior)
