@@ -8,8 +8,9 @@ Mix/Add Shader trees alike (mixtures.py).
 
 Each becomes (closure type, add_material kwargs) with the inputs where the core's ClosureType
 reads them: Color -> base_color (any graph), Sigma / Roughness / Size -> roughness (any graph),
-the Refraction's IOR -> ior and distribution -> glass_distribution, the Toon's Smooth ->
-transmission_roughness (a value; a graph that varies is reported and its socket's value used);
+the Refraction's IOR -> ior and distribution -> glass_distribution (4.x/5.x: glass_cycles4), the
+Toon's Smooth -> transmission_roughness (a value; a graph that varies is reported and its
+socket's value used);
 the Metallic's Base Color -> base_color (any graph), Edge Tint -> specular_tint_color, or the
 Physical Conductor's IOR -> specular_tint_color and Extinction -> sheen_tint_color (values),
 Roughness (any graph), Anisotropy, Rotation and Tangent (anisotropy.py), Multiscatter GGX ->
@@ -23,7 +24,7 @@ from .nodes import finite_or, node_label
 from .hair_bsdf import read_hair_bsdf
 from .principled_hair import read_principled_hair
 from .principled_subsurface import read_subsurface_node
-from .shader_graph.node_versions import cycles4_toon
+from .shader_graph.node_versions import cycles4_microfacets, cycles4_toon
 from .thin_film import read_thin_film
 
 CLOSURE_NODES = {'ShaderNodeBsdfVelvet', 'ShaderNodeBsdfSheen', 'ShaderNodeBsdfTranslucent',
@@ -68,7 +69,8 @@ def read_closure_node(reader, mat, node):
                                     f"{distribution.replace('_', ' ').title()} distribution; "
                                     f"Torrance renders GGX")
         args.update(ior=reader._ior(mat, node, 1.45),
-                    glass_distribution='BECKMANN' if distribution == 'BECKMANN' else 'GGX')
+                    glass_distribution='BECKMANN' if distribution == 'BECKMANN' else 'GGX',
+                    glass_cycles4=cycles4_microfacets())
     else:                                                   # ShaderNodeBsdfToon
         closure = 'toon_glossy' if getattr(node, "component", 'DIFFUSE') == 'GLOSSY' \
             else 'toon_diffuse'

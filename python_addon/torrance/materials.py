@@ -48,6 +48,7 @@ from .shader_graph.graph import KIND_OF_SOCKET, AttributeIds, GraphCompiler, Uns
 from .shader_graph.math_ops import VECTOR_MATH_OPS
 from .shader_graph.program import ProgramBuilder, constant
 from .shader_graph.registry import READERS
+from .shader_graph.node_versions import cycles4_microfacets
 from .mixtures import MIXTURE_SURFACES, read_mixture
 from .anisotropy import PRINCIPLED_V1, PRINCIPLED_V2, read_anisotropy
 from .normal_inputs import begin_displacement, read_normal_input
@@ -439,15 +440,16 @@ class MaterialReader:
         """Glass BSDF: Color (or an Image Texture), Roughness, IOR, 5.x's Thin Film; GGX or
         Beckmann (Sharp = roughness 0) as the running Blender's Cycles renders them: in 3.x two
         closures split by the macro normal's Fresnel, Multiscatter GGX as Cycles 3.4's random walk
-        (multiscatter_glass_bsdf.h); in 4.x/5.x GGX and Multiscatter GGX one closure with the
-        Fresnel per microfacet and energy compensation (principled_glass_v2.h, glass_cycles4)."""
+        (multiscatter_glass_bsdf.h); in 4.x/5.x one closure with the Fresnel per microfacet, GGX,
+        Beckmann and Multiscatter GGX (energy compensation) (principled_glass_v2.h,
+        glass_cycles4)."""
         d = DEFAULT_MATERIAL
         self._begin_program(mat)
         color, tex = self._socket_input(mat, node, "Color", (1.0, 1.0, 1.0))
         roughness = _clamp(finite_or(self._socket_value(mat, node, "Roughness", 0.0), 0.0),
                            0.0, 1.0)
         distribution = getattr(node, "distribution", 'GGX')
-        cycles4 = bpy.app.version >= (4, 0, 0)
+        cycles4 = cycles4_microfacets()
         walk = distribution == 'MULTI_GGX' and not cycles4
         if distribution == 'SHARP':
             roughness = 0.0

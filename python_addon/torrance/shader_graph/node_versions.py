@@ -111,6 +111,15 @@ def cycles4_normals():
     return bpy.app.version >= (4, 0, 0)
 
 
+def cycles4_microfacets():
+    """True where Cycles renders the Glass and Refraction BSDFs as one microfacet closure with
+    Smith's height-correlated G (4.0+: the Glass's Fresnel per microfacet, Beckmann's normals drawn
+    as visible normals; 3.4: the Glass as two closures split by the macro normal's Fresnel, its G
+    separable): the nodes did not change, the running Blender tells."""
+    import bpy
+    return bpy.app.version >= (4, 0, 0)
+
+
 def cycles4_toon():
     """True where Cycles' Toon BSDF samples its cone through the concentric disk and its sampled
     light agrees with its evaluated light (4.0+; 3.4 fades a sampled direction at another angle

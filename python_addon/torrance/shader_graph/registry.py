@@ -196,7 +196,7 @@ CLOSURES = {
                            "and Multiscatter GGX as the Blender's Cycles (3.x: two closures "
                            "split by the macro Fresnel, Multiscatter GGX its random walk; "
                            "4.x/5.x: one closure, Fresnel per microfacet, Multiscatter GGX its "
-                           "albedo scaling; Beckmann there as 3.x's); "
+                           "albedo scaling, Beckmann's visible normals); "
                            "alone and in Mix/Add Shader trees; 5.x Thin Film Thickness and IOR "
                            "(any graph). Reported: 5.x Anisotropy",
     'ShaderNodeBsdfMetallic': "partly: F82 Tint (Base Color, any graph; Edge Tint) and Physical "
@@ -224,8 +224,10 @@ CLOSURES = {
                                       "5.3's Random Walk (Legacy) as Cycles of the version; alone "
                                       "and in Mix/Add Shader trees",
     'ShaderNodeBsdfRefraction': "rendered: Color, Roughness (any graph), IOR, Normal; GGX, "
-                                "Beckmann, Sharp (Multiscatter GGX rendered as GGX, reported); "
-                                "alone and in Mix/Add Shader trees",
+                                "Beckmann, Sharp as the Blender's Cycles (3.x: its refraction "
+                                "closure; 4.x/5.x: the one microfacet closure without Fresnel) "
+                                "(Multiscatter GGX rendered as GGX, reported); alone and in "
+                                "Mix/Add Shader trees",
     'ShaderNodeBsdfToon': "partly: Color, Size (any graph), Smooth (a value; a graph that varies "
                           "is reported), Normal; Diffuse and Glossy, their sampled directions "
                           "weighted as Cycles 3.4's or 4.x's; alone and in Mix/Add Shader trees",
