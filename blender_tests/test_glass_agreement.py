@@ -62,8 +62,8 @@ def build(scene):
 
 # Faults: wrappers of MaterialReader._principled_glass / _ior / _glass.
 def no_transmission_roughness(original):
-    def fault(self, mat, node):
-        out = original(self, mat, node)
+    def fault(self, mat, node, *metallic):
+        out = original(self, mat, node, *metallic)
         if out:
             out["transmission_roughness"] = 0.0
         return out

@@ -78,7 +78,7 @@ def tint_ignored(original):
 
 
 def transmission_ignored(_original):
-    def fault(self, mat, node):
+    def fault(self, mat, node, *_metallic):
         return {}
     return fault
 

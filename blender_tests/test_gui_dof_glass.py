@@ -192,7 +192,7 @@ def apply_fault(name):
             return args, kind
         camera.camera_arguments = no_dof
     elif name == "glass":
-        MaterialReader._principled_glass = lambda self, mat, node: {}
+        MaterialReader._principled_glass = lambda self, mat, node, *_metallic: {}
     elif name:
         raise ValueError(f"unknown TORRANCE_GUI_FAULT {name!r}")
 

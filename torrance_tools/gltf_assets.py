@@ -37,6 +37,8 @@ ASSETS = {
     "EmissiveStrengthTest": ("EmissiveStrengthTest.glb",
                              "KHR_materials_emissive_strength (Emission Strength)"),
     "OrientationTest": ("OrientationTest.glb", "node rotations, metallic/roughness factors"),
+    "TransmissionRoughnessTest": ("TransmissionRoughnessTest.glb",
+                                  "KHR_materials_transmission and _ior: rough glass, IOR 1-2.42"),
 }
 
 VIEW_AZIMUTH = 30.0      # degrees from glTF's front (Blender -Y) towards +X

@@ -358,7 +358,8 @@ class MaterialReader:
         else:
             specular_tint = _clamp(finite_or(v(mat, node, names['specular_tint'], 0.0), 0.0),
                                    0.0, 1.0)
-            glass = self._principled_glass(mat, node)
+            metallic_varies = metallic_tex >= 0 or 'metallic' in self._program_inputs
+            glass = self._principled_glass(mat, node, metallic, metallic_varies)
             if bpy.app.version < (4, 0, 0) and getattr(node, "distribution", "") == 'MULTI_GGX':
                 # Cycles 3.4's Multiscatter GGX: a random walk on the microsurface (principled.h;
                 # its glass: multiscatter_glass_bsdf.h; the reflection lobe of a material with
@@ -398,14 +399,15 @@ class MaterialReader:
         out.update(read_normal_input(self, mat, node))
         return _sanitize(self._with_program(out))
 
-    def _principled_glass(self, mat, node):
-        """add_material() glass arguments of a v1 Principled BSDF ({} without transmission)."""
+    def _principled_glass(self, mat, node, metallic, metallic_varies):
+        """add_material() glass arguments of a v1 Principled BSDF ({} without transmission), its
+        Metallic as _principled read it (`metallic_varies`: from a texture or a program)."""
         v = self._socket_value
         transmission = _clamp(finite_or(v(mat, node, "Transmission", 0.0), 0.0), 0.0, 1.0)
         if transmission == 0.0:
             return {}
-        metallic = _clamp(finite_or(v(mat, node, "Metallic", 0.0), 0.0), 0.0, 1.0)
-        if getattr(node, "distribution", 'GGX') != 'GGX' and (transmission < 1.0 or metallic > 0.0):
+        opaque_part = transmission < 1.0 or metallic_varies or finite_or(metallic, 0.0) > 0.0
+        if getattr(node, "distribution", 'GGX') != 'GGX' and opaque_part:
             # Cycles 3.4 renders rough (> 0.05) transmission of Multiscatter GGX as its
             # multiple-scattering glass (so does Torrance: multiscatter_glass_bsdf.h) and the
             # specular lobe beside it as its walk too; Torrance renders that lobe as GGX.
