@@ -79,7 +79,7 @@ def ior_ignored(_original):
 def beckmann_as_ggx(original):
     def fault(self, mat, node):
         out = original(self, mat, node)
-        out["glass_distribution"] = 'GGX'
+        out["distribution"] = 'GGX'
         return out
     return fault
 

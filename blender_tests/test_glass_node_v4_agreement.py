@@ -84,7 +84,7 @@ def as_cycles_3_4(scene, directory, description, distributions):
     original = materials.MaterialTable._add
 
     def old_reading(self, args):
-        if args.get('glass_distribution') in distributions:
+        if args.get('distribution') in distributions:
             args.pop('glass_cycles4', None)
         return original(self, args)
     materials.MaterialTable._add = old_reading

@@ -128,7 +128,7 @@ void init_mixture(py::module_& m) {
       "'toon_diffuse_cycles4' | 'toon_glossy_cycles4': as Cycles 4.x) | 'metallic_f82' | 'metallic_conductor' "
       "(the Metallic BSDF: mixture.h's ClosureType), material an add_material "
       "index holding the closure's inputs (diffuse/glossy/velvet/sheen: base_color = Color, roughness = Roughness "
-      "or Sigma; translucent: base_color; refraction: base_color, roughness, ior, glass_distribution; toon: "
+      "or Sigma; translucent: base_color; refraction: base_color, roughness, ior, distribution; toon: "
       "base_color, roughness = Size, transmission_roughness = Smooth; transparent: transparent_color = Color: "
       "rays pass through with the closures' weight; holdout: its weight is taken off camera rays' alpha), terms the "
       "weight's factors (t >= 0: factor t, t < 0: 1 - factor -t-1). factors: dicts {'kind': 'constant', 'value'} | "

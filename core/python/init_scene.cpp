@@ -196,7 +196,7 @@ void init_scene(py::module_& m) {
              int bump_texture, float bump_strength, float bump_distance,
              float transmission, float transmission_roughness, bool glass,
              float alpha, int alpha_texture, std::array<float, 3> transparent_color,
-             const std::string& glass_distribution, bool alpha_from_luminance, bool alpha_inverted, int program,
+             const std::string& distribution, bool alpha_from_luminance, bool alpha_inverted, int program,
              int base_color_register, int metallic_register, int roughness_register, int emission_register,
              int normal_register, int alpha_register, int surface_normal_register, int transmission_register,
              float coat_weight,
@@ -215,8 +215,8 @@ void init_scene(py::module_& m) {
              int thin_film_thickness_register, int thin_film_ior_register, bool thin_wall,
              float diffuse_roughness, bool emission_under_layers, const std::string& coat_layering,
              bool multiscatter_walk, float dispersion, bool glass_cycles4) {
-            if (glass_distribution != "GGX" && glass_distribution != "BECKMANN")
-              throw py::value_error("glass_distribution must be 'GGX' or 'BECKMANN', got '" + glass_distribution +
+            if (distribution != "GGX" && distribution != "BECKMANN")
+              throw py::value_error("distribution must be 'GGX' or 'BECKMANN', got '" + distribution +
                                     "'");
             Material mat;
             mat.coat_layering = parse_coat_layering(coat_layering);
@@ -234,7 +234,7 @@ void init_scene(py::module_& m) {
             mat.transmission_roughness = transmission_roughness;
             mat.hair_offset = hair_offset;
             mat.glass_node = glass;
-            mat.glass_beckmann = glass_distribution == "BECKMANN";
+            mat.beckmann = distribution == "BECKMANN";
             mat.glass_cycles4 = glass_cycles4;
             mat.alpha = alpha;
             mat.transparent_color = vec3(transparent_color);
@@ -314,7 +314,7 @@ void init_scene(py::module_& m) {
           py::arg("transmission") = 0.0f,
           py::arg("transmission_roughness") = 0.0f, py::arg("glass") = false, py::arg("alpha") = 1.0f,
           py::arg("alpha_texture") = -1, py::arg("transparent_color") = std::array<float, 3>{1.0f, 1.0f, 1.0f},
-          py::arg("glass_distribution") = "GGX", py::arg("alpha_from_luminance") = false,
+          py::arg("distribution") = "GGX", py::arg("alpha_from_luminance") = false,
           py::arg("alpha_inverted") = false, py::arg("program") = -1, py::arg("base_color_register") = -1,
           py::arg("metallic_register") = -1, py::arg("roughness_register") = -1, py::arg("emission_register") = -1,
           py::arg("normal_register") = -1, py::arg("alpha_register") = -1,
@@ -355,7 +355,8 @@ void init_scene(py::module_& m) {
           "transmission, ior, transmission_roughness: the Principled BSDF's glass (transmission and "
           "transmission_roughness in [0, 1], ior in (0, 1000]; ior is also PRINCIPLED_V2's IOR); glass=True: "
           "Blender's Glass BSDF node "
-          "(base_color its Color, roughness, ior; glass_distribution 'GGX' or 'BECKMANN'; glass_cycles4: as "
+          "(base_color its Color, roughness, ior; distribution 'GGX' or 'BECKMANN', also a mixture's Refraction "
+          "and Glossy closures'; glass_cycles4: as "
           "Cycles 4.0+ renders it, GGX with the Fresnel per microfacet and multiscatter_ggx its Multiscatter GGX, "
           "else as Cycles 3.4). alpha in "
           "[0, 1] (or alpha_texture: a texture's alpha channel; its colour's luminance with alpha_from_luminance; 1 - "

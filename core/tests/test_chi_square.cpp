@@ -725,6 +725,31 @@ TEST(ChiSquare, AnisotropicGlossySamplingMatchesPdf) {
     }
 }
 
+// The Glossy BSDF with the Beckmann distribution (glossy_bsdf.h, beckmann.h): Beckmann's visible
+// normals, isotropic and stretched along a tangent, against the pdf.
+TEST(ChiSquare, BeckmannGlossySamplingMatchesPdf) {
+  const double significance = 0.01 / 12.0;
+  uint32_t seed = 9020;
+  for (float anisotropy : {0.0f, 0.8f})
+    for (float roughness : {0.3f, 0.8f}) {
+      GlossyBsdf glossy(Vec3(0.8f), roughness, anisotropy, glm::normalize(Vec3(0.6f, 0.8f, 0.3f)), 0.1f, true,
+                        false, /*beckmann=*/true);
+      glossy.orient(Frame(Vec3(0.0f, 0.0f, 1.0f)));
+      for (float cos_o : {1.0f, 0.5f, 0.1f}) {
+        const Vec3 wo = test::direction(cos_o, 0.9f);
+        const std::string failure = chi_square(
+            wo, 0.25f, seed++, significance,
+            [&](Rng& rng) {
+              const float u = rng.next_1d();
+              const BsdfSample s = glossy.sample(wo, u, rng.next_2d());
+              return Sampled{s.wi, s.valid(), s.is_delta};
+            },
+            [&](const Vec3& wi) { return glossy.pdf(wo, wi); });
+        EXPECT_EQ(failure, "") << "anisotropy " << anisotropy << " r=" << roughness << " cos_o=" << cos_o;
+      }
+    }
+}
+
 // The Metallic BSDF (metallic_bsdf.h): its visible-normal sampling, isotropic and stretched,
 // against its pdf.
 TEST(ChiSquare, MetallicSamplingMatchesPdf) {

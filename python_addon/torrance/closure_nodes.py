@@ -8,7 +8,7 @@ Mix/Add Shader trees alike (mixtures.py).
 
 Each becomes (closure type, add_material kwargs) with the inputs where the core's ClosureType
 reads them: Color -> base_color (any graph), Sigma / Roughness / Size -> roughness (any graph),
-the Refraction's IOR -> ior and distribution -> glass_distribution (4.x/5.x: glass_cycles4), the
+the Refraction's IOR -> ior and distribution -> distribution (4.x/5.x: glass_cycles4), the
 Toon's Smooth -> transmission_roughness (a value; a graph that varies is reported and its
 socket's value used);
 the Metallic's Base Color -> base_color (any graph), Edge Tint -> specular_tint_color, or the
@@ -69,7 +69,7 @@ def read_closure_node(reader, mat, node):
                                     f"{distribution.replace('_', ' ').title()} distribution; "
                                     f"Torrance renders GGX")
         args.update(ior=reader._ior(mat, node, 1.45),
-                    glass_distribution='BECKMANN' if distribution == 'BECKMANN' else 'GGX',
+                    distribution='BECKMANN' if distribution == 'BECKMANN' else 'GGX',
                     glass_cycles4=cycles4_microfacets())
     else:                                                   # ShaderNodeBsdfToon
         closure = 'toon_glossy' if getattr(node, "component", 'DIFFUSE') == 'GLOSSY' \

@@ -462,7 +462,7 @@ class MaterialReader:
         self._report_ignored_inputs(mat, node, _IGNORED_GLASS_INPUTS)
         out = dict(d, base_color=_color3(color, (1.0, 1.0, 1.0)), metallic=0.0, specular=0.0,
                    roughness=roughness, glass=True, transmission=1.0,
-                   glass_distribution='BECKMANN' if distribution == 'BECKMANN' else 'GGX',
+                   distribution='BECKMANN' if distribution == 'BECKMANN' else 'GGX',
                    ior=self._ior(mat, node, 1.45), base_color_texture=tex,
                    **({'multiscatter_walk': True} if walk else {}),
                    **({'glass_cycles4': True, 'multiscatter_ggx': distribution == 'MULTI_GGX'}

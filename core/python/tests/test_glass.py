@@ -14,7 +14,7 @@ import torrance_core as tc
     (dict(ior=0.0), r"ior must lie in \(0, 1000\]"),
     (dict(ior=-1.5), r"ior must lie in \(0, 1000\]"),
     (dict(ior=5000.0), r"ior must lie in \(0, 1000\]"),
-    (dict(glass=True, glass_distribution="SHARP"), "glass_distribution must be 'GGX' or"),
+    (dict(glass=True, distribution="SHARP"), "distribution must be 'GGX' or"),
 ])
 def test_bad_glass_arguments_are_rejected(kwargs, message):
     scene = tc.Scene()

@@ -47,32 +47,59 @@ double sample_slope_across_view(double u) {
 
 }  // namespace
 
-float D(const Vec3& h, float alpha) {
-  const float a2 = alpha * alpha, c2 = h.z * h.z;
-  if (!(h.z > 0.0f) || !(a2 > 0.0f)) return 0.0f;
-  const float tan2 = (h.x * h.x + h.y * h.y) / c2;
-  return std::exp(-tan2 / a2) / (kPi * a2 * c2 * c2);
-}
+namespace {
 
-float lambda(float cos_theta, float alpha) {
-  const float c2 = cos_theta * cos_theta;
-  const float alpha2_tan2 = alpha * alpha * std::max(1.0f / c2 - 1.0f, 0.0f);
-  if (!(alpha2_tan2 >= 0.39f)) return 0.0f;  // a >= 1.6 (also cos 1 or alpha 0)
+// Cycles' rational Lambda of a^-2 = (alpha tan theta)^2.
+float rational_lambda(float alpha2_tan2) {
+  if (!(alpha2_tan2 >= 0.39f)) return 0.0f;  // a >= 1.6 (also a normal view or alpha 0)
   const float a = 1.0f / std::sqrt(alpha2_tan2);
   return ((0.396f * a - 1.259f) * a + 1.0f) / ((2.181f * a + 3.535f) * a);
 }
 
-float lambda_exact(float cos_theta, float alpha) {
-  const double c = std::abs(double(cos_theta)), s = std::sqrt(std::max(0.0, 1.0 - c * c));
-  if (!(s > 0.0) || !(alpha > 0.0f)) return 0.0f;
-  const double a = c / (double(alpha) * s);
+// Smith's exact Lambda of a = 1 / (alpha tan theta).
+float exact_lambda(double a) {
   if (!(a > 0.0)) return 1e30f;  // grazing: nothing is visible
+  if (!std::isfinite(a)) return 0.0f;
   return float(0.5 * (std::exp(-a * a) / (a * kSqrtPi) - std::erfc(a)));
 }
 
-Vec3 sample_visible_normal(const Vec3& wo, float alpha, const Vec2& u) {
+// (alpha_x w.x)^2 + (alpha_y w.y)^2 over w.z^2.
+float alpha2_tan2(const Vec3& w, float ax, float ay) {
+  return (sqr(ax * w.x) + sqr(ay * w.y)) / sqr(w.z);
+}
+
+}  // namespace
+
+float D_aniso(const Vec3& h, float ax, float ay) {
+  const float c2 = h.z * h.z;
+  if (!(h.z > 0.0f) || !(ax * ay > 0.0f)) return 0.0f;
+  const float tan2 = (sqr(h.x / ax) + sqr(h.y / ay)) / c2;
+  return std::exp(-tan2) / (kPi * ax * ay * c2 * c2);
+}
+
+float D(const Vec3& h, float alpha) { return D_aniso(h, alpha, alpha); }
+
+float lambda(float cos_theta, float alpha) {
+  const float c2 = cos_theta * cos_theta;
+  return rational_lambda(alpha * alpha * std::max(1.0f / c2 - 1.0f, 0.0f));
+}
+
+float lambda_aniso(const Vec3& w, float ax, float ay) { return rational_lambda(alpha2_tan2(w, ax, ay)); }
+
+float lambda_exact(float cos_theta, float alpha) {
+  const double c = std::abs(double(cos_theta)), s = std::sqrt(std::max(0.0, 1.0 - c * c));
+  return exact_lambda(c / (double(alpha) * s));
+}
+
+float lambda_exact_aniso(const Vec3& w, float ax, float ay) {
+  const double tx = double(ax) * w.x, ty = double(ay) * w.y;
+  const double t = std::sqrt(tx * tx + ty * ty);
+  return exact_lambda(std::abs(double(w.z)) / t);
+}
+
+Vec3 sample_visible_normal_aniso(const Vec3& wo, float ax, float ay, const Vec2& u) {
   // The view stretched to alpha 1, its azimuth and the cotangent of its polar angle.
-  glm::dvec3 v(double(alpha) * wo.x, double(alpha) * wo.y, double(wo.z));
+  glm::dvec3 v(double(ax) * wo.x, double(ay) * wo.y, double(wo.z));
   v /= glm::length(v);
   const double sin_v = std::sqrt(v.x * v.x + v.y * v.y);
   double cos_phi = 1.0, sin_phi = 0.0, cot = 1e6;
@@ -84,15 +111,23 @@ Vec3 sample_visible_normal(const Vec3& wo, float alpha, const Vec2& u) {
   const double along = sample_slope_along_view(cot, double(u.x));
   const double across = sample_slope_across_view(double(u.y));
   // Turned to the view's azimuth, unstretched: the microfacet normal (-slope_x, -slope_y, 1).
-  const double sx = (cos_phi * along - sin_phi * across) * alpha;
-  const double sy = (sin_phi * along + cos_phi * across) * alpha;
+  const double sx = (cos_phi * along - sin_phi * across) * ax;
+  const double sy = (sin_phi * along + cos_phi * across) * ay;
   return Vec3(glm::normalize(glm::dvec3(-sx, -sy, 1.0)));
 }
 
-float visible_normal_pdf(const Vec3& wo, const Vec3& h, float alpha) {
+Vec3 sample_visible_normal(const Vec3& wo, float alpha, const Vec2& u) {
+  return sample_visible_normal_aniso(wo, alpha, alpha, u);
+}
+
+float visible_normal_pdf_aniso(const Vec3& wo, const Vec3& h, float ax, float ay) {
   const float o_h = glm::dot(wo, h);
   if (!(wo.z > 0.0f) || !(o_h > 0.0f)) return 0.0f;
-  return D(h, alpha) * o_h / (wo.z * (1.0f + lambda_exact(wo.z, alpha)));
+  return D_aniso(h, ax, ay) * o_h / (wo.z * (1.0f + lambda_exact_aniso(wo, ax, ay)));
+}
+
+float visible_normal_pdf(const Vec3& wo, const Vec3& h, float alpha) {
+  return visible_normal_pdf_aniso(wo, h, alpha, alpha);
 }
 
 }  // namespace torrance::beckmann

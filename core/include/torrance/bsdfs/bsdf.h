@@ -66,7 +66,7 @@ struct Material {
   float transmission = 0.0f;
   float transmission_roughness = 0.0f;
   bool glass_node = false;
-  bool glass_beckmann = false;  // the Glass / Refraction node with the Beckmann distribution (else GGX)
+  bool beckmann = false;  // the Glass, Refraction or Glossy node's Beckmann distribution (else GGX)
   // The Glass node as Cycles 4.0+ renders it (GGX, Multiscatter GGX, multiscatter_ggx telling
   // which, and Beckmann): one closure with the Fresnel per microfacet, both lobes tinted by its
   // Color (PrincipledGlassV2::glass_node); the Refraction node its refraction alone

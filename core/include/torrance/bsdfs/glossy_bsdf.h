@@ -17,6 +17,10 @@
 // Multiscatter GGX (4.x's default distribution) is the single-scattering lobe scaled by
 // 1 + F_ms (1 - E) / E (Kulla & Conty's albedo scaling with a constant Fresnel F = colour),
 // E = E(r, wo.z) and E_avg(r) of ggx_tables.h at r = (alpha_x alpha_y)^(1/4).
+//
+// Beckmann (beckmann): the same lobe with Beckmann's D and Cycles' rational Smith Lambda
+// (beckmann.h), G separable (3.x) or height-correlated (4.x) as above, isotropic or anisotropic,
+// sampled by Beckmann's visible normals (pdf: their exact density).
 #pragma once
 
 #include "torrance/bsdfs/bsdf.h"
@@ -31,7 +35,7 @@ class GlossyBsdf {
   // normal, counter-clockwise seen from its side, as Cycles' rotate_around_axis); zero, or with
   // anisotropy 0, the lobe is isotropic.
   GlossyBsdf(const Vec3& color, float roughness, float anisotropy = 0.0f, const Vec3& tangent = Vec3(0.0f),
-             float rotation = 0.0f, bool cycles4 = false, bool multiscatter = false);
+             float rotation = 0.0f, bool cycles4 = false, bool multiscatter = false, bool beckmann = false);
 
   // The lobe's shape for Roughness, Anisotropy, the tangent and Rotation (turns), as above.
   static ggx::Shape lobe_shape(float roughness, float anisotropy, const Vec3& tangent, float rotation);
@@ -52,9 +56,17 @@ class GlossyBsdf {
   float sampling_albedo() const { return luminance(color_); }
 
  private:
+  // The distribution's D, Lambda (Cycles' for Beckmann), the visible normals' G1 and a visible
+  // normal, in the shading frame (the shape's alphas and turn, GGX or Beckmann).
+  float D(const Vec3& h) const;
+  float lambda(const Vec3& w) const;
+  float visible_g1(const Vec3& wo) const;
+  Vec3 sample_visible_normal(const Vec3& wo, const Vec2& u) const;
+
   Vec3 color_;
   ggx::Shape shape_;
   bool cycles4_ = false;
+  bool beckmann_ = false;
   float multiscatter_roughness_ = -1.0f;  // r of the albedo tables; < 0: single scattering
 };
 
