@@ -8,16 +8,19 @@ each a lone Metallic BSDF:
   F82 Tint with a strong green Edge Tint (GGX, roughness 0.25), a gold Physical Conductor (IOR
   0.18/0.42/1.37, Extinction 3.42/2.35/1.77; Multiscatter GGX, roughness 0.5), the default
   Physical Conductor anisotropic (0.8, Rotation 0.1, GGX, roughness 0.4), F82 Tint whose Base
-  Color is a node graph (object Z), and a near-mirror conductor (roughness 0.05).
+  Color is a node graph (object Z), a near-mirror conductor (roughness 0.05), and Beckmann: a gold
+  F82 Tint (roughness 0.45) and the default conductor anisotropic (0.6, roughness 0.5).
 Rendered 160x80 at 256 spp, max bounces 4, by Cycles (seeds 3 and 4: reference and its own
 noise) and by Torrance (seeds 1 and 2, averaged); bounds and figures: torrance_tools/
 sphere_agreement.py. Faults (Torrance's side only) must fail the bounds: the Edge Tint ignored
 (white), the conductor read as F82 Tint of its default colours, the anisotropy ignored, the
-multiscatter ignored (GGX).
+multiscatter ignored (GGX), Beckmann read as GGX (Torrance before Beckmann: reported and GGX).
 
 Figures (bpy 5.3.0, this machine): ratio 0.9997, block mean 0.0020 (Cycles' own 0.0025, bound
 0.0038); faults: Edge Tint ignored block mean 0.0043, Copper 1.036; conductor as F82 Tint Gold
-1.429; anisotropy ignored Brushed 1.042; multiscatter ignored Gold 0.901.
+1.429; anisotropy ignored Brushed 1.042; multiscatter ignored Gold 0.901. With the two Beckmann
+spheres: ratio 0.9999, block mean 0.0022 (bound 0.0042), Beckmann 1.002 (+-0.022), BeckmannBrushed
+1.002 (+-0.010); Beckmann read as GGX 0.926 and 0.878.
 
 Run: scripts/bpy 5.3 -b --factory-startup --python-exit-code 1 \\
          --python blender_tests/test_metallic_agreement.py
@@ -44,6 +47,9 @@ SPHERES = (
     ("Brushed", -2.0, 0.55, 'PHYSICAL_CONDUCTOR', {"Rotation": 0.1}, 'GGX', 0.4, 0.8),
     ("Graph", 0.0, 0.55, 'F82', {"Base Color": GRAPH}, 'MULTI_GGX', 0.3, 0.0),
     ("Mirror", 2.0, 0.55, 'PHYSICAL_CONDUCTOR', {}, 'MULTI_GGX', 0.05, 0.0),
+    ("Beckmann", 1.0, 0.55, 'F82', {"Base Color": (1.0, 0.78, 0.34, 1.0)}, 'BECKMANN', 0.45, 0.0),
+    ("BeckmannBrushed", -1.0, 1.45, 'PHYSICAL_CONDUCTOR', {"Rotation": 0.1}, 'BECKMANN', 0.5,
+     0.6),
 )
 
 
@@ -112,6 +118,10 @@ def faults(scene, directory):
     metallic("Brushed").inputs["Anisotropy"].default_value = 0.8
     metallic("Gold").distribution = 'GGX'
     out.append(("multiscatter ignored", render_torrance(scene, directory, "single_scatter")))
+    metallic("Gold").distribution = 'MULTI_GGX'
+    for name in ("Beckmann", "BeckmannBrushed"):
+        metallic(name).distribution = 'GGX'
+    out.append(("Beckmann read as GGX", render_torrance(scene, directory, "beckmann_as_ggx")))
     return out
 
 

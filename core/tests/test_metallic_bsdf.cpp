@@ -2,7 +2,9 @@
 // hits its tint at 82 degrees and is Principled v2's metal; the conductor's reflectance is the
 // textbook one (normal incidence ((n-1)^2 + k^2) / ((n+1)^2 + k^2), 1 at grazing, a dielectric
 // for k = 0); a white-ish lobe with Multiscatter GGX keeps E(fss)-scaled energy; sampling weights
-// are eval / pdf and the sampled directions follow the pdf (chi-square); no NaN at the edges.
+// are eval / pdf and the sampled directions follow the pdf (chi-square); no NaN at the edges; with
+// the Beckmann distribution the lobe is the Fresnel times Cycles 4.x's Beckmann Glossy lobe.
+#include "torrance/bsdfs/glossy_bsdf.h"
 #include "torrance/bsdfs/metallic_bsdf.h"
 #include "torrance/bsdfs/principled_v2.h"
 
@@ -14,8 +16,9 @@ namespace torrance {
 namespace {
 
 MetallicBsdf metal(bool conductor, const Vec3& a, const Vec3& b, float roughness, bool multiscatter,
-                   float anisotropy = 0.0f) {
-  MetallicBsdf m(conductor, a, b, roughness, anisotropy, Vec3(1.0f, 0.0f, 0.0f), 0.1f, multiscatter);
+                   float anisotropy = 0.0f, bool beckmann = false) {
+  MetallicBsdf m(conductor, a, b, roughness, anisotropy, Vec3(1.0f, 0.0f, 0.0f), 0.1f, multiscatter, ThinFilm{},
+                 beckmann);
   m.orient(Frame(Vec3(0.0f, 0.0f, 1.0f)));
   return m;
 }
@@ -77,11 +80,32 @@ TEST(MetallicBsdf, WhiteMultiscatterKeepsItsEnergy) {
   }
 }
 
+// Beckmann (its multiscatter setting ignored, as Cycles'): F(wo.h) times the white Beckmann lobe
+// of the Glossy BSDF as Cycles 4.x renders it (GlossyBeckmann.ValuesAreCyclesFormula).
+TEST(MetallicBsdf, BeckmannIsTheFresnelTimesCyclesBeckmannLobe) {
+  for (float r : {0.2f, 0.6f, 1.0f}) {
+    const MetallicBsdf b = metal(false, Vec3(0.9f, 0.6f, 0.3f), Vec3(0.7f), r, true, 0.0f, true);
+    GlossyBsdf lobe(Vec3(1.0f), r, 0.0f, Vec3(0.0f), 0.0f, /*cycles4=*/true, false, /*beckmann=*/true);
+    lobe.orient(Frame(Vec3(0.0f, 0.0f, 1.0f)));
+    const Vec3 wo = test::direction(0.45f, 1.1f);
+    for (int i = 1; i < 10; ++i)
+      for (int j = 0; j < 10; ++j) {
+        const Vec3 wi = test::direction(i / 10.0f, j * (kTwoPi / 10.0f));
+        const Vec3 expected = b.fresnel(glm::dot(wo, glm::normalize(wo + wi))) * lobe.eval(wo, wi).x;
+        const Vec3 f = b.eval(wo, wi);
+        for (int c = 0; c < 3; ++c) ASSERT_NEAR(f[c], expected[c], 1e-5f * (1.0f + expected[c])) << r << " " << i;
+        ASSERT_NEAR(b.pdf(wo, wi), lobe.pdf(wo, wi), 1e-5f * (1.0f + lobe.pdf(wo, wi)));
+      }
+  }
+}
+
 TEST(MetallicBsdf, SampleWeightsAreEvalOverPdf) {
   for (bool conductor : {false, true})
-    for (float anisotropy : {0.0f, 0.8f}) {
+    for (float anisotropy : {0.0f, 0.8f})
+      for (bool beckmann : {false, true}) {
       const MetallicBsdf b = metal(conductor, conductor ? Vec3(0.2f, 0.9f, 1.1f) : Vec3(0.9f, 0.6f, 0.3f),
-                                   conductor ? Vec3(3.9f, 2.4f, 2.2f) : Vec3(0.7f), 0.5f, true, anisotropy);
+                                   conductor ? Vec3(3.9f, 2.4f, 2.2f) : Vec3(0.7f), 0.5f, true, anisotropy,
+                                   beckmann);
       const Vec3 wo = test::direction(0.45f, 1.1f);
       Rng rng(5, 6, 7);
       for (int i = 0; i < 300; ++i) {

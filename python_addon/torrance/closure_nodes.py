@@ -14,7 +14,7 @@ socket's value used);
 the Metallic's Base Color -> base_color (any graph), Edge Tint -> specular_tint_color, or the
 Physical Conductor's IOR -> specular_tint_color and Extinction -> sheen_tint_color (values),
 Roughness (any graph), Anisotropy, Rotation and Tangent (anisotropy.py), Multiscatter GGX ->
-multiscatter_ggx (Beckmann rendered as GGX), Thin Film Thickness and IOR (thin_film.py, any
+multiscatter_ggx, Beckmann -> distribution, Thin Film Thickness and IOR (thin_film.py, any
 graph).
 """
 
@@ -103,8 +103,7 @@ def _metallic(reader, mat, node):
     _roughness(reader, mat, node, "Roughness", 0.5, args)
     args.update(read_anisotropy(reader, mat, node, METALLIC))
     if distribution == 'BECKMANN':
-        reader.reporter.warning(f"Material '{mat.name}': {node_label(node)} uses the Beckmann "
-                                f"distribution; Torrance renders GGX")
+        args['distribution'] = 'BECKMANN'
     args.update(read_thin_film(reader, mat, node))
     closure = 'metallic_conductor' if conductor else 'metallic_f82'
     return closure, sanitize(reader._with_program(args))

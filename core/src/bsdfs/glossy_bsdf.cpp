@@ -1,6 +1,5 @@
 #include "torrance/bsdfs/glossy_bsdf.h"
 
-#include "torrance/bsdfs/beckmann.h"
 #include "torrance/bsdfs/principled_coat.h"  // multiscatter::scale
 
 #include <algorithm>
@@ -21,46 +20,21 @@ ggx::Shape GlossyBsdf::lobe_shape(float roughness, float anisotropy, const Vec3&
 GlossyBsdf::GlossyBsdf(const Vec3& color, float roughness, float anisotropy, const Vec3& tangent, float rotation,
                        bool cycles4, bool multiscatter, bool beckmann)
     : color_(glm::clamp(color, Vec3(0.0f), Vec3(1.0f))),
-      shape_(lobe_shape(roughness, anisotropy, tangent, rotation)),
-      cycles4_(cycles4),
-      beckmann_(beckmann) {
+      lobe_(lobe_shape(roughness, anisotropy, tangent, rotation), beckmann),
+      cycles4_(cycles4) {
+  const ggx::Shape& shape = lobe_.shape();
   if (cycles4 && multiscatter && !beckmann)
-    multiscatter_roughness_ = shape_.anisotropic() ? std::sqrt(std::sqrt(shape_.alpha_x() * shape_.alpha_y()))
-                                                   : (std::isfinite(roughness) ? clamp01(roughness) : 0.0f);
-}
-
-float GlossyBsdf::D(const Vec3& h) const {
-  return beckmann_ ? beckmann::D_aniso(shape_.to_lobe(h), shape_.alpha_x(), shape_.alpha_y()) : shape_.D(h);
-}
-
-float GlossyBsdf::lambda(const Vec3& w) const {
-  return beckmann_ ? beckmann::lambda_aniso(shape_.to_lobe(w), shape_.alpha_x(), shape_.alpha_y()) : shape_.lambda(w);
-}
-
-float GlossyBsdf::visible_g1(const Vec3& wo) const {
-  if (!beckmann_) return shape_.G1(wo);
-  return 1.0f / (1.0f + beckmann::lambda_exact_aniso(shape_.to_lobe(wo), shape_.alpha_x(), shape_.alpha_y()));
-}
-
-Vec3 GlossyBsdf::sample_visible_normal(const Vec3& wo, const Vec2& u) const {
-  if (!beckmann_) return shape_.sample_visible_normal(wo, u);
-  return shape_.from_lobe(
-      beckmann::sample_visible_normal_aniso(shape_.to_lobe(wo), shape_.alpha_x(), shape_.alpha_y(), u));
+    multiscatter_roughness_ = shape.anisotropic() ? std::sqrt(std::sqrt(shape.alpha_x() * shape.alpha_y()))
+                                                  : (std::isfinite(roughness) ? clamp01(roughness) : 0.0f);
 }
 
 LobeEval GlossyBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
   if (wo.z <= 0.0f || wi.z <= 0.0f || has_delta()) return {};
   Vec3 h;
   if (!ggx::reflection_half(wo, wi, h)) return {};
-  float g;
-  if (cycles4_)
-    g = 1.0f / (1.0f + lambda(wo) + lambda(wi));
-  else if (beckmann_)
-    g = 1.0f / ((1.0f + lambda(wo)) * (1.0f + lambda(wi)));  // Cycles 3.x's G1(wo) G1(wi) of its fit
-  else
-    g = shape_.G1(wo) * shape_.G1(wi);
+  const float g = cycles4_ ? 1.0f / (1.0f + lobe_.lambda(wo) + lobe_.lambda(wi)) : lobe_.G1(wo) * lobe_.G1(wi);
   LobeEval f;
-  f.glossy = color_ * (D(h) * g / (4.0f * wo.z));
+  f.glossy = color_ * (lobe_.D(h) * g / (4.0f * wo.z));
   if (multiscatter_roughness_ >= 0.0f) {
     const float e = std::max(ggx_tables::albedo(multiscatter_roughness_, wo.z), 1e-3f);
     f.glossy *= multiscatter::scale(color_, e, ggx_tables::average_albedo(multiscatter_roughness_));
@@ -69,10 +43,7 @@ LobeEval GlossyBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
 }
 
 float GlossyBsdf::pdf(const Vec3& wo, const Vec3& wi) const {
-  if (has_delta() || wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
-  Vec3 h;
-  if (!ggx::reflection_half(wo, wi, h)) return 0.0f;
-  return visible_g1(wo) * D(h) / (4.0f * wo.z);
+  return has_delta() ? 0.0f : lobe_.reflection_pdf(wo, wi);
 }
 
 BsdfSample GlossyBsdf::sample(const Vec3& wo, float /*u_lobe*/, const Vec2& u) const {
@@ -84,7 +55,7 @@ BsdfSample GlossyBsdf::sample(const Vec3& wo, float /*u_lobe*/, const Vec2& u) c
     s.is_delta = true;
     return s;
   }
-  s.wi = ggx::reflect(wo, sample_visible_normal(wo, u));
+  s.wi = lobe_.sample_reflection(wo, u);
   if (s.wi.z <= 0.0f) return BsdfSample{};
   s.pdf = pdf(wo, s.wi);
   if (!(s.pdf > 0.0f)) return BsdfSample{};

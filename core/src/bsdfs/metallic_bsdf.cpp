@@ -8,7 +8,8 @@
 namespace torrance {
 
 MetallicBsdf::MetallicBsdf(bool conductor, const Vec3& first, const Vec3& second, float roughness, float anisotropy,
-                           const Vec3& tangent, float rotation, bool multiscatter, const ThinFilm& film)
+                           const Vec3& tangent, float rotation, bool multiscatter, const ThinFilm& film,
+                           bool beckmann)
     : conductor_(conductor) {
   if (conductor) {
     n_ = glm::max(first, Vec3(0.0f));
@@ -21,16 +22,17 @@ MetallicBsdf::MetallicBsdf(bool conductor, const Vec3& first, const Vec3& second
   }
   const float r = std::isfinite(roughness) ? clamp01(roughness) : 0.0f;
   const float alpha = r * r;
-  shape_ = ggx::Shape(alpha);
+  ggx::Shape shape(alpha);
   float table_roughness = r;
   if (const float a = std::isfinite(anisotropy) ? clamp01(anisotropy) : 0.0f; a > 0.0f) {
     const float aspect = std::sqrt(1.0f - 0.9f * a);
     const float alpha_x = std::min(alpha / aspect, 1.0f), alpha_y = alpha * aspect;
-    shape_ = ggx::Shape(alpha_x, alpha_y, tangent, std::isfinite(rotation) ? kTwoPi * rotation : 0.0f);
-    if (shape_.anisotropic()) table_roughness = std::sqrt(std::sqrt(alpha_x * alpha_y));
-    else shape_ = ggx::Shape(alpha);  // no tangent: Cycles' isotropic lobe
+    shape = ggx::Shape(alpha_x, alpha_y, tangent, std::isfinite(rotation) ? kTwoPi * rotation : 0.0f);
+    if (shape.anisotropic()) table_roughness = std::sqrt(std::sqrt(alpha_x * alpha_y));
+    else shape = ggx::Shape(alpha);  // no tangent: Cycles' isotropic lobe
   }
-  if (multiscatter) multiscatter_roughness_ = table_roughness;
+  lobe_ = MicrofacetLobe(shape, beckmann);
+  if (multiscatter && !beckmann) multiscatter_roughness_ = table_roughness;
   if (!film.over_conductors()) return;  // no film, or a Blender whose Metallic BSDF has none (4.x)
   film_ = film;
   if (conductor) {
@@ -47,15 +49,15 @@ Vec3 MetallicBsdf::fresnel(float cos_i) const {
   return conductor_ ? conductor_fresnel(cos_i, n_, k_) : f82_.eval(cos_i);
 }
 
-bool MetallicBsdf::has_delta() const { return shape_.is_delta(ggx_tables::kDeltaAlpha); }
+bool MetallicBsdf::has_delta() const { return lobe_.shape().is_delta(ggx_tables::kDeltaAlpha); }
 
 LobeEval MetallicBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
   if (wo.z <= 0.0f || wi.z <= 0.0f || has_delta()) return {};
   Vec3 h;
   if (!ggx::reflection_half(wo, wi, h)) return {};
-  const float g = 1.0f / (1.0f + shape_.lambda(wo) + shape_.lambda(wi));
+  const float g = 1.0f / (1.0f + lobe_.lambda(wo) + lobe_.lambda(wi));
   LobeEval f;
-  f.glossy = fresnel(glm::dot(wo, h)) * (shape_.D(h) * g / (4.0f * wo.z));
+  f.glossy = fresnel(glm::dot(wo, h)) * (lobe_.D(h) * g / (4.0f * wo.z));
   if (multiscatter_roughness_ >= 0.0f) {
     const float e = std::max(ggx_tables::albedo(multiscatter_roughness_, wo.z), 1e-3f);
     f.glossy *= multiscatter::scale(fss_, e, ggx_tables::average_albedo(multiscatter_roughness_));
@@ -64,7 +66,7 @@ LobeEval MetallicBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
 }
 
 float MetallicBsdf::pdf(const Vec3& wo, const Vec3& wi) const {
-  return has_delta() ? 0.0f : shape_.reflection_pdf(wo, wi);
+  return has_delta() ? 0.0f : lobe_.reflection_pdf(wo, wi);
 }
 
 BsdfSample MetallicBsdf::sample(const Vec3& wo, float /*u_lobe*/, const Vec2& u) const {
@@ -76,7 +78,7 @@ BsdfSample MetallicBsdf::sample(const Vec3& wo, float /*u_lobe*/, const Vec2& u)
     s.is_delta = true;
     return s;
   }
-  s.wi = shape_.sample_reflection(wo, u);
+  s.wi = lobe_.sample_reflection(wo, u);
   if (s.wi.z <= 0.0f) return BsdfSample{};
   s.pdf = pdf(wo, s.wi);
   if (!(s.pdf > 0.0f)) return BsdfSample{};

@@ -364,7 +364,7 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
         add_closure(bsdf,
                     MetallicBsdf(conductor, conductor ? m.specular_tint_color : m.base_color,
                                  conductor ? m.sheen_tint_color : m.specular_tint_color, m.roughness, m.anisotropy,
-                                 m.tangent, m.anisotropic_rotation, m.multiscatter_ggx, m.thin_film()),
+                                 m.tangent, m.anisotropic_rotation, m.multiscatter_ggx, m.thin_film(), m.beckmann),
                     w.weight[k]);
         break;
       }

@@ -202,8 +202,8 @@ CLOSURES = {
     'ShaderNodeBsdfMetallic': "partly: F82 Tint (Base Color, any graph; Edge Tint) and Physical "
                               "Conductor (IOR, Extinction: values), Roughness (any graph), "
                               "Anisotropy, Rotation, Tangent (any graph; unlinked: Geometry > "
-                              "Tangent), Normal; GGX and Multiscatter GGX as Cycles 4.x/5.x "
-                              "(Beckmann rendered as GGX, reported); Thin Film Thickness and "
+                              "Tangent), Normal; GGX, Multiscatter GGX and Beckmann as Cycles "
+                              "4.x/5.x; Thin Film Thickness and "
                               "IOR (any graph; Cycles 5.x's film); alone "
                               "and in Mix/Add Shader trees",
     'ShaderNodeBsdfTransparent': "rendered: Color; alone and anywhere in Mix/Add Shader trees "

@@ -26,6 +26,7 @@
 #include "torrance/bsdfs/bsdf.h"
 #include "torrance/bsdfs/ggx_shape.h"
 #include "torrance/bsdfs/ggx_tables.h"
+#include "torrance/bsdfs/microfacet_lobe.h"
 
 namespace torrance {
 
@@ -43,30 +44,22 @@ class GlossyBsdf {
   // The lobe's axes in the shading frame the integrator evaluates it in: the tangent projected
   // onto the frame's plane (a tangent along the normal, or none: the frame's own x), turned by
   // the rotation.
-  void orient(const Frame& frame) { shape_.orient(frame); }
+  void orient(const Frame& frame) { lobe_.orient(frame); }
 
   LobeEval eval_lobes(const Vec3& wo, const Vec3& wi) const;
   Vec3 eval(const Vec3& wo, const Vec3& wi) const { return eval_lobes(wo, wi).total(); }
   float pdf(const Vec3& wo, const Vec3& wi) const;
   BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const;
 
-  bool has_delta() const { return shape_.is_delta(cycles4_ ? ggx_tables::kDeltaAlpha : ggx::kDeltaAlpha); }
-  bool anisotropic() const { return shape_.anisotropic(); }
+  bool has_delta() const { return lobe_.shape().is_delta(cycles4_ ? ggx_tables::kDeltaAlpha : ggx::kDeltaAlpha); }
+  bool anisotropic() const { return lobe_.shape().anisotropic(); }
   // What a mixture samples it by: its colour's luminance.
   float sampling_albedo() const { return luminance(color_); }
 
  private:
-  // The distribution's D, Lambda (Cycles' for Beckmann), the visible normals' G1 and a visible
-  // normal, in the shading frame (the shape's alphas and turn, GGX or Beckmann).
-  float D(const Vec3& h) const;
-  float lambda(const Vec3& w) const;
-  float visible_g1(const Vec3& wo) const;
-  Vec3 sample_visible_normal(const Vec3& wo, const Vec2& u) const;
-
   Vec3 color_;
-  ggx::Shape shape_;
+  MicrofacetLobe lobe_;
   bool cycles4_ = false;
-  bool beckmann_ = false;
   float multiscatter_roughness_ = -1.0f;  // r of the albedo tables; < 0: single scattering
 };
 

@@ -10,8 +10,9 @@
 // (each at most 1), along the tangent turned by Rotation (orient()). Multiscatter GGX (the node's
 // default) scales the lobe by Kulla & Conty's 1 + F_ms (1 - E) / E with the Fresnel's mean fss
 // (ggx_tables.h at (alpha_x alpha_y)^(1/4)). Below ggx_tables::kDeltaAlpha it is a mirror of
-// reflectance F(wo.z). Sampled by visible normals; "glossy" for the light passes. Beckmann is the
-// add-on's to report (rendered as GGX). Thin Film (Blender 5.x, thin_film.h): F is the film's
+// reflectance F(wo.z). Sampled by visible normals; "glossy" for the light passes. Beckmann
+// (beckmann): the same lobe with Beckmann's microfacets as Cycles evaluates them
+// (microfacet_lobe.h), without multiscatter compensation (Cycles: Multiscatter GGX only). Thin Film (Blender 5.x, thin_film.h): F is the film's
 // reflectance over the conductor (n, k), or for F82-tint over the conductor Gulbrandsen's fit
 // gives for (Base Color, F(1/7)) with R23 the F82 model refitted under the film, as Cycles 5.x;
 // the multiscatter fss stays the film-less one (Cycles). A film flagged 4.x (ThinFilm::cycles5
@@ -19,8 +20,8 @@
 #pragma once
 
 #include "torrance/bsdfs/bsdf.h"
-#include "torrance/bsdfs/ggx_shape.h"
 #include "torrance/bsdfs/metal_fresnel.h"
+#include "torrance/bsdfs/microfacet_lobe.h"
 
 namespace torrance {
 
@@ -29,9 +30,9 @@ class MetallicBsdf {
   // conductor: first = n, second = k; else first = Base Color (f0), second = Edge Tint.
   MetallicBsdf(bool conductor, const Vec3& first, const Vec3& second, float roughness, float anisotropy = 0.0f,
                const Vec3& tangent = Vec3(0.0f), float rotation = 0.0f, bool multiscatter = false,
-               const ThinFilm& film = ThinFilm{});
+               const ThinFilm& film = ThinFilm{}, bool beckmann = false);
 
-  void orient(const Frame& frame) { shape_.orient(frame); }
+  void orient(const Frame& frame) { lobe_.orient(frame); }
 
   LobeEval eval_lobes(const Vec3& wo, const Vec3& wi) const;
   Vec3 eval(const Vec3& wo, const Vec3& wi) const { return eval_lobes(wo, wi).total(); }
@@ -40,7 +41,7 @@ class MetallicBsdf {
 
   Vec3 fresnel(float cos_i) const;
   bool has_delta() const;
-  bool anisotropic() const { return shape_.anisotropic(); }
+  bool anisotropic() const { return lobe_.shape().anisotropic(); }
   // What a mixture samples it by: the luminance of its mean Fresnel.
   float sampling_albedo() const { return luminance(fss_); }
 
@@ -49,7 +50,7 @@ class MetallicBsdf {
   Vec3 n_{0.0f}, k_{0.0f};  // the conductor's index
   F82Tint f82_;             // the F82-tint Fresnel, or the conductor's fit (for fss_)
   Vec3 fss_{0.0f};
-  ggx::Shape shape_;
+  MicrofacetLobe lobe_;
   float multiscatter_roughness_ = -1.0f;  // r of the albedo tables; < 0: single scattering
   ThinFilm film_;                         // inactive: none (or not over conductors)
   Vec3 film_n_{0.0f}, film_k_{0.0f}, film_f82_{-1.0f};  // the conductor under the film (f82 < 0: exact)
