@@ -92,6 +92,10 @@ def distance_doubled(args):
 
 FAULTS = (("bump ignored", bump_ignored), ("bump inverted", bump_inverted),
           ("distance doubled", distance_doubled))
+# All three miss the bounds by far (ratios 1.048, 0.983, 0.914 against +-0.004; block means
+# 0.113, 0.213, 0.104 against 0.0044): every run re-renders the one nearest the ratio's bound
+# (the bump inverted), the others render with TORRANCE_ALL_FAULTS=1 (testing.fault_renders).
+NARROW_FAULTS = ("bump inverted",)
 
 
 def main():
@@ -100,7 +104,8 @@ def main():
     scene = testing.clear_scene()
     testing.setup_render(scene, width=W, height=H)
     build(scene)
-    agree_with_reference_noise(scene, d, SAMPLES, REF_SAMPLES, BOUNCES, FAULTS)
+    agree_with_reference_noise(scene, d, SAMPLES, REF_SAMPLES, BOUNCES,
+                               testing.faults_to_render(FAULTS, NARROW_FAULTS))
 
 
 testing.run(main)

@@ -164,9 +164,15 @@ def main():
                    ("Toon weighted as Cycles 3.x", ShaderTreeReader, '_closure',
                     with_args('ShaderNodeBsdfToon',
                               lambda n, k, a: (k.replace('_cycles4', ''), a)))]
+    # The Toon left out and the Translucent on the viewer's side miss the bounds by far (3.4:
+    # ratios 1.0415 and 0.9142 against 0.9928..1.0072; 4.2: 1.0417 and 0.9075 against
+    # 0.9896..1.0104): rendered with TORRANCE_ALL_FAULTS=1 only (testing.fault_renders). The
+    # others, within a few times the bounds in 3.4 or 4.x, re-render every run.
+    far = ("Toon left out", "Translucent on the viewer's side")
     agree_within_seed_noise(
         scene, testing.tempdir(), 64, BOUNCES, "Velvet/Sheen, Refraction, Toon, Translucent",
-        faults=faults, tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
+        faults=testing.faults_to_render(faults, [f[0] for f in faults if f[0] not in far]),
+        tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
     testing.check(not testing.last_messages(), f"unexpected reports: {testing.last_messages()}")
 
 

@@ -111,6 +111,11 @@ def main():
          hair(lambda c, a: (c, dict(a, transmission_roughness=1.0)))),
         ("Tangent left unlinked", ShaderTreeReader, '_closure', hair(untangled)),
     ]
+    # Transmission as Reflection misses the bounds by far (ratio 0.924 in 3.4, 0.922 in 4.2
+    # against 0.985..1.015; block means 0.096, 0.101 against 0.012): rendered with
+    # TORRANCE_ALL_FAULTS=1 only (testing.fault_renders); the other three every run.
+    faults = testing.faults_to_render(faults, [f[0] for f in faults
+                                               if f[0] != "Transmission as Reflection"])
     agree_within_seed_noise(scene, testing.tempdir(), SAMPLES, BOUNCES, "Hair BSDF",
                             faults=faults, tolerance=1.5, ratio_sigmas=3.0)
     testing.check(not testing.last_messages(), f"unexpected reports: {testing.last_messages()}")

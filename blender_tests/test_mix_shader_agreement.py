@@ -129,6 +129,10 @@ def lambert_for_oren_nayar(mix):
 
 FAULTS = (("mix weights swapped", swap_weights), ("Glossy read as Diffuse", glossy_as_diffuse),
           ("Add Shader averaged", add_averaged), ("Oren-Nayar as Lambert", lambert_for_oren_nayar))
+# Re-rendered every run: Oren-Nayar as Lambert (ratio 1.008 against +-0.0053), the narrowest; the
+# others miss the bounds by ten times their width or more (ratios 1.051, 1.054, 0.939) and render
+# with TORRANCE_ALL_FAULTS=1 (testing.fault_renders).
+NARROW_FAULTS = ("Oren-Nayar as Lambert",)
 
 
 def patch_mixture(args, patch):
@@ -143,7 +147,8 @@ def main():
     scene = testing.clear_scene()
     testing.setup_render(scene, width=W, height=H)
     build(scene)
-    agree_with_reference_noise(scene, d, SAMPLES, REF_SAMPLES, BOUNCES, FAULTS,
+    agree_with_reference_noise(scene, d, SAMPLES, REF_SAMPLES, BOUNCES,
+                               testing.faults_to_render(FAULTS, NARROW_FAULTS),
                                patch_args=patch_mixture)
 
 

@@ -118,16 +118,22 @@ def main():
     if testing.fault_renders("Principled v1 instead of v2", ()):
         faults.append(("Principled v1 instead of v2",
                        render_torrance(scene, directory, "v1", model='PRINCIPLED_V1')[0]))
-    set_inputs("Dielectric_level1_tint", **{"Specular IOR Level": 0.5})
-    faults.append(("Specular IOR Level ignored", render_torrance(scene, directory, "level")[0]))
-    set_inputs("Dielectric_level1_tint", **{"Specular IOR Level": 1.0})
+    # Far outside too (4.2: the level-1 sphere's ratio 0.711, the rough metal's 0.353 with the
+    # compensation off, against bounds of +-0.007 and +-0.011): TORRANCE_ALL_FAULTS=1 only. The
+    # F82 tint's (its sphere 1.019 against +-0.007) re-renders every run.
+    if testing.fault_renders("Specular IOR Level ignored", ()):
+        set_inputs("Dielectric_level1_tint", **{"Specular IOR Level": 0.5})
+        faults.append(("Specular IOR Level ignored",
+                       render_torrance(scene, directory, "level")[0]))
+        set_inputs("Dielectric_level1_tint", **{"Specular IOR Level": 1.0})
     set_inputs("Metal_f82_tint", **{"Specular Tint": (1.0, 1.0, 1.0, 1.0)})
     faults.append(("metal's F82 tint ignored", render_torrance(scene, directory, "f82")[0]))
     set_inputs("Metal_f82_tint", **{"Specular Tint": (*SPHERES[-1][-1], 1.0)})
-    for mat in bpy.data.materials:
-        mat.node_tree.nodes["Principled BSDF"].distribution = 'GGX'
-    faults.append(("multiscatter compensation off",
-                   render_torrance(scene, directory, "single_scatter")[0]))
+    if testing.fault_renders("multiscatter compensation off", ()):
+        for mat in bpy.data.materials:
+            mat.node_tree.nodes["Principled BSDF"].distribution = 'GGX'
+        faults.append(("multiscatter compensation off",
+                       render_torrance(scene, directory, "single_scatter")[0]))
     missed = sa.report_faults(agreement, faults)
 
     check(not bad, "Torrance's Principled v2 disagrees with Cycles 4.x: " + "; ".join(bad))

@@ -79,11 +79,13 @@ def faults(scene, directory):
         out.append(("transmission ignored", render_torrance(scene, directory, "opaque")))
         for name, _x, _color, _r, _ior, _tint, transmission in SPHERES:
             set_inputs([name], **{"Transmission Weight": transmission})
-    tinted = ["Rough_amber", "Dense_tint"]
-    set_inputs(tinted, **{"Base Color": (*WHITE, 1.0)})
-    out.append(("base colour not tinting", render_torrance(scene, directory, "untinted")))
-    for name, _x, color, *_ in SPHERES:
-        set_inputs([name], **{"Base Color": (*color, 1.0)})
+    # Far outside too (4.2: ratio 1.042 against 0.99..1.01, the amber sphere's 3.79 against
+    # +-0.14): TORRANCE_ALL_FAULTS=1 only. The IOR's fault, the narrowest, renders every run.
+    if testing.fault_renders("base colour not tinting", ()):
+        set_inputs(["Rough_amber", "Dense_tint"], **{"Base Color": (*WHITE, 1.0)})
+        out.append(("base colour not tinting", render_torrance(scene, directory, "untinted")))
+        for name, _x, color, *_ in SPHERES:
+            set_inputs([name], **{"Base Color": (*color, 1.0)})
     set_inputs(["Dense_tint"], IOR=1.45)
     set_inputs(["Rough_amber", "Clear"], IOR=1.25)
     out.append(("IOR wrong", render_torrance(scene, directory, "ior")))

@@ -208,8 +208,7 @@ def main():
     from torrance.shader_graph.registry import READERS
     check_method_report()
     readers = DictAttr(READERS)
-    agree_on_patches(MAKERS, lit=LIT, what="Displacement, Vector Displacement and bump from "
-                     "the output's Displacement", samples=128, faults=(
+    faults = (
         ("Displacement read in World space", readers, 'ShaderNodeDisplacement',
          read_with(space='WORLD')),
         ("Vector Displacement read in World space", readers, 'ShaderNodeVectorDisplacement',
@@ -219,7 +218,15 @@ def main():
         ("the output's Displacement ignored", normal_inputs, 'bump_from_displacement',
          displacement_ignored),
         ("the bump's Filter Width as the other Cycles takes it (before 4.3: 1, 4.3+: 0.1)",
-         bump, 'bump_filter_width', other_filter_width)))
+         bump, 'bump_filter_width', other_filter_width))
+    # Re-rendered every run: the faults within a few times the bounds. The Scale halved and the
+    # Displacement ignored (3.4: ratios 0.9415 and 0.9150 against 0.9958..1.0042) render with
+    # TORRANCE_ALL_FAULTS=1 only (testing.fault_renders).
+    far = ("Displacement's Scale halved", "the output's Displacement ignored")
+    agree_on_patches(MAKERS, lit=LIT, what="Displacement, Vector Displacement and bump from "
+                     "the output's Displacement", samples=128,
+                     faults=testing.faults_to_render(
+                         faults, [f[0] for f in faults if f[0] not in far]))
     from torrance.materials import MaterialReader
     from torrance.mixtures import ShaderTreeReader
     agree_on_patches((), lit=DIFFUSE, what="diffuse light on displaced surfaces", samples=128,

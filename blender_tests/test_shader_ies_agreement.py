@@ -140,14 +140,20 @@ def main():
     import torrance.shader_graph.ies as ies
     scene = testing.clear_scene()
     build(scene)
+    faults = (("vertical axis flipped", ies, "_default_vector",
+               direction_scaled((1.0, 1.0, -1.0))),
+              ("horizontal angle mirrored", ies, "_default_vector",
+               direction_scaled((-1.0, 1.0, 1.0))),
+              ("light's rotation ignored", ies, "_default_vector", world_direction),
+              ("linear interpolation", ies, "ies_table", linear_table))
+    # Re-rendered every run: the two within a few times the bounds (3.4: block means 0.0388 and
+    # 0.0319 against 0.0157). The vertical axis flipped and the rotation ignored (3.4: ratio 0.580,
+    # block mean 0.171; 4.2: ratios 0.552, 0.950 against 0.996..1.004) render with
+    # TORRANCE_ALL_FAULTS=1 only (testing.fault_renders).
     agree_within_seed_noise(
         scene, testing.tempdir(), 128, BOUNCES, "IES Texture lights",
-        faults=(("vertical axis flipped", ies, "_default_vector",
-                 direction_scaled((1.0, 1.0, -1.0))),
-                ("horizontal angle mirrored", ies, "_default_vector",
-                 direction_scaled((-1.0, 1.0, 1.0))),
-                ("light's rotation ignored", ies, "_default_vector", world_direction),
-                ("linear interpolation", ies, "ies_table", linear_table)),
+        faults=testing.faults_to_render(faults, ("horizontal angle mirrored",
+                                                 "linear interpolation")),
         tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
     testing.check(not testing.last_messages(), f"unexpected reports: {testing.last_messages()}")
     check_bad_data_reported(testing.tempdir())

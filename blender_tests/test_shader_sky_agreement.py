@@ -344,6 +344,15 @@ def check_lit_scenes(readers, kinds):
                                     node, "dust_density") else "aerosol_density": 0.0}))))
 
 
+# The patches' faults within a few times the bounds in Blender 3.4 (block mean 0.0050 and ratio
+# 0.970 against 0.0022 and 0.996..1.004; the ground albedo's block mean 0.0149, its p90 0.0210
+# against 0.0049: the narrowest of the faults only the blocks catch). Far outside them, and
+# rendered with TORRANCE_ALL_FAULTS=1 only: no ozone (ratio 1.115), the hidden Vector read
+# (0.414), the sun rotation not negated (0.253), the texture mapping ignored and Preetham's
+# turbidity + 1 (block means 0.0161, 0.0169 against 0.0022).
+NARROW_FAULTS = ("sun disc upside down", "Hosek ground albedo ignored")
+
+
 def main():
     testing.addon()
     from torrance.shader_graph import sky
@@ -365,10 +374,13 @@ def main():
          read_with(lambda node: {"sun_rotation": -node.sun_rotation})),
         ("texture mapping ignored", readers, 'ShaderNodeTexSky',
          read_with(**{"texture_mapping.rotation": (0.0, 0.0, 0.0)})))
-    agree_on_patches(makers, what="the Sky Texture",
-                     faults=(*(nishita_faults if 'NISHITA' in types else ()),
-                             *(scattering_faults(readers, sky) if scattering else ()),
-                             preetham_fault, albedo_fault))
+    scattering_5x = scattering_faults(readers, sky) if scattering else ()
+    faults = (*(nishita_faults if 'NISHITA' in types else ()), *scattering_5x, preetham_fault,
+              albedo_fault)
+    # Re-rendered every run: the narrowest (NARROW_FAULTS) and the 5.x skies' (on request
+    # there); the others render with TORRANCE_ALL_FAULTS=1 (testing.fault_renders).
+    agree_on_patches(makers, what="the Sky Texture", faults=testing.faults_to_render(
+        faults, (*NARROW_FAULTS, *(f[0] for f in scattering_5x))))
     check_lit_scenes(readers, ('SINGLE_SCATTERING', 'MULTIPLE_SCATTERING') if scattering
                      else ('NISHITA',))
 
