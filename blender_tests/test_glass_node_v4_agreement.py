@@ -40,7 +40,6 @@ import bpy
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from test_multiscatter_glass_agreement import glass_material, stage  # noqa: E402 (the path)
 from torrance_tools import sphere_agreement as sa, testing  # noqa: E402
-from torrance_tools.scene import node_material  # noqa: E402
 
 W, H, SAMPLES, BOUNCES = 192, 48, 64, 8
 RADIUS = 0.35
@@ -57,24 +56,13 @@ SPHERES = (
 )
 
 
-def refraction_material(name, distribution, color, roughness, ior):
-    """A material of one Refraction BSDF."""
-    mat, nodes, links, output = node_material(name)
-    node = nodes.new("ShaderNodeBsdfRefraction")
-    node.distribution = distribution
-    node.inputs["Color"].default_value = (*color, 1.0)
-    node.inputs["Roughness"].default_value = roughness
-    node.inputs["IOR"].default_value = ior
-    links.new(node.outputs["BSDF"], output.inputs["Surface"])
-    return mat
-
-
 def build(scene):
     stage(scene)
     for name, x, *inputs in SPHERES:
-        material = refraction_material if name.startswith("Refraction") else glass_material
-        testing.sphere_object(scene, name, (x, 0.0, Z), RADIUS, material(name, *inputs),
-                              segments=64, rings=32)
+        node = ("ShaderNodeBsdfRefraction" if name.startswith("Refraction")
+                else "ShaderNodeBsdfGlass")
+        testing.sphere_object(scene, name, (x, 0.0, Z), RADIUS,
+                              glass_material(name, *inputs, node_type=node), segments=64, rings=32)
 
 
 def as_cycles_3_4(scene, directory, description, distributions):

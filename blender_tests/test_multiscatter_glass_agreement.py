@@ -54,10 +54,11 @@ def material(name, kind, color, roughness):
     return glass_material(name, 'MULTI_GGX', color, roughness, IOR)
 
 
-def glass_material(name, distribution, color, roughness, ior):
-    """A material of one Glass BSDF (also test_glass_node_v4_agreement's)."""
+def glass_material(name, distribution, color, roughness, ior, node_type="ShaderNodeBsdfGlass"):
+    """A material of one Glass BSDF, or of another node with its inputs (node_type: the
+    Refraction BSDF's of test_glass_node_v4_agreement)."""
     mat, nodes, links, output = node_material(name)
-    node = nodes.new("ShaderNodeBsdfGlass")
+    node = nodes.new(node_type)
     node.distribution = distribution
     node.inputs["Color"].default_value = (*color, 1.0)
     node.inputs["Roughness"].default_value = roughness

@@ -701,77 +701,66 @@ TEST(ChiSquare, FournierForandSamplingMatchesCdf) {
     }
 }
 
+// A reflection lobe's sampling against its pdf for views at cos_o 1, 0.5 and 0.1 (bsdf oriented
+// in the frame z = normal): the failures, labelled.
+template <typename Bsdf>
+void expect_reflection_sampling_matches_pdf(const Bsdf& bsdf, uint32_t& seed, double significance,
+                                            const std::string& label) {
+  for (float cos_o : {1.0f, 0.5f, 0.1f}) {
+    const Vec3 wo = test::direction(cos_o, 0.9f);
+    const std::string failure = chi_square(
+        wo, 0.25f, seed++, significance,
+        [&](Rng& rng) {
+          const float u = rng.next_1d();
+          const BsdfSample s = bsdf.sample(wo, u, rng.next_2d());
+          return Sampled{s.wi, s.valid(), s.is_delta};
+        },
+        [&](const Vec3& wi) { return bsdf.pdf(wo, wi); });
+    EXPECT_EQ(failure, "") << label << " cos_o=" << cos_o;
+  }
+}
+
 // The anisotropic Glossy BSDF (glossy_bsdf.h): its visible-normal sampling in the lobe's
 // stretched frame, turned by the tangent's direction, against its pdf.
 TEST(ChiSquare, AnisotropicGlossySamplingMatchesPdf) {
-  const double significance = 0.01 / 18.0;
   uint32_t seed = 9000;
   for (float anisotropy : {0.8f, -0.6f})
     for (float roughness : {0.25f, 0.7f}) {
       GlossyBsdf glossy(Vec3(0.8f), roughness, anisotropy, glm::normalize(Vec3(0.6f, 0.8f, 0.3f)));
       glossy.orient(Frame(Vec3(0.0f, 0.0f, 1.0f)));
-      for (float cos_o : {1.0f, 0.5f, 0.1f}) {
-        const Vec3 wo = test::direction(cos_o, 0.9f);
-        const std::string failure = chi_square(
-            wo, 0.25f, seed++, significance,
-            [&](Rng& rng) {
-              const float u = rng.next_1d();
-              const BsdfSample s = glossy.sample(wo, u, rng.next_2d());
-              return Sampled{s.wi, s.valid(), s.is_delta};
-            },
-            [&](const Vec3& wi) { return glossy.pdf(wo, wi); });
-        EXPECT_EQ(failure, "") << "anisotropy " << anisotropy << " r=" << roughness << " cos_o=" << cos_o;
-      }
+      expect_reflection_sampling_matches_pdf(glossy, seed, 0.01 / 18.0,
+                                             "anisotropy " + std::to_string(anisotropy) +
+                                                 " r=" + std::to_string(roughness));
     }
 }
 
-// The Glossy BSDF with the Beckmann distribution (glossy_bsdf.h, beckmann.h): Beckmann's visible
-// normals, isotropic and stretched along a tangent, against the pdf.
+// The Glossy BSDF with the Beckmann distribution (glossy_bsdf.h, microfacet_lobe.h): Beckmann's
+// visible normals, isotropic and stretched along a tangent, against the pdf.
 TEST(ChiSquare, BeckmannGlossySamplingMatchesPdf) {
-  const double significance = 0.01 / 12.0;
   uint32_t seed = 9020;
   for (float anisotropy : {0.0f, 0.8f})
     for (float roughness : {0.3f, 0.8f}) {
       GlossyBsdf glossy(Vec3(0.8f), roughness, anisotropy, glm::normalize(Vec3(0.6f, 0.8f, 0.3f)), 0.1f, true,
                         false, /*beckmann=*/true);
       glossy.orient(Frame(Vec3(0.0f, 0.0f, 1.0f)));
-      for (float cos_o : {1.0f, 0.5f, 0.1f}) {
-        const Vec3 wo = test::direction(cos_o, 0.9f);
-        const std::string failure = chi_square(
-            wo, 0.25f, seed++, significance,
-            [&](Rng& rng) {
-              const float u = rng.next_1d();
-              const BsdfSample s = glossy.sample(wo, u, rng.next_2d());
-              return Sampled{s.wi, s.valid(), s.is_delta};
-            },
-            [&](const Vec3& wi) { return glossy.pdf(wo, wi); });
-        EXPECT_EQ(failure, "") << "anisotropy " << anisotropy << " r=" << roughness << " cos_o=" << cos_o;
-      }
+      expect_reflection_sampling_matches_pdf(glossy, seed, 0.01 / 12.0,
+                                             "anisotropy " + std::to_string(anisotropy) +
+                                                 " r=" + std::to_string(roughness));
     }
 }
 
 // The Metallic BSDF (metallic_bsdf.h): its visible-normal sampling, isotropic and stretched,
 // against its pdf.
 TEST(ChiSquare, MetallicSamplingMatchesPdf) {
-  const double significance = 0.01 / 12.0;
   uint32_t seed = 9050;
   for (float anisotropy : {0.0f, 0.9f})
     for (float roughness : {0.3f, 0.8f}) {
       MetallicBsdf metal(true, Vec3(0.2f, 0.9f, 1.1f), Vec3(3.9f, 2.4f, 2.2f), roughness, anisotropy,
                          glm::normalize(Vec3(0.6f, 0.8f, 0.3f)), 0.15f, true);
       metal.orient(Frame(Vec3(0.0f, 0.0f, 1.0f)));
-      for (float cos_o : {1.0f, 0.5f, 0.1f}) {
-        const Vec3 wo = test::direction(cos_o, 0.9f);
-        const std::string failure = chi_square(
-            wo, 0.25f, seed++, significance,
-            [&](Rng& rng) {
-              const float u = rng.next_1d();
-              const BsdfSample s = metal.sample(wo, u, rng.next_2d());
-              return Sampled{s.wi, s.valid(), s.is_delta};
-            },
-            [&](const Vec3& wi) { return metal.pdf(wo, wi); });
-        EXPECT_EQ(failure, "") << "anisotropy " << anisotropy << " r=" << roughness << " cos_o=" << cos_o;
-      }
+      expect_reflection_sampling_matches_pdf(metal, seed, 0.01 / 12.0,
+                                             "anisotropy " + std::to_string(anisotropy) +
+                                                 " r=" + std::to_string(roughness));
     }
 }
 

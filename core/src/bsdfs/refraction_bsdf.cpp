@@ -19,7 +19,8 @@ RefractionBsdf::RefractionBsdf(const Vec3& color, float roughness, float ior, bo
 
 LobeEval RefractionBsdf::eval_lobes(const Vec3& wo, const Vec3& wi, bool backfacing) const {
   LobeEval f;
-  f.glossy = std::visit([&](const auto& g) { return g.eval(outward(wo, backfacing), outward(wi, backfacing)); }, glass_);
+  const Vec3 o = outward(wo, backfacing), i = outward(wi, backfacing);
+  f.glossy = std::visit([&](const auto& g) { return g.eval(o, i); }, glass_);
   return f;
 }
 

@@ -12,9 +12,10 @@
 // (ggx_tables.h at (alpha_x alpha_y)^(1/4)). Below ggx_tables::kDeltaAlpha it is a mirror of
 // reflectance F(wo.z). Sampled by visible normals; "glossy" for the light passes. Beckmann
 // (beckmann): the same lobe with Beckmann's microfacets as Cycles evaluates them
-// (microfacet_lobe.h), without multiscatter compensation (Cycles: Multiscatter GGX only). Thin Film (Blender 5.x, thin_film.h): F is the film's
-// reflectance over the conductor (n, k), or for F82-tint over the conductor Gulbrandsen's fit
-// gives for (Base Color, F(1/7)) with R23 the F82 model refitted under the film, as Cycles 5.x;
+// (microfacet_lobe.h), without multiscatter compensation (Cycles: Multiscatter GGX only). Thin
+// Film (Blender 5.x, thin_film.h): F is the film's reflectance over the conductor (n, k), or for
+// F82-tint over the conductor Gulbrandsen's fit gives for (Base Color, F(1/7)) with R23 the F82
+// model refitted under the film, as Cycles 5.x;
 // the multiscatter fss stays the film-less one (Cycles). A film flagged 4.x (ThinFilm::cycles5
 // false: Cycles 4.x has no film on this node nor over conductors) is ignored.
 #pragma once
