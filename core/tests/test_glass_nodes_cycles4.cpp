@@ -184,6 +184,28 @@ TEST(GlassNodesCycles4, WhiteFurnace) {
   }
 }
 
+// Roughness 0 and 1, a tiny alpha, grazing and backfacing viewers, IOR near 1: every query of
+// the four closures finite.
+TEST(GlassNodesCycles4, HardCasesAreFinite) {
+  Rng rng(21, 22, 23);
+  for (const Node& node : kNodes)
+    for (int n = 0; n < 50000; ++n) {
+      const float r = (const float[]){0.0f, 1e-4f, 0.02f, 0.5f, 1.0f}[rng.next_u32() % 5];
+      const float ior = (const float[]){1.00005f, 1.5f, 0.5f, 3.0f}[rng.next_u32() % 4];
+      const PrincipledGlassV2 bsdf = node.make(r, ior, Vec3(rng.next_1d(), 0.0f, 1.0f));
+      Vec3 wo = test::uniform_sphere(rng);
+      if (n % 7 == 0) wo = glm::normalize(Vec3(1.0f, 0.0f, (n % 14 == 0 ? 1e-7f : -1e-7f)));
+      if (n % 13 == 0) wo = Vec3(0.0f, 0.0f, n % 26 == 0 ? 1.0f : -1.0f);  // normal incidence
+      const Vec3 wi = n % 11 == 0 ? Vec3(-wo.x, -wo.y, wo.z) : test::uniform_sphere(rng);
+      ASSERT_TRUE(is_finite(bsdf.eval(wo, wi))) << node.name << " " << r << " " << ior;
+      ASSERT_TRUE(std::isfinite(bsdf.pdf(wo, wi))) << node.name << " " << r << " " << ior;
+      const float ul = rng.next_1d();
+      const BsdfSample s = bsdf.sample(wo, ul, rng.next_2d());
+      ASSERT_TRUE(is_finite(s.weight) && std::isfinite(s.pdf) && is_finite(s.wi))
+          << node.name << " " << r << " " << ior;
+    }
+}
+
 // The Refraction node reflects nothing (no value, no pdf on the viewer's side), totally reflects
 // nothing either (a smooth one seen from inside beyond the critical angle gives no sample), and
 // RefractionBsdf renders it so in its frame (the viewer's side up, `backfacing` inside).

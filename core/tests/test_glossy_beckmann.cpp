@@ -90,5 +90,25 @@ TEST(GlossyBeckmann, WhiteFurnace) {
         }
 }
 
+// Roughness 0 to 1, strong anisotropy, grazing views and directions: every query finite.
+TEST(GlossyBeckmann, HardCasesAreFinite) {
+  Rng rng(8, 9, 10);
+  for (int n = 0; n < 100000; ++n) {
+    const float r = (const float[]){0.0f, 0.013f, 0.02f, 0.5f, 1.0f}[rng.next_u32() % 5];
+    const float anisotropy = (const float[]){0.0f, 0.99f, -0.99f}[rng.next_u32() % 3];
+    GlossyBsdf g(Vec3(1.0f), r, anisotropy, Vec3(0.3f, 1.0f, 0.2f), 0.2f, n % 2 == 0, false, true);
+    g.orient(Frame(Vec3(0.0f, 0.0f, 1.0f)));
+    Vec3 wo = test::uniform_sphere(rng);
+    if (n % 5 == 0) wo = glm::normalize(Vec3(1.0f, 0.0f, 1e-7f));
+    if (n % 7 == 0) wo = Vec3(0.0f, 0.0f, 1.0f);  // normal incidence
+    const Vec3 wi = n % 3 == 0 ? glm::normalize(Vec3(0.0f, 1.0f, 1e-7f)) : test::uniform_sphere(rng);
+    ASSERT_TRUE(is_finite(g.eval(wo, wi))) << r << " " << anisotropy;
+    ASSERT_TRUE(std::isfinite(g.pdf(wo, wi))) << r << " " << anisotropy;
+    const float ul = rng.next_1d();
+    const BsdfSample s = g.sample(wo, ul, rng.next_2d());
+    ASSERT_TRUE(is_finite(s.weight) && std::isfinite(s.pdf) && is_finite(s.wi)) << r << " " << anisotropy;
+  }
+}
+
 }  // namespace
 }  // namespace torrance
