@@ -45,10 +45,6 @@ double sample_slope_across_view(double u) {
                          [](double y) { return 2.0 / kSqrtPi * std::exp(-y * y); }, 0.0, -kSlopeBound, kSlopeBound);
 }
 
-}  // namespace
-
-namespace {
-
 // Cycles' rational Lambda of a^-2 = (alpha tan theta)^2.
 float rational_lambda(float alpha2_tan2) {
   if (!(alpha2_tan2 >= 0.39f)) return 0.0f;  // a >= 1.6 (also a normal view or alpha 0)

@@ -1,6 +1,5 @@
 #include "torrance/bsdfs/principled_glass_v2.h"
 
-#include "torrance/bsdfs/beckmann.h"
 #include "torrance/bsdfs/ggx_glass_tables.h"
 #include "torrance/bsdfs/ggx_tables.h"
 #include "torrance/bsdfs/microfacet.h"
@@ -35,6 +34,7 @@ PrincipledGlassV2::PrincipledGlassV2(float roughness, float ior, const Vec3& spe
   straight_ = std::abs(ior_ - 1.0f) < 1e-4f;
   invisible_ = straight_ && !film.active();  // a film still reflects (a soap bubble)
   multiscatter_ = multiscatter;
+  lobe_ = MicrofacetLobe(ggx::Shape(alpha_), false);
   film_inside_.ior = film.ior / ior_;
 }
 
@@ -43,7 +43,7 @@ PrincipledGlassV2 PrincipledGlassV2::glass_node(float roughness, float ior, cons
   PrincipledGlassV2 glass(roughness, ior, Vec3(1.0f), Vec3(1.0f), multiscatter && !beckmann, film);
   const Vec3 tint = is_finite(color) ? glm::max(color, Vec3(0.0f)) : Vec3(0.0f);
   glass.tint_r_ = glass.tint_t_ = tint;
-  glass.beckmann_ = beckmann;
+  glass.lobe_ = MicrofacetLobe(ggx::Shape(glass.alpha_), beckmann);
   return glass;
 }
 
@@ -52,16 +52,6 @@ PrincipledGlassV2 PrincipledGlassV2::refraction_node(float roughness, float ior,
   glass.tint_r_ = Vec3(0.0f);
   glass.reflective_ = false;
   return glass;
-}
-
-float PrincipledGlassV2::D(const Vec3& h) const { return beckmann_ ? beckmann::D(h, alpha_) : ggx::D(h, alpha_); }
-
-float PrincipledGlassV2::lambda(float cos_theta) const {
-  return beckmann_ ? beckmann::lambda(cos_theta, alpha_) : ggx::smith_lambda(cos_theta, alpha_);
-}
-
-float PrincipledGlassV2::visible_g1(float cos_o) const {
-  return 1.0f / (1.0f + (beckmann_ ? beckmann::lambda_exact(cos_o, alpha_) : ggx::smith_lambda(cos_o, alpha_)));
 }
 
 PrincipledGlassV2::Split PrincipledGlassV2::split(float c, float etap) const {
@@ -100,13 +90,13 @@ Vec3 PrincipledGlassV2::energy_scale(float cos_o, float etap) const {
 PrincipledGlassV2::Lobe PrincipledGlassV2::evaluate(const Vec3& wo, const Vec3& wi, float etap) const {
   Lobe out;
   if (smooth_ || invisible_ || !(wo.z > 0.0f) || wi.z == 0.0f) return out;
-  const float g2 = 1.0f / (1.0f + lambda(wo.z) + lambda(std::abs(wi.z)));
-  const float g1_o = visible_g1(wo.z);
+  const float g2 = 1.0f / (1.0f + lobe_.lambda(wo) + lobe_.lambda(Vec3(wi.x, wi.y, std::abs(wi.z))));
+  const float g1_o = lobe_.visible_g1(wo);
   if (wi.z > 0.0f) {
     Vec3 h;
     if (!reflective_ || !ggx::reflection_half(wo, wi, h)) return out;
     const Split sp = split(glm::dot(wo, h), etap);
-    const float common = D(h) / (4.0f * wo.z);
+    const float common = lobe_.D(h) / (4.0f * wo.z);
     out.f_cos = sp.reflect * (common * g2);
     out.pdf = sp.p_reflect * common * g1_o;
   } else {
@@ -115,7 +105,7 @@ PrincipledGlassV2::Lobe PrincipledGlassV2::evaluate(const Vec3& wo, const Vec3& 
     if (!refraction_pair(wo, wi, etap, p)) return out;  // also pairs no microfacet connects, as Cycles
     const Split sp = split(p.o_h, etap);
     if (sp.transmit == Vec3(0.0f)) return out;  // Cycles: nothing reflected or transmitted, no pdf
-    const float common = D(p.h) / wo.z * etap * etap * p.o_h * p.i_h / p.len2;
+    const float common = lobe_.D(p.h) / wo.z * etap * etap * p.o_h * p.i_h / p.len2;
     out.f_cos = sp.transmit * (common * g2);
     out.pdf = (1.0f - sp.p_reflect) * common * g1_o;
   }
@@ -152,9 +142,7 @@ BsdfSample PrincipledGlassV2::sample(const Vec3& wo_outward, float u_lobe, const
     s.is_delta = true;
     return s;
   }
-  const Vec3 h = smooth_         ? Vec3(0.0f, 0.0f, 1.0f)
-                 : beckmann_ ? beckmann::sample_visible_normal(wo, alpha_, u)
-                             : ggx::sample_visible_normal(wo, alpha_, u);
+  const Vec3 h = smooth_ ? Vec3(0.0f, 0.0f, 1.0f) : lobe_.sample_visible_normal(wo, u);
   const float c = glm::dot(wo, h);
   if (!(c > 0.0f)) return s;
   const Split sp = split(c, etap);

@@ -50,6 +50,7 @@
 #pragma once
 
 #include "torrance/bsdfs/bsdf.h"
+#include "torrance/bsdfs/microfacet_lobe.h"
 
 namespace torrance {
 
@@ -93,16 +94,12 @@ class PrincipledGlassV2 {
   };
   // wo.z > 0 (turned to the viewer's side), etap of that side.
   Lobe evaluate(const Vec3& wo, const Vec3& wi, float etap) const;
-  // The distribution's D, Lambda as Cycles evaluates it, and the G1 of the visible normals drawn.
-  float D(const Vec3& h) const;
-  float lambda(float cos_theta) const;
-  float visible_g1(float cos_o) const;
 
   Vec3 f0_, tint_t_;
   Vec3 tint_r_{1.0f};  // the reflection's tint: 1, or the Glass node's Color
   float alpha_, roughness_, ior_;
   bool smooth_, multiscatter_;
-  bool beckmann_ = false;   // Beckmann's microfacets instead of GGX's
+  MicrofacetLobe lobe_;     // GGX's or Beckmann's microfacets (isotropic, alpha_)
   bool reflective_ = true;  // false: the Refraction node (no Fresnel, no reflection)
   bool straight_;   // |ior - 1| < 1e-4: refraction passes straight through (a delta)
   bool invisible_;  // ... and without a film nothing reflects: the interface is not there
