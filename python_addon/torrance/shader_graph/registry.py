@@ -162,7 +162,8 @@ CLOSURES = {
                                 "the emission darkened by the coat and sheen); the sheen (v1 "
                                 "Sheen, Sheen Tint; v2 Sheen "
                                 "Weight, Roughness, Tint; any graph); Anisotropic, Anisotropic "
-                                "Rotation, Tangent (any graph; unlinked: Geometry > Tangent); "
+                                "Rotation, Tangent (any graph; unlinked: Geometry > Tangent; "
+                                "5.1+: the transmission stretched too, as Cycles); "
                                 "v1 subsurface (Cycles' Random Walk: Subsurface, Subsurface "
                                 "Radius, Subsurface Color, any graph; Subsurface IOR, Subsurface "
                                 "Anisotropy; Random Walk (Fixed Radius), Christensen-Burley); "
@@ -192,13 +193,15 @@ CLOSURES = {
                                  "Cycles (3.x: its random walk; 4.x/5.x: Cycles 4.x's lobe and "
                                  "its albedo scaling); Beckmann as Cycles' (its D, its fit "
                                  "of Smith's Lambda); Ashikhmin-Shirley rendered as GGX",
-    'ShaderNodeBsdfGlass': "partly: Color, Roughness, IOR, Normal; GGX, Beckmann, Sharp "
+    'ShaderNodeBsdfGlass': "rendered: Color, Roughness, IOR, Normal; GGX, Beckmann, Sharp "
                            "and Multiscatter GGX as the Blender's Cycles (3.x: two closures "
                            "split by the macro Fresnel, Multiscatter GGX its random walk; "
                            "4.x/5.x: one closure, Fresnel per microfacet, Multiscatter GGX its "
                            "albedo scaling, Beckmann's visible normals); "
                            "alone and in Mix/Add Shader trees; 5.x Thin Film Thickness and IOR "
-                           "(any graph). Reported: 5.x Anisotropy",
+                           "(any graph); 5.1+ Anisotropy, Rotation, Tangent (any graph; "
+                           "unlinked: Geometry > Tangent) stretching reflection and refraction "
+                           "as Cycles",
     'ShaderNodeBsdfMetallic': "partly: F82 Tint (Base Color, any graph; Edge Tint) and Physical "
                               "Conductor (IOR, Extinction: values), Roughness (any graph), "
                               "Anisotropy, Rotation, Tangent (any graph; unlinked: Geometry > "
@@ -225,9 +228,8 @@ CLOSURES = {
                                       "and in Mix/Add Shader trees",
     'ShaderNodeBsdfRefraction': "rendered: Color, Roughness (any graph), IOR, Normal; GGX, "
                                 "Beckmann, Sharp as the Blender's Cycles (3.x: its refraction "
-                                "closure; 4.x/5.x: the one microfacet closure without Fresnel) "
-                                "(Multiscatter GGX rendered as GGX, reported); alone and in "
-                                "Mix/Add Shader trees",
+                                "closure; 4.x/5.x: the one microfacet closure without Fresnel); "
+                                "alone and in Mix/Add Shader trees",
     'ShaderNodeBsdfToon': "partly: Color, Size (any graph), Smooth (a value; a graph that varies "
                           "is reported), Normal; Diffuse and Glossy, their sampled directions "
                           "weighted as Cycles 3.4's or 4.x's; alone and in Mix/Add Shader trees",
