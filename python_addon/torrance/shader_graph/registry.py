@@ -267,6 +267,10 @@ CLOSURES = {
                                "Absorption's), the Phase menu (4.3+: Henyey-Greenstein, "
                                "Fournier-Forand, Draine, Rayleigh, Mie) with Anisotropy, IOR, "
                                "Backscatter, Alpha and Diameter constant",
+    'ShaderNodeVolumeCoefficients': "rendered in a Volume socket (alone and in Mix/Add Shader "
+                                    "trees): Absorption, Scatter and Emission Coefficients per "
+                                    "metre (any graph inside meshes, as Volume Absorption's), "
+                                    "the Phase menu with its inputs constant, as Volume Scatter's",
     'ShaderNodeVolumePrincipled': "partly: in a Volume socket, Color, Density, Absorption Color, "
                                   "Emission Strength and Color (any graph inside meshes, as "
                                   "Volume Absorption's), Anisotropy, Blackbody Intensity, "
