@@ -75,18 +75,9 @@ def build(scene):
 
 def read_isotropic(scene, directory):
     """The glass read as the add-on read it before: isotropic."""
-    import torrance.materials as materials
-    original = materials.MaterialTable._add
-
-    def old_reading(self, args):
-        args.pop('transmission_anisotropic', None)
-        return original(self, args)
-    materials.MaterialTable._add = old_reading
-    try:
-        images = sa.render_torrance(scene, directory, "isotropic", sa.TORRANCE_SEEDS, SAMPLES,
-                                    BOUNCES)[0]
-    finally:
-        materials.MaterialTable._add = original
+    images = sa.render_reading_otherwise(
+        scene, directory, "isotropic", SAMPLES, BOUNCES,
+        lambda args: args.pop('transmission_anisotropic', None))
     return [("the glass read isotropic", images)]
 
 

@@ -68,20 +68,11 @@ def build(scene):
 def as_cycles_3_4(scene, directory, description, distributions):
     """The Glass nodes of `distributions` read as the add-on read them before: Cycles 3.4's
     closures."""
-    import torrance.materials as materials
-    original = materials.MaterialTable._add
-
-    def old_reading(self, args):
+    def old_reading(args):
         if args.get('distribution') in distributions:
             args.pop('glass_cycles4', None)
-        return original(self, args)
-    materials.MaterialTable._add = old_reading
-    try:
-        images = sa.render_torrance(scene, directory, "as_3_4", sa.TORRANCE_SEEDS, SAMPLES,
-                                    BOUNCES)[0]
-    finally:
-        materials.MaterialTable._add = original
-    return [(description, images)]
+    return [(description, sa.render_reading_otherwise(scene, directory, "as_3_4", SAMPLES, BOUNCES,
+                                                      old_reading))]
 
 
 def faults(scene, directory):

@@ -18,6 +18,7 @@ Run: scripts/bpy 5.3 -b --factory-startup --python-exit-code 1 \
 
 import math
 import sys
+from functools import partial
 
 import bpy
 
@@ -75,23 +76,17 @@ def left_out(_original):
     return fault
 
 
-def swapped(_original):
-    """Fault: absorption and scattering coefficients swapped."""
-    def fault(self, node, weight, medium):
-        value = lambda name: self._value(node, name, 'color')  # noqa: E731
-        medium.scatter(value("Absorption Coefficients"), self._node_phase(node), weight)
-        medium.add('sigma_a', value("Scatter Coefficients"), weight)
-        medium.add('emission', value("Emission Coefficients"), weight)
-    return fault
-
-
-def no_emission(_original):
-    """Fault: the emission coefficients ignored."""
-    def fault(self, node, weight, medium):
-        value = lambda name: self._value(node, name, 'color')  # noqa: E731
-        medium.scatter(value("Scatter Coefficients"), self._node_phase(node), weight)
-        medium.add('sigma_a', value("Absorption Coefficients"), weight)
-    return fault
+def read_from(absorption, scattering, emission):
+    """Fault: the coefficients read from the sockets named (emission None: left out)."""
+    def patch(_original):
+        def fault(self, node, weight, medium):
+            value = partial(self._value, node)
+            medium.scatter(value(scattering, 'color'), self._node_phase(node), weight)
+            medium.add('sigma_a', value(absorption, 'color'), weight)
+            if emission:
+                medium.add('emission', value(emission, 'color'), weight)
+        return fault
+    return patch
 
 
 def main():
@@ -103,8 +98,10 @@ def main():
     from torrance.volumes import VolumeReader
     agree_on_scene(coefficient_boxes, 64, BOUNCES, "Volume Coefficients", faults=(
         ("the node left out", VolumeReader, "_coefficients", left_out),
-        ("absorption and scattering swapped", VolumeReader, "_coefficients", swapped),
-        ("emission ignored", VolumeReader, "_coefficients", no_emission)))
+        ("absorption and scattering swapped", VolumeReader, "_coefficients",
+         read_from("Scatter Coefficients", "Absorption Coefficients", "Emission Coefficients")),
+        ("emission ignored", VolumeReader, "_coefficients",
+         read_from("Absorption Coefficients", "Scatter Coefficients", None))))
 
 
 if __name__ == "__main__":

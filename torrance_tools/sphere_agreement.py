@@ -133,6 +133,22 @@ def read_as_ggx(names, samples, bounces):
     return faults
 
 
+def render_reading_otherwise(scene, directory, label, samples, bounces, change):
+    """Torrance's images (TORRANCE_SEEDS) with every add_material() argument dict the add-on's
+    MaterialTable adds passed through change(args) first: a fault of the add-on's reading."""
+    import torrance.materials as materials
+    original = materials.MaterialTable._add
+
+    def changed(self, args):
+        change(args)
+        return original(self, args)
+    materials.MaterialTable._add = changed
+    try:
+        return render_torrance(scene, directory, label, TORRANCE_SEEDS, samples, bounces)[0]
+    finally:
+        materials.MaterialTable._add = original
+
+
 def noise_bump(mat, name):
     """A strong Bump node (named `name`) of a Noise Texture's Fac in `mat`: its Normal output."""
     nodes = mat.node_tree.nodes
