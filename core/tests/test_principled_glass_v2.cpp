@@ -89,8 +89,8 @@ TEST(PrincipledGlassV2, WhiteFurnace) {
           double q = 0.0;
           for (double v : charts.integrate_all([&](const Vec3& wi) { return test::drawn_eval(single, wo, wi).x; }))
             q += v;
-          const double s = test::mean_sample_weight(single, wo, 200000, 17);
-          const double m = test::mean_sample_weight(multi, wo, 200000, 17);
+          const double s = test::mean_sample_weight(single, wo, 100000, 17);
+          const double m = test::mean_sample_weight(multi, wo, 100000, 17);
           std::printf(" r=%.1f %.4f/%.4f ms %.4f", r, q, s, m);
           EXPECT_NEAR(s, q, 0.005) << ior << " " << inside << " " << cos_o << " " << r;
           EXPECT_LE(q, 1.0 + 2e-3);
