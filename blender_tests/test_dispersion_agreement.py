@@ -8,7 +8,10 @@ glass spheres 2 m in front of a bright emissive checker wall (a Closest 8 x 8 ch
 2.0 / 0.02, 0.75 m squares: a small bright light everywhere, whose sharp edges dispersion fringes
 in the refracted image), a dark world, each a Principled BSDF with Multiscatter GGX and
 Transmission Weight 1:
-  Flint      white, Roughness 0, IOR 1.5, Dispersion Scale 1, Abbe Number 2.5;
+  Flint      white, Roughness 0, IOR 1.5, Abbe Number 2.5, Dispersion Scale 1 x (0.5 + 1.6 z)
+             from a graph that varies over the sphere (a Value node times a Multiply Add of the
+             Object coordinates' z: 0 at the bottom, 1 at the top, clamped by the closure; the
+             add-on's dispersion_register);
   Dense      (0.9, 0.95, 1.0), Roughness 0.08, IOR 1.7, Scale 0.8 (a constant node graph: a
              Value node feeds it), Abbe 2;
   Mixed      a Mix Shader of 0.75 the Flint's Principled and 0.25 a grey Diffuse BSDF (the
@@ -16,12 +19,16 @@ Transmission Weight 1:
 Rendered 160x80 at 128 spp, max bounces 8, by Cycles (seeds 3 and 4: reference and its own
 noise) and by Torrance (seeds 1 and 2, averaged); bounds and figures: torrance_tools/
 sphere_agreement.py. Faults (Torrance's side only) must fail the bounds: dispersion ignored
-(every Scale 0), and half of it (every Abbe Number doubled).
+(every Scale 0), half of it (every Abbe Number doubled), and the Flint's varying Scale read as
+its socket's own value (what Torrance did before: it reported the graph), 0 there (a linked
+socket's value, which Cycles ignores).
 
-Figures (bpy 5.3, this machine): ratio 0.9999, block mean 0.0060 (Cycles' own 0.0073, bound
-0.0109), spheres 0.996 1.003 0.982; faults: dispersion ignored block mean 0.0315 (B 1.011), half
-the dispersion 0.0169; a code fault (each path's wavelength weight white: dispersion without its
-colours) 0.0118. About 25-40 s (on request in the blender5 list).
+Figures (bpy 5.3, this machine): ratio 1.0000, block mean 0.0059 (Cycles' own 0.0081, bound
+0.0122), spheres 0.993 1.003 0.981; faults: dispersion ignored block mean 0.0270, half the
+dispersion 0.0142, the Flint's varying Scale read as its socket's value 0.0131 (narrow); before
+the Flint's graph (constant Scale): ratio 0.9999, block mean 0.0060; a code fault (each path's
+wavelength weight white: dispersion without its colours) 0.0118 then. About 25-40 s (on request
+in the blender5 list).
 
 Run: scripts/bpy 5.3 -b --factory-startup --python-exit-code 1 \\
          --python blender_tests/test_dispersion_agreement.py
@@ -79,10 +86,13 @@ def build(scene):
         mat = principled_glass(name, color, roughness, ior, scale, abbe)
         nodes, links = mat.node_tree.nodes, mat.node_tree.links
         principled = nodes["Principled BSDF"]
-        if name == "Dense":        # the Scale from a constant graph
+        if name in ("Dense", "Flint"):      # the Scale from a constant / a varying graph
             value = nodes.new("ShaderNodeValue")
             value.outputs[0].default_value = scale
             links.new(value.outputs[0], principled.inputs[SCALE])
+        if name == "Flint":
+            links.new(varying(nodes, links, value.outputs[0]), principled.inputs[SCALE])
+            principled.inputs[SCALE].default_value = 0.0    # unused once linked (Cycles too)
         if name == "Mixed":        # a mixture with a Diffuse BSDF
             output = nodes["Material Output"]
             diffuse = nodes.new("ShaderNodeBsdfDiffuse")
@@ -96,6 +106,24 @@ def build(scene):
     testing.set_world(scene, (0.02, 0.02, 0.025))
 
 
+def varying(nodes, links, scale):
+    """scale x (0.5 + 1.6 z) of the Object coordinates' z: over the Flint sphere 0 at the bottom,
+    above 1 at the top (clamped by the closure)."""
+    coordinates = nodes.new("ShaderNodeTexCoord")
+    z = nodes.new("ShaderNodeSeparateXYZ")
+    links.new(coordinates.outputs["Object"], z.inputs[0])
+    ramp = nodes.new("ShaderNodeMath")
+    ramp.operation = 'MULTIPLY_ADD'
+    links.new(z.outputs["Z"], ramp.inputs[0])
+    ramp.inputs[1].default_value = 1.6
+    ramp.inputs[2].default_value = 0.5
+    product = nodes.new("ShaderNodeMath")
+    product.operation = 'MULTIPLY'
+    links.new(scale, product.inputs[0])
+    links.new(ramp.outputs[0], product.inputs[1])
+    return product.outputs[0]
+
+
 def render_torrance(scene, directory, label):
     return sa.render_torrance(scene, directory, label, sa.TORRANCE_SEEDS, SAMPLES, BOUNCES)[0]
 
@@ -103,19 +131,31 @@ def render_torrance(scene, directory, label):
 def faults(scene, directory):
     """(description, Torrance's images) of each fault, made on Torrance's side only."""
     out = []
-    dispersive = [s[0] for s in SPHERES if s[5] > 0.0 and s[0] != "Dense"]
-    dense = bpy.data.materials["Dense"].node_tree
-    value = dense.nodes["Value"].outputs[0]
-    set_inputs(dispersive, **{SCALE: 0.0})
-    value.default_value = 0.0
+    values = [bpy.data.materials[name].node_tree.nodes["Value"].outputs[0]
+              for name in ("Dense", "Flint")]
+    set_inputs(["Mixed"], **{SCALE: 0.0})
+    for value in values:
+        value.default_value = 0.0
     out.append(("dispersion ignored", render_torrance(scene, directory, "none")))
-    for name, _x, _c, _r, _ior, scale, abbe in SPHERES:
-        set_inputs([name], **{SCALE: scale, ABBE: 2.0 * abbe})
-    value.default_value = 0.6
+    set_inputs(["Mixed"], **{SCALE: 1.0})
+    for value, scale in zip(values, (0.8, 1.0), strict=True):
+        value.default_value = scale
+    for name, _x, _c, _r, _ior, _scale, abbe in SPHERES:
+        set_inputs([name], **{ABBE: 2.0 * abbe})
     out.append(("half the dispersion", render_torrance(scene, directory, "half")))
     for name, _x, _c, _r, _ior, _scale, abbe in SPHERES:
         set_inputs([name], **{ABBE: abbe})
+    out.append(("the varying Scale read as its socket's value", sa.render_reading_otherwise(
+        scene, directory, "socket", SAMPLES, BOUNCES, _socket_value_for_the_graph,
+        only=("Flint",))))
     return out
+
+
+def _socket_value_for_the_graph(args):
+    """The add-on before the varying dispersion: the Flint's socket value (0: none)."""
+    closures = [a for _k, a, _t in args["mixture"]["closures"]] if "mixture" in args else [args]
+    for a in closures:
+        a.pop('dispersion_register', None)
 
 
 def main():

@@ -224,6 +224,22 @@ def check_dispersion():
                   f"transmission {transmission})")
             check(not [t for _l, t in messages if "Dispersion" in t], f"reported: {messages}")
             cases += 1
+        # A Scale that varies over the surface: the program computes the quotient.
+        mat, nodes, links, out = node_material(f"Dispersion{cases}")
+        node = nodes.new("ShaderNodeBsdfPrincipled")
+        node.inputs["Transmission Weight"].default_value = 1.0
+        links.new(nodes.new("ShaderNodeTexNoise").outputs["Fac"],
+                  node.inputs["Transmission Dispersion Scale"])
+        as_surface(nodes, links, out, node, in_mix)
+        args, messages = read(mat)
+        if in_mix:
+            args = args["mixture"]["closures"][0][1]
+        check(args.get("dispersion_register", -1) >= 0 and not args.get("dispersion"),
+              f"a varying Scale (mix: {in_mix}): {args.get('dispersion_register')} "
+              f"{args.get('dispersion')}")
+        check(not [t for _l, t in messages if "Dispersion" in t or "varies" in t],
+              f"reported: {messages}")
+        cases += 1
     print(f"dispersion read: {cases} cases", flush=True)
 
 

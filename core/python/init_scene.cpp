@@ -214,7 +214,8 @@ void init_scene(py::module_& m) {
              bool subsurface_burley, float thin_film_thickness, float thin_film_ior, bool thin_film_cycles5,
              int thin_film_thickness_register, int thin_film_ior_register, bool thin_wall,
              float diffuse_roughness, bool emission_under_layers, const std::string& coat_layering,
-             bool multiscatter_walk, float dispersion, bool glass_cycles4, bool transmission_anisotropic) {
+             bool multiscatter_walk, float dispersion, bool glass_cycles4, bool transmission_anisotropic,
+             int dispersion_register) {
             if (distribution != "GGX" && distribution != "BECKMANN")
               throw py::value_error("distribution must be 'GGX' or 'BECKMANN', got '" + distribution +
                                     "'");
@@ -302,6 +303,7 @@ void init_scene(py::module_& m) {
             tex.program.subsurface_color = program_register(subsurface_color_register);
             tex.program.thin_film_thickness = program_register(thin_film_thickness_register);
             tex.program.thin_film_ior = program_register(thin_film_ior_register);
+            tex.program.dispersion = program_register(dispersion_register);
             return s.add_material(mat, tex);
           },
           py::arg("base_color") = std::array<float, 3>{0.8f, 0.8f, 0.8f}, py::arg("metallic") = 0.0f,
@@ -344,7 +346,7 @@ void init_scene(py::module_& m) {
           py::arg("thin_wall") = false, py::arg("diffuse_roughness") = 0.0f,
           py::arg("emission_under_layers") = false, py::arg("coat_layering") = "CYCLES_4_5",
           py::arg("multiscatter_walk") = false, py::arg("dispersion") = 0.0f, py::arg("glass_cycles4") = false,
-          py::arg("transmission_anisotropic") = false,
+          py::arg("transmission_anisotropic") = false, py::arg("dispersion_register") = -1,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
@@ -353,7 +355,7 @@ void init_scene(py::module_& m) {
           "0.075 and the material has no glass; its glass the random walk of multiscatter_glass_bsdf.h when roughness > "
           "0.05), and by the Glass BSDF (glass=True, GGX: Blender 3.x's Multiscatter GGX glass). dispersion: PRINCIPLED_V2's transmission's inverse Abbe number "
           "(Blender 5.x's Transmission Dispersion Scale / Abbe Number; finite, >= 0, 0: none), rendered as Cycles "
-          "5.x (dispersion.h). "
+          "5.x (dispersion.h); dispersion_register: the program's value of it per hit instead (x, negative: 0). "
           "transmission, ior, transmission_roughness: the Principled BSDF's glass (transmission and "
           "transmission_roughness in [0, 1], ior in (0, 1000]; ior is also PRINCIPLED_V2's IOR); glass=True: "
           "Blender's Glass BSDF node "

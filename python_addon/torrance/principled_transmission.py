@@ -9,7 +9,11 @@ v1's Transmission is materials.py's _principled_glass (Cycles 3.4's glass). Blen
 Transmission Dispersion: read_dispersion."""
 
 from .material_values import clamp
-from .nodes import finite_or, source_socket
+from .nodes import finite_or, node_label, source_socket
+from .shader_graph.graph import GraphCompiler, Unsupported
+from .shader_graph.math_ops import MATH_OPS
+from .shader_graph.program import constant
+from .shader_graph.registry import READERS
 
 _SOCKET = "Transmission Weight"
 _DISPERSION_SCALE = "Transmission Dispersion Scale"
@@ -33,13 +37,36 @@ def read_transmission(reader, mat, node):
 
 def read_dispersion(reader, mat, node, transmission):
     """Blender 5.x's Transmission Dispersion Scale and Abbe Number of a v2 Principled BSDF `node`
-    as add_material()'s dispersion, their quotient (Cycles: Scale clamped to [0, 1], Abbe to
-    >= 0, 0 when it is 0), for core dispersion.h; {} without dispersion or without
-    `transmission` (read_transmission's arguments), and on a node without the sockets. Values or
-    constant graphs (a graph that varies over the surface is reported, its socket's value used)."""
+    as add_material()'s dispersion, their quotient as Cycles 5.x takes it (Scale clamped to
+    [0, 1], Abbe to >= 0, 0 when it is 0), for core dispersion.h; {} without dispersion or without
+    `transmission` (read_transmission's arguments), and on a node without the sockets. Graphs
+    that fold to constants give a value; one that varies over the surface puts the quotient in
+    the closure's shader program (dispersion_register)."""
     if not transmission or node.inputs.get(_DISPERSION_SCALE) is None:
         return {}
-    scale = clamp(finite_or(reader._socket_value(mat, node, _DISPERSION_SCALE, 0.0), 0.0), 0.0, 1.0)
-    abbe = max(0.0, finite_or(reader._socket_value(mat, node, _ABBE_NUMBER, 20.0), 20.0))
-    inverse_abbe = scale / abbe if scale > 0.0 and abbe > 0.0 else 0.0
-    return dict(dispersion=inverse_abbe) if inverse_abbe > 0.0 else {}
+    builder = reader._program
+    mark = builder.mark()
+    compiler = GraphCompiler(builder, reader.textures, READERS, reader.attributes)
+    try:
+        scale = compiler.input(node.inputs[_DISPERSION_SCALE], 'float')
+        abbe = compiler.input(node.inputs[_ABBE_NUMBER], 'float')
+    except Unsupported as exc:
+        builder.rollback(mark)
+        reader.reporter.warning(f"Material '{mat.name}': the dispersion of {node_label(node)}: "
+                                f"{exc}; using the sockets' own values")
+        scale = constant('float', node.inputs[_DISPERSION_SCALE].default_value)
+        abbe = constant('float', node.inputs[_ABBE_NUMBER].default_value)
+    if scale.constant and abbe.constant:
+        builder.rollback(mark)
+        s = clamp(finite_or(scale.value[0], 0.0), 0.0, 1.0)
+        a = max(0.0, finite_or(abbe.value[0], 20.0))
+        inverse_abbe = s / a if s > 0.0 and a > 0.0 else 0.0
+        return dict(dispersion=inverse_abbe) if inverse_abbe > 0.0 else {}
+
+    def math(op, a, b, clamped=0):
+        return builder.emit("Math", 'float', [a, b, b], mode=MATH_OPS.index(op), flags=clamped)
+    zero = constant('float', 0.0)
+    # Blender's Divide is Cycles' safe_divide: 0 where the Abbe number is 0.
+    reader._program_inputs['dispersion'] = math("DIVIDE", math("ADD", scale, zero, clamped=1),
+                                                math("MAXIMUM", abbe, zero))
+    return {}

@@ -30,3 +30,14 @@ def test_a_dispersive_glass_in_a_white_furnace_stays_white(roughness):
     assert mean == pytest.approx([1.0, 1.0, 1.0], abs=0.03)
     # The weight varies per path (a path is one wavelength): not the plain glass's image.
     assert not np.array_equal(mean, floor("PRINCIPLED_V2", **glass))
+
+
+def test_a_dispersion_the_program_computes_renders_as_the_constant():
+    """dispersion_register (a Principled's Dispersion Scale / Abbe Number from a varying graph):
+    the program's value per hit renders as the same constant, and makes the scene dispersive
+    (without it the render is the plain glass's)."""
+    glass = dict(GLASS, roughness=0.4)
+    constant = floor("PRINCIPLED_V2", dispersion=0.25, **glass)
+    program = floor("PRINCIPLED_V2", from_program=("dispersion",), dispersion=0.25, **glass)
+    assert np.allclose(program, constant, rtol=0.0, atol=1e-6)
+    assert not np.array_equal(program, floor("PRINCIPLED_V2", **glass))

@@ -1355,12 +1355,16 @@ bool has_subsurface(const Scene& scene) {
 }
 
 bool has_dispersion(const Scene& scene) {
+  // A constant dispersion, or one a shader program computes per hit.
+  const auto disperses = [&](uint32_t id) {
+    return scene.material(id).dispersion > 0.0f || scene.material_textures(id).program.dispersion >= 0;
+  };
   for (size_t i = 0; i < scene.num_materials(); ++i) {
     const uint32_t id = uint32_t(i);
-    if (scene.material(id).dispersion > 0.0f) return true;
+    if (disperses(id)) return true;
     if (const Mixture* mixture = scene.mixture(id))
       for (const MixtureComponent& c : mixture->components)
-        if (scene.material(c.material).dispersion > 0.0f) return true;
+        if (disperses(c.material)) return true;
   }
   return false;
 }

@@ -171,6 +171,10 @@ void Scene::apply_program(const MaterialTextures& t, const ShaderGlobals& g, Mat
     const float n = regs[size_t(o.thin_film_ior)].x;
     m.thin_film_ior = std::isfinite(n) ? std::max(n, 1e-5f) : 1.33f;
   }
+  if (o.dispersion >= 0) {  // a NaN or a negative quotient: none
+    const float v = regs[size_t(o.dispersion)].x;
+    m.dispersion = std::isfinite(v) ? std::max(v, 0.0f) : 0.0f;
+  }
 }
 
 Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, const ShaderGlobals& g,
@@ -330,7 +334,7 @@ void Scene::check_program_outputs(const ShaderOutputs& o) const {
         o.surface_normal >= 0 || o.transmission >= 0 || o.coat_weight >= 0 || o.coat_roughness >= 0 || o.coat_ior >= 0 || o.coat_tint >= 0 || o.coat_normal >= 0 ||
         o.sheen_weight >= 0 || o.sheen_roughness >= 0 || o.sheen_tint >= 0 || o.anisotropy >= 0 ||
         o.anisotropic_rotation >= 0 || o.tangent >= 0 || o.subsurface >= 0 || o.subsurface_radius >= 0 ||
-        o.subsurface_color >= 0 || o.thin_film_thickness >= 0 || o.thin_film_ior >= 0)
+        o.subsurface_color >= 0 || o.thin_film_thickness >= 0 || o.thin_film_ior >= 0 || o.dispersion >= 0)
       throw std::invalid_argument("material reads shader program registers but names no program");
     return;
   }
@@ -341,7 +345,7 @@ void Scene::check_program_outputs(const ShaderOutputs& o) const {
   for (int r : {o.base_color, o.metallic, o.roughness, o.emission, o.normal, o.alpha, o.surface_normal, o.transmission, o.coat_weight,
                 o.coat_roughness, o.coat_ior, o.coat_tint, o.coat_normal, o.sheen_weight, o.sheen_roughness, o.sheen_tint,
                 o.anisotropy, o.anisotropic_rotation, o.tangent, o.subsurface, o.subsurface_radius,
-                o.subsurface_color, o.thin_film_thickness, o.thin_film_ior})
+                o.subsurface_color, o.thin_film_thickness, o.thin_film_ior, o.dispersion})
     if (r != -1 && !program.written(r))
       throw std::invalid_argument("material reads register " + std::to_string(r) + " of a shader program with " +
                                   std::to_string(program.registers()) + " registers, which the program does not write");

@@ -176,7 +176,7 @@ CLOSURES = {
                                 "translucency, as Cycles 5.x, without the film; shadow rays "
                                 "stop at it); 4.3+ Diffuse Roughness (a value; Cycles' "
                                 "energy-preserving Oren-Nayar); 5.3 Transmission Dispersion "
-                                "Scale and Abbe Number (values; one wavelength per path as "
+                                "Scale and Abbe Number (any graph; one wavelength per path as "
                                 "Cycles, not with Thin Wall). In a mix of shaders the first "
                                 "linked Clearcoat / Coat Normal serves all coats; reported: "
                                 "another, different one",

@@ -350,6 +350,8 @@ struct ShaderOutputs {
   int16_t subsurface = -1, subsurface_radius = -1, subsurface_color = -1;
   // Thin Film (Material::thin_film_thickness, thin_film_ior: x).
   int16_t thin_film_thickness = -1, thin_film_ior = -1;
+  // Principled v2's dispersion, the inverse Abbe number (Material::dispersion: x, at least 0).
+  int16_t dispersion = -1;
   bool any() const { return program >= 0; }
 };
 
