@@ -14,6 +14,8 @@
 namespace torrance {
 namespace {
 
+constexpr auto kBeckmann = MicrofacetDistribution::Beckmann;
+
 // Cycles' Beckmann reflection f cos_i for a lobe along the frame's axes (ax along x), in double.
 double cycles_beckmann(const Vec3& wo, const Vec3& wi, double ax, double ay, bool correlated) {
   const glm::dvec3 O(wo), I(wi), H = glm::normalize(O + I);
@@ -34,7 +36,7 @@ TEST(GlossyBeckmann, ValuesAreCyclesFormula) {
   for (bool cycles4 : {false, true})
     for (float anisotropy : {0.0f, 0.6f})
       for (float r : {0.2f, 0.5f, 0.9f}) {
-        GlossyBsdf g(Vec3(1.0f), r, anisotropy, Vec3(1.0f, 0.0f, 0.0f), 0.0f, cycles4, false, /*beckmann=*/true);
+        GlossyBsdf g(Vec3(1.0f), r, anisotropy, Vec3(1.0f, 0.0f, 0.0f), 0.0f, cycles4, false, kBeckmann);
         g.orient(Frame(Vec3(0.0f, 0.0f, 1.0f)));
         const double alpha = double(r) * r;
         const double ax = std::min(alpha * (1.0 - anisotropy), 1.0), ay = std::min(alpha / (1.0 - anisotropy), 1.0);
@@ -56,7 +58,7 @@ TEST(GlossyBeckmann, SampleWeightsAreEvalOverPdf) {
   int checked = 0;
   for (int n = 0; n < 40000; ++n) {
     const float r = 0.05f + 0.95f * rng.next_1d(), anisotropy = n % 2 ? 0.0f : -0.7f;
-    GlossyBsdf g(Vec3(0.9f, 0.6f, 0.3f), r, anisotropy, Vec3(0.3f, 1.0f, 0.2f), 0.2f, n % 3 == 0, false, true);
+    GlossyBsdf g(Vec3(0.9f, 0.6f, 0.3f), r, anisotropy, Vec3(0.3f, 1.0f, 0.2f), 0.2f, n % 3 == 0, false, kBeckmann);
     g.orient(Frame(Vec3(0.0f, 0.0f, 1.0f)));
     const Vec3 wo = test::direction(0.02f + 0.98f * rng.next_1d(), kTwoPi * rng.next_1d());
     const float ul = rng.next_1d();
@@ -75,7 +77,7 @@ TEST(GlossyBeckmann, WhiteFurnace) {
     for (float anisotropy : {0.0f, 0.8f})
       for (float r : {0.3f, 0.7f, 1.0f})
         for (float cos_o : {1.0f, 0.5f, 0.15f}) {
-          GlossyBsdf g(Vec3(1.0f), r, anisotropy, Vec3(1.0f, 0.0f, 0.0f), 0.0f, cycles4, false, true);
+          GlossyBsdf g(Vec3(1.0f), r, anisotropy, Vec3(1.0f, 0.0f, 0.0f), 0.0f, cycles4, false, kBeckmann);
           g.orient(Frame(Vec3(0.0f, 0.0f, 1.0f)));
           const Vec3 wo = test::direction(cos_o, 0.5f);
           constexpr int kSide = 400;
@@ -96,7 +98,7 @@ TEST(GlossyBeckmann, HardCasesAreFinite) {
   for (int n = 0; n < 100000; ++n) {
     const float r = (const float[]){0.0f, 0.013f, 0.02f, 0.5f, 1.0f}[rng.next_u32() % 5];
     const float anisotropy = (const float[]){0.0f, 0.99f, -0.99f}[rng.next_u32() % 3];
-    GlossyBsdf g(Vec3(1.0f), r, anisotropy, Vec3(0.3f, 1.0f, 0.2f), 0.2f, n % 2 == 0, false, true);
+    GlossyBsdf g(Vec3(1.0f), r, anisotropy, Vec3(0.3f, 1.0f, 0.2f), 0.2f, n % 2 == 0, false, kBeckmann);
     g.orient(Frame(Vec3(0.0f, 0.0f, 1.0f)));
     Vec3 wo = test::uniform_sphere(rng);
     if (n % 5 == 0) wo = glm::normalize(Vec3(1.0f, 0.0f, 1e-7f));
