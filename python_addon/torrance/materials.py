@@ -84,9 +84,9 @@ _IGNORED_PRINCIPLED_INPUTS = {
 _IGNORED_GLASS_INPUTS = (("Anisotropy", 0.0),)
 
 
-# Blender's names of the microfacet distributions Torrance renders as GGX.
-_DISTRIBUTIONS = {'MULTI_GGX': "Multiscatter GGX", 'BECKMANN': "Beckmann",
-                  'ASHIKHMIN_SHIRLEY': "Ashikhmin-Shirley"}
+# Blender's names of the microfacet distributions, for the reports of a Principled or Glass BSDF
+# lobe Torrance renders as GGX.
+_DISTRIBUTIONS = {'MULTI_GGX': "Multiscatter GGX", 'BECKMANN': "Beckmann"}
 
 
 def principled_version(node):
