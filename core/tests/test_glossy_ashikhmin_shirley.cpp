@@ -7,6 +7,7 @@
 // of its sampling: ChiSquare.AshikhminShirleyGlossySamplingMatchesPdf.)
 #include "torrance/bsdfs/glossy_bsdf.h"
 
+#include "glossy_checks.h"
 #include "test_helpers.h"
 
 #include <gtest/gtest.h>
@@ -99,44 +100,13 @@ TEST(GlossyAshikhminShirley, ColourMultipliesTheLobe) {
 }
 
 TEST(GlossyAshikhminShirley, SampleWeightsAreEvalOverPdf) {
-  Rng rng(3, 5, 7);
-  int checked = 0;
-  for (int n = 0; n < 40000; ++n) {
-    const float r = 0.05f + 0.95f * rng.next_1d(), anisotropy = n % 2 ? 0.0f : -0.7f;
-    GlossyBsdf g(Vec3(0.9f, 0.6f, 0.3f), r, anisotropy, Vec3(0.3f, 1.0f, 0.2f), 0.2f, n % 3 == 0, false,
-                 kAshikhminShirley);
-    g.orient(Frame(Vec3(0.0f, 0.0f, 1.0f)));
-    const Vec3 wo = test::direction(0.02f + 0.98f * rng.next_1d(), kTwoPi * rng.next_1d());
-    const float ul = rng.next_1d();
-    const BsdfSample s = g.sample(wo, ul, rng.next_2d());
-    if (!s.valid()) continue;
-    ASSERT_TRUE(test::sample_matches_eval(g, wo, s)) << r << " " << anisotropy;
-    ++checked;
-  }
-  EXPECT_GT(checked, 30000);
+  test::expect_glossy_sample_weights(kAshikhminShirley, Rng(3, 5, 7));
 }
 
 // A white lobe: its albedo by quadrature at most 1 (wi.z / max(wo.z, wi.z) <= 1 times a density)
 // and the mean sample weight the same.
 TEST(GlossyAshikhminShirley, WhiteFurnace) {
-  double highest = 0.0;
-  for (float anisotropy : {0.0f, 0.8f})
-    for (float r : {0.3f, 0.6f, 1.0f})
-      for (float cos_o : {1.0f, 0.5f, 0.15f}) {
-        const GlossyBsdf g = lobe(r, anisotropy, false);
-        const Vec3 wo = test::direction(cos_o, 0.5f);
-        constexpr int kSide = 400;
-        double q = 0.0;
-        for (int i = 0; i < kSide; ++i)
-          for (int j = 0; j < kSide; ++j)
-            q += g.eval(wo, test::direction((i + 0.5f) / kSide, kTwoPi * (j + 0.5f) / kSide)).x;
-        q *= 2.0 * M_PI / (double(kSide) * kSide);
-        const double s = test::mean_sample_weight(g, wo, 100000, 5);
-        highest = std::max(highest, q);
-        EXPECT_LE(q, 1.001) << anisotropy << " " << r << " " << cos_o;
-        EXPECT_NEAR(s, q, 0.01) << anisotropy << " " << r << " " << cos_o;
-      }
-  std::printf("highest albedo by quadrature: %.4f\n", highest);
+  std::printf("highest albedo by quadrature: %.4f\n", test::expect_glossy_white_furnace(kAshikhminShirley, 1.001));
 }
 
 // Cycles' mirror: both alphas at most 1e-4 (Roughness 0.01), a delta of weight Color; just
@@ -165,33 +135,10 @@ TEST(GlossyAshikhminShirley, MirrorBelowCyclesAlpha) {
 }
 
 // Roughness 0 to 1, strong anisotropy, grazing views and directions, directions below the
-// surface: every query finite, and nothing below the surface.
+// surface: every query finite, nothing below the surface valued (glossy_checks.h).
 TEST(GlossyAshikhminShirley, HardCasesAreFinite) {
-  Rng rng(11, 12, 13);
-  int below = 0;
-  for (int n = 0; n < 100000; ++n) {
-    const float r = (const float[]){0.0f, 0.0101f, 0.013f, 0.02f, 0.5f, 1.0f}[rng.next_u32() % 6];
-    const float anisotropy = (const float[]){0.0f, 0.99f, -0.99f}[rng.next_u32() % 3];
-    GlossyBsdf g(Vec3(1.0f), r, anisotropy, Vec3(0.3f, 1.0f, 0.2f), 0.2f, n % 2 == 0, false, kAshikhminShirley);
-    g.orient(Frame(Vec3(0.0f, 0.0f, 1.0f)));
-    Vec3 wo = test::uniform_sphere(rng);
-    if (n % 5 == 0) wo = glm::normalize(Vec3(1.0f, 0.0f, 1e-7f));
-    if (n % 7 == 0) wo = Vec3(0.0f, 0.0f, 1.0f);  // normal incidence
-    const Vec3 wi = n % 3 == 0 ? glm::normalize(Vec3(0.0f, 1.0f, 1e-7f)) : test::uniform_sphere(rng);
-    const Vec3 f = g.eval(wo, wi);
-    const float pdf = g.pdf(wo, wi);
-    ASSERT_TRUE(is_finite(f) && std::isfinite(pdf)) << r << " " << anisotropy;
-    if (wi.z <= 0.0f || wo.z <= 0.0f) {
-      ASSERT_EQ(f, Vec3(0.0f)) << r << " " << anisotropy;
-      ASSERT_EQ(pdf, 0.0f) << r << " " << anisotropy;
-      ++below;
-    }
-    const float ul = rng.next_1d();
-    const BsdfSample s = g.sample(wo, ul, rng.next_2d());
-    ASSERT_TRUE(is_finite(s.weight) && std::isfinite(s.pdf) && is_finite(s.wi)) << r << " " << anisotropy;
-    if (s.valid()) ASSERT_GT(s.wi.z, 0.0f) << r << " " << anisotropy;
-  }
-  EXPECT_GT(below, 40000);
+  test::expect_glossy_hard_cases_finite(kAshikhminShirley, {0.0f, 0.0101f, 0.013f, 0.02f, 0.5f, 1.0f},
+                                        Rng(11, 12, 13));
 }
 
 }  // namespace
