@@ -19,7 +19,8 @@ bounds: torrance_tools/sphere_agreement.py. Faults (Torrance's side only), each 
 bounds: the Glass node read as Cycles 3.4 renders it (the add-on before this test; broad: every
 sphere's ratio 0.9835, the blue one's 0.840 against a bound of 0.049, rendered with
 TORRANCE_ALL_FAULTS=1), the Beckmann glass alone read so (the add-on before 4.x's Beckmann glass:
-its sphere 0.897 against 0.045 in 4.2); every Multiscatter GGX read as GGX (broad).
+its sphere 0.897 against 0.045 in 4.2, the same re-rendered in its window only, sa.render_torrance's
+only=); every Multiscatter GGX read as GGX (broad).
 
 The Refraction sphere checks that 4.x's Refraction closure agrees (0.999, bound 0.038, in 4.2);
 Cycles 3.4's closure (separable Smith G, the add-on before) differs from it here by 1 % only
@@ -65,23 +66,14 @@ def build(scene):
                               glass_material(name, *inputs, node_type=node), segments=64, rings=32)
 
 
-def as_cycles_3_4(scene, directory, description, distributions):
+def as_cycles_3_4(scene, directory, description, distributions, only=None):
     """The Glass nodes of `distributions` read as the add-on read them before: Cycles 3.4's
-    closures."""
-    import torrance.materials as materials
-    original = materials.MaterialTable._add
-
-    def old_reading(self, args):
+    closures (only: the spheres they are, sa.render_torrance)."""
+    def old_reading(args):
         if args.get('distribution') in distributions:
             args.pop('glass_cycles4', None)
-        return original(self, args)
-    materials.MaterialTable._add = old_reading
-    try:
-        images = sa.render_torrance(scene, directory, "as_3_4", sa.TORRANCE_SEEDS, SAMPLES,
-                                    BOUNCES)[0]
-    finally:
-        materials.MaterialTable._add = original
-    return [(description, images)]
+    return [(description, sa.render_reading_otherwise(scene, directory, "as_3_4", SAMPLES, BOUNCES,
+                                                      old_reading, only=only))]
 
 
 def faults(scene, directory):
@@ -89,7 +81,8 @@ def faults(scene, directory):
     broad = (as_cycles_3_4(scene, directory, every, ('GGX', 'BECKMANN'))
              if testing.fault_renders(every, ()) else [])
     return (broad
-            + as_cycles_3_4(scene, directory, "Beckmann glass read as Cycles 3.4's", ('BECKMANN',))
+            + as_cycles_3_4(scene, directory, "Beckmann glass read as Cycles 3.4's", ('BECKMANN',),
+                            ("Glass_beckmann_white_1",))
             + sa.read_as_ggx([s[0] for s in SPHERES], SAMPLES, BOUNCES)(scene, directory))
 
 

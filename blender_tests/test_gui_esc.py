@@ -21,7 +21,8 @@ The key press itself happens while xdotool runs (XTEST, just before it exits); u
 starting xdotool took up to 0.24 s. The check therefore uses latency_from_sent (xdotool
 returned -> job gone); `latency` (xdotool started -> job gone) is printed as the conservative
 bound. Torrance's worst latency_from_sent must be <= MAX_LATENCY; Cycles' figures
-(CYCLES_TRIALS trials) are printed beside it, not checked.
+(CYCLES_TRIALS trials, on request: they are printed beside it, never checked) are left out by
+default: the test runs alone (RUN_SERIAL) and its 4 Cycles trials took ~6 s of the suite.
 
 Measured (2 cores, Xvfb + llvmpipe), Torrance 50 trials, from xdotool's start: before the
 core's per-row stop check median 0.210 s, p90 0.293 s, worst 0.397 s (ours: worst 0.142 s);
@@ -31,7 +32,7 @@ where xdotool itself took 0.22-0.24 s), blender_out worst 0.202 s. Cycles (10-20
 median 0.69-1.26 s, worst 3.1-3.7 s.
 
 No Xvfb or xdotool: SKIPPED, exit 77. TORRANCE_ESC_TRIALS / TORRANCE_ESC_CYCLES_TRIALS
-change the trial counts (by default 40 and 4, to keep the suite's time; the figures above are
+change the trial counts (by default 40 and 0, to keep the suite's time; the figures above are
 from 50 and 10-20). Results: build/test_gui_esc/results.json, the GUI log beside it.
 """
 
@@ -47,7 +48,7 @@ SKIP_CODE = 77
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 TRIALS = int(os.environ.get("TORRANCE_ESC_TRIALS", "40"))
-CYCLES_TRIALS = int(os.environ.get("TORRANCE_ESC_CYCLES_TRIALS", "4"))
+CYCLES_TRIALS = int(os.environ.get("TORRANCE_ESC_CYCLES_TRIALS", "0"))
 MAX_LATENCY = 0.5
 DELAY = (0.05, 1.0)
 SEED = 15
@@ -179,6 +180,8 @@ def _main():
         results = json.load(f)
     print(f"GUI run: {seconds:.1f} s (exit {code}); log {log_path}")
     for engine, rows in results["trials"].items():
+        if not rows:
+            continue
         lat = [r["latency"] for r in rows if r["latency"] is not None]
         med, p90, worst = gui.percentiles(lat)
         print(f"{engine}: {len(lat)}/{len(rows)} trials, Esc -> render end: median {med:.3f} s, "

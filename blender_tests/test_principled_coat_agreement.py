@@ -103,8 +103,9 @@ def build(scene):
     testing.set_world(scene, (0.20, 0.24, 0.30) if is_v2() else (0.0, 0.0, 0.0))
 
 
-def render_torrance(scene, directory, label):
-    return sa.render_torrance(scene, directory, label, sa.TORRANCE_SEEDS, SAMPLES, BOUNCES)[0]
+def render_torrance(scene, directory, label, only=None):
+    return sa.render_torrance(scene, directory, label, sa.TORRANCE_SEEDS, SAMPLES, BOUNCES,
+                              only=only)[0]
 
 
 def faults(scene, directory):
@@ -118,7 +119,8 @@ def faults(scene, directory):
     if not is_v2():
         set_inputs(["Clear_red_rough", "Clear_black"], **{roughness: 1.0})
         out.append(("clearcoat roughness 1",
-                    render_torrance(scene, directory, "coat_roughness")))
+                    render_torrance(scene, directory, "coat_roughness",
+                                    ("Clear_red_rough", "Clear_black"))))
         set_inputs(["Clear_red_rough"], **{roughness: 0.5})
         set_inputs(["Clear_black"], **{roughness: 0.25})
     else:
@@ -138,7 +140,8 @@ def faults(scene, directory):
     tree = bpy.data.materials[graph].node_tree
     socket = tree.nodes["Principled BSDF"].inputs[weight]
     tree.links.remove(socket.links[0])     # the graph's weight lost: the socket's own 0
-    out.append(("coat weight graph ignored", render_torrance(scene, directory, "no_graph")))
+    out.append(("coat weight graph ignored",
+                render_torrance(scene, directory, "no_graph", (graph,))))
     return out
 
 

@@ -103,8 +103,9 @@ def build(scene):
     testing.set_world(scene, (0.20, 0.24, 0.30))
 
 
-def render_torrance(scene, directory, label):
-    return sa.render_torrance(scene, directory, label, sa.TORRANCE_SEEDS, SAMPLES, BOUNCES)[0]
+def render_torrance(scene, directory, label, only=None):
+    return sa.render_torrance(scene, directory, label, sa.TORRANCE_SEEDS, SAMPLES, BOUNCES,
+                              only=only)[0]
 
 
 def faults(scene, directory):
@@ -120,7 +121,8 @@ def faults(scene, directory):
         sa.set_inputs(constant, **{weight: 1.0})
     tinted = next(s for s in spheres() if s[0] == "Sheen_tinted")
     sa.set_inputs(["Sheen_tinted"], **{tint_socket: (1.0, 1.0, 1.0, 1.0) if is_v2() else 0.0})
-    out.append(("sheen tint ignored", render_torrance(scene, directory, "no_tint")))
+    out.append(("sheen tint ignored",
+                render_torrance(scene, directory, "no_tint", ("Sheen_tinted",))))
     sa.set_inputs(["Sheen_tinted"], **{tint_socket: tint_value(tinted[5])})
     if is_v2() and testing.fault_renders("sheen roughness ignored (0.5)", ()):
         sa.set_inputs(["Sheen_smooth", "Sheen_rough"], **{"Sheen Roughness": 0.5})
@@ -131,7 +133,8 @@ def faults(scene, directory):
     tree = bpy.data.materials["Sheen_graph"].node_tree
     socket = tree.nodes["Principled BSDF"].inputs[weight]
     tree.links.remove(socket.links[0])     # the graph's weight lost: the socket's own 0
-    out.append(("sheen weight graph ignored", render_torrance(scene, directory, "no_graph")))
+    out.append(("sheen weight graph ignored",
+                render_torrance(scene, directory, "no_graph", ("Sheen_graph",))))
     return out
 
 

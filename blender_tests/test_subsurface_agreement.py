@@ -150,8 +150,10 @@ def build(scene):
     testing.set_world(scene, (0.20, 0.24, 0.30))
 
 
-def render_torrance(scene, directory, label):
-    return sa.render_torrance(scene, directory, label, TORRANCE_SEEDS, SAMPLES, BOUNCES)[0]
+def render_torrance(scene, directory, label, only=None):
+    """Torrance's images (only: the spheres a fault changes, sa.render_torrance)."""
+    return sa.render_torrance(scene, directory, label, TORRANCE_SEEDS, SAMPLES, BOUNCES,
+                              only=only)[0]
 
 
 def surface_node(name):
@@ -198,7 +200,11 @@ def faults(scene, directory):
         else:
             mixed = tuple(sss * c + (1.0 - sss) * b for b, c in zip(base, color, strict=True))
             saved[name] = node_inputs(name, **{"Subsurface": 0.0, "Base Color": (*mixed, 1.0)})
-    out.append(("subsurface as diffuse", render_torrance(scene, directory, "diffuse")))
+    # Far outside the bounds (block means: 3.4 0.0166 against 0.0045, 4.2 0.0156 against
+    # 0.0054; the radius ignored below 0.0578 and 0.0493, ratios off too): rendered with
+    # TORRANCE_ALL_FAULTS=1 (testing.fault_renders).
+    if testing.fault_renders("subsurface as diffuse", ()):
+        out.append(("subsurface as diffuse", render_torrance(scene, directory, "diffuse")))
     for restore in restores:
         restore()
     for name, inputs in saved.items():
@@ -211,36 +217,37 @@ def faults(scene, directory):
         saved = {n: node_inputs(n, **{("Radius" if n == SUZANNE[0] else "Subsurface Radius"):
                                       (1.0, 1.0, 1.0)}) for n in names}
     label = "scale ignored (1)" if is_v2() else "radius ignored (1 m)"
-    out.append((label, render_torrance(scene, directory, "radius")))
+    if testing.fault_renders(label, ()):
+        out.append((label, render_torrance(scene, directory, "radius")))
     for name, inputs in saved.items():
         node_inputs(name, **inputs)
     # Jade's IOR ignored.
     saved = node_inputs("Jade", **{"Subsurface IOR": 1.4})
-    out.append(("IOR ignored (1.4)", render_torrance(scene, directory, "ior")))
+    out.append(("IOR ignored (1.4)", render_torrance(scene, directory, "ior", ("Jade",))))
     node_inputs("Jade", **saved)
     if is_v2():     # Jade's method read wrong: Random Walk (Skin) as Random Walk
         _tree, node = surface_node("Jade")
         node.subsurface_method = 'RANDOM_WALK'
-        out.append(("Skin method read as Random Walk", render_torrance(scene, directory,
-                                                                      "method")))
+        out.append(("Skin method read as Random Walk",
+                    render_torrance(scene, directory, "method", ("Jade",))))
         node.subsurface_method = 'RANDOM_WALK_SKIN'
         _tree, node = surface_node("Checker")      # Christensen-Burley as Random Walk
         node.subsurface_method = 'RANDOM_WALK'
-        out.append(("Christensen-Burley read as Random Walk", render_torrance(scene, directory,
-                                                                             "burley")))
+        out.append(("Christensen-Burley read as Random Walk",
+                    render_torrance(scene, directory, "burley", ("Checker",))))
         node.subsurface_method = 'BURLEY'
     if is_v2() and v2_method('RANDOM_WALK_LEGACY') == 'RANDOM_WALK_LEGACY':
         # Blender 5.3: Skin's Random Walk (the new model) read as Random Walk (Legacy).
         _tree, node = surface_node("Skin")
         node.subsurface_method = 'RANDOM_WALK_LEGACY'
-        out.append(("5.3 Random Walk read as Legacy", render_torrance(scene, directory,
-                                                                     "legacy")))
+        out.append(("5.3 Random Walk read as Legacy",
+                    render_torrance(scene, directory, "legacy", ("Skin",))))
         node.subsurface_method = 'RANDOM_WALK'
     # The checker ignored.
     tree, node = surface_node("Checker")
     target = node.inputs["Subsurface Weight" if is_v2() else "Subsurface"]
     tree.links.remove(target.links[0])
-    out.append(("checker ignored", render_torrance(scene, directory, "checker")))
+    out.append(("checker ignored", render_torrance(scene, directory, "checker", ("Checker",))))
     return out
 
 

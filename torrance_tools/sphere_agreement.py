@@ -22,21 +22,29 @@ from mathutils import Vector
 
 from torrance_tools import render_settings, testing
 from torrance_tools.compare import bias_metrics
+from torrance_tools.farm.tiles import border_for
 from torrance_tools.testing import check
+
+
+def sphere_disks(scene, centres, radius, width, height):
+    """name -> (cx, cy, r) in pixels, y from the top: each sphere's disk in the image;
+    centres: name -> (x, y, z)."""
+    bpy.context.view_layer.update()      # the camera's matrix_world
+    cam = scene.camera
+    disks = {}
+    for name, (x, y, z) in centres.items():
+        centre = world_to_camera_view(scene, cam, Vector((x, y, z)))
+        edge = world_to_camera_view(scene, cam, Vector((x + radius, y, z)))
+        disks[name] = (centre.x * width, (1.0 - centre.y) * height, abs(edge.x - centre.x) * width)
+    return disks
 
 
 def sphere_masks(scene, centres, radius, width, height):
     """name -> boolean (height/2, width/2) mask of the 2x2-pixel bins inside 95 % of each
     sphere's disk; centres: name -> (x, y, z)."""
-    bpy.context.view_layer.update()      # the camera's matrix_world
-    cam = scene.camera
     yy, xx = (np.mgrid[0:height // 2, 0:width // 2] + 0.5) * 2.0
     masks = {}
-    for name, (x, y, z) in centres.items():
-        centre = world_to_camera_view(scene, cam, Vector((x, y, z)))
-        edge = world_to_camera_view(scene, cam, Vector((x + radius, y, z)))
-        cx, cy = centre.x * width, (1.0 - centre.y) * height
-        r = abs(edge.x - centre.x) * width
+    for name, (cx, cy, r) in sphere_disks(scene, centres, radius, width, height).items():
         masks[name] = np.hypot(xx - cx, yy - cy) < 0.95 * r - 1.0
         check(masks[name].sum() > 20, f"sphere {name} covers too few pixels")
     return masks
@@ -67,16 +75,62 @@ def render_cycles(scene, directory, seed, samples, bounces):
     return img, seconds
 
 
-def render_torrance(scene, directory, label, seeds, samples, bounces, model='PRINCIPLED'):
-    """Torrance's renders of `seeds`, and their seconds."""
+# The sphere test running (check_spheres): the image size, each sphere's disk and Torrance's
+# images of the correct scene by seed, into which render_torrance(..., only=names) pastes.
+_running = {}
+BLOCK = 8       # bias_metrics' blocks
+
+
+def sphere_window(names):
+    """(x0, y0, x1, y1), y from the top: the pixels of the 8x8 blocks (bias_metrics') that the
+    disks of the running test's spheres `names` touch, and one block more all round."""
+    width, height = _running["size"]
+    disks = [_running["disks"][name] for name in names]
+    x0 = min(cx - r for cx, _, r in disks) // BLOCK * BLOCK - BLOCK
+    y0 = min(cy - r for _, cy, r in disks) // BLOCK * BLOCK - BLOCK
+    x1 = -(-max(cx + r for cx, _, r in disks) // BLOCK) * BLOCK + BLOCK
+    y1 = -(-max(cy + r for _, cy, r in disks) // BLOCK) * BLOCK + BLOCK
+    return int(max(x0, 0)), int(max(y0, 0)), int(min(x1, width)), int(min(y1, height))
+
+
+def render_torrance(scene, directory, label, seeds, samples, bounces, model='PRINCIPLED',
+                    only=None):
+    """Torrance's renders of `seeds`, and their seconds.
+
+    only: the names of the spheres a fault changes (Torrance's side only). Then only their
+    window (sphere_window: Blender's render border) is rendered and pasted into Torrance's image
+    of the correct scene of the same seed (check_spheres'). The sampler is deterministic per
+    pixel, so outside the window the fault's full render differs from the correct one only by
+    the fault's light reflected onto the rest of the scene and by the efficiency roulette's
+    noise (it learns from the pixels traced; farm/tiles.py), which the window has too: most of
+    the fault's excess over the bounds is in the window (the tests' figures), at a fraction of a
+    full render's time."""
     images, seconds = [], 0.0
-    for seed in seeds:
-        render_settings.setup_torrance(scene, samples, bounces, seed=seed, brdf_model=model,
-                                       progressive_display=False)
-        img, t = testing.render(scene, directory, f"torrance_{label}_{seed}")
-        check(np.isfinite(img).all(), f"NaN/Inf in Torrance's image ({label})")
-        images.append(img)
-        seconds += t
+    rd = scene.render
+    if only:
+        x0, y0, x1, y1 = sphere_window(only)
+        height = _running["size"][1]
+        rd.use_border, rd.use_crop_to_border = True, False
+        rd.border_min_x, rd.border_min_y, rd.border_max_x, rd.border_max_y = border_for(
+            (x0, height - y1, x1, height - y0), *_running["size"])
+    try:
+        for seed in seeds:
+            render_settings.setup_torrance(scene, samples, bounces, seed=seed, brdf_model=model,
+                                           progressive_display=False)
+            img, t = testing.render(scene, directory, f"torrance_{label}_{seed}")
+            check(np.isfinite(img).all(), f"NaN/Inf in Torrance's image ({label})")
+            if only:
+                check(img[y0:y1, x0:x1, 3].min() > 0.0, f"{label}: the window was not rendered")
+                window = img[y0:y1, x0:x1]
+                img = _running["images"][seed].copy()
+                img[y0:y1, x0:x1] = window
+            images.append(img)
+            seconds += t
+    finally:
+        rd.use_border = False
+    if only:
+        print(f"{label}: window x {x0}-{x1}, y {y0}-{y1} of {_running['size']} re-rendered "
+              f"({seconds:.1f} s)", flush=True)
     return images, seconds
 
 
@@ -131,6 +185,24 @@ def read_as_ggx(names, samples, bounces):
         return [("rendered as GGX", render_torrance(scene, directory, "ggx", TORRANCE_SEEDS,
                                                     samples, bounces)[0])]
     return faults
+
+
+def render_reading_otherwise(scene, directory, label, samples, bounces, change, only=None):
+    """Torrance's images (TORRANCE_SEEDS) with every add_material() argument dict the add-on's
+    MaterialTable adds passed through change(args) first: a fault of the add-on's reading (only:
+    the spheres it changes, render_torrance)."""
+    import torrance.materials as materials
+    original = materials.MaterialTable._add
+
+    def changed(self, args):
+        change(args)
+        return original(self, args)
+    materials.MaterialTable._add = changed
+    try:
+        return render_torrance(scene, directory, label, TORRANCE_SEEDS, samples, bounces,
+                               only=only)[0]
+    finally:
+        materials.MaterialTable._add = original
 
 
 def noise_bump(mat, name):
@@ -237,6 +309,8 @@ def check_spheres(scene, directory, centres, radius, size, label, faults, what, 
     (torrance_seeds) within the bounds, and each of faults(scene, directory)'s (description,
     images) outside them; `what` names the feature in the failure message."""
     masks = sphere_masks(scene, centres, radius, *size)
+    _running.clear()
+    _running.update(size=size, disks=sphere_disks(scene, centres, radius, *size))
     agreement = Agreement([render_cycles(scene, directory, s, samples, bounces)[0]
                            for s in cycles_seeds], masks)
     print(f"Cycles {bpy.app.version_string} seed {cycles_seeds[1]} vs {cycles_seeds[0]} (noise): "
@@ -244,6 +318,7 @@ def check_spheres(scene, directory, centres, radius, size, label, faults, what, 
     print(f"bounds: |ratio - 1| <= {agreement.ratio:.4f}, block mean <= "
           f"{agreement.block_mean:.4f}; spheres: " + " ".join(centres), flush=True)
     images, seconds = render_torrance(scene, directory, label, torrance_seeds, samples, bounces)
+    _running["images"] = dict(zip(torrance_seeds, images, strict=True))
     m, bad = agreement.check(images)
     print(f"Torrance (seeds {torrance_seeds}) vs Cycles: {describe(m)} ({seconds:.1f} s)"
           + (f"  FAIL: {'; '.join(bad)}" if bad else "  ok"), flush=True)

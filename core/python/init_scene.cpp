@@ -214,7 +214,7 @@ void init_scene(py::module_& m) {
              bool subsurface_burley, float thin_film_thickness, float thin_film_ior, bool thin_film_cycles5,
              int thin_film_thickness_register, int thin_film_ior_register, bool thin_wall,
              float diffuse_roughness, bool emission_under_layers, const std::string& coat_layering,
-             bool multiscatter_walk, float dispersion, bool glass_cycles4) {
+             bool multiscatter_walk, float dispersion, bool glass_cycles4, bool transmission_anisotropic) {
             if (distribution != "GGX" && distribution != "BECKMANN" && distribution != "ASHIKHMIN_SHIRLEY")
               throw py::value_error("distribution must be 'GGX', 'BECKMANN' or 'ASHIKHMIN_SHIRLEY', got '" +
                                     distribution + "'");
@@ -240,6 +240,7 @@ void init_scene(py::module_& m) {
                                : distribution == "ASHIKHMIN_SHIRLEY" ? MicrofacetDistribution::AshikhminShirley
                                                                      : MicrofacetDistribution::GGX;
             mat.glass_cycles4 = glass_cycles4;
+            mat.transmission_anisotropic = transmission_anisotropic;
             mat.alpha = alpha;
             mat.transparent_color = vec3(transparent_color);
             mat.coat_weight = coat_weight;
@@ -347,6 +348,7 @@ void init_scene(py::module_& m) {
           py::arg("thin_wall") = false, py::arg("diffuse_roughness") = 0.0f,
           py::arg("emission_under_layers") = false, py::arg("coat_layering") = "CYCLES_4_5",
           py::arg("multiscatter_walk") = false, py::arg("dispersion") = 0.0f, py::arg("glass_cycles4") = false,
+          py::arg("transmission_anisotropic") = false,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
@@ -383,7 +385,10 @@ void init_scene(py::module_& m) {
           "(sheen_tint_register: v1's factor its x, v2's colour). anisotropy in [-1, 1] and anisotropic_rotation "
           "(turns about the normal): a Glossy closure's anisotropy (glossy_bsdf.h) along the tangent the "
           "program's tangent_register gives (a world direction; none: isotropic), from the program's "
-          "anisotropy_register / anisotropic_rotation_register when given. subsurface_*: subsurface scattering by "
+          "anisotropy_register / anisotropic_rotation_register when given (also the Principled BSDF's Anisotropic "
+          "and Anisotropic Rotation). transmission_anisotropic (Cycles 5.x): the glass is stretched too, "
+          "PRINCIPLED_V2's transmission as its reflection, a Glass BSDF's (glass=True, glass_cycles4) by "
+          "anisotropy as a Glossy closure's (principled_glass_v2.h). subsurface_*: subsurface scattering by "
           "Cycles' Random Walk: PRINCIPLED's Subsurface in [0, 1] (0: none) with its Radius (metres, >= 0), "
           "Color, IOR and Anisotropy (subsurface_fixed_radius: Cycles' Random Walk (Fixed Radius): the "
           "radius / 4 pi, no IOR adjustment; subsurface_entry_alpha >= 0: Cycles 4.x's rough refractive entry "

@@ -6,6 +6,8 @@
 #include "torrance/bsdfs/bsdf.h"
 #include "torrance/util/sampling.h"
 
+#include "test_helpers.h"  // drawn_pdf
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -145,6 +147,28 @@ inline ChiSquare pooled_chi_square(const std::vector<double>& observed, const st
     x.pooled_counted = true;
   }
   return x;
+}
+
+// The chi-square test of a glass's sampling from wo against the density it states on the pairs it
+// draws (drawn_pdf), binned on the charts of ior and alpha: the test, the density's total over the
+// sphere (mass: at most about 1) and whether an uncounted pool of rare bins stays within bounds.
+struct DielectricSampling {
+  ChiSquare x;
+  double mass = 0.0;
+  bool rare_bins_ok = true;
+};
+template <class Glass>
+DielectricSampling dielectric_sampling(const Glass& glass, const Vec3& wo, float ior, float alpha, Rng& rng,
+                                       int samples) {
+  const Charts charts(wo, ior, alpha);
+  const std::vector<double> observed = sampled_bins(glass, wo, charts, rng, samples);
+  DielectricSampling out;
+  const std::vector<double> expected = expected_bins(
+      charts, [&](const Vec3& wi) { return drawn_pdf(glass, wo, wi); }, samples, out.mass);
+  out.x = pooled_chi_square(observed, expected);
+  out.rare_bins_ok =
+      out.x.pooled_counted || out.x.pooled_observed <= 5.0 + 10.0 * out.x.pooled_expected + 1e-4 * samples;
+  return out;
 }
 
 }  // namespace torrance::test

@@ -48,9 +48,9 @@ from .shader_graph.graph import KIND_OF_SOCKET, AttributeIds, GraphCompiler, Uns
 from .shader_graph.math_ops import VECTOR_MATH_OPS
 from .shader_graph.program import ProgramBuilder, constant
 from .shader_graph.registry import READERS
-from .shader_graph.node_versions import cycles4_microfacets
+from .shader_graph.node_versions import cycles4_microfacets, cycles5_1_anisotropic_glass
 from .mixtures import MIXTURE_SURFACES, read_mixture
-from .anisotropy import PRINCIPLED_V1, PRINCIPLED_V2, read_anisotropy
+from .anisotropy import GLOSSY, PRINCIPLED_V1, PRINCIPLED_V2, read_anisotropy
 from .normal_inputs import begin_displacement, read_normal_input
 from .principled_coat import read_coat
 from .shader_aovs import AovPrograms
@@ -72,18 +72,6 @@ _PRINCIPLED_SOCKETS = {
                specular_tint="Specular Tint"),
 }
 
-# Principled inputs that Torrance ignores, with the value at which ignoring them is exact
-# (a tuple: a colour socket). v2's Specular Tint colour is read (PRINCIPLED_V2 renders it).
-_IGNORED_PRINCIPLED_INPUTS = {
-    'v1': (
-    ),
-    'v2': (
-    ),
-}
-# Glass BSDF inputs of Blender 5.0+ that Torrance ignores (as above); its Thin Film is read.
-_IGNORED_GLASS_INPUTS = (("Anisotropy", 0.0),)
-
-
 # Blender's names of the microfacet distributions, for the reports of a Principled or Glass BSDF
 # lobe Torrance renders as GGX.
 _DISTRIBUTIONS = {'MULTI_GGX': "Multiscatter GGX", 'BECKMANN': "Beckmann"}
@@ -104,17 +92,6 @@ def specular_from_ior_level(level, ior):
     """
     # F0(IOR) / 0.04 = (5 (IOR - 1) / (IOR + 1))^2: exactly 1 at IOR 1.5 in floating point.
     return level * (5.0 * (ior - 1.0) / (ior + 1.0)) ** 2
-
-
-def _is_neutral(value, neutral):
-    if isinstance(neutral, tuple):
-        try:
-            c = tuple(value)[:len(neutral)]
-        except TypeError:
-            return False
-        return len(c) == len(neutral) and all(
-            abs(finite_or(x, n) - n) <= 1e-6 for x, n in zip(c, neutral, strict=True))
-    return abs(finite_or(value, neutral) - neutral) <= 1e-6
 
 
 # Nodes whose output is a constant we can read.
@@ -367,11 +344,8 @@ class MaterialReader:
                 version_inputs = dict(multiscatter_walk=True)
         anisotropy = read_anisotropy(self, mat, node,
                                      PRINCIPLED_V2 if version == 'v2' else PRINCIPLED_V1)
-        if anisotropy and glass and bpy.app.version >= (5, 1, 0):
-            self.reporter.warning(
-                f"Material '{mat.name}': Cycles 5.x stretches the transmission of "
-                f"{node_label(node)} along its tangent too; Torrance renders the transmission "
-                f"isotropic")
+        if anisotropy and glass and cycles5_1_anisotropic_glass():
+            anisotropy['transmission_anisotropic'] = True
         out = dict(
             base_color=_color3(base, d['base_color']),
             metallic=_clamp(finite_or(metallic, d['metallic']), 0.0, 1.0),
@@ -391,7 +365,6 @@ class MaterialReader:
         alpha = _clamp(finite_or(alpha, 1.0), 0.0, 1.0)
         if alpha < 1.0 or alpha_tex >= 0:
             out.update(alpha=alpha, alpha_texture=alpha_tex)
-        self._report_ignored_inputs(mat, node, _IGNORED_PRINCIPLED_INPUTS[version])
         report_film_on_thin_wall(self, mat, node, out)
         if version == 'v2' and ('coat_weight' in out or 'sheen_weight' in out):
             # Cycles 4.x: the coat and sheen darken the emission (in a mix of shaders too)
@@ -417,21 +390,6 @@ class MaterialReader:
         return dict(transmission=transmission, ior=self._ior(mat, node, 1.45),
                     transmission_roughness=_clamp(
                         finite_or(v(mat, node, "Transmission Roughness", 0.0), 0.0), 0.0, 1.0))
-
-    def _report_ignored_inputs(self, mat, node, table):
-        """Warns of the inputs of `table` ((name, neutral value), ...) that `node` links or sets
-        away from their neutral value: Torrance renders the node without them."""
-        ignored = []
-        for name, neutral in table:
-            socket = node.inputs.get(name)
-            if socket is None:
-                continue
-            if socket.is_linked or not _is_neutral(socket.default_value, neutral):
-                ignored.append(name)
-        if ignored:
-            self.reporter.warning(
-                f"Material '{mat.name}': Torrance ignores the {node.bl_label} input(s) "
-                f"{', '.join(ignored)}")
 
     def _ior(self, mat, node, fallback):
         """The IOR socket of `node`, as Cycles uses it (max(IOR, 1e-5)); at most 1000."""
@@ -459,7 +417,6 @@ class MaterialReader:
             self.reporter.warning(f"Material '{mat.name}': {node_label(node)} uses "
                                   f"{_DISTRIBUTIONS.get(distribution, distribution)}; Torrance "
                                   f"renders GGX")
-        self._report_ignored_inputs(mat, node, _IGNORED_GLASS_INPUTS)
         out = dict(d, base_color=_color3(color, (1.0, 1.0, 1.0)), metallic=0.0, specular=0.0,
                    roughness=roughness, glass=True, transmission=1.0,
                    distribution='BECKMANN' if distribution == 'BECKMANN' else 'GGX',
@@ -468,6 +425,8 @@ class MaterialReader:
                    **({'glass_cycles4': True, 'multiscatter_ggx': distribution == 'MULTI_GGX'}
                       if cycles4 else {}),
                    **read_thin_film(self, mat, node))
+        if lobe := read_anisotropy(self, mat, node, GLOSSY):   # Blender 5.1+'s Anisotropy
+            out.update(lobe, transmission_anisotropic=True)
         out.update(read_normal_input(self, mat, node))
         return _sanitize(self._with_program(out))
 

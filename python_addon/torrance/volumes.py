@@ -12,6 +12,8 @@ a World Output (the medium around everything) is read as Cycles 3.4 sums volume 
   max(1 - sqrt(Absorption Color), 0) x Density, emission Emission Strength x Emission Color
   (only a Strength above Cycles' cutoff: a negative one emits nothing) plus the blackbody's
   (Blackbody Intensity, Temperature, Blackbody Tint);
+* Volume Coefficients (Blender 5.x): scattering, absorption and emission per metre as given,
+  the scattering with the node's phase function;
 * Emission (in a Volume socket): emitted radiance per metre Color x Strength, signed (a negative
   one takes light away, as in Cycles);
 * Mix Shader (its Fac clamped to [0, 1]) and Add Shader of those.
@@ -142,13 +144,16 @@ class VolumeReader:
             medium.scatter(color, self._node_phase(node), medium.times(weight, density))
         elif kind == 'ShaderNodeVolumePrincipled':
             self._principled(node, weight, medium)
+        elif kind == 'ShaderNodeVolumeCoefficients':
+            self._coefficients(node, weight, medium)
         elif kind == 'ShaderNodeEmission':
             strength = value("Strength", 'float')
             medium.add('emission', value("Color", 'color'), medium.times(weight, strength))
         else:
             self._warn(f"{self.where}: {node_label(node)} is not a volume shader "
                                   f"(Torrance reads Volume Absorption, Volume Scatter, Principled "
-                                  f"Volume, Emission, Mix and Add Shader); left out")
+                                  f"Volume, Volume Coefficients, Emission, Mix and Add Shader); "
+                                  f"left out")
 
     def _grid(self, node, name, kind):
         """The grid a Principled Volume's `name` (Density/Color/Temperature Attribute) names, at
@@ -195,6 +200,15 @@ class VolumeReader:
                 tint = value("Blackbody Tint", 'color')
                 rgb = [t * c for t, c in zip(tint, blackbody(kelvin), strict=True)]
                 medium.add('emission', rgb, medium.times(weight, power))
+
+    def _coefficients(self, node, weight, medium):
+        """Blender 5.x's Volume Coefficients: the coefficients per metre as they are (scattering
+        with the node's phase function, absorption, emission), as Cycles 5.x's
+        svm_node_volume_coefficients."""
+        value = partial(self._value, node)
+        medium.scatter(value("Scatter Coefficients", 'color'), self._node_phase(node), weight)
+        medium.add('sigma_a', value("Absorption Coefficients", 'color'), weight)
+        medium.add('emission', value("Emission Coefficients", 'color'), weight)
 
     def _varying_blackbody(self, node, weight, medium, intensity, grid):
         """The blackbody's emission with Temperature x max(grid, 0) per point (Cycles' flame

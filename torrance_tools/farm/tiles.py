@@ -14,7 +14,6 @@ import os
 import numpy as np
 
 from torrance_tools.compare import read_exr
-from torrance_tools.sweep import sheet
 
 
 def tile_rects(width, height, cols, rows):
@@ -57,6 +56,7 @@ def stitch(job):
                 records.append(json.load(f))
     path = os.path.join(job.out, "still.exr")
     write_exr(path, image)
+    from torrance_tools.sweep import sheet     # PIL: not in bpy's venvs, where border_for serves
     sheet.write_png(os.path.join(job.out, "still.png"), image)
     with open(os.path.join(job.out, "still_result.json"), "w") as f:
         json.dump(dict(plan=job.plan, image="still.exr", tiles=records,

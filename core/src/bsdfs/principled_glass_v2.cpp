@@ -2,6 +2,7 @@
 
 #include "torrance/bsdfs/ggx_glass_tables.h"
 #include "torrance/bsdfs/ggx_tables.h"
+#include "torrance/bsdfs/glossy_bsdf.h"  // the node's anisotropy
 #include "torrance/bsdfs/microfacet.h"
 #include "torrance/bsdfs/outward.h"
 #include "torrance/bsdfs/principled_coat.h"  // multiscatter
@@ -53,6 +54,17 @@ PrincipledGlassV2 PrincipledGlassV2::refraction_node(float roughness, float ior,
   glass.tint_r_ = Vec3(0.0f);
   glass.reflective_ = false;
   return glass;
+}
+
+void PrincipledGlassV2::stretch(const ggx::Shape& shape) {
+  if (!shape.anisotropic()) return;
+  lobe_ = MicrofacetLobe(shape, lobe_.distribution());
+  roughness_ = std::sqrt(std::sqrt(shape.alpha_x() * shape.alpha_y()));
+  smooth_ = shape.is_delta(ggx_tables::kDeltaAlpha);
+}
+
+void PrincipledGlassV2::stretch_as_node(float anisotropy, const Vec3& tangent, float rotation) {
+  stretch(GlossyBsdf::lobe_shape(roughness_, anisotropy, tangent, rotation));
 }
 
 PrincipledGlassV2::Split PrincipledGlassV2::split(float c, float etap) const {

@@ -140,6 +140,16 @@ def cycles5_thin_film():
     return bpy.app.version >= (5, 0, 0)
 
 
+def cycles5_1_anisotropic_glass():
+    """True where Cycles stretches the glass along the tangent too (add_material()'s
+    transmission_anisotropic): the Principled BSDF's transmission as its reflection, the Glass
+    BSDF by its Anisotropy, Rotation and Tangent, which arrived with it. Cycles' kernels read:
+    4.2's and 5.0's transmission is isotropic (and 5.0's Glass has no Anisotropy), 5.3's
+    stretched; 5.1-5.2 taken as 5.3."""
+    import bpy
+    return bpy.app.version >= (5, 1, 0)
+
+
 def cycles_coat_layering():
     """How the running Blender's Cycles lays Principled v2's coat over the layers under it (the
     core's principled_coat.h): 'CYCLES_4_2' (no energy compensation, the base darkened by the

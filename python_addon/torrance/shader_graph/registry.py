@@ -162,7 +162,8 @@ CLOSURES = {
                                 "the emission darkened by the coat and sheen); the sheen (v1 "
                                 "Sheen, Sheen Tint; v2 Sheen "
                                 "Weight, Roughness, Tint; any graph); Anisotropic, Anisotropic "
-                                "Rotation, Tangent (any graph; unlinked: Geometry > Tangent); "
+                                "Rotation, Tangent (any graph; unlinked: Geometry > Tangent; "
+                                "5.1+: the transmission stretched too, as Cycles); "
                                 "v1 subsurface (Cycles' Random Walk: Subsurface, Subsurface "
                                 "Radius, Subsurface Color, any graph; Subsurface IOR, Subsurface "
                                 "Anisotropy; Random Walk (Fixed Radius), Christensen-Burley); "
@@ -193,13 +194,15 @@ CLOSURES = {
                                  "its albedo scaling); Beckmann as Cycles' (its D, its fit "
                                  "of Smith's Lambda); Ashikhmin-Shirley as Cycles' (its "
                                  "anisotropic Phong lobe)",
-    'ShaderNodeBsdfGlass': "partly: Color, Roughness, IOR, Normal; GGX, Beckmann, Sharp "
+    'ShaderNodeBsdfGlass': "rendered: Color, Roughness, IOR, Normal; GGX, Beckmann, Sharp "
                            "and Multiscatter GGX as the Blender's Cycles (3.x: two closures "
                            "split by the macro Fresnel, Multiscatter GGX its random walk; "
                            "4.x/5.x: one closure, Fresnel per microfacet, Multiscatter GGX its "
                            "albedo scaling, Beckmann's visible normals); "
                            "alone and in Mix/Add Shader trees; 5.x Thin Film Thickness and IOR "
-                           "(any graph). Reported: 5.x Anisotropy",
+                           "(any graph); 5.1+ Anisotropy, Rotation, Tangent (any graph; "
+                           "unlinked: Geometry > Tangent) stretching reflection and refraction "
+                           "as Cycles",
     'ShaderNodeBsdfMetallic': "partly: F82 Tint (Base Color, any graph; Edge Tint) and Physical "
                               "Conductor (IOR, Extinction: values), Roughness (any graph), "
                               "Anisotropy, Rotation, Tangent (any graph; unlinked: Geometry > "
@@ -226,9 +229,8 @@ CLOSURES = {
                                       "and in Mix/Add Shader trees",
     'ShaderNodeBsdfRefraction': "rendered: Color, Roughness (any graph), IOR, Normal; GGX, "
                                 "Beckmann, Sharp as the Blender's Cycles (3.x: its refraction "
-                                "closure; 4.x/5.x: the one microfacet closure without Fresnel) "
-                                "(Multiscatter GGX rendered as GGX, reported); alone and in "
-                                "Mix/Add Shader trees",
+                                "closure; 4.x/5.x: the one microfacet closure without Fresnel); "
+                                "alone and in Mix/Add Shader trees",
     'ShaderNodeBsdfToon': "partly: Color, Size (any graph), Smooth (a value; a graph that varies "
                           "is reported), Normal; Diffuse and Glossy, their sampled directions "
                           "weighted as Cycles 3.4's or 4.x's; alone and in Mix/Add Shader trees",
@@ -266,6 +268,10 @@ CLOSURES = {
                                "Absorption's), the Phase menu (4.3+: Henyey-Greenstein, "
                                "Fournier-Forand, Draine, Rayleigh, Mie) with Anisotropy, IOR, "
                                "Backscatter, Alpha and Diameter constant",
+    'ShaderNodeVolumeCoefficients': "rendered in a Volume socket (alone and in Mix/Add Shader "
+                                    "trees): Absorption, Scatter and Emission Coefficients per "
+                                    "metre (any graph inside meshes, as Volume Absorption's), "
+                                    "the Phase menu with its inputs constant, as Volume Scatter's",
     'ShaderNodeVolumePrincipled': "partly: in a Volume socket, Color, Density, Absorption Color, "
                                   "Emission Strength and Color (any graph inside meshes, as "
                                   "Volume Absorption's), Anisotropy, Blackbody Intensity, "

@@ -116,6 +116,10 @@ struct Material {
   float anisotropy = 0.0f;
   float anisotropic_rotation = 0.0f;
   Vec3 tangent{0.0f};
+  // Cycles 5.x: the transmission is stretched too: PRINCIPLED_V2's as its reflection (Anisotropic
+  // in [0, 1]), the Glass node's by its own Anisotropy, Rotation and Tangent (the three fields
+  // above, as the Glossy node's) (principled_glass_v2.h). False: isotropic, as Cycles 4.x.
+  bool transmission_anisotropic = false;
   // Subsurface scattering (core/src/subsurface/, Cycles' Random Walk): v1's Subsurface factor
   // (PRINCIPLED: the diffuse lobe becomes the walk, its albedo base_color mixed towards
   // subsurface_color by it, its radius subsurface_radius times it) or the Subsurface Scattering

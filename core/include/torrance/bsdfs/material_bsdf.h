@@ -43,10 +43,12 @@ class MaterialBsdf {
     }
     if (!m.glass_node && !(m.transmission > 0.0f && metallic < 1.0f)) return;
     if (m.glass_node) {
-      if (m.glass_cycles4)
-        glass_.emplace(PrincipledGlassV2::glass_node(roughness, m.ior, m.base_color, m.multiscatter_ggx, m.thin_film(),
-                                                     m.beckmann()));
-      else if (m.multiscatter_walk && !m.beckmann())
+      if (m.glass_cycles4) {
+        PrincipledGlassV2 glass = PrincipledGlassV2::glass_node(roughness, m.ior, m.base_color, m.multiscatter_ggx,
+                                                                m.thin_film(), m.beckmann());
+        if (m.transmission_anisotropic) glass.stretch_as_node(m.anisotropy, m.tangent, m.anisotropic_rotation);
+        glass_.emplace(glass);
+      } else if (m.multiscatter_walk && !m.beckmann())
         glass_.emplace(MultiscatterGlassBsdf(roughness, m.ior, m.base_color));
       else
         glass_.emplace(
@@ -57,9 +59,11 @@ class MaterialBsdf {
     }
     glass_weight_ = glass_probability_ = clamp01(m.transmission) * (1.0f - metallic);
     if (model == BrdfModel::PrincipledV2) {
-      glass_.emplace(
-          PrincipledGlassV2(roughness, m.ior, m.specular_tint_color, m.base_color, m.multiscatter_ggx, m.thin_film(),
-                            dispersion::refracting_ior(m)));
+      PrincipledGlassV2 glass(roughness, m.ior, m.specular_tint_color, m.base_color, m.multiscatter_ggx, m.thin_film(),
+                              dispersion::refracting_ior(m));
+      if (const auto* v2 = std::get_if<PrincipledV2Bsdf>(&bsdf_); v2 && m.transmission_anisotropic)
+        glass.stretch(v2->shape());
+      glass_.emplace(glass);
       // A coat or sheen over all-glass keeps its lobe (sampled at least 1 time in 10).
       if (m.coat_weight > 0.0f || m.sheen_weight > 0.0f) glass_probability_ = std::min(glass_probability_, 0.9f);
       opaque_ = glass_probability_ < 1.0f;
@@ -79,13 +83,16 @@ class MaterialBsdf {
   // other than the camera's carry through it seen from v's wo, Cycles 5.x's Transparent closure
   // of that weight there (shadow rays pass it, thin_wall_shadow.h); 0 without one.
   bool passes_straight() const { return thin_ && thin_->transmission_is_delta() && glass_weight_ > 0.0f; }
-  // An anisotropic model's tangent into the shading frame (ggx_shape.h); before at().
+  // An anisotropic model's (and Cycles 5.x's anisotropic glass's) tangent into the shading frame
+  // (ggx_shape.h); before at().
   void orient(const Frame& frame) {
     std::visit(
         [&](auto& b) {
           if constexpr (!std::is_same_v<std::decay_t<decltype(b)>, CookTorranceBsdf>) b.orient(frame);
         },
         bsdf_);
+    if (glass_)
+      if (auto* v2 = std::get_if<PrincipledGlassV2>(&*glass_); v2 && v2->anisotropic()) v2->orient(frame);
   }
   // PRINCIPLED_V2's random-walk closure weight for the view wo (principled_v2.h; 0 otherwise).
   Vec3 subsurface_weight(const Vec3& wo) const {

@@ -41,6 +41,12 @@
 // The Refraction BSDF node of Blender 4.x/5.x (refraction_node()): the closure's refraction alone,
 // no Fresnel (T = Color; 0 where the microfacet totally reflects), no reflection (P_r = 0), GGX or
 // Beckmann: Cycles 4.2-5.x's *_refraction closures with Fresnel NONE.
+// Anisotropy (Cycles 5.x, stretch()): the Principled's transmission takes the Principled's stretched
+// lobe (its Anisotropic, Rotation and Tangent, principled_v2.h) and the Glass node its Anisotropy,
+// Rotation and Tangent mapped as the Glossy node's (GlossyBsdf::lobe_shape); the multiscatter
+// tables are then read at (alpha_x alpha_y)^(1/4), and the closure is a delta where alpha_x
+// alpha_y is (ggx_shape.h). orient() turns the tangent into the shading frame, whose x and y the
+// outward frame keeps.
 // Frame as GlassBsdf (glass.h), so that MaterialBsdf holds either: z is the surface's OUTWARD
 // normal, wo.z < 0 is a viewer inside. eval() includes |cos_i| (bsdf.h). Thin Wall (Blender 5.x)
 // is thin_wall_v2.h's instead. Thin Film (thin_film.h): F(c) = the film's reflectance over etap (its
@@ -70,6 +76,15 @@ class PrincipledGlassV2 {
   // Blender 4.x/5.x's Refraction BSDF node (color >= 0).
   static PrincipledGlassV2 refraction_node(float roughness, float ior, const Vec3& color, bool beckmann);
 
+  // The microfacets stretched along a tangent, as `shape` (isotropic: nothing changes); the
+  // distribution is kept. stretch_as_node: the Glass node's Anisotropy (in [-1, 1]), tangent and
+  // Rotation (turns), as the Glossy node's.
+  void stretch(const ggx::Shape& shape);
+  void stretch_as_node(float anisotropy, const Vec3& tangent, float rotation);
+  // An anisotropic lobe's tangent into the shading frame (ggx_shape.h); before eval and sample.
+  void orient(const Frame& frame) { lobe_.orient(frame); }
+  bool anisotropic() const { return lobe_.shape().anisotropic(); }
+
   Vec3 eval(const Vec3& wo, const Vec3& wi) const;
   float pdf(const Vec3& wo, const Vec3& wi) const;
   BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const;
@@ -97,9 +112,9 @@ class PrincipledGlassV2 {
 
   Vec3 f0_, tint_t_;
   Vec3 tint_r_{1.0f};  // the reflection's tint: 1, or the Glass node's Color
-  float alpha_, roughness_, ior_;
+  float alpha_, roughness_, ior_;  // roughness_: the tables' (alpha_x alpha_y)^(1/4) when stretched
   bool smooth_, multiscatter_;
-  MicrofacetLobe lobe_;     // GGX's or Beckmann's microfacets (isotropic, alpha_)
+  MicrofacetLobe lobe_;     // GGX's or Beckmann's microfacets (alpha_, or stretched)
   bool reflective_ = true;  // false: the Refraction node (no Fresnel, no reflection)
   bool straight_;   // |ior - 1| < 1e-4: refraction passes straight through (a delta)
   bool invisible_;  // ... and without a film nothing reflects: the interface is not there
