@@ -216,9 +216,11 @@ void init_scene(py::module_& m) {
              float diffuse_roughness, bool emission_under_layers, const std::string& coat_layering,
              bool multiscatter_walk, float dispersion, bool glass_cycles4, bool transmission_anisotropic,
              int dispersion_register) {
-            if (distribution != "GGX" && distribution != "BECKMANN")
-              throw py::value_error("distribution must be 'GGX' or 'BECKMANN', got '" + distribution +
-                                    "'");
+            if (distribution != "GGX" && distribution != "BECKMANN" && distribution != "ASHIKHMIN_SHIRLEY")
+              throw py::value_error("distribution must be 'GGX', 'BECKMANN' or 'ASHIKHMIN_SHIRLEY', got '" +
+                                    distribution + "'");
+            if (glass && distribution == "ASHIKHMIN_SHIRLEY")
+              throw py::value_error("distribution 'ASHIKHMIN_SHIRLEY' is the Glossy closure's, not glass's");
             Material mat;
             mat.coat_layering = parse_coat_layering(coat_layering);
             mat.base_color = vec3(base_color);
@@ -235,7 +237,9 @@ void init_scene(py::module_& m) {
             mat.transmission_roughness = transmission_roughness;
             mat.hair_offset = hair_offset;
             mat.glass_node = glass;
-            mat.beckmann = distribution == "BECKMANN";
+            mat.distribution = distribution == "BECKMANN"            ? MicrofacetDistribution::Beckmann
+                               : distribution == "ASHIKHMIN_SHIRLEY" ? MicrofacetDistribution::AshikhminShirley
+                                                                     : MicrofacetDistribution::GGX;
             mat.glass_cycles4 = glass_cycles4;
             mat.transmission_anisotropic = transmission_anisotropic;
             mat.alpha = alpha;
@@ -359,8 +363,8 @@ void init_scene(py::module_& m) {
           "transmission, ior, transmission_roughness: the Principled BSDF's glass (transmission and "
           "transmission_roughness in [0, 1], ior in (0, 1000]; ior is also PRINCIPLED_V2's IOR); glass=True: "
           "Blender's Glass BSDF node "
-          "(base_color its Color, roughness, ior; distribution 'GGX' or 'BECKMANN', also a mixture's Refraction "
-          "and Glossy closures'; glass_cycles4: as "
+          "(base_color its Color, roughness, ior; distribution 'GGX' or 'BECKMANN', also a mixture's Refraction, "
+          "Metallic and Glossy closures', and 'ASHIKHMIN_SHIRLEY' the Glossy closure's alone; glass_cycles4: as "
           "Cycles 4.0+ renders it, GGX with the Fresnel per microfacet and multiscatter_ggx its Multiscatter GGX, "
           "else as Cycles 3.4). alpha in "
           "[0, 1] (or alpha_texture: a texture's alpha channel; its colour's luminance with alpha_from_luminance; 1 - "

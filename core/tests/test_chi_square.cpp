@@ -741,9 +741,24 @@ TEST(ChiSquare, BeckmannGlossySamplingMatchesPdf) {
   for (float anisotropy : {0.0f, 0.8f})
     for (float roughness : {0.3f, 0.8f}) {
       GlossyBsdf glossy(Vec3(0.8f), roughness, anisotropy, glm::normalize(Vec3(0.6f, 0.8f, 0.3f)), 0.1f, true,
-                        false, /*beckmann=*/true);
+                        false, MicrofacetDistribution::Beckmann);
       glossy.orient(Frame(Vec3(0.0f, 0.0f, 1.0f)));
       expect_reflection_sampling_matches_pdf(glossy, seed, 0.01 / 12.0,
+                                             "anisotropy " + std::to_string(anisotropy) +
+                                                 " r=" + std::to_string(roughness));
+    }
+}
+
+// The Glossy BSDF with the Ashikhmin-Shirley distribution (ashikhmin_shirley.h): its half vectors
+// drawn isotropically and by the paper's quadrants when stretched either way, against the pdf.
+TEST(ChiSquare, AshikhminShirleyGlossySamplingMatchesPdf) {
+  uint32_t seed = 9070;
+  for (float anisotropy : {0.0f, 0.8f, -0.6f})
+    for (float roughness : {0.3f, 0.8f}) {
+      GlossyBsdf glossy(Vec3(0.8f), roughness, anisotropy, glm::normalize(Vec3(0.6f, 0.8f, 0.3f)), 0.1f, false,
+                        false, MicrofacetDistribution::AshikhminShirley);
+      glossy.orient(Frame(Vec3(0.0f, 0.0f, 1.0f)));
+      expect_reflection_sampling_matches_pdf(glossy, seed, 0.01 / 18.0,
                                              "anisotropy " + std::to_string(anisotropy) +
                                                  " r=" + std::to_string(roughness));
     }

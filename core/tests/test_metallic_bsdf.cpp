@@ -85,7 +85,8 @@ TEST(MetallicBsdf, WhiteMultiscatterKeepsItsEnergy) {
 TEST(MetallicBsdf, BeckmannIsTheFresnelTimesCyclesBeckmannLobe) {
   for (float r : {0.2f, 0.6f, 1.0f}) {
     const MetallicBsdf b = metal(false, Vec3(0.9f, 0.6f, 0.3f), Vec3(0.7f), r, true, 0.0f, true);
-    GlossyBsdf lobe(Vec3(1.0f), r, 0.0f, Vec3(0.0f), 0.0f, /*cycles4=*/true, false, /*beckmann=*/true);
+    GlossyBsdf lobe(Vec3(1.0f), r, 0.0f, Vec3(0.0f), 0.0f, /*cycles4=*/true, false,
+                    MicrofacetDistribution::Beckmann);
     lobe.orient(Frame(Vec3(0.0f, 0.0f, 1.0f)));
     const Vec3 wo = test::direction(0.45f, 1.1f);
     for (int i = 1; i < 10; ++i)

@@ -72,9 +72,9 @@ _PRINCIPLED_SOCKETS = {
                specular_tint="Specular Tint"),
 }
 
-# Blender's names of the microfacet distributions Torrance renders as GGX.
-_DISTRIBUTIONS = {'MULTI_GGX': "Multiscatter GGX", 'BECKMANN': "Beckmann",
-                  'ASHIKHMIN_SHIRLEY': "Ashikhmin-Shirley"}
+# Blender's names of the microfacet distributions, for the reports of a Principled or Glass BSDF
+# lobe Torrance renders as GGX.
+_DISTRIBUTIONS = {'MULTI_GGX': "Multiscatter GGX", 'BECKMANN': "Beckmann"}
 
 
 def principled_version(node):

@@ -13,7 +13,7 @@ Shader gives both the weight it received. The closures Torrance renders:
 * Principled BSDF and Glass BSDF (as a lone one is read), Diffuse BSDF (Color, Roughness:
   Lambert or Cycles' Oren-Nayar), Glossy BSDF (Color, Roughness; GGX, Sharp as roughness 0;
   Multiscatter GGX as the Blender's Cycles: 3.x's random walk, 4.x's albedo scaling; Beckmann
-  as Cycles' Beckmann lobe; Ashikhmin-Shirley is rendered as GGX and reported; Blender 4.x's Glossy,
+  and Ashikhmin-Shirley as Cycles' lobes of theirs; Blender 4.x's Glossy,
   ShaderNodeBsdfAnisotropic, too), Emission;
 * Velvet (3.x) / Sheen (4.x: Ashikhmin, Microfiber), Translucent, Refraction and Toon BSDF
   (closure_nodes.py).
@@ -49,7 +49,8 @@ SHADER_TREE_NODES = {'ShaderNodeMixShader', 'ShaderNodeAddShader'}
 MIXTURE_SURFACES = SHADER_TREE_NODES | {'ShaderNodeBsdfDiffuse', 'ShaderNodeBsdfGlossy',
                                         'ShaderNodeBsdfAnisotropic', 'ShaderNodeHoldout'} \
     | CLOSURE_NODES
-_GLOSSY_AS_GGX = {'ASHIKHMIN_SHIRLEY'}
+# The Glossy distributions the core renders as lobes of their own (glossy_bsdf.h; else GGX).
+_GLOSSY_DISTRIBUTIONS = {'BECKMANN', 'ASHIKHMIN_SHIRLEY'}
 
 
 def _luminance(c):
@@ -335,13 +336,10 @@ class ShaderTreeReader:
             # 3.x's is a random walk among the microfacets (multiscatter_glossy_bsdf.h).
             multiscatter = node.distribution == 'MULTI_GGX' and bpy.app.version >= (4, 0, 0)
             lobe['multiscatter_ggx'] = multiscatter
-            if node.distribution == 'BECKMANN':     # Cycles' Beckmann lobe (glossy_bsdf.h)
-                lobe['distribution'] = 'BECKMANN'
+            if node.distribution in _GLOSSY_DISTRIBUTIONS:
+                lobe['distribution'] = node.distribution
             if node.distribution == 'MULTI_GGX' and not multiscatter:
                 kind = 'glossy_multiscatter_v1'
-            elif node.distribution in _GLOSSY_AS_GGX and not multiscatter:
-                self.warn(f"{node_label(node)}: the {node.distribution.replace('_', ' ').title()} "
-                          f"distribution is rendered as GGX")
         args = dict(d, base_color=color3(color, d['base_color']), metallic=0.0, specular=0.0,
                     roughness=roughness, base_color_texture=color_tex,
                     roughness_texture=roughness_tex, **lobe)

@@ -14,7 +14,8 @@ import torrance_core as tc
     (dict(ior=0.0), r"ior must lie in \(0, 1000\]"),
     (dict(ior=-1.5), r"ior must lie in \(0, 1000\]"),
     (dict(ior=5000.0), r"ior must lie in \(0, 1000\]"),
-    (dict(glass=True, distribution="SHARP"), "distribution must be 'GGX' or"),
+    (dict(glass=True, distribution="SHARP"), "distribution must be 'GGX', 'BECKMANN' or"),
+    (dict(glass=True, distribution="ASHIKHMIN_SHIRLEY"), "is the Glossy closure's, not glass's"),
 ])
 def test_bad_glass_arguments_are_rejected(kwargs, message):
     scene = tc.Scene()

@@ -143,3 +143,30 @@ def test_energy_preserving_diffuse_is_lambert_at_roughness_0_and_brighter_when_r
     assert eon > 1.02 * old, (eon, old)
     principled = _sunlit_plane(None, 0.5, diffuse_roughness=1.0, specular=0.0, ior=1.0)
     assert principled == pytest.approx(eon, rel=1e-4)
+
+
+def test_ashikhmin_shirley_glossy_is_cycles_lobe_under_a_sun():
+    """A Glossy closure of distribution 'ASHIKHMIN_SHIRLEY' (Color 0.8, Roughness 0.5: alpha
+    0.25, Phong exponent 2 / alpha^2 - 2 = 30) seen straight down under a sun 37 degrees off:
+    Color x strength x Cycles' f cos = cos_i p_h / (4 (h.wo) max(cos_o, cos_i)),
+    p_h = (n + 1) / (2 pi) (h.z)^n; GGX's lobe differs."""
+    def plane(distribution):
+        scene = tc.Scene()
+        inputs = scene.add_material(base_color=(0.8, 0.8, 0.8), roughness=0.5,
+                                    distribution=distribution)
+        facing_plane(scene, scene.add_mixture([("glossy", inputs, [])]))
+        matrix = np.eye(4)
+        matrix[2, 3] = 5.0
+        scene.set_camera(matrix, lens=5000.0)        # views within 0.2 degrees of the normal
+        scene.add_sun(direction=(0.6, 0.0, -0.8), strength=3.0, angle=0.0)
+        image = tc.render(scene, tc.RenderSettings(width=8, height=8, samples=4,
+                                                   max_bounces=0)).image
+        assert np.isfinite(image).all()
+        return image[:, :, :3].mean()
+    wi, wo = np.array([-0.6, 0.0, 0.8]), np.array([0.0, 0.0, 1.0])
+    h = (wi + wo) / np.linalg.norm(wi + wo)
+    n = 2.0 / 0.25**2 - 2.0
+    p_h = (n + 1.0) / (2.0 * np.pi) * h[2] ** n
+    expected = 0.8 * 3.0 * wi[2] * p_h / (4.0 * h @ wo * max(wo[2], wi[2]))
+    assert plane("ASHIKHMIN_SHIRLEY") == pytest.approx(expected, rel=2e-3)
+    assert abs(plane("GGX") / expected - 1.0) > 0.05

@@ -18,22 +18,26 @@ ggx::Shape GlossyBsdf::lobe_shape(float roughness, float anisotropy, const Vec3&
 }
 
 GlossyBsdf::GlossyBsdf(const Vec3& color, float roughness, float anisotropy, const Vec3& tangent, float rotation,
-                       bool cycles4, bool multiscatter, bool beckmann)
+                       bool cycles4, bool multiscatter, MicrofacetDistribution distribution)
     : color_(glm::clamp(color, Vec3(0.0f), Vec3(1.0f))),
-      lobe_(lobe_shape(roughness, anisotropy, tangent, rotation), beckmann),
+      lobe_(lobe_shape(roughness, anisotropy, tangent, rotation), distribution),
       cycles4_(cycles4) {
   const ggx::Shape& shape = lobe_.shape();
-  if (cycles4 && multiscatter && !beckmann)
+  if (cycles4 && multiscatter && distribution == MicrofacetDistribution::GGX)
     multiscatter_roughness_ = shape.anisotropic() ? std::sqrt(std::sqrt(shape.alpha_x() * shape.alpha_y()))
                                                   : (std::isfinite(roughness) ? clamp01(roughness) : 0.0f);
 }
 
 LobeEval GlossyBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
   if (wo.z <= 0.0f || wi.z <= 0.0f || has_delta()) return {};
+  LobeEval f;
+  if (lobe_.ashikhmin_shirley()) {
+    f.glossy = color_ * lobe_.ashikhmin_shirley_eval(wo, wi);
+    return f;
+  }
   Vec3 h;
   if (!ggx::reflection_half(wo, wi, h)) return {};
   const float g = cycles4_ ? 1.0f / (1.0f + lobe_.lambda(wo) + lobe_.lambda(wi)) : lobe_.G1(wo) * lobe_.G1(wi);
-  LobeEval f;
   f.glossy = color_ * (lobe_.D(h) * g / (4.0f * wo.z));
   if (multiscatter_roughness_ >= 0.0f) {
     const float e = std::max(ggx_tables::albedo(multiscatter_roughness_, wo.z), 1e-3f);

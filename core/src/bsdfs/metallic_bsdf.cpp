@@ -31,7 +31,7 @@ MetallicBsdf::MetallicBsdf(bool conductor, const Vec3& first, const Vec3& second
     if (shape.anisotropic()) table_roughness = std::sqrt(std::sqrt(alpha_x * alpha_y));
     else shape = ggx::Shape(alpha);  // no tangent: Cycles' isotropic lobe
   }
-  lobe_ = MicrofacetLobe(shape, beckmann);
+  lobe_ = MicrofacetLobe(shape, beckmann ? MicrofacetDistribution::Beckmann : MicrofacetDistribution::GGX);
   if (multiscatter && !beckmann) multiscatter_roughness_ = table_roughness;
   if (!film.over_conductors()) return;  // no film, or a Blender whose Metallic BSDF has none (4.x)
   film_ = film;

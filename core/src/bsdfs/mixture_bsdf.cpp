@@ -351,7 +351,7 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
       case ClosureType::Glossy:
         // Blender 4.x's Glossy (the PRINCIPLED_V2 model): Cycles 4.x's G and Multiscatter GGX.
         bsdf.add(GlossyBsdf(m.base_color, m.roughness, m.anisotropy, m.tangent, m.anisotropic_rotation,
-                            model == BrdfModel::PrincipledV2, m.multiscatter_ggx, m.beckmann),
+                            model == BrdfModel::PrincipledV2, m.multiscatter_ggx, m.distribution),
                  w.weight[k], luminance(m.base_color));
         break;
       case ClosureType::GlossyMultiscatterV1:
@@ -364,7 +364,7 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
         add_closure(bsdf,
                     MetallicBsdf(conductor, conductor ? m.specular_tint_color : m.base_color,
                                  conductor ? m.sheen_tint_color : m.specular_tint_color, m.roughness, m.anisotropy,
-                                 m.tangent, m.anisotropic_rotation, m.multiscatter_ggx, m.thin_film(), m.beckmann),
+                                 m.tangent, m.anisotropic_rotation, m.multiscatter_ggx, m.thin_film(), m.beckmann()),
                     w.weight[k]);
         break;
       }
@@ -372,7 +372,7 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
       case ClosureType::Sheen: add_closure(bsdf, SheenBsdf(m.base_color, m.roughness), w.weight[k]); break;
       case ClosureType::Translucent: add_closure(bsdf, TranslucentBsdf(m.base_color), w.weight[k]); break;
       case ClosureType::Refraction:
-        add_closure(bsdf, RefractionBsdf(m.base_color, m.roughness, m.ior, m.beckmann, m.glass_cycles4), w.weight[k]);
+        add_closure(bsdf, RefractionBsdf(m.base_color, m.roughness, m.ior, m.beckmann(), m.glass_cycles4), w.weight[k]);
         break;
       case ClosureType::ToonDiffuse:
       case ClosureType::ToonGlossy:

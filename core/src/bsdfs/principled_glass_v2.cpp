@@ -35,7 +35,7 @@ PrincipledGlassV2::PrincipledGlassV2(float roughness, float ior, const Vec3& spe
   straight_ = std::abs(ior_ - 1.0f) < 1e-4f;
   invisible_ = straight_ && !film.active();  // a film still reflects (a soap bubble)
   multiscatter_ = multiscatter;
-  lobe_ = MicrofacetLobe(ggx::Shape(alpha_), false);
+  lobe_ = MicrofacetLobe(ggx::Shape(alpha_), MicrofacetDistribution::GGX);
   film_inside_.ior = film.ior / ior_;
 }
 
@@ -44,7 +44,8 @@ PrincipledGlassV2 PrincipledGlassV2::glass_node(float roughness, float ior, cons
   PrincipledGlassV2 glass(roughness, ior, Vec3(1.0f), Vec3(1.0f), multiscatter && !beckmann, film);
   const Vec3 tint = is_finite(color) ? glm::max(color, Vec3(0.0f)) : Vec3(0.0f);
   glass.tint_r_ = glass.tint_t_ = tint;
-  glass.lobe_ = MicrofacetLobe(ggx::Shape(glass.alpha_), beckmann);
+  const auto distribution = beckmann ? MicrofacetDistribution::Beckmann : MicrofacetDistribution::GGX;
+  glass.lobe_ = MicrofacetLobe(ggx::Shape(glass.alpha_), distribution);
   return glass;
 }
 
@@ -57,7 +58,7 @@ PrincipledGlassV2 PrincipledGlassV2::refraction_node(float roughness, float ior,
 
 void PrincipledGlassV2::stretch(const ggx::Shape& shape) {
   if (!shape.anisotropic()) return;
-  lobe_ = MicrofacetLobe(shape, lobe_.beckmann());
+  lobe_ = MicrofacetLobe(shape, lobe_.distribution());
   roughness_ = std::sqrt(std::sqrt(shape.alpha_x() * shape.alpha_y()));
   smooth_ = shape.is_delta(ggx_tables::kDeltaAlpha);
 }

@@ -69,6 +69,7 @@ ADDED_NODES = {
     'ShaderNodeTexGabor': "4.3: the Gabor Texture",
     'ShaderNodeBsdfMetallic': "4.3: the Metallic BSDF",
     'ShaderNodeRadialTiling': "5.0: Radial Tiling",
+    'ShaderNodeVolumeCoefficients': "5.0: the Volume Coefficients node",
 }
 
 # The Noise Texture's noise types, Blender 4.1's names (the Musgrave types of 3.4).

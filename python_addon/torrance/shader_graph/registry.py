@@ -183,16 +183,17 @@ CLOSURES = {
     'ShaderNodeBsdfDiffuse': "rendered: Color, Roughness (Lambert, Cycles' Oren-Nayar; 4.3+: "
                              "its energy-preserving Oren-Nayar), Normal; alone and in Mix/Add "
                              "Shader trees alike",
-    'ShaderNodeBsdfGlossy': "partly: Color, Roughness (GGX, Sharp, Beckmann, Multiscatter GGX "
-                            "as the Blender's Cycles: 3.x's random walk, 4.x's albedo scaling; "
-                            "4.x: Anisotropy, Rotation, Tangent, any graph) alone and in Mix/Add "
-                            "Shader trees; Ashikhmin-Shirley rendered as GGX (reported)",
-    'ShaderNodeBsdfAnisotropic': "partly: Color, Roughness, Anisotropy, Rotation, Tangent (any "
-                                 "graph; unlinked: Geometry > Tangent) with GGX, alone and in "
-                                 "Mix/Add Shader trees; Multiscatter GGX as the Blender's "
+    'ShaderNodeBsdfGlossy': "rendered: Color, Roughness (GGX, Sharp, Beckmann, "
+                            "Ashikhmin-Shirley, Multiscatter GGX as the Blender's Cycles: 3.x's "
+                            "random walk, 4.x's albedo scaling; 4.x: Anisotropy, Rotation, "
+                            "Tangent, any graph) alone and in Mix/Add Shader trees",
+    'ShaderNodeBsdfAnisotropic': "rendered: Color, Roughness, Anisotropy, Rotation, Tangent "
+                                 "(any graph; unlinked: Geometry > Tangent) with GGX, alone and "
+                                 "in Mix/Add Shader trees; Multiscatter GGX as the Blender's "
                                  "Cycles (3.x: its random walk; 4.x/5.x: Cycles 4.x's lobe and "
                                  "its albedo scaling); Beckmann as Cycles' (its D, its fit "
-                                 "of Smith's Lambda); Ashikhmin-Shirley rendered as GGX",
+                                 "of Smith's Lambda); Ashikhmin-Shirley as Cycles' (its "
+                                 "anisotropic Phong lobe)",
     'ShaderNodeBsdfGlass': "rendered: Color, Roughness, IOR, Normal; GGX, Beckmann, Sharp "
                            "and Multiscatter GGX as the Blender's Cycles (3.x: two closures "
                            "split by the macro Fresnel, Multiscatter GGX its random walk; "

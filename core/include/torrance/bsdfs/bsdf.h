@@ -35,6 +35,11 @@ enum class CoatLayering {
   Cycles5_1,  // 5.1+ (5.3 checked): compensated lobe, per channel 1 - w (1 - tint (1 - A))
 };
 
+// A microfacet node's distribution (its `distribution`): GGX (also Multiscatter GGX, which
+// multiscatter_ggx / multiscatter_walk tell), Beckmann (the Glass, Refraction, Glossy and Metallic
+// nodes) or Ashikhmin-Shirley (the Glossy / Anisotropic node only: ashikhmin_shirley.h).
+enum class MicrofacetDistribution { GGX, Beckmann, AshikhminShirley };
+
 // The metallic/roughness material, as Blender's Principled BSDF names its inputs.
 struct Material {
   Vec3 base_color{0.8f, 0.8f, 0.8f};
@@ -66,7 +71,10 @@ struct Material {
   float transmission = 0.0f;
   float transmission_roughness = 0.0f;
   bool glass_node = false;
-  bool beckmann = false;  // the Glass, Refraction or Glossy node's Beckmann distribution (else GGX)
+  // The Glass, Refraction, Glossy or Metallic node's distribution (Ashikhmin-Shirley: the Glossy
+  // closure's; the others read it as GGX).
+  MicrofacetDistribution distribution = MicrofacetDistribution::GGX;
+  bool beckmann() const { return distribution == MicrofacetDistribution::Beckmann; }
   // The Glass node as Cycles 4.0+ renders it (GGX, Multiscatter GGX, multiscatter_ggx telling
   // which, and Beckmann): one closure with the Fresnel per microfacet, both lobes tinted by its
   // Color (PrincipledGlassV2::glass_node); the Refraction node its refraction alone

@@ -18,9 +18,13 @@
 // 1 + F_ms (1 - E) / E (Kulla & Conty's albedo scaling with a constant Fresnel F = colour),
 // E = E(r, wo.z) and E_avg(r) of ggx_tables.h at r = (alpha_x alpha_y)^(1/4).
 //
-// Beckmann (beckmann): the same lobe with Beckmann's D and Cycles' rational Smith Lambda
+// Beckmann (distribution): the same lobe with Beckmann's D and Cycles' rational Smith Lambda
 // (beckmann.h), G separable (3.x) or height-correlated (4.x) as above, isotropic or anisotropic,
 // sampled by Beckmann's visible normals (pdf: their exact density).
+//
+// Ashikhmin-Shirley (the same in 3.x, 4.x and 5.x): Cycles' Ashikhmin-Shirley lobe times the
+// colour over the same alphas and tangent, each alpha clamped to [1e-4, 1] and a mirror where both
+// are at most 1e-4 (ashikhmin_shirley.h), sampled by its half vectors.
 #pragma once
 
 #include "torrance/bsdfs/bsdf.h"
@@ -36,7 +40,8 @@ class GlossyBsdf {
   // normal, counter-clockwise seen from its side, as Cycles' rotate_around_axis); zero, or with
   // anisotropy 0, the lobe is isotropic.
   GlossyBsdf(const Vec3& color, float roughness, float anisotropy = 0.0f, const Vec3& tangent = Vec3(0.0f),
-             float rotation = 0.0f, bool cycles4 = false, bool multiscatter = false, bool beckmann = false);
+             float rotation = 0.0f, bool cycles4 = false, bool multiscatter = false,
+             MicrofacetDistribution distribution = MicrofacetDistribution::GGX);
 
   // The lobe's shape for Roughness, Anisotropy, the tangent and Rotation (turns), as above.
   static ggx::Shape lobe_shape(float roughness, float anisotropy, const Vec3& tangent, float rotation);
@@ -51,7 +56,7 @@ class GlossyBsdf {
   float pdf(const Vec3& wo, const Vec3& wi) const;
   BsdfSample sample(const Vec3& wo, float u_lobe, const Vec2& u) const;
 
-  bool has_delta() const { return lobe_.shape().is_delta(cycles4_ ? ggx_tables::kDeltaAlpha : ggx::kDeltaAlpha); }
+  bool has_delta() const { return lobe_.is_delta(cycles4_ ? ggx_tables::kDeltaAlpha : ggx::kDeltaAlpha); }
   bool anisotropic() const { return lobe_.shape().anisotropic(); }
   // What a mixture samples it by: its colour's luminance.
   float sampling_albedo() const { return luminance(color_); }

@@ -45,13 +45,14 @@ class MaterialBsdf {
     if (m.glass_node) {
       if (m.glass_cycles4) {
         PrincipledGlassV2 glass = PrincipledGlassV2::glass_node(roughness, m.ior, m.base_color, m.multiscatter_ggx,
-                                                                m.thin_film(), m.beckmann);
+                                                                m.thin_film(), m.beckmann());
         if (m.transmission_anisotropic) glass.stretch_as_node(m.anisotropy, m.tangent, m.anisotropic_rotation);
         glass_.emplace(glass);
-      } else if (m.multiscatter_walk && !m.beckmann)
+      } else if (m.multiscatter_walk && !m.beckmann())
         glass_.emplace(MultiscatterGlassBsdf(roughness, m.ior, m.base_color));
       else
-        glass_.emplace(GlassBsdf(roughness, roughness, m.ior, m.base_color, m.base_color, m.beckmann, false, m.thin_film()));
+        glass_.emplace(
+            GlassBsdf(roughness, roughness, m.ior, m.base_color, m.base_color, m.beckmann(), false, m.thin_film()));
       glass_weight_ = glass_probability_ = 1.0f;
       opaque_ = false;
       return;

@@ -37,7 +37,9 @@ struct MixFactor {
 enum class ClosureType {
   Principled,  // the material as it is (the render's BRDF model)
   Diffuse,     // Diffuse BSDF: Color = base_color, Roughness = roughness (diffuse_bsdf.h)
-  Glossy,      // Glossy BSDF (GGX, or Beckmann = beckmann): Color = base_color, Roughness = roughness (glossy_bsdf.h)
+  // Glossy BSDF (GGX, Beckmann or Ashikhmin-Shirley = distribution): Color = base_color, Roughness =
+  // roughness (glossy_bsdf.h).
+  Glossy,
   // Glossy BSDF of Blender 3.x with Multiscatter GGX: as Glossy, Cycles 3.4's random walk
   // (multiscatter_glossy_bsdf.h).
   GlossyMultiscatterV1,
@@ -50,7 +52,7 @@ enum class ClosureType {
   Velvet,       // Velvet BSDF (3.x) / Sheen BSDF, Ashikhmin: Color = base_color, Sigma or Roughness = roughness
   Sheen,        // Sheen BSDF, Microfiber (4.x): Color = base_color, Roughness = roughness (sheen_bsdf.h)
   Translucent,  // Translucent BSDF: Color = base_color (translucent_bsdf.h)
-  // Refraction BSDF: Color = base_color, Roughness = roughness, IOR = ior, Beckmann = beckmann,
+  // Refraction BSDF: Color = base_color, Roughness = roughness, IOR = ior, Beckmann = beckmann(),
   // as Cycles 4.x/5.x = glass_cycles4 (refraction_bsdf.h).
   Refraction,
   // Toon BSDF (toon_bsdf.h): Color = base_color, Size = roughness, Smooth = transmission_roughness;
