@@ -127,6 +127,14 @@ def check_transparent_mix():
           f"a checker Fac: a mixture with a Transparent closure, nothing reported: {kinds} {texts}")
 
 
+def read_surface(mat, nodes, links, out, node, in_mix):
+    """`node` at the output's Surface (as_surface), read: the add_material() arguments of its
+    closure (in a mix, the first closure's) and the messages."""
+    as_surface(nodes, links, out, node, in_mix)
+    args, messages = read(mat)
+    return (args["mixture"]["closures"][0][1] if in_mix else args), messages
+
+
 def as_surface(nodes, links, out, node, in_mix):
     """Links `node` to the output's Surface, alone or (in_mix) mixed with a Diffuse BSDF."""
     if not in_mix:
@@ -158,10 +166,7 @@ def check_glass_anisotropy():
                     node.inputs["Transmission"].default_value = 1.0
                 node.inputs[names[0]].default_value = value
                 node.inputs[names[1]].default_value = 0.25
-                as_surface(nodes, links, out, node, in_mix)
-                args, messages = read(mat)
-                if in_mix:
-                    args = args["mixture"]["closures"][0][1]
+                args, messages = read_surface(mat, nodes, links, out, node, in_mix)
                 want = value > 0.0 and bpy.app.version >= (5, 1, 0)
                 check(bool(args.get("transmission_anisotropic")) == want
                       and (not want or (args.get("anisotropy") == value
@@ -186,10 +191,7 @@ def check_thin_wall():
             has_input = "Thin Wall" in node.inputs
             if has_input:
                 node.inputs["Thin Wall"].default_value = on
-            as_surface(nodes, links, out, node, in_mix)
-            args, messages = read(mat)
-            if in_mix:
-                args = args["mixture"]["closures"][0][1]
+            args, messages = read_surface(mat, nodes, links, out, node, in_mix)
             want = has_input and on
             check(bool(args.get("thin_wall")) == want and not [t for _l, t in messages
                                                                if "Thin Wall" in t],
@@ -213,10 +215,7 @@ def check_dispersion():
             node.inputs["Transmission Weight"].default_value = transmission
             node.inputs["Transmission Dispersion Scale"].default_value = scale
             node.inputs["Transmission Dispersion Abbe Number"].default_value = 25.0
-            as_surface(nodes, links, out, node, in_mix)
-            args, messages = read(mat)
-            if in_mix:
-                args = args["mixture"]["closures"][0][1]
+            args, messages = read_surface(mat, nodes, links, out, node, in_mix)
             want = 0.5 / 25.0 if scale > 0.0 and transmission > 0.0 else None
             got = args.get("dispersion")
             check((got is None and want is None) or abs(got - want) < 1e-7,
@@ -230,10 +229,7 @@ def check_dispersion():
         node.inputs["Transmission Weight"].default_value = 1.0
         links.new(nodes.new("ShaderNodeTexNoise").outputs["Fac"],
                   node.inputs["Transmission Dispersion Scale"])
-        as_surface(nodes, links, out, node, in_mix)
-        args, messages = read(mat)
-        if in_mix:
-            args = args["mixture"]["closures"][0][1]
+        args, messages = read_surface(mat, nodes, links, out, node, in_mix)
         check(args.get("dispersion_register", -1) >= 0 and not args.get("dispersion"),
               f"a varying Scale (mix: {in_mix}): {args.get('dispersion_register')} "
               f"{args.get('dispersion')}")
