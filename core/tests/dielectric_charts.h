@@ -149,6 +149,16 @@ inline ChiSquare pooled_chi_square(const std::vector<double>& observed, const st
   return x;
 }
 
+// A glass's albedo seen from wo, the red channel of f |cos_i| on the pairs it draws (drawn_eval)
+// integrated over the charts of ior and alpha (the white furnaces' quadrature).
+template <class Glass>
+double drawn_albedo(const Glass& glass, const Vec3& wo, float ior, float alpha) {
+  double sum = 0.0;
+  for (double v : Charts(wo, ior, alpha).integrate_all([&](const Vec3& wi) { return drawn_eval(glass, wo, wi).x; }))
+    sum += v;
+  return sum;
+}
+
 // The chi-square test of a glass's sampling from wo against the density it states on the pairs it
 // draws (drawn_pdf), binned on the charts of ior and alpha: the test, the density's total over the
 // sphere (mass: at most about 1) and whether an uncounted pool of rare bins stays within bounds.

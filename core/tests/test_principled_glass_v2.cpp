@@ -21,8 +21,6 @@
 namespace torrance {
 namespace {
 
-using test::Charts;
-
 const Vec3 kTint(0.9f, 0.8f, 1.0f), kBase(0.3f, 0.6f, 0.9f);
 
 Vec3 wo_of(float cos_o, bool inside) {
@@ -85,10 +83,7 @@ TEST(PrincipledGlassV2, WhiteFurnace) {
         for (float r : {0.1f, 0.3f, 0.6f, 1.0f}) {
           const PrincipledGlassV2 single(r, ior, Vec3(1.0f), Vec3(1.0f), false);
           const PrincipledGlassV2 multi(r, ior, Vec3(1.0f), Vec3(1.0f), true);
-          const Charts charts(wo, ior, r * r);
-          double q = 0.0;
-          for (double v : charts.integrate_all([&](const Vec3& wi) { return test::drawn_eval(single, wo, wi).x; }))
-            q += v;
+          const double q = test::drawn_albedo(single, wo, ior, r * r);
           const double s = test::mean_sample_weight(single, wo, 100000, 17);
           const double m = test::mean_sample_weight(multi, wo, 100000, 17);
           std::printf(" r=%.1f %.4f/%.4f ms %.4f", r, q, s, m);
