@@ -115,7 +115,7 @@ Vec3 GlassBsdf::eval(const Vec3& wo, const Vec3& wi) const {
   const float side = wo.z > 0.0f ? 1.0f : -1.0f;
   const Vec3 o = to_wo_side(wo, side), i = to_wo_side(wi, side);
   const Weights w = weights(wo);
-  if (i.z > 0.0f) return w.reflect * reflection(o, i).f_cos;
+  if (i.z > 0.0f) return refraction_only_ ? Vec3(0.0f) : w.reflect * reflection(o, i).f_cos;
   return w.refract * refraction(o, i, w.etap).f_cos;
 }
 

@@ -63,9 +63,9 @@ class GlassBsdf {
 
  private:
   struct Weights {
-    Vec3 reflect, refract;
-    float p_reflect;  // the probability of sampling the reflection lobe
-    float etap;       // IOR of the far side / IOR of wo's side
+    Vec3 reflect{0.0f}, refract{0.0f};
+    float p_reflect = 0.0f;  // the probability of sampling the reflection lobe
+    float etap = 1.0f;       // IOR of the far side / IOR of wo's side
   };
   Weights weights(const Vec3& wo) const;
   // f |cos_i| and pdf of one lobe, for wo and wi turned to wo.z > 0.
