@@ -21,6 +21,7 @@ ClosureType parse_closure(const std::string& s) {
   if (s == "emission") return ClosureType::Emission;
   if (s == "transparent") return ClosureType::Transparent;
   if (s == "holdout") return ClosureType::Holdout;
+  if (s == "ray_portal") return ClosureType::RayPortal;
   if (s == "velvet") return ClosureType::Velvet;
   if (s == "sheen") return ClosureType::Sheen;
   if (s == "translucent") return ClosureType::Translucent;
@@ -36,7 +37,7 @@ ClosureType parse_closure(const std::string& s) {
   if (s == "hair_reflection") return ClosureType::HairReflection;
   if (s == "hair_transmission") return ClosureType::HairTransmission;
   throw py::value_error(
-      "closure type must be 'principled', 'diffuse', 'diffuse_energy_preserving', 'glossy', 'glossy_multiscatter_v1', 'emission', 'transparent', 'holdout', 'velvet', "
+      "closure type must be 'principled', 'diffuse', 'diffuse_energy_preserving', 'glossy', 'glossy_multiscatter_v1', 'emission', 'transparent', 'holdout', 'ray_portal', 'velvet', "
       "'sheen', "
       "'translucent', 'principled_hair', 'refraction', 'toon_diffuse', 'toon_glossy', 'toon_diffuse_cycles4', "
       "'toon_glossy_cycles4', 'metallic_f82', 'metallic_conductor', 'subsurface', 'hair_reflection' or "

@@ -215,7 +215,8 @@ void init_scene(py::module_& m) {
              int thin_film_thickness_register, int thin_film_ior_register, bool thin_wall,
              float diffuse_roughness, bool emission_under_layers, const std::string& coat_layering,
              bool multiscatter_walk, float dispersion, bool glass_cycles4, bool transmission_anisotropic,
-             int dispersion_register) {
+             int dispersion_register, std::array<float, 3> portal_direction, int portal_position_register,
+             int portal_direction_register) {
             if (distribution != "GGX" && distribution != "BECKMANN" && distribution != "ASHIKHMIN_SHIRLEY")
               throw py::value_error("distribution must be 'GGX', 'BECKMANN' or 'ASHIKHMIN_SHIRLEY', got '" +
                                     distribution + "'");
@@ -271,6 +272,7 @@ void init_scene(py::module_& m) {
             mat.thin_film_cycles5 = thin_film_cycles5;
             mat.thin_wall = thin_wall;
             mat.dispersion = dispersion;
+            mat.portal_direction = vec3(portal_direction);
             mat.emission_under_layers = emission_under_layers;
             mat.diffuse_roughness = std::isfinite(diffuse_roughness) ? clamp01(diffuse_roughness) : 0.0f;
             MaterialTextures tex;
@@ -308,6 +310,8 @@ void init_scene(py::module_& m) {
             tex.program.thin_film_thickness = program_register(thin_film_thickness_register);
             tex.program.thin_film_ior = program_register(thin_film_ior_register);
             tex.program.dispersion = program_register(dispersion_register);
+            tex.program.portal_position = program_register(portal_position_register);
+            tex.program.portal_direction = program_register(portal_direction_register);
             return s.add_material(mat, tex);
           },
           py::arg("base_color") = std::array<float, 3>{0.8f, 0.8f, 0.8f}, py::arg("metallic") = 0.0f,
@@ -351,6 +355,8 @@ void init_scene(py::module_& m) {
           py::arg("emission_under_layers") = false, py::arg("coat_layering") = "CYCLES_4_5",
           py::arg("multiscatter_walk") = false, py::arg("dispersion") = 0.0f, py::arg("glass_cycles4") = false,
           py::arg("transmission_anisotropic") = false, py::arg("dispersion_register") = -1,
+          py::arg("portal_direction") = std::array<float, 3>{0.0f, 0.0f, 0.0f},
+          py::arg("portal_position_register") = -1, py::arg("portal_direction_register") = -1,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
@@ -410,7 +416,10 @@ void init_scene(py::module_& m) {
           "an energy-preserving Oren-Nayar above 0. emission_under_layers: PRINCIPLED_V2's Principled BSDF, whose "
           "emission Cycles 4.x darkens by its coat and sheen seen from the view (as the layers under them). "
           "coat_layering: how PRINCIPLED_V2's coat darkens the layers under it, as Cycles 'CYCLES_4_2' (4.0-4.4), "
-          "'CYCLES_4_5' (4.5-5.0) or 'CYCLES_5_1' (5.1+) does (principled_coat.h).")
+          "'CYCLES_4_5' (4.5-5.0) or 'CYCLES_5_1' (5.1+) does (principled_coat.h). portal_direction: a mixture's "
+          "'ray_portal' closure's Direction (world; zero: the ray's own; base_color its Color), from the "
+          "program's portal_direction_register when given; portal_position_register: its linked Position "
+          "(world; none: the hit point).")
       .def(
           "add_shader_program",
           [](Scene& s, const py::object& constants, const py::object& code, int registers, const py::object& data) {

@@ -1,10 +1,10 @@
 # SPDX-License-Identifier: Apache-2.0
 """The Velvet / Sheen, Translucent, Refraction, Toon, Principled Hair BSDF, Hair BSDF, Subsurface
-Scattering and Metallic BSDF nodes -> a mixture's closures (the core's velvet_bsdf.h,
-sheen_bsdf.h, translucent_bsdf.h, refraction_bsdf.h, toon_bsdf.h, hair/principled_hair_bsdf.h,
-hair/hair_bsdf.h, subsurface/, metallic_bsdf.h; the hair nodes' inputs: principled_hair.py,
-hair_bsdf.py, the subsurface node's: principled_subsurface.py), alone at the Surface and in
-Mix/Add Shader trees alike (mixtures.py).
+Scattering, Metallic BSDF and Ray Portal BSDF nodes -> a mixture's closures (the core's
+velvet_bsdf.h, sheen_bsdf.h, translucent_bsdf.h, refraction_bsdf.h, toon_bsdf.h,
+hair/principled_hair_bsdf.h, hair/hair_bsdf.h, subsurface/, metallic_bsdf.h, mixture.h's
+RayPortal; the hair nodes' inputs: principled_hair.py, hair_bsdf.py, the subsurface node's:
+principled_subsurface.py), alone at the Surface and in Mix/Add Shader trees alike (mixtures.py).
 
 Each becomes (closure type, add_material kwargs) with the inputs where the core's ClosureType
 reads them: Color -> base_color (any graph), Sigma / Roughness / Size -> roughness (any graph),
@@ -15,12 +15,13 @@ the Metallic's Base Color -> base_color (any graph), Edge Tint -> specular_tint_
 Physical Conductor's IOR -> specular_tint_color and Extinction -> sheen_tint_color (values),
 Roughness (any graph), Anisotropy, Rotation and Tangent (anisotropy.py), Multiscatter GGX ->
 multiscatter_ggx, Beckmann -> distribution, Thin Film Thickness and IOR (thin_film.py, any
-graph).
+graph); the Ray Portal's Color -> base_color, Direction -> portal_direction and a linked
+Position -> the program's portal_position (any graph; unlinked: the hit point, as Cycles).
 """
 
 from .anisotropy import METALLIC, read_anisotropy
 from .material_values import DEFAULT_MATERIAL, clamp, color3, sanitize
-from .nodes import finite_or, node_label
+from .nodes import finite_or, node_label, source_socket
 from .hair_bsdf import read_hair_bsdf
 from .principled_hair import read_principled_hair
 from .principled_subsurface import read_subsurface_node
@@ -29,7 +30,8 @@ from .thin_film import read_thin_film
 
 CLOSURE_NODES = {'ShaderNodeBsdfVelvet', 'ShaderNodeBsdfSheen', 'ShaderNodeBsdfTranslucent',
                  'ShaderNodeBsdfRefraction', 'ShaderNodeBsdfToon', 'ShaderNodeBsdfHairPrincipled',
-                 'ShaderNodeSubsurfaceScattering', 'ShaderNodeBsdfMetallic', 'ShaderNodeBsdfHair'}
+                 'ShaderNodeSubsurfaceScattering', 'ShaderNodeBsdfMetallic', 'ShaderNodeBsdfHair',
+                 'ShaderNodeBsdfRayPortal'}
 
 
 def read_closure_node(reader, mat, node):
@@ -47,7 +49,10 @@ def read_closure_node(reader, mat, node):
                                             program_input='base_color')
     args = dict(d, base_color=color3(color, d['base_color']), metallic=0.0, specular=0.0,
                 base_color_texture=color_tex)
-    if kind == 'ShaderNodeSubsurfaceScattering':
+    if kind == 'ShaderNodeBsdfRayPortal':
+        closure = 'ray_portal'
+        _portal_ray(reader, mat, node, args)
+    elif kind == 'ShaderNodeSubsurfaceScattering':
         closure = 'subsurface'
         args.update(read_subsurface_node(reader, mat, node))
     elif kind == 'ShaderNodeBsdfTranslucent':
@@ -107,6 +112,20 @@ def _metallic(reader, mat, node):
     args.update(read_thin_film(reader, mat, node))
     closure = 'metallic_conductor' if conductor else 'metallic_f82'
     return closure, sanitize(reader._with_program(args))
+
+
+def _portal_ray(reader, mat, node, args):
+    """The Ray Portal's Position (linked: the program's portal_position, a constant too, as the
+    core reads it from the program only) and Direction (a value, or the program's)."""
+    position = node.inputs.get("Position")
+    if position is not None and source_socket(position) is not None:
+        reader._graph_input(mat, node, position, 'portal_position', constant_in_program=True)
+    direction = node.inputs.get("Direction")
+    value = (0.0, 0.0, 0.0)
+    if direction is not None:
+        value = (reader._graph_input(mat, node, direction, 'portal_direction')
+                 if source_socket(direction) is not None else direction.default_value)
+    args['portal_direction'] = tuple(finite_or(float(c), 0.0) for c in tuple(value)[:3])
 
 
 def _roughness(reader, mat, node, name, fallback, args):

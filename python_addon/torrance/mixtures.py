@@ -15,8 +15,8 @@ Shader gives both the weight it received. The closures Torrance renders:
   Multiscatter GGX as the Blender's Cycles: 3.x's random walk, 4.x's albedo scaling; Beckmann
   and Ashikhmin-Shirley as Cycles' lobes of theirs; Blender 4.x's Glossy,
   ShaderNodeBsdfAnisotropic, too), Emission;
-* Velvet (3.x) / Sheen (4.x: Ashikhmin, Microfiber), Translucent, Refraction and Toon BSDF
-  (closure_nodes.py).
+* Velvet (3.x) / Sheen (4.x: Ashikhmin, Microfiber), Translucent, Refraction, Toon and Ray
+  Portal BSDF (closure_nodes.py; rays pass a Ray Portal by its weight, as a Transparent's).
 
 A Mix Shader's Fac may be any graph the shader graph compiles (a constant, an Image Texture's
 Color luminance and a Checker Texture of constant inputs at the UVs keep factor kinds of their
@@ -310,8 +310,8 @@ class ShaderTreeReader:
             return read_closure_node(reader, mat, node)
         self.warn(f"the shader {node_label(node)} is not supported in a mix (Torrance mixes "
                   f"Principled, Diffuse, Glossy, Glass, Transparent, Holdout, Emission, Velvet / "
-                  f"Sheen, Translucent, Refraction, Toon, Principled Hair, Subsurface Scattering "
-                  f"and Metallic); it is left out")
+                  f"Sheen, Translucent, Refraction, Toon, Principled Hair, Subsurface Scattering, "
+                  f"Metallic and Ray Portal); it is left out")
         return None
 
     def _colour_roughness(self, node):

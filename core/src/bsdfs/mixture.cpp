@@ -65,15 +65,15 @@ MixtureWeights mixture_weights(const Mixture& mixture, const std::vector<std::sh
 float mixture_opacity(const Mixture& mixture, const MixtureWeights& w) {
   float through = 0.0f;
   for (int c = 0; c < w.count; ++c)
-    if (mixture.components[size_t(c)].type == ClosureType::Transparent) through += w.weight[c];
+    if (passes_rays(mixture.components[size_t(c)].type)) through += w.weight[c];
   return clamp01(1.0f - through);
 }
 
 void weights_when_opaque(const Mixture& mixture, MixtureWeights& w) {
-  if (!mixture.transparent()) return;
+  if (!mixture.passes()) return;
   const float opacity = mixture_opacity(mixture, w);
   for (int c = 0; c < w.count; ++c) {
-    const bool through = mixture.components[size_t(c)].type == ClosureType::Transparent;
+    const bool through = passes_rays(mixture.components[size_t(c)].type);
     w.weight[c] = through || !(opacity > 0.0f) ? 0.0f : w.weight[c] / opacity;
   }
 }

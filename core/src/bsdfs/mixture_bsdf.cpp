@@ -393,6 +393,7 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
         break;
       case ClosureType::Emission:
       case ClosureType::Transparent:
+      case ClosureType::RayPortal:
       case ClosureType::Holdout: break;
     }
   }

@@ -232,6 +232,7 @@ void DenoisingClosures::add_closures(const ClosureList& list, float cos_no, bool
       case ClosureType::HairTransmission: add(weight, mean(weight), kNotMicrofacet, true); break;
       case ClosureType::Emission:
       case ClosureType::Transparent:
+      case ClosureType::RayPortal:
       case ClosureType::Holdout: break;  // no BSDF (the Transparent one: passed by the path)
     }
   }

@@ -59,6 +59,10 @@ struct Segment {
   bool scattered = false;      // kMedia: it ended in a medium, at PathTracer::media_'s walk.position
   float opacity = 1.0f;        // kAlpha: of the surface it stopped at (passed with 1 - it)
   Vec3 through{0.0f};          // that surface's Transparent closure's weight
+  // kAlpha: the ray passes the surface it stopped at through a Ray Portal (go_through_portal),
+  // which portal_u in [0, 1) chooses.
+  bool portal = false;
+  float portal_u = 0.0f;
   float features_from = 0.0f;  // passed_length (less tmin) at the last passed surface the features met
 };
 
@@ -192,6 +196,11 @@ class PathTracer {
             continue;
           }
         }
+        if (kAlpha && seg.portal && !seg.scattered) {  // 2c. through a Ray Portal: on from it, no bounce
+          if (!go_through_portal(*seg.hit, seg.portal_u)) break;
+          --bounce;
+          continue;
+        }
         caustic_chain_.at_vertex(ctx_.caustics, bounce, seg.hit->material);
 
         // 3. The surface: its material, BSDF, normals and shading frame.
@@ -310,7 +319,8 @@ class PathTracer {
       at.ray_depth = uint8_t(std::min(bounce, 255));
       at.ray_length = seg.passed_length + hit.t - ray_.tmin;
       Vec3 tint;
-      const float opacity = ctx_.scene.opacity(hit, ray_.dir, at, &tint);
+      float portal_share = 0.0f;
+      const float opacity = ctx_.scene.opacity(hit, ray_.dir, at, &tint, &portal_share);
       // Shader AOVs: of every surface shaded until one reaches the Alpha Threshold (as Cycles).
       if (bounce == 0 && !again && !surface_data_done_ && extra_.writes_aovs())
         add_aovs(ctx_.scene, hit, ray_.dir, at, 0.0f, out_.extras);
@@ -328,7 +338,8 @@ class PathTracer {
       if (bounce == 0 && !again && cryptomatte_ && holdout_weight < 1.0f)
         out_.cryptomatte.add(hit.object_settings.cryptomatte, hit.material,
                              (throughput_.x + throughput_.y + throughput_.z) / 3.0f * opacity);
-      if (opacity >= 1.0f || sampler_.next_4d().x < opacity) {  // the vertex below records it
+      const glm::vec4 u = opacity >= 1.0f ? glm::vec4(0.0f) : sampler_.next_4d();
+      if (opacity >= 1.0f || u.x < opacity) {  // the vertex below records it
         if (held_out) return false;
         if (bounce == 0) first_opacity_ = opacity;
         seg.opacity = opacity;
@@ -343,6 +354,11 @@ class PathTracer {
         out_.uv = hit.has_uv ? Vec3(hit.uv.x, hit.uv.y, 1.0f) : Vec3(0.0f);
         write_motion_vector(hit);
         surface_data_done_ = true;
+      }
+      if (portal_share > 0.0f && u.y < portal_share) {  // through a Ray Portal: the segment ends here
+        seg.portal = true;
+        seg.portal_u = u.z;
+        return true;
       }
       if (passed >= ctx_.settings.max_transparent_bounces) return false;  // Cycles: the path ends
       throughput_ *= tint;
@@ -907,6 +923,33 @@ class PathTracer {
     return true;
   }
 
+  // A Ray Portal (Cycles' integrate_surface_ray_portal): the path goes on from its Position along
+  // its Direction (Scene::portal_exit), tinted by its Color, without a bounce (a transparent one,
+  // at most max_transparent_bounces portals a path); the light the new ray meets is taken whole,
+  // as after a delta lobe (Cycles' PATH_RAY_MIS_SKIP: NEE could not have sampled it, shadow rays
+  // stop at portals). A camera ray stays one (the path's flags are kept).
+  bool go_through_portal(const SurfaceHit& hit, float u) {
+    if (++portals_passed_ > ctx_.settings.max_transparent_bounces) return false;
+    const Scene::PortalExit exit = ctx_.scene.portal_exit(hit, ray_.dir, path_state_, u);
+    throughput_ *= exit.tint;
+    if (!(max_abs_component(throughput_) > 0.0f)) return false;
+    if constexpr (kTextures) {
+      count_up(path_state_.transparent_depth);
+      count_up(path_state_.portal_depth);
+    }
+    ray_.origin = exit.moved ? exit.origin : offset_origin(hit.position, hit.geometric_normal, exit.dir);
+    ray_.dir = exit.dir;
+    ray_.tmin = 0.0f;
+    ray_.tmax = kInfinity;
+    last_.ray_origin = last_.position = ray_.origin;
+    last_.pdf = 0.0f;
+    last_.delta = true;
+    last_.two_sided = false;
+    run_ = 0.0f;
+    first_ = nullptr;  // the camera ray's answer is not this ray's
+    return true;
+  }
+
   // ---- Subsurface (kSubsurface) ----
 
   // Of the vertex's continuation, the share its BSDF samples (1 without a subsurface closure).
@@ -1236,6 +1279,7 @@ class PathTracer {
   float run_ = 0.0f;
   LightChoice choice_before_sheet_;
   int sheets_passed_ = 0;
+  int portals_passed_ = 0;  // Ray Portals the path went through (go_through_portal)
   bool passed_sheet_ = false;
   MirrorImages::PathShare reflector_share_;
   CausticPartition::Chain caustic_chain_;  // whether the path is still a caustic one, the light tracer's
@@ -1373,7 +1417,7 @@ bool has_alpha(const Scene& scene) {
   for (size_t i = 0; i < scene.num_materials(); ++i)
     if (scene.material(uint32_t(i)).alpha < 1.0f || scene.material_textures(uint32_t(i)).alpha >= 0 ||
         scene.material_textures(uint32_t(i)).program.alpha >= 0 ||
-        (scene.mixture(uint32_t(i)) && scene.mixture(uint32_t(i))->transparent()) ||
+        (scene.mixture(uint32_t(i)) && scene.mixture(uint32_t(i))->passes()) ||
         scene.material(uint32_t(i)).thin_wall)  // a smooth sheet: transparent off camera rays
       return true;
   return false;

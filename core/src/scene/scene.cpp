@@ -175,6 +175,11 @@ void Scene::apply_program(const MaterialTextures& t, const ShaderGlobals& g, Mat
     const float v = regs[size_t(o.dispersion)].x;
     m.dispersion = std::isfinite(v) ? std::max(v, 0.0f) : 0.0f;
   }
+  if (o.portal_position >= 0) {
+    m.portal_position = Vec3(regs[size_t(o.portal_position)]);
+    m.portal_at_hit = false;
+  }
+  if (o.portal_direction >= 0) m.portal_direction = Vec3(regs[size_t(o.portal_direction)]);
 }
 
 Vec3 Scene::normal_mapped(uint32_t id, const SurfaceHit& hit, const Vec3& ns, const ShaderGlobals& g,
@@ -303,6 +308,7 @@ void check_material(const Material& m) {
     throw std::invalid_argument("material thin_film_thickness must be finite and thin_film_ior finite and > 0");
   if (!(m.dispersion >= 0.0f) || !std::isfinite(m.dispersion))
     throw std::invalid_argument("material dispersion (the inverse Abbe number) must be finite and >= 0");
+  if (!is_finite(m.portal_direction)) throw std::invalid_argument("material portal_direction must be finite");
 }
 
 uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures) {
@@ -334,7 +340,8 @@ void Scene::check_program_outputs(const ShaderOutputs& o) const {
         o.surface_normal >= 0 || o.transmission >= 0 || o.coat_weight >= 0 || o.coat_roughness >= 0 || o.coat_ior >= 0 || o.coat_tint >= 0 || o.coat_normal >= 0 ||
         o.sheen_weight >= 0 || o.sheen_roughness >= 0 || o.sheen_tint >= 0 || o.anisotropy >= 0 ||
         o.anisotropic_rotation >= 0 || o.tangent >= 0 || o.subsurface >= 0 || o.subsurface_radius >= 0 ||
-        o.subsurface_color >= 0 || o.thin_film_thickness >= 0 || o.thin_film_ior >= 0 || o.dispersion >= 0)
+        o.subsurface_color >= 0 || o.thin_film_thickness >= 0 || o.thin_film_ior >= 0 || o.dispersion >= 0 ||
+        o.portal_position >= 0 || o.portal_direction >= 0)
       throw std::invalid_argument("material reads shader program registers but names no program");
     return;
   }
@@ -345,7 +352,8 @@ void Scene::check_program_outputs(const ShaderOutputs& o) const {
   for (int r : {o.base_color, o.metallic, o.roughness, o.emission, o.normal, o.alpha, o.surface_normal, o.transmission, o.coat_weight,
                 o.coat_roughness, o.coat_ior, o.coat_tint, o.coat_normal, o.sheen_weight, o.sheen_roughness, o.sheen_tint,
                 o.anisotropy, o.anisotropic_rotation, o.tangent, o.subsurface, o.subsurface_radius,
-                o.subsurface_color, o.thin_film_thickness, o.thin_film_ior, o.dispersion})
+                o.subsurface_color, o.thin_film_thickness, o.thin_film_ior, o.dispersion, o.portal_position,
+                o.portal_direction})
     if (r != -1 && !program.written(r))
       throw std::invalid_argument("material reads register " + std::to_string(r) + " of a shader program with " +
                                   std::to_string(program.registers()) + " registers, which the program does not write");

@@ -111,33 +111,86 @@ Vec3 Scene::emission_at(uint32_t i, const ShaderGlobals& g) const {
   return e;
 }
 
-float Scene::opacity(const SurfaceHit& hit, const Vec3& dir, const PathState& seen_by, Vec3* tint) const {
+namespace {
+// Cycles allocates no closure whose sample weight is below CLOSURE_WEIGHT_CUTOFF.
+constexpr float kClosureWeightCutoff = 1e-5f;
+}  // namespace
+
+float Scene::opacity(const SurfaceHit& hit, const Vec3& dir, const PathState& seen_by, Vec3* tint,
+                     float* portal_share) const {
   const ShaderOutputs& o = material_textures_[hit.material].program;
   const Mixture* m = mixture(hit.material);
-  const bool through_closures = m && m->transparent();
+  const bool through_closures = m && m->passes();
   if (tint) *tint = materials_[hit.material].transparent_color;
+  if (portal_share) *portal_share = 0.0f;
   if (o.alpha < 0 && !through_closures) return opacity(hit.material, hit.uv);
   ShaderGlobals g = shader_globals(hit, dir, 0.0f);
   g.path = seen_by;
   g.tracer = this;
   if (through_closures) {
     const MixtureWeights w = mixture_weights(hit.material, g);
-    if (tint) {
-      Vec3 sum(0.0f);
-      float total = 0.0f;
-      for (int k = 0; k < w.count; ++k)
-        if (m->components[size_t(k)].type == ClosureType::Transparent) {
-          sum += w.weight[k] * materials_[m->components[size_t(k)].material].transparent_color;
-          total += w.weight[k];
+    Vec3 sum(0.0f);
+    float transparent = 0.0f, portal = 0.0f;
+    for (int k = 0; k < w.count; ++k) {
+      const MixtureComponent& c = m->components[size_t(k)];
+      if (c.type == ClosureType::Transparent) {
+        sum += w.weight[k] * materials_[c.material].transparent_color;
+        transparent += w.weight[k];
+      } else if (c.type == ClosureType::RayPortal && w.weight[k] > 0.0f) {
+        if (seen_by.ray_flags & kRayShadow) {  // stopped, unless Cycles would allocate no closure
+          const Vec3 color = portal_material(c.material, g).base_color;
+          if (w.weight[k] * (color.x + color.y + color.z) / 3.0f >= kClosureWeightCutoff) {
+            if (tint) *tint = Vec3(0.0f);
+            return 1.0f;
+          }
         }
-      *tint = total > 0.0f ? sum / total : Vec3(1.0f);
+        portal += w.weight[k];
+      }
     }
+    if (tint) *tint = transparent > 0.0f ? sum / transparent : Vec3(1.0f);
+    if (portal_share && portal > 0.0f) *portal_share = portal / (portal + transparent);
     return mixture_opacity(*m, w);
   }
   std::array<glm::vec4, ShaderProgram::kMaxRegisters> regs;
   run_shader_program(uint32_t(o.program), g, regs.data());
   const float alpha = regs[size_t(o.alpha)].x;
   return alpha == alpha ? clamp01(alpha) : 1.0f;  // a NaN alpha: opaque, as the socket's default
+}
+
+Material Scene::portal_material(uint32_t id, const ShaderGlobals& g) const {
+  return material_textures_[id].any() ? textured_material(id, g) : materials_[id];
+}
+
+Scene::PortalExit Scene::portal_exit(const SurfaceHit& hit, const Vec3& dir, const PathState& seen_by,
+                                     float u) const {
+  PortalExit exit;
+  const Mixture* m = mixture(hit.material);
+  if (!m) return exit;
+  ShaderGlobals g = shader_globals(hit, dir, 0.0f);
+  g.path = seen_by;
+  g.tracer = this;
+  const MixtureWeights w = mixture_weights(hit.material, g);
+  float total = 0.0f;
+  for (int k = 0; k < w.count; ++k)
+    if (m->components[size_t(k)].type == ClosureType::RayPortal && w.weight[k] > 0.0f) total += w.weight[k];
+  int chosen = -1;
+  float pick = u * total;
+  for (int k = 0; k < w.count; ++k) {
+    if (m->components[size_t(k)].type != ClosureType::RayPortal || !(w.weight[k] > 0.0f)) continue;
+    chosen = k;  // the last one keeps any rounding
+    if (pick < w.weight[k]) break;
+    pick -= w.weight[k];
+  }
+  if (chosen < 0) return exit;
+  const Material p = portal_material(m->components[size_t(chosen)].material, g);
+  exit.tint = p.base_color;
+  exit.origin = p.portal_at_hit ? hit.position : p.portal_position;
+  const Vec3 moved_by = exit.origin - hit.position;
+  exit.moved = glm::dot(moved_by, moved_by) > 1e-9f;  // Cycles: else the hit, offset along the way out
+  const float len = glm::length(p.portal_direction);
+  exit.dir = len > 0.0f && std::isfinite(len) ? p.portal_direction / len : dir;
+  if (!is_finite(exit.origin)) exit.tint = Vec3(0.0f);  // a NaN position from a graph: the path ends
+  return exit;
 }
 
 float Scene::holdout(const SurfaceHit& hit, const Vec3& dir, const PathState& seen_by, float opacity) const {
@@ -153,7 +206,7 @@ float Scene::holdout(const SurfaceHit& hit, const Vec3& dir, const PathState& se
     if (m->components[size_t(k)].type == ClosureType::Holdout) weight += w.weight[k];
   // Without Transparent closures the opacity is the material's alpha (a Mix Shader of a
   // Transparent BSDF and this mixture), which scales all its closures.
-  return clamp01(m->transparent() ? weight : weight * opacity);
+  return clamp01(m->passes() ? weight : weight * opacity);
 }
 
 Vec3 Scene::sampled_emission(const EmissiveTriangle& triangle, const Vec2& b, const Vec3& wi,

@@ -89,7 +89,8 @@ glm::vec4 light_path_op(const ShaderOpContext& c) {
     case 9: v = float(s.diffuse_depth); break;
     case 10: v = float(s.glossy_depth); break;
     case 11: v = float(s.transparent_depth); break;
-    default: v = float(s.transmission_depth); break;
+    case 12: v = float(s.transmission_depth); break;
+    default: v = float(s.portal_depth); break;
   }
   return glm::vec4(v, 0.0f, 0.0f, 0.0f);
 }

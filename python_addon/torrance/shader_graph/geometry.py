@@ -213,7 +213,7 @@ def _layer_weight(g, node, socket):
 _LIGHT_PATH = {"Is Camera Ray": 0, "Is Shadow Ray": 1, "Is Diffuse Ray": 2, "Is Glossy Ray": 3,
                "Is Singular Ray": 4, "Is Reflection Ray": 5, "Is Transmission Ray": 6,
                "Ray Length": 7, "Ray Depth": 8, "Diffuse Depth": 9, "Glossy Depth": 10,
-               "Transparent Depth": 11, "Transmission Depth": 12}
+               "Transparent Depth": 11, "Transmission Depth": 12, "Portal Depth": 13}
 
 
 def _light_path(g, node, socket):

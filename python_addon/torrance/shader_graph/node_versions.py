@@ -66,6 +66,7 @@ REMOVED_NODES = {
 # Node types a newer Blender added, which the registry reads where the running Blender has them.
 ADDED_NODES = {
     'ShaderNodeBsdfSheen': "4.0: the Sheen BSDF (Ashikhmin, the former Velvet, and Microfiber)",
+    'ShaderNodeBsdfRayPortal': "4.2: the Ray Portal BSDF",
     'ShaderNodeTexGabor': "4.3: the Gabor Texture",
     'ShaderNodeBsdfMetallic': "4.3: the Metallic BSDF",
     'ShaderNodeRadialTiling': "5.0: Radial Tiling",

@@ -212,6 +212,11 @@ CLOSURES = {
                               "and in Mix/Add Shader trees",
     'ShaderNodeBsdfTransparent': "rendered: Color; alone and anywhere in Mix/Add Shader trees "
                                  "(camera and shadow rays pass by its weight)",
+    'ShaderNodeBsdfRayPortal': "rendered: Color, Position, Direction (any graph; unlinked: the "
+                               "hit point and the ray's direction); alone and in Mix/Add Shader "
+                               "trees, as Cycles' ray portal: rays passing by its weight go on "
+                               "from Position along Direction without a bounce, the light they "
+                               "meet taken whole; shadow rays stop at it",
     'ShaderNodeBsdfVelvet': "rendered: Color, Sigma (any graph), Normal; Cycles' Ashikhmin velvet, "
                             "alone and in Mix/Add Shader trees",
     'ShaderNodeBsdfSheen': "rendered: Color, Roughness (any graph), Normal; Microfiber (Cycles' "
@@ -251,13 +256,13 @@ CLOSURES = {
                          "holdout; black elsewhere",
     'ShaderNodeMixShader': "partly: trees of Principled, Diffuse, Glossy, Glass, Transparent, "
                            "Holdout, Emission, Velvet / Sheen, Translucent, Refraction, Toon, "
-                           "Principled Hair, Hair, Subsurface Scattering and Metallic closures, "
-                           "Fac any graph",
+                           "Principled Hair, Hair, Subsurface Scattering, Metallic and Ray "
+                           "Portal closures, Fac any graph",
     'ShaderNodeAddShader': "partly: trees of Principled, Diffuse, Glossy, Glass, Transparent, "
                            "Holdout, Emission, Velvet / Sheen, Translucent, Refraction, Toon, "
-                           "Principled Hair, Hair, Subsurface Scattering and Metallic closures (a "
-                           "Transparent's weight and the others' summing past 1: the others "
-                           "shade only what it lets through)",
+                           "Principled Hair, Hair, Subsurface Scattering, Metallic and Ray "
+                           "Portal closures (a Transparent's or Ray Portal's weight and the "
+                           "others' summing past 1: the others shade only what it lets through)",
     # Volume closures (volumes.py): homogeneous media, or heterogeneous ones in meshes.
     'ShaderNodeVolumeAbsorption': "rendered in a Material Output's or World Output's Volume "
                                   "(alone and in Mix/Add Shader trees): Color, Density, any "

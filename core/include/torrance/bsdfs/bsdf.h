@@ -169,6 +169,11 @@ struct Material {
   float wavelength = 0.0f;
   // The Principled Hair BSDF's Offset (radians: the cuticle scales' tilt; ClosureType::PrincipledHair).
   float hair_offset = 0.0f;
+  // The Ray Portal BSDF's (ClosureType::RayPortal) Direction (world; zero: the ray's own) and,
+  // where its Position is linked (portal_at_hit false), that position (world; else the hit's).
+  Vec3 portal_direction{0.0f};
+  Vec3 portal_position{0.0f};
+  bool portal_at_hit = true;
 };
 
 // The normal a BSDF's diffuse lobes shade with, in its shading frame. The frame's z is the

@@ -85,6 +85,12 @@ enum class ClosureType {
   // a linked Tangent = tangent (world; zero: unlinked, the strand's or the triangle's direction).
   HairReflection,
   HairTransmission,
+  // Ray Portal BSDF (Blender 4.2+; Cycles' ray portal): a ray that passes it by its weight (as a
+  // Transparent closure's share, Scene::opacity) goes on from Position along Direction, tinted
+  // by Color = base_color: Position = the program's portal_position register where linked (else
+  // the hit point), Direction = portal_direction (world; zero: the ray's own). It stops shadow
+  // rays; the light the ray meets after it is taken whole (no MIS: nothing sampled it).
+  RayPortal,
 };
 
 struct MixtureComponent {
@@ -102,6 +108,13 @@ struct Mixture {
       if (c.type == ClosureType::Transparent) return true;
     return false;
   }
+  bool portal() const {
+    for (const MixtureComponent& c : components)
+      if (c.type == ClosureType::RayPortal) return true;
+    return false;
+  }
+  // Whether some closure lets rays through (Transparent or Ray Portal).
+  bool passes() const { return transparent() || portal(); }
   bool holdout() const {
     for (const MixtureComponent& c : components)
       if (c.type == ClosureType::Holdout) return true;
@@ -124,11 +137,13 @@ struct MixtureWeights {
 MixtureWeights mixture_weights(const Mixture& mixture, const std::vector<std::shared_ptr<const Texture>>& textures,
                                const Vec2& uv, float footprint, const glm::vec4* registers = nullptr);
 
-// The mixture's opacity at a hit from its weights there: 1 - its Transparent closures' weights
-// (clamped to [0, 1]; 1 without them).
+// Whether a closure of this type lets rays through instead of shading (Transparent, Ray Portal).
+inline bool passes_rays(ClosureType t) { return t == ClosureType::Transparent || t == ClosureType::RayPortal; }
+// The mixture's opacity at a hit from its weights there: 1 - its Transparent and Ray Portal
+// closures' weights (clamped to [0, 1]; 1 without them).
 float mixture_opacity(const Mixture& mixture, const MixtureWeights& w);
-// The weights a path shades with once it has not passed through (Transparent closures 0, the
-// others divided by the opacity; unchanged without Transparent closures).
+// The weights a path shades with once it has not passed through (Transparent and Ray Portal
+// closures 0, the others divided by the opacity; unchanged without them).
 void weights_when_opaque(const Mixture& mixture, MixtureWeights& w);
 
 }  // namespace torrance

@@ -13,6 +13,7 @@ namespace torrance {
 struct PathState {
   uint8_t ray_flags = 0;
   uint8_t ray_depth = 0, diffuse_depth = 0, glossy_depth = 0, transmission_depth = 0, transparent_depth = 0;
+  uint8_t portal_depth = 0;  // Ray Portals passed (Cycles 5.x's portal_bounce)
   float ray_length = 0.0f;
 };
 // PathState::ray_flags (Cycles' PATH_RAY_*).

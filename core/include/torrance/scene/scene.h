@@ -241,8 +241,20 @@ class Scene final : public ShaderTracer {
   // The alpha of the surface a ray along dir meets at hit, the path being in state seen_by (a
   // shadow ray's: kRayShadow): its program's alpha register run there, else as below.
   // tint (if given) becomes the colour that passes (Material::transparent_color, or a mixture's
-  // Transparent closures' colours by their weights).
-  float opacity(const SurfaceHit& hit, const Vec3& dir, const PathState& seen_by, Vec3* tint = nullptr) const;
+  // Transparent closures' colours by their weights). portal_share (if given) becomes, of the share
+  // that passes, the part through Ray Portal closures (portal_exit; 0 without them). A shadow ray
+  // meeting a Ray Portal closure is stopped there (opacity 1, as Cycles' shade_shadow).
+  float opacity(const SurfaceHit& hit, const Vec3& dir, const PathState& seen_by, Vec3* tint = nullptr,
+                float* portal_share = nullptr) const;
+  // Where a ray along dir that passes the hit's Ray Portal closures goes on (Cycles'
+  // integrate_surface_ray_portal): one of them chosen by its weight (u in [0, 1)), its Position
+  // (`moved`: not the hit point, to start there as it is; else the hit's, to be offset along
+  // the new direction), its Direction (unit; the ray's own where zero) and Color (`tint`).
+  struct PortalExit {
+    Vec3 origin{0.0f}, dir{0.0f, 0.0f, 1.0f}, tint{0.0f};
+    bool moved = false;
+  };
+  PortalExit portal_exit(const SurfaceHit& hit, const Vec3& dir, const PathState& seen_by, float u) const;
   // The holdout weight of the surface at hit for a camera ray (Cycles' surface_shader_apply_holdout):
   // a holdout object's `opacity` (its surface's, from opacity() above: the object's transparency
   // stays), else the weight of its mixture's Holdout closures (times the material's alpha); 0
@@ -579,6 +591,8 @@ class Scene final : public ShaderTracer {
   // Runs the material's shader program at uv and writes the inputs it feeds into m.
   // regs: where it runs (kMaxRegisters entries), or nullptr for a local array.
   void apply_program(const MaterialTextures& t, const ShaderGlobals& g, Material& m, glm::vec4* regs = nullptr) const;
+  // A Ray Portal closure's material at a hit (its Color, Position and Direction).
+  Material portal_material(uint32_t id, const ShaderGlobals& g) const;
   void check_program_outputs(const ShaderOutputs& outputs) const;  // throws std::invalid_argument
 
   mutable std::mutex mutex_;  // changes vs. begin_render, and the camera

@@ -12,7 +12,7 @@
 //   LightPath (106)   Light Path: (value, 0, 0, 0) of the path's state (PathState), mode 0 Is
 //                     Camera Ray, 1 Is Shadow Ray, 2 Is Diffuse, 3 Is Glossy, 4 Is Singular,
 //                     5 Is Reflection, 6 Is Transmission Ray, 7 Ray Length, 8 Ray Depth,
-//                     9 Diffuse, 10 Glossy, 11 Transparent, 12 Transmission Depth
+//                     9 Diffuse, 10 Glossy, 11 Transparent, 12 Transmission, 13 Portal Depth
 //   LightFalloff (109) Light Falloff (svm/light_path.h): in0.x Strength, in1.x Smooth; mode 0
 //                     Quadratic (Strength), 1 Linear (x ray length), 2 Constant (x its square);
 //                     then, for Smooth > 0, x l^2 / (Smooth + l^2) (l the ray length, PathState)
@@ -50,7 +50,7 @@ glm::vec4 reflection_op(const ShaderOpContext& c);
 glm::vec4 fresnel_op(const ShaderOpContext& c);
 glm::vec4 layer_weight_op(const ShaderOpContext& c);
 glm::vec4 attribute_op(const ShaderOpContext& c);
-constexpr int kLightPathModes = 13;
+constexpr int kLightPathModes = 14;
 glm::vec4 light_path_op(const ShaderOpContext& c);
 constexpr int kLightFalloffModes = 3;
 glm::vec4 light_falloff_op(const ShaderOpContext& c);

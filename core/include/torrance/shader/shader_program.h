@@ -352,6 +352,8 @@ struct ShaderOutputs {
   int16_t thin_film_thickness = -1, thin_film_ior = -1;
   // Principled v2's dispersion, the inverse Abbe number (Material::dispersion: x, at least 0).
   int16_t dispersion = -1;
+  // The Ray Portal BSDF's linked Position and Direction (Material::portal_position, portal_direction).
+  int16_t portal_position = -1, portal_direction = -1;
   bool any() const { return program >= 0; }
 };
 
