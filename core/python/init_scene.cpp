@@ -216,7 +216,7 @@ void init_scene(py::module_& m) {
              float diffuse_roughness, bool emission_under_layers, const std::string& coat_layering,
              bool multiscatter_walk, float dispersion, bool glass_cycles4, bool transmission_anisotropic,
              int dispersion_register, std::array<float, 3> portal_direction, int portal_position_register,
-             int portal_direction_register) {
+             int portal_direction_register, int specular_tint_color_register) {
             if (distribution != "GGX" && distribution != "BECKMANN" && distribution != "ASHIKHMIN_SHIRLEY")
               throw py::value_error("distribution must be 'GGX', 'BECKMANN' or 'ASHIKHMIN_SHIRLEY', got '" +
                                     distribution + "'");
@@ -312,6 +312,7 @@ void init_scene(py::module_& m) {
             tex.program.dispersion = program_register(dispersion_register);
             tex.program.portal_position = program_register(portal_position_register);
             tex.program.portal_direction = program_register(portal_direction_register);
+            tex.program.specular_tint_color = program_register(specular_tint_color_register);
             return s.add_material(mat, tex);
           },
           py::arg("base_color") = std::array<float, 3>{0.8f, 0.8f, 0.8f}, py::arg("metallic") = 0.0f,
@@ -357,6 +358,7 @@ void init_scene(py::module_& m) {
           py::arg("transmission_anisotropic") = false, py::arg("dispersion_register") = -1,
           py::arg("portal_direction") = std::array<float, 3>{0.0f, 0.0f, 0.0f},
           py::arg("portal_position_register") = -1, py::arg("portal_direction_register") = -1,
+          py::arg("specular_tint_color_register") = -1,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
@@ -419,7 +421,8 @@ void init_scene(py::module_& m) {
           "'CYCLES_4_5' (4.5-5.0) or 'CYCLES_5_1' (5.1+) does (principled_coat.h). portal_direction: a mixture's "
           "'ray_portal' closure's Direction (world; zero: the ray's own; base_color its Color), from the "
           "program's portal_direction_register when given; portal_position_register: its linked Position "
-          "(world; none: the hit point).")
+          "(world; none: the hit point). specular_tint_color_register: the program's specular_tint_color per hit "
+          "(at least 0: PRINCIPLED_V2's Specular Tint, a Metallic closure's Edge Tint or IOR).")
       .def(
           "add_shader_program",
           [](Scene& s, const py::object& constants, const py::object& code, int registers, const py::object& data) {

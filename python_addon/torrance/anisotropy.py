@@ -8,7 +8,7 @@ compiled into the closure's shader program (begun by the caller). The tangent al
 the program: the Tangent input's graph, or Geometry > Tangent, which Cycles links to an unlinked
 Tangent (Radial Z of Generated)."""
 
-from .nodes import finite_or, source_socket
+from .nodes import finite_or
 from .shader_graph.geometry import default_tangent
 from .shader_graph.graph import GraphCompiler
 from .shader_graph.registry import READERS
@@ -27,22 +27,14 @@ def read_anisotropy(reader, mat, node, sockets):
     with `sockets` (GLOSSY, PRINCIPLED_V1, PRINCIPLED_V2); {} for an isotropic lobe."""
     if node.inputs.get(sockets['anisotropy']) is None:     # 3.x's Glossy BSDF
         return {}
-    anisotropy = _program_value(reader, mat, node, sockets['anisotropy'], 'anisotropy')
+    anisotropy = reader._program_value(mat, node, sockets['anisotropy'], 'anisotropy')
     anisotropy = min(max(finite_or(anisotropy, 0.0), sockets['lowest']), 1.0)
     if anisotropy == 0.0 and 'anisotropy' not in reader._program_inputs:
         return {}
-    rotation = _program_value(reader, mat, node, sockets['rotation'], 'anisotropic_rotation')
-    _program_value(reader, mat, node, "Tangent", 'tangent')
+    rotation = reader._program_value(mat, node, sockets['rotation'], 'anisotropic_rotation')
+    reader._program_value(mat, node, "Tangent", 'tangent')
     if 'tangent' not in reader._program_inputs:   # unlinked, or its graph folded to a constant
         g = GraphCompiler(reader._program, reader.textures, READERS, reader.attributes)
         reader._program_inputs['tangent'] = default_tangent(g)
     return dict(anisotropy=anisotropy, anisotropic_rotation=finite_or(rotation, 0.0))
 
-
-def _program_value(reader, mat, node, name, program_input):
-    """Input `name`'s value: its default when unlinked, else its graph's constant, or the
-    socket's default with the graph compiled into the closure's program as `program_input`."""
-    socket = node.inputs.get(name)
-    if socket is None or source_socket(socket) is None:
-        return None if socket is None else socket.default_value
-    return reader._graph_input(mat, node, socket, program_input)

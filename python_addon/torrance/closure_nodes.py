@@ -11,17 +11,20 @@ reads them: Color -> base_color (any graph), Sigma / Roughness / Size -> roughne
 the Refraction's IOR -> ior and distribution -> distribution (4.x/5.x: glass_cycles4), the
 Toon's Smooth -> transmission_roughness (a value; a graph that varies is reported and its
 socket's value used);
-the Metallic's Base Color -> base_color (any graph), Edge Tint -> specular_tint_color, or the
-Physical Conductor's IOR -> specular_tint_color and Extinction -> sheen_tint_color (values),
+the Metallic's Base Color -> base_color, Edge Tint -> specular_tint_color, or the Physical
+Conductor's IOR -> specular_tint_color and Extinction -> sheen_tint_color (any graph: the
+program's base_color, specular_tint_color and sheen_tint),
 Roughness (any graph), Anisotropy, Rotation and Tangent (anisotropy.py), Multiscatter GGX ->
 multiscatter_ggx, Beckmann -> distribution, Thin Film Thickness and IOR (thin_film.py, any
 graph); the Ray Portal's Color -> base_color, Direction -> portal_direction and a linked
 Position -> the program's portal_position (any graph; unlinked: the hit point, as Cycles).
 """
 
+from functools import partial
+
 from .anisotropy import METALLIC, read_anisotropy
 from .material_values import DEFAULT_MATERIAL, clamp, color3, sanitize
-from .nodes import finite_or, node_label, source_socket
+from .nodes import finite_or, node_label
 from .hair_bsdf import read_hair_bsdf
 from .principled_hair import read_principled_hair
 from .principled_subsurface import read_subsurface_node
@@ -93,15 +96,16 @@ def _metallic(reader, mat, node):
     conductor = getattr(node, "fresnel_type", 'F82') == 'PHYSICAL_CONDUCTOR'
     distribution = getattr(node, "distribution", 'MULTI_GGX')
     args = dict(d, metallic=0.0, specular=0.0, multiscatter_ggx=distribution == 'MULTI_GGX')
+    value = partial(reader._program_value, mat, node)
     if conductor:
-        n = reader._socket_value(mat, node, "IOR", (2.757, 2.513, 2.231))
-        k = reader._socket_value(mat, node, "Extinction", (3.867, 3.404, 3.009))
+        n = value("IOR", 'specular_tint_color')
+        k = value("Extinction", 'sheen_tint')
         args.update(specular_tint_color=tuple(max(0.0, c) for c in color3(n, (1.0, 1.0, 1.0))),
                     sheen_tint_color=tuple(max(0.0, c) for c in color3(k, (0.0, 0.0, 0.0))))
     else:
         color, color_tex = reader._socket_input(mat, node, "Base Color", d['base_color'],
                                                 program_input='base_color')
-        tint = reader._socket_value(mat, node, "Edge Tint", (1.0, 1.0, 1.0))
+        tint = value("Edge Tint", 'specular_tint_color')
         args.update(base_color=color3(color, d['base_color']), base_color_texture=color_tex,
                     specular_tint_color=tuple(clamp(c, 0.0, 1.0)
                                               for c in color3(tint, (1.0, 1.0, 1.0))))
@@ -117,15 +121,10 @@ def _metallic(reader, mat, node):
 def _portal_ray(reader, mat, node, args):
     """The Ray Portal's Position (linked: the program's portal_position, a constant too, as the
     core reads it from the program only) and Direction (a value, or the program's)."""
-    position = node.inputs.get("Position")
-    if position is not None and source_socket(position) is not None:
-        reader._graph_input(mat, node, position, 'portal_position', constant_in_program=True)
-    direction = node.inputs.get("Direction")
-    value = (0.0, 0.0, 0.0)
-    if direction is not None:
-        value = (reader._graph_input(mat, node, direction, 'portal_direction')
-                 if source_socket(direction) is not None else direction.default_value)
-    args['portal_direction'] = tuple(finite_or(float(c), 0.0) for c in tuple(value)[:3])
+    reader._program_value(mat, node, "Position", 'portal_position', constant_in_program=True)
+    direction = reader._program_value(mat, node, "Direction", 'portal_direction')
+    value = (0.0, 0.0, 0.0) if direction is None else tuple(direction)[:3]
+    args['portal_direction'] = tuple(finite_or(float(c), 0.0) for c in value)
 
 
 def _roughness(reader, mat, node, name, fallback, args):

@@ -170,6 +170,15 @@ class MaterialReader:
                               f"socket's own value")
         return socket.default_value
 
+    def _program_value(self, mat, node, name, program_input, constant_in_program=False):
+        """Input `name`'s value: its default when unlinked (None: no such input), else its
+        graph's constant, or the socket's default with the graph compiled into the closure's
+        program as `program_input` (_graph_input)."""
+        socket = node.inputs.get(name)
+        if socket is None or source_socket(socket) is None:
+            return None if socket is None else socket.default_value
+        return self._graph_input(mat, node, socket, program_input, constant_in_program)
+
     def _begin_program(self, mat):
         """A new shader program for the closure about to be read (mat's Displacement, as bump,
         first)."""
@@ -320,7 +329,8 @@ class MaterialReader:
             ior = ior if ior > 0.0 else 1.5
             specular = specular_from_ior_level(specular, ior)
             specular_tint = 0.0            # v1's float; v2's colour is read for PRINCIPLED_V2
-            tint = _color3(v(mat, node, names['specular_tint'], (1.0, 1.0, 1.0)), (1.0, 1.0, 1.0))
+            tint = _color3(self._program_value(mat, node, names['specular_tint'],
+                                               'specular_tint_color'), (1.0, 1.0, 1.0))
             # Diffuse Roughness (4.3+; a value or a constant graph): the energy-preserving
             # Oren-Nayar diffuse layer.
             diffuse_roughness = _clamp(finite_or(v(mat, node, "Diffuse Roughness", 0.0), 0.0),

@@ -27,12 +27,8 @@ _DEFAULTS = dict(coat_weight=0.0, coat_roughness=0.03, coat_ior=1.5, coat_tint=(
 def _value(reader, mat, node, name, key, defaults):
     """The socket's value (its default, or its graph folded to a constant); with a graph that
     varies, its default, the reader's shader program computing the input `key`."""
-    socket = node.inputs.get(name)
-    if socket is None:
-        return defaults[key]
-    if source_socket(socket) is None:
-        return socket.default_value
-    return reader._graph_input(mat, node, socket, key)
+    value = reader._program_value(mat, node, name, key)
+    return defaults[key] if value is None else value
 
 
 def layer_inputs(reader, mat, node, sockets, defaults, weight_key):

@@ -9,7 +9,7 @@ v1's Transmission is materials.py's _principled_glass (Cycles 3.4's glass). Blen
 Transmission Dispersion: read_dispersion."""
 
 from .material_values import clamp
-from .nodes import finite_or, node_label, source_socket
+from .nodes import finite_or, node_label
 from .shader_graph.graph import GraphCompiler, Unsupported
 from .shader_graph.math_ops import MATH_OPS
 from .shader_graph.program import constant
@@ -22,13 +22,9 @@ _ABBE_NUMBER = "Transmission Dispersion Abbe Number"
 
 def read_transmission(reader, mat, node):
     """The transmission arguments of a v2 Principled BSDF `node` ({} without transmission)."""
-    socket = node.inputs.get(_SOCKET)
-    if socket is None:
+    value = reader._program_value(mat, node, _SOCKET, 'transmission')
+    if value is None:
         return {}
-    if source_socket(socket) is None:
-        value = socket.default_value
-    else:
-        value = reader._graph_input(mat, node, socket, 'transmission')
     if 'transmission' in reader._program_inputs:
         return dict(transmission=1.0)
     weight = clamp(finite_or(value, 0.0), 0.0, 1.0)

@@ -151,8 +151,9 @@ READERS = {
 # Nodes read outside the value graph (closures, outputs, the world), with what Torrance renders
 # of them: the other half of the registry, for docs/nodes.md and the reports (scripts/nodes_doc).
 CLOSURES = {
-    'ShaderNodeBsdfPrincipled': "partly: Base Color, Metallic, Roughness, Specular (v2: Specular "
-                                "IOR Level, IOR, Specular Tint), Emission and its Strength, Alpha "
+    'ShaderNodeBsdfPrincipled': "partly: Base Color, Metallic, Roughness (any graph), Specular "
+                                "(v2: Specular IOR Level, IOR; Specular Tint, any graph), "
+                                "Emission and its Strength, Alpha "
                                 "(alone: any graph, camera and shadow rays), Normal; v2 "
                                 "Transmission Weight (any graph); v1 "
                                 "Transmission, IOR, Transmission Roughness; the coat (v1 "
@@ -203,8 +204,8 @@ CLOSURES = {
                            "(any graph); 5.1+ Anisotropy, Rotation, Tangent (any graph; "
                            "unlinked: Geometry > Tangent) stretching reflection and refraction "
                            "as Cycles",
-    'ShaderNodeBsdfMetallic': "partly: F82 Tint (Base Color, any graph; Edge Tint) and Physical "
-                              "Conductor (IOR, Extinction: values), Roughness (any graph), "
+    'ShaderNodeBsdfMetallic': "partly: F82 Tint (Base Color, Edge Tint) and Physical Conductor "
+                              "(IOR, Extinction), Roughness (any graph each), "
                               "Anisotropy, Rotation, Tangent (any graph; unlinked: Geometry > "
                               "Tangent), Normal; GGX, Multiscatter GGX and Beckmann as Cycles "
                               "4.x/5.x; Thin Film Thickness and "

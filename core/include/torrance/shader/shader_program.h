@@ -352,6 +352,9 @@ struct ShaderOutputs {
   int16_t thin_film_thickness = -1, thin_film_ior = -1;
   // Principled v2's dispersion, the inverse Abbe number (Material::dispersion: x, at least 0).
   int16_t dispersion = -1;
+  // A colour read as Material::specular_tint_color (at least 0): Principled v2's Specular Tint, the
+  // Metallic BSDF's Edge Tint (F82) or IOR (Physical Conductor).
+  int16_t specular_tint_color = -1;
   // The Ray Portal BSDF's linked Position and Direction (Material::portal_position, portal_direction).
   int16_t portal_position = -1, portal_direction = -1;
   bool any() const { return program >= 0; }
