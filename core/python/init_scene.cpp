@@ -216,7 +216,8 @@ void init_scene(py::module_& m) {
              float diffuse_roughness, bool emission_under_layers, const std::string& coat_layering,
              bool multiscatter_walk, float dispersion, bool glass_cycles4, bool transmission_anisotropic,
              int dispersion_register, std::array<float, 3> portal_direction, int portal_position_register,
-             int portal_direction_register, int specular_tint_color_register) {
+             int portal_direction_register, int specular_tint_color_register, int diffuse_roughness_register,
+             int transmission_roughness_register, int specular_register, int ior_register) {
             if (distribution != "GGX" && distribution != "BECKMANN" && distribution != "ASHIKHMIN_SHIRLEY")
               throw py::value_error("distribution must be 'GGX', 'BECKMANN' or 'ASHIKHMIN_SHIRLEY', got '" +
                                     distribution + "'");
@@ -313,6 +314,10 @@ void init_scene(py::module_& m) {
             tex.program.portal_position = program_register(portal_position_register);
             tex.program.portal_direction = program_register(portal_direction_register);
             tex.program.specular_tint_color = program_register(specular_tint_color_register);
+            tex.program.diffuse_roughness = program_register(diffuse_roughness_register);
+            tex.program.transmission_roughness = program_register(transmission_roughness_register);
+            tex.program.specular = program_register(specular_register);
+            tex.program.ior = program_register(ior_register);
             return s.add_material(mat, tex);
           },
           py::arg("base_color") = std::array<float, 3>{0.8f, 0.8f, 0.8f}, py::arg("metallic") = 0.0f,
@@ -358,7 +363,9 @@ void init_scene(py::module_& m) {
           py::arg("transmission_anisotropic") = false, py::arg("dispersion_register") = -1,
           py::arg("portal_direction") = std::array<float, 3>{0.0f, 0.0f, 0.0f},
           py::arg("portal_position_register") = -1, py::arg("portal_direction_register") = -1,
-          py::arg("specular_tint_color_register") = -1,
+          py::arg("specular_tint_color_register") = -1, py::arg("diffuse_roughness_register") = -1,
+          py::arg("transmission_roughness_register") = -1, py::arg("specular_register") = -1,
+          py::arg("ior_register") = -1,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
@@ -422,7 +429,11 @@ void init_scene(py::module_& m) {
           "'ray_portal' closure's Direction (world; zero: the ray's own; base_color its Color), from the "
           "program's portal_direction_register when given; portal_position_register: its linked Position "
           "(world; none: the hit point). specular_tint_color_register: the program's specular_tint_color per hit "
-          "(at least 0: PRINCIPLED_V2's Specular Tint, a Metallic closure's Edge Tint or IOR).")
+          "(at least 0: PRINCIPLED_V2's Specular Tint, a Metallic closure's Edge Tint or IOR); "
+          "diffuse_roughness_register, transmission_roughness_register: the program's diffuse_roughness "
+          "(PRINCIPLED_V2) and transmission_roughness (a Toon closure's Smooth) per hit, clamped to [0, 1]; "
+          "specular_register, ior_register: the program's specular (at least 0) and ior (clamped to "
+          "[1e-5, 1000]) per hit.")
       .def(
           "add_shader_program",
           [](Scene& s, const py::object& constants, const py::object& code, int registers, const py::object& data) {

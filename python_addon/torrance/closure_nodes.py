@@ -9,8 +9,7 @@ principled_subsurface.py), alone at the Surface and in Mix/Add Shader trees alik
 Each becomes (closure type, add_material kwargs) with the inputs where the core's ClosureType
 reads them: Color -> base_color (any graph), Sigma / Roughness / Size -> roughness (any graph),
 the Refraction's IOR -> ior and distribution -> distribution (4.x/5.x: glass_cycles4), the
-Toon's Smooth -> transmission_roughness (a value; a graph that varies is reported and its
-socket's value used);
+Toon's Smooth -> transmission_roughness (any graph);
 the Metallic's Base Color -> base_color, Edge Tint -> specular_tint_color, or the Physical
 Conductor's IOR -> specular_tint_color and Extinction -> sheen_tint_color (any graph: the
 program's base_color, specular_tint_color and sheen_tint),
@@ -85,7 +84,8 @@ def read_closure_node(reader, mat, node):
         if cycles4_toon():                  # sampled and weighted as Cycles 4.x (toon_bsdf.h)
             closure += '_cycles4'
         _roughness(reader, mat, node, "Size", 0.5, args)
-        smooth = finite_or(reader._socket_value(mat, node, "Smooth", 0.0), 0.0)
+        smooth = finite_or(reader._program_value(mat, node, "Smooth", 'transmission_roughness'),
+                           0.0)
         args['transmission_roughness'] = clamp(smooth, 0.0, 1.0)
     return closure, sanitize(reader._with_program(args))
 

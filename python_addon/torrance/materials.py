@@ -56,6 +56,7 @@ from .principled_coat import read_coat
 from .shader_aovs import AovPrograms
 from .principled_sheen import read_sheen
 from .principled_subsurface import read_subsurface
+from .principled_specular import read_specular
 from .principled_thin_wall import read_thin_wall, report_film_on_thin_wall
 from .principled_transmission import read_dispersion, read_transmission
 from .thin_film import read_thin_film
@@ -80,18 +81,6 @@ _DISTRIBUTIONS = {'MULTI_GGX': "Multiscatter GGX", 'BECKMANN': "Beckmann"}
 def principled_version(node):
     """'v2' for a Principled BSDF with Blender 4.0's sockets, else 'v1'."""
     return 'v2' if node.inputs.get("Specular IOR Level") is not None else 'v1'
-
-
-def specular_from_ior_level(level, ior):
-    """v1's Specular for v2's (Specular IOR Level, IOR).
-
-    v1's dielectric F0 is 0.08 * Specular; v2's is F0(IOR) * 2 * Specular IOR Level (Cycles 4.x
-    scales F0 and rescales the IOR from it). Equating F0: Specular = level * F0(IOR) / 0.04, so
-    at IOR 1.5 (F0 = 0.04) Specular == Specular IOR Level exactly, 0.5 -> 0.5. The F0 is exact;
-    the angular Fresnel curve is v1's (Torrance's BRDF is Principled v1's).
-    """
-    # F0(IOR) / 0.04 = (5 (IOR - 1) / (IOR + 1))^2: exactly 1 at IOR 1.5 in floating point.
-    return level * (5.0 * (ior - 1.0) / (ior + 1.0)) ** 2
 
 
 # Nodes whose output is a constant we can read.
@@ -321,24 +310,21 @@ class MaterialReader:
         in_mixture = getattr(self, "skip_normals", False)
         alpha, alpha_tex = t(mat, node, "Alpha", 1.0, image_output="Alpha",
                              program_input=None if in_mixture else 'alpha')
-        specular = finite_or(v(mat, node, names['specular'], d['specular']), d['specular'])
+        specular = read_specular(self, mat, node, version, names['specular'])
         version_inputs = {}
         glass = {}
         if version == 'v2':
-            ior = finite_or(v(mat, node, "IOR", 1.5), 1.5)
-            ior = ior if ior > 0.0 else 1.5
-            specular = specular_from_ior_level(specular, ior)
             specular_tint = 0.0            # v1's float; v2's colour is read for PRINCIPLED_V2
             tint = _color3(self._program_value(mat, node, names['specular_tint'],
                                                'specular_tint_color'), (1.0, 1.0, 1.0))
-            # Diffuse Roughness (4.3+; a value or a constant graph): the energy-preserving
-            # Oren-Nayar diffuse layer.
-            diffuse_roughness = _clamp(finite_or(v(mat, node, "Diffuse Roughness", 0.0), 0.0),
-                                       0.0, 1.0)
-            version_inputs = dict(ior=ior, specular_tint_color=tuple(max(0.0, c) for c in tint),
-                             multiscatter_ggx=getattr(node, "distribution", "") == 'MULTI_GGX',
-                             **({'diffuse_roughness': diffuse_roughness}
-                                if diffuse_roughness > 0.0 else {}))
+            # Diffuse Roughness (4.3+; any graph): the energy-preserving Oren-Nayar diffuse layer.
+            diffuse_roughness = _clamp(finite_or(self._program_value(
+                mat, node, "Diffuse Roughness", 'diffuse_roughness'), 0.0), 0.0, 1.0)
+            version_inputs = dict(ior=specular['ior'],
+                                  specular_tint_color=tuple(max(0.0, c) for c in tint),
+                                  multiscatter_ggx=getattr(node, "distribution", "") == 'MULTI_GGX',
+                                  **({'diffuse_roughness': diffuse_roughness}
+                                     if diffuse_roughness > 0.0 else {}))
             transmission = read_transmission(self, mat, node)
             glass = dict(transmission, **read_thin_wall(self, mat, node),
                          **read_dispersion(self, mat, node, transmission))
@@ -360,7 +346,7 @@ class MaterialReader:
             base_color=_color3(base, d['base_color']),
             metallic=_clamp(finite_or(metallic, d['metallic']), 0.0, 1.0),
             roughness=_clamp(finite_or(roughness, d['roughness']), 0.0, 1.0),
-            specular=max(0.0, specular),
+            specular=specular['specular'],
             specular_tint=specular_tint,
             base_color_texture=base_tex, metallic_texture=metallic_tex,
             roughness_texture=roughness_tex, **emission,
@@ -402,8 +388,9 @@ class MaterialReader:
                         finite_or(v(mat, node, "Transmission Roughness", 0.0), 0.0), 0.0, 1.0))
 
     def _ior(self, mat, node, fallback):
-        """The IOR socket of `node`, as Cycles uses it (max(IOR, 1e-5)); at most 1000."""
-        ior = finite_or(self._socket_value(mat, node, "IOR", fallback), fallback)
+        """The IOR socket of `node`, as Cycles uses it (max(IOR, 1e-5)); at most 1000 (any
+        graph: the program's ior register where it varies)."""
+        ior = finite_or(self._program_value(mat, node, "IOR", 'ior'), fallback)
         return _clamp(ior, 1e-5, 1000.0)
 
     def _glass(self, mat, node):

@@ -34,7 +34,8 @@ def report_film_on_thin_wall(reader, mat, node, args):
         reader.reporter.warning(f"Material '{mat.name}': Torrance renders the transmission of "
                                 f"{node_label(node)} with Thin Wall without its Thin Film")
     if (args.get("thin_wall") and args.get("subsurface", 0.0) > 0.0
-            and args.get("diffuse_roughness", 0.0) > 0.0):
+            and (args.get("diffuse_roughness", 0.0) > 0.0
+                 or 'diffuse_roughness' in reader._program_inputs)):
         reader.reporter.warning(f"Material '{mat.name}': Torrance renders the translucency of "
                                 f"{node_label(node)} with Thin Wall Lambertian, without its "
                                 f"Diffuse Roughness")

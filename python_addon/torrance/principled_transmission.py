@@ -11,7 +11,6 @@ Transmission Dispersion: read_dispersion."""
 from .material_values import clamp
 from .nodes import finite_or, node_label
 from .shader_graph.graph import GraphCompiler, Unsupported
-from .shader_graph.math_ops import MATH_OPS
 from .shader_graph.program import constant
 from .shader_graph.registry import READERS
 
@@ -59,8 +58,7 @@ def read_dispersion(reader, mat, node, transmission):
         inverse_abbe = s / a if s > 0.0 and a > 0.0 else 0.0
         return dict(dispersion=inverse_abbe) if inverse_abbe > 0.0 else {}
 
-    def math(op, a, b, clamped=0):
-        return builder.emit("Math", 'float', [a, b, b], mode=MATH_OPS.index(op), flags=clamped)
+    math = builder.math
     zero = constant('float', 0.0)
     # Blender's Divide is Cycles' safe_divide: 0 where the Abbe number is 0.
     reader._program_inputs['dispersion'] = math("DIVIDE", math("ADD", scale, zero, clamped=1),

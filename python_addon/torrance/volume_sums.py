@@ -6,7 +6,7 @@ closure tree once and calls the same methods on either."""
 
 import math
 
-from .shader_graph.math_ops import MATH_OPS, VECTOR_MATH_OPS
+from .shader_graph.math_ops import VECTOR_MATH_OPS
 from .shader_graph.program import Value, constant
 
 CUTOFF = 1e-5                      # Cycles' CLOSURE_WEIGHT_CUTOFF
@@ -108,7 +108,7 @@ class Program:
         return read
 
     def _math(self, op, a, b, flags=0):
-        return self.builder.emit("Math", 'float', [a, b, b], mode=MATH_OPS.index(op), flags=flags)
+        return self.builder.math(op, a, b, flags)
 
     def _vector(self, op, a, b, scale=None):
         return self.builder.emit("VectorMath", 'color', [a, b, b, scale or constant('float', 0.0)],

@@ -18,7 +18,9 @@ def floor(model, from_program=(), **material):
                                        len(values))
         material = dict(material, program=pid)
         for register, name in enumerate(from_program):
-            neutral = 0.0 if np.size(material[name]) == 1 else (1.0, 1.0, 1.0)
+            # A value add_material accepts, which the register replaces.
+            neutral = (1.5 if name == "ior" else 0.0) if np.size(material[name]) == 1 \
+                else (1.0, 1.0, 1.0)
             argument = from_program[name] if isinstance(from_program, dict) else f"{name}_register"
             material.update({name: neutral, argument: register})
     material.setdefault("base_color", (0.5, 0.5, 0.5))

@@ -175,6 +175,11 @@ void Scene::apply_program(const MaterialTextures& t, const ShaderGlobals& g, Mat
     const float v = regs[size_t(o.dispersion)].x;
     m.dispersion = std::isfinite(v) ? std::max(v, 0.0f) : 0.0f;
   }
+  if (o.specular >= 0) m.specular = std::max(regs[size_t(o.specular)].x, 0.0f);
+  if (o.ior >= 0) m.ior = std::clamp(regs[size_t(o.ior)].x, 1e-5f, 1000.0f);
+  if (o.diffuse_roughness >= 0) m.diffuse_roughness = clamp01(regs[size_t(o.diffuse_roughness)].x);
+  if (o.transmission_roughness >= 0)
+    m.transmission_roughness = clamp01(regs[size_t(o.transmission_roughness)].x);
   if (o.specular_tint_color >= 0)
     m.specular_tint_color = glm::max(Vec3(regs[size_t(o.specular_tint_color)]), Vec3(0.0f));
   if (o.portal_position >= 0) {
@@ -343,7 +348,8 @@ void Scene::check_program_outputs(const ShaderOutputs& o) const {
         o.sheen_weight >= 0 || o.sheen_roughness >= 0 || o.sheen_tint >= 0 || o.anisotropy >= 0 ||
         o.anisotropic_rotation >= 0 || o.tangent >= 0 || o.subsurface >= 0 || o.subsurface_radius >= 0 ||
         o.subsurface_color >= 0 || o.thin_film_thickness >= 0 || o.thin_film_ior >= 0 || o.dispersion >= 0 ||
-        o.portal_position >= 0 || o.portal_direction >= 0 || o.specular_tint_color >= 0)
+        o.portal_position >= 0 || o.portal_direction >= 0 || o.specular_tint_color >= 0 ||
+        o.diffuse_roughness >= 0 || o.transmission_roughness >= 0 || o.specular >= 0 || o.ior >= 0)
       throw std::invalid_argument("material reads shader program registers but names no program");
     return;
   }
@@ -355,7 +361,8 @@ void Scene::check_program_outputs(const ShaderOutputs& o) const {
                 o.coat_roughness, o.coat_ior, o.coat_tint, o.coat_normal, o.sheen_weight, o.sheen_roughness, o.sheen_tint,
                 o.anisotropy, o.anisotropic_rotation, o.tangent, o.subsurface, o.subsurface_radius,
                 o.subsurface_color, o.thin_film_thickness, o.thin_film_ior, o.dispersion, o.portal_position,
-                o.portal_direction, o.specular_tint_color})
+                o.portal_direction, o.specular_tint_color, o.diffuse_roughness, o.transmission_roughness,
+                o.specular, o.ior})
     if (r != -1 && !program.written(r))
       throw std::invalid_argument("material reads register " + std::to_string(r) + " of a shader program with " +
                                   std::to_string(program.registers()) + " registers, which the program does not write");

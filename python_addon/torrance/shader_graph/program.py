@@ -169,6 +169,12 @@ class ProgramBuilder:
         self.code.append((OPCODE[op], mode, flags, resource, out, inputs))
         return Value(kind, register=out[1])
 
+    def math(self, op, a, b, clamped=0):
+        """The Value of Blender's Math `op` (a MATH_OPS name) of float Values a and b (Clamp if
+        clamped)."""
+        return self.emit("Math", 'float', [a, b, b], mode=math_ops.MATH_OPS.index(op),
+                         flags=clamped)
+
     def _operand(self, v):
         if v.constant:
             return ('c', self.constants.setdefault(constant_key(v.value), len(self.constants)))

@@ -151,12 +151,13 @@ READERS = {
 # Nodes read outside the value graph (closures, outputs, the world), with what Torrance renders
 # of them: the other half of the registry, for docs/nodes.md and the reports (scripts/nodes_doc).
 CLOSURES = {
-    'ShaderNodeBsdfPrincipled': "partly: Base Color, Metallic, Roughness (any graph), Specular "
-                                "(v2: Specular IOR Level, IOR; Specular Tint, any graph), "
+    'ShaderNodeBsdfPrincipled': "partly: Base Color, Metallic, Roughness, Specular (v2: Specular "
+                                "IOR Level, IOR, Specular Tint; any graph each), "
                                 "Emission and its Strength, Alpha "
                                 "(alone: any graph, camera and shadow rays), Normal; v2 "
                                 "Transmission Weight (any graph); v1 "
-                                "Transmission, IOR, Transmission Roughness; the coat (v1 "
+                                "Transmission, IOR (any graph), Transmission Roughness; the "
+                                "coat (v1 "
                                 "Clearcoat and its Roughness; v2 Coat Weight, Roughness, IOR, "
                                 "Tint; any graph; Clearcoat / Coat Normal of any graph, unlinked "
                                 "the surface's normal without the Normal's bump, as Cycles; v2: "
@@ -175,7 +176,7 @@ CLOSURES = {
                                 "the dielectric and the transmission, in 5.x the metal too, as "
                                 "Cycles of the version); 5.x Thin Wall (a thin slab and "
                                 "translucency, as Cycles 5.x, without the film; shadow rays "
-                                "stop at it); 4.3+ Diffuse Roughness (a value; Cycles' "
+                                "stop at it); 4.3+ Diffuse Roughness (any graph; Cycles' "
                                 "energy-preserving Oren-Nayar); 5.3 Transmission Dispersion "
                                 "Scale and Abbe Number (any graph; one wavelength per path as "
                                 "Cycles, not with Thin Wall). In a mix of shaders the first "
@@ -195,8 +196,8 @@ CLOSURES = {
                                  "its albedo scaling); Beckmann as Cycles' (its D, its fit "
                                  "of Smith's Lambda); Ashikhmin-Shirley as Cycles' (its "
                                  "anisotropic Phong lobe)",
-    'ShaderNodeBsdfGlass': "rendered: Color, Roughness, IOR, Normal; GGX, Beckmann, Sharp "
-                           "and Multiscatter GGX as the Blender's Cycles (3.x: two closures "
+    'ShaderNodeBsdfGlass': "rendered: Color, Roughness, IOR (any graph), Normal; GGX, Beckmann, "
+                           "Sharp and Multiscatter GGX as the Blender's Cycles (3.x: two closures "
                            "split by the macro Fresnel, Multiscatter GGX its random walk; "
                            "4.x/5.x: one closure, Fresnel per microfacet, Multiscatter GGX its "
                            "albedo scaling, Beckmann's visible normals); "
@@ -233,13 +234,13 @@ CLOSURES = {
                                       "(Skin), Christensen-Burley (Cycles' disk sampling) and "
                                       "5.3's Random Walk (Legacy) as Cycles of the version; alone "
                                       "and in Mix/Add Shader trees",
-    'ShaderNodeBsdfRefraction': "rendered: Color, Roughness (any graph), IOR, Normal; GGX, "
+    'ShaderNodeBsdfRefraction': "rendered: Color, Roughness, IOR (any graph each), Normal; GGX, "
                                 "Beckmann, Sharp as the Blender's Cycles (3.x: its refraction "
                                 "closure; 4.x/5.x: the one microfacet closure without Fresnel); "
                                 "alone and in Mix/Add Shader trees",
-    'ShaderNodeBsdfToon': "partly: Color, Size (any graph), Smooth (a value; a graph that varies "
-                          "is reported), Normal; Diffuse and Glossy, their sampled directions "
-                          "weighted as Cycles 3.4's or 4.x's; alone and in Mix/Add Shader trees",
+    'ShaderNodeBsdfToon': "rendered: Color, Size, Smooth (any graph each), Normal; Diffuse and "
+                          "Glossy, their sampled directions weighted as Cycles 3.4's or 4.x's; "
+                          "alone and in Mix/Add Shader trees",
     'ShaderNodeBsdfHairPrincipled': "partly: Chiang's model as Cycles 3.4 (4.x's Chiang; Huang "
                                     "rendered as Chiang, reported): Direct Coloring, Melanin "
                                     "Concentration and Absorption Coefficient, Roughness, "

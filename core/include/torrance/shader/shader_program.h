@@ -355,6 +355,13 @@ struct ShaderOutputs {
   // A colour read as Material::specular_tint_color (at least 0): Principled v2's Specular Tint, the
   // Metallic BSDF's Edge Tint (F82) or IOR (Physical Conductor).
   int16_t specular_tint_color = -1;
+  // The Principled BSDF's specular (Material::specular, v1's units: at least 0; v2's computed from
+  // its Specular IOR Level and IOR) and an IOR (Material::ior, clamped to [1e-5, 1000] as Cycles'
+  // max(IOR, 1e-5)): the Principled's, the Glass and Refraction BSDFs'.
+  int16_t specular = -1, ior = -1;
+  // Principled v2's Diffuse Roughness and the Toon BSDF's Smooth (Material::diffuse_roughness,
+  // transmission_roughness: x, clamped to [0, 1]).
+  int16_t diffuse_roughness = -1, transmission_roughness = -1;
   // The Ray Portal BSDF's linked Position and Direction (Material::portal_position, portal_direction).
   int16_t portal_position = -1, portal_direction = -1;
   bool any() const { return program >= 0; }

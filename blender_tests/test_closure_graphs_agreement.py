@@ -1,0 +1,188 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Closure inputs that a node graph varies render like Cycles (issues 33/35; before, each was
+read as its socket's value and reported): the Principled v2's Specular Tint, Specular IOR Level
+and IOR, the Glass BSDF's IOR, the Toon BSDF's Smooth, and in 4.3+ the Principled's Diffuse
+Roughness and the Metallic BSDF's Edge Tint (F82) and its Physical Conductor's IOR and
+Extinction, each from a Checker Texture (the core's specular_tint_color, specular, ior,
+transmission_roughness, diffuse_roughness and sheen_tint registers). In bpy 4.2 and 5.3 against
+their Cycles; Blender 3.4's Principled has no Specular Tint colour (exit 77; its Toon is
+test_closure_nodes_agreement's).
+
+One scene against Cycles' own seed-to-seed noise (seed_noise.agree_on_scene: Cycles seeds 0
+and 1, Torrance 2 and 3; ratio and 8x8 block means): spheres under a sun and a grey sky, a
+dielectric and a metallic Principled v2 with checkered tints, a Toon Glossy with a checkered
+Smooth, a Principled v2 with checkered Specular IOR Level and IOR, a rough glass of checkered
+IOR (4.2+), then a rough-diffuse Principled with a checkered Diffuse Roughness, an F82 and a
+conductor Metallic BSDF (4.3+), in two scenes so that a fault on one sphere stands out. Faults:
+each input read as its socket's value (what Torrance rendered before). The Diffuse
+Roughness read as its socket's value (1 against the graph's 0 and 0.4) changes its sphere by
+less than Cycles' noise (5.3: block mean 0.0058 against 0.0060): not a fault here; module
+test_program_inputs checks the register.
+
+Run: scripts/bpy 4.2 (or 5.3) -b --factory-startup --python-exit-code 1 \\
+         --python blender_tests/test_closure_graphs_agreement.py
+"""
+
+import math
+import sys
+from functools import partial
+
+import bpy
+
+from torrance_tools import scene as make
+from torrance_tools import testing
+from torrance_tools.seed_noise import agree_on_scene
+
+W, H = 224, 40
+BOUNCES = 4
+
+
+def checker(nodes, links, target, color1, color2, scale=5.0):
+    """A Checker Texture of two colours (any values) feeding the input socket `target`."""
+    node = nodes.new('ShaderNodeTexChecker')
+    node.inputs["Color1"].default_value = (*color1, 1.0)
+    node.inputs["Color2"].default_value = (*color2, 1.0)
+    node.inputs["Scale"].default_value = scale
+    links.new(node.outputs["Color"], target)
+
+
+def principled(name, base, metallic, roughness):
+    """A Principled v2 whose Specular Tint is a checker of orange and green."""
+    mat, nodes, links, output = make.node_material(name)
+    node = nodes.new('ShaderNodeBsdfPrincipled')
+    node.inputs["Base Color"].default_value = (*base, 1.0)
+    node.inputs["Metallic"].default_value = metallic
+    node.inputs["Roughness"].default_value = roughness
+    checker(nodes, links, node.inputs["Specular Tint"], (1.0, 0.35, 0.1), (0.2, 1.0, 0.45))
+    links.new(node.outputs[0], output.inputs["Surface"])
+    return mat
+
+
+def metallic(name, conductor):
+    """A Metallic BSDF: F82 with a checkered Edge Tint, or a Physical Conductor with a checkered
+    IOR and Extinction."""
+    mat, nodes, links, output = make.node_material(name)
+    node = nodes.new('ShaderNodeBsdfMetallic')
+    node.inputs["Roughness"].default_value = 0.3
+    if conductor:
+        node.fresnel_type = 'PHYSICAL_CONDUCTOR'
+        checker(nodes, links, node.inputs["IOR"], (0.2, 0.9, 1.1), (1.4, 0.5, 0.3))
+        checker(nodes, links, node.inputs["Extinction"], (3.0, 2.5, 2.0), (1.0, 4.0, 5.0),
+                scale=3.0)
+    else:
+        node.inputs["Base Color"].default_value = (0.9, 0.75, 0.5, 1.0)
+        checker(nodes, links, node.inputs["Edge Tint"], (1.0, 0.2, 0.2), (0.2, 0.4, 1.0))
+    links.new(node.outputs[0], output.inputs["Surface"])
+    return mat
+
+
+def toon(name):
+    """A Toon Glossy whose Smooth is a checker of 0 and 0.5."""
+    mat, nodes, links, output = make.node_material(name)
+    node = nodes.new('ShaderNodeBsdfToon')
+    node.component = 'GLOSSY'
+    node.inputs["Color"].default_value = (0.9, 0.8, 0.6, 1.0)
+    node.inputs["Size"].default_value = 0.6
+    checker(nodes, links, node.inputs["Smooth"], (0.0, 0.0, 0.0), (0.5, 0.5, 0.5))
+    links.new(node.outputs[0], output.inputs["Surface"])
+    return mat
+
+
+def rough_diffuse(name):
+    """A white-ish Principled v2 diffuse whose Diffuse Roughness is a checker of 0 and 0.4 (its
+    socket's own value, which the fault reads, 1)."""
+    mat, nodes, links, output = make.node_material(name)
+    node = nodes.new('ShaderNodeBsdfPrincipled')
+    node.inputs["Base Color"].default_value = (0.8, 0.7, 0.6, 1.0)
+    node.inputs["Roughness"].default_value = 0.6
+    node.inputs["Diffuse Roughness"].default_value = 1.0
+    checker(nodes, links, node.inputs["Diffuse Roughness"], (0.0, 0.0, 0.0), (0.4, 0.4, 0.4))
+    links.new(node.outputs[0], output.inputs["Surface"])
+    return mat
+
+
+def specular(name):
+    """A Principled v2 dielectric whose Specular IOR Level and IOR are checkers."""
+    mat, nodes, links, output = make.node_material(name)
+    node = nodes.new('ShaderNodeBsdfPrincipled')
+    node.inputs["Base Color"].default_value = (0.02, 0.02, 0.02, 1.0)
+    node.inputs["Roughness"].default_value = 0.15
+    checker(nodes, links, node.inputs["Specular IOR Level"], (0.0, 0.0, 0.0), (1.0, 1.0, 1.0))
+    checker(nodes, links, node.inputs["IOR"], (1.3, 1.3, 1.3), (2.4, 2.4, 2.4), scale=3.0)
+    links.new(node.outputs[0], output.inputs["Surface"])
+    return mat
+
+
+def glass(name):
+    """A rough Glass BSDF whose IOR is a checker of 1.2 and 1.9."""
+    mat, nodes, links, output = make.node_material(name)
+    node = nodes.new('ShaderNodeBsdfGlass')
+    node.inputs["Roughness"].default_value = 0.15
+    checker(nodes, links, node.inputs["IOR"], (1.2, 1.2, 1.2), (1.9, 1.9, 1.9))
+    links.new(node.outputs[0], output.inputs["Surface"])
+    return mat
+
+
+def cycles4_3():
+    return hasattr(bpy.types, "ShaderNodeBsdfMetallic")
+
+
+def spheres_4_2():
+    return [("Dielectric", principled("Dielectric", (0.05, 0.1, 0.3), 0.0, 0.25)),
+            ("Metal", principled("Metal", (0.9, 0.9, 0.9), 1.0, 0.3)),
+            ("Toon", toon("Toon")), ("Specular", specular("Specular")),
+            ("Glass", glass("Glass"))]
+
+
+def spheres_4_3():
+    return [("Rough diffuse", rough_diffuse("Rough diffuse")),
+            ("F82", metallic("F82", False)), ("Conductor", metallic("Conductor", True))]
+
+
+def graph_spheres(scene, spheres):
+    testing.setup_render(scene, width=W, height=H)
+    testing.add_camera(scene, location=(0.0, -9.0, 1.6), target=(0.0, 0.0, 0.6), lens=24.0)
+    testing.plane(scene, "Floor", 14.0, material=testing.principled("Floor", (0.4, 0.4, 0.4)))
+    row = spheres()
+    for i, (name, mat) in enumerate(row):
+        x = 1.25 * (i - (len(row) - 1) / 2)
+        make.sphere_object(scene, name, (x, 0.0, 0.6), 0.55, mat, segments=48, rings=24)
+    testing.add_sun(scene, strength=3.0, rotation=(math.radians(50), 0.0, math.radians(20)))
+    testing.set_world(scene, (0.3, 0.3, 0.32))
+
+
+def graph_dropped(key):
+    """Fault: the closure's graph-driven `key` input read as its socket's value."""
+    def patch(original):
+        def fault(self, out):
+            self._program_inputs.pop(key, None)
+            return original(self, out)
+        return fault
+    return patch
+
+
+def main():
+    if bpy.app.version < (4, 0, 0):
+        print(f"SKIPPED: Blender {bpy.app.version_string}'s Principled BSDF has no Specular Tint "
+              f"colour", flush=True)
+        sys.exit(77)
+    testing.addon()
+    from torrance.materials import MaterialReader
+    def faults(dropped):
+        return tuple((f"{what} read as their sockets' values", MaterialReader, "_with_program",
+                      graph_dropped(key)) for what, key in dropped)
+    # Two scenes, so that a fault on one sphere is seen against the noise of a few.
+    agree_on_scene(partial(graph_spheres, spheres=spheres_4_2), 64, BOUNCES,
+                   "Closure input graphs (4.2+)", faults=faults(
+                       [("the tints", 'specular_tint_color'),
+                        ("the Toon's Smooth", 'transmission_roughness'),
+                        ("the specular levels", 'specular'), ("the IORs", 'ior')]))
+    if cycles4_3():
+        agree_on_scene(partial(graph_spheres, spheres=spheres_4_3), 64, BOUNCES,
+                       "Closure input graphs (4.3+)", faults=faults(
+                           [("the Edge Tint and IOR", 'specular_tint_color'),
+                            ("the Extinction", 'sheen_tint')]))
+
+
+if __name__ == "__main__":
+    testing.run(main)
