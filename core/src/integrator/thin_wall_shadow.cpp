@@ -20,9 +20,7 @@ Vec3 straight_through(const Scene& scene, const SurfaceHit& hit, const Vec3& dir
   constexpr BrdfModel kModel = BrdfModel::PrincipledV2;
   const uint32_t id = hit.material;
   const bool textured = scene.mixture(id) || scene.material_textures(id).any();
-  ShaderGlobals g = shader_globals(hit, dir, 0.0f);
-  g.path = seen_by;
-  g.tracer = &scene;
+  ShaderGlobals g = scene.globals_seen_by(hit, dir, seen_by);
   std::array<glm::vec4, ShaderProgram::kMaxRegisters> regs;
   Material resolved;
   const MixtureBsdf bsdf =

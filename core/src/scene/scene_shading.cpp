@@ -111,6 +111,13 @@ Vec3 Scene::emission_at(uint32_t i, const ShaderGlobals& g) const {
   return e;
 }
 
+ShaderGlobals Scene::globals_seen_by(const SurfaceHit& hit, const Vec3& dir, const PathState& seen_by) const {
+  ShaderGlobals g = shader_globals(hit, dir, 0.0f);
+  g.path = seen_by;
+  g.tracer = this;
+  return g;
+}
+
 namespace {
 // Cycles allocates no closure whose sample weight is below CLOSURE_WEIGHT_CUTOFF.
 constexpr float kClosureWeightCutoff = 1e-5f;
@@ -124,9 +131,7 @@ float Scene::opacity(const SurfaceHit& hit, const Vec3& dir, const PathState& se
   if (tint) *tint = materials_[hit.material].transparent_color;
   if (portal_share) *portal_share = 0.0f;
   if (o.alpha < 0 && !through_closures) return opacity(hit.material, hit.uv);
-  ShaderGlobals g = shader_globals(hit, dir, 0.0f);
-  g.path = seen_by;
-  g.tracer = this;
+  const ShaderGlobals g = globals_seen_by(hit, dir, seen_by);
   if (through_closures) {
     const MixtureWeights w = mixture_weights(hit.material, g);
     Vec3 sum(0.0f);
@@ -166,9 +171,7 @@ Scene::PortalExit Scene::portal_exit(const SurfaceHit& hit, const Vec3& dir, con
   PortalExit exit;
   const Mixture* m = mixture(hit.material);
   if (!m) return exit;
-  ShaderGlobals g = shader_globals(hit, dir, 0.0f);
-  g.path = seen_by;
-  g.tracer = this;
+  const ShaderGlobals g = globals_seen_by(hit, dir, seen_by);
   const MixtureWeights w = mixture_weights(hit.material, g);
   float total = 0.0f;
   for (int k = 0; k < w.count; ++k)
@@ -197,9 +200,7 @@ float Scene::holdout(const SurfaceHit& hit, const Vec3& dir, const PathState& se
   if (hit.object_settings.holdout) return opacity;  // every closure but the transparent ones held out
   const Mixture* m = mixture(hit.material);
   if (!m || !m->holdout()) return 0.0f;
-  ShaderGlobals g = shader_globals(hit, dir, 0.0f);
-  g.path = seen_by;
-  g.tracer = this;
+  const ShaderGlobals g = globals_seen_by(hit, dir, seen_by);
   const MixtureWeights w = mixture_weights(hit.material, g);
   float weight = 0.0f;
   for (int k = 0; k < w.count; ++k)

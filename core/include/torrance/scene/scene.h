@@ -255,6 +255,8 @@ class Scene final : public ShaderTracer {
     bool moved = false;
   };
   PortalExit portal_exit(const SurfaceHit& hit, const Vec3& dir, const PathState& seen_by, float u) const;
+  // What the shaders at a hit see of a ray along dir in state seen_by (no footprint).
+  ShaderGlobals globals_seen_by(const SurfaceHit& hit, const Vec3& dir, const PathState& seen_by) const;
   // The holdout weight of the surface at hit for a camera ray (Cycles' surface_shader_apply_holdout):
   // a holdout object's `opacity` (its surface's, from opacity() above: the object's transparency
   // stays), else the weight of its mixture's Holdout closures (times the material's alpha); 0
