@@ -205,7 +205,7 @@ CLOSURES = {
                            "(any graph); 5.1+ Anisotropy, Rotation, Tangent (any graph; "
                            "unlinked: Geometry > Tangent) stretching reflection and refraction "
                            "as Cycles",
-    'ShaderNodeBsdfMetallic': "partly: F82 Tint (Base Color, Edge Tint) and Physical Conductor "
+    'ShaderNodeBsdfMetallic': "rendered: F82 Tint (Base Color, Edge Tint) and Physical Conductor "
                               "(IOR, Extinction), Roughness (any graph each), "
                               "Anisotropy, Rotation, Tangent (any graph; unlinked: Geometry > "
                               "Tangent), Normal; GGX, Multiscatter GGX and Beckmann as Cycles "
