@@ -46,81 +46,71 @@ def checker(nodes, links, target, color1, color2, scale=5.0):
     links.new(node.outputs["Color"], target)
 
 
-def principled(name, base, metallic, roughness):
-    """A Principled v2 whose Specular Tint is a checker of orange and green."""
+def closure_material(name, node_type, values, checkers, **attributes):
+    """A material of one `node_type` node at its Surface: the node's `attributes` set first, then
+    its inputs' `values` ({socket: value}), and Checker Textures feeding `checkers` ({socket:
+    (colour 1, colour 2[, scale])})."""
     mat, nodes, links, output = make.node_material(name)
-    node = nodes.new('ShaderNodeBsdfPrincipled')
-    node.inputs["Base Color"].default_value = (*base, 1.0)
-    node.inputs["Metallic"].default_value = metallic
-    node.inputs["Roughness"].default_value = roughness
-    checker(nodes, links, node.inputs["Specular Tint"], (1.0, 0.35, 0.1), (0.2, 1.0, 0.45))
+    node = nodes.new(node_type)
+    for attribute, value in attributes.items():
+        setattr(node, attribute, value)
+    for socket, value in values.items():
+        node.inputs[socket].default_value = value
+    for socket, colours in checkers.items():
+        checker(nodes, links, node.inputs[socket], *colours)
     links.new(node.outputs[0], output.inputs["Surface"])
     return mat
+
+
+def principled(name, base, metallic, roughness):
+    """A Principled v2 whose Specular Tint is a checker of orange and green."""
+    return closure_material(name, 'ShaderNodeBsdfPrincipled',
+                            {"Base Color": (*base, 1.0), "Metallic": metallic,
+                             "Roughness": roughness},
+                            {"Specular Tint": ((1.0, 0.35, 0.1), (0.2, 1.0, 0.45))})
 
 
 def metallic(name, conductor):
     """A Metallic BSDF: F82 with a checkered Edge Tint, or a Physical Conductor with a checkered
     IOR and Extinction."""
-    mat, nodes, links, output = make.node_material(name)
-    node = nodes.new('ShaderNodeBsdfMetallic')
-    node.inputs["Roughness"].default_value = 0.3
     if conductor:
-        node.fresnel_type = 'PHYSICAL_CONDUCTOR'
-        checker(nodes, links, node.inputs["IOR"], (0.2, 0.9, 1.1), (1.4, 0.5, 0.3))
-        checker(nodes, links, node.inputs["Extinction"], (3.0, 2.5, 2.0), (1.0, 4.0, 5.0),
-                scale=3.0)
-    else:
-        node.inputs["Base Color"].default_value = (0.9, 0.75, 0.5, 1.0)
-        checker(nodes, links, node.inputs["Edge Tint"], (1.0, 0.2, 0.2), (0.2, 0.4, 1.0))
-    links.new(node.outputs[0], output.inputs["Surface"])
-    return mat
+        return closure_material(name, 'ShaderNodeBsdfMetallic', {"Roughness": 0.3},
+                                {"IOR": ((0.2, 0.9, 1.1), (1.4, 0.5, 0.3)),
+                                 "Extinction": ((3.0, 2.5, 2.0), (1.0, 4.0, 5.0), 3.0)},
+                                fresnel_type='PHYSICAL_CONDUCTOR')
+    return closure_material(name, 'ShaderNodeBsdfMetallic',
+                            {"Roughness": 0.3, "Base Color": (0.9, 0.75, 0.5, 1.0)},
+                            {"Edge Tint": ((1.0, 0.2, 0.2), (0.2, 0.4, 1.0))})
 
 
 def toon(name):
     """A Toon Glossy whose Smooth is a checker of 0 and 0.5."""
-    mat, nodes, links, output = make.node_material(name)
-    node = nodes.new('ShaderNodeBsdfToon')
-    node.component = 'GLOSSY'
-    node.inputs["Color"].default_value = (0.9, 0.8, 0.6, 1.0)
-    node.inputs["Size"].default_value = 0.6
-    checker(nodes, links, node.inputs["Smooth"], (0.0, 0.0, 0.0), (0.5, 0.5, 0.5))
-    links.new(node.outputs[0], output.inputs["Surface"])
-    return mat
+    return closure_material(name, 'ShaderNodeBsdfToon',
+                            {"Color": (0.9, 0.8, 0.6, 1.0), "Size": 0.6},
+                            {"Smooth": ((0.0, 0.0, 0.0), (0.5, 0.5, 0.5))}, component='GLOSSY')
 
 
 def rough_diffuse(name):
     """A white-ish Principled v2 diffuse whose Diffuse Roughness is a checker of 0 and 0.4 (its
     socket's own value, which the fault reads, 1)."""
-    mat, nodes, links, output = make.node_material(name)
-    node = nodes.new('ShaderNodeBsdfPrincipled')
-    node.inputs["Base Color"].default_value = (0.8, 0.7, 0.6, 1.0)
-    node.inputs["Roughness"].default_value = 0.6
-    node.inputs["Diffuse Roughness"].default_value = 1.0
-    checker(nodes, links, node.inputs["Diffuse Roughness"], (0.0, 0.0, 0.0), (0.4, 0.4, 0.4))
-    links.new(node.outputs[0], output.inputs["Surface"])
-    return mat
+    return closure_material(name, 'ShaderNodeBsdfPrincipled',
+                            {"Base Color": (0.8, 0.7, 0.6, 1.0), "Roughness": 0.6,
+                             "Diffuse Roughness": 1.0},
+                            {"Diffuse Roughness": ((0.0, 0.0, 0.0), (0.4, 0.4, 0.4))})
 
 
 def specular(name):
     """A Principled v2 dielectric whose Specular IOR Level and IOR are checkers."""
-    mat, nodes, links, output = make.node_material(name)
-    node = nodes.new('ShaderNodeBsdfPrincipled')
-    node.inputs["Base Color"].default_value = (0.02, 0.02, 0.02, 1.0)
-    node.inputs["Roughness"].default_value = 0.15
-    checker(nodes, links, node.inputs["Specular IOR Level"], (0.0, 0.0, 0.0), (1.0, 1.0, 1.0))
-    checker(nodes, links, node.inputs["IOR"], (1.3, 1.3, 1.3), (2.4, 2.4, 2.4), scale=3.0)
-    links.new(node.outputs[0], output.inputs["Surface"])
-    return mat
+    return closure_material(name, 'ShaderNodeBsdfPrincipled',
+                            {"Base Color": (0.02, 0.02, 0.02, 1.0), "Roughness": 0.15},
+                            {"Specular IOR Level": ((0.0, 0.0, 0.0), (1.0, 1.0, 1.0)),
+                             "IOR": ((1.3, 1.3, 1.3), (2.4, 2.4, 2.4), 3.0)})
 
 
 def glass(name):
     """A rough Glass BSDF whose IOR is a checker of 1.2 and 1.9."""
-    mat, nodes, links, output = make.node_material(name)
-    node = nodes.new('ShaderNodeBsdfGlass')
-    node.inputs["Roughness"].default_value = 0.15
-    checker(nodes, links, node.inputs["IOR"], (1.2, 1.2, 1.2), (1.9, 1.9, 1.9))
-    links.new(node.outputs[0], output.inputs["Surface"])
-    return mat
+    return closure_material(name, 'ShaderNodeBsdfGlass', {"Roughness": 0.15},
+                            {"IOR": ((1.2, 1.2, 1.2), (1.9, 1.9, 1.9))})
 
 
 def cycles4_3():
