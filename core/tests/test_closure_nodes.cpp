@@ -195,6 +195,13 @@ TEST(ClosureNodes, ToonIsCyclesFlatCone) {
   const Vec3 mirror(-wo.x, -wo.y, wo.z);
   EXPECT_NEAR(glossy.eval_lobes(wo, mirror).glossy.x, 1.0 / (2.0 * M_PI * (1.0 - std::cos(0.1 * M_PI))), 1e-3);
   EXPECT_EQ(glossy.eval(wo, Vec3(0.0f, 0.0f, 1.0f)), Vec3(0.0f));  // 72.5 degrees from the mirror
+  // Size + Smooth past 90 degrees: the cone is the hemisphere about the mirror direction; what lies
+  // beyond it (here the viewer's own direction, 143 degrees from its grazing mirror) is not lit by
+  // the fade's last value (1 - (90 - 54) / 45 = 0.2), as Cycles' angle < sample_angle.
+  const ToonBsdf wide(Vec3(1.0f), 0.6f, 0.5f, true);
+  const Vec3 grazing = test::direction(std::cos(1.25f), 0.0f);
+  EXPECT_EQ(wide.eval(grazing, grazing), Vec3(0.0f));
+  EXPECT_GT(wide.eval(grazing, Vec3(-grazing.x, -grazing.y, grazing.z)).x, 0.0f);
   // Size 0 and Smooth 0: an empty lobe.
   EXPECT_FALSE(ToonBsdf(Vec3(1.0f), 0.0f, 0.0f, false).sample(wo, 0.5f, Vec2(0.5f)).valid());
   EXPECT_EQ(ToonBsdf(Vec3(1.0f), 0.0f, 0.0f, false).eval(wo, Vec3(0.0f, 0.0f, 1.0f)), Vec3(0.0f));

@@ -7,6 +7,9 @@ namespace {
 
 float clamped(float x) { return std::isfinite(x) ? clamp01(x) : 0.0f; }
 
+// theta_s, the lit cone's half angle (Cycles' bsdf_toon_get_sample_angle).
+float cone_angle(float size, float smooth) { return std::min(size + smooth, kPi * 0.5f); }
+
 }  // namespace
 
 ToonBsdf::ToonBsdf(const Vec3& color, float size, float smooth, bool glossy, bool cycles4)
@@ -15,7 +18,7 @@ ToonBsdf::ToonBsdf(const Vec3& color, float size, float smooth, bool glossy, boo
       smooth_(clamped(smooth) * kPi * 0.5f),
       glossy_(glossy),
       cycles4_(cycles4) {
-  const float theta_s = std::min(size_ + smooth_, kPi * 0.5f);
+  const float theta_s = cone_angle(size_, smooth_);
   // 1 - cos theta = 2 sin^2(theta / 2), exact for small cones.
   const float half_sin = std::sin(0.5f * theta_s);
   one_minus_cos_cone_ = 2.0f * half_sin * half_sin;
@@ -42,7 +45,11 @@ bool ToonBsdf::axis_cosine(const Vec3& wo, const Vec3& wi, float& cos_angle) con
 LobeEval ToonBsdf::eval_lobes(const Vec3& wo, const Vec3& wi) const {
   float c;
   if (!axis_cosine(wo, wi, c)) return {};
-  const float i = intensity(std::acos(std::min(std::max(c, 0.0f), 1.0f)));
+  const float angle = std::acos(std::min(std::max(c, 0.0f), 1.0f));
+  // Nothing at or past the cone's edge, as Cycles: where Size + Smooth pass 90 degrees the cone
+  // is the hemisphere about the axis, and the fade's last value must not light what lies beyond.
+  if (!(angle < cone_angle(size_, smooth_))) return {};
+  const float i = intensity(angle);
   LobeEval f;
   (glossy_ ? f.glossy : f.diffuse) = color_ * (i * cone_pdf_);
   return f;
@@ -75,7 +82,7 @@ BsdfSample ToonBsdf::sample(const Vec3& wo, float /*u_lobe*/, const Vec2& u) con
   s.pdf = pdf(wo, s.wi);
   if (!(s.pdf > 0.0f)) return {};
   // Blender 3.x: Cycles' weight, the fade at theta_s u.x (toon_bsdf.h); 4.x: eval / pdf.
-  s.weight = cycles4_ ? eval(wo, s.wi) / s.pdf : color_ * intensity(std::min(size_ + smooth_, kPi * 0.5f) * u.x);
+  s.weight = cycles4_ ? eval(wo, s.wi) / s.pdf : color_ * intensity(cone_angle(size_, smooth_) * u.x);
   return s;
 }
 
