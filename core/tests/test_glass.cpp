@@ -1,7 +1,7 @@
 // Glass as Cycles 3.4 renders it (GlassBsdf, and MaterialBsdf's Principled Transmission): chi-square
 // of its sampling over both hemispheres, agreement of eval / pdf / sample, the macro-Fresnel split
 // of energy (smooth: exactly F and 1 - F; rough: sampled = quadrature, <= 1), the Principled
-// mixture, and 10^6 randomised evaluations without NaN or Inf.
+// mixture and its Specular Tint, and 10^6 randomised evaluations without NaN or Inf.
 #include "torrance/bsdfs/glass.h"
 
 #include "torrance/bsdfs/material_bsdf.h"
@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <utility>
@@ -226,6 +227,77 @@ TEST(Glass, PrincipledTransmissionMixesLikeCycles) {
     }
 }
 
+// Cycles 3.4's dielectric Fresnel and interpolate_fresnel_color in double, written from the formulas.
+double fresnel_exact(double c, double eta) {
+  c = std::abs(c);
+  const double g2 = eta * eta - 1.0 + c * c;
+  if (g2 <= 0.0) return 1.0;
+  const double g = std::sqrt(g2), a = (g - c) / (g + c), b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);
+  return 0.5 * a * a * (1.0 + b * b);
+}
+
+double interpolated_exact(double cspec0, double cos_ih, double eta) {
+  const double f0 = fresnel_exact(1.0, eta), fh = (fresnel_exact(cos_ih, eta) - f0) / (1.0 - f0);
+  return cspec0 * (1.0 - fh) + fh;
+}
+
+// The Principled BSDF's Specular Tint (Cycles 3.4: its glass's reflection closure is GGX_FRESNEL
+// with cspec0 = base x tint + 1 - tint): the reflection is the untinted one times the colour
+// interpolated by wi.h per microfacet (rough) or by the normal's cosine (smooth); the refraction
+// and the pdf are unchanged; MaterialBsdf tints its v1 glass so.
+TEST(Glass, PrincipledSpecularTintColoursTheReflectionPerMicrofacet) {
+  const Vec3 cspec0(0.9f, 0.45f, 0.2f);
+  Rng rng(4, 9, 2);
+  int pairs = 0;
+  for (int n = 0; n < 20000; ++n) {
+    const float r = 0.05f + 0.95f * rng.next_1d(), ior = (const float[]){1.33f, 1.5f, 2.4f}[rng.next_u32() % 3];
+    const GlassBsdf plain(r, r, ior, Vec3(1.0f), Vec3(0.7f));
+    GlassBsdf tinted = plain;
+    tinted.tint_reflection(cspec0);
+    const Vec3 wo = test::uniform_sphere(rng), wi = test::uniform_sphere(rng);
+    ASSERT_EQ(tinted.pdf(wo, wi), plain.pdf(wo, wi));
+    const Vec3 f = tinted.eval(wo, wi), f_plain = plain.eval(wo, wi);
+    if (wo.z * wi.z < 0.0f) {
+      ASSERT_EQ(f, f_plain);
+      continue;
+    }
+    if (!(f_plain.x > 1e-4f)) continue;
+    const double etap = wo.z > 0.0f ? ior : 1.0 / ior;
+    const Vec3 h = glm::normalize(wo + wi);
+    for (int k = 0; k < 3; ++k) {
+      const double expected = f_plain[k] * interpolated_exact(cspec0[k], glm::dot(wi, h), etap);
+      // The colour to 1e-4 (F_H's cancellation near F0 costs float digits).
+      ASSERT_NEAR(f[k], expected, 1e-4 * f_plain[k]) << "r " << r << " ior " << ior << " channel " << k;
+    }
+    const BsdfSample s = tinted.sample(wo, rng.next_1d(), rng.next_2d());
+    if (s.valid()) ASSERT_TRUE(test::sample_matches_eval(tinted, wo, s));
+    ++pairs;
+  }
+  EXPECT_GT(pairs, 2000);
+  // Smooth: the mirror's weight is the macro Fresnel times the colour at the view's cosine.
+  GlassBsdf smooth(0.0f, 0.0f, 1.5f, Vec3(1.0f), Vec3(1.0f));
+  smooth.tint_reflection(cspec0);
+  const Vec3 wo = test::direction(0.4f, 0.3f);
+  const BsdfSample s = smooth.sample(wo, 0.0f, Vec2(0.5f));
+  ASSERT_TRUE(s.is_delta && s.wi.z > 0.0f);
+  const float p_reflect = smooth.fresnel(wo);  // by luminance: F against 1 - F (both colours white)
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(s.weight[k] * p_reflect, smooth.fresnel(wo) * interpolated_exact(cspec0[k], 0.4, 1.5), 1e-5f);
+  // MaterialBsdf: a v1 Principled glass with Specular Tint 0.6 is the glass tinted by its cspec0.
+  Material m;
+  m.base_color = Vec3(0.8f, 0.4f, 0.1f);
+  m.roughness = 0.3f;
+  m.transmission = 1.0f;
+  m.specular_tint = 0.6f;
+  m.ior = 1.5f;
+  GlassBsdf expected(0.3f, 0.3f, 1.5f, Vec3(1.0f), m.base_color);
+  expected.tint_reflection(m.base_color * 0.6f + Vec3(0.4f));
+  const Vec3 wi = test::direction(0.7f, 2.5f);
+  const Vec3 f = MaterialBsdf(m, BrdfModel::Principled).eval(wo, wi), e = expected.eval(wo, wi);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(f[k], e[k], 1e-5f * e[k]) << "channel " << k;
+  EXPECT_GT(GlassBsdf(0.3f, 0.3f, 1.5f, Vec3(1.0f), m.base_color).eval(wo, wi).z, 1.05f * e.z);
+}
+
 TEST(Glass, NoNanOrInfInAMillionRandomisedEvaluations) {
   Rng rng(21, 3, 77);
   uint64_t bad = 0;
@@ -245,7 +317,8 @@ TEST(Glass, NoNanOrInfInAMillionRandomisedEvaluations) {
     const float rr = rng.next_1d() < 0.5f ? roughnesses[rng.next_u32() % 8] : rng.next_1d();
     const float rt = rng.next_1d() < 0.5f ? roughnesses[rng.next_u32() % 8] : rng.next_1d();
     const float ior = rng.next_1d() < 0.7f ? iors[rng.next_u32() % 8] : 0.5f + 2.0f * rng.next_1d();
-    const GlassBsdf bsdf(rr, rt, ior, Vec3(1.0f), Vec3(0.5f), rng.next_1d() < 0.5f);
+    GlassBsdf bsdf(rr, rt, ior, Vec3(1.0f), Vec3(0.5f), rng.next_1d() < 0.5f);
+    if (rng.next_1d() < 0.3f) bsdf.tint_reflection(Vec3(0.9f, 0.3f, 0.0f));
     for (int e = 0; e < 100; ++e) {
       const Vec3 wo = nasty_direction(), wi = rng.next_1d() < 0.05f ? -wo : nasty_direction();
       const Vec3 f = bsdf.eval(wo, wi);

@@ -61,6 +61,16 @@ float GlassBsdf::fresnel(const Vec3& wo) const {
   return fresnel_dielectric(wo.z, wo.z > 0.0f ? eta_ : 1.0f / eta_);
 }
 
+void GlassBsdf::tint_reflection(const Vec3& cspec0) {
+  cspec0_ = glm::clamp(cspec0, Vec3(0.0f), Vec3(1.0f));
+  tinted_ = cspec0_ != Vec3(1.0f);
+}
+
+Vec3 GlassBsdf::reflection_tint(float cos_ih, float etap) const {
+  if (!tinted_) return Vec3(1.0f);
+  return fresnel_interpolated(cspec0_, cos_ih, etap, fresnel_dielectric(1.0f, etap));
+}
+
 GlassBsdf::Weights GlassBsdf::weights(const Vec3& wo) const {
   Weights w;
   w.etap = wo.z > 0.0f ? eta_ : 1.0f / eta_;
@@ -91,6 +101,7 @@ GlassBsdf::Lobe GlassBsdf::reflection(const Vec3& wo, const Vec3& wi) const {
   const float o_h = glm::dot(wo, h);
   if (!(o_h > 0.0f)) return out;
   const float d = D(h, alpha_r_);
+  out.o_h = o_h;
   out.pdf = normal_pdf(wo, h, o_h, alpha_r_) / (4.0f * o_h);
   out.f_cos = d * G1(wo.z, alpha_r_) * G1(wi.z, alpha_r_) / (4.0f * wo.z);
   return out;
@@ -115,7 +126,11 @@ Vec3 GlassBsdf::eval(const Vec3& wo, const Vec3& wi) const {
   const float side = wo.z > 0.0f ? 1.0f : -1.0f;
   const Vec3 o = to_wo_side(wo, side), i = to_wo_side(wi, side);
   const Weights w = weights(wo);
-  if (i.z > 0.0f) return refraction_only_ ? Vec3(0.0f) : w.reflect * reflection(o, i).f_cos;
+  if (i.z > 0.0f) {
+    if (refraction_only_) return Vec3(0.0f);
+    const Lobe l = reflection(o, i);
+    return l.f_cos > 0.0f ? w.reflect * l.f_cos * reflection_tint(l.o_h, w.etap) : Vec3(0.0f);
+  }
   return w.refract * refraction(o, i, w.etap).f_cos;
 }
 
@@ -148,7 +163,7 @@ BsdfSample GlassBsdf::sample(const Vec3& wo, float u_lobe, const Vec2& u) const 
     const Vec3 m = delta ? Vec3(0.0f, 0.0f, 1.0f) : sample_normal(o, alpha_r_, u);
     i = ggx::reflect(o, m);
     if (!(i.z > 0.0f)) return s;
-    if (delta) s.weight = w.reflect / w.p_reflect;
+    if (delta) s.weight = w.reflect * reflection_tint(o.z, w.etap) / w.p_reflect;
   } else {
     delta = refract_delta_ || invisible_;
     if (invisible_) {
@@ -177,7 +192,7 @@ BsdfSample GlassBsdf::sample(const Vec3& wo, float u_lobe, const Vec2& u) const 
   const float p = i.z > 0.0f ? w.p_reflect : 1.0f - w.p_reflect;
   if (!(l.pdf > 0.0f) || !(p > 0.0f)) return BsdfSample{};
   s.pdf = p * l.pdf;
-  s.weight = (i.z > 0.0f ? w.reflect : w.refract) * (l.f_cos / s.pdf);
+  s.weight = (i.z > 0.0f ? w.reflect * reflection_tint(l.o_h, w.etap) : w.refract) * (l.f_cos / s.pdf);
   if (!is_finite(s.weight)) return BsdfSample{};
   return s;
 }

@@ -1,7 +1,7 @@
 #include "torrance/bsdfs/microsurface_walk.h"
 
 #include "torrance/bsdfs/ggx_tables.h"
-#include "torrance/bsdfs/principled.h"  // fresnel_dielectric
+#include "torrance/bsdfs/principled.h"  // fresnel_interpolated
 #include "torrance/util/sampling.h"
 
 #include <cstring>
@@ -65,9 +65,7 @@ float facet_density(const ggx::Shape& shape, const Vec3& h) {
 }
 
 Vec3 Reflectance::at(float cos_d) const {
-  if (!fresnel) return color;
-  const float fh = f0 < 1.0f ? clamp01((fresnel_dielectric(cos_d, eta) - f0) / (1.0f - f0)) : 1.0f;
-  return cspec0 * (1.0f - fh) + Vec3(fh);
+  return fresnel ? fresnel_interpolated(cspec0, cos_d, eta, f0) : color;
 }
 
 float Walk::lambda(const Vec3& w) const { return signed_lambda(shape_, w); }

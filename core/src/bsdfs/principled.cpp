@@ -14,6 +14,11 @@ float fresnel_dielectric(float cos_i, float eta) {
   return 0.5f * a * a * (1.0f + b * b);
 }
 
+Vec3 fresnel_interpolated(const Vec3& cspec0, float cos_ih, float eta, float f0) {
+  const float fh = f0 < 1.0f ? clamp01((fresnel_dielectric(cos_ih, eta) - f0) / (1.0f - f0)) : 1.0f;
+  return cspec0 * (1.0f - fh) + Vec3(fh);
+}
+
 PrincipledBsdf::PrincipledBsdf(const Material& m) {
   const Vec3 base = glm::clamp(m.base_color, Vec3(0.0f), Vec3(1.0f));
   const float metallic = clamp01(m.metallic);
@@ -65,9 +70,7 @@ microsurface::Walk PrincipledBsdf::walk() const {
 
 Vec3 PrincipledBsdf::fresnel(float cos_ih) const {
   if (f0_ <= 0.0f) return specular_weight_ * cspec0_;
-  // Clamped: at normal incidence rounding makes F_dielectric - F0 a tiny negative number.
-  const float fh = clamp01((fresnel_dielectric(cos_ih, eta_) - f0_) / (1.0f - f0_));
-  return specular_weight_ * (cspec0_ * (1.0f - fh) + Vec3(fh));
+  return specular_weight_ * fresnel_interpolated(cspec0_, cos_ih, eta_, f0_);
 }
 
 float PrincipledBsdf::specular_probability(const Vec3& wo) const {

@@ -27,11 +27,9 @@ float microfacet_roughness_squared(float r) {
 }
 
 // Cycles' mean Fresnel colour of a *_FRESNEL microfacet closure (bsdf_microfacet_fresnel_color):
-// cspec0 blended to white by the dielectric Fresnel of `ior` at cos_no, normalised past F0.
+// its colour at the view, for the IOR `ior`.
 Vec3 fresnel_color(float cos_no, float ior, const Vec3& cspec0) {
-  const float f0 = fresnel_dielectric(1.0f, ior);
-  const float fh = (fresnel_dielectric(cos_no, ior) - f0) / (1.0f - f0);
-  return cspec0 * (1.0f - fh) + Vec3(fh);
+  return fresnel_interpolated(cspec0, cos_no, ior, fresnel_dielectric(1.0f, ior));
 }
 
 // The colour normalised to luminance 1 (its hue and saturation), white for black.

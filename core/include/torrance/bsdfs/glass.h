@@ -9,8 +9,10 @@
 //
 // with separable Smith G, alpha = roughness^2, etap = IOR of wi's side / IOR of wo's side. The
 // Principled BSDF uses reflect_color 1 and refract_color = base colour, the refraction roughness
-// 1 - (1 - r)(1 - transmission roughness) (Cycles 3.4 with GGX); the Glass node tints both lobes
-// and uses one roughness. The energy is therefore not exactly conserved for rough glass (a
+// 1 - (1 - r)(1 - transmission roughness) (Cycles 3.4 with GGX), and tints the reflection by its
+// Specular Tint (tint_reflection: Cycles' GGX_FRESNEL closure, its colour per microfacet
+// fresnel_interpolated(cspec0, wi.h, etap) with cspec0 = base colour x tint + 1 - tint); the
+// Glass node tints both lobes and uses one roughness. The energy is therefore not exactly conserved for rough glass (a
 // refracting microfacet whose own Fresnel would reflect still refracts; one at total internal
 // reflection loses its sample), exactly as in Cycles 3.4; smooth glass conserves it.
 //
@@ -59,6 +61,9 @@ class GlassBsdf {
 
   // The macro Fresnel reflectance for wo (the weight of the reflection closure).
   float fresnel(const Vec3& wo) const;
+  // The reflection coloured per microfacet as Cycles 3.x's *_FRESNEL closures (above); cspec0
+  // clamped to [0, 1], white (the default) leaves it untinted.
+  void tint_reflection(const Vec3& cspec0);
   bool has_delta() const { return reflect_delta_ || refract_delta_; }
 
  private:
@@ -71,8 +76,11 @@ class GlassBsdf {
   // f |cos_i| and pdf of one lobe, for wo and wi turned to wo.z > 0.
   struct Lobe {
     float f_cos = 0.0f, pdf = 0.0f;
+    float o_h = 0.0f;  // |wo.h| of the microfacet (reflection: also wi.h)
   };
   Lobe reflection(const Vec3& wo, const Vec3& wi) const;
+  // tint_reflection's colour of a reflection through a microfacet at wi.h = cos_ih.
+  Vec3 reflection_tint(float cos_ih, float etap) const;
   Lobe refraction(const Vec3& wo, const Vec3& wi, float etap) const;
   // The microfacet distribution (GGX or Beckmann) for wo.z > 0: D, Smith G1, a sampled normal
   // and its density (o_h = |wo.h|: GGX's visible normals; Cycles takes it unsigned).
@@ -82,6 +90,8 @@ class GlassBsdf {
   float normal_pdf(const Vec3& wo, const Vec3& h, float o_h, float alpha) const;
 
   Vec3 reflect_color_, refract_color_;
+  Vec3 cspec0_{1.0f};
+  bool tinted_ = false;
   float alpha_r_, alpha_t_, eta_;
   bool reflect_delta_, refract_delta_, invisible_, beckmann_, refraction_only_;
   ThinFilm film_, film_inside_;  // the film seen from outside and from inside (IOR / ior)

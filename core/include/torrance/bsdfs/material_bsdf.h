@@ -73,7 +73,13 @@ class MaterialBsdf {
     // Blender 3.x's Multiscatter GGX above roughness 0.05 (Cycles 3.4): the walk, one roughness.
     if (m.multiscatter_walk && model == BrdfModel::Principled && roughness > 0.05f)
       glass_.emplace(MultiscatterGlassBsdf::principled(roughness, m.ior, m.base_color, m.specular_tint));
-    else glass_.emplace(GlassBsdf(roughness, refract_roughness, m.ior, Vec3(1.0f), m.base_color));
+    else {
+      GlassBsdf glass(roughness, refract_roughness, m.ior, Vec3(1.0f), m.base_color);
+      const float tint = clamp01(m.specular_tint);
+      if (model == BrdfModel::Principled && tint > 0.0f)
+        glass.tint_reflection(glm::clamp(m.base_color, Vec3(0.0f), Vec3(1.0f)) * tint + Vec3(1.0f - tint));
+      glass_.emplace(glass);
+    }
     if (model == BrdfModel::Paper) opaque_scale_ = 1.0f - glass_weight_;
     opaque_ = glass_probability_ < 1.0f;
   }

@@ -42,6 +42,12 @@ namespace torrance {
 // Unpolarised Fresnel reflectance of a dielectric interface with relative IOR eta (> 0).
 float fresnel_dielectric(float cos_i, float eta);
 
+// The colour of Cycles 3.x's *_FRESNEL microfacet closures (interpolate_fresnel_color): cspec0
+// blended to white by the dielectric Fresnel at cos_ih, normalised past f0 = F_dielectric(1, eta):
+// cspec0 (1 - F_H) + F_H, F_H = (F_dielectric(cos_ih, eta) - f0) / (1 - f0), clamped to [0, 1] (at
+// normal incidence rounding makes it a tiny negative number); white when f0 >= 1.
+Vec3 fresnel_interpolated(const Vec3& cspec0, float cos_ih, float eta, float f0);
+
 class PrincipledBsdf : public lobe_mixture::Queries<PrincipledBsdf> {
  public:
   explicit PrincipledBsdf(const Material& m);
