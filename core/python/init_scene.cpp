@@ -217,7 +217,8 @@ void init_scene(py::module_& m) {
              bool multiscatter_walk, float dispersion, bool glass_cycles4, bool transmission_anisotropic,
              int dispersion_register, std::array<float, 3> portal_direction, int portal_position_register,
              int portal_direction_register, int specular_tint_color_register, int diffuse_roughness_register,
-             int transmission_roughness_register, int specular_register, int ior_register) {
+             int transmission_roughness_register, int specular_register, int ior_register,
+             int specular_tint_register) {
             if (distribution != "GGX" && distribution != "BECKMANN" && distribution != "ASHIKHMIN_SHIRLEY")
               throw py::value_error("distribution must be 'GGX', 'BECKMANN' or 'ASHIKHMIN_SHIRLEY', got '" +
                                     distribution + "'");
@@ -318,6 +319,7 @@ void init_scene(py::module_& m) {
             tex.program.transmission_roughness = program_register(transmission_roughness_register);
             tex.program.specular = program_register(specular_register);
             tex.program.ior = program_register(ior_register);
+            tex.program.specular_tint = program_register(specular_tint_register);
             return s.add_material(mat, tex);
           },
           py::arg("base_color") = std::array<float, 3>{0.8f, 0.8f, 0.8f}, py::arg("metallic") = 0.0f,
@@ -365,7 +367,7 @@ void init_scene(py::module_& m) {
           py::arg("portal_position_register") = -1, py::arg("portal_direction_register") = -1,
           py::arg("specular_tint_color_register") = -1, py::arg("diffuse_roughness_register") = -1,
           py::arg("transmission_roughness_register") = -1, py::arg("specular_register") = -1,
-          py::arg("ior_register") = -1,
+          py::arg("ior_register") = -1, py::arg("specular_tint_register") = -1,
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "
@@ -433,7 +435,8 @@ void init_scene(py::module_& m) {
           "diffuse_roughness_register, transmission_roughness_register: the program's diffuse_roughness "
           "(PRINCIPLED_V2) and transmission_roughness (a Toon closure's Smooth) per hit, clamped to [0, 1]; "
           "specular_register, ior_register: the program's specular (at least 0) and ior (clamped to "
-          "[1e-5, 1000]) per hit.")
+          "[1e-5, 1000]) per hit; specular_tint_register: the program's specular_tint (PRINCIPLED's Specular "
+          "Tint, clamped to [0, 1]) per hit.")
       .def(
           "add_shader_program",
           [](Scene& s, const py::object& constants, const py::object& code, int registers, const py::object& data) {

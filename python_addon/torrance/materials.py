@@ -7,8 +7,9 @@ output node (the output Cycles would use):
 
 * Principled BSDF: the sockets Base Color, Metallic, Roughness, Specular,
   Emission and Emission Strength, and Normal (from a tangent-space Normal Map);
-  v1's Transmission, IOR and Transmission Roughness (glass, as Cycles 3.4); v2's Transmission
-  Weight (Cycles 4.x's glass closure, from any graph: principled_transmission.py);
+  v1's Transmission, IOR, Transmission Roughness and Specular Tint (glass, as Cycles 3.4; each
+  from any graph); v2's Transmission Weight (Cycles 4.x's glass closure, from any graph:
+  principled_transmission.py);
   Alpha (a value, or an Image Texture's Alpha output: the image's alpha channel);
   Blender 4.x's Principled v2 by its names (Specular IOR Level with IOR, Emission
   Color; _PRINCIPLED_SOCKETS) and, for the PRINCIPLED_V2 model, its IOR, Specular Tint
@@ -329,8 +330,8 @@ class MaterialReader:
             glass = dict(transmission, **read_thin_wall(self, mat, node),
                          **read_dispersion(self, mat, node, transmission))
         else:
-            specular_tint = _clamp(finite_or(v(mat, node, names['specular_tint'], 0.0), 0.0),
-                                   0.0, 1.0)
+            specular_tint = _clamp(finite_or(self._program_value(
+                mat, node, names['specular_tint'], 'specular_tint'), 0.0), 0.0, 1.0)
             metallic_varies = metallic_tex >= 0 or 'metallic' in self._program_inputs
             glass = self._principled_glass(mat, node, metallic, metallic_varies)
             if bpy.app.version < (4, 0, 0) and getattr(node, "distribution", "") == 'MULTI_GGX':
@@ -371,11 +372,11 @@ class MaterialReader:
     def _principled_glass(self, mat, node, metallic, metallic_varies):
         """add_material() glass arguments of a v1 Principled BSDF ({} without transmission), its
         Metallic as _principled read it (`metallic_varies`: from a texture or a program)."""
-        v = self._socket_value
-        transmission = _clamp(finite_or(v(mat, node, "Transmission", 0.0), 0.0), 0.0, 1.0)
+        transmission = read_transmission(self, mat, node, "Transmission").get('transmission', 0.0)
         if transmission == 0.0:
             return {}
-        opaque_part = transmission < 1.0 or metallic_varies or finite_or(metallic, 0.0) > 0.0
+        opaque_part = (transmission < 1.0 or 'transmission' in self._program_inputs
+                       or metallic_varies or finite_or(metallic, 0.0) > 0.0)
         if getattr(node, "distribution", 'GGX') != 'GGX' and opaque_part:
             # Cycles 3.4 renders rough (> 0.05) transmission of Multiscatter GGX as its
             # multiple-scattering glass (so does Torrance: multiscatter_glass_bsdf.h) and the
@@ -383,9 +384,10 @@ class MaterialReader:
             self.reporter.warning(f"Material '{mat.name}': {node_label(node)} with transmission "
                                   f"uses {_DISTRIBUTIONS.get(node.distribution, node.distribution)}"
                                   f"; Torrance renders its specular reflection lobe as GGX")
+        refraction_roughness = self._program_value(mat, node, "Transmission Roughness",
+                                                   'transmission_roughness')
         return dict(transmission=transmission, ior=self._ior(mat, node, 1.45),
-                    transmission_roughness=_clamp(
-                        finite_or(v(mat, node, "Transmission Roughness", 0.0), 0.0), 0.0, 1.0))
+                    transmission_roughness=_clamp(finite_or(refraction_roughness, 0.0), 0.0, 1.0))
 
     def _ior(self, mat, node, fallback):
         """The IOR socket of `node`, as Cycles uses it (max(IOR, 1e-5)); at most 1000 (any

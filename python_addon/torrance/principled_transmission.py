@@ -5,8 +5,8 @@ core principled_glass_v2.h; the closure uses the IOR, Roughness, Specular Tint a
 node reads anyway). The weight may come from any node graph the shader graph compiles: the
 closure's shader program then computes it (transmission_register), and the material is added as
 transmitting (transmission 1) so that the render takes its glass path. A weight of 0 is left out.
-v1's Transmission is materials.py's _principled_glass (Cycles 3.4's glass). Blender 5.x's
-Transmission Dispersion: read_dispersion."""
+v1's Transmission is read the same way by materials.py's _principled_glass (Cycles 3.4's
+glass). Blender 5.x's Transmission Dispersion: read_dispersion."""
 
 from .material_values import clamp
 from .nodes import finite_or, node_label
@@ -19,9 +19,10 @@ _DISPERSION_SCALE = "Transmission Dispersion Scale"
 _ABBE_NUMBER = "Transmission Dispersion Abbe Number"
 
 
-def read_transmission(reader, mat, node):
-    """The transmission arguments of a v2 Principled BSDF `node` ({} without transmission)."""
-    value = reader._program_value(mat, node, _SOCKET, 'transmission')
+def read_transmission(reader, mat, node, socket=_SOCKET):
+    """The transmission arguments of a Principled BSDF `node` from its input `socket` (v2's
+    Transmission Weight, v1's Transmission) ({} without transmission)."""
+    value = reader._program_value(mat, node, socket, 'transmission')
     if value is None:
         return {}
     if 'transmission' in reader._program_inputs:

@@ -18,9 +18,10 @@ def floor(model, from_program=(), **material):
                                        len(values))
         material = dict(material, program=pid)
         for register, name in enumerate(from_program):
-            # A value add_material accepts, which the register replaces.
-            neutral = (1.5 if name == "ior" else 0.0) if np.size(material[name]) == 1 \
-                else (1.0, 1.0, 1.0)
+            # A value add_material accepts, which the register replaces (a transmission 1, as
+            # the add-on passes it: the material is added as transmitting).
+            neutral = {"ior": 1.5, "transmission": 1.0}.get(name, 0.0) \
+                if np.size(material[name]) == 1 else (1.0, 1.0, 1.0)
             argument = from_program[name] if isinstance(from_program, dict) else f"{name}_register"
             material.update({name: neutral, argument: register})
     material.setdefault("base_color", (0.5, 0.5, 0.5))

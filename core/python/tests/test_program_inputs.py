@@ -2,7 +2,8 @@
 (add_material(<input>_register), the core's ShaderOutputs): PRINCIPLED_V2's Specular Tint
 (specular_tint_color) over a dielectric and a metal, a negative one as 0 (Cycles'
 max(tint, 0)), its Diffuse Roughness (diffuse_roughness, clamped to [0, 1]), the specular and
-the IOR (of a glass: at least 1e-5, at most 1000)."""
+the IOR (of a glass: at least 1e-5, at most 1000); PRINCIPLED's (v1's) Specular Tint,
+Transmission and Transmission Roughness (clamped to [0, 1])."""
 import numpy as np
 import pytest
 
@@ -63,3 +64,22 @@ def test_a_negative_specular_and_a_huge_ior_are_clamped():
         floor("PRINCIPLED_V2", **dict(DIELECTRIC, specular=0.0)), rel=1e-5)
     assert floor("PRINCIPLED_V2", from_program=("ior",), **dict(GLASS, ior=5000.0)) == \
         pytest.approx(floor("PRINCIPLED_V2", **dict(GLASS, ior=1000.0)), rel=1e-5)
+
+
+# A v1 Principled with a little of everything the three registers change: a tinted specular
+# (Specular 1) beside a rough glass of 60 %.
+V1 = dict(base_color=(0.8, 0.3, 0.1), roughness=0.2, specular=1.0, specular_tint=0.7,
+          transmission=0.6, transmission_roughness=0.4, ior=1.5)
+
+
+@pytest.mark.parametrize("name", ["specular_tint", "transmission", "transmission_roughness"])
+def test_principled_v1_inputs_from_a_program_render_as_the_constants(name):
+    constant = floor("PRINCIPLED", **V1)
+    programmed = floor("PRINCIPLED", from_program=(name,), **V1)
+    assert programmed == pytest.approx(constant, rel=1e-5)
+    # The input matters (under a white world a rough refraction changes the floor least: 2e-4).
+    assert np.abs(constant - floor("PRINCIPLED", **dict(V1, **{name: 0.0}))).max() > 1e-4
+    # Outside [0, 1] clamped: above 1 is 1, below 0 is 0.
+    for outside, inside in ((3.0, 1.0), (-2.0, 0.0)):
+        assert floor("PRINCIPLED", from_program=(name,), **dict(V1, **{name: outside})) == \
+            pytest.approx(floor("PRINCIPLED", **dict(V1, **{name: inside})), rel=1e-5)

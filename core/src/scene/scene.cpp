@@ -182,6 +182,7 @@ void Scene::apply_program(const MaterialTextures& t, const ShaderGlobals& g, Mat
     m.transmission_roughness = clamp01(regs[size_t(o.transmission_roughness)].x);
   if (o.specular_tint_color >= 0)
     m.specular_tint_color = glm::max(Vec3(regs[size_t(o.specular_tint_color)]), Vec3(0.0f));
+  if (o.specular_tint >= 0) m.specular_tint = clamp01(regs[size_t(o.specular_tint)].x);
   if (o.portal_position >= 0) {
     m.portal_position = Vec3(regs[size_t(o.portal_position)]);
     m.portal_at_hit = false;
@@ -342,14 +343,9 @@ uint32_t Scene::add_material(const Material& m, const MaterialTextures& textures
 }
 
 void Scene::check_program_outputs(const ShaderOutputs& o) const {
+  const auto registers = o.registers();
   if (o.program < 0) {
-    if (o.base_color >= 0 || o.metallic >= 0 || o.roughness >= 0 || o.emission >= 0 || o.normal >= 0 || o.alpha >= 0 ||
-        o.surface_normal >= 0 || o.transmission >= 0 || o.coat_weight >= 0 || o.coat_roughness >= 0 || o.coat_ior >= 0 || o.coat_tint >= 0 || o.coat_normal >= 0 ||
-        o.sheen_weight >= 0 || o.sheen_roughness >= 0 || o.sheen_tint >= 0 || o.anisotropy >= 0 ||
-        o.anisotropic_rotation >= 0 || o.tangent >= 0 || o.subsurface >= 0 || o.subsurface_radius >= 0 ||
-        o.subsurface_color >= 0 || o.thin_film_thickness >= 0 || o.thin_film_ior >= 0 || o.dispersion >= 0 ||
-        o.portal_position >= 0 || o.portal_direction >= 0 || o.specular_tint_color >= 0 ||
-        o.diffuse_roughness >= 0 || o.transmission_roughness >= 0 || o.specular >= 0 || o.ior >= 0)
+    if (std::any_of(registers.begin(), registers.end(), [](int16_t r) { return r >= 0; }))
       throw std::invalid_argument("material reads shader program registers but names no program");
     return;
   }
@@ -357,12 +353,7 @@ void Scene::check_program_outputs(const ShaderOutputs& o) const {
     throw std::invalid_argument("material uses shader program " + std::to_string(o.program) + " but the scene has " +
                                 std::to_string(programs_.size()) + " programs");
   const ShaderProgram& program = programs_[size_t(o.program)];
-  for (int r : {o.base_color, o.metallic, o.roughness, o.emission, o.normal, o.alpha, o.surface_normal, o.transmission, o.coat_weight,
-                o.coat_roughness, o.coat_ior, o.coat_tint, o.coat_normal, o.sheen_weight, o.sheen_roughness, o.sheen_tint,
-                o.anisotropy, o.anisotropic_rotation, o.tangent, o.subsurface, o.subsurface_radius,
-                o.subsurface_color, o.thin_film_thickness, o.thin_film_ior, o.dispersion, o.portal_position,
-                o.portal_direction, o.specular_tint_color, o.diffuse_roughness, o.transmission_roughness,
-                o.specular, o.ior})
+  for (int r : registers)
     if (r != -1 && !program.written(r))
       throw std::invalid_argument("material reads register " + std::to_string(r) + " of a shader program with " +
                                   std::to_string(program.registers()) + " registers, which the program does not write");

@@ -359,12 +359,22 @@ struct ShaderOutputs {
   // its Specular IOR Level and IOR) and an IOR (Material::ior, clamped to [1e-5, 1000] as Cycles'
   // max(IOR, 1e-5)): the Principled's, the Glass and Refraction BSDFs'.
   int16_t specular = -1, ior = -1;
+  // Principled v1's Specular Tint (Material::specular_tint: x, clamped to [0, 1]).
+  int16_t specular_tint = -1;
   // Principled v2's Diffuse Roughness and the Toon BSDF's Smooth (Material::diffuse_roughness,
   // transmission_roughness: x, clamped to [0, 1]).
   int16_t diffuse_roughness = -1, transmission_roughness = -1;
   // The Ray Portal BSDF's linked Position and Direction (Material::portal_position, portal_direction).
   int16_t portal_position = -1, portal_direction = -1;
   bool any() const { return program >= 0; }
+  // Every register above (-1: not read), for the checks of Scene::check_program_outputs.
+  auto registers() const {
+    return std::array{base_color, metallic, roughness, emission, normal, alpha, surface_normal, transmission,
+                      coat_weight, coat_roughness, coat_ior, coat_tint, coat_normal, sheen_weight, sheen_roughness,
+                      sheen_tint, anisotropy, anisotropic_rotation, tangent, subsurface, subsurface_radius,
+                      subsurface_color, thin_film_thickness, thin_film_ior, dispersion, specular_tint_color, specular,
+                      ior, specular_tint, diffuse_roughness, transmission_roughness, portal_position, portal_direction};
+  }
 };
 
 }  // namespace torrance
