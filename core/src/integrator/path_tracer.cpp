@@ -251,7 +251,11 @@ class PathTracer {
   // A surface the path shades.
   struct Vertex {
     const SurfaceHit* hit = nullptr;
-    Material material;                // its inputs at this hit (textures and programs evaluated)
+    // Its inputs at this hit: the scene's own, or local_material: the material evaluated here
+    // (textures, programs, a mixture's sums) or changed here (emission under layers). An
+    // untextured surface copies nothing (a Material is ~300 bytes).
+    const Material* material = nullptr;
+    std::optional<Material> local_material;
     std::optional<Bsdf> local_bsdf;   // a textured material's or a mixture's own
     const Bsdf* bsdf = nullptr;       // local_bsdf or the material's, built once per render
     bool mixture = false, textured = false, transmits = false;
@@ -550,6 +554,13 @@ class PathTracer {
   // isotropic, so that length would blur the texture across the view too, away from Cycles'
   // (which does not filter): a floor seen at 12 degrees, 8x8 block means 0.010 from Cycles'
   // with it (x4 at most), 0.0027 without (Cycles' own seed-to-seed 0.0013).
+  // v's material as its own copy (made from the scene's on first use), to evaluate or change.
+  static Material& own_material(Vertex& v) {
+    if (!v.local_material) v.local_material.emplace(v.material ? *v.material : Material());
+    v.material = &*v.local_material;
+    return *v.local_material;
+  }
+
   void shade(Vertex& v, const Segment& seg, int bounce, bool first_again) {
     const SurfaceHit& hit = *seg.hit;
     v.hit = &hit;
@@ -583,20 +594,22 @@ class PathTracer {
       SubsurfaceLobe* subsurface = nullptr;
       if constexpr (kSubsurface) subsurface = &v.subsurface;
       v.local_bsdf.emplace(shade_material(ctx_.scene, hit.material, globals, v.textured, ctx_.settings.brdf_model,
-                                          ctx_.bsdfs[hit.material], v.material, v.program_regs.data(),
+                                          ctx_.bsdfs[hit.material], own_material(v), v.program_regs.data(),
                                           v.closure_list ? &*v.closure_list : nullptr, subsurface,
                                           walk_state(hit), dispersion_.wavelength.micrometres));
       v.bsdf = &*v.local_bsdf;
       v.strands = v.local_bsdf->hair_only();
       // Dispersion (dispersion.h): the first dispersive closure makes the path monochromatic.
-      if (v.material.wavelength > 0.0f && !dispersion_.monochromatic) {
+      if (v.material->wavelength > 0.0f && !dispersion_.monochromatic) {
         throughput_ *= dispersion_.wavelength.weight;
         dispersion_.monochromatic = true;
       }
     } else {
-      v.material = ctx_.scene.material(hit.material);
-      if (v.textured) ctx_.scene.apply_textures(hit.material, globals, v.material, v.program_regs.data());
-      if (v.textured) v.local_bsdf.emplace(v.material, ctx_.settings.brdf_model);
+      v.material = &ctx_.scene.material(hit.material);
+      if (v.textured) {
+        ctx_.scene.apply_textures(hit.material, globals, own_material(v), v.program_regs.data());
+        v.local_bsdf.emplace(*v.material, ctx_.settings.brdf_model);
+      }
       v.bsdf = v.textured ? &*v.local_bsdf : &ctx_.bsdfs[hit.material];
     }
     v.transmits = kGlass && v.bsdf->transmits();
@@ -608,15 +621,15 @@ class PathTracer {
     v.wo = v.at.frame.to_local(v.wo_world);
     v.view = v.bsdf->at(v.wo, v.at.backfacing, v.at.diffuse, v.at.coat);
     // Principled v2's emission under its coat and sheen, as Cycles 4.x (Scene::emission_at likewise).
-    if (v.material.emission_under_layers && !v.mixture && max_component(glm::abs(v.material.emission)) > 0.0f)
-      v.material.emission *= PrincipledV2Bsdf::emission_weight(
-          v.material, v.at.coat.cosine(v.wo), v.at.coat.sheen_normal(v.material.coat_weight).cosine(v.wo));
+    if (v.material->emission_under_layers && !v.mixture && max_component(glm::abs(v.material->emission)) > 0.0f)
+      own_material(v).emission *= PrincipledV2Bsdf::emission_weight(
+          *v.material, v.at.coat.cosine(v.wo), v.at.coat.sheen_normal(v.material->coat_weight).cosine(v.wo));
     if constexpr (kMixtures) {  // a mixture's Principled v2 closures' likewise
-      if (v.mixture) v.material.emission += v.local_bsdf->layered_emission(v.wo, v.at.coat);
+      if (v.mixture) own_material(v).emission += v.local_bsdf->layered_emission(v.wo, v.at.coat);
     }
     if constexpr (kSubsurface) v.local_bsdf->finish_subsurface(v.subsurface, v.wo);  // Principled v2's layers
     // Path guiding on opaque single-material surfaces with a continuous lobe.
-    v.guidable = ctx_.guide && !v.mixture && !v.transmits && (v.material.metallic < 1.0f || v.material.roughness >= 0.3f);
+    v.guidable = ctx_.guide && !v.mixture && !v.transmits && (v.material->metallic < 1.0f || v.material->roughness >= 0.3f);
     if constexpr (kSubsurface) v.guidable = v.guidable && !v.subsurface.active();
   }
 
@@ -639,8 +652,8 @@ class PathTracer {
       write_motion_vector(hit);
     }
     if (colour_passes_) {
-      out_.albedo = diffuse_color<kGlass>(v.material);
-      out_.glossy_color = glossy_color(v.material);
+      out_.albedo = diffuse_color<kGlass>(*v.material);
+      out_.glossy_color = glossy_color(*v.material);
       if (kAlpha) {  // through the transparency passed, as Cycles
         out_.albedo *= throughput_;
         out_.glossy_color *= throughput_;
@@ -653,7 +666,7 @@ class PathTracer {
 
   // Emissive surfaces emit from both faces; NEE samples them too (the mesh light).
   void camera_sees_emission(const Vertex& v) {
-    Vec3 e = kAlpha || kMedia ? throughput_ * v.material.emission : v.material.emission;
+    Vec3 e = kAlpha || kMedia ? throughput_ * v.material->emission : v.material->emission;
     if (const float k = clamp_scale(e, true); k < 1.0f) e *= k;
     out_.emission += e;  // after the media's in front of it (kMedia), else from 0
     features_.light(e, out_);
@@ -673,7 +686,7 @@ class PathTracer {
     if (!last_.delta)
       mis = power_heuristic(last_.pdf, lights_.mesh_light_pdf(size_t(hit.emitter), last_.ray_origin, last_.normal,
                                                               hit.position, kGlass && last_.two_sided, &light_choice_));
-    const Vec3 e = throughput_ * v.material.emission * mis;
+    const Vec3 e = throughput_ * v.material->emission * mis;
     features_.light(e * clamp_scale(e / branch_weight_, bounce == 1), out_);
     const Vec3 arrived = deposit(e, bounce == 1);
     if (light_groups_) credit(hit.object_settings.light_group, arrived);
@@ -694,7 +707,7 @@ class PathTracer {
                                ctx_.settings.smooth_denoising_features);
     const float cos_no = glm::dot(v.at.ns, v.wo_world);
     if (v.closure_list) closures.add_closures(*v.closure_list, cos_no, v.at.backfacing);
-    else closures.add_material(v.material, 1.0f, cos_no, v.at.backfacing);
+    else closures.add_material(*v.material, 1.0f, cos_no, v.at.backfacing);
     return closures;
   }
 
@@ -753,7 +766,7 @@ class PathTracer {
         if (light_choice_.probability(i) > 0.0f) next_event(v, bounce, i, 1.0f, u_light);
       return;
     }
-    light_choice_.score(lights_, position, v.at.ns, v.transmits, LightChoice::narrow_lobe(v.material.roughness),
+    light_choice_.score(lights_, position, v.at.ns, v.transmits, LightChoice::narrow_lobe(v.material->roughness),
                         [&](const Vec3& toward) {
                           const Vec3 wi = v.at.frame.to_local(toward);
                           return luminance(v.bsdf->template eval_lobes<kGlass>(v.view, wi).total()) /
@@ -1038,7 +1051,7 @@ class PathTracer {
     x.local_bsdf.emplace();
     x.local_bsdf->add(SubsurfaceExitBsdf(v.subsurface.exit_fresnel), 1.0f, 1.0f);
     x.bsdf = &*x.local_bsdf;
-    x.material.roughness = 1.0f;
+    own_material(x).roughness = 1.0f;
     x.wo_world = walk.direction;
     x.at = shading_point(ctx_, subsurface_.exit, x.wo_world, false, ShaderGlobals{}, nullptr);
     x.wo = x.at.frame.to_local(x.wo_world);
