@@ -629,7 +629,8 @@ class PathTracer {
     }
     if constexpr (kSubsurface) v.local_bsdf->finish_subsurface(v.subsurface, v.wo);  // Principled v2's layers
     // Path guiding on opaque single-material surfaces with a continuous lobe.
-    v.guidable = ctx_.guide && !v.mixture && !v.transmits && (v.material->metallic < 1.0f || v.material->roughness >= 0.3f);
+    v.guidable = ctx_.guide && !v.mixture && !v.transmits &&
+                 (v.material->metallic < 1.0f || v.material->roughness >= 0.3f);
     if constexpr (kSubsurface) v.guidable = v.guidable && !v.subsurface.active();
   }
 
