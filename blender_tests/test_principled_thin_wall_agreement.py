@@ -10,7 +10,8 @@ light from behind), under a bright world (the light from the front). No sun or l
 shadow rays through a smooth thin wall (a Transparent closure for rays other than the camera's)
 where Torrance stops them, so only light that BSDF sampling reaches too is used. Principled BSDFs
 with Multiscatter GGX and Thin Wall on:
-  Clear_sheet  white, Roughness 0, IOR 1.5, Transmission Weight 1 (light goes straight through);
+  Clear_sheet  white, Roughness 0, IOR 1.5, Transmission Weight 1 (light goes straight through),
+               under a Thin Film of 250 nm, IOR 2.2 (on both faces of each sheet);
   Rough_amber  base (0.95, 0.55, 0.2), Roughness 0.35, IOR 1.45, Transmission 1 (the slab's
                absorption tints, its transmission lobe roughened);
   Translucent  base (0.9, 0.7, 0.5), Roughness 0.4, Subsurface Weight 1, Anisotropy 0.3
@@ -21,7 +22,8 @@ Rendered 128x64 at 128 spp, max bounces 8, by Cycles (seeds 3 and 4: reference a
 noise) and by Torrance (seeds 1 and 2, averaged); bounds and figures: torrance_tools/
 sphere_agreement.py. Torrance is re-rendered with faults (on its side only), each of which must
 fail the bounds: Thin Wall ignored (solid glass that refracts, a random walk); the translucency
-reflected instead (Subsurface Anisotropy -1); the slab's absorption ignored (Rough_amber white).
+reflected instead (Subsurface Anisotropy -1); the slab's absorption ignored (Rough_amber white);
+the film ignored (Clear_sheet's Thin Film Thickness 0).
 Figures: in the commit that added the test.
 
 A second scene (pane_scene) lights a grey floor by a sun (40 degrees off the vertical, angle 2)
@@ -51,6 +53,7 @@ from torrance_tools.textures import checker, floor_uvs, image_node, new_image, s
 W, H, SAMPLES, BOUNCES = 128, 64, 128, 8
 RADIUS, Z = 0.62, 1.0
 WHITE = (1.0, 1.0, 1.0)
+FILM = {"Thin Film Thickness": 250.0, "Thin Film IOR": 2.2}
 
 # name, x, base colour, roughness, IOR, Specular Tint, Transmission, Subsurface, Anisotropy
 SPHERES = (
@@ -83,6 +86,7 @@ def build(scene):
                                   "Subsurface Weight": subsurface, "Subsurface Anisotropy": g,
                                   "Thin Wall": True})
         testing.sphere_object(scene, name, (x, 0.0, Z), RADIUS, mat, segments=64, rings=32)
+    set_inputs(["Clear_sheet"], **FILM)
     testing.set_world(scene, (0.55, 0.6, 0.7))
 
 
@@ -103,6 +107,10 @@ def faults(scene, directory):
         set_inputs([name], **{"Subsurface Anisotropy": g})
     set_inputs(["Rough_amber"], **{"Base Color": (*WHITE, 1.0)})
     out.append(("slab absorption ignored", render_torrance(scene, directory, "clear")))
+    set_inputs(["Rough_amber"], **{"Base Color": (*SPHERES[1][2], 1.0)})
+    set_inputs(["Clear_sheet"], **{"Thin Film Thickness": 0.0})
+    out.append(("film ignored", render_torrance(scene, directory, "filmless")))
+    set_inputs(["Clear_sheet"], **FILM)
     return out
 
 

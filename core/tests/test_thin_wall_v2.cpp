@@ -5,13 +5,17 @@
 // (roughness 0 and 1, grazing, IOR 1 and below 1) without NaN or Inf.
 #include "torrance/bsdfs/thin_wall_v2.h"
 
+#include "torrance/bsdfs/ggx_tables.h"
 #include "torrance/bsdfs/material_bsdf.h"
+#include "torrance/bsdfs/thin_film.h"
 
 #include "dielectric_charts.h"
 #include "test_helpers.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -154,6 +158,41 @@ TEST(ThinWallV2, SmoothSheetIsTheSlabStraightThrough) {
   }
   EXPECT_GT(through, kN / 2);
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(sum[k] / kN, s.reflect[k] + s.transmit[k], 0.01f) << k;
+}
+
+// Thin Film on the slab (Cycles 5.x's bsdf_thin_glass_fresnel): the front face's F the tinted
+// film over IOR at c, the back's the film seen from inside (its IOR / IOR) over 1 / IOR at cos_t;
+// a white slab keeps R + T = 1; no film (or 4.x's, which Cycles 4.x has not here) is the plain
+// slab.
+TEST(ThinWallV2, FilmOnBothFacesIsCyclesSlab) {
+  const Vec3 base(0.9f, 0.6f, 0.3f), tint(1.0f, 0.8f, 0.9f);
+  const ThinFilm film{350.0f, 1.33f, true};
+  const ThinWallV2 sheet(0.0f, 1.5f, tint, base, film), plain(0.0f, 1.5f, tint, base);
+  ThinFilm inside = film;
+  inside.ior = 1.33f / 1.5f;
+  const Vec3 f0 = ggx_tables::f0_from_ior(1.5f) * tint;
+  float largest_change = 0.0f;
+  for (float c : {1.0f, 0.6f, 0.2f}) {
+    const float cos_t = std::sqrt(1.0f - (1.0f - c * c) / 2.25f);
+    const Vec3 front = tinted_film_fresnel(film.over_dielectric(c, 1.5f), f0, 1.5f);
+    const Vec3 back = tinted_film_fresnel(inside.over_dielectric(cos_t, 1.0f / 1.5f), f0, 1.0f / 1.5f);
+    const ThinWallV2::Slab s = sheet.slab(c);
+    for (int k = 0; k < 3; ++k) {
+      const float a = std::pow(base[k], 1.0f / cos_t);
+      const float t = a * (1.0f - front[k]) * (1.0f - back[k]) / (1.0f - back[k] * back[k] * a * a);
+      EXPECT_NEAR(s.transmit[k], t, 1e-5f) << c;
+      EXPECT_NEAR(s.reflect[k], front[k] + t * back[k] * a, 1e-5f) << c;
+      largest_change = std::max(largest_change, std::abs(s.reflect[k] - plain.slab(c).reflect[k]));
+    }
+    const ThinWallV2::Slab white = ThinWallV2(0.0f, 1.5f, tint, Vec3(1.0f), film).slab(c);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(white.reflect[k] + white.transmit[k], 1.0f, 1e-5f) << c;
+    for (const ThinFilm& none : {ThinFilm{0.05f, 1.33f, true}, ThinFilm{350.0f, 1.33f, false}}) {
+      const ThinWallV2::Slab n = ThinWallV2(0.0f, 1.5f, tint, base, none).slab(c);
+      EXPECT_EQ(n.reflect, plain.slab(c).reflect);
+      EXPECT_EQ(n.transmit, plain.slab(c).transmit);
+    }
+  }
+  EXPECT_GT(largest_change, 0.02f);  // the film shows
 }
 
 // With Thin Wall the subsurface is no walk; without, the same material walks.

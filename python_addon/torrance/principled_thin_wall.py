@@ -4,10 +4,10 @@ is a thin sheet as Cycles 5.x renders it (the PRINCIPLED_V2 model, core thin_wal
 Transmission Weight a slab seen alike from both sides (no refraction), its Subsurface Weight a
 diffuse reflection and translucency split by Subsurface Anisotropy (no walk). Blender 3.x/4.x's
 Principled has no such input: nothing is added there. A graph feeding the input must fold to a
-constant (one that varies is reported and the socket's own value used). A Thin Film over the
-thin wall's transmission is not rendered (reported): the film colours the other layers only. With
-Diffuse Roughness its diffuse reflection is the energy-preserving Oren-Nayar (as Cycles 5.x) but
-its translucency stays Lambertian (Cycles': the rough one; reported)."""
+constant (one that varies is reported and the socket's own value used). A Thin Film lies on both
+faces of the slab as Cycles 5.x's (core thin_wall_v2.h). With Diffuse Roughness its diffuse
+reflection is the energy-preserving Oren-Nayar (as Cycles 5.x) but its translucency stays
+Lambertian (Cycles': the rough one; reported)."""
 
 from .nodes import finite_or, node_label
 
@@ -26,13 +26,9 @@ def read_thin_wall(reader, mat, node):
     return dict(thin_wall=True) if on else {}
 
 
-def report_film_on_thin_wall(reader, mat, node, args):
-    """Warns when add_material() arguments `args` of `node` give a thin wall with transmission a
-    Thin Film, which Torrance does not lay over the slab (Cycles does)."""
-    if (args.get("thin_wall") and args.get("transmission", 0.0) > 0.0
-            and args.get("thin_film_thickness", 0.0) > 0.1):
-        reader.reporter.warning(f"Material '{mat.name}': Torrance renders the transmission of "
-                                f"{node_label(node)} with Thin Wall without its Thin Film")
+def report_rough_translucency(reader, mat, node, args):
+    """Warns when add_material() arguments `args` of `node` give a thin wall's translucency a
+    Diffuse Roughness, which Torrance renders Lambertian (Cycles: rough)."""
     if (args.get("thin_wall") and args.get("subsurface", 0.0) > 0.0
             and (args.get("diffuse_roughness", 0.0) > 0.0
                  or 'diffuse_roughness' in reader._program_inputs)):

@@ -41,7 +41,8 @@ float clean(float x, float fallback) { return std::isfinite(x) ? x : fallback; }
 
 }  // namespace
 
-ThinWallV2::ThinWallV2(float roughness, float ior, const Vec3& specular_tint, const Vec3& base_color) {
+ThinWallV2::ThinWallV2(float roughness, float ior, const Vec3& specular_tint, const Vec3& base_color,
+                       const ThinFilm& film) {
   roughness_ = clamp01(clean(roughness, 0.0f));
   alpha_ = roughness_ * roughness_;
   ior_ = std::min(std::max(clean(ior, 1.5f), 1e-5f), 1e3f);
@@ -52,6 +53,15 @@ ThinWallV2::ThinWallV2(float roughness, float ior, const Vec3& specular_tint, co
   const float eta = ior_;
   alpha_t_ = clamp01(alpha_ * 3.4f * (eta - 1.0f) * (eta - 0.5f) * (eta - 0.5f) / (eta * eta * eta));
   roughness_t_ = std::sqrt(alpha_t_);
+  if (film.active() && film.cycles5) {  // Blender 5.x's node: its film is 5.x's
+    film_ = film_inside_ = film;
+    film_inside_.ior = film.ior / ior_;
+  }
+}
+
+Vec3 ThinWallV2::face_fresnel(float c, float eta, const ThinFilm& film) const {
+  if (film.active()) return tinted_film_fresnel(film.over_dielectric(c, eta), f0_, eta);
+  return glm::mix(f0_, Vec3(1.0f), ggx_tables::dielectric_fresnel_factor(c, eta));
 }
 
 bool ThinWallV2::reflection_is_delta() const { return alpha_ < ggx_tables::kDeltaAlpha; }
@@ -61,21 +71,22 @@ ThinWallV2::Slab ThinWallV2::slab(float c) const {
   Slab out;
   c = clamp01(c);
   const float f_real = fresnel_dielectric(c, ior_);
-  const Vec3 f = glm::mix(f0_, Vec3(1.0f), ggx_tables::dielectric_fresnel_factor(c, ior_));
+  const Vec3 front = face_fresnel(c, ior_, film_);
   // The refracted cosine inside the slab; none at total internal reflection (ior < 1).
   const float cos_t2 = 1.0f - (1.0f - c * c) / (ior_ * ior_);
   if (!(cos_t2 > 0.0f) || f_real >= 1.0f) {
-    out.reflect = f;
+    out.reflect = front;
     return out;
   }
   const float cos_t = std::sqrt(cos_t2);
+  const Vec3 back = film_.active() ? face_fresnel(cos_t, 1.0f / ior_, film_inside_) : front;
   const Vec3 absorbed = glm::pow(base_, Vec3(1.0f / cos_t));
-  const Vec3 once = Vec3(1.0f) - f;
-  const Vec3 fc = f * absorbed;
+  const Vec3 through = (Vec3(1.0f) - front) * (Vec3(1.0f) - back);
+  const Vec3 fc = back * absorbed;
   const Vec3 denom = Vec3(1.0f) - fc * fc;
   for (int k = 0; k < 3; ++k)
-    out.transmit[k] = denom[k] > 0.0f ? absorbed[k] * once[k] * once[k] / denom[k] : 0.0f;
-  out.reflect = f + out.transmit * fc;
+    out.transmit[k] = denom[k] > 0.0f ? absorbed[k] * through[k] / denom[k] : 0.0f;
+  out.reflect = front + out.transmit * fc;
   return out;
 }
 

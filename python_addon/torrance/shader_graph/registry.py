@@ -176,7 +176,7 @@ CLOSURES = {
                                 "version); 4.2+ Thin Film Thickness and IOR (any graph; over "
                                 "the dielectric and the transmission, in 5.x the metal too, as "
                                 "Cycles of the version); 5.x Thin Wall (a thin slab and "
-                                "translucency, as Cycles 5.x, without the film; shadow rays "
+                                "translucency, as Cycles 5.x, the film on both faces; shadow rays "
                                 "stop at it); 4.3+ Diffuse Roughness (any graph; Cycles' "
                                 "energy-preserving Oren-Nayar); 5.3 Transmission Dispersion "
                                 "Scale and Abbe Number (any graph; one wavelength per path as "

@@ -23,6 +23,13 @@
 //   and the path tracer takes the straight pass (BsdfSample::straight_through) as a transparent
 //   step; the camera's ray sees the delta lobe.
 //
+//   Thin Film (thin_film.h; Cycles 5.x's film, its cutoff): each face's F is the film's
+//   reflectance over the slab scaled by the tint as a solid glass's (tinted_film_fresnel): the
+//   front at c over IOR ior, the back at cos_t, seen from inside, over 1 / ior with the film's
+//   IOR / ior (Cycles' adjust_thin_film_ior_at_backface); then
+//       T = C (1 - F1)(1 - F2) / (1 - (F2 C)^2),     R = F1 + T F2 C,
+//   which without a film is the sum above (F1 = F2 = F). A white slab keeps R + T = 1.
+//
 //   Subsurface (weight the subsurface layer's, ViewTerms::translucent + the diffuse share): the
 //   walk becomes a Lambertian reflection of weight (1 - g) / 2 and a Lambertian transmission
 //   (about -n) of weight (1 + g) / 2, g = Subsurface Anisotropy (each clamped to [0, 1]; Cycles'
@@ -35,12 +42,14 @@
 #pragma once
 
 #include "torrance/bsdfs/bsdf.h"
+#include "torrance/bsdfs/thin_film.h"
 
 namespace torrance {
 
 class ThinWallV2 {
  public:
-  ThinWallV2(float roughness, float ior, const Vec3& specular_tint, const Vec3& base_color);
+  ThinWallV2(float roughness, float ior, const Vec3& specular_tint, const Vec3& base_color,
+             const ThinFilm& film = ThinFilm{});
 
   // The slab's reflectance and transmittance for a viewer at cos c (Cycles' bsdf_thin_glass_fresnel).
   struct Slab {
@@ -70,6 +79,9 @@ class ThinWallV2 {
   Vec3 f0_, base_;
   float alpha_, alpha_t_, roughness_, roughness_t_, ior_;
   Vec3 fss_reflect_;
+  ThinFilm film_, film_inside_;  // on the front face, and on the back seen from inside (IOR / ior)
+  // A face's F: the dielectric's generalized Schlick term or, with a film, the tinted film's.
+  Vec3 face_fresnel(float c, float eta, const ThinFilm& film) const;
 };
 
 }  // namespace torrance
