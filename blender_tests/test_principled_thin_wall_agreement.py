@@ -15,7 +15,8 @@ with Multiscatter GGX and Thin Wall on:
   Rough_amber  base (0.95, 0.55, 0.2), Roughness 0.35, IOR 1.45, Transmission 1 (the slab's
                absorption tints, its transmission lobe roughened);
   Translucent  base (0.9, 0.7, 0.5), Roughness 0.4, Subsurface Weight 1, Anisotropy 0.3
-               (diffuse reflection 0.35, translucency 0.65);
+               (diffuse reflection 0.35, translucency 0.65), Diffuse Roughness 0.9 (both
+               Cycles' energy-preserving Oren-Nayar);
   Mixed        base (0.3, 0.6, 0.9), Roughness 0.2, IOR 1.6, Specular Tint (1, 0.7, 0.5),
                Transmission 0.5, Subsurface Weight 0.6.
 Rendered 128x64 at 128 spp, max bounces 8, by Cycles (seeds 3 and 4: reference and its own
@@ -23,7 +24,8 @@ noise) and by Torrance (seeds 1 and 2, averaged); bounds and figures: torrance_t
 sphere_agreement.py. Torrance is re-rendered with faults (on its side only), each of which must
 fail the bounds: Thin Wall ignored (solid glass that refracts, a random walk); the translucency
 reflected instead (Subsurface Anisotropy -1); the slab's absorption ignored (Rough_amber white);
-the film ignored (Clear_sheet's Thin Film Thickness 0).
+the film ignored (Clear_sheet's Thin Film Thickness 0); the Diffuse Roughness ignored (Lambertian
+diffuse and translucency).
 Figures: in the commit that added the test.
 
 A second scene (pane_scene) lights a grey floor by a sun (40 degrees off the vertical, angle 2)
@@ -87,6 +89,7 @@ def build(scene):
                                   "Thin Wall": True})
         testing.sphere_object(scene, name, (x, 0.0, Z), RADIUS, mat, segments=64, rings=32)
     set_inputs(["Clear_sheet"], **FILM)
+    set_inputs(["Translucent"], **{"Diffuse Roughness": 0.9})
     testing.set_world(scene, (0.55, 0.6, 0.7))
 
 
@@ -111,6 +114,9 @@ def faults(scene, directory):
     set_inputs(["Clear_sheet"], **{"Thin Film Thickness": 0.0})
     out.append(("film ignored", render_torrance(scene, directory, "filmless")))
     set_inputs(["Clear_sheet"], **FILM)
+    set_inputs(["Translucent"], **{"Diffuse Roughness": 0.0})
+    out.append(("Diffuse Roughness ignored", render_torrance(scene, directory, "lambert")))
+    set_inputs(["Translucent"], **{"Diffuse Roughness": 0.9})
     return out
 
 

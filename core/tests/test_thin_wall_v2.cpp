@@ -76,6 +76,7 @@ TEST(ThinWallV2, SampleAgreesWithEvalAndPdf) {
     m.ior = (const float[]){1.33f, 1.5f, 2.4f, 0.75f}[rng.next_u32() % 4];
     m.metallic = n % 3 == 0 ? 0.3f : 0.0f;
     m.subsurface_anisotropy = n % 5 == 0 ? 0.6f : 0.0f;
+    m.diffuse_roughness = n % 4 == 0 ? 0.7f : 0.0f;  // the rough translucency (and diffuse)
     const MaterialBsdf bsdf(m, BrdfModel::PrincipledV2);
     Vec3 wo = test::uniform_sphere(rng);
     wo.z = std::abs(wo.z);
@@ -110,12 +111,14 @@ TEST(ThinWallV2, WhiteFurnace) {
     }
     Material t = thin_material(0.5f, 0.0f, 1.0f, Vec3(1.0f));
     t.ior = 1.0f;
-    for (float g : {0.0f, 0.7f}) {
-      t.subsurface_anisotropy = g;
-      const double a = test::mean_sample_weight(MaterialBsdf(t, BrdfModel::PrincipledV2), wo, 200000, 19);
-      std::printf(" translucent g=%.1f %.4f", g, a);
-      EXPECT_NEAR(a, 1.0, 0.01) << g << " " << cos_o;
-    }
+    for (float g : {0.0f, 0.7f})
+      for (float rough : {0.0f, 0.8f}) {  // Lambert, and the energy-preserving Oren-Nayar pair
+        t.subsurface_anisotropy = g;
+        t.diffuse_roughness = rough;
+        const double a = test::mean_sample_weight(MaterialBsdf(t, BrdfModel::PrincipledV2), wo, 200000, 19);
+        std::printf(" translucent g=%.1f dr=%.1f %.4f", g, rough, a);
+        EXPECT_NEAR(a, 1.0, 0.01) << g << " " << rough << " " << cos_o;
+      }
     std::printf("\n");
   }
 }
@@ -193,6 +196,31 @@ TEST(ThinWallV2, FilmOnBothFacesIsCyclesSlab) {
     }
   }
   EXPECT_GT(largest_change, 0.02f);  // the film shows
+}
+
+// Diffuse Roughness makes the translucency Cycles' rough translucent closure: the energy-preserving
+// Oren-Nayar of the base colour reflecting the light mirrored through the surface (against the
+// Lambertian lobe of the same weight: the ratio is EON's over mu / pi); 0 keeps Lambert.
+TEST(ThinWallV2, RoughTranslucencyIsOrenNayarOfTheMirroredLight) {
+  const Vec3 base(0.8f, 0.5f, 0.3f);
+  Material m = thin_material(0.4f, 0.0f, 1.0f, base);
+  m.subsurface_anisotropy = 1.0f;  // all translucency
+  Material lambert = m;
+  m.diffuse_roughness = 0.6f;
+  const EnergyPreservingOrenNayar eon(base, 0.6f);
+  const Vec3 wo = test::direction(0.7f, 0.4f);
+  float largest = 0.0f;
+  for (const Vec3& light : {test::direction(0.9f, 2.0f), test::direction(0.3f, 0.5f), test::direction(0.5f, 3.5f)}) {
+    const Vec3 wi(light.x, light.y, -light.z);  // on the far side
+    const Vec3 rough = MaterialBsdf(m, BrdfModel::PrincipledV2).eval(wo, wi);
+    const Vec3 flat = MaterialBsdf(lambert, BrdfModel::PrincipledV2).eval(wo, wi);
+    const Vec3 expected = eon.eval(wo, light) / (light.z * kInvPi);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(rough[k] / flat[k], expected[k], 1e-4f) << k;
+      largest = std::max(largest, std::abs(expected[k] - 1.0f));
+    }
+  }
+  EXPECT_GT(largest, 0.05f);  // the roughness shows
 }
 
 // With Thin Wall the subsurface is no walk; without, the same material walks.

@@ -58,7 +58,7 @@ from .shader_aovs import AovPrograms
 from .principled_sheen import read_sheen
 from .principled_subsurface import read_subsurface
 from .principled_specular import read_specular
-from .principled_thin_wall import read_thin_wall, report_rough_translucency
+from .principled_thin_wall import read_thin_wall
 from .principled_transmission import read_dispersion, read_transmission
 from .thin_film import read_thin_film
 from .transparent_mix import read_transparent_mix
@@ -362,7 +362,6 @@ class MaterialReader:
         alpha = _clamp(finite_or(alpha, 1.0), 0.0, 1.0)
         if alpha < 1.0 or alpha_tex >= 0:
             out.update(alpha=alpha, alpha_texture=alpha_tex)
-        report_rough_translucency(self, mat, node, out)
         if version == 'v2' and ('coat_weight' in out or 'sheen_weight' in out):
             # Cycles 4.x: the coat and sheen darken the emission (in a mix of shaders too)
             out['emission_under_layers'] = True

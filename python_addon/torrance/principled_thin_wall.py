@@ -6,10 +6,9 @@ diffuse reflection and translucency split by Subsurface Anisotropy (no walk). Bl
 Principled has no such input: nothing is added there. A graph feeding the input must fold to a
 constant (one that varies is reported and the socket's own value used). A Thin Film lies on both
 faces of the slab as Cycles 5.x's (core thin_wall_v2.h). With Diffuse Roughness its diffuse
-reflection is the energy-preserving Oren-Nayar (as Cycles 5.x) but its translucency stays
-Lambertian (Cycles': the rough one; reported)."""
+reflection and translucency are Cycles 5.x's energy-preserving Oren-Nayar pair."""
 
-from .nodes import finite_or, node_label
+from .nodes import finite_or
 
 _SOCKET = "Thin Wall"
 
@@ -25,13 +24,3 @@ def read_thin_wall(reader, mat, node):
         on = False
     return dict(thin_wall=True) if on else {}
 
-
-def report_rough_translucency(reader, mat, node, args):
-    """Warns when add_material() arguments `args` of `node` give a thin wall's translucency a
-    Diffuse Roughness, which Torrance renders Lambertian (Cycles: rough)."""
-    if (args.get("thin_wall") and args.get("subsurface", 0.0) > 0.0
-            and (args.get("diffuse_roughness", 0.0) > 0.0
-                 or 'diffuse_roughness' in reader._program_inputs)):
-        reader.reporter.warning(f"Material '{mat.name}': Torrance renders the translucency of "
-                                f"{node_label(node)} with Thin Wall Lambertian, without its "
-                                f"Diffuse Roughness")

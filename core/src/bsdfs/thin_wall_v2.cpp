@@ -42,7 +42,8 @@ float clean(float x, float fallback) { return std::isfinite(x) ? x : fallback; }
 }  // namespace
 
 ThinWallV2::ThinWallV2(float roughness, float ior, const Vec3& specular_tint, const Vec3& base_color,
-                       const ThinFilm& film) {
+                       const ThinFilm& film, float diffuse_roughness)
+    : translucency_(glm::clamp(base_color, Vec3(0.0f), Vec3(1.0f)), clamp01(clean(diffuse_roughness, 0.0f))) {
   roughness_ = clamp01(clean(roughness, 0.0f));
   alpha_ = roughness_ * roughness_;
   ior_ = std::min(std::max(clean(ior, 1.5f), 1e-5f), 1e3f);
@@ -119,7 +120,7 @@ LobeEval ThinWallV2::eval(const View& v, const Vec3& wi) const {
     return f;
   }
   if (!transmission_is_delta()) f.glossy = v.transmit * ggx_reflection(wo, mirror_z(wi), alpha_t_).f_cos;
-  f.diffuse = v.translucent * (-wi.z * kInvPi);
+  f.diffuse = v.translucent * translucency_.eval(wo, mirror_z(wi));
   return f;
 }
 

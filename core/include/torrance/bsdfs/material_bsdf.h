@@ -299,7 +299,8 @@ class MaterialBsdf {
   // Thin Wall: the sheet, weighted transmission (1 - metallic), chosen with a probability that
   // follows its share of the weights (at most 0.9 while the model's lobes reflect something).
   void make_thin_wall(const Material& m, float metallic, float roughness) {
-    thin_.emplace(ThinWallV2(roughness, m.ior, m.specular_tint_color, m.base_color, m.thin_film()));
+    thin_.emplace(
+        ThinWallV2(roughness, m.ior, m.specular_tint_color, m.base_color, m.thin_film(), m.diffuse_roughness));
     glass_weight_ = clamp01(m.transmission) * (1.0f - metallic);
     const float g = std::isfinite(m.subsurface_anisotropy) ? m.subsurface_anisotropy : 0.0f;
     const float translucent = (1.0f - metallic) * (1.0f - clamp01(m.transmission)) * clamp01(m.subsurface) *

@@ -31,10 +31,12 @@
 //   which without a film is the sum above (F1 = F2 = F). A white slab keeps R + T = 1.
 //
 //   Subsurface (weight the subsurface layer's, ViewTerms::translucent + the diffuse share): the
-//   walk becomes a Lambertian reflection of weight (1 - g) / 2 and a Lambertian transmission
-//   (about -n) of weight (1 + g) / 2, g = Subsurface Anisotropy (each clamped to [0, 1]; Cycles'
-//   Oren-Nayar pair at Diffuse Roughness 0, which Torrance renders). The reflection share joins
-//   the diffuse layer (principled_v2.cpp); the transmission is the third lobe here.
+//   walk becomes a diffuse reflection of weight (1 - g) / 2 and a diffuse transmission (about -n)
+//   of weight (1 + g) / 2, g = Subsurface Anisotropy (each clamped to [0, 1]): Lambertian at
+//   Diffuse Roughness 0, else Cycles' Oren-Nayar pair (oren_nayar_eon.h of the base colour and
+//   Diffuse Roughness; the transmission is its reflection of the light mirrored through the
+//   surface, Cycles' rough translucent closure). The reflection share joins the diffuse layer
+//   (principled_v2.cpp); the transmission is the third lobe here, sampled by the cosine.
 //
 // Frame: the shading frame turned to the viewer (wo.z > 0); wi.z < 0 is the far side. eval()
 // includes |cos_i| (bsdf.h). Sampling picks a lobe by the luminance of its weight, then R and T
@@ -42,6 +44,7 @@
 #pragma once
 
 #include "torrance/bsdfs/bsdf.h"
+#include "torrance/bsdfs/oren_nayar_eon.h"
 #include "torrance/bsdfs/thin_film.h"
 
 namespace torrance {
@@ -49,7 +52,7 @@ namespace torrance {
 class ThinWallV2 {
  public:
   ThinWallV2(float roughness, float ior, const Vec3& specular_tint, const Vec3& base_color,
-             const ThinFilm& film = ThinFilm{});
+             const ThinFilm& film = ThinFilm{}, float diffuse_roughness = 0.0f);
 
   // The slab's reflectance and transmittance for a viewer at cos c (Cycles' bsdf_thin_glass_fresnel).
   struct Slab {
@@ -79,7 +82,8 @@ class ThinWallV2 {
   Vec3 f0_, base_;
   float alpha_, alpha_t_, roughness_, roughness_t_, ior_;
   Vec3 fss_reflect_;
-  ThinFilm film_, film_inside_;  // on the front face, and on the back seen from inside (IOR / ior)
+  ThinFilm film_, film_inside_;
+  EnergyPreservingOrenNayar translucency_;  // the translucent lobe (Lambert at Diffuse Roughness 0)  // on the front face, and on the back seen from inside (IOR / ior)
   // A face's F: the dielectric's generalized Schlick term or, with a film, the tinted film's.
   Vec3 face_fresnel(float c, float eta, const ThinFilm& film) const;
 };
