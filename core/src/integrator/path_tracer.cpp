@@ -158,11 +158,11 @@ class PathTracer {
   }
 
   // trace() with everything it calls in this file inlined into it, recursively (GCC's flatten).
-  // The comparison scenes' sampling time at 64 spp, builds alternated: 0.951 of before (geometric
-  // mean, 0.907-0.981, images the same) with the 8 tracers of trace_path flattened; 0.915 on six
-  // of them with all 44; inlining the stages alone 0.984, flattening shade, next_event and
-  // scatter 0.986. It costs compile time (this file 65 s instead of 30 s here; all 44: 210 s),
-  // so trace_path takes it for the common feature sets only.
+  // The comparison scenes' sampling time at 64 spp, builds alternated, the same source with and
+  // without it: 0.976 (0.966-0.983 on five scenes, images the same). Against other builds it
+  // looked larger (0.951, and 0.915 with all 44 tracers flattened), but two builds of one source
+  // differ by ~2 % (code layout), so take 2-3 %. It costs compile time (this file 65 s instead of
+  // 30 s here; all 44: 210 s), so trace_path takes it for the common feature sets only.
   [[gnu::flatten]] void trace_inlined() { trace(); }
 
   // The path, stage by stage.
