@@ -63,12 +63,13 @@ float GlassBsdf::fresnel(const Vec3& wo) const {
 
 void GlassBsdf::tint_reflection(const Vec3& cspec0) {
   cspec0_ = glm::clamp(cspec0, Vec3(0.0f), Vec3(1.0f));
+  tint_f0_ = fresnel_dielectric(1.0f, eta_);
   tinted_ = cspec0_ != Vec3(1.0f);
 }
 
 Vec3 GlassBsdf::reflection_tint(float cos_ih, float etap) const {
   if (!tinted_) return Vec3(1.0f);
-  return fresnel_interpolated(cspec0_, cos_ih, etap, fresnel_dielectric(1.0f, etap));
+  return fresnel_interpolated(cspec0_, cos_ih, etap, tint_f0_);
 }
 
 GlassBsdf::Weights GlassBsdf::weights(const Vec3& wo) const {

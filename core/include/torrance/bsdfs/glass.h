@@ -12,9 +12,10 @@
 // 1 - (1 - r)(1 - transmission roughness) (Cycles 3.4 with GGX), and tints the reflection by its
 // Specular Tint (tint_reflection: Cycles' GGX_FRESNEL closure, its colour per microfacet
 // fresnel_interpolated(cspec0, wi.h, etap) with cspec0 = base colour x tint + 1 - tint); the
-// Glass node tints both lobes and uses one roughness. The energy is therefore not exactly conserved for rough glass (a
-// refracting microfacet whose own Fresnel would reflect still refracts; one at total internal
-// reflection loses its sample), exactly as in Cycles 3.4; smooth glass conserves it.
+// Glass node tints both lobes and uses one roughness. The energy is therefore not exactly
+// conserved for rough glass (a refracting microfacet whose own Fresnel would reflect still
+// refracts; one at total internal reflection loses its sample), exactly as in Cycles 3.4; smooth
+// glass conserves it.
 //
 // Frame and sides as RoughDielectricBsdf: z is the surface's OUTWARD normal, a direction with
 // z > 0 is outside (IOR 1), z < 0 inside (IOR `ior`); reflection keeps wi on wo's side.
@@ -91,6 +92,7 @@ class GlassBsdf {
 
   Vec3 reflect_color_, refract_color_;
   Vec3 cspec0_{1.0f};
+  float tint_f0_ = 0.0f;  // F_dielectric(1, ior), the same from either side
   bool tinted_ = false;
   float alpha_r_, alpha_t_, eta_;
   bool reflect_delta_, refract_delta_, invisible_, beckmann_, refraction_only_;

@@ -82,8 +82,8 @@ class ThinWallV2 {
   Vec3 f0_, base_;
   float alpha_, alpha_t_, roughness_, roughness_t_, ior_;
   Vec3 fss_reflect_;
-  ThinFilm film_, film_inside_;
-  EnergyPreservingOrenNayar translucency_;  // the translucent lobe (Lambert at Diffuse Roughness 0)  // on the front face, and on the back seen from inside (IOR / ior)
+  ThinFilm film_, film_inside_;  // on the front face, and on the back seen from inside (IOR / ior)
+  EnergyPreservingOrenNayar translucency_;  // the translucent lobe (Lambert at Diffuse Roughness 0)
   // A face's F: the dielectric's generalized Schlick term or, with a film, the tinted film's.
   Vec3 face_fresnel(float c, float eta, const ThinFilm& film) const;
 };
