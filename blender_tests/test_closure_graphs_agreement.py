@@ -113,22 +113,29 @@ def glass(name):
                             {"IOR": ((1.2, 1.2, 1.2), (1.9, 1.9, 1.9))})
 
 
-def spheres_3_4():
-    """Principled v1 spheres: a Transmission of 0 and 1 (the glass's own IOR and roughness), a
+def principled_v1(name, values, checkers):
+    """(name, a Principled v1 material of `values` and Checker-fed `checkers`)."""
+    return (name, closure_material(name, 'ShaderNodeBsdfPrincipled', values, checkers))
+
+
+def glass_spheres_3_4():
+    """Principled v1 glass: a Transmission of 0 and 1 (the glass's own IOR and roughness), and a
     glass of Roughness 0.3 whose Transmission Roughness is 0 and 0.7 (a smoother glass casts the
-    sun's caustics that make both engines' 64-spp images fireflies), and three dark red
-    dielectrics of Roughness 0.3, 0.45 and 0.6 whose Specular Tint is 0 and 1 (Specular 2: F0
-    0.16)."""
-    def v1(name, values, checkers):
-        return (name, closure_material(name, 'ShaderNodeBsdfPrincipled', values, checkers))
-    return [v1("Glass mask", {"Base Color": (0.9, 0.85, 0.8, 1.0), "Roughness": 0.1},
-               {"Transmission": ((0.0, 0.0, 0.0), (1.0, 1.0, 1.0))}),
-            v1("Rough glass", {"Base Color": (0.95, 0.95, 0.95, 1.0), "Roughness": 0.3,
-                               "Transmission": 1.0},
-               {"Transmission Roughness": ((0.0, 0.0, 0.0), (0.7, 0.7, 0.7))}),
-            *(v1(f"Tinted {r}", {"Base Color": (0.3, 0.04, 0.01, 1.0), "Roughness": r,
-                                 "Specular": 2.0},
-                 {"Specular Tint": ((0.0, 0.0, 0.0), (1.0, 1.0, 1.0))}) for r in (0.3, 0.45, 0.6))]
+    sun's caustics that make both engines' 64-spp images fireflies)."""
+    return [principled_v1("Glass mask", {"Base Color": (0.9, 0.85, 0.8, 1.0), "Roughness": 0.1},
+                          {"Transmission": ((0.0, 0.0, 0.0), (1.0, 1.0, 1.0))}),
+            principled_v1("Rough glass", {"Base Color": (0.95, 0.95, 0.95, 1.0),
+                                          "Roughness": 0.3, "Transmission": 1.0},
+                          {"Transmission Roughness": ((0.0, 0.0, 0.0), (0.7, 0.7, 0.7))})]
+
+
+def tinted_spheres_3_4():
+    """Three dark red Principled v1 dielectrics of Roughness 0.3, 0.45 and 0.6 whose Specular
+    Tint is 0 and 1 (Specular 2: F0 0.16)."""
+    return [principled_v1(f"Tinted {r}", {"Base Color": (0.3, 0.04, 0.01, 1.0), "Roughness": r,
+                                          "Specular": 2.0},
+                          {"Specular Tint": ((0.0, 0.0, 0.0), (1.0, 1.0, 1.0))})
+            for r in (0.3, 0.45, 0.6)]
 
 
 def cycles4_3():
@@ -176,11 +183,11 @@ def main():
         return tuple((f"{what} read as their sockets' values", MaterialReader, "_with_program",
                       graph_dropped(key)) for what, key in dropped)
     if bpy.app.version < (4, 0, 0):
-        agree_on_scene(partial(graph_spheres, spheres=lambda: spheres_3_4()[:2]), 256, BOUNCES,
+        agree_on_scene(partial(graph_spheres, spheres=glass_spheres_3_4), 256, BOUNCES,
                        "Closure input graphs (3.4 glass)", faults=faults(
                            [("the Transmission", 'transmission'),
                             ("the Transmission Roughness", 'transmission_roughness')]))
-        agree_on_scene(partial(graph_spheres, spheres=lambda: spheres_3_4()[2:]), 256, BOUNCES,
+        agree_on_scene(partial(graph_spheres, spheres=tinted_spheres_3_4), 256, BOUNCES,
                        "Closure input graphs (3.4 tint)",
                        faults=faults([("the Specular Tint", 'specular_tint')]))
         return
