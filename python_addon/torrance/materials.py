@@ -529,6 +529,11 @@ class MeshNeeds(NamedTuple):
         return any(k[0] == 'object_info' and isinstance(k[1], tuple)
                    and k[1][0].startswith('instancer_') for k, _ in self.attributes)
 
+    def particles(self):
+        """Whether the materials read Particle Info (export/particles.py, per instance)."""
+        from .export.mesh_attributes import PARTICLE_KEYS
+        return any(k in PARTICLE_KEYS for k, _ in self.attributes)
+
     def duplis(self):
         """Whether the materials read an instance's instancer coordinates (dupli_record)."""
         return any(k in (('object_info', 'dupli_generated'), ('object_info', 'dupli_uv'))

@@ -16,6 +16,7 @@ import numpy as np
 
 from .mesh import prototype_arrays, read_local_mesh
 from .mesh_attributes import instance_constant_layers, instances_info, object_random_id
+from .particles import ParticleTable
 
 
 CHUNK = 65536            # matrices kept as objects before they are converted to numbers
@@ -26,12 +27,12 @@ class Source:
     matrices of everything that shows it: copies kept by `add`, converted to float32 rows
     CHUNK at a time (transforms() gives them all)."""
     __slots__ = ("name", "mesh_key", "table", "instanced", "matrices", "converted", "_append",
-                 "info_of", "random_ids", "colors", "duplis", "instancers", "pass_index",
-                 "holdout", "shadow_catcher", "light_group", "light_links", "cryptomatte",
-                 "core_ids")
+                 "info_of", "random_ids", "colors", "duplis", "instancers", "particles",
+                 "pass_index", "holdout", "shadow_catcher", "light_group", "light_links",
+                 "cryptomatte", "core_ids")
 
     def __init__(self, name, mesh_key, table, instanced, info_of=None, duplis=False,
-                 instancers=False, pass_index=0):
+                 instancers=False, pass_index=0, particles=False):
         self.name = name
         self.pass_index = float(pass_index)   # the object's (the Object Index pass)
         self.holdout = False          # a holdout object (holdouts.py), or its instancer is
@@ -56,6 +57,8 @@ class Source:
         self.duplis = [] if self.random_ids is not None and duplis else None
         # With materials reading Instancer attributes: each instance's instancer_record.
         self.instancers = [] if self.random_ids is not None and instancers else None
+        # With materials reading Particle Info: each instance's ParticleTable.record.
+        self.particles = [] if self.random_ids is not None and particles else None
 
     def add(self, matrix):
         """Keeps a copy of a world matrix (a mathutils Matrix, e.g. inst.matrix_world: valid
@@ -72,9 +75,10 @@ class Source:
     def count(self):
         return CHUNK * len(self.converted) + len(self.matrices)
 
-    def infos(self, transforms, keep):
+    def infos(self, transforms, keep, particle_table=None):
         """{key: float32 (n, 3)} Object Info of the instances kept (bool mask `keep` over
-        transforms (N, 3, 4)), or None when no material reads it."""
+        transforms (N, 3, 4)), or None when no material reads it; Particle Info's from
+        particle_table (the ParticleTable of the records)."""
         if self.info_of is None:
             return None
         ids = (np.asarray(self.random_ids, np.int64) if self.random_ids is not None
@@ -84,8 +88,10 @@ class Source:
                 if rows is not None else None
         instancers = [r for r, k in zip(self.instancers, keep, strict=True) if k] \
             if self.instancers is not None else None
+        particles = (particle_table.constants(np.asarray(self.particles, np.int64)[keep])
+                     if self.particles is not None else None)
         return instances_info(self.info_of, transforms[keep], ids[keep],
-                              kept(self.duplis, 5), kept(self.colors, 4), instancers)
+                              kept(self.duplis, 5), kept(self.colors, 4), instancers, particles)
 
     def transforms(self):
         """float32 (N, 3, 4): the top three rows of every matrix added, in order."""
@@ -106,13 +112,14 @@ def _rows(matrices):
 class InstanceExport:
     """The prototypes and instance groups of one export into tc_scene."""
 
-    def __init__(self, tc_scene, materials, reporter):
+    def __init__(self, tc_scene, materials, reporter, frame=0.0):
         self.scene = tc_scene
         self.materials = materials
         self.reporter = reporter
         self.prototypes = {}   # mesh key -> (prototype id, triangles) or None (nothing to render)
         self.pending = {}      # mesh key -> (evaluated object, name): read by read_pending()
         self.sources = []      # every Source, in depsgraph order
+        self.particles = ParticleTable(frame)   # the particles instances show (Particle Info)
 
     def source(self, obj, name, instanced):
         """A new Source for an evaluated object: its slots' materials read now."""
@@ -125,7 +132,7 @@ class InstanceExport:
         info_of = getattr(obj, "original", obj) if needs_uvs.object_info() else None
         src = Source(name, (data.as_pointer() if data is not None else 0, needs_uvs),
                      slot_to_material, instanced, info_of, needs_uvs.duplis(),
-                     needs_uvs.instancers(), obj.pass_index)
+                     needs_uvs.instancers(), obj.pass_index, needs_uvs.particles())
         self.sources.append(src)
         return src
 
@@ -177,7 +184,7 @@ class InstanceExport:
             for src in srcs:
                 m = src.transforms()
                 finite = np.isfinite(m).all(axis=(1, 2))
-                info = src.infos(m, finite)
+                info = src.infos(m, finite, self.particles)
                 src.core_ids = np.full(len(m), -1, dtype=np.int64)
                 if not finite.all():
                     bad = int(len(m) - np.count_nonzero(finite))

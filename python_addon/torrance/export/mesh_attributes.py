@@ -15,8 +15,9 @@ Keys (shader_graph's attribute requests):
                        a number itself, a 2D vector its x, else the mean; a colour's alpha, else 1)
   ('color_alpha', name)  a colour attribute's alpha as x (the Color Attribute node's Alpha)
   ('object_info', k)   Object Info's per-object constants (k: location, color, alpha, index,
-                       random; axis_x, axis_y, axis_z: the matrix's columns, for the shader
-                       graph's object transforms; ('attribute', name) and
+                       random; particle_*: Particle Info's, PARTICLE_KEYS; axis_x, axis_y,
+                       axis_z: the matrix's columns, for the shader graph's object
+                       transforms; ('attribute', name) and
                        ('attribute_fac_alpha', name): an Object attribute), not the mesh's:
                        object_info() gives them,
                        add_world_mesh adds them to a world-space mesh; an instance of a
@@ -208,15 +209,34 @@ def _jenkins_final(a, b, c):
     return c
 
 
+def hash_uint2(kx, ky=0):
+    """Cycles' hash_uint2 (lookup3's two-word hash) of 32-bit words: Python ints, or numpy
+    uint64 arrays holding them (every step is taken modulo 2^32)."""
+    init = (0xDEADBEEF + (2 << 2) + 13) & _U32
+    return _jenkins_final((init + kx) & _U32, (init + ky) & _U32, init)
+
+
+def uint_to_unit_float(ids):
+    """Cycles' uint_to_float_incl in float32: the 32-bit words ids (an array) times
+    1 / 0xFFFFFFFF, so 0..1 inclusive (Object Info's and Particle Info's Random)."""
+    words = (np.asarray(ids, np.int64) & _U32).astype(np.float32)
+    return words * (np.float32(1.0) / np.float32(_U32))
+
+
 def object_random_id(name):
     """Cycles 3.4's random id of a non-instanced object: its name hashed (each byte, as a signed
     char, into i * 37 + byte) and that mixed with 0 by lookup3's two-word hash."""
     h = 0
     for byte in name.encode("utf-8"):
         h = (h * 37 + (byte if byte < 128 else byte | 0xFFFFFF00)) & _U32
-    init = (0xDEADBEEF + (2 << 2) + 13) & _U32
-    return _jenkins_final((init + h) & _U32, init, init)
+    return hash_uint2(h)
 
+
+# Particle Info's constants (export/particles.py): an object that no particle system instances
+# has none, which reads 0 (Cycles' dummy particle; its Random is kept as the difference from the
+# dummy's, so 0 there too).
+PARTICLE_KEYS = frozenset(('object_info', 'particle_' + k) for k in (
+    'index', 'random', 'age', 'lifetime', 'location', 'size', 'velocity', 'angular_velocity'))
 
 # An attribute key's kind -> (whether the instancer is searched first, whether it is Fac/Alpha).
 _ATTRIBUTE_KINDS = {'attribute': (False, False), 'attribute_fac_alpha': (False, True),
@@ -256,6 +276,10 @@ class ObjectInfo(dict):
         return dict.__contains__(self, key) or self._kind(key) is not None
 
     def __missing__(self, key):
+        if key in PARTICLE_KEYS:        # no particle (export/particles.py): Cycles' dummy, 0
+            value = (0.0, 0.0, 0.0) if self.single else np.zeros((self.n, 3), np.float32)
+            self[key] = value
+            return value
         kind = self._kind(key)
         if kind is None:
             raise KeyError(key)
@@ -296,7 +320,8 @@ def dupli_record(inst):
     return (*inst.orco, *inst.uv)
 
 
-def instances_info(obj, matrices, random_ids, duplis=None, colors=None, instancers=None):
+def instances_info(obj, matrices, random_ids, duplis=None, colors=None, instancers=None,
+                   particles=None):
     """ObjectInfo {('object_info', k): float32 (N, 3)} of N instances of obj (Cycles 3.4's
     Object Info of each, and the object's attributes): matrices (N, 3, 4) object to world,
     random_ids (N,) Blender's random ids (DepsgraphObjectInstance.random_id; object_random_id
@@ -304,20 +329,20 @@ def instances_info(obj, matrices, random_ids, duplis=None, colors=None, instance
     'dupli_generated' is Cycles' 0.5 orco - 0.5, 'dupli_uv' the (u, v, 0) the instancer gives.
     colors (N, 4): each instance's object colour (an instance's evaluated object carries its
     instancer's), or None: obj's. instancers (N): each instance's instancer_record, for the
-    Instancer attributes (None: not instanced)."""
+    Instancer attributes (None: not instanced). particles: their Particle Info constants
+    (particles.ParticleTable.constants; None: no particle, 0)."""
     m = np.asarray(matrices, dtype=np.float64)
     n = len(m)
     dupli = (np.asarray(duplis, np.float32).reshape(n, 5) if duplis is not None
              else None)
     color = (np.asarray(colors, np.float32).reshape(n, 4) if colors is not None
              else np.broadcast_to(np.asarray(tuple(obj.color), np.float32), (n, 4)))
-    rid = (np.asarray(random_ids, np.int64) & 0xFFFFFFFF).astype(np.float32)
-    random = rid * (np.float32(1.0) / np.float32(0xFFFFFFFF))
+    random = uint_to_unit_float(random_ids)
 
     def same(v):
         return np.broadcast_to(np.asarray(v, np.float32), (n, 3))
 
-    return ObjectInfo({('object_info', 'location'): m[:, :, 3].astype(np.float32),
+    info = ObjectInfo({('object_info', 'location'): m[:, :, 3].astype(np.float32),
             ('object_info', 'axis_x'): m[:, :, 0].astype(np.float32),
             ('object_info', 'axis_y'): m[:, :, 1].astype(np.float32),
             ('object_info', 'axis_z'): m[:, :, 2].astype(np.float32),
@@ -332,6 +357,9 @@ def instances_info(obj, matrices, random_ids, duplis=None, colors=None, instance
                 np.concatenate([dupli[:, 3:], np.zeros((n, 1), np.float32)], axis=1)
                 if dupli is not None else same((0.0, 0.0, 0.0)))}, obj, n,
         instancers=instancers)
+    if particles is not None:
+        info.update(particles)
+    return info
 
 
 def instance_constant_layers(needs, info):

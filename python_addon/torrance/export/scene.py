@@ -189,7 +189,7 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre, view_cameras):
     if aovs:
         report_world_aovs(depsgraph.scene.world, reporter)
     materials.uv_pass = bool(getattr(depsgraph.view_layer, "use_pass_uv", False))
-    meshes = InstanceExport(tc_scene, materials, reporter)
+    meshes = InstanceExport(tc_scene, materials, reporter, depsgraph.scene.frame_current_final)
     last_poll = [time.perf_counter()]
 
     def poll():
@@ -283,6 +283,8 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre, view_cameras):
                             what.duplis.append(dupli_record(inst))
                         if what.instancers is not None:     # ... and Instancer attributes
                             what.instancers.append(instancer_record(inst))
+                        if what.particles is not None:      # ... and Particle Info
+                            what.particles.append(meshes.particles.record(inst))
                 elif what == 'LIGHT':
                     light(obj, inst.matrix_world.copy())
                 continue

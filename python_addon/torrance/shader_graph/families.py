@@ -23,6 +23,7 @@ from . import image  # noqa: I001
 from . import sky  # noqa: I001
 from . import ies  # noqa: I001
 from . import point_density  # noqa: I001
+from . import particle_info  # noqa: I001
 
 FAMILIES = (
     # [families]
@@ -41,6 +42,7 @@ FAMILIES = (
     sky,
     ies,
     point_density,
+    particle_info,
 )
 
 READERS = {}

@@ -322,6 +322,14 @@ CLOSURES = {
                                  "or Particle System, an empty grid (0, as Cycles), Resolution "
                                  "above 160, Object space of a linked Vector in a material with "
                                  "a volume",
+    # per-instance constants, as Object Info's (particle_info.py, export/particles.py)
+    'ShaderNodeParticleInfo': "rendered (shader graph): every output (Index, Random, Age, "
+                              "Lifetime in frames, Location, Size, Velocity, Angular "
+                              "Velocity) on objects a particle system instances (Render As "
+                              "Object / Collection), as Cycles; Cycles' dummy particle (all 0, "
+                              "Random of particle 0) on child particles, other objects and "
+                              "instances, the world and lights; reported inside a "
+                              "heterogeneous volume",
     # a value node that Torrance reads in part (radial_tiling.py)
     'ShaderNodeRadialTiling': "partly: whole Sides at any Roundness, any Sides at Roundness 0; "
                               "fractional or varying Sides with Roundness above 0 are reported",

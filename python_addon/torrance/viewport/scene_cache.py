@@ -73,6 +73,7 @@ class SceneCache:
         self.prototypes = {}      # (cache kind, mesh key, uvs) -> (pid, triangles) or None
         self.entries = {}         # entry id -> _Entry (every mesh object / instance shown)
         self._random_ids = {}     # the last plan's instance key -> random ids (Object Info)
+        self._particles = None    # the last plan's ParticleTable (Particle Info)
         self.lights_fp = None     # fingerprint of the lights (and unsupported objects)
         self.changed_materials = set()   # names of the materials the last update changed
         self.stale_materials = 0  # materials of the live scene replaced by edited ones
@@ -192,7 +193,7 @@ class SceneCache:
     # -- what is in the scene ----------------------------------------------------------------
     def _plan(self, depsgraph, options):
         """The instances to render, and a fingerprint of everything read without meshes."""
-        plan, fingerprint, self._random_ids = plan_instances(depsgraph, options)
+        plan, fingerprint, self._random_ids, self._particles = plan_instances(depsgraph, options)
         return plan, fingerprint
 
     def _diff(self, plan):
@@ -273,19 +274,22 @@ class SceneCache:
         return entry
 
     def _object_info(self, entry, eid, obj, transform):
-        """The instance's Object Info constants, if its materials read them."""
+        """The instance's Object Info (and Particle Info) constants, if its materials read
+        them."""
         needs = entry.pkey[2]
         if entry.iid is None or not needs.object_info():
             return
         key, n = eid
         randoms = self._random_ids.get(key)
-        random_id, dupli, color, obj, instancer = randoms[n] \
+        random_id, dupli, color, obj, instancer, particle = randoms[n] \
             if randoms is not None and n < len(randoms) \
-            else (object_random_id(obj.name), None, None, obj, None)
+            else (object_random_id(obj.name), None, None, obj, None, None)
+        particles = (self._particles.constants([particle])
+                     if particle is not None and needs.particles() else None)
         info = instances_info(obj, np.asarray(transform)[None], [random_id],
                               None if dupli is None else [dupli],
                               None if color is None else [color],
-                              None if instancer is None else [instancer])
+                              None if instancer is None else [instancer], particles)
         layers = instance_constant_layers(needs, info)
         if layers is not None:
             self.scene.set_instance_constants([entry.iid], *layers)

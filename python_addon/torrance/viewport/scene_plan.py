@@ -7,6 +7,7 @@ import numpy as np
 
 from .. import export
 from ..export.mesh_attributes import dupli_record, instancer_record
+from ..export.particles import ParticleTable
 
 
 def matrix_tuple(m):
@@ -23,16 +24,18 @@ def instance_transform(matrix):
 
 
 def plan_instances(depsgraph, options):
-    """(plan, fingerprint, random ids). plan: (kind, object, matrix, slots, mesh key) per
+    """(plan, fingerprint, random ids, particles). plan: (kind, object, matrix, slots, mesh key) per
     instance, kind 'LIGHT', 'UNSUPPORTED' or 'MESH', for an instance its evaluated mesh as
     export.MeshData (inst.object is a temporary the iteration reuses for the next instance: read
     after it, every instance showed the last one's mesh; evaluated_get of the original, tried
     instead, changes the temporaries of later iterations: a collection instance's Object Color);
     random ids: a depsgraph instance's mesh key -> its instances' (random id, dupli_record,
-    object colour, original object, instancer_record) (Object Info), in plan order."""
+    object colour, original object, instancer_record, particle record) (Object Info, Particle
+    Info), in plan order; particles: the ParticleTable of the particle records."""
     use_lights = options.get("use_scene_lights", True)
     plan = []
     random_ids = {}
+    particles = ParticleTable(depsgraph.scene.frame_current_final)
     fp = []
     for inst in depsgraph.object_instances:
         role = export.instance_role(inst)
@@ -55,13 +58,14 @@ def plan_instances(depsgraph, options):
                        obj.data.as_pointer() if obj.data is not None else 0)
                 random_ids.setdefault(key, []).append((inst.random_id, dupli_record(inst),
                                                        tuple(obj.color), obj.original,
-                                                       instancer_record(inst)))
+                                                       instancer_record(inst),
+                                                       particles.record(inst)))
                 obj = export.MeshData(obj)
             else:
                 key = ('O', obj.name, data_name)
             plan.append(('MESH', obj, m, slots, key))
             fp.append(('M', key[:4], matrix_tuple(m), slot_names(slots)))
-    return plan, tuple(fp), random_ids
+    return plan, tuple(fp), random_ids, particles
 
 
 def mesh_entries(plan):
