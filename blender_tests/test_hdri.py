@@ -11,7 +11,7 @@ sky seen by the camera) must come out as in Cycles. Background Strength 1.5.
    Teeth: the environment mirrored left-right, and the strength ignored, must both fail.
 2. The same image held in memory (a generated float image: Image.pixels, already linear)
    renders like the file (through OpenImageIO).
-3. A node the world's graph does not read (Particle Info) is reported, and the Background
+3. A node the world's graph does not read (Shader to RGB) is reported, and the Background
    Color socket's own value is used. (A Mapping of the Vector and the mirror-ball projection
    render: test_world_graph_agreement.)
 
@@ -154,15 +154,15 @@ def main():
           f"{agreement.format_metrics(agreement.metrics(mem, img))}")
     check(diff < 1e-3 * max(1.0, float(img.max())), "the in-memory HDRI renders differently")
 
-    # 3. A node the world's graph can not read (Particle Info) is reported, and its socket's own
+    # 3. A node the world's graph can not read (Shader to RGB) is reported, and its socket's own
     # value used.
     nt = scene.world.node_tree
-    particle = nt.nodes.new("ShaderNodeParticleInfo")
-    nt.links.new(particle.outputs["Velocity"], nt.nodes["Background"].inputs["Color"])
+    to_rgb = nt.nodes.new("ShaderNodeShaderToRGB")
+    nt.links.new(to_rgb.outputs["Color"], nt.nodes["Background"].inputs["Color"])
     scene.torrance.samples = 4
     unread, _ = testing.render(scene, d, "unread")
-    check(any("Particle Info" in m for _, m in testing.last_messages()),
-          f"the Particle Info node must be reported: {testing.last_messages()}")
+    check(any("Shader to RGB" in m for _, m in testing.last_messages()),
+          f"the Shader to RGB node must be reported: {testing.last_messages()}")
     top = unread[0, :, :3].mean(axis=0)          # the sky at the top of the frame: the green
     check(top[1] > 5 * top[0], f"expected the socket's green, got {top}")
 

@@ -64,11 +64,11 @@ def nested_tree():
 
 
 def unsupported_tree():
-    """Mix(Particle Info, Specular BSDF, Diffuse with a Bump from an image) and a checker on
+    """Mix(Shader to RGB, Specular BSDF, Diffuse with a Bump from an image) and a checker on
     Generated (read by the shader graph: a program factor)."""
     mat, nodes, links, out = node_material("Unsupported")
     mix = nodes.new("ShaderNodeMixShader")
-    links.new(nodes.new("ShaderNodeParticleInfo").outputs["Random"], mix.inputs["Fac"])
+    links.new(nodes.new("ShaderNodeShaderToRGB").outputs["Alpha"], mix.inputs["Fac"])
     links.new(nodes.new("ShaderNodeEeveeSpecular").outputs[0], mix.inputs[1])
     diffuse = shader(nodes, "ShaderNodeBsdfDiffuse")
     bump = nodes.new("ShaderNodeBump")
@@ -295,7 +295,7 @@ def main():
     texts = [t for _l, t in messages]
     print("\n".join(texts), flush=True)
     kinds = [(kind, terms) for kind, _a, terms in mix["closures"]]
-    # Fac from a Particle Info: the socket's 0.5 (a constant: 0.5 and 0.5);
+    # Fac from a Shader to RGB: the socket's 0.5 (a constant: 0.5 and 0.5);
     # the Specular BSDF left out; the checker on Generated coordinates a program factor of the
     # mixture's shader program.
     check(kinds[0][0] == "diffuse" and len(kinds) == 2 and kinds[1][0] == "glossy",
@@ -307,7 +307,7 @@ def main():
     check([f["kind"] for f in mix["factors"]] == ["constant", "program"] and "shader_program" in mix
           and ('generated',) in mix["program_attributes"],
           f"the checker on Generated: a program factor reading Generated: {mix['factors']}")
-    for expected in ("'Particle Info' is not supported",
+    for expected in ("'Shader to RGB' is not supported",
                      "the shader 'Specular BSDF' is not supported in a mix",
                      "'Glossy BSDF' has another Normal than 'Diffuse BSDF'"):
         hits = [t for t in texts if expected in t]

@@ -25,11 +25,11 @@ Run: scripts/blender -b --factory-startup --python-exit-code 1 \
 """
 
 import bpy
-import numpy as np
 
 from torrance_tools import testing
 from torrance_tools.seed_noise import agree_within_seed_noise
 from torrance_tools.shader_graphs import Graph
+from torrance_tools.viewport_render import viewport_scene_matches_final
 
 W, H = 160, 96
 
@@ -162,45 +162,22 @@ def no_location(original):
 def no_instancers(original):
     """A fault: the instances' instancer records dropped (Instancer attributes read as the
     object's)."""
-    def info(obj, matrices, random_ids, duplis=None, colors=None, instancers=None):
-        return original(obj, matrices, random_ids, duplis, colors)
+    def info(obj, matrices, random_ids, duplis=None, colors=None, instancers=None, *rest):
+        return original(obj, matrices, random_ids, duplis, colors, None, *rest)
     return info
 
 
 def no_duplis(original):
     """A fault: the instancer's coordinates dropped (every instance reads 0)."""
-    def info(obj, matrices, random_ids, duplis=None, colors=None, instancers=None):
-        return original(obj, matrices, random_ids, None, colors, instancers)
+    def info(obj, matrices, random_ids, duplis=None, colors=None, instancers=None, *rest):
+        return original(obj, matrices, random_ids, None, colors, instancers, *rest)
     return info
 
 
-def viewport_matches_final(scene):
-    """The viewport's scene of the same depsgraph renders the final render's image, after an
-    in-place move too (Object Info's Location follows)."""
-    from torrance.export.camera import export_camera
-    from torrance.export.scene import export_scene
-    from torrance.reporting import Reporter
-    from torrance.viewport.scene_cache import SceneCache
-
-    def image(tc_scene):
-        export_camera(tc_scene, scene.camera, Reporter(None))
-        settings = tc.RenderSettings(width=W, height=H, samples=4, seed=0, max_bounces=1)
-        return np.asarray(tc.render(tc_scene, settings).image)[..., :3]
-
-    tc = testing.core()
-    cache = SceneCache()
-    for step in ("added", "moved"):
-        if step == "moved":
-            bpy.data.objects["Parent"].location.x += 0.3
-            bpy.data.objects["TilesAt0"].location.y -= 0.4
-        depsgraph = bpy.context.evaluated_depsgraph_get()
-        live = cache.sync(tc, depsgraph, Reporter(None))
-        final, _stats = export_scene(tc, depsgraph, Reporter(None))
-        difference = float(np.abs(image(live) - image(final)).mean())
-        print(f"  viewport scene ({step}) vs final render: mean difference {difference:.2e}")
-        testing.check(difference < 1e-4, f"the viewport's Object Info differs ({step}): "
-                      f"{difference}")
-    testing.check(cache.updates == 1, f"the move was not applied in place: {cache.updates}")
+def move_instancers(scene):
+    """An edit the viewport applies in place: the instancers moved."""
+    bpy.data.objects["Parent"].location.x += 0.3
+    bpy.data.objects["TilesAt0"].location.y -= 0.4
 
 
 def main():
@@ -213,7 +190,7 @@ def main():
         faults=(("every instance the same random", instances, "instances_info", same_random),
                 ("the instances' locations dropped", instances, "instances_info", no_location)),
         tolerance=1.5, ratio_sigmas=3.0, ratio_floor=0.004)
-    viewport_matches_final(scene)
+    viewport_scene_matches_final(scene, W, H, move_instancers, "Object Info")
     add_instancer_reads(scene)
     agree_within_seed_noise(
         scene, testing.tempdir(), 64, 2, "the instancer's coordinates and attributes",

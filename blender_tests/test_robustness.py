@@ -91,12 +91,12 @@ def main():
     img = render_case("no_world", scene, d)
     check(np.abs(img[:, :, :3]).max() < 1e-6, "no world: not black")
 
-    # 1d. World with a Particle Info: unsupported, reported.
+    # 1d. World with a Shader to RGB (Eevee's): unsupported, reported.
     scene = base_scene()
     nt = scene.world.node_tree
-    particle = nt.nodes.new("ShaderNodeParticleInfo")
-    nt.links.new(particle.outputs["Velocity"], nt.nodes["Background"].inputs["Color"])
-    render_case("world_particle_info", scene, d, expect=["Particle Info"])
+    to_rgb = nt.nodes.new("ShaderNodeShaderToRGB")
+    nt.links.new(to_rgb.outputs["Color"], nt.nodes["Background"].inputs["Color"])
+    render_case("world_shader_to_rgb", scene, d, expect=["Shader to RGB"])
 
     # 2. A mesh without faces (vertices and edges only): skipped.
     scene = base_scene()
@@ -144,16 +144,16 @@ def main():
     centre = img[H // 2 - 2:H // 2 + 2, W // 2 - 2:W // 2 + 2, :3].mean(axis=(0, 1))
     check(centre[0] > 2 * centre[2], f"nan_vertex: the red sphere is missing: {centre}")
 
-    # 5. Unsupported nodes: a Principled Base Color from a Particle Info (not read by the shader
-    #    graph); a Specular BSDF surface (Eevee's only);
+    # 5. Unsupported nodes: a Principled Base Color from a Shader to RGB (Eevee's, not read by
+    #    the shader graph); a Specular BSDF surface (Eevee's only);
     #    an Emission surface (supported); a material without output; a Mix Shader.
     scene = base_scene()
     testing.add_sun(scene)
     noise_mat = testing.principled("NoiseMat", (0.2, 0.6, 0.2))
     nt = noise_mat.node_tree
-    particle = nt.nodes.new("ShaderNodeParticleInfo")
-    nt.links.new(particle.outputs["Velocity"], nt.nodes["Principled BSDF"].inputs["Base Color"])
-    nt.links.new(particle.outputs["Random"], nt.nodes["Principled BSDF"].inputs["Roughness"])
+    to_rgb = nt.nodes.new("ShaderNodeShaderToRGB")
+    nt.links.new(to_rgb.outputs["Color"], nt.nodes["Principled BSDF"].inputs["Base Color"])
+    nt.links.new(to_rgb.outputs["Alpha"], nt.nodes["Principled BSDF"].inputs["Roughness"])
     specular_mat = bpy.data.materials.new("SpecularMat")
     specular_mat.use_nodes = True
     nt = specular_mat.node_tree
@@ -181,7 +181,7 @@ def main():
         testing.sphere_object(scene, mat.name + "Sphere", (-2.4 + 1.2 * i, 0, 0.5), 0.5, mat,
                               segments=16, rings=8)
     img = render_case("unsupported_nodes", scene, d, expect=[
-        "'NoiseMat': input 'Base Color'", "Particle Info", "'NoiseMat': input 'Roughness'",
+        "'NoiseMat': input 'Base Color'", "Shader to RGB", "'NoiseMat': input 'Roughness'",
         "'SpecularMat': the surface shader", "Specular BSDF",
         "'NoOutputMat': no active Material Output", "'MixMat'", "Mix Shader"])
     messages = testing.last_messages()

@@ -457,10 +457,10 @@ def test_messages(addon, scene):
     ui = addon.ui
     mat = testing.principled("Waxy")
     tree = mat.node_tree
-    particle = tree.nodes.new("ShaderNodeParticleInfo")     # a node Torrance does not render
-    tree.links.new(particle.outputs["Random"], tree.nodes["Principled BSDF"].inputs["Roughness"])
+    to_rgb = tree.nodes.new("ShaderNodeShaderToRGB")     # a node Torrance does not render
+    tree.links.new(to_rgb.outputs["Alpha"], tree.nodes["Principled BSDF"].inputs["Roughness"])
     msgs = ui.material_messages(mat)
-    check(any("Particle Info" in t for _l, t in msgs), f"Particle Info reported: {msgs}")
+    check(any("Shader to RGB" in t for _l, t in msgs), f"Shader to RGB reported: {msgs}")
     check(ui.material_messages(bpy.data.materials["Grey"]) == [], "a plain material has none")
     cam = scene.camera.data
     cam.dof.use_dof = True

@@ -62,6 +62,7 @@ class ParticleTable:
         self.frame = np.float32(frame)    # the scene's frame_current_final
         self._numbers = {}                # evaluated particle system pointer -> its number
         self._systems = []                # per number: _read_particles' answer
+        self.shown = False                # whether any instance shows a particle
 
     def record(self, inst):
         """Which particle the depsgraph instance inst shows: (system number << 32) | particle
@@ -77,6 +78,7 @@ class ParticleTable:
         index = inst.persistent_id[0]
         if not 0 <= index < len(self._systems[number]['size']):
             return NO_PARTICLE
+        self.shown = True
         return (number << 32) | index
 
     def constants(self, records):

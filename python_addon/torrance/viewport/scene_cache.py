@@ -24,7 +24,7 @@ from ..export.mesh_attributes import instance_constant_layers, instances_info, o
 from ..materials import MaterialTable
 from ..texture_table import TextureTable
 from .scene_plan import (instance_transform, lights_fingerprint, matrix_tuple, mesh_entries,
-                         plan_instances, slot_names)
+                         particle_state, plan_instances, slot_names)
 from .studio_world import StudioWorld
 
 _RELEVANT_ID_TYPES = ("Material", "Light", "World", "Mesh", "Curve", "MetaBall", "TextCurve",
@@ -39,7 +39,7 @@ _GEOMETRY_ID_TYPES = ("Mesh", "Curve", "SurfaceCurve", "TextCurve", "MetaBall", 
 
 class _Entry:
     """A mesh object or instance in the live scene: its instance id (None: not rendered)."""
-    __slots__ = ("matrix", "slots", "iid", "triangles", "pkey")
+    __slots__ = ("matrix", "slots", "iid", "triangles", "pkey", "particle")
 
     def __init__(self, matrix, slots, iid, triangles, pkey):
         self.matrix = matrix          # matrix_tuple of its world matrix
@@ -47,6 +47,7 @@ class _Entry:
         self.iid = iid
         self.triangles = triangles
         self.pkey = pkey              # its prototype's key in SceneCache.prototypes
+        self.particle = None          # its particle_state, if its materials read Particle Info
 
 
 class SceneCache:
@@ -229,7 +230,8 @@ class SceneCache:
                 added.append((eid, obj, matrix, slots, key))
                 continue
             mt = matrix_tuple(matrix)
-            if mt != old.matrix:
+            particle = particle_state(self._random_ids, self._particles, eid, old.pkey[2])
+            if mt != old.matrix or old.particle != particle:
                 moved.append((eid, obj, matrix, slots, key, mt))
         return removed, moved, added
 
@@ -255,6 +257,7 @@ class SceneCache:
             local = meshes.get(obj, key[1:], needs_uvs, reporter)
             self.prototypes[pkey] = self._prototype(pkey, local, obj.name, needs_uvs, reporter)
         entry = _Entry(matrix_tuple(matrix), slot_names(slots), None, 0, pkey)
+        entry.particle = particle_state(self._random_ids, self._particles, eid, needs_uvs)
         self.entries[eid] = entry
         proto = self.prototypes[pkey]
         if proto is None:
@@ -326,6 +329,8 @@ class SceneCache:
         for eid, obj, matrix, slots, key, mt in moved:
             entry = self.entries[eid]
             entry.matrix = mt
+            entry.particle = particle_state(self._random_ids, self._particles, eid,
+                                            entry.pkey[2])
             t = instance_transform(matrix)
             if entry.iid is None or not np.isfinite(t).all():
                 # Not in the scene (no triangles, a NaN transform): add it afresh.

@@ -7,7 +7,7 @@ import numpy as np
 
 from .. import export
 from ..export.mesh_attributes import dupli_record, instancer_record
-from ..export.particles import ParticleTable
+from ..export.particles import NO_PARTICLE, ParticleTable
 
 
 def matrix_tuple(m):
@@ -65,7 +65,22 @@ def plan_instances(depsgraph, options):
                 key = ('O', obj.name, data_name)
             plan.append(('MESH', obj, m, slots, key))
             fp.append(('M', key[:4], matrix_tuple(m), slot_names(slots)))
+    if particles.shown:     # Particle Info's Age changes with the frame, moved or not
+        fp.append(('P', float(particles.frame)))
     return plan, tuple(fp), random_ids, particles
+
+
+def particle_state(random_ids, particles, eid, needs):
+    """What the Particle Info constants of a plan's entry eid (mesh_entries) depend on: its
+    particle record and the frame (a dead particle's Age changes, its matrix does not); None
+    when it shows no particle or its materials (needs: materials.MeshNeeds) do not read them
+    (random_ids, particles: plan_instances' answers)."""
+    if not particles.shown or not needs.particles():
+        return None
+    key, n = eid
+    randoms = random_ids.get(key)
+    record = randoms[n][5] if randoms is not None and n < len(randoms) else NO_PARTICLE
+    return None if record == NO_PARTICLE else (record, float(particles.frame))
 
 
 def mesh_entries(plan):
