@@ -70,3 +70,21 @@ def is_default_uv(output):
     if node.bl_idname == 'ShaderNodeUVMap':
         return not node.from_instancer and not node.uv_map
     return False
+
+
+def holds_node(materials, bl_idname):
+    """Whether any of the materials' node trees (their node groups too, nested) holds a node of
+    type bl_idname, linked or not (materials: Material or None)."""
+    seen = set()
+    trees = [m.node_tree for m in materials if m is not None and m.node_tree is not None]
+    while trees:
+        tree = trees.pop()
+        if tree.as_pointer() in seen:
+            continue
+        seen.add(tree.as_pointer())
+        for node in tree.nodes:
+            if node.bl_idname == bl_idname:
+                return True
+            if node.bl_idname == 'ShaderNodeGroup' and node.node_tree is not None:
+                trees.append(node.node_tree)
+    return False

@@ -8,6 +8,7 @@ import numpy as np
 from .. import export
 from ..export.mesh_attributes import dupli_record, instancer_record
 from ..export.particles import NO_PARTICLE, ParticleTable
+from ..nodes import holds_node
 
 
 def matrix_tuple(m):
@@ -31,11 +32,13 @@ def plan_instances(depsgraph, options):
     instead, changes the temporaries of later iterations: a collection instance's Object Color);
     random ids: a depsgraph instance's mesh key -> its instances' (random id, dupli_record,
     object colour, original object, instancer_record, particle record) (Object Info, Particle
-    Info), in plan order; particles: the ParticleTable of the particle records."""
+    Info: recorded only where a material holds a Particle Info node), in plan order; particles:
+    the ParticleTable of the particle records."""
     use_lights = options.get("use_scene_lights", True)
     plan = []
     random_ids = {}
     particles = ParticleTable(depsgraph.scene.frame_current_final)
+    reads_particles = {}    # instance key -> whether its materials hold a Particle Info node
     fp = []
     for inst in depsgraph.object_instances:
         role = export.instance_role(inst)
@@ -56,10 +59,14 @@ def plan_instances(depsgraph, options):
                 parent = inst.parent.name if inst.parent is not None else ""
                 key = ('I', parent, obj.name, data_name, obj.as_pointer(),
                        obj.data.as_pointer() if obj.data is not None else 0)
+                reads = reads_particles.get(key)
+                if reads is None:
+                    reads = reads_particles[key] = holds_node(slots, 'ShaderNodeParticleInfo')
                 random_ids.setdefault(key, []).append((inst.random_id, dupli_record(inst),
                                                        tuple(obj.color), obj.original,
                                                        instancer_record(inst),
-                                                       particles.record(inst)))
+                                                       particles.record(inst) if reads
+                                                       else NO_PARTICLE))
                 obj = export.MeshData(obj)
             else:
                 key = ('O', obj.name, data_name)
