@@ -12,16 +12,18 @@ its own material:
 * |Velocity| per axis;
 * |Angular Velocity| per axis (random axes).
 The emitters themselves are rendered with the first material: no particle, Cycles' dummy (Index
-0, Random that of particle 0, 0.86).
+0, Random that of particle 0, 0.86); so is the world's Particle Info (its Random the sky's
+colour at the frame's edges).
 
 Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
 seeds 2 and 3. Deliberate faults (one per output group) must fail them; by default only those
 near the bounds are rendered again (TORRANCE_ALL_FAULTS=1: all). Blender 3.4, when written:
-bounds ratio 0.996..1.004, block mean 0.0051; Torrance 0.9979, 0.0037. Faults: Age in seconds
-block mean 0.0129 (B ratio 0.970); Index off by one R ratio 1.018; Random of another hash
-0.0105; Size 1/9 0.0096; children given a parent's particle 0.0359; Location in the emitter's
-space 0.0283; Velocity per frame 0.0480; Angular Velocity's axes turned R ratio 0.918; no dummy
-particle's Random 0.500.
+bounds ratio 0.996..1.004, block mean 0.0024; Torrance 0.9991, 0.0016. Faults: Age in seconds
+block mean 0.0096 (B ratio 0.974); Index off by one R ratio 1.014; Random of another hash
+0.0077; Size 1/9 0.0065; children given a parent's particle 0.0303; Location in the emitter's
+space 0.0233; Velocity per frame 0.0410; Angular Velocity's axes turned R ratio 0.953; no dummy
+particle's Random 0.569. bpy 4.2 and 5.3 alike: bounds 0.9928..1.0072, 0.0022; Torrance
+0.9990, 0.0016; Index off by one R ratio 1.016, the others as in 3.4.
 
 The viewport's scene (its SceneCache) then renders the final render's image, at frame 9 and
 again one frame on (the instances updated in place, their particles' constants with them; the
@@ -141,7 +143,10 @@ def build(scene):
     cam = testing.add_camera(scene, location=(0.0, 0.0, 10.0), target=(0.0, 0.0, 0.0))
     cam.data.type = 'ORTHO'
     cam.data.ortho_scale = 6.0
-    testing.set_world(scene, (0.0, 0.0, 0.0))
+    world = testing.set_world(scene, (0.0, 0.0, 0.0), strength=0.25)
+    tree = world.node_tree           # the world's Particle Info: the dummy's Random, 0.86
+    tree.links.new(tree.nodes.new("ShaderNodeParticleInfo").outputs["Random"],
+                   tree.nodes["Background"].inputs["Color"])
     first = index_random_age()
     emitter(scene, "EmitIndex", (-1.5, 1.0, 0.0), first, sphere("Ball", first), 5,
             use_dead=True, child_type='SIMPLE', rendered_child_count=2,
