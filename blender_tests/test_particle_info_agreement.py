@@ -9,7 +9,7 @@ its own material:
 * Index / 24, Random, 0.5 Age / Lifetime + 0.5 (its dead particles shown: Age past Lifetime;
   2 child particles each, which Cycles gives the dummy particle);
 * |Location x| / 3, |Location y| / 2, 3 Size (its unborn particles shown: negative Age);
-* |Velocity| per axis;
+* |Velocity| per axis (Render As Collection);
 * |Angular Velocity| per axis (random axes).
 The emitters themselves are rendered with the first material: no particle, Cycles' dummy (Index
 0, Random that of particle 0, 0.86); so is the world's Particle Info (its Random the sky's
@@ -24,6 +24,9 @@ block mean 0.0096 (B ratio 0.974); Index off by one R ratio 1.014; Random of ano
 space 0.0233; Velocity per frame 0.0410; Angular Velocity's axes turned R ratio 0.953; no dummy
 particle's Random 0.569. bpy 4.2 and 5.3 alike: bounds 0.9928..1.0072, 0.0022; Torrance
 0.9990, 0.0016; Index off by one R ratio 1.016, the others as in 3.4.
+
+The figures are those of Render As Object for the Velocity emitter too (its particles' data
+do not depend on it).
 
 The viewport's scene (its SceneCache) then renders the final render's image, at frame 9 and
 again one frame on (the instances updated in place, their particles' constants with them; the
@@ -98,8 +101,10 @@ def angular_velocity():
     return g.mat
 
 
-def sphere(name, material):
-    bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=2, radius=1.0, location=(0.0, 0.0, -5.0))
+def sphere(name, material, x):
+    """An ico sphere of radius 1 at (x, 0, 0), out of the camera's view (the viewport's
+    depsgraph shows it: hide_render hides it from final renders only)."""
+    bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=2, radius=1.0, location=(x, 0.0, 0.0))
     obj = bpy.context.active_object
     obj.name = name
     obj.data.materials.append(material)
@@ -129,7 +134,8 @@ def emitter(scene, name, centre, material, instance, seed, **settings):
     ps.angular_velocity_mode = 'RAND'
     ps.angular_velocity_factor = 2.0
     ps.render_type = 'OBJECT'
-    ps.instance_object = instance
+    if instance is not None:
+        ps.instance_object = instance
     ps.particle_size = 0.2
     ps.size_random = 0.5
     for key, value in settings.items():
@@ -148,13 +154,20 @@ def build(scene):
     tree.links.new(tree.nodes.new("ShaderNodeParticleInfo").outputs["Random"],
                    tree.nodes["Background"].inputs["Color"])
     first = index_random_age()
-    emitter(scene, "EmitIndex", (-1.5, 1.0, 0.0), first, sphere("Ball", first), 5,
+    emitter(scene, "EmitIndex", (-1.5, 1.0, 0.0), first, sphere("Ball", first, 10.0), 5,
             use_dead=True, child_type='SIMPLE', rendered_child_count=2,
             child_radius=0.3, use_parent_particles=True)
     emitter(scene, "EmitLocation", (1.5, 1.0, 0.0), first,
-            sphere("Pebble", location_size()), 7, show_unborn=True)
-    emitter(scene, "EmitVelocity", (-1.5, -1.0, 0.0), first, sphere("Drop", velocity()), 11)
-    emitter(scene, "EmitSpin", (1.5, -1.0, 0.0), first, sphere("Top", angular_velocity()), 13)
+            sphere("Pebble", location_size(), 13.0), 7, show_unborn=True)
+    drops = bpy.data.collections.new("Drops")      # Render As Collection, not in the scene
+    drop = sphere("Drop", velocity(), 0.0)         # at the collection's origin
+    drop.hide_render = False                      # (a collection's instances would hide too)
+    for holder in drop.users_collection:
+        holder.objects.unlink(drop)
+    drops.objects.link(drop)
+    emitter(scene, "EmitVelocity", (-1.5, -1.0, 0.0), first, None, 11,
+            render_type='COLLECTION', instance_collection=drops)
+    emitter(scene, "EmitSpin", (1.5, -1.0, 0.0), first, sphere("Top", angular_velocity(), 16.0), 13)
     for frame in range(1, FRAME + 1):     # the simulation, frame after frame
         scene.frame_set(frame)
 
