@@ -106,6 +106,19 @@ def test_records_and_constants(export):
     assert out[key('random')][1, 0] == 0.0              # particle 0's Random is the dummy's
 
 
+def test_non_finite_particles_read_0(export):
+    """A simulation gone wrong (NaN or Inf in a particle's data) gives 0, never NaN."""
+    p = export.particles
+    broken = three()
+    broken.fields["velocity"][1] = (np.nan, np.inf, -np.inf)
+    broken.fields["birth_time"][1] = np.nan
+    table = p.ParticleTable(frame=9.0)
+    out = table.constants([table.record(instance(System(1, broken), 1))])
+    assert all(np.isfinite(values).all() for values in out.values())
+    assert not out[key('velocity')].any() and out[key('age')][0, 0] == 0.0
+    assert out[key('size')][0, 0] == np.float32(0.2)
+
+
 def test_objects_without_particles(export):
     """An object's Object Info (and an instance's without a ParticleTable) reads the particle
     keys as 0 without holding them, so with_object_info adds no layer for them."""

@@ -83,7 +83,8 @@ class ParticleTable:
 
     def constants(self, records):
         """{PARTICLE_KEYS key: float32 (N, 3)} of N records (record's answers): a number as
-        (v, v, v); Random less DUMMY_RANDOM; all 0 for NO_PARTICLE."""
+        (v, v, v); Random less DUMMY_RANDOM; all 0 for NO_PARTICLE; NaN and Inf (a simulation
+        gone wrong) 0, as the mesh attributes' (no NaN reaches the shader programs)."""
         records = np.asarray(records, np.int64).reshape(-1)
         n = len(records)
         out = {key: np.zeros((n, 3), np.float32) for key in PARTICLE_KEYS}
@@ -104,4 +105,6 @@ class ParticleTable:
                 out[_key(name)][rows] = values[:, None]
             for name in ('location', 'velocity', 'angular_velocity'):
                 out[_key(name)][rows] = system[name][index]
+        for values in out.values():
+            np.nan_to_num(values, copy=False, nan=0.0, posinf=0.0, neginf=0.0)
         return out
