@@ -19,6 +19,7 @@
 #include "torrance/shader/shader_curves_info.h"
 #include "torrance/shader/shader_geometry.h"
 #include "torrance/shader/shader_bevel.h"
+#include "torrance/shader/shader_raycast.h"
 #include "torrance/shader/shader_vector.h"
 
 #include <algorithm>
@@ -190,6 +191,7 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
     case ShaderOpcode::CurvesInfo: return {0, shader::kCurvesInfoModes, false, shader::curves_info_op};
     case ShaderOpcode::AmbientOcclusion: return {4, 2, false, shader::ambient_occlusion_op};
     case ShaderOpcode::Bevel: return {3, 1, false, shader::bevel_op};
+    case ShaderOpcode::Raycast: return {4, 3, false, shader::raycast_op};
     case ShaderOpcode::CameraTransform: return {4, shader::kCameraTransformModes, false, shader::camera_transform_op};
     case ShaderOpcode::VectorTransform: return {11, shader::kVectorTransformModes, false, shader::vector_transform_op};
     default: break;
@@ -238,7 +240,8 @@ ShaderProgram::ShaderProgram(std::vector<glm::vec4> constants, std::vector<Shade
     differentials_ = differentials_ || (ins.op == ShaderOpcode::Wireframe && ins.mode == 1);  // Pixel Size
     globals_read_ |= globals_read_by(ins.op);
     local_queries_ = local_queries_ || ins.op == ShaderOpcode::Bevel ||
-                     (ins.op == ShaderOpcode::AmbientOcclusion && (ins.flags & shader::kAmbientOcclusionOnlyLocal));
+                     (ins.op == ShaderOpcode::AmbientOcclusion && (ins.flags & shader::kAmbientOcclusionOnlyLocal)) ||
+                     (ins.op == ShaderOpcode::Raycast && (ins.flags & shader::kRaycastOnlyLocal));
     if (ins.mode >= s.modes)
       throw std::invalid_argument(where + ": mode " + std::to_string(int(ins.mode)) + " out of range [0, " +
                                   std::to_string(s.modes) + ")");

@@ -523,6 +523,10 @@ class Scene final : public ShaderTracer {
   bool local_occluded(uint32_t object, const Vec3& origin, const Vec3& dir, float tmin, float tmax) const override;
   int local_hits(uint32_t object, const Vec3& origin, const Vec3& dir, float tmax, uint32_t seed, LocalHit* hits,
                  int max_hits) const override;
+  // The Raycast node's query (ShaderTracer::raycast; scene_raycast.cpp): an only_object query is
+  // a local one, answered once commit() has built the objects' own BVHs.
+  bool raycast(const Vec3& origin, const Vec3& dir, float tmin, float tmax, uint32_t only_object, uint32_t skip_object,
+               uint32_t skip_prim, RaycastHit& hit) const override;
   void* embree_scene() const { return scene_; }  // the RTCScene, for raw-Embree measurements (ray_replay.h)
   void bounds(Vec3& lo, Vec3& hi) const;  // of everything traced, after commit (lo > hi: nothing, or not committed)
   // The flat pieces that the triangles of material `material` make (mirror_images.h): either a

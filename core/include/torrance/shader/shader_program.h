@@ -98,6 +98,7 @@ enum class ShaderOpcode : uint8_t {
   Wireframe = 110,
   VolumeGrid = 111,       // media/volume_grid.h: a grid (resource) at in0 (a world point), RGBA
   CurvesInfo = 112,       // shader_curves_info.h
+  Raycast = 113,          // shader_raycast.h
 };
 constexpr int kShaderOpcodes = 128;
 
@@ -122,7 +123,15 @@ struct LocalHit {
   Vec3 normal{0.0f};       // the interpolated (smooth) normal, unit
 };
 
-// What a program may trace (the Ambient Occlusion and Bevel nodes): the scene (Scene implements it).
+// The surface a Raycast node's ray meets first (ShaderTracer::raycast).
+struct RaycastHit {
+  float t = 0.0f;       // along the ray, in lengths of its direction
+  Vec3 normal{0.0f};    // the smooth normal, turned toward the ray's origin (unit)
+  uint32_t object = 0;  // as ShaderGlobals::object names it (kNoObject on a hair strand)
+};
+
+// What a program may trace (the Ambient Occlusion, Bevel and Raycast nodes): the scene (Scene
+// implements it).
 class ShaderTracer {
  public:
   // Whether anything lies along origin + t dir for t in (tmin, tmax).
@@ -140,6 +149,16 @@ class ShaderTracer {
                          LocalHit* hits, int max_hits) const {
     (void)object, (void)origin, (void)dir, (void)tmax, (void)seed, (void)hits, (void)max_hits;
     return 0;
+  }
+  // The first surface along origin + t dir, t in [tmin, tmax] (Cycles' scene_intersect of the
+  // Raycast node, whatever the surface's material: transparent ones stop it too): in the whole
+  // scene when only_object is kNoObject, else against that object's own triangles (a local
+  // query; none for no such object). A hit on triangle skip_prim of object skip_object is passed
+  // by (the surface the ray leaves: Cycles' self-intersection skip; kNoObject skips none).
+  virtual bool raycast(const Vec3& origin, const Vec3& dir, float tmin, float tmax, uint32_t only_object,
+                       uint32_t skip_object, uint32_t skip_prim, RaycastHit& hit) const {
+    (void)origin, (void)dir, (void)tmin, (void)tmax, (void)only_object, (void)skip_object, (void)skip_prim, (void)hit;
+    return false;
   }
 
  protected:
@@ -275,7 +294,7 @@ class ShaderProgram {
   }
   // Throws std::invalid_argument unless every VolumeGrid instruction names one of num_grids grids.
   void check_grids(size_t num_grids) const;
-  // Whether some instruction traces local rays (Bevel, Ambient Occlusion's Only Local): the
+  // Whether some instruction traces local rays (Bevel, Ambient Occlusion's and Raycast's Only Local): the
   // scene then builds a BVH per object for ShaderTracer's local queries.
   bool local_queries() const { return local_queries_; }
   // Whether run() reads ShaderGlobals' ray differentials (dpdx, dpdy and what they move: a Bump
