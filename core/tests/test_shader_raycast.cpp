@@ -3,14 +3,18 @@
 // from the flat one) under a shelf square at z = 2 from which the ray leaves: Is Hit, Self Hit,
 // Hit Distance (in lengths of the unnormalised Direction), Hit Position and Hit Normal; a miss;
 // a Length short of the floor; the shelf's own triangle passed by only for a ray from exactly the
-// hit; the floor's back turning the normal; Only Local; no scene to trace.
+// hit; the floor's back turning the normal; Only Local; no scene to trace; and rays leaving a
+// tilted shelf at a glancing angle.
 #include "torrance/scene/scene.h"
 #include "torrance/shader/shader_raycast.h"
 
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <vector>
+
+#include <xmmintrin.h>
 
 namespace torrance {
 namespace {
@@ -18,11 +22,11 @@ namespace {
 // The floor's corner normals: all leaning toward +x by the same angle (unit).
 const Vec3 kFloorSmooth = glm::normalize(Vec3(0.3f, 0.0f, 1.0f));
 
-// A 2 x 2 square at height z facing +z (two triangles), every corner normal `smooth`.
-uint32_t add_square(Scene& scene, float z, const Vec3& smooth) {
+// A square of half-width `half` at height z facing +z (two triangles), every corner normal `smooth`.
+uint32_t add_square(Scene& scene, float z, const Vec3& smooth, float half = 1.0f) {
   std::vector<float> pos;
-  for (float y : {-1.0f, 1.0f})
-    for (float x : {-1.0f, 1.0f}) pos.insert(pos.end(), {x, y, z});
+  for (float y : {-half, half})
+    for (float x : {-half, half}) pos.insert(pos.end(), {x, y, z});
   const std::vector<int64_t> tris{0, 1, 3, 0, 3, 2};
   std::vector<float> normals;
   for (int k = 0; k < 6; ++k) normals.insert(normals.end(), {smooth.x, smooth.y, smooth.z});
@@ -43,6 +47,14 @@ ShaderProgram raycast_program(const Vec3& position, const Vec3& direction, float
                         glm::vec4(bump_width)},
                        {ins}, 5, 0);
 }
+
+// Denormals flushed to zero (FTZ and DAZ), as the render's threads run (integrator.cpp): the
+// float just past 0 then reads as 0.
+struct FlushDenormals {
+  unsigned saved = _mm_getcsr();
+  FlushDenormals() { _mm_setcsr(saved | 0x8040u); }
+  ~FlushDenormals() { _mm_setcsr(saved); }
+};
 
 class RaycastNode : public ::testing::Test {
  protected:
@@ -111,9 +123,14 @@ TEST_F(RaycastNode, MissesGiveLengthAndZeros) {
 }
 
 TEST_F(RaycastNode, SelfHitsOnlyFromOffTheHit) {
-  // From exactly the hit the shelf's own triangle is passed by; from a point above it, the shelf
-  // is met and is the hit's own object.
+  // From exactly the hit the shelf's own triangle is passed by (met at t = 0 exactly: with
+  // denormals flushed, as in a render, a restart one float past it would meet it again); from a
+  // point above it, the shelf is met and is the hit's own object.
   expect_near(run(g.position, Vec3(0, 0, -1), 10.0f, 0), glm::vec4(1.0f, 0.0f, 2.0f, 0.0f));
+  {
+    FlushDenormals flushed;
+    expect_near(run(g.position, Vec3(0, 0, -1), 10.0f, 0), glm::vec4(1.0f, 0.0f, 2.0f, 0.0f));
+  }
   const Vec3 above = g.position + Vec3(0.0f, 0.0f, 0.5f);
   expect_near(run(above, Vec3(0, 0, -1), 10.0f, 0), glm::vec4(1.0f, 1.0f, 0.5f, 0.0f));
   expect_near(run(above, Vec3(0, 0, -1), 10.0f, 2), glm::vec4(0.0f, 0.0f, 1.0f, 0.0f));
@@ -150,6 +167,50 @@ TEST_F(RaycastNode, OnlyLocalSeesTheHitsObject) {
   position.run(on_floor, {}, regs.data());
   expect_near(regs[4], glm::vec4(0.2f, 0.1f, 0.0f, 0.0f));
   expect_near(run(g.position, down, 10.0f, 0, true), glm::vec4(0.0f, 0.0f, 10.0f, 0.0f));  // nothing under the shelf
+}
+
+// A tilted shelf (its corners not on float's grid) and rays leaving it at a glancing angle
+// (cosine 0.1 to its plane): each passes by its own triangle, wherever rounding puts that hit,
+// and meets the floor at the distance the planes give.
+TEST(RaycastNodeGlancing, PassesItsOwnTriangle) {
+  Scene scene;
+  scene.add_material(Material{});
+  add_square(scene, 0.0f, Vec3(0, 0, 1), 20.0f);
+  const float c = std::cos(0.3f), s = std::sin(0.3f);
+  std::vector<float> pos;
+  for (float y : {-1.0f, 1.0f})
+    for (float x : {-1.0f, 1.0f}) pos.insert(pos.end(), {x, c * y, 1.3f + s * y});
+  const std::vector<int64_t> tris{0, 1, 3, 0, 3, 2};
+  const uint32_t shelf = scene.add_mesh(pos.data(), 4, tris.data(), 2, nullptr, nullptr);
+  scene.commit();
+  const Vec3 n(0.0f, -s, c);  // the shelf's normal
+  FlushDenormals flushed;
+  int checked = 0;
+  for (int i = 0; i < 64; ++i) {
+    Ray down;
+    down.origin = Vec3(-0.9f + 0.028f * float(i), 0.37f - 0.011f * float(i), 5.0f);
+    down.dir = Vec3(0, 0, -1);
+    SurfaceHit hit;
+    ASSERT_TRUE(scene.intersect(down, hit));
+    ASSERT_EQ(hit.object, shelf);
+    ShaderGlobals g;
+    g.tracer = &scene;
+    g.object = hit.object;
+    g.prim = hit.prim;
+    g.position = hit.position;
+    // Into the shelf's back at a glancing angle, toward the floor: t = z / -dir.z.
+    const Vec3 dir = glm::normalize(Vec3(0.0f, 0.995f * c, 0.995f * s) * (i % 2 ? 1.0f : -1.0f) - 0.1f * n);
+    if (!(dir.z < 0.0f)) continue;
+    const ShaderProgram p = raycast_program(g.position, dir, 100.0f, 0, false);
+    std::array<glm::vec4, 5> regs{};
+    p.run(g, {}, regs.data());
+    const float t = g.position.z / -dir.z;
+    const Vec3 floor_point = g.position + t * dir;
+    if (std::abs(floor_point.x) > 19.0f || std::abs(floor_point.y) > 19.0f) continue;  // off the floor
+    expect_near(regs[4], glm::vec4(1.0f, 0.0f, t, 0.0f), 2e-4f);
+    ++checked;
+  }
+  EXPECT_GT(checked, 16);
 }
 
 }  // namespace

@@ -1,12 +1,12 @@
 // The Raycast node's query (ShaderTracer::raycast): the first surface along a ray, in the whole
 // scene (Scene::intersect, every surface whatever its material) or, for Only Local, in the
 // object's own BVH (scene_local.cpp's local scenes). The triangle the ray leaves is passed by
-// as Cycles' self-intersection skip does: the ray goes on just past that hit.
+// as Cycles' self-intersection skip does: the query starts again just past that hit.
 #include "scene/embree_rays.h"
 #include "scene/scene_internal.h"
 
+#include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace torrance {
 
@@ -14,9 +14,15 @@ using namespace scene_detail;
 
 namespace {
 
-// At most this many hits of the skipped triangle are passed by (a ray meets a flat triangle
-// once; a few more for one that meets it again through rounding at an edge).
-constexpr int kMaxSkips = 4;
+// A ray from the hit meets the hit's own triangle near t = 0, wherever rounding puts it, and
+// again after a restart just past it: each restart starts past the last hit by a step that
+// grows (from ~1e-7 of the scene's scale over |dir|, eightfold each time), at most this often.
+constexpr int kMaxSkips = 8;
+
+float first_skip_step(const Vec3& origin, const Vec3& dir) {
+  const float scale = std::max(1.0f, std::max(std::abs(origin.x), std::max(std::abs(origin.y), std::abs(origin.z))));
+  return 1e-7f * scale / glm::length(dir);
+}
 
 bool skipped(const SurfaceHit& h, uint32_t skip_object, uint32_t skip_prim) {
   return skip_object != ShaderGlobals::kNoObject && h.object == skip_object && h.prim == skip_prim;
@@ -37,13 +43,14 @@ bool Scene::raycast(const Vec3& origin, const Vec3& dir, float tmin, float tmax,
   SurfaceHit h;
   if (only_object == ShaderGlobals::kNoObject) {
     Ray ray{origin, dir, tmin, tmax};
-    for (int k = 0; k <= kMaxSkips; ++k) {
+    float step = first_skip_step(origin, dir);
+    for (int k = 0; k <= kMaxSkips; ++k, step *= 8.0f) {
       if (!intersect(ray, h)) return false;
       if (!skipped(h, skip_object, skip_prim)) {
         hit = raycast_hit(h, dir);
         return true;
       }
-      ray.tmin = std::nextafter(h.t, std::numeric_limits<float>::infinity());
+      ray.tmin = std::max(h.t, ray.tmin) + step;
       if (!(ray.tmin < ray.tmax)) return false;
     }
     return false;
@@ -51,8 +58,8 @@ bool Scene::raycast(const Vec3& origin, const Vec3& dir, float tmin, float tmax,
   Vec3 o = origin, d = dir;  // the object's space (an instance's prototype's): the same t
   const RTCScene scene = static_cast<RTCScene>(local_scene(only_object, o, d));
   if (!scene) return false;
-  float from = tmin;
-  for (int k = 0; k <= kMaxSkips; ++k) {
+  float from = tmin, step = first_skip_step(origin, dir);
+  for (int k = 0; k <= kMaxSkips; ++k, step *= 8.0f) {
     RTCRayHit rh = embree_ray_hit(o, d, from, tmax);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -67,7 +74,7 @@ bool Scene::raycast(const Vec3& origin, const Vec3& dir, float tmin, float tmax,
       hit = raycast_hit(h, dir);
       return true;
     }
-    from = std::nextafter(h.t, std::numeric_limits<float>::infinity());
+    from = std::max(h.t, from) + step;
     if (!(from < tmax)) return false;
   }
   return false;
