@@ -88,6 +88,15 @@ class GraphCompiler:
             self._cache[key] = self._output(node, socket)
         return self._cache[key]
 
+    def shared(self, node, part, make):
+        """A Value that several outputs of `node` read (`part` names it; Raycast's hit record):
+        make() gives it once per node, as `output` caches a socket's."""
+        key = (tuple(g.as_pointer() for g in self._groups), node.as_pointer(), part,
+               self.builder.offset)
+        if key not in self._cache:
+            self._cache[key] = make()
+        return self._cache[key]
+
     def _output(self, node, socket):
         kind = KIND_OF_SOCKET.get(socket.type)
         if kind is None:

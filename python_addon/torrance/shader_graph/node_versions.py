@@ -26,8 +26,9 @@ materials.principled_version does, not by bpy.app.version:
               Material Output's Displacement uses.
   Normal Map  5.1 adds the DirectX convention (green pointing down, in every space):
               normal_map_directx says whether the node uses it; bump.py flips green.
-  new nodes   4.3 adds the Gabor Texture (gabor.py), 5.0 Radial Tiling (radial_tiling.py;
-              ADDED_NODES: the registry reads them where the Blender has them).
+  new nodes   4.3 adds the Gabor Texture (gabor.py), 5.0 Radial Tiling (radial_tiling.py), 5.2
+              Raycast (local_rays.py; ADDED_NODES: the registry reads them where the Blender
+              has them).
   Sky Texture  Cycles 3.6 wraps the Nishita sun's elevation into [-pi/2, pi/2] (turning it
               about z past the zenith; cycles_wraps_sun_elevation); 5.0 renames Dust to
               Aerosol (sky_dust_density) and replaces Nishita by Single and Multiple
@@ -71,6 +72,7 @@ ADDED_NODES = {
     'ShaderNodeBsdfMetallic': "4.3: the Metallic BSDF",
     'ShaderNodeRadialTiling': "5.0: Radial Tiling",
     'ShaderNodeVolumeCoefficients': "5.0: the Volume Coefficients node",
+    'ShaderNodeRaycast': "5.2: the Raycast node",
 }
 
 # The Noise Texture's noise types, Blender 4.1's names (the Musgrave types of 3.4).

@@ -330,6 +330,15 @@ CLOSURES = {
                               "Random of particle 0) on child particles, other objects and "
                               "instances, the world and lights; reported inside a "
                               "heterogeneous volume",
+    # a value node that traces a ray from the hit (local_rays.py)
+    'ShaderNodeRaycast': "partly (shader graph): Is Hit, Self Hit, Hit Distance, Hit Position "
+                         "and Hit Normal as Cycles 5.x (one ray from Position, unlinked the "
+                         "hit, along Direction, unlinked the normal, not normalised, up to "
+                         "Length; every surface stops it; from the hit its own triangle is "
+                         "passed by; Hit Normal the smooth normal turned toward the ray; Only "
+                         "Local); reported: the sampled attributes' outputs (their sockets keep "
+                         "their own values); objects' Visibility > Ray Visibility > Raycast is "
+                         "not read (every rendered object stops the ray)",
     # a value node that Torrance reads in part (radial_tiling.py)
     'ShaderNodeRadialTiling': "partly: whole Sides at any Roundness, any Sides at Roundness 0; "
                               "fractional or varying Sides with Roundness above 0 are reported",
