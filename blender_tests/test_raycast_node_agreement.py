@@ -13,12 +13,15 @@ have no such node: exit 77). Emission only, so few samples suffice:
   from its faces: the floor under its bottom and outer sides, its own bottom or sides from
   inside under its top and the sides facing away from the ray;
 * a smooth sphere showing Hit Normal / 2 + 1/2 of rays into it (Direction -Normal + (0.5, 0,
-  0.3)): its far side met from inside, the normal turned inward.
+  0.3)): its far side met from inside, the normal turned inward;
+* one object of a slab and a beam above it, (Is Hit, Hit Distance / 2, Self Hit) of Only Local
+  rays along (0.15, 1.2, 1) that pass through a block (another object, showing its own rays)
+  between them to the beam.
 
 Cycles' reference (seed 0) and a second Cycles image (seed 1) set the bounds; Torrance renders
 seeds 2 and 3. Faults that must fail: the distance not clamped to Length (rays reach past it),
 self hits counted (the ray starting 1 mm behind its surface meets it at once), Hit Normal of the
-wrong side (not turned toward the ray).
+wrong side (not turned toward the ray), Only Local ignored.
 
 Run: scripts/bpy 5.3 -b --factory-startup --python-exit-code 1 \
          --python blender_tests/test_raycast_node_agreement.py
@@ -27,7 +30,7 @@ Run: scripts/bpy 5.3 -b --factory-startup --python-exit-code 1 \
 from torrance_tools import scene as make
 from torrance_tools import testing
 from torrance_tools.seed_noise import agree_on_scene
-from torrance_tools.shader_graphs import skip_without
+from torrance_tools.shader_graphs import read_with, skip_without
 
 W, H = 96, 72
 LENGTH = 1.5
@@ -46,12 +49,13 @@ def vector_node(nodes, value):
     return node.outputs[0]
 
 
-def floor_material():
-    """(Is Hit, Hit Distance / 2, Self Hit) of a slanted ray of Length 1.5."""
-    mat, nodes, links, out = make.node_material("Floor")
+def hit_distance_material(name, direction, length, only_local=False):
+    """(Is Hit, Hit Distance / 2, Self Hit) of a ray along `direction` up to `length`."""
+    mat, nodes, links, out = make.node_material(name)
     ray = nodes.new("ShaderNodeRaycast")
-    ray.inputs["Length"].default_value = LENGTH
-    links.new(vector_node(nodes, (0.5, 0.3, 1.0)), ray.inputs["Direction"])
+    ray.only_local = only_local
+    ray.inputs["Length"].default_value = length
+    links.new(vector_node(nodes, direction), ray.inputs["Direction"])
     combine = nodes.new("ShaderNodeCombineColor")
     links.new(ray.outputs["Is Hit"], combine.inputs[0])
     links.new(make.math_node(nodes, links, 'MULTIPLY', ray.outputs["Hit Distance"], 0.5)
@@ -103,12 +107,31 @@ def sphere_material():
     return mat
 
 
+def boxes(scene, name, pieces, material):
+    """One object of axis-aligned boxes (lower corner, upper corner) with outward faces."""
+    verts, faces = [], []
+    for lo, hi in pieces:
+        base = len(verts)
+        verts += [(x, y, z) for z in (lo[2], hi[2]) for y in (lo[1], hi[1]) for x in (lo[0], hi[0])]
+        faces += [tuple(base + i for i in f) for f in (
+            (0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5))]
+    return make.mesh_object(scene, name, verts, faces, material)
+
+
 def build(scene):
     testing.setup_render(scene, width=W, height=H, max_bounces=0)
     testing.add_camera(scene, location=(0.4, -5.5, 3.6), target=(0.0, 0.4, 0.6), lens=33.0)
-    testing.plane(scene, "Floor", 6.0, material=floor_material())
+    testing.plane(scene, "Floor", 6.0,
+                  material=hit_distance_material("Floor", (0.5, 0.3, 1.0), LENGTH))
     make.box(scene, "Box", (0.6, 0.4, 1.4), (1.0, 1.0, 1.0), box_material())
     make.sphere_object(scene, "Sphere", (-1.3, -0.2, 0.8), 0.7, sphere_material())
+    # Only Local: a slab and a beam above it, one object, whose rays pass through a block (another
+    # object) between them to the beam.
+    boxes(scene, "Slab and beam", [((1.5, -2.0, 0.0), (2.6, -0.6, 0.3)),
+                                   ((1.5, -0.5, 1.0), (2.6, 0.0, 1.2))],
+          hit_distance_material("Local", (0.15, 1.2, 1.0), 3.0, only_local=True))
+    make.box(scene, "Block", (2.05, -0.9, 0.65), (1.1, 0.5, 0.2),
+             hit_distance_material("Block", (0.2, 0.3, 1.0), 3.0))
     testing.set_world(scene, (0.0, 0.0, 0.0))
 
 
@@ -169,7 +192,8 @@ def main():
     agree_on_scene(build, 16, 0, "the Raycast node", faults=(
         ("distance not clamped to Length", readers, 'ShaderNodeRaycast', length_ignored),
         ("self hits counted", local_rays, 'ray_position', starts_behind),
-        ("Hit Normal of the wrong side", readers, 'ShaderNodeRaycast', normal_not_turned)))
+        ("Hit Normal of the wrong side", readers, 'ShaderNodeRaycast', normal_not_turned),
+        ("Only Local ignored", readers, 'ShaderNodeRaycast', read_with(only_local=False))))
 
 
 if __name__ == "__main__":
