@@ -5,6 +5,7 @@
 // plain, splatted, with the efficiency roulette, path guiding, adaptive sampling, passes and
 // the light tracer's caustics.
 #include "torrance/integrator/integrator.h"
+#include "integrator/sample_blocks.h"
 #include "scene_helpers.h"
 
 #include <gtest/gtest.h>
@@ -116,6 +117,18 @@ TEST(PassPartition, AdaptiveSampling) {
   s.filter_width = 1.0f;  // a reach of 1 pixel: splatting stays on with adaptive sampling
   s.filter_splatting = true;
   expect_same_for_any_passes(s, "adaptive, splatted");
+}
+
+// Blocks end at 1, 2, 4, 8 samples, then every kBlockSamples; passes end only at blocks' ends.
+TEST(PassPartition, BlocksAndPassesEndWhereTheSampleCountSays) {
+  static_assert(kBlockSamples == 8);
+  const int ends[][2] = {{0, 1}, {1, 2}, {2, 4}, {3, 4}, {4, 8}, {7, 8}, {8, 16}, {15, 16}, {16, 24}, {23, 24}};
+  for (const auto& e : ends) EXPECT_EQ(sample_block_end(e[0]), e[1]) << "block of sample " << e[0];
+  EXPECT_EQ(pass_end_at_block(0, 3, 100), 2);    // the last block end within the wish
+  EXPECT_EQ(pass_end_at_block(8, 20, 100), 24);
+  EXPECT_EQ(pass_end_at_block(8, 1, 100), 16);   // at least one block
+  EXPECT_EQ(pass_end_at_block(4, 100, 13), 13);  // never past the render's samples
+  EXPECT_EQ(pass_end_at_block(16, 3, 20), 20);
 }
 
 TEST(PassPartition, PassSamplesMustNotBeNegative) {

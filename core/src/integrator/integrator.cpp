@@ -5,6 +5,7 @@
 #include "film/film.h"
 #include "film/motion_vectors.h"
 #include "integrator/path_tracer.h"
+#include "integrator/sample_blocks.h"
 #include "integrator/shadow_catcher_split.h"
 #include "scene/ray_queries.h"
 
@@ -385,11 +386,12 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
     }
   };
 
-  // The samples [first_sample, first_sample + num_samples) of a phase's tiles, in parallel. A
-  // tile takes them sample by sample, each over its rows in order, so what reaches the film (and
-  // the roulette's statistics of the tile's blocks) comes in the order (sample, pixel) whatever
-  // the samples' split into passes: the sums, and so the image, never depend on the passes'
-  // timing (a float sum's rounding depends on its order).
+  // The samples [first_sample, first_sample + num_samples) of a phase's tiles, in parallel: one
+  // block's (sample_blocks.h) or a part of one that ends where every render ends a step (an
+  // adaptive check, a guiding or roulette update). A tile takes them pixel by pixel over its rows.
+  // So what reaches the film (and the roulette's statistics of the tile's blocks) comes in one
+  // order whatever the samples' split into passes: the sums, and so the image, never depend on
+  // the passes' timing (a float sum's rounding depends on its order).
   auto render_phase = [&](const std::vector<Tile>& tiles, int first_sample, int num_samples) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
       FlushDenormals ftz;
@@ -402,26 +404,28 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
         const Tile& tile = tiles[t];
         // Stop checked per row, not only per tile: a tile of a late pass (passes grow to half a
         // second) can take a large part of that pass on a small image, and Esc waits for it.
-        for (int s = first_sample; s < first_sample + num_samples && !stop.load(std::memory_order_relaxed); ++s)
-          for (int y = tile.y0; y < tile.y1 && !stop.load(std::memory_order_relaxed); ++y) {
-            // A row's camera samples of sample index s, pixel by pixel, batched: a packet holds
-            // kPacketSize neighbouring pixels' rays (coherent). Each pixel's samples reach the
-            // film in order, so the image does not depend on the batching.
-            for (int x = tile.x0; x < tile.x1; ++x) {
-              if (adaptive && film.converged(x - window[0], y - window[1])) continue;
-              // Guiding learns relative error: the pixel's estimate so far (its earlier samples';
-              // no other thread adds to it during this phase).
-              PixelSample pixel_sample;
-              pixel_sample.x = x - window[0];
-              pixel_sample.y = y - window[1];
-              pixel_sample.guide_weight = ctx.guide_training && in_window(pixel_sample)
-                                              ? pixel_weight(film.mean(pixel_sample.x, pixel_sample.y))
-                                              : 1.0f;
+        for (int y = tile.y0; y < tile.y1 && !stop.load(std::memory_order_relaxed); ++y) {
+          // A row's camera samples, pixel by pixel, each pixel's samples of the block one after
+          // another, batched: a packet holds a pixel's samples (coherent rays) and, in blocks
+          // of fewer than kPacketSize samples, the next pixels' too. Each pixel's samples reach
+          // the film in order, so the image does not depend on the batching.
+          for (int x = tile.x0; x < tile.x1; ++x) {
+            if (adaptive && film.converged(x - window[0], y - window[1])) continue;
+            // Guiding learns relative error: the pixel's estimate so far (no other thread adds
+            // to it during this phase).
+            PixelSample pixel_sample;
+            pixel_sample.x = x - window[0];
+            pixel_sample.y = y - window[1];
+            pixel_sample.guide_weight = ctx.guide_training && in_window(pixel_sample)
+                                            ? pixel_weight(film.mean(pixel_sample.x, pixel_sample.y))
+                                            : 1.0f;
+            for (int s = first_sample; s < first_sample + num_samples; ++s) {
               batch[size_t(batched++)] = {pixel_sample, uint32_t(s)};
               if (batched == Scene::kPacketSize) trace_batch(batch, std::exchange(batched, 0), bad, packet_hits);
             }
-            if (batched > 0) trace_batch(batch, std::exchange(batched, 0), bad, packet_hits);
           }
+          if (batched > 0) trace_batch(batch, std::exchange(batched, 0), bad, packet_hits);
+        }
       }
       if (bad) nonfinite += bad;
       const RayCounts rays = thread_ray_counts() - rays_before;
@@ -430,17 +434,16 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
       camera_packets += rays.packets;
     });
   };
-  // With splatting, a pixel near a tile's edge takes splats from the tiles of several phases:
-  // the phases go sample by sample, so the pixel takes them in the order (sample, phase, pixel)
-  // for any split of the samples into passes. Without, one phase takes all the samples at once.
+  // Block by block; with splatting, a pixel near a tile's edge takes splats from the tiles of
+  // several phases: the phases go block by block, so the pixel takes them in the order (block,
+  // phase, pixel, sample) for any split of the samples into passes.
   auto render_pass = [&](int first_sample, int num_samples) {
-    if (margin == 0) {
-      render_phase(phases[0], first_sample, num_samples);
-      return;
-    }
-    for (int s = first_sample; s < first_sample + num_samples && !stop; ++s)
+    const int end = first_sample + num_samples;
+    for (int s = first_sample; s < end && !stop; s = std::min(sample_block_end(s), end)) {
+      const int n = std::min(sample_block_end(s), end) - s;
       for (const std::vector<Tile>& tiles : phases)
-        if (!tiles.empty()) render_phase(tiles, s, 1);
+        if (!tiles.empty()) render_phase(tiles, s, n);
+    }
   };
 
   std::mutex mutex;
@@ -476,8 +479,9 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
       if (catchers) catcher_ctx.emplace(catcher_half_context(ctx));
       result.filter_splatting = splatting;
       while (done < settings.samples && !stop && !all_converged && !out_of_time) {
-        const int target = std::min(settings.pass_samples > 0 ? settings.pass_samples : pass_size,
-                                    settings.samples - done);
+        // Passes end at blocks' ends (sample_blocks.h): the image never depends on their timing.
+        const int target = pass_end_at_block(done, settings.pass_samples > 0 ? settings.pass_samples : pass_size,
+                                             settings.samples) - done;
         const auto t0 = std::chrono::steady_clock::now();
         int n = 0;  // samples of this pass, rendered in steps that end at adaptive checks
         while (n < target) {
