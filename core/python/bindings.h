@@ -18,6 +18,7 @@ void init_scene(py::module_& m);
 void init_mixture(py::module_& m);  // after init_scene: adds Scene.add_mixture
 void init_cryptomatte(py::module_& m);   // after init_scene: cryptomatte_hash, Scene.set_cryptomatte
 void init_object_settings(py::module_& m);  // after init_scene: Scene.set_curves_settings
+void init_points(py::module_& m);  // after init_scene: Scene.add_points, set_points_settings
 void init_media(py::module_& m);    // after init_scene: adds Scene.set_material_volume, set_world_volume
 void init_motion(py::module_& m);  // after init_scene: Scene.set_mesh_motion, set_camera_motion
 void init_frame_motion(py::module_& m);  // after init_scene: Scene.set_frame_motion_* (the Vector pass)
