@@ -42,7 +42,7 @@ def plan_instances(depsgraph, options):
                 m = inst.matrix_world.copy()
                 plan.append(('LIGHT', obj, m, None, None))
                 fp.append(('L', obj.name, matrix_tuple(m)))
-        elif role in ('UNSUPPORTED', 'HAIR', 'VOLUME'):  # hair, volumes: final renders only
+        elif role in ('UNSUPPORTED', 'HAIR', 'VOLUME', 'POINTS'):  # final renders only
             plan.append(('UNSUPPORTED', obj, None, None, None))
             fp.append(('U', obj.name))
         elif role == 'MESH':
