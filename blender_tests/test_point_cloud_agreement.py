@@ -15,6 +15,8 @@ Cycles' seed-0 reference and its seed-1 render set the bounds; Torrance's seeds 
 within them, and each deliberate fault fails them: the diameter used for the radius, the radius
 ignored (Cycles' default 0.01 for every point), the radii not scaled by the object, Point Info's
 Random hashed with another seed, its Position and Radius swapped, the attributes not read.
+Then bad input: points of radii -0.35 .. 0.25 (four of them negative) and an empty point cloud
+render finite, the four reported (zero and NaN radii: core/tests/test_points.cpp).
 
 Run: scripts/blender -b --factory-startup --python-exit-code 1 \\
          --python blender_tests/test_point_cloud_agreement.py
@@ -214,6 +216,31 @@ def main():
                                                                      "Random hashed with seed 1")),
                             tolerance=1.5, ratio_sigmas=3.0)
     testing.check(not testing.last_messages(), f"unexpected reports: {testing.last_messages()}")
+    bad_points(scene)
+
+
+def bad_points(scene):
+    """Radii that are negative and positive (the points' x: -0.35 .. 0.25) and an empty
+    point cloud: a Torrance render that is finite, shows the good points and reports the bad."""
+    from torrance_tools.render_settings import setup_torrance
+    for obj in list(scene.objects):
+        if obj.name.endswith("Points"):
+            obj.hide_render = True
+    for name, count in (("SignedRadii", 7), ("NoPoints", 0)):
+        t = Tree(scene, name, location=(0.0, -0.6, 0.3))
+        line = t.node('GeometryNodeMeshLine', **{"Count": count,
+                                                 "Start Location": (-0.35, 0.0, 0.0),
+                                                 "Offset": (0.1, 0.0, 0.0)})
+        px, _py = t.position_x()
+        t.points(line.outputs["Mesh"], px, testing.principled("Bad", (0.8, 0.8, 0.8)))
+    bpy.context.view_layer.update()
+    setup_torrance(scene, 4, BOUNCES, seed=0)
+    img, _seconds = testing.render(scene, testing.tempdir(), "bad_points")
+    messages = testing.last_messages()
+    print("bad points:", messages, flush=True)
+    testing.check(np.isfinite(img).all(), "bad points: NaN/Inf in the image")
+    testing.check(any("'SignedRadii': 4 point(s)" in text for _level, text in messages),
+                  f"the 4 points of radius <= 0 are not reported: {messages}")
 
 
 testing.run(main)
