@@ -15,6 +15,7 @@ Cycles' seed-0 reference and its seed-1 render set the bounds; Torrance's seeds 
 within them, and each deliberate fault fails them: the diameter used for the radius, the radius
 ignored (Cycles' default 0.01 for every point), the radii not scaled by the object, Point Info's
 Random hashed with another seed, its Position and Radius swapped, the attributes not read.
+The viewport renders them as the final render does, before and after an edit of the grid's radii.
 Then bad input: points of radii -0.35 .. 0.25 (four of them negative) and an empty point cloud
 render finite, the four reported (zero and NaN radii: core/tests/test_points.cpp).
 
@@ -216,7 +217,46 @@ def main():
                                                                      "Random hashed with seed 1")),
                             tolerance=1.5, ratio_sigmas=3.0)
     testing.check(not testing.last_messages(), f"unexpected reports: {testing.last_messages()}")
+    viewport(scene)
     bad_points(scene)
+
+
+def viewport(scene):
+    """The viewport (viewport/scene_cache.py) renders the point clouds as the final render does,
+    and a new radius (the grid's geometry nodes edited) reaches it."""
+    from torrance_tools.render_settings import setup_torrance
+    from torrance_tools.viewport_render import camera_view, wait_done
+    tv, tc = testing.addon().viewport, testing.core()
+    setup_torrance(scene, 8, BOUNCES, seed=0)
+    scene.torrance.viewport_samples = 8
+    scene.torrance.use_guiding = False
+    w, h = scene.render.resolution_x, scene.render.resolution_y
+    view, settings = camera_view(tv, scene, w, h), tv.viewport_settings(scene)
+    state = tv.ViewportState(tc)
+    try:
+        for step in ("as built", "radius edited"):
+            if step == "radius edited":
+                tree = bpy.data.node_groups["GridPoints"]
+                add = next(n for n in tree.nodes if n.bl_idname == 'ShaderNodeMath'
+                           and n.operation == 'ADD'
+                           and math.isclose(n.inputs[1].default_value, 0.08, rel_tol=1e-6))
+                add.inputs[1].default_value = 0.05
+                bpy.context.view_layer.update()
+            rebuilt = state.sync(bpy.context.evaluated_depsgraph_get())
+            testing.check(rebuilt is not None, f"viewport {step}: the scene was not synced")
+            state.ensure_render(view, settings, start_res=64)
+            wait_done(state)
+            final, _seconds = testing.render(scene, testing.tempdir(), "final")
+            difference = float(np.abs(state.render.image - final).max(axis=2).mean())
+            points = state.cache.last_build["points"]
+            print(f"viewport {step}: {points} points, mean difference from the final render "
+                  f"{difference:.2e}", flush=True)
+            # (the floor is an instance in the viewport, a world-space mesh in the final render:
+            # float noise apart, 2e-5 here; without the viewport's points 2e-2)
+            testing.check(points == (33 if NAMED_ATTRIBUTES else 27) and difference < 1e-4,
+                          f"viewport {step}: the viewport differs from the final render")
+    finally:
+        state.close()
 
 
 def bad_points(scene):

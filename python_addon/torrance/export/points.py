@@ -18,6 +18,8 @@ geom/point.h): each point a sphere of its radius about its position.
 * Points with a zero, negative or non-finite radius or position are skipped and reported.
 """
 
+from types import SimpleNamespace
+
 import numpy as np
 
 from ..matrices import radius_scale, times_transpose
@@ -73,6 +75,31 @@ def point_layers(data, keys, local, info):
     return np.ascontiguousarray(np.stack(layers)), np.array(ids, np.int32)
 
 
+class PointCloudData:
+    """What an export reads of an evaluated point cloud object, kept past its iteration step
+    (the depsgraph reuses an instance's temporary object for the next; its point cloud stays):
+    name, point cloud, material slots, colour and pass index (Object Info), the instance's
+    random id (None: an object itself). The viewport's plan holds these (scene_plan.py)."""
+
+    def __init__(self, obj, random_id=None):
+        self.name = obj.name
+        self.data = obj.data
+        self.material_slots = [SimpleNamespace(material=s.material) for s in obj.material_slots]
+        self.color = tuple(obj.color)
+        self.pass_index = obj.pass_index
+        self.random_id = random_id
+
+
+def points_checksum(data):
+    """A cheap summary of a point cloud's points (count, sums of positions and radii) that
+    changes when they do: the viewport's fingerprint."""
+    got = read_points(data)
+    if got is None:
+        return (0, 0.0, 0.0)
+    local, radii = got
+    return (len(radii), float(local.sum(dtype=np.float64)), float(radii.sum(dtype=np.float64)))
+
+
 class PointClouds:
     """The point clouds of an export: capture() reads each (during the depsgraph pass),
     add() gives them to the core."""
@@ -82,7 +109,8 @@ class PointClouds:
         self.captured = []   # (name, centres, radii, material, layers, settings)
 
     def capture(self, obj, matrix, random_id=None, settings=None):
-        """Reads evaluated point cloud object obj at its world matrix; random_id: an instance's
+        """Reads evaluated point cloud object obj (or its PointCloudData) at its world matrix;
+        random_id: an instance's
         (DepsgraphObjectInstance.random_id), for Object Info's Random; settings: the keyword
         arguments of Scene.set_points_settings for it, or None."""
         got = read_points(obj.data)

@@ -111,10 +111,6 @@ def report_unsupported(obj, reported_types, reporter):
             reporter.warning(f"Volume objects are rendered in final renders only, not yet in "
                              f"the viewport or as instances (e.g. '{obj.name}')")
             return
-        if obj.type == 'POINTCLOUD':  # final renders: points.py
-            reporter.warning(f"Point clouds are rendered in final renders only, not yet in the "
-                             f"viewport (e.g. '{obj.name}')")
-            return
         reporter.warning(f"Torrance does not render objects of type {obj.type} "
                          f"(e.g. '{obj.name}')")
 
