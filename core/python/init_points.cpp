@@ -9,9 +9,6 @@
 
 namespace torrance::python {
 
-ObjectSettings object_settings(float pass_index, bool holdout, bool shadow_catcher, int light_group,
-                               int receiver_set, int blocker_set, int32_t cryptomatte);  // init_object_settings
-
 void init_points(py::module_& m) {
   py::object cls = m.attr("Scene");
   add_method(cls,

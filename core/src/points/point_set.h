@@ -18,7 +18,7 @@ struct Scene::PointSet {
   std::vector<Vec3> attributes;
   std::vector<int32_t> attribute_ids;
   uint32_t material = 0;
-  bool emits = false;  // its material emits: hits on it carry kUnsampledEmitter
+  bool emits = false;       // its material emits: hits on it carry kUnsampledEmitter
   ObjectSettings settings;  // its object's (Scene::set_points_settings)
 };
 
