@@ -2,6 +2,7 @@
 #pragma once
 
 #include "torrance/integrator/integrator.h"
+#include "torrance/scene/object_settings.h"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -18,6 +19,11 @@ void init_scene(py::module_& m);
 void init_mixture(py::module_& m);  // after init_scene: adds Scene.add_mixture
 void init_cryptomatte(py::module_& m);   // after init_scene: cryptomatte_hash, Scene.set_cryptomatte
 void init_object_settings(py::module_& m);  // after init_scene: Scene.set_curves_settings
+void init_points(py::module_& m);  // after init_scene: Scene.add_points, set_points_settings
+// An object's settings (init_object_settings.cpp: set_curves_settings' and set_points_settings'
+// arguments), checked: ValueError for a light group or linking set out of range.
+ObjectSettings object_settings(float pass_index, bool holdout, bool shadow_catcher, int light_group, int receiver_set,
+                               int blocker_set, int32_t cryptomatte);
 void init_media(py::module_& m);    // after init_scene: adds Scene.set_material_volume, set_world_volume
 void init_motion(py::module_& m);  // after init_scene: Scene.set_mesh_motion, set_camera_motion
 void init_frame_motion(py::module_& m);  // after init_scene: Scene.set_frame_motion_* (the Vector pass)

@@ -9,4 +9,5 @@
 #include "init_light_linking.cpp"
 #include "init_cryptomatte.cpp"
 #include "init_object_settings.cpp"
+#include "init_points.cpp"
 #include "init_motion.cpp"

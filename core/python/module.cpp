@@ -14,6 +14,7 @@ PYBIND11_MODULE(_core, m) {
   torrance::python::init_light_linking(m);
   torrance::python::init_cryptomatte(m);
   torrance::python::init_object_settings(m);
+  torrance::python::init_points(m);
   torrance::python::init_motion(m);
   torrance::python::init_frame_motion(m);
   torrance::python::init_render(m);

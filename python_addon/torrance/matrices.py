@@ -35,6 +35,13 @@ def inverse_transpose(m):
     return np.array(cof) / det, det
 
 
+def radius_scale(matrix):
+    """How a transform scales a strand's or a point's radius in Cycles (Hair and PointCloud's
+    apply_transform): the cube root of |det| of its 3x3 part (1 when that is not finite)."""
+    _inverse_t, det = inverse_transpose(np.array(matrix, dtype=np.float64)[:3, :3])
+    return abs(det) ** (1.0 / 3.0) if math.isfinite(det) else 1.0
+
+
 def inverse(m):
     """The inverse of a 4x4 matrix m: written out where m is affine (last row 0, 0, 0, 1; a
     view matrix) and invertible, np.linalg.inv otherwise (which raises for a singular m)."""

@@ -151,7 +151,7 @@ void Scene::curve_hit(uint32_t set_index, uint32_t prim, float u, const Vec3& or
   // Curves Info, as Cycles reads its curve attributes: key values interpolated linearly over the
   // segment (c[1] -> c[2]); Thickness the radii's, doubled (kernel curve_thickness).
   const float* intercept = &set.key_intercept[set.segment_key[prim]];
-  hit.curve_info = glm::vec4(intercept[1] + u * (intercept[2] - intercept[1]), set.segment_length[prim],
+  hit.primitive_info = glm::vec4(intercept[1] + u * (intercept[2] - intercept[1]), set.segment_length[prim],
                              2.0f * (c[1].w + u * (c[2].w - c[1].w)), set.segment_random[prim]);
   if (set.shape == CurveShape::Round) {
     // Cycles' thick curves: the normal from the centre line at u out through the hit (the view

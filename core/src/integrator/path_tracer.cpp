@@ -5,6 +5,7 @@
 // One class template, compiled per scene feature set, is why this file is longer than most.
 #include "integrator/path_tracer.h"
 
+#include "torrance/scene/unsampled_emitter.h"
 #include "film/denoising_features.h"
 #include "film/extra_passes_write.h"
 #include "film/film_passes.h"
@@ -219,7 +220,7 @@ class PathTracer {
         if (first_vertex) {
           first_surface_passes(v);
           camera_sees_emission(v);
-        } else if (!first_again && seg.hit->emitter >= 0) {
+        } else if (!first_again && seg.hit->emitter != -1) {  // (kUnsampledEmitter too)
           emitter_found(v, bounce);
         }
         if (bounce > ctx_.settings.max_bounces || past_last_volume_bounce()) break;
@@ -683,7 +684,8 @@ class PathTracer {
     if (light_groups_) credit(v.hit->object_settings.light_group, e);
   }
 
-  // An emissive triangle found by BSDF sampling: MIS against NEE's choice of it.
+  // An emissive triangle found by BSDF sampling: MIS against NEE's choice of it (an emissive
+  // point, kUnsampledEmitter, which NEE never chooses: all of its emission, as Cycles).
   void emitter_found(const Vertex& v, int bounce) {
     const SurfaceHit& hit = *v.hit;
     if (const LightLinks& links = lights_.links(); links.any()) {  // light_linking.h
@@ -692,7 +694,7 @@ class PathTracer {
         return;
     }
     float mis = 1.0f;
-    if (!last_.delta)
+    if (!last_.delta && hit.emitter >= 0)
       mis = power_heuristic(last_.pdf, lights_.mesh_light_pdf(size_t(hit.emitter), last_.ray_origin, last_.normal,
                                                               hit.position, kGlass && last_.two_sided, &light_choice_));
     const Vec3 e = throughput_ * v.material->emission * mis;

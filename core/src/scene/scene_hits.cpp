@@ -18,11 +18,16 @@ bool Scene::surface_hit(const void* rayhit, const Vec3& dir, SurfaceHit& hit) co
   const uint32_t owner = rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID ? geometry_owner_[rh.hit.geomID]
                                                                       : geometry_owner_[rh.hit.instID[0]];
   hit.t = rh.ray.tfar;
-  if (owner != kNoOwner && (owner & kCurvesBit) && !(owner & kInstanceBit)) {
+  // Strands and points (never instanced) in one test, so that triangles pay for one branch.
+  if (owner != kNoOwner && (owner & (kCurvesBit | kPointsBit)) && !(owner & kInstanceBit)) {
+    const Vec3 origin(rh.ray.org_x, rh.ray.org_y, rh.ray.org_z);
+    if (owner & kPointsBit) {
+      point_hit(owner & ~kPointsBit, rh.hit.primID, origin, dir, hit.t, hit);
+      return true;
+    }
     hit.uv.y = rh.hit.v;  // Embree's v across the strand, which a ribbon's normal is rounded by
     hit.object = ShaderGlobals::kNoObject;
-    curve_hit(owner & ~kCurvesBit, rh.hit.primID, rh.hit.u, Vec3(rh.ray.org_x, rh.ray.org_y, rh.ray.org_z), dir,
-              hit.t, hit);
+    curve_hit(owner & ~kCurvesBit, rh.hit.primID, rh.hit.u, origin, dir, hit.t, hit);
     return true;
   }
   triangle_hit(owner, rh.hit.primID, rh.hit.u, rh.hit.v, dir, hit);
@@ -36,6 +41,7 @@ bool Scene::surface_hit(const void* rayhit, const Vec3& dir, SurfaceHit& hit) co
 void Scene::triangle_hit(uint32_t owner, uint32_t prim, float u, float v, const Vec3& dir, SurfaceHit& hit) const {
   Corners c;
   hit.on_curve = false;
+  hit.on_point = false;
   hit.instance_constants = nullptr;
   hit.instance_constant_ids = nullptr;
   hit.num_instance_constants = 0;

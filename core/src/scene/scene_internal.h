@@ -6,6 +6,7 @@
 #include "torrance/scene/scene.h"
 
 #include "hair/curve_set.h"
+#include "points/point_set.h"
 
 #include <embree3/rtcore.h>
 
@@ -41,6 +42,7 @@ struct Scene::Mesh {
 namespace scene_detail {
 constexpr uint32_t kInstanceBit = 0x80000000u;
 constexpr uint32_t kCurvesBit = 0x40000000u;  // geometry_owner_: a curve set's index | kCurvesBit
+constexpr uint32_t kPointsBit = 0x20000000u;  // geometry_owner_: a point set's index | kPointsBit
 constexpr uint32_t kNoOwner = 0xFFFFFFFFu;     // a detached geometry id
 constexpr uint32_t kRemoved = 0xFFFFFFFFu;     // Instance::binding once removed
 constexpr uint32_t kNoGeometry = 0xFFFFFFFFu;  // Instance::geometry of an empty prototype's instance

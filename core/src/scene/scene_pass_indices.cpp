@@ -122,21 +122,34 @@ void Scene::set_instance_cryptomatte(const int64_t* ids, size_t count, int32_t e
   for (size_t i = 0; i < count; ++i) instances_[size_t(ids[i])].settings.cryptomatte = entry;
 }
 
-void Scene::set_curves_settings(uint32_t set, const ObjectSettings& settings) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  check_idle("set a curve set's object settings");
-  if (set >= curve_sets_.size()) throw std::invalid_argument("curve set " + std::to_string(set) + " does not exist");
+// A strand's or a point's object settings, checked, and the scene's flags they raise (with
+// mutex_ held): neither emits light, so no emitter entry.
+ObjectSettings Scene::adopt_settings(const ObjectSettings& settings) {
   ObjectSettings checked = settings;
   checked.light_group = checked_group(settings.light_group, extra_passes_);
   checked.receiver_set = LightLinks::checked_set(settings.receiver_set);
   checked.blocker_set = LightLinks::checked_set(settings.blocker_set);
   checked.emitter_links = 0;
-  curve_sets_[set]->settings = checked;
   object_holdouts_ = object_holdouts_ || checked.holdout;
   if (checked.shadow_catcher) {
     shadow_catchers_ = true;
     catcher_masks_dirty_ = true;
   }
+  return checked;
+}
+
+void Scene::set_curves_settings(uint32_t set, const ObjectSettings& settings) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set a curve set's object settings");
+  if (set >= curve_sets_.size()) throw std::invalid_argument("curve set " + std::to_string(set) + " does not exist");
+  curve_sets_[set]->settings = adopt_settings(settings);
+}
+
+void Scene::set_points_settings(uint32_t set, const ObjectSettings& settings) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  check_idle("set a point set's object settings");
+  if (set >= point_sets_.size()) throw std::invalid_argument("point set " + std::to_string(set) + " does not exist");
+  point_sets_[set]->settings = adopt_settings(settings);
 }
 
 }  // namespace torrance

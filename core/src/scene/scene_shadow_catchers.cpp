@@ -32,7 +32,7 @@ void Scene::set_instance_shadow_catchers(const int64_t* ids, size_t count, bool 
   catcher_masks_dirty_ = shadow_catchers_;
 }
 
-// A catcher's geometry answers every ray; any other (hair strands included) only rays without
+// A catcher's geometry answers every ray; any other (hair strands and points included) only rays without
 // kCatcherOnlyMask. Called from commit() before the scene is built.
 void Scene::apply_catcher_masks() {
   RTCScene scene = scene_of(scene_);
@@ -42,6 +42,7 @@ void Scene::apply_catcher_masks() {
     bool catcher = false;
     if (owner & kInstanceBit) catcher = instances_[owner & ~kInstanceBit].settings.shadow_catcher;
     else if (owner & kCurvesBit) catcher = curve_sets_[owner & ~kCurvesBit]->settings.shadow_catcher;
+    else if (owner & kPointsBit) catcher = point_sets_[owner & ~kPointsBit]->settings.shadow_catcher;
     else catcher = meshes_[owner]->settings.shadow_catcher;
     RTCGeometry geom = rtcGetGeometry(scene, id);
     rtcSetGeometryMask(geom, catcher ? 0xFFFFFFFFu : kOrdinaryMask);

@@ -189,6 +189,7 @@ ShaderOpInfo shader_op_info(ShaderOpcode op) {
     case ShaderOpcode::Wireframe: return {1, 2, false, shader::wireframe_op};
     case ShaderOpcode::VolumeGrid: return {1, 1, false, volume_grid_op};
     case ShaderOpcode::CurvesInfo: return {0, shader::kCurvesInfoModes, false, shader::curves_info_op};
+    case ShaderOpcode::PointInfo: return {0, shader::kPointInfoModes, false, shader::point_info_op};
     case ShaderOpcode::AmbientOcclusion: return {4, 2, false, shader::ambient_occlusion_op};
     case ShaderOpcode::Bevel: return {3, 1, false, shader::bevel_op};
     case ShaderOpcode::Raycast: return {4, 3, false, shader::raycast_op};

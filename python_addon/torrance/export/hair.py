@@ -18,7 +18,7 @@ per key (about a microsecond each), its results gathered into one numpy array.
 
 import numpy as np
 
-from ..matrices import inverse_transpose, times_transpose
+from ..matrices import radius_scale, times_transpose
 from ..shader_graph.hash_ops import hash_uint2, uint_to_float_incl
 
 SHAPES = {'RIBBONS': 'RIBBON', 'THICK': 'ROUND'}
@@ -43,11 +43,6 @@ def hair_systems(obj):
 
 def has_particle_hair(obj):
     return obj.type == 'MESH' and next(hair_systems(obj), None) is not None
-
-
-def _radius_scale(matrix):
-    _inverse_t, det = inverse_transpose(np.array(matrix, dtype=np.float64)[:3, :3])
-    return abs(det) ** (1.0 / 3.0) if np.isfinite(det) else 1.0
 
 
 def strand_radii(keys, part):
@@ -144,7 +139,7 @@ def export_hair(tc_scene, hair, materials, reporter, shape, on_added=None, setti
     for obj, matrix in hair:
         first_strand = 0         # the object's strands so far (Curves Info's Random)
         slot_to_material = materials.slot_indices([s.material for s in obj.material_slots])
-        scale = _radius_scale(matrix)
+        scale = radius_scale(matrix)
         if obj.type == 'CURVES':
             got = read_strands(obj, None, matrix)
             if got is None:

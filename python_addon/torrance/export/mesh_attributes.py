@@ -133,6 +133,28 @@ def _uv(mesh, name):
     return _as_xyz(_read(layer.data, "uv", len(mesh.loops), 2)), 'CORNER'
 
 
+def point_attribute(geometry, key):
+    """float32 (n, 3) of a mesh attribute key (the keys above: 'attribute',
+    'attribute_fac_alpha', 'color', 'color_alpha', 'uv') on a geometry whose attributes are per
+    point (a point cloud: Cycles copies each of them per point, a UV map being a 2D vector
+    attribute there), or None: the geometry lacks it, or the key is not an attribute's."""
+    kind, name = key[0], key[1] if len(key) > 1 else None
+    if not isinstance(name, str) or (not name and kind in ('color', 'color_alpha')):
+        return None
+    found = _raw(geometry, name)
+    if found is None or found[1] != 'POINT':
+        return None
+    values = found[0]
+    if kind in ('attribute', 'uv') or (kind == 'color' and values.shape[1] == 4):
+        return _as_xyz(values)
+    if kind == 'attribute_fac_alpha':
+        return _fac_alpha(values)
+    if kind == 'color_alpha' and values.shape[1] == 4:
+        return np.stack([values[:, 3], np.zeros(len(values), np.float32),
+                         np.zeros(len(values), np.float32)], axis=1)
+    return None
+
+
 def read_corner_attributes(mesh, nt, keys, co, tris):
     """{key: float32 (nt, 3, 3)} of the keys the mesh has (co: its vertex positions (N, 3),
     tris: its loop triangles' vertices (nt, 3))."""

@@ -22,6 +22,7 @@ from .lights import export_light
 from .mesh import MeshCache, add_world_mesh, mesh_materials
 from .mesh_attributes import dupli_record, instancer_record, object_info
 from .frame_motion import FrameMotionSampler, vector_pass_wanted
+from .points import PointClouds
 from .motion import MotionSampler, at_shutter_centre, motion_blur_enabled, uses_deform_motion
 from .volume_objects import VolumeObjects
 from .world import export_world
@@ -45,6 +46,7 @@ class ExportStats:
         self.objects = 0         # instances rendered (an object counts as one)
         self.triangles = 0       # world-space triangles (tc.Scene.num_triangles)
         self.strands = 0         # hair strands (export/hair.py)
+        self.points = 0          # point cloud points (export/points.py)
         self.lights = 0
         self.materials = 0
         self.textures = 0
@@ -60,6 +62,7 @@ class ExportStats:
 
     def __str__(self):
         return (f"{self.objects} objects, {self.triangles} triangles, {self.strands} strands, "
+                f"{self.points} points, "
                 f"{self.lights} lights, "
                 f"{self.materials} materials, {self.textures} textures, "
                 f"exported in {self.seconds:.2f} s (depsgraph pass {self.capture_seconds:.3f} s)")
@@ -74,8 +77,8 @@ def _is_visible(obj):
 
 
 def instance_role(inst):
-    """What an export does with a depsgraph instance: 'LIGHT', 'MESH', 'HAIR' or 'VOLUME'
-    (export it), 'UNSUPPORTED' (report its type) or None (skip it silently)."""
+    """What an export does with a depsgraph instance: 'LIGHT', 'MESH', 'HAIR', 'POINTS' or
+    'VOLUME' (export it), 'UNSUPPORTED' (report its type) or None (skip it silently)."""
     obj = inst.object
     kind = obj.type
     if kind == 'LIGHT':
@@ -84,6 +87,8 @@ def instance_role(inst):
         return 'VOLUME' if _is_visible(obj) and (inst.is_instance or inst.show_self) else None
     if kind == 'CURVES':            # hair strands (Blender 3.3+): export/hair.py
         return 'HAIR' if _is_visible(obj) and (inst.is_instance or inst.show_self) else None
+    if kind == 'POINTCLOUD':        # point clouds: export/points.py
+        return 'POINTS' if _is_visible(obj) and (inst.is_instance or inst.show_self) else None
     if kind not in MESH_TYPES:
         return None if kind in SKIPPED_TYPES else 'UNSUPPORTED'
     if kind != 'MESH':
@@ -201,6 +206,7 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre, view_cameras):
     unsupported_types = set()
     hair = []             # (evaluated object, matrix): particle-hair emitters and Curves objects
     volume_objects = []   # (evaluated object, matrix): Volume objects
+    clouds = PointClouds(materials, reporter)
     flattened = []        # OBJECTS_AS_INSTANCES off: (object, name, matrix, slot table, UVs)
     as_instances = OBJECTS_AS_INSTANCES
 
@@ -251,6 +257,19 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre, view_cameras):
         holdouts = holdout_names(depsgraph)
         catchers = shadow_catcher_names(depsgraph)
         masks = bool(holdouts or catchers)
+
+        def object_settings(obj, holdout, shadow_catcher):
+            """Scene.set_curves_settings' (set_points_settings') arguments for hair or point
+            cloud object obj (as its mesh would have)."""
+            receiver_set, blocker_set, _emitter = links.of(obj)
+            return dict(pass_index=float(obj.pass_index), holdout=holdout,
+                        shadow_catcher=shadow_catcher, light_group=groups.of(obj),
+                        receiver_set=receiver_set, blocker_set=blocker_set,
+                        cryptomatte=crypto.entry(obj))
+
+        def hair_settings(obj):
+            return object_settings(obj, obj.name_full in holdouts, obj.name_full in catchers)
+
         count = 0
         for inst in depsgraph.object_instances:
             count += 1
@@ -287,6 +306,11 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre, view_cameras):
                             what.particles.append(meshes.particles.record(inst))
                 elif what == 'LIGHT':
                     light(obj, inst.matrix_world.copy())
+                elif what == 'POINTS':
+                    clouds.capture(obj, inst.matrix_world, inst.random_id,
+                                   object_settings(
+                                       obj, bool(holdouts) and instance_holdout(inst, holdouts),
+                                       bool(catchers) and instance_shadow_catcher(inst, catchers)))
                 continue
             poll()
             if obj.type == 'MESH' and inst.show_particles and strands.has_particle_hair(obj):
@@ -298,6 +322,10 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre, view_cameras):
                 light(obj, inst.matrix_world.copy())
             elif role == 'VOLUME':
                 volume_objects.append((obj, inst.matrix_world.copy()))
+            elif role == 'POINTS':
+                clouds.capture(obj, inst.matrix_world, None,
+                               object_settings(obj, obj.name_full in holdouts,
+                                               obj.name_full in catchers))
             elif role == 'UNSUPPORTED':
                 report_unsupported(obj, unsupported_types, reporter)
             elif role == 'MESH' and not as_instances:
@@ -346,22 +374,18 @@ def _export(tc, depsgraph, reporter, engine, should_stop, centre, view_cameras):
     volumes = VolumeObjects(tc_scene, materials, reporter)
     stats.objects += sum(volumes.add(obj, matrix) for obj, matrix in volume_objects)
 
-    def hair_settings(obj):
-        """Scene.set_curves_settings' arguments for hair object obj (as its mesh would have)."""
-        receiver_set, blocker_set, _emitter = links.of(obj)
-        return dict(pass_index=float(obj.pass_index), holdout=obj.name_full in holdouts,
-                    shadow_catcher=obj.name_full in catchers, light_group=groups.of(obj),
-                    receiver_set=receiver_set, blocker_set=blocker_set,
-                    cryptomatte=crypto.entry(obj))
-
     stats.strands = strands.export_hair(tc_scene, hair, materials, reporter,
                                         strands.curve_shape(depsgraph.scene),
                                         on_added=getattr(motion, "track_hair", None),
                                         settings_of=hair_settings)
+    stats.points = clouds.add(tc_scene)
     if motion is not None:
         motion.export(tc_scene, camera_object(depsgraph, engine), view_cameras)
         if motion.blurs:
             stats.motion_blur = True
+            if stats.points:
+                reporter.warning("Point clouds are rendered as they are at the shutter's "
+                                 "centre, without motion blur")
             stats.camera_motion = {name: motion.camera_matrices(name) for name in motion.cameras}
         else:
             stats.frame_camera = motion.frame_camera

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """The geometry family: nodes that read the hit (the core's shader_geometry.h, opcodes 96-127):
 Geometry, Texture Coordinate, UV Map, Color Attribute, Attribute, Fresnel, Layer Weight, Curves
-Info (shader_curves_info.h). None
+Info and Point Info (shader_curves_info.h). None
 folds: each reads the hit. Mesh attributes (Generated, Object, named UV maps, colour and geometry
 attributes) are read through GraphCompiler.attribute (export/mesh_attributes.py's keys)."""
 
@@ -12,7 +12,8 @@ from .program import constant
 
 OPCODES = {"Geometry": 96, "Reflection": 97, "Fresnel": 98, "LayerWeight": 99, "Attribute": 100,
            "Tangent": 101, "LightPath": 106, "CameraTransform": 107,
-           "LightFalloff": 109, "Wireframe": 110, "VolumeGrid": 111, "CurvesInfo": 112}
+           "LightFalloff": 109, "Wireframe": 110, "VolumeGrid": 111, "CurvesInfo": 112,
+           "PointInfo": 114}
 VARYING = set(OPCODES)
 FOLDS = {}
 
@@ -27,6 +28,20 @@ def _curves_info(g, node, socket):
         raise Unsupported(f"{node_label(node)}'s output '{socket.name}' is not supported")
     return g.builder.emit("CurvesInfo", 'vector' if socket.identifier == "Tangent Normal"
                           else 'float', mode=mode)
+
+
+# Point Info outputs -> the PointInfo op's mode (0 off a point, as Cycles); its Random is the
+# point set's ('point_random',) attribute, as Cycles' ATTR_STD_POINT_RANDOM (export/points.py).
+_POINT_INFO = {"Position": 0, "Radius": 1}
+
+
+def _point_info(g, node, socket):
+    if socket.identifier == "Random":
+        return g.builder.emit("Channel", 'float', [g.attribute(('point_random',))], mode=0)
+    mode = _POINT_INFO.get(socket.identifier)
+    if mode is None:
+        raise Unsupported(f"{node_label(node)}'s output '{socket.name}' is not supported")
+    return g.builder.emit("PointInfo", 'vector' if mode == 0 else 'float', mode=mode)
 
 
 # Geometry outputs -> the Geometry op's mode.
@@ -405,6 +420,7 @@ READERS = {
     'ShaderNodeObjectInfo': _object_info,
     'ShaderNodeNewGeometry': _geometry,
     'ShaderNodeHairInfo': _curves_info,
+    'ShaderNodePointInfo': _point_info,
     'ShaderNodeVolumeInfo': _volume_info,
     'ShaderNodeTexCoord': _texture_coordinate,
     'ShaderNodeUVMap': _uv_map,

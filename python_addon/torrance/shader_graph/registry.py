@@ -314,6 +314,10 @@ CLOSURES = {
     'ShaderNodeTexSky': "rendered (shader graph): Preetham, Hosek / Wilkie, Nishita (3.x-4.x), "
                         "Single and Multiple Scattering (5.x); their sun discs guide the world's "
                         "samples as Cycles does",
+    # a geometry-family reader (geometry.py) with its own note
+    'ShaderNodePointInfo': "rendered (shader graph): Position, Radius and Random on a point "
+                           "cloud's points as Cycles (Random its hash of the point's index), 0 "
+                           "on meshes and strands",
     # a texture Blender computes the voxels of (point_density.py)
     'ShaderNodeTexPointDensity': "rendered (shader graph): Particle System and Object Vertices, "
                                  "every colour source, Radius, World and Object space, Closest, "

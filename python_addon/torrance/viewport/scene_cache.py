@@ -21,6 +21,7 @@ import numpy as np
 from .. import export
 from ..blender_versions import object_geometry_changed
 from ..export.mesh_attributes import instance_constant_layers, instances_info, object_random_id
+from ..export.points import PointClouds
 from ..materials import MaterialTable
 from ..texture_table import TextureTable
 from .scene_plan import (instance_transform, lights_fingerprint, matrix_tuple, mesh_entries,
@@ -381,12 +382,16 @@ class SceneCache:
         self.n_lights = 0
         self.lights_fp = lights_fingerprint(plan)
         unsupported = set()
+        clouds = PointClouds(materials, reporter)
         for kind, obj, matrix, _slots, _key in plan:
             if kind == 'LIGHT':
                 if export.export_light(tc_scene, obj, matrix, reporter, textures):
                     self.n_lights += 1
+            elif kind == 'POINTS':
+                clouds.capture(obj, matrix, obj.random_id)
             elif kind == 'UNSUPPORTED':
                 export.report_unsupported(obj, unsupported, reporter)
+        clouds.add(tc_scene)
         for eid, (obj, matrix, slots, key) in mesh_entries(plan).items():
             self._add_entry(eid, obj, matrix, slots, key, reporter)
         live = {k for k in self.prototypes}
@@ -406,5 +411,6 @@ class SceneCache:
         hidden = self.scene.num_hidden_instances
         self.last_build = dict(
             objects=sum(1 for e in self.entries.values() if e.iid is not None) - hidden,
-            triangles=self.scene.num_triangles, lights=self.n_lights, meshes_read=self.reads,
+            triangles=self.scene.num_triangles, points=self.scene.num_points,
+            lights=self.n_lights, meshes_read=self.reads,
             prototypes=self.scene.num_prototypes, **extra)

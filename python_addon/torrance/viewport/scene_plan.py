@@ -8,6 +8,7 @@ import numpy as np
 from .. import export
 from ..export.mesh_attributes import dupli_record, instancer_record
 from ..export.particles import NO_PARTICLE, ParticleTable
+from ..export.points import PointCloudData, points_checksum
 from ..nodes import holds_node
 
 
@@ -26,7 +27,9 @@ def instance_transform(matrix):
 
 def plan_instances(depsgraph, options):
     """(plan, fingerprint, random ids, particles). plan: (kind, object, matrix, slots, mesh key) per
-    instance, kind 'LIGHT', 'UNSUPPORTED' or 'MESH', for an instance its evaluated mesh as
+    instance, kind 'LIGHT', 'UNSUPPORTED', 'POINTS' (a point cloud: export.points'
+    PointCloudData, its key with a checksum of its points) or 'MESH', for an instance its
+    evaluated mesh as
     export.MeshData (inst.object is a temporary the iteration reuses for the next instance: read
     after it, every instance showed the last one's mesh; evaluated_get of the original, tried
     instead, changes the temporaries of later iterations: a collection instance's Object Color);
@@ -48,6 +51,15 @@ def plan_instances(depsgraph, options):
                 m = inst.matrix_world.copy()
                 plan.append(('LIGHT', obj, m, None, None))
                 fp.append(('L', obj.name, matrix_tuple(m)))
+        elif role == 'POINTS':
+            # Read at the build, from the point cloud (which outlives the instance's object);
+            # its points' checksum in the key, so that a change rebuilds the scene.
+            m = inst.matrix_world.copy()
+            cloud = PointCloudData(obj, inst.random_id if inst.is_instance else None)
+            key = ('P', obj.name, inst.is_instance, points_checksum(obj.data),
+                   slot_names([s.material for s in cloud.material_slots]))
+            plan.append(('POINTS', cloud, m, None, key))
+            fp.append((key, matrix_tuple(m)))
         elif role in ('UNSUPPORTED', 'HAIR', 'VOLUME'):  # hair, volumes: final renders only
             plan.append(('UNSUPPORTED', obj, None, None, None))
             fp.append(('U', obj.name))
@@ -105,6 +117,8 @@ def mesh_entries(plan):
 
 
 def lights_fingerprint(plan):
-    """The lights and unsupported objects of a plan, comparable."""
-    return tuple((kind, obj.name, None if m is None else matrix_tuple(m))
-                 for kind, obj, m, _slots, _key in plan if kind != 'MESH')
+    """The lights, point clouds and unsupported objects of a plan, comparable: a change among
+    them makes a new scene."""
+    return tuple((kind, obj.name, None if m is None else matrix_tuple(m),
+                  key if kind == 'POINTS' else None)
+                 for kind, obj, m, _slots, key in plan if kind != 'MESH')

@@ -87,8 +87,12 @@ struct SurfaceHit {
   // the normals are Cycles' (a round curve's: from its centre line out through the hit; a
   // ribbon's: geometric towards the viewer, shading rounded across the strand).
   bool on_curve = false;
-  // On a strand (only then set): Intercept, Length, Thickness, Random (ShaderGlobals::curve_info).
-  glm::vec4 curve_info{0.0f};
+  // A point's hit (Scene::add_points): the normals are Cycles' (from the point's centre out
+  // through the hit), no UVs, no tangent.
+  bool on_point = false;
+  // ShaderGlobals::primitive_info, set only on a strand (Intercept, Length, Thickness, Random)
+  // or a point (its centre xyz, radius).
+  glm::vec4 primitive_info{0.0f};
   // The hit's object as the local queries name it (ShaderGlobals::object: a world-space mesh's
   // index, or an instance's index with the top bit set; none on a hair strand) and its triangle
   // (on a strand: its segment, uv.x along it); what Scene::intersect_object follows.
@@ -122,9 +126,10 @@ inline ShaderGlobals shader_globals(const SurfaceHit& hit, const Vec3& ray_dir, 
   g.true_normal = side * hit.geometric_normal;
   g.object = hit.object;
   g.prim = hit.prim;
-  if (hit.on_curve) {
-    g.on_curve = true;
-    g.curve_info = hit.curve_info;
+  if (hit.on_curve || hit.on_point) {
+    g.on_curve = hit.on_curve;
+    g.on_point = hit.on_point;
+    g.primitive_info = hit.primitive_info;
   }
   // Of the rest, only what `reads` (GlobalsRead flags) names.
   if (reads & kReadsAttributes) {
@@ -442,6 +447,20 @@ class Scene final : public ShaderTracer {
                       const float* random = nullptr);
   size_t num_curve_segments() const;
   struct CurveSet;  // a curve set's storage (core/src/hair/curve_set.h), for its Embree filter
+  // Point clouds (points/point_set.h), as Cycles renders them: num_points spheres, centres
+  // (num_points xyz, world space) of radii (num_points), of one material. attributes: nullptr or
+  // num_attributes layers of num_points xyz each (layer a, point i at 3 * (a * num_points + i);
+  // non-finite values read 0), named by attribute_ids, which the Attribute op reads at a point's
+  // hit (Point Info's Random is one). A point whose centre is not finite (or beyond
+  // kMaxCoordinate) or whose radius is not finite and > 0 is skipped. A bad material or more
+  // than 64 layers: std::invalid_argument. Returns the point set's id.
+  uint32_t add_points(const float* centres, const float* radii, size_t num_points, int64_t material,
+                      const float* attributes = nullptr, const int32_t* attribute_ids = nullptr,
+                      size_t num_attributes = 0);
+  size_t num_points() const;  // points added (those skipped not counted)
+  // A point set's object settings, as set_curves_settings gives a curve set's.
+  void set_points_settings(uint32_t set, const ObjectSettings& settings);
+  struct PointSet;
 
   // Instancing (a two-level BVH): a prototype is a mesh in object space, built once into its own
   // BVH, whose per-triangle `slots` (>= 0) index a material table given per instance, like
@@ -573,6 +592,9 @@ class Scene final : public ShaderTracer {
   // The hit on segment prim of curve set `set` at Embree's u, t along the ray (origin, dir).
   void curve_hit(uint32_t set, uint32_t prim, float u, const Vec3& origin, const Vec3& dir, float t,
                  SurfaceHit& hit) const;
+  // The hit on point prim of point set `set`, t along the ray (origin, dir).
+  void point_hit(uint32_t set, uint32_t prim, const Vec3& origin, const Vec3& dir, float t, SurfaceHit& hit) const;
+  ObjectSettings adopt_settings(const ObjectSettings& settings);  // (scene_pass_indices.cpp)
   // The hit described by Embree's answer `rayhit` (an RTCRayHit) to a ray along dir; false: a miss.
   bool surface_hit(const void* rayhit, const Vec3& dir, SurfaceHit& hit) const;
   // The hit at Embree's barycentrics (u, v) of triangle prim of owner (a mesh index, or an instance
@@ -614,6 +636,7 @@ class Scene final : public ShaderTracer {
   std::vector<std::shared_ptr<const VolumeGrid>> volume_grids_;
   std::vector<std::unique_ptr<Mesh>> meshes_;  // world-space meshes, in the order added
   std::vector<std::unique_ptr<CurveSet>> curve_sets_;  // hair strands, in the order added
+  std::vector<std::unique_ptr<PointSet>> point_sets_;  // point clouds, in the order added
   // Instances' constant attributes: instance i's layer a at i * ids.size() + a (the vector may
   // end before the last instances: those have none).
   std::vector<Vec3> instance_constants_;

@@ -99,6 +99,7 @@ enum class ShaderOpcode : uint8_t {
   VolumeGrid = 111,       // media/volume_grid.h: a grid (resource) at in0 (a world point), RGBA
   CurvesInfo = 112,       // shader_curves_info.h
   Raycast = 113,          // shader_raycast.h
+  PointInfo = 114,        // shader_curves_info.h
 };
 constexpr int kShaderOpcodes = 128;
 
@@ -178,7 +179,10 @@ struct ShaderGlobals {
   // A hair strand's hit (SurfaceHit::on_curve; the Curves Info node): its Intercept (0 at the
   // root, 1 at the tip), its strand's Length, its Thickness and the strand's Random.
   bool on_curve = false;
-  glm::vec4 curve_info{0.0f};
+  // A point's hit (SurfaceHit::on_point; the Point Info node): primitive_info holds its centre
+  // (xyz) and radius there.
+  bool on_point = false;
+  glm::vec4 primitive_info{0.0f};
   // The hit triangle's corner attributes (corner k's layer a at k * num_attributes + a), the
   // layers' ids and the corners' interpolation weights.
   const Vec3* corner_attributes = nullptr;
