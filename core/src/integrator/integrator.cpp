@@ -480,8 +480,11 @@ RenderResult render(Scene& scene, const RenderSettings& settings, const RenderCa
       result.filter_splatting = splatting;
       while (done < settings.samples && !stop && !all_converged && !out_of_time) {
         // Passes end at blocks' ends (sample_blocks.h): the image never depends on their timing.
-        const int target = pass_end_at_block(done, settings.pass_samples > 0 ? settings.pass_samples : pass_size,
-                                             settings.samples) - done;
+        // Near a time limit a pass may end inside a block: such a render's sample count follows
+        // the timing anyway, and the limit is kept within one pass, not one block.
+        const int wanted = settings.pass_samples > 0 ? settings.pass_samples : pass_size;
+        int target = pass_end_at_block(done, wanted, settings.samples) - done;
+        if (settings.time_limit > 0.0) target = std::min(target, wanted);
         const auto t0 = std::chrono::steady_clock::now();
         int n = 0;  // samples of this pass, rendered in steps that end at adaptive checks
         while (n < target) {
