@@ -218,7 +218,7 @@ void init_scene(py::module_& m) {
              int dispersion_register, std::array<float, 3> portal_direction, int portal_position_register,
              int portal_direction_register, int specular_tint_color_register, int diffuse_roughness_register,
              int transmission_roughness_register, int specular_register, int ior_register,
-             int specular_tint_register) {
+             int specular_tint_register, float hair_aspect_ratio, std::array<float, 3> hair_lobe_weights) {
             if (distribution != "GGX" && distribution != "BECKMANN" && distribution != "ASHIKHMIN_SHIRLEY")
               throw py::value_error("distribution must be 'GGX', 'BECKMANN' or 'ASHIKHMIN_SHIRLEY', got '" +
                                     distribution + "'");
@@ -239,6 +239,8 @@ void init_scene(py::module_& m) {
             mat.transmission = transmission;
             mat.transmission_roughness = transmission_roughness;
             mat.hair_offset = hair_offset;
+            mat.hair_aspect_ratio = hair_aspect_ratio;
+            mat.hair_lobe_weights = vec3(hair_lobe_weights);
             mat.glass_node = glass;
             mat.distribution = distribution == "BECKMANN"            ? MicrofacetDistribution::Beckmann
                                : distribution == "ASHIKHMIN_SHIRLEY" ? MicrofacetDistribution::AshikhminShirley
@@ -368,6 +370,7 @@ void init_scene(py::module_& m) {
           py::arg("specular_tint_color_register") = -1, py::arg("diffuse_roughness_register") = -1,
           py::arg("transmission_roughness_register") = -1, py::arg("specular_register") = -1,
           py::arg("ior_register") = -1, py::arg("specular_tint_register") = -1,
+          py::arg("hair_aspect_ratio") = 1.0f, py::arg("hair_lobe_weights") = std::array<float, 3>{1.0f, 1.0f, 1.0f},
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "

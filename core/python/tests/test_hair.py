@@ -53,6 +53,19 @@ def test_principled_hair_strands_render_lit_and_finite(shape):
     assert_lit_and_finite(scene, sun=(0.3, 0.5, -1.0))
 
 
+@pytest.mark.parametrize("aspect_ratio", [1.0, 0.5])
+def test_principled_hair_huang_strands_render_lit_and_finite(aspect_ratio):
+    """Huang's model (its own closure name, aspect ratio and path weights) on round strands."""
+    scene = tc.Scene()
+    hair = scene.add_material(base_color=(0.3, 0.5, 0.9), roughness=0.3, ior=1.55,
+                              hair_offset=0.035, hair_aspect_ratio=aspect_ratio,
+                              hair_lobe_weights=(1.0, 0.8, 0.5))
+    mix = scene.add_mixture([("principled_hair_huang", hair, [])], [])
+    keys, radii, offsets = strands()
+    scene.add_curves(keys, radii, offsets, materials=[mix] * (len(offsets) - 1), shape="ROUND")
+    assert_lit_and_finite(scene, sun=(0.3, 0.5, -1.0))
+
+
 def assert_lit_and_finite(scene, sun):
     """The scene under a sun from `sun`, seen along +y: finite, and lit somewhere."""
     scene.add_sun(direction=sun, strength=3.0, angle=0.1)

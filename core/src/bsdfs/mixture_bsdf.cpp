@@ -55,6 +55,17 @@ PrincipledHairParams principled_hair_params(const Material& m) {
   return p;
 }
 
+HuangHairParams huang_hair_params(const Material& m) {
+  HuangHairParams p;
+  p.sigma = m.base_color;
+  p.roughness = m.roughness;
+  p.ior = m.ior;
+  p.offset = m.hair_offset;
+  p.aspect_ratio = m.hair_aspect_ratio;
+  p.lobe_weights = m.hair_lobe_weights;
+  return p;
+}
+
 // The Hair BSDF node's closure at a hit, its strand's direction as Cycles' svm closure node
 // takes it: a linked Tangent (a world direction); else on a curve the strand's (dPdu), on a
 // triangle its second edge (dPdv: corner 2 - corner 0), the Offset then 0.
@@ -213,7 +224,8 @@ bool MixtureBsdf::transmits() const {
   for (int k = 0; k < count_; ++k) {
     if (const auto* m = std::get_if<MaterialBsdf>(&components_[k]); m && m->transmits()) return true;
     if (std::holds_alternative<TranslucentBsdf>(components_[k]) || std::holds_alternative<RefractionBsdf>(components_[k]) ||
-        std::holds_alternative<PrincipledHairBsdf>(components_[k]) || std::holds_alternative<HairBsdf>(components_[k]))
+        std::holds_alternative<PrincipledHairBsdf>(components_[k]) ||
+        std::holds_alternative<HuangHairBsdf>(components_[k]) || std::holds_alternative<HairBsdf>(components_[k]))
       return true;
   }
   return false;
@@ -249,6 +261,7 @@ void MixtureBsdf::orient(const Frame& frame) {
     else if (MaterialBsdf* material = std::get_if<MaterialBsdf>(&c)) material->orient(frame);
     else if (PrincipledHairBsdf* hair = std::get_if<PrincipledHairBsdf>(&c)) hair->orient(frame);
     else if (HairBsdf* strand = std::get_if<HairBsdf>(&c)) strand->orient(frame);
+    else if (HuangHairBsdf* huang = std::get_if<HuangHairBsdf>(&c)) huang->orient(frame);
   }
 }
 
@@ -386,6 +399,9 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
       case ClosureType::PrincipledHair:
         // The strand's world direction (Cycles' dPdu), into the shading frame by orient().
         add_closure(bsdf, PrincipledHairBsdf(principled_hair_params(m), globals.tangent), w.weight[k]);
+        break;
+      case ClosureType::PrincipledHairHuang:
+        add_closure(bsdf, HuangHairBsdf(huang_hair_params(m), globals.tangent, globals.on_curve), w.weight[k]);
         break;
       case ClosureType::HairReflection:
       case ClosureType::HairTransmission:

@@ -169,6 +169,10 @@ struct Material {
   float wavelength = 0.0f;
   // The Principled Hair BSDF's Offset (radians: the cuticle scales' tilt; ClosureType::PrincipledHair).
   float hair_offset = 0.0f;
+  // Its Huang model's (ClosureType::PrincipledHairHuang) Aspect Ratio and the weights of its
+  // Reflection, Transmission and Secondary Reflection paths.
+  float hair_aspect_ratio = 1.0f;
+  Vec3 hair_lobe_weights{1.0f};
   // The Ray Portal BSDF's (ClosureType::RayPortal) Direction (world; zero: the ray's own) and,
   // where its Position is linked (portal_at_hit false), that position (world; else the hit's).
   Vec3 portal_direction{0.0f};

@@ -25,6 +25,15 @@
 
 namespace torrance {
 
+// Chiang's longitudinal lobe, shared with Huang's model (huang_hair_bsdf.h: its TRRT+ paths).
+namespace chiang {
+// M_p: the von Mises-Fisher lobe of variance v about the mirror of theta_o, as Cycles evaluates it
+// (longitudinal_scattering: its I0 series and asymptote).
+float longitudinal(float sin_i, float cos_i, float sin_o, float cos_o, float v);
+// sin theta_i drawn by that lobe (exactly) from u in [0, 1)^2.
+float sample_longitudinal_sin(const Vec2& u, float v, float sin_o, float cos_o);
+}  // namespace chiang
+
 // The node's inputs, reduced as Cycles' svm_node_closure_bsdf reduces them.
 struct PrincipledHairParams {
   Vec3 sigma{0.0f};              // absorption coefficient (per unit of the strand's diameter)
