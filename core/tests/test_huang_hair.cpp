@@ -15,9 +15,7 @@ namespace torrance {
 namespace {
 
 // A view at angle a from the normal about the strand along x: the hit's offset h = -sin a.
-Vec3 view_about_x(float a, float along = 0.0f) {
-  return glm::normalize(Vec3(along, std::sin(a), std::cos(a)));
-}
+Vec3 view_about_x(float a, float along = 0.0f) { return glm::normalize(Vec3(along, std::sin(a), std::cos(a))); }
 
 HuangHairParams white(float roughness, float aspect = 1.0f) {
   HuangHairParams p;
@@ -206,8 +204,12 @@ TEST(HuangHair, EllipseSeenAcrossItsMinorAxisLetsOuterHitsPass) {
 TEST(HuangHair, HardCasesStayFinite) {
   Rng rng(7, 8, 9);
   const Vec3 tangent = glm::normalize(Vec3(0.9f, 0.3f, 0.1f));
-  const Vec3 views[] = {Vec3(0.0f, 0.0f, 1.0f), tangent, -tangent, glm::normalize(Vec3(0.0f, 1.0f, 1e-4f)),
-                        glm::normalize(Vec3(0.3f, 1.0f, 0.0f)), glm::normalize(Vec3(0.2f, 0.1f, -1.0f))};
+  const Vec3 views[] = {Vec3(0.0f, 0.0f, 1.0f),
+                        tangent,
+                        -tangent,
+                        glm::normalize(Vec3(0.0f, 1.0f, 1e-4f)),
+                        glm::normalize(Vec3(0.3f, 1.0f, 0.0f)),
+                        glm::normalize(Vec3(0.2f, 0.1f, -1.0f))};
   for (float roughness : {0.0f, 0.001f, 1.0f, 5.0f, std::nanf("")})
     for (float aspect : {1.0f, 0.05f, 0.85f, 20.0f, 0.0f, std::nanf("")})
       for (float offset : {0.0f, 0.5f, -1.5f}) {

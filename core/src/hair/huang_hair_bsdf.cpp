@@ -1,10 +1,12 @@
 // The Principled Hair BSDF's Huang model: eval, pdf and sample side by side (see the header).
+// (Over 400 lines: eval's two integrals and sample follow the same three interfaces, kept in one
+// file so that they can be read against each other.)
 #include "torrance/hair/huang_hair_bsdf.h"
 
 #include "torrance/bsdfs/ggx_glass_tables.h"
 #include "torrance/bsdfs/microfacet.h"
-#include "torrance/bsdfs/microsurface_walk.h"  // Random, seed_of
-#include "torrance/bsdfs/principled.h"         // fresnel_dielectric
+#include "torrance/bsdfs/microsurface_walk.h"    // Random, seed_of
+#include "torrance/bsdfs/principled.h"           // fresnel_dielectric
 #include "torrance/hair/principled_hair_bsdf.h"  // chiang::longitudinal
 #include "torrance/hair/strand_direction.h"
 
@@ -37,8 +39,8 @@ Vec3 normal_at(float tilt, float g, float b) {
 }
 
 // Offsets across the view v (azimuth phi_v): the point p(g) lies at h = -cos(phi_v) sin g +
-// b sin(phi_v) cos g = r cos(g - d), r the projected radius. The visible root for h / r, and the
-// Jacobian |dg/dh|.
+// b sin(phi_v) cos g = r cos(g - d), r the projected radius. The visible root for h / r, the offset
+// of the point whose normal has azimuth phi, and the Jacobian dg/dh (positive where visible).
 float parameter_at_offset(float h_over_r, float b, const Vec3& v) {
   return std::atan2(v.z, -b * v.x) - std::acos(std::clamp(-h_over_r, -1.0f, 1.0f));
 }
@@ -136,8 +138,8 @@ HuangHairBsdf::HuangHairBsdf(const HuangHairParams& p, const Vec3& tangent, bool
   // direction alone (make_orthonormals: (1,1,1) x T, or (-1,1,1) x T along the diagonal), the major
   // axis T x that; whichever axis the aspect ratio names the larger.
   const Vec3& t = world_tangent_;
-  const Vec3 side =
-      t.x != t.y || t.x != t.z ? Vec3(t.z - t.y, t.x - t.z, t.y - t.x) : Vec3(t.z - t.y, t.x + t.z, -t.y - t.x);
+  const Vec3 side = t.x != t.y || t.x != t.z ? Vec3(t.z - t.y, t.x - t.z, t.y - t.x)
+                                             : Vec3(t.z - t.y, t.x + t.z, -t.y - t.x);
   world_major_ = glm::cross(t, glm::normalize(side));
   tangent_ = world_tangent_;
   major_ = world_major_;
@@ -272,7 +274,7 @@ Vec3 HuangHairBsdf::eval_inside(const View& v, const Vec3& light, float lo, floa
     const float cos_h2 = glm::dot(-wt, h2);
     if (!(cos_h2 > 0.0f)) continue;
     const float r2 = fresnel_dielectric(cos_h2, inv_eta);
-    const Vec3 wtr = mirrored(wt, h2);  // backwards along the reflected ray
+    const Vec3 wtr = mirrored(wt, h2);              // backwards along the reflected ray
     if (glm::dot(-wtr, light) < inv_eta - 1e-5f) {  // the light is beyond the exit's critical angle
       rest += node * rest_of_paths(t1, r2, a_t);
       continue;
@@ -380,8 +382,7 @@ BsdfSample HuangHairBsdf::sample(const Vec3& wo, float u_lobe, const Vec2& u) co
       const Vec3 a_avg = glm::sqrt(a_t * a_tr);
       const float t_avg = std::max(0.5f * (t2 + t3), 1e-5f);
       const Vec3 a_rest = a_avg * t_avg / (Vec3(1.0f) - a_avg * (1.0f - t_avg));
-      if (beyond_trt_)
-        lobes[3] = through_r * r3 * a_rest * masking_out(a2, cos_m3, glm::dot(m3, mirrored(wtr, h3)));
+      if (beyond_trt_) lobes[3] = through_r * r3 * a_rest * masking_out(a2, cos_m3, glm::dot(m3, mirrored(wtr, h3)));
     }
   }
   // The lobe by the energy each carries (their averages over the channels).

@@ -58,12 +58,12 @@ namespace torrance {
 
 // The node's inputs, reduced as Cycles' svm_node_closure_bsdf reduces them for Huang's model.
 struct HuangHairParams {
-  Vec3 sigma{0.0f};             // absorption coefficient (per unit of the major radius)
-  float roughness = 0.3f;       // GGX alpha (Roughness, clamped to [0.001, 1])
+  Vec3 sigma{0.0f};        // absorption coefficient (per unit of the major radius)
+  float roughness = 0.3f;  // GGX alpha (Roughness, clamped to [0.001, 1])
   float ior = 1.55f;
-  float offset = 0.0349066f;    // the node's Offset (radians)
-  float aspect_ratio = 0.85f;   // minor / major axis (above 1: the axes swapped)
-  Vec3 lobe_weights{1.0f};      // Reflection, Transmission, Secondary Reflection
+  float offset = 0.0349066f;   // the node's Offset (radians)
+  float aspect_ratio = 0.85f;  // minor / major axis (above 1: the axes swapped)
+  Vec3 lobe_weights{1.0f};     // Reflection, Transmission, Secondary Reflection
   // The paths beyond TRT (Cycles' always; false: the tests' model of R, TT and TRT alone, whose
   // eval and sample agree).
   bool beyond_trt = true;
@@ -99,9 +99,9 @@ class HuangHairBsdf {
 
   Vec3 sigma_;
   float alpha_, eta_, tilt_, b_, node_spacing_;  // node_spacing_: alpha / quadrature_density
-  Vec3 weights_;                 // R, TT, TRT
+  Vec3 weights_;                                 // R, TT, TRT
   bool on_curve_, beyond_trt_;
-  Vec3 tangent_, major_;         // in the shading frame (orient), unit
+  Vec3 tangent_, major_;  // in the shading frame (orient), unit
   Vec3 world_tangent_, world_major_;
 };
 
