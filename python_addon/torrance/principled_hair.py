@@ -12,8 +12,10 @@ base_color, Roughness, Radial Roughness, Coat and IOR from roughness, transmissi
 coat_weight and ior, the Offset from hair_offset. Huang's model has no Radial Roughness nor Coat:
 Cycles takes its Roughness for both (the Direct Coloring and Tint sigma too), and reads Aspect
 Ratio (hair_aspect_ratio) and the Reflection, Transmission and Secondary Reflection weights
-(hair_lobe_weights). Inputs fed by a graph that is not a constant and Random Color / Random
-Roughness (per-strand randomness) are reported and their values or 0 used.
+(hair_lobe_weights). Random Roughness and Random Color go to the core with what the absorption
+is made of (hair_random_*, hair_coloring, hair_melanin*, hair_color), which applies them at each
+hit with the strand's random (principled_hair_bsdf.h's HairRandomness). Inputs fed by a graph
+that is not a constant are reported and their values used.
 """
 
 import math
@@ -28,7 +30,7 @@ _DEFAULTS = {"Color": (0.017513, 0.005763, 0.002059), "Melanin": 0.8, "Melanin R
              "Tint": (1.0, 1.0, 1.0), "Absorption Coefficient": (0.245531, 0.52, 1.365),
              "Roughness": 0.3, "Radial Roughness": 0.3, "Coat": 0.0, "IOR": 1.55,
              "Offset": math.radians(2.0), "Random Color": 0.0, "Random Roughness": 0.0,
-             "Aspect Ratio": 0.85, "Reflection": 1.0, "Transmission": 1.0,
+             "Random": 0.0, "Aspect Ratio": 0.85, "Reflection": 1.0, "Transmission": 1.0,
              "Secondary Reflection": 1.0}
 
 
@@ -48,6 +50,21 @@ def sigma_from_melanin(melanin, redness, tint, radial_roughness):
     tint_sigma = sigma_from_reflectance(tint, radial_roughness)
     return tuple(eu * e + pheo * p + t
                  for e, p, t in zip(EUMELANIN, PHEOMELANIN, tint_sigma, strict=True))
+
+
+def _randomness(value, parametrization):
+    """add_material kwargs of Random Roughness and Random Color (the core applies them at each
+    hit with the strand's random, or the Random input off strands); none when both are 0."""
+    random_roughness, random_color = value("Random Roughness"), value("Random Color")
+    if random_roughness == 0.0 and (random_color == 0.0 or parametrization != 'MELANIN'):
+        return {}
+    coloring = {'ABSORPTION': 'ABSORPTION', 'MELANIN': 'MELANIN'}.get(parametrization, 'COLOR')
+    melanin = parametrization == 'MELANIN'
+    return dict(hair_random_roughness=random_roughness, hair_random_color=random_color,
+                hair_random=value("Random"), hair_coloring=coloring,
+                hair_melanin=min(max(value("Melanin"), 0.0), 1.0) if melanin else 0.0,
+                hair_melanin_redness=value("Melanin Redness") if melanin else 0.0,
+                hair_color=value("Tint") if melanin else value("Color"))
 
 
 def read_principled_hair(reader, mat, node):
@@ -75,9 +92,6 @@ def read_principled_hair(reader, mat, node):
     # Huang's model has one roughness: Cycles uses it where Chiang's uses Radial Roughness.
     radial = roughness if huang else min(max(value("Radial Roughness"), 0.0), 1.0)
     colouring_roughness = roughness if huang else value("Radial Roughness")
-    for name in ("Random Color", "Random Roughness"):
-        if value(name) != 0.0:
-            warn(f"'{name}' (per-strand randomness) is not rendered; 0 is used")
     parametrization = getattr(node, "parametrization", 'COLOR')
     if parametrization == 'ABSORPTION':
         sigma = tuple(max(c, 0.0) for c in value("Absorption Coefficient"))
@@ -89,7 +103,7 @@ def read_principled_hair(reader, mat, node):
     ior = value("IOR")
     kwargs = dict(DEFAULT_MATERIAL, base_color=tuple(min(max(c, 0.0), 1e6) for c in sigma),
                   metallic=0.0, specular=0.0, roughness=roughness, ior=ior if ior > 0.0 else 1.55,
-                  hair_offset=value("Offset"))
+                  hair_offset=value("Offset"), **_randomness(value, parametrization))
     if huang:
         weights = tuple(max(value(name), 0.0)
                         for name in ("Reflection", "Transmission", "Secondary Reflection"))

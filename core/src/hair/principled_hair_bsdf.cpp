@@ -294,6 +294,24 @@ float PrincipledHairBsdf::sampling_albedo() const {
   return luminance(glm::exp(-glm::sqrt(sigma_) * scale));
 }
 
+Vec3 HairRandomness::sigma_at(float r, float& roughness, float& radial) const {
+  const float shift = 2.0f * (r - 0.5f);
+  const float scale = 1.0f + shift * random_roughness;
+  roughness *= scale;
+  radial *= scale;
+  switch (coloring) {
+    case Coloring::Absorption: return sigma;
+    case Coloring::Melanin: {
+      const float m = melanin * (1.0f + shift * clamp01(random_color));
+      const float amount = -std::log(std::max(1.0f - m, 1e-4f));
+      return PrincipledHairBsdf::sigma_from_concentration(amount * (1.0f - melanin_redness), amount * melanin_redness) +
+             PrincipledHairBsdf::sigma_from_reflectance(color, radial);
+    }
+    case Coloring::DirectColor: return PrincipledHairBsdf::sigma_from_reflectance(color, radial);
+  }
+  return sigma;
+}
+
 Vec3 PrincipledHairBsdf::sigma_from_concentration(float eumelanin, float pheomelanin) {
   return eumelanin * Vec3(0.506f, 0.841f, 1.653f) + pheomelanin * Vec3(0.343f, 0.733f, 1.924f);
 }

@@ -248,9 +248,10 @@ CLOSURES = {
                                     "normals not read): Direct Coloring, "
                                     "Melanin Concentration and Absorption Coefficient, "
                                     "Roughness, Radial Roughness, Coat, IOR, Offset, Aspect "
-                                    "Ratio, Reflection, Transmission, Secondary Reflection "
-                                    "(values; a graph that varies and Random Color / Random "
-                                    "Roughness are reported); alone and in Mix/Add Shader trees",
+                                    "Ratio, Reflection, Transmission, Secondary Reflection, "
+                                    "Random Color, Random Roughness (per strand) (values; a "
+                                    "graph that varies is reported); alone and in Mix/Add "
+                                    "Shader trees",
     'ShaderNodeBsdfHair': "rendered: Reflection and Transmission as Cycles 3.4 (its kernel "
                           "unchanged in 4.x/5.x): Color, RoughnessU (any graph), RoughnessV, "
                           "Offset (values; a graph that varies is reported), Tangent (any graph; "

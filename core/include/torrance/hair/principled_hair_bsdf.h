@@ -44,6 +44,24 @@ struct PrincipledHairParams {
   float offset = 0.0349066f;     // the cuticle scales' tilt (radians; Blender's default 2 degrees)
 };
 
+// Random Roughness and Random Color as Cycles' svm node applies them at each hit, for either
+// model: with the strand's random r in [0, 1], the roughnesses times 1 + 2 (r - 0.5) Random
+// Roughness and, for Melanin Concentration, the melanin times 1 + 2 (r - 0.5) Random Color
+// (clamped to [0, 1]) before the absorption is made of it.
+struct HairRandomness {
+  enum class Coloring { Absorption, Melanin, DirectColor };
+  Coloring coloring = Coloring::Absorption;
+  Vec3 sigma{0.0f};  // Absorption Coefficient
+  float melanin = 0.0f, melanin_redness = 0.0f;
+  Vec3 color{1.0f};  // the Tint (Melanin) or the Color (Direct Coloring)
+  float random_roughness = 0.0f, random_color = 0.0f;
+
+  bool varies() const { return random_roughness != 0.0f || random_color != 0.0f; }
+  // The absorption at a strand of random r; roughness and radial (the roughness the colour's
+  // absorption is fitted with: Radial Roughness, or Huang's Roughness) scaled in place.
+  Vec3 sigma_at(float r, float& roughness, float& radial) const;
+};
+
 class PrincipledHairBsdf {
  public:
   // tangent: the strand's direction in the frame eval, pdf and sample work in; or in world space,
