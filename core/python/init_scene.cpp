@@ -244,7 +244,8 @@ void init_scene(py::module_& m) {
             mat.hair_aspect_ratio = hair_aspect_ratio;
             mat.hair_lobe_weights = vec3(hair_lobe_weights);
             if (hair_coloring != "ABSORPTION" && hair_coloring != "MELANIN" && hair_coloring != "COLOR")
-              throw py::value_error("hair_coloring must be 'ABSORPTION', 'MELANIN' or 'COLOR', got '" + hair_coloring + "'");
+              throw py::value_error("hair_coloring must be 'ABSORPTION', 'MELANIN' or 'COLOR', got '" +
+                                    hair_coloring + "'");
             mat.hair_coloring = hair_coloring == "MELANIN" ? 1 : hair_coloring == "COLOR" ? 2 : 0;
             mat.hair_random_roughness = hair_random_roughness;
             mat.hair_random_color = hair_random_color;
