@@ -26,6 +26,7 @@ ClosureType parse_closure(const std::string& s) {
   if (s == "sheen") return ClosureType::Sheen;
   if (s == "translucent") return ClosureType::Translucent;
   if (s == "principled_hair") return ClosureType::PrincipledHair;
+  if (s == "principled_hair_huang") return ClosureType::PrincipledHairHuang;
   if (s == "refraction") return ClosureType::Refraction;
   if (s == "toon_diffuse") return ClosureType::ToonDiffuse;
   if (s == "toon_glossy") return ClosureType::ToonGlossy;
@@ -39,7 +40,8 @@ ClosureType parse_closure(const std::string& s) {
   throw py::value_error(
       "closure type must be 'principled', 'diffuse', 'diffuse_energy_preserving', 'glossy', 'glossy_multiscatter_v1', 'emission', 'transparent', 'holdout', 'ray_portal', 'velvet', "
       "'sheen', "
-      "'translucent', 'principled_hair', 'refraction', 'toon_diffuse', 'toon_glossy', 'toon_diffuse_cycles4', "
+      "'translucent', 'principled_hair', 'principled_hair_huang', 'refraction', 'toon_diffuse', 'toon_glossy', "
+      "'toon_diffuse_cycles4', "
       "'toon_glossy_cycles4', 'metallic_f82', 'metallic_conductor', 'subsurface', 'hair_reflection' or "
       "'hair_transmission', got '" + s + "'");
 }

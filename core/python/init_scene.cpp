@@ -218,7 +218,9 @@ void init_scene(py::module_& m) {
              int dispersion_register, std::array<float, 3> portal_direction, int portal_position_register,
              int portal_direction_register, int specular_tint_color_register, int diffuse_roughness_register,
              int transmission_roughness_register, int specular_register, int ior_register,
-             int specular_tint_register) {
+             int specular_tint_register, float hair_aspect_ratio, std::array<float, 3> hair_lobe_weights,
+             float hair_random_roughness, float hair_random_color, float hair_random, const std::string& hair_coloring,
+             float hair_melanin, float hair_melanin_redness, std::array<float, 3> hair_color) {
             if (distribution != "GGX" && distribution != "BECKMANN" && distribution != "ASHIKHMIN_SHIRLEY")
               throw py::value_error("distribution must be 'GGX', 'BECKMANN' or 'ASHIKHMIN_SHIRLEY', got '" +
                                     distribution + "'");
@@ -239,6 +241,18 @@ void init_scene(py::module_& m) {
             mat.transmission = transmission;
             mat.transmission_roughness = transmission_roughness;
             mat.hair_offset = hair_offset;
+            mat.hair_aspect_ratio = hair_aspect_ratio;
+            mat.hair_lobe_weights = vec3(hair_lobe_weights);
+            if (hair_coloring != "ABSORPTION" && hair_coloring != "MELANIN" && hair_coloring != "COLOR")
+              throw py::value_error("hair_coloring must be 'ABSORPTION', 'MELANIN' or 'COLOR', got '" +
+                                    hair_coloring + "'");
+            mat.hair_coloring = hair_coloring == "MELANIN" ? 1 : hair_coloring == "COLOR" ? 2 : 0;
+            mat.hair_random_roughness = hair_random_roughness;
+            mat.hair_random_color = hair_random_color;
+            mat.hair_random = hair_random;
+            mat.hair_melanin = hair_melanin;
+            mat.hair_melanin_redness = hair_melanin_redness;
+            mat.hair_color = vec3(hair_color);
             mat.glass_node = glass;
             mat.distribution = distribution == "BECKMANN"            ? MicrofacetDistribution::Beckmann
                                : distribution == "ASHIKHMIN_SHIRLEY" ? MicrofacetDistribution::AshikhminShirley
@@ -368,6 +382,10 @@ void init_scene(py::module_& m) {
           py::arg("specular_tint_color_register") = -1, py::arg("diffuse_roughness_register") = -1,
           py::arg("transmission_roughness_register") = -1, py::arg("specular_register") = -1,
           py::arg("ior_register") = -1, py::arg("specular_tint_register") = -1,
+          py::arg("hair_aspect_ratio") = 1.0f, py::arg("hair_lobe_weights") = std::array<float, 3>{1.0f, 1.0f, 1.0f},
+          py::arg("hair_random_roughness") = 0.0f, py::arg("hair_random_color") = 0.0f, py::arg("hair_random") = 0.0f,
+          py::arg("hair_coloring") = "ABSORPTION", py::arg("hair_melanin") = 0.0f,
+          py::arg("hair_melanin_redness") = 0.0f, py::arg("hair_color") = std::array<float, 3>{1.0f, 1.0f, 1.0f},
           "Adds a metallic/roughness material; returns its index. *_texture are ids from add_texture "
           "(-1: none); a texture replaces the constant (emission: texture colour * emission_strength); "
           "bump_texture: a height map (luminance) as Blender's Bump node, used when there is no normal map. "

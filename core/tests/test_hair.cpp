@@ -209,3 +209,44 @@ TEST(Hair, ParametrisationsMatchCycles) {
 
 }  // namespace
 }  // namespace torrance
+
+namespace torrance {
+namespace {
+
+// Random Roughness and Random Color at a strand's random r, as Cycles' svm node: the roughnesses
+// times 1 + 2 (r - 0.5) Random Roughness, the melanin times 1 + 2 (r - 0.5) Random Color before
+// it becomes an absorption; the middle strand (r = 0.5) unchanged.
+TEST(Hair, RandomnessScalesRoughnessAndMelaninPerStrand) {
+  HairRandomness h;
+  h.coloring = HairRandomness::Coloring::Melanin;
+  h.melanin = 0.4f;
+  h.melanin_redness = 0.3f;
+  h.color = Vec3(0.9f, 0.8f, 0.7f);
+  h.random_roughness = 0.5f;
+  h.random_color = 0.5f;
+  auto melanin_sigma = [&](float melanin, float radial) {
+    const float amount = -std::log(1.0f - melanin);
+    return PrincipledHairBsdf::sigma_from_concentration(amount * 0.7f, amount * 0.3f) +
+           PrincipledHairBsdf::sigma_from_reflectance(h.color, radial);
+  };
+  float roughness = 0.3f, radial = 0.4f;
+  Vec3 sigma = h.sigma_at(0.5f, roughness, radial);
+  EXPECT_FLOAT_EQ(roughness, 0.3f);
+  EXPECT_NEAR(sigma.z, melanin_sigma(0.4f, 0.4f).z, 1e-5f);
+  sigma = h.sigma_at(1.0f, roughness, radial);  // the top strand: x 1.5 each
+  EXPECT_FLOAT_EQ(roughness, 0.45f);
+  EXPECT_FLOAT_EQ(radial, 0.6f);
+  EXPECT_NEAR(sigma.x, melanin_sigma(0.6f, 0.6f).x, 1e-5f);
+  EXPECT_NEAR(sigma.z, melanin_sigma(0.6f, 0.6f).z, 1e-5f);
+  h.coloring = HairRandomness::Coloring::DirectColor;
+  roughness = 0.3f;
+  radial = 0.4f;
+  sigma = h.sigma_at(0.0f, roughness, radial);  // the bottom strand: x 0.5
+  EXPECT_NEAR(sigma.y, PrincipledHairBsdf::sigma_from_reflectance(h.color, 0.2f).y, 1e-6f);
+  h.coloring = HairRandomness::Coloring::Absorption;
+  h.sigma = Vec3(0.1f, 0.2f, 0.3f);
+  EXPECT_EQ(h.sigma_at(0.9f, roughness, radial), h.sigma);
+}
+
+}  // namespace
+}  // namespace torrance

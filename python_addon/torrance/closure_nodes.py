@@ -2,9 +2,10 @@
 """The Velvet / Sheen, Translucent, Refraction, Toon, Principled Hair BSDF, Hair BSDF, Subsurface
 Scattering, Metallic BSDF and Ray Portal BSDF nodes -> a mixture's closures (the core's
 velvet_bsdf.h, sheen_bsdf.h, translucent_bsdf.h, refraction_bsdf.h, toon_bsdf.h,
-hair/principled_hair_bsdf.h, hair/hair_bsdf.h, subsurface/, metallic_bsdf.h, mixture.h's
-RayPortal; the hair nodes' inputs: principled_hair.py, hair_bsdf.py, the subsurface node's:
-principled_subsurface.py), alone at the Surface and in Mix/Add Shader trees alike (mixtures.py).
+hair/principled_hair_bsdf.h, hair/huang_hair_bsdf.h, hair/hair_bsdf.h, subsurface/,
+metallic_bsdf.h, mixture.h's RayPortal; the hair nodes' inputs: principled_hair.py,
+hair_bsdf.py, the subsurface node's: principled_subsurface.py), alone at the Surface and in
+Mix/Add Shader trees alike (mixtures.py).
 
 Each becomes (closure type, add_material kwargs) with the inputs where the core's ClosureType
 reads them: Color -> base_color (any graph), Sigma / Roughness / Size -> roughness (any graph),
@@ -40,7 +41,7 @@ def read_closure_node(reader, mat, node):
     """(closure type, add_material kwargs) of one of CLOSURE_NODES."""
     kind = node.bl_idname
     if kind == 'ShaderNodeBsdfHairPrincipled':      # its inputs reduced to an absorption
-        return 'principled_hair', read_principled_hair(reader, mat, node)
+        return read_principled_hair(reader, mat, node)
     if kind == 'ShaderNodeBsdfHair':
         return read_hair_bsdf(reader, mat, node)
     d = DEFAULT_MATERIAL

@@ -53,6 +53,37 @@ def test_principled_hair_strands_render_lit_and_finite(shape):
     assert_lit_and_finite(scene, sun=(0.3, 0.5, -1.0))
 
 
+@pytest.mark.parametrize("aspect_ratio", [1.0, 0.5])
+def test_principled_hair_huang_strands_render_lit_and_finite(aspect_ratio):
+    """Huang's model (its own closure name, aspect ratio and path weights) on round strands."""
+    scene = tc.Scene()
+    hair = scene.add_material(base_color=(0.3, 0.5, 0.9), roughness=0.3, ior=1.55,
+                              hair_offset=0.035, hair_aspect_ratio=aspect_ratio,
+                              hair_lobe_weights=(1.0, 0.8, 0.5))
+    mix = scene.add_mixture([("principled_hair_huang", hair, [])], [])
+    keys, radii, offsets = strands()
+    scene.add_curves(keys, radii, offsets, materials=[mix] * (len(offsets) - 1), shape="ROUND")
+    assert_lit_and_finite(scene, sun=(0.3, 0.5, -1.0))
+
+
+def test_principled_hair_randomness_renders_and_checks_its_coloring():
+    """Random Roughness / Random Color with the melanin the absorption is made of per strand."""
+    scene = tc.Scene()
+    hair = scene.add_material(roughness=0.3, transmission_roughness=0.3, ior=1.55,
+                              hair_random_roughness=0.5, hair_random_color=0.8,
+                              hair_coloring="MELANIN", hair_melanin=0.5, hair_melanin_redness=0.2,
+                              hair_color=(1.0, 1.0, 1.0))
+    mix = scene.add_mixture([("principled_hair", hair, [])], [])
+    keys, radii, offsets = strands()
+    scene.add_curves(keys, radii, offsets, materials=[mix] * (len(offsets) - 1), shape="ROUND",
+                     random=np.linspace(0.0, 1.0, len(offsets) - 1))
+    assert_lit_and_finite(scene, sun=(0.3, 0.5, -1.0))
+    with pytest.raises(ValueError, match="hair_coloring"):
+        scene.add_material(hair_coloring="PIGMENT")
+    with pytest.raises(ValueError, match="finite"):
+        scene.add_material(hair_melanin=float("nan"))
+
+
 def assert_lit_and_finite(scene, sun):
     """The scene under a sun from `sun`, seen along +y: finite, and lit somewhere."""
     scene.add_sun(direction=sun, strength=3.0, angle=0.1)

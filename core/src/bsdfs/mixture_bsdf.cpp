@@ -44,7 +44,25 @@ Material principled_as_diffuse(const Material& m) {
   return d;
 }
 
-PrincipledHairParams principled_hair_params(const Material& m) {
+// The Principled Hair's per-strand randomness (HairRandomness) of material m.
+HairRandomness hair_randomness(const Material& m) {
+  HairRandomness h;
+  h.coloring = m.hair_coloring == 1   ? HairRandomness::Coloring::Melanin
+               : m.hair_coloring == 2 ? HairRandomness::Coloring::DirectColor
+                                      : HairRandomness::Coloring::Absorption;
+  h.sigma = m.base_color;
+  h.melanin = m.hair_melanin;
+  h.melanin_redness = m.hair_melanin_redness;
+  h.color = m.hair_color;
+  h.random_roughness = m.hair_random_roughness;
+  h.random_color = m.hair_random_color;
+  return h;
+}
+
+// The strand's random at a hit (Cycles: the curve's Random attribute, else the node's input).
+float strand_random(const Material& m, const ShaderGlobals& g) { return g.on_curve ? g.curve_info.w : m.hair_random; }
+
+PrincipledHairParams principled_hair_params(const Material& m, const ShaderGlobals& g) {
   PrincipledHairParams p;
   p.sigma = m.base_color;
   p.roughness = m.roughness;
@@ -52,6 +70,23 @@ PrincipledHairParams principled_hair_params(const Material& m) {
   p.coat = m.coat_weight;
   p.ior = m.ior;
   p.offset = m.hair_offset;
+  if (const HairRandomness h = hair_randomness(m); h.varies())
+    p.sigma = h.sigma_at(strand_random(m, g), p.roughness, p.radial_roughness);
+  return p;
+}
+
+HuangHairParams huang_hair_params(const Material& m, const ShaderGlobals& g) {
+  HuangHairParams p;
+  p.sigma = m.base_color;
+  p.roughness = m.roughness;
+  if (const HairRandomness h = hair_randomness(m); h.varies()) {
+    float radial = m.roughness;  // Huang's colour fit takes its Roughness
+    p.sigma = h.sigma_at(strand_random(m, g), p.roughness, radial);
+  }
+  p.ior = m.ior;
+  p.offset = m.hair_offset;
+  p.aspect_ratio = m.hair_aspect_ratio;
+  p.lobe_weights = m.hair_lobe_weights;
   return p;
 }
 
@@ -213,7 +248,8 @@ bool MixtureBsdf::transmits() const {
   for (int k = 0; k < count_; ++k) {
     if (const auto* m = std::get_if<MaterialBsdf>(&components_[k]); m && m->transmits()) return true;
     if (std::holds_alternative<TranslucentBsdf>(components_[k]) || std::holds_alternative<RefractionBsdf>(components_[k]) ||
-        std::holds_alternative<PrincipledHairBsdf>(components_[k]) || std::holds_alternative<HairBsdf>(components_[k]))
+        std::holds_alternative<PrincipledHairBsdf>(components_[k]) ||
+        std::holds_alternative<HuangHairBsdf>(components_[k]) || std::holds_alternative<HairBsdf>(components_[k]))
       return true;
   }
   return false;
@@ -249,6 +285,7 @@ void MixtureBsdf::orient(const Frame& frame) {
     else if (MaterialBsdf* material = std::get_if<MaterialBsdf>(&c)) material->orient(frame);
     else if (PrincipledHairBsdf* hair = std::get_if<PrincipledHairBsdf>(&c)) hair->orient(frame);
     else if (HairBsdf* strand = std::get_if<HairBsdf>(&c)) strand->orient(frame);
+    else if (HuangHairBsdf* huang = std::get_if<HuangHairBsdf>(&c)) huang->orient(frame);
   }
 }
 
@@ -385,7 +422,10 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
       }
       case ClosureType::PrincipledHair:
         // The strand's world direction (Cycles' dPdu), into the shading frame by orient().
-        add_closure(bsdf, PrincipledHairBsdf(principled_hair_params(m), globals.tangent), w.weight[k]);
+        add_closure(bsdf, PrincipledHairBsdf(principled_hair_params(m, globals), globals.tangent), w.weight[k]);
+        break;
+      case ClosureType::PrincipledHairHuang:
+        add_closure(bsdf, HuangHairBsdf(huang_hair_params(m, globals), globals.tangent, globals.on_curve), w.weight[k]);
         break;
       case ClosureType::HairReflection:
       case ClosureType::HairTransmission:

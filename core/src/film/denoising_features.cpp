@@ -225,7 +225,8 @@ void DenoisingClosures::add_closures(const ClosureList& list, float cos_no, bool
       case ClosureType::ToonDiffuseCycles4:
       case ClosureType::ToonGlossyCycles4: add(weight, mean(weight), kNotMicrofacet); break;
       case ClosureType::Translucent: add(weight, mean(weight), kNotMicrofacet, true); break;
-      case ClosureType::PrincipledHair: add(weight, mean(weight), kNotMicrofacet, true); break;
+      case ClosureType::PrincipledHair:
+      case ClosureType::PrincipledHairHuang: add(weight, mean(weight), kNotMicrofacet, true); break;
       case ClosureType::HairReflection: add(weight, mean(weight), kNotMicrofacet); break;
       case ClosureType::HairTransmission: add(weight, mean(weight), kNotMicrofacet, true); break;
       case ClosureType::Emission:

@@ -68,14 +68,6 @@ float log_bessel_i0(float x) {
   return std::log(bessel_i0(x));
 }
 
-// M_p: the longitudinal lobe of variance v (a von Mises-Fisher distribution on the sphere).
-float longitudinal(float sin_i, float cos_i, float sin_o, float cos_o, float v) {
-  const float inv_v = 1.0f / v;
-  const float cos_arg = cos_i * cos_o * inv_v, sin_arg = sin_i * sin_o * inv_v;
-  if (v <= 0.1f) return std::exp(log_bessel_i0(cos_arg) - sin_arg - inv_v + 0.6931f + std::log(0.5f * inv_v));
-  return std::exp(-sin_arg) * bessel_i0(cos_arg) / (std::sinh(inv_v) * 2.0f * v);
-}
-
 // M_p without Cycles' approximations of I0 (its series cut at 10 terms, its asymptote's
 // 1 / (16 x) for 1 / (8 x)): the density its sampling draws theta by, for the pdf.
 double log_bessel_i0_exact(double x) {
@@ -139,6 +131,23 @@ float azimuthal_scale(float s) {
 float longitudinal_variance(float v) { return sqr(0.726f * v + 0.812f * sqr(v) + 3.7f * std::pow(v, 20.0f)); }
 
 }  // namespace
+
+namespace chiang {
+
+float longitudinal(float sin_i, float cos_i, float sin_o, float cos_o, float v) {
+  const float inv_v = 1.0f / v;
+  const float cos_arg = cos_i * cos_o * inv_v, sin_arg = sin_i * sin_o * inv_v;
+  if (v <= 0.1f) return std::exp(log_bessel_i0(cos_arg) - sin_arg - inv_v + 0.6931f + std::log(0.5f * inv_v));
+  return std::exp(-sin_arg) * bessel_i0(cos_arg) / (std::sinh(inv_v) * 2.0f * v);
+}
+
+float sample_longitudinal_sin(const Vec2& u, float v, float sin_o, float cos_o) {
+  const float u1 = std::max(u.x, 1e-5f);
+  const float fac = 1.0f + v * std::log(u1 + (1.0f - u1) * std::exp(-2.0f / v));
+  return std::clamp(-fac * sin_o + cos_from_sin(fac) * std::cos(2.0f * kPi * u.y) * cos_o, -1.0f, 1.0f);
+}
+
+}  // namespace chiang
 
 struct PrincipledHairBsdf::Strand {
   Vec3 x, y, z;  // the strand's frame for this wo
@@ -213,13 +222,13 @@ Vec3 PrincipledHairBsdf::eval_at(const Strand& s, const Vec3& wi, float& pdf) co
   const float shifts[3] = {-2.0f * alpha_, alpha_, 4.0f * alpha_};  // where sample() moves theta'
   for (int p = 0; p < 3; ++p) {
     const float v = p == 0 ? v_r_ : p == 1 ? 0.25f * v_ : 4.0f * v_;
-    const float m = longitudinal(angles[2 * p], angles[2 * p + 1], s.sin_theta_o, s.cos_theta_o, v);
+    const float m = chiang::longitudinal(angles[2 * p], angles[2 * p + 1], s.sin_theta_o, s.cos_theta_o, v);
     const float n = trimmed_logistic(wrap_angle(phi - delta_phi(p, s.gamma_o, s.gamma_t)), s_);
     f += s.ap[p] * (m * n);
     if (s.share[p] > 0.0f)
       pdf += s.share[p] * tilted_theta_density(theta_i, shifts[p], s.sin_theta_o, s.cos_theta_o, v) * n * inv_cos_i;
   }
-  const float m = longitudinal(sin_theta_i, cos_theta_i, s.sin_theta_o, s.cos_theta_o, 4.0f * v_);
+  const float m = chiang::longitudinal(sin_theta_i, cos_theta_i, s.sin_theta_o, s.cos_theta_o, 4.0f * v_);
   constexpr float kInv2Pi = 0.159154943f;
   f += s.ap[3] * (m * kInv2Pi);
   if (s.share[3] > 0.0f)
@@ -255,10 +264,7 @@ BsdfSample PrincipledHairBsdf::sample(const Vec3& wo, float u_lobe, const Vec2& 
   const float u_phi = std::clamp((u_lobe - lower) / s.share[p], 0.0f, 0.99999994f);
   // theta: the lobe's M_p about the mirror direction (exactly), then untilted.
   const float v = p == 0 ? v_r_ : p == 1 ? 0.25f * v_ : 4.0f * v_;
-  const float u1 = std::max(u.x, 1e-5f);
-  const float fac = 1.0f + v * std::log(u1 + (1.0f - u1) * std::exp(-2.0f / v));
-  float sin_theta_i = std::clamp(-fac * s.sin_theta_o + cos_from_sin(fac) * std::cos(2.0f * kPi * u.y) * s.cos_theta_o,
-                                 -1.0f, 1.0f);
+  float sin_theta_i = chiang::sample_longitudinal_sin(u, v, s.sin_theta_o, s.cos_theta_o);
   float cos_theta_i = cos_from_sin(sin_theta_i);
   if (p < 3) {
     float angles[6];
@@ -286,6 +292,24 @@ float PrincipledHairBsdf::sampling_albedo() const {
   const float x = v_;  // as Cycles: the longitudinal variance in the polynomial of the roughness
   const float scale = (((((0.245f * x) + 5.574f) * x - 10.73f) * x + 2.532f) * x - 0.215f) * x + 5.969f;
   return luminance(glm::exp(-glm::sqrt(sigma_) * scale));
+}
+
+Vec3 HairRandomness::sigma_at(float r, float& roughness, float& radial) const {
+  const float shift = 2.0f * (r - 0.5f);
+  const float scale = 1.0f + shift * random_roughness;
+  roughness *= scale;
+  radial *= scale;
+  switch (coloring) {
+    case Coloring::Absorption: return sigma;
+    case Coloring::Melanin: {
+      const float m = melanin * (1.0f + shift * clamp01(random_color));
+      const float amount = -std::log(std::max(1.0f - m, 1e-4f));
+      return PrincipledHairBsdf::sigma_from_concentration(amount * (1.0f - melanin_redness), amount * melanin_redness) +
+             PrincipledHairBsdf::sigma_from_reflectance(color, radial);
+    }
+    case Coloring::DirectColor: return PrincipledHairBsdf::sigma_from_reflectance(color, radial);
+  }
+  return sigma;
 }
 
 Vec3 PrincipledHairBsdf::sigma_from_concentration(float eumelanin, float pheomelanin) {

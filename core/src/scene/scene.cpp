@@ -259,7 +259,8 @@ uint8_t Scene::globals_read(uint32_t i) const {
     if (m->program >= 0) reads |= programs_[size_t(m->program)].globals_read();
     for (const MixtureComponent& c : m->components) {
       reads |= own(c.material);
-      if (c.type == ClosureType::PrincipledHair) reads |= kReadsTangent;  // the strand's direction
+      if (c.type == ClosureType::PrincipledHair || c.type == ClosureType::PrincipledHairHuang)
+        reads |= kReadsTangent;  // the strand's direction
       if (c.type == ClosureType::HairReflection || c.type == ClosureType::HairTransmission)
         reads |= kReadsTangent | kReadsCorners;  // the strand's, or the triangle's edge
     }
@@ -270,7 +271,10 @@ uint8_t Scene::globals_read(uint32_t i) const {
 void check_material(const Material& m) {
   if (!is_finite(m.base_color) || !is_finite(m.emission) || !std::isfinite(m.metallic) ||
       !std::isfinite(m.roughness) || !std::isfinite(m.specular) || !std::isfinite(m.specular_tint) ||
-      !std::isfinite(m.ior) || !is_finite(m.specular_tint_color) || !std::isfinite(m.hair_offset))
+      !std::isfinite(m.ior) || !is_finite(m.specular_tint_color) || !std::isfinite(m.hair_offset) ||
+      !std::isfinite(m.hair_aspect_ratio) || !is_finite(m.hair_lobe_weights) ||
+      !std::isfinite(m.hair_random_roughness) || !std::isfinite(m.hair_random_color) || !std::isfinite(m.hair_random) ||
+      !std::isfinite(m.hair_melanin) || !std::isfinite(m.hair_melanin_redness) || !is_finite(m.hair_color))
     throw std::invalid_argument("material values must be finite (no NaN or Inf)");
   if (m.metallic < 0.0f || m.metallic > 1.0f || m.roughness < 0.0f || m.roughness > 1.0f)
     throw std::invalid_argument("material metallic and roughness must lie in [0, 1]");

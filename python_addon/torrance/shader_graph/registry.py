@@ -242,12 +242,16 @@ CLOSURES = {
     'ShaderNodeBsdfToon': "rendered: Color, Size, Smooth (any graph each), Normal; Diffuse and "
                           "Glossy, their sampled directions weighted as Cycles 3.4's or 4.x's; "
                           "alone and in Mix/Add Shader trees",
-    'ShaderNodeBsdfHairPrincipled': "partly: Chiang's model as Cycles 3.4 (4.x's Chiang; Huang "
-                                    "rendered as Chiang, reported): Direct Coloring, Melanin "
-                                    "Concentration and Absorption Coefficient, Roughness, "
-                                    "Radial Roughness, Coat, IOR, Offset (values; a graph that "
-                                    "varies and Random Color / Random Roughness are reported); "
-                                    "alone and in Mix/Add Shader trees",
+    'ShaderNodeBsdfHairPrincipled': "partly: Chiang's model as Cycles 3.4 (4.x's Chiang) and "
+                                    "4.x's Huang model as Cycles 4.2/5.3 far from the camera "
+                                    "(its near field rendered as the far field, curve "
+                                    "normals not read): Direct Coloring, "
+                                    "Melanin Concentration and Absorption Coefficient, "
+                                    "Roughness, Radial Roughness, Coat, IOR, Offset, Aspect "
+                                    "Ratio, Reflection, Transmission, Secondary Reflection, "
+                                    "Random Color, Random Roughness (per strand) (values; a "
+                                    "graph that varies is reported); alone and in Mix/Add "
+                                    "Shader trees",
     'ShaderNodeBsdfHair': "rendered: Reflection and Transmission as Cycles 3.4 (its kernel "
                           "unchanged in 4.x/5.x): Color, RoughnessU (any graph), RoughnessV, "
                           "Offset (values; a graph that varies is reported), Tangent (any graph; "

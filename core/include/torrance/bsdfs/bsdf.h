@@ -169,6 +169,19 @@ struct Material {
   float wavelength = 0.0f;
   // The Principled Hair BSDF's Offset (radians: the cuticle scales' tilt; ClosureType::PrincipledHair).
   float hair_offset = 0.0f;
+  // Its Huang model's (ClosureType::PrincipledHairHuang) Aspect Ratio and the weights of its
+  // Reflection, Transmission and Secondary Reflection paths.
+  float hair_aspect_ratio = 1.0f;
+  Vec3 hair_lobe_weights{1.0f};
+  // Both models' per-strand randomness (hair/principled_hair_bsdf.h's HairRandomness): Random
+  // Roughness, Random Color (0 and 0: base_color is the absorption at every hit), the Random
+  // input (where the hit has no strand's own), and what the absorption is made of at each hit:
+  // hair_coloring 0 Absorption Coefficient (base_color), 1 Melanin Concentration (hair_melanin,
+  // hair_melanin_redness, hair_color = Tint), 2 Direct Coloring (hair_color = Color).
+  float hair_random_roughness = 0.0f, hair_random_color = 0.0f, hair_random = 0.0f;
+  int hair_coloring = 0;
+  float hair_melanin = 0.0f, hair_melanin_redness = 0.0f;
+  Vec3 hair_color{1.0f};
   // The Ray Portal BSDF's (ClosureType::RayPortal) Direction (world; zero: the ray's own) and,
   // where its Position is linked (portal_at_hit false), that position (world; else the hit's).
   Vec3 portal_direction{0.0f};

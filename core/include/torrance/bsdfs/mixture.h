@@ -68,6 +68,10 @@ enum class ClosureType {
   // (the add-on reduces the node's parametrisation to it), roughness = Roughness,
   // transmission_roughness = Radial Roughness, coat_weight = Coat, ior = IOR, hair_offset = Offset.
   PrincipledHair,
+  // Its Huang model (Blender 4.0+; hair/huang_hair_bsdf.h): base_color = the absorption
+  // coefficient, roughness = Roughness, ior = IOR, hair_offset = Offset, hair_aspect_ratio =
+  // Aspect Ratio, hair_lobe_weights = Reflection, Transmission, Secondary Reflection.
+  PrincipledHairHuang,
   // Subsurface Scattering node (core/src/subsurface/: Cycles' Random Walk): Color = base_color,
   // Radius x Scale = subsurface_radius, IOR = subsurface_ior, Anisotropy = subsurface_anisotropy.
   Subsurface,

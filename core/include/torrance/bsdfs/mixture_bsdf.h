@@ -22,6 +22,7 @@
 #include "torrance/bsdfs/glossy_bsdf.h"
 #include "torrance/bsdfs/metallic_bsdf.h"
 #include "torrance/hair/hair_bsdf.h"
+#include "torrance/hair/huang_hair_bsdf.h"
 #include "torrance/hair/principled_hair_bsdf.h"
 #include "torrance/bsdfs/material_bsdf.h"
 #include "torrance/bsdfs/mixture.h"
@@ -48,7 +49,7 @@ class MixtureBsdf {
  public:
   using Component = std::variant<std::monostate, MaterialBsdf, DiffuseBsdf, GlossyBsdf, VelvetBsdf, SheenBsdf,
                                  TranslucentBsdf, RefractionBsdf, ToonBsdf, PrincipledHairBsdf, SubsurfaceExitBsdf,
-                                 MetallicBsdf, HairBsdf, MultiscatterGlossyBsdf>;
+                                 MetallicBsdf, HairBsdf, MultiscatterGlossyBsdf, HuangHairBsdf>;
 
   MixtureBsdf() = default;
   explicit MixtureBsdf(const MaterialBsdf& single) { add(single, 1.0f, 1.0f); }
@@ -82,7 +83,7 @@ class MixtureBsdf {
   float pdf_drawn(const Vec3& wo, const Vec3& wi, bool backfacing = false) const {
     return pdf_mixture(wo, wi, backfacing, {}, {}, -1, true);
   }
-  bool transmits() const;  // some closure is glass, Translucent, Refraction, Principled Hair or Hair
+  bool transmits() const;  // some closure is glass, Translucent, Refraction, Principled Hair (either model) or Hair
   // Every closure is a Hair BSDF's: Cycles' hair closures check no geometric side (the path
   // tracer then leaves out its check that the geometric and shading normals agree on wi's side).
   bool hair_only() const;

@@ -25,6 +25,15 @@
 
 namespace torrance {
 
+// Chiang's longitudinal lobe, shared with Huang's model (huang_hair_bsdf.h: its TRRT+ paths).
+namespace chiang {
+// M_p: the von Mises-Fisher lobe of variance v about the mirror of theta_o, as Cycles evaluates it
+// (longitudinal_scattering: its I0 series and asymptote).
+float longitudinal(float sin_i, float cos_i, float sin_o, float cos_o, float v);
+// sin theta_i drawn by that lobe (exactly) from u in [0, 1)^2.
+float sample_longitudinal_sin(const Vec2& u, float v, float sin_o, float cos_o);
+}  // namespace chiang
+
 // The node's inputs, reduced as Cycles' svm_node_closure_bsdf reduces them.
 struct PrincipledHairParams {
   Vec3 sigma{0.0f};              // absorption coefficient (per unit of the strand's diameter)
@@ -33,6 +42,24 @@ struct PrincipledHairParams {
   float coat = 0.0f;             // Coat: R's roughness is (1 - coat) x the others'
   float ior = 1.55f;
   float offset = 0.0349066f;     // the cuticle scales' tilt (radians; Blender's default 2 degrees)
+};
+
+// Random Roughness and Random Color as Cycles' svm node applies them at each hit, for either
+// model: with the strand's random r in [0, 1], the roughnesses times 1 + 2 (r - 0.5) Random
+// Roughness and, for Melanin Concentration, the melanin times 1 + 2 (r - 0.5) Random Color
+// (clamped to [0, 1]) before the absorption is made of it.
+struct HairRandomness {
+  enum class Coloring { Absorption, Melanin, DirectColor };
+  Coloring coloring = Coloring::Absorption;
+  Vec3 sigma{0.0f};  // Absorption Coefficient
+  float melanin = 0.0f, melanin_redness = 0.0f;
+  Vec3 color{1.0f};  // the Tint (Melanin) or the Color (Direct Coloring)
+  float random_roughness = 0.0f, random_color = 0.0f;
+
+  bool varies() const { return random_roughness != 0.0f || random_color != 0.0f; }
+  // The absorption at a strand of random r; roughness and radial (the roughness the colour's
+  // absorption is fitted with: Radial Roughness, or Huang's Roughness) scaled in place.
+  Vec3 sigma_at(float r, float& roughness, float& radial) const;
 };
 
 class PrincipledHairBsdf {
