@@ -60,7 +60,9 @@ HairRandomness hair_randomness(const Material& m) {
 }
 
 // The strand's random at a hit (Cycles: the curve's Random attribute, else the node's input).
-float strand_random(const Material& m, const ShaderGlobals& g) { return g.on_curve ? g.primitive_info.w : m.hair_random; }
+float strand_random(const Material& m, const ShaderGlobals& g) {
+  return g.on_curve ? g.primitive_info.w : m.hair_random;
+}
 
 PrincipledHairParams principled_hair_params(const Material& m, const ShaderGlobals& g) {
   PrincipledHairParams p;
