@@ -596,7 +596,8 @@ void init_scene(py::module_& m) {
       .def(
           "add_curves",
           [](Scene& s, const py::object& keys, const py::object& radii, const py::object& curve_offsets,
-             const py::object& materials, const std::string& shape, const py::object& random) {
+             const py::object& materials, const std::string& shape, const py::object& random,
+             const py::object& normals) {
             if (shape != "ROUND" && shape != "RIBBON")
               throw py::value_error("shape must be 'ROUND' or 'RIBBON', got '" + shape + "'");
             const auto k = shaped_array<float>(keys, "keys", {-1, 3});
@@ -613,16 +614,19 @@ void init_scene(py::module_& m) {
             if (!materials.is_none()) m = shaped_array<int64_t>(materials, "materials", {py::ssize_t(num_curves)});
             py::array_t<float, py::array::c_style | py::array::forcecast> rnd;
             if (!random.is_none()) rnd = shaped_array<float>(random, "random", {py::ssize_t(num_curves)});
+            py::array_t<float, py::array::c_style | py::array::forcecast> nrm;
+            if (!normals.is_none()) nrm = shaped_array<float>(normals, "normals", {py::ssize_t(n), 3});
             return s.add_curves(k.data(), r.data(), n, offsets.data(), num_curves, materials.is_none() ? nullptr : m.data(),
                                 shape == "ROUND" ? CurveShape::Round : CurveShape::Ribbon,
-                                random.is_none() ? nullptr : rnd.data());
+                                random.is_none() ? nullptr : rnd.data(), normals.is_none() ? nullptr : nrm.data());
           },
           py::arg("keys"), py::arg("radii"), py::arg("curve_offsets"), py::arg("materials") = py::none(),
-          py::arg("shape") = "ROUND", py::arg("random") = py::none(),
+          py::arg("shape") = "ROUND", py::arg("random") = py::none(), py::arg("normals") = py::none(),
           "Adds hair strands in world space: keys (K, 3), radii (K,), curve_offsets (C + 1,) from 0 to K "
           "(curve c: keys offsets[c] .. offsets[c + 1] - 1), materials (C,) or None; traced as Cycles' "
           "Catmull-Rom curves, shape 'ROUND' (3D Curves) or 'RIBBON' (Rounded Ribbons); random (C,) or None: the "
-          "Curves Info node's Random per curve. Returns its id.")
+          "Curves Info node's Random per curve; normals (K, 3) or None: the curves' normal attribute (world space), "
+          "which a Huang hair ellipse's major axis follows. Returns its id.")
       .def_property_readonly("num_curve_segments", &Scene::num_curve_segments)
       .def(
           "add_prototype",

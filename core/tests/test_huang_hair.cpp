@@ -201,6 +201,30 @@ TEST(HuangHair, EllipseSeenAcrossItsMinorAxisLetsOuterHitsPass) {
   EXPECT_FALSE(HuangHairBsdf(white(0.3f, 0.5f), tangent, false).sample(along_major, 0.5f, Vec2(0.5f)).is_delta);
 }
 
+TEST(HuangHair, CurveNormalSetsTheMajorAxis) {
+  // Cycles aligns the ellipse's major axis with the curve's normal attribute where it has one
+  // (Blender's Curves objects): the part of it across the strand, for an aspect ratio above 1 as
+  // well. A normal along the fallback's minor diagonal turns the fibre of the test above by 90
+  // degrees: now the hit seen along that diagonal passes and the other scatters.
+  const Vec3 tangent(1.0f, 0.0f, 0.0f);
+  const Vec3 fallback_major = glm::normalize(Vec3(0.0f, 1.0f, 1.0f));
+  const Vec3 normal = glm::normalize(Vec3(0.0f, -1.0f, 1.0f));
+  const Vec2 u(0.5f, 0.5f);
+  for (const float aspect : {0.5f, 2.0f}) {
+    for (const Vec3& n : {normal, 3.0f * normal + 2.0f * tangent}) {  // its part along the strand ignored
+      const HuangHairBsdf hair(white(0.3f, aspect), tangent, true, n);
+      EXPECT_TRUE(hair.sample(normal, 0.5f, u).is_delta) << "aspect " << aspect;
+      EXPECT_FALSE(hair.sample(fallback_major, 0.5f, u).is_delta) << "aspect " << aspect;
+    }
+  }
+  // A normal along the strand (nothing across it) or none: the fallback frame.
+  EXPECT_TRUE(HuangHairBsdf(white(0.3f, 0.5f), tangent, true, tangent).sample(fallback_major, 0.5f, u).is_delta);
+  // Round fibres do not depend on it.
+  const HuangHairBsdf round_plain(white(0.3f), tangent, true), round_normal(white(0.3f), tangent, true, normal);
+  const Vec3 wo = view_about_x(0.4f, 0.2f), wi = view_about_x(2.1f, -0.3f);
+  EXPECT_EQ(round_plain.eval(wo, wi), round_normal.eval(wo, wi));
+}
+
 TEST(HuangHair, HardCasesStayFinite) {
   Rng rng(7, 8, 9);
   const Vec3 tangent = glm::normalize(Vec3(0.9f, 0.3f, 0.1f));

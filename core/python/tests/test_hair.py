@@ -39,6 +39,14 @@ def test_add_curves_rejects_malformed_input():
     with pytest.raises(ValueError, match="random"):
         scene.add_curves(keys, radii, offsets, random=[0.5, np.nan])
     scene.add_curves(keys, radii, offsets, random=[0.25, 0.75])
+    normals = np.tile(np.float32([0.0, 1.0, 0.0]), (len(keys), 1))
+    with pytest.raises(ValueError, match="normals"):
+        scene.add_curves(keys, radii, offsets, normals=normals[:-1])
+    with pytest.raises(ValueError, match="normals"):
+        bad = normals.copy()
+        bad[3, 1] = np.inf
+        scene.add_curves(keys, radii, offsets, normals=bad)
+    scene.add_curves(keys, radii, offsets, normals=normals)
 
 
 @pytest.mark.parametrize("shape", ["ROUND", "RIBBON"])
@@ -64,6 +72,36 @@ def test_principled_hair_huang_strands_render_lit_and_finite(aspect_ratio):
     keys, radii, offsets = strands()
     scene.add_curves(keys, radii, offsets, materials=[mix] * (len(offsets) - 1), shape="ROUND")
     assert_lit_and_finite(scene, sun=(0.3, 0.5, -1.0))
+
+
+def huang_strands_image(aspect_ratio, normal):
+    """Huang strands (vertical, in a row along x) seen along +y, their curves' normal attribute
+    `normal` at every key (None: none), 8 spp."""
+    scene = tc.Scene()
+    hair = scene.add_material(base_color=(0.3, 0.5, 0.9), roughness=0.3, ior=1.55,
+                              hair_aspect_ratio=aspect_ratio)
+    mix = scene.add_mixture([("principled_hair_huang", hair, [])], [])
+    keys, radii, offsets = strands(radius=0.02)
+    normals = None if normal is None else np.tile(np.float32(normal), (len(keys), 1))
+    scene.add_curves(keys, radii, offsets, materials=[mix] * (len(offsets) - 1), normals=normals)
+    scene.add_sun(direction=(0.3, 0.5, -1.0), strength=3.0, angle=0.1)
+    camera = np.eye(4)
+    camera[:3, :3] = [[1, 0, 0], [0, 0, -1], [0, 1, 0]]
+    camera[:3, 3] = [0.0, -3.0, 0.25]
+    scene.set_camera(camera, lens=50.0)
+    settings = tc.RenderSettings(width=48, height=32, samples=8, max_bounces=4)
+    return np.asarray(tc.render(scene, settings).image)[..., :3]
+
+
+def test_huang_ellipse_follows_the_curves_normals():
+    """An elliptical fibre's major axis follows the curves' normal attribute (Cycles: where the
+    aspect ratio is not 1): facing the camera (y) or across (x), the strands look different;
+    a round fibre ignores it."""
+    facing, across = huang_strands_image(0.5, (0, 1, 0)), huang_strands_image(0.5, (1, 0, 0))
+    assert np.isfinite(facing).all() and np.isfinite(across).all()
+    assert abs(facing.mean() / across.mean() - 1.0) > 0.02
+    np.testing.assert_array_equal(huang_strands_image(1.0, (0, 1, 0)),
+                                  huang_strands_image(1.0, None))
 
 
 def test_principled_hair_randomness_renders_and_checks_its_coloring():

@@ -363,7 +363,8 @@ MixtureBsdf shade_material(const Scene& scene, uint32_t id, const ShaderGlobals&
         add_closure(bsdf, PrincipledHairBsdf(principled_hair_params(m, globals), globals.tangent), w.weight[k]);
         break;
       case ClosureType::PrincipledHairHuang:
-        add_closure(bsdf, HuangHairBsdf(huang_hair_params(m, globals), globals.tangent, globals.on_curve), w.weight[k]);
+        add_closure(bsdf, HuangHairBsdf(huang_hair_params(m, globals), globals.tangent, globals.on_curve,
+                                          globals.curve_normal), w.weight[k]);
         break;
       case ClosureType::HairReflection:
       case ClosureType::HairTransmission:

@@ -22,6 +22,9 @@ struct Scene::CurveSet {
   // segment its curve's Length and Random.
   std::vector<float> key_intercept;
   std::vector<float> segment_length, segment_random;
+  // The curves' normal attribute per key (aligned with keys; empty without one): what Cycles
+  // aligns a Huang hair ellipse's major axis with (Blender's Curves objects have it).
+  std::vector<Vec3> key_normal;
   CurveShape shape = CurveShape::Round;
   ObjectSettings settings;  // its object's (Scene::set_curves_settings)
 };

@@ -120,7 +120,7 @@ struct HuangHairBsdf::View {
   Vec3 shading(const Vec3& w) const { return x * w.x + y * w.y + z * w.z; }
 };
 
-HuangHairBsdf::HuangHairBsdf(const HuangHairParams& p, const Vec3& tangent, bool on_curve)
+HuangHairBsdf::HuangHairBsdf(const HuangHairParams& p, const Vec3& tangent, bool on_curve, const Vec3& curve_normal)
     : sigma_(glm::max(p.sigma, Vec3(0.0f))),
       weights_(glm::max(p.lobe_weights, Vec3(0.0f))),
       on_curve_(on_curve),
@@ -141,6 +141,11 @@ HuangHairBsdf::HuangHairBsdf(const HuangHairParams& p, const Vec3& tangent, bool
   const Vec3 side = t.x != t.y || t.x != t.z ? Vec3(t.z - t.y, t.x - t.z, t.y - t.x)
                                              : Vec3(t.z - t.y, t.x + t.z, -t.y - t.x);
   world_major_ = glm::cross(t, glm::normalize(side));
+  // With the curve's normal attribute, Cycles takes its part across the strand as the major axis
+  // (for an aspect ratio above 1 too: its swap of the axes leaves that direction as it is).
+  const Vec3 across = curve_normal - t * glm::dot(t, curve_normal);
+  const float across_len = glm::length(across);
+  if (across_len > 1e-12f && std::isfinite(across_len)) world_major_ = across / across_len;
   tangent_ = world_tangent_;
   major_ = world_major_;
 }

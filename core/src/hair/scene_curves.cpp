@@ -44,7 +44,8 @@ void skip_own_strand(const RTCFilterFunctionNArguments* args) {
 }  // namespace
 
 uint32_t Scene::add_curves(const float* keys, const float* radii, size_t num_keys, const int64_t* curve_first,
-                           size_t num_curves, const int64_t* materials, CurveShape shape, const float* random) {
+                           size_t num_curves, const int64_t* materials, CurveShape shape, const float* random,
+                           const float* normals) {
   std::lock_guard<std::mutex> lock(mutex_);
   check_idle("add curves");
   if (num_keys > UINT32_MAX / 2 || num_curves > UINT32_MAX / 2) throw std::invalid_argument("too many curve keys");
@@ -58,6 +59,9 @@ uint32_t Scene::add_curves(const float* keys, const float* radii, size_t num_key
   if (random)
     for (size_t c = 0; c < num_curves; ++c)
       if (!std::isfinite(random[c])) throw std::invalid_argument("curve random values must be finite");
+  if (normals)
+    for (size_t i = 0; i < 3 * num_keys; ++i)
+      if (!std::isfinite(normals[i])) throw std::invalid_argument("curve normals must be finite");
   auto set = std::make_unique<CurveSet>();
   set->shape = shape;
   set->keys.reserve(num_keys + 2 * num_curves);
@@ -76,6 +80,12 @@ uint32_t Scene::add_curves(const float* keys, const float* radii, size_t num_key
     set->keys.push_back(key(first));
     for (int64_t k = first; k < end; ++k) set->keys.push_back(key(k));
     set->keys.push_back(key(end - 1));
+    if (normals) {  // aligned with keys, the end keys' twice
+      auto normal = [&](int64_t k) { return Vec3(normals[3 * k], normals[3 * k + 1], normals[3 * k + 2]); };
+      set->key_normal.push_back(normal(first));
+      for (int64_t k = first; k < end; ++k) set->key_normal.push_back(normal(k));
+      set->key_normal.push_back(normal(end - 1));
+    }
     // Intercept and Length as Cycles' curve attributes: the distance along the key polyline.
     double length = 0.0;
     std::vector<double> along{0.0};
@@ -153,6 +163,10 @@ void Scene::curve_hit(uint32_t set_index, uint32_t prim, float u, const Vec3& or
   const float* intercept = &set.key_intercept[set.segment_key[prim]];
   hit.primitive_info = glm::vec4(intercept[1] + u * (intercept[2] - intercept[1]), set.segment_length[prim],
                              2.0f * (c[1].w + u * (c[2].w - c[1].w)), set.segment_random[prim]);
+  if (!set.key_normal.empty()) {
+    const Vec3* n = &set.key_normal[set.segment_key[prim]];
+    hit.curve_normal = n[1] + u * (n[2] - n[1]);
+  }
   if (set.shape == CurveShape::Round) {
     // Cycles' thick curves: the normal from the centre line at u out through the hit (the view
     // when they coincide).

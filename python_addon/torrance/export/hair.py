@@ -85,7 +85,8 @@ def particle_strands(obj, psys):
 
 
 def curves_strands(obj, matrix):
-    """(keys world space, radii, offsets, material slot per curve) of a Curves object."""
+    """(keys world space, radii, offsets, material slot per curve, normals world space or None)
+    of a Curves object."""
     data = obj.data
     n = len(data.points)
     num_curves = len(data.curves)
@@ -105,7 +106,20 @@ def curves_strands(obj, matrix):
         attrs["material_index"].data.foreach_get("value", slots)
     m = np.array(matrix, dtype=np.float64)
     keys = times_transpose(local.reshape(-1, 3).astype(np.float64), m[:3, :3]) + m[:3, 3]
-    return keys.astype(np.float32), radii, offsets.astype(np.int64), slots
+    return keys.astype(np.float32), radii, offsets.astype(np.int64), slots, curve_normals(data, m)
+
+
+def curve_normals(data, m):
+    """The Curves' normal attribute per point (Blender 4.0+: Curves.normals, by its normal
+    mode), turned by the world matrix m; Cycles aligns a Huang hair ellipse's major axis with it.
+    None where Blender has none (3.x) or it is not finite."""
+    normals = getattr(data, "normals", None)
+    if normals is None or len(normals) != len(data.points):
+        return None
+    local = np.empty(3 * len(normals), dtype=np.float32)
+    normals.foreach_get("vector", local)
+    world = times_transpose(local.reshape(-1, 3).astype(np.float64), m[:3, :3]).astype(np.float32)
+    return world if np.isfinite(world).all() else None
 
 
 def strand_random(first, count):
@@ -117,8 +131,8 @@ def strand_random(first, count):
 
 
 def read_strands(obj, psys, matrix):
-    """(keys, radii, offsets[, slots]) of obj's particle system psys, or of Curves object obj
-    (psys None) at its world matrix; None without strands."""
+    """(keys, radii, offsets[, slots, normals]) of obj's particle system psys, or of Curves
+    object obj    (psys None) at its world matrix; None without strands."""
     return curves_strands(obj, matrix) if psys is None else particle_strands(obj, psys)
 
 
@@ -144,11 +158,12 @@ def export_hair(tc_scene, hair, materials, reporter, shape, on_added=None, setti
             got = read_strands(obj, None, matrix)
             if got is None:
                 continue
-            keys, radii, offsets, slots = got
+            keys, radii, offsets, slots, normals = got
             per_curve = slot_to_material[np.clip(slots, 0, len(slot_to_material) - 1)]
             set_id = tc_scene.add_curves(keys, radii * scale, offsets,
                                          materials=per_curve.astype(np.int64), shape=shape,
-                                         random=strand_random(0, len(offsets) - 1))
+                                         random=strand_random(0, len(offsets) - 1),
+                                         normals=normals)
             added(set_id, obj, None, offsets)
             strands += len(offsets) - 1
             continue

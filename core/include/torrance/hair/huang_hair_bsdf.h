@@ -77,8 +77,10 @@ class HuangHairBsdf {
   static constexpr bool kSampleIsOwnEval = true;
 
   // tangent: the strand's world direction; on_curve: a hit on a curve (Cycles aligns an ellipse
-  // with the curve; on a mesh the frame follows the view and only the aspect remains).
-  HuangHairBsdf(const HuangHairParams& params, const Vec3& tangent, bool on_curve);
+  // with the curve; on a mesh the frame follows the view and only the aspect remains);
+  // curve_normal: the curve's normal attribute there (0: none), the major axis's direction.
+  HuangHairBsdf(const HuangHairParams& params, const Vec3& tangent, bool on_curve,
+                const Vec3& curve_normal = Vec3(0.0f));
   void orient(const Frame& frame);
 
   LobeEval eval_lobes(const Vec3& wo, const Vec3& wi) const;

@@ -87,6 +87,9 @@ struct SurfaceHit {
   // the normals are Cycles' (a round curve's: from its centre line out through the hit; a
   // ribbon's: geometric towards the viewer, shading rounded across the strand).
   bool on_curve = false;
+  // On a strand of curves with a normal attribute (add_curves' normals): it, interpolated over
+  // the segment as Cycles' curve attributes; else 0.
+  Vec3 curve_normal{0.0f};
   // A point's hit (Scene::add_points): the normals are Cycles' (from the point's centre out
   // through the hit), no UVs, no tangent.
   bool on_point = false;
@@ -130,6 +133,7 @@ inline ShaderGlobals shader_globals(const SurfaceHit& hit, const Vec3& ray_dir, 
     g.on_curve = hit.on_curve;
     g.on_point = hit.on_point;
     g.primitive_info = hit.primitive_info;
+    g.curve_normal = hit.curve_normal;
   }
   // Of the rest, only what `reads` (GlobalsRead flags) names.
   if (reads & kReadsAttributes) {
@@ -439,12 +443,13 @@ class Scene final : public ShaderTracer {
   // (num_keys, >= 0), curve c having keys curve_first[c] .. curve_first[c + 1] - 1 (num_curves + 1
   // ascending offsets from 0 to num_keys), traced as Cycles 3.4's Catmull-Rom curves of `shape`;
   // materials: nullptr or one material per curve; random: nullptr (0) or the Curves Info node's
-  // Random per curve (Cycles hashes the curve's index). A curve of fewer than 2 keys is skipped;
+  // Random per curve (Cycles hashes the curve's index); normals: nullptr or the curves' normal
+  // attribute per key (num_keys xyz, world space). A curve of fewer than 2 keys is skipped;
   // zero-length segments and zero radii are tolerated. Non-finite keys, radii or random values,
   // negative radii or bad offsets: std::invalid_argument. Returns the curve set's id.
   uint32_t add_curves(const float* keys, const float* radii, size_t num_keys, const int64_t* curve_first,
                       size_t num_curves, const int64_t* materials, CurveShape shape,
-                      const float* random = nullptr);
+                      const float* random = nullptr, const float* normals = nullptr);
   size_t num_curve_segments() const;
   struct CurveSet;  // a curve set's storage (core/src/hair/curve_set.h), for its Embree filter
   // Point clouds (points/point_set.h), as Cycles renders them: num_points spheres, centres

@@ -183,6 +183,7 @@ struct ShaderGlobals {
   // (xyz) and radius there.
   bool on_point = false;
   glm::vec4 primitive_info{0.0f};
+  Vec3 curve_normal{0.0f};  // a strand's normal attribute (SurfaceHit::curve_normal), else 0
   // The hit triangle's corner attributes (corner k's layer a at k * num_attributes + a), the
   // layers' ids and the corners' interpolation weights.
   const Vec3* corner_attributes = nullptr;
