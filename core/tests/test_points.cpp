@@ -124,19 +124,19 @@ TEST(Points, HitsReadTheirPointsAttributesAndPointInfo) {
   ins.op = ShaderOpcode::Attribute;
   glm::vec4 regs[1] = {};
   ins.resource = 9;
-  EXPECT_EQ(shader_op_info(ShaderOpcode::Attribute).run({ins, regs, g, nullptr, 0}), glm::vec4(12, 0, 0, 1));
+  EXPECT_EQ(glm::vec4(shader_op_info(ShaderOpcode::Attribute).run({ins, regs, g, nullptr, 0})), glm::vec4(12, 0, 0, 1));
   ins.resource = 7;
-  EXPECT_EQ(shader_op_info(ShaderOpcode::Attribute).run({ins, regs, g, nullptr, 0}), glm::vec4(2, 2, 2, 1));
+  EXPECT_EQ(glm::vec4(shader_op_info(ShaderOpcode::Attribute).run({ins, regs, g, nullptr, 0})), glm::vec4(2, 2, 2, 1));
   ins.op = ShaderOpcode::PointInfo;
   ins.mode = 0;
-  EXPECT_EQ(shader::point_info_op({ins, regs, g, nullptr, 0}), glm::vec4(6, 0, 0, 0));
+  EXPECT_EQ(glm::vec4(shader::point_info_op({ins, regs, g, nullptr, 0})), glm::vec4(6, 0, 0, 0));
   ins.mode = 1;
-  EXPECT_EQ(shader::point_info_op({ins, regs, g, nullptr, 0}), glm::vec4(0.25f, 0, 0, 0));
+  EXPECT_EQ(glm::vec4(shader::point_info_op({ins, regs, g, nullptr, 0})), glm::vec4(0.25f, 0, 0, 0));
   // Off a point: 0, as Cycles' point_position and point_radius.
   SurfaceHit mesh_hit;
   mesh_hit.geometric_normal = mesh_hit.shading_normal = Vec3(0, 0, 1);
   const ShaderGlobals off = shader_globals(mesh_hit, Vec3(0, 0, -1), 0.0f);
-  EXPECT_EQ(shader::point_info_op({ins, regs, off, nullptr, 0}), glm::vec4(0.0f));
+  EXPECT_EQ(glm::vec4(shader::point_info_op({ins, regs, off, nullptr, 0})), glm::vec4(0.0f));
 }
 
 // An emissive point lights what the paths that hit it come from (Cycles' emissive points are no

@@ -156,7 +156,7 @@ std::vector<Vec3> VolumeGrid::brick_centres() const {
   return out;
 }
 
-glm::vec4 volume_grid_op(const ShaderOpContext& c) {
+OpValue volume_grid_op(const ShaderOpContext& c) {
   const auto* grids = c.globals.grids;
   const int32_t id = c.ins.resource;
   if (grids == nullptr || id < 0 || size_t(id) >= grids->size()) return glm::vec4(0.0f);

@@ -94,7 +94,7 @@ Vec3 bevel_normal(const ShaderGlobals& g, float radius, int samples) {
   return g.backfacing ? -n : n;
 }
 
-glm::vec4 bevel_op(const ShaderOpContext& c) {
+OpValue bevel_op(const ShaderOpContext& c) {
   const ShaderGlobals& g = c.globals;
   Vec3 n = bevel_normal(g, c.value(0), int(std::min(c.value(2), float(kMaxSamples))));
   if (c.ins.flags & 1) {

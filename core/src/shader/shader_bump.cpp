@@ -62,7 +62,7 @@ Vec3 tangent_normal_map(const Vec3& c, const Vec3& n, const Vec3& tangent, float
   return is_zero(mapped) ? n : mapped;
 }
 
-glm::vec4 bump_op(const ShaderOpContext& c) {
+OpValue bump_op(const ShaderOpContext& c) {
   const ShaderGlobals& g = c.globals;
   Vec3 n = unit_or_zero(c.vector(5));
   if (is_zero(n)) n = g.normal;
@@ -72,7 +72,7 @@ glm::vec4 bump_op(const ShaderOpContext& c) {
   return glm::vec4(valid_shading_normal(g.true_normal, out, g.incoming), 0.0f);
 }
 
-glm::vec4 normal_map_op(const ShaderOpContext& c) {
+OpValue normal_map_op(const ShaderOpContext& c) {
   const ShaderGlobals& g = c.globals;
   const float side = g.backfacing ? -1.0f : 1.0f;
   const Vec3 color = c.vector(0);
@@ -88,14 +88,14 @@ glm::vec4 normal_map_op(const ShaderOpContext& c) {
   return glm::vec4(mix_mapped_normal(g.normal, side * m, strength), 0.0f);
 }
 
-glm::vec4 displacement_op(const ShaderOpContext& c) {
+OpValue displacement_op(const ShaderOpContext& c) {
   const float amount = (c.value(0) - c.value(1)) * c.value(2);
   if (c.ins.mode == 1) return glm::vec4(c.vector(3) * amount, 0.0f);
   const ObjectTransform object(c, 4);
   return glm::vec4(object.direction(object.inverse_normal(c.vector(3)) * amount), 0.0f);
 }
 
-glm::vec4 vector_displacement_op(const ShaderOpContext& c) {
+OpValue vector_displacement_op(const ShaderOpContext& c) {
   const ShaderGlobals& g = c.globals;
   Vec3 d = (c.vector(0) - Vec3(c.value(1))) * c.value(2);
   const ObjectTransform object(c, 3);

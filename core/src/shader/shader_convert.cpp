@@ -270,40 +270,40 @@ Vec3 wavelength(float nanometres) {
 
 // ---- the ops ---------------------------------------------------------------------------------
 
-glm::vec4 color_ramp_op(const ShaderOpContext& c) {
+OpValue color_ramp_op(const ShaderOpContext& c) {
   return color_ramp(c.data, c.data_size, c.value(0), c.ins.flags & 1);
 }
 
-glm::vec4 rgb_curves_op(const ShaderOpContext& c) {
+OpValue rgb_curves_op(const ShaderOpContext& c) {
   return glm::vec4(curves(c.data, c.data_size, c.value(0), c.vector(1), c.ins.flags & 1), 1.0f);
 }
 
-glm::vec4 vector_curves_op(const ShaderOpContext& c) {
+OpValue vector_curves_op(const ShaderOpContext& c) {
   return glm::vec4(curves(c.data, c.data_size, c.value(0), c.vector(1), c.ins.flags & 1), 0.0f);
 }
 
-glm::vec4 float_curve_op(const ShaderOpContext& c) {
+OpValue float_curve_op(const ShaderOpContext& c) {
   return glm::vec4(float_curve(c.data, c.data_size, c.value(0), c.value(1), c.ins.flags & 1), 0.0f, 0.0f, 0.0f);
 }
 
-glm::vec4 map_range_op(const ShaderOpContext& c) {
+OpValue map_range_op(const ShaderOpContext& c) {
   const float v = map_range(MapRangeMode(c.ins.mode), c.value(0), c.value(1), c.value(2), c.value(3), c.value(4),
                             c.value(5), c.ins.flags & 1);
   return glm::vec4(v, 0.0f, 0.0f, 0.0f);
 }
 
-glm::vec4 vector_map_range_op(const ShaderOpContext& c) {
+OpValue vector_map_range_op(const ShaderOpContext& c) {
   return glm::vec4(vector_map_range(MapRangeMode(c.ins.mode), c.vector(0), c.vector(1), c.vector(2), c.vector(3),
                                     c.vector(4), c.vector(5), c.ins.flags & 1),
                    0.0f);
 }
 
-glm::vec4 clamp_op(const ShaderOpContext& c) {
+OpValue clamp_op(const ShaderOpContext& c) {
   return glm::vec4(clamp(ClampMode(c.ins.mode), c.value(0), c.value(1), c.value(2)), 0.0f, 0.0f, 0.0f);
 }
 
-glm::vec4 blackbody_op(const ShaderOpContext& c) { return glm::vec4(blackbody(c.value(0)), 1.0f); }
+OpValue blackbody_op(const ShaderOpContext& c) { return glm::vec4(blackbody(c.value(0)), 1.0f); }
 
-glm::vec4 wavelength_op(const ShaderOpContext& c) { return glm::vec4(wavelength(c.value(0)), 1.0f); }
+OpValue wavelength_op(const ShaderOpContext& c) { return glm::vec4(wavelength(c.value(0)), 1.0f); }
 
 }  // namespace torrance::shader

@@ -4,7 +4,7 @@
 
 namespace torrance::shader {
 
-glm::vec4 curves_info_op(const ShaderOpContext& c) {
+OpValue curves_info_op(const ShaderOpContext& c) {
   const ShaderGlobals& g = c.globals;
   if (!g.on_curve) return glm::vec4(0.0f);
   switch (c.ins.mode) {
@@ -23,7 +23,7 @@ glm::vec4 curves_info_op(const ShaderOpContext& c) {
   }
 }
 
-glm::vec4 point_info_op(const ShaderOpContext& c) {
+OpValue point_info_op(const ShaderOpContext& c) {
   const ShaderGlobals& g = c.globals;
   if (!g.on_point) return glm::vec4(0.0f);
   return c.ins.mode == 0 ? glm::vec4(Vec3(g.primitive_info), 0.0f) : glm::vec4(g.primitive_info.w, 0.0f, 0.0f, 0.0f);

@@ -126,7 +126,7 @@ GaborOutputs gabor_texture(GaborType type, const GaborInputs& in) {
   return out;
 }
 
-glm::vec4 gabor_op(const ShaderOpContext& c) {
+OpValue gabor_op(const ShaderOpContext& c) {
   GaborInputs in;
   in.vector = c.vector(0);
   in.scale = c.value(1);

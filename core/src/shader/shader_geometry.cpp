@@ -11,7 +11,7 @@
 
 namespace torrance::shader {
 
-glm::vec4 geometry_op(const ShaderOpContext& c) {
+OpValue geometry_op(const ShaderOpContext& c) {
   const ShaderGlobals& g = c.globals;
   switch (c.ins.mode) {
     case 0: return glm::vec4(g.position, 0.0f);
@@ -22,12 +22,12 @@ glm::vec4 geometry_op(const ShaderOpContext& c) {
   }
 }
 
-glm::vec4 reflection_op(const ShaderOpContext& c) {
+OpValue reflection_op(const ShaderOpContext& c) {
   const ShaderGlobals& g = c.globals;
   return glm::vec4(2.0f * glm::dot(g.normal, g.incoming) * g.normal - g.incoming, 0.0f);
 }
 
-glm::vec4 fresnel_op(const ShaderOpContext& c) {
+OpValue fresnel_op(const ShaderOpContext& c) {
   float eta = std::max(c.value(0), 1e-5f);
   if (c.globals.backfacing) eta = 1.0f / eta;
   return glm::vec4(fresnel_dielectric(glm::dot(c.globals.incoming, c.vector(1)), eta), 0.0f, 0.0f, 0.0f);
@@ -49,14 +49,14 @@ float layer_weight_facing(float blend, float cos_view) {
   return 1.0f - f;
 }
 
-glm::vec4 layer_weight_op(const ShaderOpContext& c) {
+OpValue layer_weight_op(const ShaderOpContext& c) {
   const float cos_view = glm::dot(c.globals.incoming, c.vector(1));
   const float f = c.ins.mode == 0 ? layer_weight_fresnel(c.value(0), cos_view, c.globals.backfacing)
                                   : layer_weight_facing(c.value(0), cos_view);
   return glm::vec4(f, 0.0f, 0.0f, 0.0f);
 }
 
-glm::vec4 attribute_op(const ShaderOpContext& c) {
+OpValue attribute_op(const ShaderOpContext& c) {
   const ShaderGlobals& g = c.globals;
   const int n = g.num_attributes;
   for (int a = 0; a < n; ++a)
@@ -71,7 +71,7 @@ glm::vec4 attribute_op(const ShaderOpContext& c) {
   return glm::vec4(0.0f);
 }
 
-glm::vec4 light_path_op(const ShaderOpContext& c) {
+OpValue light_path_op(const ShaderOpContext& c) {
   const PathState& s = c.globals.path;
   auto flag = [&](uint8_t bit) { return (s.ray_flags & bit) ? 1.0f : 0.0f; };
   float v = 0.0f;
@@ -95,7 +95,7 @@ glm::vec4 light_path_op(const ShaderOpContext& c) {
   return glm::vec4(v, 0.0f, 0.0f, 0.0f);
 }
 
-glm::vec4 light_falloff_op(const ShaderOpContext& c) {
+OpValue light_falloff_op(const ShaderOpContext& c) {
   const float length = c.globals.path.ray_length;
   float strength = c.value(0);
   if (c.ins.mode == 1) strength *= length;
@@ -105,7 +105,7 @@ glm::vec4 light_falloff_op(const ShaderOpContext& c) {
   return glm::vec4(strength, 0.0f, 0.0f, 0.0f);
 }
 
-glm::vec4 wireframe_op(const ShaderOpContext& c) {
+OpValue wireframe_op(const ShaderOpContext& c) {
   const ShaderGlobals& g = c.globals;
   float half_width = 1.0f;
   if (c.ins.mode == 1) {
@@ -123,7 +123,7 @@ glm::vec4 wireframe_op(const ShaderOpContext& c) {
   return glm::vec4(0.0f);
 }
 
-glm::vec4 ambient_occlusion_op(const ShaderOpContext& c) {
+OpValue ambient_occlusion_op(const ShaderOpContext& c) {
   const ShaderGlobals& g = c.globals;
   const float distance = c.value(1);
   const float samples = std::min(c.value(3), 1024.0f);
@@ -155,7 +155,7 @@ glm::vec4 ambient_occlusion_op(const ShaderOpContext& c) {
   return glm::vec4(c.vector(0) * ao, 1.0f);
 }
 
-glm::vec4 tangent_op(const ShaderOpContext& c) {
+OpValue tangent_op(const ShaderOpContext& c) {
   const ShaderGlobals& g = c.globals;
   const ObjectTransform object(c, 1);
   Vec3 t;
@@ -171,7 +171,7 @@ glm::vec4 tangent_op(const ShaderOpContext& c) {
   return glm::vec4(glm::cross(n, safe_unit(glm::cross(t, n))), 0.0f);
 }
 
-glm::vec4 camera_transform_op(const ShaderOpContext& c) {
+OpValue camera_transform_op(const ShaderOpContext& c) {
   const glm::vec4 p(c.globals.position, 1.0f);
   const Vec3 q(glm::dot(c.in(0), p), glm::dot(c.in(1), p), glm::dot(c.in(2), p));
   switch (c.ins.mode) {

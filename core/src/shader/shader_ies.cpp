@@ -79,7 +79,7 @@ float ies_intensity(const float* table, int size, float h, float v, IesLookup lo
   return std::max(catmull_rom(a, b, c, d, h_frac), 0.0f);
 }
 
-glm::vec4 ies_op(const ShaderOpContext& c) {
+OpValue ies_op(const ShaderOpContext& c) {
   const Vec3 vector = c.vector(0);
   const float length = glm::length(vector);
   float fac = 0.0f;

@@ -79,7 +79,7 @@ Vec2 direction_to_mirror_ball(const Vec3& co) {
   return Vec2(0.5f * (d.x + 1.0f), 0.5f * (d.z + 1.0f));
 }
 
-glm::vec4 image_projection_op(const ShaderOpContext& c) {
+OpValue image_projection_op(const ShaderOpContext& c) {
   const Vec3 co = c.vector(0);
   switch (c.ins.mode) {
     case 0: return glm::vec4(map_to_sphere(remap_square(co)), 0.0f, 0.0f);

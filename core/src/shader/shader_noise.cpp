@@ -316,7 +316,7 @@ float wave(WaveType type, int direction, WaveProfile profile, const Vec3& vector
 
 // ---- the ops ----
 
-glm::vec4 noise_op(const ShaderOpContext& c) {
+OpValue noise_op(const ShaderOpContext& c) {
   const bool color = c.ins.flags & 1;
   const NoiseTextureResult r = cpu_dispatch::run_fast([&] {
     return noise_texture(int(c.ins.mode) + 1, c.vector(0), c.value(1), c.value(2), c.value(3), c.value(4),
@@ -325,13 +325,13 @@ glm::vec4 noise_op(const ShaderOpContext& c) {
   return color ? glm::vec4(r.color, 1.0f) : glm::vec4(r.fac, 0.0f, 0.0f, 0.0f);
 }
 
-glm::vec4 white_noise_op(const ShaderOpContext& c) {
+OpValue white_noise_op(const ShaderOpContext& c) {
   const int dimensions = int(c.ins.mode) + 1;
   if (c.ins.flags & 1) return glm::vec4(white_noise_color(dimensions, c.vector(0), c.value(1)), 1.0f);
   return glm::vec4(white_noise_value(dimensions, c.vector(0), c.value(1)), 0.0f, 0.0f, 0.0f);
 }
 
-glm::vec4 musgrave_op(const ShaderOpContext& c) {
+OpValue musgrave_op(const ShaderOpContext& c) {
   const float fac = cpu_dispatch::run_fast([&] {
     return musgrave(MusgraveType(c.ins.mode / 4), int(c.ins.mode % 4) + 1, c.vector(0), c.value(1), c.value(2),
                     c.value(3), c.value(4), c.value(5), c.value(6), c.value(7));
@@ -339,7 +339,7 @@ glm::vec4 musgrave_op(const ShaderOpContext& c) {
   return glm::vec4(fac, 0.0f, 0.0f, 0.0f);
 }
 
-glm::vec4 wave_op(const ShaderOpContext& c) {
+OpValue wave_op(const ShaderOpContext& c) {
   const int shape = c.ins.mode / 3;
   const float fac = wave(WaveType(shape / kWaveDirections), shape % kWaveDirections, WaveProfile(c.ins.mode % 3),
                          c.vector(0), c.value(1), c.value(2), c.value(3), c.value(4), c.value(5), c.value(6),

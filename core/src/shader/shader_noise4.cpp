@@ -84,7 +84,7 @@ float wave_fbm4(const Vec3& p, float detail, float roughness) {
   return fbm4(p, fractal::octaves(std::fmin(detail, 15.0f), 1, roughness, 2.0f), true);
 }
 
-glm::vec4 noise4_op(const ShaderOpContext& c) {
+OpValue noise4_op(const ShaderOpContext& c) {
   Noise4Params q;
   q.type = MusgraveType(c.ins.mode / 4);
   q.dimensions = int(c.ins.mode % 4) + 1;

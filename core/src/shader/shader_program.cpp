@@ -26,6 +26,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -40,8 +41,10 @@ constexpr float kMaxValue = 1e30f;  // program values stay finite and well insid
 // of a zero kept), four at once, stored at `to`: run() does this to every instruction's output.
 // A lane is finite where x - x is a number (0; NaN for an infinity or a NaN): no constants to load
 // beyond the two bounds.
-void store_finite(const glm::vec4& v, glm::vec4* to) {
-  const __m128 x = _mm_setr_ps(v.x, v.y, v.z, v.w);
+void store_finite(const OpValue& v, glm::vec4* to) {
+  __m128 x;
+  static_assert(sizeof x == sizeof v.lanes);
+  std::memcpy(&x, &v.lanes, sizeof x);
   const __m128 clamped = _mm_min_ps(_mm_max_ps(x, _mm_set1_ps(-kMaxValue)), _mm_set1_ps(kMaxValue));
   const __m128 zero_if_finite = _mm_sub_ps(x, x);
   _mm_storeu_ps(&to->x, _mm_and_ps(clamped, _mm_cmpord_ps(zero_if_finite, zero_if_finite)));
@@ -58,32 +61,32 @@ glm::vec4 channel_of(const ShaderInstruction& ins, const glm::vec4* regs) {
 glm::vec4 combined(const ShaderInstruction& ins, const glm::vec4* regs) {
   return glm::vec4(regs[ins.in[0]].x, regs[ins.in[1]].x, regs[ins.in[2]].x, 1.0f);
 }
-glm::vec4 channel(const ShaderOpContext& c) { return channel_of(c.ins, c.regs); }
-glm::vec4 combine(const ShaderOpContext& c) { return combined(c.ins, c.regs); }
-glm::vec4 math(const ShaderOpContext& c) {
+OpValue channel(const ShaderOpContext& c) { return channel_of(c.ins, c.regs); }
+OpValue combine(const ShaderOpContext& c) { return combined(c.ins, c.regs); }
+OpValue math(const ShaderOpContext& c) {
   const float v = shader::math(shader::MathOp(c.ins.mode), c.value(0), c.value(1), c.value(2));
   return value((c.ins.flags & 1) ? std::clamp(v, 0.0f, 1.0f) : v);
 }
-glm::vec4 vector_math(const ShaderOpContext& c) {
+OpValue vector_math(const ShaderOpContext& c) {
   Vec3 vector(0.0f);
   float scalar = 0.0f;
   shader::vector_math(shader::VectorMathOp(c.ins.mode), c.vector(0), c.vector(1), c.vector(2), c.value(3), &vector,
                       &scalar);
   return (c.ins.flags & 1) ? value(scalar) : glm::vec4(vector, 0.0f);
 }
-glm::vec4 mix_color(const ShaderOpContext& c) {
+OpValue mix_color(const ShaderOpContext& c) {
   return color(shader::mix_color(shader::MixBlend(c.ins.mode), shader::mix_factor(c.value(0), c.ins.flags & 2),
                                  c.vector(1), c.vector(2), c.ins.flags & 1));
 }
-glm::vec4 mix_float(const ShaderOpContext& c) {
+OpValue mix_float(const ShaderOpContext& c) {
   return value(shader::mix_float(shader::mix_factor(c.value(0), c.ins.flags & 2), c.value(1), c.value(2)));
 }
-glm::vec4 mix_vector(const ShaderOpContext& c) {
+OpValue mix_vector(const ShaderOpContext& c) {
   Vec3 factor = (c.ins.flags & 4) ? c.vector(0) : Vec3(c.value(0));
   if (c.ins.flags & 2) factor = glm::clamp(factor, Vec3(0.0f), Vec3(1.0f));
   return glm::vec4(shader::mix_vector(factor, c.vector(1), c.vector(2)), 0.0f);
 }
-glm::vec4 color_model(const ShaderOpContext& c) {
+OpValue color_model(const ShaderOpContext& c) {
   const Vec3 v = c.vector(0);
   switch (c.ins.mode) {
     case 0: return color(shader::rgb_to_hsv(v));
@@ -92,17 +95,17 @@ glm::vec4 color_model(const ShaderOpContext& c) {
     default: return color(shader::hsl_to_rgb(v));
   }
 }
-glm::vec4 invert(const ShaderOpContext& c) { return color(shader::invert(c.value(0), c.vector(1))); }
-glm::vec4 gamma(const ShaderOpContext& c) { return color(shader::gamma(c.vector(0), c.value(1))); }
-glm::vec4 bright_contrast(const ShaderOpContext& c) {
+OpValue invert(const ShaderOpContext& c) { return color(shader::invert(c.value(0), c.vector(1))); }
+OpValue gamma(const ShaderOpContext& c) { return color(shader::gamma(c.vector(0), c.value(1))); }
+OpValue bright_contrast(const ShaderOpContext& c) {
   return color(shader::bright_contrast(c.vector(0), c.value(1), c.value(2)));
 }
-glm::vec4 hue_saturation(const ShaderOpContext& c) {
+OpValue hue_saturation(const ShaderOpContext& c) {
   return color(shader::hue_saturation_value(c.value(0), c.value(1), c.value(2), c.value(3), c.vector(4)));
 }
-glm::vec4 luminance(const ShaderOpContext& c) { return value(shader::rgb_to_bw(c.vector(0))); }
-glm::vec4 average(const ShaderOpContext& c) { return value((c.in(0).x + c.in(0).y + c.in(0).z) / 3.0f); }
-glm::vec4 uv(const ShaderOpContext& c) { return glm::vec4(c.globals.uv, 0.0f, 0.0f); }
+OpValue luminance(const ShaderOpContext& c) { return value(shader::rgb_to_bw(c.vector(0))); }
+OpValue average(const ShaderOpContext& c) { return value((c.in(0).x + c.in(0).y + c.in(0).z) / 3.0f); }
+OpValue uv(const ShaderOpContext& c) { return glm::vec4(c.globals.uv, 0.0f, 0.0f); }
 
 // The GlobalsRead flags of the globals an opcode reads beyond the hit's basics.
 uint8_t globals_read_by(ShaderOpcode op) {
@@ -315,13 +318,13 @@ void run_code(const std::vector<ShaderInstruction>& code, const std::vector<Shad
     }
     const ShaderGlobals& g = *at[ins->offset];
     const ShaderOpContext c{*ins, regs, g, tables + s->table, s->table_size};
-    const glm::vec4 out = s->run ? s->run(c)
-                                 : textures[size_t(ins->resource)]->lookup(Vec2(c.in(0)), g.footprint,
-                                                                           Extension(ins->mode));
+    const OpValue out = s->run ? s->run(c)
+                               : OpValue(textures[size_t(ins->resource)]->lookup(Vec2(c.in(0)), g.footprint,
+                                                                                 Extension(ins->mode)));
     if (s->clamp)
       store_finite(out, &regs[ins->out]);
     else
-      regs[ins->out] = out;
+      std::memcpy(&regs[ins->out], &out.lanes, sizeof(glm::vec4));
     ++ins, ++s;
   }
 }

@@ -118,7 +118,7 @@ float radial_tiling_segment_id(const Vec2& coord, float sides) {
   return std::floor(sides * ((std::atan2(coord.y, coord.x) / kTwoPi) + float(coord.y < 0.0f)));
 }
 
-glm::vec4 radial_tiling_op(const ShaderOpContext& c) {
+OpValue radial_tiling_op(const ShaderOpContext& c) {
   const Vec2 coord(c.in(0));
   const float sides = std::fmax(c.value(1), 2.0f);
   const float r = c.value(2);

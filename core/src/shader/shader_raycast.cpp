@@ -26,7 +26,7 @@ RayStart ray_start(const ShaderGlobals& g, const Vec3& position, float bump_widt
 
 }  // namespace
 
-glm::vec4 raycast_op(const ShaderOpContext& c) {
+OpValue raycast_op(const ShaderOpContext& c) {
   const ShaderGlobals& g = c.globals;
   const Vec3 position = c.vector(0), direction = c.vector(1);
   const float length = c.value(2);

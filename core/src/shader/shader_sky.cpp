@@ -217,7 +217,7 @@ Vec3 sky_scattering(const Vec3& dir, const float* table, int size) {
   return xyz_to_rec709_clamped(xyz);
 }
 
-glm::vec4 sky_op(const ShaderOpContext& c) {
+OpValue sky_op(const ShaderOpContext& c) {
   const Vec3 dir = c.vector(0);
   Vec3 rgb(0.0f);
   if (c.ins.mode == uint8_t(SkyModel::Preetham) && c.data_size >= kPreethamTable)

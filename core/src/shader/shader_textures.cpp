@@ -175,12 +175,12 @@ Vec3 magic(const Vec3& p, float scale, int depth, float distortion) {
 
 // ---- the ops -------------------------------------------------------------------------------------
 
-glm::vec4 checker_op(const ShaderOpContext& c) {
+OpValue checker_op(const ShaderOpContext& c) {
   const float f = checker(c.vector(0) * c.value(3));
   return output(c, f == 1.0f ? c.vector(1) : c.vector(2), f);
 }
 
-glm::vec4 gradient_op(const ShaderOpContext& c) {
+OpValue gradient_op(const ShaderOpContext& c) {
   const float f = gradient(GradientType(c.ins.mode), c.vector(0));
   return output(c, Vec3(f), f);
 }
@@ -192,7 +192,7 @@ int frequency(float f) { return std::clamp(to_int(f), 0, 99); }
 
 }  // namespace
 
-glm::vec4 brick_op(const ShaderOpContext& c) {
+OpValue brick_op(const ShaderOpContext& c) {
   const glm::vec4& settings = c.in(10);
   const BrickRows rows{settings.x, frequency(settings.y), settings.z, frequency(settings.w)};
   const BrickSample s =
@@ -200,7 +200,7 @@ glm::vec4 brick_op(const ShaderOpContext& c) {
   return output(c, brick_color(s, c.vector(1), c.vector(2), c.vector(3)), s.mortar);
 }
 
-glm::vec4 magic_op(const ShaderOpContext& c) {
+OpValue magic_op(const ShaderOpContext& c) {
   const Vec3 color = magic(c.vector(0), c.value(1), int(c.ins.mode), c.value(2));
   return output(c, color, (color.x + color.y + color.z) * (1.0f / 3.0f));
 }

@@ -152,7 +152,7 @@ Vec3 vector_transform(int mode, const Vec3& v, const ObjectTransform& object, co
   return type == 2 && !normal4 ? safe_unit(out) : out;
 }
 
-glm::vec4 vector_transform_op(const ShaderOpContext& c) {
+OpValue vector_transform_op(const ShaderOpContext& c) {
   const ObjectTransform object(c, 1);
   const glm::vec4 to_camera[3] = {c.in(5), c.in(6), c.in(7)};
   const glm::vec4 to_world[3] = {c.in(8), c.in(9), c.in(10)};
@@ -160,11 +160,11 @@ glm::vec4 vector_transform_op(const ShaderOpContext& c) {
                    0.0f);
 }
 
-glm::vec4 mapping_op(const ShaderOpContext& c) {
+OpValue mapping_op(const ShaderOpContext& c) {
   return glm::vec4(mapping(c.ins.mode, c.vector(0), c.vector(1), c.vector(2), c.vector(3)), 0.0f);
 }
 
-glm::vec4 vector_rotate_op(const ShaderOpContext& c) {
+OpValue vector_rotate_op(const ShaderOpContext& c) {
   return glm::vec4(vector_rotate(c.ins.mode, c.ins.flags & 1, c.vector(0), c.vector(1), c.vector(2), c.value(3),
                                  c.vector(4)),
                    0.0f);

@@ -26,7 +26,7 @@ VoronoiOutputs voronoi(const VoronoiSettings& settings, const VoronoiInputs& in)
   return evaluate(settings, in, true);
 }
 
-glm::vec4 voronoi_op(const ShaderOpContext& c) {
+OpValue voronoi_op(const ShaderOpContext& c) {
   if (c.ins.flags > kVoronoiRadius) return glm::vec4(0.0f);
   return op_outputs(c, evaluate);
 }

@@ -176,7 +176,7 @@ VoronoiOutputs voronoi4(const VoronoiSettings& settings, const VoronoiInputs& in
   return evaluate(settings, in, octaves_of(fractal), true);
 }
 
-glm::vec4 voronoi4_op(const ShaderOpContext& c) {
+OpValue voronoi4_op(const ShaderOpContext& c) {
   if (c.ins.flags > (kVoronoiRadius | kVoronoiNormalize | kVoronoiIntegerHash)) return glm::vec4(0.0f);
   const Octaves octaves = octaves_of({c.value(6), c.value(7), c.value(8), (c.ins.flags & kVoronoiNormalize) != 0,
                                       (c.ins.flags & kVoronoiIntegerHash) != 0});

@@ -60,7 +60,7 @@ glm::vec4 voxel_lookup(const float* voxels, const glm::ivec3& n, const Vec3& p, 
   return sum;
 }
 
-glm::vec4 point_density_op(const ShaderOpContext& c) {
+OpValue point_density_op(const ShaderOpContext& c) {
   const float* table = c.data;
   if (c.data_size < kVoxelHeader) return glm::vec4(0.0f);
   const glm::ivec3 n{int(table[0]), int(table[1]), int(table[2])};

@@ -17,6 +17,7 @@
 namespace torrance {
 
 struct ShaderOpContext;
+struct OpValue;
 
 class VolumeGrid {
  public:
@@ -62,6 +63,6 @@ class VolumeGrid {
 // The VolumeGrid shader op (shader_program.h): grid ins.resource of the globals' grids at the
 // world point in0, RGBA as lookup gives it; with the globals' grid_bounds its brick's bound in
 // every channel. 0 without grids or for an id past them.
-glm::vec4 volume_grid_op(const ShaderOpContext& c);
+OpValue volume_grid_op(const ShaderOpContext& c);
 
 }  // namespace torrance

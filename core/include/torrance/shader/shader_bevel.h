@@ -22,7 +22,7 @@
 
 namespace torrance::shader {
 
-glm::vec4 bevel_op(const ShaderOpContext& c);
+OpValue bevel_op(const ShaderOpContext& c);
 
 // Cycles' radius profile: its density at r for radius R (0 from R on), and the radius whose
 // cumulative share is xi (Newton's method on the quintic).

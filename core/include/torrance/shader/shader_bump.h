@@ -55,11 +55,11 @@ Vec3 tangent_normal_map(const Vec3& c, const Vec3& n, const Vec3& tangent, float
 // where that has no direction).
 Vec3 mix_mapped_normal(const Vec3& n, const Vec3& mapped, float strength);
 
-glm::vec4 bump_op(const ShaderOpContext& c);
+OpValue bump_op(const ShaderOpContext& c);
 constexpr uint8_t kBumpInvert = 1, kBumpCycles4 = 2, kNormalMapCycles4 = 1;
 constexpr int kNormalMapModes = 5;
-glm::vec4 normal_map_op(const ShaderOpContext& c);
-glm::vec4 displacement_op(const ShaderOpContext& c);
-glm::vec4 vector_displacement_op(const ShaderOpContext& c);
+OpValue normal_map_op(const ShaderOpContext& c);
+OpValue displacement_op(const ShaderOpContext& c);
+OpValue vector_displacement_op(const ShaderOpContext& c);
 
 }  // namespace torrance::shader

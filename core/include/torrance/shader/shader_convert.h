@@ -81,14 +81,14 @@ Vec3 cie_1931(float nanometres);
 Vec3 xyz_to_rec709(const Vec3& xyz);
 
 // The ops (ShaderOpcode 72-80), each reading what its ShaderOpcode's comment says.
-glm::vec4 color_ramp_op(const ShaderOpContext& c);
-glm::vec4 rgb_curves_op(const ShaderOpContext& c);
-glm::vec4 vector_curves_op(const ShaderOpContext& c);
-glm::vec4 float_curve_op(const ShaderOpContext& c);
-glm::vec4 map_range_op(const ShaderOpContext& c);
-glm::vec4 vector_map_range_op(const ShaderOpContext& c);
-glm::vec4 clamp_op(const ShaderOpContext& c);
-glm::vec4 blackbody_op(const ShaderOpContext& c);
-glm::vec4 wavelength_op(const ShaderOpContext& c);
+OpValue color_ramp_op(const ShaderOpContext& c);
+OpValue rgb_curves_op(const ShaderOpContext& c);
+OpValue vector_curves_op(const ShaderOpContext& c);
+OpValue float_curve_op(const ShaderOpContext& c);
+OpValue map_range_op(const ShaderOpContext& c);
+OpValue vector_map_range_op(const ShaderOpContext& c);
+OpValue clamp_op(const ShaderOpContext& c);
+OpValue blackbody_op(const ShaderOpContext& c);
+OpValue wavelength_op(const ShaderOpContext& c);
 
 }  // namespace torrance::shader

@@ -14,7 +14,7 @@
 namespace torrance::shader {
 
 constexpr int kCurvesInfoModes = 6;
-glm::vec4 curves_info_op(const ShaderOpContext& c);
+OpValue curves_info_op(const ShaderOpContext& c);
 
 // The Point Info node (Cycles' svm_node_point_info; opcode 113): on a point's hit
 // (ShaderGlobals::on_point, primitive_info), mode
@@ -23,6 +23,6 @@ glm::vec4 curves_info_op(const ShaderOpContext& c);
 // and 0 on anything else. Its Random is an attribute of the point set, as in Cycles (the
 // add-on's ('point_random',) layer: the point's index hashed), read by the Attribute op.
 constexpr int kPointInfoModes = 2;
-glm::vec4 point_info_op(const ShaderOpContext& c);
+OpValue point_info_op(const ShaderOpContext& c);
 
 }  // namespace torrance::shader

@@ -60,6 +60,6 @@ GaborOutputs gabor_texture(GaborType type, const GaborInputs& in);
 // TexGabor  in: Vector, Scale, Frequency, Anisotropy, Orientation 2D (x), Orientation 3D;
 //           mode: GaborType; out = (Value, Phase, Intensity, 0): the add-on reads one register
 //           for every output of a node (a float in x, a Channel for y and z)
-glm::vec4 gabor_op(const ShaderOpContext& c);
+OpValue gabor_op(const ShaderOpContext& c);
 
 }  // namespace torrance::shader

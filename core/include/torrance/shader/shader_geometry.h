@@ -45,22 +45,22 @@
 
 namespace torrance::shader {
 
-glm::vec4 geometry_op(const ShaderOpContext& c);
-glm::vec4 reflection_op(const ShaderOpContext& c);
-glm::vec4 fresnel_op(const ShaderOpContext& c);
-glm::vec4 layer_weight_op(const ShaderOpContext& c);
-glm::vec4 attribute_op(const ShaderOpContext& c);
+OpValue geometry_op(const ShaderOpContext& c);
+OpValue reflection_op(const ShaderOpContext& c);
+OpValue fresnel_op(const ShaderOpContext& c);
+OpValue layer_weight_op(const ShaderOpContext& c);
+OpValue attribute_op(const ShaderOpContext& c);
 constexpr int kLightPathModes = 14;
-glm::vec4 light_path_op(const ShaderOpContext& c);
+OpValue light_path_op(const ShaderOpContext& c);
 constexpr int kLightFalloffModes = 3;
-glm::vec4 light_falloff_op(const ShaderOpContext& c);
-glm::vec4 wireframe_op(const ShaderOpContext& c);
+OpValue light_falloff_op(const ShaderOpContext& c);
+OpValue wireframe_op(const ShaderOpContext& c);
 constexpr uint8_t kAmbientOcclusionInside = 1, kAmbientOcclusionOnlyLocal = 2;  // its flags
-glm::vec4 ambient_occlusion_op(const ShaderOpContext& c);
+OpValue ambient_occlusion_op(const ShaderOpContext& c);
 constexpr int kTangentModes = 4;
-glm::vec4 tangent_op(const ShaderOpContext& c);
+OpValue tangent_op(const ShaderOpContext& c);
 constexpr int kCameraTransformModes = 5;
-glm::vec4 camera_transform_op(const ShaderOpContext& c);
+OpValue camera_transform_op(const ShaderOpContext& c);
 
 // Cycles' Layer Weight, from the cosine between the view direction and the normal.
 float layer_weight_fresnel(float blend, float cos_view, bool backfacing);

@@ -24,6 +24,6 @@ constexpr int kIesLookups = int(IesLookup::Cycles4) + 1;
 // The table's intensity at horizontal angle h (0 .. 2 pi) and vertical angle v (0 .. pi).
 float ies_intensity(const float* table, int size, float h, float v, IesLookup lookup = IesLookup::Cycles3);
 
-glm::vec4 ies_op(const ShaderOpContext& c);
+OpValue ies_op(const ShaderOpContext& c);
 
 }  // namespace torrance::shader

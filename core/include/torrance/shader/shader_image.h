@@ -27,6 +27,6 @@ Vec3 box_weights(const Vec3& n, float blend);
 Vec2 direction_to_equirectangular(const Vec3& co);
 Vec2 direction_to_mirror_ball(const Vec3& co);
 
-glm::vec4 image_projection_op(const ShaderOpContext& c);
+OpValue image_projection_op(const ShaderOpContext& c);
 
 }  // namespace torrance::shader

@@ -139,9 +139,9 @@ constexpr int kWhiteNoiseModes = 4;
 constexpr int kMusgraveModes = kMusgraveTypes * 4;
 constexpr int kWaveModes = 2 * kWaveDirections * 3;
 
-glm::vec4 noise_op(const ShaderOpContext& c);
-glm::vec4 white_noise_op(const ShaderOpContext& c);
-glm::vec4 musgrave_op(const ShaderOpContext& c);
-glm::vec4 wave_op(const ShaderOpContext& c);
+OpValue noise_op(const ShaderOpContext& c);
+OpValue white_noise_op(const ShaderOpContext& c);
+OpValue musgrave_op(const ShaderOpContext& c);
+OpValue wave_op(const ShaderOpContext& c);
 
 }  // namespace torrance::shader

@@ -67,6 +67,6 @@ float wave_fbm4(const Vec3& p, float detail, float roughness);
 //          Fac (fac, 0, 0, 0); flags & 2: normalize
 constexpr int kNoise4Modes = kMusgraveTypes * 4;
 
-glm::vec4 noise4_op(const ShaderOpContext& c);
+OpValue noise4_op(const ShaderOpContext& c);
 
 }  // namespace torrance::shader

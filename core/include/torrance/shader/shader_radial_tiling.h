@@ -37,6 +37,6 @@ float radial_tiling_segment_id(const Vec2& coord, float sides);
 //               mode 0: Segment Coordinates (parameter, distance, 0, 0);
 //               mode 1: (Segment ID, Segment Width, Segment Rotation, 0)
 constexpr int kRadialTilingModes = 2;
-glm::vec4 radial_tiling_op(const ShaderOpContext& c);
+OpValue radial_tiling_op(const ShaderOpContext& c);
 
 }  // namespace torrance::shader

@@ -20,6 +20,6 @@ namespace torrance::shader {
 
 constexpr uint8_t kRaycastOnlyLocal = 1;
 
-glm::vec4 raycast_op(const ShaderOpContext& c);
+OpValue raycast_op(const ShaderOpContext& c);
 
 }  // namespace torrance::shader

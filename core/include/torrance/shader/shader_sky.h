@@ -110,6 +110,6 @@ Vec3 sky_hosek(const Vec3& dir, const float* table);
 // table/size: the Scattering table; an inconsistent table gives black.
 Vec3 sky_scattering(const Vec3& dir, const float* table, int size);
 
-glm::vec4 sky_op(const ShaderOpContext& c);
+OpValue sky_op(const ShaderOpContext& c);
 
 }  // namespace torrance::shader

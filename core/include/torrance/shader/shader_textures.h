@@ -91,10 +91,10 @@ constexpr int kMagicDepths = 11;  // Depth 0..10
 Vec3 magic(const Vec3& p, float scale, int depth, float distortion);
 
 // ---- the ops (see above for their inputs) --------------------------------------------------------
-glm::vec4 checker_op(const ShaderOpContext& c);
-glm::vec4 gradient_op(const ShaderOpContext& c);
-glm::vec4 brick_op(const ShaderOpContext& c);
-glm::vec4 magic_op(const ShaderOpContext& c);
+OpValue checker_op(const ShaderOpContext& c);
+OpValue gradient_op(const ShaderOpContext& c);
+OpValue brick_op(const ShaderOpContext& c);
+OpValue magic_op(const ShaderOpContext& c);
 
 // The op's output by its flags: bit 0 set, the Fac as a float; clear, the colour.
 constexpr uint8_t kTextureFac = 1;

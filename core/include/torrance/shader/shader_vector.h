@@ -50,8 +50,8 @@ constexpr int kVectorTransformModes = 27;
 Vec3 vector_transform(int mode, const Vec3& v, const ObjectTransform& object, const glm::vec4 to_camera[3],
                       const glm::vec4 to_world[3], bool cycles4_normals = false);
 
-glm::vec4 mapping_op(const ShaderOpContext& c);
-glm::vec4 vector_rotate_op(const ShaderOpContext& c);
-glm::vec4 vector_transform_op(const ShaderOpContext& c);
+OpValue mapping_op(const ShaderOpContext& c);
+OpValue vector_rotate_op(const ShaderOpContext& c);
+OpValue vector_transform_op(const ShaderOpContext& c);
 
 }  // namespace torrance::shader

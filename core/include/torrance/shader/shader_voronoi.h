@@ -51,6 +51,7 @@
 
 namespace torrance {
 struct ShaderOpContext;
+struct OpValue;
 }
 
 namespace torrance::shader {
@@ -119,12 +120,12 @@ constexpr VoronoiSettings voronoi_settings(int mode) {
           VoronoiMetric(mode / (4 * kVoronoiFeatureCount))};
 }
 
-glm::vec4 voronoi_op(const ShaderOpContext& c);
+OpValue voronoi_op(const ShaderOpContext& c);
 
 // ShaderOpcode::VoronoiV4 (Blender 4.0+'s node, voronoi4): modes and output groups as Voronoi's
 // (flags & 3), flags & 4 (kVoronoiNormalize): Normalize, flags & 8 (kVoronoiIntegerHash): Cycles
 // 5.0+'s cells; inputs Voronoi's six, then in6 Detail, in7 Roughness, in8 Lacunarity.
 constexpr uint8_t kVoronoiNormalize = 4, kVoronoiIntegerHash = 8;
-glm::vec4 voronoi4_op(const ShaderOpContext& c);
+OpValue voronoi4_op(const ShaderOpContext& c);
 
 }  // namespace torrance::shader

@@ -34,6 +34,6 @@ constexpr int kVoxelHeader = 19;  // nx, ny, nz, the 3 x 4 map, the 4 channel ma
 glm::vec4 voxel_lookup(const float* voxels, const glm::ivec3& n, const Vec3& p, VoxelInterpolation interpolation,
                        uint8_t clip);
 
-glm::vec4 point_density_op(const ShaderOpContext& c);
+OpValue point_density_op(const ShaderOpContext& c);
 
 }  // namespace torrance::shader
