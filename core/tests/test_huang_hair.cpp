@@ -193,6 +193,11 @@ TEST(HuangHair, EllipseSeenAcrossItsMinorAxisLetsOuterHitsPass) {
   EXPECT_TRUE(passed.is_delta);
   EXPECT_NEAR(glm::dot(passed.wi, -along_major), 1.0f, 1e-6f);
   EXPECT_EQ(passed.weight, Vec3(1.0f));
+  // A transparent bounce for the path tracer (pass_sheet), not a delta lobe's: lights met after it
+  // are MIS-weighted against NEE at the vertex before.
+  EXPECT_TRUE(passed.straight_through);
+  EXPECT_TRUE(thin.may_pass());
+  EXPECT_FALSE(HuangHairBsdf(white(0.3f), tangent, true).may_pass());
   EXPECT_EQ(thin.eval(along_major, along_minor), Vec3(0.0f));
   EXPECT_FALSE(thin.sample(along_minor, 0.5f, Vec2(0.5f, 0.5f)).is_delta);
   EXPECT_TRUE(wide.sample(along_major, 0.5f, Vec2(0.5f, 0.5f)).is_delta);

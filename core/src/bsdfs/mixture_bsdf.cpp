@@ -200,8 +200,10 @@ bool MixtureBsdf::hair_only() const {
 }
 
 bool MixtureBsdf::passes_straight() const {
-  for (int k = 0; k < count_; ++k)
+  for (int k = 0; k < count_; ++k) {
     if (const auto* m = std::get_if<MaterialBsdf>(&components_[k]); m && m->passes_straight()) return true;
+    if (const auto* h = std::get_if<HuangHairBsdf>(&components_[k]); h && h->may_pass()) return true;
+  }
   return false;
 }
 

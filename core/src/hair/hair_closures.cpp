@@ -73,4 +73,10 @@ HairBsdf hair_bsdf(const Material& m, bool transmission, const ShaderGlobals& g)
   return HairBsdf(m.base_color, transmission, m.roughness, m.transmission_roughness, offset, tangent);
 }
 
+bool hair_may_pass(const Scene& scene, const Mixture& mixture) {
+  for (const MixtureComponent& c : mixture.components)
+    if (c.type == ClosureType::PrincipledHairHuang && scene.material(c.material).hair_aspect_ratio != 1.0f) return true;
+  return false;
+}
+
 }  // namespace torrance

@@ -320,10 +320,11 @@ BsdfSample HuangHairBsdf::sample(const Vec3& wo, float u_lobe, const Vec2& u) co
   if (!(weights_.x > 0.0f) && !(weights_.y > 0.0f) && !(weights_.z > 0.0f)) return {};
   const View v = at(wo);
   BsdfSample out;
-  if (v.passes) {  // Cycles' transparent closure: straight on
+  if (v.passes) {  // Cycles' transparent closure: straight on, a transparent bounce
     out.wi = -wo;
     out.weight = Vec3(1.0f);
     out.is_delta = true;
+    out.straight_through = true;
     return out;
   }
   microsurface::Random random(microsurface::seed_of(wo, Vec3(u_lobe, u.x, u.y)));

@@ -10,6 +10,7 @@
 #include "film/extra_passes_write.h"
 #include "film/film_passes.h"
 #include "film/motion_vectors.h"
+#include "hair/hair_closures.h"
 #include "integrator/caustics.h"
 #include "integrator/first_hit_passes.h"
 #include "integrator/guided_bsdf.h"
@@ -269,7 +270,7 @@ class PathTracer {
     const Bsdf* bsdf = nullptr;       // local_bsdf or the material's, built once per render
     bool mixture = false, textured = false, transmits = false;
     bool strands = false;  // only Hair BSDF closures: light on either geometric side, as Cycles'
-    bool may_pass = false;  // off the camera ray a smooth thin wall may let the ray on (pass_sheet)
+    bool may_pass = false;  // off the camera ray a smooth thin wall or Huang hair may let the ray on (pass_sheet)
     bool guidable = false;  // path guiding may sample here (guided_bsdf.h)
     // The material's program's registers (its Normal reads them), and a mixture's closures for
     // the denoising features.
@@ -934,7 +935,10 @@ class PathTracer {
   // (thin_wall_shadow.h). The ray goes on unbent without a bounce (a transparent one, at most
   // max_transparent_bounces a path); the lights it meets are MIS-weighted against NEE at the
   // vertex before (last_ and that vertex's light choice kept), whose shadow rays passed the sheet.
-  // The sheet's own NEE and emission were taken as at any vertex (Cycles shades it too).
+  // The sheet's own NEE and emission were taken as at any vertex (Cycles shades it too). Cycles
+  // 4.x's Transparent closure of Huang hair hit outside its ellipse (huang_hair_bsdf.h) passes
+  // the same way, though shadow rays stop at the strand (Cycles' baked curve transparency): light
+  // behind it is then reached by neither strategy but this MIS-weighted one, as in Cycles.
   bool pass_sheet(const Vertex& v) {
     if (++sheets_passed_ > ctx_.settings.max_transparent_bounces) return false;
     if constexpr (kTextures) count_up(path_state_.transparent_depth);
@@ -1445,6 +1449,7 @@ bool has_alpha(const Scene& scene) {
     if (scene.material(uint32_t(i)).alpha < 1.0f || scene.material_textures(uint32_t(i)).alpha >= 0 ||
         scene.material_textures(uint32_t(i)).program.alpha >= 0 ||
         (scene.mixture(uint32_t(i)) && scene.mixture(uint32_t(i))->passes()) ||
+        (scene.mixture(uint32_t(i)) && hair_may_pass(scene, *scene.mixture(uint32_t(i)))) ||  // pass_sheet
         scene.material(uint32_t(i)).thin_wall)  // a smooth sheet: transparent off camera rays
       return true;
   return false;

@@ -237,7 +237,8 @@ struct BsdfSample {
   bool is_delta = false;
   bool diffuse = false;  // drawn from a diffuse lobe (Cycles' LABEL_DIFFUSE; the Light Path node)
   // The straight pass through a smooth thin wall (thin_wall_v2.h): Cycles 5.x's Transparent
-  // closure for rays other than the camera's (the path tracer goes on as through alpha).
+  // closure for rays other than the camera's (the path tracer goes on as through alpha); and
+  // Huang hair's pass outside its ellipse (huang_hair_bsdf.h), Cycles 4.x's Transparent closure.
   bool straight_through = false;
   bool valid() const { return pdf > 0.0f || is_delta; }
 };

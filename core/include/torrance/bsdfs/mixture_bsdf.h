@@ -87,7 +87,8 @@ class MixtureBsdf {
   // Every closure is a Hair BSDF's: Cycles' hair closures check no geometric side (the path
   // tracer then leaves out its check that the geometric and shading normals agree on wi's side).
   bool hair_only() const;
-  // MaterialBsdf's straight pass of a smooth thin wall, summed over the closures by weight.
+  // Whether a sample may pass the ray straight on as a transparent surface: a MaterialBsdf's
+  // smooth thin wall, or an elliptical Huang hair closure on a curve (its hits outside the ellipse).
   bool passes_straight() const;
   // Its closures' world tangents into the shading frame (anisotropic glossy, hair); before at().
   void orient(const Frame& frame);

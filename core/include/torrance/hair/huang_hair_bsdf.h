@@ -42,7 +42,12 @@
 //
 // Where |h| >= r (an elliptical fibre seen across its minor axis is narrower than the round tube
 // that the ray met) Cycles turns the closure transparent: sample() passes the ray straight on
-// (a delta sample of weight 1) and eval is 0.
+// (a delta sample of weight 1, BsdfSample::straight_through) and eval is 0. The path tracer takes
+// that pass as Cycles takes its Transparent closure (pass_sheet, as a smooth thin wall's): no
+// bounce, and a light the ray then meets is MIS-weighted against NEE at the vertex before. Taken
+// as a delta bounce instead (MIS weight 1), a sun met through the gap while shadow rays stop at
+// the strand (Cycles' too: a strand's shadow transparency is baked without a view, where this
+// closure never passes) was a firefly of thousands times the pixel (issue 38).
 //
 // Not rendered: Cycles' near field (a strand wider than half a pixel seen by a camera ray,
 // where Cycles integrates only over the pixel's part of the strand and samples the hit's own h:
@@ -90,6 +95,8 @@ class HuangHairBsdf {
   // What a mixture samples it by: the colour a round, smooth fibre of this sigma scatters (the
   // sum of its paths' geometric series), seen head-on.
   float sampling_albedo() const;
+  // Whether sample() may pass rays straight on (an ellipse on a curve: Cycles' transparency).
+  bool may_pass() const { return b_ != 1.0f && on_curve_; }
 
  private:
   struct View;  // wo in the strand's frame
