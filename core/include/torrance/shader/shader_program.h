@@ -235,6 +235,12 @@ struct ShaderGlobals {
   }
 };
 
+#if defined(__has_builtin)
+#if __has_builtin(__builtin_shufflevector)
+#define TORRANCE_HAS_SHUFFLEVECTOR 1
+#endif
+#endif
+
 // An op's output: a register's four values, returned in one vector register. (A glm::vec4 comes
 // back split over two, which the program's loop joined again through memory: a load that waits
 // for the two stores before it, after every instruction, ~40 % of the loop's own time in a
@@ -242,7 +248,17 @@ struct ShaderGlobals {
 struct OpValue {
   typedef float Lanes __attribute__((vector_size(16)));
   Lanes lanes;
-  OpValue(const glm::vec4& v) : lanes{v.x, v.y, v.z, v.w} {}  // NOLINT: ops return glm::vec4s
+  // From the two halves a glm::vec4 is returned in, joined in registers (a shuffle: written as
+  // {x, y, z, w} GCC joins them through memory, the same stall again, at every op's return).
+  OpValue(const glm::vec4& v) {  // NOLINT: ops return glm::vec4s
+#if TORRANCE_HAS_SHUFFLEVECTOR
+    typedef float Half __attribute__((vector_size(8)));
+    const Half low = {v.x, v.y}, high = {v.z, v.w};
+    lanes = __builtin_shufflevector(low, high, 0, 1, 2, 3);
+#else
+    lanes = Lanes{v.x, v.y, v.z, v.w};
+#endif
+  }
   OpValue(float x, float y, float z, float w) : lanes{x, y, z, w} {}
   explicit OpValue(Lanes l) : lanes(l) {}
   operator glm::vec4() const { return glm::vec4(lanes[0], lanes[1], lanes[2], lanes[3]); }  // NOLINT
