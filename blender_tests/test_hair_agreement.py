@@ -21,7 +21,7 @@ import math
 from torrance_tools import scene as make
 from torrance_tools import testing
 from torrance_tools.seed_noise import agree_within_seed_noise
-from torrance_tools.shader_graphs import Graph, closure_changed
+from torrance_tools.shader_graphs import closure_changed, shader_material
 
 W, H = 96, 72
 BOUNCES = 8
@@ -29,13 +29,9 @@ SAMPLES = 64
 
 
 def hair_material():
-    g = Graph("Hair", surface="ShaderNodeBsdfHairPrincipled")
-    g.shader.parametrization = 'MELANIN'
-    g.shader.inputs["Melanin"].default_value = 0.45
-    g.shader.inputs["Melanin Redness"].default_value = 0.6
-    g.shader.inputs["Roughness"].default_value = 0.35
-    g.shader.inputs["Radial Roughness"].default_value = 0.4
-    return g.mat
+    return shader_material("Hair", "ShaderNodeBsdfHairPrincipled", dict(parametrization='MELANIN'),
+                           {"Melanin": 0.45, "Melanin Redness": 0.6, "Roughness": 0.35,
+                            "Radial Roughness": 0.4})
 
 
 def grass_patch(scene):

@@ -27,7 +27,7 @@ import math
 from torrance_tools import scene as make
 from torrance_tools import testing
 from torrance_tools.seed_noise import agree_within_seed_noise
-from torrance_tools.shader_graphs import Graph, closure_changed
+from torrance_tools.shader_graphs import closure_changed, shader_material
 
 W, H = 80, 60
 BOUNCES = 8
@@ -35,17 +35,11 @@ SAMPLES = 48
 
 
 def hair_material():
-    g = Graph("HuangHair", surface="ShaderNodeBsdfHairPrincipled")
-    g.shader.model = 'HUANG'
-    g.shader.parametrization = 'MELANIN'
-    g.shader.inputs["Melanin"].default_value = 0.5
-    g.shader.inputs["Melanin Redness"].default_value = 0.5
-    g.shader.inputs["Roughness"].default_value = 0.3
-    g.shader.inputs["Aspect Ratio"].default_value = 0.85
-    g.shader.inputs["Secondary Reflection"].default_value = 0.4
-    g.shader.inputs["Random Roughness"].default_value = 0.8
-    g.shader.inputs["Random Color"].default_value = 1.0
-    return g.mat
+    return shader_material("HuangHair", "ShaderNodeBsdfHairPrincipled",
+                           dict(model='HUANG', parametrization='MELANIN'),
+                           {"Melanin": 0.5, "Melanin Redness": 0.5, "Roughness": 0.3,
+                            "Aspect Ratio": 0.85, "Secondary Reflection": 0.4,
+                            "Random Roughness": 0.8, "Random Color": 1.0})
 
 
 def build(scene):

@@ -37,7 +37,7 @@ import numpy as np
 
 from torrance_tools import testing
 from torrance_tools.seed_noise import agree_within_seed_noise
-from torrance_tools.shader_graphs import Graph
+from torrance_tools.shader_graphs import shader_material
 
 W, H = 80, 60
 BOUNCES = 8
@@ -46,14 +46,10 @@ STRANDS, KEYS = 500, 6
 
 
 def hair_material():
-    g = Graph("HuangCurves", surface="ShaderNodeBsdfHairPrincipled")
-    g.shader.model = 'HUANG'
-    g.shader.parametrization = 'MELANIN'
-    g.shader.inputs["Melanin"].default_value = 0.3
-    g.shader.inputs["Roughness"].default_value = 0.25
-    g.shader.inputs["Aspect Ratio"].default_value = 0.6
-    g.shader.inputs["Secondary Reflection"].default_value = 0.7
-    return g.mat
+    return shader_material("HuangCurves", "ShaderNodeBsdfHairPrincipled",
+                           dict(model='HUANG', parametrization='MELANIN'),
+                           {"Melanin": 0.3, "Roughness": 0.25, "Aspect Ratio": 0.6,
+                            "Secondary Reflection": 0.7})
 
 
 def tuft(scene):

@@ -119,6 +119,17 @@ class Graph:
         return m.outputs[0]
 
 
+def shader_material(name, surface, settings=None, inputs=None):
+    """A material of one shader node of type `surface`: its node properties `settings` and its
+    inputs' default values `inputs` (socket name -> value), set in the order given."""
+    g = Graph(name, surface=surface)
+    for key, value in (settings or {}).items():
+        setattr(g.shader, key, value)
+    for socket, value in (inputs or {}).items():
+        g.shader.inputs[socket].default_value = value
+    return g.mat
+
+
 def make_sharp(node):
     """A Glossy or Glass BSDF made sharp: distribution Sharp (Blender 3.x), or GGX at roughness 0
     (4.x, which has no Sharp: its versioning turns Sharp into that)."""
