@@ -1445,13 +1445,15 @@ bool has_dispersion(const Scene& scene) {
 }
 
 bool has_alpha(const Scene& scene) {
-  for (size_t i = 0; i < scene.num_materials(); ++i)
-    if (scene.material(uint32_t(i)).alpha < 1.0f || scene.material_textures(uint32_t(i)).alpha >= 0 ||
-        scene.material_textures(uint32_t(i)).program.alpha >= 0 ||
-        (scene.mixture(uint32_t(i)) && scene.mixture(uint32_t(i))->passes()) ||
-        (scene.mixture(uint32_t(i)) && hair_may_pass(scene, *scene.mixture(uint32_t(i)))) ||  // pass_sheet
-        scene.material(uint32_t(i)).thin_wall)  // a smooth sheet: transparent off camera rays
+  for (size_t i = 0; i < scene.num_materials(); ++i) {
+    const uint32_t id = uint32_t(i);
+    const Mixture* mixture = scene.mixture(id);
+    if (scene.material(id).alpha < 1.0f || scene.material_textures(id).alpha >= 0 ||
+        scene.material_textures(id).program.alpha >= 0 ||
+        (mixture && (mixture->passes() || hair_may_pass(scene, *mixture))) ||  // hair: pass_sheet
+        scene.material(id).thin_wall)  // a smooth sheet: transparent off camera rays
       return true;
+  }
   return false;
 }
 

@@ -132,7 +132,7 @@ def strand_random(first, count):
 
 def read_strands(obj, psys, matrix):
     """(keys, radii, offsets[, slots, normals]) of obj's particle system psys, or of Curves
-    object obj    (psys None) at its world matrix; None without strands."""
+    object obj (psys None) at its world matrix; None without strands."""
     return curves_strands(obj, matrix) if psys is None else particle_strands(obj, psys)
 
 

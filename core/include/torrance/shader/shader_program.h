@@ -260,7 +260,6 @@ struct OpValue {
 #endif
   }
   OpValue(float x, float y, float z, float w) : lanes{x, y, z, w} {}
-  explicit OpValue(Lanes l) : lanes(l) {}
   operator glm::vec4() const { return glm::vec4(lanes[0], lanes[1], lanes[2], lanes[3]); }  // NOLINT
 };
 
